@@ -1,0 +1,140 @@
+//! The one error type of the crate.
+//!
+//! Every error names what was wrong (parameter or file key), the offending value and the reason, so that
+//! an engineer can fix the input without reading the source.
+
+use std::path::PathBuf;
+
+/// Result alias used throughout the crate.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Everything that can go wrong in stochvib.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A constructor or function argument is outside its valid range.
+    #[error("invalid parameter `{name}` = {value}: {reason}")]
+    InvalidParameter {
+        /// Parameter name, e.g. `alpha`.
+        name: String,
+        /// The value as given.
+        value: String,
+        /// Why it was rejected.
+        reason: String,
+    },
+    /// A quantity (variance, spectral moment, ...) is infinite; the reason says why and what to do.
+    #[error("{quantity} is infinite: {reason}")]
+    Divergent {
+        /// What was asked for, e.g. `variance of x1_acc`.
+        quantity: String,
+        /// Why it diverges and what finite question could be asked instead (a band, a cut-off).
+        reason: String,
+    },
+    /// Adaptive quadrature did not reach the requested tolerance.
+    #[error(
+        "quadrature of {what} did not converge: estimate {estimate:e} with error estimate {abs_error:e} \
+         after {evaluations} evaluations ({reason})"
+    )]
+    Quadrature {
+        /// What was integrated.
+        what: String,
+        /// Best estimate reached.
+        estimate: f64,
+        /// Its absolute error estimate.
+        abs_error: f64,
+        /// Number of integrand evaluations used.
+        evaluations: usize,
+        /// Why it stopped.
+        reason: String,
+    },
+    /// A value read from a file is wrong: names the file, the key, the value and the reason.
+    #[error("{}: key `{key}` = {value}: {reason}", file.display())]
+    File {
+        /// The file.
+        file: PathBuf,
+        /// Dotted key path inside the file, e.g. `spectrum.alpha`.
+        key: String,
+        /// The offending value as written (or `<missing>`).
+        value: String,
+        /// Why it was rejected.
+        reason: String,
+    },
+    /// A file could not be read or parsed at all.
+    #[error("{}: {reason}", file.display())]
+    Parse {
+        /// The file.
+        file: PathBuf,
+        /// Parser message.
+        reason: String,
+    },
+    /// A physical quantity string could not be understood or has the wrong dimension.
+    #[error("unit error in `{text}`: {reason}")]
+    Unit {
+        /// The text as written, e.g. `"3.5 furlong"`.
+        text: String,
+        /// Why it was rejected.
+        reason: String,
+    },
+    /// A numerical procedure failed (singular matrix, no convergence, ...).
+    #[error("numerical failure in {what}: {reason}")]
+    Numerical {
+        /// The procedure.
+        what: String,
+        /// Why.
+        reason: String,
+    },
+    /// Operating-system input/output error with the path involved.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The path.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// Shorthand for [`Error::InvalidParameter`].
+    pub fn invalid(name: &str, value: impl std::fmt::Display, reason: impl Into<String>) -> Self {
+        Error::InvalidParameter {
+            name: name.to_string(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+}
+
+/// Checks that `value` is finite and strictly positive.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `name` otherwise.
+pub fn require_positive(name: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(name, value, "must be finite and > 0"))
+    }
+}
+
+/// Checks that `value` is finite and ≥ 0.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `name` otherwise.
+pub fn require_non_negative(name: &str, value: f64) -> Result<f64> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(Error::invalid(name, value, "must be finite and >= 0"))
+    }
+}
+
+/// Checks that `value` is finite.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `name` otherwise.
+pub fn require_finite(name: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::invalid(name, value, "must be finite"))
+    }
+}

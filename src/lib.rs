@@ -1,0 +1,14 @@
+//! # stochvib
+//!
+//! Stochastic vibration and random-road analysis of machines: spectral densities of random roads and
+//! loads, linear models of machines, and the statistics of their responses computed three independent
+//! ways (analytic, frequency-domain quadrature, Monte Carlo).
+//!
+//! See [`spectrum`] for the normalization of spectral densities used everywhere in the crate.
+
+pub mod error;
+pub mod quad;
+pub mod spectrum;
+pub mod units;
+
+pub use error::{Error, Result};
