@@ -26,8 +26,10 @@ use crate::error::Result;
 use std::fmt::Debug;
 
 mod convention;
+mod rational;
 
 pub use convention::Convention;
+pub use rational::RationalSpectrum;
 
 /// Whether the independent variable of a spectrum is time or distance along a road.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
