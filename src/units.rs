@@ -1088,6 +1088,18 @@ mod tests {
         }
 
         #[test]
+        fn arbitrary_text_never_panics(s in "[0-9a-zA-Zµμ .*/^()+\\-·⋅²³⁻¹%#]{0,16}") {
+            match parse_quantity(&s) {
+                Ok((v, _)) => prop_assert!(v.is_finite()),
+                Err(Error::Unit { text, reason }) => {
+                    prop_assert_eq!(text, s);
+                    prop_assert!(!reason.is_empty());
+                }
+                Err(e) => prop_assert!(false, "unexpected error kind {:?}", e),
+            }
+        }
+
+        #[test]
         fn dim_display_round_trip(m in -9i8..=9, kg in -9i8..=9, s in -9i8..=9) {
             let d = Dim::new(m, kg, s);
             prop_assume!(d != Dim::DIMENSIONLESS);
