@@ -7,6 +7,7 @@
 //! See [`spectrum`] for the normalization of spectral densities used everywhere in the crate.
 
 pub mod error;
+pub mod linalg;
 pub mod quad;
 pub mod spectrum;
 pub mod units;

@@ -1,0 +1,474 @@
+//! The integral table Iₙ = ∫_{−∞}^{∞} |Hₙ(ω)|² dω for rational Hₙ (James, Nichols & Phillips 1947;
+//! Newland, *An Introduction to Random Vibrations*, Appendix 1; Crandall & Mark; Gradshteyn & Ryzhik
+//! 3.112).
+//!
+//! # Convention
+//! With real coefficients A₀…Aₙ (Aₙ ≠ 0) and B₀…B_{n−1} (missing ones are zero),
+//!
+//! ```text
+//!          B₀ + s B₁ + s² B₂ + … + s^{n−1} B_{n−1}
+//! Hₙ  =  ─────────────────────────────────────────,      Iₙ = ∫_{−∞}^{∞} |Hₙ|² dω,
+//!          A₀ + s A₁ + s² A₂ + … + sⁿ Aₙ
+//! ```
+//!
+//! evaluated on the imaginary axis, **either** at s = iω (Newland; time factor e^{iωt}, so the
+//! transfer function of Σ Aₖ x⁽ᵏ⁾ = Σ Bₖ f⁽ᵏ⁾ is exactly B(iω)/A(iω)) **or** at s = −iω (James,
+//! Nichols & Phillips, Crandall; time factor e^{−iωt}). Because the coefficients are real,
+//! |B(−iω)/A(−iω)| = |B(iω)/A(iω)|: the integral is the same in both conventions, and so are the
+//! formulas. What the formulas require is that the polynomial A(s) = Σ Aₖ sᵏ be **Hurwitz** (all roots
+//! in Re s < 0) — the stability of the system with Laplace transfer function B(s)/A(s). For Aₙ > 0
+//! this implies Aₖ > 0 for all k (an all-negative A is also accepted: |H|² does not change under
+//! A → −A). Example: m ẍ + c ẋ + k x = f has A = (k, c, m), B = (1), I₂ = π/(kc), so a white force of
+//! two-sided density S₀ gives Var x = π S₀/(kc).
+//!
+//! # Closed forms (n ≤ 4)
+//! ```text
+//! I₁ = π B₀² / (A₀A₁)
+//! I₂ = π (A₀B₁² + A₂B₀²) / (A₀A₁A₂)
+//! I₃ = π [A₀A₃(2B₀B₂ − B₁²) − A₀A₁B₂² − A₂A₃B₀²] / [A₀A₃(A₀A₃ − A₁A₂)]
+//! I₄ = π [A₀B₃²(A₀A₃ − A₁A₂) + A₀A₁A₄(2B₁B₃ − B₂²) − A₀A₃A₄(B₁² − 2B₀B₂)
+//!         + A₄B₀²(A₁A₄ − A₂A₃)] / [A₀A₄(A₀A₃² + A₁²A₄ − A₁A₂A₃)]
+//! ```
+//!
+//! # General order
+//! [`integral_i_n`] evaluates the same quantity exactly for any n by solving the linear system that
+//! the Hurwitz-determinant formula (Gradshteyn & Ryzhik 3.112) expresses by Cramer's rule; see its
+//! documentation.
+
+use super::poly::{is_hurwitz, trim};
+use crate::error::{Error, Result};
+use nalgebra::{DMatrix, DVector};
+use std::f64::consts::PI;
+
+fn check_finite(name: &str, c: &[f64]) -> Result<()> {
+    if let Some(v) = c.iter().find(|v| !v.is_finite()) {
+        return Err(Error::invalid(name, v, "all coefficients must be finite"));
+    }
+    Ok(())
+}
+
+/// Validates (b, a) for the table and returns (b padded to n entries, n).
+fn validate(b: &[f64], a: &[f64]) -> Result<(Vec<f64>, usize)> {
+    check_finite("a", a)?;
+    check_finite("b", b)?;
+    if a.len() < 2 {
+        return Err(Error::invalid(
+            "a",
+            format!("{a:?}"),
+            "needs n + 1 ≥ 2 coefficients A₀..Aₙ (denominator of degree n ≥ 1)",
+        ));
+    }
+    let n = a.len() - 1;
+    if a[n] == 0.0 {
+        return Err(Error::invalid(
+            "a",
+            format!("{a:?}"),
+            "the last coefficient Aₙ must be non-zero (it fixes the order n)",
+        ));
+    }
+    let bt = trim(b);
+    if bt.len() > n {
+        return Err(Error::Divergent {
+            quantity: "integral of |N/D|^2".into(),
+            reason: format!(
+                "numerator degree {} >= denominator degree {n}: |H|^2 does not decay, the integral is \
+                 infinite",
+                bt.len() - 1
+            ),
+        });
+    }
+    if !is_hurwitz(a) {
+        return Err(Error::invalid(
+            "a",
+            format!("{a:?}"),
+            "denominator not stable: A(s) = Σ Aₖ sᵏ must be Hurwitz (all roots with Re s < 0); \
+             with roots on the imaginary axis the integral diverges",
+        ));
+    }
+    let mut bp = bt;
+    bp.resize(n, 0.0);
+    Ok((bp, n))
+}
+
+/// The integral Iₙ = ∫_{−∞}^{∞} |B(iω)/A(iω)|² dω for any order n ≥ 1.
+///
+/// `a` holds A₀..Aₙ (ascending, Aₙ ≠ 0), `b` holds up to n coefficients B₀..B_{n−1} (ascending;
+/// shorter is zero-padded, trailing zeros are ignored). See the [module docs](self) for the
+/// convention (s = iω or s = −iω give the same value).
+///
+/// # Formula
+/// Write |H(iω)|² = B(s)B(−s) / (A(s)A(−s)) at s = iω and find the polynomial C of degree ≤ n−1 with
+///
+/// ```text
+/// A(s) C(−s) + A(−s) C(s) = B(s) B(−s).
+/// ```
+///
+/// Matching the n even powers s^{2k} gives the linear system Σⱼ 2(−1)ʲ A_{2k−j} Cⱼ = dₖ,
+/// dₖ = Σ_{i+j=2k} (−1)ʲ Bᵢ Bⱼ (k = 0..n−1; its matrix is the Hurwitz matrix up to signs, non-singular
+/// when A is Hurwitz, and Cramer's rule on it is the Hurwitz-determinant formula). Then
+/// |H|² = 2 Re[C(iω)/A(iω)], C/A is analytic in Re s ≥ 0 and ~ (C_{n−1}/Aₙ)/s at infinity, so closing
+/// the contour in the right half plane gives
+///
+/// ```text
+/// Iₙ = 2π C_{n−1} / Aₙ.
+/// ```
+///
+/// The system is solved by fully pivoted LU. Exact in exact arithmetic for every n; in floating point
+/// the accuracy degrades with the conditioning of the Hurwitz matrix (relative 1e-12 or better for
+/// well-separated roots up to n ≈ 10).
+///
+/// # Errors
+/// * [`Error::InvalidParameter`] for non-finite input, fewer than 2 `a` coefficients, Aₙ = 0, or A not
+///   Hurwitz ("denominator not stable").
+/// * [`Error::Divergent`] if `b` has a non-zero coefficient Bₖ with k ≥ n (|H|² does not decay).
+/// * [`Error::Numerical`] if the linear system is numerically singular.
+///
+/// # Examples
+/// ```
+/// use stochvib::linalg::integral_i_n;
+/// // ∫ dω / (1 + ω²) = π
+/// assert!((integral_i_n(&[1.0], &[1.0, 1.0]).unwrap() - std::f64::consts::PI).abs() < 1e-15);
+/// // m ẍ + c ẋ + k x = f: ∫|H|² dω = π/(kc)
+/// let (m, c, k) = (2.0, 0.3, 50.0);
+/// let i2 = integral_i_n(&[1.0], &[k, c, m]).unwrap();
+/// assert!((i2 - std::f64::consts::PI / (k * c)).abs() < 1e-14 * i2);
+/// ```
+pub fn integral_i_n(b: &[f64], a: &[f64]) -> Result<f64> {
+    let (b, n) = validate(b, a)?;
+    if b.iter().all(|&v| v == 0.0) {
+        return Ok(0.0);
+    }
+    let sgn = |j: usize| if j.is_multiple_of(2) { 1.0 } else { -1.0 };
+    let mut m = DMatrix::<f64>::zeros(n, n);
+    let mut d = DVector::<f64>::zeros(n);
+    for k in 0..n {
+        for j in 0..n {
+            let i = 2 * k as isize - j as isize;
+            if (0..=n as isize).contains(&i) {
+                m[(k, j)] = 2.0 * sgn(j) * a[i as usize];
+            }
+        }
+        for j in 0..n.min(2 * k + 1) {
+            let i = 2 * k - j;
+            if i < n {
+                d[k] += sgn(j) * b[i] * b[j];
+            }
+        }
+    }
+    let lu = nalgebra::linalg::FullPivLU::new(m);
+    let u = lu.u();
+    let (mut umax, mut umin) = (0.0_f64, f64::INFINITY);
+    for i in 0..n {
+        umax = umax.max(u[(i, i)].abs());
+        umin = umin.min(u[(i, i)].abs());
+    }
+    let c = if umin > n as f64 * f64::EPSILON * umax {
+        lu.solve(&d)
+    } else {
+        None
+    };
+    let c = c.ok_or_else(|| Error::Numerical {
+        what: "integral_i_n".into(),
+        reason: format!(
+            "the Hurwitz system is numerically singular (pivot ratio {:e}): the denominator is too \
+             close to having roots on the imaginary axis",
+            umin / umax
+        ),
+    })?;
+    let value = 2.0 * PI * c[n - 1] / a[n];
+    if !value.is_finite() {
+        return Err(Error::Numerical {
+            what: "integral_i_n".into(),
+            reason: "the result overflowed".into(),
+        });
+    }
+    // Rounding can only make a tiny result slightly negative.
+    Ok(value.max(0.0))
+}
+
+/// The tabulated closed forms I₁..I₄ (Newland, Appendix 1).
+///
+/// Same arguments and convention as [`integral_i_n`], which is the general-order algorithm; this
+/// function exists as an independent check and for readers comparing with the textbook.
+///
+/// # Formula
+/// See the [module docs](self): I₁ = π B₀²/(A₀A₁), I₂ = π(A₀B₁² + A₂B₀²)/(A₀A₁A₂), I₃, I₄.
+///
+/// # Errors
+/// As [`integral_i_n`], plus [`Error::InvalidParameter`] for n > 4 (no closed form is tabulated here).
+///
+/// # Examples
+/// ```
+/// use stochvib::linalg::{integral_closed_form, integral_i_n};
+/// // A(s) = (s + 1)³: ∫ dω / (1 + ω²)³ = 3π/8
+/// let a = [1.0, 3.0, 3.0, 1.0];
+/// let i3 = integral_closed_form(&[1.0], &a).unwrap();
+/// assert!((i3 - 3.0 * std::f64::consts::PI / 8.0).abs() < 1e-14);
+/// assert!((i3 - integral_i_n(&[1.0], &a).unwrap()).abs() < 1e-14);
+/// ```
+pub fn integral_closed_form(b: &[f64], a: &[f64]) -> Result<f64> {
+    let (b, n) = validate(b, a)?;
+    let v = match n {
+        1 => PI * b[0] * b[0] / (a[0] * a[1]),
+        2 => PI * (a[0] * b[1] * b[1] + a[2] * b[0] * b[0]) / (a[0] * a[1] * a[2]),
+        3 => {
+            let (a0, a1, a2, a3) = (a[0], a[1], a[2], a[3]);
+            let (b0, b1, b2) = (b[0], b[1], b[2]);
+            PI * (a0 * a3 * (2.0 * b0 * b2 - b1 * b1) - a0 * a1 * b2 * b2 - a2 * a3 * b0 * b0)
+                / (a0 * a3 * (a0 * a3 - a1 * a2))
+        }
+        4 => {
+            let (a0, a1, a2, a3, a4) = (a[0], a[1], a[2], a[3], a[4]);
+            let (b0, b1, b2, b3) = (b[0], b[1], b[2], b[3]);
+            PI * (a0 * b3 * b3 * (a0 * a3 - a1 * a2) + a0 * a1 * a4 * (2.0 * b1 * b3 - b2 * b2)
+                - a0 * a3 * a4 * (b1 * b1 - 2.0 * b0 * b2)
+                + a4 * b0 * b0 * (a1 * a4 - a2 * a3))
+                / (a0 * a4 * (a0 * a3 * a3 + a1 * a1 * a4 - a1 * a2 * a3))
+        }
+        _ => {
+            return Err(Error::invalid(
+                "a",
+                format!("order n = {n}"),
+                "closed forms are tabulated only for n ≤ 4; use integral_i_n for any order",
+            ))
+        }
+    };
+    Ok(v)
+}
+
+/// ∫_{−∞}^{∞} |N(iω)/D(iω)|² dω for real polynomials N, D in s (ascending coefficients).
+///
+/// # Formula
+/// After trimming trailing zeros, requires deg N < deg D and D Hurwitz, and returns
+/// `integral_i_n(N, D)` (the table Iₙ with n = deg D, Bₖ = Nₖ, Aₖ = Dₖ). For a stable filter H = N/D
+/// driven by white noise of two-sided density S₀, the output variance is S₀ times this value. A zero
+/// numerator gives 0.
+///
+/// # Errors
+/// * [`Error::Divergent`] if deg N ≥ deg D (|H|² does not decay).
+/// * [`Error::InvalidParameter`] if D is zero, has non-finite coefficients or is not Hurwitz
+///   ("denominator not stable"), or N has non-finite coefficients.
+/// * [`Error::Numerical`] as in [`integral_i_n`].
+///
+/// # Examples
+/// ```
+/// use stochvib::linalg::h2_integral;
+/// // H(s) = 1/(s + 2): ∫ dω/(4 + ω²) = π/2
+/// let v = h2_integral(&[1.0], &[2.0, 1.0]).unwrap();
+/// assert!((v - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+/// // deg N ≥ deg D diverges
+/// assert!(h2_integral(&[0.0, 1.0], &[2.0, 1.0]).is_err());
+/// ```
+pub fn h2_integral(num_s: &[f64], den_s: &[f64]) -> Result<f64> {
+    check_finite("num_s", num_s)?;
+    check_finite("den_s", den_s)?;
+    let n = trim(num_s);
+    let d = trim(den_s);
+    if d.is_empty() {
+        return Err(Error::invalid(
+            "den_s",
+            format!("{den_s:?}"),
+            "the denominator must not be the zero polynomial",
+        ));
+    }
+    if n.is_empty() {
+        if !is_hurwitz(&d) {
+            return Err(Error::invalid(
+                "den_s",
+                format!("{den_s:?}"),
+                "denominator not stable (not Hurwitz)",
+            ));
+        }
+        return Ok(0.0);
+    }
+    if n.len() >= d.len() {
+        return Err(Error::Divergent {
+            quantity: "integral of |N/D|^2".into(),
+            reason:
+                "numerator degree >= denominator degree: |H|^2 does not decay, the integral is \
+                     infinite"
+                    .into(),
+        });
+    }
+    if !is_hurwitz(&d) {
+        return Err(Error::invalid(
+            "den_s",
+            format!("{den_s:?}"),
+            "denominator not stable: D(s) must be Hurwitz (all roots with Re s < 0)",
+        ));
+    }
+    integral_i_n(&n, &d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linalg::lyapunov::solve_continuous_lyapunov;
+    use crate::linalg::poly::test_rng::{hurwitz, Rng};
+    use crate::linalg::poly::{eval_complex, mul};
+    use nalgebra::Complex;
+
+    fn rel(a: f64, b: f64) -> f64 {
+        (a - b).abs() / b.abs().max(1e-300)
+    }
+
+    /// Lyapunov route: controllable canonical form of N/D (D normalised to monic),
+    /// ẋᵢ = xᵢ₊₁ (i < n), ẋₙ = −Σ dₖ xₖ₊₁ + u, y = Σ nₖ xₖ₊₁, so H(s) = N(s)/D(s).
+    /// With unit white noise u (E[u(t)u(t')] = δ(t − t'), two-sided density 1/(2π)),
+    /// Var y = C X Cᵀ with A X + X Aᵀ + B Bᵀ = 0, and also Var y = (1/2π) ∫|H|² dω, hence
+    /// ∫|H(iω)|² dω = 2π C X Cᵀ.
+    fn lyapunov_route(num: &[f64], den: &[f64]) -> f64 {
+        let n = den.len() - 1;
+        let lead = den[n];
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        for i in 0..n - 1 {
+            a[(i, i + 1)] = 1.0;
+        }
+        for k in 0..n {
+            a[(n - 1, k)] = -den[k] / lead;
+        }
+        let mut bbt = DMatrix::<f64>::zeros(n, n);
+        bbt[(n - 1, n - 1)] = 1.0;
+        let mut c = DVector::<f64>::zeros(n);
+        for (k, v) in num.iter().enumerate() {
+            c[k] = v / lead;
+        }
+        let x = solve_continuous_lyapunov(&a, &bbt).unwrap();
+        2.0 * PI * (c.transpose() * x * c)[(0, 0)]
+    }
+
+    /// ∫|H|² dω by the substitution ω = tan θ (smooth on [−π/2, π/2] since deg N < deg D) and
+    /// composite Simpson — an independent, weak check.
+    fn brute(num: &[f64], den: &[f64], m: usize) -> f64 {
+        let f = |th: f64| {
+            let w = th.tan();
+            let sec2 = 1.0 + w * w;
+            if !sec2.is_finite() {
+                // limit at ±π/2: |H|²(1 + ω²) → (N_{n−1}/D_n)² if deg N = deg D − 1, else 0
+                let n = den.len() - 1;
+                return if num.len() == n {
+                    (num[n - 1] / den[n]).powi(2)
+                } else {
+                    0.0
+                };
+            }
+            let s = Complex::new(0.0, w);
+            (eval_complex(num, s) / eval_complex(den, s)).norm_sqr() * sec2
+        };
+        let (lo, hi) = (-PI / 2.0, PI / 2.0);
+        let h = (hi - lo) / m as f64;
+        let mut sum = f(lo) + f(hi);
+        for k in 1..m {
+            let w = if k % 2 == 1 { 4.0 } else { 2.0 };
+            sum += w * f(lo + k as f64 * h);
+        }
+        sum * h / 3.0
+    }
+
+    #[test]
+    fn hand_cases() {
+        assert!(rel(integral_i_n(&[1.0], &[1.0, 1.0]).unwrap(), PI) < 1e-15);
+        // n = 1: π B₀²/(A₀A₁)
+        let v = integral_i_n(&[3.0], &[2.0, 5.0]).unwrap();
+        assert!(rel(v, PI * 9.0 / 10.0) < 1e-15);
+        // n = 2: π(A₀B₁² + A₂B₀²)/(A₀A₁A₂)
+        let (a, b) = ([4.0, 0.5, 2.0], [1.5, -0.7]);
+        let expect = PI * (a[0] * b[1] * b[1] + a[2] * b[0] * b[0]) / (a[0] * a[1] * a[2]);
+        assert!(rel(integral_i_n(&b, &a).unwrap(), expect) < 1e-14);
+        // (s+1)^n with B = 1: ∫(1+ω²)^{−n} dω = π (2n−2)!/(2^{2n−2} ((n−1)!)²)
+        let mut a = vec![1.0];
+        let mut expect = PI;
+        for n in 1..=7 {
+            a = mul(&a, &[1.0, 1.0]);
+            if n > 1 {
+                expect *= (2 * n - 3) as f64 / (2 * n - 2) as f64;
+            }
+            assert!(
+                rel(integral_i_n(&[1.0], &a).unwrap(), expect) < 1e-13,
+                "n = {n}"
+            );
+            if n <= 4 {
+                assert!(rel(integral_closed_form(&[1.0], &a).unwrap(), expect) < 1e-14);
+            }
+        }
+        // All-negative Hurwitz denominator: same value.
+        assert!(rel(integral_i_n(&[1.0], &[-1.0, -1.0]).unwrap(), PI) < 1e-15);
+        assert_eq!(integral_i_n(&[], &[1.0, 1.0]).unwrap(), 0.0);
+        assert_eq!(h2_integral(&[0.0], &[1.0, 1.0]).unwrap(), 0.0);
+    }
+
+    #[test]
+    fn closed_form_matches_general() {
+        let mut rng = Rng::new(31);
+        for trial in 0..400 {
+            let n = 1 + trial % 4;
+            let a = hurwitz(&mut rng, n);
+            let b: Vec<f64> = (0..n).map(|_| rng.range(-2.0, 2.0)).collect();
+            let g = integral_i_n(&b, &a).unwrap();
+            let c = integral_closed_form(&b, &a).unwrap();
+            assert!(rel(c, g) < 1e-11, "n={n} a={a:?} b={b:?}: {c} vs {g}");
+        }
+    }
+
+    #[test]
+    fn general_matches_lyapunov_route() {
+        let mut rng = Rng::new(99);
+        for trial in 0..300 {
+            let n = 1 + trial % 10;
+            let a = hurwitz(&mut rng, n);
+            let nb = 1 + (rng.next_u64() as usize) % n;
+            let b: Vec<f64> = (0..nb).map(|_| rng.range(-2.0, 2.0)).collect();
+            let g = integral_i_n(&b, &a).unwrap();
+            let l = lyapunov_route(&b, &a);
+            let h = h2_integral(&b, &a).unwrap();
+            assert_eq!(g, h);
+            assert!(rel(g, l) < 1e-9, "n={n} a={a:?} b={b:?}: {g} vs {l}");
+        }
+    }
+
+    #[test]
+    fn general_matches_brute_force_quadrature() {
+        // SDOF-like resonance plus a real pole, numerator with s term.
+        let den = mul(&[1.0, 0.4, 1.0], &[2.0, 1.0]);
+        let num = [1.0, 0.5];
+        let v = integral_i_n(&num, &den).unwrap();
+        assert!(rel(brute(&num, &den, 200_000), v) < 1e-6);
+        // Order 5 with a non-decaying-as-fast numerator (deg N = deg D − 1).
+        let den = mul(&mul(&[4.0, 0.8, 1.0], &[1.0, 1.0, 1.0]), &[0.5, 1.0]);
+        let num = [0.3, -1.0, 0.2, 0.0, 1.0];
+        let v = integral_i_n(&num, &den).unwrap();
+        assert!(rel(brute(&num, &den, 200_000), v) < 1e-6);
+    }
+
+    #[test]
+    fn rejects_bad_input() {
+        assert!(matches!(
+            integral_i_n(&[1.0], &[-1.0, 1.0]),
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(integral_i_n(&[1.0], &[1.0, 0.0, 1.0]).is_err()); // roots ±i
+        assert!(integral_i_n(&[1.0], &[10.0, 1.0, 1.0, 1.0]).is_err()); // RHP pair
+        assert!(integral_i_n(&[1.0], &[1.0]).is_err()); // n = 0
+        assert!(integral_i_n(&[1.0], &[1.0, 0.0]).is_err()); // Aₙ = 0
+        assert!(integral_i_n(&[1.0, f64::NAN], &[1.0, 1.0, 1.0]).is_err());
+        assert!(matches!(
+            integral_i_n(&[1.0, 1.0], &[1.0, 1.0]),
+            Err(Error::Divergent { .. })
+        ));
+        assert!(integral_i_n(&[1.0, 0.0], &[1.0, 1.0]).is_ok()); // trailing zero ignored
+        assert!(integral_closed_form(&[1.0], &[1.0, 5.0, 10.0, 10.0, 5.0, 1.0]).is_err());
+        assert!(matches!(
+            h2_integral(&[1.0, 2.0, 3.0], &[1.0, 1.0]),
+            Err(Error::Divergent { .. })
+        ));
+        assert!(matches!(
+            h2_integral(&[1.0], &[5.0]),
+            Err(Error::Divergent { .. })
+        ));
+        assert!(matches!(
+            h2_integral(&[1.0], &[1.0, -1.0, 1.0]),
+            Err(Error::InvalidParameter { .. })
+        ));
+        assert!(h2_integral(&[1.0], &[0.0, 0.0]).is_err());
+    }
+}

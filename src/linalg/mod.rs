@@ -1,0 +1,22 @@
+//! Numerical linear algebra for stochastic vibration analysis.
+//!
+//! * [`lyapunov`] — continuous and discrete Lyapunov equations (state covariance of a linear system
+//!   driven by white noise), by the Bartels–Stewart real-Schur method, with dense Kronecker oracles.
+//! * [`integral_table`] — the closed-form integral table Iₙ = ∫|Hₙ(ω)|² dω of James, Nichols &
+//!   Phillips / Newland (Appendix 1) for rational transfer functions, exact for any order.
+//! * [`poly`] — real polynomials with ascending coefficients: evaluation, products, roots, the Hurwitz
+//!   test and spectral factorisation of non-negative polynomials in ω².
+//!
+//! Everything works in `f64` with [`nalgebra`] dense matrices; bad input is reported as
+//! [`Error`](crate::Error), never by a panic.
+
+pub mod integral_table;
+pub mod lyapunov;
+pub mod poly;
+
+pub use integral_table::{h2_integral, integral_closed_form, integral_i_n};
+pub use lyapunov::{
+    is_stable, solve_continuous_lyapunov, solve_continuous_lyapunov_dense, solve_discrete_lyapunov,
+    solve_discrete_lyapunov_dense, spectral_abscissa, spectral_radius,
+};
+pub use poly::{is_hurwitz, spectral_factor};
