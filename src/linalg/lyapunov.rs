@@ -146,7 +146,8 @@ fn symmetric_part(q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
     Ok((q + q.transpose()) * 0.5)
 }
 
-/// Solves a small dense system, returning `None` if it is numerically singular.
+/// Solves a dense system by fully pivoted LU, returning `None` if it is numerically singular
+/// (smallest pivot ≤ ε × largest pivot) or the solution is not finite.
 fn solve_small(m: DMatrix<f64>, rhs: DVector<f64>) -> Option<DVector<f64>> {
     let k = m.nrows();
     let lu = nalgebra::linalg::FullPivLU::new(m);
@@ -157,7 +158,7 @@ fn solve_small(m: DMatrix<f64>, rhs: DVector<f64>) -> Option<DVector<f64>> {
         umax = umax.max(u[(i, i)].abs());
         umin = umin.min(u[(i, i)].abs());
     }
-    if umin.is_nan() || umin <= (k as f64) * f64::EPSILON * umax {
+    if umin.is_nan() || umin <= f64::EPSILON * umax {
         return None;
     }
     let x = lu.solve(&rhs)?;

@@ -355,9 +355,13 @@ fn polish(coeffs: &[f64], mut z: Complex<f64>) -> Complex<f64> {
 ///
 /// # Formula
 /// Routh's test: all coefficients non-zero with one sign, and all entries of the first column of the
-/// Routh array (rows r₀ = (aₙ, aₙ₋₂, …), r₁ = (aₙ₋₁, aₙ₋₃, …), r_{k+1}[j] = r_{k−1}[j+1] −
-/// r_{k−1}[0] r_k[j+1]/r_k[0]) of that same sign. A zero in the first column (roots on or mirrored
-/// about the imaginary axis) gives `false`. A non-zero constant is Hurwitz (no roots); the zero
+/// Routh array of that same sign, where
+///
+/// ```text
+/// r₀ = (aₙ, aₙ₋₂, …),  r₁ = (aₙ₋₁, aₙ₋₃, …),  r_{k+1}(j) = r_{k−1}(j+1) − r_{k−1}(0) r_k(j+1) / r_k(0).
+/// ```
+///
+/// A zero in the first column (roots on or mirrored about the imaginary axis) gives `false`. A non-zero constant is Hurwitz (no roots); the zero
 /// polynomial and non-finite input are not. No root finding, so no convergence issues; marginal cases
 /// (roots within rounding of the axis) are decided by the rounded arithmetic.
 ///
@@ -423,6 +427,10 @@ pub fn is_hurwitz(coeffs: &[f64]) -> bool {
 /// The second element of the result is the maximal relative residual
 /// max |  |F(iω)|² − P(ω²) | / Σ|pₖ|ω^{2k} over a logarithmic grid of ω spanning two decades beyond
 /// the root magnitudes, plus ω = 0 and the resonance frequencies.
+///
+/// Accuracy: a root of P of multiplicity μ is located only to ~ε^{1/μ}. Double zeros on the ω axis
+/// are refined by Newton steps on P′ (full accuracy), but higher even multiplicities (e.g.
+/// P = (x − 4)⁴) leave a residual of order 1e-5, which the returned residual reports.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] if a coefficient is non-finite, P is zero, the leading coefficient is
