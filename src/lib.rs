@@ -9,7 +9,12 @@
 pub mod error;
 pub mod linalg;
 pub mod quad;
+pub mod report;
+pub mod response;
+pub mod scenario;
 pub mod spectrum;
+pub mod system;
+pub mod tolerance;
 pub mod units;
 
 pub use error::{Error, Result};

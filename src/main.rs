@@ -1,1 +1,103 @@
-fn main() {}
+//! The `stochvib` command-line tool: parses arguments, calls the library, prints.
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use stochvib::report::{self, resolve_spectrum, spectrum_report};
+use stochvib::scenario::spectrum_catalogue;
+use stochvib::spectrum::Convention;
+
+/// Stochastic vibration and random-road analysis of machines.
+#[derive(Parser)]
+#[command(name = "stochvib", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the spectrum catalogue with variance and sigma of each entry.
+    Spectra {
+        /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, ./spectra, or the source tree's).
+        #[arg(long)]
+        spectra_dir: Option<PathBuf>,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Print the full report of every entry.
+        #[arg(long)]
+        full: bool,
+    },
+    /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
+    Spectrum {
+        /// Catalogue name (e.g. `iso8608-c`) or path to a spectrum file.
+        name: String,
+        /// Convention of the printed density: two-sided-angular, one-sided-angular, one-sided-cyclic,
+        /// engineering.
+        #[arg(long, default_value = "two-sided-angular")]
+        convention: Convention,
+        /// Directory of spectrum files.
+        #[arg(long)]
+        spectra_dir: Option<PathBuf>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn main() -> Result<()> {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Spectra { spectra_dir, json, full } => {
+            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
+            let entries = spectrum_catalogue(&dir)?;
+            let mut reports = Vec::new();
+            let mut failed = 0;
+            if !json && !full {
+                println!("catalogue {}", dir.display());
+                println!("{:<24} {:<9} {:>13} {:>13}  model", "name", "domain", "variance", "sigma");
+            }
+            for e in &entries {
+                match &e.spectrum {
+                    Ok(s) => {
+                        let r = spectrum_report(s, Convention::TwoSidedAngular);
+                        if !json && !full {
+                            let (v, sg) = match (&r.variance, &r.sigma) {
+                                (report::spectrum_report::Outcome::Value(v), report::spectrum_report::Outcome::Value(s)) => {
+                                    (format!("{v:.4e}"), format!("{s:.4e}"))
+                                }
+                                _ => ("infinite".into(), "infinite".into()),
+                            };
+                            println!("{:<24} {:<9} {:>13} {:>13}  {}", r.name, r.domain, v, sg, r.model);
+                        } else if full && !json {
+                            println!("{r}");
+                        }
+                        reports.push(r);
+                    }
+                    Err(msg) => {
+                        failed += 1;
+                        eprintln!("error: {msg}");
+                    }
+                }
+            }
+            if json {
+                println!("{}", serde_json::to_string_pretty(&reports)?);
+            }
+            if failed > 0 {
+                anyhow::bail!("{failed} spectrum file(s) in {} are invalid", dir.display());
+            }
+        }
+        Command::Spectrum { name, convention, spectra_dir, json } => {
+            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
+            let file = resolve_spectrum(&name, &dir)?;
+            let r = spectrum_report(&file, convention);
+            if json {
+                println!("{}", serde_json::to_string_pretty(&r)?);
+            } else {
+                print!("{r}");
+            }
+        }
+    }
+    Ok(())
+}

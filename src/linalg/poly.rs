@@ -92,6 +92,31 @@ pub fn mul(p: &[f64], q: &[f64]) -> Vec<f64> {
     out
 }
 
+/// Sum p + q (ascending coefficients; the result has the longer length).
+///
+/// # Examples
+/// ```
+/// use stochvib::linalg::poly::add;
+/// assert_eq!(add(&[1.0, 2.0], &[3.0]), vec![4.0, 2.0]);
+/// ```
+pub fn add(p: &[f64], q: &[f64]) -> Vec<f64> {
+    (0..p.len().max(q.len()))
+        .map(|k| p.get(k).copied().unwrap_or(0.0) + q.get(k).copied().unwrap_or(0.0))
+        .collect()
+}
+
+/// Difference p − q (ascending coefficients).
+///
+/// # Examples
+/// ```
+/// use stochvib::linalg::poly::sub;
+/// assert_eq!(sub(&[1.0, 2.0, 3.0], &[1.0, 2.0]), vec![0.0, 0.0, 3.0]);
+/// ```
+pub fn sub(p: &[f64], q: &[f64]) -> Vec<f64> {
+    let neg: Vec<f64> = q.iter().map(|v| -v).collect();
+    add(p, &neg)
+}
+
 fn check_finite(name: &str, coeffs: &[f64]) -> Result<()> {
     if let Some(c) = coeffs.iter().find(|c| !c.is_finite()) {
         return Err(Error::invalid(

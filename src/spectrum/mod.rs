@@ -25,11 +25,30 @@
 use crate::error::Result;
 use std::fmt::Debug;
 
+mod at_speed;
+mod band_white;
 mod convention;
+mod exp_cosine;
+mod exponential;
+mod gauss_cosine;
+mod gaussian;
+pub mod numeric;
+pub mod power_law;
 mod rational;
+mod tabulated;
+pub mod two_pole_road;
 
+pub use at_speed::AtSpeed;
+pub use band_white::BandWhite;
 pub use convention::Convention;
-pub use rational::RationalSpectrum;
+pub use exp_cosine::ExpCosine;
+pub use exponential::Exponential;
+pub use gauss_cosine::GaussCosine;
+pub use gaussian::Gaussian;
+pub use power_law::{IsoBound, IsoClass, PowerLaw, ISO_BAND, ISO_N0, ISO_WAVINESS};
+pub use rational::{RationalSpectrum, ShapingFilter};
+pub use tabulated::Tabulated;
+pub use two_pole_road::TwoPoleRoad;
 
 /// Whether the independent variable of a spectrum is time or distance along a road.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -134,4 +153,3 @@ pub trait Spectrum: Debug + Send + Sync {
     }
 }
 
-pub mod numeric;

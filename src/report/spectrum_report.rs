@@ -1,0 +1,203 @@
+//! The `stochvib spectrum` report: variance two ways, correlation at a few lags, density at a few
+//! frequencies in a chosen convention.
+
+use super::rel_diff;
+use crate::error::{Error, Result};
+use crate::scenario::{load_spectrum, SpectrumFile};
+use crate::spectrum::{numeric, Convention, Spectrum};
+use serde::Serialize;
+use std::fmt;
+use std::path::Path;
+
+/// A value or the reason there is none (divergent, failed).
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum Outcome {
+    /// A number.
+    Value(f64),
+    /// Why there is no number.
+    NoValue {
+        /// The reason.
+        error: String,
+    },
+}
+
+impl From<Result<f64>> for Outcome {
+    fn from(r: Result<f64>) -> Self {
+        match r {
+            Ok(v) => Outcome::Value(v),
+            Err(e) => Outcome::NoValue { error: e.to_string() },
+        }
+    }
+}
+
+impl fmt::Display for Outcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Outcome::Value(v) => write!(f, "{v:.6e}"),
+            Outcome::NoValue { error } => write!(f, "none: {error}"),
+        }
+    }
+}
+
+/// Report on one spectrum.
+#[derive(Debug, Clone, Serialize)]
+pub struct SpectrumReport {
+    /// Name of the spectrum.
+    pub name: String,
+    /// Its description with parameters.
+    pub model: String,
+    /// Provenance of the parameters.
+    pub source: String,
+    /// `temporal` or `spatial`.
+    pub domain: String,
+    /// SI unit of the process.
+    pub unit: String,
+    /// Variance from the model (closed form where one exists).
+    pub variance: Outcome,
+    /// Variance by adaptive quadrature of the density.
+    pub variance_quadrature: Outcome,
+    /// Quadrature error estimate.
+    pub variance_quadrature_error: Option<f64>,
+    /// Relative difference of the two variances.
+    pub variance_rel_diff: Option<f64>,
+    /// Standard deviation √D.
+    pub sigma: Outcome,
+    /// Convention of the density table.
+    pub convention: Convention,
+    /// Unit of the density table's abscissa.
+    pub abscissa_unit: String,
+    /// (lag, K model, K by quadrature).
+    pub correlation: Vec<(f64, Outcome, Outcome)>,
+    /// (abscissa in the convention, density in the convention).
+    pub density: Vec<(f64, f64)>,
+}
+
+/// Loads a spectrum by file path, or by catalogue name from `dir` (`<dir>/<name>.toml`).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] when neither exists; file errors otherwise.
+pub fn resolve_spectrum(name_or_path: &str, dir: &Path) -> Result<SpectrumFile> {
+    let p = Path::new(name_or_path);
+    if p.is_file() {
+        return load_spectrum(p);
+    }
+    let candidate = dir.join(format!("{name_or_path}.toml"));
+    if candidate.is_file() {
+        return load_spectrum(&candidate);
+    }
+    Err(Error::invalid(
+        "spectrum",
+        name_or_path,
+        format!("no such file and no `{}` in the catalogue {}", candidate.display(), dir.display()),
+    ))
+}
+
+/// Builds the report for `file`, with the density written in `convention`.
+pub fn spectrum_report(file: &SpectrumFile, convention: Convention) -> SpectrumReport {
+    let s = file.spectrum.as_ref();
+    let variance: Outcome = s.variance().into();
+    let quad = numeric::variance(s);
+    let (variance_quadrature, variance_quadrature_error) = match &quad {
+        Ok(q) => (Outcome::Value(q.value), Some(q.abs_error)),
+        Err(e) => (Outcome::NoValue { error: e.to_string() }, None),
+    };
+    let variance_rel_diff = match (&variance, &quad) {
+        (Outcome::Value(a), Ok(q)) => Some(rel_diff(*a, q.value)),
+        _ => None,
+    };
+    let sigma = match &variance {
+        Outcome::Value(v) => Outcome::Value(v.sqrt()),
+        Outcome::NoValue { error } => Outcome::NoValue { error: error.clone() },
+    };
+    let wc = characteristic_frequency(s);
+    let correlation = [0.0, 0.25, 0.5, 1.0, 2.0, 4.0]
+        .iter()
+        .map(|k| {
+            let tau = k / wc;
+            (tau, s.correlation(tau).into(), numeric::correlation(s, tau).map(|r| r.value).into())
+        })
+        .collect();
+    let density = [0.1, 0.3, 1.0, 3.0, 10.0]
+        .iter()
+        .map(|k| {
+            let w = k * wc;
+            convention.from_canonical(w, s.density(w))
+        })
+        .collect();
+    let abscissa_unit =
+        if convention.is_cyclic() { s.domain().cyclic_unit() } else { s.domain().angular_unit() }.to_string();
+    SpectrumReport {
+        name: file.name.clone(),
+        model: s.describe(),
+        source: file.source.clone(),
+        domain: format!("{:?}", s.domain()).to_lowercase(),
+        unit: file.unit.clone(),
+        variance,
+        variance_quadrature,
+        variance_quadrature_error,
+        variance_rel_diff,
+        sigma,
+        convention,
+        abscissa_unit,
+        correlation,
+        density,
+    }
+}
+
+/// A frequency that sets the scale of the table: the geometric mean of the breakpoints, else the middle
+/// of the support, else 1.
+fn characteristic_frequency(s: &dyn Spectrum) -> f64 {
+    let b: Vec<f64> = s.breakpoints().into_iter().filter(|w| *w > 0.0 && w.is_finite()).collect();
+    if !b.is_empty() {
+        return (b.iter().map(|w| w.ln()).sum::<f64>() / b.len() as f64).exp();
+    }
+    let (lo, hi) = s.support();
+    if hi.is_finite() && lo > 0.0 {
+        (lo * hi).sqrt()
+    } else if hi.is_finite() {
+        hi / 2.0
+    } else {
+        1.0
+    }
+}
+
+impl fmt::Display for SpectrumReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let lag = if self.domain == "spatial" { "m" } else { "s" };
+        writeln!(f, "spectrum  {}", self.name)?;
+        writeln!(f, "model     {}", self.model)?;
+        if !self.source.is_empty() {
+            writeln!(f, "source    {}", self.source)?;
+        }
+        writeln!(f, "domain    {} (process unit {})", self.domain, self.unit)?;
+        writeln!(f, "variance  {}  [{}^2]", self.variance, self.unit)?;
+        write!(f, "  by quadrature {}", self.variance_quadrature)?;
+        if let Some(e) = self.variance_quadrature_error {
+            write!(f, " ± {e:.1e}")?;
+        }
+        if let Some(r) = self.variance_rel_diff {
+            write!(f, "   (relative difference {r:.1e})")?;
+        }
+        writeln!(f)?;
+        writeln!(f, "sigma     {}  [{}]", self.sigma, self.unit)?;
+        writeln!(f, "correlation K(tau) [{}^2]:", self.unit)?;
+        writeln!(f, "  {:>12}  {:>14}  {:>14}", format!("tau [{lag}]"), "model", "quadrature")?;
+        for (t, a, b) in &self.correlation {
+            writeln!(f, "  {t:>12.4e}  {:>14}  {:>14}", short(a), short(b))?;
+        }
+        writeln!(f, "density ({}):", self.convention)?;
+        writeln!(f, "  {:>14}  {:>14}", format!("[{}]", self.abscissa_unit), "value")?;
+        for (x, v) in &self.density {
+            writeln!(f, "  {x:>14.4e}  {v:>14.6e}")?;
+        }
+        Ok(())
+    }
+}
+
+fn short(o: &Outcome) -> String {
+    match o {
+        Outcome::Value(v) => format!("{v:.6e}"),
+        Outcome::NoValue { .. } => "infinite/none".to_string(),
+    }
+}

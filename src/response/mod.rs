@@ -1,0 +1,19 @@
+//! Response statistics of linear systems under stationary random inputs: mean, variance three ways,
+//! band variance, spectral moments, crossing rates, peaks.
+//!
+//! # Formula
+//! For inputs u with cross-spectral matrix S_u(ω) (m × m, two-sided angular) and a system H(iω):
+//! ```text
+//! S_y(ω) = H(iω) S_u(ω) H(iω)ᴴ,      D_y = ∫ S_y dω,      λ_k = ∫ |ω|^k S_y dω,      M_y = H(0) M_u
+//! ```
+
+mod excitation;
+mod statistics;
+mod variance;
+
+pub use excitation::Excitation;
+pub use statistics::{analyze_output, Method, MethodValue, OutputStatistics};
+pub use variance::{
+    band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,
+    variance_integral_table, variance_lyapunov, variance_quadrature, LyapunovMoments,
+};

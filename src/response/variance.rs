@@ -1,0 +1,454 @@
+//! The variance of an output three independent ways, band variances and spectral moments.
+
+use super::Excitation;
+use crate::error::{Error, Result};
+use crate::linalg::{h2_integral, poly, solve_continuous_lyapunov};
+use crate::quad::{integrate, QuadOptions, QuadResult};
+use crate::spectrum::{Asymptote, ShapingFilter};
+use crate::system::{FrequencyResponse, StateSpace, TransferFunction};
+use nalgebra::DMatrix;
+use std::f64::consts::PI;
+
+/// Relative tolerance requested from quadrature of output densities.
+pub const REL_TOL: f64 = 1e-10;
+
+/// Two-sided density S_y(ω) of output `i`.
+pub fn output_density(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, omega: f64) -> f64 {
+    let h = sys.response(omega);
+    let row: Vec<_> = (0..h.ncols()).map(|j| h[(i, j)]).collect();
+    exc.output_density(&row, omega)
+}
+
+fn combine(a: Asymptote, b: Asymptote) -> Asymptote {
+    match (a, b) {
+        (Asymptote::Power { exponent: e1, coefficient: c1 }, Asymptote::Power { exponent: e2, coefficient: c2 }) => {
+            Asymptote::Power { exponent: e1 + e2, coefficient: c1 * c2 }
+        }
+        _ => Asymptote::Vanishing,
+    }
+}
+
+fn dominant(list: impl IntoIterator<Item = Asymptote>, high: bool) -> Asymptote {
+    // at high ω the largest exponent dominates; at low ω the smallest
+    list.into_iter().fold(Asymptote::Vanishing, |acc, a| match (acc, a) {
+        (Asymptote::Vanishing, x) | (x, Asymptote::Vanishing) => x,
+        (Asymptote::Power { exponent: e1, .. }, Asymptote::Power { exponent: e2, .. }) => {
+            if (high && e2 > e1) || (!high && e2 < e1) {
+                a
+            } else {
+                acc
+            }
+        }
+    })
+}
+
+/// Per-input asymptotes of |H_ij|² for output i, combining inputs that share a delay (their columns add
+/// coherently and may cancel) when a state-space form is available.
+fn column_asymptotes(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, high: bool) -> Vec<(usize, Asymptote)> {
+    let per_input = if high { sys.high_frequency() } else { sys.low_frequency() };
+    match (exc, sys.state_space()) {
+        (Excitation::Track { delays, gains, .. }, Some(ss)) => {
+            let mut groups: Vec<f64> = delays.clone();
+            groups.sort_by(f64::total_cmp);
+            groups.dedup();
+            groups
+                .iter()
+                .filter_map(|&t| {
+                    let w: Vec<f64> =
+                        delays.iter().zip(gains).map(|(d, g)| if *d == t { *g } else { 0.0 }).collect();
+                    let j = delays.iter().position(|d| *d == t)?;
+                    let c = ss.combine_inputs(&w).ok()?;
+                    let a = if high { c.high_frequency() } else { c.low_frequency() };
+                    Some((j, a[i][0]))
+                })
+                .collect()
+        }
+        (Excitation::Track { gains, .. }, None) => gains
+            .iter()
+            .enumerate()
+            .filter(|(_, g)| **g != 0.0)
+            .map(|(j, g)| {
+                (
+                    j,
+                    match per_input[i][j] {
+                        Asymptote::Power { exponent, coefficient } => {
+                            Asymptote::Power { exponent, coefficient: coefficient * g * g }
+                        }
+                        v => v,
+                    },
+                )
+            })
+            .collect(),
+        (Excitation::Independent { .. }, _) => (0..sys.n_inputs()).map(|j| (j, per_input[i][j])).collect(),
+    }
+}
+
+/// Asymptote of S_y(ω) for output `i` as ω → ∞.
+pub fn output_high_frequency(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Asymptote {
+    let inputs = exc.asymptotes();
+    dominant(column_asymptotes(sys, exc, i, true).into_iter().map(|(j, h)| combine(h, inputs[j].1)), true)
+}
+
+/// Asymptote of S_y(ω) for output `i` as ω → 0.
+pub fn output_low_frequency(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Asymptote {
+    let inputs = exc.asymptotes();
+    dominant(column_asymptotes(sys, exc, i, false).into_iter().map(|(j, h)| combine(h, inputs[j].0)), false)
+}
+
+/// Checks that the k-th spectral moment ∫|ω|^k S_y dω of output `i` is finite.
+///
+/// # Errors
+/// [`Error::Divergent`] explaining which end diverges and why.
+pub fn check_moment(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: u32) -> Result<()> {
+    let name = &sys.outputs()[i].name;
+    let what = if k == 0 { format!("variance of `{name}`") } else { format!("spectral moment λ{k} of `{name}`") };
+    let (lo, hi) = exc.support();
+    if hi.is_infinite() {
+        if let Asymptote::Power { exponent, .. } = output_high_frequency(sys, exc, i) {
+            if exponent + k as f64 >= -1.0 {
+                return Err(Error::Divergent {
+                    quantity: what,
+                    reason: format!(
+                        "the output density decays only like ω^{exponent} as ω → ∞ (|H|² times the input \
+                         density){}, so the integral of ω^{k}·S_y diverges. This happens e.g. for the \
+                         acceleration of a damped base-excited mass under a first-order (type 1) road, whose \
+                         density tends to a constant. Ask for a band-limited value (`--band`, e.g. 0.5–80 Hz) \
+                         or use a smoother input spectrum",
+                        if k > 0 { format!(" and ω^{k} multiplies it") } else { String::new() }
+                    ),
+                });
+            }
+        }
+    }
+    if lo == 0.0 {
+        if let Asymptote::Power { exponent, .. } = output_low_frequency(sys, exc, i) {
+            if exponent + k as f64 <= -1.0 {
+                return Err(Error::Divergent {
+                    quantity: what,
+                    reason: format!(
+                        "the output density grows like ω^{exponent} as ω → 0 (an unbounded road spectrum or a \
+                         free rigid-body mode), so the integral diverges at low frequency; give the input a band \
+                         or a low-frequency cut-off"
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+fn breakpoints(sys: &dyn FrequencyResponse, exc: &Excitation) -> Vec<f64> {
+    let mut b = sys.natural_frequencies();
+    b.extend(exc.breakpoints());
+    b.retain(|w| w.is_finite() && *w > 0.0);
+    b
+}
+
+/// ∫|ω|^k S_y dω over ω₁ ≤ |ω| ≤ ω₂ (both sides), by adaptive quadrature.
+fn moment_integral(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    i: usize,
+    k: u32,
+    w1: f64,
+    w2: f64,
+) -> Result<QuadResult> {
+    let (lo, hi) = exc.support();
+    let (a, b) = (w1.max(lo), w2.min(hi));
+    if a >= b {
+        return Ok(QuadResult { value: 0.0, abs_error: 0.0, evaluations: 0 });
+    }
+    let opts = QuadOptions { rel_tol: REL_TOL, breakpoints: breakpoints(sys, exc), ..QuadOptions::default() };
+    let r = integrate(|w| w.powi(k as i32) * output_density(sys, exc, i, w), a, b, &opts).map_err(|e| match e {
+        Error::Quadrature { estimate, abs_error, evaluations, reason, .. } => Error::Quadrature {
+            what: format!("∫ω^{k} S_y dω of `{}`", sys.outputs()[i].name),
+            estimate: 2.0 * estimate,
+            abs_error: 2.0 * abs_error,
+            evaluations,
+            reason,
+        },
+        e => e,
+    })?;
+    Ok(QuadResult { value: 2.0 * r.value, abs_error: 2.0 * r.abs_error, evaluations: r.evaluations })
+}
+
+/// Variance of output `i` by adaptive quadrature of S_y (any spectrum, delays, tabulated data).
+///
+/// # Errors
+/// [`Error::Divergent`] (checked from the asymptotes before integrating), [`Error::Quadrature`].
+pub fn variance_quadrature(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<QuadResult> {
+    spectral_moment_quadrature(sys, exc, i, 0)
+}
+
+/// Spectral moment λ_k = ∫|ω|^k S_y dω of output `i` by quadrature.
+///
+/// # Errors
+/// As [`variance_quadrature`].
+pub fn spectral_moment_quadrature(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    i: usize,
+    k: u32,
+) -> Result<QuadResult> {
+    check_io(sys, exc, i)?;
+    check_moment(sys, exc, i, k)?;
+    moment_integral(sys, exc, i, k, 0.0, f64::INFINITY)
+}
+
+/// Band-limited variance 2∫_{ω₁}^{ω₂} S_y dω of output `i` (rad/s), finite whenever the band is finite.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] unless 0 ≤ ω₁ < ω₂ < ∞.
+pub fn band_variance(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, w1: f64, w2: f64) -> Result<QuadResult> {
+    check_io(sys, exc, i)?;
+    if !(w1 >= 0.0 && w2 > w1 && w2.is_finite()) {
+        return Err(Error::invalid("band", format!("[{w1}, {w2}] rad/s"), "need 0 <= w1 < w2 < inf"));
+    }
+    if w1 == 0.0 {
+        if let Asymptote::Power { exponent, .. } = output_low_frequency(sys, exc, i) {
+            if exponent <= -1.0 && exc.support().0 == 0.0 {
+                return Err(Error::Divergent {
+                    quantity: format!("band variance of `{}`", sys.outputs()[i].name),
+                    reason: "the band starts at ω = 0 where the output density is not integrable".into(),
+                });
+            }
+        }
+    }
+    moment_integral(sys, exc, i, 0, w1, w2)
+}
+
+fn check_io(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<()> {
+    if exc.n_inputs() != sys.n_inputs() {
+        return Err(Error::invalid(
+            "excitation",
+            format!("{} inputs", exc.n_inputs()),
+            format!("the system has {} inputs", sys.n_inputs()),
+        ));
+    }
+    if i >= sys.outputs().len() {
+        return Err(Error::invalid("output", i, format!("the system has {} outputs", sys.outputs().len())));
+    }
+    Ok(())
+}
+
+/// Exact variance and higher moments from the Lyapunov equation of the system augmented with the input
+/// shaping filters.
+#[derive(Debug)]
+pub struct LyapunovMoments {
+    /// λ₀ = D_y.
+    pub variance: f64,
+    /// λ₂ = Var(ẏ), or why it is infinite.
+    pub lambda2: Result<f64>,
+    /// λ₄ = Var(ÿ), or why it is infinite.
+    pub lambda4: Result<f64>,
+}
+
+/// Shaping filters (state space with unit-intensity white noise) of every input process.
+fn filters(exc: &Excitation) -> Result<Vec<ShapingFilter>> {
+    exc.spectra()
+        .iter()
+        .map(|s| {
+            let r = s.rational().ok_or_else(|| Error::Numerical {
+                what: "exact (Lyapunov / integral-table) variance".into(),
+                reason: format!("input spectrum is not rational: {}", s.describe()),
+            })?;
+            r.shaping_filter()
+        })
+        .collect()
+}
+
+/// The augmented system z = [filter states; system states] driven by unit-intensity white noise w, with
+/// output row h and white-noise feedthrough f: y = h z + f w.
+struct Augmented {
+    a: DMatrix<f64>,
+    g: DMatrix<f64>,
+    h: DMatrix<f64>,
+    f: DMatrix<f64>,
+}
+
+fn augment(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<Augmented> {
+    if !exc.delay_free() {
+        return Err(Error::Numerical {
+            what: "exact (Lyapunov / integral-table) variance".into(),
+            reason: "inputs are delayed copies of one process: pure delays have no finite state-space form; \
+                     use quadrature"
+                .into(),
+        });
+    }
+    let fl = filters(exc)?;
+    // Reduce the system to one input per independent process.
+    let (sys, nproc) = match exc {
+        Excitation::Track { gains, .. } => (ss.combine_inputs(gains)?, 1),
+        Excitation::Independent { spectra, .. } => (ss.clone(), spectra.len()),
+    };
+    let sys = sys.select_outputs(&[i])?;
+    // Block-diagonal filter bank: ẋ_F = A_F x_F + B_F w, u = C_F x_F (strictly proper filters)
+    let parts: Vec<StateSpace> = fl
+        .iter()
+        .map(|f| {
+            TransferFunction::new(f.num.clone(), f.den.clone(), crate::system::OutputInfo::new("u", "-"))
+                .map(|t| t.state_space().cloned().expect("transfer functions have a state space"))
+        })
+        .collect::<Result<_>>()?;
+    let nf: usize = parts.iter().map(|p| p.n_states()).sum();
+    let n = sys.n_states();
+    // Filter bank: ẋ_F = A_F x_F + B_F w, u = C_F x_F + D_F w (block diagonal, one block per process)
+    let mut af = DMatrix::zeros(nf, nf);
+    let mut bf = DMatrix::zeros(nf, nproc);
+    let mut cf = DMatrix::zeros(nproc, nf);
+    let mut df = DMatrix::zeros(nproc, nproc);
+    let mut off = 0;
+    for (k, p) in parts.iter().enumerate() {
+        let q = p.n_states();
+        af.view_mut((off, off), (q, q)).copy_from(&p.a);
+        bf.view_mut((off, k), (q, 1)).copy_from(&p.b);
+        cf.view_mut((k, off), (1, q)).copy_from(&p.c);
+        df[(k, k)] = p.d[(0, 0)];
+        off += q;
+    }
+    // z = [x_F; x]:  ż = [[A_F, 0], [B C_F, A]] z + [[B_F], [B D_F]] w
+    // y = (D C_F + E C_F A_F) x_F + C x + (D D_F + E C_F B_F) w + E D_F ẇ
+    let mut a = DMatrix::zeros(nf + n, nf + n);
+    a.view_mut((0, 0), (nf, nf)).copy_from(&af);
+    a.view_mut((nf, 0), (n, nf)).copy_from(&(&sys.b * &cf));
+    a.view_mut((nf, nf), (n, n)).copy_from(&sys.a);
+    let mut g = DMatrix::zeros(nf + n, nproc);
+    g.view_mut((0, 0), (nf, nproc)).copy_from(&bf);
+    g.view_mut((nf, 0), (n, nproc)).copy_from(&(&sys.b * &df));
+    let mut h = DMatrix::zeros(1, nf + n);
+    h.view_mut((0, 0), (1, nf)).copy_from(&(&sys.d * &cf + &sys.e * &cf * &af));
+    h.view_mut((0, nf), (1, n)).copy_from(&sys.c);
+    // white-noise feedthrough: exactly zero unless the system passes u (or u̇) and the filter has relative
+    // degree zero (or one)
+    let f = &sys.d * &df + &sys.e * &cf * &bf + (&sys.e * &df).abs();
+    Ok(Augmented { a, g, h, f })
+}
+
+/// Exact variance (and λ₂, λ₄) of output `i` by the Lyapunov equation of the system augmented with the
+/// shaping filters of the (rational, delay-free) inputs.
+///
+/// # Formula
+/// ```text
+/// ż = F z + G w,  y = h z + f w,   F P + P Fᵀ + G Gᵀ = 0,   D_y = h P hᵀ   (f = 0; else D_y = ∞)
+/// λ₂ = Var(ẏ) = (hF) P (hF)ᵀ if hG = 0;    λ₄ = (hF²) P (hF²)ᵀ if hFG = 0 as well
+/// ```
+///
+/// # Errors
+/// [`Error::Numerical`] when the method does not apply (non-rational input, delays, no state space),
+/// [`Error::InvalidParameter`] for an unstable system, [`Error::Divergent`] for a white-noise component.
+pub fn variance_lyapunov(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<LyapunovMoments> {
+    check_io(sys, exc, i)?;
+    let ss = sys.state_space().ok_or_else(|| Error::Numerical {
+        what: "Lyapunov variance".into(),
+        reason: "the system has no finite state-space form".into(),
+    })?;
+    ss.require_stable()?;
+    let aug = augment(ss, exc, i)?;
+    let name = &sys.outputs()[i].name;
+    let tiny = |m: &DMatrix<f64>, scale: f64| m.amax() <= 1e-12 * scale.max(1e-300);
+    if aug.f.amax() > 0.0 {
+        return Err(white_divergence(name, 0));
+    }
+    let p = solve_continuous_lyapunov(&aug.a, &(&aug.g * aug.g.transpose()))?;
+    let var = (&aug.h * &p * aug.h.transpose())[(0, 0)];
+    let ha = &aug.h * &aug.a;
+    let hg = &aug.h * &aug.g;
+    let lambda2 = if tiny(&hg, aug.h.norm() * aug.g.norm()) {
+        Ok((&ha * &p * ha.transpose())[(0, 0)])
+    } else {
+        Err(white_divergence(name, 2))
+    };
+    let haa = &ha * &aug.a;
+    let hag = &ha * &aug.g;
+    let lambda4 = match &lambda2 {
+        Ok(_) if tiny(&hag, ha.norm() * aug.g.norm()) => Ok((&haa * &p * haa.transpose())[(0, 0)]),
+        _ => Err(white_divergence(name, 4)),
+    };
+    Ok(LyapunovMoments { variance: var, lambda2, lambda4 })
+}
+
+fn white_divergence(name: &str, k: u32) -> Error {
+    Error::Divergent {
+        quantity: if k == 0 { format!("variance of `{name}`") } else { format!("spectral moment λ{k} of `{name}`") },
+        reason: format!(
+            "{} of the output contains a white-noise component (the augmented system feeds the driving noise \
+             straight through), so its density does not decay; ask for a band-limited value",
+            match k {
+                0 => "the output",
+                2 => "the derivative",
+                _ => "the second derivative",
+            }
+        ),
+    }
+}
+
+/// Characteristic polynomial det(sI − A), ascending coefficients, by the Faddeev–LeVerrier recursion
+/// (exact arithmetic in principle; adequate for the n ≤ 7 of the integral table).
+fn char_poly(a: &DMatrix<f64>) -> Vec<f64> {
+    let n = a.nrows();
+    let mut c = vec![0.0; n + 1];
+    c[n] = 1.0;
+    let mut m = DMatrix::<f64>::zeros(n, n);
+    for k in 1..=n {
+        m = a * &m + DMatrix::identity(n, n) * c[n + 1 - k];
+        c[n - k] = -(a * &m).trace() / k as f64;
+    }
+    c
+}
+
+/// Variance (k = 0) or spectral moment λ_k (k = 2, 4) of output `i` by the closed-form integral table
+/// I_n applied to the rational integrand |s^{k/2} H(s) F(s)|²/(2π) of a single delay-free rational input.
+///
+/// # Formula
+/// H(s) = N(s)/Δ(s) with Δ = det(sI − A), N = det(sI − A + b c) − Δ + (d + e s) Δ for the SISO path;
+/// D_y = (1/2π) ∫ |N B_F / (Δ A_F)|² dω evaluated by the table (Gradshteyn–Ryzhik 3.112).
+///
+/// # Errors
+/// [`Error::Numerical`] when not applicable (not SISO after combining, order > 7, non-rational input);
+/// [`Error::Divergent`] when the integrand does not decay.
+pub fn variance_integral_table(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: u32) -> Result<f64> {
+    check_io(sys, exc, i)?;
+    let Excitation::Track { gains, .. } = exc else {
+        return Err(Error::Numerical {
+            what: "integral-table variance".into(),
+            reason: "several independent inputs: the table handles one rational input".into(),
+        });
+    };
+    if !exc.delay_free() {
+        return Err(Error::Numerical {
+            what: "integral-table variance".into(),
+            reason: "pure delays make the integrand non-rational; use quadrature".into(),
+        });
+    }
+    let ss = sys.state_space().ok_or_else(|| Error::Numerical {
+        what: "integral-table variance".into(),
+        reason: "the system has no finite state-space form".into(),
+    })?;
+    ss.require_stable()?;
+    let f = &filters(exc)?[0];
+    let s1 = ss.combine_inputs(gains)?.select_outputs(&[i])?;
+    let delta = char_poly(&s1.a);
+    let bc = &s1.b * &s1.c;
+    let n_part = poly::sub(&char_poly(&(&s1.a - bc)), &delta);
+    let fb = poly::mul(&[s1.d[(0, 0)], s1.e[(0, 0)]], &delta);
+    let mut num = poly::add(&n_part, &fb);
+    num = poly::mul(&num, &f.num);
+    for _ in 0..k / 2 {
+        num = poly::mul(&num, &[0.0, 1.0]);
+    }
+    let den = poly::mul(&delta, &f.den);
+    if poly::trim(&den).len() > 8 {
+        return Err(Error::Numerical {
+            what: "integral-table variance".into(),
+            reason: format!("order {} exceeds the table's n ≤ 7", poly::trim(&den).len() - 1),
+        });
+    }
+    let num = poly::trim(&num);
+    if num.is_empty() {
+        return Ok(0.0);
+    }
+    h2_integral(&num, &den).map(|v| v / (2.0 * PI)).map_err(|e| match e {
+        Error::Divergent { .. } => white_divergence(&sys.outputs()[i].name, k),
+        e => e,
+    })
+}

@@ -1,0 +1,172 @@
+//! A TOML table reader that tracks which keys were asked for, converts physical values with units, and turns
+//! every problem into an [`Error::File`] naming the file, the key, the value and the reason.
+
+use crate::error::{Error, Result};
+use crate::units::{self, Dim};
+use std::cell::RefCell;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// A TOML table being read from a file.
+#[derive(Debug)]
+pub struct Fields<'a> {
+    file: PathBuf,
+    prefix: String,
+    table: &'a toml::Table,
+    used: RefCell<BTreeSet<String>>,
+}
+
+impl<'a> Fields<'a> {
+    /// Wraps `table` read from `file`; `prefix` is the dotted path of the table ("" at the root).
+    pub fn new(file: &Path, prefix: &str, table: &'a toml::Table) -> Self {
+        Fields { file: file.to_path_buf(), prefix: prefix.to_string(), table, used: RefCell::new(BTreeSet::new()) }
+    }
+
+    /// The file being read.
+    pub fn file(&self) -> &Path {
+        &self.file
+    }
+
+    /// Dotted path of `key` inside the file.
+    pub fn path(&self, key: &str) -> String {
+        if self.prefix.is_empty() {
+            key.to_string()
+        } else {
+            format!("{}.{key}", self.prefix)
+        }
+    }
+
+    /// An [`Error::File`] for `key` with `value` and `reason`.
+    pub fn error(&self, key: &str, value: impl std::fmt::Display, reason: impl Into<String>) -> Error {
+        Error::File { file: self.file.clone(), key: self.path(key), value: value.to_string(), reason: reason.into() }
+    }
+
+    /// Wraps any crate error raised while using `key` so that it names the file and key.
+    pub fn wrap(&self, key: &str, e: Error) -> Error {
+        match e {
+            Error::File { .. } => e,
+            other => {
+                let value = self.table.get(key).map(|v| v.to_string()).unwrap_or_else(|| "<derived>".into());
+                self.error(key, value, other.to_string())
+            }
+        }
+    }
+
+    /// The raw value of `key`, marking it used.
+    pub fn get(&self, key: &str) -> Option<&'a toml::Value> {
+        self.used.borrow_mut().insert(key.to_string());
+        self.table.get(key)
+    }
+
+    /// A required raw value.
+    ///
+    /// # Errors
+    /// Missing key.
+    pub fn require(&self, key: &str) -> Result<&'a toml::Value> {
+        self.get(key).ok_or_else(|| self.error(key, "<missing>", "required key is missing"))
+    }
+
+    /// A required string.
+    ///
+    /// # Errors
+    /// Missing key or not a string.
+    pub fn string(&self, key: &str) -> Result<&'a str> {
+        let v = self.require(key)?;
+        v.as_str().ok_or_else(|| self.error(key, v, "expected a string"))
+    }
+
+    /// An optional string.
+    ///
+    /// # Errors
+    /// Present but not a string.
+    pub fn opt_string(&self, key: &str) -> Result<Option<&'a str>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(v) => v.as_str().map(Some).ok_or_else(|| self.error(key, v, "expected a string")),
+        }
+    }
+
+    /// A required physical value of dimension `dim`: a number (already SI) or a string with units.
+    ///
+    /// # Errors
+    /// Missing key, wrong type, unknown unit, wrong dimension, non-finite value.
+    pub fn quantity(&self, key: &str, dim: Dim) -> Result<f64> {
+        let v = self.require(key)?;
+        units::parse_value(v, dim).map_err(|reason| self.error(key, v, reason))
+    }
+
+    /// An optional physical value of dimension `dim`.
+    ///
+    /// # Errors
+    /// As [`Fields::quantity`] when present.
+    pub fn opt_quantity(&self, key: &str, dim: Dim) -> Result<Option<f64>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(_) => self.quantity(key, dim).map(Some),
+        }
+    }
+
+    /// A frequency-like value that must carry its unit (`Hz`, `rad/s`, `cycles/m`, `rad/m`): a bare number
+    /// is rejected because it would be ambiguous between cyclic and angular units. Returns rad/s or rad/m.
+    ///
+    /// # Errors
+    /// Missing key, bare number, unknown unit, wrong dimension.
+    pub fn angular_frequency(&self, v: &toml::Value, key: &str, dim: Dim) -> Result<f64> {
+        match v.as_str() {
+            Some(_) => units::parse_value(v, dim).map_err(|reason| self.error(key, v, reason)),
+            None => Err(self.error(
+                key,
+                v,
+                "a frequency must carry its unit (e.g. \"2 Hz\", \"12 rad/s\", \"0.1 cycles/m\", \"0.6 rad/m\"): a bare \
+                 number would be ambiguous between cyclic and angular frequency",
+            )),
+        }
+    }
+
+    /// A required array of plain numbers.
+    ///
+    /// # Errors
+    /// Missing key, not an array, non-numeric or non-finite entries.
+    pub fn numbers(&self, key: &str) -> Result<Vec<f64>> {
+        let v = self.require(key)?;
+        let arr = v.as_array().ok_or_else(|| self.error(key, v, "expected an array of numbers"))?;
+        arr.iter()
+            .enumerate()
+            .map(|(i, x)| {
+                let f = x.as_float().or_else(|| x.as_integer().map(|n| n as f64));
+                match f {
+                    Some(f) if f.is_finite() => Ok(f),
+                    _ => Err(self.error(&format!("{key}[{i}]"), x, "expected a finite number")),
+                }
+            })
+            .collect()
+    }
+
+    /// A required plain number (dimensionless, or a density whose convention is named elsewhere).
+    ///
+    /// # Errors
+    /// Missing key, not a finite number.
+    pub fn number(&self, key: &str) -> Result<f64> {
+        let v = self.require(key)?;
+        match v.as_float().or_else(|| v.as_integer().map(|n| n as f64)) {
+            Some(f) if f.is_finite() => Ok(f),
+            _ => Err(self.error(key, v, "expected a finite number")),
+        }
+    }
+
+    /// Fails on any key that was never read: catches typos such as `alpah`.
+    ///
+    /// # Errors
+    /// The first unknown key.
+    pub fn finish(&self) -> Result<()> {
+        let used = self.used.borrow();
+        for (k, v) in self.table {
+            if !used.contains(k) {
+                let mut known: Vec<&str> = used.iter().map(|s| s.as_str()).collect();
+                known.sort();
+                return Err(self.error(k, v, format!("unknown key (known keys here: {})", known.join(", "))));
+            }
+        }
+        Ok(())
+    }
+}

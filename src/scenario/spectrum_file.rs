@@ -1,0 +1,305 @@
+//! Spectrum files: one named spectrum per TOML file in `spectra/`.
+//!
+//! # Format
+//! ```toml
+//! name = "book-8-45"                      # optional, defaults to the file stem
+//! description = "..."                      # optional
+//! source = "Sukharev (2012), eq. (8.45)"   # optional provenance
+//! kind = "exponential"                     # see below
+//! domain = "spatial"                       # "temporal" (default; ω in rad/s) or "spatial" (Ω in rad/m)
+//! unit = "m"                               # SI unit of the process itself (default "m")
+//! variance = "2.25 cm^2"                   # numbers are SI; strings carry units
+//! alpha = "0.035 1/cm"
+//! ```
+//!
+//! | kind | keys |
+//! |---|---|
+//! | `exponential` (type 1), `gaussian` (type 2) | `variance`, `alpha` |
+//! | `exp-cosine` (type 3), `gauss-cosine` (type 4) | `variance`, `alpha`, `beta` |
+//! | `rational` | `numerator`, `denominator`: SI numbers, ascending powers of ω² (two-sided angular) |
+//! | `band-white` | `convention`, `level` (number in that convention), `band = ["1 Hz", "10 Hz"]` |
+//! | `tabulated` | `convention`, `frequency_unit` (`Hz`, `rad/s`, `cycles/m`, `rad/m`), `frequencies`, `values` |
+//! | `power-law` | `g0` (one-sided cyclic density at n₀, number), `n0` (with unit), `waviness`, optional `band` |
+//! | `iso8608` | `class` (A–H), optional `bound` (`lower`, `mean`, `upper`), optional `band` (default 0.011–2.83 cycles/m) or `unbounded = true` |
+//! | `two-pole-road` | `form` (`as-printed`, `consistent`), `dq` or `sigma_q`, `alpha`, `beta` (1/m) |
+//!
+//! Frequencies (band edges, n₀, `frequency_unit`) must carry a unit: a bare number would be ambiguous
+//! between cyclic and angular frequency. Density levels are plain numbers whose convention is named by
+//! `convention` (never by a unit, which would apply the 2π twice).
+
+use super::fields::Fields;
+use crate::error::{Error, Result};
+use crate::spectrum::{
+    two_pole_road::Form, BandWhite, Convention, Domain, ExpCosine, Exponential, GaussCosine, Gaussian, IsoBound,
+    IsoClass, PowerLaw, RationalSpectrum, Spectrum, Tabulated, TwoPoleRoad, ISO_BAND,
+};
+use crate::units::{self, Dim};
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// A spectrum read from a file, with its metadata.
+#[derive(Debug, Clone)]
+pub struct SpectrumFile {
+    /// Name (file stem unless given).
+    pub name: String,
+    /// Free text.
+    pub description: String,
+    /// Provenance of the parameter values.
+    pub source: String,
+    /// SI unit of the process.
+    pub unit: String,
+    /// The spectrum.
+    pub spectrum: Arc<dyn Spectrum>,
+}
+
+/// Reads and validates a spectrum file.
+///
+/// # Errors
+/// [`Error::Io`] if unreadable, [`Error::Parse`] if not TOML, [`Error::File`] naming the key, value and
+/// reason for anything invalid (unknown kind or key, missing key, bad unit, negative variance, ...).
+pub fn load_spectrum(path: &Path) -> Result<SpectrumFile> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
+    parse_spectrum(&text, path)
+}
+
+/// Parses spectrum-file text; `path` is used for the name and in error messages.
+///
+/// # Errors
+/// As [`load_spectrum`].
+pub fn parse_spectrum(text: &str, path: &Path) -> Result<SpectrumFile> {
+    let table: toml::Table =
+        toml::from_str(text).map_err(|e| Error::Parse { file: path.to_path_buf(), reason: e.to_string() })?;
+    let f = Fields::new(path, "", &table);
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = f.opt_string("name")?.map(str::to_string).unwrap_or(stem);
+    let description = f.opt_string("description")?.unwrap_or("").to_string();
+    let source = f.opt_string("source")?.unwrap_or("").to_string();
+    let spectrum = spectrum_from_fields(&f)?;
+    let unit = f.opt_string("unit")?.unwrap_or("m").to_string();
+    f.finish()?;
+    Ok(SpectrumFile { name, description, source, unit, spectrum })
+}
+
+/// Builds the spectrum described by the keys of `f` (also used for inline spectra in scenario files).
+///
+/// # Errors
+/// [`Error::File`] naming the key.
+pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
+    let kind = f.string("kind")?;
+    let domain = match f.opt_string("domain")? {
+        None | Some("temporal") => Domain::Temporal,
+        Some("spatial") => Domain::Spatial,
+        Some(other) => return Err(f.error("domain", other, "expected \"temporal\" or \"spatial\"")),
+    };
+    let unit_text = f.opt_string("unit")?.unwrap_or("m");
+    let unit_dim = process_dim(f, unit_text)?;
+    let lag = match domain {
+        Domain::Temporal => Dim::TIME,
+        Domain::Spatial => Dim::LENGTH,
+    };
+    let var_dim = pow(unit_dim, 2);
+    let inv_lag = pow(lag, -1);
+    let w = |key: &str, e: Error| f.wrap(key, e);
+    let spectrum: Arc<dyn Spectrum> = match kind {
+        "exponential" | "gaussian" => {
+            let d = f.quantity("variance", var_dim)?;
+            let a = f.quantity("alpha", if kind == "gaussian" { pow(lag, -2) } else { inv_lag })?;
+            if kind == "gaussian" {
+                Arc::new(Gaussian::new(d, a, domain).map_err(|e| w(param_key(&e), e))?)
+            } else {
+                Arc::new(Exponential::new(d, a, domain).map_err(|e| w(param_key(&e), e))?)
+            }
+        }
+        "exp-cosine" | "gauss-cosine" => {
+            let d = f.quantity("variance", var_dim)?;
+            let a = f.quantity("alpha", if kind == "gauss-cosine" { pow(lag, -2) } else { inv_lag })?;
+            let b = f.quantity("beta", inv_lag)?;
+            if kind == "gauss-cosine" {
+                Arc::new(GaussCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
+            } else {
+                Arc::new(ExpCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
+            }
+        }
+        "rational" => {
+            let n = f.numbers("numerator")?;
+            let d = f.numbers("denominator")?;
+            Arc::new(RationalSpectrum::new(n, d, domain).map_err(|e| w(param_key(&e), e))?)
+        }
+        "band-white" => {
+            let c = convention(f)?;
+            let level = f.number("level")?;
+            let (lo, hi) = band(f, "band", inv_lag)?.ok_or_else(|| f.error("band", "<missing>", "required"))?;
+            let (_, s0) = c.to_canonical(1.0, level);
+            Arc::new(
+                BandWhite::new(Convention::TwoSidedAngular, s0, lo, hi, domain).map_err(|e| w("band", e))?,
+            )
+        }
+        "tabulated" => {
+            let c = convention(f)?;
+            let fu = f.string("frequency_unit")?;
+            let scale = frequency_scale(f, fu, inv_lag)?;
+            let x = f.numbers("frequencies")?;
+            let v = f.numbers("values")?;
+            // Abscissae → the convention's own abscissa unit (cyclic or angular), exactly.
+            let to_conv = if c.is_cyclic() { scale / (2.0 * PI) } else { scale };
+            let x: Vec<f64> = x.iter().map(|xi| xi * to_conv).collect();
+            Arc::new(Tabulated::new(c, x, v, domain).map_err(|e| w(param_key(&e), e))?)
+        }
+        "power-law" => {
+            let g0 = f.number("g0")?;
+            let n0v = f.require("n0")?;
+            let n0 = f.angular_frequency(n0v, "n0", inv_lag)? / (2.0 * PI);
+            let wav = f.number("waviness")?;
+            let b = band(f, "band", inv_lag)?.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
+            Arc::new(PowerLaw::new(g0, n0, wav, b, domain).map_err(|e| w(param_key(&e), e))?)
+        }
+        "iso8608" => {
+            if domain != Domain::Spatial {
+                return Err(f.error("domain", "temporal", "ISO 8608 spectra are spatial: set domain = \"spatial\""));
+            }
+            let class: IsoClass = f.string("class")?.parse().map_err(|e| w("class", e))?;
+            let bound: IsoBound = match f.opt_string("bound")? {
+                None => IsoBound::GeometricMean,
+                Some(b) => b.parse().map_err(|e| w("bound", e))?,
+            };
+            let unbounded = match f.get("unbounded") {
+                None => false,
+                Some(v) => v.as_bool().ok_or_else(|| f.error("unbounded", v, "expected true or false"))?,
+            };
+            let b = band(f, "band", inv_lag)?.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
+            if unbounded && b.is_some() {
+                return Err(f.error("unbounded", "true", "contradicts the `band` key: give one of them"));
+            }
+            let b = if unbounded { None } else { Some(b.unwrap_or(ISO_BAND)) };
+            Arc::new(PowerLaw::iso8608(class, bound, b).map_err(|e| w("band", e))?)
+        }
+        "two-pole-road" => {
+            if domain != Domain::Spatial {
+                return Err(f.error("domain", "temporal", "the (8.66) road is spatial: set domain = \"spatial\""));
+            }
+            let form = match f.string("form")? {
+                "as-printed" => Form::AsPrinted,
+                "consistent" => Form::Consistent,
+                other => return Err(f.error("form", other, "expected \"as-printed\" or \"consistent\"")),
+            };
+            let dq = match (f.opt_quantity("dq", var_dim)?, f.opt_quantity("sigma_q", unit_dim)?) {
+                (Some(d), None) => d,
+                (None, Some(s)) => {
+                    if s < 0.0 {
+                        return Err(f.error("sigma_q", s, "must be >= 0"));
+                    }
+                    s * s
+                }
+                (Some(_), Some(_)) => return Err(f.error("sigma_q", "both", "give `dq` or `sigma_q`, not both")),
+                (None, None) => return Err(f.error("dq", "<missing>", "give `dq` (variance) or `sigma_q`")),
+            };
+            let a = f.quantity("alpha", inv_lag)?;
+            let b = f.quantity("beta", inv_lag)?;
+            Arc::new(TwoPoleRoad::new(dq, a, b, form).map_err(|e| w(param_key(&e), e))?)
+        }
+        other => {
+            return Err(f.error(
+                "kind",
+                other,
+                "unknown kind; expected exponential, gaussian, exp-cosine, gauss-cosine, rational, band-white, \
+                 tabulated, power-law, iso8608, two-pole-road",
+            ))
+        }
+    };
+    Ok(spectrum)
+}
+
+/// Maps a constructor's parameter name onto the file key it came from.
+fn param_key(e: &Error) -> &'static str {
+    match e {
+        Error::InvalidParameter { name, .. } => match name.as_str() {
+            "variance" => "variance",
+            "alpha" => "alpha",
+            "beta" => "beta",
+            "dq" => "dq",
+            "g0" => "g0",
+            "n0" => "n0",
+            "waviness" => "waviness",
+            "numerator" => "numerator",
+            "denominator" => "denominator",
+            n if n.starts_with("band") => "band",
+            n if n.starts_with("values") => "values",
+            _ => "frequencies",
+        },
+        _ => "kind",
+    }
+}
+
+fn convention(f: &Fields) -> Result<Convention> {
+    let c = f.string("convention")?;
+    c.parse().map_err(|e| f.wrap("convention", e))
+}
+
+fn process_dim(f: &Fields, unit: &str) -> Result<Dim> {
+    let text = format!("1 {unit}");
+    let (scale, dim) = if unit == "1" {
+        (1.0, Dim::DIMENSIONLESS)
+    } else {
+        units::parse_quantity(&text).map_err(|e| f.error("unit", unit, e.to_string()))?
+    };
+    if (scale - 1.0).abs() > 1e-12 {
+        return Err(f.error(
+            "unit",
+            unit,
+            "the process unit must be a coherent SI unit (m, N, rad, m/s, N m, 1); values may still be written in \
+             other units",
+        ));
+    }
+    Ok(dim)
+}
+
+/// Angular-frequency scale of a frequency unit name: `Hz` → 2π, `rad/s` → 1, `cycles/m` → 2π, `rad/m` → 1.
+fn frequency_scale(f: &Fields, unit: &str, dim: Dim) -> Result<f64> {
+    let v = toml::Value::String(format!("1 {unit}"));
+    f.angular_frequency(&v, "frequency_unit", dim)
+}
+
+fn band(f: &Fields, key: &str, dim: Dim) -> Result<Option<(f64, f64)>> {
+    let Some(v) = f.get(key) else { return Ok(None) };
+    let arr = v.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
+        f.error(key, v, "expected two frequencies with units, e.g. [\"0.011 cycles/m\", \"2.83 cycles/m\"]")
+    })?;
+    let lo = f.angular_frequency(&arr[0], &format!("{key}[0]"), dim)?;
+    let hi = f.angular_frequency(&arr[1], &format!("{key}[1]"), dim)?;
+    if !(lo >= 0.0 && hi > lo) {
+        return Err(f.error(key, v, "need 0 <= low < high"));
+    }
+    Ok(Some((lo, hi)))
+}
+
+fn pow(d: Dim, k: i8) -> Dim {
+    Dim::new(d.m * k, d.kg * k, d.s * k)
+}
+
+/// One entry of a spectrum directory.
+#[derive(Debug, Clone)]
+pub struct CatalogueEntry {
+    /// The file.
+    pub path: PathBuf,
+    /// The parsed spectrum, or the error that names what is wrong with the file.
+    pub spectrum: std::result::Result<SpectrumFile, String>,
+}
+
+/// Lists every `*.toml` spectrum file in `dir`, sorted by name; unreadable files are listed with their
+/// error rather than hidden.
+///
+/// # Errors
+/// [`Error::Io`] if the directory cannot be read.
+pub fn spectrum_catalogue(dir: &Path) -> Result<Vec<CatalogueEntry>> {
+    let rd = std::fs::read_dir(dir).map_err(|source| Error::Io { path: dir.to_path_buf(), source })?;
+    let mut paths: Vec<PathBuf> = rd
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    Ok(paths
+        .into_iter()
+        .map(|path| CatalogueEntry { spectrum: load_spectrum(&path).map_err(|e| e.to_string()), path })
+        .collect())
+}
