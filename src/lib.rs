@@ -8,6 +8,7 @@
 
 pub mod error;
 pub mod linalg;
+pub mod models;
 pub mod quad;
 pub mod report;
 pub mod response;

@@ -1,6 +1,7 @@
 //! Reports: the tables the command-line tool prints, as plain data (serialisable to JSON) plus a text
 //! rendering. The CLI only parses arguments, calls these and prints.
 
+pub mod book;
 pub mod spectrum_report;
 
 pub use spectrum_report::{resolve_spectrum, spectrum_report, SpectrumReport};
