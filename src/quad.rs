@@ -12,8 +12,9 @@
 //! # Algorithm
 //! Globally adaptive (QUADPACK `QAG`-style, without the ε-algorithm extrapolation of `QAGS`): the
 //! subinterval with the largest error estimate is taken from a max-heap and bisected, until the sum of
-//! the error estimates is at most `max(abs_tol, rel_tol·|value|)`, or the error is down to the
-//! roundoff floor, or `max_subintervals` is reached (an error).
+//! the error estimates is at most `max(abs_tol, rel_tol·|value|)`, or every subinterval is down to its
+//! roundoff floor, or `max_subintervals` is reached (an error). The value and error are summed
+//! (compensated) over all subintervals again before returning, free of the drift of running updates.
 //!
 //! Infinite ranges are mapped onto `[0, 1)`: a tail `[c, ∞)` by `x = c + L·t/(1−t)`, a head `(−∞, c]`
 //! by `x = c − L·t/(1−t)`. When breakpoints are given on an infinite range, the range is split into
@@ -74,6 +75,7 @@ pub struct QuadResult {
 
 /// Abscissae of the 21-point Kronrod rule: `XGK[1], XGK[3], …, XGK[9]` are the 10-point Gauss
 /// abscissae, `XGK[0], XGK[2], …` the Kronrod extension, `XGK[10] = 0` the centre.
+#[allow(clippy::excessive_precision)] // the published 33-digit constants, kept verbatim
 const XGK: [f64; 11] = [
     0.995_657_163_025_808_080_735_527_280_689_003,
     0.973_906_528_517_171_720_077_964_012_084_452,
@@ -89,6 +91,7 @@ const XGK: [f64; 11] = [
 ];
 
 /// Weights of the 21-point Kronrod rule, matching [`XGK`].
+#[allow(clippy::excessive_precision)] // the published 33-digit constants, kept verbatim
 const WGK: [f64; 11] = [
     0.011_694_638_867_371_874_278_064_396_062_192,
     0.032_558_162_307_964_727_478_818_972_459_390,
@@ -104,6 +107,7 @@ const WGK: [f64; 11] = [
 ];
 
 /// Weights of the 10-point Gauss rule, for the abscissae `XGK[1], XGK[3], …, XGK[9]`.
+#[allow(clippy::excessive_precision)] // the published 33-digit constants, kept verbatim
 const WG: [f64; 5] = [
     0.066_671_344_308_688_137_593_568_809_893_332,
     0.149_451_349_150_580_593_145_776_339_657_697,
@@ -137,13 +141,13 @@ impl Map {
         }
     }
 
-    /// `f(x(u))·x'(u)` (absolute value of the Jacobian; the heads are oriented so that `u` increases
-    /// with the direction of integration reversed, i.e. `∫_{−∞}^c f dx = ∫_0^1 f(x(u)) l/(1−u)² du`).
+    /// `f(x(u))·|x'(u)|`, so that both `∫_c^∞ f dx` and `∫_{−∞}^c f dx` equal `∫_0^1 f(x(u)) l/(1−u)² du`.
+    /// A zero `f` gives 0 even where the Jacobian overflows.
     #[inline(always)]
     fn eval<F: Fn(f64) -> f64>(self, f: &F, u: f64) -> f64 {
         match self {
             Map::Identity => f(u),
-            Map::Tail { .. } | Map::Head { .. } => {
+            Map::Tail { l, .. } | Map::Head { l, .. } => {
                 let x = self.x(u);
                 if x.is_infinite() {
                     // Only when u has rounded to 1 inside a subinterval of width ~ε at the singular end;
@@ -154,10 +158,7 @@ impl Map {
                 if fx == 0.0 {
                     return 0.0;
                 }
-                let (l, s) = match self {
-                    Map::Tail { l, .. } | Map::Head { l, .. } => (l, 1.0 - u),
-                    Map::Identity => unreachable!(),
-                };
+                let s = 1.0 - u;
                 fx * (l / s) / s
             }
         }
@@ -172,7 +173,7 @@ struct Segment {
     map: Map,
     value: f64,
     error: f64,
-    /// The error estimate is the roundoff floor `50 ε ∫|f|`: bisecting cannot improve it.
+    /// The error estimate is at the roundoff floor of the subinterval: bisecting cannot improve it.
     at_floor: bool,
 }
 
@@ -268,14 +269,19 @@ fn gk21<F: Fn(f64) -> f64>(
             res_asc
         };
     }
-    let mut at_floor = error == 0.0;
+    // Roundoff floors. QUADPACK's: the sum itself is not accurate beyond ~50 ε ∫|f|. Ours in addition:
+    // the nodes m ± h·x_i are rounded by up to ε·max(|α|, |β|), which changes the sum by about that
+    // times ∫|f'| ≈ 2·resasc/h; this dominates on tiny subintervals of a sharp peak far from the
+    // origin (width ~ ζ·ω0), where it limits the attainable relative accuracy to ~ ε/ζ.
+    let mut floor = 0.0f64;
     if res_abs > f64::MIN_POSITIVE / (50.0 * f64::EPSILON) {
-        let floor = 50.0 * f64::EPSILON * res_abs;
-        if floor >= error {
-            error = floor;
-            at_floor = true;
-        }
+        floor = 50.0 * f64::EPSILON * res_abs;
     }
+    if abs_half > 0.0 {
+        floor = floor.max(f64::EPSILON * (lo.abs().max(hi.abs()) / abs_half) * res_asc);
+    }
+    let at_floor = error <= floor;
+    error = error.max(floor);
     if !value.is_finite() || !error.is_finite() {
         return Err(RuleFailure::Overflow);
     }
@@ -414,20 +420,42 @@ fn scale(candidates: &[f64]) -> f64 {
     }
 }
 
-/// Neumaier-compensated sums of the values and of the error estimates of all segments.
-fn totals(heap: &BinaryHeap<Segment>) -> (f64, f64) {
-    let (mut sum, mut comp, mut err) = (0.0f64, 0.0f64, 0.0f64);
-    for s in heap.iter() {
-        let t = sum + s.value;
-        comp += if sum.abs() >= s.value.abs() {
-            (sum - t) + s.value
-        } else {
-            (s.value - t) + sum
-        };
-        sum = t;
-        err += s.error;
+/// The subintervals of a running integration.
+struct Partition {
+    /// Subintervals that may still be bisected, worst error on top.
+    active: BinaryHeap<Segment>,
+    /// Subintervals whose error is at their roundoff floor: bisecting them cannot help.
+    settled: Vec<Segment>,
+}
+
+impl Partition {
+    fn len(&self) -> usize {
+        self.active.len() + self.settled.len()
     }
-    (sum + comp, err)
+
+    fn push(&mut self, s: Segment) {
+        if s.at_floor {
+            self.settled.push(s);
+        } else {
+            self.active.push(s);
+        }
+    }
+
+    /// Neumaier-compensated sum of the values, and sum of the error estimates, of all subintervals.
+    fn totals(&self) -> (f64, f64) {
+        let (mut sum, mut comp, mut err) = (0.0f64, 0.0f64, 0.0f64);
+        for s in self.active.iter().chain(self.settled.iter()) {
+            let t = sum + s.value;
+            comp += if sum.abs() >= s.value.abs() {
+                (sum - t) + s.value
+            } else {
+                (s.value - t) + sum
+            };
+            sum = t;
+            err += s.error;
+        }
+        (sum + comp, err)
+    }
 }
 
 /// Integrates `f` over `[a, b]` (infinite limits allowed) by globally adaptive G10/K21 Gauss–Kronrod
@@ -439,10 +467,12 @@ fn totals(heap: &BinaryHeap<Segment>) -> (f64, f64) {
 /// ```text
 /// K = h Σ_{i=1}^{21} w_i^K f(m + h x_i),   G = h Σ_{j=1}^{10} w_j^G f(m + h x_{2j}),
 /// resasc = h Σ w_i^K |f(m + h x_i) − K/(2h)|,   resabs = h Σ w_i^K |f(m + h x_i)|,
-/// err = max( resasc · min(1, (200 |K − G| / resasc)^{3/2}),  50 ε resabs )
+/// err = max( resasc · min(1, (200 |K − G| / resasc)^{3/2}),  50 ε resabs,  ε (max(|α|,|β|)/h) resasc )
 /// ```
 ///
-/// (QUADPACK `QK21`); `K` is the value, `err` its error estimate. The subinterval with the largest `err`
+/// (QUADPACK `QK21`, plus the last term: the effect of rounding the nodes, which bounds the attainable
+/// accuracy on the tiny subintervals of a sharp peak far from 0); `K` is the value, `err` its error
+/// estimate. The subinterval with the largest `err`
 /// is bisected until `Σ err ≤ max(abs_tol, rel_tol·|Σ K|)`. Infinite limits are mapped to `[0, 1)`:
 ///
 /// ```text
@@ -458,9 +488,11 @@ fn totals(heap: &BinaryHeap<Segment>) -> (f64, f64) {
 /// Breakpoints outside the open interval `(a, b)` and non-finite ones are ignored; the rest are sorted
 /// and deduplicated and split the initial range, so peaks and kinks at them are resolved.
 ///
-/// When every remaining error estimate is at its roundoff floor `50 ε ∫|f|` (e.g. a value that cancels
-/// to 0 with `abs_tol = 0`), tighter accuracy is not attainable in double precision and the result is
-/// returned with that floor as `abs_error`.
+/// Subintervals whose error estimate is at its roundoff floor (the last two terms) are not bisected
+/// further. When only such subintervals remain before the tolerance is met (a value that cancels to 0
+/// with `abs_tol = 0`, or `rel_tol` below ~ε/ζ for a peak of relative width ζ), tighter accuracy is not
+/// attainable in double precision: the result is returned with the sum of those floors as `abs_error`,
+/// so `abs_error` may then exceed the requested tolerance.
 ///
 /// # Errors
 /// - [`Error::InvalidParameter`] if `a` or `b` is NaN, `a > b`, or `rel_tol` / `abs_tol` is negative
@@ -530,18 +562,21 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
     }
 
     let pieces = pieces(a, b, &opts.breakpoints);
-    let mut heap: BinaryHeap<Segment> =
-        BinaryHeap::with_capacity(opts.max_subintervals.clamp(16, 4096));
+    let mut part = Partition {
+        active: BinaryHeap::with_capacity(opts.max_subintervals.clamp(16, 4096)),
+        settled: Vec::new(),
+    };
     let mut evaluations = 0usize;
+    let tolerance = |value: f64| opts.abs_tol.max(opts.rel_tol * value.abs());
 
-    // Builds the error for a failed rule application.
+    // The error for a failed rule application on [lo, hi] (in the parameter of `map`).
     let failure = |fail: RuleFailure,
                    map: Map,
                    lo: f64,
                    hi: f64,
-                   heap: &BinaryHeap<Segment>,
+                   part: &Partition,
                    evaluations: usize| {
-        let (estimate, abs_error) = totals(heap);
+        let (estimate, abs_error) = part.totals();
         let reason = match fail {
             RuleFailure::NotFinite { u } => {
                 let x = map.x(u);
@@ -568,6 +603,7 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
         }
     };
 
+    // Running sums, updated incrementally; recomputed exactly before any decision to stop.
     let (mut value, mut error) = (0.0f64, 0.0f64);
     for &(map, lo, hi) in &pieces {
         evaluations += NODES;
@@ -575,25 +611,18 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
             Ok(s) => {
                 value += s.value;
                 error += s.error;
-                heap.push(s);
+                part.push(s);
             }
-            Err(e) => return Err(failure(e, map, lo, hi, &heap, evaluations)),
+            Err(e) => return Err(failure(e, map, lo, hi, &part, evaluations)),
         }
     }
 
     loop {
-        let Some(&worst) = heap.peek() else {
-            // No pieces (cannot happen for a < b); an empty sum is exact.
-            return Ok(QuadResult {
-                value: 0.0,
-                abs_error: 0.0,
-                evaluations,
-            });
-        };
-        if error <= opts.abs_tol.max(opts.rel_tol * value.abs()) || worst.at_floor {
-            // Confirm with sums free of the drift of the running updates.
-            (value, error) = totals(&heap);
-            if error <= opts.abs_tol.max(opts.rel_tol * value.abs()) || worst.at_floor {
+        if error <= tolerance(value) || part.active.is_empty() {
+            (value, error) = part.totals();
+            // Converged, or every subinterval is at its roundoff floor (the tolerance is below what
+            // double precision can deliver; abs_error says what was reached).
+            if error <= tolerance(value) || part.active.is_empty() {
                 return Ok(QuadResult {
                     value,
                     abs_error: error,
@@ -601,9 +630,17 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
                 });
             }
         }
+        let Some(worst) = part.active.pop() else {
+            return Ok(QuadResult {
+                value,
+                abs_error: error,
+                evaluations,
+            }); // not reached: checked above
+        };
         let (x_lo, x_hi) = (worst.map.x(worst.lo), worst.map.x(worst.hi));
-        if heap.len() >= opts.max_subintervals {
-            let (estimate, abs_error) = totals(&heap);
+        if part.len() + 1 >= opts.max_subintervals.max(1) {
+            part.active.push(worst);
+            let (estimate, abs_error) = part.totals();
             return Err(Error::Quadrature {
                 what: "integral".into(),
                 estimate,
@@ -621,20 +658,28 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
         if !(worst.lo < mid && mid < worst.hi)
             || width <= 100.0 * f64::EPSILON * worst.lo.abs().max(worst.hi.abs())
         {
-            let (estimate, abs_error) = totals(&heap);
+            part.active.push(worst);
+            let (estimate, abs_error) = part.totals();
             return Err(Error::Quadrature {
                 what: "integral".into(),
                 estimate,
                 abs_error,
                 evaluations,
-                reason: format!(
-                    "subinterval [{x_lo:e}, {x_hi:e}] too small to bisect further with error estimate {:e} \
-                     (non-integrable singularity or discontinuity there?)",
-                    worst.error
-                ),
+                reason: if x_lo.is_infinite() || x_hi.is_infinite() {
+                    format!(
+                        "subinterval [{x_lo:e}, {x_hi:e}] of the infinite range too small to bisect further with error \
+                         estimate {:e} (the integrand does not decay fast enough: divergent integral?)",
+                        worst.error
+                    )
+                } else {
+                    format!(
+                        "subinterval [{x_lo:e}, {x_hi:e}] too small to bisect further with error estimate {:e} \
+                         (non-integrable singularity or discontinuity there?)",
+                        worst.error
+                    )
+                },
             });
         }
-        heap.pop();
         evaluations += 2 * NODES;
         let left = gk21(&f, worst.map, worst.lo, mid);
         let right = gk21(&f, worst.map, mid, worst.hi);
@@ -642,11 +687,17 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
             (Ok(l), Ok(r)) => {
                 value += (l.value + r.value) - worst.value;
                 error += (l.error + r.error) - worst.error;
-                heap.push(l);
-                heap.push(r);
+                part.push(l);
+                part.push(r);
             }
-            (Err(e), _) => return Err(failure(e, worst.map, worst.lo, mid, &heap, evaluations)),
-            (_, Err(e)) => return Err(failure(e, worst.map, mid, worst.hi, &heap, evaluations)),
+            (Err(e), _) => {
+                part.active.push(worst);
+                return Err(failure(e, worst.map, worst.lo, mid, &part, evaluations));
+            }
+            (_, Err(e)) => {
+                part.active.push(worst);
+                return Err(failure(e, worst.map, mid, worst.hi, &part, evaluations));
+            }
         }
     }
 }
@@ -654,7 +705,6 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::f64::consts::PI;
 
     fn opts(rel_tol: f64) -> QuadOptions {
         QuadOptions {
