@@ -49,14 +49,21 @@ enum Command {
 fn main() -> Result<()> {
     let cli = Cli::parse();
     match cli.command {
-        Command::Spectra { spectra_dir, json, full } => {
+        Command::Spectra {
+            spectra_dir,
+            json,
+            full,
+        } => {
             let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
             let entries = spectrum_catalogue(&dir)?;
             let mut reports = Vec::new();
             let mut failed = 0;
             if !json && !full {
                 println!("catalogue {}", dir.display());
-                println!("{:<24} {:<9} {:>13} {:>13}  model", "name", "domain", "variance", "sigma");
+                println!(
+                    "{:<24} {:<9} {:>13} {:>13}  model",
+                    "name", "domain", "variance", "sigma"
+                );
             }
             for e in &entries {
                 match &e.spectrum {
@@ -64,9 +71,10 @@ fn main() -> Result<()> {
                         let r = spectrum_report(s, Convention::TwoSidedAngular);
                         if !json && !full {
                             let (v, sg) = match (&r.variance, &r.sigma) {
-                                (report::spectrum_report::Outcome::Value(v), report::spectrum_report::Outcome::Value(s)) => {
-                                    (format!("{v:.4e}"), format!("{s:.4e}"))
-                                }
+                                (
+                                    report::spectrum_report::Outcome::Value(v),
+                                    report::spectrum_report::Outcome::Value(s),
+                                ) => (format!("{v:.4e}"), format!("{s:.4e}")),
                                 _ => ("infinite".into(), "infinite".into()),
                             };
                             println!("{:<24} {:<9} {:>13} {:>13}  {}", r.name, r.domain, v, sg, r.model);
@@ -88,7 +96,12 @@ fn main() -> Result<()> {
                 anyhow::bail!("{failed} spectrum file(s) in {} are invalid", dir.display());
             }
         }
-        Command::Spectrum { name, convention, spectra_dir, json } => {
+        Command::Spectrum {
+            name,
+            convention,
+            spectra_dir,
+            json,
+        } => {
             let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
             let file = resolve_spectrum(&name, &dir)?;
             let r = spectrum_report(&file, convention);

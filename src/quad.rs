@@ -205,12 +205,7 @@ enum RuleFailure {
 /// Applies G10/K21 to `f` over `[lo, hi]` in the parameter of `map`, with QUADPACK's error estimate:
 /// `err = resasc·min(1, (200·|K−G|/resasc)^1.5)`, raised to at least `50 ε resabs`.
 #[inline]
-fn gk21<F: Fn(f64) -> f64>(
-    f: &F,
-    map: Map,
-    lo: f64,
-    hi: f64,
-) -> std::result::Result<Segment, RuleFailure> {
+fn gk21<F: Fn(f64) -> f64>(f: &F, map: Map, lo: f64, hi: f64) -> std::result::Result<Segment, RuleFailure> {
     let centre = 0.5 * (lo + hi);
     let half = 0.5 * (hi - lo);
     let abs_half = half.abs();
@@ -263,11 +258,7 @@ fn gk21<F: Fn(f64) -> f64>(
     let mut error = ((res_k - res_g) * half).abs();
     if res_asc != 0.0 && error != 0.0 {
         let r = 200.0 * error / res_asc;
-        error = if r < 1.0 {
-            res_asc * r * r.sqrt()
-        } else {
-            res_asc
-        };
+        error = if r < 1.0 { res_asc * r * r.sqrt() } else { res_asc };
     }
     // Roundoff floors. QUADPACK's: the sum itself is not accurate beyond ~50 ε ∫|f|. Ours in addition:
     // the nodes m ± h·x_i are rounded by up to ε·max(|α|, |β|), which changes the sum by about that
@@ -527,18 +518,10 @@ impl Partition {
 /// ```
 pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> Result<QuadResult> {
     if a.is_nan() {
-        return Err(Error::invalid(
-            "a",
-            a,
-            "lower integration limit must not be NaN",
-        ));
+        return Err(Error::invalid("a", a, "lower integration limit must not be NaN"));
     }
     if b.is_nan() {
-        return Err(Error::invalid(
-            "b",
-            b,
-            "upper integration limit must not be NaN",
-        ));
+        return Err(Error::invalid("b", b, "upper integration limit must not be NaN"));
     }
     if a > b {
         return Err(Error::invalid(
@@ -570,12 +553,7 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
     let tolerance = |value: f64| opts.abs_tol.max(opts.rel_tol * value.abs());
 
     // The error for a failed rule application on [lo, hi] (in the parameter of `map`).
-    let failure = |fail: RuleFailure,
-                   map: Map,
-                   lo: f64,
-                   hi: f64,
-                   part: &Partition,
-                   evaluations: usize| {
+    let failure = |fail: RuleFailure, map: Map, lo: f64, hi: f64, part: &Partition, evaluations: usize| {
         let (estimate, abs_error) = part.totals();
         let reason = match fail {
             RuleFailure::NotFinite { u } => {
@@ -655,9 +633,7 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
         }
         let mid = 0.5 * (worst.lo + worst.hi);
         let width = worst.hi - worst.lo;
-        if !(worst.lo < mid && mid < worst.hi)
-            || width <= 100.0 * f64::EPSILON * worst.lo.abs().max(worst.hi.abs())
-        {
+        if !(worst.lo < mid && mid < worst.hi) || width <= 100.0 * f64::EPSILON * worst.lo.abs().max(worst.hi.abs()) {
             part.active.push(worst);
             let (estimate, abs_error) = part.totals();
             return Err(Error::Quadrature {
@@ -719,11 +695,7 @@ mod tests {
         for k in 0..=31 {
             let r = integrate(|x| x.powi(k), 0.0, 1.0, &opts(1e-12)).unwrap();
             let exact = 1.0 / (k as f64 + 1.0);
-            assert!(
-                (r.value - exact).abs() < 1e-14,
-                "k = {k}: {} vs {exact}",
-                r.value
-            );
+            assert!((r.value - exact).abs() < 1e-14, "k = {k}: {} vs {exact}", r.value);
         }
     }
 

@@ -475,9 +475,7 @@ fn tokenize(s: &str) -> std::result::Result<Vec<Tok>, String> {
             }
             let text: String = chars[i..j].iter().collect();
             if j == start {
-                return Err(format!(
-                    "dangling superscript `{text}`: expected digits after it"
-                ));
+                return Err(format!("dangling superscript `{text}`: expected digits after it"));
             }
             let p = parse_power_int(&digits, negative, &text)?;
             toks.push(Tok::Pow {
@@ -499,14 +497,9 @@ fn tokenize(s: &str) -> std::result::Result<Vec<Tok>, String> {
             toks.push(Tok::RParen);
             i += 1;
         } else if c == '.' {
-            return Err(
-                "`.` is not a multiplication sign (it is the decimal point); write `*`, `·` or a space"
-                    .into(),
-            );
+            return Err("`.` is not a multiplication sign (it is the decimal point); write `*`, `·` or a space".into());
         } else if c == '%' {
-            return Err(
-                "`%` is not supported: write the fraction as a plain number (20 % → 0.2)".into(),
-            );
+            return Err("`%` is not supported: write the fraction as a plain number (20 % → 0.2)".into());
         } else if c.is_ascii_digit() {
             let mut j = i;
             while j < chars.len() && (chars[j].is_ascii_digit() || chars[j] == '.') {
@@ -633,12 +626,7 @@ const PREFIXES: &[(char, i32)] = &[
 fn lookup_unit(word: &str) -> Option<Unit> {
     let named = |name: &str| UNITS.iter().find(|u| u.0 == name);
     if let Some(&(_, num, den, pow10, dim, _)) = named(word) {
-        return Some(Unit {
-            num,
-            den,
-            pow10,
-            dim,
-        });
+        return Some(Unit { num, den, pow10, dim });
     }
     let mut chars = word.chars();
     let first = chars.next()?;
@@ -671,9 +659,7 @@ fn unknown_unit(word: &str) -> String {
             " (for a product write `{a} {b}` or `{a}*{b}`; letters written together are one unit)"
         ));
     } else {
-        reason.push_str(
-            " (known: m g t s min h N Pa J W Hz rad cycle cycles deg, prefixes G M k c m u µ n)",
-        );
+        reason.push_str(" (known: m g t s min h N Pa J W Hz rad cycle cycles deg, prefixes G M k c m u µ n)");
     }
     reason
 }
@@ -696,9 +682,7 @@ fn parse_product(toks: &[Tok], i: &mut usize) -> std::result::Result<Unit, Strin
     loop {
         let word = match toks.get(*i) {
             Some(Tok::Word(w)) => w,
-            Some(Tok::Pow { text, .. }) => {
-                return Err(format!("power `{text}` does not follow a unit"))
-            }
+            Some(Tok::Pow { text, .. }) => return Err(format!("power `{text}` does not follow a unit")),
             Some(Tok::Star) => return Err("dangling `*`: expected a unit before it".into()),
             Some(Tok::Slash) => return Err("dangling `/`: expected a unit before it".into()),
             Some(t) => return Err(format!("expected a unit, found {}", describe(t))),
@@ -722,18 +706,13 @@ fn parse_product(toks: &[Tok], i: &mut usize) -> std::result::Result<Unit, Strin
                 *i += 1;
                 if !matches!(toks.get(*i), Some(Tok::Word(_))) {
                     return Err(match toks.get(*i) {
-                        Some(t) => format!(
-                            "dangling `*`: expected a unit after it, found {}",
-                            describe(t)
-                        ),
+                        Some(t) => format!("dangling `*`: expected a unit after it, found {}", describe(t)),
                         None => "dangling `*`: expected a unit after it".into(),
                     });
                 }
             }
             Some(Tok::Word(_)) => {}
-            Some(Tok::Pow { text, .. }) => {
-                return Err(format!("power `{text}` follows another power"))
-            }
+            Some(Tok::Pow { text, .. }) => return Err(format!("power `{text}` follows another power")),
             _ => return Ok(unit),
         }
     }
@@ -779,9 +758,7 @@ fn parse_unit_expr(toks: &[Tok]) -> std::result::Result<Unit, String> {
                 .into(),
         ),
         Some(Tok::RParen) => Err("unbalanced `)`".into()),
-        Some(Tok::LParen) => {
-            Err("parentheses are only allowed around the whole denominator, e.g. `kg/(m s)`".into())
-        }
+        Some(Tok::LParen) => Err("parentheses are only allowed around the whole denominator, e.g. `kg/(m s)`".into()),
         Some(t) => Err(format!("unexpected {} after the unit", describe(t))),
     }
 }
@@ -983,10 +960,7 @@ mod tests {
             "{e}"
         );
         let e = parse_as("70 kN", Dim::STIFFNESS).unwrap_err().to_string();
-        assert!(
-            e.contains("dimension is m kg s^-2, expected kg s^-2"),
-            "{e}"
-        );
+        assert!(e.contains("dimension is m kg s^-2, expected kg s^-2"), "{e}");
         // An error from parse_quantity passes through unchanged.
         assert!(parse_as("3 furlong", Dim::LENGTH)
             .unwrap_err()
@@ -1031,23 +1005,14 @@ mod tests {
     fn toml_values() {
         use toml::Value;
         assert_eq!(parse_value(&Value::Float(0.035), Dim::LENGTH), Ok(0.035));
-        assert_eq!(
-            parse_value(&Value::Integer(70000), Dim::STIFFNESS),
-            Ok(70000.0)
-        );
+        assert_eq!(parse_value(&Value::Integer(70000), Dim::STIFFNESS), Ok(70000.0));
         assert_eq!(
             parse_value(&Value::String("70 kN/m".into()), Dim::STIFFNESS),
             Ok(70000.0)
         );
-        assert_eq!(
-            parse_value(&Value::String("0.5".into()), Dim::DIMENSIONLESS),
-            Ok(0.5)
-        );
+        assert_eq!(parse_value(&Value::String("0.5".into()), Dim::DIMENSIONLESS), Ok(0.5));
         let r = parse_value(&Value::String("0.5".into()), Dim::LENGTH).unwrap_err();
-        assert!(
-            r.contains("dimensionless") && r.contains("expected m"),
-            "{r}"
-        );
+        assert!(r.contains("dimensionless") && r.contains("expected m"), "{r}");
         let r = parse_value(&Value::String("3 furlong".into()), Dim::LENGTH).unwrap_err();
         assert!(r.starts_with("unknown unit `furlong`"), "{r}");
         assert!(parse_value(&Value::Float(f64::NAN), Dim::LENGTH)

@@ -25,12 +25,7 @@ fn sdof_variance_three_ways() {
     let var_v = PI * s0 / (m * c);
     assert!(rel(s0 * h2_integral(&[1.0], &[k, c, m]).unwrap(), var_x) < 1e-14);
     assert!(rel(s0 * h2_integral(&[0.0, 1.0], &[k, c, m]).unwrap(), var_v) < 1e-14);
-    assert!(
-        rel(
-            s0 * integral_closed_form(&[0.0, 1.0], &[k, c, m]).unwrap(),
-            var_v
-        ) < 1e-14
-    );
+    assert!(rel(s0 * integral_closed_form(&[0.0, 1.0], &[k, c, m]).unwrap(), var_v) < 1e-14);
     let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -k / m, -c / m]);
     let mut q = DMatrix::zeros(2, 2);
     q[(1, 1)] = 2.0 * PI * s0 / (m * m);

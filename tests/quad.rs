@@ -10,11 +10,18 @@ const INF: f64 = f64::INFINITY;
 const NINF: f64 = f64::NEG_INFINITY;
 
 fn opts(rel_tol: f64) -> QuadOptions {
-    QuadOptions { rel_tol, ..QuadOptions::default() }
+    QuadOptions {
+        rel_tol,
+        ..QuadOptions::default()
+    }
 }
 
 fn with_bps(rel_tol: f64, bps: &[f64]) -> QuadOptions {
-    QuadOptions { rel_tol, breakpoints: bps.to_vec(), ..QuadOptions::default() }
+    QuadOptions {
+        rel_tol,
+        breakpoints: bps.to_vec(),
+        ..QuadOptions::default()
+    }
 }
 
 /// Checks the value to `rel` (relative to `exact`) and that the error estimate is an upper bound of
@@ -22,13 +29,21 @@ fn with_bps(rel_tol: f64, bps: &[f64]) -> QuadOptions {
 /// of the tolerance / roundoff).
 fn check(name: &str, r: &QuadResult, exact: f64, rel: f64) {
     let err = (r.value - exact).abs();
-    assert!(err <= rel * exact.abs(), "{name}: value {} vs exact {exact} (error {err:e})", r.value);
+    assert!(
+        err <= rel * exact.abs(),
+        "{name}: value {} vs exact {exact} (error {err:e})",
+        r.value
+    );
     assert!(
         err <= r.abs_error,
         "{name}: error estimate {:e} is not an upper bound of the true error {err:e}",
         r.abs_error
     );
-    assert!(r.abs_error <= rel * exact.abs(), "{name}: error estimate {:e} above tolerance", r.abs_error);
+    assert!(
+        r.abs_error <= rel * exact.abs(),
+        "{name}: error estimate {:e} above tolerance",
+        r.abs_error
+    );
 }
 
 /// SDOF |H(ω)|² with H = 1/(ω0² − ω² + 2iζω0ω).
@@ -56,11 +71,26 @@ fn finite_smooth_closed_forms() {
     // ∫_0^π sin x dx = 2 (elementary).
     check("sin", &integrate(f64::sin, 0.0, PI, &opts(1e-12)).unwrap(), 2.0, 1e-12);
     // ∫_0^100 cos x dx = sin 100 (elementary); ~16 oscillations.
-    check("cos", &integrate(f64::cos, 0.0, 100.0, &opts(1e-10)).unwrap(), 100f64.sin(), 1e-10);
+    check(
+        "cos",
+        &integrate(f64::cos, 0.0, 100.0, &opts(1e-10)).unwrap(),
+        100f64.sin(),
+        1e-10,
+    );
     // ∫_0^1 4/(1+x²) dx = π (arctan).
-    check("arctan", &integrate(|x| 4.0 / (1.0 + x * x), 0.0, 1.0, &opts(1e-13)).unwrap(), PI, 1e-13);
+    check(
+        "arctan",
+        &integrate(|x| 4.0 / (1.0 + x * x), 0.0, 1.0, &opts(1e-13)).unwrap(),
+        PI,
+        1e-13,
+    );
     // ∫_{-1}^{1} e^x dx = e − 1/e = 2 sinh 1.
-    check("exp", &integrate(f64::exp, -1.0, 1.0, &opts(1e-13)).unwrap(), 2.0 * 1f64.sinh(), 1e-13);
+    check(
+        "exp",
+        &integrate(f64::exp, -1.0, 1.0, &opts(1e-13)).unwrap(),
+        2.0 * 1f64.sinh(),
+        1e-13,
+    );
     // ∫_0^1 dx / (x² + 1e-4) = 100 arctan(100) (arctan); a peak of width 1e-2 at the endpoint.
     let r = integrate(|x| 1.0 / (x * x + 1e-4), 0.0, 1.0, &opts(1e-11)).unwrap();
     check("lorentz", &r, 100.0 * 100f64.atan(), 1e-11);
@@ -69,11 +99,26 @@ fn finite_smooth_closed_forms() {
 #[test]
 fn infinite_range_closed_forms() {
     // ∫_{-∞}^{∞} dx/(1+x²) = π (arctan).
-    check("cauchy", &integrate(|x| 1.0 / (1.0 + x * x), NINF, INF, &opts(1e-12)).unwrap(), PI, 1e-12);
+    check(
+        "cauchy",
+        &integrate(|x| 1.0 / (1.0 + x * x), NINF, INF, &opts(1e-12)).unwrap(),
+        PI,
+        1e-12,
+    );
     // ∫_0^∞ e^{-x} dx = 1.
-    check("exp tail", &integrate(|x| (-x).exp(), 0.0, INF, &opts(1e-12)).unwrap(), 1.0, 1e-12);
+    check(
+        "exp tail",
+        &integrate(|x| (-x).exp(), 0.0, INF, &opts(1e-12)).unwrap(),
+        1.0,
+        1e-12,
+    );
     // ∫_{-∞}^0 e^{x} dx = 1 (the head map).
-    check("exp head", &integrate(f64::exp, NINF, 0.0, &opts(1e-12)).unwrap(), 1.0, 1e-12);
+    check(
+        "exp head",
+        &integrate(f64::exp, NINF, 0.0, &opts(1e-12)).unwrap(),
+        1.0,
+        1e-12,
+    );
     // ∫_{-∞}^{∞} e^{-x²} dx = √π (Gaussian integral).
     let r = integrate(|x| (-x * x).exp(), NINF, INF, &opts(1e-12)).unwrap();
     check("gauss", &r, PI.sqrt(), 1e-12);
@@ -84,11 +129,27 @@ fn infinite_range_closed_forms() {
     let r = integrate(|x| 1.0 / (1.0 + x.powi(4)), 0.0, INF, &opts(1e-12)).unwrap();
     check("quartic", &r, PI / (2.0 * SQRT_2), 1e-12);
     // ∫_1^∞ dx/x² = 1.
-    check("power tail", &integrate(|x| 1.0 / (x * x), 1.0, INF, &opts(1e-12)).unwrap(), 1.0, 1e-12);
+    check(
+        "power tail",
+        &integrate(|x| 1.0 / (x * x), 1.0, INF, &opts(1e-12)).unwrap(),
+        1.0,
+        1e-12,
+    );
     // ∫_{-∞}^{-2} dx/x² = 1/2.
-    check("power head", &integrate(|x| 1.0 / (x * x), NINF, -2.0, &opts(1e-12)).unwrap(), 0.5, 1e-12);
+    check(
+        "power head",
+        &integrate(|x| 1.0 / (x * x), NINF, -2.0, &opts(1e-12)).unwrap(),
+        0.5,
+        1e-12,
+    );
     // ∫_{-∞}^{∞} e^{-(x-1000)²} dx = √π with the peak given as a breakpoint.
-    let r = integrate(|x| (-(x - 1000.0).powi(2)).exp(), NINF, INF, &with_bps(1e-12, &[1000.0])).unwrap();
+    let r = integrate(
+        |x| (-(x - 1000.0).powi(2)).exp(),
+        NINF,
+        INF,
+        &with_bps(1e-12, &[1000.0]),
+    )
+    .unwrap();
     check("shifted gauss", &r, PI.sqrt(), 1e-12);
 }
 
@@ -106,7 +167,10 @@ fn sharp_resonance_with_breakpoint() {
 
     let r = integrate(&f, NINF, INF, &with_bps(1e-10, &[-w0, w0])).unwrap();
     check("resonance (-inf, inf), bp [-50, 50]", &r, exact, 1e-10);
-    println!("resonance (-inf, inf), breakpoints [-50, 50]: {} evaluations", r.evaluations);
+    println!(
+        "resonance (-inf, inf), breakpoints [-50, 50]: {} evaluations",
+        r.evaluations
+    );
 
     // Even integrand: half of it on [0, ∞).
     let r = integrate(&f, 0.0, INF, &with_bps(1e-10, &[w0])).unwrap();
@@ -163,18 +227,33 @@ fn cancelling_integral_converges_to_roundoff() {
 #[test]
 fn non_integrable_singularity_is_reported() {
     // ∫_0^1 dx/x diverges: must be an error carrying the estimate, never a silent finite value.
-    let o = QuadOptions { max_subintervals: 50, ..QuadOptions::default() };
+    let o = QuadOptions {
+        max_subintervals: 50,
+        ..QuadOptions::default()
+    };
     match integrate(|x| 1.0 / x, 0.0, 1.0, &o) {
-        Err(Error::Quadrature { estimate, abs_error, evaluations, reason, .. }) => {
+        Err(Error::Quadrature {
+            estimate,
+            abs_error,
+            evaluations,
+            reason,
+            ..
+        }) => {
             assert!(estimate.is_finite() && abs_error > 0.0 && evaluations > 0);
             assert!(reason.contains("maximum of 50 subintervals"), "{reason}");
         }
         other => panic!("expected Error::Quadrature, got {other:?}"),
     }
     // Also with the default (large) budget.
-    assert!(matches!(integrate(|x| 1.0 / x, 0.0, 1.0, &QuadOptions::default()), Err(Error::Quadrature { .. })));
+    assert!(matches!(
+        integrate(|x| 1.0 / x, 0.0, 1.0, &QuadOptions::default()),
+        Err(Error::Quadrature { .. })
+    ));
     // A non-decaying integrand on an infinite range: ∫_0^∞ 1 dx = ∞.
-    assert!(matches!(integrate(|_| 1.0, 0.0, INF, &QuadOptions::default()), Err(Error::Quadrature { .. })));
+    assert!(matches!(
+        integrate(|_| 1.0, 0.0, INF, &QuadOptions::default()),
+        Err(Error::Quadrature { .. })
+    ));
     // ∫_0^∞ dx/(1+x) = ∞ (logarithmic divergence).
     assert!(matches!(
         integrate(|x| 1.0 / (1.0 + x), 0.0, INF, &QuadOptions::default()),
@@ -196,18 +275,36 @@ fn non_finite_integrand_is_reported() {
         other => panic!("expected Error::Quadrature, got {other:?}"),
     }
     // Infinite values on an infinite range.
-    assert!(matches!(integrate(|x| 1.0 / (x - 3.0), 0.0, INF, &o), Err(Error::Quadrature { .. })));
+    assert!(matches!(
+        integrate(|x| 1.0 / (x - 3.0), 0.0, INF, &o),
+        Err(Error::Quadrature { .. })
+    ));
     // Overflowing integrand.
-    assert!(matches!(integrate(|_| f64::MAX, 0.0, 10.0, &o), Err(Error::Quadrature { .. })));
+    assert!(matches!(
+        integrate(|_| f64::MAX, 0.0, 10.0, &o),
+        Err(Error::Quadrature { .. })
+    ));
 }
 
 #[test]
 fn invalid_input_is_rejected() {
     let o = QuadOptions::default();
-    assert!(matches!(integrate(|x| x, f64::NAN, 1.0, &o), Err(Error::InvalidParameter { .. })));
-    assert!(matches!(integrate(|x| x, 0.0, f64::NAN, &o), Err(Error::InvalidParameter { .. })));
-    assert!(matches!(integrate(|x| x, 2.0, 1.0, &o), Err(Error::InvalidParameter { .. })));
-    assert!(matches!(integrate(|x| x, INF, NINF, &o), Err(Error::InvalidParameter { .. })));
+    assert!(matches!(
+        integrate(|x| x, f64::NAN, 1.0, &o),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        integrate(|x| x, 0.0, f64::NAN, &o),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        integrate(|x| x, 2.0, 1.0, &o),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        integrate(|x| x, INF, NINF, &o),
+        Err(Error::InvalidParameter { .. })
+    ));
 }
 
 #[test]
@@ -238,8 +335,14 @@ fn evaluation_count_is_exact_and_endpoints_never_evaluated() {
 #[test]
 fn zero_subinterval_budget_does_not_panic() {
     // max_subintervals = 0: the initial partition is still evaluated; no bisection is allowed.
-    let o = QuadOptions { max_subintervals: 0, ..QuadOptions::default() };
+    let o = QuadOptions {
+        max_subintervals: 0,
+        ..QuadOptions::default()
+    };
     let r = integrate(|x| x * x, 0.0, 1.0, &o).unwrap();
     assert!((r.value - 1.0 / 3.0).abs() < 1e-15);
-    assert!(matches!(integrate(f64::sqrt, 0.0, 1.0, &o), Err(Error::Quadrature { .. })));
+    assert!(matches!(
+        integrate(f64::sqrt, 0.0, 1.0, &o),
+        Err(Error::Quadrature { .. })
+    ));
 }

@@ -24,7 +24,12 @@ fn white(s0: f64) -> Arc<dyn Spectrum> {
 
 fn sdof(wn: f64, zeta: f64) -> TransferFunction {
     // ẍ + 2ζω ẋ + ω² x = u
-    TransferFunction::new(vec![1.0], vec![wn * wn, 2.0 * zeta * wn, 1.0], OutputInfo::new("x", "m")).unwrap()
+    TransferFunction::new(
+        vec![1.0],
+        vec![wn * wn, 2.0 * zeta * wn, 1.0],
+        OutputInfo::new("x", "m"),
+    )
+    .unwrap()
 }
 
 /// SDOF oscillator under ideal white noise of two-sided level S₀: σ² = π S₀ / (2 ζ ω_n³)
@@ -36,7 +41,11 @@ fn sdof_white_noise_closed_form() {
         let exc = Excitation::single(white(s0), 0.0).unwrap();
         let expected = PI * s0 / (2.0 * zeta * wn.powi(3));
         let l = variance_lyapunov(&sys, &exc, 0).unwrap();
-        assert!(rel(l.variance, expected) < FACTORISATION, "lyap {} vs {expected}", l.variance);
+        assert!(
+            rel(l.variance, expected) < FACTORISATION,
+            "lyap {} vs {expected}",
+            l.variance
+        );
         let t = variance_integral_table(&sys, &exc, 0, 0).unwrap();
         assert!(rel(t, expected) < FACTORISATION, "table {t} vs {expected}");
         let q = variance_quadrature(&sys, &exc, 0).unwrap();
@@ -55,14 +64,24 @@ fn sdof_white_noise_closed_form() {
 fn exponential_load_through_sdof_closed_form() {
     let (m, c, zeta, df, alpha) = (100.0, 7.0e4, 0.2, 4.0e6, 0.5);
     let w0 = (c / m as f64).sqrt();
-    let sys = TransferFunction::new(vec![1.0 / m], vec![w0 * w0, 2.0 * zeta * w0, 1.0], OutputInfo::new("y", "m")).unwrap();
+    let sys = TransferFunction::new(
+        vec![1.0 / m],
+        vec![w0 * w0, 2.0 * zeta * w0, 1.0],
+        OutputInfo::new("y", "m"),
+    )
+    .unwrap();
     let load = Arc::new(Exponential::new(df, alpha, Domain::Temporal).unwrap());
     let exc = Excitation::single(load, 1.0e4).unwrap();
-    let expected = df / (m * m) * (alpha + 2.0 * zeta * w0) / (2.0 * zeta * w0.powi(3) * (w0 * w0 + alpha * alpha + 2.0 * alpha * zeta * w0));
+    let expected = df / (m * m) * (alpha + 2.0 * zeta * w0)
+        / (2.0 * zeta * w0.powi(3) * (w0 * w0 + alpha * alpha + 2.0 * alpha * zeta * w0));
     let st = analyze_output(&sys, &exc, 0).unwrap();
     for mv in &st.methods {
         let v = mv.value.unwrap_or_else(|| panic!("{:?}: {:?}", mv.method, mv.note));
-        assert!(rel(v, expected) < FACTORISATION.max(QUADRATURE), "{:?}: {v} vs {expected}", mv.method);
+        assert!(
+            rel(v, expected) < FACTORISATION.max(QUADRATURE),
+            "{:?}: {v} vs {expected}",
+            mv.method
+        );
     }
     assert!((st.sigma.unwrap() - 0.029124).abs() < 5e-7);
     // mean M_y = M_F / c
@@ -101,7 +120,13 @@ fn two_wheel_delayed_input_closed_form() {
 }
 
 fn base_excited(m: f64, k: f64, b: f64) -> Mdof {
-    let el = Element { name: "susp".into(), point: vec![1.0], to: Attach::Base(0), stiffness: k, damping: b };
+    let el = Element {
+        name: "susp".into(),
+        point: vec![1.0],
+        to: Attach::Base(0),
+        stiffness: k,
+        damping: b,
+    };
     Mdof::from_elements(&[("x", "m")], &[m], vec![el], 1, &[])
         .unwrap()
         .with_output("x", Quantity::Displacement(vec![1.0]))
@@ -123,10 +148,20 @@ fn acceleration_divergence_detected() {
     let exc = Excitation::single(road, 0.0).unwrap();
     let st = analyze_output(&sys, &exc, 1).unwrap();
     assert!(st.variance.is_none() && st.sigma.is_none());
-    assert!(st.variance_note.as_ref().unwrap().contains("band"), "{:?}", st.variance_note);
-    assert!(matches!(variance_quadrature(&sys, &exc, 1), Err(Error::Divergent { .. })));
+    assert!(
+        st.variance_note.as_ref().unwrap().contains("band"),
+        "{:?}",
+        st.variance_note
+    );
+    assert!(matches!(
+        variance_quadrature(&sys, &exc, 1),
+        Err(Error::Divergent { .. })
+    ));
     assert!(matches!(variance_lyapunov(&sys, &exc, 1), Err(Error::Divergent { .. })));
-    assert!(matches!(variance_integral_table(&sys, &exc, 1, 0), Err(Error::Divergent { .. })));
+    assert!(matches!(
+        variance_integral_table(&sys, &exc, 1, 0),
+        Err(Error::Divergent { .. })
+    ));
     let band = band_variance(&sys, &exc, 1, 0.0, 2.0 * PI * 80.0).unwrap();
     assert!(band.value.is_finite() && band.value > 0.0);
     // the displacement and the travel are finite and the three methods agree
@@ -169,19 +204,44 @@ fn bad_systems_rejected() {
     // unstable system
     let unstable = TransferFunction::new(vec![1.0], vec![-1.0, 1.0], OutputInfo::new("x", "m")).unwrap();
     let exc = Excitation::single(Arc::new(Exponential::new(1.0, 1.0, Domain::Temporal).unwrap()), 0.0).unwrap();
-    assert!(matches!(variance_lyapunov(&unstable, &exc, 0), Err(Error::InvalidParameter { .. })));
+    assert!(matches!(
+        variance_lyapunov(&unstable, &exc, 0),
+        Err(Error::InvalidParameter { .. })
+    ));
     // singular mass matrix
     let z = DMatrix::zeros(2, 2);
-    let r = Mdof::new(&[("a", "m"), ("b", "m")], DMatrix::from_diagonal_element(2, 2, 0.0), z.clone(), z.clone(), DMatrix::zeros(2, 0), DMatrix::zeros(2, 0), DMatrix::zeros(2, 0));
+    let r = Mdof::new(
+        &[("a", "m"), ("b", "m")],
+        DMatrix::from_diagonal_element(2, 2, 0.0),
+        z.clone(),
+        z.clone(),
+        DMatrix::zeros(2, 0),
+        DMatrix::zeros(2, 0),
+        DMatrix::zeros(2, 0),
+    );
     assert!(matches!(r, Err(Error::InvalidParameter { .. })));
     // zero mass of a coordinate
     assert!(Mdof::from_elements(&[("x", "m")], &[0.0], vec![], 0, &[]).is_err());
     // mismatched dimensions
     let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -1.0, -1.0]);
-    assert!(StateSpace::new(a.clone(), DMatrix::zeros(3, 1), DMatrix::zeros(1, 2), None, None, vec![OutputInfo::new("y", "m")]).is_err());
+    assert!(StateSpace::new(
+        a.clone(),
+        DMatrix::zeros(3, 1),
+        DMatrix::zeros(1, 2),
+        None,
+        None,
+        vec![OutputInfo::new("y", "m")]
+    )
+    .is_err());
     assert!(StateSpace::new(a, DMatrix::zeros(2, 1), DMatrix::zeros(1, 2), None, None, vec![]).is_err());
     // excitation with the wrong number of inputs
-    let two = Excitation::track(Arc::new(Exponential::new(1.0, 1.0, Domain::Temporal).unwrap()), vec![0.0, 0.1], vec![1.0, 1.0], 0.0).unwrap();
+    let two = Excitation::track(
+        Arc::new(Exponential::new(1.0, 1.0, Domain::Temporal).unwrap()),
+        vec![0.0, 0.1],
+        vec![1.0, 1.0],
+        0.0,
+    )
+    .unwrap();
     assert!(variance_quadrature(&sdof(1.0, 0.1), &two, 0).is_err());
     // spatial spectrum straight into a temporal system
     let spatial = Arc::new(Exponential::new(1.0, 1.0, Domain::Spatial).unwrap());
@@ -194,9 +254,27 @@ fn bad_systems_rejected() {
 fn modal_analysis_closed_forms() {
     let (m, k) = (2.0, 50.0);
     let els = vec![
-        Element { name: "a".into(), point: vec![1.0, 0.0], to: Attach::Ground, stiffness: k, damping: 0.0 },
-        Element { name: "b".into(), point: vec![0.0, 1.0], to: Attach::Ground, stiffness: k, damping: 0.0 },
-        Element { name: "c".into(), point: vec![1.0, 0.0], to: Attach::Point(vec![0.0, 1.0]), stiffness: k, damping: 0.0 },
+        Element {
+            name: "a".into(),
+            point: vec![1.0, 0.0],
+            to: Attach::Ground,
+            stiffness: k,
+            damping: 0.0,
+        },
+        Element {
+            name: "b".into(),
+            point: vec![0.0, 1.0],
+            to: Attach::Ground,
+            stiffness: k,
+            damping: 0.0,
+        },
+        Element {
+            name: "c".into(),
+            point: vec![1.0, 0.0],
+            to: Attach::Point(vec![0.0, 1.0]),
+            stiffness: k,
+            damping: 0.0,
+        },
     ];
     let sys = Mdof::from_elements(&[("x1", "m"), ("x2", "m")], &[m, m], els, 0, &[]).unwrap();
     let (w, phi) = sys.modes().unwrap();
@@ -204,7 +282,13 @@ fn modal_analysis_closed_forms() {
     // mass-normalised: φᵀ M φ = I
     let g = phi.transpose() * sys.mass() * &phi;
     assert!((g - DMatrix::identity(2, 2)).amax() < EXACT);
-    let free = vec![Element { name: "c".into(), point: vec![1.0, -1.0], to: Attach::Ground, stiffness: k, damping: 0.0 }];
+    let free = vec![Element {
+        name: "c".into(),
+        point: vec![1.0, -1.0],
+        to: Attach::Ground,
+        stiffness: k,
+        damping: 0.0,
+    }];
     let sys = Mdof::from_elements(&[("x1", "m"), ("x2", "m")], &[m, m], free, 0, &[]).unwrap();
     let (w, _) = sys.modes().unwrap();
     assert_eq!(w[0], 0.0);
@@ -252,7 +336,11 @@ proptest! {
 #[test]
 fn non_rational_input_uses_quadrature() {
     let sys = sdof(5.0, 0.1);
-    let exc = Excitation::single(Arc::new(GaussCosine::new(1.0, 2.0, 5.0, Domain::Temporal).unwrap()), 0.0).unwrap();
+    let exc = Excitation::single(
+        Arc::new(GaussCosine::new(1.0, 2.0, 5.0, Domain::Temporal).unwrap()),
+        0.0,
+    )
+    .unwrap();
     let st = analyze_output(&sys, &exc, 0).unwrap();
     assert!(st.variance.is_some());
     assert!(st.methods[0].note.as_ref().unwrap().contains("not rational"));

@@ -75,7 +75,13 @@ fn cases() -> Vec<Case> {
     v.push(Case {
         s: Arc::new(BandWhite::new(Convention::TwoSidedAngular, s0, w1, w2, Domain::Temporal).unwrap()),
         d: 2.0 * s0 * (w2 - w1),
-        k: Box::new(move |t: f64| if t == 0.0 { 2.0 * s0 * (w2 - w1) } else { 2.0 * s0 * ((w2 * t).sin() - (w1 * t).sin()) / t }),
+        k: Box::new(move |t: f64| {
+            if t == 0.0 {
+                2.0 * s0 * (w2 - w1)
+            } else {
+                2.0 * s0 * ((w2 * t).sin() - (w1 * t).sin()) / t
+            }
+        }),
     });
     // rational S = 1/(π(1+ω²)) ⇒ type 1 with D = 1, α = 1
     v.push(Case {
@@ -98,8 +104,19 @@ fn cases() -> Vec<Case> {
 fn variance_by_quadrature_matches_closed_form() {
     for c in cases() {
         let q = numeric::variance(c.s.as_ref()).unwrap();
-        assert!(rel(q.value, c.d) < QUADRATURE, "{}: quad {} vs {}", c.s.describe(), q.value, c.d);
-        assert!(q.abs_error <= QUADRATURE * c.d, "{}: error estimate {}", c.s.describe(), q.abs_error);
+        assert!(
+            rel(q.value, c.d) < QUADRATURE,
+            "{}: quad {} vs {}",
+            c.s.describe(),
+            q.value,
+            c.d
+        );
+        assert!(
+            q.abs_error <= QUADRATURE * c.d,
+            "{}: error estimate {}",
+            c.s.describe(),
+            q.abs_error
+        );
         assert!(rel(c.s.variance().unwrap(), c.d) < EXACT, "{}", c.s.describe());
     }
 }
@@ -119,7 +136,11 @@ fn fourier_transform_of_density_reproduces_correlation() {
                 expected
             );
             if let Ok(k) = c.s.correlation(t) {
-                assert!((k - expected).abs() <= EXACT * c.d, "{} at {t}: {k} vs {expected}", c.s.describe());
+                assert!(
+                    (k - expected).abs() <= EXACT * c.d,
+                    "{} at {t}: {k} vs {expected}",
+                    c.s.describe()
+                );
             }
         }
     }
@@ -130,7 +151,10 @@ fn fourier_transform_of_density_reproduces_correlation() {
 #[test]
 fn every_convention_integrates_to_the_variance() {
     let s = Exponential::new(1.0, 2.0, Domain::Temporal).unwrap();
-    let opts = stochvib::quad::QuadOptions { breakpoints: vec![2.0, 2.0 / (2.0 * PI)], ..Default::default() };
+    let opts = stochvib::quad::QuadOptions {
+        breakpoints: vec![2.0, 2.0 / (2.0 * PI)],
+        ..Default::default()
+    };
     for c in Convention::ALL {
         // integrate the convention's ordinate over its abscissa
         let f = |x: f64| {
@@ -154,7 +178,11 @@ fn iso_classes_rms_over_standard_band() {
     let (n1, n2) = ISO_BAND;
     for (k, class) in IsoClass::ALL.into_iter().enumerate() {
         let g0 = 16e-6 * 4f64.powi(k as i32);
-        for (bound, factor) in [(IsoBound::Lower, 0.5), (IsoBound::GeometricMean, 1.0), (IsoBound::Upper, 2.0)] {
+        for (bound, factor) in [
+            (IsoBound::Lower, 0.5),
+            (IsoBound::GeometricMean, 1.0),
+            (IsoBound::Upper, 2.0),
+        ] {
             let s = PowerLaw::iso8608(class, bound, Some(ISO_BAND)).unwrap();
             let expected = factor * g0 * 0.01 * (1.0 / n1 - 1.0 / n2);
             assert!(rel(s.variance().unwrap(), expected) < EXACT);
@@ -197,20 +225,30 @@ fn shaping_filters_reproduce_rational_spectra() {
     let f1 = t1.rational().unwrap().shaping_filter().unwrap();
     assert!(rel(f1.num[0] / f1.den[1], (2.0 * 3.0 * 2.0f64).sqrt()) < FACTORISATION);
     assert!(rel(f1.den[0] / f1.den[1], 3.0) < FACTORISATION);
-    for s in [&t3 as &dyn Spectrum, &t1, &TwoPoleRoad::new(1e-3, 0.3, 12.0, Form::Consistent).unwrap()] {
+    for s in [
+        &t3 as &dyn Spectrum,
+        &t1,
+        &TwoPoleRoad::new(1e-3, 0.3, 12.0, Form::Consistent).unwrap(),
+    ] {
         let r = s.rational().unwrap();
         let f = r.shaping_filter().unwrap();
         for k in 0..200 {
             let w = 10f64.powf(-3.0 + 6.0 * k as f64 / 199.0);
             let h = eval(&f.num, w) / eval(&f.den, w);
-            assert!(rel(h.norm_sqr() / (2.0 * PI), s.density(w)) < FACTORISATION, "{} at {w}", s.describe());
+            assert!(
+                rel(h.norm_sqr() / (2.0 * PI), s.density(w)) < FACTORISATION,
+                "{} at {w}",
+                s.describe()
+            );
         }
     }
 }
 
 fn eval(c: &[f64], w: f64) -> nalgebra::Complex<f64> {
     let z = nalgebra::Complex::new(0.0, w);
-    c.iter().rev().fold(nalgebra::Complex::new(0.0, 0.0), |acc, &x| acc * z + x)
+    c.iter()
+        .rev()
+        .fold(nalgebra::Complex::new(0.0, 0.0), |acc, &x| acc * z + x)
 }
 
 /// Tabulated spectra: the exact variance of the log–log interpolant equals quadrature; a table sampled
@@ -250,7 +288,14 @@ fn spatial_to_temporal() {
 /// Bad parameters are rejected by every constructor.
 #[test]
 fn bad_parameters_rejected() {
-    for (d, a) in [(1.0, 0.0), (1.0, -1.0), (-1.0, 1.0), (f64::NAN, 1.0), (1.0, f64::NAN), (1.0, f64::INFINITY)] {
+    for (d, a) in [
+        (1.0, 0.0),
+        (1.0, -1.0),
+        (-1.0, 1.0),
+        (f64::NAN, 1.0),
+        (1.0, f64::NAN),
+        (1.0, f64::INFINITY),
+    ] {
         assert!(Exponential::new(d, a, Domain::Temporal).is_err(), "{d} {a}");
         assert!(Gaussian::new(d, a, Domain::Temporal).is_err());
         assert!(ExpCosine::new(d, a, 1.0, Domain::Temporal).is_err());
@@ -260,8 +305,20 @@ fn bad_parameters_rejected() {
     assert!(TwoPoleRoad::new(1.0, 0.0, 1.0, Form::Consistent).is_err());
     assert!(PowerLaw::new(1.0, 0.1, 2.0, Some((0.5, 0.1)), Domain::Spatial).is_err());
     assert!(BandWhite::new(Convention::OneSidedCyclic, 1.0, 5.0, 1.0, Domain::Temporal).is_err());
-    assert!(Tabulated::new(Convention::OneSidedCyclic, vec![1.0, 1.0], vec![1.0, 1.0], Domain::Temporal).is_err());
-    assert!(Tabulated::new(Convention::OneSidedCyclic, vec![1.0, 2.0], vec![1.0, 0.0], Domain::Temporal).is_err());
+    assert!(Tabulated::new(
+        Convention::OneSidedCyclic,
+        vec![1.0, 1.0],
+        vec![1.0, 1.0],
+        Domain::Temporal
+    )
+    .is_err());
+    assert!(Tabulated::new(
+        Convention::OneSidedCyclic,
+        vec![1.0, 2.0],
+        vec![1.0, 0.0],
+        Domain::Temporal
+    )
+    .is_err());
     // S(ω) = (1 − ω²)/(1 + ω²)² is negative above ω = 1
     assert!(RationalSpectrum::new(vec![1.0, -1.0], vec![1.0, 2.0, 1.0], Domain::Temporal).is_err());
     // pole on the real axis: D(ω²) = 1 − ω²
@@ -282,14 +339,18 @@ fn bad_spectrum_files_name_key_and_reason() {
     let (k, r) = file_error(&format!("{base}variance = \"2.25 cm^2\"\n"));
     assert_eq!(k, "alpha");
     assert!(r.contains("missing"));
-    let (k, _) = file_error(&format!("{base}variance = \"2.25 cm^2\"\nalpha = \"0.035 1/furlong\"\n"));
+    let (k, _) = file_error(&format!(
+        "{base}variance = \"2.25 cm^2\"\nalpha = \"0.035 1/furlong\"\n"
+    ));
     assert_eq!(k, "alpha");
     let (k, r) = file_error(&format!("{base}variance = \"-2.25 cm^2\"\nalpha = \"0.035 1/cm\"\n"));
     assert_eq!(k, "variance");
     assert!(r.contains(">= 0"), "{r}");
     let (k, _) = file_error(&format!("{base}variance = \"2.25 cm\"\nalpha = \"0.035 1/cm\"\n"));
     assert_eq!(k, "variance");
-    let (k, r) = file_error(&format!("{base}variance = 2.25e-4\nalpah = \"0.035 1/cm\"\nalpha = 3.5\n"));
+    let (k, r) = file_error(&format!(
+        "{base}variance = 2.25e-4\nalpah = \"0.035 1/cm\"\nalpha = 3.5\n"
+    ));
     assert_eq!(k, "alpah");
     assert!(r.contains("unknown key"));
     let (k, _) = file_error("kind = \"pink\"\n");
@@ -297,9 +358,14 @@ fn bad_spectrum_files_name_key_and_reason() {
     let (k, r) = file_error("kind = \"iso8608\"\ndomain = \"spatial\"\nclass = \"C\"\nband = [0.011, 2.83]\n");
     assert_eq!(k, "band[0]");
     assert!(r.contains("unit"), "{r}");
-    let msg = parse_spectrum(&format!("{base}variance = \"2.25 cm^2\"\n"), Path::new("x/bad.toml")).unwrap_err().to_string();
+    let msg = parse_spectrum(&format!("{base}variance = \"2.25 cm^2\"\n"), Path::new("x/bad.toml"))
+        .unwrap_err()
+        .to_string();
     assert!(msg.contains("x/bad.toml") && msg.contains("alpha"), "{msg}");
-    assert!(matches!(parse_spectrum("kind = ", Path::new("p.toml")), Err(Error::Parse { .. })));
+    assert!(matches!(
+        parse_spectrum("kind = ", Path::new("p.toml")),
+        Err(Error::Parse { .. })
+    ));
 }
 
 /// The shipped catalogue: every file parses, and the book values come out in SI as derived by hand.
@@ -309,7 +375,12 @@ fn catalogue_files_parse_with_book_values() {
     let entries = spectrum_catalogue(&dir).unwrap();
     assert!(entries.len() >= 17);
     for e in &entries {
-        assert!(e.spectrum.is_ok(), "{}: {:?}", e.path.display(), e.spectrum.as_ref().err());
+        assert!(
+            e.spectrum.is_ok(),
+            "{}: {:?}",
+            e.path.display(),
+            e.spectrum.as_ref().err()
+        );
     }
     // (8.45): D = 2.25 cm² = 2.25e-4 m², α = 0.035 1/cm = 3.5 1/m ⇒ K(1 m) = 2.25e-4 e^{−3.5}
     let s = load_spectrum(&dir.join("book-8-45.toml")).unwrap().spectrum;

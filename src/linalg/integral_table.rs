@@ -284,10 +284,9 @@ pub fn h2_integral(num_s: &[f64], den_s: &[f64]) -> Result<f64> {
     if n.len() >= d.len() {
         return Err(Error::Divergent {
             quantity: "integral of |N/D|^2".into(),
-            reason:
-                "numerator degree >= denominator degree: |H|^2 does not decay, the integral is \
+            reason: "numerator degree >= denominator degree: |H|^2 does not decay, the integral is \
                      infinite"
-                    .into(),
+                .into(),
         });
     }
     if !is_hurwitz(&d) {
@@ -383,10 +382,7 @@ mod tests {
             if n > 1 {
                 expect *= (2 * n - 3) as f64 / (2 * n - 2) as f64;
             }
-            assert!(
-                rel(integral_i_n(&[1.0], &a).unwrap(), expect) < 1e-13,
-                "n = {n}"
-            );
+            assert!(rel(integral_i_n(&[1.0], &a).unwrap(), expect) < 1e-13, "n = {n}");
             if n <= 4 {
                 assert!(rel(integral_closed_form(&[1.0], &a).unwrap(), expect) < 1e-14);
             }
@@ -461,10 +457,7 @@ mod tests {
             h2_integral(&[1.0, 2.0, 3.0], &[1.0, 1.0]),
             Err(Error::Divergent { .. })
         ));
-        assert!(matches!(
-            h2_integral(&[1.0], &[5.0]),
-            Err(Error::Divergent { .. })
-        ));
+        assert!(matches!(h2_integral(&[1.0], &[5.0]), Err(Error::Divergent { .. })));
         assert!(matches!(
             h2_integral(&[1.0], &[1.0, -1.0, 1.0]),
             Err(Error::InvalidParameter { .. })

@@ -27,12 +27,7 @@ use crate::error::{Error, Result};
 use nalgebra::{Complex, DMatrix, DVector};
 
 /// (U, T, eigenvalues, diagonal blocks (start, size) of T) from [`real_schur`].
-pub(crate) type SchurParts = (
-    DMatrix<f64>,
-    DMatrix<f64>,
-    Vec<Complex<f64>>,
-    Vec<(usize, usize)>,
-);
+pub(crate) type SchurParts = (DMatrix<f64>, DMatrix<f64>, Vec<Complex<f64>>, Vec<(usize, usize)>);
 
 /// Real Schur decomposition A = U T Uᵀ with an iteration limit (nalgebra's default never gives up).
 ///
@@ -42,20 +37,16 @@ pub(crate) fn real_schur(a: &DMatrix<f64>, what: &str) -> Result<SchurParts> {
     let n = a.nrows();
     let max_iter = 200 * n + 200;
     let schur =
-        nalgebra::linalg::Schur::try_new(a.clone(), f64::EPSILON, max_iter).ok_or_else(|| {
-            Error::Numerical {
-                what: what.to_string(),
-                reason: format!(
+        nalgebra::linalg::Schur::try_new(a.clone(), f64::EPSILON, max_iter).ok_or_else(|| Error::Numerical {
+            what: what.to_string(),
+            reason: format!(
                 "the real Schur decomposition (Francis QR) of the {n}x{n} matrix did not converge \
                      in {max_iter} iterations"
             ),
-            }
         })?;
     let eig: Vec<Complex<f64>> = schur.complex_eigenvalues().iter().copied().collect();
     let (u, mut t) = schur.unpack();
-    if u.iter().chain(t.iter()).any(|v| !v.is_finite())
-        || eig.iter().any(|z| !z.re.is_finite() || !z.im.is_finite())
-    {
+    if u.iter().chain(t.iter()).any(|v| !v.is_finite()) || eig.iter().any(|z| !z.re.is_finite() || !z.im.is_finite()) {
         return Err(Error::Numerical {
             what: what.to_string(),
             reason: "the real Schur decomposition produced non-finite values".to_string(),
@@ -307,8 +298,7 @@ pub fn solve_continuous_lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<D
             }
             let tii = t.view((i0, i0), (mi, mi)).clone_owned();
             let tjj = t.view((j0, j0), (mj, mj)).clone_owned();
-            let k = DMatrix::<f64>::identity(mj, mj).kronecker(&tii)
-                + tjj.kronecker(&DMatrix::<f64>::identity(mi, mi));
+            let k = DMatrix::<f64>::identity(mj, mj).kronecker(&tii) + tjj.kronecker(&DMatrix::<f64>::identity(mi, mi));
             let v = DVector::from_column_slice(rhs.as_slice());
             let sol = solve_small(k, v).ok_or_else(|| Error::Numerical {
                 what: WHAT.to_string(),
@@ -319,8 +309,7 @@ pub fn solve_continuous_lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<D
                     mi * mj
                 ),
             })?;
-            y.view_mut((i0, j0), (mi, mj))
-                .copy_from_slice(sol.as_slice());
+            y.view_mut((i0, j0), (mi, mj)).copy_from_slice(sol.as_slice());
         }
     }
     let x = &u * y * u.transpose();
@@ -372,9 +361,7 @@ pub fn solve_continuous_lyapunov_dense(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Re
     let rhs = -DVector::from_column_slice(q.as_slice());
     let sol = solve_small(k, rhs).ok_or_else(|| Error::Numerical {
         what: "solve_continuous_lyapunov_dense".to_string(),
-        reason:
-            "the Kronecker matrix I⊗A + A⊗I is singular (λᵢ + λⱼ ≈ 0 for some eigenvalues of A)"
-                .to_string(),
+        reason: "the Kronecker matrix I⊗A + A⊗I is singular (λᵢ + λⱼ ≈ 0 for some eigenvalues of A)".to_string(),
     })?;
     finite_or_err(
         DMatrix::from_column_slice(n, n, sol.as_slice()),
@@ -454,8 +441,7 @@ pub fn solve_discrete_lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<DMa
                     mi * mj
                 ),
             })?;
-            y.view_mut((i0, j0), (mi, mj))
-                .copy_from_slice(sol.as_slice());
+            y.view_mut((i0, j0), (mi, mj)).copy_from_slice(sol.as_slice());
         }
         let wrow = y.view((i0, 0), (mi, n)) * t.transpose();
         w.view_mut((i0, 0), (mi, n)).copy_from(&wrow);
@@ -491,8 +477,7 @@ pub fn solve_discrete_lyapunov_dense(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Resu
     let rhs = DVector::from_column_slice(q.as_slice());
     let sol = solve_small(k, rhs).ok_or_else(|| Error::Numerical {
         what: "solve_discrete_lyapunov_dense".to_string(),
-        reason: "the Kronecker matrix I − A⊗A is singular (λᵢ λⱼ ≈ 1 for some eigenvalues of A)"
-            .to_string(),
+        reason: "the Kronecker matrix I − A⊗A is singular (λᵢ λⱼ ≈ 1 for some eigenvalues of A)".to_string(),
     })?;
     finite_or_err(
         DMatrix::from_column_slice(n, n, sol.as_slice()),
@@ -527,11 +512,7 @@ mod tests {
     /// A = M − (ρ(M) + 1) I: stable with spectral abscissa ≤ −1 (ρ from nalgebra's eigenvalues).
     fn random_stable(rng: &mut Rng, n: usize) -> DMatrix<f64> {
         let m = random_matrix(rng, n);
-        let rho = m
-            .complex_eigenvalues()
-            .iter()
-            .map(|z| z.norm())
-            .fold(0.0, f64::max);
+        let rho = m.complex_eigenvalues().iter().map(|z| z.norm()).fold(0.0, f64::max);
         m - DMatrix::identity(n, n) * (rho + 1.0)
     }
 
@@ -557,22 +538,14 @@ mod tests {
     fn scalar_and_sdof_closed_forms() {
         // 1×1: −a x − x a + q = 0 ⇒ x = q/(2a)
         for &(aa, qq) in &[(1.0, 1.0), (0.01, 3.0), (250.0, 0.5)] {
-            let x = solve_continuous_lyapunov(
-                &DMatrix::from_element(1, 1, -aa),
-                &DMatrix::from_element(1, 1, qq),
-            )
-            .unwrap();
+            let x =
+                solve_continuous_lyapunov(&DMatrix::from_element(1, 1, -aa), &DMatrix::from_element(1, 1, qq)).unwrap();
             assert!((x[(0, 0)] - qq / (2.0 * aa)).abs() <= 1e-14 * qq / (2.0 * aa));
         }
         // SDOF oscillator A = [[0,1],[−ω²,−2ζω]], Q = diag(0, q): the (0,1) entry of the equation
         // gives x22 = ω² x11, the (1,1) entry −4ζω x22 + q = 0, so X = diag(q/(4ζω³), q/(4ζω)).
         // For ζ < 1 the eigenvalues are complex: a 2×2 Schur block.
-        for &(w, z, q) in &[
-            (2.0, 0.05, 3.0),
-            (10.0, 0.3, 1.0),
-            (0.5, 0.01, 2.0),
-            (3.0, 1.5, 1.0),
-        ] {
+        for &(w, z, q) in &[(2.0, 0.05, 3.0), (10.0, 0.3, 1.0), (0.5, 0.01, 2.0), (3.0, 1.5, 1.0)] {
             let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, -2.0 * z * w]);
             let qm = DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, q]);
             let x = solve_continuous_lyapunov(&a, &qm).unwrap();
@@ -647,10 +620,7 @@ mod tests {
         let zero = DMatrix::<f64>::zeros(2, 2);
         let mixed = DMatrix::from_row_slice(2, 2, &[-1.0, 0.0, 0.0, 1.0]); // λ₁ + λ₂ = 0
         for a in [&unstable, &marginal, &zero, &mixed] {
-            assert!(matches!(
-                solve_continuous_lyapunov(a, &q),
-                Err(Error::Numerical { .. })
-            ));
+            assert!(matches!(solve_continuous_lyapunov(a, &q), Err(Error::Numerical { .. })));
             assert!(!is_stable(a));
         }
         assert!(solve_continuous_lyapunov_dense(&marginal, &q).is_err());
@@ -678,20 +648,13 @@ mod tests {
     #[test]
     fn discrete_lyapunov() {
         // AR(1)
-        let x = solve_discrete_lyapunov(
-            &DMatrix::from_element(1, 1, -0.95),
-            &DMatrix::from_element(1, 1, 1.0),
-        )
-        .unwrap();
+        let x =
+            solve_discrete_lyapunov(&DMatrix::from_element(1, 1, -0.95), &DMatrix::from_element(1, 1, 1.0)).unwrap();
         assert!((x[(0, 0)] - 1.0 / (1.0 - 0.9025)).abs() < 1e-12 * x[(0, 0)]);
         // rotation-contraction (2×2 complex block): A = r R(θ) ⇒ A X Aᵀ = r² X for X = c I,
         // so X = q/(1 − r²) I.
         let (r, th) = (0.9_f64, 0.7_f64);
-        let a = DMatrix::from_row_slice(
-            2,
-            2,
-            &[r * th.cos(), -r * th.sin(), r * th.sin(), r * th.cos()],
-        );
+        let a = DMatrix::from_row_slice(2, 2, &[r * th.cos(), -r * th.sin(), r * th.sin(), r * th.cos()]);
         let x = solve_discrete_lyapunov(&a, &(DMatrix::identity(2, 2) * 2.0)).unwrap();
         let expect = DMatrix::<f64>::identity(2, 2) * (2.0 / (1.0 - r * r));
         assert!((x - &expect).norm() < 1e-12 * expect.norm());
@@ -699,11 +662,7 @@ mod tests {
         let mut rng = Rng::new(77);
         for n in 1..=25 {
             let m = random_matrix(&mut rng, n);
-            let rho = m
-                .complex_eigenvalues()
-                .iter()
-                .map(|z| z.norm())
-                .fold(0.0, f64::max);
+            let rho = m.complex_eigenvalues().iter().map(|z| z.norm()).fold(0.0, f64::max);
             let a = m * (rng.range(0.3, 0.97) / rho);
             let q = random_spd(&mut rng, n);
             let x = solve_discrete_lyapunov(&a, &q).unwrap();

@@ -51,10 +51,7 @@ pub fn eval(coeffs: &[f64], x: f64) -> f64 {
 /// assert_eq!(v, Complex::new(0.0, 0.0));
 /// ```
 pub fn eval_complex(coeffs: &[f64], z: Complex<f64>) -> Complex<f64> {
-    coeffs
-        .iter()
-        .rev()
-        .fold(Complex::new(0.0, 0.0), |acc, &c| acc * z + c)
+    coeffs.iter().rev().fold(Complex::new(0.0, 0.0), |acc, &c| acc * z + c)
 }
 
 /// Value and derivative at a complex point (Horner).
@@ -119,11 +116,7 @@ pub fn sub(p: &[f64], q: &[f64]) -> Vec<f64> {
 
 fn check_finite(name: &str, coeffs: &[f64]) -> Result<()> {
     if let Some(c) = coeffs.iter().find(|c| !c.is_finite()) {
-        return Err(Error::invalid(
-            name,
-            c,
-            "all polynomial coefficients must be finite",
-        ));
+        return Err(Error::invalid(name, c, "all polynomial coefficients must be finite"));
     }
     Ok(())
 }
@@ -149,10 +142,7 @@ fn check_finite(name: &str, coeffs: &[f64]) -> Result<()> {
 /// assert!(p.iter().zip(expect).all(|(a, b)| (a - b).abs() < 1e-12));
 /// ```
 pub fn from_roots(roots: &[Complex<f64>]) -> Result<Vec<f64>> {
-    if let Some(z) = roots
-        .iter()
-        .find(|z| !z.re.is_finite() || !z.im.is_finite())
-    {
+    if let Some(z) = roots.iter().find(|z| !z.re.is_finite() || !z.im.is_finite()) {
         return Err(Error::invalid("roots", z, "all roots must be finite"));
     }
     let mut p = vec![1.0];
@@ -170,11 +160,7 @@ pub fn from_roots(roots: &[Complex<f64>]) -> Result<Vec<f64>> {
     if upper.len() != lower.len() {
         return Err(Error::invalid(
             "roots",
-            format!(
-                "{} roots above and {} below the real axis",
-                upper.len(),
-                lower.len()
-            ),
+            format!("{} roots above and {} below the real axis", upper.len(), lower.len()),
             "must be closed under complex conjugation (real polynomial)",
         ));
     }
@@ -303,11 +289,7 @@ fn aberth_roots(core: &[f64]) -> Result<Vec<Complex<f64>>> {
     let deg = core.len() - 1;
     // Cauchy-type radius bound for initial points.
     let lead = core[deg].abs();
-    let radius = 1.0
-        + core[..deg]
-            .iter()
-            .map(|c| c.abs() / lead)
-            .fold(0.0, f64::max);
+    let radius = 1.0 + core[..deg].iter().map(|c| c.abs() / lead).fold(0.0, f64::max);
     let mut z: Vec<Complex<f64>> = (0..deg)
         .map(|k| {
             let th = 2.0 * std::f64::consts::PI * (k as f64 + 0.25) / deg as f64 + 0.4;
@@ -348,9 +330,7 @@ fn aberth_roots(core: &[f64]) -> Result<Vec<Complex<f64>>> {
     }
     Err(Error::Numerical {
         what: "roots".to_string(),
-        reason: format!(
-            "neither the companion-matrix QR nor Aberth iteration converged (degree {deg})"
-        ),
+        reason: format!("neither the companion-matrix QR nor Aberth iteration converged (degree {deg})"),
     })
 }
 
@@ -536,11 +516,7 @@ pub fn spectral_factor(p_of_w2: &[f64]) -> Result<(Vec<f64>, f64)> {
     let f: Vec<f64> = monic.iter().map(|c| c * scale).collect();
 
     // Residual on a grid.
-    let mags: Vec<f64> = s_roots
-        .iter()
-        .map(|z| z.norm())
-        .filter(|&r| r > 0.0)
-        .collect();
+    let mags: Vec<f64> = s_roots.iter().map(|z| z.norm()).filter(|&r| r > 0.0).collect();
     let (lo, hi) = if mags.is_empty() {
         (1e-2, 1e2)
     } else {
@@ -571,18 +547,8 @@ pub fn spectral_factor(p_of_w2: &[f64]) -> Result<(Vec<f64>, f64)> {
 /// on p′ (a double root of p is a simple root of p′; the two individually polished roots of p carry
 /// O(√ε) errors that need not be symmetric, so their mean is only O(√ε) accurate).
 fn refine_double_root(p: &[f64], x1: f64, x2: f64) -> f64 {
-    let d1: Vec<f64> = p
-        .iter()
-        .enumerate()
-        .skip(1)
-        .map(|(k, c)| k as f64 * c)
-        .collect();
-    let d2: Vec<f64> = d1
-        .iter()
-        .enumerate()
-        .skip(1)
-        .map(|(k, c)| k as f64 * c)
-        .collect();
+    let d1: Vec<f64> = p.iter().enumerate().skip(1).map(|(k, c)| k as f64 * c).collect();
+    let d2: Vec<f64> = d1.iter().enumerate().skip(1).map(|(k, c)| k as f64 * c).collect();
     let spread = (x2 - x1).abs().max(1e-8 * x1.abs().max(x2.abs()));
     let (lo, hi) = (x1.min(x2) - spread, x1.max(x2) + spread);
     let mut x = 0.5 * (x1 + x2);
@@ -689,9 +655,7 @@ mod tests {
         // zero roots and scaling
         let r = roots(&[0.0, 0.0, -6.0, 3.0]).unwrap(); // 3 s²(s − 2)
         assert_eq!(r.iter().filter(|z| z.norm() == 0.0).count(), 2);
-        assert!(r
-            .iter()
-            .any(|z| (z - Complex::new(2.0, 0.0)).norm() < 1e-14));
+        assert!(r.iter().any(|z| (z - Complex::new(2.0, 0.0)).norm() < 1e-14));
         assert!(roots(&[5.0]).unwrap().is_empty());
         assert!(roots(&[0.0, 0.0]).is_err());
         assert!(roots(&[1.0, f64::NAN]).is_err());
@@ -707,9 +671,7 @@ mod tests {
             let back = from_roots(&r).unwrap();
             let lead = p[n];
             for (a, b) in back.iter().zip(&p) {
-                assert!(
-                    (a * lead - b).abs() < 1e-9 * p.iter().map(|c| c.abs()).fold(0.0, f64::max)
-                );
+                assert!((a * lead - b).abs() < 1e-9 * p.iter().map(|c| c.abs()).fold(0.0, f64::max));
             }
         }
         // x^n − 1: roots of unity (a stalling case for unshifted QR)

@@ -89,7 +89,11 @@ pub fn resolve_spectrum(name_or_path: &str, dir: &Path) -> Result<SpectrumFile> 
     Err(Error::invalid(
         "spectrum",
         name_or_path,
-        format!("no such file and no `{}` in the catalogue {}", candidate.display(), dir.display()),
+        format!(
+            "no such file and no `{}` in the catalogue {}",
+            candidate.display(),
+            dir.display()
+        ),
     ))
 }
 
@@ -115,7 +119,11 @@ pub fn spectrum_report(file: &SpectrumFile, convention: Convention) -> SpectrumR
         .iter()
         .map(|k| {
             let tau = k / wc;
-            (tau, s.correlation(tau).into(), numeric::correlation(s, tau).map(|r| r.value).into())
+            (
+                tau,
+                s.correlation(tau).into(),
+                numeric::correlation(s, tau).map(|r| r.value).into(),
+            )
         })
         .collect();
     let density = [0.1, 0.3, 1.0, 3.0, 10.0]
@@ -125,8 +133,12 @@ pub fn spectrum_report(file: &SpectrumFile, convention: Convention) -> SpectrumR
             convention.from_canonical(w, s.density(w))
         })
         .collect();
-    let abscissa_unit =
-        if convention.is_cyclic() { s.domain().cyclic_unit() } else { s.domain().angular_unit() }.to_string();
+    let abscissa_unit = if convention.is_cyclic() {
+        s.domain().cyclic_unit()
+    } else {
+        s.domain().angular_unit()
+    }
+    .to_string();
     SpectrumReport {
         name: file.name.clone(),
         model: s.describe(),
@@ -148,7 +160,11 @@ pub fn spectrum_report(file: &SpectrumFile, convention: Convention) -> SpectrumR
 /// A frequency that sets the scale of the table: the geometric mean of the breakpoints, else the middle
 /// of the support, else 1.
 fn characteristic_frequency(s: &dyn Spectrum) -> f64 {
-    let b: Vec<f64> = s.breakpoints().into_iter().filter(|w| *w > 0.0 && w.is_finite()).collect();
+    let b: Vec<f64> = s
+        .breakpoints()
+        .into_iter()
+        .filter(|w| *w > 0.0 && w.is_finite())
+        .collect();
     if !b.is_empty() {
         return (b.iter().map(|w| w.ln()).sum::<f64>() / b.len() as f64).exp();
     }
@@ -182,7 +198,13 @@ impl fmt::Display for SpectrumReport {
         writeln!(f)?;
         writeln!(f, "sigma     {}  [{}]", self.sigma, self.unit)?;
         writeln!(f, "correlation K(tau) [{}^2]:", self.unit)?;
-        writeln!(f, "  {:>12}  {:>14}  {:>14}", format!("tau [{lag}]"), "model", "quadrature")?;
+        writeln!(
+            f,
+            "  {:>12}  {:>14}  {:>14}",
+            format!("tau [{lag}]"),
+            "model",
+            "quadrature"
+        )?;
         for (t, a, b) in &self.correlation {
             writeln!(f, "  {t:>12.4e}  {:>14}  {:>14}", short(a), short(b))?;
         }

@@ -63,7 +63,11 @@ impl Excitation {
             ));
         }
         if delays.len() != gains.len() || delays.is_empty() {
-            return Err(Error::invalid("delays", delays.len(), format!("need one delay per gain ({})", gains.len())));
+            return Err(Error::invalid(
+                "delays",
+                delays.len(),
+                format!("need one delay per gain ({})", gains.len()),
+            ));
         }
         for (j, &t) in delays.iter().enumerate() {
             if !(t.is_finite() && t >= 0.0) {
@@ -74,7 +78,12 @@ impl Excitation {
             require_finite(&format!("gains[{j}]"), g)?;
         }
         require_finite("mean", mean)?;
-        Ok(Excitation::Track { spectrum, delays, gains, mean })
+        Ok(Excitation::Track {
+            spectrum,
+            delays,
+            gains,
+            mean,
+        })
     }
 
     /// A single process driving a single-input system.
@@ -91,11 +100,19 @@ impl Excitation {
     /// Non-temporal spectra, mismatched lengths, non-finite means.
     pub fn independent(spectra: Vec<Arc<dyn Spectrum>>, means: Vec<f64>) -> Result<Self> {
         if spectra.len() != means.len() || spectra.is_empty() {
-            return Err(Error::invalid("means", means.len(), format!("need one mean per spectrum ({})", spectra.len())));
+            return Err(Error::invalid(
+                "means",
+                means.len(),
+                format!("need one mean per spectrum ({})", spectra.len()),
+            ));
         }
         for (j, s) in spectra.iter().enumerate() {
             if s.domain() != Domain::Temporal {
-                return Err(Error::invalid(&format!("spectra[{j}]"), s.describe(), "must be temporal"));
+                return Err(Error::invalid(
+                    &format!("spectra[{j}]"),
+                    s.describe(),
+                    "must be temporal",
+                ));
             }
             require_finite(&format!("means[{j}]"), means[j])?;
         }
@@ -138,37 +155,47 @@ impl Excitation {
     /// Two-sided density of output row `h_row` (1 × m row of H(iω)) at ω: (H S_u Hᴴ).
     pub fn output_density(&self, h_row: &[Complex<f64>], omega: f64) -> f64 {
         match self {
-            Excitation::Track { spectrum, delays, gains, .. } => {
+            Excitation::Track {
+                spectrum,
+                delays,
+                gains,
+                ..
+            } => {
                 let mut z = Complex::new(0.0, 0.0);
                 for ((h, g), t) in h_row.iter().zip(gains).zip(delays) {
                     z += h * *g * Complex::from_polar(1.0, -omega * t);
                 }
                 spectrum.density(omega) * z.norm_sqr()
             }
-            Excitation::Independent { spectra, .. } => {
-                h_row.iter().zip(spectra).map(|(h, s)| h.norm_sqr() * s.density(omega)).sum()
-            }
+            Excitation::Independent { spectra, .. } => h_row
+                .iter()
+                .zip(spectra)
+                .map(|(h, s)| h.norm_sqr() * s.density(omega))
+                .sum(),
         }
     }
 
     /// The cross-spectral matrix S_u(ω), m × m, Hermitian.
     pub fn matrix(&self, omega: f64) -> DMatrix<Complex<f64>> {
         match self {
-            Excitation::Track { spectrum, delays, gains, .. } => {
+            Excitation::Track {
+                spectrum,
+                delays,
+                gains,
+                ..
+            } => {
                 let s = spectrum.density(omega);
                 DMatrix::from_fn(gains.len(), gains.len(), |j, k| {
                     Complex::from_polar(s * gains[j] * gains[k], -omega * (delays[j] - delays[k]))
                 })
             }
-            Excitation::Independent { spectra, .. } => {
-                DMatrix::from_fn(spectra.len(), spectra.len(), |j, k| {
-                    if j == k {
-                        Complex::new(spectra[j].density(omega), 0.0)
-                    } else {
-                        Complex::new(0.0, 0.0)
-                    }
-                })
-            }
+            Excitation::Independent { spectra, .. } => DMatrix::from_fn(spectra.len(), spectra.len(), |j, k| {
+                if j == k {
+                    Complex::new(spectra[j].density(omega), 0.0)
+                } else {
+                    Complex::new(0.0, 0.0)
+                }
+            }),
         }
     }
 
@@ -179,18 +206,23 @@ impl Excitation {
 
     /// (low, high) of the union of supports.
     pub fn support(&self) -> (f64, f64) {
-        self.spectra().iter().map(|s| s.support()).fold((f64::INFINITY, 0.0), |(a, b), (c, d)| (a.min(c), b.max(d)))
+        self.spectra()
+            .iter()
+            .map(|s| s.support())
+            .fold((f64::INFINITY, 0.0), |(a, b), (c, d)| (a.min(c), b.max(d)))
     }
 
     /// Per-input high- and low-frequency asymptotes of the input densities (input j's own process).
     pub fn asymptotes(&self) -> Vec<(Asymptote, Asymptote)> {
         match self {
-            Excitation::Track { spectrum, gains, .. } => {
-                gains.iter().map(|_| (spectrum.low_frequency(), spectrum.high_frequency())).collect()
-            }
-            Excitation::Independent { spectra, .. } => {
-                spectra.iter().map(|s| (s.low_frequency(), s.high_frequency())).collect()
-            }
+            Excitation::Track { spectrum, gains, .. } => gains
+                .iter()
+                .map(|_| (spectrum.low_frequency(), spectrum.high_frequency()))
+                .collect(),
+            Excitation::Independent { spectra, .. } => spectra
+                .iter()
+                .map(|s| (s.low_frequency(), s.high_frequency()))
+                .collect(),
         }
     }
 }

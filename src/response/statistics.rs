@@ -113,7 +113,14 @@ pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -
         .map(|e| e.to_string());
     let (variance, variance_note) = match divergence {
         Some(d) => (None, Some(d)),
-        None => (reference, if reference.is_none() { quad.as_ref().err().and_then(note) } else { None }),
+        None => (
+            reference,
+            if reference.is_none() {
+                quad.as_ref().err().and_then(note)
+            } else {
+                None
+            },
+        ),
     };
     let mean = sys.static_gain().map(|g| {
         let mu = exc.means();

@@ -21,9 +21,19 @@ pub fn output_density(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, o
 
 fn combine(a: Asymptote, b: Asymptote) -> Asymptote {
     match (a, b) {
-        (Asymptote::Power { exponent: e1, coefficient: c1 }, Asymptote::Power { exponent: e2, coefficient: c2 }) => {
-            Asymptote::Power { exponent: e1 + e2, coefficient: c1 * c2 }
-        }
+        (
+            Asymptote::Power {
+                exponent: e1,
+                coefficient: c1,
+            },
+            Asymptote::Power {
+                exponent: e2,
+                coefficient: c2,
+            },
+        ) => Asymptote::Power {
+            exponent: e1 + e2,
+            coefficient: c1 * c2,
+        },
         _ => Asymptote::Vanishing,
     }
 }
@@ -45,7 +55,11 @@ fn dominant(list: impl IntoIterator<Item = Asymptote>, high: bool) -> Asymptote 
 /// Per-input asymptotes of |H_ij|² for output i, combining inputs that share a delay (their columns add
 /// coherently and may cancel) when a state-space form is available.
 fn column_asymptotes(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, high: bool) -> Vec<(usize, Asymptote)> {
-    let per_input = if high { sys.high_frequency() } else { sys.low_frequency() };
+    let per_input = if high {
+        sys.high_frequency()
+    } else {
+        sys.low_frequency()
+    };
     match (exc, sys.state_space()) {
         (Excitation::Track { delays, gains, .. }, Some(ss)) => {
             let mut groups: Vec<f64> = delays.clone();
@@ -54,8 +68,11 @@ fn column_asymptotes(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, hi
             groups
                 .iter()
                 .filter_map(|&t| {
-                    let w: Vec<f64> =
-                        delays.iter().zip(gains).map(|(d, g)| if *d == t { *g } else { 0.0 }).collect();
+                    let w: Vec<f64> = delays
+                        .iter()
+                        .zip(gains)
+                        .map(|(d, g)| if *d == t { *g } else { 0.0 })
+                        .collect();
                     let j = delays.iter().position(|d| *d == t)?;
                     let c = ss.combine_inputs(&w).ok()?;
                     let a = if high { c.high_frequency() } else { c.low_frequency() };
@@ -71,9 +88,10 @@ fn column_asymptotes(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, hi
                 (
                     j,
                     match per_input[i][j] {
-                        Asymptote::Power { exponent, coefficient } => {
-                            Asymptote::Power { exponent, coefficient: coefficient * g * g }
-                        }
+                        Asymptote::Power { exponent, coefficient } => Asymptote::Power {
+                            exponent,
+                            coefficient: coefficient * g * g,
+                        },
                         v => v,
                     },
                 )
@@ -86,13 +104,23 @@ fn column_asymptotes(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, hi
 /// Asymptote of S_y(ω) for output `i` as ω → ∞.
 pub fn output_high_frequency(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Asymptote {
     let inputs = exc.asymptotes();
-    dominant(column_asymptotes(sys, exc, i, true).into_iter().map(|(j, h)| combine(h, inputs[j].1)), true)
+    dominant(
+        column_asymptotes(sys, exc, i, true)
+            .into_iter()
+            .map(|(j, h)| combine(h, inputs[j].1)),
+        true,
+    )
 }
 
 /// Asymptote of S_y(ω) for output `i` as ω → 0.
 pub fn output_low_frequency(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Asymptote {
     let inputs = exc.asymptotes();
-    dominant(column_asymptotes(sys, exc, i, false).into_iter().map(|(j, h)| combine(h, inputs[j].0)), false)
+    dominant(
+        column_asymptotes(sys, exc, i, false)
+            .into_iter()
+            .map(|(j, h)| combine(h, inputs[j].0)),
+        false,
+    )
 }
 
 /// Checks that the k-th spectral moment ∫|ω|^k S_y dω of output `i` is finite.
@@ -101,7 +129,11 @@ pub fn output_low_frequency(sys: &dyn FrequencyResponse, exc: &Excitation, i: us
 /// [`Error::Divergent`] explaining which end diverges and why.
 pub fn check_moment(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: u32) -> Result<()> {
     let name = &sys.outputs()[i].name;
-    let what = if k == 0 { format!("variance of `{name}`") } else { format!("spectral moment λ{k} of `{name}`") };
+    let what = if k == 0 {
+        format!("variance of `{name}`")
+    } else {
+        format!("spectral moment λ{k} of `{name}`")
+    };
     let (lo, hi) = exc.support();
     if hi.is_infinite() {
         if let Asymptote::Power { exponent, .. } = output_high_frequency(sys, exc, i) {
@@ -114,7 +146,11 @@ pub fn check_moment(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: 
                          acceleration of a damped base-excited mass under a first-order (type 1) road, whose \
                          density tends to a constant. Ask for a band-limited value (`--band`, e.g. 0.5–80 Hz) \
                          or use a smoother input spectrum",
-                        if k > 0 { format!(" and ω^{k} multiplies it") } else { String::new() }
+                        if k > 0 {
+                            format!(" and ω^{k} multiplies it")
+                        } else {
+                            String::new()
+                        }
                     ),
                 });
             }
@@ -156,11 +192,25 @@ fn moment_integral(
     let (lo, hi) = exc.support();
     let (a, b) = (w1.max(lo), w2.min(hi));
     if a >= b {
-        return Ok(QuadResult { value: 0.0, abs_error: 0.0, evaluations: 0 });
+        return Ok(QuadResult {
+            value: 0.0,
+            abs_error: 0.0,
+            evaluations: 0,
+        });
     }
-    let opts = QuadOptions { rel_tol: REL_TOL, breakpoints: breakpoints(sys, exc), ..QuadOptions::default() };
+    let opts = QuadOptions {
+        rel_tol: REL_TOL,
+        breakpoints: breakpoints(sys, exc),
+        ..QuadOptions::default()
+    };
     let r = integrate(|w| w.powi(k as i32) * output_density(sys, exc, i, w), a, b, &opts).map_err(|e| match e {
-        Error::Quadrature { estimate, abs_error, evaluations, reason, .. } => Error::Quadrature {
+        Error::Quadrature {
+            estimate,
+            abs_error,
+            evaluations,
+            reason,
+            ..
+        } => Error::Quadrature {
             what: format!("∫ω^{k} S_y dω of `{}`", sys.outputs()[i].name),
             estimate: 2.0 * estimate,
             abs_error: 2.0 * abs_error,
@@ -169,7 +219,11 @@ fn moment_integral(
         },
         e => e,
     })?;
-    Ok(QuadResult { value: 2.0 * r.value, abs_error: 2.0 * r.abs_error, evaluations: r.evaluations })
+    Ok(QuadResult {
+        value: 2.0 * r.value,
+        abs_error: 2.0 * r.abs_error,
+        evaluations: r.evaluations,
+    })
 }
 
 /// Variance of output `i` by adaptive quadrature of S_y (any spectrum, delays, tabulated data).
@@ -202,7 +256,11 @@ pub fn spectral_moment_quadrature(
 pub fn band_variance(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, w1: f64, w2: f64) -> Result<QuadResult> {
     check_io(sys, exc, i)?;
     if !(w1 >= 0.0 && w2 > w1 && w2.is_finite()) {
-        return Err(Error::invalid("band", format!("[{w1}, {w2}] rad/s"), "need 0 <= w1 < w2 < inf"));
+        return Err(Error::invalid(
+            "band",
+            format!("[{w1}, {w2}] rad/s"),
+            "need 0 <= w1 < w2 < inf",
+        ));
     }
     if w1 == 0.0 {
         if let Asymptote::Power { exponent, .. } = output_low_frequency(sys, exc, i) {
@@ -226,7 +284,11 @@ fn check_io(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<(
         ));
     }
     if i >= sys.outputs().len() {
-        return Err(Error::invalid("output", i, format!("the system has {} outputs", sys.outputs().len())));
+        return Err(Error::invalid(
+            "output",
+            i,
+            format!("the system has {} outputs", sys.outputs().len()),
+        ));
     }
     Ok(())
 }
@@ -316,7 +378,8 @@ fn augment(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<Augmented> {
     g.view_mut((0, 0), (nf, nproc)).copy_from(&bf);
     g.view_mut((nf, 0), (n, nproc)).copy_from(&(&sys.b * &df));
     let mut h = DMatrix::zeros(1, nf + n);
-    h.view_mut((0, 0), (1, nf)).copy_from(&(&sys.d * &cf + &sys.e * &cf * &af));
+    h.view_mut((0, 0), (1, nf))
+        .copy_from(&(&sys.d * &cf + &sys.e * &cf * &af));
     h.view_mut((0, nf), (1, n)).copy_from(&sys.c);
     // white-noise feedthrough: exactly zero unless the system passes u (or u̇) and the filter has relative
     // degree zero (or one)
@@ -364,12 +427,20 @@ pub fn variance_lyapunov(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize
         Ok(_) if tiny(&hag, ha.norm() * aug.g.norm()) => Ok((&haa * &p * haa.transpose())[(0, 0)]),
         _ => Err(white_divergence(name, 4)),
     };
-    Ok(LyapunovMoments { variance: var, lambda2, lambda4 })
+    Ok(LyapunovMoments {
+        variance: var,
+        lambda2,
+        lambda4,
+    })
 }
 
 fn white_divergence(name: &str, k: u32) -> Error {
     Error::Divergent {
-        quantity: if k == 0 { format!("variance of `{name}`") } else { format!("spectral moment λ{k} of `{name}`") },
+        quantity: if k == 0 {
+            format!("variance of `{name}`")
+        } else {
+            format!("spectral moment λ{k} of `{name}`")
+        },
         reason: format!(
             "{} of the output contains a white-noise component (the augmented system feeds the driving noise \
              straight through), so its density does not decay; ask for a band-limited value",

@@ -19,7 +19,12 @@ pub struct Fields<'a> {
 impl<'a> Fields<'a> {
     /// Wraps `table` read from `file`; `prefix` is the dotted path of the table ("" at the root).
     pub fn new(file: &Path, prefix: &str, table: &'a toml::Table) -> Self {
-        Fields { file: file.to_path_buf(), prefix: prefix.to_string(), table, used: RefCell::new(BTreeSet::new()) }
+        Fields {
+            file: file.to_path_buf(),
+            prefix: prefix.to_string(),
+            table,
+            used: RefCell::new(BTreeSet::new()),
+        }
     }
 
     /// The file being read.
@@ -38,7 +43,12 @@ impl<'a> Fields<'a> {
 
     /// An [`Error::File`] for `key` with `value` and `reason`.
     pub fn error(&self, key: &str, value: impl std::fmt::Display, reason: impl Into<String>) -> Error {
-        Error::File { file: self.file.clone(), key: self.path(key), value: value.to_string(), reason: reason.into() }
+        Error::File {
+            file: self.file.clone(),
+            key: self.path(key),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
     }
 
     /// Wraps any crate error raised while using `key` so that it names the file and key.
@@ -46,7 +56,11 @@ impl<'a> Fields<'a> {
         match e {
             Error::File { .. } => e,
             other => {
-                let value = self.table.get(key).map(|v| v.to_string()).unwrap_or_else(|| "<derived>".into());
+                let value = self
+                    .table
+                    .get(key)
+                    .map(|v| v.to_string())
+                    .unwrap_or_else(|| "<derived>".into());
                 self.error(key, value, other.to_string())
             }
         }
@@ -63,7 +77,8 @@ impl<'a> Fields<'a> {
     /// # Errors
     /// Missing key.
     pub fn require(&self, key: &str) -> Result<&'a toml::Value> {
-        self.get(key).ok_or_else(|| self.error(key, "<missing>", "required key is missing"))
+        self.get(key)
+            .ok_or_else(|| self.error(key, "<missing>", "required key is missing"))
     }
 
     /// A required string.
@@ -82,7 +97,10 @@ impl<'a> Fields<'a> {
     pub fn opt_string(&self, key: &str) -> Result<Option<&'a str>> {
         match self.get(key) {
             None => Ok(None),
-            Some(v) => v.as_str().map(Some).ok_or_else(|| self.error(key, v, "expected a string")),
+            Some(v) => v
+                .as_str()
+                .map(Some)
+                .ok_or_else(|| self.error(key, v, "expected a string")),
         }
     }
 
@@ -129,7 +147,9 @@ impl<'a> Fields<'a> {
     /// Missing key, not an array, non-numeric or non-finite entries.
     pub fn numbers(&self, key: &str) -> Result<Vec<f64>> {
         let v = self.require(key)?;
-        let arr = v.as_array().ok_or_else(|| self.error(key, v, "expected an array of numbers"))?;
+        let arr = v
+            .as_array()
+            .ok_or_else(|| self.error(key, v, "expected an array of numbers"))?;
         arr.iter()
             .enumerate()
             .map(|(i, x)| {

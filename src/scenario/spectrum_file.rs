@@ -59,7 +59,10 @@ pub struct SpectrumFile {
 /// [`Error::Io`] if unreadable, [`Error::Parse`] if not TOML, [`Error::File`] naming the key, value and
 /// reason for anything invalid (unknown kind or key, missing key, bad unit, negative variance, ...).
 pub fn load_spectrum(path: &Path) -> Result<SpectrumFile> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io { path: path.to_path_buf(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
     parse_spectrum(&text, path)
 }
 
@@ -68,17 +71,28 @@ pub fn load_spectrum(path: &Path) -> Result<SpectrumFile> {
 /// # Errors
 /// As [`load_spectrum`].
 pub fn parse_spectrum(text: &str, path: &Path) -> Result<SpectrumFile> {
-    let table: toml::Table =
-        toml::from_str(text).map_err(|e| Error::Parse { file: path.to_path_buf(), reason: e.to_string() })?;
+    let table: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
+        file: path.to_path_buf(),
+        reason: e.to_string(),
+    })?;
     let f = Fields::new(path, "", &table);
-    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let name = f.opt_string("name")?.map(str::to_string).unwrap_or(stem);
     let description = f.opt_string("description")?.unwrap_or("").to_string();
     let source = f.opt_string("source")?.unwrap_or("").to_string();
     let spectrum = spectrum_from_fields(&f)?;
     let unit = f.opt_string("unit")?.unwrap_or("m").to_string();
     f.finish()?;
-    Ok(SpectrumFile { name, description, source, unit, spectrum })
+    Ok(SpectrumFile {
+        name,
+        description,
+        source,
+        unit,
+        spectrum,
+    })
 }
 
 /// Builds the spectrum described by the keys of `f` (also used for inline spectra in scenario files).
@@ -131,9 +145,7 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
             let level = f.number("level")?;
             let (lo, hi) = band(f, "band", inv_lag)?.ok_or_else(|| f.error("band", "<missing>", "required"))?;
             let (_, s0) = c.to_canonical(1.0, level);
-            Arc::new(
-                BandWhite::new(Convention::TwoSidedAngular, s0, lo, hi, domain).map_err(|e| w("band", e))?,
-            )
+            Arc::new(BandWhite::new(Convention::TwoSidedAngular, s0, lo, hi, domain).map_err(|e| w("band", e))?)
         }
         "tabulated" => {
             let c = convention(f)?;
@@ -156,7 +168,11 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
         }
         "iso8608" => {
             if domain != Domain::Spatial {
-                return Err(f.error("domain", "temporal", "ISO 8608 spectra are spatial: set domain = \"spatial\""));
+                return Err(f.error(
+                    "domain",
+                    "temporal",
+                    "ISO 8608 spectra are spatial: set domain = \"spatial\"",
+                ));
             }
             let class: IsoClass = f.string("class")?.parse().map_err(|e| w("class", e))?;
             let bound: IsoBound = match f.opt_string("bound")? {
@@ -165,7 +181,9 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
             };
             let unbounded = match f.get("unbounded") {
                 None => false,
-                Some(v) => v.as_bool().ok_or_else(|| f.error("unbounded", v, "expected true or false"))?,
+                Some(v) => v
+                    .as_bool()
+                    .ok_or_else(|| f.error("unbounded", v, "expected true or false"))?,
             };
             let b = band(f, "band", inv_lag)?.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
             if unbounded && b.is_some() {
@@ -176,7 +194,11 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
         }
         "two-pole-road" => {
             if domain != Domain::Spatial {
-                return Err(f.error("domain", "temporal", "the (8.66) road is spatial: set domain = \"spatial\""));
+                return Err(f.error(
+                    "domain",
+                    "temporal",
+                    "the (8.66) road is spatial: set domain = \"spatial\"",
+                ));
             }
             let form = match f.string("form")? {
                 "as-printed" => Form::AsPrinted,
@@ -263,7 +285,11 @@ fn frequency_scale(f: &Fields, unit: &str, dim: Dim) -> Result<f64> {
 fn band(f: &Fields, key: &str, dim: Dim) -> Result<Option<(f64, f64)>> {
     let Some(v) = f.get(key) else { return Ok(None) };
     let arr = v.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
-        f.error(key, v, "expected two frequencies with units, e.g. [\"0.011 cycles/m\", \"2.83 cycles/m\"]")
+        f.error(
+            key,
+            v,
+            "expected two frequencies with units, e.g. [\"0.011 cycles/m\", \"2.83 cycles/m\"]",
+        )
     })?;
     let lo = f.angular_frequency(&arr[0], &format!("{key}[0]"), dim)?;
     let hi = f.angular_frequency(&arr[1], &format!("{key}[1]"), dim)?;
@@ -292,7 +318,10 @@ pub struct CatalogueEntry {
 /// # Errors
 /// [`Error::Io`] if the directory cannot be read.
 pub fn spectrum_catalogue(dir: &Path) -> Result<Vec<CatalogueEntry>> {
-    let rd = std::fs::read_dir(dir).map_err(|source| Error::Io { path: dir.to_path_buf(), source })?;
+    let rd = std::fs::read_dir(dir).map_err(|source| Error::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     let mut paths: Vec<PathBuf> = rd
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
@@ -300,6 +329,9 @@ pub fn spectrum_catalogue(dir: &Path) -> Result<Vec<CatalogueEntry>> {
     paths.sort();
     Ok(paths
         .into_iter()
-        .map(|path| CatalogueEntry { spectrum: load_spectrum(&path).map_err(|e| e.to_string()), path })
+        .map(|path| CatalogueEntry {
+            spectrum: load_spectrum(&path).map_err(|e| e.to_string()),
+            path,
+        })
         .collect())
 }

@@ -94,9 +94,10 @@ impl Spectrum for AtSpeed {
 /// S_t ≈ c (ω/v)^e / v = c v^{−e−1} ω^e.
 fn scale(a: Asymptote, v: f64) -> Asymptote {
     match a {
-        Asymptote::Power { exponent, coefficient } => {
-            Asymptote::Power { exponent, coefficient: coefficient * v.powf(-exponent - 1.0) }
-        }
+        Asymptote::Power { exponent, coefficient } => Asymptote::Power {
+            exponent,
+            coefficient: coefficient * v.powf(-exponent - 1.0),
+        },
         Asymptote::Vanishing => Asymptote::Vanishing,
     }
 }

@@ -40,11 +40,20 @@ impl BandWhite {
         require_non_negative("level", level)?;
         require_non_negative("band.low", lo)?;
         if !(hi.is_finite() && hi > lo) {
-            return Err(Error::invalid("band.high", hi, format!("must be finite and > band.low = {lo}")));
+            return Err(Error::invalid(
+                "band.high",
+                hi,
+                format!("must be finite and > band.low = {lo}"),
+            ));
         }
         let (w1, s0) = convention.to_canonical(lo, level);
         let (w2, _) = convention.to_canonical(hi, level);
-        Ok(BandWhite { level: s0, lo: w1, hi: w2, domain })
+        Ok(BandWhite {
+            level: s0,
+            lo: w1,
+            hi: w2,
+            domain,
+        })
     }
 }
 
@@ -76,7 +85,10 @@ impl Spectrum for BandWhite {
         if self.lo > 0.0 {
             Asymptote::Vanishing
         } else {
-            Asymptote::Power { exponent: 0.0, coefficient: self.level }
+            Asymptote::Power {
+                exponent: 0.0,
+                coefficient: self.level,
+            }
         }
     }
     fn support(&self) -> (f64, f64) {

@@ -69,10 +69,16 @@ impl Spectrum for ExpCosine {
         a * self.variance * (w2 + a * a + b * b) / (PI * d)
     }
     fn high_frequency(&self) -> Asymptote {
-        Asymptote::Power { exponent: -2.0, coefficient: self.alpha * self.variance / PI }
+        Asymptote::Power {
+            exponent: -2.0,
+            coefficient: self.alpha * self.variance / PI,
+        }
     }
     fn low_frequency(&self) -> Asymptote {
-        Asymptote::Power { exponent: 0.0, coefficient: self.density(0.0) }
+        Asymptote::Power {
+            exponent: 0.0,
+            coefficient: self.density(0.0),
+        }
     }
     fn breakpoints(&self) -> Vec<f64> {
         vec![self.alpha, self.beta].into_iter().filter(|w| *w > 0.0).collect()

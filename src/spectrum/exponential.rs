@@ -65,10 +65,16 @@ impl Spectrum for Exponential {
         self.alpha * self.variance / (PI * (self.alpha * self.alpha + omega * omega))
     }
     fn high_frequency(&self) -> Asymptote {
-        Asymptote::Power { exponent: -2.0, coefficient: self.alpha * self.variance / PI }
+        Asymptote::Power {
+            exponent: -2.0,
+            coefficient: self.alpha * self.variance / PI,
+        }
     }
     fn low_frequency(&self) -> Asymptote {
-        Asymptote::Power { exponent: 0.0, coefficient: self.variance / (PI * self.alpha) }
+        Asymptote::Power {
+            exponent: 0.0,
+            coefficient: self.variance / (PI * self.alpha),
+        }
     }
     fn breakpoints(&self) -> Vec<f64> {
         vec![self.alpha]

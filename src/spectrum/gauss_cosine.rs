@@ -71,7 +71,10 @@ impl Spectrum for GaussCosine {
         Asymptote::Vanishing
     }
     fn low_frequency(&self) -> Asymptote {
-        Asymptote::Power { exponent: 0.0, coefficient: self.density(0.0) }
+        Asymptote::Power {
+            exponent: 0.0,
+            coefficient: self.density(0.0),
+        }
     }
     fn breakpoints(&self) -> Vec<f64> {
         let w = 2.0 * self.alpha.sqrt();

@@ -65,7 +65,10 @@ impl Spectrum for Gaussian {
         Asymptote::Vanishing
     }
     fn low_frequency(&self) -> Asymptote {
-        Asymptote::Power { exponent: 0.0, coefficient: self.density(0.0) }
+        Asymptote::Power {
+            exponent: 0.0,
+            coefficient: self.density(0.0),
+        }
     }
     fn breakpoints(&self) -> Vec<f64> {
         // e-folding scale of the density: ω = 2√α

@@ -152,4 +152,3 @@ pub trait Spectrum: Debug + Send + Sync {
         None
     }
 }
-

@@ -32,7 +32,11 @@ pub fn band_variance<S: Spectrum + ?Sized>(s: &S, w1: f64, w2: f64) -> Result<Qu
     let (lo, hi) = s.support();
     let (a, b) = (w1.max(lo), w2.min(hi));
     if a >= b {
-        return Ok(QuadResult { value: 0.0, abs_error: 0.0, evaluations: 0 });
+        return Ok(QuadResult {
+            value: 0.0,
+            abs_error: 0.0,
+            evaluations: 0,
+        });
     }
     if b.is_infinite() || a == 0.0 {
         check_integrable(s, "band variance")?;
@@ -41,9 +45,17 @@ pub fn band_variance<S: Spectrum + ?Sized>(s: &S, w1: f64, w2: f64) -> Result<Qu
 }
 
 fn band_integral<S: Spectrum + ?Sized>(s: &S, a: f64, b: f64) -> Result<QuadResult> {
-    let opts = QuadOptions { rel_tol: REL_TOL, breakpoints: s.breakpoints(), ..QuadOptions::default() };
+    let opts = QuadOptions {
+        rel_tol: REL_TOL,
+        breakpoints: s.breakpoints(),
+        ..QuadOptions::default()
+    };
     let r = integrate(|w| s.density(w), a, b, &opts)?;
-    Ok(QuadResult { value: 2.0 * r.value, abs_error: 2.0 * r.abs_error, ..r })
+    Ok(QuadResult {
+        value: 2.0 * r.value,
+        abs_error: 2.0 * r.abs_error,
+        ..r
+    })
 }
 
 /// Correlation K(τ) = 2∫₀^∞ S(ω) cos ωτ dω by quadrature.
@@ -67,7 +79,11 @@ pub fn correlation<S: Spectrum + ?Sized>(s: &S, tau: f64) -> Result<QuadResult> 
     let h = PI / t;
     let (lo, hi) = s.support();
     let bmax = s.breakpoints().into_iter().fold(lo.max(h), f64::max);
-    let head_end = if hi.is_finite() { hi } else { (4.0 * bmax / h).ceil() * h };
+    let head_end = if hi.is_finite() {
+        hi
+    } else {
+        (4.0 * bmax / h).ceil() * h
+    };
     let mut bps = s.breakpoints();
     let first = (lo / h).ceil() as usize;
     let last = (head_end / h).floor() as usize;
@@ -84,14 +100,30 @@ pub fn correlation<S: Spectrum + ?Sized>(s: &S, tau: f64) -> Result<QuadResult> 
     let head = integrate(f, lo, head_end, &opts)?;
     let mut evaluations = head.evaluations;
     if hi.is_finite() {
-        return Ok(QuadResult { value: 2.0 * head.value, abs_error: 2.0 * head.abs_error, evaluations });
+        return Ok(QuadResult {
+            value: 2.0 * head.value,
+            abs_error: 2.0 * head.abs_error,
+            evaluations,
+        });
     }
     // Scale for absolute tolerances: the head's |S| integral.
-    let scale = integrate(|w| s.density(w), lo, head_end, &QuadOptions { rel_tol: 1e-6, ..QuadOptions::default() })?
-        .value
-        .abs()
-        .max(f64::MIN_POSITIVE);
-    let term_opts = QuadOptions { rel_tol: 1e-12, abs_tol: 1e-15 * scale, ..QuadOptions::default() };
+    let scale = integrate(
+        |w| s.density(w),
+        lo,
+        head_end,
+        &QuadOptions {
+            rel_tol: 1e-6,
+            ..QuadOptions::default()
+        },
+    )?
+    .value
+    .abs()
+    .max(f64::MIN_POSITIVE);
+    let term_opts = QuadOptions {
+        rel_tol: 1e-12,
+        abs_tol: 1e-15 * scale,
+        ..QuadOptions::default()
+    };
     let mut sum = 0.0;
     let mut sums = Vec::new();
     let mut last_est = f64::NAN;
@@ -174,7 +206,9 @@ fn wynn_epsilon(sums: &[f64]) -> f64 {
     let mut best = *sums.last().unwrap_or(&0.0);
     let mut k = 0;
     while cur.len() >= 2 {
-        let next: Vec<f64> = (0..cur.len() - 1).map(|i| prev[i + 1] + 1.0 / (cur[i + 1] - cur[i])).collect();
+        let next: Vec<f64> = (0..cur.len() - 1)
+            .map(|i| prev[i + 1] + 1.0 / (cur[i + 1] - cur[i]))
+            .collect();
         k += 1;
         if next.iter().any(|v| !v.is_finite()) {
             break;

@@ -76,8 +76,16 @@ pub enum IsoBound {
 
 impl IsoClass {
     /// All classes A–H.
-    pub const ALL: [IsoClass; 8] =
-        [IsoClass::A, IsoClass::B, IsoClass::C, IsoClass::D, IsoClass::E, IsoClass::F, IsoClass::G, IsoClass::H];
+    pub const ALL: [IsoClass; 8] = [
+        IsoClass::A,
+        IsoClass::B,
+        IsoClass::C,
+        IsoClass::D,
+        IsoClass::E,
+        IsoClass::F,
+        IsoClass::G,
+        IsoClass::H,
+    ];
 
     /// G_d(n₀) in m³ (m² per cycle/m) for the requested bound (ISO 8608 table of classes).
     pub fn g0(self, bound: IsoBound) -> f64 {
@@ -131,10 +139,21 @@ impl PowerLaw {
         if let Some((lo, hi)) = band {
             require_positive("band.low", lo)?;
             if !(hi.is_finite() && hi > lo) {
-                return Err(Error::invalid("band.high", hi, format!("must be finite and > band.low = {lo}")));
+                return Err(Error::invalid(
+                    "band.high",
+                    hi,
+                    format!("must be finite and > band.low = {lo}"),
+                ));
             }
         }
-        Ok(PowerLaw { g0, n0, waviness, band, domain, label: format!("power law G(n0) = {g0:e}") })
+        Ok(PowerLaw {
+            g0,
+            n0,
+            waviness,
+            band,
+            domain,
+            label: format!("power law G(n0) = {g0:e}"),
+        })
     }
 
     /// ISO 8608 class `class` (n₀ = 0.1 cycles/m, w = 2), spatial, with an optional band in cycles/m
@@ -144,7 +163,10 @@ impl PowerLaw {
     /// As [`PowerLaw::new`] for the band.
     pub fn iso8608(class: IsoClass, bound: IsoBound, band: Option<(f64, f64)>) -> Result<Self> {
         let mut p = PowerLaw::new(class.g0(bound), ISO_N0, ISO_WAVINESS, band, Domain::Spatial)?;
-        p.label = format!("ISO 8608 class {class} ({bound:?}), G_d(n0) = {:e} m^3", class.g0(bound));
+        p.label = format!(
+            "ISO 8608 class {class} ({bound:?}), G_d(n0) = {:e} m^3",
+            class.g0(bound)
+        );
         Ok(p)
     }
 

@@ -65,7 +65,11 @@ impl RationalSpectrum {
         let den = poly::trim(&den);
         for (name, c) in [("numerator", &num), ("denominator", &den)] {
             if c.is_empty() || c.iter().all(|v| *v == 0.0) {
-                return Err(Error::invalid(name, format!("{c:?}"), "must have a non-zero coefficient"));
+                return Err(Error::invalid(
+                    name,
+                    format!("{c:?}"),
+                    "must have a non-zero coefficient",
+                ));
             }
             if c.iter().any(|v| !v.is_finite()) {
                 return Err(Error::invalid(name, format!("{c:?}"), "coefficients must be finite"));
@@ -79,10 +83,18 @@ impl RationalSpectrum {
         // Factorise both; this also checks N ≥ 0 and D > 0 on the real ω axis.
         let scaled: Vec<f64> = num.iter().map(|v| v * 2.0 * PI).collect();
         let (b, _) = poly::spectral_factor(&scaled).map_err(|e| {
-            Error::invalid("numerator", format!("{num:?}"), format!("N(ω²) must be ≥ 0 for all real ω ({e})"))
+            Error::invalid(
+                "numerator",
+                format!("{num:?}"),
+                format!("N(ω²) must be ≥ 0 for all real ω ({e})"),
+            )
         })?;
         let (a, _) = poly::spectral_factor(&den).map_err(|e| {
-            Error::invalid("denominator", format!("{den:?}"), format!("D(ω²) must be > 0 for all real ω ({e})"))
+            Error::invalid(
+                "denominator",
+                format!("{den:?}"),
+                format!("D(ω²) must be > 0 for all real ω ({e})"),
+            )
         })?;
         let poles = poly::roots(&a)?;
         if poles.iter().any(|p| p.re >= 0.0) {
@@ -99,7 +111,11 @@ impl RationalSpectrum {
             num,
             den,
             domain,
-            filter: ShapingFilter { num: b, den: a, residual: 0.0 },
+            filter: ShapingFilter {
+                num: b,
+                den: a,
+                residual: 0.0,
+            },
             corners,
         };
         s.filter.residual = s.filter_residual();
@@ -138,7 +154,10 @@ impl RationalSpectrum {
     pub fn at_speed(&self, v: f64) -> Result<RationalSpectrum> {
         crate::error::require_positive("speed", v)?;
         let scale = |c: &[f64], extra: f64| -> Vec<f64> {
-            c.iter().enumerate().map(|(k, x)| x * extra / v.powi(2 * k as i32)).collect()
+            c.iter()
+                .enumerate()
+                .map(|(k, x)| x * extra / v.powi(2 * k as i32))
+                .collect()
         };
         RationalSpectrum::new(scale(&self.num, 1.0 / v), scale(&self.den, 1.0), Domain::Temporal)
     }
@@ -174,7 +193,10 @@ impl RationalSpectrum {
 
 impl Spectrum for RationalSpectrum {
     fn describe(&self) -> String {
-        format!("rational: N(w^2) = {:?}, D(w^2) = {:?} (ascending powers of w^2)", self.num, self.den)
+        format!(
+            "rational: N(w^2) = {:?}, D(w^2) = {:?} (ascending powers of w^2)",
+            self.num, self.den
+        )
     }
     fn domain(&self) -> Domain {
         self.domain
@@ -193,7 +215,10 @@ impl Spectrum for RationalSpectrum {
     fn low_frequency(&self) -> Asymptote {
         let n = self.num.iter().position(|v| *v != 0.0).unwrap_or(0);
         let d = self.den.iter().position(|v| *v != 0.0).unwrap_or(0);
-        Asymptote::Power { exponent: 2.0 * (n as f64 - d as f64), coefficient: self.num[n] / self.den[d] }
+        Asymptote::Power {
+            exponent: 2.0 * (n as f64 - d as f64),
+            coefficient: self.num[n] / self.den[d],
+        }
     }
     fn breakpoints(&self) -> Vec<f64> {
         self.corners.clone()

@@ -47,21 +47,46 @@ impl Tabulated {
             ));
         }
         if x.len() < 2 {
-            return Err(Error::invalid("frequencies", format!("{x:?}"), "need at least two points"));
+            return Err(Error::invalid(
+                "frequencies",
+                format!("{x:?}"),
+                "need at least two points",
+            ));
         }
         for (i, (&xi, &vi)) in x.iter().zip(&values).enumerate() {
             if !(xi.is_finite() && xi > 0.0) {
-                return Err(Error::invalid(&format!("frequencies[{i}]"), xi, "must be finite and > 0 (log-log)"));
+                return Err(Error::invalid(
+                    &format!("frequencies[{i}]"),
+                    xi,
+                    "must be finite and > 0 (log-log)",
+                ));
             }
             if !(vi.is_finite() && vi > 0.0) {
-                return Err(Error::invalid(&format!("values[{i}]"), vi, "must be finite and > 0 (log-log)"));
+                return Err(Error::invalid(
+                    &format!("values[{i}]"),
+                    vi,
+                    "must be finite and > 0 (log-log)",
+                ));
             }
             if i > 0 && xi <= x[i - 1] {
-                return Err(Error::invalid(&format!("frequencies[{i}]"), xi, "must be strictly increasing"));
+                return Err(Error::invalid(
+                    &format!("frequencies[{i}]"),
+                    xi,
+                    "must be strictly increasing",
+                ));
             }
         }
-        let (omega, density) = x.iter().zip(&values).map(|(&xi, &vi)| convention.to_canonical(xi, vi)).unzip();
-        Ok(Tabulated { omega, density, convention, domain })
+        let (omega, density) = x
+            .iter()
+            .zip(&values)
+            .map(|(&xi, &vi)| convention.to_canonical(xi, vi))
+            .unzip();
+        Ok(Tabulated {
+            omega,
+            density,
+            convention,
+            domain,
+        })
     }
 
     /// The canonical points (ω, S(ω)).

@@ -95,12 +95,21 @@ impl Spectrum for TwoPoleRoad {
     fn high_frequency(&self) -> Asymptote {
         let (a, b) = (self.alpha, self.beta);
         match self.form {
-            Form::Consistent => Asymptote::Power { exponent: -4.0, coefficient: self.dq * a * b * (a + b) / PI },
-            Form::AsPrinted => Asymptote::Power { exponent: -2.0, coefficient: self.printed_variance() * a / PI },
+            Form::Consistent => Asymptote::Power {
+                exponent: -4.0,
+                coefficient: self.dq * a * b * (a + b) / PI,
+            },
+            Form::AsPrinted => Asymptote::Power {
+                exponent: -2.0,
+                coefficient: self.printed_variance() * a / PI,
+            },
         }
     }
     fn low_frequency(&self) -> Asymptote {
-        Asymptote::Power { exponent: 0.0, coefficient: self.density(0.0) }
+        Asymptote::Power {
+            exponent: 0.0,
+            coefficient: self.density(0.0),
+        }
     }
     fn breakpoints(&self) -> Vec<f64> {
         vec![self.alpha, self.beta]

@@ -120,7 +120,11 @@ pub struct Mdof {
 
 fn check_square(name: &str, m: &DMatrix<f64>, n: usize) -> Result<()> {
     if m.nrows() != n || m.ncols() != n {
-        return Err(Error::invalid(name, format!("{}x{}", m.nrows(), m.ncols()), format!("must be {n}x{n}")));
+        return Err(Error::invalid(
+            name,
+            format!("{}x{}", m.nrows(), m.ncols()),
+            format!("must be {n}x{n}"),
+        ));
     }
     if m.iter().any(|v| !v.is_finite()) {
         return Err(Error::invalid(name, "matrix", "entries must be finite"));
@@ -163,7 +167,11 @@ impl Mdof {
         check_symmetric("B", &b)?;
         check_symmetric("C", &c)?;
         if coords.len() != n {
-            return Err(Error::invalid("coordinates", coords.len(), format!("need one name per coordinate ({n})")));
+            return Err(Error::invalid(
+                "coordinates",
+                coords.len(),
+                format!("need one name per coordinate ({n})"),
+            ));
         }
         for (name, mat) in [("K_u", &ku), ("B_u", &bu), ("F", &f)] {
             if mat.nrows() != n {
@@ -174,10 +182,18 @@ impl Mdof {
             }
         }
         if ku.ncols() != bu.ncols() {
-            return Err(Error::invalid("B_u", bu.ncols(), format!("must have as many columns as K_u ({})", ku.ncols())));
+            return Err(Error::invalid(
+                "B_u",
+                bu.ncols(),
+                format!("must have as many columns as K_u ({})", ku.ncols()),
+            ));
         }
         let chol = m.clone().cholesky().ok_or_else(|| {
-            Error::invalid("M", "matrix", "mass matrix is singular or not positive definite (every coordinate needs mass)")
+            Error::invalid(
+                "M",
+                "matrix",
+                "mass matrix is singular or not positive definite (every coordinate needs mass)",
+            )
         })?;
         let m_inv = chol.inverse();
         let mut model = Mdof {
@@ -213,11 +229,19 @@ impl Mdof {
     ) -> Result<Self> {
         let n = coords.len();
         if masses.len() != n {
-            return Err(Error::invalid("masses", masses.len(), format!("need one mass per coordinate ({n})")));
+            return Err(Error::invalid(
+                "masses",
+                masses.len(),
+                format!("need one mass per coordinate ({n})"),
+            ));
         }
         for (i, &mi) in masses.iter().enumerate() {
             if !(mi.is_finite() && mi > 0.0) {
-                return Err(Error::invalid(&format!("mass of `{}`", coords[i].0), mi, "must be finite and > 0"));
+                return Err(Error::invalid(
+                    &format!("mass of `{}`", coords[i].0),
+                    mi,
+                    "must be finite and > 0",
+                ));
             }
         }
         let m = DMatrix::from_diagonal(&DVector::from_column_slice(masses));
@@ -227,11 +251,19 @@ impl Mdof {
         let mut bu = DMatrix::zeros(n, n_base);
         for e in &elements {
             if e.point.len() != n {
-                return Err(Error::invalid(&format!("element `{}`.point", e.name), e.point.len(), format!("need {n} entries")));
+                return Err(Error::invalid(
+                    &format!("element `{}`.point", e.name),
+                    e.point.len(),
+                    format!("need {n} entries"),
+                ));
             }
             for (what, v) in [("stiffness", e.stiffness), ("damping", e.damping)] {
                 if !(v.is_finite() && v >= 0.0) {
-                    return Err(Error::invalid(&format!("element `{}`.{what}", e.name), v, "must be finite and >= 0"));
+                    return Err(Error::invalid(
+                        &format!("element `{}`.{what}", e.name),
+                        v,
+                        "must be finite and >= 0",
+                    ));
                 }
             }
             let g = DVector::from_column_slice(&e.point);
@@ -239,7 +271,11 @@ impl Mdof {
                 Attach::Ground => g.clone(),
                 Attach::Base(j) => {
                     if *j >= n_base {
-                        return Err(Error::invalid(&format!("element `{}`.base", e.name), j, format!("only {n_base} base inputs")));
+                        return Err(Error::invalid(
+                            &format!("element `{}`.base", e.name),
+                            j,
+                            format!("only {n_base} base inputs"),
+                        ));
                     }
                     ku.column_mut(*j).axpy(e.stiffness, &g, 1.0);
                     bu.column_mut(*j).axpy(e.damping, &g, 1.0);
@@ -247,7 +283,11 @@ impl Mdof {
                 }
                 Attach::Point(h) => {
                     if h.len() != n {
-                        return Err(Error::invalid(&format!("element `{}`.to", e.name), h.len(), format!("need {n} entries")));
+                        return Err(Error::invalid(
+                            &format!("element `{}`.to", e.name),
+                            h.len(),
+                            format!("need {n} entries"),
+                        ));
                     }
                     &g - DVector::from_column_slice(h)
                 }
@@ -258,7 +298,11 @@ impl Mdof {
         let mut f = DMatrix::zeros(n, forces.len());
         for (k, g) in forces.iter().enumerate() {
             if g.len() != n {
-                return Err(Error::invalid(&format!("force input {k}"), g.len(), format!("need {n} entries")));
+                return Err(Error::invalid(
+                    &format!("force input {k}"),
+                    g.len(),
+                    format!("need {n} entries"),
+                ));
             }
             f.column_mut(k).copy_from_slice(g);
         }
@@ -277,13 +321,21 @@ impl Mdof {
         let zero = |k: usize| DVector::zeros(k);
         let point = |g: &Vec<f64>| -> Result<DVector<f64>> {
             if g.len() != n {
-                return Err(Error::invalid(&format!("output `{name}`"), g.len(), format!("point needs {n} entries")));
+                return Err(Error::invalid(
+                    &format!("output `{name}`"),
+                    g.len(),
+                    format!("point needs {n} entries"),
+                ));
             }
             Ok(DVector::from_column_slice(g))
         };
         let unit_of = |g: &Vec<f64>| -> String {
-            let units: Vec<&str> =
-                g.iter().zip(&self.coords).filter(|(w, _)| **w != 0.0).map(|(_, c)| c.1.as_str()).collect();
+            let units: Vec<&str> = g
+                .iter()
+                .zip(&self.coords)
+                .filter(|(w, _)| **w != 0.0)
+                .map(|(_, c)| c.1.as_str())
+                .collect();
             if units.windows(2).all(|w| w[0] == w[1]) {
                 units.first().copied().unwrap_or("m").to_string()
             } else {
@@ -292,7 +344,11 @@ impl Mdof {
         };
         let element = |e: usize| -> Result<&Element> {
             self.elements.get(e).ok_or_else(|| {
-                Error::invalid(&format!("output `{name}`"), e, format!("only {} elements", self.elements.len()))
+                Error::invalid(
+                    &format!("output `{name}`"),
+                    e,
+                    format!("only {} elements", self.elements.len()),
+                )
             })
         };
         // deflection δ = (g − g_far)ᵀ q − u_j
@@ -310,20 +366,49 @@ impl Mdof {
             (q, u)
         };
         let (combo, unit) = match &quantity {
-            Quantity::Displacement(g) => {
-                (Combination { q: point(g)?, v: zero(n), a: zero(n), u: zero(nu), du: zero(nu) }, unit_of(g))
-            }
-            Quantity::Velocity(g) => {
-                (Combination { q: zero(n), v: point(g)?, a: zero(n), u: zero(nu), du: zero(nu) }, format!("{}/s", unit_of(g)))
-            }
+            Quantity::Displacement(g) => (
+                Combination {
+                    q: point(g)?,
+                    v: zero(n),
+                    a: zero(n),
+                    u: zero(nu),
+                    du: zero(nu),
+                },
+                unit_of(g),
+            ),
+            Quantity::Velocity(g) => (
+                Combination {
+                    q: zero(n),
+                    v: point(g)?,
+                    a: zero(n),
+                    u: zero(nu),
+                    du: zero(nu),
+                },
+                format!("{}/s", unit_of(g)),
+            ),
             Quantity::Acceleration(g) => (
-                Combination { q: zero(n), v: zero(n), a: point(g)?, u: zero(nu), du: zero(nu) },
+                Combination {
+                    q: zero(n),
+                    v: zero(n),
+                    a: point(g)?,
+                    u: zero(nu),
+                    du: zero(nu),
+                },
                 format!("{}/s^2", unit_of(g)),
             ),
             Quantity::Deflection(e) => {
                 let el = element(*e)?;
                 let (q, u) = deflection(el);
-                (Combination { q, v: zero(n), a: zero(n), u, du: zero(nu) }, unit_of(&el.point))
+                (
+                    Combination {
+                        q,
+                        v: zero(n),
+                        a: zero(n),
+                        u,
+                        du: zero(nu),
+                    },
+                    unit_of(&el.point),
+                )
             }
             Quantity::SpringForce(e) | Quantity::DamperForce(e) | Quantity::ElementForce(e) => {
                 let el = element(*e)?;
@@ -335,13 +420,22 @@ impl Mdof {
                 };
                 let unit = if unit_of(&el.point) == "rad" { "N m" } else { "N" };
                 (
-                    Combination { q: &q * k, v: &q * b, a: zero(n), u: &u * k, du: &u * b },
+                    Combination {
+                        q: &q * k,
+                        v: &q * b,
+                        a: zero(n),
+                        u: &u * k,
+                        du: &u * b,
+                    },
                     unit.to_string(),
                 )
             }
         };
         let info = OutputInfo::new(name, unit);
-        self.outputs.push(Output { info: info.clone(), quantity });
+        self.outputs.push(Output {
+            info: info.clone(),
+            quantity,
+        });
         self.infos.push(info);
         self.combos.push(combo);
         self.rebuild_state_space()?;
@@ -393,7 +487,8 @@ impl Mdof {
         a.view_mut((n, n), (n, n)).copy_from(&(-(&self.b * mi)));
         let mut bss = DMatrix::zeros(2 * n, nb + nf);
         bss.view_mut((0, 0), (n, nb)).copy_from(&(mi * &self.bu));
-        bss.view_mut((n, 0), (n, nb)).copy_from(&(&self.ku - &self.b * mi * &self.bu));
+        bss.view_mut((n, 0), (n, nb))
+            .copy_from(&(&self.ku - &self.b * mi * &self.bu));
         bss.view_mut((n, nb), (n, nf)).copy_from(&self.f);
         // q = [I 0]x; q̇ = [0 M⁻¹]x + M⁻¹B_u u; q̈ = M⁻¹(−Cq − Bq̇ + K_u u + B_u u̇ + F f)
         let p = self.combos.len();
@@ -438,7 +533,10 @@ pub fn modal_analysis(m: &DMatrix<f64>, c: &DMatrix<f64>) -> Result<(Vec<f64>, D
         .cholesky()
         .ok_or_else(|| Error::invalid("M", "matrix", "mass matrix is singular or not positive definite"))?;
     let l = chol.l();
-    let li = l.clone().try_inverse().ok_or_else(|| Error::invalid("M", "matrix", "singular Cholesky factor"))?;
+    let li = l
+        .clone()
+        .try_inverse()
+        .ok_or_else(|| Error::invalid("M", "matrix", "singular Cholesky factor"))?;
     let k = &li * c * li.transpose();
     let k = (&k + k.transpose()) * 0.5;
     let eig = k.symmetric_eigen();
@@ -458,7 +556,16 @@ pub fn modal_analysis(m: &DMatrix<f64>, c: &DMatrix<f64>) -> Result<(Vec<f64>, D
         freqs.push(if lam.abs() <= 1e-10 * scale { 0.0 } else { lam.sqrt() });
         let phi = li.transpose() * eig.eigenvectors.column(i);
         // sign convention: largest component positive
-        let s = if phi.iter().cloned().fold(0.0f64, |a, v| if v.abs() > a.abs() { v } else { a }) < 0.0 { -1.0 } else { 1.0 };
+        let s = if phi
+            .iter()
+            .cloned()
+            .fold(0.0f64, |a, v| if v.abs() > a.abs() { v } else { a })
+            < 0.0
+        {
+            -1.0
+        } else {
+            1.0
+        };
         modes.column_mut(col).copy_from(&(phi * s));
     }
     Ok((freqs, modes))
@@ -479,7 +586,8 @@ impl FrequencyResponse for Mdof {
         let cx = |m: &DMatrix<f64>| m.map(|v| Complex::new(v, 0.0));
         let dyn_stiff = cx(&self.c) + cx(&self.b) * s + cx(&self.m) * (s * s);
         let mut rhs = DMatrix::zeros(n, nb + nf);
-        rhs.view_mut((0, 0), (n, nb)).copy_from(&(cx(&self.ku) + cx(&self.bu) * s));
+        rhs.view_mut((0, 0), (n, nb))
+            .copy_from(&(cx(&self.ku) + cx(&self.bu) * s));
         rhs.view_mut((0, nb), (n, nf)).copy_from(&cx(&self.f));
         let q = match dyn_stiff.lu().solve(&rhs) {
             Some(q) => q,

@@ -34,7 +34,10 @@ pub struct OutputInfo {
 impl OutputInfo {
     /// Builds an output description.
     pub fn new(name: impl Into<String>, unit: impl Into<String>) -> Self {
-        OutputInfo { name: name.into(), unit: unit.into() }
+        OutputInfo {
+            name: name.into(),
+            unit: unit.into(),
+        }
     }
 }
 

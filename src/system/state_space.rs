@@ -83,7 +83,11 @@ impl StateSpace {
         dims("D", &d, p, m)?;
         dims("E", &e, p, m)?;
         if outputs.len() != p {
-            return Err(Error::invalid("outputs", outputs.len(), format!("need one name per output row ({p})")));
+            return Err(Error::invalid(
+                "outputs",
+                outputs.len(),
+                format!("need one name per output row ({p})"),
+            ));
         }
         Ok(StateSpace { a, b, c, d, e, outputs })
     }
@@ -98,7 +102,11 @@ impl StateSpace {
         if self.n_states() == 0 {
             return f64::NEG_INFINITY;
         }
-        self.a.complex_eigenvalues().iter().map(|l| l.re).fold(f64::NEG_INFINITY, f64::max)
+        self.a
+            .complex_eigenvalues()
+            .iter()
+            .map(|l| l.re)
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     /// Checks asymptotic stability.
@@ -146,7 +154,11 @@ impl StateSpace {
     pub fn combine_inputs(&self, weights: &[f64]) -> Result<StateSpace> {
         let m = self.b.ncols();
         if weights.len() != m {
-            return Err(Error::invalid("weights", weights.len(), format!("system has {m} inputs")));
+            return Err(Error::invalid(
+                "weights",
+                weights.len(),
+                format!("system has {m} inputs"),
+            ));
         }
         let w = DMatrix::from_column_slice(m, 1, weights);
         Ok(StateSpace {
@@ -211,11 +223,12 @@ impl FrequencyResponse for StateSpace {
         let mut out = vec![vec![Asymptote::Vanishing; m]; p];
         for (i, row) in out.iter_mut().enumerate() {
             for (j, slot) in row.iter_mut().enumerate() {
-                if let Some((k, (mk, _))) =
-                    markov.iter().enumerate().find(|(_, (mk, tol))| mk[(i, j)].abs() > *tol)
-                {
+                if let Some((k, (mk, _))) = markov.iter().enumerate().find(|(_, (mk, tol))| mk[(i, j)].abs() > *tol) {
                     let v = mk[(i, j)];
-                    *slot = Asymptote::Power { exponent: 2.0 * (1.0 - k as f64), coefficient: v * v };
+                    *slot = Asymptote::Power {
+                        exponent: 2.0 * (1.0 - k as f64),
+                        coefficient: v * v,
+                    };
                 }
             }
         }
@@ -226,8 +239,15 @@ impl FrequencyResponse for StateSpace {
         // Taylor series at s = 0: H(s) = h₀ + h₁ s + h₂ s² + …, h₀ = D − CA⁻¹B, h₁ = E − CA⁻²B,
         // h_k = −CA^{−(k+1)}B; a singular A (rigid-body mode, integrator) makes |H|² blow up like ω^{−2}.
         let lu = self.a.clone().lu();
-        let Some(mut x) = (if n == 0 { Some(DMatrix::zeros(0, m)) } else { lu.solve(&self.b) }) else {
-            let inf = Asymptote::Power { exponent: -2.0, coefficient: f64::INFINITY };
+        let Some(mut x) = (if n == 0 {
+            Some(DMatrix::zeros(0, m))
+        } else {
+            lu.solve(&self.b)
+        }) else {
+            let inf = Asymptote::Power {
+                exponent: -2.0,
+                coefficient: f64::INFINITY,
+            };
             return vec![vec![inf; m]; p];
         };
         let mut terms: Vec<(DMatrix<f64>, f64)> = Vec::new();
@@ -245,7 +265,10 @@ impl FrequencyResponse for StateSpace {
         for (i, row) in out.iter_mut().enumerate() {
             for (j, slot) in row.iter_mut().enumerate() {
                 if let Some((k, (h, _))) = terms.iter().enumerate().find(|(_, (h, tol))| h[(i, j)].abs() > *tol) {
-                    *slot = Asymptote::Power { exponent: 2.0 * k as f64, coefficient: h[(i, j)].powi(2) };
+                    *slot = Asymptote::Power {
+                        exponent: 2.0 * k as f64,
+                        coefficient: h[(i, j)].powi(2),
+                    };
                 }
             }
         }
@@ -255,8 +278,13 @@ impl FrequencyResponse for StateSpace {
         if self.n_states() == 0 {
             return Vec::new();
         }
-        let mut w: Vec<f64> =
-            self.a.complex_eigenvalues().iter().map(|l| l.norm()).filter(|x| *x > 0.0 && x.is_finite()).collect();
+        let mut w: Vec<f64> = self
+            .a
+            .complex_eigenvalues()
+            .iter()
+            .map(|l| l.norm())
+            .filter(|x| *x > 0.0 && x.is_finite())
+            .collect();
         w.sort_by(f64::total_cmp);
         w.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
         w

@@ -46,14 +46,21 @@ impl TransferFunction {
             return Err(Error::invalid("denominator", format!("{den:?}"), "must not be zero"));
         }
         if num.iter().chain(&den).any(|v| !v.is_finite()) {
-            return Err(Error::invalid("coefficients", format!("{num:?} / {den:?}"), "must be finite"));
+            return Err(Error::invalid(
+                "coefficients",
+                format!("{num:?} / {den:?}"),
+                "must be finite",
+            ));
         }
         let n = den.len() - 1;
         if num.len() > n + 2 {
             return Err(Error::invalid(
                 "numerator",
                 format!("{num:?}"),
-                format!("degree {} exceeds the denominator degree {n} by more than one", num.len() - 1),
+                format!(
+                    "degree {} exceeds the denominator degree {n} by more than one",
+                    num.len() - 1
+                ),
             ));
         }
         let lead = den[n];
@@ -72,7 +79,17 @@ impl TransferFunction {
         for k in 0..=n {
             r[k] -= d * dn[k];
         }
-        let a = DMatrix::from_fn(n, n, |i, j| if i + 1 < n { if j == i + 1 { 1.0 } else { 0.0 } } else { -dn[j] });
+        let a = DMatrix::from_fn(n, n, |i, j| {
+            if i + 1 < n {
+                if j == i + 1 {
+                    1.0
+                } else {
+                    0.0
+                }
+            } else {
+                -dn[j]
+            }
+        });
         let b = DMatrix::from_fn(n, 1, |i, _| if i + 1 == n { 1.0 } else { 0.0 });
         let c = DMatrix::from_fn(1, n, |_, j| r[j]);
         let ss = StateSpace::new(
@@ -105,10 +122,15 @@ impl FrequencyResponse for TransferFunction {
     }
     fn response(&self, omega: f64) -> DMatrix<Complex<f64>> {
         let s = Complex::new(0.0, omega);
-        DMatrix::from_element(1, 1, poly::eval_complex(&self.num, s) / poly::eval_complex(&self.den, s))
+        DMatrix::from_element(
+            1,
+            1,
+            poly::eval_complex(&self.num, s) / poly::eval_complex(&self.den, s),
+        )
     }
     fn static_gain(&self) -> Option<DMatrix<f64>> {
-        (self.den[0] != 0.0).then(|| DMatrix::from_element(1, 1, self.num.first().copied().unwrap_or(0.0) / self.den[0]))
+        (self.den[0] != 0.0)
+            .then(|| DMatrix::from_element(1, 1, self.num.first().copied().unwrap_or(0.0) / self.den[0]))
     }
     fn high_frequency(&self) -> Vec<Vec<Asymptote>> {
         let (q, n) = (self.num.len() as f64 - 1.0, self.den.len() as f64 - 1.0);
@@ -116,7 +138,10 @@ impl FrequencyResponse for TransferFunction {
         if self.num.is_empty() {
             return vec![vec![Asymptote::Vanishing]];
         }
-        vec![vec![Asymptote::Power { exponent: 2.0 * (q - n), coefficient: lead * lead }]]
+        vec![vec![Asymptote::Power {
+            exponent: 2.0 * (q - n),
+            coefficient: lead * lead,
+        }]]
     }
     fn low_frequency(&self) -> Vec<Vec<Asymptote>> {
         let k = self.num.iter().position(|v| *v != 0.0);
@@ -125,7 +150,10 @@ impl FrequencyResponse for TransferFunction {
             None => vec![vec![Asymptote::Vanishing]],
             Some(k) => {
                 let c = self.num[k] / self.den[j];
-                vec![vec![Asymptote::Power { exponent: 2.0 * (k as f64 - j as f64), coefficient: c * c }]]
+                vec![vec![Asymptote::Power {
+                    exponent: 2.0 * (k as f64 - j as f64),
+                    coefficient: c * c,
+                }]]
             }
         }
     }
