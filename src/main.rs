@@ -4,7 +4,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use stochvib::report::{self, resolve_spectrum, spectrum_report};
-use stochvib::scenario::spectrum_catalogue;
+use stochvib::scenario::{load_scenario, spectrum_catalogue};
 use stochvib::spectrum::Convention;
 
 /// Stochastic vibration and random-road analysis of machines.
@@ -28,6 +28,17 @@ enum Command {
         /// Print the full report of every entry.
         #[arg(long)]
         full: bool,
+    },
+    /// Analyse a scenario: mean, σ, 3σ bounds, crossing rates, and every variance method per output.
+    Analyze {
+        /// Scenario file (TOML, see data/).
+        scenario: PathBuf,
+        /// Directory of spectrum files.
+        #[arg(long)]
+        spectra_dir: Option<PathBuf>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
     Spectrum {
@@ -59,11 +70,11 @@ fn main() -> Result<()> {
             let mut reports = Vec::new();
             let mut failed = 0;
             if !json && !full {
-                println!("catalogue {}", dir.display());
-                println!(
+                emit_line(&format!("catalogue {}", dir.display()));
+                emit_line(&format!(
                     "{:<24} {:<9} {:>13} {:>13}  model",
                     "name", "domain", "variance", "sigma"
-                );
+                ));
             }
             for e in &entries {
                 match &e.spectrum {
@@ -77,9 +88,12 @@ fn main() -> Result<()> {
                                 ) => (format!("{v:.4e}"), format!("{s:.4e}")),
                                 _ => ("infinite".into(), "infinite".into()),
                             };
-                            println!("{:<24} {:<9} {:>13} {:>13}  {}", r.name, r.domain, v, sg, r.model);
+                            emit_line(&format!(
+                                "{:<24} {:<9} {:>13} {:>13}  {}",
+                                r.name, r.domain, v, sg, r.model
+                            ));
                         } else if full && !json {
-                            println!("{r}");
+                            emit_line(&format!("{r}"));
                         }
                         reports.push(r);
                     }
@@ -90,10 +104,24 @@ fn main() -> Result<()> {
                 }
             }
             if json {
-                println!("{}", serde_json::to_string_pretty(&reports)?);
+                emit_line(&format!("{}", serde_json::to_string_pretty(&reports)?));
             }
             if failed > 0 {
                 anyhow::bail!("{failed} spectrum file(s) in {} are invalid", dir.display());
+            }
+        }
+        Command::Analyze {
+            scenario,
+            spectra_dir,
+            json,
+        } => {
+            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
+            let sc = load_scenario(&scenario, &dir)?;
+            let r = report::analysis_report(&sc)?;
+            if json {
+                emit_line(&format!("{}", serde_json::to_string_pretty(&r)?));
+            } else {
+                emit(&format!("{r}"));
             }
         }
         Command::Spectrum {
@@ -106,11 +134,28 @@ fn main() -> Result<()> {
             let file = resolve_spectrum(&name, &dir)?;
             let r = spectrum_report(&file, convention);
             if json {
-                println!("{}", serde_json::to_string_pretty(&r)?);
+                emit_line(&format!("{}", serde_json::to_string_pretty(&r)?));
             } else {
-                print!("{r}");
+                emit(&format!("{r}"));
             }
         }
     }
     Ok(())
+}
+
+/// Writes to stdout; a closed pipe (`stochvib spectra | head`) ends the program quietly.
+fn emit(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("error writing output: {e}");
+        std::process::exit(1);
+    }
+}
+
+fn emit_line(text: &str) {
+    emit(&format!("{text}\n"));
 }

@@ -6,5 +6,7 @@
 //! `book` report ([`crate::report::book`]).
 
 mod instance;
+mod registry;
 
 pub use instance::{InputLayout, ModelInstance};
+pub use registry::{from_fields, KINDS};

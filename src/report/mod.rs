@@ -1,9 +1,11 @@
 //! Reports: the tables the command-line tool prints, as plain data (serialisable to JSON) plus a text
 //! rendering. The CLI only parses arguments, calls these and prints.
 
+pub mod analysis;
 pub mod book;
 pub mod spectrum_report;
 
+pub use analysis::{analysis_report, AnalysisReport};
 pub use spectrum_report::{resolve_spectrum, spectrum_report, SpectrumReport};
 
 /// Directory of the spectrum catalogue: `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the

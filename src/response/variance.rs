@@ -310,9 +310,9 @@ fn filters(exc: &Excitation) -> Result<Vec<ShapingFilter>> {
     exc.spectra()
         .iter()
         .map(|s| {
-            let r = s.rational().ok_or_else(|| Error::Numerical {
-                what: "exact (Lyapunov / integral-table) variance".into(),
-                reason: format!("input spectrum is not rational: {}", s.describe()),
+            let r = s.rational().ok_or_else(|| Error::NotApplicable {
+                method: "exact (Lyapunov / integral-table) variance".into(),
+                reason: "the input spectrum is not rational (no finite shaping filter); quadrature applies".into(),
             })?;
             r.shaping_filter()
         })
@@ -330,8 +330,8 @@ struct Augmented {
 
 fn augment(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<Augmented> {
     if !exc.delay_free() {
-        return Err(Error::Numerical {
-            what: "exact (Lyapunov / integral-table) variance".into(),
+        return Err(Error::NotApplicable {
+            method: "exact (Lyapunov / integral-table) variance".into(),
             reason: "inputs are delayed copies of one process: pure delays have no finite state-space form; \
                      use quadrature"
                 .into(),
@@ -401,8 +401,8 @@ fn augment(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<Augmented> {
 /// [`Error::InvalidParameter`] for an unstable system, [`Error::Divergent`] for a white-noise component.
 pub fn variance_lyapunov(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<LyapunovMoments> {
     check_io(sys, exc, i)?;
-    let ss = sys.state_space().ok_or_else(|| Error::Numerical {
-        what: "Lyapunov variance".into(),
+    let ss = sys.state_space().ok_or_else(|| Error::NotApplicable {
+        method: "Lyapunov variance".into(),
         reason: "the system has no finite state-space form".into(),
     })?;
     ss.require_stable()?;
@@ -480,19 +480,19 @@ fn char_poly(a: &DMatrix<f64>) -> Vec<f64> {
 pub fn variance_integral_table(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: u32) -> Result<f64> {
     check_io(sys, exc, i)?;
     let Excitation::Track { gains, .. } = exc else {
-        return Err(Error::Numerical {
-            what: "integral-table variance".into(),
+        return Err(Error::NotApplicable {
+            method: "integral-table variance".into(),
             reason: "several independent inputs: the table handles one rational input".into(),
         });
     };
     if !exc.delay_free() {
-        return Err(Error::Numerical {
-            what: "integral-table variance".into(),
+        return Err(Error::NotApplicable {
+            method: "integral-table variance".into(),
             reason: "pure delays make the integrand non-rational; use quadrature".into(),
         });
     }
-    let ss = sys.state_space().ok_or_else(|| Error::Numerical {
-        what: "integral-table variance".into(),
+    let ss = sys.state_space().ok_or_else(|| Error::NotApplicable {
+        method: "integral-table variance".into(),
         reason: "the system has no finite state-space form".into(),
     })?;
     ss.require_stable()?;
@@ -509,8 +509,8 @@ pub fn variance_integral_table(sys: &dyn FrequencyResponse, exc: &Excitation, i:
     }
     let den = poly::mul(&delta, &f.den);
     if poly::trim(&den).len() > 8 {
-        return Err(Error::Numerical {
-            what: "integral-table variance".into(),
+        return Err(Error::NotApplicable {
+            method: "integral-table variance".into(),
             reason: format!("order {} exceeds the table's n ≤ 7", poly::trim(&den).len() - 1),
         });
     }

@@ -60,10 +60,10 @@ impl BandWhite {
 impl Spectrum for BandWhite {
     fn describe(&self) -> String {
         format!(
-            "band-limited white: S0 = {:e} (two-sided) on {:e} <= |w| <= {:e} {}",
-            self.level,
-            self.lo,
-            self.hi,
+            "band-limited white: S0 = {} (two-sided) on {} <= |w| <= {} {}",
+            crate::error::num(self.level),
+            crate::error::num(self.lo),
+            crate::error::num(self.hi),
             self.domain.angular_unit()
         )
     }

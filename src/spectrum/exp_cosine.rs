@@ -52,10 +52,10 @@ impl ExpCosine {
 impl Spectrum for ExpCosine {
     fn describe(&self) -> String {
         format!(
-            "type 3: K = D exp(-alpha |tau|) cos(beta tau), D = {:e}, alpha = {:e}, beta = {:e} 1/{}",
-            self.variance,
-            self.alpha,
-            self.beta,
+            "type 3: K = D exp(-alpha |tau|) cos(beta tau), D = {}, alpha = {}, beta = {} 1/{}",
+            crate::error::num(self.variance),
+            crate::error::num(self.alpha),
+            crate::error::num(self.beta),
             self.domain.lag_unit()
         )
     }

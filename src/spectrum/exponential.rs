@@ -52,9 +52,9 @@ impl Exponential {
 impl Spectrum for Exponential {
     fn describe(&self) -> String {
         format!(
-            "type 1: K = D exp(-alpha |tau|), D = {:e}, alpha = {:e} 1/{}",
-            self.variance,
-            self.alpha,
+            "type 1: K = D exp(-alpha |tau|), D = {}, alpha = {} 1/{}",
+            crate::error::num(self.variance),
+            crate::error::num(self.alpha),
             self.domain.lag_unit()
         )
     }

@@ -52,10 +52,10 @@ impl GaussCosine {
 impl Spectrum for GaussCosine {
     fn describe(&self) -> String {
         format!(
-            "type 4: K = D exp(-alpha tau^2) cos(beta tau), D = {:e}, alpha = {:e} 1/{lag}^2, beta = {:e} 1/{lag}",
-            self.variance,
-            self.alpha,
-            self.beta,
+            "type 4: K = D exp(-alpha tau^2) cos(beta tau), D = {}, alpha = {} 1/{lag}^2, beta = {} 1/{lag}",
+            crate::error::num(self.variance),
+            crate::error::num(self.alpha),
+            crate::error::num(self.beta),
             lag = self.domain.lag_unit()
         )
     }

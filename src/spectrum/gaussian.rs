@@ -49,9 +49,9 @@ impl Gaussian {
 impl Spectrum for Gaussian {
     fn describe(&self) -> String {
         format!(
-            "type 2: K = D exp(-alpha tau^2), D = {:e}, alpha = {:e} 1/{}^2",
-            self.variance,
-            self.alpha,
+            "type 2: K = D exp(-alpha tau^2), D = {}, alpha = {} 1/{}^2",
+            crate::error::num(self.variance),
+            crate::error::num(self.alpha),
             self.domain.lag_unit()
         )
     }

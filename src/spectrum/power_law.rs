@@ -152,7 +152,7 @@ impl PowerLaw {
             waviness,
             band,
             domain,
-            label: format!("power law G(n0) = {g0:e}"),
+            label: format!("power law G(n0) = {}", crate::error::num(g0)),
         })
     }
 
@@ -163,10 +163,7 @@ impl PowerLaw {
     /// As [`PowerLaw::new`] for the band.
     pub fn iso8608(class: IsoClass, bound: IsoBound, band: Option<(f64, f64)>) -> Result<Self> {
         let mut p = PowerLaw::new(class.g0(bound), ISO_N0, ISO_WAVINESS, band, Domain::Spatial)?;
-        p.label = format!(
-            "ISO 8608 class {class} ({bound:?}), G_d(n0) = {:e} m^3",
-            class.g0(bound)
-        );
+        p.label = format!("ISO 8608 class {class} ({bound:?}), G_d(n0) = {} m^3", class.g0(bound));
         Ok(p)
     }
 
@@ -192,15 +189,20 @@ impl PowerLaw {
 impl Spectrum for PowerLaw {
     fn describe(&self) -> String {
         let band = match self.band {
-            Some((a, b)) => format!("band {a}..{b} {}", self.domain.cyclic_unit()),
+            Some((a, b)) => format!(
+                "band {}..{} {}",
+                crate::error::num(a),
+                crate::error::num(b),
+                self.domain.cyclic_unit()
+            ),
             None => "no band (infinite variance)".to_string(),
         };
         format!(
             "{}, n0 = {} {}, w = {}, {band}",
             self.label,
-            self.n0,
+            crate::error::num(self.n0),
             self.domain.cyclic_unit(),
-            self.waviness
+            crate::error::num(self.waviness)
         )
     }
     fn domain(&self) -> Domain {

@@ -102,7 +102,7 @@ impl Tabulated {
 impl Spectrum for Tabulated {
     fn describe(&self) -> String {
         format!(
-            "tabulated ({} points, given as {}), {:e}..{:e} {}",
+            "tabulated ({} points, given as {}), {}..{} {}",
             self.omega.len(),
             self.convention,
             self.omega[0],

@@ -72,14 +72,14 @@ impl TwoPoleRoad {
 impl Spectrum for TwoPoleRoad {
     fn describe(&self) -> String {
         format!(
-            "textbook (8.66) road, {}: D_q = {:e} m^2, alpha = {} 1/m, beta = {} 1/m (units assumed)",
+            "textbook (8.66) road, {}: D_q = {} m^2, alpha = {} 1/m, beta = {} 1/m (units assumed)",
             match self.form {
                 Form::AsPrinted => "as printed (one pole)",
                 Form::Consistent => "consistent form (two poles)",
             },
-            self.dq,
-            self.alpha,
-            self.beta
+            crate::error::num(self.dq),
+            crate::error::num(self.alpha),
+            crate::error::num(self.beta)
         )
     }
     fn domain(&self) -> Domain {

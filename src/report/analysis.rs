@@ -1,0 +1,199 @@
+//! The `stochvib analyze` report: per output, the mean, σ, 3σ bounds, crossing rates and every variance
+//! method with its value and its relative difference to the reference.
+
+use crate::error::Result;
+use crate::response::{analyze_output, band_variance, OutputStatistics};
+use crate::scenario::Scenario;
+use serde::Serialize;
+use std::fmt;
+
+/// A level and its Rice up-crossing rate and exceedance probability within the scenario's duration.
+#[derive(Debug, Clone, Serialize)]
+pub struct LevelRow {
+    /// Level in the output's SI unit.
+    pub level: f64,
+    /// Up-crossings per second (per metre for a spatial system).
+    pub upcrossing_rate: Option<f64>,
+    /// Probability of at least one up-crossing in the duration (Poisson).
+    pub exceedance_probability: Option<f64>,
+}
+
+/// One output's section of the report.
+#[derive(Debug, Clone, Serialize)]
+pub struct OutputReport {
+    /// The statistics, with every method.
+    pub statistics: OutputStatistics,
+    /// Lower 3σ bound.
+    pub lower_3sigma: Option<f64>,
+    /// Upper 3σ bound.
+    pub upper_3sigma: Option<f64>,
+    /// σ over the scenario's band, if one is given.
+    pub band_sigma: Option<f64>,
+    /// Why the band σ is missing, if it is.
+    pub band_note: Option<String>,
+    /// Expected largest value within the duration (Davenport).
+    pub expected_largest_peak: Option<f64>,
+    /// Crossing rates at M + 3σ and at the scenario's levels.
+    pub levels: Vec<LevelRow>,
+}
+
+/// The whole analysis report.
+#[derive(Debug, Clone, Serialize)]
+pub struct AnalysisReport {
+    /// Scenario title.
+    pub title: String,
+    /// Scenario file.
+    pub scenario: String,
+    /// Model description.
+    pub model: String,
+    /// Input description.
+    pub input: String,
+    /// Band in rad/s, if any.
+    pub band_rad_s: Option<(f64, f64)>,
+    /// Duration in s for exceedances and peaks.
+    pub duration_s: f64,
+    /// One section per reported output.
+    pub outputs: Vec<OutputReport>,
+}
+
+/// Runs every analysis of the scenario.
+///
+/// # Errors
+/// Only when the scenario's system and excitation do not fit together; divergent or inapplicable methods
+/// are reported inside.
+pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
+    let sys = sc.model.system.as_ref();
+    let mut outputs = Vec::new();
+    for &i in &sc.analysis.outputs {
+        let st = analyze_output(sys, &sc.excitation, i)?;
+        let bounds = st.bounds(3.0);
+        let (band_sigma, band_note) = match sc.analysis.band {
+            None => (None, None),
+            Some((a, b)) => match band_variance(sys, &sc.excitation, i, a, b) {
+                Ok(q) => (Some(q.value.sqrt()), None),
+                Err(e) => (None, Some(e.to_string())),
+            },
+        };
+        let mut level_values: Vec<f64> = bounds.map(|b| vec![b.1]).unwrap_or_default();
+        for (j, lv) in &sc.analysis.levels {
+            if *j == i {
+                level_values.extend(lv);
+            }
+        }
+        let levels = level_values
+            .into_iter()
+            .map(|a| LevelRow {
+                level: a,
+                upcrossing_rate: st.upcrossing_rate(a),
+                exceedance_probability: st.exceedance_probability(a, sc.analysis.duration),
+            })
+            .collect();
+        outputs.push(OutputReport {
+            lower_3sigma: bounds.map(|b| b.0),
+            upper_3sigma: bounds.map(|b| b.1),
+            band_sigma,
+            band_note,
+            expected_largest_peak: st.expected_largest_peak(sc.analysis.duration),
+            levels,
+            statistics: st,
+        });
+    }
+    Ok(AnalysisReport {
+        title: sc.title.clone(),
+        scenario: sc.path.display().to_string(),
+        model: sc.model.description.clone(),
+        input: format!(
+            "{} ({}){}",
+            sc.input_name,
+            sc.input_spectrum.describe(),
+            sc.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
+        ),
+        band_rad_s: sc.analysis.band,
+        duration_s: sc.analysis.duration,
+        outputs,
+    })
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map(|x| format!("{x:.6e}")).unwrap_or_else(|| "—".into())
+}
+
+impl fmt::Display for AnalysisReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "scenario  {}  ({})", self.title, self.scenario)?;
+        writeln!(f, "model     {}", self.model)?;
+        writeln!(f, "input     {}", self.input)?;
+        for o in &self.outputs {
+            let s = &o.statistics;
+            writeln!(f)?;
+            writeln!(f, "output {} [{}]", s.name, s.unit)?;
+            writeln!(f, "  mean          {}", opt(s.mean))?;
+            match s.sigma {
+                Some(sig) => writeln!(f, "  sigma         {sig:.6e}")?,
+                None => writeln!(
+                    f,
+                    "  sigma         infinite/undefined: {}",
+                    s.variance_note.as_deref().unwrap_or("")
+                )?,
+            }
+            writeln!(f, "  3σ bounds     [{}, {}]", opt(o.lower_3sigma), opt(o.upper_3sigma))?;
+            if let (Some((a, b)), true) = (self.band_rad_s, o.band_sigma.is_some() || o.band_note.is_some()) {
+                let band = format!(
+                    "{:.3}–{:.3} Hz",
+                    a / (2.0 * std::f64::consts::PI),
+                    b / (2.0 * std::f64::consts::PI)
+                );
+                match (o.band_sigma, &o.band_note) {
+                    (Some(v), _) => writeln!(f, "  sigma {band}  {v:.6e}")?,
+                    (None, Some(n)) => writeln!(f, "  sigma {band}  — {n}")?,
+                    _ => {}
+                }
+            }
+            writeln!(
+                f,
+                "  ν0+ (zero up-crossings) {} /s   bandwidth ε {}",
+                opt(s.zero_upcrossing_rate),
+                opt(s.bandwidth)
+            )?;
+            writeln!(
+                f,
+                "  expected largest peak in {} s: {}",
+                self.duration_s,
+                opt(o.expected_largest_peak)
+            )?;
+            for l in &o.levels {
+                writeln!(
+                    f,
+                    "  level {:.6e}: up-crossing rate {} /s, P(exceed in {} s) {}",
+                    l.level,
+                    opt(l.upcrossing_rate),
+                    self.duration_s,
+                    opt(l.exceedance_probability)
+                )?;
+            }
+            writeln!(
+                f,
+                "  {:<16} {:>14} {:>11} {:>11}  note",
+                "variance method", "value", "error est.", "rel. diff"
+            )?;
+            for m in &s.methods {
+                let name = serde_json::to_value(m.method)
+                    .ok()
+                    .and_then(|v| v.as_str().map(String::from))
+                    .unwrap_or_default();
+                writeln!(
+                    f,
+                    "  {:<16} {:>14} {:>11} {:>11}  {}",
+                    name,
+                    opt(m.value),
+                    m.error_estimate
+                        .map(|e| format!("{e:.1e}"))
+                        .unwrap_or_else(|| "—".into()),
+                    m.rel_diff.map(|e| format!("{e:.1e}")).unwrap_or_else(|| "—".into()),
+                    m.note.as_deref().unwrap_or("")
+                )?;
+            }
+        }
+        Ok(())
+    }
+}
