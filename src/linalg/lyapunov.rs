@@ -266,6 +266,69 @@ fn stability_margin(a: &DMatrix<f64>) -> f64 {
 /// assert!(x[(0, 1)].abs() < 1e-12);
 /// ```
 pub fn solve_continuous_lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+    check_pair(a, q)?;
+    // Badly scaled models (positions in m next to momenta in kg m/s, filter poles at 1e3 rad/s) make the
+    // backward-stable Bartels–Stewart solution inaccurate in its small entries. Balance A by a diagonal
+    // similarity of powers of two (exact in floating point), solve, scale back, then refine once with the
+    // residual: A E + E Aᵀ + R = 0, X ← X + E.
+    let d = balance_diagonal(a);
+    let n = a.nrows();
+    let ab = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
+    let scale_q = |m: &DMatrix<f64>| DMatrix::from_fn(n, n, |i, j| m[(i, j)] / (d[i] * d[j]));
+    let unscale = |m: &DMatrix<f64>| DMatrix::from_fn(n, n, |i, j| m[(i, j)] * d[i] * d[j]);
+    let mut x = unscale(&solve_schur(&ab, &scale_q(q))?);
+    for _ in 0..2 {
+        let r = a * &x + &x * a.transpose() + q;
+        let r = (&r + r.transpose()) * 0.5;
+        let e = unscale(&solve_schur(&ab, &scale_q(&r))?);
+        x += e;
+    }
+    Ok((&x + x.transpose()) * 0.5)
+}
+
+/// Osborne/Parlett–Reinsch balancing: diagonal D (powers of two) such that D⁻¹AD has rows and columns of
+/// comparable norm.
+fn balance_diagonal(a: &DMatrix<f64>) -> Vec<f64> {
+    let n = a.nrows();
+    let mut d = vec![1.0f64; n];
+    for _ in 0..100 {
+        let mut converged = true;
+        for i in 0..n {
+            let (mut c, mut r) = (0.0, 0.0);
+            for j in 0..n {
+                if j != i {
+                    c += (a[(j, i)] * d[i] / d[j]).abs();
+                    r += (a[(i, j)] * d[j] / d[i]).abs();
+                }
+            }
+            if c == 0.0 || r == 0.0 {
+                continue;
+            }
+            let mut f = 1.0;
+            let (mut cc, mut rr) = (c, r);
+            while cc < rr / 2.0 {
+                cc *= 2.0;
+                rr /= 2.0;
+                f *= 2.0;
+            }
+            while cc > rr * 2.0 {
+                cc /= 2.0;
+                rr *= 2.0;
+                f /= 2.0;
+            }
+            if (cc + rr) < 0.95 * (c + r) {
+                converged = false;
+                d[i] *= f;
+            }
+        }
+        if converged {
+            break;
+        }
+    }
+    d
+}
+
+fn solve_schur(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
     const WHAT: &str = "solve_continuous_lyapunov";
     let n = check_pair(a, q)?;
     let qs = symmetric_part(q)?;

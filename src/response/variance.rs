@@ -290,6 +290,10 @@ fn check_io(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<(
             format!("the system has {} outputs", sys.outputs().len()),
         ));
     }
+    // |H(iω)|² of an unstable system is finite, but no stationary response exists: never integrate it
+    if let Some(ss) = sys.state_space() {
+        ss.require_stable()?;
+    }
     Ok(())
 }
 
@@ -321,14 +325,14 @@ fn filters(exc: &Excitation) -> Result<Vec<ShapingFilter>> {
 
 /// The augmented system z = [filter states; system states] driven by unit-intensity white noise w, with
 /// output row h and white-noise feedthrough f: y = h z + f w.
-struct Augmented {
-    a: DMatrix<f64>,
-    g: DMatrix<f64>,
-    h: DMatrix<f64>,
-    f: DMatrix<f64>,
+pub(crate) struct Augmented {
+    pub(crate) a: DMatrix<f64>,
+    pub(crate) g: DMatrix<f64>,
+    pub(crate) h: DMatrix<f64>,
+    pub(crate) f: DMatrix<f64>,
 }
 
-fn augment(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<Augmented> {
+pub(crate) fn augment(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<Augmented> {
     if !exc.delay_free() {
         return Err(Error::NotApplicable {
             method: "exact (Lyapunov / integral-table) variance".into(),
