@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the system libraries stochvib needs when they are missing (Debian/Ubuntu):
+#   libhdf5-dev + pkg-config (always), python3 + h5py (with --with-h5py, for the file-layout tests).
+# Uses sudo only when not root. Does nothing when everything is present.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+apt_updated=0
+apt_install() {
+  if [ "$apt_updated" -eq 0 ]; then $SUDO apt-get update -qq; apt_updated=1; fi
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "$@" >/dev/null
+}
+if ! { command -v pkg-config >/dev/null 2>&1 && pkg-config --exists hdf5; }; then
+  echo "ensure-deps: installing libhdf5-dev pkg-config" >&2
+  apt_install libhdf5-dev pkg-config
+fi
+if [ "${1:-}" = "--with-h5py" ]; then
+  if ! command -v python3 >/dev/null 2>&1; then
+    echo "ensure-deps: installing python3" >&2
+    apt_install python3 python3-pip
+  fi
+  if ! python3 -c 'import h5py' >/dev/null 2>&1; then
+    echo "ensure-deps: installing h5py" >&2
+    python3 -m pip install --quiet h5py 2>/dev/null \
+      || python3 -m pip install --quiet --break-system-packages h5py 2>/dev/null \
+      || apt_install python3-h5py
+  fi
+fi
