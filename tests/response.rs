@@ -172,9 +172,7 @@ fn acceleration_divergence_detected() {
             assert!(rel(mv.value.unwrap(), r) < QUADRATURE, "{:?} {:?}", mv.method, mv.value);
         }
     }
-    // with the smoother two-pole road (S ~ ω⁻⁴) the acceleration variance is finite
-    let road2 = Arc::new(ExpCosine::new(1e-4, 2.0, 0.0, Domain::Temporal).unwrap());
-    let _ = road2; // type 3 with β = 0 still decays like ω⁻²; use a genuinely two-pole spectrum:
+    // with a two-pole input, S = 1/((1 + ω²)(4 + ω²)) ~ ω⁻⁴, the acceleration variance is finite
     let smooth = Arc::new(RationalSpectrum::new(vec![1.0], vec![4.0, 5.0, 1.0], Domain::Temporal).unwrap());
     let exc2 = Excitation::single(smooth, 0.0).unwrap();
     let st = analyze_output(&sys, &exc2, 1).unwrap();
@@ -345,4 +343,67 @@ fn non_rational_input_uses_quadrature() {
     assert!(st.variance.is_some());
     assert!(st.methods[0].note.as_ref().unwrap().contains("not rational"));
     assert!(st.methods[2].value.is_some());
+}
+
+/// Rice crossing statistics of an SDOF oscillator under white noise: λ₂/λ₀ = ω_n² exactly
+/// (λ₀ = πS₀/(2ζω_n³), λ₂ = πS₀/(2ζω_n)), so ν₀⁺ = ω_n/(2π); ν_a⁺ = ν₀⁺ e^{−a²/(2σ²)};
+/// P(exceed a in T) = 1 − exp(−ν_a⁺T); Davenport's expected largest peak
+/// σ(√(2 ln ν₀⁺T) + γ/√(2 ln ν₀⁺T)) with γ = 0.5772156649.
+#[test]
+fn rice_crossing_rates_sdof_white_noise() {
+    let (wn, zeta, s0) = (2.0 * PI * 3.0, 0.05, 0.02);
+    let sys = sdof(wn, zeta);
+    let exc = Excitation::single(white(s0), 0.0).unwrap();
+    let st = analyze_output(&sys, &exc, 0).unwrap();
+    let sigma = (PI * s0 / (2.0 * zeta * wn.powi(3))).sqrt();
+    let nu0 = wn / (2.0 * PI);
+    assert!(rel(st.zero_upcrossing_rate.unwrap(), nu0) < FACTORISATION);
+    let a = 2.5 * sigma;
+    let nua = nu0 * (-(2.5f64 * 2.5) / 2.0).exp();
+    assert!(rel(st.upcrossing_rate(a).unwrap(), nua) < FACTORISATION);
+    let t = 600.0;
+    assert!(rel(st.exceedance_probability(a, t).unwrap(), 1.0 - (-nua * t).exp()) < FACTORISATION);
+    let r = (2.0 * (nu0 * t).ln()).sqrt();
+    let peak = sigma * (r + 0.5772156649015329 / r);
+    assert!(rel(st.expected_largest_peak(t).unwrap(), peak) < FACTORISATION);
+    // bounds are M ± 3σ
+    let (lo, hi) = st.bounds(3.0).unwrap();
+    assert!(rel(hi, 3.0 * sigma) < FACTORISATION && rel(lo, -3.0 * sigma) < FACTORISATION);
+    // white-noise SDOF displacement: λ₄ infinite, so no bandwidth parameter is claimed
+    assert!(st.lambda4.is_none() && st.bandwidth.is_none());
+}
+
+/// The cross-spectral-matrix route H S_u Hᴴ (dense, general) equals the per-output delayed-sum route used
+/// by quadrature, for a two-wheel track with delays (an oracle for the fast path).
+#[test]
+fn cross_spectral_matrix_matches_fast_path() {
+    let two = {
+        let a = DMatrix::from_row_slice(2, 2, &[-3.0, 0.0, 1.0, -5.0]);
+        let b = DMatrix::from_row_slice(2, 2, &[3.0, 0.0, 0.0, 5.0]);
+        let c = DMatrix::from_row_slice(2, 2, &[1.0, 0.5, 0.0, 1.0]);
+        StateSpace::new(
+            a,
+            b,
+            c,
+            None,
+            None,
+            vec![OutputInfo::new("p", "m"), OutputInfo::new("q", "m")],
+        )
+        .unwrap()
+    };
+    let x = Arc::new(ExpCosine::new(1.0, 0.7, 2.0, Domain::Temporal).unwrap());
+    let exc = Excitation::track(x, vec![0.0, 0.37], vec![1.0, -0.6], 0.0).unwrap();
+    for w in [0.0, 0.5, 2.0, 9.0] {
+        let h = two.response(w);
+        let su = exc.matrix(w);
+        let sy = &h * su * h.adjoint();
+        for i in 0..2 {
+            let fast = stochvib::response::output_density(&two, &exc, i, w);
+            assert!(
+                (sy[(i, i)].re - fast).abs() <= 1e-12 * fast.abs().max(1e-300),
+                "ω={w} i={i}"
+            );
+            assert!(sy[(i, i)].im.abs() <= 1e-12 * fast.abs().max(1e-300));
+        }
+    }
 }
