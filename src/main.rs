@@ -40,6 +40,13 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Reproduce every worked example of the source documents: printed value, computed value, relative
+    /// difference and an explanation for every difference over 2 %.
+    Book {
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
     Spectrum {
         /// Catalogue name (e.g. `iso8608-c`) or path to a spectrum file.
@@ -108,6 +115,14 @@ fn main() -> Result<()> {
             }
             if failed > 0 {
                 anyhow::bail!("{failed} spectrum file(s) in {} are invalid", dir.display());
+            }
+        }
+        Command::Book { json } => {
+            let r = report::book::book_report();
+            if json {
+                emit_line(&serde_json::to_string_pretty(&r)?);
+            } else {
+                emit(&format!("{r}"));
             }
         }
         Command::Analyze {

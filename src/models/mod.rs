@@ -9,4 +9,4 @@ mod instance;
 mod registry;
 
 pub use instance::{InputLayout, ModelInstance};
-pub use registry::{from_fields, KINDS};
+pub use registry::{book_rows, from_fields, KINDS};

@@ -14,3 +14,9 @@ pub fn from_fields(kind: &str, f: &Fields) -> Option<Result<ModelInstance>> {
         _ => None,
     }
 }
+
+/// Every catalogue model's worked-example rows for the `book` report, in source order.
+pub fn book_rows() -> Vec<crate::report::book::BookRow> {
+    let rows = Vec::new();
+    rows
+}
