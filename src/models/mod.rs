@@ -8,3 +8,6 @@
 mod instance;
 
 pub use instance::{InputLayout, ModelInstance};
+pub mod balancer_bogie;
+pub mod conveyor_idler;
+pub mod scraper;
