@@ -10,8 +10,9 @@ use crate::report::book::BookRow;
 use crate::response::{analyze_output, Excitation, OutputStatistics};
 use crate::scenario::Fields;
 use crate::spectrum::{two_pole_road::Form, AtSpeed, Domain, Exponential, Spectrum, TwoPoleRoad};
-use crate::system::{Attach, Element, Mdof, Quantity};
+use crate::system::{OutputInfo, StateSpace};
 use crate::units::Dim;
+use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
 /// The printed Table 8.1 (transcribed from the book, with units and the parameters it does not print).
@@ -90,16 +91,66 @@ pub struct ScraperSprungCab {
     b2: f64,
 }
 
-fn tyre(c1: f64, b1: f64, n: usize) -> Element {
-    let mut point = vec![0.0; n];
-    point[0] = 1.0;
-    Element {
-        name: "tyre".into(),
-        point,
-        to: Attach::Base(0),
-        stiffness: c1,
-        damping: b1,
+/// An output of [`base_excited`]: displacement or acceleration of the point gᵀq.
+enum Out {
+    Disp(Vec<f64>),
+    Acc(Vec<f64>),
+}
+
+/// A well-scaled state space of M q̈ + B q̇ + C q = k_u u + b_u u̇ (diagonal M, one base input u):
+/// state x = [q; q̇ − M⁻¹b_u u], so that
+/// ```text
+/// A = [[0, I], [−M⁻¹C, −M⁻¹B]],   B_ss = [M⁻¹b_u; M⁻¹k_u − M⁻¹B M⁻¹b_u]
+/// gᵀq̈ = gᵀ(−M⁻¹C q − M⁻¹B x₂ + (M⁻¹k_u − M⁻¹B M⁻¹b_u) u + M⁻¹b_u u̇)
+/// ```
+/// Every entry is a frequency or a squared frequency. (`Mdof`'s state [q; M q̇ − B_u u] mixes entries of
+/// size 1/m and c, ~1e-5 and ~1e7 for a 30 t axle, and the Lyapunov solver then mistakes the poles for
+/// λᵢ + λⱼ ≈ 0.)
+fn base_excited(
+    masses: &[f64],
+    c: &[f64],
+    b: &[f64],
+    ku: &[f64],
+    bu: &[f64],
+    outs: &[(&str, Out)],
+) -> Result<StateSpace> {
+    let n = masses.len();
+    let minv = DMatrix::from_diagonal(&DVector::from_iterator(n, masses.iter().map(|m| 1.0 / m)));
+    let mc = &minv * DMatrix::from_row_slice(n, n, c);
+    let mb = &minv * DMatrix::from_row_slice(n, n, b);
+    let mku = &minv * DVector::from_column_slice(ku);
+    let mbu = &minv * DVector::from_column_slice(bu);
+    let lower = &mku - &mb * &mbu;
+    let mut a = DMatrix::zeros(2 * n, 2 * n);
+    a.view_mut((0, n), (n, n)).fill_with_identity();
+    a.view_mut((n, 0), (n, n)).copy_from(&(-&mc));
+    a.view_mut((n, n), (n, n)).copy_from(&(-&mb));
+    let mut bs = DMatrix::zeros(2 * n, 1);
+    bs.view_mut((0, 0), (n, 1)).copy_from(&mbu);
+    bs.view_mut((n, 0), (n, 1)).copy_from(&lower);
+    let p = outs.len();
+    let (mut cs, mut d, mut e) = (DMatrix::zeros(p, 2 * n), DMatrix::zeros(p, 1), DMatrix::zeros(p, 1));
+    let mut infos = Vec::with_capacity(p);
+    for (i, (name, o)) in outs.iter().enumerate() {
+        match o {
+            Out::Disp(g) => {
+                for (j, gj) in g.iter().enumerate() {
+                    cs[(i, j)] = *gj;
+                }
+                infos.push(OutputInfo::new(*name, "m"));
+            }
+            Out::Acc(g) => {
+                let g = DVector::from_column_slice(g);
+                let gt = g.transpose();
+                cs.view_mut((i, 0), (1, n)).copy_from(&(-(&gt * &mc)));
+                cs.view_mut((i, n), (1, n)).copy_from(&(-(&gt * &mb)));
+                d[(i, 0)] = (&gt * &lower)[(0, 0)];
+                e[(i, 0)] = (&gt * &mbu)[(0, 0)];
+                infos.push(OutputInfo::new(*name, "m/s^2"));
+            }
+        }
     }
+    StateSpace::new(a, bs, cs, Some(d), Some(e), infos)
 }
 
 fn track_layout() -> InputLayout {
@@ -136,9 +187,14 @@ impl ScraperRigidCab {
     /// assert!((m.system.static_gain().unwrap()[(0, 0)] - 1.0).abs() < 1e-12); // x1 follows q statically
     /// ```
     pub fn instance(&self) -> Result<ModelInstance> {
-        let sys = Mdof::from_elements(&[("x1", "m")], &[self.m1], vec![tyre(self.c1, self.b1, 1)], 1, &[])?
-            .with_output("x1", Quantity::Displacement(vec![1.0]))?
-            .with_output("x1_acc", Quantity::Acceleration(vec![1.0]))?;
+        let sys = base_excited(
+            &[self.m1],
+            &[self.c1],
+            &[self.b1],
+            &[self.c1],
+            &[self.b1],
+            &[("x1", Out::Disp(vec![1.0])), ("x1_acc", Out::Acc(vec![1.0]))],
+        )?;
         Ok(ModelInstance {
             system: Arc::new(sys),
             layout: track_layout(),
@@ -181,25 +237,22 @@ impl ScraperSprungCab {
     /// assert!((g[(1, 0)] - 1.0).abs() < 1e-12 && g[(4, 0)].abs() < 1e-12); // cab follows q, no static travel
     /// ```
     pub fn instance(&self) -> Result<ModelInstance> {
-        let cab = Element {
-            name: "cab mount".into(),
-            point: vec![0.0, 1.0],
-            to: Attach::Point(vec![1.0, 0.0]),
-            stiffness: self.c2,
-            damping: self.b2,
-        };
-        let sys = Mdof::from_elements(
-            &[("x1", "m"), ("x2", "m")],
+        // C and B of (8.65): tyre on x1 to the road, cab mount between x1 and x2
+        let (c1, c2, b1, b2) = (self.c1, self.c2, self.b1, self.b2);
+        let sys = base_excited(
             &[self.m1, self.m2],
-            vec![tyre(self.c1, self.b1, 2), cab],
-            1,
-            &[],
-        )?
-        .with_output("x1", Quantity::Displacement(vec![1.0, 0.0]))?
-        .with_output("x2", Quantity::Displacement(vec![0.0, 1.0]))?
-        .with_output("x1_acc", Quantity::Acceleration(vec![1.0, 0.0]))?
-        .with_output("x2_acc", Quantity::Acceleration(vec![0.0, 1.0]))?
-        .with_output("cab_travel", Quantity::Deflection(1))?;
+            &[c1 + c2, -c2, -c2, c2],
+            &[b1 + b2, -b2, -b2, b2],
+            &[c1, 0.0],
+            &[b1, 0.0],
+            &[
+                ("x1", Out::Disp(vec![1.0, 0.0])),
+                ("x2", Out::Disp(vec![0.0, 1.0])),
+                ("x1_acc", Out::Acc(vec![1.0, 0.0])),
+                ("x2_acc", Out::Acc(vec![0.0, 1.0])),
+                ("cab_travel", Out::Disp(vec![-1.0, 1.0])),
+            ],
+        )?;
         Ok(ModelInstance {
             system: Arc::new(sys),
             layout: track_layout(),
