@@ -560,7 +560,17 @@ pub fn table_8_1_comparison(assumptions: &Table81Assumptions) -> Result<Vec<Book
     Ok(out)
 }
 
-/// Table 8.1 rows with the default [`Table81Assumptions`] (empty if the data file were broken).
+/// Table 8.1 rows with the default [`Table81Assumptions`] (one row carrying the error if the data file
+/// were broken, so the failure is visible in the report).
 pub fn book_rows() -> Vec<BookRow> {
-    table_8_1_comparison(&Table81Assumptions::default()).unwrap_or_default()
+    table_8_1_comparison(&Table81Assumptions::default()).unwrap_or_else(|e| {
+        vec![BookRow {
+            example: "Sukharev 8.7, Table 8.1 (scraper, rigid and sprung cab)".into(),
+            quantity: "Table 8.1".into(),
+            unit: "-".into(),
+            printed: None,
+            computed: None,
+            explanation: format!("could not be computed: {e}"),
+        }]
+    })
 }
