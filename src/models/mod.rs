@@ -9,4 +9,8 @@ mod instance;
 mod registry;
 
 pub use instance::{InputLayout, ModelInstance};
-pub use registry::{book_rows, from_fields, KINDS};
+pub use registry::{book_rows, from_fields, ModelContext, KINDS};
+
+pub mod balancer_bogie;
+pub mod conveyor_idler;
+pub mod scraper;

@@ -109,14 +109,20 @@ pub fn parse_scenario(text: &str, path: &Path, spectra_dir: &Path) -> Result<Sce
     let f = Fields::new(path, "", &root);
     let title = f.opt_string("title")?.unwrap_or("").to_string();
     let source = f.opt_string("source")?.unwrap_or("").to_string();
+    let input_t = table(&f, "input")?;
+    let inf = Fields::new(path, "input", input_t);
+    let speed = inf.opt_quantity("speed", Dim::VELOCITY)?;
+    if let Some(v) = speed {
+        if !(v > 0.0) {
+            return Err(inf.error("speed", v, "must be > 0"));
+        }
+    }
     let model_t = table(&f, "model")?;
     let mf = Fields::new(path, "model", model_t);
     let kind = mf.string("kind")?.to_string();
-    let model = build_model(&kind, &mf)?;
+    let model = build_model(&kind, &mf, crate::models::ModelContext { speed })?;
     mf.finish()?;
 
-    let input_t = table(&f, "input")?;
-    let inf = Fields::new(path, "input", input_t);
     let (input_spectrum, input_name) = match inf.require("spectrum")? {
         toml::Value::String(name) => {
             let p = Path::new(name.as_str());
@@ -159,12 +165,6 @@ pub fn parse_scenario(text: &str, path: &Path, spectra_dir: &Path) -> Result<Sce
             ))
         }
     };
-    let speed = inf.opt_quantity("speed", Dim::VELOCITY)?;
-    if let Some(v) = speed {
-        if !(v > 0.0) {
-            return Err(inf.error("speed", v, "must be > 0"));
-        }
-    }
     // the mean is in the input process's own unit: a number (SI) or a quantity string of any dimension
     let mean = match inf.get("mean") {
         None => 0.0,
@@ -333,7 +333,7 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
 ///
 /// # Errors
 /// [`Error::File`] for an unknown kind or bad keys.
-pub fn build_model(kind: &str, f: &Fields) -> Result<ModelInstance> {
+pub fn build_model(kind: &str, f: &Fields, ctx: crate::models::ModelContext) -> Result<ModelInstance> {
     match kind {
         "mdof" => mdof_from_fields(f),
         "transfer-function" => {
@@ -363,7 +363,7 @@ pub fn build_model(kind: &str, f: &Fields) -> Result<ModelInstance> {
                 description: "state-space system".into(),
             })
         }
-        other => crate::models::from_fields(other, f).unwrap_or_else(|| {
+        other => crate::models::from_fields(other, f, ctx).unwrap_or_else(|| {
             Err(f.error(
                 "kind",
                 other,
