@@ -8,3 +8,6 @@
 mod instance;
 
 pub use instance::{InputLayout, ModelInstance};
+pub mod half_car;
+pub mod isolation;
+pub mod operator_seat;
