@@ -219,8 +219,9 @@ impl HalfCar {
     /// The (z, φ) model as an [`Mdof`]: coordinates `z` (m), `phi` (rad); elements `front` (point z + aφ to
     /// base input 0) and `rear` (point z − bφ to base input 1); outputs `bounce` (z, m), `pitch` (φ, rad),
     /// `front_travel` (z + aφ − q₁, m), `rear_travel` (z − bφ − q₂, m), `body_acc` (z̈ + x_p φ̈ at the
-    /// point x_p = `acc_point` metres ahead of the centre of mass; the Mdof labels its unit `mixed/s^2`
-    /// when x_p ≠ 0 because z and φ have different units — [`HalfCar::instance`] relabels it m/s²).
+    /// point x_p = `acc_point` metres ahead of the centre of mass). The Mdof labels the units of the travels
+    /// and of an off-centre acceleration `mixed` because the points combine z (m) and φ (rad);
+    /// [`HalfCar::instance`] relabels them m and m/s².
     ///
     /// # Errors
     /// Non-finite `acc_point`.
@@ -259,7 +260,7 @@ impl HalfCar {
         .with_output("body_acc", Quantity::Acceleration(vec![1.0, acc_point]))
     }
 
-    /// The random-road model: the [`HalfCar::mdof`] system (with `body_acc` labelled m/s²) and
+    /// The random-road model: the [`HalfCar::mdof`] system (travels labelled m, `body_acc` m/s²) and
     /// `InputLayout::Track { positions: [0, L], gains: [1, 1] }` — the rear wheel follows the front wheel's
     /// track with the delay L/v.
     ///
@@ -270,12 +271,10 @@ impl HalfCar {
         let infos = mdof
             .outputs()
             .iter()
-            .map(|o| {
-                if o.name == "body_acc" {
-                    OutputInfo::new("body_acc", "m/s^2")
-                } else {
-                    o.clone()
-                }
+            .map(|o| match o.name.as_str() {
+                "body_acc" => OutputInfo::new("body_acc", "m/s^2"),
+                "front_travel" | "rear_travel" => OutputInfo::new(o.name.clone(), "m"),
+                _ => o.clone(),
             })
             .collect();
         Ok(ModelInstance {
@@ -301,7 +300,7 @@ impl HalfCar {
     }
 }
 
-/// The half-car [`Mdof`] with its output units relabelled (z̈ + x_p φ̈ is in m/s² since φ is in rad).
+/// The half-car [`Mdof`] with its output units relabelled (z + aφ is in m and z̈ + x_p φ̈ in m/s², φ being in rad).
 #[derive(Debug, Clone)]
 struct HalfCarSystem {
     mdof: Mdof,

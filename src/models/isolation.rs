@@ -361,7 +361,7 @@ pub fn from_fields_single(f: &Fields) -> Result<ModelInstance> {
         (Some(b), None) => b,
         (None, Some(_)) => {
             let z = f.number("damping_ratio")?;
-            if !(z >= 0.0) {
+            if !z.is_finite() || z < 0.0 {
                 return Err(f.error("damping_ratio", z, "must be >= 0"));
             }
             2.0 * z * (c * m).abs().sqrt()
