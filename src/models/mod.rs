@@ -13,4 +13,7 @@ pub use registry::{book_rows, from_fields, ModelContext, KINDS};
 
 pub mod balancer_bogie;
 pub mod conveyor_idler;
+pub mod half_car;
+pub mod isolation;
+pub mod operator_seat;
 pub mod scraper;

@@ -1,6 +1,6 @@
 //! Scenario-file kinds of the catalogue models.
 
-use super::{balancer_bogie, conveyor_idler, scraper, ModelInstance};
+use super::{balancer_bogie, conveyor_idler, half_car, isolation, operator_seat, scraper, ModelInstance};
 use crate::error::Result;
 use crate::scenario::Fields;
 
@@ -26,6 +26,10 @@ pub fn from_fields(kind: &str, f: &Fields, ctx: ModelContext) -> Option<Result<M
         "conveyor-idler" => conveyor_idler::from_fields(f),
         "scraper-rigid-cab" => scraper::rigid_from_fields(f),
         "scraper-sprung-cab" => scraper::sprung_from_fields(f),
+        "half-car" => half_car::from_fields(f),
+        "operator-seat" => operator_seat::from_fields(f),
+        "isolator-single" => isolation::from_fields_single(f),
+        "isolator-two-stage" => isolation::from_fields_two_stage(f),
         _ => return None,
     })
 }
@@ -36,5 +40,8 @@ pub fn book_rows() -> Vec<crate::report::book::BookRow> {
     rows.extend(balancer_bogie::book_rows());
     rows.extend(conveyor_idler::book_rows());
     rows.extend(scraper::book_rows());
+    rows.extend(isolation::book_rows());
+    rows.extend(half_car::book_rows());
+    rows.extend(operator_seat::book_rows());
     rows
 }

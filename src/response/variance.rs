@@ -142,9 +142,9 @@ pub fn check_moment(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: 
                     quantity: what,
                     reason: format!(
                         "the output density decays only like ω^{exponent} as ω → ∞ (|H|² times the input \
-                         density){}, so the integral of ω^{k}·S_y diverges. This happens e.g. for the \
+                         density){}, so ∫ω^{k}·S_y dω diverges. This happens e.g. for the \
                          acceleration of a damped base-excited mass under a first-order (type 1) road, whose \
-                         density tends to a constant. Ask for a band-limited value (`--band`, e.g. 0.5–80 Hz) \
+                         density tends to a constant. Ask for a band-limited value (scenario `[analysis] band = [\"0.5 Hz\", \"80 Hz\"]`, or `band_variance`) \
                          or use a smoother input spectrum",
                         if k > 0 {
                             format!(" and ω^{k} multiplies it")
@@ -446,12 +446,12 @@ fn white_divergence(name: &str, k: u32) -> Error {
             format!("spectral moment λ{k} of `{name}`")
         },
         reason: format!(
-            "{} of the output contains a white-noise component (the augmented system feeds the driving noise \
+            "{} contains a white-noise component (the augmented system feeds the driving noise \
              straight through), so its density does not decay; ask for a band-limited value",
             match k {
                 0 => "the output",
-                2 => "the derivative",
-                _ => "the second derivative",
+                2 => "the derivative of the output",
+                _ => "the second derivative of the output",
             }
         ),
     }

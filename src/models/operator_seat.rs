@@ -1,0 +1,649 @@
+//! Operator seat under base motion, against the sanitary limits of Table 7.1 (Sukharev (2012) 7.6,
+//! Example 7.2 (seat)).
+//!
+//! # Formula
+//! Operator and seat reduced to one mass m_pr = (5/7) m_operator + m_seat (kg, book line 4067) on the seat
+//! spring c (N/m) and damper b = 2 h m_pr (N s/m; the book gives h in s⁻¹). Base (cab floor) motion u(t);
+//! seat motion z, relative motion y = z − u:
+//! ```text
+//! m_pr z̈ + b(ż − u̇) + c(z − u) = 0,   ω = √(c/m_pr),   β = h/ω,   ν = λ/ω          (7.37)–(7.41)
+//! ÿ + 2h ẏ + ω² y = −ü = A_u λ² sin λt   for u = A_u sin λt                         (7.38)
+//! η = A/A_u = √[(1 + 4β²ν²)/((1 − ν²)² + 4β²ν²)],   η_eff = 1/η                       (7.42), (7.43)
+//! η_rel = A_y/A_u = ν² / √((1 − ν²)² + 4β²ν²)                                          (7.44)
+//! d ≥ 2 A_y (free travel to the stops)                                                 (7.45)
+//! σ_v = Aλ/√2,   σ_a = Aλ²/√2 (RMS of the seat's velocity and acceleration)             (7.46)–(7.49)
+//! ```
+//! **Octave bands** (book 4034–4036): centres 1, 2, 4, 8, 16, 31.5, 63 Hz, edges f_c/√2 … f_c√2. Because
+//! 31.5 ≠ 32 the nominal 16 Hz band [11.31, 22.63] and 31.5 Hz band [22.27, 44.55] overlap by 0.35 Hz; the
+//! rule here: a band's lower edge is max(f_c/√2, upper edge of the band below), and bands are half-open
+//! [lo, hi), so every frequency belongs to at most one band (the 31.5 Hz band is [22.63, 44.55) Hz).
+//! **Random base motion** with two-sided displacement density S_u(ω): the band variance of an output with
+//! frequency response H(iω) is σ² = 2∫_{2πf_lo}^{2πf_hi} |H(iω)|² S_u(ω) dω ([`band_variance`]); for a
+//! **harmonic** base motion the band RMS is the sinusoid's RMS (amplitude/√2) in the band containing its
+//! frequency and 0 in the others.
+//!
+//! # Examples
+//! ```
+//! use stochvib::models::operator_seat::OperatorSeat;
+//! // Example 7.2: 80 kg operator, 26 kg seat, c = 6500 N/m, h = 4.22 1/s, u = 0.0035 sin 6πt
+//! let seat = OperatorSeat::with_damping_rate(80.0, 26.0, 6500.0, 4.22).unwrap();
+//! let r = seat.harmonic(0.0035, 6.0 * std::f64::consts::PI).unwrap();
+//! assert!((r.velocity_rms - 0.02588).abs() < 1e-4);
+//! ```
+
+use crate::error::{require_positive, Error, Result};
+use crate::models::isolation::{transmissibility, wrap_param};
+use crate::models::{InputLayout, ModelInstance};
+use crate::report::book::BookRow;
+use crate::response::{band_variance, Excitation};
+use crate::scenario::Fields;
+use crate::spectrum::Spectrum;
+use crate::system::{Attach, Element, FrequencyResponse, Mdof, Quantity};
+use crate::units::Dim;
+use std::f64::consts::{PI, SQRT_2};
+use std::path::Path;
+use std::sync::Arc;
+
+/// Octave-band centre frequencies, Hz (book line 4036).
+pub const OCTAVE_CENTRES_HZ: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 31.5, 63.0];
+
+/// The octave bands as (centre, lower edge, upper edge), Hz, with the non-overlap rule of the module docs.
+///
+/// # Examples
+/// ```
+/// use stochvib::models::operator_seat::octave_bands;
+/// let b = octave_bands();
+/// assert!((b[2].1 - 4.0 / 2f64.sqrt()).abs() < 1e-12);
+/// assert_eq!(b[5].1, b[4].2); // 31.5 Hz band starts where the 16 Hz band ends
+/// ```
+pub fn octave_bands() -> Vec<(f64, f64, f64)> {
+    let mut out: Vec<(f64, f64, f64)> = Vec::new();
+    for &fc in &OCTAVE_CENTRES_HZ {
+        let mut lo = fc / SQRT_2;
+        if let Some(prev) = out.last() {
+            lo = lo.max(prev.2);
+        }
+        out.push((fc, lo, fc * SQRT_2));
+    }
+    out
+}
+
+/// Index of the octave band [lo, hi) containing frequency `f_hz` (Hz), if any.
+pub fn band_index(f_hz: f64) -> Option<usize> {
+    octave_bands().iter().position(|&(_, lo, hi)| f_hz >= lo && f_hz < hi)
+}
+
+/// Octave-band RMS of a sinusoid of amplitude `amplitude` at `f_hz` (Hz): amplitude/√2 in its band, 0 elsewhere.
+pub fn harmonic_band_rms(amplitude: f64, f_hz: f64) -> Vec<f64> {
+    let mut out = vec![0.0; OCTAVE_CENTRES_HZ.len()];
+    if let Some(i) = band_index(f_hz) {
+        out[i] = amplitude.abs() / SQRT_2;
+    }
+    out
+}
+
+/// Octave-band RMS of output `output` of `sys` under `exc`: √(2∫_band S_y dω) per band, by [`band_variance`].
+///
+/// # Errors
+/// Those of [`band_variance`] (mismatched inputs, quadrature failure).
+pub fn random_band_rms(sys: &dyn FrequencyResponse, exc: &Excitation, output: usize) -> Result<Vec<f64>> {
+    octave_bands()
+        .iter()
+        .map(|&(_, lo, hi)| {
+            Ok(band_variance(sys, exc, output, 2.0 * PI * lo, 2.0 * PI * hi)?
+                .value
+                .max(0.0)
+                .sqrt())
+        })
+        .collect()
+}
+
+/// One row of Table 7.1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitBand {
+    /// Octave centre, Hz.
+    pub centre_hz: f64,
+    /// RMS acceleration limit, m/s².
+    pub acceleration: f64,
+    /// Printed acceleration level, dB.
+    pub acceleration_db: f64,
+    /// RMS velocity limit, m/s.
+    pub velocity: f64,
+    /// Printed velocity level, dB.
+    pub velocity_db: f64,
+    /// Transcription note (e.g. an inconsistent printed value).
+    pub comment: Option<String>,
+}
+
+/// Sanitary limits of vertical vibration on the seat (Table 7.1), read from `data/table-7-1.toml`.
+///
+/// # Formula
+/// Levels in dB: L = 20 log₁₀(x/x₀) with x₀ = `reference_acceleration` (1e-6 m/s²) or `reference_velocity`
+/// (5e-8 m/s) (the book prints no references; these reproduce its dB column except the 4 Hz velocity).
+///
+/// # Errors
+/// [`SanitaryLimits::parse`] fails with [`Error::File`] on a missing or invalid key, an unknown key, or band
+/// centres that are not the seven octave centres in order.
+///
+/// # Examples
+/// ```
+/// use stochvib::models::operator_seat::SanitaryLimits;
+/// let t = SanitaryLimits::table_7_1().unwrap();
+/// assert_eq!(t.bands[2].velocity, 0.0251);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SanitaryLimits {
+    /// Provenance.
+    pub source: String,
+    /// x₀ for acceleration levels, m/s².
+    pub reference_acceleration: f64,
+    /// x₀ for velocity levels, m/s.
+    pub reference_velocity: f64,
+    /// One entry per octave band, in the order of [`OCTAVE_CENTRES_HZ`].
+    pub bands: Vec<LimitBand>,
+}
+
+impl SanitaryLimits {
+    /// Table 7.1 from the `data/table-7-1.toml` of the source tree (embedded at compile time).
+    ///
+    /// # Errors
+    /// As [`SanitaryLimits::parse`].
+    pub fn table_7_1() -> Result<Self> {
+        Self::parse(
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/data/table-7-1.toml")),
+            Path::new("data/table-7-1.toml"),
+        )
+    }
+
+    /// Reads a limits file.
+    ///
+    /// # Errors
+    /// [`Error::Io`] if unreadable, otherwise as [`SanitaryLimits::parse`].
+    pub fn load(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses limits-file text (`path` for messages).
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+        let table: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
+            file: path.to_path_buf(),
+            reason: e.to_string(),
+        })?;
+        let f = Fields::new(path, "", &table);
+        f.opt_string("title")?;
+        let source = f.string("source")?.to_string();
+        let reference_acceleration = f.quantity("reference_acceleration", Dim::ACCELERATION)?;
+        let reference_velocity = f.quantity("reference_velocity", Dim::VELOCITY)?;
+        let arr = f.require("band")?;
+        let arr = arr
+            .as_array()
+            .ok_or_else(|| f.error("band", arr, "expected an array of tables [[band]]"))?;
+        if arr.len() != OCTAVE_CENTRES_HZ.len() {
+            return Err(f.error("band", arr.len(), "need the seven octave bands 1 ... 63 Hz"));
+        }
+        let mut bands = Vec::new();
+        for (i, v) in arr.iter().enumerate() {
+            let key = format!("band[{i}]");
+            let t = v.as_table().ok_or_else(|| f.error(&key, v, "expected a table"))?;
+            let b = Fields::new(path, &key, t);
+            let cv = b.require("centre")?;
+            let centre_hz = b.angular_frequency(cv, "centre", Dim::FREQUENCY)? / (2.0 * PI);
+            if (centre_hz - OCTAVE_CENTRES_HZ[i]).abs() > 1e-9 * OCTAVE_CENTRES_HZ[i] {
+                return Err(b.error("centre", cv, format!("expected {} Hz here", OCTAVE_CENTRES_HZ[i])));
+            }
+            let band = LimitBand {
+                centre_hz: OCTAVE_CENTRES_HZ[i],
+                acceleration: b.quantity("acceleration", Dim::ACCELERATION)?,
+                acceleration_db: b.number("acceleration_db")?,
+                velocity: b.quantity("velocity", Dim::VELOCITY)?,
+                velocity_db: b.number("velocity_db")?,
+                comment: b.opt_string("comment")?.map(str::to_string),
+            };
+            for (k, x) in [("acceleration", band.acceleration), ("velocity", band.velocity)] {
+                if x <= 0.0 {
+                    return Err(b.error(k, x, "a limit must be > 0"));
+                }
+            }
+            b.finish()?;
+            bands.push(band);
+        }
+        f.finish()?;
+        Ok(SanitaryLimits {
+            source,
+            reference_acceleration,
+            reference_velocity,
+            bands,
+        })
+    }
+}
+
+/// Band-by-band comparison with the limits.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandCheck {
+    /// Octave centre, Hz.
+    pub centre_hz: f64,
+    /// Band edges [lo, hi), Hz.
+    pub band_hz: (f64, f64),
+    /// RMS seat velocity in the band, m/s.
+    pub velocity_rms: f64,
+    /// Limit, m/s.
+    pub velocity_limit: f64,
+    /// RMS seat acceleration in the band, m/s².
+    pub acceleration_rms: f64,
+    /// Limit, m/s².
+    pub acceleration_limit: f64,
+}
+
+impl BandCheck {
+    /// velocity_rms ≤ limit.
+    pub fn velocity_ok(&self) -> bool {
+        self.velocity_rms <= self.velocity_limit
+    }
+    /// acceleration_rms ≤ limit.
+    pub fn acceleration_ok(&self) -> bool {
+        self.acceleration_rms <= self.acceleration_limit
+    }
+}
+
+/// Pairs band RMS values with the limits (pass/fail per band).
+///
+/// # Errors
+/// Slices that do not have one value per octave band.
+pub fn assess(velocity_rms: &[f64], acceleration_rms: &[f64], limits: &SanitaryLimits) -> Result<Vec<BandCheck>> {
+    let n = OCTAVE_CENTRES_HZ.len();
+    if velocity_rms.len() != n || acceleration_rms.len() != n || limits.bands.len() != n {
+        return Err(Error::invalid(
+            "band values",
+            velocity_rms.len(),
+            format!("need {n} octave bands"),
+        ));
+    }
+    Ok(octave_bands()
+        .iter()
+        .enumerate()
+        .map(|(i, &(fc, lo, hi))| BandCheck {
+            centre_hz: fc,
+            band_hz: (lo, hi),
+            velocity_rms: velocity_rms[i],
+            velocity_limit: limits.bands[i].velocity,
+            acceleration_rms: acceleration_rms[i],
+            acceleration_limit: limits.bands[i].acceleration,
+        })
+        .collect())
+}
+
+/// Harmonic response of the seat (Example 7.2 quantities).
+#[derive(Debug, Clone, PartialEq)]
+pub struct HarmonicResponse {
+    /// f = λ/2π, Hz.
+    pub frequency_hz: f64,
+    /// ν = λ/ω.
+    pub nu: f64,
+    /// η (7.42).
+    pub eta: f64,
+    /// η_rel (7.44).
+    pub eta_rel: f64,
+    /// η_eff = 1/η (7.43).
+    pub eta_eff: f64,
+    /// A = η A_u, m.
+    pub amplitude: f64,
+    /// A_y = η_rel A_u, m.
+    pub relative_amplitude: f64,
+    /// σ_v = Aλ/√2, m/s.
+    pub velocity_rms: f64,
+    /// σ_a = Aλ²/√2, m/s².
+    pub acceleration_rms: f64,
+    /// d = 2A_y, m (minimum free travel to the stops, (7.45)).
+    pub free_travel: f64,
+}
+
+/// Operator + seat on a base-excited spring–damper (book 7.6).
+///
+/// # Formula
+/// See the module docs.
+///
+/// # Errors
+/// Constructors reject non-positive masses, stiffness, negative damping and non-finite values.
+///
+/// # Examples
+/// ```
+/// use stochvib::models::operator_seat::OperatorSeat;
+/// let seat = OperatorSeat::with_damping_rate(80.0, 26.0, 6500.0, 4.22).unwrap();
+/// assert!((seat.reduced_mass() - (5.0 / 7.0 * 80.0 + 26.0)).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct OperatorSeat {
+    /// Operator mass, kg.
+    pub operator_mass: f64,
+    /// Seat mass, kg.
+    pub seat_mass: f64,
+    /// c, N/m.
+    pub stiffness: f64,
+    /// b, N s/m.
+    pub damping: f64,
+}
+
+impl OperatorSeat {
+    /// Builds the model from the operator and seat masses (kg), c (N/m) and b (N s/m).
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn new(operator_mass: f64, seat_mass: f64, stiffness: f64, damping: f64) -> Result<Self> {
+        require_positive("operator_mass", operator_mass)?;
+        if !(seat_mass.is_finite() && seat_mass >= 0.0) {
+            return Err(Error::invalid("seat_mass", seat_mass, "must be finite and >= 0"));
+        }
+        require_positive("stiffness", stiffness)?;
+        if !(damping.is_finite() && damping >= 0.0) {
+            return Err(Error::invalid("damping", damping, "must be finite and >= 0"));
+        }
+        Ok(OperatorSeat {
+            operator_mass,
+            seat_mass,
+            stiffness,
+            damping,
+        })
+    }
+
+    /// Builds the model with the book's damping rate h (s⁻¹): b = 2 h m_pr.
+    ///
+    /// # Errors
+    /// As [`OperatorSeat::new`]; h < 0.
+    pub fn with_damping_rate(operator_mass: f64, seat_mass: f64, stiffness: f64, h: f64) -> Result<Self> {
+        if !(h.is_finite() && h >= 0.0) {
+            return Err(Error::invalid("damping_rate", h, "must be finite and >= 0"));
+        }
+        let m_pr = 5.0 / 7.0 * operator_mass + seat_mass;
+        Self::new(operator_mass, seat_mass, stiffness, 2.0 * h * m_pr)
+    }
+
+    /// m_pr = (5/7) m_operator + m_seat, kg.
+    pub fn reduced_mass(&self) -> f64 {
+        5.0 / 7.0 * self.operator_mass + self.seat_mass
+    }
+    /// ω = √(c/m_pr), rad/s.
+    pub fn natural_frequency(&self) -> f64 {
+        (self.stiffness / self.reduced_mass()).sqrt()
+    }
+    /// h = b/(2 m_pr), s⁻¹.
+    pub fn damping_rate(&self) -> f64 {
+        self.damping / (2.0 * self.reduced_mass())
+    }
+    /// β = h/ω.
+    pub fn damping_ratio(&self) -> f64 {
+        self.damping_rate() / self.natural_frequency()
+    }
+    /// η(λ) (7.42), λ in rad/s.
+    pub fn transmissibility(&self, lambda: f64) -> f64 {
+        transmissibility(lambda / self.natural_frequency(), self.damping_ratio())
+    }
+    /// η_rel(λ) = ν²/√((1−ν²)² + 4β²ν²) (7.44).
+    pub fn relative_transmissibility(&self, lambda: f64) -> f64 {
+        let nu = lambda / self.natural_frequency();
+        let b = self.damping_ratio();
+        nu * nu / ((1.0 - nu * nu).powi(2) + 4.0 * b * b * nu * nu).sqrt()
+    }
+
+    /// Steady-state response to u = A_u sin λt (A_u in m, λ in rad/s).
+    ///
+    /// # Errors
+    /// A_u < 0, λ ≤ 0, non-finite values.
+    pub fn harmonic(&self, base_amplitude: f64, lambda: f64) -> Result<HarmonicResponse> {
+        if !(base_amplitude.is_finite() && base_amplitude >= 0.0) {
+            return Err(Error::invalid(
+                "base_amplitude",
+                base_amplitude,
+                "must be finite and >= 0",
+            ));
+        }
+        require_positive("lambda", lambda)?;
+        let eta = self.transmissibility(lambda);
+        let eta_rel = self.relative_transmissibility(lambda);
+        let a = eta * base_amplitude;
+        let ay = eta_rel * base_amplitude;
+        Ok(HarmonicResponse {
+            frequency_hz: lambda / (2.0 * PI),
+            nu: lambda / self.natural_frequency(),
+            eta,
+            eta_rel,
+            eta_eff: 1.0 / eta,
+            amplitude: a,
+            relative_amplitude: ay,
+            velocity_rms: a * lambda / SQRT_2,
+            acceleration_rms: a * lambda * lambda / SQRT_2,
+            free_travel: 2.0 * ay,
+        })
+    }
+
+    /// Base-excited model (input 0: base displacement u, m) with outputs `seat` (z, m), `seat_vel` (m/s),
+    /// `seat_acc` (m/s²), `travel` (z − u, m).
+    ///
+    /// # Errors
+    /// None for a validated model (the `Result` is the [`Mdof`] constructor's).
+    pub fn mdof(&self) -> Result<Mdof> {
+        let el = Element {
+            name: "seat".into(),
+            point: vec![1.0],
+            to: Attach::Base(0),
+            stiffness: self.stiffness,
+            damping: self.damping,
+        };
+        Mdof::from_elements(&[("z", "m")], &[self.reduced_mass()], vec![el], 1, &[])?
+            .with_output("seat", Quantity::Displacement(vec![1.0]))?
+            .with_output("seat_vel", Quantity::Velocity(vec![1.0]))?
+            .with_output("seat_acc", Quantity::Acceleration(vec![1.0]))?
+            .with_output("travel", Quantity::Deflection(0))
+    }
+
+    /// The model with a single random base displacement ([`InputLayout::Single`]).
+    ///
+    /// # Errors
+    /// As [`OperatorSeat::mdof`].
+    pub fn instance(&self) -> Result<ModelInstance> {
+        Ok(ModelInstance {
+            system: Arc::new(self.mdof()?),
+            layout: InputLayout::Single,
+            description: format!(
+                "operator seat (Sukharev 7.6): m_operator = {} kg, m_seat = {} kg (m_pr = {:.4} kg), c = {} N/m, \
+                 b = {} N s/m, base displacement input",
+                self.operator_mass,
+                self.seat_mass,
+                self.reduced_mass(),
+                self.stiffness,
+                self.damping
+            ),
+        })
+    }
+
+    /// Octave-band check of a harmonic base motion u = A_u sin λt: the seat's velocity and acceleration RMS in
+    /// the band containing λ/2π, 0 elsewhere.
+    ///
+    /// # Errors
+    /// As [`OperatorSeat::harmonic`].
+    pub fn assess_harmonic(&self, base_amplitude: f64, lambda: f64, limits: &SanitaryLimits) -> Result<Vec<BandCheck>> {
+        let r = self.harmonic(base_amplitude, lambda)?;
+        let v = harmonic_band_rms(r.amplitude * lambda, r.frequency_hz);
+        let a = harmonic_band_rms(r.amplitude * lambda * lambda, r.frequency_hz);
+        assess(&v, &a, limits)
+    }
+
+    /// Octave-band check of a random base displacement with temporal two-sided density `base` (m²·s/rad).
+    ///
+    /// # Errors
+    /// Non-temporal spectrum; quadrature failure.
+    pub fn assess_random(&self, base: Arc<dyn Spectrum>, limits: &SanitaryLimits) -> Result<Vec<BandCheck>> {
+        let sys = self.mdof()?;
+        let exc = Excitation::single(base, 0.0)?;
+        let v = random_band_rms(&sys, &exc, 1)?;
+        let a = random_band_rms(&sys, &exc, 2)?;
+        assess(&v, &a, limits)
+    }
+}
+
+/// Reads a `kind = "operator-seat"` `[model]` table: `operator_mass`, `seat_mass`, `stiffness`, and exactly
+/// one of `damping` (N s/m) or `damping_rate` (the book's h, 1/s).
+///
+/// # Errors
+/// [`Error::File`] naming the key for a missing or invalid value, or both / neither damping key.
+pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
+    let mo = f.quantity("operator_mass", Dim::MASS)?;
+    let ms = f.quantity("seat_mass", Dim::MASS)?;
+    let c = f.quantity("stiffness", Dim::STIFFNESS)?;
+    let seat = match (f.opt_quantity("damping", Dim::DAMPING)?, f.get("damping_rate")) {
+        (Some(_), Some(v)) => {
+            return Err(f.error("damping_rate", v, "give either `damping` or `damping_rate`, not both"))
+        }
+        (Some(b), None) => OperatorSeat::new(mo, ms, c, b),
+        (None, Some(_)) => OperatorSeat::with_damping_rate(mo, ms, c, f.quantity("damping_rate", Dim::FREQUENCY)?),
+        (None, None) => {
+            return Err(f.error(
+                "damping",
+                "<missing>",
+                "give `damping` (N s/m) or `damping_rate` (the book's h, 1/s)",
+            ))
+        }
+    }
+    .map_err(|e| wrap_param(f, e))?;
+    seat.instance()
+}
+
+/// Example 7.2 (seat, book 4146): m_operator = 80 kg, m_seat = 26 kg, c = 6500 N/m, h = 4.22 s⁻¹;
+/// returns the model, A_u = 0.0035 m and λ = 6π rad/s.
+pub fn example_7_2() -> (OperatorSeat, f64, f64) {
+    (
+        OperatorSeat::with_damping_rate(80.0, 26.0, 6500.0, 4.22).expect("valid book parameters"),
+        0.0035,
+        6.0 * PI,
+    )
+}
+
+/// Book rows of Example 7.2 (seat): every printed number, and the verdict of line 4188.
+pub fn book_rows() -> Vec<BookRow> {
+    let ex = "Sukharev 7.6, Example 7.2 (operator seat)";
+    let (seat, au, lambda) = example_7_2();
+    let r = seat.harmonic(au, lambda).ok();
+    let limits = SanitaryLimits::table_7_1().ok();
+    let band = band_index(lambda / (2.0 * PI));
+    let lim = |f: fn(&LimitBand) -> f64| -> Option<f64> {
+        let l = limits.as_ref()?;
+        Some(f(&l.bands[band?]))
+    };
+    let g = |f: fn(&HarmonicResponse) -> f64| r.as_ref().map(f);
+    let row = |q: &str, unit: &str, printed: Option<f64>, computed: Option<f64>, why: &str| BookRow {
+        example: ex.into(),
+        quantity: q.into(),
+        unit: unit.into(),
+        printed,
+        computed,
+        explanation: why.into(),
+    };
+    let vel_ratio = g(|r| r.velocity_rms).zip(lim(|b| b.velocity)).map(|(a, b)| a / b);
+    let acc_ratio = g(|r| r.acceleration_rms)
+        .zip(lim(|b| b.acceleration))
+        .map(|(a, b)| a / b);
+    vec![
+        row(
+            "m_pr",
+            "kg",
+            Some(83.0),
+            Some(seat.reduced_mass()),
+            "5/7*80 + 26 = 83.14, printed rounded",
+        ),
+        row(
+            "omega",
+            "rad/s",
+            Some(8.85),
+            Some(seat.natural_frequency()),
+            "sqrt(c/m_pr)",
+        ),
+        row(
+            "beta = h/omega",
+            "1",
+            Some(0.477),
+            Some(seat.damping_ratio()),
+            "h = 4.22 1/s",
+        ),
+        row("nu = lambda/omega", "1", Some(2.13), g(|r| r.nu), "lambda = 6 pi rad/s"),
+        row(
+            "eta (7.42)",
+            "1",
+            Some(0.56),
+            g(|r| r.eta),
+            "rounding (the book's rounded beta, nu give 0.5552)",
+        ),
+        row("eta_rel (7.44)", "1", Some(1.11), g(|r| r.eta_rel), ""),
+        row(
+            "eta_eff = 1/eta",
+            "1",
+            Some(1.78),
+            g(|r| r.eta_eff),
+            "book: 1/0.56 (= 1.786) printed 1.78",
+        ),
+        row("A = A_u eta", "m", Some(0.00196), g(|r| r.amplitude), ""),
+        row("A_y = A_u eta_rel", "m", Some(0.0039), g(|r| r.relative_amplitude), ""),
+        row(
+            "sigma_v = A lambda/sqrt 2",
+            "m/s",
+            Some(0.026),
+            g(|r| r.velocity_rms),
+            "",
+        ),
+        row(
+            "sigma_a = A lambda^2/sqrt 2",
+            "m/s^2",
+            Some(0.49),
+            g(|r| r.acceleration_rms),
+            "",
+        ),
+        row(
+            "f = lambda/(2 pi)",
+            "Hz",
+            Some(3.0),
+            g(|r| r.frequency_hz),
+            "in the 4 Hz octave band",
+        ),
+        row(
+            "velocity limit, 4 Hz band",
+            "m/s",
+            Some(0.025),
+            lim(|b| b.velocity),
+            "Table 7.1: 2.51e-2 m/s; the text rounds to 0.025",
+        ),
+        row(
+            "acceleration limit, 4 Hz band",
+            "m/s^2",
+            Some(0.57),
+            lim(|b| b.acceleration),
+            "Table 7.1",
+        ),
+        row(
+            "d = 2 A_y",
+            "m",
+            Some(0.008),
+            g(|r| r.free_travel),
+            "the book states the bound d >= 0.008 m, i.e. 2 A_y = 0.00778 m rounded up",
+        ),
+        row(
+            "sigma_v / velocity limit (4 Hz)",
+            "1",
+            None,
+            vel_ratio,
+            "the book (line 4188) says the seat meets the norm; it does not: sigma_v = 0.0259 m/s exceeds 0.0251 m/s \
+             (ratio > 1; with the printed 0.026 > 0.025 too)",
+        ),
+        row(
+            "sigma_a / acceleration limit (4 Hz)",
+            "1",
+            None,
+            acc_ratio,
+            "acceleration criterion met (ratio < 1)",
+        ),
+    ]
+}
