@@ -143,6 +143,6 @@ pub fn chunk_shape(n_samples: usize, shard_size: usize) -> (usize, usize) {
     let columns = n_samples.clamp(1, CHUNK_MAX_COLUMNS);
     let shard = shard_size.max(1);
     let limit = (CHUNK_TARGET_BYTES / (8 * columns)).max(1).min(shard);
-    let rows = (1..=limit).rev().find(|r| shard % r == 0).unwrap_or(1);
+    let rows = (1..=limit).rev().find(|r| shard.is_multiple_of(*r)).unwrap_or(1);
     (rows, columns)
 }

@@ -335,7 +335,7 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
     let _ = writeln!(s, "  n_realizations   {}", m.n_realizations);
     let _ = writeln!(
         s,
-        "  shards           {} of {} realizations ({done} complete)",
+        "  shards           {} of up to {} realizations each ({done} complete)",
         m.n_shards(),
         m.shard_size
     );
@@ -398,13 +398,14 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
             let hi = e.omega.last().copied().unwrap_or(f64::NAN);
             let _ = writeln!(
                 s,
-                "    {:<12} {} points, omega {lo:.4} .. {hi:.4} rad/s, dof {}, confidence {}, [{}]{}",
+                "    {:<12} {} points, omega {lo:.4} .. {hi:.4} rad/s, dof {}, confidence {}, [{}]{}; {}",
                 e.output,
                 e.omega.len(),
                 e.dof,
                 e.confidence,
                 e.unit,
-                if e.analytic.is_some() { ", with analytic" } else { "" }
+                if e.analytic.is_some() { ", with analytic" } else { "" },
+                e.method
             );
         }
     }
