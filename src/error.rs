@@ -91,6 +91,14 @@ pub enum Error {
         /// Why.
         reason: String,
     },
+    /// An HDF5 run file could not be written or read, or is not a (complete) stochvib run file.
+    #[error("{}: {reason}", path.display())]
+    Hdf5 {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong and, where possible, what to do about it.
+        reason: String,
+    },
     /// Operating-system input/output error with the path involved.
     #[error("{}: {source}", path.display())]
     Io {

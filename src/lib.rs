@@ -14,6 +14,7 @@ pub mod report;
 pub mod response;
 pub mod scenario;
 pub mod spectrum;
+pub mod store;
 pub mod system;
 pub mod tolerance;
 pub mod units;

@@ -1,0 +1,148 @@
+//! Names of every group, dataset and attribute of a run file, the format version, and the chunking rule.
+//!
+//! These constants are the single source of truth for the layout documented in [`crate::store`]; the
+//! writer, the reader and the tests all use them.
+
+/// Version of the file layout. Incremented on any incompatible change; a reader refuses newer versions.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// Version of the crate that wrote the file (`CARGO_PKG_VERSION`).
+pub const TOOLKIT_VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Suffix appended to the final file name while a run is being written (`run.h5` → `run.h5.tmp`).
+pub const TMP_SUFFIX: &str = ".tmp";
+
+// ---- root attributes ----
+
+/// Root attribute, u32: [`FORMAT_VERSION`] of the writer.
+pub const ATTR_FORMAT_VERSION: &str = "format_version";
+/// Root attribute, string: crate version of the writer.
+pub const ATTR_TOOLKIT_VERSION: &str = "toolkit_version";
+/// Root attribute, string: the scenario file (TOML) the run was made from, verbatim.
+pub const ATTR_SCENARIO: &str = "scenario";
+/// Root attribute, u64: master seed of the run.
+pub const ATTR_SEED: &str = "seed";
+/// Root attribute, string: name of the random generator / synthesis method (e.g. `xoshiro256++`).
+pub const ATTR_GENERATOR: &str = "generator";
+/// Root attribute, f64: time step in seconds.
+pub const ATTR_DT: &str = "dt";
+/// Root attribute, string: unit system statement (`"SI"`; time in s, ω in rad/s; per-signal `unit`).
+pub const ATTR_UNITS: &str = "units";
+/// Root attribute, u64: samples per realization (columns of every signal dataset).
+pub const ATTR_N_SAMPLES: &str = "n_samples";
+/// Root attribute, u64: number of realizations (rows of every signal dataset).
+pub const ATTR_N_REALIZATIONS: &str = "n_realizations";
+/// Root attribute, u64: realizations per shard (the last shard may be shorter).
+pub const ATTR_SHARD_SIZE: &str = "shard_size";
+/// Root attribute, u64: number of shards, ⌈n_realizations / shard_size⌉.
+pub const ATTR_N_SHARDS: &str = "n_shards";
+/// Root attribute, u8 (0/1): whether the raw realizations are stored in `/inputs` and `/outputs`.
+pub const ATTR_STORE_RAW: &str = "store_raw";
+/// Root attribute, string: compression of the raw datasets (`"none"` or `"deflate:<level>"`).
+pub const ATTR_COMPRESSION: &str = "compression";
+/// Root attribute, u8 = 1: written last, just before the rename; a file without it is incomplete.
+pub const ATTR_COMPLETE: &str = "complete";
+
+/// The value of [`ATTR_UNITS`].
+pub const UNITS_VALUE: &str = "SI (time s, angular frequency rad/s); each signal has its own `unit` attribute";
+
+// ---- groups ----
+
+/// Group of the excitation signals (one dataset per input when raw data are stored).
+pub const GROUP_INPUTS: &str = "inputs";
+/// Group of the response signals (one dataset per output when raw data are stored).
+pub const GROUP_OUTPUTS: &str = "outputs";
+/// Group recording shard completion and per-shard accumulators.
+pub const GROUP_SHARDS: &str = "shards";
+/// Group of across-realization statistics, one subgroup per output.
+pub const GROUP_STATISTICS: &str = "statistics";
+/// Group of spectral density estimates, one subgroup per output.
+pub const GROUP_PSD: &str = "psd";
+
+// ---- attributes of /inputs and /outputs ----
+
+/// Group attribute, string array: signal names in order (present even when raw data are not stored).
+pub const ATTR_NAMES: &str = "names";
+/// Group attribute, string array: units of the signals, same order as [`ATTR_NAMES`].
+pub const ATTR_UNITS_LIST: &str = "units";
+/// Dataset attribute, string: physical unit of a signal, a statistic or a density.
+pub const ATTR_UNIT: &str = "unit";
+
+// ---- /shards ----
+
+/// Dataset `/shards/complete`, u8 `[n_shards]`: 1 once the shard's data are flushed to disk.
+pub const DS_SHARDS_COMPLETE: &str = "complete";
+/// Group attribute of `/shards`, string array: accumulator names in order.
+pub const ATTR_ACCUMULATORS: &str = "accumulators";
+
+// ---- /statistics/<output>/<statistic> ----
+
+/// Group attribute of `/statistics/<output>`, u64: realizations the statistics were computed from.
+pub const ATTR_N_USED: &str = "n_used";
+/// Attribute of a statistic dataset, f64: lower interval bound.
+pub const ATTR_LOWER: &str = "lower";
+/// Attribute of a statistic dataset, f64: upper interval bound.
+pub const ATTR_UPPER: &str = "upper";
+/// Attribute of a statistic dataset / PSD group, f64: confidence level of the interval (e.g. 0.95).
+pub const ATTR_CONFIDENCE: &str = "confidence";
+/// Attribute of a statistic dataset, f64 (optional): analytic value.
+pub const ATTR_ANALYTIC: &str = "analytic";
+/// Attribute of a statistic dataset, u8 0/1 (optional, only with `analytic`): interval covers it.
+pub const ATTR_COVERS: &str = "covers";
+/// Attribute of a statistic dataset / PSD group, string: how it was estimated (free text).
+pub const ATTR_METHOD: &str = "method";
+
+// ---- /psd/<output> ----
+
+/// Dataset, f64 `[n_freq]`: angular frequencies ω in rad/s.
+pub const DS_OMEGA: &str = "omega";
+/// Dataset, f64 `[n_freq]`: estimated two-sided density S(ω).
+pub const DS_DENSITY: &str = "density";
+/// Dataset, f64 `[n_freq]`: lower interval bound of the density.
+pub const DS_LOWER: &str = "lower";
+/// Dataset, f64 `[n_freq]`: upper interval bound of the density.
+pub const DS_UPPER: &str = "upper";
+/// Dataset, f64 `[n_freq]` (optional): analytic density at the same ω.
+pub const DS_ANALYTIC: &str = "analytic";
+/// Group attribute, string: the density convention ([`PSD_CONVENTION`]).
+pub const ATTR_CONVENTION: &str = "convention";
+/// Group attribute, f64: χ² degrees of freedom ν of the interval (ν = 2K for K averaged segments).
+pub const ATTR_DOF: &str = "dof";
+
+/// The value of [`ATTR_CONVENTION`]: the crate's canonical density (see [`crate::spectrum`]).
+pub const PSD_CONVENTION: &str = "two-sided angular: S(omega) for omega in rad/s, K(tau) = integral of S(omega) \
+                                  exp(i omega tau) d omega over (-inf, inf), variance = integral of S d omega; \
+                                  stored for omega >= 0 only";
+
+/// Target size of one chunk of a raw signal dataset, bytes (1 MiB, HDF5's default chunk-cache size).
+pub const CHUNK_TARGET_BYTES: usize = 1 << 20;
+/// Largest number of columns (samples) of one chunk: 2²⁰ samples = 8 MiB of f64.
+pub const CHUNK_MAX_COLUMNS: usize = 1 << 20;
+
+/// Chunk shape `(rows, columns)` of a raw signal dataset `[n_realizations, n_samples]`.
+///
+/// # Formula
+/// columns = min(n_samples, 2²⁰); rows = the largest divisor of `shard_size` that is
+/// ≤ max(1, ⌊1 MiB / (8 · columns)⌋). Rows divide the shard so that every shard write covers whole
+/// chunks (no chunk is shared by two shards: a shard's write never rewrites another shard's chunk, and
+/// reading one realization touches one chunk row); a chunk stays near 1 MiB, large enough for full-speed
+/// sequential writes, small enough that reading one realization does not read the whole file.
+///
+/// # Errors
+/// None; zero arguments are treated as 1.
+///
+/// # Examples
+/// ```
+/// use stochvib::store::layout::chunk_shape;
+/// // 64 samples of 8 bytes = 512 B per row; 1 MiB / 512 B = 2048 ≥ 3 rows: one chunk per shard.
+/// assert_eq!(chunk_shape(64, 3), (3, 64));
+/// // 2^16 samples = 512 KiB per row: 2 rows per chunk; 2 divides 10.
+/// assert_eq!(chunk_shape(1 << 16, 10), (2, 1 << 16));
+/// ```
+pub fn chunk_shape(n_samples: usize, shard_size: usize) -> (usize, usize) {
+    let columns = n_samples.clamp(1, CHUNK_MAX_COLUMNS);
+    let shard = shard_size.max(1);
+    let limit = (CHUNK_TARGET_BYTES / (8 * columns)).max(1).min(shard);
+    let rows = (1..=limit).rev().find(|r| shard.is_multiple_of(*r)).unwrap_or(1);
+    (rows, columns)
+}

@@ -1,0 +1,582 @@
+//! Reading a run file back, and a human-readable summary of it.
+
+use super::layout as L;
+use super::{h5err, Compression, OutputStatistics, PsdEstimate, RunMetadata, Signal, SignalGroup, Statistic};
+use crate::error::{Error, Result};
+use hdf5::types::VarLenUnicode;
+use hdf5::{File, Location};
+use ndarray::{s, Array2};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// A complete run file opened for reading.
+///
+/// Holds the HDF5 file open until dropped (or [`close`](RunFile::close)d): drop it before reopening the
+/// same file for writing.
+#[derive(Debug)]
+pub struct RunFile {
+    path: PathBuf,
+    file: File,
+    meta: RunMetadata,
+    format_version: u32,
+    toolkit_version: String,
+    complete: bool,
+    completed_shards: Vec<bool>,
+}
+
+impl RunFile {
+    /// Opens a complete run file.
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] if the path ends in `.tmp` (the temporary file of an unfinished run), if it is not
+    /// an HDF5 file or not a stochvib run file (a root attribute is missing or has the wrong type), if it
+    /// was written by a newer format version, or if it lacks `@complete`.
+    ///
+    /// # Examples
+    /// ```
+    /// let err = stochvib::store::RunFile::open("no/such/run.h5").unwrap_err();
+    /// assert!(err.to_string().contains("run.h5"));
+    /// ```
+    pub fn open(path: impl AsRef<Path>) -> Result<RunFile> {
+        let path = path.as_ref();
+        if path.to_string_lossy().ends_with(L::TMP_SUFFIX) {
+            return Err(Error::Hdf5 {
+                path: path.to_path_buf(),
+                reason: "is the temporary file of an unfinished run, not a result: rerun the same command to \
+                         resume it (or delete it)"
+                    .into(),
+            });
+        }
+        let run = Self::open_any(path)?;
+        if !run.complete {
+            let done = run.completed_shards().len();
+            return Err(Error::Hdf5 {
+                path: path.to_path_buf(),
+                reason: format!(
+                    "incomplete run file (no `@{}` attribute; {done} of {} shards written): it was not finished \
+                     and is not a result",
+                    L::ATTR_COMPLETE,
+                    run.meta.n_shards()
+                ),
+            });
+        }
+        Ok(run)
+    }
+
+    /// Opens a run file whether complete or not (for inspection of an interrupted run).
+    ///
+    /// # Errors
+    /// As [`open`](Self::open), except that `.tmp` names and a missing `@complete` are accepted.
+    pub fn open_any(path: impl AsRef<Path>) -> Result<RunFile> {
+        let path = path.as_ref().to_path_buf();
+        if !path.exists() {
+            return Err(Error::Hdf5 {
+                path,
+                reason: "no such file".into(),
+            });
+        }
+        let file = File::open(&path).map_err(h5err(&path, "not readable as an HDF5 file"))?;
+        let meta = read_metadata(&file, &path)?;
+        let format_version = attr_scalar::<u32>(&file, L::ATTR_FORMAT_VERSION, &path)?;
+        let toolkit_version = attr_string(&file, L::ATTR_TOOLKIT_VERSION, &path)?;
+        let complete = has_attr(&file, L::ATTR_COMPLETE) && attr_scalar::<u8>(&file, L::ATTR_COMPLETE, &path)? == 1;
+        let completed_shards = read_shards_complete(&file, &path, meta.n_shards())?;
+        Ok(RunFile {
+            path,
+            file,
+            meta,
+            format_version,
+            toolkit_version,
+            complete,
+            completed_shards,
+        })
+    }
+
+    /// The file's path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The run's metadata (root attributes and signal lists).
+    pub fn metadata(&self) -> &RunMetadata {
+        &self.meta
+    }
+
+    /// `@format_version` of the file.
+    pub fn format_version(&self) -> u32 {
+        self.format_version
+    }
+
+    /// `@toolkit_version` of the file (crate version of the writer).
+    pub fn toolkit_version(&self) -> &str {
+        &self.toolkit_version
+    }
+
+    /// Whether `@complete` is set.
+    pub fn is_complete(&self) -> bool {
+        self.complete
+    }
+
+    /// Indices of the completed shards, ascending.
+    pub fn completed_shards(&self) -> Vec<usize> {
+        (0..self.completed_shards.len())
+            .filter(|&i| self.completed_shards[i])
+            .collect()
+    }
+
+    /// Realization `realization` of a raw signal, `n_samples` values at t = k·dt.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] if raw data are not stored, the name is unknown or the index is out of
+    /// range; [`Error::Hdf5`] on read failure.
+    pub fn read_signal(&self, group: SignalGroup, name: &str, realization: usize) -> Result<Vec<f64>> {
+        Ok(self
+            .read_signals(group, name, realization..realization + 1)?
+            .into_raw_vec_and_offset()
+            .0)
+    }
+
+    /// Realizations `range` of a raw signal as a `[range.len(), n_samples]` array (one read).
+    ///
+    /// # Errors
+    /// As [`read_signal`](Self::read_signal).
+    pub fn read_signals(&self, group: SignalGroup, name: &str, range: std::ops::Range<usize>) -> Result<Array2<f64>> {
+        if !self.meta.store_raw {
+            return Err(Error::invalid(
+                "signal",
+                name,
+                "this run did not store raw realizations",
+            ));
+        }
+        let list = match group {
+            SignalGroup::Inputs => &self.meta.inputs,
+            SignalGroup::Outputs => &self.meta.outputs,
+        };
+        if !list.iter().any(|s| s.name == name) {
+            let known: Vec<&str> = list.iter().map(|s| s.name.as_str()).collect();
+            return Err(Error::invalid(
+                "signal",
+                name,
+                format!("not in /{} (has: {})", group.group_name(), known.join(", ")),
+            ));
+        }
+        if range.start > range.end || range.end > self.meta.n_realizations {
+            return Err(Error::invalid(
+                "realization",
+                format!("{range:?}"),
+                format!("the run has {} realizations", self.meta.n_realizations),
+            ));
+        }
+        let ds = self
+            .file
+            .dataset(&format!("{}/{}", group.group_name(), name))
+            .map_err(h5err(&self.path, "opening a signal dataset"))?;
+        ds.read_slice_2d::<f64, _>(s![range, ..])
+            .map_err(h5err(&self.path, "reading a signal"))
+    }
+
+    /// The accumulator vector `name` of shard `shard`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for an unknown name or a shard out of range; [`Error::Hdf5`] on read
+    /// failure.
+    pub fn read_accumulator(&self, name: &str, shard: usize) -> Result<Vec<f64>> {
+        if !self.meta.accumulators.iter().any(|a| a.0 == name) {
+            return Err(Error::invalid("accumulator", name, "not in this run"));
+        }
+        if shard >= self.meta.n_shards() {
+            return Err(Error::invalid(
+                "shard",
+                shard,
+                format!("the run has {} shards", self.meta.n_shards()),
+            ));
+        }
+        let ds = self
+            .file
+            .dataset(&format!("{}/{}", L::GROUP_SHARDS, name))
+            .map_err(h5err(&self.path, "opening an accumulator"))?;
+        ds.read_slice_1d::<f64, _>(s![shard, ..])
+            .map(|a| a.to_vec())
+            .map_err(h5err(&self.path, "reading an accumulator"))
+    }
+
+    /// All statistics in the file, in the order of the run's inputs then outputs.
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] if a statistics group is malformed.
+    pub fn statistics(&self) -> Result<Vec<OutputStatistics>> {
+        let p = &self.path;
+        let parent = self
+            .file
+            .group(L::GROUP_STATISTICS)
+            .map_err(h5err(p, "opening /statistics"))?;
+        let mut out = Vec::new();
+        for sig in self.meta.inputs.iter().chain(&self.meta.outputs) {
+            if !parent.link_exists(&sig.name) {
+                continue;
+            }
+            let g = parent
+                .group(&sig.name)
+                .map_err(h5err(p, "opening a statistics group"))?;
+            let names = attr_string_list(&g, L::ATTR_NAMES, p)?;
+            let mut statistics = Vec::new();
+            for name in names {
+                let ds = g
+                    .dataset(&name)
+                    .map_err(h5err(p, &format!("opening statistic `{name}`")))?;
+                let estimate = ds.read_scalar::<f64>().map_err(h5err(p, "reading a statistic"))?;
+                let analytic = if has_attr(&ds, L::ATTR_ANALYTIC) {
+                    Some(attr_scalar::<f64>(&ds, L::ATTR_ANALYTIC, p)?)
+                } else {
+                    None
+                };
+                let covers = if has_attr(&ds, L::ATTR_COVERS) {
+                    Some(attr_scalar::<u8>(&ds, L::ATTR_COVERS, p)? != 0)
+                } else {
+                    None
+                };
+                statistics.push(Statistic {
+                    name,
+                    estimate,
+                    lower: attr_scalar(&ds, L::ATTR_LOWER, p)?,
+                    upper: attr_scalar(&ds, L::ATTR_UPPER, p)?,
+                    confidence: attr_scalar(&ds, L::ATTR_CONFIDENCE, p)?,
+                    unit: attr_string(&ds, L::ATTR_UNIT, p)?,
+                    method: attr_string(&ds, L::ATTR_METHOD, p)?,
+                    analytic,
+                    covers,
+                });
+            }
+            out.push(OutputStatistics {
+                output: sig.name.clone(),
+                unit: attr_string(&g, L::ATTR_UNIT, p)?,
+                n_used: attr_scalar(&g, L::ATTR_N_USED, p)?,
+                statistics,
+            });
+        }
+        Ok(out)
+    }
+
+    /// All density estimates in the file, in the order of the run's inputs then outputs.
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] if a density group is malformed.
+    pub fn psd(&self) -> Result<Vec<PsdEstimate>> {
+        let p = &self.path;
+        let parent = self.file.group(L::GROUP_PSD).map_err(h5err(p, "opening /psd"))?;
+        let mut out = Vec::new();
+        for sig in self.meta.inputs.iter().chain(&self.meta.outputs) {
+            if !parent.link_exists(&sig.name) {
+                continue;
+            }
+            let g = parent.group(&sig.name).map_err(h5err(p, "opening a density group"))?;
+            let read = |name: &str| -> Result<Vec<f64>> {
+                g.dataset(name)
+                    .and_then(|d| d.read_raw::<f64>())
+                    .map_err(h5err(p, &format!("reading psd/{}/{name}", sig.name)))
+            };
+            out.push(PsdEstimate {
+                output: sig.name.clone(),
+                unit: attr_string(&g, L::ATTR_UNIT, p)?,
+                omega: read(L::DS_OMEGA)?,
+                density: read(L::DS_DENSITY)?,
+                lower: read(L::DS_LOWER)?,
+                upper: read(L::DS_UPPER)?,
+                analytic: if g.link_exists(L::DS_ANALYTIC) {
+                    Some(read(L::DS_ANALYTIC)?)
+                } else {
+                    None
+                },
+                dof: attr_scalar(&g, L::ATTR_DOF, p)?,
+                confidence: attr_scalar(&g, L::ATTR_CONFIDENCE, p)?,
+                method: attr_string(&g, L::ATTR_METHOD, p)?,
+            });
+        }
+        Ok(out)
+    }
+
+    /// Closes the file (the same as dropping the value).
+    pub fn close(self) {}
+}
+
+/// A human-readable summary of a run file (complete or interrupted): root attributes, datasets with
+/// shapes, chunks and units, the statistics table and the density estimates.
+///
+/// # Errors
+/// As [`RunFile::open_any`].
+///
+/// # Examples
+/// ```
+/// assert!(stochvib::store::summarize("no/such/run.h5").is_err());
+/// ```
+pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
+    let run = RunFile::open_any(path.as_ref())?;
+    let m = &run.meta;
+    let p = &run.path;
+    let mut s = String::new();
+    let done = run.completed_shards().len();
+    let status = if run.complete {
+        "complete".to_string()
+    } else {
+        format!("INCOMPLETE: {done} of {} shards written", m.n_shards())
+    };
+    let _ = writeln!(s, "run file {} ({status})", p.display());
+    let _ = writeln!(s, "  format_version   {}", run.format_version);
+    let _ = writeln!(s, "  toolkit_version  {}", run.toolkit_version);
+    let _ = writeln!(s, "  seed             {}", m.seed);
+    let _ = writeln!(s, "  generator        {}", m.generator);
+    let _ = writeln!(s, "  dt               {} s", m.dt);
+    let _ = writeln!(
+        s,
+        "  n_samples        {} (duration {} s)",
+        m.n_samples,
+        m.n_samples as f64 * m.dt
+    );
+    let _ = writeln!(s, "  n_realizations   {}", m.n_realizations);
+    let _ = writeln!(
+        s,
+        "  shards           {} of up to {} realizations each ({done} complete)",
+        m.n_shards(),
+        m.shard_size
+    );
+    let _ = writeln!(
+        s,
+        "  raw realizations {}",
+        if m.store_raw { "stored" } else { "not stored" }
+    );
+    let _ = writeln!(s, "  compression      {}", m.compression.label());
+    let _ = writeln!(s, "  scenario ({} lines):", m.scenario_text.lines().count());
+    for line in m.scenario_text.lines() {
+        let _ = writeln!(s, "    | {line}");
+    }
+    for (group, signals) in [(L::GROUP_INPUTS, &m.inputs), (L::GROUP_OUTPUTS, &m.outputs)] {
+        let _ = writeln!(s, "  /{group}: {} signal(s)", signals.len());
+        for sig in signals.iter() {
+            let shape = if m.store_raw {
+                match run.file.dataset(&format!("{group}/{}", sig.name)) {
+                    Ok(ds) => format!("f64 {:?}, chunks {:?}", ds.shape(), ds.chunk().unwrap_or_default()),
+                    Err(e) => format!("missing dataset ({e})"),
+                }
+            } else {
+                "not stored".to_string()
+            };
+            let _ = writeln!(s, "    {:<16} [{}]  {shape}", sig.name, sig.unit);
+        }
+    }
+    if !m.accumulators.is_empty() {
+        let list: Vec<String> = m.accumulators.iter().map(|(n, l)| format!("{n}[{l}]")).collect();
+        let _ = writeln!(s, "  /shards accumulators: {}", list.join(", "));
+    }
+    let stats = run.statistics()?;
+    if !stats.is_empty() {
+        let _ = writeln!(s, "  /statistics");
+        let _ = writeln!(
+            s,
+            "    {:<12} {:<10} {:>14} {:>14} {:>14} {:>6} {:>14} {:>6}  unit",
+            "signal", "statistic", "estimate", "lower", "upper", "conf", "analytic", "covers"
+        );
+        for st in &stats {
+            for x in &st.statistics {
+                let analytic = x.analytic.map_or("-".to_string(), |a| format!("{a:.6e}"));
+                let covers = x.covers.map_or("-", |c| if c { "yes" } else { "NO" });
+                let _ = writeln!(
+                    s,
+                    "    {:<12} {:<10} {:>14.6e} {:>14.6e} {:>14.6e} {:>6.3} {:>14} {:>6}  {}",
+                    st.output, x.name, x.estimate, x.lower, x.upper, x.confidence, analytic, covers, x.unit
+                );
+            }
+        }
+    }
+    let psd = run.psd()?;
+    if !psd.is_empty() {
+        let _ = writeln!(
+            s,
+            "  /psd (two-sided angular S(omega), variance = integral of S d omega)"
+        );
+        for e in &psd {
+            let lo = e.omega.first().copied().unwrap_or(f64::NAN);
+            let hi = e.omega.last().copied().unwrap_or(f64::NAN);
+            let _ = writeln!(
+                s,
+                "    {:<12} {} points, omega {lo:.4} .. {hi:.4} rad/s, dof {}, confidence {}, [{}]{}; {}",
+                e.output,
+                e.omega.len(),
+                e.dof,
+                e.confidence,
+                e.unit,
+                if e.analytic.is_some() { ", with analytic" } else { "" },
+                e.method
+            );
+        }
+    }
+    Ok(s)
+}
+
+/// Reads the run metadata from the root attributes and the signal / shard groups.
+pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
+    let version = attr_scalar::<u32>(file, L::ATTR_FORMAT_VERSION, path)?;
+    if version > L::FORMAT_VERSION {
+        return Err(Error::Hdf5 {
+            path: path.to_path_buf(),
+            reason: format!(
+                "format version {version} is newer than this stochvib understands ({}); use a newer stochvib",
+                L::FORMAT_VERSION
+            ),
+        });
+    }
+    let usize_attr = |name: &str| -> Result<usize> {
+        let v = attr_scalar::<u64>(file, name, path)?;
+        usize::try_from(v).map_err(|_| bad(path, name, "does not fit in usize"))
+    };
+    let compression_label = attr_string(file, L::ATTR_COMPRESSION, path)?;
+    let compression = Compression::parse(&compression_label).map_err(|_| {
+        bad(
+            path,
+            L::ATTR_COMPRESSION,
+            &format!("unknown compression {compression_label:?}"),
+        )
+    })?;
+    let mut signals = Vec::new();
+    for g in [L::GROUP_INPUTS, L::GROUP_OUTPUTS] {
+        let group = file
+            .group(g)
+            .map_err(h5err(path, &format!("missing group /{g}: not a stochvib run file")))?;
+        let names = attr_string_list(&group, L::ATTR_NAMES, path)?;
+        let units = attr_string_list(&group, L::ATTR_UNITS_LIST, path)?;
+        if names.len() != units.len() {
+            return Err(bad(
+                path,
+                g,
+                "the `names` and `units` attributes have different lengths",
+            ));
+        }
+        signals.push(
+            names
+                .into_iter()
+                .zip(units)
+                .map(|(name, unit)| Signal { name, unit })
+                .collect::<Vec<_>>(),
+        );
+    }
+    let outputs = signals.pop().unwrap_or_default();
+    let inputs = signals.pop().unwrap_or_default();
+    let shards = file
+        .group(L::GROUP_SHARDS)
+        .map_err(h5err(path, "missing group /shards: not a stochvib run file"))?;
+    let mut accumulators = Vec::new();
+    for name in attr_string_list(&shards, L::ATTR_ACCUMULATORS, path)? {
+        let ds = shards
+            .dataset(&name)
+            .map_err(h5err(path, &format!("missing accumulator dataset /shards/{name}")))?;
+        let len = ds
+            .shape()
+            .get(1)
+            .copied()
+            .ok_or_else(|| bad(path, &name, "accumulator is not 2-D"))?;
+        accumulators.push((name, len));
+    }
+    let meta = RunMetadata {
+        scenario_text: attr_string(file, L::ATTR_SCENARIO, path)?,
+        seed: attr_scalar::<u64>(file, L::ATTR_SEED, path)?,
+        generator: attr_string(file, L::ATTR_GENERATOR, path)?,
+        dt: attr_scalar::<f64>(file, L::ATTR_DT, path)?,
+        n_samples: usize_attr(L::ATTR_N_SAMPLES)?,
+        n_realizations: usize_attr(L::ATTR_N_REALIZATIONS)?,
+        shard_size: usize_attr(L::ATTR_SHARD_SIZE)?,
+        inputs,
+        outputs,
+        accumulators,
+        store_raw: attr_scalar::<u8>(file, L::ATTR_STORE_RAW, path)? != 0,
+        compression,
+    };
+    meta.validate().map_err(|e| Error::Hdf5 {
+        path: path.to_path_buf(),
+        reason: format!("inconsistent run metadata: {e}"),
+    })?;
+    if usize_attr(L::ATTR_N_SHARDS)? != meta.n_shards() {
+        return Err(bad(
+            path,
+            L::ATTR_N_SHARDS,
+            "does not equal ceil(n_realizations / shard_size)",
+        ));
+    }
+    if meta.store_raw {
+        for (g, list) in [(L::GROUP_INPUTS, &meta.inputs), (L::GROUP_OUTPUTS, &meta.outputs)] {
+            for sig in list.iter() {
+                let ds = file
+                    .dataset(&format!("{g}/{}", sig.name))
+                    .map_err(h5err(path, &format!("missing dataset /{g}/{}", sig.name)))?;
+                if ds.shape() != [meta.n_realizations, meta.n_samples] {
+                    return Err(bad(
+                        path,
+                        &format!("{g}/{}", sig.name),
+                        &format!("shape {:?} is not [n_realizations, n_samples]", ds.shape()),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(meta)
+}
+
+/// The `/shards/complete` flags.
+pub(crate) fn read_shards_complete(file: &File, path: &Path, n_shards: usize) -> Result<Vec<bool>> {
+    let flags = file
+        .dataset(&format!("{}/{}", L::GROUP_SHARDS, L::DS_SHARDS_COMPLETE))
+        .and_then(|d| d.read_raw::<u8>())
+        .map_err(h5err(path, "reading /shards/complete"))?;
+    if flags.len() != n_shards {
+        return Err(bad(
+            path,
+            "shards/complete",
+            &format!("has {} entries, expected {n_shards}", flags.len()),
+        ));
+    }
+    Ok(flags.into_iter().map(|f| f == 1).collect())
+}
+
+fn bad(path: &Path, what: &str, reason: &str) -> Error {
+    Error::Hdf5 {
+        path: path.to_path_buf(),
+        reason: format!("`{what}`: {reason}"),
+    }
+}
+
+fn has_attr(loc: &Location, name: &str) -> bool {
+    loc.attr_names().map(|n| n.iter().any(|x| x == name)).unwrap_or(false)
+}
+
+fn missing_or(loc: &Location, name: &str, path: &Path, e: hdf5::Error) -> Error {
+    if has_attr(loc, name) {
+        bad(path, &format!("{}@{name}", loc.name()), &format!("unreadable: {e}"))
+    } else {
+        bad(
+            path,
+            &format!("{}@{name}", loc.name()),
+            "attribute missing: not a stochvib run file (or a damaged one)",
+        )
+    }
+}
+
+fn attr_scalar<T: hdf5::H5Type>(loc: &Location, name: &str, path: &Path) -> Result<T> {
+    loc.attr(name)
+        .and_then(|a| a.read_scalar::<T>())
+        .map_err(|e| missing_or(loc, name, path, e))
+}
+
+fn attr_string(loc: &Location, name: &str, path: &Path) -> Result<String> {
+    loc.attr(name)
+        .and_then(|a| a.read_scalar::<VarLenUnicode>())
+        .map(|v| v.as_str().to_string())
+        .map_err(|e| missing_or(loc, name, path, e))
+}
+
+fn attr_string_list(loc: &Location, name: &str, path: &Path) -> Result<Vec<String>> {
+    let attr = loc.attr(name).map_err(|e| missing_or(loc, name, path, e))?;
+    if attr.size() == 0 {
+        return Ok(Vec::new());
+    }
+    attr.read_raw::<VarLenUnicode>()
+        .map(|v| v.into_iter().map(|x| x.as_str().to_string()).collect())
+        .map_err(|e| missing_or(loc, name, path, e))
+}

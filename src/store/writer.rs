@@ -1,0 +1,631 @@
+//! Writing a run: temporary name, shard by shard, rename on completion, resume after interruption.
+
+use super::layout as L;
+use super::reader::{read_metadata, read_shards_complete};
+use super::{h5err, tmp_path, Compression, OutputStatistics, PsdEstimate, RunMetadata};
+use crate::error::{Error, Result};
+use hdf5::types::VarLenUnicode;
+use hdf5::{Dataset, File, Location};
+use ndarray::{s, ArrayView2};
+use std::path::{Path, PathBuf};
+
+/// Writes one run file; see [`crate::store`] for the layout and the interruption guarantees.
+///
+/// Dropping a writer without [`RunWriter::finish`] closes the file and leaves `<final>.tmp` for a later
+/// resume; no file ever appears under the final name unless the run is complete.
+#[derive(Debug)]
+pub struct RunWriter {
+    meta: RunMetadata,
+    final_path: PathBuf,
+    tmp: PathBuf,
+    completed: Vec<bool>,
+    resumed: bool,
+    // Handles: datasets first so that they are dropped before the file.
+    inputs: Vec<Dataset>,
+    outputs: Vec<Dataset>,
+    accumulators: Vec<Dataset>,
+    shards_complete: Dataset,
+    file: File,
+}
+
+impl RunWriter {
+    /// Starts a run that will end up at `final_path`, or resumes an interrupted one.
+    ///
+    /// Writes to `<final_path>.tmp` (see [`tmp_path`]). If that file exists and holds the same
+    /// metadata (every field of [`RunMetadata`]), it is reopened and [`completed_shards`](Self::completed_shards)
+    /// tells which shards are already on disk. All datasets are allocated here.
+    ///
+    /// # Errors
+    /// - [`Error::InvalidParameter`] if `meta` fails [`RunMetadata::validate`].
+    /// - [`Error::Hdf5`] if `final_path` already exists (a finished run is never overwritten: remove it
+    ///   first), if its directory does not exist, if the `.tmp` holds a different run (the message lists
+    ///   the fields that differ) or is unreadable (the message says to delete it), or if HDF5 fails.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::store::{RunMetadata, RunWriter, RunFile, Signal, Compression};
+    /// use ndarray::Array2;
+    /// let dir = std::env::temp_dir().join(format!("stochvib-doc-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// let path = dir.join("doc.h5");
+    /// # let _ = std::fs::remove_file(&path);
+    /// let meta = RunMetadata {
+    ///     scenario_text: "[run]\n".into(), seed: 7, generator: "xoshiro256++".into(), dt: 0.01,
+    ///     n_samples: 4, n_realizations: 2, shard_size: 2,
+    ///     inputs: vec![Signal::new("road", "m")], outputs: vec![Signal::new("x1", "m")],
+    ///     accumulators: vec![], store_raw: true, compression: Compression::None,
+    /// };
+    /// let mut w = RunWriter::create(&path, &meta).unwrap();
+    /// let u = Array2::from_shape_fn((2, 4), |(i, k)| (i * 4 + k) as f64);
+    /// w.write_shard(0, &[u.view()], &[u.view()], &[]).unwrap();
+    /// let done = w.finish().unwrap();
+    /// let run = RunFile::open(&done).unwrap();
+    /// assert_eq!(run.read_signal(stochvib::store::SignalGroup::Outputs, "x1", 1).unwrap(), vec![4.0, 5.0, 6.0, 7.0]);
+    /// # drop(run); std::fs::remove_file(&done).unwrap();
+    /// ```
+    pub fn create(final_path: impl AsRef<Path>, meta: &RunMetadata) -> Result<RunWriter> {
+        meta.validate()?;
+        let final_path = final_path.as_ref().to_path_buf();
+        let tmp = tmp_path(&final_path);
+        let fail = |reason: String| Error::Hdf5 {
+            path: final_path.clone(),
+            reason,
+        };
+        if final_path.exists() {
+            return Err(fail(
+                "already exists: a finished run is never overwritten; remove it or choose another output name".into(),
+            ));
+        }
+        if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            if !dir.is_dir() {
+                return Err(fail(format!(
+                    "cannot create: directory `{}` does not exist",
+                    dir.display()
+                )));
+            }
+        }
+        if tmp.exists() {
+            Self::resume(final_path.clone(), tmp, meta)
+        } else {
+            match Self::create_fresh(final_path.clone(), tmp.clone(), meta) {
+                Ok(w) => Ok(w),
+                Err(e) => {
+                    // Nothing half-written is left behind when initialisation fails.
+                    let _ = std::fs::remove_file(&tmp);
+                    Err(e)
+                }
+            }
+        }
+    }
+
+    fn create_fresh(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
+        let e = |what: &str| h5err(&tmp, what);
+        let file = File::create_excl(&tmp).map_err(e("cannot create the temporary file"))?;
+        write_root_attrs(&file, meta).map_err(e("writing root attributes"))?;
+
+        let n_shards = meta.n_shards();
+        let chunk = L::chunk_shape(meta.n_samples, meta.shard_size);
+        let mut signal_sets = Vec::new();
+        for (gname, signals) in [(L::GROUP_INPUTS, &meta.inputs), (L::GROUP_OUTPUTS, &meta.outputs)] {
+            let group = file.create_group(gname).map_err(e("creating a signal group"))?;
+            let names: Vec<&str> = signals.iter().map(|s| s.name.as_str()).collect();
+            let units: Vec<&str> = signals.iter().map(|s| s.unit.as_str()).collect();
+            write_str_list_attr(&group, L::ATTR_NAMES, &names).map_err(e("writing signal names"))?;
+            write_str_list_attr(&group, L::ATTR_UNITS_LIST, &units).map_err(e("writing signal units"))?;
+            let mut sets = Vec::new();
+            if meta.store_raw {
+                for s in signals.iter() {
+                    let b = group
+                        .new_dataset::<f64>()
+                        .shape((meta.n_realizations, meta.n_samples))
+                        .chunk(chunk);
+                    let b = match meta.compression {
+                        // Allocated in full now and never filled: a shard write changes raw data only.
+                        Compression::None => b
+                            .alloc_time(Some(hdf5::dataset::AllocTime::Early))
+                            .fill_time(hdf5::dataset::FillTime::Never),
+                        Compression::Deflate { level } => b.shuffle().deflate(level),
+                    };
+                    let ds = b.create(s.name.as_str()).map_err(e("creating a signal dataset"))?;
+                    write_str_attr(&ds, L::ATTR_UNIT, &s.unit).map_err(e("writing a unit"))?;
+                    sets.push(ds);
+                }
+            }
+            signal_sets.push(sets);
+        }
+        let outputs = signal_sets.pop().unwrap_or_default();
+        let inputs = signal_sets.pop().unwrap_or_default();
+
+        let shards = file.create_group(L::GROUP_SHARDS).map_err(e("creating /shards"))?;
+        let acc_names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
+        write_str_list_attr(&shards, L::ATTR_ACCUMULATORS, &acc_names).map_err(e("writing accumulator names"))?;
+        let shards_complete = shards
+            .new_dataset::<u8>()
+            .shape(n_shards)
+            .alloc_time(Some(hdf5::dataset::AllocTime::Early))
+            .fill_value(0u8)
+            .fill_time(hdf5::dataset::FillTime::Alloc)
+            .create(L::DS_SHARDS_COMPLETE)
+            .map_err(e("creating /shards/complete"))?;
+        let mut accumulators = Vec::new();
+        for (name, len) in &meta.accumulators {
+            let ds = shards
+                .new_dataset::<f64>()
+                .shape((n_shards, *len))
+                .alloc_time(Some(hdf5::dataset::AllocTime::Early))
+                .fill_value(f64::NAN)
+                .fill_time(hdf5::dataset::FillTime::Alloc)
+                .create(name.as_str())
+                .map_err(e("creating an accumulator dataset"))?;
+            accumulators.push(ds);
+        }
+        file.create_group(L::GROUP_STATISTICS)
+            .map_err(e("creating /statistics"))?;
+        file.create_group(L::GROUP_PSD).map_err(e("creating /psd"))?;
+        drop(shards);
+        file.flush().map_err(e("flushing"))?;
+        Ok(RunWriter {
+            meta: meta.clone(),
+            final_path,
+            tmp,
+            completed: vec![false; n_shards],
+            resumed: false,
+            inputs,
+            outputs,
+            accumulators,
+            shards_complete,
+            file,
+        })
+    }
+
+    fn resume(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
+        let unreadable = |what: &str| {
+            let tmp = tmp.clone();
+            let what = what.to_string();
+            move |err: hdf5::Error| Error::Hdf5 {
+                path: tmp.clone(),
+                reason: format!(
+                    "cannot resume from this interrupted run ({what}: {err}); delete it to start the run afresh"
+                ),
+            }
+        };
+        let file = File::open_rw(&tmp).map_err(unreadable("opening"))?;
+        let stored = read_metadata(&file, &tmp).map_err(|err| Error::Hdf5 {
+            path: tmp.clone(),
+            reason: format!("cannot resume from this interrupted run ({err}); delete it to start the run afresh"),
+        })?;
+        let differ = metadata_differences(&stored, meta);
+        if !differ.is_empty() {
+            return Err(Error::Hdf5 {
+                path: tmp.clone(),
+                reason: format!(
+                    "an interrupted run of a different run is in the way (differs in: {}); delete it, or rerun \
+                     with the original settings to resume it",
+                    differ.join(", ")
+                ),
+            });
+        }
+        let open_set = |group: &str, name: &str| -> Result<Dataset> {
+            file.dataset(&format!("{group}/{name}"))
+                .map_err(unreadable(&format!("opening dataset {group}/{name}")))
+        };
+        let mut inputs = Vec::new();
+        let mut outputs = Vec::new();
+        if meta.store_raw {
+            for s in &meta.inputs {
+                inputs.push(open_set(L::GROUP_INPUTS, &s.name)?);
+            }
+            for s in &meta.outputs {
+                outputs.push(open_set(L::GROUP_OUTPUTS, &s.name)?);
+            }
+        }
+        let mut accumulators = Vec::new();
+        for (name, _) in &meta.accumulators {
+            accumulators.push(open_set(L::GROUP_SHARDS, name)?);
+        }
+        let shards_complete = open_set(L::GROUP_SHARDS, L::DS_SHARDS_COMPLETE)?;
+        let completed = read_shards_complete(&file, &tmp, meta.n_shards())?;
+        Ok(RunWriter {
+            meta: meta.clone(),
+            final_path,
+            tmp,
+            completed,
+            resumed: true,
+            inputs,
+            outputs,
+            accumulators,
+            shards_complete,
+            file,
+        })
+    }
+
+    /// The run's metadata.
+    pub fn metadata(&self) -> &RunMetadata {
+        &self.meta
+    }
+
+    /// The temporary file being written.
+    pub fn tmp_path(&self) -> &Path {
+        &self.tmp
+    }
+
+    /// Whether [`create`](Self::create) reopened an interrupted run.
+    pub fn resumed(&self) -> bool {
+        self.resumed
+    }
+
+    /// Indices of the shards already on disk, ascending.
+    pub fn completed_shards(&self) -> Vec<usize> {
+        (0..self.completed.len()).filter(|&i| self.completed[i]).collect()
+    }
+
+    /// Indices of the shards still to be written, ascending.
+    pub fn pending_shards(&self) -> Vec<usize> {
+        (0..self.completed.len()).filter(|&i| !self.completed[i]).collect()
+    }
+
+    /// Writes shard `shard`: its rows of every input and output, and its accumulator vectors.
+    ///
+    /// `inputs[j]` and `outputs[j]` are `[rows, n_samples]` arrays (rows = length of
+    /// [`RunMetadata::shard_range`]) in the order of [`RunMetadata::inputs`] / [`RunMetadata::outputs`];
+    /// both must be empty slices when raw data are not stored. `accumulators[j]` has the length declared
+    /// in [`RunMetadata::accumulators`]. Each array is written with one hyperslab write; then the file is
+    /// flushed, the shard is marked complete and the file is flushed again.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a shard index out of range, an already completed shard, a wrong
+    /// number of arrays or a wrong shape; [`Error::Hdf5`] if writing fails.
+    pub fn write_shard(
+        &mut self,
+        shard: usize,
+        inputs: &[ArrayView2<'_, f64>],
+        outputs: &[ArrayView2<'_, f64>],
+        accumulators: &[&[f64]],
+    ) -> Result<()> {
+        let n_shards = self.completed.len();
+        if shard >= n_shards {
+            return Err(Error::invalid("shard", shard, format!("the run has {n_shards} shards")));
+        }
+        if self.completed[shard] {
+            return Err(Error::invalid(
+                "shard",
+                shard,
+                "already written (completed shards cannot be rewritten)",
+            ));
+        }
+        let range = self.meta.shard_range(shard);
+        let rows = range.len();
+        for (field, arrays, expected) in [
+            ("inputs", inputs, self.inputs.len()),
+            ("outputs", outputs, self.outputs.len()),
+        ] {
+            if arrays.len() != expected {
+                let why = if self.meta.store_raw {
+                    format!("expected {expected} arrays, one per declared signal")
+                } else {
+                    "raw realizations are not stored in this run: pass an empty slice".to_string()
+                };
+                return Err(Error::invalid(field, arrays.len(), why));
+            }
+            for a in arrays {
+                if a.dim() != (rows, self.meta.n_samples) {
+                    return Err(Error::invalid(
+                        field,
+                        format!("array of shape {:?}", a.dim()),
+                        format!("shard {shard} needs shape ({rows}, {})", self.meta.n_samples),
+                    ));
+                }
+            }
+        }
+        if accumulators.len() != self.accumulators.len() {
+            return Err(Error::invalid(
+                "accumulators",
+                accumulators.len(),
+                format!("expected {} vectors", self.accumulators.len()),
+            ));
+        }
+        for (a, (name, len)) in accumulators.iter().zip(&self.meta.accumulators) {
+            if a.len() != *len {
+                return Err(Error::invalid(
+                    name,
+                    a.len(),
+                    format!("accumulator length must be {len}"),
+                ));
+            }
+        }
+        let e = |what: &str| h5err(&self.tmp, what);
+        for (ds, a) in self
+            .inputs
+            .iter()
+            .chain(&self.outputs)
+            .zip(inputs.iter().chain(outputs))
+        {
+            let a = a.as_standard_layout();
+            ds.write_slice(&a, s![range.clone(), ..])
+                .map_err(e("writing a shard"))?;
+        }
+        for (ds, a) in self.accumulators.iter().zip(accumulators) {
+            ds.write_slice(*a, s![shard, ..]).map_err(e("writing an accumulator"))?;
+        }
+        self.file.flush().map_err(e("flushing a shard"))?;
+        self.shards_complete
+            .write_slice(&[1u8][..], s![shard..shard + 1])
+            .map_err(e("marking a shard complete"))?;
+        self.file.flush().map_err(e("flushing a shard marker"))?;
+        self.completed[shard] = true;
+        Ok(())
+    }
+
+    /// Reads back the accumulator `name` of a completed shard (to rebuild statistics when resuming).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for an unknown name or a shard not completed; [`Error::Hdf5`] on read
+    /// failure.
+    pub fn read_accumulator(&self, name: &str, shard: usize) -> Result<Vec<f64>> {
+        let j = self
+            .meta
+            .accumulators
+            .iter()
+            .position(|a| a.0 == name)
+            .ok_or_else(|| Error::invalid("accumulator", name, "not declared in the run metadata"))?;
+        if !self.completed.get(shard).copied().unwrap_or(false) {
+            return Err(Error::invalid("shard", shard, "not a completed shard"));
+        }
+        self.accumulators[j]
+            .read_slice_1d::<f64, _>(s![shard, ..])
+            .map(|a| a.to_vec())
+            .map_err(h5err(&self.tmp, "reading an accumulator"))
+    }
+
+    /// Writes (or replaces) the statistics of some signals under `/statistics/<signal>`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] if a signal name is not one of the run's inputs or outputs or a
+    /// statistic name is invalid or repeated; [`Error::Hdf5`] if writing fails.
+    pub fn write_statistics(&mut self, stats: &[OutputStatistics]) -> Result<()> {
+        for st in stats {
+            self.check_signal_name("statistics", &st.output)?;
+            let names: Vec<&str> = st.statistics.iter().map(|s| s.name.as_str()).collect();
+            for (i, n) in names.iter().enumerate() {
+                super::check_name("statistic", n)?;
+                if names[..i].contains(n) {
+                    return Err(Error::invalid("statistic", n, "duplicate name"));
+                }
+            }
+        }
+        let e = |what: &str| h5err(&self.tmp, what);
+        let parent = self.file.group(L::GROUP_STATISTICS).map_err(e("opening /statistics"))?;
+        for st in stats {
+            if parent.link_exists(&st.output) {
+                parent.unlink(&st.output).map_err(e("replacing statistics"))?;
+            }
+            let g = parent
+                .create_group(&st.output)
+                .map_err(e("creating a statistics group"))?;
+            write_scalar_attr(&g, L::ATTR_N_USED, st.n_used).map_err(e("writing n_used"))?;
+            write_str_attr(&g, L::ATTR_UNIT, &st.unit).map_err(e("writing a unit"))?;
+            let names: Vec<&str> = st.statistics.iter().map(|s| s.name.as_str()).collect();
+            write_str_list_attr(&g, L::ATTR_NAMES, &names).map_err(e("writing statistic names"))?;
+            for s in &st.statistics {
+                let ds = g
+                    .new_dataset::<f64>()
+                    .shape(())
+                    .create(s.name.as_str())
+                    .map_err(e("creating a statistic"))?;
+                ds.write_scalar(&s.estimate).map_err(e("writing a statistic"))?;
+                let w = || -> hdf5::Result<()> {
+                    write_scalar_attr(&ds, L::ATTR_LOWER, s.lower)?;
+                    write_scalar_attr(&ds, L::ATTR_UPPER, s.upper)?;
+                    write_scalar_attr(&ds, L::ATTR_CONFIDENCE, s.confidence)?;
+                    write_str_attr(&ds, L::ATTR_UNIT, &s.unit)?;
+                    write_str_attr(&ds, L::ATTR_METHOD, &s.method)?;
+                    if let Some(a) = s.analytic {
+                        write_scalar_attr(&ds, L::ATTR_ANALYTIC, a)?;
+                        if let Some(c) = s.covers {
+                            write_scalar_attr(&ds, L::ATTR_COVERS, u8::from(c))?;
+                        }
+                    }
+                    Ok(())
+                };
+                w().map_err(e("writing statistic attributes"))?;
+            }
+        }
+        self.file.flush().map_err(e("flushing statistics"))
+    }
+
+    /// Writes (or replaces) a spectral density estimate under `/psd/<signal>`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] if the signal is unknown, the arrays are empty or of different lengths,
+    /// or an ω is negative or not finite; [`Error::Hdf5`] if writing fails.
+    pub fn write_psd(&mut self, psd: &PsdEstimate) -> Result<()> {
+        self.check_signal_name("psd", &psd.output)?;
+        let n = psd.omega.len();
+        if n == 0 {
+            return Err(Error::invalid("psd.omega", "[]", "needs at least one frequency"));
+        }
+        for (field, len) in [
+            ("psd.density", psd.density.len()),
+            ("psd.lower", psd.lower.len()),
+            ("psd.upper", psd.upper.len()),
+            ("psd.analytic", psd.analytic.as_ref().map_or(n, |a| a.len())),
+        ] {
+            if len != n {
+                return Err(Error::invalid(
+                    field,
+                    len,
+                    format!("length must equal that of omega ({n})"),
+                ));
+            }
+        }
+        if let Some(w) = psd.omega.iter().find(|w| !(w.is_finite() && **w >= 0.0)) {
+            return Err(Error::invalid(
+                "psd.omega",
+                w,
+                "angular frequencies must be finite and >= 0",
+            ));
+        }
+        let e = |what: &str| h5err(&self.tmp, what);
+        let parent = self.file.group(L::GROUP_PSD).map_err(e("opening /psd"))?;
+        if parent.link_exists(&psd.output) {
+            parent.unlink(&psd.output).map_err(e("replacing a density estimate"))?;
+        }
+        let g = parent
+            .create_group(&psd.output)
+            .map_err(e("creating a density group"))?;
+        let w = || -> hdf5::Result<()> {
+            write_str_attr(&g, L::ATTR_CONVENTION, L::PSD_CONVENTION)?;
+            write_str_attr(&g, L::ATTR_UNIT, &psd.unit)?;
+            write_scalar_attr(&g, L::ATTR_DOF, psd.dof)?;
+            write_scalar_attr(&g, L::ATTR_CONFIDENCE, psd.confidence)?;
+            write_str_attr(&g, L::ATTR_METHOD, &psd.method)?;
+            let mut sets = vec![
+                (L::DS_OMEGA, &psd.omega),
+                (L::DS_DENSITY, &psd.density),
+                (L::DS_LOWER, &psd.lower),
+                (L::DS_UPPER, &psd.upper),
+            ];
+            if let Some(a) = &psd.analytic {
+                sets.push((L::DS_ANALYTIC, a));
+            }
+            for (name, data) in sets {
+                g.new_dataset_builder().with_data(data.as_slice()).create(name)?;
+            }
+            Ok(())
+        };
+        w().map_err(e("writing a density estimate"))?;
+        self.file.flush().map_err(e("flushing a density estimate"))
+    }
+
+    fn check_signal_name(&self, field: &str, name: &str) -> Result<()> {
+        if self
+            .meta
+            .inputs
+            .iter()
+            .chain(&self.meta.outputs)
+            .any(|s| s.name == name)
+        {
+            Ok(())
+        } else {
+            Err(Error::invalid(field, name, "not an input or output of this run"))
+        }
+    }
+
+    /// Completes the run: checks that every shard is written, sets `@complete`, closes every handle,
+    /// syncs the file to disk and renames `<final>.tmp` to `<final>`.
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] listing the missing shards if any is not written (the writer is dropped, the `.tmp`
+    /// stays for a resume), or if closing, syncing or renaming fails.
+    pub fn finish(self) -> Result<PathBuf> {
+        let missing = self.pending_shards();
+        if !missing.is_empty() {
+            let shown: Vec<String> = missing.iter().take(10).map(|i| i.to_string()).collect();
+            return Err(Error::Hdf5 {
+                path: self.tmp.clone(),
+                reason: format!(
+                    "cannot finish: {} of {} shards not written (first: {}); the temporary file is kept for a resume",
+                    missing.len(),
+                    self.completed.len(),
+                    shown.join(", ")
+                ),
+            });
+        }
+        let RunWriter {
+            final_path,
+            tmp,
+            inputs,
+            outputs,
+            accumulators,
+            shards_complete,
+            file,
+            ..
+        } = self;
+        let e = |what: &str| h5err(&tmp, what);
+        drop((inputs, outputs, accumulators, shards_complete));
+        if !file
+            .attr_names()
+            .map_err(e("listing root attributes"))?
+            .iter()
+            .any(|n| n == L::ATTR_COMPLETE)
+        {
+            write_scalar_attr(&file, L::ATTR_COMPLETE, 1u8).map_err(e("writing @complete"))?;
+        }
+        file.flush().map_err(e("flushing"))?;
+        file.close().map_err(e("closing"))?;
+        let io = |err: std::io::Error| Error::Io {
+            path: tmp.clone(),
+            source: err,
+        };
+        std::fs::File::open(&tmp).and_then(|f| f.sync_all()).map_err(io)?;
+        std::fs::rename(&tmp, &final_path).map_err(io)?;
+        if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            // Make the rename itself durable; best effort (not every platform can open a directory).
+            let _ = std::fs::File::open(dir).and_then(|d| d.sync_all());
+        }
+        Ok(final_path)
+    }
+}
+
+/// Fields of two metadata records that differ (empty if identical).
+fn metadata_differences(a: &RunMetadata, b: &RunMetadata) -> Vec<&'static str> {
+    let mut d = Vec::new();
+    let mut check = |same: bool, name: &'static str| {
+        if !same {
+            d.push(name)
+        }
+    };
+    check(a.scenario_text == b.scenario_text, "scenario");
+    check(a.seed == b.seed, "seed");
+    check(a.generator == b.generator, "generator");
+    check(a.dt.to_bits() == b.dt.to_bits(), "dt");
+    check(a.n_samples == b.n_samples, "n_samples");
+    check(a.n_realizations == b.n_realizations, "n_realizations");
+    check(a.shard_size == b.shard_size, "shard_size");
+    check(a.inputs == b.inputs, "inputs");
+    check(a.outputs == b.outputs, "outputs");
+    check(a.accumulators == b.accumulators, "accumulators");
+    check(a.store_raw == b.store_raw, "store_raw");
+    check(a.compression == b.compression, "compression");
+    d
+}
+
+fn write_root_attrs(file: &File, m: &RunMetadata) -> hdf5::Result<()> {
+    write_scalar_attr(file, L::ATTR_FORMAT_VERSION, L::FORMAT_VERSION)?;
+    write_str_attr(file, L::ATTR_TOOLKIT_VERSION, L::TOOLKIT_VERSION)?;
+    write_str_attr(file, L::ATTR_SCENARIO, &m.scenario_text)?;
+    write_scalar_attr(file, L::ATTR_SEED, m.seed)?;
+    write_str_attr(file, L::ATTR_GENERATOR, &m.generator)?;
+    write_scalar_attr(file, L::ATTR_DT, m.dt)?;
+    write_str_attr(file, L::ATTR_UNITS, L::UNITS_VALUE)?;
+    write_scalar_attr(file, L::ATTR_N_SAMPLES, m.n_samples as u64)?;
+    write_scalar_attr(file, L::ATTR_N_REALIZATIONS, m.n_realizations as u64)?;
+    write_scalar_attr(file, L::ATTR_SHARD_SIZE, m.shard_size as u64)?;
+    write_scalar_attr(file, L::ATTR_N_SHARDS, m.n_shards() as u64)?;
+    write_scalar_attr(file, L::ATTR_STORE_RAW, u8::from(m.store_raw))?;
+    write_str_attr(file, L::ATTR_COMPRESSION, &m.compression.label())?;
+    Ok(())
+}
+
+fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
+    loc.new_attr::<T>().shape(()).create(name)?.write_scalar(&value)
+}
+
+fn to_vlu(text: &str) -> hdf5::Result<VarLenUnicode> {
+    text.parse::<VarLenUnicode>()
+        .map_err(|err| hdf5::Error::from(format!("text {text:?} cannot be stored: {err}")))
+}
+
+fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
+    let v = to_vlu(value)?;
+    loc.new_attr::<VarLenUnicode>().shape(()).create(name)?.write_scalar(&v)
+}
+
+fn write_str_list_attr(loc: &Location, name: &str, values: &[&str]) -> hdf5::Result<()> {
+    let v = values.iter().map(|t| to_vlu(t)).collect::<hdf5::Result<Vec<_>>>()?;
+    let attr = loc.new_attr::<VarLenUnicode>().shape(v.len()).create(name)?;
+    if !v.is_empty() {
+        attr.write(&v[..])?;
+    }
+    Ok(())
+}
