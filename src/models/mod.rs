@@ -8,3 +8,6 @@
 mod instance;
 
 pub use instance::{InputLayout, ModelInstance};
+pub mod dynamic_stiffness_chain;
+pub mod mine_hoist;
+pub mod three_mass_hoist;
