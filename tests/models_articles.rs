@@ -371,7 +371,7 @@ fn chain_million_masses_residual() {
     // n = 10⁶ in O(n): check the result through the residual of the tridiagonal equations computed here
     // independently, d_kΦ_k + s_{k−1}(Φ_k − Φ_{k−1}) + s_k(Φ_k − Φ_{k+1}) − M̄_k, relative to the row scale
     let n = 1_000_000;
-    let mut rng = Rng(0x5eed_1e6);
+    let mut rng = Rng(0x05ee_d1e6);
     let (ch, m) = random_chain(&mut rng, n);
     let p = 3.7;
     let start = std::time::Instant::now();
@@ -380,7 +380,7 @@ fn chain_million_masses_residual() {
     let inertia = ch.inertia();
     let cs = ch.shaft_stiffness();
     // damping values are not exposed; rebuild them from the same seed
-    let mut rng2 = Rng(0x5eed_1e6);
+    let mut rng2 = Rng(0x05ee_d1e6);
     let _ = (0..n).map(|_| rng2.log_uniform(0.1, 100.0)).count();
     let kg: Vec<f64> = (0..n)
         .map(|_| {

@@ -230,10 +230,10 @@ impl TorsionalChain {
         let mut piv: Vec<Complex<f64>> = Vec::with_capacity(n.saturating_sub(1));
         let mut kk = self.d(0, p);
         let mut ff = torques[0];
-        for k in 1..n {
+        for (k, &tk) in torques.iter().enumerate().skip(1) {
             let s = self.s(k - 1, p);
             let den = kk + s;
-            if den.norm() <= PIVOT_EPS * (kk.norm() + s.norm()) || den.norm() == 0.0 {
+            if den.l1_norm() <= PIVOT_EPS * (kk.l1_norm() + s.l1_norm()) || den.l1_norm() == 0.0 {
                 return Err(Error::Numerical {
                     what: "dynamic-stiffness sweep".into(),
                     reason: format!(
@@ -246,7 +246,7 @@ impl TorsionalChain {
             piv.push(den);
             let r = s / den;
             kk = self.d(k, p) + r * kk;
-            ff = torques[k] + r * ff;
+            ff = tk + r * ff;
         }
         let scale = self.d(n - 1, p).norm() + if n > 1 { self.s(n - 2, p).norm() } else { 0.0 };
         if kk.norm() <= PIVOT_EPS * scale || kk.norm() == 0.0 {

@@ -467,7 +467,7 @@ impl MineHoist {
         let m = self.mass_matrix(l2)?;
         let v = DVector::from_column_slice(&phi);
         let n2 = (v.transpose() * &m * &v)[(0, 0)];
-        if !(n2 > 0.0) {
+        if n2.is_nan() || n2 <= 0.0 {
             return Err(Error::Numerical {
                 what: "mine hoist cofactor mode".into(),
                 reason: format!("norm N = 0 at l2 = {l2} m (the nodal point of the cofactor construction)"),
@@ -634,7 +634,7 @@ pub fn book_rows() -> Vec<BookRow> {
         "printed 8.4 kg/m is not the formula value from the printed 0.491, 7800 kg/m3, 46.5 mm; the model uses 8.4",
     );
     push(
-        "upper end of xi = l2/H (l.152)",
+        "upper end of xi = l2/H (l.154)",
         "-",
         Some(1.0),
         Some(p.max_hanging_length / p.lift_height),

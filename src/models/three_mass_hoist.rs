@@ -396,11 +396,19 @@ impl ThreeMassHoist {
     /// T₂/64 (T₂ = 2π/ω₂), each best sample refined by golden-section search on its two neighbouring steps.
     ///
     /// # Errors
-    /// Non-positive `t_end`.
+    /// Non-positive or non-finite `t_end`, or more than 10⁸ samples.
     pub fn peak_link_moments(&self, t_end: f64) -> Result<(f64, f64)> {
         check_horizon(t_end)?;
         let (_, w2) = self.natural_frequencies();
-        let n = ((t_end * w2 / (2.0 * std::f64::consts::PI) * 64.0).ceil() as usize).max(64);
+        let samples = (t_end * w2 / (2.0 * std::f64::consts::PI) * 64.0).ceil();
+        if samples > 1e8 {
+            return Err(Error::invalid(
+                "t_end",
+                t_end,
+                format!("{samples:e} samples at T2/64 is too many; use a shorter horizon"),
+            ));
+        }
+        let n = (samples as usize).max(64);
         let dt = t_end / n as f64;
         let mut best = [(f64::NEG_INFINITY, 0.0); 2];
         for k in 0..=n {
