@@ -13,7 +13,10 @@ pub use registry::{book_rows, from_fields, ModelContext, KINDS};
 
 pub mod balancer_bogie;
 pub mod conveyor_idler;
+pub mod dynamic_stiffness_chain;
 pub mod half_car;
 pub mod isolation;
+pub mod mine_hoist;
 pub mod operator_seat;
 pub mod scraper;
+pub mod three_mass_hoist;

@@ -1,6 +1,9 @@
 //! Scenario-file kinds of the catalogue models.
 
-use super::{balancer_bogie, conveyor_idler, half_car, isolation, operator_seat, scraper, ModelInstance};
+use super::{
+    balancer_bogie, conveyor_idler, dynamic_stiffness_chain, half_car, isolation, mine_hoist, operator_seat, scraper,
+    three_mass_hoist, ModelInstance,
+};
 use crate::error::Result;
 use crate::scenario::Fields;
 
@@ -43,5 +46,8 @@ pub fn book_rows() -> Vec<crate::report::book::BookRow> {
     rows.extend(isolation::book_rows());
     rows.extend(half_car::book_rows());
     rows.extend(operator_seat::book_rows());
+    rows.extend(three_mass_hoist::book_rows());
+    rows.extend(dynamic_stiffness_chain::book_rows());
+    rows.extend(mine_hoist::book_rows());
     rows
 }
