@@ -165,7 +165,7 @@ impl Welch {
     pub fn new(segment_len: usize, dt: f64) -> Result<Self> {
         require_positive("dt", dt)?;
         let m = segment_len;
-        if m < 4 || m % 2 != 0 {
+        if m < 4 || !m.is_multiple_of(2) {
             return Err(Error::invalid("segment length", m, "must be even and >= 4"));
         }
         let window: Vec<f64> = (0..m)

@@ -338,9 +338,10 @@ impl SampledSystem {
     ///
     /// # Errors
     /// Length mismatches.
+    #[allow(clippy::needless_range_loop)] // small dense loops over flat row-major matrices
     pub fn respond(&self, u: &[f64], x: &mut [f64], y: &mut [f64]) -> Result<()> {
         let (n, m, p) = (self.n, self.m, self.p);
-        if m == 0 || u.len() % m != 0 || x.len() != n || y.len() != (u.len() / m) * p {
+        if m == 0 || !u.len().is_multiple_of(m) || x.len() != n || y.len() != (u.len() / m) * p {
             return Err(Error::invalid(
                 "buffers",
                 format!("u {}, x {}, y {}", u.len(), x.len(), y.len()),

@@ -101,7 +101,7 @@ impl SpectralGenerator {
     /// See the type's `# Errors`.
     pub fn new(spectrum: &dyn Spectrum, dt: f64, n: usize, amplitudes: Amplitudes) -> Result<Self> {
         require_positive("dt", dt)?;
-        if n < 2 || n % 2 != 0 {
+        if n < 2 || !n.is_multiple_of(2) {
             return Err(Error::invalid("n", n, "number of samples must be even and >= 2"));
         }
         let dw = 2.0 * PI / (n as f64 * dt);
