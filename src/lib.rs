@@ -7,12 +7,14 @@
 //! See [`spectrum`] for the normalization of spectral densities used everywhere in the crate.
 
 pub mod error;
+pub mod estimate;
 pub mod linalg;
 pub mod models;
 pub mod quad;
 pub mod report;
 pub mod response;
 pub mod scenario;
+pub mod simulate;
 pub mod spectrum;
 pub mod store;
 pub mod system;

@@ -6,7 +6,11 @@ use stochvib::report::book::{book_report, EXPLAIN_ABOVE};
 #[test]
 fn every_large_difference_is_explained() {
     let r = book_report();
-    let bad: Vec<String> = r.unexplained().iter().map(|row| format!("{} / {}", row.example, row.quantity)).collect();
+    let bad: Vec<String> = r
+        .unexplained()
+        .iter()
+        .map(|row| format!("{} / {}", row.example, row.quantity))
+        .collect();
     assert!(bad.is_empty(), "rows over {EXPLAIN_ABOVE} without explanation: {bad:?}");
 }
 
@@ -14,8 +18,21 @@ fn every_large_difference_is_explained() {
 #[test]
 fn every_worked_example_is_reported() {
     let r = book_report();
-    for needle in ["8.5", "Example 8.1", "Table 8.1", "Example 7.1", "xcavator", "Example 7.2", "000", "003", "004"] {
-        assert!(r.rows.iter().any(|row| row.example.contains(needle)), "no rows for {needle}");
+    for needle in [
+        "8.5",
+        "Example 8.1",
+        "Table 8.1",
+        "Example 7.1",
+        "xcavator",
+        "Example 7.2",
+        "000",
+        "003",
+        "004",
+    ] {
+        assert!(
+            r.rows.iter().any(|row| row.example.contains(needle)),
+            "no rows for {needle}"
+        );
     }
     // no computed value is NaN; missing values are None with an explanation
     for row in &r.rows {

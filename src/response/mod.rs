@@ -13,6 +13,7 @@ mod variance;
 
 pub use excitation::Excitation;
 pub use statistics::{analyze_output, Method, MethodValue, OutputStatistics};
+pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{
     band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,
     variance_integral_table, variance_lyapunov, variance_quadrature, LyapunovMoments,

@@ -325,14 +325,30 @@ fn filters(exc: &Excitation) -> Result<Vec<ShapingFilter>> {
 
 /// The augmented system z = [filter states; system states] driven by unit-intensity white noise w, with
 /// output row h and white-noise feedthrough f: y = h z + f w.
-pub(crate) struct Augmented {
-    pub(crate) a: DMatrix<f64>,
-    pub(crate) g: DMatrix<f64>,
-    pub(crate) h: DMatrix<f64>,
-    pub(crate) f: DMatrix<f64>,
+///
+/// # Formula
+/// ```text
+/// ż = A z + G w,   y_i = h z + f w,   E[w(t) w(s)ᵀ] = I δ(t − s)
+/// ```
+#[derive(Debug, Clone)]
+pub struct AugmentedSystem {
+    /// State matrix of z = [filter states; system states].
+    pub a: DMatrix<f64>,
+    /// Noise input matrix (one column per independent input process).
+    pub g: DMatrix<f64>,
+    /// Output row (1 × states) of the selected output.
+    pub h: DMatrix<f64>,
+    /// White-noise feedthrough (1 × processes); non-zero means the output has infinite variance.
+    pub f: DMatrix<f64>,
 }
 
-pub(crate) fn augment(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<Augmented> {
+/// The system augmented with the shaping filters of its (rational, delay-free) inputs, for output `i`: the
+/// white-noise-driven state-space form used by [`variance_lyapunov`] and by exact time-domain simulation.
+///
+/// # Errors
+/// [`Error::NotApplicable`] for delayed inputs or non-rational input spectra; [`Error::Divergent`] for
+/// an input with a white-noise component that cannot be shaped; dimension errors from the system.
+pub fn augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<AugmentedSystem> {
     if !exc.delay_free() {
         return Err(Error::NotApplicable {
             method: "exact (Lyapunov / integral-table) variance".into(),
@@ -388,7 +404,7 @@ pub(crate) fn augment(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<Aug
     // white-noise feedthrough: exactly zero unless the system passes u (or u̇) and the filter has relative
     // degree zero (or one)
     let f = &sys.d * &df + &sys.e * &cf * &bf + (&sys.e * &df).abs();
-    Ok(Augmented { a, g, h, f })
+    Ok(AugmentedSystem { a, g, h, f })
 }
 
 /// Exact variance (and λ₂, λ₄) of output `i` by the Lyapunov equation of the system augmented with the
@@ -410,7 +426,7 @@ pub fn variance_lyapunov(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize
         reason: "the system has no finite state-space form".into(),
     })?;
     ss.require_stable()?;
-    let aug = augment(ss, exc, i)?;
+    let aug = augmented_system(ss, exc, i)?;
     let name = &sys.outputs()[i].name;
     let tiny = |m: &DMatrix<f64>, scale: f64| m.amax() <= 1e-12 * scale.max(1e-300);
     if aug.f.amax() > 0.0 {

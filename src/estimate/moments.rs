@@ -1,0 +1,384 @@
+//! Across-realization moments with exact Gaussian confidence intervals (Student-t for the mean, χ² for
+//! the variance and σ), and streaming moments (Welford).
+
+use crate::error::{Error, Result};
+use statrs::distribution::{ChiSquared, ContinuousCDF, StudentsT};
+
+/// A two-sided confidence interval around an estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Interval {
+    /// Point estimate.
+    pub estimate: f64,
+    /// Lower end.
+    pub lower: f64,
+    /// Upper end.
+    pub upper: f64,
+    /// Confidence level 1 − p (e.g. 0.95).
+    pub confidence: f64,
+}
+
+impl Interval {
+    /// Whether `value` lies in [lower, upper].
+    pub fn covers(&self, value: f64) -> bool {
+        self.lower <= value && value <= self.upper
+    }
+    /// The comparison of this interval with an analytic value.
+    pub fn compare(&self, analytic: f64) -> Comparison {
+        Comparison {
+            analytic,
+            interval: *self,
+            covers: self.covers(analytic),
+        }
+    }
+}
+
+/// A Monte Carlo estimate compared with its analytic value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Comparison {
+    /// The analytic value.
+    pub analytic: f64,
+    /// The Monte Carlo interval.
+    pub interval: Interval,
+    /// Whether the interval covers the analytic value.
+    pub covers: bool,
+}
+
+fn check_confidence(confidence: f64) -> Result<()> {
+    if !(confidence > 0.0 && confidence < 1.0) {
+        return Err(Error::invalid("confidence", confidence, "must be in (0, 1)"));
+    }
+    Ok(())
+}
+
+fn check_samples(samples: &[f64], min: usize) -> Result<()> {
+    if samples.len() < min {
+        return Err(Error::invalid(
+            "samples",
+            samples.len(),
+            format!("need at least {min} realizations"),
+        ));
+    }
+    if samples.iter().any(|v| !v.is_finite()) {
+        return Err(Error::invalid(
+            "samples",
+            "non-finite value",
+            "all samples must be finite",
+        ));
+    }
+    Ok(())
+}
+
+/// Solves F(x) = p for a continuous increasing CDF on (lo, ∞) by bracketing and bisection to full
+/// precision, using the survival function for upper tails (accurate far in both tails, unlike a fixed
+/// number of Newton steps).
+fn quantile(cdf: impl Fn(f64) -> f64, sf: impl Fn(f64) -> f64, p: f64, lo: f64, start: f64) -> f64 {
+    let upper = p > 0.5;
+    let q = if upper { 1.0 - p } else { p };
+    // g(x) < 0 left of the root, > 0 right of it
+    let g = |x: f64| if upper { q - sf(x) } else { cdf(x) - q };
+    let (mut a, mut b) = (start - 1.0, start + 1.0);
+    if lo == 0.0 {
+        a = start * 0.5;
+        b = start * 2.0;
+        while g(a) > 0.0 && a > 1e-300 {
+            a *= 0.5;
+        }
+    } else {
+        let mut step = 1.0;
+        while g(a) > 0.0 {
+            a -= step;
+            step *= 2.0;
+        }
+    }
+    let mut step = b - a;
+    while g(b) < 0.0 {
+        b += step;
+        step *= 2.0;
+    }
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        if g(m) < 0.0 {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// Quantile of the χ² distribution with ν degrees of freedom: x with P(χ²_ν ≤ x) = p.
+///
+/// # Errors
+/// ν ≤ 0 or p ∉ (0, 1).
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::chi_squared_quantile;
+/// // χ²₂ is exponential with mean 2: quantile −2 ln(1 − p)
+/// let p = 1e-7;
+/// assert!((chi_squared_quantile(2.0, p).unwrap() / (-2.0 * (-p).ln_1p()) - 1.0).abs() < 1e-9);
+/// ```
+pub fn chi_squared_quantile(nu: f64, p: f64) -> Result<f64> {
+    let d = ChiSquared::new(nu).map_err(|e| Error::invalid("degrees of freedom", nu, e.to_string()))?;
+    if !(p > 0.0 && p < 1.0) {
+        return Err(Error::invalid("probability", p, "must be in (0, 1)"));
+    }
+    Ok(quantile(|x| d.cdf(x), |x| d.sf(x), p, 0.0, nu.max(1.0)))
+}
+
+/// Quantile of Student's t distribution with ν degrees of freedom.
+///
+/// # Errors
+/// ν ≤ 0 or p ∉ (0, 1).
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::student_t_quantile;
+/// // t₁ is Cauchy: quantile tan(π(p − 1/2))
+/// let p = 0.999;
+/// let exact = (std::f64::consts::PI * (p - 0.5)).tan();
+/// assert!((student_t_quantile(1.0, p).unwrap() / exact - 1.0).abs() < 1e-9);
+/// ```
+pub fn student_t_quantile(nu: f64, p: f64) -> Result<f64> {
+    let d = StudentsT::new(0.0, 1.0, nu).map_err(|e| Error::invalid("degrees of freedom", nu, e.to_string()))?;
+    if !(p > 0.0 && p < 1.0) {
+        return Err(Error::invalid("probability", p, "must be in (0, 1)"));
+    }
+    Ok(quantile(|x| d.cdf(x), |x| d.sf(x), p, f64::NEG_INFINITY, 0.0))
+}
+
+/// Sample mean and unbiased sample variance (two passes, summed in the given order).
+fn mean_var(samples: &[f64]) -> (f64, f64) {
+    let n = samples.len() as f64;
+    let mean = samples.iter().sum::<f64>() / n;
+    let ss: f64 = samples.iter().map(|x| (x - mean) * (x - mean)).sum();
+    (mean, if samples.len() > 1 { ss / (n - 1.0) } else { 0.0 })
+}
+
+/// Mean across N independent realizations with the Student-t interval (exact for Gaussian samples).
+///
+/// # Formula
+/// ```text
+/// m̂ = Σx_i/N,   s² = Σ(x_i − m̂)²/(N − 1),   m̂ ± t_{N−1, 1−p/2} s/√N
+/// ```
+///
+/// # Errors
+/// Fewer than 2 samples, non-finite samples, confidence ∉ (0, 1).
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::mean_interval;
+/// let m = mean_interval(&[1.0, 2.0, 3.0], 0.95).unwrap();
+/// assert_eq!(m.estimate, 2.0);
+/// // t_{2, 0.975} = 4.302653 (tables); s = 1
+/// assert!((m.upper - (2.0 + 4.302652729911275 / 3f64.sqrt())).abs() < 1e-9);
+/// ```
+pub fn mean_interval(samples: &[f64], confidence: f64) -> Result<Interval> {
+    check_confidence(confidence)?;
+    check_samples(samples, 2)?;
+    let (m, v) = mean_var(samples);
+    let n = samples.len() as f64;
+    let t = student_t_quantile(n - 1.0, 0.5 + 0.5 * confidence)?;
+    let h = t * (v / n).sqrt();
+    Ok(Interval {
+        estimate: m,
+        lower: m - h,
+        upper: m + h,
+        confidence,
+    })
+}
+
+/// Variance across N independent realizations about their sample mean, with the χ² interval (exact for
+/// Gaussian samples).
+///
+/// # Formula
+/// ```text
+/// s² = Σ(x_i − m̂)²/(N − 1),   (N − 1)s²/σ² ~ χ²_{N−1}:   [(N−1)s²/χ²_{N−1, 1−p/2}, (N−1)s²/χ²_{N−1, p/2}]
+/// ```
+///
+/// # Errors
+/// As [`mean_interval`].
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::variance_interval;
+/// let v = variance_interval(&[1.0, 2.0, 3.0, 4.0], 0.9).unwrap();
+/// assert!((v.estimate - 5.0 / 3.0).abs() < 1e-15);
+/// assert!(v.lower < v.estimate && v.estimate < v.upper);
+/// ```
+pub fn variance_interval(samples: &[f64], confidence: f64) -> Result<Interval> {
+    check_confidence(confidence)?;
+    check_samples(samples, 2)?;
+    let (_, v) = mean_var(samples);
+    chi2_interval(v, samples.len() as f64 - 1.0, confidence)
+}
+
+/// Variance across N independent realizations about a known mean μ (e.g. 0 for a zero-mean fluctuation),
+/// with the χ² interval on N degrees of freedom.
+///
+/// # Formula
+/// ```text
+/// σ̂² = Σ(x_i − μ)²/N,   N σ̂²/σ² ~ χ²_N
+/// ```
+///
+/// # Errors
+/// As [`mean_interval`] (at least 1 sample), and a non-finite μ.
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::variance_interval_known_mean;
+/// let v = variance_interval_known_mean(&[1.0, -1.0, 2.0], 0.0, 0.95).unwrap();
+/// assert_eq!(v.estimate, 2.0);
+/// ```
+pub fn variance_interval_known_mean(samples: &[f64], mean: f64, confidence: f64) -> Result<Interval> {
+    check_confidence(confidence)?;
+    check_samples(samples, 1)?;
+    crate::error::require_finite("mean", mean)?;
+    let n = samples.len() as f64;
+    let v = samples.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n;
+    chi2_interval(v, n, confidence)
+}
+
+/// The χ² interval for a variance estimate `v` with ν degrees of freedom: [ν v/χ²_{ν,1−p/2}, ν v/χ²_{ν,p/2}].
+///
+/// # Errors
+/// ν ≤ 0, confidence ∉ (0, 1), `v` negative or non-finite.
+pub fn chi2_interval(v: f64, nu: f64, confidence: f64) -> Result<Interval> {
+    check_confidence(confidence)?;
+    crate::error::require_non_negative("variance estimate", v)?;
+    let a = 1.0 - confidence;
+    let hi = chi_squared_quantile(nu, 1.0 - a / 2.0)?;
+    let lo = chi_squared_quantile(nu, a / 2.0)?;
+    Ok(Interval {
+        estimate: v,
+        lower: nu * v / hi,
+        upper: nu * v / lo,
+        confidence,
+    })
+}
+
+/// Standard deviation σ across realizations: the square root of [`variance_interval`] (the χ² interval is
+/// transformed, so its confidence is unchanged).
+///
+/// # Errors
+/// As [`variance_interval`].
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::std_interval;
+/// let s = std_interval(&[1.0, 2.0, 3.0, 4.0], 0.9).unwrap();
+/// assert!((s.estimate - (5.0f64 / 3.0).sqrt()).abs() < 1e-15);
+/// ```
+pub fn std_interval(samples: &[f64], confidence: f64) -> Result<Interval> {
+    let v = variance_interval(samples, confidence)?;
+    Ok(Interval {
+        estimate: v.estimate.sqrt(),
+        lower: v.lower.sqrt(),
+        upper: v.upper.sqrt(),
+        confidence,
+    })
+}
+
+/// Streaming mean and variance (Welford 1962), O(1) memory; merge by Chan, Golub & LeVeque (1979).
+///
+/// # Formula
+/// ```text
+/// n ← n + 1,  δ = x − m,  m ← m + δ/n,  M₂ ← M₂ + δ (x − m);    variance = M₂/(n − 1)
+/// ```
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::RunningMoments;
+/// let mut r = RunningMoments::default();
+/// r.extend(&[1.0, 2.0, 3.0, 4.0]);
+/// assert_eq!(r.mean(), 2.5);
+/// assert!((r.variance() - 5.0 / 3.0).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RunningMoments {
+    count: u64,
+    mean: f64,
+    m2: f64,
+}
+
+impl RunningMoments {
+    /// Adds one sample.
+    #[inline]
+    pub fn push(&mut self, x: f64) {
+        self.count += 1;
+        let d = x - self.mean;
+        self.mean += d / self.count as f64;
+        self.m2 += d * (x - self.mean);
+    }
+    /// Adds samples in order.
+    pub fn extend(&mut self, xs: &[f64]) {
+        for &x in xs {
+            self.push(x);
+        }
+    }
+    /// Combines with the moments of another, disjoint set of samples.
+    pub fn merge(&mut self, other: &RunningMoments) {
+        if other.count == 0 {
+            return;
+        }
+        let n = (self.count + other.count) as f64;
+        let d = other.mean - self.mean;
+        self.m2 += other.m2 + d * d * self.count as f64 * other.count as f64 / n;
+        self.mean += d * other.count as f64 / n;
+        self.count += other.count;
+    }
+    /// Number of samples.
+    pub fn count(&self) -> u64 {
+        self.count
+    }
+    /// Mean (0 with no samples).
+    pub fn mean(&self) -> f64 {
+        self.mean
+    }
+    /// Unbiased variance M₂/(n − 1) (0 with fewer than 2 samples).
+    pub fn variance(&self) -> f64 {
+        if self.count < 2 {
+            0.0
+        } else {
+            self.m2 / (self.count - 1) as f64
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantiles_against_closed_forms() {
+        // χ²₁ quantile = z² with z the normal quantile at (1+p)/2; z_{0.975} = 1.959963984540054 (tables).
+        let q = chi_squared_quantile(1.0, 0.95).unwrap();
+        assert!((q - 1.959963984540054f64.powi(2)).abs() < 1e-9);
+        // χ²₂ far lower tail: −2 ln(1 − p) ≈ 2p
+        let p = 1e-9;
+        assert!((chi_squared_quantile(2.0, p).unwrap() / (-2.0 * (-p).ln_1p()) - 1.0).abs() < 1e-8);
+        // t₂ has the closed-form quantile t = (2p − 1)/√(2p(1 − p))
+        for p in [0.6f64, 0.99, 1.0 - 1e-8] {
+            let exact = (2.0 * p - 1.0) / (2.0 * p * (1.0 - p)).sqrt();
+            assert!((student_t_quantile(2.0, p).unwrap() / exact - 1.0).abs() < 1e-8, "{p}");
+        }
+    }
+
+    #[test]
+    fn welford_matches_two_pass_and_merge() {
+        let xs: Vec<f64> = (0..100).map(|k| ((k * 37) % 101) as f64 * 0.1 + 1e6).collect();
+        let (m, v) = mean_var(&xs);
+        let mut r = RunningMoments::default();
+        r.extend(&xs);
+        assert!((r.mean() - m).abs() < 1e-9 && (r.variance() / v - 1.0).abs() < 1e-9);
+        let (mut a, mut b) = (RunningMoments::default(), RunningMoments::default());
+        a.extend(&xs[..30]);
+        b.extend(&xs[30..]);
+        a.merge(&b);
+        assert_eq!(a.count(), 100);
+        assert!((a.mean() - m).abs() < 1e-9 && (a.variance() / v - 1.0).abs() < 1e-9);
+    }
+}

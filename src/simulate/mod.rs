@@ -1,0 +1,29 @@
+//! Monte Carlo simulation of stationary Gaussian processes and of the responses of linear systems.
+//!
+//! * Random streams ([`rng`]): one documented portable generator ([`GENERATOR`], xoshiro256++); realization
+//!   i of seed s draws from its own stream, so results are identical for any thread count or sharding.
+//! * Generators: the spectral representation on an FFT grid for any spectrum ([`SpectralGenerator`],
+//!   Rayleigh amplitudes by default, [`Amplitudes::PhaseOnly`] labelled), exact discrete-time shaping filters
+//!   for rational spectra, streaming in constant memory ([`shaping_simulator`], [`GaussMarkov`]), road
+//!   profiles felt by several wheels at speed v ([`RoadTrack`]).
+//! * Time response: exact zero/first-order-hold discretisation ([`zoh`], [`foh`], [`SampledSystem`]) and
+//!   Van Loan's white-noise discretisation of the system augmented with its input filters
+//!   ([`van_loan`], [`augmented_response`]) — no time-step bias.
+//! * Batches ([`run_batch`], [`Shard`]): rayon-parallel, mergeable shards.
+
+pub mod batch;
+pub mod discretize;
+pub mod rng;
+pub mod road;
+pub mod shaping;
+pub mod spectral;
+
+pub use batch::{run_batch, Shard};
+pub use discretize::{
+    augmented_response, covariance_factor, expm, foh, van_loan, zoh, FirstOrderHold, SampledSystem,
+    WhiteNoiseDiscretization, ZeroOrderHold,
+};
+pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
+pub use road::{RoadScratch, RoadTrack};
+pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
+pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
