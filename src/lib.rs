@@ -9,6 +9,7 @@
 pub mod error;
 pub mod linalg;
 pub mod models;
+pub mod plot;
 pub mod quad;
 pub mod report;
 pub mod response;
