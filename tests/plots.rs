@@ -314,6 +314,10 @@ fn octave_bars_are_coloured_by_pass_or_fail() {
     let red = svg.matches("fill=\"#D62728\"").count();
     let green = svg.matches("fill=\"#2CA02C\"").count();
     assert_eq!((red, green), (3 + 1, 4 + 1));
+    // a single category renders too
+    let one =
+        model_plots::octave_band_chart("One band", &[4.0], &[0.3], &[Some(0.57)], "RMS acceleration", "m/s²").unwrap();
+    check_pair(&one.render(&dir, "one").unwrap(), &["One band"]);
 }
 
 #[test]

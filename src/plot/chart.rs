@@ -963,12 +963,14 @@ impl Draw for BarsWithRange<'_> {
         let (b, y) = (self.0, self.1);
         root.fill(&WHITE).map_err(err)?;
         let n = b.categories.len();
+        // plotters' segmented 0..k has k + 1 segments (the end is inclusive); one category keeps 0..1
+        let last = if n >= 2 { n - 1 } else { n };
         let mut chart = ChartBuilder::on(root)
             .caption(&b.title, TITLE_FONT)
             .margin(12)
             .x_label_area_size(48)
             .y_label_area_size(80)
-            .build_cartesian_2d((0..n).into_segmented(), y.0..y.1)
+            .build_cartesian_2d((0..last).into_segmented(), y.0..y.1)
             .map_err(err)?;
         let cats = &b.categories;
         chart
