@@ -10,6 +10,7 @@ pub mod error;
 pub mod estimate;
 pub mod linalg;
 pub mod models;
+pub mod plot;
 pub mod quad;
 pub mod report;
 pub mod response;

@@ -3,6 +3,7 @@
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
+use stochvib::plot::{scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::{self, resolve_spectrum, spectrum_report};
 use stochvib::scenario::{load_scenario, spectrum_catalogue};
 use stochvib::spectrum::Convention;
@@ -39,6 +40,25 @@ enum Command {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+        /// Also write the scenario's pictures (SVG and PNG) into this directory.
+        #[arg(long)]
+        plots: Option<PathBuf>,
+    },
+    /// Write pictures of a scenario (`.toml`): input density, |H(iω)|² and output densities with the
+    /// cumulative variance, as SVG and PNG.
+    Plot {
+        /// Scenario file (TOML). Monte Carlo run files (`.h5`) are not handled yet.
+        input: PathBuf,
+        /// Output directory (created if missing).
+        #[arg(short = 'o', long)]
+        out: PathBuf,
+        /// Convention of the densities: one-sided-cyclic (Hz, default), one-sided-angular,
+        /// two-sided-angular, engineering.
+        #[arg(long, default_value = "one-sided-cyclic")]
+        convention: Convention,
+        /// Directory of spectrum files.
+        #[arg(long)]
+        spectra_dir: Option<PathBuf>,
     },
     /// Reproduce every worked example of the source documents: printed value, computed value, relative
     /// difference and an explanation for every difference over 2 %.
@@ -129,6 +149,7 @@ fn main() -> Result<()> {
             scenario,
             spectra_dir,
             json,
+            plots,
         } => {
             let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
             let sc = load_scenario(&scenario, &dir)?;
@@ -137,6 +158,30 @@ fn main() -> Result<()> {
                 emit_line(&format!("{}", serde_json::to_string_pretty(&r)?));
             } else {
                 emit(&format!("{r}"));
+            }
+            if let Some(out) = plots {
+                let files = write_scenario_plots(&sc, &dir, &out, Convention::OneSidedCyclic)?;
+                eprintln!("wrote {} pictures to {}", files.len(), out.display());
+            }
+        }
+        Command::Plot {
+            input,
+            out,
+            convention,
+            spectra_dir,
+        } => {
+            let is_toml = input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+            if !is_toml {
+                anyhow::bail!(
+                    "{}: only scenario files (.toml) can be plotted; pictures of Monte Carlo run files (.h5) are not \
+                     implemented",
+                    input.display()
+                );
+            }
+            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
+            let sc = load_scenario(&input, &dir)?;
+            for f in write_scenario_plots(&sc, &dir, &out, convention)? {
+                emit_line(&f.display().to_string());
             }
         }
         Command::Spectrum {
@@ -156,6 +201,22 @@ fn main() -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Scenario pictures, with the input unit read from the spectrum file the scenario names.
+fn write_scenario_plots(
+    sc: &stochvib::scenario::Scenario,
+    spectra_dir: &std::path::Path,
+    out: &std::path::Path,
+    convention: Convention,
+) -> Result<Vec<PathBuf>> {
+    let input_unit = resolve_spectrum(&sc.input_name, spectra_dir).ok().map(|f| f.unit);
+    let opts = ScenarioPlotOptions {
+        convention,
+        input_unit,
+        ..ScenarioPlotOptions::default()
+    };
+    Ok(scenario_plots_with(sc, out, &opts)?)
 }
 
 /// Writes to stdout; a closed pipe (`stochvib spectra | head`) ends the program quietly.

@@ -1,0 +1,25 @@
+//! Pictures: spectra, frequency responses, output densities with their cumulative variance, and the
+//! Monte Carlo and catalogue-model checks, written as SVG and PNG with `plotters` (pure-Rust back ends and
+//! a bundled font: no system font library is needed).
+//!
+//! * [`chart`]: the generic layer — [`LineChart`] (log or linear axes, bands, markers, a secondary axis),
+//!   [`BarChart`] (values against limits), [`Histogram`] (with overlaid density curves and markers). Each
+//!   renders to `<stem>.svg` and `<stem>.png` (800 × 500) in a directory.
+//! * [`scenario_plots`](mod@scenario_plots): input density, |H(iω)|² and output densities of a loaded
+//!   [`Scenario`](crate::scenario::Scenario).
+//! * [`mc_plots`]: Monte Carlo checks from plain data (realizations, histogram against N(M, σ), Welch
+//!   estimate against the analytic density, correlation estimate against the model).
+//! * [`model_plots`]: catalogue-model pictures from plain data (octave-band RMS against limits, mine-hoist
+//!   frequencies and modes over ξ, balancer D_y/D_x over r, scraper σ over speed).
+//!
+//! Axis labels carry the quantity and its unit; titles name the scenario or model.
+
+pub mod chart;
+pub mod mc_plots;
+pub mod model_plots;
+pub mod scenario_plots;
+
+pub use chart::{
+    Band, BarChart, Histogram, Legend, LineChart, LineStyle, Marker, SecondaryAxis, Series, HEIGHT, WIDTH,
+};
+pub use scenario_plots::{scenario_plots, scenario_plots_with, ScenarioPlotOptions};

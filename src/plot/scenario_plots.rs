@@ -1,0 +1,500 @@
+//! Pictures of a loaded scenario: the input density, |H(iω)|² of each output and each output's density
+//! with the cumulative variance curve (where the variance comes from).
+
+use super::chart::{Legend, LineChart, Marker, SecondaryAxis, Series};
+use crate::error::{num, Error, Result};
+use crate::response::{band_variance, output_density, variance_quadrature};
+use crate::scenario::Scenario;
+use crate::spectrum::{Convention, Domain, Spectrum};
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+/// Options of [`scenario_plots_with`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScenarioPlotOptions {
+    /// Convention of the plotted densities and of the frequency axis. Default
+    /// [`Convention::OneSidedCyclic`] (G(f) against f in Hz, or G_d(n) against n in cycles/m for a road).
+    pub convention: Convention,
+    /// SI unit of the input process (e.g. `m` for a road, `N` for a force); `None`: taken from the input
+    /// spectrum's `unit` key (inline table, or the spectrum file found as the scenario loader finds it,
+    /// in the default catalogue), otherwise the words "input unit".
+    pub input_unit: Option<String>,
+    /// Points per curve (at least 20). Default 400.
+    pub points: usize,
+}
+
+impl Default for ScenarioPlotOptions {
+    fn default() -> Self {
+        ScenarioPlotOptions {
+            convention: Convention::OneSidedCyclic,
+            input_unit: None,
+            points: 400,
+        }
+    }
+}
+
+/// Writes every scenario picture into `dir` with the default options ([`ScenarioPlotOptions::default`]):
+/// `input-density`, then for each reported output `transfer-<output>` and `output-density-<output>`, each
+/// as `.svg` and `.png`.
+///
+/// # Errors
+/// As [`scenario_plots_with`].
+///
+/// # Examples
+/// ```
+/// use std::path::Path;
+/// let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+/// let sc = stochvib::scenario::load_scenario(&root.join("data/quarter-car.toml"), &root.join("spectra")).unwrap();
+/// let dir = std::env::temp_dir().join("stochvib-doc-scenario-plots");
+/// let files = stochvib::plot::scenario_plots(&sc, &dir).unwrap();
+/// assert_eq!(files.len(), 2 * (1 + 2 * 4)); // input + 2 per output, SVG and PNG each
+/// ```
+pub fn scenario_plots(sc: &Scenario, dir: &Path) -> Result<Vec<PathBuf>> {
+    scenario_plots_with(sc, dir, &ScenarioPlotOptions::default())
+}
+
+/// Writes every scenario picture into `dir` (see [`scenario_plots`]) and returns the paths written.
+///
+/// # Errors
+/// [`Error::Io`] if `dir` cannot be created; [`Error::Numerical`] (`plot …`) if a picture has nothing
+/// drawable or the back end fails; errors of the response computations (e.g. an unstable system).
+pub fn scenario_plots_with(sc: &Scenario, dir: &Path, opts: &ScenarioPlotOptions) -> Result<Vec<PathBuf>> {
+    let mut files = input_density_chart(sc, opts)?.render(dir, "input-density")?;
+    for &i in &sc.analysis.outputs {
+        let name = stem_part(&sc.model.system.outputs()[i].name);
+        files.extend(transfer_chart(sc, i, opts)?.render(dir, &format!("transfer-{name}"))?);
+        files.extend(output_density_chart(sc, i, opts)?.render(dir, &format!("output-density-{name}"))?);
+    }
+    Ok(files)
+}
+
+/// Log–log chart of the scenario's input density as given (a road in its spatial variable, before the
+/// speed turns it into time), in `opts.convention`.
+///
+/// # Formula
+/// The canonical S(ω) converted by [`Convention::from_canonical`]: G(f) = 4π S(2πf) by default.
+///
+/// # Errors
+/// [`Error::Numerical`] "nothing to plot" when the density is zero everywhere on the grid.
+pub fn input_density_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<LineChart> {
+    let unit = opts.input_unit.clone().unwrap_or_else(|| input_unit(sc));
+    let spectra = [(sc.input_name.as_str(), sc.input_spectrum.as_ref())];
+    spectra_chart(
+        &format!("Input density: {}", sc.title),
+        &spectra,
+        &unit,
+        opts.convention,
+        opts.points,
+    )
+}
+
+/// Log–log chart of one or more spectra of the same domain and unit (e.g. ISO 8608 classes) in a
+/// convention. The frequency range covers every spectrum's support and breakpoints.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for no spectra, mixed domains or fewer than 20 points;
+/// [`Error::Numerical`] "nothing to plot" from rendering when every density is zero.
+///
+/// # Examples
+/// ```
+/// use stochvib::spectrum::{Convention, Domain, Exponential, Spectrum};
+/// let s = Exponential::new(1.0, 2.0, Domain::Temporal).unwrap();
+/// let c = stochvib::plot::scenario_plots::spectra_chart("Type 1", &[("type 1", &s as &dyn Spectrum)], "m",
+///     Convention::OneSidedCyclic, 100).unwrap();
+/// assert!(c.log_x && c.log_y);
+/// assert_eq!(c.x_label, "frequency f [Hz]");
+/// ```
+pub fn spectra_chart(
+    title: &str,
+    spectra: &[(&str, &dyn Spectrum)],
+    unit: &str,
+    convention: Convention,
+    points: usize,
+) -> Result<LineChart> {
+    if spectra.is_empty() {
+        return Err(Error::invalid("spectra", 0, "need at least one spectrum"));
+    }
+    if points < 20 {
+        return Err(Error::invalid("points", points, "need at least 20 points per curve"));
+    }
+    let domain = spectra[0].1.domain();
+    if spectra.iter().any(|s| s.1.domain() != domain) {
+        return Err(Error::invalid(
+            "spectra",
+            "mixed domains",
+            "temporal and spatial spectra need different axes",
+        ));
+    }
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for (_, s) in spectra {
+        let (a, b) = spectrum_range(*s, &[]);
+        lo = lo.min(a);
+        hi = hi.max(b);
+    }
+    let grid = log_grid(lo, hi, points, &[]);
+    let mut chart = LineChart::new(
+        title,
+        frequency_label(convention, domain),
+        density_label(convention, domain, "input", unit),
+    );
+    chart.log_x = true;
+    chart.log_y = true;
+    for (name, s) in spectra {
+        let (slo, shi) = s.support();
+        let pts = grid
+            .iter()
+            .filter(|w| **w >= slo && **w <= shi)
+            .map(|&w| convention.from_canonical(w, s.density(w)))
+            .collect();
+        chart.series.push(Series::line(*name, pts));
+    }
+    chart.legend = Legend::LowerLeft;
+    Ok(chart)
+}
+
+/// Log–log chart of |H_ij(iω)|² of output `output` for every input j, against frequency (Hz or rad/s per
+/// `opts.convention`), with the system's natural frequencies marked.
+///
+/// # Formula
+/// The ω grid spans the natural frequencies |λ| and the input's breakpoints and support edges, a decade
+/// beyond each side, log-spaced, with the natural frequencies themselves included.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for an output index out of range.
+pub fn transfer_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) -> Result<LineChart> {
+    let sys = sc.model.system.as_ref();
+    let info = sys.outputs().get(output).ok_or_else(|| {
+        Error::invalid(
+            "output",
+            output,
+            format!("the system has {} outputs", sys.outputs().len()),
+        )
+    })?;
+    let conv = opts.convention;
+    let in_unit = opts.input_unit.clone().unwrap_or_else(|| input_unit(sc));
+    let grid = system_grid(sc, opts.points);
+    let m = sys.n_inputs();
+    let mut curves: Vec<Vec<(f64, f64)>> = vec![Vec::with_capacity(grid.len()); m];
+    for &w in &grid {
+        let h = sys.response(w);
+        for (j, c) in curves.iter_mut().enumerate() {
+            c.push((frequency(conv, w), h[(output, j)].norm_sqr()));
+        }
+    }
+    let ratio = if info.unit == in_unit {
+        "dimensionless".to_string()
+    } else {
+        format!("({}/{})²", unit_text(&info.unit), unit_text(&in_unit))
+    };
+    let mut chart = LineChart::new(
+        format!("|H(iω)|² of {}: {}", info.name, sc.title),
+        frequency_label(conv, Domain::Temporal),
+        format!("|H(iω)|² [{ratio}]"),
+    );
+    chart.log_x = true;
+    chart.log_y = true;
+    chart.max_decades = Some(8.0);
+    for (j, c) in curves.into_iter().enumerate() {
+        let name = if m == 1 {
+            format!("{} per unit input", info.name)
+        } else {
+            format!("{} per input {j}", info.name)
+        };
+        chart.series.push(Series::line(name, c));
+    }
+    chart.vlines = natural_frequency_markers(sc, conv);
+    chart.legend = Legend::LowerLeft;
+    Ok(chart)
+}
+
+/// Log–log chart of the density of output `output` in `opts.convention`, with the cumulative variance on
+/// a linear right-hand axis and the whole-axis variance as a horizontal line.
+///
+/// # Formula
+/// S_y(ω) = H S_u Hᴴ ([`output_density`]). The cumulative variance at grid point ω_k is
+/// σ²(ω_k) = 2∫_0^{ω_k} S_y dω = ∫_0^{f_k} G_y df, accumulated segment by segment with
+/// [`band_variance`] (adaptive Gauss–Kronrod quadrature, [`crate::quad::integrate`], per segment; no
+/// trapezoid). When S_y is not integrable at ω = 0 the curve starts at the first grid point (and its label
+/// says so). The horizontal line is [`variance_quadrature`] over the whole axis, so the gap between the
+/// curve's end and the line is the variance beyond the plotted range.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for an output index out of range; quadrature errors.
+pub fn output_density_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) -> Result<LineChart> {
+    let sys = sc.model.system.as_ref();
+    let exc = &sc.excitation;
+    let info = sys.outputs().get(output).ok_or_else(|| {
+        Error::invalid(
+            "output",
+            output,
+            format!("the system has {} outputs", sys.outputs().len()),
+        )
+    })?;
+    let conv = opts.convention;
+    let (slo, shi) = exc.support();
+    let grid: Vec<f64> = system_grid(sc, opts.points)
+        .into_iter()
+        .filter(|w| *w >= slo && *w <= shi)
+        .collect();
+    if grid.is_empty() {
+        return Err(Error::Numerical {
+            what: "plot output density".into(),
+            reason: "nothing to plot: the input's support lies outside the frequency grid".into(),
+        });
+    }
+    let density: Vec<(f64, f64)> = grid
+        .iter()
+        .map(|&w| conv.from_canonical(w, output_density(sys, exc, output, w)))
+        .collect();
+    let (mut acc, from_zero) = match band_variance(sys, exc, output, 0.0, grid[0]) {
+        Ok(r) => (r.value, true),
+        Err(Error::Divergent { .. }) => (0.0, false),
+        Err(e) => return Err(e),
+    };
+    let mut cumulative = vec![(frequency(conv, grid[0]), acc)];
+    for k in 1..grid.len() {
+        acc += band_variance(sys, exc, output, grid[k - 1], grid[k])?.value;
+        cumulative.push((frequency(conv, grid[k]), acc));
+    }
+    let var_unit = squared(&info.unit);
+    let fsym = if conv.is_cyclic() { "f" } else { "ω" };
+    let mut hlines = Vec::new();
+    match variance_quadrature(sys, exc, output) {
+        Ok(r) => hlines.push(Marker::new(
+            r.value,
+            format!("σ² (whole axis) = {} {var_unit}", num(r.value)),
+        )),
+        Err(Error::Divergent { .. }) => {}
+        Err(e) => return Err(e),
+    }
+    let cum_name = if from_zero {
+        format!("cumulative variance σ²({fsym})")
+    } else {
+        format!(
+            "cumulative variance from {fsym} = {} (not integrable at 0)",
+            num(frequency(conv, grid[0]))
+        )
+    };
+    let mut chart = LineChart::new(
+        format!("Output density of {}: {}", info.name, sc.title),
+        frequency_label(conv, Domain::Temporal),
+        density_label(conv, Domain::Temporal, &info.name.clone(), &info.unit),
+    );
+    chart.log_x = true;
+    chart.log_y = true;
+    chart.max_decades = Some(8.0);
+    chart
+        .series
+        .push(Series::line(format!("density of {}", info.name), density));
+    chart.secondary = Some(SecondaryAxis {
+        y_label: format!("cumulative variance σ²({fsym}) [{var_unit}]"),
+        series: vec![Series::dashed(cum_name, cumulative)],
+        hlines,
+    });
+    chart.vlines = natural_frequency_markers(sc, conv);
+    chart.legend = Legend::LowerLeft;
+    Ok(chart)
+}
+
+/// SI unit of the scenario's input process: the `unit` key of the input spectrum (inline table, or the
+/// spectrum file as given, next to the scenario, or in [`crate::report::default_spectra_dir`]); default
+/// `m` as in spectrum files; "input unit" when the spectrum file cannot be found.
+pub fn input_unit(sc: &Scenario) -> String {
+    let root: toml::Table = match toml::from_str(&sc.text) {
+        Ok(t) => t,
+        Err(_) => return "input unit".into(),
+    };
+    let spectrum = root.get("input").and_then(|t| t.get("spectrum"));
+    match spectrum {
+        Some(toml::Value::Table(t)) => t.get("unit").and_then(|v| v.as_str()).unwrap_or("m").to_string(),
+        Some(toml::Value::String(name)) => {
+            let mut candidates = vec![PathBuf::from(name)];
+            if let Some(parent) = sc.path.parent() {
+                candidates.push(parent.join(name));
+                candidates.push(parent.join("../spectra").join(format!("{name}.toml")));
+            }
+            candidates.push(crate::report::default_spectra_dir().join(format!("{name}.toml")));
+            candidates
+                .iter()
+                .filter(|p| p.is_file())
+                .find_map(|p| crate::scenario::load_spectrum(p).ok())
+                .map(|f| f.unit)
+                .unwrap_or_else(|| "input unit".into())
+        }
+        _ => "input unit".into(),
+    }
+}
+
+/// The frequency-axis value of ω in a convention: f = ω/2π (cyclic) or ω.
+fn frequency(conv: Convention, w: f64) -> f64 {
+    if conv.is_cyclic() {
+        w / (2.0 * PI)
+    } else {
+        w
+    }
+}
+
+fn frequency_label(conv: Convention, domain: Domain) -> String {
+    match (conv.is_cyclic(), domain) {
+        (true, Domain::Temporal) => "frequency f [Hz]".into(),
+        (true, Domain::Spatial) => "spatial frequency n [cycles/m]".into(),
+        (false, Domain::Temporal) => "angular frequency ω [rad/s]".into(),
+        (false, Domain::Spatial) => "wavenumber Ω [rad/m]".into(),
+    }
+}
+
+/// A unit for display: `m/s^2` → `m/s²`, `N*s/m` → `N·s/m`.
+pub fn unit_text(unit: &str) -> String {
+    unit.replace("^-1", "⁻¹")
+        .replace("^-2", "⁻²")
+        .replace("^2", "²")
+        .replace("^3", "³")
+        .replace("^4", "⁴")
+        .replace('*', "·")
+}
+
+/// `u²`, or `(u)²` for a compound unit.
+fn squared(unit: &str) -> String {
+    let unit = &unit_text(unit);
+    if unit.chars().all(|c| c.is_alphanumeric()) {
+        format!("{unit}²")
+    } else {
+        format!("({unit})²")
+    }
+}
+
+fn density_label(conv: Convention, domain: Domain, what: &str, unit: &str) -> String {
+    let x = match (conv.is_cyclic(), domain) {
+        (true, Domain::Temporal) => "f",
+        (true, Domain::Spatial) => "n",
+        (false, Domain::Temporal) => "ω",
+        (false, Domain::Spatial) => "Ω",
+    };
+    let sym = match conv {
+        Convention::TwoSidedAngular => format!("S({x}), two-sided"),
+        Convention::OneSidedAngular => format!("G({x}), one-sided"),
+        Convention::OneSidedCyclic => format!("G({x}), one-sided"),
+        Convention::Engineering => format!("Ŝ({x}) = 2πS"),
+    };
+    let per = match (conv.is_cyclic(), domain) {
+        (true, Domain::Temporal) => "Hz",
+        (true, Domain::Spatial) => "(cycles/m)",
+        (false, Domain::Temporal) => "(rad/s)",
+        (false, Domain::Spatial) => "(rad/m)",
+    };
+    format!("density {sym} of {what} [{}/{per}]", squared(unit))
+}
+
+/// Frequency range of a spectrum for plotting (rad/s or rad/m): its support where finite, otherwise a
+/// factor 30 beyond its breakpoints and `hints`.
+fn spectrum_range(s: &dyn Spectrum, hints: &[f64]) -> (f64, f64) {
+    let (slo, shi) = s.support();
+    let marks: Vec<f64> = s
+        .breakpoints()
+        .into_iter()
+        .chain(hints.iter().cloned())
+        .chain([slo, shi])
+        .filter(|w| w.is_finite() && *w > 0.0)
+        .collect();
+    let (mlo, mhi) = if marks.is_empty() {
+        (0.1, 100.0)
+    } else {
+        (
+            marks.iter().cloned().fold(f64::INFINITY, f64::min),
+            marks.iter().cloned().fold(0.0, f64::max),
+        )
+    };
+    let lo = if slo > 0.0 && slo.is_finite() { slo } else { mlo / 30.0 };
+    let hi = if shi.is_finite() { shi } else { mhi * 30.0 };
+    if hi > lo {
+        (lo, hi)
+    } else {
+        (lo / 10.0, lo * 10.0)
+    }
+}
+
+/// ω grid (rad/s) for system plots: a decade beyond the natural frequencies and the input's breakpoints
+/// and finite support edges.
+fn system_grid(sc: &Scenario, points: usize) -> Vec<f64> {
+    let nat: Vec<f64> = sc
+        .model
+        .system
+        .natural_frequencies()
+        .into_iter()
+        .filter(|w| w.is_finite() && *w > 0.0)
+        .collect();
+    let (slo, shi) = sc.excitation.support();
+    let marks: Vec<f64> = nat
+        .iter()
+        .cloned()
+        .chain(sc.excitation.breakpoints())
+        .chain([slo, shi])
+        .filter(|w| w.is_finite() && *w > 0.0)
+        .collect();
+    let (lo, hi) = if marks.is_empty() {
+        (0.1, 100.0)
+    } else {
+        (
+            marks.iter().cloned().fold(f64::INFINITY, f64::min) / 10.0,
+            marks.iter().cloned().fold(0.0, f64::max) * 10.0,
+        )
+    };
+    let mut extra = nat;
+    extra.extend([slo, shi].into_iter().filter(|w| w.is_finite() && *w > 0.0));
+    log_grid(lo, hi, points.max(20), &extra)
+}
+
+/// `n` log-spaced points from `lo` to `hi`, with the `extra` points in range added; sorted, distinct.
+fn log_grid(lo: f64, hi: f64, n: usize, extra: &[f64]) -> Vec<f64> {
+    let n = n.max(2);
+    let r = (hi / lo).ln();
+    let mut g: Vec<f64> = (0..n)
+        .map(|k| lo * (r * k as f64 / (n - 1) as f64).exp())
+        .chain(extra.iter().cloned().filter(|w| *w >= lo && *w <= hi))
+        .collect();
+    g.sort_by(|a, b| a.total_cmp(b));
+    g.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs());
+    g
+}
+
+fn natural_frequency_markers(sc: &Scenario, conv: Convention) -> Vec<Marker> {
+    let mut nat: Vec<f64> = sc
+        .model
+        .system
+        .natural_frequencies()
+        .into_iter()
+        .filter(|w| w.is_finite() && *w > 0.0)
+        .collect();
+    nat.sort_by(|a, b| a.total_cmp(b));
+    nat.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
+    let unit = if conv.is_cyclic() { "Hz" } else { "rad/s" };
+    let list = nat
+        .iter()
+        .map(|w| num(frequency(conv, *w)))
+        .collect::<Vec<_>>()
+        .join(", ");
+    nat.iter()
+        .enumerate()
+        .map(|(k, w)| {
+            let label = if k == 0 {
+                format!("natural frequencies |λ|: {list} {unit}")
+            } else {
+                String::new()
+            };
+            Marker::new(frequency(conv, *w), label)
+        })
+        .collect()
+}
+
+/// A file-name-safe version of an output name.
+fn stem_part(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}

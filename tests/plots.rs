@@ -1,0 +1,360 @@
+//! Pictures: every plot function writes an SVG and a PNG that are well formed, of the right size, not
+//! blank, and carry their title and axis labels; bad input gives errors, never panics.
+
+use std::path::{Path, PathBuf};
+use stochvib::plot::chart::{BarChart, LineChart, Marker, Series};
+use stochvib::plot::{mc_plots, model_plots, scenario_plots, Histogram, HEIGHT, WIDTH};
+use stochvib::response::variance_quadrature;
+use stochvib::scenario::load_scenario;
+use stochvib::tolerance::QUADRATURE;
+use stochvib::Error;
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("stochvib-test-plots-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Well-formed enough: one `<svg …>` root closed at the end, drawn elements, and every expected text.
+fn check_svg(path: &Path, texts: &[&str]) -> String {
+    let s = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert!(s.trim_start().starts_with("<svg"), "{}: no <svg root", path.display());
+    assert!(s.trim_end().ends_with("</svg>"), "{}: not closed", path.display());
+    assert_eq!(s.matches("<svg").count(), 1);
+    assert!(
+        s.contains("<path") || s.contains("<polyline") || s.contains("<polygon"),
+        "{}: no drawn lines",
+        path.display()
+    );
+    for t in texts {
+        assert!(s.contains(t), "{}: missing text `{t}`", path.display());
+    }
+    s
+}
+
+/// PNG signature, decodes to WIDTH × HEIGHT, and is not blank (several distinct colours).
+fn check_png(path: &Path) {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert_eq!(
+        &bytes[..8],
+        b"\x89PNG\r\n\x1a\n",
+        "{}: no PNG signature",
+        path.display()
+    );
+    let mut reader = png::Decoder::new(std::io::Cursor::new(bytes)).read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!((info.width, info.height), (WIDTH, HEIGHT));
+    let px = info.color_type.samples();
+    let data = &buf[..info.buffer_size()];
+    let mut colours: Vec<&[u8]> = data.chunks(px).collect();
+    colours.sort();
+    colours.dedup();
+    assert!(
+        colours.len() >= 3,
+        "{}: blank picture ({} colours)",
+        path.display(),
+        colours.len()
+    );
+    // mostly white background, but not only
+    let white = data.chunks(px).filter(|c| c.iter().take(3).all(|v| *v == 255)).count();
+    let n = data.len() / px;
+    assert!(
+        white > n / 2 && white < n,
+        "{}: {white} white of {n} pixels",
+        path.display()
+    );
+}
+
+fn check_pair(files: &[PathBuf], texts: &[&str]) -> String {
+    assert_eq!(files.len(), 2);
+    assert_eq!(files[0].extension().unwrap(), "svg");
+    assert_eq!(files[1].extension().unwrap(), "png");
+    check_png(&files[1]);
+    check_svg(&files[0], texts)
+}
+
+#[test]
+fn quarter_car_scenario_pictures() {
+    let sc = load_scenario(&root().join("data/quarter-car.toml"), &root().join("spectra")).unwrap();
+    let dir = out_dir("scenario");
+    let files = scenario_plots::scenario_plots(&sc, &dir).unwrap();
+    // input density + (|H|², output density) for each of the 4 outputs, SVG and PNG each
+    assert_eq!(files.len(), 18);
+    for pair in files.chunks(2) {
+        check_pair(pair, &["Quarter car on an ISO 8608 class C road"]);
+    }
+    check_svg(
+        &dir.join("input-density.svg"),
+        &[
+            "spatial frequency n [cycles/m]",
+            "G(n), one-sided of input [m²/(cycles/m)]",
+        ],
+    );
+    check_svg(
+        &dir.join("transfer-body.svg"),
+        &["frequency f [Hz]", "|H(iω)|² [dimensionless]"],
+    );
+    check_svg(
+        &dir.join("output-density-body_acc.svg"),
+        &[
+            "G(f), one-sided of body_acc [(m/s²)²/Hz]",
+            "cumulative variance σ²(f) [(m/s²)²]",
+        ],
+    );
+}
+
+#[test]
+fn cumulative_variance_reaches_the_whole_axis_variance() {
+    // The cumulative curve is a sum of per-segment quadratures over the input's support (ISO band at 20 m/s:
+    // 0.22–56.6 Hz, both edges on the grid); whole-axis quadrature partitions the same integral differently,
+    // so the end of the curve equals it to quadrature accuracy.
+    let sc = load_scenario(&root().join("data/quarter-car.toml"), &root().join("spectra")).unwrap();
+    let opts = scenario_plots::ScenarioPlotOptions::default();
+    for i in 0..4 {
+        let c = scenario_plots::output_density_chart(&sc, i, &opts).unwrap();
+        let sa = c.secondary.as_ref().unwrap();
+        let pts = &sa.series[0].points;
+        let last = pts.last().unwrap().1;
+        let whole = variance_quadrature(sc.model.system.as_ref(), &sc.excitation, i)
+            .unwrap()
+            .value;
+        assert!(
+            (last - whole).abs() <= QUADRATURE * whole,
+            "output {i}: {last} vs {whole}"
+        );
+        assert!((sa.hlines[0].at - whole).abs() <= QUADRATURE * whole);
+        // a cumulative variance never decreases
+        assert!(pts.windows(2).all(|w| w[1].1 >= w[0].1 && w[1].0 > w[0].0));
+    }
+}
+
+#[test]
+fn angular_convention_changes_axes() {
+    let sc = load_scenario(&root().join("data/quarter-car.toml"), &root().join("spectra")).unwrap();
+    let opts = scenario_plots::ScenarioPlotOptions {
+        convention: stochvib::spectrum::Convention::TwoSidedAngular,
+        ..Default::default()
+    };
+    let c = scenario_plots::input_density_chart(&sc, &opts).unwrap();
+    assert_eq!(c.x_label, "wavenumber Ω [rad/m]");
+    let t = scenario_plots::transfer_chart(&sc, 0, &opts).unwrap();
+    assert_eq!(t.x_label, "angular frequency ω [rad/s]");
+    assert!(scenario_plots::transfer_chart(&sc, 9, &opts).is_err());
+}
+
+#[test]
+fn log_axes_drop_non_positive_points_with_a_note() {
+    let dir = out_dir("log");
+    let mut c = LineChart::new("Log test", "frequency f [Hz]", "density G(f) [m²/Hz]");
+    c.log_x = true;
+    c.log_y = true;
+    // (0, 1) has x = 0 and (2, -1) has y < 0: both undrawable on log axes
+    c.series.push(Series::line(
+        "data",
+        vec![(0.0, 1.0), (1.0, 1.0), (2.0, -1.0), (3.0, 0.1), (10.0, 0.01)],
+    ));
+    c.vlines.push(Marker::new(2.0, "marker"));
+    let files = c.render(&dir, "log").unwrap();
+    check_pair(
+        &files,
+        &[
+            "Log test",
+            "frequency f [Hz]",
+            "density G(f) [m²/Hz]",
+            "data (2 points ≤ 0 not shown)",
+        ],
+    );
+}
+
+#[test]
+fn nothing_to_plot_is_an_error_not_a_panic() {
+    let dir = out_dir("empty");
+    let c = LineChart::new("Empty", "x [m]", "y [m]");
+    match c.render(&dir, "empty") {
+        Err(Error::Numerical { reason, .. }) => assert!(reason.contains("nothing to plot")),
+        other => panic!("expected nothing to plot, got {other:?}"),
+    }
+    let mut c = LineChart::new("All negative", "x [m]", "y [m]");
+    c.log_y = true;
+    c.series.push(Series::line("neg", vec![(1.0, -1.0), (2.0, 0.0)]));
+    assert!(matches!(c.render(&dir, "neg"), Err(Error::Numerical { .. })));
+    let mut c = LineChart::new("NaN", "x [m]", "y [m]");
+    c.series
+        .push(Series::line("nan", vec![(f64::NAN, 1.0), (1.0, f64::INFINITY)]));
+    assert!(matches!(c.render(&dir, "nan"), Err(Error::Numerical { .. })));
+    let h = Histogram::new("Empty", "x [m]", "p [1/m]", vec![]);
+    assert!(matches!(h.render(&dir, "h"), Err(Error::Numerical { .. })));
+    // bad stem, bad explicit range
+    let mut c = LineChart::new("Stem", "x [m]", "y [m]");
+    c.series.push(Series::line("a", vec![(1.0, 1.0), (2.0, 2.0)]));
+    assert!(matches!(
+        c.render(&dir, "../escape"),
+        Err(Error::InvalidParameter { .. })
+    ));
+    c.log_y = true;
+    c.y_range = Some((0.0, 1.0));
+    assert!(matches!(c.render(&dir, "range"), Err(Error::InvalidParameter { .. })));
+    assert!(matches!(
+        BarChart::new("B", "x", "y", vec!["a".into()], vec![1.0, 2.0], vec![None]),
+        Err(Error::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        BarChart::new("B", "x", "y", vec![], vec![], vec![]),
+        Err(Error::Numerical { .. })
+    ));
+}
+
+#[test]
+fn monte_carlo_pictures() {
+    let dir = out_dir("mc");
+    // deterministic "samples": a fixed quasi-random sequence, no statistics are tested here
+    let t: Vec<f64> = (0..500).map(|k| k as f64 * 0.01).collect();
+    let y0: Vec<f64> = t
+        .iter()
+        .map(|t| 0.02 * (7.5 * t).sin() + 0.005 * (70.0 * t).cos())
+        .collect();
+    let y1: Vec<f64> = t.iter().map(|t| 0.015 * (7.9 * t + 1.0).sin()).collect();
+    let c = mc_plots::realizations_chart(
+        "Quarter car, runs 0-1",
+        &t,
+        &[("run 0", &y0), ("run 1", &y1)],
+        "travel",
+        "m",
+    )
+    .unwrap();
+    check_pair(
+        &c.render(&dir, "realizations").unwrap(),
+        &["Quarter car, runs 0-1", "time t [s]", "travel [m]"],
+    );
+    assert!(mc_plots::realizations_chart("x", &t, &[("short", &y0[..10])], "travel", "m").is_err());
+
+    let h = mc_plots::histogram_chart("Quarter car travel", &y0, 0.0, 0.0146, "travel", "m", Some(30)).unwrap();
+    let svg = check_pair(
+        &h.render(&dir, "histogram").unwrap(),
+        &[
+            "Quarter car travel",
+            "travel y [m]",
+            "probability density [1/m]",
+            "M ± 3σ",
+        ],
+    );
+    assert!(svg.contains("<rect"));
+    assert!(mc_plots::histogram_chart("x", &y0, 0.0, 0.0, "travel", "m", None).is_err());
+
+    let f: Vec<f64> = (0..200).map(|k| k as f64 * 0.25).collect();
+    let g: Vec<f64> = f.iter().map(|f| 1e-3 / (1.0 + (f / 2.0).powi(4))).collect();
+    let lo: Vec<f64> = g.iter().map(|g| 0.8 * g).collect();
+    let hi: Vec<f64> = g.iter().map(|g| 1.3 * g).collect();
+    let est: Vec<f64> = g
+        .iter()
+        .enumerate()
+        .map(|(k, g)| g * (1.0 + 0.1 * ((k * 37 % 11) as f64 / 10.0 - 0.5)))
+        .collect();
+    let analytic: Vec<(f64, f64)> = f.iter().cloned().zip(g.iter().cloned()).collect();
+    let c = mc_plots::welch_chart("Quarter car travel", &f, &est, &lo, &hi, 0.95, &analytic, "travel", "m").unwrap();
+    check_pair(
+        &c.render(&dir, "welch").unwrap(),
+        &[
+            "frequency f [Hz]",
+            "density G(f), one-sided, of travel [m²/Hz]",
+            "95 % interval",
+            "Welch estimate",
+        ],
+    );
+    assert!(mc_plots::welch_chart("x", &f, &est, &lo, &hi, 1.5, &analytic, "travel", "m").is_err());
+
+    let tau: Vec<f64> = (0..200).map(|k| k as f64 * 0.01).collect();
+    let model: Vec<f64> = tau.iter().map(|t| 2e-4 * (-2.0 * t).exp() * (8.0 * t).cos()).collect();
+    let est: Vec<f64> = model.iter().map(|m| m + 1e-5).collect();
+    let lo: Vec<f64> = est.iter().map(|e| e - 2e-5).collect();
+    let hi: Vec<f64> = est.iter().map(|e| e + 2e-5).collect();
+    let c = mc_plots::correlation_chart(
+        "Quarter car travel",
+        &tau,
+        &est,
+        &model,
+        Some((&lo, &hi)),
+        "travel",
+        "m",
+    )
+    .unwrap();
+    check_pair(
+        &c.render(&dir, "correlation").unwrap(),
+        &["lag τ [s]", "correlation K(τ) of travel [m²]"],
+    );
+}
+
+#[test]
+fn octave_bars_are_coloured_by_pass_or_fail() {
+    let dir = out_dir("octave");
+    // Table 7.1 acceleration limits (m/s², /work/notes/models.md §7) and made-up RMS values: 1, 4 and 63 Hz
+    // exceed their limits (1.2 > 1.10, 0.60 > 0.57, 5.0 > 4.50), the other four do not.
+    let centres = [1.0, 2.0, 4.0, 8.0, 16.0, 31.5, 63.0];
+    let limits = [1.10, 0.79, 0.57, 0.63, 1.13, 2.25, 4.50].map(Some);
+    let rms = [1.2, 0.5, 0.60, 0.2, 1.0, 0.3, 5.0];
+    let c =
+        model_plots::octave_band_chart("Operator seat", &centres, &rms, &limits, "RMS acceleration", "m/s²").unwrap();
+    let svg = check_pair(
+        &c.render(&dir, "octave").unwrap(),
+        &[
+            "Operator seat",
+            "octave band centre frequency [Hz]",
+            "RMS acceleration [m/s²]",
+            "31.5",
+            "over limit",
+        ],
+    );
+    // bars are rectangles filled with the pass (#2CA02C) or fail (#D62728) colour; one more of each for the
+    // legend swatch
+    let red = svg.matches("fill=\"#D62728\"").count();
+    let green = svg.matches("fill=\"#2CA02C\"").count();
+    assert_eq!((red, green), (3 + 1, 4 + 1));
+    // a single category renders too
+    let one =
+        model_plots::octave_band_chart("One band", &[4.0], &[0.3], &[Some(0.57)], "RMS acceleration", "m/s²").unwrap();
+    check_pair(&one.render(&dir, "one").unwrap(), &["One band"]);
+}
+
+#[test]
+fn model_pictures() {
+    let dir = out_dir("models");
+    let xi: Vec<f64> = (0..=20).map(|k| k as f64 / 20.0).collect();
+    let w1: Vec<f64> = xi.iter().map(|x| 5.0 + x).collect();
+    let w2: Vec<f64> = xi.iter().map(|x| 12.0 - 2.0 * x).collect();
+    let c1: Vec<f64> = xi.iter().map(|x| 1.0 - x).collect();
+    let (f, m) =
+        model_plots::mine_hoist_charts("Mine hoist", &xi, &[("ω₁", &w1), ("ω₂", &w2)], &[("mode 1, cage", &c1)])
+            .unwrap();
+    check_pair(
+        &f.render(&dir, "hoist-frequencies").unwrap(),
+        &["Mine hoist", "position ξ [1]", "natural frequency ω [rad/s]"],
+    );
+    check_pair(&m.render(&dir, "hoist-modes").unwrap(), &["mode component"]);
+
+    let r: Vec<f64> = (1..=20).map(|k| k as f64 * 0.01).collect();
+    let a: Vec<f64> = r.iter().map(|r| 0.5 / (1.0 + 10.0 * r)).collect();
+    let b: Vec<f64> = r.iter().map(|r| 0.4 / (1.0 + 10.0 * r)).collect();
+    let c = model_plots::balancer_chart("Balancer bogie", &r, &[(0.6, a), (1.0, b)]).unwrap();
+    check_pair(
+        &c.render(&dir, "balancer").unwrap(),
+        &["wheel radius r [m]", "variance ratio D_y/D_x [1]", "ℓ = 0.6 m"],
+    );
+
+    let c = model_plots::scraper_chart(
+        "Scraper",
+        &[5.0, 10.0, 15.0],
+        &[("cab", &[0.5, 1.0, 1.4]), ("frame", &[0.7, 1.3, 1.9])],
+        "m/s²",
+    )
+    .unwrap();
+    check_pair(
+        &c.render(&dir, "scraper").unwrap(),
+        &["speed v [m/s]", "standard deviation σ [m/s²]"],
+    );
+    assert!(model_plots::scraper_chart("S", &[5.0], &[("cab", &[0.5, 1.0])], "m/s²").is_err());
+}
