@@ -128,3 +128,37 @@ fn unstable_scenario_is_refused() {
     let e = analysis_report(&sc).unwrap_err().to_string();
     assert!(e.contains("stable"), "{e}");
 }
+
+/// The generic-matrix form of an mdof scenario builds the same model as the element form of the quarter
+/// car: M = diag(300, 40) kg, C = [[k_s, −k_s], [−k_s, k_s + k_t]], B = [[b_s, −b_s], [−b_s, b_s]],
+/// K_u = [0, k_t]ᵀ (assembled by hand from the element list of data/quarter-car.toml); the variances agree.
+#[test]
+fn mdof_matrix_form_equals_element_form() {
+    let (ks, kt, bs) = (2.0e4, 2.0e5, 1.5e3);
+    let text = format!(
+        "[model]\nkind = \"mdof\"\nbase_inputs = 1\ncoordinates = [{{ name = \"body\", unit = \"m\" }}, {{ name = \"wheel\", unit = \"m\" }}]\n\
+         mass_matrix = [[300.0, 0.0], [0.0, 40.0]]\n\
+         stiffness_matrix = [[{ks}, {mks}], [{mks}, {kst}]]\n\
+         damping_matrix = [[{bs}, {mbs}], [{mbs}, {bs}]]\n\
+         base_stiffness = [[0.0], [{kt}]]\n\
+         [[model.output]]\nname = \"body\"\nquantity = \"displacement\"\npoint = [1, 0]\n\
+         [input]\nspectrum = \"book-8-66\"\nspeed = \"20 m/s\"\n",
+        mks = -ks,
+        kst = ks + kt,
+        mbs = -bs
+    );
+    let a = parse_scenario(&text, Path::new("m.toml"), &spectra()).unwrap();
+    let va = analysis_report(&a).unwrap().outputs[0].statistics.variance.unwrap();
+    let t = std::fs::read_to_string(data("quarter-car.toml"))
+        .unwrap()
+        .replace("iso8608-c", "book-8-66");
+    let b = parse_scenario(&t, &data("quarter-car.toml"), &spectra()).unwrap();
+    let vb = analysis_report(&b).unwrap().outputs[0].statistics.variance.unwrap();
+    assert!((va - vb).abs() <= 1e-12 * vb, "{va} vs {vb}");
+    // a non-symmetric stiffness matrix is refused, naming the key
+    let bad = text.replace(&format!("[[{ks}, {}]", -ks), &format!("[[{ks}, 5.0]"));
+    let e = parse_scenario(&bad, Path::new("m.toml"), &spectra())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("model.stiffness_matrix") && e.contains("symmetric"), "{e}");
+}

@@ -23,7 +23,11 @@
 //! ```
 //!
 //! Generic models:
-//! * `kind = "mdof"`: `coordinates = [{ name, unit, mass }]`, `base_inputs = N`, `[[model.element]]` with
+//! * `kind = "mdof"` with full matrices: `coordinates = [{ name, unit }]`, `base_inputs = N`,
+//!   `mass_matrix`, `damping_matrix`, `stiffness_matrix` (n × n), `base_stiffness`, `base_damping`
+//!   (n × N) as SI numbers (M q̈ + B q̇ + C q = K_u u + B_u u̇); outputs `displacement`, `velocity`,
+//!   `acceleration` of a point.
+//! * `kind = "mdof"` from elements: `coordinates = [{ name, unit, mass }]`, `base_inputs = N`, `[[model.element]]` with
 //!   `name`, `point` (weights of the coordinates), `to` (`"ground"`, `"base 0"`, … or a point array),
 //!   `stiffness`, `damping`; `[[model.output]]` with `name`, `quantity` (`displacement`, `velocity`,
 //!   `acceleration` with `point`; `deflection`, `spring-force`, `damper-force`, `element-force` with
@@ -470,6 +474,7 @@ fn track_layout(f: &Fields, m: usize) -> Result<InputLayout> {
 }
 
 fn mdof_from_fields(f: &Fields) -> Result<ModelInstance> {
+    let matrix_form = f.get("mass_matrix").is_some();
     let cv = f.require("coordinates")?;
     let carr = cv
         .as_array()
@@ -495,10 +500,12 @@ fn mdof_from_fields(f: &Fields) -> Result<ModelInstance> {
                 ))
             }
         };
-        let m = cf.quantity("mass", mass_dim)?;
+        // with full matrices (`mass_matrix` …) the coordinates carry no mass of their own
+        if !matrix_form {
+            masses.push(cf.quantity("mass", mass_dim)?);
+        }
         cf.finish()?;
         coords.push((name, unit));
-        masses.push(m);
     }
     let n = coords.len();
     let n_base = match f.get("base_inputs") {
@@ -567,9 +574,56 @@ fn mdof_from_fields(f: &Fields) -> Result<ModelInstance> {
             });
         }
     }
+    if matrix_form && !elements.is_empty() {
+        return Err(f.error(
+            "element",
+            "[[model.element]]",
+            "give either elements with coordinate masses, or full matrices (mass_matrix, …), not both",
+        ));
+    }
     let names: Vec<String> = elements.iter().map(|e| e.name.clone()).collect();
     let cref: Vec<(&str, &str)> = coords.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
-    let mut model = Mdof::from_elements(&cref, &masses, elements, n_base, &[]).map_err(|e| f.wrap("coordinates", e))?;
+    let mut model = if matrix_form {
+        // M q̈ + B q̇ + C q = K_u u + B_u u̇, SI numbers, n × n and n × base_inputs
+        let sq = |key: &str, cols: usize| -> Result<DMatrix<f64>> {
+            let m = match f.get(key) {
+                Some(_) => matrix(f, key)?,
+                None => DMatrix::zeros(n, cols),
+            };
+            if m.nrows() != n || m.ncols() != cols {
+                return Err(f.error(
+                    key,
+                    format!("{}x{}", m.nrows(), m.ncols()),
+                    format!("must be {n}x{cols}"),
+                ));
+            }
+            Ok(m)
+        };
+        Mdof::new(
+            &cref,
+            sq("mass_matrix", n)?,
+            sq("damping_matrix", n)?,
+            sq("stiffness_matrix", n)?,
+            sq("base_stiffness", n_base)?,
+            sq("base_damping", n_base)?,
+            DMatrix::zeros(n, 0),
+        )
+        .map_err(|e| {
+            let key = match &e {
+                Error::InvalidParameter { name, .. } => match name.as_str() {
+                    "B" => "damping_matrix",
+                    "C" => "stiffness_matrix",
+                    "K_u" => "base_stiffness",
+                    "B_u" => "base_damping",
+                    _ => "mass_matrix",
+                },
+                _ => "mass_matrix",
+            };
+            f.wrap(key, e)
+        })?
+    } else {
+        Mdof::from_elements(&cref, &masses, elements, n_base, &[]).map_err(|e| f.wrap("coordinates", e))?
+    };
     let ov = f.require("output")?;
     let oarr = ov
         .as_array()
