@@ -1,0 +1,398 @@
+//! Problem definitions shared by the criterion benches (`benches/*.rs`) and the comparison binary
+//! (`examples/compare_rust.rs`), so that both time exactly the jobs `benches/compare/compare.py` does.
+//!
+//! The model is the sprung-cab scraper of `data/scraper-sprung-cab.toml` (Sukharev 8.7, eq. (8.65)):
+//! m₁ = 30 t, ω₁ = 18.5 rad/s, ζ₁ = 0.1, m₂ = 2 t; the cab mount (c₂, b₂) is what the sweep varies. The
+//! rational road is the graded dirt road (8.69), spatial type 1 (D = 32 cm², α = 0.16 1/m), at 10 m/s.
+//! The non-rational input is a temporal type-4 process (`GaussCosine`).
+#![allow(dead_code)] // every bench target uses a different subset
+
+use nalgebra::DMatrix;
+use std::f64::consts::PI;
+use std::sync::Arc;
+use stochvib::linalg::{h2_integral, solve_continuous_lyapunov};
+use stochvib::models::scraper::{book_road_8_69, ScraperSprungCab};
+use stochvib::response::{variance_lyapunov, Excitation};
+use stochvib::spectrum::{AtSpeed, Domain, GaussCosine, Spectrum};
+
+/// Front mass m₁, kg.
+pub const M1: f64 = 3.0e4;
+/// Tyre natural frequency √(c₁/m₁), rad/s.
+pub const OMEGA1: f64 = 18.5;
+/// Tyre damping ratio.
+pub const ZETA1: f64 = 0.1;
+/// Cab mass m₂, kg.
+pub const M2: f64 = 2.0e3;
+/// Nominal cab-mount frequency (1.5 Hz) and damping ratio (0.3) of the scenario file.
+pub const OMEGA2: f64 = 2.0 * PI * 1.5;
+/// Nominal cab-mount damping ratio.
+pub const ZETA2: f64 = 0.3;
+/// Road speed, m/s.
+pub const SPEED: f64 = 10.0;
+/// Output index of `x2_acc` (cab acceleration) in the sprung-cab instance.
+pub const X2_ACC: usize = 3;
+
+/// c₁ = m₁ ω₁², N/m.
+pub fn c1() -> f64 {
+    M1 * OMEGA1 * OMEGA1
+}
+/// b₁ = 2 ζ₁ √(c₁ m₁), N s/m.
+pub fn b1() -> f64 {
+    2.0 * ZETA1 * (c1() * M1).sqrt()
+}
+/// Nominal c₂, N/m.
+pub fn c2_nominal() -> f64 {
+    M2 * OMEGA2 * OMEGA2
+}
+/// Nominal b₂, N s/m.
+pub fn b2_nominal() -> f64 {
+    2.0 * ZETA2 * (c2_nominal() * M2).sqrt()
+}
+
+/// Sweep grid: c₂ over [m₂(2π·0.8 Hz)², m₂(2π·2.5 Hz)²] (N/m) × b₂ over [1, 30] kN s/m, linearly spaced,
+/// `N_C2 × N_B2 = 10⁵` points (the same `numpy.linspace` grid in `compare.py`).
+pub const N_C2: usize = 400;
+/// Number of b₂ values.
+pub const N_B2: usize = 250;
+
+/// The c₂ and b₂ axes of the sweep grid.
+pub fn grid() -> (Vec<f64>, Vec<f64>) {
+    let lin = |lo: f64, hi: f64, n: usize| -> Vec<f64> {
+        (0..n).map(|i| lo + (hi - lo) * i as f64 / (n - 1) as f64).collect()
+    };
+    let w = |f: f64| 2.0 * PI * f;
+    (
+        lin(M2 * w(0.8) * w(0.8), M2 * w(2.5) * w(2.5), N_C2),
+        lin(1.0e3, 3.0e4, N_B2),
+    )
+}
+
+/// The temporal road: (8.69) at 10 m/s.
+pub fn road() -> Arc<dyn Spectrum> {
+    Arc::new(AtSpeed::new(book_road_8_69(), SPEED).expect("valid speed"))
+}
+
+/// The type-4 input of the quadrature job: K(τ) = D e^{−ατ²} cos βτ with D = 1e-3 m², α = 20 1/s²,
+/// β = 15 rad/s (a band around the tyre resonance).
+pub const T4: (f64, f64, f64) = (1.0e-3, 20.0, 15.0);
+
+/// The type-4 input as a spectrum.
+pub fn type4() -> Arc<dyn Spectrum> {
+    Arc::new(GaussCosine::new(T4.0, T4.1, T4.2, Domain::Temporal).expect("valid constants"))
+}
+
+/// Upper limit of the finite-interval quadrature job, rad/s: β + 40√α, where the type-4 density has
+/// fallen by e^{−400} from its peak (both sides integrate [0, W] and double it).
+pub fn type4_upper() -> f64 {
+    T4.2 + 40.0 * T4.1.sqrt()
+}
+
+/// The library's sprung-cab system for one (c₂, b₂): every output, names and description included.
+pub fn scraper(c2: f64, b2: f64) -> stochvib::models::ModelInstance {
+    ScraperSprungCab::new(M1, c1(), b1(), M2, c2, b2)
+        .and_then(|s| s.instance())
+        .expect("valid scraper parameters")
+}
+
+/// σ of the cab acceleration through the public API, as a user would write it per point: build the model
+/// instance, then `variance_lyapunov` (which re-derives the road's shaping filter every call).
+pub fn sigma_api(exc: &Excitation, c2: f64, b2: f64) -> f64 {
+    let inst = scraper(c2, b2);
+    variance_lyapunov(inst.system.as_ref(), exc, X2_ACC)
+        .expect("stable model, rational road")
+        .variance
+        .sqrt()
+}
+
+/// Fastest exact method for the sweep: the closed-form transfer function of (8.65) times the road's
+/// shaping filter (computed once), integrated by the table I_n (`h2_integral`). Nothing is allocated by
+/// this code per point (the library call allocates a few small vectors).
+///
+/// # Formula
+/// ```text
+/// k₁ = c₁ + b₁s, k₂ = c₂ + b₂s,  Δ = (m₁s² + k₁ + k₂)(m₂s² + k₂) − k₂²,  H_ẍ₂ = s² k₁ k₂ / Δ
+/// σ² = (1/2π) ∫ |H_ẍ₂(iω) B(iω)/A(iω)|² dω       (B/A: shaping filter of the road, unit white noise)
+/// ```
+pub struct SweepTable {
+    fnum: Vec<f64>,
+    fden: Vec<f64>,
+    c1: f64,
+    b1: f64,
+}
+
+/// Product of ascending-coefficient polynomials into a fixed buffer; returns the used length.
+#[inline]
+fn mul_into(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
+    let n = p.len() + q.len() - 1;
+    out[..n].fill(0.0);
+    for (i, a) in p.iter().enumerate() {
+        for (j, b) in q.iter().enumerate() {
+            out[i + j] += a * b;
+        }
+    }
+    n
+}
+
+impl SweepTable {
+    /// Factors the road once.
+    pub fn new(road: &dyn Spectrum) -> Self {
+        let f = road
+            .rational()
+            .expect("rational road")
+            .shaping_filter()
+            .expect("proper filter");
+        SweepTable {
+            fnum: f.num,
+            fden: f.den,
+            c1: c1(),
+            b1: b1(),
+        }
+    }
+
+    /// Numerator and denominator (ascending powers of s) of H_ẍ₂(s) B(s)/A(s), with their lengths.
+    #[inline]
+    fn polys(&self, c2: f64, b2: f64) -> ([f64; 12], usize, [f64; 12], usize) {
+        let (c1, b1) = (self.c1, self.b1);
+        let p1 = [c1 + c2, b1 + b2, M1];
+        let p2 = [c2, b2, M2];
+        let k2 = [c2, b2];
+        let mut delta = [0.0; 5];
+        mul_into(&p1, &p2, &mut delta);
+        let mut kk = [0.0; 3];
+        mul_into(&k2, &k2, &mut kk);
+        for (d, k) in delta.iter_mut().zip(kk) {
+            *d -= k;
+        }
+        // s² k₁ k₂
+        let mut n = [0.0; 5];
+        mul_into(&[c1, b1], &k2, &mut n[2..]);
+        let mut num = [0.0; 12];
+        let mut den = [0.0; 12];
+        let ln = mul_into(&n, &self.fnum, &mut num);
+        let ld = mul_into(&delta, &self.fden, &mut den);
+        (num, ln, den, ld)
+    }
+
+    /// σ of the cab acceleration, m/s², by the library's `h2_integral`.
+    #[inline]
+    pub fn sigma(&self, c2: f64, b2: f64) -> f64 {
+        let (num, ln, den, ld) = self.polys(c2, b2);
+        (h2_integral(&num[..ln], &den[..ld]).expect("stable, strictly proper") / (2.0 * PI)).sqrt()
+    }
+
+    /// The same by the allocation-free prototype [`h2_integral_stack`] (what the suggested library fix
+    /// would give).
+    #[inline]
+    pub fn sigma_stack(&self, c2: f64, b2: f64) -> f64 {
+        let (num, ln, den, ld) = self.polys(c2, b2);
+        (h2_integral_stack(&num[..ln], &den[..ld]).expect("stable, strictly proper") / (2.0 * PI)).sqrt()
+    }
+}
+
+/// The same variance by the library's Lyapunov solver on the augmented state z = [x_F, x₁, x₂, v₁, v₂]
+/// (the formulation `compare.py` hands to `scipy.linalg.solve_continuous_lyapunov`); the matrices are
+/// reused across points, only the entries that depend on (c₂, b₂) change.
+///
+/// # Formula
+/// ```text
+/// ẋ_F = −a x_F + g w (road q = x_F),  m₁v̇₁ = −(c₁+c₂)x₁ + c₂x₂ − (b₁+b₂)v₁ + b₂v₂ + c₁q + b₁q̇,
+/// m₂v̇₂ = c₂(x₁ − x₂) + b₂(v₁ − v₂),   ẍ₂ = h z,   F P + P Fᵀ + G Gᵀ = 0,   σ² = h P hᵀ
+/// ```
+pub struct SweepLyapunov {
+    a: DMatrix<f64>,
+    q: DMatrix<f64>,
+}
+
+impl SweepLyapunov {
+    /// From a first-order road filter g/(s + a).
+    pub fn new(road: &dyn Spectrum) -> Self {
+        let f = road
+            .rational()
+            .expect("rational road")
+            .shaping_filter()
+            .expect("proper filter");
+        assert!(f.num.len() == 1 && f.den.len() == 2, "first-order road filter expected");
+        let (pole, gain) = (f.den[0] / f.den[1], f.num[0] / f.den[1]);
+        let mut a = DMatrix::zeros(5, 5);
+        a[(0, 0)] = -pole;
+        a[(1, 3)] = 1.0;
+        a[(2, 4)] = 1.0;
+        a[(3, 0)] = (c1() - b1() * pole) / M1;
+        let g = DMatrix::from_column_slice(5, 1, &[gain, 0.0, 0.0, b1() * gain / M1, 0.0]);
+        let q = &g * g.transpose();
+        SweepLyapunov { a, q }
+    }
+
+    /// σ of the cab acceleration, m/s².
+    pub fn sigma(&mut self, c2: f64, b2: f64) -> f64 {
+        let (c1, b1) = (c1(), b1());
+        let a = &mut self.a;
+        a[(3, 1)] = -(c1 + c2) / M1;
+        a[(3, 2)] = c2 / M1;
+        a[(3, 3)] = -(b1 + b2) / M1;
+        a[(3, 4)] = b2 / M1;
+        a[(4, 1)] = c2 / M2;
+        a[(4, 2)] = -c2 / M2;
+        a[(4, 3)] = b2 / M2;
+        a[(4, 4)] = -b2 / M2;
+        let p = solve_continuous_lyapunov(a, &self.q).expect("stable");
+        let h = [0.0, c2 / M2, -c2 / M2, b2 / M2, -b2 / M2];
+        let mut v = 0.0;
+        for i in 0..5 {
+            for j in 0..5 {
+                v += h[i] * p[(i, j)] * h[j];
+            }
+        }
+        v.sqrt()
+    }
+}
+
+/// Closed-form two-sided density of `x2_acc` under the type-4 input, S(ω)|H_ẍ₂(iω)|² (a hand-written
+/// integrand, to separate the library's per-evaluation overhead from the quadrature itself).
+#[inline]
+pub fn type4_density_closed(s4: &GaussCosine, c2: f64, b2: f64, w: f64) -> f64 {
+    use nalgebra::Complex;
+    let s = Complex::new(0.0, w);
+    let k1 = Complex::new(c1(), b1() * w);
+    let k2 = Complex::new(c2, b2 * w);
+    let delta = (s * s * M1 + k1 + k2) * (s * s * M2 + k2) - k2 * k2;
+    let h = s * s * k1 * k2 / delta;
+    h.norm_sqr() * s4.density(w)
+}
+
+/// Number of points of the density-evaluation grid.
+pub const N_DENSITY: usize = 10_000;
+
+/// The density grid: 10⁴ points linearly spaced on [0.01, 100] (rad/s, or rad/m for spatial spectra).
+pub fn density_grid() -> Vec<f64> {
+    (0..N_DENSITY)
+        .map(|i| 0.01 + (100.0 - 0.01) * i as f64 / (N_DENSITY - 1) as f64)
+        .collect()
+}
+
+/// One spectrum of every type, with the parameters `compare.py` uses for its vectorised formulas.
+pub fn all_spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
+    use stochvib::spectrum::two_pole_road::Form;
+    use stochvib::spectrum::{
+        BandWhite, Convention, ExpCosine, Exponential, Gaussian, IsoBound, IsoClass, PowerLaw, RationalSpectrum,
+        Tabulated, TwoPoleRoad, ISO_BAND,
+    };
+    let t = Domain::Temporal;
+    let tab_x: Vec<f64> = (0..20).map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 19.0)).collect();
+    let tab_v: Vec<f64> = tab_x.iter().map(|x| 1.0 / (1.0 + x * x)).collect();
+    vec![
+        (
+            "exponential",
+            Arc::new(Exponential::new(1.0, 2.0, t).unwrap()) as Arc<dyn Spectrum>,
+        ),
+        ("gaussian", Arc::new(Gaussian::new(1.0, 2.0, t).unwrap())),
+        ("exp_cosine", Arc::new(ExpCosine::new(1.0, 1.0, 5.0, t).unwrap())),
+        ("gauss_cosine", Arc::new(GaussCosine::new(1.0, 2.0, 5.0, t).unwrap())),
+        (
+            "rational",
+            Arc::new(RationalSpectrum::new(vec![1.0, 0.5], vec![1.0, 0.3, 0.02], t).unwrap()),
+        ),
+        (
+            "band_white",
+            Arc::new(BandWhite::new(Convention::TwoSidedAngular, 0.1, 1.0, 50.0, t).unwrap()),
+        ),
+        (
+            "tabulated",
+            Arc::new(Tabulated::new(Convention::TwoSidedAngular, tab_x, tab_v, t).unwrap()),
+        ),
+        (
+            "iso8608_c",
+            Arc::new(PowerLaw::iso8608(IsoClass::C, IsoBound::GeometricMean, Some(ISO_BAND)).unwrap()),
+        ),
+        (
+            "two_pole_road",
+            Arc::new(TwoPoleRoad::new(0.035 * 0.035, 0.3, 12.0, Form::Consistent).unwrap()),
+        ),
+        ("at_speed", road()),
+    ]
+}
+
+/// PROTOTYPE of the fix suggested in `benches/RESULTS.md` for `stochvib::linalg::h2_integral` (not library
+/// code, not used by any library path): the same Iₙ = 2π C_{n−1}/Aₙ from the same linear system
+/// Σⱼ 2(−1)ʲ A_{2k−j} Cⱼ = dₖ, but on stack arrays (n ≤ 8), one Routh–Hurwitz pass instead of two
+/// allocating ones, and Gaussian elimination with partial pivoting instead of an allocating full-pivot LU.
+/// Returns `None` when A is not Hurwitz or the system is singular.
+pub fn h2_integral_stack(b: &[f64], a: &[f64]) -> Option<f64> {
+    const NMAX: usize = 8;
+    let n = a.len() - 1;
+    if n == 0 || n > NMAX || b.len() > n || a[n] == 0.0 {
+        return None;
+    }
+    // Routh–Hurwitz: all coefficients of one sign and every first-column Routh entry positive
+    let sg = a[n].signum();
+    if a.iter().any(|&c| !(c * sg > 0.0)) {
+        return None;
+    }
+    let mut r0 = [0.0; NMAX + 1];
+    let mut r1 = [0.0; NMAX + 1];
+    let (mut l0, mut l1) = (0, 0);
+    for k in (0..=n).rev().step_by(2) {
+        r0[l0] = a[k] * sg;
+        l0 += 1;
+    }
+    for k in (0..n).rev().step_by(2) {
+        r1[l1] = a[k] * sg;
+        l1 += 1;
+    }
+    while l1 > 0 {
+        if !(r1[0] > 0.0 && r1[0].is_finite()) {
+            return None;
+        }
+        let mut next = [0.0; NMAX + 1];
+        for j in 0..l0 - 1 {
+            next[j] = r0[j + 1] - r0[0] * (if j + 1 < l1 { r1[j + 1] } else { 0.0 }) / r1[0];
+        }
+        let lnext = l0 - 1;
+        r0 = r1;
+        l0 = l1;
+        r1 = next;
+        l1 = lnext;
+    }
+    let sgn = |j: usize| if j % 2 == 0 { 1.0 } else { -1.0 };
+    let mut m = [[0.0; NMAX + 1]; NMAX];
+    for k in 0..n {
+        for j in 0..n {
+            let i = 2 * k as isize - j as isize;
+            if (0..=n as isize).contains(&i) {
+                m[k][j] = 2.0 * sgn(j) * a[i as usize];
+            }
+        }
+        let mut d = 0.0;
+        for j in 0..n.min(2 * k + 1) {
+            let i = 2 * k - j;
+            if i < b.len() && j < b.len() {
+                d += sgn(j) * b[i] * b[j];
+            }
+        }
+        m[k][n] = d;
+    }
+    // Gaussian elimination with partial pivoting on the augmented matrix
+    for col in 0..n {
+        let p = (col..n).max_by(|&x, &y| m[x][col].abs().total_cmp(&m[y][col].abs()))?;
+        if m[p][col] == 0.0 {
+            return None;
+        }
+        m.swap(col, p);
+        for r in col + 1..n {
+            let f = m[r][col] / m[col][col];
+            for c in col..=n {
+                m[r][c] -= f * m[col][c];
+            }
+        }
+    }
+    let mut c = [0.0; NMAX];
+    for r in (0..n).rev() {
+        let mut s = m[r][n];
+        for k in r + 1..n {
+            s -= m[r][k] * c[k];
+        }
+        c[r] = s / m[r][r];
+    }
+    let v = 2.0 * PI * c[n - 1] / a[n];
+    v.is_finite().then_some(v.max(0.0))
+}

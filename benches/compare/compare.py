@@ -1,0 +1,324 @@
+#!/usr/bin/env python3
+"""numpy/scipy side of the stochvib benchmark comparison (see benches/RESULTS.md).
+
+    python3 compare.py run [--reps N] > py.json        time the jobs, print JSON
+    python3 compare.py table rust.json py.json         print the comparison table
+
+Same jobs and problem sizes as examples/compare_rust.rs (constants mirror benches/common/mod.rs):
+the sprung-cab scraper of data/scraper-sprung-cab.toml (Sukharev 8.7, eq. (8.65)) under the graded dirt
+road (8.69) at 10 m/s, and under a type-4 (Gauss-cosine) input. Every job is written the way a competent
+numpy/scipy user would: vectorised where numpy can vectorise, one scipy call per point where it cannot.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+from scipy.integrate import quad
+from scipy.linalg import solve_continuous_lyapunov
+
+# --- the model (benches/common/mod.rs) ---------------------------------------------------------------
+M1, OMEGA1, ZETA1 = 3.0e4, 18.5, 0.1
+M2, OMEGA2, ZETA2 = 2.0e3, 2 * math.pi * 1.5, 0.3
+SPEED = 10.0
+C1 = M1 * OMEGA1**2
+B1 = 2 * ZETA1 * math.sqrt(C1 * M1)
+C2N = M2 * OMEGA2**2
+B2N = 2 * ZETA2 * math.sqrt(C2N * M2)
+# road (8.69): spatial type 1, D = 32 cm^2, alpha = 0.16 1/m; in time a = alpha v, filter g/(s + a),
+# g = sqrt(2 D a) (S(w) = |g/(iw + a)|^2 / (2 pi) = D a / (pi (a^2 + w^2)))
+ROAD_D, ROAD_ALPHA = 32e-4, 0.16
+ROAD_A = ROAD_ALPHA * SPEED
+ROAD_G = math.sqrt(2 * ROAD_D * ROAD_A)
+N_C2, N_B2 = 400, 250
+T4 = (1.0e-3, 20.0, 15.0)  # type 4: D, alpha (1/s^2), beta (rad/s)
+W_HI = T4[2] + 40 * math.sqrt(T4[1])
+N_DENSITY = 10_000
+
+
+def best(reps, fn, inner=1):
+    """Smallest wall time over reps runs of fn (per call when inner > 1) and the last result."""
+    t_best, out = float("inf"), None
+    for _ in range(reps):
+        t0 = time.perf_counter()
+        for _ in range(inner):
+            out = fn()
+        t_best = min(t_best, (time.perf_counter() - t0) / inner)
+    return t_best, float(out)
+
+
+# --- 1. densities, vectorised --------------------------------------------------------------------------
+def densities():
+    tab_x = 10.0 ** (-1 + 3 * np.arange(20) / 19)
+    tab_v = 1 / (1 + tab_x**2)
+    ltx, ltv = np.log(tab_x), np.log(tab_v)
+
+    def exponential(w, d=1.0, a=2.0):
+        return a * d / (math.pi * (a * a + w * w))
+
+    def gaussian(w, d=1.0, a=2.0):
+        return d / (2 * math.sqrt(math.pi * a)) * np.exp(-w * w / (4 * a))
+
+    def exp_cosine(w, d=1.0, a=1.0, b=5.0):
+        w2 = w * w
+        return a * d * (w2 + a * a + b * b) / (math.pi * ((w2 - a * a - b * b) ** 2 + 4 * a * a * w2))
+
+    def gauss_cosine(w, d=1.0, a=2.0, b=5.0):
+        k = d / (4 * math.sqrt(math.pi * a))
+        return k * (np.exp(-((w - b) ** 2) / (4 * a)) + np.exp(-((w + b) ** 2) / (4 * a)))
+
+    def rational(w):
+        x = w * w
+        return (1 + 0.5 * x) / (1 + x * (0.3 + 0.02 * x))
+
+    def band_white(w):
+        aw = np.abs(w)
+        return np.where((aw >= 1.0) & (aw <= 50.0), 0.1, 0.0)
+
+    def tabulated(w):
+        aw = np.abs(w)
+        inside = (aw >= tab_x[0]) & (aw <= tab_x[-1])
+        return np.where(inside, np.exp(np.interp(np.log(aw), ltx, ltv)), 0.0)
+
+    def iso8608_c(w):
+        n = np.abs(w) / (2 * math.pi)
+        g = 256e-6 * (n / 0.1) ** -2.0
+        return np.where((n >= 0.011) & (n <= 2.83), g / (4 * math.pi), 0.0)
+
+    def two_pole_road(w, dq=0.035**2, a=0.3, b=12.0):
+        w2 = w * w
+        return dq * a * b * (a + b) / (math.pi * (a * a + w2) * (b * b + w2))
+
+    def at_speed(w):
+        return exponential(w / SPEED, ROAD_D, ROAD_ALPHA) / SPEED
+
+    return {
+        "exponential": exponential,
+        "gaussian": gaussian,
+        "exp_cosine": exp_cosine,
+        "gauss_cosine": gauss_cosine,
+        "rational": rational,
+        "band_white": band_white,
+        "tabulated": tabulated,
+        "iso8608_c": iso8608_c,
+        "two_pole_road": two_pole_road,
+        "at_speed": at_speed,
+    }
+
+
+# --- 2./3. Lyapunov variance of the cab acceleration ----------------------------------------------------
+# z = [x_F, x1, x2, v1, v2];  m1 v1' = -(c1+c2)x1 + c2 x2 - (b1+b2)v1 + b2 v2 + c1 q + b1 q',  q = x_F,
+# q' = -a x_F + g w;  m2 v2' = c2(x1 - x2) + b2(v1 - v2);  x2'' = h z
+G = np.array([ROAD_G, 0.0, 0.0, B1 * ROAD_G / M1, 0.0])
+QNEG = -np.outer(G, G)  # scipy solves A X + X A^T = Q
+
+
+def state_matrices(c2, b2):
+    """A (N,5,5) and h (N,5) for arrays c2, b2 (vectorised)."""
+    n = c2.size
+    a = np.zeros((n, 5, 5))
+    a[:, 0, 0] = -ROAD_A
+    a[:, 1, 3] = 1.0
+    a[:, 2, 4] = 1.0
+    a[:, 3, 0] = (C1 - B1 * ROAD_A) / M1
+    a[:, 3, 1] = -(C1 + c2) / M1
+    a[:, 3, 2] = c2 / M1
+    a[:, 3, 3] = -(B1 + b2) / M1
+    a[:, 3, 4] = b2 / M1
+    a[:, 4, 1] = c2 / M2
+    a[:, 4, 2] = -c2 / M2
+    a[:, 4, 3] = b2 / M2
+    a[:, 4, 4] = -b2 / M2
+    h = np.stack([np.zeros(n), c2 / M2, -c2 / M2, b2 / M2, -b2 / M2], axis=1)
+    return a, h
+
+
+def grid():
+    w = lambda f: 2 * math.pi * f  # noqa: E731
+    c2s = np.linspace(M2 * w(0.8) ** 2, M2 * w(2.5) ** 2, N_C2)
+    b2s = np.linspace(1.0e3, 3.0e4, N_B2)
+    c2, b2 = np.meshgrid(c2s, b2s, indexing="ij")
+    return c2.ravel(), b2.ravel()
+
+
+def variance_single():
+    a, h = state_matrices(np.array([C2N]), np.array([B2N]))
+    p = solve_continuous_lyapunov(a[0], QNEG)
+    return h[0] @ p @ h[0]
+
+
+def sweep_lyapunov():
+    c2, b2 = grid()
+    a, h = state_matrices(c2, b2)
+    p = np.empty_like(a)
+    for i in range(c2.size):
+        p[i] = solve_continuous_lyapunov(a[i], QNEG)
+    var = np.einsum("ni,nij,nj->n", h, p, h)
+    return np.sqrt(var).sum()
+
+
+def sweep_numpy_table():
+    """Fully vectorised alternative (not what the brief's baseline does): the integral table I_5 of
+    |s^2 k1 k2 g / (Delta (s + a))|^2 as one batched 5x5 linear solve (same formula as
+    stochvib::linalg::integral_i_n)."""
+    c2, b2 = grid()
+    n = 5
+    delta = np.stack(
+        [C1 * c2, C1 * b2 + B1 * c2, (C1 + c2) * M2 + B1 * b2 + M1 * c2, (B1 + b2) * M2 + M1 * b2, np.full_like(c2, M1 * M2)],
+        axis=1,
+    )
+    den = np.zeros((c2.size, n + 1))
+    den[:, :5] += ROAD_A * delta
+    den[:, 1:] += delta
+    num = ROAD_G * np.stack([np.zeros_like(c2), np.zeros_like(c2), C1 * c2, C1 * b2 + B1 * c2, B1 * b2], axis=1)
+    m = np.zeros((c2.size, n, n))
+    d = np.zeros((c2.size, n))
+    sgn = lambda j: 1.0 if j % 2 == 0 else -1.0  # noqa: E731
+    for k in range(n):
+        for j in range(n):
+            i = 2 * k - j
+            if 0 <= i <= n:
+                m[:, k, j] = 2 * sgn(j) * den[:, i]
+        for j in range(min(n, 2 * k + 1)):
+            i = 2 * k - j
+            if i < n:
+                d[:, k] += sgn(j) * num[:, i] * num[:, j]
+    c = np.linalg.solve(m, d[:, :, None])[:, :, 0]
+    var = c[:, n - 1] / den[:, n]  # (2 pi c_{n-1}/a_n) / (2 pi)
+    return np.sqrt(var).sum()
+
+
+# --- 4. type-4 input by quadrature ---------------------------------------------------------------------
+def quad4():
+    d, al, be = T4
+    k4 = d / (4 * math.sqrt(math.pi * al))
+    c1, b1, c2, b2 = C1, B1, C2N, B2N
+    exp = math.exp
+
+    def f(w):
+        s2 = -w * w
+        k1 = complex(c1, b1 * w)
+        k2 = complex(c2, b2 * w)
+        h = s2 * k1 * k2 / ((s2 * M1 + k1 + k2) * (s2 * M2 + k2) - k2 * k2)
+        return (h.real * h.real + h.imag * h.imag) * k4 * (exp(-((w - be) ** 2) / (4 * al)) + exp(-((w + be) ** 2) / (4 * al)))
+
+    a, _ = state_matrices(np.array([C2N]), np.array([B2N]))
+    poles = np.abs(np.linalg.eigvals(a[0, 1:, 1:]))  # the 2-DOF system's natural frequencies
+    pts = sorted({float(p) for p in poles if 0 < p < W_HI} | {be})
+    val, _err, info = quad(f, 0.0, W_HI, points=pts, epsabs=0, epsrel=1e-8, limit=200, full_output=1)[:3]
+    quad4.evaluations = info["neval"]
+    quad4.points = pts
+    return 2 * val
+
+
+def run(reps):
+    jobs = {}
+
+    def put(key, n, r):
+        print(f"{key:32} {r[0]:12.6e} s   check {r[1]:.12e}", file=sys.stderr)
+        jobs[key] = {"seconds": r[0], "n": n, "check": r[1]}
+
+    w = np.linspace(0.01, 100.0, N_DENSITY)
+    for name, fn in densities().items():
+        put(f"density_{name}", N_DENSITY, best(reps, lambda: fn(w).sum(), inner=20))
+    put("variance_lyapunov", 1, best(reps, variance_single, inner=200))
+    put("sweep_numpy_table", N_C2 * N_B2, best(reps, sweep_numpy_table))
+    put("sweep_lyapunov", N_C2 * N_B2, best(min(reps, 2), sweep_lyapunov))
+    put("quad4", 1, best(reps, quad4, inner=5))
+    return {
+        "side": "python",
+        "numpy": np.__version__,
+        "scipy": __import__("scipy").__version__,
+        "python": sys.version.split()[0],
+        "glibc_tunables": os.environ.get("GLIBC_TUNABLES", ""),
+        "quad4_points": quad4.points,
+        "quad4_evaluations": quad4.evaluations,
+        "jobs": jobs,
+    }
+
+
+# --- the table -------------------------------------------------------------------------------------------
+# (label, rust job, python job, target ratio python/rust or None)
+ROWS = [(f"density, {n} (10^4 pts)", f"density_{n}", f"density_{n}", None) for n in densities()] + [
+    ("variance, 1 model, Lyapunov (API) vs scipy lyap", "variance_lyapunov", "variance_lyapunov", None),
+    ("variance, 1 model, integral table (API) vs scipy lyap", "variance_table", "variance_lyapunov", None),
+    ("variance, 1 model, quadrature rel 1e-10 (API)", "variance_quadrature", None, None),
+    ("SWEEP 10^5: Rust table I_n vs scipy lyap/pt", "sweep_table", "sweep_lyapunov", 100.0),
+    ("sweep 10^5: Rust table I_n, all cores (rayon) vs scipy", "sweep_table_par", "sweep_lyapunov", None),
+    ("sweep 10^5: PROTOTYPE stack I_n (suggested fix) vs scipy", "sweep_table_stack", "sweep_lyapunov", None),
+    ("sweep 10^5: Rust lyap/pt vs scipy lyap/pt", "sweep_lyapunov", "sweep_lyapunov", None),
+    ("sweep 10^5: Rust API/pt vs scipy lyap/pt", "sweep_api", "sweep_lyapunov", None),
+    ("sweep 10^5: Rust table I_n vs numpy batched I_n", "sweep_table", "sweep_numpy_table", None),
+    ("TYPE-4 QUAD rel 1e-8: library integrand vs quad", "quad4_library", "quad4", 20.0),
+    ("type-4 quad rel 1e-8: closed-form integrand vs quad", "quad4_closed", "quad4", None),
+    ("type-4 variance_quadrature (1e-10, [0,inf)) vs quad", "quad4_variance_quadrature", "quad4", None),
+]
+
+
+def fmt_t(t):
+    if t is None:
+        return "-"
+    for unit, f in (("s", 1), ("ms", 1e3), ("us", 1e6), ("ns", 1e9)):
+        if t * f >= 1:
+            return f"{t * f:.3g} {unit}"
+    return f"{t * 1e9:.3g} ns"
+
+
+def table(rust_path, py_path):
+    rust = json.load(open(rust_path))
+    py = json.load(open(py_path))
+    rj, pj = rust["jobs"], py["jobs"]
+    tun = rust.get("glibc_tunables") or "(unset)"
+    out = [
+        f"GLIBC_TUNABLES = {tun}; numpy {py['numpy']}, scipy {py['scipy']}, Python {py['python']}",
+        "",
+        "| job | Rust | Python | ratio Py/Rust | target | met? | checks agree |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for label, rk, pk, target in ROWS:
+        r = rj.get(rk)
+        p = pj.get(pk) if pk else None
+        ratio = p["seconds"] / r["seconds"] if (r and p) else None
+        agree = "-"
+        if r and p and rk != "sweep_api":
+            rel = abs(r["check"] - p["check"]) / max(abs(p["check"]), 1e-300)
+            agree = f"yes ({rel:.0e})" if rel < 1e-6 else f"NO ({rel:.1e})"
+        met = "-" if target is None or ratio is None else ("yes" if ratio >= target else "no")
+        out.append(
+            f"| {label} | {fmt_t(r and r['seconds'])} | {fmt_t(p and p['seconds'])} | "
+            f"{'-' if ratio is None else f'{ratio:.3g}x'} | {'-' if target is None else f'>= {target:g}x'} | {met} | {agree} |"
+        )
+    n = rj["sweep_table"]["n"]
+    out += [
+        "",
+        f"sweep throughput: Rust table {n / rj['sweep_table']['seconds']:.3g} points/s, "
+        f"Rust Lyapunov {n / rj['sweep_lyapunov']['seconds']:.3g} points/s, "
+        f"Rust API {n / rj['sweep_api']['seconds']:.3g} points/s (timed on 1/10 of the grid), "
+        f"scipy Lyapunov {n / pj['sweep_lyapunov']['seconds']:.3g} points/s, "
+        f"numpy batched table {n / pj['sweep_numpy_table']['seconds']:.3g} points/s",
+        f"type-4 quadrature evaluations: Rust {rust['quad4_evaluations']}, scipy {py['quad4_evaluations']}; "
+        f"breakpoints Rust {[round(x, 4) for x in rust['quad4_points']]}, scipy {[round(x, 4) for x in py['quad4_points']]}",
+    ]
+    print("\n".join(out))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("--reps", type=int, default=5)
+    t = sub.add_parser("table")
+    t.add_argument("rust")
+    t.add_argument("python")
+    a = ap.parse_args()
+    if a.cmd == "run":
+        print(json.dumps(run(a.reps), indent=1))
+    else:
+        table(a.rust, a.python)
+
+
+if __name__ == "__main__":
+    main()

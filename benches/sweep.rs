@@ -1,0 +1,61 @@
+//! A 10⁵-point (c₂, b₂) sweep of σ of the sprung-cab scraper's cab acceleration on the rational road
+//! (8.69) at 10 m/s (`cargo bench --bench sweep`; throughput in points/s).
+//!
+//! The fast path factors the road once and, per point, forms the closed-form polynomials of (8.65) on the
+//! stack and calls `h2_integral`; no model instance, output names or descriptions are built per point.
+//! The slower variants (library Lyapunov per point, public model API per point) run on a 10³-point subgrid.
+
+mod common;
+
+use common::*;
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use stochvib::response::Excitation;
+
+fn sweep(c: &mut Criterion) {
+    let (c2s, b2s) = grid();
+    let table = SweepTable::new(road().as_ref());
+    let mut g = c.benchmark_group("sweep_scraper_x2_acc");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements((c2s.len() * b2s.len()) as u64));
+    g.bench_function("table_h2_integral_1e5", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for &c2 in &c2s {
+                for &b2 in &b2s {
+                    acc += table.sigma(c2, b2);
+                }
+            }
+            acc
+        })
+    });
+    g.bench_function("prototype_stack_h2_1e5", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for &c2 in &c2s {
+                for &b2 in &b2s {
+                    acc += table.sigma_stack(c2, b2);
+                }
+            }
+            acc
+        })
+    });
+    // 10³-point subgrid (every 40th c₂ value, every 25th b₂ value) for the slow per-point variants
+    let sub: Vec<(f64, f64)> = c2s
+        .iter()
+        .step_by(40)
+        .flat_map(|&c2| b2s.iter().step_by(25).map(move |&b2| (c2, b2)))
+        .collect();
+    g.throughput(Throughput::Elements(sub.len() as u64));
+    let mut lyap = SweepLyapunov::new(road().as_ref());
+    g.bench_function("lyapunov_per_point_1e3", |b| {
+        b.iter(|| sub.iter().map(|&(c2, b2)| lyap.sigma(c2, b2)).sum::<f64>())
+    });
+    let exc = Excitation::single(road(), 0.0).unwrap();
+    g.bench_function("public_api_per_point_1e3", |b| {
+        b.iter(|| sub.iter().map(|&(c2, b2)| sigma_api(&exc, c2, b2)).sum::<f64>())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, sweep);
+criterion_main!(benches);

@@ -1,0 +1,198 @@
+//! The Rust side of `benches/compare/run.sh`: times the jobs `benches/compare/compare.py` does with
+//! numpy/scipy, with the same problem sizes, and prints JSON (seconds = best of several repetitions,
+//! `check` = a value both sides must agree on).
+//!
+//! Run: `cargo run --release --example compare_rust [-- --reps N]`.
+
+#[path = "../benches/common/mod.rs"]
+mod common;
+
+use common::*;
+use serde_json::{json, Map, Value};
+use std::hint::black_box;
+use std::time::Instant;
+use stochvib::quad::{integrate, QuadOptions};
+use stochvib::response::{output_density, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation};
+use stochvib::spectrum::{Domain, GaussCosine};
+use stochvib::tolerance::QUADRATURE;
+
+/// Best (smallest) wall time over `reps` runs of `f`, divided by `inner` calls per run; returns the
+/// time per job and the last check value.
+fn best(reps: usize, inner: usize, mut f: impl FnMut() -> f64) -> (f64, f64) {
+    let mut t_best = f64::INFINITY;
+    let mut check = 0.0;
+    for _ in 0..reps {
+        let t0 = Instant::now();
+        for _ in 0..inner {
+            check = black_box(f());
+        }
+        t_best = t_best.min(t0.elapsed().as_secs_f64() / inner as f64);
+    }
+    (t_best, check)
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let reps: usize = args
+        .iter()
+        .position(|a| a == "--reps")
+        .and_then(|i| args.get(i + 1))
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(5);
+    let mut jobs = Map::new();
+    let mut put = |key: &str, n: usize, (t, check): (f64, f64)| {
+        eprintln!("{key:32} {t:12.6e} s   check {check:.12e}");
+        jobs.insert(key.to_string(), json!({"seconds": t, "n": n, "check": check}));
+    };
+
+    // 1. density of every spectrum type on 10⁴ points
+    let wgrid = density_grid();
+    let mut out = vec![0.0; wgrid.len()];
+    for (name, s) in all_spectra() {
+        let r = best(reps, 20, || {
+            for (o, &w) in out.iter_mut().zip(&wgrid) {
+                *o = s.density(w);
+            }
+            out.iter().sum()
+        });
+        put(&format!("density_{name}"), N_DENSITY, r);
+    }
+
+    // 2. one variance of the 2-DOF scraper (cab acceleration) under the rational road, three ways
+    let exc = Excitation::single(road(), 0.0).expect("temporal road");
+    let inst = scraper(c2_nominal(), b2_nominal());
+    let sys = inst.system.as_ref();
+    put(
+        "variance_lyapunov",
+        1,
+        best(reps, 200, || variance_lyapunov(sys, &exc, X2_ACC).unwrap().variance),
+    );
+    put(
+        "variance_table",
+        1,
+        best(reps, 200, || variance_integral_table(sys, &exc, X2_ACC, 0).unwrap()),
+    );
+    put(
+        "variance_quadrature",
+        1,
+        best(reps, 5, || variance_quadrature(sys, &exc, X2_ACC).unwrap().value),
+    );
+
+    // 3. the 10⁵-point (c₂, b₂) sweep of σ of the cab acceleration
+    let (c2s, b2s) = grid();
+    let n_sweep = c2s.len() * b2s.len();
+    let table = SweepTable::new(road().as_ref());
+    put(
+        "sweep_table",
+        n_sweep,
+        best(reps, 1, || {
+            let mut acc = 0.0;
+            for &c2 in &c2s {
+                for &b2 in &b2s {
+                    acc += table.sigma(c2, b2);
+                }
+            }
+            acc
+        }),
+    );
+    put(
+        "sweep_table_stack",
+        n_sweep,
+        best(reps, 1, || {
+            let mut acc = 0.0;
+            for &c2 in &c2s {
+                for &b2 in &b2s {
+                    acc += table.sigma_stack(c2, b2);
+                }
+            }
+            acc
+        }),
+    );
+    // every core (rayon's pool; the machine may be shared, so this row is noisy)
+    put(
+        "sweep_table_par",
+        n_sweep,
+        best(reps, 1, || {
+            use rayon::prelude::*;
+            c2s.par_iter()
+                .map(|&c2| b2s.iter().map(|&b2| table.sigma(c2, b2)).sum::<f64>())
+                .sum()
+        }),
+    );
+    let mut lyap = SweepLyapunov::new(road().as_ref());
+    put(
+        "sweep_lyapunov",
+        n_sweep,
+        best(reps.min(2), 1, || {
+            let mut acc = 0.0;
+            for &c2 in &c2s {
+                for &b2 in &b2s {
+                    acc += lyap.sigma(c2, b2);
+                }
+            }
+            acc
+        }),
+    );
+    // the public API per point is slow (see RESULTS.md): time every 10th c₂ column and scale to 10⁵
+    let step = 10;
+    let (t_api, check_api) = best(1, 1, || {
+        let mut acc = 0.0;
+        for &c2 in c2s.iter().step_by(step) {
+            for &b2 in &b2s {
+                acc += sigma_api(&exc, c2, b2);
+            }
+        }
+        acc
+    });
+    put("sweep_api", n_sweep, (t_api * step as f64, check_api));
+
+    // 4. type-4 (GaussCosine) input through the 2-DOF model: σ² of the cab acceleration by quadrature
+    let s4 = GaussCosine::new(T4.0, T4.1, T4.2, Domain::Temporal).unwrap();
+    let exc4 = Excitation::single(type4(), 0.0).unwrap();
+    let mut points = sys.natural_frequencies();
+    points.push(T4.2);
+    let w_hi = type4_upper();
+    points.retain(|w| *w > 0.0 && *w < w_hi);
+    let opts = QuadOptions {
+        rel_tol: QUADRATURE,
+        breakpoints: points.clone(),
+        ..QuadOptions::default()
+    };
+    put(
+        "quad4_library",
+        1,
+        best(reps, 20, || {
+            2.0 * integrate(|w| output_density(sys, &exc4, X2_ACC, w), 0.0, w_hi, &opts)
+                .unwrap()
+                .value
+        }),
+    );
+    let (c2n, b2n) = (c2_nominal(), b2_nominal());
+    put(
+        "quad4_closed",
+        1,
+        best(reps, 20, || {
+            2.0 * integrate(|w| type4_density_closed(&s4, c2n, b2n, w), 0.0, w_hi, &opts)
+                .unwrap()
+                .value
+        }),
+    );
+    put(
+        "quad4_variance_quadrature",
+        1,
+        best(reps, 5, || variance_quadrature(sys, &exc4, X2_ACC).unwrap().value),
+    );
+    let evals = integrate(|w| output_density(sys, &exc4, X2_ACC, w), 0.0, w_hi, &opts)
+        .unwrap()
+        .evaluations;
+
+    let doc = json!({
+        "side": "rust",
+        "glibc_tunables": std::env::var("GLIBC_TUNABLES").unwrap_or_default(),
+        "threads": rayon::current_num_threads(),
+        "quad4_points": points,
+        "quad4_evaluations": evals,
+        "jobs": Value::Object(jobs),
+    });
+    println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+}
