@@ -66,6 +66,11 @@ enum Command {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+        /// Also write the catalogue-model pictures (seat octave bands against Table 7.1, mine-hoist
+        /// frequencies and modes, balancer-bogie D_y/D_x, scraper σ over speed) as SVG and PNG into this
+        /// directory.
+        #[arg(long)]
+        plots: Option<PathBuf>,
     },
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
     Spectrum {
@@ -137,12 +142,17 @@ fn main() -> Result<()> {
                 anyhow::bail!("{failed} spectrum file(s) in {} are invalid", dir.display());
             }
         }
-        Command::Book { json } => {
+        Command::Book { json, plots } => {
             let r = report::book::book_report();
             if json {
                 emit_line(&serde_json::to_string_pretty(&r)?);
             } else {
                 emit(&format!("{r}"));
+            }
+            if let Some(out) = plots {
+                for f in stochvib::plot::book_plots(&out)? {
+                    eprintln!("wrote {}", f.display());
+                }
             }
         }
         Command::Analyze {

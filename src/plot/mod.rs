@@ -12,13 +12,18 @@
 //! * [`model_plots`]: catalogue-model pictures from plain data (octave-band RMS against limits, mine-hoist
 //!   frequencies and modes over ξ, balancer D_y/D_x over r, scraper σ over speed).
 //!
+//! * [`book_plots`](mod@book_plots): the pictures of `stochvib book --plots DIR`, every catalogue model's data
+//!   computed with the library.
+//!
 //! Axis labels carry the quantity and its unit; titles name the scenario or model.
 
+pub mod book_plots;
 pub mod chart;
 pub mod mc_plots;
 pub mod model_plots;
 pub mod scenario_plots;
 
+pub use book_plots::book_plots;
 pub use chart::{
     Band, BarChart, Histogram, Legend, LineChart, LineStyle, Marker, SecondaryAxis, Series, HEIGHT, WIDTH,
 };
