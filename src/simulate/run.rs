@@ -429,7 +429,7 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
             .iter()
             .map(|l| -l.re)
             .fold(f64::INFINITY, f64::min);
-    if !(sigma_min > 0.0) {
+    if sigma_min.is_nan() || sigma_min <= 0.0 {
         return Err(Error::Numerical {
             what: "spectral Monte Carlo".into(),
             reason: format!(
@@ -630,13 +630,19 @@ fn realize(
 /// store's errors (an existing `out` is never overwritten).
 ///
 /// # Examples
-/// ```no_run
-/// use stochvib::simulate::{run_scenario, RunOptions};
+/// ```
+/// use stochvib::simulate::{run_scenario, Method, RunOptions};
 /// use stochvib::scenario::load_scenario;
 /// use std::path::Path;
 /// let sc = load_scenario(Path::new("data/conveyor-idler.toml"), Path::new("spectra")).unwrap();
-/// let s = run_scenario(&sc, &RunOptions::new(100, 20.0, 0.01, 1), Path::new("out/run.h5"), &|_, _| {}).unwrap();
-/// assert!(s.outputs.iter().all(|o| o.sigma.lower > 0.0));
+/// let out = std::env::temp_dir().join(format!("stochvib-doc-run-{}.h5", std::process::id()));
+/// # let _ = std::fs::remove_file(&out);
+/// let s = run_scenario(&sc, &RunOptions::new(20, 5.0, 0.01, 1), &out, &|done, total| eprintln!("{done}/{total}"))
+///     .unwrap();
+/// assert_eq!(s.method, Method::Exact); // exponential (rational) lump load, one input
+/// // the exact route simulates the stationary response: its variance is the analytic one
+/// assert!((s.outputs[0].discrete_variance / s.outputs[0].analytic_variance - 1.0).abs() < 1e-6);
+/// # std::fs::remove_file(&out).unwrap();
 /// ```
 pub fn run_scenario(
     sc: &Scenario,
@@ -874,11 +880,23 @@ pub fn run_scenario(
 }
 
 /// A time step and duration for a quick run of `sc`: Δt = π/(8·ω_max) with ω_max the largest |λ| of the
-/// system matrix (or of its natural frequencies), shortened so that track delays are whole steps; duration
-/// 20/σ_min (σ_min = min|Re λ|), at least 64 steps and at most 2¹⁵ steps.
+/// system matrix (or of its natural frequencies), at most π/ω_hi for an input band ending at ω_hi, shortened
+/// so that track delays are whole steps; duration 20/σ_min (σ_min = min|Re λ|), at least 32π/ω_lo for an
+/// input band starting at ω_lo > 0 (grid Δω ≤ ω_lo/16), at least 64 and at most 2¹⁵ steps.
 ///
 /// # Errors
 /// A system without state space or natural frequencies.
+///
+/// # Examples
+/// ```
+/// use stochvib::scenario::load_scenario;
+/// use std::path::Path;
+/// let sc = load_scenario(Path::new("data/half-car.toml"), Path::new("spectra")).unwrap();
+/// let (dt, duration) = stochvib::simulate::suggest_step(&sc).unwrap();
+/// // the wheelbase delay L/v = 2.7 m / 10 m/s is a whole number of steps
+/// let steps = 0.27 / dt;
+/// assert!((steps - steps.round()).abs() < 1e-9 && duration > 64.0 * dt);
+/// ```
 pub fn suggest_step(sc: &Scenario) -> Result<(f64, f64)> {
     let sys = sc.model.system.as_ref();
     let (wmax, smin) = match sys.state_space() {
@@ -906,6 +924,17 @@ pub fn suggest_step(sc: &Scenario) -> Result<(f64, f64)> {
         ));
     }
     let mut dt = std::f64::consts::PI / (8.0 * wmax);
+    // a band-limited input: the Nyquist frequency above the band's upper edge, and the FFT grid
+    // Δω = 2π/T at most 1/16 of its lower edge (spectral route)
+    let (lo, hi) = sc.excitation.support();
+    if hi.is_finite() && hi > 0.0 {
+        dt = dt.min(std::f64::consts::PI / hi);
+    }
+    let min_duration = if lo > 0.0 && lo.is_finite() {
+        32.0 * std::f64::consts::PI / lo
+    } else {
+        0.0
+    };
     if let Excitation::Track { delays, .. } = &sc.excitation {
         let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
         if let Some(tau) = delays.iter().map(|t| t - t0).filter(|t| *t > 0.0).reduce(f64::min) {
@@ -913,6 +942,6 @@ pub fn suggest_step(sc: &Scenario) -> Result<(f64, f64)> {
             dt = tau / (tau / dt).ceil();
         }
     }
-    let duration = (20.0 / smin).clamp(64.0 * dt, 32768.0 * dt);
+    let duration = (20.0 / smin).max(min_duration).clamp(64.0 * dt, 32768.0 * dt);
     Ok((dt, duration))
 }
