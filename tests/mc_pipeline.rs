@@ -9,9 +9,9 @@ use stochvib::scenario::{load_scenario, Scenario};
 use stochvib::simulate::{run_scenario, Method, RunOptions, RunSummary};
 use stochvib::store::{tmp_path, RunFile, SignalGroup};
 
-/// Per-output false-failure probability of the coverage test. The catalogue below has 27 simulated outputs
-/// (2 + 2 + 2 + 4 + 4 + 3 + 2 + 4 + 4), so by the union bound the whole coverage test fails falsely with
-/// probability ≤ 27 · 2e-8 = 5.4e-7 ≤ 1e-6. The nominal level rests on the central limit theorem for the
+/// Per-output false-failure probability of the coverage test. The catalogue below has 29 simulated outputs
+/// (2 + 2 + 2 + 2 + 4 + 4 + 3 + 2 + 4 + 4), so by the union bound the whole coverage test fails falsely with
+/// probability ≤ 29 · 2e-8 = 5.8e-7 ≤ 1e-6. The nominal level rests on the central limit theorem for the
 /// mean of the independent per-realization time-average variances v_i (see `src/simulate/run.rs`); the v_i
 /// are mildly skewed, so the level is approximate in the far tail — which is why the per-output level is set
 /// well below the 1e-6 budget.
@@ -46,8 +46,11 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
     // Durations resolve the lower edge of the road band: the ISO road density grows like ω⁻² down to
     // 0.011 cycles/m · v, and a grid Δω = 2π/T coarser than that edge misses a visible part of the
     // displacement variance (half car at 10 m/s: edge 0.69 rad/s, so T = 60 s, Δω = 0.105 rad/s).
-    let cases: [(&str, f64, f64, Method, usize); 9] = [
+    // The conveyor idler is also forced through the spectral route: the only single-input (non-track)
+    // spectral case, checking the warm-up and the discrete variance of an independent input.
+    let cases: [(&str, f64, f64, Method, usize); 10] = [
         ("balancer-bogie.toml", 0.01, 10.0, Method::Spectral, 2),
+        ("conveyor-idler.toml", 0.01, 40.0, Method::Spectral, 2),
         ("conveyor-idler.toml", 0.01, 10.0, Method::Exact, 2),
         ("scraper-rigid-cab.toml", 0.005, 10.0, Method::Exact, 2),
         ("scraper-sprung-cab.toml", 0.01, 10.0, Method::Exact, 4),
@@ -64,7 +67,10 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
         let sc = scenario(file);
         let mut opts = RunOptions::new(600, *dur, *dt, 1000 + k as u64);
         opts.confidence = 1.0 - P_FALSE;
-        let out = dir.join(file.replace(".toml", ".h5"));
+        if k == 1 {
+            opts.method = Method::Spectral;
+        }
+        let out = dir.join(format!("{k}-{}", file.replace(".toml", ".h5")));
         let s = run_scenario(&sc, &opts, fresh(&out), &|_, _| {}).unwrap();
         assert_eq!(s.method, *route, "{file}: route");
         assert_eq!(s.outputs.len(), *n_out, "{file}: simulated outputs {:?}", s.skipped);
@@ -108,8 +114,8 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
             if !(o.sigma.lower <= reference && reference <= o.sigma.upper) {
                 failures.push(format!("{file}/{}: {reference:e} not in {:?}", o.name, o.sigma));
             }
-            // the mean of the zero-mean fluctuation covers 0 (same confidence; its 27 assertions are covered
-            // by a second union bound of 5.4e-7)
+            // the mean of the zero-mean fluctuation covers 0 (same confidence; its 29 assertions are covered
+            // by a second union bound of 5.8e-7)
             assert!(
                 o.fluctuation_mean.lower <= 0.0 && 0.0 <= o.fluctuation_mean.upper,
                 "{file}/{}: {:?}",
@@ -118,8 +124,26 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
             );
         }
     }
-    assert_eq!(total, 27, "the union bound above counts 27 outputs");
+    assert_eq!(total, 29, "the union bound above counts 29 outputs");
     assert!(failures.is_empty(), "{failures:#?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn delays_must_be_whole_steps_and_bad_options_are_refused() {
+    let dir = scratch_dir("errors");
+    let sc = scenario("half-car.toml");
+    // half car: wheelbase delay 2.7 m / 10 m/s = 0.27 s, not a multiple of 0.007 s (0.27/0.007 = 38.57)
+    let e = run_scenario(&sc, &RunOptions::new(4, 2.0, 0.007, 1), &dir.join("a.h5"), &|_, _| {}).unwrap_err();
+    assert!(e.to_string().contains("not an integer number of steps"), "{e}");
+    // the exact route cannot represent a pure delay
+    let mut o = RunOptions::new(4, 2.0, 0.01, 1);
+    o.method = Method::Exact;
+    assert!(run_scenario(&sc, &o, &dir.join("b.h5"), &|_, _| {}).is_err());
+    // one realization gives no interval; too short a record gives no Welch segment
+    assert!(run_scenario(&sc, &RunOptions::new(1, 2.0, 0.01, 1), &dir.join("c.h5"), &|_, _| {}).is_err());
+    assert!(run_scenario(&sc, &RunOptions::new(4, 0.05, 0.01, 1), &dir.join("d.h5"), &|_, _| {}).is_err());
+    assert!(!dir.join("a.h5").exists() && !tmp_path(&dir.join("a.h5")).exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
