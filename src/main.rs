@@ -178,7 +178,7 @@ fn main() -> Result<()> {
                 }
             }
             if json {
-                emit_line(&format!("{}", serde_json::to_string_pretty(&reports)?));
+                emit_line(&serde_json::to_string_pretty(&reports)?);
             }
             if failed > 0 {
                 anyhow::bail!("{failed} spectrum file(s) in {} are invalid", dir.display());
@@ -222,7 +222,7 @@ fn main() -> Result<()> {
                 report::analysis::attach_monte_carlo(&mut r, &summary?);
             }
             if json {
-                emit_line(&format!("{}", serde_json::to_string_pretty(&r)?));
+                emit_line(&serde_json::to_string_pretty(&r)?);
             } else {
                 emit(&format!("{r}"));
             }
@@ -303,7 +303,7 @@ fn main() -> Result<()> {
             let file = resolve_spectrum(&name, &dir)?;
             let r = spectrum_report(&file, convention);
             if json {
-                emit_line(&format!("{}", serde_json::to_string_pretty(&r)?));
+                emit_line(&serde_json::to_string_pretty(&r)?);
             } else {
                 emit(&format!("{r}"));
             }
