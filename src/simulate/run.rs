@@ -14,8 +14,9 @@
 //!   The transient from the zero initial state decays like e^{−σ_min·t}, σ_min = min|Re λ(A)|; `w` is
 //!   chosen so that σ_min·w·NΔt ≥ 36 (transient below 2.4·10⁻¹⁶ of the start value), and the recorded
 //!   period is then the periodic steady state. Delays τ_j become circular shifts by s_j = τ_j/Δt samples,
-//!   which must be integers (Δt = τ/k). Outputs containing the input derivative (E ≠ 0) are skipped: a
-//!   sampled input has no derivative.
+//!   which must be integers (Δt = τ/k). An output containing the input derivative (E ≠ 0) gets E·u̇_k with
+//!   u̇ the exact derivative of the input's trigonometric interpolant (spectral differentiation: bin j times
+//!   iω_j, the Nyquist bin dropped), while the states see the first-order hold of the samples.
 //!
 //! # Bias of the spectral route
 //! The synthesised process is the spectrum sampled on the grid ω_j = 2πj/(NΔt), j ≤ N/2 (truncated at the
@@ -24,7 +25,8 @@
 //! periodic steady state of the first-order-hold system, whose variance is
 //! ```text
 //! σ²_d = Σ_j w_j S(ω_j) Δω |H_d(ω_j)|²,   w_j = 2 (1 for j = 0, N/2),
-//! H_d(ω) = Σ_inputs g_l e^{−iω s_l Δt} [C (zI − Φ)⁻¹(Γ₀ + zΓ₁) + D]_l,   z = e^{iωΔt}
+//! H_d(ω) = Σ_inputs g_l e^{−iω s_l Δt} [C (zI − Φ)⁻¹(Γ₀ + zΓ₁) + D + iω E]_l,   z = e^{iωΔt}
+//! (the iω E term dropped at the Nyquist bin)
 //! ```
 //! (for independent inputs the |·|² add). This "discrete" variance is what the Monte Carlo estimates without
 //! bias; it is reported next to the analytic one ([`OutputRun::discrete_variance`]). For the exact route it
@@ -294,7 +296,15 @@ enum Engine {
         /// per system input: (generator index, gain, circular shift in samples)
         inputs: Vec<(usize, f64, usize)>,
         warmup: usize,
+        /// E (p × m, row-major) when some output contains the input derivative, with FFT plans of size N
+        derivative: Option<Derivative>,
     },
+}
+
+struct Derivative {
+    e: Vec<f64>,
+    forward: std::sync::Arc<dyn realfft::RealToComplex<f64>>,
+    inverse: std::sync::Arc<dyn realfft::ComplexToReal<f64>>,
 }
 
 struct Plan {
@@ -401,29 +411,31 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
         what: "spectral Monte Carlo".into(),
         reason: "the system has no finite state-space form".into(),
     })?;
-    let mut kept = Vec::new();
-    for f in finite {
-        if (0..ss.e.ncols()).any(|j| ss.e[(f.0, j)] != 0.0) {
-            skipped.push(SkippedOutput {
-                name: f.1,
-                reason: "contains the input derivative E·u̇, undefined for a sampled input (spectral route); \
-                         give a rational, delay-free input to use the exact route"
-                    .into(),
-            });
-        } else {
-            kept.push(f);
-        }
-    }
-    if kept.is_empty() {
-        return Err(Error::invalid(
-            "outputs",
-            "",
-            "every finite-variance output contains the input derivative: the spectral route cannot sample them",
-        ));
-    }
+    let kept = finite;
     let rows: Vec<usize> = kept.iter().map(|f| f.0).collect();
     let sub = ss.select_outputs(&rows)?;
-    let sampled = SampledSystem::new(&sub, opts.dt_s)?;
+    let no_e = crate::system::StateSpace::new(
+        sub.a.clone(),
+        sub.b.clone(),
+        sub.c.clone(),
+        Some(sub.d.clone()),
+        None,
+        crate::system::FrequencyResponse::outputs(&sub).to_vec(),
+    )?;
+    let sampled = SampledSystem::new(&no_e, opts.dt_s)?;
+    let derivative = if sub.e.amax() > 0.0 {
+        let mut planner = realfft::RealFftPlanner::<f64>::new();
+        Some(Derivative {
+            e: (0..sub.e.nrows())
+                .flat_map(|r| (0..sub.e.ncols()).map(move |c| (r, c)))
+                .map(|(r, c)| sub.e[(r, c)])
+                .collect(),
+            forward: planner.plan_fft_forward(n),
+            inverse: planner.plan_fft_inverse(n),
+        })
+    } else {
+        None
+    };
     let sigma_min =
         ss.a.complex_eigenvalues()
             .iter()
@@ -506,7 +518,10 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
             what: "discrete transfer function".into(),
             reason: format!("zI − Φ singular at ω = {w:e}"),
         })?;
-        let h = &c * x + &d; // p × m
+        let mut h = &c * x + &d; // p × m
+        if j < n / 2 {
+            h += to_c(&sub.e) * Complex::new(0.0, w);
+        }
         for (r, dv) in disc.iter_mut().enumerate() {
             for (gi, gen) in generators.iter().enumerate() {
                 let s = spectra[gi].density(w);
@@ -538,6 +553,7 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
             generators,
             inputs,
             warmup,
+            derivative,
         },
         n,
         outputs,
@@ -560,6 +576,9 @@ struct Scratch {
     u: Vec<f64>,
     y: Vec<f64>,
     welch: crate::estimate::WelchScratch,
+    dq: Vec<Vec<f64>>,
+    fft_in: Vec<f64>,
+    fft_out: Vec<Complex<f64>>,
 }
 
 fn realize(
@@ -580,6 +599,7 @@ fn realize(
             generators,
             inputs,
             warmup,
+            derivative,
         } => {
             for (g, (q, sc)) in generators.iter().zip(s.q.iter_mut().zip(s.spec.iter_mut())) {
                 g.generate(rng, sc, q)?;
@@ -595,6 +615,42 @@ fn realize(
                 sampled.respond(&s.u, &mut s.x, &mut s.y)?;
             }
             s.buf.copy_from_slice(&s.y[..n * p]);
+            if let Some(dv) = derivative {
+                let fft_err = |e: String| Error::Numerical {
+                    what: "spectral derivative".into(),
+                    reason: e,
+                };
+                let dw = 2.0 * std::f64::consts::PI / (n as f64 * sampled.dt());
+                for (q, dq) in s.q.iter().zip(s.dq.iter_mut()) {
+                    s.fft_in.copy_from_slice(q);
+                    dv.forward
+                        .process(&mut s.fft_in, &mut s.fft_out)
+                        .map_err(|e| fft_err(e.to_string()))?;
+                    for (j, c) in s.fft_out.iter_mut().enumerate() {
+                        *c = if j < n / 2 {
+                            *c * Complex::new(0.0, j as f64 * dw / n as f64)
+                        } else {
+                            Complex::new(0.0, 0.0)
+                        };
+                    }
+                    dv.inverse
+                        .process(&mut s.fft_out, dq)
+                        .map_err(|e| fft_err(e.to_string()))?;
+                }
+                let m = inputs.len();
+                for k in 0..n {
+                    for r in 0..p {
+                        let mut acc = 0.0;
+                        for (l, &(src, gain, shift)) in inputs.iter().enumerate() {
+                            let e = dv.e[r * m + l];
+                            if e != 0.0 {
+                                acc += e * gain * s.dq[src][(k + n - shift) % n];
+                            }
+                        }
+                        s.buf[k * p + r] += acc;
+                    }
+                }
+            }
         }
     }
     let mut out = Realization {
@@ -705,6 +761,9 @@ pub fn run_scenario(
                 u: vec![0.0; nu],
                 y: vec![0.0; ny],
                 welch: plan.welch.scratch(),
+                dq: vec![vec![0.0; n]; nq],
+                fft_in: vec![0.0; n],
+                fft_out: vec![Complex::new(0.0, 0.0); n / 2 + 1],
             },
             |s, _i, rng| realize(&plan, s, rng, opts.store_raw),
         );
