@@ -6,7 +6,9 @@ use std::path::PathBuf;
 use stochvib::plot::{scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::{self, resolve_spectrum, spectrum_report};
 use stochvib::scenario::{load_scenario, spectrum_catalogue};
+use stochvib::simulate::{run_scenario, RunOptions};
 use stochvib::spectrum::Convention;
+use stochvib::store::{summarize, Compression, RunFile};
 
 /// Stochastic vibration and random-road analysis of machines.
 #[derive(Parser)]
@@ -43,6 +45,19 @@ enum Command {
         /// Also write the scenario's pictures (SVG and PNG) into this directory.
         #[arg(long)]
         plots: Option<PathBuf>,
+        /// Add a Monte Carlo column: σ from N realizations with its 95 % interval and whether it covers
+        /// the analytic σ (the run file goes to a temporary directory and is removed).
+        #[arg(long, value_name = "N")]
+        monte_carlo: Option<usize>,
+        /// Master seed of the Monte Carlo column.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Time step, s (default: suggested from the system's eigenvalues).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Duration of each realization, s (default: suggested from the slowest decay rate).
+        #[arg(long)]
+        duration: Option<f64>,
     },
     /// Write pictures of a scenario (`.toml`): input density, |H(iω)|² and output densities with the
     /// cumulative variance, as SVG and PNG.
@@ -59,6 +74,58 @@ enum Command {
         /// Directory of spectrum files.
         #[arg(long)]
         spectra_dir: Option<PathBuf>,
+    },
+    /// Monte Carlo run of a scenario written to an HDF5 file (see the README's HDF5 section).
+    Simulate {
+        /// Scenario file (TOML, see data/).
+        scenario: PathBuf,
+        /// Number of realizations.
+        #[arg(long)]
+        realizations: usize,
+        /// Duration of each realization, s.
+        #[arg(long)]
+        duration: f64,
+        /// Time step, s.
+        #[arg(long)]
+        dt: f64,
+        /// Master seed; realization i uses stream (seed, i).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output file (written as FILE.tmp and renamed when complete; an interrupted run resumes).
+        #[arg(short = 'o', long = "output")]
+        output: PathBuf,
+        /// Realizations per shard.
+        #[arg(long, default_value_t = 50)]
+        shard_size: usize,
+        /// Store every realization of every output.
+        #[arg(long)]
+        store_raw: bool,
+        /// Compression of raw data: none, fast, deflate:N.
+        #[arg(long, default_value = "none")]
+        compression: String,
+        /// Route: auto, exact, spectral.
+        #[arg(long, default_value = "auto")]
+        method: stochvib::simulate::Method,
+        /// Confidence of the intervals.
+        #[arg(long, default_value_t = 0.95)]
+        confidence: f64,
+        /// Remove an existing finished OUTPUT first (never needed for resuming a .tmp).
+        #[arg(long)]
+        overwrite: bool,
+        /// Directory of spectrum files.
+        #[arg(long)]
+        spectra_dir: Option<PathBuf>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Summarise a Monte Carlo run file.
+    Inspect {
+        /// Run file (HDF5).
+        file: PathBuf,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// Reproduce every worked example of the source documents: printed value, computed value, relative
     /// difference and an explanation for every difference over 2 %.
@@ -136,7 +203,7 @@ fn main() -> Result<()> {
                 }
             }
             if json {
-                emit_line(&format!("{}", serde_json::to_string_pretty(&reports)?));
+                emit_line(&serde_json::to_string_pretty(&reports)?);
             }
             if failed > 0 {
                 anyhow::bail!("{failed} spectrum file(s) in {} are invalid", dir.display());
@@ -160,12 +227,33 @@ fn main() -> Result<()> {
             spectra_dir,
             json,
             plots,
+            monte_carlo,
+            seed,
+            dt,
+            duration,
         } => {
             let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
             let sc = load_scenario(&scenario, &dir)?;
-            let r = report::analysis_report(&sc)?;
+            let mut r = report::analysis_report(&sc)?;
+            if let Some(n) = monte_carlo {
+                let (sdt, sdur) = match (dt, duration) {
+                    (Some(a), Some(b)) => (a, b),
+                    _ => {
+                        let (a, b) = stochvib::simulate::suggest_step(&sc)?;
+                        (dt.unwrap_or(a), duration.unwrap_or(b))
+                    }
+                };
+                let opts = RunOptions::new(n, sdur, sdt, seed);
+                let tmp = std::env::temp_dir().join(format!("stochvib-analyze-{}.h5", std::process::id()));
+                let _ = std::fs::remove_file(&tmp);
+                let _ = std::fs::remove_file(stochvib::store::tmp_path(&tmp));
+                let summary = run_scenario(&sc, &opts, &tmp, &progress_printer());
+                let _ = std::fs::remove_file(&tmp);
+                let _ = std::fs::remove_file(stochvib::store::tmp_path(&tmp));
+                report::analysis::attach_monte_carlo(&mut r, &summary?);
+            }
             if json {
-                emit_line(&format!("{}", serde_json::to_string_pretty(&r)?));
+                emit_line(&serde_json::to_string_pretty(&r)?);
             } else {
                 emit(&format!("{r}"));
             }
@@ -194,6 +282,72 @@ fn main() -> Result<()> {
                 emit_line(&f.display().to_string());
             }
         }
+        Command::Simulate {
+            scenario,
+            realizations,
+            duration,
+            dt,
+            seed,
+            output,
+            shard_size,
+            store_raw,
+            compression,
+            method,
+            confidence,
+            overwrite,
+            spectra_dir,
+            json,
+        } => {
+            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
+            let sc = load_scenario(&scenario, &dir)?;
+            let mut opts = RunOptions::new(realizations, duration, dt, seed);
+            opts.shard_size = shard_size;
+            opts.store_raw = store_raw;
+            opts.compression = Compression::parse(&compression)?;
+            opts.method = method;
+            opts.confidence = confidence;
+            if overwrite && output.exists() {
+                std::fs::remove_file(&output)?;
+            }
+            let s = run_scenario(&sc, &opts, &output, &progress_printer())?;
+            if json {
+                emit_line(&serde_json::to_string_pretty(&s)?);
+            } else {
+                emit(&format!("{s}"));
+            }
+        }
+        Command::Inspect { file, json } => {
+            if json {
+                let run = RunFile::open(&file)?;
+                let m = run.metadata();
+                let stats: Vec<serde_json::Value> = run
+                    .statistics()?
+                    .iter()
+                    .map(|o| {
+                        serde_json::json!({
+                            "output": o.output, "unit": o.unit, "n_used": o.n_used,
+                            "statistics": o.statistics.iter().map(|s| serde_json::json!({
+                                "name": s.name, "estimate": s.estimate, "lower": s.lower, "upper": s.upper,
+                                "confidence": s.confidence, "unit": s.unit, "method": s.method,
+                                "analytic": s.analytic, "covers": s.covers,
+                            })).collect::<Vec<_>>(),
+                        })
+                    })
+                    .collect();
+                let v = serde_json::json!({
+                    "path": file.display().to_string(),
+                    "format_version": run.format_version(),
+                    "toolkit_version": run.toolkit_version(),
+                    "seed": m.seed, "generator": m.generator, "dt": m.dt, "n_samples": m.n_samples,
+                    "n_realizations": m.n_realizations, "n_shards": m.n_shards(), "store_raw": m.store_raw,
+                    "outputs": m.outputs.iter().map(|s| &s.name).collect::<Vec<_>>(),
+                    "statistics": stats,
+                });
+                emit_line(&serde_json::to_string_pretty(&v)?);
+            } else {
+                emit(&summarize(&file)?);
+            }
+        }
         Command::Spectrum {
             name,
             convention,
@@ -204,7 +358,7 @@ fn main() -> Result<()> {
             let file = resolve_spectrum(&name, &dir)?;
             let r = spectrum_report(&file, convention);
             if json {
-                emit_line(&format!("{}", serde_json::to_string_pretty(&r)?));
+                emit_line(&serde_json::to_string_pretty(&r)?);
             } else {
                 emit(&format!("{r}"));
             }
@@ -227,6 +381,25 @@ fn write_scenario_plots(
         ..ScenarioPlotOptions::default()
     };
     Ok(scenario_plots_with(sc, out, &opts)?)
+}
+
+/// Progress on stderr: a `\r` percentage on a terminal, one "shard k/n" line per shard otherwise.
+fn progress_printer() -> impl Fn(usize, usize) {
+    use std::io::IsTerminal;
+    let tty = std::io::stderr().is_terminal();
+    move |done, total| {
+        if tty {
+            eprint!(
+                "\rshard {done}/{total} ({:.0} %)",
+                100.0 * done as f64 / total.max(1) as f64
+            );
+            if done == total {
+                eprintln!();
+            }
+        } else {
+            eprintln!("shard {done}/{total}");
+        }
+    }
 }
 
 /// Writes to stdout; a closed pipe (`stochvib spectra | head`) ends the program quietly.

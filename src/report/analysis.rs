@@ -35,6 +35,53 @@ pub struct OutputReport {
     pub expected_largest_peak: Option<f64>,
     /// Crossing rates at M + 3σ and at the scenario's levels.
     pub levels: Vec<LevelRow>,
+    /// Monte Carlo column (`analyze --monte-carlo N`), if requested.
+    pub monte_carlo: Option<MonteCarloColumn>,
+}
+
+/// The Monte Carlo σ of one output against the analytic σ (see [`crate::simulate::run_scenario`]).
+#[derive(Debug, Clone, Serialize)]
+pub struct MonteCarloColumn {
+    /// Realizations.
+    pub realizations: usize,
+    /// Route taken (exact or spectral).
+    pub method: String,
+    /// MC σ with its interval; `None` if the output was not simulated.
+    pub sigma: Option<crate::simulate::IntervalRow>,
+    /// Exact σ of the simulated discretised process (differs from the analytic σ on the spectral route).
+    pub discrete_sigma: Option<f64>,
+    /// Whether the interval covers the analytic σ.
+    pub covered: Option<bool>,
+    /// Why the output was not simulated.
+    pub note: Option<String>,
+}
+
+/// Adds the Monte Carlo column of a run to the report's outputs (matched by name).
+pub fn attach_monte_carlo(report: &mut AnalysisReport, run: &crate::simulate::RunSummary) {
+    for o in &mut report.outputs {
+        let name = &o.statistics.name;
+        let base = MonteCarloColumn {
+            realizations: run.n_realizations,
+            method: format!("{:?}", run.method).to_lowercase(),
+            sigma: None,
+            discrete_sigma: None,
+            covered: None,
+            note: None,
+        };
+        o.monte_carlo = if let Some(r) = run.outputs.iter().find(|r| &r.name == name) {
+            Some(MonteCarloColumn {
+                sigma: Some(r.sigma),
+                discrete_sigma: Some(r.discrete_variance.sqrt()),
+                covered: Some(r.covers),
+                ..base
+            })
+        } else {
+            run.skipped.iter().find(|s| &s.name == name).map(|s| MonteCarloColumn {
+                note: Some(s.reason.clone()),
+                ..base
+            })
+        };
+    }
 }
 
 /// The whole analysis report.
@@ -95,6 +142,7 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
             band_note,
             expected_largest_peak: st.expected_largest_peak(sc.analysis.duration),
             levels,
+            monte_carlo: None,
             statistics: st,
         });
     }
@@ -135,6 +183,25 @@ impl fmt::Display for AnalysisReport {
                     "  sigma         infinite/undefined: {}",
                     s.variance_note.as_deref().unwrap_or("")
                 )?,
+            }
+            if let Some(mc) = &o.monte_carlo {
+                match (&mc.sigma, mc.covered) {
+                    (Some(iv), Some(c)) => writeln!(
+                        f,
+                        "  sigma MC      {:.6e}  [{:.6e}, {:.6e}] ({} %, {} realizations, {})  covers analytic: {}{}",
+                        iv.estimate,
+                        iv.lower,
+                        iv.upper,
+                        100.0 * iv.confidence,
+                        mc.realizations,
+                        mc.method,
+                        if c { "yes" } else { "NO" },
+                        mc.discrete_sigma
+                            .map(|d| format!("  (discrete-process σ {d:.6e})"))
+                            .unwrap_or_default()
+                    )?,
+                    _ => writeln!(f, "  sigma MC      — {}", mc.note.as_deref().unwrap_or(""))?,
+                }
             }
             writeln!(f, "  3σ bounds     [{}, {}]", opt(o.lower_3sigma), opt(o.upper_3sigma))?;
             if let (Some((a, b)), true) = (self.band_rad_s, o.band_sigma.is_some() || o.band_note.is_some()) {

@@ -10,11 +10,13 @@
 //!   Van Loan's white-noise discretisation of the system augmented with its input filters
 //!   ([`van_loan`], [`augmented_response`]) — no time-step bias.
 //! * Batches ([`run_batch`], [`Shard`]): rayon-parallel, mergeable shards.
+//! * Whole runs of a scenario to HDF5 ([`run_scenario`], [`run`]).
 
 pub mod batch;
 pub mod discretize;
 pub mod rng;
 pub mod road;
+pub mod run;
 pub mod shaping;
 pub mod spectral;
 
@@ -25,5 +27,6 @@ pub use discretize::{
 };
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
 pub use road::{RoadScratch, RoadTrack};
+pub use run::{run_scenario, suggest_step, IntervalRow, Method, OutputRun, RunOptions, RunSummary, SkippedOutput};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
