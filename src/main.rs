@@ -3,7 +3,7 @@
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
-use stochvib::plot::{scenario_plots_with, ScenarioPlotOptions};
+use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::{self, resolve_spectrum, spectrum_report};
 use stochvib::scenario::{load_scenario, spectrum_catalogue};
 use stochvib::simulate::{run_scenario, RunOptions};
@@ -59,10 +59,11 @@ enum Command {
         #[arg(long)]
         duration: Option<f64>,
     },
-    /// Write pictures of a scenario (`.toml`): input density, |H(iω)|² and output densities with the
-    /// cumulative variance, as SVG and PNG.
+    /// Write pictures of a scenario (`.toml`: input density, |H(iω)|² and output densities with the
+    /// cumulative variance) or of a Monte Carlo run file (`.h5`), as SVG and PNG.
     Plot {
-        /// Scenario file (TOML). Monte Carlo run files (`.h5`) are not handled yet.
+        /// Scenario file (TOML) or Monte Carlo run file (`.h5`: Welch estimate against the analytic density
+        /// per output and, with raw data, realization excerpts, histogram and correlation).
         input: PathBuf,
         /// Output directory (created if missing).
         #[arg(short = 'o', long)]
@@ -118,6 +119,9 @@ enum Command {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+        /// After the run, write its pictures (as `stochvib plot OUTPUT -o DIR`) into this directory.
+        #[arg(long)]
+        plots: Option<PathBuf>,
     },
     /// Summarise a Monte Carlo run file.
     Inspect {
@@ -268,11 +272,19 @@ fn main() -> Result<()> {
             convention,
             spectra_dir,
         } => {
+            let is_h5 = input
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("h5") || e.eq_ignore_ascii_case("hdf5"));
+            if is_h5 {
+                for f in run_plots(&input, &out)? {
+                    emit_line(&f.display().to_string());
+                }
+                return Ok(());
+            }
             let is_toml = input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
             if !is_toml {
                 anyhow::bail!(
-                    "{}: only scenario files (.toml) can be plotted; pictures of Monte Carlo run files (.h5) are not \
-                     implemented",
+                    "{}: can plot scenario files (.toml) and Monte Carlo run files (.h5)",
                     input.display()
                 );
             }
@@ -297,6 +309,7 @@ fn main() -> Result<()> {
             overwrite,
             spectra_dir,
             json,
+            plots,
         } => {
             let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
             let sc = load_scenario(&scenario, &dir)?;
@@ -314,6 +327,13 @@ fn main() -> Result<()> {
                 emit_line(&serde_json::to_string_pretty(&s)?);
             } else {
                 emit(&format!("{s}"));
+            }
+            if let Some(pdir) = plots {
+                for f in run_plots(&s.path, &pdir)? {
+                    if !json {
+                        emit_line(&f.display().to_string());
+                    }
+                }
             }
         }
         Command::Inspect { file, json } => {

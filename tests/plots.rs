@@ -625,3 +625,124 @@ mod book {
         assert!(!series(acc, "cab ẍ₂").is_empty());
     }
 }
+
+/// A small conveyor-idler run (one input, outputs y and y_vel) written with raw realizations.
+fn conveyor_run(tag: &str, store_raw: bool) -> (PathBuf, PathBuf) {
+    use stochvib::simulate::{run_scenario, RunOptions};
+    let dir = out_dir(tag);
+    std::fs::create_dir_all(&dir).unwrap();
+    let sc = load_scenario(&root().join("data/conveyor-idler.toml"), &root().join("spectra")).unwrap();
+    // 40 realizations of 10 s at dt = 0.01 s: 1000 samples each
+    let mut opts = RunOptions::new(40, 10.0, 0.01, 2024);
+    opts.shard_size = 20;
+    opts.store_raw = store_raw;
+    let path = dir.join("run.h5");
+    run_scenario(&sc, &opts, &path, &|_, _| {}).unwrap();
+    (path, dir.join("pictures"))
+}
+
+#[test]
+fn run_file_pictures() {
+    use stochvib::plot::run_plots::run_charts;
+    use stochvib::store::{RunFile, SignalGroup};
+    let (path, dir) = conveyor_run("runfile", true);
+    let files = stochvib::plot::run_plots(&path, &dir).unwrap();
+    // 2 outputs × (welch, realizations, histogram, correlation) × (svg, png)
+    assert_eq!(files.len(), 16);
+    // title of data/conveyor-idler.toml
+    let title = "Conveyor idler under lump load, Example 8.1";
+    for pair in files.chunks(2) {
+        let stem = pair[0].file_stem().unwrap().to_string_lossy().into_owned();
+        let output = if stem.starts_with("y_vel") { "y_vel" } else { "y" };
+        let labels: &[&str] = if stem.ends_with("welch") {
+            &["frequency f [Hz]", "density G(f), one-sided, of output"]
+        } else if stem.ends_with("realizations") {
+            &["time t [s]", "realization 0"]
+        } else if stem.ends_with("histogram") {
+            &["probability density [1/", "M ± 3σ"]
+        } else {
+            assert!(stem.ends_with("correlation"), "{stem}");
+            &["lag τ [s]", "correlation K(τ) of output", "cos(ω_j τ)"]
+        };
+        let full_title = format!("{title}: {output}");
+        let mut texts = vec![full_title.as_str()];
+        texts.extend_from_slice(labels);
+        check_pair(pair, &texts);
+    }
+    // units from the file: y in m, y_vel in m/s
+    let svg = std::fs::read_to_string(dir.join("y_vel-histogram.svg")).unwrap();
+    assert!(svg.contains("output y_vel [m/s]"));
+
+    // data with provenance: everything read back independently with the crate's reader
+    let run = RunFile::open(&path).unwrap();
+    let psd = run.psd().unwrap();
+    let charts = run_charts(&path).unwrap();
+    assert_eq!(charts.len(), 2);
+    for oc in &charts {
+        let p = psd.iter().find(|p| p.output == oc.output).unwrap();
+        let a = p.analytic.as_ref().unwrap();
+        // the plotted analytic series is the file's `analytic` dataset, converted to G(f) = 4π S(ω) at
+        // f = ω/(2π) (one-sided cyclic, the chart's convention): equal to the last bit
+        let analytic_series = oc.welch.series.iter().find(|s| s.name.starts_with("analytic")).unwrap();
+        let expected: Vec<(f64, f64)> = p
+            .omega
+            .iter()
+            .zip(a)
+            .map(|(w, s)| (w / (2.0 * std::f64::consts::PI), 4.0 * std::f64::consts::PI * s))
+            .collect();
+        assert_eq!(analytic_series.points, expected);
+        // the histogram holds every sample: 40 realizations × (10 s / 0.01 s) samples, in file order
+        let h = oc.histogram.as_ref().unwrap();
+        assert_eq!(h.data.len(), 40 * 1000);
+        let raw = run.read_signals(SignalGroup::Outputs, &oc.output, 0..40).unwrap();
+        assert!(raw.iter().zip(&h.data).all(|(x, y)| x == y));
+        // the excerpts are the first 3 realizations, first 1000 (< 2000) samples, on t = k·0.01 s
+        let r = oc.realizations.as_ref().unwrap();
+        assert_eq!(r.series.len(), 3);
+        for (i, s) in r.series.iter().enumerate() {
+            assert_eq!(s.points.len(), 1000);
+            assert!(s
+                .points
+                .iter()
+                .enumerate()
+                .all(|(k, &(t, y))| t == k as f64 * 0.01 && y == raw[[i, k]]));
+        }
+        // N(M, σ) uses the analytic σ of the statistics: its legend names σ (Gaussian peak 1/(σ√(2π)))
+        let st = run.statistics().unwrap();
+        let sigma = st
+            .iter()
+            .find(|s| s.output == oc.output)
+            .unwrap()
+            .statistics
+            .iter()
+            .find(|s| s.name == "sigma")
+            .unwrap()
+            .analytic
+            .unwrap();
+        let peak = h.curves[0].points.iter().map(|p| p.1).fold(0.0, f64::max);
+        let expected_peak = 1.0 / (sigma * (2.0 * std::f64::consts::PI).sqrt());
+        // the 301-point grid over ≥ M ± 4σ passes within half a step (≤ 4σ/300·…) of M: relative drop of
+        // the peak ≤ ½(Δ/σ)² with Δ ≤ (hi − lo)/300, a small bound for these samples
+        assert!(peak <= expected_peak * (1.0 + stochvib::tolerance::EXACT) && peak > 0.999 * expected_peak);
+        assert!(oc.correlation.is_some());
+    }
+
+    // without raw data only the Welch pictures are written
+    let (path2, dir2) = conveyor_run("runfile-noraw", false);
+    let files2 = stochvib::plot::run_plots(&path2, &dir2).unwrap();
+    assert_eq!(files2.len(), 4);
+    assert!(files2
+        .iter()
+        .all(|f| f.file_stem().unwrap().to_string_lossy().ends_with("welch")));
+}
+
+#[test]
+fn plot_cli_accepts_run_files() {
+    let (path, dir) = conveyor_run("runcli", false);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        .args(["plot", path.to_str().unwrap(), "-o", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.join("y-welch.png").exists() && dir.join("y_vel-welch.svg").exists());
+}

@@ -12,6 +12,7 @@
 //! * [`model_plots`]: catalogue-model pictures from plain data (octave-band RMS against limits, mine-hoist
 //!   frequencies and modes over ξ, balancer D_y/D_x over r, scraper σ over speed).
 //!
+//! * [`run_plots`](mod@run_plots): the pictures of a Monte Carlo run file (`stochvib plot run.h5`).
 //! * [`book_plots`](mod@book_plots): the pictures of `stochvib book --plots DIR`, every catalogue model's data
 //!   computed with the library.
 //!
@@ -21,10 +22,12 @@ pub mod book_plots;
 pub mod chart;
 pub mod mc_plots;
 pub mod model_plots;
+pub mod run_plots;
 pub mod scenario_plots;
 
 pub use book_plots::book_plots;
 pub use chart::{
     Band, BarChart, Histogram, Legend, LineChart, LineStyle, Marker, SecondaryAxis, Series, HEIGHT, WIDTH,
 };
+pub use run_plots::run_plots;
 pub use scenario_plots::{scenario_plots, scenario_plots_with, ScenarioPlotOptions};

@@ -1,0 +1,265 @@
+//! Pictures of a Monte Carlo run file (`.h5` written by [`run_scenario`](crate::simulate::run_scenario)):
+//! per output, the Welch estimate with its interval band against the analytic density, and — when the file
+//! stores raw realizations — realization excerpts, the histogram of the samples against N(M, σ) and the
+//! correlation estimate against the model. Everything is read from the file; the charts are built with
+//! [`mc_plots`](super::mc_plots).
+
+use super::chart::{Histogram, LineChart};
+use super::mc_plots::{correlation_chart, histogram_chart, realizations_chart, welch_chart};
+use crate::error::{Error, Result};
+use crate::estimate::time_correlation;
+use crate::store::{PsdEstimate, RunFile, SignalGroup};
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+/// Realizations drawn in the excerpt picture.
+pub const EXCERPT_REALIZATIONS: usize = 3;
+/// Samples per realization drawn in the excerpt picture.
+pub const EXCERPT_SAMPLES: usize = 2000;
+/// Upper bound on the samples in a histogram: whole realizations are read while their total stays within
+/// it (at least one), so a large run does not exhaust memory. The legend-free count is `data.len()`.
+pub const MAX_HISTOGRAM_SAMPLES: usize = 4_000_000;
+/// Realizations averaged in the correlation estimate (at most).
+pub const MAX_CORRELATION_REALIZATIONS: usize = 100;
+
+/// The charts of one output of a run file.
+#[derive(Debug, Clone)]
+pub struct OutputCharts {
+    /// Output name (as in the file).
+    pub output: String,
+    /// Welch estimate G(f) with its interval band against the analytic density (log–log).
+    pub welch: LineChart,
+    /// Excerpts of the first realizations (raw data only).
+    pub realizations: Option<LineChart>,
+    /// Histogram of the samples against N(M, σ) with M ± 3σ (raw data only).
+    pub histogram: Option<Histogram>,
+    /// Correlation estimate against the model K(τ) from the stored analytic density (raw data only).
+    pub correlation: Option<LineChart>,
+}
+
+/// The `title` key of the scenario text stored in the file, or `None` if absent or unparsable.
+fn scenario_title(text: &str) -> Option<String> {
+    let t: toml::Table = toml::from_str(text).ok()?;
+    t.get("title")?.as_str().map(|s| s.to_string())
+}
+
+/// Model correlation from a two-sided density S(ω) stored on a uniform grid ω_j = jΔω, j ≥ 0.
+///
+/// # Formula
+/// K(τ) = 2 Σ_j w_j S(ω_j) cos(ω_j τ) Δω with w_0 = 1/2 (ω = 0 appears once on the two-sided grid), w_j = 1
+/// otherwise: the Riemann sum of K(τ) = ∫ S(ω) e^{iωτ} dω over |ω| ≤ ω_max.
+fn cosine_sum(omega: &[f64], s: &[f64], tau: f64) -> f64 {
+    let dw = omega[1] - omega[0];
+    let mut k = 0.0;
+    for (j, (&w, &sv)) in omega.iter().zip(s).enumerate() {
+        let wt = if j == 0 && w == 0.0 { 0.5 } else { 1.0 };
+        k += wt * sv * (w * tau).cos();
+    }
+    2.0 * k * dw
+}
+
+fn file_stem(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// Builds the charts of every output of a run file without rendering them (see [`run_plots`]).
+///
+/// # Formula
+/// Welch picture: one-sided cyclic G(f) = 4π S(ω) at f = ω/(2π) from the stored two-sided S(ω) (estimate,
+/// interval and analytic). Histogram: N(M, σ) with M = `@analytic` of `mean` and σ = `@analytic` of `sigma`.
+/// Correlation: K̂(mΔt) averaged over realizations ([`time_correlation`] with the known zero mean) against
+/// K(τ) = 2 Σ S(ω_j) cos(ω_j τ) Δω of the stored analytic density (ω = 0 weighted ½), up to
+/// τ_max = min(T/4, 2π/(4Δω)) with T the record length, and the analytic σ² = K(0) marked. The cosine sum
+/// is only as fine as the Welch grid: a density peak narrower than Δω (e.g. a slowly correlated input) is
+/// under-resolved and the model curve then departs from σ² at τ = 0 — the σ² line shows by how much.
+///
+/// # Errors
+/// Errors of [`RunFile::open`] and its readers; [`Error::InvalidParameter`] when an output lacks its density
+/// estimate, the analytic density, or the analytic σ, or when the density grid is not uniform.
+///
+/// # Examples
+/// ```no_run
+/// let charts = stochvib::plot::run_plots::run_charts(std::path::Path::new("run.h5")).unwrap();
+/// println!("{}", charts[0].welch.title);
+/// ```
+pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
+    let run = RunFile::open(path)?;
+    let meta = run.metadata().clone();
+    let scenario = scenario_title(&meta.scenario_text).unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    });
+    let psds = run.psd()?;
+    let stats = run.statistics()?;
+    let mut out = Vec::new();
+    for sig in &meta.outputs {
+        let name = &sig.name;
+        let unit = &sig.unit;
+        let title = format!("{scenario}: {name}");
+        let quantity = format!("output {name}");
+        let psd: &PsdEstimate = psds
+            .iter()
+            .find(|p| &p.output == name)
+            .ok_or_else(|| Error::invalid("output", name, "no density estimate in /psd"))?;
+        let analytic = psd
+            .analytic
+            .as_ref()
+            .ok_or_else(|| Error::invalid("output", name, "no analytic density in /psd"))?;
+        if psd.omega.len() < 2 || analytic.len() != psd.omega.len() {
+            return Err(Error::invalid(
+                "psd",
+                name,
+                "need at least two frequencies and one analytic value per frequency",
+            ));
+        }
+        let f: Vec<f64> = psd.omega.iter().map(|w| w / (2.0 * PI)).collect();
+        let g = |v: &[f64]| v.iter().map(|s| 4.0 * PI * s).collect::<Vec<f64>>();
+        let ga: Vec<(f64, f64)> = f.iter().cloned().zip(g(analytic)).collect();
+        let mut welch = welch_chart(
+            &title,
+            &f,
+            &g(&psd.density),
+            &g(&psd.lower),
+            &g(&psd.upper),
+            psd.confidence,
+            &ga,
+            &quantity,
+            unit,
+        )?;
+        welch.series[0].name = format!("Welch estimate (ν = {})", crate::error::num(psd.dof));
+        welch.series[1].name = "analytic density (stored in the file)".into();
+        let (mut realizations, mut histogram, mut correlation) = (None, None, None);
+        if meta.store_raw {
+            let n = meta.n_samples;
+            let nr = meta.n_realizations;
+            // excerpts
+            let ne = EXCERPT_REALIZATIONS.min(nr);
+            let m = EXCERPT_SAMPLES.min(n);
+            let first = run.read_signals(SignalGroup::Outputs, name, 0..ne)?;
+            let t: Vec<f64> = (0..m).map(|k| k as f64 * meta.dt).collect();
+            let rows: Vec<(String, Vec<f64>)> = (0..ne)
+                .map(|i| {
+                    (
+                        format!("realization {i}"),
+                        first.row(i).iter().take(m).cloned().collect(),
+                    )
+                })
+                .collect();
+            let refs: Vec<(&str, &[f64])> = rows.iter().map(|(s, v)| (s.as_str(), &v[..])).collect();
+            realizations = Some(realizations_chart(&title, &t, &refs, &quantity, unit)?);
+            // histogram
+            let st = stats
+                .iter()
+                .find(|s| &s.output == name)
+                .ok_or_else(|| Error::invalid("output", name, "no statistics in /statistics"))?;
+            let an = |key: &str| {
+                st.statistics
+                    .iter()
+                    .find(|s| s.name == key)
+                    .and_then(|s| s.analytic)
+                    .ok_or_else(|| Error::invalid("statistic", key, format!("no @analytic for output {name}")))
+            };
+            let (mean, sigma) = (an("mean")?, an("sigma")?);
+            let nh = (MAX_HISTOGRAM_SAMPLES / n.max(1)).clamp(1, nr);
+            let all = run.read_signals(SignalGroup::Outputs, name, 0..nh)?;
+            let (data, _) = all.into_raw_vec_and_offset();
+            let mut h = histogram_chart(&title, &data, mean, sigma, &quantity, unit, None)?;
+            h.x_label = format!("{quantity} [{unit}]");
+            h.curves[0].name = format!(
+                "{} (analytic σ); {} samples of {nh} realizations",
+                h.curves[0].name,
+                data.len()
+            );
+            histogram = Some(h);
+            // correlation
+            let dw = psd.omega[1] - psd.omega[0];
+            let uniform = psd
+                .omega
+                .windows(2)
+                .all(|w| ((w[1] - w[0]) - dw).abs() <= 1e-9 * dw.abs().max(f64::MIN_POSITIVE));
+            if !(dw > 0.0) || !uniform {
+                return Err(Error::invalid("psd", name, "density grid is not uniform in ω"));
+            }
+            let tau_max = (n as f64 * meta.dt / 4.0).min(2.0 * PI / (4.0 * dw));
+            let max_lag = ((tau_max / meta.dt).floor() as usize).clamp(1, n.saturating_sub(1).max(1));
+            let nc = MAX_CORRELATION_REALIZATIONS.min(nr);
+            let rows = if nc <= nh {
+                None
+            } else {
+                Some(run.read_signals(SignalGroup::Outputs, name, 0..nc)?)
+            };
+            let mut k = vec![0.0; max_lag + 1];
+            for i in 0..nc {
+                let x: &[f64] = match &rows {
+                    Some(r) => r.row(i).to_slice().unwrap_or(&[]),
+                    None => &data[i * n..(i + 1) * n],
+                };
+                for (a, b) in k.iter_mut().zip(time_correlation(x, max_lag, Some(mean))?) {
+                    *a += b / nc as f64;
+                }
+            }
+            let lags: Vec<f64> = (0..=max_lag).map(|m| m as f64 * meta.dt).collect();
+            let model: Vec<f64> = lags.iter().map(|&tau| cosine_sum(&psd.omega, analytic, tau)).collect();
+            let mut c = correlation_chart(&title, &lags, &k, &model, None, &quantity, unit)?;
+            c.series[0].name = format!("estimate K̂(τ), mean of {nc} realizations");
+            c.series[1].name = format!(
+                "model K(τ) = 2Σ S(ω_j) cos(ω_j τ) Δω of the stored analytic S(ω), Δω = {} rad/s",
+                crate::error::num(dw)
+            );
+            c.hlines
+                .push(super::chart::Marker::new(sigma * sigma, "analytic σ² = K(0)"));
+            correlation = Some(c);
+        }
+        out.push(OutputCharts {
+            output: name.clone(),
+            welch,
+            realizations,
+            histogram,
+            correlation,
+        });
+    }
+    Ok(out)
+}
+
+/// Writes the pictures of a Monte Carlo run file into `dir` (created if missing), SVG and PNG each:
+/// `<output>-welch` always, and `<output>-realizations`, `<output>-histogram`, `<output>-correlation` when
+/// the file stores raw realizations. Titles name the scenario (its `title`) and the output.
+///
+/// # Formula
+/// As [`run_charts`].
+///
+/// # Errors
+/// As [`run_charts`]; [`Error::Io`] if the directory or a file cannot be written.
+///
+/// # Examples
+/// ```no_run
+/// use std::path::Path;
+/// let files = stochvib::plot::run_plots(Path::new("run.h5"), Path::new("pictures")).unwrap();
+/// assert!(!files.is_empty());
+/// ```
+pub fn run_plots(path: &Path, dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for oc in run_charts(path)? {
+        let s = file_stem(&oc.output);
+        files.extend(oc.welch.render(dir, &format!("{s}-welch"))?);
+        if let Some(c) = &oc.realizations {
+            files.extend(c.render(dir, &format!("{s}-realizations"))?);
+        }
+        if let Some(h) = &oc.histogram {
+            files.extend(h.render(dir, &format!("{s}-histogram"))?);
+        }
+        if let Some(c) = &oc.correlation {
+            files.extend(c.render(dir, &format!("{s}-correlation"))?);
+        }
+    }
+    Ok(files)
+}
