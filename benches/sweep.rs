@@ -28,17 +28,6 @@ fn sweep(c: &mut Criterion) {
             acc
         })
     });
-    g.bench_function("prototype_stack_h2_1e5", |b| {
-        b.iter(|| {
-            let mut acc = 0.0;
-            for &c2 in &c2s {
-                for &b2 in &b2s {
-                    acc += table.sigma_stack(c2, b2);
-                }
-            }
-            acc
-        })
-    });
     // 10³-point subgrid (every 40th c₂ value, every 25th b₂ value) for the slow per-point variants
     let sub: Vec<(f64, f64)> = c2s
         .iter()

@@ -95,19 +95,6 @@ fn main() {
             acc
         }),
     );
-    put(
-        "sweep_table_stack",
-        n_sweep,
-        best(reps, 1, || {
-            let mut acc = 0.0;
-            for &c2 in &c2s {
-                for &b2 in &b2s {
-                    acc += table.sigma_stack(c2, b2);
-                }
-            }
-            acc
-        }),
-    );
     // every core (rayon's pool; the machine may be shared, so this row is noisy)
     put(
         "sweep_table_par",

@@ -179,14 +179,6 @@ impl SweepTable {
         let (num, ln, den, ld) = self.polys(c2, b2);
         (h2_integral(&num[..ln], &den[..ld]).expect("stable, strictly proper") / (2.0 * PI)).sqrt()
     }
-
-    /// The same by the allocation-free prototype [`h2_integral_stack`] (what the suggested library fix
-    /// would give).
-    #[inline]
-    pub fn sigma_stack(&self, c2: f64, b2: f64) -> f64 {
-        let (num, ln, den, ld) = self.polys(c2, b2);
-        (h2_integral_stack(&num[..ln], &den[..ld]).expect("stable, strictly proper") / (2.0 * PI)).sqrt()
-    }
 }
 
 /// The same variance by the library's Lyapunov solver on the augmented state z = [x_F, x₁, x₂, v₁, v₂]
@@ -310,89 +302,4 @@ pub fn all_spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
         ),
         ("at_speed", road()),
     ]
-}
-
-/// PROTOTYPE of the fix suggested in `benches/RESULTS.md` for `stochvib::linalg::h2_integral` (not library
-/// code, not used by any library path): the same Iₙ = 2π C_{n−1}/Aₙ from the same linear system
-/// Σⱼ 2(−1)ʲ A_{2k−j} Cⱼ = dₖ, but on stack arrays (n ≤ 8), one Routh–Hurwitz pass instead of two
-/// allocating ones, and Gaussian elimination with partial pivoting instead of an allocating full-pivot LU.
-/// Returns `None` when A is not Hurwitz or the system is singular.
-pub fn h2_integral_stack(b: &[f64], a: &[f64]) -> Option<f64> {
-    const NMAX: usize = 8;
-    let n = a.len() - 1;
-    if n == 0 || n > NMAX || b.len() > n || a[n] == 0.0 {
-        return None;
-    }
-    // Routh–Hurwitz: all coefficients of one sign and every first-column Routh entry positive
-    let sg = a[n].signum();
-    if a.iter().any(|&c| !(c * sg > 0.0)) {
-        return None;
-    }
-    let mut r0 = [0.0; NMAX + 1];
-    let mut r1 = [0.0; NMAX + 1];
-    let (mut l0, mut l1) = (0, 0);
-    for k in (0..=n).rev().step_by(2) {
-        r0[l0] = a[k] * sg;
-        l0 += 1;
-    }
-    for k in (0..n).rev().step_by(2) {
-        r1[l1] = a[k] * sg;
-        l1 += 1;
-    }
-    while l1 > 0 {
-        if !(r1[0] > 0.0 && r1[0].is_finite()) {
-            return None;
-        }
-        let mut next = [0.0; NMAX + 1];
-        for j in 0..l0 - 1 {
-            next[j] = r0[j + 1] - r0[0] * (if j + 1 < l1 { r1[j + 1] } else { 0.0 }) / r1[0];
-        }
-        let lnext = l0 - 1;
-        r0 = r1;
-        l0 = l1;
-        r1 = next;
-        l1 = lnext;
-    }
-    let sgn = |j: usize| if j % 2 == 0 { 1.0 } else { -1.0 };
-    let mut m = [[0.0; NMAX + 1]; NMAX];
-    for k in 0..n {
-        for j in 0..n {
-            let i = 2 * k as isize - j as isize;
-            if (0..=n as isize).contains(&i) {
-                m[k][j] = 2.0 * sgn(j) * a[i as usize];
-            }
-        }
-        let mut d = 0.0;
-        for j in 0..n.min(2 * k + 1) {
-            let i = 2 * k - j;
-            if i < b.len() && j < b.len() {
-                d += sgn(j) * b[i] * b[j];
-            }
-        }
-        m[k][n] = d;
-    }
-    // Gaussian elimination with partial pivoting on the augmented matrix
-    for col in 0..n {
-        let p = (col..n).max_by(|&x, &y| m[x][col].abs().total_cmp(&m[y][col].abs()))?;
-        if m[p][col] == 0.0 {
-            return None;
-        }
-        m.swap(col, p);
-        for r in col + 1..n {
-            let f = m[r][col] / m[col][col];
-            for c in col..=n {
-                m[r][c] -= f * m[col][c];
-            }
-        }
-    }
-    let mut c = [0.0; NMAX];
-    for r in (0..n).rev() {
-        let mut s = m[r][n];
-        for k in r + 1..n {
-            s -= m[r][k] * c[k];
-        }
-        c[r] = s / m[r][r];
-    }
-    let v = 2.0 * PI * c[n - 1] / a[n];
-    v.is_finite().then_some(v.max(0.0))
 }

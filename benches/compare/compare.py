@@ -248,7 +248,6 @@ ROWS = [(f"density, {n} (10^4 pts)", f"density_{n}", f"density_{n}", None) for n
     ("variance, 1 model, quadrature rel 1e-10 (API)", "variance_quadrature", None, None),
     ("SWEEP 10^5: Rust table I_n vs scipy lyap/pt", "sweep_table", "sweep_lyapunov", 100.0),
     ("sweep 10^5: Rust table I_n, all cores (rayon) vs scipy", "sweep_table_par", "sweep_lyapunov", None),
-    ("sweep 10^5: PROTOTYPE stack I_n (suggested fix) vs scipy", "sweep_table_stack", "sweep_lyapunov", None),
     ("sweep 10^5: Rust lyap/pt vs scipy lyap/pt", "sweep_lyapunov", "sweep_lyapunov", None),
     ("sweep 10^5: Rust API/pt vs scipy lyap/pt", "sweep_api", "sweep_lyapunov", None),
     ("sweep 10^5: Rust table I_n vs numpy batched I_n", "sweep_table", "sweep_numpy_table", None),

@@ -286,6 +286,7 @@ struct Realization {
     v: Vec<f64>,
     welch: Vec<WelchSums>,
     raw: Vec<Vec<f64>>,
+    raw_inputs: Vec<Vec<f64>>,
 }
 
 enum Engine {
@@ -311,12 +312,79 @@ struct Plan {
     method: Method,
     engine: Engine,
     n: usize,
+    /// Row stride of the sample buffer: outputs, then (exact route) the recorded input processes.
+    stride: usize,
+    /// The input processes recorded with the raw data (one per independent process).
+    input_signals: Vec<Signal>,
     /// (system output index, name, unit, analytic variance, discrete variance)
     outputs: Vec<(usize, String, String, f64, f64)>,
     skipped: Vec<SkippedOutput>,
     notes: Vec<String>,
     generator: String,
     welch: Welch,
+}
+
+/// Names and units of the input processes recorded with raw data: `road` for a road track (m), `input` for
+/// a single process, `input_k` for independent processes; the unit is read from the spectrum file.
+fn input_signals(sc: &Scenario) -> Vec<Signal> {
+    let unit = crate::report::resolve_spectrum(&sc.input_name, &crate::report::default_spectra_dir())
+        .map(|f| f.unit)
+        .unwrap_or_else(|_| "SI".into());
+    match &sc.excitation {
+        Excitation::Track { .. } => {
+            let name = if sc.input_spectrum.domain() == crate::spectrum::Domain::Spatial {
+                "road"
+            } else {
+                "input"
+            };
+            vec![Signal::new(name, &unit)]
+        }
+        Excitation::Independent { spectra, .. } => (0..spectra.len())
+            .map(|k| Signal::new(&format!("input_{k}"), &unit))
+            .collect(),
+    }
+}
+
+/// The exact Gauss–Markov system of `outputs` with the input processes appended as extra rows: row k is
+/// the output C_F,k x_F,k of process k's shaping filter (None when a filter has a white-noise feedthrough,
+/// whose samples are undefined).
+fn with_input_rows(
+    sys: &dyn crate::system::FrequencyResponse,
+    exc: &Excitation,
+    outputs: &[usize],
+    dt: f64,
+) -> Option<GaussMarkov> {
+    let ss = sys.state_space()?;
+    let mut rows = Vec::new();
+    let mut first = None;
+    for &i in outputs {
+        let aug = crate::response::augmented_system(ss, exc, i).ok()?;
+        rows.push(aug.h.clone());
+        first.get_or_insert(aug);
+    }
+    let aug = first?;
+    let nz = aug.a.nrows();
+    let mut off = 0;
+    for sp in exc.spectra() {
+        let f = sp.rational()?.shaping_filter().ok()?;
+        let tf = crate::system::TransferFunction::new(
+            f.num.clone(),
+            f.den.clone(),
+            crate::system::OutputInfo::new("u", "-"),
+        )
+        .ok()?;
+        let part = crate::system::FrequencyResponse::state_space(&tf)?.clone();
+        if part.d[(0, 0)] != 0.0 {
+            return None;
+        }
+        let q = part.n_states();
+        let mut h = DMatrix::zeros(1, nz);
+        h.view_mut((0, off), (1, q)).copy_from(&part.c);
+        rows.push(h);
+        off += q;
+    }
+    let h = DMatrix::from_fn(rows.len(), nz, |r, j| rows[r][(0, j)]);
+    GaussMarkov::new(aug.a, aug.g, h, dt).ok()
 }
 
 fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
@@ -379,6 +447,12 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
     let mut notes = Vec::new();
     let m_welch = ((n / 8) & !1).clamp(4, 1024);
     let welch = Welch::new(m_welch, opts.dt_s)?;
+    let input_signals = input_signals(sc);
+    // exact route: append the input processes (shaping-filter outputs) as extra rows of the simulated system
+    let exact = match exact {
+        Some(gm) => Some(with_input_rows(sys, exc, &idx, opts.dt_s).unwrap_or(gm)),
+        None => None,
+    };
     if let Some(gm) = exact {
         let cov = gm.output_covariance();
         let outputs = finite
@@ -391,10 +465,18 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
              time-step bias, no transient)"
                 .into(),
         );
+        let stride = gm.n_outputs();
+        let input_signals = if stride == idx.len() + input_signals.len() {
+            input_signals
+        } else {
+            vec![]
+        };
         return Ok(Plan {
             method: Method::Exact,
             engine: Engine::Exact(gm),
             n,
+            stride,
+            input_signals,
             outputs,
             skipped,
             notes,
@@ -412,6 +494,7 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
         reason: "the system has no finite state-space form".into(),
     })?;
     let kept = finite;
+    let p_kept = kept.len();
     let rows: Vec<usize> = kept.iter().map(|f| f.0).collect();
     let sub = ss.select_outputs(&rows)?;
     let no_e = crate::system::StateSpace::new(
@@ -556,6 +639,8 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
             derivative,
         },
         n,
+        stride: p_kept,
+        input_signals,
         outputs,
         skipped,
         notes,
@@ -653,16 +738,29 @@ fn realize(
             }
         }
     }
+    let stride = plan.stride;
     let mut out = Realization {
         m: Vec::with_capacity(p),
         v: Vec::with_capacity(p),
         welch: Vec::with_capacity(p),
         raw: Vec::new(),
+        raw_inputs: Vec::new(),
     };
+    if keep_raw {
+        match &plan.engine {
+            Engine::Exact(_) => {
+                for r in p..stride {
+                    out.raw_inputs.push((0..n).map(|k| s.buf[k * stride + r]).collect());
+                }
+            }
+            // the recorded period is aligned with the input processes' own samples
+            Engine::Spectral { .. } => out.raw_inputs = s.q.clone(),
+        }
+    }
     let mut sig = vec![0.0; n];
     for r in 0..p {
         for (k, v) in sig.iter_mut().enumerate() {
-            *v = s.buf[k * p + r];
+            *v = s.buf[k * stride + r];
         }
         out.m.push(sig.iter().sum::<f64>() / n as f64);
         out.v.push(sig.iter().map(|v| v * v).sum::<f64>() / n as f64);
@@ -724,7 +822,11 @@ pub fn run_scenario(
         n_samples: n,
         n_realizations: opts.realizations,
         shard_size,
-        inputs: vec![],
+        inputs: if opts.store_raw {
+            plan.input_signals.clone()
+        } else {
+            vec![]
+        },
         outputs: plan.outputs.iter().map(|o| Signal::new(&o.1, &o.2)).collect(),
         accumulators,
         store_raw: opts.store_raw,
@@ -752,7 +854,7 @@ pub fn run_scenario(
             range.start as u64..range.end as u64,
             || Scratch {
                 x: vec![0.0; nx],
-                buf: vec![0.0; n * p],
+                buf: vec![0.0; n * plan.stride],
                 q: vec![vec![0.0; n]; nq],
                 spec: match &plan.engine {
                     Engine::Spectral { generators, .. } => generators.iter().map(|g| g.scratch()).collect(),
@@ -793,9 +895,17 @@ pub fn run_scenario(
         } else {
             vec![]
         };
+        let raw_in: Vec<Array2<f64>> = if opts.store_raw {
+            (0..plan.input_signals.len())
+                .map(|r| Array2::from_shape_fn((rows, n), |(i, k)| results[i].raw_inputs[r][k]))
+                .collect()
+        } else {
+            vec![]
+        };
         let views: Vec<_> = raw.iter().map(|a| a.view()).collect();
+        let in_views: Vec<_> = raw_in.iter().map(|a| a.view()).collect();
         let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
-        writer.write_shard(shard, &[], &views, &acc_refs)?;
+        writer.write_shard(shard, &in_views, &views, &acc_refs)?;
         done += 1;
         progress(done, n_shards);
     }
