@@ -662,7 +662,11 @@ fn run_file_pictures() {
             &["probability density [1/", "M ± 3σ"]
         } else {
             assert!(stem.ends_with("correlation"), "{stem}");
-            &["lag τ [s]", "correlation K(τ) of output", "cos(ω_j τ)"]
+            &[
+                "lag τ [s]",
+                "correlation K(τ) of output",
+                "∫ S_y(ω) cos ωτ dω of the scenario",
+            ]
         };
         let full_title = format!("{title}: {output}");
         let mut texts = vec![full_title.as_str()];
@@ -724,7 +728,24 @@ fn run_file_pictures() {
         // the 301-point grid over ≥ M ± 4σ passes within half a step (≤ 4σ/300·…) of M: relative drop of
         // the peak ≤ ½(Δ/σ)² with Δ ≤ (hi − lo)/300, a small bound for these samples
         assert!(peak <= expected_peak * (1.0 + stochvib::tolerance::EXACT) && peak > 0.999 * expected_peak);
-        assert!(oc.correlation.is_some());
+        // the model correlation against an independent method: the exact autocovariance C Φ^k P Cᵀ of the
+        // Van Loan discretisation of the system augmented with the input's shaping filter (its samples are
+        // K(kΔt) of the continuous output exactly), at lags 0, 10 and 30 steps
+        let c = oc.correlation.as_ref().unwrap();
+        let model = &c.series[1].points;
+        let sc = load_scenario(&root().join("data/conveyor-idler.toml"), &root().join("spectra")).unwrap();
+        let sys = sc.model.system.as_ref();
+        let i = sys.outputs().iter().position(|o| o.name == oc.output).unwrap();
+        let gm = stochvib::simulate::augmented_response(sys, &sc.excitation, &[i], 0.01).unwrap();
+        for k in [0usize, 10, 30] {
+            let exact = gm.output_autocovariance(k)[(0, 0)];
+            assert!(
+                (model[k].1 - exact).abs() <= stochvib::tolerance::PLOT_MODEL_CORRELATION * exact.abs(),
+                "{} lag {k}: model {} exact {exact}",
+                oc.output,
+                model[k].1
+            );
+        }
     }
 
     // without raw data only the Welch pictures are written
@@ -745,4 +766,46 @@ fn plot_cli_accepts_run_files() {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(dir.join("y-welch.png").exists() && dir.join("y_vel-welch.svg").exists());
+}
+
+#[test]
+fn simulate_plots_option_writes_the_run_pictures() {
+    // `simulate --plots DIR` = `simulate` then `plot run.h5 -o DIR`: with --store-raw all four pictures of
+    // each output (conveyor idler: outputs y and y_vel)
+    let dir = out_dir("simplots");
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = dir.join("run.h5");
+    let pics = dir.join("pictures");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        .args([
+            "simulate",
+            "data/conveyor-idler.toml",
+            "--realizations",
+            "8",
+            "--duration",
+            "5",
+            "--dt",
+            "0.01",
+        ])
+        .args([
+            "--seed",
+            "7",
+            "--store-raw",
+            "-o",
+            run.to_str().unwrap(),
+            "--plots",
+            pics.to_str().unwrap(),
+        ])
+        .current_dir(root())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for o in ["y", "y_vel"] {
+        for kind in ["welch", "realizations", "histogram", "correlation"] {
+            for ext in ["svg", "png"] {
+                let f = pics.join(format!("{o}-{kind}.{ext}"));
+                assert!(f.metadata().map(|m| m.len() > 1000).unwrap_or(false), "{}", f.display());
+            }
+        }
+    }
 }

@@ -667,6 +667,15 @@ fn padded(values: &[f64], log: bool) -> (f64, f64) {
     }
 }
 
+/// Tick label on an axis spanning `range`: a value within 1e-9 of the axis' magnitude of zero is rounding
+/// noise of the tick placement (e.g. `-2.7e-20` on a 1e-3 axis) and is labelled `0`.
+fn tick_in(v: f64, range: (f64, f64)) -> String {
+    if v.abs() <= 1e-9 * range.0.abs().max(range.1.abs()) {
+        return "0".into();
+    }
+    tick(v)
+}
+
 /// Tick label: up to 4 significant digits, plain in [1e-3, 1e5), otherwise `1.5e-6`.
 fn tick(v: f64) -> String {
     if v == 0.0 {
@@ -825,7 +834,7 @@ where
             draw_primary(&mut dc, p)?;
             dc.configure_secondary_axes()
                 .y_desc(sa.y_label.as_str())
-                .y_label_formatter(&|v| tick(*v))
+                .y_label_formatter(&|v| tick_in(*v, y2))
                 .axis_desc_style(DESC_FONT)
                 .label_style(LABEL_FONT)
                 .draw()
@@ -889,8 +898,8 @@ where
         .configure_mesh()
         .x_desc(p.x_label.as_str())
         .y_desc(p.y_label.as_str())
-        .x_label_formatter(&|v| tick(*v))
-        .y_label_formatter(&|v| tick(*v))
+        .x_label_formatter(&|v| tick_in(*v, p.x))
+        .y_label_formatter(&|v| tick_in(*v, p.y))
         .axis_desc_style(DESC_FONT)
         .label_style(LABEL_FONT)
         .light_line_style(RGBColor(235, 235, 235))
@@ -983,7 +992,7 @@ impl Draw for BarsWithRange<'_> {
                 SegmentValue::CenterOf(i) => cats.get(*i).cloned().unwrap_or_default(),
                 _ => String::new(),
             })
-            .y_label_formatter(&|v| tick(*v))
+            .y_label_formatter(&|v| tick_in(*v, y))
             .axis_desc_style(DESC_FONT)
             .label_style(LABEL_FONT)
             .light_line_style(RGBColor(235, 235, 235))
