@@ -117,10 +117,13 @@ fn file_stem(name: &str) -> String {
 /// Welch picture: one-sided cyclic G(f) = 4π S(ω) at f = ω/(2π) from the stored two-sided S(ω) (estimate,
 /// interval and analytic). Histogram: N(M, σ) with M = `@analytic` of `mean` and σ = `@analytic` of `sigma`.
 /// Correlation: K̂(mΔt) averaged over realizations ([`time_correlation`] with the known zero mean) against
-/// K(τ) = 2 Σ S(ω_j) cos(ω_j τ) Δω of the stored analytic density (ω = 0 weighted ½), up to
-/// τ_max = min(T/4, 2π/(4Δω)) with T the record length, and the analytic σ² = K(0) marked. The cosine sum
-/// is only as fine as the Welch grid: a density peak narrower than Δω (e.g. a slowly correlated input) is
-/// under-resolved and the model curve then departs from σ² at τ = 0 — the σ² line shows by how much.
+/// the model K(τ) of the scenario rebuilt from the text stored in the file (see `scenario_correlation`: one
+/// inverse FFT of the analytic output density on a grid 8× finer than the record), up to
+/// τ_max = min(T/4, 2π/(4Δω_W)) with T the record length and Δω_W the Welch grid step, with the analytic
+/// σ² = K(0) marked and, for the spectral route, the variance σ²_d of the simulated FFT-grid process (the
+/// `sigma_discrete` statistic) when it differs by more than 0.1 %. If the scenario cannot be rebuilt (a named
+/// spectrum missing from the catalogue), the model falls back to K(τ) = 2 Σ S(ω_j) cos(ω_j τ) Δω_W of the
+/// stored analytic density (ω = 0 weighted ½), which under-resolves density peaks narrower than Δω_W.
 ///
 /// # Errors
 /// Errors of [`RunFile::open`] and its readers; [`Error::InvalidParameter`] when an output lacks its density
@@ -279,6 +282,21 @@ pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
             c.series[1].name = model_name;
             c.hlines
                 .push(super::chart::Marker::new(sigma * sigma, "analytic σ² = K(0)"));
+            // the spectral route simulates the spectrum sampled on its FFT grid: its exact variance (stored as the
+            // `sigma_discrete` statistic) is what the estimate converges to; mark it when it differs visibly
+            if let Some(sd) = st
+                .statistics
+                .iter()
+                .find(|s| s.name == "sigma_discrete")
+                .and_then(|s| s.analytic)
+            {
+                if (sd * sd - sigma * sigma).abs() > 1e-3 * sigma * sigma {
+                    c.hlines.push(super::chart::Marker::new(
+                        sd * sd,
+                        "σ²_d of the simulated (FFT-grid) process: what the estimate converges to",
+                    ));
+                }
+            }
             correlation = Some(c);
         }
         out.push(OutputCharts {
