@@ -100,7 +100,9 @@ impl RunWriter {
 
     fn create_fresh(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
         let e = |what: &str| h5err(&tmp, what);
-        let file = File::create_excl(&tmp).map_err(e("cannot create the temporary file"))?;
+        let file = file_options(meta.compression)
+            .create_excl(&tmp)
+            .map_err(e("cannot create the temporary file"))?;
         write_root_attrs(&file, meta).map_err(e("writing root attributes"))?;
 
         let n_shards = meta.n_shards();
@@ -189,7 +191,9 @@ impl RunWriter {
                 ),
             }
         };
-        let file = File::open_rw(&tmp).map_err(unreadable("opening"))?;
+        let file = file_options(meta.compression)
+            .open_rw(&tmp)
+            .map_err(unreadable("opening"))?;
         let stored = read_metadata(&file, &tmp).map_err(|err| Error::Hdf5 {
             path: tmp.clone(),
             reason: format!("cannot resume from this interrupted run ({err}); delete it to start the run afresh"),
@@ -565,6 +569,23 @@ impl RunWriter {
         }
         Ok(final_path)
     }
+}
+
+/// File-access options of the writer.
+///
+/// Uncompressed raw datasets get no chunk cache (0 bytes): every shard write covers whole chunks (see
+/// [`L::chunk_shape`]), and a chunk that does not fit the cache is written by HDF5 straight from the
+/// caller's buffer to the file. With HDF5's default 1 MiB cache, a 1 MiB chunk is "cacheable" and every
+/// byte is first copied into the cache and then written out: one extra memcpy of the whole run (and
+/// glibc's memcpy of such buffers is slow on some machines, DESIGN.md §8). With deflate the chunk must be
+/// assembled and filtered anyway, and HDF5's default cache is kept.
+fn file_options(compression: Compression) -> hdf5::FileBuilder {
+    let mut b = File::with_options();
+    if compression == Compression::None {
+        // nslots and w0 are HDF5's defaults (521, 0.75); only the size changes.
+        b.with_fapl(|p| p.chunk_cache(521, 0, 0.75));
+    }
+    b
 }
 
 /// Fields of two metadata records that differ (empty if identical).
