@@ -118,8 +118,8 @@ pub fn h5_tmpdir(tag: &str) -> PathBuf {
 
 // ---- dynamic-stiffness chain ---------------------------------------------------------------------------
 
-/// Forcing frequency of the chain jobs, rad/s (inside the pass band 0 … 2√(C/I) ≈ 130–220 rad/s of the
-/// chain, so the response does not decay along it and no value becomes subnormal).
+/// Forcing frequency of the chain jobs, rad/s (inside the pass band of the chain, above √(10/I) ≈ 3 rad/s and below
+/// 2√(C/I) ≈ 160–270 rad/s, so the response does not decay along it and no value becomes subnormal).
 pub const CHAIN_P: f64 = 40.0;
 
 /// The benchmark chain of `n` masses (index k from 0), identical in compare.py:
