@@ -650,3 +650,68 @@ fn write_str_list_attr(loc: &Location, name: &str, values: &[&str]) -> hdf5::Res
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::store::{RunFile, Signal, SignalGroup};
+    use ndarray::Array2;
+
+    fn meta(compression: Compression) -> RunMetadata {
+        RunMetadata {
+            scenario_text: "[run]\n".into(),
+            seed: 3,
+            generator: "test".into(),
+            dt: 0.5,
+            n_samples: 64,
+            n_realizations: 4,
+            shard_size: 2,
+            inputs: vec![],
+            outputs: vec![Signal::new("y", "m")],
+            accumulators: vec![],
+            store_raw: true,
+            compression,
+        }
+    }
+
+    fn cache_bytes(w: &RunWriter) -> usize {
+        w.outputs[0]
+            .access_plist()
+            .expect("dataset access list")
+            .chunk_cache()
+            .nbytes
+    }
+
+    /// Uncompressed raw datasets are written without a chunk cache (see `file_options`), on a fresh file
+    /// and after a resume; with deflate HDF5's default cache (non-zero in every HDF5 version) is kept. The
+    /// data read back are the values written (x[i, k] = 64 i + k).
+    #[test]
+    fn chunk_cache_is_off_only_for_uncompressed_runs() {
+        let dir = std::env::temp_dir().join(format!("stochvib-writer-unit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let data = Array2::from_shape_fn((4, 64), |(i, k)| (64 * i + k) as f64);
+        for (tag, comp) in [("none", Compression::None), ("deflate", Compression::DEFLATE_FAST)] {
+            let path = dir.join(format!("{tag}.h5"));
+            let _ = std::fs::remove_file(&path);
+            let _ = std::fs::remove_file(tmp_path(&path));
+            let m = meta(comp);
+            let mut w = RunWriter::create(&path, &m).unwrap();
+            assert_eq!(cache_bytes(&w) == 0, comp == Compression::None, "{tag}, fresh file");
+            w.write_shard(0, &[], &[data.slice(ndarray::s![0..2, ..])], &[])
+                .unwrap();
+            drop(w);
+            let mut w = RunWriter::create(&path, &m).unwrap();
+            assert!(w.resumed());
+            assert_eq!(cache_bytes(&w) == 0, comp == Compression::None, "{tag}, resumed");
+            w.write_shard(1, &[], &[data.slice(ndarray::s![2..4, ..])], &[])
+                .unwrap();
+            let done = w.finish().unwrap();
+            let run = RunFile::open(&done).unwrap();
+            let back = run.read_signals(SignalGroup::Outputs, "y", 0..4).unwrap();
+            assert_eq!(back, data, "{tag}");
+            drop(run);
+            std::fs::remove_file(&done).unwrap();
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
