@@ -6,6 +6,8 @@
 
 #[path = "../benches/common/mod.rs"]
 mod common;
+#[path = "../benches/h5chain/mod.rs"]
+mod h5chain;
 
 use common::*;
 use serde_json::{json, Map, Value};
@@ -173,6 +175,10 @@ fn main() {
         .unwrap()
         .evaluations;
 
+    for (key, job) in hdf5_and_chain_jobs(reps) {
+        jobs.insert(key, job);
+    }
+
     let doc = json!({
         "side": "rust",
         "glibc_tunables": std::env::var("GLIBC_TUNABLES").unwrap_or_default(),
@@ -182,4 +188,84 @@ fn main() {
         "jobs": Value::Object(jobs),
     });
     println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+}
+
+/// Jobs of issue #7 (HDF5 write through the library's `store` writer; the dynamic-stiffness chain), timed
+/// like the rest (best of `reps`); see `benches/h5chain/mod.rs` for the problems.
+fn hdf5_and_chain_jobs(reps: usize) -> Vec<(String, Value)> {
+    use h5chain::*;
+    use stochvib::store::Compression;
+    let mut out = Vec::new();
+    let mut put = |key: &str, n: usize, (t, check): (f64, f64), extra: Value| {
+        eprintln!("{key:32} {t:12.6e} s   check {check:.12e}");
+        let mut job = json!({"seconds": t, "n": n, "check": check});
+        if let (Value::Object(j), Value::Object(e)) = (&mut job, extra) {
+            j.extend(e);
+        }
+        out.push((key.to_string(), job));
+    };
+
+    // HDF5: write 1000 × 2¹⁶ f64 (524 MB) through RunWriter, timed from create to finish (fsync + rename
+    // included) or to drop (close, no fsync); the data are read back afterwards (not timed) for the check.
+    let dir = h5_tmpdir("compare");
+    let cases: [(&str, usize, Compression, bool, usize); 3] = [
+        ("h5_write_none", H5_ROWS, Compression::None, true, reps),
+        ("h5_write_none_nosync", H5_ROWS, Compression::None, false, reps),
+        (
+            "h5_write_deflate1",
+            H5_DEFLATE_ROWS,
+            Compression::DEFLATE_FAST,
+            true,
+            reps.min(2),
+        ),
+    ];
+    let mut data = h5_data(H5_ROWS, H5_COLS);
+    for (key, rows, comp, finish, r) in cases {
+        if data.nrows() != rows {
+            data = h5_data(rows, H5_COLS);
+        }
+        let path = dir.join(format!("{key}.h5"));
+        let mut t_best = f64::INFINITY;
+        let mut written = path.clone();
+        for _ in 0..r.max(1) {
+            let _ = std::fs::remove_file(&path);
+            let _ = std::fs::remove_file(stochvib::store::tmp_path(&path));
+            let t0 = Instant::now();
+            written = h5_write_library(&path, &data, comp, finish);
+            t_best = t_best.min(t0.elapsed().as_secs_f64());
+        }
+        let check = h5_read_check(&written);
+        let bytes = rows * H5_COLS * 8;
+        let size = std::fs::metadata(&written).map(|m| m.len()).unwrap_or(0);
+        let _ = std::fs::remove_file(&written);
+        put(
+            key,
+            bytes,
+            (t_best, check),
+            json!({"mb_per_s": bytes as f64 / t_best / 1e6, "file_bytes": size}),
+        );
+    }
+    drop(data);
+    let _ = std::fs::remove_dir_all(&dir);
+
+    // the chain: the O(n) sweep at n = 10⁴, 10⁵, 10⁶ and 400, the library's dense LU oracle at n = 400
+    for (key, n) in [
+        ("chain_sweep_400", 400),
+        ("chain_sweep_1e4", 10_000),
+        ("chain_sweep_1e5", 100_000),
+        ("chain_sweep_1e6", 1_000_000),
+    ] {
+        let (ch, torques) = chain(n);
+        let inner = (1_000_000 / n).clamp(1, 100);
+        let r = best(reps, inner, || {
+            chain_check(&ch.harmonic_response(CHAIN_P, &torques).expect("damped chain"))
+        });
+        put(key, n, r, json!({"seconds_per_mass": r.0 / n as f64}));
+    }
+    let (ch, torques) = chain(400);
+    let r = best(reps.min(3), 1, || {
+        chain_check(&ch.harmonic_response_dense(CHAIN_P, &torques).expect("damped chain"))
+    });
+    put("chain_dense_400", 400, r, json!({}));
+    out
 }

@@ -304,6 +304,185 @@ def table(rust_path, py_path):
     print("\n".join(out))
 
 
+# --- issue #7: HDF5 write (h5py) and the dynamic-stiffness chain (scipy banded / numpy dense) -------------
+# Same problems as benches/h5chain/mod.rs. Appended as wrappers of run() and table() so that the sections
+# above stay as they are.
+H5_ROWS, H5_COLS, H5_SHARD, H5_DEFLATE_ROWS = 1000, 1 << 16, 50, 100
+H5_CHUNK = (2, 1 << 16)  # stochvib::store::layout::chunk_shape(2^16, 50): 1 MiB chunks
+CHAIN_P = 40.0
+
+
+def h5_data(rows, cols):
+    """x[i, k] = splitmix64(i cols + k) mapped to [-0.5, 0.5) (benches/h5chain/mod.rs::h5_value)."""
+    with np.errstate(over="ignore"):
+        z = (np.arange(rows * cols, dtype=np.uint64) + np.uint64(1)) * np.uint64(0x9E3779B97F4A7C15)
+        z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+        z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+        z ^= z >> np.uint64(31)
+    return ((z >> np.uint64(11)).astype(np.float64) * 2.0**-53 - 0.5).reshape(rows, cols)
+
+
+def h5_write(path, data, compression, fsync):
+    """What a competent h5py user writes: create the file and the chunked dataset (library chunk shape),
+    write it in blocks of H5_SHARD rows (as the library writes shards), close; then fsync if asked (the
+    library's finish() fsyncs). Returns the wall time."""
+    import h5py
+
+    kw = {"compression": "gzip", "compression_opts": 1, "shuffle": True} if compression else {}
+    rows, cols = data.shape
+    t0 = time.perf_counter()
+    with h5py.File(path, "w") as f:
+        ds = f.create_dataset("x", shape=(rows, cols), dtype="f8", chunks=H5_CHUNK, **kw)
+        for a in range(0, rows, H5_SHARD):
+            ds[a : a + H5_SHARD] = data[a : a + H5_SHARD]
+    if fsync:
+        fd = os.open(path, os.O_RDONLY)
+        os.fsync(fd)
+        os.close(fd)
+    return time.perf_counter() - t0
+
+
+def h5_jobs(reps):
+    import tempfile
+
+    import h5py
+
+    out = {}
+    data = h5_data(H5_ROWS, H5_COLS)
+    with tempfile.TemporaryDirectory(prefix="stochvib-h5py-") as d:
+        for key, rows, comp, fsync, r in [
+            ("h5_write_none", H5_ROWS, False, True, reps),
+            ("h5_write_none_nosync", H5_ROWS, False, False, reps),
+            ("h5_write_deflate1", H5_DEFLATE_ROWS, True, True, min(reps, 2)),
+        ]:
+            x = data[:rows]
+            path = os.path.join(d, key + ".h5")
+            t = float("inf")
+            for _ in range(max(r, 1)):
+                if os.path.exists(path):
+                    os.remove(path)
+                t = min(t, h5_write(path, x, comp, fsync))
+            with h5py.File(path, "r") as f:
+                back = f["x"][...]
+            flat = back.ravel()
+            size = os.path.getsize(path)
+            os.remove(path)
+            nbytes = rows * H5_COLS * 8
+            out[key] = {"seconds": t, "n": nbytes, "check": float(np.dot(flat, flat)), "mb_per_s": nbytes / t / 1e6, "file_bytes": size}
+    out["h5py"] = h5py.__version__
+    out["hdf5"] = h5py.version.hdf5_version
+    return out
+
+
+def chain_arrays(n):
+    """The chain of benches/h5chain/mod.rs::chain(n)."""
+    k = np.arange(n)
+    inertia = 1.0 + 0.1 * (k % 7)
+    ks = np.arange(n - 1)
+    return inertia, np.full(n, 10.0), np.full(n, 0.5), 1.0e4 * (1.0 + 0.2 * (ks % 5)), np.full(n - 1, 2.0), np.ones(n, complex)
+
+
+def chain_banded(n, p=CHAIN_P):
+    """The competent scipy user's O(n) solve of the tridiagonal dynamic-stiffness system (same work as the
+    library sweep: assemble d_k, s_k at p, solve, shaft torques)."""
+    from scipy.linalg import solve_banded
+
+    inertia, kg, bg, c, bs, m = chain_arrays(n)
+    s = c + 1j * bs * p
+    diag = kg - inertia * p * p + 1j * bg * p
+    diag[:-1] += s
+    diag[1:] += s
+    ab = np.zeros((3, n), complex)
+    ab[0, 1:] = -s
+    ab[1] = diag
+    ab[2, :-1] = -s
+    phi = solve_banded((1, 1), ab, m, check_finite=False)
+    torque = s * (phi[:-1] - phi[1:])
+    return np.abs(phi).sum() + np.abs(torque).sum()
+
+
+def chain_dense(n, p=CHAIN_P):
+    """Dense n x n complex assembly and numpy.linalg.solve (LAPACK zgesv), the textbook O(n^3) route."""
+    inertia, kg, bg, c, bs, m = chain_arrays(n)
+    s = c + 1j * bs * p
+    z = np.zeros((n, n), complex)
+    i = np.arange(n)
+    z[i, i] = kg - inertia * p * p + 1j * bg * p
+    z[i[:-1], i[:-1]] += s
+    z[i[1:], i[1:]] += s
+    z[i[:-1], i[1:]] -= s
+    z[i[1:], i[:-1]] -= s
+    phi = np.linalg.solve(z, m)
+    torque = s * (phi[:-1] - phi[1:])
+    return np.abs(phi).sum() + np.abs(torque).sum()
+
+
+def chain_jobs(reps):
+    out = {}
+    for key, n, fn in [
+        ("chain_banded_400", 400, chain_banded),
+        ("chain_banded_1e4", 10_000, chain_banded),
+        ("chain_banded_1e5", 100_000, chain_banded),
+        ("chain_banded_1e6", 1_000_000, chain_banded),
+        ("chain_dense_400", 400, chain_dense),
+    ]:
+        inner = max(1, min(100, 1_000_000 // n)) if fn is chain_banded else 5
+        t, check = best(reps, lambda: fn(n), inner=inner)
+        out[key] = {"seconds": t, "n": n, "check": check, "seconds_per_mass": t / n}
+    return out
+
+
+_run_before_issue7 = run
+
+
+def run(reps):  # noqa: F811 (extends the run() above with the issue-#7 jobs)
+    doc = _run_before_issue7(reps)
+    h5 = h5_jobs(reps)
+    doc["h5py"], doc["hdf5"] = h5.pop("h5py"), h5.pop("hdf5")
+    for key, job in list(h5.items()) + list(chain_jobs(reps).items()):
+        print(f"{key:32} {job['seconds']:12.6e} s   check {job['check']:.12e}", file=sys.stderr)
+        doc["jobs"][key] = job
+    return doc
+
+
+MB = H5_ROWS * H5_COLS * 8 / 1e6
+ROWS += [
+    (f"HDF5 WRITE {H5_ROWS}x2^16 f64 ({MB:.0f} MB), none, create..fsync: store vs h5py", "h5_write_none", "h5_write_none", 1.0),
+    (f"HDF5 WRITE {H5_ROWS}x2^16 f64, none, create..close (no fsync)", "h5_write_none_nosync", "h5_write_none_nosync", 1.0),
+    (f"HDF5 WRITE {H5_DEFLATE_ROWS}x2^16 f64, shuffle+deflate:1, create..fsync", "h5_write_deflate1", "h5_write_deflate1", 1.0),
+    ("chain n=400: O(n) sweep vs scipy solve_banded", "chain_sweep_400", "chain_banded_400", None),
+    ("chain n=10^4: O(n) sweep vs scipy solve_banded", "chain_sweep_1e4", "chain_banded_1e4", None),
+    ("chain n=10^5: O(n) sweep vs scipy solve_banded", "chain_sweep_1e5", "chain_banded_1e5", None),
+    ("CHAIN n=10^6: O(n) sweep vs scipy solve_banded", "chain_sweep_1e6", "chain_banded_1e6", None),
+    ("chain n=400: library dense LU (oracle) vs numpy solve", "chain_dense_400", "chain_dense_400", None),
+    ("chain n=400: O(n) sweep vs numpy dense solve", "chain_sweep_400", "chain_dense_400", None),
+]
+
+_table_before_issue7 = table
+
+
+def table(rust_path, py_path):  # noqa: F811 (extends the table() above with the issue-#7 summary lines)
+    _table_before_issue7(rust_path, py_path)
+    rj, pj = json.load(open(rust_path))["jobs"], json.load(open(py_path))
+    py_hdf5 = f"h5py {pj.get('h5py', '?')} (HDF5 {pj.get('hdf5', '?')})"
+    pj = pj["jobs"]
+    lines = []
+    if "h5_write_none" in rj and "h5_write_none" in pj:
+        parts = []
+        for k in ("h5_write_none", "h5_write_none_nosync", "h5_write_deflate1"):
+            parts.append(f"{k}: store {rj[k]['mb_per_s']:.0f} MB/s, h5py {pj[k]['mb_per_s']:.0f} MB/s")
+        lines.append(f"HDF5 write throughput ({py_hdf5}): " + "; ".join(parts))
+        lines.append(
+            f"deflate:1 file size / raw: store {rj['h5_write_deflate1']['file_bytes'] / rj['h5_write_deflate1']['n']:.3f}, "
+            f"h5py {pj['h5_write_deflate1']['file_bytes'] / pj['h5_write_deflate1']['n']:.3f}"
+        )
+    if "chain_sweep_1e6" in rj:
+        t6 = rj["chain_sweep_1e6"]["seconds"]
+        per = ", ".join(f"n={rj[k]['n']:.0e}: {rj[k]['seconds_per_mass'] * 1e9:.3g} ns" for k in ("chain_sweep_1e4", "chain_sweep_1e5", "chain_sweep_1e6"))
+        lines.append(f"CHAIN n = 10^6 at one frequency: {fmt_t(t6)}, target < 1 s: {'met' if t6 < 1.0 else 'NOT met'}; time per mass {per}")
+    print("\n".join([""] + lines))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)

@@ -100,7 +100,9 @@ impl RunWriter {
 
     fn create_fresh(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
         let e = |what: &str| h5err(&tmp, what);
-        let file = File::create_excl(&tmp).map_err(e("cannot create the temporary file"))?;
+        let file = file_options(meta.compression)
+            .create_excl(&tmp)
+            .map_err(e("cannot create the temporary file"))?;
         write_root_attrs(&file, meta).map_err(e("writing root attributes"))?;
 
         let n_shards = meta.n_shards();
@@ -189,7 +191,9 @@ impl RunWriter {
                 ),
             }
         };
-        let file = File::open_rw(&tmp).map_err(unreadable("opening"))?;
+        let file = file_options(meta.compression)
+            .open_rw(&tmp)
+            .map_err(unreadable("opening"))?;
         let stored = read_metadata(&file, &tmp).map_err(|err| Error::Hdf5 {
             path: tmp.clone(),
             reason: format!("cannot resume from this interrupted run ({err}); delete it to start the run afresh"),
@@ -567,6 +571,23 @@ impl RunWriter {
     }
 }
 
+/// File-access options of the writer.
+///
+/// Uncompressed raw datasets get no chunk cache (0 bytes): every shard write covers whole chunks (see
+/// [`L::chunk_shape`]), and a chunk that does not fit the cache is written by HDF5 straight from the
+/// caller's buffer to the file. With HDF5's default 1 MiB cache, a 1 MiB chunk is "cacheable" and every
+/// byte is first copied into the cache and then written out: one extra memcpy of the whole run (and
+/// glibc's memcpy of such buffers is slow on some machines, DESIGN.md §8). With deflate the chunk must be
+/// assembled and filtered anyway, and HDF5's default cache is kept.
+fn file_options(compression: Compression) -> hdf5::FileBuilder {
+    let mut b = File::with_options();
+    if compression == Compression::None {
+        // nslots and w0 are HDF5's defaults (521, 0.75); only the size changes.
+        b.with_fapl(|p| p.chunk_cache(521, 0, 0.75));
+    }
+    b
+}
+
 /// Fields of two metadata records that differ (empty if identical).
 fn metadata_differences(a: &RunMetadata, b: &RunMetadata) -> Vec<&'static str> {
     let mut d = Vec::new();
@@ -628,4 +649,69 @@ fn write_str_list_attr(loc: &Location, name: &str, values: &[&str]) -> hdf5::Res
         attr.write(&v[..])?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::store::{RunFile, Signal, SignalGroup};
+    use ndarray::Array2;
+
+    fn meta(compression: Compression) -> RunMetadata {
+        RunMetadata {
+            scenario_text: "[run]\n".into(),
+            seed: 3,
+            generator: "test".into(),
+            dt: 0.5,
+            n_samples: 64,
+            n_realizations: 4,
+            shard_size: 2,
+            inputs: vec![],
+            outputs: vec![Signal::new("y", "m")],
+            accumulators: vec![],
+            store_raw: true,
+            compression,
+        }
+    }
+
+    fn cache_bytes(w: &RunWriter) -> usize {
+        w.outputs[0]
+            .access_plist()
+            .expect("dataset access list")
+            .chunk_cache()
+            .nbytes
+    }
+
+    /// Uncompressed raw datasets are written without a chunk cache (see `file_options`), on a fresh file
+    /// and after a resume; with deflate HDF5's default cache (non-zero in every HDF5 version) is kept. The
+    /// data read back are the values written (x[i, k] = 64 i + k).
+    #[test]
+    fn chunk_cache_is_off_only_for_uncompressed_runs() {
+        let dir = std::env::temp_dir().join(format!("stochvib-writer-unit-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let data = Array2::from_shape_fn((4, 64), |(i, k)| (64 * i + k) as f64);
+        for (tag, comp) in [("none", Compression::None), ("deflate", Compression::DEFLATE_FAST)] {
+            let path = dir.join(format!("{tag}.h5"));
+            let _ = std::fs::remove_file(&path);
+            let _ = std::fs::remove_file(tmp_path(&path));
+            let m = meta(comp);
+            let mut w = RunWriter::create(&path, &m).unwrap();
+            assert_eq!(cache_bytes(&w) == 0, comp == Compression::None, "{tag}, fresh file");
+            w.write_shard(0, &[], &[data.slice(ndarray::s![0..2, ..])], &[])
+                .unwrap();
+            drop(w);
+            let mut w = RunWriter::create(&path, &m).unwrap();
+            assert!(w.resumed());
+            assert_eq!(cache_bytes(&w) == 0, comp == Compression::None, "{tag}, resumed");
+            w.write_shard(1, &[], &[data.slice(ndarray::s![2..4, ..])], &[])
+                .unwrap();
+            let done = w.finish().unwrap();
+            let run = RunFile::open(&done).unwrap();
+            let back = run.read_signals(SignalGroup::Outputs, "y", 0..4).unwrap();
+            assert_eq!(back, data, "{tag}");
+            drop(run);
+            std::fs::remove_file(&done).unwrap();
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
