@@ -29,6 +29,9 @@ use std::sync::Arc;
 pub struct AtSpeed {
     inner: Arc<dyn Spectrum>,
     speed: f64,
+    /// The temporal rational form (and so its shaping filter), factored once here: `None` when the inner
+    /// spectrum is not rational.
+    rational: Option<RationalSpectrum>,
 }
 
 impl AtSpeed {
@@ -45,7 +48,8 @@ impl AtSpeed {
                 "only a spatial spectrum (rad/m) can be turned into time at a speed",
             ));
         }
-        Ok(AtSpeed { inner, speed })
+        let rational = inner.rational().and_then(|r| r.at_speed(speed).ok());
+        Ok(AtSpeed { inner, speed, rational })
     }
     /// The speed in m/s.
     pub fn speed(&self) -> f64 {
@@ -87,7 +91,7 @@ impl Spectrum for AtSpeed {
         self.inner.correlation(tau * self.speed)
     }
     fn rational(&self) -> Option<RationalSpectrum> {
-        self.inner.rational().and_then(|r| r.at_speed(self.speed).ok())
+        self.rational.clone()
     }
 }
 
