@@ -52,9 +52,7 @@ fn main() {
     let mut out = vec![0.0; wgrid.len()];
     for (name, s) in all_spectra() {
         let r = best(reps, 20, || {
-            for (o, &w) in out.iter_mut().zip(&wgrid) {
-                *o = s.density(w);
-            }
+            s.density_into(&wgrid, &mut out);
             out.iter().sum()
         });
         put(&format!("density_{name}"), N_DENSITY, r);
