@@ -233,3 +233,33 @@ fn output_density_fast_rejects_bad_arguments() {
     );
     assert!(OutputDensity::new(&sys, &exc2, 0).is_ok());
 }
+
+/// `density_into` returns exactly the values of `density` (the same arithmetic, point by point), also for
+/// the chunked `AtSpeed` override on a grid that is not a multiple of its chunk and an output buffer
+/// shorter than the grid (only its length is filled).
+#[test]
+fn density_into_equals_density() {
+    use stochvib::spectrum::{AtSpeed, Convention, Tabulated};
+    let mut all = spectra();
+    let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
+    all.push(Arc::new(AtSpeed::new(road, 10.0).unwrap()));
+    let x: Vec<f64> = (0..12).map(|k| 0.1 * 1.7f64.powi(k)).collect();
+    let v: Vec<f64> = x.iter().map(|x| 1.0 / (1.0 + x * x)).collect();
+    all.push(Arc::new(
+        Tabulated::new(Convention::TwoSidedAngular, x, v, Domain::Temporal).unwrap(),
+    ));
+    let grid: Vec<f64> = (0..1000).map(|k| -5.0 + 0.0173 * k as f64).collect();
+    for s in &all {
+        let mut out = vec![-1.0; 777];
+        s.density_into(&grid, &mut out);
+        for (k, o) in out.iter().enumerate() {
+            assert_eq!(*o, s.density(grid[k]), "{} at ω = {}", s.describe(), grid[k]);
+        }
+        let mut long = vec![-1.0; 1200];
+        s.density_into(&grid, &mut long);
+        assert!(
+            long[1000..].iter().all(|v| *v == -1.0),
+            "entries past the grid untouched"
+        );
+    }
+}
