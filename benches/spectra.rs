@@ -20,6 +20,12 @@ fn densities(c: &mut Criterion) {
                 black_box(&out);
             })
         });
+        g.bench_function(format!("{name}/density_into"), |b| {
+            b.iter(|| {
+                s.density_into(black_box(&grid), &mut out);
+                black_box(&out);
+            })
+        });
     }
     g.finish();
 }

@@ -11,7 +11,9 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use std::path::Path;
 use stochvib::quad::{integrate, QuadOptions};
-use stochvib::response::{output_density, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation};
+use stochvib::response::{
+    output_density, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation, OutputDensity,
+};
 use stochvib::scenario::load_scenario;
 use stochvib::system::FrequencyResponse;
 use stochvib::tolerance::QUADRATURE;
@@ -56,6 +58,12 @@ fn type4_input(c: &mut Criterion) {
     };
     let mut g = c.benchmark_group("variance_type4_scraper_x2_acc");
     g.bench_function("integrate_output_density_rel1e-8", |b| {
+        b.iter(|| {
+            let density = OutputDensity::new(sys, &exc4, X2_ACC).unwrap();
+            integrate(|w| density.density(w), 0.0, w_hi, black_box(&opts)).unwrap()
+        })
+    });
+    g.bench_function("integrate_dense_output_density_rel1e-8", |b| {
         b.iter(|| integrate(|w| output_density(sys, &exc4, X2_ACC, w), 0.0, w_hi, black_box(&opts)).unwrap())
     });
     g.bench_function("variance_quadrature_rel1e-10", |b| {

@@ -252,6 +252,7 @@ ROWS = [(f"density, {n} (10^4 pts)", f"density_{n}", f"density_{n}", None) for n
     ("sweep 10^5: Rust API/pt vs scipy lyap/pt", "sweep_api", "sweep_lyapunov", None),
     ("sweep 10^5: Rust table I_n vs numpy batched I_n", "sweep_table", "sweep_numpy_table", None),
     ("TYPE-4 QUAD rel 1e-8: library integrand vs quad", "quad4_library", "quad4", 20.0),
+    ("type-4 quad rel 1e-8: dense reference integrand vs quad", "quad4_library_dense", "quad4", None),
     ("type-4 quad rel 1e-8: closed-form integrand vs quad", "quad4_closed", "quad4", None),
     ("type-4 variance_quadrature (1e-10, [0,inf)) vs quad", "quad4_variance_quadrature", "quad4", None),
 ]

@@ -276,11 +276,24 @@ pub fn solve_continuous_lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<D
     let ab = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
     let scale_q = |m: &DMatrix<f64>| DMatrix::from_fn(n, n, |i, j| m[(i, j)] / (d[i] * d[j]));
     let unscale = |m: &DMatrix<f64>| DMatrix::from_fn(n, n, |i, j| m[(i, j)] * d[i] * d[j]);
-    let mut x = unscale(&solve_schur(&ab, &scale_q(q))?);
+    // The Schur form of the balanced A is computed once and reused by the refinement steps.
+    let schur = LyapunovSchur::new(&ab)?;
+    let mut x = unscale(&schur.solve(&scale_q(q))?);
+    let abs_a = a.abs();
+    let abs_q = q.abs();
     for _ in 0..2 {
         let r = a * &x + &x * a.transpose() + q;
         let r = (&r + r.transpose()) * 0.5;
-        let e = unscale(&solve_schur(&ab, &scale_q(&r))?);
+        // Skip the refinement when every residual entry is at the rounding level of its own computation
+        // (|R| ≤ γ (|A||X| + |X||Aᵀ| + |Q|) entrywise, γ = (n + 2)·ε): a correction would be noise.
+        let ax = &abs_a * x.abs();
+        let gamma = (n + 2) as f64 * f64::EPSILON;
+        let at_rounding =
+            (0..n).all(|i| (0..n).all(|j| r[(i, j)].abs() <= gamma * (ax[(i, j)] + ax[(j, i)] + abs_q[(i, j)])));
+        if at_rounding {
+            break;
+        }
+        let e = unscale(&schur.solve(&scale_q(&r))?);
         x += e;
     }
     Ok((&x + x.transpose()) * 0.5)
@@ -328,56 +341,151 @@ fn balance_diagonal(a: &DMatrix<f64>) -> Vec<f64> {
     d
 }
 
-fn solve_schur(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
-    const WHAT: &str = "solve_continuous_lyapunov";
-    let n = check_pair(a, q)?;
-    let qs = symmetric_part(q)?;
-    let (u, t, eig, blocks) = real_schur(a, WHAT)?;
-    let alpha = eig.iter().map(|z| z.re).fold(f64::NEG_INFINITY, f64::max);
-    let margin = stability_margin(a);
-    if alpha >= -margin {
-        return Err(Error::Numerical {
-            what: WHAT.to_string(),
-            reason: format!(
-                "A is not asymptotically stable: max Re λ = {alpha:e} (must be < {:e}); the \
-                 covariance equation has no (positive semi-definite) solution, and it is singular \
-                 when λᵢ + λⱼ = 0 for some eigenvalue pair",
-                -margin
-            ),
-        });
-    }
-    let c = u.transpose() * &qs * &u;
-    let mut y = DMatrix::<f64>::zeros(n, n);
-    for &(i0, mi) in blocks.iter().rev() {
-        let ie = i0 + mi;
-        for &(j0, mj) in blocks.iter().rev() {
-            let je = j0 + mj;
-            let mut rhs = -c.view((i0, j0), (mi, mj)).clone_owned();
-            if ie < n {
-                rhs -= t.view((i0, ie), (mi, n - ie)) * y.view((ie, j0), (n - ie, mj));
-            }
-            if je < n {
-                rhs -= y.view((i0, je), (mi, n - je)) * t.view((j0, je), (mj, n - je)).transpose();
-            }
-            let tii = t.view((i0, i0), (mi, mi)).clone_owned();
-            let tjj = t.view((j0, j0), (mj, mj)).clone_owned();
-            let k = DMatrix::<f64>::identity(mj, mj).kronecker(&tii) + tjj.kronecker(&DMatrix::<f64>::identity(mi, mi));
-            let v = DVector::from_column_slice(rhs.as_slice());
-            let sol = solve_small(k, v).ok_or_else(|| Error::Numerical {
+/// The real Schur form of a stable A, factored once for [`LyapunovSchur::solve`].
+struct LyapunovSchur {
+    u: DMatrix<f64>,
+    t: DMatrix<f64>,
+    blocks: Vec<(usize, usize)>,
+}
+
+const WHAT: &str = "solve_continuous_lyapunov";
+
+impl LyapunovSchur {
+    /// Schur form and stability check of `a` (square, finite).
+    fn new(a: &DMatrix<f64>) -> Result<Self> {
+        let (u, t, eig, blocks) = real_schur(a, WHAT)?;
+        let alpha = eig.iter().map(|z| z.re).fold(f64::NEG_INFINITY, f64::max);
+        let margin = stability_margin(a);
+        if alpha >= -margin {
+            return Err(Error::Numerical {
                 what: WHAT.to_string(),
                 reason: format!(
-                    "singular {}x{} block Sylvester system at Schur blocks ({i0}, {j0}): \
-                     λᵢ + λⱼ ≈ 0",
-                    mi * mj,
-                    mi * mj
+                    "A is not asymptotically stable: max Re λ = {alpha:e} (must be < {:e}); the \
+                     covariance equation has no (positive semi-definite) solution, and it is singular \
+                     when λᵢ + λⱼ = 0 for some eigenvalue pair",
+                    -margin
                 ),
-            })?;
-            y.view_mut((i0, j0), (mi, mj)).copy_from_slice(sol.as_slice());
+            });
+        }
+        Ok(LyapunovSchur { u, t, blocks })
+    }
+
+    /// Solves A X + X Aᵀ + Q = 0 for a symmetric `q` (checked) with the stored Schur form.
+    fn solve(&self, q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+        let (u, t, blocks) = (&self.u, &self.t, &self.blocks);
+        let n = t.nrows();
+        let qs = symmetric_part(q)?;
+        let c = u.transpose() * &qs * u;
+        let mut y = DMatrix::<f64>::zeros(n, n);
+        for &(i0, mi) in blocks.iter().rev() {
+            let ie = i0 + mi;
+            for &(j0, mj) in blocks.iter().rev() {
+                let je = j0 + mj;
+                // RHS = −C_ij − Σ_{k ≥ ie} T_ik Y_kj − Σ_{l ≥ je} Y_il T_jlᵀ, vec'd column-major (a + mi·b)
+                let mut rhs = [0.0f64; 4];
+                let mut k = [[0.0f64; 4]; 4];
+                for b in 0..mj {
+                    for a in 0..mi {
+                        let (i, j) = (i0 + a, j0 + b);
+                        let mut v = -c[(i, j)];
+                        for kk in ie..n {
+                            v -= t[(i, kk)] * y[(kk, j)];
+                        }
+                        for l in je..n {
+                            v -= y[(i, l)] * t[(j, l)];
+                        }
+                        rhs[a + mi * b] = v;
+                        // (I ⊗ T_ii + T_jj ⊗ I) vec Y_ij
+                        for b2 in 0..mj {
+                            for a2 in 0..mi {
+                                let mut e = 0.0;
+                                if b == b2 {
+                                    e += t[(i0 + a, i0 + a2)];
+                                }
+                                if a == a2 {
+                                    e += t[(j0 + b, j0 + b2)];
+                                }
+                                k[a + mi * b][a2 + mi * b2] = e;
+                            }
+                        }
+                    }
+                }
+                if !solve_block(&mut k, &mut rhs, mi * mj) {
+                    return Err(Error::Numerical {
+                        what: WHAT.to_string(),
+                        reason: format!(
+                            "singular {}x{} block Sylvester system at Schur blocks ({i0}, {j0}): \
+                         λᵢ + λⱼ ≈ 0",
+                            mi * mj,
+                            mi * mj
+                        ),
+                    });
+                }
+                for b in 0..mj {
+                    for a in 0..mi {
+                        y[(i0 + a, j0 + b)] = rhs[a + mi * b];
+                    }
+                }
+            }
+        }
+        let x = u * y * u.transpose();
+        let x = (&x + x.transpose()) * 0.5;
+        finite_or_err(x, WHAT)
+    }
+}
+
+/// Solves the m × m (m ≤ 4) system `k` x = `rhs` in place (x in `rhs`) by Gaussian elimination with
+/// full pivoting on the stack; false when it is numerically singular (smallest pivot ≤ ε × largest
+/// pivot, as [`solve_small`]) or the solution is not finite.
+#[allow(clippy::needless_range_loop)] // index arithmetic on a small dense block
+fn solve_block(k: &mut [[f64; 4]; 4], rhs: &mut [f64; 4], m: usize) -> bool {
+    let mut col = [0usize, 1, 2, 3];
+    let (mut umax, mut umin) = (0.0f64, f64::INFINITY);
+    for p in 0..m {
+        let (mut pr, mut pc, mut best) = (p, p, -1.0);
+        for r in p..m {
+            for c in p..m {
+                if k[r][c].abs() > best {
+                    (pr, pc, best) = (r, c, k[r][c].abs());
+                }
+            }
+        }
+        k.swap(p, pr);
+        rhs.swap(p, pr);
+        if pc != p {
+            for row in k.iter_mut() {
+                row.swap(p, pc);
+            }
+            col.swap(p, pc);
+        }
+        umax = umax.max(best);
+        umin = umin.min(best);
+        if best == 0.0 || best.is_nan() {
+            return false;
+        }
+        for r in p + 1..m {
+            let f = k[r][p] / k[p][p];
+            for c in p + 1..m {
+                k[r][c] -= f * k[p][c];
+            }
+            rhs[r] -= f * rhs[p];
         }
     }
-    let x = &u * y * u.transpose();
-    let x = (&x + x.transpose()) * 0.5;
-    finite_or_err(x, WHAT)
+    if umin <= f64::EPSILON * umax {
+        return false;
+    }
+    let mut x = [0.0f64; 4];
+    for p in (0..m).rev() {
+        let mut v = rhs[p];
+        for c in p + 1..m {
+            v -= k[p][c] * x[c];
+        }
+        x[p] = v / k[p][p];
+    }
+    for p in 0..m {
+        rhs[col[p]] = x[p];
+    }
+    rhs[..m].iter().all(|v| v.is_finite())
 }
 
 fn finite_or_err(x: DMatrix<f64>, what: &str) -> Result<DMatrix<f64>> {

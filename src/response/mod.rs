@@ -7,10 +7,12 @@
 //! S_y(ω) = H(iω) S_u(ω) H(iω)ᴴ,      D_y = ∫ S_y dω,      λ_k = ∫ |ω|^k S_y dω,      M_y = H(0) M_u
 //! ```
 
+mod density;
 mod excitation;
 mod statistics;
 mod variance;
 
+pub use density::OutputDensity;
 pub use excitation::Excitation;
 pub use statistics::{analyze_output, Method, MethodValue, OutputStatistics};
 pub use variance::{augmented_system, AugmentedSystem};

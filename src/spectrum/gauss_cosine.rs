@@ -29,6 +29,8 @@ pub struct GaussCosine {
     alpha: f64,
     beta: f64,
     domain: Domain,
+    /// D/(4√(πα)), precomputed for `density`.
+    prefactor: f64,
 }
 
 impl GaussCosine {
@@ -40,11 +42,14 @@ impl GaussCosine {
         if !(beta.is_finite() && beta >= 0.0) {
             return Err(Error::invalid("beta", beta, "must be finite and >= 0"));
         }
+        let variance = require_non_negative("variance", variance)?;
+        let alpha = require_positive("alpha", alpha)?;
         Ok(GaussCosine {
-            variance: require_non_negative("variance", variance)?,
-            alpha: require_positive("alpha", alpha)?,
+            variance,
+            alpha,
             beta,
             domain,
+            prefactor: variance / (4.0 * (PI * alpha).sqrt()),
         })
     }
 }
@@ -63,9 +68,9 @@ impl Spectrum for GaussCosine {
         self.domain
     }
     fn density(&self, omega: f64) -> f64 {
-        let k = self.variance / (4.0 * (PI * self.alpha).sqrt());
-        let f = |x: f64| (-x * x / (4.0 * self.alpha)).exp();
-        k * (f(omega - self.beta) + f(omega + self.beta))
+        let four_alpha = 4.0 * self.alpha;
+        let f = |x: f64| (-x * x / four_alpha).exp();
+        self.prefactor * (f(omega - self.beta) + f(omega + self.beta))
     }
     fn high_frequency(&self) -> Asymptote {
         Asymptote::Vanishing

@@ -30,6 +30,8 @@ pub struct Gaussian {
     variance: f64,
     alpha: f64,
     domain: Domain,
+    /// D/(2√(πα)), precomputed for `density`.
+    prefactor: f64,
 }
 
 impl Gaussian {
@@ -38,10 +40,13 @@ impl Gaussian {
     /// # Errors
     /// `variance` must be finite and ≥ 0, `alpha` finite and > 0.
     pub fn new(variance: f64, alpha: f64, domain: Domain) -> Result<Self> {
+        let variance = require_non_negative("variance", variance)?;
+        let alpha = require_positive("alpha", alpha)?;
         Ok(Gaussian {
-            variance: require_non_negative("variance", variance)?,
-            alpha: require_positive("alpha", alpha)?,
+            variance,
+            alpha,
             domain,
+            prefactor: variance / (2.0 * (PI * alpha).sqrt()),
         })
     }
 }
@@ -59,7 +64,7 @@ impl Spectrum for Gaussian {
         self.domain
     }
     fn density(&self, omega: f64) -> f64 {
-        self.variance / (2.0 * (PI * self.alpha).sqrt()) * (-omega * omega / (4.0 * self.alpha)).exp()
+        self.prefactor * (-omega * omega / (4.0 * self.alpha)).exp()
     }
     fn high_frequency(&self) -> Asymptote {
         Asymptote::Vanishing

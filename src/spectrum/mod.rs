@@ -113,6 +113,28 @@ pub trait Spectrum: Debug + Send + Sync {
     /// Two-sided density S(ω) ≥ 0, even in ω, in (unit of the process)² per (rad/s or rad/m).
     fn density(&self, omega: f64) -> f64;
 
+    /// S(ω) on a grid: `out[k] = density(omega[k])` for k < min(omega.len(), out.len()) (the rest of
+    /// `out` is left untouched).
+    ///
+    /// # Formula
+    /// The same values as [`Spectrum::density`]. The provided body is compiled for each implementing type,
+    /// so one dynamic call covers the whole grid and `density` is inlined into the loop.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::spectrum::{Domain, Exponential, Spectrum};
+    /// let s = Exponential::new(1.0, 2.0, Domain::Temporal).unwrap();
+    /// let w = [0.0, 1.0, 10.0];
+    /// let mut out = [0.0; 3];
+    /// s.density_into(&w, &mut out);
+    /// assert!(out.iter().zip(&w).all(|(o, &x)| *o == s.density(x)));
+    /// ```
+    fn density_into(&self, omega: &[f64], out: &mut [f64]) {
+        for (o, &w) in out.iter_mut().zip(omega) {
+            *o = self.density(w);
+        }
+    }
+
     /// Behaviour as |ω| → ∞.
     fn high_frequency(&self) -> Asymptote;
 

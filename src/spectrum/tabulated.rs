@@ -30,6 +30,8 @@ pub struct Tabulated {
     density: Vec<f64>,
     convention: Convention,
     domain: Domain,
+    /// Log-log slope of each segment, precomputed for `density`.
+    slopes: Vec<f64>,
 }
 
 impl Tabulated {
@@ -81,12 +83,15 @@ impl Tabulated {
             .zip(&values)
             .map(|(&xi, &vi)| convention.to_canonical(xi, vi))
             .unzip();
-        Ok(Tabulated {
+        let mut t = Tabulated {
             omega,
             density,
             convention,
             domain,
-        })
+            slopes: Vec::new(),
+        };
+        t.slopes = (0..t.omega.len() - 1).map(|k| t.slope(k)).collect();
+        Ok(t)
     }
 
     /// The canonical points (ω, S(ω)).
@@ -120,7 +125,7 @@ impl Spectrum for Tabulated {
             return 0.0;
         }
         let k = self.omega.partition_point(|&x| x <= w).saturating_sub(1).min(n - 2);
-        self.density[k] * (w / self.omega[k]).powf(self.slope(k))
+        self.density[k] * (w / self.omega[k]).powf(self.slopes[k])
     }
     fn high_frequency(&self) -> Asymptote {
         Asymptote::Vanishing
@@ -137,7 +142,7 @@ impl Spectrum for Tabulated {
     fn variance(&self) -> Result<f64> {
         let mut total = 0.0;
         for k in 0..self.omega.len() - 1 {
-            let p = self.slope(k);
+            let p = self.slopes[k];
             let r = self.omega[k + 1] / self.omega[k];
             let seg = if (p + 1.0).abs() < 1e-12 {
                 self.density[k] * self.omega[k] * r.ln()
