@@ -348,39 +348,107 @@ impl SampledSystem {
                 format!("need u = K·{m}, x = {n}, y = K·{p}"),
             ));
         }
-        let k_total = u.len() / m;
-        let mut next = vec![0.0; n];
-        for k in 0..k_total {
-            let uk = &u[k * m..(k + 1) * m];
-            let yk = &mut y[k * p..(k + 1) * p];
-            for i in 0..p {
-                let mut s = 0.0;
-                for j in 0..n {
-                    s += self.c[i * n + j] * x[j];
+        macro_rules! dispatch {
+            ($($k:literal)*) => {
+                match n {
+                    $($k => respond_kernel::<$k>(self, u, x, y),)*
+                    _ => respond_dyn(self, u, x, y),
                 }
-                for j in 0..m {
-                    s += self.d[i * m + j] * uk[j];
-                }
-                yk[i] = s;
-            }
-            if k + 1 == k_total {
-                break;
-            }
-            let un = &u[(k + 1) * m..(k + 2) * m];
-            for i in 0..n {
-                let mut s = 0.0;
-                for j in 0..n {
-                    s += self.phi[i * n + j] * x[j];
-                }
-                for j in 0..m {
-                    s += self.g0[i * m + j] * uk[j] + self.g1[i * m + j] * un[j];
-                }
-                next[i] = s;
-            }
-            x.copy_from_slice(&next);
+            };
         }
+        dispatch!(1 2 3 4 5 6 7 8);
         Ok(())
     }
+}
+
+/// [`SampledSystem::respond`] for N states: the state on the stack, no per-sample copies (a `memcpy` call
+/// per step dominated the loop), and the input terms summed before the Φx terms, which shortens the
+/// step-to-step dependency chain.
+#[allow(clippy::needless_range_loop)]
+fn respond_kernel<const N: usize>(s: &SampledSystem, u: &[f64], x: &mut [f64], y: &mut [f64]) {
+    let (m, p) = (s.m, s.p);
+    let k_total = u.len() / m;
+    let mut ph = [[0.0; N]; N];
+    for i in 0..N {
+        for j in 0..N {
+            ph[i][j] = s.phi[i * N + j];
+        }
+    }
+    let mut z = [0.0; N];
+    z.copy_from_slice(x);
+    for k in 0..k_total {
+        let uk = &u[k * m..(k + 1) * m];
+        let yk = &mut y[k * p..(k + 1) * p];
+        for i in 0..p {
+            let mut acc = 0.0;
+            for j in 0..N {
+                acc += s.c[i * N + j] * z[j];
+            }
+            for j in 0..m {
+                acc += s.d[i * m + j] * uk[j];
+            }
+            yk[i] = acc;
+        }
+        if k + 1 == k_total {
+            break;
+        }
+        let un = &u[(k + 1) * m..(k + 2) * m];
+        let mut next = [0.0; N];
+        for i in 0..N {
+            // the input part first: it does not depend on z, so only the Φz terms lie on the step-to-step
+            // dependency chain
+            let mut acc = s.g0[i * m] * uk[0] + s.g1[i * m] * un[0];
+            for j in 1..m {
+                acc += s.g0[i * m + j] * uk[j] + s.g1[i * m + j] * un[j];
+            }
+            for j in 0..N {
+                acc += ph[i][j] * z[j];
+            }
+            next[i] = acc;
+        }
+        z = next;
+    }
+    x.copy_from_slice(&z);
+}
+
+/// [`SampledSystem::respond`] for any number of states (heap state).
+#[allow(clippy::needless_range_loop)]
+fn respond_dyn(s: &SampledSystem, u: &[f64], x: &mut [f64], y: &mut [f64]) {
+    let (n, m, p) = (s.n, s.m, s.p);
+    let k_total = u.len() / m;
+    // double buffer swapped by pointer: no per-step copy
+    let mut z = x.to_vec();
+    let mut next = vec![0.0; n];
+    for k in 0..k_total {
+        let uk = &u[k * m..(k + 1) * m];
+        let yk = &mut y[k * p..(k + 1) * p];
+        for i in 0..p {
+            let mut acc = 0.0;
+            for j in 0..n {
+                acc += s.c[i * n + j] * z[j];
+            }
+            for j in 0..m {
+                acc += s.d[i * m + j] * uk[j];
+            }
+            yk[i] = acc;
+        }
+        if k + 1 == k_total {
+            break;
+        }
+        let un = &u[(k + 1) * m..(k + 2) * m];
+        for i in 0..n {
+            let mut acc = 0.0;
+            for j in 0..n {
+                acc += s.phi[i * n + j] * z[j];
+            }
+            for j in 0..m {
+                acc += s.g0[i * m + j] * uk[j] + s.g1[i * m + j] * un[j];
+            }
+            next[i] = acc;
+        }
+        std::mem::swap(&mut z, &mut next);
+    }
+    x.copy_from_slice(&z);
 }
 
 /// The exact sampled joint simulation of a system's outputs under rational, delay-free random inputs: the
