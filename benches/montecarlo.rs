@@ -9,7 +9,9 @@
 //!   first-order hold, `SampledSystem::respond` over N input samples; the SDOF augmented with the input's
 //!   shaping filter (3 states, Van Loan), `GaussMarkov::advance` over N samples (noise drawn inside).
 //! * Full batch: `run_batch` of 64 realizations × 2¹⁴ samples, generate → respond → statistics
-//!   (Student-t intervals of mean and σ²), spectral and exact routes, on the global rayon pool.
+//!   (Student-t intervals of mean and σ²), on the global rayon pool: spectral route with time stepping
+//!   (`respond`, one warm-up period), spectral route in one FFT (`generate_filtered` with
+//!   `SampledSystem::grid_response`, the same periodic steady state), exact route.
 //!
 //! `benches/common/mod.rs` holds the model and the pipeline (`McSpectral`, `McExact`), shared with
 //! `examples/compare_rust.rs`.
@@ -111,6 +113,17 @@ fn response(c: &mut Criterion) {
     let mut z = vec![0.0; gm.n_states()];
     let mut rng = stream(MC_SEED, 1);
     gm.initial_state(&mut rng, &mut z);
+    let gain = sys.grid_response(N, 0, 0).unwrap();
+    let mut sc = gen.scratch();
+    let mut i = 0;
+    g.bench_function("sdof_generate_filtered_one_fft", |b| {
+        b.iter(|| {
+            i += 1;
+            gen.generate_filtered(&mut stream(MC_SEED, i), &mut sc, &gain, &mut y)
+                .unwrap();
+            black_box(y[N - 1])
+        })
+    });
     g.bench_function("augmented_gauss_markov_3_states", |b| {
         b.iter(|| {
             gm.advance(&mut z, &mut rng, &mut y);
@@ -128,7 +141,10 @@ fn batch(c: &mut Criterion) {
     let mut g = c.benchmark_group("mc_batch_64x2^14");
     g.throughput(Throughput::Elements((R * NB) as u64));
     g.bench_function("spectral_generate_respond_stats", |b| {
-        b.iter(|| spectral.batch(black_box(R)).var.estimate)
+        b.iter(|| spectral.batch(black_box(R), false).var.estimate)
+    });
+    g.bench_function("spectral_generate_filtered_fft_stats", |b| {
+        b.iter(|| spectral.batch(black_box(R), true).var.estimate)
     });
     g.bench_function("exact_stream_stats", |b| {
         b.iter(|| exact.batch(black_box(R)).var.estimate)

@@ -388,6 +388,8 @@ pub struct McSpectral {
     pub sys: stochvib::simulate::SampledSystem,
     /// Warm-up periods (σ_min·w·NΔt ≥ 36, as `run_scenario`).
     pub warmup: usize,
+    /// H_d(ω_j) of the sampled system on the generator's grid (`SampledSystem::grid_response`).
+    pub gain: Vec<realfft::num_complex::Complex<f64>>,
 }
 
 /// Working memory of one [`McSpectral`] task.
@@ -413,7 +415,8 @@ impl McSpectral {
         let warmup = (stochvib::simulate::run::WARMUP_DECAY / (sigma_min * n as f64 * MC_DT))
             .ceil()
             .max(1.0) as usize;
-        McSpectral { gen, sys, warmup }
+        let gain = sys.grid_response(n, 0, 0).unwrap();
+        McSpectral { gen, sys, warmup, gain }
     }
     /// Fresh working memory.
     pub fn scratch(&self) -> McScratch {
@@ -436,13 +439,29 @@ impl McSpectral {
         }
         time_moments(&s.y[..n])
     }
-    /// `r` realizations of [`MC_SEED`] on the current rayon pool (`run_batch`), then the statistics.
-    pub fn batch(&self, r: usize) -> McStats {
+    /// One realization of the same periodic steady state in one FFT: generate_filtered with H_d on the
+    /// grid (no time stepping, no warm-up) → (m, v).
+    pub fn realization_fft(&self, s: &mut McScratch, rng: &mut rand::rngs::Xoshiro256PlusPlus) -> (f64, f64) {
+        let n = self.gen.len();
+        self.gen
+            .generate_filtered(rng, &mut s.spec, &self.gain, &mut s.y[..n])
+            .unwrap();
+        time_moments(&s.y[..n])
+    }
+    /// `r` realizations of [`MC_SEED`] on the current rayon pool (`run_batch`), then the statistics;
+    /// `fft` selects [`realization_fft`](Self::realization_fft) instead of time stepping.
+    pub fn batch(&self, r: usize, fft: bool) -> McStats {
         let shard = stochvib::simulate::run_batch(
             MC_SEED,
             0..r as u64,
             || self.scratch(),
-            |s, _, rng| self.realization(s, rng),
+            |s, _, rng| {
+                if fft {
+                    self.realization_fft(s, rng)
+                } else {
+                    self.realization(s, rng)
+                }
+            },
         );
         mc_stats(shard.results())
     }

@@ -359,10 +359,10 @@ def mc_pipeline():
     half = scale * math.sqrt(0.5)
     for r0 in range(0, MC_REAL, MC_CHUNK):
         z = rng.standard_normal((MC_CHUNK, MC_N // 2 + 1, 2))
-        coef = z.view(np.complex128)[..., 0]
+        coef = z.view(np.complex128)[..., 0]  # shares memory with z
+        ends = z[:, 0, 0] * scale[0], z[:, -1, 0] * scale[-1]
         coef *= half
-        coef[:, 0] = z[:, 0, 0] * scale[0]
-        coef[:, -1] = z[:, -1, 0] * scale[-1]
+        coef[:, 0], coef[:, -1] = ends
         u = np.fft.irfft(coef, n=MC_N, axis=1)
         u *= MC_N  # numpy's inverse FFT carries 1/N; the synthesis is the plain sum of cosines
         zi = zi0
@@ -372,6 +372,30 @@ def mc_pipeline():
         v[r0 : r0 + MC_CHUNK] = np.einsum("ij,ij->i", y, y) / MC_N
     mc_pipeline.stats = mc_stats(m, v)
     return mc_pipeline.stats["var"][1]
+
+
+def mc_pipeline_fft():
+    """The same periodic steady state in one FFT: the coefficients times the sampled system's frequency
+    response H_d(e^{i w_j dt}) (scipy.signal.freqz of the same FOH filter), one irfft, statistics."""
+    from scipy.signal import freqz
+
+    scale, num, den, _ = mc_setup()
+    _, h = freqz(num, den, worN=2 * math.pi * np.arange(MC_N // 2 + 1) / MC_N)
+    g = scale * math.sqrt(0.5) * h
+    rng = np.random.default_rng(MC_SEED)
+    m, v = np.empty(MC_REAL), np.empty(MC_REAL)
+    for r0 in range(0, MC_REAL, MC_CHUNK):
+        z = rng.standard_normal((MC_CHUNK, MC_N // 2 + 1, 2))
+        coef = z.view(np.complex128)[..., 0]
+        coef[:, 0] = z[:, 0, 0] * math.sqrt(2)
+        coef[:, -1] = z[:, -1, 0] * math.sqrt(2)
+        coef *= g
+        y = np.fft.irfft(coef, n=MC_N, axis=1)
+        y *= MC_N
+        m[r0 : r0 + MC_CHUNK] = y.mean(axis=1)
+        v[r0 : r0 + MC_CHUNK] = np.einsum("ij,ij->i", y, y) / MC_N
+    mc_pipeline_fft.stats = mc_stats(m, v)
+    return mc_pipeline_fft.stats["var"][1]
 
 
 def mc_floor():
@@ -387,11 +411,12 @@ def mc_floor():
 
 def run_mc(reps, jobs):
     reps = min(reps, 3)
-    for key, fn in (("mc_pipeline", mc_pipeline), ("mc_floor", mc_floor)):
+    for key, fn in (("mc_pipeline", mc_pipeline), ("mc_pipeline_fft", mc_pipeline_fft), ("mc_floor", mc_floor)):
         t, check = best(reps, fn)
         jobs[key] = {"seconds": t, "n": MC_REAL * MC_N, "check": check}
         print(f"{key:32} {t:12.6e} s   check {check:.12e}", file=sys.stderr)
     jobs["mc_pipeline"].update(mc_pipeline.stats)
+    jobs["mc_pipeline_fft"].update(mc_pipeline_fft.stats)
 
 
 _run_before_mc = run
@@ -406,8 +431,11 @@ def run(reps):  # noqa: F811  (adds the Monte Carlo jobs to the analytic ones)
 
 # (label, rust job, python job, target ratio python/rust or None)
 MC_ROWS = [
-    ("MC PIPELINE 1000x2^16 (1 thread) vs numpy/scipy", "mc_pipeline_1t", "mc_pipeline", 20.0),
-    ("MC pipeline 1000x2^16 (2 threads) vs numpy/scipy", "mc_pipeline_2t", "mc_pipeline", None),
+    ("MC PIPELINE 1000x2^16, time stepping (1 thread) vs numpy/scipy lfilter", "mc_pipeline_1t", "mc_pipeline", 20.0),
+    ("MC pipeline 1000x2^16, time stepping (2 threads) vs numpy/scipy lfilter", "mc_pipeline_2t", "mc_pipeline", None),
+    ("MC PIPELINE 1000x2^16, one FFT (1 thread) vs numpy one FFT", "mc_pipeline_fft_1t", "mc_pipeline_fft", 20.0),
+    ("MC pipeline 1000x2^16, one FFT (2 threads) vs numpy one FFT", "mc_pipeline_fft_2t", "mc_pipeline_fft", None),
+    ("MC pipeline 1000x2^16, one FFT (1 thread) vs numpy/scipy lfilter", "mc_pipeline_fft_1t", "mc_pipeline", None),
     ("MC floor (normals + 1 irfft per realization)", "mc_floor_1t", "mc_floor", None),
     ("MC exact route (augmented Gauss-Markov), 1 thread", "mc_exact_1t", None, None),
     ("MC exact route (augmented Gauss-Markov), 2 threads", "mc_exact_2t", None, None),
@@ -435,13 +463,20 @@ def mc_table(rust, py):
             f"| {label} | {fmt_t(r and r['seconds'])} | {fmt_t(p and p['seconds'])} | "
             f"{'-' if ratio is None else f'{ratio:.3g}x'} | {'-' if target is None else f'>= {target:g}x'} | {met} | {agree} |"
         )
-    one, two, floor = rj.get("mc_pipeline_1t"), rj.get("mc_pipeline_2t"), rj.get("mc_floor_1t")
-    if one and floor:
-        q = one["seconds"] / floor["seconds"]
-        out.append(f"| MC pipeline / Rust floor (1 thread) | {q:.3g}x | | | <= 2x | {'yes' if q <= 2 else 'no'} | |")
-    if one and two:
-        q = one["seconds"] / two["seconds"]
-        out.append(f"| MC pipeline speed-up 2 threads vs 1 | {q:.3g}x | | | >= 1.8x | {'yes' if q >= 1.8 else 'no'} | |")
+    floor = rj.get("mc_floor_1t")
+    for tag, name in (("", "time stepping"), ("_fft", "one FFT")):
+        one, two = rj.get(f"mc_pipeline{tag}_1t"), rj.get(f"mc_pipeline{tag}_2t")
+        if one and floor:
+            q = one["seconds"] / floor["seconds"]
+            out.append(
+                f"| MC pipeline ({name}) / Rust floor, 1 thread | {q:.3g}x | | | <= 2x | {'yes' if q <= 2 else 'no'} | |"
+            )
+        if one and two:
+            q = one["seconds"] / two["seconds"]
+            out.append(
+                f"| MC pipeline ({name}) speed-up 2 threads vs 1 | {q:.3g}x | | | >= 1.8x | {'yes' if q >= 1.8 else 'no'} | |"
+            )
+    one = rj.get("mc_pipeline_1t")
     if one:
         st = one.get("sigma")
         an = rust.get("mc", {}).get("analytic_variance")

@@ -4,6 +4,7 @@
 use crate::error::{require_positive, Error, Result};
 use crate::system::StateSpace;
 use nalgebra::DMatrix;
+use realfft::num_complex::Complex;
 
 /// Matrix exponential e^M (nalgebra's scaling-and-squaring Padé approximant, Higham 2005), with a check
 /// that the result is finite.
@@ -331,6 +332,72 @@ impl SampledSystem {
     /// Time step, s.
     pub fn dt(&self) -> f64 {
         self.dt
+    }
+
+    /// The frequency response of the sampled system from input `input` to output `output` on the FFT grid
+    /// of N = `n` samples: H_d(ω_j), j = 0..=N/2.
+    ///
+    /// # Formula
+    /// ```text
+    /// ω_j = 2πj/(NΔt),   z_j = e^{iω_jΔt} = e^{2πij/N},   H_d(ω_j) = C (z_j I − Φ)⁻¹ (Γ₀ + z_j Γ₁) + D
+    /// ```
+    /// The periodic steady state of [`respond`](Self::respond) under an N-periodic input
+    /// u_k = Σ_j c_j e^{iω_j kΔt} (the output of [`SpectralGenerator`](super::SpectralGenerator)) is
+    /// y_k = Σ_j H_d(ω_j) c_j e^{iω_j kΔt}: [`SpectralGenerator::generate_filtered`](super::SpectralGenerator)
+    /// with this gain produces it with one inverse FFT, without time stepping or warm-up.
+    ///
+    /// # Errors
+    /// `n` odd or < 2, indices out of range, z_j I − Φ singular (a pole of the sampled system on the unit
+    /// circle: the system is not asymptotically stable).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::simulate::SampledSystem;
+    /// use stochvib::system::{StateSpace, OutputInfo};
+    /// use nalgebra::DMatrix;
+    /// let ss = StateSpace::new(DMatrix::from_element(1, 1, -1.0), DMatrix::from_element(1, 1, 1.0),
+    ///     DMatrix::from_element(1, 1, 1.0), None, None, vec![OutputInfo::new("x", "m")]).unwrap();
+    /// let h = SampledSystem::new(&ss, 0.1).unwrap().grid_response(8, 0, 0).unwrap();
+    /// // at ω = 0 the static gain 1/(s + 1) at s = 0 is exact for any hold
+    /// assert!((h[0].re - 1.0).abs() < 1e-12 && h[0].im.abs() < 1e-12);
+    /// ```
+    pub fn grid_response(&self, n: usize, output: usize, input: usize) -> Result<Vec<Complex<f64>>> {
+        if n < 2 || !n.is_multiple_of(2) {
+            return Err(Error::invalid("n", n, "number of samples must be even and >= 2"));
+        }
+        if output >= self.p {
+            return Err(Error::invalid(
+                "output",
+                output,
+                format!("the system has {} outputs", self.p),
+            ));
+        }
+        if input >= self.m {
+            return Err(Error::invalid(
+                "input",
+                input,
+                format!("the system has {} inputs", self.m),
+            ));
+        }
+        let (ns, m) = (self.n, self.m);
+        let c = |v: f64| Complex::new(v, 0.0);
+        let phi = DMatrix::from_fn(ns, ns, |i, j| c(self.phi[i * ns + j]));
+        let g0 = DMatrix::from_fn(ns, 1, |i, _| c(self.g0[i * m + input]));
+        let g1 = DMatrix::from_fn(ns, 1, |i, _| c(self.g1[i * m + input]));
+        let crow = DMatrix::from_fn(1, ns, |_, j| c(self.c[output * ns + j]));
+        let d = self.d[output * m + input];
+        let mut h = Vec::with_capacity(n / 2 + 1);
+        for j in 0..=n / 2 {
+            let z = Complex::from_polar(1.0, 2.0 * std::f64::consts::PI * j as f64 / n as f64);
+            let zi = DMatrix::<Complex<f64>>::identity(ns, ns) * z - &phi;
+            let rhs = &g0 + &g1 * z;
+            let x = zi.lu().solve(&rhs).ok_or_else(|| Error::Numerical {
+                what: "sampled frequency response".into(),
+                reason: format!("zI − Φ singular at bin {j} of {n}"),
+            })?;
+            h.push((&crow * x)[(0, 0)] + d);
+        }
+        Ok(h)
     }
 
     /// Responds to the sampled inputs `u` (sample-major: u[k·m + j] is input j at t_k) from state `x`
