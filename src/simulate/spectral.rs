@@ -94,6 +94,13 @@ pub struct SpectralScratch {
     fft: Vec<Complex<f64>>,
 }
 
+impl SpectralScratch {
+    /// The coefficients c₀..c_{N/2} of the last [`SpectralGenerator::draw`].
+    pub fn coefficients(&self) -> &[Complex<f64>] {
+        &self.coef
+    }
+}
+
 impl SpectralGenerator {
     /// Prepares the grid and the FFT plan for N = `n` samples at step `dt`.
     ///
@@ -265,8 +272,26 @@ impl SpectralGenerator {
             })
     }
 
-    /// Draws the coefficients c₀..c_{N/2} of one realization into `scratch.coef` (see the type's formula).
-    fn draw(&self, rng: &mut Xoshiro256PlusPlus, scratch: &mut SpectralScratch) {
+    /// Draws the coefficients c₀..c_{N/2} of one realization into `scratch` (see the type's formula), in
+    /// the order [`generate`](Self::generate) draws them; read them with [`SpectralScratch::coefficients`].
+    /// For combining several generators or filters before one's own inverse FFT.
+    ///
+    /// # Panics
+    /// When `scratch` was made by a generator of another N (a programming error).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::simulate::{SpectralGenerator, Amplitudes, stream};
+    /// use stochvib::spectrum::{Exponential, Domain};
+    /// let s = Exponential::new(1.0, 2.0, Domain::Temporal).unwrap();
+    /// let g = SpectralGenerator::new(&s, 0.05, 64, Amplitudes::Rayleigh).unwrap();
+    /// let mut sc = g.scratch();
+    /// g.draw(&mut stream(1, 0), &mut sc);
+    /// assert_eq!(sc.coefficients().len(), 33);
+    /// assert_eq!(sc.coefficients()[0].im, 0.0);
+    /// ```
+    pub fn draw(&self, rng: &mut Xoshiro256PlusPlus, scratch: &mut SpectralScratch) {
+        assert_eq!(scratch.coef.len(), self.n / 2 + 1, "scratch made by another generator");
         let n = self.n;
         let half = n / 2;
         match self.amplitudes {
