@@ -224,6 +224,32 @@ fn main() {
             });
             put_mc(&format!("mc_exact_{threads}t"), t, &st.unwrap());
         }
+        // calibration of the machine's parallelism at this moment: 8 independent scalar spin loops on the
+        // same 1- and 2-thread pools (ideal speed-up 2; on a shared machine it shows the CPU actually
+        // available, against which the pipeline's 1 vs 2 thread ratio is read)
+        for threads in [1usize, 2] {
+            use rayon::prelude::*;
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let r = best(mc_reps, 1, || {
+                pool.install(|| {
+                    (0..8u64)
+                        .into_par_iter()
+                        .map(|i| {
+                            let mut x = black_box(i as f64);
+                            for _ in 0..25_000_000u64 {
+                                x = x * 1.000_000_1 + 1e-9;
+                            }
+                            x
+                        })
+                        .sum::<f64>()
+                })
+            });
+            eprintln!("{:32} {:12.6e} s", format!("mc_spin_{threads}t"), r.0);
+            jobs.insert(
+                format!("mc_spin_{threads}t"),
+                json!({"seconds": r.0, "n": 8, "check": r.1}),
+            );
+        }
         // floor: draw the N normals of a realization + one inverse real FFT of length N, per realization
         // (1 thread; the same work as numpy's floor job)
         let fft = RealFftPlanner::<f64>::new().plan_fft_inverse(MC_N);

@@ -476,6 +476,10 @@ def mc_table(rust, py):
             out.append(
                 f"| MC pipeline ({name}) speed-up 2 threads vs 1 | {q:.3g}x | | | >= 1.8x | {'yes' if q >= 1.8 else 'no'} | |"
             )
+    s1, s2 = rj.get("mc_spin_1t"), rj.get("mc_spin_2t")
+    if s1 and s2:
+        q = s1["seconds"] / s2["seconds"]
+        out.append(f"| calibration: independent spin loops, speed-up 2 threads vs 1 (ideal 2) | {q:.3g}x | | | - | - | |")
     one = rj.get("mc_pipeline_1t")
     if one:
         st = one.get("sigma")
