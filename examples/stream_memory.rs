@@ -5,7 +5,8 @@
 //! Loan); samples are produced in chunks of 4096 and folded into Welford moments, so memory does not grow
 //! with the record length.
 //!
-//! Run: `cargo run --release --example stream_memory [samples]`
+//! Run: `cargo run --release --example stream_memory [samples]` (default 10⁸; `1e9` for the issue #7 check:
+//! a 10⁹-sample realization with peak memory < 100 MB).
 
 use nalgebra::DMatrix;
 use std::sync::Arc;
@@ -25,8 +26,8 @@ fn peak_rss_kib() -> Option<u64> {
 fn main() -> stochvib::Result<()> {
     let total: u64 = std::env::args()
         .nth(1)
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(100_000_000);
+        .and_then(|a| a.parse::<f64>().ok())
+        .map_or(100_000_000, |v| v as u64);
     let (w, z) = (10.0, 0.05);
     let ss = StateSpace::new(
         DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, -2.0 * z * w]),
@@ -74,5 +75,12 @@ fn main() -> stochvib::Result<()> {
         "record size if held in memory: {:.0} MiB",
         total as f64 * 8.0 / 1048576.0
     );
+    if let Some(peak) = peak_rss_kib() {
+        let mb = peak as f64 * 1024.0 / 1e6;
+        println!(
+            "peak RSS {mb:.1} MB < 100 MB: {}",
+            if mb < 100.0 { "yes" } else { "NO" }
+        );
+    }
     Ok(())
 }

@@ -47,7 +47,8 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
     // 0.011 cycles/m · v, and a grid Δω = 2π/T coarser than that edge misses a visible part of the
     // displacement variance (half car at 10 m/s: edge 0.69 rad/s, so T = 60 s, Δω = 0.105 rad/s).
     // The conveyor idler is also forced through the spectral route: the only single-input (non-track)
-    // spectral case, checking the warm-up and the discrete variance of an independent input.
+    // spectral case, checking the periodic steady state computed in the frequency domain and the discrete
+    // variance of an independent input.
     let cases: [(&str, f64, f64, Method, usize); 10] = [
         ("balancer-bogie.toml", 0.01, 10.0, Method::Spectral, 2),
         ("conveyor-idler.toml", 0.01, 40.0, Method::Spectral, 2),

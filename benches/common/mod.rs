@@ -303,3 +303,201 @@ pub fn all_spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
         ("at_speed", road()),
     ]
 }
+
+/// Monte Carlo pipeline job (issue #7): realizations, samples per realization, time step (s), seed.
+pub const MC_REAL: usize = 1000;
+/// Samples per realization, 2¹⁶.
+pub const MC_N: usize = 1 << 16;
+/// Time step, s.
+pub const MC_DT: f64 = 0.01;
+/// Seed of the batch (realization i uses `stream(MC_SEED, i)`).
+pub const MC_SEED: u64 = 2024;
+/// Confidence level of the Monte Carlo intervals.
+pub const MC_CONFIDENCE: f64 = 0.95;
+
+/// The Monte Carlo pipeline model (as `examples/stream_memory.rs`): SDOF ẍ + 2ζωẋ + ω²x = u, ω = 10 rad/s,
+/// ζ = 0.05, output x (m), under the exponential input K(τ) = D e^{−α|τ|}, D = 1, α = 3 s⁻¹ (shaping
+/// filter √(2Dα)/(s + α) of unit white noise).
+pub fn mc_sdof() -> (stochvib::system::StateSpace, Excitation) {
+    use stochvib::system::{OutputInfo, StateSpace};
+    let (w, z) = (10.0, 0.05);
+    let ss = StateSpace::new(
+        DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, -2.0 * z * w]),
+        DMatrix::from_row_slice(2, 1, &[0.0, 1.0]),
+        DMatrix::from_row_slice(1, 2, &[1.0, 0.0]),
+        None,
+        None,
+        vec![OutputInfo::new("x", "m")],
+    )
+    .unwrap();
+    let exc = Excitation::single(mc_input(), 0.0).unwrap();
+    (ss, exc)
+}
+
+/// The input process of the Monte Carlo job: K(τ) = e^{−3|τ|} (type 1, D = 1, α = 3 s⁻¹).
+pub fn mc_input() -> Arc<dyn Spectrum> {
+    Arc::new(stochvib::spectrum::Exponential::new(1.0, 3.0, Domain::Temporal).unwrap())
+}
+
+/// Across-realization statistics of the pipeline (what `run_scenario` reports per output): the time
+/// averages m_i = (1/N)Σy_k and v_i = (1/N)Σy_k² of each realization; Student-t intervals on their means
+/// (σ² interval = interval of mean v_i; σ interval = its square root).
+#[derive(Debug, Clone, Copy)]
+pub struct McStats {
+    /// Mean of the m_i with its interval.
+    pub mean: stochvib::estimate::Interval,
+    /// Mean of the v_i (σ² estimate) with its interval.
+    pub var: stochvib::estimate::Interval,
+    /// σ interval (lower, estimate, upper).
+    pub sigma: (f64, f64, f64),
+}
+
+/// Folds per-realization (m_i, v_i), in realization order, into [`McStats`].
+pub fn mc_stats(mv: &[(f64, f64)]) -> McStats {
+    use stochvib::estimate::mean_interval;
+    let m: Vec<f64> = mv.iter().map(|p| p.0).collect();
+    let v: Vec<f64> = mv.iter().map(|p| p.1).collect();
+    let mean = mean_interval(&m, MC_CONFIDENCE).unwrap();
+    let var = mean_interval(&v, MC_CONFIDENCE).unwrap();
+    McStats {
+        mean,
+        var,
+        sigma: (var.lower.max(0.0).sqrt(), var.estimate.sqrt(), var.upper.sqrt()),
+    }
+}
+
+/// Time averages (m, v) of a record.
+#[inline]
+pub fn time_moments(y: &[f64]) -> (f64, f64) {
+    let (mut s1, mut s2) = (0.0, 0.0);
+    for &v in y {
+        s1 += v;
+        s2 += v * v;
+    }
+    (s1 / y.len() as f64, s2 / y.len() as f64)
+}
+
+/// The spectral route of `run_scenario` for [`mc_sdof`], with the library's parts: the input by
+/// [`SpectralGenerator`](stochvib::simulate::SpectralGenerator) (Rayleigh amplitudes, the default), the
+/// response by the exact first-order hold [`SampledSystem::respond`](stochvib::simulate::SampledSystem)
+/// driven through the periodic input for `warmup` periods and one recorded period (periodic steady state).
+pub struct McSpectral {
+    /// Input generator (N = [`MC_N`], Δt = [`MC_DT`]).
+    pub gen: stochvib::simulate::SpectralGenerator,
+    /// The SDOF discretised once (FOH).
+    pub sys: stochvib::simulate::SampledSystem,
+    /// Warm-up periods (σ_min·w·NΔt ≥ 36, as `run_scenario`).
+    pub warmup: usize,
+    /// H_d(ω_j) of the sampled system on the generator's grid (`SampledSystem::grid_response`).
+    pub gain: Vec<realfft::num_complex::Complex<f64>>,
+}
+
+/// Working memory of one [`McSpectral`] task.
+pub struct McScratch {
+    spec: stochvib::simulate::SpectralScratch,
+    u: Vec<f64>,
+    y: Vec<f64>,
+    x: Vec<f64>,
+}
+
+impl McSpectral {
+    /// Builds the generator and the sampled system for `n` samples.
+    pub fn new(n: usize) -> McSpectral {
+        use stochvib::simulate::{Amplitudes, SampledSystem, SpectralGenerator};
+        let (ss, _) = mc_sdof();
+        let gen = SpectralGenerator::new(mc_input().as_ref(), MC_DT, n, Amplitudes::Rayleigh).unwrap();
+        let sys = SampledSystem::new(&ss, MC_DT).unwrap();
+        let sigma_min =
+            ss.a.complex_eigenvalues()
+                .iter()
+                .map(|l| -l.re)
+                .fold(f64::INFINITY, f64::min);
+        let warmup = (stochvib::simulate::run::WARMUP_DECAY / (sigma_min * n as f64 * MC_DT))
+            .ceil()
+            .max(1.0) as usize;
+        let gain = sys.grid_response(n, 0, 0).unwrap();
+        McSpectral { gen, sys, warmup, gain }
+    }
+    /// Fresh working memory.
+    pub fn scratch(&self) -> McScratch {
+        let n = self.gen.len();
+        McScratch {
+            spec: self.gen.scratch(),
+            u: vec![0.0; n + 1],
+            y: vec![0.0; n + 1],
+            x: vec![0.0; self.sys.dims().0],
+        }
+    }
+    /// One realization: generate → respond (warm-up + recorded period) → (m, v).
+    pub fn realization(&self, s: &mut McScratch, rng: &mut rand::rngs::Xoshiro256PlusPlus) -> (f64, f64) {
+        let n = self.gen.len();
+        self.gen.generate(rng, &mut s.spec, &mut s.u[..n]).unwrap();
+        s.u[n] = s.u[0]; // the first-order hold of the last step ramps to the next period's first sample
+        s.x.iter_mut().for_each(|v| *v = 0.0);
+        for _ in 0..=self.warmup {
+            self.sys.respond(&s.u, &mut s.x, &mut s.y).unwrap();
+        }
+        time_moments(&s.y[..n])
+    }
+    /// One realization of the same periodic steady state in one FFT: generate_filtered with H_d on the
+    /// grid (no time stepping, no warm-up) → (m, v).
+    pub fn realization_fft(&self, s: &mut McScratch, rng: &mut rand::rngs::Xoshiro256PlusPlus) -> (f64, f64) {
+        let n = self.gen.len();
+        self.gen
+            .generate_filtered(rng, &mut s.spec, &self.gain, &mut s.y[..n])
+            .unwrap();
+        time_moments(&s.y[..n])
+    }
+    /// `r` realizations of [`MC_SEED`] on the current rayon pool (`run_batch`), then the statistics;
+    /// `fft` selects [`realization_fft`](Self::realization_fft) instead of time stepping.
+    pub fn batch(&self, r: usize, fft: bool) -> McStats {
+        let shard = stochvib::simulate::run_batch(
+            MC_SEED,
+            0..r as u64,
+            || self.scratch(),
+            |s, _, rng| {
+                if fft {
+                    self.realization_fft(s, rng)
+                } else {
+                    self.realization(s, rng)
+                }
+            },
+        );
+        mc_stats(shard.results())
+    }
+}
+
+/// The exact route for [`mc_sdof`]: the SDOF augmented with the input's shaping filter, discretised by
+/// Van Loan (`augmented_response`), each realization started from the stationary state.
+pub struct McExact {
+    /// The augmented Gauss–Markov model (3 states).
+    pub gm: stochvib::simulate::GaussMarkov,
+    /// Samples per realization.
+    pub n: usize,
+}
+
+impl McExact {
+    /// Builds the model for `n` samples per realization.
+    pub fn new(n: usize) -> McExact {
+        let (ss, exc) = mc_sdof();
+        McExact {
+            gm: stochvib::simulate::augmented_response(&ss, &exc, &[0], MC_DT).unwrap(),
+            n,
+        }
+    }
+    /// `r` realizations of [`MC_SEED`] on the current rayon pool, then the statistics.
+    pub fn batch(&self, r: usize) -> McStats {
+        let nz = self.gm.n_states();
+        let shard = stochvib::simulate::run_batch(
+            MC_SEED,
+            0..r as u64,
+            || (vec![0.0; nz], vec![0.0; self.n]),
+            |(x, y), _, rng| {
+                self.gm.initial_state(rng, x);
+                self.gm.advance(x, rng, y);
+                time_moments(y)
+            },
+        );
+        mc_stats(shard.results())
+    }
+}

@@ -484,6 +484,201 @@ def table(rust_path, py_path):  # noqa: F811 (extends the table() above with the
     print("\n".join([""] + lines))
 
 
+# --- 5. Monte Carlo pipeline (issue #7) ----------------------------------------------------------------
+# Same job as McSpectral in benches/common/mod.rs: SDOF x'' + 2 zeta w x' + w^2 x = u (w = 10 rad/s,
+# zeta = 0.05, output x) under K(tau) = e^{-3|tau|}; MC_REAL realizations x 2^16 samples, dt = 0.01 s.
+# Spectral representation with Rayleigh amplitudes on the FFT grid (numpy real FFT), the model discretised
+# once (first-order hold, scipy.signal.cont2discrete) and run with scipy.signal.lfilter along the time axis
+# through (warm-up + 1) periods of the periodic input (filter state carried by zi), then per realization
+# m_i = mean y, v_i = mean y^2 and Student-t intervals across realizations. Vectorised over blocks of
+# MC_CHUNK realizations (a full 1000 x 2^16 block needs ~2 GB and runs slower).
+MC_REAL, MC_N, MC_DT, MC_SEED, MC_CHUNK = 1000, 1 << 16, 0.01, 2024, 50
+MC_W, MC_ZETA, MC_D, MC_ALPHA = 10.0, 0.05, 1.0, 3.0
+MC_WARMUP_DECAY = 36.0  # stochvib::simulate::run::WARMUP_DECAY
+
+
+def mc_setup():
+    from scipy.signal import cont2discrete, ss2tf
+
+    dw = 2 * math.pi / (MC_N * MC_DT)
+    w = np.arange(MC_N // 2 + 1) * dw
+    scale = np.sqrt(MC_D * MC_ALPHA / (math.pi * (MC_ALPHA**2 + w * w)) * dw)
+    a = np.array([[0.0, 1.0], [-MC_W**2, -2 * MC_ZETA * MC_W]])
+    b = np.array([[0.0], [1.0]])
+    c = np.array([[1.0, 0.0]])
+    d = np.zeros((1, 1))
+    ad, bd, cd, dd, _ = cont2discrete((a, b, c, d), MC_DT, method="foh")
+    num, den = ss2tf(ad, bd, cd, dd)
+    sigma_min = min(-np.linalg.eigvals(a).real)
+    warmup = max(1, math.ceil(MC_WARMUP_DECAY / (sigma_min * MC_N * MC_DT)))
+    return scale, num[0], den, warmup
+
+
+def mc_stats(m, v):
+    from scipy.stats import t as student_t
+
+    r = m.size
+    q = student_t.ppf(0.975, r - 1)
+    out = {}
+    for name, x in (("mean", m), ("var", v)):
+        est, h = x.mean(), q * x.std(ddof=1) / math.sqrt(r)
+        out[name] = [est - h, est, est + h]
+    out["sigma"] = [math.sqrt(max(out["var"][0], 0.0)), math.sqrt(out["var"][1]), math.sqrt(out["var"][2])]
+    out["check_se"] = (out["var"][2] - out["var"][1]) / q
+    return out
+
+
+def mc_pipeline():
+    from scipy.signal import lfilter
+
+    scale, num, den, warmup = mc_setup()
+    rng = np.random.default_rng(MC_SEED)
+    m, v = np.empty(MC_REAL), np.empty(MC_REAL)
+    zi0 = np.zeros((MC_CHUNK, den.size - 1))
+    half = scale * math.sqrt(0.5)
+    for r0 in range(0, MC_REAL, MC_CHUNK):
+        z = rng.standard_normal((MC_CHUNK, MC_N // 2 + 1, 2))
+        coef = z.view(np.complex128)[..., 0]  # shares memory with z
+        ends = z[:, 0, 0] * scale[0], z[:, -1, 0] * scale[-1]
+        coef *= half
+        coef[:, 0], coef[:, -1] = ends
+        u = np.fft.irfft(coef, n=MC_N, axis=1)
+        u *= MC_N  # numpy's inverse FFT carries 1/N; the synthesis is the plain sum of cosines
+        zi = zi0
+        for _ in range(warmup + 1):
+            y, zi = lfilter(num, den, u, axis=1, zi=zi)
+        m[r0 : r0 + MC_CHUNK] = y.mean(axis=1)
+        v[r0 : r0 + MC_CHUNK] = np.einsum("ij,ij->i", y, y) / MC_N
+    mc_pipeline.stats = mc_stats(m, v)
+    return mc_pipeline.stats["var"][1]
+
+
+def mc_pipeline_fft():
+    """The same periodic steady state in one FFT: the coefficients times the sampled system's frequency
+    response H_d(e^{i w_j dt}) (scipy.signal.freqz of the same FOH filter), one irfft, statistics."""
+    from scipy.signal import freqz
+
+    scale, num, den, _ = mc_setup()
+    _, h = freqz(num, den, worN=2 * math.pi * np.arange(MC_N // 2 + 1) / MC_N)
+    g = scale * math.sqrt(0.5) * h
+    rng = np.random.default_rng(MC_SEED)
+    m, v = np.empty(MC_REAL), np.empty(MC_REAL)
+    for r0 in range(0, MC_REAL, MC_CHUNK):
+        z = rng.standard_normal((MC_CHUNK, MC_N // 2 + 1, 2))
+        coef = z.view(np.complex128)[..., 0]
+        coef[:, 0] = z[:, 0, 0] * math.sqrt(2)
+        coef[:, -1] = z[:, -1, 0] * math.sqrt(2)
+        coef *= g
+        y = np.fft.irfft(coef, n=MC_N, axis=1)
+        y *= MC_N
+        m[r0 : r0 + MC_CHUNK] = y.mean(axis=1)
+        v[r0 : r0 + MC_CHUNK] = np.einsum("ij,ij->i", y, y) / MC_N
+    mc_pipeline_fft.stats = mc_stats(m, v)
+    return mc_pipeline_fft.stats["var"][1]
+
+
+def mc_floor():
+    """Draw the normals and one inverse real FFT per realization (blocks of MC_CHUNK)."""
+    rng = np.random.default_rng(MC_SEED)
+    acc = 0.0
+    for _ in range(0, MC_REAL, MC_CHUNK):
+        z = rng.standard_normal((MC_CHUNK, MC_N // 2 + 1, 2))
+        x = np.fft.irfft(z.view(np.complex128)[..., 0], n=MC_N, axis=1)
+        acc += x[:, 1].sum()
+    return acc
+
+
+def run_mc(reps, jobs):
+    reps = min(reps, 3)
+    for key, fn in (("mc_pipeline", mc_pipeline), ("mc_pipeline_fft", mc_pipeline_fft), ("mc_floor", mc_floor)):
+        t, check = best(reps, fn)
+        jobs[key] = {"seconds": t, "n": MC_REAL * MC_N, "check": check}
+        print(f"{key:32} {t:12.6e} s   check {check:.12e}", file=sys.stderr)
+    jobs["mc_pipeline"].update(mc_pipeline.stats)
+    jobs["mc_pipeline_fft"].update(mc_pipeline_fft.stats)
+
+
+_run_before_mc = run
+
+
+def run(reps):  # noqa: F811  (adds the Monte Carlo jobs to the analytic ones)
+    doc = _run_before_mc(reps)
+    run_mc(reps, doc["jobs"])
+    doc["mc"] = {"realizations": MC_REAL, "samples": MC_N, "chunk": MC_CHUNK, "warmup_periods": mc_setup()[3]}
+    return doc
+
+
+# (label, rust job, python job, target ratio python/rust or None)
+MC_ROWS = [
+    ("MC PIPELINE 1000x2^16, time stepping (1 thread) vs numpy/scipy lfilter", "mc_pipeline_1t", "mc_pipeline", 20.0),
+    ("MC pipeline 1000x2^16, time stepping (2 threads) vs numpy/scipy lfilter", "mc_pipeline_2t", "mc_pipeline", None),
+    ("MC PIPELINE 1000x2^16, one FFT (1 thread) vs numpy one FFT", "mc_pipeline_fft_1t", "mc_pipeline_fft", 20.0),
+    ("MC pipeline 1000x2^16, one FFT (2 threads) vs numpy one FFT", "mc_pipeline_fft_2t", "mc_pipeline_fft", None),
+    ("MC pipeline 1000x2^16, one FFT (1 thread) vs numpy/scipy lfilter", "mc_pipeline_fft_1t", "mc_pipeline", None),
+    ("MC floor (normals + 1 irfft per realization)", "mc_floor_1t", "mc_floor", None),
+    ("MC exact route (augmented Gauss-Markov), 1 thread", "mc_exact_1t", None, None),
+    ("MC exact route (augmented Gauss-Markov), 2 threads", "mc_exact_2t", None, None),
+]
+
+
+def mc_table(rust, py):
+    """The Monte Carlo rows (appended to `table`): ratios to numpy, Rust pipeline vs Rust floor, 1 vs 2
+    threads, with targets."""
+    rj, pj = rust["jobs"], py["jobs"]
+    out = [
+        "",
+        "| job | Rust | Python | ratio Py/Rust | target | met? | checks agree |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for label, rk, pk, target in MC_ROWS:
+        r, p = rj.get(rk), (pj.get(pk) if pk else None)
+        ratio = p["seconds"] / r["seconds"] if (r and p) else None
+        agree = "-"
+        if r and p and "check_se" in r and "check_se" in p:
+            zs = (r["check"] - p["check"]) / math.hypot(r["check_se"], p["check_se"])
+            agree = f"{'yes' if abs(zs) < 4 else 'NO'} (sigma^2, z = {zs:+.1f})"
+        met = "-" if target is None or ratio is None else ("yes" if ratio >= target else "no")
+        out.append(
+            f"| {label} | {fmt_t(r and r['seconds'])} | {fmt_t(p and p['seconds'])} | "
+            f"{'-' if ratio is None else f'{ratio:.3g}x'} | {'-' if target is None else f'>= {target:g}x'} | {met} | {agree} |"
+        )
+    floor = rj.get("mc_floor_1t")
+    for tag, name in (("", "time stepping"), ("_fft", "one FFT")):
+        one, two = rj.get(f"mc_pipeline{tag}_1t"), rj.get(f"mc_pipeline{tag}_2t")
+        if one and floor:
+            q = one["seconds"] / floor["seconds"]
+            out.append(
+                f"| MC pipeline ({name}) / Rust floor, 1 thread | {q:.3g}x | | | <= 2x | {'yes' if q <= 2 else 'no'} | |"
+            )
+        if one and two:
+            q = one["seconds"] / two["seconds"]
+            out.append(
+                f"| MC pipeline ({name}) speed-up 2 threads vs 1 | {q:.3g}x | | | >= 1.8x | {'yes' if q >= 1.8 else 'no'} | |"
+            )
+    s1, s2 = rj.get("mc_spin_1t"), rj.get("mc_spin_2t")
+    if s1 and s2:
+        q = s1["seconds"] / s2["seconds"]
+        out.append(f"| calibration: independent spin loops, speed-up 2 threads vs 1 (ideal 2) | {q:.3g}x | | | - | - | |")
+    one = rj.get("mc_pipeline_1t")
+    if one:
+        st = one.get("sigma")
+        an = rust.get("mc", {}).get("analytic_variance")
+        if st and an:
+            out.append(
+                f"\nMC sigma (Rust, 1000 realizations): {st[1]:.6g} in [{st[0]:.6g}, {st[2]:.6g}] (95 %); "
+                f"analytic sigma {math.sqrt(an):.6g}"
+            )
+    print("\n".join(out))
+
+
+_table_before_mc = table
+
+
+def table(rust_path, py_path):  # noqa: F811  (prints the Monte Carlo rows after the analytic table)
+    _table_before_mc(rust_path, py_path)
+    mc_table(json.load(open(rust_path)), json.load(open(py_path)))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)

@@ -9,14 +9,15 @@
 //!   stationary response: no time-step bias, no transient.
 //! * [`Method::Spectral`]: any spectrum and delayed inputs (road tracks). The input process is synthesised
 //!   by the spectral representation ([`SpectralGenerator`], random Rayleigh amplitudes) on an FFT grid of
-//!   N samples, so it is periodic with period NΔt; the system is driven through that periodic input by the
-//!   exact first-order hold ([`SampledSystem`]) for `w` warm-up periods and the next period is recorded.
-//!   The transient from the zero initial state decays like e^{−σ_min·t}, σ_min = min|Re λ(A)|; `w` is
-//!   chosen so that σ_min·w·NΔt ≥ 36 (transient below 2.4·10⁻¹⁶ of the start value), and the recorded
-//!   period is then the periodic steady state. Delays τ_j become circular shifts by s_j = τ_j/Δt samples,
-//!   which must be integers (Δt = τ/k). An output containing the input derivative (E ≠ 0) gets E·u̇_k with
-//!   u̇ the exact derivative of the input's trigonometric interpolant (spectral differentiation: bin j times
-//!   iω_j, the Nyquist bin dropped), while the states see the first-order hold of the samples.
+//!   N samples, so it is periodic with period NΔt; the recorded output is the periodic steady state of the
+//!   exact first-order hold ([`SampledSystem`](super::SampledSystem)) driven by that periodic input. It is computed exactly in
+//!   the frequency domain, with one inverse FFT per output: y_k = Σ_j G_j c_j e^{iω_j kΔt}, G_j the
+//!   discrete transfer function H_d(ω_j) below (what time stepping through warm-up periods converges to,
+//!   without the stepping or the residual transient). Delays τ_j become circular shifts by s_j = τ_j/Δt
+//!   samples, which must be integers (Δt = τ/k). An output containing the input derivative (E ≠ 0) gets
+//!   E·u̇_k with u̇ the exact derivative of the input's trigonometric interpolant (spectral
+//!   differentiation: bin j times iω_j, the Nyquist bin dropped), while the states see the first-order
+//!   hold of the samples.
 //!
 //! # Bias of the spectral route
 //! The synthesised process is the spectrum sampled on the grid ω_j = 2πj/(NΔt), j ≤ N/2 (truncated at the
@@ -49,7 +50,7 @@
 //! shards; since shard results depend only on (seed, i), the final statistics are bit-identical to those
 //! of an uninterrupted run.
 
-use super::{augmented_response, foh, run_batch, Amplitudes, GaussMarkov, SampledSystem, SpectralGenerator};
+use super::{augmented_response, foh, run_batch, Amplitudes, GaussMarkov, SpectralGenerator};
 use crate::error::{Error, Result};
 use crate::estimate::{mean_interval, Interval, Welch, WelchSums};
 use crate::response::{analyze_output, output_density, Excitation};
@@ -61,7 +62,9 @@ use realfft::num_complex::Complex;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
-/// Warm-up criterion of the spectral route: σ_min · (warm-up time) ≥ this (e^{−36} ≈ 2.3·10⁻¹⁶).
+/// Warm-up criterion for time stepping a system through a periodic input to its periodic steady state:
+/// σ_min · (warm-up time) ≥ this (e^{−36} ≈ 2.3·10⁻¹⁶). The spectral route of [`run_scenario`] computes the
+/// steady state in the frequency domain and does not need it; time-stepping callers (the benches) do.
 pub const WARMUP_DECAY: f64 = 36.0;
 
 /// How realizations are produced (see the module docs).
@@ -289,23 +292,17 @@ struct Realization {
     raw_inputs: Vec<Vec<f64>>,
 }
 
+#[allow(clippy::large_enum_variant)] // one engine per run
 enum Engine {
     Exact(GaussMarkov),
     Spectral {
-        sampled: SampledSystem,
         generators: Vec<SpectralGenerator>,
-        /// per system input: (generator index, gain, circular shift in samples)
-        inputs: Vec<(usize, f64, usize)>,
-        warmup: usize,
-        /// E (p × m, row-major) when some output contains the input derivative, with FFT plans of size N
-        derivative: Option<Derivative>,
+        /// gains[g][r][j]: the transfer from generator g's coefficient c_j to output r (discrete transfer
+        /// function, gains, shift phases and the iω_j E term; see the module docs)
+        gains: Vec<Vec<Vec<Complex<f64>>>>,
+        /// inverse real FFT of size N
+        inverse: std::sync::Arc<dyn realfft::ComplexToReal<f64>>,
     },
-}
-
-struct Derivative {
-    e: Vec<f64>,
-    forward: std::sync::Arc<dyn realfft::RealToComplex<f64>>,
-    inverse: std::sync::Arc<dyn realfft::ComplexToReal<f64>>,
 }
 
 struct Plan {
@@ -387,6 +384,7 @@ fn with_input_rows(
     GaussMarkov::new(aug.a, aug.g, h, dt).ok()
 }
 
+#[allow(clippy::needless_range_loop)] // the bin loop fills several per-bin tables
 fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
     if opts.realizations < 2 {
         return Err(Error::invalid("realizations", opts.realizations, "need at least 2"));
@@ -497,28 +495,6 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
     let p_kept = kept.len();
     let rows: Vec<usize> = kept.iter().map(|f| f.0).collect();
     let sub = ss.select_outputs(&rows)?;
-    let no_e = crate::system::StateSpace::new(
-        sub.a.clone(),
-        sub.b.clone(),
-        sub.c.clone(),
-        Some(sub.d.clone()),
-        None,
-        crate::system::FrequencyResponse::outputs(&sub).to_vec(),
-    )?;
-    let sampled = SampledSystem::new(&no_e, opts.dt_s)?;
-    let derivative = if sub.e.amax() > 0.0 {
-        let mut planner = realfft::RealFftPlanner::<f64>::new();
-        Some(Derivative {
-            e: (0..sub.e.nrows())
-                .flat_map(|r| (0..sub.e.ncols()).map(move |c| (r, c)))
-                .map(|(r, c)| sub.e[(r, c)])
-                .collect(),
-            forward: planner.plan_fft_forward(n),
-            inverse: planner.plan_fft_inverse(n),
-        })
-    } else {
-        None
-    };
     let sigma_min =
         ss.a.complex_eigenvalues()
             .iter()
@@ -533,12 +509,10 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
         });
     }
     let period = n as f64 * opts.dt_s;
-    let warmup = (WARMUP_DECAY / (sigma_min * period)).ceil().max(1.0) as usize;
     notes.push(format!(
-        "spectral route: periodic input of period NΔt = {period} s; {warmup} warm-up period(s) so that \
-         σ_min·t = {:.1} ≥ {WARMUP_DECAY} (σ_min = min|Re λ| = {sigma_min:.4e} 1/s): the recorded period is the \
-         periodic steady state",
-        sigma_min * period * warmup as f64
+        "spectral route: periodic input of period NΔt = {period} s; the recorded period is the periodic steady \
+         state of the first-order-hold system, computed exactly in the frequency domain (one inverse FFT per \
+         output; slowest decay rate min|Re λ| = {sigma_min:.4e} 1/s)"
     ));
     let (generators, inputs) = match exc {
         Excitation::Track {
@@ -582,6 +556,7 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
     let nst = sub.n_states();
     let dw = 2.0 * std::f64::consts::PI / period;
     let mut disc = vec![0.0; kept.len()];
+    let mut gains = vec![vec![vec![Complex::new(0.0, 0.0); n / 2 + 1]; kept.len()]; generators.len()];
     let spectra = exc.spectra();
     let to_c = |m: &DMatrix<f64>| m.map(|v| Complex::new(v, 0.0));
     let (phi, g0, g1, c, d) = (
@@ -615,6 +590,7 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
                     }
                 }
                 let _ = gen;
+                gains[gi][r][j] = acc;
                 *dv += weight * s * dw * acc.norm_sqr();
             }
         }
@@ -632,11 +608,9 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
     Ok(Plan {
         method: Method::Spectral,
         engine: Engine::Spectral {
-            sampled,
             generators,
-            inputs,
-            warmup,
-            derivative,
+            gains,
+            inverse: realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(n),
         },
         n,
         stride: p_kept,
@@ -646,7 +620,7 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
         notes,
         generator: format!(
             "{}, stream (seed, i) per realization; spectral representation (Rayleigh amplitudes) on an FFT grid of \
-             N = {n}, first-order-hold response, {warmup} warm-up period(s)",
+             N = {n}, first-order-hold response (periodic steady state, frequency domain)",
             super::GENERATOR
         ),
         welch,
@@ -658,12 +632,10 @@ struct Scratch {
     buf: Vec<f64>,
     q: Vec<Vec<f64>>,
     spec: Vec<super::SpectralScratch>,
-    u: Vec<f64>,
-    y: Vec<f64>,
     welch: crate::estimate::WelchScratch,
-    dq: Vec<Vec<f64>>,
     fft_in: Vec<f64>,
     fft_out: Vec<Complex<f64>>,
+    fft_scratch: Vec<Complex<f64>>,
 }
 
 fn realize(
@@ -680,60 +652,44 @@ fn realize(
             gm.advance(&mut s.x, rng, &mut s.buf);
         }
         Engine::Spectral {
-            sampled,
             generators,
-            inputs,
-            warmup,
-            derivative,
+            gains,
+            inverse,
         } => {
-            for (g, (q, sc)) in generators.iter().zip(s.q.iter_mut().zip(s.spec.iter_mut())) {
-                g.generate(rng, sc, q)?;
+            let fft_err = |e: realfft::FftError| Error::Numerical {
+                what: "inverse real FFT".into(),
+                reason: e.to_string(),
+            };
+            for (g, sc) in generators.iter().zip(s.spec.iter_mut()) {
+                g.draw(rng, sc);
             }
-            let m = inputs.len();
-            for k in 0..=n {
-                for (l, &(src, gain, shift)) in inputs.iter().enumerate() {
-                    s.u[k * m + l] = gain * s.q[src][(k % n + n - shift) % n];
+            let half = n / 2;
+            for r in 0..p {
+                // output r's coefficients: Σ_g G_{g,r}(ω_j) c_{g,j}, then one inverse FFT
+                for (j, o) in s.fft_out.iter_mut().enumerate() {
+                    let mut acc = Complex::new(0.0, 0.0);
+                    for (gain, sc) in gains.iter().zip(&s.spec) {
+                        acc += gain[r][j] * sc.coefficients()[j];
+                    }
+                    *o = acc;
+                }
+                s.fft_out[0].im = 0.0;
+                s.fft_out[half].im = 0.0;
+                inverse
+                    .process_with_scratch(&mut s.fft_out, &mut s.fft_in, &mut s.fft_scratch)
+                    .map_err(fft_err)?;
+                for (k, v) in s.fft_in.iter().enumerate() {
+                    s.buf[k * p + r] = *v;
                 }
             }
-            s.x.iter_mut().for_each(|v| *v = 0.0);
-            for _ in 0..=*warmup {
-                sampled.respond(&s.u, &mut s.x, &mut s.y)?;
-            }
-            s.buf.copy_from_slice(&s.y[..n * p]);
-            if let Some(dv) = derivative {
-                let fft_err = |e: String| Error::Numerical {
-                    what: "spectral derivative".into(),
-                    reason: e,
-                };
-                let dw = 2.0 * std::f64::consts::PI / (n as f64 * sampled.dt());
-                for (q, dq) in s.q.iter().zip(s.dq.iter_mut()) {
-                    s.fft_in.copy_from_slice(q);
-                    dv.forward
-                        .process(&mut s.fft_in, &mut s.fft_out)
-                        .map_err(|e| fft_err(e.to_string()))?;
-                    for (j, c) in s.fft_out.iter_mut().enumerate() {
-                        *c = if j < n / 2 {
-                            *c * Complex::new(0.0, j as f64 * dw / n as f64)
-                        } else {
-                            Complex::new(0.0, 0.0)
-                        };
+            if keep_raw {
+                for (q, sc) in s.q.iter_mut().zip(&s.spec) {
+                    for (o, c) in s.fft_out.iter_mut().zip(sc.coefficients()) {
+                        *o = *c;
                     }
-                    dv.inverse
-                        .process(&mut s.fft_out, dq)
-                        .map_err(|e| fft_err(e.to_string()))?;
-                }
-                let m = inputs.len();
-                for k in 0..n {
-                    for r in 0..p {
-                        let mut acc = 0.0;
-                        for (l, &(src, gain, shift)) in inputs.iter().enumerate() {
-                            let e = dv.e[r * m + l];
-                            if e != 0.0 {
-                                acc += e * gain * s.dq[src][(k + n - shift) % n];
-                            }
-                        }
-                        s.buf[k * p + r] += acc;
-                    }
+                    inverse
+                        .process_with_scratch(&mut s.fft_out, q, &mut s.fft_scratch)
+                        .map_err(fft_err)?;
                 }
             }
         }
@@ -838,14 +794,11 @@ pub fn run_scenario(
     let resumed_shards = done0.len();
     progress(resumed_shards, n_shards);
     let mut done = resumed_shards;
-    let (nx, nq, nu, ny) = match &plan.engine {
-        Engine::Exact(gm) => (gm.n_states(), 0, 0, 0),
+    let (nx, nq, nfft) = match &plan.engine {
+        Engine::Exact(gm) => (gm.n_states(), 0, 0),
         Engine::Spectral {
-            sampled,
-            generators,
-            inputs,
-            ..
-        } => (sampled.dims().0, generators.len(), (n + 1) * inputs.len(), (n + 1) * p),
+            generators, inverse, ..
+        } => (0, generators.len(), inverse.get_scratch_len()),
     };
     for shard in writer.pending_shards() {
         let range = meta.shard_range(shard);
@@ -860,12 +813,10 @@ pub fn run_scenario(
                     Engine::Spectral { generators, .. } => generators.iter().map(|g| g.scratch()).collect(),
                     Engine::Exact(_) => vec![],
                 },
-                u: vec![0.0; nu],
-                y: vec![0.0; ny],
                 welch: plan.welch.scratch(),
-                dq: vec![vec![0.0; n]; nq],
                 fft_in: vec![0.0; n],
                 fft_out: vec![Complex::new(0.0, 0.0); n / 2 + 1],
+                fft_scratch: vec![Complex::new(0.0, 0.0); nfft],
             },
             |s, _i, rng| realize(&plan, s, rng, opts.store_raw),
         );

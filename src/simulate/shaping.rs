@@ -255,12 +255,14 @@ fn kernel<const N: usize>(
         }
         let mut nz = [0.0; N];
         for i in 0..N {
-            let mut s = 0.0;
-            for j in 0..N {
-                s += ph[i][j] * z[j];
+            // the noise part first: it does not depend on z, so only the Φz terms lie on the step-to-step
+            // dependency chain
+            let mut s = lf[i][0] * w[0];
+            for j in 1..N {
+                s += lf[i][j] * w[j];
             }
             for j in 0..N {
-                s += lf[i][j] * w[j];
+                s += ph[i][j] * z[j];
             }
             nz[i] = s;
         }
