@@ -214,7 +214,7 @@ def quad4():
     return 2 * val
 
 
-def run(reps):
+def run_analytic(reps):
     jobs = {}
 
     def put(key, n, r):
@@ -267,7 +267,7 @@ def fmt_t(t):
     return f"{t * 1e9:.3g} ns"
 
 
-def table(rust_path, py_path):
+def table_analytic(rust_path, py_path):
     rust = json.load(open(rust_path))
     py = json.load(open(py_path))
     rj, pj = rust["jobs"], py["jobs"]
@@ -306,8 +306,7 @@ def table(rust_path, py_path):
 
 
 # --- issue #7: HDF5 write (h5py) and the dynamic-stiffness chain (scipy banded / numpy dense) -------------
-# Same problems as benches/h5chain/mod.rs. Appended as wrappers of run() and table() so that the sections
-# above stay as they are.
+# Same problems as benches/h5chain/mod.rs.
 H5_ROWS, H5_COLS, H5_SHARD, H5_DEFLATE_ROWS = 1000, 1 << 16, 50, 100
 H5_CHUNK = (2, 1 << 16)  # stochvib::store::layout::chunk_shape(2^16, 50): 1 MiB chunks
 CHAIN_P = 40.0
@@ -433,17 +432,13 @@ def chain_jobs(reps):
     return out
 
 
-_run_before_issue7 = run
-
-
-def run(reps):  # noqa: F811 (extends the run() above with the issue-#7 jobs)
-    doc = _run_before_issue7(reps)
+def run_h5_chain(reps, doc):
+    """HDF5 write and chain jobs, added to `doc` (the document of run_analytic)."""
     h5 = h5_jobs(reps)
     doc["h5py"], doc["hdf5"] = h5.pop("h5py"), h5.pop("hdf5")
     for key, job in list(h5.items()) + list(chain_jobs(reps).items()):
         print(f"{key:32} {job['seconds']:12.6e} s   check {job['check']:.12e}", file=sys.stderr)
         doc["jobs"][key] = job
-    return doc
 
 
 MB = H5_ROWS * H5_COLS * 8 / 1e6
@@ -459,11 +454,8 @@ ROWS += [
     ("chain n=400: O(n) sweep vs numpy dense solve", "chain_sweep_400", "chain_dense_400", None),
 ]
 
-_table_before_issue7 = table
-
-
-def table(rust_path, py_path):  # noqa: F811 (extends the table() above with the issue-#7 summary lines)
-    _table_before_issue7(rust_path, py_path)
+def table_h5_chain(rust_path, py_path):
+    """Summary lines of the HDF5 and chain jobs (their rows are in ROWS)."""
     rj, pj = json.load(open(rust_path))["jobs"], json.load(open(py_path))
     py_hdf5 = f"h5py {pj.get('h5py', '?')} (HDF5 {pj.get('hdf5', '?')})"
     pj = pj["jobs"]
@@ -598,11 +590,10 @@ def run_mc(reps, jobs):
     jobs["mc_pipeline_fft"].update(mc_pipeline_fft.stats)
 
 
-_run_before_mc = run
-
-
-def run(reps):  # noqa: F811  (adds the Monte Carlo jobs to the analytic ones)
-    doc = _run_before_mc(reps)
+def run(reps):
+    """All jobs: analytic, HDF5 write and chain, Monte Carlo."""
+    doc = run_analytic(reps)
+    run_h5_chain(reps, doc)
     run_mc(reps, doc["jobs"])
     doc["mc"] = {"realizations": MC_REAL, "samples": MC_N, "chunk": MC_CHUNK, "warmup_periods": mc_setup()[3]}
     return doc
@@ -622,7 +613,7 @@ MC_ROWS = [
 
 
 def mc_table(rust, py):
-    """The Monte Carlo rows (appended to `table`): ratios to numpy, Rust pipeline vs Rust floor, 1 vs 2
+    """The Monte Carlo rows (printed last by `table`): ratios to numpy, Rust pipeline vs Rust floor, 1 vs 2
     threads, with targets."""
     rj, pj = rust["jobs"], py["jobs"]
     out = [
@@ -671,11 +662,10 @@ def mc_table(rust, py):
     print("\n".join(out))
 
 
-_table_before_mc = table
-
-
-def table(rust_path, py_path):  # noqa: F811  (prints the Monte Carlo rows after the analytic table)
-    _table_before_mc(rust_path, py_path)
+def table(rust_path, py_path):
+    """The ratio table (ROWS), the HDF5/chain summary lines, then the Monte Carlo rows."""
+    table_analytic(rust_path, py_path)
+    table_h5_chain(rust_path, py_path)
     mc_table(json.load(open(rust_path)), json.load(open(py_path)))
 
 

@@ -241,7 +241,7 @@ pub struct RunSummary {
     pub outputs: Vec<OutputRun>,
     /// Outputs not simulated, with reasons.
     pub skipped: Vec<SkippedOutput>,
-    /// Remarks (warm-up, bias).
+    /// Remarks (route, bias).
     pub notes: Vec<String>,
 }
 
