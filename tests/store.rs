@@ -219,6 +219,68 @@ fn compressed_and_statistics_only_runs_round_trip() {
     std::fs::remove_file(&path).unwrap();
 }
 
+/// Compressed shards are filtered by the writer (in parallel) and stored with `H5Dwrite_chunk`; HDF5's own
+/// filters must undo them. Rows of 2²⁰ + 3 samples are wider than the largest chunk (2²⁰ columns, one row:
+/// 8 MiB), so each row has a full chunk and a partial one holding 3 samples plus zero padding. (The row
+/// edge, a last shard shorter than a chunk row, is covered by `compressed_and_statistics_only_runs_round_trip`:
+/// 10 realizations, 3-row chunks.) Expected values: the closed form that was written, read back exactly.
+#[test]
+fn compressed_rows_wider_than_a_chunk_round_trip() {
+    let n = (1usize << 20) + 3;
+    let path = scratch("deflate-wide.h5");
+    let meta = RunMetadata {
+        n_samples: n,
+        n_realizations: 3,
+        shard_size: 2,
+        inputs: vec![],
+        outputs: vec![Signal::new("y", "m")],
+        accumulators: vec![],
+        compression: Compression::DEFLATE_FAST,
+        ..metadata(true, Compression::DEFLATE_FAST)
+    };
+    assert_eq!(stochvib::store::layout::chunk_shape(n, 2), (1, 1 << 20));
+    let f = |i: usize, k: usize| ((i * n + k) % 1000) as f64 * 0.125 - 60.0;
+    let mut w = RunWriter::create(&path, &meta).unwrap();
+    for shard in [1, 0] {
+        let r = meta.shard_range(shard);
+        let a = Array2::from_shape_fn((r.len(), n), |(i, k)| f(r.start + i, k));
+        w.write_shard(shard, &[], &[a.view()], &[]).unwrap();
+    }
+    let path = w.finish().unwrap();
+    let run = RunFile::open(&path).unwrap();
+    let all = run.read_signals(SignalGroup::Outputs, "y", 0..3).unwrap();
+    assert_eq!(all, Array2::from_shape_fn((3, n), |(i, k)| f(i, k)));
+    // The noise-free sawtooth compresses: the chunks really are deflated (file far below 3 × 8 MiB).
+    let size = std::fs::metadata(&path).unwrap().len();
+    assert!(size < 3 * 8 * n as u64 / 4, "file size {size}");
+    std::fs::remove_file(&path).unwrap();
+}
+
+/// A child process started while a run file is open must not inherit HDF5's descriptor (and its `flock`):
+/// otherwise opening the finished file fails with "unable to lock file" until the child exits. This
+/// happened between the tests of this file (the crash test and the h5py checks start children) before the
+/// store marked its descriptors close-on-exec.
+#[cfg(unix)]
+#[test]
+fn child_processes_do_not_inherit_the_run_file() {
+    let path = scratch("cloexec.h5");
+    let meta = metadata(true, Compression::None);
+    let mut w = RunWriter::create(&path, &meta).unwrap();
+    let mut child = Command::new("sleep").arg("30").spawn().expect("sleep(1) is available");
+    for s in 0..4 {
+        write_shard(&mut w, s);
+    }
+    w.write_statistics(&statistics()).unwrap();
+    w.write_psd(&psd()).unwrap();
+    let done = w.finish().unwrap();
+    let opened = RunFile::open(&done);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert_run_content(&done, &meta);
+    opened.unwrap();
+    std::fs::remove_file(&done).unwrap();
+}
+
 /// Runs a Python script with h5py against the file; fails (does not skip) if h5py is missing.
 fn h5py_check(path: &Path, meta: &RunMetadata) {
     let probe = Command::new("python3").args(["-c", "import h5py"]).output();

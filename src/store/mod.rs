@@ -62,6 +62,7 @@
 //! while an uncompressed write runs at GB/s. [`Compression::Deflate`] (with a named level, 1–9, and the
 //! byte-shuffle filter) is available for smooth signals.
 
+mod chunks;
 pub mod layout;
 mod reader;
 mod writer;
@@ -380,4 +381,64 @@ pub(crate) fn h5err(path: &Path, context: &str) -> impl Fn(hdf5::Error) -> Error
         path: path.clone(),
         reason: format!("{context}: {e}"),
     }
+}
+
+/// How [`open_sec2`] opens a file.
+#[derive(Clone, Copy)]
+pub(crate) enum OpenMode {
+    /// Create; fail if the file exists.
+    CreateExcl,
+    /// Read and write an existing file.
+    ReadWrite,
+    /// Read only.
+    Read,
+}
+
+/// Opens an HDF5 file with the POSIX (sec2) driver, whatever `HDF5_DRIVER` says, `customize`d (file-access
+/// options), and marks its descriptor close-on-exec.
+///
+/// HDF5 opens files without `O_CLOEXEC`, so a child process started while a run file is open (a user's
+/// `Command`, a test harness starting helpers) would inherit the descriptor and with it HDF5's `flock` on
+/// the file: after the writer closes and renames the file, opening it again would fail with "unable to
+/// lock file" until that child exits. The open and the `fcntl` happen under one hold of the HDF5 library
+/// lock, so no other HDF5 call can delay the `fcntl`; a child forked in the microseconds between the two
+/// system calls can still inherit the descriptor (HDF5 offers no way to pass `O_CLOEXEC`).
+pub(crate) fn open_sec2(
+    path: &Path,
+    mode: OpenMode,
+    customize: impl FnOnce(&mut hdf5::FileBuilder),
+) -> hdf5::Result<hdf5::File> {
+    hdf5::sync::sync(|| {
+        let mut b = hdf5::File::with_options();
+        b.with_fapl(|p| p.sec2());
+        customize(&mut b);
+        let file = match mode {
+            OpenMode::CreateExcl => b.create_excl(path),
+            OpenMode::ReadWrite => b.open_rw(path),
+            OpenMode::Read => b.open(path),
+        }?;
+        close_on_exec(&file);
+        Ok(file)
+    })
+}
+
+/// Marks the descriptor of a file opened with the sec2 driver close-on-exec (best effort: nothing happens
+/// where the handle cannot be obtained).
+fn close_on_exec(file: &hdf5::File) {
+    #[cfg(unix)]
+    hdf5::sync::sync(|| {
+        let mut handle: *mut std::ffi::c_void = std::ptr::null_mut();
+        // SAFETY: `file` is open with the sec2 driver (open_sec2), whose VFD handle is a pointer to its
+        // `int` descriptor, valid while the file is open; fcntl on a valid descriptor has no other effect.
+        unsafe {
+            let rc = hdf5_sys::h5f::H5Fget_vfd_handle(file.id(), hdf5_sys::h5p::H5P_DEFAULT, &mut handle);
+            if rc >= 0 && !handle.is_null() {
+                let fd = *(handle as *const libc::c_int);
+                let flags = libc::fcntl(fd, libc::F_GETFD);
+                if flags >= 0 {
+                    libc::fcntl(fd, libc::F_SETFD, flags | libc::FD_CLOEXEC);
+                }
+            }
+        }
+    });
 }

@@ -75,7 +75,8 @@ impl RunFile {
                 reason: "no such file".into(),
             });
         }
-        let file = File::open(&path).map_err(h5err(&path, "not readable as an HDF5 file"))?;
+        let file = super::open_sec2(&path, super::OpenMode::Read, |_| {})
+            .map_err(h5err(&path, "not readable as an HDF5 file"))?;
         let meta = read_metadata(&file, &path)?;
         let format_version = attr_scalar::<u32>(&file, L::ATTR_FORMAT_VERSION, &path)?;
         let toolkit_version = attr_string(&file, L::ATTR_TOOLKIT_VERSION, &path)?;

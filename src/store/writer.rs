@@ -1,8 +1,9 @@
 //! Writing a run: temporary name, shard by shard, rename on completion, resume after interruption.
 
+use super::chunks;
 use super::layout as L;
 use super::reader::{read_metadata, read_shards_complete};
-use super::{h5err, tmp_path, Compression, OutputStatistics, PsdEstimate, RunMetadata};
+use super::{h5err, open_sec2, tmp_path, Compression, OpenMode, OutputStatistics, PsdEstimate, RunMetadata};
 use crate::error::{Error, Result};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, File, Location};
@@ -100,9 +101,8 @@ impl RunWriter {
 
     fn create_fresh(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
         let e = |what: &str| h5err(&tmp, what);
-        let file = file_options(meta.compression)
-            .create_excl(&tmp)
-            .map_err(e("cannot create the temporary file"))?;
+        let file =
+            open_file(&tmp, OpenMode::CreateExcl, meta.compression).map_err(e("cannot create the temporary file"))?;
         write_root_attrs(&file, meta).map_err(e("writing root attributes"))?;
 
         let n_shards = meta.n_shards();
@@ -191,9 +191,7 @@ impl RunWriter {
                 ),
             }
         };
-        let file = file_options(meta.compression)
-            .open_rw(&tmp)
-            .map_err(unreadable("opening"))?;
+        let file = open_file(&tmp, OpenMode::ReadWrite, meta.compression).map_err(unreadable("opening"))?;
         let stored = read_metadata(&file, &tmp).map_err(|err| Error::Hdf5 {
             path: tmp.clone(),
             reason: format!("cannot resume from this interrupted run ({err}); delete it to start the run afresh"),
@@ -344,9 +342,19 @@ impl RunWriter {
             .chain(&self.outputs)
             .zip(inputs.iter().chain(outputs))
         {
-            let a = a.as_standard_layout();
-            ds.write_slice(&a, s![range.clone(), ..])
-                .map_err(e("writing a shard"))?;
+            match self.meta.compression {
+                Compression::None => {
+                    let a = a.as_standard_layout();
+                    ds.write_slice(&a, s![range.clone(), ..])
+                        .map_err(e("writing a shard"))?;
+                }
+                // Filtered here on all threads, stored as is (HDF5 would filter serially).
+                Compression::Deflate { level } => {
+                    let chunk = L::chunk_shape(self.meta.n_samples, self.meta.shard_size);
+                    let filtered = chunks::filter_block(a.view(), range.start, chunk, level);
+                    chunks::write_filtered(ds, &filtered).map_err(e("writing a compressed shard"))?;
+                }
+            }
         }
         for (ds, a) in self.accumulators.iter().zip(accumulators) {
             ds.write_slice(*a, s![shard, ..]).map_err(e("writing an accumulator"))?;
@@ -571,21 +579,22 @@ impl RunWriter {
     }
 }
 
-/// File-access options of the writer.
+/// Opens the writer's file ([`open_sec2`]) with its file-access options.
 ///
 /// Uncompressed raw datasets get no chunk cache (0 bytes): every shard write covers whole chunks (see
 /// [`L::chunk_shape`]), and a chunk that does not fit the cache is written by HDF5 straight from the
 /// caller's buffer to the file. With HDF5's default 1 MiB cache, a 1 MiB chunk is "cacheable" and every
 /// byte is first copied into the cache and then written out: one extra memcpy of the whole run (and
-/// glibc's memcpy of such buffers is slow on some machines, DESIGN.md §8). With deflate the chunk must be
-/// assembled and filtered anyway, and HDF5's default cache is kept.
-fn file_options(compression: Compression) -> hdf5::FileBuilder {
-    let mut b = File::with_options();
-    if compression == Compression::None {
-        // nslots and w0 are HDF5's defaults (521, 0.75); only the size changes.
-        b.with_fapl(|p| p.chunk_cache(521, 0, 0.75));
-    }
-    b
+/// glibc's memcpy of such buffers is slow on some machines, DESIGN.md §8). Compressed shards are filtered
+/// by the writer and stored with `H5Dwrite_chunk` (see `chunks.rs`), which bypasses the cache; HDF5's
+/// default cache is kept for them.
+fn open_file(path: &Path, mode: OpenMode, compression: Compression) -> hdf5::Result<File> {
+    open_sec2(path, mode, |b| {
+        if compression == Compression::None {
+            // nslots and w0 are HDF5's defaults (521, 0.75); only the size changes.
+            b.with_fapl(|p| p.chunk_cache(521, 0, 0.75));
+        }
+    })
 }
 
 /// Fields of two metadata records that differ (empty if identical).
@@ -682,7 +691,7 @@ mod tests {
             .nbytes
     }
 
-    /// Uncompressed raw datasets are written without a chunk cache (see `file_options`), on a fresh file
+    /// Uncompressed raw datasets are written without a chunk cache (see `open_file`), on a fresh file
     /// and after a resume; with deflate HDF5's default cache (non-zero in every HDF5 version) is kept. The
     /// data read back are the values written (x[i, k] = 64 i + k).
     #[test]
