@@ -92,7 +92,8 @@ fn three_mass_frequencies_closed_form_vs_modal_analysis() {
     let disc = s * s - 4.0 * h.c1 * h.c2 * h.total_inertia() / (h.i1 * h.i2 * h.i3);
     assert!(rel(((s - disc.sqrt()) / 2.0).sqrt(), w1) < 1e-10);
     assert!(rel(((s + disc.sqrt()) / 2.0).sqrt(), w2) < EXACT);
-    // recomputed values in /work/notes/models.md §8 (numpy eigh of the same chain): 19.416255, 90.680809
+    // recomputed outside the crate: scipy.linalg.eigh(K, diag(10, 2, 50)) of the free-free chain with
+    // c₁ = 1e4, c₂ = 5e3 N m/rad gives 0, 19.416255, 90.680809 rad/s
     assert!(rel(w1, 19.416255) < 1e-7);
     assert!(rel(w2, 90.680809) < 1e-7);
 }
@@ -519,7 +520,8 @@ fn hoist_node_root_finding_vs_closed_form() {
     let by_root = h.node_by_root_finding(64).unwrap();
     let closed = h.node_closed_form().unwrap();
     assert!((by_root - closed).abs() < 1e-6, "{by_root} vs {closed}");
-    // notes §10: l₂* = 435.728 m (numpy)
+    // recomputed outside the crate: l₂* = 435.7282 m by a
+    // scipy brentq of C_otv/(m + γl₂/4) = C_str/(γl₁/4 + J₁′(l₂)/R_b²) with the printed data (E = 2.06e11 Pa, ā = 0.315, d = 0.0465 m, γ = 8.4 kg/m, R_b = 2 m, l₁ = 30 m, H = 625 m, L = 700 m, J₁ = 625000 kg m², m = 10 t)
     assert!((closed - 435.728).abs() < 1e-3, "{closed}");
     // at the node both partial frequencies coincide with ω₁ (a₁₁ = a₃₃ = 0):
     // ω₁² = C_otv/(m + γl₂/4) = C_str/(γl₁/4 + J₁′/R_b²)
@@ -530,7 +532,7 @@ fn hoist_node_root_finding_vs_closed_form() {
     let w_drum = (h.chord_stiffness() / (g * p.chord_length / 4.0 + j1p / 4.0)).sqrt();
     assert!(rel(md.omega[1], w_load) < 1e-8, "{} vs {w_load}", md.omega[1]);
     assert!(rel(md.omega[1], w_drum) < 1e-8);
-    // notes §10: ω₁(node) = 5.43152 rad/s
+    // the same recomputation: ω₁(node) = 5.431522 rad/s
     assert!(rel(md.omega[1], 5.43152) < 1e-5);
     // the true eigenvector is not zero: ∝ (a₂₃, 0, −a₂₁) = (−C_otv − ω²γl₂/4, 0, C_str + ω²γl₁/4)
     let w2 = md.omega[1].powi(2);

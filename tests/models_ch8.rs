@@ -1,8 +1,8 @@
 //! Textbook chapter 8 models (Sukharev 2012, 8.5–8.7): balancer bogie, conveyor idler, scraper.
 //!
-//! Every expected value is an independent derivation (closed form vs numerical route vs Lyapunov, see
-//! `/work/notes/models.md` §2–4) or a value recomputed in the notes from the printed formulas; none is
-//! copied from running the code under test.
+//! Every expected value is an independent derivation (closed form vs numerical route vs Lyapunov, written
+//! out in each test's comments and in the model's `# Formula` docs) or a value recomputed outside the crate
+//! from the printed formulas (the comment says how); none is copied from running the code under test.
 
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::PI;

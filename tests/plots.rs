@@ -292,7 +292,7 @@ fn monte_carlo_pictures() {
 #[test]
 fn octave_bars_are_coloured_by_pass_or_fail() {
     let dir = out_dir("octave");
-    // Table 7.1 acceleration limits (m/s², /work/notes/models.md §7) and made-up RMS values: 1, 4 and 63 Hz
+    // Table 7.1 acceleration limits (m/s², as in data/table-7-1.toml) and made-up RMS values: 1, 4 and 63 Hz
     // exceed their limits (1.2 > 1.10, 0.60 > 0.57, 5.0 > 4.50), the other four do not.
     let centres = [1.0, 2.0, 4.0, 8.0, 16.0, 31.5, 63.0];
     let limits = [1.10, 0.79, 0.57, 0.63, 1.13, 2.25, 4.50].map(Some);
@@ -481,7 +481,7 @@ mod book {
         assert_eq!(pts.last().unwrap().0, 0.30);
         let y = pts.iter().find(|p| p.0 == 0.11).unwrap().1;
         // (8.47)-(8.49) written out with ℓ₁ = ℓ/2 (D_y/D_x = (D_Z + R_Z)/(2 D_x)), direct (not the stable
-        // expm1) form, α = 0.035 1/cm = 3.5 1/m, r = 0.11 m, ℓ = 0.6 m; /work/notes/models.md and the
+        // expm1) form, α = 0.035 1/cm = 3.5 1/m, r = 0.11 m, ℓ = 0.6 m; evaluated below, and the
         // balancer_bogie docs give 0.29577 (book prints 0.28, a misprint explained in the book report).
         let (a, r, l) = (3.5f64, 0.11f64, 0.6f64);
         let dz = 1.0 / (1.0 + 4.0 * a * r);
@@ -511,7 +511,8 @@ mod book {
             .unwrap()
             .points[0];
         // independent: at the node the sheave is at rest and ω₁² = C_otv/(m + γ l₂/4) (004, l.171–185);
-        // /work/notes/models.md §10 gives l₂* = 435.728 m, ξ* = ȳ/H = 0.4228, ω₁ = 5.43152 rad/s
+        // recomputed outside the crate: l₂* = 435.7282 m, ξ* = (L − l₂*)/H = 0.42283, ω₁ = 5.431522 rad/s by a
+        // scipy brentq of C_otv/(m + γl₂/4) = C_str/(γl₁/4 + J₁′(l₂)/R_b²) with the printed data (E = 2.06e11 Pa, ā = 0.315, d = 0.0465 m, γ = 8.4 kg/m, R_b = 2 m, l₁ = 30 m, H = 625 m, L = 700 m, J₁ = 625000 kg m², m = 10 t)
         let h = MineHoist::printed();
         let p = h.params();
         let l2 = p.max_hanging_length - node.0 * p.lift_height;

@@ -287,7 +287,7 @@ fn h5py_check(path: &Path, meta: &RunMetadata) {
     match probe {
         Ok(o) if o.status.success() => {}
         _ => panic!(
-            "python3 with h5py is required by this test: run the project's test command (`make test`, which runs \
+            "python3 with h5py is required by this test: run the project's test command (`bash scripts/test.sh`, which runs \
              scripts/ensure-deps.sh --with-h5py), or `python3 -m pip install h5py`"
         ),
     }

@@ -846,7 +846,7 @@ where
                 let c = RGBColor(90, 90, 90);
                 let anno = dc
                     .draw_secondary_series(DashedLineSeries::new(
-                        vec![(p.x.0, m.at), (p.x.1, m.at)].into_iter(),
+                        vec![(p.x.0, m.at), (p.x.1, m.at)],
                         3,
                         3,
                         c.stroke_width(1),
@@ -939,7 +939,7 @@ where
         let c = if k == 0 { BLACK } else { RGBColor(90, 90, 90) };
         let anno = chart
             .draw_series(DashedLineSeries::new(
-                vec![(m.at, p.y.0), (m.at, p.y.1)].into_iter(),
+                vec![(m.at, p.y.0), (m.at, p.y.1)],
                 6,
                 4,
                 c.stroke_width(1),
@@ -953,7 +953,7 @@ where
     for m in &p.hlines {
         let anno = chart
             .draw_series(DashedLineSeries::new(
-                vec![(p.x.0, m.at), (p.x.1, m.at)].into_iter(),
+                vec![(p.x.0, m.at), (p.x.1, m.at)],
                 6,
                 4,
                 BLACK.stroke_width(1),

@@ -447,10 +447,7 @@ fn plan(sc: &Scenario, opts: &RunOptions) -> Result<Plan> {
     let welch = Welch::new(m_welch, opts.dt_s)?;
     let input_signals = input_signals(sc);
     // exact route: append the input processes (shaping-filter outputs) as extra rows of the simulated system
-    let exact = match exact {
-        Some(gm) => Some(with_input_rows(sys, exc, &idx, opts.dt_s).unwrap_or(gm)),
-        None => None,
-    };
+    let exact = exact.map(|gm| with_input_rows(sys, exc, &idx, opts.dt_s).unwrap_or(gm));
     if let Some(gm) = exact {
         let cov = gm.output_covariance();
         let outputs = finite

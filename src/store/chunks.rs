@@ -77,7 +77,7 @@ pub(crate) fn filter_block(
 ) -> Vec<FilteredChunk> {
     let (rows, cols) = data.dim();
     let (cr, cc) = chunk;
-    debug_assert!(cr > 0 && cc > 0 && row0 % cr == 0);
+    debug_assert!(cr > 0 && cc > 0 && row0.is_multiple_of(cr));
     let chunk_rows = rows.div_ceil(cr);
     let chunk_cols = cols.div_ceil(cc);
     (0..chunk_rows * chunk_cols)

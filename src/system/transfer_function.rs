@@ -71,9 +71,7 @@ impl TransferFunction {
         let e = r[n + 1];
         for k in 0..=n {
             // subtract e·s·D(s)
-            if k + 1 <= n + 1 {
-                r[k + 1] -= e * dn[k];
-            }
+            r[k + 1] -= e * dn[k];
         }
         let d = r[n];
         for k in 0..=n {
