@@ -252,9 +252,17 @@ fn main() -> Result<()> {
                 let _ = std::fs::remove_file(&tmp);
                 let _ = std::fs::remove_file(stochvib::store::tmp_path(&tmp));
                 let summary = run_scenario(&sc, &opts, &tmp, &progress_printer());
+                // the run's own pictures (Welch band vs analytic density) before the file goes
+                let mc_plots = match (&summary, &plots) {
+                    (Ok(_), Some(out)) => Some(run_plots(&tmp, out)),
+                    _ => None,
+                };
                 let _ = std::fs::remove_file(&tmp);
                 let _ = std::fs::remove_file(stochvib::store::tmp_path(&tmp));
                 report::analysis::attach_monte_carlo(&mut r, &summary?);
+                if let (Some(files), Some(out)) = (mc_plots, &plots) {
+                    eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
+                }
             }
             if json {
                 emit_line(&serde_json::to_string_pretty(&r)?);

@@ -810,3 +810,58 @@ fn simulate_plots_option_writes_the_run_pictures() {
         }
     }
 }
+
+/// `analyze --monte-carlo N --plots DIR` draws the scenario pictures and the Monte Carlo run's Welch
+/// pictures (the run is not stored, so no raw-data pictures); `book --plots DIR` draws the catalogue
+/// pictures. Through the command line, so the options are wired.
+#[test]
+fn analyze_and_book_plots_options_write_their_pictures() {
+    let dir = out_dir("cliplots");
+    let a = dir.join("analyze");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        .args([
+            "analyze",
+            "data/conveyor-idler.toml",
+            "--monte-carlo",
+            "8",
+            "--dt",
+            "0.01",
+        ])
+        .args(["--duration", "5", "--plots", a.to_str().unwrap()])
+        .current_dir(root())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for name in [
+        "input-density",
+        "transfer-y",
+        "output-density-y",
+        "output-density-y_vel",
+        "y-welch",
+        "y_vel-welch",
+    ] {
+        check_pair(
+            &[a.join(format!("{name}.svg")), a.join(format!("{name}.png"))],
+            &["Conveyor idler under lump load, Example 8.1"],
+        );
+    }
+    let b = dir.join("book");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        .args(["book", "--plots", b.to_str().unwrap()])
+        .current_dir(root())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for name in [
+        "seat-example-7-2-acceleration",
+        "seat-random-velocity",
+        "mine-hoist-frequencies",
+        "mine-hoist-modes",
+        "balancer-bogie",
+        "scraper-displacements",
+        "scraper-accelerations",
+    ] {
+        check_pair(&[b.join(format!("{name}.svg")), b.join(format!("{name}.png"))], &[]);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
