@@ -99,6 +99,13 @@ impl Tabulated {
         self.omega.iter().cloned().zip(self.density.iter().cloned())
     }
 
+    /// S on segment k: S_k (ω/ω_k)^{p_k}, evaluated as S_k exp(p_k ln(ω/ω_k)) (exact at the nodes, where
+    /// the logarithm is 0; about 10 % faster than `powf` here).
+    #[inline]
+    fn segment(&self, k: usize, w: f64) -> f64 {
+        self.density[k] * (self.slopes[k] * (w / self.omega[k]).ln()).exp()
+    }
+
     fn slope(&self, k: usize) -> f64 {
         (self.density[k + 1] / self.density[k]).ln() / (self.omega[k + 1] / self.omega[k]).ln()
     }
@@ -125,7 +132,29 @@ impl Spectrum for Tabulated {
             return 0.0;
         }
         let k = self.omega.partition_point(|&x| x <= w).saturating_sub(1).min(n - 2);
-        self.density[k] * (w / self.omega[k]).powf(self.slopes[k])
+        self.segment(k, w)
+    }
+    /// The same values as `density` point by point; on an ascending grid the segment is found by walking
+    /// from the previous point's segment instead of a binary search per point.
+    fn density_into(&self, omega: &[f64], out: &mut [f64]) {
+        let n = self.omega.len();
+        let mut k = 0;
+        for (o, &om) in out.iter_mut().zip(omega) {
+            let w = om.abs();
+            *o = if w < self.omega[0] || w > self.omega[n - 1] {
+                0.0
+            } else {
+                // the segment of `density`: the last k ≤ n − 2 with ω_k ≤ w
+                if w < self.omega[k] {
+                    k = self.omega.partition_point(|&x| x <= w).saturating_sub(1).min(n - 2);
+                } else {
+                    while k + 1 < n - 1 && self.omega[k + 1] <= w {
+                        k += 1;
+                    }
+                }
+                self.segment(k, w)
+            };
+        }
     }
     fn high_frequency(&self) -> Asymptote {
         Asymptote::Vanishing
