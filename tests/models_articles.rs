@@ -108,7 +108,7 @@ fn three_mass_static_parts_from_rigid_body_acceleration() {
     assert!(rel(d23, h.i3 * eps) < EXACT);
     // mass 2 balance: I₂ε = M₁₂ − M₂₃ − M_B
     assert!((h.i2 * eps - (d12 - d23 - h.m_load)).abs() < EXACT * h.m_start);
-    // notes §8: 935.48387, 322.58065 N m (= 1000 − 10·400/62, 50·400/62)
+    // hand arithmetic with ε = 400/62 rad/s²: 935.48387, 322.58065 N m (= 1000 − 10·400/62, 50·400/62)
     assert!(rel(d12, 935.48387) < 1e-7 && rel(d23, 322.58065) < 1e-7);
 }
 
@@ -120,7 +120,8 @@ fn three_mass_amplitudes_match_printed_20_21_and_modal_ratios() {
     let (w1s, w2s) = (w1 * w1, w2 * w2);
     let dw = w2s - w1s;
     let (ms, mb, i2, c1) = (h.m_start, h.m_load, h.i2, h.c1);
-    // (20)/(21) as printed in l.251–255 (verified forms, notes §8)
+    // (20)/(21) as printed in l.251–255 (they equal A_i = (r_i + ω₂²u_i)/Δω², B_i = −(r_i + ω₁²u_i)/Δω² of
+    // the module docs with u = x₀ − D, r = a x₀ + b, x₀ = (M_sp/c₁, 0))
     let a1 = ((mb - ms) / i2 + (ms / c1 - a.d12) * w2s) / dw;
     let b1 = ((ms - mb) / i2 - (ms / c1 - a.d12) * w1s) / dw;
     let a2 = ((ms - mb) / i2 - a.d23 * w2s) / dw;
@@ -137,7 +138,9 @@ fn three_mass_amplitudes_match_printed_20_21_and_modal_ratios() {
     // initial state: c₁(A₁+B₁+D₁₂) = M_sp, A₂+B₂+D₂₃ = 0
     assert!((c1 * (a.a1 + a.b1 + a.d12) - ms).abs() < EXACT * ms);
     assert!((a.a2 + a.b2 + a.d23).abs() < EXACT * scale);
-    // notes §8 (numpy recomputation): c₁A₁ = −187.29033, c₁B₁ = 251.80645, c₂A₂ = −210.62704, c₂B₂ = −111.95361
+    // recomputed outside the crate by a modal route: numpy.linalg.eig of the 2×2 matrix a of (4), u = x₀ − D
+    // expanded on its eigenvectors (numpy.linalg.solve), D = −a⁻¹b: c₁A₁ = −187.29033, c₁B₁ = 251.80645,
+    // c₂A₂ = −210.62704, c₂B₂ = −111.95361
     assert!(rel(c1 * a.a1, -187.29033) < 1e-7);
     assert!(rel(c1 * a.b1, 251.80645) < 1e-7);
     assert!(rel(h.c2 * a.a2, -210.62704) < 1e-7);
@@ -203,10 +206,11 @@ fn three_mass_peaks_and_bounds() {
     let s23 = ex.iter().map(|m| m.m23).fold(f64::MIN, f64::max);
     assert!(p12 >= s12 - FACTORISATION * h.m_start && p12 - s12 < 1e-3 * h.m_start);
     assert!(p23 >= s23 - FACTORISATION * h.m_start && p23 - s23 < 1e-3 * h.m_start);
-    // notes §8: peak M₁₂ on 0–2 s = 1374.574 N m, peak M₂₃ = 640.93 N m, found there on a 1 ms grid, so they
-    // are lower bounds of the true maxima, short of them by at most |M̈|max·(dt/2)²/2 with
-    // |M̈| ≤ c(|A|ω₁² + |B|ω₂²) ≈ 2.1e6 (link 1) and 1.0e6 N m/s² (link 2): 0.27 and 0.13 N m.
-    // Bounds D* + |cA| + |cB| (notes): 1374.581 and 645.16 N m.
+    // recomputed outside the crate (numpy, the closed form with the modal-route amplitudes above): maxima on
+    // a 1 ms grid over 0–2 s are 1374.574 N m (M₁₂) and 640.93 N m (M₂₃) — lower bounds of the true maxima,
+    // short of them by at most |M̈|max·(dt/2)²/2 with |M̈| ≤ c(|A|ω₁² + |B|ω₂²) ≈ 2.1e6 (link 1) and
+    // 1.0e6 N m/s² (link 2): 0.27 and 0.13 N m (scipy minimize_scalar refines them to 1374.5756, 641.0246).
+    // Bounds D* + |cA| + |cB| (same numbers): 1374.581 and 645.16 N m.
     assert!(p12 >= 1374.574 - 1e-3 && p12 - 1374.574 < 0.27, "{p12}");
     assert!(p23 >= 640.93 - 1e-2 && p23 - 640.93 < 0.13, "{p23}");
     assert!((b12 - 1374.581).abs() < 2e-3, "{b12}");
@@ -441,8 +445,7 @@ fn chain_data_file_and_book_rows() {
 #[test]
 fn hoist_total_mass_and_rigid_mode() {
     let h = MineHoist::printed();
-    // m_Σ = J₁/R_b² + J₂/R_s² + m + γ(l₁ + L) = 156250 + 7500 + 10000 + 8.4·730 = 179882 kg (hand arithmetic;
-    // also notes §10)
+    // m_Σ = J₁/R_b² + J₂/R_s² + m + γ(l₁ + L) = 156250 + 7500 + 10000 + 8.4·730 = 179882 kg (hand arithmetic)
     assert!(rel(h.total_mass(), 179_882.0) < EXACT);
     for l2 in [75.0, 200.0, 435.0, 700.0] {
         let m = h.mass_matrix(l2).unwrap();
@@ -481,7 +484,8 @@ fn hoist_frequencies_eigensolver_vs_characteristic_polynomial_and_cofactor_modes
             );
         }
     }
-    // notes §10 (numpy eigh recomputation, γ = 8.4): l₂ = 75 m: 11.5165, 30.6090; l₂ = 700 m: 4.2550, 24.2354
+    // recomputed outside the crate: √ of scipy.linalg.eigh(C, M) with M(l₂), C(l₂) of the module docs and the
+    // printed data (γ = 8.4): l₂ = 75 m: 11.51647, 30.60900; l₂ = 700 m: 4.25501, 24.23537 rad/s
     let (a, b) = h.frequencies_closed_form(75.0).unwrap();
     assert!(rel(a, 11.5165) < 1e-5 && rel(b, 30.6090) < 1e-5, "{a} {b}");
     let (a, b) = h.frequencies_closed_form(700.0).unwrap();
@@ -545,12 +549,13 @@ fn hoist_node_root_finding_vs_closed_form() {
     let s = v[2] / expect[2];
     assert!((v[0] - s * expect[0]).abs() < 1e-7 * v.amax());
     assert!(v[1].abs() < 1e-7 * v.amax());
-    // notes §10: true eigenvector (√m_Σ-scaled) ±(−0.2913, 0, 3.9049)
+    // the same recomputation: scipy.linalg.eigh(C, M) at l₂*, mode 1 (ΦᵀMΦ = 1) times √m_Σ gives the
+    // true eigenvector ±(−0.29127, 0, 3.90486)
     assert!(
         (v[0].abs() - 0.2913).abs() < 1e-4 && (v[2].abs() - 3.9049).abs() < 1e-4,
         "{v}"
     );
-    // the printed formula (l.183) with J₁′ at the node misses it (notes: 441.23 m)
+    // the printed formula (l.183) with J₁′(l₂*) = J₁ + γR_b²(L − l₂*) misses it: 441.235 m (same recomputation)
     let printed = h.node_printed_formula(j1p);
     assert!((printed - 441.23).abs() < 0.01, "{printed}");
 }
@@ -621,7 +626,7 @@ fn hoist_bad_input_data_file_and_book_rows() {
     assert_eq!(&a2, b);
     let rows = mh::book_rows();
     check_book_rows(&rows);
-    // γ = γ̄γ_st d_k² = 0.491·7800·0.0465² = 8.2810 kg/m (hand arithmetic; notes §10: 8.281), printed 8.4
+    // γ = γ̄γ_st d_k² = 0.491·7800·0.0465² = 8.2810 kg/m (hand arithmetic), printed 8.4
     let g = rows.iter().find(|r| r.quantity.starts_with("gamma")).unwrap();
     assert!(rel(g.computed.unwrap(), 0.491 * 7800.0 * 0.0465 * 0.0465) < EXACT);
     assert!((g.computed.unwrap() - 8.281).abs() < 1e-3);

@@ -1,8 +1,9 @@
 //! Chapter 7 models (Sukharev 2012): vibration isolation 7.1/7.2, half car 7.5, operator seat 7.6.
 //!
-//! Provenance of expected values is stated at each assertion: closed forms derived in the model docs /
-//! `notes/models.md`, independent routes (Mdof frequency response, modal analysis, a 2×2 complex solve in
-//! other coordinates, a composite Simpson rule written here), or published values with their source line.
+//! Provenance of expected values is stated at each assertion: closed forms derived in the model docs,
+//! independent routes (Mdof frequency response, modal analysis, a 2×2 complex solve in other coordinates, a
+//! composite Simpson rule written here), values recomputed outside the crate (the comment says how), or
+//! published values with their source line.
 
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::{PI, SQRT_2};
@@ -163,12 +164,14 @@ fn half_car_example_7_1_values() {
     let (m1, m2, m3) = car.masses();
     // published: M₁ = 0.643 t, M₂ = 0.721 t, M₃ = 0.063 t (book line 3970), rounded to 3 digits
     assert!((m1 - 643.0).abs() < 1.5 && (m2 - 721.0).abs() < 0.5 && (m3 - 63.0).abs() < 1.0);
-    // published ω₁ = 6.93, ω₂ = 7.92 s⁻¹ (line 3974); notes §6(d) recompute 6.92973 / 7.88615 with numpy;
-    // 7.92 is 0.43 % above the exact value (the book's arithmetic), so 0.5 % bounds both.
+    // published ω₁ = 6.93, ω₂ = 7.92 s⁻¹ (line 3974); recomputed outside the crate: √ of
+    // scipy.linalg.eigh(K_b, M_b) with the (z, φ) matrices of the module docs for these data gives
+    // 6.929734 / 7.886150; 7.92 is 0.43 % above the exact value (the book's arithmetic), so 0.5 % bounds both.
     let [w1, w2] = car.frequency_equation_roots();
     assert!(rel(w1, 6.93) < 5e-3 && rel(w2, 7.92) < 5e-3);
     assert!(rel(w1, 6.92973) < 1e-5 && rel(w2, 7.88615) < 1e-5);
-    // the printed (7.33) with M₁↔M₂ swapped gives 6.6084 / 8.2696 (notes §6(d), numpy): far from the print
+    // the printed (7.33) with M₁↔M₂ swapped: √ of numpy.roots([M₁M₂ − M₃², −(c₁M₁ + c₂M₂), c₁c₂]) gives
+    // 6.608449 / 8.269554 (recomputed outside the crate): far from the print
     let p = car.book_7_33_as_printed();
     assert!(rel(p[0], 6.6084) < 1e-4 && rel(p[1], 8.2696) < 1e-4);
     // neither decoupling condition holds: ab − ρ² = 1.8176 − 1.5129 = 0.3047 m², c₁a − c₂b = 45440 − 55040 = −9600 N
@@ -276,7 +279,7 @@ fn resonance_speed_and_excavator_example() {
     // closed form: v = ωℓ/(2π); ω = 2π rad/s on ℓ = 7 m resonates at 7 m/s
     assert!(rel(resonance_speed(2.0 * PI, 7.0).unwrap(), 7.0) < EXACT);
     // excavator (book 3982–4001): ω = √(90e3·9.8/28.6e3) = √30.8392 = 5.55330 rad/s (hand computation);
-    // v = 5.5533·7/(2π) = 6.1868 m/s (notes §6(d)); printed 5.56 s⁻¹ and 6.2 m/s (22.3 km/h).
+    // v = 5.55330·7/(2π) = 6.18685 m/s (hand computation); printed 5.56 s⁻¹ and 6.2 m/s (22.3 km/h).
     let w = axle_natural_frequency(9.0e4, 2.86e4, 9.8).unwrap();
     assert!(rel(w, (9.0e4 * 9.8 / 2.86e4f64).sqrt()) < EXACT);
     assert!(rel(w, 5.5533) < 1e-4);
@@ -300,7 +303,8 @@ fn seat_transmissibilities_match_mdof_response() {
         assert!(rel(h[(3, 0)].norm(), seat.relative_transmissibility(l)) < FACTORISATION);
         assert!(rel(h[(1, 0)].norm(), l * seat.transmissibility(l)) < FACTORISATION);
         assert!(rel(h[(2, 0)].norm(), l * l * seat.transmissibility(l)) < FACTORISATION);
-        // identity η_rel = ν² η / √(1 + 4β²ν²) (notes §7(e))
+        // identity η_rel = ν² η / √(1 + 4β²ν²): divide (7.44) by (7.42), the common √((1 − ν²)² + 4β²ν²)
+        // cancels
         let nu = l / seat.natural_frequency();
         let b = seat.damping_ratio();
         assert!(
@@ -321,11 +325,11 @@ fn seat_transmissibilities_match_mdof_response() {
 fn seat_example_7_2_numbers_and_verdict() {
     let (seat, au, lambda) = operator_seat::example_7_2();
     let r = seat.harmonic(au, lambda).unwrap();
-    // Exact chain (7.42), (7.44), (7.46)–(7.49) recomputed independently with python3 in this session:
+    // Exact chain (7.42), (7.44), (7.46)–(7.49) recomputed outside the crate with python3 (no rounding):
     // m_pr = 83.142857 kg, ω = 8.841872 rad/s, β = 0.4772745, ν = 2.1318513, η = 0.5547304,
     // A = 1.9415565 mm, A_y = 3.8916881 mm, σ_v = 0.02587833 m/s,
-    // σ_a = 0.4877949 m/s². (notes §7(d) lists σ_v = 0.025882, σ_a = 0.48788, A_y = 3.8918 mm, 1.5e-4
-    // higher — rounded intermediates there; the python values agree with the notes' η, ν, β, A.)
+    // σ_a = 0.4877949 m/s² (m_pr = 5/7·80 + 26, ω = √(6500/m_pr), β = 4.22/ω, ν = 6π/ω, A_u = 0.0035 m);
+    // the book (lines 4150–4182) prints the rounded 83 kg, 8.85, 0.477, 2.13, 0.56, 1.96 mm, 0.026, 0.49.
     assert!(rel(seat.reduced_mass(), 5.0 / 7.0 * 80.0 + 26.0) < EXACT);
     for (got, want) in [
         (seat.natural_frequency(), 8.841872),
@@ -341,8 +345,9 @@ fn seat_example_7_2_numbers_and_verdict() {
         // 7 significant digits quoted: relative rounding ≤ 5e-7
         assert!(rel(got, want) < 1e-6, "{got} vs {want}");
     }
-    // Verdict (notes §7(d)): velocity 0.0259 > 0.0251 m/s in the 4 Hz band fails; acceleration
-    // 0.488 < 0.57 passes; the other bands carry nothing. The book (line 4188) wrongly says "meets the norm".
+    // Verdict (σ_v, σ_a above against the 4 Hz band of Table 7.1; σ_v/0.0251 = 1.031): velocity 0.0259 >
+    // 0.0251 m/s fails; acceleration 0.488 < 0.57 passes; the other bands carry nothing. The book (line 4188)
+    // wrongly says "meets the norm".
     let limits = SanitaryLimits::table_7_1().unwrap();
     let checks = seat.assess_harmonic(au, lambda, &limits).unwrap();
     for (i, c) in checks.iter().enumerate() {
@@ -426,7 +431,7 @@ fn random_band_rms_matches_independent_simpson_rule() {
 #[test]
 fn table_7_1_transcription_and_db_consistency() {
     let t = SanitaryLimits::table_7_1().unwrap();
-    // transcription of book lines 4044–4054 (notes §7, Table 7.1), SI
+    // transcription of book lines 4042–4054 (Table 7.1; velocities printed in 10⁻² m/s), SI
     let acc = [1.10, 0.79, 0.57, 0.63, 1.13, 2.25, 4.50];
     let vel = [0.1995, 0.0708, 0.0251, 0.0126, 0.0112, 0.0112, 0.0112];
     let acc_db = [121.0, 118.0, 115.0, 116.0, 121.0, 127.0, 133.0];
@@ -434,8 +439,8 @@ fn table_7_1_transcription_and_db_consistency() {
     for (i, b) in t.bands.iter().enumerate() {
         assert!(rel(b.acceleration, acc[i]) < EXACT && rel(b.velocity, vel[i]) < EXACT);
         assert_eq!((b.acceleration_db, b.velocity_db), (acc_db[i], vel_db[i]));
-        // L = 20 log10(x/x0) rounds to the printed dB — except the 4 Hz velocity (114.0 computed, 116 printed,
-        // notes §7), which must carry a comment saying so.
+        // L = 20 log10(x/x0) rounds to the printed dB — except the 4 Hz velocity (20 log10(0.0251/5e-8) =
+        // 114.01 computed, 116 printed), which must carry a comment saying so.
         let la = 20.0 * (b.acceleration / t.reference_acceleration).log10();
         let lv = 20.0 * (b.velocity / t.reference_velocity).log10();
         assert_eq!(la.round(), b.acceleration_db, "acceleration dB, band {i}");
@@ -575,7 +580,8 @@ fn book_rows_above_two_percent_are_explained() {
     for rows in [&hc, &seat, &iso] {
         check_explained(rows);
     }
-    // the printed-(7.33) rows are the misprint: > 4 % off (notes §6(d): 6.6084 vs 6.93, 8.2696 vs 7.92)
+    // the printed-(7.33) rows are the misprint: > 4 % off (6.6084 vs 6.93, 8.2696 vs 7.92, the swapped-form
+    // roots recomputed in half_car_example_7_1_values)
     let big: Vec<&BookRow> = hc
         .iter()
         .filter(|r| r.rel_diff().unwrap().abs() > EXPLAIN_ABOVE)

@@ -81,8 +81,10 @@ fn bogie_general_road_by_superposition() {
     assert!(rel(dy, expected) < QUADRATURE, "{dy} vs {expected}");
 }
 
-/// Book example values recomputed in notes/models.md §2(d) (python): D_Z/D_x = 0.39370, R_Z/D_x = 0.19784,
-/// D_y/D_x = 0.29577 (r = 11 cm); 0.32258, 0.19064, 0.25661 (r = 15 cm); σ_y/σ_x = 0.5439, 0.5066 (both fail).
+/// Book example (ℓ = 60 cm, ℓ₁ = 30 cm, α = 3.5 1/m) recomputed outside the crate with numpy from (8.47),
+/// (8.48), (8.40), and again by scipy.integrate.quad of 2∫₀^∞ S_x|W|²(1, cos λℓ)dλ (agree to 1e-6 relative):
+/// D_Z/D_x = 0.39370, R_Z/D_x = 0.197847 (quoted truncated as 0.19784, within the 1e-5 bound), D_y/D_x =
+/// 0.29577 (r = 11 cm); 0.32258, 0.19064, 0.25661 (r = 15 cm); σ_y/σ_x = 0.5439, 0.5066 (both fail).
 #[test]
 fn bogie_book_example_recomputed() {
     for (r, dz, rz, dy, s) in [
@@ -108,7 +110,9 @@ fn bogie_rz_matches_printed_formula() {
     }
 }
 
-/// Removable singularity at 4αr = 1: limit R_Z → D_x(1 + αℓ)e^{−αℓ}/2 (notes §2(b), L'Hôpital in b).
+/// Removable singularity at 4αr = 1: limit R_Z → D_x(1 + αℓ)e^{−αℓ}/2 (L'Hôpital in b = 1/(4r) on (8.48)
+/// written as D_x b(b e^{−αℓ} − α e^{−bℓ})/(b² − α²): d/db of numerator and denominator at b = α gives
+/// D_x α(e^{−αℓ} + αℓ e^{−αℓ})/(2α)).
 /// dR_Z/dε is bounded (R_Z is analytic in b), so at ε = ±1e-9 the distance to the limit is ≤ 10·ε·D_x.
 #[test]
 fn bogie_singularity_continuity() {
@@ -128,8 +132,8 @@ fn bogie_singularity_continuity() {
     assert!(rel(dy, b.closed_form(DX, ALPHA).unwrap().dy) < QUADRATURE);
 }
 
-/// Limits (notes §2(e)): r → 0 gives D_Z → D_x, R_Z → D_x e^{−αℓ} (errors O(αr)); ℓ₁ ∈ {0, ℓ} gives
-/// D_y = D_Z exactly (one wheel carries the pivot).
+/// Limits: r → 0 gives D_Z → D_x, R_Z → D_x e^{−αℓ} (errors O(αr): set 4αr → 0 in (8.47), (8.48)); ℓ₁ ∈ {0, ℓ}
+/// gives D_y = D_Z exactly (one wheel carries the pivot: (8.40) reduces to ℓ²D_Z/ℓ²).
 #[test]
 fn bogie_limits() {
     let r = 1e-9;
@@ -178,14 +182,16 @@ fn bogie_instance_layout_and_sweep() {
 // ------------------------------------------------------------------------------------------------
 // Conveyor idler (8.6, Example 8.1)
 
-/// Exact σ_y² closed form (notes §3(b), I₃ table): D_x(α + 2ζω₀)/(2ζω₀³(ω₀² + α² + 2αζω₀)).
+/// Exact σ_y² closed form (derived by hand with the I₃ entry of the integral table for
+/// |H|²S_x = αD_x/(π|(iω)³ + (α + 2ζω₀)(iω)² + (ω₀² + 2αζω₀)iω + αω₀²|²)):
+/// D_x(α + 2ζω₀)/(2ζω₀³(ω₀² + α² + 2αζω₀)).
 fn idler_exact_variance(m: f64, c: f64, zeta: f64, df: f64, a: f64) -> f64 {
     let w0 = (c / m).sqrt();
     df / (m * m) * (a + 2.0 * zeta * w0) / (2.0 * zeta * w0.powi(3) * (w0 * w0 + a * a + 2.0 * a * zeta * w0))
 }
 
 /// The instance through all three variance methods against the closed form; mean M_F/c (8.59);
-/// velocity variance D_x α/(2ζω₀(ω₀² + α² + 2αζω₀)) (notes §3(b)).
+/// velocity variance D_x α/(2ζω₀(ω₀² + α² + 2αζω₀)) (same I₃ entry with the numerator ω², derived by hand).
 #[test]
 fn idler_three_methods_vs_closed_form() {
     for (m, c, zeta, df, a, mf) in [
@@ -223,9 +229,11 @@ fn idler_three_methods_vs_closed_form() {
     }
 }
 
-/// Independent Lyapunov check of Example 8.1 on the hand-built state [y, ẏ, f] (notes §3(e)):
-/// A = [[0,1,0],[−ω₀²,−2ζω₀,1],[0,0,−α]], B = [0,0,√(2αD_x)]ᵀ; notes value σ_y² = 8.4818e−4 m²,
-/// σ_y = 0.029124 m, exact/approx ratio 22.0, a* = 0.23023 m, white-noise σ_y = 0.006209 m.
+/// Independent Lyapunov check of Example 8.1 on the hand-built state [y, ẏ, f]:
+/// A = [[0,1,0],[−ω₀²,−2ζω₀,1],[0,0,−α]], B = [0,0,√(2αD_x)]ᵀ. Recomputed outside the crate with
+/// scipy.linalg.solve_continuous_lyapunov(A, −BBᵀ) (m = 100, c = 7e4, ζ = 0.2, D_F = 4e6, α = 0.5):
+/// σ_y² = 8.48180e−4 m² (= the closed form), σ_y = 0.0291235 m, white-noise σ_y = √(πS_x(ω₀)/(2ζω₀³)) =
+/// 0.0062092 m, exact/white ratio 21.9998, a* = M_F/c + 3σ_y = 0.230228 m.
 #[test]
 fn idler_example_8_1() {
     let (m, c, zeta, df, a): (f64, f64, f64, f64, f64) = (100.0, 7.0e4, 0.2, 4.0e6, 0.5);
@@ -249,7 +257,8 @@ fn idler_example_8_1() {
     assert!(w.contains("invalid") && w.contains("α"), "{w}");
 }
 
-/// Ratio formula (notes §3(b)): exact/white = (α + 2ζω₀)(α² + ω₀²)/(α(ω₀² + α² + 2αζω₀)); it equals the
+/// Ratio formula (exact closed form above divided by the white-noise πS_x(ω₀)/(2ζω₀³), S_x(ω₀) =
+/// αD_x/(π(α² + ω₀²))): exact/white = (α + 2ζω₀)(α² + ω₀²)/(α(ω₀² + α² + 2αζω₀)); it equals the
 /// quotient of the two variances (8.62 with two-sided S_x(ω₀)) and tends to 1 as α → ∞ (flat input) and
 /// to the quasi-static D_x/ω₀⁴ as α → 0.
 #[test]
@@ -287,8 +296,8 @@ fn rigid(w0: f64, zeta: f64) -> ScraperRigidCab {
 }
 
 /// Rigid cab with b₁ > 0 under (8.69) (type 1, density ∝ ω⁻²): |H_ẍ1|² ∝ ω², so the acceleration variance
-/// is infinite (notes §4 finiteness table): the model's outputs must route into Error::Divergent. With
-/// The printed (8.66) form (also ∝ ω⁻²) diverges the same way.
+/// is infinite (|H_ẍ1|²S ∝ ω²·ω⁻² → const as ω → ∞, so ∫dω diverges): the model's outputs must route into
+/// Error::Divergent. The printed (8.66) form (also ∝ ω⁻²) diverges the same way.
 #[test]
 fn scraper_rigid_acceleration_divergence() {
     let inst = rigid(18.5, 0.1).instance().unwrap();
@@ -315,7 +324,8 @@ fn scraper_rigid_acceleration_divergence() {
     assert!(st[2].sigma.is_none() && st[3].sigma.is_some());
 }
 
-/// White road into the rigid cab (notes §4(e), I₂ table): σ_x1² = πS₀(b₁² + c₁m₁)/(b₁m₁) for two-sided
+/// White road into the rigid cab (derived by hand with the I₂ entry of the integral table for
+/// H = (b₁iω + c₁)/(m₁(iω)² + b₁iω + c₁)): σ_x1² = πS₀(b₁² + c₁m₁)/(b₁m₁) for two-sided
 /// white level S₀; Lyapunov, integral table and (for this ω⁻² integrand) quadrature all agree.
 #[test]
 fn scraper_rigid_white_road_closed_form() {
@@ -355,7 +365,8 @@ fn scraper_consistent_road_methods_agree() {
     }
 }
 
-/// Sprung-cab frequency response against the explicit 2×2 solve of (8.65) (notes §4(b)):
+/// Sprung-cab frequency response against the explicit 2×2 solve of (8.65) (Cramer's rule on
+/// [[k₁ + k₂ − m₁ω², −k₂], [−k₂, k₂ − m₂ω²]]·(x₁, x₂) = (k₁, 0), k_i = c_i + iωb_i, Δ its determinant):
 /// H_x1 = k₁(k₂ − m₂ω²)/Δ, H_x2 = H_x1 k₂/(k₂ − m₂ω²), H_ẍ = −ω²H, travel = H_x2 − H_x1.
 #[test]
 fn scraper_sprung_response_explicit() {
@@ -382,7 +393,8 @@ fn scraper_sprung_response_explicit() {
     }
 }
 
-/// Quasi-static limit (notes §4(e)): as v → 0 all road power lies far below ω₀, so σ_x1, σ_x2 → √D_q
+/// Quasi-static limit: as v → 0 all road power lies far below ω₀, where H_x1, H_x2 → 1 (the static gain of
+/// base motion), so σ_x1², σ_x2² → ∫S_q = D_q, i.e. σ → √D_q
 /// = 3.5 cm and σ_ẍ → 0 like v^{3/2}; at v = 0.01 m/s the temporal corner β v = 0.12 rad/s gives errors O((βv/ω₀)²).
 #[test]
 fn scraper_quasi_static_limit() {
