@@ -304,6 +304,39 @@ fn tabulated_density_into_matches_density() {
     }
 }
 
+/// `RationalSpectrum::density_into` (eight Horner chains at once) against its oracle, `density` (one
+/// chain per point): bit-identical for every grid length from 0 to 40 (whole blocks of eight and every
+/// remainder), negative, zero and large frequencies. One value by hand: N(x) = 1 + 0.5x, D(x) = 1 + 0.3x
+/// + 0.02x², at ω = 2 (x = 4): N = 3, D = 1 + 1.2 + 0.32 = 2.52, S = 3/2.52.
+#[test]
+fn rational_density_into_matches_density() {
+    let r = RationalSpectrum::new(vec![1.0, 0.5], vec![1.0, 0.3, 0.02], Domain::Temporal).unwrap();
+    let mut out = [0.0; 1];
+    r.density_into(&[2.0], &mut out);
+    assert!(rel(out[0], 3.0 / 2.52) < EXACT);
+    // A higher degree as well: N(x) = 2 + x², D(x) = (1 + x)³ (poles of order 3 at ω = ±i).
+    let r3 = RationalSpectrum::new(vec![2.0, 0.0, 1.0], vec![1.0, 3.0, 3.0, 1.0], Domain::Temporal).unwrap();
+    for s in [&r, &r3] {
+        for len in 0..=40usize {
+            let grid: Vec<f64> = (0..len)
+                .map(|i| {
+                    let w = 0.37 * i as f64 * 1.3f64.powi(i as i32);
+                    if i % 3 == 1 {
+                        -w
+                    } else {
+                        w
+                    }
+                })
+                .collect();
+            let mut out = vec![f64::NAN; len];
+            s.density_into(&grid, &mut out);
+            for (w, o) in grid.iter().zip(&out) {
+                assert_eq!(o.to_bits(), s.density(*w).to_bits(), "len {len}, ω = {w}");
+            }
+        }
+    }
+}
+
 /// Spatial → temporal: S_t(ω) = S_Ω(ω/v)/v keeps the variance and maps K(τ) to K_Ω(vτ); the rational form
 /// scales with it.
 #[test]

@@ -37,6 +37,35 @@ pub fn eval(coeffs: &[f64], x: f64) -> f64 {
     coeffs.iter().rev().fold(0.0, |acc, &c| acc * x + c)
 }
 
+/// Evaluates the polynomial at `L` real points at once by Horner's rule, one independent recurrence per
+/// lane.
+///
+/// The lanes do exactly the operations of [`eval`] (same order, no fused multiply–add), so each result is
+/// bit-identical to `eval(coeffs, x[j])`; the `L` independent chains let the compiler use SIMD registers
+/// and hide the latency of the multiply–add chain, which a loop over points calling [`eval`] cannot.
+///
+/// # Formula
+/// p(x_j) = c₀ + x_j(c₁ + x_j(c₂ + …)) for j = 0 … L−1. The empty polynomial is 0.
+///
+/// # Examples
+/// ```
+/// use stochvib::linalg::poly::{eval, eval_lanes};
+/// let c = [1.0, 2.0, 3.0];
+/// let x = [0.0, 2.0, -1.5, 1e3];
+/// let p = eval_lanes(&c, &x);
+/// assert_eq!(p[1], 17.0);
+/// assert!(p.iter().zip(&x).all(|(v, &xj)| *v == eval(&c, xj)));
+/// ```
+pub fn eval_lanes<const L: usize>(coeffs: &[f64], x: &[f64; L]) -> [f64; L] {
+    let mut acc = [0.0; L];
+    for &c in coeffs.iter().rev() {
+        for j in 0..L {
+            acc[j] = acc[j] * x[j] + c;
+        }
+    }
+    acc
+}
+
 /// Evaluates the polynomial at a complex point by Horner's rule.
 ///
 /// # Formula
