@@ -206,7 +206,8 @@ impl Spectrum for RationalSpectrum {
         poly::eval(&self.num, x) / poly::eval(&self.den, x)
     }
     /// Eight points at a time ([`poly::eval_lanes`]): the same operations as [`density`](Self::density),
-    /// so bit-identical to it, about 3× faster on a grid than one Horner chain per point.
+    /// so bit-identical to it; 55.6 → 9.0 µs for 10⁴ points against one Horner chain per point (criterion
+    /// `density_1e4/rational/density_into`, 2-core AMD EPYC, 2026-11-23).
     fn density_into(&self, omega: &[f64], out: &mut [f64]) {
         const L: usize = 8;
         let n = omega.len().min(out.len());
