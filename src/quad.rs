@@ -26,7 +26,7 @@
 //! # Contract
 //! `integrate(f, a, b, &QuadOptions)` integrates `f` over `[a, b]`, where `a` may be `-inf` and `b` may be
 //! `+inf`, returning the value, an absolute error estimate and the number of evaluations, or
-//! [`Error::Quadrature`](crate::Error::Quadrature) with the best estimate when the tolerance is not met.
+//! [`Error::Quadrature`] with the best estimate when the tolerance is not met.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;

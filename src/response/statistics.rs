@@ -177,7 +177,7 @@ impl OutputStatistics {
     }
 
     /// Expected largest value in duration `t` (Davenport):
-    /// E[max] ≈ M_y + σ_y (√(2 ln ν₀⁺t) + γ/√(2 ln ν₀⁺t)), γ = 0.5772…, valid for ν₀⁺t ≫ 1.
+    /// E\[max\] ≈ M_y + σ_y (√(2 ln ν₀⁺t) + γ/√(2 ln ν₀⁺t)), γ = 0.5772…, valid for ν₀⁺t ≫ 1.
     pub fn expected_largest_peak(&self, t: f64) -> Option<f64> {
         let n = self.zero_upcrossing_rate? * t;
         if n <= 1.0 {

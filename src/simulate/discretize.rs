@@ -521,7 +521,7 @@ fn respond_dyn(s: &SampledSystem, u: &[f64], x: &mut [f64], y: &mut [f64]) {
 /// The exact sampled joint simulation of a system's outputs under rational, delay-free random inputs: the
 /// system augmented with the shaping filters of its inputs
 /// ([`augmented_system`](crate::response::augmented_system)), discretised by Van Loan's method
-/// ([`GaussMarkov`]).
+/// ([`GaussMarkov`](crate::simulate::shaping::GaussMarkov)).
 ///
 /// # Formula
 /// ```text
@@ -533,7 +533,7 @@ fn respond_dyn(s: &SampledSystem, u: &[f64], x: &mut [f64], y: &mut [f64]) {
 /// # Errors
 /// [`Error::Numerical`] when the system has no state space, the inputs are delayed copies or not rational;
 /// [`Error::Divergent`] when a requested output has a white-noise component (infinite variance); the
-/// errors of [`GaussMarkov::new`] (unstable system, bad `dt`).
+/// errors of [`GaussMarkov::new`](crate::simulate::shaping::GaussMarkov::new) (unstable system, bad `dt`).
 ///
 /// # Examples
 /// ```

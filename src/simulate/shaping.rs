@@ -21,7 +21,7 @@ use rand::rngs::Xoshiro256PlusPlus;
 /// ```
 /// Since Φ P Φᵀ + Q_d = P, every z_k ~ N(0, P) exactly and (y_k) has exactly the autocovariance of the
 /// continuous process at the lags kΔt: no time-step bias, for any Δt. Each step draws `n` normals
-/// (n = number of states), in order ε_k[0], …, ε_k[n−1]; the initial state draws `n` normals first.
+/// (n = number of states), in order ε_k\[0\], …, ε_k\[n−1\]; the initial state draws `n` normals first.
 ///
 /// # Errors
 /// [`GaussMarkov::new`] rejects inconsistent dimensions, an A that is not asymptotically stable (no

@@ -33,7 +33,7 @@ pub enum Amplitudes {
 /// Rayleigh:  Re c_j, Im c_j ~ N(0, S(ω_j)Δω/2) (0 < j < N/2);  c₀, c_{N/2} ~ N(0, S(ω_j)Δω) real
 /// PhaseOnly: |c_j| = √(S(ω_j)Δω), φ_j uniform;  c₀, c_{N/2} = ±√(S(ω_j)Δω)
 /// ```
-/// i.e. the amplitude of the cosine at ω_j is A_j = 2|c_j| with E[A_j²]/2 = 2S(ω_j)Δω. The realization is
+/// i.e. the amplitude of the cosine at ω_j is A_j = 2|c_j| with E\[A_j²\]/2 = 2S(ω_j)Δω. The realization is
 /// one inverse real FFT of length N of the coefficients c₀..c_{N/2}.
 ///
 /// Exact statistics of the generated (discretised) process: its autocovariance is
