@@ -16,7 +16,10 @@ use stochvib::response::{
 };
 use stochvib::scenario::load_scenario;
 use stochvib::system::FrequencyResponse;
-use stochvib::tolerance::QUADRATURE;
+#[path = "../tests/common/tolerance.rs"]
+#[allow(dead_code)]
+mod tolerance;
+use tolerance::QUADRATURE;
 
 fn rational_road(c: &mut Criterion) {
     let exc = Excitation::single(road(), 0.0).unwrap();

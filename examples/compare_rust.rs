@@ -18,7 +18,10 @@ use stochvib::response::{
     output_density, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation, OutputDensity,
 };
 use stochvib::spectrum::{Domain, GaussCosine};
-use stochvib::tolerance::QUADRATURE;
+#[path = "../tests/common/tolerance.rs"]
+#[allow(dead_code)]
+mod tolerance;
+use tolerance::QUADRATURE;
 
 /// Best (smallest) wall time over `reps` runs of `f`, divided by `inner` calls per run; returns the
 /// time per job and the last check value.

@@ -8,8 +8,10 @@
 
 pub mod error;
 pub mod estimate;
+pub mod fields;
 pub mod linalg;
 pub mod models;
+pub mod numbers;
 pub mod plot;
 pub mod quad;
 pub mod report;
@@ -19,7 +21,12 @@ pub mod simulate;
 pub mod spectrum;
 pub mod store;
 pub mod system;
-pub mod tolerance;
 pub mod units;
 
 pub use error::{Error, Result};
+
+/// The test suite's named tolerances (`tests/common/tolerance.rs`), for the unit tests.
+#[cfg(test)]
+#[path = "../tests/common/tolerance.rs"]
+#[allow(dead_code)]
+mod tolerance;

@@ -1,12 +1,11 @@
 //! The `stochvib` command-line tool: parses arguments, calls the library, prints.
 
-use anyhow::Result;
 use clap::{Parser, Subcommand};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
-use stochvib::report::{self, resolve_spectrum, spectrum_report};
-use stochvib::scenario::{load_scenario, spectrum_catalogue};
-use stochvib::simulate::{run_scenario, RunOptions};
+use stochvib::report::{self, attach_monte_carlo};
+use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
+use stochvib::simulate::{suggest_step, Route, RunOptions};
 use stochvib::spectrum::Convention;
 use stochvib::store::{summarize, Compression, RunFile};
 
@@ -18,13 +17,62 @@ struct Cli {
     command: Command,
 }
 
+/// Where spectrum names are looked up.
+#[derive(clap::Args)]
+struct SpectraDir {
+    /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the source tree's).
+    #[arg(long)]
+    spectra_dir: Option<PathBuf>,
+}
+
+impl SpectraDir {
+    /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the source
+    /// tree's `spectra/`.
+    fn catalogue(&self) -> Catalogue {
+        if let Some(d) = &self.spectra_dir {
+            return Catalogue::new(d);
+        }
+        if let Ok(d) = std::env::var("STOCHVIB_SPECTRA") {
+            return Catalogue::new(d);
+        }
+        let local = PathBuf::from("spectra");
+        if local.is_dir() {
+            return Catalogue::new(local);
+        }
+        Catalogue::bundled()
+    }
+}
+
+/// Time step and duration of Monte Carlo realizations.
+#[derive(clap::Args)]
+struct Step {
+    /// Time step, s (default: suggested from the system's eigenvalues).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Duration of each realization, s (default: suggested from the slowest decay rate).
+    #[arg(long)]
+    duration: Option<f64>,
+}
+
+impl Step {
+    /// The given values, the missing ones suggested from the scenario's system (said on stderr).
+    fn resolve(&self, sc: &Scenario) -> stochvib::Result<(f64, f64)> {
+        if let (Some(dt), Some(d)) = (self.dt, self.duration) {
+            return Ok((dt, d));
+        }
+        let s = suggest_step(&sc.run_input())?;
+        let (dt, d) = (self.dt.unwrap_or(s.dt_s), self.duration.unwrap_or(s.duration_s));
+        eprintln!("time step {dt} s, duration {d} s (suggested: {})", s.reason);
+        Ok((dt, d))
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// List the spectrum catalogue with variance and sigma of each entry.
     Spectra {
-        /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, ./spectra, or the source tree's).
-        #[arg(long)]
-        spectra_dir: Option<PathBuf>,
+        #[command(flatten)]
+        spectra: SpectraDir,
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
@@ -32,13 +80,19 @@ enum Command {
         #[arg(long)]
         full: bool,
     },
-    /// Analyse a scenario: mean, σ, 3σ bounds, crossing rates, and every variance method per output.
+    /// List the model kinds a scenario file may name in `[model] kind`.
+    Models {
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Analyse a file of data/: for a model with a random input, per output the mean, σ, 3σ bounds, crossing
+    /// rates and every variance method; for a deterministic model its results; a reference table as printed.
     Analyze {
         /// Scenario file (TOML, see data/).
         scenario: PathBuf,
-        /// Directory of spectrum files.
-        #[arg(long)]
-        spectra_dir: Option<PathBuf>,
+        #[command(flatten)]
+        spectra: SpectraDir,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -52,12 +106,8 @@ enum Command {
         /// Master seed of the Monte Carlo column.
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// Time step, s (default: suggested from the system's eigenvalues).
-        #[arg(long)]
-        dt: Option<f64>,
-        /// Duration of each realization, s (default: suggested from the slowest decay rate).
-        #[arg(long)]
-        duration: Option<f64>,
+        #[command(flatten)]
+        step: Step,
     },
     /// Write pictures of a scenario (`.toml`: input density, |H(iω)|² and output densities with the
     /// cumulative variance) or of a Monte Carlo run file (`.h5`), as SVG and PNG.
@@ -68,13 +118,11 @@ enum Command {
         /// Output directory (created if missing).
         #[arg(short = 'o', long)]
         out: PathBuf,
-        /// Convention of the densities: one-sided-cyclic (Hz, default), one-sided-angular,
-        /// two-sided-angular, engineering.
-        #[arg(long, default_value = "one-sided-cyclic")]
+        /// Convention of the densities.
+        #[arg(long, value_enum, default_value_t = Convention::OneSidedCyclic)]
         convention: Convention,
-        /// Directory of spectrum files.
-        #[arg(long)]
-        spectra_dir: Option<PathBuf>,
+        #[command(flatten)]
+        spectra: SpectraDir,
     },
     /// Monte Carlo run of a scenario written to an HDF5 file (see the README's HDF5 section).
     Simulate {
@@ -83,12 +131,8 @@ enum Command {
         /// Number of realizations.
         #[arg(long)]
         realizations: usize,
-        /// Duration of each realization, s.
-        #[arg(long)]
-        duration: f64,
-        /// Time step, s.
-        #[arg(long)]
-        dt: f64,
+        #[command(flatten)]
+        step: Step,
         /// Master seed; realization i uses stream (seed, i).
         #[arg(long, default_value_t = 1)]
         seed: u64,
@@ -101,21 +145,20 @@ enum Command {
         /// Store every realization of every output.
         #[arg(long)]
         store_raw: bool,
-        /// Compression of raw data: none, fast, deflate:N.
+        /// Compression of raw data: none, fast, best, deflate, deflate:N (N = 1-9).
         #[arg(long, default_value = "none")]
-        compression: String,
-        /// Route: auto, exact, spectral.
-        #[arg(long, default_value = "auto")]
-        method: stochvib::simulate::Method,
+        compression: Compression,
+        /// Route of the realizations.
+        #[arg(long, alias = "method", value_enum, default_value_t = Route::Auto)]
+        route: Route,
         /// Confidence of the intervals.
         #[arg(long, default_value_t = 0.95)]
         confidence: f64,
         /// Remove an existing finished OUTPUT first (never needed for resuming a .tmp).
         #[arg(long)]
         overwrite: bool,
-        /// Directory of spectrum files.
-        #[arg(long)]
-        spectra_dir: Option<PathBuf>,
+        #[command(flatten)]
+        spectra: SpectraDir,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -142,135 +185,99 @@ enum Command {
         /// directory.
         #[arg(long)]
         plots: Option<PathBuf>,
+        #[command(flatten)]
+        spectra: SpectraDir,
     },
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
     Spectrum {
         /// Catalogue name (e.g. `iso8608-c`) or path to a spectrum file.
         name: String,
-        /// Convention of the printed density: two-sided-angular, one-sided-angular, one-sided-cyclic,
-        /// engineering.
-        #[arg(long, default_value = "two-sided-angular")]
+        /// Convention of the printed density.
+        #[arg(long, value_enum, default_value_t = Convention::TwoSidedAngular)]
         convention: Convention,
-        /// Directory of spectrum files.
-        #[arg(long)]
-        spectra_dir: Option<PathBuf>,
+        #[command(flatten)]
+        spectra: SpectraDir,
         /// Print JSON.
         #[arg(long)]
         json: bool,
     },
 }
 
-fn main() -> Result<()> {
-    let cli = Cli::parse();
+fn main() {
+    if let Err(e) = run(Cli::parse()) {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Spectra {
-            spectra_dir,
-            json,
-            full,
-        } => {
-            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
-            let entries = spectrum_catalogue(&dir)?;
-            let mut reports = Vec::new();
-            let mut failed = 0;
-            if !json && !full {
-                emit_line(&format!("catalogue {}", dir.display()));
-                emit_line(&format!(
-                    "{:<24} {:<9} {:>13} {:>13}  model",
-                    "name", "domain", "variance", "sigma"
-                ));
-            }
-            for e in &entries {
-                match &e.spectrum {
-                    Ok(s) => {
-                        let r = spectrum_report(s, Convention::TwoSidedAngular);
-                        if !json && !full {
-                            let (v, sg) = match (&r.variance, &r.sigma) {
-                                (
-                                    report::spectrum_report::Outcome::Value(v),
-                                    report::spectrum_report::Outcome::Value(s),
-                                ) => (format!("{v:.4e}"), format!("{s:.4e}")),
-                                _ => ("infinite".into(), "infinite".into()),
-                            };
-                            emit_line(&format!(
-                                "{:<24} {:<9} {:>13} {:>13}  {}",
-                                r.name, r.domain, v, sg, r.model
-                            ));
-                        } else if full && !json {
-                            emit_line(&format!("{r}"));
-                        }
-                        reports.push(r);
-                    }
-                    Err(msg) => {
-                        failed += 1;
-                        eprintln!("error: {msg}");
-                    }
-                }
+        Command::Spectra { spectra, json, full } => {
+            let r = report::catalogue_report(&spectra.catalogue())?;
+            for msg in &r.failures {
+                eprintln!("error: {msg}");
             }
             if json {
-                emit_line(&serde_json::to_string_pretty(&reports)?);
-            }
-            if failed > 0 {
-                anyhow::bail!("{failed} spectrum file(s) in {} are invalid", dir.display());
-            }
-        }
-        Command::Book { json, plots } => {
-            let r = report::book::book_report();
-            if json {
-                emit_line(&serde_json::to_string_pretty(&r)?);
+                print_json(&r.spectra)?;
+            } else if full {
+                emit(&format!("{r:#}"));
             } else {
                 emit(&format!("{r}"));
             }
+            if !r.failures.is_empty() {
+                anyhow::bail!("{} spectrum file(s) in {} are invalid", r.failures.len(), r.dir);
+            }
+        }
+        Command::Models { json } => print(&report::models_report(), json)?,
+        Command::Book { json, plots, spectra } => {
+            print(&report::book_report(), json)?;
             if let Some(out) = plots {
-                for f in stochvib::plot::book_plots(&out)? {
+                for f in stochvib::plot::book_plots(&out, spectra.catalogue().dir())? {
                     eprintln!("wrote {}", f.display());
                 }
             }
         }
         Command::Analyze {
             scenario,
-            spectra_dir,
+            spectra,
             json,
             plots,
             monte_carlo,
             seed,
-            dt,
-            duration,
+            step,
         } => {
-            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
-            let sc = load_scenario(&scenario, &dir)?;
+            let catalogue = spectra.catalogue();
+            let sc = match load_document(&scenario, catalogue.dir())? {
+                Document::Stochastic(sc) => sc,
+                Document::Deterministic(d) => {
+                    no_simulation(&scenario, monte_carlo, &plots)?;
+                    return print(&report::deterministic_report(&d)?, json);
+                }
+                Document::Reference(t) => {
+                    no_simulation(&scenario, monte_carlo, &plots)?;
+                    return print(&report::reference_report(&t), json);
+                }
+            };
             let mut r = report::analysis_report(&sc)?;
             if let Some(n) = monte_carlo {
-                let (sdt, sdur) = match (dt, duration) {
-                    (Some(a), Some(b)) => (a, b),
-                    _ => {
-                        let (a, b) = stochvib::simulate::suggest_step(&sc)?;
-                        (dt.unwrap_or(a), duration.unwrap_or(b))
-                    }
-                };
-                let opts = RunOptions::new(n, sdur, sdt, seed);
-                let tmp = std::env::temp_dir().join(format!("stochvib-analyze-{}.h5", std::process::id()));
-                let _ = std::fs::remove_file(&tmp);
-                let _ = std::fs::remove_file(stochvib::store::tmp_path(&tmp));
-                let summary = run_scenario(&sc, &opts, &tmp, &progress_printer());
-                // the run's own pictures (Welch band vs analytic density) before the file goes
-                let mc_plots = match (&summary, &plots) {
-                    (Ok(_), Some(out)) => Some(run_plots(&tmp, out)),
-                    _ => None,
-                };
-                let _ = std::fs::remove_file(&tmp);
-                let _ = std::fs::remove_file(stochvib::store::tmp_path(&tmp));
-                report::analysis::attach_monte_carlo(&mut r, &summary?);
-                if let (Some(files), Some(out)) = (mc_plots, &plots) {
+                let (dt, duration) = step.resolve(&sc)?;
+                let opts = RunOptions::new(n, duration, dt, seed);
+                let (summary, pictures) = stochvib::simulate::run_temporary(
+                    &sc.run_input(),
+                    &opts,
+                    &std::env::temp_dir(),
+                    &progress_printer(),
+                    // the run's own pictures (Welch band vs analytic density) before the file goes
+                    |path| plots.as_ref().map(|out| run_plots(path, out, catalogue.dir())),
+                )?;
+                attach_monte_carlo(&mut r, &summary);
+                if let (Some(files), Some(out)) = (pictures, &plots) {
                     eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
                 }
             }
-            if json {
-                emit_line(&serde_json::to_string_pretty(&r)?);
-            } else {
-                emit(&format!("{r}"));
-            }
+            print(&r, json)?;
             if let Some(out) = plots {
-                let files = write_scenario_plots(&sc, &dir, &out, Convention::OneSidedCyclic)?;
+                let files = scenario_plots_with(&sc, &out, &ScenarioPlotOptions::default())?;
                 eprintln!("wrote {} pictures to {}", files.len(), out.display());
             }
         }
@@ -278,66 +285,67 @@ fn main() -> Result<()> {
             input,
             out,
             convention,
-            spectra_dir,
+            spectra,
         } => {
-            let is_h5 = input
-                .extension()
-                .is_some_and(|e| e.eq_ignore_ascii_case("h5") || e.eq_ignore_ascii_case("hdf5"));
-            if is_h5 {
-                for f in run_plots(&input, &out)? {
-                    emit_line(&f.display().to_string());
-                }
-                return Ok(());
-            }
-            let is_toml = input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-            if !is_toml {
+            let catalogue = spectra.catalogue();
+            let has = |ext: &[&str]| {
+                input
+                    .extension()
+                    .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
+            };
+            let files = if has(&["h5", "hdf5"]) {
+                run_plots(&input, &out, catalogue.dir())?
+            } else if has(&["toml"]) {
+                let sc = load_scenario(&input, catalogue.dir())?;
+                let opts = ScenarioPlotOptions {
+                    convention,
+                    ..ScenarioPlotOptions::default()
+                };
+                scenario_plots_with(&sc, &out, &opts)?
+            } else {
                 anyhow::bail!(
                     "{}: can plot scenario files (.toml) and Monte Carlo run files (.h5)",
                     input.display()
                 );
-            }
-            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
-            let sc = load_scenario(&input, &dir)?;
-            for f in write_scenario_plots(&sc, &dir, &out, convention)? {
+            };
+            for f in files {
                 emit_line(&f.display().to_string());
             }
         }
         Command::Simulate {
             scenario,
             realizations,
-            duration,
-            dt,
+            step,
             seed,
             output,
             shard_size,
             store_raw,
             compression,
-            method,
+            route,
             confidence,
             overwrite,
-            spectra_dir,
+            spectra,
             json,
             plots,
         } => {
-            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
-            let sc = load_scenario(&scenario, &dir)?;
-            let mut opts = RunOptions::new(realizations, duration, dt, seed);
-            opts.shard_size = shard_size;
-            opts.store_raw = store_raw;
-            opts.compression = Compression::parse(&compression)?;
-            opts.method = method;
-            opts.confidence = confidence;
+            let catalogue = spectra.catalogue();
+            let sc = load_scenario(&scenario, catalogue.dir())?;
+            let (dt, duration) = step.resolve(&sc)?;
+            let opts = RunOptions {
+                shard_size,
+                store_raw,
+                compression,
+                route,
+                confidence,
+                ..RunOptions::new(realizations, duration, dt, seed)
+            };
             if overwrite && output.exists() {
                 std::fs::remove_file(&output)?;
             }
-            let s = run_scenario(&sc, &opts, &output, &progress_printer())?;
-            if json {
-                emit_line(&serde_json::to_string_pretty(&s)?);
-            } else {
-                emit(&format!("{s}"));
-            }
+            let s = sc.simulate(&opts, &output, &progress_printer())?;
+            print(&s, json)?;
             if let Some(pdir) = plots {
-                for f in run_plots(&s.path, &pdir)? {
+                for f in run_plots(&s.path, &pdir, catalogue.dir())? {
                     if !json {
                         emit_line(&f.display().to_string());
                     }
@@ -346,32 +354,7 @@ fn main() -> Result<()> {
         }
         Command::Inspect { file, json } => {
             if json {
-                let run = RunFile::open(&file)?;
-                let m = run.metadata();
-                let stats: Vec<serde_json::Value> = run
-                    .statistics()?
-                    .iter()
-                    .map(|o| {
-                        serde_json::json!({
-                            "output": o.output, "unit": o.unit, "n_used": o.n_used,
-                            "statistics": o.statistics.iter().map(|s| serde_json::json!({
-                                "name": s.name, "estimate": s.estimate, "lower": s.lower, "upper": s.upper,
-                                "confidence": s.confidence, "unit": s.unit, "method": s.method,
-                                "analytic": s.analytic, "covers": s.covers,
-                            })).collect::<Vec<_>>(),
-                        })
-                    })
-                    .collect();
-                let v = serde_json::json!({
-                    "path": file.display().to_string(),
-                    "format_version": run.format_version(),
-                    "toolkit_version": run.toolkit_version(),
-                    "seed": m.seed, "generator": m.generator, "dt": m.dt, "n_samples": m.n_samples,
-                    "n_realizations": m.n_realizations, "n_shards": m.n_shards(), "store_raw": m.store_raw,
-                    "outputs": m.outputs.iter().map(|s| &s.name).collect::<Vec<_>>(),
-                    "statistics": stats,
-                });
-                emit_line(&serde_json::to_string_pretty(&v)?);
+                print_json(&RunFile::open(&file)?.info()?)?;
             } else {
                 emit(&summarize(&file)?);
             }
@@ -379,36 +362,40 @@ fn main() -> Result<()> {
         Command::Spectrum {
             name,
             convention,
-            spectra_dir,
+            spectra,
             json,
         } => {
-            let dir = spectra_dir.unwrap_or_else(report::default_spectra_dir);
-            let file = resolve_spectrum(&name, &dir)?;
-            let r = spectrum_report(&file, convention);
-            if json {
-                emit_line(&serde_json::to_string_pretty(&r)?);
-            } else {
-                emit(&format!("{r}"));
-            }
+            let file = spectra.catalogue().resolve(&name, None)?;
+            print(&report::spectrum_report(&file, convention), json)?;
         }
     }
     Ok(())
 }
 
-/// Scenario pictures, with the input unit read from the spectrum file the scenario names.
-fn write_scenario_plots(
-    sc: &stochvib::scenario::Scenario,
-    spectra_dir: &std::path::Path,
-    out: &std::path::Path,
-    convention: Convention,
-) -> Result<Vec<PathBuf>> {
-    let input_unit = resolve_spectrum(&sc.input_name, spectra_dir).ok().map(|f| f.unit);
-    let opts = ScenarioPlotOptions {
-        convention,
-        input_unit,
-        ..ScenarioPlotOptions::default()
-    };
-    Ok(scenario_plots_with(sc, out, &opts)?)
+/// Refuses Monte Carlo and pictures for a file without a random input.
+fn no_simulation(file: &Path, monte_carlo: Option<usize>, plots: &Option<PathBuf>) -> anyhow::Result<()> {
+    if monte_carlo.is_some() || plots.is_some() {
+        anyhow::bail!(
+            "{}: --monte-carlo and --plots need a model with a random input; this file has none",
+            file.display()
+        );
+    }
+    Ok(())
+}
+
+/// Prints a report as text, or as JSON with `json`.
+fn print<T: std::fmt::Display + serde::Serialize>(r: &T, json: bool) -> anyhow::Result<()> {
+    if json {
+        print_json(r)
+    } else {
+        emit(&format!("{r}"));
+        Ok(())
+    }
+}
+
+fn print_json<T: serde::Serialize + ?Sized>(r: &T) -> anyhow::Result<()> {
+    emit_line(&serde_json::to_string_pretty(r)?);
+    Ok(())
 }
 
 /// Progress on stderr: a `\r` percentage on a terminal, one "shard k/n" line per shard otherwise.

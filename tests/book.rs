@@ -1,7 +1,8 @@
 //! The `book` report: every worked example is present, every difference over 2 % is explained, and the
 //! computed values are the independent derivations (checked in the models' own test files).
 
-use stochvib::report::book::{book_report, EXPLAIN_ABOVE};
+use stochvib::models::worked_example::EXPLAIN_ABOVE;
+use stochvib::report::book::book_report;
 
 #[test]
 fn every_large_difference_is_explained() {

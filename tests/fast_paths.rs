@@ -8,13 +8,14 @@
 //! Provenance of the expected values: the dense solve is an independent method (a different factorisation
 //! of the same H(iω) = C(iωI − A)⁻¹B + D + iωE); the closed forms are derived in the comments.
 
+mod common;
+use common::tolerance::FACTORISATION;
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::PI;
 use std::sync::Arc;
 use stochvib::response::{output_density, Excitation, OutputDensity};
 use stochvib::spectrum::{Asymptote, Domain, ExpCosine, Exponential, GaussCosine, Spectrum};
 use stochvib::system::{FrequencyResponse, OutputInfo, StateSpace};
-use stochvib::tolerance::FACTORISATION;
 
 /// SplitMix64: a small deterministic generator (no statistical claims are made from it; it only picks
 /// test systems).

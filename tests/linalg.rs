@@ -2,6 +2,8 @@
 //! table, Lyapunov equation, closed forms), the spectral-factorisation pipeline for rational spectra,
 //! and scaling laws of Iₙ as property tests.
 
+mod common;
+use common::rel;
 use nalgebra::{Complex, DMatrix};
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -10,10 +12,6 @@ use stochvib::linalg::{
     h2_integral, integral_closed_form, integral_i_n, is_hurwitz, solve_continuous_lyapunov,
     solve_continuous_lyapunov_dense, spectral_factor,
 };
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
-}
 
 /// m ẍ + c ẋ + k x = f(t), f white with two-sided density S₀ (E[f(t)f(t')] = 2π S₀ δ(t − t')).
 /// Var x = S₀ ∫|H|² dω = π S₀/(kc) and Var ẋ = π S₀/(mc) (Newland); state-space route: A =

@@ -4,10 +4,11 @@
 //! Every statistical assertion is seeded (the suite is deterministic) and states the probability that it
 //! would fail for a correct implementation under a fresh seed.
 
+mod common;
 use std::path::{Path, PathBuf};
 use stochvib::scenario::{load_scenario, Scenario};
-use stochvib::simulate::{run_scenario, Method, RunOptions, RunSummary};
-use stochvib::store::{tmp_path, RunFile, SignalGroup};
+use stochvib::simulate::{Route, RunOptions, RunSummary};
+use stochvib::store::{tmp_path, OutputStatistics, RunFile, SignalGroup, Statistic};
 
 /// Per-output false-failure probability of the coverage test. The catalogue below has 30 simulated outputs
 /// (2 + 2 + 2 + 2 + 4 + 5 + 3 + 2 + 4 + 4), so by the union bound the whole coverage test fails falsely with
@@ -17,9 +18,7 @@ use stochvib::store::{tmp_path, RunFile, SignalGroup};
 /// well below the 1e-6 budget.
 const P_FALSE: f64 = 2e-8;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use common::root;
 
 fn scenario(name: &str) -> Scenario {
     load_scenario(&root().join("data").join(name), &root().join("spectra")).unwrap()
@@ -29,6 +28,12 @@ fn scratch_dir(tag: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("stochvib-mc-pipeline-{}-{tag}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     d
+}
+
+/// Statistic `name` of a simulated output.
+fn stat<'a>(o: &'a OutputStatistics, name: &str) -> &'a Statistic {
+    o.get(name)
+        .unwrap_or_else(|| panic!("{}: no statistic {name}", o.output))
 }
 
 fn fresh(path: &Path) -> &Path {
@@ -49,17 +54,17 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
     // The conveyor idler is also forced through the spectral route: the only single-input (non-track)
     // spectral case, checking the periodic steady state computed in the frequency domain and the discrete
     // variance of an independent input.
-    let cases: [(&str, f64, f64, Method, usize); 10] = [
-        ("balancer-bogie.toml", 0.01, 10.0, Method::Spectral, 2),
-        ("conveyor-idler.toml", 0.01, 40.0, Method::Spectral, 2),
-        ("conveyor-idler.toml", 0.01, 10.0, Method::Exact, 2),
-        ("scraper-rigid-cab.toml", 0.005, 10.0, Method::Exact, 2),
-        ("scraper-sprung-cab.toml", 0.01, 10.0, Method::Exact, 4),
-        ("half-car.toml", 0.01, 60.0, Method::Spectral, 5),
-        ("operator-seat.toml", 0.01, 10.0, Method::Exact, 3),
-        ("isolator-single.toml", 0.01, 10.0, Method::Exact, 2),
-        ("isolator-two-stage.toml", 0.005, 10.0, Method::Exact, 4),
-        ("quarter-car.toml", 0.005, 20.0, Method::Spectral, 4),
+    let cases: [(&str, f64, f64, Route, usize); 10] = [
+        ("balancer-bogie.toml", 0.01, 10.0, Route::Spectral, 2),
+        ("conveyor-idler.toml", 0.01, 40.0, Route::Spectral, 2),
+        ("conveyor-idler.toml", 0.01, 10.0, Route::Exact, 2),
+        ("scraper-rigid-cab.toml", 0.005, 10.0, Route::Exact, 2),
+        ("scraper-sprung-cab.toml", 0.01, 10.0, Route::Exact, 4),
+        ("half-car.toml", 0.01, 60.0, Route::Spectral, 5),
+        ("operator-seat.toml", 0.01, 10.0, Route::Exact, 3),
+        ("isolator-single.toml", 0.01, 10.0, Route::Exact, 2),
+        ("isolator-two-stage.toml", 0.005, 10.0, Route::Exact, 4),
+        ("quarter-car.toml", 0.005, 20.0, Route::Spectral, 4),
     ];
     let dir = scratch_dir("catalogue");
     let mut total = 0;
@@ -69,25 +74,26 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
         let mut opts = RunOptions::new(600, *dur, *dt, 1000 + k as u64);
         opts.confidence = 1.0 - P_FALSE;
         if k == 1 {
-            opts.method = Method::Spectral;
+            opts.route = Route::Spectral;
         }
         let out = dir.join(format!("{k}-{}", file.replace(".toml", ".h5")));
-        let s = run_scenario(&sc, &opts, fresh(&out), &|_, _| {}).unwrap();
-        assert_eq!(s.method, *route, "{file}: route");
+        let s = sc.simulate(&opts, fresh(&out), &|_, _| {}).unwrap();
+        assert_eq!(s.route, *route, "{file}: route");
         assert_eq!(s.outputs.len(), *n_out, "{file}: simulated outputs {:?}", s.skipped);
         total += s.outputs.len();
         for o in &s.outputs {
-            let (sa, sd) = (o.analytic_variance.sqrt(), o.discrete_variance.sqrt());
-            let reference = match s.method {
+            let (sigma, mean) = (stat(o, "sigma"), stat(o, "mean"));
+            let (sa, sd) = (sigma.analytic.unwrap(), stat(o, "sigma_discrete").analytic.unwrap());
+            let reference = match s.route {
                 // Exact route: the simulated samples are exactly those of the stationary response, so the
                 // discrete variance (stationary covariance of the Van Loan discretisation, discrete Lyapunov
                 // equation) equals the analytic one (continuous Lyapunov / integral table) up to the
                 // factorisation error.
-                Method::Exact => {
+                Route::Exact => {
                     assert!(
-                        (sd - sa).abs() <= 1e3 * stochvib::tolerance::FACTORISATION * sa,
+                        (sd - sa).abs() <= 1e3 * common::tolerance::FACTORISATION * sa,
                         "{file}/{}: discrete {sd:e} vs analytic {sa:e}",
-                        o.name
+                        o.output
                     );
                     sa
                 }
@@ -103,26 +109,24 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
                     assert!(
                         (sd - sa).abs() < 0.05 * sa,
                         "{file}/{}: discrete {sd:e} vs analytic {sa:e}",
-                        o.name
+                        o.output
                     );
                     sd
                 }
             };
             eprintln!(
                 "{file:<26} {:<13} analytic σ {sa:.6e}  discrete σ {sd:.6e}  MC σ {:.6e} [{:.6e}, {:.6e}]",
-                o.name, o.sigma.estimate, o.sigma.lower, o.sigma.upper
+                o.output, sigma.interval.estimate, sigma.interval.lower, sigma.interval.upper
             );
-            if !(o.sigma.lower <= reference && reference <= o.sigma.upper) {
-                failures.push(format!("{file}/{}: {reference:e} not in {:?}", o.name, o.sigma));
+            if !sigma.interval.covers(reference) {
+                failures.push(format!(
+                    "{file}/{}: {reference:e} not in {:?}",
+                    o.output, sigma.interval
+                ));
             }
             // the mean of the zero-mean fluctuation covers 0 (same confidence; its 30 assertions are covered
             // by a second union bound of 6e-7)
-            assert!(
-                o.fluctuation_mean.lower <= 0.0 && 0.0 <= o.fluctuation_mean.upper,
-                "{file}/{}: {:?}",
-                o.name,
-                o.fluctuation_mean
-            );
+            assert!(mean.interval.covers(0.0), "{file}/{}: {:?}", o.output, mean.interval);
         }
     }
     assert_eq!(total, 30, "the union bound above counts 30 outputs");
@@ -135,15 +139,21 @@ fn delays_must_be_whole_steps_and_bad_options_are_refused() {
     let dir = scratch_dir("errors");
     let sc = scenario("half-car.toml");
     // half car: wheelbase delay 2.7 m / 10 m/s = 0.27 s, not a multiple of 0.007 s (0.27/0.007 = 38.57)
-    let e = run_scenario(&sc, &RunOptions::new(4, 2.0, 0.007, 1), &dir.join("a.h5"), &|_, _| {}).unwrap_err();
+    let e = sc
+        .simulate(&RunOptions::new(4, 2.0, 0.007, 1), &dir.join("a.h5"), &|_, _| {})
+        .unwrap_err();
     assert!(e.to_string().contains("not an integer number of steps"), "{e}");
     // the exact route cannot represent a pure delay
     let mut o = RunOptions::new(4, 2.0, 0.01, 1);
-    o.method = Method::Exact;
-    assert!(run_scenario(&sc, &o, &dir.join("b.h5"), &|_, _| {}).is_err());
+    o.route = Route::Exact;
+    assert!(sc.simulate(&o, &dir.join("b.h5"), &|_, _| {}).is_err());
     // one realization gives no interval; too short a record gives no Welch segment
-    assert!(run_scenario(&sc, &RunOptions::new(1, 2.0, 0.01, 1), &dir.join("c.h5"), &|_, _| {}).is_err());
-    assert!(run_scenario(&sc, &RunOptions::new(4, 0.05, 0.01, 1), &dir.join("d.h5"), &|_, _| {}).is_err());
+    assert!(sc
+        .simulate(&RunOptions::new(1, 2.0, 0.01, 1), &dir.join("c.h5"), &|_, _| {})
+        .is_err());
+    assert!(sc
+        .simulate(&RunOptions::new(4, 0.05, 0.01, 1), &dir.join("d.h5"), &|_, _| {})
+        .is_err());
     assert!(!dir.join("a.h5").exists() && !tmp_path(&dir.join("a.h5")).exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -162,7 +172,7 @@ fn run_file_read_back_by_crate_and_h5py() {
     opts.shard_size = 4;
     opts.store_raw = true;
     let path = dir.join("run.h5");
-    let s = run_scenario(&sc, &opts, fresh(&path), &|_, _| {}).unwrap();
+    let s = sc.simulate(&opts, fresh(&path), &|_, _| {}).unwrap();
     assert_eq!(s.path, path);
     assert!(!tmp_path(&path).exists());
     // the crate's reader: metadata, raw rows, statistics equal to the summary
@@ -175,26 +185,20 @@ fn run_file_read_back_by_crate_and_h5py() {
     let raw = run.read_signals(SignalGroup::Outputs, "y", 0..6).unwrap();
     assert_eq!(raw.dim(), (6, 300));
     let stats = run.statistics().unwrap();
+    // the summary's statistics are those stored in the file, to the last bit
+    assert_eq!(stats, s.outputs);
     for o in &s.outputs {
-        let st = stats.iter().find(|x| x.output == o.name).unwrap();
-        let sigma = st.statistics.iter().find(|x| x.name == "sigma").unwrap();
-        assert_eq!(sigma.estimate.to_bits(), o.sigma.estimate.to_bits());
-        assert_eq!(sigma.lower.to_bits(), o.sigma.lower.to_bits());
-        assert_eq!(sigma.upper.to_bits(), o.sigma.upper.to_bits());
-        assert_eq!(sigma.analytic, Some(o.analytic_variance.sqrt()));
-        assert_eq!(sigma.covers, Some(o.covers));
-        let var = st.statistics.iter().find(|x| x.name == "variance").unwrap();
-        assert_eq!(var.estimate.to_bits(), o.variance.estimate.to_bits());
+        let var = stat(o, "variance");
         // the time-average variance of the stored raw rows is the MC variance estimate (same sums; the
         // order of summation is the same, so only the final division may differ in the last bit)
-        if o.name == "y" {
+        if o.output == "y" {
             let v: f64 = raw
                 .rows()
                 .into_iter()
                 .map(|r| r.iter().map(|x| x * x).sum::<f64>() / 300.0)
                 .sum::<f64>()
                 / 6.0;
-            assert!((v - o.variance.estimate).abs() <= stochvib::tolerance::EXACT * v);
+            assert!((v - var.interval.estimate).abs() <= common::tolerance::EXACT * v);
         }
     }
     let psd = run.psd().unwrap();
@@ -236,7 +240,8 @@ print("%r %r" % (float(f["statistics/y/sigma"][()]), float(f["statistics/y_vel/s
         String::from_utf8_lossy(&out.stderr)
     );
     let got: Vec<f64> = stdout.split_whitespace().map(|t| t.parse().unwrap()).collect();
-    assert_eq!(got, [s.outputs[0].sigma.estimate, s.outputs[1].sigma.estimate]);
+    let sigmas: Vec<f64> = s.outputs.iter().map(|o| stat(o, "sigma").interval.estimate).collect();
+    assert_eq!(got, sigmas);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -249,7 +254,7 @@ const KILL_ENV: &str = "STOCHVIB_MC_PIPELINE_KILL_PATH";
 fn child_interrupted_run() {
     let Ok(path) = std::env::var(KILL_ENV) else { return };
     let sc = scenario("conveyor-idler.toml");
-    let _ = run_scenario(&sc, &small_opts(5), Path::new(&path), &|done, _| {
+    let _ = sc.simulate(&small_opts(5), Path::new(&path), &|done, _| {
         if done >= 2 {
             std::process::abort();
         }
@@ -290,22 +295,18 @@ fn killed_run_leaves_no_final_file_and_resumes() {
     );
     assert!(RunFile::open(&path).is_err());
     let sc = scenario("conveyor-idler.toml");
-    let resumed = run_scenario(&sc, &small_opts(5), &path, &|_, _| {}).unwrap();
+    let resumed = sc.simulate(&small_opts(5), &path, &|_, _| {}).unwrap();
     assert_eq!(resumed.resumed_shards, 2);
     assert_eq!(resumed.n_shards, 4);
     let whole_path = dir.join("whole.h5");
-    let whole = run_scenario(&sc, &small_opts(5), fresh(&whole_path), &|_, _| {}).unwrap();
+    let whole = sc.simulate(&small_opts(5), fresh(&whole_path), &|_, _| {}).unwrap();
     assert_eq!(whole.resumed_shards, 0);
     let bits = |s: &RunSummary| -> Vec<u64> {
         s.outputs
             .iter()
             .flat_map(|o| {
-                [
-                    o.sigma.estimate,
-                    o.sigma.lower,
-                    o.sigma.upper,
-                    o.fluctuation_mean.estimate,
-                ]
+                let (s, m) = (stat(o, "sigma").interval, stat(o, "mean").interval);
+                [s.estimate, s.lower, s.upper, m.estimate]
             })
             .map(f64::to_bits)
             .collect()
@@ -349,7 +350,7 @@ fn simulate_and_inspect_cli() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("shard 4/4"), "progress: {stderr}");
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(v["method"], "exact");
+    assert_eq!(v["route"], "exact");
     assert_eq!(v["n_realizations"], 20);
     assert_eq!(v["outputs"].as_array().unwrap().len(), 2);
     // a finished file is not overwritten
@@ -404,8 +405,8 @@ fn raw_inputs_are_stored_on_both_routes() {
     opts.store_raw = true;
     opts.shard_size = 100;
     let out = dir.join("conveyor.h5");
-    let s = run_scenario(&sc, &opts, fresh(&out), &|_, _| {}).unwrap();
-    assert_eq!(s.method, Method::Exact);
+    let s = sc.simulate(&opts, fresh(&out), &|_, _| {}).unwrap();
+    assert_eq!(s.route, Route::Exact);
     let f = RunFile::open(&out).unwrap();
     let meta = f.metadata();
     assert_eq!(meta.inputs.len(), 1);
@@ -423,7 +424,7 @@ fn raw_inputs_are_stored_on_both_routes() {
     let mut opts = RunOptions::new(4, 20.0, 0.01, 7);
     opts.store_raw = true;
     let out = dir.join("half-car.h5");
-    let s = run_scenario(&sc, &opts, fresh(&out), &|_, _| {});
+    let s = sc.simulate(&opts, fresh(&out), &|_, _| {});
     match s {
         Ok(_) => {
             let f = RunFile::open(&out).unwrap();

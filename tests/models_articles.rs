@@ -2,19 +2,17 @@
 //! closed forms against modal analysis, exact matrix-exponential and RK4 time integration, and the dense
 //! complex solve. Every expected value states its provenance in a comment.
 
+mod common;
+use common::rel;
+use common::tolerance::{EXACT, FACTORISATION, ODE_RK4};
 use nalgebra::{Complex, DMatrix, DVector};
 use std::path::PathBuf;
+use stochvib::fields::Fields;
 use stochvib::models::dynamic_stiffness_chain::{self as dsc, DynamicStiffnessChain, TorsionalChain};
 use stochvib::models::mine_hoist::{self as mh, MineHoist, MineHoistParams};
 use stochvib::models::three_mass_hoist::{self as tmh, ThreeMassHoist};
-use stochvib::report::book::{BookRow, EXPLAIN_ABOVE};
-use stochvib::scenario::Fields;
-use stochvib::tolerance::{EXACT, FACTORISATION, ODE_RK4};
+use stochvib::models::worked_example::{BookRow, EXPLAIN_ABOVE};
 use stochvib::Error;
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
-}
 
 /// Reads `data/<name>`, checks `[model] kind`, builds the model with `build`, then `finish()`.
 fn load<T>(name: &str, kind: &str, build: impl Fn(&Fields) -> stochvib::Result<T>) -> stochvib::Result<T> {

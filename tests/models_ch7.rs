@@ -5,26 +5,24 @@
 //! composite Simpson rule written here), values recomputed outside the crate (the comment says how), or
 //! published values with their source line.
 
+mod common;
+use common::rel;
+use common::tolerance::{EXACT, FACTORISATION, QUADRATURE};
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::{PI, SQRT_2};
 use std::path::Path;
 use std::sync::Arc;
+use stochvib::fields::Fields;
 use stochvib::models::half_car::{self, axle_natural_frequency, resonance_speed, HalfCar};
 use stochvib::models::isolation::{self, transmissibility, SingleIsolator, TwoStageIsolator};
 use stochvib::models::operator_seat::{
     self, band_index, harmonic_band_rms, octave_bands, random_band_rms, SanitaryLimits,
 };
+use stochvib::models::worked_example::{BookRow, EXPLAIN_ABOVE};
 use stochvib::models::InputLayout;
-use stochvib::report::book::{BookRow, EXPLAIN_ABOVE};
 use stochvib::response::{band_variance, Excitation};
-use stochvib::scenario::Fields;
 use stochvib::spectrum::{BandWhite, Convention, Domain};
 use stochvib::system::FrequencyResponse;
-use stochvib::tolerance::{EXACT, FACTORISATION, QUADRATURE};
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
-}
 
 // ---------------------------------------------------------------- isolation 7.1 / 7.2
 
@@ -453,13 +451,13 @@ fn table_7_1_transcription_and_db_consistency() {
         }
     }
     // bad files are rejected with the key named
-    let bad =
-        include_str!("../data/table-7-1.toml").replace("acceleration_db = 121", "acceleration_db = 121\ntypo = 1");
+    let bad = include_str!("../data/reference/table-7-1.toml")
+        .replace("acceleration_db = 121", "acceleration_db = 121\ntypo = 1");
     let e = SanitaryLimits::parse(&bad, Path::new("t.toml"))
         .unwrap_err()
         .to_string();
     assert!(e.contains("typo"), "{e}");
-    let bad = include_str!("../data/table-7-1.toml").replacen("centre = \"2 Hz\"", "centre = \"3 Hz\"", 1);
+    let bad = include_str!("../data/reference/table-7-1.toml").replacen("centre = \"2 Hz\"", "centre = \"3 Hz\"", 1);
     assert!(SanitaryLimits::parse(&bad, Path::new("t.toml")).is_err());
 }
 

@@ -4,25 +4,24 @@
 //! out in each test's comments and in the model's `# Formula` docs) or a value recomputed outside the crate
 //! from the printed formulas (the comment says how); none is copied from running the code under test.
 
+mod common;
+use common::rel;
+use common::tolerance::{EXACT, FACTORISATION, QUADRATURE};
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::PI;
 use std::path::Path;
 use std::sync::Arc;
+use stochvib::fields::Fields;
 use stochvib::linalg::solve_continuous_lyapunov;
 use stochvib::models::balancer_bogie::{self, rz_ratio, sweep, BalancerBogie};
 use stochvib::models::conveyor_idler::{self, ConveyorIdler, LumpLoad};
 use stochvib::models::scraper::{self, book_road_8_66, book_road_8_69, respond, ScraperRigidCab, ScraperSprungCab};
+use stochvib::models::worked_example::{BookRow, EXPLAIN_ABOVE};
 use stochvib::models::InputLayout;
-use stochvib::report::book::{BookRow, EXPLAIN_ABOVE};
 use stochvib::response::{analyze_output, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation};
-use stochvib::scenario::{load_spectrum, Fields};
+use stochvib::scenario::load_spectrum;
 use stochvib::spectrum::{two_pole_road::Form, AtSpeed, Domain, Exponential, RationalSpectrum, Spectrum, TwoPoleRoad};
-use stochvib::tolerance::{EXACT, FACTORISATION, QUADRATURE};
 use stochvib::Error;
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
-}
 
 // ------------------------------------------------------------------------------------------------
 // Balancer bogie (8.5)
@@ -412,7 +411,7 @@ fn scraper_quasi_static_limit() {
     assert!(rel(ratio, 2f64.powf(1.5)) < 1e-3, "{ratio}");
 }
 
-/// data/table-8-1.toml holds the printed values of book lines 4763–4769 exactly.
+/// data/reference/table-8-1.toml holds the printed values of book lines 4763–4769 exactly.
 #[test]
 fn scraper_table_8_1_transcription() {
     let (speeds, rows) = scraper::table_8_1().unwrap();

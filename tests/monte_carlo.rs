@@ -4,6 +4,8 @@
 //! Every statistical assertion is seeded (so the suite is deterministic) and states the probability that
 //! it would fail for a correct implementation under a fresh seed.
 
+mod common;
+use common::tolerance::{EXACT, FACTORISATION};
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -15,7 +17,6 @@ use stochvib::simulate::{
 };
 use stochvib::spectrum::{Domain, ExpCosine, Exponential, Spectrum};
 use stochvib::system::{OutputInfo, StateSpace};
-use stochvib::tolerance::{EXACT, FACTORISATION};
 
 /// Confidence of each single statistical assertion: false failure 1e-6.
 const CONF: f64 = 1.0 - 1e-6;

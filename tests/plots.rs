@@ -1,12 +1,13 @@
 //! Pictures: every plot function writes an SVG and a PNG that are well formed, of the right size, not
 //! blank, and carry their title and axis labels; bad input gives errors, never panics.
 
+mod common;
+use common::tolerance::QUADRATURE;
 use std::path::{Path, PathBuf};
 use stochvib::plot::chart::{BarChart, LineChart, Marker, Series};
 use stochvib::plot::{mc_plots, model_plots, scenario_plots, Histogram, HEIGHT, WIDTH};
 use stochvib::response::variance_quadrature;
 use stochvib::scenario::load_scenario;
-use stochvib::tolerance::QUADRATURE;
 use stochvib::Error;
 
 fn out_dir(name: &str) -> PathBuf {
@@ -292,7 +293,7 @@ fn monte_carlo_pictures() {
 #[test]
 fn octave_bars_are_coloured_by_pass_or_fail() {
     let dir = out_dir("octave");
-    // Table 7.1 acceleration limits (m/s², as in data/table-7-1.toml) and made-up RMS values: 1, 4 and 63 Hz
+    // Table 7.1 acceleration limits (m/s², as in data/reference/table-7-1.toml) and made-up RMS values: 1, 4 and 63 Hz
     // exceed their limits (1.2 > 1.10, 0.60 > 0.57, 5.0 > 4.50), the other four do not.
     let centres = [1.0, 2.0, 4.0, 8.0, 16.0, 31.5, 63.0];
     let limits = [1.10, 0.79, 0.57, 0.63, 1.13, 2.25, 4.50].map(Some);
@@ -363,6 +364,7 @@ mod book {
     //! `stochvib book --plots DIR`: every picture written and readable, and each picture's data checked
     //! against an independent value.
     use super::{check_pair, check_svg, out_dir, root};
+    use crate::common::tolerance::{EXACT, QUADRATURE};
     use std::f64::consts::{PI, SQRT_2};
     use std::sync::Arc;
     use stochvib::models::mine_hoist::MineHoist;
@@ -372,7 +374,6 @@ mod book {
     use stochvib::response::{variance_lyapunov, variance_quadrature, Excitation};
     use stochvib::scenario::load_scenario;
     use stochvib::spectrum::{two_pole_road::Form, AtSpeed};
-    use stochvib::tolerance::{EXACT, QUADRATURE};
 
     fn find<'a>(pics: &'a [BookPicture], stem: &str) -> &'a BookChart {
         &pics
@@ -404,8 +405,8 @@ mod book {
     #[test]
     fn every_book_picture_is_written_with_title_and_axis_labels() {
         let dir = out_dir("book");
-        let files = stochvib::plot::book_plots(&dir).unwrap();
-        let pics = book_plots::book_pictures().unwrap();
+        let files = stochvib::plot::book_plots(&dir, &root().join("spectra")).unwrap();
+        let pics = book_plots::book_pictures(&root().join("spectra")).unwrap();
         // 4 seat, 2 mine hoist, 1 balancer, 2 scraper pictures; SVG and PNG each
         assert_eq!(pics.len(), 9);
         assert_eq!(files.len(), 18);
@@ -629,7 +630,7 @@ mod book {
 
 /// A small conveyor-idler run (one input, outputs y and y_vel) written with raw realizations.
 fn conveyor_run(tag: &str, store_raw: bool) -> (PathBuf, PathBuf) {
-    use stochvib::simulate::{run_scenario, RunOptions};
+    use stochvib::simulate::RunOptions;
     let dir = out_dir(tag);
     std::fs::create_dir_all(&dir).unwrap();
     let sc = load_scenario(&root().join("data/conveyor-idler.toml"), &root().join("spectra")).unwrap();
@@ -638,7 +639,7 @@ fn conveyor_run(tag: &str, store_raw: bool) -> (PathBuf, PathBuf) {
     opts.shard_size = 20;
     opts.store_raw = store_raw;
     let path = dir.join("run.h5");
-    run_scenario(&sc, &opts, &path, &|_, _| {}).unwrap();
+    sc.simulate(&opts, &path, &|_, _| {}).unwrap();
     (path, dir.join("pictures"))
 }
 
@@ -647,7 +648,7 @@ fn run_file_pictures() {
     use stochvib::plot::run_plots::run_charts;
     use stochvib::store::{RunFile, SignalGroup};
     let (path, dir) = conveyor_run("runfile", true);
-    let files = stochvib::plot::run_plots(&path, &dir).unwrap();
+    let files = stochvib::plot::run_plots(&path, &dir, &root().join("spectra")).unwrap();
     // 2 outputs × (welch, realizations, histogram, correlation) × (svg, png)
     assert_eq!(files.len(), 16);
     // title of data/conveyor-idler.toml
@@ -681,7 +682,7 @@ fn run_file_pictures() {
     // data with provenance: everything read back independently with the crate's reader
     let run = RunFile::open(&path).unwrap();
     let psd = run.psd().unwrap();
-    let charts = run_charts(&path).unwrap();
+    let charts = run_charts(&path, &root().join("spectra")).unwrap();
     assert_eq!(charts.len(), 2);
     for oc in &charts {
         let p = psd.iter().find(|p| p.output == oc.output).unwrap();
@@ -728,7 +729,7 @@ fn run_file_pictures() {
         let expected_peak = 1.0 / (sigma * (2.0 * std::f64::consts::PI).sqrt());
         // the 301-point grid over ≥ M ± 4σ passes within half a step (≤ 4σ/300·…) of M: relative drop of
         // the peak ≤ ½(Δ/σ)² with Δ ≤ (hi − lo)/300, a small bound for these samples
-        assert!(peak <= expected_peak * (1.0 + stochvib::tolerance::EXACT) && peak > 0.999 * expected_peak);
+        assert!(peak <= expected_peak * (1.0 + common::tolerance::EXACT) && peak > 0.999 * expected_peak);
         // the model correlation against an independent method: the exact autocovariance C Φ^k P Cᵀ of the
         // Van Loan discretisation of the system augmented with the input's shaping filter (its samples are
         // K(kΔt) of the continuous output exactly), at lags 0, 10 and 30 steps
@@ -741,7 +742,7 @@ fn run_file_pictures() {
         for k in [0usize, 10, 30] {
             let exact = gm.output_autocovariance(k)[(0, 0)];
             assert!(
-                (model[k].1 - exact).abs() <= stochvib::tolerance::PLOT_MODEL_CORRELATION * exact.abs(),
+                (model[k].1 - exact).abs() <= common::tolerance::PLOT_MODEL_CORRELATION * exact.abs(),
                 "{} lag {k}: model {} exact {exact}",
                 oc.output,
                 model[k].1
@@ -751,7 +752,7 @@ fn run_file_pictures() {
 
     // without raw data only the Welch pictures are written
     let (path2, dir2) = conveyor_run("runfile-noraw", false);
-    let files2 = stochvib::plot::run_plots(&path2, &dir2).unwrap();
+    let files2 = stochvib::plot::run_plots(&path2, &dir2, &root().join("spectra")).unwrap();
     assert_eq!(files2.len(), 4);
     assert!(files2
         .iter()

@@ -1,6 +1,9 @@
 //! Systems and response statistics: the three variance methods against each other and against closed
 //! forms derived in the comments; divergence; bad input.
 
+mod common;
+use common::rel;
+use common::tolerance::{EXACT, FACTORISATION, QUADRATURE};
 use nalgebra::DMatrix;
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -10,12 +13,7 @@ use stochvib::response::{
 };
 use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosine, RationalSpectrum, Spectrum};
 use stochvib::system::{Attach, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace, TransferFunction};
-use stochvib::tolerance::{EXACT, FACTORISATION, QUADRATURE};
 use stochvib::Error;
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
-}
 
 /// Ideal white noise of two-sided level S₀: N(ω²) = S₀, D(ω²) = 1.
 fn white(s0: f64) -> Arc<dyn Spectrum> {

@@ -1,10 +1,11 @@
 //! Scenario files: parsing, bad input naming file/key/reason, and agreement of the variance methods on
 //! the shipped examples.
 
+mod common;
+use common::tolerance::QUADRATURE;
 use std::path::{Path, PathBuf};
 use stochvib::report::analysis_report;
 use stochvib::scenario::{load_scenario, parse_scenario};
-use stochvib::tolerance::QUADRATURE;
 use stochvib::Error;
 
 fn spectra() -> PathBuf {

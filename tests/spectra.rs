@@ -4,6 +4,9 @@
 //! DESIGN.md §2), ISO 8608's class definition σ² = G_d(n₀) n₀² (1/n₁ − 1/n₂) for w = 2, and the SI
 //! definitions of units. No expected value is taken from running the code under test.
 
+mod common;
+use common::rel;
+use common::tolerance::{EXACT, FACTORISATION, FOURIER, QUADRATURE};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 use std::path::Path;
@@ -14,17 +17,7 @@ use stochvib::spectrum::{
     numeric, AtSpeed, BandWhite, Convention, Domain, ExpCosine, Exponential, GaussCosine, Gaussian, IsoBound, IsoClass,
     PowerLaw, RationalSpectrum, Spectrum, Tabulated, TwoPoleRoad, ISO_BAND,
 };
-use stochvib::tolerance::{EXACT, FACTORISATION, FOURIER, QUADRATURE};
 use stochvib::Error;
-
-fn rel(a: f64, b: f64) -> f64 {
-    let m = a.abs().max(b.abs());
-    if m == 0.0 {
-        0.0
-    } else {
-        (a - b).abs() / m
-    }
-}
 
 /// A spectrum with its variance and correlation known in closed form (independently of the code).
 struct Case {

@@ -9,6 +9,7 @@
 use ndarray::Array2;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use stochvib::estimate::Interval;
 use stochvib::store::{
     summarize, tmp_path, Compression, OutputStatistics, PsdEstimate, RunFile, RunMetadata, RunWriter, Signal,
     SignalGroup, Statistic,
@@ -86,10 +87,12 @@ fn write_shard(w: &mut RunWriter, shard: usize) {
 fn statistics() -> Vec<OutputStatistics> {
     let stat = |name: &str, est: f64, analytic: Option<f64>, covers: Option<bool>, unit: &str| Statistic {
         name: name.into(),
-        estimate: est,
-        lower: est - 0.125,
-        upper: est + 0.125,
-        confidence: 0.95,
+        interval: Interval {
+            estimate: est,
+            lower: est - 0.125,
+            upper: est + 0.125,
+            confidence: 0.95,
+        },
         unit: unit.into(),
         method: "Student-t".into(),
         analytic,

@@ -4,8 +4,8 @@
 use crate::error::{Error, Result};
 use statrs::distribution::{ChiSquared, ContinuousCDF, StudentsT};
 
-/// A two-sided confidence interval around an estimate.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A two-sided confidence interval around an estimate (the one interval type of the crate).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Interval {
     /// Point estimate.
     pub estimate: f64,
@@ -33,7 +33,7 @@ impl Interval {
 }
 
 /// A Monte Carlo estimate compared with its analytic value.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Comparison {
     /// The analytic value.
     pub analytic: f64,

@@ -198,8 +198,9 @@ fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
             for r in col + 1..n {
                 let f = m[r][col] / piv;
                 if f != 0.0 {
-                    for c in col..=n {
-                        m[r][c] -= f * m[col][c];
+                    let (pivot_rows, rest) = m.split_at_mut(r);
+                    for (x, y) in rest[0][col..=n].iter_mut().zip(&pivot_rows[col][col..=n]) {
+                        *x -= f * y;
                     }
                 }
             }

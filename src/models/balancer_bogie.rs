@@ -6,9 +6,9 @@
 
 use super::{InputLayout, ModelInstance};
 use crate::error::{require_positive, Error, Result};
-use crate::report::book::BookRow;
+use crate::fields::Fields;
+use crate::models::worked_example::BookRow;
 use crate::response::{variance_quadrature, Excitation};
-use crate::scenario::Fields;
 use crate::spectrum::{AtSpeed, Domain, Spectrum};
 use crate::system::{OutputInfo, StateSpace};
 use crate::units::Dim;
@@ -328,7 +328,7 @@ pub fn from_fields(f: &Fields, speed: Option<f64>) -> Result<ModelInstance> {
     let r = f.quantity("r", Dim::LENGTH)?;
     let ell = f.quantity("ell", Dim::LENGTH)?;
     let ell1 = f.quantity("ell1", Dim::LENGTH)?;
-    let b = BalancerBogie::new(r, ell, ell1).map_err(|e| wrap(f, e))?;
+    let b = BalancerBogie::new(r, ell, ell1).map_err(|e| f.wrap_param(e, "r"))?;
     let speed = speed.ok_or_else(|| {
         f.error(
             "kind",
@@ -337,14 +337,6 @@ pub fn from_fields(f: &Fields, speed: Option<f64>) -> Result<ModelInstance> {
         )
     })?;
     b.instance(speed).map_err(|e| f.wrap("kind", e))
-}
-
-fn wrap(f: &Fields, e: Error) -> Error {
-    let key = match &e {
-        Error::InvalidParameter { name, .. } => name.clone(),
-        _ => "r".into(),
-    };
-    f.wrap(&key, e)
 }
 
 /// The book's worked example (8.5, line 4599): r = 11 and 15 cm, ℓ = 60 cm, ℓ₁ = ℓ/2, α = 0.035 1/cm,

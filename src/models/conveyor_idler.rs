@@ -4,10 +4,10 @@
 //! F(t) = M_F + F̊(t), whose fluctuation has the type-1 correlation K_F = D_F e^{−α|τ|} (lumps of material).
 
 use super::{InputLayout, ModelInstance};
-use crate::error::{require_non_negative, require_positive, Error, Result};
-use crate::report::book::BookRow;
-use crate::scenario::Fields;
-use crate::system::{Attach, Element, Mdof, Quantity};
+use crate::error::{require_non_negative, require_positive, Result};
+use crate::fields::Fields;
+use crate::models::worked_example::BookRow;
+use crate::system::{Drive, Mdof, Quantity};
 use crate::units::Dim;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -220,14 +220,7 @@ impl ConveyorIdler {
     /// assert!((m.system.static_gain().unwrap()[(0, 0)] - 1.0 / 7.0e4).abs() < 1e-18);
     /// ```
     pub fn instance(&self) -> Result<ModelInstance> {
-        let el = Element {
-            name: "support".into(),
-            point: vec![1.0],
-            to: Attach::Ground,
-            stiffness: self.c,
-            damping: self.b,
-        };
-        let sys = Mdof::from_elements(&[("y", "m")], &[self.m], vec![el], 0, &[vec![1.0]])?
+        let sys = Mdof::oscillator(self.m, self.c, self.b, Drive::Force)?
             .with_output("y", Quantity::Displacement(vec![1.0]))?
             .with_output("y_vel", Quantity::Velocity(vec![1.0]))?
             .with_output("y_acc", Quantity::Acceleration(vec![1.0]))?
@@ -267,13 +260,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
         (Some(_), Some(_)) => return Err(f.error("zeta", "both", "give `b` or `zeta`, not both")),
         (None, None) => return Err(f.error("b", "<missing>", "give `b` (N s/m) or `zeta` (damping ratio)")),
     }
-    .map_err(|e| {
-        let key = match &e {
-            Error::InvalidParameter { name, .. } => name.clone(),
-            _ => "m".into(),
-        };
-        f.wrap(&key, e)
-    })?;
+    .map_err(|e| f.wrap_param(e, "m"))?;
     idler.instance()
 }
 

@@ -38,10 +38,9 @@
 //! ```
 
 use crate::error::{require_non_negative, require_positive, Error, Result};
-use crate::models::isolation::wrap_param;
+use crate::fields::Fields;
+use crate::models::worked_example::BookRow;
 use crate::models::{InputLayout, ModelInstance};
-use crate::report::book::BookRow;
-use crate::scenario::Fields;
 use crate::spectrum::Asymptote;
 use crate::system::{modal_analysis, Attach, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace};
 use crate::units::Dim;
@@ -387,7 +386,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
         f.opt_quantity("front_damping", Dim::DAMPING)?.unwrap_or(0.0),
         f.opt_quantity("rear_damping", Dim::DAMPING)?.unwrap_or(0.0),
     )
-    .map_err(|e| wrap_param(f, e))?;
+    .map_err(|e| f.wrap_param(e, "kind"))?;
     let x = f.opt_quantity("acc_point", Dim::LENGTH)?.unwrap_or(0.0);
     car.instance(x).map_err(|e| f.wrap("acc_point", e))
 }

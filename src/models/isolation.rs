@@ -38,11 +38,11 @@
 //! assert!((iso.natural_frequency() - 10.0).abs() < 1e-12);
 //! ```
 
-use crate::error::{require_non_negative, require_positive, Error, Result};
+use crate::error::{require_non_negative, require_positive, Result};
+use crate::fields::Fields;
+use crate::models::worked_example::BookRow;
 use crate::models::{InputLayout, ModelInstance};
-use crate::report::book::BookRow;
-use crate::scenario::Fields;
-use crate::system::{Attach, Element, Mdof, Quantity};
+use crate::system::{Attach, Drive, Element, Mdof, Quantity};
 use crate::units::Dim;
 use nalgebra::Complex;
 use std::sync::Arc;
@@ -123,14 +123,7 @@ impl SingleIsolator {
     /// # Errors
     /// None for a validated isolator (the `Result` is the [`Mdof`] constructor's).
     pub fn mdof_base(&self) -> Result<Mdof> {
-        let el = Element {
-            name: "isolator".into(),
-            point: vec![1.0],
-            to: Attach::Base(0),
-            stiffness: self.stiffness,
-            damping: self.damping,
-        };
-        Mdof::from_elements(&[("x", "m")], &[self.mass], vec![el], 1, &[])?
+        Mdof::oscillator(self.mass, self.stiffness, self.damping, Drive::Base)?
             .with_output("x", Quantity::Displacement(vec![1.0]))?
             .with_output("x_acc", Quantity::Acceleration(vec![1.0]))?
             .with_output("travel", Quantity::Deflection(0))?
@@ -143,14 +136,7 @@ impl SingleIsolator {
     /// # Errors
     /// As [`SingleIsolator::mdof_base`].
     pub fn mdof_force(&self) -> Result<Mdof> {
-        let el = Element {
-            name: "isolator".into(),
-            point: vec![1.0],
-            to: Attach::Ground,
-            stiffness: self.stiffness,
-            damping: self.damping,
-        };
-        Mdof::from_elements(&[("x", "m")], &[self.mass], vec![el], 0, &[vec![1.0]])?
+        Mdof::oscillator(self.mass, self.stiffness, self.damping, Drive::Force)?
             .with_output("force", Quantity::ElementForce(0))
     }
 
@@ -368,7 +354,9 @@ pub fn from_fields_single(f: &Fields) -> Result<ModelInstance> {
         }
         (None, None) => 0.0,
     };
-    SingleIsolator::new(m, c, b).map_err(|e| wrap_param(f, e))?.instance()
+    SingleIsolator::new(m, c, b)
+        .map_err(|e| f.wrap_param(e, "kind"))?
+        .instance()
 }
 
 /// Reads a `kind = "isolator-two-stage"` `[model]` table: `mass_1`, `stiffness_1`, `damping_1` (optional,
@@ -384,17 +372,8 @@ pub fn from_fields_two_stage(f: &Fields) -> Result<ModelInstance> {
     let c2 = f.quantity("stiffness_2", Dim::STIFFNESS)?;
     let b2 = f.opt_quantity("damping_2", Dim::DAMPING)?.unwrap_or(0.0);
     TwoStageIsolator::new(m1, c1, b1, m2, c2, b2)
-        .map_err(|e| wrap_param(f, e))?
+        .map_err(|e| f.wrap_param(e, "kind"))?
         .instance()
-}
-
-/// Turns a constructor's [`Error::InvalidParameter`] into an [`Error::File`] naming the key of the same name.
-pub(crate) fn wrap_param(f: &Fields, e: Error) -> Error {
-    let key = match &e {
-        Error::InvalidParameter { name, .. } => name.clone(),
-        _ => "kind".to_string(),
-    };
-    f.wrap(&key, e)
 }
 
 /// Frequency ratio r > 0 at which η(r, ζ) = 1, found by bisection on [1, 10] (η > 1 just above r = 1 and

@@ -3,8 +3,10 @@
 //! (source `004_d1d782fd2b1ec8bf.txt`).
 
 use crate::error::{require_non_negative, require_positive, Error, Result};
-use crate::report::book::BookRow;
-use crate::scenario::Fields;
+use crate::fields::Fields;
+use crate::models::results::{Cell, DeterministicModel, ResultTable};
+use crate::models::worked_example::BookRow;
+use crate::numbers::num;
 use crate::system::modal_analysis;
 use crate::units::Dim;
 use nalgebra::{DMatrix, DVector};
@@ -605,6 +607,58 @@ impl MineHoist {
             prev = Some(cols);
         }
         Ok(out)
+    }
+}
+
+impl DeterministicModel for MineHoist {
+    fn description(&self) -> String {
+        let p = &self.p;
+        format!(
+            "single-end mine hoist: lift H = {} m, hanging length up to L = {} m, end mass {} kg, drum J1 = {} kg m^2 \
+             (Dvornikov, Kondrakhin & Velebnik, Natural frequencies and modes of a single-end hoisting machine, 2014)",
+            num(p.lift_height),
+            num(p.max_hanging_length),
+            num(p.end_mass),
+            num(p.drum_inertia)
+        )
+    }
+
+    /// The natural frequencies ω₁, ω₂ and the renormalised modes (25) over the lift ξ = 0 … 1 (11 points),
+    /// and the node of mode 1 (closed form, corrected, and root finding).
+    fn results(&self) -> Result<Vec<ResultTable>> {
+        let mut sweep = ResultTable::new(
+            "Natural frequencies and renormalised modes over the lift (14), (20)-(25)",
+            &[
+                ("xi", "-"),
+                ("l2", "m"),
+                ("omega1", "rad/s"),
+                ("omega2", "rad/s"),
+                ("mode 1 drum", "m"),
+                ("mode 1 sheave", "m"),
+                ("mode 1 load", "m"),
+                ("mode 2 drum", "m"),
+                ("mode 2 sheave", "m"),
+                ("mode 2 load", "m"),
+            ],
+        )
+        .with_note(
+            "omega0 = 0 (rigid mode); modes scaled so that phi' M phi = m_Sigma, signs continuous across the node",
+        );
+        for p in self.sweep(11)? {
+            let mut row: Vec<Cell> = vec![p.xi.into(), p.l2.into(), p.omega1.into(), p.omega2.into()];
+            row.extend(p.mode1.iter().chain(&p.mode2).map(|&v| Cell::from(v)));
+            sweep.push(row);
+        }
+        let mut node = ResultTable::new("Node of mode 1 (the sheave at rest)", &[("method", "-"), ("l2*", "m")]);
+        node.push(vec![
+            "closed form (J1 in place of the printed J1')".into(),
+            self.node_closed_form()?.into(),
+        ]);
+        node.push(vec![
+            "root finding on the eigenvectors".into(),
+            self.node_by_root_finding(400)?.into(),
+        ]);
+        Ok(vec![sweep, node])
     }
 }
 

@@ -6,10 +6,8 @@
 //! `book` report ([`crate::report::book`]).
 
 mod instance;
-mod registry;
 
 pub use instance::{InputLayout, ModelInstance};
-pub use registry::{book_rows, from_fields, ModelContext, KINDS};
 
 pub mod balancer_bogie;
 pub mod conveyor_idler;
@@ -18,5 +16,7 @@ pub mod half_car;
 pub mod isolation;
 pub mod mine_hoist;
 pub mod operator_seat;
+pub mod results;
 pub mod scraper;
 pub mod three_mass_hoist;
+pub mod worked_example;

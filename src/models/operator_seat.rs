@@ -32,13 +32,13 @@
 //! ```
 
 use crate::error::{require_positive, Error, Result};
-use crate::models::isolation::{transmissibility, wrap_param};
+use crate::fields::Fields;
+use crate::models::isolation::transmissibility;
+use crate::models::worked_example::BookRow;
 use crate::models::{InputLayout, ModelInstance};
-use crate::report::book::BookRow;
 use crate::response::{band_variance, Excitation};
-use crate::scenario::Fields;
 use crate::spectrum::Spectrum;
-use crate::system::{Attach, Element, FrequencyResponse, Mdof, Quantity};
+use crate::system::{Drive, FrequencyResponse, Mdof, Quantity};
 use crate::units::Dim;
 use std::f64::consts::{PI, SQRT_2};
 use std::path::Path;
@@ -115,7 +115,7 @@ pub struct LimitBand {
     pub comment: Option<String>,
 }
 
-/// Sanitary limits of vertical vibration on the seat (Table 7.1), read from `data/table-7-1.toml`.
+/// Sanitary limits of vertical vibration on the seat (Table 7.1), read from `data/reference/table-7-1.toml`.
 ///
 /// # Formula
 /// Levels in dB: L = 20 log₁₀(x/x₀) with x₀ = `reference_acceleration` (1e-6 m/s²) or `reference_velocity`
@@ -144,14 +144,14 @@ pub struct SanitaryLimits {
 }
 
 impl SanitaryLimits {
-    /// Table 7.1 from the `data/table-7-1.toml` of the source tree (embedded at compile time).
+    /// Table 7.1 from the `data/reference/table-7-1.toml` of the source tree (embedded at compile time).
     ///
     /// # Errors
     /// As [`SanitaryLimits::parse`].
     pub fn table_7_1() -> Result<Self> {
         Self::parse(
-            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/data/table-7-1.toml")),
-            Path::new("data/table-7-1.toml"),
+            include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/data/reference/table-7-1.toml")),
+            Path::new("data/reference/table-7-1.toml"),
         )
     }
 
@@ -178,6 +178,7 @@ impl SanitaryLimits {
         })?;
         let f = Fields::new(path, "", &table);
         f.opt_string("title")?;
+        f.opt_string("reference")?;
         let source = f.string("source")?.to_string();
         let reference_acceleration = f.quantity("reference_acceleration", Dim::ACCELERATION)?;
         let reference_velocity = f.quantity("reference_velocity", Dim::VELOCITY)?;
@@ -428,14 +429,7 @@ impl OperatorSeat {
     /// # Errors
     /// None for a validated model (the `Result` is the [`Mdof`] constructor's).
     pub fn mdof(&self) -> Result<Mdof> {
-        let el = Element {
-            name: "seat".into(),
-            point: vec![1.0],
-            to: Attach::Base(0),
-            stiffness: self.stiffness,
-            damping: self.damping,
-        };
-        Mdof::from_elements(&[("z", "m")], &[self.reduced_mass()], vec![el], 1, &[])?
+        Mdof::oscillator(self.reduced_mass(), self.stiffness, self.damping, Drive::Base)?
             .with_output("seat", Quantity::Displacement(vec![1.0]))?
             .with_output("seat_vel", Quantity::Velocity(vec![1.0]))?
             .with_output("seat_acc", Quantity::Acceleration(vec![1.0]))?
@@ -510,7 +504,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             ))
         }
     }
-    .map_err(|e| wrap_param(f, e))?;
+    .map_err(|e| f.wrap_param(e, "kind"))?;
     seat.instance()
 }
 

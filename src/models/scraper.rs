@@ -6,9 +6,9 @@
 
 use super::{InputLayout, ModelInstance};
 use crate::error::{require_non_negative, require_positive, Error, Result};
-use crate::report::book::BookRow;
-use crate::response::{analyze_output, Excitation, OutputStatistics};
-use crate::scenario::Fields;
+use crate::fields::Fields;
+use crate::models::worked_example::BookRow;
+use crate::response::{analyze_output, Excitation, ResponseStatistics};
 use crate::spectrum::{two_pole_road::Form, AtSpeed, Domain, Exponential, Spectrum, TwoPoleRoad};
 use crate::system::{OutputInfo, StateSpace};
 use crate::units::Dim;
@@ -16,7 +16,7 @@ use nalgebra::{DMatrix, DVector};
 use std::sync::Arc;
 
 /// The printed Table 8.1 (transcribed from the book, with units and the parameters it does not print).
-pub const TABLE_8_1_TOML: &str = include_str!("../../data/table-8-1.toml");
+pub const TABLE_8_1_TOML: &str = include_str!("../../data/reference/table-8-1.toml");
 
 /// Scraper with a rigid cab (8.64): m₁ (kg) on tyres c₁ (N/m), b₁ (N s/m).
 ///
@@ -286,7 +286,7 @@ pub fn book_road_8_69() -> Arc<dyn Spectrum> {
 ///
 /// # Errors
 /// A non-spatial road, speed ≤ 0, an instance whose layout is not a single-point track.
-pub fn respond(inst: &ModelInstance, road: Arc<dyn Spectrum>, speed: f64) -> Result<Vec<OutputStatistics>> {
+pub fn respond(inst: &ModelInstance, road: Arc<dyn Spectrum>, speed: f64) -> Result<Vec<ResponseStatistics>> {
     let InputLayout::Track { positions, gains } = &inst.layout else {
         return Err(Error::invalid(
             "layout",
@@ -330,14 +330,6 @@ fn damping_or_ratio(f: &Fields, b_key: &str, z_key: &str, m: f64, c: f64) -> Res
     }
 }
 
-fn param_wrap(f: &Fields, e: Error) -> Error {
-    let key = match &e {
-        Error::InvalidParameter { name, .. } => name.clone(),
-        _ => "m1".into(),
-    };
-    f.wrap(&key, e)
-}
-
 /// Reads the `[model]` table of a `scraper-rigid-cab` scenario: `m1` (mass), `c1` (N/m) or `omega1`
 /// (√(c₁/m₁), with unit), `b1` (N s/m) or `zeta1` (damping ratio).
 ///
@@ -348,7 +340,7 @@ pub fn rigid_from_fields(f: &Fields) -> Result<ModelInstance> {
     let c1 = stiffness_or_frequency(f, "c1", "omega1", m1)?;
     let b1 = damping_or_ratio(f, "b1", "zeta1", m1, c1)?;
     ScraperRigidCab::new(m1, c1, b1)
-        .map_err(|e| param_wrap(f, e))?
+        .map_err(|e| f.wrap_param(e, "m1"))?
         .instance()
 }
 
@@ -365,7 +357,7 @@ pub fn sprung_from_fields(f: &Fields) -> Result<ModelInstance> {
     let c2 = stiffness_or_frequency(f, "c2", "omega2", m2)?;
     let b2 = damping_or_ratio(f, "b2", "zeta2", m2, c2)?;
     ScraperSprungCab::new(m1, c1, b1, m2, c2, b2)
-        .map_err(|e| param_wrap(f, e))?
+        .map_err(|e| f.wrap_param(e, "m1"))?
         .instance()
 }
 
@@ -465,13 +457,20 @@ pub struct Table81Row {
     pub values: Vec<f64>,
 }
 
-/// The printed Table 8.1 from `data/table-8-1.toml`: the speeds (m/s) and the rows.
+/// The printed Table 8.1 from `data/reference/table-8-1.toml`: the speeds (m/s) and the rows.
 ///
 /// # Errors
 /// A malformed data file (a build-time constant, so only a broken edit of the file).
 pub fn table_8_1() -> Result<(Vec<f64>, Vec<Table81Row>)> {
-    let path = std::path::Path::new("data/table-8-1.toml");
-    let table: toml::Table = toml::from_str(TABLE_8_1_TOML).map_err(|e| Error::Parse {
+    parse_table_8_1(TABLE_8_1_TOML, std::path::Path::new("data/reference/table-8-1.toml"))
+}
+
+/// Parses a Table 8.1 file (`path` for messages): the speeds (m/s) and the rows.
+///
+/// # Errors
+/// [`Error::Parse`] or [`Error::File`] naming the key.
+pub fn parse_table_8_1(text: &str, path: &std::path::Path) -> Result<(Vec<f64>, Vec<Table81Row>)> {
+    let table: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
         file: path.into(),
         reason: e.to_string(),
     })?;
@@ -520,7 +519,8 @@ pub fn table_8_1_comparison(assumptions: &Table81Assumptions) -> Result<Vec<Book
     for (k, &v) in speeds.iter().enumerate() {
         let rs = respond(&ri, road.clone(), v)?;
         let ss = respond(&si, road.clone(), v)?;
-        let pick = |stats: &[OutputStatistics], name: &str| stats.iter().find(|s| s.name == name).and_then(|s| s.sigma);
+        let pick =
+            |stats: &[ResponseStatistics], name: &str| stats.iter().find(|s| s.name == name).and_then(|s| s.sigma);
         for row in &rows {
             let scale = if row.unit == "cm" { 0.01 } else { 1.0 };
             let unit = if row.unit == "cm" { "m" } else { "m/s^2" };

@@ -12,11 +12,12 @@
 
 use super::chart::{BarChart, Legend, LineChart, Marker, Series};
 use super::model_plots::{balancer_chart, mine_hoist_charts, octave_band_chart, scraper_chart};
-use crate::error::{num, Error, Result};
+use crate::error::{Error, Result};
 use crate::models::balancer_bogie;
 use crate::models::mine_hoist::MineHoist;
 use crate::models::operator_seat::{self, BandCheck, SanitaryLimits, OCTAVE_CENTRES_HZ};
 use crate::models::scraper::{self, Table81Assumptions};
+use crate::numbers::num;
 use crate::scenario::parse_scenario;
 use crate::spectrum::two_pole_road::Form;
 use std::path::{Path, PathBuf};
@@ -126,7 +127,7 @@ fn seat_pair(stem: &str, title: &str, checks: &[BandCheck]) -> Result<[BookPictu
 ///
 /// # Examples
 /// ```no_run
-/// let p = stochvib::plot::book_plots::seat_pictures(&stochvib::report::default_spectra_dir()).unwrap();
+/// let p = stochvib::plot::book_plots::seat_pictures(stochvib::scenario::Catalogue::bundled().dir()).unwrap();
 /// assert_eq!(p.len(), 4);
 /// ```
 pub fn seat_pictures(spectra_dir: &Path) -> Result<Vec<BookPicture>> {
@@ -152,7 +153,7 @@ pub fn seat_pictures(spectra_dir: &Path) -> Result<Vec<BookPicture>> {
     )?);
     out.extend(seat_pair(
         "seat-random",
-        &format!("Operator seat (Sukharev 7.6), random floor `{}`", sc.input_name),
+        &format!("Operator seat (Sukharev 7.6), random floor `{}`", sc.input.reference),
         &random,
     )?);
     Ok(out)
@@ -342,8 +343,8 @@ pub fn scraper_pictures(assumptions: &Table81Assumptions) -> Result<Vec<BookPict
     Ok(out)
 }
 
-/// Every book picture, computed with the library (spectra for the random seat scenario from
-/// [`default_spectra_dir`](crate::report::default_spectra_dir)).
+/// Every book picture, computed with the library (spectra for the random seat scenario from the catalogue
+/// in `spectra_dir`).
 ///
 /// # Errors
 /// As [`seat_pictures`], [`mine_hoist_pictures`], [`balancer_picture`], [`scraper_pictures`].
@@ -351,18 +352,19 @@ pub fn scraper_pictures(assumptions: &Table81Assumptions) -> Result<Vec<BookPict
 ///
 /// # Examples
 /// ```no_run
-/// let p = stochvib::plot::book_plots::book_pictures().unwrap();
+/// let p = stochvib::plot::book_plots::book_pictures(std::path::Path::new("spectra")).unwrap();
 /// assert_eq!(p.len(), 9);
 /// ```
-pub fn book_pictures() -> Result<Vec<BookPicture>> {
-    let mut out = seat_pictures(&crate::report::default_spectra_dir())?;
+pub fn book_pictures(spectra_dir: &Path) -> Result<Vec<BookPicture>> {
+    let mut out = seat_pictures(spectra_dir)?;
     out.extend(mine_hoist_pictures(201)?);
     out.push(balancer_picture()?);
     out.extend(scraper_pictures(&Table81Assumptions::default())?);
     Ok(out)
 }
 
-/// Writes every [`book_pictures`] picture into `dir` (created if missing) as SVG and PNG (800 × 500);
+/// Writes every [`book_pictures`] picture (spectra from `spectra_dir`) into `dir` (created if missing) as SVG
+/// and PNG (800 × 500);
 /// returns the written paths (SVG, PNG per picture).
 ///
 /// # Errors
@@ -370,12 +372,13 @@ pub fn book_pictures() -> Result<Vec<BookPicture>> {
 ///
 /// # Examples
 /// ```no_run
-/// let files = stochvib::plot::book_plots(std::path::Path::new("book-plots")).unwrap();
+/// use std::path::Path;
+/// let files = stochvib::plot::book_plots(Path::new("book-plots"), Path::new("spectra")).unwrap();
 /// assert_eq!(files.len(), 18);
 /// ```
-pub fn book_plots(dir: &Path) -> Result<Vec<PathBuf>> {
+pub fn book_plots(dir: &Path, spectra_dir: &Path) -> Result<Vec<PathBuf>> {
     let mut files = Vec::new();
-    for p in book_pictures()? {
+    for p in book_pictures(spectra_dir)? {
         files.extend(p.chart.render(dir, &p.stem)?);
     }
     Ok(files)

@@ -1001,7 +1001,8 @@ impl Draw for BarsWithRange<'_> {
         let pass = RGBColor(44, 160, 44);
         let fail = RGBColor(214, 39, 40);
         let none = colour(0);
-        let groups: [(&str, RGBColor, Box<dyn Fn(f64, Option<f64>) -> bool>); 3] = [
+        type Member = Box<dyn Fn(f64, Option<f64>) -> bool>;
+        let groups: [(&str, RGBColor, Member); 3] = [
             ("within limit", pass, Box::new(|v, l| l.is_some_and(|l| v <= l))),
             ("over limit", fail, Box::new(|v, l| l.is_some_and(|l| v > l))),
             ("no limit", none, Box::new(|_, l| l.is_none())),

@@ -3,7 +3,8 @@
 //! analytic density, and the correlation estimate against the model.
 
 use super::chart::{Band, Histogram, Legend, LineChart, Marker, Series};
-use crate::error::{num, Error, Result};
+use crate::error::{Error, Result};
+use crate::numbers::num;
 use std::f64::consts::PI;
 
 fn same_length(name: &str, n: usize, expected: usize) -> Result<()> {

@@ -3,7 +3,8 @@
 //! wheel radius r for several base lengths ℓ, and scraper σ's over speed.
 
 use super::chart::{BarChart, Legend, LineChart, Marker, Series};
-use crate::error::{num, Error, Result};
+use crate::error::{Error, Result};
+use crate::numbers::num;
 
 fn same_length(name: &str, n: usize, expected: usize) -> Result<()> {
     if n == expected {

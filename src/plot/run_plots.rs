@@ -131,10 +131,11 @@ fn file_stem(name: &str) -> String {
 ///
 /// # Examples
 /// ```no_run
-/// let charts = stochvib::plot::run_plots::run_charts(std::path::Path::new("run.h5")).unwrap();
+/// use std::path::Path;
+/// let charts = stochvib::plot::run_plots::run_charts(Path::new("run.h5"), Path::new("spectra")).unwrap();
 /// println!("{}", charts[0].welch.title);
 /// ```
-pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
+pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> {
     let run = RunFile::open(path)?;
     let meta = run.metadata().clone();
     let scenario = scenario_title(&meta.scenario_text).unwrap_or_else(|| {
@@ -145,7 +146,7 @@ pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
     // the scenario rebuilt from the stored text gives the model correlation at full resolution; a file whose
     // named spectra are not in the catalogue falls back to the stored (Welch-grid) analytic density
     let model_sc = if meta.store_raw {
-        crate::scenario::parse_scenario(&meta.scenario_text, path, &crate::report::default_spectra_dir()).ok()
+        crate::scenario::parse_scenario(&meta.scenario_text, path, spectra_dir).ok()
     } else {
         None
     };
@@ -186,7 +187,7 @@ pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
             &quantity,
             unit,
         )?;
-        welch.series[0].name = format!("Welch estimate (ν = {})", crate::error::num(psd.dof));
+        welch.series[0].name = format!("Welch estimate (ν = {})", crate::numbers::num(psd.dof));
         welch.series[1].name = "analytic density (stored in the file)".into();
         let (mut realizations, mut histogram, mut correlation) = (None, None, None);
         if meta.store_raw {
@@ -237,7 +238,7 @@ pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
                 .omega
                 .windows(2)
                 .all(|w| ((w[1] - w[0]) - dw).abs() <= 1e-9 * dw.abs().max(f64::MIN_POSITIVE));
-            if !(dw > 0.0) || !uniform {
+            if dw.is_nan() || dw <= 0.0 || !uniform {
                 return Err(Error::invalid("psd", name, "density grid is not uniform in ω"));
             }
             let tau_max = (n as f64 * meta.dt / 4.0).min(2.0 * PI / (4.0 * dw));
@@ -264,7 +265,7 @@ pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
                     let (k, dw_f) = scenario_correlation(sc, name, meta.dt, n, max_lag)?;
                     let label = format!(
                         "model K(τ) = ∫ S_y(ω) cos ωτ dω of the scenario, |ω| ≤ π/Δt, Δω = {} rad/s",
-                        crate::error::num(dw_f)
+                        crate::numbers::num(dw_f)
                     );
                     (k, label)
                 }
@@ -273,7 +274,7 @@ pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
                     format!(
                         "model K(τ) = 2Σ S(ω_j) cos(ω_j τ) Δω of the stored analytic S(ω), Δω = {} rad/s (scenario \
                          not rebuilt: coarse)",
-                        crate::error::num(dw)
+                        crate::numbers::num(dw)
                     ),
                 ),
             };
@@ -323,12 +324,12 @@ pub fn run_charts(path: &Path) -> Result<Vec<OutputCharts>> {
 /// # Examples
 /// ```no_run
 /// use std::path::Path;
-/// let files = stochvib::plot::run_plots(Path::new("run.h5"), Path::new("pictures")).unwrap();
+/// let files = stochvib::plot::run_plots(Path::new("run.h5"), Path::new("pictures"), Path::new("spectra")).unwrap();
 /// assert!(!files.is_empty());
 /// ```
-pub fn run_plots(path: &Path, dir: &Path) -> Result<Vec<PathBuf>> {
+pub fn run_plots(path: &Path, dir: &Path, spectra_dir: &Path) -> Result<Vec<PathBuf>> {
     let mut files = Vec::new();
-    for oc in run_charts(path)? {
+    for oc in run_charts(path, spectra_dir)? {
         let s = file_stem(&oc.output);
         files.extend(oc.welch.render(dir, &format!("{s}-welch"))?);
         if let Some(c) = &oc.realizations {

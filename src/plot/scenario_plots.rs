@@ -2,7 +2,8 @@
 //! with the cumulative variance curve (where the variance comes from).
 
 use super::chart::{Legend, LineChart, Marker, SecondaryAxis, Series};
-use crate::error::{num, Error, Result};
+use crate::error::{Error, Result};
+use crate::numbers::num;
 use crate::response::{band_variance, output_density, variance_quadrature};
 use crate::scenario::Scenario;
 use crate::spectrum::{Convention, Domain, Spectrum};
@@ -15,9 +16,8 @@ pub struct ScenarioPlotOptions {
     /// Convention of the plotted densities and of the frequency axis. Default
     /// [`Convention::OneSidedCyclic`] (G(f) against f in Hz, or G_d(n) against n in cycles/m for a road).
     pub convention: Convention,
-    /// SI unit of the input process (e.g. `m` for a road, `N` for a force); `None`: taken from the input
-    /// spectrum's `unit` key (inline table, or the spectrum file found as the scenario loader finds it,
-    /// in the default catalogue), otherwise the words "input unit".
+    /// SI unit of the input process (e.g. `m` for a road, `N` for a force); `None`: the scenario's input
+    /// unit ([`ScenarioInput::unit`](crate::scenario::ScenarioInput::unit)).
     pub input_unit: Option<String>,
     /// Points per curve (at least 20). Default 400.
     pub points: usize,
@@ -77,8 +77,8 @@ pub fn scenario_plots_with(sc: &Scenario, dir: &Path, opts: &ScenarioPlotOptions
 /// # Errors
 /// [`Error::Numerical`] "nothing to plot" when the density is zero everywhere on the grid.
 pub fn input_density_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<LineChart> {
-    let unit = opts.input_unit.clone().unwrap_or_else(|| input_unit(sc));
-    let spectra = [(sc.input_name.as_str(), sc.input_spectrum.as_ref())];
+    let unit = opts.input_unit.clone().unwrap_or_else(|| sc.input.unit.clone());
+    let spectra = [(sc.input.reference.as_str(), sc.input.spectrum.as_ref())];
     spectra_chart(
         &format!("Input density: {}", sc.title),
         &spectra,
@@ -171,7 +171,7 @@ pub fn transfer_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) 
         )
     })?;
     let conv = opts.convention;
-    let in_unit = opts.input_unit.clone().unwrap_or_else(|| input_unit(sc));
+    let in_unit = opts.input_unit.clone().unwrap_or_else(|| sc.input.unit.clone());
     let grid = system_grid(sc, opts.points);
     let m = sys.n_inputs();
     let mut curves: Vec<Vec<(f64, f64)>> = vec![Vec::with_capacity(grid.len()); m];
@@ -294,35 +294,6 @@ pub fn output_density_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOpt
     chart.vlines = natural_frequency_markers(sc, conv);
     chart.legend = Legend::LowerLeft;
     Ok(chart)
-}
-
-/// SI unit of the scenario's input process: the `unit` key of the input spectrum (inline table, or the
-/// spectrum file as given, next to the scenario, or in [`crate::report::default_spectra_dir`]); default
-/// `m` as in spectrum files; "input unit" when the spectrum file cannot be found.
-pub fn input_unit(sc: &Scenario) -> String {
-    let root: toml::Table = match toml::from_str(&sc.text) {
-        Ok(t) => t,
-        Err(_) => return "input unit".into(),
-    };
-    let spectrum = root.get("input").and_then(|t| t.get("spectrum"));
-    match spectrum {
-        Some(toml::Value::Table(t)) => t.get("unit").and_then(|v| v.as_str()).unwrap_or("m").to_string(),
-        Some(toml::Value::String(name)) => {
-            let mut candidates = vec![PathBuf::from(name)];
-            if let Some(parent) = sc.path.parent() {
-                candidates.push(parent.join(name));
-                candidates.push(parent.join("../spectra").join(format!("{name}.toml")));
-            }
-            candidates.push(crate::report::default_spectra_dir().join(format!("{name}.toml")));
-            candidates
-                .iter()
-                .filter(|p| p.is_file())
-                .find_map(|p| crate::scenario::load_spectrum(p).ok())
-                .map(|f| f.unit)
-                .unwrap_or_else(|| "input unit".into())
-        }
-        _ => "input unit".into(),
-    }
 }
 
 /// The frequency-axis value of ω in a convention: f = ω/2π (cyclic) or ω.

@@ -2,7 +2,7 @@
 //! method with its value and its relative difference to the reference.
 
 use crate::error::Result;
-use crate::response::{analyze_output, band_variance, OutputStatistics};
+use crate::response::{analyze_output, band_variance, ResponseStatistics};
 use crate::scenario::Scenario;
 use serde::Serialize;
 use std::fmt;
@@ -22,7 +22,7 @@ pub struct LevelRow {
 #[derive(Debug, Clone, Serialize)]
 pub struct OutputReport {
     /// The statistics, with every method.
-    pub statistics: OutputStatistics,
+    pub statistics: ResponseStatistics,
     /// Lower 3σ bound.
     pub lower_3sigma: Option<f64>,
     /// Upper 3σ bound.
@@ -47,7 +47,7 @@ pub struct MonteCarloColumn {
     /// Route taken (exact or spectral).
     pub method: String,
     /// MC σ with its interval; `None` if the output was not simulated.
-    pub sigma: Option<crate::simulate::IntervalRow>,
+    pub sigma: Option<crate::estimate::Interval>,
     /// Exact σ of the simulated discretised process (differs from the analytic σ on the spectral route).
     pub discrete_sigma: Option<f64>,
     /// Whether the interval covers the analytic σ.
@@ -62,17 +62,17 @@ pub fn attach_monte_carlo(report: &mut AnalysisReport, run: &crate::simulate::Ru
         let name = &o.statistics.name;
         let base = MonteCarloColumn {
             realizations: run.n_realizations,
-            method: format!("{:?}", run.method).to_lowercase(),
+            method: run.route.name().to_string(),
             sigma: None,
             discrete_sigma: None,
             covered: None,
             note: None,
         };
-        o.monte_carlo = if let Some(r) = run.outputs.iter().find(|r| &r.name == name) {
+        o.monte_carlo = if let Some(s) = run.statistic(name, "sigma") {
             Some(MonteCarloColumn {
-                sigma: Some(r.sigma),
-                discrete_sigma: Some(r.discrete_variance.sqrt()),
-                covered: Some(r.covers),
+                sigma: Some(s.interval),
+                discrete_sigma: run.statistic(name, "sigma_discrete").and_then(|d| d.analytic),
+                covered: s.covers,
                 ..base
             })
         } else {
@@ -152,9 +152,9 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         model: sc.model.description.clone(),
         input: format!(
             "{} ({}){}",
-            sc.input_name,
-            sc.input_spectrum.describe(),
-            sc.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
+            sc.input.reference,
+            sc.input.spectrum.describe(),
+            sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
         ),
         band_rad_s: sc.analysis.band,
         duration_s: sc.analysis.duration,

@@ -1,13 +1,12 @@
 //! The `stochvib spectrum` report: variance two ways, correlation at a few lags, density at a few
 //! frequencies in a chosen convention.
 
-use super::rel_diff;
-use crate::error::{Error, Result};
-use crate::scenario::{load_spectrum, SpectrumFile};
+use crate::error::Result;
+use crate::numbers::rel_diff;
+use crate::scenario::SpectrumFile;
 use crate::spectrum::{numeric, Convention, Spectrum};
 use serde::Serialize;
 use std::fmt;
-use std::path::Path;
 
 /// A value or the reason there is none (divergent, failed).
 #[derive(Debug, Clone, Serialize)]
@@ -71,30 +70,6 @@ pub struct SpectrumReport {
     pub correlation: Vec<(f64, Outcome, Outcome)>,
     /// (abscissa in the convention, density in the convention).
     pub density: Vec<(f64, f64)>,
-}
-
-/// Loads a spectrum by file path, or by catalogue name from `dir` (`<dir>/<name>.toml`).
-///
-/// # Errors
-/// [`Error::InvalidParameter`] when neither exists; file errors otherwise.
-pub fn resolve_spectrum(name_or_path: &str, dir: &Path) -> Result<SpectrumFile> {
-    let p = Path::new(name_or_path);
-    if p.is_file() {
-        return load_spectrum(p);
-    }
-    let candidate = dir.join(format!("{name_or_path}.toml"));
-    if candidate.is_file() {
-        return load_spectrum(&candidate);
-    }
-    Err(Error::invalid(
-        "spectrum",
-        name_or_path,
-        format!(
-            "no such file and no `{}` in the catalogue {}",
-            candidate.display(),
-            dir.display()
-        ),
-    ))
 }
 
 /// Builds the report for `file`, with the density written in `convention`.

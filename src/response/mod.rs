@@ -14,7 +14,7 @@ mod variance;
 
 pub use density::OutputDensity;
 pub use excitation::Excitation;
-pub use statistics::{analyze_output, Method, MethodValue, OutputStatistics};
+pub use statistics::{analyze_output, ResponseStatistics, VarianceMethod, VarianceValue};
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{
     band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,

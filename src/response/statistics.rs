@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 /// A variance method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Method {
+pub enum VarianceMethod {
     /// Lyapunov equation of the system augmented with the input shaping filters (exact).
     Lyapunov,
     /// Closed-form integral table I_n (exact).
@@ -22,9 +22,9 @@ pub enum Method {
 
 /// One method's answer for the variance.
 #[derive(Debug, Clone, Serialize)]
-pub struct MethodValue {
+pub struct VarianceValue {
     /// The method.
-    pub method: Method,
+    pub method: VarianceMethod,
     /// Variance, when the method applies and the variance is finite.
     pub value: Option<f64>,
     /// Absolute error estimate (quadrature only).
@@ -37,7 +37,7 @@ pub struct MethodValue {
 
 /// Statistics of one output.
 #[derive(Debug, Clone, Serialize)]
-pub struct OutputStatistics {
+pub struct ResponseStatistics {
     /// Output name.
     pub name: String,
     /// SI unit.
@@ -45,7 +45,7 @@ pub struct OutputStatistics {
     /// Mean M_y = H(0) M_u (None when the static gain is infinite).
     pub mean: Option<f64>,
     /// Every method's variance.
-    pub methods: Vec<MethodValue>,
+    pub methods: Vec<VarianceValue>,
     /// Reference variance (Lyapunov, else table, else quadrature).
     pub variance: Option<f64>,
     /// Why the variance is infinite or unavailable.
@@ -67,7 +67,7 @@ pub struct OutputStatistics {
 /// # Errors
 /// Only for a mismatch between the excitation and the system or an output index out of range; divergent
 /// or inapplicable methods are reported inside the statistics.
-pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<OutputStatistics> {
+pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<ResponseStatistics> {
     let quad = variance_quadrature(sys, exc, i);
     if let Err(e @ Error::InvalidParameter { .. }) = &quad {
         return Err(Error::invalid("system/excitation", "", e.to_string()));
@@ -77,22 +77,22 @@ pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -
     let table = variance_integral_table(sys, exc, i, 0);
     let note = |e: &Error| Some(e.to_string());
     let mut methods = vec![
-        MethodValue {
-            method: Method::Lyapunov,
+        VarianceValue {
+            method: VarianceMethod::Lyapunov,
             value: lyap.as_ref().ok().map(|m| m.variance),
             error_estimate: None,
             rel_diff: None,
             note: lyap.as_ref().err().and_then(note),
         },
-        MethodValue {
-            method: Method::IntegralTable,
+        VarianceValue {
+            method: VarianceMethod::IntegralTable,
             value: table.as_ref().ok().copied(),
             error_estimate: None,
             rel_diff: None,
             note: table.as_ref().err().and_then(note),
         },
-        MethodValue {
-            method: Method::Quadrature,
+        VarianceValue {
+            method: VarianceMethod::Quadrature,
             value: quad.as_ref().ok().map(|q| q.value),
             error_estimate: quad.as_ref().ok().map(|q| q.abs_error),
             rel_diff: None,
@@ -102,7 +102,7 @@ pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -
     let reference = methods.iter().find_map(|m| m.value);
     for m in &mut methods {
         if let (Some(v), Some(r)) = (m.value, reference) {
-            m.rel_diff = Some(crate::report::rel_diff(v, r));
+            m.rel_diff = Some(crate::numbers::rel_diff(v, r));
         }
     }
     // A divergence found by any method is the answer: never report a finite number for it.
@@ -143,7 +143,7 @@ pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -
         (Some(l0), Some(l2), Some(l4)) if l0 > 0.0 && l4 > 0.0 => Some((1.0 - l2 * l2 / (l0 * l4)).max(0.0).sqrt()),
         _ => None,
     };
-    Ok(OutputStatistics {
+    Ok(ResponseStatistics {
         name: info.name,
         unit: info.unit,
         mean,
@@ -158,7 +158,7 @@ pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -
     })
 }
 
-impl OutputStatistics {
+impl ResponseStatistics {
     /// The bounds M_y ± kσ_y (k = 3: two-sided probability 0.9973 for a Gaussian output).
     pub fn bounds(&self, k: f64) -> Option<(f64, f64)> {
         Some((self.mean? - k * self.sigma?, self.mean? + k * self.sigma?))

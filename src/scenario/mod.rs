@@ -1,12 +1,21 @@
-//! Input files: spectrum files (`spectra/*.toml`) and, later, scenario files (`data/*.toml`).
+//! Input files: spectrum files (`spectra/*.toml`), scenario files (`data/*.toml`) and reference tables
+//! (`data/reference/*.toml`), the spectrum catalogue and the registry of model kinds.
 //!
 //! Every value read from a file is validated; an error names the file, the dotted key, the value as
 //! written and the reason ([`Error::File`](crate::Error::File)).
 
-mod fields;
+mod catalogue;
+pub mod generic;
+pub mod reference;
+mod registry;
 pub mod scenario_file;
 pub mod spectrum_file;
 
-pub use fields::Fields;
-pub use scenario_file::{load_scenario, parse_scenario, AnalysisOptions, Scenario};
-pub use spectrum_file::{load_spectrum, parse_spectrum, spectrum_catalogue, CatalogueEntry, SpectrumFile};
+pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
+pub use reference::ReferenceTable;
+pub use registry::{build_model, kind_names, model_kind, BuiltModel, Family, ModelContext, ModelKind, MODEL_KINDS};
+pub use scenario_file::{
+    load_document, load_scenario, parse_document, parse_scenario, AnalysisOptions, DeterministicScenario, Document,
+    Scenario, ScenarioInput,
+};
+pub use spectrum_file::{load_spectrum, parse_spectrum, SpectrumFile};

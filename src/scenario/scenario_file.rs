@@ -1,4 +1,5 @@
-//! Scenario files (`data/*.toml`): a model, its random input and what to report.
+//! Scenario files (`data/*.toml`): a model, its random input and what to report; or a deterministic model;
+//! or a reference table of the sources.
 //!
 //! # Format
 //! ```toml
@@ -6,13 +7,13 @@
 //! source = "illustrative"
 //!
 //! [model]
-//! kind = "mdof"                  # mdof | transfer-function | state-space | a catalogue model kind
-//! ...                            # the model's keys (see below and the catalogue models' docs)
+//! kind = "mdof"                  # a kind of the registry: `stochvib models` lists them
+//! ...                            # the model's keys (see the kind's module: scenario::generic, models::*)
 //!
-//! [input]
-//! spectrum = "iso8608-c"         # a catalogue name in spectra/, a path, or an inline table of spectrum keys
+//! [input]                        # stochastic kinds only
+//! spectrum = "iso8608-c"         # a catalogue name, a path, or an inline table of spectrum keys
 //! speed = "20 m/s"               # needed for spatial spectra and for delays between wheels
-//! mean = 0.0                     # mean of the input process (default 0)
+//! mean = 0.0                     # mean of the input process (default 0), in the process's unit
 //!
 //! [analysis]                     # optional
 //! outputs = ["body", "travel"]   # default: every output
@@ -22,30 +23,28 @@
 //! travel = ["5 cm", "8 cm"]
 //! ```
 //!
-//! Generic models:
-//! * `kind = "mdof"` with full matrices: `coordinates = [{ name, unit }]`, `base_inputs = N`,
-//!   `mass_matrix`, `damping_matrix`, `stiffness_matrix` (n × n), `base_stiffness`, `base_damping`
-//!   (n × N) as SI numbers (M q̈ + B q̇ + C q = K_u u + B_u u̇); outputs `displacement`, `velocity`,
-//!   `acceleration` of a point.
-//! * `kind = "mdof"` from elements: `coordinates = [{ name, unit, mass }]`, `base_inputs = N`, `[[model.element]]` with
-//!   `name`, `point` (weights of the coordinates), `to` (`"ground"`, `"base 0"`, … or a point array),
-//!   `stiffness`, `damping`; `[[model.output]]` with `name`, `quantity` (`displacement`, `velocity`,
-//!   `acceleration` with `point`; `deflection`, `spring-force`, `damper-force`, `element-force` with
-//!   `element`); optional `positions` (wheel positions along the track, with units) and `gains`.
-//! * `kind = "transfer-function"`: `numerator`, `denominator` (SI numbers, ascending powers of s),
-//!   `output = { name, unit }`.
-//! * `kind = "state-space"`: `a`, `b`, `c`, optional `d`, `e` (arrays of rows), `outputs = [{ name, unit }]`,
-//!   optional `positions`/`gains` for several inputs on one track.
+//! The model kinds are those of [`MODEL_KINDS`](super::MODEL_KINDS): the generic `mdof`,
+//! `transfer-function` and `state-space` ([`super::generic`]) and the catalogue models ([`crate::models`]).
+//! A deterministic kind (the hoists and the chain of the articles) takes no `[input]`; `stochvib analyze`
+//! prints its results ([`Document::Deterministic`]). A file with a root key `reference` instead of a
+//! `[model]` is a reference table of the sources ([`Document::Reference`], `data/reference/`).
+//!
+//! Spectra named in `[input] spectrum` are resolved by the one rule of [`Catalogue`]; the scenario keeps the
+//! spectrum's unit, where it came from and the catalogue directory.
 
-use super::fields::Fields;
-use super::spectrum_file::{load_spectrum, spectrum_from_fields};
+use super::catalogue::{Catalogue, SpectrumOrigin};
+use super::reference::ReferenceTable;
+use super::registry::{build_model, BuiltModel, ModelContext};
+use super::spectrum_file::spectrum_from_fields;
 use crate::error::{Error, Result};
+use crate::fields::Fields;
+use crate::models::results::DeterministicModel;
 use crate::models::{InputLayout, ModelInstance};
 use crate::response::Excitation;
+use crate::simulate::{RunInput, RunOptions, RunSummary};
 use crate::spectrum::{AtSpeed, Domain, Spectrum};
-use crate::system::{Attach, Element, Mdof, OutputInfo, Quantity, StateSpace, TransferFunction};
+use crate::store::Signal;
 use crate::units::Dim;
-use nalgebra::DMatrix;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -62,7 +61,26 @@ pub struct AnalysisOptions {
     pub levels: Vec<(usize, Vec<f64>)>,
 }
 
-/// A loaded, validated scenario.
+/// The random input of a scenario as written: the process, its unit and where it came from.
+#[derive(Debug, Clone)]
+pub struct ScenarioInput {
+    /// The reference as written in `[input] spectrum` (a catalogue name or a path), or `inline`.
+    pub reference: String,
+    /// The process as given (a road in its spatial variable, before the speed turns it into time).
+    pub spectrum: Arc<dyn Spectrum>,
+    /// SI unit of the process (`m` for a road, `N` for a force, ...), from the spectrum file's `unit`.
+    pub unit: String,
+    /// Where the spectrum came from.
+    pub origin: SpectrumOrigin,
+    /// The spectrum file's text (the inline table's TOML for an inline spectrum).
+    pub spectrum_text: String,
+    /// `[input] speed`, m/s, if given.
+    pub speed: Option<f64>,
+    /// Mean of the process, in its unit.
+    pub mean: f64,
+}
+
+/// A loaded, validated stochastic scenario.
 #[derive(Debug, Clone)]
 pub struct Scenario {
     /// The file.
@@ -77,89 +95,183 @@ pub struct Scenario {
     pub kind: String,
     /// Model and input layout.
     pub model: ModelInstance,
-    /// The input process as given (before turning a road into time).
-    pub input_spectrum: Arc<dyn Spectrum>,
-    /// Name of the input spectrum (catalogue name, path or "inline").
-    pub input_name: String,
-    /// Speed in m/s, if given.
-    pub speed: Option<f64>,
+    /// The random input as written.
+    pub input: ScenarioInput,
+    /// The catalogue directory the scenario's spectrum names were resolved in.
+    pub spectra_dir: PathBuf,
     /// The excitation of the system's inputs.
     pub excitation: Excitation,
     /// Report options.
     pub analysis: AnalysisOptions,
 }
 
-/// Loads a scenario file; spectra named by catalogue name are looked up in `spectra_dir`.
+impl Scenario {
+    /// The names and units of the input processes as a run records them: `road` (a spatial spectrum) or
+    /// `input` for one process felt by every input, `input_k` for independent processes; the unit is the
+    /// input spectrum's.
+    pub fn input_signals(&self) -> Vec<Signal> {
+        match &self.excitation {
+            Excitation::Track { .. } => {
+                let name = if self.input.spectrum.domain() == Domain::Spatial {
+                    "road"
+                } else {
+                    "input"
+                };
+                vec![Signal::new(name, &self.input.unit)]
+            }
+            Excitation::Independent { spectra, .. } => (0..spectra.len())
+                .map(|k| Signal::new(&format!("input_{k}"), &self.input.unit))
+                .collect(),
+        }
+    }
+
+    /// The subject of a Monte Carlo run of this scenario: its system, excitation, the outputs of
+    /// `[analysis]`, the input signals, and the scenario text as provenance.
+    pub fn run_input(&self) -> RunInput<'_> {
+        RunInput::new(
+            self.model.system.as_ref(),
+            &self.excitation,
+            self.analysis.outputs.clone(),
+            self.input_signals(),
+            self.text.clone(),
+        )
+    }
+
+    /// Runs a Monte Carlo batch of this scenario into the HDF5 file `out` ([`crate::simulate::run()`]).
+    ///
+    /// # Errors
+    /// As [`crate::simulate::run()`].
+    pub fn simulate(&self, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
+        crate::simulate::run(&self.run_input(), opts, out, progress)
+    }
+}
+
+/// A loaded deterministic scenario: a model without a random input.
+#[derive(Debug)]
+pub struct DeterministicScenario {
+    /// The file.
+    pub path: PathBuf,
+    /// Title.
+    pub title: String,
+    /// Provenance.
+    pub source: String,
+    /// The model kind.
+    pub kind: String,
+    /// The model.
+    pub model: Box<dyn DeterministicModel>,
+}
+
+/// Any file of `data/`.
+#[derive(Debug)]
+pub enum Document {
+    /// A model with a random input.
+    Stochastic(Box<Scenario>),
+    /// A deterministic model.
+    Deterministic(DeterministicScenario),
+    /// A reference table of the sources.
+    Reference(ReferenceTable),
+}
+
+fn read(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Loads any file of `data/` (see the module docs); spectra named by catalogue name are looked up in
+/// `spectra_dir`.
 ///
 /// # Errors
 /// [`Error::Io`], [`Error::Parse`], or [`Error::File`] naming the key, value and reason.
-pub fn load_scenario(path: &Path, spectra_dir: &Path) -> Result<Scenario> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    parse_scenario(&text, path, spectra_dir)
+pub fn load_document(path: &Path, spectra_dir: &Path) -> Result<Document> {
+    parse_document(&read(path)?, path, spectra_dir)
 }
 
-/// Parses scenario text (see [`load_scenario`]).
+/// Parses the text of any file of `data/` (see [`load_document`]).
 ///
 /// # Errors
-/// As [`load_scenario`].
-pub fn parse_scenario(text: &str, path: &Path, spectra_dir: &Path) -> Result<Scenario> {
+/// As [`load_document`].
+pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Document> {
     let root: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
         file: path.to_path_buf(),
         reason: e.to_string(),
     })?;
+    if root.contains_key("reference") && !root.contains_key("model") {
+        return ReferenceTable::parse(text, path).map(Document::Reference);
+    }
     let f = Fields::new(path, "", &root);
     let title = f.opt_string("title")?.unwrap_or("").to_string();
     let source = f.opt_string("source")?.unwrap_or("").to_string();
-    let input_t = table(&f, "input")?;
-    let inf = Fields::new(path, "input", input_t);
-    let speed = inf.opt_quantity("speed", Dim::VELOCITY)?;
-    if let Some(v) = speed {
-        if !(v > 0.0) {
-            return Err(inf.error("speed", v, "must be > 0"));
-        }
-    }
-    let model_t = table(&f, "model")?;
-    let mf = Fields::new(path, "model", model_t);
-    let kind = mf.string("kind")?.to_string();
-    let model = build_model(&kind, &mf, crate::models::ModelContext { speed })?;
-    mf.finish()?;
-
-    let (input_spectrum, input_name) = match inf.require("spectrum")? {
-        toml::Value::String(name) => {
-            let p = Path::new(name.as_str());
-            let candidate = if p.is_file() {
-                p.to_path_buf()
-            } else {
-                spectra_dir.join(format!("{name}.toml"))
-            };
-            if !candidate.is_file() {
-                return Err(inf.error(
-                    "spectrum",
-                    name,
-                    format!(
-                        "no spectrum file `{}` (catalogue {})",
-                        candidate.display(),
-                        spectra_dir.display()
-                    ),
-                ));
+    let speed = match root.get("input").and_then(|v| v.as_table()) {
+        Some(t) => {
+            let inf = Fields::new(path, "input", t);
+            let v = inf.opt_quantity("speed", Dim::VELOCITY)?;
+            if let Some(v) = v {
+                if v.is_nan() || v <= 0.0 {
+                    return Err(inf.error("speed", v, "must be > 0"));
+                }
             }
-            let sf = load_spectrum(&candidate)?;
-            (sf.spectrum, name.clone())
+            v
+        }
+        None => None,
+    };
+    let mf = f.sub("model")?;
+    let kind = mf.string("kind")?.to_string();
+    let built = build_model(&kind, &mf, ModelContext { speed })?;
+    mf.finish()?;
+    let model = match built {
+        BuiltModel::Deterministic(model) => {
+            for key in ["input", "analysis"] {
+                if let Some(v) = root.get(key) {
+                    return Err(f.error(
+                        key,
+                        v,
+                        format!("kind `{kind}` is a deterministic model: it takes no [{key}] section"),
+                    ));
+                }
+            }
+            f.finish()?;
+            return Ok(Document::Deterministic(DeterministicScenario {
+                path: path.to_path_buf(),
+                title,
+                source,
+                kind,
+                model,
+            }));
+        }
+        BuiltModel::Stochastic(m) => m,
+    };
+    let inf = f.sub("input")?;
+    let _ = inf.get("speed");
+    let base = path.parent();
+    let catalogue = Catalogue::new(spectra_dir);
+    let (reference, sf) = match inf.require("spectrum")? {
+        toml::Value::String(name) => {
+            let sf = catalogue
+                .resolve(name, base)
+                .map_err(|e| inf.error("spectrum", name, resolution_reason(e)))?;
+            (name.clone(), sf)
         }
         toml::Value::Table(t) => {
             let sf = Fields::new(path, "input.spectrum", t);
-            let s = spectrum_from_fields(&sf)?;
+            let spectrum = spectrum_from_fields(&sf)?;
+            let unit = sf.opt_string("unit")?.unwrap_or("m").to_string();
             // metadata keys allowed inline
-            let _ = (
-                sf.opt_string("name")?,
-                sf.opt_string("description")?,
-                sf.opt_string("source")?,
-            );
+            let name = sf.opt_string("name")?.unwrap_or("inline").to_string();
+            let description = sf.opt_string("description")?.unwrap_or("").to_string();
+            let src = sf.opt_string("source")?.unwrap_or("").to_string();
             sf.finish()?;
-            (s, "inline".to_string())
+            let file = super::SpectrumFile {
+                name,
+                description,
+                source: src,
+                unit,
+                spectrum,
+                origin: SpectrumOrigin::Inline,
+                text: toml::to_string(t).unwrap_or_default(),
+            };
+            ("inline".to_string(), file)
         }
         other => {
             return Err(inf.error(
@@ -179,7 +291,7 @@ pub fn parse_scenario(text: &str, path: &Path, spectra_dir: &Path) -> Result<Sce
     };
     inf.finish()?;
 
-    let excitation = build_excitation(&inf, &model.layout, input_spectrum.clone(), speed, mean)?;
+    let excitation = build_excitation(&inf, &model.layout, sf.spectrum.clone(), speed, mean)?;
 
     let analysis = match root.get("analysis") {
         None => {
@@ -191,32 +303,74 @@ pub fn parse_scenario(text: &str, path: &Path, spectra_dir: &Path) -> Result<Sce
             }
         }
         Some(_) => {
-            let at = table(&f, "analysis")?;
-            let af = Fields::new(path, "analysis", at);
+            let af = f.sub("analysis")?;
             let opts = analysis_options(&af, &model)?;
             af.finish()?;
             opts
         }
     };
     f.finish()?;
-    Ok(Scenario {
+    Ok(Document::Stochastic(Box::new(Scenario {
         path: path.to_path_buf(),
         text: text.to_string(),
         title,
         source,
         kind,
         model,
-        input_spectrum,
-        input_name,
-        speed,
+        input: ScenarioInput {
+            reference,
+            spectrum: sf.spectrum,
+            unit: sf.unit,
+            origin: sf.origin,
+            spectrum_text: sf.text,
+            speed,
+            mean,
+        },
+        spectra_dir: spectra_dir.to_path_buf(),
         excitation,
         analysis,
-    })
+    })))
 }
 
-fn table<'a>(f: &Fields<'a>, key: &str) -> Result<&'a toml::Table> {
-    let v = f.require(key)?;
-    v.as_table().ok_or_else(|| f.error(key, v, "expected a table"))
+/// The reason of a failed spectrum resolution, without repeating the reference (the key error names it).
+fn resolution_reason(e: Error) -> String {
+    match e {
+        Error::InvalidParameter { reason, .. } => reason,
+        other => other.to_string(),
+    }
+}
+
+/// Loads a stochastic scenario file; spectra named by catalogue name are looked up in `spectra_dir`.
+///
+/// # Errors
+/// [`Error::Io`], [`Error::Parse`], or [`Error::File`] naming the key, value and reason; a deterministic
+/// model or a reference table is an [`Error::File`] saying what the file is.
+pub fn load_scenario(path: &Path, spectra_dir: &Path) -> Result<Scenario> {
+    parse_scenario(&read(path)?, path, spectra_dir)
+}
+
+/// Parses stochastic scenario text (see [`load_scenario`]).
+///
+/// # Errors
+/// As [`load_scenario`].
+pub fn parse_scenario(text: &str, path: &Path, spectra_dir: &Path) -> Result<Scenario> {
+    match parse_document(text, path, spectra_dir)? {
+        Document::Stochastic(sc) => Ok(*sc),
+        Document::Deterministic(d) => Err(Error::File {
+            file: path.to_path_buf(),
+            key: "model.kind".into(),
+            value: d.kind,
+            reason: "a deterministic model without a random input: `stochvib analyze` prints its results; there is \
+                     nothing to simulate"
+                .into(),
+        }),
+        Document::Reference(r) => Err(Error::File {
+            file: path.to_path_buf(),
+            key: "reference".into(),
+            value: r.reference,
+            reason: "a reference table of the sources, not a scenario: `stochvib analyze` prints it".into(),
+        }),
+    }
 }
 
 fn build_excitation(
@@ -296,7 +450,7 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
         }
     };
     let duration = f.opt_quantity("duration", Dim::TIME)?.unwrap_or(3600.0);
-    if !(duration > 0.0) {
+    if duration.is_nan() || duration <= 0.0 {
         return Err(f.error("duration", duration, "must be > 0"));
     }
     let mut levels = Vec::new();
@@ -330,341 +484,5 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
         band,
         duration,
         levels,
-    })
-}
-
-/// Builds the model of `kind` from the `[model]` table.
-///
-/// # Errors
-/// [`Error::File`] for an unknown kind or bad keys.
-pub fn build_model(kind: &str, f: &Fields, ctx: crate::models::ModelContext) -> Result<ModelInstance> {
-    match kind {
-        "mdof" => mdof_from_fields(f),
-        "transfer-function" => {
-            let num = f.numbers("numerator")?;
-            let den = f.numbers("denominator")?;
-            let out = output_info(f, "output")?;
-            let tf = TransferFunction::new(num, den, out).map_err(|e| f.wrap("denominator", e))?;
-            Ok(ModelInstance {
-                system: Arc::new(tf),
-                layout: InputLayout::Single,
-                description: "rational transfer function".into(),
-            })
-        }
-        "state-space" => {
-            let a = matrix(f, "a")?;
-            let b = matrix(f, "b")?;
-            let c = matrix(f, "c")?;
-            let d = f.get("d").map(|_| matrix(f, "d")).transpose()?;
-            let e = f.get("e").map(|_| matrix(f, "e")).transpose()?;
-            let outs = output_list(f, "outputs")?;
-            let m = b.ncols();
-            let ss = StateSpace::new(a, b, c, d, e, outs).map_err(|e| f.wrap("a", e))?;
-            let layout = track_layout(f, m)?;
-            Ok(ModelInstance {
-                system: Arc::new(ss),
-                layout,
-                description: "state-space system".into(),
-            })
-        }
-        other => crate::models::from_fields(other, f, ctx).unwrap_or_else(|| {
-            Err(f.error(
-                "kind",
-                other,
-                format!(
-                    "unknown model kind; known kinds: mdof, transfer-function, state-space, {}",
-                    crate::models::KINDS.join(", ")
-                ),
-            ))
-        }),
-    }
-}
-
-fn output_info(f: &Fields, key: &str) -> Result<OutputInfo> {
-    let v = f.require(key)?;
-    let t = v
-        .as_table()
-        .ok_or_else(|| f.error(key, v, "expected { name = \"..\", unit = \"..\" }"))?;
-    let of = Fields::new(f.file(), &f.path(key), t);
-    let info = OutputInfo::new(of.string("name")?, of.opt_string("unit")?.unwrap_or("m"));
-    of.finish()?;
-    Ok(info)
-}
-
-fn output_list(f: &Fields, key: &str) -> Result<Vec<OutputInfo>> {
-    let v = f.require(key)?;
-    let arr = v
-        .as_array()
-        .ok_or_else(|| f.error(key, v, "expected an array of { name, unit }"))?;
-    arr.iter()
-        .enumerate()
-        .map(|(i, x)| {
-            let t = x
-                .as_table()
-                .ok_or_else(|| f.error(&format!("{key}[{i}]"), x, "expected { name, unit }"))?;
-            let of = Fields::new(f.file(), &f.path(&format!("{key}[{i}]")), t);
-            let info = OutputInfo::new(of.string("name")?, of.opt_string("unit")?.unwrap_or("m"));
-            of.finish()?;
-            Ok(info)
-        })
-        .collect()
-}
-
-fn matrix(f: &Fields, key: &str) -> Result<DMatrix<f64>> {
-    let v = f.require(key)?;
-    let rows = v
-        .as_array()
-        .ok_or_else(|| f.error(key, v, "expected an array of rows"))?;
-    let mut data = Vec::new();
-    let mut ncols = None;
-    for (i, r) in rows.iter().enumerate() {
-        let r = r
-            .as_array()
-            .ok_or_else(|| f.error(&format!("{key}[{i}]"), r, "expected a row (array of numbers)"))?;
-        if *ncols.get_or_insert(r.len()) != r.len() {
-            return Err(f.error(&format!("{key}[{i}]"), r.len(), "rows must all have the same length"));
-        }
-        for (j, x) in r.iter().enumerate() {
-            let val = x
-                .as_float()
-                .or_else(|| x.as_integer().map(|n| n as f64))
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| f.error(&format!("{key}[{i}][{j}]"), x, "expected a finite number"))?;
-            data.push(val);
-        }
-    }
-    Ok(DMatrix::from_row_slice(rows.len(), ncols.unwrap_or(0), &data))
-}
-
-/// Reads optional `positions` (with units) and `gains` for `m` inputs on one track.
-fn track_layout(f: &Fields, m: usize) -> Result<InputLayout> {
-    let positions = match f.get("positions") {
-        None => vec![0.0; m],
-        Some(v) => {
-            let arr = v
-                .as_array()
-                .ok_or_else(|| f.error("positions", v, "expected an array of lengths"))?;
-            arr.iter()
-                .enumerate()
-                .map(|(i, x)| {
-                    crate::units::parse_value(x, Dim::LENGTH).map_err(|r| f.error(&format!("positions[{i}]"), x, r))
-                })
-                .collect::<Result<Vec<_>>>()?
-        }
-    };
-    let gains = match f.get("gains") {
-        None => vec![1.0; m],
-        Some(_) => f.numbers("gains")?,
-    };
-    if positions.len() != m || gains.len() != m {
-        return Err(f.error(
-            "positions",
-            positions.len(),
-            format!("need one position and one gain per input ({m})"),
-        ));
-    }
-    if let Some((i, p)) = positions.iter().enumerate().find(|(_, p)| **p < 0.0) {
-        return Err(f.error(
-            &format!("positions[{i}]"),
-            p,
-            "must be >= 0 (distance behind the first contact)",
-        ));
-    }
-    Ok(InputLayout::Track { positions, gains })
-}
-
-fn mdof_from_fields(f: &Fields) -> Result<ModelInstance> {
-    let matrix_form = f.get("mass_matrix").is_some();
-    let cv = f.require("coordinates")?;
-    let carr = cv
-        .as_array()
-        .ok_or_else(|| f.error("coordinates", cv, "expected an array of { name, unit, mass }"))?;
-    let mut coords = Vec::new();
-    let mut masses = Vec::new();
-    for (i, c) in carr.iter().enumerate() {
-        let key = format!("coordinates[{i}]");
-        let t = c
-            .as_table()
-            .ok_or_else(|| f.error(&key, c, "expected { name, unit, mass }"))?;
-        let cf = Fields::new(f.file(), &f.path(&key), t);
-        let name = cf.string("name")?.to_string();
-        let unit = cf.opt_string("unit")?.unwrap_or("m").to_string();
-        let mass_dim = match unit.as_str() {
-            "m" => Dim::MASS,
-            "rad" => Dim::INERTIA,
-            other => {
-                return Err(cf.error(
-                    "unit",
-                    other,
-                    "coordinate units are \"m\" (mass in kg) or \"rad\" (inertia in kg m^2)",
-                ))
-            }
-        };
-        // with full matrices (`mass_matrix` …) the coordinates carry no mass of their own
-        if !matrix_form {
-            masses.push(cf.quantity("mass", mass_dim)?);
-        }
-        cf.finish()?;
-        coords.push((name, unit));
-    }
-    let n = coords.len();
-    let n_base = match f.get("base_inputs") {
-        None => 0,
-        Some(v) => v
-            .as_integer()
-            .filter(|k| *k >= 0)
-            .ok_or_else(|| f.error("base_inputs", v, "expected a count >= 0"))? as usize,
-    };
-    let point = |key: &str, v: &toml::Value, ff: &Fields| -> Result<Vec<f64>> {
-        let arr = v
-            .as_array()
-            .ok_or_else(|| ff.error(key, v, format!("expected {n} weights of the coordinates")))?;
-        if arr.len() != n {
-            return Err(ff.error(key, v, format!("expected {n} weights (one per coordinate)")));
-        }
-        arr.iter()
-            .map(|x| {
-                x.as_float()
-                    .or_else(|| x.as_integer().map(|k| k as f64))
-                    .ok_or_else(|| ff.error(key, x, "expected a number"))
-            })
-            .collect()
-    };
-    let mut elements = Vec::new();
-    if let Some(ev) = f.get("element") {
-        let earr = ev
-            .as_array()
-            .ok_or_else(|| f.error("element", ev, "expected [[model.element]] tables"))?;
-        for (i, e) in earr.iter().enumerate() {
-            let key = format!("element[{i}]");
-            let t = e.as_table().ok_or_else(|| f.error(&key, e, "expected a table"))?;
-            let ef = Fields::new(f.file(), &f.path(&key), t);
-            let name = ef.string("name")?.to_string();
-            let p = point("point", ef.require("point")?, &ef)?;
-            let rot = p.iter().zip(&coords).any(|(w, c)| *w != 0.0 && c.1 == "rad");
-            let (kd, bd) = if rot {
-                (Dim::TORQUE, Dim::new(2, 1, -1))
-            } else {
-                (Dim::STIFFNESS, Dim::DAMPING)
-            };
-            let to = match ef.require("to")? {
-                toml::Value::String(s) if s == "ground" => Attach::Ground,
-                toml::Value::String(s) if s.starts_with("base") => {
-                    let j: usize = s[4..]
-                        .trim()
-                        .parse()
-                        .map_err(|_| ef.error("to", s, "expected \"base <index>\""))?;
-                    if j >= n_base {
-                        return Err(ef.error("to", s, format!("only {n_base} base inputs (set model.base_inputs)")));
-                    }
-                    Attach::Base(j)
-                }
-                v @ toml::Value::Array(_) => Attach::Point(point("to", v, &ef)?),
-                v => return Err(ef.error("to", v, "expected \"ground\", \"base <j>\" or a point array")),
-            };
-            let stiffness = ef.opt_quantity("stiffness", kd)?.unwrap_or(0.0);
-            let damping = ef.opt_quantity("damping", bd)?.unwrap_or(0.0);
-            ef.finish()?;
-            elements.push(Element {
-                name,
-                point: p,
-                to,
-                stiffness,
-                damping,
-            });
-        }
-    }
-    if matrix_form && !elements.is_empty() {
-        return Err(f.error(
-            "element",
-            "[[model.element]]",
-            "give either elements with coordinate masses, or full matrices (mass_matrix, …), not both",
-        ));
-    }
-    let names: Vec<String> = elements.iter().map(|e| e.name.clone()).collect();
-    let cref: Vec<(&str, &str)> = coords.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
-    let mut model = if matrix_form {
-        // M q̈ + B q̇ + C q = K_u u + B_u u̇, SI numbers, n × n and n × base_inputs
-        let sq = |key: &str, cols: usize| -> Result<DMatrix<f64>> {
-            let m = match f.get(key) {
-                Some(_) => matrix(f, key)?,
-                None => DMatrix::zeros(n, cols),
-            };
-            if m.nrows() != n || m.ncols() != cols {
-                return Err(f.error(
-                    key,
-                    format!("{}x{}", m.nrows(), m.ncols()),
-                    format!("must be {n}x{cols}"),
-                ));
-            }
-            Ok(m)
-        };
-        Mdof::new(
-            &cref,
-            sq("mass_matrix", n)?,
-            sq("damping_matrix", n)?,
-            sq("stiffness_matrix", n)?,
-            sq("base_stiffness", n_base)?,
-            sq("base_damping", n_base)?,
-            DMatrix::zeros(n, 0),
-        )
-        .map_err(|e| {
-            let key = match &e {
-                Error::InvalidParameter { name, .. } => match name.as_str() {
-                    "B" => "damping_matrix",
-                    "C" => "stiffness_matrix",
-                    "K_u" => "base_stiffness",
-                    "B_u" => "base_damping",
-                    _ => "mass_matrix",
-                },
-                _ => "mass_matrix",
-            };
-            f.wrap(key, e)
-        })?
-    } else {
-        Mdof::from_elements(&cref, &masses, elements, n_base, &[]).map_err(|e| f.wrap("coordinates", e))?
-    };
-    let ov = f.require("output")?;
-    let oarr = ov
-        .as_array()
-        .ok_or_else(|| f.error("output", ov, "expected [[model.output]] tables"))?;
-    for (i, o) in oarr.iter().enumerate() {
-        let key = format!("output[{i}]");
-        let t = o.as_table().ok_or_else(|| f.error(&key, o, "expected a table"))?;
-        let of = Fields::new(f.file(), &f.path(&key), t);
-        let name = of.string("name")?.to_string();
-        let q = of.string("quantity")?;
-        let element = |of: &Fields| -> Result<usize> {
-            let e = of.string("element")?;
-            names
-                .iter()
-                .position(|x| x == e)
-                .ok_or_else(|| of.error("element", e, format!("no such element; known: {}", names.join(", "))))
-        };
-        let quantity = match q {
-            "displacement" => Quantity::Displacement(point("point", of.require("point")?, &of)?),
-            "velocity" => Quantity::Velocity(point("point", of.require("point")?, &of)?),
-            "acceleration" => Quantity::Acceleration(point("point", of.require("point")?, &of)?),
-            "deflection" => Quantity::Deflection(element(&of)?),
-            "spring-force" => Quantity::SpringForce(element(&of)?),
-            "damper-force" => Quantity::DamperForce(element(&of)?),
-            "element-force" => Quantity::ElementForce(element(&of)?),
-            other => return Err(of.error("quantity", other, "expected displacement, velocity, acceleration, deflection, spring-force, damper-force or element-force")),
-        };
-        of.finish()?;
-        model = model.with_output(&name, quantity).map_err(|e| f.wrap("output", e))?;
-    }
-    if n_base == 0 {
-        return Err(f.error(
-            "base_inputs",
-            0,
-            "a generic mdof scenario needs at least one base input (force inputs: use a catalogue model or state-space)",
-        ));
-    }
-    let layout = track_layout(f, n_base)?;
-    Ok(ModelInstance {
-        system: Arc::new(model),
-        layout,
-        description: format!("MDOF model, {n} coordinates"),
     })
 }

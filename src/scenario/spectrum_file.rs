@@ -27,15 +27,16 @@
 //! between cyclic and angular frequency. Density levels are plain numbers whose convention is named by
 //! `convention` (never by a unit, which would apply the 2π twice).
 
-use super::fields::Fields;
+use super::catalogue::SpectrumOrigin;
 use crate::error::{Error, Result};
+use crate::fields::Fields;
 use crate::spectrum::{
     two_pole_road::Form, BandWhite, Convention, Domain, ExpCosine, Exponential, GaussCosine, Gaussian, IsoBound,
     IsoClass, PowerLaw, RationalSpectrum, Spectrum, Tabulated, TwoPoleRoad, ISO_BAND,
 };
 use crate::units::{self, Dim};
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 /// A spectrum read from a file, with its metadata.
@@ -51,6 +52,11 @@ pub struct SpectrumFile {
     pub unit: String,
     /// The spectrum.
     pub spectrum: Arc<dyn Spectrum>,
+    /// Where it came from ([`SpectrumOrigin::File`] for [`load_spectrum`]; the catalogue sets
+    /// [`SpectrumOrigin::Catalogue`]).
+    pub origin: SpectrumOrigin,
+    /// The file's text, verbatim (what a run records to be tied to the exact spectrum it used).
+    pub text: String,
 }
 
 /// Reads and validates a spectrum file.
@@ -63,10 +69,15 @@ pub fn load_spectrum(path: &Path) -> Result<SpectrumFile> {
         path: path.to_path_buf(),
         source,
     })?;
-    parse_spectrum(&text, path)
+    let mut sf = parse_spectrum(&text, path)?;
+    sf.origin = SpectrumOrigin::File {
+        path: path.to_path_buf(),
+    };
+    Ok(sf)
 }
 
-/// Parses spectrum-file text; `path` is used for the name and in error messages.
+/// Parses spectrum-file text; `path` is used for the name and in error messages. The origin is
+/// [`SpectrumOrigin::Inline`] (text not read from a file) until a loader sets it.
 ///
 /// # Errors
 /// As [`load_spectrum`].
@@ -92,6 +103,8 @@ pub fn parse_spectrum(text: &str, path: &Path) -> Result<SpectrumFile> {
         source,
         unit,
         spectrum,
+        origin: SpectrumOrigin::Inline,
+        text: text.to_string(),
     })
 }
 
@@ -301,37 +314,4 @@ fn band(f: &Fields, key: &str, dim: Dim) -> Result<Option<(f64, f64)>> {
 
 fn pow(d: Dim, k: i8) -> Dim {
     Dim::new(d.m * k, d.kg * k, d.s * k)
-}
-
-/// One entry of a spectrum directory.
-#[derive(Debug, Clone)]
-pub struct CatalogueEntry {
-    /// The file.
-    pub path: PathBuf,
-    /// The parsed spectrum, or the error that names what is wrong with the file.
-    pub spectrum: std::result::Result<SpectrumFile, String>,
-}
-
-/// Lists every `*.toml` spectrum file in `dir`, sorted by name; unreadable files are listed with their
-/// error rather than hidden.
-///
-/// # Errors
-/// [`Error::Io`] if the directory cannot be read.
-pub fn spectrum_catalogue(dir: &Path) -> Result<Vec<CatalogueEntry>> {
-    let rd = std::fs::read_dir(dir).map_err(|source| Error::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    let mut paths: Vec<PathBuf> = rd
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    paths.sort();
-    Ok(paths
-        .into_iter()
-        .map(|path| CatalogueEntry {
-            spectrum: load_spectrum(&path).map_err(|e| e.to_string()),
-            path,
-        })
-        .collect())
 }

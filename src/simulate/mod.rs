@@ -10,23 +10,35 @@
 //!   Van Loan's white-noise discretisation of the system augmented with its input filters
 //!   ([`van_loan`], [`augmented_response`]) — no time-step bias.
 //! * Batches ([`run_batch`], [`Shard`]): rayon-parallel, mergeable shards.
-//! * Whole runs of a scenario to HDF5 ([`run_scenario`], [`run`]).
+//! * Whole runs to HDF5 ([`run()`](run::run)): the subject ([`RunInput`]), the options ([`RunOptions`],
+//!   [`Route`], [`suggest_step`]), the plan (route choice with its reasons), the engine, the typed per-shard
+//!   [`accumulators`] and the [`RunSummary`].
 
+pub mod accumulators;
 pub mod batch;
 pub mod discretize;
+mod engine;
+mod input;
+mod options;
+mod plan;
 pub mod rng;
 pub mod road;
 pub mod run;
 pub mod shaping;
 pub mod spectral;
+mod summary;
 
 pub use batch::{run_batch, Shard};
 pub use discretize::{
     augmented_response, covariance_factor, expm, foh, van_loan, zoh, FirstOrderHold, SampledSystem,
     WhiteNoiseDiscretization, ZeroOrderHold,
 };
+pub use input::RunInput;
+pub use options::{suggest_step, Route, RunOptions, StepSuggestion};
+pub use plan::SkippedOutput;
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
 pub use road::{RoadScratch, RoadTrack};
-pub use run::{run_scenario, suggest_step, IntervalRow, Method, OutputRun, RunOptions, RunSummary, SkippedOutput};
+pub use run::{run, run_temporary, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
+pub use summary::RunSummary;

@@ -61,9 +61,9 @@ impl Spectrum for BandWhite {
     fn describe(&self) -> String {
         format!(
             "band-limited white: S0 = {} (two-sided) on {} <= |w| <= {} {}",
-            crate::error::num(self.level),
-            crate::error::num(self.lo),
-            crate::error::num(self.hi),
+            crate::numbers::num(self.level),
+            crate::numbers::num(self.lo),
+            crate::numbers::num(self.hi),
             self.domain.angular_unit()
         )
     }

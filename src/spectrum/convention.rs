@@ -29,7 +29,7 @@ use std::str::FromStr;
 /// assert!((omega - 0.2 * std::f64::consts::PI).abs() < 1e-15);
 /// assert!((s - 16e-6 / (4.0 * std::f64::consts::PI)).abs() < 1e-20);
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum Convention {
     /// Canonical: S(ω), two-sided, angular frequency.

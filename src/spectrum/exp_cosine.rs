@@ -53,9 +53,9 @@ impl Spectrum for ExpCosine {
     fn describe(&self) -> String {
         format!(
             "type 3: K = D exp(-alpha |tau|) cos(beta tau), D = {}, alpha = {}, beta = {} 1/{}",
-            crate::error::num(self.variance),
-            crate::error::num(self.alpha),
-            crate::error::num(self.beta),
+            crate::numbers::num(self.variance),
+            crate::numbers::num(self.alpha),
+            crate::numbers::num(self.beta),
             self.domain.lag_unit()
         )
     }

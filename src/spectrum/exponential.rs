@@ -53,8 +53,8 @@ impl Spectrum for Exponential {
     fn describe(&self) -> String {
         format!(
             "type 1: K = D exp(-alpha |tau|), D = {}, alpha = {} 1/{}",
-            crate::error::num(self.variance),
-            crate::error::num(self.alpha),
+            crate::numbers::num(self.variance),
+            crate::numbers::num(self.alpha),
             self.domain.lag_unit()
         )
     }

@@ -58,9 +58,9 @@ impl Spectrum for GaussCosine {
     fn describe(&self) -> String {
         format!(
             "type 4: K = D exp(-alpha tau^2) cos(beta tau), D = {}, alpha = {} 1/{lag}^2, beta = {} 1/{lag}",
-            crate::error::num(self.variance),
-            crate::error::num(self.alpha),
-            crate::error::num(self.beta),
+            crate::numbers::num(self.variance),
+            crate::numbers::num(self.alpha),
+            crate::numbers::num(self.beta),
             lag = self.domain.lag_unit()
         )
     }

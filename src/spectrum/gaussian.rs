@@ -55,8 +55,8 @@ impl Spectrum for Gaussian {
     fn describe(&self) -> String {
         format!(
             "type 2: K = D exp(-alpha tau^2), D = {}, alpha = {} 1/{}^2",
-            crate::error::num(self.variance),
-            crate::error::num(self.alpha),
+            crate::numbers::num(self.variance),
+            crate::numbers::num(self.alpha),
             self.domain.lag_unit()
         )
     }

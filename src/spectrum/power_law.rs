@@ -152,7 +152,7 @@ impl PowerLaw {
             waviness,
             band,
             domain,
-            label: format!("power law G(n0) = {}", crate::error::num(g0)),
+            label: format!("power law G(n0) = {}", crate::numbers::num(g0)),
         })
     }
 
@@ -191,8 +191,8 @@ impl Spectrum for PowerLaw {
         let band = match self.band {
             Some((a, b)) => format!(
                 "band {}..{} {}",
-                crate::error::num(a),
-                crate::error::num(b),
+                crate::numbers::num(a),
+                crate::numbers::num(b),
                 self.domain.cyclic_unit()
             ),
             None => "no band (infinite variance)".to_string(),
@@ -200,9 +200,9 @@ impl Spectrum for PowerLaw {
         format!(
             "{}, n0 = {} {}, w = {}, {band}",
             self.label,
-            crate::error::num(self.n0),
+            crate::numbers::num(self.n0),
             self.domain.cyclic_unit(),
-            crate::error::num(self.waviness)
+            crate::numbers::num(self.waviness)
         )
     }
     fn domain(&self) -> Domain {

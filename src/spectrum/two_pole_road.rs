@@ -77,9 +77,9 @@ impl Spectrum for TwoPoleRoad {
                 Form::AsPrinted => "as printed (one pole)",
                 Form::Consistent => "consistent form (two poles)",
             },
-            crate::error::num(self.dq),
-            crate::error::num(self.alpha),
-            crate::error::num(self.beta)
+            crate::numbers::num(self.dq),
+            crate::numbers::num(self.alpha),
+            crate::numbers::num(self.beta)
         )
     }
     fn domain(&self) -> Domain {

@@ -67,10 +67,11 @@ pub mod layout;
 mod reader;
 mod writer;
 
-pub use reader::{summarize, RunFile};
+pub use reader::{summarize, RunFile, RunInfo};
 pub use writer::RunWriter;
 
 use crate::error::{Error, Result};
+use crate::estimate::Interval;
 use std::path::{Path, PathBuf};
 
 /// Compression of the raw signal datasets.
@@ -142,6 +143,14 @@ impl Compression {
             Compression::None => "none".to_string(),
             Compression::Deflate { level } => format!("deflate:{level}"),
         }
+    }
+}
+
+impl std::str::FromStr for Compression {
+    type Err = Error;
+    /// As [`Compression::parse`].
+    fn from_str(text: &str) -> Result<Compression> {
+        Compression::parse(text)
     }
 }
 
@@ -280,18 +289,13 @@ fn check_name(field: &str, name: &str) -> Result<()> {
 }
 
 /// One across-realization statistic of one output, with its interval and optional analytic value.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Statistic {
     /// Name, e.g. `mean`, `variance`, `sigma`.
     pub name: String,
-    /// Estimate.
-    pub estimate: f64,
-    /// Lower interval bound.
-    pub lower: f64,
-    /// Upper interval bound.
-    pub upper: f64,
-    /// Confidence level of the interval, e.g. 0.95.
-    pub confidence: f64,
+    /// Estimate and interval (serialised flat: `estimate`, `lower`, `upper`, `confidence`).
+    #[serde(flatten)]
+    pub interval: Interval,
     /// Unit of the estimate, e.g. `m^2` for a variance of a displacement.
     pub unit: String,
     /// How it was estimated (free text, e.g. `Student-t`, `chi-square`).
@@ -303,7 +307,7 @@ pub struct Statistic {
 }
 
 /// The statistics of one output.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct OutputStatistics {
     /// Output name (as in [`RunMetadata::outputs`]).
     pub output: String,
@@ -313,6 +317,13 @@ pub struct OutputStatistics {
     pub n_used: u64,
     /// The statistics, in order.
     pub statistics: Vec<Statistic>,
+}
+
+impl OutputStatistics {
+    /// The statistic called `name`, if present.
+    pub fn get(&self, name: &str) -> Option<&Statistic> {
+        self.statistics.iter().find(|s| s.name == name)
+    }
 }
 
 /// A spectral density estimate of one output in the crate's canonical convention (two-sided angular,

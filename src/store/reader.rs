@@ -3,6 +3,7 @@
 use super::layout as L;
 use super::{h5err, Compression, OutputStatistics, PsdEstimate, RunMetadata, Signal, SignalGroup, Statistic};
 use crate::error::{Error, Result};
+use crate::estimate::Interval;
 use hdf5::types::VarLenUnicode;
 use hdf5::{File, Location};
 use ndarray::{s, Array2};
@@ -238,10 +239,12 @@ impl RunFile {
                 };
                 statistics.push(Statistic {
                     name,
-                    estimate,
-                    lower: attr_scalar(&ds, L::ATTR_LOWER, p)?,
-                    upper: attr_scalar(&ds, L::ATTR_UPPER, p)?,
-                    confidence: attr_scalar(&ds, L::ATTR_CONFIDENCE, p)?,
+                    interval: Interval {
+                        estimate,
+                        lower: attr_scalar(&ds, L::ATTR_LOWER, p)?,
+                        upper: attr_scalar(&ds, L::ATTR_UPPER, p)?,
+                        confidence: attr_scalar(&ds, L::ATTR_CONFIDENCE, p)?,
+                    },
                     unit: attr_string(&ds, L::ATTR_UNIT, p)?,
                     method: attr_string(&ds, L::ATTR_METHOD, p)?,
                     analytic,
@@ -298,6 +301,59 @@ impl RunFile {
 
     /// Closes the file (the same as dropping the value).
     pub fn close(self) {}
+}
+
+/// What `stochvib inspect --json` prints: the run's identity, sizes and statistics.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct RunInfo {
+    /// The file.
+    pub path: PathBuf,
+    /// Format version of the writer.
+    pub format_version: u32,
+    /// Toolkit version of the writer.
+    pub toolkit_version: String,
+    /// Master seed.
+    pub seed: u64,
+    /// Random generator and synthesis method.
+    pub generator: String,
+    /// Time step, s.
+    pub dt: f64,
+    /// Samples per realization.
+    pub n_samples: usize,
+    /// Realizations.
+    pub n_realizations: usize,
+    /// Shards.
+    pub n_shards: usize,
+    /// Whether raw realizations are stored.
+    pub store_raw: bool,
+    /// Output signal names.
+    pub outputs: Vec<String>,
+    /// Statistics of every signal that has them.
+    pub statistics: Vec<OutputStatistics>,
+}
+
+impl RunFile {
+    /// The run's identity, sizes and statistics ([`RunInfo`]).
+    ///
+    /// # Errors
+    /// As [`RunFile::statistics`].
+    pub fn info(&self) -> Result<RunInfo> {
+        let m = &self.meta;
+        Ok(RunInfo {
+            path: self.path.clone(),
+            format_version: self.format_version,
+            toolkit_version: self.toolkit_version.clone(),
+            seed: m.seed,
+            generator: m.generator.clone(),
+            dt: m.dt,
+            n_samples: m.n_samples,
+            n_realizations: m.n_realizations,
+            n_shards: m.n_shards(),
+            store_raw: m.store_raw,
+            outputs: m.outputs.iter().map(|s| s.name.clone()).collect(),
+            statistics: self.statistics()?,
+        })
+    }
 }
 
 /// A human-readable summary of a run file (complete or interrupted): root attributes, datasets with
@@ -383,7 +439,15 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
                 let _ = writeln!(
                     s,
                     "    {:<12} {:<10} {:>14.6e} {:>14.6e} {:>14.6e} {:>6.3} {:>14} {:>6}  {}",
-                    st.output, x.name, x.estimate, x.lower, x.upper, x.confidence, analytic, covers, x.unit
+                    st.output,
+                    x.name,
+                    x.interval.estimate,
+                    x.interval.lower,
+                    x.interval.upper,
+                    x.interval.confidence,
+                    analytic,
+                    covers,
+                    x.unit
                 );
             }
         }

@@ -424,11 +424,12 @@ impl RunWriter {
                     .shape(())
                     .create(s.name.as_str())
                     .map_err(e("creating a statistic"))?;
-                ds.write_scalar(&s.estimate).map_err(e("writing a statistic"))?;
+                ds.write_scalar(&s.interval.estimate)
+                    .map_err(e("writing a statistic"))?;
                 let w = || -> hdf5::Result<()> {
-                    write_scalar_attr(&ds, L::ATTR_LOWER, s.lower)?;
-                    write_scalar_attr(&ds, L::ATTR_UPPER, s.upper)?;
-                    write_scalar_attr(&ds, L::ATTR_CONFIDENCE, s.confidence)?;
+                    write_scalar_attr(&ds, L::ATTR_LOWER, s.interval.lower)?;
+                    write_scalar_attr(&ds, L::ATTR_UPPER, s.interval.upper)?;
+                    write_scalar_attr(&ds, L::ATTR_CONFIDENCE, s.interval.confidence)?;
                     write_str_attr(&ds, L::ATTR_UNIT, &s.unit)?;
                     write_str_attr(&ds, L::ATTR_METHOD, &s.method)?;
                     if let Some(a) = s.analytic {

@@ -15,10 +15,12 @@ use nalgebra::{Complex, DMatrix};
 use std::fmt::Debug;
 
 pub mod mdof;
+mod oscillator;
 mod state_space;
 mod transfer_function;
 
 pub use mdof::{modal_analysis, Attach, Element, Mdof, Output, Quantity};
+pub use oscillator::Drive;
 pub use state_space::StateSpace;
 pub use transfer_function::TransferFunction;
 

@@ -1,4 +1,5 @@
-//! Named tolerances, in one place, used by the test-suite and by the reports' agreement flags.
+//! Named tolerances of the test suite, in one place (test-only: not part of the library's API). Integration
+//! tests use them through `mod common;`; unit tests, benches and examples include this file by path.
 //!
 //! Each constant says what it bounds and why the value is what it is.
 
@@ -7,7 +8,7 @@
 pub const EXACT: f64 = 1e-12;
 
 /// Closed form vs adaptive quadrature requested at relative 1e-10 (see
-/// [`spectrum::numeric::REL_TOL`](crate::spectrum::numeric::REL_TOL)): the integrator's own error estimate
+/// `stochvib::spectrum::numeric::REL_TOL`): the integrator's own error estimate
 /// is usually far smaller; 1e-8 leaves two digits of margin.
 pub const QUADRATURE: f64 = 1e-8;
 

@@ -66,6 +66,17 @@ impl<'a> Fields<'a> {
         }
     }
 
+    /// Wraps a constructor's [`Error::InvalidParameter`] so that it names the file key of the same name as the
+    /// parameter (constructors name their parameters after the file keys); any other error is attributed to
+    /// `fallback`.
+    pub fn wrap_param(&self, e: Error, fallback: &str) -> Error {
+        let key = match &e {
+            Error::InvalidParameter { name, .. } => name.clone(),
+            _ => fallback.to_string(),
+        };
+        self.wrap(&key, e)
+    }
+
     /// The raw value of `key`, marking it used.
     pub fn get(&self, key: &str) -> Option<&'a toml::Value> {
         self.used.borrow_mut().insert(key.to_string());
@@ -172,6 +183,54 @@ impl<'a> Fields<'a> {
             Some(f) if f.is_finite() => Ok(f),
             _ => Err(self.error(key, v, "expected a finite number")),
         }
+    }
+
+    /// A required sub-table.
+    ///
+    /// # Errors
+    /// Missing key or not a table.
+    pub fn table(&self, key: &str) -> Result<&'a toml::Table> {
+        let v = self.require(key)?;
+        v.as_table().ok_or_else(|| self.error(key, v, "expected a table"))
+    }
+
+    /// A [`Fields`] reader of the required sub-table `key` (dotted path `prefix.key`).
+    ///
+    /// # Errors
+    /// Missing key or not a table.
+    pub fn sub(&self, key: &str) -> Result<Fields<'a>> {
+        let t = self.table(key)?;
+        Ok(Fields::new(&self.file, &self.path(key), t))
+    }
+
+    /// A required matrix written as an array of rows of plain (SI) numbers.
+    ///
+    /// # Errors
+    /// Missing key, not an array of rows, rows of different lengths, non-finite entries.
+    pub fn matrix(&self, key: &str) -> Result<nalgebra::DMatrix<f64>> {
+        let v = self.require(key)?;
+        let rows = v
+            .as_array()
+            .ok_or_else(|| self.error(key, v, "expected an array of rows"))?;
+        let mut data = Vec::new();
+        let mut ncols = None;
+        for (i, r) in rows.iter().enumerate() {
+            let r = r
+                .as_array()
+                .ok_or_else(|| self.error(&format!("{key}[{i}]"), r, "expected a row (array of numbers)"))?;
+            if *ncols.get_or_insert(r.len()) != r.len() {
+                return Err(self.error(&format!("{key}[{i}]"), r.len(), "rows must all have the same length"));
+            }
+            for (j, x) in r.iter().enumerate() {
+                let val = x
+                    .as_float()
+                    .or_else(|| x.as_integer().map(|n| n as f64))
+                    .filter(|v| v.is_finite())
+                    .ok_or_else(|| self.error(&format!("{key}[{i}][{j}]"), x, "expected a finite number"))?;
+                data.push(val);
+            }
+        }
+        Ok(nalgebra::DMatrix::from_row_slice(rows.len(), ncols.unwrap_or(0), &data))
     }
 
     /// Fails on any key that was never read: catches typos such as `alpah`.

@@ -1,0 +1,222 @@
+//! `kind = "mdof"`: a multi-degree-of-freedom model written in the scenario file, from elements (springs and
+//! dampers between coordinates, the ground and base inputs) or from full matrices.
+//!
+//! # Format
+//! * From elements: `coordinates = [{ name, unit, mass }]` (unit `m` with a mass in kg, or `rad` with an
+//!   inertia in kg m²), `base_inputs = N`, `[[model.element]]` with `name`, `point` (weights of the
+//!   coordinates), `to` (`"ground"`, `"base 0"`, … or a point array), `stiffness`, `damping`.
+//! * From matrices: `coordinates = [{ name, unit }]`, `base_inputs = N`, `mass_matrix`, `damping_matrix`,
+//!   `stiffness_matrix` (n × n), `base_stiffness`, `base_damping` (n × N) as SI numbers:
+//!   M q̈ + B q̇ + C q = K_u u + B_u u̇.
+//! * Outputs `[[model.output]]` with `name`, `quantity` (`displacement`, `velocity`, `acceleration` with
+//!   `point`; `deflection`, `spring-force`, `damper-force`, `element-force` with `element`).
+//! * Optional `positions` (wheel positions along the track, with units) and `gains` of the base inputs.
+
+use super::io::track_layout;
+use crate::error::{Error, Result};
+use crate::fields::Fields;
+use crate::models::ModelInstance;
+use crate::system::{Attach, Element, Mdof, Quantity};
+use crate::units::Dim;
+use nalgebra::DMatrix;
+use std::sync::Arc;
+
+/// Builds the model of a `kind = "mdof"` `[model]` table (see the module docs).
+///
+/// # Errors
+/// [`Error::File`] naming the key, value and reason.
+pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
+    let matrix_form = f.get("mass_matrix").is_some();
+    let cv = f.require("coordinates")?;
+    let carr = cv
+        .as_array()
+        .ok_or_else(|| f.error("coordinates", cv, "expected an array of { name, unit, mass }"))?;
+    let mut coords = Vec::new();
+    let mut masses = Vec::new();
+    for (i, c) in carr.iter().enumerate() {
+        let key = format!("coordinates[{i}]");
+        let t = c
+            .as_table()
+            .ok_or_else(|| f.error(&key, c, "expected { name, unit, mass }"))?;
+        let cf = Fields::new(f.file(), &f.path(&key), t);
+        let name = cf.string("name")?.to_string();
+        let unit = cf.opt_string("unit")?.unwrap_or("m").to_string();
+        let mass_dim = match unit.as_str() {
+            "m" => Dim::MASS,
+            "rad" => Dim::INERTIA,
+            other => {
+                return Err(cf.error(
+                    "unit",
+                    other,
+                    "coordinate units are \"m\" (mass in kg) or \"rad\" (inertia in kg m^2)",
+                ))
+            }
+        };
+        // with full matrices (`mass_matrix` …) the coordinates carry no mass of their own
+        if !matrix_form {
+            masses.push(cf.quantity("mass", mass_dim)?);
+        }
+        cf.finish()?;
+        coords.push((name, unit));
+    }
+    let n = coords.len();
+    let n_base = match f.get("base_inputs") {
+        None => 0,
+        Some(v) => v
+            .as_integer()
+            .filter(|k| *k >= 0)
+            .ok_or_else(|| f.error("base_inputs", v, "expected a count >= 0"))? as usize,
+    };
+    let point = |key: &str, v: &toml::Value, ff: &Fields| -> Result<Vec<f64>> {
+        let arr = v
+            .as_array()
+            .ok_or_else(|| ff.error(key, v, format!("expected {n} weights of the coordinates")))?;
+        if arr.len() != n {
+            return Err(ff.error(key, v, format!("expected {n} weights (one per coordinate)")));
+        }
+        arr.iter()
+            .map(|x| {
+                x.as_float()
+                    .or_else(|| x.as_integer().map(|k| k as f64))
+                    .ok_or_else(|| ff.error(key, x, "expected a number"))
+            })
+            .collect()
+    };
+    let mut elements = Vec::new();
+    if let Some(ev) = f.get("element") {
+        let earr = ev
+            .as_array()
+            .ok_or_else(|| f.error("element", ev, "expected [[model.element]] tables"))?;
+        for (i, e) in earr.iter().enumerate() {
+            let key = format!("element[{i}]");
+            let t = e.as_table().ok_or_else(|| f.error(&key, e, "expected a table"))?;
+            let ef = Fields::new(f.file(), &f.path(&key), t);
+            let name = ef.string("name")?.to_string();
+            let p = point("point", ef.require("point")?, &ef)?;
+            let rot = p.iter().zip(&coords).any(|(w, c)| *w != 0.0 && c.1 == "rad");
+            let (kd, bd) = if rot {
+                (Dim::TORQUE, Dim::new(2, 1, -1))
+            } else {
+                (Dim::STIFFNESS, Dim::DAMPING)
+            };
+            let to = match ef.require("to")? {
+                toml::Value::String(s) if s == "ground" => Attach::Ground,
+                toml::Value::String(s) if s.starts_with("base") => {
+                    let j: usize = s[4..]
+                        .trim()
+                        .parse()
+                        .map_err(|_| ef.error("to", s, "expected \"base <index>\""))?;
+                    if j >= n_base {
+                        return Err(ef.error("to", s, format!("only {n_base} base inputs (set model.base_inputs)")));
+                    }
+                    Attach::Base(j)
+                }
+                v @ toml::Value::Array(_) => Attach::Point(point("to", v, &ef)?),
+                v => return Err(ef.error("to", v, "expected \"ground\", \"base <j>\" or a point array")),
+            };
+            let stiffness = ef.opt_quantity("stiffness", kd)?.unwrap_or(0.0);
+            let damping = ef.opt_quantity("damping", bd)?.unwrap_or(0.0);
+            ef.finish()?;
+            elements.push(Element {
+                name,
+                point: p,
+                to,
+                stiffness,
+                damping,
+            });
+        }
+    }
+    if matrix_form && !elements.is_empty() {
+        return Err(f.error(
+            "element",
+            "[[model.element]]",
+            "give either elements with coordinate masses, or full matrices (mass_matrix, …), not both",
+        ));
+    }
+    let names: Vec<String> = elements.iter().map(|e| e.name.clone()).collect();
+    let cref: Vec<(&str, &str)> = coords.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+    let mut model = if matrix_form {
+        // M q̈ + B q̇ + C q = K_u u + B_u u̇, SI numbers, n × n and n × base_inputs
+        let sq = |key: &str, cols: usize| -> Result<DMatrix<f64>> {
+            let m = match f.get(key) {
+                Some(_) => f.matrix(key)?,
+                None => DMatrix::zeros(n, cols),
+            };
+            if m.nrows() != n || m.ncols() != cols {
+                return Err(f.error(
+                    key,
+                    format!("{}x{}", m.nrows(), m.ncols()),
+                    format!("must be {n}x{cols}"),
+                ));
+            }
+            Ok(m)
+        };
+        Mdof::new(
+            &cref,
+            sq("mass_matrix", n)?,
+            sq("damping_matrix", n)?,
+            sq("stiffness_matrix", n)?,
+            sq("base_stiffness", n_base)?,
+            sq("base_damping", n_base)?,
+            DMatrix::zeros(n, 0),
+        )
+        .map_err(|e| {
+            let key = match &e {
+                Error::InvalidParameter { name, .. } => match name.as_str() {
+                    "B" => "damping_matrix",
+                    "C" => "stiffness_matrix",
+                    "K_u" => "base_stiffness",
+                    "B_u" => "base_damping",
+                    _ => "mass_matrix",
+                },
+                _ => "mass_matrix",
+            };
+            f.wrap(key, e)
+        })?
+    } else {
+        Mdof::from_elements(&cref, &masses, elements, n_base, &[]).map_err(|e| f.wrap("coordinates", e))?
+    };
+    let ov = f.require("output")?;
+    let oarr = ov
+        .as_array()
+        .ok_or_else(|| f.error("output", ov, "expected [[model.output]] tables"))?;
+    for (i, o) in oarr.iter().enumerate() {
+        let key = format!("output[{i}]");
+        let t = o.as_table().ok_or_else(|| f.error(&key, o, "expected a table"))?;
+        let of = Fields::new(f.file(), &f.path(&key), t);
+        let name = of.string("name")?.to_string();
+        let q = of.string("quantity")?;
+        let element = |of: &Fields| -> Result<usize> {
+            let e = of.string("element")?;
+            names
+                .iter()
+                .position(|x| x == e)
+                .ok_or_else(|| of.error("element", e, format!("no such element; known: {}", names.join(", "))))
+        };
+        let quantity = match q {
+            "displacement" => Quantity::Displacement(point("point", of.require("point")?, &of)?),
+            "velocity" => Quantity::Velocity(point("point", of.require("point")?, &of)?),
+            "acceleration" => Quantity::Acceleration(point("point", of.require("point")?, &of)?),
+            "deflection" => Quantity::Deflection(element(&of)?),
+            "spring-force" => Quantity::SpringForce(element(&of)?),
+            "damper-force" => Quantity::DamperForce(element(&of)?),
+            "element-force" => Quantity::ElementForce(element(&of)?),
+            other => return Err(of.error("quantity", other, "expected displacement, velocity, acceleration, deflection, spring-force, damper-force or element-force")),
+        };
+        of.finish()?;
+        model = model.with_output(&name, quantity).map_err(|e| f.wrap("output", e))?;
+    }
+    if n_base == 0 {
+        return Err(f.error(
+            "base_inputs",
+            0,
+            "a generic mdof scenario needs at least one base input (force inputs: use a catalogue model or state-space)",
+        ));
+    }
+    let layout = track_layout(f, n_base)?;
+    Ok(ModelInstance {
+        system: Arc::new(model),
+        layout,
+        description: format!("MDOF model, {n} coordinates"),
+    })
+}

@@ -1,0 +1,223 @@
+//! The one registry of model kinds that a scenario file may name in `[model] kind`: the generic kinds and
+//! every catalogue model. The list of known kinds in error messages, `stochvib models` and the docs' tables
+//! are all derived from [`MODEL_KINDS`].
+
+use super::generic;
+use crate::error::Result;
+use crate::fields::Fields;
+use crate::models::results::DeterministicModel;
+use crate::models::{
+    balancer_bogie, conveyor_idler, dynamic_stiffness_chain::DynamicStiffnessChain, half_car, isolation,
+    mine_hoist::MineHoist, operator_seat, scraper, three_mass_hoist::ThreeMassHoist, ModelInstance,
+};
+use serde::Serialize;
+
+/// What a model may need from the rest of the scenario file.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ModelContext {
+    /// `[input] speed`, m/s.
+    pub speed: Option<f64>,
+}
+
+/// What a model kind builds from its `[model]` table.
+#[derive(Debug)]
+pub enum BuiltModel {
+    /// A linear system with the layout of its random inputs: `analyze` reports response statistics and
+    /// `simulate` runs Monte Carlo; the scenario needs an `[input]`.
+    Stochastic(ModelInstance),
+    /// A deterministic model (frequencies, modes, time histories, harmonic response): `analyze` prints its
+    /// result tables; the scenario has no `[input]`.
+    Deterministic(Box<dyn DeterministicModel>),
+}
+
+/// Generic (written out in the file) or a model of the source documents' catalogue.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    /// Matrices, elements or polynomials written in the scenario file.
+    Generic,
+    /// A model of the catalogue with physical parameters (`src/models/`).
+    Catalogue,
+}
+
+/// One model kind.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct ModelKind {
+    /// The name written in `[model] kind`.
+    pub name: &'static str,
+    /// Generic or catalogue.
+    pub family: Family,
+    /// Whether the kind takes a random input (`analyze` statistics, `simulate`) or is deterministic.
+    pub stochastic: bool,
+    /// One line: what it is and where it comes from.
+    pub summary: &'static str,
+    /// A scenario file of the kind in `data/`.
+    pub example: &'static str,
+    #[serde(skip)]
+    build: fn(&Fields, ModelContext) -> Result<BuiltModel>,
+}
+
+impl ModelKind {
+    /// Builds the model from its `[model]` table.
+    ///
+    /// # Errors
+    /// [`Error::File`](crate::Error::File) naming the key, value and reason.
+    pub fn build(&self, f: &Fields, ctx: ModelContext) -> Result<BuiltModel> {
+        (self.build)(f, ctx)
+    }
+}
+
+fn stochastic(r: Result<ModelInstance>) -> Result<BuiltModel> {
+    r.map(BuiltModel::Stochastic)
+}
+
+fn deterministic<M: DeterministicModel + 'static>(r: Result<M>) -> Result<BuiltModel> {
+    r.map(|m| BuiltModel::Deterministic(Box::new(m)))
+}
+
+/// Every model kind, generic first, then the catalogue in the order of the sources.
+pub const MODEL_KINDS: &[ModelKind] = &[
+    ModelKind {
+        name: "mdof",
+        family: Family::Generic,
+        stochastic: true,
+        summary: "multi-degree-of-freedom model from elements or full matrices, base inputs on a track",
+        example: "data/quarter-car.toml",
+        build: |f, _| stochastic(generic::mdof::from_fields(f)),
+    },
+    ModelKind {
+        name: "transfer-function",
+        family: Family::Generic,
+        stochastic: true,
+        summary: "rational transfer function N(s)/D(s), one input",
+        example: "",
+        build: |f, _| stochastic(generic::transfer_function::from_fields(f)),
+    },
+    ModelKind {
+        name: "state-space",
+        family: Family::Generic,
+        stochastic: true,
+        summary: "state space A, B, C, D, E (y = Cx + Du + E du/dt), inputs on a track",
+        example: "",
+        build: |f, _| stochastic(generic::state_space::from_fields(f)),
+    },
+    ModelKind {
+        name: "isolator-single",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "single-stage vibration isolator (Sukharev 2012, 7.1)",
+        example: "data/isolator-single.toml",
+        build: |f, _| stochastic(isolation::from_fields_single(f)),
+    },
+    ModelKind {
+        name: "isolator-two-stage",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "two-stage vibration isolator (Sukharev 2012, 7.2, eq. (7.16))",
+        example: "data/isolator-two-stage.toml",
+        build: |f, _| stochastic(isolation::from_fields_two_stage(f)),
+    },
+    ModelKind {
+        name: "half-car",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "half car bounce and pitch with the wheelbase delay (Sukharev 2012, 7.5, Example 7.1)",
+        example: "data/half-car.toml",
+        build: |f, _| stochastic(half_car::from_fields(f)),
+    },
+    ModelKind {
+        name: "operator-seat",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "operator seat under cab-floor motion, octave bands (Sukharev 2012, 7.6, Example 7.2)",
+        example: "data/operator-seat.toml",
+        build: |f, _| stochastic(operator_seat::from_fields(f)),
+    },
+    ModelKind {
+        name: "balancer-bogie",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "balancer bogie on a random road (Sukharev 2012, 8.5, eqs. (8.38)-(8.50))",
+        example: "data/balancer-bogie.toml",
+        build: |f, ctx| stochastic(balancer_bogie::from_fields(f, ctx.speed)),
+    },
+    ModelKind {
+        name: "conveyor-idler",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "conveyor idler under a random lump load (Sukharev 2012, 8.6, Example 8.1)",
+        example: "data/conveyor-idler.toml",
+        build: |f, _| stochastic(conveyor_idler::from_fields(f)),
+    },
+    ModelKind {
+        name: "scraper-rigid-cab",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "scraper with a rigid cab on a random road (Sukharev 2012, 8.7, eq. (8.64))",
+        example: "data/scraper-rigid-cab.toml",
+        build: |f, _| stochastic(scraper::rigid_from_fields(f)),
+    },
+    ModelKind {
+        name: "scraper-sprung-cab",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "scraper with a sprung cab on a random road (Sukharev 2012, 8.7, eq. (8.65))",
+        example: "data/scraper-sprung-cab.toml",
+        build: |f, _| stochastic(scraper::sprung_from_fields(f)),
+    },
+    ModelKind {
+        name: "three-mass-hoist",
+        family: Family::Catalogue,
+        stochastic: false,
+        summary: "three-mass hoist at start-up: frequencies, static parts, link moments (Ofiy & Rakhmaniy 2010)",
+        example: "data/three-mass-hoist.toml",
+        build: |f, _| deterministic(ThreeMassHoist::from_fields(f)),
+    },
+    ModelKind {
+        name: "dynamic-stiffness-chain",
+        family: Family::Catalogue,
+        stochastic: false,
+        summary: "harmonic response of a torsional chain by dynamic stiffness (Yurchenko 2011)",
+        example: "data/dynamic-stiffness-chain.toml",
+        build: |f, _| deterministic(DynamicStiffnessChain::from_fields(f)),
+    },
+    ModelKind {
+        name: "mine-hoist",
+        family: Family::Catalogue,
+        stochastic: false,
+        summary: "single-end mine hoist: frequencies and modes over the lift, node (Dvornikov et al. 2014)",
+        example: "data/mine-hoist.toml",
+        build: |f, _| deterministic(MineHoist::from_fields(f)),
+    },
+];
+
+/// The kind called `name`, if any.
+pub fn model_kind(name: &str) -> Option<&'static ModelKind> {
+    MODEL_KINDS.iter().find(|k| k.name == name)
+}
+
+/// The names of every kind, in registry order.
+///
+/// # Examples
+/// ```
+/// let names = stochvib::scenario::kind_names();
+/// assert!(names.contains(&"mdof") && names.contains(&"mine-hoist"));
+/// ```
+pub fn kind_names() -> Vec<&'static str> {
+    MODEL_KINDS.iter().map(|k| k.name).collect()
+}
+
+/// Builds the model of `[model]` (`f`) of kind `kind`.
+///
+/// # Errors
+/// [`Error::File`](crate::Error::File) for an unknown kind (listing every known kind) or bad keys.
+pub fn build_model(kind: &str, f: &Fields, ctx: ModelContext) -> Result<BuiltModel> {
+    match model_kind(kind) {
+        Some(k) => k.build(f, ctx),
+        None => Err(f.error(
+            "kind",
+            kind,
+            format!("unknown model kind; known kinds: {}", kind_names().join(", ")),
+        )),
+    }
+}

@@ -1,0 +1,174 @@
+//! The engine of a run: one realization of every simulated output (and, for raw storage, of the input
+//! processes) from its random stream, reduced to its time averages and Welch sums.
+
+use super::plan::Plan;
+use super::{GaussMarkov, SpectralGenerator};
+use crate::error::{Error, Result};
+use crate::estimate::WelchSums;
+use realfft::num_complex::Complex;
+
+/// gains\[g\]\[r\]\[j\]: the transfer from generator g's FFT coefficient c_j to output r.
+pub(crate) type Gains = Vec<Vec<Vec<Complex<f64>>>>;
+
+/// How a realization is produced (one per run).
+#[allow(clippy::large_enum_variant)] // one engine per run
+pub(crate) enum Engine {
+    /// The exact Gauss–Markov recursion of the system augmented with its shaping filters.
+    Exact(GaussMarkov),
+    /// Spectral synthesis and the periodic steady state in the frequency domain.
+    Spectral {
+        generators: Vec<SpectralGenerator>,
+        /// gains\[g\]\[r\]\[j\]: the transfer from generator g's coefficient c_j to output r
+        gains: Gains,
+        /// inverse real FFT of size N
+        inverse: std::sync::Arc<dyn realfft::ComplexToReal<f64>>,
+    },
+}
+
+/// One realization's per-output results.
+pub(crate) struct Realization {
+    /// Time averages m_i of each output.
+    pub m: Vec<f64>,
+    /// Time averages v_i of the square of each output.
+    pub v: Vec<f64>,
+    /// Welch sums of each output.
+    pub welch: Vec<WelchSums>,
+    /// The samples of each output (raw storage only).
+    pub raw: Vec<Vec<f64>>,
+    /// The samples of each input process (raw storage only).
+    pub raw_inputs: Vec<Vec<f64>>,
+}
+
+/// Working memory of one thread.
+pub(crate) struct Scratch {
+    x: Vec<f64>,
+    buf: Vec<f64>,
+    q: Vec<Vec<f64>>,
+    spec: Vec<super::SpectralScratch>,
+    welch: crate::estimate::WelchScratch,
+    fft_in: Vec<f64>,
+    fft_out: Vec<Complex<f64>>,
+    fft_scratch: Vec<Complex<f64>>,
+}
+
+impl Scratch {
+    /// Working memory for `plan`.
+    pub(crate) fn new(plan: &Plan) -> Scratch {
+        let n = plan.n;
+        let (nx, nq, nfft) = match &plan.engine {
+            Engine::Exact(gm) => (gm.n_states(), 0, 0),
+            Engine::Spectral {
+                generators, inverse, ..
+            } => (0, generators.len(), inverse.get_scratch_len()),
+        };
+        Scratch {
+            x: vec![0.0; nx],
+            buf: vec![0.0; n * plan.stride],
+            q: vec![vec![0.0; n]; nq],
+            spec: match &plan.engine {
+                Engine::Spectral { generators, .. } => generators.iter().map(|g| g.scratch()).collect(),
+                Engine::Exact(_) => vec![],
+            },
+            welch: plan.welch.scratch(),
+            fft_in: vec![0.0; n],
+            fft_out: vec![Complex::new(0.0, 0.0); n / 2 + 1],
+            fft_scratch: vec![Complex::new(0.0, 0.0); nfft],
+        }
+    }
+}
+
+/// One realization from `rng` (the stream (seed, i) of realization i).
+///
+/// # Errors
+/// An FFT or Welch failure (never for a valid plan).
+pub(crate) fn realize(
+    plan: &Plan,
+    s: &mut Scratch,
+    rng: &mut rand::rngs::Xoshiro256PlusPlus,
+    keep_raw: bool,
+) -> Result<Realization> {
+    let n = plan.n;
+    let p = plan.outputs.len();
+    match &plan.engine {
+        Engine::Exact(gm) => {
+            gm.initial_state(rng, &mut s.x);
+            gm.advance(&mut s.x, rng, &mut s.buf);
+        }
+        Engine::Spectral {
+            generators,
+            gains,
+            inverse,
+        } => {
+            let fft_err = |e: realfft::FftError| Error::Numerical {
+                what: "inverse real FFT".into(),
+                reason: e.to_string(),
+            };
+            for (g, sc) in generators.iter().zip(s.spec.iter_mut()) {
+                g.draw(rng, sc);
+            }
+            let half = n / 2;
+            for r in 0..p {
+                // output r's coefficients: Σ_g G_{g,r}(ω_j) c_{g,j}, then one inverse FFT
+                for (j, o) in s.fft_out.iter_mut().enumerate() {
+                    let mut acc = Complex::new(0.0, 0.0);
+                    for (gain, sc) in gains.iter().zip(&s.spec) {
+                        acc += gain[r][j] * sc.coefficients()[j];
+                    }
+                    *o = acc;
+                }
+                s.fft_out[0].im = 0.0;
+                s.fft_out[half].im = 0.0;
+                inverse
+                    .process_with_scratch(&mut s.fft_out, &mut s.fft_in, &mut s.fft_scratch)
+                    .map_err(fft_err)?;
+                for (k, v) in s.fft_in.iter().enumerate() {
+                    s.buf[k * p + r] = *v;
+                }
+            }
+            if keep_raw {
+                for (q, sc) in s.q.iter_mut().zip(&s.spec) {
+                    for (o, c) in s.fft_out.iter_mut().zip(sc.coefficients()) {
+                        *o = *c;
+                    }
+                    inverse
+                        .process_with_scratch(&mut s.fft_out, q, &mut s.fft_scratch)
+                        .map_err(fft_err)?;
+                }
+            }
+        }
+    }
+    let stride = plan.stride;
+    let mut out = Realization {
+        m: Vec::with_capacity(p),
+        v: Vec::with_capacity(p),
+        welch: Vec::with_capacity(p),
+        raw: Vec::new(),
+        raw_inputs: Vec::new(),
+    };
+    if keep_raw {
+        match &plan.engine {
+            Engine::Exact(_) => {
+                for r in p..stride {
+                    out.raw_inputs.push((0..n).map(|k| s.buf[k * stride + r]).collect());
+                }
+            }
+            // the recorded period is aligned with the input processes' own samples
+            Engine::Spectral { .. } => out.raw_inputs = s.q.clone(),
+        }
+    }
+    let mut sig = vec![0.0; n];
+    for r in 0..p {
+        for (k, v) in sig.iter_mut().enumerate() {
+            *v = s.buf[k * stride + r];
+        }
+        out.m.push(sig.iter().sum::<f64>() / n as f64);
+        out.v.push(sig.iter().map(|v| v * v).sum::<f64>() / n as f64);
+        let mut ws = plan.welch.sums();
+        plan.welch.accumulate(&sig, &mut ws, &mut s.welch)?;
+        out.welch.push(ws);
+        if keep_raw {
+            out.raw.push(sig.clone());
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,214 @@
+//! Options of a Monte Carlo run, the route that produces the realizations, and the suggested time step.
+
+use super::RunInput;
+use crate::error::{require_positive, Error, Result};
+use crate::response::Excitation;
+use crate::store::Compression;
+use serde::Serialize;
+
+/// How realizations are produced (see [`crate::simulate::run`] for the two routes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Route {
+    /// Exact when every input spectrum is rational and the excitation is delay-free, else spectral.
+    #[default]
+    Auto,
+    /// Van Loan discretisation of the system augmented with its shaping filters (stationary start).
+    Exact,
+    /// Spectral-representation inputs, first-order-hold response, periodic steady state.
+    Spectral,
+}
+
+impl Route {
+    /// The name used on the command line and in JSON (`auto`, `exact`, `spectral`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Route::Auto => "auto",
+            Route::Exact => "exact",
+            Route::Spectral => "spectral",
+        }
+    }
+}
+
+impl std::str::FromStr for Route {
+    type Err = Error;
+
+    /// Parses `auto`, `exact` or `spectral`.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::simulate::Route;
+    /// assert_eq!("exact".parse::<Route>().unwrap(), Route::Exact);
+    /// assert!("euler".parse::<Route>().is_err());
+    /// ```
+    fn from_str(text: &str) -> Result<Route> {
+        [Route::Auto, Route::Exact, Route::Spectral]
+            .into_iter()
+            .find(|r| r.name() == text)
+            .ok_or_else(|| Error::invalid("route", text, "expected auto, exact or spectral"))
+    }
+}
+
+/// Options of a Monte Carlo run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunOptions {
+    /// Number of realizations (≥ 2).
+    pub realizations: usize,
+    /// Duration of each recorded realization, s (N = round(T/Δt), made even; N ≥ 16).
+    pub duration_s: f64,
+    /// Time step Δt, s.
+    pub dt_s: f64,
+    /// Master seed; realization i uses stream (seed, i).
+    pub seed: u64,
+    /// Realizations per shard (the unit of writing and resuming).
+    pub shard_size: usize,
+    /// Store every realization of every output (else only accumulators and statistics).
+    pub store_raw: bool,
+    /// Compression of the raw datasets.
+    pub compression: Compression,
+    /// Route.
+    pub route: Route,
+    /// Confidence of the intervals, in (0, 1).
+    pub confidence: f64,
+}
+
+impl RunOptions {
+    /// Options with shard size 50, no raw data, no compression, [`Route::Auto`], confidence 0.95.
+    ///
+    /// # Examples
+    /// ```
+    /// let o = stochvib::simulate::RunOptions::new(100, 10.0, 0.01, 1);
+    /// assert_eq!(o.shard_size, 50);
+    /// ```
+    pub fn new(realizations: usize, duration_s: f64, dt_s: f64, seed: u64) -> RunOptions {
+        RunOptions {
+            realizations,
+            duration_s,
+            dt_s,
+            seed,
+            shard_size: 50,
+            store_raw: false,
+            compression: Compression::None,
+            route: Route::Auto,
+            confidence: 0.95,
+        }
+    }
+
+    /// Checks the options and returns the number of samples per realization, N = round(T/Δt) made even.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming the option: fewer than 2 realizations, shard size 0, Δt or T not
+    /// positive, confidence outside (0, 1), fewer than 16 samples.
+    pub fn samples(&self) -> Result<usize> {
+        if self.realizations < 2 {
+            return Err(Error::invalid("realizations", self.realizations, "need at least 2"));
+        }
+        if self.shard_size == 0 {
+            return Err(Error::invalid("shard size", 0, "need at least 1"));
+        }
+        require_positive("dt", self.dt_s)?;
+        require_positive("duration", self.duration_s)?;
+        if !(self.confidence > 0.0 && self.confidence < 1.0) {
+            return Err(Error::invalid("confidence", self.confidence, "must lie in (0, 1)"));
+        }
+        let mut n = (self.duration_s / self.dt_s).round() as usize;
+        n += n % 2;
+        if n < 16 {
+            return Err(Error::invalid(
+                "duration",
+                format!("{} s", self.duration_s),
+                format!("gives {n} samples at Δt = {} s; need at least 16", self.dt_s),
+            ));
+        }
+        Ok(n)
+    }
+}
+
+/// A time step and duration suggested by [`suggest_step`], with the reasons.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StepSuggestion {
+    /// Δt, s.
+    pub dt_s: f64,
+    /// Duration of a realization, s.
+    pub duration_s: f64,
+    /// How they were chosen.
+    pub reason: String,
+}
+
+/// A time step and duration for a quick run: Δt = π/(8·ω_max) with ω_max the largest |λ| of the system
+/// matrix (or of its natural frequencies), at most π/ω_hi for an input band ending at ω_hi, shortened so that
+/// track delays are whole steps; duration 20/σ_min (σ_min = min|Re λ|), at least 32π/ω_lo for an input band
+/// starting at ω_lo > 0 (grid Δω ≤ ω_lo/16), at least 64 and at most 2¹⁵ steps.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for a system without state space or natural frequencies, or without a
+/// positive decay rate: then the step must be given.
+///
+/// # Examples
+/// ```
+/// use stochvib::scenario::load_scenario;
+/// use std::path::Path;
+/// let sc = load_scenario(Path::new("data/half-car.toml"), Path::new("spectra")).unwrap();
+/// let s = stochvib::simulate::suggest_step(&sc.run_input()).unwrap();
+/// // the wheelbase delay L/v = 2.7 m / 10 m/s is a whole number of steps
+/// let steps = 0.27 / s.dt_s;
+/// assert!((steps - steps.round()).abs() < 1e-9 && s.duration_s > 64.0 * s.dt_s);
+/// ```
+pub fn suggest_step(input: &RunInput) -> Result<StepSuggestion> {
+    let sys = input.system;
+    let (wmax, smin) = match sys.state_space() {
+        Some(ss) => {
+            let ev = ss.a.complex_eigenvalues();
+            (
+                ev.iter().map(|l| l.norm()).fold(0.0, f64::max),
+                ev.iter()
+                    .map(|l| -l.re)
+                    .filter(|s| *s > 0.0)
+                    .fold(f64::INFINITY, f64::min),
+            )
+        }
+        None => {
+            let w = sys.natural_frequencies();
+            let wmax = w.iter().copied().fold(0.0, f64::max);
+            (wmax, w.iter().copied().fold(f64::INFINITY, f64::min) * 0.05)
+        }
+    };
+    if !(wmax > 0.0 && smin.is_finite() && smin > 0.0) {
+        return Err(Error::invalid(
+            "dt",
+            "<not given>",
+            "cannot suggest a time step (no eigenvalues with a positive decay rate): give --dt and --duration",
+        ));
+    }
+    let mut dt = std::f64::consts::PI / (8.0 * wmax);
+    let mut reason = format!("Δt = π/(8·{wmax:.4e} rad/s) from the fastest pole");
+    // a band-limited input: the Nyquist frequency above the band's upper edge, and the FFT grid
+    // Δω = 2π/T at most 1/16 of its lower edge (spectral route)
+    let (lo, hi) = input.excitation.support();
+    if hi.is_finite() && hi > 0.0 && std::f64::consts::PI / hi < dt {
+        dt = std::f64::consts::PI / hi;
+        reason = format!("Δt = π/ω_hi with the input band ending at {hi:.4e} rad/s");
+    }
+    let min_duration = if lo > 0.0 && lo.is_finite() {
+        32.0 * std::f64::consts::PI / lo
+    } else {
+        0.0
+    };
+    if let Excitation::Track { delays, .. } = input.excitation {
+        let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
+        if let Some(tau) = delays.iter().map(|t| t - t0).filter(|t| *t > 0.0).reduce(f64::min) {
+            // the smallest non-zero delay as a whole number of steps (other delays must be its multiples)
+            dt = tau / (tau / dt).ceil();
+            reason.push_str(&format!(", shortened to a whole fraction of the delay {tau:.4e} s"));
+        }
+    }
+    let duration = (20.0 / smin).max(min_duration).clamp(64.0 * dt, 32768.0 * dt);
+    reason.push_str(&format!(
+        "; duration 20/σ_min with σ_min = {smin:.4e} 1/s (slowest decay), within 64..32768 steps"
+    ));
+    Ok(StepSuggestion {
+        dt_s: dt,
+        duration_s: duration,
+        reason,
+    })
+}

@@ -1,0 +1,418 @@
+//! Planning a run: which outputs can be simulated, which route produces the realizations (and why), the
+//! engine of that route, and the exact variance of the simulated discrete process.
+
+use super::engine::{Engine, Gains};
+use super::{augmented_response, foh, Amplitudes, GaussMarkov, Route, RunInput, RunOptions, SpectralGenerator};
+use crate::error::{Error, Result};
+use crate::estimate::Welch;
+use crate::response::{analyze_output, Excitation};
+use crate::store::Signal;
+use crate::system::{FrequencyResponse, OutputInfo, StateSpace, TransferFunction};
+use nalgebra::DMatrix;
+use realfft::num_complex::Complex;
+use serde::Serialize;
+
+/// An output that is not simulated, with the reason.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SkippedOutput {
+    /// Output name.
+    pub name: String,
+    /// Why.
+    pub reason: String,
+}
+
+/// A simulated output: its system row, name, unit and the two reference variances.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PlannedOutput {
+    /// Index of the output in the system.
+    pub index: usize,
+    /// Name and unit.
+    pub signal: Signal,
+    /// Analytic variance of the continuous stationary response.
+    pub analytic_variance: f64,
+    /// Exact variance of the simulated discretised process.
+    pub discrete_variance: f64,
+}
+
+/// Everything a run needs besides the file: the route's engine, sizes, outputs and remarks.
+pub(crate) struct Plan {
+    pub route: Route,
+    pub engine: Engine,
+    /// Samples per realization.
+    pub n: usize,
+    /// Row stride of the sample buffer: outputs, then (exact route) the recorded input processes.
+    pub stride: usize,
+    /// The input processes recorded with the raw data (one per independent process).
+    pub input_signals: Vec<Signal>,
+    pub outputs: Vec<PlannedOutput>,
+    pub skipped: Vec<SkippedOutput>,
+    pub notes: Vec<String>,
+    pub generator: String,
+    pub welch: Welch,
+}
+
+/// An output with a finite analytic variance, before the route is chosen.
+struct Simulable {
+    index: usize,
+    info: OutputInfo,
+    variance: f64,
+}
+
+/// Splits the requested outputs into those with a finite analytic variance and the skipped ones.
+fn simulable_outputs(input: &RunInput) -> Result<(Vec<Simulable>, Vec<SkippedOutput>)> {
+    let mut finite = Vec::new();
+    let mut skipped = Vec::new();
+    for &i in &input.outputs {
+        let st = analyze_output(input.system, input.excitation, i)?;
+        match st.variance {
+            Some(v) => finite.push(Simulable {
+                index: i,
+                info: OutputInfo::new(st.name, st.unit),
+                variance: v,
+            }),
+            None => skipped.push(SkippedOutput {
+                name: st.name,
+                reason: format!(
+                    "analytic variance infinite or undefined: {}",
+                    st.variance_note.unwrap_or_default()
+                ),
+            }),
+        }
+    }
+    if finite.is_empty() {
+        return Err(Error::invalid(
+            "outputs",
+            skipped.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", "),
+            "no output has a finite variance: nothing to simulate",
+        ));
+    }
+    Ok((finite, skipped))
+}
+
+/// The route choice: the exact engine when it applies (or is required), with the reason.
+struct RouteChoice {
+    exact: Option<GaussMarkov>,
+    reason: String,
+}
+
+impl RouteChoice {
+    /// [`Route::Exact`] when requested (an error if it does not apply), [`Route::Spectral`] when requested,
+    /// and for [`Route::Auto`] the exact route whenever the excitation is delay-free and every input spectrum
+    /// has a shaping filter.
+    fn choose(input: &RunInput, opts: &RunOptions, idx: &[usize]) -> Result<RouteChoice> {
+        let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
+        Ok(match opts.route {
+            Route::Spectral => RouteChoice {
+                exact: None,
+                reason: "spectral route requested".into(),
+            },
+            Route::Exact => RouteChoice {
+                exact: Some(augmented_response(sys, exc, idx, dt)?),
+                reason: "exact route requested".into(),
+            },
+            Route::Auto if !exc.delay_free() => RouteChoice {
+                exact: None,
+                reason: "spectral route: the inputs are delayed copies of one process (wheels on a track), which \
+                         the exact route cannot represent"
+                    .into(),
+            },
+            Route::Auto => match augmented_response(sys, exc, idx, dt) {
+                Ok(gm) => RouteChoice {
+                    exact: Some(gm),
+                    reason: "exact route: delay-free inputs with rational spectra".into(),
+                },
+                Err(e) => RouteChoice {
+                    exact: None,
+                    reason: format!("spectral route: the exact route does not apply ({e})"),
+                },
+            },
+        })
+    }
+}
+
+/// Plans a run (see the module docs).
+///
+/// # Errors
+/// Invalid options; no output with a finite variance; [`Route::Exact`] requested where it does not apply;
+/// delays that are not whole steps on the spectral route; an unstable system.
+pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
+    let n = opts.samples()?;
+    let (finite, skipped) = simulable_outputs(input)?;
+    let idx: Vec<usize> = finite.iter().map(|f| f.index).collect();
+    let choice = RouteChoice::choose(input, opts, &idx)?;
+    let m_welch = ((n / 8) & !1).clamp(4, 1024);
+    let welch = Welch::new(m_welch, opts.dt_s)?;
+    let mut notes = vec![choice.reason];
+    // exact route: append the input processes (shaping-filter outputs) as extra rows of the simulated system
+    let exact = choice
+        .exact
+        .map(|gm| with_input_rows(input.system, input.excitation, &idx, opts.dt_s).unwrap_or(gm));
+    if let Some(gm) = exact {
+        let cov = gm.output_covariance();
+        let outputs = finite
+            .into_iter()
+            .enumerate()
+            .map(|(r, f)| PlannedOutput {
+                index: f.index,
+                signal: Signal::new(&f.info.name, &f.info.unit),
+                analytic_variance: f.variance,
+                discrete_variance: cov[(r, r)],
+            })
+            .collect();
+        notes.push(
+            "exact route: Van Loan discretisation of the system with its shaping filters, stationary start (no \
+             time-step bias, no transient)"
+                .into(),
+        );
+        let stride = gm.n_outputs();
+        let input_signals = if stride == idx.len() + input.input_signals.len() {
+            input.input_signals.clone()
+        } else {
+            vec![]
+        };
+        return Ok(Plan {
+            route: Route::Exact,
+            engine: Engine::Exact(gm),
+            n,
+            stride,
+            input_signals,
+            outputs,
+            skipped,
+            notes,
+            generator: format!(
+                "{}, stream (seed, i) per realization; exact Van Loan discretisation of the system augmented \
+                 with its shaping filters, stationary start",
+                super::GENERATOR
+            ),
+            welch,
+        });
+    }
+    let (engine, discrete) = spectral_engine(input, opts, n, &idx, &mut notes)?;
+    let outputs = finite
+        .into_iter()
+        .zip(discrete)
+        .map(|(f, dv)| PlannedOutput {
+            index: f.index,
+            signal: Signal::new(&f.info.name, &f.info.unit),
+            analytic_variance: f.variance,
+            discrete_variance: dv,
+        })
+        .collect();
+    Ok(Plan {
+        route: Route::Spectral,
+        engine,
+        n,
+        stride: idx.len(),
+        input_signals: input.input_signals.clone(),
+        outputs,
+        skipped,
+        notes,
+        generator: format!(
+            "{}, stream (seed, i) per realization; spectral representation (Rayleigh amplitudes) on an FFT grid of \
+             N = {n}, first-order-hold response (periodic steady state, frequency domain)",
+            super::GENERATOR
+        ),
+        welch,
+    })
+}
+
+/// The exact Gauss–Markov system of `outputs` with the input processes appended as extra rows: row k is
+/// the output C_F,k x_F,k of process k's shaping filter (None when a filter has a white-noise feedthrough,
+/// whose samples are undefined).
+fn with_input_rows(sys: &dyn FrequencyResponse, exc: &Excitation, outputs: &[usize], dt: f64) -> Option<GaussMarkov> {
+    let ss = sys.state_space()?;
+    let mut rows = Vec::new();
+    let mut first = None;
+    for &i in outputs {
+        let aug = crate::response::augmented_system(ss, exc, i).ok()?;
+        rows.push(aug.h.clone());
+        first.get_or_insert(aug);
+    }
+    let aug = first?;
+    let nz = aug.a.nrows();
+    let mut off = 0;
+    for sp in exc.spectra() {
+        let f = sp.rational()?.shaping_filter().ok()?;
+        let tf = TransferFunction::new(f.num.clone(), f.den.clone(), OutputInfo::new("u", "-")).ok()?;
+        let part = tf.state_space()?.clone();
+        if part.d[(0, 0)] != 0.0 {
+            return None;
+        }
+        let q = part.n_states();
+        let mut h = DMatrix::zeros(1, nz);
+        h.view_mut((0, off), (1, q)).copy_from(&part.c);
+        rows.push(h);
+        off += q;
+    }
+    let h = DMatrix::from_fn(rows.len(), nz, |r, j| rows[r][(0, j)]);
+    GaussMarkov::new(aug.a, aug.g, h, dt).ok()
+}
+
+/// One input of the spectral route: the generator it comes from, its gain and its delay in whole steps.
+struct SpectralInput {
+    generator: usize,
+    gain: f64,
+    shift: usize,
+}
+
+/// The spectral engine: one generator per independent process, the inputs as (generator, gain, shift), and
+/// the discrete transfer gains from every generator's coefficients to every output; returns the engine and
+/// the exact variance of each simulated (grid, first-order-hold, periodic) output process.
+fn spectral_engine(
+    input: &RunInput,
+    opts: &RunOptions,
+    n: usize,
+    outputs: &[usize],
+    notes: &mut Vec<String>,
+) -> Result<(Engine, Vec<f64>)> {
+    let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
+    let ss = sys.state_space().ok_or_else(|| Error::Numerical {
+        what: "spectral Monte Carlo".into(),
+        reason: "the system has no finite state-space form".into(),
+    })?;
+    let sub = ss.select_outputs(outputs)?;
+    let sigma_min =
+        ss.a.complex_eigenvalues()
+            .iter()
+            .map(|l| -l.re)
+            .fold(f64::INFINITY, f64::min);
+    if sigma_min.is_nan() || sigma_min <= 0.0 {
+        return Err(Error::Numerical {
+            what: "spectral Monte Carlo".into(),
+            reason: format!(
+                "the system is not asymptotically stable (min −Re λ = {sigma_min:e}): no stationary response"
+            ),
+        });
+    }
+    let period = n as f64 * dt;
+    notes.push(format!(
+        "spectral route: periodic input of period NΔt = {period} s; the recorded period is the periodic steady \
+         state of the first-order-hold system, computed exactly in the frequency domain (one inverse FFT per \
+         output; slowest decay rate min|Re λ| = {sigma_min:.4e} 1/s)"
+    ));
+    let (generators, inputs) = spectral_inputs(exc, dt, n)?;
+    let (gains, discrete) = discrete_gains(&sub, exc, &generators, &inputs, dt, n)?;
+    notes.push(
+        "spectral route bias: the synthesised input is the spectrum on the FFT grid (truncated at Nyquist, \
+         sampled at Δω = 2π/(NΔt)); `discrete σ` is the exact σ of that simulated process"
+            .into(),
+    );
+    Ok((
+        Engine::Spectral {
+            generators,
+            gains,
+            inverse: realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(n),
+        },
+        discrete,
+    ))
+}
+
+/// The generators of the excitation's independent processes and the system inputs they feed.
+fn spectral_inputs(exc: &Excitation, dt: f64, n: usize) -> Result<(Vec<SpectralGenerator>, Vec<SpectralInput>)> {
+    match exc {
+        Excitation::Track {
+            spectrum,
+            delays,
+            gains,
+            ..
+        } => {
+            let g = SpectralGenerator::new(spectrum.as_ref(), dt, n, Amplitudes::Rayleigh)?;
+            let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
+            let mut inp = Vec::new();
+            for (j, (&tau, &gain)) in delays.iter().zip(gains).enumerate() {
+                let s = ((tau - t0) / dt).round();
+                if ((s * dt) - (tau - t0)).abs() > 1e-9 * (tau - t0).max(dt) {
+                    let k = ((tau - t0) / dt).ceil().max(1.0);
+                    return Err(Error::invalid(
+                        "dt",
+                        format!("{dt} s"),
+                        format!(
+                            "input {j} is delayed by {} s, not an integer number of steps (exact delays need \
+                             τ = s·Δt, i.e. positions multiples of vΔt); choose e.g. Δt = {:e} s",
+                            tau - t0,
+                            (tau - t0) / k
+                        ),
+                    ));
+                }
+                inp.push(SpectralInput {
+                    generator: 0,
+                    gain,
+                    shift: s as usize % n,
+                });
+            }
+            Ok((vec![g], inp))
+        }
+        Excitation::Independent { spectra, .. } => {
+            let gens = spectra
+                .iter()
+                .map(|s| SpectralGenerator::new(s.as_ref(), dt, n, Amplitudes::Rayleigh))
+                .collect::<Result<Vec<_>>>()?;
+            let inp = (0..spectra.len())
+                .map(|j| SpectralInput {
+                    generator: j,
+                    gain: 1.0,
+                    shift: 0,
+                })
+                .collect();
+            Ok((gens, inp))
+        }
+    }
+}
+
+/// gains\[g\]\[r\]\[j\]: the transfer from generator g's coefficient c_j to output r (discrete transfer
+/// function of the first-order hold, input gains, shift phases and the iω_j E term), and the exact variance
+/// σ²_d = Σ_j w_j S(ω_j) Δω |H_d(ω_j)|² of each output (see [`crate::simulate::run`]).
+#[allow(clippy::needless_range_loop)] // the bin loop fills several per-bin tables
+fn discrete_gains(
+    sub: &StateSpace,
+    exc: &Excitation,
+    generators: &[SpectralGenerator],
+    inputs: &[SpectralInput],
+    dt: f64,
+    n: usize,
+) -> Result<(Gains, Vec<f64>)> {
+    let f = foh(&sub.a, &sub.b, dt)?;
+    let nst = sub.n_states();
+    let p = sub.c.nrows();
+    let dw = 2.0 * std::f64::consts::PI / (n as f64 * dt);
+    let mut disc = vec![0.0; p];
+    let mut gains = vec![vec![vec![Complex::new(0.0, 0.0); n / 2 + 1]; p]; generators.len()];
+    let spectra = exc.spectra();
+    let to_c = |m: &DMatrix<f64>| m.map(|v| Complex::new(v, 0.0));
+    let (phi, g0, g1, c, d) = (
+        to_c(&f.phi),
+        to_c(&f.gamma0),
+        to_c(&f.gamma1),
+        to_c(&sub.c),
+        to_c(&sub.d),
+    );
+    for j in 0..=n / 2 {
+        let w = j as f64 * dw;
+        let weight = if j == 0 || j == n / 2 { 1.0 } else { 2.0 };
+        let z = Complex::new(0.0, w * dt).exp();
+        let zi = DMatrix::<Complex<f64>>::identity(nst, nst) * z - &phi;
+        let rhs = &g0 + &g1 * z;
+        let x = zi.lu().solve(&rhs).ok_or_else(|| Error::Numerical {
+            what: "discrete transfer function".into(),
+            reason: format!("zI − Φ singular at ω = {w:e}"),
+        })?;
+        let mut h = &c * x + &d; // p × m
+        if j < n / 2 {
+            h += to_c(&sub.e) * Complex::new(0.0, w);
+        }
+        for (r, dv) in disc.iter_mut().enumerate() {
+            for gi in 0..generators.len() {
+                let s = spectra[gi].density(w);
+                let mut acc = Complex::new(0.0, 0.0);
+                for (l, inp) in inputs.iter().enumerate() {
+                    if inp.generator == gi {
+                        acc += h[(r, l)] * inp.gain * Complex::new(0.0, -w * inp.shift as f64 * dt).exp();
+                    }
+                }
+                gains[gi][r][j] = acc;
+                *dv += weight * s * dw * acc.norm_sqr();
+            }
+        }
+    }
+    Ok((gains, disc))
+}

@@ -1,0 +1,84 @@
+//! What a run did: the route, sizes, the statistics of every simulated output against the analytic values,
+//! the outputs it skipped and why.
+
+use super::{Route, SkippedOutput};
+use crate::store::{OutputStatistics, Statistic};
+use serde::Serialize;
+use std::path::PathBuf;
+
+/// What [`run`](super::run()) did.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSummary {
+    /// The finished file.
+    pub path: PathBuf,
+    /// The route taken (never `Auto`).
+    pub route: Route,
+    /// Generator description (also the file's `@generator`).
+    pub generator: String,
+    /// Samples per realization.
+    pub n_samples: usize,
+    /// Time step, s.
+    pub dt_s: f64,
+    /// Realizations.
+    pub n_realizations: usize,
+    /// Shards.
+    pub n_shards: usize,
+    /// Shards found complete in an interrupted run and not recomputed.
+    pub resumed_shards: usize,
+    /// The statistics of every simulated output (`mean`, `variance`, `sigma`, `sigma_discrete`), as stored
+    /// in the file.
+    pub outputs: Vec<OutputStatistics>,
+    /// Outputs not simulated, with reasons.
+    pub skipped: Vec<SkippedOutput>,
+    /// Remarks (route and why, bias).
+    pub notes: Vec<String>,
+}
+
+impl RunSummary {
+    /// Statistic `statistic` (e.g. `sigma`) of output `output`, if simulated.
+    pub fn statistic(&self, output: &str, statistic: &str) -> Option<&Statistic> {
+        self.outputs.iter().find(|o| o.output == output)?.get(statistic)
+    }
+}
+
+impl std::fmt::Display for RunSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(f, "run       {}", self.path.display())?;
+        writeln!(f, "route     {}: {}", self.route.name(), self.generator)?;
+        writeln!(
+            f,
+            "size      {} realizations × {} samples (Δt = {} s), {} shards ({} resumed)",
+            self.n_realizations, self.n_samples, self.dt_s, self.n_shards, self.resumed_shards
+        )?;
+        for n in &self.notes {
+            writeln!(f, "note      {n}")?;
+        }
+        writeln!(
+            f,
+            "{:<14} {:>13} {:>13} {:>13} {:>27}  covers",
+            "output", "analytic σ", "discrete σ", "MC σ", "interval"
+        )?;
+        for o in &self.outputs {
+            let (Some(s), Some(d)) = (o.get("sigma"), o.get("sigma_discrete")) else {
+                continue;
+            };
+            let iv = &s.interval;
+            writeln!(
+                f,
+                "{:<14} {:>13.6e} {:>13.6e} {:>13.6e} [{:.6e}, {:.6e}]  {} ({} %)",
+                o.output,
+                s.analytic.unwrap_or(f64::NAN),
+                d.analytic.unwrap_or(f64::NAN),
+                iv.estimate,
+                iv.lower,
+                iv.upper,
+                if s.covers == Some(true) { "yes" } else { "NO" },
+                100.0 * iv.confidence
+            )?;
+        }
+        for s in &self.skipped {
+            writeln!(f, "skipped   {}: {}", s.name, s.reason)?;
+        }
+        Ok(())
+    }
+}
