@@ -8,14 +8,13 @@
 //! Run: `cargo run --release --example stream_memory [samples]` (default 10⁸; `1e9` for the issue #7 check:
 //! a 10⁹-sample realization with peak memory < 100 MB).
 
-use nalgebra::DMatrix;
 use std::sync::Arc;
 use std::time::Instant;
 use stochvib::estimate::RunningMoments;
 use stochvib::response::{variance_lyapunov, Excitation};
 use stochvib::simulate::{augmented_response, stream};
 use stochvib::spectrum::{Domain, Exponential};
-use stochvib::system::{OutputInfo, StateSpace};
+use stochvib::system::StateSpace;
 
 fn peak_rss_kib() -> Option<u64> {
     let s = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -28,15 +27,7 @@ fn main() -> stochvib::Result<()> {
         .nth(1)
         .and_then(|a| a.parse::<f64>().ok())
         .map_or(100_000_000, |v| v as u64);
-    let (w, z) = (10.0, 0.05);
-    let ss = StateSpace::new(
-        DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, -2.0 * z * w]),
-        DMatrix::from_row_slice(2, 1, &[0.0, 1.0]),
-        DMatrix::from_row_slice(1, 2, &[1.0, 0.0]),
-        None,
-        None,
-        vec![OutputInfo::new("x", "m")],
-    )?;
+    let ss = StateSpace::oscillator(10.0, 0.05)?;
     let exc = Excitation::single(Arc::new(Exponential::new(1.0, 3.0, Domain::Temporal)?), 0.0)?;
     let dt = 0.01;
     let gm = augmented_response(&ss, &exc, &[0], dt)?;

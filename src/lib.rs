@@ -2,9 +2,59 @@
 //!
 //! Stochastic vibration and random-road analysis of machines: spectral densities of random roads and
 //! loads, linear models of machines, and the statistics of their responses computed three independent
-//! ways (analytic, frequency-domain quadrature, Monte Carlo).
+//! ways — analytically (exact Lyapunov covariance, the integral table I_n), by adaptive quadrature of the
+//! output density, and by Monte Carlo in the time domain with every run stored in HDF5.
 //!
-//! See [`spectrum`] for the normalization of spectral densities used everywhere in the crate.
+//! Every spectral density inside the crate is the **two-sided density in angular frequency** S(ω) (ω in
+//! rad/s, or rad/m for road profiles); other conventions are named conversions ([`spectrum`] explains the
+//! normalization, [`spectrum::Convention`] converts).
+//!
+//! # Example
+//! A passenger-car corner on an ISO 8608 class C road at 20 m/s: σ and 3σ bounds of the body acceleration
+//! and the suspension travel, then a small seeded Monte Carlo batch of the same outputs.
+//! ```
+//! use stochvib::prelude::*;
+//! use std::sync::Arc;
+//!
+//! let car = QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3)?; // kg, kg, N/m, N s/m, N/m
+//! let sys = car.system()?;
+//! let road = Excitation::road(Arc::new(PowerLaw::iso_class(IsoClass::C)?), 20.0, &[0.0])?;
+//! let outputs = vec![sys.output_index("body_acc")?, sys.output_index("travel")?];
+//! for &i in &outputs {
+//!     let st = analyze_output(&sys, &road, i)?;
+//!     let (lo, hi) = st.bounds(3.0).unwrap();
+//!     println!("{}: σ = {:.4} {u}, 3σ bounds [{lo:.4}, {hi:.4}] {u}", st.name, st.sigma.unwrap(), u = st.unit);
+//! }
+//! let input = RunInput::new(&sys, &road, outputs, vec![Signal::new("road", "m")], "quarter car, class C");
+//! let file = std::env::temp_dir().join(format!("stochvib-crate-example-{}.h5", std::process::id()));
+//! # let _ = std::fs::remove_file(&file);
+//! let mc = run(&input, &RunOptions::new(20, 20.0, 0.005, 7), &file, &|_, _| {})?;
+//! for o in &mc.outputs {
+//!     let s = o.get("sigma").unwrap();
+//!     let (iv, analytic) = (s.interval, s.analytic.unwrap());
+//!     println!("{}: Monte Carlo σ = {:.4} in [{:.4}, {:.4}] (analytic {analytic:.4})", o.output, iv.estimate, iv.lower, iv.upper);
+//! }
+//! # std::fs::remove_file(&file)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Layers
+//! Data flows one way, and no module imports from a layer above its own (checked by `tests/layers.rs`):
+//!
+//! | layer | modules | what |
+//! |---|---|---|
+//! | 0 | [`error`], [`numbers`], [`units`], [`fields`], [`quad`], [`linalg`] | errors, units, file fields, numerics |
+//! | 1 | [`spectrum`] | spectral densities and correlation functions |
+//! | 2 | [`system`] | frequency responses: state space, transfer functions, multi-degree-of-freedom models |
+//! | 3 | [`response`] | response statistics: variance three ways, moments, crossing rates |
+//! | 4 | [`estimate`], [`store`] | estimators with intervals; HDF5 run files |
+//! | 5 | [`simulate`] | Monte Carlo runs |
+//! | 6 | [`models`] | the catalogue of the source documents |
+//! | 7 | [`scenario`] | scenario, spectrum and reference files; the spectrum catalogue; the registry of model kinds |
+//! | 8 | [`report`], [`plot`] | what the command-line tool prints and draws |
+//! | 9 | [`prelude`] | the common imports |
+
+#![warn(missing_docs)]
 
 pub mod error;
 pub mod estimate;
@@ -13,6 +63,7 @@ pub mod linalg;
 pub mod models;
 pub mod numbers;
 pub mod plot;
+pub mod prelude;
 pub mod quad;
 pub mod report;
 pub mod response;

@@ -140,11 +140,13 @@ fn spectral_generator_has_the_grid_variance() {
     }
 }
 
+/// The unit-mass oscillator with both states as outputs (x in m, ẋ in m/s).
 fn sdof(w: f64, z: f64) -> StateSpace {
+    let o = StateSpace::oscillator(w, z).unwrap();
     StateSpace::new(
-        DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, -2.0 * z * w]),
-        DMatrix::from_row_slice(2, 1, &[0.0, 1.0]),
-        DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 1.0]),
+        o.a.clone(),
+        o.b.clone(),
+        DMatrix::identity(2, 2),
         None,
         None,
         vec![OutputInfo::new("x", "m"), OutputInfo::new("v", "m/s")],

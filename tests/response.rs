@@ -12,7 +12,9 @@ use stochvib::response::{
     analyze_output, band_variance, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation,
 };
 use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosine, RationalSpectrum, Spectrum};
-use stochvib::system::{Attach, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace, TransferFunction};
+use stochvib::system::{
+    Attach, Drive, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace, TransferFunction,
+};
 use stochvib::Error;
 
 /// Ideal white noise of two-sided level S₀: N(ω²) = S₀, D(ω²) = 1.
@@ -118,14 +120,7 @@ fn two_wheel_delayed_input_closed_form() {
 }
 
 fn base_excited(m: f64, k: f64, b: f64) -> Mdof {
-    let el = Element {
-        name: "susp".into(),
-        point: vec![1.0],
-        to: Attach::Base(0),
-        stiffness: k,
-        damping: b,
-    };
-    Mdof::from_elements(&[("x", "m")], &[m], vec![el], 1, &[])
+    Mdof::oscillator(m, k, b, Drive::Base)
         .unwrap()
         .with_output("x", Quantity::Displacement(vec![1.0]))
         .unwrap()

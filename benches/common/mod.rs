@@ -319,17 +319,7 @@ pub const MC_CONFIDENCE: f64 = 0.95;
 /// ζ = 0.05, output x (m), under the exponential input K(τ) = D e^{−α|τ|}, D = 1, α = 3 s⁻¹ (shaping
 /// filter √(2Dα)/(s + α) of unit white noise).
 pub fn mc_sdof() -> (stochvib::system::StateSpace, Excitation) {
-    use stochvib::system::{OutputInfo, StateSpace};
-    let (w, z) = (10.0, 0.05);
-    let ss = StateSpace::new(
-        DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, -2.0 * z * w]),
-        DMatrix::from_row_slice(2, 1, &[0.0, 1.0]),
-        DMatrix::from_row_slice(1, 2, &[1.0, 0.0]),
-        None,
-        None,
-        vec![OutputInfo::new("x", "m")],
-    )
-    .unwrap();
+    let ss = stochvib::system::StateSpace::oscillator(10.0, 0.05).unwrap();
     let exc = Excitation::single(mc_input(), 0.0).unwrap();
     (ss, exc)
 }
@@ -339,7 +329,7 @@ pub fn mc_input() -> Arc<dyn Spectrum> {
     Arc::new(stochvib::spectrum::Exponential::new(1.0, 3.0, Domain::Temporal).unwrap())
 }
 
-/// Across-realization statistics of the pipeline (what `run_scenario` reports per output): the time
+/// Across-realization statistics of the pipeline (what `simulate::run` reports per output): the time
 /// averages m_i = (1/N)Σy_k and v_i = (1/N)Σy_k² of each realization; Student-t intervals on their means
 /// (σ² interval = interval of mean v_i; σ interval = its square root).
 #[derive(Debug, Clone, Copy)]
@@ -377,7 +367,7 @@ pub fn time_moments(y: &[f64]) -> (f64, f64) {
     (s1 / y.len() as f64, s2 / y.len() as f64)
 }
 
-/// The spectral route of `run_scenario` for [`mc_sdof`], with the library's parts: the input by
+/// The spectral route of `simulate::run` for [`mc_sdof`], with the library's parts: the input by
 /// [`SpectralGenerator`](stochvib::simulate::SpectralGenerator) (Rayleigh amplitudes, the default), the
 /// response by the exact first-order hold [`SampledSystem::respond`](stochvib::simulate::SampledSystem)
 /// driven through the periodic input for `warmup` periods and one recorded period (periodic steady state).
@@ -386,7 +376,7 @@ pub struct McSpectral {
     pub gen: stochvib::simulate::SpectralGenerator,
     /// The SDOF discretised once (FOH).
     pub sys: stochvib::simulate::SampledSystem,
-    /// Warm-up periods (σ_min·w·NΔt ≥ 36, as `run_scenario`).
+    /// Warm-up periods (σ_min·w·NΔt ≥ 36, as the spectral route of `simulate::run` did before it computed the steady state in the frequency domain).
     pub warmup: usize,
     /// H_d(ω_j) of the sampled system on the generator's grid (`SampledSystem::grid_response`).
     pub gain: Vec<realfft::num_complex::Complex<f64>>,

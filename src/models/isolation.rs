@@ -336,7 +336,7 @@ impl TwoStageIsolator {
 /// or `damping_ratio` (ζ, plain number); neither means undamped.
 ///
 /// # Errors
-/// [`Error::File`] naming the key for a missing or invalid value, or when both damping keys are given.
+/// [`Error::File`](crate::Error::File) naming the key for a missing or invalid value, or when both damping keys are given.
 pub fn from_fields_single(f: &Fields) -> Result<ModelInstance> {
     let m = f.quantity("mass", Dim::MASS)?;
     let c = f.quantity("stiffness", Dim::STIFFNESS)?;
@@ -363,7 +363,7 @@ pub fn from_fields_single(f: &Fields) -> Result<ModelInstance> {
 /// default 0), `mass_2`, `stiffness_2`, `damping_2` (optional, default 0).
 ///
 /// # Errors
-/// [`Error::File`] naming the key for a missing or invalid value.
+/// [`Error::File`](crate::Error::File) naming the key for a missing or invalid value.
 pub fn from_fields_two_stage(f: &Fields) -> Result<ModelInstance> {
     let m1 = f.quantity("mass_1", Dim::MASS)?;
     let c1 = f.quantity("stiffness_1", Dim::STIFFNESS)?;

@@ -16,6 +16,7 @@ pub mod half_car;
 pub mod isolation;
 pub mod mine_hoist;
 pub mod operator_seat;
+pub mod quarter_car;
 pub mod results;
 pub mod scraper;
 pub mod three_mass_hoist;

@@ -1,4 +1,4 @@
-//! Pictures of a Monte Carlo run file (`.h5` written by [`run_scenario`](crate::simulate::run_scenario)):
+//! Pictures of a Monte Carlo run file (`.h5` written by [`run`](crate::simulate::run())):
 //! per output, the Welch estimate with its interval band against the analytic density, and — when the file
 //! stores raw realizations — realization excerpts, the histogram of the samples against N(M, σ) and the
 //! correlation estimate against the model. Everything is read from the file; the charts are built with

@@ -39,7 +39,7 @@ pub struct OutputReport {
     pub monte_carlo: Option<MonteCarloColumn>,
 }
 
-/// The Monte Carlo σ of one output against the analytic σ (see [`crate::simulate::run_scenario`]).
+/// The Monte Carlo σ of one output against the analytic σ (see [`crate::simulate::run()`]).
 #[derive(Debug, Clone, Serialize)]
 pub struct MonteCarloColumn {
     /// Realizations.

@@ -2,7 +2,7 @@
 //! under several wheels), or independent processes.
 
 use crate::error::{require_finite, Error, Result};
-use crate::spectrum::{Asymptote, Domain, Spectrum};
+use crate::spectrum::{Asymptote, AtSpeed, Domain, Spectrum};
 use nalgebra::{Complex, DMatrix};
 use std::sync::Arc;
 
@@ -92,6 +92,33 @@ impl Excitation {
     /// As [`Excitation::track`].
     pub fn single(spectrum: Arc<dyn Spectrum>, mean: f64) -> Result<Self> {
         Excitation::track(spectrum, vec![0.0], vec![1.0], mean)
+    }
+
+    /// A road profile (a spatial spectrum, Ω in rad/m) driven over at `speed` (m/s), felt by the wheels at
+    /// `positions` (m behind the first contact, e.g. `[0.0]` for one wheel, `[0.0, 2.7]` for two axles):
+    /// the temporal spectrum [`AtSpeed`] with delays ℓ_j/v, unit gains, zero mean.
+    ///
+    /// # Errors
+    /// A spectrum that is not spatial, a speed that is not positive, negative positions.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::response::Excitation;
+    /// use stochvib::spectrum::{IsoClass, PowerLaw};
+    /// use std::sync::Arc;
+    /// let road = Arc::new(PowerLaw::iso_class(IsoClass::C).unwrap());
+    /// let e = Excitation::road(road, 20.0, &[0.0, 2.7]).unwrap();
+    /// assert_eq!(e.n_inputs(), 2);
+    /// ```
+    pub fn road(spectrum: Arc<dyn Spectrum>, speed: f64, positions: &[f64]) -> Result<Self> {
+        let temporal = Arc::new(AtSpeed::new(spectrum, speed)?);
+        for (j, &p) in positions.iter().enumerate() {
+            if !(p.is_finite() && p >= 0.0) {
+                return Err(Error::invalid(&format!("positions[{j}]"), p, "must be finite and >= 0"));
+            }
+        }
+        let delays = positions.iter().map(|p| p / speed).collect();
+        Excitation::track(temporal, delays, vec![1.0; positions.len()], 0.0)
     }
 
     /// Independent processes, one per input.

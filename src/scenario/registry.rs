@@ -8,7 +8,8 @@ use crate::fields::Fields;
 use crate::models::results::DeterministicModel;
 use crate::models::{
     balancer_bogie, conveyor_idler, dynamic_stiffness_chain::DynamicStiffnessChain, half_car, isolation,
-    mine_hoist::MineHoist, operator_seat, scraper, three_mass_hoist::ThreeMassHoist, ModelInstance,
+    mine_hoist::MineHoist, operator_seat, quarter_car::QuarterCar, scraper, three_mass_hoist::ThreeMassHoist,
+    ModelInstance,
 };
 use serde::Serialize;
 
@@ -100,6 +101,14 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "state space A, B, C, D, E (y = Cx + Du + E du/dt), inputs on a track",
         example: "",
         build: |f, _| stochastic(generic::state_space::from_fields(f)),
+    },
+    ModelKind {
+        name: "quarter-car",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "quarter car: body on the suspension, wheel on the tyre, one road track",
+        example: "data/quarter-car-model.toml",
+        build: |f, _| stochastic(QuarterCar::from_fields(f).and_then(|c| c.instance())),
     },
     ModelKind {
         name: "isolator-single",

@@ -539,14 +539,10 @@ fn respond_dyn(s: &SampledSystem, u: &[f64], x: &mut [f64], y: &mut [f64]) {
 /// ```
 /// use stochvib::simulate::augmented_response;
 /// use stochvib::response::{Excitation, variance_lyapunov};
-/// use stochvib::system::{StateSpace, OutputInfo};
+/// use stochvib::system::StateSpace;
 /// use stochvib::spectrum::{Exponential, Domain};
-/// use nalgebra::DMatrix;
 /// use std::sync::Arc;
-/// let (w, z) = (10.0, 0.05);
-/// let ss = StateSpace::new(DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, -2.0 * z * w]),
-///     DMatrix::from_row_slice(2, 1, &[0.0, 1.0]), DMatrix::from_row_slice(1, 2, &[1.0, 0.0]),
-///     None, None, vec![OutputInfo::new("x", "m")]).unwrap();
+/// let ss = StateSpace::oscillator(10.0, 0.05).unwrap();
 /// let exc = Excitation::single(Arc::new(Exponential::new(1.0, 3.0, Domain::Temporal).unwrap()), 0.0).unwrap();
 /// let gm = augmented_response(&ss, &exc, &[0], 0.005).unwrap();
 /// let d = variance_lyapunov(&ss, &exc, 0).unwrap().variance;

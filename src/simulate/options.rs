@@ -6,7 +6,7 @@ use crate::response::Excitation;
 use crate::store::Compression;
 use serde::Serialize;
 
-/// How realizations are produced (see [`crate::simulate::run`] for the two routes).
+/// How realizations are produced (see [`crate::simulate::run`](mod@crate::simulate::run) for the two routes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum Route {

@@ -4,11 +4,11 @@
 //!
 //! # Routes
 //! * [`Route::Exact`](super::Route::Exact): every input spectrum rational and the excitation delay-free. The system augmented
-//!   with the inputs' shaping filters is discretised by Van Loan's method ([`augmented_response`]) and
+//!   with the inputs' shaping filters is discretised by Van Loan's method ([`augmented_response`](super::augmented_response)) and
 //!   started from its stationary distribution, so every sample of every output is exactly a sample of the
 //!   stationary response: no time-step bias, no transient.
 //! * [`Route::Spectral`](super::Route::Spectral): any spectrum and delayed inputs (road tracks). The input process is synthesised
-//!   by the spectral representation ([`SpectralGenerator`], random Rayleigh amplitudes) on an FFT grid of
+//!   by the spectral representation ([`SpectralGenerator`](super::SpectralGenerator), random Rayleigh amplitudes) on an FFT grid of
 //!   N samples, so it is periodic with period NΔt; the recorded output is the periodic steady state of the
 //!   exact first-order hold ([`SampledSystem`](super::SampledSystem)) driven by that periodic input. It is computed exactly in
 //!   the frequency domain, with one inverse FFT per output: y_k = Σ_j G_j c_j e^{iω_j kΔt}, G_j the
@@ -22,7 +22,7 @@
 //! # Bias of the spectral route
 //! The synthesised process is the spectrum sampled on the grid ω_j = 2πj/(NΔt), j ≤ N/2 (truncated at the
 //! Nyquist frequency and piecewise constant in between), and its variance is
-//! [`SpectralGenerator::grid_variance`], not the analytic variance. The recorded output is exactly the
+//! [`SpectralGenerator::grid_variance`](super::SpectralGenerator::grid_variance), not the analytic variance. The recorded output is exactly the
 //! periodic steady state of the first-order-hold system, whose variance is
 //! ```text
 //! σ²_d = Σ_j w_j S(ω_j) Δω |H_d(ω_j)|²,   w_j = 2 (1 for j = 0, N/2),

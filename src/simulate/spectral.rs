@@ -217,7 +217,7 @@ impl SpectralGenerator {
     /// With G = [`SampledSystem::grid_response`](super::SampledSystem::grid_response) this is exactly the
     /// periodic steady state that [`SampledSystem::respond`](super::SampledSystem::respond) reaches after
     /// warm-up periods of the periodic input (what the spectral route of
-    /// [`run_scenario`](super::run_scenario) records), in one FFT; with G = H(iω_j) of the continuous system
+    /// [`run`](super::run()) records), in one FFT; with G = H(iω_j) of the continuous system
     /// it is the spectral representation of the continuous response.
     ///
     /// # Errors
@@ -383,19 +383,10 @@ mod tests {
         // input for 12 periods from rest (transient factor e^{−0.5·12·12.8} ≈ 5e-34) and compare the last
         // period with the one-FFT product G_j c_j. Agreement to rounding (EXACT relative to max |y|).
         use crate::simulate::SampledSystem;
-        use crate::system::{OutputInfo, StateSpace};
+        use crate::system::StateSpace;
         use crate::tolerance::EXACT;
-        use nalgebra::DMatrix;
-        let (w, z, n, dt) = (10.0, 0.05, 256, 0.05);
-        let ss = StateSpace::new(
-            DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -w * w, -2.0 * z * w]),
-            DMatrix::from_row_slice(2, 1, &[0.0, 1.0]),
-            DMatrix::from_row_slice(1, 2, &[1.0, 0.0]),
-            None,
-            None,
-            vec![OutputInfo::new("x", "m")],
-        )
-        .unwrap();
+        let (n, dt) = (256, 0.05);
+        let ss = StateSpace::oscillator(10.0, 0.05).unwrap();
         let sys = SampledSystem::new(&ss, dt).unwrap();
         let s = Exponential::new(1.0, 3.0, Domain::Temporal).unwrap();
         let g = SpectralGenerator::new(&s, dt, n, Amplitudes::Rayleigh).unwrap();

@@ -167,6 +167,22 @@ impl PowerLaw {
         Ok(p)
     }
 
+    /// ISO 8608 class `class` as the standard classifies roads: the geometric mean of the class, over the
+    /// standard band [`ISO_BAND`] (0.011–2.83 cycles/m).
+    ///
+    /// # Errors
+    /// None for the standard band (the `Result` is [`PowerLaw::iso8608`]'s).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::spectrum::{IsoClass, PowerLaw};
+    /// let c = PowerLaw::iso_class(IsoClass::C).unwrap();
+    /// assert_eq!(c.one_sided_cyclic(0.1), 256e-6);
+    /// ```
+    pub fn iso_class(class: IsoClass) -> Result<Self> {
+        PowerLaw::iso8608(class, IsoBound::GeometricMean, Some(ISO_BAND))
+    }
+
     /// The band in cycles/m (or Hz), if any.
     pub fn band(&self) -> Option<(f64, f64)> {
         self.band

@@ -1,66 +1,8 @@
-//! HDF5 store of Monte Carlo runs: one file per run, readable by h5py and h5dump.
+//! HDF5 store of Monte Carlo runs: one file per run, readable by h5py and h5dump ([`RunWriter`] writes,
+//! [`RunFile`] reads, [`layout`] names every group, dataset and attribute). The file format is described
+//! once, in `docs/run-file-format.md`, included here:
 //!
-//! # Layout (format version 1)
-//!
-//! ```text
-//! run.h5
-//! ├── @format_version   u32     1 (layout::FORMAT_VERSION); readers refuse newer versions
-//! ├── @toolkit_version  string  stochvib version that wrote the file
-//! ├── @scenario         string  the scenario file (TOML), verbatim
-//! ├── @seed             u64     master seed
-//! ├── @generator        string  random generator / synthesis method name
-//! ├── @dt               f64     time step, s
-//! ├── @units            string  "SI (time s, angular frequency rad/s); each signal has its own `unit` attribute"
-//! ├── @n_samples        u64     samples per realization
-//! ├── @n_realizations   u64     realizations
-//! ├── @shard_size       u64     realizations per shard (last shard may be shorter)
-//! ├── @n_shards         u64     ceil(n_realizations / shard_size)
-//! ├── @store_raw        u8      1 if /inputs and /outputs hold the realizations
-//! ├── @compression      string  "none" or "deflate:<level>" (deflate with byte shuffle)
-//! ├── @complete         u8      1; written last, immediately before the rename (absent = incomplete)
-//! ├── inputs/                   @names string[n_in], @units string[n_in]
-//! │   └── <input>       f64 [n_realizations, n_samples]  @unit; only if store_raw;
-//! │                             row i = realization i, column k = sample at t = k·dt;
-//! │                             chunks (rows, cols) = layout::chunk_shape(n_samples, shard_size)
-//! ├── outputs/                  @names, @units (as inputs)
-//! │   └── <output>      f64 [n_realizations, n_samples]  @unit; only if store_raw
-//! ├── shards/                   @accumulators string[n_acc]
-//! │   ├── complete      u8  [n_shards]           1 once the shard's data are on disk
-//! │   └── <accumulator> f64 [n_shards, len]      per-shard partial results (e.g. sums for resuming
-//! │                                              statistics when raw data are not stored)
-//! ├── statistics/
-//! │   └── <output>/             @n_used u64 (realizations used), @unit string
-//! │       └── <statistic>  f64 scalar  estimate (e.g. mean, variance, sigma)
-//! │                             @lower f64, @upper f64, @confidence f64, @unit string, @method string,
-//! │                             @analytic f64 (optional), @covers u8 0/1 (optional, with @analytic)
-//! └── psd/
-//!     └── <output>/             @convention string (two-sided angular S(ω), variance = ∫S dω, ω ≥ 0 stored),
-//!                               @unit string, @dof f64 (χ² ν = 2K), @confidence f64, @method string
-//!         ├── omega     f64 [n_freq]  ω, rad/s
-//!         ├── density   f64 [n_freq]  estimated S(ω)
-//!         ├── lower     f64 [n_freq]  lower interval bound
-//!         ├── upper     f64 [n_freq]  upper interval bound
-//!         └── analytic  f64 [n_freq]  analytic S(ω) (optional)
-//! ```
-//!
-//! # Writing, interruption and resuming
-//!
-//! [`RunWriter::create`] writes to `<final>.tmp` and [`RunWriter::finish`] renames it to `<final>` once
-//! every shard is on disk and `@complete` is set, so a file under the final name is always complete, and
-//! [`RunFile::open`] refuses a file without `@complete` (and any `*.tmp`). Every dataset is allocated in
-//! full when the file is created, so writing a shard changes only raw data, never the file's metadata;
-//! after a shard's data the file is flushed, then its `shards/complete` entry is set and the file flushed
-//! again. A run killed at any point therefore leaves a `.tmp` whose completed shards are intact; calling
-//! [`RunWriter::create`] again with the same metadata reopens it, [`RunWriter::completed_shards`] says
-//! which shards are done, and the remaining ones are written. Different metadata (seed, scenario, sizes,
-//! signals, ...) is an error naming the fields that differ: the stale `.tmp` must be removed by hand.
-//! With compression, chunk sizes are not known in advance and a kill during a shard write can corrupt
-//! the `.tmp`; resuming then fails with an error that says to delete it.
-//!
-//! # Compression
-//! Raw realizations are not compressed by default: on noise deflate saves about 4 % at about 30 MB/s,
-//! while an uncompressed write runs at GB/s. [`Compression::Deflate`] (with a named level, 1–9, and the
-//! byte-shuffle filter) is available for smooth signals.
+#![doc = include_str!("../../docs/run-file-format.md")]
 
 mod chunks;
 pub mod layout;

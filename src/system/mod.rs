@@ -63,4 +63,22 @@ pub trait FrequencyResponse: Debug + Send + Sync {
     fn natural_frequencies(&self) -> Vec<f64>;
     /// The exact state-space form, when the system is finite-dimensional.
     fn state_space(&self) -> Option<&StateSpace>;
+
+    /// Index of the output called `name`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) naming the outputs there are.
+    fn output_index(&self, name: &str) -> crate::Result<usize> {
+        let outs = self.outputs();
+        outs.iter().position(|o| o.name == name).ok_or_else(|| {
+            crate::Error::invalid(
+                "output",
+                name,
+                format!(
+                    "no such output; the system has: {}",
+                    outs.iter().map(|o| o.name.as_str()).collect::<Vec<_>>().join(", ")
+                ),
+            )
+        })
+    }
 }

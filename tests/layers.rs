@@ -1,0 +1,160 @@
+//! The crate's layers are one-way: no module imports from a layer above its own (the table of `src/lib.rs`).
+//!
+//! The check reads every `src/**/*.rs` file, strips comments, and collects every `crate::<module>` path in
+//! code (`use` lines and inline paths alike); a path to a module of a higher layer fails the test with the
+//! file, the line and the two layers.
+
+use std::path::{Path, PathBuf};
+
+/// Bottom up; modules in one row may use each other.
+const LAYERS: &[&[&str]] = &[
+    &["error", "numbers", "units", "fields", "quad", "linalg", "tolerance"],
+    &["spectrum"],
+    &["system"],
+    &["response"],
+    &["estimate", "store"],
+    &["simulate"],
+    &["models"],
+    &["scenario"],
+    &["report", "plot"],
+    &["prelude", "lib"],
+];
+
+fn layer_of(module: &str) -> Option<usize> {
+    LAYERS.iter().position(|row| row.contains(&module))
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// The line without its `//` comment (string literals containing `//` are rare enough in this crate's
+/// `crate::` lines not to matter: a false hit would show up as a failure to look at, never a silent pass).
+fn code(line: &str) -> &str {
+    match line.find("//") {
+        Some(i) => &line[..i],
+        None => line,
+    }
+}
+
+/// Every `crate::<ident>` in `text`.
+fn crate_paths(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = text;
+    while let Some(i) = rest.find("crate::") {
+        let before = rest[..i].chars().last();
+        rest = &rest[i + "crate::".len()..];
+        if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+            continue; // e.g. `stochvib_crate::`
+        }
+        let ident: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+        if !ident.is_empty() {
+            out.push(ident);
+        }
+    }
+    out
+}
+
+/// `use crate::{a, b::c}` groups: every first segment inside the braces.
+fn grouped(text: &str) -> Vec<String> {
+    let Some(i) = text.find("crate::{") else { return vec![] };
+    let body = &text[i + "crate::{".len()..];
+    let mut depth = 0;
+    let mut seg = String::new();
+    let mut out = Vec::new();
+    let mut at_start = true;
+    for c in body.chars() {
+        match c {
+            '{' => depth += 1,
+            '}' if depth == 0 => break,
+            '}' => depth -= 1,
+            ',' if depth == 0 => at_start = true,
+            c if at_start && (c.is_alphanumeric() || c == '_') => seg.push(c),
+            _ => {
+                if at_start && !seg.is_empty() {
+                    out.push(std::mem::take(&mut seg));
+                    at_start = false;
+                }
+            }
+        }
+    }
+    if !seg.is_empty() {
+        out.push(seg);
+    }
+    out
+}
+
+#[test]
+fn no_module_imports_from_a_higher_layer() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    files.sort();
+    let mut violations = Vec::new();
+    let mut checked = 0;
+    for f in &files {
+        let rel = f.strip_prefix(&src).unwrap();
+        let first = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy()
+            .into_owned();
+        let module = first.trim_end_matches(".rs").to_string();
+        if module == "main" {
+            continue; // the binary uses the library through `stochvib::`
+        }
+        let own = layer_of(&module).unwrap_or_else(|| panic!("{}: module `{module}` is in no layer", rel.display()));
+        let text = std::fs::read_to_string(f).unwrap();
+        // multi-line `use crate::{...}` groups: join the file's code lines first
+        let joined: String = text.lines().map(code).collect::<Vec<_>>().join(" ");
+        let mut targets: Vec<(usize, String)> = Vec::new();
+        for (n, line) in text.lines().enumerate() {
+            for t in crate_paths(code(line)) {
+                targets.push((n + 1, t));
+            }
+        }
+        for t in grouped(&joined) {
+            targets.push((0, t));
+        }
+        for (line, t) in targets {
+            checked += 1;
+            let Some(l) = layer_of(&t) else { continue }; // crate-root items such as `crate::Result`
+            if l > own {
+                violations.push(format!(
+                    "{}:{line}: `{module}` (layer {own}) uses `crate::{t}` (layer {l})",
+                    rel.display()
+                ));
+            }
+        }
+    }
+    assert!(
+        checked > 100,
+        "the scan found only {checked} crate paths: is it reading the sources?"
+    );
+    assert!(violations.is_empty(), "upward imports:\n{}", violations.join("\n"));
+}
+
+/// The scanner itself: a known upward import is found, comments are ignored.
+#[test]
+fn scanner_finds_paths_and_skips_comments() {
+    assert_eq!(crate_paths("use crate::report::rel_diff;"), ["report"]);
+    assert_eq!(
+        crate_paths(code("let x = 1; // crate::report::x")),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        grouped("use crate::{report::a, simulate::{b, c}, error};"),
+        ["report", "simulate", "error"]
+    );
+    assert_eq!(layer_of("report"), Some(8));
+    assert!(layer_of("simulate") < layer_of("scenario"));
+}
