@@ -1057,3 +1057,16 @@ impl Draw for BarsWithRange<'_> {
         Ok(())
     }
 }
+
+/// A file-name-safe version of a signal name: ASCII letters, digits, `-` and `_` kept, anything else `_`.
+pub(crate) fn file_stem(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}

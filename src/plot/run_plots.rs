@@ -99,18 +99,6 @@ fn scenario_correlation(
     Ok((k, dw))
 }
 
-fn file_stem(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
-}
-
 /// Builds the charts of every output of a run file without rendering them (see [`run_plots`]).
 ///
 /// # Formula
@@ -330,7 +318,7 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
 pub fn run_plots(path: &Path, dir: &Path, spectra_dir: &Path) -> Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for oc in run_charts(path, spectra_dir)? {
-        let s = file_stem(&oc.output);
+        let s = super::chart::file_stem(&oc.output);
         files.extend(oc.welch.render(dir, &format!("{s}-welch"))?);
         if let Some(c) = &oc.realizations {
             files.extend(c.render(dir, &format!("{s}-realizations"))?);

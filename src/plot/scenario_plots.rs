@@ -61,7 +61,7 @@ pub fn scenario_plots(sc: &Scenario, dir: &Path) -> Result<Vec<PathBuf>> {
 pub fn scenario_plots_with(sc: &Scenario, dir: &Path, opts: &ScenarioPlotOptions) -> Result<Vec<PathBuf>> {
     let mut files = input_density_chart(sc, opts)?.render(dir, "input-density")?;
     for &i in &sc.analysis.outputs {
-        let name = stem_part(&sc.model.system.outputs()[i].name);
+        let name = super::chart::file_stem(&sc.model.system.outputs()[i].name);
         files.extend(transfer_chart(sc, i, opts)?.render(dir, &format!("transfer-{name}"))?);
         files.extend(output_density_chart(sc, i, opts)?.render(dir, &format!("output-density-{name}"))?);
     }
@@ -453,19 +453,6 @@ fn natural_frequency_markers(sc: &Scenario, conv: Convention) -> Vec<Marker> {
                 String::new()
             };
             Marker::new(frequency(conv, *w), label)
-        })
-        .collect()
-}
-
-/// A file-name-safe version of an output name.
-fn stem_part(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
-                c
-            } else {
-                '_'
-            }
         })
         .collect()
 }

@@ -1,7 +1,7 @@
 //! A precomputed, allocation-free evaluator of one output's density S_y(ω), for quadrature.
 
 use super::Excitation;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::spectrum::Spectrum;
 use crate::system::{FrequencyResponse, StateSpace};
 use nalgebra::{Complex, DMatrix};
@@ -127,20 +127,7 @@ impl<'a> OutputDensity<'a> {
     /// # Errors
     /// See the type's `# Errors`.
     pub fn new(sys: &'a dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<Self> {
-        if exc.n_inputs() != sys.n_inputs() {
-            return Err(Error::invalid(
-                "excitation",
-                format!("{} inputs", exc.n_inputs()),
-                format!("the system has {} inputs", sys.n_inputs()),
-            ));
-        }
-        if i >= sys.outputs().len() {
-            return Err(Error::invalid(
-                "output",
-                i,
-                format!("the system has {} outputs", sys.outputs().len()),
-            ));
-        }
+        super::variance::check_shapes(sys, exc, i)?;
         let input = match exc {
             Excitation::Track {
                 spectrum,

@@ -278,7 +278,18 @@ pub fn band_variance(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, w1
     moment_integral(sys, exc, i, 0, w1, w2)
 }
 
+/// Checks that `exc` drives every input of `sys`, that output `i` exists and that the system is stable.
 fn check_io(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<()> {
+    check_shapes(sys, exc, i)?;
+    // |H(iω)|² of an unstable system is finite, but no stationary response exists: never integrate it
+    if let Some(ss) = sys.state_space() {
+        ss.require_stable()?;
+    }
+    Ok(())
+}
+
+/// Checks that `exc` drives every input of `sys` and that output `i` exists.
+pub(crate) fn check_shapes(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<()> {
     if exc.n_inputs() != sys.n_inputs() {
         return Err(Error::invalid(
             "excitation",
@@ -292,10 +303,6 @@ fn check_io(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<(
             i,
             format!("the system has {} outputs", sys.outputs().len()),
         ));
-    }
-    // |H(iω)|² of an unstable system is finite, but no stationary response exists: never integrate it
-    if let Some(ss) = sys.state_space() {
-        ss.require_stable()?;
     }
     Ok(())
 }
