@@ -154,7 +154,8 @@ enum Command {
         /// Confidence of the intervals.
         #[arg(long, default_value_t = 0.95)]
         confidence: f64,
-        /// Remove an existing finished OUTPUT first (never needed for resuming a .tmp).
+        /// Replace an existing finished OUTPUT (a run file only; replaced when the new run is complete) and
+        /// discard an interrupted run of different settings.
         #[arg(long)]
         overwrite: bool,
         #[command(flatten)]
@@ -173,6 +174,16 @@ enum Command {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+    },
+    /// Checks that a run file can be read (the parent process of `inspect` and `plot` runs this first, so that
+    /// a damaged file that would crash the HDF5 library crashes only this child).
+    #[command(hide = true)]
+    CheckRun {
+        /// Run file (HDF5).
+        file: PathBuf,
+        /// Also check the checksums of every shard's raw data and accumulators.
+        #[arg(long)]
+        full: bool,
     },
     /// Reproduce every worked example of the source documents: printed value, computed value, relative
     /// difference and an explanation for every difference over 2 %.
@@ -294,6 +305,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
             };
             let files = if has(&["h5", "hdf5"]) {
+                check_in_child(&input, false)?;
                 run_plots(&input, &out, catalogue.dir())?
             } else if has(&["toml"]) {
                 let sc = load_scenario(&input, catalogue.dir())?;
@@ -337,11 +349,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 compression,
                 route,
                 confidence,
+                overwrite,
                 ..RunOptions::new(realizations, duration, dt, seed)
             };
-            if overwrite && output.exists() {
-                std::fs::remove_file(&output)?;
-            }
             let s = sc.simulate(&opts, &output, &progress_printer())?;
             print(&s, json)?;
             if let Some(pdir) = plots {
@@ -352,7 +362,22 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
             }
         }
+        Command::CheckRun { file, full } => {
+            let run = RunFile::open_any(&file)?;
+            run.statistics()?;
+            run.psd()?;
+            if full {
+                run.verify()?;
+            } else if run.metadata().store_raw && run.metadata().n_realizations > 0 {
+                // what `plot` reads: the first realizations of every signal
+                let rows = 0..run.metadata().n_realizations.min(3);
+                for s in &run.metadata().outputs {
+                    run.read_signals(stochvib::store::SignalGroup::Outputs, &s.name, rows.clone())?;
+                }
+            }
+        }
         Command::Inspect { file, json } => {
+            check_in_child(&file, true)?;
             if json {
                 print_json(&RunFile::open(&file)?.info()?)?;
             } else {
@@ -370,6 +395,45 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// Reads a run file in a child process first (`stochvib check-run`): libhdf5 can crash on a damaged file,
+/// and a crash must not take this process with it. A child killed by a signal means a damaged file; a
+/// child's error is this command's error.
+fn check_in_child(file: &Path, full: bool) -> anyhow::Result<()> {
+    let exe = std::env::current_exe()?;
+    let mut cmd = std::process::Command::new(exe);
+    cmd.arg("check-run").arg(file);
+    if full {
+        cmd.arg("--full");
+    }
+    let out = cmd.stdin(std::process::Stdio::null()).output()?;
+    if out.status.success() {
+        return Ok(());
+    }
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let msg = stderr
+        .lines()
+        .find(|l| l.starts_with("error: "))
+        .map(|l| l.trim_start_matches("error: "));
+    match (out.status.code(), msg) {
+        (Some(_), Some(m)) => anyhow::bail!("{m}"),
+        _ => {
+            #[cfg(unix)]
+            let how = {
+                use std::os::unix::process::ExitStatusExt;
+                out.status
+                    .signal()
+                    .map_or("abnormally".to_string(), |s| format!("with signal {s}"))
+            };
+            #[cfg(not(unix))]
+            let how = "abnormally".to_string();
+            anyhow::bail!(
+                "{}: the file is damaged: reading it made the HDF5 library fail {how}",
+                file.display()
+            )
+        }
+    }
 }
 
 /// Refuses Monte Carlo and pictures for a file without a random input.

@@ -256,6 +256,27 @@ pub fn parse_quantity(text: &str) -> Result<(f64, Dim)> {
     Ok((value, unit.dim))
 }
 
+/// The dimension of a coherent SI unit written as text (`"m"`, `"m/s^2"`, `"N"`, `"rad"`, `"1"`), or `None`
+/// when the text is not such a unit (unknown, or a unit with a scale other than 1, e.g. `"cm"`).
+///
+/// # Examples
+/// ```
+/// use stochvib::units::{unit_dim, Dim};
+/// assert_eq!(unit_dim("m/s^2"), Some(Dim::ACCELERATION));
+/// assert_eq!(unit_dim("1"), Some(Dim::DIMENSIONLESS));
+/// assert_eq!(unit_dim("cm"), None);
+/// assert_eq!(unit_dim("[mixed]"), None);
+/// ```
+pub fn unit_dim(unit: &str) -> Option<Dim> {
+    if unit.trim() == "1" || unit.trim() == "-" {
+        return Some(Dim::DIMENSIONLESS);
+    }
+    match parse_quantity(&format!("1 {unit}")) {
+        Ok((scale, dim)) if scale == 1.0 => Some(dim),
+        _ => None,
+    }
+}
+
 /// Parses a quantity and checks that it has dimension `expected`.
 ///
 /// # Errors

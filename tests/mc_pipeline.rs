@@ -214,7 +214,7 @@ except ImportError:
     print("h5py is missing: run `bash scripts/ensure-deps.sh --with-h5py`"); sys.exit(3)
 f = h5py.File(sys.argv[1], "r")
 a = f.attrs
-assert int(a["format_version"]) == 1, a["format_version"]
+assert int(a["format_version"]) == 2, a["format_version"]
 assert int(a["seed"]) == 77 and int(a["n_realizations"]) == 6 and int(a["n_samples"]) == 300
 assert abs(float(a["dt"]) - 0.01) < 1e-15 and int(a["complete"]) == 1
 assert f["outputs/y"].shape == (6, 300), f["outputs/y"].shape

@@ -96,6 +96,13 @@ impl WelchSums {
     }
 }
 
+/// A record being fed to [`Welch::push`] in pieces: the last samples not yet in a full segment.
+#[derive(Debug, Clone)]
+pub struct WelchStream {
+    pending: Vec<f64>,
+    segments: usize,
+}
+
 /// Working memory of [`Welch::accumulate`].
 #[derive(Debug, Clone)]
 pub struct WelchScratch {
@@ -241,24 +248,91 @@ impl Welch {
                 "made for another segment length",
             ));
         }
-        let scale = self.dt / (2.0 * PI * self.norm);
         for s in 0..k {
-            let seg = &x[s * self.m / 2..s * self.m / 2 + self.m];
-            for ((d, v), w) in scratch.input.iter_mut().zip(seg).zip(&self.window) {
-                *d = v * w;
-            }
-            self.plan
-                .process_with_scratch(&mut scratch.input, &mut scratch.spectrum, &mut scratch.fft)
-                .map_err(|e| Error::Numerical {
-                    what: "forward real FFT".into(),
-                    reason: e.to_string(),
-                })?;
-            for (a, c) in sums.sum.iter_mut().zip(&scratch.spectrum) {
-                *a += scale * c.norm_sqr();
-            }
+            self.segment(&x[s * self.m / 2..s * self.m / 2 + self.m], sums, scratch)?;
         }
         sums.segments += k as u64;
         sums.dof += self.record_dof(k);
+        Ok(())
+    }
+
+    /// Adds one windowed segment's periodogram to `sums.sum` (segment count and ν are the caller's).
+    fn segment(&self, seg: &[f64], sums: &mut WelchSums, scratch: &mut WelchScratch) -> Result<()> {
+        let scale = self.dt / (2.0 * PI * self.norm);
+        for ((d, v), w) in scratch.input.iter_mut().zip(seg).zip(&self.window) {
+            *d = v * w;
+        }
+        self.plan
+            .process_with_scratch(&mut scratch.input, &mut scratch.spectrum, &mut scratch.fft)
+            .map_err(|e| Error::Numerical {
+                what: "forward real FFT".into(),
+                reason: e.to_string(),
+            })?;
+        for (a, c) in sums.sum.iter_mut().zip(&scratch.spectrum) {
+            *a += scale * c.norm_sqr();
+        }
+        Ok(())
+    }
+
+    /// A record fed in pieces ([`Welch::push`], [`Welch::end_record`]) with memory O(M): the same segments,
+    /// in the same order and with the same arithmetic as [`Welch::accumulate`] on the whole record, so the
+    /// sums are bit-identical for any split of the record.
+    pub fn stream(&self) -> WelchStream {
+        WelchStream {
+            pending: Vec::with_capacity(self.m),
+            segments: 0,
+        }
+    }
+
+    /// Adds the next samples of the record of `stream`.
+    ///
+    /// # Errors
+    /// Sums or scratch of another segment length.
+    pub fn push(
+        &self,
+        stream: &mut WelchStream,
+        mut x: &[f64],
+        sums: &mut WelchSums,
+        scratch: &mut WelchScratch,
+    ) -> Result<()> {
+        if sums.sum.len() != self.m / 2 + 1 || scratch.input.len() != self.m {
+            return Err(Error::invalid(
+                "sums",
+                sums.sum.len(),
+                "made for another segment length",
+            ));
+        }
+        while !x.is_empty() {
+            let take = (self.m - stream.pending.len()).min(x.len());
+            stream.pending.extend_from_slice(&x[..take]);
+            x = &x[take..];
+            if stream.pending.len() == self.m {
+                self.segment(&stream.pending, sums, scratch)?;
+                stream.segments += 1;
+                stream.pending.drain(..self.m / 2);
+            }
+        }
+        Ok(())
+    }
+
+    /// Ends the record of `stream`: counts its segments and adds its equivalent ν (as
+    /// [`Welch::accumulate`] does for a whole record).
+    ///
+    /// # Errors
+    /// A record shorter than M.
+    pub fn end_record(&self, stream: &mut WelchStream, sums: &mut WelchSums) -> Result<()> {
+        let k = stream.segments;
+        if k == 0 {
+            return Err(Error::invalid(
+                "record length",
+                stream.pending.len(),
+                format!("shorter than the segment length {}", self.m),
+            ));
+        }
+        sums.segments += k as u64;
+        sums.dof += self.record_dof(k);
+        stream.pending.clear();
+        stream.segments = 0;
         Ok(())
     }
 

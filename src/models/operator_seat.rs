@@ -160,10 +160,7 @@ impl SanitaryLimits {
     /// # Errors
     /// [`Error::Io`] if unreadable, otherwise as [`SanitaryLimits::parse`].
     pub fn load(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::fields::read_text_file(path)?;
         Self::parse(&text, path)
     }
 
@@ -172,10 +169,7 @@ impl SanitaryLimits {
     /// # Errors
     /// See the type's `# Errors`.
     pub fn parse(text: &str, path: &Path) -> Result<Self> {
-        let table: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
-            file: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
+        let table: toml::Table = crate::fields::parse_toml(text, path)?;
         let f = Fields::new(path, "", &table);
         f.opt_string("title")?;
         f.opt_string("reference")?;

@@ -49,6 +49,8 @@ pub(crate) struct Plan {
     pub notes: Vec<String>,
     pub generator: String,
     pub welch: Welch,
+    /// Steps per block of the exact route when no raw data are kept (0: whole realizations).
+    pub block_steps: usize,
 }
 
 /// An output with a finite analytic variance, before the route is chosen.
@@ -137,6 +139,8 @@ impl RouteChoice {
 /// delays that are not whole steps on the spectral route; an unstable system.
 pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let n = opts.samples()?;
+    // before any buffer of the realization's size exists
+    super::resources::check_memory(n, input.outputs.len(), input.excitation.spectra().len(), opts)?;
     let (finite, skipped) = simulable_outputs(input)?;
     let idx: Vec<usize> = finite.iter().map(|f| f.index).collect();
     let choice = RouteChoice::choose(input, opts, &idx)?;
@@ -185,6 +189,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
                 super::GENERATOR
             ),
             welch,
+            block_steps: if opts.store_raw { 0 } else { opts.block_steps.min(n) },
         });
     }
     let (engine, discrete) = spectral_engine(input, opts, n, &idx, &mut notes)?;
@@ -213,6 +218,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
             super::GENERATOR
         ),
         welch,
+        block_steps: 0,
     })
 }
 

@@ -195,6 +195,23 @@ impl Mdof {
                 "mass matrix is singular or not positive definite (every coordinate needs mass)",
             )
         })?;
+        // f64 resolves the dynamics only when the masses are within about 10^12 of each other: beyond, the
+        // light coordinates' equations lose every digit (e.g. a 1e308 kg body on a 40 kg wheel)
+        let ev = m.clone().symmetric_eigenvalues();
+        let (lo, hi) = ev
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+        if !(hi.is_finite() && hi / lo <= MAX_MASS_CONDITION) {
+            return Err(Error::invalid(
+                "M",
+                format!("eigenvalues from {lo:e} to {hi:e}"),
+                format!(
+                    "the mass matrix is too badly scaled for double precision (condition {:.1e} > {MAX_MASS_CONDITION:.0e}): \
+                     check the units of the masses and inertias",
+                    hi / lo
+                ),
+            ));
+        }
         let m_inv = chol.inverse();
         let mut model = Mdof {
             m,
@@ -521,6 +538,10 @@ impl Mdof {
         Ok(())
     }
 }
+
+/// Largest accepted ratio of the largest to the smallest eigenvalue of the mass matrix: beyond it the
+/// equations of the lightest coordinates lose all significant digits in double precision.
+pub const MAX_MASS_CONDITION: f64 = 1e12;
 
 /// Natural frequencies (rad/s, ascending) and mass-normalised modes (columns) of C φ = ω² M φ.
 ///
