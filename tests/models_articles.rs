@@ -1,4 +1,5 @@
-//! The three article models (`000` three-mass hoist, `003` dynamic-stiffness chain, `004` mine hoist):
+//! The three article models (three-mass hoist, Ofiy & Rakhmaniy (2010); dynamic-stiffness chain, Yurchenko
+//! (2011); mine hoist, Dvornikov, Kondrakhin & Velebnik (2014)):
 //! closed forms against modal analysis, exact matrix-exponential and RK4 time integration, and the dense
 //! complex solve. Every expected value states its provenance in a comment.
 
@@ -70,7 +71,7 @@ fn check_book_rows(rows: &[BookRow]) {
 }
 
 // ------------------------------------------------------------------------------------------------------
-// 000: three-mass hoist
+// Ofiy & Rakhmaniy (2010): three-mass hoist
 // ------------------------------------------------------------------------------------------------------
 
 #[test]
@@ -118,8 +119,8 @@ fn three_mass_amplitudes_match_printed_20_21_and_modal_ratios() {
     let (w1s, w2s) = (w1 * w1, w2 * w2);
     let dw = w2s - w1s;
     let (ms, mb, i2, c1) = (h.m_start, h.m_load, h.i2, h.c1);
-    // (20)/(21) as printed in l.251–255 (they equal A_i = (r_i + ω₂²u_i)/Δω², B_i = −(r_i + ω₁²u_i)/Δω² of
-    // the module docs with u = x₀ − D, r = a x₀ + b, x₀ = (M_sp/c₁, 0))
+    // (20)/(21) as printed in Ofiy & Rakhmaniy (2010) (they equal A_i = (r_i + ω₂²u_i)/Δω²,
+    // B_i = −(r_i + ω₁²u_i)/Δω² of the module docs with u = x₀ − D, r = a x₀ + b, x₀ = (M_sp/c₁, 0))
     let a1 = ((mb - ms) / i2 + (ms / c1 - a.d12) * w2s) / dw;
     let b1 = ((ms - mb) / i2 - (ms / c1 - a.d12) * w1s) / dw;
     let a2 = ((ms - mb) / i2 - a.d23 * w2s) / dw;
@@ -259,7 +260,7 @@ fn three_mass_book_rows() {
 }
 
 // ------------------------------------------------------------------------------------------------------
-// 003: dynamic-stiffness chain
+// Yurchenko (2011): dynamic-stiffness chain
 // ------------------------------------------------------------------------------------------------------
 
 fn random_chain(rng: &mut Rng, n: usize) -> (TorsionalChain, Vec<Complex<f64>>) {
@@ -437,7 +438,7 @@ fn chain_data_file_and_book_rows() {
 }
 
 // ------------------------------------------------------------------------------------------------------
-// 004: mine hoist
+// Dvornikov, Kondrakhin & Velebnik (2014): mine hoist
 // ------------------------------------------------------------------------------------------------------
 
 #[test]
@@ -553,7 +554,8 @@ fn hoist_node_root_finding_vs_closed_form() {
         (v[0].abs() - 0.2913).abs() < 1e-4 && (v[2].abs() - 3.9049).abs() < 1e-4,
         "{v}"
     );
-    // the printed formula (l.183) with J₁′(l₂*) = J₁ + γR_b²(L − l₂*) misses it: 441.235 m (same recomputation)
+    // the printed node formula (unnumbered, before (22)) with J₁′(l₂*) = J₁ + γR_b²(L − l₂*) misses it: 441.235 m
+    // (same recomputation)
     let printed = h.node_printed_formula(j1p);
     assert!((printed - 441.23).abs() < 0.01, "{printed}");
 }

@@ -3,7 +3,7 @@
 //! Provenance of expected values is stated at each assertion: closed forms derived in the model docs,
 //! independent routes (Mdof frequency response, modal analysis, a 2×2 complex solve in other coordinates, a
 //! composite Simpson rule written here), values recomputed outside the crate (the comment says how), or
-//! published values with their source line.
+//! published values with their source (section, equation, table or example of Sukharev (2012)).
 
 mod common;
 use common::rel;
@@ -160,9 +160,9 @@ fn half_car_frequency_equation_matches_modal_analysis() {
 fn half_car_example_7_1_values() {
     let car = half_car::example_7_1();
     let (m1, m2, m3) = car.masses();
-    // published: M₁ = 0.643 t, M₂ = 0.721 t, M₃ = 0.063 t (book line 3970), rounded to 3 digits
+    // published: M₁ = 0.643 t, M₂ = 0.721 t, M₃ = 0.063 t (Sukharev (2012) 7.5, Example 7.1), rounded to 3 digits
     assert!((m1 - 643.0).abs() < 1.5 && (m2 - 721.0).abs() < 0.5 && (m3 - 63.0).abs() < 1.0);
-    // published ω₁ = 6.93, ω₂ = 7.92 s⁻¹ (line 3974); recomputed outside the crate: √ of
+    // published ω₁ = 6.93, ω₂ = 7.92 s⁻¹ (Example 7.1, end of the solution); recomputed outside the crate: √ of
     // scipy.linalg.eigh(K_b, M_b) with the (z, φ) matrices of the module docs for these data gives
     // 6.929734 / 7.886150; 7.92 is 0.43 % above the exact value (the book's arithmetic), so 0.5 % bounds both.
     let [w1, w2] = car.frequency_equation_roots();
@@ -276,7 +276,8 @@ fn half_car_track_instance_matches_book_7_31_in_axle_coordinates() {
 fn resonance_speed_and_excavator_example() {
     // closed form: v = ωℓ/(2π); ω = 2π rad/s on ℓ = 7 m resonates at 7 m/s
     assert!(rel(resonance_speed(2.0 * PI, 7.0).unwrap(), 7.0) < EXACT);
-    // excavator (book 3982–4001): ω = √(90e3·9.8/28.6e3) = √30.8392 = 5.55330 rad/s (hand computation);
+    // excavator (Sukharev (2012) 7.5, the example of Fig. 7.7):
+    // ω = √(90e3·9.8/28.6e3) = √30.8392 = 5.55330 rad/s (hand computation);
     // v = 5.55330·7/(2π) = 6.18685 m/s (hand computation); printed 5.56 s⁻¹ and 6.2 m/s (22.3 km/h).
     let w = axle_natural_frequency(9.0e4, 2.86e4, 9.8).unwrap();
     assert!(rel(w, (9.0e4 * 9.8 / 2.86e4f64).sqrt()) < EXACT);
@@ -327,7 +328,7 @@ fn seat_example_7_2_numbers_and_verdict() {
     // m_pr = 83.142857 kg, ω = 8.841872 rad/s, β = 0.4772745, ν = 2.1318513, η = 0.5547304,
     // A = 1.9415565 mm, A_y = 3.8916881 mm, σ_v = 0.02587833 m/s,
     // σ_a = 0.4877949 m/s² (m_pr = 5/7·80 + 26, ω = √(6500/m_pr), β = 4.22/ω, ν = 6π/ω, A_u = 0.0035 m);
-    // the book (lines 4150–4182) prints the rounded 83 kg, 8.85, 0.477, 2.13, 0.56, 1.96 mm, 0.026, 0.49.
+    // the book (solution of Example 7.2) prints the rounded 83 kg, 8.85, 0.477, 2.13, 0.56, 1.96 mm, 0.026, 0.49.
     assert!(rel(seat.reduced_mass(), 5.0 / 7.0 * 80.0 + 26.0) < EXACT);
     for (got, want) in [
         (seat.natural_frequency(), 8.841872),
@@ -344,8 +345,8 @@ fn seat_example_7_2_numbers_and_verdict() {
         assert!(rel(got, want) < 1e-6, "{got} vs {want}");
     }
     // Verdict (σ_v, σ_a above against the 4 Hz band of Table 7.1; σ_v/0.0251 = 1.031): velocity 0.0259 >
-    // 0.0251 m/s fails; acceleration 0.488 < 0.57 passes; the other bands carry nothing. The book (line 4188)
-    // wrongly says "meets the norm".
+    // 0.0251 m/s fails; acceleration 0.488 < 0.57 passes; the other bands carry nothing. The book (conclusion of
+    // Example 7.2) wrongly says "meets the norm".
     let limits = SanitaryLimits::table_7_1().unwrap();
     let checks = seat.assess_harmonic(au, lambda, &limits).unwrap();
     for (i, c) in checks.iter().enumerate() {
@@ -372,7 +373,7 @@ fn octave_band_rules_and_harmonic_band_rms() {
             assert!(rel(lo, fc / SQRT_2) < EXACT);
         }
     }
-    assert_eq!(band_index(3.0), Some(2)); // Example 7.2: 3 Hz is in the 4 Hz band (book line 4186)
+    assert_eq!(band_index(3.0), Some(2)); // Example 7.2: 3 Hz is in the 4 Hz band (its solution)
     assert_eq!(band_index(22.5), Some(4));
     assert_eq!(band_index(22.7), Some(5));
     assert_eq!(band_index(0.5), None);
@@ -429,7 +430,7 @@ fn random_band_rms_matches_independent_simpson_rule() {
 #[test]
 fn table_7_1_transcription_and_db_consistency() {
     let t = SanitaryLimits::table_7_1().unwrap();
-    // transcription of book lines 4042–4054 (Table 7.1; velocities printed in 10⁻² m/s), SI
+    // transcription of Sukharev (2012) 7.6, Table 7.1 (velocities printed in 10⁻² m/s), SI
     let acc = [1.10, 0.79, 0.57, 0.63, 1.13, 2.25, 4.50];
     let vel = [0.1995, 0.0708, 0.0251, 0.0126, 0.0112, 0.0112, 0.0112];
     let acc_db = [121.0, 118.0, 115.0, 116.0, 121.0, 127.0, 133.0];

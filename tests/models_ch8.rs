@@ -411,7 +411,7 @@ fn scraper_quasi_static_limit() {
     assert!(rel(ratio, 2f64.powf(1.5)) < 1e-3, "{ratio}");
 }
 
-/// data/reference/table-8-1.toml holds the printed values of book lines 4763–4769 exactly.
+/// data/reference/table-8-1.toml holds the printed values of Sukharev (2012) 8.7, Table 8.1 exactly.
 #[test]
 fn scraper_table_8_1_transcription() {
     let (speeds, rows) = scraper::table_8_1().unwrap();
@@ -510,7 +510,7 @@ fn scenario_model_tables() {
 }
 
 /// spectra/conveyor-lump-load.toml: σ_F = 2 kN (D_F = 4e6 N²), α = 0.5 1/s, temporal, unit N
-/// (Example 8.1, line 4684).
+/// (Sukharev (2012) 8.6, Example 8.1, problem data).
 #[test]
 fn conveyor_lump_load_spectrum_file() {
     let s = load_spectrum(&Path::new(env!("CARGO_MANIFEST_DIR")).join("spectra/conveyor-lump-load.toml")).unwrap();

@@ -511,7 +511,8 @@ mod book {
             .find(|s| s.name.starts_with("ω₁ at the node"))
             .unwrap()
             .points[0];
-        // independent: at the node the sheave is at rest and ω₁² = C_otv/(m + γ l₂/4) (004, l.171–185);
+        // independent: at the node the sheave is at rest and ω₁² = C_otv/(m + γ l₂/4)
+        // (Dvornikov, Kondrakhin & Velebnik (2014), nodal point U of Fig. 2b);
         // recomputed outside the crate: l₂* = 435.7282 m, ξ* = (L − l₂*)/H = 0.42283, ω₁ = 5.431522 rad/s by a
         // scipy brentq of C_otv/(m + γl₂/4) = C_str/(γl₁/4 + J₁′(l₂)/R_b²) with the printed data (E = 2.06e11 Pa, ā = 0.315, d = 0.0465 m, γ = 8.4 kg/m, R_b = 2 m, l₁ = 30 m, H = 625 m, L = 700 m, J₁ = 625000 kg m², m = 10 t)
         let h = MineHoist::printed();
@@ -557,7 +558,7 @@ mod book {
         let sv = au * eta * lambda / SQRT_2;
         assert_eq!(v.categories[2], "4");
         assert!((v.values[2] - sv).abs() <= EXACT * sv);
-        // 0.0259 > 0.0251 m/s (Table 7.1, 4 Hz): red, against the book's "meets the norm" (line 4188)
+        // 0.0259 > 0.0251 m/s (Table 7.1, 4 Hz): red, against the book's "meets the norm" (conclusion of Example 7.2)
         assert!((v.values[2] - 0.0259).abs() < 5e-5);
         assert_eq!(v.limits[2], Some(2.51e-2));
         assert!(v.values[2] > v.limits[2].unwrap());

@@ -203,7 +203,7 @@ impl HalfCar {
         modal_analysis(&m, &k)
     }
 
-    /// Reports the decoupling conditions ab = ρ² and c₁a = c₂b (book 3938–3946, (7.34)).
+    /// Reports the decoupling conditions ab = ρ² and c₁a = c₂b (book 7.5, (7.34) and the text around it).
     pub fn decoupling(&self) -> Decoupling {
         let (a, b, r2) = (self.front_distance, self.rear_distance, self.radius_of_gyration.powi(2));
         let (c1a, c2b) = (self.front_stiffness * a, self.rear_stiffness * b);
@@ -352,7 +352,8 @@ pub fn resonance_speed(natural_frequency: f64, wavelength: f64) -> Result<f64> {
     Ok(natural_frequency * wavelength / (2.0 * PI))
 }
 
-/// Natural frequency (rad/s) of an axle load Q (N) on a spring c (N/m): ω = √(c/m) = √(c g/Q) (book 3982–3993).
+/// Natural frequency (rad/s) of an axle load Q (N) on a spring c (N/m): ω = √(c/m) = √(c g/Q) (book 7.5,
+/// the excavator example, Fig. 7.7).
 ///
 /// # Errors
 /// Non-positive or non-finite arguments.
@@ -391,7 +392,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
     car.instance(x).map_err(|e| f.wrap("acc_point", e))
 }
 
-/// Example 7.1 (book 3964): M = 1.49 kN s²/m, a = 1.42 m, b = 1.28 m, ρ = 1.23 m, c₁ = 32 kN/m,
+/// Example 7.1 (Sukharev (2012) 7.5): M = 1.49 kN s²/m, a = 1.42 m, b = 1.28 m, ρ = 1.23 m, c₁ = 32 kN/m,
 /// c₂ = 43 kN/m (no damping printed; none needed for natural frequencies).
 pub fn example_7_1() -> HalfCar {
     HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 0.0, 0.0).expect("valid book parameters")
@@ -400,7 +401,7 @@ pub fn example_7_1() -> HalfCar {
 /// Book rows: Example 7.1 (M₁, M₂, M₃, ω₁, ω₂, also through the printed (7.33) and through modal analysis)
 /// and the excavator resonance-speed example (ω, v in m/s and km/h).
 pub fn book_rows() -> Vec<BookRow> {
-    let ex = "Sukharev 7.5, Example 7.1 (half car)";
+    let ex = "Sukharev (2012) 7.5, Example 7.1 (half car)";
     let car = example_7_1();
     let (m1, m2, m3) = car.masses();
     let roots = car.frequency_equation_roots();
@@ -462,8 +463,9 @@ pub fn book_rows() -> Vec<BookRow> {
             "misprint: printed (7.33) swaps M1 and M2; the printed omegas come from the correct form (row omega_2)",
         ),
     ];
-    // Excavator example (book 3978–4001): ℓ = 7 m, Q = 28.6 kN, c = 90 kN/m, g = 9.8 m/s².
-    let ex2 = "Sukharev 7.5, excavator resonance-speed example (book lines 3978-4001)";
+    // Excavator example (Sukharev (2012) 7.5, the first of the two examples numbered 7.2; Fig. 7.7):
+    // ℓ = 7 m, Q = 28.6 kN, c = 90 kN/m, g = 9.8 m/s².
+    let ex2 = "Sukharev (2012) 7.5, excavator resonance-speed example (Fig. 7.7)";
     let w = axle_natural_frequency(9.0e4, 2.86e4, 9.8).ok();
     let v = w.and_then(|w| resonance_speed(w, 7.0).ok());
     for (q, unit, printed, computed, why) in [

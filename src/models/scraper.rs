@@ -519,7 +519,7 @@ pub fn table_8_1_comparison(assumptions: &Table81Assumptions) -> Result<Vec<Book
     let (rigid, sprung) = assumptions.models()?;
     let (ri, si) = (rigid.instance()?, sprung.instance()?);
     let road = book_road_8_66(assumptions.road_form)?;
-    let example = "Sukharev 8.7, Table 8.1 (scraper, rigid and sprung cab)";
+    let example = "Sukharev (2012) 8.7, Table 8.1 (scraper, rigid and sprung cab)";
     let assumed = assumptions.describe();
     let mut out = Vec::new();
     for (k, &v) in speeds.iter().enumerate() {
@@ -571,7 +571,7 @@ pub fn table_8_1_comparison(assumptions: &Table81Assumptions) -> Result<Vec<Book
 pub fn book_rows() -> Vec<BookRow> {
     table_8_1_comparison(&Table81Assumptions::default()).unwrap_or_else(|e| {
         vec![BookRow {
-            example: "Sukharev 8.7, Table 8.1 (scraper, rigid and sprung cab)".into(),
+            example: "Sukharev (2012) 8.7, Table 8.1 (scraper, rigid and sprung cab)".into(),
             quantity: "Table 8.1".into(),
             unit: "-".into(),
             printed: None,
