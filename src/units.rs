@@ -272,7 +272,7 @@ pub fn unit_dim(unit: &str) -> Option<Dim> {
         return Some(Dim::DIMENSIONLESS);
     }
     match parse_quantity(&format!("1 {unit}")) {
-        Ok((scale, dim)) if scale == 1.0 => Some(dim),
+        Ok((1.0, dim)) => Some(dim),
         _ => None,
     }
 }

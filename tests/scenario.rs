@@ -117,17 +117,16 @@ fn bad_scenarios_name_file_key_reason() {
     ));
 }
 
-/// An unstable system in a scenario: the analysis refuses it (|H|² would integrate to a finite but
-/// meaningless number: no stationary response exists).
+/// An unstable system in a scenario: refused when the file is loaded, naming the file and the `[model]`
+/// table (|H|² would integrate to a finite but meaningless number: no stationary response exists).
 #[test]
 fn unstable_scenario_is_refused() {
     let text = format!(
         "{}[input]\nspectrum = \"type1\"\n",
         TF.replace("[100.0, 2.0, 1.0]", "[100.0, -2.0, 1.0]")
     );
-    let sc = parse_scenario(&text, Path::new("u.toml"), &spectra()).unwrap();
-    let e = analysis_report(&sc).unwrap_err().to_string();
-    assert!(e.contains("stable"), "{e}");
+    let e = parse_scenario(&text, Path::new("u.toml"), &spectra()).unwrap_err().to_string();
+    assert!(e.contains("stable") && e.contains("u.toml") && e.contains("key `model`"), "{e}");
 }
 
 /// The generic-matrix form of an mdof scenario builds the same model as the element form of the quarter

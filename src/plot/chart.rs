@@ -457,7 +457,7 @@ impl Histogram {
         if lo.abs().max(hi.abs()) > MAX_DRAWABLE {
             return Err(plot_error(
                 "histogram",
-                &format!(
+                format!(
                     "samples reach {:e}, outside the range a picture can draw",
                     lo.abs().max(hi.abs())
                 ),

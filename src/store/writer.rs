@@ -44,7 +44,7 @@ pub struct CreateOptions {
 /// What a `.tmp` in the way is.
 enum Existing {
     /// Resumable: same run.
-    Resume(RunWriter),
+    Resume(Box<RunWriter>),
     /// Another process is writing it.
     Busy(String),
     /// Nothing worth keeping (unreadable, or another run without a completed shard): replace it.
@@ -115,7 +115,8 @@ impl RunWriter {
         for _attempt in 0..3 {
             if tmp.exists() {
                 match Self::examine(&final_path, &tmp, meta) {
-                    Existing::Resume(mut w) => {
+                    Existing::Resume(w) => {
+                        let mut w = *w;
                         w.overwrite = options.overwrite;
                         w.notes.extend(notes);
                         write_owner(&tmp);
@@ -217,7 +218,7 @@ impl RunWriter {
             };
         }
         match Self::reopen(final_path.to_path_buf(), tmp.to_path_buf(), meta, file) {
-            Ok(w) => Existing::Resume(w),
+            Ok(w) => Existing::Resume(Box::new(w)),
             Err(e) => Existing::Replace(format!("cannot be resumed ({e})")),
         }
     }
