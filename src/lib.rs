@@ -12,6 +12,7 @@ pub mod linalg;
 pub mod models;
 pub mod plot;
 pub mod quad;
+pub mod quad_oscillatory;
 pub mod report;
 pub mod response;
 pub mod scenario;
