@@ -65,6 +65,7 @@ pub mod numbers;
 pub mod plot;
 pub mod prelude;
 pub mod quad;
+pub mod quad_oscillatory;
 pub mod report;
 pub mod response;
 pub mod scenario;

@@ -7,11 +7,17 @@
 //! S_y(ω) = H(iω) S_u(ω) H(iω)ᴴ,      D_y = ∫ S_y dω,      λ_k = ∫ |ω|^k S_y dω,      M_y = H(0) M_u
 //! ```
 
+mod delayed;
+mod delayed_quadrature;
 mod density;
 mod excitation;
 mod statistics;
 mod variance;
 
+pub use delayed::{delayed_augmented_system, variance_lyapunov_delayed, DelayedAugmentedSystem, DelayedCovariance};
+pub use delayed_quadrature::{
+    moments_oscillatory, spectral_moment_oscillatory, variance_oscillatory, OscillatoryMoments,
+};
 pub use density::OutputDensity;
 pub use excitation::Excitation;
 pub use statistics::{analyze_output, ResponseStatistics, VarianceMethod, VarianceValue};
