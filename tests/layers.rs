@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 /// Bottom up; modules in one row may use each other.
 const LAYERS: &[&[&str]] = &[
-    &["error", "numbers", "units", "fields", "quad", "linalg", "tolerance"],
+    &["error", "numbers", "units", "fields", "quad", "quad_oscillatory", "linalg", "tolerance"],
     &["spectrum"],
     &["system"],
     &["response"],

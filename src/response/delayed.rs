@@ -5,7 +5,7 @@
 use super::{Excitation, LyapunovMoments};
 use crate::error::{Error, Result};
 use crate::linalg::solve_continuous_lyapunov;
-use crate::simulate::expm;
+use crate::linalg::expm;
 use crate::system::{FrequencyResponse, OutputInfo, StateSpace, TransferFunction};
 use nalgebra::DMatrix;
 
