@@ -5,6 +5,20 @@ use super::weighting::Weighting;
 use crate::error::{Error, Result};
 
 /// What the evaluation is for: the weightings and factors k differ.
+///
+/// # Formula
+/// Selects the table of [`axis_factor`].
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{axis_factor, Axis, Location, Purpose};
+/// let h = axis_factor(Purpose::Health, Location::SeatSurface, Axis::Y).unwrap().k;
+/// let c = axis_factor(Purpose::Comfort, Location::SeatSurface, Axis::Y).unwrap().k;
+/// assert_eq!((h, c), (1.4, 1.0));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Purpose {
     /// Health of a seated person (ISO 2631-1:1997, clause 7; Directive 2002/44/EC).
@@ -14,6 +28,18 @@ pub enum Purpose {
 }
 
 /// Where the vibration enters the body.
+///
+/// # Formula
+/// Selects the row of [`axis_factor`].
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{axis_factor, Axis, Location, Purpose};
+/// assert_eq!(axis_factor(Purpose::Comfort, Location::Feet, Axis::Z).unwrap().k, 0.4);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Location {
     /// Seat surface under a seated person (translational x, y, z and rotational r_x, r_y, r_z).
@@ -28,6 +54,19 @@ pub enum Location {
 
 /// The basicentric axis (ISO 2631-1:1997, Figure 1): x back-to-chest, y right-to-left side, z
 /// foot(buttocks)-to-head; r_x, r_y, r_z the rotations about them.
+///
+/// # Formula
+/// Selects the column of [`axis_factor`]; rotational values are in rad/s² and their k in m/rad.
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{axis_factor, Axis, Location, Purpose, Weighting};
+/// let f = axis_factor(Purpose::Comfort, Location::SeatSurface, Axis::Rx).unwrap();
+/// assert_eq!((f.weighting, f.k), (Weighting::We, 0.63));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Axis {
     /// Fore-and-aft translation.
@@ -45,6 +84,18 @@ pub enum Axis {
 }
 
 /// The weighting and multiplying factor of one (purpose, location, axis).
+///
+/// # Formula
+/// The axis contributes k·a_w (m/s²) to a vector sum, a_w computed with `weighting`.
+///
+/// # Errors
+/// None (returned by [`axis_factor`]).
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{axis_factor, Axis, Location, Purpose};
+/// assert_eq!(axis_factor(Purpose::Health, Location::SeatSurface, Axis::Z).unwrap().clause, "7.2.3");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct AxisFactor {
     /// Frequency weighting to apply.
@@ -126,6 +177,19 @@ pub fn axis_factor(purpose: Purpose, location: Location, axis: Axis) -> Result<A
 
 /// The weighted r.m.s. a_w measured (or computed) on one axis at one location (m/s², rad/s² for
 /// rotations), before the factor k.
+///
+/// # Formula
+/// Input term of [`vector_sum`]: contributes k·a_w.
+///
+/// # Errors
+/// [`vector_sum`] rejects a non-finite or negative a_w.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{vector_sum, Axis, AxisValue, Location, Purpose};
+/// let z = AxisValue { location: Location::SeatSurface, axis: Axis::Z, a_w: 0.3 };
+/// assert_eq!(vector_sum(Purpose::Comfort, &[z]).unwrap().a_v, 0.3);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct AxisValue {
     /// Where.
@@ -137,6 +201,20 @@ pub struct AxisValue {
 }
 
 /// One term of a vector sum.
+///
+/// # Formula
+/// `weighted` = k·a_w.
+///
+/// # Errors
+/// None (part of [`VectorSum`]).
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{vector_sum, Axis, AxisValue, Location, Purpose};
+/// let x = AxisValue { location: Location::SeatSurface, axis: Axis::X, a_w: 0.5 };
+/// let t = vector_sum(Purpose::Health, &[x]).unwrap().terms[0];
+/// assert!((t.weighted - 0.7).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct VectorSumTerm {
     /// Where.
@@ -154,6 +232,20 @@ pub struct VectorSumTerm {
 }
 
 /// A vector sum with its terms and the dominant (largest k·a_w) term.
+///
+/// # Formula
+/// a_v = √(Σᵢ kᵢ² a_wᵢ²); see [`vector_sum`].
+///
+/// # Errors
+/// None (returned by [`vector_sum`]).
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{vector_sum, Axis, AxisValue, Location, Purpose};
+/// let v = |axis, a_w| AxisValue { location: Location::StandingFloor, axis, a_w };
+/// let s = vector_sum(Purpose::Comfort, &[v(Axis::X, 0.3), v(Axis::Z, 0.4)]).unwrap();
+/// assert!((s.a_v - 0.5).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct VectorSum {
     /// Health or comfort.

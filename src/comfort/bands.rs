@@ -11,6 +11,19 @@ const R10_CENTI: [u32; 10] = [100, 125, 160, 200, 250, 315, 400, 500, 630, 800];
 const MAX_THIRD_OCTAVE_INDEX: i64 = 3000;
 
 /// Bandwidth designator: octave (b = 1) or one-third octave (b = 3).
+///
+/// # Formula
+/// IEC 61260-1:2014: mid-band ratio G^(1/b) between adjacent bands, G = 10^(3/10).
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{Band, BandFraction};
+/// let o = Band::new(BandFraction::Octave, 1).unwrap();
+/// assert!((o.centre_hz - 1000.0 * 10f64.powf(0.3)).abs() < 1e-9);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum BandFraction {
     /// Octave bands, b = 1.

@@ -95,6 +95,19 @@ pub fn daily_exposure_a8(a_w: f64, duration_s: f64) -> Result<f64> {
 }
 
 /// One period of a working day: a (k-multiplied) weighted r.m.s. a_w, m/s², lasting `duration_s`.
+///
+/// # Formula
+/// Contributes a_w²·T to the daily energy of [`daily_exposure_a8_periods`].
+///
+/// # Errors
+/// [`daily_exposure_a8_periods`] rejects a negative or non-finite a_w and a non-positive duration.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{daily_exposure_a8_periods, ExposurePeriod};
+/// let p = ExposurePeriod { a_w: 1.0, duration_s: 8.0 * 3600.0 };
+/// assert_eq!(daily_exposure_a8_periods(&[p]).unwrap(), 1.0);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ExposurePeriod {
     /// Weighted r.m.s. acceleration of the period (k-multiplied for health), m/s².

@@ -126,6 +126,18 @@ impl HealthGuidanceZone {
 }
 
 /// Position of a value relative to a zone [lower, upper].
+///
+/// # Formula
+/// Below: value < lower; Within: lower ≤ value ≤ upper; Above: value > upper.
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{ExposureVerdict, ZonePosition};
+/// assert_eq!(ExposureVerdict::assess(0.3, None, None).unwrap().zone_a8.position, ZonePosition::Below);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub enum ZonePosition {
     /// value < lower.
@@ -137,6 +149,19 @@ pub enum ZonePosition {
 }
 
 /// A value compared with an action value and a limit value.
+///
+/// # Formula
+/// exceeds_action = value > action; exceeds_limit = value > limit.
+///
+/// # Errors
+/// None (part of [`ExposureVerdict`]).
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::ExposureVerdict;
+/// let c = ExposureVerdict::assess(0.8, None, None).unwrap().directive_a8;
+/// assert!(c.exceeds_action && !c.exceeds_limit && c.limit == 1.15);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct LimitCheck {
     /// The value.
@@ -164,6 +189,19 @@ impl LimitCheck {
 }
 
 /// A value compared with a zone.
+///
+/// # Formula
+/// See [`ZonePosition`].
+///
+/// # Errors
+/// None (part of [`ExposureVerdict`]).
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{ExposureVerdict, ZonePosition};
+/// let z = ExposureVerdict::assess(0.5, Some(20.0), None).unwrap().zone_vdv.unwrap();
+/// assert_eq!((z.lower, z.upper, z.position), (8.5, 17.0, ZonePosition::Above));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct ZoneCheck {
     /// The value.

@@ -37,8 +37,8 @@ pub const Q_BAND_LIMITING: f64 = FRAC_1_SQRT_2;
 /// **Gain normalisation of H_s.** With the factor (ω₅/ω₆)², H_s → 1 as ω → ∞ and H_s(0) = (ω₅/ω₆)²: the
 /// step is normalised to unity *above* the step (for Wk, (2.37/3.35)² = 0.50 below it). Equivalently
 /// H_s = (s² + ω₅s/Q₅ + ω₅²)/(s² + ω₆s/Q₆ + ω₆²), which is the monic form used for the polynomials. This
-/// matches the tabulated factors of ISO 2631-1 (Wk ≈ 0.48 at 1 Hz, 1.04 at 8 Hz) and the
-/// implementation listing of ISO 8041 reproduced in the HVM200 manual (`B4 = [1/w5² 1/(Q5 w5) 1]·w5²/w6²`).
+/// matches the tabulated factors of ISO 2631-1 (Wk ≈ 0.48 at 1 Hz, 1.04 at 8 Hz) and the MATLAB listing
+/// of the Larson Davis HVM200 Reference Manual (`B4 = [1/w5/w5 1/Q5/w5 1]*w5*w5/w6/w6`).
 ///
 /// Parameters (Hz), ISO 8041 / ISO 2631-1 Table A.1 / ISO 2631-4 Table A.1:
 ///
@@ -85,6 +85,19 @@ pub enum Weighting {
 }
 
 /// Whether a weighting applies to translational or rotational acceleration.
+///
+/// # Formula
+/// Translational weightings take and return m/s²; the rotational weighting We takes and returns rad/s²
+/// (ISO 2631-1:1997, Table 2).
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{Motion, Weighting};
+/// assert_eq!(Weighting::Wd.quantity().motion, Motion::Translational);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub enum Motion {
     /// Translational acceleration, m/s².
@@ -116,6 +129,18 @@ impl Motion {
 }
 
 /// What a weighting is applied to, and where it is defined.
+///
+/// # Formula
+/// None (descriptive record returned by [`Weighting::quantity`]).
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::Weighting;
+/// assert_eq!(Weighting::Wb.quantity().standard, "ISO 2631-4:2001");
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 pub struct WeightingUse {
     /// Translational or rotational acceleration.
@@ -129,6 +154,19 @@ pub struct WeightingUse {
 }
 
 /// The parameters of one weighting (frequencies in Hz; `f64::INFINITY` where the standard prints ∞).
+///
+/// # Formula
+/// ωᵢ = 2πfᵢ enter H_h, H_l, H_t, H_s as in [`Weighting`]; Q₁ = Q₂ = 1/√2.
+///
+/// # Errors
+/// None (returned by [`Weighting::parameters`]).
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::Weighting;
+/// let p = Weighting::Wk.parameters();
+/// assert_eq!((p.f5_hz, p.f6_hz), (2.37, 3.35));
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct WeightingParameters {
     /// High-pass corner f₁, Hz.
@@ -456,10 +494,12 @@ impl Weighting {
     /// weighting is strictly proper with relative degree ≥ 2.
     ///
     /// The spread of the coefficients is intrinsic to the monomial basis (for Wk the constant term of D is
-    /// ≈ 7·10¹² and the leading one 1). Evaluating N(iω)/D(iω) is nevertheless accurate to ≈ 1e-13
-    /// relative, because for a Hurwitz polynomial with real coefficients ≥ 0 and poles of Q ≤ 1,
-    /// Σ|cₖ||ω|ᵏ ≤ 2^(n/2)·|D(iω)|. A companion-form realisation of these coefficients is less accurate:
-    /// use [`Weighting::state_space`] for state-space work.
+    /// ≈ 7·10¹² and the leading one 1). Evaluating N(iω)/D(iω) by Horner's rule is nevertheless accurate:
+    /// with coefficients ≥ 0, Σ|cₖ||ω|ᵏ = P(|ω|) = ∏ Pᵢ(|ω|), and each quadratic factor satisfies
+    /// Pᵢ(|ω|)/|Pᵢ(iω)| ≤ 1 + 2Qᵢ ≤ 3 (equality at ω = ωᵢ), so the evaluation's condition number is at most
+    /// 3^(n/2); measured ≤ 1.5e-15 relative to the product form from f₁/100 to 100 f₂. The companion-form
+    /// realisation that [`TransferFunction`] builds from these coefficients is poorer (measured ≤ 1.5e-15
+    /// except Wf, 4.4e-10 near 110 rad/s): use [`Weighting::state_space`] for state-space work.
     ///
     /// # Errors
     /// None.
@@ -509,6 +549,11 @@ impl Weighting {
     /// A well-conditioned state-space realisation of H(s): the cascade of its second-order sections.
     ///
     /// # Formula
+    /// Sections: ω₁s/(s² + ω₁s/Q₁ + ω₁²), (ω₂²/ω₁)s/(s² + ω₂s/Q₂ + ω₂²) (together H_h·H_l: the s² of the
+    /// high pass is split over two strictly proper sections, so that no section forms its small
+    /// low-frequency output as the difference of a feedthrough and an almost equal state term), then H_t
+    /// and H_s in the monic forms of [`Weighting::polynomials`].
+    ///
     /// Section i, Nᵢ(s)/(s² + ωᵢs/Qᵢ + ωᵢ²) with Nᵢ = n₀ + n₁s + n₂s², is realised with the scaled states
     /// x₁ (the section's low-pass response ωᵢ²/Dᵢ) and x₂ = ẋ₁/ωᵢ:
     ///
@@ -520,7 +565,8 @@ impl Weighting {
     /// A = [[A₁, 0], [b₂c₁, A₂]], b = [b₁; b₂d₁], c = [d₂c₁, c₂], d = d₂d₁) and the gain K scales c and d.
     /// Every entry of A is of the order of a corner frequency ωᵢ, unlike a companion matrix built from the
     /// expanded polynomial. The realisation is strictly proper (d = 0) with c·b = 0 (relative degree ≥ 2)
-    /// and no derivative feedthrough.
+    /// and no derivative feedthrough. Measured against the product form from f₁/100 to 100 f₂: ≤ 1.5e-15
+    /// relative.
     ///
     /// # Errors
     /// Those of [`StateSpace::new`] (none expected).
