@@ -261,7 +261,7 @@ pub struct VectorSum {
 /// The vector sum (root sum of squares of k·a_w) of several axis values.
 ///
 /// # Formula
-/// ISO 2631-1:1997, 6.5, eq. (10) for one point: a_v = (k_x² a_wx² + k_y² a_wy² + k_z² a_wz²)^(1/2); for
+/// ISO 2631-1:1997, 6.5, for one point: a_v = (k_x² a_wx² + k_y² a_wy² + k_z² a_wz²)^(1/2); for
 /// comfort the same root sum of squares over all axes of all locations is the overall vibration total
 /// value (8.2). The factors k and weightings are those of [`axis_factor`]. For health the standard
 /// assesses each axis separately, the dominant term k·a_w (reported here) deciding; the vector sum is an

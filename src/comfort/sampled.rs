@@ -10,11 +10,10 @@ pub const MTVV_INTEGRATION_TIME_S: f64 = 1.0;
 /// 6.2.1: for crest factors ≤ 9 the basic method is normally sufficient).
 pub const CREST_FACTOR_LIMIT: f64 = 9.0;
 
-/// Ratio MTVV/a_w above which the additional methods should be used (ISO 2631-1:1997, 6.3.3, eq. (6)).
+/// Ratio MTVV/a_w above which the additional methods should be used (ISO 2631-1:1997, 6.3.3).
 pub const MTVV_RATIO_LIMIT: f64 = 1.5;
 
-/// Ratio VDV/(a_w T^(1/4)) above which the additional methods should be used (ISO 2631-1:1997, 6.3.3,
-/// eq. (7)).
+/// Ratio VDV/(a_w T^(1/4)) above which the additional methods should be used (ISO 2631-1:1997, 6.3.3).
 pub const VDV_RATIO_LIMIT: f64 = 1.75;
 
 /// Neumaier-compensated sum.
@@ -72,7 +71,7 @@ fn window(dt_s: f64, tau_s: f64) -> Result<usize> {
 /// The running r.m.s. with linear integration over τ, at every instant that has a full window.
 ///
 /// # Formula
-/// ISO 2631-1:1997, 6.3.1, eq. (2): a_w(t₀) = [ (1/τ) ∫_{t₀−τ}^{t₀} a_w²(t) dt ]^(1/2). With samples aₖ
+/// ISO 2631-1:1997, 6.3.1 (linear integration): a_w(t₀) = [ (1/τ) ∫_{t₀−τ}^{t₀} a_w²(t) dt ]^(1/2). With samples aₖ
 /// held over one step dt each (rectangle rule) and n = round(τ/dt) samples per window (integration time
 /// n·dt), the value at sample j ≥ n − 1 is
 ///
@@ -125,8 +124,8 @@ pub fn running_rms(samples: &[f64], dt_s: f64, tau_s: f64) -> Result<Vec<f64>> {
 /// # Formula
 /// ```text
 /// crest factor        CF = max|a_w(t)| / a_w          > 9     (6.2.1)
-/// MTVV ratio          MTVV / a_w                        > 1.5   (6.3.3, eq. 6)
-/// VDV ratio           VDV / (a_w · T^(1/4))             > 1.75  (6.3.3, eq. 7)
+/// MTVV ratio          MTVV / a_w                        > 1.5   (6.3.3)
+/// VDV ratio           VDV / (a_w · T^(1/4))             > 1.75  (6.3.3)
 /// ```
 /// The basic method is sufficient when none of the available criteria is exceeded. For reference: a
 /// sinusoid has CF = √2, MTVV/a_w = 1 and VDV/(a_w T^(1/4)) = √2·(3/8)^(1/4) = 1.11; a stationary
@@ -219,13 +218,13 @@ impl BasicMethodCheck {
 ///
 /// # Formula
 /// The samples aₖ, k = 0 … N−1, are taken to hold over one time step each (rectangle rule), so the record
-/// lasts T = N·dt and (ISO 2631-1:1997, eq. (1), 6.3.1, 6.3.2, 6.2.1, 9.2):
+/// lasts T = N·dt and (ISO 2631-1:1997, 6.1, 6.3.1, 6.3.2, 6.2.1, 9.2):
 ///
 /// ```text
-/// a_w  = [ (1/N) Σ aₖ² ]^(1/2)                    m/s²       (r.m.s., eq. 1)
-/// VDV  = [ Σ aₖ⁴ · dt ]^(1/4)                     m/s^1.75   (6.3.2, eq. 5)
+/// a_w  = [ (1/N) Σ aₖ² ]^(1/2)                    m/s²       (6.1)
+/// VDV  = [ Σ aₖ⁴ · dt ]^(1/4)                     m/s^1.75   (6.3.2)
 /// MSDV = [ Σ aₖ² · dt ]^(1/2) = a_w √T            m/s^1.5    (9.2, meaningful for Wf)
-/// MTVV = max_j a_w(t_j), running r.m.s. over τ    m/s²       (6.3.1, eq. 4; τ = 1 s)
+/// MTVV = max_j a_w(t_j), running r.m.s. over τ    m/s²       (6.3.1; τ = 1 s)
 /// CF   = max|aₖ| / a_w                                        (6.2.1)
 /// ```
 /// For a trigonometric polynomial sampled over whole periods these sums equal the integrals exactly
