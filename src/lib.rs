@@ -56,6 +56,7 @@
 
 #![warn(missing_docs)]
 
+pub mod comfort;
 pub mod error;
 pub mod estimate;
 pub mod fields;
