@@ -8,6 +8,7 @@
 
 pub mod error;
 pub mod estimate;
+pub mod fatigue;
 pub mod linalg;
 pub mod models;
 pub mod plot;
