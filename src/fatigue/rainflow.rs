@@ -210,10 +210,16 @@ impl RainflowCounter {
             let x = rest[j];
             if x > cand.value {
                 dir = 1;
-                cand = TurningPoint { value: x, index: base + offset + j };
+                cand = TurningPoint {
+                    value: x,
+                    index: base + offset + j,
+                };
             } else if x < cand.value {
                 dir = -1;
-                cand = TurningPoint { value: x, index: base + offset + j };
+                cand = TurningPoint {
+                    value: x,
+                    index: base + offset + j,
+                };
             }
             j += 1;
         }
@@ -222,18 +228,30 @@ impl RainflowCounter {
             let x = rest[j];
             if dir > 0 {
                 if x > cand.value {
-                    cand = TurningPoint { value: x, index: base + offset + j };
+                    cand = TurningPoint {
+                        value: x,
+                        index: base + offset + j,
+                    };
                 } else if x < cand.value {
                     self.push_turning_point(cand, &mut sink);
                     dir = -1;
-                    cand = TurningPoint { value: x, index: base + offset + j };
+                    cand = TurningPoint {
+                        value: x,
+                        index: base + offset + j,
+                    };
                 }
             } else if x < cand.value {
-                cand = TurningPoint { value: x, index: base + offset + j };
+                cand = TurningPoint {
+                    value: x,
+                    index: base + offset + j,
+                };
             } else if x > cand.value {
                 self.push_turning_point(cand, &mut sink);
                 dir = 1;
-                cand = TurningPoint { value: x, index: base + offset + j };
+                cand = TurningPoint {
+                    value: x,
+                    index: base + offset + j,
+                };
             }
             j += 1;
         }
@@ -285,7 +303,12 @@ impl RainflowCounter {
             if n < 4 {
                 return;
             }
-            let (a, b, c, d) = (self.stack[n - 4], self.stack[n - 3], self.stack[n - 2], self.stack[n - 1]);
+            let (a, b, c, d) = (
+                self.stack[n - 4],
+                self.stack[n - 3],
+                self.stack[n - 2],
+                self.stack[n - 1],
+            );
             let inner = (c.value - b.value).abs();
             if inner <= (b.value - a.value).abs() && inner <= (d.value - c.value).abs() {
                 sink(Cycle::new(b, c, 1.0));
@@ -386,7 +409,11 @@ impl RangeHistogram {
     /// ```
     pub fn new(max_range: f64, n_bins: usize) -> Result<Self> {
         if !(max_range.is_finite() && max_range > 0.0) {
-            return Err(Error::invalid("max_range", max_range, "the histogram's top range must be finite and > 0"));
+            return Err(Error::invalid(
+                "max_range",
+                max_range,
+                "the histogram's top range must be finite and > 0",
+            ));
         }
         if n_bins == 0 {
             return Err(Error::invalid("n_bins", n_bins, "need at least one bin"));

@@ -63,7 +63,11 @@ impl SnCurve {
             return Err(Error::invalid("k", k, "the S-N inverse slope must be finite and > 0"));
         }
         if !(c.is_finite() && c > 0.0) {
-            return Err(Error::invalid("C", c, "the S-N intercept N*S_a^k = C must be finite and > 0"));
+            return Err(Error::invalid(
+                "C",
+                c,
+                "the S-N intercept N*S_a^k = C must be finite and > 0",
+            ));
         }
         if let Some(se) = endurance_limit {
             if !(se.is_finite() && se >= 0.0) {
@@ -129,7 +133,11 @@ impl SnCurve {
             return Err(Error::invalid("k", k, "the S-N inverse slope must be finite and > 0"));
         }
         if !(c_range.is_finite() && c_range > 0.0) {
-            return Err(Error::invalid("C_range", c_range, "the S-N intercept N*dS^k = C must be finite and > 0"));
+            return Err(Error::invalid(
+                "C_range",
+                c_range,
+                "the S-N intercept N*dS^k = C must be finite and > 0",
+            ));
         }
         if let Some(se) = endurance_limit_range {
             if !(se.is_finite() && se >= 0.0) {
@@ -184,7 +192,11 @@ impl SnCurve {
     /// ```
     pub fn cycles_to_failure(&self, amplitude: f64) -> Result<f64> {
         if !(amplitude.is_finite() && amplitude >= 0.0) {
-            return Err(Error::invalid("amplitude", amplitude, "a cycle amplitude must be finite and >= 0"));
+            return Err(Error::invalid(
+                "amplitude",
+                amplitude,
+                "a cycle amplitude must be finite and >= 0",
+            ));
         }
         if !self.damages(amplitude) || amplitude == 0.0 {
             return Ok(f64::INFINITY);

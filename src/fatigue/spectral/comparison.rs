@@ -128,7 +128,11 @@ pub fn compare_methods(moments: &SpectralMoments, sn: &SnCurve) -> Result<Method
             kind,
             name: m.name(),
             damage_rate,
-            life: if damage_rate > 0.0 { 1.0 / damage_rate } else { f64::INFINITY },
+            life: if damage_rate > 0.0 {
+                1.0 / damage_rate
+            } else {
+                f64::INFINITY
+            },
         });
     }
     Ok(MethodComparison { estimates })

@@ -23,7 +23,11 @@ pub(crate) fn ln_upper_gamma(a: f64, x: f64) -> f64 {
 /// ln of ∫_{s_e}^∞ s^k p(s) ds for the Rayleigh density p(s) = (s/σ²) e^{−s²/2σ²} of scale σ:
 /// (√2 σ)^k Γ(1 + k/2, s_e²/(2σ²)).
 pub(crate) fn ln_rayleigh_moment(sigma: f64, k: f64, s_e: f64) -> f64 {
-    let x = if s_e > 0.0 { s_e * s_e / (2.0 * sigma * sigma) } else { 0.0 };
+    let x = if s_e > 0.0 {
+        s_e * s_e / (2.0 * sigma * sigma)
+    } else {
+        0.0
+    };
     k * (std::f64::consts::SQRT_2 * sigma).ln() + ln_upper_gamma(1.0 + 0.5 * k, x)
 }
 

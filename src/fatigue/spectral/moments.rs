@@ -62,7 +62,11 @@ fn positive(name: &str, v: f64) -> Result<f64> {
         return Err(Error::invalid(name, v, "a spectral moment must be finite"));
     }
     if v < 0.0 {
-        return Err(Error::invalid(name, v, "a spectral moment of a density is never negative"));
+        return Err(Error::invalid(
+            name,
+            v,
+            "a spectral moment of a density is never negative",
+        ));
     }
     if v == 0.0 {
         return Err(Error::invalid(
@@ -192,12 +196,7 @@ impl SpectralMoments {
     /// assert!((m.m4() - 24.0).abs() < 1e-8);
     /// assert!((m.m1_5().unwrap() - 1.329_340_388_179_137).abs() < 1e-9); // Γ(2.5) = 3√π/4
     /// ```
-    pub fn from_one_sided_hz(
-        density: impl Fn(f64) -> f64,
-        f_lo: f64,
-        f_hi: f64,
-        breakpoints: &[f64],
-    ) -> Result<Self> {
+    pub fn from_one_sided_hz(density: impl Fn(f64) -> f64, f_lo: f64, f_hi: f64, breakpoints: &[f64]) -> Result<Self> {
         if !(f_lo >= 0.0 && f_hi > f_lo) || f_lo.is_infinite() || f_hi.is_nan() {
             return Err(Error::invalid(
                 "band",
@@ -231,7 +230,7 @@ impl SpectralMoments {
         };
         let moment = |j: f64| -> Result<f64> {
             let r = if j == 0.0 {
-                integrate(&g, f_lo, f_hi, &opts)
+                integrate(g, f_lo, f_hi, &opts)
             } else {
                 integrate(|f: f64| if f > 0.0 { f.powf(j) * g(f) } else { 0.0 }, f_lo, f_hi, &opts)
             };

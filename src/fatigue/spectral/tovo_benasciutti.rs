@@ -112,8 +112,8 @@ impl SpectralMethod for TovoBenasciutti {
         let nb = narrow_band_rate(moments, sn);
         let k = sn.k();
         let a2 = moments.alpha2();
-        let rc = (moments.nu_peak().ln() - sn.c().ln() + ln_rayleigh_moment(a2 * moments.m0().sqrt(), k, limit(sn)))
-            .exp();
+        let rc =
+            (moments.nu_peak().ln() - sn.c().ln() + ln_rayleigh_moment(a2 * moments.m0().sqrt(), k, limit(sn))).exp();
         Ok(b * nb + (1.0 - b) * rc)
     }
 }

@@ -44,11 +44,16 @@ pub enum ZhaoBakerVariant {
 /// # Examples
 /// ```
 /// use stochvib::fatigue::{SnCurve, SpectralMethod, SpectralMoments, ZhaoBaker, ZhaoBakerVariant};
-/// let m = SpectralMoments::from_one_sided_hz(|_| 1.0, 50.0, 150.0, &[]).unwrap();
+/// // Bimodal: 0.125 unit²/Hz on [20, 60] Hz and 0.1 on [100, 120] Hz.
+/// let g = |f: f64| if (20.0..=60.0).contains(&f) { 0.125 } else if (100.0..=120.0).contains(&f) { 0.1 } else { 0.0 };
+/// let m = SpectralMoments::from_one_sided_hz(g, 0.0, 200.0, &[20.0, 60.0, 100.0, 120.0]).unwrap();
 /// let sn = SnCurve::new(3.0, 1e10, None).unwrap();
 /// let general = ZhaoBaker::default().damage_rate(&m, &sn).unwrap();
 /// let k3 = ZhaoBaker::new(ZhaoBakerVariant::K3).damage_rate(&m, &sn).unwrap();
 /// assert!(general > 0.0 && k3 > 0.0);
+/// // White noise on [50, 150] Hz: α₀.₇₅ = 0.977 gives ρ = 0.944 and the k = 3 cubic has no root.
+/// let band = SpectralMoments::from_one_sided_hz(|_| 1.0, 50.0, 150.0, &[]).unwrap();
+/// assert!(ZhaoBaker::new(ZhaoBakerVariant::K3).damage_rate(&band, &sn).is_err());
 /// ```
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ZhaoBaker {
@@ -116,7 +121,12 @@ impl ZhaoBaker {
                 p.powf(-beta)
             }
         };
-        let w = (1.0 - a2) / (1.0 - (2.0 / PI).sqrt() * g1 * alpha.powf(-1.0 / beta));
+        // At α₂ = 1 the K3 Weibull term is the Rayleigh one (α = 1/2, β = 2) and w is 0/0: take w = 0.
+        let w = if a2 >= 1.0 {
+            0.0
+        } else {
+            (1.0 - a2) / (1.0 - (2.0 / PI).sqrt() * g1 * alpha.powf(-1.0 / beta))
+        };
         Ok(ZhaoBakerCoefficients { alpha, beta, w })
     }
 
@@ -194,8 +204,8 @@ impl SpectralMethod for ZhaoBaker {
         let s0 = moments.m0().sqrt();
         let ze = limit(sn) / s0;
         let pre = moments.nu_peak().ln() - sn.c().ln() + k * s0.ln();
-        let weibull = (pre - (k / c.beta) * c.alpha.ln() + ln_upper_gamma(1.0 + k / c.beta, c.alpha * ze.powf(c.beta)))
-            .exp();
+        let weibull =
+            (pre - (k / c.beta) * c.alpha.ln() + ln_upper_gamma(1.0 + k / c.beta, c.alpha * ze.powf(c.beta))).exp();
         let rayleigh = (pre + k * SQRT_2.ln() + ln_upper_gamma(1.0 + 0.5 * k, 0.5 * ze * ze)).exp();
         Ok(c.w * weibull + (1.0 - c.w) * rayleigh)
     }
