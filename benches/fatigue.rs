@@ -1,6 +1,6 @@
 //! Fatigue benchmarks (`cargo bench --bench fatigue`): streaming rainflow + Miner sum of 10⁸ samples
 //! (a resonant record and white noise), and a Dirlik life from a density (moments by adaptive quadrature
-//! plus the damage), and the Dirlik damage alone from given moments.
+//! plus the damage), from the density tabulated at 50 001 points, and from given moments.
 
 #[path = "common/fatigue_signal.rs"]
 mod fatigue_signal;
@@ -42,6 +42,15 @@ fn dirlik(c: &mut Criterion) {
     g.bench_function("life_from_density", |b| {
         b.iter(|| {
             let m = SpectralMoments::from_one_sided_hz(sdof_density, 0.0, SDOF_F_MAX, &[SDOF_FN]).unwrap();
+            black_box(Dirlik.life(&m, &sn).unwrap())
+        })
+    });
+    let npts = 50_001;
+    let f: Vec<f64> = (0..npts).map(|i| i as f64 * SDOF_F_MAX / (npts - 1) as f64).collect();
+    let gv: Vec<f64> = f.iter().map(|&x| sdof_density(x)).collect();
+    g.bench_function("life_from_table_50001", |b| {
+        b.iter(|| {
+            let m = SpectralMoments::from_tabulated_one_sided_hz(black_box(&f), black_box(&gv), false).unwrap();
             black_box(Dirlik.life(&m, &sn).unwrap())
         })
     });

@@ -11,8 +11,12 @@
 //! 2. **Four-point rule** on the stack of turning points not yet counted (the *residue*): with the last
 //!    four points a, b, c, d, if |c − b| ≤ |b − a| and |c − b| ≤ |d − c| the inner pair (b, c) is one full
 //!    cycle of range |c − b|; b and c are removed and the test is repeated; otherwise the next turning
-//!    point is read. This counts the same full cycles as the three-point algorithm of ASTM E1049-85
-//!    §5.4.4 (the integration tests check it against a plain transcription of §5.4.4 on random records).
+//!    point is read. Together with step 3 this gives the same cycles (range, mean, count) as the
+//!    three-point algorithm of ASTM E1049-85 §5.4.4, which instead peels half cycles off the starting
+//!    point as it goes: the integration tests check it against a plain transcription of §5.4.4 on
+//!    random records, cycle by cycle (including the turning points' indices) for continuous values, and
+//!    as totals per (range, mean) for integer values, where equal consecutive ranges let the two
+//!    algorithms attribute a cycle to different, equal-valued turning points.
 //! 3. **Residue.** At the end each pair of consecutive residue points is one half cycle (count 0.5), as
 //!    in ASTM E1049-85 §5.4.4 step 6.
 //!

@@ -38,7 +38,7 @@ const CONSISTENCY_SLACK: f64 = 1e-9;
 /// ```
 /// use stochvib::fatigue::SpectralMoments;
 /// // Ideal band-limited white noise G = 2 unit²/Hz on [10, 20] Hz: m_j = 2 (20^{j+1} − 10^{j+1})/(j+1).
-/// let m = SpectralMoments::from_one_sided_hz(|_f| 2.0, 10.0, 20.0, &[]).unwrap();
+/// let m = SpectralMoments::from_one_sided_hz_with_fractional(|_f| 2.0, 10.0, 20.0, &[]).unwrap();
 /// assert!((m.m0() - 20.0).abs() < 1e-9);
 /// assert!((m.m2() - 2.0 * (8000.0 - 1000.0) / 3.0).abs() < 1e-6);
 /// assert!((m.m0_75().unwrap() - 2.0 * (20f64.powf(1.75) - 10f64.powf(1.75)) / 1.75).abs() < 1e-8);
@@ -126,7 +126,7 @@ impl SpectralMoments {
         })
     }
 
-    /// Adds the fractional moments m₀.₇₅ and m₁.₅ (one-sided, Hz), needed by
+    /// Adds given fractional moments m₀.₇₅ and m₁.₅ (one-sided, Hz), needed by
     /// [`ZhaoBakerVariant::K3`](crate::fatigue::ZhaoBakerVariant::K3).
     ///
     /// # Formula
@@ -174,13 +174,13 @@ impl SpectralMoments {
         SpectralMoments::new(lambda0, lambda1 / w, lambda2 / (w * w), lambda4 / (w * w * w * w))
     }
 
-    /// Moments m₀, m₀.₇₅, m₁, m₁.₅, m₂, m₄ of a one-sided density in Hz given as a closure `density(f)`
-    /// (unit²/Hz, f in Hz) on the band [`f_lo`, `f_hi`] (`f_hi` may be +∞), by adaptive Gauss–Kronrod
-    /// quadrature ([`crate::quad`], relative tolerance 1e-10) with optional `breakpoints` (Hz: peaks, band
-    /// edges inside the band).
+    /// Moments m₀, m₁, m₂, m₄ of a one-sided density in Hz given as a closure `density(f)` (unit²/Hz,
+    /// f in Hz) on the band [`f_lo`, `f_hi`] (`f_hi` may be +∞), by adaptive Gauss–Kronrod quadrature
+    /// ([`crate::quad`], relative tolerance 1e-10) with optional `breakpoints` (Hz: peaks, band edges
+    /// inside the band). [`SpectralMoments::from_one_sided_hz_with_fractional`] adds m₀.₇₅ and m₁.₅.
     ///
     /// # Formula
-    /// m_j = ∫_{f_lo}^{f_hi} f^j G(f) df, j ∈ {0, 0.75, 1, 1.5, 2, 4}.
+    /// m_j = ∫_{f_lo}^{f_hi} f^j G(f) df, j ∈ {0, 1, 2, 4}.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] naming `band` unless 0 ≤ f_lo < f_hi, or `density` when it returns a
@@ -194,62 +194,112 @@ impl SpectralMoments {
     /// // G(f) = e^{−f} on [0, ∞): m_j = Γ(j + 1).
     /// let m = SpectralMoments::from_one_sided_hz(|f| (-f).exp(), 0.0, f64::INFINITY, &[]).unwrap();
     /// assert!((m.m4() - 24.0).abs() < 1e-8);
-    /// assert!((m.m1_5().unwrap() - 1.329_340_388_179_137).abs() < 1e-9); // Γ(2.5) = 3√π/4
+    /// assert_eq!(m.m0_75(), None);
     /// ```
     pub fn from_one_sided_hz(density: impl Fn(f64) -> f64, f_lo: f64, f_hi: f64, breakpoints: &[f64]) -> Result<Self> {
-        if !(f_lo >= 0.0 && f_hi > f_lo) || f_lo.is_infinite() || f_hi.is_nan() {
+        quadrature_moments(density, f_lo, f_hi, breakpoints, false)
+    }
+
+    /// As [`SpectralMoments::from_one_sided_hz`], with the fractional moments m₀.₇₅ and m₁.₅ too (two more
+    /// quadratures; needed by [`ZhaoBakerVariant::K3`](crate::fatigue::ZhaoBakerVariant::K3)).
+    ///
+    /// # Formula
+    /// m_j = ∫_{f_lo}^{f_hi} f^j G(f) df, j ∈ {0, 0.75, 1, 1.5, 2, 4}.
+    ///
+    /// # Errors
+    /// As [`SpectralMoments::from_one_sided_hz`].
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::fatigue::SpectralMoments;
+    /// let m = SpectralMoments::from_one_sided_hz_with_fractional(|f| (-f).exp(), 0.0, f64::INFINITY, &[]).unwrap();
+    /// assert!((m.m1_5().unwrap() - 1.329_340_388_179_137).abs() < 1e-9); // Γ(2.5) = 3√π/4
+    /// ```
+    pub fn from_one_sided_hz_with_fractional(
+        density: impl Fn(f64) -> f64,
+        f_lo: f64,
+        f_hi: f64,
+        breakpoints: &[f64],
+    ) -> Result<Self> {
+        quadrature_moments(density, f_lo, f_hi, breakpoints, true)
+    }
+
+    /// Moments m₀, m₁, m₂, m₄ (and m₀.₇₅, m₁.₅ when `fractional`) of a **tabulated** one-sided density in
+    /// Hz, e.g. a measured (Welch) estimate: frequencies `f` (Hz, strictly increasing, ≥ 0) and values `g`
+    /// (unit²/Hz, ≥ 0), taken as the piecewise-linear interpolant between the points (zero outside).
+    ///
+    /// # Formula
+    /// m_j = Σ_i ∫_{f_i}^{f_{i+1}} f^j ĝ(f) df with ĝ linear on each interval, each integral by the
+    /// 3-point Gauss–Legendre rule: exact for j = 0, 1, 2, 4 (a polynomial of degree ≤ 5); for j = 0.75,
+    /// 1.5 the rule's error is O(h⁶) per interval (negligible away from f = 0).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `f` (fewer than 2 points, a length different from `g`'s, a
+    /// negative, non-finite or non-increasing frequency, with its index) or `g` (a negative or non-finite
+    /// value, with its index); then as [`SpectralMoments::new`].
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::fatigue::SpectralMoments;
+    /// // A ramp G = f on [0, 10] Hz: m_j = 10^{j+2}/(j + 2), exactly.
+    /// let f: Vec<f64> = (0..=10).map(|i| i as f64).collect();
+    /// let m = SpectralMoments::from_tabulated_one_sided_hz(&f, &f, false).unwrap();
+    /// assert!((m.m4() - 1e6 / 6.0).abs() < 1e-9);
+    /// assert!(SpectralMoments::from_tabulated_one_sided_hz(&[1.0, 1.0], &[1.0, 1.0], false).is_err());
+    /// ```
+    pub fn from_tabulated_one_sided_hz(f: &[f64], g: &[f64], fractional: bool) -> Result<Self> {
+        if f.len() < 2 || f.len() != g.len() {
             return Err(Error::invalid(
-                "band",
-                format!("[{f_lo}, {f_hi}] Hz"),
-                "need 0 <= f_lo < f_hi (f_hi may be infinite)",
+                "f",
+                format!("{} points ({} values)", f.len(), g.len()),
+                "a tabulated density needs at least 2 frequencies and one value per frequency",
             ));
         }
-        let bad: Cell<Option<(f64, f64)>> = Cell::new(None);
-        let g = |f: f64| {
-            let v = density(f);
-            if !(v.is_finite() && v >= 0.0) {
-                if bad.get().is_none() {
-                    bad.set(Some((f, v)));
-                }
-                return 0.0;
-            }
-            v
-        };
-        let mut bps: Vec<f64> = breakpoints
-            .iter()
-            .copied()
-            .filter(|b| b.is_finite() && *b > f_lo && *b < f_hi)
-            .collect();
-        bps.sort_by(f64::total_cmp);
-        bps.dedup();
-        let opts = QuadOptions {
-            rel_tol: REL_TOL,
-            breakpoints: bps,
-            max_subintervals: 4000,
-            ..QuadOptions::default()
-        };
-        let moment = |j: f64| -> Result<f64> {
-            let r = if j == 0.0 {
-                integrate(g, f_lo, f_hi, &opts)
-            } else {
-                integrate(|f: f64| if f > 0.0 { f.powf(j) * g(f) } else { 0.0 }, f_lo, f_hi, &opts)
-            };
-            if let Some((f, v)) = bad.get() {
+        for (i, (&fi, &gi)) in f.iter().zip(g).enumerate() {
+            if !(fi.is_finite() && fi >= 0.0) || (i > 0 && fi <= f[i - 1]) {
                 return Err(Error::invalid(
-                    "density",
-                    v,
-                    format!("the one-sided density at f = {} Hz must be finite and >= 0", num(f)),
+                    "f",
+                    fi,
+                    format!("frequency {i}: frequencies must be finite, >= 0 and strictly increasing (Hz)"),
                 ));
             }
-            r.map(|r| r.value)
-        };
-        let m0 = moment(0.0)?;
-        let m1 = moment(1.0)?;
-        let m2 = moment(2.0)?;
-        let m4 = moment(4.0)?;
-        let m0_75 = moment(0.75)?;
-        let m1_5 = moment(1.5)?;
-        SpectralMoments::new(m0, m1, m2, m4)?.with_fractional(m0_75, m1_5)
+            if !(gi.is_finite() && gi >= 0.0) {
+                return Err(Error::invalid(
+                    "g",
+                    gi,
+                    format!("value {i} (at f = {} Hz): a density must be finite and >= 0", num(fi)),
+                ));
+            }
+        }
+        // 3-point Gauss–Legendre on [a, b]: nodes c ± (h/2)√(3/5) and c, weights (h/2)·(5/9, 8/9, 5/9).
+        let r = (0.6f64).sqrt();
+        let mut acc = [0.0f64; 6];
+        for i in 0..f.len() - 1 {
+            let (a, b, ga, gb) = (f[i], f[i + 1], g[i], g[i + 1]);
+            if ga == 0.0 && gb == 0.0 {
+                continue;
+            }
+            let (c, h2) = (0.5 * (a + b), 0.5 * (b - a));
+            for (x, w) in [(c - h2 * r, 5.0 / 9.0), (c, 8.0 / 9.0), (c + h2 * r, 5.0 / 9.0)] {
+                let gx = (ga + (gb - ga) * ((x - a) / (b - a))) * w * h2;
+                let x2 = x * x;
+                acc[0] += gx;
+                acc[1] += x * gx;
+                acc[2] += x2 * gx;
+                acc[3] += x2 * x2 * gx;
+                if fractional {
+                    let q = x.sqrt().sqrt(); // x^0.25
+                    acc[4] += q * q * q * gx; // x^0.75
+                    acc[5] += x * x.sqrt() * gx; // x^1.5
+                }
+            }
+        }
+        let m = SpectralMoments::new(acc[0], acc[1], acc[2], acc[3])?;
+        if fractional {
+            m.with_fractional(acc[4], acc[5])
+        } else {
+            Ok(m)
+        }
     }
 
     /// Moments of a temporal [`Spectrum`] (the crate's two-sided S(ω), rad/s) over the band
@@ -257,7 +307,7 @@ impl SpectralMoments {
     /// breakpoints.
     ///
     /// # Formula
-    /// m_j = ∫_{f_lo}^{f_hi} f^j 4π S(2πf) df, j ∈ {0, 0.75, 1, 1.5, 2, 4}.
+    /// m_j = ∫_{f_lo}^{f_hi} f^j 4π S(2πf) df, j ∈ {0, 1, 2, 4}.
     ///
     /// # Errors
     /// [`Error::NotApplicable`] for a spatial spectrum (convert it with
@@ -274,37 +324,27 @@ impl SpectralMoments {
     /// assert!((m.m0() - 4.0).abs() < 1e-8);
     /// ```
     pub fn from_spectrum(spectrum: &dyn Spectrum, f_lo: f64, f_hi: f64) -> Result<Self> {
-        if spectrum.domain() != Domain::Temporal {
-            return Err(Error::NotApplicable {
-                method: "spectral fatigue moments".into(),
-                reason: format!(
-                    "{} is a spatial spectrum (rad/m); convert it to time at a speed (AtSpeed) first",
-                    spectrum.describe()
-                ),
-            });
-        }
-        if f_hi.is_infinite() {
-            let (_, hi) = spectrum.support();
-            if hi.is_infinite() {
-                if let Asymptote::Power { exponent, .. } = spectrum.high_frequency() {
-                    if exponent >= -5.0 {
-                        return Err(Error::Divergent {
-                            quantity: "spectral moment m4".into(),
-                            reason: format!(
-                                "S(omega) ~ |omega|^{} at high frequency: m4 = int f^4 G df needs a decay faster than \
-                                 |omega|^-5; give a finite band f_hi",
-                                num(exponent)
-                            ),
-                        });
-                    }
-                }
-            }
-        }
-        let (lo_w, hi_w) = spectrum.support();
-        let lo = f_lo.max(lo_w / (2.0 * PI));
-        let hi = f_hi.min(hi_w / (2.0 * PI));
-        let bps: Vec<f64> = spectrum.breakpoints().iter().map(|w| w.abs() / (2.0 * PI)).collect();
-        SpectralMoments::from_one_sided_hz(|f| 4.0 * PI * spectrum.density(2.0 * PI * f), lo, hi, &bps)
+        spectrum_moments(spectrum, f_lo, f_hi, false)
+    }
+
+    /// As [`SpectralMoments::from_spectrum`], with the fractional moments m₀.₇₅ and m₁.₅ too.
+    ///
+    /// # Formula
+    /// m_j = ∫_{f_lo}^{f_hi} f^j 4π S(2πf) df, j ∈ {0, 0.75, 1, 1.5, 2, 4}.
+    ///
+    /// # Errors
+    /// As [`SpectralMoments::from_spectrum`].
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::fatigue::SpectralMoments;
+    /// use stochvib::spectrum::{Domain, Gaussian};
+    /// let s = Gaussian::new(4.0, 100.0, Domain::Temporal).unwrap();
+    /// let m = SpectralMoments::from_spectrum_with_fractional(&s, 0.0, f64::INFINITY).unwrap();
+    /// assert!(m.alpha_0_75().unwrap() < 1.0);
+    /// ```
+    pub fn from_spectrum_with_fractional(spectrum: &dyn Spectrum, f_lo: f64, f_hi: f64) -> Result<Self> {
+        spectrum_moments(spectrum, f_lo, f_hi, true)
     }
 
     /// m₀ = variance (unit²).
@@ -386,4 +426,103 @@ impl SpectralMoments {
             num(self.alpha2())
         )
     }
+}
+
+/// Moments of a temporal spectrum by quadrature of G(f) = 4π S(2πf) (see `from_spectrum`).
+fn spectrum_moments(spectrum: &dyn Spectrum, f_lo: f64, f_hi: f64, fractional: bool) -> Result<SpectralMoments> {
+    if spectrum.domain() != Domain::Temporal {
+        return Err(Error::NotApplicable {
+            method: "spectral fatigue moments".into(),
+            reason: format!(
+                "{} is a spatial spectrum (rad/m); convert it to time at a speed (AtSpeed) first",
+                spectrum.describe()
+            ),
+        });
+    }
+    if f_hi.is_infinite() {
+        let (_, hi) = spectrum.support();
+        if hi.is_infinite() {
+            if let Asymptote::Power { exponent, .. } = spectrum.high_frequency() {
+                if exponent >= -5.0 {
+                    return Err(Error::Divergent {
+                        quantity: "spectral moment m4".into(),
+                        reason: format!(
+                            "S(omega) ~ |omega|^{} at high frequency: m4 = int f^4 G df needs a decay faster than \
+                             |omega|^-5; give a finite band f_hi",
+                            num(exponent)
+                        ),
+                    });
+                }
+            }
+        }
+    }
+    let (lo_w, hi_w) = spectrum.support();
+    let lo = f_lo.max(lo_w / (2.0 * PI));
+    let hi = f_hi.min(hi_w / (2.0 * PI));
+    let bps: Vec<f64> = spectrum.breakpoints().iter().map(|w| w.abs() / (2.0 * PI)).collect();
+    quadrature_moments(|f| 4.0 * PI * spectrum.density(2.0 * PI * f), lo, hi, &bps, fractional)
+}
+
+/// Moments m₀, m₁, m₂, m₄ (and m₀.₇₅, m₁.₅) of a one-sided Hz density by adaptive quadrature.
+fn quadrature_moments(
+    density: impl Fn(f64) -> f64,
+    f_lo: f64,
+    f_hi: f64,
+    breakpoints: &[f64],
+    fractional: bool,
+) -> Result<SpectralMoments> {
+    if !(f_lo >= 0.0 && f_hi > f_lo) || f_lo.is_infinite() || f_hi.is_nan() {
+        return Err(Error::invalid(
+            "band",
+            format!("[{f_lo}, {f_hi}] Hz"),
+            "need 0 <= f_lo < f_hi (f_hi may be infinite)",
+        ));
+    }
+    let bad: Cell<Option<(f64, f64)>> = Cell::new(None);
+    let g = |f: f64| {
+        let v = density(f);
+        if !(v.is_finite() && v >= 0.0) {
+            if bad.get().is_none() {
+                bad.set(Some((f, v)));
+            }
+            return 0.0;
+        }
+        v
+    };
+    let mut bps: Vec<f64> = breakpoints
+        .iter()
+        .copied()
+        .filter(|b| b.is_finite() && *b > f_lo && *b < f_hi)
+        .collect();
+    bps.sort_by(f64::total_cmp);
+    bps.dedup();
+    let opts = QuadOptions {
+        rel_tol: REL_TOL,
+        breakpoints: bps,
+        max_subintervals: 4000,
+        ..QuadOptions::default()
+    };
+    let check = |r: Result<crate::quad::QuadResult>| -> Result<f64> {
+        if let Some((f, v)) = bad.get() {
+            return Err(Error::invalid(
+                "density",
+                v,
+                format!("the one-sided density at f = {} Hz must be finite and >= 0", num(f)),
+            ));
+        }
+        r.map(|r| r.value)
+    };
+    // Integer powers by multiplication (powf only for the fractional moments).
+    let m0 = check(integrate(g, f_lo, f_hi, &opts))?;
+    let m1 = check(integrate(|f: f64| f * g(f), f_lo, f_hi, &opts))?;
+    let m2 = check(integrate(|f: f64| f * f * g(f), f_lo, f_hi, &opts))?;
+    let m4 = check(integrate(|f: f64| (f * f) * (f * f) * g(f), f_lo, f_hi, &opts))?;
+    let m = SpectralMoments::new(m0, m1, m2, m4)?;
+    if !fractional {
+        return Ok(m);
+    }
+    let frac = |j: f64| integrate(|f: f64| if f > 0.0 { f.powf(j) * g(f) } else { 0.0 }, f_lo, f_hi, &opts);
+    let m0_75 = check(frac(0.75))?;
+    let m1_5 = check(frac(1.5))?;
+    m.with_fractional(m0_75, m1_5)
 }

@@ -46,13 +46,13 @@ pub enum ZhaoBakerVariant {
 /// use stochvib::fatigue::{SnCurve, SpectralMethod, SpectralMoments, ZhaoBaker, ZhaoBakerVariant};
 /// // Bimodal: 0.125 unit²/Hz on [20, 60] Hz and 0.1 on [100, 120] Hz.
 /// let g = |f: f64| if (20.0..=60.0).contains(&f) { 0.125 } else if (100.0..=120.0).contains(&f) { 0.1 } else { 0.0 };
-/// let m = SpectralMoments::from_one_sided_hz(g, 0.0, 200.0, &[20.0, 60.0, 100.0, 120.0]).unwrap();
+/// let m = SpectralMoments::from_one_sided_hz_with_fractional(g, 0.0, 200.0, &[20.0, 60.0, 100.0, 120.0]).unwrap();
 /// let sn = SnCurve::new(3.0, 1e10, None).unwrap();
 /// let general = ZhaoBaker::default().damage_rate(&m, &sn).unwrap();
 /// let k3 = ZhaoBaker::new(ZhaoBakerVariant::K3).damage_rate(&m, &sn).unwrap();
 /// assert!(general > 0.0 && k3 > 0.0);
 /// // White noise on [50, 150] Hz: α₀.₇₅ = 0.977 gives ρ = 0.944 and the k = 3 cubic has no root.
-/// let band = SpectralMoments::from_one_sided_hz(|_| 1.0, 50.0, 150.0, &[]).unwrap();
+/// let band = SpectralMoments::from_one_sided_hz_with_fractional(|_| 1.0, 50.0, 150.0, &[]).unwrap();
 /// assert!(ZhaoBaker::new(ZhaoBakerVariant::K3).damage_rate(&band, &sn).is_err());
 /// ```
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -104,8 +104,8 @@ impl ZhaoBaker {
             ZhaoBakerVariant::K3 => {
                 let a075 = moments.alpha_0_75().ok_or_else(|| Error::NotApplicable {
                     method: "Zhao-Baker (k = 3 variant)".into(),
-                    reason: "needs the fractional moments m0.75 and m1.5 (SpectralMoments::with_fractional or \
-                             from_one_sided_hz)"
+                    reason: "needs the fractional moments m0.75 and m1.5 (SpectralMoments::with_fractional, \
+                             from_one_sided_hz_with_fractional or from_spectrum_with_fractional)"
                         .into(),
                 })?;
                 let rho = if a075 >= 0.5 { -0.4154 + 1.392 * a075 } else { 0.28 };
