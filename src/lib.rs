@@ -59,6 +59,7 @@
 pub mod comfort;
 pub mod error;
 pub mod estimate;
+pub mod fatigue;
 pub mod fields;
 pub mod linalg;
 pub mod models;
