@@ -6,6 +6,7 @@
 //!
 //! See [`spectrum`] for the normalization of spectral densities used everywhere in the crate.
 
+pub mod coherence;
 pub mod error;
 pub mod estimate;
 pub mod linalg;
