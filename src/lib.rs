@@ -15,6 +15,7 @@ pub mod plot;
 pub mod quad;
 pub mod report;
 pub mod response;
+pub mod road;
 pub mod scenario;
 pub mod simulate;
 pub mod spectrum;
