@@ -148,7 +148,7 @@ fn trigamma(mut x: f64) -> f64 {
 /// ```text
 /// Cov(β̂) = (XᵀX)⁻¹ XᵀΣX (XᵀX)⁻¹,   Σ_jk = σ² r_{|j−k|}  (r_d for d ≤ 3, 0 beyond)
 /// ```
-/// with X = [1, −x_j] (w free) or [1] on y_j + w x_j (w fixed). The class is [`iso8608_class`] of Ĝ₀.
+/// with X = \[1, −x_j\] (w free) or \[1\] on y_j + w x_j (w fixed). The class is [`iso8608_class`] of Ĝ₀.
 /// The model ignores the smoothing bias of the window (small where G_d is smooth on the scale of Δn; see
 /// [`Welch::expected`](crate::estimate::Welch::expected) for its exact value).
 ///
@@ -247,7 +247,7 @@ pub fn fit_iso8608(psd: &SpatialPsd, waviness: Waviness, band: Option<(f64, f64)
             let sxy: f64 = x.iter().zip(&y).map(|(xi, yi)| (xi - xbar) * (yi - ybar)).sum();
             let w = -sxy / sxx;
             let a = ybar + w * xbar;
-            // β̂ = Lᵀy with rows of L: intercept a: 1/N + x̄(x_j − x̄)/Sxx ... written via the linear maps
+            // both estimates are linear in y: â = Σ_j la(j) y_j, ŵ = Σ_j lw(j) y_j
             let la = |j: usize| 1.0 / nb as f64 - xbar * (x[j] - xbar) / sxx;
             let lw = |j: usize| -(x[j] - xbar) / sxx;
             let var_a = sigma2 * quad(&la, &la);

@@ -9,7 +9,7 @@
 //! * [`TwoTrackGenerator`] ([`synthesis`]): left/right tracks with an exact cross-spectrum in expectation.
 //! * [`Profile`], [`RawProfile`] ([`profile`]): measured profiles, CSV import/export, explicit resampling;
 //!   [`Detrend`] ([`detrend`]).
-//! * [`spatial_psd`], [`spatial_cross_spectrum`] ([`spatial_psd`](mod@spatial_psd)): Welch estimates of
+//! * [`spatial_psd()`], [`spatial_cross_spectrum`] ([`spatial_psd`](mod@spatial_psd)): Welch estimates of
 //!   G_d, G_LR and γ² with intervals.
 //! * [`fit_iso8608`], [`iso8608_class`] ([`iso_fit`]): G_d(n₀), w, their standard errors, the class.
 //! * [`iri`](fn@iri) ([`iri`](mod@iri)): International Roughness Index (golden car, ASTM E1926).

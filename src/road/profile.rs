@@ -217,6 +217,8 @@ impl RawProfile {
     /// # Errors
     /// See the type's `# Errors`.
     pub fn parse_csv(text: &str, file: &Path, options: &CsvReadOptions) -> Result<Self> {
+        // a UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let mut lines = text
             .lines()
             .enumerate()
