@@ -56,6 +56,7 @@
 
 #![warn(missing_docs)]
 
+pub mod coherence;
 pub mod comfort;
 pub mod error;
 pub mod estimate;
@@ -70,6 +71,7 @@ pub mod quad;
 pub mod quad_oscillatory;
 pub mod report;
 pub mod response;
+pub mod road;
 pub mod scenario;
 pub mod simulate;
 pub mod spectrum;
