@@ -125,8 +125,13 @@ fn unstable_scenario_is_refused() {
         "{}[input]\nspectrum = \"type1\"\n",
         TF.replace("[100.0, 2.0, 1.0]", "[100.0, -2.0, 1.0]")
     );
-    let e = parse_scenario(&text, Path::new("u.toml"), &spectra()).unwrap_err().to_string();
-    assert!(e.contains("stable") && e.contains("u.toml") && e.contains("key `model`"), "{e}");
+    let e = parse_scenario(&text, Path::new("u.toml"), &spectra())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("stable") && e.contains("u.toml") && e.contains("key `model`"),
+        "{e}"
+    );
 }
 
 /// The generic-matrix form of an mdof scenario builds the same model as the element form of the quarter

@@ -225,11 +225,11 @@ impl Coherence for AmmonBormann {
             "{} [1 + (Ω B^a/Ω_p)^w]^-p taken as {}, B = {} m, Ω_p = {}, w = {}, p = {}, a = {}",
             self.label,
             self.kind,
-            crate::error::num(self.track_width),
-            crate::error::num(self.omega_p),
-            crate::error::num(self.w),
-            crate::error::num(self.p),
-            crate::error::num(self.a)
+            crate::numbers::num(self.track_width),
+            crate::numbers::num(self.omega_p),
+            crate::numbers::num(self.w),
+            crate::numbers::num(self.p),
+            crate::numbers::num(self.a)
         )
     }
 

@@ -45,7 +45,7 @@ impl ConstantCoherence {
 
 impl Coherence for ConstantCoherence {
     fn describe(&self) -> String {
-        format!("constant coherence amplitude ρ = {}", crate::error::num(self.rho))
+        format!("constant coherence amplitude ρ = {}", crate::numbers::num(self.rho))
     }
     fn coherence_amplitude(&self, n: f64) -> f64 {
         if n.is_finite() {

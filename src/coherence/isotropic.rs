@@ -103,8 +103,8 @@ impl Coherence for IsotropicCoherence {
     fn describe(&self) -> String {
         format!(
             "isotropic surface coherence (Dodds & Robson 1973), track width B = {} m, waviness w = {}",
-            crate::error::num(self.track_width),
-            crate::error::num(self.waviness)
+            crate::numbers::num(self.track_width),
+            crate::numbers::num(self.waviness)
         )
     }
 

@@ -129,8 +129,8 @@ impl Coherence for TabulatedCoherence {
             "tabulated {} at {} frequencies {}..{} cycles/m (linear in n, ends held)",
             self.kind,
             self.n.len(),
-            crate::error::num(self.n[0]),
-            crate::error::num(self.n[self.n.len() - 1])
+            crate::numbers::num(self.n[0]),
+            crate::numbers::num(self.n[self.n.len() - 1])
         )
     }
 

@@ -1,7 +1,8 @@
 //! S–N (Wöhler) curve in stress amplitude, N·S_a^k = C, with an optional endurance limit, and the
 //! Palmgren–Miner damage sum.
 
-use crate::error::{num, Error, Result};
+use crate::error::{Error, Result};
+use crate::numbers::num;
 
 /// A Basquin S–N curve in stress **amplitude** with an optional endurance limit.
 ///

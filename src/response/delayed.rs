@@ -4,8 +4,8 @@
 
 use super::{Excitation, LyapunovMoments};
 use crate::error::{Error, Result};
-use crate::linalg::solve_continuous_lyapunov;
 use crate::linalg::expm;
+use crate::linalg::solve_continuous_lyapunov;
 use crate::system::{FrequencyResponse, OutputInfo, StateSpace, TransferFunction};
 use nalgebra::DMatrix;
 

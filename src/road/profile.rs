@@ -1,7 +1,8 @@
 //! Measured road profiles: uniformly sampled tracks, their CSV import and export, explicit resampling.
 
 use super::Detrend;
-use crate::error::{num, Error, Result};
+use crate::error::{Error, Result};
+use crate::numbers::num;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 

@@ -1,6 +1,7 @@
 //! Spectral moments of the one-sided density in Hz, the input of every spectral fatigue method.
 
-use crate::error::{num, Error, Result};
+use crate::error::{Error, Result};
+use crate::numbers::num;
 use crate::quad::{integrate, QuadOptions};
 use crate::spectrum::{Asymptote, Domain, Spectrum};
 use std::cell::Cell;
