@@ -17,13 +17,16 @@
 #   STOCHVIB_SLURM_SLURMD_PORT    slurmd port (default 6818)
 #   STOCHVIB_SLURM_START_TIMEOUT  seconds to wait for each start step and for the idle node (default 60)
 #   STOCHVIB_SLURM_LOCK_DIR       where the port locks live (default /tmp/stochvib-slurm-locks)
+#   STOCHVIB_SLURM_LOCK_WAIT      seconds `start` waits for ports held by another running cluster (default 0:
+#                                 fail at once)
 #
 # Exit codes: 0 success; 1 failure (message on stderr, for start with the tail of the logs); 2 usage error;
 # 3 `status` of a stopped cluster.
 #
 # Ports: a cluster holds one lock per port (a symlink LOCK_DIR/port-N -> DIR). A second cluster asking for a port
-# held by a running cluster fails at once with a message naming the holder; a lock whose holder is no longer
-# running is taken over. A port in use by anything else is detected by connecting to it before starting.
+# held by a running cluster fails with a message naming the holder (after STOCHVIB_SLURM_LOCK_WAIT s); a lock
+# whose holder is no longer running is taken over. A port in use by anything else is detected by connecting to
+# it before starting.
 #
 # Processes: every daemon is started with STOCHVIB_SLURM_CLUSTER=DIR in its environment. `stop` signals a PID only
 # when /proc/PID/comm is the expected daemon name AND that marker is in /proc/PID/environ, so it never touches
@@ -43,6 +46,7 @@ CTLD_PORT="${STOCHVIB_SLURM_CTLD_PORT:-6817}"
 SLURMD_PORT="${STOCHVIB_SLURM_SLURMD_PORT:-6818}"
 START_TIMEOUT="${STOCHVIB_SLURM_START_TIMEOUT:-60}"
 LOCK_DIR="${STOCHVIB_SLURM_LOCK_DIR:-/tmp/stochvib-slurm-locks}"
+LOCK_WAIT="${STOCHVIB_SLURM_LOCK_WAIT:-0}"
 
 # ---------------------------------------------------------------------------------------------------------------
 # Small helpers
@@ -102,7 +106,7 @@ is_ours() {
     is_our_step "$pid"
     return
   fi
-  actual="$(cat "/proc/$pid/comm" 2>/dev/null)" || return 1
+  { read -r actual <"/proc/$pid/comm"; } 2>/dev/null || return 1
   [ "$actual" = "$comm" ] || return 1
   # A process that has exited but is not yet reaped (zombie) has no readable environment: not alive.
   local environ
@@ -114,8 +118,9 @@ is_ours() {
 # environment (no marker), detached from itself (parent 1), but in slurmd's working directory (DIR/log) and
 # holding slurmd's log file open: either path under DIR identifies the cluster.
 is_our_step() {
-  local pid="$1" fd
-  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "slurmstepd" ] || return 1
+  local pid="$1" fd comm
+  { read -r comm <"/proc/$pid/comm"; } 2>/dev/null || return 1
+  [ "$comm" = "slurmstepd" ] || return 1
   case "$(readlink "/proc/$pid/cwd" 2>/dev/null)" in "$DIR"/*) return 0 ;; esac
   for fd in "/proc/$pid/fd/"*; do
     case "$(readlink "$fd" 2>/dev/null)" in "$DIR"/*) return 0 ;; esac
@@ -130,6 +135,64 @@ step_pids() {
     is_our_step "${p#/proc/}" && echo "${p#/proc/}"
   done
   return 0
+}
+
+# Prints "PID STARTTIME" for every descendant of the processes given (the job processes under a slurmstepd).
+# One pass over /proc/*/stat, read by bash itself; STARTTIME (field 22, clock ticks after boot) tells a process
+# from a later one that reuses its PID.
+descendants() {
+  local p line pid ppid
+  local -a f queue
+  local -A children=() start=()
+  for p in /proc/[0-9]*; do
+    { read -r line <"$p/stat"; } 2>/dev/null || continue
+    pid="${line%% *}"
+    read -ra f <<<"${line##*) }" # fields 3.. (state, ppid, ...), after the command name in parentheses
+    ppid="${f[1]}"
+    start["$pid"]="${f[19]}"
+    children["$ppid"]+=" $pid"
+  done
+  queue=("$@")
+  while [ "${#queue[@]}" -gt 0 ]; do
+    p="${queue[0]}"
+    queue=("${queue[@]:1}")
+    for pid in ${children[$p]:-}; do
+      echo "$pid ${start[$pid]}"
+      queue+=("$pid")
+    done
+  done
+}
+
+# True when process $1 still exists, is not a zombie, and started at tick $2.
+same_process() {
+  local line
+  local -a f
+  { read -r line <"/proc/$1/stat"; } 2>/dev/null || return 1
+  read -ra f <<<"${line##*) }"
+  [ "${f[0]}" != "Z" ] && [ "${f[19]}" = "$2" ]
+}
+
+# Ends the job processes listed by descendants (lines "PID STARTTIME" on stdin): SIGTERM, up to 2 s (as
+# KillWait), then SIGKILL.
+kill_listed() {
+  local pid st t0 alive p
+  local -a procs=()
+  while read -r pid st; do procs+=("$pid:$st"); done
+  [ "${#procs[@]}" -gt 0 ] || return 0
+  log "ending ${#procs[@]} job process(es) left by this cluster's job steps"
+  for p in "${procs[@]}"; do
+    if same_process "${p%:*}" "${p#*:}"; then kill -TERM "${p%:*}" 2>/dev/null || true; fi
+  done
+  t0="$(now)"
+  while within "$t0" 2; do
+    alive=0
+    for p in "${procs[@]}"; do same_process "${p%:*}" "${p#*:}" && alive=1; done
+    [ "$alive" -eq 1 ] || return 0
+    sleep 0.05
+  done
+  for p in "${procs[@]}"; do
+    if same_process "${p%:*}" "${p#*:}"; then kill -KILL "${p%:*}" 2>/dev/null || true; fi
+  done
 }
 
 # SIGTERM the given PIDs (each re-checked against comm $1), wait up to $2 s for them to exit, then SIGKILL.
@@ -218,28 +281,44 @@ do_install() {
 # ---------------------------------------------------------------------------------------------------------------
 # Port locks
 
-# Takes the lock of port $1 for this cluster, or fails naming the cluster that holds it.
-lock_port() {
-  local port="$1" link holder attempt
-  link="$LOCK_DIR/port-$port"
+# Takes the locks of both ports for this cluster, or fails naming the cluster that holds one. The check and
+# the take run under a flock on LOCK_DIR/mutex, so that two starts never both take a stale lock; the mutex is
+# released before any daemon starts (a daemon must not inherit it).
+lock_ports() {
+  local mutex
   mkdir -p "$LOCK_DIR"
   chmod 1777 "$LOCK_DIR" 2>/dev/null || true # shared by every user, like /tmp
-  for attempt in 1 2; do
-    # ln -s is atomic: exactly one of two racing clusters creates the link (-n: an existing link to a
-    # directory is not followed, so it makes ln fail instead of creating a link inside that directory).
+  touch "$LOCK_DIR/mutex"
+  chmod 0666 "$LOCK_DIR/mutex" 2>/dev/null || true
+  exec {mutex}<"$LOCK_DIR/mutex"
+  flock "$mutex"
+  lock_port "$CTLD_PORT"
+  lock_port "$SLURMD_PORT"
+  exec {mutex}<&-
+}
+
+# Takes the lock of port $1 (a symlink LOCK_DIR/port-N -> DIR), waiting up to LOCK_WAIT s while a running
+# cluster holds it; a lock whose cluster is not running is stale and taken over.
+lock_port() {
+  local port="$1" link holder t0
+  link="$LOCK_DIR/port-$port"
+  t0="$(now)"
+  while :; do
+    # -n: an existing link to a directory is not followed (ln would create a link inside that directory).
     ln -sn "$DIR" "$link" 2>/dev/null && return 0
     holder="$(readlink "$link" 2>/dev/null)" || continue # removed meanwhile: try again
     [ "$holder" != "$DIR" ] || return 0                   # ours already (idempotent start)
     if (set_paths "$holder" && cluster_running_any); then
+      if within "$t0" "$LOCK_WAIT"; then
+        sleep 0.5
+        continue
+      fi
       unlock_ports # the other port, if this start took it already
-      die "port $port is held by the running cluster in $holder; stop it (scripts/slurm-cluster.sh stop $holder) or choose other ports (STOCHVIB_SLURM_CTLD_PORT, STOCHVIB_SLURM_SLURMD_PORT)"
+      die "port $port is held by the running cluster in $holder; stop it (scripts/slurm-cluster.sh stop $holder), choose other ports (STOCHVIB_SLURM_CTLD_PORT, STOCHVIB_SLURM_SLURMD_PORT) or wait for it (STOCHVIB_SLURM_LOCK_WAIT)"
     fi
     log "taking over the stale lock of port $port (its cluster in $holder is not running)"
     rm -f "$link"
-    [ "$attempt" -eq 1 ] || break
   done
-  unlock_ports
-  die "could not take the lock $link"
 }
 
 unlock_ports() {
@@ -369,8 +448,7 @@ do_start() {
     log "partly running in $DIR: stopping the rest before a clean start"
     do_stop
   fi
-  lock_port "$CTLD_PORT"
-  lock_port "$SLURMD_PORT"
+  lock_ports
   local p
   for p in "$CTLD_PORT" "$SLURMD_PORT"; do
     if port_in_use "$p"; then
@@ -388,11 +466,13 @@ do_start() {
   wait_for "munged to answer on $MUNGE_SOCKET" munge_works
   wait_for "munged's pid file" pid_alive munged "$MUNGE_PID"
 
-  # 2. slurmctld (-c: forget the job and node state of a previous run), 3. slurmd; both daemonise and write
-  # their pid files.
+  # 2. slurmctld (-c: forget the job and node state of a previous run). It daemonises and writes its pid file.
   env "$MARKER_VAR=$DIR" slurmctld -c -f "$CONF" >>"$LOG_DIR/slurmctld.log" 2>&1 || start_failed "slurmctld did not start"
-  env "$MARKER_VAR=$DIR" slurmd -f "$CONF" >>"$LOG_DIR/slurmd.log" 2>&1 || start_failed "slurmd did not start"
   wait_for "slurmctld's pid file" pid_alive slurmctld "$CTLD_PID"
+  # 3. slurmd, once the controller answers: a slurmd started earlier fails its first registration and
+  # retries a second later (start 1.3 s instead of 0.2 s).
+  wait_for "slurmctld to answer (scontrol ping)" sl scontrol ping
+  env "$MARKER_VAR=$DIR" slurmd -f "$CONF" >>"$LOG_DIR/slurmd.log" 2>&1 || start_failed "slurmd did not start"
   wait_for "slurmd's pid file" pid_alive slurmd "$SLURMD_PID"
 
   # 4. The node registers and becomes idle.
@@ -436,9 +516,16 @@ do_stop() {
   #    authenticate through it while they shut down). Each is waited for before the next is signalled.
   terminate slurmd 10 ${SLURMD:+"$SLURMD"}
   terminate slurmctld 20 ${SLURMCTLD:+"$SLURMCTLD"}
+  # A job step survives its slurmd (by design) and is left running when the jobs could not be cancelled
+  # (controller or munged already dead): end its job processes, then the step itself.
   steps="$(step_pids | tr '\n' ' ')"
-  # shellcheck disable=SC2086 # one argument per pid
-  [ -z "${steps// /}" ] || terminate slurmstepd 5 $steps
+  if [ -n "${steps// /}" ]; then
+    # shellcheck disable=SC2086 # one argument per pid
+    descendants $steps | kill_listed
+    # A step whose controller is gone does not exit on SIGTERM (it keeps trying to report): 2 s, then SIGKILL.
+    # shellcheck disable=SC2086
+    terminate slurmstepd 2 $steps
+  fi
   terminate munged 10 ${MUNGED:+"$MUNGED"}
   rm -f "$MUNGE_PID" "$CTLD_PID" "$SLURMD_PID"
   unlock_ports_from_conf

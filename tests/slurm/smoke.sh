@@ -39,30 +39,21 @@ fail() {
   exit 1
 }
 
-# Every live process that belongs to the cluster in DIR: started with its marker, running in it, naming it on
-# its command line, or holding a file in it open (slurmstepd). Zombies (exited, not yet reaped by PID 1)
-# do not count.
+# Every live process that belongs to the cluster in DIR: started with its marker, naming DIR on its command line,
+# running in DIR, or holding a file in DIR open (slurmstepd), as "PID COMM" lines. Zombies (exited, not yet
+# reaped by PID 1) do not count. One grep and one find over /proc, not a fork per process.
 leftovers() {
-  local p pid state fd environ cmdline
-  for p in /proc/[0-9]*; do
-    pid="${p#/proc/}"
+  local pid state comm
+  {
+    grep -lzsxF "STOCHVIB_SLURM_CLUSTER=$DIR" /proc/[0-9]*/environ || true
+    grep -lzsF "$DIR/" /proc/[0-9]*/cmdline || true
+    find /proc/[0-9]*/cwd /proc/[0-9]*/fd -maxdepth 1 \( -lname "$DIR" -o -lname "$DIR/*" \) 2>/dev/null || true
+  } | sed -n 's|^/proc/\([0-9]*\)/.*|\1|p' | sort -un | while read -r pid; do
     [ "$pid" != "$$" ] || continue
-    state="$(awk '{ print $3 }' "$p/stat" 2>/dev/null)" || continue
+    state="$(sed -n 's/^State:[[:space:]]*\([A-Z]\).*/\1/p' "/proc/$pid/status" 2>/dev/null)" || continue
     if [ -z "$state" ] || [ "$state" = "Z" ]; then continue; fi
-    environ="$({ tr '\0' '\n' <"$p/environ"; } 2>/dev/null || true)"
-    cmdline="$({ tr '\0' ' ' <"$p/cmdline"; } 2>/dev/null || true)"
-    if [[ $'\n'"$environ"$'\n' == *$'\n'"STOCHVIB_SLURM_CLUSTER=$DIR"$'\n'* ]] ||
-      [[ "$cmdline" == *"$DIR/"* ]] ||
-      [[ "$(readlink "$p/cwd" 2>/dev/null)" == "$DIR"* ]]; then
-      echo "$pid $(cat "$p/comm" 2>/dev/null)"
-      continue
-    fi
-    for fd in "$p"/fd/*; do
-      if [[ "$(readlink "$fd" 2>/dev/null)" == "$DIR"/* ]]; then
-        echo "$pid $(cat "$p/comm" 2>/dev/null)"
-        break
-      fi
-    done
+    { read -r comm <"/proc/$pid/comm"; } 2>/dev/null || continue
+    echo "$pid $comm"
   done
 }
 
