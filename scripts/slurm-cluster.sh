@@ -459,20 +459,23 @@ do_start() {
   prepare_files
   rm -f "$MUNGE_PID" "$CTLD_PID" "$SLURMD_PID"
 
+  # The daemons get no terminal and none of the caller's pipes (stdin from /dev/null, output to their logs), so
+  # a caller that reads this script's output through a pipe sees it end.
   # 1. munged, with every file it uses under DIR; --force lets it replace a socket left by a killed munged.
   env "$MARKER_VAR=$DIR" munged --force --socket="$MUNGE_SOCKET" --key-file="$MUNGE_KEY" \
     --pid-file="$MUNGE_PID" --log-file="$MUNGE_DIR/munged.log" --seed-file="$MUNGE_DIR/munged.seed" \
-    >>"$MUNGE_DIR/munged.log" 2>&1 || start_failed "munged did not start"
+    </dev/null >>"$MUNGE_DIR/munged.log" 2>&1 || start_failed "munged did not start"
   wait_for "munged to answer on $MUNGE_SOCKET" munge_works
   wait_for "munged's pid file" pid_alive munged "$MUNGE_PID"
 
   # 2. slurmctld (-c: forget the job and node state of a previous run). It daemonises and writes its pid file.
-  env "$MARKER_VAR=$DIR" slurmctld -c -f "$CONF" >>"$LOG_DIR/slurmctld.log" 2>&1 || start_failed "slurmctld did not start"
+  env "$MARKER_VAR=$DIR" slurmctld -c -f "$CONF" </dev/null >>"$LOG_DIR/slurmctld.log" 2>&1 ||
+    start_failed "slurmctld did not start"
   wait_for "slurmctld's pid file" pid_alive slurmctld "$CTLD_PID"
   # 3. slurmd, once the controller answers: a slurmd started earlier fails its first registration and
   # retries a second later (start 1.3 s instead of 0.2 s).
   wait_for "slurmctld to answer (scontrol ping)" sl scontrol ping
-  env "$MARKER_VAR=$DIR" slurmd -f "$CONF" >>"$LOG_DIR/slurmd.log" 2>&1 || start_failed "slurmd did not start"
+  env "$MARKER_VAR=$DIR" slurmd -f "$CONF" </dev/null >>"$LOG_DIR/slurmd.log" 2>&1 || start_failed "slurmd did not start"
   wait_for "slurmd's pid file" pid_alive slurmd "$SLURMD_PID"
 
   # 4. The node registers and becomes idle.

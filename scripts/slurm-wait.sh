@@ -6,7 +6,9 @@
 # JOBID is what `sbatch --parsable` printed (an array job id such as 12, a single task 12_3, or "12;cluster").
 # TIMEOUT_S (default 3600) bounds the wait. The job is polled with `squeue -h -j JOBID -t <active states>` every
 # SLURM_WAIT_POLL_S seconds (default 0.25): `sbatch --wait` polls at 2, 10, 42, 74 ... s and adds seconds to
-# tens of seconds to every wait. Client commands find the cluster through SLURM_CONF, as usual.
+# tens of seconds to every wait. Client commands find the cluster through SLURM_CONF, as usual. An squeue error
+# other than "Invalid job id" (controller busy, restarting) is retried for SLURM_WAIT_UNREACHABLE_S seconds
+# (default 30) in a row.
 #
 # Output on stdout, one line per array task, sorted by index (a job that is not an array has index "-"):
 #   TASK <index> <state> <exit code>     e.g. "TASK 2 FAILED 1:0"; state as SLURM prints it (COMPLETED, FAILED,
@@ -22,7 +24,8 @@
 #
 # Exit codes: 0 every task COMPLETED; 1 at least one task did not (FAILED lines name them); 2 usage error;
 # 3 timeout (the job is left running; TASK lines show the states at that moment, FAILED lines the tasks that
-# already ended badly); 4 the controller does not know JOBID (never existed, or its records already expired).
+# already ended badly); 4 the controller does not know JOBID (never existed, or its records already expired);
+# 5 the controller stopped answering (no TASK lines).
 set -euo pipefail
 
 readonly PROG="slurm-wait"
@@ -31,6 +34,7 @@ readonly PROG="slurm-wait"
 # stage_out.
 readonly ACTIVE_STATES="PD,R,CG,CF,S,ST,RQ,RF,RH,RS,RD,SI,SO"
 POLL_S="${SLURM_WAIT_POLL_S:-0.25}"
+UNREACHABLE_S="${SLURM_WAIT_UNREACHABLE_S:-30}"
 
 usage() {
   sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//' >&2
@@ -70,13 +74,23 @@ record_expected() {
 }
 
 # True while the job has a task that is not finished. An unknown job counts as finished (its records expired);
-# any other squeue error (controller busy or restarting) counts as unfinished, so the poll goes on.
+# any other squeue error (controller busy or restarting) counts as unfinished, so the poll goes on, unless the
+# controller has not answered for UNREACHABLE_S seconds in a row (then exit 5).
+unreachable_since=""
 job_active() {
   local out
   if out="$(squeue -h -j "$JOB" -t "$ACTIVE_STATES" -o '%i' 2>&1)"; then
+    unreachable_since=""
     [ -n "$out" ]
+  elif [[ "$out" == *"Invalid job id"* ]]; then
+    return 1
   else
-    [[ "$out" != *"Invalid job id"* ]]
+    [ -n "$unreachable_since" ] || unreachable_since="$(now)"
+    if ! within "$unreachable_since" "$UNREACHABLE_S"; then
+      log "the controller has not answered for ${UNREACHABLE_S} s: $out"
+      exit 5
+    fi
+    return 0
   fi
 }
 

@@ -33,7 +33,11 @@ cleanup() {
   local rc=$?
   if [ -n "$DIR" ]; then
     "$CLUSTER" stop "$DIR/cluster" >/dev/null 2>&1 || echo "example-array: stopping the cluster failed" >&2
-    if [ "$KEEP" -eq 0 ] && [ "$rc" -eq 0 ]; then rm -rf "$DIR"; fi
+    if [ "$KEEP" -eq 0 ] && [ "$rc" -eq 0 ]; then
+      rm -rf "$DIR"
+    elif [ "$KEEP" -eq 0 ]; then
+      echo "example-array: interrupted (exit $rc); cluster stopped, directory kept: $DIR" >&2
+    fi
   fi
   exit "$rc"
 }

@@ -61,7 +61,11 @@ cleanup() {
   local rc=$?
   if [ -n "$DIR" ]; then
     "$CLUSTER" stop "$DIR" >/dev/null 2>&1 || echo "smoke: stopping the cluster in $DIR failed" >&2
-    if [ "$FAILED_RUN" -eq 0 ] && [ "$rc" -eq 0 ]; then rm -rf "$DIR"; fi
+    if [ "$FAILED_RUN" -eq 0 ] && [ "$rc" -eq 0 ]; then
+      rm -rf "$DIR"
+    elif [ "$FAILED_RUN" -eq 0 ]; then
+      echo "smoke: interrupted (exit $rc); cluster stopped, directory kept: $DIR" >&2
+    fi
   fi
   exit "$rc"
 }
