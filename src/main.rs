@@ -67,6 +67,37 @@ impl Step {
     }
 }
 
+/// Effort of the quadratures (overrides `[analysis.quadrature]` of the scenario).
+#[derive(clap::Args)]
+struct Effort {
+    /// Relative tolerance of the quadratures (default 1e-10).
+    #[arg(long)]
+    rel_tol: Option<f64>,
+    /// Subintervals an adaptive quadrature may use (default 2000).
+    #[arg(long)]
+    max_subintervals: Option<usize>,
+    /// Half-periods of an oscillatory tail resolved before extrapolation gives up (default 10000).
+    #[arg(long)]
+    max_half_periods: Option<usize>,
+}
+
+impl Effort {
+    /// Applies the given flags to the scenario's quadrature options.
+    fn apply(&self, sc: &mut Scenario) -> stochvib::Result<()> {
+        let e = &mut sc.analysis.effort;
+        if let Some(v) = self.rel_tol {
+            e.rel_tol = v;
+        }
+        if let Some(v) = self.max_subintervals {
+            e.max_subintervals = v;
+        }
+        if let Some(v) = self.max_half_periods {
+            e.max_half_periods = v;
+        }
+        e.validate()
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// List the spectrum catalogue with variance and sigma of each entry.
@@ -108,6 +139,8 @@ enum Command {
         seed: u64,
         #[command(flatten)]
         step: Step,
+        #[command(flatten)]
+        effort: Effort,
     },
     /// Write pictures of a scenario (`.toml`: input density, |H(iω)|² and output densities with the
     /// cumulative variance) or of a Monte Carlo run file (`.h5`), as SVG and PNG.
@@ -256,9 +289,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             monte_carlo,
             seed,
             step,
+            effort,
         } => {
             let catalogue = spectra.catalogue();
-            let sc = match load_document(&scenario, catalogue.dir())? {
+            let mut sc = match load_document(&scenario, catalogue.dir())? {
                 Document::Stochastic(sc) => sc,
                 Document::Deterministic(d) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
@@ -269,6 +303,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     return print(&report::reference_report(&t), json);
                 }
             };
+            effort.apply(&mut sc)?;
             let mut r = report::analysis_report(&sc)?;
             if let Some(n) = monte_carlo {
                 let (dt, duration) = step.resolve(&sc)?;

@@ -76,7 +76,9 @@ fn exponential_load_through_sdof_closed_form() {
         / (2.0 * zeta * w0.powi(3) * (w0 * w0 + alpha * alpha + 2.0 * alpha * zeta * w0));
     let st = analyze_output(&sys, &exc, 0).unwrap();
     for mv in &st.methods {
-        let v = mv.value.unwrap_or_else(|| panic!("{:?}: {:?}", mv.method, mv.note));
+        let v = mv
+            .value()
+            .unwrap_or_else(|| panic!("{:?}: {:?}", mv.method, mv.outcome));
         assert!(
             rel(v, expected) < FACTORISATION.max(QUADRATURE),
             "{:?}: {v} vs {expected}",
@@ -142,9 +144,9 @@ fn acceleration_divergence_detected() {
     let st = analyze_output(&sys, &exc, 1).unwrap();
     assert!(st.variance.is_none() && st.sigma.is_none());
     assert!(
-        st.variance_note.as_ref().unwrap().contains("band"),
+        st.variance_outcome.describe().contains("band"),
         "{:?}",
-        st.variance_note
+        st.variance_outcome
     );
     assert!(matches!(
         variance_quadrature(&sys, &exc, 1),
@@ -162,7 +164,12 @@ fn acceleration_divergence_detected() {
         let st = analyze_output(&sys, &exc, i).unwrap();
         let r = st.variance.unwrap();
         for mv in &st.methods {
-            assert!(rel(mv.value.unwrap(), r) < QUADRATURE, "{:?} {:?}", mv.method, mv.value);
+            assert!(
+                rel(mv.value().unwrap(), r) < QUADRATURE,
+                "{:?} {:?}",
+                mv.method,
+                mv.outcome
+            );
         }
     }
     // with a two-pole input, S = 1/((1 + ω²)(4 + ω²)) ~ ω⁻⁴, the acceleration variance is finite
@@ -171,7 +178,7 @@ fn acceleration_divergence_detected() {
     let st = analyze_output(&sys, &exc2, 1).unwrap();
     let r = st.variance.unwrap();
     for mv in &st.methods {
-        assert!(rel(mv.value.unwrap(), r) < QUADRATURE, "{:?}", mv.method);
+        assert!(rel(mv.value().unwrap(), r) < QUADRATURE, "{:?}", mv.method);
     }
 }
 
@@ -334,8 +341,8 @@ fn non_rational_input_uses_quadrature() {
     .unwrap();
     let st = analyze_output(&sys, &exc, 0).unwrap();
     assert!(st.variance.is_some());
-    assert!(st.methods[0].note.as_ref().unwrap().contains("not rational"));
-    assert!(st.methods[2].value.is_some());
+    assert!(st.methods[0].outcome.describe().contains("not rational"));
+    assert!(st.methods[2].value().is_some());
 }
 
 /// Rice crossing statistics of an SDOF oscillator under white noise: λ₂/λ₀ = ω_n² exactly

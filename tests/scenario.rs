@@ -30,11 +30,11 @@ fn quarter_car_three_methods_agree_on_rational_road() {
         let st = &o.statistics;
         let reference = st
             .variance
-            .unwrap_or_else(|| panic!("{}: {:?}", st.name, st.variance_note));
+            .unwrap_or_else(|| panic!("{}: {:?}", st.name, st.variance_outcome));
         for m in &st.methods {
             let v = m
-                .value
-                .unwrap_or_else(|| panic!("{} {:?}: {:?}", st.name, m.method, m.note));
+                .value()
+                .unwrap_or_else(|| panic!("{} {:?}: {:?}", st.name, m.method, m.outcome));
             assert!(
                 (v - reference).abs() <= QUADRATURE * reference,
                 "{} {:?}",
@@ -54,7 +54,7 @@ fn quarter_car_iso_road_report() {
     for o in &r.outputs {
         let s = o.statistics.sigma.unwrap();
         assert!((o.upper_3sigma.unwrap() - 3.0 * s).abs() <= 1e-12 * s);
-        assert!(o.statistics.methods[0].value.is_none());
+        assert!(o.statistics.methods[0].value().is_none());
         assert!(o.band_sigma.unwrap() <= s * (1.0 + 1e-12));
     }
 }

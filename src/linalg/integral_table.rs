@@ -171,7 +171,7 @@ fn rhs(b: &[f64], k: usize) -> f64 {
 /// C_{n−1} of the validated system (b trimmed and non-zero): stack arrays and partial pivoting for
 /// n ≤ [`STACK_MAX`], fully pivoted `nalgebra` LU above. Singular if the smallest |pivot| is at most
 /// n ε times the largest.
-fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
+fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<(f64, f64)> {
     if n <= STACK_MAX {
         let mut m = [[0.0; STACK_MAX + 1]; STACK_MAX];
         for (k, row) in m.iter_mut().enumerate().take(n) {
@@ -216,7 +216,7 @@ fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
             }
             c[r] = s / m[r][r];
         }
-        return Ok(c[n - 1]);
+        return Ok((c[n - 1], umax / umin));
     }
     let m = DMatrix::<f64>::from_fn(n, n, |k, j| entry(a, n, k, j));
     let d = DVector::<f64>::from_fn(n, |k, _| rhs(b, k));
@@ -232,15 +232,22 @@ fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
     } else {
         None
     };
-    Ok(c.ok_or_else(|| singular(umin / umax))?[n - 1])
+    Ok((c.ok_or_else(|| singular(umin / umax))?[n - 1], umax / umin))
 }
 
 /// Iₙ = 2π C_{n−1}/Aₙ for validated input.
 fn table_value(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
+    table_value_conditioned(b, a, n).map(|r| r.0)
+}
+
+/// Iₙ and the ratio of the largest to the smallest pivot of the Hurwitz elimination (a condition estimate:
+/// the relative error of Iₙ is of the order of this ratio times n ε).
+fn table_value_conditioned(b: &[f64], a: &[f64], n: usize) -> Result<(f64, f64)> {
     if b.is_empty() {
-        return Ok(0.0);
+        return Ok((0.0, 1.0));
     }
-    let value = 2.0 * PI * solve_last(b, a, n)? / a[n];
+    let (c, ratio) = solve_last(b, a, n)?;
+    let value = 2.0 * PI * c / a[n];
     if !value.is_finite() {
         return Err(Error::Numerical {
             what: "integral_i_n".into(),
@@ -248,7 +255,7 @@ fn table_value(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
         });
     }
     // Rounding can only make a tiny result slightly negative.
-    Ok(value.max(0.0))
+    Ok((value.max(0.0), ratio))
 }
 
 /// The integral Iₙ = ∫_{−∞}^{∞} |B(iω)/A(iω)|² dω for any order n ≥ 1.
@@ -414,6 +421,28 @@ pub fn h2_integral(num_s: &[f64], den_s: &[f64]) -> Result<f64> {
     }
     // Validated above (finite, d trimmed with deg ≥ 1 > deg n, Hurwitz): no second pass.
     table_value(n, d, d.len() - 1)
+}
+
+/// [`h2_integral`] with a condition estimate of the Hurwitz elimination: `(value, ratio)`, where `ratio`
+/// is the largest over the smallest pivot; the relative error of the value is of the order of
+/// `ratio · n · ε` (ε = 2.2e-16).
+///
+/// # Errors
+/// As [`h2_integral`].
+///
+/// # Examples
+/// ```
+/// use stochvib::linalg::integral_table::h2_integral_conditioned;
+/// let (v, ratio) = h2_integral_conditioned(&[1.0], &[2.0, 1.0]).unwrap();
+/// assert!((v - std::f64::consts::FRAC_PI_2).abs() < 1e-15 && ratio >= 1.0);
+/// ```
+pub fn h2_integral_conditioned(num_s: &[f64], den_s: &[f64]) -> Result<(f64, f64)> {
+    let v = h2_integral(num_s, den_s)?;
+    let (n, d) = (trimmed(num_s), trimmed(den_s));
+    if n.is_empty() {
+        return Ok((v, 1.0));
+    }
+    table_value_conditioned(n, d, d.len() - 1)
 }
 
 #[cfg(test)]

@@ -301,7 +301,7 @@ pub fn solve_continuous_lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<D
 
 /// Osborne/Parlett–Reinsch balancing: diagonal D (powers of two) such that D⁻¹AD has rows and columns of
 /// comparable norm.
-fn balance_diagonal(a: &DMatrix<f64>) -> Vec<f64> {
+pub(crate) fn balance_diagonal(a: &DMatrix<f64>) -> Vec<f64> {
     let n = a.nrows();
     let mut d = vec![1.0f64; n];
     for _ in 0..100 {

@@ -74,10 +74,7 @@ fn simulable_outputs(input: &RunInput) -> Result<(Vec<Simulable>, Vec<SkippedOut
             }),
             None => skipped.push(SkippedOutput {
                 name: st.name,
-                reason: format!(
-                    "analytic variance infinite or undefined: {}",
-                    st.variance_note.unwrap_or_default()
-                ),
+                reason: format!("analytic variance {}", st.variance_outcome.describe()),
             }),
         }
     }
