@@ -239,6 +239,14 @@ enum Command {
         /// Convention of the printed density.
         #[arg(long, value_enum, default_value_t = Convention::TwoSidedAngular)]
         convention: Convention,
+        /// Angular frequencies at which to print the density, comma-separated, in rad/s (rad/m for a
+        /// spatial spectrum), e.g. `--omega 1,2,5`.
+        #[arg(long, value_delimiter = ',', conflicts_with = "frequency")]
+        omega: Option<Vec<f64>>,
+        /// Cyclic frequencies at which to print the density, comma-separated, in Hz (cycles/m for a spatial
+        /// spectrum), e.g. `--frequency 0.5,1,2`.
+        #[arg(long, value_delimiter = ',')]
+        frequency: Option<Vec<f64>>,
         #[command(flatten)]
         spectra: SpectraDir,
         /// Print JSON.
@@ -422,11 +430,23 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Spectrum {
             name,
             convention,
+            omega,
+            frequency,
             spectra,
             json,
         } => {
             let file = spectra.catalogue().resolve(&name, None)?;
-            print(&report::spectrum_report(&file, convention), json)?;
+            let points = match (omega, frequency) {
+                (Some(w), _) => report::DensityPoints::Angular(w),
+                (None, Some(f)) => report::DensityPoints::Cyclic(f),
+                (None, None) => report::DensityPoints::Characteristic,
+            };
+            if let report::DensityPoints::Angular(v) | report::DensityPoints::Cyclic(v) = &points {
+                if let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0) {
+                    anyhow::bail!("invalid frequency {x}: frequencies must be finite and >= 0");
+                }
+            }
+            print(&report::spectrum_report_at(&file, convention, &points), json)?;
         }
     }
     Ok(())

@@ -690,7 +690,12 @@ fn run_file_pictures() {
         let a = p.analytic.as_ref().unwrap();
         // the plotted analytic series is the file's `analytic` dataset, converted to G(f) = 4π S(ω) at
         // f = ω/(2π) (one-sided cyclic, the chart's convention): equal to the last bit
-        let analytic_series = oc.welch.series.iter().find(|s| s.name.starts_with("analytic")).unwrap();
+        let analytic_series = oc
+            .welch
+            .series
+            .iter()
+            .find(|s| s.name.starts_with("continuous-time analytic"))
+            .unwrap();
         let expected: Vec<(f64, f64)> = p
             .omega
             .iter()
@@ -698,6 +703,21 @@ fn run_file_pictures() {
             .map(|(w, s)| (w / (2.0 * std::f64::consts::PI), 4.0 * std::f64::consts::PI * s))
             .collect();
         assert_eq!(analytic_series.points, expected);
+        // and the expected estimate is the file's `expected` dataset, converted the same way
+        let e = p.expected.as_ref().unwrap();
+        let series = oc
+            .welch
+            .series
+            .iter()
+            .find(|s| s.name.starts_with("expected estimate"))
+            .unwrap();
+        let want: Vec<(f64, f64)> = p
+            .omega
+            .iter()
+            .zip(e)
+            .map(|(w, s)| (w / (2.0 * std::f64::consts::PI), 4.0 * std::f64::consts::PI * s))
+            .collect();
+        assert_eq!(series.points, want);
         // the histogram holds every sample: 40 realizations × (10 s / 0.01 s) samples, in file order
         let h = oc.histogram.as_ref().unwrap();
         assert_eq!(h.data.len(), 40 * 1000);

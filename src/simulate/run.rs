@@ -146,10 +146,12 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     // statistics from the accumulators of every shard, in shard order
     let mut stats = Vec::new();
     let mut psds = Vec::new();
-    for o in &plan.outputs {
+    for (o, autocov) in plan.outputs.iter().zip(&plan.autocov) {
         let (m, v, ws) = read_output(&writer, &meta, o, &plan.welch, bins)?;
         stats.push(output_statistics(o, &m, &v, opts)?);
-        psds.push(density_estimate(input, o, &plan.welch, &ws, opts.confidence)?);
+        let mut psd = density_estimate(input, o, &plan.welch, &ws, opts.confidence)?;
+        psd.expected = Some(plan.welch.expected_all(autocov));
+        psds.push(psd);
     }
     writer.write_statistics(&stats)?;
     for psd in &psds {
@@ -411,6 +413,7 @@ fn density_estimate(
         lower,
         upper,
         analytic: Some(analytic_psd),
+        expected: None,
         dof: est.dof,
         confidence: conf,
         method: format!(
