@@ -4,7 +4,7 @@
 
 mod common;
 use common::root;
-use common::tolerance::FACTORISATION;
+use common::tolerance::{FACTORISATION, ROUNDING};
 use std::path::Path;
 use stochvib::response::{analyze_output, Outcome, VarianceMethod, TABLE_AGREEMENT};
 use stochvib::scenario::{parse_scenario, Scenario};
@@ -340,7 +340,7 @@ fn spectrum_density_at_chosen_points() {
             j["density"][k][1].as_f64().unwrap(),
         );
         assert_eq!(x, *w);
-        assert!((v - s(*w)).abs() <= 1e-15 * s(*w));
+        assert!((v - s(*w)).abs() <= ROUNDING * s(*w));
     }
     let j = run(&[
         "spectrum",
@@ -357,7 +357,7 @@ fn spectrum_density_at_chosen_points() {
             j["density"][k][0].as_f64().unwrap(),
             j["density"][k][1].as_f64().unwrap(),
         );
-        assert!((x - f).abs() < 1e-15 && (v - g).abs() <= 1e-14 * g, "{x} {v} {g}");
+        assert!((x - f).abs() <= ROUNDING * f && (v - g).abs() <= ROUNDING * g, "{x} {v} {g}");
     }
 }
 

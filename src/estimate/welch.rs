@@ -411,6 +411,7 @@ impl Welch {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tolerance::{EXACT, ROUNDING, ULPS};
 
     #[test]
     fn hann_overlap_correlation_is_one_sixth() {
@@ -418,9 +419,9 @@ mod tests {
         // summing to M/16 over k < M/2; Σ w² = Σ sin⁴ = 3M/8; so c = 1/6 and c² = 1/36, which gives Percival &
         // Walden's (1993, eq. 292b) ν = 36K²/(19K − 1) for Hanning with 50 % overlap.
         let w = Welch::new(64, 1.0).unwrap();
-        assert!((w.c2 - 1.0 / 36.0).abs() < 1e-14);
+        assert!((w.c2 - 1.0 / 36.0).abs() < ROUNDING);
         let k = 10.0;
-        assert!((w.record_dof(10) - 36.0 * k * k / (19.0 * k - 1.0)).abs() < 1e-12);
+        assert!((w.record_dof(10) - 36.0 * k * k / (19.0 * k - 1.0)).abs() < EXACT);
     }
 
     /// `expected_all` is `expected` at every bin (same sums, table of cosines instead of calls).
@@ -446,7 +447,7 @@ mod tests {
         let w = Welch::new(32, 0.5).unwrap();
         for j in [0, 5, 16] {
             let e = w.expected(|m| if m == 0 { 1.0 } else { 0.0 }, j);
-            assert!((e - 0.5 / (2.0 * PI)).abs() < 1e-15);
+            assert!((e - 0.5 / (2.0 * PI)).abs() < ULPS);
         }
     }
 }

@@ -451,6 +451,7 @@ mod tests {
     use crate::linalg::lyapunov::solve_continuous_lyapunov;
     use crate::linalg::poly::test_rng::{hurwitz, Rng};
     use crate::linalg::poly::{eval_complex, mul};
+    use crate::tolerance::{EXACT, FACTORISATION, QUADRATURE, ROUNDING, ULPS};
     use nalgebra::Complex;
 
     fn rel(a: f64, b: f64) -> f64 {
@@ -512,14 +513,14 @@ mod tests {
 
     #[test]
     fn hand_cases() {
-        assert!(rel(integral_i_n(&[1.0], &[1.0, 1.0]).unwrap(), PI) < 1e-15);
+        assert!(rel(integral_i_n(&[1.0], &[1.0, 1.0]).unwrap(), PI) < ULPS);
         // n = 1: π B₀²/(A₀A₁)
         let v = integral_i_n(&[3.0], &[2.0, 5.0]).unwrap();
-        assert!(rel(v, PI * 9.0 / 10.0) < 1e-15);
+        assert!(rel(v, PI * 9.0 / 10.0) < ULPS);
         // n = 2: π(A₀B₁² + A₂B₀²)/(A₀A₁A₂)
         let (a, b) = ([4.0, 0.5, 2.0], [1.5, -0.7]);
         let expect = PI * (a[0] * b[1] * b[1] + a[2] * b[0] * b[0]) / (a[0] * a[1] * a[2]);
-        assert!(rel(integral_i_n(&b, &a).unwrap(), expect) < 1e-14);
+        assert!(rel(integral_i_n(&b, &a).unwrap(), expect) < ROUNDING);
         // (s+1)^n with B = 1: ∫(1+ω²)^{−n} dω = π (2n−2)!/(2^{2n−2} ((n−1)!)²)
         let mut a = vec![1.0];
         let mut expect = PI;
@@ -528,13 +529,13 @@ mod tests {
             if n > 1 {
                 expect *= (2 * n - 3) as f64 / (2 * n - 2) as f64;
             }
-            assert!(rel(integral_i_n(&[1.0], &a).unwrap(), expect) < 1e-13, "n = {n}");
+            assert!(rel(integral_i_n(&[1.0], &a).unwrap(), expect) < ROUNDING, "n = {n}");
             if n <= 4 {
-                assert!(rel(integral_closed_form(&[1.0], &a).unwrap(), expect) < 1e-14);
+                assert!(rel(integral_closed_form(&[1.0], &a).unwrap(), expect) < ROUNDING);
             }
         }
         // All-negative Hurwitz denominator: same value.
-        assert!(rel(integral_i_n(&[1.0], &[-1.0, -1.0]).unwrap(), PI) < 1e-15);
+        assert!(rel(integral_i_n(&[1.0], &[-1.0, -1.0]).unwrap(), PI) < ULPS);
         assert_eq!(integral_i_n(&[], &[1.0, 1.0]).unwrap(), 0.0);
         assert_eq!(h2_integral(&[0.0], &[1.0, 1.0]).unwrap(), 0.0);
     }
@@ -548,7 +549,7 @@ mod tests {
             let b: Vec<f64> = (0..n).map(|_| rng.range(-2.0, 2.0)).collect();
             let g = integral_i_n(&b, &a).unwrap();
             let c = integral_closed_form(&b, &a).unwrap();
-            assert!(rel(c, g) < 1e-11, "n={n} a={a:?} b={b:?}: {c} vs {g}");
+            assert!(rel(c, g) < EXACT, "n={n} a={a:?} b={b:?}: {c} vs {g}");
         }
     }
 
@@ -564,7 +565,7 @@ mod tests {
             let l = lyapunov_route(&b, &a);
             let h = h2_integral(&b, &a).unwrap();
             assert_eq!(g, h);
-            assert!(rel(g, l) < 1e-9, "n={n} a={a:?} b={b:?}: {g} vs {l}");
+            assert!(rel(g, l) < FACTORISATION, "n={n} a={a:?} b={b:?}: {g} vs {l}");
         }
     }
 
@@ -574,12 +575,12 @@ mod tests {
         let den = mul(&[1.0, 0.4, 1.0], &[2.0, 1.0]);
         let num = [1.0, 0.5];
         let v = integral_i_n(&num, &den).unwrap();
-        assert!(rel(brute(&num, &den, 200_000), v) < 1e-6);
+        assert!(rel(brute(&num, &den, 200_000), v) < QUADRATURE);
         // Order 5 with a non-decaying-as-fast numerator (deg N = deg D − 1).
         let den = mul(&mul(&[4.0, 0.8, 1.0], &[1.0, 1.0, 1.0]), &[0.5, 1.0]);
         let num = [0.3, -1.0, 0.2, 0.0, 1.0];
         let v = integral_i_n(&num, &den).unwrap();
-        assert!(rel(brute(&num, &den, 200_000), v) < 1e-6);
+        assert!(rel(brute(&num, &den, 200_000), v) < QUADRATURE);
     }
 
     #[test]
