@@ -282,29 +282,46 @@ impl<'a> Fields<'a> {
     /// # Errors
     /// Missing key, not an array of rows, rows of different lengths, non-finite entries.
     pub fn matrix(&self, key: &str) -> Result<nalgebra::DMatrix<f64>> {
+        let rows = self.number_rows(key)?;
+        let ncols = rows.first().map_or(0, Vec::len);
+        if let Some(i) = rows.iter().position(|r| r.len() != ncols) {
+            return Err(self.error(
+                &format!("{key}[{i}]"),
+                rows[i].len(),
+                "rows must all have the same length",
+            ));
+        }
+        let data: Vec<f64> = rows.concat();
+        Ok(nalgebra::DMatrix::from_row_slice(rows.len(), ncols, &data))
+    }
+
+    /// A required array of rows of finite numbers; the rows may differ in length (e.g. the numerators of
+    /// several inputs).
+    ///
+    /// # Errors
+    /// Missing key, not an array of arrays, an entry that is not a finite number (named `key[i][j]`).
+    pub fn number_rows(&self, key: &str) -> Result<Vec<Vec<f64>>> {
         let v = self.require(key)?;
         let rows = v
             .as_array()
             .ok_or_else(|| self.error(key, v, "expected an array of rows"))?;
-        let mut data = Vec::new();
-        let mut ncols = None;
-        for (i, r) in rows.iter().enumerate() {
-            let r = r
-                .as_array()
-                .ok_or_else(|| self.error(&format!("{key}[{i}]"), r, "expected a row (array of numbers)"))?;
-            if *ncols.get_or_insert(r.len()) != r.len() {
-                return Err(self.error(&format!("{key}[{i}]"), r.len(), "rows must all have the same length"));
-            }
-            for (j, x) in r.iter().enumerate() {
-                let val = x
-                    .as_float()
-                    .or_else(|| x.as_integer().map(|n| n as f64))
-                    .filter(|v| v.is_finite())
-                    .ok_or_else(|| self.error(&format!("{key}[{i}][{j}]"), x, "expected a finite number"))?;
-                data.push(val);
-            }
-        }
-        Ok(nalgebra::DMatrix::from_row_slice(rows.len(), ncols.unwrap_or(0), &data))
+        rows.iter()
+            .enumerate()
+            .map(|(i, r)| {
+                let r = r
+                    .as_array()
+                    .ok_or_else(|| self.error(&format!("{key}[{i}]"), r, "expected a row (array of numbers)"))?;
+                r.iter()
+                    .enumerate()
+                    .map(|(j, x)| {
+                        x.as_float()
+                            .or_else(|| x.as_integer().map(|n| n as f64))
+                            .filter(|v| v.is_finite())
+                            .ok_or_else(|| self.error(&format!("{key}[{i}][{j}]"), x, "expected a finite number"))
+                    })
+                    .collect()
+            })
+            .collect()
     }
 
     /// Fails on any key that was never read: catches typos such as `alpah`.
