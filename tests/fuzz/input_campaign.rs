@@ -283,7 +283,7 @@ impl Summary {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "input fuzzing: seed {}, {} generated cases + {} special files, {} CLI runs, {} worker restarts, {:.1} s (slowest case {} ms)",
+            "input fuzzing: seed {}, {} generated cases + {} special files, {} CLI runs, {} worker restarts, {:.1} s (slowest finished case {} ms)",
             self.seed,
             self.cases,
             self.special,
@@ -396,10 +396,20 @@ fn crash_finding(exit: Exit, stderr: &str) -> Finding {
         .find(|l| !l.trim().is_empty())
         .unwrap_or("")
         .to_string();
-    let what = if last.contains("overflowed its stack") {
+    // the first frame of the crate in a printed backtrace
+    let frame = stderr
+        .lines()
+        .map(str::trim)
+        .filter_map(|l| l.split_once(": ").map(|x| x.1))
+        .find(|f| f.starts_with("stochvib::"))
+        .map(|f| format!(" in {f}"))
+        .unwrap_or_default();
+    let what = if stderr.contains("overflowed its stack") {
         "stack overflow".to_string()
-    } else if last.contains("memory allocation of") {
-        "allocation failure".to_string()
+    } else if stderr.contains("memory allocation of") {
+        format!("allocation failure{frame}")
+    } else if let Some(l) = stderr.lines().find(|l| l.contains("panicked at")) {
+        format!("panic while unwinding is impossible: {}", inputs::normalize_message(l))
     } else {
         inputs::normalize_message(&last)
     };
@@ -515,7 +525,9 @@ pub fn run(c: &Campaign) -> Summary {
                     let mut s = summary.lock().unwrap();
                     s.cases += 1;
                     s.cli_runs += u64::from(do_cli);
-                    s.slowest_ms = s.slowest_ms.max(ms);
+                    if !label.starts_with("timeout") {
+                        s.slowest_ms = s.slowest_ms.max(ms);
+                    }
                     *s.outcomes.entry(label).or_default() += 1;
                     let cmdline = cli_command_line(case.kind, &case.file_name);
                     s.add(Source::Case(index), &all, &case.describe(), &cmdline);
@@ -823,7 +835,7 @@ fn minimize(c: &Campaign, case: &Case, class: &str, sig: &str) -> Case {
         let protected: Vec<Vec<Seg>> = case
             .must_reject
             .iter()
-            .map(|(_, p)| super::mutate::parse_path(p))
+            .map(|(_, p, _)| super::mutate::parse_path(p))
             .collect();
         let mut doc = doc.clone();
         for _pass in 0..2 {
@@ -834,7 +846,8 @@ fn minimize(c: &Campaign, case: &Case, class: &str, sig: &str) -> Case {
                     break;
                 }
                 let p = &paths[i];
-                if protected.iter().any(|q| q.starts_with(p)) {
+                // keep the protected values, their containers and their elements
+                if protected.iter().any(|q| q.starts_with(p) || p.starts_with(q)) {
                     i += 1;
                     continue;
                 }

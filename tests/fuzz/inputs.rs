@@ -24,8 +24,16 @@
 //! * `must_reject` classes (`typo-accepted`, `unknown-key-accepted`, `wrong-unit-accepted`,
 //!   `unknown-unit-accepted`, `non-finite-accepted`, `wrong-type-accepted`) — a document that contains a
 //!   mutation no correct reader may accept is refused (any error counts).
+//! * `unbounded-read` — an input is not read without bound: an error that only came because memory ran
+//!   out (the harness runs everything under an address-space limit) is a finding, not a clean error.
 //! * `unrelated-key` (soft, reported but not asserted) — for a single value mutation at path P that is
 //!   refused, the key the error names is related to P (see [`related`]).
+//!
+//! The CLI run of a case (`stochvib analyze FILE`, `stochvib spectrum FILE`, as a child process with a
+//! time limit) adds: `cli-timeout`, `cli-crash` (a signal), `cli-panic` (exit 101), `cli-exit-code` (not 0
+//! or 1), `cli-error-message` (a failure without an `error:` line naming the file), `cli-empty-output`,
+//! `cli-non-finite` (a printed `NaN`/`inf` token that is not in the input), `cli-unbounded-read`, and
+//! `cli-inconsistent` (the CLI fails where the library succeeds, or the other way round).
 
 use super::floats::non_finite;
 use super::mutate::{self, all_paths, get, normalize_path, parse_path, path_str, Mutation, Rng, Seg};
@@ -170,9 +178,10 @@ pub struct Case {
     pub convention: Convention,
     /// The structured document before raw mutations (for minimisation), if it serialised.
     pub doc: Option<Table>,
-    /// (class, key path) of each mutation that a correct reader must refuse and that is still in the
-    /// final document.
-    pub must_reject: Vec<(String, String)>,
+    /// (class, key path, key for the signature) of each mutation that a correct reader must refuse and
+    /// that is still in the final document. The signature key is the original key of a rename and
+    /// `<table>.<new key>` for an added key, so that random key names do not split one root cause.
+    pub must_reject: Vec<(String, String, String)>,
 }
 
 impl Case {
@@ -273,7 +282,19 @@ pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
             for m in &mutations {
                 if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness) {
                     if get(d, p).is_some_and(|x| same_value(x, v)) {
-                        must_reject.push((class.clone(), path_str(p)));
+                        let sig = match m.op.as_str() {
+                            "rename" => m.path.clone(),
+                            "add-key" => {
+                                let parent = path_str(&p[..p.len() - 1]);
+                                if parent.is_empty() {
+                                    "<new key>".to_string()
+                                } else {
+                                    format!("{parent}.<new key>")
+                                }
+                            }
+                            _ => path_str(p),
+                        };
+                        must_reject.push((class.clone(), path_str(p), sig));
                     }
                 }
             }
@@ -755,6 +776,13 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome) -> Vec<Finding> {
         ),
         Outcome::Err(e) => {
             let named = e.file.as_deref();
+            if e.message.contains("out of memory") {
+                add(
+                    "unbounded-read",
+                    format!("{} error after reading until memory ran out (stage {})", e.variant, e.stage),
+                    format!("{} (stopped by the harness' address-space limit)", shown(&e.message)),
+                );
+            }
             match e.variant.as_str() {
                 "File" | "Parse" | "Io" => {
                     if named != Some(path) {
@@ -845,7 +873,7 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome) -> Vec<Finding> {
                     s.system_outputs.join(", "),
                 );
             }
-            for (class, p) in &case.must_reject {
+            for (class, _, p) in &case.must_reject {
                 add(
                     class,
                     format!("{class}: `{}` ({})", normalize_path(p), s.what),
@@ -953,6 +981,13 @@ pub fn check_cli(case: &Case, path: &Path, args: &[String], lib: &str, out: &sup
             let p = path.display().to_string();
             if c != 1 {
                 add("cli-exit-code", format!("{cmd} exit code {c}"), first_err.clone());
+            }
+            if out.stderr.contains("out of memory") {
+                add(
+                    "cli-unbounded-read",
+                    format!("{cmd} reads until memory runs out"),
+                    format!("{} (stopped by the harness' address-space limit)", mutate::short(&first_err)),
+                );
             }
             if !first_err.starts_with("error:") || !out.stderr.contains(&p) {
                 add(

@@ -341,7 +341,7 @@ fn typo(rng: &mut Rng, key: &str, vocabulary: &[String]) -> Option<String> {
             5 => format!("{key}s"),
             _ => format!("zz_{}", rng.random_range(0..1000)),
         };
-        if !t.is_empty() && t != key && !vocabulary.iter().any(|v| *v == t) {
+        if !t.is_empty() && t != key && !vocabulary.contains(&t) {
             return Some(t);
         }
     }
@@ -391,9 +391,7 @@ pub fn replacement(rng: &mut Rng, old: &Value) -> (Value, String, Option<String>
             (Value::Integer(i), _) => Value::Float(*i as f64 * f),
             (Value::Float(x), _) => Value::Float(x * f),
             (Value::String(s), Some((_, unit))) => {
-                let num: f64 = s
-                    .trim()
-                    .split_whitespace()
+                let num: f64 = s.split_whitespace()
                     .next()
                     .and_then(|n| n.parse().ok())
                     .unwrap_or(1.0);

@@ -288,6 +288,13 @@ pub enum Baseline {
     Files(BTreeMap<String, Vec<u8>>),
 }
 
+/// Builds the command of the child that leaves a `.tmp`: (variant index, final path, shards before the
+/// abort).
+pub type ChildCommand = Arc<dyn Fn(usize, &Path, usize) -> Command + Send + Sync>;
+
+/// First occurrence of each signature: (base index, corruption, command).
+type Firsts = BTreeMap<String, (usize, Corruption, String)>;
+
 /// Settings of a corruption campaign.
 #[derive(Clone)]
 pub struct Config {
@@ -308,7 +315,7 @@ pub struct Config {
     /// Parallel cases.
     pub jobs: u64,
     /// Starts the child that leaves a `.tmp`: (variant index, final path, shards before abort).
-    pub child: Arc<dyn Fn(usize, &Path, usize) -> Command + Send + Sync>,
+    pub child: ChildCommand,
     /// Progress on stderr.
     pub progress: bool,
 }
@@ -331,13 +338,7 @@ fn commands(cfg: &Config, b: &Base, file: &Path, dir: &Path) -> Vec<(String, Vec
     let f = file.display().to_string();
     if b.tmp {
         let mut resume = VARIANTS[b.variant].cli_args(&cfg.root);
-        let final_path = file.with_file_name(
-            file.file_name()
-                .unwrap()
-                .to_string_lossy()
-                .trim_end_matches(".tmp")
-                .to_string(),
-        );
+        let final_path = file.with_file_name(b.file_name.trim_end_matches(".tmp"));
         resume.extend(["--json".into(), "-o".into(), final_path.display().to_string()]);
         vec![("inspect".into(), vec!["inspect".into(), f]), ("resume".into(), resume)]
     } else {
@@ -1080,7 +1081,7 @@ pub fn run(cfg: &Config) -> Summary {
         layout_by: bases[0].layout_by.to_string(),
         ..Summary::default()
     }));
-    let first_cases: Arc<Mutex<BTreeMap<String, (usize, Corruption, String)>>> = Arc::default();
+    let first_cases: Arc<Mutex<Firsts>> = Arc::default();
     let jobs = cfg.jobs.max(1);
     let mut handles = Vec::new();
     for j in 0..jobs {
