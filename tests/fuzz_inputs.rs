@@ -48,7 +48,6 @@ fn fuzz_inputs_worker() {
 }
 
 #[test]
-#[ignore = "enable when the issue-16 fixes land: fails today (see the report of the fuzz branch)"]
 fn inputs_keep_the_invariants() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));

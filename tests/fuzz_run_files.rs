@@ -45,7 +45,6 @@ fn fuzz_run_files_child() {
 }
 
 #[test]
-#[ignore = "enable when the issue-16 fixes land: fails today (see the report of the fuzz branch)"]
 fn run_files_survive_corruption() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));

@@ -489,6 +489,7 @@ fn reduce_error(e: &Error, stage: &str) -> Failure {
         Error::Unit { .. } => ("Unit", None, None, None),
         Error::Numerical { .. } => ("Numerical", None, None, None),
         Error::NotApplicable { .. } => ("NotApplicable", None, None, None),
+        Error::Inaccurate { .. } => ("Inaccurate", None, None, None),
     };
     Failure {
         variant: variant.into(),
@@ -779,7 +780,10 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome) -> Vec<Finding> {
             if e.message.contains("out of memory") {
                 add(
                     "unbounded-read",
-                    format!("{} error after reading until memory ran out (stage {})", e.variant, e.stage),
+                    format!(
+                        "{} error after reading until memory ran out (stage {})",
+                        e.variant, e.stage
+                    ),
                     format!("{} (stopped by the harness' address-space limit)", shown(&e.message)),
                 );
             }
@@ -986,7 +990,10 @@ pub fn check_cli(case: &Case, path: &Path, args: &[String], lib: &str, out: &sup
                 add(
                     "cli-unbounded-read",
                     format!("{cmd} reads until memory runs out"),
-                    format!("{} (stopped by the harness' address-space limit)", mutate::short(&first_err)),
+                    format!(
+                        "{} (stopped by the harness' address-space limit)",
+                        mutate::short(&first_err)
+                    ),
                 );
             }
             if !first_err.starts_with("error:") || !out.stderr.contains(&p) {

@@ -391,10 +391,7 @@ pub fn replacement(rng: &mut Rng, old: &Value) -> (Value, String, Option<String>
             (Value::Integer(i), _) => Value::Float(*i as f64 * f),
             (Value::Float(x), _) => Value::Float(x * f),
             (Value::String(s), Some((_, unit))) => {
-                let num: f64 = s.split_whitespace()
-                    .next()
-                    .and_then(|n| n.parse().ok())
-                    .unwrap_or(1.0);
+                let num: f64 = s.split_whitespace().next().and_then(|n| n.parse().ok()).unwrap_or(1.0);
                 Value::String(format!("{:e} {unit}", num * f))
             }
             _ => old.clone(),
