@@ -240,8 +240,8 @@ impl<'a> Fields<'a> {
             .map(|(i, x)| {
                 let f = x.as_float().or_else(|| x.as_integer().map(|n| n as f64));
                 match f {
-                    Some(f) if f.is_finite() => Ok(f),
-                    _ => Err(self.error(&format!("{key}[{i}]"), x, "expected a finite number")),
+                    Some(f) => crate::units::check_magnitude(f).map_err(|r| self.error(&format!("{key}[{i}]"), x, r)),
+                    None => Err(self.error(&format!("{key}[{i}]"), x, "expected a finite number")),
                 }
             })
             .collect()
@@ -254,8 +254,8 @@ impl<'a> Fields<'a> {
     pub fn number(&self, key: &str) -> Result<f64> {
         let v = self.require(key)?;
         match v.as_float().or_else(|| v.as_integer().map(|n| n as f64)) {
-            Some(f) if f.is_finite() => Ok(f),
-            _ => Err(self.error(key, v, "expected a finite number")),
+            Some(f) => crate::units::check_magnitude(f).map_err(|r| self.error(key, v, r)),
+            None => Err(self.error(key, v, "expected a finite number")),
         }
     }
 
@@ -316,8 +316,11 @@ impl<'a> Fields<'a> {
                     .map(|(j, x)| {
                         x.as_float()
                             .or_else(|| x.as_integer().map(|n| n as f64))
-                            .filter(|v| v.is_finite())
                             .ok_or_else(|| self.error(&format!("{key}[{i}][{j}]"), x, "expected a finite number"))
+                            .and_then(|v| {
+                                crate::units::check_magnitude(v)
+                                    .map_err(|r| self.error(&format!("{key}[{i}][{j}]"), x, r))
+                            })
                     })
                     .collect()
             })

@@ -550,7 +550,7 @@ impl MineHoist {
             }
             if prev.1 * v <= 0.0 {
                 let (mut a, mut fa, mut b) = (prev.0, prev.1, l);
-                while b - a > 1e-9 {
+                while b - a > 1e-9 * (1.0 + b.abs()) && 0.5 * (a + b) > a && 0.5 * (a + b) < b {
                     let mid = 0.5 * (a + b);
                     let fm = self.sheave_component_mode1(mid)?;
                     if fm == 0.0 {
