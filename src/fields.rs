@@ -130,9 +130,18 @@ impl<'a> Fields<'a> {
         match e {
             Error::File { .. } => e,
             other => {
+                // `name[i]` names an element of the array `name`
+                let element = key
+                    .strip_suffix(']')
+                    .and_then(|k| k.split_once('['))
+                    .and_then(|(name, i)| {
+                        let i: usize = i.parse().ok()?;
+                        self.table.get(name)?.as_array()?.get(i)
+                    });
                 let value = self
                     .table
                     .get(key)
+                    .or(element)
                     .map(|v| v.to_string())
                     .unwrap_or_else(|| "<derived>".into());
                 self.error(key, value, other.to_string())
@@ -145,6 +154,9 @@ impl<'a> Fields<'a> {
     /// `fallback`.
     pub fn wrap_param(&self, e: Error, fallback: &str) -> Error {
         let key = match &e {
+            // the edges of a `band = [low, high]` key
+            Error::InvalidParameter { name, .. } if name == "band.low" => "band[0]".to_string(),
+            Error::InvalidParameter { name, .. } if name == "band.high" => "band[1]".to_string(),
             Error::InvalidParameter { name, .. } => name.clone(),
             _ => fallback.to_string(),
         };

@@ -661,6 +661,19 @@ fn fuzz_campaign_findings_are_fixed() {
     let p = write("iso.toml", &no_domain);
     let s = stochvib::scenario::load_spectrum(&p).unwrap();
     assert_eq!(s.spectrum.domain(), stochvib::spectrum::Domain::Spatial);
+    // (e') a band edge of 0 is reported at the array element written, not at a derived `band.low`
+    let iso_g = std::fs::read_to_string(root().join("spectra/iso8608-g.toml")).unwrap();
+    let with_band = format!(
+        "{}band = [\"0 cycles/m\", \"2.83 cycles/m\"]\n",
+        iso_g.replace("band = ", "old_band = ")
+    );
+    assert!(!iso_g.contains("old_band"));
+    let p = write("band.toml", &with_band.replace("old_band = ", "# "));
+    let e = stochvib::scenario::load_spectrum(&p).unwrap_err().to_string();
+    assert!(
+        e.contains("band.toml") && e.contains("key `band[0]`") && e.contains("0 cycles/m"),
+        "{e}"
+    );
     // (f) the Table 8.1 transcription refuses misspelt and unknown keys
     let t81 = std::fs::read_to_string(root().join("data/reference/table-8-1.toml")).unwrap();
     for (from, to) in [
