@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
-use stochvib::simulate::{suggest_step, Route, RunOptions};
+use stochvib::simulate::{merge_runs, part_path, resolve_part, suggest_step, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
 use stochvib::store::{summarize, Compression, RunFile};
 
@@ -136,9 +136,20 @@ enum Command {
         /// Master seed; realization i uses stream (seed, i).
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// Output file (written as FILE.tmp and renamed when complete; an interrupted run resumes).
+        /// Output file (written as FILE.tmp and renamed when complete; an interrupted run resumes); with
+        /// --shard, the run directory that receives the shard file DIR/shard-<I>-of-<N>.h5.
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
+        /// Compute only shard I of the run (0 <= I < N, N from --of), or `auto`: I from the scheduler
+        /// (SLURM_ARRAY_TASK_ID of a job array, JOB_COMPLETION_INDEX of a Kubernetes Indexed Job). A shard
+        /// holds whole internal shards of --shard-size realizations; merge the N files with `stochvib merge`
+        /// (bit-identical to one process with the same --shard-size).
+        #[arg(long, value_name = "I|auto")]
+        shard: Option<String>,
+        /// N, the number of shards of the run (with --shard; always give it: a resubmitted array index
+        /// cannot tell N).
+        #[arg(long, value_name = "N", requires = "shard")]
+        of: Option<usize>,
         /// Realizations per shard.
         #[arg(long, default_value_t = 50)]
         shard_size: usize,
@@ -166,6 +177,30 @@ enum Command {
         /// After the run, write its pictures (as `stochvib plot OUTPUT -o DIR`) into this directory.
         #[arg(long)]
         plots: Option<PathBuf>,
+    },
+    /// Merge the shard files of a cluster run (`simulate --shard I --of N -o DIR/`) into one run file,
+    /// bit-identical to a single-process run with the same scenario, seed, options and --shard-size. Refuses,
+    /// naming the files and the indices to resubmit, files of other runs, duplicate, overlapping and missing
+    /// shards. The raw realizations (--store-raw) stay in the shard files, read through HDF5 virtual
+    /// datasets (paths relative to OUTPUT's directory: keep the shard files there), unless --copy.
+    Merge {
+        /// The merged run file (written as FILE.tmp and renamed when complete).
+        output: PathBuf,
+        /// Shard files, or directories whose *.h5 files are the shard files.
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+        /// Copy the raw realizations into the merged file (it then stands alone).
+        #[arg(long)]
+        copy: bool,
+        /// Replace an existing finished OUTPUT (a run file only; replaced when the merge is complete).
+        #[arg(long)]
+        overwrite: bool,
+        /// Confidence of the intervals (default: that of the shard files).
+        #[arg(long)]
+        confidence: Option<f64>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// Summarise a Monte Carlo run file.
     Inspect {
@@ -330,6 +365,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             step,
             seed,
             output,
+            shard,
+            of,
             shard_size,
             store_raw,
             compression,
@@ -341,6 +378,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             plots,
         } => {
             let catalogue = spectra.catalogue();
+            // the shard before anything else: a task outside a scheduler fails at once
+            let choice = match &shard {
+                Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok())?),
+                None => None,
+            };
             let sc = load_scenario(&scenario, catalogue.dir())?;
             let (dt, duration) = step.resolve(&sc)?;
             let opts = RunOptions {
@@ -350,7 +392,25 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 route,
                 confidence,
                 overwrite,
+                part: choice.as_ref().map(|c| c.part),
                 ..RunOptions::new(realizations, duration, dt, seed)
+            };
+            let output = match &choice {
+                None => output,
+                Some(c) => {
+                    if output.is_file() {
+                        anyhow::bail!(
+                            "{}: with --shard, -o names the run directory that receives shard-<I>-of-<N>.h5 files,                              not a file",
+                            output.display()
+                        );
+                    }
+                    std::fs::create_dir_all(&output)?;
+                    eprintln!("shard {} of {} ({})", c.part.index, c.part.count, c.source);
+                    for n in &c.notes {
+                        eprintln!("warning: {n}");
+                    }
+                    part_path(&output, c.part)
+                }
             };
             let s = sc.simulate(&opts, &output, &progress_printer())?;
             print(&s, json)?;
@@ -361,6 +421,22 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     }
                 }
             }
+        }
+        Command::Merge {
+            output,
+            inputs,
+            copy,
+            overwrite,
+            confidence,
+            json,
+        } => {
+            let opts = MergeOptions {
+                copy,
+                overwrite,
+                confidence,
+            };
+            let s = merge_runs(&output, &inputs, &opts, &|_, _| {})?;
+            print(&s, json)?;
         }
         Command::CheckRun { file, full } => {
             let run = RunFile::open_any(&file)?;

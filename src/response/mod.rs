@@ -12,6 +12,7 @@ mod delayed_quadrature;
 mod density;
 mod excitation;
 mod statistics;
+mod sweep;
 mod variance;
 
 pub use delayed::{delayed_augmented_system, variance_lyapunov_delayed, DelayedAugmentedSystem, DelayedCovariance};
@@ -21,6 +22,7 @@ pub use delayed_quadrature::{
 pub use density::OutputDensity;
 pub use excitation::Excitation;
 pub use statistics::{analyze_output, ResponseStatistics, VarianceMethod, VarianceValue};
+pub use sweep::{ExactEvaluator, PointStatistics};
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{
     band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,
