@@ -4,7 +4,9 @@ use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::{self, attach_monte_carlo};
-use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
+use stochvib::scenario::{
+    load_document, load_scenario, Catalogue, Document, Scenario, Sweep, SweepMode, SweepParam, SweepSpec,
+};
 use stochvib::simulate::{merge_runs, part_path, resolve_part, suggest_step, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
 use stochvib::store::{summarize, Compression, RunFile};
@@ -201,6 +203,52 @@ enum Command {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+    },
+    /// Parameter study: the scenario's exact statistics (and optionally a Monte Carlo batch) at every point
+    /// of a grid or list of scenario keys, as one table (CSV, JSON or HDF5 from -o's extension; CSV on
+    /// stdout without -o). With --shard, one part of the points into DIR/sweep-shard-<I>-of-<N>.json;
+    /// `stochvib merge TABLE DIR/` joins them.
+    Sweep {
+        /// Scenario file (TOML, see data/).
+        scenario: PathBuf,
+        /// KEY=VALUES: a scenario key (model.omega2, input.speed, model.element.0.stiffness) and a list
+        /// `V1,V2,...` or a range `A..B:n` (`A..B:n:log`) of values with units, e.g. `model.omega2=1 Hz..2 Hz:5`.
+        #[arg(long = "param", value_name = "KEY=VALUES", required = true)]
+        params: Vec<String>,
+        /// Zip the keys' values (the k-th values together) instead of the grid of every combination.
+        #[arg(long)]
+        zip: bool,
+        /// The table (.csv, .json, .h5); with --shard, the directory of the shard files.
+        #[arg(short = 'o', long = "output")]
+        output: Option<PathBuf>,
+        /// Evaluate only part I of the points (or `auto`, from the scheduler, as for simulate).
+        #[arg(long, value_name = "I|auto")]
+        shard: Option<String>,
+        /// N, the number of parts (with --shard).
+        #[arg(long, value_name = "N", requires = "shard")]
+        of: Option<usize>,
+        /// Also run a Monte Carlo batch of N realizations at every point (same seed at every point).
+        #[arg(long, value_name = "N")]
+        monte_carlo: Option<usize>,
+        #[command(flatten)]
+        step: Step,
+        /// Master seed of the Monte Carlo batches.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Realizations per internal shard of the Monte Carlo batches.
+        #[arg(long, default_value_t = 50)]
+        shard_size: usize,
+        /// Confidence of the Monte Carlo intervals.
+        #[arg(long, default_value_t = 0.95)]
+        confidence: f64,
+        /// Replace an existing table or shard file.
+        #[arg(long)]
+        overwrite: bool,
+        /// Print JSON instead of CSV (without -o).
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        spectra: SpectraDir,
     },
     /// Summarise a Monte Carlo run file.
     Inspect {
@@ -430,6 +478,25 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             confidence,
             json,
         } => {
+            let sweeps = report::find_sweep_shards(&inputs)?;
+            if !sweeps.is_empty() {
+                let (runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
+                if !runs.is_empty() {
+                    anyhow::bail!(
+                        "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
+                        sweeps[0].display(),
+                        runs[0].display()
+                    );
+                }
+                let t = report::merge_sweep(&output, &inputs, overwrite)?;
+                eprintln!(
+                    "merged {} points ({} failed) into {}",
+                    t.n_points,
+                    t.errors.len(),
+                    output.display()
+                );
+                return Ok(());
+            }
             let opts = MergeOptions {
                 copy,
                 overwrite,
@@ -437,6 +504,88 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             };
             let s = merge_runs(&output, &inputs, &opts, &|_, _| {})?;
             print(&s, json)?;
+        }
+        Command::Sweep {
+            scenario,
+            params,
+            zip,
+            output,
+            shard,
+            of,
+            monte_carlo,
+            step,
+            seed,
+            shard_size,
+            confidence,
+            overwrite,
+            json,
+            spectra,
+        } => {
+            let choice = match &shard {
+                Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok())?),
+                None => None,
+            };
+            let catalogue = spectra.catalogue();
+            let sc = load_scenario(&scenario, catalogue.dir())?;
+            let params = params
+                .iter()
+                .map(|p| SweepParam::parse(p))
+                .collect::<Result<Vec<_>, _>>()?;
+            let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
+            let sweep = Sweep::new(&sc, SweepSpec::new(params, mode)?)?;
+            let mc = match monte_carlo {
+                Some(n) => {
+                    let (dt, duration) = step.resolve(&sc)?;
+                    Some(report::SweepMonteCarlo {
+                        realizations: n,
+                        duration_s: duration,
+                        dt_s: dt,
+                        seed,
+                        shard_size,
+                        confidence,
+                    })
+                }
+                None => None,
+            };
+            let progress = progress_printer();
+            match choice {
+                Some(c) => {
+                    let dir = output
+                        .ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
+                    if dir.is_file() {
+                        anyhow::bail!("{}: with --shard, -o names a directory", dir.display());
+                    }
+                    std::fs::create_dir_all(&dir)?;
+                    eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
+                    let (path, sh, fresh) =
+                        report::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
+                    eprintln!(
+                        "{} {}: points {}..{} of {} ({} failed)",
+                        if fresh {
+                            "wrote"
+                        } else {
+                            "already complete (nothing to do):"
+                        },
+                        path.display(),
+                        sh.results.points.start,
+                        sh.results.points.end,
+                        sh.results.n_points,
+                        sh.results.errors.len()
+                    );
+                }
+                None => {
+                    let n = sweep.spec().n_points();
+                    let t = report::compute_sweep(&sweep, 0..n, true, mc, &progress)?;
+                    match output {
+                        Some(path) => {
+                            t.write(&path, overwrite)?;
+                            eprintln!("wrote {} points ({} failed) to {}", n, t.errors.len(), path.display());
+                        }
+                        None if json => emit_line(&t.to_json()?),
+                        None => emit(&t.to_csv()),
+                    }
+                }
+            }
         }
         Command::CheckRun { file, full } => {
             let run = RunFile::open_any(&file)?;

@@ -178,7 +178,7 @@ impl Provenance {
 /// assert_eq!(Part::owner(5, 8, 3), 1);
 /// assert!(Part::new(3, 3).is_err());
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Part {
     /// I, 0 ≤ I < N.
     pub index: usize,
