@@ -69,6 +69,37 @@ impl Step {
     }
 }
 
+/// Effort of the quadratures (overrides `[analysis.quadrature]` of the scenario).
+#[derive(clap::Args)]
+struct Effort {
+    /// Relative tolerance of the quadratures (default 1e-10).
+    #[arg(long)]
+    rel_tol: Option<f64>,
+    /// Subintervals an adaptive quadrature may use (default 2000).
+    #[arg(long)]
+    max_subintervals: Option<usize>,
+    /// Half-periods of an oscillatory tail resolved before extrapolation gives up (default 10000).
+    #[arg(long)]
+    max_half_periods: Option<usize>,
+}
+
+impl Effort {
+    /// Applies the given flags to the scenario's quadrature options.
+    fn apply(&self, sc: &mut Scenario) -> stochvib::Result<()> {
+        let e = &mut sc.analysis.effort;
+        if let Some(v) = self.rel_tol {
+            e.rel_tol = v;
+        }
+        if let Some(v) = self.max_subintervals {
+            e.max_subintervals = v;
+        }
+        if let Some(v) = self.max_half_periods {
+            e.max_half_periods = v;
+        }
+        e.validate()
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// List the spectrum catalogue with variance and sigma of each entry.
@@ -110,6 +141,8 @@ enum Command {
         seed: u64,
         #[command(flatten)]
         step: Step,
+        #[command(flatten)]
+        effort: Effort,
     },
     /// Write pictures of a scenario (`.toml`: input density, |H(iω)|² and output densities with the
     /// cumulative variance) or of a Monte Carlo run file (`.h5`), as SVG and PNG.
@@ -289,6 +322,14 @@ enum Command {
         /// Convention of the printed density.
         #[arg(long, value_enum, default_value_t = Convention::TwoSidedAngular)]
         convention: Convention,
+        /// Angular frequencies at which to print the density, comma-separated, in rad/s (rad/m for a
+        /// spatial spectrum), e.g. `--omega 1,2,5`.
+        #[arg(long, value_delimiter = ',', conflicts_with = "frequency")]
+        omega: Option<Vec<f64>>,
+        /// Cyclic frequencies at which to print the density, comma-separated, in Hz (cycles/m for a spatial
+        /// spectrum), e.g. `--frequency 0.5,1,2`.
+        #[arg(long, value_delimiter = ',')]
+        frequency: Option<Vec<f64>>,
         #[command(flatten)]
         spectra: SpectraDir,
         /// Print JSON.
@@ -339,9 +380,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             monte_carlo,
             seed,
             step,
+            effort,
         } => {
             let catalogue = spectra.catalogue();
-            let sc = match load_document(&scenario, catalogue.dir())? {
+            let mut sc = match load_document(&scenario, catalogue.dir())? {
                 Document::Stochastic(sc) => sc,
                 Document::Deterministic(d) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
@@ -352,6 +394,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     return print(&report::reference_report(&t), json);
                 }
             };
+            effort.apply(&mut sc)?;
             let mut r = report::analysis_report(&sc)?;
             if let Some(n) = monte_carlo {
                 let (dt, duration) = step.resolve(&sc)?;
@@ -612,11 +655,23 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Spectrum {
             name,
             convention,
+            omega,
+            frequency,
             spectra,
             json,
         } => {
             let file = spectra.catalogue().resolve(&name, None)?;
-            print(&report::spectrum_report(&file, convention), json)?;
+            let points = match (omega, frequency) {
+                (Some(w), _) => report::DensityPoints::Angular(w),
+                (None, Some(f)) => report::DensityPoints::Cyclic(f),
+                (None, None) => report::DensityPoints::Characteristic,
+            };
+            if let report::DensityPoints::Angular(v) | report::DensityPoints::Cyclic(v) = &points {
+                if let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0) {
+                    anyhow::bail!("invalid frequency {x}: frequencies must be finite and >= 0");
+                }
+            }
+            print(&report::spectrum_report_at(&file, convention, &points), json)?;
         }
     }
     Ok(())

@@ -787,11 +787,12 @@ fn parse_unit_expr(toks: &[Tok]) -> std::result::Result<Unit, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tolerance::ULPS;
     use proptest::prelude::*;
 
-    /// |a - b| ≤ 4 ulp-ish relative.
+    /// |a − b| ≤ ULPS relative.
     fn close(a: f64, b: f64) -> bool {
-        a == b || (a - b).abs() <= 4.0 * f64::EPSILON * b.abs().max(a.abs())
+        a == b || (a - b).abs() <= ULPS * b.abs().max(a.abs())
     }
 
     #[track_caller]
@@ -1068,7 +1069,7 @@ mod tests {
             prop_assert_eq!(d, Dim::LENGTH);
             let expected = x / 100.0;
             prop_assert!(
-                v == expected || (v - expected).abs() <= 1e-15 * expected.abs(),
+                v == expected || (v - expected).abs() <= ULPS * expected.abs(),
                 "{} cm -> {:e}, expected {:e}", x, v, expected
             );
         }

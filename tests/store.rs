@@ -130,6 +130,7 @@ fn psd() -> PsdEstimate {
         lower: density.iter().map(|d| d * 0.5).collect(),
         upper: density.iter().map(|d| d * 2.0).collect(),
         analytic: Some(density.iter().map(|d| d * 1.25).collect()),
+        expected: None,
         omega,
         density,
         dof: 16.0,

@@ -41,10 +41,9 @@ use crate::error::{require_non_negative, require_positive, Error, Result};
 use crate::fields::Fields;
 use crate::models::worked_example::BookRow;
 use crate::models::{InputLayout, ModelInstance};
-use crate::spectrum::Asymptote;
-use crate::system::{modal_analysis, Attach, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace};
+use crate::system::{modal_analysis, Attach, Element, Mdof, Quantity};
 use crate::units::Dim;
-use nalgebra::{Complex, DMatrix};
+use nalgebra::DMatrix;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -218,9 +217,8 @@ impl HalfCar {
     /// The (z, φ) model as an [`Mdof`]: coordinates `z` (m), `phi` (rad); elements `front` (point z + aφ to
     /// base input 0) and `rear` (point z − bφ to base input 1); outputs `bounce` (z, m), `pitch` (φ, rad),
     /// `front_travel` (z + aφ − q₁, m), `rear_travel` (z − bφ − q₂, m), `body_acc` (z̈ + x_p φ̈ at the
-    /// point x_p = `acc_point` metres ahead of the centre of mass). The Mdof labels the units of the travels
-    /// and of an off-centre acceleration `mixed` because the points combine z (m) and φ (rad);
-    /// [`HalfCar::instance`] relabels them m and m/s².
+    /// point x_p = `acc_point` metres ahead of the centre of mass, m/s²: the points combine z (m) and φ (rad),
+    /// whose weights are lever arms in m/rad).
     ///
     /// # Errors
     /// Non-finite `acc_point`.
@@ -267,17 +265,8 @@ impl HalfCar {
     /// As [`HalfCar::mdof`].
     pub fn instance(&self, acc_point: f64) -> Result<ModelInstance> {
         let mdof = self.mdof(acc_point)?;
-        let infos = mdof
-            .outputs()
-            .iter()
-            .map(|o| match o.name.as_str() {
-                "body_acc" => OutputInfo::new("body_acc", "m/s^2"),
-                "front_travel" | "rear_travel" => OutputInfo::new(o.name.clone(), "m"),
-                _ => o.clone(),
-            })
-            .collect();
         Ok(ModelInstance {
-            system: Arc::new(HalfCarSystem { mdof, infos }),
+            system: Arc::new(mdof),
             layout: InputLayout::Track {
                 positions: vec![0.0, self.wheelbase()],
                 gains: vec![1.0, 1.0],
@@ -296,40 +285,6 @@ impl HalfCar {
                 acc_point
             ),
         })
-    }
-}
-
-/// The half-car [`Mdof`] with its output units relabelled (z + aφ is in m and z̈ + x_p φ̈ in m/s², φ being in rad).
-#[derive(Debug, Clone)]
-struct HalfCarSystem {
-    mdof: Mdof,
-    infos: Vec<OutputInfo>,
-}
-
-impl FrequencyResponse for HalfCarSystem {
-    fn n_inputs(&self) -> usize {
-        self.mdof.n_inputs()
-    }
-    fn outputs(&self) -> &[OutputInfo] {
-        &self.infos
-    }
-    fn response(&self, omega: f64) -> DMatrix<Complex<f64>> {
-        self.mdof.response(omega)
-    }
-    fn static_gain(&self) -> Option<DMatrix<f64>> {
-        self.mdof.static_gain()
-    }
-    fn high_frequency(&self) -> Vec<Vec<Asymptote>> {
-        self.mdof.high_frequency()
-    }
-    fn low_frequency(&self) -> Vec<Vec<Asymptote>> {
-        self.mdof.low_frequency()
-    }
-    fn natural_frequencies(&self) -> Vec<f64> {
-        self.mdof.natural_frequencies()
-    }
-    fn state_space(&self) -> Option<&StateSpace> {
-        self.mdof.state_space()
     }
 }
 

@@ -79,6 +79,8 @@ pub struct SweepIdentity {
 pub enum Method {
     /// Lyapunov equation.
     Lyapunov,
+    /// Covariance of the augmented system at the lags between delayed inputs.
+    LyapunovDelays,
     /// Integral table I_n.
     IntegralTable,
     /// Quadrature.
@@ -91,6 +93,7 @@ impl Method {
             Method::Lyapunov => 0,
             Method::IntegralTable => 1,
             Method::Quadrature => 2,
+            Method::LyapunovDelays => 3,
         }
     }
     fn name(self) -> &'static str {
@@ -98,6 +101,7 @@ impl Method {
             Method::Lyapunov => "lyapunov",
             Method::IntegralTable => "integral-table",
             Method::Quadrature => "quadrature",
+            Method::LyapunovDelays => "lyapunov-delays",
         }
     }
 }
@@ -108,6 +112,7 @@ impl From<VarianceMethod> for Method {
             VarianceMethod::Lyapunov => Method::Lyapunov,
             VarianceMethod::IntegralTable => Method::IntegralTable,
             VarianceMethod::Quadrature => Method::Quadrature,
+            VarianceMethod::LyapunovDelays => Method::LyapunovDelays,
         }
     }
 }

@@ -11,6 +11,7 @@ mod delayed;
 mod delayed_quadrature;
 mod density;
 mod excitation;
+mod outcome;
 mod statistics;
 mod sweep;
 mod variance;
@@ -21,10 +22,14 @@ pub use delayed_quadrature::{
 };
 pub use density::OutputDensity;
 pub use excitation::Excitation;
-pub use statistics::{analyze_output, ResponseStatistics, VarianceMethod, VarianceValue};
+pub use outcome::Outcome;
+pub use statistics::{
+    analyze_output, analyze_output_with, ResponseStatistics, VarianceMethod, VarianceValue, TABLE_AGREEMENT,
+};
 pub use sweep::{ExactEvaluator, PointStatistics};
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{
     band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,
-    variance_integral_table, variance_lyapunov, variance_quadrature, LyapunovMoments,
+    spectral_moment_quadrature_with, variance_integral_table, variance_lyapunov, variance_quadrature, LyapunovMoments,
+    INTEGRAL_TABLE_MAX_ERROR,
 };

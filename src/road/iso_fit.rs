@@ -108,7 +108,7 @@ pub fn iso8608_class(g0_m3: f64) -> Result<IsoClass> {
     Ok(IsoClass::ALL
         .into_iter()
         .rev()
-        .find(|c| *c == IsoClass::A || g0_m3 >= c.g0(IsoBound::Lower))
+        .find(|c| *c == IsoClass::A || c.g0(IsoBound::Lower).is_ok_and(|lo| g0_m3 >= lo))
         .unwrap_or(IsoClass::A))
 }
 

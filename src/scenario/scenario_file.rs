@@ -40,6 +40,7 @@ use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::models::results::DeterministicModel;
 use crate::models::{InputLayout, ModelInstance};
+use crate::quad_oscillatory::OscillatoryOptions;
 use crate::response::Excitation;
 use crate::simulate::{RunInput, RunOptions, RunSummary};
 use crate::spectrum::{AtSpeed, Domain, Spectrum};
@@ -59,6 +60,9 @@ pub struct AnalysisOptions {
     pub duration: f64,
     /// (output index, levels in the output's SI unit).
     pub levels: Vec<(usize, Vec<f64>)>,
+    /// Tolerance and limits of the quadratures (`[analysis.quadrature]`: `rel_tol`, `max_subintervals`,
+    /// `max_half_periods`).
+    pub effort: OscillatoryOptions,
 }
 
 /// The random input of a scenario as written: the process, its unit and where it came from.
@@ -543,10 +547,40 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
             levels.push((i, vals));
         }
     }
+    let effort = match f.get("quadrature") {
+        None => OscillatoryOptions::default(),
+        Some(_) => {
+            let q = f.sub("quadrature")?;
+            let d = OscillatoryOptions::default();
+            let count = |key: &str, default: usize| -> Result<usize> {
+                match q.get(key) {
+                    None => Ok(default),
+                    Some(v) => v
+                        .as_integer()
+                        .filter(|k| (1..=100_000_000).contains(k))
+                        .map(|k| k as usize)
+                        .ok_or_else(|| q.error(key, v, "expected a count from 1 to 10^8")),
+                }
+            };
+            let effort = OscillatoryOptions {
+                rel_tol: match q.get("rel_tol") {
+                    None => d.rel_tol,
+                    Some(_) => q.number("rel_tol")?,
+                },
+                max_subintervals: count("max_subintervals", d.max_subintervals)?,
+                max_half_periods: count("max_half_periods", d.max_half_periods)?,
+                ..d
+            };
+            effort.validate().map_err(|e| q.wrap_param(e, "rel_tol"))?;
+            q.finish()?;
+            effort
+        }
+    };
     Ok(AnalysisOptions {
         outputs,
         band,
         duration,
         levels,
+        effort,
     })
 }

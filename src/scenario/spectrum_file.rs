@@ -204,7 +204,7 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
                 return Err(f.error("unbounded", "true", "contradicts the `band` key: give one of them"));
             }
             let b = if unbounded { None } else { Some(b.unwrap_or(ISO_BAND)) };
-            Arc::new(PowerLaw::iso8608(class, bound, b).map_err(|e| w("band", e))?)
+            Arc::new(PowerLaw::iso8608(class, bound, b).map_err(|e| f.wrap_param(e, "band"))?)
         }
         "two-pole-road" => {
             if domain != Domain::Spatial {

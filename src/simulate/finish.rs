@@ -166,7 +166,8 @@ pub(crate) fn output_statistics(
 }
 
 /// The Welch density of one output with its χ² intervals; `analytic(ω)` gives the analytic density at the
-/// estimate's frequencies.
+/// estimate's frequencies. The expected estimate (`expected`) is left `None`: the caller sets it (a run from
+/// its plan, a merge from the shard files).
 ///
 /// # Errors
 /// No segments; a confidence outside (0, 1).
@@ -194,6 +195,7 @@ pub(crate) fn density_estimate(
         lower,
         upper,
         analytic,
+        expected: None,
         dof: est.dof,
         confidence: conf,
         method: format!(

@@ -7,7 +7,7 @@
 //! accumulators (the time averages m_i, v_i and the Welch sums) in the order b = 0, 1, …, B−1, and finishes
 //! the statistics with the code of a single-process run ([`super::finish`]): the values are the same
 //! floating-point operations in the same order, so they are bit-identical, for any N and any order of the
-//! inputs. The analytic values and the analytic density are taken from the shard files (they are the same
+//! inputs. The analytic values, the analytic density and the expected Welch estimate are taken from the shard files (they are the same
 //! numbers in every file, which is checked).
 //!
 //! # Raw realizations
@@ -143,10 +143,10 @@ pub fn merge_runs(
         let (s, d) = (p.run.statistics()?, p.run.psd()?);
         let analytic =
             |st: &[OutputStatistics]| -> Vec<Option<Analytic>> { st.iter().map(Analytic::from_statistics).collect() };
-        let dens = |d: &[crate::store::PsdEstimate]| -> Vec<Option<Vec<u64>>> {
-            d.iter()
-                .map(|e| e.analytic.as_ref().map(|a| a.iter().map(|x| x.to_bits()).collect()))
-                .collect()
+        // the analytic and the expected density, bit for bit
+        let dens = |d: &[crate::store::PsdEstimate]| -> Vec<[Option<Vec<u64>>; 2]> {
+            let bits = |v: &Option<Vec<f64>>| v.as_ref().map(|a| a.iter().map(|x| x.to_bits()).collect());
+            d.iter().map(|e| [bits(&e.analytic), bits(&e.expected)]).collect()
         };
         if analytic(&s) != analytic(&stats0) || dens(&d) != dens(&psd0) {
             return Err(Error::Hdf5 {
@@ -259,17 +259,27 @@ pub fn merge_runs(
             reason: format!("no analytic values stored for output `{}`", sig.name),
         })?;
         stats.push(output_statistics(sig, &analytic, &m, &v, confidence)?);
-        let dens = psd0
-            .iter()
-            .find(|e| e.output == sig.name)
-            .and_then(|e| e.analytic.clone());
-        psds.push(density_estimate(sig, &welch, &ws, confidence, |omega| match &dens {
+        let stored_psd = psd0.iter().find(|e| e.output == sig.name);
+        let dens = stored_psd.and_then(|e| e.analytic.clone());
+        let mut psd = density_estimate(sig, &welch, &ws, confidence, |omega| match &dens {
             Some(d) if d.len() != omega.len() => Err(Error::Hdf5 {
                 path: first.path.clone(),
                 reason: format!("its analytic density of `{}` has another length", sig.name),
             }),
             _ => Ok(dens.clone()),
-        })?);
+        })?;
+        // the expected estimate depends on the plan only (not on the realizations): every shard file stores
+        // the same numbers (checked above), which a single-process run computes
+        psd.expected = match stored_psd.and_then(|e| e.expected.clone()) {
+            Some(e) if e.len() != psd.omega.len() => {
+                return Err(Error::Hdf5 {
+                    path: first.path.clone(),
+                    reason: format!("its expected density of `{}` has another length", sig.name),
+                })
+            }
+            e => e,
+        };
+        psds.push(psd);
     }
     writer.write_statistics(&stats)?;
     for psd in &psds {

@@ -154,24 +154,20 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     let mut stats = Vec::new();
     let mut psds = Vec::new();
     let acc = |name: &str, shard: usize| writer.read_accumulator(name, shard);
-    for o in &plan.outputs {
+    for (o, autocov) in plan.outputs.iter().zip(&plan.autocov) {
         let (m, v, ws) = read_output(&acc, &meta, &o.signal.name, &plan.welch)?;
         let analytic = Analytic::from_variances(o.analytic_variance, o.discrete_variance);
         stats.push(output_statistics(&o.signal, &analytic, &m, &v, opts.confidence)?);
-        psds.push(density_estimate(
-            &o.signal,
-            &plan.welch,
-            &ws,
-            opts.confidence,
-            |omega| {
-                Ok(Some(
-                    omega
-                        .iter()
-                        .map(|&w| output_density(input.system, input.excitation, o.index, w))
-                        .collect(),
-                ))
-            },
-        )?);
+        let mut psd = density_estimate(&o.signal, &plan.welch, &ws, opts.confidence, |omega| {
+            Ok(Some(
+                omega
+                    .iter()
+                    .map(|&w| output_density(input.system, input.excitation, o.index, w))
+                    .collect(),
+            ))
+        })?;
+        psd.expected = Some(plan.welch.expected_all(autocov));
+        psds.push(psd);
     }
     writer.write_statistics(&stats)?;
     for psd in &psds {

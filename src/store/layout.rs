@@ -165,6 +165,9 @@ pub const DS_LOWER: &str = "lower";
 pub const DS_UPPER: &str = "upper";
 /// Dataset, f64 `[n_freq]` (optional): analytic density at the same ω.
 pub const DS_ANALYTIC: &str = "analytic";
+/// Dataset, f64 `[n_freq]` (optional, format ≥ 2): the exact mean of the estimate (window kernel ⊛ density of
+/// the simulated sampled process).
+pub const DS_EXPECTED: &str = "expected";
 /// Group attribute, string: the density convention ([`PSD_CONVENTION`]).
 pub const ATTR_CONVENTION: &str = "convention";
 /// Group attribute, f64: χ² degrees of freedom ν of the interval (ν = 2K for K averaged segments).

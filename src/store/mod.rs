@@ -505,8 +505,11 @@ pub struct PsdEstimate {
     pub lower: Vec<f64>,
     /// Upper interval bound.
     pub upper: Vec<f64>,
-    /// Analytic S(ω) at the same ω, if known.
+    /// Analytic S(ω) at the same ω, if known (the continuous-time density).
     pub analytic: Option<Vec<f64>>,
+    /// The exact mean of the estimate, if known: the window's spectral kernel convolved with the density of
+    /// the simulated (sampled, aliased) process — what the interval should cover.
+    pub expected: Option<Vec<f64>>,
     /// χ² degrees of freedom ν of the interval (2K for K averaged segments).
     pub dof: f64,
     /// Confidence level of the interval.
@@ -525,6 +528,10 @@ impl PsdEstimate {
         if let Some(a) = &self.analytic {
             c.update_f64(a);
         }
+        if let Some(a) = &self.expected {
+            c.update(b"expected");
+            c.update_f64(a);
+        }
         c.update_f64(&[self.dof, self.confidence]);
         for s in [&self.output, &self.unit, &self.method] {
             c.update(s.as_bytes());
@@ -532,6 +539,58 @@ impl PsdEstimate {
         }
         c.finish()
     }
+}
+
+impl PsdEstimate {
+    /// Bins where the estimate measures the density: the expected estimate is within
+    /// [`RESOLVED_BIAS`] of the continuous-time density, |E Ŝ(ω_j)/S(ω_j) − 1| ≤ 0.25 (`None` without an
+    /// expectation or an analytic density). Elsewhere the window's leakage from stronger bins, the filling of
+    /// a notch or aliasing near the Nyquist frequency dominates the estimate: there the χ² band is a band on
+    /// a few strong distant lines, narrower than the estimate's real scatter, and says little about S.
+    pub fn resolved(&self) -> Option<Vec<bool>> {
+        let (e, a) = (self.expected.as_ref()?, self.analytic.as_ref()?);
+        Some(
+            e.iter()
+                .zip(a)
+                .map(|(e, a)| *a > 0.0 && (e / a - 1.0).abs() <= RESOLVED_BIAS)
+                .collect(),
+        )
+    }
+
+    /// How many bins have their expectation inside the interval, in all and among the
+    /// [`resolved`](Self::resolved) bins (`None` without an expectation).
+    pub fn coverage(&self) -> Option<Coverage> {
+        let e = self.expected.as_ref()?;
+        let resolved = self.resolved().unwrap_or_else(|| vec![false; e.len()]);
+        let mut c = Coverage {
+            bins: e.len(),
+            ..Coverage::default()
+        };
+        for ((v, (lo, hi)), r) in e.iter().zip(self.lower.iter().zip(&self.upper)).zip(resolved) {
+            let inside = *lo <= *v && *v <= *hi;
+            c.covered += usize::from(inside);
+            c.resolved += usize::from(r);
+            c.covered_resolved += usize::from(inside && r);
+        }
+        Some(c)
+    }
+}
+
+/// Largest relative difference between the expected Welch estimate and the continuous-time density at a
+/// bin still counted as resolved ([`PsdEstimate::resolved`]).
+pub const RESOLVED_BIAS: f64 = 0.25;
+
+/// How often the χ² band of a [`PsdEstimate`] covers the estimate's exact mean.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Coverage {
+    /// Bins with an expectation.
+    pub bins: usize,
+    /// Of them, bins whose band covers it.
+    pub covered: usize,
+    /// Resolved bins ([`PsdEstimate::resolved`]).
+    pub resolved: usize,
+    /// Resolved bins whose band covers the expectation: at about the confidence level.
+    pub covered_resolved: usize,
 }
 
 /// Which group a raw signal lives in.

@@ -389,6 +389,11 @@ impl RunFile {
                 } else {
                     None
                 },
+                expected: if g.link_exists(L::DS_EXPECTED) {
+                    Some(read(L::DS_EXPECTED)?)
+                } else {
+                    None
+                },
                 dof: attr_scalar(&g, L::ATTR_DOF, p)?,
                 confidence: attr_scalar(&g, L::ATTR_CONFIDENCE, p)?,
                 method: attr_string(&g, L::ATTR_METHOD, p)?,
@@ -672,6 +677,24 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
                 if e.analytic.is_some() { ", with analytic" } else { "" },
                 e.method
             );
+            if let Some(c) = e.coverage() {
+                let pct = |a: usize, b: usize| 100.0 * a as f64 / b.max(1) as f64;
+                let _ = writeln!(
+                    s,
+                    "    {:<12} the {} % band covers the expected estimate (window ⊛ sampled density) at {} of {} \
+                     resolved bins ({:.1} %); {} of {} bins are leakage-, notch- or alias-dominated (expected \
+                     estimate more than {} % from the density), covered at {} of them",
+                    "",
+                    100.0 * e.confidence,
+                    c.covered_resolved,
+                    c.resolved,
+                    pct(c.covered_resolved, c.resolved),
+                    c.bins - c.resolved,
+                    c.bins,
+                    100.0 * super::RESOLVED_BIAS,
+                    c.covered - c.covered_resolved
+                );
+            }
         }
     }
     Ok(s)

@@ -842,6 +842,7 @@ impl RunWriter {
             ("psd.lower", psd.lower.len()),
             ("psd.upper", psd.upper.len()),
             ("psd.analytic", psd.analytic.as_ref().map_or(n, |a| a.len())),
+            ("psd.expected", psd.expected.as_ref().map_or(n, |a| a.len())),
         ] {
             if len != n {
                 return Err(Error::invalid(
@@ -881,6 +882,9 @@ impl RunWriter {
             ];
             if let Some(a) = &psd.analytic {
                 sets.push((L::DS_ANALYTIC, a));
+            }
+            if let Some(a) = &psd.expected {
+                sets.push((L::DS_EXPECTED, a));
             }
             for (name, data) in sets {
                 g.new_dataset_builder().with_data(data.as_slice()).create(name)?;

@@ -328,7 +328,10 @@ impl Mdof {
         Ok(model)
     }
 
-    /// Adds a named output; its unit follows from the quantity and the coordinates' units.
+    /// Adds a named output; its unit follows from the quantity and the coordinates' units: a point that
+    /// weights lengths (m) and angles (rad) together, such as z + aφ, is in metres (the weight of an angle is a
+    /// lever arm in m/rad), a point of angles alone in radians; velocities and accelerations add `/s`,
+    /// `/s^2`; element forces are in N, or N m for an element between angles.
     ///
     /// # Errors
     /// A point of the wrong length or an element index out of range.
@@ -346,17 +349,18 @@ impl Mdof {
             }
             Ok(DVector::from_column_slice(g))
         };
+        // a point weighting lengths (m) and angles (rad), e.g. z + aφ, is a length: the weight of an angle is
+        // then a lever arm in m/rad; a point of angles alone is an angle
         let unit_of = |g: &Vec<f64>| -> String {
-            let units: Vec<&str> = g
+            let mut used = g
                 .iter()
                 .zip(&self.coords)
                 .filter(|(w, _)| **w != 0.0)
-                .map(|(_, c)| c.1.as_str())
-                .collect();
-            if units.windows(2).all(|w| w[0] == w[1]) {
-                units.first().copied().unwrap_or("m").to_string()
-            } else {
-                "mixed".to_string()
+                .map(|(_, c)| c.1.as_str());
+            let first = used.next();
+            match first {
+                Some("rad") if used.all(|u| u == "rad") => "rad".to_string(),
+                _ => "m".to_string(),
             }
         };
         let element = |e: usize| -> Result<&Element> {

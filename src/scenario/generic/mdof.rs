@@ -4,7 +4,9 @@
 //! # Format
 //! * From elements: `coordinates = [{ name, unit, mass }]` (unit `m` with a mass in kg, or `rad` with an
 //!   inertia in kg m²), `base_inputs = N`, `[[model.element]]` with `name`, `point` (weights of the
-//!   coordinates), `to` (`"ground"`, `"base 0"`, … or a point array), `stiffness`, `damping`.
+//!   coordinates), `to` (`"ground"`, `"base 0"`, … or a point array), `stiffness`, `damping`. An element
+//!   whose point weights any length coordinate deflects a length (z + aφ: a is a lever arm in m/rad) and
+//!   takes N/m and N s/m; one on angles alone takes N m/rad and N m s/rad.
 //! * From matrices: `coordinates = [{ name, unit }]`, `base_inputs = N`, `mass_matrix`, `damping_matrix`,
 //!   `stiffness_matrix` (n × n), `base_stiffness`, `base_damping` (n × N) as SI numbers:
 //!   M q̈ + B q̇ + C q = K_u u + B_u u̇.
@@ -134,7 +136,9 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             let ef = Fields::new(f.file(), &f.path(&key), t);
             let name = ef.string("name")?.to_string();
             let p = point("point", ef.require("point")?, &ef)?;
-            let rot = p.iter().zip(&coords).any(|(w, c)| *w != 0.0 && c.1 == "rad");
+            // the same rule as the output units (Mdof::with_output): a point weighting a length is a length
+            // (an angle's weight is then a lever arm in m/rad), a point of angles alone is an angle
+            let rot = p.iter().any(|w| *w != 0.0) && p.iter().zip(&coords).all(|(w, c)| *w == 0.0 || c.1 == "rad");
             let (kd, bd) = if rot {
                 (Dim::TORQUE, Dim::new(2, 1, -1))
             } else {
