@@ -320,7 +320,7 @@ impl RunWriter {
 
         let n_shards = meta.local_shards().len();
         let rows = meta.local_realizations().len();
-        let chunk = L::chunk_shape(meta.n_samples, meta.shard_size);
+        let chunk = raw_chunk(meta);
         let mut signal_sets = Vec::new();
         for (gname, signals) in [(L::GROUP_INPUTS, &meta.inputs), (L::GROUP_OUTPUTS, &meta.outputs)] {
             let group = file.create_group(gname).map_err(e("creating a signal group"))?;
@@ -645,7 +645,7 @@ impl RunWriter {
                 }
                 // Filtered here on all threads, stored as is (HDF5 would filter serially).
                 Compression::Deflate { level } => {
-                    let chunk = L::chunk_shape(self.meta.n_samples, self.meta.shard_size);
+                    let chunk = raw_chunk(&self.meta);
                     // local rows start at a multiple of shard_size, hence of the chunk's rows
                     let filtered = chunks::filter_block(a.view(), range.start, chunk, level);
                     chunks::write_filtered(ds, &filtered).map_err(e("writing a compressed shard"))?;
@@ -984,6 +984,14 @@ impl RunWriter {
 
 /// Opens the writer's file ([`open_sec2`]) with its file-access options.
 ///
+/// The chunk shape of the raw datasets of a file: [`L::chunk_shape`], with at most as many rows as the file
+/// holds (a part file that holds only the last, short internal shard of a run has fewer rows than a chunk;
+/// HDF5 refuses chunks larger than a fixed-size dataset). Its rows still divide every local start row.
+fn raw_chunk(meta: &RunMetadata) -> (usize, usize) {
+    let (rows, cols) = L::chunk_shape(meta.n_samples, meta.shard_size);
+    (rows.min(meta.local_realizations().len().max(1)), cols)
+}
+
 /// Uncompressed raw datasets get no chunk cache (0 bytes): every shard write covers whole chunks (see
 /// [`L::chunk_shape`]), and a chunk that does not fit the cache is written by HDF5 straight from the
 /// caller's buffer to the file. With HDF5's default 1 MiB cache, a 1 MiB chunk is "cacheable" and every
