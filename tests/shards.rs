@@ -359,6 +359,19 @@ fn shard_auto_reads_the_scheduler_environment() {
         "{err}"
     );
     assert_eq!(files_in(&dir), ["shard-1-of-3.h5"]);
+    // SLURM without SLURM_ARRAY_TASK_COUNT: N = SLURM_ARRAY_TASK_MAX + 1 for an array 0..MAX
+    let min_max = [
+        ("SLURM_ARRAY_TASK_ID", "0"),
+        ("SLURM_ARRAY_TASK_MIN", "0"),
+        ("SLURM_ARRAY_TASK_MAX", "2"),
+    ];
+    let (ok, _, err) = stochvib(&sim_args(&d, "auto", None), &min_max);
+    assert!(
+        ok && err.contains("SLURM_ARRAY_TASK_ID=0 of SLURM_ARRAY_TASK_MAX+1=3"),
+        "{err}"
+    );
+    assert_eq!(files_in(&dir), ["shard-0-of-3.h5", "shard-1-of-3.h5"]);
+    std::fs::remove_file(dir.join("shard-0-of-3.h5")).unwrap();
     // a resubmitted index runs in an array of one task: N must be given
     let resubmitted = [
         ("SLURM_ARRAY_TASK_ID", "2"),

@@ -36,7 +36,8 @@ pub struct ShardChoice {
 /// With `auto`, I is `SLURM_ARRAY_TASK_ID` (a SLURM job array), else `JOB_COMPLETION_INDEX` (a Kubernetes
 /// Indexed Job). N is `--of` when given (always give it: a resubmitted index `sbatch --array=7` runs in an
 /// array of one task). Without `--of`, under SLURM only: N = `SLURM_ARRAY_TASK_COUNT` when the array is
-/// `0..N-1` (`SLURM_ARRAY_TASK_MIN` = 0 and `SLURM_ARRAY_TASK_MAX` = N − 1) with N ≥ 2; any other array
+/// `0..N-1` (`SLURM_ARRAY_TASK_MIN` = 0 and `SLURM_ARRAY_TASK_MAX` = N − 1) with N ≥ 2 (N = MAX + 1 when
+/// `SLURM_ARRAY_TASK_COUNT` is not set); any other array
 /// (a resubmitted subset, a stepped range, one task) is refused. `env(name)` reads the environment (a
 /// parameter, so that tests need not change the process's environment).
 ///
@@ -92,7 +93,15 @@ pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<
             read("SLURM_ARRAY_TASK_MAX")?,
             read("SLURM_ARRAY_TASK_COUNT")?,
         );
-        let whole_array = matches!((min, max, count), (Some(0), Some(mx), Some(c)) if c >= 2 && mx + 1 == c);
+        // an array 0..N-1 says N: SLURM_ARRAY_TASK_COUNT, or MAX + 1 where COUNT is not set (older SLURM)
+        let whole_array =
+            matches!((min, max, count), (Some(0), Some(mx), c) if mx >= 1 && c.is_none_or(|c| c == mx + 1));
+        let count_name = if count.is_some() {
+            "SLURM_ARRAY_TASK_COUNT"
+        } else {
+            "SLURM_ARRAY_TASK_MAX+1"
+        };
+        let count = count.or(max.map(|mx| mx + 1));
         let (n, source) = match of {
             Some(n) => {
                 if let (true, Some(c)) = (whole_array, count) {
@@ -111,10 +120,7 @@ pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<
                 let c = count.unwrap_or(0);
                 (
                     c,
-                    format!(
-                        "SLURM_ARRAY_TASK_ID={index} of SLURM_ARRAY_TASK_COUNT={c} (array 0..{})",
-                        c - 1
-                    ),
+                    format!("SLURM_ARRAY_TASK_ID={index} of {count_name}={c} (array 0..{})", c - 1),
                 )
             }
             None => {
