@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use stochvib::response::{analyze_output, ExactEvaluator, Excitation, VarianceMethod};
 use stochvib::scenario::{load_scenario, Scenario};
-use stochvib::simulate::{merge_runs, part_path, resolve_part, MergeOptions, RunOptions};
+use stochvib::simulate::{part_path, resolve_part, MergeOptions, RunOptions};
 use stochvib::spectrum::{Domain, Exponential, GaussCosine};
 use stochvib::store::{Compression, OutputStatistics, Part, PsdEstimate, RunFile, SignalGroup};
 use stochvib::system::{OutputInfo, StateSpace, TransferFunction};
@@ -36,6 +36,34 @@ const SAME_QUADRATURE: f64 = common::tolerance::QUADRATURE;
 const R: usize = 37;
 const SHARD_SIZE: usize = 4;
 const B: usize = 10;
+
+/// Serialises the spawning of child processes with the in-process writers of this test binary. HDF5 locks a
+/// file with flock(2); a child forked by another test thread while a writer's descriptor is open inherits
+/// its lock until exec closes it (close-on-exec), and a merge opening that file in that instant fails with
+/// "unable to lock file" (seen once in a loaded full run). Spawns hold this lock until the child has exec'd;
+/// in-process runs and merges hold it while their files are open.
+static SPAWN: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+fn spawn_lock() -> std::sync::MutexGuard<'static, ()> {
+    SPAWN.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// `sc.simulate` under [`SPAWN`].
+fn simulate(sc: &Scenario, o: &RunOptions, path: &Path) -> stochvib::simulate::RunSummary {
+    let _g = spawn_lock();
+    sc.simulate(o, path, &|_, _| {}).unwrap()
+}
+
+/// `stochvib::simulate::merge_runs` under [`SPAWN`].
+fn merge_runs(
+    out: &Path,
+    inputs: &[PathBuf],
+    opts: &MergeOptions,
+    progress: &dyn Fn(usize, usize),
+) -> stochvib::error::Result<stochvib::simulate::MergeSummary> {
+    let _g = spawn_lock();
+    stochvib::simulate::merge_runs(out, inputs, opts, progress)
+}
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("stochvib-shards-{}-{name}", std::process::id()));
@@ -65,11 +93,14 @@ fn opts(seed: u64, part: Option<Part>) -> RunOptions {
 fn run_part(sc: &Scenario, dir: &Path, i: usize, n: usize, seed: u64) -> PathBuf {
     let p = Part::new(i, n).unwrap();
     let path = part_path(dir, p);
-    sc.simulate(&opts(seed, Some(p)), &path, &|_, _| {}).unwrap();
+    simulate(&sc, &opts(seed, Some(p)), &path);
     path
 }
 
-fn stat_bits(s: &[OutputStatistics]) -> Vec<(String, String, [u64; 5], Option<bool>, u64)> {
+/// (output, statistic, bits of estimate/lower/upper/confidence/analytic, covers, n_used).
+type StatBits = (String, String, [u64; 5], Option<bool>, u64);
+
+fn stat_bits(s: &[OutputStatistics]) -> Vec<StatBits> {
     s.iter()
         .flat_map(|o| {
             o.statistics.iter().map(move |st| {
@@ -150,7 +181,7 @@ fn merged_run_is_bit_identical_for_any_split_and_order() {
     let sc = idler();
     let dir = scratch("bit");
     let whole = dir.join("whole.h5");
-    sc.simulate(&opts(7, None), &whole, &|_, _| {}).unwrap();
+    simulate(&sc, &opts(7, None), &whole);
     for n in [1, 2, 3, 4, 7, B] {
         let parts = dir.join(format!("n{n}"));
         std::fs::create_dir_all(&parts).unwrap();
@@ -198,12 +229,12 @@ fn merged_run_is_bit_identical_for_any_split_and_order() {
         ..opts(11, part)
     };
     let zwhole = dir.join("zwhole.h5");
-    sc.simulate(&comp(None), &zwhole, &|_, _| {}).unwrap();
+    simulate(&sc, &comp(None), &zwhole);
     let zdir = dir.join("z");
     std::fs::create_dir_all(&zdir).unwrap();
     for i in [2, 0, 1] {
         let p = Part::new(i, 3).unwrap();
-        sc.simulate(&comp(Some(p)), &part_path(&zdir, p), &|_, _| {}).unwrap();
+        simulate(&sc, &comp(Some(p)), &part_path(&zdir, p));
     }
     let zm = dir.join("zmerged.h5");
     merge_runs(&zm, std::slice::from_ref(&zdir), &MergeOptions::default(), &|_, _| {}).unwrap();
@@ -255,7 +286,7 @@ fn merge_refuses_incomplete_or_mixed_shard_sets() {
     // ... while a split that tiles (shard 0 of 2 with shards 2, 3 of 4) merges like the single run
     inputs = vec![half, parts.join("shard-2-of-4.h5"), parts.join("shard-3-of-4.h5")];
     let whole = dir.join("whole.h5");
-    sc.simulate(&opts(7, None), &whole, &|_, _| {}).unwrap();
+    simulate(&sc, &opts(7, None), &whole);
     merge_runs(&out, &inputs, &MergeOptions::default(), &|_, _| {}).unwrap();
     assert_same_run(&out, &whole);
     // 4. an existing merged file is not replaced
@@ -296,7 +327,14 @@ fn stochvib(args: &[&str], env: &[(&str, &str)]) -> (bool, String, String) {
     for (k, v) in env {
         c.env(k, v);
     }
-    let o = c.output().unwrap();
+    let child = {
+        let _g = spawn_lock();
+        c.stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let o = child.wait_with_output().unwrap();
     (
         o.status.success(),
         String::from_utf8_lossy(&o.stdout).into_owned(),
@@ -461,13 +499,19 @@ fn shard_rerun_is_a_no_op() {
 }
 
 fn python(script: &str, args: &[&str], cwd: &Path) -> String {
-    let o = Command::new("python3")
-        .current_dir(cwd)
-        .arg("-c")
-        .arg(script)
-        .args(args)
-        .output()
-        .expect("python3 with h5py is required (bash scripts/test.sh installs it)");
+    let child = {
+        let _g = spawn_lock();
+        Command::new("python3")
+            .current_dir(cwd)
+            .arg("-c")
+            .arg(script)
+            .args(args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("python3 with h5py is required (bash scripts/test.sh installs it)")
+    };
+    let o = child.wait_with_output().unwrap();
     assert!(
         o.status.success(),
         "python failed: {}{}",
@@ -486,7 +530,7 @@ fn virtual_raw_data_are_readable_by_h5py() {
     let sc = idler();
     let dir = scratch("vds");
     let whole = dir.join("whole.h5");
-    sc.simulate(&opts(5, None), &whole, &|_, _| {}).unwrap();
+    simulate(&sc, &opts(5, None), &whole);
     let runs = dir.join("runs");
     std::fs::create_dir_all(&runs).unwrap();
     for i in 0..3 {
@@ -645,7 +689,8 @@ fn analyze_sigmas(text: &str, dir: &Path, name: &str) -> Vec<(String, Option<f64
 fn sweep_matches_analyze_of_the_substituted_scenario() {
     let dir = scratch("sweep");
     let base = std::fs::read_to_string(root().join("data/scraper-sprung-cab.toml")).unwrap();
-    let cases: [(&str, Vec<&str>, fn(&str, &str, &str) -> String); 2] = [
+    type Case<'a> = (&'a str, Vec<&'a str>, fn(&str, &str, &str) -> String);
+    let cases: [Case; 2] = [
         (
             "model",
             vec![

@@ -516,9 +516,8 @@ impl SweepResults {
         match format {
             TableFormat::Csv => std::fs::write(&tmp, self.to_csv()).map_err(io)?,
             TableFormat::Json => std::fs::write(&tmp, self.to_json()?).map_err(io)?,
-            TableFormat::Hdf5 => self.write_h5(&tmp).map_err(|e| {
+            TableFormat::Hdf5 => self.write_h5(&tmp).inspect_err(|_| {
                 let _ = std::fs::remove_file(&tmp);
-                e
             })?,
         }
         std::fs::rename(&tmp, path).map_err(|source| Error::Io {

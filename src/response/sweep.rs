@@ -225,8 +225,8 @@ fn table_route(
     let mut a = [[0.0; N]; N];
     let mut b = [0.0; N];
     for r in 0..n {
-        for c in 0..n {
-            a[r][c] = ss.a[(r, c)];
+        for (c, v) in a[r].iter_mut().enumerate().take(n) {
+            *v = ss.a[(r, c)];
         }
         b[r] = (0..m).map(|j| ss.b[(r, j)] * gains[j]).sum();
     }
