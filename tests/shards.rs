@@ -93,7 +93,7 @@ fn opts(seed: u64, part: Option<Part>) -> RunOptions {
 fn run_part(sc: &Scenario, dir: &Path, i: usize, n: usize, seed: u64) -> PathBuf {
     let p = Part::new(i, n).unwrap();
     let path = part_path(dir, p);
-    simulate(&sc, &opts(seed, Some(p)), &path);
+    simulate(sc, &opts(seed, Some(p)), &path);
     path
 }
 
