@@ -1,6 +1,46 @@
 #!/usr/bin/env bash
-# The whole test suite: installs what is missing, then runs every test (unit, integration, doc).
+# The whole test suite: installs what is missing, then runs every test (unit, integration, doc), then the
+# cluster test on a real single-node SLURM cluster (tests/slurm/real-array.sh: about 8 s, plus about 16 s
+# the first time for the Debian packages slurmctld, slurmd, slurm-client and munge, which it installs).
+#
+# STOCHVIB_SLURM_TEST decides what happens when that cluster cannot be started on this machine:
+#   require   the suite fails (CI: .ci/run sets it; also the default when CI is set in the environment)
+#   auto      the default elsewhere: the suite passes, but ends with a warning banner that says the SLURM
+#             test did NOT run and why
+#   skip      do not try (the banner says so too)
+# A cluster that starts and a test that then fails always fails the suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/ensure-deps.sh --with-h5py
 cargo test --locked "$@"
+
+mode="${STOCHVIB_SLURM_TEST:-$([ -n "${CI:-}" ] && echo require || echo auto)}"
+banner() {
+  printf '\n%s\n%s\n%s\n\n' "!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!" \
+    "!!! $*" "!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!!" >&2
+}
+case "$mode" in
+skip)
+  banner "the SLURM cluster test (tests/slurm/real-array.sh) was NOT run: STOCHVIB_SLURM_TEST=skip"
+  exit 0
+  ;;
+require | auto) ;;
+*)
+  echo "test.sh: STOCHVIB_SLURM_TEST must be require, auto or skip (got '$mode')" >&2
+  exit 2
+  ;;
+esac
+cargo build --locked --bin stochvib
+set +e
+STOCHVIB=target/debug/stochvib bash tests/slurm/real-array.sh
+rc=$?
+set -e
+if [ "$rc" -eq 77 ]; then
+  if [ "$mode" = require ]; then
+    banner "FAILED: the SLURM cluster could not be started, and STOCHVIB_SLURM_TEST=require (see above)"
+    exit 1
+  fi
+  banner "the SLURM cluster test did NOT run: the cluster could not be started on this machine (see above); set STOCHVIB_SLURM_TEST=require to make this an error"
+  exit 0
+fi
+exit "$rc"

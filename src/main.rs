@@ -4,8 +4,10 @@ use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::{self, attach_monte_carlo};
-use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
-use stochvib::simulate::{suggest_step, Route, RunOptions};
+use stochvib::scenario::{
+    load_document, load_scenario, Catalogue, Document, Scenario, Sweep, SweepMode, SweepParam, SweepSpec,
+};
+use stochvib::simulate::{merge_runs, part_path, resolve_part, suggest_step, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
 use stochvib::store::{summarize, Compression, RunFile};
 
@@ -169,9 +171,20 @@ enum Command {
         /// Master seed; realization i uses stream (seed, i).
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// Output file (written as FILE.tmp and renamed when complete; an interrupted run resumes).
+        /// Output file (written as FILE.tmp and renamed when complete; an interrupted run resumes); with
+        /// --shard, the run directory that receives the shard file DIR/shard-<I>-of-<N>.h5.
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
+        /// Compute only shard I of the run (0 <= I < N, N from --of), or `auto`: I from the scheduler
+        /// (SLURM_ARRAY_TASK_ID of a job array, JOB_COMPLETION_INDEX of a Kubernetes Indexed Job). A shard
+        /// holds whole internal shards of --shard-size realizations; merge the N files with `stochvib merge`
+        /// (bit-identical to one process with the same --shard-size).
+        #[arg(long, value_name = "I|auto")]
+        shard: Option<String>,
+        /// N, the number of shards of the run (with --shard; always give it: a resubmitted array index
+        /// cannot tell N).
+        #[arg(long, value_name = "N", requires = "shard")]
+        of: Option<usize>,
         /// Realizations per shard.
         #[arg(long, default_value_t = 50)]
         shard_size: usize,
@@ -199,6 +212,76 @@ enum Command {
         /// After the run, write its pictures (as `stochvib plot OUTPUT -o DIR`) into this directory.
         #[arg(long)]
         plots: Option<PathBuf>,
+    },
+    /// Merge the shard files of a cluster run (`simulate --shard I --of N -o DIR/`) into one run file,
+    /// bit-identical to a single-process run with the same scenario, seed, options and --shard-size. Refuses,
+    /// naming the files and the indices to resubmit, files of other runs, duplicate, overlapping and missing
+    /// shards. The raw realizations (--store-raw) stay in the shard files, read through HDF5 virtual
+    /// datasets (paths relative to OUTPUT's directory: keep the shard files there), unless --copy.
+    Merge {
+        /// The merged run file (written as FILE.tmp and renamed when complete).
+        output: PathBuf,
+        /// Shard files, or directories whose *.h5 files are the shard files.
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
+        /// Copy the raw realizations into the merged file (it then stands alone).
+        #[arg(long)]
+        copy: bool,
+        /// Replace an existing finished OUTPUT (a run file only; replaced when the merge is complete).
+        #[arg(long)]
+        overwrite: bool,
+        /// Confidence of the intervals (default: that of the shard files).
+        #[arg(long)]
+        confidence: Option<f64>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Parameter study: the scenario's exact statistics (and optionally a Monte Carlo batch) at every point
+    /// of a grid or list of scenario keys, as one table (CSV, JSON or HDF5 from -o's extension; CSV on
+    /// stdout without -o). With --shard, one part of the points into DIR/sweep-shard-<I>-of-<N>.json;
+    /// `stochvib merge TABLE DIR/` joins them.
+    Sweep {
+        /// Scenario file (TOML, see data/).
+        scenario: PathBuf,
+        /// KEY=VALUES: a scenario key (model.omega2, input.speed, model.element.0.stiffness) and a list
+        /// `V1,V2,...` or a range `A..B:n` (`A..B:n:log`) of values with units, e.g. `model.omega2=1 Hz..2 Hz:5`.
+        #[arg(long = "param", value_name = "KEY=VALUES", required = true)]
+        params: Vec<String>,
+        /// Zip the keys' values (the k-th values together) instead of the grid of every combination.
+        #[arg(long)]
+        zip: bool,
+        /// The table (.csv, .json, .h5); with --shard, the directory of the shard files.
+        #[arg(short = 'o', long = "output")]
+        output: Option<PathBuf>,
+        /// Evaluate only part I of the points (or `auto`, from the scheduler, as for simulate).
+        #[arg(long, value_name = "I|auto")]
+        shard: Option<String>,
+        /// N, the number of parts (with --shard).
+        #[arg(long, value_name = "N", requires = "shard")]
+        of: Option<usize>,
+        /// Also run a Monte Carlo batch of N realizations at every point (same seed at every point).
+        #[arg(long, value_name = "N")]
+        monte_carlo: Option<usize>,
+        #[command(flatten)]
+        step: Step,
+        /// Master seed of the Monte Carlo batches.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Realizations per internal shard of the Monte Carlo batches.
+        #[arg(long, default_value_t = 50)]
+        shard_size: usize,
+        /// Confidence of the Monte Carlo intervals.
+        #[arg(long, default_value_t = 0.95)]
+        confidence: f64,
+        /// Replace an existing table or shard file.
+        #[arg(long)]
+        overwrite: bool,
+        /// Print JSON instead of CSV (without -o).
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        spectra: SpectraDir,
     },
     /// Summarise a Monte Carlo run file.
     Inspect {
@@ -373,6 +456,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             step,
             seed,
             output,
+            shard,
+            of,
             shard_size,
             store_raw,
             compression,
@@ -384,6 +469,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             plots,
         } => {
             let catalogue = spectra.catalogue();
+            // the shard before anything else: a task outside a scheduler fails at once
+            let choice = match &shard {
+                Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok())?),
+                None => None,
+            };
             let sc = load_scenario(&scenario, catalogue.dir())?;
             let (dt, duration) = step.resolve(&sc)?;
             let opts = RunOptions {
@@ -393,7 +483,25 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 route,
                 confidence,
                 overwrite,
+                part: choice.as_ref().map(|c| c.part),
                 ..RunOptions::new(realizations, duration, dt, seed)
+            };
+            let output = match &choice {
+                None => output,
+                Some(c) => {
+                    if output.is_file() {
+                        anyhow::bail!(
+                            "{}: with --shard, -o names the run directory that receives shard-<I>-of-<N>.h5 files,                              not a file",
+                            output.display()
+                        );
+                    }
+                    std::fs::create_dir_all(&output)?;
+                    eprintln!("shard {} of {} ({})", c.part.index, c.part.count, c.source);
+                    for n in &c.notes {
+                        eprintln!("warning: {n}");
+                    }
+                    part_path(&output, c.part)
+                }
             };
             let s = sc.simulate(&opts, &output, &progress_printer())?;
             print(&s, json)?;
@@ -401,6 +509,123 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 for f in run_plots(&s.path, &pdir, catalogue.dir())? {
                     if !json {
                         emit_line(&f.display().to_string());
+                    }
+                }
+            }
+        }
+        Command::Merge {
+            output,
+            inputs,
+            copy,
+            overwrite,
+            confidence,
+            json,
+        } => {
+            let sweeps = report::find_sweep_shards(&inputs)?;
+            if !sweeps.is_empty() {
+                let (runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
+                if !runs.is_empty() {
+                    anyhow::bail!(
+                        "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
+                        sweeps[0].display(),
+                        runs[0].display()
+                    );
+                }
+                let t = report::merge_sweep(&output, &inputs, overwrite)?;
+                eprintln!(
+                    "merged {} points ({} failed) into {}",
+                    t.n_points,
+                    t.errors.len(),
+                    output.display()
+                );
+                return Ok(());
+            }
+            let opts = MergeOptions {
+                copy,
+                overwrite,
+                confidence,
+            };
+            let s = merge_runs(&output, &inputs, &opts, &|_, _| {})?;
+            print(&s, json)?;
+        }
+        Command::Sweep {
+            scenario,
+            params,
+            zip,
+            output,
+            shard,
+            of,
+            monte_carlo,
+            step,
+            seed,
+            shard_size,
+            confidence,
+            overwrite,
+            json,
+            spectra,
+        } => {
+            let choice = match &shard {
+                Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok())?),
+                None => None,
+            };
+            let catalogue = spectra.catalogue();
+            let sc = load_scenario(&scenario, catalogue.dir())?;
+            let params = params
+                .iter()
+                .map(|p| SweepParam::parse(p))
+                .collect::<Result<Vec<_>, _>>()?;
+            let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
+            let sweep = Sweep::new(&sc, SweepSpec::new(params, mode)?)?;
+            let mc = match monte_carlo {
+                Some(n) => {
+                    let (dt, duration) = step.resolve(&sc)?;
+                    Some(report::SweepMonteCarlo {
+                        realizations: n,
+                        duration_s: duration,
+                        dt_s: dt,
+                        seed,
+                        shard_size,
+                        confidence,
+                    })
+                }
+                None => None,
+            };
+            let progress = progress_printer();
+            match choice {
+                Some(c) => {
+                    let dir = output
+                        .ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
+                    if dir.is_file() {
+                        anyhow::bail!("{}: with --shard, -o names a directory", dir.display());
+                    }
+                    std::fs::create_dir_all(&dir)?;
+                    eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
+                    let (path, sh, fresh) =
+                        report::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
+                    eprintln!(
+                        "{} {}: points {}..{} of {} ({} failed)",
+                        if fresh {
+                            "wrote"
+                        } else {
+                            "already complete (nothing to do):"
+                        },
+                        path.display(),
+                        sh.results.points.start,
+                        sh.results.points.end,
+                        sh.results.n_points,
+                        sh.results.errors.len()
+                    );
+                }
+                None => {
+                    let n = sweep.spec().n_points();
+                    let t = report::compute_sweep(&sweep, 0..n, true, mc, &progress)?;
+                    match output {
+                        Some(path) => {
+                            t.write(&path, overwrite)?;
+                            eprintln!("wrote {} points ({} failed) to {}", n, t.errors.len(), path.display());
+                        }
+                        None if json => emit_line(&t.to_json()?),
+                        None => emit(&t.to_csv()),
                     }
                 }
             }

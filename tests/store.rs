@@ -46,6 +46,7 @@ fn metadata(store_raw: bool, compression: Compression) -> RunMetadata {
         store_raw,
         compression,
         provenance: vec![],
+        part: None,
     }
 }
 

@@ -74,6 +74,7 @@ pub fn h5_meta(rows: usize, cols: usize, compression: Compression) -> RunMetadat
         store_raw: true,
         compression,
         provenance: vec![],
+        part: None,
     }
 }
 

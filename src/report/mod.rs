@@ -5,10 +5,14 @@ pub mod analysis;
 pub mod book;
 pub mod catalogue;
 pub mod spectrum_report;
+pub mod sweep_table;
 pub mod tables;
 
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use book::{book_report, BookReport};
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
+pub use sweep_table::{
+    compute_sweep, find_sweep_shards, merge_sweep, run_sweep_shard, SweepMonteCarlo, SweepResults, TableFormat,
+};
 pub use tables::{deterministic_report, reference_report, TablesReport};

@@ -13,6 +13,7 @@ mod density;
 mod excitation;
 mod outcome;
 mod statistics;
+mod sweep;
 mod variance;
 
 pub use delayed::{delayed_augmented_system, variance_lyapunov_delayed, DelayedAugmentedSystem, DelayedCovariance};
@@ -25,6 +26,7 @@ pub use outcome::Outcome;
 pub use statistics::{
     analyze_output, analyze_output_with, ResponseStatistics, VarianceMethod, VarianceValue, TABLE_AGREEMENT,
 };
+pub use sweep::{ExactEvaluator, PointStatistics};
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{
     band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,

@@ -10,6 +10,7 @@ pub mod reference;
 mod registry;
 pub mod scenario_file;
 pub mod spectrum_file;
+pub mod sweep;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
 pub use reference::ReferenceTable;
@@ -19,3 +20,4 @@ pub use scenario_file::{
     Scenario, ScenarioInput,
 };
 pub use spectrum_file::{load_spectrum, parse_spectrum, SpectrumFile};
+pub use sweep::{substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepSpec};

@@ -435,7 +435,7 @@ pub fn parse_scenario(text: &str, path: &Path, spectra_dir: &Path) -> Result<Sce
     }
 }
 
-fn build_excitation(
+pub(crate) fn build_excitation(
     f: &Fields,
     layout: &InputLayout,
     spectrum: Arc<dyn Spectrum>,

@@ -13,12 +13,16 @@
 //! * Whole runs to HDF5 ([`run()`](run::run)): the subject ([`RunInput`]), the options ([`RunOptions`],
 //!   [`Route`], [`suggest_step`]), the plan (route choice with its reasons), the engine, the typed per-shard
 //!   [`accumulators`] and the [`RunSummary`].
+//! * Beyond one machine: one part of a run per process ([`resolve_part`], [`part_path`]; `simulate --shard I
+//!   --of N`) and the bit-identical merge of the parts ([`merge_runs`]).
 
 pub mod accumulators;
 pub mod batch;
 pub mod discretize;
 mod engine;
+mod finish;
 mod input;
+mod merge;
 mod options;
 mod plan;
 pub mod resources;
@@ -26,6 +30,7 @@ pub mod rng;
 pub mod road;
 pub mod run;
 pub mod shaping;
+mod shard;
 pub mod spectral;
 mod summary;
 
@@ -35,11 +40,13 @@ pub use discretize::{
     WhiteNoiseDiscretization, ZeroOrderHold,
 };
 pub use input::RunInput;
+pub use merge::{merge_runs, MergeOptions, MergeSummary};
 pub use options::{suggest_step, Route, RunOptions, StepSuggestion};
 pub use plan::SkippedOutput;
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
 pub use road::{RoadScratch, RoadTrack};
 pub use run::{run, run_temporary, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
+pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
 pub use summary::RunSummary;

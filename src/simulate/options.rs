@@ -79,6 +79,9 @@ pub struct RunOptions {
     /// Replace an existing finished run file (only at the final rename, after the new run is complete),
     /// and discard an interrupted run of different settings.
     pub overwrite: bool,
+    /// Compute only this part of the realizations (a shard file of a cluster run, see
+    /// [`Part`](crate::store::Part)), or the whole run (`None`).
+    pub part: Option<crate::store::Part>,
 }
 
 impl RunOptions {
@@ -102,6 +105,7 @@ impl RunOptions {
             confidence: 0.95,
             block_steps: DEFAULT_BLOCK_STEPS,
             overwrite: false,
+            part: None,
         }
     }
 

@@ -52,12 +52,12 @@
 
 use super::accumulators::{self, Moments, WelchAccumulator};
 use super::engine::{realize, Realization, Scratch};
-use super::plan::{plan, Plan, PlannedOutput};
+use super::finish::{density_estimate, output_statistics, read_output, Analytic};
+use super::plan::{plan, Plan};
 use super::{run_batch, RunInput, RunOptions, RunSummary};
 use crate::error::Result;
-use crate::estimate::{mean_interval, Interval, Welch};
 use crate::response::output_density;
-use crate::store::{CreateOptions, OutputStatistics, PsdEstimate, RunMetadata, RunWriter, Statistic};
+use crate::store::{CreateOptions, RunFile, RunMetadata, RunWriter};
 use ndarray::Array2;
 use std::path::Path;
 
@@ -115,18 +115,25 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         store_raw: opts.store_raw,
         compression: opts.compression,
         provenance: input.provenance.clone(),
+        part: opts.part,
     };
+    meta.validate()?;
+    // cluster shard: a complete shard file of this run is the result (a rerun does nothing)
+    if let Some(done) = super::shard::finished_part(&meta, &plan, out, opts)? {
+        return Ok(done);
+    }
     super::resources::check_disk(&meta, out)?;
     let mut writer = RunWriter::create_with(
         out,
         &meta,
         CreateOptions {
             overwrite: opts.overwrite,
+            ..CreateOptions::default()
         },
     )?;
     let mut notes = plan.notes.clone();
     notes.extend(writer.notes().iter().cloned());
-    let n_shards = meta.n_shards();
+    let n_shards = meta.local_shards().len();
     let resumed_shards = writer.completed_shards().len();
     progress(resumed_shards, n_shards);
     let mut done = resumed_shards;
@@ -146,10 +153,19 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     // statistics from the accumulators of every shard, in shard order
     let mut stats = Vec::new();
     let mut psds = Vec::new();
+    let acc = |name: &str, shard: usize| writer.read_accumulator(name, shard);
     for (o, autocov) in plan.outputs.iter().zip(&plan.autocov) {
-        let (m, v, ws) = read_output(&writer, &meta, o, &plan.welch, bins)?;
-        stats.push(output_statistics(o, &m, &v, opts)?);
-        let mut psd = density_estimate(input, o, &plan.welch, &ws, opts.confidence)?;
+        let (m, v, ws) = read_output(&acc, &meta, &o.signal.name, &plan.welch)?;
+        let analytic = Analytic::from_variances(o.analytic_variance, o.discrete_variance);
+        stats.push(output_statistics(&o.signal, &analytic, &m, &v, opts.confidence)?);
+        let mut psd = density_estimate(&o.signal, &plan.welch, &ws, opts.confidence, |omega| {
+            Ok(Some(
+                omega
+                    .iter()
+                    .map(|&w| output_density(input.system, input.excitation, o.index, w))
+                    .collect(),
+            ))
+        })?;
         psd.expected = Some(plan.welch.expected_all(autocov));
         psds.push(psd);
     }
@@ -167,8 +183,30 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         n_realizations: opts.realizations,
         n_shards,
         resumed_shards,
+        part: meta.part,
+        realizations: meta.local_realizations(),
         outputs: stats,
         skipped: plan.skipped,
+        notes,
+    })
+}
+
+/// The summary of a finished run file of this plan (a shard that is already complete).
+pub(crate) fn summary_of_file(run: &RunFile, plan: &Plan, notes: Vec<String>) -> Result<RunSummary> {
+    let m = run.metadata();
+    Ok(RunSummary {
+        path: run.path().to_path_buf(),
+        route: plan.route,
+        generator: plan.generator.clone(),
+        n_samples: m.n_samples,
+        dt_s: m.dt,
+        n_realizations: m.n_realizations,
+        n_shards: m.local_shards().len(),
+        resumed_shards: m.local_shards().len(),
+        part: m.part,
+        realizations: m.local_realizations(),
+        outputs: run.statistics()?,
+        skipped: plan.skipped.clone(),
         notes,
     })
 }
@@ -290,136 +328,4 @@ fn write_shard(
     let in_views: Vec<_> = raw_in.iter().map(|a| a.view()).collect();
     let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
     writer.write_shard(shard, &in_views, &views, &acc_refs)
-}
-
-/// The time averages m_i, v_i of every realization and the merged Welch sums of one output, read back from
-/// the accumulators of every shard in shard order.
-fn read_output(
-    writer: &RunWriter,
-    meta: &RunMetadata,
-    o: &PlannedOutput,
-    welch: &Welch,
-    bins: usize,
-) -> Result<(Vec<f64>, Vec<f64>, crate::estimate::WelchSums)> {
-    let name = &o.signal.name;
-    let mut m = Vec::with_capacity(meta.n_realizations);
-    let mut v = Vec::with_capacity(meta.n_realizations);
-    let mut ws = welch.sums();
-    for shard in 0..meta.n_shards() {
-        let rows = meta.shard_range(shard).len();
-        let mom = Moments::decode(
-            &writer.read_accumulator(&Moments::name(name), shard)?,
-            rows,
-            meta.shard_size,
-        )?;
-        m.extend_from_slice(&mom.mean);
-        v.extend_from_slice(&mom.mean_square);
-        let wa = WelchAccumulator::decode(&writer.read_accumulator(&WelchAccumulator::name(name), shard)?, bins)?;
-        ws.merge(&wa.0)?;
-    }
-    Ok((m, v, ws))
-}
-
-/// The statistics of one output: `mean` (of the fluctuation, analytic 0), `variance`, `sigma` (analytic σ)
-/// and `sigma_discrete` (analytic = the exact σ of the simulated discretised process).
-fn output_statistics(o: &PlannedOutput, m: &[f64], v: &[f64], opts: &RunOptions) -> Result<OutputStatistics> {
-    let conf = opts.confidence;
-    let mi = mean_interval(m, conf)?;
-    let vi = mean_interval(v, conf)?;
-    let si = Interval {
-        estimate: vi.estimate.max(0.0).sqrt(),
-        lower: vi.lower.max(0.0).sqrt(),
-        upper: vi.upper.max(0.0).sqrt(),
-        confidence: conf,
-    };
-    let unit = &o.signal.unit;
-    let var_unit = format!("({unit})^2");
-    let stat = |sname: &str, iv: &Interval, u: &str, method: &str, a: f64| Statistic {
-        name: sname.into(),
-        interval: Interval {
-            confidence: conf,
-            ..*iv
-        },
-        unit: u.into(),
-        method: method.into(),
-        analytic: Some(a),
-        covers: Some(iv.covers(a)),
-    };
-    Ok(OutputStatistics {
-        output: o.signal.name.clone(),
-        unit: unit.clone(),
-        n_used: opts.realizations as u64,
-        statistics: vec![
-            stat(
-                "mean",
-                &mi,
-                unit,
-                "time average of the zero-mean fluctuation per realization; Student-t across realizations \
-                 (the deterministic mean H(0)·M_u is not simulated)",
-                0.0,
-            ),
-            stat(
-                "variance",
-                &vi,
-                &var_unit,
-                "time average of y² per realization (known zero mean, unbiased); Student-t across \
-                 independent realizations (CLT); analytic = reference analytic variance",
-                o.analytic_variance,
-            ),
-            stat(
-                "sigma",
-                &si,
-                unit,
-                "square root of the variance interval; analytic σ",
-                o.analytic_variance.sqrt(),
-            ),
-            stat(
-                "sigma_discrete",
-                &si,
-                unit,
-                "as sigma, compared with the exact σ of the simulated discretised process",
-                o.discrete_variance.sqrt(),
-            ),
-        ],
-    })
-}
-
-/// The Welch density of one output with its χ² intervals and the analytic density at the same ω.
-fn density_estimate(
-    input: &RunInput,
-    o: &PlannedOutput,
-    welch: &Welch,
-    ws: &crate::estimate::WelchSums,
-    conf: f64,
-) -> Result<PsdEstimate> {
-    let est = welch.finish(ws)?;
-    let mut lower = Vec::with_capacity(est.density.len());
-    let mut upper = Vec::with_capacity(est.density.len());
-    for j in 0..est.density.len() {
-        let iv = est.interval(j, conf)?;
-        lower.push(iv.lower);
-        upper.push(iv.upper);
-    }
-    let analytic_psd = est
-        .omega
-        .iter()
-        .map(|&w| output_density(input.system, input.excitation, o.index, w))
-        .collect();
-    Ok(PsdEstimate {
-        output: o.signal.name.clone(),
-        unit: format!("({})^2 s/rad", o.signal.unit),
-        omega: est.omega.clone(),
-        density: est.density.clone(),
-        lower,
-        upper,
-        analytic: Some(analytic_psd),
-        expected: None,
-        dof: est.dof,
-        confidence: conf,
-        method: format!(
-            "Welch, Hann window of {} samples, 50 % overlap, averaged over realizations; χ² interval with \
-             Welch's equivalent ν",
-            welch.segment_len()
-        ),
-    })
 }

@@ -2,7 +2,7 @@
 //! the outputs it skipped and why.
 
 use super::{Route, SkippedOutput};
-use crate::store::{OutputStatistics, Statistic};
+use crate::store::{OutputStatistics, Part, Statistic};
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -21,10 +21,14 @@ pub struct RunSummary {
     pub dt_s: f64,
     /// Realizations.
     pub n_realizations: usize,
-    /// Shards.
+    /// Shards (of a shard file: its own internal shards).
     pub n_shards: usize,
     /// Shards found complete in an interrupted run and not recomputed.
     pub resumed_shards: usize,
+    /// The part of the run computed (`simulate --shard I --of N`), or `None` for the whole run.
+    pub part: Option<Part>,
+    /// The realizations computed (all of them but for a part).
+    pub realizations: std::ops::Range<usize>,
     /// The statistics of every simulated output (`mean`, `variance`, `sigma`, `sigma_discrete`), as stored
     /// in the file.
     pub outputs: Vec<OutputStatistics>,
@@ -50,6 +54,14 @@ impl std::fmt::Display for RunSummary {
             "size      {} realizations × {} samples (Δt = {} s), {} shards ({} resumed)",
             self.n_realizations, self.n_samples, self.dt_s, self.n_shards, self.resumed_shards
         )?;
+        if let Some(p) = self.part {
+            writeln!(
+                f,
+                "shard     {} of {}: realizations {}..{} (statistics below: this shard's only; merge the {} shard \
+                 files with `stochvib merge`)",
+                p.index, p.count, self.realizations.start, self.realizations.end, p.count
+            )?;
+        }
         for n in &self.notes {
             writeln!(f, "note      {n}")?;
         }

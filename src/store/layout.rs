@@ -3,8 +3,19 @@
 //! These constants are the single source of truth for the layout documented in [`crate::store`]; the
 //! writer, the reader and the tests all use them.
 
-/// Version of the file layout. Incremented on any incompatible change; a reader refuses newer versions.
+/// Version of the file layout of a whole run written by one process. Incremented on any incompatible change;
+/// a reader refuses versions newer than [`NEWEST_FORMAT_VERSION`].
 pub const FORMAT_VERSION: u32 = 2;
+
+/// Version of the files that use the layout additions of version 3: shard files (`@part_index`, rows and
+/// shard records of one part only) and merged files whose raw datasets are virtual (`/parts`). Readers of
+/// version 2 must refuse them (they would read a shard file's rows as the first realizations, or a
+/// virtual dataset whose source files are missing as fill values). Every other file is still written as
+/// [`FORMAT_VERSION`].
+pub const FORMAT_VERSION_PARTS: u32 = 3;
+
+/// The newest version this crate reads (it reads every version from 1 up to this one).
+pub const NEWEST_FORMAT_VERSION: u32 = 3;
 
 /// Version of the crate that wrote the file (`CARGO_PKG_VERSION`).
 pub const TOOLKIT_VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -46,6 +57,36 @@ pub const ATTR_COMPRESSION: &str = "compression";
 pub const ATTR_COMPLETE: &str = "complete";
 /// Root attribute, u32 (format ≥ 2): CRC-32 of the run metadata's canonical form (`RunMetadata::digest`).
 pub const ATTR_METADATA_CRC32: &str = "metadata_crc32";
+
+// ---- shard files (format 3): the part of the run the file holds ----
+
+/// Root attribute of a shard file, u64: I, the index of the part (0 ≤ I < N).
+pub const ATTR_PART_INDEX: &str = "part_index";
+/// Root attribute of a shard file, u64: N, the number of parts of the run.
+pub const ATTR_PART_COUNT: &str = "part_count";
+/// Root attribute of a shard file, u64: the first internal shard it holds, ⌈I·B/N⌉ (row 0 of `/shards/*`).
+pub const ATTR_FIRST_SHARD: &str = "first_shard";
+/// Root attribute of a shard file, u64: the number of internal shards it holds (rows of `/shards/*`).
+pub const ATTR_PART_SHARDS: &str = "part_shards";
+/// Root attribute of a shard file, u64: the first realization it holds (row 0 of the raw datasets).
+pub const ATTR_FIRST_REALIZATION: &str = "first_realization";
+/// Root attribute of a shard file, u64: the number of realizations it holds (rows of the raw datasets).
+pub const ATTR_PART_REALIZATIONS: &str = "part_realizations";
+
+// ---- /parts: what a merged file was merged from ----
+
+/// Group of a merged file: the shard files it was merged from, one entry per part in shard order.
+pub const GROUP_PARTS: &str = "parts";
+/// Attribute of `/parts`, string array: each shard file's path as the virtual datasets reference it
+/// (relative to the merged file's directory unless absolute).
+pub const ATTR_PART_FILES: &str = "files";
+/// Attribute of `/parts`, u64 array: the first realization of each shard file.
+pub const ATTR_PART_FIRST_REALIZATIONS: &str = "first_realizations";
+/// Attribute of `/parts`, u64 array: the number of realizations of each shard file.
+pub const ATTR_PART_REALIZATION_COUNTS: &str = "realizations";
+/// Attribute of `/parts`, string: where the raw realizations are: `virtual` (virtual datasets mapping the
+/// shard files' rows), `copied` (copied into the merged file) or `none` (statistics only).
+pub const ATTR_RAW_STORAGE: &str = "raw";
 
 // ---- /provenance (format ≥ 2) ----
 

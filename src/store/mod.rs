@@ -7,10 +7,13 @@
 pub mod checksum;
 mod chunks;
 pub mod layout;
+mod parts;
 mod reader;
 mod writer;
 
+pub use parts::{find_run_files, MergedFrom, PartFile, PartSet, RawStorage, VirtualSource};
 pub use reader::{summarize, RunFile, RunInfo, Verification};
+pub(crate) use writer::metadata_differences;
 pub use writer::RunWriter;
 pub use writer::{process_alive, CreateOptions};
 
@@ -157,6 +160,75 @@ impl Provenance {
     }
 }
 
+/// A cluster shard of a run: the file holding the `index`-th of `count` parts (`stochvib simulate --shard I
+/// --of N`). A part holds whole internal shards (of [`RunMetadata::shard_size`] realizations), so that a merge
+/// adds the per-shard accumulators in the same order as a single-process run with the same shard size.
+///
+/// # Formula
+/// With B = ⌈R/shard_size⌉ internal shards, internal shard b belongs to part ⌊b·N/B⌋; part I holds the
+/// internal shards ⌈I·B/N⌉ ≤ b < ⌈(I+1)·B/N⌉ (at least one each when N ≤ B), hence the realizations
+/// ⌈I·B/N⌉·shard_size ≤ i < min(⌈(I+1)·B/N⌉·shard_size, R).
+///
+/// # Examples
+/// ```
+/// use stochvib::store::Part;
+/// let p = Part::new(1, 3).unwrap();
+/// // 8 internal shards over 3 parts: 0..3, 3..6, 6..8
+/// assert_eq!(p.shards(8), 3..6);
+/// assert_eq!(Part::owner(5, 8, 3), 1);
+/// assert!(Part::new(3, 3).is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Part {
+    /// I, 0 ≤ I < N.
+    pub index: usize,
+    /// N, the number of parts of the run.
+    pub count: usize,
+}
+
+impl Part {
+    /// Part `index` of `count`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `shard` for `index` outside [0, count), or `of` for `count` = 0.
+    pub fn new(index: usize, count: usize) -> Result<Part> {
+        if count == 0 {
+            return Err(Error::invalid("of", 0, "the number of shards must be >= 1"));
+        }
+        if index >= count {
+            return Err(Error::invalid(
+                "shard",
+                index,
+                format!("a shard index lies in [0, {count}) for --of {count} (indices start at 0)"),
+            ));
+        }
+        Ok(Part { index, count })
+    }
+
+    /// The internal shards of this part among `n_shards`: ⌈I·B/N⌉ .. ⌈(I+1)·B/N⌉.
+    pub fn shards(&self, n_shards: usize) -> std::ops::Range<usize> {
+        let edge = |i: usize| ((i as u128 * n_shards as u128).div_ceil(self.count as u128)) as usize;
+        edge(self.index)..edge(self.index + 1)
+    }
+
+    /// The part ⌊b·N/B⌋ that internal shard `shard` of `n_shards` belongs to when the run has `count` parts.
+    pub fn owner(shard: usize, n_shards: usize, count: usize) -> usize {
+        (shard as u128 * count as u128 / n_shards.max(1) as u128) as usize
+    }
+
+    /// The file name of this part in a run directory: `shard-<I>-of-<N>.h5`, I zero-padded to the width of
+    /// N − 1 so that the names sort in shard order.
+    ///
+    /// # Examples
+    /// ```
+    /// assert_eq!(stochvib::store::Part::new(3, 16).unwrap().file_name(), "shard-03-of-16.h5");
+    /// ```
+    pub fn file_name(&self) -> String {
+        let width = (self.count - 1).max(1).to_string().len();
+        format!("shard-{:0width$}-of-{}.h5", self.index, self.count)
+    }
+}
+
 /// Everything that identifies a run; stored as root attributes and compared when resuming.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RunMetadata {
@@ -186,6 +258,10 @@ pub struct RunMetadata {
     pub compression: Compression,
     /// What the run was resolved from besides the scenario text (empty in format-version-1 files).
     pub provenance: Vec<Provenance>,
+    /// The part of the run this file holds (a shard file of `stochvib simulate --shard I --of N`), or `None`
+    /// for a whole run. Not serialised when `None`, so the digest of a whole run is that of format 2.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub part: Option<Part>,
 }
 
 impl RunMetadata {
@@ -204,9 +280,13 @@ impl RunMetadata {
         } else {
             0
         };
-        let raw = raw_signals * self.n_realizations as u128 * self.n_samples as u128 * 8;
-        let acc: u128 = self.accumulators.iter().map(|a| a.1 as u128).sum::<u128>() * 8 * self.n_shards() as u128;
-        let checks = (raw_signals + self.accumulators.len() as u128 + 1) * 4 * self.n_shards() as u128;
+        let (rows, shards) = (
+            self.local_realizations().len() as u128,
+            self.local_shards().len() as u128,
+        );
+        let raw = raw_signals * rows * self.n_samples as u128 * 8;
+        let acc: u128 = self.accumulators.iter().map(|a| a.1 as u128).sum::<u128>() * 8 * shards;
+        let checks = (raw_signals + self.accumulators.len() as u128 + 1) * 4 * shards;
         raw + acc + checks + (1 << 20)
     }
     /// Number of shards, ⌈n_realizations / shard_size⌉.
@@ -218,6 +298,31 @@ impl RunMetadata {
     pub fn shard_range(&self, shard: usize) -> std::ops::Range<usize> {
         let start = (shard * self.shard_size).min(self.n_realizations);
         start..(start + self.shard_size).min(self.n_realizations)
+    }
+
+    /// The internal shards this file holds: all of them for a whole run, those of its [`Part`] otherwise.
+    pub fn local_shards(&self) -> std::ops::Range<usize> {
+        match self.part {
+            None => 0..self.n_shards(),
+            Some(p) => p.shards(self.n_shards()),
+        }
+    }
+
+    /// The realizations this file holds (rows of its raw datasets, in order).
+    pub fn local_realizations(&self) -> std::ops::Range<usize> {
+        let s = self.local_shards();
+        if s.is_empty() {
+            return 0..0;
+        }
+        self.shard_range(s.start).start..self.shard_range(s.end - 1).end
+    }
+
+    /// The same metadata without the part: what every shard file of one run has in common.
+    pub fn whole(&self) -> RunMetadata {
+        RunMetadata {
+            part: None,
+            ..self.clone()
+        }
     }
 
     /// Checks sizes, names and the time step.
@@ -285,6 +390,28 @@ impl RunMetadata {
         }
         if let Some((n, _)) = self.accumulators.iter().find(|a| a.1 == 0) {
             return Err(Error::invalid("accumulators", n, "length must be >= 1"));
+        }
+        if let Some(p) = self.part {
+            Part::new(p.index, p.count)?;
+            if p.count > self.n_shards() {
+                return Err(Error::invalid(
+                    "of",
+                    p.count,
+                    format!(
+                        "{} shards need at least {} internal shards, but {} realizations in internal shards of \
+                         --shard-size {} make only {}: a shard file holds whole internal shards, so that the merge \
+                         is bit-identical to a single-process run with the same --shard-size; use --of <= {} or a \
+                         smaller --shard-size (<= {})",
+                        p.count,
+                        p.count,
+                        self.n_realizations,
+                        self.shard_size,
+                        self.n_shards(),
+                        self.n_shards(),
+                        (self.n_realizations / p.count).max(1)
+                    ),
+                ));
+            }
         }
         Ok(())
     }

@@ -1,8 +1,9 @@
 //! Reading a run file back, and a human-readable summary of it.
 
 use super::layout as L;
+use super::parts::{MergedFrom, RawStorage};
 use super::{
-    h5err, Compression, OutputStatistics, Provenance, PsdEstimate, RunMetadata, Signal, SignalGroup, Statistic,
+    h5err, Compression, OutputStatistics, Part, Provenance, PsdEstimate, RunMetadata, Signal, SignalGroup, Statistic,
 };
 use crate::error::{Error, Result};
 use crate::estimate::Interval;
@@ -24,7 +25,10 @@ pub struct RunFile {
     format_version: u32,
     toolkit_version: String,
     complete: bool,
+    /// Completion of the file's own shards (`meta.local_shards()`, in order).
     completed_shards: Vec<bool>,
+    /// What a merged file was merged from (`/parts`).
+    merged_from: Option<MergedFrom>,
 }
 
 impl RunFile {
@@ -84,7 +88,8 @@ impl RunFile {
         let format_version = attr_scalar::<u32>(&file, L::ATTR_FORMAT_VERSION, &path)?;
         let toolkit_version = attr_string(&file, L::ATTR_TOOLKIT_VERSION, &path)?;
         let complete = has_attr(&file, L::ATTR_COMPLETE) && attr_scalar::<u8>(&file, L::ATTR_COMPLETE, &path)? == 1;
-        let completed_shards = read_shards_complete(&file, &path, meta.n_shards())?;
+        let completed_shards = read_shards_complete(&file, &path, meta.local_shards().len())?;
+        let merged_from = read_parts_group(&file, &path, &meta)?;
         Ok(RunFile {
             path,
             file,
@@ -93,7 +98,87 @@ impl RunFile {
             toolkit_version,
             complete,
             completed_shards,
+            merged_from,
         })
+    }
+
+    /// The part of the run this file holds (a shard file), or `None` for a whole run.
+    pub fn part(&self) -> Option<Part> {
+        self.meta.part
+    }
+
+    /// What a merged file was merged from (`None` for a file written by one `simulate`).
+    pub fn merged_from(&self) -> Option<&MergedFrom> {
+        self.merged_from.as_ref()
+    }
+
+    /// For a merged file with virtual raw datasets: checks that the shard files holding `range` exist where
+    /// HDF5 looks for them (relative names against the merged file's directory), so that a moved shard file
+    /// is an error, not rows of fill values.
+    fn check_virtual_sources(&self, range: std::ops::Range<usize>) -> Result<()> {
+        let Some(m) = self.merged_from.as_ref().filter(|m| m.raw == RawStorage::Virtual) else {
+            return Ok(());
+        };
+        let dir = self
+            .path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        for src in m.sources(range) {
+            let p = Path::new(&src.file);
+            let resolved = if p.is_absolute() { p.to_path_buf() } else { dir.join(p) };
+            if !resolved.is_file() {
+                return Err(Error::Hdf5 {
+                    path: self.path.clone(),
+                    reason: format!(
+                        "the raw realizations {}..{} are virtual: they live in the shard file `{}` (relative to \
+                         the merged file's directory), which is not at {}: move the shard files back (the merged \
+                         file and its shard directory may move together), or merge again with --copy",
+                        src.realizations.start,
+                        src.realizations.end,
+                        src.file,
+                        resolved.display()
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The row of internal shard `shard` (a global index) in the file's `/shards/*` datasets.
+    fn shard_row(&self, shard: usize) -> Result<usize> {
+        let s = self.meta.local_shards();
+        if s.contains(&shard) {
+            return Ok(shard - s.start);
+        }
+        Err(Error::invalid(
+            "shard",
+            shard,
+            match self.meta.part {
+                Some(p) => format!(
+                    "shard file {} of {} holds the internal shards {}..{}",
+                    p.index, p.count, s.start, s.end
+                ),
+                None => format!("the run has {} shards", self.meta.n_shards()),
+            },
+        ))
+    }
+
+    /// The checksums stored for internal shard `shard`: CRC-32 of its rows of every raw input, raw output,
+    /// then accumulator (format ≥ 2; empty for format 1).
+    ///
+    /// # Errors
+    /// As [`read_accumulator`](Self::read_accumulator).
+    pub fn shard_checksums(&self, shard: usize) -> Result<Vec<u32>> {
+        let row = self.shard_row(shard)?;
+        if self.format_version < 2 {
+            return Ok(Vec::new());
+        }
+        self.file
+            .dataset(&format!("{}/{}", L::GROUP_SHARDS, L::DS_SHARDS_CHECKSUMS))
+            .and_then(|d| d.read_slice_1d::<u32, _>(s![row, ..]))
+            .map(|a| a.to_vec())
+            .map_err(h5err(&self.path, "reading /shards/checksums"))
     }
 
     /// The file's path.
@@ -121,10 +206,12 @@ impl RunFile {
         self.complete
     }
 
-    /// Indices of the completed shards, ascending.
+    /// Indices of the completed shards, ascending (global indices: of a shard file, only its own).
     pub fn completed_shards(&self) -> Vec<usize> {
+        let first = self.meta.local_shards().start;
         (0..self.completed_shards.len())
             .filter(|&i| self.completed_shards[i])
+            .map(|i| first + i)
             .collect()
     }
 
@@ -164,18 +251,26 @@ impl RunFile {
                 format!("not in /{} (has: {})", group.group_name(), known.join(", ")),
             ));
         }
-        if range.start > range.end || range.end > self.meta.n_realizations {
+        let local = self.meta.local_realizations();
+        if range.start > range.end || range.start < local.start || range.end > local.end {
             return Err(Error::invalid(
                 "realization",
                 format!("{range:?}"),
-                format!("the run has {} realizations", self.meta.n_realizations),
+                match self.meta.part {
+                    Some(p) => format!(
+                        "shard file {} of {} holds the realizations {}..{} of the run's {}",
+                        p.index, p.count, local.start, local.end, self.meta.n_realizations
+                    ),
+                    None => format!("the run has {} realizations", self.meta.n_realizations),
+                },
             ));
         }
+        self.check_virtual_sources(range.clone())?;
         let ds = self
             .file
             .dataset(&format!("{}/{}", group.group_name(), name))
             .map_err(h5err(&self.path, "opening a signal dataset"))?;
-        ds.read_slice_2d::<f64, _>(s![range, ..])
+        ds.read_slice_2d::<f64, _>(s![range.start - local.start..range.end - local.start, ..])
             .map_err(h5err(&self.path, "reading a signal"))
     }
 
@@ -188,18 +283,12 @@ impl RunFile {
         if !self.meta.accumulators.iter().any(|a| a.0 == name) {
             return Err(Error::invalid("accumulator", name, "not in this run"));
         }
-        if shard >= self.meta.n_shards() {
-            return Err(Error::invalid(
-                "shard",
-                shard,
-                format!("the run has {} shards", self.meta.n_shards()),
-            ));
-        }
+        let row = self.shard_row(shard)?;
         let ds = self
             .file
             .dataset(&format!("{}/{}", L::GROUP_SHARDS, name))
             .map_err(h5err(&self.path, "opening an accumulator"))?;
-        ds.read_slice_1d::<f64, _>(s![shard, ..])
+        ds.read_slice_1d::<f64, _>(s![row, ..])
             .map(|a| a.to_vec())
             .map_err(h5err(&self.path, "reading an accumulator"))
     }
@@ -340,17 +429,23 @@ impl RunFile {
             .map_err(h5err(p, "opening /shards/checksums"))?;
         let names = attr_string_list(&sums, L::ATTR_CHECKED, p)?;
         let table = sums.read_2d::<u32>().map_err(h5err(p, "reading /shards/checksums"))?;
-        if table.nrows() != self.meta.n_shards() || table.ncols() < names.len() {
+        if table.nrows() != self.meta.local_shards().len() || table.ncols() < names.len() {
             return Err(damaged(p, "shards/checksums"));
         }
         let mut checked = 0;
+        let first_row = self.meta.local_realizations().start;
         for shard in self.completed_shards() {
             let range = self.meta.shard_range(shard);
+            let row = self.shard_row(shard)?;
+            if names.iter().any(|n| !n.starts_with(L::GROUP_SHARDS)) {
+                self.check_virtual_sources(range.clone())?;
+            }
+            let range = range.start - first_row..range.end - first_row;
             for (j, name) in names.iter().enumerate() {
                 let ds = self.file.dataset(name).map_err(h5err(p, &format!("opening {name}")))?;
                 let crc = if name.starts_with(L::GROUP_SHARDS) {
                     let a = ds
-                        .read_slice_1d::<f64, _>(s![shard, ..])
+                        .read_slice_1d::<f64, _>(s![row, ..])
                         .map_err(h5err(p, &format!("reading {name}")))?;
                     crate::store::checksum::crc32_f64(a.as_slice().unwrap_or(&[]))
                 } else {
@@ -359,7 +454,7 @@ impl RunFile {
                         .map_err(h5err(p, &format!("reading {name}")))?;
                     crate::store::checksum::crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[]))
                 };
-                if crc != table[(shard, j)] {
+                if crc != table[(row, j)] {
                     return Err(damaged(p, &format!("{name} (shard {shard})")));
                 }
                 checked += 1;
@@ -407,6 +502,12 @@ pub struct RunInfo {
     pub n_realizations: usize,
     /// Shards.
     pub n_shards: usize,
+    /// The part of the run a shard file holds (`None` for a whole run).
+    pub part: Option<Part>,
+    /// The realizations the file holds (all of them but for a shard file).
+    pub realizations: std::ops::Range<usize>,
+    /// What a merged file was merged from.
+    pub merged_from: Option<MergedFrom>,
     /// Whether raw realizations are stored.
     pub store_raw: bool,
     /// Output signal names.
@@ -432,6 +533,9 @@ impl RunFile {
             n_samples: m.n_samples,
             n_realizations: m.n_realizations,
             n_shards: m.n_shards(),
+            part: m.part,
+            realizations: m.local_realizations(),
+            merged_from: self.merged_from.clone(),
             store_raw: m.store_raw,
             outputs: m.outputs.iter().map(|s| s.name.clone()).collect(),
             statistics: self.statistics()?,
@@ -479,6 +583,24 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
         m.n_shards(),
         m.shard_size
     );
+    if let Some(part) = m.part {
+        let (sh, r) = (m.local_shards(), m.local_realizations());
+        let _ = writeln!(
+            s,
+            "  shard file       {} of {}: internal shards {}..{}, realizations {}..{} (merge the {} files with \
+             `stochvib merge`)",
+            part.index, part.count, sh.start, sh.end, r.start, r.end, part.count
+        );
+    }
+    if let Some(from) = &run.merged_from {
+        let _ = writeln!(
+            s,
+            "  merged from      {} shard files (raw data {}): {}",
+            from.files.len(),
+            from.raw.label(),
+            from.files.join(", ")
+        );
+    }
     let _ = writeln!(
         s,
         "  raw realizations {}",
@@ -581,12 +703,12 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
 /// Reads the run metadata from the root attributes and the signal / shard groups.
 pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
     let version = attr_scalar::<u32>(file, L::ATTR_FORMAT_VERSION, path)?;
-    if version > L::FORMAT_VERSION {
+    if version > L::NEWEST_FORMAT_VERSION {
         return Err(Error::Hdf5 {
             path: path.to_path_buf(),
             reason: format!(
                 "format version {version} is newer than this stochvib understands ({}); use a newer stochvib",
-                L::FORMAT_VERSION
+                L::NEWEST_FORMAT_VERSION
             ),
         });
     }
@@ -659,6 +781,13 @@ pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
         } else {
             vec![]
         },
+        part: if version >= 3 && has_attr(file, L::ATTR_PART_INDEX) {
+            let index = usize_attr(L::ATTR_PART_INDEX)?;
+            let count = usize_attr(L::ATTR_PART_COUNT)?;
+            Some(Part::new(index, count).map_err(|e| bad(path, L::ATTR_PART_INDEX, &e.to_string()))?)
+        } else {
+            None
+        },
     };
     if version >= 2 && attr_scalar::<u32>(file, L::ATTR_METADATA_CRC32, path)? != meta.digest() {
         return Err(damaged(
@@ -677,23 +806,66 @@ pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
             "does not equal ceil(n_realizations / shard_size)",
         ));
     }
+    if meta.part.is_some() {
+        let (sh, r) = (meta.local_shards(), meta.local_realizations());
+        for (name, want) in [
+            (L::ATTR_FIRST_SHARD, sh.start),
+            (L::ATTR_PART_SHARDS, sh.len()),
+            (L::ATTR_FIRST_REALIZATION, r.start),
+            (L::ATTR_PART_REALIZATIONS, r.len()),
+        ] {
+            if usize_attr(name)? != want {
+                return Err(bad(path, name, "does not match the part index and count"));
+            }
+        }
+    }
     if meta.store_raw {
         for (g, list) in [(L::GROUP_INPUTS, &meta.inputs), (L::GROUP_OUTPUTS, &meta.outputs)] {
             for sig in list.iter() {
                 let ds = file
                     .dataset(&format!("{g}/{}", sig.name))
                     .map_err(h5err(path, &format!("missing dataset /{g}/{}", sig.name)))?;
-                if ds.shape() != [meta.n_realizations, meta.n_samples] {
+                if ds.shape() != [meta.local_realizations().len(), meta.n_samples] {
                     return Err(bad(
                         path,
                         &format!("{g}/{}", sig.name),
-                        &format!("shape {:?} is not [n_realizations, n_samples]", ds.shape()),
+                        &format!(
+                            "shape {:?} is not [realizations of the file, n_samples] = [{}, {}]",
+                            ds.shape(),
+                            meta.local_realizations().len(),
+                            meta.n_samples
+                        ),
                     ));
                 }
             }
         }
     }
     Ok(meta)
+}
+
+/// `/parts` of a merged file, checked against the run's realizations.
+fn read_parts_group(file: &File, path: &Path, meta: &RunMetadata) -> Result<Option<MergedFrom>> {
+    if !file.link_exists(L::GROUP_PARTS) {
+        return Ok(None);
+    }
+    let g = file.group(L::GROUP_PARTS).map_err(h5err(path, "opening /parts"))?;
+    let list = |name: &str| -> Result<Vec<usize>> {
+        g.attr(name)
+            .and_then(|a| a.read_raw::<u64>())
+            .map(|v| v.into_iter().map(|x| x as usize).collect())
+            .map_err(|e| missing_or(&g, name, path, e))
+    };
+    let raw_label = attr_string(&g, L::ATTR_RAW_STORAGE, path)?;
+    let from = MergedFrom {
+        files: attr_string_list(&g, L::ATTR_PART_FILES, path)?,
+        first_realizations: list(L::ATTR_PART_FIRST_REALIZATIONS)?,
+        realizations: list(L::ATTR_PART_REALIZATION_COUNTS)?,
+        raw: RawStorage::parse(&raw_label)
+            .ok_or_else(|| bad(path, "parts@raw", &format!("unknown raw storage {raw_label:?}")))?,
+    };
+    from.check(meta.n_realizations)
+        .map_err(|e| bad(path, "parts", &e.to_string()))?;
+    Ok(Some(from))
 }
 
 /// The `/shards/complete` flags.

@@ -3,6 +3,7 @@
 use super::checksum::crc32_f64;
 use super::chunks;
 use super::layout as L;
+use super::parts::{MergedFrom, RawStorage};
 use super::reader::{read_metadata, read_shards_complete};
 use super::{h5err, open_sec2, tmp_path, Compression, OpenMode, OutputStatistics, PsdEstimate, RunMetadata};
 use crate::error::{Error, Result};
@@ -20,6 +21,7 @@ pub struct RunWriter {
     meta: RunMetadata,
     final_path: PathBuf,
     tmp: PathBuf,
+    /// Completion of the file's own internal shards (`meta.local_shards()`, in order).
     completed: Vec<bool>,
     resumed: bool,
     overwrite: bool,
@@ -39,6 +41,9 @@ pub struct CreateOptions {
     /// Replace an existing finished run file at the final rename (only a stochvib run file is ever
     /// replaced), and discard an interrupted run of different settings instead of refusing.
     pub overwrite: bool,
+    /// Never resume: an existing `.tmp` that no live process is writing is replaced by a fresh file (a merge
+    /// starts over, since its sources may have changed).
+    pub restart: bool,
 }
 
 /// What a `.tmp` in the way is.
@@ -72,7 +77,7 @@ impl RunWriter {
     ///     scenario_text: "[run]\n".into(), seed: 7, generator: "xoshiro256++".into(), dt: 0.01,
     ///     n_samples: 4, n_realizations: 2, shard_size: 2,
     ///     inputs: vec![Signal::new("road", "m")], outputs: vec![Signal::new("x1", "m")],
-    ///     accumulators: vec![], store_raw: true, compression: Compression::None, provenance: vec![],
+    ///     accumulators: vec![], store_raw: true, compression: Compression::None, provenance: vec![], part: None,
     /// };
     /// let mut w = RunWriter::create(&path, &meta).unwrap();
     /// let u = Array2::from_shape_fn((2, 4), |(i, k)| (i * 4 + k) as f64);
@@ -106,15 +111,57 @@ impl RunWriter {
     ///   its pid), if the `.tmp` holds a different run with completed shards (the message lists what
     ///   differs), or if HDF5 fails.
     pub fn create_with(final_path: impl AsRef<Path>, meta: &RunMetadata, options: CreateOptions) -> Result<RunWriter> {
+        Self::create_inner(final_path.as_ref(), meta, options, None)
+    }
+
+    /// Starts the file of a merge (`stochvib merge`): a whole run (`meta.part` is `None`) whose `/parts`
+    /// group records the shard files it comes from, and whose raw datasets, with
+    /// [`RawStorage::Virtual`], are virtual datasets mapping each shard file's rows (the merged file stays
+    /// small; see `docs/run-file-format.md` for what happens when the shard files move). An existing `.tmp`
+    /// is never resumed (as with [`CreateOptions::restart`]).
+    ///
+    /// # Errors
+    /// As [`RunWriter::create_with`]; [`Error::InvalidParameter`] if `meta` is a part, or if `from` does not
+    /// tile the realizations `0..n_realizations`.
+    pub fn create_merged(
+        final_path: impl AsRef<Path>,
+        meta: &RunMetadata,
+        options: CreateOptions,
+        from: &MergedFrom,
+    ) -> Result<RunWriter> {
+        if meta.part.is_some() {
+            return Err(Error::invalid("part", "a part", "a merged file holds the whole run"));
+        }
+        from.check(meta.n_realizations)?;
+        let options = CreateOptions {
+            restart: true,
+            ..options
+        };
+        Self::create_inner(final_path.as_ref(), meta, options, Some(from))
+    }
+
+    fn create_inner(
+        final_path: &Path,
+        meta: &RunMetadata,
+        options: CreateOptions,
+        merged: Option<&MergedFrom>,
+    ) -> Result<RunWriter> {
         meta.validate()?;
-        let final_path = final_path.as_ref().to_path_buf();
+        let final_path = final_path.to_path_buf();
         check_final_path(&final_path, options.overwrite)?;
         let tmp = tmp_path(&final_path);
         remove_stale_claims(&tmp);
         let mut notes = Vec::new();
         for _attempt in 0..3 {
             if tmp.exists() {
-                match Self::examine(&final_path, &tmp, meta) {
+                let found = match Self::examine(&final_path, &tmp, meta) {
+                    Existing::Resume(w) if options.restart => {
+                        drop(w);
+                        Existing::Replace("a merge always starts over".into())
+                    }
+                    other => other,
+                };
+                match found {
                     Existing::Resume(w) => {
                         let mut w = *w;
                         w.overwrite = options.overwrite;
@@ -148,14 +195,14 @@ impl RunWriter {
                     }
                 }
                 // replace: build a fresh file and rename it over the `.tmp` (atomic; no window without a file)
-                let w = Self::create_fresh(final_path.clone(), tmp.clone(), meta, true)?;
+                let w = Self::create_fresh(final_path.clone(), tmp.clone(), meta, true, merged)?;
                 return Ok(RunWriter {
                     overwrite: options.overwrite,
                     notes,
                     ..w
                 });
             }
-            match Self::create_fresh(final_path.clone(), tmp.clone(), meta, false) {
+            match Self::create_fresh(final_path.clone(), tmp.clone(), meta, false, merged) {
                 Ok(w) => {
                     return Ok(RunWriter {
                         overwrite: options.overwrite,
@@ -194,7 +241,7 @@ impl RunWriter {
             Ok(m) => m,
             Err(err) => return Existing::Replace(format!("not a readable run ({err})")),
         };
-        let done = read_shards_complete(&file, tmp, stored.n_shards())
+        let done = read_shards_complete(&file, tmp, stored.local_shards().len())
             .map(|c| c.iter().filter(|x| **x).count())
             .unwrap_or(0);
         let toolkit = attr_string_of(&file, L::ATTR_TOOLKIT_VERSION).unwrap_or_default();
@@ -226,10 +273,16 @@ impl RunWriter {
     /// Builds a fresh run file under a name of this process's own, then claims `tmp` with it: by an atomic
     /// hard link (fails with `AlreadyExists` if another process claimed it first) or, with `replace`, by a
     /// rename over the existing `.tmp`.
-    fn create_fresh(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata, replace: bool) -> Result<RunWriter> {
+    fn create_fresh(
+        final_path: PathBuf,
+        tmp: PathBuf,
+        meta: &RunMetadata,
+        replace: bool,
+        merged: Option<&MergedFrom>,
+    ) -> Result<RunWriter> {
         let unique = claim_path(&tmp);
         let build = || -> Result<RunWriter> {
-            let w = Self::build(final_path.clone(), unique.clone(), meta)?;
+            let w = Self::build(final_path.clone(), unique.clone(), meta, merged)?;
             let io = |source| Error::Io {
                 path: tmp.clone(),
                 source,
@@ -250,14 +303,24 @@ impl RunWriter {
     }
 
     /// Creates every group, dataset and attribute of a run in a new file `path`.
-    fn build(final_path: PathBuf, path: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
+    fn build(final_path: PathBuf, path: PathBuf, meta: &RunMetadata, merged: Option<&MergedFrom>) -> Result<RunWriter> {
         let e = |what: &str| h5err(&path, what);
         let file =
             open_file(&path, OpenMode::CreateExcl, meta.compression).map_err(e("cannot create the temporary file"))?;
-        write_root_attrs(&file, meta).map_err(e("writing root attributes"))?;
+        let virtual_raw = merged.filter(|m| m.raw == RawStorage::Virtual && meta.store_raw);
+        let version = if meta.part.is_some() || virtual_raw.is_some() {
+            L::FORMAT_VERSION_PARTS
+        } else {
+            L::FORMAT_VERSION
+        };
+        write_root_attrs(&file, meta, version).map_err(e("writing root attributes"))?;
+        if let Some(m) = merged {
+            write_parts_group(&file, m).map_err(e("writing /parts"))?;
+        }
 
-        let n_shards = meta.n_shards();
-        let chunk = L::chunk_shape(meta.n_samples, meta.shard_size);
+        let n_shards = meta.local_shards().len();
+        let rows = meta.local_realizations().len();
+        let chunk = raw_chunk(meta);
         let mut signal_sets = Vec::new();
         for (gname, signals) in [(L::GROUP_INPUTS, &meta.inputs), (L::GROUP_OUTPUTS, &meta.outputs)] {
             let group = file.create_group(gname).map_err(e("creating a signal group"))?;
@@ -266,12 +329,16 @@ impl RunWriter {
             write_str_list_attr(&group, L::ATTR_NAMES, &names).map_err(e("writing signal names"))?;
             write_str_list_attr(&group, L::ATTR_UNITS_LIST, &units).map_err(e("writing signal units"))?;
             let mut sets = Vec::new();
-            if meta.store_raw {
+            if let Some(m) = virtual_raw {
                 for s in signals.iter() {
-                    let b = group
-                        .new_dataset::<f64>()
-                        .shape((meta.n_realizations, meta.n_samples))
-                        .chunk(chunk);
+                    let ds =
+                        create_virtual(&group, gname, &s.name, meta, m).map_err(e("creating a virtual dataset"))?;
+                    write_str_attr(&ds, L::ATTR_UNIT, &s.unit).map_err(e("writing a unit"))?;
+                    sets.push(ds);
+                }
+            } else if meta.store_raw {
+                for s in signals.iter() {
+                    let b = group.new_dataset::<f64>().shape((rows, meta.n_samples)).chunk(chunk);
                     let b = match meta.compression {
                         // Allocated in full now and never filled: a shard write changes raw data only.
                         Compression::None => b
@@ -368,12 +435,12 @@ impl RunWriter {
         }
         let shards_complete = open_set(L::GROUP_SHARDS, L::DS_SHARDS_COMPLETE)?;
         let checksums = open_set(L::GROUP_SHARDS, L::DS_SHARDS_CHECKSUMS)?;
-        let mut completed = read_shards_complete(&file, &tmp, meta.n_shards())?;
+        let mut completed = read_shards_complete(&file, &tmp, meta.local_shards().len())?;
         let mut w = RunWriter {
             meta: meta.clone(),
             final_path,
             tmp,
-            completed: vec![false; meta.n_shards()],
+            completed: vec![false; meta.local_shards().len()],
             resumed: true,
             overwrite: false,
             notes: Vec::new(),
@@ -385,10 +452,11 @@ impl RunWriter {
             file,
         };
         let mut damaged = Vec::new();
-        for (shard, done) in completed.iter_mut().enumerate() {
-            if *done && !w.shard_intact(shard)? {
+        let first = meta.local_shards().start;
+        for (local, done) in completed.iter_mut().enumerate() {
+            if *done && !w.shard_intact(first + local)? {
                 *done = false;
-                damaged.push(shard.to_string());
+                damaged.push((first + local).to_string());
             }
         }
         if !damaged.is_empty() {
@@ -401,11 +469,42 @@ impl RunWriter {
         Ok(w)
     }
 
+    /// The row of internal shard `shard` (a global index) in this file's `/shards/*` datasets, and its rows
+    /// in the raw datasets.
+    fn local(&self, shard: usize) -> Option<(usize, std::ops::Range<usize>)> {
+        let shards = self.meta.local_shards();
+        if !shards.contains(&shard) {
+            return None;
+        }
+        let first_row = self.meta.local_realizations().start;
+        let r = self.meta.shard_range(shard);
+        Some((shard - shards.start, r.start - first_row..r.end - first_row))
+    }
+
+    /// The local row of `shard`, or an error saying which shards this file holds.
+    fn local_or_err(&self, shard: usize) -> Result<(usize, std::ops::Range<usize>)> {
+        self.local(shard).ok_or_else(|| {
+            let s = self.meta.local_shards();
+            Error::invalid(
+                "shard",
+                shard,
+                match self.meta.part {
+                    Some(p) => format!(
+                        "shard file {} of {} holds the internal shards {}..{}",
+                        p.index, p.count, s.start, s.end
+                    ),
+                    None => format!("the run has {} shards", self.meta.n_shards()),
+                },
+            )
+        })
+    }
+
     /// Whether the stored data of a completed shard match their checksums.
     fn shard_intact(&self, shard: usize) -> Result<bool> {
+        let (row, _) = self.local_or_err(shard)?;
         let stored = self
             .checksums
-            .read_slice_1d::<u32, _>(s![shard, ..])
+            .read_slice_1d::<u32, _>(s![row, ..])
             .map_err(h5err(&self.tmp, "reading /shards/checksums"))?;
         let now = self.shard_checksums(shard)?;
         Ok(stored.iter().zip(&now).all(|(a, b)| a == b) && stored.len() >= now.len())
@@ -413,7 +512,7 @@ impl RunWriter {
 
     /// The checksums of shard `shard` as stored on disk now (raw rows, then accumulators).
     fn shard_checksums(&self, shard: usize) -> Result<Vec<u32>> {
-        let range = self.meta.shard_range(shard);
+        let (row, range) = self.local_or_err(shard)?;
         let e = |what: &str| h5err(&self.tmp, what);
         let mut out = Vec::new();
         for ds in self.inputs.iter().chain(&self.outputs) {
@@ -424,7 +523,7 @@ impl RunWriter {
         }
         for ds in &self.accumulators {
             let a = ds
-                .read_slice_1d::<f64, _>(s![shard, ..])
+                .read_slice_1d::<f64, _>(s![row, ..])
                 .map_err(e("reading an accumulator for its checksum"))?;
             out.push(crc32_f64(a.as_slice().unwrap_or(&[])));
         }
@@ -452,14 +551,18 @@ impl RunWriter {
         self.resumed
     }
 
-    /// Indices of the shards already on disk, ascending.
+    /// Indices of the shards already on disk, ascending (global indices: of a shard file, only its own).
     pub fn completed_shards(&self) -> Vec<usize> {
-        (0..self.completed.len()).filter(|&i| self.completed[i]).collect()
+        self.meta.local_shards().filter(|&b| self.is_completed(b)).collect()
     }
 
-    /// Indices of the shards still to be written, ascending.
+    /// Indices of the shards still to be written, ascending (global indices: of a shard file, only its own).
     pub fn pending_shards(&self) -> Vec<usize> {
-        (0..self.completed.len()).filter(|&i| !self.completed[i]).collect()
+        self.meta.local_shards().filter(|&b| !self.is_completed(b)).collect()
+    }
+
+    fn is_completed(&self, shard: usize) -> bool {
+        self.local(shard).is_some_and(|(row, _)| self.completed[row])
     }
 
     /// Writes shard `shard`: its rows of every input and output, and its accumulator vectors.
@@ -480,18 +583,14 @@ impl RunWriter {
         outputs: &[ArrayView2<'_, f64>],
         accumulators: &[&[f64]],
     ) -> Result<()> {
-        let n_shards = self.completed.len();
-        if shard >= n_shards {
-            return Err(Error::invalid("shard", shard, format!("the run has {n_shards} shards")));
-        }
-        if self.completed[shard] {
+        let (row, range) = self.local_or_err(shard)?;
+        if self.completed[row] {
             return Err(Error::invalid(
                 "shard",
                 shard,
                 "already written (completed shards cannot be rewritten)",
             ));
         }
-        let range = self.meta.shard_range(shard);
         let rows = range.len();
         for (field, arrays, expected) in [
             ("inputs", inputs, self.inputs.len()),
@@ -546,32 +645,105 @@ impl RunWriter {
                 }
                 // Filtered here on all threads, stored as is (HDF5 would filter serially).
                 Compression::Deflate { level } => {
-                    let chunk = L::chunk_shape(self.meta.n_samples, self.meta.shard_size);
+                    let chunk = raw_chunk(&self.meta);
+                    // local rows start at a multiple of shard_size, hence of the chunk's rows
                     let filtered = chunks::filter_block(a.view(), range.start, chunk, level);
                     chunks::write_filtered(ds, &filtered).map_err(e("writing a compressed shard"))?;
                 }
             }
         }
-        for (ds, a) in self.accumulators.iter().zip(accumulators) {
-            ds.write_slice(*a, s![shard, ..]).map_err(e("writing an accumulator"))?;
-        }
-        let mut sums: Vec<u32> = inputs
+        let sums: Vec<u32> = inputs
             .iter()
             .chain(outputs)
             .map(|a| crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])))
             .chain(accumulators.iter().map(|a| crc32_f64(a)))
             .collect();
+        self.finish_shard(row, accumulators, sums)
+    }
+
+    /// Writes a shard's accumulators and checksums, flushes, marks it complete and flushes again.
+    fn finish_shard(&mut self, row: usize, accumulators: &[&[f64]], mut sums: Vec<u32>) -> Result<()> {
+        let e = |what: &str| h5err(&self.tmp, what);
+        for (ds, a) in self.accumulators.iter().zip(accumulators) {
+            ds.write_slice(*a, s![row, ..]).map_err(e("writing an accumulator"))?;
+        }
         sums.resize(self.checksums.shape()[1], 0);
         self.checksums
-            .write_slice(&sums[..], s![shard, ..])
+            .write_slice(&sums[..], s![row, ..])
             .map_err(e("writing shard checksums"))?;
         self.file.flush().map_err(e("flushing a shard"))?;
         self.shards_complete
-            .write_slice(&[1u8][..], s![shard..shard + 1])
+            .write_slice(&[1u8][..], s![row..row + 1])
             .map_err(e("marking a shard complete"))?;
         self.file.flush().map_err(e("flushing a shard marker"))?;
-        self.completed[shard] = true;
+        self.completed[row] = true;
         Ok(())
+    }
+
+    /// Records shard `shard` of a merged file whose raw datasets are virtual (or absent): its accumulator
+    /// vectors and the checksums of its rows as the shard file stored them (raw rows, then accumulators;
+    /// the raw rows are read through the virtual datasets when the file is verified).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] if the file stores raw data of its own (use
+    /// [`write_shard`](Self::write_shard)), for a shard out of range or already written, wrong accumulator
+    /// lengths, or checksums of the accumulators that do not match them; [`Error::Hdf5`] if writing fails.
+    pub fn adopt_shard(&mut self, shard: usize, accumulators: &[&[f64]], checksums: &[u32]) -> Result<()> {
+        if self.meta.store_raw
+            && !self
+                .inputs
+                .iter()
+                .chain(&self.outputs)
+                .all(|d| d.layout() == hdf5::plist::dataset_create::Layout::Virtual)
+        {
+            return Err(Error::invalid(
+                "shard",
+                shard,
+                "this file stores its raw data itself: write the rows with write_shard",
+            ));
+        }
+        let (row, _) = self.local_or_err(shard)?;
+        if self.completed[row] {
+            return Err(Error::invalid("shard", shard, "already written"));
+        }
+        if accumulators.len() != self.accumulators.len() {
+            return Err(Error::invalid(
+                "accumulators",
+                accumulators.len(),
+                format!("expected {} vectors", self.accumulators.len()),
+            ));
+        }
+        for (a, (name, len)) in accumulators.iter().zip(&self.meta.accumulators) {
+            if a.len() != *len {
+                return Err(Error::invalid(
+                    name,
+                    a.len(),
+                    format!("accumulator length must be {len}"),
+                ));
+            }
+        }
+        let raw = if self.meta.store_raw {
+            self.inputs.len() + self.outputs.len()
+        } else {
+            0
+        };
+        if checksums.len() < raw + accumulators.len() {
+            return Err(Error::invalid(
+                "checksums",
+                checksums.len(),
+                "one per raw signal and accumulator",
+            ));
+        }
+        for (j, a) in accumulators.iter().enumerate() {
+            if crc32_f64(a) != checksums[raw + j] {
+                return Err(Error::invalid(
+                    &self.meta.accumulators[j].0,
+                    shard,
+                    "does not match its checksum: the shard file is damaged",
+                ));
+            }
+        }
+        self.finish_shard(row, accumulators, checksums.to_vec())
     }
 
     /// Reads back the accumulator `name` of a completed shard (to rebuild statistics when resuming).
@@ -586,11 +758,12 @@ impl RunWriter {
             .iter()
             .position(|a| a.0 == name)
             .ok_or_else(|| Error::invalid("accumulator", name, "not declared in the run metadata"))?;
-        if !self.completed.get(shard).copied().unwrap_or(false) {
+        if !self.is_completed(shard) {
             return Err(Error::invalid("shard", shard, "not a completed shard"));
         }
+        let (row, _) = self.local_or_err(shard)?;
         self.accumulators[j]
-            .read_slice_1d::<f64, _>(s![shard, ..])
+            .read_slice_1d::<f64, _>(s![row, ..])
             .map(|a| a.to_vec())
             .map_err(h5err(&self.tmp, "reading an accumulator"))
     }
@@ -811,6 +984,14 @@ impl RunWriter {
 
 /// Opens the writer's file ([`open_sec2`]) with its file-access options.
 ///
+/// The chunk shape of the raw datasets of a file: [`L::chunk_shape`], with at most as many rows as the file
+/// holds (a part file that holds only the last, short internal shard of a run has fewer rows than a chunk;
+/// HDF5 refuses chunks larger than a fixed-size dataset). Its rows still divide every local start row.
+fn raw_chunk(meta: &RunMetadata) -> (usize, usize) {
+    let (rows, cols) = L::chunk_shape(meta.n_samples, meta.shard_size);
+    (rows.min(meta.local_realizations().len().max(1)), cols)
+}
+
 /// Uncompressed raw datasets get no chunk cache (0 bytes): every shard write covers whole chunks (see
 /// [`L::chunk_shape`]), and a chunk that does not fit the cache is written by HDF5 straight from the
 /// caller's buffer to the file. With HDF5's default 1 MiB cache, a 1 MiB chunk is "cacheable" and every
@@ -829,7 +1010,7 @@ fn open_file(path: &Path, mode: OpenMode, compression: Compression) -> hdf5::Res
 
 /// Fields of two metadata records that differ (empty if identical): the fields, and each identifying
 /// provenance part by name.
-fn metadata_differences(a: &RunMetadata, b: &RunMetadata) -> Vec<String> {
+pub(crate) fn metadata_differences(a: &RunMetadata, b: &RunMetadata) -> Vec<String> {
     let mut d = Vec::new();
     let mut check = |same: bool, name: &str| {
         if !same {
@@ -1016,7 +1197,52 @@ fn remove_stale_claims(tmp: &Path) {
     }
 }
 
-fn write_root_attrs(file: &File, m: &RunMetadata) -> hdf5::Result<()> {
+/// Creates the virtual dataset `/<group>/<name>` of shape `[n_realizations, n_samples]` mapping the rows of
+/// every shard file's dataset of the same name (fill value NaN: rows whose shard file cannot be opened read
+/// as NaN, never as plausible zeros).
+fn create_virtual(
+    group: &hdf5::Group,
+    gname: &str,
+    name: &str,
+    meta: &RunMetadata,
+    from: &MergedFrom,
+) -> hdf5::Result<Dataset> {
+    use hdf5::{Hyperslab, Selection, SliceOrIndex};
+    let rows = |r: std::ops::Range<usize>| {
+        Selection::from(Hyperslab::from(vec![SliceOrIndex::from(r), SliceOrIndex::from(..)]))
+    };
+    let shape = (meta.n_realizations, meta.n_samples);
+    let mut b = group.new_dataset::<f64>().shape(shape).fill_value(f64::NAN);
+    for (k, file) in from.files.iter().enumerate() {
+        let (r0, n) = (from.first_realizations[k], from.realizations[k]);
+        b = b.virtual_map(
+            file.as_str(),
+            format!("/{gname}/{name}"),
+            (n, meta.n_samples),
+            rows(0..n),
+            shape,
+            rows(r0..r0 + n),
+        );
+    }
+    b.create(name)
+}
+
+/// Writes `/parts` of a merged file.
+fn write_parts_group(file: &File, m: &MergedFrom) -> hdf5::Result<()> {
+    let g = file.create_group(L::GROUP_PARTS)?;
+    let files: Vec<&str> = m.files.iter().map(|f| f.as_str()).collect();
+    write_str_list_attr(&g, L::ATTR_PART_FILES, &files)?;
+    for (name, values) in [
+        (L::ATTR_PART_FIRST_REALIZATIONS, &m.first_realizations),
+        (L::ATTR_PART_REALIZATION_COUNTS, &m.realizations),
+    ] {
+        let v: Vec<u64> = values.iter().map(|&x| x as u64).collect();
+        g.new_attr::<u64>().shape(v.len()).create(name)?.write(&v[..])?;
+    }
+    write_str_attr(&g, L::ATTR_RAW_STORAGE, m.raw.label())
+}
+
+fn write_root_attrs(file: &File, m: &RunMetadata, version: u32) -> hdf5::Result<()> {
     let prov = file.create_group(L::GROUP_PROVENANCE)?;
     for p in &m.provenance {
         write_str_attr(&prov, &p.name, &p.text)?;
@@ -1029,7 +1255,20 @@ fn write_root_attrs(file: &File, m: &RunMetadata) -> hdf5::Result<()> {
         .collect();
     write_str_list_attr(&prov, L::ATTR_IDENTIFIES, &identifies)?;
     write_scalar_attr(file, L::ATTR_METADATA_CRC32, m.digest())?;
-    write_scalar_attr(file, L::ATTR_FORMAT_VERSION, L::FORMAT_VERSION)?;
+    write_scalar_attr(file, L::ATTR_FORMAT_VERSION, version)?;
+    if let Some(p) = m.part {
+        let (shards, rows) = (m.local_shards(), m.local_realizations());
+        for (name, v) in [
+            (L::ATTR_PART_INDEX, p.index),
+            (L::ATTR_PART_COUNT, p.count),
+            (L::ATTR_FIRST_SHARD, shards.start),
+            (L::ATTR_PART_SHARDS, shards.len()),
+            (L::ATTR_FIRST_REALIZATION, rows.start),
+            (L::ATTR_PART_REALIZATIONS, rows.len()),
+        ] {
+            write_scalar_attr(file, name, v as u64)?;
+        }
+    }
     write_str_attr(file, L::ATTR_TOOLKIT_VERSION, L::TOOLKIT_VERSION)?;
     write_str_attr(file, L::ATTR_SCENARIO, &m.scenario_text)?;
     write_scalar_attr(file, L::ATTR_SEED, m.seed)?;
@@ -1089,6 +1328,7 @@ mod tests {
             store_raw: true,
             compression,
             provenance: vec![],
+            part: None,
         }
     }
 

@@ -1,0 +1,910 @@
+//! The table of a parameter study (`stochvib sweep`): one row per point and output with the swept values,
+//! the exact mean, σ, variance, 3σ bounds, λ₂ and zero up-crossing rate, and optionally a Monte Carlo σ
+//! with its interval; written as CSV, JSON or HDF5, whole or as shard files of a cluster run that
+//! [`merge_sweep`] joins.
+//!
+//! # Shards
+//! Part I of N of a study of P points evaluates the points ⌈I·P/N⌉ ≤ p < ⌈(I+1)·P/N⌉ (point p belongs to
+//! part ⌊p·N/P⌋, the rule of [`Part`]) and writes `DIR/sweep-shard-<I>-of-<N>.json` ([`shard_file_name`])
+//! under a temporary name renamed when complete. [`merge_sweep`] checks that the shard files belong to one
+//! study (same scenario text, keys, values, mode, Monte Carlo options and toolkit version) and cover every
+//! point once, then writes the table: the same numbers as one `stochvib sweep` of the whole study (each
+//! point is evaluated alone, so the split cannot change it).
+//!
+//! # HDF5 layout (`-o TABLE.h5`)
+//! ```text
+//! table.h5
+//! ├── @format "stochvib sweep table", @version 1, @toolkit_version, @scenario (text), @scenario_path,
+//! │   @mode ("grid" | "zip"), @n_points u64, @keys string[], @outputs string[], @units string[],
+//! │   @monte_carlo (JSON of the options, or "")
+//! ├── params/<k>            string [n_values_k]  the values of key k as written (@key)
+//! ├── value_index           u64 [n_points, n_keys]  which value of each key point p uses
+//! ├── outputs/<name>/       @unit
+//! │   ├── mean, variance, sigma, lower_3sigma, upper_3sigma, lambda2, zero_upcrossing_rate   f64 [n_points]
+//! │   │                     (NaN where the value does not exist: infinite variance, failed point)
+//! │   ├── method            u8 [n_points]  0 Lyapunov, 1 integral table, 2 quadrature, 255 failed
+//! │   └── mc_sigma, mc_lower, mc_upper  f64 [n_points], mc_covers u8 [n_points]   (with Monte Carlo)
+//! └── errors/               point u64 [n_failed], message string [n_failed]
+//! ```
+
+use crate::error::{Error, Result};
+use crate::response::{PointStatistics, VarianceMethod};
+use crate::scenario::{sweep_value_text, Sweep, SweepMode};
+use crate::simulate::{run_temporary, RunOptions};
+use crate::store::Part;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The Monte Carlo batch run at every point (the same seed at every point: common random numbers, so that
+/// differences between points are not masked by sampling noise).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SweepMonteCarlo {
+    /// Realizations per point.
+    pub realizations: usize,
+    /// Duration of a realization, s.
+    pub duration_s: f64,
+    /// Time step, s.
+    pub dt_s: f64,
+    /// Master seed (every point).
+    pub seed: u64,
+    /// Realizations per internal shard.
+    pub shard_size: usize,
+    /// Confidence of the intervals.
+    pub confidence: f64,
+}
+
+/// What identifies a study: shard files merge only when this is equal.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepIdentity {
+    /// The scenario file as given.
+    pub scenario_path: String,
+    /// Its text.
+    pub scenario_text: String,
+    /// The keys with their values as written.
+    pub params: Vec<(String, Vec<String>)>,
+    /// `grid` or `zip`.
+    pub mode: String,
+    /// The outputs (name, unit).
+    pub outputs: Vec<(String, String)>,
+    /// The Monte Carlo batch per point, if any.
+    pub monte_carlo: Option<SweepMonteCarlo>,
+    /// stochvib version.
+    pub toolkit_version: String,
+}
+
+/// The method that computed a variance (a copy of [`VarianceMethod`] that can be read back).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Lyapunov equation.
+    Lyapunov,
+    /// Covariance of the augmented system at the lags between delayed inputs.
+    LyapunovDelays,
+    /// Integral table I_n.
+    IntegralTable,
+    /// Quadrature.
+    Quadrature,
+}
+
+impl Method {
+    fn code(self) -> u8 {
+        match self {
+            Method::Lyapunov => 0,
+            Method::IntegralTable => 1,
+            Method::Quadrature => 2,
+            Method::LyapunovDelays => 3,
+        }
+    }
+    fn name(self) -> &'static str {
+        match self {
+            Method::Lyapunov => "lyapunov",
+            Method::IntegralTable => "integral-table",
+            Method::Quadrature => "quadrature",
+            Method::LyapunovDelays => "lyapunov-delays",
+        }
+    }
+}
+
+impl From<VarianceMethod> for Method {
+    fn from(m: VarianceMethod) -> Method {
+        match m {
+            VarianceMethod::Lyapunov => Method::Lyapunov,
+            VarianceMethod::IntegralTable => Method::IntegralTable,
+            VarianceMethod::Quadrature => Method::Quadrature,
+            VarianceMethod::LyapunovDelays => Method::LyapunovDelays,
+        }
+    }
+}
+
+/// The Monte Carlo σ of one output at one point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct McValues {
+    /// Estimate of σ.
+    pub sigma: f64,
+    /// Lower bound of its interval.
+    pub lower: f64,
+    /// Upper bound.
+    pub upper: f64,
+    /// Whether the interval covers the analytic σ.
+    pub covers: bool,
+}
+
+/// The values of one output at one point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OutputValues {
+    /// M_y.
+    pub mean: Option<f64>,
+    /// D_y (None: infinite).
+    pub variance: Option<f64>,
+    /// λ₂.
+    pub lambda2: Option<f64>,
+    /// The method.
+    pub method: Method,
+    /// Monte Carlo, when run (None also for an output the run skipped).
+    pub mc: Option<McValues>,
+}
+
+impl OutputValues {
+    fn from_point(s: &PointStatistics) -> OutputValues {
+        OutputValues {
+            mean: s.mean,
+            variance: s.variance,
+            lambda2: s.lambda2,
+            method: s.method.into(),
+            mc: None,
+        }
+    }
+    /// σ.
+    pub fn sigma(&self) -> Option<f64> {
+        self.variance.map(f64::sqrt)
+    }
+    /// M ± 3σ.
+    pub fn bounds(&self) -> Option<(f64, f64)> {
+        let (m, s) = (self.mean?, self.sigma()?);
+        Some((m - 3.0 * s, m + 3.0 * s))
+    }
+    /// ν₀⁺ = (1/2π)√(λ₂/λ₀).
+    pub fn zero_upcrossing_rate(&self) -> Option<f64> {
+        match (self.variance, self.lambda2) {
+            (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * std::f64::consts::PI)),
+            _ => None,
+        }
+    }
+}
+
+/// The results of a study for a range of its points.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepResults {
+    /// What identifies the study.
+    pub identity: SweepIdentity,
+    /// Points of the whole study.
+    pub n_points: usize,
+    /// The points held here (all of them for a whole table).
+    pub points: std::ops::Range<usize>,
+    /// The value index of every key at every point held (row-major: point, key).
+    pub value_index: Vec<usize>,
+    /// The values of every output at every point held (row-major: point, output); for a failed point the
+    /// outputs hold no numbers.
+    pub values: Vec<OutputValues>,
+    /// Failed points with the reason.
+    pub errors: Vec<(usize, String)>,
+}
+
+/// The identity of `sweep` with Monte Carlo options `mc`.
+pub fn sweep_identity(sweep: &Sweep, mc: Option<SweepMonteCarlo>) -> SweepIdentity {
+    let sc = sweep.scenario();
+    let names = sc.model.system.outputs();
+    SweepIdentity {
+        scenario_path: sc.path.display().to_string(),
+        scenario_text: sc.text.clone(),
+        params: sweep
+            .spec()
+            .params
+            .iter()
+            .map(|p| (p.key.clone(), p.values.iter().map(sweep_value_text).collect()))
+            .collect(),
+        mode: match sweep.spec().mode {
+            SweepMode::Grid => "grid".into(),
+            SweepMode::Zip => "zip".into(),
+        },
+        outputs: sc
+            .analysis
+            .outputs
+            .iter()
+            .map(|&i| (names[i].name.clone(), names[i].unit.clone()))
+            .collect(),
+        monte_carlo: mc,
+        toolkit_version: crate::store::layout::TOOLKIT_VERSION.to_string(),
+    }
+}
+
+/// Evaluates the points `points` of `sweep` (exact statistics on every core with `parallel`; then, with
+/// `mc`, one Monte Carlo batch per point, one point after the other, each on every core).
+/// `progress(done, total)` is called after every Monte Carlo point.
+///
+/// # Errors
+/// None for a failing point (its error is recorded in [`SweepResults::errors`]); the Monte Carlo set-up's
+/// errors (temporary directory).
+pub fn compute_sweep(
+    sweep: &Sweep,
+    points: std::ops::Range<usize>,
+    parallel: bool,
+    mc: Option<SweepMonteCarlo>,
+    progress: &dyn Fn(usize, usize),
+) -> Result<SweepResults> {
+    let spec = sweep.spec();
+    let n_out = sweep.outputs().len();
+    let results = sweep.evaluate_range(points.clone(), parallel);
+    let mut value_index = Vec::with_capacity(points.len() * spec.params.len());
+    let mut values = Vec::with_capacity(points.len() * n_out);
+    let mut errors = Vec::new();
+    let empty = OutputValues {
+        mean: None,
+        variance: None,
+        lambda2: None,
+        method: Method::Quadrature,
+        mc: None,
+    };
+    for (p, r) in points.clone().zip(results) {
+        value_index.extend(spec.indices(p));
+        match r {
+            Ok(stats) => values.extend(stats.iter().map(OutputValues::from_point)),
+            Err(e) => {
+                values.extend(std::iter::repeat_n(empty, n_out));
+                errors.push((p, e));
+            }
+        }
+    }
+    if let Some(m) = mc {
+        let dir = std::env::temp_dir();
+        for (k, p) in points.clone().enumerate() {
+            if errors.iter().any(|e| e.0 == p) {
+                continue;
+            }
+            let run = || -> Result<Vec<Option<McValues>>> {
+                let sc = sweep.scenario_at(p)?;
+                let opts = RunOptions {
+                    shard_size: m.shard_size,
+                    confidence: m.confidence,
+                    ..RunOptions::new(m.realizations, m.duration_s, m.dt_s, m.seed)
+                };
+                let (summary, ()) = run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |_| ())?;
+                Ok(sweep
+                    .outputs()
+                    .iter()
+                    .map(|name| {
+                        summary.statistic(name, "sigma").map(|s| McValues {
+                            sigma: s.interval.estimate,
+                            lower: s.interval.lower,
+                            upper: s.interval.upper,
+                            covers: s.covers == Some(true),
+                        })
+                    })
+                    .collect())
+            };
+            match run() {
+                Ok(list) => {
+                    for (j, v) in list.into_iter().enumerate() {
+                        values[k * n_out + j].mc = v;
+                    }
+                }
+                Err(e) => errors.push((p, format!("Monte Carlo: {e}"))),
+            }
+            progress(k + 1, points.len());
+        }
+        errors.sort_by_key(|e| e.0);
+    }
+    Ok(SweepResults {
+        identity: sweep_identity(sweep, mc),
+        n_points: spec.n_points(),
+        points,
+        value_index,
+        values,
+        errors,
+    })
+}
+
+/// Output format of a table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TableFormat {
+    /// Comma-separated values, one row per point and output.
+    Csv,
+    /// JSON: the identity and one object per point and output.
+    Json,
+    /// HDF5 (see the module docs).
+    Hdf5,
+}
+
+impl TableFormat {
+    /// From a file name's extension (`.csv`, `.json`, `.h5`/`.hdf5`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `output` for another extension.
+    pub fn from_path(path: &Path) -> Result<TableFormat> {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .as_deref()
+        {
+            Some("csv") => Ok(TableFormat::Csv),
+            Some("json") => Ok(TableFormat::Json),
+            Some("h5" | "hdf5") => Ok(TableFormat::Hdf5),
+            _ => Err(Error::invalid(
+                "output",
+                path.display(),
+                "a table is written as .csv, .json or .h5 (from the file name's extension)",
+            )),
+        }
+    }
+}
+
+fn num(v: Option<f64>) -> String {
+    v.map_or(String::new(), |x| format!("{x:e}"))
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+impl SweepResults {
+    fn n_keys(&self) -> usize {
+        self.identity.params.len()
+    }
+
+    fn error_of(&self, point: usize) -> Option<&str> {
+        self.errors
+            .binary_search_by_key(&point, |e| e.0)
+            .ok()
+            .map(|i| self.errors[i].1.as_str())
+    }
+
+    /// The table as CSV: a header line, then one line per point and output.
+    pub fn to_csv(&self) -> String {
+        let mc = self.identity.monte_carlo.is_some();
+        let mut s = String::from("point");
+        for (k, _) in &self.identity.params {
+            let _ = write!(s, ",{}", csv_field(k));
+        }
+        s.push_str(",output,unit,method,mean,sigma,variance,lower_3sigma,upper_3sigma,lambda2,zero_upcrossing_rate");
+        if mc {
+            s.push_str(",mc_sigma,mc_lower,mc_upper,mc_covers");
+        }
+        s.push_str(",error\n");
+        let n_out = self.identity.outputs.len();
+        let nk = self.n_keys();
+        for (row, p) in self.points.clone().enumerate() {
+            let err = self.error_of(p);
+            for (j, (name, unit)) in self.identity.outputs.iter().enumerate() {
+                let v = &self.values[row * n_out + j];
+                let _ = write!(s, "{p}");
+                for k in 0..nk {
+                    let _ = write!(
+                        s,
+                        ",{}",
+                        csv_field(&self.identity.params[k].1[self.value_index[row * nk + k]])
+                    );
+                }
+                let (lo, hi) = v.bounds().unzip();
+                let _ = write!(
+                    s,
+                    ",{},{},{},{},{},{},{},{},{},{}",
+                    csv_field(name),
+                    csv_field(unit),
+                    if err.is_some() { "" } else { v.method.name() },
+                    num(v.mean),
+                    num(v.sigma()),
+                    num(v.variance),
+                    num(lo),
+                    num(hi),
+                    num(v.lambda2),
+                    num(v.zero_upcrossing_rate())
+                );
+                if mc {
+                    let m = v.mc;
+                    let _ = write!(
+                        s,
+                        ",{},{},{},{}",
+                        num(m.map(|m| m.sigma)),
+                        num(m.map(|m| m.lower)),
+                        num(m.map(|m| m.upper)),
+                        m.map_or("", |m| if m.covers { "yes" } else { "no" })
+                    );
+                }
+                let _ = writeln!(s, ",{}", err.map(csv_field).unwrap_or_default());
+            }
+        }
+        s
+    }
+
+    /// The table as JSON: the identity and one object per point and output.
+    pub fn to_json(&self) -> Result<String> {
+        #[derive(Serialize)]
+        struct Row<'a> {
+            point: usize,
+            params: serde_json::Map<String, serde_json::Value>,
+            output: &'a str,
+            unit: &'a str,
+            method: Option<&'static str>,
+            mean: Option<f64>,
+            sigma: Option<f64>,
+            variance: Option<f64>,
+            lower_3sigma: Option<f64>,
+            upper_3sigma: Option<f64>,
+            lambda2: Option<f64>,
+            zero_upcrossing_rate: Option<f64>,
+            monte_carlo: Option<McValues>,
+            error: Option<&'a str>,
+        }
+        #[derive(Serialize)]
+        struct Table<'a> {
+            identity: &'a SweepIdentity,
+            n_points: usize,
+            rows: Vec<Row<'a>>,
+        }
+        let n_out = self.identity.outputs.len();
+        let nk = self.n_keys();
+        let mut rows = Vec::with_capacity(self.values.len());
+        for (row, p) in self.points.clone().enumerate() {
+            let err = self.error_of(p);
+            for (j, (name, unit)) in self.identity.outputs.iter().enumerate() {
+                let v = &self.values[row * n_out + j];
+                let mut params = serde_json::Map::new();
+                for k in 0..nk {
+                    let (key, vals) = &self.identity.params[k];
+                    params.insert(key.clone(), vals[self.value_index[row * nk + k]].clone().into());
+                }
+                let (lo, hi) = v.bounds().unzip();
+                rows.push(Row {
+                    point: p,
+                    params,
+                    output: name,
+                    unit,
+                    method: err.is_none().then(|| v.method.name()),
+                    mean: v.mean,
+                    sigma: v.sigma(),
+                    variance: v.variance,
+                    lower_3sigma: lo,
+                    upper_3sigma: hi,
+                    lambda2: v.lambda2,
+                    zero_upcrossing_rate: v.zero_upcrossing_rate(),
+                    monte_carlo: v.mc,
+                    error: err,
+                });
+            }
+        }
+        serde_json::to_string_pretty(&Table {
+            identity: &self.identity,
+            n_points: self.n_points,
+            rows,
+        })
+        .map_err(|e| Error::Numerical {
+            what: "writing JSON".into(),
+            reason: e.to_string(),
+        })
+    }
+
+    /// Writes the table to `path` (format from its extension), as `<path>.tmp` renamed when complete; an
+    /// existing `path` is only replaced with `overwrite`.
+    ///
+    /// # Errors
+    /// An unknown extension; an existing file without `overwrite`; I/O and HDF5 errors.
+    pub fn write(&self, path: &Path, overwrite: bool) -> Result<()> {
+        let format = TableFormat::from_path(path)?;
+        if path.exists() && !overwrite {
+            return Err(Error::Hdf5 {
+                path: path.to_path_buf(),
+                reason: "already exists: a table is never overwritten silently; remove it, choose another name, \
+                         or pass --overwrite"
+                    .into(),
+            });
+        }
+        if path.is_dir() {
+            return Err(Error::invalid("output", path.display(), "is a directory"));
+        }
+        let tmp = crate::store::tmp_path(path);
+        let io = |source| Error::Io {
+            path: tmp.clone(),
+            source,
+        };
+        let _ = std::fs::remove_file(&tmp);
+        match format {
+            TableFormat::Csv => std::fs::write(&tmp, self.to_csv()).map_err(io)?,
+            TableFormat::Json => std::fs::write(&tmp, self.to_json()?).map_err(io)?,
+            TableFormat::Hdf5 => self.write_h5(&tmp).inspect_err(|_| {
+                let _ = std::fs::remove_file(&tmp);
+            })?,
+        }
+        std::fs::rename(&tmp, path).map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+
+    fn write_h5(&self, path: &Path) -> Result<()> {
+        use hdf5::types::VarLenUnicode;
+        let e = |what: &'static str| {
+            let path = path.to_path_buf();
+            move |err: hdf5::Error| Error::Hdf5 {
+                path: path.clone(),
+                reason: format!("{what}: {err}"),
+            }
+        };
+        let vlu = |t: &str| t.parse::<VarLenUnicode>().unwrap_or_default();
+        let list = |items: Vec<&str>| -> Vec<VarLenUnicode> { items.into_iter().map(vlu).collect() };
+        let f = hdf5::File::create(path).map_err(e("creating the table"))?;
+        let str_attr = |loc: &hdf5::Location, name: &str, value: &str| -> hdf5::Result<()> {
+            loc.new_attr::<VarLenUnicode>()
+                .shape(())
+                .create(name)?
+                .write_scalar(&vlu(value))
+        };
+        let list_attr = |loc: &hdf5::Location, name: &str, values: Vec<VarLenUnicode>| -> hdf5::Result<()> {
+            let a = loc.new_attr::<VarLenUnicode>().shape(values.len()).create(name)?;
+            if !values.is_empty() {
+                a.write(&values[..])?;
+            }
+            Ok(())
+        };
+        let id = &self.identity;
+        let write = || -> hdf5::Result<()> {
+            str_attr(&f, "format", "stochvib sweep table")?;
+            f.new_attr::<u32>().shape(()).create("version")?.write_scalar(&1u32)?;
+            str_attr(&f, "toolkit_version", &id.toolkit_version)?;
+            str_attr(&f, "scenario", &id.scenario_text)?;
+            str_attr(&f, "scenario_path", &id.scenario_path)?;
+            str_attr(&f, "mode", &id.mode)?;
+            f.new_attr::<u64>()
+                .shape(())
+                .create("n_points")?
+                .write_scalar(&(self.n_points as u64))?;
+            list_attr(&f, "keys", list(id.params.iter().map(|p| p.0.as_str()).collect()))?;
+            list_attr(&f, "outputs", list(id.outputs.iter().map(|o| o.0.as_str()).collect()))?;
+            list_attr(&f, "units", list(id.outputs.iter().map(|o| o.1.as_str()).collect()))?;
+            let mc = id
+                .monte_carlo
+                .map(|m| serde_json::to_string(&m).unwrap_or_default())
+                .unwrap_or_default();
+            str_attr(&f, "monte_carlo", &mc)?;
+            let params = f.create_group("params")?;
+            for (k, (key, vals)) in id.params.iter().enumerate() {
+                let v = list(vals.iter().map(|s| s.as_str()).collect());
+                let ds = params
+                    .new_dataset_builder()
+                    .with_data(&v[..])
+                    .create(k.to_string().as_str())?;
+                str_attr(&ds, "key", key)?;
+            }
+            let nk = self.n_keys().max(1);
+            let idx: Vec<u64> = if self.n_keys() == 0 {
+                vec![0; self.points.len()]
+            } else {
+                self.value_index.iter().map(|&i| i as u64).collect()
+            };
+            let arr = ndarray::Array2::from_shape_vec((self.points.len(), nk), idx)
+                .map_err(|err| hdf5::Error::from(err.to_string()))?;
+            f.new_dataset_builder().with_data(&arr).create("value_index")?;
+            let outs = f.create_group("outputs")?;
+            let n_out = id.outputs.len();
+            let failed: std::collections::HashSet<usize> = self.errors.iter().map(|e| e.0).collect();
+            for (j, (name, unit)) in id.outputs.iter().enumerate() {
+                let g = outs.create_group(name)?;
+                str_attr(&g, "unit", unit)?;
+                let col = |pick: &dyn Fn(&OutputValues) -> Option<f64>| -> Vec<f64> {
+                    (0..self.points.len())
+                        .map(|r| pick(&self.values[r * n_out + j]).unwrap_or(f64::NAN))
+                        .collect()
+                };
+                let columns: [(&str, Vec<f64>); 7] = [
+                    ("mean", col(&|v| v.mean)),
+                    ("variance", col(&|v| v.variance)),
+                    ("sigma", col(&|v| v.sigma())),
+                    ("lower_3sigma", col(&|v| v.bounds().map(|b| b.0))),
+                    ("upper_3sigma", col(&|v| v.bounds().map(|b| b.1))),
+                    ("lambda2", col(&|v| v.lambda2)),
+                    ("zero_upcrossing_rate", col(&|v| v.zero_upcrossing_rate())),
+                ];
+                for (cname, data) in columns {
+                    g.new_dataset_builder().with_data(&data[..]).create(cname)?;
+                }
+                let method: Vec<u8> = self
+                    .points
+                    .clone()
+                    .enumerate()
+                    .map(|(r, p)| {
+                        if failed.contains(&p) {
+                            255
+                        } else {
+                            self.values[r * n_out + j].method.code()
+                        }
+                    })
+                    .collect();
+                g.new_dataset_builder().with_data(&method[..]).create("method")?;
+                if id.monte_carlo.is_some() {
+                    for (cname, data) in [
+                        ("mc_sigma", col(&|v| v.mc.map(|m| m.sigma))),
+                        ("mc_lower", col(&|v| v.mc.map(|m| m.lower))),
+                        ("mc_upper", col(&|v| v.mc.map(|m| m.upper))),
+                    ] {
+                        g.new_dataset_builder().with_data(&data[..]).create(cname)?;
+                    }
+                    let covers: Vec<u8> = (0..self.points.len())
+                        .map(|r| self.values[r * n_out + j].mc.map_or(0, |m| u8::from(m.covers)))
+                        .collect();
+                    g.new_dataset_builder().with_data(&covers[..]).create("mc_covers")?;
+                }
+            }
+            let eg = f.create_group("errors")?;
+            let pts: Vec<u64> = self.errors.iter().map(|e| e.0 as u64).collect();
+            let msgs = list(self.errors.iter().map(|e| e.1.as_str()).collect());
+            eg.new_dataset::<u64>()
+                .shape(pts.len())
+                .create("point")?
+                .write(&pts[..])?;
+            let ds = eg.new_dataset::<VarLenUnicode>().shape(msgs.len()).create("message")?;
+            if !msgs.is_empty() {
+                ds.write(&msgs[..])?;
+            }
+            Ok(())
+        };
+        write().map_err(e("writing the table"))?;
+        f.close().map_err(e("closing the table"))
+    }
+}
+
+/// The file name of part `part` of a study: `sweep-shard-<I>-of-<N>.json`.
+pub fn shard_file_name(part: Part) -> String {
+    part.file_name()
+        .replacen("shard-", "sweep-shard-", 1)
+        .replace(".h5", ".json")
+}
+
+/// The shard file of a cluster study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SweepShard {
+    /// `"stochvib sweep shard"`.
+    pub format: String,
+    /// The part.
+    pub part: Part,
+    /// Its results.
+    pub results: SweepResults,
+}
+
+const SHARD_FORMAT: &str = "stochvib sweep shard";
+
+/// Evaluates part `part` of `sweep` and writes its shard file into `dir` (see the module docs); a rerun
+/// whose shard file is already there for the same study does nothing and returns it.
+///
+/// # Errors
+/// More parts than points; a file of another study (or not a shard file) under the shard's name, which is
+/// never replaced without `overwrite`; I/O errors.
+pub fn run_sweep_shard(
+    sweep: &Sweep,
+    part: Part,
+    dir: &Path,
+    parallel: bool,
+    mc: Option<SweepMonteCarlo>,
+    overwrite: bool,
+    progress: &dyn Fn(usize, usize),
+) -> Result<(PathBuf, SweepShard, bool)> {
+    let n_points = sweep.spec().n_points();
+    if part.count > n_points {
+        return Err(Error::invalid(
+            "of",
+            part.count,
+            format!("the study has only {n_points} points: use --of <= {n_points}"),
+        ));
+    }
+    let path = dir.join(shard_file_name(part));
+    let identity = sweep_identity(sweep, mc);
+    if path.is_file() && !overwrite {
+        let existing = read_shard(&path).map_err(|e| Error::Hdf5 {
+            path: path.clone(),
+            reason: format!("is in the way and is not a sweep shard file ({e}); nothing is overwritten"),
+        })?;
+        if existing.results.identity == identity && existing.part == part {
+            return Ok((path, existing, false));
+        }
+        return Err(Error::Hdf5 {
+            path,
+            reason: "holds a shard of another study (scenario, keys, values or options differ); nothing is \
+                     overwritten: use another directory, or pass --overwrite"
+                .into(),
+        });
+    }
+    let results = compute_sweep(sweep, part.shards(n_points), parallel, mc, progress)?;
+    let shard = SweepShard {
+        format: SHARD_FORMAT.into(),
+        part,
+        results,
+    };
+    let text = serde_json::to_string(&shard).map_err(|e| Error::Numerical {
+        what: "writing JSON".into(),
+        reason: e.to_string(),
+    })?;
+    let tmp = crate::store::tmp_path(&path);
+    std::fs::write(&tmp, text).map_err(|source| Error::Io {
+        path: tmp.clone(),
+        source,
+    })?;
+    std::fs::rename(&tmp, &path).map_err(|source| Error::Io {
+        path: path.clone(),
+        source,
+    })?;
+    Ok((path, shard, true))
+}
+
+/// Reads a sweep shard file.
+///
+/// # Errors
+/// I/O; not a sweep shard file.
+pub fn read_shard(path: &Path) -> Result<SweepShard> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let shard: SweepShard = serde_json::from_str(&text).map_err(|e| Error::Hdf5 {
+        path: path.to_path_buf(),
+        reason: format!("not a sweep shard file: {e}"),
+    })?;
+    if shard.format != SHARD_FORMAT {
+        return Err(Error::Hdf5 {
+            path: path.to_path_buf(),
+            reason: "not a sweep shard file".into(),
+        });
+    }
+    Ok(shard)
+}
+
+/// The sweep shard files named by `inputs` (directories stand for their `sweep-shard-*.json` files, files
+/// ending in `.json` for themselves).
+///
+/// # Errors
+/// I/O errors reading a directory.
+pub fn find_sweep_shards(inputs: &[PathBuf]) -> Result<Vec<PathBuf>> {
+    let mut out = Vec::new();
+    for i in inputs {
+        if i.is_dir() {
+            let mut v: Vec<PathBuf> = std::fs::read_dir(i)
+                .map_err(|source| Error::Io {
+                    path: i.clone(),
+                    source,
+                })?
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| {
+                    p.file_name().is_some_and(|n| {
+                        let n = n.to_string_lossy();
+                        n.starts_with("sweep-shard-") && n.ends_with(".json")
+                    })
+                })
+                .collect();
+            v.sort();
+            out.extend(v);
+        } else if i.extension().is_some_and(|e| e == "json") {
+            out.push(i.clone());
+        }
+    }
+    Ok(out)
+}
+
+/// Joins the shard files of a study into one table written to `out` (format from its extension).
+///
+/// # Errors
+/// [`Error::Hdf5`] listing every problem, naming the files: unreadable files, files of another study,
+/// points held twice (duplicates or overlaps), points missing (the indices to resubmit); the table
+/// writer's errors.
+pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<SweepResults> {
+    let files = find_sweep_shards(inputs)?;
+    let fail = |reason: String| Error::Hdf5 {
+        path: inputs.first().cloned().unwrap_or_default(),
+        reason,
+    };
+    if files.is_empty() {
+        return Err(fail("no sweep shard files (sweep-shard-*.json)".into()));
+    }
+    let mut problems = Vec::new();
+    let mut shards = Vec::new();
+    for f in files {
+        match read_shard(&f) {
+            Ok(s) => shards.push((f, s)),
+            Err(e) => problems.push(e.to_string()),
+        }
+    }
+    if shards.is_empty() {
+        return Err(fail(problems.join("\n  ")));
+    }
+    // the study most files belong to
+    let mut groups: Vec<(SweepIdentity, usize)> = Vec::new();
+    for (_, s) in &shards {
+        match groups.iter_mut().find(|g| g.0 == s.results.identity) {
+            Some(g) => g.1 += 1,
+            None => groups.push((s.results.identity.clone(), 1)),
+        }
+    }
+    groups.sort_by_key(|g| std::cmp::Reverse(g.1));
+    let identity = groups[0].0.clone();
+    shards.retain(|(f, s)| {
+        let same = s.results.identity == identity;
+        if !same {
+            problems.push(format!(
+                "{}: foreign shard file: another study (scenario, keys, values, mode, Monte Carlo options or toolkit \
+                 version differ)",
+                f.display()
+            ));
+        }
+        same
+    });
+    let n_points = shards[0].1.results.n_points;
+    let mut owner: Vec<Vec<usize>> = vec![Vec::new(); n_points];
+    for (k, (_, s)) in shards.iter().enumerate() {
+        for p in s.results.points.clone() {
+            if p < n_points {
+                owner[p].push(k);
+            }
+        }
+    }
+    let mut reported: Vec<Vec<usize>> = Vec::new();
+    for o in owner.iter().filter(|o| o.len() > 1) {
+        if !reported.contains(o) {
+            reported.push(o.clone());
+            let names: Vec<String> = o
+                .iter()
+                .map(|&k| {
+                    let s = &shards[k].1;
+                    format!(
+                        "{} (shard {} of {}, points {}..{})",
+                        shards[k].0.display(),
+                        s.part.index,
+                        s.part.count,
+                        s.results.points.start,
+                        s.results.points.end
+                    )
+                })
+                .collect();
+            problems.push(format!(
+                "{} hold the same points twice; keep one of them",
+                names.join(" and ")
+            ));
+        }
+    }
+    let missing: Vec<usize> = (0..n_points).filter(|&p| owner[p].is_empty()).collect();
+    if !missing.is_empty() {
+        let n = shards[0].1.part.count;
+        let mut idx: Vec<usize> = missing.iter().map(|&p| Part::owner(p, n_points, n)).collect();
+        idx.dedup();
+        let list: Vec<String> = idx.iter().map(|i| i.to_string()).collect();
+        problems.push(format!(
+            "missing shard(s) {} of {n}: no file holds their points; resubmit exactly these indices (sbatch \
+             --array={} ...), then merge again",
+            list.join(", "),
+            list.join(",")
+        ));
+    }
+    if !problems.is_empty() {
+        return Err(fail(format!(
+            "cannot merge the sweep shards:\n  {}",
+            problems.join("\n  ")
+        )));
+    }
+    shards.sort_by_key(|(_, s)| s.results.points.start);
+    let mut all = SweepResults {
+        identity,
+        n_points,
+        points: 0..n_points,
+        value_index: Vec::new(),
+        values: Vec::new(),
+        errors: Vec::new(),
+    };
+    for (_, s) in shards {
+        all.value_index.extend(s.results.value_index);
+        all.values.extend(s.results.values);
+        all.errors.extend(s.results.errors);
+    }
+    all.write(out, overwrite)?;
+    Ok(all)
+}

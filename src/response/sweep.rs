@@ -1,0 +1,334 @@
+//! Exact response statistics of many systems under one excitation: the fast path of parameter sweeps.
+//!
+//! [`analyze_output`](super::analyze_output) computes every variance method and cross-checks them (three
+//! methods, spectral moments by quadrature): right for one analysis, far too slow for 10⁶ points. An
+//! [`ExactEvaluator`] prepares what depends on the excitation only once (the shaping filters of rational
+//! inputs, whose spectral factorisation dominates a single call) and evaluates each system by one exact
+//! route, with no cross-check:
+//!
+//! * [`VarianceMethod::IntegralTable`]: one delay-free rational input process (a track of wheels without
+//!   delays, or one input) and a state-space system whose augmented order is ≤ 7. One Faddeev–LeVerrier
+//!   pass gives the characteristic polynomial and the adjugate of the system matrix, hence the numerator of
+//!   every output's transfer function; the integral table I_n gives the variance and λ₂. Nothing is
+//!   allocated on the heap per system.
+//! * [`VarianceMethod::Lyapunov`]: other delay-free rational inputs (several independent processes)
+//!   ([`variance_lyapunov`]).
+//! * [`VarianceMethod::Quadrature`]: any other input (delays, non-rational or tabulated spectra)
+//!   ([`variance_quadrature`], [`spectral_moment_quadrature`]).
+//!
+//! # Formula
+//! With the inputs combined into one (u_j = g_j q), b = B g, d = D g, e = E g and Δ(s) = det(sI − A):
+//! ```text
+//! adj(sI − A) = Σ_{k=1}^{n} M_k s^{n−k},  M_1 = I,  M_k = A M_{k−1} + δ_{n−k+1} I,  δ_{n−k} = −tr(A M_k)/k
+//! H_i(s) = N_i(s)/Δ(s),   N_i(s) = Σ_k (c_i M_k b) s^{n−k} + (d_i + e_i s) Δ(s)
+//! D_y = (1/2π) ∫ |N_i F_num / (Δ F_den)|² dω = I_n/(2π),   λ₂ = (1/2π) ∫ ω² |…|² dω,   M_y = N_i(0)/Δ(0)·μ
+//! ```
+//! (F = F_num/F_den the shaping filter of the input process, driven by unit-intensity white noise.)
+
+use super::statistics::VarianceMethod;
+use super::variance::{spectral_moment_quadrature, variance_lyapunov, variance_quadrature};
+use super::Excitation;
+use crate::error::{Error, Result};
+use crate::linalg::h2_integral;
+use crate::spectrum::ShapingFilter;
+use crate::system::FrequencyResponse;
+use std::f64::consts::PI;
+
+/// Largest state count of the stack-based integral-table route (the table's order n + filter order ≤ 7).
+const MAX_STATES: usize = 7;
+
+/// The exact statistics of one output of one system (see [`ExactEvaluator`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PointStatistics {
+    /// M_y = H(0)·M_u (None when the static gain is infinite).
+    pub mean: Option<f64>,
+    /// D_y (None when it is infinite: see [`ExactEvaluator::evaluate`]'s notes).
+    pub variance: Option<f64>,
+    /// λ₂ = ∫ω² S_y dω = Var(ẏ) (None when infinite or not computed).
+    pub lambda2: Option<f64>,
+    /// The route that computed the variance.
+    pub method: VarianceMethod,
+}
+
+impl PointStatistics {
+    /// σ_y = √D_y.
+    pub fn sigma(&self) -> Option<f64> {
+        self.variance.map(f64::sqrt)
+    }
+
+    /// Zero up-crossing rate ν₀⁺ = (1/2π)√(λ₂/λ₀), 1/s.
+    pub fn zero_upcrossing_rate(&self) -> Option<f64> {
+        match (self.variance, self.lambda2) {
+            (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * PI)),
+            _ => None,
+        }
+    }
+}
+
+/// The route an [`ExactEvaluator`] takes, decided from the excitation.
+#[derive(Debug, Clone)]
+enum Route {
+    /// One delay-free rational process: its shaping filter, the input gains and the process mean.
+    Table {
+        filter: ShapingFilter,
+        gains: Vec<f64>,
+        mean: f64,
+    },
+    Lyapunov,
+    Quadrature,
+}
+
+/// Evaluates the exact statistics of many systems under one excitation (see the module docs).
+///
+/// # Examples
+/// ```
+/// use stochvib::response::{analyze_output, Excitation, ExactEvaluator};
+/// use stochvib::spectrum::{Domain, Exponential};
+/// use stochvib::system::StateSpace;
+/// use std::sync::Arc;
+/// let exc = Excitation::single(Arc::new(Exponential::new(2.0, 3.0, Domain::Temporal).unwrap()), 0.5).unwrap();
+/// let ev = ExactEvaluator::new(&exc);
+/// for w in [5.0, 10.0, 20.0] {
+///     let sys = StateSpace::oscillator(w, 0.1).unwrap();
+///     let st = ev.evaluate(&sys, &exc, &[0]).unwrap()[0];
+///     let full = analyze_output(&sys, &exc, 0).unwrap();
+///     assert!((st.variance.unwrap() / full.variance.unwrap() - 1.0).abs() < 1e-9);
+/// }
+/// ```
+#[derive(Debug, Clone)]
+pub struct ExactEvaluator {
+    route: Route,
+}
+
+impl ExactEvaluator {
+    /// Prepares the evaluation of systems driven by `exc`: the integral-table route when `exc` is one
+    /// delay-free rational process, else Lyapunov when every input is rational and delay-free, else
+    /// quadrature.
+    pub fn new(exc: &Excitation) -> ExactEvaluator {
+        let route = match exc {
+            Excitation::Track {
+                spectrum, gains, mean, ..
+            } if exc.delay_free() => match spectrum.rational().map(|r| r.shaping_filter()) {
+                Some(Ok(filter)) => Route::Table {
+                    filter,
+                    gains: gains.clone(),
+                    mean: *mean,
+                },
+                _ => Route::Quadrature,
+            },
+            Excitation::Independent { spectra, .. }
+                if spectra
+                    .iter()
+                    .all(|s| s.rational().is_some_and(|r| r.shaping_filter().is_ok())) =>
+            {
+                Route::Lyapunov
+            }
+            _ => Route::Quadrature,
+        };
+        ExactEvaluator { route }
+    }
+
+    /// The method the evaluator uses for a system of `n_states` states (state-space form) or `None` (no
+    /// state-space form).
+    pub fn method(&self, n_states: Option<usize>) -> VarianceMethod {
+        match (&self.route, n_states) {
+            (Route::Table { filter, .. }, Some(n)) if n + filter.den.len() - 1 <= MAX_STATES => {
+                VarianceMethod::IntegralTable
+            }
+            (Route::Table { .. } | Route::Lyapunov, Some(_)) => VarianceMethod::Lyapunov,
+            _ => VarianceMethod::Quadrature,
+        }
+    }
+
+    /// The statistics of outputs `outputs` of `sys` under `exc` (the excitation the evaluator was made
+    /// for). A variance that is infinite is `None` in the result; the reason is given by
+    /// [`analyze_output`](super::analyze_output).
+    ///
+    /// # Errors
+    /// An output index out of range, an excitation that does not match the system, an unstable system
+    /// (no stationary response), a numerical failure of the route.
+    pub fn evaluate(
+        &self,
+        sys: &dyn FrequencyResponse,
+        exc: &Excitation,
+        outputs: &[usize],
+    ) -> Result<Vec<PointStatistics>> {
+        super::variance::check_shapes(sys, exc, outputs.iter().copied().max().unwrap_or(0))?;
+        let ss = sys.state_space();
+        match (self.method(ss.map(|s| s.n_states())), &self.route, ss) {
+            (VarianceMethod::IntegralTable, Route::Table { filter, gains, mean }, Some(ss)) => {
+                table_route(ss, filter, gains, *mean, outputs)
+            }
+            (VarianceMethod::Lyapunov, _, _) => outputs
+                .iter()
+                .map(|&i| {
+                    let mean = static_mean(sys, exc, i);
+                    match variance_lyapunov(sys, exc, i) {
+                        Ok(m) => Ok(PointStatistics {
+                            mean,
+                            variance: Some(m.variance),
+                            lambda2: m.lambda2.ok(),
+                            method: VarianceMethod::Lyapunov,
+                        }),
+                        Err(Error::Divergent { .. }) => Ok(PointStatistics {
+                            mean,
+                            variance: None,
+                            lambda2: None,
+                            method: VarianceMethod::Lyapunov,
+                        }),
+                        Err(e) => Err(e),
+                    }
+                })
+                .collect(),
+            _ => outputs
+                .iter()
+                .map(|&i| {
+                    let mean = static_mean(sys, exc, i);
+                    let variance = match variance_quadrature(sys, exc, i) {
+                        Ok(q) => Some(q.value),
+                        Err(Error::Divergent { .. }) => None,
+                        Err(e) => return Err(e),
+                    };
+                    let lambda2 = variance.and(spectral_moment_quadrature(sys, exc, i, 2).ok().map(|q| q.value));
+                    Ok(PointStatistics {
+                        mean,
+                        variance,
+                        lambda2,
+                        method: VarianceMethod::Quadrature,
+                    })
+                })
+                .collect(),
+        }
+    }
+}
+
+/// M_y = H(0)·M_u from the system's static gain (None when infinite).
+fn static_mean(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Option<f64> {
+    sys.static_gain().map(|g| {
+        let mu = exc.means();
+        (0..g.ncols()).map(|j| g[(i, j)] * mu[j]).sum::<f64>()
+    })
+}
+
+/// The integral-table route (module docs), on the stack.
+fn table_route(
+    ss: &crate::system::StateSpace,
+    filter: &ShapingFilter,
+    gains: &[f64],
+    mean: f64,
+    outputs: &[usize],
+) -> Result<Vec<PointStatistics>> {
+    const N: usize = MAX_STATES;
+    let n = ss.n_states();
+    let m = ss.b.ncols();
+    // combined input column b = B g, feedthroughs d = D g, e = E g (per output)
+    let mut a = [[0.0; N]; N];
+    let mut b = [0.0; N];
+    for r in 0..n {
+        for (c, v) in a[r].iter_mut().enumerate().take(n) {
+            *v = ss.a[(r, c)];
+        }
+        b[r] = (0..m).map(|j| ss.b[(r, j)] * gains[j]).sum();
+    }
+    // Faddeev–LeVerrier: delta (ascending, monic) and c M_k b for every output
+    let mut delta = [0.0; N + 1];
+    delta[n] = 1.0;
+    let mut mk = [[0.0; N]; N];
+    let mut am = [[0.0; N]; N];
+    // v[k] = M_k b (k = 1..n), stored per k
+    let mut mb = [[0.0; N]; N];
+    for k in 1..=n {
+        // M_k = A M_{k-1} + delta[n+1-k] I  (M_0 = 0)
+        for r in 0..n {
+            for c in 0..n {
+                mk[r][c] = am[r][c] + if r == c { delta[n + 1 - k] } else { 0.0 };
+            }
+        }
+        for r in 0..n {
+            mb[k - 1][r] = (0..n).map(|c| mk[r][c] * b[c]).sum();
+        }
+        // A M_k, its trace gives delta[n-k]
+        let mut tr = 0.0;
+        for r in 0..n {
+            for c in 0..n {
+                let mut s = 0.0;
+                for j in 0..n {
+                    s += a[r][j] * mk[j][c];
+                }
+                am[r][c] = s;
+            }
+            tr += am[r][r];
+        }
+        delta[n - k] = -tr / k as f64;
+    }
+    let fnum = &filter.num;
+    let fden = &filter.den;
+    let den_len = n + fden.len();
+    let mut den = [0.0; 2 * N + 2];
+    mul_into(&delta[..=n], fden, &mut den);
+    let mut out = Vec::with_capacity(outputs.len());
+    for &i in outputs {
+        let di: f64 = (0..m).map(|j| ss.d[(i, j)] * gains[j]).sum();
+        let ei: f64 = (0..m).map(|j| ss.e[(i, j)] * gains[j]).sum();
+        // N_i(s) = Σ_k (c_i M_k b) s^{n-k} + (d + e s) Δ(s)
+        let mut ni = [0.0; N + 2];
+        for k in 1..=n {
+            ni[n - k] = (0..n).map(|c| ss.c[(i, c)] * mb[k - 1][c]).sum();
+        }
+        for (p, &dp) in delta[..=n].iter().enumerate() {
+            ni[p] += di * dp;
+            ni[p + 1] += ei * dp;
+        }
+        let ni_len = n + 2;
+        let mut num = [0.0; 2 * N + 4];
+        let num_len = mul_into(&ni[..ni_len], fnum, &mut num);
+        let static_mean = if delta[0] != 0.0 {
+            Some(ni[0] / delta[0] * mean)
+        } else {
+            None
+        };
+        let variance = match h2_integral(&num[..num_len], &den[..den_len]) {
+            Ok(v) => Some(v / (2.0 * PI)),
+            Err(Error::Divergent { .. }) => None,
+            Err(e) => return Err(unstable_or(e, &delta[..=n])),
+        };
+        let lambda2 = variance.and_then(|_| {
+            let mut s_num = [0.0; 2 * N + 5];
+            s_num[1..=num_len].copy_from_slice(&num[..num_len]);
+            h2_integral(&s_num[..=num_len], &den[..den_len])
+                .ok()
+                .map(|v| v / (2.0 * PI))
+        });
+        out.push(PointStatistics {
+            mean: static_mean,
+            variance,
+            lambda2,
+            method: VarianceMethod::IntegralTable,
+        });
+    }
+    Ok(out)
+}
+
+/// A failure of the table for a characteristic polynomial that is not Hurwitz is an unstable system.
+fn unstable_or(e: Error, delta: &[f64]) -> Error {
+    match e {
+        Error::InvalidParameter { reason, .. } if reason.contains("not stable") => Error::invalid(
+            "A",
+            format!("det(sI - A) = {delta:?} (ascending)"),
+            "the system is not asymptotically stable: no stationary response exists",
+        ),
+        e => e,
+    }
+}
+
+/// p·q (ascending) into `out`; returns the length used.
+fn mul_into(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
+    let len = p.len() + q.len() - 1;
+    out[..len].fill(0.0);
+    for (i, a) in p.iter().enumerate() {
+        for (j, b) in q.iter().enumerate() {
+            out[i + j] += a * b;
+        }
+    }
+    len
+}

@@ -1,0 +1,585 @@
+//! Parameter studies: a scenario evaluated over a grid (cartesian product) or a list (zipped values) of
+//! scenario keys, e.g. `model.suspension_stiffness=15 kN/m,20 kN/m,25 kN/m` and `input.speed=10..30:5 m/s`.
+//!
+//! # Keys and values
+//! A key is the dotted path of a value of the scenario file (`model.omega2`, `input.speed`; an element of an
+//! array of tables by its index, `model.element.0.stiffness`). Values are written as in scenario files, SI
+//! numbers or quantities with units, in one of two forms ([`SweepParam::parse`]):
+//!
+//! * a list `V1,V2,…` (`20 kN/m,30 kN/m`, `0.1,0.2`);
+//! * a range `A..B:n` of n values spaced evenly from A to B inclusive, or `A..B:n:log` spaced
+//!   geometrically (A, B > 0), with one unit for both ends (`1 Hz..2.5 Hz:7`, `10..30:5 m/s`).
+//!
+//! [`SweepMode::Grid`] evaluates every combination (the first key varies slowest), [`SweepMode::Zip`] the
+//! k-th values of every key together (the lists must have one length).
+//!
+//! # Evaluation
+//! Each point is the scenario with the values substituted, evaluated by the exact routes of
+//! [`ExactEvaluator`] (integral table or Lyapunov; quadrature only where no exact route exists) without the
+//! cross-checks of `stochvib analyze`. When only `model.*` keys (and `input.speed`) vary, the model is
+//! rebuilt from its substituted `[model]` table and the resolved spectrum is reused (no file is read per
+//! point, and the input's shaping filter is factored once per distinct speed); any other key goes through
+//! the scenario reader with the substituted text ([`Sweep::scenario_at`]), which gives the same scenario.
+
+use super::registry::{build_model, BuiltModel, ModelContext};
+use super::scenario_file::{build_excitation, parse_scenario, Scenario};
+use crate::error::{Error, Result};
+use crate::fields::Fields;
+use crate::response::{ExactEvaluator, Excitation, PointStatistics};
+use crate::units::Dim;
+use serde::Serialize;
+
+/// How the values of several keys combine into points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum SweepMode {
+    /// Every combination (cartesian product); the first key varies slowest.
+    #[default]
+    Grid,
+    /// The k-th value of every key together; every key has the same number of values.
+    Zip,
+}
+
+/// One swept key and its values as they are substituted into the scenario.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepParam {
+    /// Dotted key, e.g. `model.omega2`.
+    pub key: String,
+    /// The values (TOML values: numbers, or strings with units).
+    #[serde(serialize_with = "values_as_text")]
+    pub values: Vec<toml::Value>,
+}
+
+fn values_as_text<S: serde::Serializer>(v: &[toml::Value], s: S) -> std::result::Result<S::Ok, S::Error> {
+    s.collect_seq(v.iter().map(value_text))
+}
+
+/// A value as written in a table (strings without quotes).
+pub fn value_text(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
+/// Splits `"2.5 Hz"` into (2.5, "Hz"): the longest leading number, then the unit text (trimmed).
+fn number_and_unit(text: &str) -> Option<(f64, String)> {
+    let t = text.trim();
+    let mut best = None;
+    for (i, _) in t.char_indices().skip(1).chain(std::iter::once((t.len(), ' '))) {
+        if let Ok(x) = t[..i].trim().parse::<f64>() {
+            if !t[..i].contains(|c: char| c.is_alphabetic() && c != 'e' && c != 'E') {
+                best = Some((x, t[i..].trim().to_string()));
+            }
+        }
+    }
+    best
+}
+
+/// A list item as a TOML value: an integer, a float, a boolean, or a string (quotes optional).
+fn item_value(text: &str) -> toml::Value {
+    let t = text.trim();
+    if let Ok(i) = t.parse::<i64>() {
+        return toml::Value::Integer(i);
+    }
+    if let Ok(x) = t.parse::<f64>() {
+        return toml::Value::Float(x);
+    }
+    match t {
+        "true" => toml::Value::Boolean(true),
+        "false" => toml::Value::Boolean(false),
+        _ => toml::Value::String(t.trim_matches(|c| c == '"' || c == '\'').to_string()),
+    }
+}
+
+impl SweepParam {
+    /// Parses `KEY=VALUES` (see the module docs).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `param`: no `=`, an empty key or value, a malformed range (ends
+    /// that are not numbers, different units, fewer than 2 points, a geometric range through 0).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::scenario::SweepParam;
+    /// let p = SweepParam::parse("model.omega2=1 Hz..2 Hz:3").unwrap();
+    /// assert_eq!(p.key, "model.omega2");
+    /// let v: Vec<String> = p.values.iter().map(stochvib::scenario::sweep_value_text).collect();
+    /// assert_eq!(v, ["1 Hz", "1.5 Hz", "2 Hz"]);
+    /// let q = SweepParam::parse("model.zeta2=0.2,0.3").unwrap();
+    /// assert_eq!(q.values, vec![toml::Value::Float(0.2), toml::Value::Float(0.3)]);
+    /// assert!(SweepParam::parse("model.zeta2").is_err());
+    /// ```
+    pub fn parse(text: &str) -> Result<SweepParam> {
+        let bad = |why: &str| Error::invalid("param", text, why.to_string());
+        let (key, values) = text
+            .split_once('=')
+            .ok_or_else(|| bad("expected KEY=VALUES, e.g. model.omega2=1 Hz,1.5 Hz or input.speed=10..30:5 m/s"))?;
+        let key = key.trim();
+        if key.is_empty() || key.split('.').any(|s| s.trim().is_empty()) {
+            return Err(bad("the key must be a dotted path such as model.omega2"));
+        }
+        let values = values.trim();
+        if values.is_empty() {
+            return Err(bad("no values after `=`"));
+        }
+        let values = match values.split_once("..") {
+            Some((a, rest)) => {
+                let mut parts = rest.split(':');
+                let b = parts.next().unwrap_or("");
+                let n_text = parts
+                    .next()
+                    .ok_or_else(|| bad("a range is A..B:n (n values) or A..B:n:log, e.g. 1 Hz..2 Hz:5"))?;
+                let mut log = false;
+                let mut unit_after = String::new();
+                // `n`, `n log`, `n:log`, or a unit after the count (`10..30:5 m/s`)
+                let (n_str, tail) = match n_text.trim().split_once(char::is_whitespace) {
+                    Some((n, t)) => (n, t.trim().to_string()),
+                    None => (n_text.trim(), String::new()),
+                };
+                if !tail.is_empty() {
+                    unit_after = tail;
+                }
+                for extra in parts {
+                    match extra.trim() {
+                        "log" => log = true,
+                        "lin" => {}
+                        other if other.starts_with("log") => {
+                            log = true;
+                            unit_after = other.trim_start_matches("log").trim().to_string();
+                        }
+                        _ => return Err(bad("a range ends with :n, :n:log or :n:lin")),
+                    }
+                }
+                let n: usize = n_str
+                    .parse()
+                    .map_err(|_| bad("the number of values after `:` must be an integer >= 2"))?;
+                if n < 2 {
+                    return Err(bad("a range needs at least 2 values"));
+                }
+                let (a, ua) = number_and_unit(a).ok_or_else(|| bad("the start of the range is not a number"))?;
+                let (b, ub) = number_and_unit(b).ok_or_else(|| bad("the end of the range is not a number"))?;
+                let units: Vec<&String> = [&ua, &ub, &unit_after].into_iter().filter(|u| !u.is_empty()).collect();
+                if units.windows(2).any(|w| w[0] != w[1]) {
+                    return Err(bad("both ends of a range need the same unit"));
+                }
+                let unit = units.first().map(|u| u.to_string()).unwrap_or_default();
+                if !(a.is_finite() && b.is_finite()) || (log && !(a > 0.0 && b > 0.0)) {
+                    return Err(bad("the ends must be finite (and > 0 for :log)"));
+                }
+                (0..n)
+                    .map(|k| {
+                        let x = if k == n - 1 {
+                            b
+                        } else if log {
+                            a * (b / a).powf(k as f64 / (n - 1) as f64)
+                        } else {
+                            a + (b - a) * (k as f64) / ((n - 1) as f64)
+                        };
+                        if unit.is_empty() {
+                            toml::Value::Float(x)
+                        } else {
+                            toml::Value::String(format!("{x} {unit}"))
+                        }
+                    })
+                    .collect()
+            }
+            None => values.split(',').map(item_value).collect::<Vec<_>>(),
+        };
+        Ok(SweepParam {
+            key: key.to_string(),
+            values,
+        })
+    }
+}
+
+/// The swept keys, their values and how they combine.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepSpec {
+    /// The keys and values, in the order given.
+    pub params: Vec<SweepParam>,
+    /// Grid or zip.
+    pub mode: SweepMode,
+}
+
+impl SweepSpec {
+    /// Checks the parameters: at least one, distinct keys, one length for [`SweepMode::Zip`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `param`.
+    pub fn new(params: Vec<SweepParam>, mode: SweepMode) -> Result<SweepSpec> {
+        if params.is_empty() {
+            return Err(Error::invalid(
+                "param",
+                "<none>",
+                "give at least one --param KEY=VALUES",
+            ));
+        }
+        for (i, p) in params.iter().enumerate() {
+            if params[..i].iter().any(|q| q.key == p.key) {
+                return Err(Error::invalid("param", &p.key, "the key is given twice"));
+            }
+        }
+        if mode == SweepMode::Zip && params.iter().any(|p| p.values.len() != params[0].values.len()) {
+            return Err(Error::invalid(
+                "param",
+                params
+                    .iter()
+                    .map(|p| format!("{}: {}", p.key, p.values.len()))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                "--zip needs the same number of values for every key",
+            ));
+        }
+        Ok(SweepSpec { params, mode })
+    }
+
+    /// Number of points.
+    pub fn n_points(&self) -> usize {
+        match self.mode {
+            SweepMode::Grid => self.params.iter().map(|p| p.values.len()).product(),
+            SweepMode::Zip => self.params[0].values.len(),
+        }
+    }
+
+    /// The index of each key's value at point `point` (grid: mixed radix, the last key fastest).
+    pub fn indices(&self, point: usize) -> Vec<usize> {
+        match self.mode {
+            SweepMode::Zip => vec![point; self.params.len()],
+            SweepMode::Grid => {
+                let mut rest = point;
+                let mut idx = vec![0; self.params.len()];
+                for (k, p) in self.params.iter().enumerate().rev() {
+                    idx[k] = rest % p.values.len();
+                    rest /= p.values.len();
+                }
+                idx
+            }
+        }
+    }
+
+    /// The values at point `point`, one per key.
+    pub fn values(&self, point: usize) -> Vec<&toml::Value> {
+        self.indices(point)
+            .iter()
+            .zip(&self.params)
+            .map(|(&i, p)| &p.values[i])
+            .collect()
+    }
+}
+
+/// Sets the dotted `key` of `root` to `value` (an array element by its index).
+fn set_key(root: &mut toml::Table, key: &str, value: toml::Value) -> std::result::Result<(), String> {
+    let segs: Vec<&str> = key.split('.').map(str::trim).collect();
+    let mut table = root;
+    for (i, seg) in segs[..segs.len() - 1].iter().enumerate() {
+        let next = table
+            .get_mut(*seg)
+            .ok_or_else(|| format!("the scenario has no `{}`", segs[..=i].join(".")))?;
+        table = match next {
+            toml::Value::Table(t) => t,
+            toml::Value::Array(a) => {
+                let k: usize = segs
+                    .get(i + 1)
+                    .and_then(|s| s.parse().ok())
+                    .ok_or_else(|| format!("`{}` is an array: give an index", segs[..=i].join(".")))?;
+                let len = a.len();
+                let el = a
+                    .get_mut(k)
+                    .ok_or_else(|| format!("`{}` has {len} elements", segs[..=i].join(".")))?;
+                if i + 2 == segs.len() {
+                    *el = value;
+                    return Ok(());
+                }
+                match el {
+                    toml::Value::Table(t) => {
+                        // skip the index segment
+                        return set_key(t, &segs[i + 2..].join("."), value);
+                    }
+                    _ => return Err(format!("`{}.{k}` is not a table", segs[..=i].join("."))),
+                }
+            }
+            _ => return Err(format!("`{}` is a value, not a table", segs[..=i].join("."))),
+        };
+    }
+    table.insert(segs[segs.len() - 1].to_string(), value);
+    Ok(())
+}
+
+/// The excitation at one speed, with its evaluator.
+struct SpeedExcitation {
+    speed: Option<f64>,
+    excitation: Excitation,
+    evaluator: ExactEvaluator,
+}
+
+/// How a point's excitation is obtained.
+enum Excitations {
+    /// Only `model.*` keys vary and the model's input layout stays the base's: the base excitation.
+    Base(Box<ExactEvaluator>),
+    /// `input.speed` varies too: one excitation per distinct speed value (index of its value).
+    PerSpeed {
+        param: usize,
+        cache: Vec<Option<SpeedExcitation>>,
+    },
+}
+
+/// A parameter study of one scenario (see the module docs).
+pub struct Sweep<'a> {
+    base: &'a Scenario,
+    root: toml::Table,
+    spec: SweepSpec,
+    fast: Option<Excitations>,
+    output_names: Vec<String>,
+}
+
+impl std::fmt::Debug for Sweep<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Sweep")
+            .field("scenario", &self.base.path)
+            .field("spec", &self.spec)
+            .field("fast", &self.fast.is_some())
+            .finish()
+    }
+}
+
+impl<'a> Sweep<'a> {
+    /// Prepares the study of `base` over `spec` and checks the first point (so that a misspelt key or a
+    /// value of the wrong unit fails at once, naming the key).
+    ///
+    /// # Errors
+    /// A key that is not in the scenario's tables; the first point's scenario errors ([`Error::File`]
+    /// naming the key and value).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::scenario::{load_scenario, Sweep, SweepMode, SweepParam, SweepSpec};
+    /// use std::path::Path;
+    /// let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+    /// let spec = SweepSpec::new(vec![SweepParam::parse("model.omega2=1 Hz,2 Hz").unwrap()], SweepMode::Grid).unwrap();
+    /// let sweep = Sweep::new(&sc, spec).unwrap();
+    /// let stiffer = sweep.evaluate(1).unwrap();
+    /// let softer = sweep.evaluate(0).unwrap();
+    /// let x2_acc = sweep.outputs().iter().position(|o| o == "x2_acc").unwrap();
+    /// assert!(stiffer[x2_acc].sigma().unwrap() > softer[x2_acc].sigma().unwrap()); // a stiffer cab mount shakes more
+    /// ```
+    pub fn new(base: &'a Scenario, spec: SweepSpec) -> Result<Sweep<'a>> {
+        let root = crate::fields::parse_toml(&base.text, &base.path)?;
+        for p in &spec.params {
+            let mut probe = root.clone();
+            set_key(&mut probe, &p.key, p.values[0].clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+        }
+        let model_only = |k: &str| k.starts_with("model.");
+        let speed = spec.params.iter().position(|p| p.key == "input.speed");
+        let fast = if spec.params.iter().all(|p| model_only(&p.key) || p.key == "input.speed")
+            && root.get("model").is_some_and(|m| m.is_table())
+        {
+            Some(match speed {
+                None => Excitations::Base(Box::new(ExactEvaluator::new(&base.excitation))),
+                Some(k) => Excitations::PerSpeed {
+                    param: k,
+                    cache: Vec::new(),
+                },
+            })
+        } else {
+            None
+        };
+        let names = base.model.system.outputs();
+        let output_names = base.analysis.outputs.iter().map(|&i| names[i].name.clone()).collect();
+        let mut sweep = Sweep {
+            base,
+            root,
+            spec,
+            fast,
+            output_names,
+        };
+        if let Some(Excitations::PerSpeed { param, .. }) = &sweep.fast {
+            let param = *param;
+            let n = sweep.spec.params[param].values.len();
+            let mut cache = Vec::with_capacity(n);
+            for v in 0..n {
+                cache.push(sweep.speed_excitation(param, v).ok());
+            }
+            sweep.fast = Some(Excitations::PerSpeed { param, cache });
+        }
+        sweep.scenario_at(0)?;
+        sweep.evaluate(0)?;
+        Ok(sweep)
+    }
+
+    /// The swept keys and values.
+    pub fn spec(&self) -> &SweepSpec {
+        &self.spec
+    }
+
+    /// The base scenario.
+    pub fn scenario(&self) -> &Scenario {
+        self.base
+    }
+
+    /// The names of the outputs evaluated at every point (the scenario's `[analysis] outputs`).
+    pub fn outputs(&self) -> &[String] {
+        &self.output_names
+    }
+
+    /// The scenario's root table with point `point`'s values substituted.
+    pub fn table_at(&self, point: usize) -> Result<toml::Table> {
+        let mut root = self.root.clone();
+        for (p, v) in self.spec.params.iter().zip(self.spec.values(point)) {
+            set_key(&mut root, &p.key, v.clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+        }
+        Ok(root)
+    }
+
+    /// The scenario of point `point`: the substituted text read by the scenario reader (so that
+    /// `stochvib analyze` of that text gives the same scenario).
+    ///
+    /// # Errors
+    /// The scenario reader's errors for the substituted values.
+    pub fn scenario_at(&self, point: usize) -> Result<Scenario> {
+        let text = toml::to_string(&self.table_at(point)?).map_err(|e| Error::Numerical {
+            what: "writing the substituted scenario".into(),
+            reason: e.to_string(),
+        })?;
+        parse_scenario(&text, &self.base.path, &self.base.spectra_dir)
+    }
+
+    /// The excitation of the base model's input layout at value `v` of the speed parameter `param`.
+    fn speed_excitation(&self, param: usize, v: usize) -> Result<SpeedExcitation> {
+        let mut input = self
+            .root
+            .get("input")
+            .and_then(|i| i.as_table())
+            .cloned()
+            .unwrap_or_default();
+        input.insert("speed".into(), self.spec.params[param].values[v].clone());
+        let f = Fields::new(&self.base.path, "input", &input);
+        let speed = f.opt_quantity("speed", Dim::VELOCITY)?;
+        if let Some(s) = speed {
+            if s.is_nan() || s <= 0.0 {
+                return Err(f.error("speed", s, "must be > 0"));
+            }
+        }
+        let exc = build_excitation(
+            &f,
+            &self.base.model.layout,
+            self.base.input.spectrum.clone(),
+            speed,
+            self.base.input.mean,
+        )?;
+        Ok(SpeedExcitation {
+            speed,
+            evaluator: ExactEvaluator::new(&exc),
+            excitation: exc,
+        })
+    }
+
+    /// The exact statistics of every output at point `point`, in the order of [`outputs`](Self::outputs).
+    ///
+    /// # Errors
+    /// The substituted scenario's errors (a value out of range, an unstable model), the evaluator's errors.
+    pub fn evaluate(&self, point: usize) -> Result<Vec<PointStatistics>> {
+        let Some(fast) = &self.fast else {
+            let sc = self.scenario_at(point)?;
+            let outputs = self.check_outputs(&sc.model)?;
+            return ExactEvaluator::new(&sc.excitation).evaluate(sc.model.system.as_ref(), &sc.excitation, &outputs);
+        };
+        let values = self.spec.values(point);
+        let idx = self.spec.indices(point);
+        let mut model_table = self.root["model"].as_table().cloned().unwrap_or_default();
+        for (p, v) in self.spec.params.iter().zip(&values) {
+            if let Some(rest) = p.key.strip_prefix("model.") {
+                set_key(&mut model_table, rest, (*v).clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+            }
+        }
+        let fresh;
+        let at_speed = match fast {
+            Excitations::Base(_) => None,
+            Excitations::PerSpeed { param, cache } => match cache.get(idx[*param]) {
+                Some(Some(e)) => Some(e),
+                _ => {
+                    fresh = self.speed_excitation(*param, idx[*param])?;
+                    Some(&fresh)
+                }
+            },
+        };
+        let speed = at_speed.map_or(self.base.input.speed, |e| e.speed);
+        let kind = &self.base.kind;
+        let f = Fields::new(&self.base.path, "model", &model_table);
+        let _ = f.get("kind"); // read by the scenario reader, not by the model
+        let model = match build_model(kind, &f, ModelContext { speed })? {
+            BuiltModel::Stochastic(m) => m,
+            BuiltModel::Deterministic(_) => {
+                return Err(Error::invalid(
+                    "model.kind",
+                    kind,
+                    "a deterministic model has no response statistics",
+                ))
+            }
+        };
+        f.finish()?;
+        let outputs = self.check_outputs(&model)?;
+        let same_layout = model.layout == self.base.model.layout;
+        match (fast, at_speed) {
+            (Excitations::Base(ev), _) if same_layout => {
+                ev.evaluate(model.system.as_ref(), &self.base.excitation, &outputs)
+            }
+            (Excitations::PerSpeed { .. }, Some(e)) if same_layout => {
+                e.evaluator.evaluate(model.system.as_ref(), &e.excitation, &outputs)
+            }
+            _ => {
+                // the input layout changed with the model (e.g. a wheelbase): the whole scenario
+                let sc = self.scenario_at(point)?;
+                let outputs = self.check_outputs(&sc.model)?;
+                ExactEvaluator::new(&sc.excitation).evaluate(sc.model.system.as_ref(), &sc.excitation, &outputs)
+            }
+        }
+    }
+
+    /// The indices of the base's outputs in `model`, which must name them alike.
+    fn check_outputs(&self, model: &crate::models::ModelInstance) -> Result<Vec<usize>> {
+        let names = model.system.outputs();
+        self.output_names
+            .iter()
+            .zip(&self.base.analysis.outputs)
+            .map(|(n, &i)| {
+                if names.get(i).is_some_and(|o| o.name == *n) {
+                    Ok(i)
+                } else {
+                    names
+                        .iter()
+                        .position(|o| o.name == *n)
+                        .ok_or_else(|| Error::invalid("model", n, "the substituted model has no output of this name"))
+                }
+            })
+            .collect()
+    }
+
+    /// Evaluates the points `points` (in parallel with `parallel`), each result in point order; a point
+    /// that fails gives its error message (the study goes on).
+    pub fn evaluate_range(
+        &self,
+        points: std::ops::Range<usize>,
+        parallel: bool,
+    ) -> Vec<std::result::Result<Vec<PointStatistics>, String>> {
+        use rayon::prelude::*;
+        let one = |p: usize| self.evaluate(p).map_err(|e| e.to_string());
+        if parallel {
+            points.into_par_iter().with_min_len(256).map(one).collect()
+        } else {
+            points.map(one).collect()
+        }
+    }
+}
+
+/// The root table of a scenario file with `point` values substituted, as TOML text (for `stochvib analyze`
+/// of one point of a study).
+///
+/// # Errors
+/// As [`Sweep::table_at`].
+pub fn substituted_text(sweep: &Sweep, point: usize) -> Result<String> {
+    toml::to_string(&sweep.table_at(point)?).map_err(|e| Error::Numerical {
+        what: "writing the substituted scenario".into(),
+        reason: e.to_string(),
+    })
+}

@@ -1,0 +1,236 @@
+//! The shard contract of a cluster run: which part of the realizations one process computes
+//! (`stochvib simulate … --shard I --of N -o DIR/`), where it writes it, and what a rerun does.
+//!
+//! * Part I of N holds whole internal shards: internal shard b (of B = ⌈R/shard_size⌉) belongs to part
+//!   ⌊b·N/B⌋ ([`Part`]), so N ≤ B. This is the "documented equivalent" of assigning realization i to part
+//!   ⌊i·N/R⌋: it keeps the per-shard sums of a single-process run with the same `shard_size`, so that the
+//!   merge is bit-identical to that run.
+//! * The part writes `DIR/shard-<I>-of-<N>.h5` ([`Part::file_name`]), a complete run file of format 3
+//!   written under a temporary name and renamed when complete, like every run file.
+//! * A rerun of a part resumes its `.tmp`; a rerun of a finished part with the same run is a no-op
+//!   ([`finished_part`]); a finished file of another run under that name is never replaced (unless
+//!   `--overwrite`).
+//! * `--shard auto` reads I from the scheduler ([`resolve_part`]).
+
+use super::plan::Plan;
+use super::run::summary_of_file;
+use super::{RunOptions, RunSummary};
+use crate::error::{Error, Result};
+use crate::store::{metadata_differences, Part, RunFile, RunMetadata};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// The part a process computes and where its index came from.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct ShardChoice {
+    /// The part.
+    pub part: Part,
+    /// Where I and N came from (`--shard 3 --of 16`, `SLURM_ARRAY_TASK_ID=3, --of 16`, …).
+    pub source: String,
+    /// Warnings (e.g. an array smaller than N: the other indices must be submitted too).
+    pub notes: Vec<String>,
+}
+
+/// Resolves `--shard SPEC --of N`: SPEC is an index I or `auto`.
+///
+/// With `auto`, I is `SLURM_ARRAY_TASK_ID` (a SLURM job array), else `JOB_COMPLETION_INDEX` (a Kubernetes
+/// Indexed Job). N is `--of` when given (always give it: a resubmitted index `sbatch --array=7` runs in an
+/// array of one task). Without `--of`, under SLURM only: N = `SLURM_ARRAY_TASK_COUNT` when the array is
+/// `0..N-1` (`SLURM_ARRAY_TASK_MIN` = 0 and `SLURM_ARRAY_TASK_MAX` = N − 1) with N ≥ 2 (N = MAX + 1 when
+/// `SLURM_ARRAY_TASK_COUNT` is not set); any other array
+/// (a resubmitted subset, a stepped range, one task) is refused. `env(name)` reads the environment (a
+/// parameter, so that tests need not change the process's environment).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `shard` or `of`: `auto` without a scheduler variable, a variable that
+/// is not a non-negative integer, an N that cannot be inferred, an index outside [0, N), N = 0, an index
+/// without `--of`.
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::resolve_part;
+/// let env = |k: &str| match k {
+///     "SLURM_ARRAY_TASK_ID" => Some("2".to_string()),
+///     "SLURM_ARRAY_TASK_MIN" => Some("0".to_string()),
+///     "SLURM_ARRAY_TASK_MAX" => Some("3".to_string()),
+///     "SLURM_ARRAY_TASK_COUNT" => Some("4".to_string()),
+///     _ => None,
+/// };
+/// let c = resolve_part("auto", None, &env).unwrap();
+/// assert_eq!((c.part.index, c.part.count), (2, 4));
+/// assert!(resolve_part("auto", None, &|_: &str| None).is_err());
+/// assert_eq!(resolve_part("1", Some(3), &|_: &str| None).unwrap().part.index, 1);
+/// ```
+pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<String>) -> Result<ShardChoice> {
+    let int = |name: &str, text: &str| -> Result<usize> {
+        text.trim()
+            .parse::<usize>()
+            .map_err(|_| Error::invalid("shard", format!("{name}={text}"), "expected a non-negative integer"))
+    };
+    let mut notes = Vec::new();
+    let spec = spec.trim();
+    if spec != "auto" {
+        let index =
+            int("--shard", spec).map_err(|_| Error::invalid("shard", spec, "expected an index 0, 1, … or `auto`"))?;
+        let count = of.ok_or_else(|| {
+            Error::invalid(
+                "of",
+                "<missing>",
+                format!("--shard {index} needs --of N, the number of shards of the run"),
+            )
+        })?;
+        return Ok(ShardChoice {
+            part: Part::new(index, count)?,
+            source: format!("--shard {index} --of {count}"),
+            notes,
+        });
+    }
+    if let Some(id) = env("SLURM_ARRAY_TASK_ID") {
+        let index = int("SLURM_ARRAY_TASK_ID", &id)?;
+        let read = |k: &str| env(k).map(|v| int(k, &v)).transpose();
+        let (min, max, count) = (
+            read("SLURM_ARRAY_TASK_MIN")?,
+            read("SLURM_ARRAY_TASK_MAX")?,
+            read("SLURM_ARRAY_TASK_COUNT")?,
+        );
+        // an array 0..N-1 says N: SLURM_ARRAY_TASK_COUNT, or MAX + 1 where COUNT is not set (older SLURM)
+        let whole_array =
+            matches!((min, max, count), (Some(0), Some(mx), c) if mx >= 1 && c.is_none_or(|c| c == mx + 1));
+        let count_name = if count.is_some() {
+            "SLURM_ARRAY_TASK_COUNT"
+        } else {
+            "SLURM_ARRAY_TASK_MAX+1"
+        };
+        let count = count.or(max.map(|mx| mx + 1));
+        let (n, source) = match of {
+            Some(n) => {
+                if let (true, Some(c)) = (whole_array, count) {
+                    if c < n {
+                        notes.push(format!(
+                            "this array has {c} tasks (indices 0..{}) but the run has --of {n} shards: submit \
+                             the indices {c}..{} too, or the merge will report them missing",
+                            c - 1,
+                            n - 1
+                        ));
+                    }
+                }
+                (n, format!("SLURM_ARRAY_TASK_ID={index}, --of {n}"))
+            }
+            None if whole_array => {
+                let c = count.unwrap_or(0);
+                (
+                    c,
+                    format!("SLURM_ARRAY_TASK_ID={index} of {count_name}={c} (array 0..{})", c - 1),
+                )
+            }
+            None => {
+                return Err(Error::invalid(
+                    "of",
+                    "<missing>",
+                    format!(
+                        "--shard auto cannot tell the number of shards from this array (SLURM_ARRAY_TASK_MIN={}, \
+                         SLURM_ARRAY_TASK_MAX={}, SLURM_ARRAY_TASK_COUNT={}): only an array 0..N-1 of N >= 2 tasks \
+                         says N, and a resubmitted index (sbatch --array=7) runs in an array of its own; give --of N",
+                        opt(min),
+                        opt(max),
+                        opt(count)
+                    ),
+                ))
+            }
+        };
+        return Ok(ShardChoice {
+            part: Part::new(index, n)?,
+            source,
+            notes,
+        });
+    }
+    if let Some(id) = env("JOB_COMPLETION_INDEX") {
+        let index = int("JOB_COMPLETION_INDEX", &id)?;
+        let n = of.ok_or_else(|| {
+            Error::invalid(
+                "of",
+                "<missing>",
+                "--shard auto in a Kubernetes Indexed Job (JOB_COMPLETION_INDEX) needs --of N (= the Job's \
+                 completions): Kubernetes does not tell a pod the number of completions",
+            )
+        })?;
+        return Ok(ShardChoice {
+            part: Part::new(index, n)?,
+            source: format!("JOB_COMPLETION_INDEX={index}, --of {n}"),
+            notes,
+        });
+    }
+    Err(Error::invalid(
+        "shard",
+        "auto",
+        "no scheduler index in the environment: neither SLURM_ARRAY_TASK_ID (a SLURM job array, sbatch \
+         --array=0-N-1) nor JOB_COMPLETION_INDEX (a Kubernetes Indexed Job) is set; outside a scheduler give \
+         the index: --shard I --of N",
+    ))
+}
+
+fn opt(v: Option<usize>) -> String {
+    v.map_or("unset".to_string(), |x| x.to_string())
+}
+
+/// The file of part `part` in the run directory `dir`: `dir/shard-<I>-of-<N>.h5`.
+///
+/// # Examples
+/// ```
+/// use stochvib::{simulate::part_path, store::Part};
+/// let p = part_path(std::path::Path::new("runs/a"), Part::new(2, 4).unwrap());
+/// assert_eq!(p, std::path::Path::new("runs/a/shard-2-of-4.h5"));
+/// ```
+pub fn part_path(dir: &Path, part: Part) -> PathBuf {
+    dir.join(part.file_name())
+}
+
+/// The summary of `out` when it is already the finished shard file of this run (a rerun is a no-op);
+/// `None` when there is nothing there (or `--overwrite` asks to replace it), or when the run is not a part.
+///
+/// # Errors
+/// [`Error::Hdf5`] when `out` is something else: a shard file of another run (naming what differs), or not
+/// a complete run file. Nothing is replaced or deleted.
+pub(crate) fn finished_part(
+    meta: &RunMetadata,
+    plan: &Plan,
+    out: &Path,
+    opts: &RunOptions,
+) -> Result<Option<RunSummary>> {
+    let Some(part) = meta.part else { return Ok(None) };
+    if !out.is_file() || opts.overwrite {
+        return Ok(None);
+    }
+    let in_the_way = |reason: String| Error::Hdf5 {
+        path: out.to_path_buf(),
+        reason,
+    };
+    let run = RunFile::open(out).map_err(|e| {
+        in_the_way(format!(
+            "is in the way of shard {} of {} and is not its finished file ({e}); nothing is overwritten: remove \
+             it, choose another run directory, or pass --overwrite",
+            part.index, part.count
+        ))
+    })?;
+    let mut differ = metadata_differences(run.metadata(), meta);
+    if run.toolkit_version() != crate::store::layout::TOOLKIT_VERSION {
+        differ.push(format!("toolkit version ({})", run.toolkit_version()));
+    }
+    if run.metadata().part != meta.part {
+        differ.push("shard index or count".into());
+    }
+    if !differ.is_empty() {
+        return Err(in_the_way(format!(
+            "holds a finished shard file of another run (differs in {}); nothing is overwritten: use another run \
+             directory for this run, or pass --overwrite",
+            differ.join(", ")
+        )));
+    }
+    let note = format!(
+        "shard {} of {} is already complete in {}: nothing to do (a rerun of a finished shard is a no-op)",
+        part.index,
+        part.count,
+        out.display()
+    );
+    summary_of_file(&run, plan, vec![note]).map(Some)
+}
