@@ -61,7 +61,9 @@ pub fn real_array<'py>(py: Python<'py>, obj: &Bound<'py, PyAny>, name: &str) -> 
     }
     let kw = PyDict::new(py);
     kw.set_item("dtype", np.getattr("float64")?)?;
-    let c = np.call_method("ascontiguousarray", (arr,), Some(&kw))?;
+    kw.set_item("order", "C")?;
+    // (not ascontiguousarray, which turns a 0-d array into a 1-d one)
+    let c = np.call_method("asarray", (arr,), Some(&kw))?;
     Ok(c.cast_into::<PyArrayDyn<f64>>()?)
 }
 

@@ -176,9 +176,8 @@ fn document_report<'py>(py: Python<'py>, doc: &Document) -> PyResult<(String, Bo
     }
 }
 
-/// Calls `f` with the progress callable made by `stochvib._progress.make(progress)` (None, or an object
-/// called with (done, total) and closed afterwards, whatever happens).
-/// `progress` None means the default, True.
+/// Calls `f` with the progress callable of `stochvib._progress.make(progress)` and calls its `close`
+/// afterwards, whatever happens; `progress` None means the default, True.
 fn with_progress<T>(
     py: Python<'_>,
     progress: Option<Py<PyAny>>,
@@ -188,15 +187,15 @@ fn with_progress<T>(
         Some(p) => p,
         None => true.into_py_any(py)?,
     };
-    let bar = py.import("stochvib._progress")?.getattr("make")?.call1((progress,))?;
-    let cb = if bar.is_none() {
-        None
-    } else {
-        Some(bar.clone().unbind())
-    };
-    let r = f(cb);
-    if !bar.is_none() {
-        let closed = bar.call_method0("close");
+    let (call, close): (Py<PyAny>, Py<PyAny>) = py
+        .import("stochvib._progress")?
+        .getattr("make")?
+        .call1((progress,))?
+        .extract()?;
+    let call = (!call.is_none(py)).then_some(call);
+    let r = f(call);
+    if !close.is_none(py) {
+        let closed = close.call0(py);
         if r.is_ok() {
             closed?;
         }

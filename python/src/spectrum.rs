@@ -17,6 +17,9 @@ use stochvib::spectrum::{
 /// Grids shorter than this are evaluated without releasing the GIL (releasing costs more than the work).
 pub const DETACH_MIN_POINTS: usize = 2048;
 
+/// A pair of coefficient arrays (numerator, denominator).
+type Coefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
 /// A stationary random process described by its spectral density.
 ///
 /// Inside stochvib every density is the TWO-SIDED density in ANGULAR frequency S(ω), ω in rad/s
@@ -399,10 +402,7 @@ impl PySpectrum {
     /// The rational form as (numerator, denominator) coefficients in ascending powers of ω²
     /// (S = N(ω²)/D(ω²), two-sided angular), or None when the density is not rational.
     #[getter]
-    fn rational_coefficients<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> Option<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    fn rational_coefficients<'py>(&self, py: Python<'py>) -> Option<Coefficients<'py>> {
         self.spectrum.rational().map(|r| {
             (
                 PyArray1::from_slice(py, r.numerator()),
@@ -414,7 +414,7 @@ impl PySpectrum {
     /// The stable minimum-phase shaping filter (B, A), coefficients in ascending powers of s, with
     /// S(ω) = |B(iω)/A(iω)|² / (2π): unit-intensity white noise (E[w(t)w(t+τ)] = δ(τ)) through B/A has this
     /// spectrum. Raises :class:`NotApplicableError` for a non-rational density.
-    fn shaping_filter<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    fn shaping_filter<'py>(&self, py: Python<'py>) -> PyResult<Coefficients<'py>> {
         let r = self.spectrum.rational().ok_or_else(|| {
             not_applicable(
                 py,

@@ -279,6 +279,16 @@ impl PySystem {
     #[staticmethod]
     #[pyo3(signature = (kind, *, speed=None, **params))]
     fn model(py: Python<'_>, kind: &str, speed: Option<f64>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        if let Some(k) = stochvib::scenario::model_kind(kind).filter(|k| !k.stochastic) {
+            return Err(not_applicable(
+                py,
+                format!(
+                    "`{}` is a deterministic model (no random input): load its scenario file (e.g. {}) with \
+                     stochvib.Scenario.load(path) and call analyze()",
+                    k.name, k.example
+                ),
+            ));
+        }
         let table = match params {
             Some(d) => toml_table(py, "model", d)?,
             None => toml::Table::new(),
@@ -291,10 +301,7 @@ impl PySystem {
             BuiltModel::Stochastic(m) => Ok(PySystem::from_instance(&m, kind)),
             BuiltModel::Deterministic(_) => Err(not_applicable(
                 py,
-                format!(
-                    "`{kind}` is a deterministic model (no random input): load its scenario file with \
-                     stochvib.Scenario.load(path) and call analyze()"
-                ),
+                format!("`{kind}` is a deterministic model (no random input): use stochvib.Scenario.load"),
             )),
         }
     }

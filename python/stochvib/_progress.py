@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import sys
-from typing import Any, Callable, Optional
+from typing import Any, Callable, Optional, Tuple
 
 __all__ = ["make"]
 
@@ -48,29 +48,20 @@ class _TqdmBar:
             self._bar.close()
 
 
-class _Callable:
-    def __init__(self, fn: Callable[[int, int], Any]) -> None:
-        self._fn = fn
-
-    def __call__(self, done: int, total: int) -> None:
-        self._fn(done, total)
-
-    def close(self) -> None:
-        pass
-
-
-def make(progress: Any) -> Any:
-    """``True``: a bar (tqdm.auto when installed, else text on stderr); ``False``/``None``: nothing; a
-    callable: called as ``progress(done_shards, total_shards)`` after every shard. The returned object (or
-    None) is called the same way and closed at the end."""
+def make(progress: Any) -> Tuple[Optional[Callable[[int, int], Any]], Optional[Callable[[], Any]]]:
+    """(call, close) for ``progress``: ``True``: a bar (tqdm.auto when installed, else text on stderr);
+    ``False``/``None``: nothing; a callable: itself, called as ``progress(done_shards, total_shards)`` after
+    every shard (and once at the start). ``close`` (or None) is called at the end, whatever happens."""
     if progress is None or progress is False:
-        return None
+        return None, None
     if progress is True:
         try:
             from tqdm.auto import tqdm  # type: ignore[import-not-found]
         except Exception:
-            return _TextBar()
-        return _TqdmBar(tqdm)
+            bar: Any = _TextBar()
+        else:
+            bar = _TqdmBar(tqdm)
+        return bar, bar.close
     if callable(progress):
-        return _Callable(progress)
+        return progress, None
     raise TypeError(f"progress must be True, False or a callable(done, total), not {progress!r}")
