@@ -23,7 +23,7 @@ messages.
 from __future__ import annotations
 
 import os
-from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Literal, Optional, Sequence, Tuple, Union
 
 from . import errors, linalg
 from ._stochvib import ISO_BAND, Scenario, Spectrum, System, __version__
@@ -155,7 +155,7 @@ def simulate(
     shard_size: int = 50,
     store_raw: bool = False,
     compression: str = "none",
-    route: str = "auto",
+    route: Literal["auto", "exact", "spectral"] = "auto",
     confidence: float = 0.95,
     overwrite: bool = False,
     progress: Union[bool, Callable[[int, int], Any]] = True,
