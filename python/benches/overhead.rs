@@ -21,20 +21,31 @@ use stochvib::system::FrequencyResponse;
 const N: usize = 100_000;
 
 fn grid() -> Vec<f64> {
-    (0..N).map(|i| 0.01 + (100.0 - 0.01) * i as f64 / (N - 1) as f64).collect()
+    (0..N)
+        .map(|i| 0.01 + (100.0 - 0.01) * i as f64 / (N - 1) as f64)
+        .collect()
 }
 
 fn spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
     vec![
-        ("exponential", Arc::new(Exponential::new(2.0, 1.5, Domain::Temporal).unwrap())),
-        ("gauss_cosine", Arc::new(GaussCosine::new(2.0, 1.5, 6.0, Domain::Temporal).unwrap())),
+        (
+            "exponential",
+            Arc::new(Exponential::new(2.0, 1.5, Domain::Temporal).unwrap()),
+        ),
+        (
+            "gauss_cosine",
+            Arc::new(GaussCosine::new(2.0, 1.5, 6.0, Domain::Temporal).unwrap()),
+        ),
     ]
 }
 
 /// The quarter car of `data/quarter-car-model.toml` (300 kg, 40 kg, 20 kN/m, 1.5 kN s/m, 200 kN/m):
 /// 4 outputs × 1 input.
 pub fn quarter_car() -> Mdof {
-    QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3).unwrap().system().unwrap()
+    QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3)
+        .unwrap()
+        .system()
+        .unwrap()
 }
 
 fn bench(c: &mut Criterion) {

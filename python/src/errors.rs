@@ -203,7 +203,12 @@ pub fn to_py(py: Python<'_>, f: Failure) -> PyErr {
     }
 }
 
-/// Converts a library result.
+/// Runs a library call with the GIL held, catching panics, and converts its error.
+pub fn call<T>(py: Python<'_>, f: impl FnOnce() -> stochvib::Result<T>) -> PyResult<T> {
+    catch(|| f().map_err(Failure::Lib)).map_err(|e| to_py(py, e))
+}
+
+/// Converts a library result (for errors the binding builds itself).
 pub fn lib<T>(py: Python<'_>, r: stochvib::Result<T>) -> PyResult<T> {
     r.map_err(|e| lib_error(py, &e))
 }

@@ -1,7 +1,7 @@
 //! Names written in Python arguments turned into library values: conventions, domains, the spectrum
 //! catalogue directory. Bad names raise the library's own `InvalidParameter` message.
 
-use crate::errors::lib;
+use crate::errors::{call, lib};
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use stochvib::scenario::Catalogue;
@@ -11,7 +11,7 @@ use stochvib::Error;
 /// A [`Convention`] by its file/command-line name (`two-sided-angular`, `one-sided-angular`,
 /// `one-sided-cyclic`, `engineering`).
 pub fn convention(py: Python<'_>, name: &str) -> PyResult<Convention> {
-    lib(py, name.parse::<Convention>())
+    call(py, || name.parse::<Convention>())
 }
 
 /// A [`Domain`] by its file name (`temporal`, `spatial`).

@@ -2,7 +2,7 @@
 //! (the `stochvib analyze` report) and its Monte Carlo runs (`stochvib simulate`).
 
 use crate::convert::to_python;
-use crate::errors::{invalid_input, lib};
+use crate::errors::{call, detached, invalid_input, lib};
 use crate::interrupt::run_interruptible;
 use crate::names::catalogue;
 use crate::spectrum::PySpectrum;
@@ -13,7 +13,9 @@ use pyo3::IntoPyObjectExt;
 use std::path::PathBuf;
 use std::sync::Arc;
 use stochvib::models::InputLayout;
-use stochvib::report::{analysis_report, attach_monte_carlo, deterministic_report, reference_report};
+use stochvib::report::{
+    analysis_report, attach_monte_carlo, deterministic_report, reference_report, AnalysisReport, TablesReport,
+};
 use stochvib::response::Excitation;
 use stochvib::scenario::{load_document, AnalysisOptions, Document, Scenario, ScenarioInput};
 use stochvib::simulate::{run_temporary, suggest_step, RunOptions};
@@ -55,7 +57,7 @@ impl PyScenario {
 fn temporal(py: Python<'_>, s: &Arc<dyn Spectrum>, speed: Option<f64>) -> PyResult<Arc<dyn Spectrum>> {
     match (s.domain(), speed) {
         (Domain::Temporal, _) => Ok(s.clone()),
-        (Domain::Spatial, Some(v)) => Ok(Arc::new(lib(py, AtSpeed::new(s.clone(), v))?)),
+        (Domain::Spatial, Some(v)) => Ok(Arc::new(call(py, || AtSpeed::new(s.clone(), v))?)),
         (Domain::Spatial, None) => lib(
             py,
             Err(Error::invalid(
@@ -87,7 +89,7 @@ fn excitation(
         } else {
             means
         };
-        return lib(py, Excitation::independent(spectra, means));
+        return call(py, || Excitation::independent(spectra, means));
     }
     if means.len() != 1 {
         return Err(invalid_input(py, "`mean`: one process needs one mean"));
@@ -106,7 +108,7 @@ fn excitation(
             })?;
             positions.iter().map(|p| p / v).collect()
         };
-        lib(py, Excitation::track(s.clone(), delays, gains, mean))
+        call(py, || Excitation::track(s.clone(), delays, gains, mean))
     };
     match (positions, &sys.layout) {
         (Some(p), Some(InputLayout::Track { gains, .. })) if gains.len() == p.len() => track(&p, gains.clone()),
@@ -115,8 +117,8 @@ fn excitation(
             track(&p, vec![1.0; n])
         }
         (None, Some(InputLayout::Track { positions, gains })) => track(positions, gains.clone()),
-        (None, Some(InputLayout::Single)) => lib(py, Excitation::single(s, mean)),
-        (None, None) if sys.system.n_inputs() == 1 => lib(py, Excitation::single(s, mean)),
+        (None, Some(InputLayout::Single)) => call(py, || Excitation::single(s, mean)),
+        (None, None) if sys.system.n_inputs() == 1 => call(py, || Excitation::single(s, mean)),
         (None, None) => Err(invalid_input(
             py,
             format!(
@@ -158,21 +160,24 @@ fn input_spectra(py: Python<'_>, input: &Bound<'_, PyAny>) -> PyResult<Vec<Py<Py
     Ok(v)
 }
 
-/// The `stochvib analyze` report of a document: (what, dict, text).
+/// A report of the library.
+enum AnyReport {
+    Analysis(AnalysisReport),
+    Tables(TablesReport),
+}
+
+/// The `stochvib analyze` report of a document (computed without the GIL): (what, dict, text).
 fn document_report<'py>(py: Python<'py>, doc: &Document) -> PyResult<(String, Bound<'py, PyAny>, String)> {
-    match doc {
-        Document::Stochastic(sc) => {
-            let r = lib(py, analysis_report(sc))?;
-            Ok(("analysis".into(), to_python(py, &r)?, r.to_string()))
-        }
-        Document::Deterministic(d) => {
-            let r = lib(py, deterministic_report(d))?;
-            Ok(("tables".into(), to_python(py, &r)?, r.to_string()))
-        }
-        Document::Reference(t) => {
-            let r = reference_report(t);
-            Ok(("tables".into(), to_python(py, &r)?, r.to_string()))
-        }
+    let r = detached(py, || {
+        Ok(match doc {
+            Document::Stochastic(sc) => AnyReport::Analysis(analysis_report(sc)?),
+            Document::Deterministic(d) => AnyReport::Tables(deterministic_report(d)?),
+            Document::Reference(t) => AnyReport::Tables(reference_report(t)),
+        })
+    })?;
+    match r {
+        AnyReport::Analysis(r) => Ok(("analysis".into(), to_python(py, &r)?, r.to_string())),
+        AnyReport::Tables(r) => Ok(("tables".into(), to_python(py, &r)?, r.to_string())),
     }
 }
 
@@ -224,7 +229,7 @@ impl PyScenario {
     #[pyo3(signature = (path, *, spectra_dir=None))]
     fn load(py: Python<'_>, path: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
         let cat = catalogue(spectra_dir);
-        let doc = lib(py, load_document(&path, cat.dir()))?;
+        let doc = call(py, || load_document(&path, cat.dir()))?;
         Ok(PyScenario { doc })
     }
 
@@ -273,7 +278,7 @@ impl PyScenario {
         }
         let exc = excitation(py, sys, &arcs, speed, positions, means.clone())?;
         let names: Vec<String> = sys.system.outputs().iter().map(|o| o.name.clone()).collect();
-        let index = |n: &str| lib(py, sys.system.output_index(n));
+        let index = |n: &str| call(py, || sys.system.output_index(n));
         let outputs = match outputs {
             None => (0..names.len()).collect(),
             Some(v) => v.iter().map(|n| index(n)).collect::<PyResult<Vec<_>>>()?,
@@ -391,7 +396,7 @@ impl PyScenario {
             None => document_report(py, &self.doc)?,
             Some(n) => {
                 let sc = self.stochastic(py)?;
-                let mut r = lib(py, analysis_report(sc))?;
+                let mut r = detached(py, || Ok(analysis_report(sc)?))?;
                 let summary = with_progress(py, progress, |cb| {
                     run_interruptible(py, cb, |cb| {
                         let (dt, d, _) = step(sc, dt, duration)?;
@@ -438,8 +443,8 @@ impl PyScenario {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
-        let compression: Compression = lib(py, compression.parse())?;
-        let route = lib(py, route.parse())?;
+        let compression: Compression = call(py, || compression.parse())?;
+        let route = call(py, || route.parse())?;
         if overwrite && path.exists() {
             lib(
                 py,

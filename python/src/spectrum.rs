@@ -1,7 +1,7 @@
 //! `stochvib.Spectrum`: a stationary random process described by its spectral density.
 
 use crate::arrays::{check_out, real_array};
-use crate::errors::{detached, invalid_input, lib, not_applicable, Failure};
+use crate::errors::{call, detached, invalid_input, not_applicable, Failure};
 use crate::names::{catalogue, domain_name};
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -85,8 +85,12 @@ impl PySpectrum {
         }
     }
 
-    fn make(py: Python<'_>, r: stochvib::Result<impl Spectrum + 'static>, unit: &str) -> PyResult<Self> {
-        Ok(PySpectrum::built(Arc::new(lib(py, r)?), unit))
+    fn make<S: Spectrum + 'static>(
+        py: Python<'_>,
+        f: impl FnOnce() -> stochvib::Result<S>,
+        unit: &str,
+    ) -> PyResult<Self> {
+        Ok(PySpectrum::built(Arc::new(call(py, f)?), unit))
     }
 }
 
@@ -132,7 +136,7 @@ impl PySpectrum {
     #[pyo3(signature = (variance, alpha, *, domain="temporal", unit="m"))]
     fn exponential(py: Python<'_>, variance: f64, alpha: f64, domain: &str, unit: &str) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, Exponential::new(variance, alpha, d), unit)
+        Self::make(py, || Exponential::new(variance, alpha, d), unit)
     }
 
     /// Type 2 (Gaussian correlation): K(τ) = D e^{−ατ²}, S(ω) = D/(2√(πα)) e^{−ω²/(4α)}.
@@ -142,7 +146,7 @@ impl PySpectrum {
     #[pyo3(signature = (variance, alpha, *, domain="temporal", unit="m"))]
     fn gaussian(py: Python<'_>, variance: f64, alpha: f64, domain: &str, unit: &str) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, Gaussian::new(variance, alpha, d), unit)
+        Self::make(py, || Gaussian::new(variance, alpha, d), unit)
     }
 
     /// Type 3: K(τ) = D e^{−α|τ|} cos βτ,
@@ -153,7 +157,7 @@ impl PySpectrum {
     #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
     fn exp_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, ExpCosine::new(variance, alpha, beta, d), unit)
+        Self::make(py, || ExpCosine::new(variance, alpha, beta, d), unit)
     }
 
     /// Type 4: K(τ) = D e^{−ατ²} cos βτ,
@@ -164,7 +168,7 @@ impl PySpectrum {
     #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
     fn gauss_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, GaussCosine::new(variance, alpha, beta, d), unit)
+        Self::make(py, || GaussCosine::new(variance, alpha, beta, d), unit)
     }
 
     /// A rational density S(ω) = Σ nₖ ω^{2k} / Σ dₖ ω^{2k} (two-sided angular).
@@ -183,7 +187,7 @@ impl PySpectrum {
         let d = crate::names::domain(py, domain)?;
         let n = crate::arrays::vector(py, numerator, "numerator")?;
         let den = crate::arrays::vector(py, denominator, "denominator")?;
-        Self::make(py, RationalSpectrum::new(n, den, d), unit)
+        Self::make(py, || RationalSpectrum::new(n, den, d), unit)
     }
 
     /// An ISO 8608 road class (spatial): G_d(n) = G_d(n₀)(n/n₀)^{−2}, n₀ = 0.1 cycles/m, one-sided in
@@ -195,9 +199,9 @@ impl PySpectrum {
     #[staticmethod]
     #[pyo3(signature = (road_class, *, bound="geometric-mean", band=Some(ISO_BAND)))]
     fn iso8608(py: Python<'_>, road_class: &str, bound: &str, band: Option<(f64, f64)>) -> PyResult<Self> {
-        let c: IsoClass = lib(py, road_class.parse())?;
-        let b: IsoBound = lib(py, bound.parse())?;
-        Self::make(py, PowerLaw::iso8608(c, b, band), "m")
+        let c: IsoClass = call(py, || road_class.parse())?;
+        let b: IsoBound = call(py, || bound.parse())?;
+        Self::make(py, || PowerLaw::iso8608(c, b, band), "m")
     }
 
     /// A power-law density G(n) = g0 (n/n0)^{−w}, one-sided cyclic (n in cycles/m for a spatial process,
@@ -214,7 +218,7 @@ impl PySpectrum {
         unit: &str,
     ) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, PowerLaw::new(g0, n0, waviness, band, d), unit)
+        Self::make(py, || PowerLaw::new(g0, n0, waviness, band, d), unit)
     }
 
     /// A measured density given at points, interpolated linearly in log–log coordinates, zero outside.
@@ -236,7 +240,7 @@ impl PySpectrum {
         let d = crate::names::domain(py, domain)?;
         let xs = crate::arrays::vector(py, x, "x")?;
         let vs = crate::arrays::vector(py, values, "values")?;
-        Self::make(py, Tabulated::new(c, xs, vs, d), unit)
+        Self::make(py, || Tabulated::new(c, xs, vs, d), unit)
     }
 
     /// Band-limited white noise: a constant ``level`` (in ``convention``) between the band edges ``low``
@@ -255,7 +259,7 @@ impl PySpectrum {
     ) -> PyResult<Self> {
         let c = crate::names::convention(py, convention)?;
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, BandWhite::new(c, level, low, high, d), unit)
+        Self::make(py, || BandWhite::new(c, level, low, high, d), unit)
     }
 
     /// A spectrum file or catalogue entry: a catalogue name (e.g. "iso8608-c", "type3") is looked up in the
@@ -268,7 +272,7 @@ impl PySpectrum {
     #[pyo3(signature = (path_or_name, *, spectra_dir=None))]
     fn load(py: Python<'_>, path_or_name: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
         let reference = path_or_name.to_string_lossy().into_owned();
-        let f = lib(py, catalogue(spectra_dir).resolve(&reference, None))?;
+        let f = call(py, || catalogue(spectra_dir).resolve(&reference, None))?;
         Ok(PySpectrum::from_file(f))
     }
 
@@ -277,7 +281,7 @@ impl PySpectrum {
     #[staticmethod]
     #[pyo3(signature = (spectra_dir=None))]
     fn catalogue<'py>(py: Python<'py>, spectra_dir: Option<PathBuf>) -> PyResult<Bound<'py, PyDict>> {
-        let entries = lib(py, catalogue(spectra_dir).entries())?;
+        let entries = call(py, || catalogue(spectra_dir).entries())?;
         let d = PyDict::new(py);
         for e in entries {
             match e.spectrum {
@@ -383,7 +387,7 @@ impl PySpectrum {
     /// The temporal process a vehicle at ``speed`` (m/s) feels from this spatial (road) spectrum:
     /// S_t(ω) = S_Ω(ω/v)/v, ω in rad/s. Raises :class:`InvalidInputError` for a temporal spectrum.
     fn at_speed(&self, py: Python<'_>, speed: f64) -> PyResult<Self> {
-        let a = lib(py, AtSpeed::new(self.spectrum.clone(), speed))?;
+        let a = call(py, || AtSpeed::new(self.spectrum.clone(), speed))?;
         Ok(PySpectrum {
             spectrum: Arc::new(a),
             unit: self.unit.clone(),
@@ -424,7 +428,7 @@ impl PySpectrum {
                 ),
             )
         })?;
-        let f = lib(py, r.shaping_filter())?;
+        let f = call(py, || r.shaping_filter())?;
         Ok((PyArray1::from_vec(py, f.num), PyArray1::from_vec(py, f.den)))
     }
 

@@ -2,7 +2,7 @@
 
 use crate::arrays::{matrix, matrix_to_py, real_array, vector};
 use crate::convert::{to_python, toml_table};
-use crate::errors::{detached, invalid_input, lib, not_applicable};
+use crate::errors::{call, detached, invalid_input, lib, not_applicable};
 use numpy::{Complex64, PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -153,13 +153,13 @@ impl PySystem {
         };
         let coords = output_infos(py, coordinates, n, "q", "m")?;
         let pairs: Vec<(&str, &str)> = coords.iter().map(|o| (o.name.as_str(), o.unit.as_str())).collect();
-        let mut model = lib(py, Mdof::new(&pairs, m.clone(), b, c.clone(), ku, bu, f))?;
+        let mut model = call(py, || Mdof::new(&pairs, m.clone(), b, c.clone(), ku, bu, f))?;
         match outputs {
             None => {
                 for (k, o) in coords.iter().enumerate() {
                     let mut g = vec![0.0; n];
                     g[k] = 1.0;
-                    model = lib(py, model.with_output(&o.name, Quantity::Displacement(g)))?;
+                    model = call(py, || model.with_output(&o.name, Quantity::Displacement(g)))?;
                 }
             }
             Some(d) => {
@@ -170,7 +170,7 @@ impl PySystem {
                     })?;
                     let g = vector(py, &point, &format!("outputs[{name:?}] point"))?;
                     let q = quantity(py, &name, &kind, g)?;
-                    model = lib(py, model.with_output(&name, q))?;
+                    model = call(py, || model.with_output(&name, q))?;
                 }
             }
         }
@@ -210,7 +210,7 @@ impl PySystem {
         let d = D.map(|x| matrix(py, x, "D")).transpose()?;
         let e = E.map(|x| matrix(py, x, "E")).transpose()?;
         let infos = output_infos(py, outputs, c.nrows(), "y", "1")?;
-        let ss = lib(py, StateSpace::new(a, b, c, d, e, infos))?;
+        let ss = call(py, || StateSpace::new(a, b, c, d, e, infos))?;
         let description = format!(
             "state space, {} states, {} inputs, {} outputs",
             ss.n_states(),
@@ -261,7 +261,7 @@ impl PySystem {
                 )
             }
         }
-        let tf = lib(py, TransferFunction::new(n, d, OutputInfo::new(output, unit)))?;
+        let tf = call(py, || TransferFunction::new(n, d, OutputInfo::new(output, unit)))?;
         Ok(PySystem {
             system: Arc::new(tf),
             layout: None,
@@ -295,8 +295,8 @@ impl PySystem {
         };
         let path = Path::new("System.model");
         let f = stochvib::fields::Fields::new(path, "model", &table);
-        let built = lib(py, build_model(kind, &f, ModelContext { speed }))?;
-        lib(py, f.finish())?;
+        let built = call(py, || build_model(kind, &f, ModelContext { speed }))?;
+        call(py, || f.finish())?;
         match built {
             BuiltModel::Stochastic(m) => Ok(PySystem::from_instance(&m, kind)),
             BuiltModel::Deterministic(_) => Err(not_applicable(
@@ -318,7 +318,7 @@ impl PySystem {
     #[pyo3(signature = (path, *, spectra_dir=None))]
     fn load(py: Python<'_>, path: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
         let cat = crate::names::catalogue(spectra_dir);
-        let sc = lib(py, stochvib::scenario::load_scenario(&path, cat.dir()))?;
+        let sc = call(py, || stochvib::scenario::load_scenario(&path, cat.dir()))?;
         Ok(PySystem::from_instance(&sc.model, &sc.kind))
     }
 
@@ -375,7 +375,7 @@ impl PySystem {
                 ),
             ));
         };
-        let (w, shapes) = lib(py, modal_analysis(m, c))?;
+        let (w, shapes) = call(py, || modal_analysis(m, c))?;
         Ok((PyArray1::from_vec(py, w), matrix_to_py(py, &shapes)?))
     }
 
@@ -433,7 +433,7 @@ impl PySystem {
     /// Index (row of H) of the output called ``name``; raises :class:`InvalidInputError` listing the
     /// outputs there are.
     fn output_index(&self, py: Python<'_>, name: &str) -> PyResult<usize> {
-        lib(py, self.system.output_index(name))
+        call(py, || self.system.output_index(name))
     }
 
     fn __repr__(&self) -> String {
