@@ -1,13 +1,13 @@
 """Python call overhead and the Python-driven variance sweep, measured in one run.
 
-    python3 python/bench/overhead.py [--out results.json] [--reps 7] [--no-cargo]
+    python3 python/bench/overhead.py [--out results.json] [--no-cargo] [--scipy-fraction F]
 
 1. Runs the criterion bench ``python/benches/overhead.rs`` (``cargo bench -p stochvib-python --bench overhead``)
    and, on the same machine right after, times the same calls through the installed Python package with
    ``timeit``: a 10⁵-point density (types 1 and 4; into a reused buffer and into a new array) and the 10⁵-point
    frequency response of the quarter car. Prints the ratio Python/Rust, by medians (criterion's median per
    iteration vs the median of ``timeit`` repeats) and by minima (the fastest criterion sample vs the fastest
-   repeat). Target: ≤ 1.10.
+   repeat; on a shared machine the minima are the undisturbed runs). Target: ≤ 1.10.
 2. The variance sweep of ``benches/sweep.rs`` (σ of the sprung-cab scraper's cab acceleration over a 10⁵-point
    (c₂, b₂) grid) driven from Python (numpy polynomials + one ``stochvib.linalg.h2_integral`` call; see
    ``sweep_problem.py``) against a loop of ``scipy.linalg.solve_continuous_lyapunov`` over the same grid,
@@ -50,13 +50,16 @@ def criterion(group: str, name: str) -> dict:
     return {"median": est["median"]["point_estimate"] * 1e-9, "min": min(per_iter) * 1e-9}
 
 
-def python_time(fn, reps: int, target_s: float = 0.2) -> dict:
-    """Median and minimum time per call (s) over ``reps`` repeats of ``timeit``, each about ``target_s``."""
+def python_time(fn, budget_s: float = 1.5, batch_s: float = 0.005) -> dict:
+    """Median and minimum time per call (s): ``timeit`` repeats of batches of about ``batch_s`` (at least one
+    call), as many as fit in ``budget_s`` (15 to 400). Short batches and many of them, like criterion's
+    samples, so that the minimum is an undisturbed batch even on a loaded machine."""
     fn()
     one = timeit.timeit(fn, number=1)
-    number = max(1, int(target_s / max(one, 1e-7)))
-    times = [t / number for t in timeit.repeat(fn, number=number, repeat=reps)]
-    return {"median": float(np.median(times)), "min": min(times), "number": number}
+    number = max(1, int(batch_s / max(one, 1e-7)))
+    repeat = min(400, max(15, int(budget_s / (number * max(one, 1e-7)))))
+    times = [t / number for t in timeit.repeat(fn, number=number, repeat=repeat)]
+    return {"median": float(np.median(times)), "min": min(times), "number": number, "repeat": repeat}
 
 
 def fmt(t: float) -> str:
@@ -71,7 +74,6 @@ def run_cargo(args: list) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", type=Path, default=None, help="write the results as JSON")
-    ap.add_argument("--reps", type=int, default=7)
     ap.add_argument("--no-cargo", action="store_true", help="reuse the last criterion results")
     ap.add_argument("--scipy-fraction", type=float, default=1.0, help="time scipy on this fraction of the grid")
     a = ap.parse_args()
@@ -102,7 +104,7 @@ def main() -> None:
     ]
     for label, (group, name), fn in jobs:
         rust = criterion(group, name)
-        py = python_time(fn, a.reps, target_s=0.3 if "frequency" not in label else 1.0)
+        py = python_time(fn, budget_s=1.5 if "frequency" not in label else 4.0)
         rows.append(
             {
                 "job": label,
@@ -118,7 +120,7 @@ def main() -> None:
     # the sweep
     c2, b2 = sp.grid()
     road = sp.road()
-    sweep_py = python_time(lambda: sp.sigma_h2(c2, b2, road), a.reps, target_s=0.5)
+    sweep_py = python_time(lambda: sp.sigma_h2(c2, b2, road), budget_s=3.0)
     k = max(1, int(round(c2.size * a.scipy_fraction)))
     t0 = time.perf_counter()
     ref = sp.sigma_scipy_lyapunov(c2[:k], b2[:k], road)
