@@ -221,3 +221,17 @@ where
 {
     py.detach(|| catch(f)).map_err(|e| to_py(py, e))
 }
+
+/// As [`detached`] when `work` (points, evaluations) is at least `min_work`, else with the GIL held (releasing
+/// and re-acquiring it costs more than a short computation); panics are caught either way.
+pub fn detached_if<T, F>(py: Python<'_>, work: usize, min_work: usize, f: F) -> PyResult<T>
+where
+    F: FnOnce() -> Outcome<T> + Send,
+    T: Send,
+{
+    if work >= min_work {
+        detached(py, f)
+    } else {
+        catch(f).map_err(|e| to_py(py, e))
+    }
+}

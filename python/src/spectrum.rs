@@ -1,7 +1,7 @@
 //! `stochvib.Spectrum`: a stationary random process described by its spectral density.
 
 use crate::arrays::{check_out, real_array};
-use crate::errors::{call, detached, invalid_input, not_applicable, Failure};
+use crate::errors::{call, detached, detached_if, invalid_input, not_applicable, Failure};
 use crate::names::{catalogue, domain_name};
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -336,14 +336,10 @@ impl PySpectrum {
             let xs = xr.as_slice()?;
             let os = rw.as_slice_mut()?;
             let s = &*self.spectrum;
-            if xs.len() < DETACH_MIN_POINTS {
+            detached_if(py, xs.len(), DETACH_MIN_POINTS, || {
                 density_in(s, conv, xs, os);
-            } else {
-                detached(py, || {
-                    density_in(s, conv, xs, os);
-                    Ok(())
-                })?;
-            }
+                Ok(())
+            })?;
         }
         if out.is_some() {
             return Ok(result.into_any());

@@ -2,7 +2,7 @@
 
 use crate::arrays::{matrix, matrix_to_py, real_array, vector};
 use crate::convert::{to_python, toml_table};
-use crate::errors::{call, detached, invalid_input, lib, not_applicable};
+use crate::errors::{call, detached_if, invalid_input, lib, not_applicable};
 use numpy::{Complex64, PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -349,14 +349,11 @@ impl PySystem {
                     }
                 }
             };
-            if n < crate::spectrum::DETACH_MIN_POINTS / 16 {
+            // one response per point costs about a microsecond: release the GIL from 128 points on
+            detached_if(py, n, crate::spectrum::DETACH_MIN_POINTS / 16, || {
                 fill(os);
-            } else {
-                detached(py, || {
-                    fill(os);
-                    Ok(())
-                })?;
-            }
+                Ok(())
+            })?;
         }
         Ok(result.into_any())
     }
