@@ -99,13 +99,16 @@ fn excitation(
         let delays = if positions.iter().all(|p| *p == 0.0) {
             vec![0.0; positions.len()]
         } else {
-            let v = speed.ok_or_else(|| {
-                invalid_input(
+            let Some(v) = speed else {
+                return lib(
                     py,
-                    "invalid parameter `speed` = <missing>: the wheels are at different positions: the delays \
-                     need a speed",
-                )
-            })?;
+                    Err(Error::invalid(
+                        "speed",
+                        "<missing>",
+                        "the wheels are at different positions: the delays need a speed",
+                    )),
+                );
+            };
             positions.iter().map(|p| p / v).collect()
         };
         call(py, || Excitation::track(s.clone(), delays, gains, mean))
@@ -130,10 +133,17 @@ fn excitation(
     }
 }
 
-/// Spectra of the `input` argument: one Spectrum or a sequence of them.
+/// Spectra of the `input` argument: one Spectrum, a catalogue name or spectrum-file path (resolved as
+/// `Spectrum.load` does), or a sequence of Spectrum objects.
 fn input_spectra(py: Python<'_>, input: &Bound<'_, PyAny>) -> PyResult<Vec<Py<PySpectrum>>> {
     if let Ok(s) = input.cast::<PySpectrum>() {
         return Ok(vec![s.clone().unbind()]);
+    }
+    if input.is_instance_of::<pyo3::types::PyString>() || input.hasattr("__fspath__")? {
+        let path: PathBuf = input.extract()?;
+        let reference = path.to_string_lossy().into_owned();
+        let f = call(py, || catalogue(None).resolve(&reference, None))?;
+        return Ok(vec![Py::new(py, PySpectrum::from_file(f))?]);
     }
     let mut v = Vec::new();
     if let Ok(it) = input.try_iter() {
@@ -233,8 +243,9 @@ impl PyScenario {
         Ok(PyScenario { doc })
     }
 
-    /// A scenario of ``system`` driven by ``input`` — one :class:`Spectrum` (one process) or a list with
-    /// one spectrum per system input (independent processes).
+    /// A scenario of ``system`` driven by ``input`` — one :class:`Spectrum` (one process; a catalogue name
+    /// or a spectrum-file path is loaded as :meth:`Spectrum.load` does) or a list with one spectrum per system
+    /// input (independent processes).
     ///
     /// * A spatial (road) spectrum needs ``speed`` (m/s): S_t(ω) = S_Ω(ω/v)/v.
     /// * One process felt by several inputs: ``positions`` (m behind the first contact point; delays

@@ -62,7 +62,7 @@ __all__ = [
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
-Input = Union[Spectrum, Sequence[Spectrum]]
+Input = Union[Spectrum, str, "os.PathLike[str]", Sequence[Spectrum]]
 
 
 def _scenario(
@@ -109,7 +109,8 @@ def analyze(
     """Response statistics of a scenario, or of ``system`` driven by ``input`` (the ``stochvib analyze`` report).
 
     ``subject``: a :class:`Scenario`, a scenario file path, or a :class:`System` with ``input`` — one
-    :class:`Spectrum` (one process; a spatial road spectrum needs ``speed`` in m/s; several inputs fed by
+    :class:`Spectrum` or a catalogue name such as "iso8608-c" (one process; a spatial road spectrum needs
+    ``speed`` in m/s; several inputs fed by
     one track need ``positions`` in m unless the system comes from the catalogue or a scenario file) or a list
     with one spectrum per input (independent processes). ``mean``: the process mean (its unit).
 

@@ -197,7 +197,7 @@ class Scenario:
     @staticmethod
     def from_system(
         system: System,
-        input: Union[Spectrum, Sequence[Spectrum]],
+        input: Union[Spectrum, str, os.PathLike[str], Sequence[Spectrum]],
         *,
         speed: Optional[float] = None,
         positions: Optional[Sequence[float]] = None,

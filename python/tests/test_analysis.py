@@ -145,7 +145,10 @@ def test_analysis_argument_errors():
     with pytest.raises(InvalidInputError, match="speed"):
         stochvib.analyze(two, Spectrum.exponential(1, 1), positions=[0.0, 1.0])
     with pytest.raises(InvalidInputError, match="input"):
-        stochvib.analyze(sys, "iso8608-c")
+        stochvib.analyze(sys, 42)
+    # a catalogue name is loaded as Spectrum.load does
+    by_name = stochvib.analyze(sys, "type1", outputs=["x"])
+    assert by_name["x"].to_dict() == stochvib.analyze(sys, Spectrum.load("type1"), outputs=["x"])["x"].to_dict()
     with pytest.raises(InvalidInputError, match="input="):
         stochvib.analyze(sys)
     with pytest.raises(InvalidInputError, match="duration_s"):
