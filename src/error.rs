@@ -91,6 +91,17 @@ pub enum Error {
         /// Why.
         reason: String,
     },
+    /// A method computed a value but cannot vouch for it (an ill-conditioned elimination, a disagreement
+    /// with an exact route): the value is reported as unreliable, never as a result.
+    #[error("{method} is unreliable here (value {value:e}): {reason}")]
+    Inaccurate {
+        /// The method.
+        method: String,
+        /// The value it computed.
+        value: f64,
+        /// Why it cannot be trusted.
+        reason: String,
+    },
     /// An HDF5 run file could not be written or read, or is not a (complete) stochvib run file.
     #[error("{}: {reason}", path.display())]
     Hdf5 {

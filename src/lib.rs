@@ -43,12 +43,12 @@
 //!
 //! | layer | modules | what |
 //! |---|---|---|
-//! | 0 | [`error`], [`numbers`], [`units`], [`fields`], [`quad`], [`linalg`] | errors, units, file fields, numerics |
-//! | 1 | [`spectrum`] | spectral densities and correlation functions |
+//! | 0 | [`error`], [`numbers`], [`units`], [`fields`], [`quad`], [`quad_oscillatory`], [`linalg`] | errors, units, file fields, numerics |
+//! | 1 | [`spectrum`], [`coherence`] | spectral densities and correlation functions; coherence of parallel tracks |
 //! | 2 | [`system`] | frequency responses: state space, transfer functions, multi-degree-of-freedom models |
-//! | 3 | [`response`] | response statistics: variance three ways, moments, crossing rates |
-//! | 4 | [`estimate`], [`store`] | estimators with intervals; HDF5 run files |
-//! | 5 | [`simulate`] | Monte Carlo runs |
+//! | 3 | [`response`], [`comfort`] | response statistics: variance three ways, moments, crossing rates; ISO 2631 weightings and exposure |
+//! | 4 | [`estimate`], [`store`], [`fatigue`] | estimators with intervals; HDF5 run files; S–N curves, rainflow, spectral fatigue |
+//! | 5 | [`simulate`], [`road`] | Monte Carlo runs; measured and synthesised road profiles, IRI |
 //! | 6 | [`models`] | the catalogue of the source documents |
 //! | 7 | [`scenario`] | scenario, spectrum and reference files; the spectrum catalogue; the registry of model kinds |
 //! | 8 | [`report`], [`plot`] | what the command-line tool prints and draws |
@@ -56,8 +56,11 @@
 
 #![warn(missing_docs)]
 
+pub mod coherence;
+pub mod comfort;
 pub mod error;
 pub mod estimate;
+pub mod fatigue;
 pub mod fields;
 pub mod linalg;
 pub mod models;
@@ -65,8 +68,10 @@ pub mod numbers;
 pub mod plot;
 pub mod prelude;
 pub mod quad;
+pub mod quad_oscillatory;
 pub mod report;
 pub mod response;
+pub mod road;
 pub mod scenario;
 pub mod simulate;
 pub mod spectrum;

@@ -67,6 +67,37 @@ impl Step {
     }
 }
 
+/// Effort of the quadratures (overrides `[analysis.quadrature]` of the scenario).
+#[derive(clap::Args)]
+struct Effort {
+    /// Relative tolerance of the quadratures (default 1e-10).
+    #[arg(long)]
+    rel_tol: Option<f64>,
+    /// Subintervals an adaptive quadrature may use (default 2000).
+    #[arg(long)]
+    max_subintervals: Option<usize>,
+    /// Half-periods of an oscillatory tail resolved before extrapolation gives up (default 10000).
+    #[arg(long)]
+    max_half_periods: Option<usize>,
+}
+
+impl Effort {
+    /// Applies the given flags to the scenario's quadrature options.
+    fn apply(&self, sc: &mut Scenario) -> stochvib::Result<()> {
+        let e = &mut sc.analysis.effort;
+        if let Some(v) = self.rel_tol {
+            e.rel_tol = v;
+        }
+        if let Some(v) = self.max_subintervals {
+            e.max_subintervals = v;
+        }
+        if let Some(v) = self.max_half_periods {
+            e.max_half_periods = v;
+        }
+        e.validate()
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// List the spectrum catalogue with variance and sigma of each entry.
@@ -108,6 +139,8 @@ enum Command {
         seed: u64,
         #[command(flatten)]
         step: Step,
+        #[command(flatten)]
+        effort: Effort,
     },
     /// Write pictures of a scenario (`.toml`: input density, |H(iω)|² and output densities with the
     /// cumulative variance) or of a Monte Carlo run file (`.h5`), as SVG and PNG.
@@ -154,7 +187,8 @@ enum Command {
         /// Confidence of the intervals.
         #[arg(long, default_value_t = 0.95)]
         confidence: f64,
-        /// Remove an existing finished OUTPUT first (never needed for resuming a .tmp).
+        /// Replace an existing finished OUTPUT (a run file only; replaced when the new run is complete) and
+        /// discard an interrupted run of different settings.
         #[arg(long)]
         overwrite: bool,
         #[command(flatten)]
@@ -173,6 +207,16 @@ enum Command {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+    },
+    /// Checks that a run file can be read (the parent process of `inspect` and `plot` runs this first, so that
+    /// a damaged file that would crash the HDF5 library crashes only this child).
+    #[command(hide = true)]
+    CheckRun {
+        /// Run file (HDF5).
+        file: PathBuf,
+        /// Also check the checksums of every shard's raw data and accumulators.
+        #[arg(long)]
+        full: bool,
     },
     /// Reproduce every worked example of the source documents: printed value, computed value, relative
     /// difference and an explanation for every difference over 2 %.
@@ -195,6 +239,14 @@ enum Command {
         /// Convention of the printed density.
         #[arg(long, value_enum, default_value_t = Convention::TwoSidedAngular)]
         convention: Convention,
+        /// Angular frequencies at which to print the density, comma-separated, in rad/s (rad/m for a
+        /// spatial spectrum), e.g. `--omega 1,2,5`.
+        #[arg(long, value_delimiter = ',', conflicts_with = "frequency")]
+        omega: Option<Vec<f64>>,
+        /// Cyclic frequencies at which to print the density, comma-separated, in Hz (cycles/m for a spatial
+        /// spectrum), e.g. `--frequency 0.5,1,2`.
+        #[arg(long, value_delimiter = ',')]
+        frequency: Option<Vec<f64>>,
         #[command(flatten)]
         spectra: SpectraDir,
         /// Print JSON.
@@ -245,9 +297,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             monte_carlo,
             seed,
             step,
+            effort,
         } => {
             let catalogue = spectra.catalogue();
-            let sc = match load_document(&scenario, catalogue.dir())? {
+            let mut sc = match load_document(&scenario, catalogue.dir())? {
                 Document::Stochastic(sc) => sc,
                 Document::Deterministic(d) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
@@ -258,6 +311,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     return print(&report::reference_report(&t), json);
                 }
             };
+            effort.apply(&mut sc)?;
             let mut r = report::analysis_report(&sc)?;
             if let Some(n) = monte_carlo {
                 let (dt, duration) = step.resolve(&sc)?;
@@ -294,6 +348,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
             };
             let files = if has(&["h5", "hdf5"]) {
+                check_in_child(&input, false)?;
                 run_plots(&input, &out, catalogue.dir())?
             } else if has(&["toml"]) {
                 let sc = load_scenario(&input, catalogue.dir())?;
@@ -337,11 +392,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 compression,
                 route,
                 confidence,
+                overwrite,
                 ..RunOptions::new(realizations, duration, dt, seed)
             };
-            if overwrite && output.exists() {
-                std::fs::remove_file(&output)?;
-            }
             let s = sc.simulate(&opts, &output, &progress_printer())?;
             print(&s, json)?;
             if let Some(pdir) = plots {
@@ -352,7 +405,22 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
             }
         }
+        Command::CheckRun { file, full } => {
+            let run = RunFile::open_any(&file)?;
+            run.statistics()?;
+            run.psd()?;
+            if full {
+                run.verify()?;
+            } else if run.metadata().store_raw && run.metadata().n_realizations > 0 {
+                // what `plot` reads: the first realizations of every signal
+                let rows = 0..run.metadata().n_realizations.min(3);
+                for s in &run.metadata().outputs {
+                    run.read_signals(stochvib::store::SignalGroup::Outputs, &s.name, rows.clone())?;
+                }
+            }
+        }
         Command::Inspect { file, json } => {
+            check_in_child(&file, true)?;
             if json {
                 print_json(&RunFile::open(&file)?.info()?)?;
             } else {
@@ -362,14 +430,65 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Spectrum {
             name,
             convention,
+            omega,
+            frequency,
             spectra,
             json,
         } => {
             let file = spectra.catalogue().resolve(&name, None)?;
-            print(&report::spectrum_report(&file, convention), json)?;
+            let points = match (omega, frequency) {
+                (Some(w), _) => report::DensityPoints::Angular(w),
+                (None, Some(f)) => report::DensityPoints::Cyclic(f),
+                (None, None) => report::DensityPoints::Characteristic,
+            };
+            if let report::DensityPoints::Angular(v) | report::DensityPoints::Cyclic(v) = &points {
+                if let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0) {
+                    anyhow::bail!("invalid frequency {x}: frequencies must be finite and >= 0");
+                }
+            }
+            print(&report::spectrum_report_at(&file, convention, &points), json)?;
         }
     }
     Ok(())
+}
+
+/// Reads a run file in a child process first (`stochvib check-run`): libhdf5 can crash on a damaged file,
+/// and a crash must not take this process with it. A child killed by a signal means a damaged file; a
+/// child's error is this command's error.
+fn check_in_child(file: &Path, full: bool) -> anyhow::Result<()> {
+    let exe = std::env::current_exe()?;
+    let mut cmd = std::process::Command::new(exe);
+    cmd.arg("check-run").arg(file);
+    if full {
+        cmd.arg("--full");
+    }
+    let out = cmd.stdin(std::process::Stdio::null()).output()?;
+    if out.status.success() {
+        return Ok(());
+    }
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let msg = stderr
+        .lines()
+        .find(|l| l.starts_with("error: "))
+        .map(|l| l.trim_start_matches("error: "));
+    match (out.status.code(), msg) {
+        (Some(_), Some(m)) => anyhow::bail!("{m}"),
+        _ => {
+            #[cfg(unix)]
+            let how = {
+                use std::os::unix::process::ExitStatusExt;
+                out.status
+                    .signal()
+                    .map_or("abnormally".to_string(), |s| format!("with signal {s}"))
+            };
+            #[cfg(not(unix))]
+            let how = "abnormally".to_string();
+            anyhow::bail!(
+                "{}: the file is damaged: reading it made the HDF5 library fail {how}",
+                file.display()
+            )
+        }
+    }
 }
 
 /// Refuses Monte Carlo and pictures for a file without a random input.

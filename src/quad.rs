@@ -681,6 +681,7 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tolerance::{ROUNDING, ULPS};
 
     fn opts(rel_tol: f64) -> QuadOptions {
         QuadOptions {
@@ -695,7 +696,7 @@ mod tests {
         for k in 0..=31 {
             let r = integrate(|x| x.powi(k), 0.0, 1.0, &opts(1e-12)).unwrap();
             let exact = 1.0 / (k as f64 + 1.0);
-            assert!((r.value - exact).abs() < 1e-14, "k = {k}: {} vs {exact}", r.value);
+            assert!((r.value - exact).abs() < ROUNDING, "k = {k}: {} vs {exact}", r.value);
         }
     }
 
@@ -704,7 +705,7 @@ mod tests {
         // ∫_0^1 x^5 dx = 1/6 (exact in one K21 application; error estimate at its roundoff floor).
         let r = integrate(|x| x.powi(5), 0.0, 1.0, &opts(1e-10)).unwrap();
         assert_eq!(r.evaluations, 21);
-        assert!((r.value - 1.0 / 6.0).abs() < 1e-15);
+        assert!((r.value - 1.0 / 6.0).abs() < ULPS);
     }
 
     #[test]
@@ -765,7 +766,7 @@ mod tests {
             ..QuadOptions::default()
         };
         let r = integrate(|x| (x - 1.0).abs(), 0.0, 2.0, &o).unwrap();
-        assert!((r.value - 1.0).abs() < 1e-15);
+        assert!((r.value - 1.0).abs() < ULPS);
         assert_eq!(r.evaluations, 2 * 21);
     }
 

@@ -256,6 +256,27 @@ pub fn parse_quantity(text: &str) -> Result<(f64, Dim)> {
     Ok((value, unit.dim))
 }
 
+/// The dimension of a coherent SI unit written as text (`"m"`, `"m/s^2"`, `"N"`, `"rad"`, `"1"`), or `None`
+/// when the text is not such a unit (unknown, or a unit with a scale other than 1, e.g. `"cm"`).
+///
+/// # Examples
+/// ```
+/// use stochvib::units::{unit_dim, Dim};
+/// assert_eq!(unit_dim("m/s^2"), Some(Dim::ACCELERATION));
+/// assert_eq!(unit_dim("1"), Some(Dim::DIMENSIONLESS));
+/// assert_eq!(unit_dim("cm"), None);
+/// assert_eq!(unit_dim("[mixed]"), None);
+/// ```
+pub fn unit_dim(unit: &str) -> Option<Dim> {
+    if unit.trim() == "1" || unit.trim() == "-" {
+        return Some(Dim::DIMENSIONLESS);
+    }
+    match parse_quantity(&format!("1 {unit}")) {
+        Ok((1.0, dim)) => Some(dim),
+        _ => None,
+    }
+}
+
 /// Parses a quantity and checks that it has dimension `expected`.
 ///
 /// # Errors
@@ -766,11 +787,12 @@ fn parse_unit_expr(toks: &[Tok]) -> std::result::Result<Unit, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tolerance::ULPS;
     use proptest::prelude::*;
 
-    /// |a - b| ≤ 4 ulp-ish relative.
+    /// |a − b| ≤ ULPS relative.
     fn close(a: f64, b: f64) -> bool {
-        a == b || (a - b).abs() <= 4.0 * f64::EPSILON * b.abs().max(a.abs())
+        a == b || (a - b).abs() <= ULPS * b.abs().max(a.abs())
     }
 
     #[track_caller]
@@ -1047,7 +1069,7 @@ mod tests {
             prop_assert_eq!(d, Dim::LENGTH);
             let expected = x / 100.0;
             prop_assert!(
-                v == expected || (v - expected).abs() <= 1e-15 * expected.abs(),
+                v == expected || (v - expected).abs() <= ULPS * expected.abs(),
                 "{} cm -> {:e}, expected {:e}", x, v, expected
             );
         }

@@ -8,12 +8,21 @@ use std::path::{Path, PathBuf};
 
 /// Bottom up; modules in one row may use each other.
 const LAYERS: &[&[&str]] = &[
-    &["error", "numbers", "units", "fields", "quad", "linalg", "tolerance"],
-    &["spectrum"],
+    &[
+        "error",
+        "numbers",
+        "units",
+        "fields",
+        "quad",
+        "quad_oscillatory",
+        "linalg",
+        "tolerance",
+    ],
+    &["spectrum", "coherence"],
     &["system"],
-    &["response"],
-    &["estimate", "store"],
-    &["simulate"],
+    &["response", "comfort"],
+    &["estimate", "store", "fatigue"],
+    &["simulate", "road"],
     &["models"],
     &["scenario"],
     &["report", "plot"],

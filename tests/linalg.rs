@@ -4,6 +4,7 @@
 
 mod common;
 use common::rel;
+use common::tolerance::{CONDITIONED, EXACT, FACTORISATION, RESIDUAL, ROUNDING, SMALL_DECOMPOSITION, ULPS};
 use nalgebra::{Complex, DMatrix};
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -21,16 +22,16 @@ fn sdof_variance_three_ways() {
     let (m, c, k, s0) = (3.0, 0.8, 120.0, 0.25);
     let var_x = PI * s0 / (k * c);
     let var_v = PI * s0 / (m * c);
-    assert!(rel(s0 * h2_integral(&[1.0], &[k, c, m]).unwrap(), var_x) < 1e-14);
-    assert!(rel(s0 * h2_integral(&[0.0, 1.0], &[k, c, m]).unwrap(), var_v) < 1e-14);
-    assert!(rel(s0 * integral_closed_form(&[0.0, 1.0], &[k, c, m]).unwrap(), var_v) < 1e-14);
+    assert!(rel(s0 * h2_integral(&[1.0], &[k, c, m]).unwrap(), var_x) < ROUNDING);
+    assert!(rel(s0 * h2_integral(&[0.0, 1.0], &[k, c, m]).unwrap(), var_v) < ROUNDING);
+    assert!(rel(s0 * integral_closed_form(&[0.0, 1.0], &[k, c, m]).unwrap(), var_v) < ROUNDING);
     let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -k / m, -c / m]);
     let mut q = DMatrix::zeros(2, 2);
     q[(1, 1)] = 2.0 * PI * s0 / (m * m);
     let x = solve_continuous_lyapunov(&a, &q).unwrap();
-    assert!(rel(x[(0, 0)], var_x) < 1e-12);
-    assert!(rel(x[(1, 1)], var_v) < 1e-12);
-    assert!(x[(0, 1)].abs() < 1e-12 * var_v);
+    assert!(rel(x[(0, 0)], var_x) < SMALL_DECOMPOSITION);
+    assert!(rel(x[(1, 1)], var_v) < SMALL_DECOMPOSITION);
+    assert!(x[(0, 1)].abs() < SMALL_DECOMPOSITION * var_v);
 }
 
 /// A rational spectrum S(ω) = N(ω²)/D(ω²): factor numerator and denominator; the shaping filter
@@ -40,16 +41,16 @@ fn rational_spectrum_pipeline() {
     // S(ω) = 1/(1 + ω²)²: ∫ S dω = π/2.
     let (nf, r1) = spectral_factor(&[1.0]).unwrap();
     let (df, r2) = spectral_factor(&[1.0, 2.0, 1.0]).unwrap();
-    assert!(r1 < 1e-15 && r2 < 1e-12);
-    assert!(rel(h2_integral(&nf, &df).unwrap(), PI / 2.0) < 1e-8);
+    assert!(r1 < ULPS && r2 < RESIDUAL);
+    assert!(rel(h2_integral(&nf, &df).unwrap(), PI / 2.0) < EXACT);
     // S(ω) = (1 + 4ω²) / ((4 − ω²)² + 0.16 ω²) (ζ = 0.1, ω₀ = 2) against the direct table value.
     let (nf, _) = spectral_factor(&[1.0, 4.0]).unwrap(); // 1 + 2s
     let (df, _) = spectral_factor(&[16.0, -8.0 + 0.16, 1.0]).unwrap(); // s² + 0.4 s + 4
-    assert!((nf[0] - 1.0).abs() < 1e-14 && (nf[1] - 2.0).abs() < 1e-14);
-    assert!((df[1] - 0.4).abs() < 1e-12 && (df[0] - 4.0).abs() < 1e-12);
+    assert!((nf[0] - 1.0).abs() < ROUNDING && (nf[1] - 2.0).abs() < ROUNDING);
+    assert!((df[1] - 0.4).abs() < SMALL_DECOMPOSITION && (df[0] - 4.0).abs() < SMALL_DECOMPOSITION);
     let v = h2_integral(&nf, &df).unwrap();
     // I₂ = π (A₀B₁² + A₂B₀²)/(A₀A₁A₂) = π (4·4 + 1)/(4·0.4·1)
-    assert!(rel(v, PI * 17.0 / 1.6) < 1e-12);
+    assert!(rel(v, PI * 17.0 / 1.6) < SMALL_DECOMPOSITION);
 }
 
 #[test]
@@ -73,7 +74,7 @@ fn higher_order_table_vs_lyapunov_physical_coordinates() {
     assert!(is_hurwitz(&den));
     let table = integral_i_n(&num, &den).unwrap();
     let closed = integral_closed_form(&num, &den).unwrap();
-    assert!(rel(closed, table) < 1e-10);
+    assert!(rel(closed, table) < EXACT);
     // state x = (x1, x2, v1, v2), white force on mass 1 with E[f f'] = δ: ∫|H|² dω = 2π Var x2.
     let a = DMatrix::from_row_slice(
         4,
@@ -101,8 +102,8 @@ fn higher_order_table_vs_lyapunov_physical_coordinates() {
     q[(2, 2)] = 1.0 / (m1 * m1);
     let x = solve_continuous_lyapunov(&a, &q).unwrap();
     let xd = solve_continuous_lyapunov_dense(&a, &q).unwrap();
-    assert!((&x - &xd).norm() < 1e-9 * xd.norm());
-    assert!(rel(2.0 * PI * x[(1, 1)], table) < 1e-9);
+    assert!((&x - &xd).norm() < FACTORISATION * xd.norm());
+    assert!(rel(2.0 * PI * x[(1, 1)], table) < FACTORISATION);
 }
 
 fn hurwitz_from(real: &[f64], pairs: &[(f64, f64)], lead: f64) -> Vec<f64> {
@@ -138,14 +139,14 @@ proptest! {
         let i0 = integral_i_n(&b, &a).unwrap();
         prop_assert!(i0 > 0.0);
         let bc: Vec<f64> = b.iter().map(|v| v * c).collect();
-        prop_assert!(rel(integral_i_n(&bc, &a).unwrap(), c * c * i0) < 1e-10);
+        prop_assert!(rel(integral_i_n(&bc, &a).unwrap(), c * c * i0) < EXACT);
         let ac: Vec<f64> = a.iter().map(|v| v * c).collect();
-        prop_assert!(rel(integral_i_n(&b, &ac).unwrap(), i0 / (c * c)) < 1e-10);
+        prop_assert!(rel(integral_i_n(&b, &ac).unwrap(), i0 / (c * c)) < CONDITIONED);
         let bs: Vec<f64> = b.iter().enumerate().map(|(k, v)| v * alpha.powi(-(k as i32))).collect();
         let as_: Vec<f64> = a.iter().enumerate().map(|(k, v)| v * alpha.powi(-(k as i32))).collect();
-        prop_assert!(rel(integral_i_n(&bs, &as_).unwrap(), alpha * i0) < 1e-9);
+        prop_assert!(rel(integral_i_n(&bs, &as_).unwrap(), alpha * i0) < FACTORISATION);
         if n <= 4 {
-            prop_assert!(rel(integral_closed_form(&b, &a).unwrap(), i0) < 1e-10);
+            prop_assert!(rel(integral_closed_form(&b, &a).unwrap(), i0) < EXACT);
         }
     }
 
@@ -180,13 +181,13 @@ proptest! {
             (0..f.len()).map(|k| if k % 2 == 0 { g[2 * k] } else { -g[2 * k] }).collect()
         };
         let (fr, resid) = spectral_factor(&p).unwrap();
-        prop_assert!(resid < 1e-12);
+        prop_assert!(resid < RESIDUAL);
         prop_assert_eq!(fr.len(), f.len());
         for w in [0.0, 0.37, 1.0, 2.9, 11.0] {
             let s = Complex::new(0.0, w);
             let a = eval_complex(&fr, s).norm_sqr();
             let b = eval_complex(&f, s).norm_sqr();
-            prop_assert!((a - b).abs() <= 1e-11 * b.max(1e-300));
+            prop_assert!((a - b).abs() <= CONDITIONED * b.max(1e-300));
         }
     }
 }

@@ -5,7 +5,7 @@
 //! it would fail for a correct implementation under a fresh seed.
 
 mod common;
-use common::tolerance::{EXACT, FACTORISATION};
+use common::tolerance::{EXACT, FACTORISATION, POISSON_GRID_VARIANCE, WELCH_WINDOW_BIAS};
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -115,7 +115,7 @@ fn spectral_generator_has_the_grid_variance() {
     // D_N itself is checked against its derived value: by Poisson summation the full grid sum
     // Σ_{all j} S(ω_j)Δω equals Σ_m K(mT), T = NΔt, so D_N = D + 2Σ_{m≥1} K(mT) − tail, where the tail
     // Σ_{|j|>N/2} (half weight at N/2) is the integral 2∫_{ω_N}^∞ S dω up to an Euler–Maclaurin term
-    // O(Δω² S'(ω_N)) ≈ 1e-9 here:
+    // (tolerance::POISSON_GRID_VARIANCE):
     //   type 1: tail = (2D/π)(π/2 − atan(ω_N/α));  type 3: tail = (D/π)[π − atan((ω_N−β)/α) − atan((ω_N+β)/α)]
     // (from S₃ = (D/2π)[α/(α² + (ω−β)²) + α/(α² + (ω+β)²)]).
     let dt = 0.01;
@@ -133,7 +133,10 @@ fn spectral_generator_has_the_grid_variance() {
         let t = 2048.0 * dt;
         let periodic: f64 = (1..20).map(|m| 2.0 * s.correlation(m as f64 * t).unwrap()).sum();
         let want = d + periodic - tail;
-        assert!((dn - want).abs() < 1e-7 * d, "{name}: D_N = {dn}, derived {want}");
+        assert!(
+            (dn - want).abs() < POISSON_GRID_VARIANCE * d,
+            "{name}: D_N = {dn}, derived {want}"
+        );
         let x = spectral_samples(&g, 12, 20_000, 100);
         let v = variance_interval_known_mean(&x, 0.0, CONF).unwrap();
         assert!(v.covers(dn), "{name}: D_N = {dn} not in [{}, {}]", v.lower, v.upper);
@@ -241,8 +244,7 @@ fn welch_covers_the_analytic_density() {
     // the two orders of magnitude below 1e-6 are the margin for its tail error.
     // Compared values: (i) the exact mean of the estimator, E Ŝ = window-smoothed density of the sampled
     // process, from K_d(m) = D φ^m (φ = e^{−αΔt}); (ii) the analytic S(ω) = αD/(π(α² + ω²)), which differs
-    // from (i) by the window smoothing (relative ≈ (S''/2S)·4π²/(3L²) ≤ 0.8 % at ω → 0, L = 40.96 s) and
-    // aliasing (relative ≈ (α² + ω²)[1/(2π/Δt − ω)² + 1/(2π/Δt + ω)²] ≤ 1.2e-3 up to bin 100, ω = 15.3 rad/s)
+    // from (i) by the window smoothing and aliasing (derived in tolerance::WELCH_WINDOW_BIAS, together ≤ 1 %)
     // — both far inside the ≈ ±25 % half-width.
     let (d, alpha, dt) = (1.0, 1.0, 0.01);
     let s = Exponential::new(d, alpha, Domain::Temporal).unwrap();
@@ -258,7 +260,7 @@ fn welch_covers_the_analytic_density() {
         let expected = welch.expected(|m| d * phi.powi(m as i32), j);
         let analytic = s.density(est.omega[j]);
         assert!(
-            (expected / analytic - 1.0).abs() < 0.01,
+            (expected / analytic - 1.0).abs() < WELCH_WINDOW_BIAS,
             "bin {j}: smoothing bias larger than derived"
         );
         assert!(

@@ -2,7 +2,7 @@
 //! the shipped examples.
 
 mod common;
-use common::tolerance::QUADRATURE;
+use common::tolerance::{EXACT, QUADRATURE};
 use std::path::{Path, PathBuf};
 use stochvib::report::analysis_report;
 use stochvib::scenario::{load_scenario, parse_scenario};
@@ -30,11 +30,11 @@ fn quarter_car_three_methods_agree_on_rational_road() {
         let st = &o.statistics;
         let reference = st
             .variance
-            .unwrap_or_else(|| panic!("{}: {:?}", st.name, st.variance_note));
+            .unwrap_or_else(|| panic!("{}: {:?}", st.name, st.variance_outcome));
         for m in &st.methods {
             let v = m
-                .value
-                .unwrap_or_else(|| panic!("{} {:?}: {:?}", st.name, m.method, m.note));
+                .value()
+                .unwrap_or_else(|| panic!("{} {:?}: {:?}", st.name, m.method, m.outcome));
             assert!(
                 (v - reference).abs() <= QUADRATURE * reference,
                 "{} {:?}",
@@ -53,9 +53,9 @@ fn quarter_car_iso_road_report() {
     let r = analysis_report(&sc).unwrap();
     for o in &r.outputs {
         let s = o.statistics.sigma.unwrap();
-        assert!((o.upper_3sigma.unwrap() - 3.0 * s).abs() <= 1e-12 * s);
-        assert!(o.statistics.methods[0].value.is_none());
-        assert!(o.band_sigma.unwrap() <= s * (1.0 + 1e-12));
+        assert!((o.upper_3sigma.unwrap() - 3.0 * s).abs() <= EXACT * s);
+        assert!(o.statistics.methods[0].value().is_none());
+        assert!(o.band_sigma.unwrap() <= s * (1.0 + EXACT));
     }
 }
 
@@ -117,17 +117,21 @@ fn bad_scenarios_name_file_key_reason() {
     ));
 }
 
-/// An unstable system in a scenario: the analysis refuses it (|H|² would integrate to a finite but
-/// meaningless number: no stationary response exists).
+/// An unstable system in a scenario: refused when the file is loaded, naming the file and the `[model]`
+/// table (|H|² would integrate to a finite but meaningless number: no stationary response exists).
 #[test]
 fn unstable_scenario_is_refused() {
     let text = format!(
         "{}[input]\nspectrum = \"type1\"\n",
         TF.replace("[100.0, 2.0, 1.0]", "[100.0, -2.0, 1.0]")
     );
-    let sc = parse_scenario(&text, Path::new("u.toml"), &spectra()).unwrap();
-    let e = analysis_report(&sc).unwrap_err().to_string();
-    assert!(e.contains("stable"), "{e}");
+    let e = parse_scenario(&text, Path::new("u.toml"), &spectra())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("stable") && e.contains("u.toml") && e.contains("key `model`"),
+        "{e}"
+    );
 }
 
 /// The generic-matrix form of an mdof scenario builds the same model as the element form of the quarter
@@ -155,7 +159,7 @@ fn mdof_matrix_form_equals_element_form() {
         .replace("iso8608-c", "book-8-66");
     let b = parse_scenario(&t, &data("quarter-car.toml"), &spectra()).unwrap();
     let vb = analysis_report(&b).unwrap().outputs[0].statistics.variance.unwrap();
-    assert!((va - vb).abs() <= 1e-12 * vb, "{va} vs {vb}");
+    assert!((va - vb).abs() <= EXACT * vb, "{va} vs {vb}");
     // a non-symmetric stiffness matrix is refused, naming the key
     let bad = text.replace(&format!("[[{ks}, {}]", -ks), &format!("[[{ks}, 5.0]"));
     let e = parse_scenario(&bad, Path::new("m.toml"), &spectra())

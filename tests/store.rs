@@ -45,6 +45,7 @@ fn metadata(store_raw: bool, compression: Compression) -> RunMetadata {
         accumulators: vec![("sums".into(), 2)],
         store_raw,
         compression,
+        provenance: vec![],
     }
 }
 
@@ -128,6 +129,7 @@ fn psd() -> PsdEstimate {
         lower: density.iter().map(|d| d * 0.5).collect(),
         upper: density.iter().map(|d| d * 2.0).collect(),
         analytic: Some(density.iter().map(|d| d * 1.25).collect()),
+        expected: None,
         omega,
         density,
         dof: 16.0,
@@ -305,7 +307,7 @@ fn h5py_check(path: &Path, meta: &RunMetadata) {
 import sys, h5py, numpy as np
 f = h5py.File(sys.argv[1], 'r')
 a = f.attrs
-assert a['format_version'] == 1, a['format_version']
+assert a['format_version'] == 2, a['format_version']
 assert a['toolkit_version'] == '{toolkit}', a['toolkit_version']
 assert a['scenario'] == {scenario:?}, repr(a['scenario'])
 assert int(a['seed']) == {seed}, a['seed']
@@ -349,7 +351,8 @@ assert p.attrs['dof'] == 16.0 and p.attrs['unit'] == 'm^2 s/rad'
 assert p['omega'][()].tolist() == [0.0, 0.5, 1.0, 1.5, 2.0]
 assert np.array_equal(p['density'][()], 1.0 / (1.0 + np.arange(5)))
 assert np.array_equal(p['upper'][()], 2.0 / (1.0 + np.arange(5)))
-assert sorted(f.keys()) == ['inputs', 'outputs', 'psd', 'shards', 'statistics'], list(f.keys())
+assert sorted(f.keys()) == ['inputs', 'outputs', 'provenance', 'psd', 'shards', 'statistics'], list(f.keys())
+assert list(f['shards/checksums'].attrs['checked'])[0].startswith('inputs/') or not f.attrs['store_raw']
 print('h5py layout ok')
 "#,
         toolkit = env!("CARGO_PKG_VERSION"),
@@ -500,7 +503,7 @@ fn dropped_writer_resumes_and_unfinished_runs_are_refused() {
     other.shard_size = 5;
     let msg = RunWriter::create(&path, &other).unwrap_err().to_string();
     assert!(
-        msg.contains("seed") && msg.contains("shard_size") && msg.contains("delete it"),
+        msg.contains("seed") && msg.contains("shard_size") && msg.contains("--overwrite"),
         "{msg}"
     );
 

@@ -73,6 +73,7 @@ pub fn h5_meta(rows: usize, cols: usize, compression: Compression) -> RunMetadat
         accumulators: vec![],
         store_raw: true,
         compression,
+        provenance: vec![],
     }
 }
 

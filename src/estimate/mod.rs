@@ -17,4 +17,4 @@ pub use moments::{
     chi2_interval, chi_squared_quantile, mean_interval, std_interval, student_t_quantile, variance_interval,
     variance_interval_known_mean, Comparison, Interval, RunningMoments,
 };
-pub use welch::{Welch, WelchEstimate, WelchScratch, WelchSums};
+pub use welch::{Welch, WelchEstimate, WelchScratch, WelchStream, WelchSums};

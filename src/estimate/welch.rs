@@ -96,6 +96,13 @@ impl WelchSums {
     }
 }
 
+/// A record being fed to [`Welch::push`] in pieces: the last samples not yet in a full segment.
+#[derive(Debug, Clone)]
+pub struct WelchStream {
+    pending: Vec<f64>,
+    segments: usize,
+}
+
 /// Working memory of [`Welch::accumulate`].
 #[derive(Debug, Clone)]
 pub struct WelchScratch {
@@ -241,24 +248,91 @@ impl Welch {
                 "made for another segment length",
             ));
         }
-        let scale = self.dt / (2.0 * PI * self.norm);
         for s in 0..k {
-            let seg = &x[s * self.m / 2..s * self.m / 2 + self.m];
-            for ((d, v), w) in scratch.input.iter_mut().zip(seg).zip(&self.window) {
-                *d = v * w;
-            }
-            self.plan
-                .process_with_scratch(&mut scratch.input, &mut scratch.spectrum, &mut scratch.fft)
-                .map_err(|e| Error::Numerical {
-                    what: "forward real FFT".into(),
-                    reason: e.to_string(),
-                })?;
-            for (a, c) in sums.sum.iter_mut().zip(&scratch.spectrum) {
-                *a += scale * c.norm_sqr();
-            }
+            self.segment(&x[s * self.m / 2..s * self.m / 2 + self.m], sums, scratch)?;
         }
         sums.segments += k as u64;
         sums.dof += self.record_dof(k);
+        Ok(())
+    }
+
+    /// Adds one windowed segment's periodogram to `sums.sum` (segment count and ν are the caller's).
+    fn segment(&self, seg: &[f64], sums: &mut WelchSums, scratch: &mut WelchScratch) -> Result<()> {
+        let scale = self.dt / (2.0 * PI * self.norm);
+        for ((d, v), w) in scratch.input.iter_mut().zip(seg).zip(&self.window) {
+            *d = v * w;
+        }
+        self.plan
+            .process_with_scratch(&mut scratch.input, &mut scratch.spectrum, &mut scratch.fft)
+            .map_err(|e| Error::Numerical {
+                what: "forward real FFT".into(),
+                reason: e.to_string(),
+            })?;
+        for (a, c) in sums.sum.iter_mut().zip(&scratch.spectrum) {
+            *a += scale * c.norm_sqr();
+        }
+        Ok(())
+    }
+
+    /// A record fed in pieces ([`Welch::push`], [`Welch::end_record`]) with memory O(M): the same segments,
+    /// in the same order and with the same arithmetic as [`Welch::accumulate`] on the whole record, so the
+    /// sums are bit-identical for any split of the record.
+    pub fn stream(&self) -> WelchStream {
+        WelchStream {
+            pending: Vec::with_capacity(self.m),
+            segments: 0,
+        }
+    }
+
+    /// Adds the next samples of the record of `stream`.
+    ///
+    /// # Errors
+    /// Sums or scratch of another segment length.
+    pub fn push(
+        &self,
+        stream: &mut WelchStream,
+        mut x: &[f64],
+        sums: &mut WelchSums,
+        scratch: &mut WelchScratch,
+    ) -> Result<()> {
+        if sums.sum.len() != self.m / 2 + 1 || scratch.input.len() != self.m {
+            return Err(Error::invalid(
+                "sums",
+                sums.sum.len(),
+                "made for another segment length",
+            ));
+        }
+        while !x.is_empty() {
+            let take = (self.m - stream.pending.len()).min(x.len());
+            stream.pending.extend_from_slice(&x[..take]);
+            x = &x[take..];
+            if stream.pending.len() == self.m {
+                self.segment(&stream.pending, sums, scratch)?;
+                stream.segments += 1;
+                stream.pending.drain(..self.m / 2);
+            }
+        }
+        Ok(())
+    }
+
+    /// Ends the record of `stream`: counts its segments and adds its equivalent ν (as
+    /// [`Welch::accumulate`] does for a whole record).
+    ///
+    /// # Errors
+    /// A record shorter than M.
+    pub fn end_record(&self, stream: &mut WelchStream, sums: &mut WelchSums) -> Result<()> {
+        let k = stream.segments;
+        if k == 0 {
+            return Err(Error::invalid(
+                "record length",
+                stream.pending.len(),
+                format!("shorter than the segment length {}", self.m),
+            ));
+        }
+        sums.segments += k as u64;
+        sums.dof += self.record_dof(k);
+        stream.pending.clear();
+        stream.segments = 0;
         Ok(())
     }
 
@@ -309,11 +383,35 @@ impl Welch {
         }
         self.dt / (2.0 * PI * self.norm) * total
     }
+
+    /// [`Welch::expected`] at every bin j = 0..=M/2, from the autocovariance at lags 0..M (`autocov[m]`,
+    /// missing lags taken as 0), with the window's lag products computed once: O(M²) in all.
+    ///
+    /// # Formula
+    /// As [`Welch::expected`].
+    pub fn expected_all(&self, autocov: &[f64]) -> Vec<f64> {
+        let m = self.m;
+        let weighted: Vec<f64> = (0..m)
+            .map(|lag| {
+                let r: f64 = (0..m - lag).map(|k| self.window[k] * self.window[k + lag]).sum();
+                let w = if lag == 0 { 1.0 } else { 2.0 };
+                w * autocov.get(lag).copied().unwrap_or(0.0) * r
+            })
+            .collect();
+        let cos: Vec<f64> = (0..m).map(|q| (2.0 * PI * q as f64 / m as f64).cos()).collect();
+        (0..=m / 2)
+            .map(|j| {
+                let total: f64 = weighted.iter().enumerate().map(|(lag, v)| v * cos[(j * lag) % m]).sum();
+                self.dt / (2.0 * PI * self.norm) * total
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tolerance::{EXACT, ROUNDING, ULPS};
 
     #[test]
     fn hann_overlap_correlation_is_one_sixth() {
@@ -321,9 +419,26 @@ mod tests {
         // summing to M/16 over k < M/2; Σ w² = Σ sin⁴ = 3M/8; so c = 1/6 and c² = 1/36, which gives Percival &
         // Walden's (1993, eq. 292b) ν = 36K²/(19K − 1) for Hanning with 50 % overlap.
         let w = Welch::new(64, 1.0).unwrap();
-        assert!((w.c2 - 1.0 / 36.0).abs() < 1e-14);
+        assert!((w.c2 - 1.0 / 36.0).abs() < ROUNDING);
         let k = 10.0;
-        assert!((w.record_dof(10) - 36.0 * k * k / (19.0 * k - 1.0)).abs() < 1e-12);
+        assert!((w.record_dof(10) - 36.0 * k * k / (19.0 * k - 1.0)).abs() < EXACT);
+    }
+
+    /// `expected_all` is `expected` at every bin (same sums, table of cosines instead of calls).
+    #[test]
+    fn expected_all_equals_expected_per_bin() {
+        let w = Welch::new(32, 0.1).unwrap();
+        let k: Vec<f64> = (0..32)
+            .map(|m| (-0.2 * m as f64).exp() * (0.7 * m as f64).cos())
+            .collect();
+        let all = w.expected_all(&k);
+        for (j, v) in all.iter().enumerate() {
+            let one = w.expected(|m| k[m], j);
+            assert!(
+                (v - one).abs() <= 1e-12 * one.abs().max(1e-300),
+                "bin {j}: {v} vs {one}"
+            );
+        }
     }
 
     #[test]
@@ -332,7 +447,7 @@ mod tests {
         let w = Welch::new(32, 0.5).unwrap();
         for j in [0, 5, 16] {
             let e = w.expected(|m| if m == 0 { 1.0 } else { 0.0 }, j);
-            assert!((e - 0.5 / (2.0 * PI)).abs() < 1e-15);
+            assert!((e - 0.5 / (2.0 * PI)).abs() < ULPS);
         }
     }
 }

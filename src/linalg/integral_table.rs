@@ -171,7 +171,7 @@ fn rhs(b: &[f64], k: usize) -> f64 {
 /// C_{n−1} of the validated system (b trimmed and non-zero): stack arrays and partial pivoting for
 /// n ≤ [`STACK_MAX`], fully pivoted `nalgebra` LU above. Singular if the smallest |pivot| is at most
 /// n ε times the largest.
-fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
+fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<(f64, f64)> {
     if n <= STACK_MAX {
         let mut m = [[0.0; STACK_MAX + 1]; STACK_MAX];
         for (k, row) in m.iter_mut().enumerate().take(n) {
@@ -216,7 +216,7 @@ fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
             }
             c[r] = s / m[r][r];
         }
-        return Ok(c[n - 1]);
+        return Ok((c[n - 1], umax / umin));
     }
     let m = DMatrix::<f64>::from_fn(n, n, |k, j| entry(a, n, k, j));
     let d = DVector::<f64>::from_fn(n, |k, _| rhs(b, k));
@@ -232,15 +232,22 @@ fn solve_last(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
     } else {
         None
     };
-    Ok(c.ok_or_else(|| singular(umin / umax))?[n - 1])
+    Ok((c.ok_or_else(|| singular(umin / umax))?[n - 1], umax / umin))
 }
 
 /// Iₙ = 2π C_{n−1}/Aₙ for validated input.
 fn table_value(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
+    table_value_conditioned(b, a, n).map(|r| r.0)
+}
+
+/// Iₙ and the ratio of the largest to the smallest pivot of the Hurwitz elimination (a condition estimate:
+/// the relative error of Iₙ is of the order of this ratio times n ε).
+fn table_value_conditioned(b: &[f64], a: &[f64], n: usize) -> Result<(f64, f64)> {
     if b.is_empty() {
-        return Ok(0.0);
+        return Ok((0.0, 1.0));
     }
-    let value = 2.0 * PI * solve_last(b, a, n)? / a[n];
+    let (c, ratio) = solve_last(b, a, n)?;
+    let value = 2.0 * PI * c / a[n];
     if !value.is_finite() {
         return Err(Error::Numerical {
             what: "integral_i_n".into(),
@@ -248,7 +255,7 @@ fn table_value(b: &[f64], a: &[f64], n: usize) -> Result<f64> {
         });
     }
     // Rounding can only make a tiny result slightly negative.
-    Ok(value.max(0.0))
+    Ok((value.max(0.0), ratio))
 }
 
 /// The integral Iₙ = ∫_{−∞}^{∞} |B(iω)/A(iω)|² dω for any order n ≥ 1.
@@ -416,12 +423,35 @@ pub fn h2_integral(num_s: &[f64], den_s: &[f64]) -> Result<f64> {
     table_value(n, d, d.len() - 1)
 }
 
+/// [`h2_integral`] with a condition estimate of the Hurwitz elimination: `(value, ratio)`, where `ratio`
+/// is the largest over the smallest pivot; the relative error of the value is of the order of
+/// `ratio · n · ε` (ε = 2.2e-16).
+///
+/// # Errors
+/// As [`h2_integral`].
+///
+/// # Examples
+/// ```
+/// use stochvib::linalg::integral_table::h2_integral_conditioned;
+/// let (v, ratio) = h2_integral_conditioned(&[1.0], &[2.0, 1.0]).unwrap();
+/// assert!((v - std::f64::consts::FRAC_PI_2).abs() < 1e-15 && ratio >= 1.0);
+/// ```
+pub fn h2_integral_conditioned(num_s: &[f64], den_s: &[f64]) -> Result<(f64, f64)> {
+    let v = h2_integral(num_s, den_s)?;
+    let (n, d) = (trimmed(num_s), trimmed(den_s));
+    if n.is_empty() {
+        return Ok((v, 1.0));
+    }
+    table_value_conditioned(n, d, d.len() - 1)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::linalg::lyapunov::solve_continuous_lyapunov;
     use crate::linalg::poly::test_rng::{hurwitz, Rng};
     use crate::linalg::poly::{eval_complex, mul};
+    use crate::tolerance::{EXACT, FACTORISATION, QUADRATURE, ROUNDING, ULPS};
     use nalgebra::Complex;
 
     fn rel(a: f64, b: f64) -> f64 {
@@ -483,14 +513,14 @@ mod tests {
 
     #[test]
     fn hand_cases() {
-        assert!(rel(integral_i_n(&[1.0], &[1.0, 1.0]).unwrap(), PI) < 1e-15);
+        assert!(rel(integral_i_n(&[1.0], &[1.0, 1.0]).unwrap(), PI) < ULPS);
         // n = 1: π B₀²/(A₀A₁)
         let v = integral_i_n(&[3.0], &[2.0, 5.0]).unwrap();
-        assert!(rel(v, PI * 9.0 / 10.0) < 1e-15);
+        assert!(rel(v, PI * 9.0 / 10.0) < ULPS);
         // n = 2: π(A₀B₁² + A₂B₀²)/(A₀A₁A₂)
         let (a, b) = ([4.0, 0.5, 2.0], [1.5, -0.7]);
         let expect = PI * (a[0] * b[1] * b[1] + a[2] * b[0] * b[0]) / (a[0] * a[1] * a[2]);
-        assert!(rel(integral_i_n(&b, &a).unwrap(), expect) < 1e-14);
+        assert!(rel(integral_i_n(&b, &a).unwrap(), expect) < ROUNDING);
         // (s+1)^n with B = 1: ∫(1+ω²)^{−n} dω = π (2n−2)!/(2^{2n−2} ((n−1)!)²)
         let mut a = vec![1.0];
         let mut expect = PI;
@@ -499,13 +529,13 @@ mod tests {
             if n > 1 {
                 expect *= (2 * n - 3) as f64 / (2 * n - 2) as f64;
             }
-            assert!(rel(integral_i_n(&[1.0], &a).unwrap(), expect) < 1e-13, "n = {n}");
+            assert!(rel(integral_i_n(&[1.0], &a).unwrap(), expect) < ROUNDING, "n = {n}");
             if n <= 4 {
-                assert!(rel(integral_closed_form(&[1.0], &a).unwrap(), expect) < 1e-14);
+                assert!(rel(integral_closed_form(&[1.0], &a).unwrap(), expect) < ROUNDING);
             }
         }
         // All-negative Hurwitz denominator: same value.
-        assert!(rel(integral_i_n(&[1.0], &[-1.0, -1.0]).unwrap(), PI) < 1e-15);
+        assert!(rel(integral_i_n(&[1.0], &[-1.0, -1.0]).unwrap(), PI) < ULPS);
         assert_eq!(integral_i_n(&[], &[1.0, 1.0]).unwrap(), 0.0);
         assert_eq!(h2_integral(&[0.0], &[1.0, 1.0]).unwrap(), 0.0);
     }
@@ -519,7 +549,7 @@ mod tests {
             let b: Vec<f64> = (0..n).map(|_| rng.range(-2.0, 2.0)).collect();
             let g = integral_i_n(&b, &a).unwrap();
             let c = integral_closed_form(&b, &a).unwrap();
-            assert!(rel(c, g) < 1e-11, "n={n} a={a:?} b={b:?}: {c} vs {g}");
+            assert!(rel(c, g) < EXACT, "n={n} a={a:?} b={b:?}: {c} vs {g}");
         }
     }
 
@@ -535,7 +565,7 @@ mod tests {
             let l = lyapunov_route(&b, &a);
             let h = h2_integral(&b, &a).unwrap();
             assert_eq!(g, h);
-            assert!(rel(g, l) < 1e-9, "n={n} a={a:?} b={b:?}: {g} vs {l}");
+            assert!(rel(g, l) < FACTORISATION, "n={n} a={a:?} b={b:?}: {g} vs {l}");
         }
     }
 
@@ -545,12 +575,12 @@ mod tests {
         let den = mul(&[1.0, 0.4, 1.0], &[2.0, 1.0]);
         let num = [1.0, 0.5];
         let v = integral_i_n(&num, &den).unwrap();
-        assert!(rel(brute(&num, &den, 200_000), v) < 1e-6);
+        assert!(rel(brute(&num, &den, 200_000), v) < QUADRATURE);
         // Order 5 with a non-decaying-as-fast numerator (deg N = deg D − 1).
         let den = mul(&mul(&[4.0, 0.8, 1.0], &[1.0, 1.0, 1.0]), &[0.5, 1.0]);
         let num = [0.3, -1.0, 0.2, 0.0, 1.0];
         let v = integral_i_n(&num, &den).unwrap();
-        assert!(rel(brute(&num, &den, 200_000), v) < 1e-6);
+        assert!(rel(brute(&num, &den, 200_000), v) < QUADRATURE);
     }
 
     #[test]

@@ -301,7 +301,7 @@ pub fn solve_continuous_lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<D
 
 /// Osborne/Parlett–Reinsch balancing: diagonal D (powers of two) such that D⁻¹AD has rows and columns of
 /// comparable norm.
-fn balance_diagonal(a: &DMatrix<f64>) -> Vec<f64> {
+pub(crate) fn balance_diagonal(a: &DMatrix<f64>) -> Vec<f64> {
     let n = a.nrows();
     let mut d = vec![1.0f64; n];
     for _ in 0..100 {
@@ -660,6 +660,7 @@ pub fn solve_discrete_lyapunov_dense(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Resu
 mod tests {
     use super::*;
     use crate::linalg::poly::test_rng::Rng;
+    use crate::tolerance::{FACTORISATION, RESIDUAL, ROUNDING, SMALL_DECOMPOSITION};
 
     fn residual_c(a: &DMatrix<f64>, q: &DMatrix<f64>, x: &DMatrix<f64>) -> f64 {
         let r = a * x + x * a.transpose() + q;
@@ -696,11 +697,11 @@ mod tests {
         let q = DMatrix::<f64>::identity(3, 3);
         let x = solve_continuous_lyapunov(&a, &q).unwrap();
         let xd = solve_continuous_lyapunov_dense(&a, &q).unwrap();
-        assert!((&x - &xd).norm() <= 1e-12 * xd.norm());
-        assert!((&a * &x + &x * a.transpose() + &q).norm() < 1e-12);
+        assert!((&x - &xd).norm() <= SMALL_DECOMPOSITION * xd.norm());
+        assert!((&a * &x + &x * a.transpose() + &q).norm() < RESIDUAL);
         // SciPy's solution of A X + X Aᵀ = Q is −X.
         let xs = -&x;
-        assert!((&a * &xs + &xs * a.transpose() - &q).norm() < 1e-12);
+        assert!((&a * &xs + &xs * a.transpose() - &q).norm() < RESIDUAL);
         // covariance: symmetric positive definite
         assert!(x.clone().symmetric_eigenvalues().iter().all(|&l| l > 0.0));
     }
@@ -711,7 +712,7 @@ mod tests {
         for &(aa, qq) in &[(1.0, 1.0), (0.01, 3.0), (250.0, 0.5)] {
             let x =
                 solve_continuous_lyapunov(&DMatrix::from_element(1, 1, -aa), &DMatrix::from_element(1, 1, qq)).unwrap();
-            assert!((x[(0, 0)] - qq / (2.0 * aa)).abs() <= 1e-14 * qq / (2.0 * aa));
+            assert!((x[(0, 0)] - qq / (2.0 * aa)).abs() <= ROUNDING * qq / (2.0 * aa));
         }
         // SDOF oscillator A = [[0,1],[−ω²,−2ζω]], Q = diag(0, q): the (0,1) entry of the equation
         // gives x22 = ω² x11, the (1,1) entry −4ζω x22 + q = 0, so X = diag(q/(4ζω³), q/(4ζω)).
@@ -722,9 +723,9 @@ mod tests {
             let x = solve_continuous_lyapunov(&a, &qm).unwrap();
             let x11 = q / (4.0 * z * w * w * w);
             let x22 = q / (4.0 * z * w);
-            assert!((x[(0, 0)] - x11).abs() <= 1e-12 * x11);
-            assert!((x[(1, 1)] - x22).abs() <= 1e-12 * x22);
-            assert!(x[(0, 1)].abs() <= 1e-12 * x22 && x[(1, 0)] == x[(0, 1)]);
+            assert!((x[(0, 0)] - x11).abs() <= SMALL_DECOMPOSITION * x11);
+            assert!((x[(1, 1)] - x22).abs() <= SMALL_DECOMPOSITION * x22);
+            assert!(x[(0, 1)].abs() <= SMALL_DECOMPOSITION * x22 && x[(1, 0)] == x[(0, 1)]);
         }
     }
 
@@ -755,9 +756,9 @@ mod tests {
             assert!(blocks.iter().filter(|b| b.1 == 2).count() == n / 2);
             let q = random_spd(&mut rng, n);
             let x = solve_continuous_lyapunov(&a, &q).unwrap();
-            assert!(residual_c(&a, &q, &x) < 1e-12, "n={n}");
+            assert!(residual_c(&a, &q, &x) < RESIDUAL, "n={n}");
             let xd = solve_continuous_lyapunov_dense(&a, &q).unwrap();
-            assert!((&x - &xd).norm() <= 1e-9 * xd.norm(), "n={n}");
+            assert!((&x - &xd).norm() <= FACTORISATION * xd.norm(), "n={n}");
         }
     }
 
@@ -770,11 +771,11 @@ mod tests {
                 let q = random_spd(&mut rng, n);
                 let x = solve_continuous_lyapunov(&a, &q).unwrap();
                 let r = residual_c(&a, &q, &x);
-                assert!(r <= 1e-10, "n={n} residual {r:e}");
+                assert!(r <= RESIDUAL, "n={n} residual {r:e}");
                 assert_eq!(x, x.transpose());
                 if n <= 10 {
                     let xd = solve_continuous_lyapunov_dense(&a, &q).unwrap();
-                    assert!((&x - &xd).norm() <= 1e-10 * xd.norm(), "n={n}");
+                    assert!((&x - &xd).norm() <= SMALL_DECOMPOSITION * xd.norm(), "n={n}");
                 }
                 // covariance of a stable system with Q > 0 is positive definite
                 let lmin = x.clone().symmetric_eigenvalues().min();
@@ -821,14 +822,14 @@ mod tests {
         // AR(1)
         let x =
             solve_discrete_lyapunov(&DMatrix::from_element(1, 1, -0.95), &DMatrix::from_element(1, 1, 1.0)).unwrap();
-        assert!((x[(0, 0)] - 1.0 / (1.0 - 0.9025)).abs() < 1e-12 * x[(0, 0)]);
+        assert!((x[(0, 0)] - 1.0 / (1.0 - 0.9025)).abs() < SMALL_DECOMPOSITION * x[(0, 0)]);
         // rotation-contraction (2×2 complex block): A = r R(θ) ⇒ A X Aᵀ = r² X for X = c I,
         // so X = q/(1 − r²) I.
         let (r, th) = (0.9_f64, 0.7_f64);
         let a = DMatrix::from_row_slice(2, 2, &[r * th.cos(), -r * th.sin(), r * th.sin(), r * th.cos()]);
         let x = solve_discrete_lyapunov(&a, &(DMatrix::identity(2, 2) * 2.0)).unwrap();
         let expect = DMatrix::<f64>::identity(2, 2) * (2.0 / (1.0 - r * r));
-        assert!((x - &expect).norm() < 1e-12 * expect.norm());
+        assert!((x - &expect).norm() < SMALL_DECOMPOSITION * expect.norm());
         // random Schur-stable matrices
         let mut rng = Rng::new(77);
         for n in 1..=25 {
@@ -838,10 +839,10 @@ mod tests {
             let q = random_spd(&mut rng, n);
             let x = solve_discrete_lyapunov(&a, &q).unwrap();
             let res = residual_d(&a, &q, &x);
-            assert!(res <= 1e-10, "n={n} residual {res:e}");
+            assert!(res <= RESIDUAL, "n={n} residual {res:e}");
             if n <= 10 {
                 let xd = solve_discrete_lyapunov_dense(&a, &q).unwrap();
-                assert!((&x - &xd).norm() <= 1e-9 * xd.norm(), "n={n}");
+                assert!((&x - &xd).norm() <= FACTORISATION * xd.norm(), "n={n}");
             }
             assert!(x.clone().symmetric_eigenvalues().min() > 0.0);
         }
@@ -860,14 +861,14 @@ mod tests {
             let phi = (&a * 0.1).exp();
             let qd = &x - &phi * &x * phi.transpose();
             let xd = solve_discrete_lyapunov(&phi, &qd).unwrap();
-            assert!((&xd - &x).norm() <= 1e-9 * x.norm(), "n={n}");
+            assert!((&xd - &x).norm() <= FACTORISATION * x.norm(), "n={n}");
         }
     }
 
     #[test]
     fn spectral_helpers() {
         let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -0.4]);
-        assert!((spectral_abscissa(&a).unwrap() + 0.2).abs() < 1e-12);
-        assert!((spectral_radius(&a).unwrap() - 2.0).abs() < 1e-12);
+        assert!((spectral_abscissa(&a).unwrap() + 0.2).abs() < SMALL_DECOMPOSITION);
+        assert!((spectral_radius(&a).unwrap() - 2.0).abs() < SMALL_DECOMPOSITION);
     }
 }

@@ -4,16 +4,22 @@
 //!   driven by white noise), by the Bartels–Stewart real-Schur method, with dense Kronecker oracles.
 //! * [`integral_table`] — the closed-form integral table Iₙ = ∫|Hₙ(ω)|² dω of James, Nichols &
 //!   Phillips / Newland (Appendix 1) for rational transfer functions, exact for any order.
+//! * [`expm`](mod@expm) — the matrix exponential with overflow and shape checks.
+//! * [`transfer`] — numerator and denominator of a state-space transfer function in a frequency-scaled
+//!   variable (stiff systems keep their digits).
 //! * [`poly`] — real polynomials with ascending coefficients: evaluation, products, roots, the Hurwitz
 //!   test and spectral factorisation of non-negative polynomials in ω².
 //!
 //! Everything works in `f64` with [`nalgebra`] dense matrices; bad input is reported as
 //! [`Error`](crate::Error), never by a panic.
 
+pub mod expm;
 pub mod integral_table;
 pub mod lyapunov;
 pub mod poly;
+pub mod transfer;
 
+pub use expm::expm;
 pub use integral_table::{h2_integral, integral_closed_form, integral_i_n};
 pub use lyapunov::{
     is_stable, solve_continuous_lyapunov, solve_continuous_lyapunov_dense, solve_discrete_lyapunov,

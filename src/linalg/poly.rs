@@ -649,6 +649,7 @@ pub(crate) mod test_rng {
 mod tests {
     use super::test_rng::{hurwitz, Rng};
     use super::*;
+    use crate::tolerance::{DOUBLE_ROOT, FACTORISATION, RESIDUAL, ROUNDING, SMALL_DECOMPOSITION, ULPS};
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * a.abs().max(b.abs()).max(1e-300)
@@ -664,7 +665,7 @@ mod tests {
         let z = Complex::new(0.3, -1.2);
         let c = [1.5, -2.0, 0.5, 3.0];
         let direct = c[0] + z * c[1] + z * z * c[2] + z * z * z * c[3];
-        assert!((eval_complex(&c, z) - direct).norm() < 1e-14);
+        assert!((eval_complex(&c, z) - direct).norm() < ROUNDING);
     }
 
     #[test]
@@ -673,18 +674,18 @@ mod tests {
         let r = roots(&[2.0, 3.0, 1.0]).unwrap();
         let mut re: Vec<f64> = r.iter().map(|z| z.re).collect();
         re.sort_by(|a, b| a.total_cmp(b));
-        assert!(close(re[0], -2.0, 1e-15) && close(re[1], -1.0, 1e-15));
+        assert!(close(re[0], -2.0, ULPS) && close(re[1], -1.0, ULPS));
         let p = mul(&mul(&[1.0, 1.0], &[2.0, 1.0]), &[5.0, 2.0, 1.0]);
         let r = roots(&p).unwrap();
         assert_eq!(r.len(), 4);
         let back = from_roots(&r).unwrap();
         for (a, b) in back.iter().zip(&p) {
-            assert!((a - b).abs() < 1e-12, "{back:?} vs {p:?}");
+            assert!((a - b).abs() < SMALL_DECOMPOSITION, "{back:?} vs {p:?}");
         }
         // zero roots and scaling
         let r = roots(&[0.0, 0.0, -6.0, 3.0]).unwrap(); // 3 s²(s − 2)
         assert_eq!(r.iter().filter(|z| z.norm() == 0.0).count(), 2);
-        assert!(r.iter().any(|z| (z - Complex::new(2.0, 0.0)).norm() < 1e-14));
+        assert!(r.iter().any(|z| (z - Complex::new(2.0, 0.0)).norm() < ROUNDING));
         assert!(roots(&[5.0]).unwrap().is_empty());
         assert!(roots(&[0.0, 0.0]).is_err());
         assert!(roots(&[1.0, f64::NAN]).is_err());
@@ -700,7 +701,7 @@ mod tests {
             let back = from_roots(&r).unwrap();
             let lead = p[n];
             for (a, b) in back.iter().zip(&p) {
-                assert!((a * lead - b).abs() < 1e-9 * p.iter().map(|c| c.abs()).fold(0.0, f64::max));
+                assert!((a * lead - b).abs() < FACTORISATION * p.iter().map(|c| c.abs()).fold(0.0, f64::max));
             }
         }
         // x^n − 1: roots of unity (a stalling case for unshifted QR)
@@ -711,7 +712,9 @@ mod tests {
             let r = roots(&p).unwrap();
             assert_eq!(r.len(), n);
             for z in r {
-                assert!((z.norm() - 1.0).abs() < 1e-12 && eval_complex(&p, z).norm() < 1e-12);
+                assert!(
+                    (z.norm() - 1.0).abs() < SMALL_DECOMPOSITION && eval_complex(&p, z).norm() < SMALL_DECOMPOSITION
+                );
             }
         }
     }
@@ -761,26 +764,30 @@ mod tests {
     #[test]
     fn spectral_factor_hand_cases() {
         let (f, r) = spectral_factor(&[1.0, 1.0]).unwrap();
-        assert!(close(f[0], 1.0, 1e-14) && close(f[1], 1.0, 1e-14) && r < 1e-14);
+        assert!(close(f[0], 1.0, ROUNDING) && close(f[1], 1.0, ROUNDING) && r < ROUNDING);
         let (f, r) = spectral_factor(&[0.0, 1.0]).unwrap();
         assert_eq!(f.len(), 2);
-        assert!(f[0].abs() < 1e-15 && close(f[1], 1.0, 1e-14) && r < 1e-14);
+        assert!(f[0].abs() < ULPS && close(f[1], 1.0, ROUNDING) && r < ROUNDING);
         let (f, _) = spectral_factor(&[4.0]).unwrap();
         assert_eq!(f, vec![2.0]);
         // (x − 4)² + 4·x·0.01 ⇒ F = s² + 0.2 s + 4 (ω₀ = 2, ζ = 0.05)
         let p = [16.0, -8.0 + 0.04, 1.0];
         let (f, r) = spectral_factor(&p).unwrap();
-        assert!(close(f[0], 4.0, 1e-12) && close(f[1], 0.2, 1e-11) && close(f[2], 1.0, 1e-14));
-        assert!(r < 1e-13);
+        assert!(
+            close(f[0], 4.0, SMALL_DECOMPOSITION)
+                && close(f[1], 0.2, SMALL_DECOMPOSITION)
+                && close(f[2], 1.0, ROUNDING)
+        );
+        assert!(r < ROUNDING);
         // double positive root: (x − 4)² ⇒ F = s² + 4 (undamped)
         let (f, r) = spectral_factor(&[16.0, -8.0, 1.0]).unwrap();
-        assert!(close(f[0], 4.0, 1e-7) && f[1].abs() < 1e-7 && close(f[2], 1.0, 1e-14));
-        assert!(r < 1e-12);
+        assert!(close(f[0], 4.0, DOUBLE_ROOT) && f[1].abs() < DOUBLE_ROOT && close(f[2], 1.0, ROUNDING));
+        assert!(r < RESIDUAL);
         // 3 (1 + x)(x − 1)² x  (mixed: negative root, double positive root, zero root)
         let p = mul(&mul(&[3.0, 3.0], &[1.0, -2.0, 1.0]), &[0.0, 1.0]);
         let (f, r) = spectral_factor(&p).unwrap();
-        assert!(r < 1e-12, "{r}");
-        assert!(f.len() == 5 && f[0].abs() < 1e-12);
+        assert!(r < RESIDUAL, "{r}");
+        assert!(f.len() == 5 && f[0].abs() < SMALL_DECOMPOSITION);
     }
 
     #[test]
@@ -810,11 +817,11 @@ mod tests {
                 .map(|k| if k % 2 == 0 { g[2 * k] } else { -g[2 * k] })
                 .collect();
             let (f, resid) = spectral_factor(&p).unwrap();
-            assert!(resid <= 1e-12, "resid {resid} for {fz:?}");
+            assert!(resid <= RESIDUAL, "resid {resid} for {fz:?}");
             assert!(is_hurwitz(&f));
             let scale = fz.iter().map(|c| c.abs()).fold(0.0, f64::max);
             for (a, b) in f.iter().zip(&fz) {
-                assert!((a - b).abs() <= 1e-9 * scale, "{f:?} vs {fz:?}");
+                assert!((a - b).abs() <= FACTORISATION * scale, "{f:?} vs {fz:?}");
             }
         }
     }

@@ -294,7 +294,8 @@ impl BalancerBogie {
 /// use stochvib::models::balancer_bogie::sweep;
 /// let s = sweep(3.5, &[0.05, 0.11, 0.15], &[0.6], &[0.5]).unwrap();
 /// assert_eq!(s.len(), 3);
-/// assert!(s[0].ratio > s[1].ratio && s[1].ratio > s[2].ratio); // larger wheels smooth more (book 4597)
+/// // larger wheels smooth more (book 8.5, text after (8.50))
+/// assert!(s[0].ratio > s[1].ratio && s[1].ratio > s[2].ratio);
 /// ```
 pub fn sweep(alpha: f64, r: &[f64], ell: &[f64], ell1_fraction: &[f64]) -> Result<Vec<SweepPoint>> {
     let mut out = Vec::with_capacity(r.len() * ell.len() * ell1_fraction.len());
@@ -339,10 +340,10 @@ pub fn from_fields(f: &Fields, speed: Option<f64>) -> Result<ModelInstance> {
     b.instance(speed).map_err(|e| f.wrap("kind", e))
 }
 
-/// The book's worked example (8.5, line 4599): r = 11 and 15 cm, ℓ = 60 cm, ℓ₁ = ℓ/2, α = 0.035 1/cm,
-/// D_x = 2.25 cm²; the book prints D_y/D_x = 0.28 and 0.24.
+/// The book's worked example (Sukharev (2012) 8.5, the numerical example after (8.50)): r = 11 and 15 cm,
+/// ℓ = 60 cm, ℓ₁ = ℓ/2, α = 0.035 1/cm, D_x = 2.25 cm²; the book prints D_y/D_x = 0.28 and 0.24.
 pub fn book_rows() -> Vec<BookRow> {
-    let example = "Sukharev 8.5, eq. (8.49) worked example (balancer bogie)";
+    let example = "Sukharev (2012) 8.5, eq. (8.49) worked example (balancer bogie)";
     let (dx, alpha) = (2.25e-4, 3.5);
     let mut rows = Vec::new();
     for (r, printed) in [(0.11, 0.28), (0.15, 0.24)] {

@@ -264,9 +264,9 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
     idler.instance()
 }
 
-/// Example 8.1 (Sukharev 8.6, lines 4680–4700): every printed number against the code.
+/// Example 8.1 (Sukharev (2012) 8.6, Example 8.1): every printed number against the code.
 pub fn book_rows() -> Vec<BookRow> {
-    let example = "Sukharev 8.6, Example 8.1 (conveyor idler under lump load)";
+    let example = "Sukharev (2012) 8.6, Example 8.1 (conveyor idler under lump load)";
     let Ok(idler) = ConveyorIdler::with_damping_ratio(100.0, 7.0e4, 0.2) else {
         return Vec::new();
     };

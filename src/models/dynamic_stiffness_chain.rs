@@ -1,5 +1,5 @@
 //! Harmonic response of an n-mass damped chain by the dynamic-stiffness (sweep) method
-//! (source `003_2b1c448b7545e01e.txt`, O.A. Yurchenko).
+//! (Yurchenko (2011); full citation in [`crate::models`]).
 //!
 //! The article gives the method in matrix form, (1)–(10), and no numerical example. The printed recursion
 //! is not implementable literally (see [`TorsionalChain`] `# Formula`); this module implements the corrected
@@ -27,8 +27,8 @@ const PIVOT_EPS: f64 = 1e-14;
 /// (k = 1..n−1) joins masses k and k+1 with stiffness C_k and damping β_{k,k+1}.
 ///
 /// # Formula
-/// Equation of mass k under the harmonic torque M̄_k e^{ipt} (source l.100; p = forcing frequency, rad/s),
-/// φ_k = Φ_k e^{ipt}:
+/// Equation of mass k under the harmonic torque M̄_k e^{ipt} (source: the unnumbered equation of mass k in the
+/// gearbox example of Fig. 1, before (9); p = forcing frequency, rad/s), φ_k = Φ_k e^{ipt}:
 /// ```text
 /// d_k Φ_k + s_{k−1}(Φ_k − Φ_{k−1}) + s_k(Φ_k − Φ_{k+1}) = M̄_k,      s₀ = s_n = 0,
 /// d_k = k_{g,k} − I_k p² + iβ_k p   (mass/ground dynamic stiffness),
@@ -45,12 +45,13 @@ const PIVOT_EPS: f64 = 1e-14;
 /// Closure Φ_n = F_n/K_n; back substitution Φ_k = (F_k + s_kΦ_{k+1})/(K_k + s_k), k = n−1..1 (≙ (4));
 /// shaft torques M_{k,k+1} = s_k(Φ_k − Φ_{k+1}) (≙ (10) with its sign).
 ///
-/// **Misprints in the source** (l.71–112): (4) writes q_{k−1} = (P − Bq_k − Cq_k)/H; from (2) and (3) it
-/// must be q_{k−1} = (H^{(1)}_{k−1} + C_{k−1,k})⁻¹(P^{(1)}_{k−1} − B_{k−1,k}q_k). (7) adds C_{k,k+1} while
-/// (5) has C_{k,k−1}; with the sign convention of (3) the last term of (5) enters (6) with a minus, so
-/// the minus in (8) needs B → −B; (9) defines H̄_k = I_kP² + iβ_kP although the substituted equation has
-/// −I_kP²; l.108 writes C_{k,k+1} where C_{k−1,k} is meant. In scalar form, with B ≙ −s and
-/// H_k + C_{k,k+1} ≙ d_k + s_k, the printed (7)/(8) become the recursion above.
+/// **Misprints in the source** ((4)–(9) and the unnumbered equations between them): (4) writes
+/// q_{k−1} = (P − Bq_k − Cq_k)/H; from (2) and (3) it must be q_{k−1} = (H^{(1)}_{k−1} + C_{k−1,k})⁻¹(P^{(1)}_{k−1}
+/// − B_{k−1,k}q_k). (7) adds C_{k,k+1} while (5) has C_{k,k−1}; with the sign convention of (3) the last term of
+/// (5) enters (6) with a minus, so the minus in (8) needs B → −B; (9) defines H̄_k = I_kP² + iβ_kP although the
+/// substituted equation has −I_kP²; that substituted equation (unnumbered, just before (9)) writes C_{k,k+1}
+/// where C_{k−1,k} is meant. In scalar form, with B ≙ −s and H_k + C_{k,k+1} ≙ d_k + s_k, the printed (7)/(8)
+/// become the recursion above.
 ///
 /// Cost: O(n) complex operations and two length-n complex vectors (no n × n matrix). A pivot
 /// K_{k−1} + s_{k−1} can vanish only at an undamped natural frequency of a sub-chain; it is then reported
@@ -436,7 +437,7 @@ fn max_rel_diff(a: &ChainResponse, b: &ChainResponse) -> f64 {
     pairs.map(|(x, y)| (x - y).norm()).fold(0.0, f64::max) / scale.max(f64::MIN_POSITIVE)
 }
 
-/// Rows of the `book` report for `003_2b1c448b7545e01e.txt`. The article prints no numerical example:
+/// Rows of the `book` report for Yurchenko (2011). The article prints no numerical example:
 /// every row has `printed = None`; values are for the illustrative chain and load of
 /// [`DynamicStiffnessChain::illustrative`].
 pub fn book_rows() -> Vec<BookRow> {
@@ -445,7 +446,7 @@ pub fn book_rows() -> Vec<BookRow> {
     let torques: Vec<Complex<f64>> = load.torques.iter().map(|&t| Complex::new(t, 0.0)).collect();
     let fast = case.chain.harmonic_response(load.frequency, &torques).ok();
     let dense = case.chain.harmonic_response_dense(load.frequency, &torques).ok();
-    let ex = "003 dynamic-stiffness chain (illustrative 5-mass drive, 1000 N m on mass 1 at 40 rad/s)";
+    let ex = "Yurchenko (2011), dynamic-stiffness chain (illustrative 5-mass drive, 1000 N m on mass 1 at 40 rad/s)";
     let note = "article prints no numerical example; value for the illustrative case";
     let mut rows = Vec::new();
     let mut push = |q: String, u: &str, c: Option<f64>, e: &str| {

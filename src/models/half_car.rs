@@ -41,10 +41,9 @@ use crate::error::{require_non_negative, require_positive, Error, Result};
 use crate::fields::Fields;
 use crate::models::worked_example::BookRow;
 use crate::models::{InputLayout, ModelInstance};
-use crate::spectrum::Asymptote;
-use crate::system::{modal_analysis, Attach, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace};
+use crate::system::{modal_analysis, Attach, Element, Mdof, Quantity};
 use crate::units::Dim;
-use nalgebra::{Complex, DMatrix};
+use nalgebra::DMatrix;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -203,7 +202,7 @@ impl HalfCar {
         modal_analysis(&m, &k)
     }
 
-    /// Reports the decoupling conditions ab = ρ² and c₁a = c₂b (book 3938–3946, (7.34)).
+    /// Reports the decoupling conditions ab = ρ² and c₁a = c₂b (book 7.5, (7.34) and the text around it).
     pub fn decoupling(&self) -> Decoupling {
         let (a, b, r2) = (self.front_distance, self.rear_distance, self.radius_of_gyration.powi(2));
         let (c1a, c2b) = (self.front_stiffness * a, self.rear_stiffness * b);
@@ -218,9 +217,8 @@ impl HalfCar {
     /// The (z, φ) model as an [`Mdof`]: coordinates `z` (m), `phi` (rad); elements `front` (point z + aφ to
     /// base input 0) and `rear` (point z − bφ to base input 1); outputs `bounce` (z, m), `pitch` (φ, rad),
     /// `front_travel` (z + aφ − q₁, m), `rear_travel` (z − bφ − q₂, m), `body_acc` (z̈ + x_p φ̈ at the
-    /// point x_p = `acc_point` metres ahead of the centre of mass). The Mdof labels the units of the travels
-    /// and of an off-centre acceleration `mixed` because the points combine z (m) and φ (rad);
-    /// [`HalfCar::instance`] relabels them m and m/s².
+    /// point x_p = `acc_point` metres ahead of the centre of mass, m/s²: the points combine z (m) and φ (rad),
+    /// whose weights are lever arms in m/rad).
     ///
     /// # Errors
     /// Non-finite `acc_point`.
@@ -267,17 +265,8 @@ impl HalfCar {
     /// As [`HalfCar::mdof`].
     pub fn instance(&self, acc_point: f64) -> Result<ModelInstance> {
         let mdof = self.mdof(acc_point)?;
-        let infos = mdof
-            .outputs()
-            .iter()
-            .map(|o| match o.name.as_str() {
-                "body_acc" => OutputInfo::new("body_acc", "m/s^2"),
-                "front_travel" | "rear_travel" => OutputInfo::new(o.name.clone(), "m"),
-                _ => o.clone(),
-            })
-            .collect();
         Ok(ModelInstance {
-            system: Arc::new(HalfCarSystem { mdof, infos }),
+            system: Arc::new(mdof),
             layout: InputLayout::Track {
                 positions: vec![0.0, self.wheelbase()],
                 gains: vec![1.0, 1.0],
@@ -296,40 +285,6 @@ impl HalfCar {
                 acc_point
             ),
         })
-    }
-}
-
-/// The half-car [`Mdof`] with its output units relabelled (z + aφ is in m and z̈ + x_p φ̈ in m/s², φ being in rad).
-#[derive(Debug, Clone)]
-struct HalfCarSystem {
-    mdof: Mdof,
-    infos: Vec<OutputInfo>,
-}
-
-impl FrequencyResponse for HalfCarSystem {
-    fn n_inputs(&self) -> usize {
-        self.mdof.n_inputs()
-    }
-    fn outputs(&self) -> &[OutputInfo] {
-        &self.infos
-    }
-    fn response(&self, omega: f64) -> DMatrix<Complex<f64>> {
-        self.mdof.response(omega)
-    }
-    fn static_gain(&self) -> Option<DMatrix<f64>> {
-        self.mdof.static_gain()
-    }
-    fn high_frequency(&self) -> Vec<Vec<Asymptote>> {
-        self.mdof.high_frequency()
-    }
-    fn low_frequency(&self) -> Vec<Vec<Asymptote>> {
-        self.mdof.low_frequency()
-    }
-    fn natural_frequencies(&self) -> Vec<f64> {
-        self.mdof.natural_frequencies()
-    }
-    fn state_space(&self) -> Option<&StateSpace> {
-        self.mdof.state_space()
     }
 }
 
@@ -352,7 +307,8 @@ pub fn resonance_speed(natural_frequency: f64, wavelength: f64) -> Result<f64> {
     Ok(natural_frequency * wavelength / (2.0 * PI))
 }
 
-/// Natural frequency (rad/s) of an axle load Q (N) on a spring c (N/m): ω = √(c/m) = √(c g/Q) (book 3982–3993).
+/// Natural frequency (rad/s) of an axle load Q (N) on a spring c (N/m): ω = √(c/m) = √(c g/Q) (book 7.5,
+/// the excavator example, Fig. 7.7).
 ///
 /// # Errors
 /// Non-positive or non-finite arguments.
@@ -391,7 +347,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
     car.instance(x).map_err(|e| f.wrap("acc_point", e))
 }
 
-/// Example 7.1 (book 3964): M = 1.49 kN s²/m, a = 1.42 m, b = 1.28 m, ρ = 1.23 m, c₁ = 32 kN/m,
+/// Example 7.1 (Sukharev (2012) 7.5): M = 1.49 kN s²/m, a = 1.42 m, b = 1.28 m, ρ = 1.23 m, c₁ = 32 kN/m,
 /// c₂ = 43 kN/m (no damping printed; none needed for natural frequencies).
 pub fn example_7_1() -> HalfCar {
     HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 0.0, 0.0).expect("valid book parameters")
@@ -400,7 +356,7 @@ pub fn example_7_1() -> HalfCar {
 /// Book rows: Example 7.1 (M₁, M₂, M₃, ω₁, ω₂, also through the printed (7.33) and through modal analysis)
 /// and the excavator resonance-speed example (ω, v in m/s and km/h).
 pub fn book_rows() -> Vec<BookRow> {
-    let ex = "Sukharev 7.5, Example 7.1 (half car)";
+    let ex = "Sukharev (2012) 7.5, Example 7.1 (half car)";
     let car = example_7_1();
     let (m1, m2, m3) = car.masses();
     let roots = car.frequency_equation_roots();
@@ -462,8 +418,9 @@ pub fn book_rows() -> Vec<BookRow> {
             "misprint: printed (7.33) swaps M1 and M2; the printed omegas come from the correct form (row omega_2)",
         ),
     ];
-    // Excavator example (book 3978–4001): ℓ = 7 m, Q = 28.6 kN, c = 90 kN/m, g = 9.8 m/s².
-    let ex2 = "Sukharev 7.5, excavator resonance-speed example (book lines 3978-4001)";
+    // Excavator example (Sukharev (2012) 7.5, the first of the two examples numbered 7.2; Fig. 7.7):
+    // ℓ = 7 m, Q = 28.6 kN, c = 90 kN/m, g = 9.8 m/s².
+    let ex2 = "Sukharev (2012) 7.5, excavator resonance-speed example (Fig. 7.7)";
     let w = axle_natural_frequency(9.0e4, 2.86e4, 9.8).ok();
     let v = w.and_then(|w| resonance_speed(w, 7.0).ok());
     for (q, unit, printed, computed, why) in [

@@ -3,7 +3,7 @@
 //! # Formula
 //! **Single isolator** (7.1)–(7.10): a mass m on a spring c in parallel with a viscous damper b, excited by a
 //! force F₀ e^{ikt} on the mass (or, equivalently, by a base displacement u₀ e^{ikt} under the isolator,
-//! book line 3750). With ω₀ = √(c/m), ζ = b/(2√(cm)) (the book's h = b/(2m), ζ = h/ω₀) and r = k/ω₀:
+//! the book's remark after (7.11)). With ω₀ = √(c/m), ζ = b/(2√(cm)) (the book's h = b/(2m), ζ = h/ω₀) and r = k/ω₀:
 //! ```text
 //! m ÿ + b ẏ + c y = F₀ e^{ikt}   ⇒   Y = F₀ / (c − m k² + i k b)
 //! Q = c y + b ẏ (force on the foundation)   ⇒   Q/F₀ = (c + i k b)/(c − m k² + i k b)
@@ -397,7 +397,7 @@ pub fn book_rows() -> Vec<BookRow> {
     [0.0, 0.2, 0.5]
         .iter()
         .map(|&z| BookRow {
-            example: "Sukharev 7.1, (7.11) (single isolator)".into(),
+            example: "Sukharev (2012) 7.1, (7.11) (single isolator)".into(),
             quantity: format!("k/omega where eta = 1 (zeta = {z})"),
             unit: "1".into(),
             printed: Some(2f64.sqrt()),

@@ -1,6 +1,6 @@
 //! Single-end mine hoist: drum, head sheave and end mass on an elastic rope with slowly varying hanging
 //! length, its natural frequencies and modes over the lift, and the "nodal point" of mode 1
-//! (source `004_d1d782fd2b1ec8bf.txt`).
+//! (Dvornikov, Kondrakhin & Velebnik (2014); full citation in [`crate::models`]).
 
 use crate::error::{require_non_negative, require_positive, Error, Result};
 use crate::fields::Fields;
@@ -21,17 +21,18 @@ const PRESSURE: Dim = Dim::new(-1, 1, -2);
 /// Physical parameters of the single-end hoist (SI units in every field name's doc).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MineHoistParams {
-    /// E, elastic modulus of the wire steel, Pa (source: 2.06·10¹¹ N/m², l.48).
+    /// E, elastic modulus of the wire steel, Pa (source: 2.06·10¹¹ N/m², text after eq. (3)).
     pub young_modulus: f64,
-    /// ā, dimensionless rope-construction factor of the metallic area ā d_k² (source ≈ 0.315, l.48).
+    /// ā, dimensionless rope-construction factor of the metallic area ā d_k² (source ≈ 0.315, text after
+    /// eq. (3)).
     pub rope_area_factor: f64,
     /// d_k, rope diameter, m.
     pub rope_diameter: f64,
     /// γ, rope mass per metre, kg/m (the model uses this value; source prints 8.4).
     pub rope_mass_per_metre: f64,
-    /// γ̄, dimensionless rope-mass factor in γ = γ̄ γ_st d_k² (source 0.491, l.56), if given.
+    /// γ̄, dimensionless rope-mass factor in γ = γ̄ γ_st d_k² (source 0.491, text after eq. (5)), if given.
     pub rope_mass_factor: Option<f64>,
-    /// γ_st, steel density, kg/m³ (source 7800, l.56), if given.
+    /// γ_st, steel density, kg/m³ (source 7800, text after eq. (5)), if given.
     pub steel_density: Option<f64>,
     /// R_b, drum radius, m.
     pub drum_radius: f64,
@@ -59,9 +60,9 @@ pub struct MineHoistParams {
 /// masses in kg, stiffnesses in N/m, ω in rad/s, lengths in m.
 ///
 /// # Formula
-/// Rope stiffnesses (3) (l.46): C_str = Eād_k²/l₁, C_otv = Eād_k²/l₂; γ = γ̄γ_st d_k² (l.56);
-/// l₂ = L − ȳ (4) (l.50); drum inertia with the wound rope (9) (l.78): J₁′ = J₁ + γR_b²ȳ = J₁ + γR_b²(L − l₂).
-/// Equations (13) M Ẍ + B Ẋ + C X = Q with B = 2δC and (14) (l.114):
+/// Rope stiffnesses (3): C_str = Eād_k²/l₁, C_otv = Eād_k²/l₂; γ = γ̄γ_st d_k² (text after (5));
+/// l₂ = L − ȳ (4); drum inertia with the wound rope (9): J₁′ = J₁ + γR_b²ȳ = J₁ + γR_b²(L − l₂).
+/// Equations (13) M Ẍ + B Ẋ + C X = Q with B = 2δC and (14):
 /// ```text
 /// M(l₂) = [[J₁′/R_b² + γl₁/4, γl₁/4,                   0         ],
 ///          [γl₁/4,            J₂/R_s² + γ(l₁ + l₂)/4,  γl₂/4     ],
@@ -69,27 +70,29 @@ pub struct MineHoistParams {
 /// C(l₂) = [[C_str, −C_str, 0], [−C_str, C_str + C_otv, −C_otv], [0, −C_otv, C_otv]]
 /// ```
 /// det C ≡ 0 ⇒ ω₀ = 0 with Φ₀ = (1, 1, 1) (21); the total mass 1ᵀM1 = m_Σ = J₁/R_b² + J₂/R_s² + m + γ(l₁ + L)
-/// is constant over the lift (l.201 prints J₁′ and l₂, which gives the same sum). The frequency equation
-/// (15)/(16) det(C − ω²M) = 0 is, with λ = ω² and the tridiagonal entries a_ij(λ) = C_ij − λM_ij,
+/// is constant over the lift (the unnumbered N₀² = m_Σ after (23) prints J₁′ and l₂, which gives the same
+/// sum). The frequency equation (15)/(16) det(C − ω²M) = 0 is, with λ = ω² and the tridiagonal entries
+/// a_ij(λ) = C_ij − λM_ij,
 /// ```text
 /// a₁₁a₂₂a₃₃ − a₁₁a₂₃² − a₃₃a₁₂² = λ(c₁ + c₂λ + c₃λ²) = 0
 /// ```
-/// (no constant term, det C = 0); ω₁², ω₂² are the roots of the quadratic. Cofactor modes (20) (l.146):
+/// (no constant term, det C = 0); ω₁², ω₂² are the roots of the quadratic. Cofactor modes (20):
 /// ```text
 /// Φ_j ∝ ((C_str + ω_j²γl₁/4)a₃₃,  a₁₁a₃₃,  a₁₁(C_otv + ω_j²γl₂/4)),
 /// a₁₁ = C_str − ω_j²(γl₁/4 + J₁′/R_b²),  a₃₃ = C_otv − ω_j²(m + γl₂/4)
 /// ```
 /// normalised (24) Φ̃_j = √m_Σ Φ_j/N_j, N_j² = Φ_jᵀMΦ_j (22)/(23).
 ///
-/// **The nodal point** (l.171–185). The cofactor vector vanishes when a₁₁ = a₃₃ = 0 together; then ω₁² =
-/// C_otv/(m + γl₂/4) = C_str/(γl₁/4 + J₁′/R_b²). The true eigenvector there is not zero: it is
-/// ∝ (C_otv + ω²γl₂/4, 0, −(C_str + ω²γl₁/4)) — drum and load in anti-phase, sheave at rest — so the
-/// "node" is an artefact of building the modes from one cofactor row, and the sheave component of the
-/// continuous eigenvector changes sign there. Compatibility gives (with J₁′ = J₁ + γR_b²(L − l₂))
+/// **The nodal point** (point U of Fig. 2b; the unnumbered equations between Fig. 2 and (22)). The cofactor vector
+/// vanishes when a₁₁ = a₃₃ = 0 together; then ω₁² = C_otv/(m + γl₂/4) = C_str/(γl₁/4 + J₁′/R_b²). The true eigenvector
+/// there is not zero: it is ∝ (C_otv + ω²γl₂/4, 0, −(C_str + ω²γl₁/4)) — drum and load in anti-phase, sheave at rest —
+/// so the "node" is an artefact of building the modes from one cofactor row, and the sheave component of the continuous
+/// eigenvector changes sign there. Compatibility gives (with J₁′ = J₁ + γR_b²(L − l₂))
 /// ```text
 /// l₂* = (2/γ)[−(m + γl₁) + √((m + γl₁)² + γl₁(γl₁/4 + J₁/R_b² + γL))]
 /// ```
-/// The print (l.183) has J₁′ where **J₁** must stand (with J₁′ the formula is implicit).
+/// The printed node formula (unnumbered, just before (22)) has J₁′ where **J₁** must stand (with J₁′ the
+/// formula is implicit).
 ///
 /// **Renormalisation (25)** as printed, Φ̄_jk = √m_Σ Φ_jk sgn(Φ_jk)/N_j, would make every component
 /// non-negative: it is garbled. The intended rule is to flip the whole vector with the sign of one
@@ -192,7 +195,8 @@ impl MineHoist {
         Ok(MineHoist { p })
     }
 
-    /// The parameters printed in the source (l.48, 56, 156–166), with the printed γ = 8.4 kg/m.
+    /// The parameters printed in the source (E and ā after eq. (3), γ̄ and γ_st after eq. (5), and the
+    /// input data listed for Fig. 2), with the printed γ = 8.4 kg/m.
     pub fn printed() -> Self {
         MineHoist {
             p: MineHoistParams {
@@ -259,7 +263,7 @@ impl MineHoist {
         self.p.young_modulus * self.p.rope_area_factor * self.p.rope_diameter * self.p.rope_diameter
     }
 
-    /// γ = γ̄ γ_st d_k² (l.56), kg/m, when γ̄ and γ_st are given.
+    /// γ = γ̄ γ_st d_k² (text after eq. (5)), kg/m, when γ̄ and γ_st are given.
     pub fn rope_mass_per_metre_formula(&self) -> Option<f64> {
         Some(self.p.rope_mass_factor? * self.p.steel_density? * self.p.rope_diameter.powi(2))
     }
@@ -353,7 +357,8 @@ impl MineHoist {
         ))
     }
 
-    /// m_Σ = J₁/R_b² + J₂/R_s² + m + γ(l₁ + L), kg (l.201, constant over the lift).
+    /// m_Σ = J₁/R_b² + J₂/R_s² + m + γ(l₁ + L), kg (N₀² = m_Σ, the unnumbered formula after (23); constant over
+    /// the lift).
     pub fn total_mass(&self) -> f64 {
         let p = &self.p;
         p.drum_inertia / p.drum_radius.powi(2)
@@ -498,7 +503,8 @@ impl MineHoist {
         Ok(2.0 / g * (-b + under.sqrt()))
     }
 
-    /// The node formula as printed (l.183), with a given drum inertia `j1_prime` (kg m²) in place of J₁:
+    /// The node formula as printed (unnumbered, just before (22)), with a given drum inertia `j1_prime` (kg m²) in
+    /// place of J₁:
     /// l₂ = (2/γ)[−(m + γl₁) + √((m + γl₁)² + γl₁(γl₁/4 + J₁′/R_b² + γL))], m.
     pub fn node_printed_formula(&self, j1_prime: f64) -> f64 {
         let p = &self.p;
@@ -662,13 +668,13 @@ impl DeterministicModel for MineHoist {
     }
 }
 
-/// Rows of the `book` report for `004_d1d782fd2b1ec8bf.txt`. The article prints only parameters (its
+/// Rows of the `book` report for Dvornikov, Kondrakhin & Velebnik (2014). The article prints only parameters (its
 /// results are in Figs. 2 and 3); rows compare the printed numbers that can be recomputed (γ, the range of ξ)
 /// and list the key computed values with `printed = None`.
 pub fn book_rows() -> Vec<BookRow> {
     let h = MineHoist::printed();
     let p = h.params();
-    let ex = "004 single-end mine hoist (printed parameters, gamma = 8.4 kg/m)";
+    let ex = "Dvornikov, Kondrakhin & Velebnik (2014), single-end mine hoist (printed parameters, gamma = 8.4 kg/m)";
     let mut rows = Vec::new();
     let mut push = |q: &str, u: &str, printed: Option<f64>, c: Option<f64>, e: &str| {
         rows.push(BookRow {
@@ -681,14 +687,14 @@ pub fn book_rows() -> Vec<BookRow> {
         })
     };
     push(
-        "gamma = gamma_bar * gamma_st * d_k^2 (l.56)",
+        "gamma = gamma_bar * gamma_st * d_k^2 (text after (5))",
         "kg/m",
         Some(8.4),
         h.rope_mass_per_metre_formula(),
         "printed 8.4 kg/m is not the formula value from the printed 0.491, 7800 kg/m3, 46.5 mm; the model uses 8.4",
     );
     push(
-        "upper end of xi = l2/H (l.154)",
+        "upper end of xi = l2/H (text introducing Fig. 2)",
         "-",
         Some(1.0),
         Some(p.max_hanging_length / p.lift_height),
@@ -696,7 +702,7 @@ pub fn book_rows() -> Vec<BookRow> {
     );
     let fig = "not printed (figure only); key computed value";
     push(
-        "total mass m_Sigma = 1'M1 at l2 = L (l.201)",
+        "total mass m_Sigma = 1'M1 at l2 = L (N0^2 after (23))",
         "kg",
         None,
         h.mass_matrix(p.max_hanging_length).ok().map(|m| m.sum()),
@@ -736,17 +742,17 @@ pub fn book_rows() -> Vec<BookRow> {
         "m",
         None,
         node,
-        "point U of Fig. 2b, no value printed; closed form with J1 (corrected l.183) agrees",
+        "point U of Fig. 2b, no value printed; closed form with J1 (corrected node formula before (22)) agrees",
     );
     push(
         "node l2* (closed form, J1)",
         "m",
         None,
         h.node_closed_form().ok(),
-        "l.183 corrected: J1' replaced by J1",
+        "node formula before (22) corrected: J1' replaced by J1",
     );
     push(
-        "node l2* (printed l.183 with J1' at the node)",
+        "node l2* (printed formula before (22), J1' at the node)",
         "m",
         None,
         node.and_then(|l| h.drum_inertia_with_rope(l).ok())

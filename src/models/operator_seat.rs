@@ -2,9 +2,9 @@
 //! Example 7.2 (seat)).
 //!
 //! # Formula
-//! Operator and seat reduced to one mass m_pr = (5/7) m_operator + m_seat (kg, book line 4067) on the seat
-//! spring c (N/m) and damper b = 2 h m_pr (N s/m; the book gives h in s⁻¹). Base (cab floor) motion u(t);
-//! seat motion z, relative motion y = z − u:
+//! Operator and seat reduced to one mass m_pr = (5/7) m_operator + m_seat (kg; the text introducing Fig. 7.10)
+//! on the seat spring c (N/m) and damper b = 2 h m_pr (N s/m; the book gives h in s⁻¹). Base (cab floor)
+//! motion u(t); seat motion z, relative motion y = z − u:
 //! ```text
 //! m_pr z̈ + b(ż − u̇) + c(z − u) = 0,   ω = √(c/m_pr),   β = h/ω,   ν = λ/ω          (7.37)–(7.41)
 //! ÿ + 2h ẏ + ω² y = −ü = A_u λ² sin λt   for u = A_u sin λt                         (7.38)
@@ -13,7 +13,7 @@
 //! d ≥ 2 A_y (free travel to the stops)                                                 (7.45)
 //! σ_v = Aλ/√2,   σ_a = Aλ²/√2 (RMS of the seat's velocity and acceleration)             (7.46)–(7.49)
 //! ```
-//! **Octave bands** (book 4034–4036): centres 1, 2, 4, 8, 16, 31.5, 63 Hz, edges f_c/√2 … f_c√2. Because
+//! **Octave bands** (the text before Table 7.1): centres 1, 2, 4, 8, 16, 31.5, 63 Hz, edges f_c/√2 … f_c√2. Because
 //! 31.5 ≠ 32 the nominal 16 Hz band [11.31, 22.63] and 31.5 Hz band [22.27, 44.55] overlap by 0.35 Hz; the
 //! rule here: a band's lower edge is max(f_c/√2, upper edge of the band below), and bands are half-open
 //! [lo, hi), so every frequency belongs to at most one band (the 31.5 Hz band is [22.63, 44.55) Hz).
@@ -44,7 +44,7 @@ use std::f64::consts::{PI, SQRT_2};
 use std::path::Path;
 use std::sync::Arc;
 
-/// Octave-band centre frequencies, Hz (book line 4036).
+/// Octave-band centre frequencies, Hz (Sukharev (2012) 7.6, the text before Table 7.1).
 pub const OCTAVE_CENTRES_HZ: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 31.5, 63.0];
 
 /// The octave bands as (centre, lower edge, upper edge), Hz, with the non-overlap rule of the module docs.
@@ -160,10 +160,7 @@ impl SanitaryLimits {
     /// # Errors
     /// [`Error::Io`] if unreadable, otherwise as [`SanitaryLimits::parse`].
     pub fn load(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::fields::read_text_file(path)?;
         Self::parse(&text, path)
     }
 
@@ -172,10 +169,7 @@ impl SanitaryLimits {
     /// # Errors
     /// See the type's `# Errors`.
     pub fn parse(text: &str, path: &Path) -> Result<Self> {
-        let table: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
-            file: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
+        let table: toml::Table = crate::fields::parse_toml(text, path)?;
         let f = Fields::new(path, "", &table);
         f.opt_string("title")?;
         f.opt_string("reference")?;
@@ -508,7 +502,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
     seat.instance()
 }
 
-/// Example 7.2 (seat, book 4146): m_operator = 80 kg, m_seat = 26 kg, c = 6500 N/m, h = 4.22 s⁻¹;
+/// Example 7.2 of Sukharev (2012) 7.6 (seat): m_operator = 80 kg, m_seat = 26 kg, c = 6500 N/m, h = 4.22 s⁻¹;
 /// returns the model, A_u = 0.0035 m and λ = 6π rad/s.
 pub fn example_7_2() -> (OperatorSeat, f64, f64) {
     (
@@ -518,9 +512,9 @@ pub fn example_7_2() -> (OperatorSeat, f64, f64) {
     )
 }
 
-/// Book rows of Example 7.2 (seat): every printed number, and the verdict of line 4188.
+/// Book rows of Example 7.2 (seat): every printed number, and the verdict in the conclusion of the example.
 pub fn book_rows() -> Vec<BookRow> {
-    let ex = "Sukharev 7.6, Example 7.2 (operator seat)";
+    let ex = "Sukharev (2012) 7.6, Example 7.2 (operator seat)";
     let (seat, au, lambda) = example_7_2();
     let r = seat.harmonic(au, lambda).ok();
     let limits = SanitaryLimits::table_7_1().ok();
@@ -629,8 +623,8 @@ pub fn book_rows() -> Vec<BookRow> {
             "1",
             None,
             vel_ratio,
-            "the book (line 4188) says the seat meets the norm; it does not: sigma_v = 0.0259 m/s exceeds 0.0251 m/s \
-             (ratio > 1; with the printed 0.026 > 0.025 too)",
+            "the book (conclusion of Example 7.2) says the seat meets the norm; it does not: \
+             sigma_v = 0.0259 m/s exceeds 0.0251 m/s (ratio > 1; with the printed 0.026 > 0.025 too)",
         ),
         row(
             "sigma_a / acceleration limit (4 Hz)",

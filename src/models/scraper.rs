@@ -306,6 +306,9 @@ fn stiffness_or_frequency(f: &Fields, c_key: &str, w_key: &str, m: f64) -> Resul
         (Some(_), None) => f.quantity(c_key, Dim::STIFFNESS),
         (None, Some(v)) => {
             let w = f.angular_frequency(v, w_key, Dim::FREQUENCY)?;
+            if w <= 0.0 {
+                return Err(f.error(w_key, v, "must be > 0"));
+            }
             Ok(m * w * w)
         }
         (Some(_), Some(_)) => Err(f.error(w_key, "both", format!("give `{c_key}` or `{w_key}`, not both"))),
@@ -320,7 +323,13 @@ fn stiffness_or_frequency(f: &Fields, c_key: &str, w_key: &str, m: f64) -> Resul
 fn damping_or_ratio(f: &Fields, b_key: &str, z_key: &str, m: f64, c: f64) -> Result<f64> {
     match (f.get(b_key), f.get(z_key)) {
         (Some(_), None) => f.quantity(b_key, Dim::DAMPING),
-        (None, Some(_)) => Ok(2.0 * f.number(z_key)? * (c * m).sqrt()),
+        (None, Some(v)) => {
+            let z = f.number(z_key)?;
+            if z < 0.0 {
+                return Err(f.error(z_key, v, "a damping ratio must be >= 0"));
+            }
+            Ok(2.0 * z * (c * m).sqrt())
+        }
         (Some(_), Some(_)) => Err(f.error(z_key, "both", format!("give `{b_key}` or `{z_key}`, not both"))),
         (None, None) => Err(f.error(
             b_key,
@@ -470,10 +479,7 @@ pub fn table_8_1() -> Result<(Vec<f64>, Vec<Table81Row>)> {
 /// # Errors
 /// [`Error::Parse`] or [`Error::File`] naming the key.
 pub fn parse_table_8_1(text: &str, path: &std::path::Path) -> Result<(Vec<f64>, Vec<Table81Row>)> {
-    let table: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
-        file: path.into(),
-        reason: e.to_string(),
-    })?;
+    let table: toml::Table = crate::fields::parse_toml(text, path)?;
     let f = Fields::new(path, "", &table);
     let speeds = f
         .require("speeds")?
@@ -513,7 +519,7 @@ pub fn table_8_1_comparison(assumptions: &Table81Assumptions) -> Result<Vec<Book
     let (rigid, sprung) = assumptions.models()?;
     let (ri, si) = (rigid.instance()?, sprung.instance()?);
     let road = book_road_8_66(assumptions.road_form)?;
-    let example = "Sukharev 8.7, Table 8.1 (scraper, rigid and sprung cab)";
+    let example = "Sukharev (2012) 8.7, Table 8.1 (scraper, rigid and sprung cab)";
     let assumed = assumptions.describe();
     let mut out = Vec::new();
     for (k, &v) in speeds.iter().enumerate() {
@@ -565,7 +571,7 @@ pub fn table_8_1_comparison(assumptions: &Table81Assumptions) -> Result<Vec<Book
 pub fn book_rows() -> Vec<BookRow> {
     table_8_1_comparison(&Table81Assumptions::default()).unwrap_or_else(|e| {
         vec![BookRow {
-            example: "Sukharev 8.7, Table 8.1 (scraper, rigid and sprung cab)".into(),
+            example: "Sukharev (2012) 8.7, Table 8.1 (scraper, rigid and sprung cab)".into(),
             quantity: "Table 8.1".into(),
             unit: "-".into(),
             printed: None,

@@ -1,4 +1,5 @@
-//! Three-mass lifting mechanism at start-up: torsional chain motor – drum – load (source `000_ddd8493b4b098b1f.txt`).
+//! Three-mass lifting mechanism at start-up: torsional chain motor – drum – load (Ofiy & Rakhmaniy (2010); full
+//! citation in [`crate::models`]).
 //!
 //! The article derives the natural frequencies, the static parts and the amplitudes of the two link
 //! moments of a three-mass torsional chain started by a step torque, but prints **no numerical example**;
@@ -16,47 +17,48 @@ use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
 /// Three-mass torsional chain I₁ –c₁– I₂ –c₂– I₃ started by a step torque M_sp on mass 1, with the load
-/// torque M_B on mass 2 (source `000_ddd8493b4b098b1f.txt`).
+/// torque M_B on mass 2 (Ofiy & Rakhmaniy (2010)).
 ///
 /// Units: inertias I₁, I₂, I₃ in kg m², shaft stiffnesses c₁, c₂ in N m/rad, torques in N m, time in s,
 /// angular frequencies in rad/s, link moments M₁₂ = c₁(φ₁ − φ₂), M₂₃ = c₂(φ₂ − φ₃) in N m.
 ///
 /// # Formula
-/// Equations of motion (1) (l.48), with M_B acting on mass 2 as printed:
+/// Equations of motion (1), with M_B acting on mass 2 as printed:
 /// ```text
 /// I₁φ̈₁ = M_sp − c₁(φ₁ − φ₂)
 /// I₂φ̈₂ = c₁(φ₁ − φ₂) − c₂(φ₂ − φ₃) − M_B
 /// I₃φ̈₃ = c₂(φ₂ − φ₃)
 /// ```
-/// Relative coordinates x₁ = φ₁ − φ₂, x₂ = φ₂ − φ₃ (2)–(4) (l.52–62):
+/// Relative coordinates x₁ = φ₁ − φ₂, x₂ = φ₂ − φ₃ (2)–(4):
 /// ```text
 /// ẍ₁ = a₁₁x₁ + a₁₂x₂ + b₁,   ẍ₂ = a₂₁x₁ + a₂₂x₂ + b₂,
 /// a₁₁ = −c₁(1/I₁ + 1/I₂), a₁₂ = c₂/I₂, a₂₁ = c₁/I₂, a₂₂ = −c₂(1/I₂ + 1/I₃),
 /// b₁ = M_sp/I₁ + M_B/I₂,  b₂ = −M_B/I₂
 /// ```
-/// Natural frequencies (16) (l.185–193; the first printed line lacks the ½ in front of the root):
+/// Natural frequencies (16) (the first of the two unnumbered forms printed just before (16) lacks the ½ in front
+/// of the root):
 /// ```text
 /// ω²₁,₂ = ½(c₁/I₁ + (c₁+c₂)/I₂ + c₂/I₃) ∓ ½√[(c₁/I₁ + (c₁−c₂)/I₂ − c₂/I₃)² + 4c₁c₂/I₂²]
 /// ```
 /// — the two non-zero eigenvalues of the free–free chain K = [[c₁,−c₁,0],[−c₁,c₁+c₂,−c₂],[0,−c₂,c₂]],
 /// M = diag(I₁, I₂, I₃); the third eigenvalue is 0 (rigid rotation of the whole chain).
 ///
-/// Static parts (22) (l.261), I = I₁ + I₂ + I₃ (rigid-body acceleration ε = (M_sp − M_B)/I):
+/// Static parts (22), I = I₁ + I₂ + I₃ (rigid-body acceleration ε = (M_sp − M_B)/I):
 /// ```text
 /// D₁₂* = c₁D₁₂ = M_B + (M_sp − M_B)(I₂ + I₃)/I,   D₂₃* = c₂D₂₃ = (M_sp − M_B) I₃/I
 /// ```
-/// Solution with zero initial velocities (14)/(15) (l.169–179):
+/// Solution with zero initial velocities (14)/(15):
 /// x₁ = A₁cos ω₁t + B₁cos ω₂t + D₁₂, x₂ = A₂cos ω₁t + B₂cos ω₂t + D₂₃.
-/// With the initial state x(0) = x₀ (the article: M₁₂(0) = c₁x₁(0) = M_sp, M₂₃(0) = 0, l.203–226),
-/// u = x₀ − D and r = ẍ(0) = a x₀ + b, for each link i:
+/// With the initial state x(0) = x₀ (the article: M₁₂(0) = c₁x₁(0) = M_sp, M₂₃(0) = 0, stated after (16') and
+/// before (17)), u = x₀ − D and r = ẍ(0) = a x₀ + b, for each link i:
 /// ```text
 /// A_i = (r_i + ω₂² u_i)/(ω₂² − ω₁²),   B_i = −(r_i + ω₁² u_i)/(ω₂² − ω₁²)
 /// ```
-/// which for the article's initial state is exactly (20)/(21) (l.251–255):
+/// which for the article's initial state is exactly (20)/(21):
 /// A₁ = [(M_B−M_sp)/I₂ + (M_sp/c₁ − D₁₂)ω₂²]/Δω², B₁ = [(M_sp−M_B)/I₂ − (M_sp/c₁ − D₁₂)ω₁²]/Δω²,
 /// A₂ = [(M_sp−M_B)/I₂ − D₂₃ω₂²]/Δω², B₂ = [(M_B−M_sp)/I₂ + D₂₃ω₁²]/Δω².
 /// Misprints in the intermediate forms: (18) B₂ has M_sp/I₂ for (M_sp−M_B)/I₂; (19) has “/2” for “/I₂”;
-/// (12) l.148 uses ω₁ for ω₂ in the B terms; the remark l.257 that the link-2 amplitudes do not depend on c₂
+/// (12) uses ω₁ for ω₂ in the B terms; the remark after (21) that the link-2 amplitudes do not depend on c₂
 /// is wrong (ω₁, ω₂, D₂₃ depend on c₂).
 ///
 /// # Errors
@@ -126,7 +128,8 @@ fn check_horizon(t_end: f64) -> Result<f64> {
 }
 
 impl ThreeMassHoist {
-    /// Builds the chain with the article's initial state M₁₂(0) = M_sp, M₂₃(0) = 0 (l.203, 226).
+    /// Builds the chain with the article's initial state M₁₂(0) = M_sp, M₂₃(0) = 0 (stated after (16') and
+    /// before (17)).
     ///
     /// # Errors
     /// Inertias and stiffnesses must be finite and > 0; torques finite.
@@ -535,12 +538,13 @@ impl DeterministicModel for ThreeMassHoist {
     }
 }
 
-/// Rows of the `book` report for `000_ddd8493b4b098b1f.txt`. The article prints no numerical example, so
+/// Rows of the `book` report for Ofiy & Rakhmaniy (2010). The article prints no numerical example, so
 /// every row has `printed = None`; the computed values are for the illustrative case
 /// ([`ThreeMassHoist::illustrative`]).
 pub fn book_rows() -> Vec<BookRow> {
     let h = ThreeMassHoist::illustrative();
-    let ex = "000 three-mass hoist (illustrative case I=10/2/50 kg m2, c=1e4/5e3 N m/rad, M_sp=1000, M_B=600 N m)";
+    let ex = "Ofiy & Rakhmaniy (2010), three-mass hoist \
+              (illustrative case I=10/2/50 kg m2, c=1e4/5e3 N m/rad, M_sp=1000, M_B=600 N m)";
     let none = "article prints no numerical example; value for the illustrative case";
     let (w1, w2) = h.natural_frequencies();
     let (d12, d23) = h.static_link_moments();

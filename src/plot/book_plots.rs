@@ -3,8 +3,8 @@
 //!
 //! * Operator seat (Sukharev 7.6): octave-band RMS velocity and acceleration of Example 7.2 (harmonic base
 //!   motion) and of the random `data/operator-seat.toml` scenario, against Table 7.1.
-//! * Mine hoist (`004`): ω₁, ω₂ and the sign-continuous renormalised mode components over ξ = ȳ/H, with the
-//!   nodal point of the cofactor construction marked.
+//! * Mine hoist (Dvornikov, Kondrakhin & Velebnik (2014)): ω₁, ω₂ and the sign-continuous renormalised mode
+//!   components over ξ = ȳ/H, with the nodal point of the cofactor construction marked.
 //! * Balancer bogie (Sukharev 8.5): D_y/D_x over r ∈ [2, 30] cm for ℓ ∈ {40, 60, 80} cm, ℓ₁ = ℓ/2, with the
 //!   criterion (8.50) marked.
 //! * Scraper (Sukharev 8.7): σ of x₁, x₂, cab travel and the finite accelerations over v = 2…20 m/s, sprung
@@ -159,9 +159,9 @@ pub fn seat_pictures(spectra_dir: &Path) -> Result<Vec<BookPicture>> {
     Ok(out)
 }
 
-/// Mine hoist (`004`, printed parameters): ω₁, ω₂ (rad/s) and the sign-continuous renormalised mode
-/// components (drum, sheave, load) over ξ = ȳ/H at `n_points` values ([`MineHoist::sweep`]), with the nodal
-/// point ξ* = (L − l₂*)/H ([`MineHoist::node_closed_form`]) marked on both charts and ω₁ there
+/// Mine hoist (Dvornikov, Kondrakhin & Velebnik (2014), printed parameters): ω₁, ω₂ (rad/s) and the sign-continuous
+/// renormalised mode components (drum, sheave, load) over ξ = ȳ/H at `n_points` values ([`MineHoist::sweep`]), with
+/// the nodal point ξ* = (L − l₂*)/H ([`MineHoist::node_closed_form`]) marked on both charts and ω₁ there
 /// ([`MineHoist::modes`]) as a point. Pictures `mine-hoist-frequencies`, `mine-hoist-modes`.
 ///
 /// # Errors
@@ -195,7 +195,7 @@ pub fn mine_hoist_pictures(n_points: usize) -> Result<Vec<BookPicture>> {
         .collect();
     let comp_refs: Vec<(&str, &[f64])> = comps.iter().map(|(n, v)| (n.as_str(), v.as_slice())).collect();
     let (mut f, mut m) = mine_hoist_charts(
-        "single-end mine hoist, printed parameters (004, Figs. 2a, 2b)",
+        "single-end mine hoist, printed parameters (Dvornikov et al. (2014), Figs. 2a, 2b)",
         &xi,
         &[("ω₁", &w1), ("ω₂", &w2)],
         &comp_refs,

@@ -324,7 +324,7 @@ impl LineChart {
         xs.extend(vlines.iter().map(|m| m.at));
         let x = match self.x_range {
             Some(r) => check_range("x_range", r, lx)?,
-            None => padded(&xs, lx),
+            None => padded(&xs, lx).map_err(|r| plot_error(stem, &r))?,
         };
         // y range
         let mut ys: Vec<f64> = series
@@ -341,7 +341,7 @@ impl LineChart {
                     let floor = top * 10f64.powf(-dec.abs());
                     ys.retain(|v| *v >= floor);
                 }
-                padded(&ys, ly)
+                padded(&ys, ly).map_err(|r| plot_error(stem, &r))?
             }
         };
         let clip = |pts: &mut Vec<(f64, f64)>| pts.retain(|p| p.1 >= y.0 && p.1 <= y.1 && p.0 >= x.0 && p.0 <= x.1);
@@ -358,8 +358,9 @@ impl LineChart {
             let mut v: Vec<f64> = sa.series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).collect();
             v.extend(sa.hlines.iter().map(|m| m.at));
             v.push(0.0);
-            padded(&v, false)
+            padded(&v, false).map_err(|r| plot_error(stem, &r))
         });
+        let y2 = y2.transpose()?;
         Ok(Prepared {
             title: self.title.clone(),
             x_label: self.x_label.clone(),
@@ -453,6 +454,15 @@ impl Histogram {
         };
         let lo = data.iter().cloned().fold(f64::INFINITY, f64::min);
         let hi = data.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        if lo.abs().max(hi.abs()) > MAX_DRAWABLE {
+            return Err(plot_error(
+                "histogram",
+                format!(
+                    "samples reach {:e}, outside the range a picture can draw",
+                    lo.abs().max(hi.abs())
+                ),
+            ));
+        }
         let (lo, hi) = if hi > lo { (lo, hi) } else { (lo - 0.5, hi + 0.5) };
         let w = (hi - lo) / bins as f64;
         let mut counts = vec![0usize; bins];
@@ -638,9 +648,26 @@ fn check_range(name: &str, r: (f64, f64), log: bool) -> Result<(f64, f64)> {
     Ok(r)
 }
 
+/// Largest magnitude a picture draws: beyond it the axis arithmetic (range, padding, ticks) overflows.
+pub const MAX_DRAWABLE: f64 = 1e300;
+
 /// The data range padded by 4 % (of the decades on a log axis); a single value gets a unit-width (linear)
-/// or factor-10 (log) range.
-fn padded(values: &[f64], log: bool) -> (f64, f64) {
+/// or factor-10 (log) range. Refuses values beyond ±[`MAX_DRAWABLE`] (or below 1/MAX_DRAWABLE on a log
+/// axis), whose range cannot be computed, with the reason.
+fn padded(values: &[f64], log: bool) -> std::result::Result<(f64, f64), String> {
+    if let Some(v) = values
+        .iter()
+        .find(|x| x.is_finite() && (x.abs() > MAX_DRAWABLE || (log && **x > 0.0 && **x < 1.0 / MAX_DRAWABLE)))
+    {
+        return Err(format!(
+            "value {v:e} is outside the range a picture can draw (|x| ≤ {MAX_DRAWABLE:e}): the data are damaged or \
+             diverge"
+        ));
+    }
+    Ok(padded_range(values, log))
+}
+
+fn padded_range(values: &[f64], log: bool) -> (f64, f64) {
     let v: Vec<f64> = values
         .iter()
         .cloned()

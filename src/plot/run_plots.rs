@@ -4,7 +4,7 @@
 //! correlation estimate against the model. Everything is read from the file; the charts are built with
 //! [`mc_plots`](super::mc_plots).
 
-use super::chart::{Histogram, LineChart};
+use super::chart::{Histogram, LineChart, Series};
 use super::mc_plots::{correlation_chart, histogram_chart, realizations_chart, welch_chart};
 use crate::error::{Error, Result};
 use crate::estimate::time_correlation;
@@ -176,7 +176,20 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
             unit,
         )?;
         welch.series[0].name = format!("Welch estimate (ν = {})", crate::numbers::num(psd.dof));
-        welch.series[1].name = "analytic density (stored in the file)".into();
+        welch.series[1].name = "continuous-time analytic density".into();
+        if let Some(e) = &psd.expected {
+            let coverage = psd
+                .coverage()
+                .map(|c| format!(", covered at {} of {} resolved bins", c.covered_resolved, c.resolved))
+                .unwrap_or_default();
+            welch.series.push(
+                Series::line(
+                    format!("expected estimate (window ⊛ sampled density{coverage})"),
+                    f.iter().cloned().zip(g(e)).collect(),
+                )
+                .with_color(2),
+            );
+        }
         let (mut realizations, mut histogram, mut correlation) = (None, None, None);
         if meta.store_raw {
             let n = meta.n_samples;

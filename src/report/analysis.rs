@@ -2,7 +2,7 @@
 //! method with its value and its relative difference to the reference.
 
 use crate::error::Result;
-use crate::response::{analyze_output, band_variance, ResponseStatistics};
+use crate::response::{analyze_output_with, band_variance, Outcome, ResponseStatistics};
 use crate::scenario::Scenario;
 use serde::Serialize;
 use std::fmt;
@@ -112,7 +112,7 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
     let sys = sc.model.system.as_ref();
     let mut outputs = Vec::new();
     for &i in &sc.analysis.outputs {
-        let st = analyze_output(sys, &sc.excitation, i)?;
+        let st = analyze_output_with(sys, &sc.excitation, i, &sc.analysis.effort)?;
         let bounds = st.bounds(3.0);
         let (band_sigma, band_note) = match sc.analysis.band {
             None => (None, None),
@@ -178,11 +178,7 @@ impl fmt::Display for AnalysisReport {
             writeln!(f, "  mean          {}", opt(s.mean))?;
             match s.sigma {
                 Some(sig) => writeln!(f, "  sigma         {sig:.6e}")?,
-                None => writeln!(
-                    f,
-                    "  sigma         infinite/undefined: {}",
-                    s.variance_note.as_deref().unwrap_or("")
-                )?,
+                None => writeln!(f, "  sigma         {}", s.variance_outcome.describe())?,
             }
             if let Some(mc) = &o.monte_carlo {
                 match (&mc.sigma, mc.covered) {
@@ -216,12 +212,15 @@ impl fmt::Display for AnalysisReport {
                     _ => {}
                 }
             }
-            writeln!(
-                f,
-                "  ν0+ (zero up-crossings) {} /s   bandwidth ε {}",
-                opt(s.zero_upcrossing_rate),
-                opt(s.bandwidth)
-            )?;
+            match s.rate_note() {
+                None => writeln!(
+                    f,
+                    "  ν0+ (zero up-crossings) {} /s   bandwidth ε {}",
+                    opt(s.zero_upcrossing_rate),
+                    opt(s.bandwidth)
+                )?,
+                Some(why) => writeln!(f, "  ν0+ (zero up-crossings) — ({why})")?,
+            }
             writeln!(
                 f,
                 "  expected largest peak in {} s: {}",
@@ -240,24 +239,43 @@ impl fmt::Display for AnalysisReport {
             }
             writeln!(
                 f,
-                "  {:<16} {:>14} {:>11} {:>11}  note",
+                "  {:<17} {:>14} {:>11} {:>11}  note",
                 "variance method", "value", "error est.", "rel. diff"
             )?;
             for m in &s.methods {
-                let name = serde_json::to_value(m.method)
-                    .ok()
-                    .and_then(|v| v.as_str().map(String::from))
-                    .unwrap_or_default();
+                let (value, error, note) = match &m.outcome {
+                    Outcome::Value { value, error_estimate } => (
+                        format!("{value:.6e}"),
+                        error_estimate.map(|e| format!("{e:.1e}")),
+                        String::new(),
+                    ),
+                    Outcome::Divergent { reason } => ("infinite".into(), None, reason.clone()),
+                    Outcome::NotConverged {
+                        estimate,
+                        error_estimate,
+                        reason,
+                        ..
+                    } => (
+                        format!("~{estimate:.6e}"),
+                        Some(format!("{error_estimate:.1e}")),
+                        format!("not converged: {reason}"),
+                    ),
+                    Outcome::Unreliable { value, reason } => (
+                        format!("({value:.6e})"),
+                        None,
+                        format!("unreliable, not used: {reason}"),
+                    ),
+                    Outcome::NotApplicable { reason } => ("—".into(), None, reason.clone()),
+                    Outcome::Failed { reason } => ("—".into(), None, format!("failed: {reason}")),
+                };
                 writeln!(
                     f,
-                    "  {:<16} {:>14} {:>11} {:>11}  {}",
-                    name,
-                    opt(m.value),
-                    m.error_estimate
-                        .map(|e| format!("{e:.1e}"))
-                        .unwrap_or_else(|| "—".into()),
+                    "  {:<17} {:>14} {:>11} {:>11}  {}",
+                    m.method.name(),
+                    value,
+                    error.unwrap_or_else(|| "—".into()),
                     m.rel_diff.map(|e| format!("{e:.1e}")).unwrap_or_else(|| "—".into()),
-                    m.note.as_deref().unwrap_or("")
+                    note
                 )?;
             }
         }

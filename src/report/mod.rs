@@ -10,5 +10,5 @@ pub mod tables;
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use book::{book_report, BookReport};
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
-pub use spectrum_report::{spectrum_report, SpectrumReport};
+pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
 pub use tables::{deterministic_report, reference_report, TablesReport};

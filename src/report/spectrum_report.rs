@@ -72,8 +72,26 @@ pub struct SpectrumReport {
     pub density: Vec<(f64, f64)>,
 }
 
-/// Builds the report for `file`, with the density written in `convention`.
+/// Where `stochvib spectrum` evaluates the density.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DensityPoints {
+    /// Five points around the spectrum's characteristic frequency (0.1, 0.3, 1, 3, 10 times it).
+    Characteristic,
+    /// Angular frequencies: rad/s for a temporal spectrum, rad/m for a spatial one.
+    Angular(Vec<f64>),
+    /// Cyclic frequencies: Hz for a temporal spectrum, cycles/m for a spatial one.
+    Cyclic(Vec<f64>),
+}
+
+/// Builds the report for `file`, with the density written in `convention` at five characteristic points.
 pub fn spectrum_report(file: &SpectrumFile, convention: Convention) -> SpectrumReport {
+    spectrum_report_at(file, convention, &DensityPoints::Characteristic)
+}
+
+/// Builds the report for `file`, with the density written in `convention` at `points`. The abscissa is
+/// printed in the convention's own unit (Hz or cycles/m for the cyclic convention, rad/s or rad/m
+/// otherwise), whichever unit the points were given in.
+pub fn spectrum_report_at(file: &SpectrumFile, convention: Convention, points: &DensityPoints) -> SpectrumReport {
     let s = file.spectrum.as_ref();
     let variance: Outcome = s.variance().into();
     let quad = numeric::variance(s);
@@ -101,12 +119,14 @@ pub fn spectrum_report(file: &SpectrumFile, convention: Convention) -> SpectrumR
             )
         })
         .collect();
-    let density = [0.1, 0.3, 1.0, 3.0, 10.0]
+    let omegas: Vec<f64> = match points {
+        DensityPoints::Characteristic => [0.1, 0.3, 1.0, 3.0, 10.0].iter().map(|k| k * wc).collect(),
+        DensityPoints::Angular(w) => w.clone(),
+        DensityPoints::Cyclic(f) => f.iter().map(|f| 2.0 * std::f64::consts::PI * f).collect(),
+    };
+    let density = omegas
         .iter()
-        .map(|k| {
-            let w = k * wc;
-            convention.from_canonical(w, s.density(w))
-        })
+        .map(|&w| convention.from_canonical(w, s.density(w)))
         .collect();
     let abscissa_unit = if convention.is_cyclic() {
         s.domain().cyclic_unit()

@@ -7,16 +7,27 @@
 //! S_y(ω) = H(iω) S_u(ω) H(iω)ᴴ,      D_y = ∫ S_y dω,      λ_k = ∫ |ω|^k S_y dω,      M_y = H(0) M_u
 //! ```
 
+mod delayed;
+mod delayed_quadrature;
 mod density;
 mod excitation;
+mod outcome;
 mod statistics;
 mod variance;
 
+pub use delayed::{delayed_augmented_system, variance_lyapunov_delayed, DelayedAugmentedSystem, DelayedCovariance};
+pub use delayed_quadrature::{
+    moments_oscillatory, spectral_moment_oscillatory, variance_oscillatory, OscillatoryMoments,
+};
 pub use density::OutputDensity;
 pub use excitation::Excitation;
-pub use statistics::{analyze_output, ResponseStatistics, VarianceMethod, VarianceValue};
+pub use outcome::Outcome;
+pub use statistics::{
+    analyze_output, analyze_output_with, ResponseStatistics, VarianceMethod, VarianceValue, TABLE_AGREEMENT,
+};
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{
     band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,
-    variance_integral_table, variance_lyapunov, variance_quadrature, LyapunovMoments,
+    spectral_moment_quadrature_with, variance_integral_table, variance_lyapunov, variance_quadrature, LyapunovMoments,
+    INTEGRAL_TABLE_MAX_ERROR,
 };

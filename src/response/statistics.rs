@@ -1,23 +1,50 @@
 //! Per-output statistics: mean, the variance by every applicable method with their agreement, 3σ bounds,
-//! spectral moments, Rice crossing rates, exceedance probabilities and expected peaks.
+//! spectral moments, Rice crossing rates, exceedance probabilities and expected peaks. Every quantity that
+//! has no value says why ([`Outcome`]): infinite, not converged, not applicable, or unreliable.
 
-use super::variance::{spectral_moment_quadrature, variance_integral_table, variance_lyapunov, variance_quadrature};
+use super::delayed::variance_lyapunov_delayed;
+use super::delayed_quadrature::moments_oscillatory;
+use super::outcome::Outcome;
+use super::variance::{spectral_moment_quadrature_with, variance_integral_table, variance_lyapunov, LyapunovMoments};
 use super::Excitation;
 use crate::error::{Error, Result};
+use crate::quad::QuadResult;
+use crate::quad_oscillatory::OscillatoryOptions;
 use crate::system::FrequencyResponse;
 use serde::Serialize;
 use std::f64::consts::PI;
+
+/// Largest relative difference between the integral table and an exact Lyapunov route before the table's
+/// value is reported as unreliable (both are exact in exact arithmetic; the table's Hurwitz elimination is
+/// the less well-conditioned of the two).
+pub const TABLE_AGREEMENT: f64 = 1e-8;
 
 /// A variance method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum VarianceMethod {
-    /// Lyapunov equation of the system augmented with the input shaping filters (exact).
+    /// Lyapunov equation of the system augmented with the input shaping filters (exact; delay-free inputs).
     Lyapunov,
+    /// Covariance of the augmented system at the lags between delayed inputs (exact; rational inputs).
+    #[serde(rename = "lyapunov (delays)")]
+    LyapunovDelays,
     /// Closed-form integral table I_n (exact).
     IntegralTable,
-    /// Adaptive Gauss–Kronrod quadrature of S_y (any input, delays; with an error estimate).
+    /// Adaptive Gauss–Kronrod quadrature of S_y, with Fourier-weighted tails for delayed inputs (any
+    /// input; with an error estimate).
     Quadrature,
+}
+
+impl VarianceMethod {
+    /// The name printed in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            VarianceMethod::Lyapunov => "lyapunov",
+            VarianceMethod::LyapunovDelays => "lyapunov (delays)",
+            VarianceMethod::IntegralTable => "integral-table",
+            VarianceMethod::Quadrature => "quadrature",
+        }
+    }
 }
 
 /// One method's answer for the variance.
@@ -25,14 +52,17 @@ pub enum VarianceMethod {
 pub struct VarianceValue {
     /// The method.
     pub method: VarianceMethod,
-    /// Variance, when the method applies and the variance is finite.
-    pub value: Option<f64>,
-    /// Absolute error estimate (quadrature only).
-    pub error_estimate: Option<f64>,
+    /// Its outcome.
+    pub outcome: Outcome,
     /// Relative difference to the reference variance.
     pub rel_diff: Option<f64>,
-    /// Why there is no value (not applicable, or divergent).
-    pub note: Option<String>,
+}
+
+impl VarianceValue {
+    /// The method's value, when it has a usable one.
+    pub fn value(&self) -> Option<f64> {
+        self.outcome.value()
+    }
 }
 
 /// Statistics of one output.
@@ -46,95 +76,188 @@ pub struct ResponseStatistics {
     pub mean: Option<f64>,
     /// Every method's variance.
     pub methods: Vec<VarianceValue>,
-    /// Reference variance (Lyapunov, else table, else quadrature).
+    /// Reference variance (the first exact route with a value, else quadrature).
     pub variance: Option<f64>,
-    /// Why the variance is infinite or unavailable.
-    pub variance_note: Option<String>,
+    /// Why the variance is what it is (a value, infinite, not converged, not available).
+    pub variance_outcome: Outcome,
     /// σ_y.
     pub sigma: Option<f64>,
     /// λ₂ = ∫ω² S_y dω (variance of the derivative).
     pub lambda2: Option<f64>,
+    /// How λ₂ came out.
+    pub lambda2_outcome: Outcome,
     /// λ₄ = ∫ω⁴ S_y dω.
     pub lambda4: Option<f64>,
+    /// How λ₄ came out.
+    pub lambda4_outcome: Outcome,
     /// Zero (mean-level) up-crossing rate ν₀⁺ = (1/2π)√(λ₂/λ₀), per second (per metre for a spatial system).
     pub zero_upcrossing_rate: Option<f64>,
     /// Bandwidth parameter ε = √(1 − λ₂²/(λ₀λ₄)) (0 narrow-band, 1 broad-band).
     pub bandwidth: Option<f64>,
 }
 
-/// Analyses output `i` of `sys` under `exc` by every applicable method.
+/// Analyses output `i` of `sys` under `exc` by every applicable method, with the default quadrature effort.
 ///
 /// # Errors
-/// Only for a mismatch between the excitation and the system or an output index out of range; divergent
-/// or inapplicable methods are reported inside the statistics.
+/// Only for a mismatch between the excitation and the system or an output index out of range; divergent,
+/// unconverged or inapplicable methods are reported inside the statistics.
 pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<ResponseStatistics> {
-    let quad = variance_quadrature(sys, exc, i);
-    if let Err(e @ Error::InvalidParameter { .. }) = &quad {
-        return Err(Error::invalid("system/excitation", "", e.to_string()));
+    analyze_output_with(sys, exc, i, &OscillatoryOptions::default())
+}
+
+fn quad_outcome(r: &Result<QuadResult>, effort: &OscillatoryOptions) -> Outcome {
+    match r {
+        Ok(q) => Outcome::Value {
+            value: q.value,
+            error_estimate: Some(q.abs_error),
+        },
+        Err(e) => Outcome::from_error(e, effort),
+    }
+}
+
+fn moment_outcome(r: &Result<f64>, effort: &OscillatoryOptions) -> Outcome {
+    Outcome::from_result(r, None, effort)
+}
+
+/// [`analyze_output`] with the tolerance and limits of `effort` for the quadratures.
+///
+/// # Formula
+/// Delay-free inputs: Lyapunov, integral table and adaptive quadrature of S_y. Inputs that are delayed
+/// copies of one process (wheels on a track): the exact covariance of the delayed augmented system
+/// ("lyapunov (delays)", rational inputs) and the quadrature with Fourier-weighted tails
+/// ([`moments_oscillatory`]); λ₂ and λ₄ come from the exact route where it applies, else from quadrature.
+/// A divergence found by any method is the answer (never a finite number for it); the integral table is
+/// reported unreliable where it disagrees with an exact Lyapunov route by more than [`TABLE_AGREEMENT`].
+///
+/// # Errors
+/// As [`analyze_output`].
+pub fn analyze_output_with(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    i: usize,
+    effort: &OscillatoryOptions,
+) -> Result<ResponseStatistics> {
+    super::variance::check_shapes(sys, exc, i)?;
+    if let Some(ss) = sys.state_space() {
+        ss.require_stable()
+            .map_err(|e| Error::invalid("system/excitation", "", e.to_string()))?;
     }
     let info = sys.outputs()[i].clone();
-    let lyap = variance_lyapunov(sys, exc, i);
+    let delayed = !exc.delay_free();
+    // the exact route: Lyapunov (delay-free) or its delayed form
+    let (exact_method, exact): (VarianceMethod, Result<LyapunovMoments>) = if delayed {
+        (VarianceMethod::LyapunovDelays, variance_lyapunov_delayed(sys, exc, i))
+    } else {
+        (VarianceMethod::Lyapunov, variance_lyapunov(sys, exc, i))
+    };
     let table = variance_integral_table(sys, exc, i, 0);
-    let note = |e: &Error| Some(e.to_string());
-    let mut methods = vec![
-        VarianceValue {
+    // quadrature of the three moments (the plain rule, or Fourier-weighted tails for delays)
+    let (q0, q2, q4) = if delayed {
+        let m = moments_oscillatory(sys, exc, i, effort);
+        (m.variance, m.lambda2, m.lambda4)
+    } else {
+        (
+            spectral_moment_quadrature_with(sys, exc, i, 0, effort),
+            spectral_moment_quadrature_with(sys, exc, i, 2, effort),
+            spectral_moment_quadrature_with(sys, exc, i, 4, effort),
+        )
+    };
+    let exact_outcome = match &exact {
+        Ok(m) => Outcome::Value {
+            value: m.variance,
+            error_estimate: None,
+        },
+        Err(e) => Outcome::from_error(e, effort),
+    };
+    let mut methods = Vec::new();
+    if delayed {
+        methods.push(VarianceValue {
             method: VarianceMethod::Lyapunov,
-            value: lyap.as_ref().ok().map(|m| m.variance),
-            error_estimate: None,
+            outcome: Outcome::NotApplicable {
+                reason: "the inputs are delayed copies of one process; see lyapunov (delays)".into(),
+            },
             rel_diff: None,
-            note: lyap.as_ref().err().and_then(note),
-        },
-        VarianceValue {
-            method: VarianceMethod::IntegralTable,
-            value: table.as_ref().ok().copied(),
-            error_estimate: None,
-            rel_diff: None,
-            note: table.as_ref().err().and_then(note),
-        },
-        VarianceValue {
-            method: VarianceMethod::Quadrature,
-            value: quad.as_ref().ok().map(|q| q.value),
-            error_estimate: quad.as_ref().ok().map(|q| q.abs_error),
-            rel_diff: None,
-            note: quad.as_ref().err().and_then(note),
-        },
-    ];
-    let reference = methods.iter().find_map(|m| m.value);
+        });
+    }
+    methods.push(VarianceValue {
+        method: exact_method,
+        outcome: exact_outcome.clone(),
+        rel_diff: None,
+    });
+    let mut table_outcome = moment_outcome(&table, effort);
+    if let (Some(t), Some(x)) = (table_outcome.value(), exact_outcome.value()) {
+        let d = crate::numbers::rel_diff(t, x);
+        if d > TABLE_AGREEMENT {
+            table_outcome = Outcome::Unreliable {
+                value: t,
+                reason: format!(
+                    "differs from the Lyapunov value by {d:.1e} relative (both are exact in exact arithmetic; the \
+                     table's Hurwitz elimination lost accuracy)"
+                ),
+            };
+        }
+    }
+    methods.push(VarianceValue {
+        method: VarianceMethod::IntegralTable,
+        outcome: table_outcome,
+        rel_diff: None,
+    });
+    methods.push(VarianceValue {
+        method: VarianceMethod::Quadrature,
+        outcome: quad_outcome(&q0, effort),
+        rel_diff: None,
+    });
+    let reference = methods.iter().find_map(|m| m.value());
     for m in &mut methods {
-        if let (Some(v), Some(r)) = (m.value, reference) {
+        if let (Some(v), Some(r)) = (m.value(), reference) {
             m.rel_diff = Some(crate::numbers::rel_diff(v, r));
         }
     }
     // A divergence found by any method is the answer: never report a finite number for it.
-    let divergence = [&quad.as_ref().err(), &lyap.as_ref().err(), &table.as_ref().err()]
-        .into_iter()
-        .flatten()
-        .find(|e| matches!(e, Error::Divergent { .. }))
-        .map(|e| e.to_string());
-    let (variance, variance_note) = match divergence {
-        Some(d) => (None, Some(d)),
-        None => (
-            reference,
-            if reference.is_none() {
-                quad.as_ref().err().and_then(note)
-            } else {
-                None
+    let variance_outcome = match methods.iter().find(|m| m.outcome.is_divergent()) {
+        Some(m) => m.outcome.clone(),
+        None => match reference {
+            Some(v) => Outcome::Value {
+                value: v,
+                error_estimate: None,
             },
-        ),
+            // no value: the quadrature says best why (not converged, not applicable); else the exact route
+            None => [&methods[methods.len() - 1].outcome, &exact_outcome]
+                .into_iter()
+                .find(|o| matches!(o, Outcome::NotConverged { .. }))
+                .unwrap_or(&methods[methods.len() - 1].outcome)
+                .clone(),
+        },
     };
+    let variance = variance_outcome.value();
     let mean = sys.static_gain().map(|g| {
         let mu = exc.means();
         (0..g.ncols()).map(|j| g[(i, j)] * mu[j]).sum::<f64>()
     });
-    let (lambda2, lambda4) = match &lyap {
-        Ok(m) => (m.lambda2.as_ref().ok().copied(), m.lambda4.as_ref().ok().copied()),
-        Err(_) => (
-            spectral_moment_quadrature(sys, exc, i, 2).ok().map(|q| q.value),
-            spectral_moment_quadrature(sys, exc, i, 4).ok().map(|q| q.value),
-        ),
+    // moments: the exact route where it applies, else quadrature
+    let moment = |from_exact: Option<&Result<f64>>, quad: &Result<QuadResult>| -> Outcome {
+        match from_exact {
+            Some(r) => moment_outcome(r, effort),
+            None => quad_outcome(quad, effort),
+        }
     };
-    let lambda2 = variance.and(lambda2);
-    let lambda4 = lambda2.and(lambda4);
+    let (l2o, l4o) = match &exact {
+        Ok(m) => (moment(Some(&m.lambda2), &q2), moment(Some(&m.lambda4), &q4)),
+        Err(_) => (moment(None, &q2), moment(None, &q4)),
+    };
+    // a moment is meaningful only with a finite variance; λ₄ only with λ₂
+    let not_without = |what: &str, o: Outcome, base: &Outcome| -> Outcome {
+        if base.value().is_some() {
+            o
+        } else {
+            Outcome::NotApplicable {
+                reason: format!("{what} needs a finite {}", if what == "λ₄" { "λ₂" } else { "variance" }),
+            }
+        }
+    };
+    let lambda2_outcome = not_without("λ₂", l2o, &variance_outcome);
+    let lambda4_outcome = not_without("λ₄", l4o, &lambda2_outcome);
+    let (lambda2, lambda4) = (lambda2_outcome.value(), lambda4_outcome.value());
     let zero_upcrossing_rate = match (variance, lambda2) {
         (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * PI)),
         _ => None,
@@ -149,10 +272,12 @@ pub fn analyze_output(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -
         mean,
         methods,
         variance,
-        variance_note,
+        variance_outcome,
         sigma: variance.map(f64::sqrt),
         lambda2,
+        lambda2_outcome,
         lambda4,
+        lambda4_outcome,
         zero_upcrossing_rate,
         bandwidth,
     })
@@ -185,5 +310,16 @@ impl ResponseStatistics {
         }
         let r = (2.0 * n.ln()).sqrt();
         Some(self.mean? + self.sigma? * (r + 0.577_215_664_901_532_9 / r))
+    }
+
+    /// Why ν₀⁺ (and with it the level rates and the expected peak) is missing, if it is.
+    pub fn rate_note(&self) -> Option<String> {
+        if self.zero_upcrossing_rate.is_some() {
+            return None;
+        }
+        Some(match (&self.variance_outcome, &self.lambda2_outcome) {
+            (v, _) if v.value().is_none() => format!("variance {}", v.describe()),
+            (_, l2) => format!("λ₂ {}", l2.describe()),
+        })
     }
 }

@@ -2,15 +2,15 @@
 
 use super::{Excitation, OutputDensity};
 use crate::error::{Error, Result};
-use crate::linalg::{h2_integral, poly, solve_continuous_lyapunov};
+use crate::linalg::integral_table::h2_integral_conditioned;
+use crate::linalg::transfer::scaled_transfer_polynomials;
+use crate::linalg::{poly, solve_continuous_lyapunov};
 use crate::quad::{integrate, QuadOptions, QuadResult};
+use crate::quad_oscillatory::OscillatoryOptions;
 use crate::spectrum::{Asymptote, ShapingFilter};
 use crate::system::{FrequencyResponse, StateSpace, TransferFunction};
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
-
-/// Relative tolerance requested from quadrature of output densities.
-pub const REL_TOL: f64 = 1e-10;
 
 /// Two-sided density S_y(ω) of output `i`: the plain dense reference (the system's full H(iω), then
 /// H S_u Hᴴ for row `i`). For many ω use [`OutputDensity`], which computes the same up to rounding
@@ -190,6 +190,7 @@ fn moment_integral(
     k: u32,
     w1: f64,
     w2: f64,
+    effort: &OscillatoryOptions,
 ) -> Result<QuadResult> {
     let (lo, hi) = exc.support();
     let (a, b) = (w1.max(lo), w2.min(hi));
@@ -201,9 +202,10 @@ fn moment_integral(
         });
     }
     let opts = QuadOptions {
-        rel_tol: REL_TOL,
+        rel_tol: effort.rel_tol,
+        abs_tol: effort.abs_tol,
+        max_subintervals: effort.max_subintervals,
         breakpoints: breakpoints(sys, exc),
-        ..QuadOptions::default()
     };
     let density = OutputDensity::new(sys, exc, i)?;
     let r = integrate(|w| w.powi(k as i32) * density.density(w), a, b, &opts).map_err(|e| match e {
@@ -247,9 +249,23 @@ pub fn spectral_moment_quadrature(
     i: usize,
     k: u32,
 ) -> Result<QuadResult> {
+    spectral_moment_quadrature_with(sys, exc, i, k, &OscillatoryOptions::default())
+}
+
+/// [`spectral_moment_quadrature`] with the tolerance and the subinterval limit of `effort`.
+///
+/// # Errors
+/// As [`variance_quadrature`]; [`Error::Quadrature`] names the options that raise the effort.
+pub fn spectral_moment_quadrature_with(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    i: usize,
+    k: u32,
+    effort: &OscillatoryOptions,
+) -> Result<QuadResult> {
     check_io(sys, exc, i)?;
     check_moment(sys, exc, i, k)?;
-    moment_integral(sys, exc, i, k, 0.0, f64::INFINITY)
+    moment_integral(sys, exc, i, k, 0.0, f64::INFINITY, effort)
 }
 
 /// Band-limited variance 2∫_{ω₁}^{ω₂} S_y dω of output `i` (rad/s), finite whenever the band is finite.
@@ -275,7 +291,7 @@ pub fn band_variance(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, w1
             }
         }
     }
-    moment_integral(sys, exc, i, 0, w1, w2)
+    moment_integral(sys, exc, i, 0, w1, w2, &OscillatoryOptions::default())
 }
 
 /// Checks that `exc` drives every input of `sys`, that output `i` exists and that the system is stable.
@@ -306,6 +322,10 @@ pub(crate) fn check_shapes(sys: &dyn FrequencyResponse, exc: &Excitation, i: usi
     }
     Ok(())
 }
+
+/// Largest relative error the integral table may carry before its value is reported as unreliable
+/// (estimated from the pivots of its Hurwitz elimination).
+pub const INTEGRAL_TABLE_MAX_ERROR: f64 = 1e-9;
 
 /// Exact variance and higher moments from the Lyapunov equation of the system augmented with the input
 /// shaping filters.
@@ -483,20 +503,6 @@ fn white_divergence(name: &str, k: u32) -> Error {
     }
 }
 
-/// Characteristic polynomial det(sI − A), ascending coefficients, by the Faddeev–LeVerrier recursion
-/// (exact arithmetic in principle; adequate for the n ≤ 7 of the integral table).
-fn char_poly(a: &DMatrix<f64>) -> Vec<f64> {
-    let n = a.nrows();
-    let mut c = vec![0.0; n + 1];
-    c[n] = 1.0;
-    let mut m = DMatrix::<f64>::zeros(n, n);
-    for k in 1..=n {
-        m = a * &m + DMatrix::identity(n, n) * c[n + 1 - k];
-        c[n - k] = -(a * &m).trace() / k as f64;
-    }
-    c
-}
-
 /// Variance (k = 0) or spectral moment λ_k (k = 2, 4) of output `i` by the closed-form integral table
 /// I_n applied to the rational integrand |s^{k/2} H(s) F(s)|²/(2π) of a single delay-free rational input.
 ///
@@ -509,47 +515,60 @@ fn char_poly(a: &DMatrix<f64>) -> Vec<f64> {
 /// [`Error::Divergent`] when the integrand does not decay.
 pub fn variance_integral_table(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: u32) -> Result<f64> {
     check_io(sys, exc, i)?;
-    let Excitation::Track { gains, .. } = exc else {
-        return Err(Error::NotApplicable {
-            method: "integral-table variance".into(),
-            reason: "several independent inputs: the table handles one rational input".into(),
-        });
-    };
-    if !exc.delay_free() {
-        return Err(Error::NotApplicable {
-            method: "integral-table variance".into(),
-            reason: "pure delays make the integrand non-rational; use quadrature".into(),
-        });
-    }
-    let ss = sys.state_space().ok_or_else(|| Error::NotApplicable {
+    let not_applicable = |reason: String| Error::NotApplicable {
         method: "integral-table variance".into(),
-        reason: "the system has no finite state-space form".into(),
-    })?;
-    // stability was checked by check_io (A's eigenvalues once per call)
-    let f = &filters(exc)?[0];
-    let s1 = ss.combine_inputs(gains)?.select_outputs(&[i])?;
-    let delta = char_poly(&s1.a);
-    let bc = &s1.b * &s1.c;
-    let n_part = poly::sub(&char_poly(&(&s1.a - bc)), &delta);
-    let fb = poly::mul(&[s1.d[(0, 0)], s1.e[(0, 0)]], &delta);
-    let mut num = poly::add(&n_part, &fb);
-    num = poly::mul(&num, &f.num);
-    for _ in 0..k / 2 {
-        num = poly::mul(&num, &[0.0, 1.0]);
+        reason,
+    };
+    if !matches!(exc, Excitation::Track { .. }) {
+        return Err(not_applicable(
+            "several independent inputs: the table handles one rational input".into(),
+        ));
     }
-    let den = poly::mul(&delta, &f.den);
-    if poly::trim(&den).len() > 8 {
-        return Err(Error::NotApplicable {
-            method: "integral-table variance".into(),
-            reason: format!("order {} exceeds the table's n ≤ 7", poly::trim(&den).len() - 1),
-        });
+    if !exc.delay_free() {
+        return Err(not_applicable(
+            "pure delays make the integrand non-rational; use quadrature".into(),
+        ));
+    }
+    let ss = sys
+        .state_space()
+        .ok_or_else(|| not_applicable("the system has no finite state-space form".into()))?;
+    // stability was checked by check_io (A's eigenvalues once per call)
+    let aug = augmented_system(ss, exc, i)?;
+    let name = &sys.outputs()[i].name;
+    if aug.f.amax() > 0.0 {
+        return Err(white_divergence(name, 0));
+    }
+    let n = aug.a.nrows();
+    if n > 7 {
+        return Err(not_applicable(format!("order {n} exceeds the table's n ≤ 7")));
+    }
+    if aug.g.ncols() != 1 {
+        return Err(not_applicable("one input process is needed".into()));
+    }
+    let (num, den, ws) = scaled_transfer_polynomials(&aug.a, &aug.g, &aug.h, 0.0)?;
+    let mut num = num;
+    for _ in 0..k / 2 {
+        num.insert(0, 0.0);
     }
     let num = poly::trim(&num);
     if num.is_empty() {
         return Ok(0.0);
     }
-    h2_integral(&num, &den).map(|v| v / (2.0 * PI)).map_err(|e| match e {
-        Error::Divergent { .. } => white_divergence(&sys.outputs()[i].name, k),
+    let (v, ratio) = h2_integral_conditioned(&num, &den).map_err(|e| match e {
+        Error::Divergent { .. } => white_divergence(name, k),
         e => e,
-    })
+    })?;
+    let value = v * ws.powi(k as i32 + 1) / (2.0 * PI);
+    let err = ratio * n as f64 * f64::EPSILON;
+    if err > INTEGRAL_TABLE_MAX_ERROR {
+        return Err(Error::Inaccurate {
+            method: "integral-table variance".into(),
+            value,
+            reason: format!(
+                "its Hurwitz elimination is ill-conditioned here (pivot ratio {ratio:.1e}, relative error up to \
+                 ~{err:.0e}); trust the Lyapunov or quadrature value"
+            ),
+        });
+    }
+    Ok(value)
 }

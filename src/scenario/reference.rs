@@ -36,10 +36,7 @@ impl ReferenceTable {
     /// # Errors
     /// [`Error::Parse`], an unknown `reference` kind, or the table parser's [`Error::File`].
     pub fn parse(text: &str, path: &Path) -> Result<Self> {
-        let root: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
-            file: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
+        let root: toml::Table = crate::fields::parse_toml(text, path)?;
         let get = |k: &str| root.get(k).and_then(|v| v.as_str()).unwrap_or("").to_string();
         let reference = get("reference");
         let tables = match reference.as_str() {

@@ -40,10 +40,11 @@ use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::models::results::DeterministicModel;
 use crate::models::{InputLayout, ModelInstance};
+use crate::quad_oscillatory::OscillatoryOptions;
 use crate::response::Excitation;
 use crate::simulate::{RunInput, RunOptions, RunSummary};
 use crate::spectrum::{AtSpeed, Domain, Spectrum};
-use crate::store::Signal;
+use crate::store::{Provenance, Signal};
 use crate::units::Dim;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -59,6 +60,9 @@ pub struct AnalysisOptions {
     pub duration: f64,
     /// (output index, levels in the output's SI unit).
     pub levels: Vec<(usize, Vec<f64>)>,
+    /// Tolerance and limits of the quadratures (`[analysis.quadrature]`: `rel_tol`, `max_subintervals`,
+    /// `max_half_periods`).
+    pub effort: OscillatoryOptions,
 }
 
 /// The random input of a scenario as written: the process, its unit and where it came from.
@@ -126,15 +130,30 @@ impl Scenario {
     }
 
     /// The subject of a Monte Carlo run of this scenario: its system, excitation, the outputs of
-    /// `[analysis]`, the input signals, and the scenario text as provenance.
+    /// `[analysis]`, the input signals, the scenario text, and what else the run was resolved from — the
+    /// spectrum file's text and origin, the model with its parameters, the excitation — so that a resume
+    /// never mixes a changed spectrum or model into an old run.
     pub fn run_input(&self) -> RunInput<'_> {
-        RunInput::new(
+        let mut input = RunInput::new(
             self.model.system.as_ref(),
             &self.excitation,
             self.analysis.outputs.clone(),
             self.input_signals(),
             self.text.clone(),
-        )
+        );
+        input.provenance.extend([
+            Provenance::identity("spectrum", self.input.spectrum_text.clone()),
+            Provenance::identity("model", self.model.description.clone()),
+            Provenance::note(
+                "spectrum_origin",
+                serde_json::to_string(&self.input.origin).unwrap_or_default(),
+            ),
+        ]);
+        input.source_files.push(self.path.clone());
+        if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &self.input.origin {
+            input.source_files.push(file.clone());
+        }
+        input
     }
 
     /// Runs a Monte Carlo batch of this scenario into the HDF5 file `out` ([`crate::simulate::run()`]).
@@ -173,10 +192,7 @@ pub enum Document {
 }
 
 fn read(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    crate::fields::read_text_file(path)
 }
 
 /// Loads any file of `data/` (see the module docs); spectra named by catalogue name are looked up in
@@ -193,10 +209,7 @@ pub fn load_document(path: &Path, spectra_dir: &Path) -> Result<Document> {
 /// # Errors
 /// As [`load_document`].
 pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Document> {
-    let root: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
-        file: path.to_path_buf(),
-        reason: e.to_string(),
-    })?;
+    let root: toml::Table = crate::fields::parse_toml(text, path)?;
     if root.contains_key("reference") && !root.contains_key("model") {
         return ReferenceTable::parse(text, path).map(Document::Reference);
     }
@@ -242,6 +255,7 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
         }
         BuiltModel::Stochastic(m) => m,
     };
+    check_model(&f, &kind, &model)?;
     let inf = f.sub("input")?;
     let _ = inf.get("speed");
     let base = path.parent();
@@ -282,12 +296,10 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
         }
     };
     // the mean is in the input process's own unit: a number (SI) or a quantity string of any dimension
+    // the mean is in the input process's own unit: a number (SI) or a quantity of that dimension
     let mean = match inf.get("mean") {
         None => 0.0,
-        Some(v @ toml::Value::String(s)) => crate::units::parse_quantity(s)
-            .map(|q| q.0)
-            .map_err(|e| inf.error("mean", v, e.to_string()))?,
-        Some(_) => inf.number("mean")?,
+        Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
     };
     inf.finish()?;
 
@@ -330,6 +342,56 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
         excitation,
         analysis,
     })))
+}
+
+/// Output names unique, and the system asymptotically stable (a stationary response exists), else an error
+/// naming the file and the `[model]` table.
+fn check_model(f: &Fields, kind: &str, model: &ModelInstance) -> Result<()> {
+    let outs = model.system.outputs();
+    if let Some(k) = (1..outs.len()).find(|&k| outs[..k].iter().any(|o| o.name == outs[k].name)) {
+        return Err(f.error(
+            "model.output",
+            &outs[k].name,
+            "two outputs have this name: every output needs its own name",
+        ));
+    }
+    if let Some(ss) = model.system.state_space() {
+        ss.require_stable().map_err(|e| {
+            let reason = match e {
+                Error::InvalidParameter { value, reason, .. } => format!("{reason} ({value})"),
+                other => other.to_string(),
+            };
+            f.error(
+                "model",
+                kind,
+                format!("{reason}: check the stiffnesses, dampings and masses (or poles) of the model"),
+            )
+        })?;
+    }
+    Ok(())
+}
+
+/// A value in the unit `unit` (of a process or an output): a plain number is taken as SI in that unit, a
+/// string must carry a unit of the same dimension; NaN and infinities are refused.
+fn quantity_in_unit(f: &Fields, key: &str, v: &toml::Value, unit: &str, what: &str) -> Result<f64> {
+    let x = match (v, crate::units::unit_dim(unit)) {
+        (toml::Value::String(_), Some(dim)) => crate::units::parse_value(v, dim)
+            .map_err(|reason| f.error(key, v, format!("{reason} ({what} is in {unit})")))?,
+        (toml::Value::String(_), None) => {
+            return Err(f.error(
+                key,
+                v,
+                format!(
+                    "{what} is in `{unit}`, which has no dimension to check a unit against: write a plain SI number"
+                ),
+            ))
+        }
+        (toml::Value::Float(_) | toml::Value::Integer(_), _) => {
+            crate::units::parse_value(v, crate::units::Dim::DIMENSIONLESS).map_err(|reason| f.error(key, v, reason))?
+        }
+        _ => return Err(f.error(key, v, format!("expected a number or a quantity in {unit}"))),
+    };
+    Ok(x)
 }
 
 /// The reason of a failed spectrum resolution, without repeating the reference (the key error names it).
@@ -425,13 +487,28 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
             let arr = v
                 .as_array()
                 .ok_or_else(|| f.error("outputs", v, "expected an array of output names"))?;
-            arr.iter()
+            if arr.is_empty() {
+                return Err(f.error(
+                    "outputs",
+                    v,
+                    format!(
+                        "names no output: leave the key out for every output ({})",
+                        names.join(", ")
+                    ),
+                ));
+            }
+            let idx = arr
+                .iter()
                 .map(|x| {
                     x.as_str()
                         .ok_or_else(|| f.error("outputs", x, "expected a string"))
                         .and_then(|n| find("outputs", n))
                 })
-                .collect::<Result<Vec<_>>>()?
+                .collect::<Result<Vec<_>>>()?;
+            if let Some(k) = (1..idx.len()).find(|&k| idx[..k].contains(&idx[k])) {
+                return Err(f.error("outputs", v, format!("names `{}` twice", names[idx[k]])));
+            }
+            idx
         }
     };
     let band = match f.get("band") {
@@ -459,30 +536,51 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
             .as_table()
             .ok_or_else(|| f.error("levels", v, "expected a table: output name = [levels]"))?;
         for (name, lv) in t {
-            let i = find(&format!("levels.{name}"), name)?;
-            let arr = lv
-                .as_array()
-                .ok_or_else(|| f.error(&format!("levels.{name}"), lv, "expected an array"))?;
-            let mut vals = Vec::new();
-            for x in arr {
-                let val = match x {
-                    toml::Value::String(s) => crate::units::parse_quantity(s)
-                        .map(|q| q.0)
-                        .map_err(|e| f.error(&format!("levels.{name}"), x, e.to_string()))?,
-                    _ => x
-                        .as_float()
-                        .or_else(|| x.as_integer().map(|n| n as f64))
-                        .ok_or_else(|| f.error(&format!("levels.{name}"), x, "expected a number or a quantity"))?,
-                };
-                vals.push(val);
-            }
+            let key = format!("levels.{name}");
+            let i = find(&key, name)?;
+            let arr = lv.as_array().ok_or_else(|| f.error(&key, lv, "expected an array"))?;
+            let unit = &model.system.outputs()[i].unit;
+            let vals = arr
+                .iter()
+                .map(|x| quantity_in_unit(f, &key, x, unit, &format!("output `{name}`")))
+                .collect::<Result<Vec<_>>>()?;
             levels.push((i, vals));
         }
     }
+    let effort = match f.get("quadrature") {
+        None => OscillatoryOptions::default(),
+        Some(_) => {
+            let q = f.sub("quadrature")?;
+            let d = OscillatoryOptions::default();
+            let count = |key: &str, default: usize| -> Result<usize> {
+                match q.get(key) {
+                    None => Ok(default),
+                    Some(v) => v
+                        .as_integer()
+                        .filter(|k| (1..=100_000_000).contains(k))
+                        .map(|k| k as usize)
+                        .ok_or_else(|| q.error(key, v, "expected a count from 1 to 10^8")),
+                }
+            };
+            let effort = OscillatoryOptions {
+                rel_tol: match q.get("rel_tol") {
+                    None => d.rel_tol,
+                    Some(_) => q.number("rel_tol")?,
+                },
+                max_subintervals: count("max_subintervals", d.max_subintervals)?,
+                max_half_periods: count("max_half_periods", d.max_half_periods)?,
+                ..d
+            };
+            effort.validate().map_err(|e| q.wrap_param(e, "rel_tol"))?;
+            q.finish()?;
+            effort
+        }
+    };
     Ok(AnalysisOptions {
         outputs,
         band,
         duration,
         levels,
+        effort,
     })
 }

@@ -65,10 +65,7 @@ pub struct SpectrumFile {
 /// [`Error::Io`] if unreadable, [`Error::Parse`] if not TOML, [`Error::File`] naming the key, value and
 /// reason for anything invalid (unknown kind or key, missing key, bad unit, negative variance, ...).
 pub fn load_spectrum(path: &Path) -> Result<SpectrumFile> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::fields::read_text_file(path)?;
     let mut sf = parse_spectrum(&text, path)?;
     sf.origin = SpectrumOrigin::File {
         path: path.to_path_buf(),
@@ -82,10 +79,7 @@ pub fn load_spectrum(path: &Path) -> Result<SpectrumFile> {
 /// # Errors
 /// As [`load_spectrum`].
 pub fn parse_spectrum(text: &str, path: &Path) -> Result<SpectrumFile> {
-    let table: toml::Table = toml::from_str(text).map_err(|e| Error::Parse {
-        file: path.to_path_buf(),
-        reason: e.to_string(),
-    })?;
+    let table: toml::Table = crate::fields::parse_toml(text, path)?;
     let f = Fields::new(path, "", &table);
     let stem = path
         .file_stem()
@@ -158,6 +152,13 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
             let level = f.number("level")?;
             let (lo, hi) = band(f, "band", inv_lag)?.ok_or_else(|| f.error("band", "<missing>", "required"))?;
             let (_, s0) = c.to_canonical(1.0, level);
+            if level.is_nan() || level < 0.0 {
+                return Err(f.error(
+                    "level",
+                    f.get("level").map_or("?".into(), |v| v.to_string()),
+                    "must be >= 0",
+                ));
+            }
             Arc::new(BandWhite::new(Convention::TwoSidedAngular, s0, lo, hi, domain).map_err(|e| w("band", e))?)
         }
         "tabulated" => {
@@ -203,7 +204,7 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
                 return Err(f.error("unbounded", "true", "contradicts the `band` key: give one of them"));
             }
             let b = if unbounded { None } else { Some(b.unwrap_or(ISO_BAND)) };
-            Arc::new(PowerLaw::iso8608(class, bound, b).map_err(|e| w("band", e))?)
+            Arc::new(PowerLaw::iso8608(class, bound, b).map_err(|e| f.wrap_param(e, "band"))?)
         }
         "two-pole-road" => {
             if domain != Domain::Spatial {

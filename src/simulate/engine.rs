@@ -61,9 +61,10 @@ impl Scratch {
                 generators, inverse, ..
             } => (0, generators.len(), inverse.get_scratch_len()),
         };
+        let rows = if plan.block_steps > 0 { plan.block_steps } else { n };
         Scratch {
             x: vec![0.0; nx],
-            buf: vec![0.0; n * plan.stride],
+            buf: vec![0.0; rows * plan.stride],
             q: vec![vec![0.0; n]; nq],
             spec: match &plan.engine {
                 Engine::Spectral { generators, .. } => generators.iter().map(|g| g.scratch()).collect(),
@@ -75,6 +76,53 @@ impl Scratch {
             fft_scratch: vec![Complex::new(0.0, 0.0); nfft],
         }
     }
+}
+
+/// One realization of the exact route in blocks of `plan.block_steps` steps, with memory O(block): the
+/// state is carried from block to block, the time averages are running sums in time order and the Welch
+/// segments are fed as they fill, so the results are bit-identical to a whole-record realization (same
+/// draws from `rng`, same additions in the same order).
+fn realize_in_blocks(
+    plan: &Plan,
+    gm: &GaussMarkov,
+    s: &mut Scratch,
+    rng: &mut rand::rngs::Xoshiro256PlusPlus,
+) -> Result<Realization> {
+    let (n, p, stride, block) = (plan.n, plan.outputs.len(), plan.stride, plan.block_steps);
+    gm.initial_state(rng, &mut s.x);
+    // `Iterator::sum` of f64 folds from −0.0: start the running sums there for bit-identical totals
+    let mut sum = vec![-0.0f64; p];
+    let mut sq = vec![-0.0f64; p];
+    let mut streams: Vec<_> = (0..p).map(|_| plan.welch.stream()).collect();
+    let mut welch: Vec<WelchSums> = (0..p).map(|_| plan.welch.sums()).collect();
+    let mut sig = vec![0.0; block];
+    let mut done = 0;
+    while done < n {
+        let b = block.min(n - done);
+        gm.advance(&mut s.x, rng, &mut s.buf[..b * stride]);
+        for r in 0..p {
+            for (k, v) in sig[..b].iter_mut().enumerate() {
+                *v = s.buf[k * stride + r];
+            }
+            for &v in &sig[..b] {
+                sum[r] += v;
+                sq[r] += v * v;
+            }
+            plan.welch
+                .push(&mut streams[r], &sig[..b], &mut welch[r], &mut s.welch)?;
+        }
+        done += b;
+    }
+    for (st, ws) in streams.iter_mut().zip(welch.iter_mut()) {
+        plan.welch.end_record(st, ws)?;
+    }
+    Ok(Realization {
+        m: sum.iter().map(|v| v / n as f64).collect(),
+        v: sq.iter().map(|v| v / n as f64).collect(),
+        welch,
+        raw: Vec::new(),
+        raw_inputs: Vec::new(),
+    })
 }
 
 /// One realization from `rng` (the stream (seed, i) of realization i).
@@ -90,6 +138,7 @@ pub(crate) fn realize(
     let n = plan.n;
     let p = plan.outputs.len();
     match &plan.engine {
+        Engine::Exact(gm) if plan.block_steps > 0 && !keep_raw => return realize_in_blocks(plan, gm, s, rng),
         Engine::Exact(gm) => {
             gm.initial_state(rng, &mut s.x);
             gm.advance(&mut s.x, rng, &mut s.buf);

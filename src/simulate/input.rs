@@ -2,7 +2,31 @@
 //! units of the input processes, and the provenance text stored with the run.
 
 use crate::response::Excitation;
-use crate::store::Signal;
+use crate::store::{Provenance, Signal};
+use std::path::PathBuf;
+
+/// One line per input process with its parameters, delays and gains: what identifies the excitation.
+pub fn describe(exc: &Excitation) -> String {
+    match exc {
+        Excitation::Track {
+            spectrum,
+            delays,
+            gains,
+            mean,
+        } => format!(
+            "one process felt by {} input(s): {}; delays {delays:?} s; gains {gains:?}; mean {mean}",
+            gains.len(),
+            spectrum.describe()
+        ),
+        Excitation::Independent { spectra, means } => spectra
+            .iter()
+            .zip(means)
+            .enumerate()
+            .map(|(k, (s, m))| format!("input {k}: {}; mean {m}", s.describe()))
+            .collect::<Vec<_>>()
+            .join("\n"),
+    }
+}
 use crate::system::FrequencyResponse;
 
 /// The subject of a Monte Carlo run (built from a scenario by
@@ -32,9 +56,14 @@ pub struct RunInput<'a> {
     /// Names and units of the independent input processes, recorded with raw realizations: one signal for
     /// a track (`road` for a road, `input` otherwise), `input_k` for independent processes.
     pub input_signals: Vec<Signal>,
-    /// Provenance stored in the run file's `@scenario` attribute (the scenario file's text) and compared
-    /// when an interrupted run is resumed.
-    pub provenance: String,
+    /// The scenario file's text, stored as the run file's `@scenario` (compared when resuming).
+    pub scenario_text: String,
+    /// What else the run was resolved from (the spectrum file's text, the model with its parameters, ...),
+    /// stored in `/provenance`; the identifying parts are compared when an interrupted run is resumed, so a
+    /// changed spectrum file is never mixed into an old run.
+    pub provenance: Vec<Provenance>,
+    /// The files the run was read from: the run file may not be one of them.
+    pub source_files: Vec<PathBuf>,
 }
 
 impl<'a> RunInput<'a> {
@@ -44,14 +73,16 @@ impl<'a> RunInput<'a> {
         excitation: &'a Excitation,
         outputs: Vec<usize>,
         input_signals: Vec<Signal>,
-        provenance: impl Into<String>,
+        scenario_text: impl Into<String>,
     ) -> Self {
         RunInput {
             system,
             excitation,
             outputs,
             input_signals,
-            provenance: provenance.into(),
+            scenario_text: scenario_text.into(),
+            provenance: vec![Provenance::identity("excitation", describe(excitation))],
+            source_files: Vec::new(),
         }
     }
 }

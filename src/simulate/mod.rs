@@ -21,6 +21,7 @@ mod engine;
 mod input;
 mod options;
 mod plan;
+pub mod resources;
 pub mod rng;
 pub mod road;
 pub mod run;

@@ -49,6 +49,9 @@ impl std::str::FromStr for Route {
     }
 }
 
+/// Default [`RunOptions::block_steps`]: 2¹⁴ steps (a few hundred kB per thread).
+pub const DEFAULT_BLOCK_STEPS: usize = 1 << 14;
+
 /// Options of a Monte Carlo run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunOptions {
@@ -70,6 +73,12 @@ pub struct RunOptions {
     pub route: Route,
     /// Confidence of the intervals, in (0, 1).
     pub confidence: f64,
+    /// Time steps generated at once by the exact route of a statistics-only run (memory O(block), whatever
+    /// the duration); the statistics are bit-identical for any value.
+    pub block_steps: usize,
+    /// Replace an existing finished run file (only at the final rename, after the new run is complete),
+    /// and discard an interrupted run of different settings.
+    pub overwrite: bool,
 }
 
 impl RunOptions {
@@ -91,6 +100,8 @@ impl RunOptions {
             compression: Compression::None,
             route: Route::Auto,
             confidence: 0.95,
+            block_steps: DEFAULT_BLOCK_STEPS,
+            overwrite: false,
         }
     }
 
@@ -105,6 +116,9 @@ impl RunOptions {
         }
         if self.shard_size == 0 {
             return Err(Error::invalid("shard size", 0, "need at least 1"));
+        }
+        if self.block_steps == 0 {
+            return Err(Error::invalid("block steps", 0, "need at least 1"));
         }
         require_positive("dt", self.dt_s)?;
         require_positive("duration", self.duration_s)?;

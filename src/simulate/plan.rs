@@ -49,6 +49,11 @@ pub(crate) struct Plan {
     pub notes: Vec<String>,
     pub generator: String,
     pub welch: Welch,
+    /// Steps per block of the exact route when no raw data are kept (0: whole realizations).
+    pub block_steps: usize,
+    /// Exact autocovariance of each simulated output process at lags 0..M (M the Welch segment length):
+    /// what the Welch estimate is compared with (window ⊛ sampled-process density).
+    pub autocov: Vec<Vec<f64>>,
 }
 
 /// An output with a finite analytic variance, before the route is chosen.
@@ -72,10 +77,7 @@ fn simulable_outputs(input: &RunInput) -> Result<(Vec<Simulable>, Vec<SkippedOut
             }),
             None => skipped.push(SkippedOutput {
                 name: st.name,
-                reason: format!(
-                    "analytic variance infinite or undefined: {}",
-                    st.variance_note.unwrap_or_default()
-                ),
+                reason: format!("analytic variance {}", st.variance_outcome.describe()),
             }),
         }
     }
@@ -137,6 +139,8 @@ impl RouteChoice {
 /// delays that are not whole steps on the spectral route; an unstable system.
 pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let n = opts.samples()?;
+    // before any buffer of the realization's size exists
+    super::resources::check_memory(n, input.outputs.len(), input.excitation.spectra().len(), opts)?;
     let (finite, skipped) = simulable_outputs(input)?;
     let idx: Vec<usize> = finite.iter().map(|f| f.index).collect();
     let choice = RouteChoice::choose(input, opts, &idx)?;
@@ -149,6 +153,11 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
         .map(|gm| with_input_rows(input.system, input.excitation, &idx, opts.dt_s).unwrap_or(gm));
     if let Some(gm) = exact {
         let cov = gm.output_covariance();
+        let autocov = gm
+            .output_autocovariances(welch.segment_len())
+            .into_iter()
+            .take(idx.len())
+            .collect();
         let outputs = finite
             .into_iter()
             .enumerate()
@@ -185,9 +194,11 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
                 super::GENERATOR
             ),
             welch,
+            block_steps: if opts.store_raw { 0 } else { opts.block_steps.min(n) },
+            autocov,
         });
     }
-    let (engine, discrete) = spectral_engine(input, opts, n, &idx, &mut notes)?;
+    let (engine, discrete, autocov) = spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len())?;
     let outputs = finite
         .into_iter()
         .zip(discrete)
@@ -213,6 +224,8 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
             super::GENERATOR
         ),
         welch,
+        block_steps: 0,
+        autocov,
     })
 }
 
@@ -264,7 +277,8 @@ fn spectral_engine(
     n: usize,
     outputs: &[usize],
     notes: &mut Vec<String>,
-) -> Result<(Engine, Vec<f64>)> {
+    lags: usize,
+) -> Result<(Engine, Vec<f64>, Vec<Vec<f64>>)> {
     let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
     let ss = sys.state_space().ok_or_else(|| Error::Numerical {
         what: "spectral Monte Carlo".into(),
@@ -291,7 +305,11 @@ fn spectral_engine(
          output; slowest decay rate min|Re λ| = {sigma_min:.4e} 1/s)"
     ));
     let (generators, inputs) = spectral_inputs(exc, dt, n)?;
-    let (gains, discrete) = discrete_gains(&sub, exc, &generators, &inputs, dt, n)?;
+    let (gains, discrete, spectrum) = discrete_gains(&sub, exc, &generators, &inputs, dt, n)?;
+    let autocov = spectrum
+        .iter()
+        .map(|p| periodic_autocovariance(p, n, lags))
+        .collect::<Result<Vec<_>>>()?;
     notes.push(
         "spectral route bias: the synthesised input is the spectrum on the FFT grid (truncated at Nyquist, \
          sampled at Δω = 2π/(NΔt)); `discrete σ` is the exact σ of that simulated process"
@@ -304,7 +322,32 @@ fn spectral_engine(
             inverse: realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(n),
         },
         discrete,
+        autocov,
     ))
+}
+
+/// Autocovariance at lags 0..lags of the periodic process whose variance per bin is `power[j]`
+/// (j = 0..=N/2, already weighted: K(0) = Σ power): K(m) = Σ_j power_j cos(2πjm/N), by one inverse real FFT.
+fn periodic_autocovariance(power: &[f64], n: usize, lags: usize) -> Result<Vec<f64>> {
+    let mut spec: Vec<Complex<f64>> = power
+        .iter()
+        .enumerate()
+        .map(|(j, p)| {
+            // the inverse real FFT doubles interior bins: halve them to get Σ_j power_j cos(...)
+            let w = if j == 0 || j == n / 2 { 1.0 } else { 0.5 };
+            Complex::new(p * w, 0.0)
+        })
+        .collect();
+    let mut k = vec![0.0; n];
+    realfft::RealFftPlanner::<f64>::new()
+        .plan_fft_inverse(n)
+        .process(&mut spec, &mut k)
+        .map_err(|e| Error::Numerical {
+            what: "periodic autocovariance".into(),
+            reason: e.to_string(),
+        })?;
+    k.truncate(lags.min(n));
+    Ok(k)
 }
 
 /// The generators of the excitation's independent processes and the system inputs they feed.
@@ -360,8 +403,8 @@ fn spectral_inputs(exc: &Excitation, dt: f64, n: usize) -> Result<(Vec<SpectralG
 }
 
 /// gains\[g\]\[r\]\[j\]: the transfer from generator g's coefficient c_j to output r (discrete transfer
-/// function of the first-order hold, input gains, shift phases and the iω_j E term), and the exact variance
-/// σ²_d = Σ_j w_j S(ω_j) Δω |H_d(ω_j)|² of each output (see [`crate::simulate::run`]).
+/// function of the first-order hold, input gains, shift phases and the iω_j E term), the exact variance
+/// σ²_d = Σ_j w_j S(ω_j) Δω |H_d(ω_j)|² of each output (see [`crate::simulate::run`]), and its terms per bin.
 #[allow(clippy::needless_range_loop)] // the bin loop fills several per-bin tables
 fn discrete_gains(
     sub: &StateSpace,
@@ -370,12 +413,13 @@ fn discrete_gains(
     inputs: &[SpectralInput],
     dt: f64,
     n: usize,
-) -> Result<(Gains, Vec<f64>)> {
+) -> Result<(Gains, Vec<f64>, Vec<Vec<f64>>)> {
     let f = foh(&sub.a, &sub.b, dt)?;
     let nst = sub.n_states();
     let p = sub.c.nrows();
     let dw = 2.0 * std::f64::consts::PI / (n as f64 * dt);
     let mut disc = vec![0.0; p];
+    let mut power = vec![vec![0.0; n / 2 + 1]; p];
     let mut gains = vec![vec![vec![Complex::new(0.0, 0.0); n / 2 + 1]; p]; generators.len()];
     let spectra = exc.spectra();
     let to_c = |m: &DMatrix<f64>| m.map(|v| Complex::new(v, 0.0));
@@ -411,8 +455,9 @@ fn discrete_gains(
                 }
                 gains[gi][r][j] = acc;
                 *dv += weight * s * dw * acc.norm_sqr();
+                power[r][j] += weight * s * dw * acc.norm_sqr();
             }
         }
     }
-    Ok((gains, disc))
+    Ok((gains, disc, power))
 }

@@ -57,7 +57,7 @@ use super::{run_batch, RunInput, RunOptions, RunSummary};
 use crate::error::Result;
 use crate::estimate::{mean_interval, Interval, Welch};
 use crate::response::output_density;
-use crate::store::{OutputStatistics, PsdEstimate, RunMetadata, RunWriter, Statistic};
+use crate::store::{CreateOptions, OutputStatistics, PsdEstimate, RunMetadata, RunWriter, Statistic};
 use ndarray::Array2;
 use std::path::Path;
 
@@ -93,11 +93,12 @@ pub const WARMUP_DECAY: f64 = 36.0;
 /// ```
 pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
     let plan = plan(input, opts)?;
+    refuse_inputs_as_output(input, out)?;
     let shard_size = opts.shard_size.min(opts.realizations);
     let bins = plan.welch.segment_len() / 2 + 1;
     let names: Vec<&str> = plan.outputs.iter().map(|o| o.signal.name.as_str()).collect();
     let meta = RunMetadata {
-        scenario_text: input.provenance.clone(),
+        scenario_text: input.scenario_text.clone(),
         seed: opts.seed,
         generator: plan.generator.clone(),
         dt: opts.dt_s,
@@ -113,8 +114,18 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         accumulators: accumulators::layout(&names, shard_size, bins),
         store_raw: opts.store_raw,
         compression: opts.compression,
+        provenance: input.provenance.clone(),
     };
-    let mut writer = RunWriter::create(out, &meta)?;
+    super::resources::check_disk(&meta, out)?;
+    let mut writer = RunWriter::create_with(
+        out,
+        &meta,
+        CreateOptions {
+            overwrite: opts.overwrite,
+        },
+    )?;
+    let mut notes = plan.notes.clone();
+    notes.extend(writer.notes().iter().cloned());
     let n_shards = meta.n_shards();
     let resumed_shards = writer.completed_shards().len();
     progress(resumed_shards, n_shards);
@@ -135,10 +146,12 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     // statistics from the accumulators of every shard, in shard order
     let mut stats = Vec::new();
     let mut psds = Vec::new();
-    for o in &plan.outputs {
+    for (o, autocov) in plan.outputs.iter().zip(&plan.autocov) {
         let (m, v, ws) = read_output(&writer, &meta, o, &plan.welch, bins)?;
         stats.push(output_statistics(o, &m, &v, opts)?);
-        psds.push(density_estimate(input, o, &plan.welch, &ws, opts.confidence)?);
+        let mut psd = density_estimate(input, o, &plan.welch, &ws, opts.confidence)?;
+        psd.expected = Some(plan.welch.expected_all(autocov));
+        psds.push(psd);
     }
     writer.write_statistics(&stats)?;
     for psd in &psds {
@@ -156,12 +169,29 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         resumed_shards,
         outputs: stats,
         skipped: plan.skipped,
-        notes: plan.notes,
+        notes,
     })
 }
 
+/// Refuses a run file that is one of the files the run is read from (a scenario or spectrum file would
+/// be replaced by HDF5).
+fn refuse_inputs_as_output(input: &RunInput, out: &Path) -> Result<()> {
+    let same = |a: &Path| match (a.canonicalize(), out.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => a == out,
+    };
+    if let Some(f) = input.source_files.iter().find(|f| same(f)) {
+        return Err(crate::Error::Hdf5 {
+            path: out.to_path_buf(),
+            reason: format!("is an input of the run ({}): choose another output", f.display()),
+        });
+    }
+    Ok(())
+}
+
 /// Runs into a temporary file `stochvib-run-<pid>.h5` in `dir`, hands the finished file to `then` (e.g. to
-/// draw its pictures), and removes the file and its `.tmp` afterwards, whether the run succeeded or not.
+/// draw its pictures), and removes the file and its `.tmp` afterwards, whether the run succeeded or not;
+/// what killed earlier temporary runs left in `dir` is removed first.
 ///
 /// # Errors
 /// As [`run`].
@@ -191,12 +221,33 @@ pub fn run_temporary<T>(
             let _ = std::fs::remove_file(crate::store::tmp_path(&self.0));
         }
     }
+    remove_dead_temporaries(dir);
     let path = dir.join(format!("stochvib-run-{}.h5", std::process::id()));
     let guard = Remove(path.clone());
     drop(Remove(path.clone())); // a leftover of an earlier process with the same id
     let summary = run(input, opts, &guard.0, progress)?;
     let t = then(&guard.0);
     Ok((summary, t))
+}
+
+/// Removes what killed temporary runs left in `dir`: `stochvib-run-<pid>.h5*` files of processes that no
+/// longer exist.
+fn remove_dead_temporaries(dir: &Path) {
+    let Ok(rd) = std::fs::read_dir(dir) else { return };
+    for e in rd.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let Some(rest) = name.strip_prefix("stochvib-run-") else {
+            continue;
+        };
+        let Some((pid, _)) = rest.split_once(".h5") else {
+            continue;
+        };
+        if let Ok(pid) = pid.parse::<u32>() {
+            if pid != std::process::id() && !crate::store::process_alive(pid) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
 }
 
 /// Writes one shard: its accumulators and, with raw storage, its realizations.
@@ -362,6 +413,7 @@ fn density_estimate(
         lower,
         upper,
         analytic: Some(analytic_psd),
+        expected: None,
         dof: est.dof,
         confidence: conf,
         method: format!(

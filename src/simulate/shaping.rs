@@ -149,6 +149,21 @@ impl GaussMarkov {
         &self.h * m * self.h.transpose()
     }
 
+    /// The exact autocovariance E[y_{j+k} y_j] of every output at lags k = 0..lags (one row per output):
+    /// the diagonal of H Φᵏ P Hᵀ, with Φᵏ P built once by repeated multiplication.
+    pub fn output_autocovariances(&self, lags: usize) -> Vec<Vec<f64>> {
+        let mut out = vec![Vec::with_capacity(lags); self.p];
+        let mut x = self.cov.clone();
+        for _ in 0..lags {
+            let m = &self.h * &x * self.h.transpose();
+            for (r, row) in out.iter_mut().enumerate() {
+                row.push(m[(r, r)]);
+            }
+            x = &self.disc.phi * x;
+        }
+        out
+    }
+
     /// Draws a stationary initial state z₀ ~ N(0, P) into `state` (n normals).
     ///
     /// # Panics

@@ -327,6 +327,7 @@ mod tests {
     use super::*;
     use crate::simulate::stream;
     use crate::spectrum::{Domain, Exponential};
+    use crate::tolerance::{EXACT, ROUNDING};
 
     #[test]
     fn synthesis_matches_cosine_sum() {
@@ -356,10 +357,10 @@ mod tests {
                 let ph = 2.0 * PI * (j * k) as f64 / n as f64;
                 v += 2.0 * (cj * Complex::new(ph.cos(), ph.sin())).re;
             }
-            assert!((v - xk).abs() < 1e-12, "{k}: {v} vs {xk}");
+            assert!((v - xk).abs() < EXACT, "{k}: {v} vs {xk}");
         }
         // K_N(0) equals the grid variance
-        assert!((g.grid_autocovariance(0) - g.grid_variance()).abs() < 1e-14);
+        assert!((g.grid_autocovariance(0) - g.grid_variance()).abs() < ROUNDING);
     }
 
     #[test]
@@ -373,7 +374,7 @@ mod tests {
         for i in 0..3 {
             g.generate(&mut stream(1, i), &mut sc, &mut x).unwrap();
             let ms = x.iter().map(|v| v * v).sum::<f64>() / 256.0;
-            assert!((ms - g.grid_variance()).abs() < 1e-12);
+            assert!((ms - g.grid_variance()).abs() < EXACT);
         }
     }
 
@@ -384,7 +385,6 @@ mod tests {
         // period with the one-FFT product G_j c_j. Agreement to rounding (EXACT relative to max |y|).
         use crate::simulate::SampledSystem;
         use crate::system::StateSpace;
-        use crate::tolerance::EXACT;
         let (n, dt) = (256, 0.05);
         let ss = StateSpace::oscillator(10.0, 0.05).unwrap();
         let sys = SampledSystem::new(&ss, dt).unwrap();

@@ -114,6 +114,7 @@ impl FromStr for Convention {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tolerance::ULPS;
 
     /// Round trip of every convention at a few points: exact up to rounding.
     #[test]
@@ -122,8 +123,8 @@ mod tests {
             for &(w, s) in &[(0.0, 1.0), (0.3, 2.5e-3), (12.0, 7.0)] {
                 let (x, v) = c.from_canonical(w, s);
                 let (w2, s2) = c.to_canonical(x, v);
-                assert!((w2 - w).abs() <= 1e-15 * w.abs().max(1.0));
-                assert!((s2 - s).abs() <= 1e-15 * s.abs());
+                assert!((w2 - w).abs() <= ULPS * w.abs().max(1.0));
+                assert!((s2 - s).abs() <= ULPS * s.abs());
             }
             assert_eq!(c.name().parse::<Convention>().unwrap(), c);
         }

@@ -87,13 +87,33 @@ impl IsoClass {
         IsoClass::H,
     ];
 
-    /// G_d(n₀) in m³ (m² per cycle/m) for the requested bound (ISO 8608 table of classes).
-    pub fn g0(self, bound: IsoBound) -> f64 {
+    /// G_d(n₀) in m³ (m² per cycle/m) for the requested bound (ISO 8608:2016, Table 3: the geometric mean
+    /// of class k is 16·4^k ×10⁻⁶ m³, its limits ½ and 2 times that).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] (`bound`) for the bounds the standard does not define: class A has no
+    /// lower limit and class H no upper limit (open-ended classes).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::spectrum::{IsoBound, IsoClass};
+    /// assert_eq!(IsoClass::C.g0(IsoBound::Upper).unwrap(), 512e-6);
+    /// assert!(IsoClass::A.g0(IsoBound::Lower).is_err());
+    /// ```
+    pub fn g0(self, bound: IsoBound) -> Result<f64> {
         let mean = 16e-6 * 4f64.powi(self as i32);
-        match bound {
-            IsoBound::Lower => mean / 2.0,
-            IsoBound::GeometricMean => mean,
-            IsoBound::Upper => mean * 2.0,
+        match (self, bound) {
+            (IsoClass::A, IsoBound::Lower) | (IsoClass::H, IsoBound::Upper) => Err(Error::invalid(
+                "bound",
+                format!("{bound:?}"),
+                format!(
+                    "ISO 8608 defines no {} limit for class {self} (the class is open-ended)",
+                    if bound == IsoBound::Lower { "lower" } else { "upper" }
+                ),
+            )),
+            (_, IsoBound::Lower) => Ok(mean / 2.0),
+            (_, IsoBound::GeometricMean) => Ok(mean),
+            (_, IsoBound::Upper) => Ok(mean * 2.0),
         }
     }
 }
@@ -160,10 +180,11 @@ impl PowerLaw {
     /// (the standard one is [`ISO_BAND`]).
     ///
     /// # Errors
-    /// As [`PowerLaw::new`] for the band.
+    /// As [`IsoClass::g0`] for an undefined bound, as [`PowerLaw::new`] for the band.
     pub fn iso8608(class: IsoClass, bound: IsoBound, band: Option<(f64, f64)>) -> Result<Self> {
-        let mut p = PowerLaw::new(class.g0(bound), ISO_N0, ISO_WAVINESS, band, Domain::Spatial)?;
-        p.label = format!("ISO 8608 class {class} ({bound:?}), G_d(n0) = {} m^3", class.g0(bound));
+        let g0 = class.g0(bound)?;
+        let mut p = PowerLaw::new(g0, ISO_N0, ISO_WAVINESS, band, Domain::Spatial)?;
+        p.label = format!("ISO 8608 class {class} ({bound:?}), G_d(n0) = {g0} m^3");
         Ok(p)
     }
 

@@ -4,13 +4,15 @@
 //! writer, the reader and the tests all use them.
 
 /// Version of the file layout. Incremented on any incompatible change; a reader refuses newer versions.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Version of the crate that wrote the file (`CARGO_PKG_VERSION`).
 pub const TOOLKIT_VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// Suffix appended to the final file name while a run is being written (`run.h5` → `run.h5.tmp`).
 pub const TMP_SUFFIX: &str = ".tmp";
+/// Suffix of the file next to a `.tmp` that names the process writing it (`run.h5.tmp.owner`: its pid).
+pub const OWNER_SUFFIX: &str = ".owner";
 
 // ---- root attributes ----
 
@@ -42,6 +44,24 @@ pub const ATTR_STORE_RAW: &str = "store_raw";
 pub const ATTR_COMPRESSION: &str = "compression";
 /// Root attribute, u8 = 1: written last, just before the rename; a file without it is incomplete.
 pub const ATTR_COMPLETE: &str = "complete";
+/// Root attribute, u32 (format ≥ 2): CRC-32 of the run metadata's canonical form (`RunMetadata::digest`).
+pub const ATTR_METADATA_CRC32: &str = "metadata_crc32";
+
+// ---- /provenance (format ≥ 2) ----
+
+/// Group of what the run was resolved from: one string attribute per part.
+pub const GROUP_PROVENANCE: &str = "provenance";
+/// Attribute of `/provenance`, string array: the names of the parts that identify the run (compared when
+/// resuming and merging); the other parts only inform.
+pub const ATTR_IDENTIFIES: &str = "identifies";
+
+/// Dataset `/shards/checksums`, u32 `[n_shards, n_checked]` (format ≥ 2): CRC-32 of each shard's rows of every
+/// raw input, raw output, then accumulator, in that order (the columns are named by `@checked`).
+pub const DS_SHARDS_CHECKSUMS: &str = "checksums";
+/// Attribute of `/shards/checksums`, string array: the dataset path of each column.
+pub const ATTR_CHECKED: &str = "checked";
+/// Attribute of a statistic dataset or a PSD group, u32 (format ≥ 2): CRC-32 of its values.
+pub const ATTR_CRC32: &str = "crc32";
 
 /// The value of [`ATTR_UNITS`].
 pub const UNITS_VALUE: &str = "SI (time s, angular frequency rad/s); each signal has its own `unit` attribute";
@@ -104,6 +124,9 @@ pub const DS_LOWER: &str = "lower";
 pub const DS_UPPER: &str = "upper";
 /// Dataset, f64 `[n_freq]` (optional): analytic density at the same ω.
 pub const DS_ANALYTIC: &str = "analytic";
+/// Dataset, f64 `[n_freq]` (optional, format ≥ 2): the exact mean of the estimate (window kernel ⊛ density of
+/// the simulated sampled process).
+pub const DS_EXPECTED: &str = "expected";
 /// Group attribute, string: the density convention ([`PSD_CONVENTION`]).
 pub const ATTR_CONVENTION: &str = "convention";
 /// Group attribute, f64: χ² degrees of freedom ν of the interval (ν = 2K for K averaged segments).

@@ -4,20 +4,23 @@
 //!
 #![doc = include_str!("../../docs/run-file-format.md")]
 
+pub mod checksum;
 mod chunks;
 pub mod layout;
 mod reader;
 mod writer;
 
-pub use reader::{summarize, RunFile, RunInfo};
+pub use reader::{summarize, RunFile, RunInfo, Verification};
 pub use writer::RunWriter;
+pub use writer::{process_alive, CreateOptions};
 
 use crate::error::{Error, Result};
 use crate::estimate::Interval;
 use std::path::{Path, PathBuf};
 
 /// Compression of the raw signal datasets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(into = "String")]
 pub enum Compression {
     /// Stored as is (the default: raw noise barely compresses and deflate is ~30× slower than the disk).
     #[default]
@@ -88,6 +91,12 @@ impl Compression {
     }
 }
 
+impl From<Compression> for String {
+    fn from(c: Compression) -> String {
+        c.label()
+    }
+}
+
 impl std::str::FromStr for Compression {
     type Err = Error;
     /// As [`Compression::parse`].
@@ -97,7 +106,7 @@ impl std::str::FromStr for Compression {
 }
 
 /// A named signal with its physical unit (e.g. `("x1_acc", "m/s^2")`).
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
 pub struct Signal {
     /// Dataset name: non-empty, no `/`, not `.`, unique within its group.
     pub name: String,
@@ -115,8 +124,41 @@ impl Signal {
     }
 }
 
+/// One part of what a run was resolved from (the spectrum file's text, the model with its parameters, ...),
+/// stored in `/provenance`.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct Provenance {
+    /// Name, e.g. `spectrum`.
+    pub name: String,
+    /// The text.
+    pub text: String,
+    /// Whether the part identifies the run (compared when resuming or merging), or only informs (e.g. the
+    /// directory a spectrum was found in).
+    pub identifies: bool,
+}
+
+impl Provenance {
+    /// A part that identifies the run.
+    pub fn identity(name: &str, text: impl Into<String>) -> Provenance {
+        Provenance {
+            name: name.to_string(),
+            text: text.into(),
+            identifies: true,
+        }
+    }
+
+    /// A part that only informs.
+    pub fn note(name: &str, text: impl Into<String>) -> Provenance {
+        Provenance {
+            name: name.to_string(),
+            text: text.into(),
+            identifies: false,
+        }
+    }
+}
+
 /// Everything that identifies a run; stored as root attributes and compared when resuming.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RunMetadata {
     /// The scenario file text (TOML), verbatim.
     pub scenario_text: String,
@@ -142,9 +184,31 @@ pub struct RunMetadata {
     pub store_raw: bool,
     /// Compression of the raw datasets.
     pub compression: Compression,
+    /// What the run was resolved from besides the scenario text (empty in format-version-1 files).
+    pub provenance: Vec<Provenance>,
 }
 
 impl RunMetadata {
+    /// CRC-32 of the metadata's canonical JSON form ([`checksum::crc32`]): stored as `@metadata_crc32`
+    /// and checked when the file is opened.
+    pub fn digest(&self) -> u32 {
+        let mut canonical = self.clone();
+        canonical.provenance.sort_by(|a, b| a.name.cmp(&b.name));
+        checksum::crc32(serde_json::to_string(&canonical).unwrap_or_default().as_bytes())
+    }
+
+    /// Upper bound of the bytes the run file takes on disk: raw datasets, accumulators, checksums.
+    pub fn estimated_file_bytes(&self) -> u128 {
+        let raw_signals = if self.store_raw {
+            (self.inputs.len() + self.outputs.len()) as u128
+        } else {
+            0
+        };
+        let raw = raw_signals * self.n_realizations as u128 * self.n_samples as u128 * 8;
+        let acc: u128 = self.accumulators.iter().map(|a| a.1 as u128).sum::<u128>() * 8 * self.n_shards() as u128;
+        let checks = (raw_signals + self.accumulators.len() as u128 + 1) * 4 * self.n_shards() as u128;
+        raw + acc + checks + (1 << 20)
+    }
     /// Number of shards, ⌈n_realizations / shard_size⌉.
     pub fn n_shards(&self) -> usize {
         self.n_realizations.div_ceil(self.shard_size.max(1))
@@ -177,9 +241,18 @@ impl RunMetadata {
                 return Err(Error::invalid("compression", level, "deflate level must be 1-9"));
             }
         }
-        for (field, text) in [("scenario_text", &self.scenario_text), ("generator", &self.generator)] {
+        for (field, text) in [("scenario_text", &self.scenario_text), ("generator", &self.generator)]
+            .into_iter()
+            .chain(self.provenance.iter().map(|p| ("provenance", &p.text)))
+        {
             if text.contains('\0') {
                 return Err(Error::invalid(field, "<text>", "must not contain a NUL character"));
+            }
+        }
+        for (i, p) in self.provenance.iter().enumerate() {
+            check_name("provenance", &p.name)?;
+            if self.provenance[..i].iter().any(|q| q.name == p.name) {
+                return Err(Error::invalid("provenance", &p.name, "duplicate name"));
             }
         }
         let groups = [
@@ -261,6 +334,27 @@ pub struct OutputStatistics {
     pub statistics: Vec<Statistic>,
 }
 
+impl Statistic {
+    /// CRC-32 of the statistic's values and texts (stored as its `@crc32`).
+    pub fn checksum(&self) -> u32 {
+        let mut c = checksum::Crc32::default();
+        let iv = &self.interval;
+        c.update_f64(&[
+            iv.estimate,
+            iv.lower,
+            iv.upper,
+            iv.confidence,
+            self.analytic.unwrap_or(f64::NAN),
+        ]);
+        c.update(&[self.covers.map_or(2, u8::from)]);
+        for s in [&self.name, &self.unit, &self.method] {
+            c.update(s.as_bytes());
+            c.update(&[0]);
+        }
+        c.finish()
+    }
+}
+
 impl OutputStatistics {
     /// The statistic called `name`, if present.
     pub fn get(&self, name: &str) -> Option<&Statistic> {
@@ -284,14 +378,92 @@ pub struct PsdEstimate {
     pub lower: Vec<f64>,
     /// Upper interval bound.
     pub upper: Vec<f64>,
-    /// Analytic S(ω) at the same ω, if known.
+    /// Analytic S(ω) at the same ω, if known (the continuous-time density).
     pub analytic: Option<Vec<f64>>,
+    /// The exact mean of the estimate, if known: the window's spectral kernel convolved with the density of
+    /// the simulated (sampled, aliased) process — what the interval should cover.
+    pub expected: Option<Vec<f64>>,
     /// χ² degrees of freedom ν of the interval (2K for K averaged segments).
     pub dof: f64,
     /// Confidence level of the interval.
     pub confidence: f64,
     /// How it was estimated (free text, e.g. `Welch, Hann, 50 % overlap`).
     pub method: String,
+}
+
+impl PsdEstimate {
+    /// CRC-32 of the estimate's arrays, numbers and texts (stored as the `@crc32` of its group).
+    pub fn checksum(&self) -> u32 {
+        let mut c = checksum::Crc32::default();
+        for a in [&self.omega, &self.density, &self.lower, &self.upper] {
+            c.update_f64(a);
+        }
+        if let Some(a) = &self.analytic {
+            c.update_f64(a);
+        }
+        if let Some(a) = &self.expected {
+            c.update(b"expected");
+            c.update_f64(a);
+        }
+        c.update_f64(&[self.dof, self.confidence]);
+        for s in [&self.output, &self.unit, &self.method] {
+            c.update(s.as_bytes());
+            c.update(&[0]);
+        }
+        c.finish()
+    }
+}
+
+impl PsdEstimate {
+    /// Bins where the estimate measures the density: the expected estimate is within
+    /// [`RESOLVED_BIAS`] of the continuous-time density, |E Ŝ(ω_j)/S(ω_j) − 1| ≤ 0.25 (`None` without an
+    /// expectation or an analytic density). Elsewhere the window's leakage from stronger bins, the filling of
+    /// a notch or aliasing near the Nyquist frequency dominates the estimate: there the χ² band is a band on
+    /// a few strong distant lines, narrower than the estimate's real scatter, and says little about S.
+    pub fn resolved(&self) -> Option<Vec<bool>> {
+        let (e, a) = (self.expected.as_ref()?, self.analytic.as_ref()?);
+        Some(
+            e.iter()
+                .zip(a)
+                .map(|(e, a)| *a > 0.0 && (e / a - 1.0).abs() <= RESOLVED_BIAS)
+                .collect(),
+        )
+    }
+
+    /// How many bins have their expectation inside the interval, in all and among the
+    /// [`resolved`](Self::resolved) bins (`None` without an expectation).
+    pub fn coverage(&self) -> Option<Coverage> {
+        let e = self.expected.as_ref()?;
+        let resolved = self.resolved().unwrap_or_else(|| vec![false; e.len()]);
+        let mut c = Coverage {
+            bins: e.len(),
+            ..Coverage::default()
+        };
+        for ((v, (lo, hi)), r) in e.iter().zip(self.lower.iter().zip(&self.upper)).zip(resolved) {
+            let inside = *lo <= *v && *v <= *hi;
+            c.covered += usize::from(inside);
+            c.resolved += usize::from(r);
+            c.covered_resolved += usize::from(inside && r);
+        }
+        Some(c)
+    }
+}
+
+/// Largest relative difference between the expected Welch estimate and the continuous-time density at a
+/// bin still counted as resolved ([`PsdEstimate::resolved`]).
+pub const RESOLVED_BIAS: f64 = 0.25;
+
+/// How often the χ² band of a [`PsdEstimate`] covers the estimate's exact mean.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Coverage {
+    /// Bins with an expectation.
+    pub bins: usize,
+    /// Of them, bins whose band covers it.
+    pub covered: usize,
+    /// Resolved bins ([`PsdEstimate::resolved`]).
+    pub resolved: usize,
+    /// Resolved bins whose band covers the expectation: at about the confidence level.
+    pub covered_resolved: usize,
 }
 
 /// Which group a raw signal lives in.

@@ -1,5 +1,6 @@
 //! Writing a run: temporary name, shard by shard, rename on completion, resume after interruption.
 
+use super::checksum::crc32_f64;
 use super::chunks;
 use super::layout as L;
 use super::reader::{read_metadata, read_shards_complete};
@@ -21,26 +22,43 @@ pub struct RunWriter {
     tmp: PathBuf,
     completed: Vec<bool>,
     resumed: bool,
+    overwrite: bool,
+    notes: Vec<String>,
     // Handles: datasets first so that they are dropped before the file.
     inputs: Vec<Dataset>,
     outputs: Vec<Dataset>,
     accumulators: Vec<Dataset>,
     shards_complete: Dataset,
+    checksums: Dataset,
     file: File,
 }
 
+/// How [`RunWriter::create_with`] treats what is already there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct CreateOptions {
+    /// Replace an existing finished run file at the final rename (only a stochvib run file is ever
+    /// replaced), and discard an interrupted run of different settings instead of refusing.
+    pub overwrite: bool,
+}
+
+/// What a `.tmp` in the way is.
+enum Existing {
+    /// Resumable: same run.
+    Resume(Box<RunWriter>),
+    /// Another process is writing it.
+    Busy(String),
+    /// Nothing worth keeping (unreadable, or another run without a completed shard): replace it.
+    Replace(String),
+    /// Another run with completed shards: refuse (unless overwriting).
+    Different(String, usize),
+}
+
 impl RunWriter {
-    /// Starts a run that will end up at `final_path`, or resumes an interrupted one.
-    ///
-    /// Writes to `<final_path>.tmp` (see [`tmp_path`]). If that file exists and holds the same
-    /// metadata (every field of [`RunMetadata`]), it is reopened and [`completed_shards`](Self::completed_shards)
-    /// tells which shards are already on disk. All datasets are allocated here.
+    /// Starts a run that will end up at `final_path`, or resumes an interrupted one; an existing finished
+    /// file is refused ([`RunWriter::create_with`] with default options).
     ///
     /// # Errors
-    /// - [`Error::InvalidParameter`] if `meta` fails [`RunMetadata::validate`].
-    /// - [`Error::Hdf5`] if `final_path` already exists (a finished run is never overwritten: remove it
-    ///   first), if its directory does not exist, if the `.tmp` holds a different run (the message lists
-    ///   the fields that differ) or is unreadable (the message says to delete it), or if HDF5 fails.
+    /// As [`RunWriter::create_with`].
     ///
     /// # Examples
     /// ```
@@ -54,7 +72,7 @@ impl RunWriter {
     ///     scenario_text: "[run]\n".into(), seed: 7, generator: "xoshiro256++".into(), dt: 0.01,
     ///     n_samples: 4, n_realizations: 2, shard_size: 2,
     ///     inputs: vec![Signal::new("road", "m")], outputs: vec![Signal::new("x1", "m")],
-    ///     accumulators: vec![], store_raw: true, compression: Compression::None,
+    ///     accumulators: vec![], store_raw: true, compression: Compression::None, provenance: vec![],
     /// };
     /// let mut w = RunWriter::create(&path, &meta).unwrap();
     /// let u = Array2::from_shape_fn((2, 4), |(i, k)| (i * 4 + k) as f64);
@@ -65,44 +83,177 @@ impl RunWriter {
     /// # drop(run); std::fs::remove_file(&done).unwrap();
     /// ```
     pub fn create(final_path: impl AsRef<Path>, meta: &RunMetadata) -> Result<RunWriter> {
+        Self::create_with(final_path, meta, CreateOptions::default())
+    }
+
+    /// Starts a run that will end up at `final_path`, or resumes an interrupted one.
+    ///
+    /// The run is written to `<final_path>.tmp` (see [`tmp_path`]). A fresh `.tmp` is built under a name of
+    /// this process's own and appears under the `.tmp` name only when its skeleton is complete (claimed by
+    /// an atomic hard link), so a kill during set-up never leaves a `.tmp` that cannot be resumed. An
+    /// existing `.tmp` of the same run (same metadata and provenance, same toolkit version) is reopened and
+    /// [`completed_shards`](Self::completed_shards) says which shards are on disk (a completed shard whose
+    /// checksum fails is recomputed). A `.tmp` that cannot be read, or holds another run without any
+    /// completed shard, is replaced with a note ([`RunWriter::notes`]); another run with completed shards is
+    /// refused unless `options.overwrite`. A `.tmp` another process is writing is never touched. Only files
+    /// this process created are ever deleted.
+    ///
+    /// # Errors
+    /// - [`Error::InvalidParameter`] if `meta` fails [`RunMetadata::validate`].
+    /// - [`Error::Hdf5`] if `final_path` is a directory or not a regular file, if it already exists and
+    ///   `options.overwrite` is not set (a finished run is never overwritten silently) or it is not a
+    ///   stochvib run file, if its directory does not exist, if another process is writing the run (named by
+    ///   its pid), if the `.tmp` holds a different run with completed shards (the message lists what
+    ///   differs), or if HDF5 fails.
+    pub fn create_with(final_path: impl AsRef<Path>, meta: &RunMetadata, options: CreateOptions) -> Result<RunWriter> {
         meta.validate()?;
         let final_path = final_path.as_ref().to_path_buf();
+        check_final_path(&final_path, options.overwrite)?;
         let tmp = tmp_path(&final_path);
-        let fail = |reason: String| Error::Hdf5 {
-            path: final_path.clone(),
-            reason,
+        remove_stale_claims(&tmp);
+        let mut notes = Vec::new();
+        for _attempt in 0..3 {
+            if tmp.exists() {
+                match Self::examine(&final_path, &tmp, meta) {
+                    Existing::Resume(w) => {
+                        let mut w = *w;
+                        w.overwrite = options.overwrite;
+                        w.notes.extend(notes);
+                        write_owner(&tmp);
+                        return Ok(w);
+                    }
+                    Existing::Busy(who) => {
+                        return Err(Error::Hdf5 {
+                            path: tmp,
+                            reason: format!(
+                                "another process {who} is writing this run: wait for it to finish, or choose \
+                                 another output"
+                            ),
+                        })
+                    }
+                    Existing::Replace(why) => notes.push(format!("replaced {}: {why}", tmp.display())),
+                    Existing::Different(diff, done) if options.overwrite => notes.push(format!(
+                        "discarded the interrupted run {} ({done} shards written; differs in {diff}) as --overwrite \
+                         asks",
+                        tmp.display()
+                    )),
+                    Existing::Different(diff, done) => {
+                        return Err(Error::Hdf5 {
+                            path: tmp,
+                            reason: format!(
+                                "an interrupted run with {done} completed shards is in the way and differs in {diff}: \
+                                 rerun with the original settings to resume it, or pass --overwrite to discard it"
+                            ),
+                        })
+                    }
+                }
+                // replace: build a fresh file and rename it over the `.tmp` (atomic; no window without a file)
+                let w = Self::create_fresh(final_path.clone(), tmp.clone(), meta, true)?;
+                return Ok(RunWriter {
+                    overwrite: options.overwrite,
+                    notes,
+                    ..w
+                });
+            }
+            match Self::create_fresh(final_path.clone(), tmp.clone(), meta, false) {
+                Ok(w) => {
+                    return Ok(RunWriter {
+                        overwrite: options.overwrite,
+                        notes,
+                        ..w
+                    })
+                }
+                // another process claimed the `.tmp` first: look at it again
+                Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::AlreadyExists => continue,
+                Err(e) => return Err(e),
+            }
+        }
+        Err(Error::Hdf5 {
+            path: tmp,
+            reason: "other processes keep creating and removing this run's temporary file: choose another output"
+                .into(),
+        })
+    }
+
+    /// Decides what to do with an existing `.tmp`.
+    fn examine(final_path: &Path, tmp: &Path, meta: &RunMetadata) -> Existing {
+        if let Some(pid) = owner_alive(tmp) {
+            return Existing::Busy(format!("(pid {pid})"));
+        }
+        if !is_hdf5(tmp) {
+            return Existing::Different("content: it is not an HDF5 file".into(), usize::MAX);
+        }
+        let file = match open_file(tmp, OpenMode::ReadWrite, meta.compression) {
+            Ok(f) => f,
+            Err(err) if err.to_string().contains("unable to lock") => {
+                return Existing::Busy("(HDF5 holds its lock)".into())
+            }
+            Err(err) => return Existing::Replace(format!("not readable as an HDF5 file ({err})")),
         };
-        if final_path.exists() {
-            return Err(fail(
-                "already exists: a finished run is never overwritten; remove it or choose another output name".into(),
+        let stored = match read_metadata(&file, tmp) {
+            Ok(m) => m,
+            Err(err) => return Existing::Replace(format!("not a readable run ({err})")),
+        };
+        let done = read_shards_complete(&file, tmp, stored.n_shards())
+            .map(|c| c.iter().filter(|x| **x).count())
+            .unwrap_or(0);
+        let toolkit = attr_string_of(&file, L::ATTR_TOOLKIT_VERSION).unwrap_or_default();
+        let mut differ = metadata_differences(&stored, meta);
+        if toolkit != L::TOOLKIT_VERSION {
+            differ.push(format!(
+                "toolkit version (written by stochvib {toolkit}, this is {}; a run is only resumed by the version \
+                 that started it, which guarantees bit-identical results)",
+                L::TOOLKIT_VERSION
             ));
         }
-        if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            if !dir.is_dir() {
-                return Err(fail(format!(
-                    "cannot create: directory `{}` does not exist",
-                    dir.display()
-                )));
-            }
+        if !differ.is_empty() {
+            drop(file);
+            return if done == 0 {
+                Existing::Replace(format!(
+                    "another run without a completed shard (differs in {})",
+                    differ.join(", ")
+                ))
+            } else {
+                Existing::Different(differ.join(", "), done)
+            };
         }
-        if tmp.exists() {
-            Self::resume(final_path.clone(), tmp, meta)
-        } else {
-            match Self::create_fresh(final_path.clone(), tmp.clone(), meta) {
-                Ok(w) => Ok(w),
-                Err(e) => {
-                    // Nothing half-written is left behind when initialisation fails.
-                    let _ = std::fs::remove_file(&tmp);
-                    Err(e)
-                }
-            }
+        match Self::reopen(final_path.to_path_buf(), tmp.to_path_buf(), meta, file) {
+            Ok(w) => Existing::Resume(Box::new(w)),
+            Err(e) => Existing::Replace(format!("cannot be resumed ({e})")),
         }
     }
 
-    fn create_fresh(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
-        let e = |what: &str| h5err(&tmp, what);
+    /// Builds a fresh run file under a name of this process's own, then claims `tmp` with it: by an atomic
+    /// hard link (fails with `AlreadyExists` if another process claimed it first) or, with `replace`, by a
+    /// rename over the existing `.tmp`.
+    fn create_fresh(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata, replace: bool) -> Result<RunWriter> {
+        let unique = claim_path(&tmp);
+        let build = || -> Result<RunWriter> {
+            let w = Self::build(final_path.clone(), unique.clone(), meta)?;
+            let io = |source| Error::Io {
+                path: tmp.clone(),
+                source,
+            };
+            if replace {
+                std::fs::rename(&unique, &tmp).map_err(io)?;
+            } else {
+                std::fs::hard_link(&unique, &tmp).map_err(io)?;
+                std::fs::remove_file(&unique).map_err(io)?;
+            }
+            write_owner(&tmp);
+            Ok(RunWriter { tmp: tmp.clone(), ..w })
+        };
+        let r = build();
+        // only this process's own file is ever removed
+        let _ = std::fs::remove_file(&unique);
+        r
+    }
+
+    /// Creates every group, dataset and attribute of a run in a new file `path`.
+    fn build(final_path: PathBuf, path: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
+        let e = |what: &str| h5err(&path, what);
         let file =
-            open_file(&tmp, OpenMode::CreateExcl, meta.compression).map_err(e("cannot create the temporary file"))?;
+            open_file(&path, OpenMode::CreateExcl, meta.compression).map_err(e("cannot create the temporary file"))?;
         write_root_attrs(&file, meta).map_err(e("writing root attributes"))?;
 
         let n_shards = meta.n_shards();
@@ -149,6 +300,17 @@ impl RunWriter {
             .fill_time(hdf5::dataset::FillTime::Alloc)
             .create(L::DS_SHARDS_COMPLETE)
             .map_err(e("creating /shards/complete"))?;
+        let checked = checked_datasets(meta);
+        let checksums = shards
+            .new_dataset::<u32>()
+            .shape((n_shards, checked.len().max(1)))
+            .alloc_time(Some(hdf5::dataset::AllocTime::Early))
+            .fill_value(0u32)
+            .fill_time(hdf5::dataset::FillTime::Alloc)
+            .create(L::DS_SHARDS_CHECKSUMS)
+            .map_err(e("creating /shards/checksums"))?;
+        let refs: Vec<&str> = checked.iter().map(|s| s.as_str()).collect();
+        write_str_list_attr(&checksums, L::ATTR_CHECKED, &refs).map_err(e("writing checksum names"))?;
         let mut accumulators = Vec::new();
         for (name, len) in &meta.accumulators {
             let ds = shards
@@ -169,47 +331,26 @@ impl RunWriter {
         Ok(RunWriter {
             meta: meta.clone(),
             final_path,
-            tmp,
+            tmp: path,
             completed: vec![false; n_shards],
             resumed: false,
+            overwrite: false,
+            notes: Vec::new(),
             inputs,
             outputs,
             accumulators,
             shards_complete,
+            checksums,
             file,
         })
     }
 
-    fn resume(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata) -> Result<RunWriter> {
-        let unreadable = |what: &str| {
-            let tmp = tmp.clone();
-            let what = what.to_string();
-            move |err: hdf5::Error| Error::Hdf5 {
-                path: tmp.clone(),
-                reason: format!(
-                    "cannot resume from this interrupted run ({what}: {err}); delete it to start the run afresh"
-                ),
-            }
-        };
-        let file = open_file(&tmp, OpenMode::ReadWrite, meta.compression).map_err(unreadable("opening"))?;
-        let stored = read_metadata(&file, &tmp).map_err(|err| Error::Hdf5 {
-            path: tmp.clone(),
-            reason: format!("cannot resume from this interrupted run ({err}); delete it to start the run afresh"),
-        })?;
-        let differ = metadata_differences(&stored, meta);
-        if !differ.is_empty() {
-            return Err(Error::Hdf5 {
-                path: tmp.clone(),
-                reason: format!(
-                    "an interrupted run of a different run is in the way (differs in: {}); delete it, or rerun \
-                     with the original settings to resume it",
-                    differ.join(", ")
-                ),
-            });
-        }
+    /// Reopens an interrupted run of the same metadata; completed shards whose checksums fail are marked
+    /// pending again (they are recomputed).
+    fn reopen(final_path: PathBuf, tmp: PathBuf, meta: &RunMetadata, file: File) -> Result<RunWriter> {
         let open_set = |group: &str, name: &str| -> Result<Dataset> {
             file.dataset(&format!("{group}/{name}"))
-                .map_err(unreadable(&format!("opening dataset {group}/{name}")))
+                .map_err(h5err(&tmp, &format!("opening dataset {group}/{name}")))
         };
         let mut inputs = Vec::new();
         let mut outputs = Vec::new();
@@ -226,19 +367,74 @@ impl RunWriter {
             accumulators.push(open_set(L::GROUP_SHARDS, name)?);
         }
         let shards_complete = open_set(L::GROUP_SHARDS, L::DS_SHARDS_COMPLETE)?;
-        let completed = read_shards_complete(&file, &tmp, meta.n_shards())?;
-        Ok(RunWriter {
+        let checksums = open_set(L::GROUP_SHARDS, L::DS_SHARDS_CHECKSUMS)?;
+        let mut completed = read_shards_complete(&file, &tmp, meta.n_shards())?;
+        let mut w = RunWriter {
             meta: meta.clone(),
             final_path,
             tmp,
-            completed,
+            completed: vec![false; meta.n_shards()],
             resumed: true,
+            overwrite: false,
+            notes: Vec::new(),
             inputs,
             outputs,
             accumulators,
             shards_complete,
+            checksums,
             file,
-        })
+        };
+        let mut damaged = Vec::new();
+        for (shard, done) in completed.iter_mut().enumerate() {
+            if *done && !w.shard_intact(shard)? {
+                *done = false;
+                damaged.push(shard.to_string());
+            }
+        }
+        if !damaged.is_empty() {
+            w.notes.push(format!(
+                "shards {} of the interrupted run failed their checksums and are recomputed",
+                damaged.join(", ")
+            ));
+        }
+        w.completed = completed;
+        Ok(w)
+    }
+
+    /// Whether the stored data of a completed shard match their checksums.
+    fn shard_intact(&self, shard: usize) -> Result<bool> {
+        let stored = self
+            .checksums
+            .read_slice_1d::<u32, _>(s![shard, ..])
+            .map_err(h5err(&self.tmp, "reading /shards/checksums"))?;
+        let now = self.shard_checksums(shard)?;
+        Ok(stored.iter().zip(&now).all(|(a, b)| a == b) && stored.len() >= now.len())
+    }
+
+    /// The checksums of shard `shard` as stored on disk now (raw rows, then accumulators).
+    fn shard_checksums(&self, shard: usize) -> Result<Vec<u32>> {
+        let range = self.meta.shard_range(shard);
+        let e = |what: &str| h5err(&self.tmp, what);
+        let mut out = Vec::new();
+        for ds in self.inputs.iter().chain(&self.outputs) {
+            let a = ds
+                .read_slice_2d::<f64, _>(s![range.clone(), ..])
+                .map_err(e("reading a shard for its checksum"))?;
+            out.push(crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])));
+        }
+        for ds in &self.accumulators {
+            let a = ds
+                .read_slice_1d::<f64, _>(s![shard, ..])
+                .map_err(e("reading an accumulator for its checksum"))?;
+            out.push(crc32_f64(a.as_slice().unwrap_or(&[])));
+        }
+        Ok(out)
+    }
+
+    /// Remarks on what [`create_with`](Self::create_with) found (a replaced or discarded `.tmp`, recomputed
+    /// shards).
+    pub fn notes(&self) -> &[String] {
+        &self.notes
     }
 
     /// The run's metadata.
@@ -359,6 +555,16 @@ impl RunWriter {
         for (ds, a) in self.accumulators.iter().zip(accumulators) {
             ds.write_slice(*a, s![shard, ..]).map_err(e("writing an accumulator"))?;
         }
+        let mut sums: Vec<u32> = inputs
+            .iter()
+            .chain(outputs)
+            .map(|a| crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])))
+            .chain(accumulators.iter().map(|a| crc32_f64(a)))
+            .collect();
+        sums.resize(self.checksums.shape()[1], 0);
+        self.checksums
+            .write_slice(&sums[..], s![shard, ..])
+            .map_err(e("writing shard checksums"))?;
         self.file.flush().map_err(e("flushing a shard"))?;
         self.shards_complete
             .write_slice(&[1u8][..], s![shard..shard + 1])
@@ -432,6 +638,7 @@ impl RunWriter {
                     write_scalar_attr(&ds, L::ATTR_CONFIDENCE, s.interval.confidence)?;
                     write_str_attr(&ds, L::ATTR_UNIT, &s.unit)?;
                     write_str_attr(&ds, L::ATTR_METHOD, &s.method)?;
+                    write_scalar_attr(&ds, L::ATTR_CRC32, s.checksum())?;
                     if let Some(a) = s.analytic {
                         write_scalar_attr(&ds, L::ATTR_ANALYTIC, a)?;
                         if let Some(c) = s.covers {
@@ -462,6 +669,7 @@ impl RunWriter {
             ("psd.lower", psd.lower.len()),
             ("psd.upper", psd.upper.len()),
             ("psd.analytic", psd.analytic.as_ref().map_or(n, |a| a.len())),
+            ("psd.expected", psd.expected.as_ref().map_or(n, |a| a.len())),
         ] {
             if len != n {
                 return Err(Error::invalid(
@@ -492,6 +700,7 @@ impl RunWriter {
             write_scalar_attr(&g, L::ATTR_DOF, psd.dof)?;
             write_scalar_attr(&g, L::ATTR_CONFIDENCE, psd.confidence)?;
             write_str_attr(&g, L::ATTR_METHOD, &psd.method)?;
+            write_scalar_attr(&g, L::ATTR_CRC32, psd.checksum())?;
             let mut sets = vec![
                 (L::DS_OMEGA, &psd.omega),
                 (L::DS_DENSITY, &psd.density),
@@ -500,6 +709,9 @@ impl RunWriter {
             ];
             if let Some(a) = &psd.analytic {
                 sets.push((L::DS_ANALYTIC, a));
+            }
+            if let Some(a) = &psd.expected {
+                sets.push((L::DS_EXPECTED, a));
             }
             for (name, data) in sets {
                 g.new_dataset_builder().with_data(data.as_slice()).create(name)?;
@@ -547,15 +759,17 @@ impl RunWriter {
         let RunWriter {
             final_path,
             tmp,
+            overwrite,
             inputs,
             outputs,
             accumulators,
             shards_complete,
+            checksums,
             file,
             ..
         } = self;
         let e = |what: &str| h5err(&tmp, what);
-        drop((inputs, outputs, accumulators, shards_complete));
+        drop((inputs, outputs, accumulators, shards_complete, checksums));
         if !file
             .attr_names()
             .map_err(e("listing root attributes"))?
@@ -571,7 +785,22 @@ impl RunWriter {
             source: err,
         };
         std::fs::File::open(&tmp).and_then(|f| f.sync_all()).map_err(io)?;
+        // the old run (with --overwrite) is replaced only here, atomically; without it, a file that appeared
+        // under the final name meanwhile is not replaced
+        if !overwrite && final_path.exists() {
+            return Err(Error::Hdf5 {
+                path: final_path,
+                reason: format!(
+                    "appeared while this run was being written; the finished run is kept as {}",
+                    tmp.display()
+                ),
+            });
+        }
+        if overwrite {
+            check_final_path(&final_path, true)?;
+        }
         std::fs::rename(&tmp, &final_path).map_err(io)?;
+        let _ = std::fs::remove_file(owner_path(&tmp));
         if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
             // Make the rename itself durable; best effort (not every platform can open a directory).
             let _ = std::fs::File::open(dir).and_then(|d| d.sync_all());
@@ -598,12 +827,13 @@ fn open_file(path: &Path, mode: OpenMode, compression: Compression) -> hdf5::Res
     })
 }
 
-/// Fields of two metadata records that differ (empty if identical).
-fn metadata_differences(a: &RunMetadata, b: &RunMetadata) -> Vec<&'static str> {
+/// Fields of two metadata records that differ (empty if identical): the fields, and each identifying
+/// provenance part by name.
+fn metadata_differences(a: &RunMetadata, b: &RunMetadata) -> Vec<String> {
     let mut d = Vec::new();
-    let mut check = |same: bool, name: &'static str| {
+    let mut check = |same: bool, name: &str| {
         if !same {
-            d.push(name)
+            d.push(name.to_string())
         }
     };
     check(a.scenario_text == b.scenario_text, "scenario");
@@ -618,10 +848,187 @@ fn metadata_differences(a: &RunMetadata, b: &RunMetadata) -> Vec<&'static str> {
     check(a.accumulators == b.accumulators, "accumulators");
     check(a.store_raw == b.store_raw, "store_raw");
     check(a.compression == b.compression, "compression");
+    let ident = |m: &RunMetadata| -> Vec<(String, String)> {
+        m.provenance
+            .iter()
+            .filter(|p| p.identifies)
+            .map(|p| (p.name.clone(), p.text.clone()))
+            .collect()
+    };
+    let (pa, pb) = (ident(a), ident(b));
+    for (name, text) in &pb {
+        match pa.iter().find(|(n, _)| n == name) {
+            Some((_, old)) if old == text => {}
+            Some(_) => d.push(format!("{name} (changed since the interrupted run)")),
+            None => d.push(format!("{name} (not recorded by the interrupted run)")),
+        }
+    }
+    for (name, _) in &pa {
+        if !pb.iter().any(|(n, _)| n == name) {
+            d.push(format!("{name} (recorded by the interrupted run, absent now)"));
+        }
+    }
     d
 }
 
+/// Names of the datasets whose shard rows `/shards/checksums` covers, in column order.
+fn checked_datasets(meta: &RunMetadata) -> Vec<String> {
+    let mut out = Vec::new();
+    if meta.store_raw {
+        for s in &meta.inputs {
+            out.push(format!("{}/{}", L::GROUP_INPUTS, s.name));
+        }
+        for s in &meta.outputs {
+            out.push(format!("{}/{}", L::GROUP_OUTPUTS, s.name));
+        }
+    }
+    for (name, _) in &meta.accumulators {
+        out.push(format!("{}/{name}", L::GROUP_SHARDS));
+    }
+    out
+}
+
+/// Refuses a final path that is a directory or not a regular file, one whose directory is missing, and an
+/// existing file unless `overwrite` and it is a stochvib run file (an HDF5 file with `@format_version`).
+fn check_final_path(final_path: &Path, overwrite: bool) -> Result<()> {
+    let fail = |reason: String| Error::Hdf5 {
+        path: final_path.to_path_buf(),
+        reason,
+    };
+    if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if !dir.is_dir() {
+            return Err(fail(format!(
+                "cannot create: directory `{}` does not exist",
+                dir.display()
+            )));
+        }
+    }
+    match std::fs::symlink_metadata(final_path) {
+        Err(_) => Ok(()),
+        Ok(m) if m.is_dir() => Err(fail(
+            "is a directory: give the run file's name (e.g. DIR/run.h5)".into(),
+        )),
+        Ok(m) if !m.is_file() => Err(fail(
+            "is not a regular file (a device, pipe or link): give the run file's name".into(),
+        )),
+        Ok(_) if !overwrite => Err(fail(
+            "already exists: a finished run is never overwritten silently; remove it, choose another output \
+             name, or pass --overwrite"
+                .into(),
+        )),
+        Ok(_) if !is_run_file(final_path) => Err(fail(
+            "exists and is not a stochvib run file: --overwrite only replaces run files".into(),
+        )),
+        Ok(_) => Ok(()),
+    }
+}
+
+/// Whether `path` starts with the HDF5 signature.
+fn is_hdf5(path: &Path) -> bool {
+    use std::io::Read;
+    let mut sig = [0u8; 8];
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_exact(&mut sig))
+        .is_ok()
+        && sig == *b"\x89HDF\r\n\x1a\n"
+}
+
+/// Whether `path` is an HDF5 file with a `@format_version` root attribute.
+fn is_run_file(path: &Path) -> bool {
+    is_hdf5(path)
+        && open_sec2(path, OpenMode::Read, |_| {})
+            .map(|f| {
+                f.attr_names()
+                    .map(|n| n.iter().any(|x| x == L::ATTR_FORMAT_VERSION))
+                    .unwrap_or(false)
+            })
+            .unwrap_or(false)
+}
+
+/// A string root attribute, if readable.
+fn attr_string_of(file: &File, name: &str) -> Option<String> {
+    file.attr(name)
+        .and_then(|a| a.read_scalar::<VarLenUnicode>())
+        .ok()
+        .map(|v| v.as_str().to_string())
+}
+
+/// The name under which this process builds a fresh `.tmp` before claiming it:
+/// `<tmp>.<pid>.<nanoseconds>`.
+fn claim_path(tmp: &Path) -> PathBuf {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos());
+    let mut name = tmp.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+    name.push(format!(".{}.{nanos}", std::process::id()));
+    tmp.with_file_name(name)
+}
+
+/// `<tmp>.owner`.
+fn owner_path(tmp: &Path) -> PathBuf {
+    let mut name = tmp.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+    name.push(L::OWNER_SUFFIX);
+    tmp.with_file_name(name)
+}
+
+/// Records this process as the writer of `tmp` (best effort: only used for messages).
+fn write_owner(tmp: &Path) {
+    let _ = std::fs::write(owner_path(tmp), std::process::id().to_string());
+}
+
+/// The pid recorded as the writer of `tmp`, if it is another process that is still alive.
+fn owner_alive(tmp: &Path) -> Option<u32> {
+    let pid: u32 = std::fs::read_to_string(owner_path(tmp)).ok()?.trim().parse().ok()?;
+    (pid != std::process::id() && process_alive(pid)).then_some(pid)
+}
+
+/// Whether a process with this pid exists (Linux: `/proc/<pid>`; elsewhere assumed gone).
+pub fn process_alive(pid: u32) -> bool {
+    Path::new(&format!("/proc/{pid}")).exists()
+}
+
+/// Removes fresh files of dead processes that never claimed the `.tmp` (`<tmp>.<pid>.<nanos>` left by a
+/// kill during set-up).
+fn remove_stale_claims(tmp: &Path) {
+    let (Some(dir), Some(stem)) = (tmp.parent(), tmp.file_name().map(|n| n.to_string_lossy().into_owned())) else {
+        return;
+    };
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let Ok(rd) = std::fs::read_dir(dir) else { return };
+    for entry in rd.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let Some(rest) = name.strip_prefix(&format!("{stem}.")) else {
+            continue;
+        };
+        let mut parts = rest.split('.');
+        let (Some(pid), Some(nanos), None) = (parts.next(), parts.next(), parts.next()) else {
+            continue;
+        };
+        if let (Ok(pid), true) = (pid.parse::<u32>(), nanos.chars().all(|c| c.is_ascii_digit())) {
+            if !process_alive(pid) {
+                let _ = std::fs::remove_file(entry.path());
+            }
+        }
+    }
+}
+
 fn write_root_attrs(file: &File, m: &RunMetadata) -> hdf5::Result<()> {
+    let prov = file.create_group(L::GROUP_PROVENANCE)?;
+    for p in &m.provenance {
+        write_str_attr(&prov, &p.name, &p.text)?;
+    }
+    let identifies: Vec<&str> = m
+        .provenance
+        .iter()
+        .filter(|p| p.identifies)
+        .map(|p| p.name.as_str())
+        .collect();
+    write_str_list_attr(&prov, L::ATTR_IDENTIFIES, &identifies)?;
+    write_scalar_attr(file, L::ATTR_METADATA_CRC32, m.digest())?;
     write_scalar_attr(file, L::ATTR_FORMAT_VERSION, L::FORMAT_VERSION)?;
     write_str_attr(file, L::ATTR_TOOLKIT_VERSION, L::TOOLKIT_VERSION)?;
     write_str_attr(file, L::ATTR_SCENARIO, &m.scenario_text)?;
@@ -681,6 +1088,7 @@ mod tests {
             accumulators: vec![],
             store_raw: true,
             compression,
+            provenance: vec![],
         }
     }
 

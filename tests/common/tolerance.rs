@@ -1,29 +1,141 @@
 //! Named tolerances of the test suite, in one place (test-only: not part of the library's API). Integration
 //! tests use them through `mod common;`; unit tests, benches and examples include this file by path.
 //!
-//! Each constant says what it bounds and why the value is what it is.
+//! Each constant says what it bounds and why the value is what it is. ε = `f64::EPSILON` = 2.2e-16; a
+//! rounded operation errs by at most ε/2 relative. The constants are relative (to the magnitude of the
+//! compared value) unless a test compares a value of order one absolutely.
+
+// ---- rounding and exact methods, strictest first ----
+
+/// A few rounded operations (a unit conversion, a convention round trip, one product or quotient, a sum of
+/// a few exactly representable terms): each rounding is at most ε/2, so 4ε allows about eight of them.
+pub const ULPS: f64 = 4.0 * f64::EPSILON;
+
+/// A short computation without cancellation (a closed form of a handful of operations, a quadrature rule
+/// or polynomial sum of up to ~40 terms of one sign, a 16-point FFT, the factorisation of a quadratic,
+/// the round-off floor of an integrator's error estimate, 25ε·∫|f|): n roundings of ≤ ε/2 add at worst
+/// linearly, about 45ε for these sizes.
+pub const ROUNDING: f64 = 1e-14;
 
 /// Closed form vs closed form (two algebraically equal expressions evaluated in f64): a few ulps, with
 /// room for cancellation in sums of a handful of terms.
 pub const EXACT: f64 = 1e-12;
 
+/// An eigen-, Schur-, LU- or root-finding route on a small (n ≤ 10), well-conditioned matrix or
+/// polynomial, against a closed form or a second such route (2×2 and 3×3 Lyapunov equations, oscillator
+/// matrices, quadratic spectral factors, roots of unity, seeded random stable matrices of order ≤ 10):
+/// backward-stable algorithms err by about κ·p(n)·ε with condition number κ ≤ 10² here; measured ≤ 1e-13 at
+/// every use, so 1e-12 leaves a factor of ten.
+pub const SMALL_DECOMPOSITION: f64 = 1e-12;
+
+/// Normwise relative residual ‖A x − b‖ / (‖A‖‖x‖ + ‖b‖) of a backward-stable solver (Bartels–Stewart
+/// for continuous and discrete Lyapunov equations up to n = 30, the O(n) sweep of a 10⁶-mass chain row by
+/// row, spectral factorisation): O(n ε) with a modest constant whatever the conditioning. Measured: at most
+/// 2.7e-13 (spectral factors of random stable polynomials of degree ≤ 4, 20 000 property-test cases); 1e-12.
+pub const RESIDUAL: f64 = 1e-12;
+
+/// Two exact (non-iterative) routes to the same quantity where the conditioning, not the operation count,
+/// sets the error: a frequency response near a lightly damped resonance by Cramer's rule vs the system's
+/// solve (the determinant cancels), the integral table Iₙ and spectral factors of random Hurwitz
+/// polynomials in the property tests. Errors κ·ε with κ up to ~10³: measured ≤ 4.7e-13 (scraper with sprung
+/// cab at ω = 9.4 rad/s) and ≤ 2.7e-13 over 20 000 property-test cases; 1e-11 leaves a factor of twenty.
+pub const CONDITIONED: f64 = 1e-11;
+
+/// Two exact routes on problems with condition numbers up to ~10⁵: the O(n) dynamic-stiffness sweep vs a
+/// dense complex LU on the seeded random damped torsional chains (stiffness ratios up to 10³, light
+/// damping, forcing frequencies near resonances). Measured: up to 1.1e-11; 1e-10.
+pub const ILL_CONDITIONED: f64 = 1e-10;
+
+/// Exact methods that go through an eigen- or Schur decomposition (Lyapunov, spectral factorisation,
+/// integral table): conditioning of the randomised cases in the tests allows about 1e-9.
+pub const FACTORISATION: f64 = 1e-9;
+
+/// A double root of a polynomial (the spectral factor of (x − a)², two equal natural frequencies from a
+/// discriminant that cancels): rounding the coefficients by ε moves a root of multiplicity two by about √ε
+/// ≈ 1.5e-8 relative, so quantities that depend on it to first order agree to a few √ε; 1e-7 ≈ 7√ε.
+pub const DOUBLE_ROOT: f64 = 1e-7;
+
+/// Quantile of the χ² or Student t law by bisection to full precision on statrs's distribution functions
+/// (regularised incomplete gamma and beta), against closed-form quantiles: the quantile inherits the
+/// distribution function's relative error divided by x f(x)/F(x), measured ≤ 4.4e-15 for the tested
+/// probabilities (1e-9 … 1 − 1e-8); 1e-9 leaves room for statrs's weaker regions (its own tests accept 1e-9
+/// to 1e-13 depending on the argument).
+pub const QUANTILE: f64 = 1e-9;
+
+/// Variance of data with a large mean by two different one- or two-pass formulas (Welford's update and
+/// its merge against the two-pass sum): every deviation x − mean carries the rounding of the data near the
+/// mean, ulp(10⁶) ≈ 1.2e-10 on a spread σ ≈ 2.9, i.e. ≈ 4e-11 relative, partly averaging out over the sums;
+/// measured 5.8e-12 for 100 values around 10⁶, so 1e-9 (σ/mean ≈ 3e-6) leaves two digits of margin.
+pub const LARGE_MEAN_VARIANCE: f64 = 1e-9;
+
+// ---- quadrature, Fourier and time-stepping ----
+
 /// Closed form vs adaptive quadrature requested at relative 1e-10 (see
 /// `stochvib::spectrum::numeric::REL_TOL`): the integrator's own error estimate
-/// is usually far smaller; 1e-8 leaves two digits of margin.
+/// is usually far smaller; 1e-8 leaves two digits of margin. Also closed forms vs composite Simpson rules
+/// whose h⁴ error term is below 1e-10 at each use (written out where they are used).
 pub const QUADRATURE: f64 = 1e-8;
 
 /// Closed form vs the oscillatory Fourier integral (Wynn-extrapolated tail), absolute, relative to the
 /// variance K(0): the extrapolation stops at 1e-12 of the head's scale.
 pub const FOURIER: f64 = 1e-7;
 
-/// Exact methods that go through an eigen- or Schur decomposition (Lyapunov, spectral factorisation,
-/// integral table): conditioning of the randomised cases in the tests allows about 1e-9.
-pub const FACTORISATION: f64 = 1e-9;
-
 /// Fixed-step classical RK4 against an exact solution, relative to the response scale: with
 /// ω_max·dt ≤ 0.01 the local error per step is ≈ (ω dt)⁵/120 ≈ 1e-12, so over ≤ 10⁴ steps the global
 /// error stays near 1e-8; 1e-6 leaves two digits of margin.
 pub const ODE_RK4: f64 = 1e-6;
+
+// ---- agreement with printed values ----
+
+/// Agreement with a value printed with 4 significant digits (in a source, or recomputed outside the crate
+/// and quoted in the test's comment): rounding to n significant digits moves a value by at most half a unit
+/// in the n-th digit, which is at most 5·10⁻ⁿ relative (the worst case, a leading digit of 1); the computed
+/// value's own error is far smaller. Used as `rel(computed, printed) < PRINTED_4_DIGITS`.
+pub const PRINTED_4_DIGITS: f64 = 5e-4;
+
+/// As [`PRINTED_4_DIGITS`], for a value printed with 5 significant digits.
+pub const PRINTED_5_DIGITS: f64 = 5e-5;
+
+/// As [`PRINTED_4_DIGITS`], for a value printed with 6 significant digits.
+pub const PRINTED_6_DIGITS: f64 = 5e-6;
+
+/// As [`PRINTED_4_DIGITS`], for a value printed with 7 significant digits.
+pub const PRINTED_7_DIGITS: f64 = 5e-7;
+
+/// As [`PRINTED_4_DIGITS`], for a value printed with 8 significant digits.
+pub const PRINTED_8_DIGITS: f64 = 5e-8;
+
+// ---- discretisation, limits and statistical estimators (sanity bounds with their derivation) ----
+
+/// Quasi-static limit of a base-excited system driven at a speed v where the road's temporal corner βv
+/// lies far below the natural frequencies: the relative corrections are O((βv/ω)²). Scraper with sprung
+/// cab (Sukharev (2012) 8.7) at v = 0.01 m/s: βv = 0.12 rad/s, lowest ω ≈ 9.5 rad/s, (βv/ω)² ≈ 1.6e-4;
+/// measured 5e-6 for σ → √D_q and 6.2e-4 for the v^{3/2} law of σ_ẍ (the correction's constant ≈ 4); 1e-3.
+pub const QUASI_STATIC: f64 = 1e-3;
+
+/// Variance of the spectral generator's grid (Δt = 0.01 s, N = 2048) against its Poisson-summation value
+/// D + 2Σ K(mT) − tail, relative to D: the tail is the integral 2∫_{ω_N}^∞ S dω up to the Euler–Maclaurin
+/// term O(Δω² S′(ω_N)) ≈ 1e-9 (Δω = 0.31 rad/s, ω_N = 314 rad/s, S ∝ ω⁻² there); 1e-7 leaves two digits.
+pub const POISSON_GRID_VARIANCE: f64 = 1e-7;
+
+/// Exact mean of a Welch estimate (the window-smoothed density of the sampled process) against the analytic
+/// density, relative: window smoothing ≈ (S″/2S)·4π²/(3L²) ≤ 0.8 % at ω → 0 (type 1, α = 1 s⁻¹, segments of
+/// L = 40.96 s) plus aliasing ≈ (α² + ω²)[1/(2π/Δt − ω)² + 1/(2π/Δt + ω)²] ≤ 1.2e-3 up to ω = 15.3 rad/s
+/// (Δt = 0.01 s): at most 0.92 %, bounded by 1 %.
+pub const WELCH_WINDOW_BIAS: f64 = 1e-2;
+
+/// Discrete variance of the spectral route (the input spectrum on the FFT grid, truncated at Nyquist,
+/// piecewise constant between bins) against the analytic variance, relative, for the catalogue scenarios
+/// simulated in `tests/mc_pipeline.rs` whose grids cover the input band: a sanity bound of 5 % (measured
+/// with those grids: below 1 %, at most 0.94 % for the quarter car's body displacement).
+pub const SPECTRAL_GRID_BIAS: f64 = 5e-2;
+
+/// Peak of the N(M, σ) curve of a run's histogram picture (301 points over [min(M − 4σ, samples),
+/// max(M + 4σ, samples)]) against 1/(σ√(2π)): the nearest grid point lies within half a step Δ/2 of M,
+/// where the curve has dropped by at most ½(Δ/2σ)²; with Δ = 8σ/300 (samples inside M ± 4σ) that is 9e-5,
+/// and the range of the 40 000 samples of the conveyor-idler run would have to exceed 27σ for the drop to
+/// reach 1e-3.
+pub const GAUSSIAN_CURVE_PEAK: f64 = 1e-3;
 
 /// Model correlation of a run picture (FFT sum of the output density over |ω| ≤ π/Δt on a grid 8× finer than
 /// the record) against the exact autocovariance of the discretised augmented system: the density beyond

@@ -4,7 +4,9 @@
 //! # Format
 //! * From elements: `coordinates = [{ name, unit, mass }]` (unit `m` with a mass in kg, or `rad` with an
 //!   inertia in kg m²), `base_inputs = N`, `[[model.element]]` with `name`, `point` (weights of the
-//!   coordinates), `to` (`"ground"`, `"base 0"`, … or a point array), `stiffness`, `damping`.
+//!   coordinates), `to` (`"ground"`, `"base 0"`, … or a point array), `stiffness`, `damping`. An element
+//!   whose point weights any length coordinate deflects a length (z + aφ: a is a lever arm in m/rad) and
+//!   takes N/m and N s/m; one on angles alone takes N m/rad and N m s/rad.
 //! * From matrices: `coordinates = [{ name, unit }]`, `base_inputs = N`, `mass_matrix`, `damping_matrix`,
 //!   `stiffness_matrix` (n × n), `base_stiffness`, `base_damping` (n × N) as SI numbers:
 //!   M q̈ + B q̇ + C q = K_u u + B_u u̇.
@@ -16,10 +18,21 @@ use super::io::track_layout;
 use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::models::ModelInstance;
+use crate::system::mdof::MAX_MASS_CONDITION;
 use crate::system::{Attach, Element, Mdof, Quantity};
 use crate::units::Dim;
 use nalgebra::DMatrix;
 use std::sync::Arc;
+
+/// Largest `base_inputs` accepted.
+pub const MAX_BASE_INPUTS: usize = 10_000;
+
+/// Indices of the smallest and largest mass, if any.
+fn mass_range(masses: &[f64]) -> Option<(usize, usize)> {
+    let lo = (0..masses.len()).min_by(|&a, &b| masses[a].total_cmp(&masses[b]))?;
+    let hi = (0..masses.len()).max_by(|&a, &b| masses[a].total_cmp(&masses[b]))?;
+    Some((lo, hi))
+}
 
 /// Builds the model of a `kind = "mdof"` `[model]` table (see the module docs).
 ///
@@ -54,18 +67,46 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
         };
         // with full matrices (`mass_matrix` …) the coordinates carry no mass of their own
         if !matrix_form {
-            masses.push(cf.quantity("mass", mass_dim)?);
+            let m = cf.quantity("mass", mass_dim)?;
+            if m <= 0.0 {
+                return Err(cf.error(
+                    "mass",
+                    cf.get("mass").map_or("?".into(), |v| v.to_string()),
+                    "must be > 0",
+                ));
+            }
+            masses.push(m);
         }
         cf.finish()?;
         coords.push((name, unit));
     }
     let n = coords.len();
+    if let Some((lo, hi)) = mass_range(&masses) {
+        if masses[hi] / masses[lo] > MAX_MASS_CONDITION {
+            return Err(f.error(
+                &format!("coordinates[{hi}].mass"),
+                crate::numbers::num(masses[hi]),
+                format!(
+                    "{:.1e} times the mass of `{}`: double precision cannot resolve masses more than {MAX_MASS_CONDITION:.0e} \
+                     apart (check the units)",
+                    masses[hi] / masses[lo],
+                    coords[lo].0
+                ),
+            ));
+        }
+    }
     let n_base = match f.get("base_inputs") {
         None => 0,
         Some(v) => v
             .as_integer()
-            .filter(|k| *k >= 0)
-            .ok_or_else(|| f.error("base_inputs", v, "expected a count >= 0"))? as usize,
+            .filter(|k| (0..=MAX_BASE_INPUTS as i64).contains(k))
+            .ok_or_else(|| {
+                f.error(
+                    "base_inputs",
+                    v,
+                    format!("expected a count from 0 to {MAX_BASE_INPUTS}"),
+                )
+            })? as usize,
     };
     let point = |key: &str, v: &toml::Value, ff: &Fields| -> Result<Vec<f64>> {
         let arr = v
@@ -75,10 +116,12 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             return Err(ff.error(key, v, format!("expected {n} weights (one per coordinate)")));
         }
         arr.iter()
-            .map(|x| {
+            .enumerate()
+            .map(|(j, x)| {
                 x.as_float()
                     .or_else(|| x.as_integer().map(|k| k as f64))
-                    .ok_or_else(|| ff.error(key, x, "expected a number"))
+                    .filter(|w| w.is_finite())
+                    .ok_or_else(|| ff.error(&format!("{key}[{j}]"), x, "expected a finite number"))
             })
             .collect()
     };
@@ -93,7 +136,9 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             let ef = Fields::new(f.file(), &f.path(&key), t);
             let name = ef.string("name")?.to_string();
             let p = point("point", ef.require("point")?, &ef)?;
-            let rot = p.iter().zip(&coords).any(|(w, c)| *w != 0.0 && c.1 == "rad");
+            // the same rule as the output units (Mdof::with_output): a point weighting a length is a length
+            // (an angle's weight is then a lever arm in m/rad), a point of angles alone is an angle
+            let rot = p.iter().any(|w| *w != 0.0) && p.iter().zip(&coords).all(|(w, c)| *w == 0.0 || c.1 == "rad");
             let (kd, bd) = if rot {
                 (Dim::TORQUE, Dim::new(2, 1, -1))
             } else {
@@ -116,6 +161,11 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             };
             let stiffness = ef.opt_quantity("stiffness", kd)?.unwrap_or(0.0);
             let damping = ef.opt_quantity("damping", bd)?.unwrap_or(0.0);
+            for (k, v) in [("stiffness", stiffness), ("damping", damping)] {
+                if v < 0.0 {
+                    return Err(ef.error(k, ef.get(k).map_or("?".into(), |x| x.to_string()), "must be >= 0"));
+                }
+            }
             ef.finish()?;
             elements.push(Element {
                 name,

@@ -1,0 +1,345 @@
+//! Evaluation of a sampled frequency-weighted signal: r.m.s., VDV, MSDV, running r.m.s. and MTVV, crest
+//! factor, and the ISO 2631-1 rule for when the basic (r.m.s.) method is not sufficient.
+
+use crate::error::{Error, Result};
+
+/// Integration time τ = 1 s of the running r.m.s. recommended for the MTVV (ISO 2631-1:1997, 6.3.1).
+pub const MTVV_INTEGRATION_TIME_S: f64 = 1.0;
+
+/// Crest factor above which the basic evaluation method may underestimate the effects (ISO 2631-1:1997,
+/// 6.2.1: for crest factors ≤ 9 the basic method is normally sufficient).
+pub const CREST_FACTOR_LIMIT: f64 = 9.0;
+
+/// Ratio MTVV/a_w above which the additional methods should be used (ISO 2631-1:1997, 6.3.3).
+pub const MTVV_RATIO_LIMIT: f64 = 1.5;
+
+/// Ratio VDV/(a_w T^(1/4)) above which the additional methods should be used (ISO 2631-1:1997, 6.3.3).
+pub const VDV_RATIO_LIMIT: f64 = 1.75;
+
+/// Neumaier-compensated sum.
+fn compensated_sum(values: impl Iterator<Item = f64>) -> f64 {
+    let (mut sum, mut comp) = (0.0f64, 0.0f64);
+    for v in values {
+        let t = sum + v;
+        if sum.abs() >= v.abs() {
+            comp += (sum - t) + v;
+        } else {
+            comp += (v - t) + sum;
+        }
+        sum = t;
+    }
+    sum + comp
+}
+
+fn check_signal(samples: &[f64], dt_s: f64) -> Result<()> {
+    if !(dt_s.is_finite() && dt_s > 0.0) {
+        return Err(Error::invalid("dt", dt_s, "the time step must be finite and > 0 s"));
+    }
+    if samples.is_empty() {
+        return Err(Error::invalid("samples", "[] (length 0)", "the signal is empty"));
+    }
+    if let Some((i, v)) = samples.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(Error::invalid(
+            &format!("samples[{i}]"),
+            v,
+            "every sample must be finite",
+        ));
+    }
+    Ok(())
+}
+
+/// Number of samples of the running-r.m.s. window and the integration time it represents.
+fn window(dt_s: f64, tau_s: f64) -> Result<usize> {
+    if !(tau_s.is_finite() && tau_s > 0.0) {
+        return Err(Error::invalid(
+            "tau",
+            tau_s,
+            "the integration time must be finite and > 0 s",
+        ));
+    }
+    let n = (tau_s / dt_s).round();
+    if n < 1.0 {
+        return Err(Error::invalid(
+            "tau",
+            tau_s,
+            format!("the integration time is shorter than half a time step (dt = {dt_s} s)"),
+        ));
+    }
+    Ok(n as usize)
+}
+
+/// The running r.m.s. with linear integration over τ, at every instant that has a full window.
+///
+/// # Formula
+/// ISO 2631-1:1997, 6.3.1 (linear integration): a_w(t₀) = [ (1/τ) ∫_{t₀−τ}^{t₀} a_w²(t) dt ]^(1/2). With samples aₖ
+/// held over one step dt each (rectangle rule) and n = round(τ/dt) samples per window (integration time
+/// n·dt), the value at sample j ≥ n − 1 is
+///
+/// ```text
+/// a_w(t_j) = [ (1/n) Σ_{k=j−n+1}^{j} aₖ² ]^(1/2),      j = n−1, …, N−1,
+/// ```
+/// computed with a sliding sum that is recomputed from scratch every n samples (no drift).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `dt` (finite, > 0), `samples` (empty), `samples[i]` (not finite),
+/// `tau` (finite, > 0, at least half a step), or `tau` when the signal is shorter than one window.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::running_rms;
+/// let a = [0.0, 0.0, 2.0, 2.0];
+/// let r = running_rms(&a, 0.5, 1.0).unwrap(); // 2 samples per window
+/// assert_eq!(r, vec![0.0, 2f64.sqrt(), 2.0]);
+/// ```
+pub fn running_rms(samples: &[f64], dt_s: f64, tau_s: f64) -> Result<Vec<f64>> {
+    check_signal(samples, dt_s)?;
+    let n = window(dt_s, tau_s)?;
+    if n > samples.len() {
+        return Err(Error::invalid(
+            "tau",
+            tau_s,
+            format!(
+                "the signal ({} samples, {} s) is shorter than one integration window of {n} samples",
+                samples.len(),
+                samples.len() as f64 * dt_s
+            ),
+        ));
+    }
+    let mut out = Vec::with_capacity(samples.len() - n + 1);
+    let mut sum = 0.0;
+    for j in (n - 1)..samples.len() {
+        let start = j + 1 - n;
+        if (j + 1 - n) % n == 0 {
+            sum = compensated_sum(samples[start..=j].iter().map(|v| v * v));
+        } else {
+            sum += samples[j] * samples[j] - samples[start - 1] * samples[start - 1];
+        }
+        out.push((sum.max(0.0) / n as f64).sqrt());
+    }
+    Ok(out)
+}
+
+/// ISO 2631-1's test of whether the basic (r.m.s.) evaluation method suffices.
+///
+/// # Formula
+/// ```text
+/// crest factor        CF = max|a_w(t)| / a_w          > 9     (6.2.1)
+/// MTVV ratio          MTVV / a_w                        > 1.5   (6.3.3)
+/// VDV ratio           VDV / (a_w · T^(1/4))             > 1.75  (6.3.3)
+/// ```
+/// The basic method is sufficient when none of the available criteria is exceeded. For reference: a
+/// sinusoid has CF = √2, MTVV/a_w = 1 and VDV/(a_w T^(1/4)) = √2·(3/8)^(1/4) = 1.11; a stationary
+/// Gaussian signal has VDV/(a_w T^(1/4)) → 3^(1/4) = 1.32.
+///
+/// # Errors
+/// [`BasicMethodCheck::new`] rejects non-finite or negative values and a non-positive duration.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::BasicMethodCheck;
+/// // a_w = 1, peak 10, MTVV 1.2, VDV 1.5·T^(1/4), T = 16 s
+/// let c = BasicMethodCheck::new(1.0, 10.0, Some(1.2), 1.5 * 2.0, 16.0).unwrap();
+/// assert!(c.crest_factor_exceeded && !c.mtvv_ratio_exceeded && !c.vdv_ratio_exceeded);
+/// assert!(!c.basic_method_sufficient);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct BasicMethodCheck {
+    /// max|a_w(t)|/a_w (`None` for an identically zero signal).
+    pub crest_factor: Option<f64>,
+    /// Crest factor > 9.
+    pub crest_factor_exceeded: bool,
+    /// MTVV/a_w (`None` when the MTVV is not available or a_w = 0).
+    pub mtvv_ratio: Option<f64>,
+    /// MTVV/a_w > 1.5.
+    pub mtvv_ratio_exceeded: bool,
+    /// VDV/(a_w T^(1/4)) (`None` when a_w = 0).
+    pub vdv_ratio: Option<f64>,
+    /// VDV/(a_w T^(1/4)) > 1.75.
+    pub vdv_ratio_exceeded: bool,
+    /// No available criterion is exceeded.
+    pub basic_method_sufficient: bool,
+}
+
+impl BasicMethodCheck {
+    /// Evaluates the three criteria from a_w (m/s²), the peak max|a_w(t)|, the MTVV (if available), the
+    /// VDV (m/s^1.75) and the duration T (s).
+    ///
+    /// # Formula
+    /// See the type's `# Formula`; a ratio whose denominator is 0 is `None` and not exceeded.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `a_w`, `peak`, `mtvv` or `vdv` (finite, ≥ 0) or `duration_s`
+    /// (finite, > 0).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::comfort::BasicMethodCheck;
+    /// let c = BasicMethodCheck::new(1.0, 2f64.sqrt(), Some(1.0), 1.107, 1.0).unwrap();
+    /// assert!(c.basic_method_sufficient);
+    /// ```
+    pub fn new(a_w: f64, peak: f64, mtvv: Option<f64>, vdv: f64, duration_s: f64) -> Result<Self> {
+        for (name, v) in [
+            ("a_w", a_w),
+            ("peak", peak),
+            ("vdv", vdv),
+            ("mtvv", mtvv.unwrap_or(0.0)),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(Error::invalid(name, v, "must be finite and >= 0"));
+            }
+        }
+        if !(duration_s.is_finite() && duration_s > 0.0) {
+            return Err(Error::invalid(
+                "duration_s",
+                duration_s,
+                "a duration must be finite and > 0 s",
+            ));
+        }
+        let ratio = |x: f64, y: f64| (y > 0.0).then(|| x / y);
+        let crest_factor = ratio(peak, a_w);
+        let mtvv_ratio = mtvv.and_then(|m| ratio(m, a_w));
+        let vdv_ratio = ratio(vdv, a_w * duration_s.powf(0.25));
+        let crest_factor_exceeded = crest_factor.is_some_and(|c| c > CREST_FACTOR_LIMIT);
+        let mtvv_ratio_exceeded = mtvv_ratio.is_some_and(|r| r > MTVV_RATIO_LIMIT);
+        let vdv_ratio_exceeded = vdv_ratio.is_some_and(|r| r > VDV_RATIO_LIMIT);
+        Ok(BasicMethodCheck {
+            crest_factor,
+            crest_factor_exceeded,
+            mtvv_ratio,
+            mtvv_ratio_exceeded,
+            vdv_ratio,
+            vdv_ratio_exceeded,
+            basic_method_sufficient: !(crest_factor_exceeded || mtvv_ratio_exceeded || vdv_ratio_exceeded),
+        })
+    }
+}
+
+/// The ISO 2631-1 metrics of one sampled frequency-weighted acceleration record.
+///
+/// # Formula
+/// The samples aₖ, k = 0 … N−1, are taken to hold over one time step each (rectangle rule), so the record
+/// lasts T = N·dt and (ISO 2631-1:1997, 6.1, 6.3.1, 6.3.2, 6.2.1, 9.2):
+///
+/// ```text
+/// a_w  = [ (1/N) Σ aₖ² ]^(1/2)                    m/s²       (6.1)
+/// VDV  = [ Σ aₖ⁴ · dt ]^(1/4)                     m/s^1.75   (6.3.2)
+/// MSDV = [ Σ aₖ² · dt ]^(1/2) = a_w √T            m/s^1.5    (9.2, meaningful for Wf)
+/// MTVV = max_j a_w(t_j), running r.m.s. over τ    m/s²       (6.3.1; τ = 1 s)
+/// CF   = max|aₖ| / a_w                                        (6.2.1)
+/// ```
+/// For a trigonometric polynomial sampled over whole periods these sums equal the integrals exactly
+/// (discrete orthogonality), e.g. a sinusoid of amplitude A gives a_w = A/√2 and VDV = A(3T/8)^(1/4).
+/// Sums are compensated (Neumaier).
+///
+/// # Errors
+/// [`SignalMetrics::from_samples`] rejects an empty signal, non-finite samples, dt ≤ 0 and an invalid
+/// integration time.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::SignalMetrics;
+/// use std::f64::consts::PI;
+/// let dt = 1.0 / 256.0;
+/// // 2 Hz sinusoid of amplitude 3 m/s² over 10 s
+/// let a: Vec<f64> = (0..2560).map(|k| 3.0 * (2.0 * PI * 2.0 * k as f64 * dt).sin()).collect();
+/// let m = SignalMetrics::from_samples(&a, dt).unwrap();
+/// assert!((m.a_w - 3.0 / 2f64.sqrt()).abs() < 1e-12);
+/// assert!((m.vdv - 3.0 * (3.0 * 10.0 / 8.0f64).powf(0.25)).abs() < 1e-12);
+/// assert!((m.mtvv.unwrap() - m.a_w).abs() < 1e-12);
+/// assert!(m.check.basic_method_sufficient);
+/// ```
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SignalMetrics {
+    /// Number of samples N.
+    pub samples: usize,
+    /// Time step dt, s.
+    pub dt_s: f64,
+    /// Duration T = N·dt, s.
+    pub duration_s: f64,
+    /// Weighted r.m.s. acceleration a_w, m/s² (rad/s² for We).
+    pub a_w: f64,
+    /// Peak max|aₖ|.
+    pub peak: f64,
+    /// Vibration dose value, m/s^1.75.
+    pub vdv: f64,
+    /// Motion sickness dose value (∫a² dt)^(1/2), m/s^1.5.
+    pub msdv: f64,
+    /// Maximum transient vibration value (`None` when the record is shorter than one window).
+    pub mtvv: Option<f64>,
+    /// Integration time actually used for the running r.m.s., n·dt, s.
+    pub mtvv_integration_time_s: f64,
+    /// The ISO 2631-1 criteria for the basic method.
+    pub check: BasicMethodCheck,
+}
+
+impl SignalMetrics {
+    /// Metrics of a record with the standard integration time τ = 1 s for the MTVV.
+    ///
+    /// # Formula
+    /// See the type's `# Formula`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `dt` (finite, > 0), `samples` (empty) or `samples[i]` (not
+    /// finite).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::comfort::SignalMetrics;
+    /// assert!(SignalMetrics::from_samples(&[], 0.01).is_err());
+    /// assert!(SignalMetrics::from_samples(&[1.0, f64::NAN], 0.01).is_err());
+    /// assert!(SignalMetrics::from_samples(&[1.0], 0.0).is_err());
+    /// let m = SignalMetrics::from_samples(&[1.0, -1.0], 0.25).unwrap();
+    /// assert_eq!((m.a_w, m.mtvv), (1.0, None)); // 0.5 s record: no full 1 s window
+    /// ```
+    pub fn from_samples(samples: &[f64], dt_s: f64) -> Result<Self> {
+        Self::with_integration_time(samples, dt_s, MTVV_INTEGRATION_TIME_S)
+    }
+
+    /// Metrics of a record with a chosen running-r.m.s. integration time τ (s) for the MTVV.
+    ///
+    /// # Formula
+    /// See the type's `# Formula`; n = round(τ/dt) samples per window.
+    ///
+    /// # Errors
+    /// Those of [`SignalMetrics::from_samples`], and `tau` when not finite and > 0 or shorter than half a
+    /// step.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::comfort::SignalMetrics;
+    /// let a = [0.0, 0.0, 0.0, 2.0];
+    /// let m = SignalMetrics::with_integration_time(&a, 1.0, 2.0).unwrap();
+    /// assert_eq!(m.mtvv, Some(2f64.sqrt()));
+    /// assert_eq!(m.a_w, 1.0);
+    /// ```
+    pub fn with_integration_time(samples: &[f64], dt_s: f64, tau_s: f64) -> Result<Self> {
+        check_signal(samples, dt_s)?;
+        let n_win = window(dt_s, tau_s)?;
+        let n = samples.len();
+        let duration_s = n as f64 * dt_s;
+        let sum2 = compensated_sum(samples.iter().map(|v| v * v));
+        let sum4 = compensated_sum(samples.iter().map(|v| (v * v) * (v * v)));
+        let a_w = (sum2 / n as f64).sqrt();
+        let peak = samples.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let vdv = (sum4 * dt_s).powf(0.25);
+        let msdv = (sum2 * dt_s).sqrt();
+        let mtvv = if n_win <= n {
+            Some(running_rms(samples, dt_s, tau_s)?.into_iter().fold(0.0f64, f64::max))
+        } else {
+            None
+        };
+        let check = BasicMethodCheck::new(a_w, peak, mtvv, vdv, duration_s)?;
+        Ok(SignalMetrics {
+            samples: n,
+            dt_s,
+            duration_s,
+            a_w,
+            peak,
+            vdv,
+            msdv,
+            mtvv,
+            mtvv_integration_time_s: n_win as f64 * dt_s,
+            check,
+        })
+    }
+}

@@ -1,0 +1,124 @@
+//! What a run will need — memory for its realizations and disk for its file — estimated before anything is
+//! allocated or written, and compared with what the machine has, so that a run too large for it fails at
+//! once with the numbers instead of aborting in an allocation or filling the disk.
+
+use super::RunOptions;
+use crate::error::{Error, Result};
+use crate::store::RunMetadata;
+use std::path::Path;
+
+/// Bytes per f64 and per complex f64.
+const F64: u128 = 8;
+const C64: u128 = 16;
+
+/// Upper bound of the working memory of a run, bytes: per worker thread the realization buffers of the
+/// route, plus one shard's results and raw rows, plus the spectral route's transfer table.
+///
+/// # Formula
+/// With N samples, p outputs, g independent input processes, s = shard size, T threads, B = N/8 ≤ 1024 Welch
+/// bins: per thread N(p + g)·8 (samples) + N·8 + (N/2+1)·16·(g + 2) (FFT buffers); shard results
+/// s·p·(B + 2)·8, and with raw data 2·s·N·(p + g)·8 (the rows and their copy for writing); the spectral route's
+/// table g·p·(N/2+1)·16.
+pub fn memory_bytes(n: usize, p: usize, g: usize, opts: &RunOptions, threads: usize) -> u128 {
+    let (n, p, g) = (n as u128, p as u128, g as u128);
+    let s = opts.shard_size.min(opts.realizations) as u128;
+    let bins = (n / 8).clamp(4, 1024) / 2 + 1;
+    let per_thread = n * (p + g) * F64 + n * F64 + (n / 2 + 1) * C64 * (g + 2);
+    let shard = s * p * (bins + 2) * F64 + if opts.store_raw { 2 * s * n * (p + g) * F64 } else { 0 };
+    let table = g * p * (n / 2 + 1) * C64;
+    per_thread * threads as u128 + shard + table
+}
+
+/// Memory the system can still give (Linux `MemAvailable`), bytes; `None` where unknown.
+pub fn available_memory() -> Option<u128> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u128 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// Free space for an unprivileged writer on the file system of `dir`, bytes; `None` where unknown.
+pub fn available_disk(dir: &Path) -> Option<u128> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        let c = std::ffi::CString::new(dir.as_os_str().as_bytes()).ok()?;
+        let mut s: libc::statvfs = unsafe { std::mem::zeroed() };
+        // SAFETY: `c` is a valid NUL-terminated path and `s` a writable statvfs.
+        if unsafe { libc::statvfs(c.as_ptr(), &mut s) } != 0 {
+            return None;
+        }
+        Some(s.f_bavail as u128 * s.f_frsize as u128)
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = dir;
+        None
+    }
+}
+
+fn gib(b: u128) -> String {
+    format!("{:.3} GiB", b as f64 / (1u128 << 30) as f64)
+}
+
+/// Refuses a run whose working memory exceeds what the machine has available.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] (`realizations`/`duration`) with the numbers and what to change.
+pub fn check_memory(n: usize, p: usize, g: usize, opts: &RunOptions) -> Result<()> {
+    let threads = rayon::current_num_threads();
+    let need = memory_bytes(n, p, g, opts, threads);
+    if let Some(have) = available_memory() {
+        if need > have {
+            return Err(Error::invalid(
+                "duration",
+                format!(
+                    "{} s at Δt = {} s ({n} samples per realization)",
+                    opts.duration_s, opts.dt_s
+                ),
+                format!(
+                    "the run needs about {} of memory ({threads} threads, {p} outputs, {g} input processes{}) \
+                     but {} are available: shorten the realizations, use fewer threads (RAYON_NUM_THREADS), a \
+                     smaller --shard-size, or no --store-raw",
+                    gib(need),
+                    if opts.store_raw { ", raw rows of a shard" } else { "" },
+                    gib(have)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a run whose file would not fit on the disk of `out`.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] (`realizations`) with the numbers and what to change.
+pub fn check_disk(meta: &RunMetadata, out: &Path) -> Result<()> {
+    let need = meta.estimated_file_bytes();
+    let dir = out
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if let Some(have) = available_disk(dir) {
+        if need > have {
+            return Err(Error::invalid(
+                "realizations",
+                meta.n_realizations,
+                format!(
+                    "the run file would take about {} ({} realizations × {} samples{}, {} shards of accumulators) \
+                     but {} are free on the disk of {}: fewer or shorter realizations, no --store-raw, or another \
+                     disk",
+                    gib(need),
+                    meta.n_realizations,
+                    meta.n_samples,
+                    if meta.store_raw { ", raw data stored" } else { "" },
+                    meta.n_shards(),
+                    gib(have),
+                    dir.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
