@@ -23,7 +23,7 @@ result = scenario.analyze()
 y = result["y"]
 print(f"M_y = {y.mean:.6f} m, sigma_y = {y.sigma:.6f} m, a* = M_y + 3 sigma_y = {y.three_sigma[1]:.6f} m")
 for m in y.methods:  # Lyapunov, integral table, quadrature (with its error estimate)
-    print(f"  {m['method']:<15} variance {m['value']:.12e}  error estimate {m['error_estimate']}")
+    print(f"  {m['method']:<15} variance {m['value']:.12e}  error estimate {m['error_estimate']}  ({m['status']})")
 
 # %% [markdown]
 # The input: two-sided angular density S_F(ω) = αD/(π(α² + ω²)), D = σ_F².

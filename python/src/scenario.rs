@@ -10,9 +10,10 @@ use crate::system::PySystem;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use pyo3::IntoPyObjectExt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use stochvib::models::InputLayout;
+use stochvib::quad_oscillatory::OscillatoryOptions;
 use stochvib::report::{
     analysis_report, attach_monte_carlo, deterministic_report, reference_report, AnalysisReport, TablesReport,
 };
@@ -218,6 +219,20 @@ fn with_progress<T>(
     r
 }
 
+/// After a run that stopped early in this process, which goes on living: removes `<path>.tmp.owner` if it
+/// names this process. The library writes that file while a run is being written (another process seeing a
+/// live pid there refuses to touch the `.tmp`) and leaves it when its writer stops early; a CLI process that
+/// stops exits, leaving a dead pid that is ignored, but the Python interpreter stays alive, so without this
+/// the interrupted run could only be resumed from this same process.
+fn release_claim(path: &Path) {
+    let mut name = stochvib::store::tmp_path(path).into_os_string();
+    name.push(stochvib::store::layout::OWNER_SUFFIX);
+    let owner = PathBuf::from(name);
+    if std::fs::read_to_string(&owner).is_ok_and(|s| s.trim() == std::process::id().to_string()) {
+        let _ = std::fs::remove_file(owner);
+    }
+}
+
 /// Time step and duration: as given, the missing ones suggested from the system (with the reason).
 fn step(sc: &Scenario, dt: Option<f64>, duration: Option<f64>) -> stochvib::Result<(f64, f64, String)> {
     if let (Some(dt), Some(d)) = (dt, duration) {
@@ -378,6 +393,7 @@ impl PyScenario {
                 band: band_rad_s,
                 duration: duration_s,
                 levels: level_list,
+                effort: OscillatoryOptions::default(),
             },
         };
         Ok(PyScenario {
@@ -393,7 +409,12 @@ impl PyScenario {
     /// whether it covers the analytic σ; the run file goes to a temporary directory and is removed), with
     /// master ``seed``, time step ``dt`` (s) and realization ``duration`` (s) (suggested from the system
     /// when not given) and a progress bar (``progress``: True, False or a callable(done, total)).
-    #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None))]
+    ///
+    /// ``rel_tol``, ``max_subintervals`` and ``max_half_periods`` override the effort of the quadratures
+    /// (the scenario's ``[analysis.quadrature]``; the CLI's ``--rel-tol``, ``--max-subintervals``,
+    /// ``--max-half-periods``; defaults 1e-10, 2000, 10 000).
+    #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None))]
+    #[allow(clippy::too_many_arguments)]
     fn analyze<'py>(
         &self,
         py: Python<'py>,
@@ -402,11 +423,33 @@ impl PyScenario {
         dt: Option<f64>,
         duration: Option<f64>,
         progress: Option<Py<PyAny>>,
+        rel_tol: Option<f64>,
+        max_subintervals: Option<usize>,
+        max_half_periods: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let effort_given = rel_tol.is_some() || max_subintervals.is_some() || max_half_periods.is_some();
+        let tuned: Document;
+        let doc = match &self.doc {
+            Document::Stochastic(sc) if effort_given => {
+                // As the CLI's flags: the given values replace the scenario's, then the whole is validated.
+                let mut sc = sc.clone();
+                let e = &mut sc.analysis.effort;
+                e.rel_tol = rel_tol.unwrap_or(e.rel_tol);
+                e.max_subintervals = max_subintervals.unwrap_or(e.max_subintervals);
+                e.max_half_periods = max_half_periods.unwrap_or(e.max_half_periods);
+                call(py, || e.validate())?;
+                tuned = Document::Stochastic(sc);
+                &tuned
+            }
+            _ => &self.doc,
+        };
         let (kind, data, text) = match monte_carlo {
-            None => document_report(py, &self.doc)?,
+            None => document_report(py, doc)?,
             Some(n) => {
-                let sc = self.stochastic(py)?;
+                let sc = match doc {
+                    Document::Stochastic(sc) => sc,
+                    _ => self.stochastic(py)?,
+                };
                 let mut r = detached(py, || Ok(analysis_report(sc)?))?;
                 let summary = with_progress(py, progress, |cb| {
                     run_interruptible(py, cb, |cb| {
@@ -465,7 +508,7 @@ impl PyScenario {
                 }),
             )?;
         }
-        let (summary, how) = with_progress(py, progress, |cb| {
+        let outcome = with_progress(py, progress, |cb| {
             run_interruptible(py, cb, |cb| {
                 let (dt, d, how) = step(sc, dt, duration)?;
                 let opts = RunOptions {
@@ -478,7 +521,11 @@ impl PyScenario {
                 };
                 sc.simulate(&opts, &path, cb).map(|s| (s, how))
             })
-        })?;
+        });
+        if outcome.is_err() {
+            release_claim(&path);
+        }
+        let (summary, how) = outcome?;
         py.import("stochvib.results")?
             .getattr("RunResult")?
             .call1((to_python(py, &summary)?, summary.to_string(), how))

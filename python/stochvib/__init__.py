@@ -105,6 +105,9 @@ def analyze(
     duration: Optional[float] = None,
     progress: Union[bool, Callable[[int, int], Any]] = True,
     spectra_dir: Optional[PathLike] = None,
+    rel_tol: Optional[float] = None,
+    max_subintervals: Optional[int] = None,
+    max_half_periods: Optional[int] = None,
 ) -> Union[AnalysisResult, Report]:
     """Response statistics of a scenario, or of ``system`` driven by ``input`` (the ``stochvib analyze`` report).
 
@@ -118,11 +121,16 @@ def analyze(
     integral table, quadrature) with its value, error estimate and relative difference, spectral moments,
     Rice zero up-crossing rate ν₀⁺ (1/s), bandwidth, expected largest peak in ``duration_s`` (default 3600 s),
     crossing rates of ``levels`` ({output: [levels in the output's SI unit]}), σ in ``band_rad_s``
-    (ω₁, ω₂ in rad/s). An infinite variance is reported, not raised: ``sigma`` is None and
-    ``variance_note`` holds the diagnosis.
+    (ω₁, ω₂ in rad/s). An infinite variance is reported, not raised: ``sigma`` is None,
+    ``variance_outcome["status"]`` is "divergent" and ``variance_note`` holds the diagnosis.
 
     ``monte_carlo=N`` adds a Monte Carlo column (N seeded realizations, time step ``dt`` s and realization
     ``duration`` s suggested when not given, ``progress`` bar; Ctrl-C stops it).
+
+    ``rel_tol`` (default 1e-10), ``max_subintervals`` (2000) and ``max_half_periods`` (10 000) set the
+    effort of the quadratures, over the scenario's ``[analysis.quadrature]`` (the CLI's ``--rel-tol``,
+    ``--max-subintervals``, ``--max-half-periods``). A quadrature that does not converge is reported, not
+    raised: its method entry has ``status`` "not-converged", the estimate and which option to raise.
     """
     kw: Dict[str, Any] = {}
     for k, v in (
@@ -137,7 +145,16 @@ def analyze(
         if v is not None:
             kw[k] = v
     sc = _scenario(subject, input, kw, spectra_dir)
-    return sc.analyze(monte_carlo=monte_carlo, seed=seed, dt=dt, duration=duration, progress=progress)
+    return sc.analyze(
+        monte_carlo=monte_carlo,
+        seed=seed,
+        dt=dt,
+        duration=duration,
+        progress=progress,
+        rel_tol=rel_tol,
+        max_subintervals=max_subintervals,
+        max_half_periods=max_half_periods,
+    )
 
 
 def simulate(

@@ -217,8 +217,12 @@ class Scenario:
         dt: Optional[float] = None,
         duration: Optional[float] = None,
         progress: Progress = True,
+        rel_tol: Optional[float] = None,
+        max_subintervals: Optional[int] = None,
+        max_half_periods: Optional[int] = None,
     ) -> Union[AnalysisResult, Report]:
-        """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``)."""
+        """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``); ``rel_tol``,
+        ``max_subintervals``, ``max_half_periods`` override the quadratures' ``[analysis.quadrature]``."""
     def simulate(
         self,
         realizations: int,

@@ -55,18 +55,24 @@ class OutputResult(_View):
     system driven along a road).
 
     Attributes: ``name``, ``unit``, ``mean`` (M_y = H(0) M_u), ``variance`` (reference variance: Lyapunov,
-    else integral table, else quadrature), ``sigma``, ``variance_note`` (why the variance is infinite or
-    unavailable: the divergence diagnosis), ``methods`` (every variance method with ``value``,
-    ``error_estimate``, ``rel_diff`` and ``note``), ``lambda2``, ``lambda4`` (spectral moments ∫ω^k S_y dω),
-    ``zero_upcrossing_rate`` ν₀⁺ = (1/2π)√(λ₂/λ₀), ``bandwidth`` ε, ``lower_3sigma``, ``upper_3sigma``,
-    ``band_sigma``, ``band_note``, ``expected_largest_peak``, ``levels`` (Rice up-crossing rate and
-    exceedance probability per level), ``monte_carlo`` (the Monte Carlo column, if asked). Missing values
-    are ``None``.
+    else integral table, else quadrature), ``sigma``, ``variance_outcome`` (the library's outcome of the
+    reference variance: ``status`` "value", "divergent", "not-converged", "not-applicable", "unreliable" or
+    "failed", with ``reason`` when there is no value), ``variance_note`` (that reason, or None),
+    ``methods`` (every variance method: ``method``, ``status``, ``value``, ``error_estimate``,
+    ``rel_diff``, ``reason``; a method that did not converge has its ``estimate`` and which option raises the
+    effort), ``lambda2``, ``lambda4`` (spectral moments ∫ω^k S_y dω, with ``lambda2_outcome`` and
+    ``lambda4_outcome``), ``zero_upcrossing_rate`` ν₀⁺ = (1/2π)√(λ₂/λ₀), ``bandwidth`` ε, ``lower_3sigma``,
+    ``upper_3sigma``, ``band_sigma``, ``band_note``, ``expected_largest_peak``, ``levels`` (Rice up-crossing
+    rate and exceedance probability per level), ``monte_carlo`` (the Monte Carlo column, if asked). Missing
+    values are ``None``.
     """
 
     def __init__(self, data: Dict[str, Any]) -> None:
         flat = dict(data.get("statistics", {}))
         flat.update({k: v for k, v in data.items() if k != "statistics"})
+        flat["methods"] = [_flat_method(m) for m in flat.get("methods", [])]
+        outcome = flat.get("variance_outcome") or {}
+        flat["variance_note"] = None if outcome.get("status", "value") == "value" else outcome.get("reason")
         self._data = flat
         self._raw = data
 
@@ -77,7 +83,9 @@ class OutputResult(_View):
         return None if lo is None or hi is None else (lo, hi)
 
     def method(self, name: str) -> Dict[str, Any]:
-        """The entry of ``methods`` for ``name`` ("lyapunov", "integral-table" or "quadrature")."""
+        """The entry of ``methods`` for ``name`` ("lyapunov", "integral-table" or "quadrature"; "lyapunov
+        (delays)" for delayed inputs): ``status``, ``value`` (None without one), ``error_estimate``,
+        ``rel_diff``, ``reason``."""
         for m in self._data.get("methods", []):
             if m.get("method") == name:
                 return dict(m)
@@ -193,6 +201,15 @@ class RunResult(Report):
             f"<stochvib.RunResult {str(self.path)!r}: {self._data.get('n_realizations')} realizations, "
             f"route {self._data.get('route')}>"
         )
+
+
+def _flat_method(m: Dict[str, Any]) -> Dict[str, Any]:
+    """A method entry with its outcome merged in: value and error estimate (None when there is none), status
+    and reason."""
+    out: Dict[str, Any] = {"method": m.get("method"), "value": None, "error_estimate": None, "reason": None}
+    out.update(m.get("outcome") or {})
+    out.update({k: v for k, v in m.items() if k not in ("outcome", "method")})
+    return out
 
 
 def _isfinite(x: Any) -> bool:

@@ -21,18 +21,20 @@ def root() -> Path:
 
 
 def _find_cli() -> Path:
+    """STOCHVIB_CLI, else the debug binary of this checkout brought up to date by cargo (a no-op after
+    `cargo test`; a stale binary would compare the package with an older library), else a built binary."""
     env = os.environ.get("STOCHVIB_CLI")
     if env:
         return Path(env)
+    cargo = shutil.which("cargo")
+    if cargo is not None:
+        subprocess.run([cargo, "build", "--quiet", "--locked", "--bin", "stochvib"], cwd=ROOT, check=True)
+        return ROOT / "target" / "debug" / "stochvib"
     for profile in ("debug", "release"):
         p = ROOT / "target" / profile / "stochvib"
         if p.is_file():
             return p
-    cargo = shutil.which("cargo")
-    if cargo is None:
-        pytest.skip("no stochvib binary and no cargo to build one (set STOCHVIB_CLI)")
-    subprocess.run([cargo, "build", "--quiet", "--bin", "stochvib"], cwd=ROOT, check=True)
-    return ROOT / "target" / "debug" / "stochvib"
+    pytest.skip("no stochvib binary and no cargo to build one (set STOCHVIB_CLI)")
 
 
 class Cli:

@@ -90,8 +90,27 @@ def test_divergent_acceleration_is_reported_with_the_diagnosis():
     assert acc.sigma is None and acc.variance is None
     assert "infinite" in acc.variance_note
     assert acc.band_sigma is not None and acc.band_sigma > 0  # a finite band has a finite σ
-    notes = [m["note"] for m in acc.methods]
-    assert any(n and "infinite" in n for n in notes)
+    assert acc.variance_outcome["status"] == "divergent"
+    divergent = [m for m in acc.methods if m["status"] == "divergent"]
+    assert divergent and all("infinite" in m["reason"] and m["value"] is None for m in divergent)
+
+
+def test_quadrature_effort_as_the_cli_flags(cli):
+    # A quadrature held to one subinterval and two half-periods does not converge: the report says so (the
+    # estimate, and which option raises the effort) instead of raising, exactly as
+    # `stochvib analyze --max-subintervals 1 --max-half-periods 2` does.
+    path = "data/quarter-car.toml"
+    want = cli.json("analyze", path, "--max-subintervals", "1", "--max-half-periods", "2")
+    r = stochvib.analyze(path, max_subintervals=1, max_half_periods=2)
+    assert r.to_dict() == want
+    q = r["tyre_force"].method("quadrature")
+    assert q["status"] == "not-converged" and q["value"] is None and q["estimate"] > 0
+    assert "max_subintervals (now 1)" in q["reason"] and "max_half_periods (now 2)" in q["reason"]
+    assert r["tyre_force"].variance is None and "max_subintervals" in r["tyre_force"].variance_note
+    # the scenario's own options stay untouched; a tolerance the library refuses is an InvalidInputError
+    assert stochvib.analyze(path).to_dict() == cli.json("analyze", path)
+    with pytest.raises(InvalidInputError, match="rel_tol"):
+        Scenario.load(path).analyze(rel_tol=-1.0)
 
 
 @pytest.mark.parametrize(

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import signal
+import subprocess
 import sys
 import threading
 import time
@@ -110,6 +111,29 @@ def test_keyboard_interrupt_from_callback_leaves_a_resumable_tmp(tmp_path, refer
     assert without_path(r.to_dict()) | {"resumed_shards": 0} == without_path(reference[1])
 
 
+def test_interrupted_run_resumed_by_another_process(tmp_path, reference, cli):
+    # The interpreter lives on after the KeyboardInterrupt: the run must not stay claimed by it (the library
+    # refuses a .tmp whose recorded writer is a live process), so the CLI resumes it, bit-identically.
+    path = tmp_path / "other.h5"
+
+    def stop_after_one(done, total):
+        if done == 1:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        stochvib.simulate(SCENARIO, N, path, progress=stop_after_one, **OPTS)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["other.h5.tmp"]
+    summary = cli.json(
+        "simulate", SCENARIO, "--realizations", str(N), "--dt", "0.01", "--duration", "5", "--seed", "3",
+        "--shard-size", "5", "-o", str(path),
+    )
+    assert summary["resumed_shards"] == 1
+    a, b = datasets(path), datasets(reference[0])
+    assert a.keys() == b.keys()
+    for k in a:
+        np.testing.assert_array_equal(a[k], b[k], err_msg=k)
+
+
 def test_other_exceptions_from_the_callback_stop_the_run(tmp_path):
     def boom(done, total):
         if done == 1:
@@ -133,15 +157,65 @@ def test_sigint_while_computing_stops_the_run(tmp_path):
             threading.Event().wait(0.001)
         os.kill(os.getpid(), signal.SIGINT)
 
-    n, shard = 400, 5  # 80 shards: the signal arrives long before the end
+    n, shard = 400, 5  # 80 shards of 5 × 4000 samples (about 0.5 s in all): the signal arrives long before the end
     th = threading.Thread(target=send_sigint_after_first_shard)
     th.start()
     with pytest.raises(KeyboardInterrupt):
-        stochvib.simulate(SCENARIO, n, path, progress=calls.__setitem__, dt=0.01, duration=5.0, seed=3, shard_size=shard)
+        stochvib.simulate(SCENARIO, n, path, progress=calls.__setitem__, dt=0.01, duration=40.0, seed=3, shard_size=shard)
     th.join()
     assert not path.exists() and (tmp_path / "sig.h5.tmp").is_file()
-    r = stochvib.simulate(SCENARIO, n, path, progress=False, dt=0.01, duration=5.0, seed=3, shard_size=shard)
+    r = stochvib.simulate(SCENARIO, n, path, progress=False, dt=0.01, duration=40.0, seed=3, shard_size=shard)
     assert 1 <= r.resumed_shards < n // shard
+
+
+CHILD = """
+import sys
+import stochvib
+
+def progress(done, total):
+    print(done, flush=True)
+
+stochvib.simulate(sys.argv[1], 40, sys.argv[2], progress=progress, dt=0.01, duration=1000.0, seed=5, shard_size=5)
+print("finished", flush=True)
+"""
+CHILD_OPTS = dict(dt=0.01, duration=1000.0, seed=5, shard_size=5)  # 8 shards of 5 × 10⁵ samples
+
+
+def test_ctrl_c_of_a_python_process_then_resume_bit_identical(tmp_path):
+    # Ctrl-C as a user gives it: SIGINT to a Python process whose main thread is inside simulate() (the GIL
+    # released, the library computing a shard). The process stops after that shard with KeyboardInterrupt
+    # (uncaught, so Python ends itself by SIGINT), leaving only the resumable .tmp; resuming it gives files
+    # and statistics bit-identical to a run never interrupted.
+    path = tmp_path / "child.h5"
+    child = subprocess.Popen(
+        [sys.executable, "-c", CHILD, SCENARIO, str(path)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    lines = []
+    for line in child.stdout:
+        lines.append(line.strip())
+        if line.strip() == "1":  # one shard written, the second computing
+            child.send_signal(signal.SIGINT)
+            break
+    out, err = child.communicate(timeout=120)
+    lines += out.split()
+    assert child.returncode == -signal.SIGINT, (child.returncode, err)
+    assert "KeyboardInterrupt" in err and "finished" not in lines
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["child.h5.tmp"]
+    done = max(int(x) for x in lines)
+    assert 1 <= done < 8
+    r = stochvib.simulate(SCENARIO, 40, path, progress=False, **CHILD_OPTS)
+    # the shard computing when the signal came is finished and kept (the check follows every shard), unless
+    # the signal caught the child still returning from its progress call
+    assert done <= r.resumed_shards <= done + 1
+    whole = stochvib.simulate(SCENARIO, 40, tmp_path / "whole.h5", progress=False, **CHILD_OPTS)
+    assert without_path(r.to_dict()) | {"resumed_shards": 0} == without_path(whole.to_dict())
+    a, b = datasets(path), datasets(whole.path)
+    assert a.keys() == b.keys()
+    for k in a:
+        np.testing.assert_array_equal(a[k], b[k], err_msg=k)
 
 
 def test_gil_released_while_a_run_computes(tmp_path):
