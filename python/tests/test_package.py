@@ -32,6 +32,57 @@ def test_stubs_match_the_native_classes(cls):
     assert stub_members()[cls.__name__] == runtime
 
 
+KINDS = {
+    inspect.Parameter.POSITIONAL_ONLY: "positional",
+    inspect.Parameter.POSITIONAL_OR_KEYWORD: "positional",
+    inspect.Parameter.KEYWORD_ONLY: "keyword",
+    inspect.Parameter.VAR_POSITIONAL: "*args",
+    inspect.Parameter.VAR_KEYWORD: "**kwargs",
+}
+
+
+def stub_signatures():
+    """(class, method) → [(parameter, kind)] declared in stochvib/_stochvib.pyi (properties excluded)."""
+    tree = ast.parse((Path(stochvib.__file__).parent / "_stochvib.pyi").read_text())
+    out = {}
+    for node in tree.body:
+        if not isinstance(node, ast.ClassDef):
+            continue
+        for n in node.body:
+            if not isinstance(n, ast.FunctionDef) or n.name.startswith("_"):
+                continue
+            if any(isinstance(d, ast.Name) and d.id == "property" for d in n.decorator_list):
+                continue
+            a = n.args
+            pos = [x.arg for x in a.posonlyargs + a.args]
+            if pos and pos[0] in ("self", "cls"):
+                pos = pos[1:]
+            params = [(x, "positional") for x in pos] + [(x.arg, "keyword") for x in a.kwonlyargs]
+            params += [(a.vararg.arg, "*args")] if a.vararg else []
+            params += [(a.kwarg.arg, "**kwargs")] if a.kwarg else []
+            out[(node.name, n.name)] = params
+    return out
+
+
+def test_stub_signatures_match_the_native_methods():
+    # Parameter names and kinds (positional / keyword-only / *args / **kwargs) of every method in the stubs
+    # against the signatures PyO3 gives the native methods.
+    stubs = stub_signatures()
+    assert len(stubs) > 25
+    for (cls, name), params in stubs.items():
+        sig = inspect.signature(getattr(getattr(_stochvib, cls), name))
+        runtime = [(p.name, KINDS[p.kind]) for p in sig.parameters.values() if p.name not in ("self", "cls")]
+        assert runtime == params, f"{cls}.{name}"
+
+
+@pytest.mark.parametrize("where", ["gil", "detached", "callback"])
+def test_a_panic_in_the_binding_becomes_a_stochvib_error(where):
+    # A test hook panics inside each of the binding's guards: the interpreter survives and gets a
+    # StochvibError naming the panic.
+    with pytest.raises(stochvib.StochvibError, match=rf"internal error .*panic guard check \({where}\)"):
+        _stochvib._check_panic_guard(where)
+
+
 def test_docstrings_state_units_and_conventions():
     d = stochvib.Spectrum.density.__doc__
     for word in ("two-sided-angular", "one-sided-cyclic", "rad/s", "Hz", "cycles/m", "4π S(2πf)"):
