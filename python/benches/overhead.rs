@@ -17,10 +17,10 @@
 //! average 8 on 2 cores), which is the machine, not the binding.
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};
-use std::time::Duration;
 use nalgebra::Complex;
 use std::hint::black_box;
 use std::sync::Arc;
+use std::time::Duration;
 use stochvib::prelude::*;
 use stochvib::system::FrequencyResponse;
 
