@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The whole test suite: installs what is missing, then runs every test (unit, integration, doc), then the
+# The whole test suite: installs what is missing, then runs every test (unit, integration, doc), then builds
+# the Python package and runs its tests (python/test.sh; STOCHVIB_SKIP_PYTHON=1 skips them), then the
 # cluster test on a real single-node SLURM cluster (tests/slurm/real-array.sh: about 8 s, plus about 16 s
 # the first time for the Debian packages slurmctld, slurmd, slurm-client and munge, which it installs).
 #
@@ -13,6 +14,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/ensure-deps.sh --with-h5py
 cargo test --locked "$@"
+if [ "${STOCHVIB_SKIP_PYTHON:-0}" != 1 ]; then
+  bash python/test.sh
+fi
 
 mode="${STOCHVIB_SLURM_TEST:-$([ -n "${CI:-}" ] && echo require || echo auto)}"
 banner() {

@@ -1,0 +1,48 @@
+//! The native module `stochvib._stochvib` of the Python package `stochvib` (PyO3).
+//!
+//! A thin layer over the library's public API: every computation is a library call; this crate converts
+//! arrays (`arrays`), names (`names`), errors (`errors`) and reports (`convert`), releases the GIL around
+//! long calls and stops Monte Carlo runs on Ctrl-C (`interrupt`). The Python package (`stochvib/`) adds
+//! the result classes, the progress bar and the module-level functions.
+
+use pyo3::prelude::*;
+
+mod arrays;
+mod convert;
+mod errors;
+mod interrupt;
+mod linalg;
+mod names;
+mod scenario;
+mod spectrum;
+mod system;
+
+/// Native part of the stochvib Python package (import `stochvib`, not this module).
+#[pymodule]
+fn _stochvib(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<spectrum::PySpectrum>()?;
+    m.add_class::<system::PySystem>()?;
+    m.add_class::<scenario::PyScenario>()?;
+    m.add_function(wrap_pyfunction!(linalg::h2_integral, m)?)?;
+    m.add_function(wrap_pyfunction!(_check_panic_guard, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("ISO_BAND", stochvib::spectrum::ISO_BAND)?;
+    Ok(())
+}
+
+/// Test hook (not API): panics inside the binding's guards — ``"gil"`` with the GIL held, ``"detached"``
+/// without it, ``"callback"`` inside the progress callback of an interruptible call — to show that a panic
+/// becomes ``StochvibError("internal error …")`` and never reaches Python as a crash.
+#[pyfunction]
+fn _check_panic_guard(py: Python<'_>, r#where: &str) -> PyResult<()> {
+    let boom = || -> ! { panic!("panic guard check ({where})") };
+    match r#where {
+        "gil" => errors::call(py, || -> stochvib::Result<()> { boom() }),
+        "detached" => errors::detached(py, || -> errors::Outcome<()> { boom() }),
+        "callback" => interrupt::run_interruptible(py, None, |cb| -> stochvib::Result<()> {
+            cb(0, 1);
+            boom()
+        }),
+        _ => Err(errors::invalid_input(py, format!("unknown place {where:?}"))),
+    }
+}

@@ -1,0 +1,52 @@
+//! Names written in Python arguments turned into library values: conventions, domains, the spectrum
+//! catalogue directory. Bad names raise the library's own `InvalidParameter` message.
+
+use crate::errors::{call, lib};
+use pyo3::prelude::*;
+use std::path::PathBuf;
+use stochvib::scenario::Catalogue;
+use stochvib::spectrum::{Convention, Domain};
+use stochvib::Error;
+
+/// A [`Convention`] by its file/command-line name (`two-sided-angular`, `one-sided-angular`,
+/// `one-sided-cyclic`, `engineering`).
+pub fn convention(py: Python<'_>, name: &str) -> PyResult<Convention> {
+    call(py, || name.parse::<Convention>())
+}
+
+/// A [`Domain`] by its file name (`temporal`, `spatial`).
+pub fn domain(py: Python<'_>, name: &str) -> PyResult<Domain> {
+    match name {
+        "temporal" => Ok(Domain::Temporal),
+        "spatial" => Ok(Domain::Spatial),
+        other => lib(
+            py,
+            Err(Error::invalid("domain", other, "expected \"temporal\" or \"spatial\"")),
+        ),
+    }
+}
+
+/// The file name of a [`Domain`].
+pub fn domain_name(d: Domain) -> &'static str {
+    match d {
+        Domain::Temporal => "temporal",
+        Domain::Spatial => "spatial",
+    }
+}
+
+/// The spectrum catalogue, chosen as the command-line tool chooses it: `spectra_dir` if given, else
+/// `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the `spectra/` directory of the source tree the
+/// package was built from.
+pub fn catalogue(spectra_dir: Option<PathBuf>) -> Catalogue {
+    if let Some(d) = spectra_dir {
+        return Catalogue::new(d);
+    }
+    if let Ok(d) = std::env::var("STOCHVIB_SPECTRA") {
+        return Catalogue::new(d);
+    }
+    let local = PathBuf::from("spectra");
+    if local.is_dir() {
+        return Catalogue::new(local);
+    }
+    Catalogue::bundled()
+}

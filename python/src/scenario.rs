@@ -1,0 +1,625 @@
+//! `stochvib.Scenario`: a scenario file, or a system with its random input built in Python; its analysis
+//! (the `stochvib analyze` report) and its Monte Carlo runs (`stochvib simulate`).
+
+use crate::convert::to_python;
+use crate::errors::{call, detached, invalid_input, lib};
+use crate::interrupt::run_interruptible;
+use crate::names::catalogue;
+use crate::spectrum::PySpectrum;
+use crate::system::PySystem;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use pyo3::IntoPyObjectExt;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use stochvib::models::InputLayout;
+use stochvib::quad_oscillatory::OscillatoryOptions;
+use stochvib::report::{
+    analysis_report, attach_monte_carlo, deterministic_report, reference_report, AnalysisReport, TablesReport,
+};
+use stochvib::response::Excitation;
+use stochvib::scenario::{load_document, AnalysisOptions, Document, Scenario, ScenarioInput};
+use stochvib::simulate::{run_temporary, suggest_step, RunOptions};
+use stochvib::spectrum::{AtSpeed, Domain, Spectrum};
+use stochvib::store::Compression;
+use stochvib::Error;
+
+/// A scenario: a model, its random input and what to report — read from a scenario file
+/// (:meth:`load`) or built in Python (:meth:`from_system`). A file of ``data/`` may also hold a deterministic
+/// model or a reference table of the sources; :meth:`analyze` then returns their tables.
+#[pyclass(name = "Scenario", module = "stochvib", frozen)]
+pub struct PyScenario {
+    pub doc: Document,
+}
+
+impl PyScenario {
+    /// The stochastic scenario, or an error saying what the document is.
+    pub fn stochastic(&self, py: Python<'_>) -> PyResult<&Scenario> {
+        match &self.doc {
+            Document::Stochastic(sc) => Ok(sc),
+            Document::Deterministic(d) => Err(crate::errors::not_applicable(
+                py,
+                format!(
+                    "{}: `{}` is a deterministic model without a random input: there is nothing to simulate \
+                     or to analyse statistically (analyze() returns its result tables)",
+                    d.path.display(),
+                    d.kind
+                ),
+            )),
+            Document::Reference(r) => Err(crate::errors::not_applicable(
+                py,
+                format!("{}: a reference table of the sources, not a scenario", r.path.display()),
+            )),
+        }
+    }
+}
+
+/// The temporal process a spectrum gives the system: itself, or a spatial one at `speed`.
+fn temporal(py: Python<'_>, s: &Arc<dyn Spectrum>, speed: Option<f64>) -> PyResult<Arc<dyn Spectrum>> {
+    match (s.domain(), speed) {
+        (Domain::Temporal, _) => Ok(s.clone()),
+        (Domain::Spatial, Some(v)) => Ok(Arc::new(call(py, || AtSpeed::new(s.clone(), v))?)),
+        (Domain::Spatial, None) => lib(
+            py,
+            Err(Error::invalid(
+                "speed",
+                "<missing>",
+                "the input spectrum is spatial (a road): give the speed to turn it into time",
+            )),
+        ),
+    }
+}
+
+/// The excitation of `sys` by `inputs` (one spectrum, or one per input), following the rules of scenario
+/// files for catalogue models (their input layout) and `positions` (m) for a track under several inputs.
+fn excitation(
+    py: Python<'_>,
+    sys: &PySystem,
+    inputs: &[Arc<dyn Spectrum>],
+    speed: Option<f64>,
+    positions: Option<Vec<f64>>,
+    means: Vec<f64>,
+) -> PyResult<Excitation> {
+    if inputs.len() > 1 {
+        let spectra = inputs
+            .iter()
+            .map(|s| temporal(py, s, speed))
+            .collect::<PyResult<Vec<_>>>()?;
+        let means = if means.len() == 1 {
+            vec![means[0]; spectra.len()]
+        } else {
+            means
+        };
+        return call(py, || Excitation::independent(spectra, means));
+    }
+    if means.len() != 1 {
+        return Err(invalid_input(py, "`mean`: one process needs one mean"));
+    }
+    let (s, mean) = (temporal(py, &inputs[0], speed)?, means[0]);
+    let track = |positions: &[f64], gains: Vec<f64>| -> PyResult<Excitation> {
+        let delays = if positions.iter().all(|p| *p == 0.0) {
+            vec![0.0; positions.len()]
+        } else {
+            let Some(v) = speed else {
+                return lib(
+                    py,
+                    Err(Error::invalid(
+                        "speed",
+                        "<missing>",
+                        "the wheels are at different positions: the delays need a speed",
+                    )),
+                );
+            };
+            positions.iter().map(|p| p / v).collect()
+        };
+        call(py, || Excitation::track(s.clone(), delays, gains, mean))
+    };
+    match (positions, &sys.layout) {
+        (Some(p), Some(InputLayout::Track { gains, .. })) if gains.len() == p.len() => track(&p, gains.clone()),
+        (Some(p), _) => {
+            let n = p.len();
+            track(&p, vec![1.0; n])
+        }
+        (None, Some(InputLayout::Track { positions, gains })) => track(positions, gains.clone()),
+        (None, Some(InputLayout::Single)) => call(py, || Excitation::single(s, mean)),
+        (None, None) if sys.system.n_inputs() == 1 => call(py, || Excitation::single(s, mean)),
+        (None, None) => Err(invalid_input(
+            py,
+            format!(
+                "the system has {} inputs: give one spectrum per input (independent processes) or \
+                 `positions=` (one track felt by every input, positions in m behind the first)",
+                sys.system.n_inputs()
+            ),
+        )),
+    }
+}
+
+/// Spectra of the `input` argument: one Spectrum, a catalogue name or spectrum-file path (resolved as
+/// `Spectrum.load` does), or a sequence of Spectrum objects.
+fn input_spectra(py: Python<'_>, input: &Bound<'_, PyAny>) -> PyResult<Vec<Py<PySpectrum>>> {
+    if let Ok(s) = input.cast::<PySpectrum>() {
+        return Ok(vec![s.clone().unbind()]);
+    }
+    if input.is_instance_of::<pyo3::types::PyString>() || input.hasattr("__fspath__")? {
+        let path: PathBuf = input.extract()?;
+        let reference = path.to_string_lossy().into_owned();
+        let f = call(py, || catalogue(None).resolve(&reference, None))?;
+        return Ok(vec![Py::new(py, PySpectrum::from_file(f))?]);
+    }
+    let mut v = Vec::new();
+    if let Ok(it) = input.try_iter() {
+        for x in it {
+            let x = x?;
+            let s = x.cast::<PySpectrum>().map_err(|_| {
+                invalid_input(
+                    py,
+                    format!(
+                        "`input`: expected Spectrum objects, got {}",
+                        x.repr().map(|r| r.to_string()).unwrap_or_default()
+                    ),
+                )
+            })?;
+            v.push(s.clone().unbind());
+        }
+    }
+    if v.is_empty() {
+        return Err(invalid_input(
+            py,
+            "`input`: expected a stochvib.Spectrum or a non-empty list of them (one per system input)",
+        ));
+    }
+    Ok(v)
+}
+
+/// A report of the library.
+enum AnyReport {
+    Analysis(AnalysisReport),
+    Tables(TablesReport),
+}
+
+/// The `stochvib analyze` report of a document (computed without the GIL): (what, dict, text).
+fn document_report<'py>(py: Python<'py>, doc: &Document) -> PyResult<(String, Bound<'py, PyAny>, String)> {
+    let r = detached(py, || {
+        Ok(match doc {
+            Document::Stochastic(sc) => AnyReport::Analysis(analysis_report(sc)?),
+            Document::Deterministic(d) => AnyReport::Tables(deterministic_report(d)?),
+            Document::Reference(t) => AnyReport::Tables(reference_report(t)),
+        })
+    })?;
+    match r {
+        AnyReport::Analysis(r) => Ok(("analysis".into(), to_python(py, &r)?, r.to_string())),
+        AnyReport::Tables(r) => Ok(("tables".into(), to_python(py, &r)?, r.to_string())),
+    }
+}
+
+/// Calls `f` with the progress callable of `stochvib._progress.make(progress)` and calls its `close`
+/// afterwards, whatever happens; `progress` None means the default, True.
+fn with_progress<T>(
+    py: Python<'_>,
+    progress: Option<Py<PyAny>>,
+    f: impl FnOnce(Option<Py<PyAny>>) -> PyResult<T>,
+) -> PyResult<T> {
+    let progress = match progress {
+        Some(p) => p,
+        None => true.into_py_any(py)?,
+    };
+    let (call, close): (Py<PyAny>, Py<PyAny>) = py
+        .import("stochvib._progress")?
+        .getattr("make")?
+        .call1((progress,))?
+        .extract()?;
+    let call = (!call.is_none(py)).then_some(call);
+    let r = f(call);
+    if !close.is_none(py) {
+        let closed = close.call0(py);
+        if r.is_ok() {
+            closed?;
+        }
+    }
+    r
+}
+
+/// After a run that stopped early in this process, which goes on living: removes `<path>.tmp.owner` if it
+/// names this process. The library writes that file while a run is being written (another process seeing a
+/// live pid there refuses to touch the `.tmp`) and leaves it when its writer stops early; a CLI process that
+/// stops exits, leaving a dead pid that is ignored, but the Python interpreter stays alive, so without this
+/// the interrupted run could only be resumed from this same process.
+fn release_claim(path: &Path) {
+    let mut name = stochvib::store::tmp_path(path).into_os_string();
+    name.push(stochvib::store::layout::OWNER_SUFFIX);
+    let owner = PathBuf::from(name);
+    if std::fs::read_to_string(&owner).is_ok_and(|s| s.trim() == std::process::id().to_string()) {
+        let _ = std::fs::remove_file(owner);
+    }
+}
+
+/// Time step and duration: as given, the missing ones suggested from the system (with the reason).
+fn step(sc: &Scenario, dt: Option<f64>, duration: Option<f64>) -> stochvib::Result<(f64, f64, String)> {
+    if let (Some(dt), Some(d)) = (dt, duration) {
+        return Ok((dt, d, "given".into()));
+    }
+    let s = suggest_step(&sc.run_input())?;
+    Ok((
+        dt.unwrap_or(s.dt_s),
+        duration.unwrap_or(s.duration_s),
+        format!("suggested: {}", s.reason),
+    ))
+}
+
+#[pymethods]
+impl PyScenario {
+    /// Reads a file of ``data/`` (a scenario, a deterministic model or a reference table). Spectrum names in
+    /// ``[input] spectrum`` are looked up in the catalogue directory (see :meth:`Spectrum.load`).
+    #[staticmethod]
+    #[pyo3(signature = (path, *, spectra_dir=None))]
+    fn load(py: Python<'_>, path: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
+        let cat = catalogue(spectra_dir);
+        let doc = call(py, || load_document(&path, cat.dir()))?;
+        Ok(PyScenario { doc })
+    }
+
+    /// A scenario of ``system`` driven by ``input`` — one :class:`Spectrum` (one process; a catalogue name
+    /// or a spectrum-file path is loaded as :meth:`Spectrum.load` does) or a list with one spectrum per system
+    /// input (independent processes).
+    ///
+    /// * A spatial (road) spectrum needs ``speed`` (m/s): S_t(ω) = S_Ω(ω/v)/v.
+    /// * One process felt by several inputs: ``positions`` (m behind the first contact point; delays
+    ///   ℓ/v), or the input layout of a catalogue model or scenario file; a single-input system needs neither.
+    /// * ``mean``: the mean of the process (its unit), or one per independent process.
+    /// * ``outputs``: the output names to report (default all); ``band_rad_s``: (ω₁, ω₂) in rad/s for
+    ///   a band-limited σ; ``duration_s``: the duration for exceedance probabilities and expected peaks
+    ///   (default 1 h); ``levels``: dict output name → levels (output's SI unit) for Rice crossing rates.
+    #[staticmethod]
+    #[pyo3(signature = (system, input, *, speed=None, positions=None, mean=None, outputs=None, band_rad_s=None, duration_s=3600.0, levels=None, title=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn from_system(
+        py: Python<'_>,
+        system: &Bound<'_, PySystem>,
+        input: &Bound<'_, PyAny>,
+        speed: Option<f64>,
+        positions: Option<Vec<f64>>,
+        mean: Option<&Bound<'_, PyAny>>,
+        outputs: Option<Vec<String>>,
+        band_rad_s: Option<(f64, f64)>,
+        duration_s: f64,
+        levels: Option<&Bound<'_, PyDict>>,
+        title: Option<String>,
+    ) -> PyResult<Self> {
+        let sys = system.get();
+        let spectra = input_spectra(py, input)?;
+        let arcs: Vec<Arc<dyn Spectrum>> = spectra.iter().map(|s| s.get().spectrum.clone()).collect();
+        let means: Vec<f64> = match mean {
+            None => vec![0.0],
+            Some(m) => match m.extract::<f64>() {
+                Ok(v) => vec![v],
+                Err(_) => m
+                    .extract::<Vec<f64>>()
+                    .map_err(|_| invalid_input(py, "`mean`: expected a number or one number per input"))?,
+            },
+        };
+        if let Some(v) = speed {
+            if !(v.is_finite() && v > 0.0) {
+                return lib(py, Err(Error::invalid("speed", v, "must be finite and > 0")));
+            }
+        }
+        let exc = excitation(py, sys, &arcs, speed, positions, means.clone())?;
+        let names: Vec<String> = sys.system.outputs().iter().map(|o| o.name.clone()).collect();
+        let index = |n: &str| call(py, || sys.system.output_index(n));
+        let outputs = match outputs {
+            None => (0..names.len()).collect(),
+            Some(v) => v.iter().map(|n| index(n)).collect::<PyResult<Vec<_>>>()?,
+        };
+        if !(duration_s.is_finite() && duration_s > 0.0) {
+            return lib(
+                py,
+                Err(Error::invalid("duration_s", duration_s, "must be finite and > 0")),
+            );
+        }
+        if let Some((a, b)) = band_rad_s {
+            if !(a >= 0.0 && b > a && b.is_finite()) {
+                return lib(
+                    py,
+                    Err(Error::invalid(
+                        "band_rad_s",
+                        format!("({a}, {b})"),
+                        "need 0 <= low < high < inf",
+                    )),
+                );
+            }
+        }
+        let mut level_list = Vec::new();
+        if let Some(d) = levels {
+            for (k, v) in d.iter() {
+                let name: String = k.extract()?;
+                let vals: Vec<f64> = v
+                    .extract()
+                    .map_err(|_| invalid_input(py, format!("levels[{name:?}]: expected a list of numbers")))?;
+                level_list.push((index(&name)?, vals));
+            }
+        }
+        let first = spectra[0].get();
+        let reference = if first.name.is_empty() {
+            "inline".to_string()
+        } else {
+            first.name.clone()
+        };
+        let title = title.unwrap_or_else(|| format!("{} driven by {}", sys.description, first.spectrum.describe()));
+        // Provenance stored with Monte Carlo runs: a TOML description (there is no scenario file).
+        let mut prov = toml::Table::new();
+        prov.insert(
+            "generated_by".into(),
+            "the stochvib Python package (Scenario.from_system)".into(),
+        );
+        prov.insert("title".into(), title.clone().into());
+        let mut model = toml::Table::new();
+        model.insert("kind".into(), sys.kind.clone().into());
+        model.insert("description".into(), sys.description.clone().into());
+        prov.insert("model".into(), model.into());
+        let mut inp = toml::Table::new();
+        inp.insert(
+            "spectra".into(),
+            toml::Value::Array(arcs.iter().map(|s| s.describe().into()).collect()),
+        );
+        if let Some(v) = speed {
+            inp.insert("speed".into(), v.into());
+        }
+        inp.insert(
+            "mean".into(),
+            toml::Value::Array(means.iter().map(|&m| m.into()).collect()),
+        );
+        inp.insert("excitation".into(), format!("{exc:?}").into());
+        prov.insert("input".into(), inp.into());
+        let text = toml::to_string(&prov).unwrap_or_default();
+        let sc = Scenario {
+            path: PathBuf::from("<python>"),
+            text,
+            title,
+            source: "built in Python".into(),
+            kind: sys.kind.clone(),
+            model: sys.instance(),
+            input: ScenarioInput {
+                reference,
+                spectrum: first.spectrum.clone(),
+                unit: first.unit.clone(),
+                origin: first.origin.clone(),
+                spectrum_text: first.text.clone(),
+                speed,
+                mean: means[0],
+            },
+            spectra_dir: catalogue(None).dir().to_path_buf(),
+            excitation: exc,
+            analysis: AnalysisOptions {
+                outputs,
+                band: band_rad_s,
+                duration: duration_s,
+                levels: level_list,
+                effort: OscillatoryOptions::default(),
+            },
+        };
+        Ok(PyScenario {
+            doc: Document::Stochastic(Box::new(sc)),
+        })
+    }
+
+    /// The ``stochvib analyze`` report: an :class:`AnalysisResult` (σ, 3σ bounds, crossing rates, every
+    /// variance method with its error estimate, per output) for a stochastic scenario, a :class:`Report` of
+    /// result tables for a deterministic model or a reference table.
+    ///
+    /// ``monte_carlo=N`` adds the Monte Carlo column (σ from N realizations with its 95 % interval and
+    /// whether it covers the analytic σ; the run file goes to a temporary directory and is removed), with
+    /// master ``seed``, time step ``dt`` (s) and realization ``duration`` (s) (suggested from the system
+    /// when not given) and a progress bar (``progress``: True, False or a callable(done, total)).
+    ///
+    /// ``rel_tol``, ``max_subintervals`` and ``max_half_periods`` override the effort of the quadratures
+    /// (the scenario's ``[analysis.quadrature]``; the CLI's ``--rel-tol``, ``--max-subintervals``,
+    /// ``--max-half-periods``; defaults 1e-10, 2000, 10 000).
+    #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn analyze<'py>(
+        &self,
+        py: Python<'py>,
+        monte_carlo: Option<usize>,
+        seed: u64,
+        dt: Option<f64>,
+        duration: Option<f64>,
+        progress: Option<Py<PyAny>>,
+        rel_tol: Option<f64>,
+        max_subintervals: Option<usize>,
+        max_half_periods: Option<usize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let effort_given = rel_tol.is_some() || max_subintervals.is_some() || max_half_periods.is_some();
+        let tuned: Document;
+        let doc = match &self.doc {
+            Document::Stochastic(sc) if effort_given => {
+                // As the CLI's flags: the given values replace the scenario's, then the whole is validated.
+                let mut sc = sc.clone();
+                let e = &mut sc.analysis.effort;
+                e.rel_tol = rel_tol.unwrap_or(e.rel_tol);
+                e.max_subintervals = max_subintervals.unwrap_or(e.max_subintervals);
+                e.max_half_periods = max_half_periods.unwrap_or(e.max_half_periods);
+                call(py, || e.validate())?;
+                tuned = Document::Stochastic(sc);
+                &tuned
+            }
+            _ => &self.doc,
+        };
+        let (kind, data, text) = match monte_carlo {
+            None => document_report(py, doc)?,
+            Some(n) => {
+                let sc = match doc {
+                    Document::Stochastic(sc) => sc,
+                    _ => self.stochastic(py)?,
+                };
+                let mut r = detached(py, || Ok(analysis_report(sc)?))?;
+                let summary = with_progress(py, progress, |cb| {
+                    run_interruptible(py, cb, |cb| {
+                        let (dt, d, _) = step(sc, dt, duration)?;
+                        let opts = RunOptions::new(n, d, dt, seed);
+                        run_temporary(&sc.run_input(), &opts, &std::env::temp_dir(), cb, |_| ()).map(|(s, _)| s)
+                    })
+                })?;
+                attach_monte_carlo(&mut r, &summary);
+                ("analysis".to_string(), to_python(py, &r)?, r.to_string())
+            }
+        };
+        let class = if kind == "analysis" { "AnalysisResult" } else { "Report" };
+        py.import("stochvib.results")?.getattr(class)?.call1((data, text))
+    }
+
+    /// Runs a seeded Monte Carlo batch of ``realizations`` into the HDF5 file ``path`` (readable by h5py;
+    /// the layout is described in the README) and returns a :class:`RunResult` with its statistics.
+    ///
+    /// ``dt`` (s) and ``duration`` (s, per realization) are suggested from the system when not given.
+    /// Realization i uses the random stream (seed, i): results are identical for any thread count. The file
+    /// is written as ``path + ".tmp"`` and renamed when complete; a run stopped by Ctrl-C
+    /// (KeyboardInterrupt, checked after every shard of ``shard_size`` realizations) leaves only that
+    /// ``.tmp``, and the same call resumes it. An existing ``path`` is never overwritten unless
+    /// ``overwrite=True``. ``store_raw`` keeps every realization (``compression``: "none", "fast", "best",
+    /// "deflate:N"); ``route``: "auto", "exact" or "spectral"; ``confidence`` of the intervals.
+    /// ``progress``: True (a bar on stderr, tqdm's when installed), False, or a callable(done, total).
+    /// The GIL is released while the run computes.
+    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        realizations: usize,
+        path: PathBuf,
+        dt: Option<f64>,
+        duration: Option<f64>,
+        seed: u64,
+        shard_size: usize,
+        store_raw: bool,
+        compression: &str,
+        route: &str,
+        confidence: f64,
+        overwrite: bool,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let sc = self.stochastic(py)?;
+        let compression: Compression = call(py, || compression.parse())?;
+        let route = call(py, || route.parse())?;
+        if overwrite && path.exists() {
+            lib(
+                py,
+                std::fs::remove_file(&path).map_err(|source| Error::Io {
+                    path: path.clone(),
+                    source,
+                }),
+            )?;
+        }
+        let outcome = with_progress(py, progress, |cb| {
+            run_interruptible(py, cb, |cb| {
+                let (dt, d, how) = step(sc, dt, duration)?;
+                let opts = RunOptions {
+                    shard_size,
+                    store_raw,
+                    compression,
+                    route,
+                    confidence,
+                    ..RunOptions::new(realizations, d, dt, seed)
+                };
+                sc.simulate(&opts, &path, cb).map(|s| (s, how))
+            })
+        });
+        if outcome.is_err() {
+            release_claim(&path);
+        }
+        let (summary, how) = outcome?;
+        py.import("stochvib.results")?
+            .getattr("RunResult")?
+            .call1((to_python(py, &summary)?, summary.to_string(), how))
+    }
+
+    /// Title of the scenario.
+    #[getter]
+    fn title(&self) -> &str {
+        match &self.doc {
+            Document::Stochastic(sc) => &sc.title,
+            Document::Deterministic(d) => &d.title,
+            Document::Reference(r) => &r.title,
+        }
+    }
+
+    /// The file ("<python>" for a scenario built in Python).
+    #[getter]
+    fn path(&self) -> PathBuf {
+        match &self.doc {
+            Document::Stochastic(sc) => sc.path.clone(),
+            Document::Deterministic(d) => d.path.clone(),
+            Document::Reference(r) => r.path.clone(),
+        }
+    }
+
+    /// "stochastic", "deterministic" or "reference".
+    #[getter]
+    fn what(&self) -> &'static str {
+        match &self.doc {
+            Document::Stochastic(_) => "stochastic",
+            Document::Deterministic(_) => "deterministic",
+            Document::Reference(_) => "reference",
+        }
+    }
+
+    /// The model kind ("" for a reference table).
+    #[getter]
+    fn kind(&self) -> &str {
+        match &self.doc {
+            Document::Stochastic(sc) => &sc.kind,
+            Document::Deterministic(d) => &d.kind,
+            Document::Reference(_) => "",
+        }
+    }
+
+    /// The scenario's system (stochastic scenarios).
+    #[getter]
+    fn system(&self, py: Python<'_>) -> PyResult<PySystem> {
+        let sc = self.stochastic(py)?;
+        Ok(PySystem::from_instance(&sc.model, &sc.kind))
+    }
+
+    /// The random input as written (a road spectrum before the speed turns it into time).
+    #[getter]
+    fn input(&self, py: Python<'_>) -> PyResult<PySpectrum> {
+        let sc = self.stochastic(py)?;
+        let i = &sc.input;
+        Ok(PySpectrum {
+            spectrum: i.spectrum.clone(),
+            unit: i.unit.clone(),
+            name: i.reference.clone(),
+            description: String::new(),
+            source: String::new(),
+            text: i.spectrum_text.clone(),
+            origin: i.origin.clone(),
+        })
+    }
+
+    /// ``[input] speed`` in m/s, or None.
+    #[getter]
+    fn speed(&self, py: Python<'_>) -> PyResult<Option<f64>> {
+        Ok(self.stochastic(py)?.input.speed)
+    }
+
+    /// The names of the outputs the analysis reports.
+    #[getter]
+    fn outputs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let sc = self.stochastic(py)?;
+        let all = sc.model.system.outputs();
+        PyList::new(py, sc.analysis.outputs.iter().map(|&i| all[i].name.clone()))
+    }
+
+    /// The scenario file's text (a TOML description for a scenario built in Python).
+    #[getter]
+    fn text(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(self.stochastic(py)?.text.clone())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<stochvib.Scenario {} ({}): {}>",
+            self.title(),
+            self.what(),
+            self.path().display()
+        )
+    }
+}

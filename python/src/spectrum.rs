@@ -1,0 +1,475 @@
+//! `stochvib.Spectrum`: a stationary random process described by its spectral density.
+
+use crate::arrays::{check_out, real_array};
+use crate::errors::{call, detached, detached_if, invalid_input, not_applicable, Failure};
+use crate::names::{catalogue, domain_name};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyFloat};
+use std::path::PathBuf;
+use std::sync::Arc;
+use stochvib::scenario::{SpectrumFile, SpectrumOrigin};
+use stochvib::spectrum::{
+    AtSpeed, BandWhite, Convention, ExpCosine, Exponential, GaussCosine, Gaussian, IsoBound, IsoClass, PowerLaw,
+    RationalSpectrum, Spectrum, Tabulated, ISO_BAND,
+};
+
+/// Grids shorter than this are evaluated without releasing the GIL (releasing costs more than the work).
+pub const DETACH_MIN_POINTS: usize = 2048;
+
+/// A pair of coefficient arrays (numerator, denominator).
+type Coefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// A stationary random process described by its spectral density.
+///
+/// Inside stochvib every density is the TWO-SIDED density in ANGULAR frequency S(ω), ω in rad/s
+/// (temporal processes) or rad/m (spatial road profiles), normalised so that
+/// K(τ) = ∫ S(ω) e^{iωτ} dω and the variance is D = K(0) = ∫_{-∞}^{∞} S(ω) dω.
+/// Other conventions are exact, named conversions (``convention=`` of :meth:`density`):
+///
+/// ==================== ================================ ==========================
+/// name                 abscissa x, ordinate             relation to S
+/// ==================== ================================ ==========================
+/// "two-sided-angular"  ω (rad/s or rad/m), S(ω)         S itself (canonical)
+/// "one-sided-angular"  ω ≥ 0, G(ω)                      G = 2 S(ω)
+/// "one-sided-cyclic"   f ≥ 0 (Hz or cycles/m), G(f)     G = 4π S(2πf)   (scipy.signal.welch, ISO 8608)
+/// "engineering"        ω, Ŝ(ω), σ² = (1/2π)∫Ŝ dω        Ŝ = 2π S
+/// ==================== ================================ ==========================
+///
+/// Build one with the constructors (:meth:`exponential`, :meth:`gaussian`, :meth:`exp_cosine`,
+/// :meth:`gauss_cosine` — the four standard correlation types —, :meth:`rational`, :meth:`iso8608`,
+/// :meth:`power_law`, :meth:`tabulated`, :meth:`band_white`) or from the catalogue (:meth:`load`,
+/// :meth:`catalogue`).
+#[pyclass(name = "Spectrum", module = "stochvib", frozen)]
+pub struct PySpectrum {
+    /// The process.
+    pub spectrum: Arc<dyn Spectrum>,
+    /// SI unit of the process itself.
+    pub unit: String,
+    /// Catalogue or file name ("" when built in Python).
+    pub name: String,
+    /// File description.
+    pub description: String,
+    /// Provenance of the parameter values.
+    pub source: String,
+    /// Spectrum-file text ("" when built in Python).
+    pub text: String,
+    /// Where it came from.
+    pub origin: SpectrumOrigin,
+}
+
+impl PySpectrum {
+    /// A spectrum built in Python.
+    pub fn built(spectrum: Arc<dyn Spectrum>, unit: &str) -> Self {
+        PySpectrum {
+            spectrum,
+            unit: unit.to_string(),
+            name: String::new(),
+            description: String::new(),
+            source: String::new(),
+            text: String::new(),
+            origin: SpectrumOrigin::Inline,
+        }
+    }
+
+    /// A spectrum read from a file.
+    pub fn from_file(f: SpectrumFile) -> Self {
+        PySpectrum {
+            spectrum: f.spectrum,
+            unit: f.unit,
+            name: f.name,
+            description: f.description,
+            source: f.source,
+            text: f.text,
+            origin: f.origin,
+        }
+    }
+
+    fn make<S: Spectrum + 'static>(
+        py: Python<'_>,
+        f: impl FnOnce() -> stochvib::Result<S>,
+        unit: &str,
+    ) -> PyResult<Self> {
+        Ok(PySpectrum::built(Arc::new(call(py, f)?), unit))
+    }
+}
+
+/// S in `conv` at the abscissae `x` (same length as `out`).
+fn density_in(s: &dyn Spectrum, conv: Convention, x: &[f64], out: &mut [f64]) {
+    if conv == Convention::TwoSidedAngular {
+        s.density_into(x, out);
+        return;
+    }
+    let omega: Vec<f64> = x.iter().map(|&v| conv.to_canonical(v, 0.0).0).collect();
+    s.density_into(&omega, out);
+    let one_sided = conv.is_one_sided();
+    for ((o, &w), &v) in out.iter_mut().zip(&omega).zip(x) {
+        *o = if one_sided && v < 0.0 {
+            0.0
+        } else {
+            conv.from_canonical(w, *o).1
+        };
+    }
+}
+
+/// Returns a Python float for a 0-d result, else the array.
+pub fn scalar_or_array<'py>(
+    py: Python<'py>,
+    a: Bound<'py, PyArrayDyn<f64>>,
+    scalar: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    if scalar {
+        let v = a.readonly().as_slice()?[0];
+        Ok(PyFloat::new(py, v).into_any())
+    } else {
+        Ok(a.into_any())
+    }
+}
+
+#[pymethods]
+impl PySpectrum {
+    /// Type 1 (exponential correlation): K(τ) = D e^{−α|τ|}, S(ω) = αD / (π(α² + ω²)).
+    ///
+    /// ``variance`` D in unit², ``alpha`` α in 1/s (temporal) or 1/m (spatial). Rational: exact
+    /// shaping filter √(2αD)/(s + α).
+    #[staticmethod]
+    #[pyo3(signature = (variance, alpha, *, domain="temporal", unit="m"))]
+    fn exponential(py: Python<'_>, variance: f64, alpha: f64, domain: &str, unit: &str) -> PyResult<Self> {
+        let d = crate::names::domain(py, domain)?;
+        Self::make(py, || Exponential::new(variance, alpha, d), unit)
+    }
+
+    /// Type 2 (Gaussian correlation): K(τ) = D e^{−ατ²}, S(ω) = D/(2√(πα)) e^{−ω²/(4α)}.
+    ///
+    /// ``variance`` D in unit², ``alpha`` α in 1/s² (temporal) or 1/m² (spatial). Not rational.
+    #[staticmethod]
+    #[pyo3(signature = (variance, alpha, *, domain="temporal", unit="m"))]
+    fn gaussian(py: Python<'_>, variance: f64, alpha: f64, domain: &str, unit: &str) -> PyResult<Self> {
+        let d = crate::names::domain(py, domain)?;
+        Self::make(py, || Gaussian::new(variance, alpha, d), unit)
+    }
+
+    /// Type 3: K(τ) = D e^{−α|τ|} cos βτ,
+    /// S(ω) = αD(ω² + α² + β²) / (π[(ω² − α² − β²)² + 4α²ω²]).
+    ///
+    /// ``alpha`` α in 1/s (1/m), ``beta`` β in rad/s (rad/m). Rational.
+    #[staticmethod]
+    #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
+    fn exp_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
+        let d = crate::names::domain(py, domain)?;
+        Self::make(py, || ExpCosine::new(variance, alpha, beta, d), unit)
+    }
+
+    /// Type 4: K(τ) = D e^{−ατ²} cos βτ,
+    /// S(ω) = D/(4√(πα)) [e^{−(ω−β)²/(4α)} + e^{−(ω+β)²/(4α)}].
+    ///
+    /// ``alpha`` α in 1/s² (1/m²), ``beta`` β in rad/s (rad/m). Not rational.
+    #[staticmethod]
+    #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
+    fn gauss_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
+        let d = crate::names::domain(py, domain)?;
+        Self::make(py, || GaussCosine::new(variance, alpha, beta, d), unit)
+    }
+
+    /// A rational density S(ω) = Σ nₖ ω^{2k} / Σ dₖ ω^{2k} (two-sided angular).
+    ///
+    /// ``numerator``, ``denominator``: coefficients in ASCENDING powers of ω² (SI units). Example: type 1
+    /// with D = 1, α = 1 is ``rational([1/pi], [1, 1])``.
+    #[staticmethod]
+    #[pyo3(signature = (numerator, denominator, *, domain="temporal", unit="m"))]
+    fn rational(
+        py: Python<'_>,
+        numerator: &Bound<'_, PyAny>,
+        denominator: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let d = crate::names::domain(py, domain)?;
+        let n = crate::arrays::vector(py, numerator, "numerator")?;
+        let den = crate::arrays::vector(py, denominator, "denominator")?;
+        Self::make(py, || RationalSpectrum::new(n, den, d), unit)
+    }
+
+    /// An ISO 8608 road class (spatial): G_d(n) = G_d(n₀)(n/n₀)^{−2}, n₀ = 0.1 cycles/m, one-sided in
+    /// cycles/m, G_d(n₀) = 16·4^k × 10⁻⁶ m³ for class A (k = 0) … H (k = 7).
+    ///
+    /// ``road_class``: "A" … "H"; ``bound``: "lower", "geometric-mean" or "upper"; ``band``: (n₁, n₂) in
+    /// cycles/m, default the ISO band (0.011, 2.83); ``None`` leaves it unbounded (then the variance is
+    /// infinite and :meth:`variance` raises :class:`DivergentError`).
+    #[staticmethod]
+    #[pyo3(signature = (road_class, *, bound="geometric-mean", band=Some(ISO_BAND)))]
+    fn iso8608(py: Python<'_>, road_class: &str, bound: &str, band: Option<(f64, f64)>) -> PyResult<Self> {
+        let c: IsoClass = call(py, || road_class.parse())?;
+        let b: IsoBound = call(py, || bound.parse())?;
+        Self::make(py, || PowerLaw::iso8608(c, b, band), "m")
+    }
+
+    /// A power-law density G(n) = g0 (n/n0)^{−w}, one-sided cyclic (n in cycles/m for a spatial process,
+    /// Hz for a temporal one), optionally restricted to ``band`` = (n₁, n₂) in the same unit.
+    #[staticmethod]
+    #[pyo3(signature = (g0, n0, waviness, *, band=None, domain="spatial", unit="m"))]
+    fn power_law(
+        py: Python<'_>,
+        g0: f64,
+        n0: f64,
+        waviness: f64,
+        band: Option<(f64, f64)>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let d = crate::names::domain(py, domain)?;
+        Self::make(py, || PowerLaw::new(g0, n0, waviness, band, d), unit)
+    }
+
+    /// A measured density given at points, interpolated linearly in log–log coordinates, zero outside.
+    ///
+    /// ``x``: abscissae in the convention's unit (Hz or cycles/m for "one-sided-cyclic", rad/s or rad/m
+    /// otherwise), strictly increasing and > 0; ``values``: the density in that convention, > 0.
+    /// ``convention`` is required: a wrong guess would scale the variance by 2, 2π or 4π.
+    #[staticmethod]
+    #[pyo3(signature = (x, values, *, convention, domain="temporal", unit="m"))]
+    fn tabulated(
+        py: Python<'_>,
+        x: &Bound<'_, PyAny>,
+        values: &Bound<'_, PyAny>,
+        convention: &str,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let c = crate::names::convention(py, convention)?;
+        let d = crate::names::domain(py, domain)?;
+        let xs = crate::arrays::vector(py, x, "x")?;
+        let vs = crate::arrays::vector(py, values, "values")?;
+        Self::make(py, || Tabulated::new(c, xs, vs, d), unit)
+    }
+
+    /// Band-limited white noise: a constant ``level`` (in ``convention``) between the band edges ``low``
+    /// and ``high`` (Hz or cycles/m for "one-sided-cyclic", rad/s or rad/m otherwise), zero outside.
+    #[staticmethod]
+    #[pyo3(signature = (level, low, high, *, convention, domain="temporal", unit="m"))]
+    #[allow(clippy::too_many_arguments)]
+    fn band_white(
+        py: Python<'_>,
+        level: f64,
+        low: f64,
+        high: f64,
+        convention: &str,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let c = crate::names::convention(py, convention)?;
+        let d = crate::names::domain(py, domain)?;
+        Self::make(py, || BandWhite::new(c, level, low, high, d), unit)
+    }
+
+    /// A spectrum file or catalogue entry: a catalogue name (e.g. "iso8608-c", "type3") is looked up in the
+    /// catalogue directory only; anything else is a path to a spectrum file (TOML).
+    ///
+    /// The catalogue directory is ``spectra_dir`` if given, else ``$STOCHVIB_SPECTRA``, else ``./spectra``
+    /// if it exists, else the ``spectra/`` directory of the source tree the package was built from (as the
+    /// command-line tool).
+    #[staticmethod]
+    #[pyo3(signature = (path_or_name, *, spectra_dir=None))]
+    fn load(py: Python<'_>, path_or_name: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
+        let reference = path_or_name.to_string_lossy().into_owned();
+        let f = call(py, || catalogue(spectra_dir).resolve(&reference, None))?;
+        Ok(PySpectrum::from_file(f))
+    }
+
+    /// Every spectrum of the catalogue directory (see :meth:`load`), as a dict name → Spectrum, sorted by
+    /// name. Invalid files are left out with a ``StochvibWarning`` naming the file and the reason.
+    #[staticmethod]
+    #[pyo3(signature = (spectra_dir=None))]
+    fn catalogue<'py>(py: Python<'py>, spectra_dir: Option<PathBuf>) -> PyResult<Bound<'py, PyDict>> {
+        let entries = call(py, || catalogue(spectra_dir).entries())?;
+        let d = PyDict::new(py);
+        for e in entries {
+            match e.spectrum {
+                Ok(f) => {
+                    let name = f.name.clone();
+                    d.set_item(name, Py::new(py, PySpectrum::from_file(f))?)?;
+                }
+                Err(msg) => {
+                    let warning = py.import("stochvib.errors")?.getattr("StochvibWarning")?;
+                    let text = std::ffi::CString::new(format!("{}: {msg}", e.path.display()))
+                        .unwrap_or_else(|_| c"invalid spectrum file".into());
+                    PyErr::warn(py, &warning, &text, 1)?;
+                }
+            }
+        }
+        Ok(d)
+    }
+
+    /// The density at ``omega`` (any shape; a scalar gives a float), in ``convention``:
+    ///
+    /// * "two-sided-angular" (default): S(ω), ω in rad/s (rad/m), in unit²·s/rad (unit²·m/rad);
+    /// * "one-sided-angular": G(ω) = 2S(ω), ω ≥ 0 (0 for ω < 0);
+    /// * "one-sided-cyclic": G(f) = 4π S(2πf), ``omega`` is then f in Hz (cycles/m), unit²/Hz;
+    ///   0 for f < 0 — the convention of ``scipy.signal.welch(..., return_onesided=True)``;
+    /// * "engineering": Ŝ(ω) = 2π S(ω).
+    ///
+    /// ``omega`` is converted to a C-contiguous float64 array if it is not one (lists, integers, strided
+    /// or Fortran-ordered arrays); complex or non-numeric input raises :class:`InvalidInputError`.
+    /// ``out``: an optional float64 C-contiguous array of the same shape to write into (not converted).
+    /// The GIL is released during the evaluation.
+    #[pyo3(signature = (omega, convention="two-sided-angular", *, out=None))]
+    fn density<'py>(
+        &self,
+        py: Python<'py>,
+        omega: &Bound<'py, PyAny>,
+        convention: &str,
+        out: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let conv = crate::names::convention(py, convention)?;
+        let x = real_array(py, omega, "omega")?;
+        let shape = x.shape().to_vec();
+        let result = match out {
+            Some(o) => check_out(py, o, &shape)?,
+            // SAFETY: every element is written by `density_in` before the array is returned.
+            None => unsafe { PyArrayDyn::<f64>::new(py, shape.clone(), false) },
+        };
+        {
+            let xr = x.readonly();
+            let mut rw = result
+                .try_readwrite()
+                .map_err(|e| invalid_input(py, format!("`out` cannot be written (is it `omega` itself?): {e}")))?;
+            let xs = xr.as_slice()?;
+            let os = rw.as_slice_mut()?;
+            let s = &*self.spectrum;
+            detached_if(py, xs.len(), DETACH_MIN_POINTS, || {
+                density_in(s, conv, xs, os);
+                Ok(())
+            })?;
+        }
+        if out.is_some() {
+            return Ok(result.into_any());
+        }
+        scalar_or_array(py, result, shape.is_empty())
+    }
+
+    /// The correlation function K(τ) = ∫ S(ω) cos(ωτ) dω at ``tau`` (s, or m for a spatial process; any
+    /// shape; a scalar gives a float). Closed form where one exists, adaptive quadrature otherwise (raises
+    /// :class:`NumericalError` if it does not converge, :class:`DivergentError` for an infinite variance).
+    /// The GIL is released.
+    fn correlation<'py>(&self, py: Python<'py>, tau: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let x = real_array(py, tau, "tau")?;
+        let shape = x.shape().to_vec();
+        // SAFETY: every element is written below, or the array is dropped on error.
+        let result = unsafe { PyArrayDyn::<f64>::new(py, shape.clone(), false) };
+        {
+            let xr = x.readonly();
+            let mut rw = result.readwrite();
+            let xs = xr.as_slice()?;
+            let os = rw.as_slice_mut()?;
+            let s = &*self.spectrum;
+            detached(py, || {
+                for (o, &t) in os.iter_mut().zip(xs) {
+                    *o = s.correlation(t).map_err(Failure::Lib)?;
+                }
+                Ok(())
+            })?;
+        }
+        scalar_or_array(py, result, shape.is_empty())
+    }
+
+    /// The variance D = K(0) = ∫ S(ω) dω, in unit². Closed form where one exists, quadrature otherwise.
+    /// Raises :class:`DivergentError` (with the reason and what finite question to ask instead) when it
+    /// is infinite, e.g. an ISO 8608 road without a band.
+    fn variance(&self, py: Python<'_>) -> PyResult<f64> {
+        let s = &*self.spectrum;
+        detached(py, || s.variance().map_err(Failure::Lib))
+    }
+
+    /// The temporal process a vehicle at ``speed`` (m/s) feels from this spatial (road) spectrum:
+    /// S_t(ω) = S_Ω(ω/v)/v, ω in rad/s. Raises :class:`InvalidInputError` for a temporal spectrum.
+    fn at_speed(&self, py: Python<'_>, speed: f64) -> PyResult<Self> {
+        let a = call(py, || AtSpeed::new(self.spectrum.clone(), speed))?;
+        Ok(PySpectrum {
+            spectrum: Arc::new(a),
+            unit: self.unit.clone(),
+            name: if self.name.is_empty() {
+                String::new()
+            } else {
+                format!("{} at {speed} m/s", self.name)
+            },
+            description: self.description.clone(),
+            source: self.source.clone(),
+            text: self.text.clone(),
+            origin: self.origin.clone(),
+        })
+    }
+
+    /// The rational form as (numerator, denominator) coefficients in ascending powers of ω²
+    /// (S = N(ω²)/D(ω²), two-sided angular), or None when the density is not rational.
+    #[getter]
+    fn rational_coefficients<'py>(&self, py: Python<'py>) -> Option<Coefficients<'py>> {
+        self.spectrum.rational().map(|r| {
+            (
+                PyArray1::from_slice(py, r.numerator()),
+                PyArray1::from_slice(py, r.denominator()),
+            )
+        })
+    }
+
+    /// The stable minimum-phase shaping filter (B, A), coefficients in ascending powers of s, with
+    /// S(ω) = |B(iω)/A(iω)|² / (2π): unit-intensity white noise (E[w(t)w(t+τ)] = δ(τ)) through B/A has this
+    /// spectrum. Raises :class:`NotApplicableError` for a non-rational density.
+    fn shaping_filter<'py>(&self, py: Python<'py>) -> PyResult<Coefficients<'py>> {
+        let r = self.spectrum.rational().ok_or_else(|| {
+            not_applicable(
+                py,
+                format!(
+                    "{} is not rational: it has no exact shaping filter",
+                    self.spectrum.describe()
+                ),
+            )
+        })?;
+        let f = call(py, || r.shaping_filter())?;
+        Ok((PyArray1::from_vec(py, f.num), PyArray1::from_vec(py, f.den)))
+    }
+
+    /// "temporal" (ω in rad/s, τ in s) or "spatial" (Ω in rad/m, lag in m).
+    #[getter]
+    fn domain(&self) -> &'static str {
+        domain_name(self.spectrum.domain())
+    }
+
+    /// SI unit of the process itself (e.g. "m" for a road profile, "N" for a force).
+    #[getter]
+    fn unit(&self) -> &str {
+        &self.unit
+    }
+
+    /// Catalogue or file name ("" for a spectrum built in Python).
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// One line: the model, its parameters and units.
+    #[getter]
+    fn description(&self) -> String {
+        self.spectrum.describe()
+    }
+
+    /// Provenance of the parameter values (spectrum files).
+    #[getter]
+    fn source(&self) -> &str {
+        &self.source
+    }
+
+    /// The spectrum file's text ("" for a spectrum built in Python).
+    #[getter]
+    fn text(&self) -> &str {
+        &self.text
+    }
+
+    fn __repr__(&self) -> String {
+        let name = if self.name.is_empty() {
+            String::new()
+        } else {
+            format!("{}: ", self.name)
+        };
+        format!("<stochvib.Spectrum {name}{} [{}]>", self.spectrum.describe(), self.unit)
+    }
+}

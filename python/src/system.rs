@@ -1,0 +1,445 @@
+//! `stochvib.System`: a linear system known through its frequency response H(iω) (outputs × inputs).
+
+use crate::arrays::{matrix, matrix_to_py, real_array, vector};
+use crate::convert::{to_python, toml_table};
+use crate::errors::{call, detached_if, invalid_input, lib, not_applicable};
+use numpy::{Complex64, PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use stochvib::models::{InputLayout, ModelInstance};
+use stochvib::scenario::{build_model, BuiltModel, ModelContext, MODEL_KINDS};
+use stochvib::system::{modal_analysis, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace, TransferFunction};
+use stochvib::Error;
+
+/// A linear time-invariant system known through its frequency response H(iω), outputs × inputs, with
+/// named outputs carrying SI units.
+///
+/// Build one from matrices (:meth:`mdof`: M q̈ + B q̇ + C q = K_u u + B_u u̇ + F f; :meth:`state_space`:
+/// ẋ = Ax + Bu, y = Cx + Du + Eu̇; :meth:`transfer_function`: N(s)/D(s)), from a catalogue model
+/// (:meth:`model`, :meth:`models`) or from a scenario file (:meth:`load`).
+#[pyclass(name = "System", module = "stochvib", frozen)]
+pub struct PySystem {
+    /// The system.
+    pub system: Arc<dyn FrequencyResponse>,
+    /// How a random input reaches the inputs (catalogue models and scenario files).
+    pub layout: Option<InputLayout>,
+    /// One line.
+    pub description: String,
+    /// The model kind (`mdof`, `state-space`, `transfer-function` or a catalogue kind).
+    pub kind: String,
+    /// Mass and stiffness matrices, for modes (systems built by `System.mdof`).
+    pub mass_stiffness: Option<(nalgebra::DMatrix<f64>, nalgebra::DMatrix<f64>)>,
+}
+
+impl PySystem {
+    /// A system of a model instance (catalogue models, scenario files).
+    pub fn from_instance(m: &ModelInstance, kind: &str) -> Self {
+        PySystem {
+            system: m.system.clone(),
+            layout: Some(m.layout.clone()),
+            description: m.description.clone(),
+            kind: kind.to_string(),
+            mass_stiffness: None,
+        }
+    }
+
+    /// The model instance the analysis and the simulation use.
+    pub fn instance(&self) -> ModelInstance {
+        ModelInstance {
+            system: self.system.clone(),
+            layout: self.layout.clone().unwrap_or(InputLayout::Track {
+                positions: vec![0.0; self.system.n_inputs()],
+                gains: vec![1.0; self.system.n_inputs()],
+            }),
+            description: self.description.clone(),
+        }
+    }
+}
+
+/// Output names and units: a list of names or (name, unit) pairs, or `count` defaults `prefix1..`.
+fn output_infos(
+    py: Python<'_>,
+    spec: Option<&Bound<'_, PyAny>>,
+    count: usize,
+    prefix: &str,
+    unit: &str,
+) -> PyResult<Vec<OutputInfo>> {
+    let Some(spec) = spec else {
+        return Ok((1..=count)
+            .map(|k| OutputInfo::new(format!("{prefix}{k}"), unit))
+            .collect());
+    };
+    let mut v = Vec::new();
+    for item in spec.try_iter()? {
+        let item = item?;
+        if let Ok(name) = item.extract::<String>() {
+            v.push(OutputInfo::new(name, unit));
+        } else if let Ok((name, u)) = item.extract::<(String, String)>() {
+            v.push(OutputInfo::new(name, u));
+        } else {
+            return Err(invalid_input(
+                py,
+                format!(
+                    "output names: expected a name or a (name, unit) pair, got {}",
+                    item.repr()?
+                ),
+            ));
+        }
+    }
+    Ok(v)
+}
+
+fn quantity(py: Python<'_>, name: &str, kind: &str, point: Vec<f64>) -> PyResult<Quantity> {
+    match kind {
+        "displacement" => Ok(Quantity::Displacement(point)),
+        "velocity" => Ok(Quantity::Velocity(point)),
+        "acceleration" => Ok(Quantity::Acceleration(point)),
+        other => lib(
+            py,
+            Err(Error::invalid(
+                &format!("outputs[{name:?}]"),
+                other,
+                "expected \"displacement\", \"velocity\" or \"acceleration\" (of the point gᵀq)",
+            )),
+        ),
+    }
+}
+
+#[pymethods]
+impl PySystem {
+    /// A multi-degree-of-freedom model M q̈ + B q̇ + C q = K_u u + B_u u̇ + F f.
+    ///
+    /// ``M``, ``B``, ``C``: n × n mass (kg or kg m²), damping (N s/m) and stiffness (N/m) matrices, M
+    /// symmetric positive definite, B and C symmetric. Inputs are the base (kinematic) inputs u (columns of
+    /// ``K_u``, ``B_u``, n × n_base, default none) followed by the forces f (columns of ``F``, n × n_force;
+    /// default the identity — one force per coordinate — when there are no base inputs).
+    /// ``coordinates``: names or (name, unit) pairs (default q1…qn in m). ``outputs``: dict name →
+    /// (quantity, g) with quantity "displacement", "velocity" or "acceleration" of the point gᵀq (default:
+    /// the displacement of every coordinate).
+    #[staticmethod]
+    #[pyo3(signature = (M, B, C, *, K_u=None, B_u=None, F=None, coordinates=None, outputs=None))]
+    #[allow(non_snake_case, clippy::too_many_arguments)]
+    fn mdof(
+        py: Python<'_>,
+        M: &Bound<'_, PyAny>,
+        B: &Bound<'_, PyAny>,
+        C: &Bound<'_, PyAny>,
+        K_u: Option<&Bound<'_, PyAny>>,
+        B_u: Option<&Bound<'_, PyAny>>,
+        F: Option<&Bound<'_, PyAny>>,
+        coordinates: Option<&Bound<'_, PyAny>>,
+        outputs: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let m = matrix(py, M, "M")?;
+        let b = matrix(py, B, "B")?;
+        let c = matrix(py, C, "C")?;
+        let n = m.nrows();
+        let opt = |x: Option<&Bound<'_, PyAny>>, name: &str| x.map(|x| matrix(py, x, name)).transpose();
+        let (ku, bu) = match (opt(K_u, "K_u")?, opt(B_u, "B_u")?) {
+            (None, None) => (nalgebra::DMatrix::zeros(n, 0), nalgebra::DMatrix::zeros(n, 0)),
+            (Some(k), None) => {
+                let z = nalgebra::DMatrix::zeros(k.nrows(), k.ncols());
+                (k, z)
+            }
+            (None, Some(bb)) => (nalgebra::DMatrix::zeros(bb.nrows(), bb.ncols()), bb),
+            (Some(k), Some(bb)) => (k, bb),
+        };
+        let f = match opt(F, "F")? {
+            Some(f) => f,
+            None if ku.ncols() == 0 => nalgebra::DMatrix::identity(n, n),
+            None => nalgebra::DMatrix::zeros(n, 0),
+        };
+        let coords = output_infos(py, coordinates, n, "q", "m")?;
+        let pairs: Vec<(&str, &str)> = coords.iter().map(|o| (o.name.as_str(), o.unit.as_str())).collect();
+        let mut model = call(py, || Mdof::new(&pairs, m.clone(), b, c.clone(), ku, bu, f))?;
+        match outputs {
+            None => {
+                for (k, o) in coords.iter().enumerate() {
+                    let mut g = vec![0.0; n];
+                    g[k] = 1.0;
+                    model = call(py, || model.with_output(&o.name, Quantity::Displacement(g)))?;
+                }
+            }
+            Some(d) => {
+                for (name, spec) in d.iter() {
+                    let name: String = name.extract()?;
+                    let (kind, point): (String, Bound<'_, PyAny>) = spec.extract().map_err(|_| {
+                        invalid_input(py, format!("outputs[{name:?}]: expected (quantity, point vector)"))
+                    })?;
+                    let g = vector(py, &point, &format!("outputs[{name:?}] point"))?;
+                    let q = quantity(py, &name, &kind, g)?;
+                    model = call(py, || model.with_output(&name, q))?;
+                }
+            }
+        }
+        let description = format!(
+            "multi-degree-of-freedom model, {n} coordinates, {} inputs, {} outputs",
+            model.n_inputs(),
+            model.outputs().len()
+        );
+        Ok(PySystem {
+            system: Arc::new(model),
+            layout: None,
+            description,
+            kind: "mdof".into(),
+            mass_stiffness: Some((m, c)),
+        })
+    }
+
+    /// A state-space system ẋ = A x + B u, y = C x + D u + E u̇ (H(s) = C(sI − A)⁻¹B + D + sE).
+    ///
+    /// ``A`` n × n, ``B`` n × m, ``C`` p × n, ``D`` and ``E`` p × m (default zero). ``outputs``: p names or
+    /// (name, unit) pairs (default y1…yp, unit "1").
+    #[staticmethod]
+    #[pyo3(signature = (A, B, C, D=None, E=None, *, outputs=None))]
+    #[allow(non_snake_case)]
+    fn state_space(
+        py: Python<'_>,
+        A: &Bound<'_, PyAny>,
+        B: &Bound<'_, PyAny>,
+        C: &Bound<'_, PyAny>,
+        D: Option<&Bound<'_, PyAny>>,
+        E: Option<&Bound<'_, PyAny>>,
+        outputs: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let a = matrix(py, A, "A")?;
+        let b = matrix(py, B, "B")?;
+        let c = matrix(py, C, "C")?;
+        let d = D.map(|x| matrix(py, x, "D")).transpose()?;
+        let e = E.map(|x| matrix(py, x, "E")).transpose()?;
+        let infos = output_infos(py, outputs, c.nrows(), "y", "1")?;
+        let ss = call(py, || StateSpace::new(a, b, c, d, e, infos))?;
+        let description = format!(
+            "state space, {} states, {} inputs, {} outputs",
+            ss.n_states(),
+            ss.n_inputs(),
+            ss.outputs().len()
+        );
+        Ok(PySystem {
+            system: Arc::new(ss),
+            layout: None,
+            description,
+            kind: "state-space".into(),
+            mass_stiffness: None,
+        })
+    }
+
+    /// A single-input single-output transfer function H(s) = N(s)/D(s).
+    ///
+    /// ``numerator``, ``denominator``: real coefficients, in ASCENDING powers of s by default (the
+    /// library's and the scenario files' convention); ``order="descending"`` takes them highest power
+    /// first, as ``scipy.signal.TransferFunction`` does. The numerator may exceed the denominator degree by
+    /// one (a derivative feedthrough, e.g. a damper's base-velocity term).
+    #[staticmethod]
+    #[pyo3(signature = (numerator, denominator, *, order="ascending", output="y", unit="1"))]
+    fn transfer_function(
+        py: Python<'_>,
+        numerator: &Bound<'_, PyAny>,
+        denominator: &Bound<'_, PyAny>,
+        order: &str,
+        output: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let mut n = vector(py, numerator, "numerator")?;
+        let mut d = vector(py, denominator, "denominator")?;
+        match order {
+            "ascending" => {}
+            "descending" => {
+                n.reverse();
+                d.reverse();
+            }
+            other => {
+                return lib(
+                    py,
+                    Err(Error::invalid(
+                        "order",
+                        other,
+                        "expected \"ascending\" or \"descending\"",
+                    )),
+                )
+            }
+        }
+        let tf = call(py, || TransferFunction::new(n, d, OutputInfo::new(output, unit)))?;
+        Ok(PySystem {
+            system: Arc::new(tf),
+            layout: None,
+            description: "transfer function".into(),
+            kind: "transfer-function".into(),
+            mass_stiffness: None,
+        })
+    }
+
+    /// A model of the catalogue (``stochvib.System.models()`` lists the kinds), built by the library from
+    /// the keyword arguments exactly as from the ``[model]`` table of a scenario file: numbers are SI,
+    /// strings carry units ("70 kN/m", "30 t"). ``speed`` (m/s) is the ``[input] speed`` some models need.
+    /// Deterministic kinds (the hoists, the chain) have no frequency response for random analysis: load
+    /// their scenario file with :meth:`Scenario.load` instead.
+    #[staticmethod]
+    #[pyo3(signature = (kind, *, speed=None, **params))]
+    fn model(py: Python<'_>, kind: &str, speed: Option<f64>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        if let Some(k) = stochvib::scenario::model_kind(kind).filter(|k| !k.stochastic) {
+            return Err(not_applicable(
+                py,
+                format!(
+                    "`{}` is a deterministic model (no random input): load its scenario file (e.g. {}) with \
+                     stochvib.Scenario.load(path) and call analyze()",
+                    k.name, k.example
+                ),
+            ));
+        }
+        let table = match params {
+            Some(d) => toml_table(py, "model", d)?,
+            None => toml::Table::new(),
+        };
+        let path = Path::new("System.model");
+        let f = stochvib::fields::Fields::new(path, "model", &table);
+        let built = call(py, || build_model(kind, &f, ModelContext { speed }))?;
+        call(py, || f.finish())?;
+        match built {
+            BuiltModel::Stochastic(m) => Ok(PySystem::from_instance(&m, kind)),
+            BuiltModel::Deterministic(_) => Err(not_applicable(
+                py,
+                format!("`{kind}` is a deterministic model (no random input): use stochvib.Scenario.load"),
+            )),
+        }
+    }
+
+    /// Every model kind a scenario file (and :meth:`model`) may name: a list of dicts with ``name``,
+    /// ``family`` ("generic" or "catalogue"), ``stochastic``, ``summary`` and ``example`` (a scenario file).
+    #[staticmethod]
+    fn models(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+        to_python(py, &MODEL_KINDS)
+    }
+
+    /// The system of a scenario file (with the layout of its random input).
+    #[staticmethod]
+    #[pyo3(signature = (path, *, spectra_dir=None))]
+    fn load(py: Python<'_>, path: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
+        let cat = crate::names::catalogue(spectra_dir);
+        let sc = call(py, || stochvib::scenario::load_scenario(&path, cat.dir()))?;
+        Ok(PySystem::from_instance(&sc.model, &sc.kind))
+    }
+
+    /// H(iω) at ``omega`` (rad/s, or rad/m for a system driven along a road; any shape) as a complex128
+    /// array of shape (outputs, inputs, *omega.shape): y(iω) = H(iω) u(iω). A scalar ``omega`` gives an
+    /// (outputs, inputs) array. The GIL is released.
+    fn frequency_response<'py>(&self, py: Python<'py>, omega: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let x = real_array(py, omega, "omega")?;
+        let (p, m) = (self.system.outputs().len(), self.system.n_inputs());
+        let mut dims = vec![p, m];
+        dims.extend_from_slice(x.shape());
+        // SAFETY: every element is written below before the array is returned.
+        let result = unsafe { PyArrayDyn::<Complex64>::new(py, dims, false) };
+        {
+            let xr = x.readonly();
+            let mut rw = result.readwrite();
+            let xs = xr.as_slice()?;
+            let os = rw.as_slice_mut()?;
+            let sys = &*self.system;
+            let n = xs.len();
+            let fill = |os: &mut [Complex64]| {
+                for (k, &w) in xs.iter().enumerate() {
+                    let h = sys.response(w);
+                    for i in 0..p {
+                        for j in 0..m {
+                            os[(i * m + j) * n + k] = h[(i, j)];
+                        }
+                    }
+                }
+            };
+            // one response per point costs about a microsecond: release the GIL from 128 points on
+            detached_if(py, n, crate::spectrum::DETACH_MIN_POINTS / 16, || {
+                fill(os);
+                Ok(())
+            })?;
+        }
+        Ok(result.into_any())
+    }
+
+    /// Undamped natural frequencies (rad/s, ascending) and mass-normalised mode shapes (columns) of
+    /// C φ = ω² M φ, for systems built with :meth:`mdof`. Rigid-body modes have ω = 0. Other systems raise
+    /// :class:`NotApplicableError` (use :meth:`natural_frequencies`).
+    fn modes<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyAny>)> {
+        let Some((m, c)) = &self.mass_stiffness else {
+            return Err(not_applicable(
+                py,
+                format!(
+                    "modes need the mass and stiffness matrices, which the library exposes only for systems \
+                     built with System.mdof; this is a {} system (use natural_frequencies())",
+                    self.kind
+                ),
+            ));
+        };
+        let (w, shapes) = call(py, || modal_analysis(m, c))?;
+        Ok((PyArray1::from_vec(py, w), matrix_to_py(py, &shapes)?))
+    }
+
+    /// |λ| of the poles (rad/s, ascending, repeated values once): the natural frequencies of the damped
+    /// system, for any system with a state-space form.
+    fn natural_frequencies<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, self.system.natural_frequencies())
+    }
+
+    /// H(0) (outputs × inputs, real), or None when it is infinite (a rigid-body mode, an integrator).
+    fn static_gain<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.system.static_gain().map(|g| matrix_to_py(py, &g)).transpose()
+    }
+
+    /// The exact state-space form as a dict of arrays "A", "B", "C", "D", "E" (y = Cx + Du + Eu̇), or None
+    /// when the system is not finite-dimensional.
+    fn state_space_matrices<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(ss) = self.system.state_space() else {
+            return Ok(None);
+        };
+        let d = PyDict::new(py);
+        for (k, mat) in [("A", &ss.a), ("B", &ss.b), ("C", &ss.c), ("D", &ss.d), ("E", &ss.e)] {
+            d.set_item(k, matrix_to_py(py, mat)?)?;
+        }
+        Ok(Some(d))
+    }
+
+    /// The outputs as a list of (name, unit) pairs, in row order of H.
+    #[getter]
+    fn outputs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        PyList::new(
+            py,
+            self.system.outputs().iter().map(|o| (o.name.clone(), o.unit.clone())),
+        )
+    }
+
+    /// Number of inputs (columns of H).
+    #[getter]
+    fn n_inputs(&self) -> usize {
+        self.system.n_inputs()
+    }
+
+    /// The model kind ("mdof", "state-space", "transfer-function" or a catalogue kind).
+    #[getter]
+    fn kind(&self) -> &str {
+        &self.kind
+    }
+
+    /// One line: model, parameters, source section.
+    #[getter]
+    fn description(&self) -> &str {
+        &self.description
+    }
+
+    /// Index (row of H) of the output called ``name``; raises :class:`InvalidInputError` listing the
+    /// outputs there are.
+    fn output_index(&self, py: Python<'_>, name: &str) -> PyResult<usize> {
+        call(py, || self.system.output_index(name))
+    }
+
+    fn __repr__(&self) -> String {
+        let outs: Vec<&str> = self.system.outputs().iter().map(|o| o.name.as_str()).collect();
+        format!(
+            "<stochvib.System {}: {} inputs, outputs [{}]>",
+            self.description,
+            self.system.n_inputs(),
+            outs.join(", ")
+        )
+    }
+}

@@ -1,0 +1,266 @@
+"""Type stubs of the native module (import these names from ``stochvib``).
+
+Units: ω in rad/s (rad/m for road profiles), f in Hz, n in cycles/m, τ in s (m), everything else SI.
+Densities: two-sided angular S(ω) unless ``convention=`` says otherwise.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+from .results import AnalysisResult, Report, RunResult
+
+__version__: str
+ISO_BAND: Tuple[float, float]
+"""ISO 8608 band for road variances, (0.011, 2.83) cycles/m."""
+
+ArrayLike = npt.ArrayLike
+FloatArray = npt.NDArray[np.float64]
+PathLike = Union[str, os.PathLike[str]]
+Convention = Literal["two-sided-angular", "one-sided-angular", "one-sided-cyclic", "engineering"]
+Domain = Literal["temporal", "spatial"]
+Progress = Union[bool, Callable[[int, int], Any]]
+
+class Spectrum:
+    """A stationary random process described by its spectral density S(ω) (two-sided, angular)."""
+
+    @staticmethod
+    def exponential(variance: float, alpha: float, *, domain: Domain = "temporal", unit: str = "m") -> Spectrum:
+        """Type 1: K = D e^{−α|τ|}; D in unit², α in 1/s (1/m)."""
+    @staticmethod
+    def gaussian(variance: float, alpha: float, *, domain: Domain = "temporal", unit: str = "m") -> Spectrum:
+        """Type 2: K = D e^{−ατ²}; α in 1/s² (1/m²)."""
+    @staticmethod
+    def exp_cosine(
+        variance: float, alpha: float, beta: float, *, domain: Domain = "temporal", unit: str = "m"
+    ) -> Spectrum:
+        """Type 3: K = D e^{−α|τ|} cos βτ; α in 1/s, β in rad/s."""
+    @staticmethod
+    def gauss_cosine(
+        variance: float, alpha: float, beta: float, *, domain: Domain = "temporal", unit: str = "m"
+    ) -> Spectrum:
+        """Type 4: K = D e^{−ατ²} cos βτ; α in 1/s², β in rad/s."""
+    @staticmethod
+    def rational(
+        numerator: ArrayLike, denominator: ArrayLike, *, domain: Domain = "temporal", unit: str = "m"
+    ) -> Spectrum:
+        """S(ω) = N(ω²)/D(ω²), coefficients in ascending powers of ω²."""
+    @staticmethod
+    def iso8608(
+        road_class: str,
+        *,
+        bound: Literal["lower", "geometric-mean", "mean", "upper"] = "geometric-mean",
+        band: Optional[Tuple[float, float]] = ...,
+    ) -> Spectrum:
+        """ISO 8608 class A–H (spatial, G_d(n) in m³, n in cycles/m); band default (0.011, 2.83), None = unbounded."""
+    @staticmethod
+    def power_law(
+        g0: float,
+        n0: float,
+        waviness: float,
+        *,
+        band: Optional[Tuple[float, float]] = None,
+        domain: Domain = "spatial",
+        unit: str = "m",
+    ) -> Spectrum:
+        """G(n) = g0 (n/n0)^{−w}, one-sided cyclic (n in cycles/m or Hz)."""
+    @staticmethod
+    def tabulated(
+        x: ArrayLike, values: ArrayLike, *, convention: Convention, domain: Domain = "temporal", unit: str = "m"
+    ) -> Spectrum:
+        """Measured density at points ``x`` (the convention's abscissa), log–log interpolation, zero outside."""
+    @staticmethod
+    def band_white(
+        level: float, low: float, high: float, *, convention: Convention, domain: Domain = "temporal", unit: str = "m"
+    ) -> Spectrum:
+        """Constant ``level`` (in ``convention``) between ``low`` and ``high`` (the convention's abscissa)."""
+    @staticmethod
+    def load(path_or_name: PathLike, *, spectra_dir: Optional[PathLike] = None) -> Spectrum:
+        """A catalogue name (``spectra/<name>.toml``) or a spectrum file path."""
+    @staticmethod
+    def catalogue(spectra_dir: Optional[PathLike] = None) -> Dict[str, Spectrum]:
+        """Every valid spectrum of the catalogue directory, by name."""
+    @overload
+    def density(self, omega: float, convention: Convention = ..., *, out: None = None) -> float: ...
+    @overload
+    def density(self, omega: ArrayLike, convention: Convention = ..., *, out: Optional[FloatArray] = None) -> FloatArray:
+        """The density at ``omega`` in ``convention`` (for "one-sided-cyclic", ``omega`` is f in Hz or cycles/m)."""
+    @overload
+    def correlation(self, tau: float) -> float: ...
+    @overload
+    def correlation(self, tau: ArrayLike) -> FloatArray:
+        """K(τ) = ∫ S(ω) cos ωτ dω, τ in s (m)."""
+    def variance(self) -> float:
+        """D = ∫ S dω in unit²; raises DivergentError when infinite."""
+    def at_speed(self, speed: float) -> Spectrum:
+        """The temporal spectrum S_t(ω) = S_Ω(ω/v)/v of a spatial one at ``speed`` m/s."""
+    @property
+    def rational_coefficients(self) -> Optional[Tuple[FloatArray, FloatArray]]:
+        """(N, D) in ascending powers of ω², or None."""
+    def shaping_filter(self) -> Tuple[FloatArray, FloatArray]:
+        """(B, A) in ascending powers of s with S = |B(iω)/A(iω)|²/(2π)."""
+    @property
+    def domain(self) -> Domain: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def description(self) -> str: ...
+    @property
+    def source(self) -> str: ...
+    @property
+    def text(self) -> str: ...
+
+OutputSpec = Union[str, Tuple[str, str]]
+
+class System:
+    """A linear system known through H(iω) (outputs × inputs), with named outputs and SI units."""
+
+    @staticmethod
+    def mdof(
+        M: ArrayLike,
+        B: ArrayLike,
+        C: ArrayLike,
+        *,
+        K_u: Optional[ArrayLike] = None,
+        B_u: Optional[ArrayLike] = None,
+        F: Optional[ArrayLike] = None,
+        coordinates: Optional[Sequence[OutputSpec]] = None,
+        outputs: Optional[Dict[str, Tuple[Literal["displacement", "velocity", "acceleration"], ArrayLike]]] = None,
+    ) -> System:
+        """M q̈ + B q̇ + C q = K_u u + B_u u̇ + F f (kg, N s/m, N/m)."""
+    @staticmethod
+    def state_space(
+        A: ArrayLike,
+        B: ArrayLike,
+        C: ArrayLike,
+        D: Optional[ArrayLike] = None,
+        E: Optional[ArrayLike] = None,
+        *,
+        outputs: Optional[Sequence[OutputSpec]] = None,
+    ) -> System:
+        """ẋ = Ax + Bu, y = Cx + Du + Eu̇."""
+    @staticmethod
+    def transfer_function(
+        numerator: ArrayLike,
+        denominator: ArrayLike,
+        *,
+        order: Literal["ascending", "descending"] = "ascending",
+        output: str = "y",
+        unit: str = "1",
+    ) -> System:
+        """H(s) = N(s)/D(s), ascending powers of s unless order="descending" (scipy.signal's)."""
+    @staticmethod
+    def model(kind: str, *, speed: Optional[float] = None, **params: Any) -> System:
+        """A catalogue model built from keyword arguments (SI numbers or strings with units)."""
+    @staticmethod
+    def models() -> List[Dict[str, Any]]:
+        """The registry of model kinds."""
+    @staticmethod
+    def load(path: PathLike, *, spectra_dir: Optional[PathLike] = None) -> System:
+        """The system of a scenario file."""
+    @overload
+    def frequency_response(self, omega: float) -> npt.NDArray[np.complex128]: ...
+    @overload
+    def frequency_response(self, omega: ArrayLike) -> npt.NDArray[np.complex128]:
+        """H(iω), complex, shape (outputs, inputs, *omega.shape); ω in rad/s."""
+    def modes(self) -> Tuple[FloatArray, FloatArray]:
+        """Undamped ω (rad/s) and mass-normalised mode shapes (columns); System.mdof systems only."""
+    def natural_frequencies(self) -> FloatArray:
+        """|λ| of the poles, rad/s."""
+    def static_gain(self) -> Optional[FloatArray]:
+        """H(0), or None when infinite."""
+    def state_space_matrices(self) -> Optional[Dict[str, FloatArray]]:
+        """"A", "B", "C", "D", "E" of the exact state-space form."""
+    def output_index(self, name: str) -> int: ...
+    @property
+    def outputs(self) -> List[Tuple[str, str]]:
+        """(name, unit) per output."""
+    @property
+    def n_inputs(self) -> int: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def description(self) -> str: ...
+
+class Scenario:
+    """A model, its random input and what to report."""
+
+    @staticmethod
+    def load(path: PathLike, *, spectra_dir: Optional[PathLike] = None) -> Scenario: ...
+    @staticmethod
+    def from_system(
+        system: System,
+        input: Union[Spectrum, str, os.PathLike[str], Sequence[Spectrum]],
+        *,
+        speed: Optional[float] = None,
+        positions: Optional[Sequence[float]] = None,
+        mean: Optional[Union[float, Sequence[float]]] = None,
+        outputs: Optional[Sequence[str]] = None,
+        band_rad_s: Optional[Tuple[float, float]] = None,
+        duration_s: float = 3600.0,
+        levels: Optional[Dict[str, Sequence[float]]] = None,
+        title: Optional[str] = None,
+    ) -> Scenario:
+        """``system`` driven by ``input`` (speed m/s, positions m, band rad/s, duration s)."""
+    def analyze(
+        self,
+        *,
+        monte_carlo: Optional[int] = None,
+        seed: int = 1,
+        dt: Optional[float] = None,
+        duration: Optional[float] = None,
+        progress: Progress = True,
+        rel_tol: Optional[float] = None,
+        max_subintervals: Optional[int] = None,
+        max_half_periods: Optional[int] = None,
+    ) -> Union[AnalysisResult, Report]:
+        """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``); ``rel_tol``,
+        ``max_subintervals``, ``max_half_periods`` override the quadratures' ``[analysis.quadrature]``."""
+    def simulate(
+        self,
+        realizations: int,
+        path: PathLike,
+        *,
+        dt: Optional[float] = None,
+        duration: Optional[float] = None,
+        seed: int = 1,
+        shard_size: int = 50,
+        store_raw: bool = False,
+        compression: str = "none",
+        route: Literal["auto", "exact", "spectral"] = "auto",
+        confidence: float = 0.95,
+        overwrite: bool = False,
+        progress: Progress = True,
+    ) -> RunResult:
+        """A seeded Monte Carlo run into the HDF5 file ``path`` (dt, duration in s)."""
+    @property
+    def title(self) -> str: ...
+    @property
+    def path(self) -> Path: ...
+    @property
+    def what(self) -> Literal["stochastic", "deterministic", "reference"]: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def system(self) -> System: ...
+    @property
+    def input(self) -> Spectrum: ...
+    @property
+    def speed(self) -> Optional[float]: ...
+    @property
+    def outputs(self) -> List[str]: ...
+    @property
+    def text(self) -> str: ...
+
+@overload
+def h2_integral(numerator: Sequence[float], denominator: Sequence[float]) -> float: ...
+@overload
+def h2_integral(numerator: ArrayLike, denominator: ArrayLike) -> Any:
+    """∫|N(iω)/D(iω)|² dω, ascending powers of s; 2-D arguments: one integral per row."""

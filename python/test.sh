@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The Python package's build and tests: installs maturin, numpy, scipy, pytest and h5py with pip when they
+# are missing, builds the package from this checkout (maturin, release profile, abi3 wheel) and installs it,
+# then runs the pytest suite. Called by scripts/test.sh after the Rust suite (whose debug `stochvib` binary the
+# tests compare against; they build it when it is missing).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PY="${PYTHON:-python3}"
+log="$(mktemp)"
+trap 'rm -f "$log"' EXIT
+# pip as scripts/ensure-deps.sh uses it: plain, else with --break-system-packages (an externally managed
+# system Python); the output is shown only when both fail.
+pip_install() {
+  "$PY" -m pip install --quiet --disable-pip-version-check "$@" >"$log" 2>&1 \
+    || "$PY" -m pip install --quiet --disable-pip-version-check --break-system-packages "$@" >"$log" 2>&1 \
+    || { cat "$log" >&2; return 1; }
+}
+missing=()
+for m in maturin numpy scipy pytest h5py; do
+  "$PY" -c "import $m" >/dev/null 2>&1 || missing+=("$m")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "python/test.sh: installing ${missing[*]}" >&2
+  pip_install "${missing[@]}"
+fi
+start=$(date +%s)
+echo "python/test.sh: building and installing the stochvib Python package (release)" >&2
+pip_install --no-build-isolation --force-reinstall --no-deps ./python
+echo "python/test.sh: package built and installed in $(( $(date +%s) - start )) s" >&2
+"$PY" -m pytest -q python/tests
