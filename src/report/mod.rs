@@ -6,6 +6,7 @@ pub mod book;
 pub mod catalogue;
 pub mod spectrum_report;
 pub mod tables;
+pub mod verdict_report;
 
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use book::{book_report, BookReport};

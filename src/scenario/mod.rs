@@ -10,6 +10,9 @@ pub mod reference;
 mod registry;
 pub mod scenario_file;
 pub mod spectrum_file;
+pub mod verdict_analysis;
+mod verdict_run;
+pub mod verdict_spec;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
 pub use reference::ReferenceTable;
@@ -19,3 +22,8 @@ pub use scenario_file::{
     Scenario, ScenarioInput,
 };
 pub use spectrum_file::{load_spectrum, parse_spectrum, SpectrumFile};
+pub use verdict_analysis::{
+    verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, VerdictAnalysis,
+};
+pub use verdict_run::{simulate_with_verdicts, verdict_system};
+pub use verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec, VerdictSpec};

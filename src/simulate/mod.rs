@@ -28,6 +28,7 @@ pub mod run;
 pub mod shaping;
 pub mod spectral;
 mod summary;
+pub mod verdicts;
 
 pub use batch::{run_batch, Shard};
 pub use discretize::{
@@ -43,3 +44,4 @@ pub use run::{run, run_temporary, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
 pub use summary::RunSummary;
+pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};

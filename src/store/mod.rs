@@ -7,9 +7,11 @@
 pub mod checksum;
 mod chunks;
 pub mod layout;
+mod rainflow;
 mod reader;
 mod writer;
 
+pub use rainflow::RainflowHistogram;
 pub use reader::{summarize, RunFile, RunInfo, Verification};
 pub use writer::RunWriter;
 pub use writer::{process_alive, CreateOptions};
