@@ -620,6 +620,21 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
             }
         }
     }
+    for h in run.rainflow()? {
+        let total: f64 = h.counts.iter().sum();
+        let (top, n) = (h.edges.last().copied().unwrap_or(0.0), h.counts.len());
+        let _ = writeln!(
+            s,
+            "  /rainflow/{}  {n} range bins up to {top:.4e} {}; {total:.1} cycles per realization (+{:.2} above){}",
+            h.output,
+            h.unit,
+            h.overflow,
+            h.dirlik
+                .as_ref()
+                .map(|d| format!("; Dirlik expects {:.1}", d.iter().sum::<f64>()))
+                .unwrap_or_default()
+        );
+    }
     Ok(s)
 }
 
