@@ -248,7 +248,7 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
         let k = match af.get("k") {
             Some(_) => {
                 let k = af.number("k")?;
-                if !(k > 0.0) {
+                if k.is_nan() || k <= 0.0 {
                     return Err(af.error("k", k, "a multiplying factor must be > 0"));
                 }
                 k
