@@ -9,6 +9,8 @@ bin=target/release/stochvib
 mkdir -p out
 echo "== stochvib spectra"; $bin spectra
 echo; echo "== stochvib analyze data/quarter-car.toml"; $bin analyze data/quarter-car.toml
+echo; echo "== stochvib analyze data/operator-seat-verdicts.toml (ISO 2631-1 exposure and seat-spring fatigue verdicts)"
+$bin analyze data/operator-seat-verdicts.toml
 echo; echo "== stochvib book"; $bin book
 # A small Monte Carlo batch on a catalogue model (exact route: Van Loan discretisation of the scraper with its
 # road shaping filter), written to HDF5 and read back. A finished file is never overwritten by the writer:

@@ -101,6 +101,9 @@ pub struct AnalysisReport {
     pub duration_s: f64,
     /// One section per reported output.
     pub outputs: Vec<OutputReport>,
+    /// The comfort/exposure and fatigue verdicts (`[analysis.comfort]`, `[analysis.fatigue]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub verdicts: Option<crate::scenario::VerdictAnalysis>,
 }
 
 /// Runs every analysis of the scenario.
@@ -159,6 +162,11 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         band_rad_s: sc.analysis.band,
         duration_s: sc.analysis.duration,
         outputs,
+        verdicts: if sc.analysis.verdicts.is_empty() {
+            None
+        } else {
+            Some(crate::scenario::verdict_analysis(sc)?)
+        },
     })
 }
 
@@ -278,6 +286,9 @@ impl fmt::Display for AnalysisReport {
                     note
                 )?;
             }
+        }
+        if let Some(v) = &self.verdicts {
+            write!(f, "{v}")?;
         }
         Ok(())
     }

@@ -7,6 +7,7 @@ pub mod catalogue;
 pub mod spectrum_report;
 pub mod sweep_table;
 pub mod tables;
+pub mod verdict_report;
 
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use book::{book_report, BookReport};

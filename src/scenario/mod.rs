@@ -11,6 +11,9 @@ mod registry;
 pub mod scenario_file;
 pub mod spectrum_file;
 pub mod sweep;
+pub mod verdict_analysis;
+mod verdict_run;
+pub mod verdict_spec;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
 pub use reference::ReferenceTable;
@@ -21,3 +24,8 @@ pub use scenario_file::{
 };
 pub use spectrum_file::{load_spectrum, parse_spectrum, SpectrumFile};
 pub use sweep::{substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepSpec};
+pub use verdict_analysis::{
+    verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, VerdictAnalysis,
+};
+pub use verdict_run::{simulate_with_verdicts, verdict_system};
+pub use verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec, VerdictSpec};

@@ -63,6 +63,8 @@ pub struct AnalysisOptions {
     /// Tolerance and limits of the quadratures (`[analysis.quadrature]`: `rel_tol`, `max_subintervals`,
     /// `max_half_periods`).
     pub effort: OscillatoryOptions,
+    /// `[analysis.comfort]` and `[analysis.fatigue]` ([`super::verdict_spec`]).
+    pub verdicts: super::verdict_spec::VerdictSpec,
 }
 
 /// The random input of a scenario as written: the process, its unit and where it came from.
@@ -161,6 +163,9 @@ impl Scenario {
     /// # Errors
     /// As [`crate::simulate::run()`].
     pub fn simulate(&self, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
+        if !self.analysis.verdicts.is_empty() {
+            return super::verdict_run::simulate_with_verdicts(self, opts, out, progress);
+        }
         crate::simulate::run(&self.run_input(), opts, out, progress)
     }
 }
@@ -316,7 +321,9 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
         }
         Some(_) => {
             let af = f.sub("analysis")?;
-            let opts = analysis_options(&af, &model)?;
+            let mut opts = analysis_options(&af, &model)?;
+            opts.verdicts = super::verdict_spec::parse_verdicts(&af, &model, speed)?;
+            super::verdict_spec::check_fatigue_moments(&f, &opts.verdicts, &model, &excitation)?;
             af.finish()?;
             opts
         }
@@ -582,5 +589,6 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
         duration,
         levels,
         effort,
+        verdicts: Default::default(),
     })
 }

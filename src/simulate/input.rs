@@ -64,6 +64,9 @@ pub struct RunInput<'a> {
     pub provenance: Vec<Provenance>,
     /// The files the run was read from: the run file may not be one of them.
     pub source_files: Vec<PathBuf>,
+    /// Verdict channels evaluated on every realization (ISO 2631-1 metrics, rainflow damage); empty for
+    /// none.
+    pub verdicts: super::VerdictChannels,
 }
 
 impl<'a> RunInput<'a> {
@@ -83,6 +86,7 @@ impl<'a> RunInput<'a> {
             scenario_text: scenario_text.into(),
             provenance: vec![Provenance::identity("excitation", describe(excitation))],
             source_files: Vec::new(),
+            verdicts: super::VerdictChannels::default(),
         }
     }
 }

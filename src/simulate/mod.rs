@@ -33,6 +33,7 @@ pub mod shaping;
 mod shard;
 pub mod spectral;
 mod summary;
+pub mod verdicts;
 
 pub use batch::{run_batch, Shard};
 pub use discretize::{
@@ -50,3 +51,4 @@ pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
 pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
 pub use summary::RunSummary;
+pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};

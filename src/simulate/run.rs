@@ -55,9 +55,9 @@ use super::engine::{realize, Realization, Scratch};
 use super::finish::{density_estimate, output_statistics, read_output, Analytic};
 use super::plan::{plan, Plan};
 use super::{run_batch, RunInput, RunOptions, RunSummary};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::response::output_density;
-use crate::store::{CreateOptions, RunFile, RunMetadata, RunWriter};
+use crate::store::{CreateOptions, OutputStatistics, RunFile, RunMetadata, RunWriter};
 use ndarray::Array2;
 use std::path::Path;
 
@@ -111,12 +111,25 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
             vec![]
         },
         outputs: plan.outputs.iter().map(|o| o.signal.clone()).collect(),
-        accumulators: accumulators::layout(&names, shard_size, bins),
+        accumulators: {
+            let mut a = accumulators::layout(&names, shard_size, bins);
+            a.extend(input.verdicts.layout(shard_size));
+            a
+        },
         store_raw: opts.store_raw,
         compression: opts.compression,
         provenance: input.provenance.clone(),
         part: opts.part,
     };
+    input.verdicts.check(&names)?;
+    if opts.part.is_some() && !input.verdicts.is_empty() {
+        return Err(Error::invalid(
+            "--shard",
+            "a part of a run",
+            "the comfort and fatigue channels of a run are not merged across cluster shards yet: run a scenario \
+             with [analysis.comfort] or [analysis.fatigue] in one process",
+        ));
+    }
     meta.validate()?;
     // cluster shard: a complete shard file of this run is the result (a rerun does nothing)
     if let Some(done) = super::shard::finished_part(&meta, &plan, out, opts)? {
@@ -143,10 +156,16 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
             opts.seed,
             range.start as u64..range.end as u64,
             || Scratch::new(&plan),
-            |s, _i, rng| realize(&plan, s, rng, opts.store_raw),
+            |s, _i, rng| realize_with_verdicts(&plan, s, rng, opts, &input.verdicts),
         );
-        let results: Vec<Realization> = batch.into_results().into_iter().collect::<Result<_>>()?;
-        write_shard(&mut writer, shard, &results, &plan, shard_size, opts.store_raw)?;
+        let (results, verdicts): (Vec<Realization>, Vec<Vec<Vec<f64>>>) = batch
+            .into_results()
+            .into_iter()
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .unzip();
+        let extra = input.verdicts.encode(&verdicts, shard_size);
+        write_shard(&mut writer, shard, &results, &plan, shard_size, opts.store_raw, &extra)?;
         done += 1;
         progress(done, n_shards);
     }
@@ -169,7 +188,11 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         psd.expected = Some(plan.welch.expected_all(autocov));
         psds.push(psd);
     }
+    let rainflow = finish_verdicts(input, &writer, &meta, &plan, opts, &mut stats)?;
     writer.write_statistics(&stats)?;
+    for r in &rainflow {
+        writer.write_rainflow(r)?;
+    }
     for psd in &psds {
         writer.write_psd(psd)?;
     }
@@ -188,6 +211,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         outputs: stats,
         skipped: plan.skipped,
         notes,
+        rainflow,
     })
 }
 
@@ -208,7 +232,77 @@ pub(crate) fn summary_of_file(run: &RunFile, plan: &Plan, notes: Vec<String>) ->
         outputs: run.statistics()?,
         skipped: plan.skipped.clone(),
         notes,
+        rainflow: Vec::new(),
     })
+}
+
+/// One realization and, when the run has verdict channels, their per-realization values (the raw samples
+/// are kept only as long as the channels need them, unless the run stores them).
+fn realize_with_verdicts(
+    plan: &Plan,
+    s: &mut Scratch,
+    rng: &mut rand::rngs::Xoshiro256PlusPlus,
+    opts: &RunOptions,
+    verdicts: &super::VerdictChannels,
+) -> Result<(Realization, Vec<Vec<f64>>)> {
+    if verdicts.is_empty() {
+        return Ok((realize(plan, s, rng, opts.store_raw)?, Vec::new()));
+    }
+    let mut re = realize(plan, s, rng, true)?;
+    let signal = |name: &str| {
+        plan.outputs
+            .iter()
+            .position(|o| o.signal.name == name)
+            .map(|r| re.raw[r].as_slice())
+    };
+    let values = verdicts.evaluate(opts.dt_s, &signal)?;
+    if !opts.store_raw {
+        re.raw = Vec::new();
+        re.raw_inputs = Vec::new();
+    }
+    Ok((re, values))
+}
+
+/// The verdict statistics (appended to their outputs' statistics; the analytic VDV is (3T)^{1/4}·σ_d of
+/// the simulated discretised weighted output) and the rainflow histograms, from the accumulators.
+fn finish_verdicts(
+    input: &RunInput,
+    writer: &RunWriter,
+    meta: &RunMetadata,
+    plan: &Plan,
+    opts: &RunOptions,
+    stats: &mut [OutputStatistics],
+) -> Result<Vec<super::RainflowSummary>> {
+    if input.verdicts.is_empty() {
+        return Ok(Vec::new());
+    }
+    let rows: Vec<usize> = (0..meta.n_shards()).map(|s| meta.shard_range(s).len()).collect();
+    let duration = opts.dt_s * plan.n as f64;
+    let (comfort, fatigue) = input.verdicts.finish(
+        &|name, shard| writer.read_accumulator(name, shard),
+        &rows,
+        meta.shard_size,
+        duration,
+        opts.confidence,
+    )?;
+    for (output, mut extra) in comfort {
+        if let Some(o) = plan.outputs.iter().find(|o| o.signal.name == output) {
+            let vdv = (3.0 * duration).powf(0.25) * o.discrete_variance.sqrt();
+            super::verdicts::set_analytic(&mut extra, "vdv", vdv);
+        }
+        if let Some(st) = stats.iter_mut().find(|s| s.output == output) {
+            st.statistics.extend(extra);
+        }
+    }
+    let mut hist = Vec::new();
+    for ((output, st, mut h), ch) in fatigue.into_iter().zip(&input.verdicts.fatigue) {
+        if let Some(s) = stats.iter_mut().find(|s| s.output == output) {
+            s.statistics.push(st);
+        }
+        h.unit = ch.sn_unit.clone();
+        hist.push(h);
+    }
+    Ok(hist)
 }
 
 /// Refuses a run file that is one of the files the run is read from (a scenario or spectrum file would
@@ -296,6 +390,7 @@ fn write_shard(
     plan: &Plan,
     shard_size: usize,
     store_raw: bool,
+    extra: &[Vec<f64>],
 ) -> Result<()> {
     let (rows, n, p) = (results.len(), plan.n, plan.outputs.len());
     let mut accs: Vec<Vec<f64>> = Vec::with_capacity(2 * p);
@@ -326,6 +421,6 @@ fn write_shard(
     };
     let views: Vec<_> = raw.iter().map(|a| a.view()).collect();
     let in_views: Vec<_> = raw_in.iter().map(|a| a.view()).collect();
-    let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
+    let acc_refs: Vec<&[f64]> = accs.iter().chain(extra).map(|a| a.as_slice()).collect();
     writer.write_shard(shard, &in_views, &views, &acc_refs)
 }

@@ -36,6 +36,9 @@ pub struct RunSummary {
     pub skipped: Vec<SkippedOutput>,
     /// Remarks (route and why, bias).
     pub notes: Vec<String>,
+    /// Rainflow range histograms of the fatigue verdict channels (empty without them).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rainflow: Vec<super::RainflowSummary>,
 }
 
 impl RunSummary {

@@ -119,6 +119,16 @@ pub const GROUP_SHARDS: &str = "shards";
 pub const GROUP_STATISTICS: &str = "statistics";
 /// Group of spectral density estimates, one subgroup per output.
 pub const GROUP_PSD: &str = "psd";
+/// Group of the rainflow range histograms of fatigue verdict channels (optional).
+pub const GROUP_RAINFLOW: &str = "rainflow";
+/// Dataset of a rainflow histogram: range edges.
+pub const DS_EDGES: &str = "edges";
+/// Dataset of a rainflow histogram: cycles per bin per realization.
+pub const DS_COUNTS: &str = "counts";
+/// Dataset of a rainflow histogram: Dirlik's expected cycles per bin (optional).
+pub const DS_DIRLIK: &str = "dirlik";
+/// Attribute of a rainflow histogram: cycles above the top edge per realization.
+pub const ATTR_OVERFLOW: &str = "overflow";
 
 // ---- attributes of /inputs and /outputs ----
 

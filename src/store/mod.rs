@@ -8,10 +8,12 @@ pub mod checksum;
 mod chunks;
 pub mod layout;
 mod parts;
+mod rainflow;
 mod reader;
 mod writer;
 
 pub use parts::{find_run_files, MergedFrom, PartFile, PartSet, RawStorage, VirtualSource};
+pub use rainflow::RainflowHistogram;
 pub use reader::{summarize, RunFile, RunInfo, Verification};
 pub(crate) use writer::metadata_differences;
 pub use writer::RunWriter;

@@ -410,6 +410,51 @@ impl RunFile {
         Ok(out)
     }
 
+    /// The rainflow range histograms of the run's fatigue verdict channels (`/rainflow`, optional: empty
+    /// when the file has none), each checked against its `@crc32`.
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] if a histogram group is malformed or its checksum does not match.
+    pub fn rainflow(&self) -> Result<Vec<super::RainflowHistogram>> {
+        let p = &self.path;
+        if !self.file.link_exists(L::GROUP_RAINFLOW) {
+            return Ok(Vec::new());
+        }
+        let parent = self
+            .file
+            .group(L::GROUP_RAINFLOW)
+            .map_err(h5err(p, "opening /rainflow"))?;
+        let mut out = Vec::new();
+        for sig in &self.meta.outputs {
+            if !parent.link_exists(&sig.name) {
+                continue;
+            }
+            let g = parent.group(&sig.name).map_err(h5err(p, "opening a rainflow group"))?;
+            let read = |name: &str| -> Result<Vec<f64>> {
+                g.dataset(name)
+                    .and_then(|d| d.read_raw::<f64>())
+                    .map_err(h5err(p, &format!("reading rainflow/{}/{name}", sig.name)))
+            };
+            let h = super::RainflowHistogram {
+                output: sig.name.clone(),
+                unit: attr_string(&g, L::ATTR_UNIT, p)?,
+                edges: read(L::DS_EDGES)?,
+                counts: read(L::DS_COUNTS)?,
+                overflow: attr_scalar(&g, L::ATTR_OVERFLOW, p)?,
+                dirlik: if g.link_exists(L::DS_DIRLIK) {
+                    Some(read(L::DS_DIRLIK)?)
+                } else {
+                    None
+                },
+            };
+            if attr_scalar::<u32>(&g, L::ATTR_CRC32, p)? != h.checksum() || h.edges.len() != h.counts.len() + 1 {
+                return Err(damaged(p, &format!("rainflow/{}", sig.name)));
+            }
+            out.push(h);
+        }
+        Ok(out)
+    }
+
     /// Checks every checksum of the file: the rows of every completed shard (raw data and accumulators),
     /// the statistics and the density estimates (format ≥ 2; a format-1 file has none to check).
     ///
@@ -696,6 +741,21 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
                 );
             }
         }
+    }
+    for h in run.rainflow()? {
+        let total: f64 = h.counts.iter().sum();
+        let (top, n) = (h.edges.last().copied().unwrap_or(0.0), h.counts.len());
+        let _ = writeln!(
+            s,
+            "  /rainflow/{}  {n} range bins up to {top:.4e} {}; {total:.1} cycles per realization (+{:.2} above){}",
+            h.output,
+            h.unit,
+            h.overflow,
+            h.dirlik
+                .as_ref()
+                .map(|d| format!("; Dirlik expects {:.1}", d.iter().sum::<f64>()))
+                .unwrap_or_default()
+        );
     }
     Ok(s)
 }

@@ -895,6 +895,52 @@ impl RunWriter {
         self.file.flush().map_err(e("flushing a density estimate"))
     }
 
+    /// Writes (or replaces) a rainflow range histogram under `/rainflow/<output>` (the group is created
+    /// on first use).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] if the signal is unknown or the array lengths do not fit (edges = counts
+    /// + 1); [`Error::Hdf5`] if writing fails.
+    pub fn write_rainflow(&mut self, h: &super::RainflowHistogram) -> Result<()> {
+        self.check_signal_name("rainflow", &h.output)?;
+        if h.edges.len() != h.counts.len() + 1 || h.dirlik.as_ref().is_some_and(|d| d.len() != h.counts.len()) {
+            return Err(Error::invalid(
+                "rainflow.edges",
+                h.edges.len(),
+                "need one more edge than counts",
+            ));
+        }
+        let e = |what: &str| h5err(&self.tmp, what);
+        let parent = if self.file.link_exists(L::GROUP_RAINFLOW) {
+            self.file.group(L::GROUP_RAINFLOW).map_err(e("opening /rainflow"))?
+        } else {
+            self.file
+                .create_group(L::GROUP_RAINFLOW)
+                .map_err(e("creating /rainflow"))?
+        };
+        if parent.link_exists(&h.output) {
+            parent.unlink(&h.output).map_err(e("replacing a rainflow histogram"))?;
+        }
+        let g = parent.create_group(&h.output).map_err(e("creating a rainflow group"))?;
+        let w = || -> hdf5::Result<()> {
+            write_str_attr(&g, L::ATTR_UNIT, &h.unit)?;
+            write_scalar_attr(&g, L::ATTR_OVERFLOW, h.overflow)?;
+            write_scalar_attr(&g, L::ATTR_CRC32, h.checksum())?;
+            g.new_dataset_builder()
+                .with_data(h.edges.as_slice())
+                .create(L::DS_EDGES)?;
+            g.new_dataset_builder()
+                .with_data(h.counts.as_slice())
+                .create(L::DS_COUNTS)?;
+            if let Some(d) = &h.dirlik {
+                g.new_dataset_builder().with_data(d.as_slice()).create(L::DS_DIRLIK)?;
+            }
+            Ok(())
+        };
+        w().map_err(e("writing a rainflow histogram"))?;
+        self.file.flush().map_err(e("flushing a rainflow histogram"))
+    }
+
     fn check_signal_name(&self, field: &str, name: &str) -> Result<()> {
         if self
             .meta

@@ -1,0 +1,331 @@
+//! The analytic verdicts of a scenario: ISO 2631-1 weighted accelerations per axis (exactly, by the
+//! Lyapunov covariance of the system augmented with the input's shaping filter and the weighting filter,
+//! and by quadrature of the weighted output density, both shown and compared), the vector sum a_v, the
+//! daily exposure A(8) and VDV against Directive 2002/44/EC, and the spectral fatigue damage and life of a
+//! stress output by every method, with the moments used.
+
+use super::verdict_spec::{ComfortSpec, FatigueSpec};
+use super::Scenario;
+use crate::comfort::{
+    daily_exposure_a8, vdv_gaussian, weighted_output, Axis, ExposureVerdict, HealthGuidanceZone, Location, Purpose,
+    Weighting,
+};
+use crate::error::{Error, Result};
+use crate::fatigue::{compare_methods, SpectralMoments};
+use crate::response::{
+    analyze_output_with, spectral_moment_quadrature, Excitation, OutputDensity, ResponseStatistics, VarianceMethod,
+};
+use crate::system::FrequencyResponse;
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// One weighted axis.
+#[derive(Debug, Clone, Serialize)]
+pub struct ComfortAxisResult {
+    /// The weighted output's name (`<output>_<W>`).
+    pub output: String,
+    /// Location.
+    pub location: Location,
+    /// Axis.
+    pub axis: Axis,
+    /// Weighting.
+    pub weighting: Weighting,
+    /// Multiplying factor k.
+    pub k: f64,
+    /// a_w by the Lyapunov route (exact; `None` where it does not apply), m/s².
+    pub a_w_lyapunov: Option<f64>,
+    /// a_w by quadrature of the weighted output density, m/s².
+    pub a_w_quadrature: Option<f64>,
+    /// |a_w,quad/a_w,Lyap − 1|.
+    pub rel_diff: Option<f64>,
+    /// The a_w used (the exact one where available), m/s².
+    pub a_w: f64,
+    /// k·a_w, m/s².
+    pub weighted: f64,
+    /// A(8) of this axis alone, k·a_w·√(T/8 h), m/s².
+    pub a8: f64,
+    /// VDV of this axis for the stationary Gaussian response, (3T)^{1/4}·k·a_w, m/s^1.75.
+    pub vdv: f64,
+    /// Every variance method of the weighted output (value, agreement, why missing).
+    pub statistics: ResponseStatistics,
+}
+
+/// `[analysis.comfort]` answered.
+#[derive(Debug, Clone, Serialize)]
+pub struct ComfortVerdict {
+    /// Health or comfort.
+    pub purpose: Purpose,
+    /// Daily exposure T, s.
+    pub exposure_s: f64,
+    /// One row per axis.
+    pub axes: Vec<ComfortAxisResult>,
+    /// a_v = √(Σ k² a_w²), m/s².
+    pub a_v: f64,
+    /// The axis with the largest k·a_w (the Directive's A(8) and VDV are those of this axis).
+    pub dominant: String,
+    /// The verdict: A(8) and VDV of the dominant axis against the action and limit values, the ISO
+    /// 2631-1 Annex B zone, and (comfort) the Annex C reactions to a_v.
+    pub verdict: ExposureVerdict,
+}
+
+/// One spectral method's answer.
+#[derive(Debug, Clone, Serialize)]
+pub struct FatigueMethodResult {
+    /// Method name with its reference.
+    pub method: String,
+    /// Damage rate, 1/s.
+    pub damage_rate: f64,
+    /// Life 1/rate, s.
+    pub life_s: f64,
+    /// Life / design life (≥ 1 passes), if a design life is given.
+    pub safety_factor: Option<f64>,
+}
+
+/// `[analysis.fatigue]` answered.
+#[derive(Debug, Clone, Serialize)]
+pub struct FatigueVerdict {
+    /// The output.
+    pub output: String,
+    /// Stress per unit of the output.
+    pub stress_factor: f64,
+    /// The S–N curve.
+    pub sn_curve: String,
+    /// One-sided Hz moments of the stress m₀, m₁, m₂, m₄ (Pa², Pa²·Hz, Pa²·Hz², Pa²·Hz⁴), as used: λ₀, λ₂,
+    /// λ₄ by the exact route where it applies, λ₁ by quadrature.
+    pub moments: [f64; 4],
+    /// How the moments were obtained.
+    pub moments_method: String,
+    /// The same moments all by quadrature of the output density (a check), if they converged.
+    pub moments_quadrature: Option<[f64; 4]>,
+    /// Largest relative difference between the two moment sets.
+    pub moments_rel_diff: Option<f64>,
+    /// Irregularity factors α₁, α₂ and the bandwidth ε.
+    pub alpha1: f64,
+    /// α₂ = m₂/√(m₀m₄).
+    pub alpha2: f64,
+    /// Rate of peaks ν_p = √(m₄/m₂), 1/s.
+    pub nu_peak: f64,
+    /// One row per method.
+    pub methods: Vec<FatigueMethodResult>,
+    /// Longest life / shortest life over the methods.
+    pub spread: f64,
+    /// Design life, s, if given.
+    pub design_life_s: Option<f64>,
+    /// How the design life was given.
+    pub design_life_text: Option<String>,
+    /// Every method's life ≥ the design life (`None` without a design life).
+    pub passes: Option<bool>,
+}
+
+/// Both verdicts of a scenario.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct VerdictAnalysis {
+    /// Comfort / exposure.
+    pub comfort: Option<ComfortVerdict>,
+    /// Fatigue.
+    pub fatigue: Option<FatigueVerdict>,
+}
+
+/// The verdicts of `[analysis.comfort]` and `[analysis.fatigue]` of a scenario (empty without them).
+///
+/// # Formula
+/// a_w = σ of W(s)·H_i(s) ([`weighted_output`]) by every variance method ([`analyze_output_with`]); per
+/// axis A(8) = k a_w √(T/T₀), T₀ = 8 h, VDV = (3T)^{1/4} k a_w (stationary Gaussian response, ISO 2631-1
+/// 6.3.2 note); a_v = √(Σ kᵢ² a_wᵢ²) (ISO 2631-1 (9)); the Directive's A(8) and VDV are those of the
+/// dominant axis (Directive 2002/44/EC Annex B 1: the highest of 1.4a_wx, 1.4a_wy, a_wz).
+/// Fatigue: stress = s·y, m_j = s² (2π)^{−j} λ_j ([`SpectralMoments::from_two_sided_angular`]), each
+/// method's damage rate ([`compare_methods`]), life = 1/rate.
+///
+/// # Errors
+/// [`Error::File`] naming the scenario key when an axis' weighted output or the fatigue moments cannot be
+/// computed (a divergent λ₄, say); the errors of the fatigue methods.
+pub fn verdict_analysis(sc: &Scenario) -> Result<VerdictAnalysis> {
+    let spec = &sc.analysis.verdicts;
+    let comfort = match &spec.comfort {
+        Some(c) => Some(comfort_verdict(sc, c)?),
+        None => None,
+    };
+    let fatigue = match &spec.fatigue {
+        Some(f) => Some(fatigue_verdict(sc, f)?),
+        None => None,
+    };
+    Ok(VerdictAnalysis { comfort, fatigue })
+}
+
+fn file_error(sc: &Scenario, key: &str, value: &str, e: Error) -> Error {
+    Error::File {
+        file: sc.path.clone(),
+        key: key.into(),
+        value: value.into(),
+        reason: e.to_string(),
+    }
+}
+
+fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> {
+    let ss = sc.model.system.state_space().ok_or_else(|| Error::NotApplicable {
+        method: "frequency weighting".into(),
+        reason: "the model has no state-space form".into(),
+    })?;
+    let t = spec.exposure_s;
+    let mut axes = Vec::new();
+    for (j, a) in spec.axes.iter().enumerate() {
+        let key = format!("analysis.comfort.axis[{j}].output");
+        let ws = weighted_output(ss, a.output, &a.weighting).map_err(|e| file_error(sc, &key, &a.output_name, e))?;
+        let st = analyze_output_with(&ws, &sc.excitation, 0, &sc.analysis.effort)?;
+        let value = |m: &[VarianceMethod]| {
+            st.methods
+                .iter()
+                .find(|v| m.contains(&v.method))
+                .and_then(|v| v.value())
+                .map(f64::sqrt)
+        };
+        let lyap = value(&[VarianceMethod::Lyapunov, VarianceMethod::LyapunovDelays]);
+        let quad = value(&[VarianceMethod::Quadrature]);
+        let a_w = st.sigma.ok_or_else(|| {
+            file_error(
+                sc,
+                &key,
+                &a.output_name,
+                Error::Numerical {
+                    what: format!("weighted r.m.s. of `{}`", ws.outputs()[0].name),
+                    reason: st.variance_outcome.describe(),
+                },
+            )
+        })?;
+        let weighted = a.k * a_w;
+        axes.push(ComfortAxisResult {
+            output: ws.outputs()[0].name.clone(),
+            location: a.location,
+            axis: a.axis,
+            weighting: a.weighting,
+            k: a.k,
+            a_w_lyapunov: lyap,
+            a_w_quadrature: quad,
+            rel_diff: match (lyap, quad) {
+                (Some(l), Some(q)) if l > 0.0 => Some((q / l - 1.0).abs()),
+                _ => None,
+            },
+            a_w,
+            weighted,
+            a8: daily_exposure_a8(weighted, t)?,
+            vdv: vdv_gaussian(weighted, t)?,
+            statistics: st,
+        });
+    }
+    let a_v = axes.iter().map(|a| a.weighted * a.weighted).sum::<f64>().sqrt();
+    let dom = axes
+        .iter()
+        .max_by(|x, y| x.weighted.total_cmp(&y.weighted))
+        .ok_or_else(|| Error::invalid("analysis.comfort.axis", "[]", "no axis"))?;
+    let verdict = ExposureVerdict::assess_with(
+        dom.a8,
+        Some(dom.vdv),
+        (spec.purpose == Purpose::Comfort).then_some(a_v),
+        &spec.limits,
+        &HealthGuidanceZone::ISO_2631_1,
+    )?;
+    Ok(ComfortVerdict {
+        purpose: spec.purpose,
+        exposure_s: t,
+        dominant: dom.output.clone(),
+        axes,
+        a_v,
+        verdict,
+    })
+}
+
+/// The one-sided Hz moments of s·y_i: exact λ₀, λ₂, λ₄ where the Lyapunov route applies (else
+/// quadrature), λ₁ by quadrature; and the all-quadrature set of the same moments.
+///
+/// # Formula
+/// m_j = s² (2π)^{−j} λ_j, λ_j = ∫|ω|^j S_y dω.
+///
+/// # Errors
+/// [`Error::Divergent`] when λ₄ (or λ₀, λ₂) is infinite; quadrature failures.
+#[allow(clippy::type_complexity)]
+pub fn stress_moments(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    i: usize,
+    stress_factor: f64,
+    effort: &crate::quad_oscillatory::OscillatoryOptions,
+) -> Result<(SpectralMoments, String, Option<[f64; 4]>)> {
+    let st = analyze_output_with(sys, exc, i, effort)?;
+    let divergent = |what: &str, o: &crate::response::Outcome| Error::Divergent {
+        quantity: format!("{what} of `{}`", st.name),
+        reason: o.describe(),
+    };
+    let l0 = st.variance.ok_or_else(|| divergent("variance", &st.variance_outcome))?;
+    let l2 = st.lambda2.ok_or_else(|| divergent("λ₂", &st.lambda2_outcome))?;
+    let l4 = st.lambda4.ok_or_else(|| divergent("λ₄", &st.lambda4_outcome))?;
+    let l1 = spectral_moment_quadrature(sys, exc, i, 1)?.value;
+    let s2 = stress_factor * stress_factor;
+    let m = SpectralMoments::from_two_sided_angular(s2 * l0, s2 * l1, s2 * l2, s2 * l4)?;
+    let exact = st
+        .methods
+        .iter()
+        .any(|v| matches!(v.method, VarianceMethod::Lyapunov | VarianceMethod::LyapunovDelays) && v.value().is_some());
+    let how = if exact {
+        "λ0, λ2, λ4 exact (Lyapunov of the augmented system), λ1 by quadrature".to_string()
+    } else {
+        "λ0, λ1, λ2, λ4 by quadrature of the output density".to_string()
+    };
+    // all by quadrature of the one-sided Hz density G(f) = 4π S(2πf)
+    let quad = OutputDensity::new(sys, exc, i).ok().and_then(|d| {
+        SpectralMoments::from_one_sided_hz(|f| s2 * 4.0 * PI * d.density(2.0 * PI * f), 0.0, f64::INFINITY, &[])
+            .ok()
+            .map(|q| [q.m0(), q.m1(), q.m2(), q.m4()])
+    });
+    Ok((m, how, quad))
+}
+
+fn fatigue_verdict(sc: &Scenario, spec: &FatigueSpec) -> Result<FatigueVerdict> {
+    let key = "analysis.fatigue.output";
+    let sys = sc.model.system.as_ref();
+    let (m, how, quad) = stress_moments(
+        sys,
+        &sc.excitation,
+        spec.output,
+        spec.stress_factor,
+        &sc.analysis.effort,
+    )
+    .map_err(|e| file_error(sc, key, &spec.output_name, e))?;
+    let all = compare_methods(&m, &spec.sn)?;
+    let methods: Vec<FatigueMethodResult> = all
+        .estimates
+        .iter()
+        .filter(|e| spec.methods.contains(&e.kind))
+        .map(|e| FatigueMethodResult {
+            method: e.name.to_string(),
+            damage_rate: e.damage_rate,
+            life_s: e.life,
+            safety_factor: spec.design_life_s.map(|d| e.life / d),
+        })
+        .collect();
+    let lo = methods.iter().map(|e| e.life_s).fold(f64::INFINITY, f64::min);
+    let hi = methods.iter().map(|e| e.life_s).fold(0.0, f64::max);
+    let used = [m.m0(), m.m1(), m.m2(), m.m4()];
+    let moments_rel_diff = quad.map(|q| {
+        q.iter()
+            .zip(&used)
+            .map(|(a, b)| (a / b - 1.0).abs())
+            .fold(0.0, f64::max)
+    });
+    Ok(FatigueVerdict {
+        output: spec.output_name.clone(),
+        stress_factor: spec.stress_factor,
+        sn_curve: spec.sn.describe(),
+        moments: used,
+        moments_method: how,
+        moments_quadrature: quad,
+        moments_rel_diff,
+        alpha1: m.alpha1(),
+        alpha2: m.alpha2(),
+        nu_peak: m.nu_peak(),
+        passes: spec.design_life_s.map(|d| methods.iter().all(|e| e.life_s >= d)),
+        spread: hi / lo,
+        methods,
+        design_life_s: spec.design_life_s,
+        design_life_text: spec.design_life_text.clone(),
+    })
+}
