@@ -171,6 +171,28 @@ fn monte_carlo_agrees_with_analytic_a_w_vdv_and_spectral_fatigue() {
         "{total} cycles vs ν_p T = {}",
         nu_p * 60.0
     );
+    // the picture draws the stored histogram: every non-empty bin at its centre, and Dirlik's expected counts
+    let charts = stochvib::plot::rainflow_charts(&s.path).unwrap();
+    assert_eq!(charts.len(), 1);
+    let (name, chart) = &charts[0];
+    assert_eq!(name, &h[0].output);
+    let drawn: f64 = chart.series[0].points.iter().map(|p| p.1).sum();
+    let stored: f64 = h[0]
+        .counts
+        .iter()
+        .zip(h[0].edges.windows(2))
+        .filter(|(c, e)| **c > 0.0 && e[0] + e[1] > 0.0)
+        .map(|(c, _)| c)
+        .sum();
+    assert_eq!(drawn.to_bits(), stored.to_bits());
+    assert!(h[0].dirlik.is_some() && chart.series.len() == 2);
+    let pics = std::env::temp_dir().join(format!("stochvib-verdict-pics-{}", std::process::id()));
+    let files = stochvib::plot::run_plots(&s.path, &pics, &root().join("spectra")).unwrap();
+    assert!(
+        files.iter().any(|f| f.to_string_lossy().ends_with("-rainflow.svg")),
+        "{files:?}"
+    );
+    std::fs::remove_dir_all(&pics).unwrap();
     drop(run);
     std::fs::remove_file(&out).unwrap();
 }

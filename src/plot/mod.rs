@@ -29,5 +29,5 @@ pub use book_plots::book_plots;
 pub use chart::{
     Band, BarChart, Histogram, Legend, LineChart, LineStyle, Marker, SecondaryAxis, Series, HEIGHT, WIDTH,
 };
-pub use run_plots::run_plots;
+pub use run_plots::{rainflow_charts, run_plots};
 pub use scenario_plots::{scenario_plots, scenario_plots_with, ScenarioPlotOptions};

@@ -314,7 +314,8 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
 
 /// Writes the pictures of a Monte Carlo run file into `dir` (created if missing), SVG and PNG each:
 /// `<output>-welch` always, and `<output>-realizations`, `<output>-histogram`, `<output>-correlation` when
-/// the file stores raw realizations. Titles name the scenario (its `title`) and the output.
+/// the file stores raw realizations, and `<output>-rainflow` for a fatigue channel ([`rainflow_charts`]).
+/// Titles name the scenario (its `title`) and the output.
 ///
 /// # Formula
 /// As [`run_charts`].
@@ -343,5 +344,54 @@ pub fn run_plots(path: &Path, dir: &Path, spectra_dir: &Path) -> Result<Vec<Path
             files.extend(c.render(dir, &format!("{s}-correlation"))?);
         }
     }
+    for c in rainflow_charts(path)? {
+        files.extend(c.1.render(dir, &format!("{}-rainflow", super::chart::file_stem(&c.0)))?);
+    }
     Ok(files)
+}
+
+/// The rainflow range histograms of a run with a fatigue channel (`[analysis.fatigue]`): the Monte Carlo
+/// count per realization in each range bin (markers at the bin centres) against Dirlik's expected count from
+/// the analytic spectral moments (line), log–log; empty bins are not drawn. One chart per histogram, with
+/// the output's name.
+///
+/// # Formula
+/// Dirlik's expected count in bin [r₀, r₁] is ν_p T ∫ p_D(r) dr with p_D Dirlik's range density
+/// (Dirlik 1985), as stored in `/rainflow/<output>/dirlik` by the run.
+///
+/// # Errors
+/// As [`RunFile::open`] and [`RunFile::rainflow`] (a damaged histogram fails its checksum).
+pub fn rainflow_charts(path: &Path) -> Result<Vec<(String, LineChart)>> {
+    let run = RunFile::open(path)?;
+    let mut out = Vec::new();
+    for h in run.rainflow()? {
+        let centre = |j: usize| 0.5 * (h.edges[j] + h.edges[j + 1]);
+        let counts: Vec<(f64, f64)> = (0..h.counts.len())
+            .filter(|&j| h.counts[j] > 0.0 && centre(j) > 0.0)
+            .map(|j| (centre(j), h.counts[j]))
+            .collect();
+        if counts.is_empty() {
+            continue;
+        }
+        let mut c = LineChart::new(
+            format!("Rainflow ranges of {} (per realization)", h.output),
+            format!("stress range [{}]", h.unit),
+            "cycles per bin",
+        );
+        c.log_x = true;
+        c.log_y = true;
+        c.series.push(Series::markers("rainflow count (Monte Carlo)", counts));
+        if let Some(d) = &h.dirlik {
+            let expected: Vec<(f64, f64)> = (0..d.len())
+                .filter(|&j| d[j] > 0.0 && centre(j) > 0.0)
+                .map(|j| (centre(j), d[j]))
+                .collect();
+            if !expected.is_empty() {
+                c.series
+                    .push(Series::line("Dirlik's expected count (analytic moments)", expected));
+            }
+        }
+        out.push((h.output.clone(), c));
+    }
+    Ok(out)
 }
