@@ -193,8 +193,15 @@ impl FirSynthesis {
                 "need at least one generator, one output and one tap",
             ));
         }
-        if kernels.iter().any(|k| k.len() != p || k.iter().any(|t| t.len() != taps)) {
-            return Err(Error::invalid("kernels", "ragged", "every kernel needs the same number of taps"));
+        if kernels
+            .iter()
+            .any(|k| k.len() != p || k.iter().any(|t| t.len() != taps))
+        {
+            return Err(Error::invalid(
+                "kernels",
+                "ragged",
+                "every kernel needs the same number of taps",
+            ));
         }
         if kernels.iter().flatten().flatten().any(|v| !v.is_finite()) {
             return Err(Error::invalid("kernels", "non-finite tap", "taps must be finite"));
@@ -334,9 +341,7 @@ impl FirSynthesis {
             }
             if 2 * l > MAX_GRID {
                 let (r, what) = if !fits {
-                    let r = (0..p)
-                        .max_by(|x, y| outside[*x].total_cmp(&outside[*y]))
-                        .unwrap_or(0);
+                    let r = (0..p).max_by(|x, y| outside[*x].total_cmp(&outside[*y])).unwrap_or(0);
                     (
                         r,
                         format!(
@@ -401,7 +406,10 @@ impl FirSynthesis {
     /// # Panics
     /// r out of range.
     pub fn variance(&self, r: usize) -> f64 {
-        self.kernels.iter().map(|kg| kg[r].iter().map(|v| v * v).sum::<f64>()).sum()
+        self.kernels
+            .iter()
+            .map(|kg| kg[r].iter().map(|v| v * v).sum::<f64>())
+            .sum()
     }
     /// Exact autocovariance of output r at lags 0..`lags` (see the type's formula).
     ///

@@ -320,7 +320,8 @@ fn streamed_plan(
         return Err(Error::invalid(
             "store raw",
             true,
-            "the streamed spectral route (--route spectral-stream) keeps no realizations: drop --store-raw, or use              --route spectral",
+            "the streamed spectral route (--route spectral-stream) keeps no realizations: drop --store-raw, or use \
+             --route spectral",
         ));
     }
     let idx: Vec<usize> = finite.iter().map(|f| f.index).collect();
@@ -335,7 +336,11 @@ fn streamed_plan(
     let max_shift = match exc {
         Excitation::Track { delays, .. } => {
             let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
-            delays.iter().map(|t| ((t - t0) / dt).round() as usize).max().unwrap_or(0)
+            delays
+                .iter()
+                .map(|t| ((t - t0) / dt).round() as usize)
+                .max()
+                .unwrap_or(0)
         }
         Excitation::Independent { .. } => 0,
     };
@@ -366,7 +371,7 @@ fn streamed_plan(
             taps: fir.taps(),
             fft_len: fir.fft_len(),
             grid_len: design.grid_len,
-            block_steps: opts.block_steps,
+            block_steps: opts.block_steps.min(n),
             outputs: p,
             generators: g,
         },
@@ -375,7 +380,9 @@ fn streamed_plan(
     );
     super::resources::check_streamed_memory(memory_bytes, n, opts)?;
     notes.push(format!(
-        "spectral-stream route: white noise through FIR kernels of {} taps (lags {}..{}), designed on a grid of {}          points (Δω = {:.4e} rad/s) from the first-order-hold response and the input spectra; overlap-save with an          FFT of {} ({} new samples per segment), memory independent of the duration",
+        "spectral-stream route: white noise through FIR kernels of {} taps (lags {}..{}), designed on a grid of {} \
+         points (Δω = {:.4e} rad/s) from the first-order-hold response and the input spectra; overlap-save with an \
+         FFT of {} ({} new samples per segment), memory independent of the duration",
         fir.taps(),
         design.first_lag,
         design.first_lag + fir.taps() as i64 - 1,
@@ -387,7 +394,9 @@ fn streamed_plan(
     let discrete: Vec<f64> = (0..p).map(|r| fir.variance(r)).collect();
     for (r, f) in finite.iter().enumerate() {
         notes.push(format!(
-            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {TAIL_FRACTION:e}), grid              variance change over the last doubling {:.3e} (bound {GRID_TOLERANCE:e}); simulated σ {:.6e} vs              analytic σ {:.6e} (relative {:+.3e}); `discrete σ` is the exact σ of the simulated FIR process",
+            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {TAIL_FRACTION:e}), grid \
+             variance change over the last doubling {:.3e} (bound {GRID_TOLERANCE:e}); simulated σ {:.6e} vs \
+             analytic σ {:.6e} (relative {:+.3e}); `discrete σ` is the exact σ of the simulated FIR process",
             f.info.name,
             design.tail_fraction[r],
             design.grid_change[r],
@@ -410,7 +419,9 @@ fn streamed_plan(
     Ok(Plan {
         route: Route::SpectralStream,
         generator: format!(
-            "{}, stream (seed, i) per realization; streamed spectral synthesis: white noise through FIR kernels of {}              taps (kernel grid {}, window tail ≤ {TAIL_FRACTION:e}), overlap-save FFT of {}, first-order-hold              response, stationary start",
+            "{}, stream (seed, i) per realization; streamed spectral synthesis: white noise through FIR kernels of {} \
+             taps (kernel grid {}, window tail ≤ {TAIL_FRACTION:e}), overlap-save FFT of {}, first-order-hold \
+             response, stationary start",
             super::GENERATOR,
             fir.taps(),
             design.grid_len,
@@ -424,7 +435,7 @@ fn streamed_plan(
         skipped,
         notes,
         welch,
-        block_steps: opts.block_steps,
+        block_steps: opts.block_steps.min(n),
         autocov,
         memory_bytes,
     })

@@ -71,7 +71,11 @@ pub fn streamed_memory_bytes(z: &StreamSizes, opts: &RunOptions, threads: usize)
     let block = (z.block_steps.max(1) as u128).div_ceil(hop) * hop;
     let bins = 1024 / 2 + 1;
     let s = opts.shard_size.min(opts.realizations) as u128;
-    let per_thread = g * f * F64 + (g + 1) * (f / 2 + 1) * C64 + 2 * f * F64 + f * C64 + p * hop * F64
+    let per_thread = g * f * F64
+        + (g + 1) * (f / 2 + 1) * C64
+        + 2 * f * F64
+        + f * C64
+        + p * hop * F64
         + p * block * F64
         + 4 * 1024 * F64;
     let shared = g * p * (t * F64 + (f / 2 + 1) * C64) + s * p * (bins + 2) * F64;
@@ -152,7 +156,9 @@ pub fn check_streamed_memory(need: u128, n: usize, opts: &RunOptions) -> Result<
                 "block steps",
                 opts.block_steps,
                 format!(
-                    "the streamed spectral route needs about {} of memory for its kernels and blocks (independent of                      the {n} samples per realization) but {} are available: fewer threads (RAYON_NUM_THREADS), a                      smaller block, fewer outputs or a smoother output",
+                    "the streamed spectral route needs about {} of memory for its kernels and blocks (independent of \
+                     the {n} samples per realization) but {} are available: fewer threads (RAYON_NUM_THREADS), a \
+                     smaller block, fewer outputs or a smoother output",
                     gib(need),
                     gib(have)
                 ),
