@@ -214,7 +214,7 @@ fn kernels_and_streamed_output_match_direct_sums() {
     let mut sc = fir.scratch();
     let mut rng = stream(5, 1);
     fir.start(&mut rng, &mut sc);
-    let mut got = vec![Vec::new(), Vec::new()];
+    let mut got = [Vec::new(), Vec::new()];
     for _ in 0..3 {
         fir.next_segment(&mut rng, &mut sc).unwrap();
         for (r, g) in got.iter_mut().enumerate() {
@@ -223,7 +223,7 @@ fn kernels_and_streamed_output_match_direct_sums() {
     }
     // the noise in the documented order
     let mut rng = stream(5, 1);
-    let mut w = vec![Vec::new(), Vec::new()];
+    let mut w = [Vec::new(), Vec::new()];
     for wg in w.iter_mut() {
         wg.extend((0..t - 1).map(|_| stochvib::simulate::standard_normal(&mut rng)));
     }

@@ -50,11 +50,15 @@ pub struct StreamSizes {
 /// independent of the number of samples N per realization.
 ///
 /// # Formula
-/// With H = F − T + 1 new samples per segment, a block of b = ⌈block/H⌉·H samples, B ≤ 513 Welch bins,
-/// s = shard size and T threads: per thread g·F·8 (noise history) + (g + 1)·(F/2+1)·16 (segment spectra)
-/// + 2F·8 + F·16 (FFT buffers) + p·H·8 (segment outputs) + p·b·8 (block) + 4·1024·8 (Welch); shared
-/// g·p·(T·8 + (F/2+1)·16) (taps and kernel spectra) and the shard's results s·p·(B + 2)·8; the design's
-/// transient tables g·p·((L/2+1)·16 + L·8) + p·L·8 (before the realizations; the larger of the two counts).
+/// With T taps, F the FFT size, H = F − T + 1 new samples per segment, b = ⌈block/H⌉·H samples per
+/// block, B ≤ 513 Welch bins, s = shard size, P threads, L the kernel grid:
+/// ```text
+/// per thread  g·F·8 (noise history) + (g + 1)·(F/2+1)·16 (segment spectra) + 2F·8 + F·16 (FFT buffers)
+///             + p·H·8 (segment outputs) + p·b·8 (block) + 4·1024·8 (Welch)
+/// shared      g·p·(T·8 + (F/2+1)·16) (taps, kernel spectra) + s·p·(B + 2)·8 (the shard's results)
+/// design      g·p·((L/2+1)·16 + L·8) + p·L·8 (transient, before the realizations)
+/// bytes       max(P·per thread + shared, design)
+/// ```
 ///
 /// # Examples
 /// ```
