@@ -363,7 +363,17 @@ fn streamed_plan(
             .collect())
     };
     let min_grid = 16usize.saturating_mul(max_shift + 1);
-    let (fir, design) = FirSynthesis::design(&kernel_spectra, min_grid, TAIL_FRACTION, GRID_TOLERANCE)?;
+    let (fir, design) =
+        FirSynthesis::design(&kernel_spectra, min_grid, TAIL_FRACTION, GRID_TOLERANCE).map_err(|e| match e {
+            // name the output (the design counts the simulated outputs 0..p)
+            Error::Numerical { what, reason } => Error::Numerical {
+                what: finite.iter().enumerate().rev().fold(what, |w, (r, f)| {
+                    w.replace(&format!("output {r}"), &format!("output `{}`", f.info.name))
+                }),
+                reason,
+            },
+            e => e,
+        })?;
     let (p, g) = (idx.len(), fir.n_generators());
     let threads = rayon::current_num_threads();
     let memory_bytes = super::resources::streamed_memory_bytes(
