@@ -2,7 +2,7 @@
 //! processes) from its random stream, reduced to its time averages and Welch sums.
 
 use super::plan::Plan;
-use super::{GaussMarkov, SpectralGenerator};
+use super::{FirSynthesis, GaussMarkov, SpectralGenerator};
 use crate::error::{Error, Result};
 use crate::estimate::WelchSums;
 use realfft::num_complex::Complex;
@@ -23,6 +23,8 @@ pub(crate) enum Engine {
         /// inverse real FFT of size N
         inverse: std::sync::Arc<dyn realfft::ComplexToReal<f64>>,
     },
+    /// Streamed spectral synthesis: white noise through FIR kernels by overlap-save (statistics only).
+    SpectralStream(FirSynthesis),
 }
 
 /// One realization's per-output results.
@@ -49,31 +51,37 @@ pub(crate) struct Scratch {
     fft_in: Vec<f64>,
     fft_out: Vec<Complex<f64>>,
     fft_scratch: Vec<Complex<f64>>,
+    fir: Option<super::FirScratch>,
 }
 
 impl Scratch {
     /// Working memory for `plan`.
     pub(crate) fn new(plan: &Plan) -> Scratch {
-        let n = plan.n;
-        let (nx, nq, nfft) = match &plan.engine {
-            Engine::Exact(gm) => (gm.n_states(), 0, 0),
+        // the whole-record FFT buffers only for the whole-record spectral route
+        let (nx, nq, nfft, n) = match &plan.engine {
+            Engine::Exact(gm) => (gm.n_states(), 0, 0, 0),
             Engine::Spectral {
                 generators, inverse, ..
-            } => (0, generators.len(), inverse.get_scratch_len()),
+            } => (0, generators.len(), inverse.get_scratch_len(), plan.n),
+            Engine::SpectralStream(_) => (0, 0, 0, 0),
         };
-        let rows = if plan.block_steps > 0 { plan.block_steps } else { n };
+        let rows = if plan.block_steps > 0 { plan.block_steps } else { plan.n };
         Scratch {
             x: vec![0.0; nx],
             buf: vec![0.0; rows * plan.stride],
             q: vec![vec![0.0; n]; nq],
             spec: match &plan.engine {
                 Engine::Spectral { generators, .. } => generators.iter().map(|g| g.scratch()).collect(),
-                Engine::Exact(_) => vec![],
+                Engine::Exact(_) | Engine::SpectralStream(_) => vec![],
             },
             welch: plan.welch.scratch(),
             fft_in: vec![0.0; n],
-            fft_out: vec![Complex::new(0.0, 0.0); n / 2 + 1],
+            fft_out: vec![Complex::new(0.0, 0.0); if n > 0 { n / 2 + 1 } else { 0 }],
             fft_scratch: vec![Complex::new(0.0, 0.0); nfft],
+            fir: match &plan.engine {
+                Engine::SpectralStream(fir) => Some(fir.scratch()),
+                _ => None,
+            },
         }
     }
 }
@@ -125,6 +133,64 @@ fn realize_in_blocks(
     })
 }
 
+/// One realization of the streamed spectral route: whole overlap-save segments of H samples (H fixed by the
+/// kernels), grouped into blocks of at least `plan.block_steps` samples, each block fed to the running sums
+/// and the Welch segments in time order; memory O(F + block). The draws come per segment, so the results
+/// are bit-identical for any block size.
+fn realize_streamed(
+    plan: &Plan,
+    fir: &FirSynthesis,
+    s: &mut Scratch,
+    rng: &mut rand::rngs::Xoshiro256PlusPlus,
+) -> Result<Realization> {
+    let (n, p, hop) = (plan.n, plan.outputs.len(), fir.hop());
+    let fs = s.fir.as_mut().ok_or_else(|| Error::Numerical {
+        what: "streamed spectral synthesis".into(),
+        reason: "scratch made for another route".into(),
+    })?;
+    let segments = plan.block_steps.max(1).div_ceil(hop);
+    fir.start(rng, fs);
+    let mut sum = vec![-0.0f64; p];
+    let mut sq = vec![-0.0f64; p];
+    let mut streams: Vec<_> = (0..p).map(|_| plan.welch.stream()).collect();
+    let mut welch: Vec<WelchSums> = (0..p).map(|_| plan.welch.sums()).collect();
+    let mut block = vec![vec![0.0; segments * hop]; p];
+    let mut done = 0;
+    while done < n {
+        let mut filled = 0;
+        for _ in 0..segments {
+            if done + filled >= n {
+                break;
+            }
+            fir.next_segment(rng, fs)?;
+            let take = hop.min(n - done - filled);
+            for (r, b) in block.iter_mut().enumerate() {
+                b[filled..filled + take].copy_from_slice(&fir.output(fs, r)[..take]);
+            }
+            filled += take;
+        }
+        for r in 0..p {
+            for &v in &block[r][..filled] {
+                sum[r] += v;
+                sq[r] += v * v;
+            }
+            plan.welch
+                .push(&mut streams[r], &block[r][..filled], &mut welch[r], &mut s.welch)?;
+        }
+        done += filled;
+    }
+    for (st, ws) in streams.iter_mut().zip(welch.iter_mut()) {
+        plan.welch.end_record(st, ws)?;
+    }
+    Ok(Realization {
+        m: sum.iter().map(|v| v / n as f64).collect(),
+        v: sq.iter().map(|v| v / n as f64).collect(),
+        welch,
+        raw: Vec::new(),
+        raw_inputs: Vec::new(),
+    })
+}
+
 /// One realization from `rng` (the stream (seed, i) of realization i).
 ///
 /// # Errors
@@ -139,6 +205,14 @@ pub(crate) fn realize(
     let p = plan.outputs.len();
     match &plan.engine {
         Engine::Exact(gm) if plan.block_steps > 0 && !keep_raw => return realize_in_blocks(plan, gm, s, rng),
+        Engine::SpectralStream(fir) if !keep_raw => return realize_streamed(plan, fir, s, rng),
+        Engine::SpectralStream(_) => {
+            return Err(Error::invalid(
+                "store raw",
+                true,
+                "the streamed spectral route keeps no realizations (statistics only)",
+            ))
+        }
         Engine::Exact(gm) => {
             gm.initial_state(rng, &mut s.x);
             gm.advance(&mut s.x, rng, &mut s.buf);
@@ -203,6 +277,7 @@ pub(crate) fn realize(
             }
             // the recorded period is aligned with the input processes' own samples
             Engine::Spectral { .. } => out.raw_inputs = s.q.clone(),
+            Engine::SpectralStream(_) => {}
         }
     }
     let mut sig = vec![0.0; n];

@@ -5,7 +5,8 @@
 //! * Generators: the spectral representation on an FFT grid for any spectrum ([`SpectralGenerator`],
 //!   Rayleigh amplitudes by default, [`Amplitudes::PhaseOnly`] labelled), exact discrete-time shaping filters
 //!   for rational spectra, streaming in constant memory ([`shaping_simulator`], [`GaussMarkov`]), road
-//!   profiles felt by several wheels at speed v ([`RoadTrack`]).
+//!   profiles felt by several wheels at speed v ([`RoadTrack`]), and the streamed spectral synthesis of any
+//!   spectrum through any system with memory independent of the record length ([`FirSynthesis`]).
 //! * Time response: exact zero/first-order-hold discretisation ([`zoh`], [`foh`], [`SampledSystem`]) and
 //!   Van Loan's white-noise discretisation of the system augmented with its input filters
 //!   ([`van_loan`], [`augmented_response`]) — no time-step bias.
@@ -21,6 +22,7 @@ pub mod batch;
 pub mod discretize;
 mod engine;
 mod finish;
+pub mod fir_stream;
 mod input;
 mod merge;
 mod options;
@@ -40,10 +42,11 @@ pub use discretize::{
     augmented_response, covariance_factor, expm, foh, van_loan, zoh, FirstOrderHold, SampledSystem,
     WhiteNoiseDiscretization, ZeroOrderHold,
 };
+pub use fir_stream::{FirScratch, FirSynthesis, KernelDesign};
 pub use input::RunInput;
 pub use merge::{merge_runs, MergeOptions, MergeSummary};
 pub use options::{suggest_step, Route, RunOptions, StepSuggestion};
-pub use plan::SkippedOutput;
+pub use plan::{planned_memory, PlannedMemory, SkippedOutput};
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
 pub use road::{RoadScratch, RoadTrack};
 pub use run::{run, run_temporary, WARMUP_DECAY};

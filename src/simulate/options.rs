@@ -17,15 +17,21 @@ pub enum Route {
     Exact,
     /// Spectral-representation inputs, first-order-hold response, periodic steady state.
     Spectral,
+    /// Streamed spectral synthesis (statistics only): white noise through FIR kernels designed from the
+    /// spectrum and the first-order-hold response, by overlap-save in time order, with memory independent of
+    /// the duration ([`FirSynthesis`](super::FirSynthesis)). [`Route::Auto`] takes it where the spectral route
+    /// would be taken but its whole-record buffers exceed the available memory.
+    SpectralStream,
 }
 
 impl Route {
-    /// The name used on the command line and in JSON (`auto`, `exact`, `spectral`).
+    /// The name used on the command line and in JSON (`auto`, `exact`, `spectral`, `spectral-stream`).
     pub fn name(self) -> &'static str {
         match self {
             Route::Auto => "auto",
             Route::Exact => "exact",
             Route::Spectral => "spectral",
+            Route::SpectralStream => "spectral-stream",
         }
     }
 }
@@ -33,7 +39,7 @@ impl Route {
 impl std::str::FromStr for Route {
     type Err = Error;
 
-    /// Parses `auto`, `exact` or `spectral`.
+    /// Parses `auto`, `exact`, `spectral` or `spectral-stream`.
     ///
     /// # Examples
     /// ```
@@ -42,10 +48,10 @@ impl std::str::FromStr for Route {
     /// assert!("euler".parse::<Route>().is_err());
     /// ```
     fn from_str(text: &str) -> Result<Route> {
-        [Route::Auto, Route::Exact, Route::Spectral]
+        [Route::Auto, Route::Exact, Route::Spectral, Route::SpectralStream]
             .into_iter()
             .find(|r| r.name() == text)
-            .ok_or_else(|| Error::invalid("route", text, "expected auto, exact or spectral"))
+            .ok_or_else(|| Error::invalid("route", text, "expected auto, exact, spectral or spectral-stream"))
     }
 }
 
@@ -74,7 +80,8 @@ pub struct RunOptions {
     /// Confidence of the intervals, in (0, 1).
     pub confidence: f64,
     /// Time steps generated at once by the exact route of a statistics-only run (memory O(block), whatever
-    /// the duration); the statistics are bit-identical for any value.
+    /// the duration), and the least number of samples per block of the streamed spectral route (whole
+    /// overlap-save segments); the statistics are bit-identical for any value.
     pub block_steps: usize,
     /// Replace an existing finished run file (only at the final rename, after the new run is complete),
     /// and discard an interrupted run of different settings.

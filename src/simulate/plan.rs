@@ -2,7 +2,10 @@
 //! engine of that route, and the exact variance of the simulated discrete process.
 
 use super::engine::{Engine, Gains};
-use super::{augmented_response, foh, Amplitudes, GaussMarkov, Route, RunInput, RunOptions, SpectralGenerator};
+use super::fir_stream::{KernelSpectra, GRID_TOLERANCE, TAIL_FRACTION};
+use super::{
+    augmented_response, foh, Amplitudes, FirSynthesis, GaussMarkov, Route, RunInput, RunOptions, SpectralGenerator,
+};
 use crate::error::{Error, Result};
 use crate::estimate::Welch;
 use crate::response::{analyze_output, Excitation};
@@ -54,6 +57,47 @@ pub(crate) struct Plan {
     /// Exact autocovariance of each simulated output process at lags 0..M (M the Welch segment length):
     /// what the Welch estimate is compared with (window ⊛ sampled-process density).
     pub autocov: Vec<Vec<f64>>,
+    /// Estimated working memory of the run, bytes ([`super::resources`]).
+    pub memory_bytes: u128,
+}
+
+/// The route a run would take and its estimated working memory (see [`planned_memory`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PlannedMemory {
+    /// The route (never [`Route::Auto`]).
+    pub route: Route,
+    /// Estimated working memory, bytes: for the whole-record routes
+    /// [`memory_bytes`](super::resources::memory_bytes), for the streamed spectral route
+    /// [`streamed_memory_bytes`](super::resources::streamed_memory_bytes) (independent of the duration).
+    pub bytes: u128,
+}
+
+/// Plans a run without running it (the kernels of the streamed spectral route are designed) and returns
+/// its route and estimated working memory.
+///
+/// # Formula
+/// See [`PlannedMemory::bytes`].
+///
+/// # Errors
+/// As [`run`](super::run()) before it starts: invalid options, no output with a finite variance, a route
+/// that does not apply, a run larger than the available memory.
+///
+/// # Examples
+/// ```
+/// use stochvib::scenario::load_scenario;
+/// use stochvib::simulate::{planned_memory, Route, RunOptions};
+/// use std::path::Path;
+/// let sc = load_scenario(Path::new("data/conveyor-idler.toml"), Path::new("spectra")).unwrap();
+/// let m = planned_memory(&sc.run_input(), &RunOptions::new(20, 5.0, 0.01, 1)).unwrap();
+/// assert_eq!(m.route, Route::Exact);
+/// assert!(m.bytes > 0);
+/// ```
+pub fn planned_memory(input: &RunInput, opts: &RunOptions) -> Result<PlannedMemory> {
+    let p = plan(input, opts)?;
+    Ok(PlannedMemory {
+        route: p.route,
+        bytes: p.memory_bytes,
+    })
 }
 
 /// An output with a finite analytic variance, before the route is chosen.
@@ -108,6 +152,10 @@ impl RouteChoice {
                 exact: None,
                 reason: "spectral route requested".into(),
             },
+            Route::SpectralStream => RouteChoice {
+                exact: None,
+                reason: "streamed spectral route requested".into(),
+            },
             Route::Exact => RouteChoice {
                 exact: Some(augmented_response(sys, exc, idx, dt)?),
                 reason: "exact route requested".into(),
@@ -139,14 +187,39 @@ impl RouteChoice {
 /// delays that are not whole steps on the spectral route; an unstable system.
 pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let n = opts.samples()?;
-    // before any buffer of the realization's size exists
-    super::resources::check_memory(n, input.outputs.len(), input.excitation.spectra().len(), opts)?;
+    let (p_all, g_all) = (input.outputs.len(), input.excitation.spectra().len());
+    // before any buffer of the realization's size exists; for the automatic route the verdict decides
+    // between the whole-record and the streamed spectral route
+    let whole = match opts.route {
+        Route::SpectralStream => Ok(()),
+        Route::Auto => super::resources::check_memory(n, p_all, g_all, opts),
+        Route::Exact | Route::Spectral => {
+            super::resources::check_memory(n, p_all, g_all, opts)?;
+            Ok(())
+        }
+    };
     let (finite, skipped) = simulable_outputs(input)?;
     let idx: Vec<usize> = finite.iter().map(|f| f.index).collect();
-    let choice = RouteChoice::choose(input, opts, &idx)?;
+    let mut choice = RouteChoice::choose(input, opts, &idx)?;
+    let streamed = match (opts.route, whole) {
+        (Route::SpectralStream, _) => true,
+        (_, Ok(())) => false,
+        (_, Err(e)) if choice.exact.is_some() || opts.store_raw => return Err(e),
+        (_, Err(e)) => {
+            choice.reason = format!(
+                "{}; streamed spectral route: the whole-record spectral route does not fit ({e})",
+                choice.reason
+            );
+            true
+        }
+    };
     let m_welch = ((n / 8) & !1).clamp(4, 1024);
     let welch = Welch::new(m_welch, opts.dt_s)?;
     let mut notes = vec![choice.reason];
+    if streamed {
+        return streamed_plan(input, opts, n, finite, skipped, notes, welch);
+    }
+    let memory_bytes = super::resources::memory_bytes(n, p_all, g_all, opts, rayon::current_num_threads());
     // exact route: append the input processes (shaping-filter outputs) as extra rows of the simulated system
     let exact = choice
         .exact
@@ -196,6 +269,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
             welch,
             block_steps: if opts.store_raw { 0 } else { opts.block_steps.min(n) },
             autocov,
+            memory_bytes,
         });
     }
     let (engine, discrete, autocov) = spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len())?;
@@ -226,7 +300,176 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
         welch,
         block_steps: 0,
         autocov,
+        memory_bytes,
     })
+}
+
+/// The plan of the streamed spectral route: FIR kernels designed from the discrete transfer gains of
+/// the first-order-hold system and the input spectra on doubling grids ([`FirSynthesis::design`]), the exact
+/// variance and autocovariance of the FIR process, and the memory check with the streamed estimate.
+fn streamed_plan(
+    input: &RunInput,
+    opts: &RunOptions,
+    n: usize,
+    finite: Vec<Simulable>,
+    skipped: Vec<SkippedOutput>,
+    mut notes: Vec<String>,
+    welch: Welch,
+) -> Result<Plan> {
+    if opts.store_raw {
+        return Err(Error::invalid(
+            "store raw",
+            true,
+            "the streamed spectral route (--route spectral-stream) keeps no realizations: drop --store-raw, or use \
+             --route spectral",
+        ));
+    }
+    let idx: Vec<usize> = finite.iter().map(|f| f.index).collect();
+    let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
+    let ss = sys.state_space().ok_or_else(|| Error::Numerical {
+        what: "streamed spectral Monte Carlo".into(),
+        reason: "the system has no finite state-space form".into(),
+    })?;
+    let sub = ss.select_outputs(&idx)?;
+    stability_margin(ss)?;
+    // the largest delay in whole steps: the first grid holds it 16 times
+    let max_shift = match exc {
+        Excitation::Track { delays, .. } => {
+            let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
+            delays
+                .iter()
+                .map(|t| ((t - t0) / dt).round() as usize)
+                .max()
+                .unwrap_or(0)
+        }
+        Excitation::Independent { .. } => 0,
+    };
+    let spectra = exc.spectra();
+    let kernel_spectra = |l: usize| -> Result<KernelSpectra> {
+        let (generators, inputs) = spectral_inputs(exc, dt, l)?;
+        let (gains, _, _) = discrete_gains(&sub, exc, &generators, &inputs, dt, l)?;
+        let dw = 2.0 * std::f64::consts::PI / (l as f64 * dt);
+        Ok(gains
+            .into_iter()
+            .zip(&spectra)
+            .map(|(gg, sp)| {
+                let amp: Vec<f64> = (0..=l / 2)
+                    .map(|j| (sp.density(j as f64 * dw) * dw / l as f64).sqrt())
+                    .collect();
+                gg.into_iter()
+                    .map(|row| row.into_iter().zip(&amp).map(|(c, a)| c * *a).collect())
+                    .collect()
+            })
+            .collect())
+    };
+    let min_grid = 16usize.saturating_mul(max_shift + 1);
+    let (fir, design) =
+        FirSynthesis::design(&kernel_spectra, min_grid, TAIL_FRACTION, GRID_TOLERANCE).map_err(|e| match e {
+            // name the output (the design counts the simulated outputs 0..p)
+            Error::Numerical { what, reason } => Error::Numerical {
+                what: finite.iter().enumerate().rev().fold(what, |w, (r, f)| {
+                    w.replace(&format!("output {r}"), &format!("output `{}`", f.info.name))
+                }),
+                reason,
+            },
+            e => e,
+        })?;
+    let (p, g) = (idx.len(), fir.n_generators());
+    let threads = rayon::current_num_threads();
+    let memory_bytes = super::resources::streamed_memory_bytes(
+        &super::resources::StreamSizes {
+            taps: fir.taps(),
+            fft_len: fir.fft_len(),
+            grid_len: design.grid_len,
+            block_steps: opts.block_steps.min(n),
+            outputs: p,
+            generators: g,
+        },
+        opts,
+        threads,
+    );
+    super::resources::check_streamed_memory(memory_bytes, n, opts)?;
+    notes.push(format!(
+        "spectral-stream route: white noise through FIR kernels of {} taps (lags {}..{}), designed on a grid of {} \
+         points (Δω = {:.4e} rad/s) from the first-order-hold response and the input spectra; overlap-save with an \
+         FFT of {} ({} new samples per segment), memory independent of the duration",
+        fir.taps(),
+        design.first_lag,
+        design.first_lag + fir.taps() as i64 - 1,
+        design.grid_len,
+        2.0 * std::f64::consts::PI / (design.grid_len as f64 * dt),
+        fir.fft_len(),
+        fir.hop()
+    ));
+    let discrete: Vec<f64> = (0..p).map(|r| fir.variance(r)).collect();
+    for (r, f) in finite.iter().enumerate() {
+        notes.push(format!(
+            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {TAIL_FRACTION:e}), grid \
+             variance change over the last doubling {:.3e} (bound {GRID_TOLERANCE:e}); simulated σ {:.6e} vs \
+             analytic σ {:.6e} (relative {:+.3e}); `discrete σ` is the exact σ of the simulated FIR process",
+            f.info.name,
+            design.tail_fraction[r],
+            design.grid_change[r],
+            discrete[r].sqrt(),
+            f.variance.sqrt(),
+            discrete[r].sqrt() / f.variance.sqrt() - 1.0
+        ));
+    }
+    let autocov = (0..p).map(|r| fir.autocovariance(r, welch.segment_len())).collect();
+    let outputs = finite
+        .into_iter()
+        .zip(&discrete)
+        .map(|(f, dv)| PlannedOutput {
+            index: f.index,
+            signal: Signal::new(&f.info.name, &f.info.unit),
+            analytic_variance: f.variance,
+            discrete_variance: *dv,
+        })
+        .collect();
+    Ok(Plan {
+        route: Route::SpectralStream,
+        generator: format!(
+            "{}, stream (seed, i) per realization; streamed spectral synthesis: white noise through FIR kernels of {} \
+             taps (kernel grid {}, window tail ≤ {TAIL_FRACTION:e}), overlap-save FFT of {}, first-order-hold \
+             response, stationary start",
+            super::GENERATOR,
+            fir.taps(),
+            design.grid_len,
+            fir.fft_len()
+        ),
+        engine: Engine::SpectralStream(fir),
+        n,
+        stride: p,
+        input_signals: input.input_signals.clone(),
+        outputs,
+        skipped,
+        notes,
+        welch,
+        block_steps: opts.block_steps.min(n),
+        autocov,
+        memory_bytes,
+    })
+}
+
+/// The slowest decay rate min(−Re λ) of `ss`, > 0 for an asymptotically stable system.
+///
+/// # Errors
+/// [`Error::Numerical`] when the system is not asymptotically stable.
+fn stability_margin(ss: &StateSpace) -> Result<f64> {
+    let sigma_min =
+        ss.a.complex_eigenvalues()
+            .iter()
+            .map(|l| -l.re)
+            .fold(f64::INFINITY, f64::min);
+    if sigma_min.is_nan() || sigma_min <= 0.0 {
+        return Err(Error::Numerical {
+            what: "spectral Monte Carlo".into(),
+            reason: format!(
+                "the system is not asymptotically stable (min −Re λ = {sigma_min:e}): no stationary response"
+            ),
+        });
+    }
+    Ok(sigma_min)
 }
 
 /// The exact Gauss–Markov system of `outputs` with the input processes appended as extra rows: row k is
@@ -285,19 +528,7 @@ fn spectral_engine(
         reason: "the system has no finite state-space form".into(),
     })?;
     let sub = ss.select_outputs(outputs)?;
-    let sigma_min =
-        ss.a.complex_eigenvalues()
-            .iter()
-            .map(|l| -l.re)
-            .fold(f64::INFINITY, f64::min);
-    if sigma_min.is_nan() || sigma_min <= 0.0 {
-        return Err(Error::Numerical {
-            what: "spectral Monte Carlo".into(),
-            reason: format!(
-                "the system is not asymptotically stable (min −Re λ = {sigma_min:e}): no stationary response"
-            ),
-        });
-    }
+    let sigma_min = stability_margin(ss)?;
     let period = n as f64 * dt;
     notes.push(format!(
         "spectral route: periodic input of period NΔt = {period} s; the recorded period is the periodic steady \

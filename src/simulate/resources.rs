@@ -29,6 +29,64 @@ pub fn memory_bytes(n: usize, p: usize, g: usize, opts: &RunOptions, threads: us
     per_thread * threads as u128 + shard + table
 }
 
+/// The sizes that set the memory of the streamed spectral route ([`FirSynthesis`](super::FirSynthesis)).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StreamSizes {
+    /// Taps T of every kernel.
+    pub taps: usize,
+    /// Overlap-save FFT size F.
+    pub fft_len: usize,
+    /// Kernel grid L of the design.
+    pub grid_len: usize,
+    /// Least samples per block ([`RunOptions::block_steps`]).
+    pub block_steps: usize,
+    /// Simulated outputs p.
+    pub outputs: usize,
+    /// Generators (independent input processes) g.
+    pub generators: usize,
+}
+
+/// Upper bound of the working memory of a statistics-only run of the streamed spectral route, bytes:
+/// independent of the number of samples N per realization.
+///
+/// # Formula
+/// With T taps, F the FFT size, H = F − T + 1 new samples per segment, b = ⌈block/H⌉·H samples per
+/// block, B ≤ 513 Welch bins, s = shard size, P threads, L the kernel grid:
+/// ```text
+/// per thread  g·F·8 (noise history) + (g + 1)·(F/2+1)·16 (segment spectra) + 2F·8 + F·16 (FFT buffers)
+///             + p·H·8 (segment outputs) + p·b·8 (block) + 4·1024·8 (Welch)
+/// shared      g·p·(T·8 + (F/2+1)·16) (taps, kernel spectra) + s·p·(B + 2)·8 (the shard's results)
+/// design      g·p·((L/2+1)·16 + L·8) + p·L·8 (transient, before the realizations)
+/// bytes       max(P·per thread + shared, design)
+/// ```
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::{RunOptions, resources::{streamed_memory_bytes, StreamSizes}};
+/// let z = StreamSizes { taps: 1000, fft_len: 4096, grid_len: 8192, block_steps: 16384, outputs: 2, generators: 1 };
+/// let short = streamed_memory_bytes(&z, &RunOptions::new(10, 1e2, 0.01, 1), 2);
+/// let long = streamed_memory_bytes(&z, &RunOptions::new(10, 1e7, 0.01, 1), 2);
+/// assert_eq!(short, long);
+/// ```
+pub fn streamed_memory_bytes(z: &StreamSizes, opts: &RunOptions, threads: usize) -> u128 {
+    let (t, f, l) = (z.taps as u128, z.fft_len as u128, z.grid_len as u128);
+    let (p, g) = (z.outputs as u128, z.generators as u128);
+    let hop = (f + 1).saturating_sub(t).max(1);
+    let block = (z.block_steps.max(1) as u128).div_ceil(hop) * hop;
+    let bins = 1024 / 2 + 1;
+    let s = opts.shard_size.min(opts.realizations) as u128;
+    let per_thread = g * f * F64
+        + (g + 1) * (f / 2 + 1) * C64
+        + 2 * f * F64
+        + f * C64
+        + p * hop * F64
+        + p * block * F64
+        + 4 * 1024 * F64;
+    let shared = g * p * (t * F64 + (f / 2 + 1) * C64) + s * p * (bins + 2) * F64;
+    let design = g * p * ((l / 2 + 1) * C64 + l * F64) + p * l * F64;
+    (per_thread * threads as u128 + shared).max(design)
+}
+
 /// Memory the system can still give (Linux `MemAvailable`), bytes; `None` where unknown.
 pub fn available_memory() -> Option<u128> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
@@ -79,9 +137,33 @@ pub fn check_memory(n: usize, p: usize, g: usize, opts: &RunOptions) -> Result<(
                 format!(
                     "the run needs about {} of memory ({threads} threads, {p} outputs, {g} input processes{}) \
                      but {} are available: shorten the realizations, use fewer threads (RAYON_NUM_THREADS), a \
-                     smaller --shard-size, or no --store-raw",
+                     smaller --shard-size, no --store-raw, or (statistics only) --route spectral-stream",
                     gib(need),
                     if opts.store_raw { ", raw rows of a shard" } else { "" },
+                    gib(have)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a streamed spectral run whose working memory `need` ([`streamed_memory_bytes`]) exceeds what
+/// the machine has available.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] (`block steps`) with the numbers.
+pub fn check_streamed_memory(need: u128, n: usize, opts: &RunOptions) -> Result<()> {
+    if let Some(have) = available_memory() {
+        if need > have {
+            return Err(Error::invalid(
+                "block steps",
+                opts.block_steps,
+                format!(
+                    "the streamed spectral route needs about {} of memory for its kernels and blocks (independent of \
+                     the {n} samples per realization) but {} are available: fewer threads (RAYON_NUM_THREADS), a \
+                     smaller block, fewer outputs or a smoother output",
+                    gib(need),
                     gib(have)
                 ),
             ));

@@ -18,6 +18,16 @@
 //!   E·u̇_k with u̇ the exact derivative of the input's trigonometric interpolant (spectral
 //!   differentiation: bin j times iω_j, the Nyquist bin dropped), while the states see the first-order
 //!   hold of the samples.
+//! * [`Route::SpectralStream`](super::Route::SpectralStream): the same inputs and the same first-order-hold
+//!   response, statistics only, in time order with memory independent of the duration: independent white
+//!   noise per input process through FIR kernels k_{g,r} designed on an L-point grid from
+//!   b_j = H_d(ω_j)·√(S(ω_j)Δω/L) and windowed to T taps, filtered by overlap-save with an FFT size fixed
+//!   by T ([`FirSynthesis`](super::FirSynthesis)). Its `sigma_discrete` is the exact σ of the FIR process,
+//!   √(Σ_g Σ_i k²); it differs from the grid σ of the spectral route by the window tail (≤
+//!   [`TAIL_FRACTION`](super::fir_stream::TAIL_FRACTION) of the variance) and the grid (≤
+//!   [`GRID_TOLERANCE`](super::fir_stream::GRID_TOLERANCE) change over the last doubling), both stated in
+//!   the notes. [`Route::Auto`](super::Route::Auto) takes it where the spectral route applies but its whole
+//!   record does not fit in the available memory.
 //!
 //! # Bias of the spectral route
 //! The synthesised process is the spectrum sampled on the grid ω_j = 2πj/(NΔt), j ≤ N/2 (truncated at the

@@ -1,0 +1,507 @@
+//! Streamed spectral synthesis: stationary Gaussian outputs of any input spectrum and any linear system,
+//! produced in time order with memory independent of the record length — white noise through finite
+//! (FIR) kernels designed from the spectrum, filtered by overlap-save with a fixed FFT size.
+
+use super::rng::fill_standard_normal;
+use crate::error::{Error, Result};
+use rand::rngs::Xoshiro256PlusPlus;
+use realfft::num_complex::Complex;
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use std::sync::Arc;
+
+/// Default bound of the kernel energy left outside the FIR window, as a fraction of each output's
+/// variance on the kernel grid: the truncation lowers each output's variance by at most this fraction
+/// (σ by at most half of it).
+pub const TAIL_FRACTION: f64 = 1e-4;
+
+/// Default bound of the relative change of each output's grid variance when the kernel grid is halved
+/// (the estimate of the grid's rectangle-rule bias, which halves with every doubling for a spectrum with
+/// jumps, e.g. a band edge).
+pub const GRID_TOLERANCE: f64 = 1e-3;
+
+/// Smallest kernel grid tried.
+pub const MIN_GRID: usize = 1 << 12;
+
+/// Largest kernel grid tried (2²² points: the design's transient tables then take about
+/// 24 bytes × 2²² per generator–output pair).
+pub const MAX_GRID: usize = 1 << 22;
+
+/// The kernel spectra of a design on a grid of L points: `b[g][r][j]`, j = 0..=L/2, the DFT coefficients
+/// of the circular kernel from generator g's white noise to output r (see [`FirSynthesis::design`]).
+pub type KernelSpectra = Vec<Vec<Vec<Complex<f64>>>>;
+
+/// How a [`FirSynthesis`] was designed: the kernel grid, the window and the two error measures.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KernelDesign {
+    /// Length L of the kernel grid (a power of two).
+    pub grid_len: usize,
+    /// Lag (in steps) of the first tap: the window is lags `first_lag .. first_lag + taps` (≤ 0).
+    pub first_lag: i64,
+    /// Per output: the fraction of its grid variance left outside the window (≤ the requested tail).
+    pub tail_fraction: Vec<f64>,
+    /// Per output: |σ²(L) − σ²(L/2)| / σ²(L), the change of the grid variance over the last doubling.
+    pub grid_change: Vec<f64>,
+    /// Per output: the variance Σ_g Σ_m h²\[m\] of the whole circular kernel on the grid.
+    pub grid_variance: Vec<f64>,
+}
+
+/// Generators–outputs FIR synthesis by overlap-save, streaming one segment at a time.
+///
+/// # Formula
+/// With w_g\[n\] independent standard normal white noise per generator g (one per independent input
+/// process) and kernels k_{g,r}\[i\], i = 0..T (T taps, first lag a ≤ 0):
+/// ```text
+/// y_r[n] = Σ_g Σ_{i=0}^{T−1} k_{g,r}[i] w_g[n − i],     Var y_r = Σ_g Σ_i k_{g,r}[i]²,
+/// K_r(ℓ) = E y_r[n] y_r[n+ℓ] = Σ_g Σ_i k_{g,r}[i] k_{g,r}[i+ℓ]
+/// ```
+/// exactly (a stationary moving-average process from its first sample: T − 1 noise samples are drawn
+/// before the first output). Overlap-save with a fixed FFT size F (the smallest power of two ≥ 4T and
+/// ≥ 1024): each segment draws H = F − T + 1 new samples per generator, in generator order, and yields H
+/// outputs; the block size of a run only groups whole segments, so the draws, and hence the outputs, do
+/// not depend on it.
+///
+/// Design from a spectrum ([`FirSynthesis::design`]): on a grid of L points, Δω = 2π/(LΔt),
+/// ω_j = jΔω, the circular kernel
+/// ```text
+/// h_{g,r}[m] = Σ_{j=−L/2+1}^{L/2} b_{g,r,j} e^{iω_j mΔt},   b_{g,r,j} = G_{g,r}(ω_j) √(S_g(ω_j)Δω / L)
+/// ```
+/// (b_{−j} = conj b_j; one unnormalised inverse real FFT) has Σ_m h² = Σ_j w_j S_g(ω_j)Δω|G_{g,r}(ω_j)|²
+/// (Parseval; w_j = 2, 1 at j = 0, L/2): the variance of the periodic spectral route on the same grid
+/// ([`SpectralGenerator`](super::SpectralGenerator) with N = L), i.e. the white noise through h has the
+/// grid density |b_j|²L/Δω = S_g|G|². The window is the lags −a..b around 0 grown greedily (by chunks of
+/// 1/16 of its length, towards the side holding more normalised energy) until every output keeps at
+/// least 1 − `tail` of its grid variance; L doubles from [`MIN_GRID`] until the window fits in L/4 (the
+/// circular kernel is then a close approximation of the aperiodic one) and each output's grid variance
+/// changed by at most `grid_tol` relative over the last doubling.
+///
+/// # Errors
+/// [`FirSynthesis::from_taps`]: no generator or output, kernels of different lengths, non-finite taps.
+/// [`FirSynthesis::design`]: the spectrum callback's errors; tables of the wrong shape; a kernel that
+/// does not meet the bounds on a grid of [`MAX_GRID`] points (the message names the output and the numbers).
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::{FirSynthesis, stream};
+/// // y[n] = w[n] + 0.5 w[n−1]: variance 1.25, lag-1 covariance 0.5
+/// let fir = FirSynthesis::from_taps(vec![vec![vec![1.0, 0.5]]]).unwrap();
+/// assert_eq!(fir.variance(0), 1.25);
+/// assert_eq!(fir.autocovariance(0, 3), vec![1.25, 0.5, 0.0]);
+/// let mut sc = fir.scratch();
+/// let mut rng = stream(1, 0);
+/// fir.start(&mut rng, &mut sc);
+/// fir.next_segment(&mut rng, &mut sc).unwrap();
+/// assert_eq!(fir.output(&sc, 0).len(), fir.hop());
+/// ```
+#[derive(Clone)]
+pub struct FirSynthesis {
+    taps: usize,
+    fft_len: usize,
+    /// kernels\[g\]\[r\]\[i\]
+    kernels: Vec<Vec<Vec<f64>>>,
+    /// spectra\[g\]\[r\]\[j\]: DFT of the zero-padded kernel, divided by F (the inverse FFT is unnormalised)
+    spectra: KernelSpectra,
+    forward: Arc<dyn RealToComplex<f64>>,
+    inverse: Arc<dyn ComplexToReal<f64>>,
+}
+
+impl std::fmt::Debug for FirSynthesis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FirSynthesis")
+            .field("generators", &self.kernels.len())
+            .field("outputs", &self.kernels[0].len())
+            .field("taps", &self.taps)
+            .field("fft_len", &self.fft_len)
+            .finish()
+    }
+}
+
+/// Per-realization working memory of a [`FirSynthesis`]: O(F) per generator and output.
+#[derive(Debug, Clone)]
+pub struct FirScratch {
+    /// history\[g\]: the last T − 1 noise samples, then the H new ones
+    history: Vec<Vec<f64>>,
+    /// forward spectra of the current segment per generator
+    x: Vec<Vec<Complex<f64>>>,
+    y: Vec<Complex<f64>>,
+    fft_in: Vec<f64>,
+    fft_out: Vec<f64>,
+    fft_scratch: Vec<Complex<f64>>,
+    /// out\[r\]: the H outputs of the last segment
+    out: Vec<Vec<f64>>,
+}
+
+fn fft_error(e: realfft::FftError) -> Error {
+    Error::Numerical {
+        what: "streamed spectral synthesis (FFT)".into(),
+        reason: e.to_string(),
+    }
+}
+
+/// The window of lags −a..b (b exclusive) around lag 0 of the circular energies `e[r][m]` (totals
+/// `total[r]`) that keeps at least 1 − `tail` of every output's energy, grown greedily by chunks; returns
+/// (a, b) and the fraction left outside per output.
+fn window(e: &[Vec<f64>], total: &[f64], tail: f64) -> (usize, usize, Vec<f64>) {
+    let l = e[0].len();
+    let at = |r: usize, lag: i64| e[r][lag.rem_euclid(l as i64) as usize];
+    let (mut a, mut b) = (0usize, 1usize);
+    let mut inside: Vec<f64> = (0..e.len()).map(|r| at(r, 0)).collect();
+    let outside = |inside: &[f64]| -> Vec<f64> {
+        inside
+            .iter()
+            .zip(total)
+            .map(|(i, t)| if *t > 0.0 { ((t - i) / t).max(0.0) } else { 0.0 })
+            .collect()
+    };
+    while a + b < l && outside(&inside).iter().any(|f| *f > tail) {
+        let chunk = ((a + b) / 16).max(8).min(l - a - b);
+        let gain = |lags: std::ops::Range<i64>| -> (f64, Vec<f64>) {
+            let per: Vec<f64> = (0..e.len()).map(|r| lags.clone().map(|m| at(r, m)).sum()).collect();
+            let score = per
+                .iter()
+                .zip(total)
+                .map(|(p, t)| if *t > 0.0 { p / t } else { 0.0 })
+                .sum();
+            (score, per)
+        };
+        let (left, lper) = gain(-((a + chunk) as i64)..-(a as i64));
+        let (right, rper) = gain(b as i64..(b + chunk) as i64);
+        if left > right {
+            a += chunk;
+            inside.iter_mut().zip(lper).for_each(|(i, p)| *i += p);
+        } else {
+            b += chunk;
+            inside.iter_mut().zip(rper).for_each(|(i, p)| *i += p);
+        }
+    }
+    let out = outside(&inside);
+    (a, b, out)
+}
+
+impl FirSynthesis {
+    /// A synthesis from explicit taps `kernels[g][r][i]` (every kernel of the same length T ≥ 1).
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn from_taps(kernels: Vec<Vec<Vec<f64>>>) -> Result<FirSynthesis> {
+        let g = kernels.len();
+        let p = kernels.first().map_or(0, |k| k.len());
+        let taps = kernels.first().and_then(|k| k.first()).map_or(0, |k| k.len());
+        if g == 0 || p == 0 || taps == 0 {
+            return Err(Error::invalid(
+                "kernels",
+                format!("{g} generators × {p} outputs × {taps} taps"),
+                "need at least one generator, one output and one tap",
+            ));
+        }
+        if kernels
+            .iter()
+            .any(|k| k.len() != p || k.iter().any(|t| t.len() != taps))
+        {
+            return Err(Error::invalid(
+                "kernels",
+                "ragged",
+                "every kernel needs the same number of taps",
+            ));
+        }
+        if kernels.iter().flatten().flatten().any(|v| !v.is_finite()) {
+            return Err(Error::invalid("kernels", "non-finite tap", "taps must be finite"));
+        }
+        let fft_len = (4 * taps).next_power_of_two().max(1024);
+        let mut planner = RealFftPlanner::<f64>::new();
+        let forward = planner.plan_fft_forward(fft_len);
+        let inverse = planner.plan_fft_inverse(fft_len);
+        let mut buf = vec![0.0; fft_len];
+        let mut spectra = Vec::with_capacity(g);
+        for kg in &kernels {
+            let mut row = Vec::with_capacity(p);
+            for k in kg {
+                buf.iter_mut().for_each(|v| *v = 0.0);
+                buf[..taps].copy_from_slice(k);
+                let mut s = forward.make_output_vec();
+                forward.process(&mut buf, &mut s).map_err(fft_error)?;
+                let scale = 1.0 / fft_len as f64;
+                s.iter_mut().for_each(|c| *c *= scale);
+                row.push(s);
+            }
+            spectra.push(row);
+        }
+        Ok(FirSynthesis {
+            taps,
+            fft_len,
+            kernels,
+            spectra,
+            forward,
+            inverse,
+        })
+    }
+
+    /// Designs the kernels from their spectra on doubling grids (see the type's formula): `spectra(L)`
+    /// returns b\[g\]\[r\]\[j\], j = 0..=L/2, for a grid of L points; `min_grid` is the first grid tried
+    /// (raised to [`MIN_GRID`] and a power of two), `tail` and `grid_tol` the bounds of the window's
+    /// truncation and of the grid change ([`TAIL_FRACTION`], [`GRID_TOLERANCE`] by default).
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::simulate::{FirSynthesis, fir_stream::{GRID_TOLERANCE, TAIL_FRACTION}};
+    /// use realfft::num_complex::Complex;
+    /// // unit white noise sampled at Δt = 1 (S = 1/(2π) on |ω| ≤ π): b_j = √(SΔω/L) = 1/L, kernel δ[m]
+    /// let (fir, d) = FirSynthesis::design(
+    ///     &|l| Ok(vec![vec![vec![Complex::new(1.0 / l as f64, 0.0); l / 2 + 1]]]),
+    ///     0, TAIL_FRACTION, GRID_TOLERANCE,
+    /// ).unwrap();
+    /// assert_eq!((fir.taps(), d.first_lag), (1, 0));
+    /// assert!((fir.variance(0) - 1.0).abs() < 1e-12);
+    /// ```
+    pub fn design(
+        spectra: &dyn Fn(usize) -> Result<KernelSpectra>,
+        min_grid: usize,
+        tail: f64,
+        grid_tol: f64,
+    ) -> Result<(FirSynthesis, KernelDesign)> {
+        if !(tail > 0.0 && tail < 1.0 && grid_tol > 0.0) {
+            return Err(Error::invalid(
+                "tail fraction",
+                format!("{tail}, grid tolerance {grid_tol}"),
+                "need 0 < tail < 1 and a positive grid tolerance",
+            ));
+        }
+        let mut l = min_grid.max(MIN_GRID).next_power_of_two();
+        let mut planner = RealFftPlanner::<f64>::new();
+        let mut previous: Option<Vec<f64>> = None;
+        loop {
+            let b = spectra(l)?;
+            let p = b.first().map_or(0, |x| x.len());
+            if b.is_empty() || p == 0 || b.iter().any(|x| x.len() != p || x.iter().any(|y| y.len() != l / 2 + 1)) {
+                return Err(Error::invalid(
+                    "kernel spectra",
+                    l,
+                    format!("need generators × outputs × {} bins", l / 2 + 1),
+                ));
+            }
+            let inverse = planner.plan_fft_inverse(l);
+            let mut h: Vec<Vec<Vec<f64>>> = Vec::with_capacity(b.len());
+            for bg in b {
+                let mut row = Vec::with_capacity(p);
+                for mut br in bg {
+                    br[0].im = 0.0;
+                    br[l / 2].im = 0.0;
+                    let mut k = vec![0.0; l];
+                    inverse.process(&mut br, &mut k).map_err(fft_error)?;
+                    row.push(k);
+                }
+                h.push(row);
+            }
+            let mut e = vec![vec![0.0; l]; p];
+            for hg in &h {
+                for (er, k) in e.iter_mut().zip(hg) {
+                    er.iter_mut().zip(k).for_each(|(a, v)| *a += v * v);
+                }
+            }
+            let total: Vec<f64> = e.iter().map(|er| er.iter().sum()).collect();
+            if let Some(r) = total.iter().position(|t| !t.is_finite()) {
+                return Err(Error::Numerical {
+                    what: "streamed spectral synthesis".into(),
+                    reason: format!("the kernel of output {r} is not finite on a grid of {l} points"),
+                });
+            }
+            let (a, bb, outside) = window(&e, &total, tail);
+            let fits = 4 * (a + bb) <= l;
+            let change: Vec<f64> = match &previous {
+                Some(prev) => total
+                    .iter()
+                    .zip(prev)
+                    .map(|(t, q)| if *t > 0.0 { (t - q).abs() / t } else { 0.0 })
+                    .collect(),
+                None => vec![f64::INFINITY; p],
+            };
+            if fits && change.iter().all(|c| *c <= grid_tol) {
+                let taps = a + bb;
+                let kernels = h
+                    .iter()
+                    .map(|hg| {
+                        hg.iter()
+                            .map(|k| (0..taps).map(|i| k[(l + i - a) % l]).collect())
+                            .collect()
+                    })
+                    .collect();
+                let fir = FirSynthesis::from_taps(kernels)?;
+                return Ok((
+                    fir,
+                    KernelDesign {
+                        grid_len: l,
+                        first_lag: -(a as i64),
+                        tail_fraction: outside,
+                        grid_change: change,
+                        grid_variance: total,
+                    },
+                ));
+            }
+            if 2 * l > MAX_GRID {
+                let (r, what) = if !fits {
+                    let r = (0..p).max_by(|x, y| outside[*x].total_cmp(&outside[*y])).unwrap_or(0);
+                    (
+                        r,
+                        format!(
+                            "its kernel needs {} taps to keep all but {tail:e} of the variance, more than a quarter of \
+                             the largest grid",
+                            a + bb
+                        ),
+                    )
+                } else {
+                    let r = (0..p).max_by(|x, y| change[*x].total_cmp(&change[*y])).unwrap_or(0);
+                    (
+                        r,
+                        format!(
+                            "its grid variance still changes by {:.3e} (> {grid_tol:e}) when the grid doubles",
+                            change[r]
+                        ),
+                    )
+                };
+                return Err(Error::Numerical {
+                    what: format!("streamed spectral synthesis of output {r}"),
+                    reason: format!(
+                        "{what} ({MAX_GRID} points): the spectrum has sharp edges or narrow peaks at this step; \
+                         use the whole-record spectral route (--route spectral), a longer time step, or a smoother \
+                         or band-limited output"
+                    ),
+                });
+            }
+            previous = Some(total);
+            l *= 2;
+        }
+    }
+
+    /// Number of taps T of every kernel.
+    pub fn taps(&self) -> usize {
+        self.taps
+    }
+    /// FFT size F of overlap-save (from T only, never from the record or block length).
+    pub fn fft_len(&self) -> usize {
+        self.fft_len
+    }
+    /// New samples per segment, H = F − T + 1.
+    pub fn hop(&self) -> usize {
+        self.fft_len - self.taps + 1
+    }
+    /// Number of generators (independent white noises).
+    pub fn n_generators(&self) -> usize {
+        self.kernels.len()
+    }
+    /// Number of outputs.
+    pub fn n_outputs(&self) -> usize {
+        self.kernels[0].len()
+    }
+    /// The taps k_{g,r}\[0..T\].
+    ///
+    /// # Panics
+    /// g or r out of range (a programming error).
+    pub fn kernel(&self, g: usize, r: usize) -> &[f64] {
+        &self.kernels[g][r]
+    }
+    /// Exact variance of output r: Σ_g Σ_i k_{g,r}\[i\]².
+    ///
+    /// # Panics
+    /// r out of range.
+    pub fn variance(&self, r: usize) -> f64 {
+        self.kernels
+            .iter()
+            .map(|kg| kg[r].iter().map(|v| v * v).sum::<f64>())
+            .sum()
+    }
+    /// Exact autocovariance of output r at lags 0..`lags` (see the type's formula).
+    ///
+    /// # Panics
+    /// r out of range.
+    pub fn autocovariance(&self, r: usize, lags: usize) -> Vec<f64> {
+        (0..lags)
+            .map(|l| {
+                self.kernels
+                    .iter()
+                    .map(|kg| {
+                        let k = &kg[r];
+                        if l >= k.len() {
+                            0.0
+                        } else {
+                            k[..k.len() - l].iter().zip(&k[l..]).map(|(a, b)| a * b).sum::<f64>()
+                        }
+                    })
+                    .sum()
+            })
+            .collect()
+    }
+    /// Bytes of the shared tables (taps and kernel spectra).
+    pub fn table_bytes(&self) -> usize {
+        let (g, p) = (self.n_generators(), self.n_outputs());
+        g * p * (self.taps * 8 + (self.fft_len / 2 + 1) * 16)
+    }
+    /// Fresh working memory.
+    pub fn scratch(&self) -> FirScratch {
+        let f = self.fft_len;
+        let g = self.n_generators();
+        FirScratch {
+            history: vec![vec![0.0; f]; g],
+            x: vec![vec![Complex::new(0.0, 0.0); f / 2 + 1]; g],
+            y: vec![Complex::new(0.0, 0.0); f / 2 + 1],
+            fft_in: vec![0.0; f],
+            fft_out: vec![0.0; f],
+            fft_scratch: vec![
+                Complex::new(0.0, 0.0);
+                self.forward.get_scratch_len().max(self.inverse.get_scratch_len())
+            ],
+            out: vec![vec![0.0; self.hop()]; self.n_outputs()],
+        }
+    }
+    /// Starts a realization: draws the T − 1 noise samples before the first output, per generator in
+    /// order, from `rng`.
+    pub fn start(&self, rng: &mut Xoshiro256PlusPlus, s: &mut FirScratch) {
+        for h in &mut s.history {
+            fill_standard_normal(rng, &mut h[..self.taps - 1]);
+        }
+    }
+    /// The next segment: draws H samples per generator (in generator order) and computes H outputs of
+    /// every output (read them with [`output`](Self::output)).
+    ///
+    /// # Errors
+    /// A scratch of another synthesis; an FFT failure (never for a valid scratch).
+    pub fn next_segment(&self, rng: &mut Xoshiro256PlusPlus, s: &mut FirScratch) -> Result<()> {
+        let (f, t) = (self.fft_len, self.taps);
+        if s.history.len() != self.n_generators() || s.fft_in.len() != f || s.out.len() != self.n_outputs() {
+            return Err(Error::invalid("scratch", s.fft_in.len(), "made by another synthesis"));
+        }
+        for (h, x) in s.history.iter_mut().zip(&mut s.x) {
+            fill_standard_normal(rng, &mut h[t - 1..]);
+            s.fft_in.copy_from_slice(h);
+            self.forward
+                .process_with_scratch(&mut s.fft_in, x, &mut s.fft_scratch)
+                .map_err(fft_error)?;
+            // keep the last T − 1 samples for the next segment
+            h.copy_within(f - (t - 1).., 0);
+        }
+        for (r, out) in s.out.iter_mut().enumerate() {
+            for (j, y) in s.y.iter_mut().enumerate() {
+                let mut acc = Complex::new(0.0, 0.0);
+                for (x, k) in s.x.iter().zip(&self.spectra) {
+                    acc += x[j] * k[r][j];
+                }
+                *y = acc;
+            }
+            s.y[0].im = 0.0;
+            s.y[f / 2].im = 0.0;
+            self.inverse
+                .process_with_scratch(&mut s.y, &mut s.fft_out, &mut s.fft_scratch)
+                .map_err(fft_error)?;
+            out.copy_from_slice(&s.fft_out[t - 1..]);
+        }
+        Ok(())
+    }
+    /// The H outputs of output r from the last [`next_segment`](Self::next_segment).
+    ///
+    /// # Panics
+    /// r out of range.
+    pub fn output<'a>(&self, s: &'a FirScratch, r: usize) -> &'a [f64] {
+        &s.out[r]
+    }
+}
