@@ -394,6 +394,7 @@ impl PyScenario {
                 duration: duration_s,
                 levels: level_list,
                 effort: OscillatoryOptions::default(),
+                verdicts: Default::default(),
             },
         };
         Ok(PyScenario {
