@@ -126,6 +126,7 @@ impl Scenario {
             Excitation::Independent { spectra, .. } => (0..spectra.len())
                 .map(|k| Signal::new(&format!("input_{k}"), &self.input.unit))
                 .collect(),
+            Excitation::Sources { .. } => crate::simulate::source_signals(&self.excitation, &self.input.unit),
         }
     }
 

@@ -34,7 +34,7 @@ pub use discretize::{
     augmented_response, covariance_factor, expm, foh, van_loan, zoh, FirstOrderHold, SampledSystem,
     WhiteNoiseDiscretization, ZeroOrderHold,
 };
-pub use input::RunInput;
+pub use input::{source_signals, RunInput};
 pub use options::{suggest_step, Route, RunOptions, StepSuggestion};
 pub use plan::SkippedOutput;
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};

@@ -266,6 +266,9 @@ struct SpectralInput {
     generator: usize,
     gain: f64,
     shift: usize,
+    /// For a component of a multi-component source: the source's matrix, this input's component, and
+    /// the index of the generator of its component 0 (its m components have consecutive generators).
+    mixing: Option<(std::sync::Arc<dyn crate::coherence::SpectralMatrix>, usize, usize)>,
 }
 
 /// The spectral engine: one generator per independent process, the inputs as (generator, gain, shift), and
@@ -381,6 +384,7 @@ fn spectral_inputs(exc: &Excitation, dt: f64, n: usize) -> Result<(Vec<SpectralG
                     generator: 0,
                     gain,
                     shift: s as usize % n,
+                    mixing: None,
                 });
             }
             Ok((vec![g], inp))
@@ -395,11 +399,59 @@ fn spectral_inputs(exc: &Excitation, dt: f64, n: usize) -> Result<(Vec<SpectralG
                     generator: j,
                     gain: 1.0,
                     shift: 0,
+                    mixing: None,
                 })
                 .collect();
             Ok((gens, inp))
         }
+        Excitation::Sources { sources, inputs } => {
+            // one generator per component of every source, in order (Excitation::spectra)
+            let gens = exc
+                .spectra()
+                .iter()
+                .map(|s| SpectralGenerator::new(s.as_ref(), dt, n, Amplitudes::Rayleigh))
+                .collect::<Result<Vec<_>>>()?;
+            let mut first = Vec::with_capacity(sources.len());
+            let mut k = 0;
+            for s in sources {
+                first.push(k);
+                k += s.n_components();
+            }
+            let t0 = inputs.iter().map(|m| m.delay).fold(f64::INFINITY, f64::min);
+            let mut inp = Vec::new();
+            for (j, m) in inputs.iter().enumerate() {
+                let shift = delay_steps(j, m.delay - t0, dt)?;
+                inp.push(SpectralInput {
+                    generator: first[m.source] + m.component,
+                    gain: m.gain,
+                    shift: shift % n,
+                    mixing: match &sources[m.source] {
+                        crate::response::Source::Matrix(mx) => Some((mx.clone(), m.component, first[m.source])),
+                        crate::response::Source::Process(_) => None,
+                    },
+                });
+            }
+            Ok((gens, inp))
+        }
     }
+}
+
+/// A relative delay as a whole number of steps, or the error that says which Δt would make it one.
+fn delay_steps(j: usize, tau: f64, dt: f64) -> Result<usize> {
+    let s = (tau / dt).round();
+    if ((s * dt) - tau).abs() > 1e-9 * tau.max(dt) {
+        let k = (tau / dt).ceil().max(1.0);
+        return Err(Error::invalid(
+            "dt",
+            format!("{dt} s"),
+            format!(
+                "input {j} is delayed by {tau} s, not an integer number of steps (exact delays need τ = s·Δt, \
+                 i.e. positions multiples of vΔt); choose e.g. Δt = {:e} s",
+                tau / k
+            ),
+        ));
+    }
+    Ok(s as usize)
 }
 
 /// gains\[g\]\[r\]\[j\]: the transfer from generator g's coefficient c_j to output r (discrete transfer
@@ -444,12 +496,42 @@ fn discrete_gains(
         if j < n / 2 {
             h += to_c(&sub.e) * Complex::new(0.0, w);
         }
+        // multi-component sources: input l's component c is Σ_k M_ck(ω_j) c_k over the source's generators
+        // k, M_ck = L_ck √(S_cc/S_kk) with C = L Lᴴ the coherence matrix (Z_R = ρ Z_L + √(1 − ρ²) W for two
+        // tracks): the cross-spectra are exact in expectation, bin by bin
+        let mix: Vec<Option<(usize, Vec<Complex<f64>>)>> = inputs
+            .iter()
+            .map(|inp| {
+                inp.mixing.as_ref().map(|(mx, c, first)| {
+                    let l = crate::coherence::semidefinite_cholesky(&mx.coherence_matrix(w));
+                    let s = mx.matrix(w);
+                    let row = (0..mx.n_components())
+                        .map(|k| {
+                            let (scc, skk) = (s[(*c, *c)].re, s[(k, k)].re);
+                            if skk > 0.0 {
+                                l[(*c, k)] * (scc / skk).sqrt()
+                            } else {
+                                Complex::new(0.0, 0.0)
+                            }
+                        })
+                        .collect();
+                    (*first, row)
+                })
+            })
+            .collect();
         for (r, dv) in disc.iter_mut().enumerate() {
             for gi in 0..generators.len() {
                 let s = spectra[gi].density(w);
                 let mut acc = Complex::new(0.0, 0.0);
                 for (l, inp) in inputs.iter().enumerate() {
-                    if inp.generator == gi {
+                    if let Some((first, row)) = &mix[l] {
+                        if gi >= *first && gi < first + row.len() {
+                            acc += h[(r, l)]
+                                * inp.gain
+                                * row[gi - first]
+                                * Complex::new(0.0, -w * inp.shift as f64 * dt).exp();
+                        }
+                    } else if inp.generator == gi {
                         acc += h[(r, l)] * inp.gain * Complex::new(0.0, -w * inp.shift as f64 * dt).exp();
                     }
                 }
