@@ -357,7 +357,10 @@ fn spectrum_density_at_chosen_points() {
             j["density"][k][0].as_f64().unwrap(),
             j["density"][k][1].as_f64().unwrap(),
         );
-        assert!((x - f).abs() <= ROUNDING * f && (v - g).abs() <= ROUNDING * g, "{x} {v} {g}");
+        assert!(
+            (x - f).abs() <= ROUNDING * f && (v - g).abs() <= ROUNDING * g,
+            "{x} {v} {g}"
+        );
     }
 }
 

@@ -356,3 +356,57 @@ fn invalid_sources_are_refused_with_the_entry_named() {
         .to_string();
     assert!(e.contains("sources[0]"), "{e}");
 }
+
+#[test]
+fn seven_dof_vehicle_does_not_roll_on_identical_tracks_and_adds_independent_ones() {
+    use stochvib::models::full_vehicle::FullVehicle;
+    let car = FullVehicle::passenger_car();
+    let sys = car.mdof().unwrap();
+    let l = car.wheelbase();
+    // γ = 1: the left–right symmetric car sees u_fl = u_fr and u_rl = u_rr; roll and the left–right
+    // difference of the travels are zero up to rounding of terms of the size of the bounce response.
+    let same = Excitation::two_tracks(tracks(Arc::new(ConstantCoherence::new(1.0).unwrap())), &car.wheels()).unwrap();
+    let roll = analyze_output(&sys, &same, output(&sys, "roll")).unwrap();
+    let pitch = analyze_output(&sys, &same, output(&sys, "pitch"))
+        .unwrap()
+        .variance
+        .unwrap();
+    let v = roll.variance.unwrap_or(0.0);
+    assert!(
+        v.abs() <= ROUNDING * pitch,
+        "roll variance {v:e} on identical tracks (pitch {pitch:e})"
+    );
+    // γ = 0: two independent tracks, each a single process felt by its front and rear wheel with the
+    // delay L/v: the exact sum over sources of Lyapunov-with-delays values (augmented state space with the
+    // delays' exact covariance), against the quadrature of the two-track matrix with ρ = 0.
+    let indep = Excitation::two_tracks(tracks(Arc::new(ConstantCoherence::new(0.0).unwrap())), &car.wheels()).unwrap();
+    let t: Arc<dyn Spectrum> = Arc::new(stochvib::spectrum::AtSpeed::new(road(), V).unwrap());
+    let w = |s: usize, x: f64| InputMap {
+        source: s,
+        component: 0,
+        delay: x / V,
+        gain: 1.0,
+        mean: 0.0,
+    };
+    let two_sources = Excitation::sources(
+        vec![Source::Process(t.clone()), Source::Process(t)],
+        vec![w(0, 0.0), w(1, 0.0), w(0, l), w(1, l)],
+    )
+    .unwrap();
+    for name in ["seat_acc", "roll", "pitch", "travel_rl", "tyre_force_fr"] {
+        let i = output(&sys, name);
+        let q = analyze_output(&sys, &indep, i).unwrap().variance.unwrap();
+        let st = analyze_output(&sys, &two_sources, i).unwrap();
+        let exact = st
+            .methods
+            .iter()
+            .find(|m| m.method.name() == "lyapunov (delays)")
+            .unwrap()
+            .value()
+            .unwrap();
+        assert!(
+            (q - exact).abs() <= QUADRATURE * exact,
+            "{name}: quadrature {q:e} vs exact {exact:e}"
+        );
+    }
+}
