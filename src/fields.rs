@@ -240,8 +240,8 @@ impl<'a> Fields<'a> {
             .map(|(i, x)| {
                 let f = x.as_float().or_else(|| x.as_integer().map(|n| n as f64));
                 match f {
-                    Some(f) if f.is_finite() => Ok(f),
-                    _ => Err(self.error(&format!("{key}[{i}]"), x, "expected a finite number")),
+                    Some(f) => crate::units::check_magnitude(f).map_err(|r| self.error(&format!("{key}[{i}]"), x, r)),
+                    None => Err(self.error(&format!("{key}[{i}]"), x, "expected a finite number")),
                 }
             })
             .collect()
@@ -254,8 +254,8 @@ impl<'a> Fields<'a> {
     pub fn number(&self, key: &str) -> Result<f64> {
         let v = self.require(key)?;
         match v.as_float().or_else(|| v.as_integer().map(|n| n as f64)) {
-            Some(f) if f.is_finite() => Ok(f),
-            _ => Err(self.error(key, v, "expected a finite number")),
+            Some(f) => crate::units::check_magnitude(f).map_err(|r| self.error(key, v, r)),
+            None => Err(self.error(key, v, "expected a finite number")),
         }
     }
 
@@ -282,29 +282,49 @@ impl<'a> Fields<'a> {
     /// # Errors
     /// Missing key, not an array of rows, rows of different lengths, non-finite entries.
     pub fn matrix(&self, key: &str) -> Result<nalgebra::DMatrix<f64>> {
+        let rows = self.number_rows(key)?;
+        let ncols = rows.first().map_or(0, Vec::len);
+        if let Some(i) = rows.iter().position(|r| r.len() != ncols) {
+            return Err(self.error(
+                &format!("{key}[{i}]"),
+                rows[i].len(),
+                "rows must all have the same length",
+            ));
+        }
+        let data: Vec<f64> = rows.concat();
+        Ok(nalgebra::DMatrix::from_row_slice(rows.len(), ncols, &data))
+    }
+
+    /// A required array of rows of finite numbers; the rows may differ in length (e.g. the numerators of
+    /// several inputs).
+    ///
+    /// # Errors
+    /// Missing key, not an array of arrays, an entry that is not a finite number (named `key[i][j]`).
+    pub fn number_rows(&self, key: &str) -> Result<Vec<Vec<f64>>> {
         let v = self.require(key)?;
         let rows = v
             .as_array()
             .ok_or_else(|| self.error(key, v, "expected an array of rows"))?;
-        let mut data = Vec::new();
-        let mut ncols = None;
-        for (i, r) in rows.iter().enumerate() {
-            let r = r
-                .as_array()
-                .ok_or_else(|| self.error(&format!("{key}[{i}]"), r, "expected a row (array of numbers)"))?;
-            if *ncols.get_or_insert(r.len()) != r.len() {
-                return Err(self.error(&format!("{key}[{i}]"), r.len(), "rows must all have the same length"));
-            }
-            for (j, x) in r.iter().enumerate() {
-                let val = x
-                    .as_float()
-                    .or_else(|| x.as_integer().map(|n| n as f64))
-                    .filter(|v| v.is_finite())
-                    .ok_or_else(|| self.error(&format!("{key}[{i}][{j}]"), x, "expected a finite number"))?;
-                data.push(val);
-            }
-        }
-        Ok(nalgebra::DMatrix::from_row_slice(rows.len(), ncols.unwrap_or(0), &data))
+        rows.iter()
+            .enumerate()
+            .map(|(i, r)| {
+                let r = r
+                    .as_array()
+                    .ok_or_else(|| self.error(&format!("{key}[{i}]"), r, "expected a row (array of numbers)"))?;
+                r.iter()
+                    .enumerate()
+                    .map(|(j, x)| {
+                        x.as_float()
+                            .or_else(|| x.as_integer().map(|n| n as f64))
+                            .ok_or_else(|| self.error(&format!("{key}[{i}][{j}]"), x, "expected a finite number"))
+                            .and_then(|v| {
+                                crate::units::check_magnitude(v)
+                                    .map_err(|r| self.error(&format!("{key}[{i}][{j}]"), x, r))
+                            })
+                    })
+                    .collect()
+            })
+            .collect()
     }
 
     /// Fails on any key that was never read: catches typos such as `alpah`.

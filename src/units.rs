@@ -200,6 +200,39 @@ impl fmt::Display for Dim {
     }
 }
 
+/// Largest magnitude of a physical input value (SI): products and powers of a few such values stay far from
+/// the overflow of f64 (≈ 1.8e308), so a result can never become infinite or NaN from the inputs' sizes alone.
+pub const MAX_INPUT_MAGNITUDE: f64 = 1e100;
+/// Smallest non-zero magnitude of a physical input value (SI), for the same reason (underflow to zero and
+/// division by a subnormal).
+pub const MIN_INPUT_MAGNITUDE: f64 = 1e-100;
+
+/// Checks that an input value is finite and, unless zero, within [`MIN_INPUT_MAGNITUDE`,
+/// `MAX_INPUT_MAGNITUDE`] in magnitude.
+///
+/// # Errors
+/// The reason, as text.
+///
+/// # Examples
+/// ```
+/// use stochvib::units::check_magnitude;
+/// assert_eq!(check_magnitude(0.035), Ok(0.035));
+/// assert!(check_magnitude(1e300).is_err() && check_magnitude(1e-320).is_err() && check_magnitude(f64::NAN).is_err());
+/// ```
+pub fn check_magnitude(x: f64) -> std::result::Result<f64, String> {
+    if !x.is_finite() {
+        return Err(format!("number {x} is not finite"));
+    }
+    let a = x.abs();
+    if a != 0.0 && !(MIN_INPUT_MAGNITUDE..=MAX_INPUT_MAGNITUDE).contains(&a) {
+        return Err(format!(
+            "{x:e} (SI) is outside the working range of physical inputs, {MIN_INPUT_MAGNITUDE:e} to \
+             {MAX_INPUT_MAGNITUDE:e} in magnitude (or 0): check the units"
+        ));
+    }
+    Ok(x)
+}
+
 /// Parses `"<number> [unit expression]"` into its SI value and dimension.
 ///
 /// The grammar, the unit and prefix tables and the angular convention (`Hz` → rad/s) are in the
@@ -253,6 +286,7 @@ pub fn parse_quantity(text: &str) -> Result<(f64, Dim)> {
             "value {number_str} converted to SI is not finite (overflow)"
         )));
     }
+    let value = check_magnitude(value).map_err(err)?;
     Ok((value, unit.dim))
 }
 
@@ -325,15 +359,9 @@ pub fn parse_as(text: &str, expected: Dim) -> Result<f64> {
 /// ```
 pub fn parse_value(v: &toml::Value, expected: Dim) -> std::result::Result<f64, String> {
     match v {
-        toml::Value::Float(x) => {
-            if x.is_finite() {
-                Ok(*x)
-            } else {
-                Err(format!("number {x} is not finite"))
-            }
-        }
+        toml::Value::Float(x) => check_magnitude(*x),
         // i64 → f64 rounds beyond 2^53; no physical input is that precise.
-        toml::Value::Integer(i) => Ok(*i as f64),
+        toml::Value::Integer(i) => check_magnitude(*i as f64),
         toml::Value::String(s) => match parse_as(s, expected) {
             Ok(x) => Ok(x),
             Err(Error::Unit { reason, .. }) => Err(reason),
@@ -1054,7 +1082,7 @@ mod tests {
 
     proptest! {
         #[test]
-        fn metre_is_identity(x in any::<f64>().prop_filter("finite", |x| x.is_finite())) {
+        fn metre_is_identity(x in any::<f64>().prop_filter("in the working range", |x| *x == 0.0 || (1e-98..=1e98).contains(&x.abs()))) {
             let (v, d) = parse_quantity(&format!("{x} m")).unwrap();
             prop_assert_eq!(d, Dim::LENGTH);
             prop_assert_eq!(v, x);
@@ -1064,7 +1092,7 @@ mod tests {
         }
 
         #[test]
-        fn centimetre_is_hundredth(x in any::<f64>().prop_filter("finite", |x| x.is_finite())) {
+        fn centimetre_is_hundredth(x in any::<f64>().prop_filter("in the working range", |x| *x == 0.0 || (1e-98..=1e98).contains(&x.abs()))) {
             let (v, d) = parse_quantity(&format!("{x} cm")).unwrap();
             prop_assert_eq!(d, Dim::LENGTH);
             let expected = x / 100.0;
@@ -1072,6 +1100,14 @@ mod tests {
                 v == expected || (v - expected).abs() <= ULPS * expected.abs(),
                 "{} cm -> {:e}, expected {:e}", x, v, expected
             );
+        }
+
+        #[test]
+        fn values_outside_the_working_range_are_refused(e in 101i32..300, neg in any::<bool>()) {
+            let x = if neg { -1.0 } else { 1.0 } * 10f64.powi(e);
+            let (big, small) = (format!("{x:e} m"), format!("{:e} m", 1.0 / x));
+            prop_assert!(parse_quantity(&big).is_err());
+            prop_assert!(parse_quantity(&small).is_err());
         }
 
         #[test]

@@ -3,6 +3,9 @@
 //! the product of two frequency responses, fractional-octave bands against IEC 61260-1 and closed-form
 //! integrals, and the exposure metrics and verdicts against closed forms and the published thresholds.
 
+mod common;
+use common::rel;
+
 use nalgebra::Complex;
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
@@ -52,10 +55,6 @@ const QUAD_REL: f64 = 1e-9;
 /// Two exact variance methods (Lyapunov, adaptive quadrature at 1e-10) on the same weighted system, and
 /// the band sum (51 band quadratures + 2 tails) against them: measured 4e-11 and 2e-15; 1e-8.
 const VARIANCE_REL: f64 = 1e-8;
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
-}
 
 fn crel(a: Complex<f64>, b: Complex<f64>) -> f64 {
     (a - b).norm() / a.norm().max(b.norm()).max(1e-300)

@@ -4,6 +4,9 @@
 //! against each other on a randomized family, against the plain adaptive quadrature on a finite band, and
 //! the divergent / not converged / not applicable outcomes.
 
+mod common;
+use common::rel;
+
 use nalgebra::{Complex, DMatrix};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
@@ -42,10 +45,6 @@ const OSCILLATORY_VS_CLOSED_FORM: f64 = 1e-11;
 const ROUTES_AGREE_BAND: f64 = 1e-9;
 /// A table printed to 15 decimals: half a unit of the last decimal, plus the helper's own ~1e-16.
 const TABLE_15_DECIMALS: f64 = 2e-15;
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
-}
 
 /// T ȳ̇ + ȳ = u_j for both inputs j, y = ȳ (row C = 1): H_j(s) = 1/(1 + sT) for j = 1, 2.
 fn first_order_two_inputs(t: f64) -> StateSpace {

@@ -19,6 +19,9 @@
 //!   paper), an independent implementation, run by `benches/compare/fatigue.py reference` on the same
 //!   bimodal density: the values are pasted below with that provenance.
 
+mod common;
+use common::rel;
+
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use statrs::function::gamma::gamma;
 use std::collections::BTreeMap;
@@ -58,15 +61,6 @@ const DIRLIK_MODEL: f64 = 0.05;
 /// Monte Carlo: discrete sampling lowers the peaks. At 40 samples per period of the highest frequency a
 /// peak is missed by at most 1 − cos(π/40) = 3.1e-3 of its height, i.e. ≤ 0.93 % of the damage at k = 3.
 const SAMPLING_LOSS: f64 = 0.0093;
-
-fn rel(a: f64, b: f64) -> f64 {
-    let m = a.abs().max(b.abs());
-    if m == 0.0 {
-        0.0
-    } else {
-        (a - b).abs() / m
-    }
-}
 
 fn quad(f: impl Fn(f64) -> f64, a: f64, b: f64, bps: Vec<f64>) -> f64 {
     let opts = QuadOptions {

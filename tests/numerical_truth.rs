@@ -416,3 +416,209 @@ fn welch_bands_cover_their_expectation_at_the_nominal_rate() {
         );
     }
 }
+
+/// σ² of the first method that gave a value, and the value of `m`.
+fn exact_and_quadrature(st: &stochvib::response::ResponseStatistics, exact: VarianceMethod) -> (f64, f64) {
+    let e = method(st, exact).value().unwrap_or_else(|| panic!("{st:?}"));
+    let q = method(st, VarianceMethod::Quadrature)
+        .value()
+        .unwrap_or_else(|| panic!("{st:?}"));
+    (e, q)
+}
+
+/// Force inputs in the generic MDOF format (`forces = [[1]]`): a mass m on a spring k and damper b to the
+/// ground, driven by a force of type-1 correlation K_F(τ) = D e^{−α|τ|}, S_F(ω) = Dα/(π(α² + ω²)).
+///
+/// # Closed form
+/// x = F/(ms² + bs + k), so σ_x² = (Dα/π)·2π·I₃ with the table integral (James, Nichols & Phillips,
+/// *Theory of Servomechanisms*, 1947, table of I_n) I₃ = a₁/(2a₃(a₁a₂ − a₀a₃)) for the numerator 1 and
+/// a(s) = (s + α)(ms² + bs + k): a₀ = m, a₁ = b + αm, a₂ = k + αb, a₃ = αk. Hence
+/// σ_x² = D a₁/(k(a₁a₂ − mαk)); limits: α → 0 gives D/k² (quasi-static), α → ∞ gives D/(αkb) (white).
+/// The relative displacement of the base-excited oscillator (matrix form, `relative-displacement`) has the
+/// numerator −ms²: I₃ = b₀²a₂a₃/(2a₀a₃(a₁a₂ − a₀a₃)) with b₀ = m, σ_z² = Dα m a₂/(a₁a₂ − mαk) (→ 0 as α → 0:
+/// a slow base carries the mass along). The element form's `deflection` is the same quantity written
+/// another way.
+#[test]
+fn force_inputs_and_relative_outputs_match_closed_forms() {
+    let (m, k, b, d, alpha) = (100.0, 1e4, 200.0, 100.0, 2.0);
+    let (a1, a2) = (b + alpha * m, k + alpha * b);
+    let det = a1 * a2 - m * alpha * k;
+    let force_var = d * a1 / (k * det);
+    let rel_var = d * alpha * m * a2 / det;
+    let force = format!(
+        r#"
+[model]
+kind = "mdof"
+coordinates = [{{ name = "x", unit = "m" }}]
+mass_matrix = [[{m}]]
+damping_matrix = [[{b}]]
+stiffness_matrix = [[{k}]]
+forces = [[1]]
+[[model.output]]
+name = "x"
+quantity = "displacement"
+point = [1]
+[input]
+spectrum = {{ kind = "exponential", domain = "temporal", unit = "N", variance = "{d} N^2", alpha = "{alpha} 1/s" }}
+"#
+    );
+    let sc = scenario(&force);
+    let st = analyze_output(sc.model.system.as_ref(), &sc.excitation, 0).unwrap();
+    let (e, q) = exact_and_quadrature(&st, VarianceMethod::Lyapunov);
+    for v in [e, q] {
+        assert!((v - force_var).abs() <= FACTORISATION * force_var, "{v} vs {force_var}");
+    }
+    // the same oscillator on a moving base, written with matrices and with an element
+    let base = |model: &str| {
+        format!(
+            r#"
+[model]
+kind = "mdof"
+base_inputs = 1
+{model}
+[input]
+spectrum = {{ kind = "exponential", domain = "temporal", unit = "m", variance = "{d} m^2", alpha = "{alpha} 1/s" }}
+"#
+        )
+    };
+    let matrix = base(&format!(
+        "coordinates = [{{ name = \"x\", unit = \"m\" }}]\nmass_matrix = [[{m}]]\ndamping_matrix = [[{b}]]\n\
+         stiffness_matrix = [[{k}]]\nbase_stiffness = [[{k}]]\nbase_damping = [[{b}]]\n[[model.output]]\nname = \
+         \"travel\"\nquantity = \"relative-displacement\"\npoint = [1]\nbase = 0\n[[model.output]]\nname = \
+         \"travel_rate\"\nquantity = \"relative-velocity\"\npoint = [1]\nbase = 0"
+    ));
+    let elements = base(&format!(
+        "coordinates = [{{ name = \"x\", unit = \"m\", mass = {m} }}]\n[[model.element]]\nname = \"s\"\npoint = [1]\n\
+         to = \"base 0\"\nstiffness = {k}\ndamping = {b}\n[[model.output]]\nname = \"travel\"\nquantity = \
+         \"deflection\"\nelement = \"s\""
+    ));
+    let (scm, sce) = (scenario(&matrix), scenario(&elements));
+    assert_eq!(scm.model.system.outputs()[0].unit, "m");
+    assert_eq!(scm.model.system.outputs()[1].unit, "m/s");
+    let stm = analyze_output(scm.model.system.as_ref(), &scm.excitation, 0).unwrap();
+    let ste = analyze_output(sce.model.system.as_ref(), &sce.excitation, 0).unwrap();
+    let (e, q) = exact_and_quadrature(&stm, VarianceMethod::Lyapunov);
+    let el = ste.variance.unwrap();
+    for v in [e, q, el] {
+        assert!((v - rel_var).abs() <= FACTORISATION * rel_var, "{v} vs {rel_var}");
+    }
+    // a relative output needs a base input that exists, and a force with a base input is refused
+    let bad = matrix.replace("base = 0", "base = 3");
+    let err = parse_scenario(&bad, Path::new("case.toml"), &root().join("spectra")).unwrap_err();
+    assert!(err.to_string().contains("base"), "{err}");
+    let both = matrix.replace("base_damping = [[", "forces = [[1]]\nbase_damping = [[");
+    let err = parse_scenario(&both, Path::new("case.toml"), &root().join("spectra")).unwrap_err();
+    assert!(err.to_string().contains("forces"), "{err}");
+}
+
+/// Delays for the transfer-function kind: `numerator = [[0.5], [0.5]]` over D(s) = 1 + τs with the two
+/// inputs Δ = ℓ/v apart on a type-1 track, y = W(s)·(u(t) + u(t − Δ))/2 with W = 1/(1 + τs) (the balancer
+/// bogie's pivot through the wheel filter, Sukharev 2012 (8.46)).
+///
+/// # Closed form
+/// σ_y² = ∫ S(ω)|W|²·|1 + e^{−iωΔ}|²/4 dω = (Dα/π)·(J(0) + J(Δ))/2 with
+/// J(Δ) = ∫ cos(ωΔ)/((α² + ω²)(1 + τ²ω²)) dω = π(e^{−αΔ}/α − τe^{−Δ/τ})/(1 − α²τ²)
+/// (partial fractions and ∫ cos(ωΔ)/(a² + ω²) dω = πe^{−aΔ}/a).
+#[test]
+fn transfer_function_with_delayed_inputs_matches_closed_form() {
+    let (d, alpha, tau, len, v) = (1e-4, 2.0, 0.05, 1.3, 4.0);
+    let delta = len / v;
+    let j = |dl: f64| {
+        std::f64::consts::PI * ((-alpha * dl).exp() / alpha - tau * (-dl / tau).exp())
+            / (1.0 - alpha * alpha * tau * tau)
+    };
+    let want = d * alpha / std::f64::consts::PI * (j(0.0) + j(delta)) / 2.0;
+    let text = format!(
+        r#"
+[model]
+kind = "transfer-function"
+numerator = [[0.5], [0.5]]
+denominator = [1, {tau}]
+positions = ["0 m", "{len} m"]
+output = {{ name = "pivot", unit = "m" }}
+[input]
+spectrum = {{ kind = "exponential", domain = "temporal", unit = "m", variance = "{d} m^2", alpha = "{alpha} 1/s" }}
+speed = "{v} m/s"
+"#
+    );
+    let sc = scenario(&text);
+    let st = analyze_output(sc.model.system.as_ref(), &sc.excitation, 0).unwrap();
+    let (e, q) = exact_and_quadrature(&st, VarianceMethod::LyapunovDelays);
+    for x in [e, q] {
+        assert!((x - want).abs() <= FACTORISATION * want, "{x} vs {want}");
+    }
+    // positions with a single numerator are refused: one input has no delay
+    let single = text.replace("[[0.5], [0.5]]", "[1]");
+    let err = parse_scenario(&single, Path::new("case.toml"), &root().join("spectra")).unwrap_err();
+    assert!(err.to_string().contains("positions"), "{err}");
+}
+
+/// Monte Carlo of seeded random delayed rational cases (the exact-vs-quadrature agreement of the same
+/// family is `tests/delays.rs::random_delayed_rational_cases_routes_agree`): a random stable denominator
+/// (a real pole and a damped pair), 2–3 inputs with random numerators at random positions on a type-1 or
+/// type-3 track, written as a `transfer-function` scenario. The σ interval of the spectral route covers the
+/// exact σ of the simulated discretised process (positions are multiples of vΔt = 0.05 m: exact delays), which is within SPECTRAL_GRID_BIAS of the analytic σ.
+/// Interval confidence 1 − 2.5e-7 per case, 4 cases: false-failure probability ≤ 1e-6.
+#[test]
+fn random_delayed_cases_monte_carlo_agrees() {
+    use common::tolerance::SPECTRAL_GRID_BIAS;
+    use rand::{RngExt, SeedableRng};
+    let mut rng = rand::rngs::Xoshiro256PlusPlus::seed_from_u64(2026);
+    for case in 0..4 {
+        let p = 1.0 + 4.0 * rng.random::<f64>();
+        let (w, z) = (3.0 + 10.0 * rng.random::<f64>(), 0.1 + 0.4 * rng.random::<f64>());
+        // D(s) = (s + p)(s² + 2ζωs + ω²)
+        let den = [p * w * w, w * w + 2.0 * z * w * p, 2.0 * z * w + p, 1.0];
+        let n_in = 2 + (case % 2);
+        let nums: Vec<String> = (0..n_in)
+            .map(|_| {
+                let c: Vec<String> = (0..3)
+                    .map(|_| format!("{:.4}", 40.0 * (rng.random::<f64>() - 0.3)))
+                    .collect();
+                format!("[{}]", c.join(", "))
+            })
+            .collect();
+        let positions: Vec<String> = (0..n_in)
+            .map(|i| {
+                if i == 0 {
+                    "\"0 m\"".to_string()
+                } else {
+                    format!("\"{:.2} m\"", 0.05 * (10 + rng.random_range(0..50)) as f64)
+                }
+            })
+            .collect();
+        let spectrum = if case < 2 {
+            "{ kind = \"exponential\", domain = \"spatial\", unit = \"m\", variance = \"1 cm^2\", alpha = \"0.2 1/m\" }"
+        } else {
+            "{ kind = \"exp-cosine\", domain = \"spatial\", unit = \"m\", variance = \"1 cm^2\", alpha = \"0.1 1/m\", beta = \"0.8 1/m\" }"
+        };
+        let text = format!(
+            "[model]\nkind = \"transfer-function\"\nnumerator = [{}]\ndenominator = [{}]\npositions = [{}]\noutput = \
+             {{ name = \"y\", unit = \"m\" }}\n[input]\nspectrum = {spectrum}\nspeed = \"5 m/s\"\n",
+            nums.join(", "),
+            den.iter().map(|x| format!("{x:e}")).collect::<Vec<_>>().join(", "),
+            positions.join(", ")
+        );
+        let sc = scenario(&text);
+        let mut o = RunOptions::new(200, 60.0, 0.01, 31 + case as u64);
+        o.confidence = 1.0 - 2.5e-7;
+        let out = std::env::temp_dir().join(format!("stochvib-truth-rand-{}-{case}.h5", std::process::id()));
+        let _ = std::fs::remove_file(&out);
+        let s = sc
+            .simulate(&o, &out, &|_, _| {})
+            .unwrap_or_else(|e| panic!("case {case}: {e}\n{text}"));
+        std::fs::remove_file(&out).unwrap();
+        let o = &s.outputs[0];
+        let (sigma, disc) = (o.get("sigma").unwrap(), o.get("sigma_discrete").unwrap());
+        let (sa, sd) = (sigma.analytic.unwrap(), disc.analytic.unwrap());
+        assert!(
+            sigma.interval.covers(sd),
+            "case {case}: {:?} vs discrete {sd}\n{text}",
+            sigma.interval
+        );
+        assert!(
+            (sd - sa).abs() < SPECTRAL_GRID_BIAS * sa,
+            "case {case}: discrete {sd} vs analytic {sa}\n{text}"
+        );
+    }
+}

@@ -564,3 +564,115 @@ fn smaller_holes_are_closed() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Findings of the 20,000-case fuzz campaign (seed 2026; `cargo run --release --example fuzz`), each of
+/// which failed before its fix: extreme magnitudes (1e300, 1e-320) overflowed into NaN/inf results or
+/// errors at derived keys; a catalogue model's own error (a badly scaled mass matrix) named no file; a
+/// Lyapunov solve on a stiff two-stage isolator (m₂ = 8.25e-9 kg) printed a negative variance and σ = NaN;
+/// the mine hoist's node bisection never ended for a 2^60 m rope and its closed form divided by a
+/// subnormal rope mass; an ISO 8608 spectrum without `domain` was refused under a key not in the file; and
+/// misspelt keys of the Table 8.1 transcription were accepted.
+#[test]
+fn fuzz_campaign_findings_are_fixed() {
+    use stochvib::response::{analyze_output, Outcome, VarianceMethod};
+    use stochvib::scenario::{load_document, parse_scenario, Document};
+    let d = dir("fuzzfound");
+    let spectra = root().join("spectra");
+    let write = |name: &str, text: &str| {
+        let p = d.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let base = std::fs::read_to_string(root().join("data/isolator-two-stage.toml")).unwrap();
+    // (a) magnitudes outside 1e-100..1e100 are refused at the key written
+    for (from, to, key) in [
+        ("\"200 kg\"", "\"1e300 kg\"", "mass_2"),
+        ("\"200 kg\"", "1e-320", "mass_2"),
+    ] {
+        assert!(base.contains(from), "the isolator's mass_2 is {from}");
+        let p = write("big.toml", &base.replacen(from, to, 1));
+        let e = load_scenario(&p, &spectra).unwrap_err().to_string();
+        assert!(
+            e.contains("big.toml") && e.contains(key) && e.contains("working range"),
+            "{e}"
+        );
+    }
+    // (b) a model's own failure names the file and the model
+    let p = write("scaled.toml", &base.replacen("\"200 kg\"", "1152921504606846976", 1));
+    let e = load_scenario(&p, &spectra).unwrap_err().to_string();
+    assert!(
+        e.contains("scaled.toml") && e.contains("model.kind") && e.contains("badly scaled"),
+        "{e}"
+    );
+    // (c) a negative Lyapunov variance is reported unreliable, never used: σ is absent, not NaN
+    let text = base.replacen("\"200 kg\"", "8.251932708077918e-9", 1);
+    let sc = parse_scenario(&text, Path::new("stiff.toml"), &spectra).unwrap();
+    for i in 0..sc.model.system.outputs().len() {
+        let st = analyze_output(sc.model.system.as_ref(), &sc.excitation, i).unwrap();
+        assert!(st.variance.is_none_or(|v| v.is_finite() && v >= 0.0), "{st:?}");
+        let lyap = &st
+            .methods
+            .iter()
+            .find(|m| m.method == VarianceMethod::Lyapunov)
+            .unwrap()
+            .outcome;
+        assert!(
+            lyap.value().is_none_or(|v| v >= 0.0),
+            "a negative variance is used: {lyap:?}"
+        );
+        if let Outcome::Unreliable { value, reason } = lyap {
+            assert!(*value < 0.0 && reason.contains("negative"), "{reason}");
+        }
+    }
+    // (d) the mine hoist: a 2^60 m rope ends (bisection to a relative tolerance); a subnormal-free node
+    let hoist = std::fs::read_to_string(root().join("data/mine-hoist.toml")).unwrap();
+    assert!(hoist.contains("max_hanging_length = \"700 m\""));
+    let p = write(
+        "hoist.toml",
+        &hoist.replace(
+            "max_hanging_length = \"700 m\"",
+            "max_hanging_length = 1152921504606846976",
+        ),
+    );
+    let (tx, rx) = std::sync::mpsc::channel();
+    let p2 = p.clone();
+    std::thread::spawn(move || {
+        let r = match load_document(&p2, &root().join("spectra")) {
+            Ok(Document::Deterministic(dd)) => stochvib::report::deterministic_report(&dd).map(|_| ()),
+            Ok(_) => Ok(()),
+            Err(e) => Err(e),
+        };
+        let _ = tx.send(r.map_err(|e| e.to_string()));
+    });
+    let r = rx
+        .recv_timeout(std::time::Duration::from_secs(60))
+        .expect("the deterministic report of a 2^60 m rope ends");
+    if let Err(e) = r {
+        assert!(e.contains("hoist.toml") && e.contains("model"), "{e}");
+    }
+    // (e) ISO 8608 without `domain` is spatial
+    let iso = std::fs::read_to_string(root().join("spectra/iso8608-c.toml")).unwrap();
+    let no_domain: String = iso
+        .lines()
+        .filter(|l| !l.starts_with("domain"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_ne!(no_domain, iso);
+    let p = write("iso.toml", &no_domain);
+    let s = stochvib::scenario::load_spectrum(&p).unwrap();
+    assert_eq!(s.spectrum.domain(), stochvib::spectrum::Domain::Spatial);
+    // (f) the Table 8.1 transcription refuses misspelt and unknown keys
+    let t81 = std::fs::read_to_string(root().join("data/reference/table-8-1.toml")).unwrap();
+    for (from, to) in [
+        ("printed_symbol", "printed_symbl"),
+        ("status =", "stauts ="),
+        ("sqrt_dq", "sqrt_dqq"),
+    ] {
+        let p = write("t81.toml", &t81.replacen(from, to, 1));
+        let e = load_document(&p, &spectra).unwrap_err().to_string();
+        assert!(
+            e.contains("t81.toml") && e.contains(to.trim_end_matches(" =")),
+            "{from} -> {to}: {e}"
+        );
+    }
+}

@@ -489,31 +489,33 @@ impl MineHoist {
 
     /// Node location l₂* (m) from the corrected closed form (J₁, not J₁′; see the type's docs).
     ///
+    /// For γ = 0 (no rope mass) the node condition is linear and the same expression gives
+    /// l₂* = l₁J₁/(R_b²m).
+    ///
     /// # Errors
-    /// γ = 0 (no rope mass: the node condition becomes linear, l₂* = l₁J₁/(R_b²m), returned instead).
+    /// None today (the `Result` is kept for the API).
     pub fn node_closed_form(&self) -> Result<f64> {
-        let p = &self.p;
-        let g = p.rope_mass_per_metre;
-        let j1r = p.drum_inertia / p.drum_radius.powi(2);
-        if g == 0.0 {
-            return Ok(p.chord_length * j1r / p.end_mass);
-        }
-        let b = p.end_mass + g * p.chord_length;
-        let under = b * b + g * p.chord_length * (g * p.chord_length / 4.0 + j1r + g * p.max_hanging_length);
-        Ok(2.0 / g * (-b + under.sqrt()))
+        Ok(self.node_formula(self.p.drum_inertia))
     }
 
     /// The node formula as printed (unnumbered, just before (22)), with a given drum inertia `j1_prime` (kg m²) in
     /// place of J₁:
     /// l₂ = (2/γ)[−(m + γl₁) + √((m + γl₁)² + γl₁(γl₁/4 + J₁′/R_b² + γL))], m.
     pub fn node_printed_formula(&self, j1_prime: f64) -> f64 {
+        self.node_formula(j1_prime)
+    }
+
+    /// l₂ = (2/γ)[−b + √(b² + X)] with b = m + γl₁, X = γl₁(γl₁/4 + J/R_b² + γL), evaluated without the
+    /// cancellation and the division by γ: −b + √(b² + X) = X/(b + √(b² + X)), so
+    /// l₂ = 2l₁(γl₁/4 + J/R_b² + γL)/(b + √(b² + X)) (finite for γ → 0, where it tends to l₁J/(R_b²m)).
+    fn node_formula(&self, j1: f64) -> f64 {
         let p = &self.p;
         let g = p.rope_mass_per_metre;
+        let j1r = j1 / p.drum_radius.powi(2);
         let b = p.end_mass + g * p.chord_length;
-        let under = b * b
-            + g * p.chord_length
-                * (g * p.chord_length / 4.0 + j1_prime / p.drum_radius.powi(2) + g * p.max_hanging_length);
-        2.0 / g * (-b + under.sqrt())
+        let inner = g * p.chord_length / 4.0 + j1r + g * p.max_hanging_length;
+        let under = b * b + g * p.chord_length * inner;
+        2.0 * p.chord_length * inner / (b + under.sqrt())
     }
 
     /// Sheave component of the mode-1 eigenvector (eigensolver, M-normalised, sign fixed so that the load
@@ -548,7 +550,7 @@ impl MineHoist {
             }
             if prev.1 * v <= 0.0 {
                 let (mut a, mut fa, mut b) = (prev.0, prev.1, l);
-                while b - a > 1e-9 {
+                while b - a > 1e-9 * (1.0 + b.abs()) && 0.5 * (a + b) > a && 0.5 * (a + b) < b {
                     let mid = 0.5 * (a + b);
                     let fm = self.sheave_component_mode1(mid)?;
                     if fm == 0.0 {

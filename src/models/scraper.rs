@@ -497,14 +497,56 @@ pub fn parse_table_8_1(text: &str, path: &std::path::Path) -> Result<(Vec<f64>, 
         .map(|(i, r)| {
             let t = r.as_table().ok_or_else(|| f.error("row", i, "expected a table"))?;
             let rf = Fields::new(path, &format!("row[{i}]"), t);
-            Ok(Table81Row {
+            let row = Table81Row {
                 cab: rf.string("cab")?.to_string(),
                 output: rf.string("output")?.to_string(),
                 unit: rf.string("unit")?.to_string(),
                 values: rf.numbers("values")?,
-            })
+            };
+            rf.opt_string("printed_symbol")?;
+            if row.values.len() != speeds.len() {
+                return Err(rf.error(
+                    "values",
+                    row.values.len(),
+                    format!("need one value per speed ({})", speeds.len()),
+                ));
+            }
+            rf.finish()?;
+            Ok(row)
         })
         .collect::<Result<Vec<_>>>()?;
+    // the transcription's descriptive keys: read (so that a misspelt one is refused) but not used
+    for k in ["reference", "title", "source", "status"] {
+        f.opt_string(k)?;
+    }
+    if f.get("printed_parameters").is_some() {
+        let pf = f.sub("printed_parameters")?;
+        for k in [
+            "front_axle_mass",
+            "sqrt_dq",
+            "alpha",
+            "beta",
+            "omega0",
+            "speed_range",
+            "acceleration_limit",
+        ] {
+            pf.opt_string(k)?;
+        }
+        pf.finish()?;
+    }
+    if f.get("not_printed").is_some() {
+        let nf = f.sub("not_printed")?;
+        if let Some(v) = nf.get("parameters") {
+            let arr = v
+                .as_array()
+                .ok_or_else(|| nf.error("parameters", v, "expected an array of strings"))?;
+            if let Some((j, x)) = arr.iter().enumerate().find(|(_, x)| !x.is_str()) {
+                return Err(nf.error(&format!("parameters[{j}]"), x, "expected a string"));
+            }
+        }
+        nf.finish()?;
+    }
+    f.finish()?;
     Ok((speeds, rows))
 }
 

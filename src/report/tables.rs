@@ -1,7 +1,7 @@
 //! The `stochvib analyze` report of a deterministic model or a reference table: titled tables of results
 //! with named, unit-carrying columns.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::models::results::{Cell, ResultTable};
 use crate::numbers::num;
 use crate::scenario::{DeterministicScenario, ReferenceTable};
@@ -32,6 +32,31 @@ pub struct TablesReport {
 /// # Errors
 /// A numerical failure of the model ([`DeterministicModel::results`](crate::models::results::DeterministicModel::results)).
 pub fn deterministic_report(d: &DeterministicScenario) -> Result<TablesReport> {
+    let fail = |reason: String| Error::File {
+        file: d.path.clone(),
+        key: "model".into(),
+        value: d.kind.clone(),
+        reason,
+    };
+    let tables = d.model.results().map_err(|e| {
+        fail(format!(
+            "the model's results cannot be computed for these parameters: {e}"
+        ))
+    })?;
+    for t in &tables {
+        for row in &t.rows {
+            for (j, c) in row.iter().enumerate() {
+                if matches!(c, Cell::Number(v) if !v.is_finite()) {
+                    return Err(fail(format!(
+                        "table \"{}\", column \"{}\": not a finite number for these parameters (values beyond \
+                         double precision; check the units)",
+                        t.title,
+                        t.columns.get(j).map_or("?", |c| c.name.as_str())
+                    )));
+                }
+            }
+        }
+    }
     Ok(TablesReport {
         what: "deterministic model".into(),
         title: d.title.clone(),
@@ -39,7 +64,7 @@ pub fn deterministic_report(d: &DeterministicScenario) -> Result<TablesReport> {
         kind: d.kind.clone(),
         description: d.model.description(),
         note: Some("no random input: the model's deterministic results (nothing to simulate)".into()),
-        tables: d.model.results()?,
+        tables,
     })
 }
 

@@ -443,7 +443,9 @@ impl DelayedCovariance {
 /// assert!(matches!(mo.lambda2, Err(stochvib::Error::Divergent { .. })));
 /// ```
 pub fn variance_lyapunov_delayed(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<LyapunovMoments> {
-    DelayedCovariance::new(sys, exc, i)?.moments()
+    DelayedCovariance::new(sys, exc, i)?
+        .moments()?
+        .checked("Lyapunov variance with delays")
 }
 
 fn check_dims(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<()> {

@@ -357,6 +357,36 @@ pub struct LyapunovMoments {
     pub lambda4: Result<f64>,
 }
 
+impl LyapunovMoments {
+    /// Refuses values no covariance can have: a negative or non-finite variance (or moment) means the solve
+    /// lost its accuracy (time scales too far apart for double precision), and is reported as
+    /// [`Error::Inaccurate`] instead of a number (a moment alone becomes that error, the variance stays).
+    pub(crate) fn checked(self, method: &str) -> Result<Self> {
+        let bad = |what: &str, v: f64| Error::Inaccurate {
+            method: method.to_string(),
+            value: v,
+            reason: format!(
+                "the solve gave a {} {what} ({v:e}): it lost its accuracy on this system (time scales or masses \
+                 too far apart for double precision; check the units)",
+                if v.is_finite() { "negative" } else { "non-finite" }
+            ),
+        };
+        let ok = |v: f64| v.is_finite() && v >= 0.0;
+        if !ok(self.variance) {
+            return Err(bad("variance", self.variance));
+        }
+        let moment = |r: Result<f64>, what: &str| match r {
+            Ok(v) if !ok(v) => Err(bad(what, v)),
+            other => other,
+        };
+        Ok(LyapunovMoments {
+            variance: self.variance,
+            lambda2: moment(self.lambda2, "λ₂"),
+            lambda4: moment(self.lambda4, "λ₄"),
+        })
+    }
+}
+
 /// Shaping filters (state space with unit-intensity white noise) of every input process.
 fn filters(exc: &Excitation) -> Result<Vec<ShapingFilter>> {
     exc.spectra()
@@ -530,11 +560,12 @@ pub fn variance_lyapunov(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize
         Ok(_) if tiny(&hag, ha.norm() * aug.g.norm()) => Ok((&haa * &p * haa.transpose())[(0, 0)]),
         _ => Err(white_divergence(name, 4)),
     };
-    Ok(LyapunovMoments {
+    LyapunovMoments {
         variance: var,
         lambda2,
         lambda4,
-    })
+    }
+    .checked("Lyapunov variance")
 }
 
 fn white_divergence(name: &str, k: u32) -> Error {

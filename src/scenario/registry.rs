@@ -3,7 +3,7 @@
 //! are all derived from [`MODEL_KINDS`].
 
 use super::generic;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::models::results::DeterministicModel;
 use crate::models::{
@@ -222,7 +222,16 @@ pub fn kind_names() -> Vec<&'static str> {
 /// [`Error::File`](crate::Error::File) for an unknown kind (listing every known kind) or bad keys.
 pub fn build_model(kind: &str, f: &Fields, ctx: ModelContext) -> Result<BuiltModel> {
     match model_kind(kind) {
-        Some(k) => k.build(f, ctx),
+        // every failure names the file: a model's own error (a badly scaled mass matrix, an unstable
+        // system) is reported under the model's table with its kind
+        Some(k) => k.build(f, ctx).map_err(|e| match e {
+            e @ (Error::File { .. } | Error::Parse { .. } | Error::Io { .. }) => e,
+            other => f.error(
+                "kind",
+                kind,
+                format!("the model cannot be built from these parameters: {other}"),
+            ),
+        }),
         None => Err(f.error(
             "kind",
             kind,

@@ -6,7 +6,7 @@
 //! description = "..."                      # optional
 //! source = "Sukharev (2012), eq. (8.45)"   # optional provenance
 //! kind = "exponential"                     # see below
-//! domain = "spatial"                       # "temporal" (default; ω in rad/s) or "spatial" (Ω in rad/m)
+//! domain = "spatial"                       # "temporal" (default; ω in rad/s) or "spatial" (Ω in rad/m; the default of `iso8608` and `two-pole-road`)
 //! unit = "m"                               # SI unit of the process itself (default "m")
 //! variance = "2.25 cm^2"                   # numbers are SI; strings carry units
 //! alpha = "0.035 1/cm"
@@ -109,6 +109,8 @@ pub fn parse_spectrum(text: &str, path: &Path) -> Result<SpectrumFile> {
 pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
     let kind = f.string("kind")?;
     let domain = match f.opt_string("domain")? {
+        // the road kinds (ISO 8608, the (8.66) road) are spatial by definition; every other kind defaults to time
+        None if kind == "iso8608" || kind == "two-pole-road" => Domain::Spatial,
         None | Some("temporal") => Domain::Temporal,
         Some("spatial") => Domain::Spatial,
         Some(other) => return Err(f.error("domain", other, "expected \"temporal\" or \"spatial\"")),

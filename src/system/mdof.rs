@@ -48,6 +48,21 @@ pub enum Quantity {
     DamperForce(usize),
     /// Total force k δ + b δ̇ transmitted by element e.
     ElementForce(usize),
+    /// Displacement of a point relative to a base input, gᵀq − u_j (e.g. a suspension travel written in
+    /// the matrix form, where there are no elements to name).
+    RelativeDisplacement {
+        /// Weights of the coordinates.
+        point: Vec<f64>,
+        /// Index of the base input.
+        base: usize,
+    },
+    /// Velocity of a point relative to a base input, gᵀq̇ − u̇_j.
+    RelativeVelocity {
+        /// Weights of the coordinates.
+        point: Vec<f64>,
+        /// Index of the base input.
+        base: usize,
+    },
 }
 
 /// A named output of an [`Mdof`] model.
@@ -417,6 +432,44 @@ impl Mdof {
                 },
                 format!("{}/s^2", unit_of(g)),
             ),
+            Quantity::RelativeDisplacement { point: g, base } | Quantity::RelativeVelocity { point: g, base } => {
+                if *base >= self.n_base() {
+                    return Err(Error::invalid(
+                        &format!("output `{name}`"),
+                        base,
+                        format!("only {} base inputs", self.n_base()),
+                    ));
+                }
+                let mut u = zero(nu);
+                u[*base] = -1.0;
+                let velocity = matches!(quantity, Quantity::RelativeVelocity { .. });
+                let combo = if velocity {
+                    Combination {
+                        q: zero(n),
+                        v: point(g)?,
+                        a: zero(n),
+                        u: zero(nu),
+                        du: u,
+                    }
+                } else {
+                    Combination {
+                        q: point(g)?,
+                        v: zero(n),
+                        a: zero(n),
+                        u,
+                        du: zero(nu),
+                    }
+                };
+                let unit = unit_of(g);
+                if unit != "m" {
+                    return Err(Error::invalid(
+                        &format!("output `{name}`"),
+                        format!("{g:?}"),
+                        "a point relative to a base input must be a length (a base input is a displacement in m)",
+                    ));
+                }
+                (combo, if velocity { "m/s".to_string() } else { unit })
+            }
             Quantity::Deflection(e) => {
                 let el = element(*e)?;
                 let (q, u) = deflection(el);

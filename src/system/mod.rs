@@ -18,11 +18,13 @@ pub mod mdof;
 mod oscillator;
 mod state_space;
 mod transfer_function;
+mod transfer_row;
 
 pub use mdof::{modal_analysis, Attach, Element, Mdof, Output, Quantity};
 pub use oscillator::Drive;
 pub use state_space::StateSpace;
 pub use transfer_function::TransferFunction;
+pub use transfer_row::TransferRow;
 
 /// Name and SI unit of a system output (e.g. `x1_acc`, `m/s^2`).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]

@@ -10,9 +10,16 @@
 //! * From matrices: `coordinates = [{ name, unit }]`, `base_inputs = N`, `mass_matrix`, `damping_matrix`,
 //!   `stiffness_matrix` (n × n), `base_stiffness`, `base_damping` (n × N) as SI numbers:
 //!   M q̈ + B q̇ + C q = K_u u + B_u u̇.
+//! * Optional `forces = [[w₁, …, w_n], …]`: force inputs, each applied at a point (a force in N where the
+//!   point weights a length, a torque in N m on angles alone), in either form: M q̈ + … = … + F f with the
+//!   points as the columns of F. A scenario has one input process, so a model has base inputs or force
+//!   inputs, not both (their spectra would need different units).
 //! * Outputs `[[model.output]]` with `name`, `quantity` (`displacement`, `velocity`, `acceleration` with
-//!   `point`; `deflection`, `spring-force`, `damper-force`, `element-force` with `element`).
-//! * Optional `positions` (wheel positions along the track, with units) and `gains` of the base inputs.
+//!   `point`; `relative-displacement`, `relative-velocity` with `point` and `base` (the index of a base
+//!   input): gᵀq − u_j, the matrix form's suspension travel; `deflection`, `spring-force`, `damper-force`,
+//!   `element-force` with `element`).
+//! * Optional `positions` (wheel positions along the track, with units) and `gains` of the inputs (base
+//!   inputs first, then forces).
 
 use super::io::track_layout;
 use crate::error::{Error, Result};
@@ -176,6 +183,28 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             });
         }
     }
+    let forces: Vec<Vec<f64>> = match f.get("forces") {
+        None => Vec::new(),
+        Some(v) => {
+            let arr = v
+                .as_array()
+                .ok_or_else(|| f.error("forces", v, "expected an array of points (coordinate weights)"))?;
+            arr.iter()
+                .enumerate()
+                .map(|(i, p)| point(&format!("forces[{i}]"), p, f))
+                .collect::<Result<_>>()?
+        }
+    };
+    if n_base > 0 && !forces.is_empty() {
+        return Err(f.error(
+            "forces",
+            forces.len(),
+            format!(
+                "the model has {n_base} base inputs as well: one scenario input process cannot drive both base \
+                 displacements (m) and forces (N); split the scenario"
+            ),
+        ));
+    }
     if matrix_form && !elements.is_empty() {
         return Err(f.error(
             "element",
@@ -208,7 +237,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             sq("stiffness_matrix", n)?,
             sq("base_stiffness", n_base)?,
             sq("base_damping", n_base)?,
-            DMatrix::zeros(n, 0),
+            DMatrix::from_fn(n, forces.len(), |i, j| forces[j][i]),
         )
         .map_err(|e| {
             let key = match &e {
@@ -216,6 +245,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
                     "B" => "damping_matrix",
                     "C" => "stiffness_matrix",
                     "K_u" => "base_stiffness",
+                    "F" => "forces",
                     "B_u" => "base_damping",
                     _ => "mass_matrix",
                 },
@@ -224,7 +254,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             f.wrap(key, e)
         })?
     } else {
-        Mdof::from_elements(&cref, &masses, elements, n_base, &[]).map_err(|e| f.wrap("coordinates", e))?
+        Mdof::from_elements(&cref, &masses, elements, n_base, &forces).map_err(|e| f.wrap("coordinates", e))?
     };
     let ov = f.require("output")?;
     let oarr = ov
@@ -247,23 +277,37 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
             "displacement" => Quantity::Displacement(point("point", of.require("point")?, &of)?),
             "velocity" => Quantity::Velocity(point("point", of.require("point")?, &of)?),
             "acceleration" => Quantity::Acceleration(point("point", of.require("point")?, &of)?),
+            "relative-displacement" | "relative-velocity" => {
+                let point = point("point", of.require("point")?, &of)?;
+                let bv = of.require("base")?;
+                let base = bv
+                    .as_integer()
+                    .filter(|j| (0..n_base as i64).contains(j))
+                    .ok_or_else(|| of.error("base", bv, format!("expected the index of a base input (0 to {})", n_base as i64 - 1)))?
+                    as usize;
+                if q == "relative-displacement" {
+                    Quantity::RelativeDisplacement { point, base }
+                } else {
+                    Quantity::RelativeVelocity { point, base }
+                }
+            }
             "deflection" => Quantity::Deflection(element(&of)?),
             "spring-force" => Quantity::SpringForce(element(&of)?),
             "damper-force" => Quantity::DamperForce(element(&of)?),
             "element-force" => Quantity::ElementForce(element(&of)?),
-            other => return Err(of.error("quantity", other, "expected displacement, velocity, acceleration, deflection, spring-force, damper-force or element-force")),
+            other => return Err(of.error("quantity", other, "expected displacement, velocity, acceleration, relative-displacement, relative-velocity, deflection, spring-force, damper-force or element-force")),
         };
         of.finish()?;
         model = model.with_output(&name, quantity).map_err(|e| f.wrap("output", e))?;
     }
-    if n_base == 0 {
+    if n_base + forces.len() == 0 {
         return Err(f.error(
             "base_inputs",
             0,
-            "a generic mdof scenario needs at least one base input (force inputs: use a catalogue model or state-space)",
+            "a generic mdof scenario needs at least one input: base_inputs > 0 or forces",
         ));
     }
-    let layout = track_layout(f, n_base)?;
+    let layout = track_layout(f, n_base + forces.len())?;
     Ok(ModelInstance {
         system: Arc::new(model),
         layout,

@@ -1,0 +1,1037 @@
+//! Input-file cases: the corpus of shipped files, the generation of case `i` of seed `s`, its evaluation
+//! through the library's public entry points, and the invariants.
+//!
+//! # Invariants (each violation is a finding of the named class)
+//! * `panic` — no entry point panics (caught by `catch_unwind`; the location comes from a panic hook).
+//! * `timeout` — every case finishes within the per-case time limit (`crash`, from the supervisor: the
+//!   worker process must not die, e.g. by a stack overflow or a failed allocation).
+//! * An error must name the file: [`Error::File`] with the case's file and a non-empty key, or
+//!   [`Error::Parse`]/[`Error::Io`] with the case's file. Any other variant escaping an entry point is
+//!   `error-without-file-key`; a different file is `error-wrong-file`.
+//! * `phantom-key` — the key an [`Error::File`] names exists in the document, unless its value is
+//!   `<missing>` (a required key that is absent). `missing-but-present` — the error says `<missing>` for a
+//!   key that is there.
+//! * A success prints no non-finite number as a result (`non-finite-result`). "A result" is every `f64`
+//!   of the report the CLI prints (`AnalysisReport`, `TablesReport`, `SpectrumReport`: statistics,
+//!   bounds, rates, method values, densities, correlation values, table cells, and the echoed inputs such
+//!   as levels, band and duration): a quantity that does not exist must be a `None` / `NoValue` with its
+//!   reason, never NaN or ±∞. The walk goes through serde (`floats::non_finite`), because the JSON shows
+//!   NaN and `None` alike as `null`.
+//! * `empty-result` — a success reports something: at least one output for a stochastic scenario, at
+//!   least one table with a row for a deterministic model or a reference table.
+//! * `duplicate-output` — the outputs of a report, and the outputs of a scenario's system, have distinct
+//!   names.
+//! * `must_reject` classes (`typo-accepted`, `unknown-key-accepted`, `wrong-unit-accepted`,
+//!   `unknown-unit-accepted`, `non-finite-accepted`, `wrong-type-accepted`) — a document that contains a
+//!   mutation no correct reader may accept is refused (any error counts).
+//! * `unbounded-read` — an input is not read without bound: an error that only came because memory ran
+//!   out (the harness runs everything under an address-space limit) is a finding, not a clean error.
+//! * `unrelated-key` (soft, reported but not asserted) — for a single value mutation at path P that is
+//!   refused, the key the error names is related to P (see [`related`]).
+//!
+//! The CLI run of a case (`stochvib analyze FILE`, `stochvib spectrum FILE`, as a child process with a
+//! time limit) adds: `cli-timeout`, `cli-crash` (a signal), `cli-panic` (exit 101), `cli-exit-code` (not 0
+//! or 1), `cli-error-message` (a failure without an `error:` line naming the file), `cli-empty-output`,
+//! `cli-non-finite` (a printed `NaN`/`inf` token that is not in the input), `cli-unbounded-read`, and
+//! `cli-inconsistent` (the CLI fails where the library succeeds, or the other way round).
+
+use super::floats::non_finite;
+use super::mutate::{self, all_paths, get, normalize_path, parse_path, path_str, Mutation, Rng, Seg};
+use rand::{RngExt, SeedableRng};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::panic::AssertUnwindSafe;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::{Arc, Mutex, Once};
+use std::time::{Duration, Instant};
+use stochvib::report;
+use stochvib::scenario::{load_document, load_spectrum, Document};
+use stochvib::simulate::splitmix64;
+use stochvib::spectrum::Convention;
+use stochvib::Error;
+use toml::{Table, Value};
+
+/// Which entry points a file goes through.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum DocKind {
+    /// A file of `data/` (scenario, deterministic model or reference table): `load_document` and the
+    /// matching report; CLI `stochvib analyze FILE`.
+    Data,
+    /// A spectrum file: `load_spectrum` (`parse_spectrum`) and `spectrum_report`; CLI `stochvib spectrum
+    /// FILE`.
+    Spectrum,
+}
+
+/// One shipped file.
+#[derive(Debug, Clone)]
+pub struct SeedDoc {
+    /// Path relative to the source tree, e.g. `data/quarter-car.toml`.
+    pub rel: String,
+    /// Its kind.
+    pub kind: DocKind,
+    /// Parsed.
+    pub table: Table,
+}
+
+/// The shipped files and the key vocabulary.
+#[derive(Debug, Clone)]
+pub struct Corpus {
+    /// The source tree.
+    pub root: PathBuf,
+    /// `root/spectra`, the catalogue.
+    pub spectra_dir: PathBuf,
+    /// Every `data/*.toml`, `data/reference/*.toml`, `spectra/*.toml`.
+    pub seeds: Vec<SeedDoc>,
+    /// Every key of every shipped file plus [`mutate::EXTRA_KEYS`] (typos avoid them).
+    pub vocabulary: Vec<String>,
+    /// For each stochastic scenario (by `rel`): the unit of its input process and the (name, unit) of its
+    /// system's outputs, as the library reads the unmutated file.
+    pub units: BTreeMap<String, (String, Vec<(String, String)>)>,
+}
+
+fn toml_files(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    v.sort();
+    v
+}
+
+impl Corpus {
+    /// Reads the shipped files under `root`.
+    ///
+    /// # Panics
+    /// If a shipped file does not parse as TOML (a broken source tree, not a finding).
+    pub fn load(root: &Path) -> Corpus {
+        let mut seeds = Vec::new();
+        for (dir, kind) in [
+            ("data", DocKind::Data),
+            ("data/reference", DocKind::Data),
+            ("spectra", DocKind::Spectrum),
+        ] {
+            for p in toml_files(&root.join(dir)) {
+                let text = std::fs::read_to_string(&p).unwrap();
+                let table: Table = toml::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+                let rel = p.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+                seeds.push(SeedDoc { rel, kind, table });
+            }
+        }
+        let mut vocabulary: Vec<String> = mutate::EXTRA_KEYS.iter().map(|s| s.to_string()).collect();
+        for s in &seeds {
+            for p in all_paths(&s.table) {
+                if let Some(Seg::Key(k)) = p.last() {
+                    vocabulary.push(k.clone());
+                }
+            }
+        }
+        vocabulary.sort();
+        vocabulary.dedup();
+        let mut units = BTreeMap::new();
+        for s in seeds.iter().filter(|s| s.kind == DocKind::Data) {
+            if let Ok(Document::Stochastic(sc)) = load_document(&root.join(&s.rel), &root.join("spectra")) {
+                let outs = sc
+                    .model
+                    .system
+                    .outputs()
+                    .iter()
+                    .map(|o| (o.name.clone(), o.unit.clone()))
+                    .collect();
+                units.insert(s.rel.clone(), (sc.input.unit.clone(), outs));
+            }
+        }
+        Corpus {
+            spectra_dir: root.join("spectra"),
+            root: root.to_path_buf(),
+            seeds,
+            vocabulary,
+            units,
+        }
+    }
+
+    fn spectrum_table(&self, name: &str) -> Option<&Table> {
+        let rel = format!("spectra/{name}.toml");
+        self.seeds.iter().find(|s| s.rel == rel).map(|s| &s.table)
+    }
+}
+
+/// One generated case.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// Case number within its seed.
+    pub index: u64,
+    /// The shipped file it was made from.
+    pub origin: String,
+    /// Its kind.
+    pub kind: DocKind,
+    /// File name to write it under (the origin's, so that messages look as they would for a user).
+    pub file_name: String,
+    /// The bytes of the file.
+    pub bytes: Vec<u8>,
+    /// The structured mutations, in order.
+    pub mutations: Vec<Mutation>,
+    /// The raw (byte-level) mutations applied after serialising.
+    pub raw: Vec<String>,
+    /// Density convention of the spectrum report.
+    pub convention: Convention,
+    /// The structured document before raw mutations (for minimisation), if it serialised.
+    pub doc: Option<Table>,
+    /// (class, key path, key for the signature) of each mutation that a correct reader must refuse and
+    /// that is still in the final document. The signature key is the original key of a rename and
+    /// `<table>.<new key>` for an added key, so that random key names do not split one root cause.
+    pub must_reject: Vec<(String, String, String)>,
+}
+
+impl Case {
+    /// One line describing the mutations.
+    pub fn describe(&self) -> String {
+        let mut parts: Vec<String> = self
+            .mutations
+            .iter()
+            .map(|m| format!("{} {} {}", m.op, m.path, m.detail).trim().to_string())
+            .collect();
+        parts.extend(self.raw.iter().cloned());
+        format!("{} ← {}", self.origin, parts.join("; "))
+    }
+}
+
+/// The generator of case `index` of `seed` (independent of every other case).
+pub fn case_rng(seed: u64, index: u64) -> Rng {
+    Rng::seed_from_u64(splitmix64(seed ^ splitmix64(index ^ 0x5eed_f00d)))
+}
+
+fn same_value(a: &Value, b: &Value) -> bool {
+    a.to_string() == b.to_string()
+}
+
+/// Case `index` of `seed`: a shipped file, 0–3 structured mutations, sometimes a raw one.
+pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
+    let mut rng = case_rng(seed, index);
+    let data: Vec<&SeedDoc> = corpus.seeds.iter().filter(|s| s.kind == DocKind::Data).collect();
+    let spectra: Vec<&SeedDoc> = corpus.seeds.iter().filter(|s| s.kind == DocKind::Spectrum).collect();
+    let origin = if rng.random_bool(0.65) {
+        data[rng.random_range(0..data.len())]
+    } else {
+        spectra[rng.random_range(0..spectra.len())]
+    };
+    let mut doc = origin.table.clone();
+    let mut mutations = Vec::new();
+    // Inline the catalogue spectrum of a scenario, so that inline spectra are mutated too.
+    if origin.kind == DocKind::Data && rng.random_bool(0.15) {
+        let name = get(&doc, &[Seg::Key("input".into()), Seg::Key("spectrum".into())])
+            .and_then(|v| v.as_str())
+            .map(str::to_string);
+        if let Some(t) = name.as_deref().and_then(|n| corpus.spectrum_table(n)) {
+            if let Some(Value::Table(input)) = doc.get_mut("input") {
+                input.insert("spectrum".into(), Value::Table(t.clone()));
+                mutations.push(Mutation {
+                    op: "inline-spectrum".into(),
+                    path: "input.spectrum".into(),
+                    detail: format!("the table of spectra/{}.toml", name.unwrap_or_default()),
+                    must_reject: None,
+                    witness: None,
+                });
+            }
+        }
+    }
+    // Optional keys of [input] and [analysis] with hostile values (the shipped files rarely have them).
+    if let Some((unit, outs)) = corpus.units.get(&origin.rel) {
+        if rng.random_bool(0.25) {
+            if let Some(m) = add_optional(&mut rng, &mut doc, unit, outs) {
+                mutations.push(m);
+            }
+        }
+    }
+    let pure_raw = rng.random_bool(0.05);
+    let n = if pure_raw {
+        0
+    } else {
+        match rng.random_range(0..100) {
+            0..=59 => 1,
+            60..=84 => 2,
+            _ => 3,
+        }
+    };
+    let mut done = 0;
+    for _ in 0..n * 5 {
+        if done == n {
+            break;
+        }
+        if let Some(m) = mutate::mutate_once(&mut rng, &mut doc, &corpus.vocabulary) {
+            mutations.push(m);
+            done += 1;
+        }
+    }
+    let (mut bytes, doc) = match toml::to_string(&doc) {
+        Ok(t) => (t.into_bytes(), Some(doc)),
+        Err(e) => (
+            format!("# toml could not serialise the mutated tree: {e}\n").into_bytes(),
+            None,
+        ),
+    };
+    let mut raw = Vec::new();
+    if pure_raw || rng.random_bool(0.12) {
+        raw.push(mutate::mutate_bytes(&mut rng, &mut bytes));
+    }
+    // The expectations that still hold in the final document (a later mutation may have undone one).
+    let mut must_reject = Vec::new();
+    if raw.is_empty() {
+        if let Some(d) = &doc {
+            for m in &mutations {
+                if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness) {
+                    if get(d, p).is_some_and(|x| same_value(x, v)) {
+                        let sig = match m.op.as_str() {
+                            "rename" => m.path.clone(),
+                            "add-key" => {
+                                let parent = path_str(&p[..p.len() - 1]);
+                                if parent.is_empty() {
+                                    "<new key>".to_string()
+                                } else {
+                                    format!("{parent}.<new key>")
+                                }
+                            }
+                            _ => path_str(p),
+                        };
+                        must_reject.push((class.clone(), path_str(p), sig));
+                    }
+                }
+            }
+        }
+    }
+    let convention = Convention::ALL[rng.random_range(0..Convention::ALL.len())];
+    let file_name = Path::new(&origin.rel)
+        .file_name()
+        .unwrap()
+        .to_string_lossy()
+        .into_owned();
+    Case {
+        index,
+        origin: origin.rel.clone(),
+        kind: origin.kind,
+        file_name,
+        bytes,
+        mutations,
+        raw,
+        convention,
+        doc,
+        must_reject,
+    }
+}
+
+/// A quantity template `"1 <unit>"` if the library reads that unit, else the number 1 (SI).
+fn template(unit: &str) -> Value {
+    let q = format!("1 {unit}");
+    if stochvib::units::parse_quantity(&q).is_ok() {
+        Value::String(q)
+    } else {
+        Value::Float(1.0)
+    }
+}
+
+/// Sets one optional key of `[input]` or `[analysis]`: `input.mean` (in the process's unit),
+/// `analysis.levels.<output>` (in the output's unit), `analysis.band`, `analysis.duration` or
+/// `analysis.outputs`, with a value from the mutator's replacement generator applied to a valid template.
+fn add_optional(rng: &mut Rng, doc: &mut Table, unit: &str, outs: &[(String, String)]) -> Option<Mutation> {
+    let (path, tmpl) = match rng.random_range(0..5) {
+        0 => (vec!["input".to_string(), "mean".to_string()], template(unit)),
+        1 if !outs.is_empty() => {
+            let (n, u) = &outs[rng.random_range(0..outs.len())];
+            (vec!["analysis".into(), "levels".into(), n.clone()], template(u))
+        }
+        2 => (vec!["analysis".into(), "band".into()], Value::String("80 Hz".into())),
+        3 => (vec!["analysis".into(), "duration".into()], Value::String("1 h".into())),
+        _ => {
+            let names: Vec<Value> = match rng.random_range(0..3) {
+                0 => vec![],
+                1 if !outs.is_empty() => {
+                    let n = &outs[rng.random_range(0..outs.len())].0;
+                    vec![Value::String(n.clone()), Value::String(n.clone())]
+                }
+                _ => outs.iter().map(|(n, _)| Value::String(n.clone())).collect(),
+            };
+            doc.entry("analysis")
+                .or_insert_with(|| Value::Table(Table::new()))
+                .as_table_mut()?
+                .insert("outputs".into(), Value::Array(names.clone()));
+            return Some(Mutation {
+                op: "set-optional".into(),
+                path: "analysis.outputs".into(),
+                detail: format!("= {}", Value::Array(names)),
+                must_reject: None,
+                witness: None,
+            });
+        }
+    };
+    let (v, class, must) = mutate::replacement(rng, &tmpl);
+    // levels are arrays; band is [low, high] with the replaced value as the high edge
+    let value = match path[1].as_str() {
+        "levels" => Value::Array(vec![v.clone()]),
+        "band" => Value::Array(vec![Value::String("0.5 Hz".into()), v.clone()]),
+        _ => v.clone(),
+    };
+    let mut t: &mut Table = doc;
+    for k in &path[..path.len() - 1] {
+        t = t
+            .entry(k.clone())
+            .or_insert_with(|| Value::Table(Table::new()))
+            .as_table_mut()?;
+    }
+    t.insert(path[path.len() - 1].clone(), value.clone());
+    let segs: Vec<Seg> = path.iter().map(|k| Seg::Key(k.clone())).collect();
+    Some(Mutation {
+        op: format!("set-optional:{class}"),
+        path: path.join("."),
+        detail: format!("= {}", mutate::short(&value.to_string())),
+        must_reject: must,
+        witness: Some((segs, value)),
+    })
+}
+
+/// A finding: the class of invariant broken, a signature grouping findings of one probable root cause,
+/// and the details of this occurrence.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Finding {
+    /// Invariant class, e.g. `panic`, `non-finite-result`.
+    pub class: String,
+    /// Grouping key, e.g. `panic at src/x.rs:10:5`.
+    pub signature: String,
+    /// This occurrence.
+    pub detail: String,
+}
+
+/// Classes reported but not asserted (heuristic).
+pub fn is_soft(class: &str) -> bool {
+    class == "unrelated-key"
+}
+
+/// What a successful evaluation produced, reduced to what the invariants look at.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Success {
+    /// `stochastic`, `deterministic`, `reference` or `spectrum`.
+    pub what: String,
+    /// Paths and values (as text: JSON has no NaN) of non-finite numbers in the report.
+    pub non_finite: Vec<(String, String)>,
+    /// Output names of the report (stochastic scenarios).
+    pub outputs: Vec<String>,
+    /// Output names of the scenario's system (stochastic scenarios).
+    pub system_outputs: Vec<String>,
+    /// Whether the report has nothing in it.
+    pub empty: bool,
+}
+
+/// An error returned by an entry point, reduced.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct Failure {
+    /// Variant name.
+    pub variant: String,
+    /// `to_string()`.
+    pub message: String,
+    /// File named by the error, if any.
+    pub file: Option<PathBuf>,
+    /// Key of an `Error::File`.
+    pub key: Option<String>,
+    /// Value of an `Error::File`.
+    pub value: Option<String>,
+    /// Stage that returned it.
+    pub stage: String,
+}
+
+/// How an evaluation ended.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub enum Outcome {
+    /// Every entry point succeeded.
+    Ok(Success),
+    /// An entry point returned an error.
+    Err(Failure),
+    /// An entry point panicked.
+    Panic {
+        /// `file:line:col` of the panic.
+        location: String,
+        /// Panic message.
+        message: String,
+        /// Stage.
+        stage: String,
+    },
+    /// The time limit passed.
+    Timeout {
+        /// Stage that was running.
+        stage: String,
+        /// The limit.
+        limit_ms: u64,
+    },
+}
+
+impl Outcome {
+    /// Short label: `ok:stochastic`, `err:File`, `panic`, `timeout`.
+    pub fn label(&self) -> String {
+        match self {
+            Outcome::Ok(s) => format!("ok:{}", s.what),
+            Outcome::Err(f) => format!("err:{}", f.variant),
+            Outcome::Panic { .. } => "panic".into(),
+            Outcome::Timeout { .. } => "timeout".into(),
+        }
+    }
+}
+
+const STAGES: [&str; 5] = ["start", "load", "report", "render", "done"];
+
+fn reduce_error(e: &Error, stage: &str) -> Failure {
+    let (variant, file, key, value) = match e {
+        Error::File { file, key, value, .. } => ("File", Some(file.clone()), Some(key.clone()), Some(value.clone())),
+        Error::Parse { file, .. } => ("Parse", Some(file.clone()), None, None),
+        Error::Io { path, .. } => ("Io", Some(path.clone()), None, None),
+        Error::Hdf5 { path, .. } => ("Hdf5", Some(path.clone()), None, None),
+        Error::InvalidParameter { .. } => ("InvalidParameter", None, None, None),
+        Error::Divergent { .. } => ("Divergent", None, None, None),
+        Error::Quadrature { .. } => ("Quadrature", None, None, None),
+        Error::Unit { .. } => ("Unit", None, None, None),
+        Error::Numerical { .. } => ("Numerical", None, None, None),
+        Error::NotApplicable { .. } => ("NotApplicable", None, None, None),
+        Error::Inaccurate { .. } => ("Inaccurate", None, None, None),
+    };
+    Failure {
+        variant: variant.into(),
+        message: e.to_string(),
+        file,
+        key,
+        value,
+        stage: stage.into(),
+    }
+}
+
+fn nf<T: Serialize>(r: &T) -> Vec<(String, String)> {
+    non_finite(r).into_iter().map(|(p, v)| (p, v.to_string())).collect()
+}
+
+fn names_unique(v: &[String]) -> bool {
+    let mut s = v.to_vec();
+    s.sort();
+    s.windows(2).all(|w| w[0] != w[1])
+}
+
+/// Runs the entry points on the file at `path` (no time limit, panics propagate). `stage` records how far
+/// it got (an index into the stage names).
+pub fn evaluate(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention, stage: &AtomicU8) -> Outcome {
+    let set = |s: u8| stage.store(s, Ordering::SeqCst);
+    let err = |e: &Error, s: u8| Outcome::Err(reduce_error(e, STAGES[s as usize]));
+    set(1);
+    match kind {
+        DocKind::Spectrum => {
+            let f = match load_spectrum(path) {
+                Ok(f) => f,
+                Err(e) => return err(&e, 1),
+            };
+            set(2);
+            let r = report::spectrum_report(&f, conv);
+            set(3);
+            let _ = format!("{r}");
+            set(4);
+            Outcome::Ok(Success {
+                what: "spectrum".into(),
+                non_finite: nf(&r),
+                outputs: vec![],
+                system_outputs: vec![],
+                empty: false,
+            })
+        }
+        DocKind::Data => {
+            let doc = match load_document(path, spectra_dir) {
+                Ok(d) => d,
+                Err(e) => return err(&e, 1),
+            };
+            set(2);
+            let s = match doc {
+                Document::Stochastic(sc) => {
+                    let r = match report::analysis_report(&sc) {
+                        Ok(r) => r,
+                        Err(e) => return err(&e, 2),
+                    };
+                    set(3);
+                    let _ = format!("{r}");
+                    Success {
+                        what: "stochastic".into(),
+                        non_finite: nf(&r),
+                        outputs: r.outputs.iter().map(|o| o.statistics.name.clone()).collect(),
+                        system_outputs: sc.model.system.outputs().iter().map(|o| o.name.clone()).collect(),
+                        empty: r.outputs.is_empty(),
+                    }
+                }
+                Document::Deterministic(d) => {
+                    let r = match report::deterministic_report(&d) {
+                        Ok(r) => r,
+                        Err(e) => return err(&e, 2),
+                    };
+                    set(3);
+                    let _ = format!("{r}");
+                    Success {
+                        what: "deterministic".into(),
+                        non_finite: nf(&r),
+                        outputs: vec![],
+                        system_outputs: vec![],
+                        empty: r.tables.is_empty() || r.tables.iter().all(|t| t.rows.is_empty()),
+                    }
+                }
+                Document::Reference(t) => {
+                    let r = report::reference_report(&t);
+                    set(3);
+                    let _ = format!("{r}");
+                    Success {
+                        what: "reference".into(),
+                        non_finite: nf(&r),
+                        outputs: vec![],
+                        system_outputs: vec![],
+                        empty: r.tables.is_empty() || r.tables.iter().all(|t| t.rows.is_empty()),
+                    }
+                }
+            };
+            set(4);
+            Outcome::Ok(s)
+        }
+    }
+}
+
+/// The most recent panic's (location, message), recorded by the hook.
+static LAST_PANIC: Mutex<Option<(String, String)>> = Mutex::new(None);
+static HOOK: Once = Once::new();
+
+/// Replaces the panic hook by one that records the location and message silently.
+pub fn install_panic_hook() {
+    HOOK.call_once(|| {
+        std::panic::set_hook(Box::new(|info| {
+            let loc = info
+                .location()
+                .map(|l| format!("{}:{}:{}", l.file(), l.line(), l.column()))
+                .unwrap_or_else(|| "<unknown>".into());
+            let msg = if let Some(s) = info.payload().downcast_ref::<&str>() {
+                s.to_string()
+            } else if let Some(s) = info.payload().downcast_ref::<String>() {
+                s.clone()
+            } else {
+                "<non-string payload>".into()
+            };
+            if let Ok(mut g) = LAST_PANIC.lock() {
+                *g = Some((loc, msg));
+            }
+        }));
+    });
+}
+
+/// Runs [`evaluate`] in a fresh thread with `catch_unwind`, giving up after `limit`. A thread that does not
+/// finish is left running (the caller decides whether to restart the process).
+pub fn run_limited(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention, limit: Duration) -> Outcome {
+    install_panic_hook();
+    let stage = Arc::new(AtomicU8::new(0));
+    let (tx, rx) = std::sync::mpsc::channel();
+    let (p, sd, st) = (path.to_path_buf(), spectra_dir.to_path_buf(), stage.clone());
+    if let Ok(mut g) = LAST_PANIC.lock() {
+        *g = None;
+    }
+    std::thread::Builder::new()
+        .name("fuzz-case".into())
+        .spawn(move || {
+            let r = std::panic::catch_unwind(AssertUnwindSafe(|| evaluate(kind, &p, &sd, conv, &st)));
+            let _ = tx.send(r);
+        })
+        .expect("spawn a case thread");
+    match rx.recv_timeout(limit) {
+        Ok(Ok(o)) => o,
+        Ok(Err(payload)) => {
+            let (location, message) = LAST_PANIC.lock().ok().and_then(|g| g.clone()).unwrap_or_else(|| {
+                let m = payload
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default();
+                ("<unknown>".into(), m)
+            });
+            Outcome::Panic {
+                location,
+                message,
+                stage: STAGES[stage.load(Ordering::SeqCst) as usize].into(),
+            }
+        }
+        Err(_) => Outcome::Timeout {
+            stage: STAGES[stage.load(Ordering::SeqCst) as usize].into(),
+            limit_ms: limit.as_millis() as u64,
+        },
+    }
+}
+
+/// Digits and quoted parts of a message replaced, for grouping.
+pub fn normalize_message(m: &str) -> String {
+    let mut out = String::new();
+    let mut in_number = false;
+    let mut in_tick = false;
+    for c in m.chars() {
+        if c == '`' {
+            in_tick = !in_tick;
+            if in_tick {
+                out.push_str("`…`");
+            }
+            continue;
+        }
+        if in_tick {
+            continue;
+        }
+        // a number: a digit, then digits, `.`, `e`, `E`, `+`, `-` (and `NaN`/`inf` spelled out)
+        if c.is_ascii_digit() || (in_number && ".eE+-".contains(c)) {
+            if !in_number {
+                out.push('N');
+            }
+            in_number = true;
+            continue;
+        }
+        in_number = false;
+        out.push(c);
+    }
+    let out = out.replace("-N", "N").replace("NaN", "N").replace("inf", "N");
+    out.chars().take(120).collect()
+}
+
+fn top(p: &str) -> &str {
+    p.split(['.', '[']).next().unwrap_or("")
+}
+
+fn parent(p: &str) -> &str {
+    let p = p.trim_end_matches("[]");
+    match p.rfind(['.', '[']) {
+        Some(i) => &p[..i],
+        None => "",
+    }
+}
+
+fn last_key(p: &str) -> &str {
+    let p = p.trim_end_matches("[]");
+    p.rsplit('.').next().unwrap_or(p)
+}
+
+fn is_prefix(a: &str, b: &str) -> bool {
+    b.strip_prefix(a)
+        .is_some_and(|rest| rest.is_empty() || rest.starts_with('.') || rest.starts_with('['))
+}
+
+/// Whether an error naming key `k` is a plausible consequence of mutating path `p` (both as written by the
+/// library): the same key, one inside the other, siblings (constraints between keys of one table), a
+/// meaning-changing key (`kind`, `domain`, `unit`, `form`, `convention`, `frequency_unit`, `reference`,
+/// `class`, `bound`) anywhere, two keys of `[model]` (elements, coordinates and outputs refer to each
+/// other), a model key and an `[analysis]` key (output names), `input.speed` and a model key (delays).
+pub fn related(p: &str, k: &str) -> bool {
+    let (p, k) = (normalize_path(p), normalize_path(k));
+    if p == k || is_prefix(&p, &k) || is_prefix(&k, &p) || parent(&p) == parent(&k) {
+        return true;
+    }
+    const MEANING: [&str; 9] = [
+        "kind",
+        "domain",
+        "unit",
+        "form",
+        "convention",
+        "frequency_unit",
+        "reference",
+        "class",
+        "bound",
+    ];
+    if MEANING.contains(&last_key(&p)) {
+        return true;
+    }
+    match (top(&p), top(&k)) {
+        ("model", "model") | ("model", "analysis") => true,
+        _ => p == "input.speed" && top(&k) == "model",
+    }
+}
+
+/// The findings of one evaluation of `case` (written at `path`).
+pub fn check(case: &Case, path: &Path, outcome: &Outcome) -> Vec<Finding> {
+    let mut f = Vec::new();
+    let mut add = |class: &str, signature: String, detail: String| {
+        f.push(Finding {
+            class: class.into(),
+            signature,
+            detail,
+        })
+    };
+    let doc_kind = match case.kind {
+        DocKind::Data => "data",
+        DocKind::Spectrum => "spectrum",
+    };
+    let shown = |m: &str| mutate::short_to(&m.replace(&path.display().to_string(), &case.file_name), 240);
+    let parsed: Option<Table> = std::str::from_utf8(&case.bytes)
+        .ok()
+        .and_then(|t| toml::from_str(t).ok());
+    match outcome {
+        Outcome::Panic {
+            location,
+            message,
+            stage,
+        } => add(
+            "panic",
+            format!("panic at {location}"),
+            format!("stage {stage}: {}", mutate::short_to(message, 240)),
+        ),
+        Outcome::Timeout { stage, limit_ms } => add(
+            "timeout",
+            format!("timeout in stage {stage} ({doc_kind} file)"),
+            format!("no result after {limit_ms} ms"),
+        ),
+        Outcome::Err(e) => {
+            let named = e.file.as_deref();
+            if e.message.contains("out of memory") {
+                add(
+                    "unbounded-read",
+                    format!(
+                        "{} error after reading until memory ran out (stage {})",
+                        e.variant, e.stage
+                    ),
+                    format!("{} (stopped by the harness' address-space limit)", shown(&e.message)),
+                );
+            }
+            match e.variant.as_str() {
+                "File" | "Parse" | "Io" => {
+                    if named != Some(path) {
+                        add(
+                            "error-wrong-file",
+                            format!("{} error names another file (stage {})", e.variant, e.stage),
+                            format!("names {:?}: {}", named, shown(&e.message)),
+                        );
+                    }
+                }
+                v => add(
+                    "error-without-file-key",
+                    format!("{v} error from stage {}: {}", e.stage, normalize_message(&e.message)),
+                    shown(&e.message),
+                ),
+            }
+            if let (Some(key), Some(value)) = (&e.key, &e.value) {
+                if key.is_empty() {
+                    add("error-no-key", "File error with an empty key".into(), e.message.clone());
+                } else if let Some(doc) = &parsed {
+                    let present = get(doc, &parse_path(key)).is_some();
+                    if !present && value != "<missing>" {
+                        add(
+                            "phantom-key",
+                            format!("error names key `{}`, which is not in the file", normalize_path(key)),
+                            shown(&e.message),
+                        );
+                    }
+                    if present && value == "<missing>" {
+                        add(
+                            "missing-but-present",
+                            format!("error says `{}` is missing but it is there", normalize_path(key)),
+                            shown(&e.message),
+                        );
+                    }
+                }
+                // soft: attribution of a single structured mutation
+                let single = case.raw.is_empty()
+                    && case.mutations.len() == 1
+                    && !["swap", "dup-element", "remove-element"].contains(&case.mutations[0].op.as_str());
+                if single {
+                    let m = &case.mutations[0];
+                    let p = match &m.witness {
+                        Some((wp, _)) => path_str(wp),
+                        None => m.path.clone(),
+                    };
+                    if !related(&p, key) {
+                        add(
+                            "unrelated-key",
+                            format!(
+                                "{} at `{}` reported at `{}`",
+                                m.op,
+                                normalize_path(&p),
+                                normalize_path(key)
+                            ),
+                            shown(&e.message),
+                        );
+                    }
+                }
+            }
+        }
+        Outcome::Ok(s) => {
+            for (p, v) in &s.non_finite {
+                add(
+                    "non-finite-result",
+                    format!("{v} in {} report at {}", s.what, normalize_path(p)),
+                    format!("{p} = {v}"),
+                );
+            }
+            if s.empty {
+                add(
+                    "empty-result",
+                    format!("{} report with nothing in it", s.what),
+                    String::new(),
+                );
+            }
+            if !names_unique(&s.outputs) {
+                add(
+                    "duplicate-output",
+                    "report lists an output name twice".into(),
+                    s.outputs.join(", "),
+                );
+            }
+            if !names_unique(&s.system_outputs) {
+                add(
+                    "duplicate-output",
+                    "system has two outputs of the same name".into(),
+                    s.system_outputs.join(", "),
+                );
+            }
+            for (class, _, p) in &case.must_reject {
+                add(
+                    class,
+                    format!("{class}: `{}` ({})", normalize_path(p), s.what),
+                    case.describe(),
+                );
+            }
+        }
+    }
+    f
+}
+
+/// Arguments of the CLI run of a case file.
+pub fn cli_args(kind: DocKind, path: &Path, spectra_dir: &Path, json: bool) -> Vec<String> {
+    let mut a: Vec<String> = match kind {
+        DocKind::Data => vec!["analyze".into(), path.display().to_string()],
+        DocKind::Spectrum => vec!["spectrum".into(), path.display().to_string()],
+    };
+    a.push("--spectra-dir".into());
+    a.push(spectra_dir.display().to_string());
+    if json {
+        a.push("--json".into());
+    }
+    a
+}
+
+/// Tokens of `stdout` that are a printed non-finite number (`NaN`, `inf`, `-inf`) and do not occur in the
+/// input text itself (a title may contain the word).
+pub fn non_finite_tokens(stdout: &str, input: &[u8]) -> Vec<String> {
+    let input = String::from_utf8_lossy(input);
+    stdout
+        .split(|c: char| c.is_whitespace() || "[](),;:=\"".contains(c))
+        .filter(|t| matches!(*t, "NaN" | "-NaN" | "inf" | "-inf" | "+inf"))
+        .filter(|t| !input.contains(*t))
+        .map(str::to_string)
+        .collect()
+}
+
+/// The findings of a CLI run of a case, given the in-process outcome of the same file.
+pub fn check_cli(case: &Case, path: &Path, args: &[String], lib: &str, out: &super::process::Output) -> Vec<Finding> {
+    use super::process::Exit;
+    let mut f = Vec::new();
+    let cmd = format!("stochvib {}", args[0]);
+    let mut add = |class: &str, signature: String, detail: String| {
+        f.push(Finding {
+            class: class.into(),
+            signature,
+            detail,
+        })
+    };
+    let first_err = out
+        .stderr
+        .lines()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or("")
+        .to_string();
+    match out.exit {
+        Exit::Timeout => add(
+            "cli-timeout",
+            format!("{cmd} timed out"),
+            format!("after {:?}", out.elapsed),
+        ),
+        Exit::Signal(s) => add(
+            "cli-crash",
+            format!("{cmd} killed by signal {s}"),
+            super::process::tail(&out.stderr, 300),
+        ),
+        Exit::Code(101) => {
+            let loc = out
+                .stderr
+                .lines()
+                .find(|l| l.contains("panicked at"))
+                .map(|l| l.split("panicked at").nth(1).unwrap_or("").trim().to_string())
+                .unwrap_or_default();
+            add(
+                "cli-panic",
+                format!("{cmd} panicked at {loc}"),
+                super::process::tail(&out.stderr, 300),
+            )
+        }
+        Exit::Code(0) => {
+            if out.stdout.trim().is_empty() {
+                add(
+                    "cli-empty-output",
+                    format!("{cmd} exit 0 with no output"),
+                    String::new(),
+                );
+            }
+            let toks = non_finite_tokens(&out.stdout, &case.bytes);
+            if !toks.is_empty() {
+                add(
+                    "cli-non-finite",
+                    format!("{cmd} prints {}", toks[0]),
+                    format!("{} non-finite tokens", toks.len()),
+                );
+            }
+            if lib.starts_with("err") {
+                add(
+                    "cli-inconsistent",
+                    format!("{cmd} succeeds where the library returns {lib}"),
+                    String::new(),
+                );
+            }
+        }
+        Exit::Code(c) => {
+            let p = path.display().to_string();
+            if c != 1 {
+                add("cli-exit-code", format!("{cmd} exit code {c}"), first_err.clone());
+            }
+            if out.stderr.contains("out of memory") {
+                add(
+                    "cli-unbounded-read",
+                    format!("{cmd} reads until memory runs out"),
+                    format!(
+                        "{} (stopped by the harness' address-space limit)",
+                        mutate::short(&first_err)
+                    ),
+                );
+            }
+            if !first_err.starts_with("error:") || !out.stderr.contains(&p) {
+                add(
+                    "cli-error-message",
+                    format!("{cmd} fails without a message naming the file"),
+                    mutate::short(&first_err),
+                );
+            }
+            if lib.starts_with("ok") {
+                add(
+                    "cli-inconsistent",
+                    format!("{cmd} fails where the library succeeds ({lib})"),
+                    mutate::short(&first_err),
+                );
+            }
+        }
+    }
+    f
+}
+
+/// Counts by label, for summaries.
+pub type Counts = BTreeMap<String, usize>;
+
+/// Writes `case` as `dir/<file name>` and returns the path.
+pub fn write_case(case: &Case, dir: &Path) -> PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let p = dir.join(&case.file_name);
+    std::fs::write(&p, &case.bytes).unwrap();
+    p
+}
+
+/// Evaluates case `case` in this process (written under `dir`) and returns its outcome and findings.
+pub fn run_case(corpus: &Corpus, case: &Case, dir: &Path, limit: Duration) -> (Outcome, Vec<Finding>, Duration) {
+    let path = write_case(case, dir);
+    let t = Instant::now();
+    let o = run_limited(case.kind, &path, &corpus.spectra_dir, case.convention, limit);
+    let el = t.elapsed();
+    let f = check(case, &path, &o);
+    (o, f, el)
+}

@@ -1,0 +1,18 @@
+//! Fuzz and corruption harnesses (issue 16, "robust under hostile input and faults"), shared by
+//! `examples/fuzz.rs` and `examples/corrupt_runs.rs` (long runs) and by `tests/fuzz_inputs.rs` and
+//! `tests/fuzz_run_files.rs` (bounded runs with a fixed seed).
+//!
+//! * [`mutate`]: a structure-aware TOML mutator (no fuzzing crate, stable Rust).
+//! * [`inputs`]: input-file cases, their evaluation through the library's entry points, the invariants.
+//! * [`input_campaign`]: worker processes, supervisor, CLI runs, special files, minimisation, reproducers.
+//! * [`runs`]: corruption of HDF5 run files and of interrupted runs' `.tmp` files.
+//! * [`floats`]: the non-finite number scan of a report (through serde).
+//! * [`process`]: child processes with a time limit and an address-space limit.
+#![allow(dead_code)] // each harness uses a different subset
+
+pub mod floats;
+pub mod input_campaign;
+pub mod inputs;
+pub mod mutate;
+pub mod process;
+pub mod runs;
