@@ -48,6 +48,19 @@ use crate::units::Dim;
 use std::path::Path;
 use std::sync::Arc;
 
+/// The keys of an `[[input]]` table.
+const INPUT_KEYS: [&str; 9] = [
+    "name",
+    "spectrum",
+    "road",
+    "speed",
+    "mean",
+    "drives",
+    "tracks",
+    "positions",
+    "gains",
+];
+
 /// The common `speed` of the `[[input]]` tables (m/s), if any gives one.
 ///
 /// # Errors
@@ -295,6 +308,14 @@ pub(crate) fn parse_inputs(
             .as_table()
             .ok_or_else(|| f.error(&key, v, "expected an [[input]] table"))?;
         let inf = Fields::new(path, &key, t);
+        // a misspelt key is named before a key it may have meant is reported missing
+        if let Some((k, v)) = t.iter().find(|(k, _)| !INPUT_KEYS.contains(&k.as_str())) {
+            return Err(inf.error(
+                k,
+                v,
+                format!("unknown key (known keys here: {})", INPUT_KEYS.join(", ")),
+            ));
+        }
         let _ = inf.get("speed"); // read by common_speed
         let need_speed = |what: &str| {
             speed.ok_or_else(|| {
