@@ -436,3 +436,52 @@ stiffness = "200 kN/m"
         "{e}"
     );
 }
+
+#[test]
+fn raw_records_of_a_two_track_road_hold_the_tracks_themselves() {
+    // The spectral route synthesises the right track as R = ρ L + √(1 − ρ²) W per frequency bin. The raw
+    // record must hold L and R (not the generator W): with ρ = 1 (constant coherence amplitude 1) the
+    // mixing row of R is (1, 0) exactly, so the recorded right track equals the left one up to the rounding
+    // of one inverse FFT; with ρ = 0 it is the independent generator W, whose sample correlation with L
+    // over 4 × 2048 samples is small (|r| ≤ 0.1 — the road's correlation length is ~1/α = 5 m = 0.33 s at
+    // 15 m/s, i.e. ~33 samples, so ~250 effective samples per record: 0.1 is > 6 standard deviations of r,
+    // false failure < 1e-9 for a Gaussian r, seed fixed).
+    use stochvib::simulate::RunOptions;
+    use stochvib::store::{RunFile, SignalGroup};
+    let dir = std::env::temp_dir().join(format!("stochvib-raw-tracks-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for rho in [1.0, 0.0] {
+        let road = format!(
+            r#"[[input]]
+name = "road"
+road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "constant", coherence_amplitude = {rho} }} }}
+speed = "15 m/s"
+"#
+        );
+        let sc = parse(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+        let names: Vec<String> = sc.input_signals().iter().map(|s| s.name.clone()).collect();
+        assert_eq!(names, ["road_left", "road_right"]);
+        let mut opts = RunOptions::new(4, 20.48, 0.01, 17);
+        opts.store_raw = true;
+        let out = dir.join(format!("rho{rho}.h5"));
+        let _ = std::fs::remove_file(&out);
+        sc.simulate(&opts, &out, &|_, _| {}).unwrap();
+        let f = RunFile::open(&out).unwrap();
+        let l = f.read_signals(SignalGroup::Inputs, "road_left", 0..4).unwrap();
+        let r = f.read_signals(SignalGroup::Inputs, "road_right", 0..4).unwrap();
+        let scale = l.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let diff = l.iter().zip(r.iter()).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+        if rho == 1.0 {
+            assert!(diff <= EXACT * scale, "ρ = 1: max|R − L| = {diff:e} of {scale:e}");
+        } else {
+            let (sl, sr, slr) = l
+                .iter()
+                .zip(r.iter())
+                .fold((0.0, 0.0, 0.0), |(a, b, c), (x, y)| (a + x * x, b + y * y, c + x * y));
+            let corr: f64 = slr / (sl * sr).sqrt();
+            assert!(corr.abs() <= 0.1, "ρ = 0: sample correlation {corr}");
+            assert!(diff > 0.1 * scale);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -137,22 +137,14 @@ impl Scenario {
             Excitation::Independent { spectra, .. } => (0..spectra.len())
                 .map(|k| Signal::new(&format!("input_{k}"), &self.input.unit))
                 .collect(),
-            // `[[input]]` tables: one source each, named by the table (a road records its generators: the
-            // left track and the innovation of the right one)
+            // `[[input]]` tables: one source each, named by the table (a road records its tracks)
             Excitation::Sources { sources, .. } if sources.len() == self.inputs.len() => sources
                 .iter()
                 .zip(&self.inputs)
                 .flat_map(|(src, inp)| match src {
                     crate::response::Source::Process(_) => vec![Signal::new(&inp.name, &inp.unit)],
                     crate::response::Source::Matrix(m) => (0..m.n_components())
-                        .map(|c| {
-                            let tail = if c == 0 {
-                                m.component_name(0)
-                            } else {
-                                format!("innovation_{c}")
-                            };
-                            Signal::new(&format!("{}_{tail}", inp.name), &inp.unit)
-                        })
+                        .map(|c| Signal::new(&format!("{}_{}", inp.name, m.component_name(c)), &inp.unit))
                         .collect(),
                 })
                 .collect(),

@@ -42,10 +42,10 @@ pub fn describe(exc: &Excitation) -> String {
 use crate::system::FrequencyResponse;
 
 /// The signals a run records for the generators of a `Sources` excitation (one per component of each
-/// source, in order): `source_s` for a single process; for a multi-component source, `source_s_<name>`
-/// for its component 0 and `source_s_innovation_k` for component k ≥ 1 — a spectral run synthesises
+/// source, in order): `source_s` for a single process; for a multi-component source `source_s_<name>`
+/// per component (`source_0_left`, `source_0_right` for two tracks) — a spectral run synthesises
 /// component k as Σ_l M_kl c_l from independent generators c_l (see the run notes), and the raw record
-/// holds the generators, not the mixed components. Other excitations: `input_k`, unit `unit`.
+/// holds these mixed components. Other excitations: `input_k`, unit `unit`.
 ///
 /// # Errors
 /// None.
@@ -68,13 +68,7 @@ pub fn source_signals(exc: &Excitation, unit: &str) -> Vec<Signal> {
             .flat_map(|(s, src)| match src {
                 crate::response::Source::Process(_) => vec![Signal::new(&format!("source_{s}"), unit)],
                 crate::response::Source::Matrix(m) => (0..m.n_components())
-                    .map(|c| {
-                        if c == 0 {
-                            Signal::new(&format!("source_{s}_{}", m.component_name(0)), unit)
-                        } else {
-                            Signal::new(&format!("source_{s}_innovation_{c}"), unit)
-                        }
-                    })
+                    .map(|c| Signal::new(&format!("source_{s}_{}", m.component_name(c)), unit))
                     .collect(),
             })
             .collect(),

@@ -1,7 +1,7 @@
 //! Planning a run: which outputs can be simulated, which route produces the realizations (and why), the
 //! engine of that route, and the exact variance of the simulated discrete process.
 
-use super::engine::{Engine, Gains};
+use super::engine::{Engine, Gains, RawMix};
 use super::{augmented_response, foh, Amplitudes, GaussMarkov, Route, RunInput, RunOptions, SpectralGenerator};
 use crate::error::{Error, Result};
 use crate::estimate::Welch;
@@ -320,6 +320,11 @@ fn spectral_engine(
     );
     Ok((
         Engine::Spectral {
+            raw_mix: if opts.store_raw {
+                raw_mixing(generators.len(), &inputs, dt, n)
+            } else {
+                vec![None; generators.len()]
+            },
             generators,
             gains,
             inverse: realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(n),
@@ -436,6 +441,42 @@ fn spectral_inputs(exc: &Excitation, dt: f64, n: usize) -> Result<(Vec<SpectralG
     }
 }
 
+/// Row c of the per-bin mixing of a multi-component source at ω (rad/s): component c's coefficient is
+/// Σ_k M_ck c_k over the source's generators k, M_ck = L_ck √(S_cc/S_kk) with C = L Lᴴ the coherence matrix.
+fn mixing_row(mx: &dyn crate::coherence::SpectralMatrix, c: usize, w: f64) -> Vec<Complex<f64>> {
+    let l = crate::coherence::semidefinite_cholesky(&mx.coherence_matrix(w));
+    let s = mx.matrix(w);
+    (0..mx.n_components())
+        .map(|k| {
+            let (scc, skk) = (s[(c, c)].re, s[(k, k)].re);
+            if skk > 0.0 {
+                l[(c, k)] * (scc / skk).sqrt()
+            } else {
+                Complex::new(0.0, 0.0)
+            }
+        })
+        .collect()
+}
+
+/// For raw records: per generator of a multi-component source, (its source's first generator, the mixing
+/// row of its component at every bin j = 0 … N/2), so that the recorded input is the component itself
+/// (e.g. the right track), not the generator's innovation.
+fn raw_mixing(generators: usize, inputs: &[SpectralInput], dt: f64, n: usize) -> Vec<RawMix> {
+    let dw = 2.0 * std::f64::consts::PI / (n as f64 * dt);
+    let mut out: Vec<RawMix> = vec![None; generators];
+    for inp in inputs {
+        if let Some((mx, _, first)) = &inp.mixing {
+            for c in 0..mx.n_components() {
+                if out[first + c].is_none() {
+                    let rows = (0..=n / 2).map(|j| mixing_row(mx.as_ref(), c, j as f64 * dw)).collect();
+                    out[first + c] = Some((*first, rows));
+                }
+            }
+        }
+    }
+    out
+}
+
 /// A relative delay as a whole number of steps, or the error that says which Δt would make it one.
 fn delay_steps(j: usize, tau: f64, dt: f64) -> Result<usize> {
     let s = (tau / dt).round();
@@ -502,21 +543,9 @@ fn discrete_gains(
         let mix: Vec<Option<(usize, Vec<Complex<f64>>)>> = inputs
             .iter()
             .map(|inp| {
-                inp.mixing.as_ref().map(|(mx, c, first)| {
-                    let l = crate::coherence::semidefinite_cholesky(&mx.coherence_matrix(w));
-                    let s = mx.matrix(w);
-                    let row = (0..mx.n_components())
-                        .map(|k| {
-                            let (scc, skk) = (s[(*c, *c)].re, s[(k, k)].re);
-                            if skk > 0.0 {
-                                l[(*c, k)] * (scc / skk).sqrt()
-                            } else {
-                                Complex::new(0.0, 0.0)
-                            }
-                        })
-                        .collect();
-                    (*first, row)
-                })
+                inp.mixing
+                    .as_ref()
+                    .map(|(mx, c, first)| (*first, mixing_row(mx.as_ref(), *c, w)))
             })
             .collect();
         for (r, dv) in disc.iter_mut().enumerate() {
