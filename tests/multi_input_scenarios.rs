@@ -485,3 +485,34 @@ speed = "15 m/s"
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_input_coherence_chart_draws_the_squared_coherence_of_each_road() {
+    // Constant coherence amplitude ρ = 0.5: γ² = ρ² = 0.25 at every n (closed form); a scenario without a
+    // road of two tracks has no such chart.
+    use stochvib::plot::scenario_plots::{input_coherence_chart, ScenarioPlotOptions};
+    let road = format!(
+        r#"[[input]]
+name = "road"
+road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "constant", coherence_amplitude = 0.5 }} }}
+speed = "15 m/s"
+"#
+    );
+    let sc = parse(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    let chart = input_coherence_chart(&sc, &ScenarioPlotOptions::default())
+        .unwrap()
+        .unwrap();
+    assert_eq!(chart.series.len(), 1);
+    assert_eq!(chart.series[0].name, "road: left and right");
+    let pts = &chart.series[0].points;
+    assert!((pts[0].0 - 1e-3).abs() <= ROUNDING && (pts[pts.len() - 1].0 - 10.0).abs() <= 1e-12);
+    assert!(pts.iter().all(|p| (p.1 - 0.25).abs() <= ROUNDING), "{pts:?}");
+    let single = parse(&two_wheels(
+        "",
+        "[1, 1]",
+        &format!("[input]\nspectrum = {ROAD}\nspeed = \"15 m/s\"\n"),
+    ));
+    assert!(input_coherence_chart(&single, &ScenarioPlotOptions::default())
+        .unwrap()
+        .is_none());
+}
