@@ -113,6 +113,26 @@ enum Command {
         #[arg(long)]
         full: bool,
     },
+    /// Analyse a road profile (CSV: a distance column and one column per track, with units): the spatial
+    /// density with its χ² intervals, the ISO 8608 fit (w = 2 and free) and class, the IRI, and the
+    /// coherence of the first two tracks.
+    Road {
+        /// Profile file (CSV; see src/road/profile.rs for the format).
+        profile: PathBuf,
+        /// Welch segment length in samples (even; default: the largest power of two giving at least 8
+        /// half-overlapping segments).
+        #[arg(long)]
+        segment: Option<usize>,
+        /// Trend removed before the density: `mean` or `linear`.
+        #[arg(long, default_value = "linear")]
+        detrend: String,
+        /// Confidence of the intervals.
+        #[arg(long, default_value_t = 0.95)]
+        confidence: f64,
+        /// Print JSON (every bin).
+        #[arg(long)]
+        json: bool,
+    },
     /// List the model kinds a scenario file may name in `[model] kind`.
     Models {
         /// Print JSON.
@@ -364,6 +384,28 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
         }
         Command::Models { json } => print(&report::models_report(), json)?,
+        Command::Road {
+            profile,
+            segment,
+            detrend,
+            confidence,
+            json,
+        } => {
+            let detrend = match detrend.as_str() {
+                "mean" => stochvib::road::Detrend::Mean,
+                "linear" => stochvib::road::Detrend::Linear,
+                other => anyhow::bail!("--detrend {other}: expected `mean` or `linear`"),
+            };
+            if !(confidence > 0.0 && confidence < 1.0) {
+                anyhow::bail!("--confidence {confidence}: expected a number in (0, 1)");
+            }
+            let opts = report::road_report::RoadReportOptions {
+                segment_len: segment,
+                detrend,
+                confidence,
+            };
+            print(&report::road_report::road_report(&profile, &opts)?, json)?
+        }
         Command::Book { json, plots, spectra } => {
             print(&report::book_report(), json)?;
             if let Some(out) = plots {

@@ -122,6 +122,12 @@ fn excitation(
         }
         (None, Some(InputLayout::Track { positions, gains })) => track(positions, gains.clone()),
         (None, Some(InputLayout::Single)) => call(py, || Excitation::single(s, mean)),
+        (None, Some(InputLayout::TwoTracks { .. })) => Err(invalid_input(
+            py,
+            "the model stands on two tracks: load a scenario with an [[input]] road table (Scenario.load) to \
+             give the road, its coherence and the speed"
+                .to_string(),
+        )),
         (None, None) if sys.system.n_inputs() == 1 => call(py, || Excitation::single(s, mean)),
         (None, None) => Err(invalid_input(
             py,
@@ -370,6 +376,17 @@ impl PyScenario {
         inp.insert("excitation".into(), format!("{exc:?}").into());
         prov.insert("input".into(), inp.into());
         let text = toml::to_string(&prov).unwrap_or_default();
+        let input = ScenarioInput {
+            reference,
+            spectrum: first.spectrum.clone(),
+            unit: first.unit.clone(),
+            origin: first.origin.clone(),
+            spectrum_text: first.text.clone(),
+            speed,
+            mean: means[0],
+            name: "input".into(),
+            coherence: None,
+        };
         let sc = Scenario {
             path: PathBuf::from("<python>"),
             text,
@@ -377,15 +394,8 @@ impl PyScenario {
             source: "built in Python".into(),
             kind: sys.kind.clone(),
             model: sys.instance(),
-            input: ScenarioInput {
-                reference,
-                spectrum: first.spectrum.clone(),
-                unit: first.unit.clone(),
-                origin: first.origin.clone(),
-                spectrum_text: first.text.clone(),
-                speed,
-                mean: means[0],
-            },
+            input: input.clone(),
+            inputs: vec![input],
             spectra_dir: catalogue(None).dir().to_path_buf(),
             excitation: exc,
             analysis: AnalysisOptions {

@@ -295,7 +295,16 @@ impl PySystem {
         };
         let path = Path::new("System.model");
         let f = stochvib::fields::Fields::new(path, "model", &table);
-        let built = call(py, || build_model(kind, &f, ModelContext { speed }))?;
+        let built = call(py, || {
+            build_model(
+                kind,
+                &f,
+                ModelContext {
+                    speed,
+                    several_inputs: false,
+                },
+            )
+        })?;
         call(py, || f.finish())?;
         match built {
             BuiltModel::Stochastic(m) => Ok(PySystem::from_instance(&m, kind)),

@@ -22,6 +22,9 @@
 //! * [`TabulatedCoherence`]: a measured table, linear interpolation in n.
 //! * [`ConstantCoherence`]: ρ independent of n (ρ = 1: identical tracks, ρ = 0: independent tracks).
 //!
+//! Multi-component processes: [`SpectralMatrix`] (a cross-spectral density matrix S(ω), checked Hermitian
+//! and positive semi-definite by [`check_spectral_matrix`]) and its two-track form [`TwoTracks`].
+//!
 //! [`bessel_k`] holds the modified Bessel function K_ν of real order that the isotropic model needs.
 
 use crate::error::{Error, Result};
@@ -32,12 +35,16 @@ mod ammon_bormann;
 pub mod bessel_k;
 mod constant;
 mod isotropic;
+mod spectral_matrix;
 mod tabulated;
+mod two_tracks;
 
 pub use ammon_bormann::{AmmonBormann, AmmonBormannRoad};
 pub use constant::ConstantCoherence;
 pub use isotropic::IsotropicCoherence;
+pub use spectral_matrix::{check_spectral_matrix, semidefinite_cholesky, SpectralMatrix, SPECTRAL_MATRIX_TOLERANCE};
 pub use tabulated::TabulatedCoherence;
+pub use two_tracks::TwoTracks;
 
 /// Which quantity a number called "coherence" is: the amplitude ρ or its square γ² = ρ².
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]

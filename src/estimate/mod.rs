@@ -9,10 +9,12 @@
 //!   the time-average K̂(τ) of one record.
 
 pub mod correlation;
+pub mod cross_spectrum;
 pub mod moments;
 pub mod welch;
 
 pub use correlation::{ensemble_correlation, time_correlation};
+pub use cross_spectrum::{cross_spectrum, CrossSpectrum};
 pub use moments::{
     chi2_interval, chi_squared_quantile, mean_interval, std_interval, student_t_quantile, variance_interval,
     variance_interval_known_mean, Comparison, Interval, RunningMoments,

@@ -16,6 +16,17 @@ pub enum InputLayout {
     },
     /// One temporal process (a force, a base acceleration) feeding input 0 (and nothing else).
     Single,
+    /// Wheels on two parallel road tracks: input j on track `tracks[j]` (0 left, 1 right) at
+    /// `positions[j]` m behind the first contact, scaled by `gains[j]`: u_j(t) = g_j x_{c_j}(t − ℓ_j/v).
+    /// Needs a road of two tracks with a coherence (a scenario's `[[input]]` road).
+    TwoTracks {
+        /// c_j: 0 left, 1 right.
+        tracks: Vec<usize>,
+        /// ℓ_j, m.
+        positions: Vec<f64>,
+        /// g_j.
+        gains: Vec<f64>,
+    },
 }
 
 /// A system built from a catalogue model, with the layout of its random inputs.

@@ -40,6 +40,7 @@ pub use instance::{InputLayout, ModelInstance};
 pub mod balancer_bogie;
 pub mod conveyor_idler;
 pub mod dynamic_stiffness_chain;
+pub mod full_vehicle;
 pub mod half_car;
 pub mod isolation;
 pub mod mine_hoist;

@@ -60,6 +60,9 @@ pub fn scenario_plots(sc: &Scenario, dir: &Path) -> Result<Vec<PathBuf>> {
 /// drawable or the back end fails; errors of the response computations (e.g. an unstable system).
 pub fn scenario_plots_with(sc: &Scenario, dir: &Path, opts: &ScenarioPlotOptions) -> Result<Vec<PathBuf>> {
     let mut files = input_density_chart(sc, opts)?.render(dir, "input-density")?;
+    if let Some(c) = input_coherence_chart(sc, opts)? {
+        files.extend(c.render(dir, "input-coherence")?);
+    }
     for &i in &sc.analysis.outputs {
         let name = super::chart::file_stem(&sc.model.system.outputs()[i].name);
         files.extend(transfer_chart(sc, i, opts)?.render(dir, &format!("transfer-{name}"))?);
@@ -86,6 +89,64 @@ pub fn input_density_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<
         opts.convention,
         opts.points,
     )
+}
+
+/// Chart of the squared coherence γ²(n) = |S_LR|²/(S_LL S_RR) of every multi-component input of the
+/// scenario (a road of two tracks: one curve per `[[input]]` road, components 0 and 1) against the spatial
+/// frequency n in cycles/m (log axis), or `None` when the scenario has no such input.
+///
+/// # Formula
+/// ω = 2πnv with v the scenario's speed; γ² = |C_01(ω)|² with C the coherence matrix of the source
+/// ([`crate::coherence::SpectralMatrix::coherence_matrix`]); n on a log grid over 1e-3 … 10 cycles/m.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for fewer than 20 points.
+pub fn input_coherence_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<Option<LineChart>> {
+    let crate::response::Excitation::Sources { sources, .. } = &sc.excitation else {
+        return Ok(None);
+    };
+    let Some(v) = sc.input.speed else { return Ok(None) };
+    if opts.points < 20 {
+        return Err(Error::invalid(
+            "points",
+            opts.points,
+            "need at least 20 points per curve",
+        ));
+    }
+    let mut chart = LineChart::new(
+        format!("Input coherence: {}", sc.title),
+        "spatial frequency n [cycles/m]",
+        "squared coherence γ² [-]",
+    );
+    chart.log_x = true;
+    chart.y_range = Some((0.0, 1.05));
+    for (s, src) in sources.iter().enumerate() {
+        let crate::response::Source::Matrix(m) = src else {
+            continue;
+        };
+        if m.n_components() < 2 {
+            continue;
+        }
+        let name = sc
+            .inputs
+            .get(s)
+            .map_or_else(|| format!("source {s}"), |i| i.name.clone());
+        let pts = (0..opts.points)
+            .map(|k| {
+                let n = 10f64.powf(-3.0 + 4.0 * k as f64 / (opts.points - 1) as f64);
+                (n, m.coherence_matrix(2.0 * PI * n * v)[(0, 1)].norm_sqr())
+            })
+            .collect();
+        chart.series.push(Series::line(
+            format!("{name}: {} and {}", m.component_name(0), m.component_name(1)),
+            pts,
+        ));
+    }
+    if chart.series.is_empty() {
+        return Ok(None);
+    }
+    chart.legend = Legend::LowerLeft;
+    Ok(Some(chart))
 }
 
 /// Log–log chart of one or more spectra of the same domain and unit (e.g. ISO 8608 classes) in a

@@ -153,12 +153,37 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         title: sc.title.clone(),
         scenario: sc.path.display().to_string(),
         model: sc.model.description.clone(),
-        input: format!(
-            "{} ({}){}",
-            sc.input.reference,
-            sc.input.spectrum.describe(),
-            sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
-        ),
+        input: if sc.inputs.len() <= 1 && sc.input.coherence.is_none() {
+            format!(
+                "{} ({}){}",
+                sc.input.reference,
+                sc.input.spectrum.describe(),
+                sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
+            )
+        } else {
+            // `[[input]]` tables: name, spectrum, coherence of a road
+            let each: Vec<String> = sc
+                .inputs
+                .iter()
+                .map(|i| {
+                    format!(
+                        "{}: {} ({}){}",
+                        i.name,
+                        i.reference,
+                        i.spectrum.describe(),
+                        i.coherence
+                            .as_ref()
+                            .map(|c| format!(", two tracks, {c}"))
+                            .unwrap_or_default()
+                    )
+                })
+                .collect();
+            format!(
+                "{}{}",
+                each.join("; "),
+                sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
+            )
+        },
         band_rad_s: sc.analysis.band,
         duration_s: sc.analysis.duration,
         outputs,

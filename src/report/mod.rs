@@ -4,6 +4,7 @@
 pub mod analysis;
 pub mod book;
 pub mod catalogue;
+pub mod road_report;
 pub mod spectrum_report;
 pub mod sweep_table;
 pub mod tables;

@@ -131,6 +131,13 @@ enum Inputs {
     Independent {
         spectra: Vec<Arc<dyn Spectrum>>,
     },
+    /// General sources: group d is (source, component, delay); only groups of one source correlate.
+    Sources {
+        sources: Vec<super::Source>,
+        /// (source, component) of each group.
+        keys: Vec<(usize, usize)>,
+        taus: Vec<f64>,
+    },
 }
 
 /// ω^k times S_y and its parts, from one evaluation of the grouped row per ω.
@@ -168,8 +175,50 @@ impl Integrand<'_> {
                 spectrum.density(w) * z.norm_sqr()
             }
             Inputs::Independent { spectra } => g.iter().zip(spectra).map(|(v, s)| v.norm_sqr() * s.density(w)).sum(),
+            Inputs::Sources { .. } => self.sources_sum(&g, w, |_| true),
         };
         self.weight(w) * sy
+    }
+
+    /// 2 Re[G_d S_{c_d c_e} conj(G_e) e^{−iω(τ_d − τ_e)}] for one pair of groups of one source.
+    fn sources_sum_pair(&self, g: &[C64], w: f64, d: usize, e: usize) -> f64 {
+        let Inputs::Sources { sources, keys, taus } = &self.inputs else {
+            return 0.0;
+        };
+        let ((s, cd), (_, ce)) = (keys[d], keys[e]);
+        let lag = taus[d] - taus[e];
+        2.0 * (g[d] * sources[s].entry(w, cd, ce) * g[e].conj() * C64::from_polar(1.0, -w * lag)).re
+    }
+
+    /// Σ over ordered pairs (d, e) of groups of one source, selected by `keep(τ_d − τ_e)`, of
+    /// Re[G_d S_{c_d c_e} conj(G_e) e^{−iω(τ_d − τ_e)}].
+    fn sources_sum(&self, g: &[C64], w: f64, keep: impl Fn(f64) -> bool) -> f64 {
+        let Inputs::Sources { sources, keys, taus } = &self.inputs else {
+            return 0.0;
+        };
+        let mats: Vec<DMatrix<C64>> = sources
+            .iter()
+            .map(|s| match s {
+                super::Source::Process(p) => DMatrix::from_element(1, 1, C64::new(p.density(w), 0.0)),
+                super::Source::Matrix(m) => m.matrix(w),
+            })
+            .collect();
+        let mut acc = 0.0;
+        for (d, &(sd, cd)) in keys.iter().enumerate() {
+            for (e, &(se, ce)) in keys.iter().enumerate() {
+                let lag = taus[d] - taus[e];
+                if sd != se || !keep(lag) {
+                    continue;
+                }
+                let ph = if lag == 0.0 {
+                    C64::new(1.0, 0.0)
+                } else {
+                    C64::from_polar(1.0, -w * lag)
+                };
+                acc += (g[d] * mats[sd][(cd, ce)] * g[e].conj() * ph).re;
+            }
+        }
+        acc
     }
 
     /// ω^k N(ω): the part that does not oscillate with the lags.
@@ -180,11 +229,24 @@ impl Integrand<'_> {
                 self.weight(w) * spectrum.density(w) * g.iter().map(|v| v.norm_sqr()).sum::<f64>()
             }
             Inputs::Independent { .. } => self.full(w),
+            Inputs::Sources { .. } => {
+                let g = self.groups(w);
+                self.weight(w) * self.sources_sum(&g, w, |lag| lag == 0.0)
+            }
         }
     }
 
     /// ω^k O_Δ(ω) for one lag class.
     fn oscillating(&self, class: &LagClass, w: f64) -> f64 {
+        if let Inputs::Sources { .. } = &self.inputs {
+            let g = self.groups(w);
+            let z: f64 = class
+                .pairs
+                .iter()
+                .map(|&(d, e, _)| self.sources_sum_pair(&g, w, d, e))
+                .sum();
+            return self.weight(w) * z;
+        }
         let Inputs::Track { spectrum, .. } = &self.inputs else {
             return 0.0;
         };
@@ -347,12 +409,38 @@ pub fn spectral_moment_oscillatory(
                 spectra: spectra.clone(),
             },
         ),
+        Excitation::Sources { sources, inputs } => {
+            let mut keys: Vec<(usize, usize)> = Vec::new();
+            let mut taus: Vec<f64> = Vec::new();
+            let mut members: Vec<Group> = Vec::new();
+            for (j, m) in inputs.iter().enumerate() {
+                match (0..keys.len()).find(|&k| keys[k] == (m.source, m.component) && taus[k] == m.delay) {
+                    Some(k) => members[k].push((j, m.gain)),
+                    None => {
+                        keys.push((m.source, m.component));
+                        taus.push(m.delay);
+                        members.push(vec![(j, m.gain)]);
+                    }
+                }
+            }
+            let inputs = Inputs::Sources {
+                sources: sources.clone(),
+                keys,
+                taus: taus.clone(),
+            };
+            (taus, members, inputs)
+        }
+    };
+    // only groups of one source correlate (for a track or independent inputs: every pair of delay groups)
+    let same_source = |d: usize, e: usize| match &inputs {
+        Inputs::Sources { keys, .. } => keys[d].0 == keys[e].0,
+        _ => true,
     };
     let mut classes: Vec<LagClass> = Vec::new();
     for (d, &td) in taus.iter().enumerate() {
         for (e, &te) in taus.iter().enumerate() {
             let lag = td - te;
-            if lag <= 0.0 {
+            if lag <= 0.0 || !same_source(d, e) {
                 continue;
             }
             match classes.iter_mut().find(|c| (c.lag - lag).abs() <= LAG_MERGE * c.lag) {

@@ -119,6 +119,11 @@ enum Input {
     },
     /// Independent processes, one per input.
     Independent { spectra: Vec<Arc<dyn Spectrum>> },
+    /// General sources: the row per input, combined by [`super::sources`]' density.
+    Sources {
+        sources: Vec<super::Source>,
+        inputs: Vec<super::InputMap>,
+    },
 }
 
 impl<'a> OutputDensity<'a> {
@@ -155,6 +160,10 @@ impl<'a> OutputDensity<'a> {
             Excitation::Independent { spectra, .. } => Input::Independent {
                 spectra: spectra.clone(),
             },
+            Excitation::Sources { sources, inputs } => Input::Sources {
+                sources: sources.clone(),
+                inputs: inputs.clone(),
+            },
         };
         let row = match sys.state_space() {
             None => Row::Dense { sys, i },
@@ -162,6 +171,7 @@ impl<'a> OutputDensity<'a> {
                 let groups: Vec<Vec<(usize, f64)>> = match &input {
                     Input::Track { members, .. } => members.clone(),
                     Input::Independent { spectra } => (0..spectra.len()).map(|j| vec![(j, 1.0)]).collect(),
+                    Input::Sources { inputs, .. } => (0..inputs.len()).map(|j| vec![(j, 1.0)]).collect(),
                 };
                 modal_row(ss, i, &groups).unwrap_or_else(|| hessenberg_row(ss, i, &groups))
             }
@@ -221,6 +231,10 @@ impl<'a> OutputDensity<'a> {
                         .enumerate()
                         .map(|(j, s)| hij(j).norm_sqr() * s.density(omega))
                         .sum(),
+                    Input::Sources { sources, inputs } => {
+                        let row: Vec<C64> = (0..inputs.len()).map(hij).collect();
+                        super::sources::density(sources, inputs, &row, omega)
+                    }
                 }
             }
         }
@@ -273,6 +287,10 @@ impl<'a> OutputDensity<'a> {
                 .zip(h)
                 .map(|(sp, v)| v.norm_sqr() * sp.density(omega))
                 .sum(),
+            Input::Sources { sources, inputs } => {
+                let row: Vec<C64> = h.collect();
+                super::sources::density(sources, inputs, &row, omega)
+            }
         }
     }
 }

@@ -12,6 +12,7 @@ mod delayed_quadrature;
 mod density;
 mod excitation;
 mod outcome;
+mod sources;
 mod statistics;
 mod sweep;
 mod variance;
@@ -23,6 +24,7 @@ pub use delayed_quadrature::{
 pub use density::OutputDensity;
 pub use excitation::Excitation;
 pub use outcome::Outcome;
+pub use sources::{InputMap, Source};
 pub use statistics::{
     analyze_output, analyze_output_with, ResponseStatistics, VarianceMethod, VarianceValue, TABLE_AGREEMENT,
 };

@@ -145,14 +145,26 @@ pub fn analyze_output_with(
     let info = sys.outputs()[i].clone();
     let delayed = !exc.delay_free();
     // the exact route: Lyapunov (delay-free) or its delayed form
-    let (exact_method, exact): (VarianceMethod, Result<LyapunovMoments>) = if delayed {
+    let general = match exc {
+        Excitation::Sources { sources, inputs } => Some((sources, inputs)),
+        _ => None,
+    };
+    let (exact_method, exact): (VarianceMethod, Result<LyapunovMoments>) = if let Some((s, inp)) = general {
+        // independent sources: the exact values of each source alone, summed
+        let m = if delayed {
+            VarianceMethod::LyapunovDelays
+        } else {
+            VarianceMethod::Lyapunov
+        };
+        (m, super::sources::variance_exact(sys, s, inp, i))
+    } else if delayed {
         (VarianceMethod::LyapunovDelays, variance_lyapunov_delayed(sys, exc, i))
     } else {
         (VarianceMethod::Lyapunov, variance_lyapunov(sys, exc, i))
     };
     let table = variance_integral_table(sys, exc, i, 0);
     // quadrature of the three moments (the plain rule, or Fourier-weighted tails for delays)
-    let (q0, q2, q4) = if delayed {
+    let (q0, q2, q4) = if delayed || general.is_some() {
         let m = moments_oscillatory(sys, exc, i, effort);
         (m.variance, m.lambda2, m.lambda4)
     } else {

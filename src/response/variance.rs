@@ -100,6 +100,24 @@ fn column_asymptotes(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, hi
             })
             .collect(),
         (Excitation::Independent { .. }, _) => (0..sys.n_inputs()).map(|j| (j, per_input[i][j])).collect(),
+        // each input's own column scaled by its gain²: the sum decays at least as fast as its slowest term
+        (Excitation::Sources { inputs, .. }, _) => inputs
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.gain != 0.0)
+            .map(|(j, m)| {
+                (
+                    j,
+                    match per_input[i][j] {
+                        Asymptote::Power { exponent, coefficient } => Asymptote::Power {
+                            exponent,
+                            coefficient: coefficient * m.gain * m.gain,
+                        },
+                        v => v,
+                    },
+                )
+            })
+            .collect(),
     }
 }
 
@@ -417,11 +435,27 @@ pub fn augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<A
                 .into(),
         });
     }
+    if let Excitation::Sources { sources, .. } = exc {
+        if let Some(m) = sources.iter().find_map(|s| match s {
+            super::Source::Matrix(m) => Some(m),
+            super::Source::Process(_) => None,
+        }) {
+            return Err(Error::NotApplicable {
+                method: "exact (Lyapunov / integral-table) variance".into(),
+                reason: format!(
+                    "{} is a multi-component process whose cross-spectral matrix has no rational factorisation; \
+                     quadrature only",
+                    m.describe()
+                ),
+            });
+        }
+    }
     let fl = filters(exc)?;
     // Reduce the system to one input per independent process.
     let (sys, nproc) = match exc {
         Excitation::Track { gains, .. } => (ss.combine_inputs(gains)?, 1),
         Excitation::Independent { spectra, .. } => (ss.clone(), spectra.len()),
+        Excitation::Sources { sources, inputs } => (combine_per_source(ss, sources.len(), inputs)?, sources.len()),
     };
     let sys = sys.select_outputs(&[i])?;
     // Block-diagonal filter bank: ẋ_F = A_F x_F + B_F w, u = C_F x_F (strictly proper filters)
@@ -465,6 +499,25 @@ pub fn augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<A
     // degree zero (or one)
     let f = &sys.d * &df + &sys.e * &cf * &bf + (&sys.e * &df).abs();
     Ok(AugmentedSystem { a, g, h, f })
+}
+
+/// The system with one input per source: column s of B (D, E) is Σ_{j: s_j = s} g_j times column j.
+fn combine_per_source(ss: &StateSpace, n_sources: usize, inputs: &[super::InputMap]) -> Result<StateSpace> {
+    let w = DMatrix::from_fn(inputs.len(), n_sources, |j, s| {
+        if inputs[j].source == s {
+            inputs[j].gain
+        } else {
+            0.0
+        }
+    });
+    StateSpace::new(
+        ss.a.clone(),
+        &ss.b * &w,
+        ss.c.clone(),
+        Some(&ss.d * &w),
+        Some(&ss.e * &w),
+        ss.outputs().to_vec(),
+    )
 }
 
 /// Exact variance (and λ₂, λ₄) of output `i` by the Lyapunov equation of the system augmented with the
@@ -550,6 +603,11 @@ pub fn variance_integral_table(sys: &dyn FrequencyResponse, exc: &Excitation, i:
         method: "integral-table variance".into(),
         reason,
     };
+    if matches!(exc, Excitation::Sources { .. }) {
+        return Err(not_applicable(
+            "several sources or inputs mapped to sources: the table handles one rational input".into(),
+        ));
+    }
     if !matches!(exc, Excitation::Track { .. }) {
         return Err(not_applicable(
             "several independent inputs: the table handles one rational input".into(),

@@ -25,5 +25,5 @@ pub use detrend::Detrend;
 pub use iri::{golden_car, iri, Iri};
 pub use iso_fit::{fit_iso8608, iso8608_class, IsoFit, Waviness};
 pub use profile::{CsvReadOptions, CsvWriteOptions, LengthUnit, Profile, RawProfile, Track};
-pub use spatial_psd::{spatial_cross_spectrum, spatial_psd, SpatialCrossSpectrum, SpatialPsd};
+pub use spatial_psd::{default_segment, spatial_cross_spectrum, spatial_psd, SpatialCrossSpectrum, SpatialPsd};
 pub use synthesis::{TwoTrackGenerator, TwoTrackScratch};

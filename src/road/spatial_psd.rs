@@ -321,3 +321,30 @@ pub fn spatial_cross_spectrum(
         segment_len,
     })
 }
+
+/// The default Welch segment for `samples` samples: the largest power of two M ≥ 16 with
+/// M ≤ 2·samples/9, i.e. at least 8 half-overlapping segments (for fewer than 72 samples: 16, or the
+/// largest even number ≤ samples).
+///
+/// # Formula
+/// K = ⌊(N − M)/(M/2)⌋ + 1 ≥ 8 ⇔ M ≤ 2N/9.
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// assert_eq!(stochvib::road::default_segment(10_000), 2048);
+/// ```
+pub fn default_segment(samples: usize) -> usize {
+    let cap = 2 * samples / 9;
+    let mut m = 16;
+    while m * 2 <= cap {
+        m *= 2;
+    }
+    if m > samples {
+        samples - samples % 2
+    } else {
+        m
+    }
+}

@@ -6,6 +6,7 @@
 
 mod catalogue;
 pub mod generic;
+pub mod inputs;
 pub mod reference;
 mod registry;
 pub mod scenario_file;

@@ -7,17 +7,20 @@ use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::models::results::DeterministicModel;
 use crate::models::{
-    balancer_bogie, conveyor_idler, dynamic_stiffness_chain::DynamicStiffnessChain, half_car, isolation,
-    mine_hoist::MineHoist, operator_seat, quarter_car::QuarterCar, scraper, three_mass_hoist::ThreeMassHoist,
-    ModelInstance,
+    balancer_bogie, conveyor_idler, dynamic_stiffness_chain::DynamicStiffnessChain, full_vehicle::FullVehicle,
+    half_car, isolation, mine_hoist::MineHoist, operator_seat, quarter_car::QuarterCar, scraper,
+    three_mass_hoist::ThreeMassHoist, ModelInstance,
 };
 use serde::Serialize;
 
 /// What a model may need from the rest of the scenario file.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ModelContext {
-    /// `[input] speed`, m/s.
+    /// `[input] speed` (or the common speed of the `[[input]]` tables), m/s.
     pub speed: Option<f64>,
+    /// Whether the scenario has `[[input]]` tables (several independent sources), so that a model may mix
+    /// inputs of different units (base displacements and forces).
+    pub several_inputs: bool,
 }
 
 /// What a model kind builds from its `[model]` table.
@@ -84,7 +87,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         stochastic: true,
         summary: "multi-degree-of-freedom model from elements or full matrices, base inputs on a track",
         example: "data/quarter-car.toml",
-        build: |f, _| stochastic(generic::mdof::from_fields(f)),
+        build: |f, ctx| stochastic(generic::mdof::from_fields_in(f, ctx.several_inputs)),
     },
     ModelKind {
         name: "transfer-function",
@@ -133,6 +136,14 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "half car bounce and pitch with the wheelbase delay (Sukharev 2012, 7.5, Example 7.1)",
         example: "data/half-car.toml",
         build: |f, _| stochastic(half_car::from_fields(f)),
+    },
+    ModelKind {
+        name: "full-vehicle",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "full vehicle, 7 DOF (bounce, pitch, roll, four unsprung masses) on two road tracks",
+        example: "data/full-vehicle-two-tracks.toml",
+        build: |f, _| stochastic(FullVehicle::from_fields(f).and_then(|c| c.instance())),
     },
     ModelKind {
         name: "operator-seat",

@@ -29,13 +29,16 @@
 //! prints its results ([`Document::Deterministic`]). A file with a root key `reference` instead of a
 //! `[model]` is a reference table of the sources ([`Document::Reference`], `data/reference/`).
 //!
+//! Several independent inputs (a road of two tracks with a coherence, a force, …) are written as
+//! `[[input]]` tables instead of the one `[input]` ([`super::inputs`] describes them); each names the model
+//! inputs it drives.
+//!
 //! Spectra named in `[input] spectrum` are resolved by the one rule of [`Catalogue`]; the scenario keeps the
 //! spectrum's unit, where it came from and the catalogue directory.
 
 use super::catalogue::{Catalogue, SpectrumOrigin};
 use super::reference::ReferenceTable;
 use super::registry::{build_model, BuiltModel, ModelContext};
-use super::spectrum_file::spectrum_from_fields;
 use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::models::results::DeterministicModel;
@@ -84,6 +87,11 @@ pub struct ScenarioInput {
     pub speed: Option<f64>,
     /// Mean of the process, in its unit.
     pub mean: f64,
+    /// The name of the input's signal in run files: `road` or `input` for the single `[input]` table,
+    /// `[[input]] name` (default `input_<i>`) for several.
+    pub name: String,
+    /// For a road of two tracks: the coherence model and track width, described.
+    pub coherence: Option<String>,
 }
 
 /// A loaded, validated stochastic scenario.
@@ -101,8 +109,11 @@ pub struct Scenario {
     pub kind: String,
     /// Model and input layout.
     pub model: ModelInstance,
-    /// The random input as written.
+    /// The random input as written (the first of [`Scenario::inputs`]).
     pub input: ScenarioInput,
+    /// Every random input as written: the single `[input]`, or the `[[input]]` tables in order (one
+    /// independent source each, [`super::inputs`]).
+    pub inputs: Vec<ScenarioInput>,
     /// The catalogue directory the scenario's spectrum names were resolved in.
     pub spectra_dir: PathBuf,
     /// The excitation of the system's inputs.
@@ -128,6 +139,18 @@ impl Scenario {
             Excitation::Independent { spectra, .. } => (0..spectra.len())
                 .map(|k| Signal::new(&format!("input_{k}"), &self.input.unit))
                 .collect(),
+            // `[[input]]` tables: one source each, named by the table (a road records its tracks)
+            Excitation::Sources { sources, .. } if sources.len() == self.inputs.len() => sources
+                .iter()
+                .zip(&self.inputs)
+                .flat_map(|(src, inp)| match src {
+                    crate::response::Source::Process(_) => vec![Signal::new(&inp.name, &inp.unit)],
+                    crate::response::Source::Matrix(m) => (0..m.n_components())
+                        .map(|c| Signal::new(&format!("{}_{}", inp.name, m.component_name(c)), &inp.unit))
+                        .collect(),
+                })
+                .collect(),
+            Excitation::Sources { .. } => crate::simulate::source_signals(&self.excitation, &self.input.unit),
         }
     }
 
@@ -151,9 +174,23 @@ impl Scenario {
                 serde_json::to_string(&self.input.origin).unwrap_or_default(),
             ),
         ]);
+        // the further `[[input]]` tables' spectra (the first is `spectrum` above)
+        for (i, inp) in self.inputs.iter().enumerate().skip(1) {
+            input.provenance.extend([
+                Provenance::identity(&format!("spectrum_{i}"), inp.spectrum_text.clone()),
+                Provenance::note(
+                    &format!("spectrum_origin_{i}"),
+                    serde_json::to_string(&inp.origin).unwrap_or_default(),
+                ),
+            ]);
+        }
         input.source_files.push(self.path.clone());
-        if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &self.input.origin {
-            input.source_files.push(file.clone());
+        for inp in &self.inputs {
+            if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &inp.origin {
+                if !input.source_files.contains(file) {
+                    input.source_files.push(file.clone());
+                }
+            }
         }
         input
     }
@@ -221,6 +258,7 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
     let f = Fields::new(path, "", &root);
     let title = f.opt_string("title")?.unwrap_or("").to_string();
     let source = f.opt_string("source")?.unwrap_or("").to_string();
+    let several_inputs = matches!(root.get("input"), Some(toml::Value::Array(_)));
     let speed = match root.get("input").and_then(|v| v.as_table()) {
         Some(t) => {
             let inf = Fields::new(path, "input", t);
@@ -232,11 +270,14 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
             }
             v
         }
-        None => None,
+        None => match root.get("input").and_then(|v| v.as_array()) {
+            Some(tables) => super::inputs::common_speed(path, tables)?,
+            None => None,
+        },
     };
     let mf = f.sub("model")?;
     let kind = mf.string("kind")?.to_string();
-    let built = build_model(&kind, &mf, ModelContext { speed })?;
+    let built = build_model(&kind, &mf, ModelContext { speed, several_inputs })?;
     mf.finish()?;
     let model = match built {
         BuiltModel::Deterministic(model) => {
@@ -261,54 +302,42 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
         BuiltModel::Stochastic(m) => m,
     };
     check_model(&f, &kind, &model)?;
-    let inf = f.sub("input")?;
-    let _ = inf.get("speed");
-    let base = path.parent();
     let catalogue = Catalogue::new(spectra_dir);
-    let (reference, sf) = match inf.require("spectrum")? {
-        toml::Value::String(name) => {
-            let sf = catalogue
-                .resolve(name, base)
-                .map_err(|e| inf.error("spectrum", name, resolution_reason(e)))?;
-            (name.clone(), sf)
+    let (inputs, excitation) = match root.get("input") {
+        Some(toml::Value::Array(tables)) => {
+            let _ = f.get("input");
+            super::inputs::parse_inputs(&f, tables, model.system.n_inputs(), &model.layout, speed, &catalogue)?
         }
-        toml::Value::Table(t) => {
-            let sf = Fields::new(path, "input.spectrum", t);
-            let spectrum = spectrum_from_fields(&sf)?;
-            let unit = sf.opt_string("unit")?.unwrap_or("m").to_string();
-            // metadata keys allowed inline
-            let name = sf.opt_string("name")?.unwrap_or("inline").to_string();
-            let description = sf.opt_string("description")?.unwrap_or("").to_string();
-            let src = sf.opt_string("source")?.unwrap_or("").to_string();
-            sf.finish()?;
-            let file = super::SpectrumFile {
-                name,
-                description,
-                source: src,
-                unit,
-                spectrum,
-                origin: SpectrumOrigin::Inline,
-                text: toml::to_string(t).unwrap_or_default(),
+        _ => {
+            let inf = f.sub("input")?;
+            let _ = inf.get("speed");
+            let (reference, sf) = super::inputs::resolve_spectrum(&inf, "spectrum", &catalogue, path.parent())?;
+            // the mean is in the input process's own unit: a number (SI) or a quantity of that dimension
+            let mean = match inf.get("mean") {
+                None => 0.0,
+                Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
             };
-            ("inline".to_string(), file)
-        }
-        other => {
-            return Err(inf.error(
-                "spectrum",
-                other,
-                "expected a catalogue name, a path or an inline table",
-            ))
+            inf.finish()?;
+            let excitation = build_excitation(&inf, &model.layout, sf.spectrum.clone(), speed, mean)?;
+            let name = if sf.spectrum.domain() == Domain::Spatial {
+                "road"
+            } else {
+                "input"
+            };
+            let input = ScenarioInput {
+                reference,
+                spectrum: sf.spectrum,
+                unit: sf.unit,
+                origin: sf.origin,
+                spectrum_text: sf.text,
+                speed,
+                mean,
+                name: name.to_string(),
+                coherence: None,
+            };
+            (vec![input], excitation)
         }
     };
-    // the mean is in the input process's own unit: a number (SI) or a quantity string of any dimension
-    // the mean is in the input process's own unit: a number (SI) or a quantity of that dimension
-    let mean = match inf.get("mean") {
-        None => 0.0,
-        Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
-    };
-    inf.finish()?;
-
-    let excitation = build_excitation(&inf, &model.layout, sf.spectrum.clone(), speed, mean)?;
 
     let analysis = match root.get("analysis") {
         None => {
@@ -336,15 +365,8 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
         source,
         kind,
         model,
-        input: ScenarioInput {
-            reference,
-            spectrum: sf.spectrum,
-            unit: sf.unit,
-            origin: sf.origin,
-            spectrum_text: sf.text,
-            speed,
-            mean,
-        },
+        input: inputs[0].clone(),
+        inputs,
         spectra_dir: spectra_dir.to_path_buf(),
         excitation,
         analysis,
@@ -380,7 +402,7 @@ fn check_model(f: &Fields, kind: &str, model: &ModelInstance) -> Result<()> {
 
 /// A value in the unit `unit` (of a process or an output): a plain number is taken as SI in that unit, a
 /// string must carry a unit of the same dimension; NaN and infinities are refused.
-fn quantity_in_unit(f: &Fields, key: &str, v: &toml::Value, unit: &str, what: &str) -> Result<f64> {
+pub(super) fn quantity_in_unit(f: &Fields, key: &str, v: &toml::Value, unit: &str, what: &str) -> Result<f64> {
     let x = match (v, crate::units::unit_dim(unit)) {
         (toml::Value::String(_), Some(dim)) => crate::units::parse_value(v, dim)
             .map_err(|reason| f.error(key, v, format!("{reason} ({what} is in {unit})")))?,
@@ -402,7 +424,7 @@ fn quantity_in_unit(f: &Fields, key: &str, v: &toml::Value, unit: &str, what: &s
 }
 
 /// The reason of a failed spectrum resolution, without repeating the reference (the key error names it).
-fn resolution_reason(e: Error) -> String {
+pub(super) fn resolution_reason(e: Error) -> String {
     match e {
         Error::InvalidParameter { reason, .. } => reason,
         other => other.to_string(),
@@ -477,6 +499,12 @@ pub(crate) fn build_excitation(
             };
             Excitation::track(temporal(spectrum)?, delays, gains.clone(), mean).map_err(|e| f.wrap("spectrum", e))
         }
+        InputLayout::TwoTracks { .. } => Err(f.error(
+            "spectrum",
+            f.get("spectrum").map_or(String::new(), |v| v.to_string()),
+            "the model stands on two tracks: write an [[input]] table with road = { spectrum, track_width, \
+             coherence = { kind = \"dodds-robson\" } } instead of [input]",
+        )),
     }
 }
 

@@ -22,6 +22,7 @@
 //! | `power-law` | `g0` (one-sided cyclic density at n₀, number), `n0` (with unit), `waviness`, optional `band` |
 //! | `iso8608` | `class` (A–H), optional `bound` (`lower`, `mean`, `upper`), optional `band` (default 0.011–2.83 cycles/m) or `unbounded = true` |
 //! | `two-pole-road` | `form` (`as-printed`, `consistent`), `dq` or `sigma_q`, `alpha`, `beta` (1/m) |
+//! | `measured-profile` | `file` (a profile CSV, relative to the file that names it; [`crate::road::Profile`]), optional `track` (column name, default the first), `segment` (Welch samples, default [`crate::road::default_segment`]), `detrend` (`linear` default, `mean`): the Welch estimate Ĝ_d(n) of the track as a tabulated spatial spectrum (log–log interpolation between bins, zero outside them) |
 //!
 //! Frequencies (band edges, n₀, `frequency_unit`) must carry a unit: a bare number would be ambiguous
 //! between cyclic and angular frequency. Density levels are plain numbers whose convention is named by
@@ -110,7 +111,7 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
     let kind = f.string("kind")?;
     let domain = match f.opt_string("domain")? {
         // the road kinds (ISO 8608, the (8.66) road) are spatial by definition; every other kind defaults to time
-        None if kind == "iso8608" || kind == "two-pole-road" => Domain::Spatial,
+        None if kind == "iso8608" || kind == "two-pole-road" || kind == "measured-profile" => Domain::Spatial,
         None | Some("temporal") => Domain::Temporal,
         Some("spatial") => Domain::Spatial,
         Some(other) => return Err(f.error("domain", other, "expected \"temporal\" or \"spatial\"")),
@@ -236,12 +237,61 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
             let b = f.quantity("beta", inv_lag)?;
             Arc::new(TwoPoleRoad::new(dq, a, b, form).map_err(|e| w(param_key(&e), e))?)
         }
+        "measured-profile" => {
+            if domain != Domain::Spatial {
+                return Err(f.error(
+                    "domain",
+                    "temporal",
+                    "a road profile is spatial: set domain = \"spatial\"",
+                ));
+            }
+            let file = f.string("file")?;
+            let path = match f.file().parent() {
+                Some(dir) => dir.join(file),
+                None => Path::new(file).to_path_buf(),
+            };
+            let profile = crate::road::Profile::read_csv(&path).map_err(|e| f.wrap("file", e))?;
+            let track = match f.opt_string("track")? {
+                None => profile
+                    .tracks
+                    .first()
+                    .ok_or_else(|| f.error("file", file, "the profile has no track column"))?,
+                Some(name) => profile.track(name).map_err(|e| f.wrap("track", e))?,
+            };
+            let detrend = match f.opt_string("detrend")? {
+                None | Some("linear") => crate::road::Detrend::Linear,
+                Some("mean") => crate::road::Detrend::Mean,
+                Some(other) => return Err(f.error("detrend", other, "expected \"linear\" or \"mean\"")),
+            };
+            let m = match f.get("segment") {
+                None => crate::road::default_segment(profile.len()),
+                Some(v) => v
+                    .as_integer()
+                    .filter(|m| *m >= 4 && m % 2 == 0 && *m as usize <= profile.len())
+                    .ok_or_else(|| {
+                        f.error(
+                            "segment",
+                            v,
+                            format!(
+                                "expected an even number of samples from 4 to the record's {}",
+                                profile.len()
+                            ),
+                        )
+                    })? as usize,
+            };
+            let psd = crate::road::spatial_psd(&detrend.apply(&track.elevation_m), profile.step_m, m)
+                .map_err(|e| f.wrap("file", e))?;
+            Arc::new(
+                Tabulated::new(Convention::OneSidedCyclic, psd.n, psd.g_d, Domain::Spatial)
+                    .map_err(|e| f.wrap("file", e))?,
+            )
+        }
         other => {
             return Err(f.error(
                 "kind",
                 other,
                 "unknown kind; expected exponential, gaussian, exp-cosine, gauss-cosine, rational, band-white, \
-                 tabulated, power-law, iso8608, two-pole-road",
+                 tabulated, power-law, iso8608, two-pole-road, measured-profile",
             ))
         }
     };

@@ -507,7 +507,14 @@ impl<'a> Sweep<'a> {
         let kind = &self.base.kind;
         let f = Fields::new(&self.base.path, "model", &model_table);
         let _ = f.get("kind"); // read by the scenario reader, not by the model
-        let model = match build_model(kind, &f, ModelContext { speed })? {
+        let model = match build_model(
+            kind,
+            &f,
+            ModelContext {
+                speed,
+                several_inputs: false,
+            },
+        )? {
             BuiltModel::Stochastic(m) => m,
             BuiltModel::Deterministic(_) => {
                 return Err(Error::invalid(

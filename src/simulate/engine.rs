@@ -10,6 +10,10 @@ use realfft::num_complex::Complex;
 /// gains\[g\]\[r\]\[j\]: the transfer from generator g's FFT coefficient c_j to output r.
 pub(crate) type Gains = Vec<Vec<Vec<Complex<f64>>>>;
 
+/// For a generator of a multi-component source: its source's first generator and the mixing row of its
+/// component at every bin (see `plan::raw_mixing`).
+pub(crate) type RawMix = Option<(usize, Vec<Vec<Complex<f64>>>)>;
+
 /// How a realization is produced (one per run).
 #[allow(clippy::large_enum_variant)] // one engine per run
 pub(crate) enum Engine {
@@ -22,6 +26,9 @@ pub(crate) enum Engine {
         gains: Gains,
         /// inverse real FFT of size N
         inverse: std::sync::Arc<dyn realfft::ComplexToReal<f64>>,
+        /// raw records only: per generator of a multi-component source, its source's first generator and
+        /// the mixing row at every bin (the recorded input is the component, e.g. the right track)
+        raw_mix: Vec<RawMix>,
     },
     /// Streamed spectral synthesis: white noise through FIR kernels by overlap-save (statistics only).
     SpectralStream(FirSynthesis),
@@ -221,6 +228,7 @@ pub(crate) fn realize(
             generators,
             gains,
             inverse,
+            raw_mix,
         } => {
             let fft_err = |e: realfft::FftError| Error::Numerical {
                 what: "inverse real FFT".into(),
@@ -249,9 +257,25 @@ pub(crate) fn realize(
                 }
             }
             if keep_raw {
-                for (q, sc) in s.q.iter_mut().zip(&s.spec) {
-                    for (o, c) in s.fft_out.iter_mut().zip(sc.coefficients()) {
-                        *o = *c;
+                for (g, (q, sc)) in s.q.iter_mut().zip(&s.spec).enumerate() {
+                    match &raw_mix[g] {
+                        None => {
+                            for (o, c) in s.fft_out.iter_mut().zip(sc.coefficients()) {
+                                *o = *c;
+                            }
+                        }
+                        // a component of a multi-component source: Σ_k M_ck(ω_j) c_{k,j}
+                        Some((first, rows)) => {
+                            for (j, o) in s.fft_out.iter_mut().enumerate() {
+                                *o = rows[j]
+                                    .iter()
+                                    .enumerate()
+                                    .map(|(k, m)| m * s.spec[first + k].coefficients()[j])
+                                    .sum();
+                            }
+                            s.fft_out[0].im = 0.0;
+                            s.fft_out[half].im = 0.0;
+                        }
                     }
                     inverse
                         .process_with_scratch(&mut s.fft_out, q, &mut s.fft_scratch)

@@ -43,7 +43,7 @@ pub use discretize::{
     WhiteNoiseDiscretization, ZeroOrderHold,
 };
 pub use fir_stream::{FirScratch, FirSynthesis, KernelDesign};
-pub use input::RunInput;
+pub use input::{source_signals, RunInput};
 pub use merge::{merge_runs, MergeOptions, MergeSummary};
 pub use options::{suggest_step, Route, RunOptions, StepSuggestion};
 pub use plan::{planned_memory, PlannedMemory, SkippedOutput};

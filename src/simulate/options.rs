@@ -219,7 +219,12 @@ pub fn suggest_step(input: &RunInput) -> Result<StepSuggestion> {
     } else {
         0.0
     };
-    if let Excitation::Track { delays, .. } = input.excitation {
+    let delays = match input.excitation {
+        Excitation::Track { delays, .. } => Some(delays.clone()),
+        Excitation::Sources { inputs, .. } => Some(inputs.iter().map(|m| m.delay).collect()),
+        Excitation::Independent { .. } => None,
+    };
+    if let Some(delays) = delays {
         let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
         if let Some(tau) = delays.iter().map(|t| t - t0).filter(|t| *t > 0.0).reduce(f64::min) {
             // the smallest non-zero delay as a whole number of steps (other delays must be its multiples)

@@ -1,7 +1,7 @@
 //! Planning a run: which outputs can be simulated, which route produces the realizations (and why), the
 //! engine of that route, and the exact variance of the simulated discrete process.
 
-use super::engine::{Engine, Gains};
+use super::engine::{Engine, Gains, RawMix};
 use super::fir_stream::{KernelSpectra, GRID_TOLERANCE, TAIL_FRACTION};
 use super::{
     augmented_response, foh, Amplitudes, FirSynthesis, GaussMarkov, Route, RunInput, RunOptions, SpectralGenerator,
@@ -343,6 +343,14 @@ fn streamed_plan(
                 .unwrap_or(0)
         }
         Excitation::Independent { .. } => 0,
+        Excitation::Sources { .. } => {
+            return Err(Error::invalid(
+                "route",
+                "spectral-stream",
+                "the streamed spectral route does not take several input sources ([[input]] tables, two tracks) \
+                 yet: use --route spectral (whole records) with a shorter duration",
+            ))
+        }
     };
     let spectra = exc.spectra();
     let kernel_spectra = |l: usize| -> Result<KernelSpectra> {
@@ -509,6 +517,9 @@ struct SpectralInput {
     generator: usize,
     gain: f64,
     shift: usize,
+    /// For a component of a multi-component source: the source's matrix, this input's component, and
+    /// the index of the generator of its component 0 (its m components have consecutive generators).
+    mixing: Option<(std::sync::Arc<dyn crate::coherence::SpectralMatrix>, usize, usize)>,
 }
 
 /// The spectral engine: one generator per independent process, the inputs as (generator, gain, shift), and
@@ -548,6 +559,11 @@ fn spectral_engine(
     );
     Ok((
         Engine::Spectral {
+            raw_mix: if opts.store_raw {
+                raw_mixing(generators.len(), &inputs, dt, n)
+            } else {
+                vec![None; generators.len()]
+            },
             generators,
             gains,
             inverse: realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(n),
@@ -612,6 +628,7 @@ fn spectral_inputs(exc: &Excitation, dt: f64, n: usize) -> Result<(Vec<SpectralG
                     generator: 0,
                     gain,
                     shift: s as usize % n,
+                    mixing: None,
                 });
             }
             Ok((vec![g], inp))
@@ -626,11 +643,95 @@ fn spectral_inputs(exc: &Excitation, dt: f64, n: usize) -> Result<(Vec<SpectralG
                     generator: j,
                     gain: 1.0,
                     shift: 0,
+                    mixing: None,
                 })
                 .collect();
             Ok((gens, inp))
         }
+        Excitation::Sources { sources, inputs } => {
+            // one generator per component of every source, in order (Excitation::spectra)
+            let gens = exc
+                .spectra()
+                .iter()
+                .map(|s| SpectralGenerator::new(s.as_ref(), dt, n, Amplitudes::Rayleigh))
+                .collect::<Result<Vec<_>>>()?;
+            let mut first = Vec::with_capacity(sources.len());
+            let mut k = 0;
+            for s in sources {
+                first.push(k);
+                k += s.n_components();
+            }
+            let t0 = inputs.iter().map(|m| m.delay).fold(f64::INFINITY, f64::min);
+            let mut inp = Vec::new();
+            for (j, m) in inputs.iter().enumerate() {
+                let shift = delay_steps(j, m.delay - t0, dt)?;
+                inp.push(SpectralInput {
+                    generator: first[m.source] + m.component,
+                    gain: m.gain,
+                    shift: shift % n,
+                    mixing: match &sources[m.source] {
+                        crate::response::Source::Matrix(mx) => Some((mx.clone(), m.component, first[m.source])),
+                        crate::response::Source::Process(_) => None,
+                    },
+                });
+            }
+            Ok((gens, inp))
+        }
     }
+}
+
+/// Row c of the per-bin mixing of a multi-component source at ω (rad/s): component c's coefficient is
+/// Σ_k M_ck c_k over the source's generators k, M_ck = L_ck √(S_cc/S_kk) with C = L Lᴴ the coherence matrix.
+fn mixing_row(mx: &dyn crate::coherence::SpectralMatrix, c: usize, w: f64) -> Vec<Complex<f64>> {
+    let l = crate::coherence::semidefinite_cholesky(&mx.coherence_matrix(w));
+    let s = mx.matrix(w);
+    (0..mx.n_components())
+        .map(|k| {
+            let (scc, skk) = (s[(c, c)].re, s[(k, k)].re);
+            if skk > 0.0 {
+                l[(c, k)] * (scc / skk).sqrt()
+            } else {
+                Complex::new(0.0, 0.0)
+            }
+        })
+        .collect()
+}
+
+/// For raw records: per generator of a multi-component source, (its source's first generator, the mixing
+/// row of its component at every bin j = 0 … N/2), so that the recorded input is the component itself
+/// (e.g. the right track), not the generator's innovation.
+fn raw_mixing(generators: usize, inputs: &[SpectralInput], dt: f64, n: usize) -> Vec<RawMix> {
+    let dw = 2.0 * std::f64::consts::PI / (n as f64 * dt);
+    let mut out: Vec<RawMix> = vec![None; generators];
+    for inp in inputs {
+        if let Some((mx, _, first)) = &inp.mixing {
+            for c in 0..mx.n_components() {
+                if out[first + c].is_none() {
+                    let rows = (0..=n / 2).map(|j| mixing_row(mx.as_ref(), c, j as f64 * dw)).collect();
+                    out[first + c] = Some((*first, rows));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// A relative delay as a whole number of steps, or the error that says which Δt would make it one.
+fn delay_steps(j: usize, tau: f64, dt: f64) -> Result<usize> {
+    let s = (tau / dt).round();
+    if ((s * dt) - tau).abs() > 1e-9 * tau.max(dt) {
+        let k = (tau / dt).ceil().max(1.0);
+        return Err(Error::invalid(
+            "dt",
+            format!("{dt} s"),
+            format!(
+                "input {j} is delayed by {tau} s, not an integer number of steps (exact delays need τ = s·Δt, \
+                 i.e. positions multiples of vΔt); choose e.g. Δt = {:e} s",
+                tau / k
+            ),
+        ));
+    }
+    Ok(s as usize)
 }
 
 /// gains\[g\]\[r\]\[j\]: the transfer from generator g's coefficient c_j to output r (discrete transfer
@@ -675,12 +776,30 @@ fn discrete_gains(
         if j < n / 2 {
             h += to_c(&sub.e) * Complex::new(0.0, w);
         }
+        // multi-component sources: input l's component c is Σ_k M_ck(ω_j) c_k over the source's generators
+        // k, M_ck = L_ck √(S_cc/S_kk) with C = L Lᴴ the coherence matrix (Z_R = ρ Z_L + √(1 − ρ²) W for two
+        // tracks): the cross-spectra are exact in expectation, bin by bin
+        let mix: Vec<Option<(usize, Vec<Complex<f64>>)>> = inputs
+            .iter()
+            .map(|inp| {
+                inp.mixing
+                    .as_ref()
+                    .map(|(mx, c, first)| (*first, mixing_row(mx.as_ref(), *c, w)))
+            })
+            .collect();
         for (r, dv) in disc.iter_mut().enumerate() {
             for gi in 0..generators.len() {
                 let s = spectra[gi].density(w);
                 let mut acc = Complex::new(0.0, 0.0);
                 for (l, inp) in inputs.iter().enumerate() {
-                    if inp.generator == gi {
+                    if let Some((first, row)) = &mix[l] {
+                        if gi >= *first && gi < first + row.len() {
+                            acc += h[(r, l)]
+                                * inp.gain
+                                * row[gi - first]
+                                * Complex::new(0.0, -w * inp.shift as f64 * dt).exp();
+                        }
+                    } else if inp.generator == gi {
                         acc += h[(r, l)] * inp.gain * Complex::new(0.0, -w * inp.shift as f64 * dt).exp();
                     }
                 }

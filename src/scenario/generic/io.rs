@@ -45,10 +45,12 @@ pub fn output_list(f: &Fields, key: &str) -> Result<Vec<OutputInfo>> {
         .collect()
 }
 
-/// Reads optional `positions` (with units) and `gains` for `m` inputs on one track.
+/// Reads optional `positions` (with units) and `gains` for `m` inputs on one track, and optional `tracks`
+/// (`"left"`/`"right"` per input) for inputs on two tracks ([`InputLayout::TwoTracks`]).
 ///
 /// # Errors
-/// Lengths that differ from `m`, negative positions, values that are not lengths or numbers.
+/// Lengths that differ from `m`, negative positions, values that are not lengths or numbers, a track other
+/// than left or right.
 pub fn track_layout(f: &Fields, m: usize) -> Result<InputLayout> {
     let positions = match f.get("positions") {
         None => vec![0.0; m],
@@ -81,6 +83,25 @@ pub fn track_layout(f: &Fields, m: usize) -> Result<InputLayout> {
             p,
             "must be >= 0 (distance behind the first contact)",
         ));
+    }
+    if let Some(v) = f.get("tracks") {
+        let arr = v.as_array().filter(|a| a.len() == m).ok_or_else(|| {
+            f.error(
+                "tracks",
+                v,
+                format!("expected {m} tracks (\"left\" or \"right\"), one per input"),
+            )
+        })?;
+        let tracks = arr
+            .iter()
+            .enumerate()
+            .map(|(i, x)| crate::scenario::inputs::track_index(f, &format!("tracks[{i}]"), x))
+            .collect::<Result<Vec<_>>>()?;
+        return Ok(InputLayout::TwoTracks {
+            tracks,
+            positions,
+            gains,
+        });
     }
     Ok(InputLayout::Track { positions, gains })
 }

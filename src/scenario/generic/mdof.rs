@@ -12,14 +12,17 @@
 //!   M q̈ + B q̇ + C q = K_u u + B_u u̇.
 //! * Optional `forces = [[w₁, …, w_n], …]`: force inputs, each applied at a point (a force in N where the
 //!   point weights a length, a torque in N m on angles alone), in either form: M q̈ + … = … + F f with the
-//!   points as the columns of F. A scenario has one input process, so a model has base inputs or force
-//!   inputs, not both (their spectra would need different units).
+//!   points as the columns of F. With one `[input]` process a model has base inputs or force inputs, not
+//!   both (their spectra would need different units); with `[[input]]` tables
+//!   ([`crate::scenario::inputs`]) it may have both, each table driving its own inputs.
 //! * Outputs `[[model.output]]` with `name`, `quantity` (`displacement`, `velocity`, `acceleration` with
 //!   `point`; `relative-displacement`, `relative-velocity` with `point` and `base` (the index of a base
 //!   input): gᵀq − u_j, the matrix form's suspension travel; `deflection`, `spring-force`, `damper-force`,
 //!   `element-force` with `element`).
 //! * Optional `positions` (wheel positions along the track, with units) and `gains` of the inputs (base
-//!   inputs first, then forces).
+//!   inputs first, then forces). Optional `tracks` (`"left"` or `"right"` per input) for a machine on two
+//!   tracks: each wheel names its track and its position along it, and the scenario's `[[input]]` road
+//!   drives them (any number of axles).
 
 use super::io::track_layout;
 use crate::error::{Error, Result};
@@ -41,11 +44,21 @@ fn mass_range(masses: &[f64]) -> Option<(usize, usize)> {
     Some((lo, hi))
 }
 
-/// Builds the model of a `kind = "mdof"` `[model]` table (see the module docs).
+/// Builds the model of a `kind = "mdof"` `[model]` table (see the module docs) for a scenario with one
+/// `[input]`.
 ///
 /// # Errors
 /// [`Error::File`] naming the key, value and reason.
 pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
+    from_fields_in(f, false)
+}
+
+/// Builds the model of a `kind = "mdof"` `[model]` table; `several_inputs`: the scenario has `[[input]]`
+/// tables, so base inputs and forces may be mixed (each table drives its own inputs, in its own unit).
+///
+/// # Errors
+/// [`Error::File`] naming the key, value and reason.
+pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance> {
     let matrix_form = f.get("mass_matrix").is_some();
     let cv = f.require("coordinates")?;
     let carr = cv
@@ -195,13 +208,14 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
                 .collect::<Result<_>>()?
         }
     };
-    if n_base > 0 && !forces.is_empty() {
+    if n_base > 0 && !forces.is_empty() && !several_inputs {
         return Err(f.error(
             "forces",
             forces.len(),
             format!(
-                "the model has {n_base} base inputs as well: one scenario input process cannot drive both base \
-                 displacements (m) and forces (N); split the scenario"
+                "the model has {n_base} base inputs as well: one [input] process cannot drive both base \
+                 displacements (m) and forces (N); write [[input]] tables, one per source, each naming the \
+                 inputs it drives"
             ),
         ));
     }

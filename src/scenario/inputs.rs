@@ -1,0 +1,524 @@
+//! Several random inputs in one scenario: `[[input]]` tables, each an independent source (one process, or
+//! a road of two parallel tracks with a coherence) and the model inputs it drives.
+//!
+//! # Format
+//! ```toml
+//! [[input]]                          # a road of two tracks
+//! name = "road"                      # signal name in run files (default `input_<i>`)
+//! road = { spectrum = "iso8608-c", track_width = "1.5 m", coherence = { kind = "dodds-robson" } }
+//! speed = "20 m/s"                   # every table that gives a speed must give the same one
+//! mean = 0.0                         # mean of each track, in the spectrum's unit (default 0)
+//! drives = [0, 1, 2, 3]              # model inputs (0-based; the mdof: base inputs first, then forces)
+//! tracks = ["left", "right", "left", "right"]   # road only: the track under each driven input
+//! positions = ["0 m", "0 m", "2.7 m", "2.7 m"]  # distance behind the first contact (delay = position/speed)
+//! gains = [1, 1, 1, 1]               # u_j = gain · x(t − position/speed) + gain · mean
+//!
+//! [[input]]                          # one process (a force, a base motion, a road felt by one wheel line)
+//! spectrum = "white-force"           # a catalogue name, a path or an inline table (as `[input] spectrum`)
+//! drives = [4]
+//! ```
+//! * `drives` may be left out only when there is one `[[input]]` table: it then drives every model input.
+//! * `tracks`, `positions`, `gains` default to the model's own layout for the driven inputs (a catalogue
+//!   vehicle knows its wheels; the generic `mdof` reads `tracks`, `positions`, `gains` in `[model]`), else
+//!   to position 0 and gain 1. A road needs a track for every driven input.
+//! * Coherence kinds (ρ the coherence amplitude, γ² = ρ² the squared coherence, [`crate::coherence`]):
+//!   `dodds-robson` (`waviness`, default 2: the isotropic surface, ρ = 2^{1−ν}/Γ(ν) x^ν K_ν(x), x = 2πnB,
+//!   ν = w/2); `ammon-bormann` (`preset` = `iso-a` … `iso-e`, `major-road-concrete`,
+//!   `major-road-asphaltic-concrete`, `main-road-asphaltic-concrete-on-pavement`,
+//!   `main-road-asphaltic-concrete`, `track-tiled-concrete-pavement`; or `omega_p` (rad/m), `w`, `p`, `a`
+//!   (default 1) and `values` = `squared_coherence` (default) or `coherence_amplitude`: the quantity the
+//!   formula [1 + (Ω B^a/Ω_p)^w]^{−p} gives); `tabulated` (`n` in cycles/m and `squared_coherence` or
+//!   `coherence_amplitude`, linear interpolation); `constant` (`coherence_amplitude`).
+//! * Every model input is driven by exactly one table; the sources are independent of each other.
+
+use super::catalogue::{Catalogue, SpectrumOrigin};
+use super::scenario_file::{quantity_in_unit, resolution_reason, ScenarioInput};
+use super::spectrum_file::spectrum_from_fields;
+use super::SpectrumFile;
+use crate::coherence::{
+    AmmonBormann, AmmonBormannRoad, Coherence, CoherenceKind, ConstantCoherence, IsotropicCoherence,
+    TabulatedCoherence, TwoTracks,
+};
+use crate::error::Result;
+use crate::fields::Fields;
+use crate::models::InputLayout;
+use crate::response::{Excitation, InputMap, Source};
+use crate::spectrum::{AtSpeed, Domain, Spectrum};
+use crate::units::Dim;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The keys of an `[[input]]` table.
+const INPUT_KEYS: [&str; 9] = [
+    "name",
+    "spectrum",
+    "road",
+    "speed",
+    "mean",
+    "drives",
+    "tracks",
+    "positions",
+    "gains",
+];
+
+/// The common `speed` of the `[[input]]` tables (m/s), if any gives one.
+///
+/// # Errors
+/// A speed that is not a positive velocity, or two tables with different speeds.
+pub(crate) fn common_speed(path: &Path, tables: &[toml::Value]) -> Result<Option<f64>> {
+    let mut speed: Option<(usize, f64)> = None;
+    for (i, v) in tables.iter().enumerate() {
+        let Some(t) = v.as_table() else { continue };
+        let inf = Fields::new(path, &format!("input[{i}]"), t);
+        if let Some(v) = inf.opt_quantity("speed", Dim::VELOCITY)? {
+            if v.is_nan() || v <= 0.0 {
+                return Err(inf.error("speed", v, "must be > 0"));
+            }
+            match speed {
+                Some((i0, v0)) if v0 != v => {
+                    return Err(inf.error(
+                        "speed",
+                        v,
+                        format!("input[{i0}].speed is {v0} m/s: one machine moves at one speed"),
+                    ))
+                }
+                None => speed = Some((i, v)),
+                _ => {}
+            }
+        }
+    }
+    Ok(speed.map(|s| s.1))
+}
+
+/// Resolves `key` of `inf` (a catalogue name, a path or an inline table of spectrum keys) into the
+/// reference as written and the spectrum file.
+///
+/// # Errors
+/// An unknown name or path, a bad inline table, a value of another type.
+pub(crate) fn resolve_spectrum(
+    inf: &Fields,
+    key: &str,
+    catalogue: &Catalogue,
+    base: Option<&Path>,
+) -> Result<(String, SpectrumFile)> {
+    match inf.require(key)? {
+        toml::Value::String(name) => {
+            let sf = catalogue
+                .resolve(name, base)
+                .map_err(|e| inf.error(key, name, resolution_reason(e)))?;
+            Ok((name.clone(), sf))
+        }
+        toml::Value::Table(t) => {
+            let sf = Fields::new(inf.file(), &inf.path(key), t);
+            let spectrum = spectrum_from_fields(&sf)?;
+            let unit = sf.opt_string("unit")?.unwrap_or("m").to_string();
+            // metadata keys allowed inline
+            let name = sf.opt_string("name")?.unwrap_or("inline").to_string();
+            let description = sf.opt_string("description")?.unwrap_or("").to_string();
+            let src = sf.opt_string("source")?.unwrap_or("").to_string();
+            sf.finish()?;
+            let file = SpectrumFile {
+                name,
+                description,
+                source: src,
+                unit,
+                spectrum,
+                origin: SpectrumOrigin::Inline,
+                text: toml::to_string(t).unwrap_or_default(),
+            };
+            Ok(("inline".to_string(), file))
+        }
+        other => Err(inf.error(key, other, "expected a catalogue name, a path or an inline table")),
+    }
+}
+
+/// (track, position in m, gain) of model input j in the model's own layout.
+fn layout_of(layout: &InputLayout, j: usize) -> (Option<usize>, f64, f64) {
+    match layout {
+        InputLayout::Single => (None, 0.0, 1.0),
+        InputLayout::Track { positions, gains } => (
+            None,
+            positions.get(j).copied().unwrap_or(0.0),
+            gains.get(j).copied().unwrap_or(1.0),
+        ),
+        InputLayout::TwoTracks {
+            tracks,
+            positions,
+            gains,
+        } => (
+            tracks.get(j).copied(),
+            positions.get(j).copied().unwrap_or(0.0),
+            gains.get(j).copied().unwrap_or(1.0),
+        ),
+    }
+}
+
+/// `left` → 0, `right` → 1.
+pub(crate) fn track_index(f: &Fields, key: &str, v: &toml::Value) -> Result<usize> {
+    match v.as_str() {
+        Some("left") => Ok(0),
+        Some("right") => Ok(1),
+        _ => Err(f.error(key, v, "expected \"left\" or \"right\"")),
+    }
+}
+
+/// The coherence of a `road.coherence` table for tracks `width_m` apart.
+fn coherence_from_fields(cf: &Fields, width_m: f64) -> Result<Arc<dyn Coherence>> {
+    let kind = cf.string("kind")?;
+    let w = |key: &str, e| cf.wrap(key, e);
+    let c: Arc<dyn Coherence> = match kind {
+        "dodds-robson" => {
+            let waviness = match cf.get("waviness") {
+                None => 2.0,
+                Some(_) => cf.number("waviness")?,
+            };
+            Arc::new(IsotropicCoherence::new(width_m, waviness).map_err(|e| w("waviness", e))?)
+        }
+        "ammon-bormann" => match cf.get("preset") {
+            Some(v) => {
+                let preset = match v.as_str() {
+                    Some("iso-a") => AmmonBormannRoad::IsoA,
+                    Some("iso-b") => AmmonBormannRoad::IsoB,
+                    Some("iso-c") => AmmonBormannRoad::IsoC,
+                    Some("iso-d") => AmmonBormannRoad::IsoD,
+                    Some("iso-e") => AmmonBormannRoad::IsoE,
+                    Some("major-road-concrete") => AmmonBormannRoad::MajorRoadConcrete,
+                    Some("major-road-asphaltic-concrete") => AmmonBormannRoad::MajorRoadAsphalticConcrete,
+                    Some("main-road-asphaltic-concrete-on-pavement") => {
+                        AmmonBormannRoad::MainRoadAsphalticConcreteOnPavement
+                    }
+                    Some("main-road-asphaltic-concrete") => AmmonBormannRoad::MainRoadAsphalticConcrete,
+                    Some("track-tiled-concrete-pavement") => AmmonBormannRoad::TrackTiledConcretePavement,
+                    _ => {
+                        return Err(cf.error(
+                            "preset",
+                            v,
+                            "expected iso-a … iso-e, major-road-concrete, major-road-asphaltic-concrete, \
+                             main-road-asphaltic-concrete-on-pavement, main-road-asphaltic-concrete or \
+                             track-tiled-concrete-pavement",
+                        ))
+                    }
+                };
+                Arc::new(AmmonBormann::preset(preset, width_m).map_err(|e| w("preset", e))?)
+            }
+            None => {
+                let values = match cf.opt_string("values")? {
+                    None => CoherenceKind::SquaredCoherence,
+                    Some(s) => s.parse().map_err(|e| w("values", e))?,
+                };
+                let a = match cf.get("a") {
+                    None => 1.0,
+                    Some(_) => cf.number("a")?,
+                };
+                let (omega_p, wv, p) = (cf.number("omega_p")?, cf.number("w")?, cf.number("p")?);
+                Arc::new(
+                    AmmonBormann::new(width_m, omega_p, wv, p, a, values).map_err(|e| cf.wrap_param(e, "omega_p"))?,
+                )
+            }
+        },
+        "tabulated" => {
+            let n = cf.numbers("n")?;
+            let (key, values) = match (cf.get("squared_coherence"), cf.get("coherence_amplitude")) {
+                (Some(_), None) => ("squared_coherence", CoherenceKind::SquaredCoherence),
+                (None, Some(_)) => ("coherence_amplitude", CoherenceKind::CoherenceAmplitude),
+                _ => {
+                    return Err(cf.error(
+                        "squared_coherence",
+                        "<missing>",
+                        "give exactly one of squared_coherence (γ²) or coherence_amplitude (ρ), one value per n",
+                    ))
+                }
+            };
+            let v = cf.numbers(key)?;
+            Arc::new(TabulatedCoherence::new(n, v, values).map_err(|e| w(key, e))?)
+        }
+        "constant" => {
+            let rho = cf.number("coherence_amplitude")?;
+            Arc::new(ConstantCoherence::new(rho).map_err(|e| w("coherence_amplitude", e))?)
+        }
+        other => {
+            return Err(cf.error(
+                "kind",
+                other,
+                "expected dodds-robson, ammon-bormann, tabulated or constant",
+            ))
+        }
+    };
+    Ok(c)
+}
+
+/// An optional array `key` of `len` values read by `item`.
+fn opt_array<T>(
+    f: &Fields,
+    key: &str,
+    len: usize,
+    item: impl Fn(&str, &toml::Value) -> Result<T>,
+) -> Result<Option<Vec<T>>> {
+    let Some(v) = f.get(key) else { return Ok(None) };
+    let arr = v.as_array().ok_or_else(|| {
+        f.error(
+            key,
+            v,
+            format!("expected an array of {len} values, one per driven input"),
+        )
+    })?;
+    if arr.len() != len {
+        return Err(f.error(
+            key,
+            v,
+            format!(
+                "{} values for {len} driven inputs (`drives`): need one per driven input",
+                arr.len()
+            ),
+        ));
+    }
+    arr.iter()
+        .enumerate()
+        .map(|(k, x)| item(&format!("{key}[{k}]"), x))
+        .collect::<Result<Vec<T>>>()
+        .map(Some)
+}
+
+/// Parses the `[[input]]` tables `tables` of the scenario `f` for a model of `n_inputs` inputs with layout
+/// `layout`: the scenario inputs as written and the excitation (one [`Source`] per table, in order).
+///
+/// # Errors
+/// [`crate::Error::File`] naming `input[i].<key>`, the value and the reason: unknown keys, a spectrum that
+/// cannot be resolved, a road whose spectrum is not spatial, a missing speed, a model input driven twice
+/// or not at all, bad tracks, positions or gains, a cross-spectral matrix that fails its check.
+pub(crate) fn parse_inputs(
+    f: &Fields,
+    tables: &[toml::Value],
+    n_inputs: usize,
+    layout: &InputLayout,
+    speed: Option<f64>,
+    catalogue: &Catalogue,
+) -> Result<(Vec<ScenarioInput>, Excitation)> {
+    let path = f.file();
+    let base = path.parent();
+    if tables.is_empty() {
+        return Err(f.error("input", "[]", "no [[input]] table: give at least one"));
+    }
+    let mut inputs = Vec::new();
+    let mut sources = Vec::new();
+    let mut maps: Vec<Option<(usize, InputMap)>> = vec![None; n_inputs];
+    for (i, v) in tables.iter().enumerate() {
+        let key = format!("input[{i}]");
+        let t = v
+            .as_table()
+            .ok_or_else(|| f.error(&key, v, "expected an [[input]] table"))?;
+        let inf = Fields::new(path, &key, t);
+        // a misspelt key is named before a key it may have meant is reported missing
+        if let Some((k, v)) = t.iter().find(|(k, _)| !INPUT_KEYS.contains(&k.as_str())) {
+            return Err(inf.error(
+                k,
+                v,
+                format!("unknown key (known keys here: {})", INPUT_KEYS.join(", ")),
+            ));
+        }
+        let _ = inf.get("speed"); // read by common_speed
+        let need_speed = |what: &str| {
+            speed.ok_or_else(|| {
+                inf.error(
+                    "speed",
+                    "<missing>",
+                    format!("{what}: give the speed (e.g. speed = \"20 m/s\")"),
+                )
+            })
+        };
+        let (reference, sf, source, coherence) = match (inf.get("spectrum"), inf.get("road")) {
+            (Some(_), None) => {
+                let (reference, sf) = resolve_spectrum(&inf, "spectrum", catalogue, base)?;
+                let temporal: Arc<dyn Spectrum> = match sf.spectrum.domain() {
+                    Domain::Temporal => sf.spectrum.clone(),
+                    Domain::Spatial => {
+                        let v = need_speed("the spectrum is spatial (a road)")?;
+                        Arc::new(AtSpeed::new(sf.spectrum.clone(), v).map_err(|e| inf.wrap("speed", e))?)
+                    }
+                };
+                (reference, sf, Source::Process(temporal), None)
+            }
+            (None, Some(_)) => {
+                let rf = inf.sub("road")?;
+                let (reference, sf) = resolve_spectrum(&rf, "spectrum", catalogue, base)?;
+                if sf.spectrum.domain() != Domain::Spatial {
+                    return Err(rf.error(
+                        "spectrum",
+                        &reference,
+                        "a road of two tracks needs a spatial spectrum (a profile in cycles/m or rad/m)",
+                    ));
+                }
+                let width = rf.quantity("track_width", Dim::LENGTH)?;
+                if !(width.is_finite() && width > 0.0) {
+                    return Err(rf.error("track_width", width, "must be a finite length > 0"));
+                }
+                let cf = rf.sub("coherence")?;
+                let coh = coherence_from_fields(&cf, width)?;
+                cf.finish()?;
+                rf.finish()?;
+                let v = need_speed("a road is a spatial process")?;
+                let desc = coh.describe();
+                let tracks = TwoTracks::new(sf.spectrum.clone(), coh, v).map_err(|e| rf.wrap("spectrum", e))?;
+                (reference, sf, Source::Matrix(Arc::new(tracks)), Some(desc))
+            }
+            (Some(_), Some(_)) => {
+                return Err(inf.error(
+                    "road",
+                    "{ … }",
+                    "give either spectrum (one process) or road (two tracks), not both",
+                ))
+            }
+            (None, None) => {
+                return Err(inf.error(
+                    "spectrum",
+                    "<missing>",
+                    "give spectrum = … (one process) or road = { spectrum, coherence, track_width } (two tracks)",
+                ))
+            }
+        };
+        let mean = match inf.get("mean") {
+            None => 0.0,
+            Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
+        };
+        let name = inf
+            .opt_string("name")?
+            .map(str::to_string)
+            .unwrap_or_else(|| format!("input_{i}"));
+        if name.is_empty() || name.contains(['/', ' ']) {
+            return Err(inf.error("name", &name, "a signal name: not empty, without spaces or '/'"));
+        }
+        if let Some(k) = inputs.iter().position(|x: &ScenarioInput| x.name == name) {
+            return Err(inf.error("name", &name, format!("input[{k}] has this name already")));
+        }
+        let drives: Vec<usize> = match inf.get("drives") {
+            None if tables.len() == 1 => (0..n_inputs).collect(),
+            None => {
+                return Err(inf.error(
+                    "drives",
+                    "<missing>",
+                    format!(
+                        "with several [[input]] tables each names the model inputs it drives (0 to {})",
+                        n_inputs as i64 - 1
+                    ),
+                ))
+            }
+            Some(v) => {
+                let arr = v
+                    .as_array()
+                    .filter(|a| !a.is_empty())
+                    .ok_or_else(|| inf.error("drives", v, "expected a non-empty array of model input indices"))?;
+                arr.iter()
+                    .enumerate()
+                    .map(|(k, x)| {
+                        x.as_integer()
+                            .filter(|j| (0..n_inputs as i64).contains(j))
+                            .map(|j| j as usize)
+                            .ok_or_else(|| {
+                                inf.error(
+                                    &format!("drives[{k}]"),
+                                    x,
+                                    format!("expected a model input index from 0 to {}", n_inputs as i64 - 1),
+                                )
+                            })
+                    })
+                    .collect::<Result<_>>()?
+            }
+        };
+        let m = drives.len();
+        let positions = opt_array(&inf, "positions", m, |k, x| {
+            let p = crate::units::parse_value(x, Dim::LENGTH).map_err(|r| inf.error(k, x, r))?;
+            if !(p.is_finite() && p >= 0.0) {
+                return Err(inf.error(k, x, "must be a finite distance >= 0 behind the first contact"));
+            }
+            Ok(p)
+        })?;
+        let gains = opt_array(&inf, "gains", m, |k, x| {
+            x.as_float()
+                .or_else(|| x.as_integer().map(|g| g as f64))
+                .filter(|g| g.is_finite())
+                .ok_or_else(|| inf.error(k, x, "expected a finite number"))
+        })?;
+        let tracks = opt_array(&inf, "tracks", m, |k, x| track_index(&inf, k, x))?;
+        let is_road = matches!(source, Source::Matrix(_));
+        if tracks.is_some() && !is_road {
+            return Err(inf.error(
+                "tracks",
+                inf.get("tracks").map_or(String::new(), |v| v.to_string()),
+                "only a road of two tracks (road = { … }) has tracks; this input is one process",
+            ));
+        }
+        let s = sources.len();
+        for (k, &j) in drives.iter().enumerate() {
+            let (own_track, own_pos, own_gain) = layout_of(layout, j);
+            let position = positions.as_ref().map_or(own_pos, |p| p[k]);
+            let gain = gains.as_ref().map_or(own_gain, |g| g[k]);
+            let component = if is_road {
+                match tracks.as_ref().map(|t| t[k]).or(own_track) {
+                    Some(c) => c,
+                    None => {
+                        return Err(inf.error(
+                            "tracks",
+                            "<missing>",
+                            format!(
+                                "model input {j} has no track: name the track of each driven input, \
+                                 tracks = [\"left\", \"right\", …]"
+                            ),
+                        ))
+                    }
+                }
+            } else {
+                0
+            };
+            let delay = if position == 0.0 {
+                0.0
+            } else {
+                position / need_speed(&format!("model input {j} is {position} m behind the first contact"))?
+            };
+            if let Some((other, _)) = maps[j] {
+                return Err(inf.error(
+                    &format!("drives[{k}]"),
+                    j,
+                    format!("model input {j} is driven by input[{other}] already: each model input by one table"),
+                ));
+            }
+            maps[j] = Some((
+                i,
+                InputMap {
+                    source: s,
+                    component,
+                    delay,
+                    gain,
+                    mean: gain * mean,
+                },
+            ));
+        }
+        inf.finish()?;
+        sources.push(source);
+        inputs.push(ScenarioInput {
+            reference,
+            spectrum: sf.spectrum,
+            unit: sf.unit,
+            origin: sf.origin,
+            spectrum_text: sf.text,
+            speed,
+            mean,
+            name,
+            coherence,
+        });
+    }
+    let maps = maps
+        .into_iter()
+        .enumerate()
+        .map(|(j, m)| {
+            m.map(|(_, x)| x).ok_or_else(|| {
+                f.error(
+                    "input",
+                    format!("model input {j}"),
+                    format!("model input {j} is driven by no [[input]] table: add it to some table's drives"),
+                )
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let excitation = Excitation::sources(sources, maps).map_err(|e| f.wrap("input", e))?;
+    Ok((inputs, excitation))
+}
