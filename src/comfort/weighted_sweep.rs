@@ -187,7 +187,7 @@ impl WeightedEvaluator {
     fn residues(&self, ss: &StateSpace, output: usize) -> Option<f64> {
         use crate::response::Leverrier;
         let lv = Leverrier::new(ss, &self.gains);
-        if !(lv.residual <= INTEGRAL_TABLE_MAX_ERROR) {
+        if lv.residual.is_nan() || lv.residual > INTEGRAL_TABLE_MAX_ERROR {
             return None;
         }
         let n = lv.n;
@@ -195,44 +195,45 @@ impl WeightedEvaluator {
         let ni = &ni[..n + 2];
         let mut poles = poly::roots(&lv.delta[..=n]).ok()?;
         poles.extend_from_slice(&self.poles);
-        if poles.iter().any(|p| !(p.re < 0.0)) {
+        if poles.iter().any(|p| p.re.is_nan() || p.re >= 0.0) {
             return None;
         }
         let k_poles = poles.len();
         // P and its Horner bound P̃(|z|) at z
-        let eval = |z: Complex<f64>| {
+        let eval = |z: Complex<f64>, z_abs: f64| {
             let (mut a, mut abs_a) = (Complex::new(0.0, 0.0), 0.0);
             for &c in ni.iter().rev() {
                 a = a * z + c;
-                abs_a = abs_a * z.norm() + c.abs();
+                abs_a = abs_a * z_abs + c.abs();
             }
             let (mut b, mut abs_b) = (Complex::new(0.0, 0.0), 0.0);
             for &c in self.num.iter().rev() {
                 b = b * z + c;
-                abs_b = abs_b * z.norm() + c.abs();
+                abs_b = abs_b * z_abs + c.abs();
             }
             (a * b, abs_a * abs_b)
         };
         let (mut sum, mut abs_err) = (Complex::new(0.0, 0.0), 0.0);
         for (k, &p) in poles.iter().enumerate() {
             let (mut dq, mut q_minus) = (Complex::new(self.lead, 0.0), Complex::new(self.lead, 0.0));
-            let mut sep = f64::INFINITY;
+            let mut sep2 = f64::INFINITY;
             for (j, &pj) in poles.iter().enumerate() {
                 q_minus *= -p - pj;
                 if j != k {
                     dq *= p - pj;
-                    sep = sep.min((p - pj).norm());
+                    sep2 = sep2.min((p - pj).norm_sqr());
                 }
             }
-            if sep == 0.0 {
+            if sep2 == 0.0 {
                 return None;
             }
-            let (pp, pp_abs) = eval(p);
-            let (pm, pm_abs) = eval(-p);
+            let (p_abs, sep) = (p.norm(), sep2.sqrt());
+            let (pp, pp_abs) = eval(p, p_abs);
+            let (pm, pm_abs) = eval(-p, p_abs);
             let t = pp / dq * (pm / q_minus);
             let kappa = |v: Complex<f64>, bound: f64| if v.norm() > 0.0 { bound / v.norm() } else { 0.0 };
             sum += t;
-            abs_err += t.norm() * (kappa(pp, pp_abs) + kappa(pm, pm_abs) + 2.0 * k_poles as f64 + p.norm() / sep);
+            abs_err += t.norm() * (kappa(pp, pp_abs) + kappa(pm, pm_abs) + 2.0 * k_poles as f64 + p_abs / sep);
         }
         let value = sum.re;
         if !(value.is_finite() && value > 0.0) || abs_err * f64::EPSILON > INTEGRAL_TABLE_MAX_ERROR * value {

@@ -285,9 +285,9 @@ impl Leverrier {
         // Cayley–Hamilton: M_{n+1} = A M_n + δ₀ I vanishes in exact arithmetic; its size relative to |δ₀|
         // measures the rounding the recurrence accumulated (stiff systems lose digits here)
         let mut residual: f64 = 0.0;
-        for r in 0..n {
-            for c in 0..n {
-                residual = residual.max((am[r][c] + if r == c { delta[0] } else { 0.0 }).abs());
+        for (r, row) in am.iter().enumerate().take(n) {
+            for (c, v) in row.iter().enumerate().take(n) {
+                residual = residual.max((v + if r == c { delta[0] } else { 0.0 }).abs());
             }
         }
         let residual = if n == 0 { 0.0 } else { residual / delta[0].abs() };
@@ -333,7 +333,7 @@ pub(crate) fn table_route(
     let mut den = [0.0; 2 * N + 2];
     mul_into(&delta[..=n], fden, &mut den);
     let reliable = |ratio: f64| ratio * (den_len - 1) as f64 * f64::EPSILON <= INTEGRAL_TABLE_MAX_ERROR;
-    if !(lv.residual <= INTEGRAL_TABLE_MAX_ERROR) {
+    if lv.residual.is_nan() || lv.residual > INTEGRAL_TABLE_MAX_ERROR {
         // the characteristic and numerator polynomials themselves lost digits: every output by Lyapunov
         for _ in outputs {
             out.push(PointStatistics {
