@@ -46,5 +46,37 @@ fn sweep(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, sweep);
+/// The path users take: `stochvib sweep`'s library calls on `data/scraper-sprung-cab.toml` over a
+/// 100 × 100 (ω₂, ζ₂) grid (the scenario parsed once; per point the model rebuilt from its table and one
+/// `ExactEvaluator` pass over the 4 outputs), one thread, then the CSV of the table.
+fn scenario_sweep(c: &mut Criterion) {
+    use std::path::Path;
+    use stochvib::report::compute_sweep;
+    use stochvib::scenario::{load_scenario, Sweep, SweepMode, SweepParam, SweepSpec};
+    let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+    let spec = SweepSpec::new(
+        vec![
+            SweepParam::parse("model.omega2=1 Hz..2.5 Hz:100").unwrap(),
+            SweepParam::parse("model.zeta2=0.1..0.5:100").unwrap(),
+        ],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let sweep = Sweep::new(&sc, spec).unwrap();
+    let n = sweep.spec().n_points();
+    let mut g = c.benchmark_group("scenario_sweep_scraper_4_outputs");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(n as u64));
+    g.bench_function("evaluate_range_1e4_one_thread", |b| {
+        b.iter(|| sweep.evaluate_range(0..n, false).len())
+    });
+    g.bench_function("evaluate_range_1e4_all_cores", |b| {
+        b.iter(|| sweep.evaluate_range(0..n, true).len())
+    });
+    let table = compute_sweep(&sweep, 0..n, true, None, &|_, _| {}).unwrap();
+    g.bench_function("to_csv_1e4", |b| b.iter(|| table.to_csv().len()));
+    g.finish();
+}
+
+criterion_group!(benches, sweep, scenario_sweep);
 criterion_main!(benches);

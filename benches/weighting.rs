@@ -7,7 +7,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::sync::Arc;
-use stochvib::comfort::{weighted_output, Weighting};
+use stochvib::comfort::{weighted_output, WeightedEvaluator, Weighting};
 use stochvib::models::operator_seat::OperatorSeat;
 use stochvib::response::{variance_lyapunov, Excitation};
 use stochvib::spectrum::{Domain, RationalSpectrum};
@@ -34,6 +34,16 @@ fn a_w(exc: &Excitation, k: f64, b: f64) -> f64 {
     variance_lyapunov(&w, exc, 0).unwrap().variance.sqrt()
 }
 
+/// a_w of one point by the prepared [`WeightedEvaluator`] (W_k times the input filter multiplied once;
+/// per point the model, its state space and one scaled integral-table integral with its condition check).
+fn a_w_fast(ev: &WeightedEvaluator, exc: &Excitation, k: f64, b: f64) -> f64 {
+    let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap();
+    let m = seat.instance().unwrap();
+    let ss = m.system.state_space().unwrap();
+    let i = ss.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
+    ev.a_w(ss, i, exc).unwrap().a_w
+}
+
 fn weighting(c: &mut Criterion) {
     let exc = input();
     // 10⁴-point subgrid of the 10⁵-point sweep of the comparison script (100 × 100 of 317 × 317)
@@ -48,6 +58,18 @@ fn weighting(c: &mut Criterion) {
             for &k in &ks {
                 for &b in &bs {
                     acc += a_w(&exc, k, b);
+                }
+            }
+            acc
+        })
+    });
+    let ev = WeightedEvaluator::new(&exc, Weighting::Wk).unwrap();
+    g.bench_function("public_api_weighted_evaluator_1e4", |bch| {
+        bch.iter(|| {
+            let mut acc = 0.0;
+            for &k in &ks {
+                for &b in &bs {
+                    acc += a_w_fast(&ev, &exc, k, b);
                 }
             }
             acc

@@ -26,6 +26,7 @@ pub mod exposure;
 pub mod sampled;
 pub mod verdict;
 pub mod weighted;
+pub mod weighted_sweep;
 pub mod weighting;
 
 pub use axes::{axis_factor, vector_sum, Axis, AxisFactor, AxisValue, Location, Purpose, VectorSum, VectorSumTerm};
@@ -42,4 +43,5 @@ pub use verdict::{
     ZonePosition,
 };
 pub use weighted::weighted_output;
+pub use weighted_sweep::{WeightedEvaluator, WeightedRoute, WeightedValue};
 pub use weighting::{Motion, Weighting, WeightingParameters, WeightingUse, Q_BAND_LIMITING};

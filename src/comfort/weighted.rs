@@ -118,7 +118,7 @@ pub fn weighted_output(ss: &StateSpace, output: usize, w: &Weighting) -> Result<
 }
 
 /// `m/s^2` and `m/s²` are the same unit (and likewise for rad).
-fn same_unit(unit: &str, expected: &str) -> bool {
+pub(crate) fn same_unit(unit: &str, expected: &str) -> bool {
     let norm = |u: &str| u.trim().replace('²', "^2").replace(' ', "");
     norm(unit) == norm(expected)
 }

@@ -197,9 +197,9 @@ pub struct WeightingParameters {
 
 /// One factor N(s)/D(s) with D monic of degree 2 and deg N ≤ 2, coefficients ascending in s.
 #[derive(Debug, Clone)]
-struct Section {
-    num: [f64; 3],
-    den: [f64; 3],
+pub(crate) struct Section {
+    pub(crate) num: [f64; 3],
+    pub(crate) den: [f64; 3],
 }
 
 impl Weighting {
@@ -443,7 +443,7 @@ impl Weighting {
     }
 
     /// The factors as monic second-order sections N(s)/(s² + ωs/Q + ω²) (numerators carry the gains).
-    fn sections(self) -> Vec<Section> {
+    pub(crate) fn sections(self) -> Vec<Section> {
         let p = self.parameters();
         let (w1, w2) = (TAU * p.f1_hz, TAU * p.f2_hz);
         // H_h·H_l = [ω₁s/(s² + ω₁s/Q₁ + ω₁²)]·[(ω₂²/ω₁)s/(s² + ω₂s/Q₂ + ω₂²)]: the s² of the high pass is

@@ -10,7 +10,12 @@
 //!   delays, or one input) and a state-space system whose augmented order is ≤ 7. One Faddeev–LeVerrier
 //!   pass gives the characteristic polynomial and the adjugate of the system matrix, hence the numerator of
 //!   every output's transfer function; the integral table I_n gives the variance and λ₂. Nothing is
-//!   allocated on the heap per system.
+//!   allocated on the heap per system. Each value passes the condition check of the table
+//!   ([`INTEGRAL_TABLE_MAX_ERROR`]: pivot ratio of the Hurwitz elimination · n · ε ≤ 1e-9); an output whose
+//!   variance or λ₂ fails it is computed by [`variance_lyapunov`] instead and its method says
+//!   [`VarianceMethod::Lyapunov`] — no unreliable table value is returned. The same fallback applies to
+//!   every output of a system whose Faddeev–LeVerrier recurrence lost digits: its Cayley–Hamilton
+//!   residual max|A M_n + δ₀ I|/|δ₀| (zero in exact arithmetic) exceeds [`INTEGRAL_TABLE_MAX_ERROR`].
 //! * [`VarianceMethod::Lyapunov`]: other delay-free rational inputs (several independent processes)
 //!   ([`variance_lyapunov`]).
 //! * [`VarianceMethod::Quadrature`]: any other input (delays, non-rational or tabulated spectra)
@@ -26,16 +31,16 @@
 //! (F = F_num/F_den the shaping filter of the input process, driven by unit-intensity white noise.)
 
 use super::statistics::VarianceMethod;
-use super::variance::{spectral_moment_quadrature, variance_lyapunov, variance_quadrature};
+use super::variance::{spectral_moment_quadrature, variance_lyapunov, variance_quadrature, INTEGRAL_TABLE_MAX_ERROR};
 use super::Excitation;
 use crate::error::{Error, Result};
-use crate::linalg::h2_integral;
+use crate::linalg::integral_table::h2_integral_conditioned;
 use crate::spectrum::ShapingFilter;
 use crate::system::FrequencyResponse;
 use std::f64::consts::PI;
 
 /// Largest state count of the stack-based integral-table route (the table's order n + filter order ≤ 7).
-const MAX_STATES: usize = 7;
+pub(crate) const MAX_STATES: usize = 7;
 
 /// The exact statistics of one output of one system (see [`ExactEvaluator`]).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -157,29 +162,17 @@ impl ExactEvaluator {
         let ss = sys.state_space();
         match (self.method(ss.map(|s| s.n_states())), &self.route, ss) {
             (VarianceMethod::IntegralTable, Route::Table { filter, gains, mean }, Some(ss)) => {
-                table_route(ss, filter, gains, *mean, outputs)
-            }
-            (VarianceMethod::Lyapunov, _, _) => outputs
-                .iter()
-                .map(|&i| {
-                    let mean = static_mean(sys, exc, i);
-                    match variance_lyapunov(sys, exc, i) {
-                        Ok(m) => Ok(PointStatistics {
-                            mean,
-                            variance: Some(m.variance),
-                            lambda2: m.lambda2.ok(),
-                            method: VarianceMethod::Lyapunov,
-                        }),
-                        Err(Error::Divergent { .. }) => Ok(PointStatistics {
-                            mean,
-                            variance: None,
-                            lambda2: None,
-                            method: VarianceMethod::Lyapunov,
-                        }),
-                        Err(e) => Err(e),
+                let mut out = Vec::with_capacity(outputs.len());
+                table_route(ss, filter, gains, *mean, outputs, &mut out)?;
+                // an ill-conditioned table value is not printed: that output goes by Lyapunov
+                for (st, &i) in out.iter_mut().zip(outputs) {
+                    if st.method == VarianceMethod::Lyapunov {
+                        *st = lyapunov_point(sys, exc, i)?;
                     }
-                })
-                .collect(),
+                }
+                Ok(out)
+            }
+            (VarianceMethod::Lyapunov, _, _) => outputs.iter().map(|&i| lyapunov_point(sys, exc, i)).collect(),
             _ => outputs
                 .iter()
                 .map(|&i| {
@@ -202,6 +195,26 @@ impl ExactEvaluator {
     }
 }
 
+/// The statistics of output `i` by [`variance_lyapunov`].
+fn lyapunov_point(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<PointStatistics> {
+    let mean = static_mean(sys, exc, i);
+    match variance_lyapunov(sys, exc, i) {
+        Ok(m) => Ok(PointStatistics {
+            mean,
+            variance: Some(m.variance),
+            lambda2: m.lambda2.ok(),
+            method: VarianceMethod::Lyapunov,
+        }),
+        Err(Error::Divergent { .. }) => Ok(PointStatistics {
+            mean,
+            variance: None,
+            lambda2: None,
+            method: VarianceMethod::Lyapunov,
+        }),
+        Err(e) => Err(e),
+    }
+}
+
 /// M_y = H(0)·M_u from the system's static gain (None when infinite).
 fn static_mean(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Option<f64> {
     sys.static_gain().map(|g| {
@@ -210,75 +223,130 @@ fn static_mean(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Optio
     })
 }
 
-/// The integral-table route (module docs), on the stack.
-fn table_route(
+/// Faddeev–LeVerrier on the stack for a state-space system of at most [`MAX_STATES`] states driven by
+/// one combined input (module docs): Δ(s) = det(sI − A) and the vectors M_k b.
+pub(crate) struct Leverrier {
+    /// Number of states n.
+    pub(crate) n: usize,
+    /// Δ, ascending, monic (length n + 1 used).
+    pub(crate) delta: [f64; MAX_STATES + 1],
+    /// M_k b for k = 1..n (row k − 1).
+    mb: [[f64; MAX_STATES]; MAX_STATES],
+    /// max |A M_n + δ₀ I| / |δ₀|: the Cayley–Hamilton residual of the recurrence, relative (NaN or ∞ when
+    /// δ₀ = 0).
+    pub(crate) residual: f64,
+}
+
+impl Leverrier {
+    /// Δ and M_k b of `ss` with the inputs combined by `gains` (b = B g). `ss` has ≤ [`MAX_STATES`] states.
+    pub(crate) fn new(ss: &crate::system::StateSpace, gains: &[f64]) -> Leverrier {
+        const N: usize = MAX_STATES;
+        let n = ss.n_states();
+        let m = ss.b.ncols();
+        // combined input column b = B g
+        let mut a = [[0.0; N]; N];
+        let mut b = [0.0; N];
+        for r in 0..n {
+            for (c, v) in a[r].iter_mut().enumerate().take(n) {
+                *v = ss.a[(r, c)];
+            }
+            b[r] = (0..m).map(|j| ss.b[(r, j)] * gains[j]).sum();
+        }
+        // Faddeev–LeVerrier: delta (ascending, monic) and M_k b
+        let mut delta = [0.0; N + 1];
+        delta[n] = 1.0;
+        let mut mk = [[0.0; N]; N];
+        let mut am = [[0.0; N]; N];
+        let mut mb = [[0.0; N]; N];
+        for k in 1..=n {
+            // M_k = A M_{k-1} + delta[n+1-k] I  (M_0 = 0)
+            for r in 0..n {
+                for c in 0..n {
+                    mk[r][c] = am[r][c] + if r == c { delta[n + 1 - k] } else { 0.0 };
+                }
+            }
+            for r in 0..n {
+                mb[k - 1][r] = (0..n).map(|c| mk[r][c] * b[c]).sum();
+            }
+            // A M_k, its trace gives delta[n-k]
+            let mut tr = 0.0;
+            for r in 0..n {
+                for c in 0..n {
+                    let mut s = 0.0;
+                    for j in 0..n {
+                        s += a[r][j] * mk[j][c];
+                    }
+                    am[r][c] = s;
+                }
+                tr += am[r][r];
+            }
+            delta[n - k] = -tr / k as f64;
+        }
+        // Cayley–Hamilton: M_{n+1} = A M_n + δ₀ I vanishes in exact arithmetic; its size relative to |δ₀|
+        // measures the rounding the recurrence accumulated (stiff systems lose digits here)
+        let mut residual: f64 = 0.0;
+        for (r, row) in am.iter().enumerate().take(n) {
+            for (c, v) in row.iter().enumerate().take(n) {
+                residual = residual.max((v + if r == c { delta[0] } else { 0.0 }).abs());
+            }
+        }
+        let residual = if n == 0 { 0.0 } else { residual / delta[0].abs() };
+        Leverrier { n, delta, mb, residual }
+    }
+
+    /// N_i(s) = Σ_k (c_i M_k b) s^{n−k} + (d_i + e_i s) Δ(s), ascending (length n + 2 used), with
+    /// d = D g, e = E g.
+    pub(crate) fn numerator(&self, ss: &crate::system::StateSpace, gains: &[f64], i: usize) -> [f64; MAX_STATES + 2] {
+        let (n, m) = (self.n, ss.b.ncols());
+        let di: f64 = (0..m).map(|j| ss.d[(i, j)] * gains[j]).sum();
+        let ei: f64 = (0..m).map(|j| ss.e[(i, j)] * gains[j]).sum();
+        let mut ni = [0.0; MAX_STATES + 2];
+        for k in 1..=n {
+            ni[n - k] = (0..n).map(|c| ss.c[(i, c)] * self.mb[k - 1][c]).sum();
+        }
+        for (p, &dp) in self.delta[..=n].iter().enumerate() {
+            ni[p] += di * dp;
+            ni[p + 1] += ei * dp;
+        }
+        ni
+    }
+}
+
+/// The integral-table route (module docs), on the stack, appending one entry per output to `out`. An
+/// output whose Hurwitz elimination (variance or λ₂) is ill-conditioned (pivot ratio · n · ε above
+/// [`INTEGRAL_TABLE_MAX_ERROR`]) gets an entry with method [`VarianceMethod::Lyapunov`] and no numbers: the
+/// caller computes it by Lyapunov.
+pub(crate) fn table_route(
     ss: &crate::system::StateSpace,
     filter: &ShapingFilter,
     gains: &[f64],
     mean: f64,
     outputs: &[usize],
-) -> Result<Vec<PointStatistics>> {
+    out: &mut Vec<PointStatistics>,
+) -> Result<()> {
     const N: usize = MAX_STATES;
-    let n = ss.n_states();
-    let m = ss.b.ncols();
-    // combined input column b = B g, feedthroughs d = D g, e = E g (per output)
-    let mut a = [[0.0; N]; N];
-    let mut b = [0.0; N];
-    for r in 0..n {
-        for (c, v) in a[r].iter_mut().enumerate().take(n) {
-            *v = ss.a[(r, c)];
-        }
-        b[r] = (0..m).map(|j| ss.b[(r, j)] * gains[j]).sum();
-    }
-    // Faddeev–LeVerrier: delta (ascending, monic) and c M_k b for every output
-    let mut delta = [0.0; N + 1];
-    delta[n] = 1.0;
-    let mut mk = [[0.0; N]; N];
-    let mut am = [[0.0; N]; N];
-    // v[k] = M_k b (k = 1..n), stored per k
-    let mut mb = [[0.0; N]; N];
-    for k in 1..=n {
-        // M_k = A M_{k-1} + delta[n+1-k] I  (M_0 = 0)
-        for r in 0..n {
-            for c in 0..n {
-                mk[r][c] = am[r][c] + if r == c { delta[n + 1 - k] } else { 0.0 };
-            }
-        }
-        for r in 0..n {
-            mb[k - 1][r] = (0..n).map(|c| mk[r][c] * b[c]).sum();
-        }
-        // A M_k, its trace gives delta[n-k]
-        let mut tr = 0.0;
-        for r in 0..n {
-            for c in 0..n {
-                let mut s = 0.0;
-                for j in 0..n {
-                    s += a[r][j] * mk[j][c];
-                }
-                am[r][c] = s;
-            }
-            tr += am[r][r];
-        }
-        delta[n - k] = -tr / k as f64;
-    }
+    let lv = Leverrier::new(ss, gains);
+    let (n, delta) = (lv.n, &lv.delta);
     let fnum = &filter.num;
     let fden = &filter.den;
     let den_len = n + fden.len();
     let mut den = [0.0; 2 * N + 2];
     mul_into(&delta[..=n], fden, &mut den);
-    let mut out = Vec::with_capacity(outputs.len());
+    let reliable = |ratio: f64| ratio * (den_len - 1) as f64 * f64::EPSILON <= INTEGRAL_TABLE_MAX_ERROR;
+    if lv.residual.is_nan() || lv.residual > INTEGRAL_TABLE_MAX_ERROR {
+        // the characteristic and numerator polynomials themselves lost digits: every output by Lyapunov
+        for _ in outputs {
+            out.push(PointStatistics {
+                mean: None,
+                variance: None,
+                lambda2: None,
+                method: VarianceMethod::Lyapunov,
+            });
+        }
+        return Ok(());
+    }
     for &i in outputs {
-        let di: f64 = (0..m).map(|j| ss.d[(i, j)] * gains[j]).sum();
-        let ei: f64 = (0..m).map(|j| ss.e[(i, j)] * gains[j]).sum();
-        // N_i(s) = Σ_k (c_i M_k b) s^{n-k} + (d + e s) Δ(s)
-        let mut ni = [0.0; N + 2];
-        for k in 1..=n {
-            ni[n - k] = (0..n).map(|c| ss.c[(i, c)] * mb[k - 1][c]).sum();
-        }
-        for (p, &dp) in delta[..=n].iter().enumerate() {
-            ni[p] += di * dp;
-            ni[p + 1] += ei * dp;
-        }
+        let ni = lv.numerator(ss, gains, i);
         let ni_len = n + 2;
         let mut num = [0.0; 2 * N + 4];
         let num_len = mul_into(&ni[..ni_len], fnum, &mut num);
@@ -287,18 +355,34 @@ fn table_route(
         } else {
             None
         };
-        let variance = match h2_integral(&num[..num_len], &den[..den_len]) {
-            Ok(v) => Some(v / (2.0 * PI)),
+        let unreliable = PointStatistics {
+            mean: None,
+            variance: None,
+            lambda2: None,
+            method: VarianceMethod::Lyapunov,
+        };
+        let variance = match h2_integral_conditioned(&num[..num_len], &den[..den_len]) {
+            Ok((v, ratio)) if reliable(ratio) => Some(v / (2.0 * PI)),
+            Ok(_) => {
+                out.push(unreliable);
+                continue;
+            }
             Err(Error::Divergent { .. }) => None,
             Err(e) => return Err(unstable_or(e, &delta[..=n])),
         };
-        let lambda2 = variance.and_then(|_| {
+        let mut lambda2 = None;
+        if variance.is_some() {
             let mut s_num = [0.0; 2 * N + 5];
             s_num[1..=num_len].copy_from_slice(&num[..num_len]);
-            h2_integral(&s_num[..=num_len], &den[..den_len])
-                .ok()
-                .map(|v| v / (2.0 * PI))
-        });
+            match h2_integral_conditioned(&s_num[..=num_len], &den[..den_len]) {
+                Ok((v, ratio)) if reliable(ratio) => lambda2 = Some(v / (2.0 * PI)),
+                Ok(_) => {
+                    out.push(unreliable);
+                    continue;
+                }
+                Err(_) => {}
+            }
+        }
         out.push(PointStatistics {
             mean: static_mean,
             variance,
@@ -306,7 +390,7 @@ fn table_route(
             method: VarianceMethod::IntegralTable,
         });
     }
-    Ok(out)
+    Ok(())
 }
 
 /// A failure of the table for a characteristic polynomial that is not Hurwitz is an unstable system.
@@ -322,7 +406,7 @@ fn unstable_or(e: Error, delta: &[f64]) -> Error {
 }
 
 /// p·q (ascending) into `out`; returns the length used.
-fn mul_into(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
+pub(crate) fn mul_into(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
     let len = p.len() + q.len() - 1;
     out[..len].fill(0.0);
     for (i, a) in p.iter().enumerate() {
