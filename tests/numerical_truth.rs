@@ -169,56 +169,11 @@ fn units_of_derived_outputs_follow_from_the_coordinates() {
 /// applicable — never a bare wrong number.
 #[test]
 fn the_integral_table_never_prints_a_wrong_number() {
-    use rand::{RngExt, SeedableRng};
+    use rand::SeedableRng;
     let mut rng = rand::rngs::Xoshiro256PlusPlus::seed_from_u64(151);
     let mut values = 0;
     for case in 0..60 {
-        let m = [
-            0.05 * 10f64.powf(rng.random::<f64>()),
-            5.0,
-            2000.0 * 10f64.powf(rng.random::<f64>() * 3.0),
-        ];
-        let k: Vec<f64> = (0..3)
-            .map(|_| 1e5 * 10f64.powf(rng.random::<f64>() * 3.0 - 1.0))
-            .collect();
-        let b: Vec<f64> = (0..3).map(|_| 20.0 * 10f64.powf(rng.random::<f64>() * 2.0)).collect();
-        let text = format!(
-            r#"
-[model]
-kind = "mdof"
-base_inputs = 1
-coordinates = [{{ name = "a", unit = "m", mass = {} }}, {{ name = "b", unit = "m", mass = {} }}, {{ name = "c", unit = "m", mass = {} }}]
-[[model.element]]
-name = "k1"
-point = [1, 0, 0]
-to = "base 0"
-stiffness = {}
-damping = {}
-[[model.element]]
-name = "k2"
-point = [0, 1, 0]
-to = [1, 0, 0]
-stiffness = {}
-damping = {}
-[[model.element]]
-name = "k3"
-point = [0, 0, 1]
-to = [0, 1, 0]
-stiffness = {}
-damping = {}
-[[model.output]]
-name = "a"
-quantity = "displacement"
-point = [1, 0, 0]
-[[model.output]]
-name = "f3"
-quantity = "element-force"
-element = "k3"
-[input]
-spectrum = "type1"
-"#,
-            m[0], m[1], m[2], k[0], b[0], k[1], b[1], k[2], b[2]
-        );
+        let text = common::stiff_chain_text(&mut rng);
         let sc = scenario(&text);
         for i in 0..2 {
             let st = analyze_output(sc.model.system.as_ref(), &sc.excitation, i).unwrap();

@@ -16,3 +16,56 @@ pub fn rel(a: f64, b: f64) -> f64 {
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
+
+/// The scenario text of a random stiff three-mass chain on a base (the family of issue 15's stiff-chain
+/// report: masses 0.05–0.5, 5 and 2000–2·10⁶ kg, stiffnesses 10⁴–10⁷ N/m, dampers 20–2000 N s/m, type-1
+/// input), drawn from `rng`; outputs the first mass's displacement and the last element's force.
+pub fn stiff_chain_text(rng: &mut rand::rngs::Xoshiro256PlusPlus) -> String {
+    use rand::RngExt;
+    let m = [
+        0.05 * 10f64.powf(rng.random::<f64>()),
+        5.0,
+        2000.0 * 10f64.powf(rng.random::<f64>() * 3.0),
+    ];
+    let k: Vec<f64> = (0..3)
+        .map(|_| 1e5 * 10f64.powf(rng.random::<f64>() * 3.0 - 1.0))
+        .collect();
+    let b: Vec<f64> = (0..3).map(|_| 20.0 * 10f64.powf(rng.random::<f64>() * 2.0)).collect();
+    format!(
+        r#"
+[model]
+kind = "mdof"
+base_inputs = 1
+coordinates = [{{ name = "a", unit = "m", mass = {} }}, {{ name = "b", unit = "m", mass = {} }}, {{ name = "c", unit = "m", mass = {} }}]
+[[model.element]]
+name = "k1"
+point = [1, 0, 0]
+to = "base 0"
+stiffness = {}
+damping = {}
+[[model.element]]
+name = "k2"
+point = [0, 1, 0]
+to = [1, 0, 0]
+stiffness = {}
+damping = {}
+[[model.element]]
+name = "k3"
+point = [0, 0, 1]
+to = [0, 1, 0]
+stiffness = {}
+damping = {}
+[[model.output]]
+name = "a"
+quantity = "displacement"
+point = [1, 0, 0]
+[[model.output]]
+name = "f3"
+quantity = "element-force"
+element = "k3"
+[input]
+spectrum = "type1"
+"#,
+        m[0], m[1], m[2], k[0], b[0], k[1], b[1], k[2], b[2]
+    )
+}
