@@ -396,7 +396,13 @@ fn input_kurtosis(inf: &Fields) -> Result<Option<f64>> {
     let k = v
         .as_float()
         .or_else(|| v.as_integer().map(|n| n as f64))
-        .ok_or_else(|| inf.error("kurtosis", v, "expected a number >= 3 (the marginal kurtosis E x⁴/(E x²)²)"))?;
+        .ok_or_else(|| {
+            inf.error(
+                "kurtosis",
+                v,
+                "expected a number >= 3 (the marginal kurtosis E x⁴/(E x²)²)",
+            )
+        })?;
     if !(k.is_finite() && k >= 3.0) {
         return Err(inf.error(
             "kurtosis",

@@ -643,7 +643,11 @@ fn laplace_generators(
             l.kernel_ratio(),
             l.nu_steps(),
             l.nu(),
-            if l.nu_steps() > 0.0 { 1.0 / l.nu_steps() } else { f64::INFINITY }
+            if l.nu_steps() > 0.0 {
+                1.0 / l.nu_steps()
+            } else {
+                f64::INFINITY
+            }
         ));
     }
     let names = sys.outputs();
