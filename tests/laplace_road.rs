@@ -234,10 +234,10 @@ fn quarter_car_on_a_laplace_road_keeps_sigma_not_extremes() {
         let sc = quarter_car(k);
         let out = dir.join(format!("{label}.h5"));
         let s = stochvib::simulate::run(&sc.run_input(), &opts, &out, &|_, _| {}).unwrap();
-        if k.is_some() {
+        if let Some(k) = k {
             assert!(s.generator.contains("Laplace moving average"));
             let run = RunFile::open(&out).unwrap();
-            assert!(run.metadata().generator.contains(&format!("kurtosis {}", k.unwrap())));
+            assert!(run.metadata().generator.contains(&format!("kurtosis {k}")));
         }
         runs.push((label, k, out, s));
     }

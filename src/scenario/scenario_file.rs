@@ -14,6 +14,7 @@
 //! spectrum = "iso8608-c"         # a catalogue name, a path, or an inline table of spectrum keys
 //! speed = "20 m/s"               # needed for spatial spectra and for delays between wheels
 //! mean = 0.0                     # mean of the input process (default 0), in the process's unit
+//! kurtosis = 6                   # optional: a non-Gaussian input of this marginal kurtosis (>= 3)
 //!
 //! [analysis]                     # optional
 //! outputs = ["body", "travel"]   # default: every output
@@ -32,6 +33,13 @@
 //! Several independent inputs (a road of two tracks with a coherence, a force, …) are written as
 //! `[[input]]` tables instead of the one `[input]` ([`super::inputs`] describes them); each names the model
 //! inputs it drives.
+//!
+//! `[input] kurtosis = κ` (κ ≥ 3; absent: Gaussian) makes the input a Laplace moving average with the same
+//! spectrum and marginal kurtosis κ ([`LaplaceMovingAverage`](crate::simulate::LaplaceMovingAverage),
+//! Bogsjö, Podgórski & Rychlik 2012). The analytic results (σ, densities, Rice rates of the Gaussian law)
+//! do not change; Monte Carlo runs (`simulate`, `analyze --monte-carlo`) synthesise it on the spectral route,
+//! store κ in the run's generator name and its identity (`input_kurtosis`) and note ν and each output's
+//! kurtosis. Not yet for `[[input]]` tables.
 //!
 //! Spectra named in `[input] spectrum` are resolved by the one rule of [`Catalogue`]; the scenario keeps the
 //! spectrum's unit, where it came from and the catalogue directory.

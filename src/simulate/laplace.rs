@@ -167,7 +167,7 @@ impl LaplaceMovingAverage {
         let n = spectral.len();
         let amp: Vec<Complex<f64>> = spectral.scales().iter().map(|s| Complex::new(*s, 0.0)).collect();
         let (s4, s2) = kernel_sums(&amp, n)?;
-        if !(s2 > 0.0) {
+        if s2.is_nan() || s2 <= 0.0 {
             return Err(Error::invalid(
                 "spectrum",
                 format!("grid variance {s2:e}"),
