@@ -504,6 +504,7 @@ pub(crate) fn parse_inputs(
             mean,
             name,
             coherence,
+            kurtosis: None,
         });
     }
     let maps = maps

@@ -14,6 +14,7 @@
 //! spectrum = "iso8608-c"         # a catalogue name, a path, or an inline table of spectrum keys
 //! speed = "20 m/s"               # needed for spatial spectra and for delays between wheels
 //! mean = 0.0                     # mean of the input process (default 0), in the process's unit
+//! kurtosis = 6                   # optional: a non-Gaussian input of this marginal kurtosis (>= 3)
 //!
 //! [analysis]                     # optional
 //! outputs = ["body", "travel"]   # default: every output
@@ -32,6 +33,13 @@
 //! Several independent inputs (a road of two tracks with a coherence, a force, …) are written as
 //! `[[input]]` tables instead of the one `[input]` ([`super::inputs`] describes them); each names the model
 //! inputs it drives.
+//!
+//! `[input] kurtosis = κ` (κ ≥ 3; absent: Gaussian) makes the input a Laplace moving average with the same
+//! spectrum and marginal kurtosis κ ([`LaplaceMovingAverage`](crate::simulate::LaplaceMovingAverage),
+//! Bogsjö, Podgórski & Rychlik 2012). The analytic results (σ, densities, Rice rates of the Gaussian law)
+//! do not change; Monte Carlo runs (`simulate`, `analyze --monte-carlo`) synthesise it on the spectral route,
+//! store κ in the run's generator name and its identity (`input_kurtosis`) and note ν and each output's
+//! kurtosis. Not yet for `[[input]]` tables.
 //!
 //! Spectra named in `[input] spectrum` are resolved by the one rule of [`Catalogue`]; the scenario keeps the
 //! spectrum's unit, where it came from and the catalogue directory.
@@ -92,6 +100,11 @@ pub struct ScenarioInput {
     pub name: String,
     /// For a road of two tracks: the coherence model and track width, described.
     pub coherence: Option<String>,
+    /// `[input] kurtosis`: the marginal kurtosis κ ≥ 3 of a non-Gaussian input (a Laplace moving average with
+    /// the same spectrum, [`LaplaceMovingAverage`](crate::simulate::LaplaceMovingAverage)); `None` (key
+    /// absent) for a Gaussian input. Monte Carlo runs honour it; the analytic statistics (σ, spectra) are the
+    /// same for any κ.
+    pub kurtosis: Option<f64>,
 }
 
 /// A loaded, validated stochastic scenario.
@@ -183,6 +196,13 @@ impl Scenario {
                     serde_json::to_string(&inp.origin).unwrap_or_default(),
                 ),
             ]);
+        }
+        if let Some(k) = self.input.kurtosis {
+            input.kurtosis = Some(k);
+            input.provenance.push(Provenance::identity(
+                "input_kurtosis",
+                format!("{k} (Laplace moving average with the input's spectrum)"),
+            ));
         }
         input.source_files.push(self.path.clone());
         for inp in &self.inputs {
@@ -317,6 +337,7 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
                 None => 0.0,
                 Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
             };
+            let kurtosis = input_kurtosis(&inf)?;
             inf.finish()?;
             let excitation = build_excitation(&inf, &model.layout, sf.spectrum.clone(), speed, mean)?;
             let name = if sf.spectrum.domain() == Domain::Spatial {
@@ -334,6 +355,7 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
                 mean,
                 name: name.to_string(),
                 coherence: None,
+                kurtosis,
             };
             (vec![input], excitation)
         }
@@ -371,6 +393,33 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
         excitation,
         analysis,
     })))
+}
+
+/// `[input] kurtosis`: absent (Gaussian), or a finite number ≥ 3, else an error naming the file, the key, the
+/// value and the reason.
+fn input_kurtosis(inf: &Fields) -> Result<Option<f64>> {
+    let Some(v) = inf.get("kurtosis") else {
+        return Ok(None);
+    };
+    let k = v
+        .as_float()
+        .or_else(|| v.as_integer().map(|n| n as f64))
+        .ok_or_else(|| {
+            inf.error(
+                "kurtosis",
+                v,
+                "expected a number >= 3 (the marginal kurtosis E x⁴/(E x²)²)",
+            )
+        })?;
+    if !(k.is_finite() && k >= 3.0) {
+        return Err(inf.error(
+            "kurtosis",
+            v,
+            "the kurtosis E x⁴/(E x²)² of a non-Gaussian (Laplace moving average) input must be finite and >= 3: \
+             3 is the Gaussian road, larger values give heavier tails; omit the key for a Gaussian input",
+        ));
+    }
+    Ok(Some(k))
 }
 
 /// Output names unique, and the system asymptotically stable (a stationary response exists), else an error

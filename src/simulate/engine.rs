@@ -29,6 +29,9 @@ pub(crate) enum Engine {
         /// raw records only: per generator of a multi-component source, its source's first generator and
         /// the mixing row at every bin (the recorded input is the component, e.g. the right track)
         raw_mix: Vec<RawMix>,
+        /// non-Gaussian inputs: one Laplace moving average per generator, on the generator's grid (empty for
+        /// Gaussian inputs, which draw the generators' Rayleigh coefficients)
+        laplace: Vec<super::LaplaceMovingAverage>,
     },
     /// Streamed spectral synthesis: white noise through FIR kernels by overlap-save (statistics only).
     SpectralStream(FirSynthesis),
@@ -59,6 +62,7 @@ pub(crate) struct Scratch {
     fft_out: Vec<Complex<f64>>,
     fft_scratch: Vec<Complex<f64>>,
     fir: Option<super::FirScratch>,
+    laplace: Vec<super::LaplaceScratch>,
 }
 
 impl Scratch {
@@ -88,6 +92,10 @@ impl Scratch {
             fir: match &plan.engine {
                 Engine::SpectralStream(fir) => Some(fir.scratch()),
                 _ => None,
+            },
+            laplace: match &plan.engine {
+                Engine::Spectral { laplace, .. } => laplace.iter().map(|l| l.scratch()).collect(),
+                _ => vec![],
             },
         }
     }
@@ -229,13 +237,20 @@ pub(crate) fn realize(
             gains,
             inverse,
             raw_mix,
+            laplace,
         } => {
             let fft_err = |e: realfft::FftError| Error::Numerical {
                 what: "inverse real FFT".into(),
                 reason: e.to_string(),
             };
-            for (g, sc) in generators.iter().zip(s.spec.iter_mut()) {
-                g.draw(rng, sc);
+            if laplace.is_empty() {
+                for (g, sc) in generators.iter().zip(s.spec.iter_mut()) {
+                    g.draw(rng, sc);
+                }
+            } else {
+                for ((l, w), sc) in laplace.iter().zip(s.laplace.iter_mut()).zip(s.spec.iter_mut()) {
+                    l.draw_with(rng, w, sc)?;
+                }
             }
             let half = n / 2;
             for r in 0..p {

@@ -116,6 +116,10 @@ pub struct RunInput<'a> {
     /// Verdict channels evaluated on every realization (ISO 2631-1 metrics, rainflow damage); empty for
     /// none.
     pub verdicts: super::VerdictChannels,
+    /// Marginal kurtosis of every input process: `None` (the default) for Gaussian processes; `Some(κ)`,
+    /// κ ≥ 3, for Laplace moving averages with the same spectra ([`LaplaceMovingAverage`](super::LaplaceMovingAverage)),
+    /// simulated on the spectral route (κ = 3 is the Gaussian law drawn the Laplace way).
+    pub kurtosis: Option<f64>,
 }
 
 impl<'a> RunInput<'a> {
@@ -136,6 +140,7 @@ impl<'a> RunInput<'a> {
             provenance: vec![Provenance::identity("excitation", describe(excitation))],
             source_files: Vec::new(),
             verdicts: super::VerdictChannels::default(),
+            kurtosis: None,
         }
     }
 }

@@ -7,6 +7,9 @@
 //!   for rational spectra, streaming in constant memory ([`shaping_simulator`], [`GaussMarkov`]), road
 //!   profiles felt by several wheels at speed v ([`RoadTrack`]), and the streamed spectral synthesis of any
 //!   spectrum through any system with memory independent of the record length ([`FirSynthesis`]).
+//! * A non-Gaussian input with the same spectrum and a prescribed kurtosis: the Laplace moving average of
+//!   Bogsjö, Podgórski and Rychlik (2012) on the spectral grid ([`LaplaceMovingAverage`]; a run takes it from
+//!   [`RunInput::kurtosis`], a scenario from `[input] kurtosis`).
 //! * Time response: exact zero/first-order-hold discretisation ([`zoh`], [`foh`], [`SampledSystem`]) and
 //!   Van Loan's white-noise discretisation of the system augmented with its input filters
 //!   ([`van_loan`], [`augmented_response`]) — no time-step bias.
@@ -24,6 +27,7 @@ mod engine;
 mod finish;
 pub mod fir_stream;
 mod input;
+pub mod laplace;
 mod merge;
 mod options;
 mod plan;
@@ -44,6 +48,7 @@ pub use discretize::{
 };
 pub use fir_stream::{FirScratch, FirSynthesis, KernelDesign};
 pub use input::{source_signals, RunInput};
+pub use laplace::{LaplaceMovingAverage, LaplaceScratch, LAPLACE_DRAWS};
 pub use merge::{merge_runs, MergeOptions, MergeSummary};
 pub use options::{suggest_step, Route, RunOptions, StepSuggestion};
 pub use plan::{planned_memory, PlannedMemory, SkippedOutput};

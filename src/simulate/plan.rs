@@ -147,6 +147,25 @@ impl RouteChoice {
     /// has a shaping filter.
     fn choose(input: &RunInput, opts: &RunOptions, idx: &[usize]) -> Result<RouteChoice> {
         let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
+        if let Some(k) = input.kurtosis {
+            return match opts.route {
+                Route::Auto | Route::Spectral => Ok(RouteChoice {
+                    exact: None,
+                    reason: format!(
+                        "spectral route: non-Gaussian inputs (kurtosis {k}) are Laplace moving averages synthesised \
+                         on the spectral grid"
+                    ),
+                }),
+                Route::Exact | Route::SpectralStream => Err(Error::invalid(
+                    "route",
+                    opts.route.name(),
+                    format!(
+                        "an input with kurtosis {k} (a Laplace moving average) is simulated on the spectral route \
+                         only: use --route spectral or auto"
+                    ),
+                )),
+            };
+        }
         Ok(match opts.route {
             Route::Spectral => RouteChoice {
                 exact: None,
@@ -204,7 +223,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let streamed = match (opts.route, whole) {
         (Route::SpectralStream, _) => true,
         (_, Ok(())) => false,
-        (_, Err(e)) if choice.exact.is_some() || opts.store_raw => return Err(e),
+        (_, Err(e)) if choice.exact.is_some() || opts.store_raw || input.kurtosis.is_some() => return Err(e),
         (_, Err(e)) => {
             choice.reason = format!(
                 "{}; streamed spectral route: the whole-record spectral route does not fit ({e})",
@@ -292,11 +311,19 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
         outputs,
         skipped,
         notes,
-        generator: format!(
-            "{}, stream (seed, i) per realization; spectral representation (Rayleigh amplitudes) on an FFT grid of \
-             N = {n}, first-order-hold response (periodic steady state, frequency domain)",
-            super::GENERATOR
-        ),
+        generator: match input.kurtosis {
+            None => format!(
+                "{}, stream (seed, i) per realization; spectral representation (Rayleigh amplitudes) on an FFT grid \
+                 of N = {n}, first-order-hold response (periodic steady state, frequency domain)",
+                super::GENERATOR
+            ),
+            Some(k) => format!(
+                "{}, stream (seed, i) per realization; Laplace moving average of kurtosis {k} on an FFT grid of N = \
+                 {n} ({}), first-order-hold response (periodic steady state, frequency domain)",
+                super::GENERATOR,
+                super::LAPLACE_DRAWS
+            ),
+        },
         welch,
         block_steps: 0,
         autocov,
@@ -557,8 +584,13 @@ fn spectral_engine(
          sampled at Δω = 2π/(NΔt)); `discrete σ` is the exact σ of that simulated process"
             .into(),
     );
+    let laplace = match input.kurtosis {
+        None => vec![],
+        Some(k) => laplace_generators(exc, &generators, &gains, k, outputs, sys, notes)?,
+    };
     Ok((
         Engine::Spectral {
+            laplace,
             raw_mix: if opts.store_raw {
                 raw_mixing(generators.len(), &inputs, dt, n)
             } else {
@@ -571,6 +603,71 @@ fn spectral_engine(
         discrete,
         autocov,
     ))
+}
+
+/// The Laplace moving averages of a non-Gaussian run, one per generator (each with the prescribed kurtosis
+/// `k`), and a note per generator (its ν) and per output (its kurtosis, from the cumulants of the filtered
+/// moving averages, [`LaplaceMovingAverage::filtered_cumulants`](super::LaplaceMovingAverage::filtered_cumulants)).
+///
+/// # Errors
+/// A multi-component source (two tracks with a coherence): its mixed components would not have the
+/// prescribed kurtosis; the errors of [`LaplaceMovingAverage::from_generator`](super::LaplaceMovingAverage::from_generator).
+fn laplace_generators(
+    exc: &Excitation,
+    generators: &[SpectralGenerator],
+    gains: &Gains,
+    k: f64,
+    outputs: &[usize],
+    sys: &dyn FrequencyResponse,
+    notes: &mut Vec<String>,
+) -> Result<Vec<super::LaplaceMovingAverage>> {
+    if let Excitation::Sources { sources, .. } = exc {
+        if sources.iter().any(|s| s.n_components() > 1) {
+            return Err(Error::invalid(
+                "kurtosis",
+                k,
+                "a non-Gaussian input is not available for a source of several correlated components (two tracks \
+                 with a coherence) yet: the mixed track would not have the prescribed kurtosis",
+            ));
+        }
+    }
+    let lma = generators
+        .iter()
+        .map(|g| super::LaplaceMovingAverage::from_generator(g.clone(), k))
+        .collect::<Result<Vec<_>>>()?;
+    for (i, l) in lma.iter().enumerate() {
+        notes.push(format!(
+            "non-Gaussian input {i}: Laplace moving average (Bogsjö, Podgórski & Rychlik 2012) of kurtosis {k}, same \
+             spectrum as the Gaussian input; kernel ratio Σf⁴/(Σf²)² = {:.4e}, ν = {:.4e} steps = {:.4e} s (Gamma \
+             shape Δt/ν = {:.4e})",
+            l.kernel_ratio(),
+            l.nu_steps(),
+            l.nu(),
+            if l.nu_steps() > 0.0 {
+                1.0 / l.nu_steps()
+            } else {
+                f64::INFINITY
+            }
+        ));
+    }
+    let names = sys.outputs();
+    for (r, &o) in outputs.iter().enumerate() {
+        let (mut k4, mut var) = (0.0, 0.0);
+        for (l, g) in lma.iter().zip(gains) {
+            let (a, b) = l.filtered_cumulants(&g[r])?;
+            k4 += a;
+            var += b;
+        }
+        if var > 0.0 {
+            notes.push(format!(
+                "non-Gaussian response: kurtosis of `{}` (simulated process) = {:.6} (Gaussian: 3); σ is that of the \
+                 Gaussian input, extremes and VDV are not",
+                names.get(o).map(|i| i.name.as_str()).unwrap_or("?"),
+                3.0 + k4 / (var * var)
+            ));
+        }
+    }
+    Ok(lma)
 }
 
 /// Autocovariance at lags 0..lags of the periodic process whose variance per bin is `power[j]`

@@ -99,6 +99,10 @@ impl SpectralScratch {
     pub fn coefficients(&self) -> &[Complex<f64>] {
         &self.coef
     }
+    /// The coefficients, for a generator that draws them its own way ([`super::LaplaceMovingAverage`]).
+    pub(crate) fn coefficients_mut(&mut self) -> &mut [Complex<f64>] {
+        &mut self.coef
+    }
 }
 
 impl SpectralGenerator {
@@ -163,6 +167,10 @@ impl SpectralGenerator {
     pub fn grid_variance(&self) -> f64 {
         self.grid_variance
     }
+    /// The amplitude scales s_j = √(S(ω_j)Δω), j = 0..=N/2.
+    pub fn scales(&self) -> &[f64] {
+        &self.scale
+    }
     /// Exact autocovariance of the generated process at lag mΔt: K_N(m) = Σ_j S(ω_j)Δω cos(ω_j mΔt).
     pub fn grid_autocovariance(&self, m: i64) -> f64 {
         let n = self.n;
@@ -198,6 +206,15 @@ impl SpectralGenerator {
             ));
         }
         self.draw(rng, scratch);
+        self.synthesize(scratch, out)
+    }
+
+    /// The inverse real FFT of the coefficients in `scratch` into `out` (N samples; the coefficients are
+    /// overwritten).
+    pub(crate) fn synthesize(&self, scratch: &mut SpectralScratch, out: &mut [f64]) -> Result<()> {
+        if out.len() != self.n {
+            return Err(Error::invalid("out", out.len(), format!("need {} samples", self.n)));
+        }
         self.plan
             .process_with_scratch(&mut scratch.coef, out, &mut scratch.fft)
             .map_err(|e| Error::Numerical {
