@@ -477,7 +477,7 @@ impl<'d> H2Denominator<'d> {
     pub(crate) fn new(den_s: &'d [f64]) -> H2Denominator<'d> {
         let d = trimmed(den_s);
         let n = d.len().saturating_sub(1);
-        let elim = if n >= 1 && n <= STACK_MAX && den_s.iter().all(|v| v.is_finite()) && hurwitz(d) {
+        let elim = if (1..=STACK_MAX).contains(&n) && den_s.iter().all(|v| v.is_finite()) && hurwitz(d) {
             Some(Elimination::new(d, n))
         } else {
             None

@@ -227,8 +227,8 @@ fn fill_base_excited<const N: usize>(
                 e += g[k] * mbu[k];
             }
         } else {
-            for j in 0..n {
-                ss.c[(r, j)] = g[j];
+            for (j, gj) in g.iter().enumerate() {
+                ss.c[(r, j)] = *gj;
             }
         }
         ss.d[(r, 0)] = d;
