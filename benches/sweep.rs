@@ -47,8 +47,10 @@ fn sweep(c: &mut Criterion) {
 }
 
 /// The path users take: `stochvib sweep`'s library calls on `data/scraper-sprung-cab.toml` over a
-/// 100 × 100 (ω₂, ζ₂) grid (the scenario parsed once; per point the model rebuilt from its table and one
-/// `ExactEvaluator` pass over the 4 outputs), one thread, then the CSV of the table.
+/// 100 × 100 (ω₂, ζ₂) grid (the scenario parsed once, every swept value read once; per point the numeric
+/// builder writes the state space in place and one `ExactEvaluator` pass covers the 4 outputs), one
+/// thread and all cores; the general path (model rebuilt from its table) for comparison; then the CSV of
+/// the table.
 fn scenario_sweep(c: &mut Criterion) {
     use std::path::Path;
     use stochvib::report::compute_sweep;
@@ -73,6 +75,16 @@ fn scenario_sweep(c: &mut Criterion) {
     g.bench_function("evaluate_range_1e4_all_cores", |b| {
         b.iter(|| sweep.evaluate_range(0..n, true).len())
     });
+    // the general path (model rebuilt from its substituted table per point) on the first 10³ points
+    g.throughput(Throughput::Elements(1000));
+    g.bench_function("evaluate_general_1e3_one_thread", |b| {
+        b.iter(|| {
+            (0..1000)
+                .map(|p| sweep.evaluate_general(p).is_ok() as usize)
+                .sum::<usize>()
+        })
+    });
+    g.throughput(Throughput::Elements(n as u64));
     let table = compute_sweep(&sweep, 0..n, true, None, &|_, _| {}).unwrap();
     g.bench_function("to_csv_1e4", |b| b.iter(|| table.to_csv().len()));
     g.finish();

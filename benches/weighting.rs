@@ -34,8 +34,8 @@ fn a_w(exc: &Excitation, k: f64, b: f64) -> f64 {
     variance_lyapunov(&w, exc, 0).unwrap().variance.sqrt()
 }
 
-/// a_w of one point by the prepared [`WeightedEvaluator`] (W_k times the input filter multiplied once;
-/// per point the model, its state space and one scaled integral-table integral with its condition check).
+/// a_w of one point by the prepared [`WeightedEvaluator`] (the poles of W_k and of the input filter found
+/// once; per point the model, its state space, Faddeev–LeVerrier and the checked residue sum).
 fn a_w_fast(ev: &WeightedEvaluator, exc: &Excitation, k: f64, b: f64) -> f64 {
     let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap();
     let m = seat.instance().unwrap();
@@ -70,6 +70,19 @@ fn weighting(c: &mut Criterion) {
             for &k in &ks {
                 for &b in &bs {
                     acc += a_w_fast(&ev, &exc, k, b);
+                }
+            }
+            acc
+        })
+    });
+    // the seat's closed-form transfer function, no model or state space per point
+    g.bench_function("public_api_a_w_rational_1e4", |bch| {
+        bch.iter(|| {
+            let mut acc = 0.0;
+            for &k in &ks {
+                for &b in &bs {
+                    let (num, den) = OperatorSeat::new(80.0, 26.0, k, b).unwrap().seat_acc_transfer();
+                    acc += ev.a_w_rational(&num, &den, &exc).unwrap().a_w;
                 }
             }
             acc

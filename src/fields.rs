@@ -7,6 +7,18 @@ use std::cell::RefCell;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
+/// How a model's table reader reads one numeric key (see [`Fields::read`]); the numeric builders of
+/// parameter studies use it to read a swept value once, as the model's reader would.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KeyReading {
+    /// A physical value of this dimension, SI number or string with a unit ([`Fields::quantity`]).
+    Quantity(Dim),
+    /// A frequency that must carry its unit, returned in rad/s or rad/m ([`Fields::angular_frequency`]).
+    AngularFrequency(Dim),
+    /// A plain finite number ([`Fields::number`]).
+    Number,
+}
+
 /// Largest input file read (scenario, spectrum, reference, profile files), bytes.
 pub const MAX_INPUT_FILE_BYTES: u64 = 16 << 20;
 
@@ -268,6 +280,36 @@ impl<'a> Fields<'a> {
         match v.as_float().or_else(|| v.as_integer().map(|n| n as f64)) {
             Some(f) => crate::units::check_magnitude(f).map_err(|r| self.error(key, v, r)),
             None => Err(self.error(key, v, "expected a finite number")),
+        }
+    }
+
+    /// The value of `key` read as `reading` says (what a model's table reader does for that key).
+    ///
+    /// # Formula
+    /// [`KeyReading::Quantity`]: [`Fields::quantity`]; [`KeyReading::AngularFrequency`]:
+    /// [`Fields::angular_frequency`] (rad/s from `Hz` or `rad/s`); [`KeyReading::Number`]: [`Fields::number`].
+    ///
+    /// # Errors
+    /// Those of the reader named by `reading`.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::fields::{Fields, KeyReading};
+    /// use stochvib::units::Dim;
+    /// let t: toml::Table = toml::from_str("omega2 = \"1 Hz\"\nzeta2 = 0.3").unwrap();
+    /// let f = Fields::new(std::path::Path::new("s.toml"), "model", &t);
+    /// let w = f.read("omega2", KeyReading::AngularFrequency(Dim::FREQUENCY)).unwrap();
+    /// assert!((w - 2.0 * std::f64::consts::PI).abs() < 1e-15);
+    /// assert_eq!(f.read("zeta2", KeyReading::Number).unwrap(), 0.3);
+    /// ```
+    pub fn read(&self, key: &str, reading: KeyReading) -> Result<f64> {
+        match reading {
+            KeyReading::Quantity(dim) => self.quantity(key, dim),
+            KeyReading::AngularFrequency(dim) => {
+                let v = self.require(key)?;
+                self.angular_frequency(v, key, dim)
+            }
+            KeyReading::Number => self.number(key),
         }
     }
 

@@ -618,6 +618,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 .collect::<Result<Vec<_>, _>>()?;
             let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
             let sweep = Sweep::new(&sc, SweepSpec::new(params, mode)?)?;
+            eprintln!("sweep: {}", sweep.path());
             let mc = match monte_carlo {
                 Some(n) => {
                     let (dt, duration) = step.resolve(&sc)?;

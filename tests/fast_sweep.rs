@@ -18,7 +18,7 @@ use std::sync::Arc;
 use stochvib::comfort::{weighted_output, WeightedEvaluator, WeightedRoute, Weighting};
 use stochvib::models::operator_seat::OperatorSeat;
 use stochvib::response::{variance_lyapunov, ExactEvaluator, Excitation, VarianceMethod};
-use stochvib::scenario::{load_scenario, parse_scenario, Sweep, SweepMode, SweepParam, SweepSpec};
+use stochvib::scenario::{load_scenario, parse_scenario, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec};
 use stochvib::spectrum::{Domain, RationalSpectrum};
 use stochvib::system::FrequencyResponse;
 
@@ -203,4 +203,215 @@ fn weighted_evaluator_errors() {
     let travel = ss.outputs().iter().position(|o| o.unit == "m").unwrap();
     let e = ev.a_w(ss, travel, &exc).unwrap_err().to_string();
     assert!(e.contains("acceleration"), "{e}");
+}
+
+/// Every point of `sweep` three ways: the public `evaluate`, the numeric path alone and the general path
+/// (model rebuilt from its substituted table). Where the numeric path answers it must give the general
+/// path's result exactly — the same state-space matrices go through the same evaluator, so the same
+/// numbers (bit for bit) or the same error — and `evaluate` must always give the general path's result.
+/// Returns (numeric Ok, numeric Err, declined) counts.
+fn numeric_against_general(sweep: &Sweep) -> (usize, usize, usize) {
+    let (mut ok, mut err, mut declined) = (0, 0, 0);
+    for p in 0..sweep.spec().n_points() {
+        let general = sweep.evaluate_general(p).map_err(|e| e.to_string());
+        let public = sweep.evaluate(p).map_err(|e| e.to_string());
+        assert_eq!(public, general, "point {p}: evaluate differs from the general path");
+        match sweep.evaluate_numeric(p).map(|r| r.map_err(|e| e.to_string())) {
+            Some(numeric) => {
+                assert_eq!(
+                    numeric, general,
+                    "point {p}: numeric path differs from the general path"
+                );
+                if numeric.is_ok() {
+                    ok += 1;
+                } else {
+                    err += 1;
+                }
+            }
+            None => {
+                // the builder declines only where the general path fails (it names the error)
+                assert!(
+                    general.is_err(),
+                    "point {p}: declined although the general path succeeds"
+                );
+                declined += 1;
+            }
+        }
+    }
+    (ok, err, declined)
+}
+
+/// The numeric builder of `scraper-sprung-cab` over cab frequency × damping ratio × cab mass × speed,
+/// 6 × 5 × 4 × 3 = 360 points × 4 outputs, including the stiff corner (ω₂ 0.05 Hz against m₂ = 200 t),
+/// a cab mount without damper (ζ₂ = 0: still asymptotically stable in exact arithmetic, through the tyre
+/// damping b₁, but barely so where the cab hardly moves m₁), values the model refuses (ζ₂ < 0, m₂ = 0)
+/// and a speed the input refuses (−1 m/s). Expected counts from the grid: the reader and the model accept
+/// a point when ζ₂ ∈ {0.3, 0, 0.005, 2}, m₂ ∈ {2 t, 20 kg, 200 t} and v ∈ {10, 30} m/s: 6·4·3·2 = 144
+/// points, each answered by the numeric path (a value, or the evaluator's error); the other 216 are
+/// declined and fail on the general path.
+#[test]
+fn numeric_builder_equals_general_path_sprung_cab() {
+    let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+    let spec = SweepSpec::new(
+        vec![
+            SweepParam::parse("model.omega2=0.05 Hz..40 Hz:6:log").unwrap(),
+            SweepParam::parse("model.zeta2=0.3,-0.1,0,0.005,2").unwrap(),
+            SweepParam::parse("model.m2=2000 kg,0 kg,20 kg,200000 kg").unwrap(),
+            SweepParam::parse("input.speed=10 m/s,-1 m/s,30 m/s").unwrap(),
+        ],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let sweep = Sweep::new(&sc, spec).unwrap();
+    assert_eq!(
+        sweep.path(),
+        &SweepPath::Numeric {
+            kind: "scraper-sprung-cab".into()
+        }
+    );
+    let (ok, err, declined) = numeric_against_general(&sweep);
+    eprintln!("numeric ok {ok}, numeric error {err}, declined {declined}");
+    assert_eq!(ok + err, 144);
+    assert_eq!(declined, 216);
+    assert!(ok >= 6 * 3 * 3 * 2, "every point with a damped cab mount has a value");
+    // the stiff corner sends some outputs to Lyapunov inside the numeric path: both routes are exercised
+    let methods: Vec<VarianceMethod> = (0..360)
+        .filter_map(|p| sweep.evaluate_numeric(p).and_then(|r| r.ok()))
+        .flatten()
+        .map(|s| s.method)
+        .collect();
+    assert!(methods.contains(&VarianceMethod::IntegralTable) && methods.contains(&VarianceMethod::Lyapunov));
+}
+
+/// The numeric builder of `scraper-rigid-cab` over ω₁ × ζ₁ × m₁ (ζ₁ < 0 refused by the reader, ζ₁ = 0
+/// undamped); then a key of the schema that conflicts with the file (b₁ while the file gives ζ₁): the
+/// reader refuses it ("not both"), so the study cannot even start, and says why.
+#[test]
+fn numeric_builder_equals_general_path_rigid_cab() {
+    let sc = load_scenario(Path::new("data/scraper-rigid-cab.toml"), Path::new("spectra")).unwrap();
+    let spec = SweepSpec::new(
+        vec![
+            SweepParam::parse("model.omega1=5 rad/s..40 rad/s:5").unwrap(),
+            SweepParam::parse("model.zeta1=0.1,-1,0.5,0").unwrap(),
+            SweepParam::parse("model.m1=30 t,5 t").unwrap(),
+        ],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let sweep = Sweep::new(&sc, spec).unwrap();
+    assert!(matches!(sweep.path(), SweepPath::Numeric { .. }));
+    let (ok, err, declined) = numeric_against_general(&sweep);
+    eprintln!("numeric ok {ok}, numeric error {err}, declined {declined}");
+    // valid: ζ₁ ∈ {0.1, 0.5}: 5·2·2 = 20 points; ζ₁ = −1: 10 declined by the reader; ζ₁ = 0: an
+    // undamped single mass, not asymptotically stable: the evaluator's error on both paths (10 points)
+    assert_eq!((ok, err, declined), (20, 10, 10));
+    // a key in the schema that conflicts with the file's (b1 while the file gives zeta1): every point
+    // declined, and the general path's message names the conflict
+    let spec = SweepSpec::new(vec![SweepParam::parse("model.b1=1e5,2e5").unwrap()], SweepMode::Grid).unwrap();
+    let e = Sweep::new(&sc, spec).unwrap_err().to_string();
+    assert!(e.contains("not both"), "{e}");
+}
+
+/// The study says which path it takes and why: a key outside the numeric builder's keys (`model.kind`)
+/// and a kind without a numeric builder both take the model-table path, name the reason, and give the
+/// general path's numbers; the numeric path declines every point there.
+#[test]
+fn fallback_is_taken_and_said_outside_the_schema() {
+    let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+    let spec = SweepSpec::new(
+        vec![
+            SweepParam::parse("model.kind=scraper-sprung-cab").unwrap(),
+            SweepParam::parse("model.zeta2=0.2,0.4").unwrap(),
+        ],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let sweep = Sweep::new(&sc, spec).unwrap();
+    match sweep.path() {
+        SweepPath::ModelTable { reason } => assert!(reason.contains("`model.kind`"), "{reason}"),
+        other => panic!("expected the model-table path, got {other:?}"),
+    }
+    assert!(sweep.path().to_string().contains("model.kind"));
+    for p in 0..2 {
+        assert!(sweep.evaluate_numeric(p).is_none());
+        assert_eq!(sweep.evaluate(p).unwrap(), sweep.evaluate_general(p).unwrap());
+    }
+    let qc = load_scenario(Path::new("data/quarter-car-model.toml"), Path::new("spectra")).unwrap();
+    let spec = SweepSpec::new(
+        vec![SweepParam::parse("model.suspension_damping=1 kN*s/m,2 kN*s/m").unwrap()],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let sweep = Sweep::new(&qc, spec).unwrap();
+    match sweep.path() {
+        SweepPath::ModelTable { reason } => assert!(reason.contains("no numeric builder"), "{reason}"),
+        other => panic!("expected the model-table path, got {other:?}"),
+    }
+    assert!(sweep.evaluate_numeric(0).is_none());
+}
+
+/// `WeightedEvaluator::a_w_rational` on the seat's closed-form transfer function
+/// (`OperatorSeat::seat_acc_transfer`, s²(bs + c)/(m_pr s² + bs + c)) over the same 24 × 24 seat grid as
+/// above: every residue value equals the Lyapunov covariance of the weighted cascade of the model's state
+/// space (a different method and a different realisation) within CONDITION_CHECKED, and the state-space
+/// entry `a_w` within CONDITION_CHECKED too (both carry the residue sum's estimated error ≤ 1e-9); the two
+/// near-coincident-pole points fall back to Lyapunov and say so.
+#[test]
+fn weighted_evaluator_on_transfer_polynomials_equals_lyapunov() {
+    let exc = seat_input();
+    let ev = WeightedEvaluator::new(&exc, Weighting::Wk).unwrap();
+    let mut residues = 0;
+    for i in 0..24 {
+        let k = 300.0 * 10f64.powf(5.0 * i as f64 / 23.0);
+        for j in 0..24 {
+            let b = 2.0 * 10f64.powf(5.0 * j as f64 / 23.0);
+            let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap();
+            let (num, den) = seat.seat_acc_transfer();
+            let fast = ev.a_w_rational(&num, &den, &exc).unwrap();
+            let m = seat.instance().unwrap();
+            let ss = m.system.state_space().unwrap();
+            let out = ss.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
+            let w = weighted_output(ss, out, &Weighting::Wk).unwrap();
+            let reference = variance_lyapunov(&w, &exc, 0).unwrap().variance;
+            let e = rel(fast.a_w * fast.a_w, reference);
+            assert!(
+                e <= CONDITION_CHECKED,
+                "k {k}, b {b}: {} vs {reference} ({e:e})",
+                fast.a_w.powi(2)
+            );
+            let by_ss = ev.a_w(ss, out, &exc).unwrap().a_w;
+            assert!(
+                rel(fast.a_w, by_ss) <= CONDITION_CHECKED,
+                "k {k}, b {b}: {} vs {by_ss}",
+                fast.a_w
+            );
+            if fast.route == WeightedRoute::Residues {
+                residues += 1;
+            }
+        }
+    }
+    assert!(residues > 24 * 24 / 2, "the residues answered only {residues} points");
+    let m_pr = 5.0 / 7.0 * 80.0 + 26.0; // reduced mass of the seat model, kg (Sukharev 2012, 7.6)
+    let w6 = 2.0 * std::f64::consts::PI * 3.35; // W_k's f₆ (ISO 2631-1 Table A.2)
+    for (k, b) in [
+        (m_pr * w6 * w6, m_pr * w6 / 0.91),
+        (6500.0, 2.0 * (6500.0 * m_pr).sqrt()),
+    ] {
+        let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap();
+        let (num, den) = seat.seat_acc_transfer();
+        let fast = ev.a_w_rational(&num, &den, &exc).unwrap();
+        assert_eq!(fast.route, WeightedRoute::LyapunovFallback, "k {k}, b {b}");
+        let m = seat.instance().unwrap();
+        let ss = m.system.state_space().unwrap();
+        let out = ss.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
+        let w = weighted_output(ss, out, &Weighting::Wk).unwrap();
+        let reference = variance_lyapunov(&w, &exc, 0).unwrap().variance;
+        assert!(rel(fast.a_w * fast.a_w, reference) <= CONDITION_CHECKED, "k {k}, b {b}");
+    }
+    // refused: a delayed (two-gain) evaluator, a numerator two degrees above the denominator
+    let s = seat_input().spectra()[0].clone();
+    let two = Excitation::track(s, vec![0.0, 0.0], vec![1.0, 1.0], 0.0).unwrap();
+    let ev2 = WeightedEvaluator::new(&two, Weighting::Wk).unwrap();
+    assert!(ev2.a_w_rational(&[1.0], &[1.0, 1.0], &two).is_err());
+    assert!(ev.a_w_rational(&[0.0, 0.0, 0.0, 1.0], &[1.0, 1.0], &exc).is_err());
 }

@@ -182,6 +182,98 @@ impl WeightedEvaluator {
         })
     }
 
+    /// a_w of the output whose transfer function from the input process is H(s) = N(s)/D(s) (`num`, `den`
+    /// ascending in s, s in rad/s; the output in the weighting's acceleration unit per unit of the input
+    /// process). This is the entry of parameter studies that know their transfer function in closed form
+    /// (e.g. [`OperatorSeat::seat_acc_transfer`](crate::models::operator_seat::OperatorSeat::seat_acc_transfer)):
+    /// no state space is built per point. The evaluator must have been made for an excitation of one input
+    /// with gain 1 (a [`Excitation::single`]), so that the input process is the system's input.
+    ///
+    /// # Formula
+    /// The residue sum of the module docs with N_i = N/d_n and Δ = D/d_n (d_n the leading coefficient of
+    /// D); the Lyapunov fallback is [`variance_lyapunov`] of [`weighted_output`] of H realised in
+    /// controllable canonical form ([`TransferFunction`](crate::system::TransferFunction)).
+    ///
+    /// # Errors
+    /// An evaluator made for several inputs or a gain ≠ 1; D of degree 0 or > 7, N of degree > deg D + 1,
+    /// non-finite coefficients; a system that is not asymptotically stable (named by the Lyapunov route).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::comfort::{WeightedEvaluator, Weighting, WeightedRoute};
+    /// use stochvib::models::operator_seat::OperatorSeat;
+    /// use stochvib::response::Excitation;
+    /// use stochvib::spectrum::{Domain, Exponential};
+    /// use stochvib::system::FrequencyResponse;
+    /// use std::sync::Arc;
+    /// let exc = Excitation::single(Arc::new(Exponential::new(1e-4, 20.0, Domain::Temporal).unwrap()), 0.0).unwrap();
+    /// let ev = WeightedEvaluator::new(&exc, Weighting::Wk).unwrap();
+    /// let seat = OperatorSeat::new(80.0, 26.0, 6500.0, 600.0).unwrap();
+    /// let (num, den) = seat.seat_acc_transfer();
+    /// let fast = ev.a_w_rational(&num, &den, &exc).unwrap();
+    /// assert_eq!(fast.route, WeightedRoute::Residues);
+    /// // the same a_w through the model's state space
+    /// let m = seat.instance().unwrap();
+    /// let ss = m.system.state_space().unwrap();
+    /// let i = ss.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
+    /// assert!((fast.a_w / ev.a_w(ss, i, &exc).unwrap().a_w - 1.0).abs() < 1e-9); // within the error estimate
+    /// ```
+    pub fn a_w_rational(&self, num: &[f64], den: &[f64], exc: &Excitation) -> Result<WeightedValue> {
+        if self.gains.len() != 1 || self.gains[0] != 1.0 {
+            return Err(Error::invalid(
+                "excitation",
+                format!("gains {:?}", self.gains),
+                "a transfer function N/D is driven by one input of gain 1: make the evaluator from Excitation::single",
+            ));
+        }
+        let n = den.len().saturating_sub(1);
+        let lead = den.last().copied().unwrap_or(0.0);
+        if n == 0 || n > MAX_SYSTEM_STATES || num.len() > n + 2 || lead == 0.0 {
+            return Err(Error::invalid(
+                "transfer function",
+                format!("{num:?} / {den:?}"),
+                format!(
+                    "needs 1 <= deg D <= {MAX_SYSTEM_STATES}, deg N <= deg D + 1 and a non-zero leading coefficient"
+                ),
+            ));
+        }
+        if !num.iter().chain(den).all(|v| v.is_finite()) {
+            return Err(Error::invalid(
+                "transfer function",
+                format!("{num:?} / {den:?}"),
+                "coefficients must be finite",
+            ));
+        }
+        let mut ni = [0.0; MAX_SYSTEM_STATES + 2];
+        let mut delta = [0.0; MAX_SYSTEM_STATES + 1];
+        for (o, v) in ni.iter_mut().zip(num) {
+            *o = v / lead;
+        }
+        for (o, v) in delta.iter_mut().zip(den) {
+            *o = v / lead;
+        }
+        if let Some(v) = self.residue_sum(&ni[..n + 2], &delta[..=n]) {
+            return Ok(WeightedValue {
+                a_w: v.sqrt(),
+                route: WeightedRoute::Residues,
+            });
+        }
+        let tf = crate::system::TransferFunction::new(
+            num.to_vec(),
+            den.to_vec(),
+            crate::system::OutputInfo::new("a", self.weighting.quantity().unit),
+        )?;
+        let ss = tf.state_space().ok_or_else(|| Error::Numerical {
+            what: "a_w".into(),
+            reason: "the transfer function has no state-space form".into(),
+        })?;
+        let w = weighted_output(ss, 0, &self.weighting)?;
+        Ok(WeightedValue {
+            a_w: variance_lyapunov(&w, exc, 0)?.variance.sqrt(),
+            route: WeightedRoute::LyapunovFallback,
+        })
+    }
+
     /// a_w² by the residue sum, or None when its error estimate is too large or a pole is not simple or
     /// not in the left half plane (the Lyapunov route then decides, and names an unstable system).
     fn residues(&self, ss: &StateSpace, output: usize) -> Option<f64> {
@@ -192,8 +284,13 @@ impl WeightedEvaluator {
         }
         let n = lv.n;
         let ni = lv.numerator(ss, &self.gains, output);
-        let ni = &ni[..n + 2];
-        let mut poles = poly::roots(&lv.delta[..=n]).ok()?;
+        self.residue_sum(&ni[..n + 2], &lv.delta[..=n])
+    }
+
+    /// a_w² of the output N_i/Δ (Δ monic, ascending) by the residue sum of the module docs, or None (see
+    /// [`residues`](Self::residues)).
+    fn residue_sum(&self, ni: &[f64], delta: &[f64]) -> Option<f64> {
+        let mut poles = poly::roots(delta).ok()?;
         poles.extend_from_slice(&self.poles);
         if poles.iter().any(|p| p.re.is_nan() || p.re >= 0.0) {
             return None;

@@ -446,6 +446,139 @@ pub fn h2_integral_conditioned(num_s: &[f64], den_s: &[f64]) -> Result<(f64, f64
     table_value_conditioned(n, d, d.len() - 1)
 }
 
+/// One denominator D(s) of many [`h2_integral_conditioned`] calls (the outputs of one system share it):
+/// the Routh–Hurwitz test and the Hurwitz elimination — which depend on D only — are done once, and each
+/// numerator replays the recorded row swaps and multipliers on its right-hand side. Every operation on the
+/// right-hand side is the one [`h2_integral_conditioned`] performs, in the same order, so the result is
+/// the same, bit for bit (value, pivot ratio, or error). Numerators or denominators outside the stack
+/// route (degree > 8, non-finite, not Hurwitz, zero or divergent numerator) go to
+/// [`h2_integral_conditioned`] itself.
+pub(crate) struct H2Denominator<'d> {
+    den_s: &'d [f64],
+    d: &'d [f64],
+    elim: Option<Elimination>,
+}
+
+/// The recorded elimination of the Hurwitz matrix of a denominator of degree n ≤ [`STACK_MAX`].
+struct Elimination {
+    n: usize,
+    /// The upper triangle after elimination.
+    u: [[f64; STACK_MAX]; STACK_MAX],
+    /// Pivot row chosen at each column.
+    swap: [usize; STACK_MAX],
+    /// Multiplier of row r at column c (0: the row was skipped).
+    f: [[f64; STACK_MAX]; STACK_MAX],
+    /// The pivot ratio, or the error of a numerically singular system.
+    ratio: std::result::Result<f64, f64>,
+}
+
+impl<'d> H2Denominator<'d> {
+    /// Prepares the denominator `den_s` (ascending in s).
+    pub(crate) fn new(den_s: &'d [f64]) -> H2Denominator<'d> {
+        let d = trimmed(den_s);
+        let n = d.len().saturating_sub(1);
+        let elim = if (1..=STACK_MAX).contains(&n) && den_s.iter().all(|v| v.is_finite()) && hurwitz(d) {
+            Some(Elimination::new(d, n))
+        } else {
+            None
+        };
+        H2Denominator { den_s, d, elim }
+    }
+
+    /// [`h2_integral_conditioned`]`(num_s, den_s)`.
+    pub(crate) fn h2_conditioned(&self, num_s: &[f64]) -> Result<(f64, f64)> {
+        let b = trimmed(num_s);
+        let Some(el) = &self.elim else {
+            return h2_integral_conditioned(num_s, self.den_s);
+        };
+        if b.is_empty() || b.len() >= self.d.len() || !num_s.iter().all(|v| v.is_finite()) {
+            return h2_integral_conditioned(num_s, self.den_s);
+        }
+        let n = el.n;
+        let ratio = el.ratio.map_err(singular)?;
+        let mut r = [0.0; STACK_MAX];
+        for (k, v) in r.iter_mut().enumerate().take(n) {
+            *v = rhs(b, k);
+        }
+        for col in 0..n {
+            r.swap(col, el.swap[col]);
+            for row in col + 1..n {
+                let f = el.f[row][col];
+                if f != 0.0 {
+                    r[row] -= f * r[col];
+                }
+            }
+        }
+        // back substitution yields C_{n−1} first, from the last row alone; the other Cⱼ do not enter Iₙ
+        let c_last = r[n - 1] / el.u[n - 1][n - 1];
+        let value = 2.0 * PI * c_last / self.d[n];
+        if !value.is_finite() {
+            return Err(Error::Numerical {
+                what: "integral_i_n".into(),
+                reason: "the result overflowed".into(),
+            });
+        }
+        Ok((value.max(0.0), ratio))
+    }
+}
+
+impl Elimination {
+    /// The elimination of `solve_last`'s stack route on the Hurwitz matrix of `a` (degree n), recorded.
+    fn new(a: &[f64], n: usize) -> Elimination {
+        let mut m = [[0.0; STACK_MAX]; STACK_MAX];
+        for (k, row) in m.iter_mut().enumerate().take(n) {
+            for (j, v) in row.iter_mut().enumerate().take(n) {
+                *v = entry(a, n, k, j);
+            }
+        }
+        let mut swap = [0; STACK_MAX];
+        let mut f = [[0.0; STACK_MAX]; STACK_MAX];
+        let (mut umax, mut umin) = (0.0_f64, f64::INFINITY);
+        let mut ratio = Ok(0.0);
+        for col in 0..n {
+            let mut p = col;
+            for r in col + 1..n {
+                if m[r][col].abs() > m[p][col].abs() {
+                    p = r;
+                }
+            }
+            m.swap(col, p);
+            swap[col] = p;
+            let piv = m[col][col];
+            umax = umax.max(piv.abs());
+            umin = umin.min(piv.abs());
+            if piv == 0.0 {
+                ratio = Err(0.0);
+                break;
+            }
+            for r in col + 1..n {
+                let fr = m[r][col] / piv;
+                f[r][col] = fr;
+                if fr != 0.0 {
+                    let (pivot_rows, rest) = m.split_at_mut(r);
+                    for (x, y) in rest[0][col..n].iter_mut().zip(&pivot_rows[col][col..n]) {
+                        *x -= fr * y;
+                    }
+                }
+            }
+        }
+        if ratio.is_ok() {
+            ratio = if umin <= n as f64 * f64::EPSILON * umax {
+                Err(umin / umax)
+            } else {
+                Ok(umax / umin)
+            };
+        }
+        Elimination {
+            n,
+            u: m,
+            swap,
+            f,
+            ratio,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -552,6 +685,55 @@ mod tests {
             let c = integral_closed_form(&b, &a).unwrap();
             assert!(rel(c, g) < EXACT, "n={n} a={a:?} b={b:?}: {c} vs {g}");
         }
+    }
+
+    /// The shared-denominator route replays h2_integral_conditioned's elimination: the same value and
+    /// pivot ratio bit for bit, or the same error, for stable denominators of degree 1..10 (10 > 8: the
+    /// delegated route), numerators of every degree up to divergent, zero numerators, unstable and
+    /// non-finite denominators, and stiff denominators (roots spread over 8 decades) whose elimination is
+    /// ill-conditioned.
+    #[test]
+    fn shared_denominator_equals_one_call() {
+        let mut rng = Rng::new(2026);
+        let same = |num: &[f64], den: &[f64]| {
+            let one = h2_integral_conditioned(num, den).map_err(|e| e.to_string());
+            let shared = H2Denominator::new(den).h2_conditioned(num).map_err(|e| e.to_string());
+            match (&one, &shared) {
+                (Ok((v1, r1)), Ok((v2, r2))) => {
+                    assert_eq!(
+                        (v1.to_bits(), r1.to_bits()),
+                        (v2.to_bits(), r2.to_bits()),
+                        "{num:?} / {den:?}"
+                    )
+                }
+                _ => assert_eq!(one, shared, "{num:?} / {den:?}"),
+            }
+        };
+        for trial in 0..600 {
+            let n = 1 + trial % 10;
+            let mut a = hurwitz(&mut rng, n);
+            if trial % 7 == 3 {
+                // stiff: scale the roots' spread by multiplying with (s + 1e-4)(s + 1e4)
+                a = mul(&a, &[1.0, 1e4 + 1e-4, 1.0]);
+            }
+            if trial % 11 == 5 {
+                a[0] = -a[0]; // not Hurwitz
+            }
+            let den = a.clone();
+            let nb = (rng.next_u64() as usize) % (den.len() + 1);
+            let b: Vec<f64> = (0..nb).map(|_| rng.range(-2.0, 2.0)).collect();
+            same(&b, &den);
+            same(&[], &den);
+            same(&[0.0, 0.0], &den);
+            let mut bad = b.clone();
+            bad.push(f64::NAN);
+            same(&bad, &den);
+            let mut padded = den.clone();
+            padded.push(0.0);
+            same(&b, &padded);
+        }
+        same(&[1.0], &[1.0, f64::INFINITY, 1.0]);
+        same(&[1.0], &[1.0]);
     }
 
     #[test]

@@ -430,6 +430,37 @@ impl OperatorSeat {
             .with_output("travel", Quantity::Deflection(0))
     }
 
+    /// The transfer function of the seat acceleration `seat_acc` (m/s²) from the base displacement u (m),
+    /// as (numerator, denominator), ascending in s (rad/s): the closed form of [`OperatorSeat::mdof`]'s
+    /// output, for parameter studies that need no state space per point (see
+    /// [`WeightedEvaluator::a_w_rational`](crate::comfort::WeightedEvaluator::a_w_rational)).
+    ///
+    /// # Formula
+    /// ```text
+    /// m_pr z̈ + b(ż − u̇) + c(z − u) = 0   ⇒   H_z̈(s) = s²(b s + c)/(m_pr s² + b s + c)
+    /// ```
+    ///
+    /// # Errors
+    /// None (a validated model).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::models::operator_seat::OperatorSeat;
+    /// use stochvib::system::FrequencyResponse;
+    /// let seat = OperatorSeat::new(80.0, 26.0, 6500.0, 600.0).unwrap();
+    /// let (num, den) = seat.seat_acc_transfer();
+    /// let m = seat.instance().unwrap();
+    /// let w = 9.0;
+    /// let s = nalgebra::Complex::new(0.0, w);
+    /// let h = (num[2] * s * s + num[3] * s * s * s) / (den[0] + den[1] * s + den[2] * s * s);
+    /// let i = m.system.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
+    /// assert!((m.system.response(w)[(i, 0)] - h).norm() < 1e-12 * h.norm());
+    /// ```
+    pub fn seat_acc_transfer(&self) -> ([f64; 4], [f64; 3]) {
+        let (c, b) = (self.stiffness, self.damping);
+        ([0.0, 0.0, c, b], [c, b, self.reduced_mass()])
+    }
+
     /// The model with a single random base displacement ([`InputLayout::Single`]).
     ///
     /// # Errors

@@ -6,7 +6,7 @@
 
 use super::{InputLayout, ModelInstance};
 use crate::error::{require_non_negative, require_positive, Error, Result};
-use crate::fields::Fields;
+use crate::fields::{Fields, KeyReading};
 use crate::models::worked_example::BookRow;
 use crate::response::{analyze_output, Excitation, ResponseStatistics};
 use crate::spectrum::{two_pole_road::Form, AtSpeed, Domain, Exponential, Spectrum, TwoPoleRoad};
@@ -151,6 +151,197 @@ fn base_excited(
         }
     }
     StateSpace::new(a, bs, cs, Some(d), Some(e), infos)
+}
+
+/// What [`fill_base_excited`] writes for one output row: the displacement (false) or the acceleration
+/// (true) of the point gᵀq.
+type OutRow<const N: usize> = (bool, [f64; N]);
+
+/// Writes the matrices of [`base_excited`] for N masses into `ss` (which has its shape: 2N states, one
+/// input, one row per entry of `outs`) with the same arithmetic, entry by entry, on the stack: the
+/// products with the diagonal M⁻¹ are the single non-zero terms of nalgebra's sums, and every other sum runs
+/// over k ascending as nalgebra's does. Returns false (nothing promised about `ss`) when an entry is not
+/// finite or the shape differs: [`StateSpace::new`] would refuse the general path's matrices then.
+#[allow(clippy::too_many_arguments)]
+fn fill_base_excited<const N: usize>(
+    masses: [f64; N],
+    c: [[f64; N]; N],
+    b: [[f64; N]; N],
+    ku: [f64; N],
+    bu: [f64; N],
+    outs: &[OutRow<N>],
+    ss: &mut StateSpace,
+) -> bool {
+    let n = N;
+    if ss.a.shape() != (2 * n, 2 * n) || ss.b.shape() != (2 * n, 1) || ss.c.shape() != (outs.len(), 2 * n) {
+        return false;
+    }
+    let minv = masses.map(|m| 1.0 / m);
+    let mut mc = [[0.0; N]; N];
+    let mut mb = [[0.0; N]; N];
+    for i in 0..n {
+        for j in 0..n {
+            mc[i][j] = minv[i] * c[i][j];
+            mb[i][j] = minv[i] * b[i][j];
+        }
+    }
+    let mut mku = [0.0; N];
+    let mut mbu = [0.0; N];
+    let mut lower = [0.0; N];
+    for i in 0..n {
+        mku[i] = minv[i] * ku[i];
+        mbu[i] = minv[i] * bu[i];
+    }
+    for i in 0..n {
+        let mut s = 0.0;
+        for j in 0..n {
+            s += mb[i][j] * mbu[j];
+        }
+        lower[i] = mku[i] - s;
+    }
+    ss.a.fill(0.0);
+    for i in 0..n {
+        ss.a[(i, n + i)] = 1.0;
+        for j in 0..n {
+            ss.a[(n + i, j)] = -mc[i][j];
+            ss.a[(n + i, n + j)] = -mb[i][j];
+        }
+        ss.b[(i, 0)] = mbu[i];
+        ss.b[(n + i, 0)] = lower[i];
+    }
+    ss.c.fill(0.0);
+    for (r, (acc, g)) in outs.iter().enumerate() {
+        let (mut d, mut e) = (0.0, 0.0);
+        if *acc {
+            for j in 0..n {
+                let (mut sc, mut sb) = (0.0, 0.0);
+                for k in 0..n {
+                    sc += g[k] * mc[k][j];
+                    sb += g[k] * mb[k][j];
+                }
+                ss.c[(r, j)] = -sc;
+                ss.c[(r, n + j)] = -sb;
+            }
+            for k in 0..n {
+                d += g[k] * lower[k];
+                e += g[k] * mbu[k];
+            }
+        } else {
+            for (j, gj) in g.iter().enumerate() {
+                ss.c[(r, j)] = *gj;
+            }
+        }
+        ss.d[(r, 0)] = d;
+        ss.e[(r, 0)] = e;
+    }
+    [&ss.a, &ss.b, &ss.c, &ss.d, &ss.e]
+        .iter()
+        .all(|m| m.iter().all(|v| v.is_finite()))
+}
+
+/// c from `c` (N/m) or from `omega` = √(c/m) (rad/s), as the table reader derives it; None where the
+/// reader fails (both or neither given, ω ≤ 0).
+fn stiffness_value(c: Option<f64>, w: Option<f64>, m: f64) -> Option<f64> {
+    match (c, w) {
+        (Some(c), None) => Some(c),
+        (None, Some(w)) if w > 0.0 => Some(m * w * w),
+        _ => None,
+    }
+}
+
+/// b from `b` (N s/m) or from the damping ratio ζ, b = 2ζ√(cm), as the table reader derives it; None where
+/// the reader fails (both or neither given, ζ < 0).
+fn damping_value(b: Option<f64>, z: Option<f64>, m: f64, c: f64) -> Option<f64> {
+    match (b, z) {
+        (Some(b), None) => Some(b),
+        (None, Some(z)) if z >= 0.0 => Some(2.0 * z * (c * m).sqrt()),
+        _ => None,
+    }
+}
+
+/// The numeric keys of a `scraper-rigid-cab` table, in the order of [`rigid_fill`]'s values.
+pub(crate) const RIGID_KEYS: &[(&str, KeyReading)] = &[
+    ("m1", KeyReading::Quantity(Dim::MASS)),
+    ("c1", KeyReading::Quantity(Dim::STIFFNESS)),
+    ("omega1", KeyReading::AngularFrequency(Dim::FREQUENCY)),
+    ("b1", KeyReading::Quantity(Dim::DAMPING)),
+    ("zeta1", KeyReading::Number),
+];
+
+/// The numeric keys of a `scraper-sprung-cab` table, in the order of [`sprung_fill`]'s values.
+pub(crate) const SPRUNG_KEYS: &[(&str, KeyReading)] = &[
+    ("m1", KeyReading::Quantity(Dim::MASS)),
+    ("c1", KeyReading::Quantity(Dim::STIFFNESS)),
+    ("omega1", KeyReading::AngularFrequency(Dim::FREQUENCY)),
+    ("b1", KeyReading::Quantity(Dim::DAMPING)),
+    ("zeta1", KeyReading::Number),
+    ("m2", KeyReading::Quantity(Dim::MASS)),
+    ("c2", KeyReading::Quantity(Dim::STIFFNESS)),
+    ("omega2", KeyReading::AngularFrequency(Dim::FREQUENCY)),
+    ("b2", KeyReading::Quantity(Dim::DAMPING)),
+    ("zeta2", KeyReading::Number),
+];
+
+/// The numeric builder of `scraper-rigid-cab`: the state space of [`rigid_from_fields`] for the values of
+/// [`RIGID_KEYS`] (None: key absent), written into `ss` (the shape of an instance). False where the table
+/// reader or the model would fail: the caller then asks the general path, which names the error.
+pub(crate) fn rigid_fill(v: &[Option<f64>], ss: &mut StateSpace) -> bool {
+    let Some(m1) = v[0] else { return false };
+    let Some(c1) = stiffness_value(v[1], v[2], m1) else {
+        return false;
+    };
+    let Some(b1) = damping_value(v[3], v[4], m1, c1) else {
+        return false;
+    };
+    let Ok(s) = ScraperRigidCab::new(m1, c1, b1) else {
+        return false;
+    };
+    fill_base_excited(
+        [s.m1],
+        [[s.c1]],
+        [[s.b1]],
+        [s.c1],
+        [s.b1],
+        &[(false, [1.0]), (true, [1.0])],
+        ss,
+    )
+}
+
+/// The numeric builder of `scraper-sprung-cab` (as [`rigid_fill`], values of [`SPRUNG_KEYS`]).
+pub(crate) fn sprung_fill(v: &[Option<f64>], ss: &mut StateSpace) -> bool {
+    let Some(m1) = v[0] else { return false };
+    let Some(c1) = stiffness_value(v[1], v[2], m1) else {
+        return false;
+    };
+    let Some(b1) = damping_value(v[3], v[4], m1, c1) else {
+        return false;
+    };
+    let Some(m2) = v[5] else { return false };
+    let Some(c2) = stiffness_value(v[6], v[7], m2) else {
+        return false;
+    };
+    let Some(b2) = damping_value(v[8], v[9], m2, c2) else {
+        return false;
+    };
+    let Ok(s) = ScraperSprungCab::new(m1, c1, b1, m2, c2, b2) else {
+        return false;
+    };
+    let (c1, c2, b1, b2) = (s.c1, s.c2, s.b1, s.b2);
+    fill_base_excited(
+        [s.m1, s.m2],
+        [[c1 + c2, -c2], [-c2, c2]],
+        [[b1 + b2, -b2], [-b2, b2]],
+        [c1, 0.0],
+        [b1, 0.0],
+        &[
+            (false, [1.0, 0.0]),
+            (false, [0.0, 1.0]),
+            (true, [1.0, 0.0]),
+            (true, [0.0, 1.0]),
+            (false, [-1.0, 1.0]),
+        ],
+        ss,
+    )
 }
 
 fn track_layout() -> InputLayout {

@@ -9,8 +9,10 @@
 //! * [`VarianceMethod::IntegralTable`]: one delay-free rational input process (a track of wheels without
 //!   delays, or one input) and a state-space system whose augmented order is ≤ 7. One Faddeev–LeVerrier
 //!   pass gives the characteristic polynomial and the adjugate of the system matrix, hence the numerator of
-//!   every output's transfer function; the integral table I_n gives the variance and λ₂. Nothing is
-//!   allocated on the heap per system. Each value passes the condition check of the table
+//!   every output's transfer function; the integral table I_n gives the variance and λ₂ (the Hurwitz
+//!   elimination of the common denominator done once per system, replayed on every output's right-hand
+//!   side: the same numbers as one table call per value). Nothing is allocated on the heap per system.
+//!   Each value passes the condition check of the table
 //!   ([`INTEGRAL_TABLE_MAX_ERROR`]: pivot ratio of the Hurwitz elimination · n · ε ≤ 1e-9); an output whose
 //!   variance or λ₂ fails it is computed by [`variance_lyapunov`] instead and its method says
 //!   [`VarianceMethod::Lyapunov`] — no unreliable table value is returned. The same fallback applies to
@@ -34,7 +36,7 @@ use super::statistics::VarianceMethod;
 use super::variance::{spectral_moment_quadrature, variance_lyapunov, variance_quadrature, INTEGRAL_TABLE_MAX_ERROR};
 use super::Excitation;
 use crate::error::{Error, Result};
-use crate::linalg::integral_table::h2_integral_conditioned;
+use crate::linalg::integral_table::H2Denominator;
 use crate::spectrum::ShapingFilter;
 use crate::system::FrequencyResponse;
 use std::f64::consts::PI;
@@ -345,6 +347,8 @@ pub(crate) fn table_route(
         }
         return Ok(());
     }
+    // one Hurwitz elimination of the common denominator for every output's variance and λ₂
+    let table = H2Denominator::new(&den[..den_len]);
     for &i in outputs {
         let ni = lv.numerator(ss, gains, i);
         let ni_len = n + 2;
@@ -361,7 +365,7 @@ pub(crate) fn table_route(
             lambda2: None,
             method: VarianceMethod::Lyapunov,
         };
-        let variance = match h2_integral_conditioned(&num[..num_len], &den[..den_len]) {
+        let variance = match table.h2_conditioned(&num[..num_len]) {
             Ok((v, ratio)) if reliable(ratio) => Some(v / (2.0 * PI)),
             Ok(_) => {
                 out.push(unreliable);
@@ -374,7 +378,7 @@ pub(crate) fn table_route(
         if variance.is_some() {
             let mut s_num = [0.0; 2 * N + 5];
             s_num[1..=num_len].copy_from_slice(&num[..num_len]);
-            match h2_integral_conditioned(&s_num[..=num_len], &den[..den_len]) {
+            match table.h2_conditioned(&s_num[..=num_len]) {
                 Ok((v, ratio)) if reliable(ratio) => lambda2 = Some(v / (2.0 * PI)),
                 Ok(_) => {
                     out.push(unreliable);

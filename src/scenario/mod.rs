@@ -18,13 +18,15 @@ pub mod verdict_spec;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
 pub use reference::ReferenceTable;
-pub use registry::{build_model, kind_names, model_kind, BuiltModel, Family, ModelContext, ModelKind, MODEL_KINDS};
+pub use registry::{
+    build_model, kind_names, model_kind, BuiltModel, Family, ModelContext, ModelKind, NumericModel, MODEL_KINDS,
+};
 pub use scenario_file::{
     load_document, load_scenario, parse_document, parse_scenario, AnalysisOptions, DeterministicScenario, Document,
     Scenario, ScenarioInput,
 };
 pub use spectrum_file::{load_spectrum, parse_spectrum, SpectrumFile};
-pub use sweep::{substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepSpec};
+pub use sweep::{substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec};
 pub use verdict_analysis::{
     verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, VerdictAnalysis,
 };

@@ -4,13 +4,14 @@
 
 use super::generic;
 use crate::error::{Error, Result};
-use crate::fields::Fields;
+use crate::fields::{Fields, KeyReading};
 use crate::models::results::DeterministicModel;
 use crate::models::{
     balancer_bogie, conveyor_idler, dynamic_stiffness_chain::DynamicStiffnessChain, full_vehicle::FullVehicle,
     half_car, isolation, mine_hoist::MineHoist, operator_seat, quarter_car::QuarterCar, scraper,
     three_mass_hoist::ThreeMassHoist, ModelInstance,
 };
+use crate::system::StateSpace;
 use serde::Serialize;
 
 /// What a model may need from the rest of the scenario file.
@@ -59,6 +60,26 @@ pub struct ModelKind {
     pub example: &'static str,
     #[serde(skip)]
     build: fn(&Fields, ModelContext) -> Result<BuiltModel>,
+    /// The numeric builder of the kind, if it has one (parameter studies substitute numbers through it).
+    #[serde(skip)]
+    numeric: Option<NumericModel>,
+}
+
+/// The numeric builder of a stochastic model kind: what a parameter study uses instead of rebuilding the
+/// model from its substituted `[model]` table at every point (see [`Sweep`](super::Sweep)).
+///
+/// `keys` lists every key the kind's table reader accepts, with how it reads each; `fill` takes one value
+/// per key (None: the key is absent from the table) and writes the state-space matrices that the table
+/// reader's model would have into a state space of the kind's shape, or returns false where the reader or
+/// the model would fail (the caller then takes the general path, which names the error). A kind has a
+/// numeric builder only when its input layout, its output names and its state-space shape do not depend
+/// on the values, and `fill` writes the same numbers as the general path (tests/fast_sweep.rs checks it).
+#[derive(Debug, Clone, Copy)]
+pub struct NumericModel {
+    /// The keys of the kind's `[model]` table (besides `kind`) and how each is read.
+    pub keys: &'static [(&'static str, KeyReading)],
+    /// Writes the matrices for the values (one per key of `keys`) into `ss`; false: ask the general path.
+    pub fill: fn(&[Option<f64>], &mut StateSpace) -> bool,
 }
 
 impl ModelKind {
@@ -68,6 +89,11 @@ impl ModelKind {
     /// [`Error::File`](crate::Error::File) naming the key, value and reason.
     pub fn build(&self, f: &Fields, ctx: ModelContext) -> Result<BuiltModel> {
         (self.build)(f, ctx)
+    }
+
+    /// The kind's numeric builder, if it has one (see [`NumericModel`]).
+    pub fn numeric(&self) -> Option<&NumericModel> {
+        self.numeric.as_ref()
     }
 }
 
@@ -88,6 +114,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "multi-degree-of-freedom model from elements or full matrices, base inputs on a track",
         example: "data/quarter-car.toml",
         build: |f, ctx| stochastic(generic::mdof::from_fields_in(f, ctx.several_inputs)),
+        numeric: None,
     },
     ModelKind {
         name: "transfer-function",
@@ -96,6 +123,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "rational transfer function N(s)/D(s), one input",
         example: "",
         build: |f, _| stochastic(generic::transfer_function::from_fields(f)),
+        numeric: None,
     },
     ModelKind {
         name: "state-space",
@@ -104,6 +132,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "state space A, B, C, D, E (y = Cx + Du + E du/dt), inputs on a track",
         example: "",
         build: |f, _| stochastic(generic::state_space::from_fields(f)),
+        numeric: None,
     },
     ModelKind {
         name: "quarter-car",
@@ -112,6 +141,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "quarter car: body on the suspension, wheel on the tyre, one road track",
         example: "data/quarter-car-model.toml",
         build: |f, _| stochastic(QuarterCar::from_fields(f).and_then(|c| c.instance())),
+        numeric: None,
     },
     ModelKind {
         name: "isolator-single",
@@ -120,6 +150,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "single-stage vibration isolator (Sukharev 2012, 7.1)",
         example: "data/isolator-single.toml",
         build: |f, _| stochastic(isolation::from_fields_single(f)),
+        numeric: None,
     },
     ModelKind {
         name: "isolator-two-stage",
@@ -128,6 +159,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "two-stage vibration isolator (Sukharev 2012, 7.2, eq. (7.16))",
         example: "data/isolator-two-stage.toml",
         build: |f, _| stochastic(isolation::from_fields_two_stage(f)),
+        numeric: None,
     },
     ModelKind {
         name: "half-car",
@@ -136,6 +168,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "half car bounce and pitch with the wheelbase delay (Sukharev 2012, 7.5, Example 7.1)",
         example: "data/half-car.toml",
         build: |f, _| stochastic(half_car::from_fields(f)),
+        numeric: None,
     },
     ModelKind {
         name: "full-vehicle",
@@ -144,6 +177,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "full vehicle, 7 DOF (bounce, pitch, roll, four unsprung masses) on two road tracks",
         example: "data/full-vehicle-two-tracks.toml",
         build: |f, _| stochastic(FullVehicle::from_fields(f).and_then(|c| c.instance())),
+        numeric: None,
     },
     ModelKind {
         name: "operator-seat",
@@ -152,6 +186,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "operator seat under cab-floor motion, octave bands (Sukharev 2012, 7.6, Example 7.2)",
         example: "data/operator-seat.toml",
         build: |f, _| stochastic(operator_seat::from_fields(f)),
+        numeric: None,
     },
     ModelKind {
         name: "balancer-bogie",
@@ -160,6 +195,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "balancer bogie on a random road (Sukharev 2012, 8.5, eqs. (8.38)-(8.50))",
         example: "data/balancer-bogie.toml",
         build: |f, ctx| stochastic(balancer_bogie::from_fields(f, ctx.speed)),
+        numeric: None,
     },
     ModelKind {
         name: "conveyor-idler",
@@ -168,6 +204,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "conveyor idler under a random lump load (Sukharev 2012, 8.6, Example 8.1)",
         example: "data/conveyor-idler.toml",
         build: |f, _| stochastic(conveyor_idler::from_fields(f)),
+        numeric: None,
     },
     ModelKind {
         name: "scraper-rigid-cab",
@@ -176,6 +213,10 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "scraper with a rigid cab on a random road (Sukharev 2012, 8.7, eq. (8.64))",
         example: "data/scraper-rigid-cab.toml",
         build: |f, _| stochastic(scraper::rigid_from_fields(f)),
+        numeric: Some(NumericModel {
+            keys: scraper::RIGID_KEYS,
+            fill: scraper::rigid_fill,
+        }),
     },
     ModelKind {
         name: "scraper-sprung-cab",
@@ -184,6 +225,10 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "scraper with a sprung cab on a random road (Sukharev 2012, 8.7, eq. (8.65))",
         example: "data/scraper-sprung-cab.toml",
         build: |f, _| stochastic(scraper::sprung_from_fields(f)),
+        numeric: Some(NumericModel {
+            keys: scraper::SPRUNG_KEYS,
+            fill: scraper::sprung_fill,
+        }),
     },
     ModelKind {
         name: "three-mass-hoist",
@@ -192,6 +237,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "three-mass hoist at start-up: frequencies, static parts, link moments (Ofiy & Rakhmaniy 2010)",
         example: "data/three-mass-hoist.toml",
         build: |f, _| deterministic(ThreeMassHoist::from_fields(f)),
+        numeric: None,
     },
     ModelKind {
         name: "dynamic-stiffness-chain",
@@ -200,6 +246,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "harmonic response of a torsional chain by dynamic stiffness (Yurchenko 2011)",
         example: "data/dynamic-stiffness-chain.toml",
         build: |f, _| deterministic(DynamicStiffnessChain::from_fields(f)),
+        numeric: None,
     },
     ModelKind {
         name: "mine-hoist",
@@ -208,6 +255,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         summary: "single-end mine hoist: frequencies and modes over the lift, node (Dvornikov et al. 2014)",
         example: "data/mine-hoist.toml",
         build: |f, _| deterministic(MineHoist::from_fields(f)),
+        numeric: None,
     },
 ];
 

@@ -20,12 +20,22 @@
 //! rebuilt from its substituted `[model]` table and the resolved spectrum is reused (no file is read per
 //! point, and the input's shaping filter is factored once per distinct speed); any other key goes through
 //! the scenario reader with the substituted text ([`Sweep::scenario_at`]), which gives the same scenario.
+//!
+//! When the model kind has a numeric builder ([`NumericModel`](super::NumericModel)) and every key of the
+//! `[model]` table and every swept `model.*` key is one of its keys, the study takes the numeric path
+//! ([`SweepPath::Numeric`]): every value of every key is read once (as the model's reader reads it), and
+//! per point the numbers are substituted and the state space is written in place (one per worker), then
+//! evaluated as above — the same matrices, hence the same numbers, as the rebuilt model, without parsing,
+//! names or descriptions per point. A point the builder declines (a value its reader or the model
+//! refuses) takes the general path, which names the error. [`Sweep::path`] says which path a study takes
+//! and why not the numeric one.
 
 use super::registry::{build_model, BuiltModel, ModelContext};
 use super::scenario_file::{build_excitation, parse_scenario, Scenario};
 use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::response::{ExactEvaluator, Excitation, PointStatistics};
+use crate::system::StateSpace;
 use crate::units::Dim;
 use serde::Serialize;
 
@@ -324,12 +334,64 @@ enum Excitations {
     },
 }
 
+/// Largest number of keys of a numeric builder (the values of a point live on the stack).
+const MAX_NUMERIC_KEYS: usize = 16;
+
+/// The numeric path of a study (module docs): every value read once, the state space written in place.
+struct NumericPath {
+    fill: fn(&[Option<f64>], &mut StateSpace) -> bool,
+    /// The base table's value of every key of the builder (None: absent).
+    base: Vec<Option<f64>>,
+    /// Per swept key: the builder's index of the key and the value read at every value of the key (None:
+    /// the reader fails there; the point then takes the general path, which names the error). None for
+    /// `input.speed`.
+    swept: Vec<Option<(usize, Vec<Option<f64>>)>>,
+    /// The base model's state space (its shape and names; the numbers are overwritten per point).
+    template: StateSpace,
+    /// The indices of the outputs in the model.
+    outputs: Vec<usize>,
+}
+
+/// Which way a study's points are computed ([`Sweep::path`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum SweepPath {
+    /// The kind's numeric builder ([`NumericModel`](super::NumericModel)): per point the swept numbers are
+    /// substituted and the state space is written in place; nothing is parsed or named per point.
+    Numeric {
+        /// The model kind.
+        kind: String,
+    },
+    /// The model rebuilt from its substituted `[model]` table at every point, with the reason the numeric
+    /// builder is not used.
+    ModelTable {
+        /// Why not numeric.
+        reason: String,
+    },
+    /// The whole scenario re-read at every point, with the reason.
+    Scenario {
+        /// Why not numeric or by model table.
+        reason: String,
+    },
+}
+
+impl std::fmt::Display for SweepPath {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SweepPath::Numeric { kind } => write!(f, "numeric builder of `{kind}` (values read once)"),
+            SweepPath::ModelTable { reason } => write!(f, "model rebuilt from its table per point ({reason})"),
+            SweepPath::Scenario { reason } => write!(f, "scenario re-read per point ({reason})"),
+        }
+    }
+}
+
 /// A parameter study of one scenario (see the module docs).
 pub struct Sweep<'a> {
     base: &'a Scenario,
     root: toml::Table,
     spec: SweepSpec,
     fast: Option<Excitations>,
+    numeric: Option<NumericPath>,
+    path: SweepPath,
     output_names: Vec<String>,
 }
 
@@ -338,7 +400,7 @@ impl std::fmt::Debug for Sweep<'_> {
         f.debug_struct("Sweep")
             .field("scenario", &self.base.path)
             .field("spec", &self.spec)
-            .field("fast", &self.fast.is_some())
+            .field("path", &self.path)
             .finish()
     }
 }
@@ -391,6 +453,10 @@ impl<'a> Sweep<'a> {
             root,
             spec,
             fast,
+            numeric: None,
+            path: SweepPath::Scenario {
+                reason: "a key outside `model.*` and `input.speed` varies".into(),
+            },
             output_names,
         };
         if let Some(Excitations::PerSpeed { param, .. }) = &sweep.fast {
@@ -402,9 +468,86 @@ impl<'a> Sweep<'a> {
             }
             sweep.fast = Some(Excitations::PerSpeed { param, cache });
         }
+        if sweep.fast.is_some() {
+            sweep.path = match sweep.numeric_path() {
+                Ok(p) => {
+                    sweep.numeric = Some(p);
+                    SweepPath::Numeric {
+                        kind: base.kind.clone(),
+                    }
+                }
+                Err(reason) => SweepPath::ModelTable { reason },
+            };
+        }
         sweep.scenario_at(0)?;
         sweep.evaluate(0)?;
         Ok(sweep)
+    }
+
+    /// The numeric path of this study, or why there is none.
+    fn numeric_path(&self) -> std::result::Result<NumericPath, String> {
+        let kind = &self.base.kind;
+        let numeric = super::registry::model_kind(kind)
+            .and_then(|k| k.numeric())
+            .ok_or_else(|| format!("kind `{kind}` has no numeric builder"))?;
+        let keys = numeric.keys;
+        if keys.len() > MAX_NUMERIC_KEYS {
+            return Err(format!("kind `{kind}` has more than {MAX_NUMERIC_KEYS} keys"));
+        }
+        let table = self.root["model"].as_table().cloned().unwrap_or_default();
+        let f = Fields::new(&self.base.path, "model", &table);
+        let mut base = vec![None; keys.len()];
+        for (k, _) in &table {
+            if k == "kind" {
+                continue;
+            }
+            let i = keys
+                .iter()
+                .position(|(name, _)| name == k)
+                .ok_or_else(|| format!("`model.{k}` is not a numeric key of `{kind}`"))?;
+            base[i] = Some(f.read(k, keys[i].1).map_err(|e| e.to_string())?);
+        }
+        let mut swept = Vec::with_capacity(self.spec.params.len());
+        for p in &self.spec.params {
+            if p.key == "input.speed" {
+                swept.push(None);
+                continue;
+            }
+            let name = p.key.strip_prefix("model.").unwrap_or(&p.key);
+            let i = keys
+                .iter()
+                .position(|(k, _)| *k == name)
+                .ok_or_else(|| format!("`{}` is not a numeric key of `{kind}`", p.key))?;
+            let values = p
+                .values
+                .iter()
+                .map(|v| {
+                    let mut one = toml::Table::new();
+                    one.insert(name.to_string(), v.clone());
+                    Fields::new(&self.base.path, "model", &one).read(name, keys[i].1).ok()
+                })
+                .collect();
+            swept.push(Some((i, values)));
+        }
+        let template = self
+            .base
+            .model
+            .system
+            .state_space()
+            .cloned()
+            .ok_or_else(|| format!("the model of kind `{kind}` has no state-space form"))?;
+        Ok(NumericPath {
+            fill: numeric.fill,
+            base,
+            swept,
+            template,
+            outputs: self.check_outputs(&self.base.model).map_err(|e| e.to_string())?,
+        })
+    }
+
+    /// Which way the points are computed, with the reason when it is not the numeric builder.
+    pub fn path(&self) -> &SweepPath {
+        &self.path
     }
 
     /// The swept keys and values.
@@ -479,6 +622,80 @@ impl<'a> Sweep<'a> {
     /// # Errors
     /// The substituted scenario's errors (a value out of range, an unstable model), the evaluator's errors.
     pub fn evaluate(&self, point: usize) -> Result<Vec<PointStatistics>> {
+        let mut scratch = self.numeric.as_ref().map(|n| n.template.clone());
+        self.evaluate_in(point, scratch.as_mut())
+    }
+
+    /// [`evaluate`](Self::evaluate) with a state space to write the numeric path's matrices into.
+    fn evaluate_in(&self, point: usize, scratch: Option<&mut StateSpace>) -> Result<Vec<PointStatistics>> {
+        if let (Some(num), Some(ss), Some(fast)) = (&self.numeric, scratch, &self.fast) {
+            if let Some(r) = self.numeric_at(point, num, ss, fast) {
+                return r;
+            }
+        }
+        self.evaluate_general(point)
+    }
+
+    /// The statistics of point `point` by the numeric path alone ([`SweepPath::Numeric`]), or None where it
+    /// does not apply: the study has no numeric path, or the builder declines this point (a value its
+    /// reader or the model refuses, a speed whose excitation failed), and [`evaluate`](Self::evaluate)
+    /// then takes [`evaluate_general`](Self::evaluate_general), which names the error.
+    ///
+    /// # Errors
+    /// The evaluator's errors (an unstable model) inside the `Some`.
+    pub fn evaluate_numeric(&self, point: usize) -> Option<Result<Vec<PointStatistics>>> {
+        let (num, fast) = (self.numeric.as_ref()?, self.fast.as_ref()?);
+        let mut ss = num.template.clone();
+        self.numeric_at(point, num, &mut ss, fast)
+    }
+
+    /// The numeric path at `point` with `ss` to write into (see [`evaluate_numeric`](Self::evaluate_numeric)).
+    fn numeric_at(
+        &self,
+        point: usize,
+        num: &NumericPath,
+        ss: &mut StateSpace,
+        fast: &Excitations,
+    ) -> Option<Result<Vec<PointStatistics>>> {
+        let mut values = [None; MAX_NUMERIC_KEYS];
+        values[..num.base.len()].copy_from_slice(&num.base);
+        let mut speed_index = None;
+        // the value index of every key (grid: mixed radix, the last key fastest)
+        let mut rest = point;
+        for (k, p) in self.spec.params.iter().enumerate().rev() {
+            let v = match self.spec.mode {
+                SweepMode::Zip => point,
+                SweepMode::Grid => {
+                    let v = rest % p.values.len();
+                    rest /= p.values.len();
+                    v
+                }
+            };
+            match &num.swept[k] {
+                Some((i, read)) => values[*i] = Some((*read.get(v)?)?),
+                None => speed_index = Some(v),
+            }
+        }
+        if !(num.fill)(&values[..num.base.len()], ss) {
+            return None;
+        }
+        Some(match (fast, speed_index) {
+            (Excitations::Base(ev), _) => ev.evaluate(&*ss, &self.base.excitation, &num.outputs),
+            (Excitations::PerSpeed { cache, .. }, Some(v)) => {
+                let e = cache.get(v)?.as_ref()?;
+                e.evaluator.evaluate(&*ss, &e.excitation, &num.outputs)
+            }
+            (Excitations::PerSpeed { .. }, None) => return None,
+        })
+    }
+
+    /// The statistics of point `point` by the general path, whatever [`path`](Self::path) says: the model
+    /// rebuilt from its substituted `[model]` table (or the scenario re-read when keys outside `model.*` and
+    /// `input.speed` vary). The reference the numeric path is tested against.
+    ///
+    /// # Errors
+    /// As [`evaluate`](Self::evaluate).
+    pub fn evaluate_general(&self, point: usize) -> Result<Vec<PointStatistics>> {
         let Some(fast) = &self.fast else {
             let sc = self.scenario_at(point)?;
             let outputs = self.check_outputs(&sc.model)?;
@@ -570,11 +787,18 @@ impl<'a> Sweep<'a> {
         parallel: bool,
     ) -> Vec<std::result::Result<Vec<PointStatistics>, String>> {
         use rayon::prelude::*;
-        let one = |p: usize| self.evaluate(p).map_err(|e| e.to_string());
+        // one state space per worker for the numeric path, overwritten point after point
+        let scratch = || self.numeric.as_ref().map(|n| n.template.clone());
+        let one = |s: &mut Option<StateSpace>, p: usize| self.evaluate_in(p, s.as_mut()).map_err(|e| e.to_string());
         if parallel {
-            points.into_par_iter().with_min_len(256).map(one).collect()
+            points
+                .into_par_iter()
+                .with_min_len(256)
+                .map_init(scratch, one)
+                .collect()
         } else {
-            points.map(one).collect()
+            let mut s = scratch();
+            points.map(|p| one(&mut s, p)).collect()
         }
     }
 }
