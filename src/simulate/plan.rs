@@ -188,19 +188,21 @@ impl RouteChoice {
 pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let n = opts.samples()?;
     let (p_all, g_all) = (input.outputs.len(), input.excitation.spectra().len());
-    // before any buffer of the realization's size exists; for the automatic route the verdict decides
-    // between the whole-record and the streamed spectral route
-    let whole = match opts.route {
-        Route::SpectralStream => Ok(()),
-        Route::Auto => super::resources::check_memory(n, p_all, g_all, opts),
-        Route::Exact | Route::Spectral => {
-            super::resources::check_memory(n, p_all, g_all, opts)?;
-            Ok(())
-        }
-    };
+    // a run that keeps whole records (raw data, verdict channels) needs them in memory on every route; a
+    // statistics-only run of the exact route streams in blocks, of the streamed spectral route in segments
+    let records = opts.store_raw || !input.verdicts.is_empty();
+    // before any buffer of the realization's size exists
+    if opts.route == Route::Spectral || (opts.route == Route::Exact && records) {
+        super::resources::check_memory(n, p_all, g_all, opts)?;
+    }
     let (finite, skipped) = simulable_outputs(input)?;
     let idx: Vec<usize> = finite.iter().map(|f| f.index).collect();
     let mut choice = RouteChoice::choose(input, opts, &idx)?;
+    // for the automatic route the verdict decides between the whole-record and the streamed spectral route
+    let whole = match opts.route {
+        Route::Auto if choice.exact.is_none() || records => super::resources::check_memory(n, p_all, g_all, opts),
+        _ => Ok(()),
+    };
     let streamed = match (opts.route, whole) {
         (Route::SpectralStream, _) => true,
         (_, Ok(())) => false,
@@ -219,12 +221,26 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     if streamed {
         return streamed_plan(input, opts, n, finite, skipped, notes, welch);
     }
-    let memory_bytes = super::resources::memory_bytes(n, p_all, g_all, opts, rayon::current_num_threads());
+    let threads = rayon::current_num_threads();
+    let mut memory_bytes = super::resources::memory_bytes(n, p_all, g_all, opts, threads);
     // exact route: append the input processes (shaping-filter outputs) as extra rows of the simulated system
     let exact = choice
         .exact
         .map(|gm| with_input_rows(input.system, input.excitation, &idx, opts.dt_s).unwrap_or(gm));
     if let Some(gm) = exact {
+        let block_steps = if records { 0 } else { opts.block_steps.min(n) };
+        if block_steps > 0 {
+            memory_bytes = super::resources::exact_block_memory_bytes(
+                gm.n_states(),
+                gm.n_outputs(),
+                idx.len(),
+                block_steps,
+                n,
+                opts,
+                threads,
+            );
+            super::resources::check_block_memory(memory_bytes, n, opts)?;
+        }
         let cov = gm.output_covariance();
         let autocov = gm
             .output_autocovariances(welch.segment_len())
@@ -267,7 +283,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
                 super::GENERATOR
             ),
             welch,
-            block_steps: if opts.store_raw { 0 } else { opts.block_steps.min(n) },
+            block_steps,
             autocov,
             memory_bytes,
         });
