@@ -35,6 +35,7 @@ pub mod shaping;
 mod shard;
 pub mod spectral;
 mod summary;
+pub mod transfer_grid;
 pub mod verdicts;
 
 pub use batch::{run_batch, Shard};

@@ -2,7 +2,7 @@
 //! engine of that route, and the exact variance of the simulated discrete process.
 
 use super::engine::{Engine, Gains, RawMix};
-use super::fir_stream::{KernelSpectra, GRID_TOLERANCE, TAIL_FRACTION};
+use super::fir_stream::{KernelSpectra, GRID_TOLERANCE};
 use super::{
     augmented_response, foh, Amplitudes, FirSynthesis, GaussMarkov, Route, RunInput, RunOptions, SpectralGenerator,
 };
@@ -359,19 +359,22 @@ fn streamed_plan(
                 .unwrap_or(0)
         }
         Excitation::Independent { .. } => 0,
-        Excitation::Sources { .. } => {
-            return Err(Error::invalid(
-                "route",
-                "spectral-stream",
-                "the streamed spectral route does not take several input sources ([[input]] tables, two tracks) \
-                 yet: use --route spectral (whole records) with a shorter duration",
-            ))
+        // several independent sources: one white noise per component of every source, each through its own
+        // kernels (a multi-component source's mixing is part of its kernels), summed per output
+        Excitation::Sources { inputs, .. } => {
+            let t0 = inputs.iter().map(|m| m.delay).fold(f64::INFINITY, f64::min);
+            inputs
+                .iter()
+                .map(|m| ((m.delay - t0) / dt).round() as usize)
+                .max()
+                .unwrap_or(0)
         }
     };
     let spectra = exc.spectra();
+    let schur = super::transfer_grid::SchurTransfer::new(&sub, dt)?;
     let kernel_spectra = |l: usize| -> Result<KernelSpectra> {
         let (generators, inputs) = spectral_inputs(exc, dt, l)?;
-        let (gains, _, _) = discrete_gains(&sub, exc, &generators, &inputs, dt, l)?;
+        let (gains, _, _) = discrete_gains(&sub, exc, &generators, &inputs, dt, l, schur.as_ref())?;
         let dw = 2.0 * std::f64::consts::PI / (l as f64 * dt);
         Ok(gains
             .into_iter()
@@ -388,7 +391,7 @@ fn streamed_plan(
     };
     let min_grid = 16usize.saturating_mul(max_shift + 1);
     let (fir, design) =
-        FirSynthesis::design(&kernel_spectra, min_grid, TAIL_FRACTION, GRID_TOLERANCE).map_err(|e| match e {
+        FirSynthesis::design(&kernel_spectra, min_grid, opts.stream_tail, GRID_TOLERANCE).map_err(|e| match e {
             // name the output (the design counts the simulated outputs 0..p)
             Error::Numerical { what, reason } => Error::Numerical {
                 what: finite.iter().enumerate().rev().fold(what, |w, (r, f)| {
@@ -428,11 +431,12 @@ fn streamed_plan(
     let discrete: Vec<f64> = (0..p).map(|r| fir.variance(r)).collect();
     for (r, f) in finite.iter().enumerate() {
         notes.push(format!(
-            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {TAIL_FRACTION:e}), grid \
+            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {:e}), grid \
              variance change over the last doubling {:.3e} (bound {GRID_TOLERANCE:e}); simulated σ {:.6e} vs \
              analytic σ {:.6e} (relative {:+.3e}); `discrete σ` is the exact σ of the simulated FIR process",
             f.info.name,
             design.tail_fraction[r],
+            opts.stream_tail,
             design.grid_change[r],
             discrete[r].sqrt(),
             f.variance.sqrt(),
@@ -454,11 +458,12 @@ fn streamed_plan(
         route: Route::SpectralStream,
         generator: format!(
             "{}, stream (seed, i) per realization; streamed spectral synthesis: white noise through FIR kernels of {} \
-             taps (kernel grid {}, window tail ≤ {TAIL_FRACTION:e}), overlap-save FFT of {}, first-order-hold \
+             taps (kernel grid {}, window tail ≤ {:e}), overlap-save FFT of {}, first-order-hold \
              response, stationary start",
             super::GENERATOR,
             fir.taps(),
             design.grid_len,
+            opts.stream_tail,
             fir.fft_len()
         ),
         engine: Engine::SpectralStream(fir),
@@ -563,7 +568,7 @@ fn spectral_engine(
          output; slowest decay rate min|Re λ| = {sigma_min:.4e} 1/s)"
     ));
     let (generators, inputs) = spectral_inputs(exc, dt, n)?;
-    let (gains, discrete, spectrum) = discrete_gains(&sub, exc, &generators, &inputs, dt, n)?;
+    let (gains, discrete, spectrum) = discrete_gains(&sub, exc, &generators, &inputs, dt, n, None)?;
     let autocov = spectrum
         .iter()
         .map(|p| periodic_autocovariance(p, n, lags))
@@ -753,7 +758,7 @@ fn delay_steps(j: usize, tau: f64, dt: f64) -> Result<usize> {
 /// gains\[g\]\[r\]\[j\]: the transfer from generator g's coefficient c_j to output r (discrete transfer
 /// function of the first-order hold, input gains, shift phases and the iω_j E term), the exact variance
 /// σ²_d = Σ_j w_j S(ω_j) Δω |H_d(ω_j)|² of each output (see [`crate::simulate::run`]), and its terms per bin.
-#[allow(clippy::needless_range_loop)] // the bin loop fills several per-bin tables
+#[allow(clippy::needless_range_loop, clippy::too_many_arguments)] // the bin loop fills several tables
 fn discrete_gains(
     sub: &StateSpace,
     exc: &Excitation,
@@ -761,6 +766,7 @@ fn discrete_gains(
     inputs: &[SpectralInput],
     dt: f64,
     n: usize,
+    fast: Option<&super::transfer_grid::SchurTransfer>,
 ) -> Result<(Gains, Vec<f64>, Vec<Vec<f64>>)> {
     let f = foh(&sub.a, &sub.b, dt)?;
     let nst = sub.n_states();
@@ -778,19 +784,35 @@ fn discrete_gains(
         to_c(&sub.c),
         to_c(&sub.d),
     );
+    let (mut work, mut hv) = match fast {
+        Some(t) => (t.work(), vec![Complex::new(0.0, 0.0); p * sub.b.ncols()]),
+        None => (Vec::new(), Vec::new()),
+    };
+    let mut h = DMatrix::<Complex<f64>>::zeros(p, sub.b.ncols());
     for j in 0..=n / 2 {
         let w = j as f64 * dw;
         let weight = if j == 0 || j == n / 2 { 1.0 } else { 2.0 };
-        let z = Complex::new(0.0, w * dt).exp();
-        let zi = DMatrix::<Complex<f64>>::identity(nst, nst) * z - &phi;
-        let rhs = &g0 + &g1 * z;
-        let x = zi.lu().solve(&rhs).ok_or_else(|| Error::Numerical {
-            what: "discrete transfer function".into(),
-            reason: format!("zI − Φ singular at ω = {w:e}"),
-        })?;
-        let mut h = &c * x + &d; // p × m
-        if j < n / 2 {
-            h += to_c(&sub.e) * Complex::new(0.0, w);
+        if let Some(t) = fast {
+            // the streamed route's design: one Schur form for every bin (the periodic route keeps its LU)
+            t.eval(w, j == n / 2, &mut work, &mut hv);
+            let m = h.ncols();
+            for r in 0..p {
+                for k in 0..m {
+                    h[(r, k)] = hv[r * m + k];
+                }
+            }
+        } else {
+            let z = Complex::new(0.0, w * dt).exp();
+            let zi = DMatrix::<Complex<f64>>::identity(nst, nst) * z - &phi;
+            let rhs = &g0 + &g1 * z;
+            let x = zi.lu().solve(&rhs).ok_or_else(|| Error::Numerical {
+                what: "discrete transfer function".into(),
+                reason: format!("zI − Φ singular at ω = {w:e}"),
+            })?;
+            h = &c * x + &d; // p × m
+            if j < n / 2 {
+                h += to_c(&sub.e) * Complex::new(0.0, w);
+            }
         }
         // multi-component sources: input l's component c is Σ_k M_ck(ω_j) c_k over the source's generators
         // k, M_ck = L_ck √(S_cc/S_kk) with C = L Lᴴ the coherence matrix (Z_R = ρ Z_L + √(1 − ρ²) W for two
