@@ -36,6 +36,7 @@ mod shard;
 pub mod spectral;
 mod summary;
 pub mod transfer_grid;
+pub mod verdict_stream;
 pub mod verdicts;
 
 pub use batch::{run_batch, Shard};

@@ -188,9 +188,10 @@ impl RouteChoice {
 pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let n = opts.samples()?;
     let (p_all, g_all) = (input.outputs.len(), input.excitation.spectra().len());
-    // a run that keeps whole records (raw data, verdict channels) needs them in memory on every route; a
-    // statistics-only run of the exact route streams in blocks, of the streamed spectral route in segments
-    let records = opts.store_raw || !input.verdicts.is_empty();
+    // a run that keeps whole records (raw data) needs them in memory on every route; a statistics-only run
+    // (verdict channels included: they are evaluated block by block) of the exact route streams in blocks,
+    // of the streamed spectral route in segments
+    let records = opts.store_raw;
     // before any buffer of the realization's size exists
     if opts.route == Route::Spectral || (opts.route == Route::Exact && records) {
         super::resources::check_memory(n, p_all, g_all, opts)?;
@@ -206,7 +207,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let streamed = match (opts.route, whole) {
         (Route::SpectralStream, _) => true,
         (_, Ok(())) => false,
-        (_, Err(e)) if choice.exact.is_some() || opts.store_raw => return Err(e),
+        (_, Err(e)) if choice.exact.is_some() || records => return Err(e),
         (_, Err(e)) => {
             choice.reason = format!(
                 "{}; streamed spectral route: the whole-record spectral route does not fit ({e})",
