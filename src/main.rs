@@ -220,6 +220,10 @@ enum Command {
         /// Confidence of the intervals.
         #[arg(long, default_value_t = 0.95)]
         confidence: f64,
+        /// Streamed spectral route: fraction of each output's variance its kernels may leave outside their
+        /// window (the variance is biased low by at most this; default 1e-4).
+        #[arg(long, default_value_t = stochvib::simulate::fir_stream::TAIL_FRACTION)]
+        stream_tail: f64,
         /// Replace an existing finished OUTPUT (a run file only; replaced when the new run is complete) and
         /// discard an interrupted run of different settings.
         #[arg(long)]
@@ -505,6 +509,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             compression,
             route,
             confidence,
+            stream_tail,
             overwrite,
             spectra,
             json,
@@ -524,6 +529,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 compression,
                 route,
                 confidence,
+                stream_tail,
                 overwrite,
                 part: choice.as_ref().map(|c| c.part),
                 ..RunOptions::new(realizations, duration, dt, seed)

@@ -293,14 +293,23 @@ fn sizes_are_checked_before_allocating() {
         stderr(&o)
     );
     let sc = load(&root().join("data/conveyor-idler.toml"));
-    // 2·10⁹ samples per realization of 3 signals: tens of GB per thread
-    let long = RunOptions::new(4, 2.0e7, 0.01, 1);
+    // 2·10⁹ samples per realization of 3 signals kept as raw records (≥ 16 GB per thread just for the
+    // samples), or on the whole-record spectral route (N-point FFT buffers): refused with the numbers. A
+    // statistics-only exact run of that length streams in blocks and is accepted
+    // (`a_huge_statistics_only_exact_run_streams`).
     let t0 = std::time::Instant::now();
-    let e = sc
-        .simulate(&long, &d.join("long.h5"), &|_, _| {})
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("of memory") && e.contains("GiB"), "{e}");
+    let mut raw = RunOptions::new(4, 2.0e7, 0.01, 1);
+    raw.store_raw = true;
+    let mut spectral = RunOptions::new(4, 2.0e7, 0.01, 1);
+    spectral.route = stochvib::simulate::Route::Spectral;
+    for (k, long) in [raw, spectral].iter().enumerate() {
+        let e = sc
+            .simulate(long, &d.join(format!("long{k}.h5")), &|_, _| {})
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("of memory") && e.contains("GiB"), "{e}");
+        assert!(!d.join(format!("long{k}.h5.tmp")).exists());
+    }
     // 10¹³ realizations: the accumulators alone need ~10¹⁶ bytes
     let many = RunOptions::new(10_000_000_000_000, 2.0, 0.01, 1);
     let e = sc
@@ -309,7 +318,37 @@ fn sizes_are_checked_before_allocating() {
         .to_string();
     assert!(e.contains("would take about") && e.contains("free on the disk"), "{e}");
     assert!(t0.elapsed().as_secs() < 30, "the checks must come before the work");
-    assert!(!d.join("long.h5.tmp").exists() && !d.join("many.h5.tmp").exists());
+    assert!(!d.join("many.h5.tmp").exists());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The memory check knows that a statistics-only run of the exact route streams: 2·10⁹ samples per
+/// realization are planned with the same bytes as 10⁵ (memory O(block), not O(N)), far below what the
+/// whole record would need; a bounded run of 2 realizations × 2·10⁶ samples (122 blocks of the default
+/// 2¹⁴ steps) runs to the end on that route.
+#[test]
+fn a_huge_statistics_only_exact_run_streams() {
+    use stochvib::simulate::{planned_memory, resources::memory_bytes, Route};
+    let d = dir("huge-exact");
+    let sc = load(&root().join("data/conveyor-idler.toml"));
+    let input = sc.run_input();
+    let planned = |duration: f64| planned_memory(&input, &RunOptions::new(4, duration, 0.01, 1)).unwrap();
+    let (short, huge) = (planned(1.0e3), planned(2.0e7));
+    assert_eq!((short.route, huge.route), (Route::Exact, Route::Exact));
+    assert_eq!(
+        short.bytes, huge.bytes,
+        "the block memory does not depend on the duration"
+    );
+    // the whole record of one realization alone is N·8 bytes per signal: 16 GB at N = 2·10⁹
+    let whole = memory_bytes(2_000_000_000, 1, 1, &RunOptions::new(4, 2.0e7, 0.01, 1), 1);
+    assert!(
+        whole >= 16_000_000_000 && huge.bytes < 64 << 20,
+        "{} vs {whole}",
+        huge.bytes
+    );
+    let o = RunOptions::new(2, 2.0e4, 0.01, 3);
+    let s = sc.simulate(&o, &d.join("long.h5"), &|_, _| {}).unwrap();
+    assert_eq!((s.route, s.n_samples), (Route::Exact, 2_000_000));
     let _ = std::fs::remove_dir_all(&d);
 }
 

@@ -2,6 +2,7 @@
 //! processes) from its random stream, reduced to its time averages and Welch sums.
 
 use super::plan::Plan;
+use super::verdict_stream::VerdictStream;
 use super::{FirSynthesis, GaussMarkov, SpectralGenerator};
 use crate::error::{Error, Result};
 use crate::estimate::WelchSums;
@@ -110,6 +111,7 @@ fn realize_in_blocks(
     gm: &GaussMarkov,
     s: &mut Scratch,
     rng: &mut rand::rngs::Xoshiro256PlusPlus,
+    mut verdicts: Option<&mut VerdictStream>,
 ) -> Result<Realization> {
     let (n, p, stride, block) = (plan.n, plan.outputs.len(), plan.stride, plan.block_steps);
     gm.initial_state(rng, &mut s.x);
@@ -133,6 +135,9 @@ fn realize_in_blocks(
             }
             plan.welch
                 .push(&mut streams[r], &sig[..b], &mut welch[r], &mut s.welch)?;
+            if let Some(v) = verdicts.as_deref_mut() {
+                v.push(r, &sig[..b])?;
+            }
         }
         done += b;
     }
@@ -157,6 +162,7 @@ fn realize_streamed(
     fir: &FirSynthesis,
     s: &mut Scratch,
     rng: &mut rand::rngs::Xoshiro256PlusPlus,
+    mut verdicts: Option<&mut VerdictStream>,
 ) -> Result<Realization> {
     let (n, p, hop) = (plan.n, plan.outputs.len(), fir.hop());
     let fs = s.fir.as_mut().ok_or_else(|| Error::Numerical {
@@ -191,6 +197,9 @@ fn realize_streamed(
             }
             plan.welch
                 .push(&mut streams[r], &block[r][..filled], &mut welch[r], &mut s.welch)?;
+            if let Some(v) = verdicts.as_deref_mut() {
+                v.push(r, &block[r][..filled])?;
+            }
         }
         done += filled;
     }
@@ -206,7 +215,8 @@ fn realize_streamed(
     })
 }
 
-/// One realization from `rng` (the stream (seed, i) of realization i).
+/// One realization from `rng` (the stream (seed, i) of realization i); the block-wise routes also feed
+/// `verdicts` block by block (the whole-record routes leave it untouched).
 ///
 /// # Errors
 /// An FFT or Welch failure (never for a valid plan).
@@ -215,12 +225,13 @@ pub(crate) fn realize(
     s: &mut Scratch,
     rng: &mut rand::rngs::Xoshiro256PlusPlus,
     keep_raw: bool,
+    verdicts: Option<&mut VerdictStream>,
 ) -> Result<Realization> {
     let n = plan.n;
     let p = plan.outputs.len();
     match &plan.engine {
-        Engine::Exact(gm) if plan.block_steps > 0 && !keep_raw => return realize_in_blocks(plan, gm, s, rng),
-        Engine::SpectralStream(fir) if !keep_raw => return realize_streamed(plan, fir, s, rng),
+        Engine::Exact(gm) if plan.block_steps > 0 && !keep_raw => return realize_in_blocks(plan, gm, s, rng, verdicts),
+        Engine::SpectralStream(fir) if !keep_raw => return realize_streamed(plan, fir, s, rng, verdicts),
         Engine::SpectralStream(_) => {
             return Err(Error::invalid(
                 "store raw",

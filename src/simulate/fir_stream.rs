@@ -11,7 +11,13 @@ use std::sync::Arc;
 
 /// Default bound of the kernel energy left outside the FIR window, as a fraction of each output's
 /// variance on the kernel grid: the truncation lowers each output's variance by at most this fraction
-/// (σ by at most half of it).
+/// (σ by at most half of it). Why 1e-4: the bias of σ it allows, ≤ 5·10⁻⁵ relative, is far below the
+/// statistical half-width of a σ interval of any practical run (≈ z/√(2·R·N_eff) relative with R
+/// realizations of N_eff independent samples: 1.96/√(2·10⁴·10⁵) ≈ 4·10⁻⁵ needs 10⁴ realizations of 10⁵
+/// correlation times), so the streamed route is as good as unbiased; the run notes print each output's
+/// actual fraction. A run may raise it (`RunOptions::stream_tail`, `--stream-tail`) for a spectrum with a
+/// sharp edge, whose kernel decays only like 1/t (energy outside ±M lags ∝ 1/M): 10× the tolerance gives
+/// 10× shorter kernels.
 pub const TAIL_FRACTION: f64 = 1e-4;
 
 /// Default bound of the relative change of each output's grid variance when the kernel grid is halved
@@ -22,9 +28,9 @@ pub const GRID_TOLERANCE: f64 = 1e-3;
 /// Smallest kernel grid tried.
 pub const MIN_GRID: usize = 1 << 12;
 
-/// Largest kernel grid tried (2²² points: the design's transient tables then take about
-/// 24 bytes × 2²² per generator–output pair).
-pub const MAX_GRID: usize = 1 << 22;
+/// Largest kernel grid tried (2²⁴ points: the design's transient tables then take about
+/// 72 bytes × 2²⁴ ≈ 1.2 GB per generator–output pair; the kernels then have up to 2²² taps).
+pub const MAX_GRID: usize = 1 << 24;
 
 /// The kernel spectra of a design on a grid of L points: `b[g][r][j]`, j = 0..=L/2, the DFT coefficients
 /// of the circular kernel from generator g's white noise to output r (see [`FirSynthesis::design`]).
@@ -141,8 +147,14 @@ fn fft_error(e: realfft::FftError) -> Error {
 /// `total[r]`) that keeps at least 1 − `tail` of every output's energy, grown greedily by chunks; returns
 /// (a, b) and the fraction left outside per output.
 fn window(e: &[Vec<f64>], total: &[f64], tail: f64) -> (usize, usize, Vec<f64>) {
-    let l = e[0].len();
-    let at = |r: usize, lag: i64| e[r][lag.rem_euclid(l as i64) as usize];
+    window_within(e, total, tail, e[0].len())
+}
+
+/// [`window`] with at most `limit` taps.
+fn window_within(e: &[Vec<f64>], total: &[f64], tail: f64, limit: usize) -> (usize, usize, Vec<f64>) {
+    let l = limit.min(e[0].len());
+    let circ = e[0].len() as i64;
+    let at = |r: usize, lag: i64| e[r][lag.rem_euclid(circ) as usize];
     let (mut a, mut b) = (0usize, 1usize);
     let mut inside: Vec<f64> = (0..e.len()).map(|r| at(r, 0)).collect();
     let outside = |inside: &[f64]| -> Vec<f64> {
@@ -369,8 +381,64 @@ impl FirSynthesis {
                     ),
                 });
             }
+            // a window that does not fit: extrapolate the energy outside the window from the windows of
+            // L/8 and L/4 taps (outside fraction ∝ M^−α, α ≥ 1/2; α = 1 for a jump of the spectrum), jump to
+            // the grid it needs, or fail now with the numbers when that grid is beyond the largest
+            let mut next = 2 * l;
+            if !fits {
+                let (.., out4) = window_within(&e, &total, tail, l / 4);
+                let (.., out8) = window_within(&e, &total, tail, l / 8);
+                let need = |r: usize| -> f64 {
+                    if out4[r] <= tail {
+                        return (l / 4) as f64;
+                    }
+                    let alpha = if out8[r] > out4[r] {
+                        (out8[r] / out4[r]).log2().clamp(0.5, 8.0)
+                    } else {
+                        0.5
+                    };
+                    (l / 4) as f64 * (out4[r] / tail).powf(1.0 / alpha)
+                };
+                let r = (0..p).max_by(|x, y| need(*x).total_cmp(&need(*y))).unwrap_or(0);
+                let taps = need(r);
+                let grid = (4.0 * taps).min(1e30);
+                if grid > MAX_GRID as f64 {
+                    let g = h.len() as f64;
+                    let f = (4.0 * taps).log2().ceil().exp2();
+                    // the design's tables (b, h, energies) and one thread's overlap-save buffers and the shared
+                    // kernel spectra at that size
+                    let design = g * p as f64 * (grid / 2.0 * 16.0 * 2.0 + grid * 8.0) + p as f64 * grid * 8.0;
+                    let stream = g * f * 8.0
+                        + (g + 1.0) * f * 8.0
+                        + 4.0 * f * 8.0
+                        + 2.0 * p as f64 * f * 8.0
+                        + g * p as f64 * (taps * 8.0 + f * 8.0);
+                    return Err(Error::Numerical {
+                        what: format!("streamed spectral synthesis of output {r}"),
+                        reason: format!(
+                            "its kernel leaves {:.3e} of the variance outside {} taps and {:.3e} outside {} (a decay \
+                             like M^−{:.2}), so keeping all but the tolerated tail {tail:e} needs about {:.3e} taps: a \
+                             kernel grid of {:.3e} points (largest {MAX_GRID}) and about {:.1} GiB to design plus {:.1} \
+                             GiB to stream. The spectrum has a sharp edge or a narrow peak at this step: use the \
+                             whole-record spectral route (--route spectral), a larger tail tolerance (--stream-tail; \
+                             the variance is then biased low by at most that fraction), a longer time step, or a \
+                             smoother or band-limited output",
+                            out8[r],
+                            l / 8,
+                            out4[r],
+                            l / 4,
+                            if out8[r] > out4[r] { (out8[r] / out4[r]).log2() } else { 0.0 },
+                            taps,
+                            grid,
+                            design / (1u64 << 30) as f64,
+                            stream / (1u64 << 30) as f64
+                        ),
+                    });
+                }
+                next = next.max((grid as usize).next_power_of_two());
+            }
             previous = Some(total);
-            l *= 2;
+            l = next;
         }
     }
 

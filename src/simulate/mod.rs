@@ -39,6 +39,8 @@ pub mod shaping;
 mod shard;
 pub mod spectral;
 mod summary;
+pub mod transfer_grid;
+pub mod verdict_stream;
 pub mod verdicts;
 
 pub use batch::{run_batch, Shard};

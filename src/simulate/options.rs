@@ -83,6 +83,10 @@ pub struct RunOptions {
     /// the duration), and the least number of samples per block of the streamed spectral route (whole
     /// overlap-save segments); the statistics are bit-identical for any value.
     pub block_steps: usize,
+    /// Fraction of each output's variance the kernels of the streamed spectral route may leave outside
+    /// their window, in (0, 0.1] (default [`TAIL_FRACTION`](super::fir_stream::TAIL_FRACTION), where the
+    /// choice is justified): the streamed variance is biased low by at most this fraction.
+    pub stream_tail: f64,
     /// Replace an existing finished run file (only at the final rename, after the new run is complete),
     /// and discard an interrupted run of different settings.
     pub overwrite: bool,
@@ -111,6 +115,7 @@ impl RunOptions {
             route: Route::Auto,
             confidence: 0.95,
             block_steps: DEFAULT_BLOCK_STEPS,
+            stream_tail: super::fir_stream::TAIL_FRACTION,
             overwrite: false,
             part: None,
         }
@@ -130,6 +135,13 @@ impl RunOptions {
         }
         if self.block_steps == 0 {
             return Err(Error::invalid("block steps", 0, "need at least 1"));
+        }
+        if !(self.stream_tail > 0.0 && self.stream_tail <= 0.1) {
+            return Err(Error::invalid(
+                "stream tail",
+                self.stream_tail,
+                "the tolerated tail of the streamed kernels must lie in (0, 0.1]",
+            ));
         }
         require_positive("dt", self.dt_s)?;
         require_positive("duration", self.duration_s)?;

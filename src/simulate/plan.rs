@@ -2,7 +2,7 @@
 //! engine of that route, and the exact variance of the simulated discrete process.
 
 use super::engine::{Engine, Gains, RawMix};
-use super::fir_stream::{KernelSpectra, GRID_TOLERANCE, TAIL_FRACTION};
+use super::fir_stream::{KernelSpectra, GRID_TOLERANCE};
 use super::{
     augmented_response, foh, Amplitudes, FirSynthesis, GaussMarkov, Route, RunInput, RunOptions, SpectralGenerator,
 };
@@ -207,23 +207,26 @@ impl RouteChoice {
 pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let n = opts.samples()?;
     let (p_all, g_all) = (input.outputs.len(), input.excitation.spectra().len());
-    // before any buffer of the realization's size exists; for the automatic route the verdict decides
-    // between the whole-record and the streamed spectral route
-    let whole = match opts.route {
-        Route::SpectralStream => Ok(()),
-        Route::Auto => super::resources::check_memory(n, p_all, g_all, opts),
-        Route::Exact | Route::Spectral => {
-            super::resources::check_memory(n, p_all, g_all, opts)?;
-            Ok(())
-        }
-    };
+    // a run that keeps whole records (raw data) needs them in memory on every route; a statistics-only run
+    // (verdict channels included: they are evaluated block by block) of the exact route streams in blocks,
+    // of the streamed spectral route in segments
+    let records = opts.store_raw;
+    // before any buffer of the realization's size exists
+    if opts.route == Route::Spectral || (opts.route == Route::Exact && records) {
+        super::resources::check_memory(n, p_all, g_all, opts)?;
+    }
     let (finite, skipped) = simulable_outputs(input)?;
     let idx: Vec<usize> = finite.iter().map(|f| f.index).collect();
     let mut choice = RouteChoice::choose(input, opts, &idx)?;
+    // for the automatic route the verdict decides between the whole-record and the streamed spectral route
+    let whole = match opts.route {
+        Route::Auto if choice.exact.is_none() || records => super::resources::check_memory(n, p_all, g_all, opts),
+        _ => Ok(()),
+    };
     let streamed = match (opts.route, whole) {
         (Route::SpectralStream, _) => true,
         (_, Ok(())) => false,
-        (_, Err(e)) if choice.exact.is_some() || opts.store_raw || input.kurtosis.is_some() => return Err(e),
+        (_, Err(e)) if choice.exact.is_some() || records || input.kurtosis.is_some() => return Err(e),
         (_, Err(e)) => {
             choice.reason = format!(
                 "{}; streamed spectral route: the whole-record spectral route does not fit ({e})",
@@ -238,12 +241,26 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     if streamed {
         return streamed_plan(input, opts, n, finite, skipped, notes, welch);
     }
-    let memory_bytes = super::resources::memory_bytes(n, p_all, g_all, opts, rayon::current_num_threads());
+    let threads = rayon::current_num_threads();
+    let mut memory_bytes = super::resources::memory_bytes(n, p_all, g_all, opts, threads);
     // exact route: append the input processes (shaping-filter outputs) as extra rows of the simulated system
     let exact = choice
         .exact
         .map(|gm| with_input_rows(input.system, input.excitation, &idx, opts.dt_s).unwrap_or(gm));
     if let Some(gm) = exact {
+        let block_steps = if records { 0 } else { opts.block_steps.min(n) };
+        if block_steps > 0 {
+            memory_bytes = super::resources::exact_block_memory_bytes(
+                gm.n_states(),
+                gm.n_outputs(),
+                idx.len(),
+                block_steps,
+                n,
+                opts,
+                threads,
+            );
+            super::resources::check_block_memory(memory_bytes, n, opts)?;
+        }
         let cov = gm.output_covariance();
         let autocov = gm
             .output_autocovariances(welch.segment_len())
@@ -286,7 +303,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
                 super::GENERATOR
             ),
             welch,
-            block_steps: if opts.store_raw { 0 } else { opts.block_steps.min(n) },
+            block_steps,
             autocov,
             memory_bytes,
         });
@@ -370,19 +387,22 @@ fn streamed_plan(
                 .unwrap_or(0)
         }
         Excitation::Independent { .. } => 0,
-        Excitation::Sources { .. } => {
-            return Err(Error::invalid(
-                "route",
-                "spectral-stream",
-                "the streamed spectral route does not take several input sources ([[input]] tables, two tracks) \
-                 yet: use --route spectral (whole records) with a shorter duration",
-            ))
+        // several independent sources: one white noise per component of every source, each through its own
+        // kernels (a multi-component source's mixing is part of its kernels), summed per output
+        Excitation::Sources { inputs, .. } => {
+            let t0 = inputs.iter().map(|m| m.delay).fold(f64::INFINITY, f64::min);
+            inputs
+                .iter()
+                .map(|m| ((m.delay - t0) / dt).round() as usize)
+                .max()
+                .unwrap_or(0)
         }
     };
     let spectra = exc.spectra();
+    let schur = super::transfer_grid::SchurTransfer::new(&sub, dt)?;
     let kernel_spectra = |l: usize| -> Result<KernelSpectra> {
         let (generators, inputs) = spectral_inputs(exc, dt, l)?;
-        let (gains, _, _) = discrete_gains(&sub, exc, &generators, &inputs, dt, l)?;
+        let (gains, _, _) = discrete_gains(&sub, exc, &generators, &inputs, dt, l, schur.as_ref())?;
         let dw = 2.0 * std::f64::consts::PI / (l as f64 * dt);
         Ok(gains
             .into_iter()
@@ -399,7 +419,7 @@ fn streamed_plan(
     };
     let min_grid = 16usize.saturating_mul(max_shift + 1);
     let (fir, design) =
-        FirSynthesis::design(&kernel_spectra, min_grid, TAIL_FRACTION, GRID_TOLERANCE).map_err(|e| match e {
+        FirSynthesis::design(&kernel_spectra, min_grid, opts.stream_tail, GRID_TOLERANCE).map_err(|e| match e {
             // name the output (the design counts the simulated outputs 0..p)
             Error::Numerical { what, reason } => Error::Numerical {
                 what: finite.iter().enumerate().rev().fold(what, |w, (r, f)| {
@@ -439,11 +459,12 @@ fn streamed_plan(
     let discrete: Vec<f64> = (0..p).map(|r| fir.variance(r)).collect();
     for (r, f) in finite.iter().enumerate() {
         notes.push(format!(
-            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {TAIL_FRACTION:e}), grid \
+            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {:e}), grid \
              variance change over the last doubling {:.3e} (bound {GRID_TOLERANCE:e}); simulated σ {:.6e} vs \
              analytic σ {:.6e} (relative {:+.3e}); `discrete σ` is the exact σ of the simulated FIR process",
             f.info.name,
             design.tail_fraction[r],
+            opts.stream_tail,
             design.grid_change[r],
             discrete[r].sqrt(),
             f.variance.sqrt(),
@@ -465,11 +486,12 @@ fn streamed_plan(
         route: Route::SpectralStream,
         generator: format!(
             "{}, stream (seed, i) per realization; streamed spectral synthesis: white noise through FIR kernels of {} \
-             taps (kernel grid {}, window tail ≤ {TAIL_FRACTION:e}), overlap-save FFT of {}, first-order-hold \
+             taps (kernel grid {}, window tail ≤ {:e}), overlap-save FFT of {}, first-order-hold \
              response, stationary start",
             super::GENERATOR,
             fir.taps(),
             design.grid_len,
+            opts.stream_tail,
             fir.fft_len()
         ),
         engine: Engine::SpectralStream(fir),
@@ -574,7 +596,7 @@ fn spectral_engine(
          output; slowest decay rate min|Re λ| = {sigma_min:.4e} 1/s)"
     ));
     let (generators, inputs) = spectral_inputs(exc, dt, n)?;
-    let (gains, discrete, spectrum) = discrete_gains(&sub, exc, &generators, &inputs, dt, n)?;
+    let (gains, discrete, spectrum) = discrete_gains(&sub, exc, &generators, &inputs, dt, n, None)?;
     let autocov = spectrum
         .iter()
         .map(|p| periodic_autocovariance(p, n, lags))
@@ -834,7 +856,7 @@ fn delay_steps(j: usize, tau: f64, dt: f64) -> Result<usize> {
 /// gains\[g\]\[r\]\[j\]: the transfer from generator g's coefficient c_j to output r (discrete transfer
 /// function of the first-order hold, input gains, shift phases and the iω_j E term), the exact variance
 /// σ²_d = Σ_j w_j S(ω_j) Δω |H_d(ω_j)|² of each output (see [`crate::simulate::run`]), and its terms per bin.
-#[allow(clippy::needless_range_loop)] // the bin loop fills several per-bin tables
+#[allow(clippy::needless_range_loop, clippy::too_many_arguments)] // the bin loop fills several tables
 fn discrete_gains(
     sub: &StateSpace,
     exc: &Excitation,
@@ -842,6 +864,7 @@ fn discrete_gains(
     inputs: &[SpectralInput],
     dt: f64,
     n: usize,
+    fast: Option<&super::transfer_grid::SchurTransfer>,
 ) -> Result<(Gains, Vec<f64>, Vec<Vec<f64>>)> {
     let f = foh(&sub.a, &sub.b, dt)?;
     let nst = sub.n_states();
@@ -859,19 +882,35 @@ fn discrete_gains(
         to_c(&sub.c),
         to_c(&sub.d),
     );
+    let (mut work, mut hv) = match fast {
+        Some(t) => (t.work(), vec![Complex::new(0.0, 0.0); p * sub.b.ncols()]),
+        None => (Vec::new(), Vec::new()),
+    };
+    let mut h = DMatrix::<Complex<f64>>::zeros(p, sub.b.ncols());
     for j in 0..=n / 2 {
         let w = j as f64 * dw;
         let weight = if j == 0 || j == n / 2 { 1.0 } else { 2.0 };
-        let z = Complex::new(0.0, w * dt).exp();
-        let zi = DMatrix::<Complex<f64>>::identity(nst, nst) * z - &phi;
-        let rhs = &g0 + &g1 * z;
-        let x = zi.lu().solve(&rhs).ok_or_else(|| Error::Numerical {
-            what: "discrete transfer function".into(),
-            reason: format!("zI − Φ singular at ω = {w:e}"),
-        })?;
-        let mut h = &c * x + &d; // p × m
-        if j < n / 2 {
-            h += to_c(&sub.e) * Complex::new(0.0, w);
+        if let Some(t) = fast {
+            // the streamed route's design: one Schur form for every bin (the periodic route keeps its LU)
+            t.eval(w, j == n / 2, &mut work, &mut hv);
+            let m = h.ncols();
+            for r in 0..p {
+                for k in 0..m {
+                    h[(r, k)] = hv[r * m + k];
+                }
+            }
+        } else {
+            let z = Complex::new(0.0, w * dt).exp();
+            let zi = DMatrix::<Complex<f64>>::identity(nst, nst) * z - &phi;
+            let rhs = &g0 + &g1 * z;
+            let x = zi.lu().solve(&rhs).ok_or_else(|| Error::Numerical {
+                what: "discrete transfer function".into(),
+                reason: format!("zI − Φ singular at ω = {w:e}"),
+            })?;
+            h = &c * x + &d; // p × m
+            if j < n / 2 {
+                h += to_c(&sub.e) * Complex::new(0.0, w);
+            }
         }
         // multi-component sources: input l's component c is Σ_k M_ck(ω_j) c_k over the source's generators
         // k, M_ck = L_ck √(S_cc/S_kk) with C = L Lᴴ the coherence matrix (Z_R = ρ Z_L + √(1 − ρ²) W for two

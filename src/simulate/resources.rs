@@ -29,6 +29,70 @@ pub fn memory_bytes(n: usize, p: usize, g: usize, opts: &RunOptions, threads: us
     per_thread * threads as u128 + shard + table
 }
 
+/// Upper bound of the working memory of a statistics-only run of the exact route, which generates each
+/// realization in blocks of `block` steps with its state carried across them, bytes: independent of the
+/// number of samples N per realization.
+///
+/// # Formula
+/// With n states, q simulated rows (outputs and recorded inputs), p outputs, b = min(block, N) steps per
+/// block, B ≤ 513 Welch bins (segments of M ≤ 1024), s = shard size, P threads:
+/// ```text
+/// per thread  n·8 (state) + b·q·8 (block) + b·8 (one row) + p·(2M + B)·8 (Welch streams and sums)
+///             + 4M·8 (Welch scratch) + 6·8 (running sums)
+/// shared      (2n² + q·n)·8 (transition, noise factor, output matrix) + s·p·(B + 2)·8 (the shard's results)
+/// bytes       P·per thread + shared
+/// ```
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::{RunOptions, resources::exact_block_memory_bytes};
+/// let short = exact_block_memory_bytes(6, 3, 3, 1 << 14, 1 << 20, &RunOptions::new(10, 1e2, 0.01, 1), 2);
+/// let long = exact_block_memory_bytes(6, 3, 3, 1 << 14, 1 << 40, &RunOptions::new(10, 1e2, 0.01, 1), 2);
+/// assert_eq!(short, long);
+/// ```
+pub fn exact_block_memory_bytes(
+    states: usize,
+    rows: usize,
+    p: usize,
+    block: usize,
+    n: usize,
+    opts: &RunOptions,
+    threads: usize,
+) -> u128 {
+    let (nx, q, p) = (states as u128, rows as u128, p as u128);
+    let b = block.min(n).max(1) as u128;
+    let m = ((n as u128 / 8) & !1).clamp(4, 1024);
+    let bins = m / 2 + 1;
+    let s = opts.shard_size.min(opts.realizations) as u128;
+    let per_thread = nx * F64 + b * q * F64 + b * F64 + p * (2 * m + bins) * F64 + 4 * m * F64 + 6 * F64;
+    let shared = (2 * nx * nx + q * nx) * F64 + s * p * (bins + 2) * F64;
+    per_thread * threads as u128 + shared
+}
+
+/// Refuses a statistics-only exact run whose block memory `need` ([`exact_block_memory_bytes`]) exceeds
+/// what the machine has available.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] (`block steps`) with the numbers.
+pub fn check_block_memory(need: u128, n: usize, opts: &RunOptions) -> Result<()> {
+    if let Some(have) = available_memory() {
+        if need > have {
+            return Err(Error::invalid(
+                "block steps",
+                opts.block_steps,
+                format!(
+                    "the exact route needs about {} of memory for its blocks (independent of the {n} samples per \
+                     realization) but {} are available: fewer threads (RAYON_NUM_THREADS), a smaller block, a \
+                     smaller --shard-size or fewer outputs",
+                    gib(need),
+                    gib(have)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The sizes that set the memory of the streamed spectral route ([`FirSynthesis`](super::FirSynthesis)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct StreamSizes {

@@ -27,7 +27,9 @@
 //!   [`TAIL_FRACTION`](super::fir_stream::TAIL_FRACTION) of the variance) and the grid (≤
 //!   [`GRID_TOLERANCE`](super::fir_stream::GRID_TOLERANCE) change over the last doubling), both stated in
 //!   the notes. [`Route::Auto`](super::Route::Auto) takes it where the spectral route applies but its whole
-//!   record does not fit in the available memory.
+//!   record does not fit in the available memory. Several sources get one white noise per source
+//!   component; verdict channels are evaluated block by block
+//!   ([`VerdictStream`](super::verdict_stream::VerdictStream)), as on the exact route's blocks.
 //!
 //! # Bias of the spectral route
 //! The synthesised process is the spectrum sampled on the grid ω_j = 2πj/(NΔt), j ≤ N/2 (truncated at the
@@ -256,9 +258,17 @@ fn realize_with_verdicts(
     verdicts: &super::VerdictChannels,
 ) -> Result<(Realization, Vec<Vec<f64>>)> {
     if verdicts.is_empty() {
-        return Ok((realize(plan, s, rng, opts.store_raw)?, Vec::new()));
+        return Ok((realize(plan, s, rng, opts.store_raw, None)?, Vec::new()));
     }
-    let mut re = realize(plan, s, rng, true)?;
+    // the block-wise routes (statistics only) evaluate the channels block by block, bit-identical to the
+    // whole record
+    if plan.block_steps > 0 && !opts.store_raw {
+        let names: Vec<&str> = plan.outputs.iter().map(|o| o.signal.name.as_str()).collect();
+        let mut vs = super::verdict_stream::VerdictStream::new(verdicts, opts.dt_s, &names)?;
+        let re = realize(plan, s, rng, false, Some(&mut vs))?;
+        return Ok((re, vs.finish()?));
+    }
+    let mut re = realize(plan, s, rng, true, None)?;
     let signal = |name: &str| {
         plan.outputs
             .iter()

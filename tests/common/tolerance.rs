@@ -41,6 +41,10 @@ pub const RESIDUAL: f64 = 1e-12;
 /// cab at ω = 9.4 rad/s) and ≤ 2.7e-13 over 20 000 property-test cases; 1e-11 leaves a factor of twenty.
 pub const CONDITIONED: f64 = 1e-11;
 
+/// Per unit of a condition number κ computed in the test: two backward-stable solves of an n ≤ 8 system
+/// (an LU and a Schur back substitution) differ by ≤ 2·p(n)·κ·ε; p(n) ≤ 32 for these sizes, so 64ε.
+pub const CONDITION_SCALED: f64 = 64.0 * f64::EPSILON;
+
 /// Two exact routes on problems with condition numbers up to ~10⁵: the O(n) dynamic-stiffness sweep vs a
 /// dense complex LU on the seeded random damped torsional chains (stiffness ratios up to 10³, light
 /// damping, forcing frequencies near resonances). Measured: up to 1.1e-11; 1e-10.

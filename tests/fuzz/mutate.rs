@@ -361,6 +361,24 @@ fn is_numeric(v: &Value) -> bool {
     matches!(v, Value::Integer(_) | Value::Float(_))
 }
 
+/// True for a value that is free text of a reference file or a description, never read as a quantity:
+/// everything under `printed_parameters` and `not_printed`, and `printed_symbol`, `status`, `source`,
+/// `title`, `description` anywhere.
+pub fn free_text(p: &[Seg]) -> bool {
+    let keys: Vec<&str> = p
+        .iter()
+        .filter_map(|s| match s {
+            Seg::Key(k) => Some(k.as_str()),
+            _ => None,
+        })
+        .collect();
+    matches!(keys.first(), Some(&"printed_parameters") | Some(&"not_printed"))
+        || matches!(
+            keys.last(),
+            Some(&"printed_symbol") | Some(&"status") | Some(&"source") | Some(&"title") | Some(&"description")
+        )
+}
+
 /// A replacement value for `old`: (value, class of the replacement, must_reject class).
 pub fn replacement(rng: &mut Rng, old: &Value) -> (Value, String, Option<String>) {
     let qd = quantity_dim(old);
@@ -558,6 +576,10 @@ pub fn mutate_once(rng: &mut Rng, doc: &mut Table, vocabulary: &[String]) -> Opt
         }
         4..=10 => {
             let (v, class, must) = replacement(rng, &old);
+            // a transcription of printed text (Table 8.1's `printed_parameters`, `printed_symbol`, titles and
+            // sources) holds what the print says, e.g. "17...20 1/s": no reader takes it as a quantity, so
+            // any replacement of it is acceptable
+            let must = if free_text(&p) { None } else { must };
             let shown = short(&v.to_string());
             *get_mut(doc, &p)? = v.clone();
             m.op = format!("replace:{class}");
