@@ -89,7 +89,10 @@ fn psd_bits(p: &[PsdEstimate]) -> Vec<(String, Vec<u64>, u32)> {
         .collect()
 }
 
-fn rainflow_bits(r: &[RainflowHistogram]) -> Vec<(String, String, Vec<u64>, Vec<u64>, u64, Vec<u64>)> {
+/// (output, unit, bits of edges, counts, overflow, Dirlik counts).
+type RainflowBits = (String, String, Vec<u64>, Vec<u64>, u64, Vec<u64>);
+
+fn rainflow_bits(r: &[RainflowHistogram]) -> Vec<RainflowBits> {
     r.iter()
         .map(|h| {
             (
