@@ -61,14 +61,16 @@ fn weighted_density_picture_holds_density_bands_and_comfort_scale() {
         "{} vs {a_w}",
         ms.sqrt()
     );
+    // a_w ≈ 0.33 m/s², no band above it: the scale is drawn up to 2·a_w (0.315 and 0.5 m/s²)
+    assert_eq!(sec.hlines.len(), 3, "a_w and two reactions");
     let dir = std::env::temp_dir().join(format!("stochvib-comfort-pic-{}", std::process::id()));
     let files = c.render(&dir, "weighted").unwrap();
     let svg = std::fs::read_to_string(files.iter().find(|f| f.extension().unwrap() == "svg").unwrap()).unwrap();
     for label in [
         "density of seat_acc_Wk",
         "band r.m.s. (one-third octaves)",
-        "a little uncomfortable",
-        "extremely uncomfortable",
+        "a little uncomfortable from 0.315",
+        "fairly uncomfortable from 0.5",
         "a_w = ",
     ] {
         assert!(svg.contains(label), "the SVG lacks `{label}`");

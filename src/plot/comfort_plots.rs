@@ -23,8 +23,9 @@ pub fn band_range_hz(w: Weighting) -> (f64, f64) {
 /// a_w(t) = W(s)·y(t) (log–log, one-sided in Hz), and on the secondary axis the r.m.s. value of every
 /// one-third-octave band (IEC 61260-1 base-10 edges, [`bands_covering`]) drawn as a staircase over the
 /// bands, the overall a_w, and the lower bounds of the ISO 2631-1:1997 Annex C comfort reactions
-/// ([`ComfortReaction::range`]: 0.315, 0.63 → "a little uncomfortable" … 2 m/s² → "extremely
-/// uncomfortable"; the scale applies to the overall value, so the bars show where it comes from).
+/// ([`ComfortReaction::range`]: 0.315 m/s² "a little uncomfortable", 0.5, 0.8, 1.25, 2 m/s² "extremely
+/// uncomfortable"; those up to twice the largest value drawn, at least the first; the scale applies to the
+/// overall value, so the bars show where it comes from).
 ///
 /// # Formula
 /// G_w(f) = 4π·S_w(2πf) with S_w(ω) = |W(iω)|²·S_y(ω) the two-sided density of the weighted output
@@ -84,11 +85,24 @@ pub fn weighted_density_chart(sc: &Scenario, axis: usize) -> Result<LineChart> {
         a_w,
         format!("a_w = {} m/s² ({} to {} Hz)", num(a_w), num(lo), num(hi)),
     )];
+    // the reactions up to twice the largest value drawn (always the first threshold, 0.315 m/s²), so that
+    // the bars stay readable on the linear axis
+    let top = 2.0 * stairs.iter().fold(a_w, |m, p| m.max(p.1));
     for r in ComfortReaction::ALL.iter().skip(1) {
-        hlines.push(Marker::new(r.range().0, format!("ISO 2631-1 Annex C: {}", r.label())));
+        let at = r.range().0;
+        if at <= top || hlines.len() == 1 {
+            hlines.push(Marker::new(
+                at,
+                format!("ISO 2631-1 Annex C: {} from {} m/s²", r.label(), num(at)),
+            ));
+        }
     }
     let mut chart = LineChart::new(
-        format!("{}-weighted acceleration {}: {}", spec.weighting.name(), name, sc.title),
+        format!(
+            "{} ({}-weighted): one-third-octave bands against the ISO 2631-1 comfort scale",
+            name,
+            spec.weighting.name()
+        ),
         "frequency f [Hz]",
         format!("one-sided density G(f) of {name} [(m/s²)²/Hz]"),
     );
@@ -101,6 +115,6 @@ pub fn weighted_density_chart(sc: &Scenario, axis: usize) -> Result<LineChart> {
         series: vec![Series::dashed("band r.m.s. (one-third octaves)", stairs)],
         hlines,
     });
-    chart.legend = Legend::LowerLeft;
+    chart.legend = Legend::UpperRight;
     Ok(chart)
 }
