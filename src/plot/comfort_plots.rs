@@ -12,7 +12,7 @@ use std::f64::consts::PI;
 
 /// The frequency range of the one-third-octave bands drawn for a weighting, Hz: 0.1–0.5 Hz for motion
 /// sickness (Wf, ISO 2631-1:1997 clause 9.2 and Annex A), 0.5–80 Hz for health and comfort (clause 6.4).
-pub fn band_range_hz(w: Weighting) -> (f64, f64) {
+fn band_range_hz(w: Weighting) -> (f64, f64) {
     match w {
         Weighting::Wf => (0.1, 0.5),
         _ => (0.5, 80.0),

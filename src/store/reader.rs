@@ -148,7 +148,7 @@ impl RunFile {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] for an unknown name; [`Error::Hdf5`] on read failure.
-    pub fn read_accumulator_rows(&self, name: &str) -> Result<Array2<f64>> {
+    pub(crate) fn read_accumulator_rows(&self, name: &str) -> Result<Array2<f64>> {
         if !self.meta.accumulators.iter().any(|a| a.0 == name) {
             return Err(Error::invalid("accumulator", name, "not in this run"));
         }
@@ -163,7 +163,7 @@ impl RunFile {
     ///
     /// # Errors
     /// [`Error::Hdf5`] on read failure.
-    pub fn shard_checksum_rows(&self) -> Result<Option<Array2<u32>>> {
+    pub(crate) fn shard_checksum_rows(&self) -> Result<Option<Array2<u32>>> {
         if self.format_version < 2 {
             return Ok(None);
         }

@@ -755,7 +755,7 @@ impl RunWriter {
     /// # Errors
     /// As [`adopt_shard`](Self::adopt_shard), for every shard of the block; [`Error::InvalidParameter`] if
     /// the arrays do not have k rows or the block leaves the file's shards.
-    pub fn adopt_shards(
+    pub(crate) fn adopt_shards(
         &mut self,
         first: usize,
         accumulators: &[ArrayView2<'_, f64>],
