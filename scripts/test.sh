@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what is missing, then runs every test (unit, integration, doc), then builds
 # the Python package and runs its tests (python/test.sh; STOCHVIB_SKIP_PYTHON=1 skips them), then the
-# cluster test on a real single-node SLURM cluster (tests/slurm/real-array.sh: about 8 s, plus about 16 s
-# the first time for the Debian packages slurmctld, slurmd, slurm-client and munge, which it installs).
+# cluster tests on a real single-node SLURM cluster (tests/slurm/smoke.sh, example-array.sh and
+# real-array.sh: about 5-8 s each, plus about 16 s the first time for the Debian packages slurmctld, slurmd,
+# slurm-client and munge, which scripts/slurm-cluster.sh installs).
 #
 # STOCHVIB_SLURM_TEST decides what happens when that cluster cannot be started on this machine:
 #   require   the suite fails (CI: .ci/run sets it; also the default when CI is set in the environment)
@@ -25,7 +26,7 @@ banner() {
 }
 case "$mode" in
 skip)
-  banner "the SLURM cluster test (tests/slurm/real-array.sh) was NOT run: STOCHVIB_SLURM_TEST=skip"
+  banner "the SLURM cluster tests (tests/slurm/*.sh) were NOT run: STOCHVIB_SLURM_TEST=skip"
   exit 0
   ;;
 require | auto) ;;
@@ -35,16 +36,22 @@ require | auto) ;;
   ;;
 esac
 cargo build --locked --bin stochvib
-set +e
-STOCHVIB=target/debug/stochvib bash tests/slurm/real-array.sh
-rc=$?
-set -e
-if [ "$rc" -eq 77 ]; then
-  if [ "$mode" = require ]; then
-    banner "FAILED: the SLURM cluster could not be started, and STOCHVIB_SLURM_TEST=require (see above)"
-    exit 1
+# the cluster tests, in order: the cluster itself (tests/slurm/smoke.sh, one cycle), the shipped
+# examples/cluster/slurm-array.sbatch with its dependent merge job (tests/slurm/example-array.sh, stochvib
+# played by a stub that checks every argument), and the real run (tests/slurm/real-array.sh); exit 77 of
+# any = the cluster cannot be started here
+for t in smoke example-array real-array; do
+  set +e
+  STOCHVIB=target/debug/stochvib bash "tests/slurm/$t.sh"
+  rc=$?
+  set -e
+  if [ "$rc" -eq 77 ]; then
+    if [ "$mode" = require ]; then
+      banner "FAILED: the SLURM cluster could not be started for tests/slurm/$t.sh, and STOCHVIB_SLURM_TEST=require (see above)"
+      exit 1
+    fi
+    banner "the SLURM cluster tests did NOT run: the cluster could not be started on this machine (see above); set STOCHVIB_SLURM_TEST=require to make this an error"
+    exit 0
   fi
-  banner "the SLURM cluster test did NOT run: the cluster could not be started on this machine (see above); set STOCHVIB_SLURM_TEST=require to make this an error"
-  exit 0
-fi
-exit "$rc"
+  [ "$rc" -eq 0 ] || exit "$rc"
+done

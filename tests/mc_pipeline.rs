@@ -44,16 +44,17 @@ fn fresh(path: &Path) -> &Path {
 
 #[test]
 fn catalogue_monte_carlo_sigma_covers_analytic() {
-    // (file, Δt s, duration s, expected route, number of simulated outputs). Δt resolves the fastest
-    // dynamics (and, for the spectral route, puts the Nyquist frequency above the input band: quarter car
-    // 2.83 cycles/m · 20 m/s = 56.6 Hz < 1/(2·0.005 s) = 100 Hz) and makes track delays whole steps
-    // (balancer bogie 0.6 m / 5 m/s = 0.12 s = 12 steps; half car 2.7 m / 10 m/s = 0.27 s = 27 steps).
-    // Durations resolve the lower edge of the road band: the ISO road density grows like ω⁻² down to
-    // 0.011 cycles/m · v, and a grid Δω = 2π/T coarser than that edge misses a visible part of the
-    // displacement variance (half car at 10 m/s: edge 0.69 rad/s, so T = 60 s, Δω = 0.105 rad/s).
-    // The conveyor idler is also forced through the spectral route: the only single-input (non-track)
-    // spectral case, checking the periodic steady state computed in the frequency domain and the discrete
-    // variance of an independent input.
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
+                                         // (file, Δt s, duration s, expected route, number of simulated outputs). Δt resolves the fastest
+                                         // dynamics (and, for the spectral route, puts the Nyquist frequency above the input band: quarter car
+                                         // 2.83 cycles/m · 20 m/s = 56.6 Hz < 1/(2·0.005 s) = 100 Hz) and makes track delays whole steps
+                                         // (balancer bogie 0.6 m / 5 m/s = 0.12 s = 12 steps; half car 2.7 m / 10 m/s = 0.27 s = 27 steps).
+                                         // Durations resolve the lower edge of the road band: the ISO road density grows like ω⁻² down to
+                                         // 0.011 cycles/m · v, and a grid Δω = 2π/T coarser than that edge misses a visible part of the
+                                         // displacement variance (half car at 10 m/s: edge 0.69 rad/s, so T = 60 s, Δω = 0.105 rad/s).
+                                         // The conveyor idler is also forced through the spectral route: the only single-input (non-track)
+                                         // spectral case, checking the periodic steady state computed in the frequency domain and the discrete
+                                         // variance of an independent input.
     let cases: [(&str, f64, f64, Route, usize); 10] = [
         ("balancer-bogie.toml", 0.01, 10.0, Route::Spectral, 2),
         ("conveyor-idler.toml", 0.01, 40.0, Route::Spectral, 2),
@@ -136,6 +137,7 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
 
 #[test]
 fn delays_must_be_whole_steps_and_bad_options_are_refused() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let dir = scratch_dir("errors");
     let sc = scenario("half-car.toml");
     // half car: wheelbase delay 2.7 m / 10 m/s = 0.27 s, not a multiple of 0.007 s (0.27/0.007 = 38.57)
@@ -166,6 +168,7 @@ fn small_opts(seed: u64) -> RunOptions {
 
 #[test]
 fn run_file_read_back_by_crate_and_h5py() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let dir = scratch_dir("readback");
     let sc = scenario("conveyor-idler.toml");
     let mut opts = RunOptions::new(6, 3.0, 0.01, 77);
@@ -252,6 +255,7 @@ const KILL_ENV: &str = "STOCHVIB_MC_PIPELINE_KILL_PATH";
 #[test]
 #[ignore = "child process of killed_run_leaves_no_final_file_and_resumes"]
 fn child_interrupted_run() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let Ok(path) = std::env::var(KILL_ENV) else { return };
     let sc = scenario("conveyor-idler.toml");
     let _ = sc.simulate(&small_opts(5), Path::new(&path), &|done, _| {
@@ -264,6 +268,7 @@ fn child_interrupted_run() {
 
 #[test]
 fn killed_run_leaves_no_final_file_and_resumes() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let dir = scratch_dir("kill");
     let path = dir.join("killed.h5");
     fresh(&path);
@@ -326,6 +331,7 @@ fn killed_run_leaves_no_final_file_and_resumes() {
 
 #[test]
 fn simulate_and_inspect_cli() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let dir = scratch_dir("cli");
     let path = dir.join("cli.h5");
     fresh(&path);
@@ -399,6 +405,7 @@ fn simulate_and_inspect_cli() {
 /// profile, and the front/rear relation is checked in the model tests; here only shape and unit.
 #[test]
 fn raw_inputs_are_stored_on_both_routes() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let dir = scratch_dir("raw-inputs");
     let sc = scenario("conveyor-idler.toml");
     let mut opts = RunOptions::new(400, 20.0, 0.01, 4242);

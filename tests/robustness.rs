@@ -79,6 +79,7 @@ fn opts() -> RunOptions {
 /// `overwrite` it is discarded and the run starts afresh.
 #[test]
 fn a_resume_never_mixes_a_changed_spectrum() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("identity");
     let scen = local_scenario(&d);
     let out = d.join("run.h5");
@@ -115,6 +116,7 @@ fn a_resume_never_mixes_a_changed_spectrum() {
 /// and touches nothing; the first finishes normally (before the fix the loser deleted the winner's `.tmp`).
 #[test]
 fn a_second_process_on_the_same_output_is_refused_and_harmless() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("concurrent");
     let out = d.join("run.h5");
     let args = |o: &Path| -> Vec<String> {
@@ -178,6 +180,7 @@ fn a_second_process_on_the_same_output_is_refused_and_harmless() {
 /// to delete it.
 #[test]
 fn a_damaged_or_unclaimed_temporary_file_is_restarted() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("setup");
     let sc = load(&root().join("data/conveyor-idler.toml"));
     let out = d.join("run.h5");
@@ -200,6 +203,7 @@ fn a_damaged_or_unclaimed_temporary_file_is_restarted() {
 /// an output that is one of the inputs, a directory, a device, or a file that is not a run file is refused.
 #[test]
 fn overwrite_checks_first_and_replaces_only_run_files() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("overwrite");
     let scen = local_scenario(&d);
     let sc = load(&scen);
@@ -281,6 +285,7 @@ fn overwrite_checks_first_and_replaces_only_run_files() {
 /// large for the disk (was ~146 GB of accumulators pre-allocated). Each fails at once with the numbers.
 #[test]
 fn sizes_are_checked_before_allocating() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("sizes");
     let text = std::fs::read_to_string(root().join("data/quarter-car.toml"))
         .unwrap()
@@ -357,6 +362,7 @@ fn a_huge_statistics_only_exact_run_streams() {
 /// realizations), because the draws, the running sums and the Welch segments come in the same order.
 #[test]
 fn exact_route_statistics_are_bit_identical_for_any_block_size() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("blocks");
     let sc = load(&root().join("data/scraper-sprung-cab.toml"));
     let mut bits = Vec::new();
@@ -394,6 +400,7 @@ fn exact_route_statistics_are_bit_identical_for_any_block_size() {
 /// the file is damaged; a picture of data beyond the drawable range is refused instead of spinning.
 #[test]
 fn damaged_run_files_are_reported() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("damaged");
     let sc = load(&root().join("data/conveyor-idler.toml"));
     let mut o = opts();
@@ -447,6 +454,7 @@ fn damaged_run_files_are_reported() {
 /// A sample of 1.7e308 (stored with a valid checksum) makes the picture fail with the reason, quickly.
 #[test]
 fn pictures_refuse_values_they_cannot_draw() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     use stochvib::plot::Histogram;
     let h = Histogram::new("t", "x", "density", vec![0.0, 1.0, 1.7e308, -1.7e308]);
     let t0 = std::time::Instant::now();
@@ -463,6 +471,7 @@ fn pictures_refuse_values_they_cannot_draw() {
 /// or key).
 #[test]
 fn values_are_checked_and_errors_name_the_key_written() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("keys");
     let qc = std::fs::read_to_string(root().join("data/quarter-car.toml")).unwrap();
     let cases: Vec<(&str, String, &str)> = vec![
@@ -536,6 +545,7 @@ fn values_are_checked_and_errors_name_the_key_written() {
 /// `analyze --monte-carlo` is removed by the next one.
 #[test]
 fn smaller_holes_are_closed() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let d = dir("small");
     let qc = std::fs::read_to_string(root().join("data/quarter-car.toml")).unwrap();
     std::fs::write(
@@ -613,6 +623,7 @@ fn smaller_holes_are_closed() {
 /// misspelt keys of the Table 8.1 transcription were accepted.
 #[test]
 fn fuzz_campaign_findings_are_fixed() {
+    let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     use stochvib::response::{analyze_output, Outcome, VarianceMethod};
     use stochvib::scenario::{load_document, parse_scenario, Document};
     let d = dir("fuzzfound");

@@ -43,4 +43,10 @@ for tun in "" "glibc.cpu.x86_rep_movsb_threshold=100000000"; do
     python3 "$here/compare.py" table "$out/rust-$tag.json" "$out/python-$tag.json"
 done
 echo
+# ISO 2631-1 weighted r.m.s. over a 100 x 100 seat sweep (issue 18): the scipy Lyapunov loop; the Rust side
+# of the same sweep is the criterion bench `cargo bench --bench weighting` (see benches/RESULTS.md)
+echo "running: ISO 2631-1 a_w sweep, scipy side" >&2
+echo "ISO 2631-1 a_w sweep (scipy tf2ss + solve_continuous_lyapunov; Rust: cargo bench --bench weighting)"
+env -u GLIBC_TUNABLES python3 "$here/weighting.py" --reps "$(( reps < 3 ? reps : 3 ))" | tee "$out/weighting-python.txt"
+echo
 echo "JSON results in $out" >&2

@@ -3,7 +3,7 @@ the state space of white noise -> cab floor -> seat acceleration (scipy.signal.t
 sections of W_k, and scipy.linalg.solve_continuous_lyapunov (the "scipy Lyapunov loop" of issue 18). Same model, input and grid
 as benches/weighting.rs (100 x 100 points). Prints a_w at the catalogue point and the time per point.
 
-    python3 benches/compare/weighting.py [--reps 3]
+    python3 benches/compare/weighting.py [--reps 3]     (also run by benches/compare/run.sh)
 """
 import sys, time
 import numpy as np

@@ -20,6 +20,7 @@
 
 pub mod book_plots;
 pub mod chart;
+pub mod comfort_plots;
 pub mod mc_plots;
 pub mod model_plots;
 pub mod run_plots;

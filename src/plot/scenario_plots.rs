@@ -34,8 +34,9 @@ impl Default for ScenarioPlotOptions {
 }
 
 /// Writes every scenario picture into `dir` with the default options ([`ScenarioPlotOptions::default`]):
-/// `input-density`, then for each reported output `transfer-<output>` and `output-density-<output>`, each
-/// as `.svg` and `.png`.
+/// `input-density`, then for each reported output `transfer-<output>` and `output-density-<output>`, and
+/// for each axis of `[analysis.comfort]` `weighted-density-<weighted output>`
+/// ([`super::comfort_plots::weighted_density_chart`]), each as `.svg` and `.png`.
 ///
 /// # Errors
 /// As [`scenario_plots_with`].
@@ -67,6 +68,13 @@ pub fn scenario_plots_with(sc: &Scenario, dir: &Path, opts: &ScenarioPlotOptions
         let name = super::chart::file_stem(&sc.model.system.outputs()[i].name);
         files.extend(transfer_chart(sc, i, opts)?.render(dir, &format!("transfer-{name}"))?);
         files.extend(output_density_chart(sc, i, opts)?.render(dir, &format!("output-density-{name}"))?);
+    }
+    // every comfort axis of [analysis.comfort]: weighted density, band r.m.s., comfort scale
+    let n_axes = sc.analysis.verdicts.comfort.as_ref().map_or(0, |c| c.axes.len());
+    for j in 0..n_axes {
+        let c = super::comfort_plots::weighted_density_chart(sc, j)?;
+        let name = c.series[0].name.trim_start_matches("density of ").to_string();
+        files.extend(c.render(dir, &format!("weighted-density-{}", super::chart::file_stem(&name)))?);
     }
     Ok(files)
 }

@@ -62,6 +62,16 @@ impl fmt::Display for VerdictAnalysis {
                 )?;
             }
             writeln!(f, "  units: a_w, k·a_w, A(8) in m/s² (rad/s² before k for rotations); VDV in m/s^1.75 (stationary Gaussian: (3T)^(1/4)·k·a_w)")?;
+            for a in &c.axes {
+                if let Some(m) = a.msdv {
+                    writeln!(
+                        f,
+                        "  MSDV of {} (motion sickness, ISO 2631-1 9.2: (∫a_w² dt)^(1/2) = a_w·√T over the exposure) = \
+                         {m:.4e} m/s^1.5",
+                        a.output
+                    )?;
+                }
+            }
             writeln!(
                 f,
                 "  a_v = √(Σ k²a_w²) = {:.4e} m/s²; dominant axis {}",

@@ -7,8 +7,8 @@
 use super::verdict_spec::{ComfortSpec, FatigueSpec};
 use super::Scenario;
 use crate::comfort::{
-    daily_exposure_a8, vdv_gaussian, weighted_output, Axis, ExposureVerdict, HealthGuidanceZone, Location, Purpose,
-    Weighting,
+    daily_exposure_a8, msdv, vdv_gaussian, weighted_output, Axis, ExposureVerdict, HealthGuidanceZone, Location,
+    Purpose, Weighting,
 };
 use crate::error::{Error, Result};
 use crate::fatigue::{compare_methods, SpectralMoments};
@@ -46,6 +46,10 @@ pub struct ComfortAxisResult {
     pub a8: f64,
     /// VDV of this axis for the stationary Gaussian response, (3T)^{1/4}·k·a_w, m/s^1.75.
     pub vdv: f64,
+    /// For a Wf (motion sickness) axis: the motion sickness dose value over the exposure T,
+    /// MSDV = (∫₀ᵀ a_w² dt)^{1/2} = a_w·√T for the stationary response (ISO 2631-1:1997 clause 9.2; k is
+    /// not applied), m/s^1.5; `None` for the other weightings.
+    pub msdv: Option<f64>,
     /// Every variance method of the weighted output (value, agreement, why missing).
     pub statistics: ResponseStatistics,
 }
@@ -209,11 +213,21 @@ fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> 
             weighted,
             a8: daily_exposure_a8(weighted, t)?,
             vdv: vdv_gaussian(weighted, t)?,
+            msdv: match a.weighting {
+                Weighting::Wf => Some(msdv(a_w, t)?),
+                _ => None,
+            },
             statistics: st,
         });
     }
-    let a_v = axes.iter().map(|a| a.weighted * a.weighted).sum::<f64>().sqrt();
-    let dom = axes
+    // motion sickness (Wf) is judged by its MSDV, not combined with the health and comfort axes (ISO
+    // 2631-1:1997 clause 9), unless there is nothing else
+    let judged: Vec<&ComfortAxisResult> = match axes.iter().filter(|a| a.weighting != Weighting::Wf).count() {
+        0 => axes.iter().collect(),
+        _ => axes.iter().filter(|a| a.weighting != Weighting::Wf).collect(),
+    };
+    let a_v = judged.iter().map(|a| a.weighted * a.weighted).sum::<f64>().sqrt();
+    let dom = judged
         .iter()
         .max_by(|x, y| x.weighted.total_cmp(&y.weighted))
         .ok_or_else(|| Error::invalid("analysis.comfort.axis", "[]", "no axis"))?;

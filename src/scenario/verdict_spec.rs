@@ -270,14 +270,13 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
             return Err(af.error("output", &output_name, "the model has no state-space form to weight"));
         }
         af.finish()?;
-        if axes
-            .iter()
-            .any(|a: &ComfortAxisSpec| a.location == location && a.axis == axis)
-        {
+        if axes.iter().any(|a: &ComfortAxisSpec| {
+            a.location == location && a.axis == axis && (a.weighting == Weighting::Wf) == (weighting == Weighting::Wf)
+        }) {
             return Err(f.error(
                 &key,
                 format!("{location:?} {axis:?}"),
-                "each location and axis may appear once",
+                "each location and axis may appear once (and once more with Wf, for motion sickness)",
             ));
         }
         axes.push(ComfortAxisSpec {

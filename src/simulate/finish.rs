@@ -50,9 +50,45 @@ impl Analytic {
     }
 }
 
+/// The accumulators of one output folded shard by shard, in internal-shard order: the time averages m_i
+/// and v_i of every realization (in realization order) and the Welch sums added shard by shard.
+pub(crate) struct OutputFold {
+    /// m_i of every realization folded so far.
+    pub mean: Vec<f64>,
+    /// v_i of every realization folded so far.
+    pub mean_square: Vec<f64>,
+    /// The Welch sums of every shard folded so far.
+    pub welch: WelchSums,
+    bins: usize,
+}
+
+impl OutputFold {
+    /// Nothing folded yet.
+    pub fn new(welch: &Welch) -> OutputFold {
+        OutputFold {
+            mean: Vec::new(),
+            mean_square: Vec::new(),
+            welch: welch.sums(),
+            bins: welch.segment_len() / 2 + 1,
+        }
+    }
+
+    /// Folds the next shard: its `rows` realizations' moments accumulator and its Welch accumulator.
+    ///
+    /// # Errors
+    /// A damaged accumulator (wrong length).
+    pub fn add(&mut self, rows: usize, shard_size: usize, moments: &[f64], welch: &[f64]) -> Result<()> {
+        let mom = Moments::decode(moments, rows, shard_size)?;
+        self.mean.extend_from_slice(&mom.mean);
+        self.mean_square.extend_from_slice(&mom.mean_square);
+        let wa = WelchAccumulator::decode(welch, self.bins)?;
+        self.welch.merge(&wa.0)
+    }
+}
+
 /// Reads `accumulator(name, shard)` of every internal shard the file holds, in order, and returns the
 /// time averages m_i and v_i of every realization of output `output` (in realization order) and the Welch
-/// sums added shard by shard.
+/// sums added shard by shard ([`OutputFold`]).
 ///
 /// # Errors
 /// What `accumulator` returns; a damaged accumulator (wrong length).
@@ -62,25 +98,23 @@ pub(crate) fn read_output(
     output: &str,
     welch: &Welch,
 ) -> Result<(Vec<f64>, Vec<f64>, WelchSums)> {
-    let bins = welch.segment_len() / 2 + 1;
-    let n = meta.local_realizations().len();
-    let mut m = Vec::with_capacity(n);
-    let mut v = Vec::with_capacity(n);
-    let mut ws = welch.sums();
+    let mut fold = OutputFold::new(welch);
+    let (mn, wn) = (Moments::name(output), WelchAccumulator::name(output));
     for shard in meta.local_shards() {
         let rows = meta.shard_range(shard).len();
-        let mom = Moments::decode(&accumulator(&Moments::name(output), shard)?, rows, meta.shard_size)?;
-        m.extend_from_slice(&mom.mean);
-        v.extend_from_slice(&mom.mean_square);
-        let wa = WelchAccumulator::decode(&accumulator(&WelchAccumulator::name(output), shard)?, bins)?;
-        ws.merge(&wa.0)?;
+        fold.add(
+            rows,
+            meta.shard_size,
+            &accumulator(&mn, shard)?,
+            &accumulator(&wn, shard)?,
+        )?;
     }
-    Ok((m, v, ws))
+    Ok((fold.mean, fold.mean_square, fold.welch))
 }
 
 /// [`mean_interval`], or for a single value (a shard file of one realization) that value with an unbounded
 /// interval.
-fn interval(values: &[f64], confidence: f64) -> Result<Interval> {
+pub(crate) fn interval(values: &[f64], confidence: f64) -> Result<Interval> {
     if values.len() == 1 {
         return Ok(Interval {
             estimate: values[0],

@@ -16,7 +16,9 @@
 //! paths are stored relative to the merged file's directory, so the merged file and the run directory may
 //! move together. With `copy` the rows are copied into the merged file, which then stands alone.
 
-use super::finish::{density_estimate, output_statistics, read_output, Analytic};
+use super::accumulators::{Moments, WelchAccumulator};
+use super::finish::{density_estimate, output_statistics, Analytic, OutputFold};
+use super::verdicts::{set_analytic, VerdictChannels};
 use crate::error::{Error, Result};
 use crate::estimate::Welch;
 use crate::store::{tmp_path, CreateOptions, OutputStatistics, PartSet, RawStorage, RunWriter, SignalGroup};
@@ -128,6 +130,7 @@ pub fn merge_runs(
     progress: &dyn Fn(usize, usize),
 ) -> Result<MergeSummary> {
     let tmp = tmp_path(out);
+    // pass 1: every file's header and the fingerprint of its shared values; the files are closed again
     let set = PartSet::open(inputs, &[out, &tmp])?;
     let meta = set.meta.clone();
     let raw = match (meta.store_raw, opts.copy) {
@@ -135,20 +138,9 @@ pub fn merge_runs(
         (true, true) => RawStorage::Copied,
         (true, false) => RawStorage::Virtual,
     };
-    // what every shard file says about the analytic values, the density and the confidence
     let first = &set.parts[0];
-    let stats0 = first.run.statistics()?;
-    let psd0 = first.run.psd()?;
     for p in &set.parts[1..] {
-        let (s, d) = (p.run.statistics()?, p.run.psd()?);
-        let analytic =
-            |st: &[OutputStatistics]| -> Vec<Option<Analytic>> { st.iter().map(Analytic::from_statistics).collect() };
-        // the analytic and the expected density, bit for bit
-        let dens = |d: &[crate::store::PsdEstimate]| -> Vec<[Option<Vec<u64>>; 2]> {
-            let bits = |v: &Option<Vec<f64>>| v.as_ref().map(|a| a.iter().map(|x| x.to_bits()).collect());
-            d.iter().map(|e| [bits(&e.analytic), bits(&e.expected)]).collect()
-        };
-        if analytic(&s) != analytic(&stats0) || dens(&d) != dens(&psd0) {
+        if p.shared != first.shared {
             return Err(Error::Hdf5 {
                 path: p.path.clone(),
                 reason: format!(
@@ -159,32 +151,32 @@ pub fn merge_runs(
             });
         }
     }
+    // the shared values themselves, from the first file (checked against its checksums)
+    let (stats0, psd0, rain0) = {
+        let run = first.open()?;
+        (run.statistics()?, run.psd()?, run.rainflow()?)
+    };
     let confidence = match opts.confidence {
         Some(c) => c,
         None => {
-            let conf = |p: &crate::store::PartFile| -> Result<Vec<u64>> {
-                Ok(p.run
-                    .statistics()?
-                    .iter()
-                    .flat_map(|o| o.statistics.iter().map(|s| s.interval.confidence.to_bits()))
-                    .collect())
-            };
-            let c0 = conf(first)?;
-            for p in &set.parts[1..] {
-                if conf(p)? != c0 {
-                    return Err(Error::invalid(
-                        "confidence",
-                        p.path.display(),
-                        format!(
-                            "the shard files were run with different --confidence ({} and {}): give the merge \
-                             --confidence",
-                            first.path.display(),
-                            p.path.display()
-                        ),
-                    ));
-                }
+            if let Some(p) = set.parts[1..].iter().find(|p| p.confidence != first.confidence) {
+                return Err(Error::invalid(
+                    "confidence",
+                    p.path.display(),
+                    format!(
+                        "the shard files were run with different --confidence ({} and {}): give the merge \
+                         --confidence",
+                        first.path.display(),
+                        p.path.display()
+                    ),
+                ));
             }
-            c0.first().map(|b| f64::from_bits(*b)).unwrap_or(0.95)
+            stats0
+                .iter()
+                .flat_map(|o| &o.statistics)
+                .map(|s| s.interval.confidence)
+                .next()
+                .unwrap_or(0.95)
         }
     };
     let from = set.merged_from(out, raw);
@@ -199,44 +191,6 @@ pub fn merge_runs(
     )?;
     let n_shards = meta.n_shards();
     let names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
-    progress(0, n_shards);
-    for b in 0..n_shards {
-        let p = set.file_of(b).ok_or_else(|| Error::Numerical {
-            what: "merge".into(),
-            reason: format!("no shard file holds internal shard {b} (checked before: a bug)"),
-        })?;
-        let accs = names
-            .iter()
-            .map(|n| p.run.read_accumulator(n, b))
-            .collect::<Result<Vec<_>>>()?;
-        let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
-        let sums = p.run.shard_checksums(b)?;
-        if raw == RawStorage::Copied {
-            let range = meta.shard_range(b);
-            let read = |g: SignalGroup, list: &[crate::store::Signal]| -> Result<Vec<ndarray::Array2<f64>>> {
-                list.iter()
-                    .map(|s| p.run.read_signals(g, &s.name, range.clone()))
-                    .collect()
-            };
-            let ins = read(SignalGroup::Inputs, &meta.inputs)?;
-            let outs = read(SignalGroup::Outputs, &meta.outputs)?;
-            for (j, a) in ins.iter().chain(&outs).enumerate() {
-                let crc = crate::store::checksum::crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[]));
-                if sums.get(j) != Some(&crc) {
-                    return Err(Error::Hdf5 {
-                        path: p.path.clone(),
-                        reason: format!("checksum mismatch in the raw rows of shard {b}: the file is damaged"),
-                    });
-                }
-            }
-            let iv: Vec<_> = ins.iter().map(|a| a.view()).collect();
-            let ov: Vec<_> = outs.iter().map(|a| a.view()).collect();
-            writer.write_shard(b, &iv, &ov, &acc_refs)?;
-        } else {
-            writer.adopt_shard(b, &acc_refs, &sums)?;
-        }
-        progress(b + 1, n_shards);
-    }
     // the statistics, as a single-process run finishes them
     let bins = meta
         .accumulators
@@ -248,11 +202,91 @@ pub fn merge_runs(
             reason: "the run has no Welch accumulator".into(),
         })?;
     let welch = Welch::new(2 * (bins - 1), meta.dt)?;
-    let acc = |name: &str, shard: usize| writer.read_accumulator(name, shard);
+    // the time averages and Welch sums of every output, folded shard by shard as a single-process run
+    // reads them back
+    let mut folds: Vec<(usize, usize, OutputFold)> = meta
+        .outputs
+        .iter()
+        .map(|sig| {
+            let at = |name: String| {
+                names.iter().position(|n| *n == name).ok_or_else(|| Error::Hdf5 {
+                    path: first.path.clone(),
+                    reason: format!("no accumulator `{name}`"),
+                })
+            };
+            Ok((
+                at(Moments::name(&sig.name))?,
+                at(WelchAccumulator::name(&sig.name))?,
+                OutputFold::new(&welch),
+            ))
+        })
+        .collect::<Result<_>>()?;
+    progress(0, n_shards);
+    // pass 2: the files one at a time in realization order (one open file; memory independent of their
+    // number), each file's shards in one block
+    for p in &set.parts {
+        let run = p.open()?;
+        let local = p.meta.local_shards();
+        let accs = names
+            .iter()
+            .map(|n| run.read_accumulator_rows(n))
+            .collect::<Result<Vec<_>>>()?;
+        let sums = run.shard_checksum_rows()?.ok_or_else(|| Error::Hdf5 {
+            path: p.path.clone(),
+            reason: "a shard file without checksums (format 1): cannot be merged".into(),
+        })?;
+        if accs.iter().any(|a| a.nrows() != local.len()) || sums.nrows() != local.len() {
+            return Err(Error::Hdf5 {
+                path: p.path.clone(),
+                reason: format!("its /shards datasets do not have one row per shard ({})", local.len()),
+            });
+        }
+        for (r, b) in local.clone().enumerate() {
+            let rows = meta.shard_range(b).len();
+            for (jm, jw, fold) in &mut folds {
+                fold.add(
+                    rows,
+                    meta.shard_size,
+                    &accs[*jm].row(r).to_vec(),
+                    &accs[*jw].row(r).to_vec(),
+                )?;
+            }
+        }
+        if raw == RawStorage::Copied {
+            for (r, b) in local.clone().enumerate() {
+                let range = meta.shard_range(b);
+                let read = |g: SignalGroup, list: &[crate::store::Signal]| -> Result<Vec<ndarray::Array2<f64>>> {
+                    list.iter()
+                        .map(|s| run.read_signals(g, &s.name, range.clone()))
+                        .collect()
+                };
+                let ins = read(SignalGroup::Inputs, &meta.inputs)?;
+                let outs = read(SignalGroup::Outputs, &meta.outputs)?;
+                for (j, a) in ins.iter().chain(&outs).enumerate() {
+                    let crc = crate::store::checksum::crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[]));
+                    if sums.get((r, j)) != Some(&crc) {
+                        return Err(Error::Hdf5 {
+                            path: p.path.clone(),
+                            reason: format!("checksum mismatch in the raw rows of shard {b}: the file is damaged"),
+                        });
+                    }
+                }
+                let iv: Vec<_> = ins.iter().map(|a| a.view()).collect();
+                let ov: Vec<_> = outs.iter().map(|a| a.view()).collect();
+                let rows: Vec<Vec<f64>> = accs.iter().map(|a| a.row(r).to_vec()).collect();
+                let acc_refs: Vec<&[f64]> = rows.iter().map(|a| a.as_slice()).collect();
+                writer.write_shard(b, &iv, &ov, &acc_refs)?;
+            }
+        } else {
+            let views: Vec<_> = accs.iter().map(|a| a.view()).collect();
+            writer.adopt_shards(local.start, &views, sums.view())?;
+        }
+        progress(local.end, n_shards);
+    }
     let mut stats = Vec::new();
     let mut psds = Vec::new();
-    for sig in &meta.outputs {
-        let (m, v, ws) = read_output(&acc, &meta, &sig.name, &welch)?;
+    for (sig, (_, _, fold)) in meta.outputs.iter().zip(folds) {
+        let (m, v, ws) = (fold.mean, fold.mean_square, fold.welch);
         let stored = stats0.iter().find(|s| s.output == sig.name);
         let analytic = stored.and_then(Analytic::from_statistics).ok_or_else(|| Error::Hdf5 {
             path: first.path.clone(),
@@ -281,7 +315,11 @@ pub fn merge_runs(
         };
         psds.push(psd);
     }
+    let rainflow = finish_verdicts(&writer, &meta, confidence, &stats0, &rain0, &first.path, &mut stats)?;
     writer.write_statistics(&stats)?;
+    for r in &rainflow {
+        writer.write_rainflow(r)?;
+    }
     for psd in &psds {
         writer.write_psd(psd)?;
     }
@@ -296,7 +334,7 @@ pub fn merge_runs(
             "the raw realizations are virtual datasets reading the shard files ({}, relative to the merged file's \
              directory): keep them there (move the merged file and the shard directory together), or merge with \
              --copy",
-            from.files.join(", ")
+            crate::store::abbreviated_list(&from.files, crate::store::LISTED_FILES)
         ));
     }
     Ok(MergeSummary {
@@ -308,4 +346,80 @@ pub fn merge_runs(
         outputs: stats,
         notes,
     })
+}
+
+/// The verdict statistics of a merged run (`vdv`, `mtvv`, `crest_factor` of every comfort channel,
+/// `damage_rate` of every fatigue channel, appended to their outputs' statistics as a single-process run
+/// appends them) and its rainflow histograms, from the merged accumulators of every internal shard in
+/// order ([`VerdictChannels::finish`], the code of a single-process run). The analytic values (VDV of the
+/// Gaussian weighted output, Dirlik's damage rate), the histogram edges, unit and Dirlik counts depend on
+/// the plan only: they are taken from the first shard file (`stats0`, `rain0`; every shard file stores the
+/// same, which [`PartSet::open`] checked).
+///
+/// # Errors
+/// A verdict statistic or histogram missing from the shard file; [`VerdictChannels::finish`]'s errors.
+fn finish_verdicts(
+    writer: &RunWriter,
+    meta: &crate::store::RunMetadata,
+    confidence: f64,
+    stats0: &[OutputStatistics],
+    rain0: &[crate::store::RainflowHistogram],
+    first: &Path,
+    stats: &mut [OutputStatistics],
+) -> Result<Vec<crate::store::RainflowHistogram>> {
+    let channels = VerdictChannels::from_layout(&meta.accumulators, meta.shard_size)?;
+    if channels.is_empty() {
+        return Ok(Vec::new());
+    }
+    let missing = |what: String| Error::Hdf5 {
+        path: first.to_path_buf(),
+        reason: format!("no {what} stored, although the run has its verdict accumulators: the file is damaged"),
+    };
+    let stored = |output: &str, name: &str| {
+        stats0
+            .iter()
+            .find(|o| o.output == output)
+            .and_then(|o| o.get(name))
+            .ok_or_else(|| missing(format!("statistic `{name}` of `{output}`")))
+    };
+    let rows: Vec<usize> = (0..meta.n_shards()).map(|b| meta.shard_range(b).len()).collect();
+    let duration = meta.dt * meta.n_samples as f64;
+    let (comfort, fatigue) = channels.finish(
+        &|name, b| writer.read_accumulator(name, b),
+        &rows,
+        meta.shard_size,
+        duration,
+        confidence,
+    )?;
+    for (output, mut extra) in comfort {
+        if let Some(vdv) = stored(&output, "vdv")?.analytic {
+            set_analytic(&mut extra, "vdv", vdv);
+        }
+        if let Some(st) = stats.iter_mut().find(|s| s.output == output) {
+            st.statistics.extend(extra);
+        }
+    }
+    let mut histograms = Vec::new();
+    for (output, mut st, mut h) in fatigue {
+        st.analytic = stored(&output, "damage_rate")?.analytic;
+        st.covers = st.analytic.map(|a| st.interval.covers(a));
+        if let Some(s) = stats.iter_mut().find(|s| s.output == output) {
+            s.statistics.push(st);
+        }
+        let r = rain0
+            .iter()
+            .find(|r| r.output == output)
+            .ok_or_else(|| missing(format!("rainflow histogram of `{output}`")))?;
+        if r.edges.len() != h.counts.len() + 1 {
+            return Err(missing(format!(
+                "rainflow histogram of `{output}` with {} bins",
+                h.counts.len()
+            )));
+        }
+        h.edges = r.edges.clone();
+        h.dirlik = r.dirlik.clone();
+        h.unit = r.unit.clone();
+        histograms.push(h);
+    }
+    Ok(histograms)
 }

@@ -67,7 +67,7 @@ use super::engine::{realize, Realization, Scratch};
 use super::finish::{density_estimate, output_statistics, read_output, Analytic};
 use super::plan::{plan, Plan};
 use super::{run_batch, RunInput, RunOptions, RunSummary};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::response::output_density;
 use crate::store::{CreateOptions, OutputStatistics, RunFile, RunMetadata, RunWriter};
 use ndarray::Array2;
@@ -134,14 +134,6 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         part: opts.part,
     };
     input.verdicts.check(&names)?;
-    if opts.part.is_some() && !input.verdicts.is_empty() {
-        return Err(Error::invalid(
-            "--shard",
-            "a part of a run",
-            "the comfort and fatigue channels of a run are not merged across cluster shards yet: run a scenario \
-             with [analysis.comfort] or [analysis.fatigue] in one process",
-        ));
-    }
     meta.validate()?;
     // cluster shard: a complete shard file of this run is the result (a rerun does nothing)
     if let Some(done) = super::shard::finished_part(&meta, &plan, out, opts)? {
@@ -296,10 +288,12 @@ fn finish_verdicts(
     if input.verdicts.is_empty() {
         return Ok(Vec::new());
     }
-    let rows: Vec<usize> = (0..meta.n_shards()).map(|s| meta.shard_range(s).len()).collect();
+    // the file's own shards (all of them but for a shard file of a cluster run)
+    let local = meta.local_shards();
+    let rows: Vec<usize> = local.clone().map(|s| meta.shard_range(s).len()).collect();
     let duration = opts.dt_s * plan.n as f64;
     let (comfort, fatigue) = input.verdicts.finish(
-        &|name, shard| writer.read_accumulator(name, shard),
+        &|name, k| writer.read_accumulator(name, local.start + k),
         &rows,
         meta.shard_size,
         duration,

@@ -27,9 +27,10 @@
 //! * `verdict:<output>:fatigue`, length shard_size + bins + 1: d_i (zero-padded), then the range histogram
 //!   summed over the shard's realizations, then its overflow count.
 
+use super::finish::interval;
 use crate::comfort::SignalMetrics;
 use crate::error::{Error, Result};
-use crate::estimate::{mean_interval, Interval};
+use crate::estimate::Interval;
 use crate::fatigue::{rainflow, Dirlik, RangeHistogram, SnCurve, SpectralMethod, SpectralMoments};
 use crate::store::Statistic;
 
@@ -99,6 +100,38 @@ impl VerdictChannels {
                 .map(|c| (fatigue_name(&c.output), shard_size + c.bins + 1)),
         );
         v
+    }
+
+    /// The channels of a stored run as its accumulator layout names them (`verdict:<output>:comfort`,
+    /// `verdict:<output>:fatigue` of length shard_size + bins + 1), for finishing the stored accumulators
+    /// without the scenario (a merge of shard files). Only what [`finish`](Self::finish) reads from the
+    /// accumulators is known: a fatigue channel's S–N curve, stress factor and moments are placeholders
+    /// (no analytic rate) and its histogram top is 1; the caller takes the analytic values, the edges and
+    /// the Dirlik counts from a stored file.
+    pub(crate) fn from_layout(accumulators: &[(String, usize)], shard_size: usize) -> Result<VerdictChannels> {
+        let mut ch = VerdictChannels::default();
+        for (name, len) in accumulators {
+            let Some(rest) = name.strip_prefix("verdict:") else {
+                continue;
+            };
+            if let Some(output) = rest.strip_suffix(":comfort") {
+                ch.comfort.push(ComfortChannel { output: output.into() });
+            } else if let Some(output) = rest.strip_suffix(":fatigue") {
+                let bins = len.checked_sub(shard_size + 1).filter(|b| *b > 0).ok_or_else(|| {
+                    Error::invalid(name, len, "too short for a fatigue accumulator of this shard size")
+                })?;
+                ch.fatigue.push(FatigueChannel {
+                    output: output.into(),
+                    stress_factor: 1.0,
+                    sn: SnCurve::new(3.0, 1.0, None)?,
+                    max_range: 1.0,
+                    bins,
+                    sn_unit: String::new(),
+                    moments: None,
+                });
+            }
+        }
+        Ok(ch)
     }
 
     /// Validates the channels against the simulated output names.
@@ -193,13 +226,14 @@ impl VerdictChannels {
         accs
     }
 
-    /// Finishes the statistics from the accumulators of every shard: `read(name, shard)` returns a stored
-    /// vector, `rows[shard]` its number of realizations. Returns per comfort channel its statistics
+    /// Finishes the statistics from the accumulators of every shard: `read(name, k)` returns the stored
+    /// vector of the k-th shard (in order), `rows[k]` its number of realizations. A single realization (a
+    /// shard file of one) gets its value with an unbounded interval. Returns per comfort channel its statistics
     /// (`vdv`, `mtvv`, `crest_factor`), per fatigue channel its `damage_rate` statistic (with the
     /// `analytic` value `expected_rate[j]` if given) and its histogram.
     ///
     /// # Errors
-    /// A damaged accumulator (wrong length); the errors of [`mean_interval`] (fewer than 2 realizations).
+    /// A damaged accumulator (wrong length); no realization; a confidence outside (0, 1).
     #[allow(clippy::type_complexity)]
     pub fn finish(
         &self,
@@ -226,7 +260,7 @@ impl VerdictChannels {
                     col.extend_from_slice(&a[q * shard_size..q * shard_size + r]);
                 }
             }
-            let v4 = mean_interval(&cols[1], confidence)?;
+            let v4 = interval(&cols[1], confidence)?;
             let root = |x: f64| x.max(0.0).powf(0.25);
             let vdv = Interval {
                 estimate: root(v4.estimate),
@@ -244,20 +278,20 @@ impl VerdictChannels {
             )];
             // the analytic VDV needs the analytic σ_w: the caller sets it ([`set_analytic`])
             let mtvv: Vec<f64> = cols[2].iter().copied().filter(|v| v.is_finite()).collect();
-            if mtvv.len() >= 2 {
+            if !mtvv.is_empty() {
                 stats.push(stat(
                     "mtvv",
-                    mean_interval(&mtvv, confidence)?,
+                    interval(&mtvv, confidence)?,
                     "m/s^2",
                     "maximum 1 s running r.m.s. per realization (ISO 2631-1 6.3.1); Student-t across realizations",
                     None,
                 ));
             }
             let cf: Vec<f64> = cols[3].iter().copied().filter(|v| v.is_finite()).collect();
-            if cf.len() >= 2 {
+            if !cf.is_empty() {
                 stats.push(stat(
                     "crest_factor",
-                    mean_interval(&cf, confidence)?,
+                    interval(&cf, confidence)?,
                     "1",
                     "max|a_w(t)|/a_w per realization (ISO 2631-1 6.2.1); Student-t across realizations",
                     None,
@@ -281,7 +315,7 @@ impl VerdictChannels {
                 }
             }
             let n = d.len() as f64;
-            let iv = mean_interval(&d, confidence)?;
+            let iv = interval(&d, confidence)?;
             let st = stat(
                 "damage_rate",
                 iv,

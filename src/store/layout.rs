@@ -72,6 +72,13 @@ pub const ATTR_PART_SHARDS: &str = "part_shards";
 pub const ATTR_FIRST_REALIZATION: &str = "first_realization";
 /// Root attribute of a shard file, u64: the number of realizations it holds (rows of the raw datasets).
 pub const ATTR_PART_REALIZATIONS: &str = "part_realizations";
+/// Root attribute of a shard file, u32 (optional): CRC-32 of the fingerprint of the values every shard
+/// file of the run stores identically (each statistic's name and `@analytic`, every density's `analytic`
+/// and `expected`, every rainflow histogram's `edges` and `dirlik`), so that a merge compares the files
+/// without opening their statistics; written when the file is finished.
+pub const ATTR_SHARED_CRC32: &str = "shared_crc32";
+/// Root attribute of a shard file, u32 (optional): CRC-32 of the confidence levels of its statistics.
+pub const ATTR_CONFIDENCE_CRC32: &str = "confidence_crc32";
 
 // ---- /parts: what a merged file was merged from ----
 

@@ -117,15 +117,52 @@ impl MergedFrom {
     }
 }
 
-/// One shard file of a [`PartSet`].
-#[derive(Debug)]
+/// One shard file of a [`PartSet`]: what its header says. The file itself is closed (a set of a thousand
+/// shard files holds no HDF5 file open); [`PartFile::open`] opens it again to read its data.
+#[derive(Debug, Clone)]
 pub struct PartFile {
     /// The file as found.
     pub path: PathBuf,
     /// Its part.
     pub part: Part,
-    /// The open file.
-    pub run: RunFile,
+    /// Its metadata (with its part).
+    pub meta: RunMetadata,
+    /// Its format version.
+    pub format_version: u32,
+    /// The toolkit version that wrote it.
+    pub toolkit_version: String,
+    /// The fingerprint of the values every shard file of the run stores identically (analytic values,
+    /// densities, histogram edges: [`RunFile`]'s `@shared_crc32`).
+    pub shared: u32,
+    /// The fingerprint of the confidence levels of its intervals (`@confidence_crc32`).
+    pub confidence: u32,
+    /// Size and modification time when its header was read (a replaced file is detected).
+    stamp: (u64, Option<std::time::SystemTime>),
+}
+
+fn stamp(path: &Path) -> (u64, Option<std::time::SystemTime>) {
+    std::fs::metadata(path)
+        .map(|m| (m.len(), m.modified().ok()))
+        .unwrap_or((0, None))
+}
+
+impl PartFile {
+    /// Opens the shard file again to read its data, without reading its header again: its size and
+    /// modification time must still be those of when [`PartSet::open`] read it.
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] if the file changed since, or cannot be opened.
+    pub fn open(&self) -> Result<RunFile> {
+        if stamp(&self.path) != self.stamp {
+            return Err(Error::Hdf5 {
+                path: self.path.clone(),
+                reason: "the file changed while the merge read it (size or modification time differ from when its \
+                         header was read): merge again"
+                    .into(),
+            });
+        }
+        RunFile::open_known(&self.path, &self.meta, self.format_version, &self.toolkit_version)
+    }
 }
 
 /// A complete, consistent set of shard files of one run, in shard order.
@@ -219,27 +256,44 @@ impl PartSet {
             return Err(fail(r));
         }
         let mut problems = Vec::new();
+        // the headers only; every file is closed again at once (memory and open files independent of N)
         let mut opened = Vec::new();
         for f in files {
-            match RunFile::open(&f) {
+            let st = stamp(&f);
+            let read = RunFile::open(&f).and_then(|run| {
+                let values = match run.metadata().part {
+                    Some(part) => Some((part, run.shared_fingerprint()?)),
+                    None => None,
+                };
+                Ok((run, values))
+            });
+            match read {
                 Err(e) => problems.push(format!("{}: not a complete run file ({e})", f.display())),
-                Ok(run) => match run.metadata().part {
-                    None => problems.push(format!(
-                        "{}: a whole run (written without --shard), not a shard file",
-                        f.display()
-                    )),
-                    Some(part) => opened.push(PartFile { path: f, part, run }),
-                },
+                Ok((run, None)) => problems.push(format!(
+                    "{}: a whole run (written without --shard), not a shard file",
+                    run.path().display()
+                )),
+                Ok((run, Some((part, (shared, confidence))))) => {
+                    opened.push(PartFile {
+                        part,
+                        meta: run.metadata().clone(),
+                        format_version: run.format_version(),
+                        toolkit_version: run.toolkit_version().to_string(),
+                        shared,
+                        confidence,
+                        stamp: st,
+                        path: f,
+                    });
+                }
             }
         }
         if opened.is_empty() {
             return Err(fail(format!("no shard files to merge:\n  {}", problems.join("\n  "))));
         }
         // the run: the identity most files share; every other file is foreign
-        let identity = |p: &PartFile| (p.run.metadata().whole(), p.run.toolkit_version().to_string());
         let mut groups: Vec<((RunMetadata, String), Vec<usize>)> = Vec::new();
         for (k, p) in opened.iter().enumerate() {
-            let id = identity(p);
+            let id = (p.meta.whole(), p.toolkit_version.clone());
             match groups.iter_mut().find(|(g, _)| *g == id) {
                 Some((_, members)) => members.push(k),
                 None => groups.push((id, vec![k])),
@@ -270,12 +324,12 @@ impl PartSet {
                 parts.push(p);
             }
         }
-        parts.sort_by_key(|p| (p.run.metadata().local_shards().start, p.part.count, p.path.clone()));
+        parts.sort_by_key(|p| (p.meta.local_shards().start, p.part.count, p.path.clone()));
         // coverage of the internal shards
         let n_shards = meta.n_shards();
         let mut owners: Vec<Vec<usize>> = vec![Vec::new(); n_shards];
         for (k, p) in parts.iter().enumerate() {
-            for b in p.run.metadata().local_shards() {
+            for b in p.meta.local_shards() {
                 owners[b].push(k);
             }
         }
@@ -374,9 +428,7 @@ impl PartSet {
 
     /// The shard file holding internal shard `shard`.
     pub fn file_of(&self, shard: usize) -> Option<&PartFile> {
-        self.parts
-            .iter()
-            .find(|p| p.run.metadata().local_shards().contains(&shard))
+        self.parts.iter().find(|p| p.meta.local_shards().contains(&shard))
     }
 
     /// What a merged file at `out` records about these files, with the file paths relative to `out`'s
@@ -388,23 +440,15 @@ impl PartSet {
             .unwrap_or(Path::new("."));
         MergedFrom {
             files: self.parts.iter().map(|p| relative_path(dir, &p.path)).collect(),
-            first_realizations: self
-                .parts
-                .iter()
-                .map(|p| p.run.metadata().local_realizations().start)
-                .collect(),
-            realizations: self
-                .parts
-                .iter()
-                .map(|p| p.run.metadata().local_realizations().len())
-                .collect(),
+            first_realizations: self.parts.iter().map(|p| p.meta.local_realizations().start).collect(),
+            realizations: self.parts.iter().map(|p| p.meta.local_realizations().len()).collect(),
             raw,
         }
     }
 }
 
 fn describe(p: &PartFile) -> String {
-    let r = p.run.metadata().local_realizations();
+    let r = p.meta.local_realizations();
     format!(
         "{} (shard {} of {}, realizations {}..{})",
         p.path.display(),

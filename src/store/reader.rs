@@ -102,6 +102,78 @@ impl RunFile {
         })
     }
 
+    /// Opens a shard file whose header a [`PartSet`](super::PartSet) already read and checked (`meta`,
+    /// `format_version`, `toolkit_version`, complete): only the HDF5 file is opened, nothing is read.
+    /// The caller makes sure the file is still the one it read (see [`PartFile::open`](super::PartFile::open)).
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] if the file cannot be opened.
+    pub(crate) fn open_known(
+        path: &Path,
+        meta: &RunMetadata,
+        format_version: u32,
+        toolkit_version: &str,
+    ) -> Result<RunFile> {
+        let file = super::open_sec2(path, super::OpenMode::Read, |_| {})
+            .map_err(h5err(path, "not readable as an HDF5 file"))?;
+        Ok(RunFile {
+            path: path.to_path_buf(),
+            file,
+            meta: meta.clone(),
+            format_version,
+            toolkit_version: toolkit_version.to_string(),
+            complete: true,
+            completed_shards: vec![true; meta.local_shards().len()],
+            merged_from: None,
+        })
+    }
+
+    /// The fingerprint of the values every shard file of one run stores identically, and of its
+    /// confidence levels ([`shared_fingerprint`]): the root attributes `@shared_crc32` and
+    /// `@confidence_crc32` when the file has them, else computed from the file's groups.
+    ///
+    /// # Errors
+    /// As [`shared_fingerprint`].
+    pub(crate) fn shared_fingerprint(&self) -> Result<(u32, u32)> {
+        if has_attr(&self.file, L::ATTR_SHARED_CRC32) && has_attr(&self.file, L::ATTR_CONFIDENCE_CRC32) {
+            return Ok((
+                attr_scalar(&self.file, L::ATTR_SHARED_CRC32, &self.path)?,
+                attr_scalar(&self.file, L::ATTR_CONFIDENCE_CRC32, &self.path)?,
+            ));
+        }
+        shared_fingerprint(&self.file, &self.path, &self.meta)
+    }
+
+    /// Every row of the accumulator `name` (one per internal shard of the file, in order) in one read.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for an unknown name; [`Error::Hdf5`] on read failure.
+    pub(crate) fn read_accumulator_rows(&self, name: &str) -> Result<Array2<f64>> {
+        if !self.meta.accumulators.iter().any(|a| a.0 == name) {
+            return Err(Error::invalid("accumulator", name, "not in this run"));
+        }
+        self.file
+            .dataset(&format!("{}/{}", L::GROUP_SHARDS, name))
+            .and_then(|d| d.read_2d::<f64>())
+            .map_err(h5err(&self.path, "reading an accumulator"))
+    }
+
+    /// The checksums of every internal shard of the file (rows as in
+    /// [`shard_checksums`](Self::shard_checksums)) in one read; `None` for format 1 (no checksums).
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] on read failure.
+    pub(crate) fn shard_checksum_rows(&self) -> Result<Option<Array2<u32>>> {
+        if self.format_version < 2 {
+            return Ok(None);
+        }
+        self.file
+            .dataset(&format!("{}/{}", L::GROUP_SHARDS, L::DS_SHARDS_CHECKSUMS))
+            .and_then(|d| d.read_2d::<u32>())
+            .map(Some)
+            .map_err(h5err(&self.path, "reading /shards/checksums"))
+    }
+
     /// The part of the run this file holds (a shard file), or `None` for a whole run.
     pub fn part(&self) -> Option<Part> {
         self.meta.part
@@ -643,7 +715,7 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
             "  merged from      {} shard files (raw data {}): {}",
             from.files.len(),
             from.raw.label(),
-            from.files.join(", ")
+            abbreviated_list(&from.files, LISTED_FILES)
         );
     }
     let _ = writeln!(
@@ -901,6 +973,101 @@ pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
         }
     }
     Ok(meta)
+}
+
+/// The fingerprint of the values every shard file of one run stores identically (they depend on the run's
+/// plan, not on its realizations), and of the confidence levels of its intervals: CRC-32 of (every
+/// statistic's name and the bits of its `@analytic` value or a marker for none; every density's analytic
+/// and expected arrays; every rainflow histogram's edges and Dirlik counts, each as CRC-32 and length),
+/// and CRC-32 of the bits of every statistic's `@confidence`. Reads attributes and those arrays only.
+///
+/// # Errors
+/// [`Error::Hdf5`] if a statistics, density or histogram group is malformed.
+pub(crate) fn shared_fingerprint(file: &File, p: &Path, meta: &RunMetadata) -> Result<(u32, u32)> {
+    let mut shared: Vec<f64> = Vec::new();
+    let mut confidence: Vec<f64> = Vec::new();
+    let marker = f64::from_bits(u64::MAX);
+    let crc_of = |g: &hdf5::Group, name: &str, what: &str| -> Result<f64> {
+        if !g.link_exists(name) {
+            return Ok(marker);
+        }
+        let v = g
+            .dataset(name)
+            .and_then(|d| d.read_raw::<f64>())
+            .map_err(h5err(p, &format!("reading {what}/{name}")))?;
+        Ok(f64::from_bits(
+            super::checksum::crc32_f64(&v) as u64 | ((v.len() as u64) << 32),
+        ))
+    };
+    let signals: Vec<&Signal> = meta.inputs.iter().chain(&meta.outputs).collect();
+    if file.link_exists(L::GROUP_STATISTICS) {
+        let parent = file
+            .group(L::GROUP_STATISTICS)
+            .map_err(h5err(p, "opening /statistics"))?;
+        for sig in &signals {
+            if !parent.link_exists(&sig.name) {
+                continue;
+            }
+            let g = parent
+                .group(&sig.name)
+                .map_err(h5err(p, "opening a statistics group"))?;
+            for name in attr_string_list(&g, L::ATTR_NAMES, p)? {
+                let ds = g
+                    .dataset(&name)
+                    .map_err(h5err(p, &format!("opening statistic `{name}`")))?;
+                shared.push(f64::from_bits(super::checksum::crc32(name.as_bytes()) as u64));
+                shared.push(if has_attr(&ds, L::ATTR_ANALYTIC) {
+                    attr_scalar::<f64>(&ds, L::ATTR_ANALYTIC, p)?
+                } else {
+                    marker
+                });
+                confidence.push(attr_scalar::<f64>(&ds, L::ATTR_CONFIDENCE, p)?);
+            }
+        }
+    }
+    for (group, datasets) in [
+        (L::GROUP_PSD, [L::DS_ANALYTIC, L::DS_EXPECTED]),
+        (L::GROUP_RAINFLOW, [L::DS_EDGES, L::DS_DIRLIK]),
+    ] {
+        if !file.link_exists(group) {
+            continue;
+        }
+        let parent = file.group(group).map_err(h5err(p, &format!("opening /{group}")))?;
+        for sig in &signals {
+            if !parent.link_exists(&sig.name) {
+                continue;
+            }
+            let g = parent.group(&sig.name).map_err(h5err(p, "opening a density group"))?;
+            for d in datasets {
+                shared.push(crc_of(&g, d, &format!("{group}/{}", sig.name))?);
+            }
+        }
+    }
+    Ok((
+        super::checksum::crc32_f64(&shared),
+        super::checksum::crc32_f64(&confidence),
+    ))
+}
+
+/// How many file names a text report lists before it abbreviates ([`abbreviated_list`]).
+pub const LISTED_FILES: usize = 4;
+
+/// `items` joined by ", ", or the first `first` of them followed by "… and N more" when there are more
+/// than `first + 1` (a text report of a merge of a thousand shard files stays one short line; `--json`
+/// keeps the full list).
+///
+/// # Examples
+/// ```
+/// use stochvib::store::abbreviated_list;
+/// let names: Vec<String> = (0..10).map(|i| format!("s{i}.h5")).collect();
+/// assert_eq!(abbreviated_list(&names, 3), "s0.h5, s1.h5, s2.h5, … and 7 more");
+/// assert_eq!(abbreviated_list(&names[..4], 3), "s0.h5, s1.h5, s2.h5, s3.h5");
+/// ```
+pub fn abbreviated_list(items: &[String], first: usize) -> String {
+    if items.len() <= first + 1 {
+        return items.join(", ");
+    }
+    format!("{}, … and {} more", items[..first].join(", "), items.len() - first)
 }
 
 /// `/parts` of a merged file, checked against the run's realizations.

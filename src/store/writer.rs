@@ -746,6 +746,107 @@ impl RunWriter {
         self.finish_shard(row, accumulators, checksums.to_vec())
     }
 
+    /// Records the consecutive shards `first..first + k` of a merged file whose raw datasets are virtual (or
+    /// absent) at once, as [`adopt_shard`](Self::adopt_shard) does one by one: `accumulators[j]` holds row
+    /// r = the accumulator vector of shard `first + r` (k rows), `checksums` row r its checksums (raw rows,
+    /// then accumulators). One write per dataset and two flushes for the whole block (a merge of a
+    /// thousand one-shard files would otherwise spend its time in per-shard writes and flushes).
+    ///
+    /// # Errors
+    /// As [`adopt_shard`](Self::adopt_shard), for every shard of the block; [`Error::InvalidParameter`] if
+    /// the arrays do not have k rows or the block leaves the file's shards.
+    pub(crate) fn adopt_shards(
+        &mut self,
+        first: usize,
+        accumulators: &[ArrayView2<'_, f64>],
+        checksums: ArrayView2<'_, u32>,
+    ) -> Result<()> {
+        let k = checksums.nrows();
+        if k == 0 {
+            return Ok(());
+        }
+        if self.meta.store_raw
+            && !self
+                .inputs
+                .iter()
+                .chain(&self.outputs)
+                .all(|d| d.layout() == hdf5::plist::dataset_create::Layout::Virtual)
+        {
+            return Err(Error::invalid(
+                "shard",
+                first,
+                "this file stores its raw data itself: write the rows with write_shard",
+            ));
+        }
+        let (row0, _) = self.local_or_err(first)?;
+        let (last, _) = self.local_or_err(first + k - 1)?;
+        if let Some(r) = (row0..=last).find(|&r| self.completed[r]) {
+            return Err(Error::invalid("shard", first + r - row0, "already written"));
+        }
+        if accumulators.len() != self.accumulators.len() {
+            return Err(Error::invalid(
+                "accumulators",
+                accumulators.len(),
+                format!("expected {} blocks", self.accumulators.len()),
+            ));
+        }
+        for (a, (name, len)) in accumulators.iter().zip(&self.meta.accumulators) {
+            if a.dim() != (k, *len) {
+                return Err(Error::invalid(
+                    name,
+                    format!("block of shape {:?}", a.dim()),
+                    format!("{k} shards need shape ({k}, {len})"),
+                ));
+            }
+        }
+        let raw = if self.meta.store_raw {
+            self.inputs.len() + self.outputs.len()
+        } else {
+            0
+        };
+        if checksums.ncols() < raw + accumulators.len() {
+            return Err(Error::invalid(
+                "checksums",
+                checksums.ncols(),
+                "one per raw signal and accumulator",
+            ));
+        }
+        for (j, a) in accumulators.iter().enumerate() {
+            for (r, row) in a.rows().into_iter().enumerate() {
+                let row = row.as_standard_layout();
+                if crc32_f64(row.as_slice().unwrap_or(&[])) != checksums[(r, raw + j)] {
+                    return Err(Error::invalid(
+                        &self.meta.accumulators[j].0,
+                        first + r,
+                        "does not match its checksum: the shard file is damaged",
+                    ));
+                }
+            }
+        }
+        let e = |what: &str| h5err(&self.tmp, what);
+        let rows = row0..row0 + k;
+        for (ds, a) in self.accumulators.iter().zip(accumulators) {
+            ds.write_slice(&a.as_standard_layout(), s![rows.clone(), ..])
+                .map_err(e("writing accumulators"))?;
+        }
+        let width = self.checksums.shape()[1];
+        let mut sums = ndarray::Array2::<u32>::zeros((k, width));
+        let n = width.min(checksums.ncols());
+        sums.slice_mut(s![.., ..n]).assign(&checksums.slice(s![.., ..n]));
+        self.checksums
+            .write_slice(&sums, s![rows.clone(), ..])
+            .map_err(e("writing shard checksums"))?;
+        self.file.flush().map_err(e("flushing shards"))?;
+        self.shards_complete
+            .write_slice(&vec![1u8; k][..], s![rows.clone()])
+            .map_err(e("marking shards complete"))?;
+        self.file.flush().map_err(e("flushing shard markers"))?;
+        for r in rows {
+            self.completed[r] = true;
+        }
+        Ok(())
+    }
+
     /// Reads back the accumulator `name` of a completed shard (to rebuild statistics when resuming).
     ///
     /// # Errors
@@ -976,6 +1077,7 @@ impl RunWriter {
             });
         }
         let RunWriter {
+            meta,
             final_path,
             tmp,
             overwrite,
@@ -989,6 +1091,12 @@ impl RunWriter {
         } = self;
         let e = |what: &str| h5err(&tmp, what);
         drop((inputs, outputs, accumulators, shards_complete, checksums));
+        if meta.part.is_some() {
+            // what every part of the run stores identically, for a merge to compare in one read
+            let (shared, confidence) = super::reader::shared_fingerprint(&file, &tmp, &meta)?;
+            write_scalar_attr(&file, L::ATTR_SHARED_CRC32, shared).map_err(e("writing @shared_crc32"))?;
+            write_scalar_attr(&file, L::ATTR_CONFIDENCE_CRC32, confidence).map_err(e("writing @confidence_crc32"))?;
+        }
         if !file
             .attr_names()
             .map_err(e("listing root attributes"))?

@@ -69,3 +69,22 @@ spectrum = "type1"
         m[0], m[1], m[2], k[0], b[0], k[1], b[1], k[2], b[2]
     )
 }
+
+/// Serialises, within one test binary, the tests that spawn child processes with the tests that hold HDF5
+/// files open (take it at the top of every test of such a binary; the guard is held to the test's end).
+///
+/// Why: HDF5 locks every file it opens with flock(2), and that lock belongs to the open file description,
+/// which a forked child shares through its copy of the descriptor. stochvib marks its descriptors
+/// close-on-exec right after HDF5's open(2) ([`stochvib::store`]'s `open_sec2`), but a fork by another test
+/// thread (`Command::spawn`, `output`, `status`) between that open(2) and the fcntl leaves the descriptor in
+/// the child for its whole life, and even with the flag set the child holds it from fork to exec. While the
+/// child holds it, a later open of the same file by the test (a reader after the writer closed it, a resume)
+/// fails with "unable to lock file" — rarely, depending on thread timing. Disabling HDF5's locking
+/// (HDF5_USE_FILE_LOCKING=FALSE) would hide it but would also change what the tests check (a run file being
+/// written by another process is detected through that lock). With this lock no fork happens while any file
+/// of the binary is open, so the outcome no longer depends on timing; each child process writes its own
+/// files.
+pub fn hdf5_serial() -> std::sync::MutexGuard<'static, ()> {
+    static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    SERIAL.lock().unwrap_or_else(|e| e.into_inner())
+}

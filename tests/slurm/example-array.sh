@@ -12,7 +12,8 @@
 # Checks: the first array reports exactly index 2 failed; the merge depending on it is cancelled, not left
 # pending; the rerun (--array=2) succeeds and its shard still gets --of 4; every shard ran with
 # RAYON_NUM_THREADS = --cpus-per-task; the second merge completes and writes the run file; a log per task.
-# Exit 0 on success, 1 with "example-array: FAIL: ..." otherwise; the cluster is stopped in every case.
+# Exit 0 on success, 1 with "example-array: FAIL: ..." otherwise, 77 when the cluster cannot be started on this
+# machine (scripts/test.sh decides by STOCHVIB_SLURM_TEST); the cluster is stopped in every case.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "$0")/../.." && pwd -P)"
@@ -57,7 +58,11 @@ wait_job() {
 
 DIR="$(mktemp -d "${TMPDIR:-/tmp}/stochvib-slurm-example.XXXXXX")"
 chmod 0755 "$DIR"
-"$CLUSTER" start "$DIR/cluster" || fail "the cluster did not start"
+if ! STOCHVIB_SLURM_LOCK_WAIT="${STOCHVIB_SLURM_LOCK_WAIT:-120}" "$CLUSTER" start "$DIR/cluster"; then
+  echo "example-array: the SLURM cluster could not be started on this machine (see the messages above; its files: $DIR/cluster)" >&2
+  KEEP=1
+  exit 77
+fi
 eval "$("$CLUSTER" env "$DIR/cluster")"
 
 # The user's side: a working directory with the log directory, the run parameters in the environment.

@@ -9,7 +9,8 @@
 # resubmit index 2 alone (--array=2), wait, check all four outputs; stop the cluster and check that no process
 # of it is left and that its port locks are released. Prints the time of every step and a summary.
 #
-# Exit 0 on success; 1 with a "smoke: FAIL: ..." message on the first failure. The cluster is stopped in every
+# Exit 0 on success; 1 with a "smoke: FAIL: ..." message on the first failure; 77 when the cluster cannot be
+# started on this machine (scripts/test.sh decides by STOCHVIB_SLURM_TEST). The cluster is stopped in every
 # case (trap on EXIT); on failure its directory (logs, job outputs) is kept and named in the message.
 # The ports come from STOCHVIB_SLURM_CTLD_PORT / STOCHVIB_SLURM_SLURMD_PORT as for slurm-cluster.sh.
 set -euo pipefail
@@ -111,7 +112,11 @@ for cycle in $(seq 1 "$CYCLES"); do
   mkdir -p "$DIR/out" "$DIR/log"
 
   t0="$(now)"
-  "$CLUSTER" start "$DIR" || fail "the cluster did not start"
+  if ! STOCHVIB_SLURM_LOCK_WAIT="${STOCHVIB_SLURM_LOCK_WAIT:-120}" "$CLUSTER" start "$DIR"; then
+    echo "smoke: the SLURM cluster could not be started on this machine (see the messages above; its files: $DIR)" >&2
+    FAILED_RUN=1
+    exit 77
+  fi
   start_s="$(since "$t0")"
   eval "$("$CLUSTER" env "$DIR")"
 
