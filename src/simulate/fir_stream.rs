@@ -407,7 +407,7 @@ impl FirSynthesis {
                     let f = (4.0 * taps).log2().ceil().exp2();
                     // the design's tables (b, h, energies) and one thread's overlap-save buffers and the shared
                     // kernel spectra at that size
-                    let design = g * p as f64 * (grid / 2.0 * 16.0 * 2.0 + grid * 8.0) + p as f64 * grid * 8.0;
+                    let design = super::resources::kernel_design_bytes(h.len(), p, f as usize) as f64;
                     let stream = g * f * 8.0
                         + (g + 1.0) * f * 8.0
                         + 4.0 * f * 8.0
@@ -436,6 +436,23 @@ impl FirSynthesis {
                     });
                 }
                 next = next.max((grid as usize).next_power_of_two());
+            }
+            // the next grid's design tables (kernel spectra, kernels, energies) must fit in the available memory
+            // before they are allocated
+            let design = super::resources::kernel_design_bytes(h.len(), p, next) as f64;
+            if let Some(avail) = super::resources::available_memory() {
+                if design > avail as f64 {
+                    return Err(Error::Numerical {
+                        what: "streamed spectral synthesis".into(),
+                        reason: format!(
+                            "designing its kernels on a grid of {next} points needs about {:.2} GiB, more than the \
+                             {:.2} GiB available: use the whole-record spectral route (--route spectral), a larger \
+                             tail tolerance (--stream-tail), a longer time step, or a smoother or band-limited output",
+                            design / (1u64 << 30) as f64,
+                            avail as f64 / (1u64 << 30) as f64
+                        ),
+                    });
+                }
             }
             previous = Some(total);
             l = next;

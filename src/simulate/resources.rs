@@ -147,8 +147,20 @@ pub fn streamed_memory_bytes(z: &StreamSizes, opts: &RunOptions, threads: usize)
         + p * block * F64
         + 4 * 1024 * F64;
     let shared = g * p * (t * F64 + (f / 2 + 1) * C64) + s * p * (bins + 2) * F64;
-    let design = g * p * ((l / 2 + 1) * C64 + l * F64) + p * l * F64;
-    (per_thread * threads as u128 + shared).max(design)
+    (per_thread * threads as u128 + shared).max(kernel_design_bytes(z.generators, z.outputs, z.grid_len))
+}
+
+/// Transient memory of the streamed route's kernel design on a grid of `grid_len` points, bytes:
+/// g·p·((L/2+1)·16 + L·8) + p·L·8 (kernel spectra, kernels and energies of g generators × p outputs).
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::resources::kernel_design_bytes;
+/// assert_eq!(kernel_design_bytes(1, 1, 8), (5 * 16 + 8 * 8 + 8 * 8) as u128);
+/// ```
+pub fn kernel_design_bytes(generators: usize, outputs: usize, grid_len: usize) -> u128 {
+    let (g, p, l) = (generators as u128, outputs as u128, grid_len as u128);
+    g * p * ((l / 2 + 1) * C64 + l * F64) + p * l * F64
 }
 
 /// Memory the system can still give (Linux `MemAvailable`), bytes; `None` where unknown.
