@@ -133,7 +133,7 @@ pub struct StreamSizes {
 /// assert_eq!(short, long);
 /// ```
 pub fn streamed_memory_bytes(z: &StreamSizes, opts: &RunOptions, threads: usize) -> u128 {
-    let (t, f, l) = (z.taps as u128, z.fft_len as u128, z.grid_len as u128);
+    let (t, f) = (z.taps as u128, z.fft_len as u128);
     let (p, g) = (z.outputs as u128, z.generators as u128);
     let hop = (f + 1).saturating_sub(t).max(1);
     let block = (z.block_steps.max(1) as u128).div_ceil(hop) * hop;
