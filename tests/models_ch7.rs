@@ -8,7 +8,8 @@
 mod common;
 use common::rel;
 use common::tolerance::{
-    DOUBLE_ROOT, EXACT, FACTORISATION, PRINTED_4_DIGITS, PRINTED_6_DIGITS, PRINTED_7_DIGITS, QUADRATURE, ROUNDING,
+    DOUBLE_ROOT, EXACT, FACTORISATION, PRINTED_4_DIGITS, PRINTED_6_DIGITS, PRINTED_7_DIGITS, PRINTED_8_DIGITS,
+    QUADRATURE, ROUNDING,
 };
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::{PI, SQRT_2};
@@ -368,25 +369,44 @@ fn seat_example_7_2_numbers_and_verdict() {
 }
 
 #[test]
-fn octave_band_rules_and_harmonic_band_rms() {
+fn octave_bands_are_the_iec_61260_base_10_bands() {
+    // IEC 61260-1:2014, base-10 system (its 5.2, 5.4, 5.5): G = 10^(3/10), f_r = 1000 Hz, octave (b = 1)
+    // mid-band f_m = f_r·G^x, edges f_m·G^(∓1/2). The nominal centres of Table 7.1 (Sukharev (2012) 7.6:
+    // 1, 2, 4, 8, 16, 31.5, 63 Hz) are the octave indices x = −10 … −4. Computed here from the formula,
+    // independently of `comfort::bands` (which steps in one-third octaves of 10^(1/10)).
+    let g = 10f64.powf(0.3);
     let b = octave_bands();
     assert_eq!(b.len(), 7);
-    // edges f_c/√2 … f_c√2, except the 31.5 Hz band, which starts at 16√2 = 22.627 Hz (non-overlap rule)
-    for (i, &(fc, lo, hi)) in b.iter().enumerate() {
-        assert!(rel(hi, fc * SQRT_2) < EXACT);
-        if i == 5 {
-            assert!(rel(lo, 16.0 * SQRT_2) < EXACT && lo > fc / SQRT_2);
-        } else {
-            assert!(rel(lo, fc / SQRT_2) < EXACT);
+    for (k, band) in b.iter().enumerate() {
+        let x = -10.0 + k as f64;
+        let fm = 1000.0 * g.powf(x);
+        assert!(rel(band.centre_hz, fm) < EXACT, "{k}: {} vs {fm}", band.centre_hz);
+        assert!(rel(band.lower_hz, fm / g.sqrt()) < EXACT);
+        assert!(rel(band.upper_hz, fm * g.sqrt()) < EXACT);
+        assert_eq!(band.nominal_hz, operator_seat::OCTAVE_CENTRES_HZ[k]);
+        // the book's f_c/√2 … f_c√2 differ by at most 1.07 % (the 16 | 31.5 Hz edge, 22.387 vs 22.627 Hz):
+        // 10^(1.35)/(16√2) − 1 = −1.062 %, the largest of the fourteen ratios (computed by hand from the
+        // formula; the model docs list them)
+        let fc = operator_seat::OCTAVE_CENTRES_HZ[k];
+        assert!(rel(band.upper_hz, fc * SQRT_2) < 1.07e-2);
+        assert!(rel(band.lower_hz, fc / SQRT_2) < 1.07e-2);
+        if k > 0 {
+            assert!(rel(band.lower_hz, b[k - 1].upper_hz) < EXACT); // contiguous: no overlap, no gap
         }
     }
+    // exact values of the ends and the moved 16 | 31.5 Hz edge: 10^(−0.15) = 0.707946, 10^(1.95) = 89.1251,
+    // 10^(1.35) = 22.3872 Hz (book: 16√2 = 22.627 Hz, −1.06 %)
+    assert!(rel(b[0].lower_hz, 0.707_945_784) < PRINTED_8_DIGITS);
+    assert!(rel(b[6].upper_hz, 89.125_093_81) < PRINTED_8_DIGITS);
+    assert!(rel(b[5].lower_hz, 22.387_211_39) < PRINTED_8_DIGITS);
     assert_eq!(band_index(3.0), Some(2)); // Example 7.2: 3 Hz is in the 4 Hz band (its solution)
-    assert_eq!(band_index(22.5), Some(4));
-    assert_eq!(band_index(22.7), Some(5));
-    assert_eq!(band_index(0.5), None);
-    assert_eq!(band_index(100.0), None);
-    assert_eq!(band_index(2.0 * SQRT_2), Some(2)); // half-open: the shared edge belongs to the upper band
-                                                   // RMS of a sinusoid of amplitude A = A/√2 in its band, 0 elsewhere
+    assert_eq!(band_index(22.3), Some(4));
+    assert_eq!(band_index(22.5), Some(5)); // in the book's 16 Hz band [11.31, 22.63], here in 31.5 Hz
+    assert_eq!(band_index(0.70), None);
+    assert_eq!(band_index(0.71), Some(0));
+    assert_eq!(band_index(89.2), None);
+    assert_eq!(band_index(b[2].lower_hz), Some(2)); // half-open: the shared edge belongs to the upper band
+                                                    // RMS of a sinusoid of amplitude A = A/√2 in its band, 0 elsewhere
     let v = harmonic_band_rms(2.0, 10.0);
     for (i, x) in v.iter().enumerate() {
         assert_eq!(*x, if i == 3 { 2.0 / SQRT_2 } else { 0.0 });
@@ -608,9 +628,9 @@ fn book_rows_above_two_percent_are_explained() {
 
 #[test]
 fn random_seat_assessment_bands_sum_below_total_variance() {
-    // The octave bands are disjoint (non-overlap rule), so Σ band variances ≤ total variance; the total comes
+    // The octave bands are disjoint (contiguous IEC 61260-1 bands), so Σ band variances ≤ total variance; the total comes
     // from the exact Lyapunov route (independent of the band quadrature) for the rational cab-floor input
-    // (type 3, exp-cosine). The gap is the density outside 0.707–89.1 Hz, which for this input (peak at
+    // (type 3, exp-cosine). The gap is the density outside 0.708–89.1 Hz, which for this input (peak at
     // 3 Hz) is small but positive: between 0 and 10 % of the total here.
     use stochvib::response::variance_lyapunov;
     use stochvib::scenario::load_spectrum;

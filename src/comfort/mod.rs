@@ -13,6 +13,8 @@
 //! * [`weighting`]: Wk, Wd, Wc, We, Wj, Wb, Wf — product form, polynomials, well-conditioned state space.
 //! * [`weighted`]: the weighted output W(s)·H_i(s) of a state-space system (handles D and E).
 //! * [`bands`]: base-10 octave and one-third-octave bands, band mean squares by quadrature.
+//! * [`band_table`]: the band table of a system's output (band r.m.s. by the band integral of its density,
+//!   the bands chosen from an analysis band or around the density's peak).
 //! * [`exposure`]: VDV = (3T)^(1/4)·a_w of a stationary Gaussian signal, MSDV, A(8), total VDV.
 //! * [`sampled`]: a_w, VDV, MSDV, running r.m.s. and MTVV, crest factor of a sampled weighted signal and
 //!   the ISO 2631-1 rule for when the basic method is not sufficient.
@@ -21,6 +23,7 @@
 //!   and comfort reactions.
 
 pub mod axes;
+pub mod band_table;
 pub mod bands;
 pub mod exposure;
 pub mod sampled;
@@ -30,6 +33,7 @@ pub mod weighted_sweep;
 pub mod weighting;
 
 pub use axes::{axis_factor, vector_sum, Axis, AxisFactor, AxisValue, Location, Purpose, VectorSum, VectorSumTerm};
+pub use band_table::{output_band_row, output_band_table, BandRow, BandTable, BAND_COVERAGE, MAX_TABLE_THIRD_OCTAVES};
 pub use bands::{band_mean_square, band_rms, bands_covering, Band, BandFraction};
 pub use exposure::{
     daily_exposure_a8, daily_exposure_a8_periods, msdv, vdv_gaussian, vdv_total, ExposurePeriod, REFERENCE_DURATION_S,

@@ -13,10 +13,19 @@
 //! d ≥ 2 A_y (free travel to the stops)                                                 (7.45)
 //! σ_v = Aλ/√2,   σ_a = Aλ²/√2 (RMS of the seat's velocity and acceleration)             (7.46)–(7.49)
 //! ```
-//! **Octave bands** (the text before Table 7.1): centres 1, 2, 4, 8, 16, 31.5, 63 Hz, edges f_c/√2 … f_c√2. Because
-//! 31.5 ≠ 32 the nominal 16 Hz band [11.31, 22.63] and 31.5 Hz band [22.27, 44.55] overlap by 0.35 Hz; the
-//! rule here: a band's lower edge is max(f_c/√2, upper edge of the band below), and bands are half-open
-//! [lo, hi), so every frequency belongs to at most one band (the 31.5 Hz band is [22.63, 44.55) Hz).
+//! **Octave bands**: the book (the text before Table 7.1) names the centres 1, 2, 4, 8, 16, 31.5, 63 Hz and
+//! the edges f_c/√2 … f_c√2; with 31.5 ≠ 32 its 16 Hz band [11.31, 22.63] and 31.5 Hz band [22.27, 44.55]
+//! overlap. The bands here are the base-10 octave bands of IEC 61260-1:2014 ([`crate::comfort::bands`]),
+//! whose nominal centres are the book's seven: exact mid-band f_m = 1000·10^(3x/10) Hz for x = −10 … −4
+//! (0.998, 1.995, 3.981, 7.943, 15.85, 31.62, 63.10 Hz), edges f_m·10^(∓3/20). They tile the axis
+//! (0.7079 … 89.13 Hz, half-open [f_1, f_2)), so the book's overlap and the former non-overlap rule are gone.
+//! **Size of the change**: the base-10 edges are f_c/√2, f_c√2 times 10^(3x/10)·1000/f_c · 10^(∓3/20)·√2^(±1):
+//! the bands 1 … 63 Hz move by +0.12, −0.12, −0.36, −0.59, −0.83 % (lower edges of 1 … 16 Hz), −0.12,
+//! −0.36, −0.59, −0.83, −1.06 % (their upper edges), and the 31.5 Hz and 63 Hz edges lie within +0.51 % of
+//! the book's (the shared 16 | 31.5 Hz edge: 22.39 Hz instead of 16√2 = 22.63 Hz of the former rule,
+//! −1.06 %; the book's own 31.5/√2 = 22.27 Hz, +0.51 %). A sinusoid's band changes only within these
+//! slivers (Example 7.2's 3 Hz stays in the 4 Hz band); a random band value changes by the density
+//! integrated over them.
 //! **Random base motion** with two-sided displacement density S_u(ω): the band variance of an output with
 //! frequency response H(iω) is σ² = 2∫_{2πf_lo}^{2πf_hi} |H(iω)|² S_u(ω) dω ([`band_variance`]); for a
 //! **harmonic** base motion the band RMS is the sinusoid's RMS (amplitude/√2) in the band containing its
@@ -31,6 +40,7 @@
 //! assert!((r.velocity_rms - 0.02588).abs() < 1e-4);
 //! ```
 
+use crate::comfort::{Band, BandFraction};
 use crate::error::{require_positive, Error, Result};
 use crate::fields::Fields;
 use crate::models::isolation::transmissibility;
@@ -44,36 +54,73 @@ use std::f64::consts::{PI, SQRT_2};
 use std::path::Path;
 use std::sync::Arc;
 
-/// Octave-band centre frequencies, Hz (Sukharev (2012) 7.6, the text before Table 7.1).
+/// Nominal octave-band centre frequencies, Hz (Sukharev (2012) 7.6, the text before Table 7.1; the
+/// nominal mid-band frequencies of the IEC 61260-1 base-10 octave bands x = −10 … −4, see [`octave_bands`]).
 pub const OCTAVE_CENTRES_HZ: [f64; 7] = [1.0, 2.0, 4.0, 8.0, 16.0, 31.5, 63.0];
 
-/// The octave bands as (centre, lower edge, upper edge), Hz, with the non-overlap rule of the module docs.
+/// IEC 61260-1 band index (relative to 1 kHz) of the first octave band of Table 7.1 (nominal 1 Hz).
+pub const FIRST_OCTAVE_INDEX: i32 = -10;
+
+/// The seven octave bands of Table 7.1 as IEC 61260-1:2014 base-10 octave bands (nominal 1 … 63 Hz).
+///
+/// # Formula
+/// f_m = 1000·10^(3x/10) Hz, f_1 = f_m·10^(−3/20), f_2 = f_m·10^(3/20), x = −10 … −4
+/// ([`crate::comfort::Band`]); contiguous: f_2 of one band is f_1 of the next.
+///
+/// # Errors
+/// None (the indices are constants well inside the range of [`Band::new`]).
 ///
 /// # Examples
 /// ```
 /// use stochvib::models::operator_seat::octave_bands;
 /// let b = octave_bands();
-/// assert!((b[2].1 - 4.0 / 2f64.sqrt()).abs() < 1e-12);
-/// assert_eq!(b[5].1, b[4].2); // 31.5 Hz band starts where the 16 Hz band ends
+/// assert_eq!(b[2].nominal_hz, 4.0);
+/// assert!((b[2].centre_hz - 10f64.powf(0.6)).abs() < 1e-12);
+/// assert!((b[5].lower_hz - b[4].upper_hz).abs() < 1e-12); // contiguous
 /// ```
-pub fn octave_bands() -> Vec<(f64, f64, f64)> {
-    let mut out: Vec<(f64, f64, f64)> = Vec::new();
-    for &fc in &OCTAVE_CENTRES_HZ {
-        let mut lo = fc / SQRT_2;
-        if let Some(prev) = out.last() {
-            lo = lo.max(prev.2);
-        }
-        out.push((fc, lo, fc * SQRT_2));
-    }
-    out
+pub fn octave_bands() -> Vec<Band> {
+    (0..OCTAVE_CENTRES_HZ.len() as i32)
+        .map(|k| {
+            Band::new(BandFraction::Octave, FIRST_OCTAVE_INDEX + k)
+                .expect("constant band indices -10 ... -4 are far inside the accepted range")
+        })
+        .collect()
 }
 
-/// Index of the octave band [lo, hi) containing frequency `f_hz` (Hz), if any.
+/// Index (0 … 6) of the octave band [f_1, f_2) of [`octave_bands`] containing frequency `f_hz` (Hz), if any.
+///
+/// # Formula
+/// The k with f_1(k) ≤ f < f_2(k).
+///
+/// # Errors
+/// None: `None` outside 0.7079 … 89.13 Hz or for a non-finite `f_hz`.
+///
+/// # Examples
+/// ```
+/// use stochvib::models::operator_seat::band_index;
+/// assert_eq!(band_index(3.0), Some(2)); // the 4 Hz band
+/// assert_eq!(band_index(100.0), None);
+/// ```
 pub fn band_index(f_hz: f64) -> Option<usize> {
-    octave_bands().iter().position(|&(_, lo, hi)| f_hz >= lo && f_hz < hi)
+    octave_bands()
+        .iter()
+        .position(|b| f_hz >= b.lower_hz && f_hz < b.upper_hz)
 }
 
 /// Octave-band RMS of a sinusoid of amplitude `amplitude` at `f_hz` (Hz): amplitude/√2 in its band, 0 elsewhere.
+///
+/// # Formula
+/// RMS = |A|/√2 in the band [`band_index`]`(f)`, 0 in the others.
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::models::operator_seat::harmonic_band_rms;
+/// let v = harmonic_band_rms(2.0, 10.0); // 10 Hz: the 8 Hz band
+/// assert_eq!(v[3], 2f64.sqrt());
+/// ```
 pub fn harmonic_band_rms(amplitude: f64, f_hz: f64) -> Vec<f64> {
     let mut out = vec![0.0; OCTAVE_CENTRES_HZ.len()];
     if let Some(i) = band_index(f_hz) {
@@ -82,18 +129,36 @@ pub fn harmonic_band_rms(amplitude: f64, f_hz: f64) -> Vec<f64> {
     out
 }
 
-/// Octave-band RMS of output `output` of `sys` under `exc`: √(2∫_band S_y dω) per band, by [`band_variance`].
+/// Octave-band RMS of output `output` of `sys` under `exc`: √(2∫_band S_y dω) per band of [`octave_bands`],
+/// by [`band_variance`].
+///
+/// # Formula
+/// σ²_band = 2∫_{2πf_1}^{2πf_2} S_y(ω) dω = ∫_{f_1}^{f_2} G_y(f) df, G_y(f) = 4π S_y(2πf).
 ///
 /// # Errors
 /// Those of [`band_variance`] (mismatched inputs, quadrature failure).
+///
+/// # Examples
+/// ```
+/// use stochvib::models::operator_seat::{example_7_2, random_band_rms};
+/// use stochvib::response::Excitation;
+/// use stochvib::spectrum::{BandWhite, Convention, Domain};
+/// let (seat, _, _) = example_7_2();
+/// let g = BandWhite::new(Convention::OneSidedCyclic, 1e-6, 3.0, 5.0, Domain::Temporal).unwrap();
+/// let exc = Excitation::single(std::sync::Arc::new(g), 0.0).unwrap();
+/// let v = random_band_rms(&seat.mdof().unwrap(), &exc, 1).unwrap();
+/// assert!(v[2] > 0.0 && v[0] == 0.0);
+/// ```
 pub fn random_band_rms(sys: &dyn FrequencyResponse, exc: &Excitation, output: usize) -> Result<Vec<f64>> {
     octave_bands()
         .iter()
-        .map(|&(_, lo, hi)| {
-            Ok(band_variance(sys, exc, output, 2.0 * PI * lo, 2.0 * PI * hi)?
-                .value
-                .max(0.0)
-                .sqrt())
+        .map(|b| {
+            Ok(
+                band_variance(sys, exc, output, 2.0 * PI * b.lower_hz, 2.0 * PI * b.upper_hz)?
+                    .value
+                    .max(0.0)
+                    .sqrt(),
+            )
         })
         .collect()
 }
@@ -222,9 +287,9 @@ impl SanitaryLimits {
 /// Band-by-band comparison with the limits.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BandCheck {
-    /// Octave centre, Hz.
+    /// Nominal octave centre, Hz.
     pub centre_hz: f64,
-    /// Band edges [lo, hi), Hz.
+    /// IEC 61260-1 base-10 band edges [f_1, f_2), Hz.
     pub band_hz: (f64, f64),
     /// RMS seat velocity in the band, m/s.
     pub velocity_rms: f64,
@@ -263,9 +328,9 @@ pub fn assess(velocity_rms: &[f64], acceleration_rms: &[f64], limits: &SanitaryL
     Ok(octave_bands()
         .iter()
         .enumerate()
-        .map(|(i, &(fc, lo, hi))| BandCheck {
-            centre_hz: fc,
-            band_hz: (lo, hi),
+        .map(|(i, b)| BandCheck {
+            centre_hz: OCTAVE_CENTRES_HZ[i],
+            band_hz: (b.lower_hz, b.upper_hz),
             velocity_rms: velocity_rms[i],
             velocity_limit: limits.bands[i].velocity,
             acceleration_rms: acceleration_rms[i],

@@ -37,6 +37,9 @@ pub struct OutputReport {
     pub levels: Vec<LevelRow>,
     /// Monte Carlo column (`analyze --monte-carlo N`), if requested.
     pub monte_carlo: Option<MonteCarloColumn>,
+    /// Band r.m.s. table (`[analysis] bands`), if requested.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bands: Option<super::band_report::BandSection>,
 }
 
 /// The Monte Carlo σ of one output against the analytic σ (see [`crate::simulate::run()`]).
@@ -138,7 +141,9 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
                 exceedance_probability: st.exceedance_probability(a, sc.analysis.duration),
             })
             .collect();
+        let bands = super::band_report::band_section(sc, i, &st);
         outputs.push(OutputReport {
+            bands,
             lower_3sigma: bounds.map(|b| b.0),
             upper_3sigma: bounds.map(|b| b.1),
             band_sigma,
@@ -310,6 +315,9 @@ impl fmt::Display for AnalysisReport {
                     m.rel_diff.map(|e| format!("{e:.1e}")).unwrap_or_else(|| "—".into()),
                     note
                 )?;
+            }
+            if let Some(b) = &o.bands {
+                write!(f, "{b}")?;
             }
         }
         if let Some(v) = &self.verdicts {

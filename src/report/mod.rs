@@ -2,6 +2,7 @@
 //! rendering. The CLI only parses arguments, calls these and prints.
 
 pub mod analysis;
+pub mod band_report;
 pub mod book;
 pub mod catalogue;
 pub mod road_report;

@@ -20,6 +20,7 @@
 //! outputs = ["body", "travel"]   # default: every output
 //! band = ["0.5 Hz", "80 Hz"]     # also report the band-limited σ
 //! duration = "1 h"               # for exceedance probabilities and expected largest peaks (default 1 h)
+//! bands = "third-octave"         # or "octave": IEC 61260-1 base-10 band r.m.s. table of every output
 //! [analysis.levels]              # optional levels per output for Rice crossing rates
 //! travel = ["5 cm", "8 cm"]
 //! ```
@@ -76,6 +77,9 @@ pub struct AnalysisOptions {
     pub effort: OscillatoryOptions,
     /// `[analysis.comfort]` and `[analysis.fatigue]` ([`super::verdict_spec`]).
     pub verdicts: super::verdict_spec::VerdictSpec,
+    /// `[analysis] bands = "octave" | "third-octave"`: report each output's band table
+    /// ([`crate::comfort::output_band_table`]) and, in Monte Carlo runs, the band r.m.s. estimates.
+    pub bands: Option<crate::comfort::BandFraction>,
 }
 
 /// The random input of a scenario as written: the process, its unit and where it came from.
@@ -660,6 +664,20 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
             effort
         }
     };
+    let bands = match f.get("bands") {
+        None => None,
+        Some(v) => Some(match v.as_str() {
+            Some("octave") => crate::comfort::BandFraction::Octave,
+            Some("third-octave") => crate::comfort::BandFraction::ThirdOctave,
+            _ => {
+                return Err(f.error(
+                    "bands",
+                    v,
+                    "unknown band table: expected \"octave\" or \"third-octave\" (IEC 61260-1 base-10 bands)",
+                ))
+            }
+        }),
+    };
     Ok(AnalysisOptions {
         outputs,
         band,
@@ -667,5 +685,6 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
         levels,
         effort,
         verdicts: Default::default(),
+        bands,
     })
 }

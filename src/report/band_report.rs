@@ -1,0 +1,100 @@
+//! The band section of the `stochvib analyze` report: per output, the IEC 61260-1 octave or
+//! one-third-octave band r.m.s. table asked for by `[analysis] bands` ([`crate::comfort::output_band_table`]).
+
+use crate::comfort::{output_band_table, BandTable};
+use crate::error::Result;
+use crate::response::ResponseStatistics;
+use crate::scenario::Scenario;
+use serde::Serialize;
+use std::f64::consts::PI;
+use std::fmt;
+
+/// One output's band table, or why there is none.
+#[derive(Debug, Clone, Serialize)]
+pub struct BandSection {
+    /// The table, if it could be computed.
+    pub table: Option<BandTable>,
+    /// Why it could not.
+    pub note: Option<String>,
+}
+
+/// The band section of output `i` when the scenario asks for bands (`None` otherwise).
+///
+/// # Formula
+/// [`output_band_table`] with σ² from the analysis' variance (its reference method) and the scenario's
+/// `[analysis] band` (rad/s → Hz) as the range if given.
+///
+/// # Errors
+/// None: a failing table becomes a note.
+///
+/// # Examples
+/// ```no_run
+/// use std::path::Path;
+/// let sc = stochvib::scenario::load_scenario(Path::new("data/operator-seat.toml"), Path::new("spectra")).unwrap();
+/// let st = stochvib::response::analyze_output(sc.model.system.as_ref(), &sc.excitation, 0).unwrap();
+/// let s = stochvib::report::band_report::band_section(&sc, 0, &st);
+/// assert!(s.is_none()); // the scenario has no `bands` key
+/// ```
+pub fn band_section(sc: &Scenario, i: usize, st: &ResponseStatistics) -> Option<BandSection> {
+    let fraction = sc.analysis.bands?;
+    let variance = st.sigma.map(|s| s * s);
+    let range_hz = sc.analysis.band.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
+    let r: Result<BandTable> = output_band_table(
+        sc.model.system.as_ref(),
+        &sc.excitation,
+        i,
+        fraction,
+        variance,
+        range_hz,
+    );
+    Some(match r {
+        Ok(t) => BandSection {
+            table: Some(t),
+            note: None,
+        },
+        Err(e) => BandSection {
+            table: None,
+            note: Some(e.to_string()),
+        },
+    })
+}
+
+impl fmt::Display for BandSection {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let t = match (&self.table, &self.note) {
+            (Some(t), _) => t,
+            (None, n) => return writeln!(f, "  bands         — {}", n.as_deref().unwrap_or("")),
+        };
+        let kind = match t.fraction {
+            crate::comfort::BandFraction::Octave => "octave",
+            crate::comfort::BandFraction::ThirdOctave => "one-third-octave",
+        };
+        writeln!(f, "  {kind} bands (IEC 61260-1 base 10): {}", t.chosen_by)?;
+        writeln!(
+            f,
+            "    {:>9} {:>12} {:>12} {:>12} {:>14} {:>14}",
+            "band", "f_m [Hz]", "f_1 [Hz]", "f_2 [Hz]", "r.m.s.", "mean square"
+        )?;
+        for r in &t.rows {
+            writeln!(
+                f,
+                "    {:>9} {:>12.6} {:>12.6} {:>12.6} {:>14.6e} {:>14.6e}",
+                r.band.label(),
+                r.band.centre_hz,
+                r.band.lower_hz,
+                r.band.upper_hz,
+                r.rms,
+                r.mean_square
+            )?;
+        }
+        match (t.total_variance, t.coverage()) {
+            (Some(v), Some(c)) => writeln!(
+                f,
+                "    Σ band mean squares {:.6e} = {:.4} % of σ² = {v:.6e}",
+                t.sum_mean_square,
+                100.0 * c
+            ),
+            _ => writeln!(f, "    Σ band mean squares {:.6e} (σ² not finite)", t.sum_mean_square),
+        }
+    }
+}
