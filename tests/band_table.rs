@@ -65,7 +65,7 @@ fn every_band_equals_the_arctan_closed_form() {
         // than σ²
         let c = t.coverage().unwrap();
         assert!(
-            c >= BAND_COVERAGE && c <= 1.0 + QUADRATURE,
+            (BAND_COVERAGE..=1.0 + QUADRATURE).contains(&c),
             "{fraction:?}: coverage {c}"
         );
         // ... and is the fewest such bands: dropping the smaller end band falls below the coverage

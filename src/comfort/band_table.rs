@@ -187,7 +187,7 @@ fn grow(
             peak = (v, f);
         }
     }
-    if !(peak.0 > 0.0) {
+    if peak.0 <= 0.0 {
         return Err(Error::invalid(
             "bands",
             "(automatic)",
