@@ -372,23 +372,8 @@ fn exact_route_statistics_are_bit_identical_for_any_block_size() {
         o.block_steps = block;
         let out = d.join(format!("b{k}.h5"));
         let s = sc.simulate(&o, &out, &|_, _| {}).unwrap();
-        let run = RunFile::open(&out).unwrap();
-        let mut v: Vec<u64> = s
-            .outputs
-            .iter()
-            .flat_map(|o| {
-                o.statistics
-                    .iter()
-                    .flat_map(|st| [st.interval.estimate, st.interval.lower, st.interval.upper])
-            })
-            .map(f64::to_bits)
-            .collect();
-        v.extend(
-            run.psd()
-                .unwrap()
-                .iter()
-                .flat_map(|p| p.density.iter().map(|x| x.to_bits())),
-        );
+        let mut v = common::statistic_bits(&s);
+        v.extend(common::psd_bits(&out));
         bits.push(v);
     }
     assert!(bits.windows(2).all(|w| w[0] == w[1]));

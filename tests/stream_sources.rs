@@ -7,7 +7,6 @@ mod common;
 use std::path::{Path, PathBuf};
 use stochvib::scenario::{parse_scenario, Scenario};
 use stochvib::simulate::{Route, RunOptions, RunSummary};
-use stochvib::store::RunFile;
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
@@ -127,23 +126,8 @@ fn streamed(realizations: usize, duration: f64, dt: f64, seed: u64) -> RunOption
 }
 
 fn bits(s: &RunSummary, out: &Path) -> Vec<u64> {
-    let mut v: Vec<u64> = s
-        .outputs
-        .iter()
-        .flat_map(|o| {
-            o.statistics
-                .iter()
-                .flat_map(|st| [st.interval.estimate, st.interval.lower, st.interval.upper])
-        })
-        .map(f64::to_bits)
-        .collect();
-    let run = RunFile::open(out).unwrap();
-    v.extend(
-        run.psd()
-            .unwrap()
-            .iter()
-            .flat_map(|p| p.density.iter().map(|x| x.to_bits())),
-    );
+    let mut v = common::statistic_bits(s);
+    v.extend(common::psd_bits(out));
     v
 }
 

@@ -29,16 +29,7 @@ fn seat() -> Scenario {
 
 /// Every statistic (estimate and bounds, verdict statistics included) and every rainflow histogram count.
 fn bits(s: &RunSummary, out: &Path) -> Vec<u64> {
-    let mut v: Vec<u64> = s
-        .outputs
-        .iter()
-        .flat_map(|o| {
-            o.statistics
-                .iter()
-                .flat_map(|st| [st.interval.estimate, st.interval.lower, st.interval.upper])
-        })
-        .map(f64::to_bits)
-        .collect();
+    let mut v = common::statistic_bits(s);
     let run = RunFile::open(out).unwrap();
     for h in run.rainflow().unwrap() {
         v.extend(h.counts.iter().chain([&h.overflow]).map(|x| x.to_bits()));

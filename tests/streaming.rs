@@ -11,7 +11,6 @@ use stochvib::scenario::{parse_scenario, Scenario};
 use stochvib::simulate::fir_stream::{GRID_TOLERANCE, TAIL_FRACTION};
 use stochvib::simulate::resources::memory_bytes;
 use stochvib::simulate::{planned_memory, stream, FirSynthesis, Route, RunOptions, RunSummary};
-use stochvib::store::RunFile;
 
 fn dir(tag: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("stochvib-stream-{}-{tag}", std::process::id()));
@@ -57,23 +56,8 @@ fn streamed(realizations: usize, duration: f64, dt: f64, seed: u64) -> RunOption
 }
 
 fn bits(s: &RunSummary, out: &Path) -> Vec<u64> {
-    let mut v: Vec<u64> = s
-        .outputs
-        .iter()
-        .flat_map(|o| {
-            o.statistics
-                .iter()
-                .flat_map(|st| [st.interval.estimate, st.interval.lower, st.interval.upper])
-        })
-        .map(f64::to_bits)
-        .collect();
-    let run = RunFile::open(out).unwrap();
-    v.extend(
-        run.psd()
-            .unwrap()
-            .iter()
-            .flat_map(|p| p.density.iter().map(|x| x.to_bits())),
-    );
+    let mut v = common::statistic_bits(s);
+    v.extend(common::psd_bits(out));
     v
 }
 

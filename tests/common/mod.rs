@@ -88,3 +88,27 @@ pub fn hdf5_serial() -> std::sync::MutexGuard<'static, ()> {
     static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
     SERIAL.lock().unwrap_or_else(|e| e.into_inner())
 }
+
+/// The bits of every statistic of a run summary (estimate and interval bounds, in output order): what
+/// "bit-identical statistics" compares.
+pub fn statistic_bits(s: &stochvib::simulate::RunSummary) -> Vec<u64> {
+    s.outputs
+        .iter()
+        .flat_map(|o| {
+            o.statistics
+                .iter()
+                .flat_map(|st| [st.interval.estimate, st.interval.lower, st.interval.upper])
+        })
+        .map(f64::to_bits)
+        .collect()
+}
+
+/// The bits of every stored Welch density value of the run file `out`.
+pub fn psd_bits(out: &std::path::Path) -> Vec<u64> {
+    let run = stochvib::store::RunFile::open(out).unwrap();
+    run.psd()
+        .unwrap()
+        .iter()
+        .flat_map(|p| p.density.iter().map(|x| x.to_bits()).collect::<Vec<_>>())
+        .collect()
+}
