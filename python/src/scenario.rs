@@ -386,6 +386,7 @@ impl PyScenario {
             mean: means[0],
             name: "input".into(),
             coherence: None,
+            kurtosis: None,
         };
         let sc = Scenario {
             path: PathBuf::from("<python>"),
@@ -405,6 +406,7 @@ impl PyScenario {
                 levels: level_list,
                 effort: OscillatoryOptions::default(),
                 verdicts: Default::default(),
+                bands: None,
             },
         };
         Ok(PyScenario {
