@@ -132,6 +132,10 @@ enum Command {
         /// Print JSON (every bin).
         #[arg(long)]
         json: bool,
+        /// Also write the pictures (per track the density with its χ² band, the ISO 8608 fits and class
+        /// limits; the two-track coherence with its interval) as SVG and PNG into this directory.
+        #[arg(long)]
+        plots: Option<PathBuf>,
     },
     /// List the model kinds a scenario file may name in `[model] kind`.
     Models {
@@ -394,6 +398,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             detrend,
             confidence,
             json,
+            plots,
         } => {
             let detrend = match detrend.as_str() {
                 "mean" => stochvib::road::Detrend::Mean,
@@ -408,7 +413,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 detrend,
                 confidence,
             };
-            print(&report::road_report::road_report(&profile, &opts)?, json)?
+            let r = report::road_report::road_report(&profile, &opts)?;
+            print(&r, json)?;
+            if let Some(out) = plots {
+                let files = stochvib::plot::road_plots(&r, &out)?;
+                eprintln!("wrote {} pictures to {}", files.len(), out.display());
+            }
         }
         Command::Book { json, plots, spectra } => {
             print(&report::book_report(), json)?;

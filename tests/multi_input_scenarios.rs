@@ -516,3 +516,234 @@ speed = "15 m/s"
         .unwrap()
         .is_none());
 }
+
+/// A body on two wheels driven by two independent one-process roads (spatial, in m) `left`, `right`, with
+/// `extra_left` added to the left table.
+fn two_process_roads(extra_left: &str) -> String {
+    let road2 = r#"{ kind = "exponential", domain = "spatial", variance = "4 cm^2", alpha = "0.5 1/m" }"#;
+    two_wheels(
+        "",
+        "[1, 1]",
+        &format!(
+            r#"[[input]]
+name = "left"
+spectrum = {ROAD}
+speed = "15 m/s"
+drives = [0]
+{extra_left}
+[[input]]
+name = "right"
+spectrum = {road2}
+drives = [1]
+"#
+        ),
+    )
+}
+
+#[test]
+fn the_input_pictures_draw_every_source_and_the_cross_spectrum_of_a_road() {
+    use stochvib::plot::scenario_plots::{
+        input_cross_spectrum_charts, input_density_chart, scenario_plots, ScenarioPlotOptions,
+    };
+    let opts = ScenarioPlotOptions::default();
+    // Road of two tracks with a constant coherence amplitude ρ = 0.5 (closed forms): each track has the
+    // exponential road's one-sided density G(n) = 4π S(2πn) = 4αD/(α² + 4π²n²) (S(Ω) = αD/(π(α² + Ω²)),
+    // D = 1e-4 m², α = 0.2 1/m); the cross-spectrum is G_LR = ρ G (co-spectrum ρG, quad-spectrum 0: the
+    // tracks are in phase) and γ² = ρ² = 0.25.
+    let road = format!(
+        r#"[[input]]
+name = "road"
+road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "constant", coherence_amplitude = 0.5 }} }}
+speed = "15 m/s"
+"#
+    );
+    let sc = parse(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    let charts = input_cross_spectrum_charts(&sc, &opts).unwrap();
+    assert_eq!(charts.len(), 1);
+    let (name, c) = &charts[0];
+    assert_eq!(name, "road");
+    assert_eq!(c.x_label, "spatial frequency n [cycles/m]");
+    assert!(c.y_label.contains("(cross-)density"), "{}", c.y_label);
+    assert_eq!(
+        c.series.len(),
+        2,
+        "a real coherence draws no quad-spectrum on the log axis"
+    );
+    assert!(
+        c.series[1].name.contains("quad-spectrum Q ≡ 0 (real coherence)"),
+        "{}",
+        c.series[1].name
+    );
+    let (alpha, d) = (0.2, 1e-4);
+    let g = |n: f64| 4.0 * alpha * d / (alpha * alpha + 4.0 * PI * PI * n * n);
+    for (auto, co) in c.series[0].points.iter().zip(&c.series[1].points) {
+        assert_eq!(auto.0, co.0);
+        assert!((auto.1 - g(auto.0)).abs() <= EXACT * g(auto.0), "G at n = {}", auto.0);
+        assert!((co.1 - 0.5 * g(co.0)).abs() <= EXACT * g(co.0), "C at n = {}", co.0);
+    }
+    let coh = &c.secondary.as_ref().unwrap().series[0].points;
+    assert_eq!(coh.len(), c.series[0].points.len());
+    assert!(coh.iter().all(|p| (p.1 - 0.25).abs() <= ROUNDING), "{coh:?}");
+    let dir = std::env::temp_dir().join(format!("stochvib-input-pictures-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let files = scenario_plots(&sc, &dir).unwrap();
+    for stem in ["input-density", "input-coherence", "input-cross-spectrum-road"] {
+        for ext in ["svg", "png"] {
+            assert!(
+                files.contains(&dir.join(format!("{stem}.{ext}"))),
+                "{stem}.{ext} missing"
+            );
+        }
+    }
+    let svg = std::fs::read_to_string(dir.join("input-cross-spectrum-road.svg")).unwrap();
+    for text in [
+        "Cross-spectrum of road",
+        "co-spectrum C = Re G_left,right",
+        "squared coherence γ²",
+    ] {
+        assert!(svg.contains(text), "missing `{text}`");
+    }
+
+    // Two independent one-process roads: both densities on one chart, each its own spectrum (4αD/(α² + 4π²n²)
+    // with α = 0.2 1/m, D = 1 cm² and α = 0.5 1/m, D = 4 cm²); no cross-spectrum (independent sources)
+    let sc = parse(&two_process_roads(""));
+    let c = input_density_chart(&sc, &opts).unwrap();
+    assert_eq!(c.series.len(), 2);
+    assert!(c.series[0].name.starts_with("left: ") && c.series[1].name.starts_with("right: "));
+    for (s, (alpha, d)) in c.series.iter().zip([(0.2, 1e-4), (0.5, 4e-4)]) {
+        for p in &s.points {
+            let want = 4.0 * alpha * d / (alpha * alpha + 4.0 * PI * PI * p.0 * p.0);
+            assert!((p.1 - want).abs() <= EXACT * want, "{} at n = {}", s.name, p.0);
+        }
+    }
+    assert!(input_cross_spectrum_charts(&sc, &opts).unwrap().is_empty());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn kurtosis_of_an_input_table_makes_its_source_alone_non_gaussian() {
+    use stochvib::simulate::{Route, RunOptions};
+    // parse: the table's kurtosis, one entry per generator (the left road's; the right road Gaussian)
+    let sc = parse(&two_process_roads("kurtosis = 6"));
+    assert_eq!(sc.inputs[0].kurtosis, Some(6.0));
+    assert_eq!(sc.inputs[1].kurtosis, None);
+    let input = sc.run_input();
+    assert_eq!(input.kurtosis, vec![Some(6.0), None]);
+    let prov = input.provenance.iter().find(|p| p.name == "input_kurtosis").unwrap();
+    assert!(format!("{prov:?}").contains("input[0] `left`: 6"), "{prov:?}");
+    assert!(parse(&two_process_roads("")).run_input().kurtosis.is_empty());
+    // The cumulants of independent sources add (Laplace moving average, Bogsjö, Podgórski & Rychlik 2012):
+    // with y = y_L + y_R, y_R Gaussian, κ₄(y) = κ₄(y_L) and Var y = v_L + v_R on the same grid, so
+    //     κ_y − 3 = (κ_{y_L} − 3)·v_L²/(v_L + v_R)².
+    // The oracle is the pair of one-road runs (the right road's gain set to 0, and the left road's), each
+    // planned alone: other excitations than the two-source run under test.
+    let dir = std::env::temp_dir().join(format!("stochvib-kurtosis-sources-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut opts = RunOptions::new(2, 10.24, 0.01, 3);
+    opts.route = Route::Spectral;
+    opts.overwrite = true;
+    let run = |text: &str, tag: &str| {
+        let sc = parse(text);
+        sc.simulate(&opts, &dir.join(format!("{tag}.h5")), &|_, _| {}).unwrap()
+    };
+    let kurtosis_of = |s: &stochvib::simulate::RunSummary, name: &str| -> f64 {
+        let tag = format!("kurtosis of `{name}` (simulated process) = ");
+        let note = s.notes.iter().find(|n| n.contains(&tag)).expect("kurtosis note");
+        let rest = &note[note.find(&tag).unwrap() + tag.len()..];
+        rest.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    let var_of = |s: &stochvib::simulate::RunSummary, name: &str| {
+        let o = s.outputs.iter().find(|o| o.output == name).unwrap();
+        o.get("sigma_discrete").unwrap().analytic.unwrap().powi(2)
+    };
+    let both = run(&two_process_roads("kurtosis = 6"), "both");
+    assert!(
+        both.generator.contains("[6, 3 (Gaussian)] per input process"),
+        "{}",
+        both.generator
+    );
+    let left = run(
+        &two_process_roads("kurtosis = 6").replace("gains = [1, 1]", "gains = [1, 0]"),
+        "left",
+    );
+    let right = run(
+        &two_process_roads("").replace("gains = [1, 1]", "gains = [0, 1]"),
+        "right",
+    );
+    for name in ["bounce", "roll"] {
+        let (vl, vr, v) = (var_of(&left, name), var_of(&right, name), var_of(&both, name));
+        assert!((v - (vl + vr)).abs() <= EXACT * v, "{name}: {v:e} vs {vl:e} + {vr:e}");
+        let want = 3.0 + (kurtosis_of(&left, name) - 3.0) * vl * vl / (v * v);
+        let got = kurtosis_of(&both, name);
+        // both printed to 6 decimals
+        assert!(
+            (got - want).abs() <= common::tolerance::PRINTED_6_DIGITS,
+            "{name}: {got} vs {want}"
+        );
+        assert!(got > 3.0 && got < kurtosis_of(&left, name));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn kurtosis_of_a_road_of_two_tracks_is_refused_with_the_reason() {
+    let road = format!(
+        r#"[[input]]
+name = "road"
+road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "dodds-robson" }} }}
+speed = "15 m/s"
+kurtosis = 6
+"#
+    );
+    let e = parse_err(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    for part in [
+        "test-multi.toml",
+        "input[0].kurtosis",
+        "6",
+        "road of two tracks",
+        "coherence",
+    ] {
+        assert!(e.contains(part), "`{part}` missing from: {e}");
+    }
+    // a bad value in a one-process table: named like `[input] kurtosis`
+    for (value, reason) in [("2.5", ">= 3"), ("\"six\"", "expected a number")] {
+        let e = parse_err(&two_process_roads(&format!("kurtosis = {value}")));
+        for part in ["test-multi.toml", "input[0].kurtosis", reason] {
+            assert!(e.contains(part), "{value}: `{part}` missing from: {e}");
+        }
+    }
+}
+
+#[test]
+fn a_two_track_run_says_what_its_inputs_are() {
+    // The full vehicle on a road of two tracks with a coherence (wheelbase 2.7 m at 20 m/s: delay 0.135 s,
+    // 27 steps of 5 ms): the route's reason and the variance methods name the two tracks, never "delayed
+    // copies of one process" (the one-track reason).
+    use stochvib::simulate::RunOptions;
+    let sc = load_scenario(
+        &root().join("data/full-vehicle-two-tracks.toml"),
+        &root().join("spectra"),
+    )
+    .unwrap();
+    let dir = std::env::temp_dir().join(format!("stochvib-two-track-notes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut opts = RunOptions::new(2, 2.56, 0.005, 1);
+    opts.overwrite = true;
+    let s = sc.simulate(&opts, &dir.join("run.h5"), &|_, _| {}).unwrap();
+    assert!(
+        s.notes.iter().all(|n| !n.contains("delayed copies of one process")),
+        "{:?}",
+        s.notes
+    );
+    assert!(
+        s.notes[0].contains("delayed tracks of a road of two tracks with a coherence"),
+        "{}",
+        s.notes[0]
+    );
+    let sys = sc.model.system.as_ref();
+    let st = analyze_output(sys, &sc.excitation, 1).unwrap();
+    let text = format!("{:?}", st.methods);
+    assert!(!text.contains("delayed copies of one process"), "{text}");
+    assert!(text.contains("road of two tracks"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -2,7 +2,7 @@
 //! blank, and carry their title and axis labels; bad input gives errors, never panics.
 
 mod common;
-use common::tolerance::QUADRATURE;
+use common::tolerance::{QUADRATURE, ROUNDING};
 use std::path::{Path, PathBuf};
 use stochvib::plot::chart::{BarChart, LineChart, Marker, Series};
 use stochvib::plot::{mc_plots, model_plots, scenario_plots, Histogram, HEIGHT, WIDTH};
@@ -889,6 +889,139 @@ fn analyze_and_book_plots_options_write_their_pictures() {
         "scraper-accelerations",
     ] {
         check_pair(&[b.join(format!("{name}.svg")), b.join(format!("{name}.png"))], &[]);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `road PROFILE.csv --plots DIR` on the committed synthetic profile (data/measured-profile.csv: ISO 8608 class
+/// C, G_d(n₀) = 256e-6 m³, w = 2, two tracks with the isotropic coherence of a 1.5 m track width; its header
+/// and examples/road_profile.rs). Per track: the measured density with its χ² band, the fits and the class
+/// limits; the coherence of the two tracks with its interval.
+#[test]
+fn road_pictures_show_the_density_band_fits_class_limits_and_coherence() {
+    use stochvib::plot::road_plots::{road_coherence_chart, road_density_chart, road_plots};
+    use stochvib::report::road_report::{road_report, RoadReportOptions};
+    let r = road_report(&root().join("data/measured-profile.csv"), &RoadReportOptions::default()).unwrap();
+    let dir = out_dir("road");
+    let files = road_plots(&r, &dir).unwrap();
+    assert_eq!(files.len(), 6); // two tracks and the coherence, SVG and PNG each
+    for (k, track) in ["left", "right"].into_iter().enumerate() {
+        check_pair(
+            &files[2 * k..2 * k + 2],
+            &[
+                &format!("Road density of track {track}"),
+                "spatial frequency n [cycles/m]",
+                "density G_d(n), one-sided [m³",
+                "95 % χ² interval",
+                "Welch estimate",
+                "ISO 8608 fit, w = 2",
+                "ISO 8608 fit, free w",
+                "class limit B/C",
+                "class limit C/D",
+            ],
+        );
+        let c = road_density_chart(&r, k).unwrap();
+        assert!(c.log_x && c.log_y);
+        // the measured curve and its band are the report's bins with n > 0, the band around the estimate
+        let rows: Vec<_> = r.tracks[k].density.iter().filter(|d| d.n > 0.0).collect();
+        let est = &c.series[0].points;
+        assert_eq!(est.len(), rows.len());
+        for ((p, lo), (up, d)) in est
+            .iter()
+            .zip(&c.bands[0].lower)
+            .zip(c.bands[0].upper.iter().zip(&rows))
+        {
+            assert_eq!((p.0, p.1, lo.1, up.1), (d.n, d.g_d, d.lower, d.upper));
+            assert!(lo.1 < p.1 && p.1 < up.1);
+        }
+        // each fit line is G_d(n₀)(n/n₀)^{−w} (n₀ = 0.1 cycles/m), and w = 2 for the fixed fit
+        for (fit, s) in r.tracks[k].fits.iter().zip(&c.series[1..3]) {
+            assert!(s.name.contains(&format!("class {}", fit.class)));
+            for p in &s.points {
+                let g0 = p.1 * (p.0 / 0.1).powf(fit.waviness);
+                assert!((g0 - fit.g0_m3).abs() <= ROUNDING * fit.g0_m3, "{}: {g0:e}", s.name);
+                assert!(p.0 >= fit.band.0 * (1.0 - ROUNDING) && p.0 <= fit.band.1 * (1.0 + ROUNDING));
+            }
+        }
+        assert_eq!(r.tracks[k].fits[0].waviness, 2.0);
+        // class limits by ISO 8608:2016 Table 3 (upper limit of the smoother class, 2 × its geometric mean
+        // 16·4^k × 10⁻⁶ m³): B/C = 128e-6, C/D = 512e-6 m³ at n₀, slope −2; the generating class C
+        // (256e-6) lies between them
+        // the limits of class C and of one class on either side: A/B … D/E (32e-6 … 2048e-6 m³), no others
+        let limits: Vec<&str> = c
+            .series
+            .iter()
+            .filter_map(|s| s.name.strip_prefix("class limit "))
+            .map(|s| &s[..3])
+            .collect();
+        assert_eq!(limits, ["A/B", "B/C", "C/D", "D/E"]);
+        for (label, g) in [("A/B", 32e-6), ("B/C", 128e-6), ("C/D", 512e-6), ("D/E", 2048e-6)] {
+            let s = c
+                .series
+                .iter()
+                .find(|s| s.name.starts_with(&format!("class limit {label}")))
+                .unwrap_or_else(|| panic!("no class limit {label}"));
+            assert_eq!(s.style, stochvib::plot::LineStyle::Dashed);
+            for p in &s.points {
+                let want = g * (0.1 / p.0).powi(2);
+                assert!((p.1 - want).abs() <= ROUNDING * want, "{label} at n = {}", p.0);
+            }
+        }
+    }
+    let coh = road_coherence_chart(&r).unwrap().unwrap();
+    check_pair(
+        &files[4..6],
+        &[
+            "Squared coherence of tracks left and right",
+            "squared coherence γ² [-]",
+            "95 % Fisher-z interval",
+        ],
+    );
+    assert_eq!(coh.y_range, Some((0.0, 1.05)));
+    let rows: Vec<_> = r.coherence.iter().filter(|c| c.n > 0.0).collect();
+    assert_eq!(coh.series[0].points.len(), rows.len());
+    for (p, c) in coh.series[0].points.iter().zip(&rows) {
+        assert_eq!(*p, (c.n, c.squared_coherence));
+    }
+    // a one-track profile has no coherence picture; a bad track index is an error
+    assert!(road_density_chart(&r, 2).is_err());
+    let one = dir.join("one-track.csv");
+    let text = std::fs::read_to_string(root().join("data/measured-profile.csv")).unwrap();
+    let one_text: String = text
+        .lines()
+        .map(|l| {
+            if l.starts_with('#') {
+                l.to_string()
+            } else {
+                l.rsplit_once(',').map_or(l, |(a, _)| a).to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(&one, one_text).unwrap();
+    let r1 = road_report(&one, &RoadReportOptions::default()).unwrap();
+    assert_eq!(r1.tracks.len(), 1);
+    assert!(road_coherence_chart(&r1).unwrap().is_none());
+    assert_eq!(road_plots(&r1, &dir.join("one")).unwrap().len(), 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn road_cli_plots_option_writes_the_road_pictures() {
+    let dir = out_dir("roadcli");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        .args(["road", "data/measured-profile.csv", "--plots", dir.to_str().unwrap()])
+        .current_dir(root())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("wrote 6 pictures"));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("ISO 8608 (fixed w = 2)"));
+    for name in ["road-density-left", "road-density-right", "road-coherence"] {
+        check_pair(
+            &[dir.join(format!("{name}.svg")), dir.join(format!("{name}.png"))],
+            &["data/measured-profile.csv"],
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }

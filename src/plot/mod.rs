@@ -12,6 +12,8 @@
 //! * [`model_plots`]: catalogue-model pictures from plain data (octave-band RMS against limits, mine-hoist
 //!   frequencies and modes over ξ, balancer D_y/D_x over r, scraper σ over speed).
 //!
+//! * [`road_plots`](mod@road_plots): the pictures of `stochvib road PROFILE.csv --plots DIR` (measured density
+//!   with its χ² band, the ISO 8608 fits and class limits, the two-track coherence).
 //! * [`run_plots`](mod@run_plots): the pictures of a Monte Carlo run file (`stochvib plot run.h5`).
 //! * [`book_plots`](mod@book_plots): the pictures of `stochvib book --plots DIR`, every catalogue model's data
 //!   computed with the library.
@@ -23,6 +25,7 @@ pub mod chart;
 pub mod comfort_plots;
 pub mod mc_plots;
 pub mod model_plots;
+pub mod road_plots;
 pub mod run_plots;
 pub mod scenario_plots;
 
@@ -30,5 +33,6 @@ pub use book_plots::book_plots;
 pub use chart::{
     Band, BarChart, Histogram, Legend, LineChart, LineStyle, Marker, SecondaryAxis, Series, HEIGHT, WIDTH,
 };
+pub use road_plots::road_plots;
 pub use run_plots::{rainflow_charts, run_plots};
 pub use scenario_plots::{scenario_plots, scenario_plots_with, ScenarioPlotOptions};

@@ -34,7 +34,10 @@ impl Default for ScenarioPlotOptions {
 }
 
 /// Writes every scenario picture into `dir` with the default options ([`ScenarioPlotOptions::default`]):
-/// `input-density`, then for each reported output `transfer-<output>` and `output-density-<output>`, and
+/// `input-density` (every `[[input]]` source of the first one's domain and unit; `input-density-<name>` for
+/// each other), for a road of two tracks `input-coherence` and `input-cross-spectrum-<name>`
+/// ([`input_cross_spectrum_charts`]), then for each reported output `transfer-<output>` and
+/// `output-density-<output>`, and
 /// for each axis of `[analysis.comfort]` `weighted-density-<weighted output>`
 /// ([`super::comfort_plots::weighted_density_chart`]), each as `.svg` and `.png`.
 ///
@@ -61,8 +64,18 @@ pub fn scenario_plots(sc: &Scenario, dir: &Path) -> Result<Vec<PathBuf>> {
 /// drawable or the back end fails; errors of the response computations (e.g. an unstable system).
 pub fn scenario_plots_with(sc: &Scenario, dir: &Path, opts: &ScenarioPlotOptions) -> Result<Vec<PathBuf>> {
     let mut files = input_density_chart(sc, opts)?.render(dir, "input-density")?;
+    // `[[input]]` tables of another domain or unit than the first: one chart each
+    for (i, inp) in sc.inputs.iter().enumerate().skip(1) {
+        if !same_axes(&sc.inputs[0], inp, opts) {
+            let c = source_density_chart(sc, i, opts)?;
+            files.extend(c.render(dir, &format!("input-density-{}", super::chart::file_stem(&inp.name)))?);
+        }
+    }
     if let Some(c) = input_coherence_chart(sc, opts)? {
         files.extend(c.render(dir, "input-coherence")?);
+    }
+    for (name, c) in input_cross_spectrum_charts(sc, opts)? {
+        files.extend(c.render(dir, &format!("input-cross-spectrum-{}", super::chart::file_stem(&name)))?);
     }
     for &i in &sc.analysis.outputs {
         let name = super::chart::file_stem(&sc.model.system.outputs()[i].name);
@@ -89,14 +102,156 @@ pub fn scenario_plots_with(sc: &Scenario, dir: &Path, opts: &ScenarioPlotOptions
 /// [`Error::Numerical`] "nothing to plot" when the density is zero everywhere on the grid.
 pub fn input_density_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<LineChart> {
     let unit = opts.input_unit.clone().unwrap_or_else(|| sc.input.unit.clone());
-    let spectra = [(sc.input.reference.as_str(), sc.input.spectrum.as_ref())];
+    if sc.inputs.len() <= 1 {
+        let spectra = [(sc.input.reference.as_str(), sc.input.spectrum.as_ref())];
+        return spectra_chart(
+            &format!("Input density: {}", sc.title),
+            &spectra,
+            &unit,
+            opts.convention,
+            opts.points,
+        );
+    }
+    // every `[[input]]` table drawn on the first one's axes (the others get their own chart)
+    let names: Vec<String> = sc.inputs.iter().map(source_label).collect();
+    let spectra: Vec<(&str, &dyn Spectrum)> = sc
+        .inputs
+        .iter()
+        .zip(&names)
+        .filter(|(inp, _)| same_axes(&sc.inputs[0], inp, opts))
+        .map(|(inp, n)| (n.as_str(), inp.spectrum.as_ref()))
+        .collect();
     spectra_chart(
-        &format!("Input density: {}", sc.title),
+        &format!("Input densities: {}", sc.title),
         &spectra,
         &unit,
         opts.convention,
         opts.points,
     )
+}
+
+/// Legend text of an `[[input]]` source: its name and spectrum reference (`road: iso8608-c, each track`).
+fn source_label(inp: &crate::scenario::ScenarioInput) -> String {
+    match &inp.coherence {
+        Some(_) => format!("{}: {}, each track", inp.name, inp.reference),
+        None => format!("{}: {}", inp.name, inp.reference),
+    }
+}
+
+/// Whether two inputs share the density chart's axes (domain, and unit unless `opts.input_unit` forces one).
+fn same_axes(
+    a: &crate::scenario::ScenarioInput,
+    b: &crate::scenario::ScenarioInput,
+    opts: &ScenarioPlotOptions,
+) -> bool {
+    a.spectrum.domain() == b.spectrum.domain() && (opts.input_unit.is_some() || a.unit == b.unit)
+}
+
+/// Log–log chart of the density of `[[input]]` source `i` alone, as given (in its own domain and unit).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for an index out of range; as [`spectra_chart`].
+pub fn source_density_chart(sc: &Scenario, i: usize, opts: &ScenarioPlotOptions) -> Result<LineChart> {
+    let inp = sc
+        .inputs
+        .get(i)
+        .ok_or_else(|| Error::invalid("input", i, format!("the scenario has {} inputs", sc.inputs.len())))?;
+    let label = source_label(inp);
+    spectra_chart(
+        &format!("Input density of {}: {}", inp.name, sc.title),
+        &[(label.as_str(), inp.spectrum.as_ref())],
+        opts.input_unit.as_deref().unwrap_or(&inp.unit),
+        opts.convention,
+        opts.points,
+    )
+}
+
+/// The cross-spectrum charts of every road of two tracks (`[[input]] road = { … }`), one per road with its
+/// name: in `opts.convention` against the spatial frequency, log–log, the density of each track G_LL = G_RR,
+/// the co-spectrum C = Re G_LR and the quad-spectrum Q = −Im G_LR (G_LR = C − iQ, J. S. Bendat and A. G.
+/// Piersol, Random Data, 4th ed., 2010, eq. 5.66), and on a linear right-hand axis the squared coherence
+/// γ² = |G_LR|²/(G_LL G_RR). Empty when the scenario has no road of two tracks.
+///
+/// # Formula
+/// The source is the pair at the speed v (temporal, [`crate::coherence::TwoTracks`]); back in space,
+/// S_x(Ω) = v·S_t(vΩ) for every entry of the matrix, then [`Convention::from_canonical`] (G(n) = 4π S_x(2πn)
+/// by default). The Ω grid is that of the input density chart of the road's spectrum. A real coherence
+/// (every kind of [`crate::coherence`]) gives Q ≡ 0: the series is then left out of the log axis and its
+/// legend says so.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] for fewer than 20 points.
+pub fn input_cross_spectrum_charts(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<Vec<(String, LineChart)>> {
+    let crate::response::Excitation::Sources { sources, .. } = &sc.excitation else {
+        return Ok(Vec::new());
+    };
+    let Some(v) = sc.input.speed else { return Ok(Vec::new()) };
+    if opts.points < 20 {
+        return Err(Error::invalid(
+            "points",
+            opts.points,
+            "need at least 20 points per curve",
+        ));
+    }
+    let conv = opts.convention;
+    let mut out = Vec::new();
+    for (s, src) in sources.iter().enumerate() {
+        let crate::response::Source::Matrix(m) = src else {
+            continue;
+        };
+        if m.n_components() < 2 {
+            continue;
+        }
+        let Some(inp) = sc.inputs.get(s) else { continue };
+        let (lo, hi) = spectrum_range(inp.spectrum.as_ref(), &[]);
+        let grid = log_grid(lo, hi, opts.points, &[]);
+        let (a, b) = (m.component_name(0), m.component_name(1));
+        let (mut auto, mut co, mut quad, mut coh) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for &om in &grid {
+            let sm = m.matrix(om * v);
+            let x = |z: f64| conv.from_canonical(om, v * z);
+            auto.push(x(sm[(0, 0)].re));
+            co.push(x(sm[(0, 1)].re));
+            quad.push(x(-sm[(0, 1)].im));
+            coh.push((x(0.0).0, m.coherence_matrix(om * v)[(0, 1)].norm_sqr()));
+        }
+        let unit = opts.input_unit.clone().unwrap_or_else(|| inp.unit.clone());
+        let mut chart = LineChart::new(
+            format!("Cross-spectrum of {}: {}", inp.name, sc.title),
+            frequency_label(conv, Domain::Spatial),
+            density_label(conv, Domain::Spatial, &format!("{a} and {b}"), &unit).replacen(
+                "density",
+                "(cross-)density",
+                1,
+            ),
+        );
+        chart.log_x = true;
+        chart.log_y = true;
+        chart.max_decades = Some(8.0);
+        chart
+            .series
+            .push(Series::line(format!("density of each track, G_{a} = G_{b}"), auto));
+        let real = quad.iter().all(|p| p.1 == 0.0);
+        let co_name = if real {
+            format!("co-spectrum C = Re G_{a},{b}; quad-spectrum Q ≡ 0 (real coherence)")
+        } else {
+            format!("co-spectrum C = Re G_{a},{b}")
+        };
+        chart.series.push(Series::dashed(co_name, co));
+        if !real {
+            chart
+                .series
+                .push(Series::dashed(format!("quad-spectrum Q = −Im G_{a},{b}"), quad));
+        }
+        chart.secondary = Some(SecondaryAxis {
+            y_label: "squared coherence γ² [-]".into(),
+            series: vec![Series::line(format!("γ² of {a} and {b} (right axis)"), coh)],
+            hlines: Vec::new(),
+        });
+        chart.legend = Legend::LowerLeft;
+        out.push((inp.name.clone(), chart));
+    }
+    Ok(out)
 }
 
 /// Chart of the squared coherence γ²(n) = |S_LR|²/(S_LL S_RR) of every multi-component input of the

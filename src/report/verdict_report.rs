@@ -62,6 +62,15 @@ impl fmt::Display for VerdictAnalysis {
                 )?;
             }
             writeln!(f, "  units: a_w, k·a_w, A(8) in m/s² (rad/s² before k for rotations); VDV in m/s^1.75 (stationary Gaussian: (3T)^(1/4)·k·a_w)")?;
+            if let Some(k) = &c.non_gaussian_input {
+                writeln!(
+                    f,
+                    "  non-Gaussian input ({k}): the VDV column and the VDV verdicts below are those of a Gaussian \
+                     input with the same spectrum and do NOT hold (E a_w⁴ = κ_w σ_w⁴ with the weighted output's own \
+                     kurtosis κ_w > 3, not 3σ_w⁴); σ, a_w and A(8) hold. `stochvib simulate` prints the predicted \
+                     VDV (κ_w T)^(1/4)·σ_w beside the Monte Carlo VDV"
+                )?;
+            }
             for a in &c.axes {
                 if let Some(m) = a.msdv {
                     writeln!(

@@ -342,6 +342,48 @@ impl Excitation {
         }
     }
 
+    /// What the inputs are, for a reason that mentions their delays: "the inputs are delayed copies of one
+    /// process (wheels on a track)" for a track; for independent sources the sources themselves ("the inputs
+    /// are delayed tracks of a road of two tracks with a coherence", "… of 2 independent sources: …").
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::response::Excitation;
+    /// use stochvib::spectrum::{Domain, Exponential};
+    /// use std::sync::Arc;
+    /// let x = Arc::new(Exponential::new(1.0, 2.0, Domain::Temporal).unwrap());
+    /// let e = Excitation::track(x, vec![0.0, 0.1], vec![1.0, 1.0], 0.0).unwrap();
+    /// assert!(e.inputs_described().contains("delayed copies of one process"));
+    /// ```
+    pub fn inputs_described(&self) -> String {
+        match self {
+            Excitation::Track { .. } => "the inputs are delayed copies of one process (wheels on a track)".into(),
+            Excitation::Independent { spectra, .. } => {
+                format!("the inputs are {} independent processes", spectra.len())
+            }
+            Excitation::Sources { sources, .. } => {
+                let what = |s: &Source| match s.n_components() {
+                    1 => "one process".to_string(),
+                    2 => "a road of two tracks with a coherence".to_string(),
+                    k => format!("{k} correlated components with a cross-spectral matrix"),
+                };
+                match sources.as_slice() {
+                    [s] if s.n_components() > 1 => format!(
+                        "the inputs are delayed tracks of {} (left and right wheels at their positions), not \
+                         copies of one process",
+                        what(s)
+                    ),
+                    [s] => format!("the inputs are delayed copies of {}", what(s)),
+                    all => format!(
+                        "the inputs are delayed components of {} independent sources: {}",
+                        all.len(),
+                        all.iter().map(what).collect::<Vec<_>>().join(", ")
+                    ),
+                }
+            }
+        }
+    }
+
     /// Two-sided density of output row `h_row` (1 × m row of H(iω)) at ω: (H S_u Hᴴ).
     pub fn output_density(&self, h_row: &[Complex<f64>], omega: f64) -> f64 {
         match self {

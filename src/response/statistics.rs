@@ -186,7 +186,7 @@ pub fn analyze_output_with(
         methods.push(VarianceValue {
             method: VarianceMethod::Lyapunov,
             outcome: Outcome::NotApplicable {
-                reason: "the inputs are delayed copies of one process; see lyapunov (delays)".into(),
+                reason: format!("{}; see lyapunov (delays)", exc.inputs_described()),
             },
             rel_diff: None,
         });

@@ -430,9 +430,10 @@ pub fn augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<A
     if !exc.delay_free() {
         return Err(Error::NotApplicable {
             method: "exact (Lyapunov / integral-table) variance".into(),
-            reason: "inputs are delayed copies of one process: pure delays have no finite state-space form; \
-                     use quadrature"
-                .into(),
+            reason: format!(
+                "{}: pure delays have no finite state-space form; use quadrature",
+                exc.inputs_described()
+            ),
         });
     }
     if let Excitation::Sources { sources, .. } = exc {

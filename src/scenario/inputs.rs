@@ -16,6 +16,7 @@
 //! [[input]]                          # one process (a force, a base motion, a road felt by one wheel line)
 //! spectrum = "white-force"           # a catalogue name, a path or an inline table (as `[input] spectrum`)
 //! drives = [4]
+//! kurtosis = 6                       # optional, one process only: a non-Gaussian (Laplace moving average) source
 //! ```
 //! * `drives` may be left out only when there is one `[[input]]` table: it then drives every model input.
 //! * `tracks`, `positions`, `gains` default to the model's own layout for the driven inputs (a catalogue
@@ -30,6 +31,11 @@
 //!   formula [1 + (Ω B^a/Ω_p)^w]^{−p} gives); `tabulated` (`n` in cycles/m and `squared_coherence` or
 //!   `coherence_amplitude`, linear interpolation); `constant` (`coherence_amplitude`).
 //! * Every model input is driven by exactly one table; the sources are independent of each other.
+//! * `kurtosis = κ` (κ ≥ 3) in a table of one process makes that source a Laplace moving average of marginal
+//!   kurtosis κ with the same spectrum ([`LaplaceMovingAverage`](crate::simulate::LaplaceMovingAverage));
+//!   Monte Carlo runs then draw every source the Laplace way (the others with κ = 3, Gaussian). A road of
+//!   two tracks refuses it: mixing two Laplace moving averages to the prescribed coherence would not keep
+//!   the prescribed kurtosis of each track.
 
 use super::catalogue::{Catalogue, SpectrumOrigin};
 use super::scenario_file::{quantity_in_unit, resolution_reason, ScenarioInput};
@@ -49,7 +55,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 /// The keys of an `[[input]]` table.
-const INPUT_KEYS: [&str; 9] = [
+const INPUT_KEYS: [&str; 10] = [
     "name",
     "spectrum",
     "road",
@@ -59,6 +65,7 @@ const INPUT_KEYS: [&str; 9] = [
     "tracks",
     "positions",
     "gains",
+    "kurtosis",
 ];
 
 /// The common `speed` of the `[[input]]` tables (m/s), if any gives one.
@@ -492,6 +499,17 @@ pub(crate) fn parse_inputs(
                 },
             ));
         }
+        let kurtosis = super::scenario_file::input_kurtosis(&inf)?;
+        if let (Some(_), Source::Matrix(_)) = (kurtosis, &source) {
+            return Err(inf.error(
+                "kurtosis",
+                inf.get("kurtosis").map_or(String::new(), |v| v.to_string()),
+                "a non-Gaussian road of two tracks with a coherence is not available: a Laplace moving average per \
+                 track mixed to the prescribed cross-spectrum would not keep the prescribed kurtosis, and no sound \
+                 construction of a non-Gaussian pair with a given coherence is implemented; give `kurtosis` to an \
+                 [[input]] of one process (spectrum = …), or use a Gaussian road",
+            ));
+        }
         inf.finish()?;
         sources.push(source);
         inputs.push(ScenarioInput {
@@ -504,7 +522,7 @@ pub(crate) fn parse_inputs(
             mean,
             name,
             coherence,
-            kurtosis: None,
+            kurtosis,
         });
     }
     let maps = maps

@@ -40,7 +40,9 @@
 //! Bogsjö, Podgórski & Rychlik 2012). The analytic results (σ, densities, Rice rates of the Gaussian law)
 //! do not change; Monte Carlo runs (`simulate`, `analyze --monte-carlo`) synthesise it on the spectral route,
 //! store κ in the run's generator name and its identity (`input_kurtosis`) and note ν and each output's
-//! kurtosis. Not yet for `[[input]]` tables.
+//! kurtosis, and with comfort verdicts the predicted VDV (κ_w T)^{1/4}σ_w of each weighted output beside the
+//! Monte Carlo VDV. An `[[input]]` table of one process takes `kurtosis` too (its source alone is
+//! non-Gaussian); a road of two tracks refuses it ([`super::inputs`]).
 //!
 //! Spectra named in `[input] spectrum` are resolved by the one rule of [`Catalogue`]; the scenario keeps the
 //! spectrum's unit, where it came from and the catalogue directory.
@@ -201,12 +203,31 @@ impl Scenario {
                 ),
             ]);
         }
-        if let Some(k) = self.input.kurtosis {
-            input.kurtosis = Some(k);
-            input.provenance.push(Provenance::identity(
+        input.kurtosis = self.process_kurtosis();
+        match (&self.excitation, self.input.kurtosis) {
+            (Excitation::Sources { .. }, _) => {
+                // `[[input]]` tables: the kurtosis of each table that gives one
+                let given: Vec<String> = self
+                    .inputs
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, inp)| inp.kurtosis.map(|k| format!("input[{i}] `{}`: {k}", inp.name)))
+                    .collect();
+                if !given.is_empty() {
+                    input.provenance.push(Provenance::identity(
+                        "input_kurtosis",
+                        format!(
+                            "{} (Laplace moving averages with their inputs' spectra; the other inputs Gaussian)",
+                            given.join("; ")
+                        ),
+                    ));
+                }
+            }
+            (_, Some(k)) => input.provenance.push(Provenance::identity(
                 "input_kurtosis",
                 format!("{k} (Laplace moving average with the input's spectrum)"),
-            ));
+            )),
+            (_, None) => {}
         }
         input.source_files.push(self.path.clone());
         for inp in &self.inputs {
@@ -217,6 +238,25 @@ impl Scenario {
             }
         }
         input
+    }
+
+    /// The kurtosis of every independent process a run draws, in the order of
+    /// [`Excitation::spectra`] ([`RunInput::kurtosis`]): `[input] kurtosis` for each of them; for `[[input]]`
+    /// tables each table's `kurtosis` for its source's components; empty when every input is Gaussian.
+    pub fn process_kurtosis(&self) -> Vec<Option<f64>> {
+        let per: Vec<Option<f64>> = match &self.excitation {
+            Excitation::Sources { sources, .. } if sources.len() == self.inputs.len() => sources
+                .iter()
+                .zip(&self.inputs)
+                .flat_map(|(s, inp)| vec![inp.kurtosis; s.n_components()])
+                .collect(),
+            e => vec![self.input.kurtosis; e.spectra().len()],
+        };
+        if per.iter().any(Option::is_some) {
+            per
+        } else {
+            Vec::new()
+        }
     }
 
     /// Runs a Monte Carlo batch of this scenario into the HDF5 file `out` ([`crate::simulate::run()`]).
@@ -401,7 +441,7 @@ pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Doc
 
 /// `[input] kurtosis`: absent (Gaussian), or a finite number ≥ 3, else an error naming the file, the key, the
 /// value and the reason.
-fn input_kurtosis(inf: &Fields) -> Result<Option<f64>> {
+pub(super) fn input_kurtosis(inf: &Fields) -> Result<Option<f64>> {
     let Some(v) = inf.get("kurtosis") else {
         return Ok(None);
     };

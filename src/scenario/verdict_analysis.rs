@@ -70,6 +70,10 @@ pub struct ComfortVerdict {
     /// The verdict: A(8) and VDV of the dominant axis against the action and limit values, the ISO
     /// 2631-1 Annex B zone, and (comfort) the Annex C reactions to a_v.
     pub verdict: ExposureVerdict,
+    /// For a non-Gaussian input (`kurtosis`): the inputs' kurtosis as written. The VDV values above are
+    /// then those of a Gaussian input with the same spectrum and do not hold (E a_w⁴ = κ_w σ_w⁴ with the
+    /// weighted output's own kurtosis κ_w); a Monte Carlo run states the predicted (κ_w T)^{1/4}σ_w.
+    pub non_gaussian_input: Option<String>,
 }
 
 /// One spectral method's answer.
@@ -238,7 +242,13 @@ fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> 
         &spec.limits,
         &HealthGuidanceZone::ISO_2631_1,
     )?;
+    let given: Vec<String> = sc
+        .inputs
+        .iter()
+        .filter_map(|i| i.kurtosis.map(|k| format!("{} kurtosis {k}", i.name)))
+        .collect();
     Ok(ComfortVerdict {
+        non_gaussian_input: (!given.is_empty()).then(|| given.join(", ")),
         purpose: spec.purpose,
         exposure_s: t,
         dominant: dom.output.clone(),

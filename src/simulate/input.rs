@@ -116,10 +116,12 @@ pub struct RunInput<'a> {
     /// Verdict channels evaluated on every realization (ISO 2631-1 metrics, rainflow damage); empty for
     /// none.
     pub verdicts: super::VerdictChannels,
-    /// Marginal kurtosis of every input process: `None` (the default) for Gaussian processes; `Some(κ)`,
-    /// κ ≥ 3, for Laplace moving averages with the same spectra ([`LaplaceMovingAverage`](super::LaplaceMovingAverage)),
-    /// simulated on the spectral route (κ = 3 is the Gaussian law drawn the Laplace way).
-    pub kurtosis: Option<f64>,
+    /// Marginal kurtosis of the input processes, one entry per independent process the run draws (its
+    /// generators: the excitation's spectra in the order of [`Excitation::spectra`]): empty (the default) or
+    /// all `None` for Gaussian processes; `Some(κ)`, κ ≥ 3, for a Laplace moving average with that process's
+    /// spectrum ([`LaplaceMovingAverage`](super::LaplaceMovingAverage)). A run with any `Some` is simulated on
+    /// the spectral route, its `None` processes drawn the Laplace way with κ = 3 (the Gaussian law).
+    pub kurtosis: Vec<Option<f64>>,
 }
 
 impl<'a> RunInput<'a> {
@@ -140,7 +142,28 @@ impl<'a> RunInput<'a> {
             provenance: vec![Provenance::identity("excitation", describe(excitation))],
             source_files: Vec::new(),
             verdicts: super::VerdictChannels::default(),
-            kurtosis: None,
+            kurtosis: Vec::new(),
+        }
+    }
+
+    /// Whether any input process is non-Gaussian (a `Some` in [`RunInput::kurtosis`]).
+    pub fn is_non_gaussian(&self) -> bool {
+        self.kurtosis.iter().any(Option::is_some)
+    }
+
+    /// The kurtosis as written in notes and the generator name: `κ` when every process has the same `Some(κ)`,
+    /// else one entry per process (`3 (Gaussian)` for `None`), e.g. `[6, 3 (Gaussian)]`.
+    pub(crate) fn kurtosis_text(&self) -> String {
+        match self.kurtosis.first() {
+            Some(Some(k)) if self.kurtosis.iter().all(|x| *x == Some(*k)) => format!("{k}"),
+            _ => format!(
+                "[{}] per input process",
+                self.kurtosis
+                    .iter()
+                    .map(|k| k.map_or("3 (Gaussian)".to_string(), |k| format!("{k}")))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
         }
     }
 }

@@ -392,8 +392,13 @@ fn finish_verdicts(
         confidence,
     )?;
     for (output, mut extra) in comfort {
-        if let Some(vdv) = stored(&output, "vdv")?.analytic {
+        let st = stored(&output, "vdv")?;
+        if let Some(vdv) = st.analytic {
             set_analytic(&mut extra, "vdv", vdv);
+        }
+        // the stored method says which law the analytic value is of (Gaussian or non-Gaussian)
+        if let Some(v) = extra.iter_mut().find(|s| s.name == "vdv") {
+            v.method = st.method.clone();
         }
         if let Some(st) = stats.iter_mut().find(|s| s.output == output) {
             st.statistics.extend(extra);

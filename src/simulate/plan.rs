@@ -35,6 +35,9 @@ pub(crate) struct PlannedOutput {
     pub analytic_variance: f64,
     /// Exact variance of the simulated discretised process.
     pub discrete_variance: f64,
+    /// Exact marginal kurtosis E y⁴/(E y²)² of the simulated process when an input is non-Gaussian (a
+    /// Laplace moving average, [`laplace_generators`]); `None` for Gaussian inputs (kurtosis 3).
+    pub kurtosis: Option<f64>,
 }
 
 /// Everything a run needs besides the file: the route's engine, sizes, outputs and remarks.
@@ -147,7 +150,8 @@ impl RouteChoice {
     /// has a shaping filter.
     fn choose(input: &RunInput, opts: &RunOptions, idx: &[usize]) -> Result<RouteChoice> {
         let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
-        if let Some(k) = input.kurtosis {
+        if input.is_non_gaussian() {
+            let k = input.kurtosis_text();
             return match opts.route {
                 Route::Auto | Route::Spectral => Ok(RouteChoice {
                     exact: None,
@@ -181,9 +185,11 @@ impl RouteChoice {
             },
             Route::Auto if !exc.delay_free() => RouteChoice {
                 exact: None,
-                reason: "spectral route: the inputs are delayed copies of one process (wheels on a track), which \
-                         the exact route cannot represent"
-                    .into(),
+                reason: format!(
+                    "spectral route: {}, which the exact route cannot represent (pure delays have no finite \
+                     state-space form)",
+                    exc.inputs_described()
+                ),
             },
             Route::Auto => match augmented_response(sys, exc, idx, dt) {
                 Ok(gm) => RouteChoice {
@@ -226,7 +232,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
     let streamed = match (opts.route, whole) {
         (Route::SpectralStream, _) => true,
         (_, Ok(())) => false,
-        (_, Err(e)) if choice.exact.is_some() || records || input.kurtosis.is_some() => return Err(e),
+        (_, Err(e)) if choice.exact.is_some() || records || input.is_non_gaussian() => return Err(e),
         (_, Err(e)) => {
             choice.reason = format!(
                 "{}; streamed spectral route: the whole-record spectral route does not fit ({e})",
@@ -275,6 +281,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
                 signal: Signal::new(&f.info.name, &f.info.unit),
                 analytic_variance: f.variance,
                 discrete_variance: cov[(r, r)],
+                kurtosis: None,
             })
             .collect();
         notes.push(
@@ -308,15 +315,17 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
             memory_bytes,
         });
     }
-    let (engine, discrete, autocov) = spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len())?;
+    let (engine, discrete, autocov, kurtosis) = spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len())?;
     let outputs = finite
         .into_iter()
         .zip(discrete)
-        .map(|(f, dv)| PlannedOutput {
+        .enumerate()
+        .map(|(r, (f, dv))| PlannedOutput {
             index: f.index,
             signal: Signal::new(&f.info.name, &f.info.unit),
             analytic_variance: f.variance,
             discrete_variance: dv,
+            kurtosis: kurtosis.get(r).copied(),
         })
         .collect();
     Ok(Plan {
@@ -328,7 +337,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
         outputs,
         skipped,
         notes,
-        generator: match input.kurtosis {
+        generator: match input.is_non_gaussian().then(|| input.kurtosis_text()) {
             None => format!(
                 "{}, stream (seed, i) per realization; spectral representation (Rayleigh amplitudes) on an FFT grid \
                  of N = {n}, first-order-hold response (periodic steady state, frequency domain)",
@@ -480,6 +489,7 @@ fn streamed_plan(
             signal: Signal::new(&f.info.name, &f.info.unit),
             analytic_variance: f.variance,
             discrete_variance: *dv,
+            kurtosis: None,
         })
         .collect();
     Ok(Plan {
@@ -572,8 +582,10 @@ struct SpectralInput {
 }
 
 /// The spectral engine: one generator per independent process, the inputs as (generator, gain, shift), and
-/// the discrete transfer gains from every generator's coefficients to every output; returns the engine and
-/// the exact variance of each simulated (grid, first-order-hold, periodic) output process.
+/// the discrete transfer gains from every generator's coefficients to every output; returns the engine, the
+/// exact variance of each simulated (grid, first-order-hold, periodic) output process, its autocovariance,
+/// and (non-Gaussian inputs only; empty otherwise) its exact kurtosis.
+#[allow(clippy::type_complexity)]
 fn spectral_engine(
     input: &RunInput,
     opts: &RunOptions,
@@ -581,7 +593,7 @@ fn spectral_engine(
     outputs: &[usize],
     notes: &mut Vec<String>,
     lags: usize,
-) -> Result<(Engine, Vec<f64>, Vec<Vec<f64>>)> {
+) -> Result<(Engine, Vec<f64>, Vec<Vec<f64>>, Vec<f64>)> {
     let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
     let ss = sys.state_space().ok_or_else(|| Error::Numerical {
         what: "spectral Monte Carlo".into(),
@@ -606,9 +618,10 @@ fn spectral_engine(
          sampled at Δω = 2π/(NΔt)); `discrete σ` is the exact σ of that simulated process"
             .into(),
     );
-    let laplace = match input.kurtosis {
-        None => vec![],
-        Some(k) => laplace_generators(exc, &generators, &gains, k, outputs, sys, notes)?,
+    let (laplace, kurtosis) = if input.is_non_gaussian() {
+        laplace_generators(exc, &generators, &gains, &input.kurtosis, outputs, sys, notes)?
+    } else {
+        (vec![], vec![])
     };
     Ok((
         Engine::Spectral {
@@ -624,40 +637,71 @@ fn spectral_engine(
         },
         discrete,
         autocov,
+        kurtosis,
     ))
 }
 
-/// The Laplace moving averages of a non-Gaussian run, one per generator (each with the prescribed kurtosis
-/// `k`), and a note per generator (its ν) and per output (its kurtosis, from the cumulants of the filtered
-/// moving averages, [`LaplaceMovingAverage::filtered_cumulants`](super::LaplaceMovingAverage::filtered_cumulants)).
+/// The Laplace moving averages of a non-Gaussian run, one per generator (generator g with the kurtosis
+/// `kurtosis[g]`, κ = 3 for `None`), a note per generator (its ν) and per output (its kurtosis), and the exact
+/// kurtosis of every simulated output process.
+///
+/// # Formula
+/// Output r is y = Σ_g Σ_m g^{(g)}_m ε^{(g)}_{k−m}, a sum of independent filtered Laplace moving averages;
+/// fourth cumulants and variances add over the generators
+/// ([`LaplaceMovingAverage::filtered_cumulants`](super::LaplaceMovingAverage::filtered_cumulants)):
+/// ```text
+/// κ_y = 3 + Σ_g 3ν̃_g Σ_l (g^{(g)}_l)⁴ / (Σ_g Σ_l (g^{(g)}_l)²)²
+/// ```
+/// For one generator this is κ_y − 3 = (κ_x − 3)·r_y/r_x with r = Σg⁴/(Σg²)² the kernel ratios of output and
+/// input (since 3ν̃ = (κ_x − 3)/r_x): the continuous form (κ_x − 3)·[∫g⁴/(∫g²)²]/[∫f⁴/(∫f²)²], g = h * f.
 ///
 /// # Errors
-/// A multi-component source (two tracks with a coherence): its mixed components would not have the
-/// prescribed kurtosis; the errors of [`LaplaceMovingAverage::from_generator`](super::LaplaceMovingAverage::from_generator).
+/// A non-Gaussian component of a multi-component source (two tracks with a coherence): its mixed components
+/// would not have the prescribed kurtosis; a kurtosis list whose length is not the number of generators; the
+/// errors of [`LaplaceMovingAverage::from_generator`](super::LaplaceMovingAverage::from_generator).
 fn laplace_generators(
     exc: &Excitation,
     generators: &[SpectralGenerator],
     gains: &Gains,
-    k: f64,
+    kurtosis: &[Option<f64>],
     outputs: &[usize],
     sys: &dyn FrequencyResponse,
     notes: &mut Vec<String>,
-) -> Result<Vec<super::LaplaceMovingAverage>> {
+) -> Result<(Vec<super::LaplaceMovingAverage>, Vec<f64>)> {
+    if kurtosis.len() != generators.len() {
+        return Err(Error::invalid(
+            "kurtosis",
+            format!("{kurtosis:?}"),
+            format!(
+                "one kurtosis per independent input process: the excitation has {} processes",
+                generators.len()
+            ),
+        ));
+    }
     if let Excitation::Sources { sources, .. } = exc {
-        if sources.iter().any(|s| s.n_components() > 1) {
-            return Err(Error::invalid(
-                "kurtosis",
-                k,
-                "a non-Gaussian input is not available for a source of several correlated components (two tracks \
-                 with a coherence) yet: the mixed track would not have the prescribed kurtosis",
-            ));
+        let mut g = 0;
+        for s in sources {
+            let m = s.n_components();
+            if m > 1 {
+                if let Some(k) = kurtosis[g..g + m].iter().flatten().next() {
+                    return Err(Error::invalid(
+                        "kurtosis",
+                        k,
+                        "a non-Gaussian input is not available for a source of several correlated components (two \
+                         tracks with a coherence): the mixed track would not have the prescribed kurtosis",
+                    ));
+                }
+            }
+            g += m;
         }
     }
     let lma = generators
         .iter()
-        .map(|g| super::LaplaceMovingAverage::from_generator(g.clone(), k))
+        .zip(kurtosis)
+        .map(|(g, k)| super::LaplaceMovingAverage::from_generator(g.clone(), k.unwrap_or(3.0)))
         .collect::<Result<Vec<_>>>()?;
-    for (i, l) in lma.iter().enumerate() {
+    for (i, (l, k)) in lma.iter().zip(kurtosis).enumerate() {
+        let Some(k) = k else { continue };
         notes.push(format!(
             "non-Gaussian input {i}: Laplace moving average (Bogsjö, Podgórski & Rychlik 2012) of kurtosis {k}, same \
              spectrum as the Gaussian input; kernel ratio Σf⁴/(Σf²)² = {:.4e}, ν = {:.4e} steps = {:.4e} s (Gamma \
@@ -673,6 +717,7 @@ fn laplace_generators(
         ));
     }
     let names = sys.outputs();
+    let mut out = Vec::with_capacity(outputs.len());
     for (r, &o) in outputs.iter().enumerate() {
         let (mut k4, mut var) = (0.0, 0.0);
         for (l, g) in lma.iter().zip(gains) {
@@ -680,16 +725,18 @@ fn laplace_generators(
             k4 += a;
             var += b;
         }
+        let kappa = if var > 0.0 { 3.0 + k4 / (var * var) } else { 3.0 };
         if var > 0.0 {
             notes.push(format!(
                 "non-Gaussian response: kurtosis of `{}` (simulated process) = {:.6} (Gaussian: 3); σ is that of the \
                  Gaussian input, extremes and VDV are not",
                 names.get(o).map(|i| i.name.as_str()).unwrap_or("?"),
-                3.0 + k4 / (var * var)
+                kappa
             ));
         }
+        out.push(kappa);
     }
-    Ok(lma)
+    Ok((lma, out))
 }
 
 /// Autocovariance at lags 0..lags of the periodic process whose variance per bin is `power[j]`

@@ -276,7 +276,8 @@ fn realize_with_verdicts(
 }
 
 /// The verdict statistics (appended to their outputs' statistics; the analytic VDV is (3T)^{1/4}·σ_d of
-/// the simulated discretised weighted output) and the rainflow histograms, from the accumulators.
+/// the simulated discretised weighted output, (κ_w T)^{1/4}·σ_d with its exact kurtosis κ_w for a
+/// non-Gaussian input) and the rainflow histograms, from the accumulators.
 fn finish_verdicts(
     input: &RunInput,
     writer: &RunWriter,
@@ -301,8 +302,13 @@ fn finish_verdicts(
     )?;
     for (output, mut extra) in comfort {
         if let Some(o) = plan.outputs.iter().find(|o| o.signal.name == output) {
-            let vdv = (3.0 * duration).powf(0.25) * o.discrete_variance.sqrt();
-            super::verdicts::set_analytic(&mut extra, "vdv", vdv);
+            match o.kurtosis {
+                None => {
+                    let vdv = (3.0 * duration).powf(0.25) * o.discrete_variance.sqrt();
+                    super::verdicts::set_analytic(&mut extra, "vdv", vdv);
+                }
+                Some(kappa) => super::verdicts::set_non_gaussian_vdv(&mut extra, kappa, o.discrete_variance, duration),
+            }
         }
         if let Some(st) = stats.iter_mut().find(|s| s.output == output) {
             st.statistics.extend(extra);

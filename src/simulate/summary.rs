@@ -91,6 +91,50 @@ impl std::fmt::Display for RunSummary {
                 100.0 * iv.confidence
             )?;
         }
+        // comfort verdicts: the predicted VDV (its law's fourth moment) beside the Monte Carlo VDV
+        let t = self.n_samples as f64 * self.dt_s;
+        let mut header = false;
+        for o in &self.outputs {
+            let (Some(v), Some(d)) = (o.get("vdv"), o.get("sigma_discrete")) else {
+                continue;
+            };
+            if !header {
+                writeln!(
+                    f,
+                    "{:<14} {:>13} {:>13} {:>27}  covers   (VDV in m/s^1.75 over T = {} s)",
+                    "VDV of", "predicted", "MC VDV", "interval", t
+                )?;
+                header = true;
+            }
+            let iv = &v.interval;
+            // the law of the prediction: κ_w = VDV⁴/(T σ_d⁴) (3 for a Gaussian output)
+            let law = match (v.analytic, d.analytic) {
+                (Some(a), Some(sd)) if sd > 0.0 && t > 0.0 => {
+                    let k = a.powi(4) / (t * sd.powi(4));
+                    if v.method.contains("non-Gaussian") {
+                        format!("(κ_w T)^(1/4)·σ_w, κ_w = {k:.4} (non-Gaussian input)")
+                    } else {
+                        "(3T)^(1/4)·σ_w (Gaussian)".to_string()
+                    }
+                }
+                _ => String::new(),
+            };
+            writeln!(
+                f,
+                "{:<14} {:>13.6e} {:>13.6e} [{:.6e}, {:.6e}]  {} ({} %)  {law}",
+                o.output,
+                v.analytic.unwrap_or(f64::NAN),
+                iv.estimate,
+                iv.lower,
+                iv.upper,
+                match v.covers {
+                    Some(true) => "yes",
+                    Some(false) => "NO",
+                    None => "-",
+                },
+                100.0 * iv.confidence
+            )?;
+        }
         for s in &self.skipped {
             writeln!(f, "skipped   {}: {}", s.name, s.reason)?;
         }

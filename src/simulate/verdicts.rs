@@ -78,6 +78,31 @@ pub fn set_analytic(stats: &mut [Statistic], name: &str, analytic: f64) {
     }
 }
 
+/// Sets the analytic VDV of a weighted output of kurtosis `kurtosis` (a non-Gaussian input: a Laplace moving
+/// average) and says so in the statistic's method: the Gaussian (3T)^{1/4}σ_w does not hold.
+///
+/// # Formula
+/// For a stationary a_w(t) of variance σ_w² and kurtosis κ_w = E a⁴/σ_w⁴, sampled at N steps Δt (T = NΔt):
+/// ```text
+/// E[VDV⁴] = E[Σ_k a_k⁴ Δt] = T·E a⁴ = κ_w σ_w⁴ T,     analytic VDV = (κ_w T)^{1/4} σ_w
+/// ```
+/// (exact for the stationary simulated process, whatever its law; κ_w = 3 is the Gaussian value).
+pub fn set_non_gaussian_vdv(stats: &mut [Statistic], kurtosis: f64, variance: f64, duration_s: f64) {
+    set_analytic(stats, "vdv", (kurtosis * duration_s).powf(0.25) * variance.sqrt());
+    if let Some(s) = stats.iter_mut().find(|s| s.name == "vdv") {
+        s.method = non_gaussian_vdv_method(kurtosis);
+    }
+}
+
+/// The method text of a non-Gaussian `vdv` statistic (see [`set_non_gaussian_vdv`]).
+pub fn non_gaussian_vdv_method(kurtosis: f64) -> String {
+    format!(
+        "VDV_i = (Σ a_w⁴ Δt)^(1/4) per realization; Student-t interval of the mean of VDV_i⁴, raised to 1/4; \
+         analytic = (κ_w T)^(1/4)·σ_w of the stationary non-Gaussian weighted output, κ_w = {kurtosis:.6} its \
+         kurtosis (Laplace moving average input; E a⁴ = κ_w σ⁴, not the Gaussian 3σ⁴)"
+    )
+}
+
 /// The rainflow histogram of a fatigue channel (the stored record).
 pub use crate::store::RainflowHistogram as RainflowSummary;
 
