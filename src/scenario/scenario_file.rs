@@ -106,7 +106,8 @@ pub struct ScenarioInput {
     pub name: String,
     /// For a road of two tracks: the coherence model and track width, described.
     pub coherence: Option<String>,
-    /// `[input] kurtosis`: the marginal kurtosis κ ≥ 3 of a non-Gaussian input (a Laplace moving average with
+    /// `[input] kurtosis` (or `[[input]] kurtosis` of a one-process table): the marginal kurtosis κ ≥ 3 of a
+    /// non-Gaussian input (a Laplace moving average with
     /// the same spectrum, [`LaplaceMovingAverage`](crate::simulate::LaplaceMovingAverage)); `None` (key
     /// absent) for a Gaussian input. Monte Carlo runs honour it; the analytic statistics (σ, spectra) are the
     /// same for any κ.

@@ -9,7 +9,7 @@
 //!   spectrum through any system with memory independent of the record length ([`FirSynthesis`]).
 //! * A non-Gaussian input with the same spectrum and a prescribed kurtosis: the Laplace moving average of
 //!   Bogsjö, Podgórski and Rychlik (2012) on the spectral grid ([`LaplaceMovingAverage`]; a run takes it from
-//!   [`RunInput::kurtosis`], a scenario from `[input] kurtosis`).
+//!   [`RunInput::kurtosis`], one per generator; a scenario from `[input] kurtosis` or `[[input]] kurtosis`).
 //! * Time response: exact zero/first-order-hold discretisation ([`zoh`], [`foh`], [`SampledSystem`]) and
 //!   Van Loan's white-noise discretisation of the system augmented with its input filters
 //!   ([`van_loan`], [`augmented_response`]) — no time-step bias.

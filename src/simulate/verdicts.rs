@@ -13,6 +13,8 @@
 //! VDV:   E[VDV_i⁴] = 3 σ_w⁴ T exactly for a stationary Gaussian a_w(t) (E a⁴ = 3σ⁴), so the Student-t
 //!        interval of the mean of VDV_i⁴, raised to the power 1/4, is an interval for (3T)^{1/4} σ_w
 //!        (ISO 2631-1:1997 6.3.2; the Gaussian value is the "estimated VDV" (3T)^{1/4} a_w of its 6.3.2 note);
+//!        for a non-Gaussian input (Laplace moving average) E[VDV_i⁴] = κ_w σ_w⁴ T with the weighted output's
+//!        kurtosis κ_w, and the analytic value is (κ_w T)^{1/4} σ_w ([`set_non_gaussian_vdv`]);
 //! MTVV, CF: Student-t interval of the mean over realizations (no closed form is claimed).
 //! ```
 //! A fatigue channel is a run output y(t) times a stress factor s (stress = s·y, in the S–N curve's unit).
