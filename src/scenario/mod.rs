@@ -9,6 +9,7 @@ pub mod generic;
 pub mod inputs;
 pub mod reference;
 mod registry;
+pub mod replay;
 pub mod scenario_file;
 pub mod spectrum_file;
 pub mod sweep;
