@@ -523,3 +523,62 @@ fn bad_replays_name_the_file_the_key_the_value_and_the_reason() {
         .to_string()
         .contains("already exists"));
 }
+
+/// A Monte Carlo run of a scenario whose road spectrum is `measured-profile` records the CSV (name as
+/// written, size, CRC-32) in its identifying provenance: after one elevation of the CSV changes, the
+/// interrupted run is refused naming `measured_profile`; with the CSV restored it resumes.
+#[test]
+fn a_resume_after_the_measured_profile_changed_is_refused() {
+    let _serial = common::hdf5_serial(); // no fork while a file is open
+    let d = std::env::temp_dir().join(format!("stochvib-replay-identity-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    let csv_text = std::fs::read_to_string(root().join("data/measured-profile.csv")).unwrap();
+    std::fs::write(d.join("profile.csv"), &csv_text).unwrap();
+    let scen_text = std::fs::read_to_string(root().join("data/quarter-car.toml"))
+        .unwrap()
+        .replace(
+            "spectrum = \"iso8608-c\"",
+            "spectrum = { kind = \"measured-profile\", file = \"profile.csv\", track = \"right\" }",
+        );
+    assert!(
+        scen_text.contains("measured-profile"),
+        "the scenario names its spectrum"
+    );
+    let scen = d.join("quarter.toml");
+    std::fs::write(&scen, scen_text).unwrap();
+    let load = || load_scenario(&scen, &root().join("spectra")).unwrap();
+    let prov = load().run_input().provenance;
+    let id = prov.iter().find(|p| p.name == "measured_profile").expect("recorded");
+    assert!(id.identifies);
+    let crc = stochvib::store::checksum::crc32(csv_text.as_bytes());
+    assert_eq!(
+        id.text,
+        format!("profile.csv ({} bytes, CRC-32 {crc:08x})", csv_text.len())
+    );
+    let mut opts = stochvib::simulate::RunOptions::new(8, 2.0, 0.01, 11);
+    opts.shard_size = 2;
+    let out = d.join("run.h5");
+    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let _ = load().simulate(&opts, &out, &|done, _| {
+            if done >= 2 {
+                panic!("interrupted");
+            }
+        });
+    }));
+    assert!(r.is_err() && stochvib::store::tmp_path(&out).exists());
+    // one elevation of the right track, 0.001 mm higher: same size, other CRC
+    let edited = csv_text.replace("0.05,-19.091,-9.676", "0.05,-19.091,-9.675");
+    assert_ne!(edited, csv_text);
+    std::fs::write(d.join("profile.csv"), &edited).unwrap();
+    let err = load().simulate(&opts, &out, &|_, _| {}).unwrap_err().to_string();
+    assert!(
+        err.contains("measured_profile (changed since the interrupted run)"),
+        "{err}"
+    );
+    // restored: the run resumes
+    std::fs::write(d.join("profile.csv"), &csv_text).unwrap();
+    let s = load().simulate(&opts, &out, &|_, _| {}).unwrap();
+    assert_eq!(s.resumed_shards, 2);
+    let _ = std::fs::remove_dir_all(&d);
+}

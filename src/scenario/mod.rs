@@ -7,6 +7,7 @@
 mod catalogue;
 pub mod generic;
 pub mod inputs;
+mod profile_identity;
 pub mod reference;
 mod registry;
 pub mod replay;
