@@ -582,3 +582,62 @@ fn a_resume_after_the_measured_profile_changed_is_refused() {
     assert_eq!(s.resumed_shards, 2);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// `stochvib replay SCENARIO PROFILE --json -o history.csv`: the report as JSON (every reported output with
+/// its replayed and analytic σ) and the history file; `--speed 0` fails naming the option.
+#[test]
+fn the_replay_command_prints_the_report_and_writes_the_history() {
+    let out = tmp("cli-history.csv");
+    let _ = std::fs::remove_file(&out);
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+            .current_dir(root())
+            .env("STOCHVIB_SPECTRA", root().join("spectra"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let o = run(&[
+        "replay",
+        "data/quarter-car.toml",
+        "data/measured-profile.csv",
+        "--speed",
+        "15",
+        "--json",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(j["replay"]["speed_m_s"], 15.0);
+    let outputs = j["outputs"].as_array().unwrap();
+    assert_eq!(outputs.len(), 4);
+    // the same numbers as the library call (JSON round-trips f64 exactly)
+    let sc = load_scenario(&root().join("data/quarter-car.toml"), &root().join("spectra")).unwrap();
+    let opts = ScenarioReplayOptions {
+        speed_m_s: Some(15.0),
+        ..Default::default()
+    };
+    let lib = replay_scenario(&sc, &root().join("data/measured-profile.csv"), &opts).unwrap();
+    for (x, l) in outputs.iter().zip(&lib.outputs) {
+        assert_eq!(x["name"], l.replayed.name.as_str());
+        assert_eq!(
+            x["sigma"].as_f64().unwrap().to_bits(),
+            l.replayed.sigma.to_bits(),
+            "{x}"
+        );
+        assert_eq!(x["analytic_sigma"].as_f64(), l.analytic_sigma, "{x}");
+    }
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with("time [s], distance [m], body [m]"));
+    let o = run(&[
+        "replay",
+        "data/quarter-car.toml",
+        "data/measured-profile.csv",
+        "--speed",
+        "0",
+    ]);
+    assert!(!o.status.success());
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("speed") && e.contains("> 0"), "{e}");
+}

@@ -12,7 +12,7 @@ impl fmt::Display for ScenarioReplay {
         writeln!(f, "profile   {} (detrend {:?})", self.profile.display(), self.detrend)?;
         writeln!(
             f,
-            "replay    v = {} m/s, Δx = {} m, Δt = Δx/v = {:.6e} s (first-order hold, exact between samples); {} samples, \
+            "replay    v = {} m/s, Δx = {:.6} m, Δt = Δx/v = {:.6e} s (first-order hold, exact between samples); {} samples, \
              start {:?}",
             r.speed_m_s, r.step_m, r.dt_s, r.n_samples, r.start
         )?;

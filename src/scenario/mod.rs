@@ -3,6 +3,8 @@
 //!
 //! Every value read from a file is validated; an error names the file, the dotted key, the value as
 //! written and the reason ([`Error::File`](crate::Error::File)).
+//!
+//! [`replay`] replays a measured road profile through a scenario's model (`stochvib replay`).
 
 mod catalogue;
 pub mod generic;
