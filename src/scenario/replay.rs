@@ -195,7 +195,15 @@ fn measured_text(
             ));
         }
     }
-    Ok((toml::to_string(&root).unwrap_or_default(), analytic_track))
+    let text = toml::to_string(&root).map_err(|e| {
+        file_error(
+            file,
+            "input",
+            "…",
+            format!("cannot rewrite the scenario with the measured density: {e}"),
+        )
+    })?;
+    Ok((text, analytic_track))
 }
 
 /// The wheel of every model input of the measured scenario `s` at speed `speed`.
