@@ -747,3 +747,51 @@ fn a_two_track_run_says_what_its_inputs_are() {
     assert!(text.contains("road of two tracks"), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A road of two tracks under the full vehicle: `track_width` is the distance between the wheel tracks,
+/// which the vehicle fixes (its own `track_width`). A different value would give the coherence of tracks
+/// that are not the ones the wheels run on: refused, naming the file, the key, the value and the model's
+/// width. Left out, the model's width is used (the same analysis as writing it).
+#[test]
+fn a_road_track_width_other_than_the_vehicles_is_refused() {
+    let text = std::fs::read_to_string(root().join("data/full-vehicle-two-tracks.toml")).unwrap();
+    assert!(
+        text.contains("track_width = \"1.5 m\", coherence"),
+        "the file's road names its width"
+    );
+    // 1.6 m instead of the vehicle's 1.5 m
+    let wrong = text.replace(
+        "track_width = \"1.5 m\", coherence",
+        "track_width = \"1.6 m\", coherence",
+    );
+    let err = parse_err(&wrong);
+    for part in [
+        "test-multi.toml",
+        "input[0].road.track_width",
+        "1.6 m",
+        "1.5 m",
+        "model.track_width",
+    ] {
+        assert!(err.contains(part), "missing `{part}` in: {err}");
+    }
+    // the same width in other units is the same width
+    let same = text.replace(
+        "track_width = \"1.5 m\", coherence",
+        "track_width = \"150 cm\", coherence",
+    );
+    parse(&same);
+    // left out: the vehicle's width, giving the same excitation as the file itself
+    let omitted = text.replace("track_width = \"1.5 m\", coherence", "coherence");
+    let (a, b) = (parse(&omitted), parse(&text));
+    let sys = b.model.system.as_ref();
+    let i = sys.outputs().iter().position(|o| o.name == "roll").unwrap();
+    let va = analyze_output(sys, &a.excitation, i).unwrap().variance.unwrap();
+    let vb = analyze_output(sys, &b.excitation, i).unwrap().variance.unwrap();
+    assert_eq!(va.to_bits(), vb.to_bits(), "omitted width {va} vs written width {vb}");
+    // a generic model has no width of its own: the key stays required
+    let road = format!(
+        "[[input]]\nroad = {{ spectrum = {ROAD}, coherence = {{ kind = \"constant\", coherence_amplitude = 0.5 }} }}\nspeed = \"15 m/s\"\n"
+    );
+    let err = parse_err(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    assert!(err.contains("track_width") && err.contains("required"), "{err}");
+}

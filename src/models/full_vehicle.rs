@@ -216,6 +216,7 @@ impl FullVehicle {
                 tracks: wheels.iter().map(|w| w.0).collect(),
                 positions: wheels.iter().map(|w| w.1).collect(),
                 gains: vec![1.0; 4],
+                track_width: Some(self.track_width),
             },
             description: format!(
                 "full vehicle, 7 DOF (bounce, pitch, roll, 4 unsprung masses): m = {} kg, I_theta = {} kg m^2, \

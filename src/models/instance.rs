@@ -26,6 +26,10 @@ pub enum InputLayout {
         positions: Vec<f64>,
         /// g_j.
         gains: Vec<f64>,
+        /// The distance between the two wheel tracks in m, if the model has one (a vehicle's track
+        /// width): a road's `track_width` must equal it (the coherence between the tracks is a function
+        /// of the distance between them).
+        track_width: Option<f64>,
     },
 }
 

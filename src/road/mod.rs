@@ -12,12 +12,15 @@
 //! * [`spatial_psd()`], [`spatial_cross_spectrum`] ([`spatial_psd`](mod@spatial_psd)): Welch estimates of
 //!   G_d, G_LR and γ² with intervals.
 //! * [`fit_iso8608`], [`iso8608_class`] ([`iso_fit`]): G_d(n₀), w, their standard errors, the class.
+//! * [`replay()`](replay::replay) ([`replay`](mod@replay)): a profile replayed as a deterministic time-domain
+//!   input through a model (wheels on tracks, delays by position/speed), each output's history and statistics.
 //! * [`iri`](fn@iri) ([`iri`](mod@iri)): International Roughness Index (golden car, ASTM E1926).
 
 pub mod detrend;
 pub mod iri;
 pub mod iso_fit;
 pub mod profile;
+pub mod replay;
 pub mod spatial_psd;
 pub mod synthesis;
 
@@ -25,5 +28,6 @@ pub use detrend::Detrend;
 pub use iri::{golden_car, iri, Iri};
 pub use iso_fit::{fit_iso8608, iso8608_class, IsoFit, Waviness};
 pub use profile::{CsvReadOptions, CsvWriteOptions, LengthUnit, Profile, RawProfile, Track};
+pub use replay::{OutputStatistics, Replay, ReplayOptions, Start, Wheel};
 pub use spatial_psd::{default_segment, spatial_cross_spectrum, spatial_psd, SpatialCrossSpectrum, SpatialPsd};
 pub use synthesis::{TwoTrackGenerator, TwoTrackScratch};

@@ -6,6 +6,9 @@
 //! [[input]]                          # a road of two tracks
 //! name = "road"                      # signal name in run files (default `input_<i>`)
 //! road = { spectrum = "iso8608-c", track_width = "1.5 m", coherence = { kind = "dodds-robson" } }
+//!                                    # track_width: the distance between the tracks; a vehicle model with its
+//!                                    # own track width (full-vehicle) uses it when the key is left out and
+//!                                    # refuses a different value
 //! speed = "20 m/s"                   # every table that gives a speed must give the same one
 //! mean = 0.0                         # mean of each track, in the spectrum's unit (default 0)
 //! drives = [0, 1, 2, 3]              # model inputs (0-based; the mdof: base inputs first, then forces)
@@ -152,6 +155,7 @@ fn layout_of(layout: &InputLayout, j: usize) -> (Option<usize>, f64, f64) {
             tracks,
             positions,
             gains,
+            ..
         } => (
             tracks.get(j).copied(),
             positions.get(j).copied().unwrap_or(0.0),
@@ -355,9 +359,32 @@ pub(crate) fn parse_inputs(
                         "a road of two tracks needs a spatial spectrum (a profile in cycles/m or rad/m)",
                     ));
                 }
-                let width = rf.quantity("track_width", Dim::LENGTH)?;
+                let model_width = match layout {
+                    InputLayout::TwoTracks { track_width, .. } => *track_width,
+                    _ => None,
+                };
+                let width = match (rf.opt_quantity("track_width", Dim::LENGTH)?, model_width) {
+                    (Some(w), _) => w,
+                    (None, Some(b)) => b,
+                    (None, None) => {
+                        return Err(rf.error("track_width", "<missing>", "required (a length, e.g. \"1.5 m\")"))
+                    }
+                };
                 if !(width.is_finite() && width > 0.0) {
                     return Err(rf.error("track_width", width, "must be a finite length > 0"));
+                }
+                if let Some(b) = model_width {
+                    if (width - b).abs() > 1e-9 * b {
+                        return Err(rf.error(
+                            "track_width",
+                            rf.get("track_width").map_or(width.to_string(), |v| v.to_string()),
+                            format!(
+                                "the model's track width is {b} m (model.track_width): the coherence between the \
+                                 tracks is that of tracks {width} m apart, but the wheels run {b} m apart; give \
+                                 the model's width (or leave track_width out to use it)"
+                            ),
+                        ));
+                    }
                 }
                 let cf = rf.sub("coherence")?;
                 let coh = coherence_from_fields(&cf, width)?;

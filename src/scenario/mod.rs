@@ -3,12 +3,16 @@
 //!
 //! Every value read from a file is validated; an error names the file, the dotted key, the value as
 //! written and the reason ([`Error::File`](crate::Error::File)).
+//!
+//! [`replay`] replays a measured road profile through a scenario's model (`stochvib replay`).
 
 mod catalogue;
 pub mod generic;
 pub mod inputs;
+mod profile_identity;
 pub mod reference;
 mod registry;
+pub mod replay;
 pub mod scenario_file;
 pub mod spectrum_file;
 pub mod sweep;

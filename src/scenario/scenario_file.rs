@@ -176,8 +176,9 @@ impl Scenario {
 
     /// The subject of a Monte Carlo run of this scenario: its system, excitation, the outputs of
     /// `[analysis]`, the input signals, the scenario text, and what else the run was resolved from — the
-    /// spectrum file's text and origin, the model with its parameters, the excitation — so that a resume
-    /// never mixes a changed spectrum or model into an old run.
+    /// spectrum file's text and origin, the model with its parameters, the excitation, and for a
+    /// `measured-profile` spectrum the CSV's name, size and CRC-32 (`measured_profile`, `measured_profile_<i>`)
+    /// — so that a resume never mixes a changed spectrum, profile or model into an old run.
     pub fn run_input(&self) -> RunInput<'_> {
         let mut input = RunInput::new(
             self.model.system.as_ref(),
@@ -229,6 +230,20 @@ impl Scenario {
                 format!("{k} (Laplace moving average with the input's spectrum)"),
             )),
             (_, None) => {}
+        }
+        // the CSV behind a `measured-profile` spectrum: its name, size and CRC-32 identify the run
+        for (i, inp) in self.inputs.iter().enumerate() {
+            let name = if i == 0 {
+                "measured_profile".to_string()
+            } else {
+                format!("measured_profile_{i}")
+            };
+            input
+                .provenance
+                .extend(super::profile_identity::profile_provenance(inp, &self.path, &name));
+            if let Some((_, file)) = super::profile_identity::measured_profile_file(inp, &self.path) {
+                input.source_files.push(file);
+            }
         }
         input.source_files.push(self.path.clone());
         for inp in &self.inputs {

@@ -22,7 +22,7 @@
 //! | `power-law` | `g0` (one-sided cyclic density at n₀, number), `n0` (with unit), `waviness`, optional `band` |
 //! | `iso8608` | `class` (A–H), optional `bound` (`lower`, `mean`, `upper`), optional `band` (default 0.011–2.83 cycles/m) or `unbounded = true` |
 //! | `two-pole-road` | `form` (`as-printed`, `consistent`), `dq` or `sigma_q`, `alpha`, `beta` (1/m) |
-//! | `measured-profile` | `file` (a profile CSV, relative to the file that names it; [`crate::road::Profile`]), optional `track` (column name, default the first), `segment` (Welch samples, default [`crate::road::default_segment`]), `detrend` (`linear` default, `mean`): the Welch estimate Ĝ_d(n) of the track as a tabulated spatial spectrum (log–log interpolation between bins, zero outside them) |
+//! | `measured-profile` | `file` (a profile CSV, relative to the file that names it; [`crate::road::Profile`]), optional `track` (column name, default the first), `segment` (Welch samples, default [`crate::road::default_segment`]), `detrend` (`linear` default, `mean`): the Welch estimate Ĝ_d(n) of the track as a tabulated spatial spectrum (log–log interpolation between bins, zero outside them); a Monte Carlo run records the CSV's size and CRC-32 as part of its identity |
 //!
 //! Frequencies (band edges, n₀, `frequency_unit`) must carry a unit: a bare number would be ambiguous
 //! between cyclic and angular frequency. Density levels are plain numbers whose convention is named by

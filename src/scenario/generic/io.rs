@@ -101,6 +101,7 @@ pub fn track_layout(f: &Fields, m: usize) -> Result<InputLayout> {
             tracks,
             positions,
             gains,
+            track_width: None,
         });
     }
     Ok(InputLayout::Track { positions, gains })

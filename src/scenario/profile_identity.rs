@@ -1,0 +1,50 @@
+//! The identity of a measured profile behind a `measured-profile` spectrum: a run records the CSV's name,
+//! size and CRC-32, so that a resume after the profile changed is refused naming it.
+
+use super::catalogue::SpectrumOrigin;
+use super::scenario_file::ScenarioInput;
+use crate::store::{checksum::crc32, Provenance};
+use std::path::{Path, PathBuf};
+
+/// The profile CSV of input `inp` if its spectrum is of kind `measured-profile`: (the `file` key as
+/// written, the path it resolves to — relative to the file that names it, as
+/// [`spectrum_from_fields`](super::spectrum_file::spectrum_from_fields) resolves it: the spectrum file, or
+/// the scenario `scenario_path` for an inline table).
+pub(crate) fn measured_profile_file(inp: &ScenarioInput, scenario_path: &Path) -> Option<(String, PathBuf)> {
+    let table: toml::Table = toml::from_str(&inp.spectrum_text).ok()?;
+    if table.get("kind")?.as_str()? != "measured-profile" {
+        return None;
+    }
+    let file = table.get("file")?.as_str()?.to_string();
+    let naming = match &inp.origin {
+        SpectrumOrigin::Catalogue { file, .. } => file.as_path(),
+        SpectrumOrigin::File { path } => path.as_path(),
+        SpectrumOrigin::Inline => scenario_path,
+    };
+    let path = match naming.parent() {
+        Some(dir) => dir.join(&file),
+        None => PathBuf::from(&file),
+    };
+    Some((file, path))
+}
+
+/// The provenance parts of the measured profile of input `inp` (none for other spectra): the identity
+/// `name` = "`<file as written>` (<size> bytes, CRC-32 <8 hex digits>)" and the note `<name>_path` (the
+/// resolved path, which may differ between working directories and so does not identify the run). An
+/// unreadable file is recorded as such (it then differs from any readable one).
+///
+/// # Formula
+/// CRC-32 of the file's bytes (IEEE 802.3, [`crc32`]).
+pub(crate) fn profile_provenance(inp: &ScenarioInput, scenario_path: &Path, name: &str) -> Vec<Provenance> {
+    let Some((file, path)) = measured_profile_file(inp, scenario_path) else {
+        return Vec::new();
+    };
+    let identity = match std::fs::read(&path) {
+        Ok(bytes) => format!("{file} ({} bytes, CRC-32 {:08x})", bytes.len(), crc32(&bytes)),
+        Err(e) => format!("{file} (unreadable: {e})"),
+    };
+    vec![
+        Provenance::identity(name, identity),
+        Provenance::note(&format!("{name}_path"), path.display().to_string()),
+    ]
+}
