@@ -208,6 +208,14 @@ impl Scenario {
                 format!("{k} (Laplace moving average with the input's spectrum)"),
             ));
         }
+        // `[analysis] bands`: band r.m.s. from the realizations too, on the bands of the analytic table
+        input.bands = self.analysis.bands.map(|fraction| crate::simulate::RunBands {
+            fraction,
+            range_hz: self
+                .analysis
+                .band
+                .map(|(a, b)| (a / (2.0 * std::f64::consts::PI), b / (2.0 * std::f64::consts::PI))),
+        });
         input.source_files.push(self.path.clone());
         for inp in &self.inputs {
             if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &inp.origin {

@@ -120,6 +120,9 @@ pub struct RunInput<'a> {
     /// κ ≥ 3, for Laplace moving averages with the same spectra ([`LaplaceMovingAverage`](super::LaplaceMovingAverage)),
     /// simulated on the spectral route (κ = 3 is the Gaussian law drawn the Laplace way).
     pub kurtosis: Option<f64>,
+    /// Octave or one-third-octave band r.m.s. of every output from the realizations' Welch estimates
+    /// (`[analysis] bands`; [`super::bands`]), or `None` (no band accumulators, the run file as without).
+    pub bands: Option<super::RunBands>,
 }
 
 impl<'a> RunInput<'a> {
@@ -141,6 +144,7 @@ impl<'a> RunInput<'a> {
             source_files: Vec::new(),
             verdicts: super::VerdictChannels::default(),
             kurtosis: None,
+            bands: None,
         }
     }
 }
