@@ -139,7 +139,12 @@ fn band_rms_intervals_cover_the_expected_band_values_of_the_simulated_process() 
         assert_eq!(rows.len(), 22, "{}: 0.5 … 63 Hz", o.output);
         let expected: Vec<f64> = rows
             .iter()
-            .map(|r| dot(&bin_weights(&p.omega, r.band.lower_hz, r.band.upper_hz), expected_density))
+            .map(|r| {
+                dot(
+                    &bin_weights(&p.omega, r.band.lower_hz, r.band.upper_hz),
+                    expected_density,
+                )
+            })
             .collect();
         let total: f64 = expected.iter().sum();
         for (r, e) in rows.iter().zip(&expected) {
@@ -159,7 +164,10 @@ fn band_rms_intervals_cover_the_expected_band_values_of_the_simulated_process() 
             }
         }
     }
-    assert!(tested <= 88, "the union bound above counts at most 88 intervals, {tested} tested");
+    assert!(
+        tested <= 88,
+        "the union bound above counts at most 88 intervals, {tested} tested"
+    );
     assert!(tested >= 4 * 20, "only {tested} bands with enough energy");
     assert!(failures.is_empty(), "{failures:#?}");
     let _ = std::fs::remove_dir_all(&dir);
@@ -266,12 +274,66 @@ fn a_two_shard_run_merged_is_bit_identical_and_a_band_less_run_is_unchanged() {
     let c = RunFile::open(&plain).unwrap();
     assert!(c.metadata().accumulators.iter().all(|(n, _)| !n.ends_with(":bands")));
     let with_bands = RunFile::open(&single).unwrap();
-    assert!(with_bands.metadata().accumulators.iter().any(|(n, _)| n.ends_with(":bands")));
+    assert!(with_bands
+        .metadata()
+        .accumulators
+        .iter()
+        .any(|(n, _)| n.ends_with(":bands")));
     let without: Vec<_> = stat_bits(&a)
         .into_iter()
         .filter(|(_, n, _)| !n.starts_with("band_rms"))
         .collect();
     assert_eq!(stat_bits(&c.statistics().unwrap()), without);
     assert_eq!(common::psd_bits(&plain), common::psd_bits(&single));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn simulate_prints_and_inspect_shows_the_band_table() {
+    let dir = scratch("cli");
+    let text = std::fs::read_to_string(root().join("data/quarter-car.toml"))
+        .unwrap()
+        .replacen("[analysis]\n", "[analysis]\nbands = \"octave\"\n", 1);
+    let scenario = dir.join("qc.toml");
+    std::fs::write(&scenario, text).unwrap();
+    let out = dir.join("qc.h5");
+    let exe = env!("CARGO_BIN_EXE_stochvib");
+    let spectra = root().join("spectra");
+    let run = |args: &[&str]| {
+        let o = std::process::Command::new(exe).args(args).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let summary = run(&[
+        "simulate",
+        scenario.to_str().unwrap(),
+        "--realizations",
+        "8",
+        "--dt",
+        "0.008",
+        "--duration",
+        "10",
+        "--spectra-dir",
+        spectra.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    // per output: the band table with analytic, expected and Monte Carlo r.m.s.; the octaves covering
+    // 0.5–80 Hz are nominal 0.5, 1, 2, …, 63 Hz
+    assert!(summary.contains("bands     body [m]"), "{summary}");
+    assert!(summary.contains("covers expected"), "{summary}");
+    assert!(
+        summary.lines().any(|l| l.trim_start().starts_with("31.5 Hz")),
+        "{summary}"
+    );
+    let text = run(&["inspect", out.to_str().unwrap()]);
+    assert!(
+        text.contains("band_rms[31.5 Hz]") && text.contains("band_rms_expected[31.5 Hz]"),
+        "{text}"
+    );
+    assert!(text.contains("body:bands"), "{text}");
+    let json: serde_json::Value = serde_json::from_str(&run(&["inspect", "--json", out.to_str().unwrap()])).unwrap();
+    let shown = json.to_string();
+    assert!(shown.contains("band_rms[31.5 Hz]"), "{shown}");
     let _ = std::fs::remove_dir_all(&dir);
 }

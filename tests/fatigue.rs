@@ -572,7 +572,9 @@ fn moments_of_a_table_against_exact_integer_arithmetic() {
         let mut g = vec![0i128];
         let mut state: u64 = 12345;
         for _ in 1..len {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             let s = spacings[((state >> 33) % 6) as usize];
             k.push(k.last().unwrap() + s);
             g.push(((state >> 40) % 998) as i128 * ((state >> 20) % 5 != 0) as i128);

@@ -21,6 +21,7 @@
 //! band = ["0.5 Hz", "80 Hz"]     # also report the band-limited σ
 //! duration = "1 h"               # for exceedance probabilities and expected largest peaks (default 1 h)
 //! bands = "third-octave"         # or "octave": IEC 61260-1 base-10 band r.m.s. table of every output
+//!                                # (simulate: also band r.m.s. from the realizations, with intervals)
 //! [analysis.levels]              # optional levels per output for Rice crossing rates
 //! travel = ["5 cm", "8 cm"]
 //! ```

@@ -226,15 +226,13 @@ pub(crate) fn band_statistics(
             upper: ms.upper.max(0.0).sqrt(),
             confidence,
         };
-        let stat = |name: String, a: Option<f64>, method: &str| {
-            Statistic {
-                name,
-                interval: iv,
-                unit: unit.to_string(),
-                method: method.to_string(),
-                analytic: a,
-                covers: a.map(|a| iv.covers(a)),
-            }
+        let stat = |name: String, a: Option<f64>, method: &str| Statistic {
+            name,
+            interval: iv,
+            unit: unit.to_string(),
+            method: method.to_string(),
+            analytic: a,
+            covers: a.map(|a| iv.covers(a)),
         };
         out.push(stat(
             statistic_name(label),
@@ -297,11 +295,7 @@ pub(crate) fn stored_bands(stats: &OutputStatistics) -> (Vec<String>, Vec<Option
         if let Some(label) = s.name.strip_prefix("band_rms[").and_then(|x| x.strip_suffix(']')) {
             labels.push(label.to_string());
             analytic.push(s.analytic);
-            expected.push(
-                stats
-                    .get(&expected_name(label))
-                    .and_then(|e| e.analytic),
-            );
+            expected.push(stats.get(&expected_name(label)).and_then(|e| e.analytic));
         }
     }
     (labels, analytic, expected)

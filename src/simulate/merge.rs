@@ -89,7 +89,7 @@ impl std::fmt::Display for MergeSummary {
                 100.0 * iv.confidence
             )?;
         }
-        Ok(())
+        super::summary::write_band_tables(f, &self.outputs)
     }
 }
 
