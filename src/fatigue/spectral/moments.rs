@@ -267,14 +267,10 @@ impl SpectralMoments {
                 "a tabulated density needs at least 2 frequencies and one value per frequency",
             ));
         }
-        // Branch-free scan first; the culprit is located only when something is wrong.
-        let ok = f.iter().zip(g).fold((true, -1.0f64), |(ok, prev), (&fi, &gi)| {
-            (
-                ok & fi.is_finite() & (fi >= 0.0) & (fi > prev) & gi.is_finite() & (gi >= 0.0),
-                fi,
-            )
-        });
-        for (i, (&fi, &gi)) in f.iter().zip(g).enumerate().filter(|_| !ok.0) {
+        // One branch-free pass checks the table while it integrates it; the culprit is located only when
+        // something is wrong.
+        let (acc, ok) = linear_table_moments(f, g);
+        for (i, (&fi, &gi)) in f.iter().zip(g).enumerate().filter(|_| !ok) {
             if !(fi.is_finite() && fi >= 0.0) || (i > 0 && fi <= f[i - 1]) {
                 return Err(Error::invalid(
                     "f",
@@ -290,7 +286,6 @@ impl SpectralMoments {
                 ));
             }
         }
-        let acc = linear_table_moments(f, g);
         let m = SpectralMoments::new(acc[0], acc[1], acc[2], acc[3])?;
         if fractional {
             let frac = gauss3_fractional_moments(f, g);
@@ -552,19 +547,29 @@ fn linear_interval_moments(a: f64, b: f64, ga: f64, gb: f64) -> [f64; 4] {
     ]
 }
 
+/// Whether interval [a, b] with left value x is valid: 0 ≤ a < b < ∞ and 0 ≤ x < ∞ (false for NaN).
+#[inline(always)]
+fn valid_interval(a: f64, b: f64, x: f64) -> bool {
+    (a >= 0.0) & (b > a) & (b < f64::INFINITY) & (x >= 0.0) & (x < f64::INFINITY)
+}
+
 /// [m₀, m₁, m₂, m₄] of the piecewise-linear interpolant of a table: the closed-form integral of every
 /// interval ([`linear_interval_moments`]), summed in [`LANES`] interleaved accumulators per moment (the
-/// intervals i ≡ l mod `LANES` go to lane l), the lanes added at the end. One pass, no division, no powf.
-fn linear_table_moments(f: &[f64], g: &[f64]) -> [f64; 4] {
+/// intervals i ≡ l mod `LANES` go to lane l), the lanes added at the end. One pass, no division, no powf;
+/// the same pass checks the table (frequencies finite, ≥ 0 and strictly increasing, values finite and ≥ 0:
+/// the `bool`, false if anything is wrong, when the sums mean nothing).
+fn linear_table_moments(f: &[f64], g: &[f64]) -> ([f64; 4], bool) {
     let n = f.len().min(g.len()).saturating_sub(1);
     let (fa, fb, ga, gb) = (&f[..n], &f[1..=n], &g[..n], &g[1..=n]);
     let mut acc = [[0.0f64; LANES]; 4];
+    let mut ok = [true; LANES];
     let mut chunks = fa
         .chunks_exact(LANES)
         .zip(fb.chunks_exact(LANES))
         .zip(ga.chunks_exact(LANES).zip(gb.chunks_exact(LANES)));
     for ((a, b), (x, y)) in &mut chunks {
         for l in 0..LANES {
+            ok[l] &= valid_interval(a[l], b[l], x[l]);
             let t = linear_interval_moments(a[l], b[l], x[l], y[l]);
             for j in 0..4 {
                 acc[j][l] += t[j];
@@ -573,12 +578,15 @@ fn linear_table_moments(f: &[f64], g: &[f64]) -> [f64; 4] {
     }
     let done = n - n % LANES;
     for (l, i) in (done..n).enumerate() {
+        ok[l] &= valid_interval(fa[i], fb[i], ga[i]);
         let t = linear_interval_moments(fa[i], fb[i], ga[i], gb[i]);
         for j in 0..4 {
             acc[j][l] += t[j];
         }
     }
-    acc.map(|a| (a[0] + a[1]) + (a[2] + a[3]))
+    let last = g.get(n).copied().unwrap_or(f64::NAN);
+    let ok = ok.iter().all(|&o| o) & (last >= 0.0) & (last < f64::INFINITY) & (f.len() == g.len());
+    (acc.map(|a| (a[0] + a[1]) + (a[2] + a[3])), ok)
 }
 
 /// Σ over the intervals of a table of the 3-point Gauss–Legendre rule applied to f^j·ĝ(f) for the fractional
