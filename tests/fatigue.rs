@@ -590,6 +590,20 @@ fn moments_of_a_table_against_exact_integer_arithmetic() {
             assert!(rel(got, ex) < EXACT, "start {start}, m{j}: {got} vs exact {ex}");
         }
     }
+    // The one-pass check of the table finds NaNs and infinities anywhere (also past the 8-interval lanes).
+    let f: Vec<f64> = (0..20).map(|i| i as f64).collect();
+    for (k, bad) in [(13usize, f64::NAN), (19, f64::INFINITY), (0, -0.5)] {
+        let mut fb = f.clone();
+        fb[k] = bad;
+        let e = SpectralMoments::from_tabulated_one_sided_hz(&fb, &f, false)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`f`") && e.contains(&format!("frequency {k}")), "{e}");
+        let e = SpectralMoments::from_tabulated_one_sided_hz(&f, &fb, false)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`g`") && e.contains(&format!("value {k}")), "{e}");
+    }
 }
 
 #[test]
