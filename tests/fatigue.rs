@@ -577,7 +577,7 @@ fn moments_of_a_table_against_exact_integer_arithmetic() {
                 .wrapping_add(1442695040888963407);
             let s = spacings[((state >> 33) % 6) as usize];
             k.push(k.last().unwrap() + s);
-            g.push(((state >> 40) % 998) as i128 * ((state >> 20) % 5 != 0) as i128);
+            g.push(((state >> 40) % 998) as i128 * (!(state >> 20).is_multiple_of(5)) as i128);
         }
         g[1] = g[1].max(1);
         let f: Vec<f64> = k.iter().map(|&x| x as f64 * scale).collect();

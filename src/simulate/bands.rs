@@ -115,8 +115,9 @@ fn weighted(weights: &[(usize, f64)], v: &[f64]) -> f64 {
     weights.iter().map(|&(j, c)| c * v[j]).sum()
 }
 
-/// The bands of every simulated output (`outputs[r]` = (system index, analytic variance)) and the notes of
-/// the outputs that get none; `expected[r]` is the expected Welch estimate of output r.
+/// The bands of every simulated output (`outputs[r]` = (system index, analytic variance, name)) and the
+/// notes of the outputs that get none or lose bands above the Nyquist frequency 1/(2Δt); `expected[r]` is
+/// the expected Welch estimate E Ŝ(ω_j) of output r.
 pub(crate) fn plan_bands(
     input: &super::RunInput,
     spec: &RunBands,

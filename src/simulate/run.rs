@@ -142,7 +142,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
             a.extend(input.verdicts.layout(shard_size));
             a.extend(bands.iter().map(|b| {
                 (
-                    super::bands::accumulator_name(&names[b.output]),
+                    super::bands::accumulator_name(names[b.output]),
                     b.bands.len() * shard_size,
                 )
             }));
