@@ -21,6 +21,7 @@
 //! band = ["0.5 Hz", "80 Hz"]     # also report the band-limited σ
 //! duration = "1 h"               # for exceedance probabilities and expected largest peaks (default 1 h)
 //! bands = "third-octave"         # or "octave": IEC 61260-1 base-10 band r.m.s. table of every output
+//!                                # (simulate: also band r.m.s. from the realizations, with intervals)
 //! [analysis.levels]              # optional levels per output for Rice crossing rates
 //! travel = ["5 cm", "8 cm"]
 //! ```
@@ -245,6 +246,14 @@ impl Scenario {
                 input.source_files.push(file);
             }
         }
+        // `[analysis] bands`: band r.m.s. from the realizations too, on the bands of the analytic table
+        input.bands = self.analysis.bands.map(|fraction| crate::simulate::RunBands {
+            fraction,
+            range_hz: self
+                .analysis
+                .band
+                .map(|(a, b)| (a / (2.0 * std::f64::consts::PI), b / (2.0 * std::f64::consts::PI))),
+        });
         input.source_files.push(self.path.clone());
         for inp in &self.inputs {
             if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &inp.origin {

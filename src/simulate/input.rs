@@ -122,6 +122,9 @@ pub struct RunInput<'a> {
     /// spectrum ([`LaplaceMovingAverage`](super::LaplaceMovingAverage)). A run with any `Some` is simulated on
     /// the spectral route, its `None` processes drawn the Laplace way with κ = 3 (the Gaussian law).
     pub kurtosis: Vec<Option<f64>>,
+    /// Octave or one-third-octave band r.m.s. of every output from the realizations' Welch estimates
+    /// (`[analysis] bands`; [`super::bands`]), or `None` (no band accumulators, the run file as without).
+    pub bands: Option<super::RunBands>,
 }
 
 impl<'a> RunInput<'a> {
@@ -143,6 +146,7 @@ impl<'a> RunInput<'a> {
             source_files: Vec::new(),
             verdicts: super::VerdictChannels::default(),
             kurtosis: Vec::new(),
+            bands: None,
         }
     }
 

@@ -89,7 +89,7 @@ impl std::fmt::Display for MergeSummary {
                 100.0 * iv.confidence
             )?;
         }
-        Ok(())
+        super::summary::write_band_tables(f, &self.outputs)
     }
 }
 
@@ -316,6 +316,7 @@ pub fn merge_runs(
         psds.push(psd);
     }
     let rainflow = finish_verdicts(&writer, &meta, confidence, &stats0, &rain0, &first.path, &mut stats)?;
+    finish_bands(&writer, &meta, confidence, &stats0, &first.path, &mut stats)?;
     writer.write_statistics(&stats)?;
     for r in &rainflow {
         writer.write_rainflow(r)?;
@@ -427,4 +428,53 @@ fn finish_verdicts(
         histograms.push(h);
     }
     Ok(histograms)
+}
+
+/// The band r.m.s. statistics of a merged run (`band_rms[…]`, `band_rms_expected[…]`, appended to their
+/// outputs' statistics as a single-process run appends them), from the merged band accumulators of every
+/// internal shard in order ([`super::bands`], the code of a single-process run). The band labels and their
+/// analytic and expected values depend on the plan only: they are taken from the first shard file.
+///
+/// # Errors
+/// Band accumulators without their statistics in the shard file (a damaged file); a damaged accumulator.
+fn finish_bands(
+    writer: &RunWriter,
+    meta: &crate::store::RunMetadata,
+    confidence: f64,
+    stats0: &[OutputStatistics],
+    first: &Path,
+    stats: &mut [OutputStatistics],
+) -> Result<()> {
+    let shards: Vec<(usize, usize)> = (0..meta.n_shards()).map(|b| (b, meta.shard_range(b).len())).collect();
+    for sig in &meta.outputs {
+        let name = super::bands::accumulator_name(&sig.name);
+        if !meta.accumulators.iter().any(|a| a.0 == name) {
+            continue;
+        }
+        let stored = stats0.iter().find(|o| o.output == sig.name);
+        let (labels, analytic, expected) = stored.map(super::bands::stored_bands).unwrap_or_default();
+        let per_band = super::bands::read_bands(
+            &|n, b| writer.read_accumulator(n, b),
+            &sig.name,
+            &shards,
+            meta.shard_size,
+        )?;
+        if labels.is_empty() || labels.len() != per_band.len() {
+            return Err(Error::Hdf5 {
+                path: first.to_path_buf(),
+                reason: format!(
+                    "its band accumulator of `{}` holds {} bands but {} band statistics are stored: the file is \
+                     damaged",
+                    sig.name,
+                    per_band.len(),
+                    labels.len()
+                ),
+            });
+        }
+        let extra = super::bands::band_statistics(&sig.unit, &labels, &per_band, &analytic, &expected, confidence)?;
+        if let Some(st) = stats.iter_mut().find(|s| s.output == sig.name) {
+            st.statistics.extend(extra);
+        }
+    }
+    Ok(())
 }

@@ -21,6 +21,7 @@
 //!   --of N`) and the bit-identical merge of the parts ([`merge_runs`]).
 
 pub mod accumulators;
+pub mod bands;
 pub mod batch;
 pub mod discretize;
 mod engine;
@@ -43,6 +44,7 @@ pub mod transfer_grid;
 pub mod verdict_stream;
 pub mod verdicts;
 
+pub use bands::RunBands;
 pub use batch::{run_batch, Shard};
 pub use discretize::{
     augmented_response, covariance_factor, expm, foh, van_loan, zoh, FirstOrderHold, SampledSystem,

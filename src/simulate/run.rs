@@ -109,6 +109,20 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     let shard_size = opts.shard_size.min(opts.realizations);
     let bins = plan.welch.segment_len() / 2 + 1;
     let names: Vec<&str> = plan.outputs.iter().map(|o| o.signal.name.as_str()).collect();
+    // the exact mean of every output's Welch estimate (stored with its density; band integrals of it are
+    // the expected band mean squares)
+    let expected: Vec<Vec<f64>> = plan.autocov.iter().map(|a| plan.welch.expected_all(a)).collect();
+    let (bands, band_notes) = match &input.bands {
+        Some(spec) => {
+            let outs: Vec<(usize, f64, String)> = plan
+                .outputs
+                .iter()
+                .map(|o| (o.index, o.analytic_variance, o.signal.name.clone()))
+                .collect();
+            super::bands::plan_bands(input, spec, &outs, &expected, &plan.welch, opts.dt_s)
+        }
+        None => (Vec::new(), Vec::new()),
+    };
     let meta = RunMetadata {
         scenario_text: input.scenario_text.clone(),
         seed: opts.seed,
@@ -126,6 +140,12 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         accumulators: {
             let mut a = accumulators::layout(&names, shard_size, bins);
             a.extend(input.verdicts.layout(shard_size));
+            a.extend(bands.iter().map(|b| {
+                (
+                    super::bands::accumulator_name(names[b.output]),
+                    b.bands.len() * shard_size,
+                )
+            }));
             a
         },
         store_raw: opts.store_raw,
@@ -149,6 +169,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         },
     )?;
     let mut notes = plan.notes.clone();
+    notes.extend(band_notes);
     notes.extend(writer.notes().iter().cloned());
     let n_shards = meta.local_shards().len();
     let resumed_shards = writer.completed_shards().len();
@@ -168,7 +189,13 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
             .collect::<Result<Vec<_>>>()?
             .into_iter()
             .unzip();
-        let extra = input.verdicts.encode(&verdicts, shard_size);
+        let mut extra = input.verdicts.encode(&verdicts, shard_size);
+        extra.extend(super::bands::encode_shard(
+            &bands,
+            results.len(),
+            &|i, r| &results[i].welch[r],
+            shard_size,
+        )?);
         write_shard(&mut writer, shard, &results, &plan, shard_size, opts.store_raw, &extra)?;
         done += 1;
         progress(done, n_shards);
@@ -177,7 +204,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     let mut stats = Vec::new();
     let mut psds = Vec::new();
     let acc = |name: &str, shard: usize| writer.read_accumulator(name, shard);
-    for (o, autocov) in plan.outputs.iter().zip(&plan.autocov) {
+    for (o, exp) in plan.outputs.iter().zip(expected) {
         let (m, v, ws) = read_output(&acc, &meta, &o.signal.name, &plan.welch)?;
         let analytic = Analytic::from_variances(o.analytic_variance, o.discrete_variance);
         stats.push(output_statistics(&o.signal, &analytic, &m, &v, opts.confidence)?);
@@ -189,10 +216,25 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
                     .collect(),
             ))
         })?;
-        psd.expected = Some(plan.welch.expected_all(autocov));
+        psd.expected = Some(exp);
         psds.push(psd);
     }
     let rainflow = finish_verdicts(input, &writer, &meta, &plan, opts, &mut stats)?;
+    let local: Vec<(usize, usize)> = meta.local_shards().map(|s| (s, meta.shard_range(s).len())).collect();
+    for ob in &bands {
+        let o = &plan.outputs[ob.output];
+        let per_band = super::bands::read_bands(&acc, &o.signal.name, &local, meta.shard_size)?;
+        let labels: Vec<String> = ob.bands.iter().map(|b| b.label()).collect();
+        let rms = |v: &[f64]| v.iter().map(|x| Some(x.max(0.0).sqrt())).collect::<Vec<_>>();
+        stats[ob.output].statistics.extend(super::bands::band_statistics(
+            &o.signal.unit,
+            &labels,
+            &per_band,
+            &rms(&ob.analytic),
+            &rms(&ob.expected),
+            opts.confidence,
+        )?);
+    }
     writer.write_statistics(&stats)?;
     for r in &rainflow {
         writer.write_rainflow(r)?;

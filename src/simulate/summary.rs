@@ -135,9 +135,61 @@ impl std::fmt::Display for RunSummary {
                 100.0 * iv.confidence
             )?;
         }
+        write_band_tables(f, &self.outputs)?;
         for s in &self.skipped {
             writeln!(f, "skipped   {}: {}", s.name, s.reason)?;
         }
         Ok(())
     }
+}
+
+/// The Monte Carlo band r.m.s. of every output that has them (`band_rms[…]` statistics, [`super::bands`]):
+/// per band the analytic band r.m.s., the expected one of the simulated process, the estimate and its
+/// interval, and whether the interval covers the expected value.
+pub(crate) fn write_band_tables(f: &mut std::fmt::Formatter<'_>, outputs: &[OutputStatistics]) -> std::fmt::Result {
+    for o in outputs {
+        let rows: Vec<(&str, &Statistic)> = o
+            .statistics
+            .iter()
+            .filter_map(|s| {
+                s.name
+                    .strip_prefix("band_rms[")
+                    .and_then(|x| x.strip_suffix(']'))
+                    .map(|label| (label, s))
+            })
+            .collect();
+        if rows.is_empty() {
+            continue;
+        }
+        writeln!(
+            f,
+            "bands     {} [{}]: band r.m.s. from the realizations' Welch estimates (IEC 61260-1 base 10)",
+            o.output, o.unit
+        )?;
+        writeln!(
+            f,
+            "  {:>9} {:>13} {:>13} {:>13} {:>27}  covers expected",
+            "band", "analytic", "expected", "MC", "interval"
+        )?;
+        for (label, s) in rows {
+            let e = o.get(&format!("band_rms_expected[{label}]"));
+            let iv = &s.interval;
+            writeln!(
+                f,
+                "  {:>9} {:>13.6e} {:>13.6e} {:>13.6e} [{:.6e}, {:.6e}]  {}",
+                label,
+                s.analytic.unwrap_or(f64::NAN),
+                e.and_then(|e| e.analytic).unwrap_or(f64::NAN),
+                iv.estimate,
+                iv.lower,
+                iv.upper,
+                match e.and_then(|e| e.covers) {
+                    Some(true) => "yes",
+                    Some(false) => "NO",
+                    None => "-",
+                }
+            )?;
+        }
+    }
+    Ok(())
 }
