@@ -407,8 +407,11 @@ fn finish_verdicts(
     }
     let mut histograms = Vec::new();
     for (output, mut st, mut h) in fatigue {
-        st.analytic = stored(&output, "damage_rate")?.analytic;
+        let kept = stored(&output, "damage_rate")?;
+        st.analytic = kept.analytic;
         st.covers = st.analytic.map(|a| st.interval.covers(a));
+        // the stored method says whether Dirlik's Gaussian rate was withdrawn (a non-Gaussian output)
+        st.method = kept.method.clone();
         if let Some(s) = stats.iter_mut().find(|s| s.output == output) {
             s.statistics.push(st);
         }

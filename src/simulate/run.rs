@@ -357,7 +357,16 @@ fn finish_verdicts(
         }
     }
     let mut hist = Vec::new();
-    for ((output, st, mut h), ch) in fatigue.into_iter().zip(&input.verdicts.fatigue) {
+    for ((output, mut st, mut h), ch) in fatigue.into_iter().zip(&input.verdicts.fatigue) {
+        // Dirlik's rate is a Gaussian result: for a non-Gaussian output it is no prediction to compare with
+        if let Some(kappa) = plan
+            .outputs
+            .iter()
+            .find(|o| o.signal.name == output)
+            .and_then(|o| o.kurtosis)
+        {
+            super::verdicts::unset_gaussian_damage(&mut st, kappa);
+        }
         if let Some(s) = stats.iter_mut().find(|s| s.output == output) {
             s.statistics.push(st);
         }

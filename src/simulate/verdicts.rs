@@ -96,6 +96,22 @@ pub fn set_non_gaussian_vdv(stats: &mut [Statistic], kurtosis: f64, variance: f6
     }
 }
 
+/// Withdraws the Gaussian (Dirlik) analytic value of a fatigue channel's `damage_rate` when its output is
+/// non-Gaussian (kurtosis `kurtosis` ≠ 3 of a Laplace moving-average input): Dirlik's formula assumes a
+/// Gaussian process, and a heavier-tailed output of the same spectrum has more large cycles (the damage
+/// grows with E S^k), so the Monte Carlo rate is not compared with it. The method text keeps Dirlik's
+/// value and says why it is not the analytic value.
+pub fn unset_gaussian_damage(st: &mut Statistic, kurtosis: f64) {
+    if let Some(d) = st.analytic.take() {
+        st.covers = None;
+        st.method = format!(
+            "{}; NOT compared: the output is non-Gaussian (kurtosis {kurtosis:.4}, Laplace moving-average input) and \
+             Dirlik's Gaussian rate {d:.6e} 1/s is no prediction for it",
+            st.method
+        );
+    }
+}
+
 /// The method text of a non-Gaussian `vdv` statistic (see [`set_non_gaussian_vdv`]).
 pub fn non_gaussian_vdv_method(kurtosis: f64) -> String {
     format!(
