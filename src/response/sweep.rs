@@ -334,7 +334,14 @@ pub(crate) fn table_route(
         }
         return Ok(());
     }
-    table_outputs(&lv.delta[..=lv.n], |i| lv.numerator(ss, gains, i), filter, mean, outputs, out)
+    table_outputs(
+        &lv.delta[..=lv.n],
+        |i| lv.numerator(ss, gains, i),
+        filter,
+        mean,
+        outputs,
+        out,
+    )
 }
 
 /// An entry of [`table_route`] whose table value failed its check: the caller computes it by Lyapunov.

@@ -39,7 +39,9 @@ use super::registry::{build_model, BuiltModel, ModelContext};
 use super::scenario_file::{build_excitation, parse_scenario, Scenario};
 use crate::error::{Error, Result};
 use crate::fields::Fields;
-use crate::response::{lyapunov_point, ExactEvaluator, Excitation, PointStatistics, TransferPolynomials, VarianceMethod};
+use crate::response::{
+    lyapunov_point, ExactEvaluator, Excitation, PointStatistics, TransferPolynomials, VarianceMethod,
+};
 use crate::system::StateSpace;
 use crate::units::Dim;
 use serde::Serialize;
