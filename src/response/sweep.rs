@@ -340,6 +340,7 @@ pub(crate) fn table_route(
         filter,
         mean,
         outputs,
+        false,
         out,
     )
 }
@@ -356,13 +357,18 @@ const UNRELIABLE: PointStatistics = PointStatistics {
 /// (ascending, degree n ≤ [`MAX_STATES`]) and numerators `numerator(i)` (ascending, n + 2 coefficients used)
 /// for the combined input, under the process of shaping filter `filter` and mean `mean`: one Hurwitz
 /// elimination of Δ·F_den, a back substitution per value, the pivot-ratio check on each (see
-/// [`table_route`]).
+/// [`table_route`]). With `adjoint`, each value is instead the dot product of its right-hand side with
+/// the table's linear functional, computed once from the elimination (`H2Denominator::weights`; the same
+/// pivot ratio, equal within rounding); otherwise the numbers are those of one table call per value, bit
+/// for bit.
+#[allow(clippy::too_many_arguments)]
 fn table_outputs(
     delta: &[f64],
     numerator: impl Fn(usize) -> [f64; MAX_STATES + 2],
     filter: &ShapingFilter,
     mean: f64,
     outputs: &[usize],
+    adjoint: bool,
     out: &mut Vec<PointStatistics>,
 ) -> Result<()> {
     const N: usize = MAX_STATES;
@@ -375,6 +381,11 @@ fn table_outputs(
     let reliable = |ratio: f64| ratio * (den_len - 1) as f64 * f64::EPSILON <= INTEGRAL_TABLE_MAX_ERROR;
     // one Hurwitz elimination of the common denominator for every output's variance and λ₂
     let table = H2Denominator::new(&den[..den_len]);
+    let weights = if adjoint { table.weights() } else { None };
+    let h2 = |num: &[f64]| match weights.as_ref().and_then(|w| w.h2(num)) {
+        Some(v) => Ok(v),
+        None => table.h2_conditioned(num),
+    };
     for &i in outputs {
         let ni = numerator(i);
         let ni_len = n + 2;
@@ -385,7 +396,7 @@ fn table_outputs(
         } else {
             None
         };
-        let variance = match table.h2_conditioned(&num[..num_len]) {
+        let variance = match h2(&num[..num_len]) {
             Ok((v, ratio)) if reliable(ratio) => Some(v / (2.0 * PI)),
             Ok(_) => {
                 out.push(UNRELIABLE);
@@ -398,7 +409,7 @@ fn table_outputs(
         if variance.is_some() {
             let mut s_num = [0.0; 2 * N + 5];
             s_num[1..=num_len].copy_from_slice(&num[..num_len]);
-            match table.h2_conditioned(&s_num[..=num_len]) {
+            match h2(&s_num[..=num_len]) {
                 Ok((v, ratio)) if reliable(ratio) => lambda2 = Some(v / (2.0 * PI)),
                 Ok(_) => {
                     out.push(UNRELIABLE);
@@ -453,7 +464,8 @@ impl ExactEvaluator {
     /// The integral-table statistics of outputs `outputs` (rows of `tp.num`) of the single-input system
     /// whose transfer functions are `tp`, under the excitation the evaluator was made for: as
     /// [`evaluate`](Self::evaluate)'s table route, with Δ and N_i given instead of computed from a state
-    /// space. An output whose table value fails its check comes back with method
+    /// space, and every value a dot product with the table's linear functional of Δ·F_den (one Hurwitz
+    /// elimination per system; equal to one table call per value within rounding, same pivot-ratio check). An output whose table value fails its check comes back with method
     /// [`VarianceMethod::Lyapunov`] and no numbers (the caller computes it by Lyapunov on a state space).
     /// None when the table route does not apply: the excitation is not one delay-free rational process on
     /// one input, or the augmented order exceeds [`MAX_STATES`].
@@ -489,6 +501,7 @@ impl ExactEvaluator {
             filter,
             *mean,
             outputs,
+            true,
             out,
         ))
     }
