@@ -576,6 +576,34 @@ impl H2Weights {
     }
 }
 
+impl H2Weights {
+    /// Iₙ of `num_s` and of s·`num_s` (the second spectral moment's integral; None when it diverges, i.e.
+    /// the numerator's degree is n − 1), with the pivot ratio, from one set of right-hand sides:
+    /// dₖ(s·b) = −dₖ₋₁(b) (the substitution i → i + 1, j → j + 1 in Σ_{i+j=2k}(−1)ʲBᵢBⱼ flips the sign),
+    /// d₀(s·b) = 0. None where [`h2`](Self::h2) is None.
+    #[inline]
+    pub(crate) fn h2_with_moment(&self, num_s: &[f64]) -> Option<(f64, Option<f64>, f64)> {
+        let b = trimmed(num_s);
+        let n = self.n;
+        if b.is_empty() || b.len() > n || !b.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let (mut c0, mut c2) = (0.0, 0.0);
+        for k in 0..n {
+            let d = rhs(b, k);
+            c0 += self.w[k] * d;
+            if k + 1 < n {
+                c2 -= self.w[k + 1] * d;
+            }
+        }
+        if !c0.is_finite() {
+            return None;
+        }
+        let moment = (b.len() < n && c2.is_finite()).then_some(c2.max(0.0));
+        Some((c0.max(0.0), moment, self.ratio))
+    }
+}
+
 impl Elimination {
     /// The elimination of `solve_last`'s stack route on the Hurwitz matrix of `a` (degree n), recorded.
     fn new(a: &[f64], n: usize) -> Elimination {
@@ -823,6 +851,24 @@ mod tests {
                 }
                 (Some(_), Err(e)) => panic!("weights answered where the table fails: {e}"),
                 (None, _) => declined += 1,
+            }
+            // the pair (Iₙ(b), Iₙ(s·b)) against two replayed calls
+            if let Some((v, m, r)) = table.weights().and_then(|w| w.h2_with_moment(&b)) {
+                let tol = CONDITION_SCALED * r + ROUNDING;
+                let (v0, _) = table.h2_conditioned(&b).unwrap();
+                assert!((v - v0).abs() <= tol * v0.abs().max(f64::MIN_POSITIVE), "{b:?} / {a:?}");
+                let mut sb = vec![0.0];
+                sb.extend(&b);
+                match (m, table.h2_conditioned(&sb)) {
+                    (Some(m), Ok((m0, _))) => {
+                        assert!(
+                            (m - m0).abs() <= tol * m0.abs().max(f64::MIN_POSITIVE),
+                            "s·{b:?} / {a:?}: {m} vs {m0}"
+                        )
+                    }
+                    (None, Err(Error::Divergent { .. })) => {}
+                    (m, other) => panic!("s·{b:?} / {a:?}: {m:?} vs {other:?}"),
+                }
             }
         }
         assert!(

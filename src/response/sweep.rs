@@ -396,6 +396,20 @@ fn table_outputs(
         } else {
             None
         };
+        if let Some((v, l2, ratio)) = weights.as_ref().and_then(|w| w.h2_with_moment(&num[..num_len])) {
+            // variance and λ₂ from one set of right-hand sides (one pivot ratio for both)
+            out.push(if reliable(ratio) {
+                PointStatistics {
+                    mean: static_mean,
+                    variance: Some(v / (2.0 * PI)),
+                    lambda2: l2.map(|l| l / (2.0 * PI)),
+                    method: VarianceMethod::IntegralTable,
+                }
+            } else {
+                UNRELIABLE
+            });
+            continue;
+        }
         let variance = match h2(&num[..num_len]) {
             Ok((v, ratio)) if reliable(ratio) => Some(v / (2.0 * PI)),
             Ok(_) => {
