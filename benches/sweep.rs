@@ -51,7 +51,8 @@ fn sweep(c: &mut Criterion) {
 
 /// The path users take: `stochvib sweep`'s library calls on `data/scraper-sprung-cab.toml` over a
 /// 100 × 100 (ω₂, ζ₂) grid (the scenario parsed once, every swept value read once; per point the numeric
-/// builder writes the state space in place and one `ExactEvaluator` pass covers the 4 outputs), one
+/// builder writes the closed-form transfer polynomials of (8.65) and one Hurwitz elimination with its
+/// linear functional covers the variance and λ₂ of the 4 outputs, each condition-checked), one
 /// thread and all cores; the general path (model rebuilt from its table) for comparison; then the CSV of
 /// the table.
 fn scenario_sweep(c: &mut Criterion) {
