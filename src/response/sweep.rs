@@ -463,6 +463,10 @@ pub(crate) struct TransferPolynomials {
     pub(crate) num: [[f64; MAX_STATES + 2]; MAX_TRANSFER_OUTPUTS],
 }
 
+/// A model kind's closed-form transfer-polynomial builder: writes [`TransferPolynomials`] for one value per
+/// key of the kind's numeric builder (None: absent), or returns false where the model cannot be built.
+pub(crate) type TransferBuilder = fn(&[Option<f64>], &mut TransferPolynomials) -> bool;
+
 impl TransferPolynomials {
     /// All coefficients zero, degree 0.
     pub(crate) fn zero() -> TransferPolynomials {

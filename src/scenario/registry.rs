@@ -11,7 +11,7 @@ use crate::models::{
     half_car, isolation, mine_hoist::MineHoist, operator_seat, quarter_car::QuarterCar, scraper,
     three_mass_hoist::ThreeMassHoist, ModelInstance,
 };
-use crate::response::TransferPolynomials;
+use crate::response::TransferBuilder;
 use crate::system::StateSpace;
 use serde::Serialize;
 
@@ -88,7 +88,7 @@ pub struct NumericModel {
     /// (the instance's output order, single input) for the values; false where `fill` is false. A study
     /// then evaluates the integral table on them directly (no state space, no Faddeev–LeVerrier pass per
     /// point) and uses `fill` only for an output whose table value fails its check (computed by Lyapunov).
-    pub(crate) transfer: Option<fn(&[Option<f64>], &mut TransferPolynomials) -> bool>,
+    pub(crate) transfer: Option<TransferBuilder>,
 }
 
 impl ModelKind {

@@ -40,7 +40,7 @@ use super::scenario_file::{build_excitation, parse_scenario, Scenario};
 use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::response::{
-    lyapunov_point, ExactEvaluator, Excitation, PointStatistics, TransferPolynomials, VarianceMethod,
+    lyapunov_point, ExactEvaluator, Excitation, PointStatistics, TransferBuilder, TransferPolynomials, VarianceMethod,
 };
 use crate::system::StateSpace;
 use crate::units::Dim;
@@ -349,7 +349,7 @@ struct NumericPath {
     fill: fn(&[Option<f64>], &mut StateSpace) -> bool,
     /// The kind's closed-form transfer polynomials, if any (then the state space is written only for an
     /// output whose table value fails its check).
-    transfer: Option<fn(&[Option<f64>], &mut TransferPolynomials) -> bool>,
+    transfer: Option<TransferBuilder>,
     /// The base table's value of every key of the builder (None: absent).
     base: Vec<Option<f64>>,
     /// Per swept key: the builder's index of the key and the value read at every value of the key (None:
