@@ -3,6 +3,7 @@
 
     python3 compare.py run [--reps N] > py.json        time the jobs, print JSON
     python3 compare.py table rust.json py.json         print the comparison table
+    python3 compare.py sweep [--reps N]                only the scipy sweep loops (benches/RESULTS.md)
 
 Same jobs and problem sizes as examples/compare_rust.rs (constants mirror benches/common/mod.rs):
 the sprung-cab scraper of data/scraper-sprung-cab.toml (Sukharev 8.7, eq. (8.65)) under the graded dirt
@@ -158,6 +159,57 @@ def sweep_lyapunov():
         p[i] = solve_continuous_lyapunov(a[i], QNEG)
     var = np.einsum("ni,nij,nj->n", h, p, h)
     return np.sqrt(var).sum()
+
+
+def scenario_grid(n_w2=100, n_z2=100):
+    """(c2, b2) of the scenario sweep of benches/sweep.rs and `stochvib sweep` on data/scraper-sprung-cab.toml:
+    model.omega2 = 1 Hz..2.5 Hz (n_w2 values) x model.zeta2 = 0.1..0.5 (n_z2 values), the first key slowest;
+    c2 = m2 w2^2, b2 = 2 zeta2 sqrt(c2 m2) as the model's table reader derives them."""
+    f2 = np.linspace(1.0, 2.5, n_w2)
+    z2 = np.linspace(0.1, 0.5, n_z2)
+    f, z = np.meshgrid(f2, z2, indexing="ij")
+    c2 = M2 * (2 * math.pi * f.ravel()) ** 2
+    return c2, 2 * z.ravel() * np.sqrt(c2 * M2)
+
+
+def sweep_lyapunov_4_outputs(n_w2=100, n_z2=100):
+    """The job `Sweep::evaluate_range` and `stochvib sweep` do on the scenario's grid, the scipy way: one
+    solve_continuous_lyapunov (5 x 5) per point gives the covariance P of z = [x_F, x1, x2, v1, v2], from which
+    the 4 outputs of the scenario (x1, x2, x2_acc, cab_travel) follow by cheap einsums: the variance of each,
+    and lambda2 = Var(dy/dt) of the displacements (v1, v2, v2 - v1 are states: P[3,3], P[4,4],
+    P33 + P44 - 2 P34). x2_acc's lambda2 is infinite under this road (dy/dt has a white-noise part), as the
+    Rust side reports. Means are zero (zero-mean road). The numbers are kept in arrays (the Rust side keeps
+    a Vec per point). Returns a checksum."""
+    c2, b2 = scenario_grid(n_w2, n_z2)
+    a, h = state_matrices(c2, b2)
+    p = np.empty_like(a)
+    for i in range(c2.size):
+        p[i] = solve_continuous_lyapunov(a[i], QNEG)
+    var = np.stack(
+        [
+            p[:, 1, 1],
+            p[:, 2, 2],
+            np.einsum("ni,nij,nj->n", h, p, h),
+            p[:, 1, 1] + p[:, 2, 2] - 2 * p[:, 1, 2],
+        ],
+        axis=1,
+    )
+    lam2 = np.stack([p[:, 3, 3], p[:, 4, 4], p[:, 3, 3] + p[:, 4, 4] - 2 * p[:, 3, 4]], axis=1)
+    return np.sqrt(var).sum() + np.sqrt(lam2).sum()
+
+
+def sweep_jobs(reps):
+    """The sweep rows of benches/RESULTS.md: the 1-output 10^5-point loop (the historical baseline) and the
+    4-output loop on the scenario's 10^4-point grid (the same job as the Rust rows)."""
+    out = {}
+    for key, n, fn in [
+        ("sweep_lyapunov", N_C2 * N_B2, sweep_lyapunov),
+        ("sweep_lyapunov_4_outputs", 100 * 100, sweep_lyapunov_4_outputs),
+    ]:
+        t, check = best(reps, fn)
+        out[key] = {"seconds": t, "n": n, "us_per_point": t / n * 1e6, "check": check}
+        print(f"{key:28} {n:7d} points  {t / n * 1e6:8.2f} us/point  check {check:.12e}", file=sys.stderr)
+    return out
 
 
 def sweep_numpy_table():
@@ -677,9 +729,13 @@ def main():
     t = sub.add_parser("table")
     t.add_argument("rust")
     t.add_argument("python")
+    w = sub.add_parser("sweep", help="only the scipy sweep loops (1 output, and 4 outputs with lambda2)")
+    w.add_argument("--reps", type=int, default=2)
     a = ap.parse_args()
     if a.cmd == "run":
         print(json.dumps(run(a.reps), indent=1))
+    elif a.cmd == "sweep":
+        print(json.dumps(sweep_jobs(a.reps), indent=1))
     else:
         table(a.rust, a.python)
 

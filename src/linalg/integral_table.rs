@@ -522,6 +522,88 @@ impl<'d> H2Denominator<'d> {
     }
 }
 
+/// The table integrals of many numerators over one denominator as dot products (see
+/// [`H2Denominator::weights`]): Iₙ(b) = 2π wᵀd(b)/Aₙ with dₖ(b) = Σ_{i+j=2k} (−1)ʲ BᵢBⱼ.
+pub(crate) struct H2Weights {
+    n: usize,
+    /// w = M⁻ᵀ e_{n−1}, scaled by 2π/Aₙ.
+    w: [f64; STACK_MAX],
+    /// The pivot ratio of the elimination.
+    ratio: f64,
+}
+
+impl H2Denominator<'_> {
+    /// The linear functional of the table for this denominator: C_{n−1} = e_{n−1}ᵀM⁻¹d = wᵀd with
+    /// Mᵀw = e_{n−1}, obtained by running the recorded elimination backwards on e_{n−1} (reverse mode of
+    /// [`h2_conditioned`](Self::h2_conditioned)'s replay). Each numerator then costs its right-hand side
+    /// and one dot product instead of a replay and a back substitution; the value equals
+    /// [`h2_conditioned`](Self::h2_conditioned)'s within rounding (other order of operations), with the
+    /// same pivot ratio. None where [`h2_conditioned`](Self::h2_conditioned) would not take the stack route
+    /// (degree above 8, not finite, not Hurwitz) or the elimination is singular: ask it instead.
+    pub(crate) fn weights(&self) -> Option<H2Weights> {
+        let el = self.elim.as_ref()?;
+        let ratio = el.ratio.ok()?;
+        let n = el.n;
+        let mut w = [0.0; STACK_MAX];
+        w[n - 1] = 2.0 * PI / (el.u[n - 1][n - 1] * self.d[n]);
+        for col in (0..n).rev() {
+            for row in (col + 1..n).rev() {
+                let f = el.f[row][col];
+                if f != 0.0 {
+                    w[col] -= f * w[row];
+                }
+            }
+            w.swap(col, el.swap[col]);
+        }
+        Some(H2Weights { n, w, ratio })
+    }
+}
+
+impl H2Weights {
+    /// Iₙ of the numerator `num_s` (ascending) over the denominator, with the pivot ratio; None where
+    /// [`H2Denominator::h2_conditioned`] must decide (a zero, divergent or non-finite numerator).
+    #[inline]
+    pub(crate) fn h2(&self, num_s: &[f64]) -> Option<(f64, f64)> {
+        let b = trimmed(num_s);
+        if b.is_empty() || b.len() > self.n || !b.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let mut c = 0.0;
+        for (k, wk) in self.w.iter().enumerate().take(self.n) {
+            c += wk * rhs(b, k);
+        }
+        c.is_finite().then_some((c.max(0.0), self.ratio))
+    }
+}
+
+impl H2Weights {
+    /// Iₙ of `num_s` and of s·`num_s` (the second spectral moment's integral; None when it diverges, i.e.
+    /// the numerator's degree is n − 1), with the pivot ratio, from one set of right-hand sides:
+    /// dₖ(s·b) = −dₖ₋₁(b) (the substitution i → i + 1, j → j + 1 in Σ_{i+j=2k}(−1)ʲBᵢBⱼ flips the sign),
+    /// d₀(s·b) = 0. None where [`h2`](Self::h2) is None.
+    #[inline]
+    pub(crate) fn h2_with_moment(&self, num_s: &[f64]) -> Option<(f64, Option<f64>, f64)> {
+        let b = trimmed(num_s);
+        let n = self.n;
+        if b.is_empty() || b.len() > n || !b.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let (mut c0, mut c2) = (0.0, 0.0);
+        for k in 0..n {
+            let d = rhs(b, k);
+            c0 += self.w[k] * d;
+            if k + 1 < n {
+                c2 -= self.w[k + 1] * d;
+            }
+        }
+        if !c0.is_finite() {
+            return None;
+        }
+        let moment = (b.len() < n && c2.is_finite()).then_some(c2.max(0.0));
+        Some((c0.max(0.0), moment, self.ratio))
+    }
+}
+
 impl Elimination {
     /// The elimination of `solve_last`'s stack route on the Hurwitz matrix of `a` (degree n), recorded.
     fn new(a: &[f64], n: usize) -> Elimination {
@@ -585,7 +667,7 @@ mod tests {
     use crate::linalg::lyapunov::solve_continuous_lyapunov;
     use crate::linalg::poly::test_rng::{hurwitz, Rng};
     use crate::linalg::poly::{eval_complex, mul};
-    use crate::tolerance::{EXACT, FACTORISATION, QUADRATURE, ROUNDING, ULPS};
+    use crate::tolerance::{CONDITION_SCALED, EXACT, FACTORISATION, QUADRATURE, ROUNDING, ULPS};
     use nalgebra::Complex;
 
     fn rel(a: f64, b: f64) -> f64 {
@@ -734,6 +816,65 @@ mod tests {
         }
         same(&[1.0], &[1.0, f64::INFINITY, 1.0]);
         same(&[1.0], &[1.0]);
+    }
+
+    /// The adjoint form (`H2Denominator::weights`, a dot product per numerator) against the replayed
+    /// elimination (`h2_conditioned`, itself bit-identical to one `h2_integral_conditioned` call): both
+    /// solve the same factored Hurwitz system, forwards or transposed, so they agree within the rounding of
+    /// that solve, κ·p(n)·ε with κ the pivot ratio: CONDITION_SCALED · ratio (plus a floor of ROUNDING).
+    /// Where `weights` or `h2` declines, `h2_conditioned` is the answer by construction.
+    #[test]
+    fn weights_equal_the_replayed_elimination() {
+        let mut rng = Rng::new(2025);
+        let (mut compared, mut declined) = (0, 0);
+        for trial in 0..600 {
+            let n = 1 + trial % 8;
+            let mut a = hurwitz(&mut rng, n);
+            if trial % 7 == 3 {
+                a = mul(&a, &[1.0, 1e4 + 1e-4, 1.0]);
+            }
+            if trial % 11 == 5 {
+                a[0] = -a[0];
+            }
+            let table = H2Denominator::new(&a);
+            let nb = (rng.next_u64() as usize) % (a.len() + 1);
+            let b: Vec<f64> = (0..nb).map(|_| rng.range(-2.0, 2.0)).collect();
+            match (table.weights().and_then(|w| w.h2(&b)), table.h2_conditioned(&b)) {
+                (Some((v, r)), Ok((v0, r0))) => {
+                    compared += 1;
+                    assert_eq!(r.to_bits(), r0.to_bits(), "{b:?} / {a:?}");
+                    let tol = CONDITION_SCALED * r0 + ROUNDING;
+                    assert!(
+                        (v - v0).abs() <= tol * v0.abs().max(f64::MIN_POSITIVE),
+                        "{b:?} / {a:?}: {v} vs {v0}"
+                    );
+                }
+                (Some(_), Err(e)) => panic!("weights answered where the table fails: {e}"),
+                (None, _) => declined += 1,
+            }
+            // the pair (Iₙ(b), Iₙ(s·b)) against two replayed calls
+            if let Some((v, m, r)) = table.weights().and_then(|w| w.h2_with_moment(&b)) {
+                let tol = CONDITION_SCALED * r + ROUNDING;
+                let (v0, _) = table.h2_conditioned(&b).unwrap();
+                assert!((v - v0).abs() <= tol * v0.abs().max(f64::MIN_POSITIVE), "{b:?} / {a:?}");
+                let mut sb = vec![0.0];
+                sb.extend(&b);
+                match (m, table.h2_conditioned(&sb)) {
+                    (Some(m), Ok((m0, _))) => {
+                        assert!(
+                            (m - m0).abs() <= tol * m0.abs().max(f64::MIN_POSITIVE),
+                            "s·{b:?} / {a:?}: {m} vs {m0}"
+                        )
+                    }
+                    (None, Err(Error::Divergent { .. })) => {}
+                    (m, other) => panic!("s·{b:?} / {a:?}: {m:?} vs {other:?}"),
+                }
+            }
+        }
+        assert!(
+            compared > 300 && declined > 20,
+            "compared {compared}, declined {declined}"
+        );
     }
 
     #[test]

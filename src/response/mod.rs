@@ -28,7 +28,7 @@ pub use sources::{InputMap, Source};
 pub use statistics::{
     analyze_output, analyze_output_with, ResponseStatistics, VarianceMethod, VarianceValue, TABLE_AGREEMENT,
 };
-pub(crate) use sweep::Leverrier;
+pub(crate) use sweep::{lyapunov_point, Leverrier, TransferBuilder, TransferPolynomials};
 pub use sweep::{ExactEvaluator, PointStatistics};
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{

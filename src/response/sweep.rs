@@ -198,7 +198,7 @@ impl ExactEvaluator {
 }
 
 /// The statistics of output `i` by [`variance_lyapunov`].
-fn lyapunov_point(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<PointStatistics> {
+pub(crate) fn lyapunov_point(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<PointStatistics> {
     let mean = static_mean(sys, exc, i);
     match variance_lyapunov(sys, exc, i) {
         Ok(m) => Ok(PointStatistics {
@@ -326,31 +326,68 @@ pub(crate) fn table_route(
     outputs: &[usize],
     out: &mut Vec<PointStatistics>,
 ) -> Result<()> {
-    const N: usize = MAX_STATES;
     let lv = Leverrier::new(ss, gains);
-    let (n, delta) = (lv.n, &lv.delta);
+    if lv.residual.is_nan() || lv.residual > INTEGRAL_TABLE_MAX_ERROR {
+        // the characteristic and numerator polynomials themselves lost digits: every output by Lyapunov
+        for _ in outputs {
+            out.push(UNRELIABLE);
+        }
+        return Ok(());
+    }
+    table_outputs(
+        &lv.delta[..=lv.n],
+        |i| lv.numerator(ss, gains, i),
+        filter,
+        mean,
+        outputs,
+        false,
+        out,
+    )
+}
+
+/// An entry of [`table_route`] whose table value failed its check: the caller computes it by Lyapunov.
+const UNRELIABLE: PointStatistics = PointStatistics {
+    mean: None,
+    variance: None,
+    lambda2: None,
+    method: VarianceMethod::Lyapunov,
+};
+
+/// The table statistics of outputs `outputs` of a system with characteristic polynomial `delta`
+/// (ascending, degree n ≤ [`MAX_STATES`]) and numerators `numerator(i)` (ascending, n + 2 coefficients used)
+/// for the combined input, under the process of shaping filter `filter` and mean `mean`: one Hurwitz
+/// elimination of Δ·F_den, a back substitution per value, the pivot-ratio check on each (see
+/// [`table_route`]). With `adjoint`, each value is instead the dot product of its right-hand side with
+/// the table's linear functional, computed once from the elimination (`H2Denominator::weights`; the same
+/// pivot ratio, equal within rounding); otherwise the numbers are those of one table call per value, bit
+/// for bit.
+#[allow(clippy::too_many_arguments)]
+fn table_outputs(
+    delta: &[f64],
+    numerator: impl Fn(usize) -> [f64; MAX_STATES + 2],
+    filter: &ShapingFilter,
+    mean: f64,
+    outputs: &[usize],
+    adjoint: bool,
+    out: &mut Vec<PointStatistics>,
+) -> Result<()> {
+    const N: usize = MAX_STATES;
+    let n = delta.len() - 1;
     let fnum = &filter.num;
     let fden = &filter.den;
     let den_len = n + fden.len();
     let mut den = [0.0; 2 * N + 2];
-    mul_into(&delta[..=n], fden, &mut den);
+    mul_into(delta, fden, &mut den);
     let reliable = |ratio: f64| ratio * (den_len - 1) as f64 * f64::EPSILON <= INTEGRAL_TABLE_MAX_ERROR;
-    if lv.residual.is_nan() || lv.residual > INTEGRAL_TABLE_MAX_ERROR {
-        // the characteristic and numerator polynomials themselves lost digits: every output by Lyapunov
-        for _ in outputs {
-            out.push(PointStatistics {
-                mean: None,
-                variance: None,
-                lambda2: None,
-                method: VarianceMethod::Lyapunov,
-            });
-        }
-        return Ok(());
-    }
     // one Hurwitz elimination of the common denominator for every output's variance and λ₂
     let table = H2Denominator::new(&den[..den_len]);
+    let weights = if adjoint { table.weights() } else { None };
+    let h2 = |num: &[f64]| match weights.as_ref().and_then(|w| w.h2(num)) {
+        Some(v) => Ok(v),
+        None => table.h2_conditioned(num),
+    };
     for &i in outputs {
-        let ni = lv.numerator(ss, gains, i);
+        let ni = numerator(i);
         let ni_len = n + 2;
         let mut num = [0.0; 2 * N + 4];
         let num_len = mul_into(&ni[..ni_len], fnum, &mut num);
@@ -359,29 +396,37 @@ pub(crate) fn table_route(
         } else {
             None
         };
-        let unreliable = PointStatistics {
-            mean: None,
-            variance: None,
-            lambda2: None,
-            method: VarianceMethod::Lyapunov,
-        };
-        let variance = match table.h2_conditioned(&num[..num_len]) {
+        if let Some((v, l2, ratio)) = weights.as_ref().and_then(|w| w.h2_with_moment(&num[..num_len])) {
+            // variance and λ₂ from one set of right-hand sides (one pivot ratio for both)
+            out.push(if reliable(ratio) {
+                PointStatistics {
+                    mean: static_mean,
+                    variance: Some(v / (2.0 * PI)),
+                    lambda2: l2.map(|l| l / (2.0 * PI)),
+                    method: VarianceMethod::IntegralTable,
+                }
+            } else {
+                UNRELIABLE
+            });
+            continue;
+        }
+        let variance = match h2(&num[..num_len]) {
             Ok((v, ratio)) if reliable(ratio) => Some(v / (2.0 * PI)),
             Ok(_) => {
-                out.push(unreliable);
+                out.push(UNRELIABLE);
                 continue;
             }
             Err(Error::Divergent { .. }) => None,
-            Err(e) => return Err(unstable_or(e, &delta[..=n])),
+            Err(e) => return Err(unstable_or(e, delta)),
         };
         let mut lambda2 = None;
         if variance.is_some() {
             let mut s_num = [0.0; 2 * N + 5];
             s_num[1..=num_len].copy_from_slice(&num[..num_len]);
-            match table.h2_conditioned(&s_num[..=num_len]) {
+            match h2(&s_num[..=num_len]) {
                 Ok((v, ratio)) if reliable(ratio) => lambda2 = Some(v / (2.0 * PI)),
                 Ok(_) => {
-                    out.push(unreliable);
+                    out.push(UNRELIABLE);
                     continue;
                 }
                 Err(_) => {}
@@ -395,6 +440,89 @@ pub(crate) fn table_route(
         });
     }
     Ok(())
+}
+
+/// Largest number of outputs of a [`TransferPolynomials`].
+pub(crate) const MAX_TRANSFER_OUTPUTS: usize = 8;
+
+/// The transfer functions H_i(s) = N_i(s)/Δ(s) from the single input of a system to each of its outputs,
+/// with one common denominator, ascending in s, on the stack: what a model kind's closed-form builder
+/// writes per point of a parameter study (see [`NumericModel`](crate::scenario::NumericModel)), in place of
+/// the state space and its Faddeev–LeVerrier pass.
+///
+/// Δ has degree n ≤ [`MAX_STATES`] (`den[..=n]`, any non-zero leading coefficient); each N_i has degree
+/// ≤ n + 1 (`num[i][..n + 2]`, a degree n + 1 meaning an output with a direct term in u̇, as E ≠ 0 of a
+/// state space). Coefficients beyond those are zero.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TransferPolynomials {
+    /// Δ(s), ascending.
+    pub(crate) den: [f64; MAX_STATES + 1],
+    /// The degree n of Δ.
+    pub(crate) n: usize,
+    /// N_i(s), ascending, one row per output of the model (in the model's output order).
+    pub(crate) num: [[f64; MAX_STATES + 2]; MAX_TRANSFER_OUTPUTS],
+}
+
+/// A model kind's closed-form transfer-polynomial builder: writes [`TransferPolynomials`] for one value per
+/// key of the kind's numeric builder (None: absent), or returns false where the model cannot be built.
+pub(crate) type TransferBuilder = fn(&[Option<f64>], &mut TransferPolynomials) -> bool;
+
+impl TransferPolynomials {
+    /// All coefficients zero, degree 0.
+    pub(crate) fn zero() -> TransferPolynomials {
+        TransferPolynomials {
+            den: [0.0; MAX_STATES + 1],
+            n: 0,
+            num: [[0.0; MAX_STATES + 2]; MAX_TRANSFER_OUTPUTS],
+        }
+    }
+}
+
+impl ExactEvaluator {
+    /// The integral-table statistics of outputs `outputs` (rows of `tp.num`) of the single-input system
+    /// whose transfer functions are `tp`, under the excitation the evaluator was made for: as
+    /// [`evaluate`](Self::evaluate)'s table route, with Δ and N_i given instead of computed from a state
+    /// space, and every value a dot product with the table's linear functional of Δ·F_den (one Hurwitz
+    /// elimination per system; equal to one table call per value within rounding, same pivot-ratio check). An output whose table value fails its check comes back with method
+    /// [`VarianceMethod::Lyapunov`] and no numbers (the caller computes it by Lyapunov on a state space).
+    /// None when the table route does not apply: the excitation is not one delay-free rational process on
+    /// one input, or the augmented order exceeds [`MAX_STATES`].
+    ///
+    /// # Errors
+    /// An unstable system (Δ·F_den not Hurwitz), a numerical failure of the table (inside the `Some`).
+    pub(crate) fn evaluate_transfer(
+        &self,
+        tp: &TransferPolynomials,
+        outputs: &[usize],
+        out: &mut Vec<PointStatistics>,
+    ) -> Option<Result<()>> {
+        let Route::Table { filter, gains, mean } = &self.route else {
+            return None;
+        };
+        let n = tp.n;
+        if gains.len() != 1 || n == 0 || n + filter.den.len() - 1 > MAX_STATES || tp.den[n] == 0.0 {
+            return None;
+        }
+        if outputs.iter().any(|&i| i >= MAX_TRANSFER_OUTPUTS) {
+            return None;
+        }
+        // monic, as Faddeev–LeVerrier's Δ (the table's value does not depend on the scaling)
+        let lead = tp.den[n];
+        let mut delta = [0.0; MAX_STATES + 1];
+        for (d, v) in delta.iter_mut().zip(&tp.den[..=n]) {
+            *d = v / lead;
+        }
+        let g = gains[0] / lead;
+        Some(table_outputs(
+            &delta[..=n],
+            |i| tp.num[i].map(|v| v * g),
+            filter,
+            *mean,
+            outputs,
+            true,
+            out,
+        ))
+    }
 }
 
 /// A failure of the table for a characteristic polynomial that is not Hurwitz is an unstable system.

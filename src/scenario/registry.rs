@@ -11,6 +11,7 @@ use crate::models::{
     half_car, isolation, mine_hoist::MineHoist, operator_seat, quarter_car::QuarterCar, scraper,
     three_mass_hoist::ThreeMassHoist, ModelInstance,
 };
+use crate::response::TransferBuilder;
 use crate::system::StateSpace;
 use serde::Serialize;
 
@@ -74,12 +75,20 @@ pub struct ModelKind {
 /// the model would fail (the caller then takes the general path, which names the error). A kind has a
 /// numeric builder only when its input layout, its output names and its state-space shape do not depend
 /// on the values, and `fill` writes the same numbers as the general path (tests/fast_sweep.rs checks it).
+/// A kind may also have closed-form transfer polynomials (the scraper kinds): their table values equal the
+/// state-space route's within rounding, not bit for bit (tests/fast_sweep.rs checks every output of a grid
+/// with stiff corners against the general path and Lyapunov).
 #[derive(Debug, Clone, Copy)]
 pub struct NumericModel {
     /// The keys of the kind's `[model]` table (besides `kind`) and how each is read.
     pub keys: &'static [(&'static str, KeyReading)],
     /// Writes the matrices for the values (one per key of `keys`) into `ss`; false: ask the general path.
     pub fill: fn(&[Option<f64>], &mut StateSpace) -> bool,
+    /// The kind's closed-form transfer polynomials, if it has them: writes Δ(s) and every output's N_i(s)
+    /// (the instance's output order, single input) for the values; false where `fill` is false. A study
+    /// then evaluates the integral table on them directly (no state space, no Faddeev–LeVerrier pass per
+    /// point) and uses `fill` only for an output whose table value fails its check (computed by Lyapunov).
+    pub(crate) transfer: Option<TransferBuilder>,
 }
 
 impl ModelKind {
@@ -216,6 +225,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         numeric: Some(NumericModel {
             keys: scraper::RIGID_KEYS,
             fill: scraper::rigid_fill,
+            transfer: Some(scraper::rigid_transfer),
         }),
     },
     ModelKind {
@@ -228,6 +238,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         numeric: Some(NumericModel {
             keys: scraper::SPRUNG_KEYS,
             fill: scraper::sprung_fill,
+            transfer: Some(scraper::sprung_transfer),
         }),
     },
     ModelKind {

@@ -26,15 +26,22 @@
 //! ([`SweepPath::Numeric`]): every value of every key is read once (as the model's reader reads it), and
 //! per point the numbers are substituted and the state space is written in place (one per worker), then
 //! evaluated as above — the same matrices, hence the same numbers, as the rebuilt model, without parsing,
-//! names or descriptions per point. A point the builder declines (a value its reader or the model
-//! refuses) takes the general path, which names the error. [`Sweep::path`] says which path a study takes
-//! and why not the numeric one.
+//! names or descriptions per point. Where the kind also has closed-form transfer polynomials (the scraper
+//! kinds), the numeric path writes Δ(s) and every output's N_i(s) directly in the swept values instead,
+//! and the integral table runs on them (one Hurwitz elimination of Δ·F_den per point, a back substitution
+//! per value, the pivot-ratio check on each; an output that fails it is computed by Lyapunov on the
+//! state space and says `lyapunov`): no state space or Faddeev–LeVerrier pass per point. Its numbers equal
+//! the general path's within rounding, not bit for bit (the polynomials are formed by other arithmetic).
+//! A point the builder declines (a value its reader or the model refuses) takes the general path, which
+//! names the error. [`Sweep::path`] says which path a study takes and why not the numeric one.
 
 use super::registry::{build_model, BuiltModel, ModelContext};
 use super::scenario_file::{build_excitation, parse_scenario, Scenario};
 use crate::error::{Error, Result};
 use crate::fields::Fields;
-use crate::response::{ExactEvaluator, Excitation, PointStatistics};
+use crate::response::{
+    lyapunov_point, ExactEvaluator, Excitation, PointStatistics, TransferBuilder, TransferPolynomials, VarianceMethod,
+};
 use crate::system::StateSpace;
 use crate::units::Dim;
 use serde::Serialize;
@@ -340,6 +347,9 @@ const MAX_NUMERIC_KEYS: usize = 16;
 /// The numeric path of a study (module docs): every value read once, the state space written in place.
 struct NumericPath {
     fill: fn(&[Option<f64>], &mut StateSpace) -> bool,
+    /// The kind's closed-form transfer polynomials, if any (then the state space is written only for an
+    /// output whose table value fails its check).
+    transfer: Option<TransferBuilder>,
     /// The base table's value of every key of the builder (None: absent).
     base: Vec<Option<f64>>,
     /// Per swept key: the builder's index of the key and the value read at every value of the key (None:
@@ -538,6 +548,7 @@ impl<'a> Sweep<'a> {
             .ok_or_else(|| format!("the model of kind `{kind}` has no state-space form"))?;
         Ok(NumericPath {
             fill: numeric.fill,
+            transfer: numeric.transfer,
             base,
             swept,
             template,
@@ -676,17 +687,49 @@ impl<'a> Sweep<'a> {
                 None => speed_index = Some(v),
             }
         }
-        if !(num.fill)(&values[..num.base.len()], ss) {
-            return None;
-        }
-        Some(match (fast, speed_index) {
-            (Excitations::Base(ev), _) => ev.evaluate(&*ss, &self.base.excitation, &num.outputs),
+        let values = &values[..num.base.len()];
+        let (ev, exc) = match (fast, speed_index) {
+            (Excitations::Base(ev), _) => (&**ev, &self.base.excitation),
             (Excitations::PerSpeed { cache, .. }, Some(v)) => {
                 let e = cache.get(v)?.as_ref()?;
-                e.evaluator.evaluate(&*ss, &e.excitation, &num.outputs)
+                (&e.evaluator, &e.excitation)
             }
             (Excitations::PerSpeed { .. }, None) => return None,
-        })
+        };
+        if let Some(transfer) = num.transfer {
+            let mut tp = TransferPolynomials::zero();
+            if !transfer(values, &mut tp) {
+                return None;
+            }
+            let mut out = Vec::with_capacity(num.outputs.len());
+            match ev.evaluate_transfer(&tp, &num.outputs, &mut out) {
+                Some(Ok(())) => {
+                    // an output whose table value failed its check: Lyapunov on the state space
+                    let mut filled = false;
+                    for (st, &i) in out.iter_mut().zip(&num.outputs) {
+                        if st.method == VarianceMethod::Lyapunov {
+                            if !filled {
+                                if !(num.fill)(values, ss) {
+                                    return None;
+                                }
+                                filled = true;
+                            }
+                            *st = match lyapunov_point(&*ss, exc, i) {
+                                Ok(s) => s,
+                                Err(e) => return Some(Err(e)),
+                            };
+                        }
+                    }
+                    return Some(Ok(out));
+                }
+                Some(Err(e)) => return Some(Err(e)),
+                None => {}
+            }
+        }
+        if !(num.fill)(values, ss) {
+            return None;
+        }
+        Some(ev.evaluate(&*ss, exc, &num.outputs))
     }
 
     /// The statistics of point `point` by the general path, whatever [`path`](Self::path) says: the model
