@@ -213,27 +213,6 @@ fn band_estimates_are_the_band_integrals_of_each_realizations_welch_estimate() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// (output, statistic, bits of estimate, lower, upper, analytic).
-fn stat_bits(s: &[OutputStatistics]) -> Vec<(String, String, [u64; 4])> {
-    s.iter()
-        .flat_map(|o| {
-            o.statistics.iter().map(move |st| {
-                let iv = &st.interval;
-                (
-                    o.output.clone(),
-                    st.name.clone(),
-                    [
-                        iv.estimate.to_bits(),
-                        iv.lower.to_bits(),
-                        iv.upper.to_bits(),
-                        st.analytic.unwrap_or(f64::NAN).to_bits(),
-                    ],
-                )
-            })
-        })
-        .collect()
-}
-
 #[test]
 fn a_two_shard_run_merged_is_bit_identical_and_a_band_less_run_is_unchanged() {
     let _serial = common::hdf5_serial();
@@ -263,7 +242,7 @@ fn a_two_shard_run_merged_is_bit_identical_and_a_band_less_run_is_unchanged() {
             .count()
     };
     assert_eq!(bands_of(&a), 4 * 2 * 22, "4 outputs, 22 bands, two statistics each");
-    assert_eq!(stat_bits(&a), stat_bits(&b));
+    assert_eq!(common::stored_statistic_bits(&a), common::stored_statistic_bits(&b));
 
     // the same run without `bands`: no band accumulator, no band statistic, and every other statistic and
     // density bit-identical to the run with bands
@@ -279,11 +258,11 @@ fn a_two_shard_run_merged_is_bit_identical_and_a_band_less_run_is_unchanged() {
         .accumulators
         .iter()
         .any(|(n, _)| n.ends_with(":bands")));
-    let without: Vec<_> = stat_bits(&a)
+    let without: Vec<_> = common::stored_statistic_bits(&a)
         .into_iter()
-        .filter(|(_, n, _)| !n.starts_with("band_rms"))
+        .filter(|(_, n, ..)| !n.starts_with("band_rms"))
         .collect();
-    assert_eq!(stat_bits(&c.statistics().unwrap()), without);
+    assert_eq!(common::stored_statistic_bits(&c.statistics().unwrap()), without);
     assert_eq!(common::psd_bits(&plain), common::psd_bits(&single));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use stochvib::scenario::{load_scenario, Scenario};
 use stochvib::simulate::{part_path, MergeOptions, RunOptions};
-use stochvib::store::{OutputStatistics, Part, PsdEstimate, RainflowHistogram, RunFile};
+use stochvib::store::{Part, PsdEstimate, RainflowHistogram, RunFile};
 
 /// Serialises this binary's in-process HDF5 work with the spawning of child processes: a child forked while
 /// a test thread holds an HDF5 file open inherits its descriptor and its flock(2) lock (until exec closes
@@ -45,32 +45,6 @@ fn simulate(sc: &Scenario, o: &RunOptions, path: &Path) {
 fn merge(out: &Path, inputs: &[PathBuf]) -> stochvib::error::Result<stochvib::simulate::MergeSummary> {
     let _g = spawn_lock();
     stochvib::simulate::merge_runs(out, inputs, &MergeOptions::default(), &|_, _| {})
-}
-
-/// (output, statistic, bits of estimate/lower/upper/confidence/analytic, covers, n_used).
-type StatBits = (String, String, [u64; 5], Option<bool>, u64);
-
-fn stat_bits(s: &[OutputStatistics]) -> Vec<StatBits> {
-    s.iter()
-        .flat_map(|o| {
-            o.statistics.iter().map(move |st| {
-                let iv = &st.interval;
-                (
-                    o.output.clone(),
-                    st.name.clone(),
-                    [
-                        iv.estimate.to_bits(),
-                        iv.lower.to_bits(),
-                        iv.upper.to_bits(),
-                        iv.confidence.to_bits(),
-                        st.analytic.unwrap_or(f64::NAN).to_bits(),
-                    ],
-                    st.covers,
-                    o.n_used,
-                )
-            })
-        })
-        .collect()
 }
 
 fn bits(v: &[f64]) -> Vec<u64> {
@@ -113,8 +87,8 @@ fn assert_same_results(merged: &Path, whole: &Path) {
     let _g = spawn_lock();
     let (m, w) = (RunFile::open(merged).unwrap(), RunFile::open(whole).unwrap());
     assert_eq!(
-        stat_bits(&m.statistics().unwrap()),
-        stat_bits(&w.statistics().unwrap()),
+        common::stored_statistic_bits(&m.statistics().unwrap()),
+        common::stored_statistic_bits(&w.statistics().unwrap()),
         "statistics"
     );
     assert_eq!(psd_bits(&m.psd().unwrap()), psd_bits(&w.psd().unwrap()), "densities");

@@ -17,7 +17,7 @@ use stochvib::response::{analyze_output, ExactEvaluator, Excitation, VarianceMet
 use stochvib::scenario::{load_scenario, Scenario};
 use stochvib::simulate::{part_path, resolve_part, MergeOptions, RunOptions};
 use stochvib::spectrum::{Domain, Exponential, GaussCosine};
-use stochvib::store::{Compression, OutputStatistics, Part, PsdEstimate, RunFile, SignalGroup};
+use stochvib::store::{Compression, Part, PsdEstimate, RunFile, SignalGroup};
 use stochvib::system::{OutputInfo, StateSpace, TransferFunction};
 
 // ---- tolerances -------------------------------------------------------------------------------------------
@@ -97,32 +97,6 @@ fn run_part(sc: &Scenario, dir: &Path, i: usize, n: usize, seed: u64) -> PathBuf
     path
 }
 
-/// (output, statistic, bits of estimate/lower/upper/confidence/analytic, covers, n_used).
-type StatBits = (String, String, [u64; 5], Option<bool>, u64);
-
-fn stat_bits(s: &[OutputStatistics]) -> Vec<StatBits> {
-    s.iter()
-        .flat_map(|o| {
-            o.statistics.iter().map(move |st| {
-                let iv = &st.interval;
-                (
-                    o.output.clone(),
-                    st.name.clone(),
-                    [
-                        iv.estimate.to_bits(),
-                        iv.lower.to_bits(),
-                        iv.upper.to_bits(),
-                        iv.confidence.to_bits(),
-                        st.analytic.unwrap_or(f64::NAN).to_bits(),
-                    ],
-                    st.covers,
-                    o.n_used,
-                )
-            })
-        })
-        .collect()
-}
-
 fn psd_bits(p: &[PsdEstimate]) -> Vec<Vec<u64>> {
     p.iter()
         .map(|e| {
@@ -145,8 +119,8 @@ fn psd_bits(p: &[PsdEstimate]) -> Vec<Vec<u64>> {
 fn assert_same_run(merged: &Path, whole: &Path) {
     let (m, w) = (RunFile::open(merged).unwrap(), RunFile::open(whole).unwrap());
     assert_eq!(
-        stat_bits(&m.statistics().unwrap()),
-        stat_bits(&w.statistics().unwrap()),
+        common::stored_statistic_bits(&m.statistics().unwrap()),
+        common::stored_statistic_bits(&w.statistics().unwrap()),
         "statistics"
     );
     assert_eq!(

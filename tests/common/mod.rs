@@ -103,6 +103,34 @@ pub fn statistic_bits(s: &stochvib::simulate::RunSummary) -> Vec<u64> {
         .collect()
 }
 
+/// (output, statistic, bits of estimate/lower/upper/confidence/analytic, covers, n_used).
+pub type StatBits = (String, String, [u64; 5], Option<bool>, u64);
+
+/// Every stored statistic of a run file with its name and all its bits: what "bit-identical statistics"
+/// of a merged run and a single-process run compares, statistic by statistic.
+pub fn stored_statistic_bits(s: &[stochvib::store::OutputStatistics]) -> Vec<StatBits> {
+    s.iter()
+        .flat_map(|o| {
+            o.statistics.iter().map(move |st| {
+                let iv = &st.interval;
+                (
+                    o.output.clone(),
+                    st.name.clone(),
+                    [
+                        iv.estimate.to_bits(),
+                        iv.lower.to_bits(),
+                        iv.upper.to_bits(),
+                        iv.confidence.to_bits(),
+                        st.analytic.unwrap_or(f64::NAN).to_bits(),
+                    ],
+                    st.covers,
+                    o.n_used,
+                )
+            })
+        })
+        .collect()
+}
+
 /// The bits of every stored Welch density value of the run file `out`.
 pub fn psd_bits(out: &std::path::Path) -> Vec<u64> {
     let run = stochvib::store::RunFile::open(out).unwrap();
