@@ -129,6 +129,28 @@ impl Error {
             reason: reason.into(),
         }
     }
+
+    /// Shorthand for [`Error::File`]: the file, the key (or line) in it, the value as written and the reason.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::Error;
+    /// let e = Error::in_file(std::path::Path::new("road.csv"), "line 12", "x", "not a number");
+    /// assert!(e.to_string().contains("road.csv") && e.to_string().contains("line 12"));
+    /// ```
+    pub fn in_file(
+        file: &std::path::Path,
+        key: impl Into<String>,
+        value: impl std::fmt::Display,
+        reason: impl Into<String>,
+    ) -> Self {
+        Error::File {
+            file: file.to_path_buf(),
+            key: key.into(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
 }
 
 /// Checks that `value` is finite and strictly positive.

@@ -183,15 +183,6 @@ pub struct RawProfile {
     pub lines: Vec<usize>,
 }
 
-fn file_error(file: &Path, key: String, value: impl Into<String>, reason: impl Into<String>) -> Error {
-    Error::File {
-        file: file.to_path_buf(),
-        key,
-        value: value.into(),
-        reason: reason.into(),
-    }
-}
-
 /// Splits `name [unit]` into (name, unit).
 fn parse_header_cell(cell: &str) -> Option<(&str, &str)> {
     let cell = cell.trim();
@@ -229,9 +220,9 @@ impl RawProfile {
                 !t.is_empty() && !t.starts_with('#')
             });
         let (header_line, header) = lines.next().ok_or_else(|| {
-            file_error(
+            Error::in_file(
                 file,
-                "header".into(),
+                "header",
                 "<missing>",
                 "no header row: the file has only comments or empty lines; expected e.g. \
                  `distance [m], left [mm], right [mm]`",
@@ -239,7 +230,7 @@ impl RawProfile {
         })?;
         let cells: Vec<&str> = header.split(',').collect();
         if cells.len() < 2 {
-            return Err(file_error(
+            return Err(Error::in_file(
                 file,
                 format!("line {header_line} (header)"),
                 header.trim(),
@@ -255,7 +246,7 @@ impl RawProfile {
         for (c, cell) in cells.iter().enumerate() {
             let key = format!("line {header_line} (header), column {}", c + 1);
             let (name, unit) = parse_header_cell(cell).ok_or_else(|| {
-                file_error(
+                Error::in_file(
                     file,
                     key.clone(),
                     cell.trim(),
@@ -264,10 +255,10 @@ impl RawProfile {
                 )
             })?;
             if name.is_empty() {
-                return Err(file_error(file, key, cell.trim(), "empty column name"));
+                return Err(Error::in_file(file, key, cell.trim(), "empty column name"));
             }
             if names.iter().any(|n| n == name) {
-                return Err(file_error(
+                return Err(Error::in_file(
                     file,
                     key,
                     cell.trim(),
@@ -279,10 +270,10 @@ impl RawProfile {
                     Error::Unit { reason, .. } => reason,
                     other => other.to_string(),
                 };
-                file_error(file, key.clone(), cell.trim(), reason)
+                Error::in_file(file, key.clone(), cell.trim(), reason)
             })?;
             if c > 0 && u == LengthUnit::Km {
-                return Err(file_error(
+                return Err(Error::in_file(
                     file,
                     key,
                     cell.trim(),
@@ -299,7 +290,7 @@ impl RawProfile {
         for (line, row) in lines {
             let fields: Vec<&str> = row.split(',').collect();
             if fields.len() != ncol {
-                return Err(file_error(
+                return Err(Error::in_file(
                     file,
                     format!("line {line}"),
                     row.trim(),
@@ -314,11 +305,11 @@ impl RawProfile {
                 let key = || format!("line {line}, column {} `{}`", c + 1, cells[c].trim());
                 let t = field.trim();
                 if t.is_empty() {
-                    return Err(file_error(file, key(), "<blank>", "blank value"));
+                    return Err(Error::in_file(file, key(), "<blank>", "blank value"));
                 }
-                let v: f64 = t.parse().map_err(|_| file_error(file, key(), t, "not a number"))?;
+                let v: f64 = t.parse().map_err(|_| Error::in_file(file, key(), t, "not a number"))?;
                 if !v.is_finite() {
-                    return Err(file_error(
+                    return Err(Error::in_file(
                         file,
                         key(),
                         t,
@@ -329,7 +320,7 @@ impl RawProfile {
                 if c == 0 {
                     if let Some(&prev) = distance_m.last() {
                         if vm <= prev {
-                            return Err(file_error(
+                            return Err(Error::in_file(
                                 file,
                                 key(),
                                 t,
@@ -350,9 +341,9 @@ impl RawProfile {
         }
         let min_rows = options.min_rows.max(2);
         if distance_m.len() < min_rows {
-            return Err(file_error(
+            return Err(Error::in_file(
                 file,
-                "rows".into(),
+                "rows",
                 distance_m.len().to_string(),
                 format!("too few data rows: need at least {min_rows}"),
             ));
@@ -396,7 +387,7 @@ impl RawProfile {
             let off = d - (d0 + k as f64 * h);
             if off.abs() > step_tolerance * h {
                 let local = d - self.distance_m[k - 1];
-                return Err(file_error(
+                return Err(Error::in_file(
                     &self.source,
                     format!("line {}, column 1 `{}`", self.lines[k], self.distance_header),
                     format!("{d} m"),

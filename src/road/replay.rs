@@ -145,15 +145,6 @@ pub fn settling_length(ss: &StateSpace, speed_m_s: f64) -> Result<f64> {
     Ok(speed_m_s * 7.0 / slowest)
 }
 
-fn file_error(file: &Path, key: &str, value: impl ToString, reason: impl Into<String>) -> Error {
-    Error::File {
-        file: file.to_path_buf(),
-        key: key.to_string(),
-        value: value.to_string(),
-        reason: reason.into(),
-    }
-}
-
 /// Replays `profile` (read from `file`, named in messages) through `ss` at speed v, input j fed by
 /// `wheels[j]`.
 ///
@@ -232,7 +223,7 @@ pub fn replay(
                 Error::InvalidParameter { reason, .. } => reason,
                 other => other.to_string(),
             };
-            file_error(
+            Error::in_file(
                 file,
                 "track",
                 &w.track,
@@ -277,7 +268,7 @@ pub fn replay(
     let skip_samples = (skip_m / dx - 1e-9).ceil().max(0.0) as usize;
     let k_total = (last + 1).max(0) as usize;
     if k_total < skip_samples + 2 {
-        return Err(file_error(
+        return Err(Error::in_file(
             file,
             "length",
             format!("{} m", profile.length_m()),

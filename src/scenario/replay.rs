@@ -91,15 +91,6 @@ pub struct ReplayWheel {
     pub offset: f64,
 }
 
-fn file_error(file: &Path, key: &str, value: impl ToString, reason: impl Into<String>) -> Error {
-    Error::File {
-        file: file.to_path_buf(),
-        key: key.to_string(),
-        value: value.to_string(),
-        reason: reason.into(),
-    }
-}
-
 /// The inline `measured-profile` spectrum table of `profile` (an absolute path), column `track`.
 fn measured_table(profile: &Path, track: &str, detrend: Detrend) -> toml::Value {
     let mut t = toml::Table::new();
@@ -128,7 +119,7 @@ fn measured_text(
     let mut root: toml::Table = crate::fields::parse_toml(&scenario.text, file)?;
     let speed_text = toml::Value::String(format!("{speed:?} m/s"));
     let not_a_road = |key: &str, reference: &str| {
-        file_error(
+        Error::in_file(
             file,
             key,
             reference,
@@ -142,7 +133,7 @@ fn measured_text(
                 Error::InvalidParameter { reason, .. } => reason,
                 other => other.to_string(),
             };
-            file_error(profile, "track", name, format!("{what}: {reason}"))
+            Error::in_file(profile, "track", name, format!("{what}: {reason}"))
         })
     };
     let mut analytic_track = track.to_string();
@@ -165,7 +156,7 @@ fn measured_text(
                 }
                 roads += 1;
                 if roads > 1 {
-                    return Err(file_error(
+                    return Err(Error::in_file(
                         file,
                         &format!("input[{i}]"),
                         &inp.name,
@@ -187,7 +178,7 @@ fn measured_text(
             }
         }
         _ => {
-            return Err(file_error(
+            return Err(Error::in_file(
                 file,
                 "input",
                 "<missing>",
@@ -196,7 +187,7 @@ fn measured_text(
         }
     }
     let text = toml::to_string(&root).map_err(|e| {
-        file_error(
+        Error::in_file(
             file,
             "input",
             "…",
@@ -222,7 +213,7 @@ fn wheels_of(s: &Scenario, track: &str, speed: f64) -> Result<Vec<Wheel>> {
                 offset: g * mean,
             })
             .collect()),
-        Excitation::Independent { .. } => Err(file_error(
+        Excitation::Independent { .. } => Err(Error::in_file(
             file,
             "input",
             "independent processes",
@@ -237,7 +228,7 @@ fn wheels_of(s: &Scenario, track: &str, speed: f64) -> Result<Vec<Wheel>> {
                         0 => "left",
                         1 => "right",
                         c => {
-                            return Err(file_error(
+                            return Err(Error::in_file(
                                 file,
                                 &format!("input[{}]", m.source),
                                 c,
@@ -282,7 +273,7 @@ pub fn replay_scenario(
         Some(v) if v.is_finite() && v > 0.0 => v,
         Some(v) => return Err(Error::invalid("--speed", v, "must be a finite speed > 0 m/s")),
         None => {
-            return Err(file_error(
+            return Err(Error::in_file(
                 &scenario.path,
                 "input.speed",
                 "<missing>",
@@ -303,7 +294,7 @@ pub fn replay_scenario(
     let measured = parse_scenario(&text, &scenario.path, &scenario.spectra_dir)?;
     let wheels = wheels_of(&measured, &track, speed)?;
     let ss = measured.model.system.state_space().ok_or_else(|| {
-        file_error(
+        Error::in_file(
             &scenario.path,
             "model.kind",
             &scenario.kind,
