@@ -795,3 +795,52 @@ fn a_road_track_width_other_than_the_vehicles_is_refused() {
     let err = parse_err(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
     assert!(err.contains("track_width") && err.contains("required"), "{err}");
 }
+
+/// `[road]`: the data file's `[[input]]` road written as its own section is the same scenario — every
+/// output's analytic variance bit for bit (the section is rewritten into the one table it stands for) — and
+/// its errors name `road.<key>` as written: a wrong track width, a bad speed, an unknown key, a kurtosis
+/// (refused for a road of two tracks), and `[road]` beside `[[input]]`.
+#[test]
+fn a_road_section_is_the_one_input_table_it_stands_for() {
+    let text = std::fs::read_to_string(root().join("data/full-vehicle-two-tracks.toml")).unwrap();
+    let table = "[[input]]\nname = \"road\"\nroad = { spectrum = \"iso8608-c\", track_width = \"1.5 m\", coherence = { kind = \"dodds-robson\", waviness = 2 } }\nspeed = \"20 m/s\"\n";
+    assert!(
+        text.contains(table),
+        "the data file's road table as this test expects it"
+    );
+    let section = "[road]\nspectrum = \"iso8608-c\"\ncoherence = { kind = \"dodds-robson\", waviness = 2 }\ntrack_width = \"1.5 m\"\nspeed = \"20 m/s\"\n";
+    let (a, b) = (parse(&text), parse(&text.replace(table, section)));
+    assert_eq!(b.inputs.len(), 1);
+    assert_eq!(b.inputs[0].name, "road");
+    let sys = a.model.system.as_ref();
+    for (i, o) in sys.outputs().iter().enumerate() {
+        let va = analyze_output(sys, &a.excitation, i).unwrap().variance;
+        let vb = analyze_output(b.model.system.as_ref(), &b.excitation, i)
+            .unwrap()
+            .variance;
+        assert_eq!(
+            va.map(f64::to_bits),
+            vb.map(f64::to_bits),
+            "{}: {va:?} vs {vb:?}",
+            o.name
+        );
+    }
+    let check = |edit: &dyn Fn(&str) -> String, parts: &[&str]| {
+        let err = parse_err(&text.replace(table, &edit(section)));
+        for part in parts {
+            assert!(err.contains(part), "missing `{part}` in: {err}");
+        }
+        assert!(!err.contains("input[0]"), "named as the [[input]] table: {err}");
+    };
+    check(
+        &|s| s.replace("\"1.5 m\"", "\"1.6 m\""),
+        &["test-multi.toml", "road.track_width", "1.6 m", "1.5 m"],
+    );
+    check(&|s| s.replace("\"20 m/s\"", "\"-3 m/s\""), &["road.speed", "-3", "> 0"]);
+    check(&|s| format!("{s}coherense = 1\n"), &["road.coherense", "unknown key"]);
+    check(&|s| format!("{s}kurtosis = 6\n"), &["road.kurtosis", "6"]);
+    check(
+        &|s| format!("{s}[[input]]\nspectrum = {FORCE}\n"),
+        &["road", "[road]", "[[input]]"],
+    );
+}

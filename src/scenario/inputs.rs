@@ -21,6 +21,9 @@
 //! drives = [4]
 //! kurtosis = 6                       # optional, one process only: a non-Gaussian (Laplace moving average) source
 //! ```
+//! * A road of two tracks alone may also be written as its own `[road]` section (`spectrum`, `coherence`,
+//!   `track_width`, `speed`, and the table keys below): the same as one `[[input]]` table with
+//!   `road = { spectrum, coherence, track_width }` ([`road_section_as_input`]); errors name `road.<key>`.
 //! * `drives` may be left out only when there is one `[[input]]` table: it then drives every model input.
 //! * `tracks`, `positions`, `gains` default to the model's own layout for the driven inputs (a catalogue
 //!   vehicle knows its wheels; the generic `mdof` reads `tracks`, `positions`, `gains` in `[model]`), else
@@ -56,6 +59,90 @@ use crate::spectrum::{AtSpeed, Domain, Spectrum};
 use crate::units::Dim;
 use std::path::Path;
 use std::sync::Arc;
+
+/// `[road]`: a road of two tracks written as its own section,
+/// ```toml
+/// [road]
+/// spectrum = "iso8608-c"
+/// coherence = { kind = "dodds-robson", waviness = 2 }
+/// track_width = "1.5 m"        # a vehicle with its own track width may leave it out
+/// speed = "20 m/s"
+/// ```
+/// (and optionally `name`, `mean`, `drives`, `tracks`, `positions`, `gains` as in an `[[input]]` table), is the
+/// one `[[input]]` table `{ name = "road", road = { spectrum, coherence, track_width }, speed, … }`: this
+/// rewrites `root` so, and says whether it did. The scenario text is kept as written; errors are renamed
+/// back to `road.<key>` by [`road_section_keys`].
+///
+/// # Errors
+/// [`crate::Error::File`] at `road` when the scenario also has `[input]` or `[[input]]` tables, or when
+/// `road` is not a table.
+pub(crate) fn road_section_as_input(root: &mut toml::Table, path: &Path) -> Result<bool> {
+    let Some(v) = root.get("road") else {
+        return Ok(false);
+    };
+    let toml::Value::Table(t) = v else {
+        return Err(crate::Error::in_file(
+            path,
+            "road",
+            v,
+            "expected a [road] section (spectrum, coherence, track_width, speed)",
+        ));
+    };
+    if root.contains_key("input") {
+        return Err(crate::Error::in_file(
+            path,
+            "road",
+            "[road]",
+            "the scenario also has [input] or [[input]] tables: give its inputs one way (a road of two \
+             tracks as [road], or every input as an [[input]] table with road = { … })",
+        ));
+    }
+    let mut road = toml::Table::new();
+    let mut input = toml::Table::new();
+    input.insert("name".into(), toml::Value::String("road".into()));
+    for (k, v) in t {
+        match k.as_str() {
+            "spectrum" | "coherence" | "track_width" => road.insert(k.clone(), v.clone()),
+            // every other key as in an [[input]] table (unknown ones refused there, named road.<key>)
+            _ => input.insert(k.clone(), v.clone()),
+        };
+    }
+    input.insert("road".into(), toml::Value::Table(road));
+    root.remove("road");
+    root.insert("input".into(), toml::Value::Array(vec![toml::Value::Table(input)]));
+    Ok(true)
+}
+
+/// Renames the keys of an error of the `[[input]]` table that a `[road]` section stands for
+/// ([`road_section_as_input`]) back to the section's own: `input[0].road.spectrum` → `road.spectrum`,
+/// `input[0].speed` → `road.speed`, `input[0]`/`input` → `road`.
+pub(crate) fn road_section_keys(e: crate::Error) -> crate::Error {
+    match e {
+        crate::Error::File {
+            file,
+            key,
+            value,
+            reason,
+        } => {
+            let key = if let Some(rest) = key.strip_prefix("input[0].road.") {
+                format!("road.{rest}")
+            } else if let Some(rest) = key.strip_prefix("input[0].") {
+                format!("road.{rest}")
+            } else if key == "input[0]" || key == "input" {
+                "road".to_string()
+            } else {
+                key
+            };
+            crate::Error::File {
+                file,
+                key,
+                value,
+                reason: reason.replace("input[0].road.", "road.").replace("input[0].", "road."),
+            }
+        }
+        e => e,
+    }
+}
 
 /// The keys of an `[[input]]` table.
 const INPUT_KEYS: [&str; 10] = [

@@ -117,6 +117,8 @@ fn measured_text(
 ) -> Result<(String, String)> {
     let file = &scenario.path;
     let mut root: toml::Table = crate::fields::parse_toml(&scenario.text, file)?;
+    // a `[road]` section is the one `[[input]]` table it stands for
+    super::inputs::road_section_as_input(&mut root, file)?;
     let speed_text = toml::Value::String(format!("{speed:?} m/s"));
     let not_a_road = |key: &str, reference: &str| {
         Error::in_file(

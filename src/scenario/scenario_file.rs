@@ -34,7 +34,8 @@
 //!
 //! Several independent inputs (a road of two tracks with a coherence, a force, …) are written as
 //! `[[input]]` tables instead of the one `[input]` ([`super::inputs`] describes them); each names the model
-//! inputs it drives.
+//! inputs it drives. A road of two tracks alone may be written as its own `[road]` section (`spectrum`,
+//! `coherence`, `track_width`, `speed`), the one `[[input]]` table it stands for.
 //!
 //! `[input] kurtosis = κ` (κ ≥ 3; absent: Gaussian) makes the input a Laplace moving average with the same
 //! spectrum and marginal kurtosis κ ([`LaplaceMovingAverage`](crate::simulate::LaplaceMovingAverage),
@@ -340,7 +341,15 @@ pub fn load_document(path: &Path, spectra_dir: &Path) -> Result<Document> {
 /// # Errors
 /// As [`load_document`].
 pub fn parse_document(text: &str, path: &Path, spectra_dir: &Path) -> Result<Document> {
-    let root: toml::Table = crate::fields::parse_toml(text, path)?;
+    let mut root: toml::Table = crate::fields::parse_toml(text, path)?;
+    if super::inputs::road_section_as_input(&mut root, path)? {
+        // errors name the keys as written: `road.<key>`, not the `[[input]]` table it stands for
+        return parse_root(root, text, path, spectra_dir).map_err(super::inputs::road_section_keys);
+    }
+    parse_root(root, text, path, spectra_dir)
+}
+
+fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) -> Result<Document> {
     if root.contains_key("reference") && !root.contains_key("model") {
         return ReferenceTable::parse(text, path).map(Document::Reference);
     }
