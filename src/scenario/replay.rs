@@ -160,7 +160,7 @@ fn measured_text(
                 if roads > 1 {
                     return Err(Error::in_file(
                         file,
-                        &format!("input[{i}]"),
+                        format!("input[{i}]"),
                         &inp.name,
                         "a second road input: one profile replays one road (the scenario's roads are \
                          independent sources, a replay would make them identical)",
@@ -232,7 +232,7 @@ fn wheels_of(s: &Scenario, track: &str, speed: f64) -> Result<Vec<Wheel>> {
                         c => {
                             return Err(Error::in_file(
                                 file,
-                                &format!("input[{}]", m.source),
+                                format!("input[{}]", m.source),
                                 c,
                                 format!("model input {j}: a road has two tracks (left, right)"),
                             ))
