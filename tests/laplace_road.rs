@@ -459,21 +459,14 @@ fn non_gaussian_vdv_is_predicted_from_the_weighted_output_kurtosis() {
     // the seat spring's damage rate: Dirlik's rate holds for a Gaussian output only, so for this non-Gaussian
     // run it is withdrawn as the analytic value (no `covers`), named in the method, while the Gaussian run
     // keeps it as its analytic value
-    let travel = s.outputs.iter().find(|o| o.output == "travel").unwrap();
-    let damage = travel.get("damage_rate").unwrap();
+    let damage = damage_rate(&s.outputs);
     assert!(damage.analytic.is_none() && damage.covers.is_none(), "{damage:?}");
     assert!(
         damage.method.contains("NOT compared") && damage.method.contains("non-Gaussian"),
         "{}",
         damage.method
     );
-    let g_damage = g
-        .outputs
-        .iter()
-        .find(|o| o.output == "travel")
-        .unwrap()
-        .get("damage_rate")
-        .unwrap();
+    let g_damage = damage_rate(&g.outputs);
     assert!(g_damage.analytic.is_some() && !g_damage.method.contains("NOT compared"));
     // the text summary prints the prediction beside the Monte Carlo VDV
     let text = format!("{s}");
@@ -488,6 +481,16 @@ fn non_gaussian_vdv_is_predicted_from_the_weighted_output_kurtosis() {
     assert!(vg.comfort.as_ref().unwrap().non_gaussian_input.is_none());
     assert!(!format!("{vg}").contains("do NOT hold"));
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The `damage_rate` statistic of the operator seat's fatigue output `travel`.
+fn damage_rate(outputs: &[stochvib::store::OutputStatistics]) -> &stochvib::store::Statistic {
+    outputs
+        .iter()
+        .find(|o| o.output == "travel")
+        .unwrap()
+        .get("damage_rate")
+        .unwrap()
 }
 
 #[test]
@@ -532,19 +535,8 @@ fn merged_shards_of_a_non_gaussian_verdict_run_keep_its_vdv_prediction() {
     assert_eq!(a.analytic.map(f64::to_bits), b.analytic.map(f64::to_bits));
     assert_eq!(a.interval.estimate.to_bits(), b.interval.estimate.to_bits());
     // the withdrawn Dirlik comparison of the damage rate survives the merge
-    let da = whole
-        .outputs
-        .iter()
-        .find(|o| o.output == "travel")
-        .unwrap()
-        .get("damage_rate")
-        .unwrap();
-    let db = m
-        .iter()
-        .find(|o| o.output == "travel")
-        .unwrap()
-        .get("damage_rate")
-        .unwrap();
+    let da = damage_rate(&whole.outputs);
+    let db = damage_rate(&m);
     assert!(da.method.contains("NOT compared"), "{}", da.method);
     assert_eq!(da.method, db.method);
     assert!(db.analytic.is_none() && db.covers.is_none());

@@ -17,6 +17,15 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
 }
 
+/// `data/full-vehicle-two-tracks.toml` with the repository's spectrum catalogue.
+fn full_vehicle_file() -> Scenario {
+    load_scenario(
+        &root().join("data/full-vehicle-two-tracks.toml"),
+        &root().join("spectra"),
+    )
+    .unwrap()
+}
+
 fn parse(text: &str) -> Scenario {
     parse_scenario(text, &root().join("data/test-multi.toml"), &root().join("spectra")).unwrap()
 }
@@ -231,11 +240,7 @@ fn the_full_vehicle_file_is_the_passenger_car_on_an_isotropic_class_c_road() {
     // constructor), its road the ISO class C geometric mean with the Dodds–Robson coherence of a 1.5 m
     // track width at 20 m/s, its wheels fl, fr at 0 m and rl, rr at the wheelbase on left/right. The
     // cross-spectral matrix of the inputs and the frequency responses must be the hand-built ones exactly.
-    let sc = load_scenario(
-        &root().join("data/full-vehicle-two-tracks.toml"),
-        &root().join("spectra"),
-    )
-    .unwrap();
+    let sc = full_vehicle_file();
     let car = FullVehicle::passenger_car();
     let road = Arc::new(PowerLaw::iso_class(IsoClass::C).unwrap());
     let tracks = Arc::new(TwoTracks::new(road, Arc::new(IsotropicCoherence::new(1.5, 2.0).unwrap()), 20.0).unwrap());
@@ -720,11 +725,7 @@ fn a_two_track_run_says_what_its_inputs_are() {
     // 27 steps of 5 ms): the route's reason and the variance methods name the two tracks, never "delayed
     // copies of one process" (the one-track reason).
     use stochvib::simulate::RunOptions;
-    let sc = load_scenario(
-        &root().join("data/full-vehicle-two-tracks.toml"),
-        &root().join("spectra"),
-    )
-    .unwrap();
+    let sc = full_vehicle_file();
     let dir = std::env::temp_dir().join(format!("stochvib-two-track-notes-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut opts = RunOptions::new(2, 2.56, 0.005, 1);

@@ -101,6 +101,21 @@ fn foh_bound(k: usize, omega: f64, dt: f64) -> f64 {
     (1.0 - sinc * sinc) * (sp(omega) + sp(2.0 * PI / dt - omega))
 }
 
+/// A one-track (`left`) profile of 4000 samples at `step_m`: z(x) = amp·sin(2πx/wavelength).
+fn sine_track(amp: f64, wavelength_m: f64, step_m: f64) -> Profile {
+    let th = 2.0 * PI / wavelength_m;
+    let z: Vec<f64> = (0..4000).map(|i| amp * (th * i as f64 * step_m).sin()).collect();
+    Profile::new(
+        step_m,
+        0.0,
+        vec![Track {
+            name: "left".into(),
+            elevation_m: z,
+        }],
+    )
+    .unwrap()
+}
+
 fn write_profile(name: &str, step: f64, tracks: Vec<(&str, Vec<f64>)>) -> PathBuf {
     let p = Profile::new(
         step,
@@ -249,16 +264,7 @@ fn wheels_on_one_track_see_it_delayed_by_the_wheelbase() {
     };
     for (wavelength, in_phase) in [(l / 3.0, true), (2.0 * l / 7.0, false), (l, true), (2.0 * l, false)] {
         let th = 2.0 * PI / wavelength;
-        let z: Vec<f64> = (0..4000).map(|i| amp * (th * i as f64 * step).sin()).collect();
-        let p = Profile::new(
-            step,
-            0.0,
-            vec![Track {
-                name: "left".into(),
-                elevation_m: z,
-            }],
-        )
-        .unwrap();
+        let p = sine_track(amp, wavelength, step);
         // what each wheel sees, against the closed form
         let r = replay(&feedthrough(2), &wheels(l), &p, Path::new("sine.csv"), &opts).unwrap();
         assert_eq!(r.wheelbase_m, l);
@@ -283,16 +289,7 @@ fn wheels_on_one_track_see_it_delayed_by_the_wheelbase() {
     // a rear wheel half a step off the grid: linear interpolation, f = 1/2
     let (l2, wavelength) = (2.725, 1.3);
     let th = 2.0 * PI / wavelength;
-    let z: Vec<f64> = (0..4000).map(|i| amp * (th * i as f64 * step).sin()).collect();
-    let p = Profile::new(
-        step,
-        0.0,
-        vec![Track {
-            name: "left".into(),
-            elevation_m: z,
-        }],
-    )
-    .unwrap();
+    let p = sine_track(amp, wavelength, step);
     let r = replay(&feedthrough(2), &wheels(l2), &p, Path::new("sine.csv"), &opts).unwrap();
     assert!(r.interpolated);
     // the foremost wheel starts at the first whole step with the rear wheel on the profile: ⌈54.5⌉ = 55
