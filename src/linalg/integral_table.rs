@@ -158,12 +158,12 @@ fn entry(a: &[f64], n: usize, k: usize, j: usize) -> f64 {
 
 #[inline]
 fn rhs(b: &[f64], k: usize) -> f64 {
+    // j ascending over the pairs with i = 2k − j < len (the terms outside contribute nothing)
     let mut d = 0.0;
-    for j in 0..b.len().min(2 * k + 1) {
-        let i = 2 * k - j;
-        if i < b.len() {
-            d += if j.is_multiple_of(2) { b[i] * b[j] } else { -b[i] * b[j] };
-        }
+    let lo = (2 * k + 1).saturating_sub(b.len());
+    for j in lo..b.len().min(2 * k + 1) {
+        let t = b[2 * k - j] * b[j];
+        d += if j.is_multiple_of(2) { t } else { -t };
     }
     d
 }

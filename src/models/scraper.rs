@@ -323,7 +323,6 @@ pub(crate) fn rigid_transfer(v: &[Option<f64>], tp: &mut TransferPolynomials) ->
     if !(a1.is_finite() && beta1.is_finite()) {
         return false;
     }
-    *tp = TransferPolynomials::zero();
     tp.n = 2;
     tp.den[..3].copy_from_slice(&[a1, beta1, 1.0]);
     tp.num[0][..2].copy_from_slice(&[a1, beta1]);
@@ -400,7 +399,6 @@ pub(crate) fn sprung_transfer(v: &[Option<f64>], tp: &mut TransferPolynomials) -
     if !den.iter().chain(&x1).chain(&x2).all(|v| v.is_finite()) {
         return false;
     }
-    *tp = TransferPolynomials::zero();
     tp.n = 4;
     tp.den[..5].copy_from_slice(&den);
     tp.num[0][..4].copy_from_slice(&x1);
@@ -960,6 +958,7 @@ mod tests {
             // rigid cab: the front part alone
             let vals = [Some(m1), None, Some(w1), None, Some(z1)];
             let r = rigid_model(&vals).unwrap().instance().unwrap();
+            let mut tp = TransferPolynomials::zero(); // builders write into zeroed polynomials
             assert!(rigid_transfer(&vals, &mut tp));
             assert_eq!(tp.n, 2);
             check(r.system.state_space().unwrap(), &tp, 2, "rigid");

@@ -464,7 +464,9 @@ pub(crate) struct TransferPolynomials {
 }
 
 /// A model kind's closed-form transfer-polynomial builder: writes [`TransferPolynomials`] for one value per
-/// key of the kind's numeric builder (None: absent), or returns false where the model cannot be built.
+/// key of the kind's numeric builder (None: absent), or returns false where the model cannot be built. The
+/// polynomials arrive as [`TransferPolynomials::zero`] gives them (the builder writes only its non-zero
+/// coefficients).
 pub(crate) type TransferBuilder = fn(&[Option<f64>], &mut TransferPolynomials) -> bool;
 
 impl TransferPolynomials {
@@ -537,14 +539,19 @@ fn unstable_or(e: Error, delta: &[f64]) -> Error {
     }
 }
 
-/// p·q (ascending) into `out`; returns the length used.
+/// p·q (ascending) into `out`; returns the length used. Each coefficient Σᵢ pᵢq_{k−i} is summed in a
+/// register in ascending i (the order, and so the rounding, of accumulating pᵢ·q row by row into a zeroed
+/// `out`), so no sum waits on a store of the previous product.
 pub(crate) fn mul_into(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
     let len = p.len() + q.len() - 1;
-    out[..len].fill(0.0);
-    for (i, a) in p.iter().enumerate() {
-        for (j, b) in q.iter().enumerate() {
-            out[i + j] += a * b;
+    for (k, o) in out[..len].iter_mut().enumerate() {
+        let lo = (k + 1).saturating_sub(q.len());
+        let hi = k.min(p.len() - 1);
+        let mut acc = 0.0;
+        for i in lo..=hi {
+            acc += p[i] * q[k - i];
         }
+        *o = acc;
     }
     len
 }
