@@ -30,7 +30,9 @@ pub use scenario_file::{
     Scenario, ScenarioInput,
 };
 pub use spectrum_file::{load_spectrum, parse_spectrum, SpectrumFile};
-pub use sweep::{substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec};
+pub use sweep::{
+    substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec, FAILED_POINT,
+};
 pub use verdict_analysis::{
     verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, VerdictAnalysis,
 };

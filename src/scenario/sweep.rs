@@ -261,16 +261,21 @@ impl SweepSpec {
 
     /// The index of each key's value at point `point` (grid: mixed radix, the last key fastest).
     pub fn indices(&self, point: usize) -> Vec<usize> {
+        let mut idx = vec![0; self.params.len()];
+        self.indices_into(point, &mut idx);
+        idx
+    }
+
+    /// [`indices`](Self::indices) written into `idx` (one slot per key).
+    pub fn indices_into(&self, point: usize, idx: &mut [usize]) {
         match self.mode {
-            SweepMode::Zip => vec![point; self.params.len()],
+            SweepMode::Zip => idx.fill(point),
             SweepMode::Grid => {
                 let mut rest = point;
-                let mut idx = vec![0; self.params.len()];
-                for (k, p) in self.params.iter().enumerate().rev() {
-                    idx[k] = rest % p.values.len();
+                for (slot, p) in idx.iter_mut().zip(&self.params).rev() {
+                    *slot = rest % p.values.len();
                     rest /= p.values.len();
                 }
-                idx
             }
         }
     }
@@ -634,17 +639,27 @@ impl<'a> Sweep<'a> {
     /// The substituted scenario's errors (a value out of range, an unstable model), the evaluator's errors.
     pub fn evaluate(&self, point: usize) -> Result<Vec<PointStatistics>> {
         let mut scratch = self.numeric.as_ref().map(|n| n.template.clone());
-        self.evaluate_in(point, scratch.as_mut())
+        let mut out = Vec::new();
+        self.evaluate_in(point, scratch.as_mut(), &mut out)?;
+        Ok(out)
     }
 
-    /// [`evaluate`](Self::evaluate) with a state space to write the numeric path's matrices into.
-    fn evaluate_in(&self, point: usize, scratch: Option<&mut StateSpace>) -> Result<Vec<PointStatistics>> {
+    /// [`evaluate`](Self::evaluate) into `out` (cleared first), with a state space to write the numeric
+    /// path's matrices into.
+    fn evaluate_in(
+        &self,
+        point: usize,
+        scratch: Option<&mut StateSpace>,
+        out: &mut Vec<PointStatistics>,
+    ) -> Result<()> {
+        out.clear();
         if let (Some(num), Some(ss), Some(fast)) = (&self.numeric, scratch, &self.fast) {
-            if let Some(r) = self.numeric_at(point, num, ss, fast) {
+            if let Some(r) = self.numeric_at(point, num, ss, fast, out) {
                 return r;
             }
         }
-        self.evaluate_general(point)
+        *out = self.evaluate_general(point)?;
+        Ok(())
     }
 
     /// The statistics of point `point` by the numeric path alone ([`SweepPath::Numeric`]), or None where it
@@ -657,17 +672,20 @@ impl<'a> Sweep<'a> {
     pub fn evaluate_numeric(&self, point: usize) -> Option<Result<Vec<PointStatistics>>> {
         let (num, fast) = (self.numeric.as_ref()?, self.fast.as_ref()?);
         let mut ss = num.template.clone();
-        self.numeric_at(point, num, &mut ss, fast)
+        let mut out = Vec::new();
+        Some(self.numeric_at(point, num, &mut ss, fast, &mut out)?.map(|()| out))
     }
 
-    /// The numeric path at `point` with `ss` to write into (see [`evaluate_numeric`](Self::evaluate_numeric)).
+    /// The numeric path at `point` with `ss` to write into, the statistics pushed to `out` (empty) (see
+    /// [`evaluate_numeric`](Self::evaluate_numeric)).
     fn numeric_at(
         &self,
         point: usize,
         num: &NumericPath,
         ss: &mut StateSpace,
         fast: &Excitations,
-    ) -> Option<Result<Vec<PointStatistics>>> {
+        out: &mut Vec<PointStatistics>,
+    ) -> Option<Result<()>> {
         let mut values = [None; MAX_NUMERIC_KEYS];
         values[..num.base.len()].copy_from_slice(&num.base);
         let mut speed_index = None;
@@ -701,8 +719,7 @@ impl<'a> Sweep<'a> {
             if !transfer(values, &mut tp) {
                 return None;
             }
-            let mut out = Vec::with_capacity(num.outputs.len());
-            match ev.evaluate_transfer(&tp, &num.outputs, &mut out) {
+            match ev.evaluate_transfer(&tp, &num.outputs, out) {
                 Some(Ok(())) => {
                     // an output whose table value failed its check: Lyapunov on the state space
                     let mut filled = false;
@@ -720,16 +737,16 @@ impl<'a> Sweep<'a> {
                             };
                         }
                     }
-                    return Some(Ok(out));
+                    return Some(Ok(()));
                 }
                 Some(Err(e)) => return Some(Err(e)),
-                None => {}
+                None => out.clear(),
             }
         }
         if !(num.fill)(values, ss) {
             return None;
         }
-        Some(ev.evaluate(&*ss, exc, &num.outputs))
+        Some(ev.evaluate(&*ss, exc, &num.outputs).map(|v| *out = v))
     }
 
     /// The statistics of point `point` by the general path, whatever [`path`](Self::path) says: the model
@@ -829,22 +846,104 @@ impl<'a> Sweep<'a> {
         points: std::ops::Range<usize>,
         parallel: bool,
     ) -> Vec<std::result::Result<Vec<PointStatistics>, String>> {
+        let n_out = self.outputs().len();
+        let mut flat = vec![FAILED_POINT; points.len() * n_out];
+        let errors = self.evaluate_into(points.clone(), parallel, &mut flat);
+        let mut errors = errors.into_iter().peekable();
+        points
+            .zip(flat.chunks(n_out.max(1)))
+            .map(|(p, row)| match errors.next_if(|e| e.0 == p) {
+                Some((_, e)) => Err(e),
+                None => Ok(row.to_vec()),
+            })
+            .collect()
+    }
+
+    /// Evaluates the points `points` (in parallel with `parallel`) into `out`, row-major (point, output in
+    /// the order of [`outputs`](Self::outputs)): nothing is allocated per point. A point that fails leaves
+    /// its row as [`FAILED_POINT`] and gives its error message, in the returned list (ascending points;
+    /// the study goes on).
+    ///
+    /// # Errors
+    /// None: see above.
+    ///
+    /// # Panics
+    /// If `out.len()` is not `points.len()` times the number of outputs (a caller's bug).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::scenario::{load_scenario, Sweep, SweepMode, SweepParam, SweepSpec, FAILED_POINT};
+    /// use std::path::Path;
+    /// let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+    /// let spec = SweepSpec::new(vec![SweepParam::parse("model.zeta2=0.1..0.4:4").unwrap()], SweepMode::Grid).unwrap();
+    /// let sweep = Sweep::new(&sc, spec).unwrap();
+    /// let n_out = sweep.outputs().len();
+    /// let mut rows = vec![FAILED_POINT; 4 * n_out];
+    /// assert!(sweep.evaluate_into(0..4, true, &mut rows).is_empty());
+    /// assert_eq!(&rows[2 * n_out..3 * n_out], &sweep.evaluate(2).unwrap()[..]); // point 2's row
+    /// ```
+    pub fn evaluate_into(
+        &self,
+        points: std::ops::Range<usize>,
+        parallel: bool,
+        out: &mut [PointStatistics],
+    ) -> Vec<(usize, String)> {
         use rayon::prelude::*;
-        // one state space per worker for the numeric path, overwritten point after point
-        let scratch = || self.numeric.as_ref().map(|n| n.template.clone());
-        let one = |s: &mut Option<StateSpace>, p: usize| self.evaluate_in(p, s.as_mut()).map_err(|e| e.to_string());
+        const CHUNK: usize = 256;
+        let n_out = self.outputs().len().max(1);
+        assert_eq!(out.len(), points.len() * self.outputs().len(), "one row per point");
+        // per worker: a state space for the numeric path, overwritten point after point, and one row
+        let scratch = || {
+            (
+                self.numeric.as_ref().map(|n| n.template.clone()),
+                Vec::with_capacity(n_out),
+            )
+        };
+        let chunk = |(ss, row): &mut (Option<StateSpace>, Vec<PointStatistics>),
+                     (c, rows): (usize, &mut [PointStatistics])|
+         -> Vec<(usize, String)> {
+            let mut errors = Vec::new();
+            let first = points.start + c * CHUNK;
+            for (k, slot) in rows.chunks_mut(n_out).enumerate() {
+                match self.evaluate_in(first + k, ss.as_mut(), row) {
+                    Ok(()) if row.len() == slot.len() => slot.copy_from_slice(row),
+                    r => {
+                        slot.fill(FAILED_POINT);
+                        let why = r
+                            .err()
+                            .map_or("the model gave another number of outputs".into(), |e| e.to_string());
+                        errors.push((first + k, why));
+                    }
+                }
+            }
+            errors
+        };
+        if self.outputs().is_empty() {
+            return Vec::new();
+        }
         if parallel {
-            points
-                .into_par_iter()
-                .with_min_len(256)
-                .map_init(scratch, one)
+            out.par_chunks_mut(CHUNK * n_out)
+                .enumerate()
+                .map_init(scratch, chunk)
+                .flatten_iter()
                 .collect()
         } else {
             let mut s = scratch();
-            points.map(|p| one(&mut s, p)).collect()
+            out.chunks_mut(CHUNK * n_out)
+                .enumerate()
+                .flat_map(|c| chunk(&mut s, c))
+                .collect()
         }
     }
 }
+
+/// The row of a point that failed ([`Sweep::evaluate_into`]): no mean, variance or λ₂.
+pub const FAILED_POINT: PointStatistics = PointStatistics {
+    mean: None,
+    variance: None,
+    lambda2: None,
+    method: VarianceMethod::Quadrature,
+};
 
 /// The root table of a scenario file with `point` values substituted, as TOML text (for `stochvib analyze`
 /// of one point of a study).
