@@ -91,6 +91,25 @@ fn scenario_sweep(c: &mut Criterion) {
     g.throughput(Throughput::Elements(n as u64));
     let table = compute_sweep(&sweep, 0..n, true, None, &|_, _| {}).unwrap();
     g.bench_function("to_csv_1e4", |b| b.iter(|| table.to_csv().len()));
+    // rows into one flat buffer (nothing allocated per point), all cores
+    let mut rows = vec![stochvib::scenario::FAILED_POINT; n * sweep.outputs().len()];
+    g.bench_function("evaluate_into_1e4_all_cores", |b| {
+        b.iter(|| sweep.evaluate_into(0..n, true, &mut rows).len())
+    });
+    // what `stochvib sweep -o table.h5` does after start-up: blocks evaluated on every core while a writer
+    // thread puts the previous block into the file (2.4 MB), renamed when complete
+    let dir = std::env::temp_dir().join(format!("stochvib-bench-sweep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("table.h5");
+    let opts = stochvib::report::StreamOptions::default();
+    g.bench_function("write_sweep_table_h5_1e4", |b| {
+        b.iter(|| {
+            stochvib::report::write_sweep_table(&sweep, &path, true, None, opts, &|_, _| {})
+                .unwrap()
+                .n_points
+        })
+    });
+    let _ = std::fs::remove_dir_all(&dir);
     g.finish();
 }
 

@@ -751,15 +751,24 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     );
                 }
                 None => {
-                    let n = sweep.spec().n_points();
-                    let t = report::compute_sweep(&sweep, 0..n, true, mc, &progress)?;
+                    let opts = report::StreamOptions::default();
                     match output {
                         Some(path) => {
-                            t.write(&path, overwrite)?;
-                            eprintln!("wrote {} points ({} failed) to {}", n, t.errors.len(), path.display());
+                            let t = report::write_sweep_table(&sweep, &path, overwrite, mc, opts, &progress)?;
+                            eprintln!(
+                                "wrote {} points ({} failed) to {}",
+                                t.n_points,
+                                t.errors.len(),
+                                path.display()
+                            );
                         }
-                        None if json => emit_line(&t.to_json()?),
-                        None => emit(&t.to_csv()),
+                        None if json => {
+                            let n = sweep.spec().n_points();
+                            emit_line(&report::compute_sweep(&sweep, 0..n, true, mc, &progress)?.to_json()?)
+                        }
+                        None => {
+                            report::stream_sweep_csv(&sweep, QuietPipe, Path::new("<stdout>"), mc, opts, &progress)?;
+                        }
                     }
                 }
             }
@@ -892,6 +901,25 @@ fn progress_printer() -> impl Fn(usize, usize) {
         } else {
             eprintln!("shard {done}/{total}");
         }
+    }
+}
+
+/// Standard output for a streamed table: a closed pipe (`stochvib sweep ... | head`) ends the program
+/// quietly, as [`emit`] does.
+struct QuietPipe;
+
+impl std::io::Write for QuietPipe {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        std::io::stdout().lock().write(buf).inspect_err(quiet_on_broken_pipe)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        std::io::stdout().lock().flush().inspect_err(quiet_on_broken_pipe)
+    }
+}
+
+fn quiet_on_broken_pipe(e: &std::io::Error) {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        std::process::exit(0);
     }
 }
 

@@ -4,6 +4,8 @@
     python3 compare.py run [--reps N] > py.json        time the jobs, print JSON
     python3 compare.py table rust.json py.json         print the comparison table
     python3 compare.py sweep [--reps N]                only the scipy sweep loops (benches/RESULTS.md)
+    python3 compare.py sweep-cli [--reps N]            `stochvib sweep` of 10^6 points beside the scipy loop
+                                                       (run from the repository root after cargo build --release)
 
 Same jobs and problem sizes as examples/compare_rust.rs (constants mirror benches/common/mod.rs):
 the sprung-cab scraper of data/scraper-sprung-cab.toml (Sukharev 8.7, eq. (8.65)) under the graded dirt
@@ -210,6 +212,71 @@ def sweep_jobs(reps):
         out[key] = {"seconds": t, "n": n, "us_per_point": t / n * 1e6, "check": check}
         print(f"{key:28} {n:7d} points  {t / n * 1e6:8.2f} us/point  check {check:.12e}", file=sys.stderr)
     return out
+
+
+def sweep_cli(reps, binary, out_dir, n_side=1000):
+    """`stochvib sweep` of n_side^2 points through the command line, the whole process timed (start, scenario
+    read, evaluation on every core, the table written and renamed): the same 4-output job as
+    sweep_lyapunov_4_outputs on the same grid family (omega2 1..2.5 Hz x zeta2 0.1..0.5, here n_side x n_side
+    values), to an HDF5 table, to a CSV file and as CSV to /dev/null. Wall time by perf_counter around the
+    child; user and system time and peak RSS of the child from wait4. Best and median of `reps` runs each;
+    then the scipy loop (best of 2, per point, on its 10^4-point grid) in the same minutes and the ratios
+    scipy time of n_side^2 points / stochvib wall time."""
+    import statistics
+    import subprocess
+
+    args = [
+        binary,
+        "sweep",
+        "data/scraper-sprung-cab.toml",
+        "--param",
+        f"model.omega2=1 Hz..2.5 Hz:{n_side}",
+        "--param",
+        f"model.zeta2=0.1..0.5:{n_side}",
+    ]
+    n = n_side * n_side
+    rows = {}
+    for name, extra in [("h5", ["-o", os.path.join(out_dir, "table.h5")]),
+                        ("csv", ["-o", os.path.join(out_dir, "table.csv")]),
+                        ("csv-stdout", [])]:
+        runs = []
+        for _ in range(reps):
+            for f in ("table.h5", "table.csv"):
+                if os.path.exists(os.path.join(out_dir, f)):
+                    os.remove(os.path.join(out_dir, f))
+            t0 = time.perf_counter()
+            child = subprocess.Popen(args + extra, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            _, status, ru = os.wait4(child.pid, 0)
+            wall = time.perf_counter() - t0
+            err = child.stderr.read().decode()
+            child.stderr.close()
+            if os.waitstatus_to_exitcode(status) != 0:
+                raise SystemExit(f"stochvib sweep failed: {err}")
+            runs.append((wall, ru.ru_utime, ru.ru_stime, ru.ru_maxrss / 1024.0))
+        walls = [r[0] for r in runs]
+        best_run = min(runs)
+        rows[name] = {
+            "points": n,
+            "best_wall_s": best_run[0],
+            "median_wall_s": statistics.median(walls),
+            "walls_s": walls,
+            "best_user_s": best_run[1],
+            "best_sys_s": best_run[2],
+            "peak_rss_mb": max(r[3] for r in runs),
+        }
+    scipy = sweep_jobs(2)["sweep_lyapunov_4_outputs"]["us_per_point"]
+    for name, r in rows.items():
+        t_scipy = scipy * 1e-6 * n
+        r["scipy_us_per_point"] = scipy
+        r["ratio_best"] = t_scipy / r["best_wall_s"]
+        r["ratio_median"] = t_scipy / r["median_wall_s"]
+        print(
+            f"stochvib sweep {n} points -> {name:10} best {r['best_wall_s']:.3f} s (user {r['best_user_s']:.2f}, "
+            f"sys {r['best_sys_s']:.2f}), median {r['median_wall_s']:.3f} s, peak RSS {r['peak_rss_mb']:.0f} MB; "
+            f"scipy {scipy:.2f} us/pt -> {r['ratio_best']:.0f}x best, {r['ratio_median']:.0f}x median",
+            file=sys.stderr,
+        )
+    return rows
 
 
 def sweep_numpy_table():
@@ -731,7 +798,18 @@ def main():
     t.add_argument("python")
     w = sub.add_parser("sweep", help="only the scipy sweep loops (1 output, and 4 outputs with lambda2)")
     w.add_argument("--reps", type=int, default=2)
+    c = sub.add_parser("sweep-cli", help="`stochvib sweep` of 10^6 points (HDF5, CSV) beside the scipy loop")
+    c.add_argument("--reps", type=int, default=7)
+    c.add_argument("--binary", default="target/release/stochvib")
+    c.add_argument("--out-dir", default=None, help="where the tables go (default: a temporary directory)")
+    c.add_argument("--side", type=int, default=1000, help="values per key (points = side^2)")
     a = ap.parse_args()
+    if a.cmd == "sweep-cli":
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as tmp:
+            print(json.dumps(sweep_cli(a.reps, a.binary, a.out_dir or tmp, a.side), indent=1))
+        return
     if a.cmd == "run":
         print(json.dumps(run(a.reps), indent=1))
     elif a.cmd == "sweep":

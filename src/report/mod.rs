@@ -8,6 +8,8 @@ pub mod catalogue;
 pub mod replay_report;
 pub mod road_report;
 pub mod spectrum_report;
+mod sweep_h5;
+pub mod sweep_stream;
 pub mod sweep_table;
 pub mod tables;
 pub mod verdict_report;
@@ -16,6 +18,7 @@ pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use book::{book_report, BookReport};
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
+pub use sweep_stream::{stream_sweep_csv, write_sweep_table, StreamOptions, StreamedTable};
 pub use sweep_table::{
     compute_sweep, find_sweep_shards, merge_sweep, run_sweep_shard, SweepMonteCarlo, SweepResults, TableFormat,
 };

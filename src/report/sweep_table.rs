@@ -22,14 +22,21 @@
 //! ├── outputs/<name>/       @unit
 //! │   ├── mean, variance, sigma, lower_3sigma, upper_3sigma, lambda2, zero_upcrossing_rate   f64 [n_points]
 //! │   │                     (NaN where the value does not exist: infinite variance, failed point)
-//! │   ├── method            u8 [n_points]  0 Lyapunov, 1 integral table, 2 quadrature, 255 failed
+//! │   ├── method            u8 [n_points]  0 Lyapunov, 1 integral table, 2 quadrature,
+//! │   │                     3 Lyapunov with delays, 255 failed
 //! │   └── mc_sigma, mc_lower, mc_upper  f64 [n_points], mc_covers u8 [n_points]   (with Monte Carlo)
 //! └── errors/               point u64 [n_failed], message string [n_failed]
 //! ```
+//!
+//! # Streaming
+//! `stochvib sweep` does not build this table in memory: [`write_sweep_table`](super::write_sweep_table)
+//! evaluates the points in blocks and writes each block (HDF5 rows, CSV lines) on a writer thread while
+//! the next is evaluated; the file is the same as [`SweepResults::write`] of the whole table.
 
+use super::sweep_h5::H5TableWriter;
 use crate::error::{Error, Result};
 use crate::response::{PointStatistics, VarianceMethod};
-use crate::scenario::{sweep_value_text, Sweep, SweepMode};
+use crate::scenario::{sweep_value_text, Sweep, SweepMode, FAILED_POINT};
 use crate::simulate::{run_temporary, RunOptions};
 use crate::store::Part;
 use serde::{Deserialize, Serialize};
@@ -88,7 +95,8 @@ pub enum Method {
 }
 
 impl Method {
-    fn code(self) -> u8 {
+    /// The code of the HDF5 table's `method` dataset (255 marks a failed point).
+    pub(crate) fn code(self) -> u8 {
         match self {
             Method::Lyapunov => 0,
             Method::IntegralTable => 1,
@@ -146,7 +154,7 @@ pub struct OutputValues {
 }
 
 impl OutputValues {
-    fn from_point(s: &PointStatistics) -> OutputValues {
+    pub(crate) fn from_point(s: &PointStatistics) -> OutputValues {
         OutputValues {
             mean: s.mean,
             variance: s.variance,
@@ -233,76 +241,85 @@ pub fn compute_sweep(
     mc: Option<SweepMonteCarlo>,
     progress: &dyn Fn(usize, usize),
 ) -> Result<SweepResults> {
-    let spec = sweep.spec();
-    let n_out = sweep.outputs().len();
-    let results = sweep.evaluate_range(points.clone(), parallel);
-    let mut value_index = Vec::with_capacity(points.len() * spec.params.len());
-    let mut values = Vec::with_capacity(points.len() * n_out);
-    let mut errors = Vec::new();
-    let empty = OutputValues {
-        mean: None,
-        variance: None,
-        lambda2: None,
-        method: Method::Quadrature,
-        mc: None,
-    };
-    for (p, r) in points.clone().zip(results) {
-        value_index.extend(spec.indices(p));
-        match r {
-            Ok(stats) => values.extend(stats.iter().map(OutputValues::from_point)),
-            Err(e) => {
-                values.extend(std::iter::repeat_n(empty, n_out));
-                errors.push((p, e));
-            }
-        }
-    }
+    let mut stats = vec![FAILED_POINT; points.len() * sweep.outputs().len()];
+    let errors = sweep.evaluate_into(points.clone(), parallel, &mut stats);
+    let mut t = tabulate(sweep, points, &stats, errors, mc);
     if let Some(m) = mc {
-        let dir = std::env::temp_dir();
-        for (k, p) in points.clone().enumerate() {
-            if errors.iter().any(|e| e.0 == p) {
-                continue;
-            }
-            let run = || -> Result<Vec<Option<McValues>>> {
-                let sc = sweep.scenario_at(p)?;
-                let opts = RunOptions {
-                    shard_size: m.shard_size,
-                    confidence: m.confidence,
-                    ..RunOptions::new(m.realizations, m.duration_s, m.dt_s, m.seed)
-                };
-                let (summary, ()) = run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |_| ())?;
-                Ok(sweep
-                    .outputs()
-                    .iter()
-                    .map(|name| {
-                        summary.statistic(name, "sigma").map(|s| McValues {
-                            sigma: s.interval.estimate,
-                            lower: s.interval.lower,
-                            upper: s.interval.upper,
-                            covers: s.covers == Some(true),
-                        })
-                    })
-                    .collect())
-            };
-            match run() {
-                Ok(list) => {
-                    for (j, v) in list.into_iter().enumerate() {
-                        values[k * n_out + j].mc = v;
-                    }
-                }
-                Err(e) => errors.push((p, format!("Monte Carlo: {e}"))),
-            }
-            progress(k + 1, points.len());
-        }
-        errors.sort_by_key(|e| e.0);
+        add_monte_carlo(sweep, &mut t, m, progress);
     }
-    Ok(SweepResults {
+    Ok(t)
+}
+
+/// The table of the points `points` from their rows `stats` and failed points `errors`
+/// ([`Sweep::evaluate_into`]), for a study with Monte Carlo options `mc` (whose values are not set here).
+pub(crate) fn tabulate(
+    sweep: &Sweep,
+    points: std::ops::Range<usize>,
+    stats: &[PointStatistics],
+    errors: Vec<(usize, String)>,
+    mc: Option<SweepMonteCarlo>,
+) -> SweepResults {
+    let spec = sweep.spec();
+    let mut value_index = vec![0; points.len() * spec.params.len()];
+    if !spec.params.is_empty() {
+        for (p, idx) in points.clone().zip(value_index.chunks_mut(spec.params.len())) {
+            spec.indices_into(p, idx);
+        }
+    }
+    SweepResults {
         identity: sweep_identity(sweep, mc),
         n_points: spec.n_points(),
         points,
         value_index,
-        values,
+        values: stats.iter().map(OutputValues::from_point).collect(),
         errors,
-    })
+    }
+}
+
+/// Runs the Monte Carlo batch `m` at every point of `t` that did not fail, one point after the other
+/// (each on every core), calling `progress(done, total)` after each; a batch that fails is recorded as the
+/// point's error.
+fn add_monte_carlo(sweep: &Sweep, t: &mut SweepResults, m: SweepMonteCarlo, progress: &dyn Fn(usize, usize)) {
+    let n_out = sweep.outputs().len();
+    let points = t.points.clone();
+    let (values, errors) = (&mut t.values, &mut t.errors);
+    let dir = std::env::temp_dir();
+    for (k, p) in points.clone().enumerate() {
+        if errors.iter().any(|e| e.0 == p) {
+            continue;
+        }
+        let run = || -> Result<Vec<Option<McValues>>> {
+            let sc = sweep.scenario_at(p)?;
+            let opts = RunOptions {
+                shard_size: m.shard_size,
+                confidence: m.confidence,
+                ..RunOptions::new(m.realizations, m.duration_s, m.dt_s, m.seed)
+            };
+            let (summary, ()) = run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |_| ())?;
+            Ok(sweep
+                .outputs()
+                .iter()
+                .map(|name| {
+                    summary.statistic(name, "sigma").map(|s| McValues {
+                        sigma: s.interval.estimate,
+                        lower: s.interval.lower,
+                        upper: s.interval.upper,
+                        covers: s.covers == Some(true),
+                    })
+                })
+                .collect())
+        };
+        match run() {
+            Ok(list) => {
+                for (j, v) in list.into_iter().enumerate() {
+                    values[k * n_out + j].mc = v;
+                }
+            }
+            Err(e) => errors.push((p, format!("Monte Carlo: {e}"))),
+        }
+        progress(k + 1, points.len());
+    }
+    errors.sort_by_key(|e| e.0);
 }
 
 /// Output format of a table.
@@ -348,6 +365,55 @@ fn push_num(s: &mut String, v: Option<f64>) {
     }
 }
 
+/// The format of the table to be written to `path` (from its extension) and the temporary file to write it
+/// into (any leftover of an interrupted write removed), after checking that an existing `path` may be
+/// replaced.
+///
+/// # Errors
+/// An unknown extension; an existing file without `overwrite`; a directory at `path`.
+pub(crate) fn prepare_table(path: &Path, overwrite: bool) -> Result<(TableFormat, PathBuf)> {
+    let format = TableFormat::from_path(path)?;
+    if path.exists() && !overwrite {
+        return Err(Error::Hdf5 {
+            path: path.to_path_buf(),
+            reason: "already exists: a table is never overwritten silently; remove it, choose another name, \
+                     or pass --overwrite"
+                .into(),
+        });
+    }
+    if path.is_dir() {
+        return Err(Error::invalid("output", path.display(), "is a directory"));
+    }
+    let tmp = crate::store::tmp_path(path);
+    let _ = std::fs::remove_file(&tmp);
+    Ok((format, tmp))
+}
+
+/// Renames the complete temporary file `tmp` to `path`.
+///
+/// # Errors
+/// The rename's I/O error naming `path`.
+pub(crate) fn commit_table(tmp: &Path, path: &Path) -> Result<()> {
+    std::fs::rename(tmp, path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// The header line of the CSV form of a study's table.
+pub fn csv_header(identity: &SweepIdentity) -> String {
+    let mut s = String::from("point");
+    for (k, _) in &identity.params {
+        let _ = write!(s, ",{}", csv_field(k));
+    }
+    s.push_str(",output,unit,method,mean,sigma,variance,lower_3sigma,upper_3sigma,lambda2,zero_upcrossing_rate");
+    if identity.monte_carlo.is_some() {
+        s.push_str(",mc_sigma,mc_lower,mc_upper,mc_covers");
+    }
+    s.push_str(",error\n");
+    s
+}
+
 fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n']) {
         format!("\"{}\"", s.replace('"', "\"\""))
@@ -370,16 +436,15 @@ impl SweepResults {
 
     /// The table as CSV: a header line, then one line per point and output.
     pub fn to_csv(&self) -> String {
+        let mut s = csv_header(&self.identity);
+        self.push_csv_rows(&mut s);
+        s
+    }
+
+    /// The CSV lines of the points held (no header), appended to `s`: [`to_csv`](Self::to_csv) of a table is
+    /// its header followed by the lines of its blocks, in order.
+    pub fn push_csv_rows(&self, s: &mut String) {
         let mc = self.identity.monte_carlo.is_some();
-        let mut s = String::from("point");
-        for (k, _) in &self.identity.params {
-            let _ = write!(s, ",{}", csv_field(k));
-        }
-        s.push_str(",output,unit,method,mean,sigma,variance,lower_3sigma,upper_3sigma,lambda2,zero_upcrossing_rate");
-        if mc {
-            s.push_str(",mc_sigma,mc_lower,mc_upper,mc_covers");
-        }
-        s.push_str(",error\n");
         let n_out = self.identity.outputs.len();
         let nk = self.n_keys();
         // the fields that repeat from row to row, quoted once
@@ -450,7 +515,6 @@ impl SweepResults {
         for b in &blocks {
             s.push_str(b);
         }
-        s
     }
 
     /// The table as JSON: the identity and one object per point and output.
@@ -557,170 +621,31 @@ impl SweepResults {
     /// # Errors
     /// An unknown extension; an existing file without `overwrite`; I/O and HDF5 errors.
     pub fn write(&self, path: &Path, overwrite: bool) -> Result<()> {
-        let format = TableFormat::from_path(path)?;
-        if path.exists() && !overwrite {
-            return Err(Error::Hdf5 {
-                path: path.to_path_buf(),
-                reason: "already exists: a table is never overwritten silently; remove it, choose another name, \
-                         or pass --overwrite"
-                    .into(),
-            });
-        }
-        if path.is_dir() {
-            return Err(Error::invalid("output", path.display(), "is a directory"));
-        }
-        let tmp = crate::store::tmp_path(path);
+        let (format, tmp) = prepare_table(path, overwrite)?;
         let io = |source| Error::Io {
             path: tmp.clone(),
             source,
         };
-        let _ = std::fs::remove_file(&tmp);
-        match format {
-            TableFormat::Csv => std::fs::write(&tmp, self.to_csv()).map_err(io)?,
-            TableFormat::Json => {
-                let file = std::fs::File::create(&tmp).map_err(io)?;
-                self.write_json(file).inspect_err(|_| {
-                    let _ = std::fs::remove_file(&tmp);
-                })?
-            }
-            TableFormat::Hdf5 => self.write_h5(&tmp).inspect_err(|_| {
+        let written = match format {
+            TableFormat::Csv => std::fs::write(&tmp, self.to_csv()).map_err(io),
+            TableFormat::Json => std::fs::File::create(&tmp)
+                .map_err(io)
+                .and_then(|file| self.write_json(file)),
+            TableFormat::Hdf5 => self.write_h5(&tmp),
+        };
+        match written {
+            Ok(()) => commit_table(&tmp, path),
+            Err(e) => {
                 let _ = std::fs::remove_file(&tmp);
-            })?,
+                Err(e)
+            }
         }
-        std::fs::rename(&tmp, path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })
     }
 
     fn write_h5(&self, path: &Path) -> Result<()> {
-        use hdf5::types::VarLenUnicode;
-        let e = |what: &'static str| {
-            let path = path.to_path_buf();
-            move |err: hdf5::Error| Error::Hdf5 {
-                path: path.clone(),
-                reason: format!("{what}: {err}"),
-            }
-        };
-        let vlu = |t: &str| t.parse::<VarLenUnicode>().unwrap_or_default();
-        let list = |items: Vec<&str>| -> Vec<VarLenUnicode> { items.into_iter().map(vlu).collect() };
-        let f = hdf5::File::create(path).map_err(e("creating the table"))?;
-        let str_attr = |loc: &hdf5::Location, name: &str, value: &str| -> hdf5::Result<()> {
-            loc.new_attr::<VarLenUnicode>()
-                .shape(())
-                .create(name)?
-                .write_scalar(&vlu(value))
-        };
-        let list_attr = |loc: &hdf5::Location, name: &str, values: Vec<VarLenUnicode>| -> hdf5::Result<()> {
-            let a = loc.new_attr::<VarLenUnicode>().shape(values.len()).create(name)?;
-            if !values.is_empty() {
-                a.write(&values[..])?;
-            }
-            Ok(())
-        };
-        let id = &self.identity;
-        let write = || -> hdf5::Result<()> {
-            str_attr(&f, "format", "stochvib sweep table")?;
-            f.new_attr::<u32>().shape(()).create("version")?.write_scalar(&1u32)?;
-            str_attr(&f, "toolkit_version", &id.toolkit_version)?;
-            str_attr(&f, "scenario", &id.scenario_text)?;
-            str_attr(&f, "scenario_path", &id.scenario_path)?;
-            str_attr(&f, "mode", &id.mode)?;
-            f.new_attr::<u64>()
-                .shape(())
-                .create("n_points")?
-                .write_scalar(&(self.n_points as u64))?;
-            list_attr(&f, "keys", list(id.params.iter().map(|p| p.0.as_str()).collect()))?;
-            list_attr(&f, "outputs", list(id.outputs.iter().map(|o| o.0.as_str()).collect()))?;
-            list_attr(&f, "units", list(id.outputs.iter().map(|o| o.1.as_str()).collect()))?;
-            let mc = id
-                .monte_carlo
-                .map(|m| serde_json::to_string(&m).unwrap_or_default())
-                .unwrap_or_default();
-            str_attr(&f, "monte_carlo", &mc)?;
-            let params = f.create_group("params")?;
-            for (k, (key, vals)) in id.params.iter().enumerate() {
-                let v = list(vals.iter().map(|s| s.as_str()).collect());
-                let ds = params
-                    .new_dataset_builder()
-                    .with_data(&v[..])
-                    .create(k.to_string().as_str())?;
-                str_attr(&ds, "key", key)?;
-            }
-            let nk = self.n_keys().max(1);
-            let idx: Vec<u64> = if self.n_keys() == 0 {
-                vec![0; self.points.len()]
-            } else {
-                self.value_index.iter().map(|&i| i as u64).collect()
-            };
-            let arr = ndarray::Array2::from_shape_vec((self.points.len(), nk), idx)
-                .map_err(|err| hdf5::Error::from(err.to_string()))?;
-            f.new_dataset_builder().with_data(&arr).create("value_index")?;
-            let outs = f.create_group("outputs")?;
-            let n_out = id.outputs.len();
-            let failed: std::collections::HashSet<usize> = self.errors.iter().map(|e| e.0).collect();
-            for (j, (name, unit)) in id.outputs.iter().enumerate() {
-                let g = outs.create_group(name)?;
-                str_attr(&g, "unit", unit)?;
-                let col = |pick: &dyn Fn(&OutputValues) -> Option<f64>| -> Vec<f64> {
-                    (0..self.points.len())
-                        .map(|r| pick(&self.values[r * n_out + j]).unwrap_or(f64::NAN))
-                        .collect()
-                };
-                let columns: [(&str, Vec<f64>); 7] = [
-                    ("mean", col(&|v| v.mean)),
-                    ("variance", col(&|v| v.variance)),
-                    ("sigma", col(&|v| v.sigma())),
-                    ("lower_3sigma", col(&|v| v.bounds().map(|b| b.0))),
-                    ("upper_3sigma", col(&|v| v.bounds().map(|b| b.1))),
-                    ("lambda2", col(&|v| v.lambda2)),
-                    ("zero_upcrossing_rate", col(&|v| v.zero_upcrossing_rate())),
-                ];
-                for (cname, data) in columns {
-                    g.new_dataset_builder().with_data(&data[..]).create(cname)?;
-                }
-                let method: Vec<u8> = self
-                    .points
-                    .clone()
-                    .enumerate()
-                    .map(|(r, p)| {
-                        if failed.contains(&p) {
-                            255
-                        } else {
-                            self.values[r * n_out + j].method.code()
-                        }
-                    })
-                    .collect();
-                g.new_dataset_builder().with_data(&method[..]).create("method")?;
-                if id.monte_carlo.is_some() {
-                    for (cname, data) in [
-                        ("mc_sigma", col(&|v| v.mc.map(|m| m.sigma))),
-                        ("mc_lower", col(&|v| v.mc.map(|m| m.lower))),
-                        ("mc_upper", col(&|v| v.mc.map(|m| m.upper))),
-                    ] {
-                        g.new_dataset_builder().with_data(&data[..]).create(cname)?;
-                    }
-                    let covers: Vec<u8> = (0..self.points.len())
-                        .map(|r| self.values[r * n_out + j].mc.map_or(0, |m| u8::from(m.covers)))
-                        .collect();
-                    g.new_dataset_builder().with_data(&covers[..]).create("mc_covers")?;
-                }
-            }
-            let eg = f.create_group("errors")?;
-            let pts: Vec<u64> = self.errors.iter().map(|e| e.0 as u64).collect();
-            let msgs = list(self.errors.iter().map(|e| e.1.as_str()).collect());
-            eg.new_dataset::<u64>()
-                .shape(pts.len())
-                .create("point")?
-                .write(&pts[..])?;
-            let ds = eg.new_dataset::<VarLenUnicode>().shape(msgs.len()).create("message")?;
-            if !msgs.is_empty() {
-                ds.write(&msgs[..])?;
-            }
-            Ok(())
-        };
-        write().map_err(e("writing the table"))?;
-        f.close().map_err(e("closing the table"))
+        let mut w = H5TableWriter::create(path, &self.identity, self.n_points, self.points.clone())?;
+        w.append(self)?;
+        w.finish()
     }
 }
 

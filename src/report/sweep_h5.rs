@@ -1,0 +1,338 @@
+//! The HDF5 form of a parameter study's table (layout in [`sweep_table`](super::sweep_table)'s module docs),
+//! written block by block: every dataset is created at its final length when the file is opened, each block
+//! of points goes into its rows as it comes, and the failed points' messages are written last. A whole
+//! table is one block ([`SweepResults::write`]); `stochvib sweep` streams its blocks while the next ones
+//! are evaluated ([`write_sweep_table`](super::write_sweep_table)).
+
+use super::sweep_table::{OutputValues, SweepIdentity, SweepResults};
+use crate::error::{Error, Result};
+use crate::response::PointStatistics;
+use crate::scenario::Sweep;
+use crate::store::{h5err as h5, open_sec2, OpenMode};
+use hdf5::types::VarLenUnicode;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+/// The exact statistics' columns of every output, in the file's order ([`exact_row`]'s order).
+const EXACT_COLUMNS: [&str; 7] = [
+    "mean",
+    "variance",
+    "sigma",
+    "lower_3sigma",
+    "upper_3sigma",
+    "lambda2",
+    "zero_upcrossing_rate",
+];
+
+/// The Monte Carlo columns (with a batch per point; [`mc_row`]'s order).
+const MC_COLUMNS: [&str; 3] = ["mc_sigma", "mc_lower", "mc_upper"];
+
+/// One row of [`EXACT_COLUMNS`] (NaN where a value does not exist).
+#[inline]
+fn exact_row(v: &OutputValues) -> [f64; 7] {
+    let (lo, hi) = v.bounds().unzip();
+    [
+        v.mean,
+        v.variance,
+        v.sigma(),
+        lo,
+        hi,
+        v.lambda2,
+        v.zero_upcrossing_rate(),
+    ]
+    .map(|x| x.unwrap_or(f64::NAN))
+}
+
+/// One row of [`MC_COLUMNS`].
+#[inline]
+fn mc_row(v: &OutputValues) -> [f64; 3] {
+    v.mc.map_or([f64::NAN; 3], |m| [m.sigma, m.lower, m.upper])
+}
+
+/// The method code of a failed point.
+const FAILED: u8 = 255;
+
+/// The datasets of one output.
+struct OutputSets {
+    numbers: Vec<hdf5::Dataset>,
+    method: hdf5::Dataset,
+    covers: Option<hdf5::Dataset>,
+}
+
+/// A sweep table being written (see the module docs).
+pub(crate) struct H5TableWriter {
+    path: PathBuf,
+    file: hdf5::File,
+    /// The points of the study the file holds (row r is point `rows.start + r`).
+    rows: Range<usize>,
+    n_keys: usize,
+    value_index: hdf5::Dataset,
+    outputs: Vec<OutputSets>,
+    monte_carlo: bool,
+    errors: Vec<(usize, String)>,
+    /// Rows written so far (blocks come in order).
+    written: usize,
+}
+
+fn vlu(t: &str) -> VarLenUnicode {
+    t.parse::<VarLenUnicode>().unwrap_or_default()
+}
+
+fn str_attr(loc: &hdf5::Location, name: &str, value: &str) -> hdf5::Result<()> {
+    loc.new_attr::<VarLenUnicode>()
+        .shape(())
+        .create(name)?
+        .write_scalar(&vlu(value))
+}
+
+fn list_attr(loc: &hdf5::Location, name: &str, values: &[&str]) -> hdf5::Result<()> {
+    let values: Vec<VarLenUnicode> = values.iter().map(|v| vlu(v)).collect();
+    let a = loc.new_attr::<VarLenUnicode>().shape(values.len()).create(name)?;
+    if !values.is_empty() {
+        a.write(&values[..])?;
+    }
+    Ok(())
+}
+
+impl H5TableWriter {
+    /// Creates the file at `path` (which must not exist) for the points `rows` of the study `identity` of `n_points` points:
+    /// attributes, the key values, and every dataset at its final length.
+    ///
+    /// # Errors
+    /// HDF5 errors ([`Error::Hdf5`] naming `path`).
+    pub(crate) fn create(
+        path: &Path,
+        identity: &SweepIdentity,
+        n_points: usize,
+        rows: Range<usize>,
+    ) -> Result<H5TableWriter> {
+        let file = open_sec2(path, OpenMode::CreateExcl, |_| {}).map_err(h5(path, "creating the table"))?;
+        let n = rows.len();
+        let n_keys = identity.params.len();
+        let monte_carlo = identity.monte_carlo.is_some();
+        let make = || -> hdf5::Result<(hdf5::Dataset, Vec<OutputSets>)> {
+            str_attr(&file, "format", "stochvib sweep table")?;
+            file.new_attr::<u32>()
+                .shape(())
+                .create("version")?
+                .write_scalar(&1u32)?;
+            str_attr(&file, "toolkit_version", &identity.toolkit_version)?;
+            str_attr(&file, "scenario", &identity.scenario_text)?;
+            str_attr(&file, "scenario_path", &identity.scenario_path)?;
+            str_attr(&file, "mode", &identity.mode)?;
+            file.new_attr::<u64>()
+                .shape(())
+                .create("n_points")?
+                .write_scalar(&(n_points as u64))?;
+            let keys: Vec<&str> = identity.params.iter().map(|p| p.0.as_str()).collect();
+            list_attr(&file, "keys", &keys)?;
+            let names: Vec<&str> = identity.outputs.iter().map(|o| o.0.as_str()).collect();
+            list_attr(&file, "outputs", &names)?;
+            let units: Vec<&str> = identity.outputs.iter().map(|o| o.1.as_str()).collect();
+            list_attr(&file, "units", &units)?;
+            let mc = identity
+                .monte_carlo
+                .map(|m| serde_json::to_string(&m).unwrap_or_default())
+                .unwrap_or_default();
+            str_attr(&file, "monte_carlo", &mc)?;
+            let params = file.create_group("params")?;
+            for (k, (key, vals)) in identity.params.iter().enumerate() {
+                let v: Vec<VarLenUnicode> = vals.iter().map(|s| vlu(s)).collect();
+                let ds = params
+                    .new_dataset_builder()
+                    .with_data(&v[..])
+                    .create(k.to_string().as_str())?;
+                str_attr(&ds, "key", key)?;
+            }
+            let value_index = file
+                .new_dataset::<u64>()
+                .shape((n, n_keys.max(1)))
+                .create("value_index")?;
+            let outs = file.create_group("outputs")?;
+            let mut sets = Vec::with_capacity(identity.outputs.len());
+            for (name, unit) in &identity.outputs {
+                let g = outs.create_group(name)?;
+                str_attr(&g, "unit", unit)?;
+                let mut numbers = Vec::new();
+                for cname in EXACT_COLUMNS {
+                    numbers.push(g.new_dataset::<f64>().shape(n).create(cname)?);
+                }
+                let method = g.new_dataset::<u8>().shape(n).create("method")?;
+                let mut covers = None;
+                if monte_carlo {
+                    for cname in MC_COLUMNS {
+                        numbers.push(g.new_dataset::<f64>().shape(n).create(cname)?);
+                    }
+                    covers = Some(g.new_dataset::<u8>().shape(n).create("mc_covers")?);
+                }
+                sets.push(OutputSets {
+                    numbers,
+                    method,
+                    covers,
+                });
+            }
+            Ok((value_index, sets))
+        };
+        let (value_index, outputs) = make().map_err(h5(path, "creating the table"))?;
+        Ok(H5TableWriter {
+            path: path.to_path_buf(),
+            file,
+            rows,
+            n_keys,
+            value_index,
+            outputs,
+            monte_carlo,
+            errors: Vec::new(),
+            written: 0,
+        })
+    }
+
+    /// Writes the rows of `block`, which holds the points that follow the last block's.
+    ///
+    /// # Errors
+    /// A block out of order or of another width (a bug: [`Error::Numerical`]); HDF5 errors.
+    pub(crate) fn append(&mut self, block: &SweepResults) -> Result<()> {
+        let n = block.points.len();
+        if block.values.len() != n * self.outputs.len() || block.value_index.len() != n * self.n_keys {
+            return Err(self.out_of_order(&block.points));
+        }
+        let n_keys = self.n_keys;
+        let idx = |r: usize, out: &mut [u64]| {
+            for (o, &i) in out.iter_mut().zip(&block.value_index[r * n_keys..]) {
+                *o = i as u64;
+            }
+        };
+        self.append_rows(block.points.clone(), idx, |i| block.values[i], &block.errors)
+    }
+
+    /// Writes the evaluated rows `stats` of the points `points` of `sweep` ([`Sweep::evaluate_into`], failed
+    /// points `errors`), which follow the last block's: the rows [`append`](Self::append) writes for their
+    /// [`tabulate`](super::sweep_table::tabulate)d table, without building it.
+    ///
+    /// # Errors
+    /// As [`append`](Self::append).
+    pub(crate) fn append_evaluated(
+        &mut self,
+        sweep: &Sweep,
+        points: Range<usize>,
+        stats: &[PointStatistics],
+        errors: &[(usize, String)],
+    ) -> Result<()> {
+        if stats.len() != points.len() * self.outputs.len() || sweep.spec().params.len() != self.n_keys {
+            return Err(self.out_of_order(&points));
+        }
+        let (spec, first) = (sweep.spec(), points.start);
+        let mut keys = vec![0; self.n_keys];
+        let idx = |r: usize, out: &mut [u64]| {
+            spec.indices_into(first + r, &mut keys);
+            for (o, &k) in out.iter_mut().zip(&keys) {
+                *o = k as u64;
+            }
+        };
+        self.append_rows(points, idx, |i| OutputValues::from_point(&stats[i]), errors)
+    }
+
+    fn out_of_order(&self, points: &Range<usize>) -> Error {
+        Error::Numerical {
+            what: format!("writing the table {}", self.path.display()),
+            reason: format!(
+                "block of points {points:?} does not follow the {} rows written of {:?}, or has another width",
+                self.written, self.rows
+            ),
+        }
+    }
+
+    /// The rows of `points`: `index(r, out)` writes row r's value indices, `value(r·outputs + j)` is output
+    /// j of row r, `errors` (ascending) the failed points.
+    fn append_rows(
+        &mut self,
+        points: Range<usize>,
+        mut index: impl FnMut(usize, &mut [u64]),
+        value: impl Fn(usize) -> OutputValues,
+        errors: &[(usize, String)],
+    ) -> Result<()> {
+        let first = self.rows.start + self.written;
+        if points.start != first || points.end > self.rows.end {
+            return Err(self.out_of_order(&points));
+        }
+        let n = points.len();
+        let n_out = self.outputs.len();
+        let rows = self.written..self.written + n;
+        let failed = |r: usize| errors.binary_search_by_key(&(first + r), |e| e.0).is_ok();
+        let mut write = || -> hdf5::Result<()> {
+            let width = self.n_keys.max(1);
+            let mut idx = vec![0u64; n * width];
+            if self.n_keys > 0 {
+                for (r, row) in idx.chunks_mut(width).enumerate() {
+                    index(r, row);
+                }
+            }
+            let idx =
+                ndarray::Array2::from_shape_vec((n, width), idx).map_err(|err| hdf5::Error::from(err.to_string()))?;
+            self.value_index.write_slice(&idx, (rows.clone(), ..))?;
+            // the columns of one output filled in one pass over its rows
+            let mut exact = vec![vec![0.0; n]; EXACT_COLUMNS.len()];
+            let mut mc = vec![vec![0.0; n]; if self.monte_carlo { MC_COLUMNS.len() } else { 0 }];
+            let mut code = vec![0u8; n];
+            let mut covers = vec![0u8; if self.monte_carlo { n } else { 0 }];
+            for (j, sets) in self.outputs.iter().enumerate() {
+                for r in 0..n {
+                    let v = value(r * n_out + j);
+                    for (col, x) in exact.iter_mut().zip(exact_row(&v)) {
+                        col[r] = x;
+                    }
+                    if self.monte_carlo {
+                        for (col, x) in mc.iter_mut().zip(mc_row(&v)) {
+                            col[r] = x;
+                        }
+                        covers[r] = v.mc.map_or(0, |m| u8::from(m.covers));
+                    }
+                    code[r] = if failed(r) { FAILED } else { v.method.code() };
+                }
+                for (col, ds) in exact.iter().chain(&mc).zip(&sets.numbers) {
+                    ds.write_slice(col, rows.clone())?;
+                }
+                sets.method.write_slice(&code, rows.clone())?;
+                if let Some(ds) = &sets.covers {
+                    ds.write_slice(&covers, rows.clone())?;
+                }
+            }
+            Ok(())
+        };
+        write().map_err(h5(&self.path, "writing the table"))?;
+        self.errors.extend(errors.iter().cloned());
+        self.written += n;
+        Ok(())
+    }
+
+    /// Writes the failed points' messages and closes the file.
+    ///
+    /// # Errors
+    /// Fewer rows written than the file holds (a bug: [`Error::Numerical`]); HDF5 errors.
+    pub(crate) fn finish(self) -> Result<()> {
+        if self.written != self.rows.len() {
+            return Err(Error::Numerical {
+                what: format!("writing the table {}", self.path.display()),
+                reason: format!("{} of {} rows written", self.written, self.rows.len()),
+            });
+        }
+        let write = || -> hdf5::Result<()> {
+            let eg = self.file.create_group("errors")?;
+            let pts: Vec<u64> = self.errors.iter().map(|e| e.0 as u64).collect();
+            let msgs: Vec<VarLenUnicode> = self.errors.iter().map(|e| vlu(&e.1)).collect();
+            eg.new_dataset::<u64>()
+                .shape(pts.len())
+                .create("point")?
+                .write(&pts[..])?;
+            let ds = eg.new_dataset::<VarLenUnicode>().shape(msgs.len()).create("message")?;
+            if !msgs.is_empty() {
+                ds.write(&msgs[..])?;
+            }
+            Ok(())
+        };
+        write().map_err(h5(&self.path, "writing the table"))?;
+        let path = self.path;
+        drop((self.value_index, self.outputs));
+        self.file.close().map_err(h5(&path, "closing the table"))
+    }
+}

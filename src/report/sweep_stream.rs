@@ -1,0 +1,257 @@
+//! A parameter study's table written while it is computed (`stochvib sweep`): the points are evaluated in
+//! blocks of [`StreamOptions::block_points`] on every core, and each finished block goes to a writer thread
+//! that puts it into the file (HDF5 rows, CSV lines) while the next block is evaluated. Memory holds two
+//! blocks, whatever the number of points, and the file is the same, byte for byte (CSV) or value for value
+//! (HDF5), as [`SweepResults::write`] of the whole table: every point is evaluated alone, so the blocking
+//! cannot change a number.
+//!
+//! JSON tables are one document and are written from the whole table ([`compute_sweep`], then
+//! [`SweepResults::write`]).
+
+use super::sweep_h5::H5TableWriter;
+use super::sweep_table::{
+    commit_table, compute_sweep, csv_header, prepare_table, sweep_identity, tabulate, SweepMonteCarlo, SweepResults,
+    TableFormat,
+};
+use crate::error::{Error, Result};
+use crate::response::PointStatistics;
+use crate::scenario::{Sweep, FAILED_POINT};
+use std::io::Write;
+use std::ops::Range;
+use std::path::Path;
+
+/// How a table is streamed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StreamOptions {
+    /// Points per block (≥ 1): the unit of evaluation and of writing.
+    pub block_points: usize,
+    /// Evaluate each block on every core (rayon) rather than on the calling thread.
+    pub parallel: bool,
+}
+
+impl Default for StreamOptions {
+    /// Blocks of 16 384 points on every core: a block of 4 outputs is about 7 MB in memory and 2 MB of
+    /// numbers in the file, large enough that the per-block costs (an HDF5 hyperslab write per column, a
+    /// channel hand-over) are small, small enough that evaluation and writing overlap.
+    fn default() -> StreamOptions {
+        StreamOptions {
+            block_points: 16_384,
+            parallel: true,
+        }
+    }
+}
+
+/// What a streamed table held.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StreamedTable {
+    /// Points written.
+    pub n_points: usize,
+    /// Failed points with the reason (their rows hold no numbers).
+    pub errors: Vec<(usize, String)>,
+}
+
+/// Evaluates every point of `sweep` (with `mc`, a Monte Carlo batch per point) and writes the table to
+/// `path`, format from its extension, as `<path>.tmp` renamed when complete; an existing `path` is only
+/// replaced with `overwrite`. CSV and HDF5 are streamed block by block (see the module docs); JSON is
+/// written from the whole table. `progress(done, total)` is called after every Monte Carlo point.
+///
+/// # Errors
+/// An unknown extension; an existing file without `overwrite`; a block of 0 points; I/O and HDF5 errors
+/// (the temporary file is then removed and nothing at `path` is touched); the Monte Carlo set-up's errors.
+/// A failing point is not an error: it is recorded in [`StreamedTable::errors`] and in the table.
+///
+/// # Examples
+/// ```
+/// use stochvib::report::{write_sweep_table, StreamOptions};
+/// use stochvib::scenario::{load_scenario, Sweep, SweepMode, SweepParam, SweepSpec};
+/// use std::path::Path;
+/// let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+/// let spec = SweepSpec::new(vec![SweepParam::parse("model.zeta2=0.1..0.4:7").unwrap()], SweepMode::Grid).unwrap();
+/// let sweep = Sweep::new(&sc, spec).unwrap();
+/// let dir = std::env::temp_dir().join(format!("stochvib-doc-stream-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir).unwrap();
+/// let path = dir.join("table.csv");
+/// let opts = StreamOptions { block_points: 3, parallel: false };
+/// let t = write_sweep_table(&sweep, &path, false, None, opts, &|_, _| {}).unwrap();
+/// assert_eq!((t.n_points, t.errors.len()), (7, 0));
+/// let text = std::fs::read_to_string(&path).unwrap();
+/// assert_eq!(text.lines().count(), 1 + 7 * sweep.outputs().len()); // header, one line per point and output
+/// std::fs::remove_dir_all(&dir).unwrap();
+/// ```
+pub fn write_sweep_table(
+    sweep: &Sweep,
+    path: &Path,
+    overwrite: bool,
+    mc: Option<SweepMonteCarlo>,
+    opts: StreamOptions,
+    progress: &dyn Fn(usize, usize),
+) -> Result<StreamedTable> {
+    let (format, tmp) = prepare_table(path, overwrite)?;
+    let n = sweep.spec().n_points();
+    let written = match format {
+        TableFormat::Json => compute_sweep(sweep, 0..n, opts.parallel, mc, progress).and_then(|t| {
+            let file = std::fs::File::create(&tmp).map_err(|source| Error::Io {
+                path: tmp.clone(),
+                source,
+            })?;
+            t.write_json(file)?;
+            Ok(StreamedTable {
+                n_points: n,
+                errors: t.errors,
+            })
+        }),
+        TableFormat::Csv => std::fs::File::create(&tmp)
+            .map_err(|source| Error::Io {
+                path: tmp.clone(),
+                source,
+            })
+            .and_then(|file| stream_sweep_csv(sweep, file, &tmp, mc, opts, progress)),
+        TableFormat::Hdf5 => (|| {
+            let w = H5TableWriter::create(&tmp, &sweep_identity(sweep, mc), n, 0..n)?;
+            let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, |w, b| match b {
+                Block::Rows { points, stats, errors } => w.append_evaluated(sweep, points.clone(), stats, errors),
+                Block::Table(t) => w.append(t),
+            })?;
+            w.finish()?;
+            Ok(StreamedTable { n_points: n, errors })
+        })(),
+    };
+    match written {
+        Ok(t) => commit_table(&tmp, path).map(|()| t),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}
+
+/// Evaluates every point of `sweep` and writes the CSV table to `out` (`name` names it in errors, e.g.
+/// `<stdout>`), block by block (see the module docs): the same text as
+/// [`SweepResults::to_csv`] of the whole table.
+///
+/// # Errors
+/// A block of 0 points; write errors of `out` ([`Error::Io`] naming `name`); the Monte Carlo set-up's
+/// errors.
+pub fn stream_sweep_csv(
+    sweep: &Sweep,
+    out: impl Write + Send,
+    name: &Path,
+    mc: Option<SweepMonteCarlo>,
+    opts: StreamOptions,
+    progress: &dyn Fn(usize, usize),
+) -> Result<StreamedTable> {
+    let io = |source| Error::Io {
+        path: name.to_path_buf(),
+        source,
+    };
+    let n = sweep.spec().n_points();
+    let mut out = std::io::BufWriter::with_capacity(1 << 20, out);
+    out.write_all(csv_header(&sweep_identity(sweep, mc)).as_bytes())
+        .map_err(io)?;
+    let mut text = String::new();
+    let (mut out, errors) = pipeline(sweep, 0..n, mc, opts, progress, out, |w, b| {
+        text.clear();
+        match b {
+            Block::Rows { points, stats, errors } => {
+                tabulate(sweep, points.clone(), stats, errors.clone(), mc).push_csv_rows(&mut text)
+            }
+            Block::Table(t) => t.push_csv_rows(&mut text),
+        }
+        w.write_all(text.as_bytes()).map_err(io)
+    })?;
+    out.flush().map_err(io)?;
+    Ok(StreamedTable { n_points: n, errors })
+}
+
+/// A block on its way from the evaluation to the writer thread.
+pub(crate) enum Block {
+    /// Rows of exact statistics ([`Sweep::evaluate_into`]), tabulated by the writer thread.
+    Rows {
+        points: Range<usize>,
+        stats: Vec<PointStatistics>,
+        errors: Vec<(usize, String)>,
+    },
+    /// A block with its Monte Carlo values ([`compute_sweep`]).
+    Table(Box<SweepResults>),
+}
+
+/// Evaluates `points` in blocks on the calling thread (each block on every core with `opts.parallel`) and
+/// hands each block, in order, to `put` with `sink` on a writer thread (which tabulates the rows as its format needs);
+/// returns the sink and the failed points. The calling thread only evaluates, so that the cores are never
+/// idle while a block is converted or written. A failing `put` stops the evaluation at the next block and
+/// is the error returned.
+fn pipeline<S: Send>(
+    sweep: &Sweep,
+    points: Range<usize>,
+    mc: Option<SweepMonteCarlo>,
+    opts: StreamOptions,
+    progress: &dyn Fn(usize, usize),
+    sink: S,
+    mut put: impl FnMut(&mut S, &Block) -> Result<()> + Send,
+) -> Result<(S, Vec<(usize, String)>)> {
+    if opts.block_points == 0 {
+        return Err(Error::invalid("block_points", 0, "a block holds at least one point"));
+    }
+    let total = points.len();
+    let n_out = sweep.outputs().len();
+    // one block evaluated while one is written and one waits; spent row buffers come back for reuse
+    let (tx, rx) = std::sync::mpsc::sync_channel::<Block>(1);
+    let (back_tx, back_rx) = std::sync::mpsc::channel::<Vec<PointStatistics>>();
+    std::thread::scope(|scope| {
+        let writer = scope.spawn(move || -> Result<(S, Vec<(usize, String)>)> {
+            let mut sink = sink;
+            let mut failed = Vec::new();
+            for block in rx {
+                put(&mut sink, &block)?;
+                match block {
+                    Block::Rows { stats, errors, .. } => {
+                        failed.extend(errors);
+                        let _ = back_tx.send(stats);
+                    }
+                    Block::Table(t) => failed.extend(t.errors),
+                }
+            }
+            Ok((sink, failed))
+        });
+        let mut evaluated = Ok(());
+        for start in points.clone().step_by(opts.block_points) {
+            let block = start..(start + opts.block_points).min(points.end);
+            let b = match mc {
+                None => {
+                    // every row is overwritten by the evaluation: a recycled buffer of the right length is
+                    // used as it is
+                    let mut stats = back_rx.try_recv().unwrap_or_default();
+                    if stats.len() != block.len() * n_out {
+                        stats.clear();
+                        stats.resize(block.len() * n_out, FAILED_POINT);
+                    }
+                    let errors = sweep.evaluate_into(block.clone(), opts.parallel, &mut stats);
+                    Block::Rows {
+                        points: block,
+                        stats,
+                        errors,
+                    }
+                }
+                Some(_) => {
+                    let done = start - points.start;
+                    match compute_sweep(sweep, block, opts.parallel, mc, &|d, _| progress(done + d, total)) {
+                        Ok(t) => Block::Table(Box::new(t)),
+                        Err(e) => {
+                            evaluated = Err(e);
+                            break;
+                        }
+                    }
+                }
+            };
+            if tx.send(b).is_err() {
+                break; // the writer failed: its error is returned below
+            }
+        }
+        drop(tx);
+        let (sink, failed) = match writer.join() {
+            Ok(r) => r?,
+            Err(panic) => std::panic::resume_unwind(panic),
+        };
+        evaluated.map(|()| (sink, failed))
+    })
+}

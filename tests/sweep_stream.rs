@@ -1,0 +1,414 @@
+//! `stochvib sweep`'s tables written while they are computed (`report::write_sweep_table`,
+//! `report::stream_sweep_csv`, `scenario::Sweep::evaluate_into`): blocks of points are evaluated and
+//! handed to a writer thread, so memory does not grow with the study.
+//!
+//! Provenance of the expected values:
+//! * the whole table of the same study, built in memory by `report::compute_sweep` and written by
+//!   `SweepResults::write`/`to_csv` (the path every table took before streaming): a streamed table must
+//!   equal it byte for byte (CSV) or bit for bit in every dataset (HDF5), for blocks that do not divide the
+//!   number of points, on one core and on all;
+//! * `Sweep::evaluate(p)` of each point alone, and the definitions of the derived columns written out in
+//!   the test: σ = √D, M ∓ 3σ, ν₀⁺ = √(λ₂/D)/(2π), so each column of the HDF5 file is checked against its
+//!   formula, not against the writer;
+//! * `Sweep::evaluate_general` (the model rebuilt from its table and solved through its state space: a
+//!   different route from the closed-form transfer polynomials the study takes) within
+//!   `TRANSFER_POLYNOMIALS`, so the numbers are anchored outside the fast path.
+
+mod common;
+use common::tolerance::TRANSFER_POLYNOMIALS;
+use std::path::{Path, PathBuf};
+use stochvib::report::{compute_sweep, stream_sweep_csv, write_sweep_table, StreamOptions, SweepMonteCarlo};
+use stochvib::scenario::{load_scenario, Scenario, Sweep, SweepMode, SweepParam, SweepSpec, FAILED_POINT};
+
+fn scraper() -> Scenario {
+    load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap()
+}
+
+/// 37 cab frequencies × ζ₂ ∈ {0.2, −0.1, 0.3}: 111 points, the 37 with ζ₂ = −0.1 fail (a negative
+/// damping ratio is refused by the model), so failed rows fall inside every block.
+fn study(sc: &Scenario) -> Sweep<'_> {
+    let spec = SweepSpec::new(
+        vec![
+            SweepParam::parse("model.omega2=0.5 Hz..4 Hz:37").unwrap(),
+            SweepParam::parse("model.zeta2=0.2,-0.1,0.3").unwrap(),
+        ],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    Sweep::new(sc, spec).unwrap()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("stochvib-sweep-stream-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn opts(block_points: usize, parallel: bool) -> StreamOptions {
+    StreamOptions { block_points, parallel }
+}
+
+/// Every attribute (as text) and every dataset (as the bits of its values) of a sweep table, by path.
+fn h5_contents(path: &Path) -> Vec<(String, Vec<u64>, Vec<String>)> {
+    use hdf5::types::VarLenUnicode;
+    let _g = common::hdf5_serial();
+    let f = hdf5::File::open(path).unwrap();
+    let mut out = Vec::new();
+    for a in f.attr_names().unwrap() {
+        let attr = f.attr(&a).unwrap();
+        let text = match attr.read_scalar::<VarLenUnicode>() {
+            Ok(v) => vec![v.to_string()],
+            Err(_) => match attr.read_raw::<VarLenUnicode>() {
+                Ok(v) => v.iter().map(|s| s.to_string()).collect(),
+                Err(_) => vec![format!("{:?}", attr.read_raw::<u64>().unwrap())],
+            },
+        };
+        out.push((format!("@{a}"), Vec::new(), text));
+    }
+    let mut datasets = Vec::new();
+    for g in ["params", "outputs", "errors"] {
+        let group = f.group(g).unwrap();
+        for m in group.member_names().unwrap() {
+            let p = format!("{g}/{m}");
+            if let Ok(sub) = f.group(&p) {
+                for d in sub.member_names().unwrap() {
+                    datasets.push(format!("{p}/{d}"));
+                }
+            } else {
+                datasets.push(p);
+            }
+        }
+    }
+    datasets.push("value_index".into());
+    for d in datasets {
+        let ds = f.dataset(&d).unwrap();
+        let desc = ds.dtype().unwrap().to_descriptor().unwrap();
+        let (bits, text) = match desc {
+            hdf5::types::TypeDescriptor::Float(_) => (
+                ds.read_raw::<f64>().unwrap().iter().map(|v| v.to_bits()).collect(),
+                Vec::new(),
+            ),
+            hdf5::types::TypeDescriptor::Unsigned(_) => (ds.read_raw::<u64>().unwrap(), Vec::new()),
+            _ => (
+                Vec::new(),
+                ds.read_raw::<VarLenUnicode>()
+                    .unwrap()
+                    .iter()
+                    .map(|s| s.to_string())
+                    .collect(),
+            ),
+        };
+        out.push((d, bits, text));
+    }
+    out
+}
+
+fn h5_f64(path: &Path, name: &str) -> Vec<f64> {
+    let _g = common::hdf5_serial();
+    hdf5::File::open(path)
+        .unwrap()
+        .dataset(name)
+        .unwrap()
+        .read_raw()
+        .unwrap()
+}
+
+fn h5_u8(path: &Path, name: &str) -> Vec<u8> {
+    let _g = common::hdf5_serial();
+    hdf5::File::open(path)
+        .unwrap()
+        .dataset(name)
+        .unwrap()
+        .read_raw()
+        .unwrap()
+}
+
+/// CSV streamed in blocks of 1, 10 (not dividing 111) and 1000 points, on one core and on all, to a file
+/// and to a writer: the same text as the whole table's `to_csv`, byte for byte; the failed points are the
+/// 37 with ζ₂ = −0.1.
+#[test]
+fn streamed_csv_is_the_whole_table_byte_for_byte() {
+    let sc = scraper();
+    let sweep = study(&sc);
+    let n = sweep.spec().n_points();
+    let whole = compute_sweep(&sweep, 0..n, true, None, &|_, _| {}).unwrap();
+    assert_eq!(whole.errors.len(), 37);
+    assert!(whole.errors.iter().all(|(p, _)| p % 3 == 1), "{:?}", whole.errors);
+    let expected = whole.to_csv();
+    let dir = scratch("csv");
+    for (block, parallel) in [(1, false), (10, true), (10, false), (1000, true)] {
+        let path = dir.join(format!("t-{block}-{parallel}.csv"));
+        let t = write_sweep_table(&sweep, &path, false, None, opts(block, parallel), &|_, _| {}).unwrap();
+        assert_eq!((t.n_points, &t.errors), (n, &whole.errors));
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), expected, "block {block}");
+        let mut buf = Vec::new();
+        let t = stream_sweep_csv(
+            &sweep,
+            &mut buf,
+            Path::new("<buffer>"),
+            None,
+            opts(block, parallel),
+            &|_, _| {},
+        )
+        .unwrap();
+        assert_eq!(t.errors, whole.errors);
+        assert_eq!(String::from_utf8(buf).unwrap(), expected, "block {block}");
+        assert!(!dir.join(format!("t-{block}-{parallel}.csv.tmp")).exists());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// HDF5 streamed in blocks of 10 and 7 (neither divides 111) equals the whole table written at once in
+/// every attribute and in the bits of every dataset; each column equals its definition from the
+/// one-point evaluation, and the values are anchored on the state-space route.
+#[test]
+fn streamed_hdf5_equals_the_whole_table_and_its_definitions() {
+    let sc = scraper();
+    let sweep = study(&sc);
+    let n = sweep.spec().n_points();
+    let dir = scratch("h5");
+    let whole_path = dir.join("whole.h5");
+    let whole = compute_sweep(&sweep, 0..n, true, None, &|_, _| {}).unwrap();
+    whole.write(&whole_path, false).unwrap();
+    let reference = h5_contents(&whole_path);
+    assert!(reference.iter().any(|d| d.0 == "outputs/x2_acc/zero_upcrossing_rate"));
+    for (block, parallel) in [(10, true), (7, false)] {
+        let path = dir.join(format!("s-{block}.h5"));
+        let t = write_sweep_table(&sweep, &path, false, None, opts(block, parallel), &|_, _| {}).unwrap();
+        assert_eq!(t.errors, whole.errors);
+        let got = h5_contents(&path);
+        assert_eq!(got.len(), reference.len());
+        for (g, r) in got.iter().zip(&reference) {
+            assert_eq!(g, r, "{} (block {block})", r.0);
+        }
+    }
+    // the columns against their definitions, point by point
+    let path = dir.join("s-10.h5");
+    let two_pi = 2.0 * std::f64::consts::PI;
+    for (j, name) in sweep.outputs().iter().enumerate() {
+        let col = |c: &str| h5_f64(&path, &format!("outputs/{name}/{c}"));
+        let (mean, var, sigma, lo, hi, l2, nu) = (
+            col("mean"),
+            col("variance"),
+            col("sigma"),
+            col("lower_3sigma"),
+            col("upper_3sigma"),
+            col("lambda2"),
+            col("zero_upcrossing_rate"),
+        );
+        let method = h5_u8(&path, &format!("outputs/{name}/method"));
+        for p in 0..n {
+            match sweep.evaluate(p) {
+                Err(_) => {
+                    assert_eq!(method[p], 255, "{name} at failed point {p}");
+                    assert!([mean[p], var[p], sigma[p], lo[p], hi[p], l2[p], nu[p]]
+                        .iter()
+                        .all(|v| v.is_nan()));
+                }
+                Ok(stats) => {
+                    let s = &stats[j];
+                    assert_eq!(method[p], 1, "{name} at {p}: the integral table");
+                    // every output has a finite mean and variance here; λ₂ is infinite (None, NaN in
+                    // the file) for x2_acc, whose derivative's density decays too slowly
+                    let (m, d) = (s.mean.unwrap(), s.variance.unwrap());
+                    let bits = |v: f64| v.to_bits();
+                    assert_eq!((mean[p], var[p]), (m, d), "{name} at {p}");
+                    assert_eq!(bits(l2[p]), bits(s.lambda2.unwrap_or(f64::NAN)), "{name} at {p}");
+                    assert_eq!(sigma[p], d.sqrt());
+                    assert_eq!((lo[p], hi[p]), (m - 3.0 * d.sqrt(), m + 3.0 * d.sqrt()));
+                    let nu_def = s.lambda2.map_or(f64::NAN, |l| (l / d).sqrt() / two_pi);
+                    assert_eq!(bits(nu[p]), bits(nu_def), "{name} at {p}");
+                    if p % 10 == 0 {
+                        let g = &sweep.evaluate_general(p).unwrap()[j];
+                        let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+                        assert!(rel(d, g.variance.unwrap()) <= TRANSFER_POLYNOMIALS, "{name} at {p}");
+                        assert_eq!(s.lambda2.is_some(), g.lambda2.is_some(), "{name} at {p}");
+                        if let (Some(l), Some(gl)) = (s.lambda2, g.lambda2) {
+                            assert!(rel(l, gl) <= TRANSFER_POLYNOMIALS, "{name} at {p}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // the failed points and their reasons, in point order
+    let _g = common::hdf5_serial();
+    let f = hdf5::File::open(&path).unwrap();
+    let pts: Vec<u64> = f.dataset("errors/point").unwrap().read_raw().unwrap();
+    assert_eq!(pts, (0..n as u64).filter(|p| p % 3 == 1).collect::<Vec<_>>());
+    drop(f);
+    drop(_g);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// With a Monte Carlo batch per point the blocks carry their Monte Carlo values: a streamed CSV and HDF5
+/// table (blocks of 2 of 3 points) equal the whole table's.
+#[test]
+fn streamed_tables_with_monte_carlo_equal_the_whole_table() {
+    let sc = scraper();
+    let spec = SweepSpec::new(
+        vec![SweepParam::parse("model.zeta2=0.2,0.3,0.4").unwrap()],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let sweep = Sweep::new(&sc, spec).unwrap();
+    let mc = Some(SweepMonteCarlo {
+        realizations: 4,
+        duration_s: 20.0,
+        dt_s: 0.01,
+        seed: 7,
+        shard_size: 2,
+        confidence: 0.95,
+    });
+    let dir = scratch("mc");
+    let whole = compute_sweep(&sweep, 0..3, true, mc, &|_, _| {}).unwrap();
+    assert!(whole.values.iter().all(|v| v.mc.is_some()));
+    let whole_h5 = dir.join("whole.h5");
+    whole.write(&whole_h5, false).unwrap();
+    let calls = std::sync::atomic::AtomicUsize::new(0);
+    let progress = |done: usize, total: usize| {
+        assert!(done <= total && total == 3);
+        calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    };
+    let csv = dir.join("s.csv");
+    write_sweep_table(&sweep, &csv, false, mc, opts(2, true), &progress).unwrap();
+    assert_eq!(std::fs::read_to_string(&csv).unwrap(), whole.to_csv());
+    let h5 = dir.join("s.h5");
+    write_sweep_table(&sweep, &h5, false, mc, opts(2, true), &progress).unwrap();
+    assert_eq!(h5_contents(&h5), h5_contents(&whole_h5));
+    assert_eq!(
+        calls.load(std::sync::atomic::Ordering::Relaxed),
+        6,
+        "one call per point and table"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A sink that fails after `left` bytes.
+struct Failing {
+    left: usize,
+}
+
+impl std::io::Write for Failing {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        if buf.len() > self.left {
+            return Err(std::io::Error::other("device full"));
+        }
+        self.left -= buf.len();
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// A write that fails is the error returned, naming the sink; a table that exists is not replaced without
+/// `overwrite` (its bytes unchanged) and is replaced with it; a block of 0 points, an unknown extension
+/// and a directory are refused; nothing is left behind.
+#[test]
+fn stream_errors_name_the_sink_and_lose_nothing() {
+    let sc = scraper();
+    let sweep = study(&sc);
+    let e = stream_sweep_csv(
+        &sweep,
+        Failing { left: 5000 },
+        Path::new("<pipe>"),
+        None,
+        opts(4, true),
+        &|_, _| {},
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("<pipe>") && e.contains("device full"), "{e}");
+    let dir = scratch("errors");
+    let path = dir.join("t.h5");
+    std::fs::write(&path, b"a user's file").unwrap();
+    let e = write_sweep_table(&sweep, &path, false, None, opts(16, true), &|_, _| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("already exists") && e.contains("--overwrite"), "{e}");
+    assert_eq!(std::fs::read(&path).unwrap(), b"a user's file");
+    write_sweep_table(&sweep, &path, true, None, opts(16, true), &|_, _| {}).unwrap();
+    assert_eq!(h5_f64(&path, "outputs/x1/sigma").len(), 111);
+    let e = write_sweep_table(&sweep, &dir.join("t.txt"), false, None, opts(16, true), &|_, _| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains(".csv, .json or .h5"), "{e}");
+    let e = write_sweep_table(&sweep, &dir.join("z.csv"), false, None, opts(0, true), &|_, _| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("block_points") && e.contains("at least one point"), "{e}");
+    std::fs::create_dir_all(dir.join("d.csv")).unwrap();
+    let e = write_sweep_table(&sweep, &dir.join("d.csv"), true, None, opts(16, true), &|_, _| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("is a directory"), "{e}");
+    let mut left: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["d.csv", "t.h5"], "no temporary or partial file is left");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `evaluate_into` fills one row per point, each equal to `evaluate` of that point alone; a failed point's
+/// row is `FAILED_POINT` and its reason names the key's model value.
+#[test]
+fn evaluate_into_rows_equal_single_point_evaluations() {
+    let sc = scraper();
+    let sweep = study(&sc);
+    let n_out = sweep.outputs().len();
+    for parallel in [false, true] {
+        let mut rows = vec![FAILED_POINT; 30 * n_out];
+        let errors = sweep.evaluate_into(40..70, parallel, &mut rows);
+        assert_eq!(
+            errors.iter().map(|e| e.0).collect::<Vec<_>>(),
+            (40..70).filter(|p| p % 3 == 1).collect::<Vec<_>>()
+        );
+        for (k, row) in rows.chunks(n_out).enumerate() {
+            match sweep.evaluate(40 + k) {
+                Ok(stats) => assert_eq!(row, &stats[..], "point {}", 40 + k),
+                Err(e) => {
+                    assert!(row.iter().all(|s| *s == FAILED_POINT));
+                    let why = &errors.iter().find(|x| x.0 == 40 + k).unwrap().1;
+                    assert_eq!(why, &e.to_string());
+                }
+            }
+        }
+    }
+}
+
+/// The command line streams too: the CSV it prints equals the file it writes with `-o`, and both equal
+/// the library's whole table.
+#[test]
+fn cli_stdout_and_file_tables_are_the_same() {
+    let dir = scratch("cli");
+    let file = dir.join("t.csv");
+    let args = [
+        "sweep",
+        "data/scraper-sprung-cab.toml",
+        "--param",
+        "model.omega2=0.5 Hz..4 Hz:37",
+        "--param",
+        "model.zeta2=0.2,-0.1,0.3",
+    ];
+    let bin = env!("CARGO_BIN_EXE_stochvib");
+    let out = std::process::Command::new(bin).args(args).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut with_file: Vec<&str> = args.to_vec();
+    with_file.extend(["-o", file.to_str().unwrap()]);
+    let o = std::process::Command::new(bin).args(&with_file).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        o.status.success() && err.contains("wrote 111 points (37 failed)"),
+        "{err}"
+    );
+    let sc = scraper();
+    let sweep = study(&sc);
+    let whole = compute_sweep(&sweep, 0..111, true, None, &|_, _| {}).unwrap().to_csv();
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), whole);
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), whole);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
