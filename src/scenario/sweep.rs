@@ -840,23 +840,33 @@ impl<'a> Sweep<'a> {
     }
 
     /// Evaluates the points `points` (in parallel with `parallel`), each result in point order; a point
-    /// that fails gives its error message (the study goes on).
+    /// that fails gives its error message (the study goes on). One `Vec` per point: for large studies
+    /// [`evaluate_into`](Self::evaluate_into) writes the same rows into one buffer.
     pub fn evaluate_range(
         &self,
         points: std::ops::Range<usize>,
         parallel: bool,
     ) -> Vec<std::result::Result<Vec<PointStatistics>, String>> {
+        use rayon::prelude::*;
         let n_out = self.outputs().len();
-        let mut flat = vec![FAILED_POINT; points.len() * n_out];
-        let errors = self.evaluate_into(points.clone(), parallel, &mut flat);
-        let mut errors = errors.into_iter().peekable();
-        points
-            .zip(flat.chunks(n_out.max(1)))
-            .map(|(p, row)| match errors.next_if(|e| e.0 == p) {
-                Some((_, e)) => Err(e),
-                None => Ok(row.to_vec()),
-            })
-            .collect()
+        // one state space per worker for the numeric path, overwritten point after point
+        let scratch = || self.numeric.as_ref().map(|n| n.template.clone());
+        let one = |s: &mut Option<StateSpace>, p: usize| {
+            let mut row = Vec::with_capacity(n_out);
+            self.evaluate_in(p, s.as_mut(), &mut row)
+                .map(|()| row)
+                .map_err(|e| e.to_string())
+        };
+        if parallel {
+            points
+                .into_par_iter()
+                .with_min_len(256)
+                .map_init(scratch, one)
+                .collect()
+        } else {
+            let mut s = scratch();
+            points.map(|p| one(&mut s, p)).collect()
+        }
     }
 
     /// Evaluates the points `points` (in parallel with `parallel`) into `out`, row-major (point, output in
