@@ -219,7 +219,7 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
     read, evaluation on every core, the table written and renamed): the same 4-output job as
     sweep_lyapunov_4_outputs on the same grid family (omega2 1..2.5 Hz x zeta2 0.1..0.5, here n_side x n_side
     values), to an HDF5 table, to a CSV file and as CSV to /dev/null. Wall time by perf_counter around the
-    child; user and system time and peak RSS of the child from wait4. Best and median of `reps` runs each;
+    child; user and system time of the child from wait4, its peak RSS from /usr/bin/time when installed. Best and median of `reps` runs each;
     then the scipy loop (best of 2, per point, on its 10^4-point grid) in the same minutes and the ratios
     scipy time of n_side^2 points / stochvib wall time."""
     import statistics
@@ -244,15 +244,20 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
             for f in ("table.h5", "table.csv"):
                 if os.path.exists(os.path.join(out_dir, f)):
                     os.remove(os.path.join(out_dir, f))
+            # peak RSS from GNU time's %M when it is installed (wait4's ru_maxrss would count the
+            # Python parent's pages the child holds between fork and exec)
+            rss_file = os.path.join(out_dir, "rss")
+            wrap = ["/usr/bin/time", "-f", "%M", "-o", rss_file] if os.path.exists("/usr/bin/time") else []
             t0 = time.perf_counter()
-            child = subprocess.Popen(args + extra, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            child = subprocess.Popen(wrap + args + extra, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
             _, status, ru = os.wait4(child.pid, 0)
             wall = time.perf_counter() - t0
             err = child.stderr.read().decode()
             child.stderr.close()
             if os.waitstatus_to_exitcode(status) != 0:
                 raise SystemExit(f"stochvib sweep failed: {err}")
-            runs.append((wall, ru.ru_utime, ru.ru_stime, ru.ru_maxrss / 1024.0))
+            rss = float(open(rss_file).read().split()[-1]) / 1024.0 if wrap else float("nan")
+            runs.append((wall, ru.ru_utime, ru.ru_stime, rss))
         walls = [r[0] for r in runs]
         best_run = min(runs)
         rows[name] = {
