@@ -354,7 +354,7 @@ fn stream_errors_name_the_sink_and_lose_nothing() {
 }
 
 /// `evaluate_into` fills one row per point, each equal to `evaluate` of that point alone; a failed point's
-/// row is `FAILED_POINT` and its reason names the key's model value.
+/// row is `FAILED_POINT` and its reason is the error `evaluate` gives for it.
 #[test]
 fn evaluate_into_rows_equal_single_point_evaluations() {
     let sc = scraper();
