@@ -767,7 +767,19 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                             emit_line(&report::compute_sweep(&sweep, 0..n, true, mc, &progress)?.to_json()?)
                         }
                         None => {
-                            report::stream_sweep_csv(&sweep, QuietPipe, Path::new("<stdout>"), mc, opts, &progress)?;
+                            let out = std::io::stdout();
+                            match report::stream_sweep_csv(&sweep, out, Path::new("<stdout>"), mc, opts, &progress) {
+                                // a closed pipe (`stochvib sweep ... | head`): the evaluation has stopped and
+                                // the writer thread has ended; end quietly, as `emit` does
+                                Err(stochvib::Error::Io { source, .. })
+                                    if source.kind() == std::io::ErrorKind::BrokenPipe =>
+                                {
+                                    std::process::exit(0)
+                                }
+                                r => {
+                                    r?;
+                                }
+                            }
                         }
                     }
                 }
@@ -901,25 +913,6 @@ fn progress_printer() -> impl Fn(usize, usize) {
         } else {
             eprintln!("shard {done}/{total}");
         }
-    }
-}
-
-/// Standard output for a streamed table: a closed pipe (`stochvib sweep ... | head`) ends the program
-/// quietly, as [`emit`] does.
-struct QuietPipe;
-
-impl std::io::Write for QuietPipe {
-    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        std::io::stdout().lock().write(buf).inspect_err(quiet_on_broken_pipe)
-    }
-    fn flush(&mut self) -> std::io::Result<()> {
-        std::io::stdout().lock().flush().inspect_err(quiet_on_broken_pipe)
-    }
-}
-
-fn quiet_on_broken_pipe(e: &std::io::Error) {
-    if e.kind() == std::io::ErrorKind::BrokenPipe {
-        std::process::exit(0);
     }
 }
 

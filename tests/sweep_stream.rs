@@ -4,12 +4,13 @@
 //!
 //! Provenance of the expected values:
 //! * the whole table of the same study, built in memory by `report::compute_sweep` and written by
-//!   `SweepResults::write`/`to_csv` (the path every table took before streaming): a streamed table must
+//!   `SweepResults::write`/`to_csv` (the path merge and the shard tables take): a streamed table must
 //!   equal it byte for byte (CSV) or bit for bit in every dataset (HDF5), for blocks that do not divide the
-//!   number of points, on one core and on all;
+//!   number of points, on one core and on all. For HDF5 both go through the same dataset writer, so the
+//!   columns are also checked against their definitions:
 //! * `Sweep::evaluate(p)` of each point alone, and the definitions of the derived columns written out in
-//!   the test: σ = √D, M ∓ 3σ, ν₀⁺ = √(λ₂/D)/(2π), so each column of the HDF5 file is checked against its
-//!   formula, not against the writer;
+//!   the test: σ = √D, M ∓ 3σ, ν₀⁺ = √(λ₂/D)/(2π); the value indices from `SweepSpec::indices`, the
+//!   values of the keys as written, the failed points' messages from `evaluate`'s errors;
 //! * `Sweep::evaluate_general` (the model rebuilt from its table and solved through its state space: a
 //!   different route from the closed-form transfer polynomials the study takes) within
 //!   `TRANSFER_POLYNOMIALS`, so the numbers are anchored outside the fast path.
@@ -232,23 +233,43 @@ fn streamed_hdf5_equals_the_whole_table_and_its_definitions() {
             }
         }
     }
-    // the failed points and their reasons, in point order
+    // the value indices, the keys' values as written, the failed points and their reasons in point order
     let _g = common::hdf5_serial();
     let f = hdf5::File::open(&path).unwrap();
+    let idx = f.dataset("value_index").unwrap();
+    assert_eq!(idx.shape(), [n, 2]);
+    let idx: Vec<u64> = idx.read_raw().unwrap();
+    for p in 0..n {
+        let want: Vec<u64> = sweep.spec().indices(p).iter().map(|&i| i as u64).collect();
+        assert_eq!(&idx[2 * p..2 * p + 2], &want[..], "point {p}");
+    }
+    let text = |name: &str| -> Vec<String> {
+        let v = f
+            .dataset(name)
+            .unwrap()
+            .read_raw::<hdf5::types::VarLenUnicode>()
+            .unwrap();
+        v.iter().map(|s| s.to_string()).collect()
+    };
+    assert_eq!(text("params/1"), ["0.2", "-0.1", "0.3"]);
     let pts: Vec<u64> = f.dataset("errors/point").unwrap().read_raw().unwrap();
     assert_eq!(pts, (0..n as u64).filter(|p| p % 3 == 1).collect::<Vec<_>>());
+    for (&p, m) in pts.iter().zip(text("errors/message")) {
+        assert_eq!(m, sweep.evaluate(p as usize).unwrap_err().to_string());
+    }
     drop(f);
     drop(_g);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// With a Monte Carlo batch per point the blocks carry their Monte Carlo values: a streamed CSV and HDF5
-/// table (blocks of 2 of 3 points) equal the whole table's.
+/// With a Monte Carlo batch per point the table is streamed point by point with its Monte Carlo values:
+/// a streamed CSV and HDF5 table equal the whole table's, the failed point (ζ₂ = −0.1) has no batch and
+/// is marked, and progress counts every point once, in order, up to the total.
 #[test]
 fn streamed_tables_with_monte_carlo_equal_the_whole_table() {
     let sc = scraper();
     let spec = SweepSpec::new(
-        vec![SweepParam::parse("model.zeta2=0.2,0.3,0.4").unwrap()],
+        vec![SweepParam::parse("model.zeta2=0.2,-0.1,0.4").unwrap()],
         SweepMode::Grid,
     )
     .unwrap();
@@ -263,25 +284,29 @@ fn streamed_tables_with_monte_carlo_equal_the_whole_table() {
     });
     let dir = scratch("mc");
     let whole = compute_sweep(&sweep, 0..3, true, mc, &|_, _| {}).unwrap();
-    assert!(whole.values.iter().all(|v| v.mc.is_some()));
+    let n_out = sweep.outputs().len();
+    assert!(whole
+        .values
+        .iter()
+        .enumerate()
+        .all(|(i, v)| v.mc.is_some() == (i / n_out != 1)));
+    assert_eq!(whole.errors.iter().map(|e| e.0).collect::<Vec<_>>(), [1]);
     let whole_h5 = dir.join("whole.h5");
     whole.write(&whole_h5, false).unwrap();
-    let calls = std::sync::atomic::AtomicUsize::new(0);
+    let seen = std::sync::Mutex::new(Vec::new());
     let progress = |done: usize, total: usize| {
-        assert!(done <= total && total == 3);
-        calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        assert_eq!(total, 3);
+        seen.lock().unwrap().push(done);
     };
     let csv = dir.join("s.csv");
-    write_sweep_table(&sweep, &csv, false, mc, opts(2, true), &progress).unwrap();
+    let t = write_sweep_table(&sweep, &csv, false, mc, opts(2, true), &progress).unwrap();
+    assert_eq!(t.errors, whole.errors);
     assert_eq!(std::fs::read_to_string(&csv).unwrap(), whole.to_csv());
+    assert_eq!(*seen.lock().unwrap(), [1, 2, 3]);
     let h5 = dir.join("s.h5");
     write_sweep_table(&sweep, &h5, false, mc, opts(2, true), &progress).unwrap();
     assert_eq!(h5_contents(&h5), h5_contents(&whole_h5));
-    assert_eq!(
-        calls.load(std::sync::atomic::Ordering::Relaxed),
-        6,
-        "one call per point and table"
-    );
+    assert_eq!(h5_u8(&h5, "outputs/x1/method")[1], 255);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -303,24 +328,37 @@ impl std::io::Write for Failing {
     }
 }
 
-/// A write that fails is the error returned, naming the sink; a table that exists is not replaced without
+/// A write that fails on the writer thread in the middle of a study (2000 points, 1.6 MB of CSV, past the
+/// 1 MiB output buffer) is the error returned, naming the sink; a table that exists is not replaced without
 /// `overwrite` (its bytes unchanged) and is replaced with it; a block of 0 points, an unknown extension
 /// and a directory are refused; nothing is left behind.
 #[test]
 fn stream_errors_name_the_sink_and_lose_nothing() {
     let sc = scraper();
-    let sweep = study(&sc);
+    let spec = SweepSpec::new(
+        vec![
+            SweepParam::parse("model.omega2=0.5 Hz..4 Hz:1000").unwrap(),
+            SweepParam::parse("model.zeta2=0.2,0.3").unwrap(),
+        ],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let big = Sweep::new(&sc, spec).unwrap();
     let e = stream_sweep_csv(
-        &sweep,
+        &big,
         Failing { left: 5000 },
         Path::new("<pipe>"),
         None,
-        opts(4, true),
+        opts(50, true),
         &|_, _| {},
     )
-    .unwrap_err()
-    .to_string();
-    assert!(e.contains("<pipe>") && e.contains("device full"), "{e}");
+    .unwrap_err();
+    assert!(
+        matches!(&e, stochvib::Error::Io { source, .. } if source.to_string() == "device full"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("<pipe>"), "{e}");
+    let sweep = study(&sc);
     let dir = scratch("errors");
     let path = dir.join("t.h5");
     std::fs::write(&path, b"a user's file").unwrap();
@@ -353,26 +391,44 @@ fn stream_errors_name_the_sink_and_lose_nothing() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// `evaluate_into` fills one row per point, each equal to `evaluate` of that point alone; a failed point's
-/// row is `FAILED_POINT` and its reason is the error `evaluate` gives for it.
+/// `evaluate_into` writes every row, each equal to `evaluate` of that point alone, over a range that
+/// starts off a chunk boundary and spans several of its 256-point chunks; a failed point's row is
+/// `FAILED_POINT` and its reason is the error `evaluate` gives for it. The buffer starts filled with
+/// another value, so an unwritten row would show.
 #[test]
 fn evaluate_into_rows_equal_single_point_evaluations() {
     let sc = scraper();
-    let sweep = study(&sc);
+    let spec = SweepSpec::new(
+        vec![
+            SweepParam::parse("model.omega2=0.5 Hz..4 Hz:400").unwrap(),
+            SweepParam::parse("model.zeta2=0.2,-0.1,0.3").unwrap(),
+        ],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let sweep = Sweep::new(&sc, spec).unwrap();
     let n_out = sweep.outputs().len();
+    let (first, last) = (300, 1000);
+    let sentinel = stochvib::response::PointStatistics {
+        mean: Some(-1.0),
+        variance: Some(-1.0),
+        lambda2: None,
+        method: stochvib::response::VarianceMethod::LyapunovDelays,
+    };
     for parallel in [false, true] {
-        let mut rows = vec![FAILED_POINT; 30 * n_out];
-        let errors = sweep.evaluate_into(40..70, parallel, &mut rows);
+        let mut rows = vec![sentinel; (last - first) * n_out];
+        let errors = sweep.evaluate_into(first..last, parallel, &mut rows);
         assert_eq!(
             errors.iter().map(|e| e.0).collect::<Vec<_>>(),
-            (40..70).filter(|p| p % 3 == 1).collect::<Vec<_>>()
+            (first..last).filter(|p| p % 3 == 1).collect::<Vec<_>>()
         );
         for (k, row) in rows.chunks(n_out).enumerate() {
-            match sweep.evaluate(40 + k) {
-                Ok(stats) => assert_eq!(row, &stats[..], "point {}", 40 + k),
+            let p = first + k;
+            match sweep.evaluate(p) {
+                Ok(stats) => assert_eq!(row, &stats[..], "point {p}"),
                 Err(e) => {
-                    assert!(row.iter().all(|s| *s == FAILED_POINT));
-                    let why = &errors.iter().find(|x| x.0 == 40 + k).unwrap().1;
+                    assert!(row.iter().all(|s| *s == FAILED_POINT), "point {p}");
+                    let why = &errors.iter().find(|x| x.0 == p).unwrap().1;
                     assert_eq!(why, &e.to_string());
                 }
             }
@@ -380,19 +436,22 @@ fn evaluate_into_rows_equal_single_point_evaluations() {
     }
 }
 
-/// The command line streams too: the CSV it prints equals the file it writes with `-o`, and both equal
-/// the library's whole table.
+/// The command line streams too: over 16 900 points (two of its 16 384-point blocks) the CSV it prints
+/// equals the file it writes with `-o`, and both equal the library's whole table; a reader that closes
+/// the pipe early (`| head`) ends the program quietly, with status 0 and nothing on stderr but the path
+/// line.
 #[test]
 fn cli_stdout_and_file_tables_are_the_same() {
+    use std::io::Read;
     let dir = scratch("cli");
     let file = dir.join("t.csv");
     let args = [
         "sweep",
         "data/scraper-sprung-cab.toml",
         "--param",
-        "model.omega2=0.5 Hz..4 Hz:37",
+        "model.omega2=0.5 Hz..4 Hz:130",
         "--param",
-        "model.zeta2=0.2,-0.1,0.3",
+        "model.zeta2=0.1..0.5:130",
     ];
     let bin = env!("CARGO_BIN_EXE_stochvib");
     let out = std::process::Command::new(bin).args(args).output().unwrap();
@@ -402,13 +461,37 @@ fn cli_stdout_and_file_tables_are_the_same() {
     let o = std::process::Command::new(bin).args(&with_file).output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        o.status.success() && err.contains("wrote 111 points (37 failed)"),
+        o.status.success() && err.contains("wrote 16900 points (0 failed)"),
         "{err}"
     );
     let sc = scraper();
-    let sweep = study(&sc);
-    let whole = compute_sweep(&sweep, 0..111, true, None, &|_, _| {}).unwrap().to_csv();
+    let spec = SweepSpec::new(
+        vec![
+            SweepParam::parse("model.omega2=0.5 Hz..4 Hz:130").unwrap(),
+            SweepParam::parse("model.zeta2=0.1..0.5:130").unwrap(),
+        ],
+        SweepMode::Grid,
+    )
+    .unwrap();
+    let sweep = Sweep::new(&sc, spec).unwrap();
+    let whole = compute_sweep(&sweep, 0..16900, true, None, &|_, _| {})
+        .unwrap()
+        .to_csv();
     assert_eq!(String::from_utf8(out.stdout).unwrap(), whole);
     assert_eq!(std::fs::read_to_string(&file).unwrap(), whole);
+    // a reader that stops after the first bytes
+    let mut child = std::process::Command::new(bin)
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 64];
+    child.stdout.take().unwrap().read_exact(&mut first).unwrap(); // dropped: the pipe closes
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(!err.contains("rror"), "{err}");
+    assert!(whole.as_bytes().starts_with(&first));
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -316,7 +316,8 @@ fn rigid_model(v: &[Option<f64>]) -> Option<ScraperRigidCab> {
 /// ```text
 /// Δ(s) = s² + β₁ s + a₁ = det(sI − A),   N_x1(s) = β₁ s + a₁,   N_x1_acc(s) = s² (β₁ s + a₁)
 /// ```
-/// (outputs in the instance's order `x1`, `x1_acc`).
+/// (outputs in the instance's order `x1`, `x1_acc`). `tp` arrives zeroed
+/// ([`TransferBuilder`](crate::response::TransferBuilder)): only the non-zero coefficients are written.
 pub(crate) fn rigid_transfer(v: &[Option<f64>], tp: &mut TransferPolynomials) -> bool {
     let Some(s) = rigid_model(v) else { return false };
     let (a1, beta1) = (s.c1 / s.m1, s.b1 / s.m1);
@@ -380,7 +381,8 @@ fn sprung_model(v: &[Option<f64>]) -> Option<ScraperSprungCab> {
 /// N_x1 = K₁(s² + K₂),   N_x2 = K₁K₂,   N_x1_acc = s²N_x1,   N_x2_acc = s²N_x2,
 /// N_cab_travel = N_x2 − N_x1 = −s²K₁
 /// ```
-/// (outputs in the instance's order `x1`, `x2`, `x1_acc`, `x2_acc`, `cab_travel`).
+/// (outputs in the instance's order `x1`, `x2`, `x1_acc`, `x2_acc`, `cab_travel`). `tp` arrives zeroed
+/// ([`TransferBuilder`](crate::response::TransferBuilder)): only the non-zero coefficients are written.
 pub(crate) fn sprung_transfer(v: &[Option<f64>], tp: &mut TransferPolynomials) -> bool {
     let Some(s) = sprung_model(v) else { return false };
     let (a1, beta1) = (s.c1 / s.m1, s.b1 / s.m1);

@@ -1,12 +1,14 @@
 //! A parameter study's table written while it is computed (`stochvib sweep`): the points are evaluated in
 //! blocks of [`StreamOptions::block_points`] on every core, and each finished block goes to a writer thread
-//! that puts it into the file (HDF5 rows, CSV lines) while the next block is evaluated. Memory holds two
-//! blocks, whatever the number of points, and the file is the same, byte for byte (CSV) or value for value
-//! (HDF5), as [`SweepResults::write`] of the whole table: every point is evaluated alone, so the blocking
-//! cannot change a number.
+//! that puts it into the file (HDF5 rows, CSV lines) while the next block is evaluated. Memory holds at most
+//! three blocks (one being evaluated, one waiting, one being written), whatever the number of points, and
+//! the file is the same, byte for byte (CSV) or value for value (HDF5), as [`SweepResults::write`] of the
+//! whole table: every point is evaluated alone, so the blocking cannot change a number. With a Monte Carlo
+//! batch per point the blocks are single points (each batch takes seconds): a point's row reaches the file
+//! when its batch is done, and a failed write stops the study at the next point.
 //!
 //! JSON tables are one document and are written from the whole table ([`compute_sweep`], then
-//! [`SweepResults::write`]).
+//! [`SweepResults::write_json`]).
 
 use super::sweep_h5::H5TableWriter;
 use super::sweep_table::{
@@ -30,9 +32,9 @@ pub struct StreamOptions {
 }
 
 impl Default for StreamOptions {
-    /// Blocks of 16 384 points on every core: a block of 4 outputs is about 7 MB in memory and 2 MB of
-    /// numbers in the file, large enough that the per-block costs (an HDF5 hyperslab write per column, a
-    /// channel hand-over) are small, small enough that evaluation and writing overlap.
+    /// Blocks of 16 384 points on every core: a block of 4 outputs is about 3.7 MB of evaluated rows in
+    /// memory and 3.7 MB of numbers in the file, large enough that the per-block costs (an HDF5 hyperslab
+    /// write per column, a channel hand-over) are small, small enough that evaluation and writing overlap.
     fn default() -> StreamOptions {
         StreamOptions {
             block_points: 16_384,
@@ -56,9 +58,9 @@ pub struct StreamedTable {
 /// written from the whole table. `progress(done, total)` is called after every Monte Carlo point.
 ///
 /// # Errors
-/// An unknown extension; an existing file without `overwrite`; a block of 0 points; I/O and HDF5 errors
-/// (the temporary file is then removed and nothing at `path` is touched); the Monte Carlo set-up's errors.
-/// A failing point is not an error: it is recorded in [`StreamedTable::errors`] and in the table.
+/// An unknown extension; an existing file without `overwrite`; a directory at `path`; a block of 0 points;
+/// I/O and HDF5 errors (the temporary file is then removed and nothing at `path` is touched). A failing
+/// point is not an error: it is recorded in [`StreamedTable::errors`] and in the table.
 ///
 /// # Examples
 /// ```
@@ -105,7 +107,7 @@ pub fn write_sweep_table(
                 path: tmp.clone(),
                 source,
             })
-            .and_then(|file| stream_sweep_csv(sweep, file, &tmp, mc, opts, progress)),
+            .and_then(|file| stream_sweep_csv(sweep, file, path, mc, opts, progress)),
         TableFormat::Hdf5 => (|| {
             let w = H5TableWriter::create(&tmp, &sweep_identity(sweep, mc), n, 0..n)?;
             let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, |w, b| match b {
@@ -116,8 +118,8 @@ pub fn write_sweep_table(
             Ok(StreamedTable { n_points: n, errors })
         })(),
     };
-    match written {
-        Ok(t) => commit_table(&tmp, path).map(|()| t),
+    match written.and_then(|t| commit_table(&tmp, path).map(|()| t)) {
+        Ok(t) => Ok(t),
         Err(e) => {
             let _ = std::fs::remove_file(&tmp);
             Err(e)
@@ -130,8 +132,8 @@ pub fn write_sweep_table(
 /// [`SweepResults::to_csv`] of the whole table.
 ///
 /// # Errors
-/// A block of 0 points; write errors of `out` ([`Error::Io`] naming `name`); the Monte Carlo set-up's
-/// errors.
+/// A block of 0 points; write errors of `out` ([`Error::Io`] naming `name`; the evaluation stops at the
+/// next block). A closed pipe is such an error, with kind [`std::io::ErrorKind::BrokenPipe`].
 pub fn stream_sweep_csv(
     sweep: &Sweep,
     out: impl Write + Send,
@@ -178,8 +180,8 @@ pub(crate) enum Block {
 /// Evaluates `points` in blocks on the calling thread (each block on every core with `opts.parallel`) and
 /// hands each block, in order, to `put` with `sink` on a writer thread (which tabulates the rows as its format needs);
 /// returns the sink and the failed points. The calling thread only evaluates, so that the cores are never
-/// idle while a block is converted or written. A failing `put` stops the evaluation at the next block and
-/// is the error returned.
+/// idle while a block is converted or written. A failing `put` stops the evaluation at the next block (the
+/// next point with Monte Carlo, whose blocks are single points) and is the error returned.
 fn pipeline<S: Send>(
     sweep: &Sweep,
     points: Range<usize>,
@@ -194,6 +196,8 @@ fn pipeline<S: Send>(
     }
     let total = points.len();
     let n_out = sweep.outputs().len();
+    // a Monte Carlo batch takes seconds: one point per block
+    let block_points = if mc.is_some() { 1 } else { opts.block_points };
     // one block evaluated while one is written and one waits; spent row buffers come back for reuse
     let (tx, rx) = std::sync::mpsc::sync_channel::<Block>(1);
     let (back_tx, back_rx) = std::sync::mpsc::channel::<Vec<PointStatistics>>();
@@ -214,8 +218,8 @@ fn pipeline<S: Send>(
             Ok((sink, failed))
         });
         let mut evaluated = Ok(());
-        for start in points.clone().step_by(opts.block_points) {
-            let block = start..(start + opts.block_points).min(points.end);
+        for start in points.clone().step_by(block_points) {
+            let block = start..(start + block_points).min(points.end);
             let b = match mc {
                 None => {
                     // every row is overwritten by the evaluation: a recycled buffer of the right length is

@@ -29,9 +29,10 @@
 //! ```
 //!
 //! # Streaming
-//! `stochvib sweep` does not build this table in memory: [`write_sweep_table`](super::write_sweep_table)
-//! evaluates the points in blocks and writes each block (HDF5 rows, CSV lines) on a writer thread while
-//! the next is evaluated; the file is the same as [`SweepResults::write`] of the whole table.
+//! `stochvib sweep` does not build its CSV and HDF5 tables in memory:
+//! [`write_sweep_table`](super::write_sweep_table) evaluates the points in blocks and writes each block
+//! (HDF5 rows, CSV lines) on a writer thread while the next is evaluated; the file is the same as
+//! [`SweepResults::write`] of the whole table. A JSON table is one document, written from the whole table.
 
 use super::sweep_h5::H5TableWriter;
 use crate::error::{Error, Result};
@@ -286,6 +287,7 @@ fn add_monte_carlo(sweep: &Sweep, t: &mut SweepResults, m: SweepMonteCarlo, prog
     let dir = std::env::temp_dir();
     for (k, p) in points.clone().enumerate() {
         if errors.iter().any(|e| e.0 == p) {
+            progress(k + 1, points.len()); // a failed point has no batch, but it is done
             continue;
         }
         let run = || -> Result<Vec<Option<McValues>>> {
@@ -897,6 +899,8 @@ pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<Sw
         all.values.extend(s.results.values);
         all.errors.extend(s.results.errors);
     }
+    // in point order whatever a shard file holds (the HDF5 writer marks failed rows by a binary search)
+    all.errors.sort_by_key(|e| e.0);
     all.write(out, overwrite)?;
     Ok(all)
 }

@@ -543,6 +543,10 @@ fn unstable_or(e: Error, delta: &[f64]) -> Error {
 /// register in ascending i (the order, and so the rounding, of accumulating pᵢ·q row by row into a zeroed
 /// `out`), so no sum waits on a store of the previous product.
 pub(crate) fn mul_into(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
+    debug_assert!(
+        !p.is_empty() && !q.is_empty(),
+        "polynomials have at least one coefficient"
+    );
     let len = p.len() + q.len() - 1;
     for (k, o) in out[..len].iter_mut().enumerate() {
         let lo = (k + 1).saturating_sub(q.len());

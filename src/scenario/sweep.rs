@@ -870,9 +870,10 @@ impl<'a> Sweep<'a> {
     }
 
     /// Evaluates the points `points` (in parallel with `parallel`) into `out`, row-major (point, output in
-    /// the order of [`outputs`](Self::outputs)): nothing is allocated per point. A point that fails leaves
-    /// its row as [`FAILED_POINT`] and gives its error message, in the returned list (ascending points;
-    /// the study goes on).
+    /// the order of [`outputs`](Self::outputs)); on the closed-form path nothing is allocated per point.
+    /// Every row is written: a point that fails gets [`FAILED_POINT`] and gives its error message, in the
+    /// returned list (ascending points; the study goes on). A study has at least one output (the scenario
+    /// refuses an empty list).
     ///
     /// # Errors
     /// None: see above.
