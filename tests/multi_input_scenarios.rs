@@ -491,19 +491,28 @@ speed = "15 m/s"
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-#[test]
-fn the_input_coherence_chart_draws_the_squared_coherence_of_each_road() {
-    // Constant coherence amplitude ρ = 0.5: γ² = ρ² = 0.25 at every n (closed form); a scenario without a
-    // road of two tracks has no such chart.
-    use stochvib::plot::scenario_plots::{input_coherence_chart, ScenarioPlotOptions};
-    let road = format!(
+/// The `[[input]]` table of a road of two tracks (the exponential road `ROAD`, 1.5 m apart, at 15 m/s)
+/// with a constant coherence amplitude ρ = 0.5.
+fn constant_coherence_road() -> String {
+    format!(
         r#"[[input]]
 name = "road"
 road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "constant", coherence_amplitude = 0.5 }} }}
 speed = "15 m/s"
 "#
-    );
-    let sc = parse(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    )
+}
+
+#[test]
+fn the_input_coherence_chart_draws_the_squared_coherence_of_each_road() {
+    // Constant coherence amplitude ρ = 0.5: γ² = ρ² = 0.25 at every n (closed form); a scenario without a
+    // road of two tracks has no such chart.
+    use stochvib::plot::scenario_plots::{input_coherence_chart, ScenarioPlotOptions};
+    let sc = parse(&two_wheels(
+        r#"tracks = ["left", "right"]"#,
+        "[1, 1]",
+        &constant_coherence_road(),
+    ));
     let chart = input_coherence_chart(&sc, &ScenarioPlotOptions::default())
         .unwrap()
         .unwrap();
@@ -555,14 +564,11 @@ fn the_input_pictures_draw_every_source_and_the_cross_spectrum_of_a_road() {
     // exponential road's one-sided density G(n) = 4π S(2πn) = 4αD/(α² + 4π²n²) (S(Ω) = αD/(π(α² + Ω²)),
     // D = 1e-4 m², α = 0.2 1/m); the cross-spectrum is G_LR = ρ G (co-spectrum ρG, quad-spectrum 0: the
     // tracks are in phase) and γ² = ρ² = 0.25.
-    let road = format!(
-        r#"[[input]]
-name = "road"
-road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "constant", coherence_amplitude = 0.5 }} }}
-speed = "15 m/s"
-"#
-    );
-    let sc = parse(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    let sc = parse(&two_wheels(
+        r#"tracks = ["left", "right"]"#,
+        "[1, 1]",
+        &constant_coherence_road(),
+    ));
     let charts = input_cross_spectrum_charts(&sc, &opts).unwrap();
     assert_eq!(charts.len(), 1);
     let (name, c) = &charts[0];

@@ -25,18 +25,16 @@ fn scraper() -> Scenario {
     load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap()
 }
 
+/// The grid study of `sc` over `params` (`KEY=VALUES` as on the command line).
+fn grid<'a>(sc: &'a Scenario, params: &[&str]) -> Sweep<'a> {
+    let params = params.iter().map(|p| SweepParam::parse(p).unwrap()).collect();
+    Sweep::new(sc, SweepSpec::new(params, SweepMode::Grid).unwrap()).unwrap()
+}
+
 /// 37 cab frequencies × ζ₂ ∈ {0.2, −0.1, 0.3}: 111 points, the 37 with ζ₂ = −0.1 fail (a negative
 /// damping ratio is refused by the model), so failed rows fall inside every block.
 fn study(sc: &Scenario) -> Sweep<'_> {
-    let spec = SweepSpec::new(
-        vec![
-            SweepParam::parse("model.omega2=0.5 Hz..4 Hz:37").unwrap(),
-            SweepParam::parse("model.zeta2=0.2,-0.1,0.3").unwrap(),
-        ],
-        SweepMode::Grid,
-    )
-    .unwrap();
-    Sweep::new(sc, spec).unwrap()
+    grid(sc, &["model.omega2=0.5 Hz..4 Hz:37", "model.zeta2=0.2,-0.1,0.3"])
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -105,17 +103,8 @@ fn h5_contents(path: &Path) -> Vec<(String, Vec<u64>, Vec<String>)> {
     out
 }
 
-fn h5_f64(path: &Path, name: &str) -> Vec<f64> {
-    let _g = common::hdf5_serial();
-    hdf5::File::open(path)
-        .unwrap()
-        .dataset(name)
-        .unwrap()
-        .read_raw()
-        .unwrap()
-}
-
-fn h5_u8(path: &Path, name: &str) -> Vec<u8> {
+/// The values of dataset `name` of the file at `path`.
+fn h5_read<T: hdf5::H5Type>(path: &Path, name: &str) -> Vec<T> {
     let _g = common::hdf5_serial();
     hdf5::File::open(path)
         .unwrap()
@@ -188,7 +177,7 @@ fn streamed_hdf5_equals_the_whole_table_and_its_definitions() {
     let path = dir.join("s-10.h5");
     let two_pi = 2.0 * std::f64::consts::PI;
     for (j, name) in sweep.outputs().iter().enumerate() {
-        let col = |c: &str| h5_f64(&path, &format!("outputs/{name}/{c}"));
+        let col = |c: &str| h5_read::<f64>(&path, &format!("outputs/{name}/{c}"));
         let (mean, var, sigma, lo, hi, l2, nu) = (
             col("mean"),
             col("variance"),
@@ -198,7 +187,7 @@ fn streamed_hdf5_equals_the_whole_table_and_its_definitions() {
             col("lambda2"),
             col("zero_upcrossing_rate"),
         );
-        let method = h5_u8(&path, &format!("outputs/{name}/method"));
+        let method = h5_read::<u8>(&path, &format!("outputs/{name}/method"));
         for p in 0..n {
             match sweep.evaluate(p) {
                 Err(_) => {
@@ -268,12 +257,7 @@ fn streamed_hdf5_equals_the_whole_table_and_its_definitions() {
 #[test]
 fn streamed_tables_with_monte_carlo_equal_the_whole_table() {
     let sc = scraper();
-    let spec = SweepSpec::new(
-        vec![SweepParam::parse("model.zeta2=0.2,-0.1,0.4").unwrap()],
-        SweepMode::Grid,
-    )
-    .unwrap();
-    let sweep = Sweep::new(&sc, spec).unwrap();
+    let sweep = grid(&sc, &["model.zeta2=0.2,-0.1,0.4"]);
     let mc = Some(SweepMonteCarlo {
         realizations: 4,
         duration_s: 20.0,
@@ -306,7 +290,7 @@ fn streamed_tables_with_monte_carlo_equal_the_whole_table() {
     let h5 = dir.join("s.h5");
     write_sweep_table(&sweep, &h5, false, mc, opts(2, true), &progress).unwrap();
     assert_eq!(h5_contents(&h5), h5_contents(&whole_h5));
-    assert_eq!(h5_u8(&h5, "outputs/x1/method")[1], 255);
+    assert_eq!(h5_read::<u8>(&h5, "outputs/x1/method")[1], 255);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -335,15 +319,7 @@ impl std::io::Write for Failing {
 #[test]
 fn stream_errors_name_the_sink_and_lose_nothing() {
     let sc = scraper();
-    let spec = SweepSpec::new(
-        vec![
-            SweepParam::parse("model.omega2=0.5 Hz..4 Hz:1000").unwrap(),
-            SweepParam::parse("model.zeta2=0.2,0.3").unwrap(),
-        ],
-        SweepMode::Grid,
-    )
-    .unwrap();
-    let big = Sweep::new(&sc, spec).unwrap();
+    let big = grid(&sc, &["model.omega2=0.5 Hz..4 Hz:1000", "model.zeta2=0.2,0.3"]);
     let e = stream_sweep_csv(
         &big,
         Failing { left: 5000 },
@@ -368,7 +344,7 @@ fn stream_errors_name_the_sink_and_lose_nothing() {
     assert!(e.contains("already exists") && e.contains("--overwrite"), "{e}");
     assert_eq!(std::fs::read(&path).unwrap(), b"a user's file");
     write_sweep_table(&sweep, &path, true, None, opts(16, true), &|_, _| {}).unwrap();
-    assert_eq!(h5_f64(&path, "outputs/x1/sigma").len(), 111);
+    assert_eq!(h5_read::<f64>(&path, "outputs/x1/sigma").len(), 111);
     let e = write_sweep_table(&sweep, &dir.join("t.txt"), false, None, opts(16, true), &|_, _| {})
         .unwrap_err()
         .to_string();
@@ -398,15 +374,7 @@ fn stream_errors_name_the_sink_and_lose_nothing() {
 #[test]
 fn evaluate_into_rows_equal_single_point_evaluations() {
     let sc = scraper();
-    let spec = SweepSpec::new(
-        vec![
-            SweepParam::parse("model.omega2=0.5 Hz..4 Hz:400").unwrap(),
-            SweepParam::parse("model.zeta2=0.2,-0.1,0.3").unwrap(),
-        ],
-        SweepMode::Grid,
-    )
-    .unwrap();
-    let sweep = Sweep::new(&sc, spec).unwrap();
+    let sweep = grid(&sc, &["model.omega2=0.5 Hz..4 Hz:400", "model.zeta2=0.2,-0.1,0.3"]);
     let n_out = sweep.outputs().len();
     let (first, last) = (300, 1000);
     let sentinel = stochvib::response::PointStatistics {
@@ -465,15 +433,7 @@ fn cli_stdout_and_file_tables_are_the_same() {
         "{err}"
     );
     let sc = scraper();
-    let spec = SweepSpec::new(
-        vec![
-            SweepParam::parse("model.omega2=0.5 Hz..4 Hz:130").unwrap(),
-            SweepParam::parse("model.zeta2=0.1..0.5:130").unwrap(),
-        ],
-        SweepMode::Grid,
-    )
-    .unwrap();
-    let sweep = Sweep::new(&sc, spec).unwrap();
+    let sweep = grid(&sc, &["model.omega2=0.5 Hz..4 Hz:130", "model.zeta2=0.1..0.5:130"]);
     let whole = compute_sweep(&sweep, 0..16900, true, None, &|_, _| {})
         .unwrap()
         .to_csv();
