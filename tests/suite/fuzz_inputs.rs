@@ -1,0 +1,128 @@
+//! Bounded structured fuzzing of the input files (issue 16): a fixed seed, 300 mutated copies of the
+//! shipped scenario, reference and spectrum files through the library's entry points (in worker
+//! processes, with a per-case time limit) and every tenth through the CLI, plus the special files (FIFO,
+//! directory, `/dev/zero`, `/dev/urandom`, empty, missing, symbolic-link loop, NUL bytes, a scenario whose
+//! spectrum is a FIFO or `/dev/zero`, 20 MiB of comments).
+//!
+//! The invariants are listed in `tests/fuzz/inputs.rs`: no panic, no hang, no crash; an error names the
+//! file and an existing key (or is a parse/I-O error naming the file); a success prints no non-finite
+//! result, reports something, has distinct output names; a document with an unknown key, a wrong or
+//! unknown unit, a non-finite number or an impossible type is refused; the CLI exits 0 or 1, with an
+//! `error:` line naming the file, and agrees with the library. No expected value comes from the code
+//! under test: the expectations are properties every correct reader has.
+//!
+//! The long campaign is `cargo run --release --example fuzz -- --cases 20000`.
+
+use crate::fuzz;
+
+use fuzz::input_campaign::{self, Campaign, WorkerConfig};
+use std::path::PathBuf;
+use std::process::Command;
+use std::sync::Arc;
+use std::time::Duration;
+
+/// Fixed master seed of the bounded run (case i is generated from (seed, i) alone).
+const SEED: u64 = 16;
+/// Generated cases: about 3 ms each in-process, so the run is dominated by the special files' time limits.
+const CASES: u64 = 300;
+/// Run the CLI on every tenth case (30 runs).
+const CLI_EVERY: u64 = 10;
+/// Per-case time limit in-process. The slowest of 20,000 cases took under 0.3 s on this machine; 10 s
+/// leaves room for a loaded machine and still catches a hang.
+const CASE_LIMIT: Duration = Duration::from_secs(10);
+/// Time limit of a CLI run (a hung one is killed).
+const CLI_LIMIT: Duration = Duration::from_secs(20);
+/// Time limit for the special files (FIFO, devices): a correct reader refuses them at once.
+const SPECIAL_LIMIT: Duration = Duration::from_secs(3);
+
+const WORKER_ENV: &str = "STOCHVIB_FUZZ_INPUTS_WORKER";
+
+/// Worker half of `inputs_keep_the_invariants`: evaluates the cases its configuration names and exits.
+/// Without the environment variable it does nothing.
+#[test]
+#[ignore = "worker process of inputs_keep_the_invariants"]
+fn fuzz_inputs_worker() {
+    let Ok(json) = std::env::var(WORKER_ENV) else { return };
+    let cfg: WorkerConfig = serde_json::from_str(&json).expect("worker configuration");
+    input_campaign::worker_main(&cfg);
+}
+
+#[test]
+fn inputs_keep_the_invariants() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let exe = std::env::current_exe().expect("own path");
+    let c = Campaign {
+        root,
+        seed: SEED,
+        cases: CASES,
+        jobs: 1,
+        cli_every: CLI_EVERY,
+        limit: CASE_LIMIT,
+        cli_limit: CLI_LIMIT,
+        special_limit: SPECIAL_LIMIT,
+        scratch: tmp.join(format!("fuzz-inputs-{}", std::process::id())),
+        findings_dir: Some(tmp.join("fuzz-findings")),
+        minimize: false,
+        special: true,
+        bin: PathBuf::from(env!("CARGO_BIN_EXE_stochvib")),
+        worker: Arc::new(move |cfg: &WorkerConfig| {
+            let mut cmd = Command::new(&exe);
+            cmd.args([
+                "--ignored",
+                "--exact",
+                "fuzz_inputs::fuzz_inputs_worker",
+                "--nocapture",
+                "--test-threads=1",
+            ])
+            .env(WORKER_ENV, serde_json::to_string(cfg).unwrap());
+            cmd
+        }),
+        progress: false,
+    };
+    let s = input_campaign::run(&c);
+    let _ = std::fs::remove_dir_all(&c.scratch);
+    assert_eq!(s.cases, CASES, "every case was evaluated");
+    assert!(
+        s.hard().is_empty(),
+        "broken invariants (reproducers in {}):\n{}",
+        tmp.join("fuzz-findings/inputs").display(),
+        s.render()
+    );
+}
+
+/// The harness does not take free text for quantities (a finding of the 20,000-case campaign of seed 2027):
+/// Table 8.1's transcription holds the print's text (`omega0 = "17...20 1/s"`, `sqrt_dq = "3.5 cm"` under
+/// `printed_parameters`, `printed_symbol = "sigma_x1"`), which no reader interprets, so replacing it with a
+/// wrong unit is not a "wrong unit accepted" finding; a quantity of a scenario still is one.
+#[test]
+fn free_text_of_the_reference_file_is_not_classified_as_quantities() {
+    use fuzz::mutate::{all_paths, free_text, path_str};
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let read = |p: &str| -> toml::Table { std::fs::read_to_string(root.join(p)).unwrap().parse().unwrap() };
+    let table = read("data/reference/table-8-1.toml");
+    let paths: Vec<String> = all_paths(&table)
+        .iter()
+        .filter(|p| free_text(p))
+        .map(|p| path_str(p))
+        .collect();
+    for must in [
+        "printed_parameters.sqrt_dq",
+        "printed_parameters.omega0",
+        "row[0].printed_symbol",
+        "status",
+    ] {
+        assert!(paths.iter().any(|p| p == must), "{must} not free text: {paths:?}");
+    }
+    // the numbers of the table and a scenario's quantities stay quantities
+    assert!(
+        !paths.iter().any(|p| p.starts_with("row[0].values") || p == "speeds[0]"),
+        "{paths:?}"
+    );
+    let scenario = read("data/quarter-car.toml");
+    let mass = all_paths(&scenario)
+        .into_iter()
+        .find(|p| path_str(p) == "model.coordinates[0].mass")
+        .expect("the quarter car's body mass");
+    assert!(!free_text(&mass));
+}

@@ -1,0 +1,52 @@
+//! The integration tests, one binary: every file of this directory is a module (one test binary links
+//! HDF5 and nalgebra once instead of once per file). `cargo test --test suite MODULE::` runs one file.
+
+#[path = "../common/mod.rs"]
+mod common;
+#[path = "../fuzz/mod.rs"]
+mod fuzz;
+
+mod band_mc;
+mod band_table;
+mod book;
+mod coherence;
+mod comfort;
+mod comfort_report;
+mod data_files;
+mod delays;
+mod fast_paths;
+mod fast_sweep;
+mod fatigue;
+mod fuzz_inputs;
+mod fuzz_run_files;
+mod laplace_road;
+mod layers;
+mod linalg;
+mod mc_pipeline;
+mod merge_streaming;
+mod models_articles;
+mod models_ch7;
+mod models_ch8;
+mod monte_carlo;
+mod multi_input_scenarios;
+mod numerical_truth;
+mod plots;
+mod quad;
+mod response;
+mod road;
+mod road_cli;
+mod road_replay;
+mod robustness;
+mod scenario;
+mod shards;
+mod spectra;
+mod store;
+mod stream_edges;
+mod stream_sources;
+mod stream_verdicts;
+mod streaming;
+mod sweep_stream;
+mod two_tracks;
+mod two_tracks_mc;
+mod value_stability;
+mod verdicts;
