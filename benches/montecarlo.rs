@@ -43,13 +43,13 @@ fn generators(c: &mut Criterion) {
         ("spectral_rayleigh", Amplitudes::Rayleigh),
         ("spectral_phase_only", Amplitudes::PhaseOnly),
     ] {
-        let gen = SpectralGenerator::new(input.as_ref(), MC_DT, N, amp).unwrap();
-        let mut sc = gen.scratch();
+        let generator = SpectralGenerator::new(input.as_ref(), MC_DT, N, amp).unwrap();
+        let mut sc = generator.scratch();
         let mut i = 0;
         g.bench_function(name, |b| {
             b.iter(|| {
                 i += 1;
-                gen.generate(&mut stream(MC_SEED, i), &mut sc, &mut out).unwrap();
+                generator.generate(&mut stream(MC_SEED, i), &mut sc, &mut out).unwrap();
                 black_box(out[N / 2])
             })
         });
@@ -95,9 +95,10 @@ fn generators(c: &mut Criterion) {
 fn response(c: &mut Criterion) {
     let (ss, exc) = mc_sdof();
     let sys = SampledSystem::new(&ss, MC_DT).unwrap();
-    let gen = SpectralGenerator::new(mc_input().as_ref(), MC_DT, N, Amplitudes::Rayleigh).unwrap();
+    let generator = SpectralGenerator::new(mc_input().as_ref(), MC_DT, N, Amplitudes::Rayleigh).unwrap();
     let mut u = vec![0.0; N];
-    gen.generate(&mut stream(MC_SEED, 0), &mut gen.scratch(), &mut u)
+    generator
+        .generate(&mut stream(MC_SEED, 0), &mut generator.scratch(), &mut u)
         .unwrap();
     let mut y = vec![0.0; N];
     let mut x = vec![0.0; 2];
@@ -114,12 +115,13 @@ fn response(c: &mut Criterion) {
     let mut rng = stream(MC_SEED, 1);
     gm.initial_state(&mut rng, &mut z);
     let gain = sys.grid_response(N, 0, 0).unwrap();
-    let mut sc = gen.scratch();
+    let mut sc = generator.scratch();
     let mut i = 0;
     g.bench_function("sdof_generate_filtered_one_fft", |b| {
         b.iter(|| {
             i += 1;
-            gen.generate_filtered(&mut stream(MC_SEED, i), &mut sc, &gain, &mut y)
+            generator
+                .generate_filtered(&mut stream(MC_SEED, i), &mut sc, &gain, &mut y)
                 .unwrap();
             black_box(y[N - 1])
         })

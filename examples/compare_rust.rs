@@ -296,7 +296,7 @@ fn main() {
             json!({"seconds": r.0, "n": MC_REAL * MC_N, "check": r.1}),
         );
         mc_info.insert("analytic_variance".into(), json!(analytic));
-        mc_info.insert("input_grid_variance".into(), json!(pipe.gen.grid_variance()));
+        mc_info.insert("input_grid_variance".into(), json!(pipe.generator.grid_variance()));
         mc_info.insert("warmup_periods".into(), json!(pipe.warmup));
         mc_info.insert("realizations".into(), json!(MC_REAL));
         mc_info.insert("samples".into(), json!(MC_N));

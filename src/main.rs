@@ -821,10 +821,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 (None, Some(f)) => report::DensityPoints::Cyclic(f),
                 (None, None) => report::DensityPoints::Characteristic,
             };
-            if let report::DensityPoints::Angular(v) | report::DensityPoints::Cyclic(v) = &points {
-                if let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0) {
-                    anyhow::bail!("invalid frequency {x}: frequencies must be finite and >= 0");
-                }
+            if let report::DensityPoints::Angular(v) | report::DensityPoints::Cyclic(v) = &points
+                && let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0)
+            {
+                anyhow::bail!("invalid frequency {x}: frequencies must be finite and >= 0");
             }
             print(&report::spectrum_report_at(&file, convention, &points), json)?;
         }

@@ -373,7 +373,7 @@ pub fn time_moments(y: &[f64]) -> (f64, f64) {
 /// driven through the periodic input for `warmup` periods and one recorded period (periodic steady state).
 pub struct McSpectral {
     /// Input generator (N = [`MC_N`], Δt = [`MC_DT`]).
-    pub gen: stochvib::simulate::SpectralGenerator,
+    pub generator: stochvib::simulate::SpectralGenerator,
     /// The SDOF discretised once (FOH).
     pub sys: stochvib::simulate::SampledSystem,
     /// Warm-up periods (σ_min·w·NΔt ≥ 36, as the spectral route of `simulate::run` did before it computed the steady state in the frequency domain).
@@ -395,7 +395,7 @@ impl McSpectral {
     pub fn new(n: usize) -> McSpectral {
         use stochvib::simulate::{Amplitudes, SampledSystem, SpectralGenerator};
         let (ss, _) = mc_sdof();
-        let gen = SpectralGenerator::new(mc_input().as_ref(), MC_DT, n, Amplitudes::Rayleigh).unwrap();
+        let generator = SpectralGenerator::new(mc_input().as_ref(), MC_DT, n, Amplitudes::Rayleigh).unwrap();
         let sys = SampledSystem::new(&ss, MC_DT).unwrap();
         let sigma_min =
             ss.a.complex_eigenvalues()
@@ -406,13 +406,18 @@ impl McSpectral {
             .ceil()
             .max(1.0) as usize;
         let gain = sys.grid_response(n, 0, 0).unwrap();
-        McSpectral { gen, sys, warmup, gain }
+        McSpectral {
+            generator,
+            sys,
+            warmup,
+            gain,
+        }
     }
     /// Fresh working memory.
     pub fn scratch(&self) -> McScratch {
-        let n = self.gen.len();
+        let n = self.generator.len();
         McScratch {
-            spec: self.gen.scratch(),
+            spec: self.generator.scratch(),
             u: vec![0.0; n + 1],
             y: vec![0.0; n + 1],
             x: vec![0.0; self.sys.dims().0],
@@ -420,8 +425,8 @@ impl McSpectral {
     }
     /// One realization: generate → respond (warm-up + recorded period) → (m, v).
     pub fn realization(&self, s: &mut McScratch, rng: &mut rand::rngs::Xoshiro256PlusPlus) -> (f64, f64) {
-        let n = self.gen.len();
-        self.gen.generate(rng, &mut s.spec, &mut s.u[..n]).unwrap();
+        let n = self.generator.len();
+        self.generator.generate(rng, &mut s.spec, &mut s.u[..n]).unwrap();
         s.u[n] = s.u[0]; // the first-order hold of the last step ramps to the next period's first sample
         s.x.iter_mut().for_each(|v| *v = 0.0);
         for _ in 0..=self.warmup {
@@ -432,8 +437,8 @@ impl McSpectral {
     /// One realization of the same periodic steady state in one FFT: generate_filtered with H_d on the
     /// grid (no time stepping, no warm-up) → (m, v).
     pub fn realization_fft(&self, s: &mut McScratch, rng: &mut rand::rngs::Xoshiro256PlusPlus) -> (f64, f64) {
-        let n = self.gen.len();
-        self.gen
+        let n = self.generator.len();
+        self.generator
             .generate_filtered(rng, &mut s.spec, &self.gain, &mut s.y[..n])
             .unwrap();
         time_moments(&s.y[..n])

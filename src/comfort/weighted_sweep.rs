@@ -167,13 +167,13 @@ impl WeightedEvaluator {
             // weighted_output names the error
             weighted_output(ss, output, &self.weighting)?;
         }
-        if ss.n_states() <= MAX_SYSTEM_STATES {
-            if let Some(v) = self.residues(ss, output) {
-                return Ok(WeightedValue {
-                    a_w: v.sqrt(),
-                    route: WeightedRoute::Residues,
-                });
-            }
+        if ss.n_states() <= MAX_SYSTEM_STATES
+            && let Some(v) = self.residues(ss, output)
+        {
+            return Ok(WeightedValue {
+                a_w: v.sqrt(),
+                route: WeightedRoute::Residues,
+            });
         }
         let w = weighted_output(ss, output, &self.weighting)?;
         Ok(WeightedValue {

@@ -70,14 +70,14 @@ impl SnCurve {
                 "the S-N intercept N*S_a^k = C must be finite and > 0",
             ));
         }
-        if let Some(se) = endurance_limit {
-            if !(se.is_finite() && se >= 0.0) {
-                return Err(Error::invalid(
-                    "endurance_limit",
-                    se,
-                    "the endurance limit (an amplitude) must be finite and >= 0",
-                ));
-            }
+        if let Some(se) = endurance_limit
+            && !(se.is_finite() && se >= 0.0)
+        {
+            return Err(Error::invalid(
+                "endurance_limit",
+                se,
+                "the endurance limit (an amplitude) must be finite and >= 0",
+            ));
         }
         Ok(SnCurve { k, c, endurance_limit })
     }
@@ -140,14 +140,14 @@ impl SnCurve {
                 "the S-N intercept N*dS^k = C must be finite and > 0",
             ));
         }
-        if let Some(se) = endurance_limit_range {
-            if !(se.is_finite() && se >= 0.0) {
-                return Err(Error::invalid(
-                    "endurance_limit_range",
-                    se,
-                    "the endurance limit (a range) must be finite and >= 0",
-                ));
-            }
+        if let Some(se) = endurance_limit_range
+            && !(se.is_finite() && se >= 0.0)
+        {
+            return Err(Error::invalid(
+                "endurance_limit_range",
+                se,
+                "the endurance limit (a range) must be finite and >= 0",
+            ));
         }
         SnCurve::new(k, c_range * 2f64.powf(-k), endurance_limit_range.map(|s| 0.5 * s))
     }

@@ -798,7 +798,7 @@ const LABEL_FONT: (&str, u32) = ("sans-serif", 12);
 
 /// Draws one series on a chart context through `$method` (`draw_series` or `draw_secondary_series`).
 macro_rules! draw_series {
-    ($chart:expr, $method:ident, $s:expr) => {{
+    ($chart:expr_2021, $method:ident, $s:expr_2021) => {{
         let s: &Series = $s;
         let c = colour(s.color.unwrap_or(0));
         let anno = match s.style {

@@ -291,13 +291,12 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
                 .iter()
                 .find(|s| s.name == "sigma_discrete")
                 .and_then(|s| s.analytic)
+                && (sd * sd - sigma * sigma).abs() > 1e-3 * sigma * sigma
             {
-                if (sd * sd - sigma * sigma).abs() > 1e-3 * sigma * sigma {
-                    c.hlines.push(super::chart::Marker::new(
-                        sd * sd,
-                        "σ²_d of the simulated (FFT-grid) process: what the estimate converges to",
-                    ));
-                }
+                c.hlines.push(super::chart::Marker::new(
+                    sd * sd,
+                    "σ²_d of the simulated (FFT-grid) process: what the estimate converges to",
+                ));
             }
             correlation = Some(c);
         }

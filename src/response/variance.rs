@@ -155,10 +155,11 @@ pub fn check_moment(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: 
         format!("spectral moment λ{k} of `{name}`")
     };
     let (lo, hi) = exc.support();
-    if hi.is_infinite() {
-        if let Asymptote::Power { exponent, .. } = output_high_frequency(sys, exc, i) {
-            if exponent + k as f64 >= -1.0 {
-                return Err(Error::Divergent {
+    if hi.is_infinite()
+        && let Asymptote::Power { exponent, .. } = output_high_frequency(sys, exc, i)
+        && exponent + k as f64 >= -1.0
+    {
+        return Err(Error::Divergent {
                     quantity: what,
                     reason: format!(
                         "the output density decays only like ω^{exponent} as ω → ∞ (|H|² times the input \
@@ -173,22 +174,19 @@ pub fn check_moment(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, k: 
                         }
                     ),
                 });
-            }
-        }
     }
-    if lo == 0.0 {
-        if let Asymptote::Power { exponent, .. } = output_low_frequency(sys, exc, i) {
-            if exponent + k as f64 <= -1.0 {
-                return Err(Error::Divergent {
-                    quantity: what,
-                    reason: format!(
-                        "the output density grows like ω^{exponent} as ω → 0 (an unbounded road spectrum or a \
+    if lo == 0.0
+        && let Asymptote::Power { exponent, .. } = output_low_frequency(sys, exc, i)
+        && exponent + k as f64 <= -1.0
+    {
+        return Err(Error::Divergent {
+            quantity: what,
+            reason: format!(
+                "the output density grows like ω^{exponent} as ω → 0 (an unbounded road spectrum or a \
                          free rigid-body mode), so the integral diverges at low frequency; give the input a band \
                          or a low-frequency cut-off"
-                    ),
-                });
-            }
-        }
+            ),
+        });
     }
     Ok(())
 }
@@ -299,15 +297,15 @@ pub fn band_variance(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, w1
             "need 0 <= w1 < w2 < inf",
         ));
     }
-    if w1 == 0.0 {
-        if let Asymptote::Power { exponent, .. } = output_low_frequency(sys, exc, i) {
-            if exponent <= -1.0 && exc.support().0 == 0.0 {
-                return Err(Error::Divergent {
-                    quantity: format!("band variance of `{}`", sys.outputs()[i].name),
-                    reason: "the band starts at ω = 0 where the output density is not integrable".into(),
-                });
-            }
-        }
+    if w1 == 0.0
+        && let Asymptote::Power { exponent, .. } = output_low_frequency(sys, exc, i)
+        && exponent <= -1.0
+        && exc.support().0 == 0.0
+    {
+        return Err(Error::Divergent {
+            quantity: format!("band variance of `{}`", sys.outputs()[i].name),
+            reason: "the band starts at ω = 0 where the output density is not integrable".into(),
+        });
     }
     moment_integral(sys, exc, i, 0, w1, w2, &OscillatoryOptions::default())
 }
@@ -436,20 +434,20 @@ pub fn augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<A
             ),
         });
     }
-    if let Excitation::Sources { sources, .. } = exc {
-        if let Some(m) = sources.iter().find_map(|s| match s {
+    if let Excitation::Sources { sources, .. } = exc
+        && let Some(m) = sources.iter().find_map(|s| match s {
             super::Source::Matrix(m) => Some(m),
             super::Source::Process(_) => None,
-        }) {
-            return Err(Error::NotApplicable {
-                method: "exact (Lyapunov / integral-table) variance".into(),
-                reason: format!(
-                    "{} is a multi-component process whose cross-spectral matrix has no rational factorisation; \
+        })
+    {
+        return Err(Error::NotApplicable {
+            method: "exact (Lyapunov / integral-table) variance".into(),
+            reason: format!(
+                "{} is a multi-component process whose cross-spectral matrix has no rational factorisation; \
                      quadrature only",
-                    m.describe()
-                ),
-            });
-        }
+                m.describe()
+            ),
+        });
     }
     let fl = filters(exc)?;
     // Reduce the system to one input per independent process.

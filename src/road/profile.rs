@@ -318,19 +318,19 @@ impl RawProfile {
                 }
                 let vm = units[c].to_m(v);
                 if c == 0 {
-                    if let Some(&prev) = distance_m.last() {
-                        if vm <= prev {
-                            return Err(Error::in_file(
-                                file,
-                                key(),
-                                t,
-                                format!(
-                                    "distance must increase strictly; the previous row (line {}) has {} m",
-                                    row_lines.last().copied().unwrap_or(0),
-                                    prev
-                                ),
-                            ));
-                        }
+                    if let Some(&prev) = distance_m.last()
+                        && vm <= prev
+                    {
+                        return Err(Error::in_file(
+                            file,
+                            key(),
+                            t,
+                            format!(
+                                "distance must increase strictly; the previous row (line {}) has {} m",
+                                row_lines.last().copied().unwrap_or(0),
+                                prev
+                            ),
+                        ));
                     }
                     distance_m.push(vm);
                 } else {

@@ -460,18 +460,18 @@ pub(crate) fn parse_inputs(
                 if !(width.is_finite() && width > 0.0) {
                     return Err(rf.error("track_width", width, "must be a finite length > 0"));
                 }
-                if let Some(b) = model_width {
-                    if (width - b).abs() > 1e-9 * b {
-                        return Err(rf.error(
-                            "track_width",
-                            rf.get("track_width").map_or(width.to_string(), |v| v.to_string()),
-                            format!(
-                                "the model's track width is {b} m (model.track_width): the coherence between the \
+                if let Some(b) = model_width
+                    && (width - b).abs() > 1e-9 * b
+                {
+                    return Err(rf.error(
+                        "track_width",
+                        rf.get("track_width").map_or(width.to_string(), |v| v.to_string()),
+                        format!(
+                            "the model's track width is {b} m (model.track_width): the coherence between the \
                                  tracks is that of tracks {width} m apart, but the wheels run {b} m apart; give \
                                  the model's width (or leave track_width out to use it)"
-                            ),
-                        ));
-                    }
+                        ),
+                    ));
                 }
                 let cf = rf.sub("coherence")?;
                 let coh = coherence_from_fields(&cf, width)?;

@@ -257,10 +257,10 @@ impl Scenario {
         });
         input.source_files.push(self.path.clone());
         for inp in &self.inputs {
-            if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &inp.origin {
-                if !input.source_files.contains(file) {
-                    input.source_files.push(file.clone());
-                }
+            if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &inp.origin
+                && !input.source_files.contains(file)
+            {
+                input.source_files.push(file.clone());
             }
         }
         input
@@ -361,10 +361,10 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         Some(t) => {
             let inf = Fields::new(path, "input", t);
             let v = inf.opt_quantity("speed", Dim::VELOCITY)?;
-            if let Some(v) = v {
-                if v.is_nan() || v <= 0.0 {
-                    return Err(inf.error("speed", v, "must be > 0"));
-                }
+            if let Some(v) = v
+                && (v.is_nan() || v <= 0.0)
+            {
+                return Err(inf.error("speed", v, "must be > 0"));
             }
             v
         }

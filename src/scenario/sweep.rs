@@ -84,10 +84,10 @@ fn number_and_unit(text: &str) -> Option<(f64, String)> {
     let t = text.trim();
     let mut best = None;
     for (i, _) in t.char_indices().skip(1).chain(std::iter::once((t.len(), ' '))) {
-        if let Ok(x) = t[..i].trim().parse::<f64>() {
-            if !t[..i].contains(|c: char| c.is_alphabetic() && c != 'e' && c != 'E') {
-                best = Some((x, t[i..].trim().to_string()));
-            }
+        if let Ok(x) = t[..i].trim().parse::<f64>()
+            && !t[..i].contains(|c: char| c.is_alphabetic() && c != 'e' && c != 'E')
+        {
+            best = Some((x, t[i..].trim().to_string()));
         }
     }
     best
@@ -614,10 +614,10 @@ impl<'a> Sweep<'a> {
         input.insert("speed".into(), self.spec.params[param].values[v].clone());
         let f = Fields::new(&self.base.path, "input", &input);
         let speed = f.opt_quantity("speed", Dim::VELOCITY)?;
-        if let Some(s) = speed {
-            if s.is_nan() || s <= 0.0 {
-                return Err(f.error("speed", s, "must be > 0"));
-            }
+        if let Some(s) = speed
+            && (s.is_nan() || s <= 0.0)
+        {
+            return Err(f.error("speed", s, "must be > 0"));
         }
         let exc = build_excitation(
             &f,
@@ -653,10 +653,10 @@ impl<'a> Sweep<'a> {
         out: &mut Vec<PointStatistics>,
     ) -> Result<()> {
         out.clear();
-        if let (Some(num), Some(ss), Some(fast)) = (&self.numeric, scratch, &self.fast) {
-            if let Some(r) = self.numeric_at(point, num, ss, fast, out) {
-                return r;
-            }
+        if let (Some(num), Some(ss), Some(fast)) = (&self.numeric, scratch, &self.fast)
+            && let Some(r) = self.numeric_at(point, num, ss, fast, out)
+        {
+            return r;
         }
         *out = self.evaluate_general(point)?;
         Ok(())

@@ -440,19 +440,19 @@ impl FirSynthesis {
             // the next grid's design tables (kernel spectra, kernels, energies) must fit in the available memory
             // before they are allocated
             let design = super::resources::kernel_design_bytes(h.len(), p, next) as f64;
-            if let Some(avail) = super::resources::available_memory() {
-                if design > avail as f64 {
-                    return Err(Error::Numerical {
-                        what: "streamed spectral synthesis".into(),
-                        reason: format!(
-                            "designing its kernels on a grid of {next} points needs about {:.2} GiB, more than the \
+            if let Some(avail) = super::resources::available_memory()
+                && design > avail as f64
+            {
+                return Err(Error::Numerical {
+                    what: "streamed spectral synthesis".into(),
+                    reason: format!(
+                        "designing its kernels on a grid of {next} points needs about {:.2} GiB, more than the \
                              {:.2} GiB available: use the whole-record spectral route (--route spectral), a larger \
                              tail tolerance (--stream-tail), a longer time step, or a smoother or band-limited output",
-                            design / (1u64 << 30) as f64,
-                            avail as f64 / (1u64 << 30) as f64
-                        ),
-                    });
-                }
+                        design / (1u64 << 30) as f64,
+                        avail as f64 / (1u64 << 30) as f64
+                    ),
+                });
             }
             previous = Some(total);
             l = next;

@@ -682,15 +682,15 @@ fn laplace_generators(
         let mut g = 0;
         for s in sources {
             let m = s.n_components();
-            if m > 1 {
-                if let Some(k) = kurtosis[g..g + m].iter().flatten().next() {
-                    return Err(Error::invalid(
-                        "kurtosis",
-                        k,
-                        "a non-Gaussian input is not available for a source of several correlated components (two \
+            if m > 1
+                && let Some(k) = kurtosis[g..g + m].iter().flatten().next()
+            {
+                return Err(Error::invalid(
+                    "kurtosis",
+                    k,
+                    "a non-Gaussian input is not available for a source of several correlated components (two \
                          tracks with a coherence): the mixed track would not have the prescribed kurtosis",
-                    ));
-                }
+                ));
             }
             g += m;
         }

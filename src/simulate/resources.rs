@@ -75,20 +75,20 @@ pub fn exact_block_memory_bytes(
 /// # Errors
 /// [`Error::InvalidParameter`] (`block steps`) with the numbers.
 pub fn check_block_memory(need: u128, n: usize, opts: &RunOptions) -> Result<()> {
-    if let Some(have) = available_memory() {
-        if need > have {
-            return Err(Error::invalid(
-                "block steps",
-                opts.block_steps,
-                format!(
-                    "the exact route needs about {} of memory for its blocks (independent of the {n} samples per \
+    if let Some(have) = available_memory()
+        && need > have
+    {
+        return Err(Error::invalid(
+            "block steps",
+            opts.block_steps,
+            format!(
+                "the exact route needs about {} of memory for its blocks (independent of the {n} samples per \
                      realization) but {} are available: fewer threads (RAYON_NUM_THREADS), a smaller block, a \
                      smaller --shard-size or fewer outputs",
-                    gib(need),
-                    gib(have)
-                ),
-            ));
-        }
+                gib(need),
+                gib(have)
+            ),
+        ));
     }
     Ok(())
 }
@@ -202,24 +202,24 @@ fn gib(b: u128) -> String {
 pub fn check_memory(n: usize, p: usize, g: usize, opts: &RunOptions) -> Result<()> {
     let threads = rayon::current_num_threads();
     let need = memory_bytes(n, p, g, opts, threads);
-    if let Some(have) = available_memory() {
-        if need > have {
-            return Err(Error::invalid(
-                "duration",
-                format!(
-                    "{} s at Δt = {} s ({n} samples per realization)",
-                    opts.duration_s, opts.dt_s
-                ),
-                format!(
-                    "the run needs about {} of memory ({threads} threads, {p} outputs, {g} input processes{}) \
+    if let Some(have) = available_memory()
+        && need > have
+    {
+        return Err(Error::invalid(
+            "duration",
+            format!(
+                "{} s at Δt = {} s ({n} samples per realization)",
+                opts.duration_s, opts.dt_s
+            ),
+            format!(
+                "the run needs about {} of memory ({threads} threads, {p} outputs, {g} input processes{}) \
                      but {} are available: shorten the realizations, use fewer threads (RAYON_NUM_THREADS), a \
                      smaller --shard-size, no --store-raw, or (statistics only) --route spectral-stream",
-                    gib(need),
-                    if opts.store_raw { ", raw rows of a shard" } else { "" },
-                    gib(have)
-                ),
-            ));
-        }
+                gib(need),
+                if opts.store_raw { ", raw rows of a shard" } else { "" },
+                gib(have)
+            ),
+        ));
     }
     Ok(())
 }
@@ -230,20 +230,20 @@ pub fn check_memory(n: usize, p: usize, g: usize, opts: &RunOptions) -> Result<(
 /// # Errors
 /// [`Error::InvalidParameter`] (`block steps`) with the numbers.
 pub fn check_streamed_memory(need: u128, n: usize, opts: &RunOptions) -> Result<()> {
-    if let Some(have) = available_memory() {
-        if need > have {
-            return Err(Error::invalid(
-                "block steps",
-                opts.block_steps,
-                format!(
-                    "the streamed spectral route needs about {} of memory for its kernels and blocks (independent of \
+    if let Some(have) = available_memory()
+        && need > have
+    {
+        return Err(Error::invalid(
+            "block steps",
+            opts.block_steps,
+            format!(
+                "the streamed spectral route needs about {} of memory for its kernels and blocks (independent of \
                      the {n} samples per realization) but {} are available: fewer threads (RAYON_NUM_THREADS), a \
                      smaller block, fewer outputs or a smoother output",
-                    gib(need),
-                    gib(have)
-                ),
-            ));
-        }
+                gib(need),
+                gib(have)
+            ),
+        ));
     }
     Ok(())
 }
@@ -258,25 +258,25 @@ pub fn check_disk(meta: &RunMetadata, out: &Path) -> Result<()> {
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    if let Some(have) = available_disk(dir) {
-        if need > have {
-            return Err(Error::invalid(
-                "realizations",
-                meta.n_realizations,
-                format!(
-                    "the run file would take about {} ({} realizations × {} samples{}, {} shards of accumulators) \
+    if let Some(have) = available_disk(dir)
+        && need > have
+    {
+        return Err(Error::invalid(
+            "realizations",
+            meta.n_realizations,
+            format!(
+                "the run file would take about {} ({} realizations × {} samples{}, {} shards of accumulators) \
                      but {} are free on the disk of {}: fewer or shorter realizations, no --store-raw, or another \
                      disk",
-                    gib(need),
-                    meta.n_realizations,
-                    meta.n_samples,
-                    if meta.store_raw { ", raw data stored" } else { "" },
-                    meta.n_shards(),
-                    gib(have),
-                    dir.display()
-                ),
-            ));
-        }
+                gib(need),
+                meta.n_realizations,
+                meta.n_samples,
+                if meta.store_raw { ", raw data stored" } else { "" },
+                meta.n_shards(),
+                gib(have),
+                dir.display()
+            ),
+        ));
     }
     Ok(())
 }

@@ -445,10 +445,11 @@ fn remove_dead_temporaries(dir: &Path) {
         let Some((pid, _)) = rest.split_once(".h5") else {
             continue;
         };
-        if let Ok(pid) = pid.parse::<u32>() {
-            if pid != std::process::id() && !crate::store::process_alive(pid) {
-                let _ = std::fs::remove_file(e.path());
-            }
+        if let Ok(pid) = pid.parse::<u32>()
+            && pid != std::process::id()
+            && !crate::store::process_alive(pid)
+        {
+            let _ = std::fs::remove_file(e.path());
         }
     }
 }

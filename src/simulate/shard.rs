@@ -104,15 +104,15 @@ pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<
         let count = count.or(max.map(|mx| mx + 1));
         let (n, source) = match of {
             Some(n) => {
-                if let (true, Some(c)) = (whole_array, count) {
-                    if c < n {
-                        notes.push(format!(
-                            "this array has {c} tasks (indices 0..{}) but the run has --of {n} shards: submit \
+                if let (true, Some(c)) = (whole_array, count)
+                    && c < n
+                {
+                    notes.push(format!(
+                        "this array has {c} tasks (indices 0..{}) but the run has --of {n} shards: submit \
                              the indices {c}..{} too, or the merge will report them missing",
-                            c - 1,
-                            n - 1
-                        ));
-                    }
+                        c - 1,
+                        n - 1
+                    ));
                 }
                 (n, format!("SLURM_ARRAY_TASK_ID={index}, --of {n}"))
             }

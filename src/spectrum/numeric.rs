@@ -172,26 +172,26 @@ pub fn correlation<S: Spectrum + ?Sized>(s: &S, tau: f64) -> Result<QuadResult> 
 /// [`Error::Divergent`] with the reason and a suggestion.
 pub fn check_integrable<S: Spectrum + ?Sized>(s: &S, what: &str) -> Result<()> {
     let (lo, hi) = s.support();
-    if let Asymptote::Power { exponent, .. } = s.high_frequency() {
-        if hi.is_infinite() && exponent >= -1.0 {
-            return Err(Error::Divergent {
-                quantity: what.to_string(),
-                reason: format!(
-                    "S(ω) ~ |ω|^{exponent} as |ω| → ∞ does not decay faster than 1/|ω|; ask for a band-limited \
+    if let Asymptote::Power { exponent, .. } = s.high_frequency()
+        && hi.is_infinite()
+        && exponent >= -1.0
+    {
+        return Err(Error::Divergent {
+            quantity: what.to_string(),
+            reason: format!(
+                "S(ω) ~ |ω|^{exponent} as |ω| → ∞ does not decay faster than 1/|ω|; ask for a band-limited \
                      value"
-                ),
-            });
-        }
+            ),
+        });
     }
-    if let Asymptote::Power { exponent, .. } = s.low_frequency() {
-        if lo == 0.0 && exponent <= -1.0 {
-            return Err(Error::Divergent {
-                quantity: what.to_string(),
-                reason: format!(
-                    "S(ω) ~ |ω|^{exponent} as ω → 0 is not integrable; give a band or a low-frequency cut-off"
-                ),
-            });
-        }
+    if let Asymptote::Power { exponent, .. } = s.low_frequency()
+        && lo == 0.0
+        && exponent <= -1.0
+    {
+        return Err(Error::Divergent {
+            quantity: what.to_string(),
+            reason: format!("S(ω) ~ |ω|^{exponent} as ω → 0 is not integrable; give a band or a low-frequency cut-off"),
+        });
     }
     Ok(())
 }

@@ -247,10 +247,10 @@ impl Spectrum for PowerLaw {
     }
     fn density(&self, omega: f64) -> f64 {
         let n = omega.abs() / (2.0 * PI);
-        if let Some((lo, hi)) = self.band {
-            if n < lo || n > hi {
-                return 0.0;
-            }
+        if let Some((lo, hi)) = self.band
+            && (n < lo || n > hi)
+        {
+            return 0.0;
         }
         if n == 0.0 {
             return f64::INFINITY;

@@ -343,10 +343,10 @@ impl RunMetadata {
                 return Err(Error::invalid(name, v, "must be >= 1"));
             }
         }
-        if let Compression::Deflate { level } = self.compression {
-            if !(1..=9).contains(&level) {
-                return Err(Error::invalid("compression", level, "deflate level must be 1-9"));
-            }
+        if let Compression::Deflate { level } = self.compression
+            && !(1..=9).contains(&level)
+        {
+            return Err(Error::invalid("compression", level, "deflate level must be 1-9"));
         }
         for (field, text) in [("scenario_text", &self.scenario_text), ("generator", &self.generator)]
             .into_iter()
@@ -628,7 +628,7 @@ pub fn tmp_path(final_path: &Path) -> PathBuf {
 }
 
 /// Maps an HDF5 error to [`Error::Hdf5`] with the path and a context phrase.
-pub(crate) fn h5err(path: &Path, context: &str) -> impl Fn(hdf5::Error) -> Error + 'static {
+pub(crate) fn h5err(path: &Path, context: &str) -> impl Fn(hdf5::Error) -> Error + 'static + use<> {
     let context = context.to_string();
     let path = path.to_path_buf();
     move |e| Error::Hdf5 {

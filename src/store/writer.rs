@@ -1230,13 +1230,13 @@ fn check_final_path(final_path: &Path, overwrite: bool) -> Result<()> {
         path: final_path.to_path_buf(),
         reason,
     };
-    if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        if !dir.is_dir() {
-            return Err(fail(format!(
-                "cannot create: directory `{}` does not exist",
-                dir.display()
-            )));
-        }
+    if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        return Err(fail(format!(
+            "cannot create: directory `{}` does not exist",
+            dir.display()
+        )));
     }
     match std::fs::symlink_metadata(final_path) {
         Err(_) => Ok(()),
@@ -1343,10 +1343,10 @@ fn remove_stale_claims(tmp: &Path) {
         let (Some(pid), Some(nanos), None) = (parts.next(), parts.next(), parts.next()) else {
             continue;
         };
-        if let (Ok(pid), true) = (pid.parse::<u32>(), nanos.chars().all(|c| c.is_ascii_digit())) {
-            if !process_alive(pid) {
-                let _ = std::fs::remove_file(entry.path());
-            }
+        if let (Ok(pid), true) = (pid.parse::<u32>(), nanos.chars().all(|c| c.is_ascii_digit()))
+            && !process_alive(pid)
+        {
+            let _ = std::fs::remove_file(entry.path());
         }
     }
 }

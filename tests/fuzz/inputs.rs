@@ -223,26 +223,25 @@ pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
         let name = get(&doc, &[Seg::Key("input".into()), Seg::Key("spectrum".into())])
             .and_then(|v| v.as_str())
             .map(str::to_string);
-        if let Some(t) = name.as_deref().and_then(|n| corpus.spectrum_table(n)) {
-            if let Some(Value::Table(input)) = doc.get_mut("input") {
-                input.insert("spectrum".into(), Value::Table(t.clone()));
-                mutations.push(Mutation {
-                    op: "inline-spectrum".into(),
-                    path: "input.spectrum".into(),
-                    detail: format!("the table of spectra/{}.toml", name.unwrap_or_default()),
-                    must_reject: None,
-                    witness: None,
-                });
-            }
+        if let Some(t) = name.as_deref().and_then(|n| corpus.spectrum_table(n))
+            && let Some(Value::Table(input)) = doc.get_mut("input")
+        {
+            input.insert("spectrum".into(), Value::Table(t.clone()));
+            mutations.push(Mutation {
+                op: "inline-spectrum".into(),
+                path: "input.spectrum".into(),
+                detail: format!("the table of spectra/{}.toml", name.unwrap_or_default()),
+                must_reject: None,
+                witness: None,
+            });
         }
     }
     // Optional keys of [input] and [analysis] with hostile values (the shipped files rarely have them).
-    if let Some((unit, outs)) = corpus.units.get(&origin.rel) {
-        if rng.random_bool(0.25) {
-            if let Some(m) = add_optional(&mut rng, &mut doc, unit, outs) {
-                mutations.push(m);
-            }
-        }
+    if let Some((unit, outs)) = corpus.units.get(&origin.rel)
+        && rng.random_bool(0.25)
+        && let Some(m) = add_optional(&mut rng, &mut doc, unit, outs)
+    {
+        mutations.push(m);
     }
     let pure_raw = rng.random_bool(0.05);
     let n = if pure_raw {
@@ -277,26 +276,26 @@ pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
     }
     // The expectations that still hold in the final document (a later mutation may have undone one).
     let mut must_reject = Vec::new();
-    if raw.is_empty() {
-        if let Some(d) = &doc {
-            for m in &mutations {
-                if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness) {
-                    if get(d, p).is_some_and(|x| same_value(x, v)) {
-                        let sig = match m.op.as_str() {
-                            "rename" => m.path.clone(),
-                            "add-key" => {
-                                let parent = path_str(&p[..p.len() - 1]);
-                                if parent.is_empty() {
-                                    "<new key>".to_string()
-                                } else {
-                                    format!("{parent}.<new key>")
-                                }
-                            }
-                            _ => path_str(p),
-                        };
-                        must_reject.push((class.clone(), path_str(p), sig));
+    if raw.is_empty()
+        && let Some(d) = &doc
+    {
+        for m in &mutations {
+            if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness)
+                && get(d, p).is_some_and(|x| same_value(x, v))
+            {
+                let sig = match m.op.as_str() {
+                    "rename" => m.path.clone(),
+                    "add-key" => {
+                        let parent = path_str(&p[..p.len() - 1]);
+                        if parent.is_empty() {
+                            "<new key>".to_string()
+                        } else {
+                            format!("{parent}.<new key>")
+                        }
                     }
-                }
+                    _ => path_str(p),
+                };
+                must_reject.push((class.clone(), path_str(p), sig));
             }
         }
     }

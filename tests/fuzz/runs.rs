@@ -210,16 +210,15 @@ print(json.dumps(out))
 /// in `values` found in the file (`(label, value)`).
 pub fn layout(file: &Path, bytes: &[u8], values: &[(String, f64)]) -> (Vec<Region>, &'static str) {
     let out = Command::new("python3").arg("-c").arg(LAYOUT_PY).arg(file).output();
-    if let Ok(o) = out {
-        if o.status.success() {
-            if let Ok(v) = serde_json::from_slice::<Vec<(String, u64, u64)>>(&o.stdout) {
-                let r = v
-                    .into_iter()
-                    .map(|(name, start, len)| Region { name, start, len })
-                    .collect();
-                return (r, "h5py");
-            }
-        }
+    if let Ok(o) = out
+        && o.status.success()
+        && let Ok(v) = serde_json::from_slice::<Vec<(String, u64, u64)>>(&o.stdout)
+    {
+        let r = v
+            .into_iter()
+            .map(|(name, start, len)| Region { name, start, len })
+            .collect();
+        return (r, "h5py");
     }
     let mut r = Vec::new();
     for (label, x) in values {
@@ -478,19 +477,19 @@ pub fn setup(cfg: &Config) -> Vec<Base> {
                         v.name, out.exit, out.stderr
                     )
                 });
-                if name == "resume" {
-                    if let Baseline::Json(j) = &obs {
-                        // the resumed run must reproduce the uninterrupted one (else the CLI and the
-                        // library disagree on the run's options and the case is meaningless)
-                        // both sides through text and the same parser (serde_json without `float_roundtrip`
-                        // may parse a float one ulp off, identically for identical text)
-                        let mut whole: serde_json::Value =
-                            serde_json::from_str(&serde_json::to_string(&summary).unwrap()).unwrap();
-                        strip_paths(&mut whole);
-                        assert_eq!(j["outputs"], whole["outputs"], "resume of the intact {} .tmp", v.name);
-                        let resumed: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
-                        assert_eq!(resumed["resumed_shards"], 2, "the intact .tmp resumes 2 shards");
-                    }
+                if name == "resume"
+                    && let Baseline::Json(j) = &obs
+                {
+                    // the resumed run must reproduce the uninterrupted one (else the CLI and the
+                    // library disagree on the run's options and the case is meaningless)
+                    // both sides through text and the same parser (serde_json without `float_roundtrip`
+                    // may parse a float one ulp off, identically for identical text)
+                    let mut whole: serde_json::Value =
+                        serde_json::from_str(&serde_json::to_string(&summary).unwrap()).unwrap();
+                    strip_paths(&mut whole);
+                    assert_eq!(j["outputs"], whole["outputs"], "resume of the intact {} .tmp", v.name);
+                    let resumed: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
+                    assert_eq!(resumed["resumed_shards"], 2, "the intact .tmp resumes 2 shards");
                 }
                 b.baseline.insert(name, obs);
             }

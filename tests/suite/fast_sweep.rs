@@ -246,11 +246,11 @@ fn numeric_against_general(sweep: &Sweep) -> (usize, usize, usize) {
                                     close(x, y, TRANSFER_POLYNOMIALS),
                                     "point {p}, output {k}, {what}: numeric {x:?} vs general {y:?}"
                                 );
-                                if let (Some(x), Some(y)) = (x, y) {
-                                    if x != y {
-                                        let e = (x - y).abs() / x.abs().max(y.abs());
-                                        worst = worst.max(e);
-                                    }
+                                if let (Some(x), Some(y)) = (x, y)
+                                    && x != y
+                                {
+                                    let e = (x - y).abs() / x.abs().max(y.abs());
+                                    worst = worst.max(e);
                                 }
                             }
                             if a.method == VarianceMethod::Lyapunov && b.method == VarianceMethod::Lyapunov {

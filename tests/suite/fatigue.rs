@@ -979,7 +979,7 @@ fn monte_carlo_rainflow_damage_matches_dirlik() {
     let records = 128;
     let k = 3.0;
     let s = BandWhite::new(Convention::OneSidedCyclic, 1.0, f1, f2, Domain::Temporal).unwrap();
-    let gen = SpectralGenerator::new(&s, dt, n, Amplitudes::Rayleigh).unwrap();
+    let generator = SpectralGenerator::new(&s, dt, n, Amplitudes::Rayleigh).unwrap();
     // Moments of the simulated (line) spectrum itself: lines at f_j = j/(NΔt) with variance 2S(ω_j)Δω.
     let dw = 2.0 * PI / (n as f64 * dt);
     let mut mom = [0.0f64; 5];
@@ -994,12 +994,13 @@ fn monte_carlo_rainflow_damage_matches_dirlik() {
     let sn = SnCurve::new(k, 1.0, None).unwrap();
     let dirlik = Dirlik.damage_rate(&m, &sn).unwrap();
 
-    let mut scratch = gen.scratch();
+    let mut scratch = generator.scratch();
     let mut x = vec![0.0; n];
     let duration = n as f64 * dt;
     let mut rates = Vec::with_capacity(records);
     for r in 0..records {
-        gen.generate(&mut stream(20_240_605, r as u64), &mut scratch, &mut x)
+        generator
+            .generate(&mut stream(20_240_605, r as u64), &mut scratch, &mut x)
             .unwrap();
         let mut d = 0.0;
         let mut rc = RainflowCounter::new();

@@ -58,14 +58,14 @@ fn check_book_rows(rows: &[BookRow]) {
             "row {} has no explanation",
             r.quantity
         );
-        if let Some(d) = r.rel_diff() {
-            if d.abs() > EXPLAIN_ABOVE {
-                assert!(
-                    !r.explanation.trim().is_empty(),
-                    "row {} differs by {d} unexplained",
-                    r.quantity
-                );
-            }
+        if let Some(d) = r.rel_diff()
+            && d.abs() > EXPLAIN_ABOVE
+        {
+            assert!(
+                !r.explanation.trim().is_empty(),
+                "row {} differs by {d} unexplained",
+                r.quantity
+            );
         }
         if let Some(c) = r.computed {
             assert!(c.is_finite(), "row {}: computed {c}", r.quantity);

@@ -585,15 +585,15 @@ fn check_explained(rows: &[BookRow]) {
     assert!(!rows.is_empty());
     for r in rows {
         assert!(r.computed.is_some(), "{} {}: no computed value", r.example, r.quantity);
-        if let Some(d) = r.rel_diff() {
-            if d.abs() > EXPLAIN_ABOVE {
-                assert!(
-                    !r.explanation.trim().is_empty(),
-                    "{}: {} differs by {d} without explanation",
-                    r.example,
-                    r.quantity
-                );
-            }
+        if let Some(d) = r.rel_diff()
+            && d.abs() > EXPLAIN_ABOVE
+        {
+            assert!(
+                !r.explanation.trim().is_empty(),
+                "{}: {} differs by {d} without explanation",
+                r.example,
+                r.quantity
+            );
         }
     }
 }

@@ -446,10 +446,10 @@ fn scraper_table_8_1_transcription() {
 fn check_rows(rows: &[BookRow], n_min: usize) {
     assert!(rows.len() >= n_min);
     for r in rows {
-        if let Some(d) = r.rel_diff() {
-            if d.abs() > EXPLAIN_ABOVE {
-                assert!(!r.explanation.trim().is_empty(), "{} lacks an explanation", r.quantity);
-            }
+        if let Some(d) = r.rel_diff()
+            && d.abs() > EXPLAIN_ABOVE
+        {
+            assert!(!r.explanation.trim().is_empty(), "{} lacks an explanation", r.quantity);
         }
         if r.computed.is_none() {
             assert!(!r.explanation.trim().is_empty());

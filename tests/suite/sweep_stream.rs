@@ -70,12 +70,15 @@ fn h5_contents(path: &Path) -> Vec<(String, Vec<u64>, Vec<String>)> {
         let group = f.group(g).unwrap();
         for m in group.member_names().unwrap() {
             let p = format!("{g}/{m}");
-            if let Ok(sub) = f.group(&p) {
-                for d in sub.member_names().unwrap() {
-                    datasets.push(format!("{p}/{d}"));
+            match f.group(&p) {
+                Ok(sub) => {
+                    for d in sub.member_names().unwrap() {
+                        datasets.push(format!("{p}/{d}"));
+                    }
                 }
-            } else {
-                datasets.push(p);
+                _ => {
+                    datasets.push(p);
+                }
             }
         }
     }

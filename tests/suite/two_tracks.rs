@@ -247,10 +247,10 @@ fn general_form_of_a_track_and_of_independent_inputs_gives_the_same_statistics()
     let force: Arc<dyn Spectrum> = Arc::new(Exponential::new(2e-4, 3.0, Domain::Temporal).unwrap());
     let indep = Excitation::independent(vec![t, force], vec![0.0, 0.02]).unwrap();
     for exc in [track, indep] {
-        let gen = exc.to_sources();
+        let generator = exc.to_sources();
         for i in 0..2 {
             let a = analyze_output(&sys, &exc, i).unwrap();
-            let b = analyze_output(&sys, &gen, i).unwrap();
+            let b = analyze_output(&sys, &generator, i).unwrap();
             let (va, vb) = (a.variance.unwrap(), b.variance.unwrap());
             assert!(
                 (va - vb).abs() <= FACTORISATION * va,

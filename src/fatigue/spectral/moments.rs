@@ -434,19 +434,18 @@ fn spectrum_moments(spectrum: &dyn Spectrum, f_lo: f64, f_hi: f64, fractional: b
     }
     if f_hi.is_infinite() {
         let (_, hi) = spectrum.support();
-        if hi.is_infinite() {
-            if let Asymptote::Power { exponent, .. } = spectrum.high_frequency() {
-                if exponent >= -5.0 {
-                    return Err(Error::Divergent {
-                        quantity: "spectral moment m4".into(),
-                        reason: format!(
-                            "S(omega) ~ |omega|^{} at high frequency: m4 = int f^4 G df needs a decay faster than \
+        if hi.is_infinite()
+            && let Asymptote::Power { exponent, .. } = spectrum.high_frequency()
+            && exponent >= -5.0
+        {
+            return Err(Error::Divergent {
+                quantity: "spectral moment m4".into(),
+                reason: format!(
+                    "S(omega) ~ |omega|^{} at high frequency: m4 = int f^4 G df needs a decay faster than \
                              |omega|^-5; give a finite band f_hi",
-                            num(exponent)
-                        ),
-                    });
-                }
-            }
+                    num(exponent)
+                ),
+            });
         }
     }
     let (lo_w, hi_w) = spectrum.support();

@@ -101,9 +101,10 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
         coords.push((name, unit));
     }
     let n = coords.len();
-    if let Some((lo, hi)) = mass_range(&masses) {
-        if masses[hi] / masses[lo] > MAX_MASS_CONDITION {
-            return Err(f.error(
+    if let Some((lo, hi)) = mass_range(&masses)
+        && masses[hi] / masses[lo] > MAX_MASS_CONDITION
+    {
+        return Err(f.error(
                 &format!("coordinates[{hi}].mass"),
                 crate::numbers::num(masses[hi]),
                 format!(
@@ -113,7 +114,6 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
                     coords[lo].0
                 ),
             ));
-        }
     }
     let n_base = match f.get("base_inputs") {
         None => 0,
