@@ -676,6 +676,23 @@ pub(crate) fn open_sec2(
     })
 }
 
+/// Starts a child process so that it inherits no descriptor of a run file: the spawn runs under HDF5's
+/// global lock, which every open of a run file holds from its open(2) to the `FD_CLOEXEC` that follows it.
+///
+/// Why: HDF5 locks each file it opens with flock(2), a lock of the open file description that a forked
+/// child shares through its copy of the descriptor. A fork by another thread between HDF5's open(2) and
+/// the close-on-exec flag leaves the descriptor, and the lock, in the child for its whole life; a later
+/// open of the same file by this process then fails with "unable to lock file". A program that opens run
+/// files on some threads and starts processes on others (a test harness, a GUI, a service) starts them
+/// through this function. `Command::spawn` returns once the child has exec'd (or failed to), so no
+/// descriptor outlives the call in the child.
+///
+/// # Errors
+/// What [`std::process::Command::spawn`] returns.
+pub fn spawn_child(cmd: &mut std::process::Command) -> std::io::Result<std::process::Child> {
+    hdf5::sync::sync(|| cmd.spawn())
+}
+
 /// Marks the descriptor of a file opened with the sec2 driver close-on-exec (best effort: nothing happens
 /// where the handle cannot be obtained).
 fn close_on_exec(file: &hdf5::File) {

@@ -140,3 +140,29 @@ pub fn psd_bits(out: &std::path::Path) -> Vec<u64> {
         .flat_map(|p| p.density.iter().map(|x| x.to_bits()).collect::<Vec<_>>())
         .collect()
 }
+
+/// `Command::output`, `status` and `spawn` through [`stochvib::store::spawn_child`]: no child process of
+/// the test binary (one process for every integration test) inherits the descriptor, and the flock(2) lock,
+/// of a run file another test thread is opening.
+pub trait SpawnSerial {
+    /// Like `Command::output` (stdin closed, stdout and stderr captured).
+    fn output_serial(&mut self) -> std::io::Result<std::process::Output>;
+    /// Like `Command::status` (the standard streams as configured).
+    fn status_serial(&mut self) -> std::io::Result<std::process::ExitStatus>;
+    /// Like `Command::spawn`.
+    fn spawn_serial(&mut self) -> std::io::Result<std::process::Child>;
+}
+
+impl SpawnSerial for std::process::Command {
+    fn output_serial(&mut self) -> std::io::Result<std::process::Output> {
+        use std::process::Stdio;
+        self.stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped());
+        stochvib::store::spawn_child(self)?.wait_with_output()
+    }
+    fn status_serial(&mut self) -> std::io::Result<std::process::ExitStatus> {
+        stochvib::store::spawn_child(self)?.wait()
+    }
+    fn spawn_serial(&mut self) -> std::io::Result<std::process::Child> {
+        stochvib::store::spawn_child(self)
+    }
+}

@@ -344,9 +344,8 @@ pub fn fmt_counts(c: &BTreeMap<String, usize>) -> String {
 fn drive_worker(mut cmd: Command, mut on: impl FnMut(Msg)) -> (Exit, Option<u64>, String) {
     process::limit_memory(&mut cmd, process::DEFAULT_MEMORY_LIMIT);
     cmd.stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped());
-    let mut child = cmd
-        .spawn()
-        .unwrap_or_else(|e| panic!("cannot start worker {cmd:?}: {e}"));
+    let mut child =
+        stochvib::store::spawn_child(&mut cmd).unwrap_or_else(|e| panic!("cannot start worker {cmd:?}: {e}"));
     let stderr = child.stderr.take().unwrap();
     let err_thread = std::thread::spawn(move || {
         let mut keep = String::new();

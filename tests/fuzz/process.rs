@@ -112,7 +112,8 @@ pub fn run(mut cmd: Command, timeout: Duration, memory: u64) -> Output {
     limit_memory(&mut cmd, memory);
     cmd.stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped());
     let start = Instant::now();
-    let mut child: Child = cmd.spawn().unwrap_or_else(|e| panic!("cannot start {cmd:?}: {e}"));
+    let mut child: Child =
+        stochvib::store::spawn_child(&mut cmd).unwrap_or_else(|e| panic!("cannot start {cmd:?}: {e}"));
     let out = drain(child.stdout.take().expect("piped stdout"));
     let err = drain(child.stderr.take().expect("piped stderr"));
     let exit = loop {

@@ -209,7 +209,12 @@ print(json.dumps(out))
 /// The data extents of `file` by h5py, else (h5py missing) the 8-byte patterns of the `f64` values
 /// in `values` found in the file (`(label, value)`).
 pub fn layout(file: &Path, bytes: &[u8], values: &[(String, f64)]) -> (Vec<Region>, &'static str) {
-    let out = Command::new("python3").arg("-c").arg(LAYOUT_PY).arg(file).output();
+    let mut cmd = Command::new("python3");
+    cmd.arg("-c").arg(LAYOUT_PY).arg(file);
+    cmd.stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped());
+    let out = stochvib::store::spawn_child(&mut cmd).and_then(|c| c.wait_with_output());
     if let Ok(o) = out
         && o.status.success()
         && let Ok(v) = serde_json::from_slice::<Vec<(String, u64, u64)>>(&o.stdout)

@@ -9,6 +9,7 @@
 //! with partial bins weighted by their overlap is written out again below ([`bin_weights`]).
 
 use crate::common;
+use crate::common::SpawnSerial;
 use common::rel;
 use common::tolerance::EXACT;
 use std::f64::consts::PI;
@@ -279,7 +280,7 @@ fn simulate_prints_and_inspect_shows_the_band_table() {
     let exe = env!("CARGO_BIN_EXE_stochvib");
     let spectra = root().join("spectra");
     let run = |args: &[&str]| {
-        let o = std::process::Command::new(exe).args(args).output().unwrap();
+        let o = std::process::Command::new(exe).args(args).output_serial().unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         String::from_utf8(o.stdout).unwrap()
     };

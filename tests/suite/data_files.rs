@@ -3,6 +3,7 @@
 //! suggests its time step when none is given.
 
 use crate::common;
+use crate::common::SpawnSerial;
 use common::root;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -17,7 +18,7 @@ fn bin() -> Command {
 }
 
 fn run(args: &[&str]) -> Output {
-    bin().args(args).output().unwrap()
+    bin().args(args).output_serial().unwrap()
 }
 
 fn text(o: &Output) -> String {

@@ -5,6 +5,7 @@
 //! would fail for a correct implementation under a fresh seed.
 
 use crate::common;
+use crate::common::SpawnSerial;
 use std::path::{Path, PathBuf};
 use stochvib::scenario::{load_scenario, Scenario};
 use stochvib::simulate::{Route, RunOptions, RunSummary};
@@ -234,7 +235,7 @@ print("%r %r" % (float(f["statistics/y/sigma"][()]), float(f["statistics/y_vel/s
         .arg("-c")
         .arg(script)
         .arg(&path)
-        .output()
+        .output_serial()
         .expect("python3 must be installed (scripts/ensure-deps.sh --with-h5py)");
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
@@ -283,7 +284,7 @@ fn killed_run_leaves_no_final_file_and_resumes() {
         .env(KILL_ENV, &path)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
-        .status()
+        .status_serial()
         .unwrap();
     assert!(!status.success(), "the child must have been aborted");
     assert!(
@@ -350,7 +351,7 @@ fn simulate_and_inspect_cli() {
         ])
         .args(["--seed", "9", "--shard-size", "5", "--store-raw", "--json", "-o"])
         .arg(&path)
-        .output()
+        .output_serial()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -374,13 +375,13 @@ fn simulate_and_inspect_cli() {
             "-o",
         ])
         .arg(&path)
-        .output()
+        .output_serial()
         .unwrap();
     assert!(!again.status.success());
     let inspect = std::process::Command::new(bin)
         .arg("inspect")
         .arg(&path)
-        .output()
+        .output_serial()
         .unwrap();
     assert!(inspect.status.success());
     let text = String::from_utf8_lossy(&inspect.stdout);
@@ -388,7 +389,7 @@ fn simulate_and_inspect_cli() {
     let inspect = std::process::Command::new(bin)
         .args(["inspect", "--json"])
         .arg(&path)
-        .output()
+        .output_serial()
         .unwrap();
     let j: serde_json::Value = serde_json::from_slice(&inspect.stdout).unwrap();
     assert_eq!(j["n_realizations"], 20);

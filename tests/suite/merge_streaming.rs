@@ -8,6 +8,7 @@
 //! number is written into this file.
 
 use crate::common;
+use crate::common::SpawnSerial;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -175,7 +176,7 @@ fn stochvib(args: &[&str]) -> String {
         .stderr(std::process::Stdio::piped());
     let child = {
         let _g = spawn_lock();
-        c.spawn().unwrap()
+        c.spawn_serial().unwrap()
     };
     let o = child.wait_with_output().unwrap();
     assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));

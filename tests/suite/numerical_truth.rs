@@ -3,6 +3,7 @@
 //! outputs follow from the coordinates, and Welch estimates are compared with their own expectation.
 
 use crate::common;
+use crate::common::SpawnSerial;
 use common::root;
 use common::tolerance::{FACTORISATION, ROUNDING};
 use std::path::Path;
@@ -237,7 +238,7 @@ spectrum = "type1"
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .current_dir(root())
         .args(["analyze", "data/quarter-car.toml", "--max-subintervals", "3"])
-        .output()
+        .output_serial()
         .unwrap();
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success() && out.contains("not converged"), "{out}");
@@ -281,7 +282,7 @@ fn spectrum_density_at_chosen_points() {
         let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
             .current_dir(root())
             .args(args)
-            .output()
+            .output_serial()
             .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         serde_json::from_slice(&o.stdout).unwrap()

@@ -2,6 +2,7 @@
 //! blank, and carry their title and axis labels; bad input gives errors, never panics.
 
 use crate::common;
+use crate::common::SpawnSerial;
 use common::tolerance::{QUADRATURE, ROUNDING};
 use std::path::{Path, PathBuf};
 use stochvib::plot::chart::{BarChart, LineChart, Marker, Series};
@@ -790,7 +791,7 @@ fn plot_cli_accepts_run_files() {
     let (path, dir) = conveyor_run("runcli", false);
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .args(["plot", path.to_str().unwrap(), "-o", dir.to_str().unwrap()])
-        .output()
+        .output_serial()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(dir.join("y-welch.png").exists() && dir.join("y_vel-welch.svg").exists());
@@ -825,7 +826,7 @@ fn simulate_plots_option_writes_the_run_pictures() {
             pics.to_str().unwrap(),
         ])
         .current_dir(root())
-        .output()
+        .output_serial()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     for o in ["y", "y_vel"] {
@@ -856,7 +857,7 @@ fn analyze_and_book_plots_options_write_their_pictures() {
         ])
         .args(["--duration", "5", "--plots", a.to_str().unwrap()])
         .current_dir(root())
-        .output()
+        .output_serial()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     for name in [
@@ -876,7 +877,7 @@ fn analyze_and_book_plots_options_write_their_pictures() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .args(["book", "--plots", b.to_str().unwrap()])
         .current_dir(root())
-        .output()
+        .output_serial()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     for name in [
@@ -1012,7 +1013,7 @@ fn road_cli_plots_option_writes_the_road_pictures() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .args(["road", "data/measured-profile.csv", "--plots", dir.to_str().unwrap()])
         .current_dir(root())
-        .output()
+        .output_serial()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(String::from_utf8_lossy(&out.stderr).contains("wrote 6 pictures"));

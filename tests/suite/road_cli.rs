@@ -3,6 +3,7 @@
 //! coherence of a 1.5 m track width), and a measured profile as the spectrum of a scenario.
 
 use crate::common;
+use crate::common::SpawnSerial;
 use common::tolerance::ROUNDING;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
@@ -19,7 +20,7 @@ fn run(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .args(args)
         .current_dir(root())
-        .output()
+        .output_serial()
         .unwrap()
 }
 

@@ -29,6 +29,7 @@
 //! the tolerance, plus [`REPLAY_TRANSIENT`] for what is left of the start-up transient.
 
 use crate::common;
+use crate::common::SpawnSerial;
 use common::tolerance::{EXACT, ROUNDING};
 use nalgebra::{DMatrix, Matrix3, Vector3};
 use realfft::num_complex::Complex;
@@ -591,7 +592,7 @@ fn the_replay_command_prints_the_report_and_writes_the_history() {
             .current_dir(root())
             .env("STOCHVIB_SPECTRA", root().join("spectra"))
             .args(args)
-            .output()
+            .output_serial()
             .unwrap()
     };
     let o = run(&[

@@ -4,6 +4,7 @@
 //! the wrong unit or attributed to the wrong key, and files that hung the reader.
 
 use crate::common;
+use crate::common::SpawnSerial;
 use common::root;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -23,7 +24,7 @@ fn cli(args: &[&str], cwd: &Path) -> Output {
         .current_dir(cwd)
         .env("STOCHVIB_SPECTRA", root().join("spectra"))
         .args(args)
-        .output()
+        .output_serial()
         .unwrap()
 }
 
@@ -141,7 +142,7 @@ fn a_second_process_on_the_same_output_is_refused_and_harmless() {
     let mut first = Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .args(args(&out))
         .stderr(std::process::Stdio::piped())
-        .spawn()
+        .spawn_serial()
         .unwrap();
     let t0 = std::time::Instant::now();
     while !tmp_path(&out).exists() {
@@ -153,7 +154,7 @@ fn a_second_process_on_the_same_output_is_refused_and_harmless() {
     }
     let second = Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .args(args(&out))
-        .output()
+        .output_serial()
         .unwrap();
     let first_done = first.wait().unwrap();
     if first_done.success() && !second.status.success() {
@@ -558,7 +559,7 @@ fn smaller_holes_are_closed() {
     let fifo = d.join("fifo.toml");
     let made = Command::new("mkfifo")
         .arg(&fifo)
-        .status()
+        .status_serial()
         .map(|s| s.success())
         .unwrap_or(false);
     if made {
@@ -587,7 +588,7 @@ fn smaller_holes_are_closed() {
             "--dt",
             "0.01",
         ])
-        .output()
+        .output_serial()
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!left.exists(), "the dead process's temporary run is removed");

@@ -10,6 +10,7 @@
 //!   table), and the evaluator with closed forms derived in the comments.
 
 use crate::common;
+use crate::common::SpawnSerial;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -305,7 +306,7 @@ fn stochvib(args: &[&str], env: &[(&str, &str)]) -> (bool, String, String) {
         let _g = spawn_lock();
         c.stdout(std::process::Stdio::piped())
             .stderr(std::process::Stdio::piped())
-            .spawn()
+            .spawn_serial()
             .unwrap()
     };
     let o = child.wait_with_output().unwrap();
@@ -482,7 +483,7 @@ fn python(script: &str, args: &[&str], cwd: &Path) -> String {
             .args(args)
             .stdout(std::process::Stdio::piped())
             .stderr(std::process::Stdio::piped())
-            .spawn()
+            .spawn_serial()
             .expect("python3 with h5py is required (bash scripts/test.sh installs it)")
     };
     let o = child.wait_with_output().unwrap();

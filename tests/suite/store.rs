@@ -6,6 +6,7 @@
 //! h5py check, the same pattern recomputed independently in Python; expected chunk shapes follow from the
 //! documented rule in `stochvib::store::layout::chunk_shape`, worked by hand in the comments.
 
+use crate::common::SpawnSerial;
 use ndarray::Array2;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -272,7 +273,10 @@ fn child_processes_do_not_inherit_the_run_file() {
     let path = scratch("cloexec.h5");
     let meta = metadata(true, Compression::None);
     let mut w = RunWriter::create(&path, &meta).unwrap();
-    let mut child = Command::new("sleep").arg("30").spawn().expect("sleep(1) is available");
+    let mut child = Command::new("sleep")
+        .arg("30")
+        .spawn_serial()
+        .expect("sleep(1) is available");
     for s in 0..4 {
         write_shard(&mut w, s);
     }
@@ -289,7 +293,7 @@ fn child_processes_do_not_inherit_the_run_file() {
 
 /// Runs a Python script with h5py against the file; fails (does not skip) if h5py is missing.
 fn h5py_check(path: &Path, meta: &RunMetadata) {
-    let probe = Command::new("python3").args(["-c", "import h5py"]).output();
+    let probe = Command::new("python3").args(["-c", "import h5py"]).output_serial();
     match probe {
         Ok(o) if o.status.success() => {}
         _ => panic!(
@@ -371,7 +375,7 @@ print('h5py layout ok')
         .arg("-c")
         .arg(&script)
         .arg(path)
-        .output()
+        .output_serial()
         .unwrap();
     assert!(
         out.status.success(),
@@ -389,7 +393,7 @@ fn layout_is_readable_by_h5py_and_h5dump() {
     write_run(&path, &meta, &[0, 1, 2, 3]);
     h5py_check(&path, &meta);
     // h5dump (package hdf5-tools) is optional here; h5py above is not.
-    match Command::new("h5dump").args(["-H"]).arg(&path).output() {
+    match Command::new("h5dump").args(["-H"]).arg(&path).output_serial() {
         Ok(out) => {
             assert!(
                 out.status.success(),
@@ -440,7 +444,7 @@ fn killed_run_leaves_no_complete_file_and_resumes() {
             "--test-threads=1",
         ])
         .env(CRASH_ENV, &path)
-        .output()
+        .output_serial()
         .unwrap();
     assert!(!status.status.success(), "the child must die");
     let tmp = tmp_path(&path);

@@ -16,6 +16,7 @@
 //!   `TRANSFER_POLYNOMIALS`, so the numbers are anchored outside the fast path.
 
 use crate::common;
+use crate::common::SpawnSerial;
 use common::tolerance::TRANSFER_POLYNOMIALS;
 use std::path::{Path, PathBuf};
 use stochvib::report::{compute_sweep, stream_sweep_csv, write_sweep_table, StreamOptions, SweepMonteCarlo};
@@ -425,11 +426,14 @@ fn cli_stdout_and_file_tables_are_the_same() {
         "model.zeta2=0.1..0.5:130",
     ];
     let bin = env!("CARGO_BIN_EXE_stochvib");
-    let out = std::process::Command::new(bin).args(args).output().unwrap();
+    let out = std::process::Command::new(bin).args(args).output_serial().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let mut with_file: Vec<&str> = args.to_vec();
     with_file.extend(["-o", file.to_str().unwrap()]);
-    let o = std::process::Command::new(bin).args(&with_file).output().unwrap();
+    let o = std::process::Command::new(bin)
+        .args(&with_file)
+        .output_serial()
+        .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         o.status.success() && err.contains("wrote 16900 points (0 failed)"),
@@ -447,7 +451,7 @@ fn cli_stdout_and_file_tables_are_the_same() {
         .args(args)
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
-        .spawn()
+        .spawn_serial()
         .unwrap();
     let mut first = [0u8; 64];
     child.stdout.take().unwrap().read_exact(&mut first).unwrap(); // dropped: the pipe closes
