@@ -7,7 +7,7 @@ use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{
     load_document, load_scenario, Catalogue, Document, Scenario, Sweep, SweepMode, SweepParam, SweepSpec,
 };
-use stochvib::simulate::{merge_runs, part_path, resolve_part, suggest_step, MergeOptions, Route, RunOptions};
+use stochvib::simulate::{merge_runs, part_path, resolve_part, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
 use stochvib::store::{summarize, Compression, RunFile};
 
@@ -57,12 +57,13 @@ struct Step {
 }
 
 impl Step {
-    /// The given values, the missing ones suggested from the scenario's system (said on stderr).
-    fn resolve(&self, sc: &Scenario) -> stochvib::Result<(f64, f64)> {
+    /// The given values, the missing ones suggested from what the scenario's run of `realizations` must
+    /// resolve (said on stderr).
+    fn resolve(&self, sc: &Scenario, realizations: usize) -> stochvib::Result<(f64, f64)> {
         if let (Some(dt), Some(d)) = (self.dt, self.duration) {
             return Ok((dt, d));
         }
-        let s = suggest_step(&sc.run_input())?;
+        let s = sc.suggest_step(realizations)?;
         let (dt, d) = (self.dt.unwrap_or(s.dt_s), self.duration.unwrap_or(s.duration_s));
         eprintln!("time step {dt} s, duration {d} s (suggested: {})", s.reason);
         Ok((dt, d))
@@ -528,13 +529,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             effort.apply(&mut sc)?;
             let mut r = report::analysis_report(&sc)?;
             if let Some(n) = monte_carlo {
-                let (dt, duration) = step.resolve(&sc)?;
+                let (dt, duration) = step.resolve(&sc, n)?;
                 let opts = RunOptions::new(n, duration, dt, seed);
-                let (summary, pictures) = stochvib::simulate::run_temporary(
-                    &sc.run_input(),
-                    &opts,
+                let progress = progress_printer();
+                let (summary, pictures) = stochvib::simulate::run_temporary_with(
                     &std::env::temp_dir(),
-                    &progress_printer(),
+                    |path| sc.simulate(&opts, path, &progress),
                     // the run's own pictures (Welch band vs analytic density) before the file goes
                     |path| plots.as_ref().map(|out| run_plots(path, out, catalogue.dir())),
                 )?;
@@ -607,7 +607,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 None => None,
             };
             let sc = load_scenario(&scenario, catalogue.dir())?;
-            let (dt, duration) = step.resolve(&sc)?;
+            let (dt, duration) = step.resolve(&sc, realizations)?;
             let opts = RunOptions {
                 shard_size,
                 store_raw,
@@ -712,7 +712,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             eprintln!("sweep: {}", sweep.path());
             let mc = match monte_carlo {
                 Some(n) => {
-                    let (dt, duration) = step.resolve(&sc)?;
+                    let (dt, duration) = step.resolve(&sc, n)?;
                     Some(report::SweepMonteCarlo {
                         realizations: n,
                         duration_s: duration,

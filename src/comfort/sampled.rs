@@ -158,6 +158,47 @@ pub struct BasicMethodCheck {
     pub vdv_ratio_exceeded: bool,
     /// No available criterion is exceeded.
     pub basic_method_sufficient: bool,
+    /// The metric that governs the evaluation ([`Governing`]).
+    pub governing: Governing,
+}
+
+/// The metric that governs an ISO 2631-1 evaluation: the basic r.m.s. method, or the additional method a
+/// criterion of [`BasicMethodCheck`] calls for.
+///
+/// # Formula
+/// Each criterion's ratio to its threshold, r_CF = CF/9, r_M = (MTVV/a_w)/1.5, r_V = (VDV/(a_w T^(1/4)))/1.75;
+/// none above 1: [`Governing::Rms`]; else the criterion with the largest r governs: the MTVV ratio calls for
+/// the MTVV (running r.m.s., ISO 2631-1:1997 6.3.1), the crest factor and the VDV ratio for the VDV (fourth
+/// power, 6.3.2, which is "more sensitive to peaks"). Ties go to the VDV.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{BasicMethodCheck, Governing};
+/// // a 1 s burst of a sinusoid in a 64 s record: CF = 8√2, MTVV/a_w = 8, VDV ratio = √2·(3/8)^(1/4)·64^(1/4)
+/// let (a, t) = (1.0 / 8.0 / 2f64.sqrt(), 64.0);
+/// let c = BasicMethodCheck::new(a, 1.0, Some(1.0 / 2f64.sqrt()), (3.0f64 / 8.0).powf(0.25), t).unwrap();
+/// assert_eq!(c.governing, Governing::Mtvv);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Governing {
+    /// The basic method suffices: the weighted r.m.s. a_w (and A(8)) governs.
+    Rms,
+    /// The vibration dose value (crest factor or VDV ratio above its threshold).
+    Vdv,
+    /// The maximum transient vibration value (MTVV ratio above its threshold).
+    Mtvv,
+}
+
+impl Governing {
+    /// `r.m.s.`, `VDV` or `MTVV`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Governing::Rms => "r.m.s. (basic method)",
+            Governing::Vdv => "VDV",
+            Governing::Mtvv => "MTVV",
+        }
+    }
 }
 
 impl BasicMethodCheck {
@@ -202,6 +243,19 @@ impl BasicMethodCheck {
         let crest_factor_exceeded = crest_factor.is_some_and(|c| c > CREST_FACTOR_LIMIT);
         let mtvv_ratio_exceeded = mtvv_ratio.is_some_and(|r| r > MTVV_RATIO_LIMIT);
         let vdv_ratio_exceeded = vdv_ratio.is_some_and(|r| r > VDV_RATIO_LIMIT);
+        let over = |r: Option<f64>, limit: f64| r.map_or(0.0, |r| r / limit);
+        let (r_cf, r_m, r_v) = (
+            over(crest_factor, CREST_FACTOR_LIMIT),
+            over(mtvv_ratio, MTVV_RATIO_LIMIT),
+            over(vdv_ratio, VDV_RATIO_LIMIT),
+        );
+        let governing = if r_cf.max(r_m).max(r_v) <= 1.0 {
+            Governing::Rms
+        } else if r_m > r_cf.max(r_v) {
+            Governing::Mtvv
+        } else {
+            Governing::Vdv
+        };
         Ok(BasicMethodCheck {
             crest_factor,
             crest_factor_exceeded,
@@ -210,6 +264,7 @@ impl BasicMethodCheck {
             vdv_ratio,
             vdv_ratio_exceeded,
             basic_method_sufficient: !(crest_factor_exceeded || mtvv_ratio_exceeded || vdv_ratio_exceeded),
+            governing,
         })
     }
 }

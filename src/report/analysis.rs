@@ -61,6 +61,7 @@ pub struct MonteCarloColumn {
 
 /// Adds the Monte Carlo column of a run to the report's outputs (matched by name).
 pub fn attach_monte_carlo(report: &mut AnalysisReport, run: &crate::simulate::RunSummary) {
+    report.monte_carlo_verdicts = super::mc_verdicts::mc_verdicts(run);
     for o in &mut report.outputs {
         let name = &o.statistics.name;
         let base = MonteCarloColumn {
@@ -107,6 +108,10 @@ pub struct AnalysisReport {
     /// The comfort/exposure and fatigue verdicts (`[analysis.comfort]`, `[analysis.fatigue]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub verdicts: Option<crate::scenario::VerdictAnalysis>,
+    /// The Monte Carlo a_w, VDV, damage rate and basic-method check beside the analytic values
+    /// (`--monte-carlo N` of a scenario with verdicts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub monte_carlo_verdicts: Option<super::mc_verdicts::McVerdicts>,
 }
 
 /// Runs every analysis of the scenario.
@@ -197,6 +202,7 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         } else {
             Some(crate::scenario::verdict_analysis(sc)?)
         },
+        monte_carlo_verdicts: None,
     })
 }
 
@@ -321,6 +327,9 @@ impl fmt::Display for AnalysisReport {
             }
         }
         if let Some(v) = &self.verdicts {
+            write!(f, "{v}")?;
+        }
+        if let Some(v) = &self.monte_carlo_verdicts {
             write!(f, "{v}")?;
         }
         Ok(())

@@ -5,6 +5,7 @@ pub mod analysis;
 pub mod band_report;
 pub mod book;
 pub mod catalogue;
+pub mod mc_verdicts;
 pub mod replay_report;
 pub mod road_report;
 pub mod spectrum_report;

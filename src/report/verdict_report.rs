@@ -72,6 +72,11 @@ impl fmt::Display for VerdictAnalysis {
                 )?;
             }
             for a in &c.axes {
+                if let Some(cov) = &a.input_coverage {
+                    writeln!(f, "  INPUT BAND: {}", cov.describe(&a.output))?;
+                }
+            }
+            for a in &c.axes {
                 if let Some(m) = a.msdv {
                     writeln!(
                         f,

@@ -8,11 +8,13 @@
 
 mod catalogue;
 pub mod generic;
+pub mod input_coverage;
 pub mod inputs;
 mod profile_identity;
 pub mod reference;
 mod registry;
 pub mod replay;
+pub mod run_step;
 pub mod scenario_file;
 pub mod spectrum_file;
 pub mod sweep;
@@ -36,5 +38,5 @@ pub use sweep::{
 pub use verdict_analysis::{
     verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, VerdictAnalysis,
 };
-pub use verdict_run::{simulate_with_verdicts, verdict_system};
+pub use verdict_run::{simulate_with_verdicts, verdict_system, with_verdict_input};
 pub use verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec, VerdictSpec};

@@ -290,10 +290,21 @@ impl Scenario {
     /// # Errors
     /// As [`crate::simulate::run()`].
     pub fn simulate(&self, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
-        if !self.analysis.verdicts.is_empty() {
-            return super::verdict_run::simulate_with_verdicts(self, opts, out, progress);
+        self.with_simulated_input(|input| crate::simulate::run(input, opts, out, progress))
+    }
+
+    /// Calls `f` with the subject of this scenario's Monte Carlo run as [`Scenario::simulate`] runs it: with
+    /// verdicts the system extended by the weighted outputs and the verdict channels
+    /// ([`super::verdict_run::with_verdict_input`]), else [`Scenario::run_input`].
+    ///
+    /// # Errors
+    /// Those of building the verdict system; what `f` returns.
+    pub fn with_simulated_input<T>(&self, f: impl FnOnce(&RunInput) -> Result<T>) -> Result<T> {
+        if self.analysis.verdicts.is_empty() {
+            f(&self.run_input())
+        } else {
+            super::verdict_run::with_verdict_input(self, f)
         }
-        crate::simulate::run(&self.run_input(), opts, out, progress)
     }
 }
 

@@ -52,6 +52,10 @@ pub struct ComfortAxisResult {
     pub msdv: Option<f64>,
     /// Every variance method of the weighted output (value, agreement, why missing).
     pub statistics: ResponseStatistics,
+    /// When the input stops below the weighting's band: the covered fraction and a_w with the input's power
+    /// law continued ([`super::input_coverage`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub input_coverage: Option<super::input_coverage::InputCoverage>,
 }
 
 /// `[analysis.comfort]` answered.
@@ -201,7 +205,11 @@ fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> 
             )
         })?;
         let weighted = a.k * a_w;
+        let input_coverage =
+            super::input_coverage::input_coverage(&ws, &sc.excitation, a.weighting, a_w, &sc.analysis.effort)
+                .map_err(|e| file_error(sc, &key, &a.output_name, e))?;
         axes.push(ComfortAxisResult {
+            input_coverage,
             output: ws.outputs()[0].name.clone(),
             location: a.location,
             axis: a.axis,

@@ -8,7 +8,7 @@ use super::verdict_analysis::stress_moments;
 use super::Scenario;
 use crate::comfort::weighted_output;
 use crate::error::{Error, Result};
-use crate::simulate::{ComfortChannel, FatigueChannel, RunOptions, RunSummary, VerdictChannels};
+use crate::simulate::{ComfortChannel, FatigueChannel, RunInput, RunOptions, RunSummary, VerdictChannels};
 use crate::system::{FrequencyResponse, OutputInfo, StateSpace};
 use nalgebra::DMatrix;
 use std::path::Path;
@@ -87,6 +87,15 @@ pub fn simulate_with_verdicts(
     out: &Path,
     progress: &dyn Fn(usize, usize),
 ) -> Result<RunSummary> {
+    with_verdict_input(sc, |input| crate::simulate::run(input, opts, out, progress))
+}
+
+/// Calls `f` with the subject of the scenario's verdict run ([`simulate_with_verdicts`]): the system with
+/// the weighted outputs appended, the reported, weighted and fatigue outputs, and the verdict channels.
+///
+/// # Errors
+/// Those of [`verdict_system`] and of the stress moments; what `f` returns.
+pub fn with_verdict_input<T>(sc: &Scenario, f: impl FnOnce(&RunInput) -> Result<T>) -> Result<T> {
     let (ext, weighted) = verdict_system(sc)?;
     let mut input = sc.run_input();
     input.system = &ext;
@@ -126,5 +135,5 @@ pub fn simulate_with_verdicts(
     }
     input.outputs = outputs;
     input.verdicts = channels;
-    crate::simulate::run(&input, opts, out, progress)
+    f(&input)
 }

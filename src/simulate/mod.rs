@@ -22,6 +22,7 @@
 
 pub mod accumulators;
 pub mod bands;
+pub mod basic_method;
 pub mod batch;
 pub mod discretize;
 mod engine;
@@ -45,6 +46,7 @@ pub mod verdict_stream;
 pub mod verdicts;
 
 pub use bands::RunBands;
+pub use basic_method::{basic_method_rows, RunBasicMethod};
 pub use batch::{run_batch, Shard};
 pub use discretize::{
     augmented_response, covariance_factor, expm, foh, van_loan, zoh, FirstOrderHold, SampledSystem,
@@ -54,13 +56,13 @@ pub use fir_stream::{FirScratch, FirSynthesis, KernelDesign};
 pub use input::{source_signals, RunInput};
 pub use laplace::{LaplaceMovingAverage, LaplaceScratch, LAPLACE_DRAWS};
 pub use merge::{merge_runs, MergeOptions, MergeSummary};
-pub use options::{suggest_step, Route, RunOptions, StepSuggestion};
-pub use plan::{planned_memory, PlannedMemory, SkippedOutput};
+pub use options::{readable_duration, readable_step, suggest_step, Route, RunOptions, StepSuggestion};
+pub use plan::{planned_memory, planned_variances, PlannedMemory, SkippedOutput};
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
 pub use road::{RoadScratch, RoadTrack};
-pub use run::{run, run_temporary, WARMUP_DECAY};
+pub use run::{run, run_temporary, run_temporary_with, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
 pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
-pub use summary::RunSummary;
+pub use summary::{coverage_cause, RunSummary};
 pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};

@@ -173,9 +173,11 @@ pub struct StepSuggestion {
 }
 
 /// A time step and duration for a quick run: Δt = π/(8·ω_max) with ω_max the largest |λ| of the system
-/// matrix (or of its natural frequencies), at most π/ω_hi for an input band ending at ω_hi, shortened so that
-/// track delays are whole steps; duration 20/σ_min (σ_min = min|Re λ|), at least 32π/ω_lo for an input band
-/// starting at ω_lo > 0 (grid Δω ≤ ω_lo/16), at least 64 and at most 2¹⁵ steps.
+/// matrix (or of its natural frequencies), at most π/ω_hi for an input band ending at ω_hi, rounded down to a
+/// readable value that keeps track delays whole steps ([`readable_step`]); duration 20/σ_min (σ_min =
+/// min|Re λ|), at least 32π/ω_lo for an input band starting at ω_lo > 0 (grid Δω ≤ ω_lo/16), at least 64 and
+/// at most 2¹⁵ steps. A scenario's own suggestion (`Scenario::suggest_step`) starts from this one and adds what
+/// its verdicts, band tables and the discretisation bias need.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for a system without state space or natural frequencies, or without a
@@ -232,25 +234,81 @@ pub fn suggest_step(input: &RunInput) -> Result<StepSuggestion> {
         0.0
     };
     let delays = match input.excitation {
-        Excitation::Track { delays, .. } => Some(delays.clone()),
-        Excitation::Sources { inputs, .. } => Some(inputs.iter().map(|m| m.delay).collect()),
-        Excitation::Independent { .. } => None,
+        Excitation::Track { delays, .. } => delays.clone(),
+        Excitation::Sources { inputs, .. } => inputs.iter().map(|m| m.delay).collect(),
+        Excitation::Independent { .. } => Vec::new(),
     };
-    if let Some(delays) = delays {
-        let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
-        if let Some(tau) = delays.iter().map(|t| t - t0).filter(|t| *t > 0.0).reduce(f64::min) {
-            // the smallest non-zero delay as a whole number of steps (other delays must be its multiples)
-            dt = tau / (tau / dt).ceil();
-            reason.push_str(&format!(", shortened to a whole fraction of the delay {tau:.4e} s"));
-        }
-    }
-    let duration = (20.0 / smin).max(min_duration).clamp(64.0 * dt, 32768.0 * dt);
+    let (dt, how) = readable_step(dt, &delays);
+    reason.push_str(&how);
+    let duration = readable_duration((20.0 / smin).max(min_duration)).clamp(64.0 * dt, 32768.0 * dt);
     reason.push_str(&format!(
-        "; duration 20/σ_min with σ_min = {smin:.4e} 1/s (slowest decay), within 64..32768 steps"
+        "; duration 20/σ_min with σ_min = {smin:.4e} 1/s (slowest decay), rounded up to two significant digits, \
+         within 64..32768 steps"
     ));
     Ok(StepSuggestion {
         dt_s: dt,
         duration_s: duration,
         reason,
     })
+}
+
+/// Readable mantissas of a suggested time step (×10ᵏ), largest first; with delays, a finer set is searched.
+const READABLE: [f64; 4] = [5.0, 2.5, 2.0, 1.0];
+const READABLE_DELAYS: [f64; 11] = [8.0, 6.0, 5.0, 4.0, 3.0, 2.5, 2.0, 1.5, 1.25, 1.2, 1.0];
+
+/// The largest readable time step m·10ᵏ ≤ `dt_max` (m from 1, 2, 2.5, 5) that keeps every relative delay
+/// τ_j − min τ a whole number of steps (relative 10⁻⁹, as the spectral route requires). With delays the
+/// mantissas 1, 1.2, 1.25, 1.5, 2, 2.5, 3, 4, 5, 6, 8 are tried down to `dt_max`/10; if none fits, Δt =
+/// τ/⌈τ/dt_max⌉ of the smallest relative delay τ (a whole fraction of it, not rounded). Returns Δt and a note.
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::readable_step;
+/// assert_eq!(readable_step(0.0444, &[]).0, 0.04);
+/// assert_eq!(readable_step(6.25e-4, &[]).0, 5e-4);
+/// // a wheelbase delay of 0.27 s: 0.003 s is 90 steps
+/// assert_eq!(readable_step(0.016875, &[0.0, 0.27]).0, 0.015);
+/// ```
+pub fn readable_step(dt_max: f64, delays: &[f64]) -> (f64, String) {
+    let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
+    let rel: Vec<f64> = delays.iter().map(|t| t - t0).filter(|t| *t > 0.0).collect();
+    let whole = |dt: f64| {
+        rel.iter()
+            .all(|&tau| ((tau / dt).round() * dt - tau).abs() <= 1e-9 * tau.max(dt))
+    };
+    let mantissas: &[f64] = if rel.is_empty() { &READABLE } else { &READABLE_DELAYS };
+    let top = dt_max.log10().floor() as i32;
+    for k in (top - 1..=top).rev() {
+        for &m in mantissas {
+            // m·10ᵏ written through a decimal string: 0.015, not 0.015000000000000001
+            let dt: f64 = format!("{m}e{k}").parse().unwrap_or(f64::NAN);
+            if dt <= dt_max * (1.0 + 1e-12) && whole(dt) {
+                let note = if rel.is_empty() {
+                    format!(", rounded down to {dt} s")
+                } else {
+                    format!(", rounded down to {dt} s (every delay a whole number of steps)")
+                };
+                return (dt, note);
+            }
+        }
+    }
+    let tau = rel.iter().copied().fold(f64::INFINITY, f64::min);
+    let dt = tau / (tau / dt_max).ceil();
+    (dt, format!(", shortened to a whole fraction of the delay {tau:.4e} s"))
+}
+
+/// A duration rounded up to two significant digits (176.05 s → 180 s, 4.739 s → 4.8 s).
+///
+/// # Examples
+/// ```
+/// assert_eq!(stochvib::simulate::readable_duration(176.05), 180.0);
+/// assert_eq!(stochvib::simulate::readable_duration(4.739), 4.8);
+/// ```
+pub fn readable_duration(d: f64) -> f64 {
+    if !(d.is_finite() && d > 0.0) {
+        return d;
+    }
+    let k = d.log10().floor() as i32 - 1;
+    let m = (d / 10f64.powi(k) * (1.0 - 1e-12)).ceil();
+    format!("{m}e{k}").parse().unwrap_or(d)
 }

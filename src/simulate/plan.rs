@@ -103,6 +103,24 @@ pub fn planned_memory(input: &RunInput, opts: &RunOptions) -> Result<PlannedMemo
     })
 }
 
+/// The analytic variance of every simulated output and the exact variance of the discrete process a run
+/// with these options would simulate (equal on the exact route; on the spectral route the process of the FFT
+/// grid, truncated at the Nyquist frequency, through the first-order hold), without running it:
+/// `(output name, analytic variance, discrete variance)`.
+///
+/// # Formula
+/// The discretisation bias of σ is b = √(discrete/analytic) − 1.
+///
+/// # Errors
+/// As [`planned_memory`].
+pub fn planned_variances(input: &RunInput, opts: &RunOptions) -> Result<Vec<(String, f64, f64)>> {
+    let p = plan(input, opts)?;
+    Ok(p.outputs
+        .into_iter()
+        .map(|o| (o.signal.name, o.analytic_variance, o.discrete_variance))
+        .collect())
+}
+
 /// An output with a finite analytic variance, before the route is chosen.
 struct Simulable {
     index: usize,

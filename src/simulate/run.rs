@@ -254,6 +254,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         resumed_shards,
         part: meta.part,
         realizations: meta.local_realizations(),
+        basic_method: super::basic_method_rows(&stats, plan.n as f64 * opts.dt_s),
         outputs: stats,
         skipped: plan.skipped,
         notes,
@@ -275,6 +276,7 @@ pub(crate) fn summary_of_file(run: &RunFile, plan: &Plan, notes: Vec<String>) ->
         resumed_shards: m.local_shards().len(),
         part: m.part,
         realizations: m.local_realizations(),
+        basic_method: super::basic_method_rows(&run.statistics()?, m.n_samples as f64 * m.dt),
         outputs: run.statistics()?,
         skipped: plan.skipped.clone(),
         notes,
@@ -417,6 +419,19 @@ pub fn run_temporary<T>(
     progress: &dyn Fn(usize, usize),
     then: impl FnOnce(&Path) -> T,
 ) -> Result<(RunSummary, T)> {
+    run_temporary_with(dir, |path| run(input, opts, path, progress), then)
+}
+
+/// As [`run_temporary`], with the run done by `runner(path)` (e.g. a scenario's run with its verdict
+/// channels, `Scenario::simulate`).
+///
+/// # Errors
+/// What `runner` returns.
+pub fn run_temporary_with<T>(
+    dir: &Path,
+    runner: impl FnOnce(&Path) -> Result<RunSummary>,
+    then: impl FnOnce(&Path) -> T,
+) -> Result<(RunSummary, T)> {
     struct Remove(std::path::PathBuf);
     impl Drop for Remove {
         fn drop(&mut self) {
@@ -428,7 +443,7 @@ pub fn run_temporary<T>(
     let path = dir.join(format!("stochvib-run-{}.h5", std::process::id()));
     let guard = Remove(path.clone());
     drop(Remove(path.clone())); // a leftover of an earlier process with the same id
-    let summary = run(input, opts, &guard.0, progress)?;
+    let summary = runner(&guard.0)?;
     let t = then(&guard.0);
     Ok((summary, t))
 }

@@ -1,0 +1,134 @@
+//! The Monte Carlo verdict values of `stochvib analyze --monte-carlo N` beside the analytic ones: per
+//! weighted output a_w, the VDV of the simulated records and scaled to the daily exposure, ISO 2631-1's
+//! basic-method check and the governing metric; per fatigue output the rainflow damage rate against
+//! Dirlik's; and, for every interval that misses its analytic value, whether the discretisation bias or
+//! chance is the cause.
+
+use crate::estimate::Interval;
+use crate::simulate::{coverage_cause, RunBasicMethod, RunSummary};
+use serde::Serialize;
+use std::fmt;
+
+/// One Monte Carlo statistic beside its analytic value.
+#[derive(Debug, Clone, Serialize)]
+pub struct McValue {
+    /// The run output.
+    pub output: String,
+    /// What it is (`a_w`, `VDV`, `damage rate`).
+    pub quantity: String,
+    /// Unit.
+    pub unit: String,
+    /// The analytic value the interval is compared with.
+    pub analytic: Option<f64>,
+    /// The exact value of the simulated discrete process (σ of the discretised process), if known.
+    pub discrete: Option<f64>,
+    /// The Monte Carlo estimate and interval (serialised flat: `estimate`, `lower`, `upper`, `confidence`).
+    #[serde(flatten)]
+    pub interval: Interval,
+    /// Whether the interval covers the analytic value.
+    pub covers: Option<bool>,
+    /// Why it does not cover (discretisation bias or chance).
+    pub cause: Option<String>,
+}
+
+/// The Monte Carlo verdict section.
+#[derive(Debug, Clone, Serialize)]
+pub struct McVerdicts {
+    /// Record duration T = NΔt of the realizations, s.
+    pub duration_s: f64,
+    /// Time step, s.
+    pub dt_s: f64,
+    /// Realizations.
+    pub realizations: usize,
+    /// a_w, VDV (over T) and damage rates.
+    pub values: Vec<McValue>,
+    /// ISO 2631-1's basic-method check per weighted output, from the simulated records.
+    pub basic_method: Vec<RunBasicMethod>,
+}
+
+/// The verdict statistics of a run (empty values when it has no verdict channels).
+pub fn mc_verdicts(run: &RunSummary) -> Option<McVerdicts> {
+    let mut values = Vec::new();
+    for o in &run.outputs {
+        let is_weighted = o.get("vdv").is_some();
+        let picks: &[(&str, &str)] = if is_weighted {
+            &[("sigma", "a_w"), ("vdv", "VDV over T")]
+        } else {
+            &[("damage_rate", "damage rate")]
+        };
+        for (name, quantity) in picks {
+            let Some(s) = o.get(name) else { continue };
+            values.push(McValue {
+                output: o.output.clone(),
+                quantity: quantity.to_string(),
+                unit: s.unit.clone(),
+                analytic: s.analytic,
+                discrete: (*name == "sigma")
+                    .then(|| o.get("sigma_discrete").and_then(|d| d.analytic))
+                    .flatten(),
+                interval: s.interval,
+                covers: s.covers,
+                cause: if *name == "sigma" { coverage_cause(o) } else { None },
+            });
+        }
+    }
+    if values.is_empty() {
+        return None;
+    }
+    Some(McVerdicts {
+        duration_s: run.n_samples as f64 * run.dt_s,
+        dt_s: run.dt_s,
+        realizations: run.n_realizations,
+        values,
+        basic_method: run.basic_method.clone(),
+    })
+}
+
+impl fmt::Display for McVerdicts {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f)?;
+        writeln!(
+            f,
+            "Monte Carlo verdict values ({} realizations of T = {} s, Δt = {} s)",
+            self.realizations, self.duration_s, self.dt_s
+        )?;
+        writeln!(
+            f,
+            "  {:<18} {:<12} {:>13} {:>13} {:>29}  covers",
+            "output", "quantity", "analytic", "MC", "interval"
+        )?;
+        let e = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x:.6e}"));
+        for v in &self.values {
+            let iv = &v.interval;
+            writeln!(
+                f,
+                "  {:<18} {:<12} {:>13} {:>13.6e} [{:.6e}, {:.6e}]  {} ({} %) {}",
+                v.output,
+                v.quantity,
+                e(v.analytic),
+                iv.estimate,
+                iv.lower,
+                iv.upper,
+                match v.covers {
+                    Some(true) => "yes",
+                    Some(false) => "NO",
+                    None => "-",
+                },
+                100.0 * iv.confidence,
+                v.unit
+            )?;
+            if let Some(c) = &v.cause {
+                writeln!(f, "    {c}")?;
+            }
+        }
+        writeln!(
+            f,
+            "  (VDV over the record T; over a daily exposure T_e a stationary output gives VDV·(T_e/T)^(1/4); the \
+             damage rate's analytic value is Dirlik's)"
+        )?;
+        for b in &self.basic_method {
+            writeln!(f, "  basic method, {}: {}", b.output, b.describe())?;
+        }
+        Ok(())
+    }
+}
