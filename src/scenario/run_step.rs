@@ -52,7 +52,7 @@ impl Scenario {
     /// use std::path::Path;
     /// let sc = load_scenario(Path::new("data/operator-seat-verdicts.toml"), Path::new("spectra")).unwrap();
     /// let s = sc.suggest_step(200).unwrap();
-    /// assert!(s.dt_s <= 0.01 && s.reason.contains("rate of peaks"));
+    /// assert!(s.dt_s <= 0.01 && s.reason.contains("Δt ≤ 1/("));
     /// ```
     pub fn suggest_step(&self, realizations: usize) -> Result<StepSuggestion> {
         // the model's poles, input band and delays (the weighting filters' poles at their upper edge are not
