@@ -264,7 +264,7 @@ const READABLE_DELAYS: [f64; 11] = [8.0, 6.0, 5.0, 4.0, 3.0, 2.5, 2.0, 1.5, 1.25
 /// # Examples
 /// ```
 /// use stochvib::simulate::readable_step;
-/// assert_eq!(readable_step(0.0444, &[]).0, 0.04);
+/// assert_eq!(readable_step(0.0444, &[]).0, 0.025);
 /// assert_eq!(readable_step(6.25e-4, &[]).0, 5e-4);
 /// // a wheelbase delay of 0.27 s: 0.003 s is 90 steps
 /// assert_eq!(readable_step(0.016875, &[0.0, 0.27]).0, 0.015);
