@@ -16,6 +16,10 @@ pub struct BandSection {
     pub table: Option<BandTable>,
     /// Why it could not.
     pub note: Option<String>,
+    /// When the input stops below the table's top band: the bands above its edge with the input's power law
+    /// continued ([`crate::scenario::input_coverage::band_coverage`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub input_coverage: Option<crate::scenario::input_coverage::BandCoverage>,
 }
 
 /// The band section of output `i` when the scenario asks for bands (`None` otherwise).
@@ -48,13 +52,28 @@ pub fn band_section(sc: &Scenario, i: usize, st: &ResponseStatistics) -> Option<
         range_hz,
     );
     Some(match r {
-        Ok(t) => BandSection {
-            table: Some(t),
-            note: None,
-        },
+        Ok(t) => {
+            let names = crate::scenario::input_coverage::source_names(sc);
+            let (input_coverage, note) = match crate::scenario::input_coverage::band_coverage(
+                sc.model.system.as_ref(),
+                &sc.excitation,
+                i,
+                &t,
+                &names,
+            ) {
+                Ok(c) => (c, None),
+                Err(e) => (None, Some(format!("input coverage not assessed: {e}"))),
+            };
+            BandSection {
+                table: Some(t),
+                note,
+                input_coverage,
+            }
+        }
         Err(e) => BandSection {
             table: None,
             note: Some(e.to_string()),
+            input_coverage: None,
         },
     })
 }
@@ -95,6 +114,13 @@ impl fmt::Display for BandSection {
                 100.0 * c
             ),
             _ => writeln!(f, "    Σ band mean squares {:.6e} (σ² not finite)", t.sum_mean_square),
+        }?;
+        if let Some(n) = &self.note {
+            writeln!(f, "    {n}")?;
+        }
+        match &self.input_coverage {
+            Some(c) => writeln!(f, "    INPUT BAND: {}", c.describe()),
+            None => Ok(()),
         }
     }
 }

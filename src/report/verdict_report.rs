@@ -178,6 +178,9 @@ impl fmt::Display for VerdictAnalysis {
                 )?;
             }
             writeln!(f, "  spread (longest/shortest life) {:.3}", x.spread)?;
+            if let Some(cov) = &x.input_coverage {
+                writeln!(f, "  INPUT BAND: {}", cov.describe(&x.output))?;
+            }
             if let (Some(t), Some(p)) = (&x.design_life_text, x.passes) {
                 writeln!(
                     f,

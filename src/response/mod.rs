@@ -7,6 +7,7 @@
 //! S_y(ω) = H(iω) S_u(ω) H(iω)ᴴ,      D_y = ∫ S_y dω,      λ_k = ∫ |ω|^k S_y dω,      M_y = H(0) M_u
 //! ```
 
+mod continued;
 mod delayed;
 mod delayed_quadrature;
 mod density;
@@ -17,6 +18,7 @@ mod statistics;
 mod sweep;
 mod variance;
 
+pub use continued::{continue_excitation, Continued, ContinuedSource};
 pub use delayed::{delayed_augmented_system, variance_lyapunov_delayed, DelayedAugmentedSystem, DelayedCovariance};
 pub use delayed_quadrature::{
     moments_oscillatory, spectral_moment_oscillatory, variance_oscillatory, OscillatoryMoments,

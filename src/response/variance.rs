@@ -392,7 +392,10 @@ fn filters(exc: &Excitation) -> Result<Vec<ShapingFilter>> {
         .map(|s| {
             let r = s.rational().ok_or_else(|| Error::NotApplicable {
                 method: "exact (Lyapunov / integral-table) variance".into(),
-                reason: "the input spectrum is not rational (no finite shaping filter); quadrature applies".into(),
+                reason: format!(
+                    "the input spectrum ({}) is not rational (no finite shaping filter); quadrature applies",
+                    s.describe()
+                ),
             })?;
             r.shaping_filter()
         })

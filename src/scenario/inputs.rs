@@ -20,6 +20,8 @@
 //! spectrum = "white-force"           # a catalogue name, a path or an inline table (as `[input] spectrum`)
 //! drives = [4]
 //! kurtosis = 6                       # optional, one process only: a non-Gaussian (Laplace moving average) source
+//! band = ["0.011 cycles/m", "30 cycles/m"]   # optional, any table: the source's band (super::input_filters)
+//! enveloping = { kind = "moving-average", length = "0.25 m" }   # optional, a road (either form): tyre enveloping
 //! ```
 //! * A road of two tracks alone may also be written as its own `[road]` section (`spectrum`, `coherence`,
 //!   `track_width`, `speed`, and the table keys below): the same as one `[[input]]` table with
@@ -145,10 +147,12 @@ pub(crate) fn road_section_keys(e: crate::Error) -> crate::Error {
 }
 
 /// The keys of an `[[input]]` table.
-const INPUT_KEYS: [&str; 10] = [
+const INPUT_KEYS: [&str; 12] = [
     "name",
     "spectrum",
     "road",
+    "band",
+    "enveloping",
     "speed",
     "mean",
     "drives",
@@ -426,7 +430,8 @@ pub(crate) fn parse_inputs(
         };
         let (reference, sf, source, coherence) = match (inf.get("spectrum"), inf.get("road")) {
             (Some(_), None) => {
-                let (reference, sf) = resolve_spectrum(&inf, "spectrum", catalogue, base)?;
+                let (reference, mut sf) = resolve_spectrum(&inf, "spectrum", catalogue, base)?;
+                sf.spectrum = super::input_filters::apply_input_keys(&inf, &sf, &reference)?;
                 let temporal: Arc<dyn Spectrum> = match sf.spectrum.domain() {
                     Domain::Temporal => sf.spectrum.clone(),
                     Domain::Spatial => {
@@ -438,7 +443,7 @@ pub(crate) fn parse_inputs(
             }
             (None, Some(_)) => {
                 let rf = inf.sub("road")?;
-                let (reference, sf) = resolve_spectrum(&rf, "spectrum", catalogue, base)?;
+                let (reference, mut sf) = resolve_spectrum(&rf, "spectrum", catalogue, base)?;
                 if sf.spectrum.domain() != Domain::Spatial {
                     return Err(rf.error(
                         "spectrum",
@@ -473,6 +478,7 @@ pub(crate) fn parse_inputs(
                         ),
                     ));
                 }
+                sf.spectrum = super::input_filters::apply_input_keys(&inf, &sf, &reference)?;
                 let cf = rf.sub("coherence")?;
                 let coh = coherence_from_fields(&cf, width)?;
                 cf.finish()?;

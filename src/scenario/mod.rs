@@ -9,6 +9,7 @@
 mod catalogue;
 pub mod generic;
 pub mod input_coverage;
+mod input_filters;
 pub mod inputs;
 mod profile_identity;
 pub mod reference;

@@ -15,6 +15,8 @@
 //! speed = "20 m/s"               # needed for spatial spectra and for delays between wheels
 //! mean = 0.0                     # mean of the input process (default 0), in the process's unit
 //! kurtosis = 6                   # optional: a non-Gaussian input of this marginal kurtosis (>= 3)
+//! band = ["0.011 cycles/m", "30 cycles/m"]   # optional: the input's band (super::input_filters)
+//! enveloping = { kind = "moving-average", length = "0.25 m" }   # optional: a tyre's enveloping of a road
 //!
 //! [analysis]                     # optional
 //! outputs = ["body", "travel"]   # default: every output
@@ -420,7 +422,8 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         _ => {
             let inf = f.sub("input")?;
             let _ = inf.get("speed");
-            let (reference, sf) = super::inputs::resolve_spectrum(&inf, "spectrum", &catalogue, path.parent())?;
+            let (reference, mut sf) = super::inputs::resolve_spectrum(&inf, "spectrum", &catalogue, path.parent())?;
+            sf.spectrum = super::input_filters::apply_input_keys(&inf, &sf, &reference)?;
             // the mean is in the input process's own unit: a number (SI) or a quantity of that dimension
             let mean = match inf.get("mean") {
                 None => 0.0,

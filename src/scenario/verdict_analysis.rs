@@ -127,6 +127,10 @@ pub struct FatigueVerdict {
     pub design_life_text: Option<String>,
     /// Every method's life ≥ the design life (`None` without a design life).
     pub passes: Option<bool>,
+    /// When the input stops below 10 × the model's fastest natural frequency: the moments with the
+    /// input's power law continued there ([`super::input_coverage::moment_coverage`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub input_coverage: Option<super::input_coverage::MomentCoverage>,
 }
 
 /// Both verdicts of a scenario.
@@ -179,6 +183,7 @@ fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> 
         reason: "the model has no state-space form".into(),
     })?;
     let t = spec.exposure_s;
+    let names = super::input_coverage::source_names(sc);
     let mut axes = Vec::new();
     for (j, a) in spec.axes.iter().enumerate() {
         let key = format!("analysis.comfort.axis[{j}].output");
@@ -206,7 +211,7 @@ fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> 
         })?;
         let weighted = a.k * a_w;
         let input_coverage =
-            super::input_coverage::input_coverage(&ws, &sc.excitation, a.weighting, a_w, &sc.analysis.effort)
+            super::input_coverage::input_coverage(&ws, &sc.excitation, a.weighting, a_w, &sc.analysis.effort, &names)
                 .map_err(|e| file_error(sc, &key, &a.output_name, e))?;
         axes.push(ComfortAxisResult {
             input_coverage,
@@ -322,6 +327,16 @@ fn fatigue_verdict(sc: &Scenario, spec: &FatigueSpec) -> Result<FatigueVerdict> 
         &sc.analysis.effort,
     )
     .map_err(|e| file_error(sc, key, &spec.output_name, e))?;
+    let input_coverage = super::input_coverage::moment_coverage(
+        sys,
+        &sc.excitation,
+        spec.output,
+        spec.stress_factor,
+        &m,
+        &sc.analysis.effort,
+        &super::input_coverage::source_names(sc),
+    )
+    .map_err(|e| file_error(sc, key, &spec.output_name, e))?;
     let all = compare_methods(&m, &spec.sn)?;
     let methods: Vec<FatigueMethodResult> = all
         .estimates
@@ -359,5 +374,6 @@ fn fatigue_verdict(sc: &Scenario, spec: &FatigueSpec) -> Result<FatigueVerdict> 
         methods,
         design_life_s: spec.design_life_s,
         design_life_text: spec.design_life_text.clone(),
+        input_coverage,
     })
 }

@@ -200,13 +200,16 @@ pub fn coverage_cause(o: &OutputStatistics) -> Option<String> {
     let bias = d / a - 1.0;
     Some(if iv.covers(d) {
         format!(
-            "NOT covered because of the discretisation bias of Δt and the duration: the simulated discrete process              has σ_d/σ − 1 = {:+.3} %, more than the interval's half-width ±{:.3} %; the interval covers σ_d (a              smaller --dt or a longer --duration reduces the bias)",
+            "NOT covered because of the discretisation bias of Δt and the duration: the simulated discrete process \
+             has σ_d/σ − 1 = {:+.3} %, more than the interval's half-width ±{:.3} %; the interval covers σ_d (a \
+             smaller --dt or a longer --duration reduces the bias)",
             100.0 * bias,
             100.0 * half
         )
     } else {
         format!(
-            "NOT covered by chance (statistical: the interval misses the discrete-process σ_d too, which happens in              {:.1} % of runs); the discretisation bias σ_d/σ − 1 = {:+.3} % is not the cause",
+            "NOT covered by chance (statistical: the interval misses the discrete-process σ_d too, which happens in \
+             {:.1} % of runs); the discretisation bias σ_d/σ − 1 = {:+.3} % is not the cause",
             100.0 * (1.0 - iv.confidence),
             100.0 * bias
         )

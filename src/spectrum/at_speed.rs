@@ -109,6 +109,12 @@ impl Spectrum for AtSpeed {
     fn rational(&self) -> Option<RationalSpectrum> {
         self.rational.clone()
     }
+    /// The spatial moving average of length L is, in time, the moving average of duration L/v.
+    fn moving_average(&self) -> Option<(Arc<dyn Spectrum>, f64)> {
+        let (raw, length) = self.inner.moving_average()?;
+        let raw: Arc<dyn Spectrum> = Arc::new(AtSpeed::new(raw, self.speed).ok()?);
+        Some((raw, length / self.speed))
+    }
 }
 
 /// S_t ≈ c (ω/v)^e / v = c v^{−e−1} ω^e.

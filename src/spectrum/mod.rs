@@ -26,12 +26,14 @@ use crate::error::Result;
 use std::fmt::Debug;
 
 mod at_speed;
+mod band_limited;
 mod band_white;
 mod convention;
 mod exp_cosine;
 mod exponential;
 mod gauss_cosine;
 mod gaussian;
+mod moving_average;
 pub mod numeric;
 pub mod power_law;
 mod rational;
@@ -39,12 +41,14 @@ mod tabulated;
 pub mod two_pole_road;
 
 pub use at_speed::AtSpeed;
+pub use band_limited::BandLimited;
 pub use band_white::BandWhite;
 pub use convention::Convention;
 pub use exp_cosine::ExpCosine;
 pub use exponential::Exponential;
 pub use gauss_cosine::GaussCosine;
 pub use gaussian::Gaussian;
+pub use moving_average::{sinc_squared, MovingAverage};
 pub use power_law::{IsoBound, IsoClass, PowerLaw, ISO_BAND, ISO_N0, ISO_WAVINESS};
 pub use rational::{RationalSpectrum, ShapingFilter};
 pub use tabulated::Tabulated;
@@ -171,6 +175,13 @@ pub trait Spectrum: Debug + Send + Sync {
     /// The rational form S(ω) = N(ω²)/D(ω²) when the density is exactly rational (types 1 and 3, the
     /// book roads (8.66), (8.69), white-noise-free rational models); `None` otherwise.
     fn rational(&self) -> Option<RationalSpectrum> {
+        None
+    }
+
+    /// For a spectrum that is another one seen through a moving average of length L ([`MovingAverage`], a
+    /// tyre's enveloping of the road): the unfiltered spectrum and L in the lag unit (m, or s once a speed
+    /// turned the road into time); `None` otherwise.
+    fn moving_average(&self) -> Option<(std::sync::Arc<dyn Spectrum>, f64)> {
         None
     }
 }

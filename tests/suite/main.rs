@@ -20,6 +20,8 @@ mod fatigue;
 mod fuzz_inputs;
 mod fuzz_run_files;
 mod input_band;
+mod input_coverage;
+mod input_keys;
 mod laplace_road;
 mod layers;
 mod linalg;
