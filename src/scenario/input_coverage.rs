@@ -289,7 +289,7 @@ pub fn input_coverage(
     names: &[String],
 ) -> Result<Option<InputCoverage>> {
     let edge = 2.0 * PI * w.parameters().f2_hz;
-    if !(a_w > 0.0) {
+    if a_w.is_nan() || a_w <= 0.0 {
         return Ok(None);
     }
     let measure = |e: &Excitation| -> Result<f64> {

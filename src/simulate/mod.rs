@@ -57,7 +57,7 @@ pub use input::{source_signals, RunInput};
 pub use laplace::{LaplaceMovingAverage, LaplaceScratch, LAPLACE_DRAWS};
 pub use merge::{merge_runs, MergeOptions, MergeSummary};
 pub use options::{readable_duration, readable_step, suggest_step, Route, RunOptions, StepSuggestion};
-pub use plan::{planned_memory, planned_variances, PlannedMemory, SkippedOutput};
+pub use plan::{planned_memory, planned_variances, PlannedMemory, PlannedVariance, SkippedOutput};
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
 pub use road::{RoadScratch, RoadTrack};
 pub use run::{run, run_temporary, run_temporary_with, WARMUP_DECAY};

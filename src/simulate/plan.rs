@@ -38,6 +38,9 @@ pub(crate) struct PlannedOutput {
     /// Exact marginal kurtosis E y⁴/(E y²)² of the simulated process when an input is non-Gaussian (a
     /// Laplace moving average, [`laplace_generators`]); `None` for Gaussian inputs (kurtosis 3).
     pub kurtosis: Option<f64>,
+    /// Coefficient of variation of one realization's mean square (1/N)Σy_k² on the spectral route
+    /// ([`mean_square_cv`]); `None` on the other routes.
+    pub mean_square_cv: Option<f64>,
 }
 
 /// Everything a run needs besides the file: the route's engine, sizes, outputs and remarks.
@@ -103,21 +106,44 @@ pub fn planned_memory(input: &RunInput, opts: &RunOptions) -> Result<PlannedMemo
     })
 }
 
-/// The analytic variance of every simulated output and the exact variance of the discrete process a run
-/// with these options would simulate (equal on the exact route; on the spectral route the process of the FFT
-/// grid, truncated at the Nyquist frequency, through the first-order hold), without running it:
-/// `(output name, analytic variance, discrete variance)`.
-///
-/// # Formula
-/// The discretisation bias of σ is b = √(discrete/analytic) − 1.
+/// What a run would simulate of one output, without running it ([`planned_variances`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlannedVariance {
+    /// The output.
+    pub name: String,
+    /// Analytic variance of the continuous stationary response.
+    pub analytic: f64,
+    /// Exact variance of the simulated discrete process (equal to `analytic` on the exact route; on the
+    /// spectral route that of the FFT grid truncated at the Nyquist frequency, through the first-order hold).
+    pub discrete: f64,
+    /// Coefficient of variation of one realization's mean square on the spectral route (the width of the
+    /// run's intervals: a σ interval from R realizations has the relative half-width ≈ z·cv/(2√R));
+    /// `None` on the other routes.
+    pub mean_square_cv: Option<f64>,
+}
+
+impl PlannedVariance {
+    /// The discretisation bias of σ, √(discrete/analytic) − 1.
+    pub fn bias(&self) -> f64 {
+        (self.discrete / self.analytic).sqrt() - 1.0
+    }
+}
+
+/// The analytic and discrete variance of every simulated output of a run with these options, and the spread
+/// of its per-realization mean squares, without running it ([`PlannedVariance`]).
 ///
 /// # Errors
 /// As [`planned_memory`].
-pub fn planned_variances(input: &RunInput, opts: &RunOptions) -> Result<Vec<(String, f64, f64)>> {
+pub fn planned_variances(input: &RunInput, opts: &RunOptions) -> Result<Vec<PlannedVariance>> {
     let p = plan(input, opts)?;
     Ok(p.outputs
         .into_iter()
-        .map(|o| (o.signal.name, o.analytic_variance, o.discrete_variance))
+        .map(|o| PlannedVariance {
+            name: o.signal.name,
+            analytic: o.analytic_variance,
+            discrete: o.discrete_variance,
+            mean_square_cv: o.mean_square_cv,
+        })
         .collect())
 }
 
@@ -300,6 +326,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
                 analytic_variance: f.variance,
                 discrete_variance: cov[(r, r)],
                 kurtosis: None,
+                mean_square_cv: None,
             })
             .collect();
         notes.push(
@@ -333,7 +360,8 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
             memory_bytes,
         });
     }
-    let (engine, discrete, autocov, kurtosis) = spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len())?;
+    let (engine, discrete, autocov, kurtosis, cv) =
+        spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len())?;
     let outputs = finite
         .into_iter()
         .zip(discrete)
@@ -344,6 +372,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
             analytic_variance: f.variance,
             discrete_variance: dv,
             kurtosis: kurtosis.get(r).copied(),
+            mean_square_cv: cv.get(r).copied(),
         })
         .collect();
     Ok(Plan {
@@ -508,6 +537,7 @@ fn streamed_plan(
             analytic_variance: f.variance,
             discrete_variance: *dv,
             kurtosis: None,
+            mean_square_cv: None,
         })
         .collect();
     Ok(Plan {
@@ -602,7 +632,8 @@ struct SpectralInput {
 /// The spectral engine: one generator per independent process, the inputs as (generator, gain, shift), and
 /// the discrete transfer gains from every generator's coefficients to every output; returns the engine, the
 /// exact variance of each simulated (grid, first-order-hold, periodic) output process, its autocovariance,
-/// and (non-Gaussian inputs only; empty otherwise) its exact kurtosis.
+/// (non-Gaussian inputs only; empty otherwise) its exact kurtosis, and the coefficient of variation of one
+/// realization's mean square ([`mean_square_cv`]).
 #[allow(clippy::type_complexity)]
 fn spectral_engine(
     input: &RunInput,
@@ -611,7 +642,7 @@ fn spectral_engine(
     outputs: &[usize],
     notes: &mut Vec<String>,
     lags: usize,
-) -> Result<(Engine, Vec<f64>, Vec<Vec<f64>>, Vec<f64>)> {
+) -> Result<(Engine, Vec<f64>, Vec<Vec<f64>>, Vec<f64>, Vec<f64>)> {
     let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
     let ss = sys.state_space().ok_or_else(|| Error::Numerical {
         what: "spectral Monte Carlo".into(),
@@ -631,6 +662,7 @@ fn spectral_engine(
         .iter()
         .map(|p| periodic_autocovariance(p, n, lags))
         .collect::<Result<Vec<_>>>()?;
+    let cv = spectrum.iter().map(|p| mean_square_cv(p, n)).collect();
     notes.push(
         "spectral route bias: the synthesised input is the spectrum on the FFT grid (truncated at Nyquist, \
          sampled at Δω = 2π/(NΔt)); `discrete σ` is the exact σ of that simulated process"
@@ -656,7 +688,28 @@ fn spectral_engine(
         discrete,
         autocov,
         kurtosis,
+        cv,
     ))
+}
+
+/// The coefficient of variation of one realization's mean square m = (1/N)Σ_k y_k² of the periodic Gaussian
+/// process whose variance per bin is `power[j]` (j = 0..=N/2, K(0) = Σ power).
+///
+/// # Formula
+/// Over a whole period m = Σ_j P_j (Parseval), P_j the power of bin j: exponential with mean p_j for an
+/// interior bin (Rayleigh amplitude, uniform phase: independent across bins), p_j χ²₁ at j = 0 and N/2. So
+/// ```text
+/// Var m = Σ_interior p_j² + 2 p_0² + 2 p_{N/2}²,        cv = √(Var m) / Σ_j p_j
+/// ```
+/// (a lower bound for a Laplace moving-average input, whose powers have heavier tails).
+fn mean_square_cv(power: &[f64], n: usize) -> f64 {
+    let total: f64 = power.iter().sum();
+    let var: f64 = power
+        .iter()
+        .enumerate()
+        .map(|(j, p)| if j == 0 || j == n / 2 { 2.0 * p * p } else { p * p })
+        .sum();
+    var.sqrt() / total
 }
 
 /// The Laplace moving averages of a non-Gaussian run, one per generator (generator g with the kurtosis

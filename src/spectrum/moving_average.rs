@@ -44,10 +44,9 @@ const MAX_ZERO_BREAKPOINTS: usize = 256;
 /// ```
 /// ([`sinc_squared`]). The 250 mm moving average is the profile smoothing of the "golden car" quarter car
 /// that defines the International Roughness Index (Sayers & Karamihas, *The Little Book of Profiling*,
-/// UMTRI 1998, ch. 2; ASTM E1926, which applies it to the profile before the quarter-car filter); Gillespie
-/// (*Fundamentals of Vehicle Dynamics*, SAE 1992, ch. 5) describes the tyre's enveloping as this geometric
-/// filter with a length of the order of the contact patch. It is a model of a tyre on short wavelengths,
-/// not a tyre model: it passes the profile unchanged where n ≪ 1/L and falls as n⁻² (on average) above.
+/// UMTRI 1998; ASTM E1926, which applies it to the profile before the quarter-car filter), there standing
+/// for the tyre's enveloping. It is a model of a tyre on short wavelengths, not a tyre model: it passes the
+/// profile unchanged where n ≪ 1/L and falls as n⁻² (on average) above.
 ///
 /// The density is not rational, so the Lyapunov (exact) route does not apply to it: variances come from
 /// quadrature of the output density, and Monte Carlo runs take the spectral route.

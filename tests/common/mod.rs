@@ -170,7 +170,7 @@ impl SpawnSerial for std::process::Command {
 /// ∫_a^b f(x) dx for 0 < a < b by Simpson's rule in u = ln x on `n` (even) intervals: ∫ f(eᵘ) eᵘ du. For
 /// a smooth integrand the error is O(h⁴), h = ln(b/a)/n (the tests say why their n suffices).
 pub fn simpson_log(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
-    assert!(n % 2 == 0 && a > 0.0 && b > a);
+    assert!(n.is_multiple_of(2) && a > 0.0 && b > a);
     let (ua, ub) = (a.ln(), b.ln());
     let h = (ub - ua) / n as f64;
     let g = |u: f64| f(u.exp()) * u.exp();

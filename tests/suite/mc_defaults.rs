@@ -35,8 +35,7 @@ fn scratch(name: &str) -> std::path::PathBuf {
 fn weighted_bias(sc: &Scenario, opts: &RunOptions) -> f64 {
     with_verdict_input(sc, |input| {
         let v = planned_variances(input, opts)?;
-        let (_, a, d) = v.iter().find(|(n, _, _)| n == "body_acc_Wk").unwrap();
-        Ok((d / a).sqrt() - 1.0)
+        Ok(v.iter().find(|v| v.name == "body_acc_Wk").unwrap().bias())
     })
     .unwrap()
 }
