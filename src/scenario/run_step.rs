@@ -244,10 +244,16 @@ impl Candidate {
 fn next_step(input: &RunInput, cur: &Candidate, delays: &[f64], realizations: usize) -> Option<Candidate> {
     let finer = readable_step(0.5 * cur.dt, delays).0;
     let longer = readable_duration(2.0 * cur.duration);
-    let best = [(finer, cur.duration), (cur.dt, longer)]
+    let try_one = |dt: f64, t: f64| {
+        (t / dt <= MAX_STEPS)
+            .then(|| Candidate::of(input, dt, t, realizations))
+            .flatten()
+    };
+    // the two plans in parallel (each is one thread's work)
+    let (a, b) = rayon::join(|| try_one(finer, cur.duration), || try_one(cur.dt, longer));
+    let best = [a, b]
         .into_iter()
-        .filter(|(dt, t)| t / dt <= MAX_STEPS)
-        .filter_map(|(dt, t)| Candidate::of(input, dt, t, realizations))
+        .flatten()
         .min_by(|a, b| a.excess.total_cmp(&b.excess))?;
     let worth = best.excess == 0.0
         || best.excess <= cur.excess - MIN_EXCESS_GAIN

@@ -130,12 +130,13 @@ impl PlannedVariance {
 }
 
 /// The analytic and discrete variance of every simulated output of a run with these options, and the spread
-/// of its per-realization mean squares, without running it ([`PlannedVariance`]).
+/// of its per-realization mean squares, without running it ([`PlannedVariance`]; on the spectral route the
+/// discrete variance agrees with the run's `sigma_discrete` to rounding, not bit for bit).
 ///
 /// # Errors
 /// As [`planned_memory`].
 pub fn planned_variances(input: &RunInput, opts: &RunOptions) -> Result<Vec<PlannedVariance>> {
-    let p = plan(input, opts)?;
+    let p = plan_with(input, opts, true)?;
     Ok(p.outputs
         .into_iter()
         .map(|o| PlannedVariance {
@@ -255,6 +256,13 @@ impl RouteChoice {
 /// Invalid options; no output with a finite variance; [`Route::Exact`] requested where it does not apply;
 /// delays that are not whole steps on the spectral route; an unstable system.
 pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
+    plan_with(input, opts, false)
+}
+
+/// [`plan`]; with `schur_grid` the spectral route's discrete transfer on the FFT grid comes from one Schur
+/// form of Φ for every bin instead of an LU per bin (the same values to rounding, several times faster):
+/// for [`planned_variances`], whose variances need not be bit-identical to a run's.
+fn plan_with(input: &RunInput, opts: &RunOptions, schur_grid: bool) -> Result<Plan> {
     let n = opts.samples()?;
     let (p_all, g_all) = (input.outputs.len(), input.excitation.spectra().len());
     // a run that keeps whole records (raw data) needs them in memory on every route; a statistics-only run
@@ -361,7 +369,7 @@ pub(crate) fn plan(input: &RunInput, opts: &RunOptions) -> Result<Plan> {
         });
     }
     let (engine, discrete, autocov, kurtosis, cv) =
-        spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len())?;
+        spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len(), schur_grid)?;
     let outputs = finite
         .into_iter()
         .zip(discrete)
@@ -642,6 +650,7 @@ fn spectral_engine(
     outputs: &[usize],
     notes: &mut Vec<String>,
     lags: usize,
+    schur_grid: bool,
 ) -> Result<(Engine, Vec<f64>, Vec<Vec<f64>>, Vec<f64>, Vec<f64>)> {
     let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
     let ss = sys.state_space().ok_or_else(|| Error::Numerical {
@@ -657,7 +666,11 @@ fn spectral_engine(
          output; slowest decay rate min|Re λ| = {sigma_min:.4e} 1/s)"
     ));
     let (generators, inputs) = spectral_inputs(exc, dt, n)?;
-    let (gains, discrete, spectrum) = discrete_gains(&sub, exc, &generators, &inputs, dt, n, None)?;
+    let schur = match schur_grid {
+        true => super::transfer_grid::SchurTransfer::new(&sub, dt)?,
+        false => None,
+    };
+    let (gains, discrete, spectrum) = discrete_gains(&sub, exc, &generators, &inputs, dt, n, schur.as_ref())?;
     let autocov = spectrum
         .iter()
         .map(|p| periodic_autocovariance(p, n, lags))
