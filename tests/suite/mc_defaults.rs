@@ -8,7 +8,7 @@
 use crate::common;
 
 use common::root;
-use common::tolerance::ROUNDING;
+use common::tolerance::{ROUNDING, SCHUR_GRID_VARIANCE};
 use common::SpawnSerial;
 use std::f64::consts::PI;
 use stochvib::comfort::{Governing, SignalMetrics};
@@ -88,6 +88,34 @@ fn default_run_of_a_wk_output_covers_the_analytic_a_w() {
         "bias against the interval"
     );
     assert_eq!(st.covers, Some(true), "a_w {a} vs {iv:?} at Δt = {} s", s.dt_s);
+}
+
+/// The discrete variance that [`planned_variances`] predicts (its FFT-grid transfer from one Schur form of
+/// Φ for every bin) is the one the run simulates and stores as `sigma_discrete` (an LU solve per bin): two
+/// evaluations of the same sum of positive terms that differ by rounding amplified by the conditioning of
+/// zI − Φ near z = 1 ([`SCHUR_GRID_VARIANCE`]), for every simulated output: here the half car's outputs and
+/// the Wk-weighted one (the augmented system, Δt of the default suggestion). `sigma_discrete` depends on Δt,
+/// the duration and the spectra only, not on the realizations: two realizations suffice.
+#[test]
+fn planned_discrete_variance_is_the_runs_sigma_discrete() {
+    let sc = half_car_wk();
+    let s = sc.suggest_step(40).unwrap();
+    let opts = RunOptions::new(2, s.duration_s, s.dt_s, 5);
+    let planned = with_verdict_input(&sc, |input| planned_variances(input, &opts)).unwrap();
+    let file = scratch("planned");
+    let run = sc.simulate(&opts, &file, &|_, _| {}).unwrap();
+    let _ = std::fs::remove_file(&file);
+    assert_eq!(planned.len(), run.outputs.len());
+    for v in &planned {
+        let d = run.statistic(&v.name, "sigma_discrete").unwrap().analytic.unwrap();
+        let rel = (v.discrete.sqrt() / d - 1.0).abs();
+        assert!(
+            rel <= SCHUR_GRID_VARIANCE,
+            "`{}`: planned {} vs run {d}: {rel:e}",
+            v.name,
+            v.discrete.sqrt()
+        );
+    }
 }
 
 /// An interval that misses is explained: with the old default step the weighted σ's interval (40
