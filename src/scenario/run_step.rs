@@ -171,7 +171,9 @@ fn bias_excess(input: &RunInput, dt: f64, duration: f64, realizations: usize) ->
         .filter(|(b, t, _)| b.abs() > *t)
         .map(|(b, t, name)| (name, b, t))
         .collect();
-    Ok((over.iter().map(|(_, b, t)| (b.abs() / t).ln()).sum(), over))
+    // + 0.0: an empty sum is −0.0, printed "-0.00"
+    let excess: f64 = over.iter().map(|(_, b, t)| (b.abs() / t).ln()).sum::<f64>() + 0.0;
+    Ok((excess, over))
 }
 
 /// Least decrease of the excess ([`bias_excess`]) that a doubling of the run's cost must buy: 0.5. Halving

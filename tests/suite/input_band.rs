@@ -6,7 +6,7 @@
 
 use crate::common;
 
-use common::tolerance::QUADRATURE;
+use common::tolerance::{EXACT, QUADRATURE};
 use common::{rel, root};
 use std::f64::consts::PI;
 use stochvib::comfort::Weighting;
@@ -61,9 +61,9 @@ fn an_input_band_below_the_weighting_band_is_flagged_and_continued() {
     let c = verdict_analysis(&sc).unwrap().comfort.unwrap();
     let ax = &c.axes[0];
     let cov = ax.input_coverage.as_ref().expect("the road stops at 8.5 Hz: flagged");
-    assert!(rel(cov.input_edge_hz, 2.83 * SPEED) < 1e-12, "{}", cov.input_edge_hz);
+    assert!(rel(cov.input_edge_hz, 2.83 * SPEED) < EXACT, "{}", cov.input_edge_hz);
     assert_eq!(cov.weighting_edge_hz, 100.0);
-    assert!((cov.exponent - 2.0).abs() < 1e-9, "{}", cov.exponent);
+    assert!((cov.exponent - 2.0).abs() < EXACT, "{}", cov.exponent);
     assert!(
         rel(cov.a_w_continued, oracle) < QUADRATURE,
         "{} vs {oracle}",

@@ -6,7 +6,7 @@
 
 use crate::common;
 
-use common::tolerance::QUADRATURE;
+use common::tolerance::{EXACT, QUADRATURE};
 use common::{rel, root};
 use std::f64::consts::PI;
 use stochvib::scenario::{parse_scenario, verdict_analysis, Scenario};
@@ -59,7 +59,7 @@ fn several_independent_inputs_are_assessed_per_source() {
     assert!(rel(cov.covered_fraction, (ax.a_w / both).powi(2)) < QUADRATURE);
     let names: Vec<&str> = cov.sources.iter().map(|s| s.input.as_str()).collect();
     assert_eq!(names, ["front", "rear"]);
-    assert!(rel(cov.sources[0].input_edge_hz, 2.83 * 3.0) < 1e-12 && rel(cov.sources[1].input_edge_hz, 30.0) < 1e-12);
+    assert!(rel(cov.sources[0].input_edge_hz, 2.83 * 3.0) < EXACT && rel(cov.sources[1].input_edge_hz, 30.0) < EXACT);
     let front_alone = (ax.a_w / a_w(top, 10.0)).powi(2);
     let rear_alone = (ax.a_w / a_w(2.83, top)).powi(2);
     assert!(rel(cov.sources[0].covered_fraction.unwrap(), front_alone) < QUADRATURE);
@@ -87,7 +87,7 @@ fn two_coherent_tracks_are_continued_with_their_coherence() {
         .input_coverage
         .clone()
         .expect("the road stops at 56.6 Hz");
-    assert!(rel(cov.input_edge_hz, 2.83 * 20.0) < 1e-12);
+    assert!(rel(cov.input_edge_hz, 2.83 * 20.0) < EXACT);
     let banded = parse(&text.replace(
         "speed = \"20 m/s\"",
         "speed = \"20 m/s\"\nband = [\"0.011 cycles/m\", \"5 cycles/m\"]",
@@ -126,7 +126,7 @@ fn a_band_table_above_the_input_band_is_flagged_and_continued() {
     let table = section.table.as_ref().unwrap();
     let cov = section.input_coverage.as_ref().expect("the road stops at 8.49 Hz");
     let top = table.rows.last().unwrap().band.upper_hz;
-    assert!(rel(cov.table_edge_hz, top) < 1e-12 && top > 80.0);
+    assert!(rel(cov.table_edge_hz, top) < EXACT && top > 80.0);
     assert_eq!(cov.bands.first().unwrap().band, "8 Hz");
     assert_eq!(
         cov.bands.len(),

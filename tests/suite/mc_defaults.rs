@@ -8,7 +8,7 @@
 use crate::common;
 
 use common::root;
-use common::tolerance::{ROUNDING, SCHUR_GRID_VARIANCE};
+use common::tolerance::{EXACT, ROUNDING, SCHUR_GRID_VARIANCE};
 use common::SpawnSerial;
 use std::f64::consts::PI;
 use stochvib::comfort::{Governing, SignalMetrics};
@@ -141,6 +141,54 @@ fn a_miss_names_the_discretisation_bias() {
     );
     let text = run.to_string();
     assert!(text.contains("covers    body_acc_Wk: NOT covered"), "{text}");
+}
+
+/// The default step resolves a fatigue stress's rainflow peaks: `data/operator-seat-verdicts.toml`'s
+/// spring stress has the rate of peaks ν_p = √(m₄/m₂) (one-sided Hz moments by quadrature of its density,
+/// the verdict analysis' check, not the suggestion's closed form): its suggested Δt is at most 1/(32 ν_p)
+/// (a sampled peak at frequency f misses at most 1 − cos(πfΔt) of its height, 0.5 % at fΔt = 1/32), where
+/// the model's own suggestion (fastest pole only) is more than that.
+#[test]
+fn the_default_step_resolves_the_fatigue_stress_peaks() {
+    let path = root().join("data/operator-seat-verdicts.toml");
+    let sc = stochvib::scenario::load_scenario(&path, &root().join("spectra")).unwrap();
+    let f = stochvib::scenario::verdict_analysis(&sc).unwrap().fatigue.unwrap();
+    let m = f.moments_quadrature.expect("the stress's moments by quadrature");
+    let nu_p = (m[3] / m[2]).sqrt();
+    let limit = 1.0 / (32.0 * nu_p);
+    assert!(suggest_step(&sc.run_input()).unwrap().dt_s > limit);
+    let s = sc.suggest_step(30).unwrap();
+    assert!(s.dt_s <= limit, "Δt = {} s vs 1/(32 ν_p) = {limit} s", s.dt_s);
+    assert!(s.reason.contains("rate of peaks"), "{}", s.reason);
+}
+
+/// The default step resolves a band table: the quarter car of `data/quarter-car.toml` (20 m/s) with a
+/// one-third-octave table over 0.5–200 Hz, whose top band (nominal 200 Hz) ends at 10^2.35 = 223.9 Hz
+/// (IEC 61260-1, base 10). The model's own suggestion (Δt = π/(8|λ|max), the road's edge at 56.6 Hz) puts
+/// the Nyquist frequency 1/(2Δt) below that edge; the scenario's suggestion puts it above the edge of the
+/// report's top band.
+#[test]
+fn the_default_step_resolves_the_band_table() {
+    let text = std::fs::read_to_string(root().join("data/quarter-car.toml")).unwrap();
+    let text = text.replace(
+        "band = [\"0.5 Hz\", \"80 Hz\"]",
+        "band = [\"0.5 Hz\", \"200 Hz\"]\nbands = \"third-octave\"",
+    );
+    let sc = parse_scenario(
+        &text,
+        &root().join("data/quarter-car-bands.toml"),
+        &root().join("spectra"),
+    )
+    .unwrap();
+    let r = stochvib::report::analysis_report(&sc).unwrap();
+    let table = r.outputs[0].bands.as_ref().unwrap().table.as_ref().unwrap();
+    let top = table.rows.last().unwrap().band.upper_hz;
+    assert!((top / 10f64.powf(2.35) - 1.0).abs() < EXACT, "{top}");
+    let old = suggest_step(&sc.run_input()).unwrap();
+    assert!(0.5 / old.dt_s < top, "{}", old.dt_s);
+    let s = sc.suggest_step(40).unwrap();
+    assert!(0.5 / s.dt_s >= top, "Δt = {} s: Nyquist below {top} Hz", s.dt_s);
+    assert!(s.reason.contains("band table"), "{}", s.reason);
 }
 
 /// A 2 Hz sinusoid of amplitude A over whole periods: CF = √2, MTVV/a_w = 1 (τ = 1 s over whole periods),
