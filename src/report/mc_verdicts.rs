@@ -5,7 +5,7 @@
 //! chance is the cause.
 
 use crate::estimate::Interval;
-use crate::simulate::{coverage_cause, RunBasicMethod, RunSummary};
+use crate::simulate::{coverage_cause, covers_word, RunBasicMethod, RunSummary};
 use serde::Serialize;
 use std::fmt;
 
@@ -109,11 +109,7 @@ impl fmt::Display for McVerdicts {
                 iv.estimate,
                 iv.lower,
                 iv.upper,
-                match v.covers {
-                    Some(true) => "yes",
-                    Some(false) => "NO",
-                    None => "-",
-                },
+                covers_word(v.covers),
                 100.0 * iv.confidence,
                 v.unit
             )?;

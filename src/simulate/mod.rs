@@ -64,5 +64,5 @@ pub use run::{run, run_temporary, run_temporary_with, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
 pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
-pub use summary::{coverage_cause, RunSummary};
+pub use summary::{coverage_cause, covers_word, RunSummary};
 pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};

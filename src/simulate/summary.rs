@@ -131,11 +131,7 @@ impl std::fmt::Display for RunSummary {
                 iv.estimate,
                 iv.lower,
                 iv.upper,
-                match v.covers {
-                    Some(true) => "yes",
-                    Some(false) => "NO",
-                    None => "-",
-                },
+                covers_word(v.covers),
                 100.0 * iv.confidence
             )?;
         }
@@ -256,13 +252,18 @@ pub(crate) fn write_band_tables(f: &mut std::fmt::Formatter<'_>, outputs: &[Outp
                 iv.estimate,
                 iv.lower,
                 iv.upper,
-                match e.and_then(|e| e.covers) {
-                    Some(true) => "yes",
-                    Some(false) => "NO",
-                    None => "-",
-                }
+                covers_word(e.and_then(|e| e.covers))
             )?;
         }
     }
     Ok(())
+}
+
+/// `yes`, `NO` or `-` (not compared): whether an interval covers its analytic value, as printed.
+pub fn covers_word(covers: Option<bool>) -> &'static str {
+    match covers {
+        Some(true) => "yes",
+        Some(false) => "NO",
+        None => "-",
+    }
 }
