@@ -53,7 +53,7 @@ fn power_law_a_w(sc: &Scenario) -> f64 {
 /// × 3 m/s = 8.49 Hz), the continued power law's exponent (2 for ISO 8608), a_w continued to 100 Hz (equal
 /// to the product-form integral above), and the covered fraction (a_w/a_w,c)²; with the explicit band
 /// ["0.011 cycles/m", "33.333333333333333 cycles/m"] (100 Hz at 3 m/s) the reported a_w is that value and
-/// nothing is flagged; the text report prints the warning.
+/// nothing is flagged; the text report prints the warning and offers both fixes (band, enveloping).
 #[test]
 fn an_input_band_below_the_weighting_band_is_flagged_and_continued() {
     let sc = quarter_car_wk(None);
@@ -74,6 +74,11 @@ fn an_input_band_below_the_weighting_band_is_flagged_and_continued() {
     let text = stochvib::report::analysis_report(&sc).unwrap().to_string();
     assert!(
         text.contains("INPUT BAND: the input `road` stops at 8.490 Hz"),
+        "{text}"
+    );
+    // the report offers both fixes: an explicit band and the tyre's enveloping
+    assert!(
+        text.contains("Fix: give the input an explicit band, e.g. band = [") && text.contains("enveloping = {"),
         "{text}"
     );
     // the fix: the band to 100 Hz at 3 m/s
