@@ -46,6 +46,28 @@ impl SpectraDir {
     }
 }
 
+/// How a report is printed: `--format`, with `--json` kept as `--format json`.
+#[derive(clap::Args)]
+struct Output {
+    /// Print JSON; same as --format json.
+    #[arg(long, conflicts_with = "format")]
+    json: bool,
+    /// Report format: text, markdown (tables to paste) or json.
+    #[arg(long, value_enum)]
+    format: Option<ReportFormat>,
+}
+
+impl Output {
+    /// `--format`, or json with `--json`, else text.
+    fn format(&self) -> ReportFormat {
+        if self.json {
+            ReportFormat::Json
+        } else {
+            self.format.unwrap_or_default()
+        }
+    }
+}
+
 /// Time step and duration of Monte Carlo realizations.
 #[derive(clap::Args)]
 struct Step {
@@ -131,12 +153,8 @@ enum Command {
         /// Confidence of the intervals.
         #[arg(long, default_value_t = 0.95)]
         confidence: f64,
-        /// Print JSON (every bin); same as --format json.
-        #[arg(long, conflicts_with = "format")]
-        json: bool,
-        /// Report format: text, markdown (tables to paste) or json.
-        #[arg(long, value_enum)]
-        format: Option<ReportFormat>,
+        #[command(flatten)]
+        output: Output,
         /// Also write the pictures (per track the density with its χ² band, the ISO 8608 fits and class
         /// limits; the two-track coherence with its interval) as SVG and PNG into this directory.
         #[arg(long)]
@@ -193,12 +211,8 @@ enum Command {
         scenario: PathBuf,
         #[command(flatten)]
         spectra: SpectraDir,
-        /// Print JSON; same as --format json.
-        #[arg(long, conflicts_with = "format")]
-        json: bool,
-        /// Report format: text, markdown (tables to paste) or json.
-        #[arg(long, value_enum)]
-        format: Option<ReportFormat>,
+        #[command(flatten)]
+        output: Output,
         /// Also write the scenario's pictures (SVG and PNG) into this directory.
         #[arg(long)]
         plots: Option<PathBuf>,
@@ -361,12 +375,8 @@ enum Command {
     Inspect {
         /// Run file (HDF5).
         file: PathBuf,
-        /// Print JSON; same as --format json.
-        #[arg(long, conflicts_with = "format")]
-        json: bool,
-        /// Report format: text, markdown (tables to paste) or json.
-        #[arg(long, value_enum)]
-        format: Option<ReportFormat>,
+        #[command(flatten)]
+        output: Output,
     },
     /// Daily vibration exposure of a working day of several tasks (a workday file: [[task]] tables naming a
     /// scenario with [analysis.comfort], an optional speed and a duration): per task and axis k·a_w with the
@@ -377,12 +387,8 @@ enum Command {
         file: PathBuf,
         #[command(flatten)]
         spectra: SpectraDir,
-        /// Print JSON; same as --format json.
-        #[arg(long, conflicts_with = "format")]
-        json: bool,
-        /// Report format: text, markdown (tables to paste) or json.
-        #[arg(long, value_enum)]
-        format: Option<ReportFormat>,
+        #[command(flatten)]
+        output: Output,
     },
     /// Checks that a run file can be read (the parent process of `inspect` and `plot` runs this first, so that
     /// a damaged file that would crash the HDF5 library crashes only this child).
@@ -462,8 +468,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             segment,
             detrend,
             confidence,
-            json,
-            format,
+            output,
             plots,
         } => {
             let detrend = match detrend.as_str() {
@@ -480,7 +485,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 confidence,
             };
             let r = report::road_report::road_report(&profile, &opts)?;
-            print_as(&r, report_format(json, format))?;
+            print_as(&r, output.format())?;
             if let Some(out) = plots {
                 let files = stochvib::plot::road_plots(&r, &out)?;
                 eprintln!("wrote {} pictures to {}", files.len(), out.display());
@@ -535,8 +540,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Analyze {
             scenario,
             spectra,
-            json,
-            format,
+            output,
             plots,
             monte_carlo,
             seed,
@@ -548,11 +552,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 Document::Stochastic(sc) => sc,
                 Document::Deterministic(d) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
-                    return print_as(&report::deterministic_report(&d)?, report_format(json, format));
+                    return print_as(&report::deterministic_report(&d)?, output.format());
                 }
                 Document::Reference(t) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
-                    return print_as(&report::reference_report(&t), report_format(json, format));
+                    return print_as(&report::reference_report(&t), output.format());
                 }
             };
             effort.apply(&mut sc)?;
@@ -573,7 +577,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
                 }
             }
-            print_as(&r, report_format(json, format))?;
+            print_as(&r, output.format())?;
             if let Some(out) = plots {
                 let files = scenario_plots_with(&sc, &out, &ScenarioPlotOptions::default())?;
                 eprintln!("wrote {} pictures to {}", files.len(), out.display());
@@ -829,23 +833,18 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
             }
         }
-        Command::Inspect { file, json, format } => {
+        Command::Inspect { file, output } => {
             check_in_child(&file, true)?;
-            match report_format(json, format) {
+            match output.format() {
                 ReportFormat::Json => print_json(&RunFile::open(&file)?.info()?)?,
                 ReportFormat::Markdown => emit(&report::inspect_markdown(&file)?),
                 ReportFormat::Text => emit(&summarize(&file)?),
             }
         }
-        Command::Workday {
-            file,
-            spectra,
-            json,
-            format,
-        } => {
+        Command::Workday { file, spectra, output } => {
             let day = stochvib::scenario::workday::load_workday(&file)?;
             let r = stochvib::scenario::workday::workday_exposure(&day, spectra.catalogue().dir())?;
-            print_as(&report::WorkdayReport(r), report_format(json, format))?;
+            print_as(&report::WorkdayReport(r), output.format())?;
         }
         Command::Spectrum {
             name,
@@ -929,15 +928,6 @@ fn print<T: std::fmt::Display + serde::Serialize>(r: &T, json: bool) -> anyhow::
     } else {
         emit(&format!("{r}"));
         Ok(())
-    }
-}
-
-/// `--format`, or json with `--json`, else text.
-fn report_format(json: bool, format: Option<ReportFormat>) -> ReportFormat {
-    if json {
-        ReportFormat::Json
-    } else {
-        format.unwrap_or_default()
     }
 }
 

@@ -4,7 +4,7 @@
 //! moments used.
 
 use super::table::Table;
-use crate::comfort::{ExposureVerdict, LimitCheck, Purpose, ZonePosition};
+use crate::comfort::{Axis, ExposureVerdict, LimitCheck, Location, Purpose, Weighting, ZonePosition};
 use crate::fields::EverydayUnit;
 use crate::numbers::{num, sig4, sig_column};
 use crate::scenario::{
@@ -16,16 +16,25 @@ fn opt(v: Option<f64>, prec: usize) -> String {
     v.map(|x| format!("{x:.prec$e}")).unwrap_or_else(|| "—".into())
 }
 
+/// The leading columns of an axis table: weighted output, location, axis, weighting, k (as given).
+fn axis_columns<'a>(rows: impl Iterator<Item = (&'a str, Location, Axis, Weighting, f64)> + Clone) -> Table {
+    Table::default()
+        .text("weighted output", rows.clone().map(|r| r.0))
+        .text("location", rows.clone().map(|r| r.1.label()))
+        .text("axis", rows.clone().map(|r| r.2.label()))
+        .text("W", rows.clone().map(|r| r.3.name()))
+        .raw("k", rows.map(|r| num(r.4)))
+}
+
 /// The axes of `[analysis.comfort]` with the purpose's factors: a_w two ways, k, k·a_w (A(8) and VDV for
 /// purpose health, where they are the standard's).
 pub fn comfort_table(c: &ComfortVerdict) -> Table {
     let col = |f: &dyn Fn(&ComfortAxisResult) -> Option<f64>| c.axes.iter().map(f).collect::<Vec<_>>();
-    let t = Table::default()
-        .text("weighted output", c.axes.iter().map(|a| a.output.clone()))
-        .text("location", c.axes.iter().map(|a| a.location.label()))
-        .text("axis", c.axes.iter().map(|a| a.axis.label()))
-        .text("W", c.axes.iter().map(|a| a.weighting.name()))
-        .raw("k", c.axes.iter().map(|a| num(a.k)))
+    let rows = c
+        .axes
+        .iter()
+        .map(|a| (a.output.as_str(), a.location, a.axis, a.weighting, a.k));
+    let t = axis_columns(rows)
         .num("a_w Lyapunov", &col(&|a| a.a_w_lyapunov))
         .num("a_w quadrature", &col(&|a| a.a_w_quadrature))
         .num("rel. diff", &col(&|a| a.rel_diff))
@@ -39,14 +48,18 @@ pub fn comfort_table(c: &ComfortVerdict) -> Table {
 /// The axes of the Directive / health evaluation: health weighting and factor, a_w, k·a_w, A(8), VDV.
 pub fn health_table(h: &HealthEvaluation) -> Table {
     let col = |f: &dyn Fn(&HealthAxisResult) -> f64| h.axes.iter().map(|a| Some(f(a))).collect::<Vec<_>>();
-    Table::default()
-        .text("weighted output", h.axes.iter().map(|a| a.output.clone()))
-        .text("location", h.axes.iter().map(|a| a.location.label()))
-        .text("axis", h.axes.iter().map(|a| a.axis.label()))
-        .text("W", h.axes.iter().map(|a| a.weighting.name()))
-        .raw("k", h.axes.iter().map(|a| num(a.k)))
-        .num("a_w", &col(&|a| a.a_w))
-        .num("k·a_w", &col(&|a| a.weighted))
+    let rows = (h.axes.iter()).map(|a| {
+        (
+            a.output.as_str(),
+            a.term.location,
+            a.term.axis,
+            a.term.weighting,
+            a.term.k,
+        )
+    });
+    axis_columns(rows)
+        .num("a_w", &col(&|a| a.term.a_w))
+        .num("k·a_w", &col(&|a| a.term.weighted))
         .num("A(8)", &col(&|a| a.a8))
         .num("VDV", &col(&|a| a.vdv))
 }

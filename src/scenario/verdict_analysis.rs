@@ -8,7 +8,7 @@ use super::verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec};
 use super::Scenario;
 use crate::comfort::{
     comfort_reactions, daily_exposure_a8, directive_factor, msdv, vdv_gaussian, weighted_output, Axis, AxisFactor,
-    ComfortReaction, ExposureVerdict, HealthGuidanceZone, Location, Purpose, Weighting,
+    ComfortReaction, ExposureVerdict, HealthGuidanceZone, Location, Purpose, VectorSumTerm, Weighting,
 };
 use crate::error::{Error, Result};
 use crate::fatigue::{compare_methods, SpectralMoments};
@@ -86,18 +86,10 @@ pub struct ComfortVerdict {
 pub struct HealthAxisResult {
     /// The weighted output's name (`<output>_<W>`).
     pub output: String,
-    /// Location.
-    pub location: Location,
-    /// Axis.
-    pub axis: Axis,
-    /// The health weighting (Wd for x, y; Wk for z).
-    pub weighting: Weighting,
-    /// The health factor: 1.4 for x, y; 1 for z.
-    pub k: f64,
-    /// a_w with the health weighting, m/s².
-    pub a_w: f64,
-    /// k·a_w, m/s².
-    pub weighted: f64,
+    /// Location, axis, the health weighting (Wd for x, y; Wk for z) and factor (1.4 for x, y; 1 for z), a_w
+    /// with that weighting and k·a_w (m/s²).
+    #[serde(flatten)]
+    pub term: VectorSumTerm,
     /// A(8) = k·a_w·√(T/8 h), m/s².
     pub a8: f64,
     /// VDV = (3T)^{1/4}·k·a_w (stationary Gaussian), m/s^1.75.
@@ -389,17 +381,19 @@ fn health_evaluation(
         let weighted = f.k * a_w;
         rows.push(HealthAxisResult {
             output,
-            location: a.location,
-            axis: a.axis,
-            weighting: f.weighting,
-            k: f.k,
-            a_w,
-            weighted,
+            term: VectorSumTerm {
+                location: a.location,
+                axis: a.axis,
+                weighting: f.weighting,
+                k: f.k,
+                a_w,
+                weighted,
+            },
             a8: daily_exposure_a8(weighted, t)?,
             vdv: vdv_gaussian(weighted, t)?,
         });
     }
-    let dom = (rows.iter().max_by(|x, y| x.weighted.total_cmp(&y.weighted))).expect("at least one axis");
+    let dom = (rows.iter().max_by(|x, y| x.term.weighted.total_cmp(&y.term.weighted))).expect("at least one axis");
     let verdict = ExposureVerdict::assess_with(
         dom.a8,
         Some(dom.vdv),

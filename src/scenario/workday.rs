@@ -17,8 +17,9 @@
 //! The scenarios' own `exposure` is not used: each task lasts its `duration`. Every key is checked; a bare
 //! number for `duration` is refused (it would be seconds), as are a duration under 1 s, tasks adding up to
 //! more than 24 h, a scenario without `[analysis.comfort]` or without an axis that enters the Directive's
-//! evaluation, and a speed ≤ 0 — naming the workday file, the key (`task[i].duration`), the value and the
-//! reason. An error inside a task's scenario names the task and the scenario's own file and key.
+//! evaluation, a speed ≤ 0 or a speed for a scenario whose input is not a road — naming the workday file,
+//! the key (`task[i].duration`), the value and the reason. An error inside a task's scenario names the task
+//! and the scenario's own file and key.
 //!
 //! # Formula
 //! Per task i and axis j ∈ {x, y, z}: the health-weighted a_w,ij (Wd for x, y; Wk for z) with the health
@@ -40,6 +41,7 @@ use crate::comfort::{
 };
 use crate::error::{Error, Result};
 use crate::fields::{read_text_file, EverydayUnit, Fields};
+use crate::spectrum::Domain;
 use crate::units::Dim;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -96,7 +98,10 @@ pub fn load_workday(path: &Path) -> Result<Workday> {
 pub fn parse_workday(text: &str, path: &Path) -> Result<Workday> {
     let root = crate::fields::parse_toml(text, path)?;
     let f = Fields::new(path, "", &root);
-    let title = f.opt_string("title")?.unwrap_or("working day").to_string();
+    let stem = path
+        .file_stem()
+        .map_or("working day".into(), |s| s.to_string_lossy().into_owned());
+    let title = f.opt_string("title")?.map_or(stem, str::to_string);
     let tasks = match f.require("task")? {
         toml::Value::Array(a) if !a.is_empty() => a,
         v => return Err(f.error("task", v, "expected one or more [[task]] tables")),
@@ -286,6 +291,16 @@ fn task_exposure(day: &Workday, i: usize, spectra_dir: &Path) -> Result<TaskExpo
         value: task.scenario.clone(),
         reason,
     };
+    let road = sc.inputs.iter().any(|i| i.spectrum.domain() == Domain::Spatial);
+    if task.speed_m_s.is_some() && !road {
+        return Err(Error::File {
+            file: day.path.clone(),
+            key: format!("task[{i}].speed"),
+            value: format!("{} m/s", crate::numbers::short(task.speed_m_s.unwrap_or_default())),
+            reason: "the scenario's input is not a road (its spectrum is temporal): a speed would change nothing"
+                .into(),
+        });
+    }
     let Some(spec) = &sc.analysis.verdicts.comfort else {
         return Err(refuse(
             "the scenario has no [analysis.comfort] section: name its acceleration outputs as ISO 2631-1 axes".into(),
@@ -301,13 +316,13 @@ fn task_exposure(day: &Workday, i: usize, spectra_dir: &Path) -> Result<TaskExpo
         .iter()
         .map(|a| {
             Ok(TaskAxis {
-                axis: a.axis,
+                axis: a.term.axis,
                 output: a.output.clone(),
-                k: a.k,
-                a_w: a.a_w,
-                weighted: a.weighted,
-                a8: crate::comfort::daily_exposure_a8(a.weighted, t)?,
-                vdv: vdv_gaussian(a.weighted, t)?,
+                k: a.term.k,
+                a_w: a.term.a_w,
+                weighted: a.term.weighted,
+                a8: crate::comfort::daily_exposure_a8(a.term.weighted, t)?,
+                vdv: vdv_gaussian(a.term.weighted, t)?,
             })
         })
         .collect::<Result<Vec<_>>>()?;

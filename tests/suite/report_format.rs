@@ -216,21 +216,14 @@ fn inputs_are_echoed_as_written() {
     );
     assert_eq!(j["verdicts"]["comfort"]["purpose"], "health");
     // a measured profile is named by its file, not by the tabulated density built from it
-    let scenario = r#"
-[model]
-kind = "quarter-car"
-sprung_mass = "300 kg"
-unsprung_mass = "40 kg"
-suspension_stiffness = "20 kN/m"
-suspension_damping = "1.5 kN*s/m"
-tyre_stiffness = "200 kN/m"
-
-[input]
-spectrum = { kind = "measured-profile", file = "measured-profile.csv", track = "right" }
-speed = "20 m/s"
-"#;
+    let car = std::fs::read_to_string(root().join("data/quarter-car.toml")).unwrap();
+    assert!(car.contains("spectrum = \"iso8608-c\""));
+    let scenario = car.replace(
+        "spectrum = \"iso8608-c\"",
+        "spectrum = { kind = \"measured-profile\", file = \"measured-profile.csv\", track = \"right\" }",
+    );
     let sc =
-        stochvib::scenario::parse_scenario(scenario, &root().join("data/p.toml"), &root().join("spectra")).unwrap();
+        stochvib::scenario::parse_scenario(&scenario, &root().join("data/p.toml"), &root().join("spectra")).unwrap();
     let r = stochvib::report::analysis_report(&sc).unwrap();
     assert_eq!(
         r.input,

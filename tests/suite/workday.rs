@@ -155,6 +155,11 @@ fn bad_workday_files_are_refused_with_file_key_value_and_reason() {
         &task("duration = \"2 h\"\nspeed = \"-3 m/s\""),
         &["task[0].speed", "> 0"],
     );
+    // the seat's input is a cab-floor motion in time: a speed would silently change nothing
+    refused(
+        &task("duration = \"2 h\"\nspeed = \"5 m/s\""),
+        &["task[0].speed", "5 m/s", "not a road"],
+    );
     refused(
         &task("duration = \"2 h\"\ndurtion = \"1 h\""),
         &["task[0].durtion", "unknown key"],
