@@ -1,7 +1,9 @@
-//! The text of the verdict tables of `stochvib analyze` ([`VerdictAnalysis`]): per axis a_w by the
-//! Lyapunov and quadrature routes and their difference, k·a_w, A(8), VDV; a_v; the verdict against
-//! Directive 2002/44/EC and ISO 2631-1; per spectral method the fatigue damage rate and life, with the
-//! moments used.
+//! The text of the verdict tables of `stochvib analyze` ([`VerdictAnalysis`]): the comfort axes with the
+//! purpose's factors (a_w by the Lyapunov and quadrature routes and their difference, k·a_w; A(8) and VDV for
+//! health), a_v and the Annex C reactions; the Directive 2002/44/EC / ISO 2631-1 Annex B evaluation with the
+//! health factors (per axis a_w, k·a_w, A(8), VDV; the verdict); per spectral method the fatigue damage rate
+//! and life, with the moments used. The table builders serve the text (`Table::aligned`) and the markdown
+//! (`Table::markdown`, [`super::markdown`]) alike.
 
 use super::table::Table;
 use crate::comfort::{Axis, ExposureVerdict, LimitCheck, Location, Purpose, Weighting, ZonePosition};

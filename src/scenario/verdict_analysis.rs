@@ -1,7 +1,8 @@
 //! The analytic verdicts of a scenario: ISO 2631-1 weighted accelerations per axis (exactly, by the
 //! Lyapunov covariance of the system augmented with the input's shaping filter and the weighting filter,
 //! and by quadrature of the weighted output density, both shown and compared), the vector sum a_v, the
-//! daily exposure A(8) and VDV against Directive 2002/44/EC, and the spectral fatigue damage and life of a
+//! daily exposure A(8) and VDV against Directive 2002/44/EC (always with the health factors 1.4·a_wx,
+//! 1.4·a_wy, a_wz, beside the evaluation of the scenario's purpose), and the spectral fatigue damage and life of a
 //! stress output by every method, with the moments used.
 
 use super::verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec};
