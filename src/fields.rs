@@ -19,6 +19,48 @@ pub enum KeyReading {
     Number,
 }
 
+/// The unit people write a duration or a distance in where it is not the SI one: a daily exposure in hours,
+/// a design distance in kilometres. Keys read with it ([`Fields::everyday_quantity`]) refuse a bare number,
+/// which would be read as seconds or metres (`exposure = 7` is 7 s, not 7 h).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EverydayUnit {
+    /// The unit as written, e.g. `h`.
+    pub symbol: &'static str,
+    /// Its SI value (3600 for the hour, 1000 for the kilometre).
+    pub si: f64,
+    /// Its dimension.
+    pub dim: Dim,
+}
+
+impl EverydayUnit {
+    /// The hour: daily exposures, design lives, durations of a verdict.
+    pub const HOUR: EverydayUnit = EverydayUnit {
+        symbol: "h",
+        si: 3600.0,
+        dim: Dim::TIME,
+    };
+    /// The kilometre: design distances.
+    pub const KILOMETRE: EverydayUnit = EverydayUnit {
+        symbol: "km",
+        si: 1000.0,
+        dim: Dim::LENGTH,
+    };
+
+    /// An SI value written in this unit with up to 4 significant figures ([`crate::numbers::short`]), e.g.
+    /// `0.008333 h`.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::fields::EverydayUnit;
+    /// assert_eq!(EverydayUnit::HOUR.show(30.0), "0.008333 h");
+    /// assert_eq!(EverydayUnit::HOUR.show(6.0 * 3600.0), "6 h");
+    /// assert_eq!(EverydayUnit::KILOMETRE.show(2e8), "200000 km");
+    /// ```
+    pub fn show(&self, si_value: f64) -> String {
+        format!("{} {}", crate::numbers::short(si_value / self.si), self.symbol)
+    }
+}
+
 /// Largest input file read (scenario, spectrum, reference, profile files), bytes.
 pub const MAX_INPUT_FILE_BYTES: u64 = 16 << 20;
 
@@ -231,6 +273,75 @@ impl<'a> Fields<'a> {
             None => Ok(None),
             Some(_) => self.quantity(key, dim).map(Some),
         }
+    }
+
+    /// A required duration or distance written with its unit (`"7 h"`, `"30 min"`, `"200000 km"`), returned in
+    /// SI (s, m). A bare number is refused, with the fix in the message: where people think in hours or
+    /// kilometres, `exposure = 7` read as 7 s would be a silently wrong verdict.
+    ///
+    /// # Errors
+    /// Missing key, bare number (the reason shows `key = "<number> <unit>"`), unknown unit, wrong dimension.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::fields::{EverydayUnit, Fields};
+    /// let t: toml::Table = toml::from_str("exposure = \"90 min\"\nlife = 7").unwrap();
+    /// let f = Fields::new(std::path::Path::new("s.toml"), "analysis", &t);
+    /// assert_eq!(f.everyday_quantity("exposure", EverydayUnit::HOUR).unwrap(), 5400.0);
+    /// let e = f.everyday_quantity("life", EverydayUnit::HOUR).unwrap_err().to_string();
+    /// assert!(e.contains("analysis.life") && e.contains("life = \"7 h\""), "{e}");
+    /// ```
+    pub fn everyday_quantity(&self, key: &str, unit: EverydayUnit) -> Result<f64> {
+        let v = self.require(key)?;
+        if let Some(x) = v.as_float().or_else(|| v.as_integer().map(|i| i as f64)) {
+            let si = match unit.dim {
+                d if d == Dim::TIME => "s",
+                d if d == Dim::LENGTH => "m",
+                _ => "SI units",
+            };
+            return Err(self.error(
+                key,
+                v,
+                format!(
+                    "a bare number has no unit here (it would be read as {x} {si}, i.e. {}): write the unit, e.g. \
+                     {key} = \"{x} {}\" (or \"{x} {si}\" if {si} were meant)",
+                    unit.show(x),
+                    unit.symbol
+                ),
+            ));
+        }
+        self.quantity(key, unit.dim)
+    }
+
+    /// As [`Fields::everyday_quantity`] for an optional key.
+    ///
+    /// # Errors
+    /// As [`Fields::everyday_quantity`] when present.
+    pub fn opt_everyday_quantity(&self, key: &str, unit: EverydayUnit) -> Result<Option<f64>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(_) => self.everyday_quantity(key, unit).map(Some),
+        }
+    }
+
+    /// Refuses an SI value `value` of `key` below `minimum` (both in SI), naming the value as written and
+    /// in `unit`, with `why` the reason the bound holds.
+    ///
+    /// # Errors
+    /// [`Error::File`] when `value < minimum`.
+    pub fn at_least(&self, key: &str, value: f64, minimum: f64, unit: EverydayUnit, why: &str) -> Result<()> {
+        if value >= minimum {
+            return Ok(());
+        }
+        let written = self
+            .table
+            .get(key)
+            .map_or_else(|| "<derived>".to_string(), |v| v.to_string());
+        Err(self.error(
+            key,
+            format!("{written} = {}", unit.show(value)),
+            format!("implausible: less than {} ({why})", unit.show(minimum)),
+        ))
     }
 
     /// A frequency-like value that must carry its unit (`Hz`, `rad/s`, `cycles/m`, `rad/m`): a bare number

@@ -3,6 +3,7 @@
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
+use stochvib::report::table::{ReportFormat, ToMarkdown};
 use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{
     load_document, load_scenario, Catalogue, Document, Scenario, Sweep, SweepMode, SweepParam, SweepSpec,
@@ -42,6 +43,28 @@ impl SpectraDir {
             return Catalogue::new(local);
         }
         Catalogue::bundled()
+    }
+}
+
+/// How a report is printed: `--format`, with `--json` kept as `--format json`.
+#[derive(clap::Args)]
+struct Output {
+    /// Print JSON; same as --format json.
+    #[arg(long, conflicts_with = "format")]
+    json: bool,
+    /// Report format: text, markdown (tables to paste) or json.
+    #[arg(long, value_enum)]
+    format: Option<ReportFormat>,
+}
+
+impl Output {
+    /// `--format`, or json with `--json`, else text.
+    fn format(&self) -> ReportFormat {
+        if self.json {
+            ReportFormat::Json
+        } else {
+            self.format.unwrap_or_default()
+        }
     }
 }
 
@@ -117,7 +140,8 @@ enum Command {
     /// density with its χ² intervals, the ISO 8608 fit (w = 2 and free) and class, the IRI, and the
     /// coherence of the first two tracks.
     Road {
-        /// Profile file (CSV; see src/road/profile.rs for the format).
+        /// Profile file (CSV: a header `distance [m], left [mm], right [mm]`, every column `name [unit]`, then
+        /// one row per sample; `#` starts a comment line).
         profile: PathBuf,
         /// Welch segment length in samples (even; default: the largest power of two giving at least 8
         /// half-overlapping segments).
@@ -129,9 +153,8 @@ enum Command {
         /// Confidence of the intervals.
         #[arg(long, default_value_t = 0.95)]
         confidence: f64,
-        /// Print JSON (every bin).
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: Output,
         /// Also write the pictures (per track the density with its χ² band, the ISO 8608 fits and class
         /// limits; the two-track coherence with its interval) as SVG and PNG into this directory.
         #[arg(long)]
@@ -150,7 +173,8 @@ enum Command {
     Replay {
         /// Scenario file (TOML, see data/); its inputs must be roads.
         scenario: PathBuf,
-        /// Profile file (CSV; see src/road/profile.rs for the format).
+        /// Profile file (CSV: a header `distance [m], left [mm], right [mm]`, every column `name [unit]`, then
+        /// one row per sample; `#` starts a comment line).
         profile: PathBuf,
         /// Speed in m/s (default: the scenario's speed).
         #[arg(long)]
@@ -187,9 +211,8 @@ enum Command {
         scenario: PathBuf,
         #[command(flatten)]
         spectra: SpectraDir,
-        /// Print JSON.
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: Output,
         /// Also write the scenario's pictures (SVG and PNG) into this directory.
         #[arg(long)]
         plots: Option<PathBuf>,
@@ -220,7 +243,7 @@ enum Command {
         #[command(flatten)]
         spectra: SpectraDir,
     },
-    /// Monte Carlo run of a scenario written to an HDF5 file (see the README's HDF5 section).
+    /// Monte Carlo run of a scenario written to an HDF5 file (layout: docs/run-file-format.md).
     Simulate {
         /// Scenario file (TOML, see data/).
         scenario: PathBuf,
@@ -352,9 +375,20 @@ enum Command {
     Inspect {
         /// Run file (HDF5).
         file: PathBuf,
-        /// Print JSON.
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: Output,
+    },
+    /// Daily vibration exposure of a working day of several tasks (a workday file: [[task]] tables naming a
+    /// scenario with [analysis.comfort], an optional speed and a duration): per task and axis k·a_w with the
+    /// health factors, the day's A(8) = √(Σ (k a_w)² T / 8 h) and VDV = (Σ VDV⁴)^(1/4) per axis, against
+    /// Directive 2002/44/EC and ISO 2631-1 Annex B (format: docs/comfort.md).
+    Workday {
+        /// Workday file (TOML).
+        file: PathBuf,
+        #[command(flatten)]
+        spectra: SpectraDir,
+        #[command(flatten)]
+        output: Output,
     },
     /// Checks that a run file can be read (the parent process of `inspect` and `plot` runs this first, so that
     /// a damaged file that would crash the HDF5 library crashes only this child).
@@ -434,7 +468,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             segment,
             detrend,
             confidence,
-            json,
+            output,
             plots,
         } => {
             let detrend = match detrend.as_str() {
@@ -451,7 +485,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 confidence,
             };
             let r = report::road_report::road_report(&profile, &opts)?;
-            print(&r, json)?;
+            print_as(&r, output.format())?;
             if let Some(out) = plots {
                 let files = stochvib::plot::road_plots(&r, &out)?;
                 eprintln!("wrote {} pictures to {}", files.len(), out.display());
@@ -506,7 +540,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Analyze {
             scenario,
             spectra,
-            json,
+            output,
             plots,
             monte_carlo,
             seed,
@@ -518,11 +552,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 Document::Stochastic(sc) => sc,
                 Document::Deterministic(d) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
-                    return print(&report::deterministic_report(&d)?, json);
+                    return print_as(&report::deterministic_report(&d)?, output.format());
                 }
                 Document::Reference(t) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
-                    return print(&report::reference_report(&t), json);
+                    return print_as(&report::reference_report(&t), output.format());
                 }
             };
             effort.apply(&mut sc)?;
@@ -543,7 +577,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
                 }
             }
-            print(&r, json)?;
+            print_as(&r, output.format())?;
             if let Some(out) = plots {
                 let files = scenario_plots_with(&sc, &out, &ScenarioPlotOptions::default())?;
                 eprintln!("wrote {} pictures to {}", files.len(), out.display());
@@ -799,13 +833,18 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
             }
         }
-        Command::Inspect { file, json } => {
+        Command::Inspect { file, output } => {
             check_in_child(&file, true)?;
-            if json {
-                print_json(&RunFile::open(&file)?.info()?)?;
-            } else {
-                emit(&summarize(&file)?);
+            match output.format() {
+                ReportFormat::Json => print_json(&RunFile::open(&file)?.info()?)?,
+                ReportFormat::Markdown => emit(&report::inspect_markdown(&file)?),
+                ReportFormat::Text => emit(&summarize(&file)?),
             }
+        }
+        Command::Workday { file, spectra, output } => {
+            let day = stochvib::scenario::workday::load_workday(&file)?;
+            let r = stochvib::scenario::workday::workday_exposure(&day, spectra.catalogue().dir())?;
+            print_as(&report::WorkdayReport(r), output.format())?;
         }
         Command::Spectrum {
             name,
@@ -889,6 +928,21 @@ fn print<T: std::fmt::Display + serde::Serialize>(r: &T, json: bool) -> anyhow::
     } else {
         emit(&format!("{r}"));
         Ok(())
+    }
+}
+
+/// Prints a report in `format`.
+fn print_as<T: std::fmt::Display + serde::Serialize + ToMarkdown>(r: &T, format: ReportFormat) -> anyhow::Result<()> {
+    match format {
+        ReportFormat::Json => print_json(r),
+        ReportFormat::Markdown => {
+            emit(&r.markdown());
+            Ok(())
+        }
+        ReportFormat::Text => {
+            emit(&format!("{r}"));
+            Ok(())
+        }
     }
 }
 

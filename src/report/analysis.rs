@@ -160,9 +160,8 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         model: sc.model.description.clone(),
         input: if sc.inputs.len() <= 1 && sc.input.coherence.is_none() {
             format!(
-                "{} ({}){}",
-                sc.input.reference,
-                sc.input.spectrum.describe(),
+                "{}{}",
+                crate::scenario::input_as_written(&sc.input, &sc.path),
                 sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
             )
         } else {
@@ -172,10 +171,9 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
                 .iter()
                 .map(|i| {
                     format!(
-                        "{}: {} ({}){}",
+                        "{}: {}{}",
                         i.name,
-                        i.reference,
-                        i.spectrum.describe(),
+                        crate::scenario::input_as_written(i, &sc.path),
                         i.coherence
                             .as_ref()
                             .map(|c| format!(", two tracks, {c}"))

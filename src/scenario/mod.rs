@@ -19,8 +19,10 @@ pub mod sweep;
 pub mod verdict_analysis;
 mod verdict_run;
 pub mod verdict_spec;
+pub mod workday;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
+pub use profile_identity::input_as_written;
 pub use reference::ReferenceTable;
 pub use registry::{
     build_model, kind_names, model_kind, BuiltModel, Family, ModelContext, ModelKind, NumericModel, MODEL_KINDS,
@@ -34,7 +36,8 @@ pub use sweep::{
     substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec, FAILED_POINT,
 };
 pub use verdict_analysis::{
-    verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, VerdictAnalysis,
+    verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, HealthAxisResult,
+    HealthEvaluation, VerdictAnalysis,
 };
 pub use verdict_run::{simulate_with_verdicts, verdict_system};
 pub use verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec, VerdictSpec};

@@ -48,3 +48,34 @@ pub(crate) fn profile_provenance(inp: &ScenarioInput, scenario_path: &Path, name
         Provenance::note(&format!("{name}_path"), path.display().to_string()),
     ]
 }
+
+/// Input `inp` of the scenario file `scenario_path` as its file names it, for reports: a measured profile by
+/// its CSV file and track (`measured-profile.csv (measured profile, track left)`), a catalogue spectrum or
+/// spectrum file by its name as written with the spectrum's description, an inline table by its `name` (if
+/// any) with the description.
+///
+/// # Examples
+/// ```
+/// use std::path::Path;
+/// let sc = stochvib::scenario::load_scenario(Path::new("data/quarter-car.toml"), Path::new("spectra")).unwrap();
+/// let s = stochvib::scenario::input_as_written(&sc.input, &sc.path);
+/// assert!(s.starts_with("iso8608-c ("), "{s}");
+/// ```
+pub fn input_as_written(inp: &ScenarioInput, scenario_path: &Path) -> String {
+    if let Some((file, _)) = measured_profile_file(inp, scenario_path) {
+        let table: toml::Table = toml::from_str(&inp.spectrum_text).unwrap_or_default();
+        let track = table.get("track").and_then(|t| t.as_str());
+        return match track {
+            Some(t) => format!("{file} (measured profile, track {t})"),
+            None => format!("{file} (measured profile, first track)"),
+        };
+    }
+    let inline_name = match inp.origin {
+        SpectrumOrigin::Inline => toml::from_str::<toml::Table>(&inp.spectrum_text)
+            .ok()
+            .and_then(|t| t.get("name").and_then(|n| n.as_str()).map(str::to_string)),
+        _ => None,
+    };
+    let name = inline_name.unwrap_or_else(|| inp.reference.clone());
+    format!("{name} ({})", inp.spectrum.describe())
+}

@@ -19,7 +19,8 @@
 //! [analysis]                     # optional
 //! outputs = ["body", "travel"]   # default: every output
 //! band = ["0.5 Hz", "80 Hz"]     # also report the band-limited σ
-//! duration = "1 h"               # for exceedance probabilities and expected largest peaks (default 1 h)
+//! duration = "1 h"               # for exceedance probabilities and expected largest peaks (default 1 h);
+//!                                # with its unit: a bare number is refused (it would be seconds)
 //! bands = "third-octave"         # or "octave": IEC 61260-1 base-10 band r.m.s. table of every output
 //!                                # (simulate: also band r.m.s. from the realizations, with intervals)
 //! [analysis.levels]              # optional levels per output for Rice crossing rates
@@ -688,7 +689,10 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
             Some((lo, hi))
         }
     };
-    let duration = f.opt_quantity("duration", Dim::TIME)?.unwrap_or(3600.0);
+    // the duration of the exceedance probabilities and expected peaks: with its unit (a bare `8` is not 8 h)
+    let duration = f
+        .opt_everyday_quantity("duration", crate::fields::EverydayUnit::HOUR)?
+        .unwrap_or(3600.0);
     if duration.is_nan() || duration <= 0.0 {
         return Err(f.error("duration", duration, "must be > 0"));
     }

@@ -35,7 +35,7 @@ fn catalogue() -> Scenario {
 /// intervals (h = 4·10⁻⁴: the error h⁴·max|d⁴/du⁴| is far below 1e-10 for these smooth densities, and the
 /// neglected ends carry < 1e-12 of the integral: the weighted density rises like ω⁴ from 0 and falls like
 /// ω⁻⁶·ω⁻² above the cab mode).
-fn log_simpson(g: impl Fn(f64) -> f64) -> f64 {
+pub fn log_simpson(g: impl Fn(f64) -> f64) -> f64 {
     let (a, b, n) = ((1e-3f64).ln(), (1e4f64).ln(), 40_000);
     let h = (b - a) / n as f64;
     let f = |u: f64| {
