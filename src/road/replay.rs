@@ -8,8 +8,16 @@ use crate::simulate::SampledSystem;
 use crate::system::{FrequencyResponse as _, StateSpace};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::io::Write as _;
+use std::path::Path;
+
+/// The kind of file `replay -o` writes, for the output rule ([`crate::io_rules::check_output`]): a history
+/// CSV, recognised by its header `time [s], distance [m]`.
+pub const HISTORY_CSV: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "replay history CSV",
+    recognizes: |p| crate::io_rules::starts_with(p, b"time [s], distance [m]"),
+    replaceable: false,
+};
 
 /// One model input fed from a profile: u(t) = gain · z_track(x(t) − position) + offset.
 #[derive(Debug, Clone, PartialEq)]
@@ -361,49 +369,57 @@ impl Replay {
     /// replay and distance of the foremost wheel along the profile; numbers in the shortest text that reads
     /// back to the same f64.
     pub fn to_csv_string(&self) -> String {
-        let mut s = String::from("time [s], distance [m]");
+        let mut buf = Vec::new();
+        // writing into memory cannot fail
+        let _ = self.write_csv_to(&mut buf);
+        String::from_utf8(buf).unwrap_or_default()
+    }
+
+    /// Writes [`Replay::to_csv_string`]'s text to `w`, line by line (no copy of the whole text in memory).
+    ///
+    /// # Errors
+    /// The I/O errors of `w`.
+    pub fn write_csv_to(&self, w: impl std::io::Write) -> std::io::Result<()> {
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, w);
+        write!(w, "time [s], distance [m]")?;
         for o in &self.outputs {
-            let _ = write!(s, ", {} [{}]", o.name, o.unit);
+            write!(w, ", {} [{}]", o.name, o.unit)?;
         }
-        s.push('\n');
+        writeln!(w)?;
         let kept = self.history.first().map_or(0, Vec::len);
         for k in 0..kept {
             let t = (self.skip_samples + k) as f64 * self.dt_s;
             let d = self.first_distance_m + k as f64 * self.step_m;
-            let _ = write!(s, "{t},{d}");
+            write!(w, "{t},{d}")?;
             for h in &self.history {
-                let _ = write!(s, ",{}", h[k]);
+                write!(w, ",{}", h[k])?;
             }
-            s.push('\n');
+            writeln!(w)?;
         }
-        s
+        w.flush()
     }
 
-    /// Writes [`Replay::to_csv_string`] to `path` as `<path>.tmp` renamed when complete (never a
-    /// half-written file); an existing `path` is only replaced with `overwrite`.
+    /// Writes the history CSV to `path` under the output rule ([`crate::io_rules::Staged`]): through a
+    /// temporary file renamed when complete (never a half-written file); an existing history is only
+    /// replaced with `overwrite`; a directory, link, FIFO, device or a file that is not a history is never.
     ///
     /// # Errors
-    /// An existing file without `overwrite`, a directory, I/O errors.
+    /// The refusals of [`crate::io_rules::check_output`]; I/O errors.
     pub fn write_csv(&self, path: &Path, overwrite: bool) -> Result<()> {
-        if path.is_dir() {
-            return Err(Error::invalid("output", path.display(), "is a directory"));
-        }
-        if path.exists() && !overwrite {
-            return Err(Error::Io {
-                path: path.to_path_buf(),
-                source: std::io::Error::new(
-                    std::io::ErrorKind::AlreadyExists,
-                    "already exists: a history is never overwritten silently; remove it, choose another name, \
-                     or pass --overwrite",
-                ),
-            });
-        }
-        let tmp: PathBuf = crate::store::tmp_path(path);
-        let io = |p: &Path| {
-            let p = p.to_path_buf();
-            move |source| Error::Io { path: p, source }
-        };
-        std::fs::write(&tmp, self.to_csv_string()).map_err(io(&tmp))?;
-        std::fs::rename(&tmp, path).map_err(io(path))
+        self.write_csv_from(path, overwrite, &[])
+    }
+
+    /// [`write_csv`](Self::write_csv), refusing also a `path` that is one of `inputs` (the scenario, the
+    /// profile: the files the replay was read from).
+    ///
+    /// # Errors
+    /// As [`write_csv`](Self::write_csv).
+    pub fn write_csv_from(&self, path: &Path, overwrite: bool, inputs: &[&Path]) -> Result<()> {
+        let staged = crate::io_rules::Staged::begin(path, HISTORY_CSV, inputs, overwrite)?;
+        let tmp = staged.temporary().to_path_buf();
+        std::fs::File::create(&tmp)
+            .and_then(|f| self.write_csv_to(f))
+            .map_err(|source| Error::Io { path: tmp, source })?;
+        staged.commit().map(|_| ())
     }
 }
