@@ -576,7 +576,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
             };
             let files = if has(&["h5", "hdf5"]) {
-                check_in_child(&input, false)?;
+                // every checksum, as `inspect`: a damaged file is an error naming the damaged part
+                check_in_child(&input, true)?;
                 run_plots(&input, &out, catalogue.dir())?
             } else if has(&["toml"]) {
                 let sc = load_scenario(&input, catalogue.dir())?;

@@ -114,7 +114,8 @@ fn scenario_correlation(
 /// stored analytic density (ω = 0 weighted ½), which under-resolves density peaks narrower than Δω_W.
 ///
 /// # Errors
-/// Errors of [`RunFile::open`] and its readers; [`Error::InvalidParameter`] when an output lacks its density
+/// Errors of [`RunFile::open`] and its readers; [`RunFile::verify`]'s error naming the damaged dataset of a
+/// file whose checksums do not match; [`Error::InvalidParameter`] when an output lacks its density
 /// estimate, the analytic density, or the analytic σ, or when the density grid is not uniform.
 ///
 /// # Examples
@@ -125,6 +126,8 @@ fn scenario_correlation(
 /// ```
 pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> {
     let run = RunFile::open(path)?;
+    // every checksum, as `inspect` checks them: a damaged file is an error naming the damaged part
+    run.verify()?;
     let meta = run.metadata().clone();
     let scenario = scenario_title(&meta.scenario_text).unwrap_or_else(|| {
         path.file_stem()
