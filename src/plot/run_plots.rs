@@ -73,7 +73,14 @@ fn scenario_correlation(
     n: usize,
     max_lag: usize,
 ) -> Result<(Vec<f64>, f64)> {
-    let sys = sc.model.system.as_ref();
+    // a weighted output of `[analysis.comfort]` (`<output>_<W>`) is an output of the system the run
+    // simulated: the scenario's system extended by the weighting filters
+    let extended;
+    let mut sys = sc.model.system.as_ref();
+    if !sys.outputs().iter().any(|o| o.name == name) && !sc.analysis.verdicts.is_empty() {
+        extended = crate::scenario::verdict_system(sc)?.0;
+        sys = &extended;
+    }
     let i = sys
         .outputs()
         .iter()

@@ -168,7 +168,10 @@ pub fn settling_length(ss: &StateSpace, speed_m_s: f64) -> Result<f64> {
 /// wavenumber n multiplies its amplitude by |1 − f + f e^{i2πnΔx}| ≤ 1 — at most 1 − 2f(1−f)(1 − cos 2πnΔx),
 /// negligible for wavelengths of many steps. The model is stepped with [`SampledSystem`] (exact for inputs
 /// linear between samples, [`crate::simulate::foh`]), from the static state x₀ = −A⁻¹B u₀ or from zero
-/// ([`Start`]). The first ⌈skip/Δx⌉ samples are left out of the statistics ([`OutputStatistics`]) and the
+/// ([`Start`]). An output with a derivative feedthrough, y = Cx + Du + Eu̇ (the acceleration of a mass
+/// on a damper whose other end is the base: a cab on mounts, a scraper on its tyres), gets
+/// u̇_k = (u_{k+1} − u_{k−1})/(2Δt) (one-sided at the ends of the replay): for a sinusoid of angular
+/// frequency ω this is ω cos(ωt_k)·sin(ωΔt)/(ωΔt), an amplitude error below (ωΔt)²/6. The first ⌈skip/Δx⌉ samples are left out of the statistics ([`OutputStatistics`]) and the
 /// history. The replay is K = min_j ⌊N − 1 − s_j(0)⌋ + 1 samples long (⌈·⌉ for a fractional s_j(0)) for a
 /// profile of N samples.
 ///
@@ -176,8 +179,7 @@ pub fn settling_length(ss: &StateSpace, speed_m_s: f64) -> Result<f64> {
 /// [`Error::File`] naming `file`: a track a wheel needs that the profile lacks (key `track`), a profile
 /// shorter than the wheelbase P plus the skipped length plus one step (key `length`). [`Error::InvalidParameter`]:
 /// speed not finite and > 0, skip negative or not finite, a position negative or not finite, a gain or
-/// offset not finite, the number of wheels not the number of system inputs, a system with a derivative
-/// feedthrough E (see [`SampledSystem::new`]), an unstable system.
+/// offset not finite, the number of wheels not the number of system inputs, an unstable system.
 ///
 /// # Examples
 /// ```
@@ -289,7 +291,22 @@ pub fn replay(
             ),
         ));
     }
-    let sys = SampledSystem::new(ss, dt)?;
+    // a derivative feedthrough E u̇ (a damper between the base and a reported mass: its acceleration) is
+    // added after the stepping, from the central difference of the replayed input (see the formula)
+    let derivative = ss.e.amax() != 0.0;
+    let stepped = if derivative {
+        StateSpace::new(
+            ss.a.clone(),
+            ss.b.clone(),
+            ss.c.clone(),
+            Some(ss.d.clone()),
+            None,
+            ss.outputs().to_vec(),
+        )?
+    } else {
+        ss.clone()
+    };
+    let sys = SampledSystem::new(&stepped, dt)?;
     let (ns, _, p) = sys.dims();
     let mut u = vec![0.0; k_total * m];
     for (j, (w, &(i0, f))) in wheels.iter().zip(&offsets).enumerate() {
@@ -322,6 +339,9 @@ pub fn replay(
     };
     let mut y = vec![0.0; k_total * p];
     sys.respond(&u, &mut x, &mut y)?;
+    if derivative {
+        add_derivative_feedthrough(ss, &u, dt, &mut y);
+    }
     let kept = k_total - skip_samples;
     let infos = ss.outputs();
     let mut outputs = Vec::with_capacity(p);
@@ -362,6 +382,28 @@ pub fn replay(
         outputs,
         history,
     })
+}
+
+/// Adds E u̇_k to every output sample y_k (row-major `y[k·p + i]`, inputs `u[k·m + j]`), with u̇_k the
+/// central difference (u_{k+1} − u_{k−1})/(2Δt) of the replayed input — the mean of the slopes of the
+/// linear interpolation on either side of the sample — and the one-sided slope at the first and last
+/// sample.
+fn add_derivative_feedthrough(ss: &StateSpace, u: &[f64], dt: f64, y: &mut [f64]) {
+    let (m, p) = (ss.b.ncols(), ss.c.nrows());
+    let k_total = u.len() / m.max(1);
+    if k_total < 2 {
+        return;
+    }
+    for k in 0..k_total {
+        let (lo, hi) = (k.saturating_sub(1), (k + 1).min(k_total - 1));
+        let span = (hi - lo) as f64 * dt;
+        for j in 0..m {
+            let du = (u[hi * m + j] - u[lo * m + j]) / span;
+            for i in 0..p {
+                y[k * p + i] += ss.e[(i, j)] * du;
+            }
+        }
+    }
 }
 
 impl Replay {

@@ -14,6 +14,7 @@ mod comfort;
 mod comfort_report;
 mod data_files;
 mod delays;
+mod drawn_and_installed;
 mod fast_paths;
 mod fast_sweep;
 mod fatigue;
