@@ -22,14 +22,14 @@ struct Cli {
 /// Where spectrum names are looked up.
 #[derive(clap::Args)]
 struct SpectraDir {
-    /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the source tree's).
+    /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the built-in catalogue).
     #[arg(long)]
     spectra_dir: Option<PathBuf>,
 }
 
 impl SpectraDir {
-    /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the source
-    /// tree's `spectra/`.
+    /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the built-in
+    /// catalogue embedded in the binary.
     fn catalogue(&self) -> Catalogue {
         if let Some(d) = &self.spectra_dir {
             return Catalogue::new(d);
