@@ -125,64 +125,37 @@ fn a_json_table_larger_than_memory_is_refused() {
 
 /// `simulate` prints its estimate before the work, and refuses a run whose computing time (a lower bound:
 /// one normal draw per sample) exceeds `--max-hours`: `--duration 1e12` (10¹⁴ samples per realization),
-/// 10⁹ realizations of 10⁵ samples; `--max-hours` raises the cap (the same long run then stops at the
-/// next check, the disk, here). A step that makes the count overflow is refused naming `duration`.
+/// 10⁹ realizations of 10⁵ samples (here the disk check may come first); the cap is `--max-hours`'s. A step
+/// that makes the count overflow is refused naming `duration`.
 #[test]
 fn long_runs_are_refused_with_their_estimate() {
     let d = scratch("long");
     let sc = root().join("data/conveyor-idler.toml");
-    let sc = sc.to_str().unwrap();
-    let e = refused(
-        &[
+    let simulate = |realizations: &str, dt: &str, duration: &str, extra: &[&str]| {
+        let mut a = vec![
             "simulate",
-            sc,
+            sc.to_str().unwrap(),
             "--realizations",
-            "10",
+            realizations,
             "--dt",
-            "0.01",
-            "--duration",
-            "1e12",
-            "-o",
-            "r.h5",
-        ],
-        &d,
-    );
+            dt,
+        ];
+        a.extend(["--duration", duration, "-o", "r.h5"]);
+        a.extend(extra);
+        refused(&a, &d)
+    };
+    let e = simulate("10", "0.01", "1e12", &[]);
     assert!(e.contains("estimate: 10 realizations × 100000000000000 samples"), "{e}");
     assert!(e.contains("would take at least") && e.contains("--max-hours 24"), "{e}");
-    let e = refused(
-        &[
-            "simulate",
-            sc,
-            "--realizations",
-            "1000000000",
-            "--dt",
-            "0.01",
-            "--duration",
-            "1000",
-            "-o",
-            "r.h5",
-        ],
-        &d,
-    );
+    // the cap is the option's: 400 samples (at least 1 µs) under a cap of 10⁻¹² h (3.6 ns) are refused too
+    let e = simulate("4", "0.01", "1", &["--max-hours", "1e-12"]);
+    assert!(e.contains("would take at least") && e.contains("--max-hours 1e-12"), "{e}");
+    let e = simulate("1000000000", "0.01", "1000", &[]);
     assert!(
         e.contains("realizations") && (e.contains("--max-hours") || e.contains("free on the disk")),
         "{e}"
     );
-    let e = refused(
-        &[
-            "simulate",
-            sc,
-            "--realizations",
-            "10",
-            "--dt",
-            "1e-300",
-            "--duration",
-            "10",
-            "-o",
-            "r.h5",
-        ],
-        &d,
-    );
+    let e = simulate("10", "1e-300", "10", &[]);
     assert!(e.contains("duration") && e.contains("samples per realization"), "{e}");
     assert!(listing(&d).is_empty(), "{:?}", listing(&d));
     let _ = std::fs::remove_dir_all(&d);
