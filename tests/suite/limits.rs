@@ -149,7 +149,10 @@ fn long_runs_are_refused_with_their_estimate() {
     assert!(e.contains("would take at least") && e.contains("--max-hours 24"), "{e}");
     // the cap is the option's: 400 samples (at least 1 µs) under a cap of 10⁻¹² h (3.6 ns) are refused too
     let e = simulate("4", "0.01", "1", &["--max-hours", "1e-12"]);
-    assert!(e.contains("would take at least") && e.contains("--max-hours 1e-12"), "{e}");
+    assert!(
+        e.contains("would take at least") && e.contains("--max-hours 1e-12"),
+        "{e}"
+    );
     let e = simulate("1000000000", "0.01", "1000", &[]);
     assert!(
         e.contains("realizations") && (e.contains("--max-hours") || e.contains("free on the disk")),
