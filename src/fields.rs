@@ -61,55 +61,20 @@ impl EverydayUnit {
     }
 }
 
-/// Largest input file read (scenario, spectrum, reference, profile files), bytes.
+/// Largest input file read (scenario, spectrum, reference and limits files), bytes: the TOML kind of the
+/// input rule ([`crate::io_rules::TOML_INPUT`]).
 pub const MAX_INPUT_FILE_BYTES: u64 = 16 << 20;
 
-/// Reads a text input file: a regular file of at most [`MAX_INPUT_FILE_BYTES`], valid UTF-8. FIFOs, devices
-/// and directories are refused before anything is read, so `/dev/zero` or a pipe cannot hang the reader.
+/// Reads a text input file under the input rule ([`crate::io_rules::read_text`] with
+/// [`crate::io_rules::TOML_INPUT`]): a regular file of at most [`MAX_INPUT_FILE_BYTES`], valid UTF-8.
+/// FIFOs, devices and directories are refused before anything is read, so `/dev/zero` or a pipe cannot
+/// hang the reader.
 ///
 /// # Errors
 /// [`Error::Io`] if the file cannot be opened; [`Error::Parse`] naming the file for a non-regular file, a
 /// file that is too large, or text that is not UTF-8 (without echoing its content).
 pub fn read_text_file(path: &Path) -> Result<String> {
-    use std::io::Read;
-    let io = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let parse = |reason: String| Error::Parse {
-        file: path.to_path_buf(),
-        reason,
-    };
-    let meta = std::fs::metadata(path).map_err(io)?;
-    if !meta.is_file() {
-        return Err(parse(
-            "not a regular file (a directory, pipe or device): give a TOML file".into(),
-        ));
-    }
-    if meta.len() > MAX_INPUT_FILE_BYTES {
-        return Err(parse(format!(
-            "{} bytes is larger than the {} bytes an input file may have",
-            meta.len(),
-            MAX_INPUT_FILE_BYTES
-        )));
-    }
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .map_err(io)?
-        .take(MAX_INPUT_FILE_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(io)?;
-    if bytes.len() as u64 > MAX_INPUT_FILE_BYTES {
-        return Err(parse(format!(
-            "larger than the {MAX_INPUT_FILE_BYTES} bytes an input file may have"
-        )));
-    }
-    String::from_utf8(bytes).map_err(|e| {
-        parse(format!(
-            "not a text file: invalid UTF-8 at byte {}",
-            e.utf8_error().valid_up_to()
-        ))
-    })
+    crate::io_rules::read_text(path, crate::io_rules::TOML_INPUT)
 }
 
 /// Parses TOML text read from `path`. The error names the line and column and the parser's reason, but
@@ -174,7 +139,7 @@ impl<'a> Fields<'a> {
         Error::File {
             file: self.file.clone(),
             key: self.path(key),
-            value: value.to_string(),
+            value: crate::io_rules::excerpt(&value.to_string()),
             reason: reason.into(),
         }
     }

@@ -43,7 +43,7 @@
 //!
 //! | layer | modules | what |
 //! |---|---|---|
-//! | 0 | [`error`], [`numbers`], [`units`], [`fields`], [`quad`], [`quad_oscillatory`], [`linalg`] | errors, units, file fields, numerics |
+//! | 0 | [`error`], [`numbers`], [`units`], [`fields`], [`io_rules`], [`quad`], [`quad_oscillatory`], [`linalg`] | errors, units, file fields, the file and resource rules, numerics |
 //! | 1 | [`spectrum`], [`coherence`] | spectral densities and correlation functions; coherence of parallel tracks |
 //! | 2 | [`system`] | frequency responses: state space, transfer functions, multi-degree-of-freedom models |
 //! | 3 | [`response`], [`comfort`] | response statistics: variance three ways, moments, crossing rates; ISO 2631 weightings and exposure |
@@ -62,6 +62,7 @@ pub mod error;
 pub mod estimate;
 pub mod fatigue;
 pub mod fields;
+pub mod io_rules;
 pub mod linalg;
 pub mod models;
 pub mod numbers;

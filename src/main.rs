@@ -23,14 +23,14 @@ struct Cli {
 /// Where spectrum names are looked up.
 #[derive(clap::Args)]
 struct SpectraDir {
-    /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the source tree's).
+    /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the built-in catalogue).
     #[arg(long)]
     spectra_dir: Option<PathBuf>,
 }
 
 impl SpectraDir {
-    /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the source
-    /// tree's `spectra/`.
+    /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the built-in
+    /// catalogue embedded in the binary.
     fn catalogue(&self) -> Catalogue {
         if let Some(d) = &self.spectra_dir {
             return Catalogue::new(d);
@@ -77,6 +77,10 @@ struct Step {
     /// Duration of each realization, s (default: suggested from the slowest decay rate).
     #[arg(long)]
     duration: Option<f64>,
+    /// Refuse a Monte Carlo run whose time estimate (a lower bound: one normal draw per sample) exceeds
+    /// this many hours.
+    #[arg(long, value_name = "H", default_value_t = stochvib::simulate::resources::DEFAULT_MAX_HOURS)]
+    max_hours: f64,
 }
 
 impl Step {
@@ -522,9 +526,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 track,
                 detrend,
             };
+            let mut inputs = sc.source_files();
+            inputs.push(profile.clone());
+            let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+            if let Some(out) = &output {
+                // the output rule before the work
+                stochvib::io_rules::check_output(out, &stochvib::road::replay::HISTORY_CSV, &inputs, overwrite)?;
+            }
             let r = stochvib::scenario::replay::replay_scenario(&sc, &profile, &opts)?;
             if let Some(out) = output {
-                r.replay.write_csv(&out, overwrite)?;
+                r.replay.write_csv_from(&out, overwrite, &inputs)?;
                 eprintln!("wrote {}", out.display());
             }
             print(&r, json)?
@@ -563,7 +574,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let mut r = report::analysis_report(&sc)?;
             if let Some(n) = monte_carlo {
                 let (dt, duration) = step.resolve(&sc)?;
-                let opts = RunOptions::new(n, duration, dt, seed);
+                let opts = RunOptions {
+                    max_hours: step.max_hours,
+                    ..RunOptions::new(n, duration, dt, seed)
+                };
                 let (summary, pictures) = stochvib::simulate::run_temporary(
                     &sc.run_input(),
                     &opts,
@@ -596,7 +610,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
             };
             let files = if has(&["h5", "hdf5"]) {
-                check_in_child(&input, false)?;
+                // every checksum, as `inspect`: a damaged file is an error naming the damaged part
+                check_in_child(&input, true)?;
                 run_plots(&input, &out, catalogue.dir())?
             } else if has(&["toml"]) {
                 let sc = load_scenario(&input, catalogue.dir())?;
@@ -651,18 +666,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 stream_tail,
                 overwrite,
                 part: choice.as_ref().map(|c| c.part),
+                max_hours: step.max_hours,
                 ..RunOptions::new(realizations, duration, dt, seed)
             };
             let output = match &choice {
                 None => output,
                 Some(c) => {
-                    if output.is_file() {
-                        anyhow::bail!(
-                            "{}: with --shard, -o names the run directory that receives shard-<I>-of-<N>.h5 files,                              not a file",
-                            output.display()
-                        );
-                    }
-                    std::fs::create_dir_all(&output)?;
+                    output_dir(
+                        &output,
+                        "with --shard, -o names the run directory that receives shard-<I>-of-<N>.h5 files",
+                    )?;
                     eprintln!("shard {} of {} ({})", c.part.index, c.part.count, c.source);
                     for n in &c.notes {
                         eprintln!("warning: {n}");
@@ -670,6 +683,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     part_path(&output, c.part)
                 }
             };
+            let signals = sc.analysis.outputs.len() + if store_raw { sc.input_signals().len() } else { 0 };
+            eprintln!(
+                "{}",
+                stochvib::simulate::resources::estimate_text(&opts, sc.excitation.spectra().len(), signals)?
+            );
             let s = sc.simulate(&opts, &output, &progress_printer())?;
             print(&s, json)?;
             if let Some(pdir) = plots {
@@ -690,7 +708,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         } => {
             let sweeps = report::find_sweep_shards(&inputs)?;
             if !sweeps.is_empty() {
-                let (runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
+                let (mut runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
+                runs.retain(|r| r.extension().is_none_or(|e| e != "json"));
                 if !runs.is_empty() {
                     anyhow::bail!(
                         "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
@@ -707,6 +726,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
                 return Ok(());
             }
+            refuse_shard_as_output(&output, &inputs)?;
             let opts = MergeOptions {
                 copy,
                 overwrite,
@@ -747,14 +767,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let mc = match monte_carlo {
                 Some(n) => {
                     let (dt, duration) = step.resolve(&sc)?;
-                    Some(report::SweepMonteCarlo {
+                    let m = report::SweepMonteCarlo {
                         realizations: n,
                         duration_s: duration,
                         dt_s: dt,
                         seed,
                         shard_size,
                         confidence,
-                    })
+                    };
+                    report::check_monte_carlo_time(&sweep, &m, step.max_hours)?;
+                    Some(m)
                 }
                 None => None,
             };
@@ -763,10 +785,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 Some(c) => {
                     let dir = output
                         .ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
-                    if dir.is_file() {
-                        anyhow::bail!("{}: with --shard, -o names a directory", dir.display());
-                    }
-                    std::fs::create_dir_all(&dir)?;
+                    output_dir(&dir, "with --shard, -o names the directory of the shard files")?;
                     eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
                     let (path, sh, fresh) =
                         report::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
@@ -908,6 +927,37 @@ fn check_in_child(file: &Path, full: bool) -> anyhow::Result<()> {
             )
         }
     }
+}
+
+/// Creates the output directory `dir` if missing; refuses a `dir` that exists and is not a directory
+/// (`what` says what the directory is for).
+fn output_dir(dir: &Path, what: &str) -> anyhow::Result<()> {
+    if let Ok(m) = std::fs::metadata(dir)
+        && !m.is_dir()
+    {
+        anyhow::bail!("{}: is not a directory: {what}; nothing was written", dir.display());
+    }
+    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))
+}
+
+/// The output rule for `merge`: the merged file is never one of the shard files it merges (named, or a
+/// shard file in a named directory); a whole run already there (an earlier merge) is what `--overwrite`
+/// replaces.
+fn refuse_shard_as_output(output: &Path, inputs: &[PathBuf]) -> anyhow::Result<()> {
+    let (files, _) = stochvib::store::find_run_files(inputs, &[])?;
+    let named = inputs.iter().any(|i| stochvib::io_rules::same_file(i, output));
+    let shard = || {
+        files.iter().any(|f| stochvib::io_rules::same_file(f, output))
+            && RunFile::open_any(output).is_ok_and(|r| r.part().is_some())
+    };
+    if named || shard() {
+        anyhow::bail!(
+            "{}: is one of the shard files to merge: the merged file needs a name of its own (e.g. DIR/merged.h5); \
+             nothing was written",
+            output.display()
+        );
+    }
+    Ok(())
 }
 
 /// Refuses Monte Carlo and pictures for a file without a random input.

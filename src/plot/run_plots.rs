@@ -73,7 +73,14 @@ fn scenario_correlation(
     n: usize,
     max_lag: usize,
 ) -> Result<(Vec<f64>, f64)> {
-    let sys = sc.model.system.as_ref();
+    // a weighted output of `[analysis.comfort]` (`<output>_<W>`) is an output of the system the run
+    // simulated: the scenario's system extended by the weighting filters
+    let extended;
+    let mut sys = sc.model.system.as_ref();
+    if !sys.outputs().iter().any(|o| o.name == name) && !sc.analysis.verdicts.is_empty() {
+        extended = crate::scenario::verdict_system(sc)?.0;
+        sys = &extended;
+    }
     let i = sys
         .outputs()
         .iter()
@@ -114,7 +121,8 @@ fn scenario_correlation(
 /// stored analytic density (ω = 0 weighted ½), which under-resolves density peaks narrower than Δω_W.
 ///
 /// # Errors
-/// Errors of [`RunFile::open`] and its readers; [`Error::InvalidParameter`] when an output lacks its density
+/// Errors of [`RunFile::open`] and its readers; [`RunFile::verify`]'s error naming the damaged dataset of a
+/// file whose checksums do not match; [`Error::InvalidParameter`] when an output lacks its density
 /// estimate, the analytic density, or the analytic σ, or when the density grid is not uniform.
 ///
 /// # Examples
@@ -125,6 +133,8 @@ fn scenario_correlation(
 /// ```
 pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> {
     let run = RunFile::open(path)?;
+    // every checksum, as `inspect` checks them: a damaged file is an error naming the damaged part
+    run.verify()?;
     let meta = run.metadata().clone();
     let scenario = scenario_title(&meta.scenario_text).unwrap_or_else(|| {
         path.file_stem()

@@ -24,7 +24,8 @@ pub use markdown::inspect_markdown;
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
 pub use sweep_stream::{stream_sweep_csv, write_sweep_table, StreamOptions, StreamedTable};
 pub use sweep_table::{
-    compute_sweep, find_sweep_shards, merge_sweep, run_sweep_shard, SweepMonteCarlo, SweepResults, TableFormat,
+    check_monte_carlo_time, check_table_resources, compute_sweep, find_sweep_shards, merge_sweep, run_sweep_shard,
+    SweepMonteCarlo, SweepResults, TableFormat, SWEEP_SHARD, SWEEP_TABLE,
 };
 pub use tables::{deterministic_report, reference_report, TablesReport};
 pub use workday_report::WorkdayReport;

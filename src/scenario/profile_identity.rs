@@ -3,7 +3,7 @@
 
 use super::catalogue::SpectrumOrigin;
 use super::scenario_file::ScenarioInput;
-use crate::store::{checksum::crc32, Provenance};
+use crate::store::{checksum::Crc32, Provenance};
 use std::path::{Path, PathBuf};
 
 /// The profile CSV of input `inp` if its spectrum is of kind `measured-profile`: (the `file` key as
@@ -39,8 +39,8 @@ pub(crate) fn profile_provenance(inp: &ScenarioInput, scenario_path: &Path, name
     let Some((file, path)) = measured_profile_file(inp, scenario_path) else {
         return Vec::new();
     };
-    let identity = match std::fs::read(&path) {
-        Ok(bytes) => format!("{file} ({} bytes, CRC-32 {:08x})", bytes.len(), crc32(&bytes)),
+    let identity = match file_crc32(&path) {
+        Ok((len, crc)) => format!("{file} ({len} bytes, CRC-32 {crc:08x})"),
         Err(e) => format!("{file} (unreadable: {e})"),
     };
     vec![
@@ -78,4 +78,25 @@ pub fn input_as_written(inp: &ScenarioInput, scenario_path: &Path) -> String {
     };
     let name = inline_name.unwrap_or_else(|| inp.reference.clone());
     format!("{name} ({})", inp.spectrum.describe())
+}
+
+/// The size and CRC-32 of a file read under the input rule ([`crate::io_rules::open_input`], CSV limit),
+/// 64 KiB at a time.
+fn file_crc32(path: &Path) -> crate::Result<(u64, u32)> {
+    use std::io::Read;
+    let (mut f, _) = crate::io_rules::open_input(path, crate::io_rules::CSV_INPUT)?;
+    let mut c = Crc32::default();
+    let mut buf = vec![0u8; 1 << 16];
+    let mut len = 0u64;
+    loop {
+        let n = f.read(&mut buf).map_err(|source| crate::Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        if n == 0 {
+            return Ok((len, c.finish()));
+        }
+        c.update(&buf[..n]);
+        len += n as u64;
+    }
 }

@@ -244,9 +244,6 @@ impl Scenario {
             input
                 .provenance
                 .extend(super::profile_identity::profile_provenance(inp, &self.path, &name));
-            if let Some((_, file)) = super::profile_identity::measured_profile_file(inp, &self.path) {
-                input.source_files.push(file);
-            }
         }
         // `[analysis] bands`: band r.m.s. from the realizations too, on the bands of the analytic table
         input.bands = self.analysis.bands.map(|fraction| crate::simulate::RunBands {
@@ -256,15 +253,28 @@ impl Scenario {
                 .band
                 .map(|(a, b)| (a / (2.0 * std::f64::consts::PI), b / (2.0 * std::f64::consts::PI))),
         });
-        input.source_files.push(self.path.clone());
+        input.source_files = self.source_files();
+        input
+    }
+
+    /// The files this scenario was read from: the measured profiles behind `measured-profile` spectra, the
+    /// scenario file, the spectrum files it names (what a command's output must never replace: the output
+    /// rule, [`crate::io_rules::check_output`]).
+    pub fn source_files(&self) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = self
+            .inputs
+            .iter()
+            .filter_map(|inp| super::profile_identity::measured_profile_file(inp, &self.path).map(|f| f.1))
+            .collect();
+        files.push(self.path.clone());
         for inp in &self.inputs {
             if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &inp.origin
-                && !input.source_files.contains(file)
+                && !files.contains(file)
             {
-                input.source_files.push(file.clone());
+                files.push(file.clone());
             }
         }
-        input
+        files
     }
 
     /// The kurtosis of every independent process a run draws, in the order of

@@ -23,6 +23,14 @@ use crate::error::{Error, Result};
 use crate::estimate::Interval;
 use std::path::{Path, PathBuf};
 
+/// The kind of file `simulate` and `merge` write, for the output rule ([`crate::io_rules::check_output`]): a
+/// stochvib run file (an HDF5 file with `@format_version`); `--overwrite` replaces only such files.
+pub const RUN_FILE: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "stochvib run file",
+    recognizes: writer::is_run_file,
+    replaceable: false,
+};
+
 /// Compression of the raw signal datasets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(into = "String")]

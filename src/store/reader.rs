@@ -82,6 +82,8 @@ impl RunFile {
                 reason: "no such file".into(),
             });
         }
+        // the input rule: a FIFO or device would block or never end inside the HDF5 library
+        crate::io_rules::check_input(&path, crate::io_rules::HDF5_INPUT)?;
         let file = super::open_sec2(&path, super::OpenMode::Read, |_| {})
             .map_err(h5err(&path, "not readable as an HDF5 file"))?;
         let meta = read_metadata(&file, &path)?;

@@ -1223,53 +1223,20 @@ fn checked_datasets(meta: &RunMetadata) -> Vec<String> {
     out
 }
 
-/// Refuses a final path that is a directory or not a regular file, one whose directory is missing, and an
-/// existing file unless `overwrite` and it is a stochvib run file (an HDF5 file with `@format_version`).
+/// The output rule ([`crate::io_rules::check_output`]) for a run file: refuses a final path that is a
+/// directory or not a regular file, one whose directory is missing, and an existing file unless `overwrite`
+/// and it is a stochvib run file (an HDF5 file with `@format_version`).
 fn check_final_path(final_path: &Path, overwrite: bool) -> Result<()> {
-    let fail = |reason: String| Error::Hdf5 {
-        path: final_path.to_path_buf(),
-        reason,
-    };
-    if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty())
-        && !dir.is_dir()
-    {
-        return Err(fail(format!(
-            "cannot create: directory `{}` does not exist",
-            dir.display()
-        )));
-    }
-    match std::fs::symlink_metadata(final_path) {
-        Err(_) => Ok(()),
-        Ok(m) if m.is_dir() => Err(fail(
-            "is a directory: give the run file's name (e.g. DIR/run.h5)".into(),
-        )),
-        Ok(m) if !m.is_file() => Err(fail(
-            "is not a regular file (a device, pipe or link): give the run file's name".into(),
-        )),
-        Ok(_) if !overwrite => Err(fail(
-            "already exists: a finished run is never overwritten silently; remove it, choose another output \
-             name, or pass --overwrite"
-                .into(),
-        )),
-        Ok(_) if !is_run_file(final_path) => Err(fail(
-            "exists and is not a stochvib run file: --overwrite only replaces run files".into(),
-        )),
-        Ok(_) => Ok(()),
-    }
+    crate::io_rules::check_output(final_path, &super::RUN_FILE, &[], overwrite)
 }
 
 /// Whether `path` starts with the HDF5 signature.
 fn is_hdf5(path: &Path) -> bool {
-    use std::io::Read;
-    let mut sig = [0u8; 8];
-    std::fs::File::open(path)
-        .and_then(|mut f| f.read_exact(&mut sig))
-        .is_ok()
-        && sig == *b"\x89HDF\r\n\x1a\n"
+    crate::io_rules::starts_with(path, crate::io_rules::HDF5_SIGNATURE)
 }
 
 /// Whether `path` is an HDF5 file with a `@format_version` root attribute.
-fn is_run_file(path: &Path) -> bool {
+pub(crate) fn is_run_file(path: &Path) -> bool {
     is_hdf5(path)
         && open_sec2(path, OpenMode::Read, |_| {})
             .map(|f| {
@@ -1317,10 +1284,7 @@ fn owner_alive(tmp: &Path) -> Option<u32> {
     (pid != std::process::id() && process_alive(pid)).then_some(pid)
 }
 
-/// Whether a process with this pid exists (Linux: `/proc/<pid>`; elsewhere assumed gone).
-pub fn process_alive(pid: u32) -> bool {
-    Path::new(&format!("/proc/{pid}")).exists()
-}
+pub use crate::io_rules::process_alive;
 
 /// Removes fresh files of dead processes that never claimed the `.tmp` (`<tmp>.<pid>.<nanos>` left by a
 /// kill during set-up).

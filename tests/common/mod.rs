@@ -166,3 +166,56 @@ impl SpawnSerial for std::process::Command {
         stochvib::store::spawn_child(self)
     }
 }
+
+/// Runs the command-line tool in `cwd` with the source tree's catalogue (`$STOCHVIB_SPECTRA`), stdin
+/// closed, output captured; a command still running after `limit` has hung (a FIFO opened for writing
+/// blocks until a reader comes, one opened for reading until a writer does): it is killed and the test
+/// fails naming it.
+pub fn cli_within<S: AsRef<std::ffi::OsStr>>(
+    args: &[S],
+    cwd: &std::path::Path,
+    limit: std::time::Duration,
+) -> std::process::Output {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        .current_dir(cwd)
+        .env("STOCHVIB_SPECTRA", root().join("spectra"))
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn_serial()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            let words: Vec<String> = args.iter().map(|a| a.as_ref().to_string_lossy().into_owned()).collect();
+            panic!("`stochvib {}` hung", words.join(" "));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// The names in `dir`, sorted.
+pub fn listing(dir: &std::path::Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// Makes a FIFO at `path` (in a test's temporary directory).
+pub fn mkfifo(path: &std::path::Path) {
+    let c = std::ffi::CString::new(path.display().to_string()).unwrap();
+    // SAFETY: a valid NUL-terminated path
+    assert_eq!(
+        unsafe { libc::mkfifo(c.as_ptr(), 0o644) },
+        0,
+        "mkfifo {}",
+        path.display()
+    );
+}

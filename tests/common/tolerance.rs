@@ -163,3 +163,10 @@ pub const CONDITION_CHECKED: f64 = 1e-8;
 /// only through the tyre damping acting on a cab that hardly moves m₁), where the two sides sit at −5e-9
 /// and +3e-9 of Lyapunov: the value itself is that sensitive to the rounding of the coefficients.
 pub const TRANSFER_POLYNOMIALS: f64 = 2.0 * CONDITION_CHECKED;
+
+/// The steady-state amplitude of a replayed sinusoidal profile (first-order hold of the samples, an
+/// input derivative by the central difference) against |H(iω)|·A: with p samples per period the linear
+/// interpolation scales the fundamental by (sin(π/p)/(π/p))² ≈ 1 − (π/p)²/3 and the central difference the
+/// derivative by sin(2π/p)/(2π/p) ≈ 1 − (2π/p)²/6; at p = 200 these are 8.2e-5 and 1.6e-4, and a residual
+/// transient after a skip of 14 decay times is below 1e-6. 1e-3 leaves a factor of five.
+pub const REPLAY_SINE_AMPLITUDE: f64 = 1e-3;

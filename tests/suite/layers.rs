@@ -13,6 +13,7 @@ const LAYERS: &[&[&str]] = &[
         "numbers",
         "units",
         "fields",
+        "io_rules",
         "quad",
         "quad_oscillatory",
         "linalg",
