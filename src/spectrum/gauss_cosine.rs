@@ -72,6 +72,14 @@ impl Spectrum for GaussCosine {
         let f = |x: f64| (-x * x / four_alpha).exp();
         self.prefactor * (f(omega - self.beta) + f(omega + self.beta))
     }
+    /// The formula of `density` with the vectorised [`vmath::exp`](crate::linalg::vmath::exp) on the CPU's
+    /// widest SIMD unit: within `vmath::EXP_ULP_BOUND` + 2 ulp of `density`.
+    fn density_into(&self, omega: &[f64], out: &mut [f64]) {
+        use crate::linalg::vmath;
+        let four_alpha = 4.0 * self.alpha;
+        let f = |x: f64| vmath::exp(-x * x / four_alpha);
+        vmath::map(omega, out, |w| self.prefactor * (f(w - self.beta) + f(w + self.beta)));
+    }
     fn high_frequency(&self) -> Asymptote {
         Asymptote::Vanishing
     }
