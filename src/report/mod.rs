@@ -8,6 +8,7 @@ pub mod catalogue;
 pub mod replay_report;
 pub mod road_report;
 pub mod spectrum_report;
+mod float_text;
 mod sweep_h5;
 pub mod sweep_stream;
 pub mod sweep_table;

@@ -359,11 +359,12 @@ impl TableFormat {
     }
 }
 
-/// `,` and the value as `num` writes it, appended to `s` (no intermediate string).
+/// `,` and the value as `{:e}` writes it (the shortest round-trip digits: up to 17 significant digits),
+/// appended to `s` without an intermediate string ([`push_exp`](super::float_text::push_exp)).
 fn push_num(s: &mut String, v: Option<f64>) {
     s.push(',');
     if let Some(x) = v {
-        let _ = write!(s, "{x:e}");
+        super::float_text::push_exp(s, x);
     }
 }
 
@@ -476,7 +477,7 @@ impl SweepResults {
                     let err = self.error_of(p);
                     for (j, (name, unit)) in outputs.iter().enumerate() {
                         let v = &self.values[row * n_out + j];
-                        let _ = write!(s, "{p}");
+                        super::float_text::push_int(&mut s, p);
                         for (k, vals) in params.iter().enumerate() {
                             s.push(',');
                             s.push_str(&vals[self.value_index[row * nk + k]]);
@@ -507,7 +508,11 @@ impl SweepResults {
                             s.push(',');
                             s.push_str(m.map_or("", |m| if m.covers { "yes" } else { "no" }));
                         }
-                        let _ = writeln!(s, ",{}", err.map(csv_field).unwrap_or_default());
+                        s.push(',');
+                        if let Some(e) = err {
+                            s.push_str(&csv_field(e));
+                        }
+                        s.push('\n');
                     }
                 }
                 s
