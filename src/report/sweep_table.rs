@@ -447,6 +447,17 @@ impl SweepResults {
     /// The CSV lines of the points held (no header), appended to `s`: [`to_csv`](Self::to_csv) of a table is
     /// its header followed by the lines of its blocks, in order.
     pub fn push_csv_rows(&self, s: &mut String) {
+        let blocks = self.csv_row_blocks();
+        s.reserve(blocks.iter().map(String::len).sum());
+        for b in &blocks {
+            s.push_str(b);
+        }
+    }
+
+    /// The CSV lines of the points held, formatted in blocks of 4096 points on all cores: joined in order
+    /// they are [`push_csv_rows`](Self::push_csv_rows)'s text (a stream writes them one by one, without
+    /// the copy of joining them).
+    pub(crate) fn csv_row_blocks(&self) -> Vec<String> {
         let mc = self.identity.monte_carlo.is_some();
         let n_out = self.identity.outputs.len();
         let nk = self.n_keys();
@@ -467,7 +478,7 @@ impl SweepResults {
         use rayon::prelude::*;
         const BLOCK: usize = 4096;
         let n_rows = self.points.len();
-        let blocks: Vec<String> = (0..n_rows.div_ceil(BLOCK))
+        (0..n_rows.div_ceil(BLOCK))
             .into_par_iter()
             .map(|blk| {
                 let rows = blk * BLOCK..((blk + 1) * BLOCK).min(n_rows);
@@ -517,11 +528,7 @@ impl SweepResults {
                 }
                 s
             })
-            .collect();
-        s.reserve(blocks.iter().map(String::len).sum());
-        for b in &blocks {
-            s.push_str(b);
-        }
+            .collect()
     }
 
     /// The table as JSON: the identity and one object per point and output.
