@@ -91,7 +91,10 @@ fn main() {
     // 3. the 10⁵-point (c₂, b₂) sweep of σ of the cab acceleration
     let (mut c2s, mut b2s) = grid();
     if smoke {
-        (c2s, b2s) = (c2s.iter().step_by(20).copied().collect(), b2s.iter().step_by(25).copied().collect());
+        (c2s, b2s) = (
+            c2s.iter().step_by(20).copied().collect(),
+            b2s.iter().step_by(25).copied().collect(),
+        );
     }
     let n_sweep = c2s.len() * b2s.len();
     let table = SweepTable::new(road().as_ref());
@@ -356,7 +359,11 @@ fn hdf5_and_chain_jobs(reps: usize, smoke: bool) -> Vec<(String, Value)> {
     // HDF5: write 1000 × 2¹⁶ f64 (524 MB) through RunWriter, timed from create to finish (fsync + rename
     // included) or to drop (close, no fsync); the data are read back afterwards (not timed) for the check.
     let dir = h5_tmpdir("compare");
-    let (rows, deflate_rows, cols) = if smoke { (4, 2, 1 << 12) } else { (H5_ROWS, H5_DEFLATE_ROWS, H5_COLS) };
+    let (rows, deflate_rows, cols) = if smoke {
+        (4, 2, 1 << 12)
+    } else {
+        (H5_ROWS, H5_DEFLATE_ROWS, H5_COLS)
+    };
     let cases: [(&str, usize, Compression, bool, usize); 3] = [
         ("h5_write_none", rows, Compression::None, true, reps),
         ("h5_write_none_nosync", rows, Compression::None, false, reps),

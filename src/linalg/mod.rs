@@ -18,8 +18,8 @@ pub mod expm;
 pub mod integral_table;
 pub mod lyapunov;
 pub mod poly;
-pub mod vmath;
 pub mod transfer;
+pub mod vmath;
 
 pub use expm::expm;
 pub use integral_table::{h2_integral, integral_closed_form, integral_i_n};

@@ -1,7 +1,7 @@
 //! Vectorised `exp` and `ln` for grids of points, with run-time CPU dispatch.
 //!
 //! [`exp`] and [`ln`] are branch-free scalar formulas (only `+ − × ÷`, comparisons and bit operations, no
-//! call): inside a loop the compiler turns them into SIMD code. [`map`] and [`dispatch`] compile such a loop
+//! call): inside a loop the compiler turns them into SIMD code. [`map`] and [`run`] compile such a loop
 //! three times — for AVX-512 (8 lanes), AVX2 (4 lanes) and the x86-64 baseline SSE2 (2 lanes; on other
 //! architectures the plain build) — and run the widest one the CPU has ([`Isa::detected`]). No fused
 //! multiply-add is used (Rust never contracts `a * b + c`), so every [`Isa`] gives **the same bits** as
@@ -68,7 +68,9 @@ impl Isa {
         match self {
             Isa::Baseline => true,
             #[cfg(target_arch = "x86_64")]
-            Isa::Avx512 => std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512dq"),
+            Isa::Avx512 => {
+                std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512dq")
+            }
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => std::arch::is_x86_feature_detected!("avx2"),
             #[cfg(not(target_arch = "x86_64"))]
@@ -83,62 +85,99 @@ impl Isa {
     }
 }
 
-/// Runs `f` compiled for the widest instruction set of this CPU: `f` and what it inlines (closures,
-/// [`exp`], [`ln`], `#[inline]` helpers) are vectorised for it.
-#[inline(always)]
-pub fn dispatch<R>(f: impl FnOnce() -> R) -> R {
-    dispatch_on(Isa::detected(), f)
+/// A function of one f64 evaluated by [`map`]: implement it with `#[inline(always)]` on `at` for a body of
+/// any size (a closure is inlined into the SIMD loop only while it is small; `at` always is).
+pub trait Kernel {
+    /// The value at `x`.
+    fn at(&self, x: f64) -> f64;
 }
 
-/// Runs `f` compiled for `isa`, or for [`Isa::Baseline`] when the CPU lacks `isa` (the tests force every
-/// variant the CPU has through this).
-#[inline(always)]
-pub fn dispatch_on<R>(isa: Isa, f: impl FnOnce() -> R) -> R {
+impl<F: Fn(f64) -> f64> Kernel for F {
+    #[inline(always)]
+    fn at(&self, x: f64) -> f64 {
+        self(x)
+    }
+}
+
+/// A loop run by [`run`]: implement `run` with `#[inline(always)]` so that it is compiled for the
+/// instruction set `run` selects.
+pub trait Task {
+    /// The work.
+    fn run(&mut self);
+}
+
+/// `out[i] = k.at(x[i])` for i < min(x.len(), out.len()), compiled for the widest instruction set of this
+/// CPU ([`Isa::detected`]).
+#[inline]
+pub fn map<K: Kernel>(x: &[f64], out: &mut [f64], k: K) {
+    map_on(Isa::detected(), x, out, k);
+}
+
+/// `out[i] = k.at(x[i])` compiled for `isa`, or for [`Isa::Baseline`] when the CPU lacks `isa` (the tests
+/// force every variant the CPU has through this).
+#[inline]
+pub fn map_on<K: Kernel>(isa: Isa, x: &[f64], out: &mut [f64], k: K) {
     #[cfg(target_arch = "x86_64")]
     {
         if isa == Isa::Avx512 && isa.available() {
             // SAFETY: the CPU has AVX-512 F and DQ (checked just above).
-            return unsafe { x86::avx512(f) };
+            return unsafe { x86::map_avx512(x, out, &k) };
         }
         if isa == Isa::Avx2 && isa.available() {
             // SAFETY: the CPU has AVX2 (checked just above).
-            return unsafe { x86::avx2(f) };
+            return unsafe { x86::map_avx2(x, out, &k) };
         }
     }
-    f()
+    map_loop(x, out, &k);
+}
+
+/// Runs `task` compiled for the widest instruction set of this CPU.
+#[inline]
+pub fn run<T: Task>(task: &mut T) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let isa = Isa::detected();
+        if isa == Isa::Avx512 {
+            // SAFETY: `detected` returns only a variant the CPU has.
+            return unsafe { x86::run_avx512(task) };
+        }
+        if isa == Isa::Avx2 {
+            // SAFETY: as above.
+            return unsafe { x86::run_avx2(task) };
+        }
+    }
+    task.run();
 }
 
 #[cfg(target_arch = "x86_64")]
 mod x86 {
+    use super::{map_loop, Kernel, Task};
+
     #[target_feature(enable = "avx512f,avx512dq")]
-    #[inline]
-    pub(super) fn avx512<R>(f: impl FnOnce() -> R) -> R {
-        f()
+    pub(super) fn map_avx512<K: Kernel>(x: &[f64], out: &mut [f64], k: &K) {
+        map_loop(x, out, k);
     }
 
     #[target_feature(enable = "avx2")]
-    #[inline]
-    pub(super) fn avx2<R>(f: impl FnOnce() -> R) -> R {
-        f()
+    pub(super) fn map_avx2<K: Kernel>(x: &[f64], out: &mut [f64], k: &K) {
+        map_loop(x, out, k);
+    }
+
+    #[target_feature(enable = "avx512f,avx512dq")]
+    pub(super) fn run_avx512<T: Task>(task: &mut T) {
+        task.run();
+    }
+
+    #[target_feature(enable = "avx2")]
+    pub(super) fn run_avx2<T: Task>(task: &mut T) {
+        task.run();
     }
 }
 
-/// `out[i] = f(x[i])` for i < min(x.len(), out.len()), vectorised by [`dispatch`].
 #[inline(always)]
-pub fn map(x: &[f64], out: &mut [f64], f: impl Fn(f64) -> f64) {
-    dispatch(|| map_scalar(x, out, f));
-}
-
-/// `out[i] = f(x[i])` compiled for `isa` ([`dispatch_on`]).
-#[inline(always)]
-pub fn map_on(isa: Isa, x: &[f64], out: &mut [f64], f: impl Fn(f64) -> f64) {
-    dispatch_on(isa, || map_scalar(x, out, f));
-}
-
-#[inline(always)]
-fn map_scalar(x: &[f64], out: &mut [f64], f: impl Fn(f64) -> f64) {
+fn map_loop<K: Kernel>(x: &[f64], out: &mut [f64], k: &K) {
     for (o, &v) in out.iter_mut().zip(x) {
-        *o = f(v);
+        *o = k.at(v);
     }
 }
 
@@ -160,7 +199,13 @@ fn pow2i(k: i64) -> f64 {
 pub fn exp(x: f64) -> f64 {
     const INV_LN2: f64 = std::f64::consts::LOG2_E;
     // round(x / ln 2) by the shift; clamp first so that the shift stays exact far outside the range
-    let xc = if x > 710.0 { 710.0 } else if x < -746.0 { -746.0 } else { x };
+    let xc = if x > 710.0 {
+        710.0
+    } else if x < -746.0 {
+        -746.0
+    } else {
+        x
+    };
     let kd = xc * INV_LN2 + SHIFT;
     let k = kd.to_bits() as i64 - SHIFT.to_bits() as i64;
     let kd = kd - SHIFT;
@@ -226,7 +271,14 @@ pub fn ln(x: f64) -> f64 {
     let mant = bits & 0x000f_ffff_ffff_ffff;
     // m ∈ [√½, √2): the mantissa with exponent 0, or −1 above √2 (0x6a09e: the top bits of √2)
     let big = mant >= 0x6_a09e_667f_3bcd;
-    let m = f64::from_bits((mant | if big { 0x3fe0_0000_0000_0000 } else { 0x3ff0_0000_0000_0000 }) as u64);
+    let m = f64::from_bits(
+        (mant
+            | if big {
+                0x3fe0_0000_0000_0000
+            } else {
+                0x3ff0_0000_0000_0000
+            }) as u64,
+    );
     k += big as i64;
     let f = m - 1.0;
     let s = f / (2.0 + f);
@@ -258,7 +310,11 @@ mod tests {
     pub(crate) fn ulps(a: f64, b: f64) -> u64 {
         let key = |x: f64| {
             let b = x.to_bits() as i64;
-            if b < 0 { i64::MIN - b } else { b }
+            if b < 0 {
+                i64::MIN - b
+            } else {
+                b
+            }
         };
         key(a).abs_diff(key(b))
     }
@@ -326,12 +382,21 @@ mod tests {
             .into_iter()
             .map(|x| {
                 let (a, b) = (exp(x), x.exp());
-                assert_eq!((a == 0.0, a.is_infinite()), (b == 0.0, b.is_infinite()), "exp({x:e}) = {a:e}, libm {b:e}");
+                assert_eq!(
+                    (a == 0.0, a.is_infinite()),
+                    (b == 0.0, b.is_infinite()),
+                    "exp({x:e}) = {a:e}, libm {b:e}"
+                );
                 (ulps(a, b), x)
             })
             .max_by_key(|p| p.0)
             .unwrap();
-        assert!(worst.0 <= EXP_ULP_BOUND, "exp({:e}): {} ulp from libm", worst.1, worst.0);
+        assert!(
+            worst.0 <= EXP_ULP_BOUND,
+            "exp({:e}): {} ulp from libm",
+            worst.1,
+            worst.0
+        );
     }
 
     /// [`ln`] is within [`LN_ULP_BOUND`] ulp of libm's `ln` over 10⁶ arguments (subnormal arguments and the

@@ -116,7 +116,16 @@ mod tests {
             let p = 10f64.powi(e);
             values.extend([p, -p, 1.5 * p, 123.0 * p, 0.1 + p, 9.999_999_999_999_999 * p]);
         }
-        values.extend([0.0, -0.0, 5e-324, f64::MAX, f64::MIN_POSITIVE, f64::NAN, f64::INFINITY, f64::NEG_INFINITY]);
+        values.extend([
+            0.0,
+            -0.0,
+            5e-324,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ]);
         values.extend((0..2000).map(|k| k as f64 * 0.25));
         let mut s = String::new();
         for v in values {

@@ -157,7 +157,9 @@ pub fn stream_sweep_csv(
             }
             Block::Table(t) => t.csv_row_blocks(),
         };
-        blocks.iter().try_for_each(|text| w.write_all(text.as_bytes()).map_err(io))
+        blocks
+            .iter()
+            .try_for_each(|text| w.write_all(text.as_bytes()).map_err(io))
     })?;
     out.flush().map_err(io)?;
     Ok(StreamedTable { n_points: n, errors })

@@ -70,7 +70,9 @@ impl Spectrum for Gaussian {
     /// widest SIMD unit: within `vmath::EXP_ULP_BOUND` + 1 ulp of `density`.
     fn density_into(&self, omega: &[f64], out: &mut [f64]) {
         use crate::linalg::vmath;
-        vmath::map(omega, out, |w| self.prefactor * vmath::exp(-w * w / (4.0 * self.alpha)));
+        vmath::map(omega, out, |w: f64| {
+            self.prefactor * vmath::exp(-w * w / (4.0 * self.alpha))
+        });
     }
     fn high_frequency(&self) -> Asymptote {
         Asymptote::Vanishing

@@ -270,7 +270,7 @@ impl Spectrum for PowerLaw {
         }
         let k = wv as u32;
         let (lo, hi) = self.band.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
-        crate::linalg::vmath::map(omega, out, |om| {
+        crate::linalg::vmath::map(omega, out, |om: f64| {
             let n = om.abs() / (2.0 * PI);
             let x = n / self.n0;
             let x2 = x * x;

@@ -129,6 +129,27 @@ impl Tabulated {
     }
 }
 
+/// `out[i] = level[i]·exp(slope[i]·ln(w[i]/node[i]))` by [`vmath`](crate::linalg::vmath)'s functions, as a
+/// [`Task`](crate::linalg::vmath::Task) compiled for the CPU's widest SIMD unit.
+struct Segments<'a> {
+    level: &'a [f64],
+    slope: &'a [f64],
+    w: &'a [f64],
+    node: &'a [f64],
+    out: &'a mut [f64],
+}
+
+impl crate::linalg::vmath::Task for Segments<'_> {
+    #[inline(always)]
+    fn run(&mut self) {
+        use crate::linalg::vmath::{exp, ln};
+        let args = self.level.iter().zip(self.slope).zip(self.w.iter().zip(self.node));
+        for (o, ((&l, &p), (&w, &wk))) in self.out.iter_mut().zip(args) {
+            *o = l * exp(p * ln(w / wk));
+        }
+    }
+}
+
 impl Spectrum for Tabulated {
     fn describe(&self) -> String {
         format!(
@@ -160,19 +181,22 @@ impl Spectrum for Tabulated {
         use crate::linalg::vmath;
         const BLOCK: usize = 256;
         let mut k = 0;
-        let (mut ratio, mut slope, mut level) = ([1.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
+        let (mut aw, mut node, mut slope, mut level) = ([1.0; BLOCK], [1.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
         for (w, o) in omega.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
             let m = w.len().min(o.len());
             for i in 0..m {
-                (ratio[i], slope[i], level[i]) = match self.walk(&mut k, w[i].abs()) {
-                    Some(k) => (w[i].abs() / self.omega[k], self.slopes[k], self.density[k]),
-                    None => (1.0, 0.0, 0.0),
+                let a = w[i].abs();
+                (aw[i], node[i], slope[i], level[i]) = match self.walk(&mut k, a) {
+                    Some(k) => (a, self.omega[k], self.slopes[k], self.density[k]),
+                    None => (1.0, 1.0, 0.0, 0.0),
                 };
             }
-            vmath::dispatch(|| {
-                for i in 0..m {
-                    o[i] = level[i] * vmath::exp(slope[i] * vmath::ln(ratio[i]));
-                }
+            vmath::run(&mut Segments {
+                level: &level[..m],
+                slope: &slope[..m],
+                w: &aw[..m],
+                node: &node[..m],
+                out: &mut o[..m],
             });
         }
     }

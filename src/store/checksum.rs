@@ -86,9 +86,9 @@ mod tests {
         let table: Vec<u32> = (0..256u32)
             .map(|i| (0..8).fold(i, |c, _| if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 }))
             .collect();
-        !bytes
-            .iter()
-            .fold(0xFFFF_FFFFu32, |c, &b| table[((c ^ b as u32) & 0xFF) as usize] ^ (c >> 8))
+        !bytes.iter().fold(0xFFFF_FFFFu32, |c, &b| {
+            table[((c ^ b as u32) & 0xFF) as usize] ^ (c >> 8)
+        })
     }
 
     /// Value stability: every stored check value is unchanged. The maintained implementation equals the
@@ -108,14 +108,32 @@ mod tests {
             .collect();
         for off in 0..8 {
             for len in 0..=600 {
-                assert_eq!(crc32(&bytes[off..off + len]), crc32_table_loop(&bytes[off..off + len]), "{off} {len}");
+                assert_eq!(
+                    crc32(&bytes[off..off + len]),
+                    crc32_table_loop(&bytes[off..off + len]),
+                    "{off} {len}"
+                );
             }
         }
         assert_eq!(crc32(&bytes), crc32_table_loop(&bytes));
-        let v: Vec<f64> = [f64::NAN, -0.0, 0.0, 5e-324, -2.2e-308, f64::INFINITY, f64::MIN, 1.0 / 3.0]
-            .into_iter()
-            .chain(bytes.chunks_exact(8).take(5000).map(|b| f64::from_le_bytes(b.try_into().unwrap())))
-            .collect();
+        let v: Vec<f64> = [
+            f64::NAN,
+            -0.0,
+            0.0,
+            5e-324,
+            -2.2e-308,
+            f64::INFINITY,
+            f64::MIN,
+            1.0 / 3.0,
+        ]
+        .into_iter()
+        .chain(
+            bytes
+                .chunks_exact(8)
+                .take(5000)
+                .map(|b| f64::from_le_bytes(b.try_into().unwrap())),
+        )
+        .collect();
         let le: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
         assert_eq!(crc32_f64(&v), crc32_table_loop(&le));
     }

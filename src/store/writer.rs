@@ -647,7 +647,8 @@ impl RunWriter {
         // are read once more from memory, but that pass is off the write's critical path
         let sums = std::thread::scope(|scope| -> Result<Vec<u32>> {
             let bytes: usize = inputs.iter().chain(outputs).map(|a| a.len() * 8).sum();
-            let sums = (bytes >= OVERLAP_CHECKSUM_BYTES).then(|| scope.spawn(|| shard_sums(inputs, outputs, accumulators)));
+            let sums =
+                (bytes >= OVERLAP_CHECKSUM_BYTES).then(|| scope.spawn(|| shard_sums(inputs, outputs, accumulators)));
             self.write_rows(range, inputs, outputs)?;
             Ok(match sums {
                 Some(h) => h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)),

@@ -29,7 +29,10 @@ fn a_file_checksummed_by_the_table_loop_still_verifies() {
         .unwrap();
     let bytes = std::fs::read(fixture()).unwrap();
     let pat = raw[40].to_le_bytes();
-    let at = bytes.windows(8).position(|w| w == pat).expect("the sample is in the file");
+    let at = bytes
+        .windows(8)
+        .position(|w| w == pat)
+        .expect("the sample is in the file");
     let mut damaged = bytes.clone();
     damaged[at] ^= 0x01;
     let p = std::env::temp_dir().join(format!("stochvib-crc-stability-{}.h5", std::process::id()));

@@ -254,15 +254,27 @@ fn density_into_equals_density() {
     all[1].1 = false; // Gauss-cosine
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
     all.push((Arc::new(AtSpeed::new(road, 10.0).unwrap()), true));
-    all.push((Arc::new(RationalSpectrum::new(vec![1.0, 0.5], vec![1.0, 0.3, 0.02], t).unwrap()), true));
-    all.push((Arc::new(BandWhite::new(Convention::TwoSidedAngular, 0.1, 1.0, 50.0, t).unwrap()), true));
-    all.push((Arc::new(TwoPoleRoad::new(1e-3, 0.3, 12.0, Form::Consistent).unwrap()), true));
+    all.push((
+        Arc::new(RationalSpectrum::new(vec![1.0, 0.5], vec![1.0, 0.3, 0.02], t).unwrap()),
+        true,
+    ));
+    all.push((
+        Arc::new(BandWhite::new(Convention::TwoSidedAngular, 0.1, 1.0, 50.0, t).unwrap()),
+        true,
+    ));
+    all.push((
+        Arc::new(TwoPoleRoad::new(1e-3, 0.3, 12.0, Form::Consistent).unwrap()),
+        true,
+    ));
     all.push((Arc::new(Gaussian::new(1.0, 2.0, t).unwrap()), false));
     let iso = PowerLaw::iso8608(IsoClass::C, IsoBound::GeometricMean, Some(ISO_BAND)).unwrap();
     all.push((Arc::new(AtSpeed::new(Arc::new(iso), 20.0).unwrap()), false));
     let x: Vec<f64> = (0..12).map(|k| 0.1 * 1.7f64.powi(k)).collect();
     let v: Vec<f64> = x.iter().map(|x| 1.0 / (1.0 + x * x)).collect();
-    all.push((Arc::new(Tabulated::new(Convention::TwoSidedAngular, x, v, t).unwrap()), false));
+    all.push((
+        Arc::new(Tabulated::new(Convention::TwoSidedAngular, x, v, t).unwrap()),
+        false,
+    ));
     let mut grid: Vec<f64> = (0..1000).map(|k| -5.0 + 0.0173 * k as f64).collect();
     grid.extend((0..2001).map(|k| 0.05 * k as f64));
     let n = grid.len() - 223;

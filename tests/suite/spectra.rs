@@ -302,7 +302,11 @@ fn tabulated_density_into_matches_density() {
         for (w, o) in grid.iter().zip(&out) {
             let d = t.density(*w);
             let node = nodes.iter().any(|p| p.0 == w.abs());
-            let ok = if node || d == 0.0 { *o == d } else { (o - d).abs() <= SIMD_DENSITY * d };
+            let ok = if node || d == 0.0 {
+                *o == d
+            } else {
+                (o - d).abs() <= SIMD_DENSITY * d
+            };
             assert!(ok, "ω = {w}: {o:e} vs {d:e}");
         }
     }
