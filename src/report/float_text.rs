@@ -1,8 +1,9 @@
 //! Fast number text for large tables: the exact text of Rust's `{:e}` (the shortest digits that read back
 //! to the same f64, as `d.ddde-x`), produced from the digits of [`zmij`] (Zverovich's Żmij algorithm, a
 //! maintained shortest round-trip formatter several times faster than `core::fmt`), and integers by
-//! [`itoa`]. The text is that of `format!("{x:e}")` except when 17 digits are needed and the 17th is an
-//! exact tie, where Żmij rounds it up and `core::fmt` to even: both texts read back to the same f64.
+//! [`itoa`]. The text is that of `format!("{x:e}")` except when the shortest digits end on an exact tie
+//! (x has a 17th significant digit 5 and nothing after it), where Żmij and `core::fmt` break the tie
+//! differently: the two texts differ by one in the last digit and read back to the same f64.
 
 /// Appends `x` as `format!("{x:e}")` would (see the module docs for the one exception): the shortest
 /// round-trip digits (at most 17), one before the point, and the decimal exponent (`1.5e-3`, `-2e0`, `0e0`,
@@ -100,7 +101,8 @@ mod tests {
     /// Byte for byte the text of `{:e}` (core::fmt, an independent implementation: Grisu with Dragon4
     /// fallback) on 10⁶ random bit patterns (every exponent, subnormals), on round numbers and powers of
     /// ten where the digit count changes, and on the special values; where the two differ, only at a tie
-    /// of the 17th digit: both have 17 digits, the same exponent, and read back to the same bits.
+    /// of the last digit: the same number of digits and exponent, the last digit one apart, and both read
+    /// back to the same bits (such ties are rare: 226 of the 10⁶ random bit patterns).
     #[test]
     fn the_text_of_lower_exp() {
         let mut x = 0x2545_F491_4F6C_DD1Du64;
@@ -128,20 +130,27 @@ mod tests {
         ]);
         values.extend((0..2000).map(|k| k as f64 * 0.25));
         let mut s = String::new();
+        let mut ties = 0;
         for v in values {
             s.clear();
             push_exp(&mut s, v);
             let core = format!("{v:e}");
             if s != core {
-                let digits = |t: &str| t.split('e').next().unwrap().bytes().filter(u8::is_ascii_digit).count();
-                let exp = |t: &str| t.split('e').nth(1).map(str::to_string);
+                ties += 1;
+                let (a, b) = (s.as_bytes(), core.as_bytes());
+                let e = a.iter().position(|&c| c == b'e').unwrap();
+                // the same text but the digit before the exponent, one apart
                 assert!(
-                    digits(&s) == 17 && digits(&core) == 17 && exp(&s) == exp(&core),
+                    a.len() == b.len()
+                        && a[..e - 1] == b[..e - 1]
+                        && a[e..] == b[e..]
+                        && a[e - 1].abs_diff(b[e - 1]) == 1,
                     "{:x}: {s} vs {core}",
                     v.to_bits()
                 );
                 assert_eq!(s.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{s}");
             }
         }
+        assert!(ties < 1000, "{ties} ties in 10⁶ values");
     }
 }
