@@ -48,6 +48,8 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(5);
     let smoke = args.iter().any(|a| a == "--smoke");
+    // `--only density`: the density jobs alone (run.sh alternates them with numpy's, round after round)
+    let only_density = args.windows(2).any(|w| w[0] == "--only" && w[1] == "density");
     let reps = if smoke { 1 } else { reps };
     // sizes: the comparison's, or tiny ones for the smoke run (the same list in compare.py)
     let (mc_real, mc_n) = if smoke { (4, 1 << 12) } else { (MC_REAL, MC_N) };
@@ -66,6 +68,11 @@ fn main() {
             out.iter().sum()
         });
         put(&format!("density_{name}"), N_DENSITY, r);
+    }
+    if only_density {
+        let doc = json!({"side": "rust", "jobs": Value::Object(jobs)});
+        println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+        return;
     }
 
     // 2. one variance of the 2-DOF scraper (cab acceleration) under the rational road, three ways

@@ -353,6 +353,16 @@ def quad4():
     return 2 * val
 
 
+def run_densities(reps):
+    """The density jobs alone (run.sh alternates them with the Rust side's, round after round)."""
+    jobs = {}
+    w = np.linspace(0.01, 100.0, N_DENSITY)
+    for name, fn in densities().items():
+        t, check = best(reps, lambda: fn(w).sum(), inner=20)
+        jobs[f"density_{name}"] = {"seconds": t, "n": N_DENSITY, "check": check}
+    return {"side": "python", "numpy": np.__version__, "jobs": jobs}
+
+
 def run_analytic(reps):
     jobs = {}
 
@@ -812,6 +822,7 @@ def table(rust_path, py_path):
 # --- the one table (benches/RESULTS.md) ------------------------------------------------------------------
 CMD_RUN = "`compare_rust` + `compare.py run`"
 CMD_CLI = "`compare.py sweep-cli`"
+CMD_DENS = "`compare_rust --only density` / `compare.py run --only density`, alternated, median of the rounds"
 
 
 def summary_rows(rust, py, sweeps):
@@ -825,6 +836,11 @@ def summary_rows(rust, py, sweeps):
             rows.append((job, size, r["seconds"], peer, p["seconds"], p["seconds"] / r["seconds"], state, cmd))
 
     for k in sorted(k[8:] for k in rj if k.startswith("density_")):
+        if "density_rounds" in rust:  # medians of the alternating rounds (run.sh)
+            t, tp = rust["density_rounds"][k], py["density_rounds"][k]
+            rows.append((f"density, {k}", f"{rj['density_' + k]['n']} pts", t, "numpy (vectorised)", tp, tp / t,
+                         "density", CMD_DENS))
+            continue
         vs(f"density, {k}", f"{rj['density_' + k]['n']} pts", "density_" + k, "numpy (vectorised)", "density_" + k)
     vs("variance, 1 model, integral table", "1 model", "variance_table", "scipy solve_continuous_lyapunov", "variance_lyapunov")
     n = rj["sweep_table"]["n"]
@@ -868,12 +884,19 @@ def summary_rows(rust, py, sweeps):
 def summary(d):
     """Prints the one table of benches/RESULTS.md from run.sh's output directory `d`."""
     rust, py = json.load(open(os.path.join(d, "rust.json"))), json.load(open(os.path.join(d, "python.json")))
+    rounds = sorted(f for f in os.listdir(d) if f.startswith("density-rust-"))
+    if rounds:  # median over the alternating rounds of each side
+        import statistics
+
+        for side, doc, prefix in (("rust", rust, "density-rust-"), ("python", py, "density-python-")):
+            runs = [json.load(open(os.path.join(d, f.replace("density-rust-", prefix))))["jobs"] for f in rounds]
+            doc["density_rounds"] = {k[8:]: statistics.median(r[k]["seconds"] for r in runs) for k in runs[0]}
     sweeps, states = {}, {}
     for name in ("quiet", "busy"):
         f = os.path.join(d, f"sweep-{name}.json")
         if os.path.exists(f):
             sweeps[name] = json.load(open(f))
-    for name in ("run", "quiet", "busy"):
+    for name in ("run", "density", "quiet", "busy"):
         f = os.path.join(d, f"state-{name}.txt")
         states[name] = open(f).read().strip() if os.path.exists(f) else "?"
     out = [
@@ -899,6 +922,7 @@ def main():
     r = sub.add_parser("run")
     r.add_argument("--reps", type=int, default=5)
     r.add_argument("--smoke", action="store_true", help="every job once at a tiny size")
+    r.add_argument("--only", choices=["density"], help="only the density jobs")
     t = sub.add_parser("table")
     t.add_argument("rust")
     t.add_argument("python")
@@ -927,7 +951,10 @@ def main():
     if a.cmd == "run":
         if a.smoke:
             apply_smoke()
-        print(json.dumps(run(1 if a.smoke else a.reps), indent=1))
+        if a.only == "density":
+            print(json.dumps(run_densities(a.reps), indent=1))
+        else:
+            print(json.dumps(run(1 if a.smoke else a.reps), indent=1))
     elif a.cmd == "sweep":
         print(json.dumps(sweep_jobs(a.reps), indent=1))
     else:

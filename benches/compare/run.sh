@@ -11,7 +11,8 @@
 #   bash benches/compare/run.sh --tunables   # also the analytic/MC jobs with
 #                                            # GLIBC_TUNABLES=glibc.cpu.x86_rep_movsb_threshold=100000000
 #
-# Order: the Rust jobs, then the Python jobs (quiet machine), then `stochvib sweep` of 10^6 points to HDF5,
+# Order: the Rust jobs, then the Python jobs (quiet machine), then the densities again in alternating rounds
+# (their table rows are the medians of the rounds), then `stochvib sweep` of 10^6 points to HDF5,
 # to a CSV file and as CSV read from a pipe beside the scipy loop, once on the quiet machine and once with
 # one core kept busy (stress-ng --cpu 1 when installed, else a shell busy loop). The machine state (load
 # average) is recorded before each phase. Timings are the best of REPS repetitions, the `stochvib sweep`
@@ -70,6 +71,16 @@ echo "run.sh: Rust jobs, then Python jobs" >&2
 env -u GLIBC_TUNABLES "$bin" "${rust_args[@]}" >"$out/rust.json"
 env -u GLIBC_TUNABLES python3 "$here/compare.py" run "${py_args[@]}" >"$out/python.json"
 python3 "$here/compare.py" table "$out/rust.json" "$out/python.json" >"$out/details.md"
+
+# the densities take microseconds: a load that changes between the Rust and the Python phase above would
+# decide their ratio, so they are also run in alternating rounds (Rust, numpy, Rust, ...), median per side
+rounds=$([ "$smoke" = 1 ] && echo 1 || echo 5)
+echo "run.sh: densities, $rounds alternating rounds" >&2
+state quiet density
+for i in $(seq 1 "$rounds"); do
+    env -u GLIBC_TUNABLES "$bin" --only density "${rust_args[@]}" >"$out/density-rust-$i.json" 2>/dev/null
+    env -u GLIBC_TUNABLES python3 "$here/compare.py" run --only density "${py_args[@]}" >"$out/density-python-$i.json"
+done
 
 echo "run.sh: stochvib sweep beside the scipy loop, quiet machine" >&2
 state quiet quiet
