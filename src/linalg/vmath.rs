@@ -149,6 +149,19 @@ pub fn run<T: Task>(task: &mut T) {
     task.run();
 }
 
+/// `x[i] /= d` for every i, compiled for the widest instruction set of this CPU (the same bits on each).
+pub fn div_in_place(x: &mut [f64], d: f64) {
+    struct Div<'a>(&'a mut [f64], f64);
+    impl Task for Div<'_> {
+        #[inline(always)]
+        fn run(&mut self) {
+            let d = self.1;
+            self.0.iter_mut().for_each(|v| *v /= d);
+        }
+    }
+    run(&mut Div(x, d));
+}
+
 #[cfg(target_arch = "x86_64")]
 mod x86 {
     use super::{map_loop, Kernel, Task};

@@ -80,9 +80,7 @@ impl Spectrum for AtSpeed {
             let m = w.len().min(o.len());
             crate::linalg::vmath::map(&w[..m], &mut scaled[..m], |x| x / self.speed);
             self.inner.density_into(&scaled[..m], &mut o[..m]);
-            for v in &mut o[..m] {
-                *v /= self.speed;
-            }
+            crate::linalg::vmath::div_in_place(&mut o[..m], self.speed);
         }
     }
     fn high_frequency(&self) -> Asymptote {
