@@ -196,9 +196,11 @@ fn map_loop<K: Kernel>(x: &[f64], out: &mut [f64], k: &K) {
 
 /// 1.5·2⁵²: adding it rounds a number of magnitude < 2⁵¹ to an integer held in the low mantissa bits.
 const SHIFT: f64 = 6_755_399_441_055_744.0;
-/// ln 2 with its last 21 bits zero (fdlibm's `ln2_hi`): k·LN2_HI is exact for |k| < 2²¹.
+/// ln 2 with its last 21 bits zero (fdlibm's `ln2_hi`, 0x3fe62e42fee00000): k·LN2_HI is exact for |k| < 2²¹.
+#[allow(clippy::excessive_precision)] // fdlibm's digits, verbatim
 const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;
-/// ln 2 − LN2_HI.
+/// ln 2 − LN2_HI (fdlibm's `ln2_lo`, 0x3dea39ef35793c76).
+#[allow(clippy::excessive_precision)] // fdlibm's digits, verbatim
 const LN2_LO: f64 = 1.908_214_929_270_587_700_02e-10;
 
 /// 2^k for −1022 ≤ k ≤ 1023, exactly, from the exponent bits.
@@ -212,13 +214,7 @@ fn pow2i(k: i64) -> f64 {
 pub fn exp(x: f64) -> f64 {
     const INV_LN2: f64 = std::f64::consts::LOG2_E;
     // round(x / ln 2) by the shift; clamp first so that the shift stays exact far outside the range
-    let xc = if x > 710.0 {
-        710.0
-    } else if x < -746.0 {
-        -746.0
-    } else {
-        x
-    };
+    let xc = x.clamp(-746.0, 710.0);
     let kd = xc * INV_LN2 + SHIFT;
     let k = kd.to_bits() as i64 - SHIFT.to_bits() as i64;
     let kd = kd - SHIFT;
@@ -267,6 +263,8 @@ pub fn exp(x: f64) -> f64 {
 /// ln x (see the module docs for the formula and the accuracy).
 #[inline(always)]
 pub fn ln(x: f64) -> f64 {
+    // fdlibm's Lg1..Lg7, verbatim
+    #[allow(clippy::excessive_precision)]
     const LG: [f64; 7] = [
         6.666_666_666_666_735_13e-1,
         3.999_999_999_940_941_91e-1,
