@@ -300,6 +300,10 @@ fn main() {
                 json!({"seconds": r.0, "n": 8, "check": r.1}),
             );
         }
+        let mut put_floor = |key: &str, (t, check): (f64, f64)| {
+            eprintln!("{key:32} {t:12.6e} s");
+            jobs.insert(key.into(), json!({"seconds": t, "n": mc_real * mc_n, "check": check}));
+        };
         // floor: draw the N normals of a realization + one inverse real FFT of length N, per realization
         // (1 thread; the same work as numpy's floor job)
         let fft = RealFftPlanner::<f64>::new().plan_fft_inverse(mc_n);
@@ -321,11 +325,7 @@ fn main() {
             }
             acc
         });
-        eprintln!("{:32} {:12.6e} s", "mc_floor_1t", r.0);
-        jobs.insert(
-            "mc_floor_1t".into(),
-            json!({"seconds": r.0, "n": mc_real * mc_n, "check": r.1}),
-        );
+        put_floor("mc_floor_1t", r);
         // the exact route's floor: its normals alone (one per state and step, as GaussMarkov::advance draws
         // them), per realization, 1 thread
         let mut normals = vec![0.0; exact.gm.n_states() * mc_n];
@@ -337,11 +337,7 @@ fn main() {
             }
             acc
         });
-        eprintln!("{:32} {:12.6e} s", "mc_exact_floor_1t", r.0);
-        jobs.insert(
-            "mc_exact_floor_1t".into(),
-            json!({"seconds": r.0, "n": mc_real * mc_n, "check": r.1}),
-        );
+        put_floor("mc_exact_floor_1t", r);
         mc_info.insert("analytic_variance".into(), json!(analytic));
         mc_info.insert("input_grid_variance".into(), json!(pipe.generator.grid_variance()));
         mc_info.insert("warmup_periods".into(), json!(pipe.warmup));

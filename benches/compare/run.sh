@@ -66,7 +66,7 @@ cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 simd="$(grep -m1 '^flags' /proc/cpuinfo | grep -o -w -E 'avx512f|avx2|sse2' | sort -u | tr '\n' ' ')"
 echo "machine: $(nproc) cores, $cpu ($simd), $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)" | tee "$out/machine.txt"
 
-state quiet run
+state "as found" run
 echo "run.sh: Rust jobs, then Python jobs" >&2
 env -u GLIBC_TUNABLES "$bin" "${rust_args[@]}" >"$out/rust.json"
 env -u GLIBC_TUNABLES python3 "$here/compare.py" run "${py_args[@]}" >"$out/python.json"
@@ -76,14 +76,14 @@ python3 "$here/compare.py" table "$out/rust.json" "$out/python.json" >"$out/deta
 # decide their ratio, so they are also run in alternating rounds (Rust, numpy, Rust, ...), median per side
 rounds=$([ "$smoke" = 1 ] && echo 1 || echo 5)
 echo "run.sh: densities, $rounds alternating rounds" >&2
-state quiet density
+state "as found" density
 for i in $(seq 1 "$rounds"); do
     env -u GLIBC_TUNABLES "$bin" --only density "${rust_args[@]}" >"$out/density-rust-$i.json" 2>/dev/null
     env -u GLIBC_TUNABLES python3 "$here/compare.py" run --only density "${py_args[@]}" >"$out/density-python-$i.json"
 done
 
 echo "run.sh: stochvib sweep beside the scipy loop, quiet machine" >&2
-state quiet quiet
+state "as found" quiet
 python3 "$here/compare.py" sweep-cli --binary "$cli" "${cli_args[@]}" >"$out/sweep-quiet.json"
 echo "run.sh: the same with one core busy" >&2
 if command -v stress-ng >/dev/null; then
