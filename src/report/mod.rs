@@ -5,6 +5,7 @@ pub mod analysis;
 pub mod band_report;
 pub mod book;
 pub mod catalogue;
+mod float_text;
 pub mod markdown;
 pub mod replay_report;
 pub mod road_report;

@@ -1,6 +1,19 @@
 //! Writing a run: temporary name, shard by shard, rename on completion, resume after interruption.
 
 use super::checksum::crc32_f64;
+
+/// Raw data of a shard from which its checksums are computed on a second thread, beside the write.
+const OVERLAP_CHECKSUM_BYTES: usize = 1 << 20;
+
+/// The checksums of a shard: each raw array (row-major little-endian bytes), then each accumulator.
+fn shard_sums(inputs: &[ArrayView2<'_, f64>], outputs: &[ArrayView2<'_, f64>], accumulators: &[&[f64]]) -> Vec<u32> {
+    inputs
+        .iter()
+        .chain(outputs)
+        .map(|a| crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])))
+        .chain(accumulators.iter().map(|a| crc32_f64(a)))
+        .collect()
+}
 use super::chunks;
 use super::layout as L;
 use super::parts::{MergedFrom, RawStorage};
@@ -630,6 +643,28 @@ impl RunWriter {
                 ));
             }
         }
+        // the checksums are computed on another thread while the rows are written (or filtered): the data
+        // are read once more from memory, but that pass is off the write's critical path
+        let sums = std::thread::scope(|scope| -> Result<Vec<u32>> {
+            let bytes: usize = inputs.iter().chain(outputs).map(|a| a.len() * 8).sum();
+            let sums =
+                (bytes >= OVERLAP_CHECKSUM_BYTES).then(|| scope.spawn(|| shard_sums(inputs, outputs, accumulators)));
+            self.write_rows(range, inputs, outputs)?;
+            Ok(match sums {
+                Some(h) => h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)),
+                None => shard_sums(inputs, outputs, accumulators),
+            })
+        })?;
+        self.finish_shard(row, accumulators, sums)
+    }
+
+    /// Writes the rows `range` of every input and output (filtered on all threads when compressed).
+    fn write_rows(
+        &self,
+        range: std::ops::Range<usize>,
+        inputs: &[ArrayView2<'_, f64>],
+        outputs: &[ArrayView2<'_, f64>],
+    ) -> Result<()> {
         let e = |what: &str| h5err(&self.tmp, what);
         for (ds, a) in self
             .inputs
@@ -652,13 +687,7 @@ impl RunWriter {
                 }
             }
         }
-        let sums: Vec<u32> = inputs
-            .iter()
-            .chain(outputs)
-            .map(|a| crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])))
-            .chain(accumulators.iter().map(|a| crc32_f64(a)))
-            .collect();
-        self.finish_shard(row, accumulators, sums)
+        Ok(())
     }
 
     /// Writes a shard's accumulators and checksums, flushes, marks it complete and flushes again.

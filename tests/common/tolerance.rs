@@ -11,6 +11,12 @@
 /// a few exactly representable terms): each rounding is at most ε/2, so 4ε allows about eight of them.
 pub const ULPS: f64 = 4.0 * f64::EPSILON;
 
+/// A density evaluated on a grid by `density_into` (the vectorised `exp`/`ln` of `linalg::vmath`, each within
+/// 2 ulp of libm, or a power by multiplications instead of `powf`) against its scalar oracle `density`: 2 ulp
+/// from `exp`, 2 from `ln` amplified by |p ln(ω/ω_k)| ≤ 1 in a tabulated segment, and up to 4 roundings
+/// placed differently by the two formulas (ε/2 each): 8ε relative.
+pub const SIMD_DENSITY: f64 = 8.0 * f64::EPSILON;
+
 /// A short computation without cancellation (a closed form of a handful of operations, a quadrature rule
 /// or polynomial sum of up to ~40 terms of one sign, a 16-point FFT, the factorisation of a quadratic,
 /// the round-off floor of an integrator's error estimate, 25ε·∫|f|): n roundings of ≤ ε/2 add at worst

@@ -9,6 +9,7 @@ mod fuzz;
 mod band_mc;
 mod band_table;
 mod book;
+mod checksum_stability;
 mod coherence;
 mod comfort;
 mod comfort_report;
