@@ -223,7 +223,7 @@ fn main() {
         jobs.insert(key, job);
     }
 
-    // 5. Monte Carlo pipeline (issue #7): MC_REAL = 1000 realizations × MC_N = 2¹⁶ samples of the SDOF
+    // 5. Monte Carlo pipeline: MC_REAL = 1000 realizations × MC_N = 2¹⁶ samples of the SDOF
     //    (ω = 10 rad/s, ζ = 0.05) under K(τ) = e^{−3|τ|}, Δt = 0.01 s: generate → respond → statistics
     //    (per realization m_i, v_i; Student-t intervals of mean, σ², σ). Spectral route (the library default
     //    generator): SpectralGenerator (Rayleigh) + SampledSystem::respond (FOH), 1 warm-up period, through
@@ -357,7 +357,7 @@ fn main() {
     println!("{}", serde_json::to_string_pretty(&doc).unwrap());
 }
 
-/// Jobs of issue #7 (HDF5 write through the library's `store` writer; the dynamic-stiffness chain), timed
+/// Jobs of the HDF5 write and chain comparison (HDF5 write through the library's `store` writer; the dynamic-stiffness chain), timed
 /// like the rest (best of `reps`); see `benches/h5chain/mod.rs` for the problems.
 fn hdf5_and_chain_jobs(reps: usize, smoke: bool) -> Vec<(String, Value)> {
     use h5chain::*;

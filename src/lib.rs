@@ -39,7 +39,7 @@
 //! ```
 //!
 //! # Layers
-//! Data flows one way, and no module imports from a layer above its own (checked by `tests/layers.rs`):
+//! Data flows one way, and no module imports from a layer above its own (checked by `tests/suite/layers.rs`):
 //!
 //! | layer | modules | what |
 //! |---|---|---|
@@ -55,6 +55,11 @@
 //! | 9 | [`prelude`] | the common imports |
 
 #![warn(missing_docs)]
+
+/// The README's Rust example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeExample;
 
 pub mod coherence;
 pub mod comfort;

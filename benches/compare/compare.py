@@ -454,7 +454,7 @@ def table_analytic(rust_path, py_path):
     print("\n".join(out))
 
 
-# --- issue #7: HDF5 write (h5py) and the dynamic-stiffness chain (scipy banded / numpy dense) -------------
+# --- HDF5 write (h5py) and the dynamic-stiffness chain (scipy banded / numpy dense) -------------
 # Same problems as benches/h5chain/mod.rs.
 H5_ROWS, H5_COLS, H5_SHARD, H5_DEFLATE_ROWS = 1000, 1 << 16, 50, 100
 H5_CHUNK = (2, 1 << 16)  # stochvib::store::layout::chunk_shape(2^16, 50): 1 MiB chunks
@@ -626,7 +626,7 @@ def table_h5_chain(rust_path, py_path):
     print("\n".join([""] + lines))
 
 
-# --- 5. Monte Carlo pipeline (issue #7) ----------------------------------------------------------------
+# --- 5. Monte Carlo pipeline ----------------------------------------------------------------
 # Same job as McSpectral in benches/common/mod.rs: SDOF x'' + 2 zeta w x' + w^2 x = u (w = 10 rad/s,
 # zeta = 0.05, output x) under K(tau) = e^{-3|tau|}; MC_REAL realizations x 2^16 samples, dt = 0.01 s.
 # Spectral representation with Rayleigh amplitudes on the FFT grid (numpy real FFT), the model discretised

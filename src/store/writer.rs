@@ -1179,7 +1179,7 @@ fn raw_chunk(meta: &RunMetadata) -> (usize, usize) {
 /// [`L::chunk_shape`]), and a chunk that does not fit the cache is written by HDF5 straight from the
 /// caller's buffer to the file. With HDF5's default 1 MiB cache, a 1 MiB chunk is "cacheable" and every
 /// byte is first copied into the cache and then written out: one extra memcpy of the whole run (and
-/// glibc's memcpy of such buffers is slow on some machines, DESIGN.md §8). Compressed shards are filtered
+/// glibc's memcpy of such buffers is slow on some machines, see benches/HISTORY.md). Compressed shards are filtered
 /// by the writer and stored with `H5Dwrite_chunk` (see `chunks.rs`), which bypasses the cache; HDF5's
 /// default cache is kept for them.
 fn open_file(path: &Path, mode: OpenMode, compression: Compression) -> hdf5::Result<File> {

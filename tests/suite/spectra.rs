@@ -1,7 +1,7 @@
 //! Spectral densities: every closed form against independent quadrature, conversions, files, bad input.
 //!
 //! Provenance of expected values: the closed forms derived in each type's doc comment (Fourier pairs of
-//! DESIGN.md §2), ISO 8608's class definition σ² = G_d(n₀) n₀² (1/n₁ − 1/n₂) for w = 2, and the SI
+//! docs/conventions.md), ISO 8608's class definition σ² = G_d(n₀) n₀² (1/n₁ − 1/n₂) for w = 2, and the SI
 //! definitions of units. No expected value is taken from running the code under test.
 
 use crate::common;
@@ -480,7 +480,7 @@ fn catalogue_files_parse_with_book_values() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(crate::common::proptest_config(64))]
 
     /// For random parameters, quadrature of every standard type's density gives D.
     #[test]
