@@ -32,7 +32,6 @@ type Key = (String, Option<String>, String);
 /// Scenario texts (name, TOML) that reach the keys no file of `data/` reaches. Every one must be accepted.
 fn fixtures() -> Vec<(&'static str, String)> {
     let mut all: Vec<(&str, String)> = [
-        ("several-inputs", SEVERAL_INPUTS),
         ("matrices", MATRICES),
         ("state-space", STATE_SPACE),
         ("transfer-rows", TRANSFER_ROWS),
@@ -64,12 +63,23 @@ gains = [1, 1]"#,
         all.push((name, model + &two_track_input(coherence)));
     }
     all.push(("road-section", body_on_two_tracks("") + ROAD_SECTION));
+    all.push(("several-inputs", body_on_two_tracks("forces = [[1]]") + SEVERAL_INPUTS));
     all
 }
 
-/// A body on a spring and damper over each of two tracks (mdof) with the `[model]` keys `model_keys`; the
-/// road follows.
+/// A body on a spring and damper over each of two tracks (mdof) with the `[model]` keys `model_keys`; more
+/// outputs, the inputs and the analysis follow.
 fn body_on_two_tracks(model_keys: &str) -> String {
+    let elements: String = ["left", "right"]
+        .iter()
+        .enumerate()
+        .map(|(j, side)| {
+            format!(
+                "[[model.element]]\nname = \"{side}\"\npoint = [1]\nto = \"base {j}\"\nstiffness = \"20 kN/m\"\n\
+                 damping = \"1 kN*s/m\"\n"
+            )
+        })
+        .collect();
     format!(
         r#"
 [model]
@@ -77,18 +87,7 @@ kind = "mdof"
 base_inputs = 2
 coordinates = [{{ name = "body", mass = "500 kg" }}]
 {model_keys}
-[[model.element]]
-name = "left"
-point = [1]
-to = "base 0"
-stiffness = "20 kN/m"
-damping = "1 kN*s/m"
-[[model.element]]
-name = "right"
-point = [1]
-to = "base 1"
-stiffness = "20 kN/m"
-damping = "1 kN*s/m"
+{elements}
 [[model.output]]
 name = "body"
 quantity = "velocity"
@@ -210,58 +209,32 @@ design_life = "5000 h"
 bins = 32
 "#;
 
-/// A quarter car (mdof) driven by a road under the wheel and a force on the body, two `[[input]]` tables,
-/// with every `[analysis]` key outside the verdicts.
+/// After [`body_on_two_tracks`] with a force on the body: one process under both springs and a force, two
+/// `[[input]]` tables, with every `[analysis]` key outside the verdicts.
 const SEVERAL_INPUTS: &str = r#"
-title = "fixture"
-source = "fixture"
-[model]
-kind = "mdof"
-base_inputs = 1
-forces = [[1, 0]]
-coordinates = [{ name = "body", unit = "m", mass = "300 kg" }, { name = "wheel", mass = "40 kg" }]
-[[model.element]]
-name = "suspension"
-point = [1, 0]
-to = [0, 1]
-stiffness = "20 kN/m"
-damping = "1.5 kN*s/m"
-[[model.element]]
-name = "tyre"
-point = [0, 1]
-to = "base 0"
-stiffness = "200 kN/m"
-[[model.output]]
-name = "body"
-quantity = "displacement"
-point = [1, 0]
 [[model.output]]
 name = "travel"
-quantity = "deflection"
-element = "suspension"
-[[model.output]]
-name = "wheel_travel"
 quantity = "relative-displacement"
-point = [0, 1]
+point = [1]
 base = 0
 [[input]]
-name = "road"
+name = "ground"
 spectrum = "iso8608-c"
 speed = "20 m/s"
 mean = "0 m"
-drives = [0]
-positions = ["0 m"]
-gains = [1]
+drives = [0, 1]
+positions = ["0 m", "1 m"]
+gains = [1, 1]
 kurtosis = 4
 [[input]]
 name = "load"
 spectrum = { kind = "band-white", unit = "N", convention = "one-sided-cyclic", level = 1.0, band = ["1 Hz", "20 Hz"] }
-drives = [1]
+drives = [2]
 [analysis]
-outputs = ["body", "travel", "wheel_travel"]
+outputs = ["body", "travel"]
 band = ["0.5 Hz", "50 Hz"]
 duration = "2 h"
-levels = { body = ["1 cm"] }
+levels = { body = ["1 cm/s"] }
 quadrature = { rel_tol = 1e-6, max_subintervals = 2000, max_half_periods = 2000 }
 bands = "third-octave"
 "#;
