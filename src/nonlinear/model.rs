@@ -12,7 +12,7 @@
 
 use super::{Equivalent, ForceLaw};
 use crate::error::{Error, Result};
-use crate::system::{Attach, Element, Mdof, Quantity};
+use crate::system::{Attach, Element, FrequencyResponse, Mdof, Quantity};
 use nalgebra::DVector;
 use std::sync::Arc;
 
@@ -126,6 +126,20 @@ impl NonlinearModel {
     /// The linear part (the model with every element's linear part, and its outputs).
     pub fn linear(&self) -> &Mdof {
         &self.linear
+    }
+
+    /// The model with one more output of its linear part.
+    ///
+    /// # Errors
+    /// A name already taken; the errors of [`Mdof::with_output`].
+    pub fn with_output(self, name: &str, quantity: Quantity) -> Result<Self> {
+        if self.linear.outputs().iter().any(|o| o.name == name) {
+            return Err(Error::invalid("output", name, "the model has an output of this name"));
+        }
+        Ok(NonlinearModel {
+            linear: self.linear.with_output(name, quantity)?,
+            ..self
+        })
     }
 
     /// The nonlinear elements.

@@ -295,7 +295,7 @@ fn templates(o: &plan::PlannedOutput, input: &NonlinearRunInput) -> Vec<Statisti
     let mut names: Vec<(String, String, String)> = vec![
         ("mean_response".into(), unit.clone(), format!("time average per realization; Student-t; analytic = {route1}")),
         ("sigma_response".into(), unit.clone(), format!("√ of the per-realization variance interval; analytic = {route1}")),
-        ("kurtosis".into(), "-".into(), "per realization μ₄/σ⁴; Student-t; analytic = 3 (Gaussian, route 1)".into()),
+        ("kurtosis".into(), "-".into(), "pooled μ̄₄/σ̄⁴ with the delta-method interval; analytic = 3 (Gaussian, route 1)".into()),
         ("max_abs".into(), unit.clone(), "largest |y| per realization; Student-t".into()),
     ];
     for a in &o.levels {
@@ -500,4 +500,126 @@ fn refuse_inputs_as_output(input: &NonlinearRunInput, out: &Path) -> Result<()> 
         });
     }
     Ok(())
+}
+
+/// A time step and duration for route 2: those of a linear run of the Gaussian equivalent (route 1, else the
+/// linear part; [`suggest_step`](crate::simulate::suggest_step)), with Δt shortened to
+/// [`CONTACT_STEP`](crate::nonlinear::integrator::CONTACT_STEP)/ω_c for the stiffest element (ω_c = √(κ k),
+/// k its largest stiffness over route 1's response) and kept a whole fraction of the smallest input delay.
+///
+/// # Errors
+/// As [`suggest_step`](crate::simulate::suggest_step) for the reference system.
+pub fn suggest_nonlinear_step(input: &NonlinearRunInput) -> Result<crate::simulate::StepSuggestion> {
+    use crate::nonlinear::integrator::CONTACT_STEP;
+    let sys: &dyn crate::system::FrequencyResponse = match input.route1 {
+        Some(r) => &r.equivalent,
+        None => input.model.linear(),
+    };
+    let ri = crate::simulate::RunInput::new(sys, input.excitation, input.outputs.clone(), vec![], "");
+    let mut s = crate::simulate::suggest_step(&ri)?;
+    let wc = plan::contact_frequency(input.model, input.route1.map(|r| r.moments.as_slice()));
+    if wc > 0.0 && CONTACT_STEP / wc < s.dt_s {
+        let mut dt = CONTACT_STEP / wc;
+        let delays: Vec<f64> = match input.excitation {
+            Excitation::Track { delays, .. } => delays.clone(),
+            Excitation::Sources { inputs, .. } => inputs.iter().map(|m| m.delay).collect(),
+            Excitation::Independent { .. } => vec![],
+        };
+        let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
+        if let Some(tau) = delays.iter().map(|t| t - t0).filter(|t| *t > 0.0).reduce(f64::min) {
+            dt = tau / (tau / dt).ceil();
+        }
+        s.reason = format!(
+            "{}; Δt shortened to {dt:.4e} s = {CONTACT_STEP}/ω_c for the stiffest element (ω_c = {wc:.4e} rad/s)",
+            s.reason
+        );
+        s.dt_s = dt;
+    }
+    Ok(s)
+}
+
+/// The statistics route 2 estimates for one output, with their reference values, as a report lists them.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct OutputReferences {
+    /// Output name.
+    pub output: String,
+    /// Its unit.
+    pub unit: String,
+    /// (statistic name, unit, route 1's value, route 3's value) in the order of the run's statistics
+    /// (`mean_response`, `sigma_response`, `kurtosis`, `max_abs`, the level rates, the regimes); the
+    /// Δt-halving differences are left out.
+    pub rows: Vec<(String, String, Option<f64>, Option<f64>)>,
+}
+
+/// The references of every output route 2 would simulate (the outputs it would skip are left out): what
+/// `analyze` prints for routes 1 and 3, under the names of the run's statistics.
+///
+/// # Errors
+/// An input mean without a static equilibrium; route 3's quadratures.
+pub fn reference_table(input: &NonlinearRunInput) -> Result<Vec<OutputReferences>> {
+    let lin = input.model.linear();
+    let (q_eq, u_mean) = plan::equilibrium(lin, input.excitation)?;
+    let (outputs, _) = plan::plan_outputs(input, &q_eq, &u_mean)?;
+    Ok(outputs
+        .iter()
+        .map(|o| {
+            let t = templates(o, input);
+            let exact = |name: &str| {
+                t.iter()
+                    .find(|s| s.name.strip_prefix(stats::EXACT) == Some(name))
+                    .and_then(|s| s.analytic)
+            };
+            OutputReferences {
+                output: o.signal.name.clone(),
+                unit: o.signal.unit.clone(),
+                rows: t
+                    .iter()
+                    .filter(|s| !s.name.starts_with(stats::EXACT) && !s.name.starts_with("dt_halving"))
+                    .map(|s| (s.name.clone(), s.unit.clone(), s.analytic, exact(&s.name)))
+                    .collect(),
+            }
+        })
+        .collect())
+}
+
+impl std::fmt::Display for NonlinearRunSummary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let r = &self.run;
+        writeln!(f, "run       {}", r.path.display())?;
+        writeln!(f, "route     {} (nonlinear, route 2): {}", r.route.name(), r.generator)?;
+        writeln!(
+            f,
+            "size      {} realizations × {} samples (Δt = {} s) after a burn-in of {:.4} s, {} shards ({} resumed)",
+            r.n_realizations, r.n_samples, r.dt_s, self.burn_in_s, r.n_shards, r.resumed_shards
+        )?;
+        for n in &r.notes {
+            writeln!(f, "note      {n}")?;
+        }
+        for s in &r.skipped {
+            writeln!(f, "skipped   {}: {}", s.name, s.reason)?;
+        }
+        writeln!(
+            f,
+            "{:<16} {:<28} {:>13} {:>29} {:>13} {:>13}",
+            "output", "statistic", "Monte Carlo", "interval", "route 1", "exact"
+        )?;
+        for o in &r.outputs {
+            for s in o.statistics.iter().skip(4).filter(|s| !s.name.starts_with(stats::EXACT)) {
+                let exact = o.get(&format!("{}{}", stats::EXACT, s.name)).and_then(|e| e.analytic);
+                let show = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.6e}"));
+                writeln!(
+                    f,
+                    "{:<16} {:<28} {:>13.6e} [{:>13.6e}, {:>13.6e}] {:>13} {:>13}",
+                    o.output,
+                    s.name,
+                    s.interval.estimate,
+                    s.interval.lower,
+                    s.interval.upper,
+                    show(s.analytic),
+                    show(exact)
+                )?;
+            }
+        }
+        Ok(())
+    }
 }

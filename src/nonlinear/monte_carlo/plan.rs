@@ -154,7 +154,7 @@ pub(crate) fn plan(input: &NonlinearRunInput, opts: &NonlinearRunOptions) -> Res
             "dt",
             h,
             format!(
-                "the fastest contact has ω_c = √(κ k_c) = {wc:.4e} rad/s: the splitting's explicit contact kick is \
+                "the stiffest element has ω_c = √(κ k) = {wc:.4e} rad/s: the splitting's explicit element kick is \
                  unstable for Δt·ω_c > 2; take Δt ≤ {:.4e} s (default {CONTACT_STEP}/ω_c)",
                 2.0 / wc
             ),
@@ -162,8 +162,8 @@ pub(crate) fn plan(input: &NonlinearRunInput, opts: &NonlinearRunOptions) -> Res
     }
     if h * wc > CONTACT_STEP {
         notes.push(format!(
-            "Δt·ω_c = {:.3} > {CONTACT_STEP}: the contact (ω_c = {wc:.4e} rad/s) is resolved coarsely; contact \
-             rates are biased (see the Δt-halving difference)",
+            "Δt·ω_c = {:.3} > {CONTACT_STEP}: the stiffest element (ω_c = √(κ k) = {wc:.4e} rad/s) is resolved \
+             coarsely; its contact rates are biased (see the Δt-halving difference)",
             h * wc
         ));
     }
@@ -233,7 +233,7 @@ pub(crate) fn plan(input: &NonlinearRunInput, opts: &NonlinearRunOptions) -> Res
 }
 
 /// The linear part's static equilibrium C q = K_u μ_u + F μ_f under the input means, and the means.
-fn equilibrium(lin: &Mdof, exc: &Excitation) -> Result<(Vec<f64>, Vec<f64>)> {
+pub(crate) fn equilibrium(lin: &Mdof, exc: &Excitation) -> Result<(Vec<f64>, Vec<f64>)> {
     let mu = exc.means();
     let n = lin.n_coords();
     if mu.iter().all(|m| *m == 0.0) {
@@ -254,7 +254,7 @@ fn equilibrium(lin: &Mdof, exc: &Excitation) -> Result<(Vec<f64>, Vec<f64>)> {
 
 /// The simulated outputs with their references, levels, regimes and histograms; outputs without a finite
 /// reference variance are skipped with the reason.
-fn plan_outputs(
+pub(crate) fn plan_outputs(
     input: &NonlinearRunInput,
     q_eq: &[f64],
     u_mean: &[f64],

@@ -4,8 +4,8 @@
 //! For output y with reference c (route 1's mean), over the N recorded samples of duration T = NΔt:
 //! * the sums S_p = Σ (y_k − c)^p, p = 1…4, in time order from −0.0 (S₁, S₂ are the standard moments
 //!   accumulator of a linear run: the time averages m = S₁/N, v = S₂/N);
-//! * mean μ̂ = c + S₁/N; variance σ̂² = S₂/N − (S₁/N)²; kurtosis κ̂ = μ̂₄/σ̂⁴ with the central fourth moment
-//!   μ̂₄ = S₄/N − 4 m S₃/N + 6 m² S₂/N − 3 m⁴ (m = S₁/N);
+//! * mean μ̂ = c + S₁/N; variance σ̂² = S₂/N − (S₁/N)²; the central fourth moment
+//!   μ̂₄ = S₄/N − 4 m S₃/N + 6 m² S₂/N − 3 m⁴ (m = S₁/N), for the pooled kurtosis ([`super::stats`]);
 //! * max |y|; the up-crossings of every level a (y_{k−1} < a ≤ y_k) per second, count/T;
 //! * a histogram of y on fixed bins (with an underflow and an overflow count);
 //! * for an element with a regime (a stop in contact, a tyre off the road): the fraction of samples in the
@@ -75,13 +75,13 @@ impl OutputRecord {
         d
     }
 
-    /// The realization's values: [mean, variance, kurtosis, max |y|, rate of each level...] (T = recorded
-    /// duration, s).
+    /// The realization's values: [mean, variance, central fourth moment, max |y|, rate of each level...]
+    /// (T = recorded duration, s).
     pub(crate) fn values(&self, duration: f64) -> Vec<f64> {
         let (m, n) = (self.s[0] / self.n as f64, self.n as f64);
         let var = self.s[1] / n - m * m;
         let mu4 = self.s[3] / n - 4.0 * m * self.s[2] / n + 6.0 * m * m * self.s[1] / n - 3.0 * m.powi(4);
-        let mut v = vec![self.centre + m, var, mu4 / (var * var), self.max_abs];
+        let mut v = vec![self.centre + m, var, mu4, self.max_abs];
         v.extend(self.counts.iter().map(|c| *c as f64 / duration));
         v
     }
