@@ -143,3 +143,32 @@ impl Scenario {
         run_nonlinear(&self.nonlinear_run_input(answers), opts, out, progress)
     }
 }
+
+impl Scenario {
+    /// Route 2 into a temporary file `stochvib-nonlinear-<pid>.h5` in `dir`, handed to `then` (e.g. to draw
+    /// its pictures) and removed afterwards, whether the run succeeded or not.
+    ///
+    /// # Errors
+    /// As [`Scenario::simulate_nonlinear`].
+    pub fn simulate_nonlinear_temporary<T>(
+        &self,
+        answers: &NonlinearAnswers,
+        opts: &NonlinearRunOptions,
+        dir: &Path,
+        progress: &dyn Fn(usize, usize),
+        then: impl FnOnce(&Path) -> T,
+    ) -> Result<(NonlinearRunSummary, T)> {
+        struct Remove(std::path::PathBuf);
+        impl Drop for Remove {
+            fn drop(&mut self) {
+                let _ = std::fs::remove_file(&self.0);
+                let _ = std::fs::remove_file(crate::store::tmp_path(&self.0));
+            }
+        }
+        let guard = Remove(dir.join(format!("stochvib-nonlinear-{}.h5", std::process::id())));
+        drop(Remove(guard.0.clone())); // a leftover of an earlier process with the same id
+        let s = self.simulate_nonlinear(answers, opts, &guard.0, progress)?;
+        let t = then(&guard.0);
+        Ok((s, t))
+    }
+}

@@ -346,6 +346,20 @@ fn choose_flow(
             ))
         }
     };
+    if !want_exact && opts.run.route == Route::Auto {
+        notes.push(format!(
+            "spectral route: {}",
+            if non_gaussian {
+                "non-Gaussian inputs (Laplace moving averages on the spectral grid)".to_string()
+            } else if two_tracks {
+                "two coherent tracks (no rational factorisation of their cross-spectral matrix)".to_string()
+            } else if !exc.delay_free() {
+                format!("{} (pure delays have no finite state-space form)", exc.inputs_described())
+            } else {
+                "an input spectrum without a shaping filter (not rational)".to_string()
+            }
+        ));
+    }
     if want_exact {
         let start = start.ok_or_else(|| Error::invalid("route", "exact", "no stationary law to start from"))?;
         loop {
@@ -463,7 +477,6 @@ fn finish_hold(
     rates: Vec<usize>,
     notes: &mut Vec<String>,
 ) -> Result<(Route, Flow, String)> {
-    notes.extend(synth.notes.iter().filter(|n| n.contains("spectral route")).take(1).cloned());
     notes.push(
         "spectral route: synthesised input samples (the generators of linear runs), first-order hold of the linear \
          part between them, element flows by symmetric splitting; started at rest, burn-in discarded"

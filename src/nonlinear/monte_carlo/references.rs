@@ -19,6 +19,8 @@ pub(crate) struct OutputRefs {
     sigma: f64,
     /// Route 3: the output is w·q (a displacement of the one coordinate).
     exact_weight: Option<f64>,
+    /// Route 3: the output is w·q̇ (a velocity: Gaussian, σ = |w|σ_v, exactly).
+    exact_rate_weight: Option<f64>,
 }
 
 /// The references of output `r`, or why it is not simulated.
@@ -33,16 +35,15 @@ pub(crate) fn output_references(input: &NonlinearRunInput, r: usize) -> std::res
         Some(st) => format!("route 1's variance {}", st.variance_outcome.describe()),
         None => "no reference variance (route 1 did not converge and the linear part has none)".into(),
     })?;
-    let exact_weight = input.route3.and_then(|_| {
-        let w = input.model.linear().output_weights(r)?;
-        let zero = |s: &[f64]| s.iter().all(|x| *x == 0.0);
-        (zero(w.v) && zero(w.a) && zero(w.u) && zero(w.du) && w.q[0] != 0.0).then_some(w.q[0])
-    });
+    let weights = input.route3.and_then(|_| input.model.linear().output_weights(r));
+    let zero = |s: &[f64]| s.iter().all(|x| *x == 0.0);
+    let only = |own: &[f64], others: [&[f64]; 4]| (own[0] != 0.0 && others.iter().all(|s| zero(s))).then_some(own[0]);
     Ok(OutputRefs {
         route1,
         centre: centre.unwrap_or(0.0),
         sigma,
-        exact_weight,
+        exact_weight: weights.and_then(|w| only(w.q, [w.v, w.a, w.u, w.du])),
+        exact_rate_weight: weights.and_then(|w| only(w.v, [w.q, w.a, w.u, w.du])),
     })
 }
 
@@ -70,18 +71,20 @@ pub(crate) fn planned_output(
     let st3 = input.route3;
     let w3 = refs.exact_weight;
     let r1 = refs.route1.as_ref();
+    // a velocity of the one coordinate is exactly Gaussian, N(0, (wσ_v)²)
+    let v3 = st3.zip(refs.exact_rate_weight);
     let mut reference = vec![
         Reference {
             route1: r1.and_then(|s| s.mean),
-            exact: st3.zip(w3).map(|(st, w)| w * st.mean),
+            exact: st3.zip(w3).map(|(st, w)| w * st.mean).or(v3.map(|_| 0.0)),
         },
         Reference {
             route1: r1.and_then(|s| s.sigma),
-            exact: st3.zip(w3).map(|(st, w)| w.abs() * st.variance.sqrt()),
+            exact: st3.zip(w3).map(|(st, w)| w.abs() * st.variance.sqrt()).or(v3.map(|(st, w)| w.abs() * st.sigma_v)),
         },
         Reference {
             route1: r1.map(|_| 3.0),
-            exact: st3.zip(w3).map(|(st, _)| st.kurtosis),
+            exact: st3.zip(w3).map(|(st, _)| st.kurtosis).or(v3.map(|_| 3.0)),
         },
     ];
     for &a in &levels {
