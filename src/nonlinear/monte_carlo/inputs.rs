@@ -115,8 +115,6 @@ pub(crate) struct InputSynthesis {
     plan: simulate::Plan,
     m: usize,
     n_rates: usize,
-    /// What the spectral engine said about the synthesis.
-    pub notes: Vec<String>,
     /// The generator's description (for the run file's `@generator`).
     pub generator: String,
 }
@@ -167,7 +165,6 @@ impl InputSynthesis {
             ));
         }
         Ok(InputSynthesis {
-            notes: plan.notes.clone(),
             generator: plan.generator.clone(),
             plan,
             m,
