@@ -10,7 +10,10 @@
 //! then has no Gaussian equivalent (it reports non-convergence).
 //!
 //! # The sign function in each route
-//! * Route 1: sgn is replaced by its Gaussian expectations above (no regularisation).
+//! * Route 1: sgn is replaced by its Gaussian expectations above (no regularisation). Where the fixed point
+//!   makes c_eq more than [`STICK_DAMPING_RATIO`](crate::nonlinear::linearization::STICK_DAMPING_RATIO) times
+//!   the critical damping along the element, the Gaussian equivalent describes an element that is locked:
+//!   route 1 reports that it has no meaningful answer.
 //! * Route 2: the force alone has the exact (Filippov) flow v′ = −κ F_c sgn v: |v| decreases at the rate
 //!   κF_c and stays at 0 once it gets there, v(τ) = sgn(v₀) max(|v₀| − κF_cτ, 0). The splitting integrator
 //!   applies this flow between exact linear flows, so sticking is represented without a regularised tanh;
@@ -90,6 +93,9 @@ impl ForceLaw for CoulombFriction {
     }
     fn potential(&self, _x: f64) -> Option<f64> {
         None
+    }
+    fn can_stick(&self) -> bool {
+        true
     }
     fn stiffness_bound(&self, _m: &ElementMoments) -> f64 {
         0.0

@@ -164,8 +164,16 @@ impl WhiteNoiseOscillator {
     pub fn stationary(&self) -> Result<Stationary> {
         let (sl, su) = self.scales()?;
         let mut bp: Vec<f64> = vec![-4.0 * sl, -sl, 0.0, su, 4.0 * su];
+        let beta = self.beta();
         for (d, f) in &self.springs {
-            bp.extend(f.kinks().iter().map(|k| k / d));
+            // a stiff contact confines the density to a width w = 1/√(β k d²) beyond its kink: resolve it
+            let k = f.stiffness_bound(&Default::default());
+            let w = if k > 0.0 { 1.0 / (beta * k * d * d).sqrt() } else { f64::INFINITY };
+            for kink in f.kinks() {
+                let q = kink / d;
+                bp.push(q);
+                bp.extend([-10.0, -3.0, -1.0, 1.0, 3.0, 10.0].iter().map(|s| q + s * w).filter(|x| x.is_finite()));
+            }
         }
         bp.retain(|x| x.is_finite());
         bp.sort_by(f64::total_cmp);

@@ -109,6 +109,12 @@ pub trait ForceLaw: Debug + Send + Sync {
         false
     }
 
+    /// Whether the element can stick (dry friction): route 1 then checks that its Gaussian equivalent does
+    /// not lock the element.
+    fn can_stick(&self) -> bool {
+        false
+    }
+
     /// The largest |∂F/∂x| over the displacements the response visits (μ ± 6σ of `m`), N/m: with κ it
     /// gives the element's contact frequency √(κ k), which bounds route 2's time step.
     fn stiffness_bound(&self, m: &ElementMoments) -> f64;

@@ -36,6 +36,10 @@ use crate::system::{FrequencyResponse, Mdof};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
+/// Friction whose Gaussian equivalent damping exceeds this multiple of the critical damping along its
+/// direction (2√(k_d m_d), k_d = dᵀCd, m_d = 1/κ) locks its element: route 1 reports no meaningful answer.
+pub const STICK_DAMPING_RATIO: f64 = 10.0;
+
 /// Options of [`linearize`].
 #[derive(Debug, Clone)]
 pub struct Route1Options {
@@ -206,6 +210,9 @@ pub fn linearize(model: &NonlinearModel, exc: &Excitation, opts: &Route1Options)
             Err(o) => return Ok(o),
         };
         if prev.as_ref().is_some_and(|pm| change(pm, &moments) <= opts.tolerance) {
+            if let Some(o) = it.check_sticking(&new, k) {
+                return Ok(o);
+            }
             return Ok(Route1Outcome::Converged(Box::new(it.finish(sys, new, moments, mean_new, k))));
         }
         let w = if prev.is_none() { 1.0 } else { opts.relaxation };
@@ -403,6 +410,33 @@ impl<'a> Iteration<'a> {
             "route 1 is not meaningful for a sticking element; use route 2 (--monte-carlo)",
             k,
         ))
+    }
+
+    /// A friction element whose equivalent damping locks it (see [`STICK_DAMPING_RATIO`]).
+    fn check_sticking(&self, eq: &[Equivalent], k: usize) -> Option<Route1Outcome> {
+        let lin = self.model.linear();
+        let (m_inv, c) = (lin.mass_inverse(), lin.stiffness());
+        self.model.elements().iter().zip(eq).find_map(|(e, q)| {
+            if !e.law.can_stick() {
+                return None;
+            }
+            let d = DVector::from_vec(e.direction());
+            let kappa = (d.transpose() * m_inv * &d)[(0, 0)];
+            let kd = (d.transpose() * c * &d)[(0, 0)];
+            let critical = 2.0 * (kd / kappa).sqrt();
+            (q.damping > STICK_DAMPING_RATIO * critical).then(|| {
+                Route1Outcome::fail(
+                    format!(
+                        "element `{}` sticks: its Gaussian equivalent damping {:.4e} N s/m is {:.1} times the critical                          damping along it — the friction force exceeds what the excitation can overcome, so the                          linearized element is locked and route 1 is not meaningful",
+                        e.name,
+                        q.damping,
+                        q.damping / critical
+                    ),
+                    "use route 2 (--monte-carlo), which follows stick and slip",
+                    k,
+                )
+            })
+        })
     }
 
     fn finish(&self, sys: Mdof, coefficients: Vec<Equivalent>, moments: Vec<ElementMoments>, mean_q: Vec<f64>, k: usize) -> Route1 {
