@@ -427,7 +427,9 @@ impl<'a> Iteration<'a> {
             (q.damping > STICK_DAMPING_RATIO * critical).then(|| {
                 Route1Outcome::fail(
                     format!(
-                        "element `{}` sticks: its Gaussian equivalent damping {:.4e} N s/m is {:.1} times the critical                          damping along it — the friction force exceeds what the excitation can overcome, so the                          linearized element is locked and route 1 is not meaningful",
+                        "element `{}` sticks: its Gaussian equivalent damping {:.4e} N s/m is {:.1} times the critical \
+                         damping along it — the friction force exceeds what the excitation can overcome, so the \
+                         linearized element is locked and route 1 is not meaningful",
                         e.name,
                         q.damping,
                         q.damping / critical
