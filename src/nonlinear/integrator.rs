@@ -20,7 +20,7 @@
 //! 506–517; for the stochastic case the noise is entirely in the exactly solved linear flow, as in the
 //! BAOAB-type splittings of Leimkuhler & Matthews 2013, Appl. Math. Res. Express 2013(1), 34–56). A stop's
 //! force is continuous with a jump in its slope: the one step that straddles each contact event makes an
-//! O(h³) local error, which keeps the global order 2 (`tests/suite/nonlinear_integrator.rs` measures it on
+//! O(h³) local error, which keeps the global order 2 (`tests/suite/nonlinear_routes.rs` measures it on
 //! the free oscillation with a one-sided stop, whose period is known in closed form). A force jump
 //! (friction reversing) makes it first order there. The kick of a stiff contact is explicit: the step must
 //! resolve the contact frequency ω_c = √(κ k_c) (κ = dᵀM⁻¹d); route 2 takes h ≤ [`CONTACT_STEP`]/ω_c by

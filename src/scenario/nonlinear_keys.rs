@@ -257,19 +257,7 @@ fn placement(ef: &Fields, lin: &Mdof) -> Result<(Vec<f64>, Attach, Option<usize>
 }
 
 fn weights(ef: &Fields, key: &str, v: &toml::Value, n: usize) -> Result<Vec<f64>> {
-    let arr = v
-        .as_array()
-        .filter(|a| a.len() == n)
-        .ok_or_else(|| ef.error(key, v, format!("expected {n} weights, one per coordinate of the model")))?;
-    arr.iter()
-        .enumerate()
-        .map(|(j, x)| {
-            x.as_float()
-                .or_else(|| x.as_integer().map(|k| k as f64))
-                .filter(|w| w.is_finite())
-                .ok_or_else(|| ef.error(&format!("{key}[{j}]"), x, "expected a finite number"))
-        })
-        .collect()
+    super::generic::mdof::coordinate_weights(ef, key, v, n)
 }
 
 /// The model with an output `<element>_deflection` for every element with a regime (contact, lift-off)

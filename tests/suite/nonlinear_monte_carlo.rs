@@ -195,6 +195,7 @@ fn route2_jacking_matches_the_gaussian_mean_shift() {
 /// Bad input is refused with the file, the key, the value and the reason.
 #[test]
 fn bad_nonlinear_input_is_refused_with_key_value_and_reason() {
+    let friction = "kind = \"coulomb-friction\"\nacross = \"spring\"\nforce = \"2 N\"";
     let cases = [
         ("kind = \"bump-stop\"\nacross = \"spring\"\nupper_clearance = \"-1 cm\"\nstiffness = \"1 kN/m\"", "upper_clearance", "-1 cm"),
         ("kind = \"bump-stop\"\nacross = \"spring\"\nupper_clearance = \"1 cm\"\nstiffness = \"-1 kN/m\"", "stiffness", "-1 kN/m"),
@@ -202,10 +203,15 @@ fn bad_nonlinear_input_is_refused_with_key_value_and_reason() {
         ("kind = \"cubic-spring\"\npoint = [1, 0]\nto = \"ground\"\ncubic_stiffness = \"1 N/m^3\"", "point", "[1, 0]"),
         ("kind = \"bilinear-damper\"\nacross = \"spring\"\nrebound_damping = \"1 m\"\ncompression_damping = \"1 N*s/m\"", "rebound_damping", "1 m"),
         ("kind = \"coulomb-friction\"\nacross = \"spring\"\nforce = \"-2 N\"", "force", "-2 N"),
+        // a friction force on a massless coordinate: every coordinate of the model must have a mass
+        (friction, "mass", "0 kg"),
     ];
     let d = dir("bad");
     for (i, (table, key, value)) in cases.iter().enumerate() {
-        let text = oscillator_text(0.4, 0.4 / PI, &format!("[[model.nonlinear]]\n{table}"), "");
+        let mut text = oscillator_text(0.4, 0.4 / PI, &format!("[[model.nonlinear]]\n{table}"), "");
+        if *table == friction {
+            text = text.replace("mass = \"1 kg\"", "mass = \"0 kg\"");
+        }
         let path = d.join(format!("bad{i}.toml"));
         std::fs::write(&path, text).unwrap();
         let e = load_scenario(&path, &common::root().join("spectra")).expect_err(table).to_string();
@@ -213,5 +219,41 @@ fn bad_nonlinear_input_is_refused_with_key_value_and_reason() {
         assert!(e.contains(key), "`{key}` not in: {e}");
         assert!(e.contains(value), "`{value}` not in: {e}");
     }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// A route-2 run in two cluster parts merges into the run of one process bit for bit (every statistic,
+/// including the nonlinear ones, and the response histograms), as linear runs do.
+#[test]
+fn route2_parts_merge_bit_identically() {
+    use stochvib::simulate::{merge_runs, part_path, MergeOptions};
+    use stochvib::store::{Part, RunFile};
+    let stop = "[[model.nonlinear]]\nkind = \"bump-stop\"\nname = \"stops\"\nacross = \"spring\"\n\
+                upper_clearance = \"1 m\"\nlower_clearance = \"1 m\"\nstiffness = \"100 N/m\"";
+    let sc = scenario("merge", &oscillator_text(0.4, 0.4 / PI, stop, ""));
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let d = dir("merge");
+    let opts = |part| NonlinearRunOptions {
+        run: RunOptions {
+            shard_size: 2,
+            part,
+            ..RunOptions::new(6, 40.0, 0.02, 5)
+        },
+        burn_in_s: None,
+        halving_checks: None,
+    };
+    let _serial = common::hdf5_serial();
+    let whole = sc.simulate_nonlinear(&answers, &opts(None), &d.join("whole.h5"), &|_, _| {}).unwrap();
+    let mut files = Vec::new();
+    for i in [1, 0] {
+        let p = Part::new(i, 2).unwrap();
+        let path = part_path(&d, p);
+        sc.simulate_nonlinear(&answers, &opts(Some(p)), &path, &|_, _| {}).unwrap();
+        files.push(path);
+    }
+    let merged = merge_runs(&d.join("merged.h5"), &files, &MergeOptions::default(), &|_, _| {}).unwrap();
+    assert_eq!(common::stored_statistic_bits(&merged.outputs), common::stored_statistic_bits(&whole.run.outputs));
+    let hist = |p: &std::path::Path| RunFile::open(p).unwrap().response_histograms().unwrap();
+    assert_eq!(hist(&d.join("merged.h5")), hist(&d.join("whole.h5")));
     std::fs::remove_dir_all(&d).unwrap();
 }

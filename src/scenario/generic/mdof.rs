@@ -128,23 +128,7 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
                 )
             })? as usize,
     };
-    let point = |key: &str, v: &toml::Value, ff: &Fields| -> Result<Vec<f64>> {
-        let arr = v
-            .as_array()
-            .ok_or_else(|| ff.error(key, v, format!("expected {n} weights of the coordinates")))?;
-        if arr.len() != n {
-            return Err(ff.error(key, v, format!("expected {n} weights (one per coordinate)")));
-        }
-        arr.iter()
-            .enumerate()
-            .map(|(j, x)| {
-                x.as_float()
-                    .or_else(|| x.as_integer().map(|k| k as f64))
-                    .filter(|w| w.is_finite())
-                    .ok_or_else(|| ff.error(&format!("{key}[{j}]"), x, "expected a finite number"))
-            })
-            .collect()
-    };
+    let point = |key: &str, v: &toml::Value, ff: &Fields| coordinate_weights(ff, key, v, n);
     let mut elements = Vec::new();
     if let Some(ev) = f.get("element") {
         let earr = ev
@@ -327,4 +311,26 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
         layout,
         description: format!("MDOF model, {n} coordinates"),
     })
+}
+
+/// The weights of the `n` coordinates under `key` (a point, or an element's far end).
+///
+/// # Errors
+/// [`Error::File`](crate::Error::File) naming the key and value: not an array of `n` finite numbers.
+pub(crate) fn coordinate_weights(ff: &Fields, key: &str, v: &toml::Value, n: usize) -> Result<Vec<f64>> {
+    let arr = v
+        .as_array()
+        .ok_or_else(|| ff.error(key, v, format!("expected {n} weights of the coordinates")))?;
+    if arr.len() != n {
+        return Err(ff.error(key, v, format!("expected {n} weights (one per coordinate)")));
+    }
+    arr.iter()
+        .enumerate()
+        .map(|(j, x)| {
+            x.as_float()
+                .or_else(|| x.as_integer().map(|k| k as f64))
+                .filter(|w| w.is_finite())
+                .ok_or_else(|| ff.error(&format!("{key}[{j}]"), x, "expected a finite number"))
+        })
+        .collect()
 }
