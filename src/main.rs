@@ -2,12 +2,13 @@
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
+use stochvib::nonlinear::monte_carlo::NonlinearRunOptions;
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::table::{ReportFormat, ToMarkdown};
 use stochvib::report::{self, attach_monte_carlo};
-use stochvib::nonlinear::monte_carlo::NonlinearRunOptions;
 use stochvib::scenario::{
-    load_document, load_scenario, Catalogue, Document, NonlinearAnswers, Scenario, Sweep, SweepMode, SweepParam, SweepSpec,
+    load_document, load_scenario, Catalogue, Document, NonlinearAnswers, Scenario, Sweep, SweepMode, SweepParam,
+    SweepSpec,
 };
 use stochvib::simulate::{merge_runs, part_path, resolve_part, suggest_step, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
@@ -98,7 +99,12 @@ impl Step {
 
     /// The options of a nonlinear run: the given step and duration, the missing ones suggested for route 2
     /// (said on stderr), the burn-in.
-    fn nonlinear(&self, sc: &Scenario, answers: &NonlinearAnswers, run: RunOptions) -> stochvib::Result<NonlinearRunOptions> {
+    fn nonlinear(
+        &self,
+        sc: &Scenario,
+        answers: &NonlinearAnswers,
+        run: RunOptions,
+    ) -> stochvib::Result<NonlinearRunOptions> {
         let (dt, duration) = match (self.dt, self.duration) {
             (Some(dt), Some(d)) => (dt, d),
             _ => {
@@ -982,9 +988,10 @@ fn analyze_nonlinear(
     let mc = match monte_carlo {
         Some(n) => {
             let opts = step.nonlinear(sc, answers, RunOptions::new(n, 1.0, 1.0, seed))?;
-            let (s, pictures) = sc.simulate_nonlinear_temporary(answers, &opts, &std::env::temp_dir(), &progress_printer(), |path| {
-                plots.as_ref().map(|out| run_plots(path, out, catalogue.dir()))
-            })?;
+            let (s, pictures) =
+                sc.simulate_nonlinear_temporary(answers, &opts, &std::env::temp_dir(), &progress_printer(), |path| {
+                    plots.as_ref().map(|out| run_plots(path, out, catalogue.dir()))
+                })?;
             if let (Some(files), Some(out)) = (pictures, plots) {
                 eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
             }

@@ -59,7 +59,11 @@ fn side(name: &str, s: Option<(f64, f64)>) -> Result<Option<StopSide>> {
         ));
     }
     if !(k.is_finite() && k > 0.0) {
-        return Err(Error::invalid(&format!("{name}_stiffness"), k, "must be finite and > 0"));
+        return Err(Error::invalid(
+            &format!("{name}_stiffness"),
+            k,
+            "must be finite and > 0",
+        ));
     }
     Ok(Some(StopSide {
         clearance: d,
@@ -94,7 +98,10 @@ impl ForceLaw for BumpStop {
     }
     fn describe(&self) -> String {
         let s = |name: &str, s: &Option<StopSide>| match s {
-            Some(s) => format!("{name} clearance {} m, contact stiffness {} N/m", s.clearance, s.stiffness),
+            Some(s) => format!(
+                "{name} clearance {} m, contact stiffness {} N/m",
+                s.clearance, s.stiffness
+            ),
             None => format!("no {name} side"),
         };
         format!("bump stop: {}; {}", s("upper", &self.upper), s("lower", &self.lower))
@@ -125,8 +132,12 @@ impl ForceLaw for BumpStop {
         e
     }
     fn potential(&self, x: f64) -> Option<f64> {
-        let up = self.upper.map_or(0.0, |s| 0.5 * s.stiffness * (x - s.clearance).max(0.0).powi(2));
-        let lo = self.lower.map_or(0.0, |s| 0.5 * s.stiffness * (-s.clearance - x).max(0.0).powi(2));
+        let up = self
+            .upper
+            .map_or(0.0, |s| 0.5 * s.stiffness * (x - s.clearance).max(0.0).powi(2));
+        let lo = self
+            .lower
+            .map_or(0.0, |s| 0.5 * s.stiffness * (-s.clearance - x).max(0.0).powi(2));
         Some(up + lo)
     }
     fn kinks(&self) -> Vec<f64> {

@@ -83,7 +83,11 @@ impl ForceLaw for CoulombFriction {
         Equivalent {
             mean_force: self.force * (2.0 * prob_positive(mu, s) - 1.0),
             stiffness: 0.0,
-            damping: if s > 0.0 { 2.0 * self.force * density_at_zero(mu, s) } else { f64::INFINITY },
+            damping: if s > 0.0 {
+                2.0 * self.force * density_at_zero(mu, s)
+            } else {
+                f64::INFINITY
+            },
         }
     }
     fn impulse(&self, _x: f64, v: f64, kappa: f64, tau: f64) -> f64 {

@@ -102,7 +102,10 @@ impl WhiteNoiseOscillator {
     pub fn from_model(model: &NonlinearModel, exc: &Excitation) -> std::result::Result<Self, String> {
         let lin = model.linear();
         if lin.n_coords() != 1 {
-            return Err(format!("{} degrees of freedom (the exact density is for one)", lin.n_coords()));
+            return Err(format!(
+                "{} degrees of freedom (the exact density is for one)",
+                lin.n_coords()
+            ));
         }
         if let Some(e) = model.elements().iter().find(|e| e.law.velocity_dependent()) {
             return Err(format!(
@@ -128,7 +131,13 @@ impl WhiteNoiseOscillator {
             force_density: f * f * s0,
             springs,
         })
-        .and_then(|o| if o.damping > 0.0 { Ok(o) } else { Err("no linear damping".into()) })
+        .and_then(|o| {
+            if o.damping > 0.0 {
+                Ok(o)
+            } else {
+                Err("no linear damping".into())
+            }
+        })
     }
 
     /// The displacement scale s with βV(±s) ≈ 1 on each side, found by bisection.
@@ -150,7 +159,11 @@ impl WhiteNoiseOscillator {
             let mut lo = 0.5 * hi;
             for _ in 0..60 {
                 let mid = 0.5 * (lo + hi);
-                if beta * self.potential(sign * mid) < 1.0 { lo = mid } else { hi = mid }
+                if beta * self.potential(sign * mid) < 1.0 {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
             }
             Ok(hi)
         };
@@ -168,11 +181,20 @@ impl WhiteNoiseOscillator {
         for (d, f) in &self.springs {
             // a stiff contact confines the density to a width w = 1/√(β k d²) beyond its kink: resolve it
             let k = f.stiffness_bound(&Default::default());
-            let w = if k > 0.0 { 1.0 / (beta * k * d * d).sqrt() } else { f64::INFINITY };
+            let w = if k > 0.0 {
+                1.0 / (beta * k * d * d).sqrt()
+            } else {
+                f64::INFINITY
+            };
             for kink in f.kinks() {
                 let q = kink / d;
                 bp.push(q);
-                bp.extend([-10.0, -3.0, -1.0, 1.0, 3.0, 10.0].iter().map(|s| q + s * w).filter(|x| x.is_finite()));
+                bp.extend(
+                    [-10.0, -3.0, -1.0, 1.0, 3.0, 10.0]
+                        .iter()
+                        .map(|s| q + s * w)
+                        .filter(|x| x.is_finite()),
+                );
             }
         }
         bp.retain(|x| x.is_finite());
@@ -233,7 +255,11 @@ impl Stationary {
         };
         let f = |q: f64| {
             let e = (-beta * self.oscillator.potential(q)).exp();
-            if e == 0.0 { 0.0 } else { g(q) * e }
+            if e == 0.0 {
+                0.0
+            } else {
+                g(q) * e
+            }
         };
         let r = integrate(f, f64::NEG_INFINITY, f64::INFINITY, &opts)?;
         Ok(r.value / self.normalizer)
@@ -264,7 +290,12 @@ impl Stationary {
             max_subintervals: 4000,
             breakpoints: bp[1..].to_vec(),
         };
-        let r = integrate(|q| (-beta * self.oscillator.potential(q)).exp(), a, f64::INFINITY, &opts)?;
+        let r = integrate(
+            |q| (-beta * self.oscillator.potential(q)).exp(),
+            a,
+            f64::INFINITY,
+            &opts,
+        )?;
         Ok(r.value / self.normalizer)
     }
 
@@ -290,7 +321,11 @@ impl Stationary {
         for &(lv, above) in &reg.levels {
             let q = lv / d;
             // x = d q: above the level in x is above q/d in q for d > 0, below it for d < 0
-            fraction += if above == (*d > 0.0) { self.prob_above(q)? } else { self.prob_below(q)? };
+            fraction += if above == (*d > 0.0) {
+                self.prob_above(q)?
+            } else {
+                self.prob_below(q)?
+            };
             rate += self.upcrossing_rate(q);
         }
         Ok(Some((fraction, rate)))

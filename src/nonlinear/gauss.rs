@@ -39,7 +39,11 @@ pub fn standardized(mean: f64, sigma: f64) -> f64 {
 
 /// σφ(h), 0 for a degenerate variable (avoids 0·∞).
 fn sigma_pdf(sigma: f64, h: f64) -> f64 {
-    if sigma > 0.0 { sigma * pdf(h) } else { 0.0 }
+    if sigma > 0.0 {
+        sigma * pdf(h)
+    } else {
+        0.0
+    }
 }
 
 /// E[z 1{z > 0}] = E[z₊] for z ~ N(mean, sigma²).
@@ -73,7 +77,11 @@ pub fn prob_positive(mean: f64, sigma: f64) -> f64 {
 
 /// The density of z ~ N(mean, sigma²) at 0 (0 for a degenerate variable).
 pub fn density_at_zero(mean: f64, sigma: f64) -> f64 {
-    if sigma > 0.0 { pdf(mean / sigma) / sigma } else { 0.0 }
+    if sigma > 0.0 {
+        pdf(mean / sigma) / sigma
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]

@@ -179,7 +179,6 @@ impl Kicks {
     pub(crate) fn engaged(&self, e: usize, x: f64) -> bool {
         self.items[e].law.engaged(x)
     }
-
 }
 
 /// The deterministic free response of `model` (no input) from q(0) = `q0`, q̇(0) = `v0` after `steps` steps
@@ -202,11 +201,21 @@ impl Kicks {
 /// let (q, _) = free_response(&m, &[0.0], &[1.0], 0.1, 10).unwrap();
 /// assert!((q[0] - 1.0f64.sin()).abs() < 1e-12);
 /// ```
-pub fn free_response(model: &NonlinearModel, q0: &[f64], v0: &[f64], h: f64, steps: usize) -> Result<(Vec<f64>, Vec<f64>)> {
+pub fn free_response(
+    model: &NonlinearModel,
+    q0: &[f64],
+    v0: &[f64],
+    h: f64,
+    steps: usize,
+) -> Result<(Vec<f64>, Vec<f64>)> {
     let lin = model.linear();
     let n = lin.n_coords();
     if q0.len() != n || v0.len() != n || !(h > 0.0 && h.is_finite()) {
-        return Err(Error::invalid("free_response", format!("{} coordinates, h = {h}", q0.len()), format!("need {n} coordinates and h > 0")));
+        return Err(Error::invalid(
+            "free_response",
+            format!("{} coordinates, h = {h}", q0.len()),
+            format!("need {n} coordinates and h > 0"),
+        ));
     }
     let ss = lin.state_space().ok_or_else(|| Error::Numerical {
         what: "free response".into(),
@@ -235,4 +244,3 @@ pub fn free_response(model: &NonlinearModel, q0: &[f64], v0: &[f64], h: f64, ste
     kicks.velocities(p, &zeros, &mut qdot);
     Ok((q.to_vec(), qdot))
 }
-

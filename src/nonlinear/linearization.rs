@@ -30,7 +30,8 @@ use super::{ElementMoments, Equivalent, NonlinearModel};
 use crate::error::{Error, Result};
 use crate::quad_oscillatory::OscillatoryOptions;
 use crate::response::{
-    analyze_output_with, variance_lyapunov, variance_lyapunov_delayed, variance_oscillatory, Excitation, ResponseStatistics,
+    analyze_output_with, variance_lyapunov, variance_lyapunov_delayed, variance_oscillatory, Excitation,
+    ResponseStatistics,
 };
 use crate::system::{FrequencyResponse, Mdof};
 use nalgebra::{DMatrix, DVector};
@@ -201,7 +202,12 @@ pub fn linearize(model: &NonlinearModel, exc: &Excitation, opts: &Route1Options)
             Ok(x) => x,
             Err(o) => return Ok(o),
         };
-        let new: Vec<Equivalent> = model.elements().iter().zip(&moments).map(|(e, m)| e.law.gaussian(m)).collect();
+        let new: Vec<Equivalent> = model
+            .elements()
+            .iter()
+            .zip(&moments)
+            .map(|(e, m)| e.law.gaussian(m))
+            .collect();
         if let Some(o) = it.check_finite(&new, &moments, k) {
             return Ok(o);
         }
@@ -213,11 +219,17 @@ pub fn linearize(model: &NonlinearModel, exc: &Excitation, opts: &Route1Options)
             if let Some(o) = it.check_sticking(&new, k) {
                 return Ok(o);
             }
-            return Ok(Route1Outcome::Converged(Box::new(it.finish(sys, new, moments, mean_new, k))));
+            return Ok(Route1Outcome::Converged(Box::new(
+                it.finish(sys, new, moments, mean_new, k),
+            )));
         }
         let w = if prev.is_none() { 1.0 } else { opts.relaxation };
         eq = relax(&eq, &new, w);
-        mean_q = mean_q.iter().zip(&mean_new).map(|(a, b)| (1.0 - w) * a + w * b).collect();
+        mean_q = mean_q
+            .iter()
+            .zip(&mean_new)
+            .map(|(a, b)| (1.0 - w) * a + w * b)
+            .collect();
         prev = Some(moments);
     }
     Ok(Route1Outcome::fail(
@@ -266,13 +278,7 @@ struct Iteration<'a> {
 }
 
 impl<'a> Iteration<'a> {
-    fn new(
-        model: &'a NonlinearModel,
-        exc: &'a Excitation,
-        probe: &'a Mdof,
-        p: usize,
-        opts: &'a Route1Options,
-    ) -> Self {
+    fn new(model: &'a NonlinearModel, exc: &'a Excitation, probe: &'a Mdof, p: usize, opts: &'a Route1Options) -> Self {
         Iteration {
             model,
             exc,
@@ -441,7 +447,14 @@ impl<'a> Iteration<'a> {
         })
     }
 
-    fn finish(&self, sys: Mdof, coefficients: Vec<Equivalent>, moments: Vec<ElementMoments>, mean_q: Vec<f64>, k: usize) -> Route1 {
+    fn finish(
+        &self,
+        sys: Mdof,
+        coefficients: Vec<Equivalent>,
+        moments: Vec<ElementMoments>,
+        mean_q: Vec<f64>,
+        k: usize,
+    ) -> Route1 {
         let mu_u = self.exc.means();
         let lin = self.model.linear();
         let output_means = (0..self.p)

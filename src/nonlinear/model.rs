@@ -99,11 +99,19 @@ impl NonlinearModel {
         for (i, e) in elements.iter().enumerate() {
             check_element(e, n, base.n_base())?;
             if elements[..i].iter().any(|o| o.name == e.name) {
-                return Err(Error::invalid("nonlinear element", &e.name, "two elements have this name"));
+                return Err(Error::invalid(
+                    "nonlinear element",
+                    &e.name,
+                    "two elements have this name",
+                ));
             }
             let (k, c) = e.law.linear_part();
             if !(k >= 0.0 && c >= 0.0) {
-                return Err(Error::invalid(&e.name, format!("k = {k}, c = {c}"), "linear part must be >= 0"));
+                return Err(Error::invalid(
+                    &e.name,
+                    format!("k = {k}, c = {c}"),
+                    "linear part must be >= 0",
+                ));
             }
         }
         let linear_parts: Vec<Element> = elements.iter().filter_map(|e| e.linear_element()).collect();
@@ -243,14 +251,26 @@ fn proportional(a: &[f64], b: &[f64]) -> Option<f64> {
 fn check_element(e: &NonlinearElement, n: usize, n_base: usize) -> Result<()> {
     let key = format!("element `{}`", e.name);
     if e.point.len() != n || e.point.iter().any(|w| !w.is_finite()) {
-        return Err(Error::invalid(&format!("{key}.point"), format!("{:?}", e.point), format!("need {n} finite weights")));
+        return Err(Error::invalid(
+            &format!("{key}.point"),
+            format!("{:?}", e.point),
+            format!("need {n} finite weights"),
+        ));
     }
     match &e.to {
         Attach::Base(j) if *j >= n_base => {
-            return Err(Error::invalid(&format!("{key}.to"), j, format!("the model has {n_base} base inputs")));
+            return Err(Error::invalid(
+                &format!("{key}.to"),
+                j,
+                format!("the model has {n_base} base inputs"),
+            ));
         }
         Attach::Point(h) if h.len() != n || h.iter().any(|w| !w.is_finite()) => {
-            return Err(Error::invalid(&format!("{key}.to"), format!("{h:?}"), format!("need {n} finite weights")));
+            return Err(Error::invalid(
+                &format!("{key}.to"),
+                format!("{h:?}"),
+                format!("need {n} finite weights"),
+            ));
         }
         _ => {}
     }

@@ -39,7 +39,10 @@ impl QuadraticDamper {
     /// # Errors
     /// See the module's `# Errors`.
     pub fn new(rebound: f64, compression: f64) -> Result<Self> {
-        for (name, c) in [("rebound_coefficient", rebound), ("compression_coefficient", compression)] {
+        for (name, c) in [
+            ("rebound_coefficient", rebound),
+            ("compression_coefficient", compression),
+        ] {
             if !(c.is_finite() && c >= 0.0) {
                 return Err(Error::invalid(name, c, "must be finite and >= 0"));
             }
@@ -55,7 +58,11 @@ impl QuadraticDamper {
     }
 
     fn coefficient(&self, v: f64) -> f64 {
-        if v > 0.0 { self.rebound } else { self.compression }
+        if v > 0.0 {
+            self.rebound
+        } else {
+            self.compression
+        }
     }
 }
 

@@ -55,10 +55,7 @@ impl TyreContact {
         if !(static_load.is_finite() && static_load > 0.0) {
             return Err(Error::invalid("static_load", static_load, "must be finite and > 0"));
         }
-        Ok(TyreContact {
-            stiffness,
-            static_load,
-        })
+        Ok(TyreContact { stiffness, static_load })
     }
 
     /// s₀ = P/k_t, m: the deflection at which the wheel leaves the road.

@@ -30,10 +30,19 @@ pub fn histogram_charts(title: &str, h: &ResponseHistogram) -> (LineChart, LineC
     let chart = |log: bool| {
         let keep = |v: f64| !log || v > floor;
         let pts = |v: &[f64]| -> Vec<(f64, f64)> {
-            centres.iter().zip(v).filter(|(_, y)| keep(**y)).map(|(x, y)| (*x, *y)).collect()
+            centres
+                .iter()
+                .zip(v)
+                .filter(|(_, y)| keep(**y))
+                .map(|(x, y)| (*x, *y))
+                .collect()
         };
         let mut c = LineChart::new(
-            format!("{title}: {} — response density{}", h.output, if log { " (log)" } else { "" }),
+            format!(
+                "{title}: {} — response density{}",
+                h.output,
+                if log { " (log)" } else { "" }
+            ),
             format!("{} [{}]", h.output, h.unit),
             format!("probability density [1/{}]", h.unit),
         );
@@ -46,10 +55,17 @@ pub fn histogram_charts(title: &str, h: &ResponseHistogram) -> (LineChart, LineC
             pts(&h.density),
         ));
         if let Some(g) = &h.gaussian {
-            c.series.push(Series::line("route 1: Gaussian of the statistical linearization (approximation)", pts(g)).with_color(1));
+            c.series.push(
+                Series::line(
+                    "route 1: Gaussian of the statistical linearization (approximation)",
+                    pts(g),
+                )
+                .with_color(1),
+            );
         }
         if let Some(e) = &h.exact {
-            c.series.push(Series::line("route 3: exact stationary density (Fokker–Planck)", pts(e)).with_color(2));
+            c.series
+                .push(Series::line("route 3: exact stationary density (Fokker–Planck)", pts(e)).with_color(2));
         }
         c
     };

@@ -100,7 +100,11 @@ pub struct NonlinearReport {
 ///
 /// # Errors
 /// Route 3's quadratures; an excitation that does not fit the model.
-pub fn nonlinear_report(sc: &Scenario, answers: &NonlinearAnswers, mc: Option<&NonlinearRunSummary>) -> Result<NonlinearReport> {
+pub fn nonlinear_report(
+    sc: &Scenario,
+    answers: &NonlinearAnswers,
+    mc: Option<&NonlinearRunSummary>,
+) -> Result<NonlinearReport> {
     let model = sc.nonlinear_model().expect("a nonlinear scenario");
     let input = sc.nonlinear_run_input(answers);
     let refs = reference_table(&input)?;
@@ -115,7 +119,8 @@ pub fn nonlinear_report(sc: &Scenario, answers: &NonlinearAnswers, mc: Option<&N
         }
     };
     let route3 = match &answers.route3 {
-        Ok(_) => "applies: exact stationary Fokker–Planck density (one degree of freedom, linear damping, white noise)".into(),
+        Ok(_) => "applies: exact stationary Fokker–Planck density (one degree of freedom, linear damping, white noise)"
+            .into(),
         Err(why) => format!("not applicable: {why}"),
     };
     let elements = model
@@ -178,9 +183,16 @@ fn output_section(
         .map(|(name, unit, route1, exact)| {
             let iv = stored.and_then(|s| s.get(name)).map(|s| s.interval);
             let covered = iv.zip(*route1).map(|(iv, a)| iv.covers(a));
-            let rel = iv.zip(*route1).and_then(|(iv, a)| (iv.estimate != 0.0 && a != 0.0).then(|| a / iv.estimate - 1.0));
+            let rel = iv
+                .zip(*route1)
+                .and_then(|(iv, a)| (iv.estimate != 0.0 && a != 0.0).then(|| a / iv.estimate - 1.0));
             if covered == Some(false) {
-                verdicts.push(verdict(&o.output, name, route1.unwrap_or(f64::NAN), iv.expect("an interval")));
+                verdicts.push(verdict(
+                    &o.output,
+                    name,
+                    route1.unwrap_or(f64::NAN),
+                    iv.expect("an interval"),
+                ));
             }
             CompareRow {
                 statistic: name.clone(),
@@ -215,7 +227,12 @@ fn output_section(
         name: o.output.clone(),
         unit: o.unit.clone(),
         route1_methods: st1
-            .map(|s| s.methods.iter().map(|m| (m.method.name().to_string(), m.value(), m.rel_diff)).collect())
+            .map(|s| {
+                s.methods
+                    .iter()
+                    .map(|m| (m.method.name().to_string(), m.value(), m.rel_diff))
+                    .collect()
+            })
             .unwrap_or_default(),
         route1_a_w,
         route1_nu0: st1.and_then(|s| s.zero_upcrossing_rate),
@@ -228,7 +245,11 @@ fn output_section(
 fn verdict(output: &str, statistic: &str, route1: f64, iv: Interval) -> String {
     let ratio = route1 / iv.estimate;
     let rate = statistic.contains("rate") || statistic.contains("fraction");
-    let factor = if ratio > 0.0 { ratio.max(1.0 / ratio) } else { f64::INFINITY };
+    let factor = if ratio > 0.0 {
+        ratio.max(1.0 / ratio)
+    } else {
+        f64::INFINITY
+    };
     let why = if rate && factor >= RATE_FACTOR_ALARM {
         format!(
             " — off by a factor {factor:.3e}: the Gaussian closure misses the non-Gaussian tail (beyond a stiff \
@@ -277,10 +298,22 @@ impl fmt::Display for NonlinearReport {
                 let m: Vec<String> = o
                     .route1_methods
                     .iter()
-                    .map(|(n, v, d)| format!("{n} {} (rel. diff {})", opt(*v), d.map_or("—".into(), |d| format!("{d:.1e}"))))
+                    .map(|(n, v, d)| {
+                        format!(
+                            "{n} {} (rel. diff {})",
+                            opt(*v),
+                            d.map_or("—".into(), |d| format!("{d:.1e}"))
+                        )
+                    })
                     .collect();
                 writeln!(f, "  route 1 variance of the equivalent system: {}", m.join(", "))?;
-                writeln!(f, "  route 1 ν₀⁺ {} /s{}", opt(o.route1_nu0), o.route1_a_w.map_or(String::new(), |a| format!(", a_w (W_k) {a:.5e} m/s²")))?;
+                writeln!(
+                    f,
+                    "  route 1 ν₀⁺ {} /s{}",
+                    opt(o.route1_nu0),
+                    o.route1_a_w
+                        .map_or(String::new(), |a| format!(", a_w (W_k) {a:.5e} m/s²"))
+                )?;
             }
             writeln!(
                 f,
@@ -289,10 +322,17 @@ impl fmt::Display for NonlinearReport {
             )?;
             for r in &o.rows {
                 let (mc, iv) = match &r.monte_carlo {
-                    Some(iv) => (format!("{:.5e}", iv.estimate), format!("[{:.4e}, {:.4e}]", iv.lower, iv.upper)),
+                    Some(iv) => (
+                        format!("{:.5e}", iv.estimate),
+                        format!("[{:.4e}, {:.4e}]", iv.lower, iv.upper),
+                    ),
                     None => ("—".into(), String::new()),
                 };
-                let flag = if r.route1_covered == Some(false) { "  << route 1 outside" } else { "" };
+                let flag = if r.route1_covered == Some(false) {
+                    "  << route 1 outside"
+                } else {
+                    ""
+                };
                 writeln!(
                     f,
                     "  {:<30} {:>12} {:>12} {:>12} {:>27} {:>10}{flag}",
@@ -305,7 +345,11 @@ impl fmt::Display for NonlinearReport {
                 )?;
             }
             for (name, iv) in &o.dt_halving {
-                writeln!(f, "  {name}: {:.3e} [{:.3e}, {:.3e}] (Δt minus Δt/2, same noise path)", iv.estimate, iv.lower, iv.upper)?;
+                writeln!(
+                    f,
+                    "  {name}: {:.3e} [{:.3e}, {:.3e}] (Δt minus Δt/2, same noise path)",
+                    iv.estimate, iv.lower, iv.upper
+                )?;
             }
         }
         if !self.verdicts.is_empty() {
@@ -327,7 +371,12 @@ impl ToMarkdown for NonlinearReport {
             ("input", self.input.clone()),
             ("route 1 (statistical linearization)", self.route1.clone()),
             ("route 3 (exact)", self.route3.clone()),
-            ("route 2 (Monte Carlo)", self.monte_carlo.clone().unwrap_or_else(|| "not run (--monte-carlo N)".into())),
+            (
+                "route 2 (Monte Carlo)",
+                self.monte_carlo
+                    .clone()
+                    .unwrap_or_else(|| "not run (--monte-carlo N)".into()),
+            ),
         ]));
         for o in &self.outputs {
             s.push_str(&format!("\n### {} [{}]\n\n", o.name, o.unit));
@@ -336,12 +385,22 @@ impl ToMarkdown for NonlinearReport {
                     .text("statistic", o.rows.iter().map(|r| r.statistic.clone()))
                     .text("route 1", o.rows.iter().map(|r| opt(r.route1)))
                     .text("exact", o.rows.iter().map(|r| opt(r.exact)))
-                    .text("route 2", o.rows.iter().map(|r| r.monte_carlo.map_or("—".into(), |iv| format!("{:.5e} [{:.4e}, {:.4e}]", iv.estimate, iv.lower, iv.upper))))
-                    .text("route 1 covered", o.rows.iter().map(|r| match r.route1_covered {
-                        Some(true) => "yes".into(),
-                        Some(false) => "**NO**".into(),
-                        None => "—".to_string(),
-                    }))
+                    .text(
+                        "route 2",
+                        o.rows.iter().map(|r| {
+                            r.monte_carlo.map_or("—".into(), |iv| {
+                                format!("{:.5e} [{:.4e}, {:.4e}]", iv.estimate, iv.lower, iv.upper)
+                            })
+                        }),
+                    )
+                    .text(
+                        "route 1 covered",
+                        o.rows.iter().map(|r| match r.route1_covered {
+                            Some(true) => "yes".into(),
+                            Some(false) => "**NO**".into(),
+                            None => "—".to_string(),
+                        }),
+                    )
                     .markdown(),
             );
         }

@@ -68,39 +68,107 @@ pub const KEYS: &[(&str, &[Key])] = &[
     (
         "cubic-spring",
         &[
-            q("cubic_stiffness", CUBIC, true, "k₃ in F = k₁x + k₃x³, N/m³ (> 0 hardening, < 0 softening)"),
-            q("linear_stiffness", Dim::STIFFNESS, false, "k₁, N/m (default 0: the model's spring carries it)"),
+            q(
+                "cubic_stiffness",
+                CUBIC,
+                true,
+                "k₃ in F = k₁x + k₃x³, N/m³ (> 0 hardening, < 0 softening)",
+            ),
+            q(
+                "linear_stiffness",
+                Dim::STIFFNESS,
+                false,
+                "k₁, N/m (default 0: the model's spring carries it)",
+            ),
         ],
     ),
     (
         "bump-stop",
         &[
-            q("upper_clearance", Dim::LENGTH, false, "d_u ≥ 0, m: the stop engages for x > d_u (give a side or both)"),
-            q("lower_clearance", Dim::LENGTH, false, "d_l ≥ 0, m: the stop engages for x < −d_l"),
-            q("stiffness", Dim::STIFFNESS, false, "contact stiffness of both sides, N/m (> 0)"),
-            q("upper_stiffness", Dim::STIFFNESS, false, "contact stiffness of the upper side, N/m (default: stiffness)"),
-            q("lower_stiffness", Dim::STIFFNESS, false, "contact stiffness of the lower side, N/m (default: stiffness)"),
+            q(
+                "upper_clearance",
+                Dim::LENGTH,
+                false,
+                "d_u ≥ 0, m: the stop engages for x > d_u (give a side or both)",
+            ),
+            q(
+                "lower_clearance",
+                Dim::LENGTH,
+                false,
+                "d_l ≥ 0, m: the stop engages for x < −d_l",
+            ),
+            q(
+                "stiffness",
+                Dim::STIFFNESS,
+                false,
+                "contact stiffness of both sides, N/m (> 0)",
+            ),
+            q(
+                "upper_stiffness",
+                Dim::STIFFNESS,
+                false,
+                "contact stiffness of the upper side, N/m (default: stiffness)",
+            ),
+            q(
+                "lower_stiffness",
+                Dim::STIFFNESS,
+                false,
+                "contact stiffness of the lower side, N/m (default: stiffness)",
+            ),
         ],
     ),
     (
         "bilinear-damper",
         &[
-            q("rebound_damping", Dim::DAMPING, true, "c_r for extension (v > 0), N s/m (≥ 0)"),
-            q("compression_damping", Dim::DAMPING, true, "c_c for compression (v < 0), N s/m (≥ 0)"),
+            q(
+                "rebound_damping",
+                Dim::DAMPING,
+                true,
+                "c_r for extension (v > 0), N s/m (≥ 0)",
+            ),
+            q(
+                "compression_damping",
+                Dim::DAMPING,
+                true,
+                "c_c for compression (v < 0), N s/m (≥ 0)",
+            ),
         ],
     ),
     (
         "quadratic-damper",
         &[
-            q("coefficient", QUADRATIC, false, "q of both sides in F = q v|v|, N s²/m²"),
-            q("rebound_coefficient", QUADRATIC, false, "q_r for v > 0, N s²/m² (default: coefficient)"),
-            q("compression_coefficient", QUADRATIC, false, "q_c for v < 0, N s²/m² (default: coefficient)"),
+            q(
+                "coefficient",
+                QUADRATIC,
+                false,
+                "q of both sides in F = q v|v|, N s²/m²",
+            ),
+            q(
+                "rebound_coefficient",
+                QUADRATIC,
+                false,
+                "q_r for v > 0, N s²/m² (default: coefficient)",
+            ),
+            q(
+                "compression_coefficient",
+                QUADRATIC,
+                false,
+                "q_c for v < 0, N s²/m² (default: coefficient)",
+            ),
         ],
     ),
-    ("coulomb-friction", &[q("force", Dim::FORCE, true, "F_c in F = F_c sgn v, N (≥ 0)")]),
+    (
+        "coulomb-friction",
+        &[q("force", Dim::FORCE, true, "F_c in F = F_c sgn v, N (≥ 0)")],
+    ),
     (
         "tyre-contact",
-        &[q("static_load", Dim::FORCE, true, "the static load P the tyre carries, N (> 0); lift-off at x > P/k_t")],
+        &[q(
+            "static_load",
+            Dim::FORCE,
+            true,
+            "the static load P the tyre carries, N (> 0); lift-off at x > P/k_t",
+        )],
     ),
 ];
 
@@ -146,9 +214,15 @@ pub fn parse_nonlinear(mf: &Fields, lin: Option<&Mdof>) -> Result<Option<Nonline
 fn element(ef: &Fields, lin: &Mdof, i: usize) -> Result<NonlinearElement> {
     let kind = ef.string("kind")?;
     let keys = KEYS.iter().find(|(k, _)| *k == kind).map(|(_, k)| *k).ok_or_else(|| {
-        ef.error("kind", kind, format!("unknown nonlinear element; known kinds: {}", kinds().join(", ")))
+        ef.error(
+            "kind",
+            kind,
+            format!("unknown nonlinear element; known kinds: {}", kinds().join(", ")),
+        )
     })?;
-    let name = ef.opt_string("name")?.map_or_else(|| format!("{kind}-{i}"), str::to_string);
+    let name = ef
+        .opt_string("name")?
+        .map_or_else(|| format!("{kind}-{i}"), str::to_string);
     let (point, to, across) = placement(ef, lin)?;
     let value = |k: &str| -> Result<Option<f64>> {
         let key = keys.iter().find(|x| x.name == k).expect("a key of the kind");
@@ -163,6 +237,24 @@ fn element(ef: &Fields, lin: &Mdof, i: usize) -> Result<NonlinearElement> {
     Ok(NonlinearElement { name, law, point, to })
 }
 
+/// The value of a key that several parameters share, refused under its own name unless finite and > 0
+/// (`strict`) or ≥ 0.
+fn shared(value: &dyn Fn(&str) -> Result<Option<f64>>, key: &str, strict: bool) -> Result<Option<f64>> {
+    let v = value(key)?;
+    match v {
+        Some(x) if !(x.is_finite() && (x > 0.0 || (!strict && x == 0.0))) => Err(Error::invalid(
+            key,
+            x,
+            if strict {
+                "must be finite and > 0"
+            } else {
+                "must be finite and >= 0"
+            },
+        )),
+        _ => Ok(v),
+    }
+}
+
 /// The law of `kind` from its keys (`value(key)`); `across` the linear element it sits across.
 fn law(
     kind: &str,
@@ -171,14 +263,22 @@ fn law(
     lin: &Mdof,
 ) -> Result<Arc<dyn ForceLaw>> {
     Ok(match kind {
-        "cubic-spring" => Arc::new(CubicSpring::new(value("linear_stiffness")?.unwrap_or(0.0), value("cubic_stiffness")?.unwrap_or(0.0))?),
+        "cubic-spring" => Arc::new(CubicSpring::new(
+            value("linear_stiffness")?.unwrap_or(0.0),
+            value("cubic_stiffness")?.unwrap_or(0.0),
+        )?),
         "bump-stop" => {
-            let k = value("stiffness")?;
+            // a shared value is checked under its own key (the law would name the side it went to)
+            let k = shared(value, "stiffness", true)?;
             let side = |d: Option<f64>, ks: Option<f64>, name: &str| -> Result<Option<(f64, f64)>> {
                 match (d, ks.or(k)) {
                     (None, _) => Ok(None),
                     (Some(d), Some(k)) => Ok(Some((d, k))),
-                    (Some(_), None) => Err(Error::invalid(&format!("{name}_stiffness"), "<missing>", "give `stiffness` or the side's own")),
+                    (Some(_), None) => Err(Error::invalid(
+                        &format!("{name}_stiffness"),
+                        "<missing>",
+                        "give `stiffness` or the side's own",
+                    )),
                 }
             };
             Arc::new(BumpStop::new(
@@ -191,7 +291,7 @@ fn law(
             value("compression_damping")?.unwrap_or(0.0),
         )?),
         "quadratic-damper" => {
-            let c = value("coefficient")?;
+            let c = shared(value, "coefficient", false)?;
             Arc::new(QuadraticDamper::new(
                 value("rebound_coefficient")?.or(c).unwrap_or(0.0),
                 value("compression_coefficient")?.or(c).unwrap_or(0.0),
@@ -200,15 +300,21 @@ fn law(
         "coulomb-friction" => Arc::new(CoulombFriction::new(value("force")?.unwrap_or(0.0))?),
         "tyre-contact" => {
             let e = across.ok_or_else(|| {
-                Error::invalid("across", "<missing>", "a tyre contact makes a linear spring unilateral: name it with `across`")
+                Error::invalid(
+                    "across",
+                    "<missing>",
+                    "a tyre contact makes a linear spring unilateral: name it with `across`",
+                )
             })?;
             let k = lin.elements()[e].stiffness;
-            Arc::new(TyreContact::new(k, value("static_load")?.unwrap_or(0.0)).map_err(|err| match err {
-                Error::InvalidParameter { name, value, reason } if name == "stiffness" => {
-                    Error::invalid("across", value, format!("the element it sits across: {reason}"))
-                }
-                other => other,
-            })?)
+            Arc::new(
+                TyreContact::new(k, value("static_load")?.unwrap_or(0.0)).map_err(|err| match err {
+                    Error::InvalidParameter { name, value, reason } if name == "stiffness" => {
+                        Error::invalid("across", value, format!("the element it sits across: {reason}"))
+                    }
+                    other => other,
+                })?,
+            )
         }
         _ => unreachable!("the kinds of KEYS"),
     })
@@ -220,7 +326,11 @@ fn placement(ef: &Fields, lin: &Mdof) -> Result<(Vec<f64>, Attach, Option<usize>
     let placed = if let Some(a) = ef.opt_string("across")? {
         let names: Vec<&str> = lin.elements().iter().map(|e| e.name.as_str()).collect();
         let i = names.iter().position(|x| *x == a).ok_or_else(|| {
-            ef.error("across", a, format!("no such element of the model; its elements: {}", names.join(", ")))
+            ef.error(
+                "across",
+                a,
+                format!("no such element of the model; its elements: {}", names.join(", ")),
+            )
         })?;
         for k in ["point", "to"] {
             if let Some(v) = ef.get(k) {
@@ -234,7 +344,10 @@ fn placement(ef: &Fields, lin: &Mdof) -> Result<(Vec<f64>, Attach, Option<usize>
         let to = match ef.require("to")? {
             toml::Value::String(s) if s == "ground" => Attach::Ground,
             toml::Value::String(s) if s.starts_with("base") => {
-                let j: usize = s[4..].trim().parse().map_err(|_| ef.error("to", s, "expected \"base <index>\""))?;
+                let j: usize = s[4..]
+                    .trim()
+                    .parse()
+                    .map_err(|_| ef.error("to", s, "expected \"base <index>\""))?;
                 if j >= lin.n_base() {
                     return Err(ef.error("to", s, format!("the model has {} base inputs", lin.n_base())));
                 }
@@ -245,7 +358,11 @@ fn placement(ef: &Fields, lin: &Mdof) -> Result<(Vec<f64>, Attach, Option<usize>
         };
         (point, to, None)
     };
-    let angles_only = placed.0.iter().zip(lin.coordinates()).all(|(w, c)| *w == 0.0 || c.1 == "rad");
+    let angles_only = placed
+        .0
+        .iter()
+        .zip(lin.coordinates())
+        .all(|(w, c)| *w == 0.0 || c.1 == "rad");
     if angles_only {
         return Err(ef.error(
             if placed.2.is_some() { "across" } else { "point" },

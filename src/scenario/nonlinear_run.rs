@@ -68,7 +68,9 @@ impl Scenario {
     /// # Errors
     /// An excitation that does not fit the model.
     pub fn nonlinear_answers(&self) -> Result<Option<NonlinearAnswers>> {
-        let Some(model) = self.nonlinear_model() else { return Ok(None) };
+        let Some(model) = self.nonlinear_model() else {
+            return Ok(None);
+        };
         let opts = Route1Options {
             effort: self.analysis.effort.clone(),
             ..Route1Options::default()

@@ -394,7 +394,13 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         BuiltModel::Deterministic(model) => {
             mf.finish()?;
             if has_nonlinear {
-                return Err(mf.error("nonlinear", "[[model.nonlinear]]", format!("kind `{kind}` is a deterministic model: nonlinear elements need a model with a random input")));
+                return Err(mf.error(
+                    "nonlinear",
+                    "[[model.nonlinear]]",
+                    format!(
+                        "kind `{kind}` is a deterministic model: nonlinear elements need a model with a random input"
+                    ),
+                ));
             }
             for key in ["input", "analysis"] {
                 if let Some(v) = root.get(key) {

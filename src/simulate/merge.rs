@@ -154,7 +154,12 @@ pub fn merge_runs(
     // the shared values themselves, from the first file (checked against its checksums)
     let (stats0, psd0, rain0, hist0) = {
         let run = first.open()?;
-        (run.statistics()?, run.psd()?, run.rainflow()?, run.response_histograms()?)
+        (
+            run.statistics()?,
+            run.psd()?,
+            run.rainflow()?,
+            run.response_histograms()?,
+        )
     };
     let confidence = match opts.confidence {
         Some(c) => c,

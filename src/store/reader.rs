@@ -499,7 +499,9 @@ impl RunFile {
         let mut out = Vec::new();
         for sig in &self.meta.outputs {
             if parent.link_exists(&sig.name) {
-                let g = parent.group(&sig.name).map_err(h5err(p, "opening a response histogram"))?;
+                let g = parent
+                    .group(&sig.name)
+                    .map_err(h5err(p, "opening a response histogram"))?;
                 out.push(super::ResponseHistogram::read(&g, &sig.name, p)?);
             }
         }

@@ -65,17 +65,29 @@ impl ResponseHistogram {
     pub(crate) fn write(&self, parent: &hdf5::Group, path: &Path) -> Result<()> {
         let e = |what: &str| h5err(path, what);
         if parent.link_exists(&self.output) {
-            parent.unlink(&self.output).map_err(e("replacing a response histogram"))?;
+            parent
+                .unlink(&self.output)
+                .map_err(e("replacing a response histogram"))?;
         }
-        let g = parent.create_group(&self.output).map_err(e("creating a response histogram"))?;
+        let g = parent
+            .create_group(&self.output)
+            .map_err(e("creating a response histogram"))?;
         let w = || -> hdf5::Result<()> {
             super::writer::write_str_attr(&g, L::ATTR_UNIT, &self.unit)?;
-            for (name, v) in [(L::ATTR_BELOW, self.below), (L::ATTR_ABOVE, self.above), (L::ATTR_SAMPLES, self.samples)] {
+            for (name, v) in [
+                (L::ATTR_BELOW, self.below),
+                (L::ATTR_ABOVE, self.above),
+                (L::ATTR_SAMPLES, self.samples),
+            ] {
                 super::writer::write_scalar_attr(&g, name, v)?;
             }
             super::writer::write_scalar_attr(&g, L::ATTR_CRC32, self.checksum())?;
-            g.new_dataset_builder().with_data(self.edges.as_slice()).create(L::DS_EDGES)?;
-            g.new_dataset_builder().with_data(self.density.as_slice()).create(L::DS_DENSITY)?;
+            g.new_dataset_builder()
+                .with_data(self.edges.as_slice())
+                .create(L::DS_EDGES)?;
+            g.new_dataset_builder()
+                .with_data(self.density.as_slice())
+                .create(L::DS_DENSITY)?;
             for (name, d) in [(L::DS_GAUSSIAN, &self.gaussian), (L::DS_EXACT, &self.exact)] {
                 if let Some(d) = d {
                     g.new_dataset_builder().with_data(d.as_slice()).create(name)?;
@@ -93,7 +105,13 @@ impl ResponseHistogram {
                 .and_then(|d| d.read_raw::<f64>())
                 .map_err(h5err(path, &format!("reading response_histogram/{output}/{name}")))
         };
-        let opt = |name: &str| -> Result<Option<Vec<f64>>> { if g.link_exists(name) { read(name).map(Some) } else { Ok(None) } };
+        let opt = |name: &str| -> Result<Option<Vec<f64>>> {
+            if g.link_exists(name) {
+                read(name).map(Some)
+            } else {
+                Ok(None)
+            }
+        };
         let scalar = |name: &str| -> Result<f64> {
             g.attr(name)
                 .and_then(|a| a.read_scalar::<f64>())

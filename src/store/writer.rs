@@ -1051,7 +1051,9 @@ impl RunWriter {
         self.check_signal_name("response_histogram", &h.output)?;
         let e = |what: &str| h5err(&self.tmp, what);
         let parent = if self.file.link_exists(L::GROUP_RESPONSE_HISTOGRAM) {
-            self.file.group(L::GROUP_RESPONSE_HISTOGRAM).map_err(e("opening /response_histogram"))?
+            self.file
+                .group(L::GROUP_RESPONSE_HISTOGRAM)
+                .map_err(e("opening /response_histogram"))?
         } else {
             self.file
                 .create_group(L::GROUP_RESPONSE_HISTOGRAM)

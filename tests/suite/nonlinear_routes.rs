@@ -10,7 +10,9 @@
 
 use crate::common;
 use common::rel;
-use common::tolerance::{PRINTED_8_DIGITS, QUADRATURE, RIGID_STOP, ROUTE1_ITERATION, SPLITTING_MIN_ORDER, TRAPEZOID_PIECEWISE};
+use common::tolerance::{
+    PRINTED_8_DIGITS, QUADRATURE, RIGID_STOP, ROUTE1_ITERATION, SPLITTING_MIN_ORDER, TRAPEZOID_PIECEWISE,
+};
 use statrs::function::erf::erfc;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -57,11 +59,17 @@ fn expect(g: &dyn Fn(f64) -> f64, mu: f64, s: f64, kinks: &[f64]) -> f64 {
 
 /// F₀ and Stein's coefficient E[F(z)(z − μ)]/s² (= E[F′(z)] also for a discontinuous F).
 fn numeric(f: &dyn Fn(f64) -> f64, mu: f64, s: f64, kinks: &[f64]) -> (f64, f64) {
-    (expect(f, mu, s, kinks), expect(&|z| f(z) * (z - mu), mu, s, kinks) / (s * s))
+    (
+        expect(f, mu, s, kinks),
+        expect(&|z| f(z) * (z - mu), mu, s, kinks) / (s * s),
+    )
 }
 
 fn close(a: f64, b: f64, scale: f64, tol: f64, what: &str) {
-    assert!((a - b).abs() <= tol * scale, "{what}: {a} vs {b} (scale {scale}, tol {tol})");
+    assert!(
+        (a - b).abs() <= tol * scale,
+        "{what}: {a} vs {b} (scale {scale}, tol {tol})"
+    );
 }
 
 /// Every element's Gaussian expectations against quadrature of the force law (Stein's form for the
@@ -83,7 +91,10 @@ fn gaussian_equivalents_match_quadrature_and_printed_values() {
         let (k, c) = law.linear_part();
         let mu = if vel { mv } else { mx };
         let lin = if vel { c } else { k };
-        (e.mean_force + lin * mu, if vel { e.damping + c } else { e.stiffness + k })
+        (
+            e.mean_force + lin * mu,
+            if vel { e.damping + c } else { e.stiffness + k },
+        )
     };
     // cubic spring
     let cubic = CubicSpring::new(2.0, 0.5).unwrap();
@@ -100,8 +111,20 @@ fn gaussian_equivalents_match_quadrature_and_printed_values() {
     close(e.mean_force, nf, 1.0, TRAPEZOID_PIECEWISE, "stop E[F]");
     close(e.stiffness, nk, 1.0, TRAPEZOID_PIECEWISE, "stop k_eq");
     let up = BumpStop::new(Some((0.5, 10.0)), None).unwrap().gaussian(&m);
-    close(up.mean_force, 2.290757585789, 1.0, PRINTED_8_DIGITS, "upper stop printed E[F]");
-    close(up.stiffness, 4.012936743171, 1.0, PRINTED_8_DIGITS, "upper stop printed k_eq");
+    close(
+        up.mean_force,
+        2.290757585789,
+        1.0,
+        PRINTED_8_DIGITS,
+        "upper stop printed E[F]",
+    );
+    close(
+        up.stiffness,
+        4.012936743171,
+        1.0,
+        PRINTED_8_DIGITS,
+        "upper stop printed k_eq",
+    );
     // bilinear damper (linear part c̄ v plus Δ|v|)
     let bil = BilinearDamper::new(3.0, 1.0).unwrap();
     let (f0, c) = total(&bil, bil.gaussian(&m), true);
@@ -117,7 +140,13 @@ fn gaussian_equivalents_match_quadrature_and_printed_values() {
     close(e.mean_force, nf, 1.0, TRAPEZOID_PIECEWISE, "quadratic E[F]");
     close(e.damping, nc, 1.0, TRAPEZOID_PIECEWISE, "quadratic c_eq");
     close(e.mean_force, 0.056226371874, 1.0, PRINTED_8_DIGITS, "quadratic printed");
-    close(e.damping, 0.962708342897, 1.0, PRINTED_8_DIGITS, "quadratic printed c_eq");
+    close(
+        e.damping,
+        0.962708342897,
+        1.0,
+        PRINTED_8_DIGITS,
+        "quadratic printed c_eq",
+    );
     // Coulomb friction (Stein's coefficient of a jump)
     let fr = CoulombFriction::new(1.5).unwrap();
     let e = fr.gaussian(&m);
@@ -157,15 +186,26 @@ fn oscillator(elements: Vec<(&str, Arc<dyn ForceLaw>)>, damping: f64, s_f: f64) 
         })
         .collect();
     let white = Arc::new(RationalSpectrum::new(vec![s_f], vec![1.0], Domain::Temporal).unwrap());
-    (NonlinearModel::new(&lin, els).unwrap(), Excitation::single(white, 0.0).unwrap())
+    (
+        NonlinearModel::new(&lin, els).unwrap(),
+        Excitation::single(white, 0.0).unwrap(),
+    )
 }
 
 fn duffing(eps: f64) -> (NonlinearModel, Excitation) {
-    oscillator(vec![("cubic", Arc::new(CubicSpring::new(0.0, eps).unwrap()))], 0.2, 0.2 / PI)
+    oscillator(
+        vec![("cubic", Arc::new(CubicSpring::new(0.0, eps).unwrap()))],
+        0.2,
+        0.2 / PI,
+    )
 }
 
 fn route1(model: &NonlinearModel, exc: &Excitation) -> Route1 {
-    linearize(model, exc, &Route1Options::default()).unwrap().converged().expect("route 1 converges").clone()
+    linearize(model, exc, &Route1Options::default())
+        .unwrap()
+        .converged()
+        .expect("route 1 converges")
+        .clone()
 }
 
 /// Route 1 of the Duffing oscillator is the root of 3εσ⁴ + σ² − σ₀² = 0 (Caughey 1963): σ² =
@@ -194,10 +234,17 @@ fn route1_duffing_is_the_root_of_the_quadratic() {
 /// notes): σ² = 0.817561403867, 0.467919916974, 0.188902429350 and κ = 2.729455136, 2.430154806, 2.272992561.
 #[test]
 fn route3_duffing_matches_the_exact_density() {
-    let printed = [(0.1, 0.817561403867, 2.729455136), (1.0, 0.467919916974, 2.430154806), (10.0, 0.188902429350, 2.272992561)];
+    let printed = [
+        (0.1, 0.817561403867, 2.729455136),
+        (1.0, 0.467919916974, 2.430154806),
+        (10.0, 0.188902429350, 2.272992561),
+    ];
     for (eps, var_p, kurt_p) in printed {
         let (model, exc) = duffing(eps);
-        let st = WhiteNoiseOscillator::from_model(&model, &exc).unwrap().stationary().unwrap();
+        let st = WhiteNoiseOscillator::from_model(&model, &exc)
+            .unwrap()
+            .stationary()
+            .unwrap();
         let q = |x: f64| (-(0.5 * x * x + 0.25 * eps * x.powi(4))).exp();
         let z = trapezoid(&q, -12.0, 12.0, 24_000);
         let m2 = trapezoid(&|x| x * x * q(x), -12.0, 12.0, 24_000) / z;
@@ -214,7 +261,10 @@ fn route3_duffing_matches_the_exact_density() {
     }
     // the printed rates at ε = 1 (research notes): 2.061453e-01, 9.737615e-02, 5.109832e-04
     let (model, exc) = duffing(1.0);
-    let st = WhiteNoiseOscillator::from_model(&model, &exc).unwrap().stationary().unwrap();
+    let st = WhiteNoiseOscillator::from_model(&model, &exc)
+        .unwrap()
+        .stationary()
+        .unwrap();
     for (a, p) in [(0.0, 2.061453e-1), (1.0, 9.737615e-2), (2.0, 5.109832e-4)] {
         assert!(rel(st.upcrossing_rate(a), p) < 1e-6, "a = {a}");
     }
@@ -229,7 +279,10 @@ fn route3_duffing_matches_the_exact_density() {
 fn stop_exact(d: f64, kappa: f64) -> (f64, f64) {
     let inner = 2.0 * cdf(d) - 1.0;
     let (mu, s) = (kappa * d / (1.0 + kappa), (1.0 / (1.0 + kappa)).sqrt());
-    let (h, c) = (((d - kappa * d / (1.0 + kappa)) * (1.0 + kappa).sqrt()), (-kappa * d * d / (2.0 * (1.0 + kappa))).exp());
+    let (h, c) = (
+        ((d - kappa * d / (1.0 + kappa)) * (1.0 + kappa).sqrt()),
+        (-kappa * d * d / (2.0 * (1.0 + kappa))).exp(),
+    );
     let q = 1.0 - cdf(h);
     let z = inner + 2.0 * c * s * q;
     let m2 = inner - 2.0 * d * phi(d) + 2.0 * c * s * (mu * mu * q + 2.0 * mu * s * phi(h) + s * s * (h * phi(h) + q));
@@ -242,11 +295,28 @@ fn stop_exact(d: f64, kappa: f64) -> (f64, f64) {
 /// very stiff stop (κ = 10⁶) against the rigid wall's closed form within RIGID_STOP.
 #[test]
 fn route3_bump_stop_matches_closed_forms_and_the_rigid_limit() {
-    for (kappa, var_p, rate_p) in [(10.0, 0.502821990335, 0.1164840540), (100.0, 0.356896891537, 0.1307081185)] {
-        let (model, exc) = oscillator(vec![("stop", Arc::new(BumpStop::new(Some((1.0, kappa)), Some((1.0, kappa))).unwrap()))], 0.2, 0.2 / PI);
-        let st = WhiteNoiseOscillator::from_model(&model, &exc).unwrap().stationary().unwrap();
+    for (kappa, var_p, rate_p) in [
+        (10.0, 0.502821990335, 0.1164840540),
+        (100.0, 0.356896891537, 0.1307081185),
+    ] {
+        let (model, exc) = oscillator(
+            vec![(
+                "stop",
+                Arc::new(BumpStop::new(Some((1.0, kappa)), Some((1.0, kappa))).unwrap()),
+            )],
+            0.2,
+            0.2 / PI,
+        );
+        let st = WhiteNoiseOscillator::from_model(&model, &exc)
+            .unwrap()
+            .stationary()
+            .unwrap();
         let (var, rate) = stop_exact(1.0, kappa);
-        assert!(rel(st.variance, var) < QUADRATURE, "κ = {kappa}: {} vs {var}", st.variance);
+        assert!(
+            rel(st.variance, var) < QUADRATURE,
+            "κ = {kappa}: {} vs {var}",
+            st.variance
+        );
         assert!(rel(st.upcrossing_rate(1.0), rate) < QUADRATURE);
         assert!(rel(var, var_p) < PRINTED_8_DIGITS && rel(rate, rate_p) < PRINTED_8_DIGITS);
         // the regime: contact entries per second = ν⁺(d) + ν⁺(−d) (symmetric), fraction P(|x| > d)
@@ -256,9 +326,20 @@ fn route3_bump_stop_matches_closed_forms_and_the_rigid_limit() {
     }
     for d in [0.5, 1.0, 2.0] {
         let rigid = 1.0 - 2.0 * d * phi(d) / (2.0 * cdf(d) - 1.0);
-        let (model, exc) = oscillator(vec![("stop", Arc::new(BumpStop::new(Some((d, 1e6)), Some((d, 1e6))).unwrap()))], 0.2, 0.2 / PI);
-        let st = WhiteNoiseOscillator::from_model(&model, &exc).unwrap().stationary().unwrap();
-        assert!((st.variance - rigid).abs() < RIGID_STOP, "d = {d}: {} vs rigid {rigid}", st.variance);
+        let (model, exc) = oscillator(
+            vec![("stop", Arc::new(BumpStop::new(Some((d, 1e6)), Some((d, 1e6))).unwrap()))],
+            0.2,
+            0.2 / PI,
+        );
+        let st = WhiteNoiseOscillator::from_model(&model, &exc)
+            .unwrap()
+            .stationary()
+            .unwrap();
+        assert!(
+            (st.variance - rigid).abs() < RIGID_STOP,
+            "d = {d}: {} vs rigid {rigid}",
+            st.variance
+        );
         assert!(rel(st.variance, stop_exact(d, 1e6).0) < QUADRATURE);
     }
 }
@@ -278,18 +359,33 @@ fn route1_one_sided_stop_mean_shift() {
         let (mut lo, mut hi) = (-50.0, 50.0);
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
-            if g(mid) > 0.0 { hi = mid } else { lo = mid }
+            if g(mid) > 0.0 {
+                hi = mid
+            } else {
+                lo = mid
+            }
         }
         mu = 0.5 * (lo + hi);
         s2 = 0.5 * s2 + 0.5 / (1.0 + kappa * cdf((mu - d) / s));
     }
-    let (model, exc) = oscillator(vec![("stop", Arc::new(BumpStop::new(Some((d, kappa)), None).unwrap()))], 0.2, 0.2 / PI);
+    let (model, exc) = oscillator(
+        vec![("stop", Arc::new(BumpStop::new(Some((d, kappa)), None).unwrap()))],
+        0.2,
+        0.2 / PI,
+    );
     let r = route1(&model, &exc);
-    assert!((r.moments[0].mean_x - mu).abs() < ROUTE1_ITERATION, "{} vs {mu}", r.moments[0].mean_x);
+    assert!(
+        (r.moments[0].mean_x - mu).abs() < ROUTE1_ITERATION,
+        "{} vs {mu}",
+        r.moments[0].mean_x
+    );
     assert!(rel(r.moments[0].sigma_x.powi(2), s2) < ROUTE1_ITERATION);
     assert!(rel(mu, -0.21033888) < 1e-7 && rel(s2, 0.61796483) < 1e-7);
     assert!(rel(r.output_means[0], mu) < ROUTE1_ITERATION);
-    let st = WhiteNoiseOscillator::from_model(&model, &exc).unwrap().stationary().unwrap();
+    let st = WhiteNoiseOscillator::from_model(&model, &exc)
+        .unwrap()
+        .stationary()
+        .unwrap();
     assert!(rel(st.mean, -0.16798343) < 1e-7 && rel(st.variance, 0.74647609) < 1e-7);
 }
 
@@ -300,7 +396,11 @@ fn route1_one_sided_stop_mean_shift() {
 /// S₀ = 1/π: μ = −0.4√2.5/√(2π) = −0.252313 (research notes, printed to 6 digits).
 #[test]
 fn route1_jacking_matches_the_gaussian_closed_form() {
-    let (model, exc) = oscillator(vec![("damper", Arc::new(BilinearDamper::new(0.6, 0.2).unwrap()))], 0.0, 1.0 / PI);
+    let (model, exc) = oscillator(
+        vec![("damper", Arc::new(BilinearDamper::new(0.6, 0.2).unwrap()))],
+        0.0,
+        1.0 / PI,
+    );
     let r = route1(&model, &exc);
     let sv = (PI * (1.0 / PI) / 0.4f64).sqrt();
     let mu = -0.4 * sv / (2.0 * PI).sqrt();
@@ -317,8 +417,14 @@ fn zero_nonlinearity_is_the_linear_model_bit_for_bit() {
     use stochvib::models::quarter_car::QuarterCar;
     let road = Arc::new(stochvib::spectrum::PowerLaw::iso_class(stochvib::spectrum::IsoClass::C).unwrap());
     let exc = Excitation::road(road, 20.0, &[0.0]).unwrap();
-    let linear = QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3).unwrap().system().unwrap();
-    let base = QuarterCar::new(300.0, 40.0, 20e3, 0.0, 200e3).unwrap().system().unwrap();
+    let linear = QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3)
+        .unwrap()
+        .system()
+        .unwrap();
+    let base = QuarterCar::new(300.0, 40.0, 20e3, 0.0, 200e3)
+        .unwrap()
+        .system()
+        .unwrap();
     let across = |name: &str, law: Arc<dyn ForceLaw>| NonlinearElement {
         name: name.into(),
         law,
@@ -350,7 +456,11 @@ fn zero_nonlinearity_is_the_linear_model_bit_for_bit() {
 #[test]
 fn route1_non_convergence_is_an_outcome_with_a_reason() {
     // friction 100× the force level: the element sticks
-    let (model, exc) = oscillator(vec![("friction", Arc::new(CoulombFriction::new(100.0).unwrap()))], 0.2, 0.2 / PI);
+    let (model, exc) = oscillator(
+        vec![("friction", Arc::new(CoulombFriction::new(100.0).unwrap()))],
+        0.2,
+        0.2 / PI,
+    );
     match linearize(&model, &exc, &Route1Options::default()).unwrap() {
         Route1Outcome::NotConverged { reason, advice, .. } => {
             assert!(reason.contains("stick") || reason.contains("settle"), "{reason}");
@@ -359,12 +469,21 @@ fn route1_non_convergence_is_an_outcome_with_a_reason() {
         Route1Outcome::Converged(r) => panic!("sticking friction converged: {:?}", r.moments),
     }
     // softening: k₃ = −1 with σ₀² = 1: k_eq = 1 − 3σ² < 0 has no Gaussian equivalent
-    let (model, exc) = oscillator(vec![("soft", Arc::new(CubicSpring::new(0.0, -1.0).unwrap()))], 0.2, 0.2 / PI);
+    let (model, exc) = oscillator(
+        vec![("soft", Arc::new(CubicSpring::new(0.0, -1.0).unwrap()))],
+        0.2,
+        0.2 / PI,
+    );
     match linearize(&model, &exc, &Route1Options::default()).unwrap() {
-        Route1Outcome::NotConverged { reason, .. } => assert!(reason.contains("stationary") || reason.contains("settle"), "{reason}"),
+        Route1Outcome::NotConverged { reason, .. } => {
+            assert!(reason.contains("stationary") || reason.contains("settle"), "{reason}")
+        }
         Route1Outcome::Converged(r) => panic!("softening spring converged: {:?}", r.moments),
     }
-    assert!(WhiteNoiseOscillator::from_model(&model, &exc).unwrap().stationary().is_err());
+    assert!(WhiteNoiseOscillator::from_model(&model, &exc)
+        .unwrap()
+        .stationary()
+        .is_err());
 }
 
 /// The splitting integrator is second order on a problem with a known answer: the free oscillation
@@ -403,7 +522,10 @@ fn splitting_integrator_is_second_order_through_contact() {
     };
     let (e1, e8) = (envelope(100), envelope(800));
     let order = (e1 / e8).log2() / 3.0;
-    assert!(order >= SPLITTING_MIN_ORDER, "observed order {order:.3} (errors {e1:.3e}, {e8:.3e})");
+    assert!(
+        order >= SPLITTING_MIN_ORDER,
+        "observed order {order:.3} (errors {e1:.3e}, {e8:.3e})"
+    );
     assert!(e8 < 1e-3, "{e8}");
     // below the clearance: exact (the kicks are zero)
     let (q, qd) = free_response(&model, &[0.0], &[0.4], 0.1, 50).unwrap();

@@ -84,7 +84,9 @@ impl Path for ExactPath<'_> {
         let n = self.flow.nz;
         match &mut self.noise {
             Noise::Stream(rng) => self.flow.step(self.step, &mut self.z, &mut self.w, &mut self.next, rng),
-            Noise::Fine(w) => self.flow.step_with(self.step, &mut self.z, &w[k * n..(k + 1) * n], &mut self.next),
+            Noise::Fine(w) => self
+                .flow
+                .step_with(self.step, &mut self.z, &w[k * n..(k + 1) * n], &mut self.next),
             Noise::Coarse(w) => {
                 let (w1, w2) = (&w[2 * k * n..(2 * k + 1) * n], &w[(2 * k + 1) * n..(2 * k + 2) * n]);
                 self.flow.coupled_noise(w1, w2, &mut self.w);
@@ -140,7 +142,8 @@ impl Path for HoldPath<'_> {
             self.u0[j] = s[k];
             self.u1[j] = s[k + 1];
         }
-        self.flow.step(self.step, &mut self.x, &self.u0, &self.u1, &mut self.next);
+        self.flow
+            .step(self.step, &mut self.x, &self.u0, &self.u1, &mut self.next);
     }
 }
 
@@ -158,7 +161,13 @@ fn drive(plan: &NlPlan, path: &mut dyn Path, h: f64, burn: usize, rec: usize, si
     let mut xe = vec![0.0; ne];
     let mut fe = vec![0.0; ne];
     let mech = path.mech();
-    let refresh = |path: &mut dyn Path, k: usize, ut: &mut [f64], ud: &mut [f64], ua: &mut [f64], q: &mut [f64], qdot: &mut [f64]| {
+    let refresh = |path: &mut dyn Path,
+                   k: usize,
+                   ut: &mut [f64],
+                   ud: &mut [f64],
+                   ua: &mut [f64],
+                   q: &mut [f64],
+                   qdot: &mut [f64]| {
         path.inputs(k, ut, ud);
         for j in 0..nb {
             ua[j] = plan.u_mean[j] + ut[j];
@@ -233,7 +242,15 @@ struct Sink<'a> {
 fn records(plan: &NlPlan) -> Vec<OutputRecord> {
     plan.outputs
         .iter()
-        .map(|o| OutputRecord::new(o.centre, &o.levels, o.hist_lo, o.hist_width, super::plan::HISTOGRAM_BINS))
+        .map(|o| {
+            OutputRecord::new(
+                o.centre,
+                &o.levels,
+                o.hist_lo,
+                o.hist_width,
+                super::plan::HISTOGRAM_BINS,
+            )
+        })
         .collect()
 }
 
@@ -271,7 +288,12 @@ impl<'a> Sink<'a> {
 
     fn flush(&mut self, scratch: &mut WelchScratch) {
         for r in 0..self.records.len() {
-            let res = self.plan.welch.push(&mut self.streams[r], &self.block[r][..self.filled], &mut self.welch[r], scratch);
+            let res = self.plan.welch.push(
+                &mut self.streams[r],
+                &self.block[r][..self.filled],
+                &mut self.welch[r],
+                scratch,
+            );
             if let Err(e) = res {
                 self.err.get_or_insert(e);
             }
@@ -299,14 +321,18 @@ pub(crate) fn realize(
         Flow::Exact(f) => {
             let mut path = exact_path(plan, f, &f.coarse, Noise::Stream(rng));
             let ws = &mut s.welch;
-            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, &mut |y, x| sink.push(y, x, ws));
+            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, &mut |y, x| {
+                sink.push(y, x, ws)
+            });
         }
         Flow::Hold { flow, inputs, rates } => {
             let sc = s.inputs.as_mut().expect("a spectral plan has an input scratch");
             let smp = inputs.draw(sc, rng)?;
             let mut path = hold_path(flow, &flow.coarse, &smp.u, &smp.rates, rates);
             let ws = &mut s.welch;
-            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, &mut |y, x| sink.push(y, x, ws));
+            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, &mut |y, x| {
+                sink.push(y, x, ws)
+            });
             if keep_raw {
                 raw_inputs = smp.processes.iter().map(|p| p[plan.n_burn..].to_vec()).collect();
             }
@@ -345,7 +371,13 @@ fn exact_path<'a>(plan: &NlPlan, f: &'a ExactFlow, step: &'a NoisyStep, mut nois
     }
 }
 
-fn hold_path<'a>(f: &'a FohFlow, step: &'a HoldStep, u: &'a [Vec<f64>], rates: &'a [Vec<f64>], rate_inputs: &'a [usize]) -> HoldPath<'a> {
+fn hold_path<'a>(
+    f: &'a FohFlow,
+    step: &'a HoldStep,
+    u: &'a [Vec<f64>],
+    rates: &'a [Vec<f64>],
+    rate_inputs: &'a [usize],
+) -> HoldPath<'a> {
     HoldPath {
         flow: f,
         step,
@@ -362,7 +394,11 @@ fn hold_path<'a>(f: &'a FohFlow, step: &'a HoldStep, u: &'a [Vec<f64>], rates: &
 /// (mean, σ) of every output at Δt minus those at Δt/2 on the same path (exact route: the same Brownian
 /// path, the coarse noise built from the fine normals; spectral route: the same synthesised input, refined
 /// to half steps by its trigonometric interpolant).
-fn halving_check(plan: &NlPlan, rng: &mut Xoshiro256PlusPlus, samples: Option<&InputSamples>) -> Result<Vec<(f64, f64)>> {
+fn halving_check(
+    plan: &NlPlan,
+    rng: &mut Xoshiro256PlusPlus,
+    samples: Option<&InputSamples>,
+) -> Result<Vec<(f64, f64)>> {
     let mut coarse = records(plan);
     let mut fine = records(plan);
     let total = plan.n_burn + plan.n;
@@ -373,18 +409,26 @@ fn halving_check(plan: &NlPlan, rng: &mut Xoshiro256PlusPlus, samples: Option<&I
             let w: Vec<f64> = (0..2 * total * f.nz).map(|_| standard_normal(rng)).collect();
             let mut pc = exact_path(plan, f, &f.coarse, Noise::Coarse(&w));
             pc.z.iter_mut().zip(&z0).for_each(|(a, b)| *a += b);
-            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, &mut |y, _| push_all(&mut coarse, y));
+            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, &mut |y, _| {
+                push_all(&mut coarse, y)
+            });
             let mut pf = exact_path(plan, f, &f.fine, Noise::Fine(&w));
             pf.z.iter_mut().zip(&z0).for_each(|(a, b)| *a += b);
-            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, &mut |y, _| push_all(&mut fine, y));
+            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, &mut |y, _| {
+                push_all(&mut fine, y)
+            });
         }
         (Flow::Hold { flow, rates, .. }, Some(smp)) => {
             let mut pc = hold_path(flow, &flow.coarse, &smp.u, &smp.rates, rates);
-            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, &mut |y, _| push_all(&mut coarse, y));
+            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, &mut |y, _| {
+                push_all(&mut coarse, y)
+            });
             let u2 = smp.u.iter().map(|x| refine(x)).collect::<Result<Vec<_>>>()?;
             let r2 = smp.rates.iter().map(|x| refine(x)).collect::<Result<Vec<_>>>()?;
             let mut pf = hold_path(flow, &flow.fine, &u2, &r2, rates);
-            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, &mut |y, _| push_all(&mut fine, y));
+            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, &mut |y, _| {
+                push_all(&mut fine, y)
+            });
         }
         (Flow::Hold { .. }, None) => unreachable!("a spectral realization has its samples"),
     }
@@ -404,7 +448,12 @@ fn push_all(r: &mut [OutputRecord], y: &[f64]) {
     }
 }
 
-fn finish(plan: &NlPlan, sink: Sink, halving: Option<Vec<(f64, f64)>>, raw_inputs: Vec<Vec<f64>>) -> Result<NlRealization> {
+fn finish(
+    plan: &NlPlan,
+    sink: Sink,
+    halving: Option<Vec<(f64, f64)>>,
+    raw_inputs: Vec<Vec<f64>>,
+) -> Result<NlRealization> {
     let t = plan.duration();
     let mut out = NlRealization {
         m: Vec::new(),

@@ -63,7 +63,8 @@ pub(crate) struct ExactFlow {
 }
 
 /// An output that cannot be sampled on the exact route: it contains the driving white noise.
-pub(crate) const WHITE: &str = "contains the driving white noise directly (infinite variance): its samples are not defined";
+pub(crate) const WHITE: &str =
+    "contains the driving white noise directly (infinite variance): its samples are not defined";
 
 /// The augmented (A, G, h, f) of output `i` of `sys` under `exc`.
 fn row(sys: &Mdof, exc: &Excitation, i: usize) -> Result<(DMatrix<f64>, DMatrix<f64>, Vec<f64>, bool)> {
@@ -97,8 +98,20 @@ impl ExactFlow {
         let mut probe = linear.clone();
         for j in 0..nb {
             probe = probe
-                .with_output(&format!("-u{j}"), Quantity::RelativeDisplacement { point: vec![0.0; n], base: j })?
-                .with_output(&format!("-du{j}"), Quantity::RelativeVelocity { point: vec![0.0; n], base: j })?;
+                .with_output(
+                    &format!("-u{j}"),
+                    Quantity::RelativeDisplacement {
+                        point: vec![0.0; n],
+                        base: j,
+                    },
+                )?
+                .with_output(
+                    &format!("-du{j}"),
+                    Quantity::RelativeVelocity {
+                        point: vec![0.0; n],
+                        base: j,
+                    },
+                )?;
         }
         let p = linear.outputs().len();
         let (a, g, _, _) = row(&probe, exc, 0)?;
@@ -155,7 +168,14 @@ impl ExactFlow {
 
     /// z ← Φz + Lw with fresh normals w (n of them, drawn first), in the order of a linear exact-route run
     /// (noise terms first for up to 8 states, the Φz terms first beyond).
-    pub(crate) fn step(&self, s: &NoisyStep, z: &mut [f64], w: &mut [f64], next: &mut [f64], rng: &mut rand::rngs::Xoshiro256PlusPlus) {
+    pub(crate) fn step(
+        &self,
+        s: &NoisyStep,
+        z: &mut [f64],
+        w: &mut [f64],
+        next: &mut [f64],
+        rng: &mut rand::rngs::Xoshiro256PlusPlus,
+    ) {
         for v in w.iter_mut() {
             *v = crate::simulate::standard_normal(rng);
         }

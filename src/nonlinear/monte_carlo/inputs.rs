@@ -91,7 +91,11 @@ impl InputIdentity {
             .map(|r| {
                 (0..self.m)
                     .map(|j| {
-                        let on = if r < self.m { r == j } else { self.rates[r - self.m] == j };
+                        let on = if r < self.m {
+                            r == j
+                        } else {
+                            self.rates[r - self.m] == j
+                        };
                         match (on, r < self.m) {
                             (false, _) => Asymptote::Vanishing,
                             (true, true) => Asymptote::Power {

@@ -36,7 +36,7 @@ pub use plan::BURN_IN_DECAY;
 use crate::error::{Error, Result};
 use crate::nonlinear::{NonlinearModel, Route1, Stationary};
 use crate::response::{Excitation, ResponseStatistics};
-use crate::simulate::{accumulators, run_batch, stream, splitmix64, Analytic, RunOptions, RunSummary};
+use crate::simulate::{accumulators, run_batch, splitmix64, stream, Analytic, RunOptions, RunSummary};
 use crate::store::{CreateOptions, OutputStatistics, Provenance, RunMetadata, RunWriter, Signal, Statistic};
 use engine::{realize, NlRealization, NlScratch};
 use plan::NlPlan;
@@ -137,13 +137,26 @@ pub fn run_nonlinear(
     let mut done = resumed;
     for shard in writer.pending_shards() {
         let range = meta.shard_range(shard);
-        let batch = run_batch(ro.seed, range.start as u64..range.end as u64, || NlScratch::new(&plan), |s, i, rng| {
-            let mut c = check_stream(ro.seed, i);
-            let check = ((i as usize) < plan.checks).then_some(&mut c);
-            realize(&plan, s, rng, check, ro.store_raw)
-        });
+        let batch = run_batch(
+            ro.seed,
+            range.start as u64..range.end as u64,
+            || NlScratch::new(&plan),
+            |s, i, rng| {
+                let mut c = check_stream(ro.seed, i);
+                let check = ((i as usize) < plan.checks).then_some(&mut c);
+                realize(&plan, s, rng, check, ro.store_raw)
+            },
+        );
         let results = batch.into_results().into_iter().collect::<Result<Vec<_>>>()?;
-        write_shard(&mut writer, shard, &results, &plan, shard_size, ro.store_raw, record_inputs)?;
+        write_shard(
+            &mut writer,
+            shard,
+            &results,
+            &plan,
+            shard_size,
+            ro.store_raw,
+            record_inputs,
+        )?;
         done += 1;
         progress(done, n_shards);
     }
@@ -224,7 +237,11 @@ fn metadata(
         n_samples: plan.n,
         n_realizations: ro.realizations,
         shard_size,
-        inputs: if record_inputs { plan.input_signals.clone() } else { vec![] },
+        inputs: if record_inputs {
+            plan.input_signals.clone()
+        } else {
+            vec![]
+        },
         outputs: plan.outputs.iter().map(|o| o.signal.clone()).collect(),
         accumulators: acc,
         store_raw: ro.store_raw,
@@ -277,8 +294,16 @@ fn write_shard(
             .map(|r| ndarray::Array2::from_shape_fn((rows, n), |(i, k)| pick(&results[i])[r][k]))
             .collect()
     };
-    let raw = if store_raw { grid(&|re| &re.raw, plan.outputs.len()) } else { vec![] };
-    let raw_in = if record_inputs { grid(&|re| &re.raw_inputs, plan.input_signals.len()) } else { vec![] };
+    let raw = if store_raw {
+        grid(&|re| &re.raw, plan.outputs.len())
+    } else {
+        vec![]
+    };
+    let raw_in = if record_inputs {
+        grid(&|re| &re.raw_inputs, plan.input_signals.len())
+    } else {
+        vec![]
+    };
     let views: Vec<_> = raw.iter().map(|a| a.view()).collect();
     let in_views: Vec<_> = raw_in.iter().map(|a| a.view()).collect();
     // the writer's order: the standard accumulators of every output, then the nonlinear ones
@@ -293,10 +318,26 @@ fn templates(o: &plan::PlannedOutput, input: &NonlinearRunInput) -> Vec<Statisti
     let per_s = "1/s".to_string();
     let route1 = "route 1 (statistical linearization: an approximation)";
     let mut names: Vec<(String, String, String)> = vec![
-        ("mean_response".into(), unit.clone(), format!("time average per realization; Student-t; analytic = {route1}")),
-        ("sigma_response".into(), unit.clone(), format!("√ of the per-realization variance interval; analytic = {route1}")),
-        ("kurtosis".into(), "-".into(), "pooled μ̄₄/σ̄⁴ with the delta-method interval; analytic = 3 (Gaussian, route 1)".into()),
-        ("max_abs".into(), unit.clone(), "largest |y| per realization; Student-t".into()),
+        (
+            "mean_response".into(),
+            unit.clone(),
+            format!("time average per realization; Student-t; analytic = {route1}"),
+        ),
+        (
+            "sigma_response".into(),
+            unit.clone(),
+            format!("√ of the per-realization variance interval; analytic = {route1}"),
+        ),
+        (
+            "kurtosis".into(),
+            "-".into(),
+            "pooled μ̄₄/σ̄⁴ with the delta-method interval; analytic = 3 (Gaussian, route 1)".into(),
+        ),
+        (
+            "max_abs".into(),
+            unit.clone(),
+            "largest |y| per realization; Student-t".into(),
+        ),
     ];
     for a in &o.levels {
         names.push((
@@ -319,8 +360,16 @@ fn templates(o: &plan::PlannedOutput, input: &NonlinearRunInput) -> Vec<Statisti
             format!("entries into the regime per second; analytic = Rice's rate of {route1}"),
         ));
     }
-    names.push(("dt_halving_mean".into(), unit.clone(), "mean at Δt minus mean at Δt/2, same noise path; analytic 0".into()));
-    names.push(("dt_halving_sigma".into(), unit.clone(), "σ at Δt minus σ at Δt/2, same noise path; analytic 0".into()));
+    names.push((
+        "dt_halving_mean".into(),
+        unit.clone(),
+        "mean at Δt minus mean at Δt/2, same noise path; analytic 0".into(),
+    ));
+    names.push((
+        "dt_halving_sigma".into(),
+        unit.clone(),
+        "σ at Δt minus σ at Δt/2, same noise path; analytic 0".into(),
+    ));
     let n_refs = o.reference.len();
     let mut out: Vec<Statistic> = names
         .into_iter()
@@ -341,7 +390,14 @@ fn templates(o: &plan::PlannedOutput, input: &NonlinearRunInput) -> Vec<Statisti
         .filter(|t| t.name != "max_abs" && !t.name.starts_with("dt_halving"))
         .zip(&o.reference)
         .filter_map(|(t, r)| {
-            r.exact.map(|a| template(&format!("{}{}", stats::EXACT, t.name), &t.unit, "the same estimate; analytic = route 3 (exact Fokker–Planck density)", Some(a)))
+            r.exact.map(|a| {
+                template(
+                    &format!("{}{}", stats::EXACT, t.name),
+                    &t.unit,
+                    "the same estimate; analytic = route 3 (exact Fokker–Planck density)",
+                    Some(a),
+                )
+            })
         })
         .collect();
     out.extend(exact);
@@ -368,18 +424,34 @@ fn template(name: &str, unit: &str, method: &str, analytic: Option<f64>) -> Stat
 pub(crate) fn relabel_standard(st: &mut OutputStatistics) {
     for s in &mut st.statistics {
         let text = match s.name.as_str() {
-            "mean" => "time average of y − μ₁ per realization (μ₁ route 1's mean); Student-t; analytic 0 = route 1's mean",
-            "variance" => "time average of (y − μ₁)² per realization; Student-t; analytic = route 1's variance (an approximation)",
-            "sigma" | "sigma_discrete" => "square root of the variance interval; analytic = route 1's σ (an approximation)",
+            "mean" => {
+                "time average of y − μ₁ per realization (μ₁ route 1's mean); Student-t; analytic 0 = route 1's mean"
+            }
+            "variance" => {
+                "time average of (y − μ₁)² per realization; Student-t; analytic = route 1's variance (an approximation)"
+            }
+            "sigma" | "sigma_discrete" => {
+                "square root of the variance interval; analytic = route 1's σ (an approximation)"
+            }
             _ => continue,
         };
         s.method = text.into();
     }
 }
 
-type Finished = (Vec<OutputStatistics>, Vec<crate::store::PsdEstimate>, Vec<crate::store::ResponseHistogram>);
+type Finished = (
+    Vec<OutputStatistics>,
+    Vec<crate::store::PsdEstimate>,
+    Vec<crate::store::ResponseHistogram>,
+);
 
-fn finish(writer: &RunWriter, meta: &RunMetadata, plan: &NlPlan, input: &NonlinearRunInput, confidence: f64) -> Result<Finished> {
+fn finish(
+    writer: &RunWriter,
+    meta: &RunMetadata,
+    plan: &NlPlan,
+    input: &NonlinearRunInput,
+    confidence: f64,
+) -> Result<Finished> {
     let welch = &plan.welch;
     let mut stats = Vec::new();
     let mut psds = Vec::new();
@@ -397,14 +469,28 @@ fn finish(writer: &RunWriter, meta: &RunMetadata, plan: &NlPlan, input: &Nonline
         let mut st = crate::simulate::output_statistics(&o.signal, &analytic, &m, &v, confidence)?;
         relabel_standard(&mut st);
         let (per_q, counts) = fold_nonlinear(&acc, meta, &o.signal.name)?;
-        st.statistics.extend(stats::statistics(&templates(o, input), &per_q, confidence)?);
+        st.statistics
+            .extend(stats::statistics(&templates(o, input), &per_q, confidence)?);
         stats.push(st);
         let density = route1_density(input, o.index);
-        psds.push(crate::simulate::density_estimate(&o.signal, welch, &ws, confidence, |omega| {
-            Ok(density.map(|f| omega.iter().map(|w| f(*w)).collect()))
-        })?);
-        let edges = (0..=plan::HISTOGRAM_BINS).map(|b| o.hist_lo + b as f64 * o.hist_width).collect();
-        hists.push(stats::histogram(&o.signal.name, &o.signal.unit, edges, &counts, o.gaussian.clone(), o.exact.clone()));
+        psds.push(crate::simulate::density_estimate(
+            &o.signal,
+            welch,
+            &ws,
+            confidence,
+            |omega| Ok(density.map(|f| omega.iter().map(|w| f(*w)).collect())),
+        )?);
+        let edges = (0..=plan::HISTOGRAM_BINS)
+            .map(|b| o.hist_lo + b as f64 * o.hist_width)
+            .collect();
+        hists.push(stats::histogram(
+            &o.signal.name,
+            &o.signal.unit,
+            edges,
+            &counts,
+            o.gaussian.clone(),
+            o.exact.clone(),
+        ));
     }
     Ok((stats, psds, hists))
 }
@@ -426,7 +512,12 @@ pub(crate) fn fold_nonlinear(
     let mut counts: Vec<f64> = Vec::new();
     for shard in meta.local_shards() {
         let rows = meta.shard_range(shard).len();
-        stats::decode_into(&acc(&stats::values_name(output), shard)?, rows, meta.shard_size, &mut per_q)?;
+        stats::decode_into(
+            &acc(&stats::values_name(output), shard)?,
+            rows,
+            meta.shard_size,
+            &mut per_q,
+        )?;
         let h = acc(&stats::histogram_name(output), shard)?;
         if counts.is_empty() {
             counts = vec![0.0; h.len()];
@@ -472,17 +563,30 @@ pub(crate) fn finish_merged(
             counts.resize(h.len(), 0.0);
             counts.iter_mut().zip(&h).for_each(|(a, x)| *a += x);
         }
-        let stored = stats0.iter().find(|o| o.output == st.output).ok_or_else(|| Error::Numerical {
-            what: "merge".into(),
-            reason: format!("no statistics of `{}` in the first shard file", st.output),
-        })?;
+        let stored = stats0
+            .iter()
+            .find(|o| o.output == st.output)
+            .ok_or_else(|| Error::Numerical {
+                what: "merge".into(),
+                reason: format!("no statistics of `{}` in the first shard file", st.output),
+            })?;
         let templates: Vec<Statistic> = stored.statistics.iter().skip(4).cloned().collect();
         st.statistics.extend(stats::statistics(&templates, &per_q, confidence)?);
-        let h0 = hist0.iter().find(|h| h.output == st.output).ok_or_else(|| Error::Numerical {
-            what: "merge".into(),
-            reason: format!("no response histogram of `{}` in the first shard file", st.output),
-        })?;
-        let h = stats::histogram(&st.output, &h0.unit, h0.edges.clone(), &counts, h0.gaussian.clone(), h0.exact.clone());
+        let h0 = hist0
+            .iter()
+            .find(|h| h.output == st.output)
+            .ok_or_else(|| Error::Numerical {
+                what: "merge".into(),
+                reason: format!("no response histogram of `{}` in the first shard file", st.output),
+            })?;
+        let h = stats::histogram(
+            &st.output,
+            &h0.unit,
+            h0.edges.clone(),
+            &counts,
+            h0.gaussian.clone(),
+            h0.exact.clone(),
+        );
         writer.write_response_histogram(&h)?;
     }
     Ok(())
@@ -604,7 +708,12 @@ impl std::fmt::Display for NonlinearRunSummary {
             "output", "statistic", "Monte Carlo", "interval", "route 1", "exact"
         )?;
         for o in &r.outputs {
-            for s in o.statistics.iter().skip(4).filter(|s| !s.name.starts_with(stats::EXACT)) {
+            for s in o
+                .statistics
+                .iter()
+                .skip(4)
+                .filter(|s| !s.name.starts_with(stats::EXACT))
+            {
                 let exact = o.get(&format!("{}{}", stats::EXACT, s.name)).and_then(|e| e.analytic);
                 let show = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.6e}"));
                 writeln!(

@@ -98,12 +98,11 @@ impl NlPlan {
 /// The slowest decay rate min|Re λ| of a stable model.
 fn slowest_decay(m: &Mdof) -> Option<f64> {
     let ss = m.state_space()?;
-    let s = ss
-        .a
-        .complex_eigenvalues()
-        .iter()
-        .map(|l| -l.re)
-        .fold(f64::INFINITY, f64::min);
+    let s =
+        ss.a.complex_eigenvalues()
+            .iter()
+            .map(|l| -l.re)
+            .fold(f64::INFINITY, f64::min);
     (s.is_finite() && s > 0.0).then_some(s)
 }
 
@@ -197,7 +196,16 @@ pub(crate) fn plan(input: &NonlinearRunInput, opts: &NonlinearRunOptions) -> Res
         })
         .collect();
     let (mut outputs, mut skipped) = plan_outputs(input, &q_eq, &u_mean)?;
-    let (route, flow, generator) = choose_flow(input, opts, start.ok(), &mut outputs, &mut skipped, &rates, n_burn + n, &mut notes)?;
+    let (route, flow, generator) = choose_flow(
+        input,
+        opts,
+        start.ok(),
+        &mut outputs,
+        &mut skipped,
+        &rates,
+        n_burn + n,
+        &mut notes,
+    )?;
     if outputs.is_empty() {
         return Err(Error::invalid(
             "outputs",
@@ -306,7 +314,9 @@ pub(crate) fn plan_outputs(
         }
         levels.sort_by(f64::total_cmp);
         levels.dedup();
-        out.push(super::references::planned_output(input, r, info, refs, offset, acc, levels, regimes)?);
+        out.push(super::references::planned_output(
+            input, r, info, refs, offset, acc, levels, regimes,
+        )?);
     }
     Ok((out, skipped))
 }
@@ -331,7 +341,8 @@ fn choose_flow(
     let lin = input.model.linear();
     let h = opts.run.dt_s;
     let non_gaussian = input.kurtosis.iter().any(Option::is_some);
-    let two_tracks = matches!(exc, Excitation::Sources { sources, .. } if sources.iter().any(|s| matches!(s, Source::Matrix(_))));
+    let two_tracks =
+        matches!(exc, Excitation::Sources { sources, .. } if sources.iter().any(|s| matches!(s, Source::Matrix(_))));
     let rational = exc.spectra().iter().all(|s| s.rational().is_some());
     let exact_possible = exc.delay_free() && rational && !non_gaussian && !two_tracks;
     let want_exact = match opts.run.route {
@@ -354,7 +365,10 @@ fn choose_flow(
             } else if two_tracks {
                 "two coherent tracks (no rational factorisation of their cross-spectral matrix)".to_string()
             } else if !exc.delay_free() {
-                format!("{} (pure delays have no finite state-space form)", exc.inputs_described())
+                format!(
+                    "{} (pure delays have no finite state-space form)",
+                    exc.inputs_described()
+                )
             } else {
                 "an input spectrum without a shaping filter (not rational)".to_string()
             }
@@ -380,7 +394,10 @@ fn choose_flow(
                     return Ok((Route::Exact, Flow::Exact(Box::new(f)), generator));
                 }
                 Err(Error::Divergent { quantity, reason }) => {
-                    let name = quantity.trim_start_matches("samples of `").trim_end_matches('`').to_string();
+                    let name = quantity
+                        .trim_start_matches("samples of `")
+                        .trim_end_matches('`')
+                        .to_string();
                     let pos = outputs.iter().position(|o| o.signal.name == name);
                     match pos {
                         Some(p) => {
@@ -427,7 +444,14 @@ fn hold_flow(
             }
         }
     }
-    let synth = match InputSynthesis::new(input.excitation, rate_inputs.clone(), &input.kurtosis, &input.input_signals, n_total, h) {
+    let synth = match InputSynthesis::new(
+        input.excitation,
+        rate_inputs.clone(),
+        &input.kurtosis,
+        &input.input_signals,
+        n_total,
+        h,
+    ) {
         Ok(s) => s,
         Err(e) if rate_inputs.iter().any(|j| !rates[*j]) => {
             // a rate only some outputs need is infinite: drop those outputs, keep the elements' rates
@@ -466,7 +490,14 @@ fn hold_flow_with(
 ) -> Result<(Route, Flow, String)> {
     let idx: Vec<usize> = outputs.iter().map(|o| o.index).collect();
     let flow = FohFlow::new(input.model.linear(), &idx, opts.run.dt_s)?;
-    let synth = InputSynthesis::new(input.excitation, rates.clone(), &input.kurtosis, &input.input_signals, n_total, opts.run.dt_s)?;
+    let synth = InputSynthesis::new(
+        input.excitation,
+        rates.clone(),
+        &input.kurtosis,
+        &input.input_signals,
+        n_total,
+        opts.run.dt_s,
+    )?;
     finish_hold(input, flow, synth, rates, notes)
 }
 
@@ -482,7 +513,10 @@ fn finish_hold(
          part between them, element flows by symmetric splitting; started at rest, burn-in discarded"
             .into(),
     );
-    let generator = format!("{}; first-order hold of the linear part, Strang splitting with exact element flows", synth.generator);
+    let generator = format!(
+        "{}; first-order hold of the linear part, Strang splitting with exact element flows",
+        synth.generator
+    );
     Ok((
         Route::Spectral,
         Flow::Hold {

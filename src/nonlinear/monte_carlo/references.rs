@@ -80,7 +80,10 @@ pub(crate) fn planned_output(
         },
         Reference {
             route1: r1.and_then(|s| s.sigma),
-            exact: st3.zip(w3).map(|(st, w)| w.abs() * st.variance.sqrt()).or(v3.map(|(st, w)| w.abs() * st.sigma_v)),
+            exact: st3
+                .zip(w3)
+                .map(|(st, w)| w.abs() * st.variance.sqrt())
+                .or(v3.map(|(st, w)| w.abs() * st.sigma_v)),
         },
         Reference {
             route1: r1.map(|_| 3.0),
@@ -111,7 +114,9 @@ pub(crate) fn planned_output(
     let gaussian = r1
         .and_then(|s| Some((s.mean?, s.sigma?)))
         .map(|(m, sd)| centres.iter().map(|&y| gaussian_density(m, sd, y)).collect());
-    let exact = st3.zip(w3).map(|(st, w)| centres.iter().map(|&y| st.density(y / w) / w.abs()).collect());
+    let exact = st3
+        .zip(w3)
+        .map(|(st, w)| centres.iter().map(|&y| st.density(y / w) / w.abs()).collect());
     Ok(PlannedOutput {
         index: r,
         signal: Signal::new(&info.name, &info.unit),

@@ -51,11 +51,19 @@ pub(crate) fn encode(values: &[Vec<f64>], shard_size: usize) -> Vec<f64> {
 ///
 /// # Errors
 /// A vector whose length is not a multiple of the shard size (a damaged file).
-pub(crate) fn decode_into(data: &[f64], rows: usize, shard_size: usize, per_quantity: &mut Vec<Vec<f64>>) -> Result<()> {
+pub(crate) fn decode_into(
+    data: &[f64],
+    rows: usize,
+    shard_size: usize,
+    per_quantity: &mut Vec<Vec<f64>>,
+) -> Result<()> {
     if shard_size == 0 || data.len() % shard_size != 0 || rows > shard_size {
         return Err(Error::Numerical {
             what: "reading a nonlinear accumulator".into(),
-            reason: format!("stored length {} is not a multiple of the shard size {shard_size}: the run file is damaged", data.len()),
+            reason: format!(
+                "stored length {} is not a multiple of the shard size {shard_size}: the run file is damaged",
+                data.len()
+            ),
         });
     }
     let k = data.len() / shard_size;
@@ -85,11 +93,19 @@ fn interval(values: &[f64], confidence: f64) -> Result<Interval> {
 ///
 /// # Errors
 /// Fewer templates than quantities; a confidence outside (0, 1).
-pub(crate) fn statistics(templates: &[Statistic], per_quantity: &[Vec<f64>], confidence: f64) -> Result<Vec<Statistic>> {
+pub(crate) fn statistics(
+    templates: &[Statistic],
+    per_quantity: &[Vec<f64>],
+    confidence: f64,
+) -> Result<Vec<Statistic>> {
     if templates.len() < per_quantity.len() {
         return Err(Error::Numerical {
             what: "nonlinear statistics".into(),
-            reason: format!("{} quantities stored but {} statistics described", per_quantity.len(), templates.len()),
+            reason: format!(
+                "{} quantities stored but {} statistics described",
+                per_quantity.len(),
+                templates.len()
+            ),
         });
     }
     let mut out: Vec<Statistic> = Vec::with_capacity(templates.len());
@@ -110,12 +126,14 @@ pub(crate) fn statistics(templates: &[Statistic], per_quantity: &[Vec<f64>], con
         out.push(with_interval(t, iv));
     }
     for t in &templates[per_quantity.len()..] {
-        let base = t.name.strip_prefix(EXACT).and_then(|b| out.iter().find(|s| s.name == b)).ok_or_else(|| {
-            Error::Numerical {
+        let base = t
+            .name
+            .strip_prefix(EXACT)
+            .and_then(|b| out.iter().find(|s| s.name == b))
+            .ok_or_else(|| Error::Numerical {
                 what: "nonlinear statistics".into(),
                 reason: format!("statistic `{}` repeats no stored quantity", t.name),
-            }
-        })?;
+            })?;
         let iv = base.interval;
         out.push(with_interval(t, iv));
     }
@@ -127,7 +145,11 @@ fn kurtosis_interval(var: &[f64], mu4: &[f64], confidence: f64) -> Result<Interv
     let n = var.len() as f64;
     let (v, m4) = (var.iter().sum::<f64>() / n, mu4.iter().sum::<f64>() / n);
     let k = m4 / (v * v);
-    let z: Vec<f64> = var.iter().zip(mu4).map(|(s, m)| m / (v * v) - 2.0 * k * s / v).collect();
+    let z: Vec<f64> = var
+        .iter()
+        .zip(mu4)
+        .map(|(s, m)| m / (v * v) - 2.0 * k * s / v)
+        .collect();
     let iv = interval(&z, confidence)?;
     let half = 0.5 * (iv.upper - iv.lower);
     Ok(Interval {
