@@ -196,6 +196,19 @@ fn route2_bump_stop_matches_the_exact_variance_and_contact_rate() {
         "route 1's contact rate {:?} not far below",
         rate.analytic
     );
+    // the report labels route 1 an approximation, says route 3 applies and is loud about the contact rate
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let report = stochvib::report::nonlinear_report(&sc, &answers, Some(&s))
+        .unwrap()
+        .to_string();
+    for needle in [
+        "APPROXIMATION",
+        "route 3   applies",
+        "ROUTE 1 OUTSIDE THE MONTE CARLO INTERVAL",
+        "off by a factor",
+    ] {
+        assert!(report.contains(needle), "`{needle}` not in the report:\n{report}");
+    }
 }
 
 /// The mean shift of an asymmetric damper (c_r = 0.6, c_c = 0.2 N s/m, no other damping, S_f = 1/π): the
