@@ -23,7 +23,7 @@
 //! ```
 //! use stochvib::nonlinear::{BumpStop, ElementMoments, ForceLaw};
 //! let s = BumpStop::new(Some((0.5, 10.0)), None).unwrap(); // upper side only
-//! assert_eq!(s.force(0.7, 0.0), 10.0 * 0.2);
+//! assert_eq!(s.force(0.75, 0.0), 10.0 * 0.25);
 //! assert_eq!(s.force(-3.0, 0.0), 0.0);
 //! ```
 

@@ -105,6 +105,7 @@ impl Kicks {
     }
 
     /// q̇ = M⁻¹(p + B_u u) into `qdot` (u: the base inputs first).
+    #[allow(clippy::needless_range_loop)] // row-major matrix products read clearest with indices
     pub(crate) fn velocities(&self, p: &[f64], u: &[f64], qdot: &mut [f64]) {
         let n = self.n;
         for (r, out) in qdot.iter_mut().enumerate() {

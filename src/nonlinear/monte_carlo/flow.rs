@@ -66,8 +66,12 @@ pub(crate) struct ExactFlow {
 pub(crate) const WHITE: &str =
     "contains the driving white noise directly (infinite variance): its samples are not defined";
 
+/// The augmented state matrix A, noise matrix G, output row h and whether the output contains the white
+/// noise directly.
+type Augmented = (DMatrix<f64>, DMatrix<f64>, Vec<f64>, bool);
+
 /// The augmented (A, G, h, f) of output `i` of `sys` under `exc`.
-fn row(sys: &Mdof, exc: &Excitation, i: usize) -> Result<(DMatrix<f64>, DMatrix<f64>, Vec<f64>, bool)> {
+fn row(sys: &Mdof, exc: &Excitation, i: usize) -> Result<Augmented> {
     let ss = sys.state_space().ok_or_else(|| Error::Numerical {
         what: "exact route".into(),
         reason: "no state space".into(),
@@ -118,7 +122,7 @@ impl ExactFlow {
         let nz = a.nrows();
         let mut u_rows = Vec::with_capacity(nb);
         let mut ud_rows = Vec::with_capacity(nb);
-        for j in 0..nb {
+        for (j, &rate) in rates.iter().enumerate().take(nb) {
             let (_, _, hu, white) = row(&probe, exc, p + 2 * j)?;
             if white {
                 return Err(Error::invalid(
@@ -129,8 +133,8 @@ impl ExactFlow {
             }
             u_rows.push(hu.iter().map(|v| -v).collect());
             let (_, _, hd, white) = row(&probe, exc, p + 2 * j + 1)?;
-            ud_rows.push((rates[j] && !white).then(|| hd.iter().map(|v| -v).collect()));
-            if rates[j] && white {
+            ud_rows.push((rate && !white).then(|| hd.iter().map(|v| -v).collect()));
+            if rate && white {
                 return Err(Error::invalid(
                     "input",
                     j,
@@ -229,6 +233,7 @@ impl ExactFlow {
     }
 
     /// z ← Φz + η for a given noise vector η.
+    #[allow(clippy::needless_range_loop)] // row-major matrix products read clearest with indices
     pub(crate) fn step_noise(&self, s: &NoisyStep, z: &mut [f64], eta: &[f64], next: &mut [f64]) {
         let n = self.nz;
         for (i, o) in next.iter_mut().enumerate() {
@@ -292,6 +297,7 @@ impl FohFlow {
     }
 
     /// x ← Φx + Γ₀u₀ + Γ₁u₁.
+    #[allow(clippy::needless_range_loop)] // row-major matrix products read clearest with indices
     pub(crate) fn step(&self, s: &HoldStep, x: &mut [f64], u0: &[f64], u1: &[f64], next: &mut [f64]) {
         let (n, m) = (self.nx, self.m);
         for (i, o) in next.iter_mut().enumerate() {

@@ -25,8 +25,8 @@ pub(crate) struct InputIdentity {
 impl InputIdentity {
     pub(crate) fn new(m: usize, rates: Vec<usize>) -> Result<Self> {
         let p = m + rates.len();
-        let mut infos: Vec<OutputInfo> = (0..m).map(|j| OutputInfo::new(&format!("u{j}"), "-")).collect();
-        infos.extend(rates.iter().map(|j| OutputInfo::new(&format!("du{j}"), "-")));
+        let mut infos: Vec<OutputInfo> = (0..m).map(|j| OutputInfo::new(format!("u{j}"), "-")).collect();
+        infos.extend(rates.iter().map(|j| OutputInfo::new(format!("du{j}"), "-")));
         let mut d = DMatrix::zeros(p, m);
         let mut e = DMatrix::zeros(p, m);
         for j in 0..m {
@@ -220,7 +220,7 @@ pub(crate) fn refine(x: &[f64]) -> Result<Vec<f64>> {
     fwd.process(&mut buf, &mut spec).map_err(err)?;
     let mut big = inv.make_input_vec();
     big[..spec.len()].copy_from_slice(&spec);
-    if n % 2 == 0 {
+    if n.is_multiple_of(2) {
         big[n / 2] = spec[n / 2] * 0.5;
     }
     let mut out = inv.make_output_vec();

@@ -57,7 +57,7 @@ pub(crate) fn decode_into(
     shard_size: usize,
     per_quantity: &mut Vec<Vec<f64>>,
 ) -> Result<()> {
-    if shard_size == 0 || data.len() % shard_size != 0 || rows > shard_size {
+    if shard_size == 0 || !data.len().is_multiple_of(shard_size) || rows > shard_size {
         return Err(Error::Numerical {
             what: "reading a nonlinear accumulator".into(),
             reason: format!(
