@@ -341,21 +341,7 @@ fn placement(ef: &Fields, lin: &Mdof) -> Result<(Vec<f64>, Attach, Option<usize>
         (e.point.clone(), e.to.clone(), Some(i))
     } else {
         let point = weights(ef, "point", ef.require("point")?, n)?;
-        let to = match ef.require("to")? {
-            toml::Value::String(s) if s == "ground" => Attach::Ground,
-            toml::Value::String(s) if s.starts_with("base") => {
-                let j: usize = s[4..]
-                    .trim()
-                    .parse()
-                    .map_err(|_| ef.error("to", s, "expected \"base <index>\""))?;
-                if j >= lin.n_base() {
-                    return Err(ef.error("to", s, format!("the model has {} base inputs", lin.n_base())));
-                }
-                Attach::Base(j)
-            }
-            v @ toml::Value::Array(_) => Attach::Point(weights(ef, "to", v, n)?),
-            v => return Err(ef.error("to", v, "expected \"ground\", \"base <j>\" or a point array")),
-        };
+        let to = super::generic::mdof::attachment(ef, n, lin.n_base())?;
         (point, to, None)
     };
     let angles_only = placed
