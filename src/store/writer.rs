@@ -1071,6 +1071,27 @@ impl RunWriter {
         self.file.flush().map_err(e("flushing a rainflow histogram"))
     }
 
+    /// Writes the response histogram of a nonlinear run's output under `/response_histogram/<output>`
+    /// (replacing an existing one).
+    ///
+    /// # Errors
+    /// An output that is not one of the run's; HDF5 failures.
+    pub fn write_response_histogram(&mut self, h: &super::ResponseHistogram) -> Result<()> {
+        self.check_signal_name("response_histogram", &h.output)?;
+        let e = |what: &str| h5err(&self.tmp, what);
+        let parent = if self.file.link_exists(L::GROUP_RESPONSE_HISTOGRAM) {
+            self.file
+                .group(L::GROUP_RESPONSE_HISTOGRAM)
+                .map_err(e("opening /response_histogram"))?
+        } else {
+            self.file
+                .create_group(L::GROUP_RESPONSE_HISTOGRAM)
+                .map_err(e("creating /response_histogram"))?
+        };
+        h.write(&parent, &self.tmp)?;
+        self.file.flush().map_err(e("flushing a response histogram"))
+    }
+
     fn check_signal_name(&self, field: &str, name: &str) -> Result<()> {
         if self
             .meta
@@ -1431,7 +1452,7 @@ fn write_root_attrs(file: &File, m: &RunMetadata, version: u32) -> hdf5::Result<
     Ok(())
 }
 
-fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
+pub(super) fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
     loc.new_attr::<T>().shape(()).create(name)?.write_scalar(&value)
 }
 
@@ -1440,7 +1461,7 @@ fn to_vlu(text: &str) -> hdf5::Result<VarLenUnicode> {
         .map_err(|err| hdf5::Error::from(format!("text {text:?} cannot be stored: {err}")))
 }
 
-fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
+pub(super) fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
     let v = to_vlu(value)?;
     loc.new_attr::<VarLenUnicode>().shape(()).create(name)?.write_scalar(&v)
 }

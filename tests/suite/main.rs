@@ -33,6 +33,8 @@ mod models_ch7;
 mod models_ch8;
 mod monte_carlo;
 mod multi_input_scenarios;
+mod nonlinear_monte_carlo;
+mod nonlinear_routes;
 mod numerical_truth;
 mod output_rule;
 mod plots;
