@@ -3,7 +3,19 @@
 //! Every error names what was wrong (parameter or file key), the offending value and the reason, so that
 //! an engineer can fix the input without reading the source.
 
+use crate::io_rules::{excerpt, excerpt_of, MAX_EXCERPT_CHARS, MAX_REASON_CHARS};
 use std::path::PathBuf;
+
+/// A reason as shown: at most [`MAX_REASON_CHARS`] characters.
+fn bounded(reason: &str) -> String {
+    excerpt_of(reason, MAX_REASON_CHARS)
+}
+
+/// A value as shown: the constructors already cut it to an [`excerpt`] (with its `… (N bytes)` suffix,
+/// which is not cut again); a value put into a variant directly is cut here.
+fn shown(value: &str) -> String {
+    excerpt_of(value, MAX_EXCERPT_CHARS + 32)
+}
 
 /// Result alias used throughout the crate.
 pub type Result<T> = std::result::Result<T, Error>;
@@ -12,7 +24,7 @@ pub type Result<T> = std::result::Result<T, Error>;
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A constructor or function argument is outside its valid range.
-    #[error("invalid parameter `{name}` = {value}: {reason}")]
+    #[error("invalid parameter `{name}` = {}: {}", shown(value), bounded(reason))]
     InvalidParameter {
         /// Parameter name, e.g. `alpha`.
         name: String,
@@ -47,7 +59,7 @@ pub enum Error {
         reason: String,
     },
     /// A value read from a file is wrong: names the file, the key, the value and the reason.
-    #[error("{}: key `{key}` = {value}: {reason}", file.display())]
+    #[error("{}: key `{}` = {}: {}", file.display(), shown(key), shown(value), bounded(reason))]
     File {
         /// The file.
         file: PathBuf,
@@ -59,7 +71,7 @@ pub enum Error {
         reason: String,
     },
     /// A file could not be read or parsed at all.
-    #[error("{}: {reason}", file.display())]
+    #[error("{}: {}", file.display(), bounded(reason))]
     Parse {
         /// The file.
         file: PathBuf,
@@ -67,7 +79,7 @@ pub enum Error {
         reason: String,
     },
     /// A physical quantity string could not be understood or has the wrong dimension.
-    #[error("unit error in `{text}`: {reason}")]
+    #[error("unit error in `{}`: {}", shown(text), bounded(reason))]
     Unit {
         /// The text as written, e.g. `"3.5 furlong"`.
         text: String,
@@ -103,7 +115,7 @@ pub enum Error {
         reason: String,
     },
     /// An HDF5 run file could not be written or read, or is not a (complete) stochvib run file.
-    #[error("{}: {reason}", path.display())]
+    #[error("{}: {}", path.display(), bounded(reason))]
     Hdf5 {
         /// The file.
         path: PathBuf,
@@ -125,7 +137,7 @@ impl Error {
     pub fn invalid(name: &str, value: impl std::fmt::Display, reason: impl Into<String>) -> Self {
         Error::InvalidParameter {
             name: name.to_string(),
-            value: value.to_string(),
+            value: excerpt(&value.to_string()),
             reason: reason.into(),
         }
     }
@@ -147,7 +159,7 @@ impl Error {
         Error::File {
             file: file.to_path_buf(),
             key: key.into(),
-            value: value.to_string(),
+            value: excerpt(&value.to_string()),
             reason: reason.into(),
         }
     }

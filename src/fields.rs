@@ -19,55 +19,62 @@ pub enum KeyReading {
     Number,
 }
 
-/// Largest input file read (scenario, spectrum, reference, profile files), bytes.
+/// The unit people write a duration or a distance in where it is not the SI one: a daily exposure in hours,
+/// a design distance in kilometres. Keys read with it ([`Fields::everyday_quantity`]) refuse a bare number,
+/// which would be read as seconds or metres (`exposure = 7` is 7 s, not 7 h).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EverydayUnit {
+    /// The unit as written, e.g. `h`.
+    pub symbol: &'static str,
+    /// Its SI value (3600 for the hour, 1000 for the kilometre).
+    pub si: f64,
+    /// Its dimension.
+    pub dim: Dim,
+}
+
+impl EverydayUnit {
+    /// The hour: daily exposures, design lives, durations of a verdict.
+    pub const HOUR: EverydayUnit = EverydayUnit {
+        symbol: "h",
+        si: 3600.0,
+        dim: Dim::TIME,
+    };
+    /// The kilometre: design distances.
+    pub const KILOMETRE: EverydayUnit = EverydayUnit {
+        symbol: "km",
+        si: 1000.0,
+        dim: Dim::LENGTH,
+    };
+
+    /// An SI value written in this unit with up to 4 significant figures ([`crate::numbers::short`]), e.g.
+    /// `0.008333 h`.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::fields::EverydayUnit;
+    /// assert_eq!(EverydayUnit::HOUR.show(30.0), "0.008333 h");
+    /// assert_eq!(EverydayUnit::HOUR.show(6.0 * 3600.0), "6 h");
+    /// assert_eq!(EverydayUnit::KILOMETRE.show(2e8), "200000 km");
+    /// ```
+    pub fn show(&self, si_value: f64) -> String {
+        format!("{} {}", crate::numbers::short(si_value / self.si), self.symbol)
+    }
+}
+
+/// Largest input file read (scenario, spectrum, reference and limits files), bytes: the TOML kind of the
+/// input rule ([`crate::io_rules::TOML_INPUT`]).
 pub const MAX_INPUT_FILE_BYTES: u64 = 16 << 20;
 
-/// Reads a text input file: a regular file of at most [`MAX_INPUT_FILE_BYTES`], valid UTF-8. FIFOs, devices
-/// and directories are refused before anything is read, so `/dev/zero` or a pipe cannot hang the reader.
+/// Reads a text input file under the input rule ([`crate::io_rules::read_text`] with
+/// [`crate::io_rules::TOML_INPUT`]): a regular file of at most [`MAX_INPUT_FILE_BYTES`], valid UTF-8.
+/// FIFOs, devices and directories are refused before anything is read, so `/dev/zero` or a pipe cannot
+/// hang the reader.
 ///
 /// # Errors
 /// [`Error::Io`] if the file cannot be opened; [`Error::Parse`] naming the file for a non-regular file, a
 /// file that is too large, or text that is not UTF-8 (without echoing its content).
 pub fn read_text_file(path: &Path) -> Result<String> {
-    use std::io::Read;
-    let io = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let parse = |reason: String| Error::Parse {
-        file: path.to_path_buf(),
-        reason,
-    };
-    let meta = std::fs::metadata(path).map_err(io)?;
-    if !meta.is_file() {
-        return Err(parse(
-            "not a regular file (a directory, pipe or device): give a TOML file".into(),
-        ));
-    }
-    if meta.len() > MAX_INPUT_FILE_BYTES {
-        return Err(parse(format!(
-            "{} bytes is larger than the {} bytes an input file may have",
-            meta.len(),
-            MAX_INPUT_FILE_BYTES
-        )));
-    }
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .map_err(io)?
-        .take(MAX_INPUT_FILE_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(io)?;
-    if bytes.len() as u64 > MAX_INPUT_FILE_BYTES {
-        return Err(parse(format!(
-            "larger than the {MAX_INPUT_FILE_BYTES} bytes an input file may have"
-        )));
-    }
-    String::from_utf8(bytes).map_err(|e| {
-        parse(format!(
-            "not a text file: invalid UTF-8 at byte {}",
-            e.utf8_error().valid_up_to()
-        ))
-    })
+    crate::io_rules::read_text(path, crate::io_rules::TOML_INPUT)
 }
 
 /// Parses TOML text read from `path`. The error names the line and column and the parser's reason, but
@@ -91,6 +98,38 @@ pub fn parse_toml(text: &str, path: &Path) -> Result<toml::Table> {
             reason: format!("not a valid TOML file{at}: {}", e.message().trim()),
         }
     })
+}
+
+thread_local! {
+    /// The (file, dotted key path) queried on this thread while recording ([`record_keys`]); `None` when off.
+    static QUERIED_KEYS: RefCell<Option<BTreeSet<(PathBuf, String)>>> = const { RefCell::new(None) };
+}
+
+/// Test hook for the key reference: `record_keys(true)` starts recording, on this thread, the file and the
+/// dotted path of every key a [`Fields`] reader asks for (array indices written `[]`: `input[].spectrum`);
+/// `record_keys(false)` stops and returns what was recorded. Off by default: a query then costs one
+/// thread-local read.
+#[doc(hidden)]
+pub fn record_keys(on: bool) -> BTreeSet<(PathBuf, String)> {
+    QUERIED_KEYS.with(|k| std::mem::replace(&mut *k.borrow_mut(), on.then(BTreeSet::new)).unwrap_or_default())
+}
+
+/// `input[2].road` → `input[].road`.
+fn without_indices(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut in_index = false;
+    for c in path.chars() {
+        match c {
+            '[' => in_index = true,
+            ']' => {
+                in_index = false;
+                out.push_str("[]");
+            }
+            _ if in_index => {}
+            _ => out.push(c),
+        }
+    }
+    out
 }
 
 /// A TOML table being read from a file.
@@ -132,7 +171,7 @@ impl<'a> Fields<'a> {
         Error::File {
             file: self.file.clone(),
             key: self.path(key),
-            value: value.to_string(),
+            value: crate::io_rules::excerpt(&value.to_string()),
             reason: reason.into(),
         }
     }
@@ -177,6 +216,11 @@ impl<'a> Fields<'a> {
 
     /// The raw value of `key`, marking it used.
     pub fn get(&self, key: &str) -> Option<&'a toml::Value> {
+        QUERIED_KEYS.with(|k| {
+            if let Some(keys) = k.borrow_mut().as_mut() {
+                keys.insert((self.file.clone(), without_indices(&self.path(key))));
+            }
+        });
         self.used.borrow_mut().insert(key.to_string());
         self.table.get(key)
     }
@@ -231,6 +275,75 @@ impl<'a> Fields<'a> {
             None => Ok(None),
             Some(_) => self.quantity(key, dim).map(Some),
         }
+    }
+
+    /// A required duration or distance written with its unit (`"7 h"`, `"30 min"`, `"200000 km"`), returned in
+    /// SI (s, m). A bare number is refused, with the fix in the message: where people think in hours or
+    /// kilometres, `exposure = 7` read as 7 s would be a silently wrong verdict.
+    ///
+    /// # Errors
+    /// Missing key, bare number (the reason shows `key = "<number> <unit>"`), unknown unit, wrong dimension.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::fields::{EverydayUnit, Fields};
+    /// let t: toml::Table = toml::from_str("exposure = \"90 min\"\nlife = 7").unwrap();
+    /// let f = Fields::new(std::path::Path::new("s.toml"), "analysis", &t);
+    /// assert_eq!(f.everyday_quantity("exposure", EverydayUnit::HOUR).unwrap(), 5400.0);
+    /// let e = f.everyday_quantity("life", EverydayUnit::HOUR).unwrap_err().to_string();
+    /// assert!(e.contains("analysis.life") && e.contains("life = \"7 h\""), "{e}");
+    /// ```
+    pub fn everyday_quantity(&self, key: &str, unit: EverydayUnit) -> Result<f64> {
+        let v = self.require(key)?;
+        if let Some(x) = v.as_float().or_else(|| v.as_integer().map(|i| i as f64)) {
+            let si = match unit.dim {
+                d if d == Dim::TIME => "s",
+                d if d == Dim::LENGTH => "m",
+                _ => "SI units",
+            };
+            return Err(self.error(
+                key,
+                v,
+                format!(
+                    "a bare number has no unit here (it would be read as {x} {si}, i.e. {}): write the unit, e.g. \
+                     {key} = \"{x} {}\" (or \"{x} {si}\" if {si} were meant)",
+                    unit.show(x),
+                    unit.symbol
+                ),
+            ));
+        }
+        self.quantity(key, unit.dim)
+    }
+
+    /// As [`Fields::everyday_quantity`] for an optional key.
+    ///
+    /// # Errors
+    /// As [`Fields::everyday_quantity`] when present.
+    pub fn opt_everyday_quantity(&self, key: &str, unit: EverydayUnit) -> Result<Option<f64>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(_) => self.everyday_quantity(key, unit).map(Some),
+        }
+    }
+
+    /// Refuses an SI value `value` of `key` below `minimum` (both in SI), naming the value as written and
+    /// in `unit`, with `why` the reason the bound holds.
+    ///
+    /// # Errors
+    /// [`Error::File`] when `value < minimum`.
+    pub fn at_least(&self, key: &str, value: f64, minimum: f64, unit: EverydayUnit, why: &str) -> Result<()> {
+        if value >= minimum {
+            return Ok(());
+        }
+        let written = self
+            .table
+            .get(key)
+            .map_or_else(|| "<derived>".to_string(), |v| v.to_string());
+        Err(self.error(
+            key,
+            format!("{written} = {}", unit.show(value)),
+            format!("implausible: less than {} ({why})", unit.show(minimum)),
+        ))
     }
 
     /// A frequency-like value that must carry its unit (`Hz`, `rad/s`, `cycles/m`, `rad/m`): a bare number

@@ -2,10 +2,13 @@
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
+use stochvib::nonlinear::monte_carlo::NonlinearRunOptions;
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
+use stochvib::report::table::{ReportFormat, ToMarkdown};
 use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{
-    load_document, load_scenario, Catalogue, Document, Scenario, Sweep, SweepMode, SweepParam, SweepSpec,
+    load_document, load_scenario, Catalogue, Document, NonlinearAnswers, Scenario, Sweep, SweepMode, SweepParam,
+    SweepSpec,
 };
 use stochvib::simulate::{merge_runs, part_path, resolve_part, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
@@ -22,14 +25,14 @@ struct Cli {
 /// Where spectrum names are looked up.
 #[derive(clap::Args)]
 struct SpectraDir {
-    /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the source tree's).
+    /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the built-in catalogue).
     #[arg(long)]
     spectra_dir: Option<PathBuf>,
 }
 
 impl SpectraDir {
-    /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the source
-    /// tree's `spectra/`.
+    /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the built-in
+    /// catalogue embedded in the binary.
     fn catalogue(&self) -> Catalogue {
         if let Some(d) = &self.spectra_dir {
             return Catalogue::new(d);
@@ -45,6 +48,28 @@ impl SpectraDir {
     }
 }
 
+/// How a report is printed: `--format`, with `--json` kept as `--format json`.
+#[derive(clap::Args)]
+struct Output {
+    /// Print JSON; same as --format json.
+    #[arg(long, conflicts_with = "format")]
+    json: bool,
+    /// Report format: text, markdown (tables to paste) or json.
+    #[arg(long, value_enum)]
+    format: Option<ReportFormat>,
+}
+
+impl Output {
+    /// `--format`, or json with `--json`, else text.
+    fn format(&self) -> ReportFormat {
+        if self.json {
+            ReportFormat::Json
+        } else {
+            self.format.unwrap_or_default()
+        }
+    }
+}
+
 /// Time step and duration of Monte Carlo realizations.
 #[derive(clap::Args)]
 struct Step {
@@ -54,6 +79,14 @@ struct Step {
     /// Duration of each realization, s (default: suggested from the slowest decay rate).
     #[arg(long)]
     duration: Option<f64>,
+    /// Refuse a Monte Carlo run whose time estimate (a lower bound: one normal draw per sample) exceeds
+    /// this many hours.
+    #[arg(long, value_name = "H", default_value_t = stochvib::simulate::resources::DEFAULT_MAX_HOURS)]
+    max_hours: f64,
+    /// Burn-in of a nonlinear run before its record, s (default: computed from the slowest decay rate of the
+    /// Gaussian equivalent).
+    #[arg(long)]
+    burn_in: Option<f64>,
 }
 
 impl Step {
@@ -67,6 +100,34 @@ impl Step {
         let (dt, d) = (self.dt.unwrap_or(s.dt_s), self.duration.unwrap_or(s.duration_s));
         eprintln!("time step {dt} s, duration {d} s (suggested: {})", s.reason);
         Ok((dt, d))
+    }
+
+    /// The options of a nonlinear run: the given step and duration, the missing ones suggested for route 2
+    /// (said on stderr), the burn-in.
+    fn nonlinear(
+        &self,
+        sc: &Scenario,
+        answers: &NonlinearAnswers,
+        run: RunOptions,
+    ) -> stochvib::Result<NonlinearRunOptions> {
+        let (dt, duration) = match (self.dt, self.duration) {
+            (Some(dt), Some(d)) => (dt, d),
+            _ => {
+                let s = sc.suggest_nonlinear_step(answers)?;
+                let (dt, d) = (self.dt.unwrap_or(s.dt_s), self.duration.unwrap_or(s.duration_s));
+                eprintln!("time step {dt} s, duration {d} s (suggested for route 2: {})", s.reason);
+                (dt, d)
+            }
+        };
+        Ok(NonlinearRunOptions {
+            run: RunOptions {
+                dt_s: dt,
+                duration_s: duration,
+                ..run
+            },
+            burn_in_s: self.burn_in,
+            halving_checks: None,
+        })
     }
 }
 
@@ -118,7 +179,8 @@ enum Command {
     /// density with its χ² intervals, the ISO 8608 fit (w = 2 and free) and class, the IRI, and the
     /// coherence of the first two tracks.
     Road {
-        /// Profile file (CSV; see src/road/profile.rs for the format).
+        /// Profile file (CSV: a header `distance [m], left [mm], right [mm]`, every column `name [unit]`, then
+        /// one row per sample; `#` starts a comment line).
         profile: PathBuf,
         /// Welch segment length in samples (even; default: the largest power of two giving at least 8
         /// half-overlapping segments).
@@ -130,9 +192,8 @@ enum Command {
         /// Confidence of the intervals.
         #[arg(long, default_value_t = 0.95)]
         confidence: f64,
-        /// Print JSON (every bin).
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: Output,
         /// Also write the pictures (per track the density with its χ² band, the ISO 8608 fits and class
         /// limits; the two-track coherence with its interval) as SVG and PNG into this directory.
         #[arg(long)]
@@ -151,7 +212,8 @@ enum Command {
     Replay {
         /// Scenario file (TOML, see data/); its inputs must be roads.
         scenario: PathBuf,
-        /// Profile file (CSV; see src/road/profile.rs for the format).
+        /// Profile file (CSV: a header `distance [m], left [mm], right [mm]`, every column `name [unit]`, then
+        /// one row per sample; `#` starts a comment line).
         profile: PathBuf,
         /// Speed in m/s (default: the scenario's speed).
         #[arg(long)]
@@ -188,9 +250,8 @@ enum Command {
         scenario: PathBuf,
         #[command(flatten)]
         spectra: SpectraDir,
-        /// Print JSON.
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: Output,
         /// Also write the scenario's pictures (SVG and PNG) into this directory.
         #[arg(long)]
         plots: Option<PathBuf>,
@@ -221,7 +282,7 @@ enum Command {
         #[command(flatten)]
         spectra: SpectraDir,
     },
-    /// Monte Carlo run of a scenario written to an HDF5 file (see the README's HDF5 section).
+    /// Monte Carlo run of a scenario written to an HDF5 file (layout: docs/run-file-format.md).
     Simulate {
         /// Scenario file (TOML, see data/).
         scenario: PathBuf,
@@ -353,9 +414,20 @@ enum Command {
     Inspect {
         /// Run file (HDF5).
         file: PathBuf,
-        /// Print JSON.
-        #[arg(long)]
-        json: bool,
+        #[command(flatten)]
+        output: Output,
+    },
+    /// Daily vibration exposure of a working day of several tasks (a workday file: [[task]] tables naming a
+    /// scenario with [analysis.comfort], an optional speed and a duration): per task and axis k·a_w with the
+    /// health factors, the day's A(8) = √(Σ (k a_w)² T / 8 h) and VDV = (Σ VDV⁴)^(1/4) per axis, against
+    /// Directive 2002/44/EC and ISO 2631-1 Annex B (format: docs/comfort.md).
+    Workday {
+        /// Workday file (TOML).
+        file: PathBuf,
+        #[command(flatten)]
+        spectra: SpectraDir,
+        #[command(flatten)]
+        output: Output,
     },
     /// Checks that a run file can be read (the parent process of `inspect` and `plot` runs this first, so that
     /// a damaged file that would crash the HDF5 library crashes only this child).
@@ -435,7 +507,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             segment,
             detrend,
             confidence,
-            json,
+            output,
             plots,
         } => {
             let detrend = match detrend.as_str() {
@@ -452,7 +524,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 confidence,
             };
             let r = report::road_report::road_report(&profile, &opts)?;
-            print(&r, json)?;
+            print_as(&r, output.format())?;
             if let Some(out) = plots {
                 let files = stochvib::plot::road_plots(&r, &out)?;
                 eprintln!("wrote {} pictures to {}", files.len(), out.display());
@@ -489,9 +561,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 track,
                 detrend,
             };
+            let mut inputs = sc.source_files();
+            inputs.push(profile.clone());
+            let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+            if let Some(out) = &output {
+                // the output rule before the work
+                stochvib::io_rules::check_output(out, &stochvib::road::replay::HISTORY_CSV, &inputs, overwrite)?;
+            }
             let r = stochvib::scenario::replay::replay_scenario(&sc, &profile, &opts)?;
             if let Some(out) = output {
-                r.replay.write_csv(&out, overwrite)?;
+                r.replay.write_csv_from(&out, overwrite, &inputs)?;
                 eprintln!("wrote {}", out.display());
             }
             print(&r, json)?
@@ -507,7 +586,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Analyze {
             scenario,
             spectra,
-            json,
+            output,
             plots,
             monte_carlo,
             seed,
@@ -519,18 +598,24 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 Document::Stochastic(sc) => sc,
                 Document::Deterministic(d) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
-                    return print(&report::deterministic_report(&d)?, json);
+                    return print_as(&report::deterministic_report(&d)?, output.format());
                 }
                 Document::Reference(t) => {
                     no_simulation(&scenario, monte_carlo, &plots)?;
-                    return print(&report::reference_report(&t), json);
+                    return print_as(&report::reference_report(&t), output.format());
                 }
             };
             effort.apply(&mut sc)?;
+            if let Some(answers) = sc.nonlinear_answers()? {
+                return analyze_nonlinear(&sc, &answers, monte_carlo, seed, &step, &plots, &output, &catalogue);
+            }
             let mut r = report::analysis_report(&sc)?;
             if let Some(n) = monte_carlo {
                 let (dt, duration) = step.resolve(&sc, n)?;
-                let opts = RunOptions::new(n, duration, dt, seed);
+                let opts = RunOptions {
+                    max_hours: step.max_hours,
+                    ..RunOptions::new(n, duration, dt, seed)
+                };
                 let progress = progress_printer();
                 let (summary, pictures) = stochvib::simulate::run_temporary_with(
                     &std::env::temp_dir(),
@@ -543,7 +628,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
                 }
             }
-            print(&r, json)?;
+            print_as(&r, output.format())?;
             if let Some(out) = plots {
                 let files = scenario_plots_with(&sc, &out, &ScenarioPlotOptions::default())?;
                 eprintln!("wrote {} pictures to {}", files.len(), out.display());
@@ -562,7 +647,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
             };
             let files = if has(&["h5", "hdf5"]) {
-                check_in_child(&input, false)?;
+                // every checksum, as `inspect`: a damaged file is an error naming the damaged part
+                check_in_child(&input, true)?;
                 run_plots(&input, &out, catalogue.dir())?
             } else if has(&["toml"]) {
                 let sc = load_scenario(&input, catalogue.dir())?;
@@ -607,6 +693,31 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 None => None,
             };
             let sc = load_scenario(&scenario, catalogue.dir())?;
+            if let Some(answers) = sc.nonlinear_answers()? {
+                let base = RunOptions {
+                    shard_size,
+                    store_raw,
+                    compression,
+                    route,
+                    confidence,
+                    overwrite,
+                    part: choice.as_ref().map(|c| c.part),
+                    max_hours: step.max_hours,
+                    ..RunOptions::new(realizations, 1.0, 1.0, seed)
+                };
+                let opts = step.nonlinear(&sc, &answers, base)?;
+                let output = shard_output(output, &choice)?;
+                let s = sc.simulate_nonlinear(&answers, &opts, &output, &progress_printer())?;
+                print(&s, json)?;
+                if let Some(pdir) = plots {
+                    for f in run_plots(&s.run.path, &pdir, catalogue.dir())? {
+                        if !json {
+                            emit_line(&f.display().to_string());
+                        }
+                    }
+                }
+                return Ok(());
+            }
             let (dt, duration) = step.resolve(&sc, realizations)?;
             let opts = RunOptions {
                 shard_size,
@@ -617,25 +728,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 stream_tail,
                 overwrite,
                 part: choice.as_ref().map(|c| c.part),
+                max_hours: step.max_hours,
                 ..RunOptions::new(realizations, duration, dt, seed)
             };
-            let output = match &choice {
-                None => output,
-                Some(c) => {
-                    if output.is_file() {
-                        anyhow::bail!(
-                            "{}: with --shard, -o names the run directory that receives shard-<I>-of-<N>.h5 files,                              not a file",
-                            output.display()
-                        );
-                    }
-                    std::fs::create_dir_all(&output)?;
-                    eprintln!("shard {} of {} ({})", c.part.index, c.part.count, c.source);
-                    for n in &c.notes {
-                        eprintln!("warning: {n}");
-                    }
-                    part_path(&output, c.part)
-                }
-            };
+            let output = shard_output(output, &choice)?;
+            let signals = sc.analysis.outputs.len() + if store_raw { sc.input_signals().len() } else { 0 };
+            eprintln!(
+                "{}",
+                stochvib::simulate::resources::estimate_text(&opts, sc.excitation.spectra().len(), signals)?
+            );
             let s = sc.simulate(&opts, &output, &progress_printer())?;
             print(&s, json)?;
             if let Some(pdir) = plots {
@@ -656,7 +757,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         } => {
             let sweeps = report::find_sweep_shards(&inputs)?;
             if !sweeps.is_empty() {
-                let (runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
+                let (mut runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
+                runs.retain(|r| r.extension().is_none_or(|e| e != "json"));
                 if !runs.is_empty() {
                     anyhow::bail!(
                         "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
@@ -673,6 +775,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 );
                 return Ok(());
             }
+            refuse_shard_as_output(&output, &inputs)?;
             let opts = MergeOptions {
                 copy,
                 overwrite,
@@ -713,14 +816,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let mc = match monte_carlo {
                 Some(n) => {
                     let (dt, duration) = step.resolve(&sc, n)?;
-                    Some(report::SweepMonteCarlo {
+                    let m = report::SweepMonteCarlo {
                         realizations: n,
                         duration_s: duration,
                         dt_s: dt,
                         seed,
                         shard_size,
                         confidence,
-                    })
+                    };
+                    report::check_monte_carlo_time(&sweep, &m, step.max_hours)?;
+                    Some(m)
                 }
                 None => None,
             };
@@ -729,10 +834,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 Some(c) => {
                     let dir = output
                         .ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
-                    if dir.is_file() {
-                        anyhow::bail!("{}: with --shard, -o names a directory", dir.display());
-                    }
-                    std::fs::create_dir_all(&dir)?;
+                    output_dir(&dir, "with --shard, -o names the directory of the shard files")?;
                     eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
                     let (path, sh, fresh) =
                         report::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
@@ -799,13 +901,18 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
             }
         }
-        Command::Inspect { file, json } => {
+        Command::Inspect { file, output } => {
             check_in_child(&file, true)?;
-            if json {
-                print_json(&RunFile::open(&file)?.info()?)?;
-            } else {
-                emit(&summarize(&file)?);
+            match output.format() {
+                ReportFormat::Json => print_json(&RunFile::open(&file)?.info()?)?,
+                ReportFormat::Markdown => emit(&report::inspect_markdown(&file)?),
+                ReportFormat::Text => emit(&summarize(&file)?),
             }
+        }
+        Command::Workday { file, spectra, output } => {
+            let day = stochvib::scenario::workday::load_workday(&file)?;
+            let r = stochvib::scenario::workday::workday_exposure(&day, spectra.catalogue().dir())?;
+            print_as(&report::WorkdayReport(r), output.format())?;
         }
         Command::Spectrum {
             name,
@@ -871,6 +978,80 @@ fn check_in_child(file: &Path, full: bool) -> anyhow::Result<()> {
     }
 }
 
+/// Creates the output directory `dir` if missing; refuses a `dir` that exists and is not a directory
+/// (`what` says what the directory is for).
+fn output_dir(dir: &Path, what: &str) -> anyhow::Result<()> {
+    if let Ok(m) = std::fs::metadata(dir)
+        && !m.is_dir()
+    {
+        anyhow::bail!("{}: is not a directory: {what}; nothing was written", dir.display());
+    }
+    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))
+}
+
+/// The output rule for `merge`: the merged file is never one of the shard files it merges (named, or a
+/// shard file in a named directory); a whole run already there (an earlier merge) is what `--overwrite`
+/// replaces.
+fn refuse_shard_as_output(output: &Path, inputs: &[PathBuf]) -> anyhow::Result<()> {
+    let (files, _) = stochvib::store::find_run_files(inputs, &[])?;
+    let named = inputs.iter().any(|i| stochvib::io_rules::same_file(i, output));
+    let shard = || {
+        files.iter().any(|f| stochvib::io_rules::same_file(f, output))
+            && RunFile::open_any(output).is_ok_and(|r| r.part().is_some())
+    };
+    if named || shard() {
+        anyhow::bail!(
+            "{}: is one of the shard files to merge: the merged file needs a name of its own (e.g. DIR/merged.h5); \
+             nothing was written",
+            output.display()
+        );
+    }
+    Ok(())
+}
+
+/// The run file of `simulate`: `-o` itself, or with `--shard` the shard file in the run directory `-o`.
+fn shard_output(output: PathBuf, choice: &Option<stochvib::simulate::ShardChoice>) -> anyhow::Result<PathBuf> {
+    let Some(c) = choice else { return Ok(output) };
+    output_dir(
+        &output,
+        "with --shard, -o names the run directory that receives shard-<I>-of-<N>.h5 files",
+    )?;
+    eprintln!("shard {} of {} ({})", c.part.index, c.part.count, c.source);
+    for n in &c.notes {
+        eprintln!("warning: {n}");
+    }
+    Ok(part_path(&output, c.part))
+}
+
+/// `analyze` of a scenario with nonlinear elements: routes 1 and 3, and route 2 with `--monte-carlo N`.
+#[allow(clippy::too_many_arguments)]
+fn analyze_nonlinear(
+    sc: &Scenario,
+    answers: &NonlinearAnswers,
+    monte_carlo: Option<usize>,
+    seed: u64,
+    step: &Step,
+    plots: &Option<PathBuf>,
+    output: &Output,
+    catalogue: &Catalogue,
+) -> anyhow::Result<()> {
+    let mc = match monte_carlo {
+        Some(n) => {
+            let opts = step.nonlinear(sc, answers, RunOptions::new(n, 1.0, 1.0, seed))?;
+            let (s, pictures) =
+                sc.simulate_nonlinear_temporary(answers, &opts, &std::env::temp_dir(), &progress_printer(), |path| {
+                    plots.as_ref().map(|out| run_plots(path, out, catalogue.dir()))
+                })?;
+            if let (Some(files), Some(out)) = (pictures, plots) {
+                eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
+            }
+            Some(s)
+        }
+        None => None,
+    };
+    print_as(&report::nonlinear_report(sc, answers, mc.as_ref())?, output.format())
+}
+
 /// Refuses Monte Carlo and pictures for a file without a random input.
 fn no_simulation(file: &Path, monte_carlo: Option<usize>, plots: &Option<PathBuf>) -> anyhow::Result<()> {
     if monte_carlo.is_some() || plots.is_some() {
@@ -889,6 +1070,21 @@ fn print<T: std::fmt::Display + serde::Serialize>(r: &T, json: bool) -> anyhow::
     } else {
         emit(&format!("{r}"));
         Ok(())
+    }
+}
+
+/// Prints a report in `format`.
+fn print_as<T: std::fmt::Display + serde::Serialize + ToMarkdown>(r: &T, format: ReportFormat) -> anyhow::Result<()> {
+    match format {
+        ReportFormat::Json => print_json(r),
+        ReportFormat::Markdown => {
+            emit(&r.markdown());
+            Ok(())
+        }
+        ReportFormat::Text => {
+            emit(&format!("{r}"));
+            Ok(())
+        }
     }
 }
 

@@ -35,8 +35,8 @@ pub fn domain_name(d: Domain) -> &'static str {
 }
 
 /// The spectrum catalogue, chosen as the command-line tool chooses it: `spectra_dir` if given, else
-/// `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the `spectra/` directory of the source tree the
-/// package was built from.
+/// `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the built-in catalogue (the `spectra/` files
+/// embedded when the package was built).
 pub fn catalogue(spectra_dir: Option<PathBuf>) -> Catalogue {
     if let Some(d) = spectra_dir {
         return Catalogue::new(d);

@@ -20,6 +20,7 @@ use crate::error::{Error, Result};
 /// assert_eq!((h, c), (1.4, 1.0));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Purpose {
     /// Health of a seated person (ISO 2631-1:1997, clause 7; Directive 2002/44/EC).
     Health,
@@ -41,6 +42,7 @@ pub enum Purpose {
 /// assert_eq!(axis_factor(Purpose::Comfort, Location::Feet, Axis::Z).unwrap().k, 0.4);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Location {
     /// Seat surface under a seated person (translational x, y, z and rotational r_x, r_y, r_z).
     SeatSurface,
@@ -68,6 +70,7 @@ pub enum Location {
 /// assert_eq!((f.weighting, f.k), (Weighting::We, 0.63));
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Axis {
     /// Fore-and-aft translation.
     X,
@@ -81,6 +84,47 @@ pub enum Axis {
     Ry,
     /// Yaw (rotation about z), rad/s².
     Rz,
+}
+
+impl Purpose {
+    /// The purpose as a scenario file writes it: `health`, `comfort`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Purpose::Health => "health",
+            Purpose::Comfort => "comfort",
+        }
+    }
+}
+
+impl Location {
+    /// The location as a scenario file writes it: `seat-surface`, `seat-back`, `feet`, `standing-floor`.
+    ///
+    /// # Examples
+    /// ```
+    /// assert_eq!(stochvib::comfort::Location::SeatSurface.label(), "seat-surface");
+    /// ```
+    pub fn label(self) -> &'static str {
+        match self {
+            Location::SeatSurface => "seat-surface",
+            Location::SeatBack => "seat-back",
+            Location::Feet => "feet",
+            Location::StandingFloor => "standing-floor",
+        }
+    }
+}
+
+impl Axis {
+    /// The axis as a scenario file writes it: `x`, `y`, `z`, `rx`, `ry`, `rz`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Axis::X => "x",
+            Axis::Y => "y",
+            Axis::Z => "z",
+            Axis::Rx => "rx",
+            Axis::Ry => "ry",
+            Axis::Rz => "rz",
+        }
+    }
 }
 
 /// The weighting and multiplying factor of one (purpose, location, axis).
@@ -167,11 +211,47 @@ pub fn axis_factor(purpose: Purpose, location: Location, axis: Axis) -> Result<A
         },
     };
     found.ok_or_else(|| Error::NotApplicable {
-        method: format!("ISO 2631-1 {purpose:?} evaluation"),
+        method: format!("ISO 2631-1 {} evaluation", purpose.label()),
         reason: format!(
-            "no weighting and factor k are defined for axis {axis:?} at {location:?} (health: seat surface \
-             x, y, z only; rotations: seat surface only)"
+            "no weighting and factor k are defined for axis {} at {} (health: seat surface x, y, z only; \
+             rotations: seat surface only)",
+            axis.label(),
+            location.label()
         ),
+    })
+}
+
+/// The weighting and factor with which an axis enters the daily exposure of Directive 2002/44/EC, whatever
+/// the purpose of the ISO 2631-1 evaluation the axis was written for; `None` for an axis that does not.
+///
+/// # Formula
+/// Directive 2002/44/EC, Annex B 1: A(8) and VDV are those of the highest of "1,4a_wx, 1,4a_wy, a_wz for a
+/// seated or standing worker", the a_w weighted as ISO 2631-1:1997 (Wd for x, y; Wk for z, 7.2.3). So the
+/// translational axes of the seat surface and of the floor under a standing person enter, with k = 1.4,
+/// 1.4, 1; seat back, feet and rotations do not. The health guidance zones of ISO 2631-1 Annex B use the same
+/// factors, for seated persons.
+///
+/// # Errors
+/// None.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{directive_factor, Axis, Location, Weighting};
+/// let f = directive_factor(Location::StandingFloor, Axis::Y).unwrap();
+/// assert_eq!((f.weighting, f.k), (Weighting::Wd, 1.4));
+/// assert!(directive_factor(Location::SeatBack, Axis::X).is_none());
+/// ```
+pub fn directive_factor(location: Location, axis: Axis) -> Option<AxisFactor> {
+    let seated_or_standing = matches!(location, Location::SeatSurface | Location::StandingFloor);
+    let (weighting, k) = match axis {
+        Axis::X | Axis::Y => (Weighting::Wd, 1.4),
+        Axis::Z => (Weighting::Wk, 1.0),
+        _ => return None,
+    };
+    seated_or_standing.then_some(AxisFactor {
+        weighting,
+        k,
+        clause: "7.2.3",
     })
 }
 

@@ -32,7 +32,9 @@ pub mod weighted;
 pub mod weighted_sweep;
 pub mod weighting;
 
-pub use axes::{axis_factor, vector_sum, Axis, AxisFactor, AxisValue, Location, Purpose, VectorSum, VectorSumTerm};
+pub use axes::{
+    axis_factor, directive_factor, vector_sum, Axis, AxisFactor, AxisValue, Location, Purpose, VectorSum, VectorSumTerm,
+};
 pub use band_table::{output_band_row, output_band_table, BandRow, BandTable, BAND_COVERAGE, MAX_TABLE_THIRD_OCTAVES};
 pub use bands::{band_mean_square, band_rms, bands_covering, Band, BandFraction};
 pub use exposure::{

@@ -223,6 +223,33 @@ pub fn from_roots(roots: &[Complex<f64>]) -> Result<Vec<f64>> {
     Ok(p)
 }
 
+/// Highest polynomial degree whose roots are computed ([`roots`], [`spectral_factor`]): the companion
+/// matrix of degree n takes n² numbers and O(n³) operations, and in double precision the roots of a
+/// polynomial of degree above a few dozen are already ill-conditioned (Wilkinson 1959, "The evaluation of
+/// the zeros of ill-conditioned polynomials"); 256 is far beyond any spectrum or filter the toolkit meets.
+pub const MAX_DEGREE: usize = 256;
+
+/// Refuses a polynomial of degree above [`MAX_DEGREE`], naming `name` and what its roots would need.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `name`.
+pub fn check_degree(name: &str, coeffs: &[f64]) -> Result<()> {
+    let deg = coeffs.len().saturating_sub(1);
+    if deg > MAX_DEGREE {
+        return Err(Error::invalid(
+            name,
+            format!("{} coefficients", coeffs.len()),
+            format!(
+                "degree {deg} is above the {MAX_DEGREE} whose roots are computed (its companion matrix alone would \
+                 take {} of memory, and roots of such degrees are not accurate in double precision): use a model \
+                 of lower order",
+                crate::io_rules::bytes_text(deg as u128 * deg as u128 * 8)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// All complex roots of a real polynomial, with multiplicity.
 ///
 /// # Formula
@@ -248,6 +275,7 @@ pub fn from_roots(roots: &[Complex<f64>]) -> Result<Vec<f64>> {
 pub fn roots(coeffs: &[f64]) -> Result<Vec<Complex<f64>>> {
     check_finite("coeffs", coeffs)?;
     let p = trim(coeffs);
+    check_degree("coeffs", &p)?;
     if p.is_empty() {
         return Err(Error::invalid(
             "coeffs",
@@ -490,6 +518,8 @@ pub fn spectral_factor(p_of_w2: &[f64]) -> Result<(Vec<f64>, f64)> {
         ));
     }
     let m = p.len() - 1;
+    // a polynomial of degree m in ω² has degree 2m in s
+    check_degree("p_of_w2", &vec![0.0; 2 * m + 1])?;
     let lead = p[m];
     if lead <= 0.0 {
         return Err(Error::invalid(

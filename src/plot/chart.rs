@@ -746,36 +746,75 @@ fn render_both<T: Draw>(dir: &Path, stem: &str, item: &T) -> Result<Vec<PathBuf>
         ));
     }
     ensure_font()?;
-    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
+    picture_dir(dir)?;
     let svg = dir.join(format!("{stem}.svg"));
     let png = dir.join(format!("{stem}.png"));
-    let run = |f: &dyn Fn() -> std::result::Result<(), String>, path: &Path| -> Result<()> {
-        match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
-            Ok(Ok(())) => Ok(()),
+    let run = |f: &dyn Fn(&Path) -> std::result::Result<(), String>, path: &Path| -> Result<()> {
+        let staged = crate::io_rules::Staged::begin(path, PICTURE, &[], true)?;
+        let tmp = staged.temporary();
+        match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| f(tmp))) {
+            Ok(Ok(())) => staged.commit().map(|_| ()),
             Ok(Err(reason)) => Err(plot_error(&path.display().to_string(), reason)),
             Err(_) => Err(plot_error(&path.display().to_string(), "the drawing back end panicked")),
         }
     };
     run(
-        &|| {
-            let root = SVGBackend::new(&svg, (WIDTH, HEIGHT)).into_drawing_area();
+        &|tmp| {
+            let root = SVGBackend::new(tmp, (WIDTH, HEIGHT)).into_drawing_area();
             item.draw(&root)?;
             root.present().map_err(|e| e.to_string())
         },
         &svg,
     )?;
     run(
-        &|| {
-            let root = BitMapBackend::new(&png, (WIDTH, HEIGHT)).into_drawing_area();
+        &|tmp| {
+            let root = BitMapBackend::new(tmp, (WIDTH, HEIGHT)).into_drawing_area();
             item.draw(&root)?;
             root.present().map_err(|e| e.to_string())
         },
         &png,
     )?;
     Ok(vec![svg, png])
+}
+
+/// The kind of the pictures every command writes (`<stem>.svg`, `<stem>.png`), for the output rule
+/// ([`crate::io_rules::check_output`]): an existing picture of the same name is replaced (a picture
+/// directory is drawn again and again); anything else under that name — another kind of file, a directory,
+/// a link, a FIFO, a device — is refused.
+pub const PICTURE: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "picture (SVG or PNG)",
+    recognizes: is_picture,
+    replaceable: true,
+};
+
+/// Whether the existing file `path` is a picture of the format of its extension.
+fn is_picture(path: &Path) -> bool {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("svg") => crate::io_rules::starts_with(path, b"<svg") || crate::io_rules::starts_with(path, b"<?xml"),
+        Some("png") => crate::io_rules::starts_with(path, b"\x89PNG\r\n\x1a\n"),
+        _ => false,
+    }
+}
+
+/// Creates the picture directory `dir` if missing; refuses a `dir` that exists and is not a directory.
+///
+/// # Errors
+/// [`Error::Parse`] naming `dir` for a file, FIFO or device; [`Error::Io`] if it cannot be created.
+pub fn picture_dir(dir: &Path) -> Result<()> {
+    if let Ok(m) = std::fs::metadata(dir)
+        && !m.is_dir()
+    {
+        return Err(Error::Parse {
+            file: dir.to_path_buf(),
+            reason: "exists and is not a directory: the pictures go into a directory (-o DIR, --plots DIR); \
+                     nothing was written"
+                .into(),
+        });
+    }
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+        path: dir.to_path_buf(),
+        source,
+    })
 }
 
 fn legend_position(l: Legend) -> Option<SeriesLabelPosition> {

@@ -35,6 +35,10 @@ pub struct OutputCharts {
     pub histogram: Option<Histogram>,
     /// Correlation estimate against the model K(τ) from the stored analytic density (raw data only).
     pub correlation: Option<LineChart>,
+    /// A nonlinear run's response histogram against route 1's Gaussian and the exact density (linear and
+    /// logarithmic density axis; [`super::nonlinear_plots`]); the raw histogram and correlation, whose
+    /// references are those of a linear model, are then not drawn.
+    pub response_density: Option<(LineChart, LineChart)>,
 }
 
 /// The `title` key of the scenario text stored in the file, or `None` if absent or unparsable.
@@ -73,7 +77,14 @@ fn scenario_correlation(
     n: usize,
     max_lag: usize,
 ) -> Result<(Vec<f64>, f64)> {
-    let sys = sc.model.system.as_ref();
+    // a weighted output of `[analysis.comfort]` (`<output>_<W>`) is an output of the system the run
+    // simulated: the scenario's system extended by the weighting filters
+    let extended;
+    let mut sys = sc.model.system.as_ref();
+    if !sys.outputs().iter().any(|o| o.name == name) && !sc.analysis.verdicts.is_empty() {
+        extended = crate::scenario::verdict_system(sc)?.0;
+        sys = &extended;
+    }
     let i = sys
         .outputs()
         .iter()
@@ -114,7 +125,8 @@ fn scenario_correlation(
 /// stored analytic density (ω = 0 weighted ½), which under-resolves density peaks narrower than Δω_W.
 ///
 /// # Errors
-/// Errors of [`RunFile::open`] and its readers; [`Error::InvalidParameter`] when an output lacks its density
+/// Errors of [`RunFile::open`] and its readers; [`RunFile::verify`]'s error naming the damaged dataset of a
+/// file whose checksums do not match; [`Error::InvalidParameter`] when an output lacks its density
 /// estimate, the analytic density, or the analytic σ, or when the density grid is not uniform.
 ///
 /// # Examples
@@ -125,6 +137,8 @@ fn scenario_correlation(
 /// ```
 pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> {
     let run = RunFile::open(path)?;
+    // every checksum, as `inspect` checks them: a damaged file is an error naming the damaged part
+    run.verify()?;
     let meta = run.metadata().clone();
     let scenario = scenario_title(&meta.scenario_text).unwrap_or_else(|| {
         path.file_stem()
@@ -140,6 +154,7 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
     };
     let psds = run.psd()?;
     let stats = run.statistics()?;
+    let response = run.response_histograms()?;
     let mut out = Vec::new();
     for sig in &meta.outputs {
         let name = &sig.name;
@@ -176,7 +191,15 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
             unit,
         )?;
         welch.series[0].name = format!("Welch estimate (ν = {})", crate::numbers::num(psd.dof));
-        welch.series[1].name = "continuous-time analytic density".into();
+        welch.series[1].name = if response.is_empty() {
+            "continuous-time analytic density".into()
+        } else {
+            "route 1: density of the equivalent linear system (an approximation)".into()
+        };
+        let response_density = response
+            .iter()
+            .find(|h| &h.output == name)
+            .map(|h| super::nonlinear_plots::histogram_charts(&scenario, h));
         if let Some(e) = &psd.expected {
             let coverage = psd
                 .coverage()
@@ -191,7 +214,7 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
             );
         }
         let (mut realizations, mut histogram, mut correlation) = (None, None, None);
-        if meta.store_raw {
+        if meta.store_raw && response.is_empty() {
             let n = meta.n_samples;
             let nr = meta.n_realizations;
             // excerpts
@@ -306,6 +329,7 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
             realizations,
             histogram,
             correlation,
+            response_density,
         });
     }
     Ok(out)
@@ -341,6 +365,10 @@ pub fn run_plots(path: &Path, dir: &Path, spectra_dir: &Path) -> Result<Vec<Path
         }
         if let Some(c) = &oc.correlation {
             files.extend(c.render(dir, &format!("{s}-correlation"))?);
+        }
+        if let Some((lin, log)) = &oc.response_density {
+            files.extend(lin.render(dir, &format!("{s}-histogram"))?);
+            files.extend(log.render(dir, &format!("{s}-histogram-log"))?);
         }
     }
     for c in rainflow_charts(path)? {

@@ -5,22 +5,31 @@ pub mod analysis;
 pub mod band_report;
 pub mod book;
 pub mod catalogue;
+mod float_text;
+pub mod markdown;
 pub mod mc_verdicts;
+pub mod nonlinear_report;
 pub mod replay_report;
 pub mod road_report;
 pub mod spectrum_report;
 mod sweep_h5;
 pub mod sweep_stream;
 pub mod sweep_table;
+pub mod table;
 pub mod tables;
 pub mod verdict_report;
+pub mod workday_report;
 
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use book::{book_report, BookReport};
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
+pub use markdown::inspect_markdown;
+pub use nonlinear_report::{nonlinear_report, NonlinearReport};
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
 pub use sweep_stream::{stream_sweep_csv, write_sweep_table, StreamOptions, StreamedTable};
 pub use sweep_table::{
-    compute_sweep, find_sweep_shards, merge_sweep, run_sweep_shard, SweepMonteCarlo, SweepResults, TableFormat,
+    check_monte_carlo_time, check_table_resources, compute_sweep, find_sweep_shards, merge_sweep, run_sweep_shard,
+    SweepMonteCarlo, SweepResults, TableFormat, SWEEP_SHARD, SWEEP_TABLE,
 };
 pub use tables::{deterministic_report, reference_report, TablesReport};
+pub use workday_report::WorkdayReport;

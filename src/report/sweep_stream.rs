@@ -12,8 +12,7 @@
 
 use super::sweep_h5::H5TableWriter;
 use super::sweep_table::{
-    commit_table, compute_sweep, csv_header, prepare_table, sweep_identity, tabulate, SweepMonteCarlo, SweepResults,
-    TableFormat,
+    compute_sweep, csv_header, prepare_table, sweep_identity, tabulate, SweepMonteCarlo, SweepResults, TableFormat,
 };
 use crate::error::{Error, Result};
 use crate::response::PointStatistics;
@@ -53,14 +52,19 @@ pub struct StreamedTable {
 }
 
 /// Evaluates every point of `sweep` (with `mc`, a Monte Carlo batch per point) and writes the table to
-/// `path`, format from its extension, as `<path>.tmp` renamed when complete; an existing `path` is only
-/// replaced with `overwrite`. CSV and HDF5 are streamed block by block (see the module docs); JSON is
-/// written from the whole table. `progress(done, total)` is called after every Monte Carlo point.
+/// `path`, format from its extension, under the output rule ([`crate::io_rules::Staged`]: a temporary file
+/// of this process, renamed when complete; an existing table is only replaced with `overwrite`; the
+/// scenario's files, directories, devices and files of another kind never). The table's size on disk (and,
+/// for JSON, in memory) is estimated first ([`check_table_resources`](super::sweep_table::check_table_resources)).
+/// CSV and HDF5 are streamed block by block (see the module docs); JSON is written from the whole table.
+/// `progress(done, total)` is called after every Monte Carlo point. A killed study leaves only its
+/// temporary file `<stem>.tmp-<pid>.<ext>`, which the next study writing the same table removes.
 ///
 /// # Errors
-/// An unknown extension; an existing file without `overwrite`; a directory at `path`; a block of 0 points;
-/// I/O and HDF5 errors (the temporary file is then removed and nothing at `path` is touched). A failing
-/// point is not an error: it is recorded in [`StreamedTable::errors`] and in the table.
+/// An unknown extension; the refusals of the output rule; a table larger than the free disk (or a JSON
+/// table larger than the free memory); a block of 0 points; I/O and HDF5 errors (the temporary file is
+/// then removed and nothing at `path` is touched). A failing point is not an error: it is recorded in
+/// [`StreamedTable::errors`] and in the table.
 ///
 /// # Examples
 /// ```
@@ -88,43 +92,41 @@ pub fn write_sweep_table(
     opts: StreamOptions,
     progress: &dyn Fn(usize, usize),
 ) -> Result<StreamedTable> {
-    let (format, tmp) = prepare_table(path, overwrite)?;
+    let inputs = sweep.scenario().source_files();
+    let inputs: Vec<&Path> = inputs.iter().map(|p| p.as_path()).collect();
+    let (format, staged) = prepare_table(path, overwrite, &inputs)?;
     let n = sweep.spec().n_points();
-    let written = match format {
-        TableFormat::Json => compute_sweep(sweep, 0..n, opts.parallel, mc, progress).and_then(|t| {
-            let file = std::fs::File::create(&tmp).map_err(|source| Error::Io {
-                path: tmp.clone(),
-                source,
-            })?;
-            t.write_json(file)?;
-            Ok(StreamedTable {
+    super::sweep_table::check_table_resources(sweep, path, format, mc)?;
+    let tmp = staged.temporary().to_path_buf();
+    let created = |r: std::io::Result<std::fs::File>| {
+        r.map_err(|source| Error::Io {
+            path: tmp.clone(),
+            source,
+        })
+    };
+    let t = match format {
+        TableFormat::Json => {
+            let t = compute_sweep(sweep, 0..n, opts.parallel, mc, progress)?;
+            t.write_json(created(std::fs::File::create(&tmp))?)?;
+            StreamedTable {
                 n_points: n,
                 errors: t.errors,
-            })
-        }),
-        TableFormat::Csv => std::fs::File::create(&tmp)
-            .map_err(|source| Error::Io {
-                path: tmp.clone(),
-                source,
-            })
-            .and_then(|file| stream_sweep_csv(sweep, file, path, mc, opts, progress)),
-        TableFormat::Hdf5 => (|| {
+            }
+        }
+        TableFormat::Csv => stream_sweep_csv(sweep, created(std::fs::File::create(&tmp))?, path, mc, opts, progress)?,
+        TableFormat::Hdf5 => {
             let w = H5TableWriter::create(&tmp, &sweep_identity(sweep, mc), n, 0..n)?;
             let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, |w, b| match b {
                 Block::Rows { points, stats, errors } => w.append_evaluated(sweep, points.clone(), stats, errors),
                 Block::Table(t) => w.append(t),
             })?;
             w.finish()?;
-            Ok(StreamedTable { n_points: n, errors })
-        })(),
-    };
-    match written.and_then(|t| commit_table(&tmp, path).map(|()| t)) {
-        Ok(t) => Ok(t),
-        Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
-            Err(e)
+            StreamedTable { n_points: n, errors }
         }
-    }
+    };
+    // the temporary file is removed when `staged` is dropped without a commit (any error above)
+    staged.commit()?;
+    Ok(t)
 }
 
 /// Evaluates every point of `sweep` and writes the CSV table to `out` (`name` names it in errors, e.g.
@@ -150,16 +152,16 @@ pub fn stream_sweep_csv(
     let mut out = std::io::BufWriter::with_capacity(1 << 20, out);
     out.write_all(csv_header(&sweep_identity(sweep, mc)).as_bytes())
         .map_err(io)?;
-    let mut text = String::new();
     let (mut out, errors) = pipeline(sweep, 0..n, mc, opts, progress, out, |w, b| {
-        text.clear();
-        match b {
+        let blocks = match b {
             Block::Rows { points, stats, errors } => {
-                tabulate(sweep, points.clone(), stats, errors.clone(), mc).push_csv_rows(&mut text)
+                tabulate(sweep, points.clone(), stats, errors.clone(), mc).csv_row_blocks()
             }
-            Block::Table(t) => t.push_csv_rows(&mut text),
-        }
-        w.write_all(text.as_bytes()).map_err(io)
+            Block::Table(t) => t.csv_row_blocks(),
+        };
+        blocks
+            .iter()
+            .try_for_each(|text| w.write_all(text.as_bytes()).map_err(io))
     })?;
     out.flush().map_err(io)?;
     Ok(StreamedTable { n_points: n, errors })

@@ -359,47 +359,180 @@ impl TableFormat {
     }
 }
 
-/// `,` and the value as `num` writes it, appended to `s` (no intermediate string).
+/// `,` and the value as `{:e}` writes it (the shortest round-trip digits: up to 17 significant digits),
+/// appended to `s` without an intermediate string ([`push_exp`](super::float_text::push_exp)).
 fn push_num(s: &mut String, v: Option<f64>) {
     s.push(',');
     if let Some(x) = v {
-        let _ = write!(s, "{x:e}");
+        super::float_text::push_exp(s, x);
     }
 }
 
-/// The format of the table to be written to `path` (from its extension) and the temporary file to write it
-/// into (any leftover of an interrupted write removed), after checking that an existing `path` may be
-/// replaced.
+/// The kind of file `stochvib sweep -o` and `merge` of sweep shards write, for the output rule
+/// ([`crate::io_rules::check_output`]): a table of a parameter study, recognised by its beginning (CSV
+/// `point,`, JSON `{ "identity"`, HDF5 `@format = "stochvib sweep table"`, from the target's extension).
+pub const SWEEP_TABLE: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "sweep table",
+    recognizes: is_sweep_table,
+    replaceable: false,
+};
+
+/// The kind of the shard files of `stochvib sweep --shard` ([`SWEEP_TABLE`]'s sibling).
+pub const SWEEP_SHARD: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "sweep shard file",
+    recognizes: is_sweep_shard,
+    replaceable: false,
+};
+
+/// Whether the existing file `path` is a sweep shard file (it begins with its `format` field).
+fn is_sweep_shard(path: &Path) -> bool {
+    crate::io_rules::starts_with(path, format!("{{\"format\":\"{SHARD_FORMAT}\"").as_bytes())
+}
+
+/// Whether the existing file `path` is a sweep table of the format its extension names.
+fn is_sweep_table(path: &Path) -> bool {
+    match TableFormat::from_path(path) {
+        Ok(TableFormat::Csv) => crate::io_rules::starts_with(path, b"point,"),
+        Ok(TableFormat::Json) => crate::io_rules::starts_with(path, b"{\n  \"identity\""),
+        Ok(TableFormat::Hdf5) => {
+            crate::io_rules::starts_with(path, crate::io_rules::HDF5_SIGNATURE)
+                && hdf5::File::open(path)
+                    .and_then(|f| f.attr("format")?.read_scalar::<hdf5::types::VarLenUnicode>())
+                    .is_ok_and(|v| v.as_str() == "stochvib sweep table")
+        }
+        Err(_) => false,
+    }
+}
+
+/// The format of the table to be written to `path` (from its extension) and the staged file to write it
+/// into, after the output rule has checked `path` against `inputs` ([`crate::io_rules::Staged`]).
 ///
 /// # Errors
-/// An unknown extension; an existing file without `overwrite`; a directory at `path`.
-pub(crate) fn prepare_table(path: &Path, overwrite: bool) -> Result<(TableFormat, PathBuf)> {
+/// An unknown extension; the refusals of the output rule (an input, a directory, a device, a file of
+/// another kind; an existing table without `overwrite`).
+pub(crate) fn prepare_table(
+    path: &Path,
+    overwrite: bool,
+    inputs: &[&Path],
+) -> Result<(TableFormat, crate::io_rules::Staged)> {
     let format = TableFormat::from_path(path)?;
-    if path.exists() && !overwrite {
-        return Err(Error::Hdf5 {
-            path: path.to_path_buf(),
-            reason: "already exists: a table is never overwritten silently; remove it, choose another name, \
-                     or pass --overwrite"
-                .into(),
-        });
-    }
-    if path.is_dir() {
-        return Err(Error::invalid("output", path.display(), "is a directory"));
-    }
-    let tmp = crate::store::tmp_path(path);
-    let _ = std::fs::remove_file(&tmp);
-    Ok((format, tmp))
+    let staged = crate::io_rules::Staged::begin(path, SWEEP_TABLE, inputs, overwrite)?;
+    Ok((format, staged))
 }
 
-/// Renames the complete temporary file `tmp` to `path`.
+/// The bytes one point takes in a table of `identity` in `format`, at most (failed points add their
+/// message): the rows of one point whose every number is printed at the greatest width (24 characters,
+/// `-1.2345678901234567e-308`) and whose every key takes its longest value, measured with the writers
+/// themselves.
+pub(crate) fn point_bytes(identity: &SweepIdentity, format: TableFormat) -> u128 {
+    let wide = -1.234_567_890_123_456_7e-308;
+    let widest = Some(wide);
+    let value = OutputValues {
+        mean: widest,
+        variance: Some(f64::MAX),
+        lambda2: widest,
+        method: Method::LyapunovDelays,
+        mc: identity.monte_carlo.map(|_| McValues {
+            sigma: wide,
+            lower: wide,
+            upper: wide,
+            covers: false,
+        }),
+    };
+    let longest: Vec<usize> = identity
+        .params
+        .iter()
+        .map(|(_, vals)| (0..vals.len()).max_by_key(|&i| vals[i].len()).unwrap_or(0))
+        .collect();
+    let one = SweepResults {
+        identity: identity.clone(),
+        n_points: usize::MAX / 2,
+        points: usize::MAX / 2 - 1..usize::MAX / 2,
+        value_index: longest,
+        values: vec![value; identity.outputs.len()],
+        errors: Vec::new(),
+    };
+    let empty = SweepResults {
+        points: 0..0,
+        value_index: Vec::new(),
+        values: Vec::new(),
+        ..one.clone()
+    };
+    let size = |t: &SweepResults| match format {
+        TableFormat::Json => t.to_json().map_or(0, |j| j.len()),
+        // HDF5: a number is 8 bytes, a method byte, the key indices 8 bytes each: far below CSV
+        TableFormat::Csv | TableFormat::Hdf5 => {
+            let mut text = String::new();
+            t.push_csv_rows(&mut text);
+            text.len()
+        }
+    };
+    size(&one).saturating_sub(size(&empty)) as u128
+}
+
+/// The resource rule for a study's table at `path`: a JSON table, whose rows are built whole in memory
+/// before its text is written, must fit the available memory (the rows' values and statistics, and the
+/// value indices); every table's size on disk (points × [`point_bytes`]) the free space of its disk.
 ///
 /// # Errors
-/// The rename's I/O error naming `path`.
-pub(crate) fn commit_table(tmp: &Path, path: &Path) -> Result<()> {
-    std::fs::rename(tmp, path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+/// [`Error::InvalidParameter`] naming `param` with the number of points and the sizes.
+pub fn check_table_resources(
+    sweep: &Sweep,
+    path: &Path,
+    format: TableFormat,
+    mc: Option<SweepMonteCarlo>,
+) -> Result<()> {
+    let identity = sweep_identity(sweep, mc);
+    let n = sweep.spec().n_points() as u128;
+    let rows = n * identity.outputs.len() as u128;
+    let file = n * point_bytes(&identity, format) + (1 << 16);
+    let points = format!("{n} points × {} outputs", identity.outputs.len());
+    if format == TableFormat::Json {
+        // the rows and their results in memory (the text itself is streamed to the file)
+        let per_row = std::mem::size_of::<OutputValues>() + std::mem::size_of::<PointStatistics>();
+        let memory = rows * per_row as u128 + n * identity.params.len() as u128 * 8;
+        crate::io_rules::check_memory(
+            memory,
+            "param",
+            &points,
+            "a JSON table (built whole before it is written)",
+            "write a .csv or .h5 table instead (streamed in bounded memory), or use fewer points",
+        )?;
+    }
+    crate::io_rules::check_disk(
+        file,
+        path,
+        "param",
+        &points,
+        "the table",
+        "fewer values per --param, fewer keys, or another disk (CSV on stdout without -o needs no disk)",
+    )
+}
+
+/// The resource rule for the Monte Carlo batches of a study: every point runs `mc.realizations`
+/// realizations, so the study's time lower bound is the points times that of one batch
+/// ([`crate::simulate::resources::run_time_lower_bound`]); refused above `max_hours`.
+///
+/// # Errors
+/// The batch's invalid options; [`Error::InvalidParameter`] naming `monte-carlo` with the estimate.
+pub fn check_monte_carlo_time(sweep: &Sweep, mc: &SweepMonteCarlo, max_hours: f64) -> Result<()> {
+    let n = RunOptions::new(mc.realizations, mc.duration_s, mc.dt_s, mc.seed).samples()?;
+    let points = sweep.spec().n_points();
+    let processes = sweep.scenario().excitation.spectra().len();
+    let threads = rayon::current_num_threads();
+    let t =
+        crate::simulate::resources::run_time_lower_bound(points as f64 * mc.realizations as f64, n, processes, threads);
+    crate::io_rules::check_time(
+        t,
+        max_hours,
+        "monte-carlo",
+        mc.realizations,
+        &format!(
+            "{points} points × {} realizations × {n} samples on {threads} threads",
+            mc.realizations
+        ),
+        "fewer points or realizations, a shorter --duration, or a cluster run (--shard I --of N)",
+    )
 }
 
 /// The header line of the CSV form of a study's table.
@@ -446,6 +579,17 @@ impl SweepResults {
     /// The CSV lines of the points held (no header), appended to `s`: [`to_csv`](Self::to_csv) of a table is
     /// its header followed by the lines of its blocks, in order.
     pub fn push_csv_rows(&self, s: &mut String) {
+        let blocks = self.csv_row_blocks();
+        s.reserve(blocks.iter().map(String::len).sum());
+        for b in &blocks {
+            s.push_str(b);
+        }
+    }
+
+    /// The CSV lines of the points held, formatted in blocks of 4096 points on all cores: joined in order
+    /// they are [`push_csv_rows`](Self::push_csv_rows)'s text (a stream writes them one by one, without
+    /// the copy of joining them).
+    pub(crate) fn csv_row_blocks(&self) -> Vec<String> {
         let mc = self.identity.monte_carlo.is_some();
         let n_out = self.identity.outputs.len();
         let nk = self.n_keys();
@@ -466,7 +610,7 @@ impl SweepResults {
         use rayon::prelude::*;
         const BLOCK: usize = 4096;
         let n_rows = self.points.len();
-        let blocks: Vec<String> = (0..n_rows.div_ceil(BLOCK))
+        (0..n_rows.div_ceil(BLOCK))
             .into_par_iter()
             .map(|blk| {
                 let rows = blk * BLOCK..((blk + 1) * BLOCK).min(n_rows);
@@ -476,7 +620,7 @@ impl SweepResults {
                     let err = self.error_of(p);
                     for (j, (name, unit)) in outputs.iter().enumerate() {
                         let v = &self.values[row * n_out + j];
-                        let _ = write!(s, "{p}");
+                        super::float_text::push_int(&mut s, p);
                         for (k, vals) in params.iter().enumerate() {
                             s.push(',');
                             s.push_str(&vals[self.value_index[row * nk + k]]);
@@ -507,16 +651,16 @@ impl SweepResults {
                             s.push(',');
                             s.push_str(m.map_or("", |m| if m.covers { "yes" } else { "no" }));
                         }
-                        let _ = writeln!(s, ",{}", err.map(csv_field).unwrap_or_default());
+                        s.push(',');
+                        if let Some(e) = err {
+                            s.push_str(&csv_field(e));
+                        }
+                        s.push('\n');
                     }
                 }
                 s
             })
-            .collect();
-        s.reserve(blocks.iter().map(String::len).sum());
-        for b in &blocks {
-            s.push_str(b);
-        }
+            .collect()
     }
 
     /// The table as JSON: the identity and one object per point and output.
@@ -617,31 +761,35 @@ impl SweepResults {
         })
     }
 
-    /// Writes the table to `path` (format from its extension), as `<path>.tmp` renamed when complete; an
-    /// existing `path` is only replaced with `overwrite`.
+    /// Writes the table to `path` (format from its extension) under the output rule: into a temporary file
+    /// of this process, renamed when complete; an existing table is only replaced with `overwrite`, and
+    /// `inputs` (the files the table was computed from) never.
     ///
     /// # Errors
-    /// An unknown extension; an existing file without `overwrite`; I/O and HDF5 errors.
+    /// An unknown extension; the refusals of [`crate::io_rules::check_output`]; I/O and HDF5 errors.
     pub fn write(&self, path: &Path, overwrite: bool) -> Result<()> {
-        let (format, tmp) = prepare_table(path, overwrite)?;
+        self.write_from(path, overwrite, &[])
+    }
+
+    /// [`write`](Self::write) with the files the table was read from (never replaced).
+    ///
+    /// # Errors
+    /// As [`write`](Self::write).
+    pub fn write_from(&self, path: &Path, overwrite: bool, inputs: &[&Path]) -> Result<()> {
+        let (format, staged) = prepare_table(path, overwrite, inputs)?;
+        let tmp = staged.temporary().to_path_buf();
         let io = |source| Error::Io {
             path: tmp.clone(),
             source,
         };
-        let written = match format {
+        match format {
             TableFormat::Csv => std::fs::write(&tmp, self.to_csv()).map_err(io),
             TableFormat::Json => std::fs::File::create(&tmp)
                 .map_err(io)
                 .and_then(|file| self.write_json(file)),
             TableFormat::Hdf5 => self.write_h5(&tmp),
-        };
-        match written {
-            Ok(()) => commit_table(&tmp, path),
-            Err(e) => {
-                let _ = std::fs::remove_file(&tmp);
-                Err(e)
-            }
-        }
+        }?;
+        staged.commit().map(|_| ())
     }
 
     fn write_h5(&self, path: &Path) -> Result<()> {
@@ -696,7 +844,7 @@ pub fn run_sweep_shard(
     }
     let path = dir.join(shard_file_name(part));
     let identity = sweep_identity(sweep, mc);
-    if path.is_file() && !overwrite {
+    if std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) && !overwrite {
         let existing = read_shard(&path).map_err(|e| Error::Hdf5 {
             path: path.clone(),
             reason: format!("is in the way and is not a sweep shard file ({e}); nothing is overwritten"),
@@ -711,6 +859,9 @@ pub fn run_sweep_shard(
                 .into(),
         });
     }
+    let inputs = sweep.scenario().source_files();
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    let staged = crate::io_rules::Staged::begin(&path, SWEEP_SHARD, &inputs, overwrite)?;
     let results = compute_sweep(sweep, part.shards(n_points), parallel, mc, progress)?;
     let shard = SweepShard {
         format: SHARD_FORMAT.into(),
@@ -721,15 +872,11 @@ pub fn run_sweep_shard(
         what: "writing JSON".into(),
         reason: e.to_string(),
     })?;
-    let tmp = crate::store::tmp_path(&path);
-    std::fs::write(&tmp, text).map_err(|source| Error::Io {
-        path: tmp.clone(),
+    std::fs::write(staged.temporary(), text).map_err(|source| Error::Io {
+        path: staged.temporary().to_path_buf(),
         source,
     })?;
-    std::fs::rename(&tmp, &path).map_err(|source| Error::Io {
-        path: path.clone(),
-        source,
-    })?;
+    staged.commit()?;
     Ok((path, shard, true))
 }
 
@@ -738,10 +885,7 @@ pub fn run_sweep_shard(
 /// # Errors
 /// I/O; not a sweep shard file.
 pub fn read_shard(path: &Path) -> Result<SweepShard> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = crate::io_rules::read_text(path, crate::io_rules::JSON_SHARD_INPUT)?;
     let shard: SweepShard = serde_json::from_str(&text).map_err(|e| Error::Hdf5 {
         path: path.to_path_buf(),
         reason: format!("not a sweep shard file: {e}"),
@@ -773,7 +917,8 @@ pub fn find_sweep_shards(inputs: &[PathBuf]) -> Result<Vec<PathBuf>> {
                 .filter(|p| {
                     p.file_name().is_some_and(|n| {
                         let n = n.to_string_lossy();
-                        n.starts_with("sweep-shard-") && n.ends_with(".json")
+                        // not the temporary file of a shard being written (or of a killed writer)
+                        n.starts_with("sweep-shard-") && n.ends_with(".json") && !n.contains(".tmp-")
                     })
                 })
                 .collect();
@@ -801,11 +946,27 @@ pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<Sw
     if files.is_empty() {
         return Err(fail("no sweep shard files (sweep-shard-*.json)".into()));
     }
+    // the resource rule: every shard is read whole, and the table is built in memory
+    let bytes: u128 = files
+        .iter()
+        .map(|f| std::fs::metadata(f).map_or(0, |m| m.len() as u128))
+        .sum();
+    crate::io_rules::check_memory(
+        3 * bytes,
+        "inputs",
+        format!(
+            "{} sweep shard files of {}",
+            files.len(),
+            crate::io_rules::bytes_text(bytes)
+        ),
+        "merging them (the shards and the table in memory)",
+        "merge on a machine with more memory, or split the study into several smaller ones",
+    )?;
     let mut problems = Vec::new();
     let mut shards = Vec::new();
-    for f in files {
-        match read_shard(&f) {
-            Ok(s) => shards.push((f, s)),
+    for f in &files {
+        match read_shard(f) {
+            Ok(s) => shards.push((f.clone(), s)),
             Err(e) => problems.push(e.to_string()),
         }
     }
@@ -834,51 +995,7 @@ pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<Sw
         same
     });
     let n_points = shards[0].1.results.n_points;
-    let mut owner: Vec<Vec<usize>> = vec![Vec::new(); n_points];
-    for (k, (_, s)) in shards.iter().enumerate() {
-        for p in s.results.points.clone() {
-            if p < n_points {
-                owner[p].push(k);
-            }
-        }
-    }
-    let mut reported: Vec<Vec<usize>> = Vec::new();
-    for o in owner.iter().filter(|o| o.len() > 1) {
-        if !reported.contains(o) {
-            reported.push(o.clone());
-            let names: Vec<String> = o
-                .iter()
-                .map(|&k| {
-                    let s = &shards[k].1;
-                    format!(
-                        "{} (shard {} of {}, points {}..{})",
-                        shards[k].0.display(),
-                        s.part.index,
-                        s.part.count,
-                        s.results.points.start,
-                        s.results.points.end
-                    )
-                })
-                .collect();
-            problems.push(format!(
-                "{} hold the same points twice; keep one of them",
-                names.join(" and ")
-            ));
-        }
-    }
-    let missing: Vec<usize> = (0..n_points).filter(|&p| owner[p].is_empty()).collect();
-    if !missing.is_empty() {
-        let n = shards[0].1.part.count;
-        let mut idx: Vec<usize> = missing.iter().map(|&p| Part::owner(p, n_points, n)).collect();
-        idx.dedup();
-        let list: Vec<String> = idx.iter().map(|i| i.to_string()).collect();
-        problems.push(format!(
-            "missing shard(s) {} of {n}: no file holds their points; resubmit exactly these indices (sbatch \
-             --array={} ...), then merge again",
-            list.join(", "),
-            list.join(",")
-        ));
-    }
+    problems.extend(coverage_problems(&shards, n_points));
     if !problems.is_empty() {
         return Err(fail(format!(
             "cannot merge the sweep shards:\n  {}",
@@ -901,6 +1018,74 @@ pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<Sw
     }
     // in point order whatever a shard file holds (the HDF5 writer marks failed rows by a binary search)
     all.errors.sort_by_key(|e| e.0);
-    all.write(out, overwrite)?;
+    let files: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+    all.write_from(out, overwrite, &files)?;
     Ok(all)
+}
+
+/// The points of a study of `n_points` that the shards hold twice (duplicate or overlapping files, named)
+/// or that no shard holds (the shard indices to resubmit), from the shards' point ranges: memory and time
+/// in the number of shards, whatever `n_points` a file claims.
+fn coverage_problems(shards: &[(PathBuf, SweepShard)], n_points: usize) -> Vec<String> {
+    let mut problems = Vec::new();
+    let mut order: Vec<usize> = (0..shards.len()).collect();
+    order.sort_by_key(|&k| (shards[k].1.results.points.start, shards[k].1.results.points.end));
+    let describe = |k: usize| {
+        let s = &shards[k].1;
+        format!(
+            "{} (shard {} of {}, points {}..{})",
+            shards[k].0.display(),
+            s.part.index,
+            s.part.count,
+            s.results.points.start,
+            s.results.points.end
+        )
+    };
+    let mut gaps: Vec<std::ops::Range<usize>> = Vec::new();
+    let mut covered = 0; // every point below is held by some shard
+    let mut last: Option<usize> = None; // the shard reaching furthest so far
+    for &k in &order {
+        let r = &shards[k].1.results.points;
+        let r = r.start.min(n_points)..r.end.min(n_points);
+        if r.is_empty() {
+            continue;
+        }
+        if r.start > covered {
+            gaps.push(covered..r.start);
+        } else if let Some(j) = last
+            && r.start < covered
+        {
+            problems.push(format!(
+                "{} and {} hold the same points twice; keep one of them",
+                describe(j),
+                describe(k)
+            ));
+        }
+        if r.end > covered {
+            covered = r.end;
+            last = Some(k);
+        }
+    }
+    if covered < n_points {
+        gaps.push(covered..n_points);
+    }
+    if !gaps.is_empty() {
+        let n = shards[0].1.part.count;
+        let mut idx: Vec<usize> = Vec::new();
+        for g in &gaps {
+            for i in Part::owner(g.start, n_points, n)..=Part::owner(g.end - 1, n_points, n) {
+                if idx.last() != Some(&i) {
+                    idx.push(i);
+                }
+            }
+        }
+        let list: Vec<String> = idx.iter().map(|i| i.to_string()).collect();
+        problems.push(format!(
+            "missing shard(s) {} of {n}: no file holds their points; resubmit exactly these indices (sbatch \
+             --array={} ...), then merge again",
+            list.join(", "),
+            list.join(",")
+        ));
+    }
+    problems
 }

@@ -15,6 +15,30 @@ pub struct Track {
     pub elevation_m: Vec<f64>,
 }
 
+/// The kind of file [`Profile::write_csv`] writes, for the output rule ([`crate::io_rules::check_output`]):
+/// a profile CSV as this toolkit writes it (`#` comment lines, then the header `distance [`).
+pub const PROFILE_CSV: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "profile CSV",
+    recognizes: is_profile_csv,
+    replaceable: false,
+};
+
+/// Whether the first line of `path` after its `#` comments (within its first 64 KiB) is a distance header.
+fn is_profile_csv(path: &Path) -> bool {
+    use std::io::Read;
+    let Ok((file, _)) = crate::io_rules::open_input(path, crate::io_rules::CSV_INPUT) else {
+        return false;
+    };
+    let mut head = Vec::new();
+    if file.take(1 << 16).read_to_end(&mut head).is_err() {
+        return false;
+    }
+    String::from_utf8_lossy(&head)
+        .lines()
+        .find(|l| !l.trim_start().starts_with('#'))
+        .is_some_and(|l| l.trim_start_matches('\u{feff}').starts_with("distance ["))
+}
+
 /// A length unit accepted in a CSV header (`[m]`, `[mm]`, …).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LengthUnit {
@@ -191,17 +215,103 @@ fn parse_header_cell(cell: &str) -> Option<(&str, &str)> {
     Some((cell[..open].trim(), rest.trim()))
 }
 
+/// Whether a line is blank or a `#` comment.
+fn skipped(line: &str) -> bool {
+    let t = line.trim_start_matches('\u{feff}').trim();
+    t.is_empty() || t.starts_with('#')
+}
+
+/// The header's cells and their units (the distance first), checked: at least two columns, each
+/// `name [unit]` with a known unit (km for the distance only), names non-empty and distinct.
+fn parse_header<'h>(header: &'h str, header_line: usize, file: &Path) -> Result<(Vec<&'h str>, Vec<LengthUnit>)> {
+    let cells: Vec<&str> = header.split(',').collect();
+    if cells.len() < 2 {
+        return Err(Error::in_file(
+            file,
+            format!("line {header_line} (header)"),
+            header.trim(),
+            format!(
+                "found {} column; need a distance column and at least one track, comma-separated, e.g. \
+                 `distance [m], left [mm], right [mm]`",
+                cells.len()
+            ),
+        ));
+    }
+    let mut names: Vec<&str> = Vec::with_capacity(cells.len());
+    let mut units = Vec::with_capacity(cells.len());
+    for (c, cell) in cells.iter().enumerate() {
+        let key = format!("line {header_line} (header), column {}", c + 1);
+        let (name, unit) = parse_header_cell(cell).ok_or_else(|| {
+            Error::in_file(
+                file,
+                key.clone(),
+                cell.trim(),
+                "missing unit: write the column as `name [unit]` with unit m, cm, mm or um (distance also km)",
+            )
+        })?;
+        if name.is_empty() {
+            return Err(Error::in_file(file, key, cell.trim(), "empty column name"));
+        }
+        if names.contains(&name) {
+            return Err(Error::in_file(
+                file,
+                key,
+                cell.trim(),
+                format!("column name `{name}` repeated"),
+            ));
+        }
+        let u = LengthUnit::parse(unit).map_err(|e| {
+            let reason = match e {
+                Error::Unit { reason, .. } => reason,
+                other => other.to_string(),
+            };
+            Error::in_file(file, key.clone(), cell.trim(), reason)
+        })?;
+        if c > 0 && u == LengthUnit::Km {
+            return Err(Error::in_file(
+                file,
+                key,
+                cell.trim(),
+                "km is accepted for the distance only; elevations in m, cm, mm or um",
+            ));
+        }
+        names.push(name);
+        units.push(u);
+    }
+    Ok((cells, units))
+}
+
+/// One value of a data row: not blank, a number, finite.
+fn parse_value(field: &str, file: &Path, key: &dyn Fn() -> String) -> Result<f64> {
+    let t = field.trim();
+    if t.is_empty() {
+        return Err(Error::in_file(file, key(), "<blank>", "blank value"));
+    }
+    let v: f64 = t.parse().map_err(|_| Error::in_file(file, key(), t, "not a number"))?;
+    if !v.is_finite() {
+        return Err(Error::in_file(
+            file,
+            key(),
+            t,
+            "not finite (NaN or infinity); gaps must be filled or the profile split before import",
+        ));
+    }
+    Ok(v)
+}
+
 impl RawProfile {
-    /// Reads a CSV file (see the type's formula).
+    /// Reads a CSV file (see the type's formula) under the input rule: a regular file of at most
+    /// [`crate::io_rules::CSV_INPUT`]'s size (FIFOs, devices and directories refused before anything is
+    /// read), line by line, each line at most [`crate::io_rules::MAX_LINE_BYTES`] long; memory holds the
+    /// parsed numbers only, and the read stops with the numbers when they would take more than a quarter of
+    /// the available memory.
     ///
     /// # Errors
-    /// [`Error::Io`] if the file cannot be read; otherwise as [`RawProfile::parse_csv`].
+    /// [`Error::Io`] if the file cannot be read; the refusals of [`crate::io_rules::open_input`];
+    /// otherwise as [`RawProfile::parse_csv`].
     pub fn read_csv(path: &Path, options: &CsvReadOptions) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        RawProfile::parse_csv(&text, path, options)
+        let (file, _) = crate::io_rules::open_input(path, crate::io_rules::CSV_INPUT)?;
+        RawProfile::parse_reader(std::io::BufReader::with_capacity(1 << 16, file), path, options)
     }
 
     /// Parses CSV text; `file` names the source in error messages.
@@ -209,85 +319,55 @@ impl RawProfile {
     /// # Errors
     /// See the type's `# Errors`.
     pub fn parse_csv(text: &str, file: &Path, options: &CsvReadOptions) -> Result<Self> {
-        // a UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name
-        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .map(|(i, l)| (i + 1, l.trim_end_matches('\r')))
-            .filter(|(_, l)| {
-                let t = l.trim();
-                !t.is_empty() && !t.starts_with('#')
-            });
-        let (header_line, header) = lines.next().ok_or_else(|| {
-            Error::in_file(
-                file,
-                "header",
-                "<missing>",
-                "no header row: the file has only comments or empty lines; expected e.g. \
-                 `distance [m], left [mm], right [mm]`",
-            )
-        })?;
-        let cells: Vec<&str> = header.split(',').collect();
-        if cells.len() < 2 {
-            return Err(Error::in_file(
-                file,
-                format!("line {header_line} (header)"),
-                header.trim(),
-                format!(
-                    "found {} column; need a distance column and at least one track, comma-separated, e.g. \
-                     `distance [m], left [mm], right [mm]`",
-                    cells.len()
-                ),
-            ));
-        }
-        let mut names: Vec<String> = Vec::with_capacity(cells.len());
-        let mut units = Vec::with_capacity(cells.len());
-        for (c, cell) in cells.iter().enumerate() {
-            let key = format!("line {header_line} (header), column {}", c + 1);
-            let (name, unit) = parse_header_cell(cell).ok_or_else(|| {
-                Error::in_file(
-                    file,
-                    key.clone(),
-                    cell.trim(),
-                    "missing unit: write the column as `name [unit]` with unit m, cm, mm or um (distance \
-                     also km)",
-                )
-            })?;
-            if name.is_empty() {
-                return Err(Error::in_file(file, key, cell.trim(), "empty column name"));
+        RawProfile::parse_reader(text.as_bytes(), file, options)
+    }
+
+    /// Parses CSV read from `reader` one line at a time; `file` names the source in error messages.
+    ///
+    /// # Errors
+    /// See the type's `# Errors`; a line longer than [`crate::io_rules::MAX_LINE_BYTES`]; numbers that would
+    /// take more than a quarter of the available memory.
+    pub fn parse_reader(reader: impl std::io::BufRead, file: &Path, options: &CsvReadOptions) -> Result<Self> {
+        let mut lines = crate::io_rules::BoundedLines::new(reader, file);
+        let (header_line, header) = loop {
+            match lines.next_line()? {
+                None => {
+                    return Err(Error::in_file(
+                        file,
+                        "header",
+                        "<missing>",
+                        "no header row: the file has only comments or empty lines; expected e.g. \
+                         `distance [m], left [mm], right [mm]`",
+                    ))
+                }
+                // a UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name
+                Some((i, l)) if !skipped(l) => break (i, l.strip_prefix('\u{feff}').unwrap_or(l).to_string()),
+                Some(_) => {}
             }
-            if names.iter().any(|n| n == name) {
-                return Err(Error::in_file(
-                    file,
-                    key,
-                    cell.trim(),
-                    format!("column name `{name}` repeated"),
-                ));
-            }
-            let u = LengthUnit::parse(unit).map_err(|e| {
-                let reason = match e {
-                    Error::Unit { reason, .. } => reason,
-                    other => other.to_string(),
-                };
-                Error::in_file(file, key.clone(), cell.trim(), reason)
-            })?;
-            if c > 0 && u == LengthUnit::Km {
-                return Err(Error::in_file(
-                    file,
-                    key,
-                    cell.trim(),
-                    "km is accepted for the distance only; elevations in m, cm, mm or um",
-                ));
-            }
-            names.push(name.to_string());
-            units.push(u);
-        }
-        let ncol = names.len();
+        };
+        let (cells, units) = parse_header(&header, header_line, file)?;
+        let ncol = cells.len();
+        let budget = crate::io_rules::available_memory().map_or(u128::MAX, |m| m / 4);
+        let row_bytes = (8 * ncol + 8) as u128;
         let mut distance_m = Vec::new();
         let mut values: Vec<Vec<f64>> = vec![Vec::new(); ncol - 1];
         let mut row_lines = Vec::new();
-        for (line, row) in lines {
+        while let Some((line, row)) = lines.next_line()? {
+            if skipped(row) {
+                continue;
+            }
+            if (row_lines.len() as u128 + 1) * row_bytes > budget {
+                return Err(Error::in_file(
+                    file,
+                    format!("line {line}"),
+                    format!("{} rows", row_lines.len()),
+                    format!(
+                        "the profile's numbers would take more than {} (a quarter of the available memory): split \
+                         the record into sections, or resample it to a coarser step",
+                        crate::io_rules::bytes_text(budget)
+                    ),
+                ));
+            }
             let fields: Vec<&str> = row.split(',').collect();
             if fields.len() != ncol {
                 return Err(Error::in_file(
@@ -303,20 +383,7 @@ impl RawProfile {
             }
             for (c, field) in fields.iter().enumerate() {
                 let key = || format!("line {line}, column {} `{}`", c + 1, cells[c].trim());
-                let t = field.trim();
-                if t.is_empty() {
-                    return Err(Error::in_file(file, key(), "<blank>", "blank value"));
-                }
-                let v: f64 = t.parse().map_err(|_| Error::in_file(file, key(), t, "not a number"))?;
-                if !v.is_finite() {
-                    return Err(Error::in_file(
-                        file,
-                        key(),
-                        t,
-                        "not finite (NaN or infinity); gaps must be filled or the profile split before import",
-                    ));
-                }
-                let vm = units[c].to_m(v);
+                let vm = units[c].to_m(parse_value(field, file, &key)?);
                 if c == 0 {
                     if let Some(&prev) = distance_m.last()
                         && vm <= prev
@@ -324,7 +391,7 @@ impl RawProfile {
                         return Err(Error::in_file(
                             file,
                             key(),
-                            t,
+                            field.trim(),
                             format!(
                                 "distance must increase strictly; the previous row (line {}) has {} m",
                                 row_lines.last().copied().unwrap_or(0),
@@ -348,11 +415,11 @@ impl RawProfile {
                 format!("too few data rows: need at least {min_rows}"),
             ));
         }
-        let tracks = names[1..]
+        let tracks = cells[1..]
             .iter()
             .zip(values)
-            .map(|(name, elevation_m)| Track {
-                name: name.clone(),
+            .map(|(cell, elevation_m)| Track {
+                name: parse_header_cell(cell).map_or_else(String::new, |(n, _)| n.to_string()),
                 elevation_m,
             })
             .collect();
@@ -659,20 +726,19 @@ impl Profile {
         s
     }
 
-    /// Writes the profile as CSV ([`Profile::to_csv_string`]) to `path`, through a temporary file renamed
-    /// into place, so that a failed write never leaves a half-written file under the final name.
+    /// Writes the profile as CSV ([`Profile::to_csv_string`]) to `path` under the output rule
+    /// ([`crate::io_rules::Staged`]): through a temporary file renamed into place, so that a failed write
+    /// never leaves a half-written file under the final name; an existing profile CSV written by this
+    /// toolkit is replaced, anything else (another kind of file, a directory, link, FIFO or device) is not.
     ///
     /// # Errors
-    /// [`Error::Io`] naming the path.
+    /// The refusals of [`crate::io_rules::check_output`]; [`Error::Io`] naming the path.
     pub fn write_csv(&self, path: &Path, options: &CsvWriteOptions) -> Result<()> {
-        let io = |source| Error::Io {
+        let staged = crate::io_rules::Staged::begin(path, PROFILE_CSV, &[], true)?;
+        std::fs::write(staged.temporary(), self.to_csv_string(options)).map_err(|source| Error::Io {
             path: path.to_path_buf(),
             source,
-        };
-        let mut tmp = path.as_os_str().to_owned();
-        tmp.push(".tmp");
-        let tmp = PathBuf::from(tmp);
-        std::fs::write(&tmp, self.to_csv_string(options)).map_err(io)?;
-        std::fs::rename(&tmp, path).map_err(io)
+        })?;
+        staged.commit().map(|_| ())
     }
 }

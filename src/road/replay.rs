@@ -8,8 +8,16 @@ use crate::simulate::SampledSystem;
 use crate::system::{FrequencyResponse as _, StateSpace};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::io::Write as _;
+use std::path::Path;
+
+/// The kind of file `replay -o` writes, for the output rule ([`crate::io_rules::check_output`]): a history
+/// CSV, recognised by its header `time [s], distance [m]`.
+pub const HISTORY_CSV: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "replay history CSV",
+    recognizes: |p| crate::io_rules::starts_with(p, b"time [s], distance [m]"),
+    replaceable: false,
+};
 
 /// One model input fed from a profile: u(t) = gain · z_track(x(t) − position) + offset.
 #[derive(Debug, Clone, PartialEq)]
@@ -160,7 +168,10 @@ pub fn settling_length(ss: &StateSpace, speed_m_s: f64) -> Result<f64> {
 /// wavenumber n multiplies its amplitude by |1 − f + f e^{i2πnΔx}| ≤ 1 — at most 1 − 2f(1−f)(1 − cos 2πnΔx),
 /// negligible for wavelengths of many steps. The model is stepped with [`SampledSystem`] (exact for inputs
 /// linear between samples, [`crate::simulate::foh`]), from the static state x₀ = −A⁻¹B u₀ or from zero
-/// ([`Start`]). The first ⌈skip/Δx⌉ samples are left out of the statistics ([`OutputStatistics`]) and the
+/// ([`Start`]). An output with a derivative feedthrough, y = Cx + Du + Eu̇ (the acceleration of a mass
+/// on a damper whose other end is the base: a cab on mounts, a scraper on its tyres), gets
+/// u̇_k = (u_{k+1} − u_{k−1})/(2Δt) (one-sided at the ends of the replay): for a sinusoid of angular
+/// frequency ω this is ω cos(ωt_k)·sin(ωΔt)/(ωΔt), an amplitude error below (ωΔt)²/6. The first ⌈skip/Δx⌉ samples are left out of the statistics ([`OutputStatistics`]) and the
 /// history. The replay is K = min_j ⌊N − 1 − s_j(0)⌋ + 1 samples long (⌈·⌉ for a fractional s_j(0)) for a
 /// profile of N samples.
 ///
@@ -168,8 +179,7 @@ pub fn settling_length(ss: &StateSpace, speed_m_s: f64) -> Result<f64> {
 /// [`Error::File`] naming `file`: a track a wheel needs that the profile lacks (key `track`), a profile
 /// shorter than the wheelbase P plus the skipped length plus one step (key `length`). [`Error::InvalidParameter`]:
 /// speed not finite and > 0, skip negative or not finite, a position negative or not finite, a gain or
-/// offset not finite, the number of wheels not the number of system inputs, a system with a derivative
-/// feedthrough E (see [`SampledSystem::new`]), an unstable system.
+/// offset not finite, the number of wheels not the number of system inputs, an unstable system.
 ///
 /// # Examples
 /// ```
@@ -281,7 +291,22 @@ pub fn replay(
             ),
         ));
     }
-    let sys = SampledSystem::new(ss, dt)?;
+    // a derivative feedthrough E u̇ (a damper between the base and a reported mass: its acceleration) is
+    // added after the stepping, from the central difference of the replayed input (see the formula)
+    let derivative = ss.e.amax() != 0.0;
+    let stepped = if derivative {
+        StateSpace::new(
+            ss.a.clone(),
+            ss.b.clone(),
+            ss.c.clone(),
+            Some(ss.d.clone()),
+            None,
+            ss.outputs().to_vec(),
+        )?
+    } else {
+        ss.clone()
+    };
+    let sys = SampledSystem::new(&stepped, dt)?;
     let (ns, _, p) = sys.dims();
     let mut u = vec![0.0; k_total * m];
     for (j, (w, &(i0, f))) in wheels.iter().zip(&offsets).enumerate() {
@@ -314,6 +339,9 @@ pub fn replay(
     };
     let mut y = vec![0.0; k_total * p];
     sys.respond(&u, &mut x, &mut y)?;
+    if derivative {
+        add_derivative_feedthrough(ss, &u, dt, &mut y);
+    }
     let kept = k_total - skip_samples;
     let infos = ss.outputs();
     let mut outputs = Vec::with_capacity(p);
@@ -356,54 +384,84 @@ pub fn replay(
     })
 }
 
+/// Adds E u̇_k to every output sample y_k (row-major `y[k·p + i]`, inputs `u[k·m + j]`), with u̇_k the
+/// central difference (u_{k+1} − u_{k−1})/(2Δt) of the replayed input — the mean of the slopes of the
+/// linear interpolation on either side of the sample — and the one-sided slope at the first and last
+/// sample.
+fn add_derivative_feedthrough(ss: &StateSpace, u: &[f64], dt: f64, y: &mut [f64]) {
+    let (m, p) = (ss.b.ncols(), ss.c.nrows());
+    let k_total = u.len() / m.max(1);
+    if k_total < 2 {
+        return;
+    }
+    for k in 0..k_total {
+        let (lo, hi) = (k.saturating_sub(1), (k + 1).min(k_total - 1));
+        let span = (hi - lo) as f64 * dt;
+        for j in 0..m {
+            let du = (u[hi * m + j] - u[lo * m + j]) / span;
+            for i in 0..p {
+                y[k * p + i] += ss.e[(i, j)] * du;
+            }
+        }
+    }
+}
+
 impl Replay {
     /// The kept history as CSV: `time [s], distance [m], <output> [<unit>], …`, time from the start of the
     /// replay and distance of the foremost wheel along the profile; numbers in the shortest text that reads
     /// back to the same f64.
     pub fn to_csv_string(&self) -> String {
-        let mut s = String::from("time [s], distance [m]");
+        let mut buf = Vec::new();
+        // writing into memory cannot fail
+        let _ = self.write_csv_to(&mut buf);
+        String::from_utf8(buf).unwrap_or_default()
+    }
+
+    /// Writes [`Replay::to_csv_string`]'s text to `w`, line by line (no copy of the whole text in memory).
+    ///
+    /// # Errors
+    /// The I/O errors of `w`.
+    pub fn write_csv_to(&self, w: impl std::io::Write) -> std::io::Result<()> {
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, w);
+        write!(w, "time [s], distance [m]")?;
         for o in &self.outputs {
-            let _ = write!(s, ", {} [{}]", o.name, o.unit);
+            write!(w, ", {} [{}]", o.name, o.unit)?;
         }
-        s.push('\n');
+        writeln!(w)?;
         let kept = self.history.first().map_or(0, Vec::len);
         for k in 0..kept {
             let t = (self.skip_samples + k) as f64 * self.dt_s;
             let d = self.first_distance_m + k as f64 * self.step_m;
-            let _ = write!(s, "{t},{d}");
+            write!(w, "{t},{d}")?;
             for h in &self.history {
-                let _ = write!(s, ",{}", h[k]);
+                write!(w, ",{}", h[k])?;
             }
-            s.push('\n');
+            writeln!(w)?;
         }
-        s
+        w.flush()
     }
 
-    /// Writes [`Replay::to_csv_string`] to `path` as `<path>.tmp` renamed when complete (never a
-    /// half-written file); an existing `path` is only replaced with `overwrite`.
+    /// Writes the history CSV to `path` under the output rule ([`crate::io_rules::Staged`]): through a
+    /// temporary file renamed when complete (never a half-written file); an existing history is only
+    /// replaced with `overwrite`; a directory, link, FIFO, device or a file that is not a history is never.
     ///
     /// # Errors
-    /// An existing file without `overwrite`, a directory, I/O errors.
+    /// The refusals of [`crate::io_rules::check_output`]; I/O errors.
     pub fn write_csv(&self, path: &Path, overwrite: bool) -> Result<()> {
-        if path.is_dir() {
-            return Err(Error::invalid("output", path.display(), "is a directory"));
-        }
-        if path.exists() && !overwrite {
-            return Err(Error::Io {
-                path: path.to_path_buf(),
-                source: std::io::Error::new(
-                    std::io::ErrorKind::AlreadyExists,
-                    "already exists: a history is never overwritten silently; remove it, choose another name, \
-                     or pass --overwrite",
-                ),
-            });
-        }
-        let tmp: PathBuf = crate::store::tmp_path(path);
-        let io = |p: &Path| {
-            let p = p.to_path_buf();
-            move |source| Error::Io { path: p, source }
-        };
-        std::fs::write(&tmp, self.to_csv_string()).map_err(io(&tmp))?;
-        std::fs::rename(&tmp, path).map_err(io(path))
+        self.write_csv_from(path, overwrite, &[])
+    }
+
+    /// [`write_csv`](Self::write_csv), refusing also a `path` that is one of `inputs` (the scenario, the
+    /// profile: the files the replay was read from).
+    ///
+    /// # Errors
+    /// As [`write_csv`](Self::write_csv).
+    pub fn write_csv_from(&self, path: &Path, overwrite: bool, inputs: &[&Path]) -> Result<()> {
+        let staged = crate::io_rules::Staged::begin(path, HISTORY_CSV, inputs, overwrite)?;
+        let tmp = staged.temporary().to_path_buf();
+        std::fs::File::create(&tmp)
+            .and_then(|f| self.write_csv_to(f))
+            .map_err(|source| Error::Io { path: tmp, source })?;
+        staged.commit().map(|_| ())
     }
 }

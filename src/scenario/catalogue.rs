@@ -9,10 +9,11 @@
 //!   directory), else, when relative, next to the scenario file that names it.
 //!
 //! The directory is chosen by the caller: the command-line tool takes `--spectra-dir`, else
-//! `$STOCHVIB_SPECTRA`, else `./spectra`, else the source tree's catalogue ([`Catalogue::bundled`]); nothing
-//! below the command-line tool reads environment variables.
+//! `$STOCHVIB_SPECTRA`, else `./spectra`, else the built-in catalogue ([`Catalogue::bundled`]: every
+//! `spectra/*.toml` of the source tree, embedded in the library when it is built, so that an installed
+//! binary needs no source tree); nothing below the command-line tool reads environment variables.
 
-use super::spectrum_file::{load_spectrum, SpectrumFile};
+use super::spectrum_file::{load_spectrum, parse_spectrum, SpectrumFile};
 use crate::error::{Error, Result};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -38,6 +39,13 @@ pub enum SpectrumOrigin {
     /// An inline table of a scenario file.
     Inline,
 }
+
+/// The name of the built-in catalogue ([`Catalogue::bundled`]) where a directory would be named: its
+/// spectrum `iso8608-d` is `<built-in>/iso8608-d.toml` in messages and provenance.
+pub const BUILT_IN: &str = "<built-in>";
+
+/// (name, text) of every `spectra/*.toml` of the source tree, embedded by `build.rs`.
+static BUILT_IN_FILES: &[(&str, &str)] = include!(concat!(env!("OUT_DIR"), "/spectra.rs"));
 
 /// A directory of spectrum files, one named spectrum per `<name>.toml`.
 ///
@@ -69,9 +77,29 @@ impl Catalogue {
         Catalogue { dir: dir.into() }
     }
 
-    /// The `spectra/` directory of the source tree this crate was built from (fixed at compile time).
+    /// The built-in catalogue: the `spectra/*.toml` files of the source tree, embedded when the crate was
+    /// built. Its [`dir`](Self::dir) is [`BUILT_IN`], a name, not a directory on disk.
     pub fn bundled() -> Self {
-        Catalogue::new(concat!(env!("CARGO_MANIFEST_DIR"), "/spectra"))
+        Catalogue::new(BUILT_IN)
+    }
+
+    /// Whether this is the built-in catalogue.
+    pub fn is_built_in(&self) -> bool {
+        self.dir == Path::new(BUILT_IN)
+    }
+
+    /// The text of the built-in spectrum `name`.
+    fn built_in_text(name: &str) -> Option<&'static str> {
+        BUILT_IN_FILES.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+    }
+
+    /// Parses a built-in spectrum under its name `<built-in>/<name>.toml`.
+    fn built_in_spectrum(file: &Path, text: &str) -> Result<SpectrumFile> {
+        let mut sf = parse_spectrum(text, file)?;
+        sf.origin = SpectrumOrigin::File {
+            path: file.to_path_buf(),
+        };
+        Ok(sf)
     }
 
     /// The directory.
@@ -106,14 +134,18 @@ impl Catalogue {
     pub fn resolve(&self, reference: &str, base: Option<&Path>) -> Result<SpectrumFile> {
         if Catalogue::is_name(reference) {
             let file = self.dir.join(format!("{reference}.toml"));
-            if !file.is_file() {
+            let built_in = self.is_built_in().then(|| Catalogue::built_in_text(reference));
+            if built_in == Some(None) || (built_in.is_none() && !file.is_file()) {
                 return Err(Error::invalid(
                     "spectrum",
                     reference,
                     format!("no `{}` in the catalogue {}", file.display(), self.dir.display()),
                 ));
             }
-            let mut sf = load_spectrum(&file)?;
+            let mut sf = match built_in.flatten() {
+                Some(text) => Catalogue::built_in_spectrum(&file, text)?,
+                None => load_spectrum(&file)?,
+            };
             sf.origin = SpectrumOrigin::Catalogue {
                 name: reference.to_string(),
                 dir: self.dir.clone(),
@@ -151,6 +183,18 @@ impl Catalogue {
     /// # Errors
     /// [`Error::Io`] if the directory cannot be read.
     pub fn entries(&self) -> Result<Vec<CatalogueEntry>> {
+        if self.is_built_in() {
+            return Ok(BUILT_IN_FILES
+                .iter()
+                .map(|(name, text)| {
+                    let path = self.dir.join(format!("{name}.toml"));
+                    CatalogueEntry {
+                        spectrum: Catalogue::built_in_spectrum(&path, text).map_err(|e| e.to_string()),
+                        path,
+                    }
+                })
+                .collect());
+        }
         let rd = std::fs::read_dir(&self.dir).map_err(|source| Error::Io {
             path: self.dir.clone(),
             source,

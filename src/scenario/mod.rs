@@ -11,6 +11,8 @@ pub mod generic;
 pub mod input_coverage;
 mod input_filters;
 pub mod inputs;
+pub mod nonlinear_keys;
+mod nonlinear_run;
 mod profile_identity;
 pub mod reference;
 mod registry;
@@ -22,8 +24,11 @@ pub mod sweep;
 pub mod verdict_analysis;
 mod verdict_run;
 pub mod verdict_spec;
+pub mod workday;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
+pub use nonlinear_run::NonlinearAnswers;
+pub use profile_identity::input_as_written;
 pub use reference::ReferenceTable;
 pub use registry::{
     build_model, kind_names, model_kind, BuiltModel, Family, ModelContext, ModelKind, NumericModel, MODEL_KINDS,
@@ -37,7 +42,8 @@ pub use sweep::{
     substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec, FAILED_POINT,
 };
 pub use verdict_analysis::{
-    verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, VerdictAnalysis,
+    verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, HealthAxisResult,
+    HealthEvaluation, VerdictAnalysis,
 };
 pub use verdict_run::{simulate_with_verdicts, verdict_system, with_verdict_input};
 pub use verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec, VerdictSpec};

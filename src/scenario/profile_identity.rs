@@ -3,7 +3,7 @@
 
 use super::catalogue::SpectrumOrigin;
 use super::scenario_file::ScenarioInput;
-use crate::store::{checksum::crc32, Provenance};
+use crate::store::{checksum::Crc32, Provenance};
 use std::path::{Path, PathBuf};
 
 /// The profile CSV of input `inp` if its spectrum is of kind `measured-profile`: (the `file` key as
@@ -39,12 +39,64 @@ pub(crate) fn profile_provenance(inp: &ScenarioInput, scenario_path: &Path, name
     let Some((file, path)) = measured_profile_file(inp, scenario_path) else {
         return Vec::new();
     };
-    let identity = match std::fs::read(&path) {
-        Ok(bytes) => format!("{file} ({} bytes, CRC-32 {:08x})", bytes.len(), crc32(&bytes)),
+    let identity = match file_crc32(&path) {
+        Ok((len, crc)) => format!("{file} ({len} bytes, CRC-32 {crc:08x})"),
         Err(e) => format!("{file} (unreadable: {e})"),
     };
     vec![
         Provenance::identity(name, identity),
         Provenance::note(&format!("{name}_path"), path.display().to_string()),
     ]
+}
+
+/// Input `inp` of the scenario file `scenario_path` as its file names it, for reports: a measured profile by
+/// its CSV file and track (`measured-profile.csv (measured profile, track left)`), a catalogue spectrum or
+/// spectrum file by its name as written with the spectrum's description, an inline table by its `name` (if
+/// any) with the description.
+///
+/// # Examples
+/// ```
+/// use std::path::Path;
+/// let sc = stochvib::scenario::load_scenario(Path::new("data/quarter-car.toml"), Path::new("spectra")).unwrap();
+/// let s = stochvib::scenario::input_as_written(&sc.input, &sc.path);
+/// assert!(s.starts_with("iso8608-c ("), "{s}");
+/// ```
+pub fn input_as_written(inp: &ScenarioInput, scenario_path: &Path) -> String {
+    if let Some((file, _)) = measured_profile_file(inp, scenario_path) {
+        let table: toml::Table = toml::from_str(&inp.spectrum_text).unwrap_or_default();
+        let track = table.get("track").and_then(|t| t.as_str());
+        return match track {
+            Some(t) => format!("{file} (measured profile, track {t})"),
+            None => format!("{file} (measured profile, first track)"),
+        };
+    }
+    let inline_name = match inp.origin {
+        SpectrumOrigin::Inline => toml::from_str::<toml::Table>(&inp.spectrum_text)
+            .ok()
+            .and_then(|t| t.get("name").and_then(|n| n.as_str()).map(str::to_string)),
+        _ => None,
+    };
+    let name = inline_name.unwrap_or_else(|| inp.reference.clone());
+    format!("{name} ({})", inp.spectrum.describe())
+}
+
+/// The size and CRC-32 of a file read under the input rule ([`crate::io_rules::open_input`], CSV limit),
+/// 64 KiB at a time.
+fn file_crc32(path: &Path) -> crate::Result<(u64, u32)> {
+    use std::io::Read;
+    let (mut f, _) = crate::io_rules::open_input(path, crate::io_rules::CSV_INPUT)?;
+    let mut c = Crc32::default();
+    let mut buf = vec![0u8; 1 << 16];
+    let mut len = 0u64;
+    loop {
+        let n = f.read(&mut buf).map_err(|source| crate::Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        if n == 0 {
+            return Ok((len, c.finish()));
+        }
+        c.update(&buf[..n]);
+        len += n as u64;
+    }
 }

@@ -21,7 +21,8 @@
 //! [analysis]                     # optional
 //! outputs = ["body", "travel"]   # default: every output
 //! band = ["0.5 Hz", "80 Hz"]     # also report the band-limited σ
-//! duration = "1 h"               # for exceedance probabilities and expected largest peaks (default 1 h)
+//! duration = "1 h"               # for exceedance probabilities and expected largest peaks (default 1 h);
+//!                                # with its unit: a bare number is refused (it would be seconds)
 //! bands = "third-octave"         # or "octave": IEC 61260-1 base-10 band r.m.s. table of every output
 //!                                # (simulate: also band r.m.s. from the realizations, with intervals)
 //! [analysis.levels]              # optional levels per output for Rice crossing rates
@@ -144,6 +145,9 @@ pub struct Scenario {
     pub excitation: Excitation,
     /// Report options.
     pub analysis: AnalysisOptions,
+    /// The nonlinear elements (`[[model.nonlinear]]`, [`super::nonlinear_keys`]) on `model`, whose system is
+    /// then their linear part; `None` for a linear scenario.
+    pub nonlinear: Option<Arc<crate::nonlinear::NonlinearModel>>,
 }
 
 impl Scenario {
@@ -245,9 +249,6 @@ impl Scenario {
             input
                 .provenance
                 .extend(super::profile_identity::profile_provenance(inp, &self.path, &name));
-            if let Some((_, file)) = super::profile_identity::measured_profile_file(inp, &self.path) {
-                input.source_files.push(file);
-            }
         }
         // `[analysis] bands`: band r.m.s. from the realizations too, on the bands of the analytic table
         input.bands = self.analysis.bands.map(|fraction| crate::simulate::RunBands {
@@ -257,15 +258,28 @@ impl Scenario {
                 .band
                 .map(|(a, b)| (a / (2.0 * std::f64::consts::PI), b / (2.0 * std::f64::consts::PI))),
         });
-        input.source_files.push(self.path.clone());
+        input.source_files = self.source_files();
+        input
+    }
+
+    /// The files this scenario was read from: the measured profiles behind `measured-profile` spectra, the
+    /// scenario file, the spectrum files it names (what a command's output must never replace: the output
+    /// rule, [`crate::io_rules::check_output`]).
+    pub fn source_files(&self) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = self
+            .inputs
+            .iter()
+            .filter_map(|inp| super::profile_identity::measured_profile_file(inp, &self.path).map(|f| f.1))
+            .collect();
+        files.push(self.path.clone());
         for inp in &self.inputs {
             if let SpectrumOrigin::Catalogue { file, .. } | SpectrumOrigin::File { path: file } = &inp.origin
-                && !input.source_files.contains(file)
+                && !files.contains(file)
             {
-                input.source_files.push(file.clone());
+                files.push(file.clone());
             }
         }
-        input
+        files
     }
 
     /// The kurtosis of every independent process a run draws, in the order of
@@ -292,6 +306,15 @@ impl Scenario {
     /// # Errors
     /// As [`crate::simulate::run()`].
     pub fn simulate(&self, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
+        // a model with nonlinear elements: route 2 with its default burn-in and checks
+        if let Some(answers) = self.nonlinear_answers()? {
+            let o = crate::nonlinear::monte_carlo::NonlinearRunOptions {
+                run: opts.clone(),
+                burn_in_s: None,
+                halving_checks: None,
+            };
+            return self.simulate_nonlinear(&answers, &o, out, progress).map(|s| s.run);
+        }
         self.with_simulated_input(|input| crate::simulate::run(input, opts, out, progress))
     }
 
@@ -389,9 +412,19 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
     let mf = f.sub("model")?;
     let kind = mf.string("kind")?.to_string();
     let built = build_model(&kind, &mf, ModelContext { speed, several_inputs })?;
-    mf.finish()?;
+    let has_nonlinear = mf.get("nonlinear").is_some();
     let model = match built {
         BuiltModel::Deterministic(model) => {
+            mf.finish()?;
+            if has_nonlinear {
+                return Err(mf.error(
+                    "nonlinear",
+                    "[[model.nonlinear]]",
+                    format!(
+                        "kind `{kind}` is a deterministic model: nonlinear elements need a model with a random input"
+                    ),
+                ));
+            }
             for key in ["input", "analysis"] {
                 if let Some(v) = root.get(key) {
                     return Err(f.error(
@@ -412,7 +445,9 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         }
         BuiltModel::Stochastic(m) => m,
     };
-    check_model(&f, &kind, &model)?;
+    let (model, nonlinear, regime_outputs) = super::nonlinear_run::attach(&mf, model)?;
+    mf.finish()?;
+    check_model(&f, &kind, &model, nonlinear.is_none())?;
     let catalogue = Catalogue::new(spectra_dir);
     let (inputs, excitation) = match root.get("input") {
         Some(toml::Value::Array(tables)) => {
@@ -466,12 +501,28 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
             let af = f.sub("analysis")?;
             let mut opts = analysis_options(&af, &model)?;
             opts.verdicts = super::verdict_spec::parse_verdicts(&af, &model, speed)?;
+            if nonlinear.is_some() && !opts.verdicts.is_empty() {
+                return Err(af.error(
+                    "comfort",
+                    "[analysis.comfort] / [analysis.fatigue]",
+                    "verdicts are evaluated on linear models only: a model with [[model.nonlinear]] elements takes none",
+                ));
+            }
             super::verdict_spec::check_fatigue_moments(&f, &opts.verdicts, &model, &excitation)?;
             af.finish()?;
             opts
         }
     };
     f.finish()?;
+    let mut analysis = analysis;
+    // every regime (contact, lift-off) is counted on an output: the outputs added for them are simulated
+    for name in &regime_outputs {
+        if let Ok(i) = model.system.output_index(name)
+            && !analysis.outputs.contains(&i)
+        {
+            analysis.outputs.push(i);
+        }
+    }
     Ok(Document::Stochastic(Box::new(Scenario {
         path: path.to_path_buf(),
         text: text.to_string(),
@@ -484,6 +535,7 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         spectra_dir: spectra_dir.to_path_buf(),
         excitation,
         analysis,
+        nonlinear,
     })))
 }
 
@@ -514,9 +566,10 @@ pub(super) fn input_kurtosis(inf: &Fields) -> Result<Option<f64>> {
     Ok(Some(k))
 }
 
-/// Output names unique, and the system asymptotically stable (a stationary response exists), else an error
-/// naming the file and the `[model]` table.
-fn check_model(f: &Fields, kind: &str, model: &ModelInstance) -> Result<()> {
+/// Output names unique, and (`stable`) the system asymptotically stable (a stationary response exists), else
+/// an error naming the file and the `[model]` table. A model with nonlinear elements is not checked for
+/// stability here: its Gaussian equivalent's stability is route 1's outcome.
+fn check_model(f: &Fields, kind: &str, model: &ModelInstance, stable: bool) -> Result<()> {
     let outs = model.system.outputs();
     if let Some(k) = (1..outs.len()).find(|&k| outs[..k].iter().any(|o| o.name == outs[k].name)) {
         return Err(f.error(
@@ -525,7 +578,7 @@ fn check_model(f: &Fields, kind: &str, model: &ModelInstance) -> Result<()> {
             "two outputs have this name: every output needs its own name",
         ));
     }
-    if let Some(ss) = model.system.state_space() {
+    if let Some(ss) = model.system.state_space().filter(|_| stable) {
         ss.require_stable().map_err(|e| {
             let reason = match e {
                 Error::InvalidParameter { value, reason, .. } => format!("{reason} ({value})"),
@@ -702,7 +755,10 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
             Some((lo, hi))
         }
     };
-    let duration = f.opt_quantity("duration", Dim::TIME)?.unwrap_or(3600.0);
+    // the duration of the exceedance probabilities and expected peaks: with its unit (a bare `8` is not 8 h)
+    let duration = f
+        .opt_everyday_quantity("duration", crate::fields::EverydayUnit::HOUR)?
+        .unwrap_or(3600.0);
     if duration.is_nan() || duration <= 0.0 {
         return Err(f.error("duration", duration, "must be > 0"));
     }

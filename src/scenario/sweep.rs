@@ -109,6 +109,13 @@ fn item_value(text: &str) -> toml::Value {
     }
 }
 
+/// Most values a range `A..B:n` may have (n ≤ 10⁶): the values of a key are held in memory.
+pub const MAX_RANGE_VALUES: usize = 1_000_000;
+
+/// Most points of a grid (2⁵³ ≈ 9·10¹⁵, so that a point index is exact as a number in every table): the
+/// product of the numbers of values is checked against it without overflow.
+pub const MAX_POINTS: usize = 1 << 53;
+
 impl SweepParam {
     /// Parses `KEY=VALUES` (see the module docs).
     ///
@@ -168,11 +175,19 @@ impl SweepParam {
                         _ => return Err(bad("a range ends with :n, :n:log or :n:lin")),
                     }
                 }
-                let n: usize = n_str
-                    .parse()
-                    .map_err(|_| bad("the number of values after `:` must be an integer >= 2"))?;
+                let n: usize = n_str.parse().map_err(|_| {
+                    bad(&format!(
+                        "the number of values after `:` must be an integer from 2 to {MAX_RANGE_VALUES}"
+                    ))
+                })?;
                 if n < 2 {
                     return Err(bad("a range needs at least 2 values"));
+                }
+                if n > MAX_RANGE_VALUES {
+                    return Err(bad(&format!(
+                        "a range has at most {MAX_RANGE_VALUES} values (the values of one key are held in memory, \
+                         about 60 bytes each); split the study into several ranges or use --shard"
+                    )));
                 }
                 let (a, ua) = number_and_unit(a).ok_or_else(|| bad("the start of the range is not a number"))?;
                 let (b, ub) = number_and_unit(b).ok_or_else(|| bad("the end of the range is not a number"))?;
@@ -237,15 +252,28 @@ impl SweepSpec {
                 return Err(Error::invalid("param", &p.key, "the key is given twice"));
             }
         }
+        // each key with its number of values, for the messages
+        let counts = |sep: &str| {
+            params
+                .iter()
+                .map(|p| format!("{}: {}", p.key, p.values.len()))
+                .collect::<Vec<_>>()
+                .join(sep)
+        };
         if mode == SweepMode::Zip && params.iter().any(|p| p.values.len() != params[0].values.len()) {
             return Err(Error::invalid(
                 "param",
-                params
-                    .iter()
-                    .map(|p| format!("{}: {}", p.key, p.values.len()))
-                    .collect::<Vec<_>>()
-                    .join(", "),
+                counts(", "),
                 "--zip needs the same number of values for every key",
+            ));
+        }
+        if mode == SweepMode::Grid
+            && crate::io_rules::checked_product(params.iter().map(|p| p.values.len())).is_none_or(|n| n > MAX_POINTS)
+        {
+            return Err(Error::invalid(
+                "param",
+                counts(" × "),
+                format!("the grid has more than {MAX_POINTS:e} points: fewer values, fewer keys, or --zip"),
             ));
         }
         Ok(SweepSpec { params, mode })
@@ -254,7 +282,11 @@ impl SweepSpec {
     /// Number of points.
     pub fn n_points(&self) -> usize {
         match self.mode {
-            SweepMode::Grid => self.params.iter().map(|p| p.values.len()).product(),
+            SweepMode::Grid => self
+                .params
+                .iter()
+                .map(|p| p.values.len())
+                .fold(1, usize::saturating_mul),
             SweepMode::Zip => self.params[0].values.len(),
         }
     }

@@ -1,14 +1,15 @@
 //! The analytic verdicts of a scenario: ISO 2631-1 weighted accelerations per axis (exactly, by the
 //! Lyapunov covariance of the system augmented with the input's shaping filter and the weighting filter,
 //! and by quadrature of the weighted output density, both shown and compared), the vector sum a_v, the
-//! daily exposure A(8) and VDV against Directive 2002/44/EC, and the spectral fatigue damage and life of a
+//! daily exposure A(8) and VDV against Directive 2002/44/EC (always with the health factors 1.4·a_wx,
+//! 1.4·a_wy, a_wz, beside the evaluation of the scenario's purpose), and the spectral fatigue damage and life of a
 //! stress output by every method, with the moments used.
 
-use super::verdict_spec::{ComfortSpec, FatigueSpec};
+use super::verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec};
 use super::Scenario;
 use crate::comfort::{
-    daily_exposure_a8, msdv, vdv_gaussian, weighted_output, Axis, ExposureVerdict, HealthGuidanceZone, Location,
-    Purpose, Weighting,
+    comfort_reactions, daily_exposure_a8, directive_factor, msdv, vdv_gaussian, weighted_output, Axis, AxisFactor,
+    ComfortReaction, ExposureVerdict, HealthGuidanceZone, Location, Purpose, VectorSumTerm, Weighting,
 };
 use crate::error::{Error, Result};
 use crate::fatigue::{compare_methods, SpectralMoments};
@@ -61,23 +62,59 @@ pub struct ComfortAxisResult {
 /// `[analysis.comfort]` answered.
 #[derive(Debug, Clone, Serialize)]
 pub struct ComfortVerdict {
-    /// Health or comfort.
+    /// Health or comfort: the factors k of `axes` and `a_v`.
     pub purpose: Purpose,
     /// Daily exposure T, s.
     pub exposure_s: f64,
-    /// One row per axis.
+    /// One row per axis, with the purpose's factors k (their `a8` and `vdv` too; the Directive's values are
+    /// those of `health`).
     pub axes: Vec<ComfortAxisResult>,
-    /// a_v = √(Σ k² a_w²), m/s².
+    /// a_v = √(Σ k² a_w²) with the purpose's factors, m/s² (for comfort: the overall vibration total value).
     pub a_v: f64,
-    /// The axis with the largest k·a_w (the Directive's A(8) and VDV are those of this axis).
+    /// The axis with the largest k·a_w with the purpose's factors.
     pub dominant: String,
-    /// The verdict: A(8) and VDV of the dominant axis against the action and limit values, the ISO
-    /// 2631-1 Annex B zone, and (comfort) the Annex C reactions to a_v.
-    pub verdict: ExposureVerdict,
+    /// ISO 2631-1 Annex C reactions to a_v (purpose comfort; empty for health).
+    pub comfort_reactions: Vec<ComfortReaction>,
+    /// The Directive 2002/44/EC and ISO 2631-1 Annex B evaluation, always with the health factors
+    /// 1.4·a_wx, 1.4·a_wy, a_wz ([`directive_factor`]); `None` when no axis enters it (`health_note` says why).
+    pub health: Option<HealthEvaluation>,
+    /// Why there is no health evaluation, if there is none.
+    pub health_note: Option<String>,
     /// For a non-Gaussian input (`kurtosis`): the inputs' kurtosis as written. The VDV values above are
     /// then those of a Gaussian input with the same spectrum and do not hold (E a_w⁴ = κ_w σ_w⁴ with the
     /// weighted output's own kurtosis κ_w); a Monte Carlo run states the predicted (κ_w T)^{1/4}σ_w.
     pub non_gaussian_input: Option<String>,
+}
+
+/// One axis of the Directive / health evaluation.
+#[derive(Debug, Clone, Serialize)]
+pub struct HealthAxisResult {
+    /// The weighted output's name (`<output>_<W>`).
+    pub output: String,
+    /// Location, axis, the health weighting (Wd for x, y; Wk for z) and factor (1.4 for x, y; 1 for z), a_w
+    /// with that weighting and k·a_w (m/s²).
+    #[serde(flatten)]
+    pub term: VectorSumTerm,
+    /// A(8) = k·a_w·√(T/8 h), m/s².
+    pub a8: f64,
+    /// VDV = (3T)^{1/4}·k·a_w (stationary Gaussian), m/s^1.75.
+    pub vdv: f64,
+}
+
+/// The Directive 2002/44/EC A(8) and VDV and the ISO 2631-1 Annex B zones, with the health factors whatever
+/// the purpose of `[analysis.comfort]`.
+#[derive(Debug, Clone, Serialize)]
+pub struct HealthEvaluation {
+    /// The factors, as the Directive writes them.
+    pub factors: String,
+    /// The axes that enter (seat surface, or the floor of a standing worker: x, y, z).
+    pub axes: Vec<HealthAxisResult>,
+    /// The axis with the largest k·a_w: A(8) and VDV are those of this axis.
+    pub dominant: String,
+    /// A(8) and VDV of the dominant axis against the action and limit values and the Annex B zones.
+    pub verdict: ExposureVerdict,
+    /// What the reader must know (e.g. axes left out, Annex B for seated persons).
+    pub notes: Vec<String>,
 }
 
 /// One spectral method's answer.
@@ -147,8 +184,9 @@ pub struct VerdictAnalysis {
 /// # Formula
 /// a_w = σ of W(s)·H_i(s) ([`weighted_output`]) by every variance method ([`analyze_output_with`]); per
 /// axis A(8) = k a_w √(T/T₀), T₀ = 8 h, VDV = (3T)^{1/4} k a_w (stationary Gaussian response, ISO 2631-1
-/// 6.3.2 note); a_v = √(Σ kᵢ² a_wᵢ²) (ISO 2631-1 (9)); the Directive's A(8) and VDV are those of the
-/// dominant axis (Directive 2002/44/EC Annex B 1: the highest of 1.4a_wx, 1.4a_wy, a_wz).
+/// 6.3.2 note) with the purpose's factors k; a_v = √(Σ kᵢ² a_wᵢ²) (ISO 2631-1 (9)); the Directive's A(8) and
+/// VDV and the Annex B zones are those of the dominant axis with the *health* factors whatever the purpose
+/// (Directive 2002/44/EC Annex B 1: the highest of 1.4a_wx, 1.4a_wy, a_wz; [`directive_factor`]).
 /// Fatigue: stress = s·y, m_j = s² (2π)^{−j} λ_j ([`SpectralMoments::from_two_sided_angular`]), each
 /// method's damage rate ([`compare_methods`]), life = 1/rate.
 ///
@@ -177,66 +215,88 @@ fn file_error(sc: &Scenario, key: &str, value: &str, e: Error) -> Error {
     }
 }
 
-fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> {
+/// The weighted output of `output` under `w`, its statistics and its a_w (the exact value where available).
+fn weighted_rms(
+    sc: &Scenario,
+    ss: &crate::system::StateSpace,
+    output: (usize, &str),
+    w: &Weighting,
+    key: &str,
+) -> Result<(crate::system::StateSpace, ResponseStatistics, f64)> {
+    let ws = weighted_output(ss, output.0, w).map_err(|e| file_error(sc, key, output.1, e))?;
+    let st = analyze_output_with(&ws, &sc.excitation, 0, &sc.analysis.effort)?;
+    let name = ws.outputs()[0].name.clone();
+    let a_w = st.sigma.ok_or_else(|| {
+        file_error(
+            sc,
+            key,
+            output.1,
+            Error::Numerical {
+                what: format!("weighted r.m.s. of `{name}`"),
+                reason: st.variance_outcome.describe(),
+            },
+        )
+    })?;
+    Ok((ws, st, a_w))
+}
+
+fn comfort_axis(
+    sc: &Scenario,
+    ss: &crate::system::StateSpace,
+    j: usize,
+    a: &ComfortAxisSpec,
+    t: f64,
+) -> Result<ComfortAxisResult> {
+    let key = format!("analysis.comfort.axis[{j}].output");
+    let (ws, st, a_w) = weighted_rms(sc, ss, (a.output, &a.output_name), &a.weighting, &key)?;
+    let names = super::input_coverage::source_names(sc);
+    let input_coverage =
+        super::input_coverage::input_coverage(&ws, &sc.excitation, a.weighting, a_w, &sc.analysis.effort, &names)
+            .map_err(|e| file_error(sc, &key, &a.output_name, e))?;
+    let value = |m: &[VarianceMethod]| {
+        st.methods
+            .iter()
+            .find(|v| m.contains(&v.method))
+            .and_then(|v| v.value())
+            .map(f64::sqrt)
+    };
+    let lyap = value(&[VarianceMethod::Lyapunov, VarianceMethod::LyapunovDelays]);
+    let quad = value(&[VarianceMethod::Quadrature]);
+    let weighted = a.k * a_w;
+    Ok(ComfortAxisResult {
+        input_coverage,
+        output: ws.outputs()[0].name.clone(),
+        location: a.location,
+        axis: a.axis,
+        weighting: a.weighting,
+        k: a.k,
+        a_w_lyapunov: lyap,
+        a_w_quadrature: quad,
+        rel_diff: match (lyap, quad) {
+            (Some(l), Some(q)) if l > 0.0 => Some((q / l - 1.0).abs()),
+            _ => None,
+        },
+        a_w,
+        weighted,
+        a8: daily_exposure_a8(weighted, t)?,
+        vdv: vdv_gaussian(weighted, t)?,
+        msdv: match a.weighting {
+            Weighting::Wf => Some(msdv(a_w, t)?),
+            _ => None,
+        },
+        statistics: st,
+    })
+}
+
+pub(crate) fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> {
     let ss = sc.model.system.state_space().ok_or_else(|| Error::NotApplicable {
         method: "frequency weighting".into(),
         reason: "the model has no state-space form".into(),
     })?;
     let t = spec.exposure_s;
-    let names = super::input_coverage::source_names(sc);
-    let mut axes = Vec::new();
-    for (j, a) in spec.axes.iter().enumerate() {
-        let key = format!("analysis.comfort.axis[{j}].output");
-        let ws = weighted_output(ss, a.output, &a.weighting).map_err(|e| file_error(sc, &key, &a.output_name, e))?;
-        let st = analyze_output_with(&ws, &sc.excitation, 0, &sc.analysis.effort)?;
-        let value = |m: &[VarianceMethod]| {
-            st.methods
-                .iter()
-                .find(|v| m.contains(&v.method))
-                .and_then(|v| v.value())
-                .map(f64::sqrt)
-        };
-        let lyap = value(&[VarianceMethod::Lyapunov, VarianceMethod::LyapunovDelays]);
-        let quad = value(&[VarianceMethod::Quadrature]);
-        let a_w = st.sigma.ok_or_else(|| {
-            file_error(
-                sc,
-                &key,
-                &a.output_name,
-                Error::Numerical {
-                    what: format!("weighted r.m.s. of `{}`", ws.outputs()[0].name),
-                    reason: st.variance_outcome.describe(),
-                },
-            )
-        })?;
-        let weighted = a.k * a_w;
-        let input_coverage =
-            super::input_coverage::input_coverage(&ws, &sc.excitation, a.weighting, a_w, &sc.analysis.effort, &names)
-                .map_err(|e| file_error(sc, &key, &a.output_name, e))?;
-        axes.push(ComfortAxisResult {
-            input_coverage,
-            output: ws.outputs()[0].name.clone(),
-            location: a.location,
-            axis: a.axis,
-            weighting: a.weighting,
-            k: a.k,
-            a_w_lyapunov: lyap,
-            a_w_quadrature: quad,
-            rel_diff: match (lyap, quad) {
-                (Some(l), Some(q)) if l > 0.0 => Some((q / l - 1.0).abs()),
-                _ => None,
-            },
-            a_w,
-            weighted,
-            a8: daily_exposure_a8(weighted, t)?,
-            vdv: vdv_gaussian(weighted, t)?,
-            msdv: match a.weighting {
-                Weighting::Wf => Some(msdv(a_w, t)?),
-                _ => None,
-            },
-            statistics: st,
-        });
-    }
+    let axes = (spec.axes.iter().enumerate())
+        .map(|(j, a)| comfort_axis(sc, ss, j, a, t))
+        .collect::<Result<Vec<_>>>()?;
     // motion sickness (Wf) is judged by its MSDV, not combined with the health and comfort axes (ISO
     // 2631-1:1997 clause 9), unless there is nothing else
     let judged: Vec<&ComfortAxisResult> = match axes.iter().filter(|a| a.weighting != Weighting::Wf).count() {
@@ -248,13 +308,10 @@ fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> 
         .iter()
         .max_by(|x, y| x.weighted.total_cmp(&y.weighted))
         .ok_or_else(|| Error::invalid("analysis.comfort.axis", "[]", "no axis"))?;
-    let verdict = ExposureVerdict::assess_with(
-        dom.a8,
-        Some(dom.vdv),
-        (spec.purpose == Purpose::Comfort).then_some(a_v),
-        &spec.limits,
-        &HealthGuidanceZone::ISO_2631_1,
-    )?;
+    let (health, health_note) = match health_evaluation(sc, ss, spec, &axes)? {
+        Ok(h) => (Some(h), None),
+        Err(why) => (None, Some(why)),
+    };
     let given: Vec<String> = sc
         .inputs
         .iter()
@@ -265,10 +322,107 @@ fn comfort_verdict(sc: &Scenario, spec: &ComfortSpec) -> Result<ComfortVerdict> 
         purpose: spec.purpose,
         exposure_s: t,
         dominant: dom.output.clone(),
+        comfort_reactions: match spec.purpose {
+            Purpose::Comfort => comfort_reactions(a_v)?,
+            Purpose::Health => Vec::new(),
+        },
         axes,
         a_v,
-        verdict,
+        health,
+        health_note,
     })
+}
+
+/// The axes that enter the Directive's daily exposure: the translational axes of the seat surface (a seated
+/// worker) or, without them, of a standing worker's floor; not the motion-sickness (Wf) rows. Returns the
+/// indices into `spec.axes` with their factors, and notes on what was left out.
+fn health_axes(spec: &ComfortSpec) -> (Vec<(usize, AxisFactor)>, Vec<String>) {
+    let eligible: Vec<(usize, AxisFactor, Location)> = (spec.axes.iter().enumerate())
+        .filter(|(_, a)| a.weighting != Weighting::Wf)
+        .filter_map(|(j, a)| directive_factor(a.location, a.axis).map(|f| (j, f, a.location)))
+        .collect();
+    let seated = eligible.iter().any(|e| e.2 == Location::SeatSurface);
+    let mut notes = Vec::new();
+    if seated && eligible.iter().any(|e| e.2 == Location::StandingFloor) {
+        notes.push("standing-floor axes left out: a worker is either seated or standing".to_string());
+    }
+    if !seated && !eligible.is_empty() {
+        notes.push(
+            "standing worker: the Directive's values apply; ISO 2631-1 Annex B gives its zones for seated persons"
+                .to_string(),
+        );
+    }
+    let chosen = eligible
+        .into_iter()
+        .filter(|e| (e.2 == Location::SeatSurface) == seated)
+        .map(|e| (e.0, e.1))
+        .collect();
+    (chosen, notes)
+}
+
+/// The Directive 2002/44/EC / ISO 2631-1 Annex B evaluation with the health factors ([`directive_factor`]),
+/// reusing an axis' a_w where its weighting is the health one; `Err(why)` when no axis enters it.
+fn health_evaluation(
+    sc: &Scenario,
+    ss: &crate::system::StateSpace,
+    spec: &ComfortSpec,
+    axes: &[ComfortAxisResult],
+) -> Result<std::result::Result<HealthEvaluation, String>> {
+    let (chosen, mut notes) = health_axes(spec);
+    if chosen.is_empty() {
+        return Ok(Err(
+            "no x, y or z axis of the seat surface or of a standing person's floor: Directive \
+                       2002/44/EC and ISO 2631-1 Annex B do not apply to these axes"
+                .into(),
+        ));
+    }
+    let t = spec.exposure_s;
+    let mut rows = Vec::new();
+    for (j, f) in chosen {
+        let (a, r) = (&spec.axes[j], &axes[j]);
+        let (output, a_w) = if a.weighting == f.weighting {
+            (r.output.clone(), r.a_w)
+        } else {
+            let key = format!("analysis.comfort.axis[{j}].output");
+            let (ws, _, a_w) = weighted_rms(sc, ss, (a.output, &a.output_name), &f.weighting, &key)?;
+            let name = ws.outputs()[0].name.clone();
+            notes.push(format!(
+                "{name}: the {} axis weighted with {} for health",
+                a.axis.label(),
+                f.weighting.name()
+            ));
+            (name, a_w)
+        };
+        let weighted = f.k * a_w;
+        rows.push(HealthAxisResult {
+            output,
+            term: VectorSumTerm {
+                location: a.location,
+                axis: a.axis,
+                weighting: f.weighting,
+                k: f.k,
+                a_w,
+                weighted,
+            },
+            a8: daily_exposure_a8(weighted, t)?,
+            vdv: vdv_gaussian(weighted, t)?,
+        });
+    }
+    let dom = (rows.iter().max_by(|x, y| x.term.weighted.total_cmp(&y.term.weighted))).expect("at least one axis");
+    let verdict = ExposureVerdict::assess_with(
+        dom.a8,
+        Some(dom.vdv),
+        None,
+        &spec.limits,
+        &HealthGuidanceZone::ISO_2631_1,
+    )?;
+    Ok(Ok(HealthEvaluation {
+        factors: "1.4·a_wx, 1.4·a_wy, a_wz (Directive 2002/44/EC Annex B 1; ISO 2631-1:1997 7.2.3)".into(),
+        dominant: dom.output.clone(),
+        axes: rows,
+        verdict,
+        notes,
+    }))
 }
 
 /// The one-sided Hz moments of s·y_i: exact λ₀, λ₂, λ₄ where the Lyapunov route applies (else

@@ -28,6 +28,12 @@
 //!                                 # at the [input] speed)
 //! # bins = 48                     # rainflow range histogram of a Monte Carlo run
 //! ```
+//! Durations and distances carry their unit (`"6 h"`, `"90 min"`, `"200000 km"`): a bare number is refused,
+//! with the fix in the message, since people think of these in hours and kilometres and `exposure = 7` would
+//! be 7 s. Implausible values are refused naming the key and the value in hours or kilometres: an exposure
+//! under 1 min ([`MIN_EXPOSURE_S`]) or over 24 h, a design life under 1 h ([`MIN_DESIGN_LIFE_S`]), a design
+//! distance under 1 km ([`MIN_DESIGN_DISTANCE_M`]).
+//!
 //! Every key is checked: a misspelled key, an unknown weighting, location, axis or method, a weighting on a
 //! non-acceleration output, k ≤ 0, C ≤ 0, a negative duration, and a fatigue output whose λ₄ diverges are
 //! refused naming the file, the key, the value and the reason.
@@ -35,10 +41,21 @@
 use crate::comfort::{axis_factor, Axis, DirectiveLimits, Location, Purpose, Weighting};
 use crate::error::{Error, Result};
 use crate::fatigue::{SnCurve, SpectralMethodKind};
-use crate::fields::Fields;
+use crate::fields::{EverydayUnit, Fields};
 use crate::models::ModelInstance;
 use crate::response::Excitation;
 use crate::units::Dim;
+
+/// Shortest daily exposure accepted, s: 1 min. A shorter "daily exposure" is almost surely a unit slip
+/// (`"7 s"` for 7 h); ISO 2631-1:1997 Annex B (Figure B.1) guides exposures from 10 min to 24 h.
+pub const MIN_EXPOSURE_S: f64 = 60.0;
+/// Shortest design life accepted, s: 1 h (a fatigue design life is hours to tens of thousands of hours).
+pub const MIN_DESIGN_LIFE_S: f64 = 3600.0;
+/// Shortest design distance accepted, m: 1 km (a vehicle's design distance is thousands of kilometres).
+pub const MIN_DESIGN_DISTANCE_M: f64 = 1000.0;
+
+const WHY_EXPOSURE: &str = "a daily exposure is minutes to hours: ISO 2631-1 Annex B guides 10 min to 24 h; \
+                            write e.g. exposure = \"7 h\"";
 
 /// One weighted axis of `[analysis.comfort]`.
 #[derive(Debug, Clone, PartialEq)]
@@ -177,9 +194,14 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
         Some("comfort") => Purpose::Comfort,
         Some(p) => return Err(f.error("purpose", p, "expected \"health\" or \"comfort\"")),
     };
-    let exposure_s = f.quantity("exposure", Dim::TIME)?;
-    if !(exposure_s > 0.0 && exposure_s <= 24.0 * 3600.0) {
-        return Err(f.error("exposure", exposure_s, "a daily exposure must be > 0 and at most 24 h"));
+    let exposure_s = f.everyday_quantity("exposure", EverydayUnit::HOUR)?;
+    f.at_least("exposure", exposure_s, MIN_EXPOSURE_S, EverydayUnit::HOUR, WHY_EXPOSURE)?;
+    if exposure_s > 24.0 * 3600.0 {
+        return Err(f.error(
+            "exposure",
+            EverydayUnit::HOUR.show(exposure_s),
+            "a daily exposure is at most 24 h",
+        ));
     }
     let d = DirectiveLimits::WHOLE_BODY;
     let positive = |key: &str, v: Option<f64>, default: f64| -> Result<f64> {
@@ -243,7 +265,7 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
             None => standard
                 .as_ref()
                 .map(|s| s.weighting)
-                .map_err(|e| af.error("axis", format!("{axis:?}"), e.to_string()))?,
+                .map_err(|e| af.error("axis", axis.label(), e.to_string()))?,
         };
         let k = match af.get("k") {
             Some(_) => {
@@ -255,7 +277,7 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
             }
             None => standard
                 .map(|s| s.k)
-                .map_err(|e| af.error("axis", format!("{axis:?}"), e.to_string()))?,
+                .map_err(|e| af.error("axis", axis.label(), e.to_string()))?,
         };
         // the weighting applies to an acceleration: refuse any other output here, naming the key
         if let Some(ss) = model.system.state_space() {
@@ -275,7 +297,7 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
         }) {
             return Err(f.error(
                 &key,
-                format!("{location:?} {axis:?}"),
+                format!("{} {}", location.label(), axis.label()),
                 "each location and axis may appear once (and once more with Wf, for motion sickness)",
             ));
         }
@@ -382,31 +404,7 @@ fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Resul
                 .collect::<Result<Vec<_>>>()?
         }
     };
-    let life = f.opt_quantity("design_life", Dim::TIME)?;
-    let distance = f.opt_quantity("design_distance", Dim::LENGTH)?;
-    let (design_life_s, design_life_text) = match (life, distance) {
-        (Some(_), Some(_)) => {
-            return Err(f.error(
-                "design_distance",
-                distance.unwrap_or(0.0),
-                "give design_life or design_distance, not both",
-            ))
-        }
-        (Some(t), None) if t > 0.0 => (Some(t), Some(format!("{} h", t / 3600.0))),
-        (Some(t), None) => return Err(f.error("design_life", t, "must be > 0")),
-        (None, Some(x)) if x > 0.0 => {
-            let v = speed.ok_or_else(|| {
-                f.error(
-                    "design_distance",
-                    x,
-                    "a distance needs the [input] speed to become a time",
-                )
-            })?;
-            (Some(x / v), Some(format!("{} km at {v} m/s", x / 1000.0)))
-        }
-        (None, Some(x)) => return Err(f.error("design_distance", x, "must be > 0")),
-        (None, None) => (None, None),
-    };
+    let (design_life_s, design_life_text) = design_life(f, speed)?;
     let bins = match f.get("bins") {
         None => 48,
         Some(v) => v
@@ -425,4 +423,44 @@ fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Resul
         design_life_text,
         bins,
     })
+}
+
+/// `design_life` (a duration) or `design_distance` (a distance at the `[input]` speed): the life in s and the
+/// text as written (`10000 h`, `200000 km at 5 m/s`).
+fn design_life(f: &Fields, speed: Option<f64>) -> Result<(Option<f64>, Option<String>)> {
+    let written = |key: &str| f.get(key).map(|v| v.as_str().unwrap_or_default().to_string());
+    let life = f.opt_everyday_quantity("design_life", EverydayUnit::HOUR)?;
+    let distance = f.opt_everyday_quantity("design_distance", EverydayUnit::KILOMETRE)?;
+    match (life, distance) {
+        (Some(_), Some(x)) => Err(f.error(
+            "design_distance",
+            EverydayUnit::KILOMETRE.show(x),
+            "give design_life or design_distance, not both",
+        )),
+        (Some(t), None) => {
+            let why = "a design life is hours to years of service; write e.g. design_life = \"10000 h\"";
+            f.at_least("design_life", t, MIN_DESIGN_LIFE_S, EverydayUnit::HOUR, why)?;
+            Ok((Some(t), written("design_life")))
+        }
+        (None, Some(x)) => {
+            let why = "a design distance is thousands of kilometres; write e.g. design_distance = \"200000 km\"";
+            f.at_least(
+                "design_distance",
+                x,
+                MIN_DESIGN_DISTANCE_M,
+                EverydayUnit::KILOMETRE,
+                why,
+            )?;
+            let v = speed.ok_or_else(|| {
+                f.error(
+                    "design_distance",
+                    EverydayUnit::KILOMETRE.show(x),
+                    "a distance needs the [input] speed to become a time",
+                )
+            })?;
+            let text = written("design_distance").unwrap_or_default();
+            Ok((Some(x / v), Some(format!("{text} at {} m/s", crate::numbers::num(v)))))
+        }
+        (None, None) => Ok((None, None)),
+    }
 }

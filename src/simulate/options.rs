@@ -58,6 +58,10 @@ impl std::str::FromStr for Route {
 /// Default [`RunOptions::block_steps`]: 2¹⁴ steps (a few hundred kB per thread).
 pub const DEFAULT_BLOCK_STEPS: usize = 1 << 14;
 
+/// Most samples of one realization (2⁵⁰ ≈ 1.1·10¹⁵): the count T/Δt is checked against it before it
+/// becomes an integer, so that no duration and step overflow it.
+pub const MAX_SAMPLES: usize = 1 << 50;
+
 /// Options of a Monte Carlo run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunOptions {
@@ -93,6 +97,11 @@ pub struct RunOptions {
     /// Compute only this part of the realizations (a shard file of a cluster run, see
     /// [`Part`](crate::store::Part)), or the whole run (`None`).
     pub part: Option<crate::store::Part>,
+    /// The longest run accepted, hours: a run whose time estimate (a lower bound,
+    /// [`resources::run_time_lower_bound`](super::resources::run_time_lower_bound)) is longer is refused
+    /// before anything is computed or written (default
+    /// [`DEFAULT_MAX_HOURS`](super::resources::DEFAULT_MAX_HOURS), `--max-hours`).
+    pub max_hours: f64,
 }
 
 impl RunOptions {
@@ -118,6 +127,7 @@ impl RunOptions {
             stream_tail: super::fir_stream::TAIL_FRACTION,
             overwrite: false,
             part: None,
+            max_hours: super::resources::DEFAULT_MAX_HOURS,
         }
     }
 
@@ -148,7 +158,20 @@ impl RunOptions {
         if !(self.confidence > 0.0 && self.confidence < 1.0) {
             return Err(Error::invalid("confidence", self.confidence, "must lie in (0, 1)"));
         }
-        let mut n = (self.duration_s / self.dt_s).round() as usize;
+        let ratio = (self.duration_s / self.dt_s).round();
+        // NaN (0/0 cannot happen: both are > 0) and infinity fail this too
+        if ratio.is_nan() || ratio > MAX_SAMPLES as f64 {
+            return Err(Error::invalid(
+                "duration",
+                format!("{} s", self.duration_s),
+                format!(
+                    "gives {ratio:e} samples per realization at Δt = {} s, more than the {MAX_SAMPLES:e} a realization \
+                     may have: a shorter --duration or a longer --dt",
+                    self.dt_s
+                ),
+            ));
+        }
+        let mut n = ratio as usize;
         n += n % 2;
         if n < 16 {
             return Err(Error::invalid(

@@ -163,32 +163,89 @@ pub fn kernel_design_bytes(generators: usize, outputs: usize, grid_len: usize) -
     g * p * ((l / 2 + 1) * C64 + l * F64) + p * l * F64
 }
 
-/// Memory the system can still give (Linux `MemAvailable`), bytes; `None` where unknown.
-pub fn available_memory() -> Option<u128> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u128 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
+pub use crate::io_rules::{available_disk, available_memory};
+
+/// The default of [`RunOptions::max_hours`]: a run estimated to take longer than a day is refused unless
+/// the cap is raised (`--max-hours`).
+pub const DEFAULT_MAX_HOURS: f64 = 24.0;
+
+/// Normal draws per second and thread at best, for the lower bound of a run's time: Xoshiro256++ with the
+/// ziggurat draws about 1.7·10⁸ per second on the machines the toolkit was developed on; every sample of
+/// every input process of every realization needs at least one.
+pub const MAX_DRAWS_PER_S: f64 = 2.0e8;
+
+/// A lower bound of a run's computing time, s: every sample of every independent input process of every
+/// realization the run computes needs at least one normal draw.
+///
+/// # Formula
+/// t ≥ R_local · N · g / (r · P), with R_local the realizations of this file (of its part for a cluster
+/// shard), N samples per realization, g ≥ 1 input processes, r = [`MAX_DRAWS_PER_S`], P threads.
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::resources::run_time_lower_bound;
+/// // 10⁹ realizations of 10⁴ samples of one process on 2 threads: at least 25000 s
+/// assert_eq!(run_time_lower_bound(1e9, 10_000, 1, 2), 25_000.0);
+/// ```
+pub fn run_time_lower_bound(realizations: f64, n: usize, processes: usize, threads: usize) -> f64 {
+    realizations * n as f64 * processes.max(1) as f64 / (MAX_DRAWS_PER_S * threads.max(1) as f64)
 }
 
-/// Free space for an unprivileged writer on the file system of `dir`, bytes; `None` where unknown.
-pub fn available_disk(dir: &Path) -> Option<u128> {
-    #[cfg(unix)]
-    {
-        use std::os::unix::ffi::OsStrExt;
-        let c = std::ffi::CString::new(dir.as_os_str().as_bytes()).ok()?;
-        let mut s: libc::statvfs = unsafe { std::mem::zeroed() };
-        // SAFETY: `c` is a valid NUL-terminated path and `s` a writable statvfs.
-        if unsafe { libc::statvfs(c.as_ptr(), &mut s) } != 0 {
-            return None;
-        }
-        Some(s.f_bavail as u128 * s.f_frsize as u128)
-    }
-    #[cfg(not(unix))]
-    {
-        let _ = dir;
-        None
-    }
+/// What a run of `opts` with `processes` input processes and `signals` stored signals (outputs and
+/// recorded inputs) will at least take, in words, before anything is planned: samples, raw data (with
+/// `--store-raw`) and the computing time's lower bound ([`run_time_lower_bound`]).
+///
+/// # Errors
+/// The options' errors ([`RunOptions::samples`]).
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::{resources::estimate_text, RunOptions};
+/// let t = estimate_text(&RunOptions::new(1000, 100.0, 0.01, 1), 1, 2).unwrap();
+/// assert!(t.starts_with("estimate: 1000 realizations × 10000 samples"), "{t}");
+/// ```
+pub fn estimate_text(opts: &RunOptions, processes: usize, signals: usize) -> Result<String> {
+    let n = opts.samples()?;
+    let local = opts.realizations as f64 / opts.part.map_or(1, |p| p.count) as f64;
+    let threads = rayon::current_num_threads();
+    let t = run_time_lower_bound(local, n, processes, threads);
+    let raw = if opts.store_raw {
+        format!(
+            ", raw data {}",
+            crate::io_rules::bytes_text((local * n as f64 * signals as f64 * 8.0) as u128)
+        )
+    } else {
+        String::new()
+    };
+    Ok(format!(
+        "estimate: {} realizations × {n} samples{raw}; computing takes at least {} on {threads} threads (refused \
+         above --max-hours {})",
+        opts.realizations,
+        crate::io_rules::duration_text(t),
+        crate::numbers::num(opts.max_hours)
+    ))
+}
+
+/// Refuses a run whose time lower bound ([`run_time_lower_bound`]) exceeds `opts.max_hours`, before
+/// anything is planned, allocated or written.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `realizations` with the estimate, the cap and what to change.
+pub fn check_run_time(opts: &RunOptions, n: usize, processes: usize) -> Result<()> {
+    let local = opts.realizations as f64 / opts.part.map_or(1, |p| p.count) as f64;
+    let threads = rayon::current_num_threads();
+    let t = run_time_lower_bound(local, n, processes, threads);
+    crate::io_rules::check_time(
+        t,
+        opts.max_hours,
+        "realizations",
+        format!(
+            "{} of {n} samples ({} s at Δt = {} s)",
+            opts.realizations, opts.duration_s, opts.dt_s
+        ),
+        &format!("computing {local:e} realizations × {n} samples × {processes} input processes on {threads} threads"),
+        "fewer --realizations, a shorter --duration, a longer --dt, or a cluster run (--shard I --of N)",
+    )
 }
 
 fn gib(b: u128) -> String {

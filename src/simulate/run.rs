@@ -160,6 +160,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         return Ok(done);
     }
     super::resources::check_disk(&meta, out)?;
+    super::resources::check_run_time(opts, plan.n, input.excitation.spectra().len())?;
     let mut writer = RunWriter::create_with(
         out,
         &meta,
@@ -381,14 +382,13 @@ fn finish_verdicts(
 /// Refuses a run file that is one of the files the run is read from (a scenario or spectrum file would
 /// be replaced by HDF5).
 fn refuse_inputs_as_output(input: &RunInput, out: &Path) -> Result<()> {
-    let same = |a: &Path| match (a.canonicalize(), out.canonicalize()) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => a == out,
-    };
-    if let Some(f) = input.source_files.iter().find(|f| same(f)) {
+    if let Some(f) = input.source_files.iter().find(|f| crate::io_rules::same_file(f, out)) {
         return Err(crate::Error::Hdf5 {
             path: out.to_path_buf(),
-            reason: format!("is an input of the run ({}): choose another output", f.display()),
+            reason: format!(
+                "is an input of the run ({}, the same file): choose another output",
+                f.display()
+            ),
         });
     }
     Ok(())

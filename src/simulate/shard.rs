@@ -189,8 +189,9 @@ pub fn part_path(dir: &Path, part: Part) -> PathBuf {
 /// `None` when there is nothing there (or `--overwrite` asks to replace it), or when the run is not a part.
 ///
 /// # Errors
-/// [`Error::Hdf5`] when `out` is something else: a shard file of another run (naming what differs), or not
-/// a complete run file. Nothing is replaced or deleted.
+/// [`Error::Hdf5`] when `out` is something else: a shard file of another run (naming what differs), not
+/// a complete run file, or a damaged one (a checksum fails: [`RunFile::verify`]). Nothing is replaced or
+/// deleted.
 pub(crate) fn finished_part(
     meta: &RunMetadata,
     plan: &Plan,
@@ -226,6 +227,14 @@ pub(crate) fn finished_part(
             differ.join(", ")
         )));
     }
+    // a finished file is the result only if its checksums hold (as `inspect` checks them)
+    run.verify().map_err(|e| {
+        in_the_way(format!(
+            "is the finished file of shard {} of {} but is damaged ({e}); nothing is overwritten: pass --overwrite \
+             to compute the shard again",
+            part.index, part.count
+        ))
+    })?;
     let note = format!(
         "shard {} of {} is already complete in {}: nothing to do (a rerun of a finished shard is a no-op)",
         part.index,

@@ -64,6 +64,18 @@ impl RationalSpectrum {
         let num = poly::trim(&num);
         let den = poly::trim(&den);
         for (name, c) in [("numerator", &num), ("denominator", &den)] {
+            // coefficients of ω²: the spectral factor has twice the degree
+            if 2 * c.len().saturating_sub(1) > poly::MAX_DEGREE {
+                return Err(Error::invalid(
+                    name,
+                    format!("{} coefficients", c.len()),
+                    format!(
+                        "degree {} in ω is above the {} whose roots are computed: use a spectrum of lower order",
+                        2 * (c.len() - 1),
+                        poly::MAX_DEGREE
+                    ),
+                ));
+            }
             if c.is_empty() || c.iter().all(|v| *v == 0.0) {
                 return Err(Error::invalid(
                     name,

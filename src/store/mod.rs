@@ -10,11 +10,13 @@ pub mod layout;
 mod parts;
 mod rainflow;
 mod reader;
+mod response_histogram;
 mod writer;
 
 pub use parts::{find_run_files, MergedFrom, PartFile, PartSet, RawStorage, VirtualSource};
 pub use rainflow::RainflowHistogram;
 pub use reader::{abbreviated_list, summarize, RunFile, RunInfo, Verification, LISTED_FILES};
+pub use response_histogram::ResponseHistogram;
 pub(crate) use writer::metadata_differences;
 pub use writer::RunWriter;
 pub use writer::{process_alive, CreateOptions};
@@ -22,6 +24,14 @@ pub use writer::{process_alive, CreateOptions};
 use crate::error::{Error, Result};
 use crate::estimate::Interval;
 use std::path::{Path, PathBuf};
+
+/// The kind of file `simulate` and `merge` write, for the output rule ([`crate::io_rules::check_output`]): a
+/// stochvib run file (an HDF5 file with `@format_version`); `--overwrite` replaces only such files.
+pub const RUN_FILE: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "stochvib run file",
+    recognizes: writer::is_run_file,
+    replaceable: false,
+};
 
 /// Compression of the raw signal datasets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]

@@ -82,6 +82,8 @@ impl RunFile {
                 reason: "no such file".into(),
             });
         }
+        // the input rule: a FIFO or device would block or never end inside the HDF5 library
+        crate::io_rules::check_input(&path, crate::io_rules::HDF5_INPUT)?;
         let file = super::open_sec2(&path, super::OpenMode::Read, |_| {})
             .map_err(h5err(&path, "not readable as an HDF5 file"))?;
         let meta = read_metadata(&file, &path)?;
@@ -478,6 +480,32 @@ impl RunFile {
             }
             check_psd(&est, p)?;
             out.push(est);
+        }
+        Ok(out)
+    }
+
+    /// The response histograms of a nonlinear run (`/response_histogram`, optional: empty when the file
+    /// has none), each checked against its `@crc32`.
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] if a histogram is malformed or its checksum does not match.
+    pub fn response_histograms(&self) -> Result<Vec<super::ResponseHistogram>> {
+        let p = &self.path;
+        if !self.file.link_exists(L::GROUP_RESPONSE_HISTOGRAM) {
+            return Ok(Vec::new());
+        }
+        let parent = self
+            .file
+            .group(L::GROUP_RESPONSE_HISTOGRAM)
+            .map_err(h5err(p, "opening /response_histogram"))?;
+        let mut out = Vec::new();
+        for sig in &self.meta.outputs {
+            if parent.link_exists(&sig.name) {
+                let g = parent
+                    .group(&sig.name)
+                    .map_err(h5err(p, "opening a response histogram"))?;
+                out.push(super::ResponseHistogram::read(&g, &sig.name, p)?);
+            }
         }
         Ok(out)
     }

@@ -1,6 +1,19 @@
 //! Writing a run: temporary name, shard by shard, rename on completion, resume after interruption.
 
 use super::checksum::crc32_f64;
+
+/// Raw data of a shard from which its checksums are computed on a second thread, beside the write.
+const OVERLAP_CHECKSUM_BYTES: usize = 1 << 20;
+
+/// The checksums of a shard: each raw array (row-major little-endian bytes), then each accumulator.
+fn shard_sums(inputs: &[ArrayView2<'_, f64>], outputs: &[ArrayView2<'_, f64>], accumulators: &[&[f64]]) -> Vec<u32> {
+    inputs
+        .iter()
+        .chain(outputs)
+        .map(|a| crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])))
+        .chain(accumulators.iter().map(|a| crc32_f64(a)))
+        .collect()
+}
 use super::chunks;
 use super::layout as L;
 use super::parts::{MergedFrom, RawStorage};
@@ -630,6 +643,28 @@ impl RunWriter {
                 ));
             }
         }
+        // the checksums are computed on another thread while the rows are written (or filtered): the data
+        // are read once more from memory, but that pass is off the write's critical path
+        let sums = std::thread::scope(|scope| -> Result<Vec<u32>> {
+            let bytes: usize = inputs.iter().chain(outputs).map(|a| a.len() * 8).sum();
+            let sums =
+                (bytes >= OVERLAP_CHECKSUM_BYTES).then(|| scope.spawn(|| shard_sums(inputs, outputs, accumulators)));
+            self.write_rows(range, inputs, outputs)?;
+            Ok(match sums {
+                Some(h) => h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)),
+                None => shard_sums(inputs, outputs, accumulators),
+            })
+        })?;
+        self.finish_shard(row, accumulators, sums)
+    }
+
+    /// Writes the rows `range` of every input and output (filtered on all threads when compressed).
+    fn write_rows(
+        &self,
+        range: std::ops::Range<usize>,
+        inputs: &[ArrayView2<'_, f64>],
+        outputs: &[ArrayView2<'_, f64>],
+    ) -> Result<()> {
         let e = |what: &str| h5err(&self.tmp, what);
         for (ds, a) in self
             .inputs
@@ -652,13 +687,7 @@ impl RunWriter {
                 }
             }
         }
-        let sums: Vec<u32> = inputs
-            .iter()
-            .chain(outputs)
-            .map(|a| crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])))
-            .chain(accumulators.iter().map(|a| crc32_f64(a)))
-            .collect();
-        self.finish_shard(row, accumulators, sums)
+        Ok(())
     }
 
     /// Writes a shard's accumulators and checksums, flushes, marks it complete and flushes again.
@@ -1042,6 +1071,27 @@ impl RunWriter {
         self.file.flush().map_err(e("flushing a rainflow histogram"))
     }
 
+    /// Writes the response histogram of a nonlinear run's output under `/response_histogram/<output>`
+    /// (replacing an existing one).
+    ///
+    /// # Errors
+    /// An output that is not one of the run's; HDF5 failures.
+    pub fn write_response_histogram(&mut self, h: &super::ResponseHistogram) -> Result<()> {
+        self.check_signal_name("response_histogram", &h.output)?;
+        let e = |what: &str| h5err(&self.tmp, what);
+        let parent = if self.file.link_exists(L::GROUP_RESPONSE_HISTOGRAM) {
+            self.file
+                .group(L::GROUP_RESPONSE_HISTOGRAM)
+                .map_err(e("opening /response_histogram"))?
+        } else {
+            self.file
+                .create_group(L::GROUP_RESPONSE_HISTOGRAM)
+                .map_err(e("creating /response_histogram"))?
+        };
+        h.write(&parent, &self.tmp)?;
+        self.file.flush().map_err(e("flushing a response histogram"))
+    }
+
     fn check_signal_name(&self, field: &str, name: &str) -> Result<()> {
         if self
             .meta
@@ -1150,7 +1200,7 @@ fn raw_chunk(meta: &RunMetadata) -> (usize, usize) {
 /// [`L::chunk_shape`]), and a chunk that does not fit the cache is written by HDF5 straight from the
 /// caller's buffer to the file. With HDF5's default 1 MiB cache, a 1 MiB chunk is "cacheable" and every
 /// byte is first copied into the cache and then written out: one extra memcpy of the whole run (and
-/// glibc's memcpy of such buffers is slow on some machines, DESIGN.md §8). Compressed shards are filtered
+/// glibc's memcpy of such buffers is slow on some machines, see benches/HISTORY.md). Compressed shards are filtered
 /// by the writer and stored with `H5Dwrite_chunk` (see `chunks.rs`), which bypasses the cache; HDF5's
 /// default cache is kept for them.
 fn open_file(path: &Path, mode: OpenMode, compression: Compression) -> hdf5::Result<File> {
@@ -1223,53 +1273,20 @@ fn checked_datasets(meta: &RunMetadata) -> Vec<String> {
     out
 }
 
-/// Refuses a final path that is a directory or not a regular file, one whose directory is missing, and an
-/// existing file unless `overwrite` and it is a stochvib run file (an HDF5 file with `@format_version`).
+/// The output rule ([`crate::io_rules::check_output`]) for a run file: refuses a final path that is a
+/// directory or not a regular file, one whose directory is missing, and an existing file unless `overwrite`
+/// and it is a stochvib run file (an HDF5 file with `@format_version`).
 fn check_final_path(final_path: &Path, overwrite: bool) -> Result<()> {
-    let fail = |reason: String| Error::Hdf5 {
-        path: final_path.to_path_buf(),
-        reason,
-    };
-    if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty())
-        && !dir.is_dir()
-    {
-        return Err(fail(format!(
-            "cannot create: directory `{}` does not exist",
-            dir.display()
-        )));
-    }
-    match std::fs::symlink_metadata(final_path) {
-        Err(_) => Ok(()),
-        Ok(m) if m.is_dir() => Err(fail(
-            "is a directory: give the run file's name (e.g. DIR/run.h5)".into(),
-        )),
-        Ok(m) if !m.is_file() => Err(fail(
-            "is not a regular file (a device, pipe or link): give the run file's name".into(),
-        )),
-        Ok(_) if !overwrite => Err(fail(
-            "already exists: a finished run is never overwritten silently; remove it, choose another output \
-             name, or pass --overwrite"
-                .into(),
-        )),
-        Ok(_) if !is_run_file(final_path) => Err(fail(
-            "exists and is not a stochvib run file: --overwrite only replaces run files".into(),
-        )),
-        Ok(_) => Ok(()),
-    }
+    crate::io_rules::check_output(final_path, &super::RUN_FILE, &[], overwrite)
 }
 
 /// Whether `path` starts with the HDF5 signature.
 fn is_hdf5(path: &Path) -> bool {
-    use std::io::Read;
-    let mut sig = [0u8; 8];
-    std::fs::File::open(path)
-        .and_then(|mut f| f.read_exact(&mut sig))
-        .is_ok()
-        && sig == *b"\x89HDF\r\n\x1a\n"
+    crate::io_rules::starts_with(path, crate::io_rules::HDF5_SIGNATURE)
 }
 
 /// Whether `path` is an HDF5 file with a `@format_version` root attribute.
-fn is_run_file(path: &Path) -> bool {
+pub(crate) fn is_run_file(path: &Path) -> bool {
     is_hdf5(path)
         && open_sec2(path, OpenMode::Read, |_| {})
             .map(|f| {
@@ -1317,10 +1334,7 @@ fn owner_alive(tmp: &Path) -> Option<u32> {
     (pid != std::process::id() && process_alive(pid)).then_some(pid)
 }
 
-/// Whether a process with this pid exists (Linux: `/proc/<pid>`; elsewhere assumed gone).
-pub fn process_alive(pid: u32) -> bool {
-    Path::new(&format!("/proc/{pid}")).exists()
-}
+pub use crate::io_rules::process_alive;
 
 /// Removes fresh files of dead processes that never claimed the `.tmp` (`<tmp>.<pid>.<nanos>` left by a
 /// kill during set-up).
@@ -1438,7 +1452,7 @@ fn write_root_attrs(file: &File, m: &RunMetadata, version: u32) -> hdf5::Result<
     Ok(())
 }
 
-fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
+pub(super) fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
     loc.new_attr::<T>().shape(()).create(name)?.write_scalar(&value)
 }
 
@@ -1447,7 +1461,7 @@ fn to_vlu(text: &str) -> hdf5::Result<VarLenUnicode> {
         .map_err(|err| hdf5::Error::from(format!("text {text:?} cannot be stored: {err}")))
 }
 
-fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
+pub(super) fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
     let v = to_vlu(value)?;
     loc.new_attr::<VarLenUnicode>().shape(()).create(name)?.write_scalar(&v)
 }

@@ -45,6 +45,8 @@ impl TransferFunction {
         if den.is_empty() {
             return Err(Error::invalid("denominator", format!("{den:?}"), "must not be zero"));
         }
+        crate::linalg::poly::check_degree("denominator", &den)?;
+        crate::linalg::poly::check_degree("numerator", &num)?;
         if num.iter().chain(&den).any(|v| !v.is_finite()) {
             return Err(Error::invalid(
                 "coefficients",

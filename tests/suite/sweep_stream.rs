@@ -347,6 +347,15 @@ fn stream_errors_name_the_sink_and_lose_nothing() {
         .to_string();
     assert!(e.contains("already exists") && e.contains("--overwrite"), "{e}");
     assert_eq!(std::fs::read(&path).unwrap(), b"a user's file");
+    // a file that is not a sweep table is never replaced, with or without --overwrite (the output rule)
+    let e = write_sweep_table(&sweep, &path, true, None, opts(16, true), &|_, _| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("is not a sweep table"), "{e}");
+    assert_eq!(std::fs::read(&path).unwrap(), b"a user's file");
+    // a sweep table is replaced with --overwrite
+    std::fs::remove_file(&path).unwrap();
+    write_sweep_table(&sweep, &path, false, None, opts(16, true), &|_, _| {}).unwrap();
     write_sweep_table(&sweep, &path, true, None, opts(16, true), &|_, _| {}).unwrap();
     assert_eq!(h5_read::<f64>(&path, "outputs/x1/sigma").len(), 111);
     let e = write_sweep_table(&sweep, &dir.join("t.txt"), false, None, opts(16, true), &|_, _| {})

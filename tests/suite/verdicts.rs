@@ -1,4 +1,4 @@
-//! The verdicts of a scenario three ways (issue 18): ISO 2631-1 weighted r.m.s. a_w by the Lyapunov
+//! The verdicts of a scenario three ways: ISO 2631-1 weighted r.m.s. a_w by the Lyapunov
 //! route, by quadrature and by an independent product-form integral in this file, and by Monte Carlo with
 //! the weighting filter simulated exactly; VDV against its Gaussian value; spectral fatigue damage against
 //! rainflow counting of simulated stresses; and the refusal of bad `[analysis.comfort]` /
@@ -35,7 +35,7 @@ fn catalogue() -> Scenario {
 /// intervals (h = 4·10⁻⁴: the error h⁴·max|d⁴/du⁴| is far below 1e-10 for these smooth densities, and the
 /// neglected ends carry < 1e-12 of the integral: the weighted density rises like ω⁴ from 0 and falls like
 /// ω⁻⁶·ω⁻² above the cab mode).
-fn log_simpson(g: impl Fn(f64) -> f64) -> f64 {
+pub fn log_simpson(g: impl Fn(f64) -> f64) -> f64 {
     let (a, b, n) = ((1e-3f64).ln(), (1e4f64).ln(), 40_000);
     let h = (b - a) / n as f64;
     let f = |u: f64| {
