@@ -4,6 +4,7 @@
 
 use crate::error::Result;
 pub use crate::road::default_segment;
+use crate::road::spatial_psd::check_density_input;
 use crate::road::{fit_iso8608, iri, spatial_cross_spectrum, spatial_psd, Detrend, Profile, Waviness};
 use serde::Serialize;
 use std::fmt;
@@ -143,8 +144,21 @@ pub struct RoadReport {
 pub fn road_report(path: &Path, opts: &RoadReportOptions) -> Result<RoadReport> {
     let p = Profile::read_csv(path)?;
     let n = p.len();
-    let m = opts.segment_len.unwrap_or_else(|| default_segment(n));
     let detrended = p.detrended(opts.detrend);
+    for (t, d) in p.tracks.iter().zip(&detrended.tracks) {
+        check_density_input(path, &t.name, &t.elevation_m, &d.elevation_m)?;
+    }
+    let m = match opts.segment_len {
+        None => default_segment(n),
+        Some(m) if m >= 4 && m % 2 == 0 && m <= n => m,
+        Some(m) => {
+            return Err(crate::Error::invalid(
+                "--segment",
+                m,
+                format!("expected an even number of samples from 4 to the profile's {n} samples"),
+            ))
+        }
+    };
     let mut tracks = Vec::new();
     let mut meta = None;
     for (t, d) in p.tracks.iter().zip(&detrended.tracks) {

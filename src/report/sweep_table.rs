@@ -297,7 +297,8 @@ fn add_monte_carlo(sweep: &Sweep, t: &mut SweepResults, m: SweepMonteCarlo, prog
                 confidence: m.confidence,
                 ..RunOptions::new(m.realizations, m.duration_s, m.dt_s, m.seed)
             };
-            let (summary, ()) = run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |_| ())?;
+            let (summary, ()) =
+                run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |_| ()).map_err(|e| sc.name_run_error(e))?;
             Ok(sweep
                 .outputs()
                 .iter()

@@ -301,10 +301,35 @@ impl Scenario {
     /// # Errors
     /// As [`crate::simulate::run()`].
     pub fn simulate(&self, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
-        if !self.analysis.verdicts.is_empty() {
-            return super::verdict_run::simulate_with_verdicts(self, opts, out, progress);
+        let r = if self.analysis.verdicts.is_empty() {
+            crate::simulate::run(&self.run_input(), opts, out, progress)
+        } else {
+            super::verdict_run::simulate_with_verdicts(self, opts, out, progress)
+        };
+        r.map_err(|e| self.name_run_error(e))
+    }
+
+    /// An error of a Monte Carlo run of this scenario, naming the scenario's key where the run refused a
+    /// value the file gave: a kurtosis above what the run's grid can represent
+    /// ([`max_kurtosis`](crate::simulate::laplace::max_kurtosis)) becomes an [`Error::File`] naming
+    /// `input.kurtosis` (or `input[i].kurtosis`); any other error is returned as it is.
+    pub fn name_run_error(&self, e: Error) -> Error {
+        let Error::InvalidParameter { name, value, reason } = &e else {
+            return e;
+        };
+        if name != "kurtosis" {
+            return e;
         }
-        crate::simulate::run(&self.run_input(), opts, out, progress)
+        let shown = |k: f64| crate::numbers::num(k) == *value;
+        let key = match &self.excitation {
+            Excitation::Sources { .. } if self.inputs.len() > 1 => self
+                .inputs
+                .iter()
+                .position(|i| i.kurtosis.is_some_and(shown))
+                .map_or("input".to_string(), |i| format!("input[{i}].kurtosis")),
+            _ => "input.kurtosis".to_string(),
+        };
+        Error::in_file(&self.path, key, value, reason.clone())
     }
 }
 
@@ -528,11 +553,23 @@ fn check_model(f: &Fields, kind: &str, model: &ModelInstance) -> Result<()> {
                 Error::InvalidParameter { value, reason, .. } => format!("{reason} ({value})"),
                 other => other.to_string(),
             };
-            f.error(
-                "model",
-                kind,
-                format!("{reason}: check the stiffnesses, dampings and masses (or poles) of the model"),
-            )
+            // a transfer function's poles are the roots of its denominator: name it
+            let denominator = f
+                .get("model")
+                .and_then(|m| m.get("denominator"))
+                .filter(|_| kind == "transfer-function");
+            match denominator {
+                Some(d) => f.error(
+                    "model.denominator",
+                    d,
+                    format!("{reason}: D(s) has a root with Re s ≥ 0 (a pole in the right half-plane or on the axis)"),
+                ),
+                None => f.error(
+                    "model",
+                    kind,
+                    format!("{reason}: check the stiffnesses, dampings and masses (or poles) of the model"),
+                ),
+            }
         })?;
     }
     Ok(())

@@ -526,9 +526,37 @@ impl<'a> Sweep<'a> {
                 Err(reason) => SweepPath::ModelTable { reason },
             };
         }
-        sweep.scenario_at(0)?;
+        sweep.scenario_at(0).map_err(|e| sweep.name_point_error(0, e))?;
         sweep.evaluate(0)?;
         Ok(sweep)
+    }
+
+    /// An error of point `point` about a key the study varies (the key, or a key inside it), named as the
+    /// user wrote it: `--param KEY=VALUE` with the value at that point, instead of the scenario file's key
+    /// (the file does not hold that value); any other error unchanged.
+    pub fn name_point_error(&self, point: usize, e: Error) -> Error {
+        let Error::File { file, key, reason, .. } = &e else {
+            return e;
+        };
+        // `model.element[0].stiffness` as a sweep key is `model.element.0.stiffness`
+        let key = key.replace('[', ".").replace(']', "");
+        let inside = |p: &SweepParam| key == p.key || key.starts_with(&format!("{}.", p.key));
+        let Some(k) = self
+            .spec
+            .params
+            .iter()
+            .position(inside)
+            .filter(|_| *file == self.base.path)
+        else {
+            return e;
+        };
+        let p = &self.spec.params[k];
+        let value = value_text(&p.values[self.spec.indices(point)[k]]);
+        Error::invalid(
+            "--param",
+            format!("{}={value}", p.key),
+            format!("{reason} (point {point} of the study)"),
+        )
     }
 
     /// The numeric path of this study, or why there is none.
@@ -679,6 +707,17 @@ impl<'a> Sweep<'a> {
     /// [`evaluate`](Self::evaluate) into `out` (cleared first), with a state space to write the numeric
     /// path's matrices into.
     fn evaluate_in(
+        &self,
+        point: usize,
+        scratch: Option<&mut StateSpace>,
+        out: &mut Vec<PointStatistics>,
+    ) -> Result<()> {
+        self.evaluate_point(point, scratch, out)
+            .map_err(|e| self.name_point_error(point, e))
+    }
+
+    /// [`evaluate_in`](Self::evaluate_in) with the errors as the evaluation gives them.
+    fn evaluate_point(
         &self,
         point: usize,
         scratch: Option<&mut StateSpace>,
