@@ -130,6 +130,7 @@ pub fn merge_runs(
     progress: &dyn Fn(usize, usize),
 ) -> Result<MergeSummary> {
     let tmp = tmp_path(out);
+    refuse_shard_output(out)?;
     // pass 1: every file's header and the fingerprint of its shared values; the files are closed again
     let set = PartSet::open(inputs, &[out, &tmp])?;
     let meta = set.meta.clone();
@@ -241,6 +242,12 @@ pub fn merge_runs(
                 reason: format!("its /shards datasets do not have one row per shard ({})", local.len()),
             });
         }
+        let raw_columns = if meta.store_raw {
+            meta.inputs.len() + meta.outputs.len()
+        } else {
+            0
+        };
+        verify_rows(&p.path, &p.meta, &names, &accs, &sums, raw_columns)?;
         for (r, b) in local.clone().enumerate() {
             let rows = meta.shard_range(b).len();
             for (jm, jw, fold) in &mut folds {
@@ -359,6 +366,65 @@ pub fn merge_runs(
 ///
 /// # Errors
 /// A verdict statistic or histogram missing from the shard file; [`VerdictChannels::finish`]'s errors.
+/// Refuses a merged file `out` that is an existing shard file of a cluster run (`merge SHARD-0 SHARD-1 …`
+/// takes the first shard for the output): a shard file is never written over, whatever `--overwrite` says.
+fn refuse_shard_output(out: &Path) -> Result<()> {
+    if !crate::io_rules::starts_with(out, crate::io_rules::HDF5_SIGNATURE) {
+        return Ok(());
+    }
+    let part = crate::store::RunFile::open_any(out).ok().and_then(|run| run.part());
+    match part {
+        None => Ok(()),
+        Some(p) => Err(Error::Hdf5 {
+            path: out.to_path_buf(),
+            reason: format!(
+                "is a shard file of a cluster run (shard {} of {}), not a merged file: a shard file is never \
+                 written over; the first argument of merge is the merged file — `stochvib merge MERGED.h5 SHARDS…` \
+                 (list this file among the shards); nothing was written",
+                p.index, p.count
+            ),
+        }),
+    }
+}
+
+/// Refuses a shard file whose accumulator rows (`accs[j]`, one row per internal shard of the file) do not
+/// match their checksums (column `raw_columns + j` of `sums`), before anything of it is folded: the error
+/// names the file, the dataset, the internal shard and the part to compute again.
+fn verify_rows(
+    path: &Path,
+    meta: &crate::store::RunMetadata,
+    names: &[&str],
+    accs: &[ndarray::Array2<f64>],
+    sums: &ndarray::Array2<u32>,
+    raw_columns: usize,
+) -> Result<()> {
+    for ((j, a), name) in accs.iter().enumerate().zip(names) {
+        for (r, row) in a.rows().into_iter().enumerate() {
+            let row = row.as_standard_layout();
+            let crc = crate::store::checksum::crc32_f64(row.as_slice().unwrap_or(&[]));
+            if sums.get((r, raw_columns + j)) == Some(&crc) {
+                continue;
+            }
+            let again = meta.part.map_or(String::new(), |p| {
+                format!(
+                    "; compute it again (stochvib simulate … --shard {} --of {} --overwrite, the same settings) and \
+                     merge again",
+                    p.index, p.count
+                )
+            });
+            return Err(Error::Hdf5 {
+                path: path.to_path_buf(),
+                reason: format!(
+                    "checksum mismatch in shards/{name} (internal shard {}): this shard file is damaged (its data are \
+                     not what was written){again}",
+                    meta.local_shards().start + r
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 fn finish_verdicts(
     writer: &RunWriter,
     meta: &crate::store::RunMetadata,
