@@ -493,7 +493,7 @@ pub fn check_table_resources(
         let memory = rows * per_row as u128 + n * identity.params.len() as u128 * 8;
         crate::io_rules::check_memory(
             memory,
-            "param",
+            "--param",
             &points,
             "a JSON table (built whole before it is written)",
             "write a .csv or .h5 table instead (streamed in bounded memory), or use fewer points",
@@ -502,7 +502,7 @@ pub fn check_table_resources(
     crate::io_rules::check_disk(
         file,
         path,
-        "param",
+        "--param",
         &points,
         "the table",
         "fewer values per --param, fewer keys, or another disk (CSV on stdout without -o needs no disk)",

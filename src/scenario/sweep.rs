@@ -135,7 +135,7 @@ impl SweepParam {
     /// assert!(SweepParam::parse("model.zeta2").is_err());
     /// ```
     pub fn parse(text: &str) -> Result<SweepParam> {
-        let bad = |why: &str| Error::invalid("param", text, why.to_string());
+        let bad = |why: &str| Error::invalid("--param", text, why.to_string());
         let (key, values) = text
             .split_once('=')
             .ok_or_else(|| bad("expected KEY=VALUES, e.g. model.omega2=1 Hz,1.5 Hz or input.speed=10..30:5 m/s"))?;
@@ -242,14 +242,14 @@ impl SweepSpec {
     pub fn new(params: Vec<SweepParam>, mode: SweepMode) -> Result<SweepSpec> {
         if params.is_empty() {
             return Err(Error::invalid(
-                "param",
+                "--param",
                 "<none>",
                 "give at least one --param KEY=VALUES",
             ));
         }
         for (i, p) in params.iter().enumerate() {
             if params[..i].iter().any(|q| q.key == p.key) {
-                return Err(Error::invalid("param", &p.key, "the key is given twice"));
+                return Err(Error::invalid("--param", &p.key, "the key is given twice"));
             }
         }
         // each key with its number of values, for the messages
@@ -262,7 +262,7 @@ impl SweepSpec {
         };
         if mode == SweepMode::Zip && params.iter().any(|p| p.values.len() != params[0].values.len()) {
             return Err(Error::invalid(
-                "param",
+                "--param",
                 counts(", "),
                 "--zip needs the same number of values for every key",
             ));
@@ -271,7 +271,7 @@ impl SweepSpec {
             && crate::io_rules::checked_product(params.iter().map(|p| p.values.len())).is_none_or(|n| n > MAX_POINTS)
         {
             return Err(Error::invalid(
-                "param",
+                "--param",
                 counts(" × "),
                 format!("the grid has more than {MAX_POINTS:e} points: fewer values, fewer keys, or --zip"),
             ));
@@ -476,7 +476,7 @@ impl<'a> Sweep<'a> {
         let root = crate::fields::parse_toml(&base.text, &base.path)?;
         for p in &spec.params {
             let mut probe = root.clone();
-            set_key(&mut probe, &p.key, p.values[0].clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+            set_key(&mut probe, &p.key, p.values[0].clone()).map_err(|why| Error::invalid("--param", &p.key, why))?;
         }
         let model_only = |k: &str| k.starts_with("model.");
         let speed = spec.params.iter().position(|p| p.key == "input.speed");
@@ -645,7 +645,7 @@ impl<'a> Sweep<'a> {
     pub fn table_at(&self, point: usize) -> Result<toml::Table> {
         let mut root = self.root.clone();
         for (p, v) in self.spec.params.iter().zip(self.spec.values(point)) {
-            set_key(&mut root, &p.key, v.clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+            set_key(&mut root, &p.key, v.clone()).map_err(|why| Error::invalid("--param", &p.key, why))?;
         }
         Ok(root)
     }
@@ -837,7 +837,7 @@ impl<'a> Sweep<'a> {
         let mut model_table = self.root["model"].as_table().cloned().unwrap_or_default();
         for (p, v) in self.spec.params.iter().zip(&values) {
             if let Some(rest) = p.key.strip_prefix("model.") {
-                set_key(&mut model_table, rest, (*v).clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+                set_key(&mut model_table, rest, (*v).clone()).map_err(|why| Error::invalid("--param", &p.key, why))?;
             }
         }
         let fresh;
