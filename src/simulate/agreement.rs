@@ -87,3 +87,54 @@ pub(crate) fn check_mean_square(o: &PlannedOutput, v: &[f64]) -> Result<()> {
         ),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::store::Signal;
+
+    fn output(kurtosis: Option<f64>) -> PlannedOutput {
+        PlannedOutput {
+            index: 0,
+            signal: Signal::new("body", "m"),
+            analytic_variance: 1.0,
+            discrete_variance: 1.0,
+            kurtosis,
+            mean_square_sd: Some(1.0),
+        }
+    }
+
+    /// The collapse of the issue (σ = 0, or 3e-33, where the process has σ = 1) fails the run, naming the
+    /// output, the kurtosis and the kept realizations; a mean of 10³⁰⁰ fails too. The bounds are
+    /// distribution-free: lower D − √(2(s² + D²) ln(10⁷)/R) = 1 − √(4·16.118/1000) = 0.746 for R = 1000.
+    #[test]
+    fn a_collapsed_or_exploded_variance_fails_the_run() {
+        let (lo, hi) = agreement_bounds(1.0, 1.0, 1000);
+        assert!((lo - (1.0 - (4.0 * 1e7f64.ln() / 1000.0).sqrt())).abs() < 1e-12, "{lo}");
+        assert!((hi - (1.0 + (1e7f64 - 1.0).sqrt() / 1000f64.sqrt())).abs() < 1e-9, "{hi}");
+        for v in [0.0, 1e-66, 1e300] {
+            let e = check_mean_square(&output(Some(1e9)), &vec![v; 1000]).unwrap_err().to_string();
+            for part in ["`body`", "kurtosis 1000000000", ".tmp", "not reported as a success"] {
+                assert!(e.contains(part), "{part}: {e}");
+            }
+        }
+        let e = check_mean_square(&output(None), &[f64::NAN; 10]).unwrap_err().to_string();
+        assert!(!e.contains("kurtosis"), "{e}");
+    }
+
+    /// Mean squares around their mean pass: 0 and 2 alternating have mean 1 and sd 1 exactly; so does a run
+    /// too small to tell (R = 20: the lower bound is below 0, and no v̄ ≥ 0 fails it), and a route without a
+    /// known spread.
+    #[test]
+    fn a_variance_within_the_bounds_passes() {
+        let v: Vec<f64> = (0..1000).map(|i| if i % 2 == 0 { 0.0 } else { 2.0 }).collect();
+        check_mean_square(&output(Some(6.0)), &v).unwrap();
+        assert!(agreement_bounds(1.0, 1.0, 20).0 < 0.0);
+        check_mean_square(&output(None), &[0.0; 20]).unwrap();
+        let unknown = PlannedOutput {
+            mean_square_sd: None,
+            ..output(None)
+        };
+        check_mean_square(&unknown, &[0.0; 1000]).unwrap();
+    }
+}
