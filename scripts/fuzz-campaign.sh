@@ -29,10 +29,19 @@ json="{\"seed\": $seed, \"cases\": $cases, \"budget_s\": $budget, \"cli_every\":
 [ -n "$totals" ] && json="$json, \"totals\": \"$totals\""
 [ -n "$findings" ] && json="$json, \"findings\": \"$findings\""
 json="$json}"
-nice -n 19 cargo test --locked --test suite --no-run
+# a snapshot of the two binaries, so that a rebuild while the campaign runs changes nothing of it
+snap=$(realpath -m "target/tmp/fuzz-campaign-bin-$seed-$$")
+mkdir -p "$snap"
+exe=$(nice -n 19 cargo test --locked --test suite --no-run --message-format=json \
+    | sed -n 's/.*"executable":"\([^"]*\/suite-[^"]*\)".*/\1/p' | tail -n 1)
+[ -x "$exe" ] || { echo "fuzz campaign: no test binary built" >&2; exit 2; }
+cp "$exe" "$snap/suite"
+cp target/debug/stochvib "$snap/stochvib"
+json="${json%\}}, \"bin\": \"$snap/stochvib\"}"
 log=$(mktemp)
-STOCHVIB_FUZZ_CAMPAIGN="$json" nice -n 19 cargo test --locked --test suite fuzz_inputs::fuzz_campaign \
-    -- --ignored --exact --nocapture --test-threads=1 | tee "$log"
+STOCHVIB_FUZZ_CAMPAIGN="$json" nice -n 19 "$snap/suite" fuzz_inputs::fuzz_campaign \
+    --ignored --exact --nocapture --test-threads=1 | tee "$log"
+rm -rf "$snap"
 # the campaign reports broken invariants in its summary; any asserted class fails the script
 if grep -q '^cases with findings, by class (hard): none' "$log"; then
     rm -f "$log"

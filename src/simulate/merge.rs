@@ -190,6 +190,8 @@ pub fn merge_runs(
         },
         &from,
     )?;
+    // a merge refused from here on (a damaged shard found in pass 2) leaves no .tmp of its own behind
+    let mut created = RemoveOnError((!writer.resumed()).then(|| writer.tmp_path().to_path_buf()));
     let n_shards = meta.n_shards();
     let names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
     // the statistics, as a single-process run finishes them
@@ -332,6 +334,7 @@ pub fn merge_runs(
         writer.write_psd(psd)?;
     }
     let path = writer.finish()?;
+    created.0 = None;
     let mut notes: Vec<String> = set
         .ignored
         .iter()
@@ -356,16 +359,18 @@ pub fn merge_runs(
     })
 }
 
-/// The verdict statistics of a merged run (`vdv`, `mtvv`, `crest_factor` of every comfort channel,
-/// `damage_rate` of every fatigue channel, appended to their outputs' statistics as a single-process run
-/// appends them) and its rainflow histograms, from the merged accumulators of every internal shard in
-/// order ([`VerdictChannels::finish`], the code of a single-process run). The analytic values (VDV of the
-/// Gaussian weighted output, Dirlik's damage rate), the histogram edges, unit and Dirlik counts depend on
-/// the plan only: they are taken from the first shard file (`stats0`, `rain0`; every shard file stores the
-/// same, which [`PartSet::open`] checked).
-///
-/// # Errors
-/// A verdict statistic or histogram missing from the shard file; [`VerdictChannels::finish`]'s errors.
+/// Removes the temporary file a merge created when the merge returns with an error before its final rename
+/// (nothing is left of a refused merge); `None` once renamed, or for a `.tmp` the merge resumed.
+struct RemoveOnError(Option<PathBuf>);
+
+impl Drop for RemoveOnError {
+    fn drop(&mut self) {
+        if let Some(p) = self.0.take() {
+            let _ = std::fs::remove_file(p);
+        }
+    }
+}
+
 /// Refuses a merged file `out` that is an existing shard file of a cluster run (`merge SHARD-0 SHARD-1 …`
 /// takes the first shard for the output): a shard file is never written over, whatever `--overwrite` says.
 fn refuse_shard_output(out: &Path) -> Result<()> {
@@ -425,6 +430,16 @@ fn verify_rows(
     Ok(())
 }
 
+/// The verdict statistics of a merged run (`vdv`, `mtvv`, `crest_factor` of every comfort channel,
+/// `damage_rate` of every fatigue channel, appended to their outputs' statistics as a single-process run
+/// appends them) and its rainflow histograms, from the merged accumulators of every internal shard in
+/// order ([`VerdictChannels::finish`], the code of a single-process run). The analytic values (VDV of the
+/// Gaussian weighted output, Dirlik's damage rate), the histogram edges, unit and Dirlik counts depend on
+/// the plan only: they are taken from the first shard file (`stats0`, `rain0`; every shard file stores the
+/// same, which [`PartSet::open`] checked).
+///
+/// # Errors
+/// A verdict statistic or histogram missing from the shard file; [`VerdictChannels::finish`]'s errors.
 fn finish_verdicts(
     writer: &RunWriter,
     meta: &crate::store::RunMetadata,

@@ -797,7 +797,7 @@ fn copy_fixture(ctx: &Context, token: &str, to: &Path) {
 }
 
 /// Flips a bit in the data of an accumulator of `file` (not in HDF5's metadata: a checksum must find it).
-fn damage_accumulator(file: &Path, seed: u64) {
+pub fn damage_accumulator(file: &Path, seed: u64) {
     let offset = hdf5::File::open(file)
         .and_then(|f| f.dataset("shards/y:moments"))
         .ok()

@@ -123,9 +123,13 @@ fn flat_constant_and_short_profiles_are_refused_not_classified() {
         ("two.csv", "too few rows"),
         ("fifteen.csv", "too few rows"),
     ] {
-        let e = fails(1, &["road", file], &d);
+        let o = cli(&["road", file], &d);
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{file}: {e}");
         assert!(e.contains(file) && e.contains("column left") && e.contains(why), "{file}: {e}");
-        assert!(!e.contains("class"), "{e}");
+        // refused, not classified: no report, no fitted waviness, no "segment length = 2" for two rows
+        assert!(o.stdout.is_empty(), "{}", String::from_utf8_lossy(&o.stdout));
+        assert!(!e.contains("waviness") && !e.contains("segment length") && !e.contains("panicked"), "{e}");
     }
     let sc = root().join("data/quarter-car.toml");
     let e = fails(1, &["replay", sc.to_str().unwrap(), "ramp.csv"], &d);
@@ -192,6 +196,7 @@ fn options_without_effect_are_errors() {
     let r = root();
     let s = |p: &str| r.join(p).display().to_string();
     let (qc, two, profile) = (s("data/quarter-car-model.toml"), s("data/full-vehicle-two-tracks.toml"), s("data/measured-profile.csv"));
+    let quarter = s("data/quarter-car.toml");
     let p = "model.sprung_mass=300 kg,310 kg";
     // a sweep shard directory and a run file for the merge and plot cases
     let shards = d.join("shards");
@@ -208,7 +213,7 @@ fn options_without_effect_are_errors() {
         (2, vec!["analyze", &qc, "--seed", "4"], "--monte-carlo"),
         (2, vec!["sweep", &qc, "--param", p, "--json", "-o", "t.csv"], "--json"),
         (2, vec!["sweep", &qc, "--param", p, "--overwrite"], "--overwrite"),
-        (2, vec!["replay", &s("data/quarter-car.toml"), &profile, "--overwrite"], "--overwrite"),
+        (2, vec!["replay", &quarter, &profile, "--overwrite"], "--overwrite"),
         (2, vec!["simulate", &qc, "--realizations", "4", "--compression", "fast", "-o", "c.h5"], "--store-raw"),
         (1, vec!["simulate", &qc, "--realizations", "4", "--stream-tail", "1e-3", "--route", "exact", "-o", "c.h5"], "--stream-tail"),
         (1, vec!["merge", "t.csv", "shards", "--copy"], "--copy"),
@@ -293,5 +298,44 @@ fn a_large_run_does_not_write_its_accumulators_before_computing() {
     assert!(err.contains("estimate: 20000000 realizations") && err.contains("a file of"), "{err}");
     assert!(m.len() > 1 << 30, "apparent size {}", m.len());
     assert!(m.blocks() * 512 < m.len() / 10, "{} bytes allocated of {}", m.blocks() * 512, m.len());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A run file's datasets and attributes are bounded before they are read: a density dataset declared with
+/// 2³¹ elements (16 GiB of f64, none of it stored: a chunked dataset never written) is refused naming the
+/// file and the dataset instead of allocating 16 GiB; a scenario attribute of 17 MiB of text, more than the
+/// 16 MiB a scenario file may have, is refused naming the attribute.
+#[test]
+fn a_run_file_declaring_huge_data_is_refused_not_read() {
+    let d = scratch("hdf5");
+    let sc = root().join("data/conveyor-idler.toml");
+    let args = ["simulate", sc.to_str().unwrap(), "--realizations", "4", "--duration", "2", "--dt", "0.01"];
+    let o = cli(&[&args[..], &["-o", "run.h5"]].concat(), &d);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let _g = common::hdf5_serial();
+    let (huge, text) = (d.join("huge-psd.h5"), d.join("huge-text.h5"));
+    std::fs::copy(d.join("run.h5"), &huge).unwrap();
+    std::fs::copy(d.join("run.h5"), &text).unwrap();
+    let signal = {
+        let f = hdf5::File::open_rw(&huge).unwrap();
+        let psd = f.group("psd").unwrap();
+        let name = psd.member_names().unwrap().into_iter().next().expect("a density group");
+        let g = psd.group(&name).unwrap();
+        g.unlink("omega").unwrap();
+        g.new_dataset::<f64>().chunk(1 << 16).shape(1usize << 31).create("omega").unwrap();
+        name
+    };
+    let e = stochvib::store::RunFile::open(&huge).and_then(|r| r.psd()).unwrap_err().to_string();
+    for part in ["huge-psd.h5", &format!("psd/{signal}/omega"), "2147483648 elements", "damaged"] {
+        assert!(e.contains(part), "{part}: {e}");
+    }
+    {
+        let f = hdf5::File::open_rw(&text).unwrap();
+        f.delete_attr("scenario").unwrap();
+        let big: hdf5::types::VarLenUnicode = "#".repeat(17 << 20).parse().unwrap();
+        f.new_attr::<hdf5::types::VarLenUnicode>().create("scenario").unwrap().write_scalar(&big).unwrap();
+    }
+    let e = stochvib::store::RunFile::open(&text).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(e.contains("huge-text.h5") && e.contains("scenario") && e.contains("bytes of text"), "{e}");
     let _ = std::fs::remove_dir_all(&d);
 }

@@ -48,7 +48,7 @@ fn fuzz_inputs_worker() {
 }
 
 /// The campaign of `scripts/fuzz-campaign.sh`: configured by `STOCHVIB_FUZZ_CAMPAIGN` (JSON: seed, cases,
-/// budget_s, cli_every, timeout_ms, totals, findings), run with this binary as the worker and the CLI built
+/// budget_s, cli_every, timeout_ms, totals, findings, bin: the CLI to run), run with this binary as the worker and the CLI built
 /// for the tests; the totals (cases, CLI runs, panics, signals, hangs per format and command) are written
 /// to `totals` as JSON. Without the variable it does nothing.
 #[test]
@@ -67,6 +67,8 @@ fn fuzz_campaign() {
     c.scratch = tmp.join(format!("fuzz-campaign-{seed}-{}", std::process::id()));
     c.findings_dir = Some(text("findings").unwrap_or_else(|| tmp.join(format!("fuzz-campaign-findings-{seed}"))));
     c.progress = true;
+    // the CLI of the campaign's snapshot (scripts/fuzz-campaign.sh copies it), else the one built for the tests
+    c.bin = text("bin").unwrap_or(c.bin);
     let s = input_campaign::run(&c);
     let _ = std::fs::remove_dir_all(&c.scratch);
     println!("{}", s.render());
