@@ -340,7 +340,7 @@ impl TableFormat {
     /// From a file name's extension (`.csv`, `.json`, `.h5`/`.hdf5`).
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming `output` for another extension.
+    /// [`Error::Io`] naming the file for another extension.
     pub fn from_path(path: &Path) -> Result<TableFormat> {
         match path
             .extension()
@@ -351,11 +351,13 @@ impl TableFormat {
             Some("csv") => Ok(TableFormat::Csv),
             Some("json") => Ok(TableFormat::Json),
             Some("h5" | "hdf5") => Ok(TableFormat::Hdf5),
-            _ => Err(Error::invalid(
-                "output",
-                path.display(),
-                "a table is written as .csv, .json or .h5 (from the file name's extension)",
-            )),
+            _ => Err(Error::Io {
+                path: path.to_path_buf(),
+                source: std::io::Error::new(
+                    std::io::ErrorKind::InvalidInput,
+                    "a table is written as .csv, .json or .h5 (from the file name's extension); nothing was written",
+                ),
+            }),
         }
     }
 }

@@ -330,7 +330,16 @@ pub fn replay_scenario(
             skip_m: opts.skip_m,
             start: opts.start,
         },
-    )?;
+    )
+    .map_err(|e| match e {
+        // the length skipped is --skip's
+        Error::InvalidParameter { name, value, reason } if name == "skip" => Error::InvalidParameter {
+            name: "--skip".into(),
+            value,
+            reason,
+        },
+        e => e,
+    })?;
     let mut outputs = Vec::new();
     for &i in &scenario.analysis.outputs {
         let analytic_sigma = analyze_output(measured.model.system.as_ref(), &measured.excitation, i)?

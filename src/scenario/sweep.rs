@@ -371,12 +371,13 @@ struct SpeedExcitation {
 enum Excitations {
     /// Only `model.*` keys vary and the model's input layout stays the base's: the base excitation.
     Base(Box<ExactEvaluator>),
-    /// `input.speed` varies too: one excitation per distinct speed value (index of its value).
-    PerSpeed {
-        param: usize,
-        cache: Vec<Option<SpeedExcitation>>,
-    },
+    /// `input.speed` varies too: one excitation per distinct speed value (index of its value), built at its
+    /// first use (a study of 10⁶ speeds does not build 10⁶ excitations before its first point).
+    PerSpeed { param: usize, cache: Vec<SpeedCache> },
 }
+
+/// The excitation of one speed value once built; `None` inside: that speed is refused.
+type SpeedCache = std::sync::OnceLock<Option<Box<SpeedExcitation>>>;
 
 /// Largest number of keys of a numeric builder (the values of a point live on the stack).
 const MAX_NUMERIC_KEYS: usize = 16;
@@ -509,10 +510,7 @@ impl<'a> Sweep<'a> {
         if let Some(Excitations::PerSpeed { param, .. }) = &sweep.fast {
             let param = *param;
             let n = sweep.spec.params[param].values.len();
-            let mut cache = Vec::with_capacity(n);
-            for v in 0..n {
-                cache.push(sweep.speed_excitation(param, v).ok());
-            }
+            let cache = (0..n).map(|_| SpeedCache::new()).collect();
             sweep.fast = Some(Excitations::PerSpeed { param, cache });
         }
         if sweep.fast.is_some() {
@@ -663,6 +661,15 @@ impl<'a> Sweep<'a> {
         parse_scenario(&text, &self.base.path, &self.base.spectra_dir)
     }
 
+    /// The excitation at value `v` of the speed key `param` from `cache`, built at its first use; `None` for
+    /// a speed that is refused ([`speed_excitation`](Self::speed_excitation) gives the error).
+    fn speed_entry<'s>(&self, cache: &'s [SpeedCache], param: usize, v: usize) -> Option<&'s SpeedExcitation> {
+        cache
+            .get(v)?
+            .get_or_init(|| self.speed_excitation(param, v).ok().map(Box::new))
+            .as_deref()
+    }
+
     /// The excitation of the base model's input layout at value `v` of the speed parameter `param`.
     fn speed_excitation(&self, param: usize, v: usize) -> Result<SpeedExcitation> {
         let mut input = self
@@ -779,8 +786,8 @@ impl<'a> Sweep<'a> {
         let values = &values[..num.base.len()];
         let (ev, exc) = match (fast, speed_index) {
             (Excitations::Base(ev), _) => (&**ev, &self.base.excitation),
-            (Excitations::PerSpeed { cache, .. }, Some(v)) => {
-                let e = cache.get(v)?.as_ref()?;
+            (Excitations::PerSpeed { param, cache }, Some(v)) => {
+                let e = self.speed_entry(cache, *param, v)?;
                 (&e.evaluator, &e.excitation)
             }
             (Excitations::PerSpeed { .. }, None) => return None,
@@ -843,9 +850,9 @@ impl<'a> Sweep<'a> {
         let fresh;
         let at_speed = match fast {
             Excitations::Base(_) => None,
-            Excitations::PerSpeed { param, cache } => match cache.get(idx[*param]) {
-                Some(Some(e)) => Some(e),
-                _ => {
+            Excitations::PerSpeed { param, cache } => match self.speed_entry(cache, *param, idx[*param]) {
+                Some(e) => Some(e),
+                None => {
                     fresh = self.speed_excitation(*param, idx[*param])?;
                     Some(&fresh)
                 }

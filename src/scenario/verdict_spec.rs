@@ -398,6 +398,9 @@ fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Resul
         let key = match &e {
             Error::InvalidParameter { name, .. } if name == "amplitude" => "reference_amplitude".to_string(),
             Error::InvalidParameter { name, .. } if name == "cycles" => "reference_cycles".to_string(),
+            // C is the file's `c`, or derived from the reference point as N·S_a^k (its exponent k overflows it)
+            Error::InvalidParameter { name, .. } if name == "C" && f.get("c").is_some() => "c".to_string(),
+            Error::InvalidParameter { name, .. } if name == "C" => "k".to_string(),
             Error::InvalidParameter { name, .. } => name.clone(),
             _ => "k".to_string(),
         };

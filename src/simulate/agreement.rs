@@ -111,14 +111,21 @@ mod tests {
     fn a_collapsed_or_exploded_variance_fails_the_run() {
         let (lo, hi) = agreement_bounds(1.0, 1.0, 1000);
         assert!((lo - (1.0 - (4.0 * 1e7f64.ln() / 1000.0).sqrt())).abs() < 1e-12, "{lo}");
-        assert!((hi - (1.0 + (1e7f64 - 1.0).sqrt() / 1000f64.sqrt())).abs() < 1e-9, "{hi}");
+        assert!(
+            (hi - (1.0 + (1e7f64 - 1.0).sqrt() / 1000f64.sqrt())).abs() < 1e-9,
+            "{hi}"
+        );
         for v in [0.0, 1e-66, 1e300] {
-            let e = check_mean_square(&output(Some(1e9)), &vec![v; 1000]).unwrap_err().to_string();
+            let e = check_mean_square(&output(Some(1e9)), &vec![v; 1000])
+                .unwrap_err()
+                .to_string();
             for part in ["`body`", "kurtosis 1000000000", ".tmp", "not reported as a success"] {
                 assert!(e.contains(part), "{part}: {e}");
             }
         }
-        let e = check_mean_square(&output(None), &[f64::NAN; 10]).unwrap_err().to_string();
+        let e = check_mean_square(&output(None), &[f64::NAN; 10])
+            .unwrap_err()
+            .to_string();
         assert!(!e.contains("kurtosis"), "{e}");
     }
 

@@ -74,7 +74,13 @@ impl CommandCorpus {
         let three: String = std::iter::once("distance [cm], left [mm], right [mm], middle [um]".to_string())
             .chain(rest.iter().skip(1).take(800).enumerate().map(|(k, l)| {
                 let c: Vec<&str> = l.split(',').collect();
-                format!("{},{},{},{}", k * 5, c[1], c[2], 1000.0 * c[1].trim().parse::<f64>().unwrap_or(0.0))
+                format!(
+                    "{},{},{},{}",
+                    k * 5,
+                    c[1],
+                    c[2],
+                    1000.0 * c[1].trim().parse::<f64>().unwrap_or(0.0)
+                )
             }))
             .map(|l| format!("{l}\n"))
             .collect();
@@ -87,16 +93,23 @@ impl CommandCorpus {
         let mut road_scenarios = Vec::new();
         let mut sweep_scenarios = Vec::new();
         for (rel, table) in stochastic {
-            let Ok(sc) = stochvib::scenario::load_scenario(&root.join(rel), &spectra) else { continue };
+            let Ok(sc) = stochvib::scenario::load_scenario(&root.join(rel), &spectra) else {
+                continue;
+            };
             if sc.input.spectrum.domain() == Domain::Spatial {
                 road_scenarios.push(rel.clone());
             }
             sweep_scenarios.push((rel.clone(), sweep_keys(table)));
         }
         let mut workdays = Vec::new();
-        for e in std::fs::read_dir(root.join("data/workday")).expect("data/workday").flatten() {
+        for e in std::fs::read_dir(root.join("data/workday"))
+            .expect("data/workday")
+            .flatten()
+        {
             let p = e.path();
-            let Ok(mut t) = std::fs::read_to_string(&p).unwrap().parse::<Table>() else { continue };
+            let Ok(mut t) = std::fs::read_to_string(&p).unwrap().parse::<Table>() else {
+                continue;
+            };
             if let Some(Value::Array(tasks)) = t.get_mut("task") {
                 for task in tasks.iter_mut().filter_map(Value::as_table_mut) {
                     if let Some(Value::String(s)) = task.get_mut("scenario") {
@@ -298,13 +311,25 @@ fn header_line(lines: &[String]) -> Option<usize> {
 
 /// One CSV mutation; returns its description.
 fn mutate_profile(rng: &mut Rng, lines: &mut Vec<String>) -> String {
+    // earlier mutations may have deleted every line (the arms below index a line)
+    if lines.is_empty() {
+        return "no line left".into();
+    }
     let h = header_line(lines).unwrap_or(0);
     let data = h + 1..lines.len().max(h + 1);
-    let row = |rng: &mut Rng| if data.is_empty() { h } else { rng.random_range(data.clone()) };
+    let row = |rng: &mut Rng| {
+        if data.is_empty() {
+            h
+        } else {
+            rng.random_range(data.clone())
+        }
+    };
     match rng.random_range(0..16) {
         0..=2 => {
             let r = row(rng);
-            let mut cells: Vec<String> = lines.get(r).map_or(vec![], |l| l.split(',').map(str::to_string).collect());
+            let mut cells: Vec<String> = lines
+                .get(r)
+                .map_or(vec![], |l| l.split(',').map(str::to_string).collect());
             if cells.is_empty() {
                 return "no cell".into();
             }
@@ -319,7 +344,9 @@ fn mutate_profile(rng: &mut Rng, lines: &mut Vec<String>) -> String {
             format!("line {} cell {c} -> {}", r + 1, mutate::short(&v))
         }
         3 => {
-            let Some(l) = lines.get_mut(h) else { return "no header".into() };
+            let Some(l) = lines.get_mut(h) else {
+                return "no header".into();
+            };
             let u = pick(rng, UNITS);
             let cols: Vec<&str> = l.split(',').collect();
             let c = rng.random_range(0..cols.len());
@@ -330,7 +357,9 @@ fn mutate_profile(rng: &mut Rng, lines: &mut Vec<String>) -> String {
             format!("header column {c} unit -> {u}")
         }
         4 => {
-            let Some(l) = lines.get_mut(h) else { return "no header".into() };
+            let Some(l) = lines.get_mut(h) else {
+                return "no header".into();
+            };
             let what = match rng.random_range(0..4) {
                 0 => l.replacen("left", "", 1),
                 1 => l.replacen("right", "left", 1),
@@ -367,7 +396,11 @@ fn mutate_profile(rng: &mut Rng, lines: &mut Vec<String>) -> String {
             for (k, l) in lines.iter_mut().enumerate().skip(h + 1) {
                 let mut cells: Vec<String> = l.split(',').map(str::to_string).collect();
                 if cells.len() > 1 {
-                    cells[1] = if ramp { format!("{:.3}", 1.0 + k as f64 * 0.001) } else { "5.000".into() };
+                    cells[1] = if ramp {
+                        format!("{:.3}", 1.0 + k as f64 * 0.001)
+                    } else {
+                        "5.000".into()
+                    };
                 }
                 *l = cells.join(",");
             }
@@ -386,12 +419,18 @@ fn mutate_profile(rng: &mut Rng, lines: &mut Vec<String>) -> String {
             let d: f64 = l.split(',').next().and_then(|x| x.trim().parse().ok()).unwrap_or(0.0);
             let nd = d + [0.01, 0.5, -1.0, 1e6, 0.0][rng.random_range(0..5)];
             let rest: Vec<&str> = l.split(',').skip(1).collect();
-            *l = std::iter::once(format!("{nd}")).chain(rest.iter().map(|s| s.to_string())).collect::<Vec<_>>().join(",");
+            *l = std::iter::once(format!("{nd}"))
+                .chain(rest.iter().map(|s| s.to_string()))
+                .collect::<Vec<_>>()
+                .join(",");
             format!("line {} distance -> {nd}", r + 1)
         }
         12 => {
             let r = row(rng);
-            lines.insert(r, ["# comment", "", "   ", "#", "\u{feff}"][rng.random_range(0..5)].to_string());
+            lines.insert(
+                r,
+                ["# comment", "", "   ", "#", "\u{feff}"][rng.random_range(0..5)].to_string(),
+            );
             format!("inserted a blank or comment line at {}", r + 1)
         }
         13 => {
@@ -416,7 +455,9 @@ fn road_flags(rng: &mut Rng) -> Vec<String> {
     let mut a = Vec::new();
     if rng.random_bool(0.3) {
         a.push("--segment".into());
-        a.push(["0", "2", "3", "4", "16", "17", "64", "1048576", "18446744073709551615"][rng.random_range(0..9)].into());
+        a.push(
+            ["0", "2", "3", "4", "16", "17", "64", "1048576", "18446744073709551615"][rng.random_range(0..9)].into(),
+        );
     }
     if rng.random_bool(0.3) {
         a.push("--detrend".into());
@@ -441,7 +482,12 @@ fn replay_case(cc: &CommandCorpus, rng: &mut Rng, case: &mut Case) {
             a.push(values[rng.random_range(0..values.len())].to_string());
         }
     };
-    flag(rng, 0.5, "--speed", &["20", "7.5", "0", "-3", "1e308", "1e-300", "NaN", "inf", "1e6"]);
+    flag(
+        rng,
+        0.5,
+        "--speed",
+        &["20", "7.5", "0", "-3", "1e308", "1e-300", "NaN", "inf", "1e6"],
+    );
     flag(rng, 0.25, "--skip", &["0", "3.5", "-1", "1e9", "NaN"]);
     flag(rng, 0.25, "--track", &["left", "right", "z", "nope", ""]);
     flag(rng, 0.2, "--detrend", &["mean", "linear", "cubic"]);
@@ -471,7 +517,15 @@ fn sweep_case(cc: &CommandCorpus, rng: &mut Rng, case: &mut Case) {
 /// One `KEY=VALUES` text.
 fn sweep_param(rng: &mut Rng, keys: &[(String, Value)]) -> String {
     let (key, v) = if keys.is_empty() || rng.random_bool(0.1) {
-        let k = ["model.", "", "title", "input.spectrum", "model.element.99.stiffness", "model.nope", "a..b"];
+        let k = [
+            "model.",
+            "",
+            "title",
+            "input.spectrum",
+            "model.element.99.stiffness",
+            "model.nope",
+            "a..b",
+        ];
         (pick(rng, &k).to_string(), Value::Float(1.0))
     } else {
         pick(rng, keys).clone()
@@ -480,7 +534,10 @@ fn sweep_param(rng: &mut Rng, keys: &[(String, Value)]) -> String {
     let (x, unit) = match &v {
         Value::String(s) => {
             let mut it = s.splitn(2, ' ');
-            (it.next().and_then(|n| n.parse::<f64>().ok()).unwrap_or(1.0), it.next().unwrap_or("").to_string())
+            (
+                it.next().and_then(|n| n.parse::<f64>().ok()).unwrap_or(1.0),
+                it.next().unwrap_or("").to_string(),
+            )
         }
         Value::Integer(i) => (*i as f64, String::new()),
         Value::Float(f) => (*f, String::new()),
@@ -495,17 +552,33 @@ fn sweep_param(rng: &mut Rng, keys: &[(String, Value)]) -> String {
             3 => "-1".into(),
             4 => String::new(),
             5 => "0".into(),
-            _ => format!("{:e} {unit}", x * 10f64.powf(rng.random_range(-1.0..1.0))).trim().to_string(),
+            _ => format!("{:e} {unit}", x * 10f64.powf(rng.random_range(-1.0..1.0)))
+                .trim()
+                .to_string(),
         }
     };
     let values = if rng.random_bool(0.5) {
         let n = rng.random_range(1..5);
         (0..n).map(|_| scaled(rng)).collect::<Vec<_>>().join(",")
     } else {
-        let count = ["0", "1", "2", "5", "17", "1000000", "1000001", "18446744073709551615", "x", "-3"]
-            [rng.random_range(0..10)];
+        let count = [
+            "0",
+            "1",
+            "2",
+            "5",
+            "17",
+            "1000000",
+            "1000001",
+            "18446744073709551615",
+            "x",
+            "-3",
+        ][rng.random_range(0..10)];
         let log = if rng.random_bool(0.2) { ":log" } else { "" };
-        let lo = if rng.random_bool(0.1) { format!("{:e}", -x) } else { format!("{:e}", x * 0.8) };
+        let lo = if rng.random_bool(0.1) {
+            format!("{:e}", -x)
+        } else {
+            format!("{:e}", x * 0.8)
+        };
         format!("{lo}..{:e}:{count}{log} {unit}", x * 1.2).trim().to_string()
     };
     if rng.random_bool(0.03) {
@@ -543,9 +616,26 @@ fn merge_case(rng: &mut Rng, case: &mut Case) {
     let mut a: Vec<String> = set.iter().map(|s| s.to_string()).collect();
     let sweep = set.iter().any(|s| s.contains('S'));
     let targets: &[&str] = if sweep {
-        &["out=new.csv", "out=new.json", "out=new.h5", "out=S0", "out=junk", "out=dir", "out=new.txt"]
+        &[
+            "out=new.csv",
+            "out=new.json",
+            "out=new.h5",
+            "out=S0",
+            "out=junk",
+            "out=dir",
+            "out=new.txt",
+        ]
     } else {
-        &["out=new", "out=new", "out=A0", "out=B0", "out=whole", "out=junk", "out=dir", "out=tmp"]
+        &[
+            "out=new",
+            "out=new",
+            "out=A0",
+            "out=B0",
+            "out=whole",
+            "out=junk",
+            "out=dir",
+            "out=tmp",
+        ]
     };
     a.push(pick(rng, targets).to_string());
     if rng.random_bool(0.3) {
@@ -584,7 +674,8 @@ fn workday_case(corpus: &Corpus, rng: &mut Rng, case: &mut Case) {
             if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness)
                 && mutate::get(&doc, p).is_some_and(|x| x.to_string() == v.to_string())
             {
-                case.must_reject.push((class.clone(), mutate::path_str(p), mutate::path_str(p)));
+                case.must_reject
+                    .push((class.clone(), mutate::path_str(p), mutate::path_str(p)));
             }
         }
         case.doc = Some(doc);
@@ -649,7 +740,10 @@ fn ok<T: serde::Serialize>(what: &str, r: &T) -> Outcome {
 
 /// The value after flag `name` in `args`.
 fn flag<'a>(args: &'a [String], name: &str) -> Option<&'a str> {
-    args.iter().position(|a| a == name).and_then(|i| args.get(i + 1)).map(String::as_str)
+    args.iter()
+        .position(|a| a == name)
+        .and_then(|i| args.get(i + 1))
+        .map(String::as_str)
 }
 
 /// Parses a flag's value as the CLI would (`None`: absent; `Err`: clap refuses it).
@@ -756,7 +850,11 @@ fn eval_sweep(args: &[String], ctx: &Context) -> Outcome {
         Err(e) => return fail(&e, "load"),
     };
     let params: Vec<&String> = args.windows(2).filter(|w| w[0] == "--param").map(|w| &w[1]).collect();
-    let params = match params.iter().map(|p| SweepParam::parse(p)).collect::<Result<Vec<_>, _>>() {
+    let params = match params
+        .iter()
+        .map(|p| SweepParam::parse(p))
+        .collect::<Result<Vec<_>, _>>()
+    {
         Ok(p) => p,
         Err(e) => return fail(&e, "load"),
     };
@@ -771,8 +869,15 @@ fn eval_sweep(args: &[String], ctx: &Context) -> Outcome {
     };
     let n = sweep.spec().n_points().min(SWEEP_POINTS);
     let rows = sweep.evaluate_range(0..n, false);
-    if let Some(m) = rows.iter().filter_map(|r| r.as_ref().err()).find(|m| m.len() > MAX_MESSAGE) {
-        return fail(&Error::invalid("--param", "a point's message", mutate::short_to(m, 300)), "report");
+    if let Some(m) = rows
+        .iter()
+        .filter_map(|r| r.as_ref().err())
+        .find(|m| m.len() > MAX_MESSAGE)
+    {
+        return fail(
+            &Error::invalid("--param", "a point's message", mutate::short_to(m, 300)),
+            "report",
+        );
     }
     let values: Vec<Vec<stochvib::response::PointStatistics>> = rows.into_iter().filter_map(Result::ok).collect();
     ok("sweep", &values)
@@ -785,8 +890,10 @@ struct MergeSet {
     out: PathBuf,
     overwrite: bool,
     copy: bool,
-    /// Exactly the shards of run A into a new target (or over the whole run with --overwrite).
+    /// Exactly the shards of run A or of run B into a new target (or over the whole run with --overwrite).
     good: bool,
+    /// The shards of run A, whose merge must equal the single-process run `whole.h5`.
+    run_a: bool,
 }
 
 /// Copies fixture `token` to `dir/name`.
@@ -820,12 +927,20 @@ fn materialize(dir: &Path, args: &[String], ctx: &Context) -> MergeSet {
         .unwrap_or(1);
     let mut inputs = Vec::new();
     let mut members = Vec::new();
-    for (k, t) in args.iter().filter(|a| !a.contains('=') && !a.starts_with("--")).enumerate() {
+    for (k, t) in args
+        .iter()
+        .filter(|a| !a.contains('=') && !a.starts_with("--"))
+        .enumerate()
+    {
         let p = dir.join(format!("m{k}-{}", t.replace('/', "_")));
         match t.as_str() {
             "dirA" | "dirS" => {
                 std::fs::create_dir_all(&p).unwrap();
-                let toks = if t == "dirA" { ["A0", "A1", "A2"].as_slice() } else { ["S0", "S1"].as_slice() };
+                let toks = if t == "dirA" {
+                    ["A0", "A1", "A2"].as_slice()
+                } else {
+                    ["S0", "S1"].as_slice()
+                };
                 for tok in toks {
                     let name = Path::new(fixture_file(tok).unwrap()).file_name().unwrap().to_owned();
                     copy_fixture(ctx, tok, &p.join(name));
@@ -849,7 +964,10 @@ fn materialize(dir: &Path, args: &[String], ctx: &Context) -> MergeSet {
             }
             "truncA1" => {
                 copy_fixture(ctx, "A1", &p.with_extension("h5"));
-                let f = std::fs::OpenOptions::new().write(true).open(p.with_extension("h5")).unwrap();
+                let f = std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(p.with_extension("h5"))
+                    .unwrap();
                 let len = f.metadata().unwrap().len();
                 f.set_len(len * (seed % 90 + 5) / 100).unwrap();
             }
@@ -864,7 +982,11 @@ fn materialize(dir: &Path, args: &[String], ctx: &Context) -> MergeSet {
                 copy_fixture(ctx, tok, &p.with_extension(ext));
             }
         }
-        let ext = if t.starts_with('S') || t == "mutS1" { "json" } else { "h5" };
+        let ext = if t.starts_with('S') || t == "mutS1" {
+            "json"
+        } else {
+            "h5"
+        };
         inputs.push(p.with_extension(ext));
         members.push(t.clone());
     }
@@ -903,18 +1025,29 @@ fn materialize(dir: &Path, args: &[String], ctx: &Context) -> MergeSet {
             std::fs::write(dir.join("merged.h5.tmp"), b"garbage\n").unwrap();
             p
         }
-        t => dir.join(t.strip_prefix("new").map_or("merged.h5".to_string(), |e| format!("merged{e}"))),
+        t => dir.join(
+            t.strip_prefix("new")
+                .map_or("merged.h5".to_string(), |e| format!("merged{e}")),
+        ),
     };
-    let out = if out.extension().is_none() { out.with_extension("h5") } else { out };
+    let out = if out.extension().is_none() {
+        out.with_extension("h5")
+    } else {
+        out
+    };
     let mut sorted = members.clone();
     sorted.sort();
-    let good = sorted == ["A0", "A1", "A2"] && (target == "new" || (target == "whole" && overwrite));
+    // run B's two shards are a complete run too (another seed: no single-process run to compare with)
+    let run_a = sorted == ["A0", "A1", "A2"];
+    let complete = run_a || sorted == ["B0", "B1"];
+    let good = complete && (target == "new" || (target == "whole" && overwrite));
     MergeSet {
         inputs,
         out,
         overwrite,
         copy: args.iter().any(|a| a == "--copy"),
         good,
+        run_a,
     }
 }
 
@@ -942,9 +1075,18 @@ fn eval_merge(path: &Path, args: &[String], ctx: &Context) -> Outcome {
     };
     match stochvib::simulate::merge_runs(&set.out, &set.inputs, &opts, &|_, _| {}) {
         Ok(s) => {
-            let same = s.outputs == Fixtures { dir: ctx.fixtures.clone() }.whole_statistics();
+            let same = !set.run_a
+                || s.outputs
+                    == Fixtures {
+                        dir: ctx.fixtures.clone(),
+                    }
+                    .whole_statistics();
             Outcome::Ok(Success {
-                what: format!("merge:{}:{}", if set.good { "good" } else { "bad" }, if same { "same" } else { "differs" }),
+                what: format!(
+                    "merge:{}:{}",
+                    if set.good { "good" } else { "bad" },
+                    if same { "same" } else { "differs" }
+                ),
                 non_finite: vec![],
                 outputs: vec![],
                 system_outputs: vec![],
@@ -953,7 +1095,9 @@ fn eval_merge(path: &Path, args: &[String], ctx: &Context) -> Outcome {
         }
         Err(e) => {
             let mut o = fail(&e, "report");
-            if set.good && let Outcome::Err(f) = &mut o {
+            if set.good
+                && let Outcome::Err(f) = &mut o
+            {
                 f.stage = "refused-good-set".into();
             }
             o
@@ -1032,7 +1176,11 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<
         })
     };
     match outcome {
-        Outcome::Panic { location, message, stage } => add(
+        Outcome::Panic {
+            location,
+            message,
+            stage,
+        } => add(
             "panic",
             format!("panic at {location}"),
             format!("{what}, stage {stage}: {}", mutate::short_to(message, 240)),
@@ -1054,7 +1202,10 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<
             if case.kind == DocKind::Merge && e.stage == "refused-good-set" {
                 add(
                     "merge-refused-good-set",
-                    format!("merge refuses the shards of one run: {}", inputs::normalize_message(&e.message)),
+                    format!(
+                        "merge refuses the shards of one run: {}",
+                        inputs::normalize_message(&e.message)
+                    ),
                     case.describe(),
                 );
             }
@@ -1076,7 +1227,11 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<
                 ),
                 (v, _, _) => add(
                     "error-without-file-key",
-                    format!("{what}: {v} error from stage {}: {}", e.stage, inputs::normalize_message(&e.message)),
+                    format!(
+                        "{what}: {v} error from stage {}: {}",
+                        e.stage,
+                        inputs::normalize_message(&e.message)
+                    ),
                     mutate::short_to(&e.message, 240),
                 ),
             }
@@ -1090,7 +1245,11 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<
                 );
             }
             if s.what.starts_with("merge:bad") {
-                add("merge-accepted-bad-set", format!("merge accepts {}", case.origin), case.describe());
+                add(
+                    "merge-accepted-bad-set",
+                    format!("merge accepts {}", case.origin),
+                    case.describe(),
+                );
             }
             if s.what == "merge:good:differs" {
                 add(
@@ -1100,7 +1259,11 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<
                 );
             }
             for (class, _, p) in &case.must_reject {
-                add(class, format!("{class}: `{}` ({what})", mutate::normalize_path(p)), case.describe());
+                add(
+                    class,
+                    format!("{class}: `{}` ({what})", mutate::normalize_path(p)),
+                    case.describe(),
+                );
             }
         }
     }
@@ -1123,7 +1286,11 @@ pub fn cli_args(case: &Case, path: &Path, ctx: &Context, json: bool) -> Option<V
             a
         }
         DocKind::Replay => {
-            let mut a = vec!["replay".into(), ctx.root.join(&case.args[0]).display().to_string(), file];
+            let mut a = vec![
+                "replay".into(),
+                ctx.root.join(&case.args[0]).display().to_string(),
+                file,
+            ];
             a.extend(case.args[1..].iter().cloned());
             a.extend(spectra);
             a
@@ -1187,33 +1354,60 @@ pub fn check_cli(case: &Case, args: &[String], lib: &str, out: &super::process::
         })
     };
     if out.stderr.len() > MAX_STDERR {
-        add("cli-flood", format!("{cmd} writes more than {MAX_STDERR} bytes of stderr"), String::new());
+        add(
+            "cli-flood",
+            format!("{cmd} writes more than {MAX_STDERR} bytes of stderr"),
+            String::new(),
+        );
     }
-    let first_err = out.stderr.lines().find(|l| l.starts_with("error")).unwrap_or("").to_string();
+    let first_err = out
+        .stderr
+        .lines()
+        .find(|l| l.starts_with("error"))
+        .unwrap_or("")
+        .to_string();
     match out.exit {
-        Exit::Timeout => add("cli-timeout", format!("{cmd} timed out"), format!("after {:?}", out.elapsed)),
+        Exit::Timeout => add(
+            "cli-timeout",
+            format!("{cmd} timed out"),
+            format!("after {:?}", out.elapsed),
+        ),
         Exit::Signal(s) => add(
             "cli-crash",
             format!("{cmd} killed by signal {s}"),
             super::process::tail(&out.stderr, 300),
         ),
-        Exit::Code(101) => add("cli-panic", format!("{cmd} panicked"), super::process::tail(&out.stderr, 300)),
+        Exit::Code(101) => add(
+            "cli-panic",
+            format!("{cmd} panicked"),
+            super::process::tail(&out.stderr, 300),
+        ),
         Exit::Code(0) => {
             let toks = inputs::non_finite_tokens(&out.stdout, &case.bytes);
             if !toks.is_empty() && case.kind != DocKind::Sweep {
                 add("cli-non-finite", format!("{cmd} prints {}", toks[0]), String::new());
             }
             if lib.starts_with("err") && !lib.contains("Clap") {
-                add("cli-inconsistent", format!("{cmd} succeeds where the library returns {lib}"), case.describe());
+                add(
+                    "cli-inconsistent",
+                    format!("{cmd} succeeds where the library returns {lib}"),
+                    case.describe(),
+                );
             }
         }
         // clap's own refusals (exit 2) name the flag
         Exit::Code(2) if lib.contains("Clap") || out.stderr.contains("--") => {}
         Exit::Code(c) => {
             if c != 1 {
-                add("cli-exit-code", format!("{cmd} exit code {c}"), mutate::short(&first_err));
+                add(
+                    "cli-exit-code",
+                    format!("{cmd} exit code {c}"),
+                    mutate::short(&first_err),
+                );
             }
-            let named = args[1..].iter().any(|a| a.starts_with('/') && out.stderr.contains(a.as_str()))
+            let named = args[1..]
+                .iter()
+                .any(|a| a.starts_with('/') && out.stderr.contains(a.as_str()))
                 || out.stderr.contains("--")
                 || out.stderr.contains(&case.file_name);
             if !first_err.starts_with("error") || !named {
@@ -1224,7 +1418,11 @@ pub fn check_cli(case: &Case, args: &[String], lib: &str, out: &super::process::
                 );
             }
             if lib.starts_with("ok") {
-                add("cli-inconsistent", format!("{cmd} fails where the library succeeds ({lib})"), mutate::short(&first_err));
+                add(
+                    "cli-inconsistent",
+                    format!("{cmd} fails where the library succeeds ({lib})"),
+                    mutate::short(&first_err),
+                );
             }
         }
     }
@@ -1291,7 +1489,14 @@ pub fn output_probes(ctx: &Context, dir: &Path) -> Vec<OutputProbe> {
     let s = |p: &Path| p.display().to_string();
     let spectra = ["--spectra-dir".to_string(), s(&ctx.spectra())];
     let replay = |target: &Path| {
-        let mut a = vec!["replay".into(), s(&sc), s(&profile), "-o".into(), s(target), "--overwrite".into()];
+        let mut a = vec![
+            "replay".into(),
+            s(&sc),
+            s(&profile),
+            "-o".into(),
+            s(target),
+            "--overwrite".into(),
+        ];
         a.extend(spectra.clone());
         a
     };
@@ -1310,7 +1515,14 @@ pub fn output_probes(ctx: &Context, dir: &Path) -> Vec<OutputProbe> {
     };
     let simulate = |target: &Path| {
         let mut a = vec!["simulate".into(), s(&sc), "--realizations".into(), "4".into()];
-        a.extend(["--duration".into(), "5".into(), "--dt".into(), "0.01".into(), "-o".into(), s(target)]);
+        a.extend([
+            "--duration".into(),
+            "5".into(),
+            "--dt".into(),
+            "0.01".into(),
+            "-o".into(),
+            s(target),
+        ]);
         a.push("--overwrite".into());
         a.extend(spectra.clone());
         a
@@ -1321,11 +1533,19 @@ pub fn output_probes(ctx: &Context, dir: &Path) -> Vec<OutputProbe> {
         a.push("--overwrite".into());
         a
     };
-    let probe = |name, args, target: &Path| OutputProbe { name, args, target: target.to_path_buf() };
+    let probe = |name, args, target: &Path| OutputProbe {
+        name,
+        args,
+        target: target.to_path_buf(),
+    };
     vec![
         probe("replay -o its profile", replay(&profile), &profile),
         probe("replay -o its scenario", replay(&sc), &sc),
-        probe("replay -o /dev/null", replay(Path::new("/dev/null")), Path::new("/dev/null")),
+        probe(
+            "replay -o /dev/null",
+            replay(Path::new("/dev/null")),
+            Path::new("/dev/null"),
+        ),
         probe("replay -o a FIFO", replay(&fifo), &fifo),
         probe("replay -o a directory", replay(&folder), &folder),
         probe("sweep -o a run file", sweep(&run), &run),
@@ -1334,7 +1554,11 @@ pub fn output_probes(ctx: &Context, dir: &Path) -> Vec<OutputProbe> {
         probe("merge onto a FIFO", merge(&fifo), &fifo),
         probe("simulate -o its scenario", simulate(&sc), &sc),
         probe("simulate -o a profile", simulate(&profile), &profile),
-        probe("plot -o a regular file", vec!["plot".into(), s(&run), "-o".into(), s(&profile)], &profile),
+        probe(
+            "plot -o a regular file",
+            vec!["plot".into(), s(&run), "-o".into(), s(&profile)],
+            &profile,
+        ),
     ]
 }
 

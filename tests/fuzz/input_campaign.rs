@@ -105,7 +105,13 @@ pub fn context(root: &Path, scratch: &Path) -> Context {
 }
 
 /// Evaluates a case of any kind in this process under `dir`.
-pub fn run_any(corpus: &Corpus, case: &Case, dir: &Path, limit: Duration, ctx: &Context) -> (Outcome, Vec<Finding>, Duration) {
+pub fn run_any(
+    corpus: &Corpus,
+    case: &Case,
+    dir: &Path,
+    limit: Duration,
+    ctx: &Context,
+) -> (Outcome, Vec<Finding>, Duration) {
     if case.kind.is_command() {
         commands::run_case(case, dir, limit, ctx)
     } else {
@@ -950,8 +956,17 @@ fn command_specials(c: &Campaign, d: &Path) -> Vec<Special> {
     t.extend(std::iter::repeat_n(b'1', 1 << 20));
     std::fs::write(&long, &t).unwrap();
     let zero_day = d.join("dev-zero-day.toml");
-    std::fs::write(&zero_day, "title = \"x\"\n[[task]]\nname = \"a\"\nscenario = \"/dev/zero\"\nduration = \"1 h\"\n").unwrap();
-    let road = Corpus::load(&c.root).commands.road_scenarios.first().cloned().unwrap_or_default();
+    std::fs::write(
+        &zero_day,
+        "title = \"x\"\n[[task]]\nname = \"a\"\nscenario = \"/dev/zero\"\nduration = \"1 h\"\n",
+    )
+    .unwrap();
+    let road = Corpus::load(&c.root)
+        .commands
+        .road_scenarios
+        .first()
+        .cloned()
+        .unwrap_or_default();
     let sp = |name, kind, path: &Path, note, args: Vec<String>| Special {
         name,
         kind,
@@ -961,21 +976,85 @@ fn command_specials(c: &Campaign, d: &Path) -> Vec<Special> {
         args,
     };
     vec![
-        sp("profile-fifo", DocKind::Profile, &fifo, "a FIFO nobody writes to as the road profile", vec![]),
-        sp("profile-dev-zero", DocKind::Profile, Path::new("/dev/zero"), "/dev/zero as the road profile", vec![]),
-        sp("profile-directory", DocKind::Profile, &dir, "a directory named like a profile", vec![]),
-        sp("profile-2-gib", DocKind::Profile, &big, "a 2 GiB (sparse) profile: refused by its size, unread", vec![]),
-        sp("profile-long-line", DocKind::Profile, &long, "a profile whose second line is 1 MiB long", vec![]),
-        sp("replay-fifo", DocKind::Replay, &fifo, "a FIFO as the replayed profile", vec![road]),
-        sp("workday-fifo", DocKind::Workday, &fifo, "a FIFO as the workday file", vec![]),
-        sp("workday-dev-zero", DocKind::Workday, &zero_day, "a workday whose scenario is /dev/zero", vec![]),
-        sp("merge-fifo", DocKind::Merge, &d.join("merged.h5"), "a FIFO among the shard files", merge_args(&["A0", "fifo", "A1", "A2"])),
-        sp("merge-dev-null", DocKind::Merge, &d.join("merged.h5"), "/dev/null among the shard files", merge_args(&["A0", "devnull", "A1", "A2"])),
+        sp(
+            "profile-fifo",
+            DocKind::Profile,
+            &fifo,
+            "a FIFO nobody writes to as the road profile",
+            vec![],
+        ),
+        sp(
+            "profile-dev-zero",
+            DocKind::Profile,
+            Path::new("/dev/zero"),
+            "/dev/zero as the road profile",
+            vec![],
+        ),
+        sp(
+            "profile-directory",
+            DocKind::Profile,
+            &dir,
+            "a directory named like a profile",
+            vec![],
+        ),
+        sp(
+            "profile-2-gib",
+            DocKind::Profile,
+            &big,
+            "a 2 GiB (sparse) profile: refused by its size, unread",
+            vec![],
+        ),
+        sp(
+            "profile-long-line",
+            DocKind::Profile,
+            &long,
+            "a profile whose second line is 1 MiB long",
+            vec![],
+        ),
+        sp(
+            "replay-fifo",
+            DocKind::Replay,
+            &fifo,
+            "a FIFO as the replayed profile",
+            vec![road],
+        ),
+        sp(
+            "workday-fifo",
+            DocKind::Workday,
+            &fifo,
+            "a FIFO as the workday file",
+            vec![],
+        ),
+        sp(
+            "workday-dev-zero",
+            DocKind::Workday,
+            &zero_day,
+            "a workday whose scenario is /dev/zero",
+            vec![],
+        ),
+        sp(
+            "merge-fifo",
+            DocKind::Merge,
+            &d.join("merged.h5"),
+            "a FIFO among the shard files",
+            merge_args(&["A0", "fifo", "A1", "A2"]),
+        ),
+        sp(
+            "merge-dev-null",
+            DocKind::Merge,
+            &d.join("merged.h5"),
+            "/dev/null among the shard files",
+            merge_args(&["A0", "devnull", "A1", "A2"]),
+        ),
     ]
 }
 
 fn merge_args(members: &[&str]) -> Vec<String> {
-    members.iter().map(|m| m.to_string()).chain(["out=new".to_string(), "seed=1".into()]).collect()
+    members
+        .iter()
+        .map(|m| m.to_string())
+        .chain(["out=new".to_string(), "seed=1".into()])
+        .collect()
 }
 
 fn special_case(sp: &Special) -> Case {

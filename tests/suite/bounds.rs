@@ -28,7 +28,13 @@ fn cli(args: &[&str], cwd: &Path) -> Output {
 fn fails(code: i32, args: &[&str], cwd: &Path) -> String {
     let o = cli(args, cwd);
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(code), "`{}`: {:?}\n{err}", args.join(" "), o.status);
+    assert_eq!(
+        o.status.code(),
+        Some(code),
+        "`{}`: {:?}\n{err}",
+        args.join(" "),
+        o.status
+    );
     assert!(!err.contains("panicked"), "{err}");
     err
 }
@@ -37,7 +43,11 @@ fn fails(code: i32, args: &[&str], cwd: &Path) -> String {
 fn kurtosis_scenario(dir: &Path, k: &str) -> PathBuf {
     let text = std::fs::read_to_string(root().join("data/quarter-car-model.toml")).unwrap();
     let p = dir.join(format!("kurtosis-{k}.toml"));
-    std::fs::write(&p, text.replace("speed = \"20 m/s\"", &format!("speed = \"20 m/s\"\nkurtosis = {k}"))).unwrap();
+    std::fs::write(
+        &p,
+        text.replace("speed = \"20 m/s\"", &format!("speed = \"20 m/s\"\nkurtosis = {k}")),
+    )
+    .unwrap();
     p
 }
 
@@ -67,7 +77,11 @@ fn the_kurtosis_bound_is_three_plus_r_times_n_minus_three() {
     let r = f.iter().map(|v| v.powi(4)).sum::<f64>() / (s2 * s2);
     let bound = 3.0 + r * (n as f64 - 3.0);
     let lma = LaplaceMovingAverage::new(&s, dt, n, bound * (1.0 - 1e-9)).unwrap();
-    assert!((lma.kernel_ratio() / r - 1.0).abs() < 1e-9, "{} vs {r}", lma.kernel_ratio());
+    assert!(
+        (lma.kernel_ratio() / r - 1.0).abs() < 1e-9,
+        "{} vs {r}",
+        lma.kernel_ratio()
+    );
     let e = LaplaceMovingAverage::new(&s, dt, n, bound * (1.0 + 1e-9))
         .unwrap_err()
         .to_string();
@@ -85,14 +99,30 @@ fn kurtosis_beyond_the_grid_is_refused_and_one_within_runs() {
     let sc = kurtosis_scenario(&d, "1e9");
     let args = ["simulate", sc.to_str().unwrap(), "--realizations", "20", "-o", "k.h5"];
     let e = fails(1, &args, &d);
-    for part in ["kurtosis-1e9.toml", "input.kurtosis", "at most 3 + r·(N − 3) =", "longer realizations"] {
+    for part in [
+        "kurtosis-1e9.toml",
+        "input.kurtosis",
+        "at most 3 + r·(N − 3) =",
+        "longer realizations",
+    ] {
         assert!(e.contains(part), "{part}: {e}");
     }
     assert!(!d.join("k.h5").exists() && !d.join("k.h5.tmp").exists());
     // the bound of this grid, from the message, and a run at 0.9 of it
-    let bound: f64 = e.split("(N − 3) = ").nth(1).unwrap().split(':').next().unwrap().parse().unwrap();
+    let bound: f64 = e
+        .split("(N − 3) = ")
+        .nth(1)
+        .unwrap()
+        .split(':')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
     let sc = kurtosis_scenario(&d, &format!("{}", (0.9 * bound).floor()));
-    let o = cli(&["simulate", sc.to_str().unwrap(), "--realizations", "100", "-o", "ok.h5"], &d);
+    let o = cli(
+        &["simulate", sc.to_str().unwrap(), "--realizations", "100", "-o", "ok.h5"],
+        &d,
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let _ = std::fs::remove_dir_all(&d);
 }
@@ -126,10 +156,16 @@ fn flat_constant_and_short_profiles_are_refused_not_classified() {
         let o = cli(&["road", file], &d);
         let e = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{file}: {e}");
-        assert!(e.contains(file) && e.contains("column left") && e.contains(why), "{file}: {e}");
+        assert!(
+            e.contains(file) && e.contains("column left") && e.contains(why),
+            "{file}: {e}"
+        );
         // refused, not classified: no report, no fitted waviness, no "segment length = 2" for two rows
         assert!(o.stdout.is_empty(), "{}", String::from_utf8_lossy(&o.stdout));
-        assert!(!e.contains("waviness") && !e.contains("segment length") && !e.contains("panicked"), "{e}");
+        assert!(
+            !e.contains("waviness") && !e.contains("segment length") && !e.contains("panicked"),
+            "{e}"
+        );
     }
     let sc = root().join("data/quarter-car.toml");
     let e = fails(1, &["replay", sc.to_str().unwrap(), "ramp.csv"], &d);
@@ -150,10 +186,33 @@ fn zero_counts_are_refused_naming_the_flag() {
         (vec!["sweep", sc, "--param", p, "--monte-carlo", "0"], "--monte-carlo 0"),
         (vec!["sweep", sc, "--param", p, "--monte-carlo", "1"], "--monte-carlo 1"),
         (vec!["analyze", sc, "--monte-carlo", "1"], "--monte-carlo 1"),
-        (vec!["simulate", sc, "--realizations", "0", "-o", "x.h5"], "--realizations 0"),
-        (vec!["simulate", sc, "--realizations", "4", "--shard-size", "0", "-o", "x.h5"], "--shard-size"),
-        (vec!["simulate", sc, "--realizations", "4", "--max-hours", "0", "-o", "x.h5"], "--max-hours"),
-        (vec!["simulate", sc, "--realizations", "4", "--shard", "0", "--of", "0", "-o", "."], "--of"),
+        (
+            vec!["simulate", sc, "--realizations", "0", "-o", "x.h5"],
+            "--realizations 0",
+        ),
+        (
+            vec!["simulate", sc, "--realizations", "4", "--shard-size", "0", "-o", "x.h5"],
+            "--shard-size",
+        ),
+        (
+            vec!["simulate", sc, "--realizations", "4", "--max-hours", "0", "-o", "x.h5"],
+            "--max-hours",
+        ),
+        (
+            vec![
+                "simulate",
+                sc,
+                "--realizations",
+                "4",
+                "--shard",
+                "0",
+                "--of",
+                "0",
+                "-o",
+                ".",
+            ],
+            "--of",
+        ),
     ] {
         let e = fails(1, &args, &d);
         assert!(e.contains(flag), "{flag}: {e}");
@@ -177,8 +236,14 @@ fn an_action_value_above_its_limit_is_refused() {
         let t = text.replacen("[analysis.comfort]\n", &format!("[analysis.comfort]\n{line}\n"), 1);
         let p = d.join("limits.toml");
         std::fs::write(&p, t).unwrap();
-        let e = stochvib::scenario::load_scenario(&p, &root().join("spectra")).unwrap_err().to_string();
-        for part in [&format!("analysis.comfort.{key}"), "above the exposure action value", "limits.toml"] {
+        let e = stochvib::scenario::load_scenario(&p, &root().join("spectra"))
+            .unwrap_err()
+            .to_string();
+        for part in [
+            &format!("analysis.comfort.{key}"),
+            "above the exposure action value",
+            "limits.toml",
+        ] {
             assert!(e.contains(part), "{part}: {e}");
         }
     }
@@ -195,30 +260,102 @@ fn options_without_effect_are_errors() {
     let d = scratch("ignored");
     let r = root();
     let s = |p: &str| r.join(p).display().to_string();
-    let (qc, two, profile) = (s("data/quarter-car-model.toml"), s("data/full-vehicle-two-tracks.toml"), s("data/measured-profile.csv"));
+    let (qc, two, profile) = (
+        s("data/quarter-car-model.toml"),
+        s("data/full-vehicle-two-tracks.toml"),
+        s("data/measured-profile.csv"),
+    );
     let quarter = s("data/quarter-car.toml");
     let p = "model.sprung_mass=300 kg,310 kg";
     // a sweep shard directory and a run file for the merge and plot cases
     let shards = d.join("shards");
-    let o = cli(&["sweep", &qc, "--param", p, "--shard", "0", "--of", "1", "-o", shards.to_str().unwrap()], &d);
+    let o = cli(
+        &[
+            "sweep",
+            &qc,
+            "--param",
+            p,
+            "--shard",
+            "0",
+            "--of",
+            "1",
+            "-o",
+            shards.to_str().unwrap(),
+        ],
+        &d,
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let o = cli(&["simulate", &s("data/conveyor-idler.toml"), "--realizations", "4", "--duration", "2", "--dt", "0.01", "-o", "run.h5"], &d);
+    let o = cli(
+        &[
+            "simulate",
+            &s("data/conveyor-idler.toml"),
+            "--realizations",
+            "4",
+            "--duration",
+            "2",
+            "--dt",
+            "0.01",
+            "-o",
+            "run.h5",
+        ],
+        &d,
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let cases: Vec<(i32, Vec<&str>, &str)> = vec![
         (1, vec!["replay", &two, &profile, "--track", "left"], "--track"),
         (2, vec!["sweep", &qc, "--param", p, "--seed", "3"], "--monte-carlo"),
-        (2, vec!["sweep", &qc, "--param", p, "--confidence", "0.9"], "--monte-carlo"),
+        (
+            2,
+            vec!["sweep", &qc, "--param", p, "--confidence", "0.9"],
+            "--monte-carlo",
+        ),
         (1, vec!["sweep", &qc, "--param", p, "--dt", "0.01"], "--dt"),
         (1, vec!["analyze", &qc, "--duration", "4"], "--duration"),
         (2, vec!["analyze", &qc, "--seed", "4"], "--monte-carlo"),
         (2, vec!["sweep", &qc, "--param", p, "--json", "-o", "t.csv"], "--json"),
         (2, vec!["sweep", &qc, "--param", p, "--overwrite"], "--overwrite"),
         (2, vec!["replay", &quarter, &profile, "--overwrite"], "--overwrite"),
-        (2, vec!["simulate", &qc, "--realizations", "4", "--compression", "fast", "-o", "c.h5"], "--store-raw"),
-        (1, vec!["simulate", &qc, "--realizations", "4", "--stream-tail", "1e-3", "--route", "exact", "-o", "c.h5"], "--stream-tail"),
+        (
+            2,
+            vec![
+                "simulate",
+                &qc,
+                "--realizations",
+                "4",
+                "--compression",
+                "fast",
+                "-o",
+                "c.h5",
+            ],
+            "--store-raw",
+        ),
+        (
+            1,
+            vec![
+                "simulate",
+                &qc,
+                "--realizations",
+                "4",
+                "--stream-tail",
+                "1e-3",
+                "--route",
+                "exact",
+                "-o",
+                "c.h5",
+            ],
+            "--stream-tail",
+        ),
         (1, vec!["merge", "t.csv", "shards", "--copy"], "--copy"),
-        (1, vec!["merge", "t.csv", "shards", "--confidence", "0.9"], "--confidence"),
-        (1, vec!["plot", "run.h5", "-o", "pics", "--convention", "two-sided-angular"], "--convention"),
+        (
+            1,
+            vec!["merge", "t.csv", "shards", "--confidence", "0.9"],
+            "--confidence",
+        ),
+        (
+            1,
+            vec!["plot", "run.h5", "-o", "pics", "--convention", "two-sided-angular"],
+            "--convention",
+        ),
         (2, vec!["spectra", "--json", "--full"], "--full"),
     ];
     for (code, args, flag) in cases {
@@ -245,10 +382,20 @@ fn a_one_based_slurm_array_is_warned_about() {
     };
     let c = stochvib::simulate::resolve_part("auto", Some(4), &env("2", "1", "4")).unwrap();
     assert_eq!(c.part.index, 2);
-    assert!(c.notes.iter().any(|n| n.contains("0-based") && n.contains("--array=0-3")), "{:?}", c.notes);
-    let e = stochvib::simulate::resolve_part("auto", Some(4), &env("4", "1", "4")).unwrap_err().to_string();
+    assert!(
+        c.notes
+            .iter()
+            .any(|n| n.contains("0-based") && n.contains("--array=0-3")),
+        "{:?}",
+        c.notes
+    );
+    let e = stochvib::simulate::resolve_part("auto", Some(4), &env("4", "1", "4"))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("0-based") && e.contains("--array=0-3"), "{e}");
-    let e = stochvib::simulate::resolve_part("auto", None, &env("1", "1", "4")).unwrap_err().to_string();
+    let e = stochvib::simulate::resolve_part("auto", None, &env("1", "1", "4"))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("0-based"), "{e}");
     let c = stochvib::simulate::resolve_part("auto", Some(4), &env("2", "2", "3")).unwrap();
     assert!(c.notes.is_empty(), "{:?}", c.notes);
@@ -257,13 +404,38 @@ fn a_one_based_slurm_array_is_warned_about() {
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .current_dir(&d)
         .args(["simulate", root().join("data/conveyor-idler.toml").to_str().unwrap()])
-        .args(["--realizations", "8", "--shard-size", "2", "--duration", "2", "--dt", "0.01"])
-        .args(["--shard", "auto", "--of", "4", "-o", "run", "--spectra-dir", root().join("spectra").to_str().unwrap()])
-        .envs([("SLURM_ARRAY_TASK_ID", "1"), ("SLURM_ARRAY_TASK_MIN", "1"), ("SLURM_ARRAY_TASK_MAX", "4")])
+        .args([
+            "--realizations",
+            "8",
+            "--shard-size",
+            "2",
+            "--duration",
+            "2",
+            "--dt",
+            "0.01",
+        ])
+        .args([
+            "--shard",
+            "auto",
+            "--of",
+            "4",
+            "-o",
+            "run",
+            "--spectra-dir",
+            root().join("spectra").to_str().unwrap(),
+        ])
+        .envs([
+            ("SLURM_ARRAY_TASK_ID", "1"),
+            ("SLURM_ARRAY_TASK_MIN", "1"),
+            ("SLURM_ARRAY_TASK_MAX", "4"),
+        ])
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success() && err.contains("warning:") && err.contains("0-based"), "{err}");
+    assert!(
+        o.status.success() && err.contains("warning:") && err.contains("0-based"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&d);
 }
 
@@ -277,8 +449,24 @@ fn a_large_run_does_not_write_its_accumulators_before_computing() {
     let sc = root().join("data/conveyor-idler.toml");
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
         .current_dir(&d)
-        .args(["simulate", sc.to_str().unwrap(), "--realizations", "20000000", "--shard-size", "1"])
-        .args(["--duration", "0.32", "--dt", "0.01", "--max-hours", "1000", "-o", "big.h5"])
+        .args([
+            "simulate",
+            sc.to_str().unwrap(),
+            "--realizations",
+            "20000000",
+            "--shard-size",
+            "1",
+        ])
+        .args([
+            "--duration",
+            "0.32",
+            "--dt",
+            "0.01",
+            "--max-hours",
+            "1000",
+            "-o",
+            "big.h5",
+        ])
         .args(["--spectra-dir", root().join("spectra").to_str().unwrap()])
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())
@@ -295,9 +483,17 @@ fn a_large_run_does_not_write_its_accumulators_before_computing() {
     let _ = child.kill();
     let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("estimate: 20000000 realizations") && err.contains("a file of"), "{err}");
+    assert!(
+        err.contains("estimate: 20000000 realizations") && err.contains("a file of"),
+        "{err}"
+    );
     assert!(m.len() > 1 << 30, "apparent size {}", m.len());
-    assert!(m.blocks() * 512 < m.len() / 10, "{} bytes allocated of {}", m.blocks() * 512, m.len());
+    assert!(
+        m.blocks() * 512 < m.len() / 10,
+        "{} bytes allocated of {}",
+        m.blocks() * 512,
+        m.len()
+    );
     let _ = std::fs::remove_dir_all(&d);
 }
 
@@ -309,7 +505,16 @@ fn a_large_run_does_not_write_its_accumulators_before_computing() {
 fn a_run_file_declaring_huge_data_is_refused_not_read() {
     let d = scratch("hdf5");
     let sc = root().join("data/conveyor-idler.toml");
-    let args = ["simulate", sc.to_str().unwrap(), "--realizations", "4", "--duration", "2", "--dt", "0.01"];
+    let args = [
+        "simulate",
+        sc.to_str().unwrap(),
+        "--realizations",
+        "4",
+        "--duration",
+        "2",
+        "--dt",
+        "0.01",
+    ];
     let o = cli(&[&args[..], &["-o", "run.h5"]].concat(), &d);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let _g = common::hdf5_serial();
@@ -322,20 +527,42 @@ fn a_run_file_declaring_huge_data_is_refused_not_read() {
         let name = psd.member_names().unwrap().into_iter().next().expect("a density group");
         let g = psd.group(&name).unwrap();
         g.unlink("omega").unwrap();
-        g.new_dataset::<f64>().chunk(1 << 16).shape(1usize << 31).create("omega").unwrap();
+        g.new_dataset::<f64>()
+            .chunk(1 << 16)
+            .shape(1usize << 31)
+            .create("omega")
+            .unwrap();
         name
     };
-    let e = stochvib::store::RunFile::open(&huge).and_then(|r| r.psd()).unwrap_err().to_string();
-    for part in ["huge-psd.h5", &format!("psd/{signal}/omega"), "2147483648 elements", "damaged"] {
+    let e = stochvib::store::RunFile::open(&huge)
+        .and_then(|r| r.psd())
+        .unwrap_err()
+        .to_string();
+    for part in [
+        "huge-psd.h5",
+        &format!("psd/{signal}/omega"),
+        "2147483648 elements",
+        "damaged",
+    ] {
         assert!(e.contains(part), "{part}: {e}");
     }
     {
         let f = hdf5::File::open_rw(&text).unwrap();
         f.delete_attr("scenario").unwrap();
         let big: hdf5::types::VarLenUnicode = "#".repeat(17 << 20).parse().unwrap();
-        f.new_attr::<hdf5::types::VarLenUnicode>().create("scenario").unwrap().write_scalar(&big).unwrap();
+        f.new_attr::<hdf5::types::VarLenUnicode>()
+            .create("scenario")
+            .unwrap()
+            .write_scalar(&big)
+            .unwrap();
     }
-    let e = stochvib::store::RunFile::open(&text).err().map(|e| e.to_string()).unwrap_or_default();
-    assert!(e.contains("huge-text.h5") && e.contains("scenario") && e.contains("bytes of text"), "{e}");
+    let e = stochvib::store::RunFile::open(&text)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        e.contains("huge-text.h5") && e.contains("scenario") && e.contains("bytes of text"),
+        "{e}"
+    );
     let _ = std::fs::remove_dir_all(&d);
 }

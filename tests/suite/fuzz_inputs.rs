@@ -54,7 +54,9 @@ fn fuzz_inputs_worker() {
 #[test]
 #[ignore = "the long campaign of scripts/fuzz-campaign.sh"]
 fn fuzz_campaign() {
-    let Ok(json) = std::env::var("STOCHVIB_FUZZ_CAMPAIGN") else { return };
+    let Ok(json) = std::env::var("STOCHVIB_FUZZ_CAMPAIGN") else {
+        return;
+    };
     let cfg: serde_json::Value = serde_json::from_str(&json).expect("campaign configuration");
     let num = |k: &str, d: u64| cfg.get(k).and_then(|v| v.as_u64()).unwrap_or(d);
     let text = |k: &str| cfg.get(k).and_then(|v| v.as_str()).map(PathBuf::from);

@@ -39,7 +39,16 @@ fn data(p: &str) -> String {
 #[test]
 fn replay_names_the_speed_flag() {
     let d = scratch("speed");
-    let e = refused(&["replay", &data("quarter-car.toml"), &data("measured-profile.csv"), "--speed", "1e308"], &d);
+    let e = refused(
+        &[
+            "replay",
+            &data("quarter-car.toml"),
+            &data("measured-profile.csv"),
+            "--speed",
+            "1e308",
+        ],
+        &d,
+    );
     assert!(e.contains("--speed"), "{e}");
     assert!(!e.contains("input.speed"), "{e}");
     let _ = std::fs::remove_dir_all(&d);
@@ -50,10 +59,29 @@ fn replay_names_the_speed_flag() {
 #[test]
 fn sweep_names_the_param_flag() {
     let d = scratch("param");
-    let e = refused(&["sweep", &data("quarter-car-model.toml"), "--param", "model.sprung_mass=-300 kg,310 kg"], &d);
-    assert!(e.contains("--param") && e.contains("model.sprung_mass=") && e.contains("point 0"), "{e}");
+    let e = refused(
+        &[
+            "sweep",
+            &data("quarter-car-model.toml"),
+            "--param",
+            "model.sprung_mass=-300 kg,310 kg",
+        ],
+        &d,
+    );
+    assert!(
+        e.contains("--param") && e.contains("model.sprung_mass=") && e.contains("point 0"),
+        "{e}"
+    );
     assert!(!e.contains("key `model.sprung_mass`"), "{e}");
-    let e = refused(&["sweep", &data("quarter-car-model.toml"), "--param", "model.no_such_key=1,2"], &d);
+    let e = refused(
+        &[
+            "sweep",
+            &data("quarter-car-model.toml"),
+            "--param",
+            "model.no_such_key=1,2",
+        ],
+        &d,
+    );
     assert!(e.contains("--param") && e.contains("model.no_such_key"), "{e}");
     let _ = std::fs::remove_dir_all(&d);
 }
@@ -63,9 +91,21 @@ fn sweep_names_the_param_flag() {
 #[test]
 fn a_tiny_time_step_is_reported_as_too_many_samples() {
     let d = scratch("dt");
-    let args = ["simulate", &data("quarter-car-model.toml"), "--realizations", "4", "--dt", "1e-300", "-o", "x.h5"];
+    let args = [
+        "simulate",
+        &data("quarter-car-model.toml"),
+        "--realizations",
+        "4",
+        "--dt",
+        "1e-300",
+        "-o",
+        "x.h5",
+    ];
     let e = refused(&args, &d);
-    assert!(e.contains("--duration") && e.contains("--dt") && e.contains("samples per realization"), "{e}");
+    assert!(
+        e.contains("--duration") && e.contains("--dt") && e.contains("samples per realization"),
+        "{e}"
+    );
     assert!(!e.contains("gives 0 samples"), "{e}");
     assert!(common::listing(&d).is_empty(), "{:?}", common::listing(&d));
     let _ = std::fs::remove_dir_all(&d);
@@ -110,7 +150,10 @@ fn a_real_pole_is_blamed_on_the_denominator() {
     }
     // a numerator negative somewhere with a good denominator is the numerator's fault
     let e = RationalSpectrum::new(vec![-1.0], vec![1.0, 1.0], Domain::Temporal).unwrap_err();
-    assert!(matches!(&e, stochvib::Error::InvalidParameter { name, .. } if name == "numerator"), "{e}");
+    assert!(
+        matches!(&e, stochvib::Error::InvalidParameter { name, .. } if name == "numerator"),
+        "{e}"
+    );
 }
 
 /// A garbage file where a run's `.tmp` goes is named as such (not an HDF5 file, not an interrupted run)
@@ -119,9 +162,21 @@ fn a_real_pole_is_blamed_on_the_denominator() {
 fn a_garbage_tmp_is_named_as_not_a_run() {
     let d = scratch("tmp");
     std::fs::write(d.join("g.h5.tmp"), b"garbage, not a run").unwrap();
-    let args = ["simulate", &data("conveyor-idler.toml"), "--realizations", "4", "--duration", "2", "--dt", "0.01"];
+    let args = [
+        "simulate",
+        &data("conveyor-idler.toml"),
+        "--realizations",
+        "4",
+        "--duration",
+        "2",
+        "--dt",
+        "0.01",
+    ];
     let e = refused(&[&args[..], &["-o", "g.h5"]].concat(), &d);
-    assert!(e.contains("g.h5.tmp") && e.contains("not an HDF5 file") && e.contains("--overwrite"), "{e}");
+    assert!(
+        e.contains("g.h5.tmp") && e.contains("not an HDF5 file") && e.contains("--overwrite"),
+        "{e}"
+    );
     assert!(!e.contains("18446744073709551615"), "{e}");
     assert_eq!(std::fs::read(d.join("g.h5.tmp")).unwrap(), b"garbage, not a run");
     assert!(!d.join("g.h5").exists());
@@ -155,5 +210,79 @@ fn merge_names_the_damaged_shard_and_refuses_a_shard_as_output() {
         assert!(!e.contains("missing shard 0") && !e.contains("resubmit"), "{e}");
     }
     assert_eq!(std::fs::read(shard(0)).unwrap(), before);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Found by the fuzz campaign: the S–N intercept C = N·S_a^k derived from the reference point overflows
+/// for k = 2⁶⁰; the message named `analysis.fatigue.C`, a key the file does not have. It names `k`.
+#[test]
+fn a_derived_sn_intercept_is_blamed_on_a_key_of_the_file() {
+    let d = scratch("sn");
+    let text = std::fs::read_to_string(data("operator-seat-verdicts.toml")).unwrap();
+    let t = text.replacen("\nk = 5 ", "\nk = 1152921504606846976 ", 1);
+    assert_ne!(t, text);
+    let p = d.join("sn.toml");
+    std::fs::write(&p, t).unwrap();
+    let e = stochvib::scenario::load_scenario(&p, &root().join("spectra"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("sn.toml") && e.contains("analysis.fatigue.k"), "{e}");
+    assert!(!e.contains("analysis.fatigue.C"), "{e}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Found by the fuzz campaign: `replay --skip -1` named the library's parameter `skip`; `merge` into a
+/// sweep table named `output.txt` named a parameter `output` (merge's output is an argument, not a flag):
+/// the flag, and the file, are named.
+#[test]
+fn replay_skip_and_a_table_extension_name_what_the_user_wrote() {
+    let d = scratch("skip");
+    let e = refused(
+        &[
+            "replay",
+            &data("quarter-car.toml"),
+            &data("measured-profile.csv"),
+            "--skip=-1",
+        ],
+        &d,
+    );
+    assert!(e.contains("--skip"), "{e}");
+    let sc = data("quarter-car-model.toml");
+    let e = refused(
+        &[
+            "sweep",
+            &sc,
+            "--param",
+            "model.sprung_mass=300 kg,310 kg",
+            "-o",
+            "table.txt",
+        ],
+        &d,
+    );
+    assert!(e.contains("table.txt") && e.contains(".csv, .json or .h5"), "{e}");
+    assert!(!e.contains("parameter `output`"), "{e}");
+    assert!(common::listing(&d).is_empty(), "{:?}", common::listing(&d));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Found by the fuzz campaign: a sweep of 10⁶ speeds with a key the scenario does not have built the
+/// excitation of every speed before it looked at point 0 (145 s on a loaded 2-core machine) and then
+/// refused the key; the excitations are built at their first use, so the refusal comes at once. The limit
+/// of 60 s is 100 times what the refusal takes on an idle machine.
+#[test]
+fn a_sweep_of_a_million_speeds_refuses_a_bad_key_at_once() {
+    let d = scratch("speeds");
+    let args = [
+        "sweep",
+        &data("balancer-bogie.toml"),
+        "--param",
+        "input.speed=4..6:1000000 m/s",
+        "--param",
+        "model.nope=1,2",
+    ];
+    let o = common::cli_within(&args, &d, Duration::from_secs(60));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("model.nope"), "{e}");
     let _ = std::fs::remove_dir_all(&d);
 }
