@@ -104,16 +104,7 @@ fn main() {
     let s = input_campaign::run(&c);
     println!("{}", s.render());
     if let Some(t) = totals {
-        let json = serde_json::json!({
-            "seed": s.seed,
-            "cases": s.cases,
-            "special": s.special,
-            "cli_runs": s.cli_runs,
-            "seconds": s.elapsed.as_secs_f64(),
-            "stopped_by_budget": s.stopped_by_budget,
-            "hard_findings": s.hard(),
-            "formats": s.formats,
-        });
+        let json = s.totals_json();
         std::fs::write(&t, serde_json::to_string_pretty(&json).unwrap()).expect("write the totals");
     }
     println!("reproducers: {}", findings.join("inputs").display());

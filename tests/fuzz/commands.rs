@@ -890,7 +890,8 @@ struct MergeSet {
     out: PathBuf,
     overwrite: bool,
     copy: bool,
-    /// Exactly the shards of run A or of run B into a new target (or over the whole run with --overwrite).
+    /// Exactly the shards of run A or of run B into a new target (or, with --overwrite, over a finished run or
+    /// past a garbage `.tmp`).
     good: bool,
     /// The shards of run A, whose merge must equal the single-process run `whole.h5`.
     run_a: bool,
@@ -1040,7 +1041,8 @@ fn materialize(dir: &Path, args: &[String], ctx: &Context) -> MergeSet {
     // run B's two shards are a complete run too (another seed: no single-process run to compare with)
     let run_a = sorted == ["A0", "A1", "A2"];
     let complete = run_a || sorted == ["B0", "B1"];
-    let good = complete && (target == "new" || (target == "whole" && overwrite));
+    // --overwrite replaces a finished run, and a garbage .tmp in the way (not an interrupted run)
+    let good = complete && (target == "new" || (matches!(target, "whole" | "tmp") && overwrite));
     MergeSet {
         inputs,
         out,

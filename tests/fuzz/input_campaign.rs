@@ -400,6 +400,21 @@ impl Summary {
         }
     }
 
+    /// The totals of a campaign as JSON (seed, cases, special files, CLI runs, seconds, whether the budget
+    /// stopped it, hard findings by class, per-format totals).
+    pub fn totals_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "seed": self.seed,
+            "cases": self.cases,
+            "special": self.special,
+            "cli_runs": self.cli_runs,
+            "seconds": self.elapsed.as_secs_f64(),
+            "stopped_by_budget": self.stopped_by_budget,
+            "hard_findings": self.hard(),
+            "formats": self.formats,
+        })
+    }
+
     /// Cases with a hard (asserted) finding, by class.
     pub fn hard(&self) -> BTreeMap<String, usize> {
         self.by_class

@@ -13,30 +13,32 @@ use stochvib::simulate::LaplaceMovingAverage;
 use stochvib::spectrum::{Domain, Exponential};
 
 fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-bounds-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch_dir("bounds", tag)
 }
 
 fn cli(args: &[&str], cwd: &Path) -> Output {
     common::cli_within(args, cwd, Duration::from_secs(120))
 }
 
-/// The stderr of a command that must fail with status `code` (1: refused by the tool; 2: by the argument
-/// parser), without a panic.
 fn fails(code: i32, args: &[&str], cwd: &Path) -> String {
-    let o = cli(args, cwd);
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(
-        o.status.code(),
-        Some(code),
-        "`{}`: {:?}\n{err}",
-        args.join(" "),
-        o.status
-    );
-    assert!(!err.contains("panicked"), "{err}");
-    err
+    common::cli_fails(code, args, cwd)
+}
+
+/// A small run file `name` of the conveyor idler in `dir` (4 realizations of 2 s).
+fn small_run(dir: &Path, name: &str) {
+    let sc = root().join("data/conveyor-idler.toml");
+    let args = [
+        "simulate",
+        sc.to_str().unwrap(),
+        "--realizations",
+        "4",
+        "--duration",
+        "2",
+        "--dt",
+        "0.01",
+    ];
+    let o = cli(&[&args[..], &["-o", name]].concat(), dir);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// The quarter car on its class C road with `[input] kurtosis = k`.
@@ -285,22 +287,7 @@ fn options_without_effect_are_errors() {
         &d,
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let o = cli(
-        &[
-            "simulate",
-            &s("data/conveyor-idler.toml"),
-            "--realizations",
-            "4",
-            "--duration",
-            "2",
-            "--dt",
-            "0.01",
-            "-o",
-            "run.h5",
-        ],
-        &d,
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    small_run(&d, "run.h5");
     let cases: Vec<(i32, Vec<&str>, &str)> = vec![
         (1, vec!["replay", &two, &profile, "--track", "left"], "--track"),
         (2, vec!["sweep", &qc, "--param", p, "--seed", "3"], "--monte-carlo"),
@@ -504,19 +491,7 @@ fn a_large_run_does_not_write_its_accumulators_before_computing() {
 #[test]
 fn a_run_file_declaring_huge_data_is_refused_not_read() {
     let d = scratch("hdf5");
-    let sc = root().join("data/conveyor-idler.toml");
-    let args = [
-        "simulate",
-        sc.to_str().unwrap(),
-        "--realizations",
-        "4",
-        "--duration",
-        "2",
-        "--dt",
-        "0.01",
-    ];
-    let o = cli(&[&args[..], &["-o", "run.h5"]].concat(), &d);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    small_run(&d, "run.h5");
     let _g = common::hdf5_serial();
     let (huge, text) = (d.join("huge-psd.h5"), d.join("huge-text.h5"));
     std::fs::copy(d.join("run.h5"), &huge).unwrap();

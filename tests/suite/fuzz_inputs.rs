@@ -74,17 +74,8 @@ fn fuzz_campaign() {
     let s = input_campaign::run(&c);
     let _ = std::fs::remove_dir_all(&c.scratch);
     println!("{}", s.render());
-    let totals = serde_json::json!({
-        "seed": s.seed,
-        "cases": s.cases,
-        "special": s.special,
-        "cli_runs": s.cli_runs,
-        "seconds": s.elapsed.as_secs_f64(),
-        "stopped_by_budget": s.stopped_by_budget,
-        "hard_findings": s.hard(),
-        "formats": s.formats,
-        "source": root.display().to_string(),
-    });
+    let mut totals = s.totals_json();
+    totals["source"] = serde_json::json!(root.display().to_string());
     let out = text("totals").unwrap_or_else(|| tmp.join(format!("fuzz-campaign-{seed}.json")));
     std::fs::write(&out, serde_json::to_string_pretty(&totals).unwrap()).expect("write the totals");
     println!("totals: {}", out.display());

@@ -8,27 +8,15 @@
 
 use crate::common::{self, root};
 use std::path::{Path, PathBuf};
-use std::process::Output;
 use std::time::Duration;
 
 fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-messages-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn cli(args: &[&str], cwd: &Path) -> Output {
-    common::cli_within(args, cwd, Duration::from_secs(120))
+    common::scratch_dir("messages", tag)
 }
 
 /// The stderr of a command that must be refused by the tool (status 1) without a panic.
 fn refused(args: &[&str], cwd: &Path) -> String {
-    let o = cli(args, cwd);
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(1), "`{}`: {:?}\n{err}", args.join(" "), o.status);
-    assert!(!err.contains("panicked"), "{err}");
-    err
+    common::cli_fails(1, args, cwd)
 }
 
 fn data(p: &str) -> String {
