@@ -834,6 +834,11 @@ impl<'a> Sweep<'a> {
     /// # Errors
     /// As [`evaluate`](Self::evaluate).
     pub fn evaluate_general(&self, point: usize) -> Result<Vec<PointStatistics>> {
+        self.general_point(point).map_err(|e| self.name_point_error(point, e))
+    }
+
+    /// [`evaluate_general`](Self::evaluate_general) with the errors as the evaluation gives them.
+    fn general_point(&self, point: usize) -> Result<Vec<PointStatistics>> {
         let Some(fast) = &self.fast else {
             let sc = self.scenario_at(point)?;
             let outputs = self.check_outputs(&sc.model)?;

@@ -156,7 +156,7 @@ impl RunOptions {
         }
         require_positive("dt", self.dt_s)?;
         require_positive("duration", self.duration_s)?;
-        if !(self.max_hours > 0.0) {
+        if self.max_hours.is_nan() || self.max_hours <= 0.0 {
             return Err(Error::invalid(
                 "max hours",
                 self.max_hours,

@@ -697,6 +697,10 @@ fn spectral_engine(
     ))
 }
 
+/// The Laplace moving averages of a run's generators and, per output, its exact kurtosis and the fourth-cumulant
+/// term of its mean square (see [`laplace_generators`]).
+type LaplaceGenerators = (Vec<super::LaplaceMovingAverage>, Vec<(f64, f64)>);
+
 /// The Laplace moving averages of a non-Gaussian run, one per generator (generator g with the kurtosis
 /// `kurtosis[g]`, κ = 3 for `None`), a note per generator (its ν) and per output (its kurtosis), and for every
 /// simulated output process its exact kurtosis and the fourth-cumulant term Σ_g 3ν̃_g D_g² of its mean
@@ -724,7 +728,7 @@ fn laplace_generators(
     outputs: &[usize],
     sys: &dyn FrequencyResponse,
     notes: &mut Vec<String>,
-) -> Result<(Vec<super::LaplaceMovingAverage>, Vec<(f64, f64)>)> {
+) -> Result<LaplaceGenerators> {
     if kurtosis.len() != generators.len() {
         return Err(Error::invalid(
             "kurtosis",
