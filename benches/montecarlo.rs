@@ -1,5 +1,5 @@
 //! Monte Carlo throughput (`cargo bench --bench montecarlo`), in samples per second: generation per sample
-//! for each generator, response stepping, and a full batch with statistics (issue #7).
+//! for each generator, response stepping, and a full batch with statistics.
 //!
 //! * Generators (one realization of N = 2¹⁶ samples per iteration, from `stream(seed, i)`): spectral
 //!   representation of K(τ) = e^{−3|τ|} with Rayleigh amplitudes (the default) and phase-only; the exact

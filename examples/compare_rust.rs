@@ -2,7 +2,8 @@
 //! numpy/scipy, with the same problem sizes, and prints JSON (seconds = best of several repetitions,
 //! `check` = a value both sides must agree on).
 //!
-//! Run: `cargo run --release --example compare_rust [-- --reps N]`.
+//! Run: `cargo run --release --example compare_rust [-- --reps N] [--smoke]`. With `--smoke` every job runs
+//! once at a tiny size (seconds in all: the CI check that the harness still runs and its JSON parses).
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -38,6 +39,19 @@ fn best(reps: usize, inner: usize, mut f: impl FnMut() -> f64) -> (f64, f64) {
     (t_best, check)
 }
 
+/// Σ a in 8 partial sums (vectorised like numpy's pairwise sum; a serial sum of 10⁴ values is a chain of
+/// 10⁴ dependent additions, ~11 µs, which would time the check instead of the density).
+fn sum8(a: &[f64]) -> f64 {
+    let mut s = [0.0; 8];
+    let mut chunks = a.chunks_exact(8);
+    for c in &mut chunks {
+        for j in 0..8 {
+            s[j] += c[j];
+        }
+    }
+    s.iter().sum::<f64>() + chunks.remainder().iter().sum::<f64>()
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let reps: usize = args
@@ -46,6 +60,12 @@ fn main() {
         .and_then(|i| args.get(i + 1))
         .and_then(|s| s.parse().ok())
         .unwrap_or(5);
+    let smoke = args.iter().any(|a| a == "--smoke");
+    // `--only density`: the density jobs alone (run.sh alternates them with numpy's, round after round)
+    let only_density = args.windows(2).any(|w| w[0] == "--only" && w[1] == "density");
+    let reps = if smoke { 1 } else { reps };
+    // sizes: the comparison's, or tiny ones for the smoke run (the same list in compare.py)
+    let (mc_real, mc_n) = if smoke { (4, 1 << 12) } else { (MC_REAL, MC_N) };
     let mut jobs = Map::new();
     let mut put = |key: &str, n: usize, (t, check): (f64, f64)| {
         eprintln!("{key:32} {t:12.6e} s   check {check:.12e}");
@@ -58,9 +78,14 @@ fn main() {
     for (name, s) in all_spectra() {
         let r = best(reps, 20, || {
             s.density_into(&wgrid, &mut out);
-            out.iter().sum()
+            sum8(&out)
         });
         put(&format!("density_{name}"), N_DENSITY, r);
+    }
+    if only_density {
+        let doc = json!({"side": "rust", "jobs": Value::Object(jobs)});
+        println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+        return;
     }
 
     // 2. one variance of the 2-DOF scraper (cab acceleration) under the rational road, three ways
@@ -84,7 +109,13 @@ fn main() {
     );
 
     // 3. the 10⁵-point (c₂, b₂) sweep of σ of the cab acceleration
-    let (c2s, b2s) = grid();
+    let (mut c2s, mut b2s) = grid();
+    if smoke {
+        (c2s, b2s) = (
+            c2s.iter().step_by(20).copied().collect(),
+            b2s.iter().step_by(25).copied().collect(),
+        );
+    }
     let n_sweep = c2s.len() * b2s.len();
     let table = SweepTable::new(road().as_ref());
     put(
@@ -188,11 +219,11 @@ fn main() {
         .unwrap()
         .evaluations;
 
-    for (key, job) in hdf5_and_chain_jobs(reps) {
+    for (key, job) in hdf5_and_chain_jobs(reps, smoke) {
         jobs.insert(key, job);
     }
 
-    // 5. Monte Carlo pipeline (issue #7): MC_REAL = 1000 realizations × MC_N = 2¹⁶ samples of the SDOF
+    // 5. Monte Carlo pipeline: MC_REAL = 1000 realizations × MC_N = 2¹⁶ samples of the SDOF
     //    (ω = 10 rad/s, ζ = 0.05) under K(τ) = e^{−3|τ|}, Δt = 0.01 s: generate → respond → statistics
     //    (per realization m_i, v_i; Student-t intervals of mean, σ², σ). Spectral route (the library default
     //    generator): SpectralGenerator (Rayleigh) + SampledSystem::respond (FOH), 1 warm-up period, through
@@ -205,8 +236,8 @@ fn main() {
     {
         use realfft::RealFftPlanner;
         use stochvib::simulate::{fill_standard_normal, stream};
-        let pipe = McSpectral::new(MC_N);
-        let exact = McExact::new(MC_N);
+        let pipe = McSpectral::new(mc_n);
+        let exact = McExact::new(mc_n);
         let (ss, exc) = mc_sdof();
         let analytic = variance_lyapunov(&ss, &exc, 0).unwrap().variance;
         let mut put_mc = |key: &str, t: f64, st: &McStats| {
@@ -214,11 +245,11 @@ fn main() {
                 "{key:32} {t:12.6e} s   σ² {:.6e} ∈ [{:.6e}, {:.6e}]",
                 st.var.estimate, st.var.lower, st.var.upper
             );
-            let q = stochvib::estimate::student_t_quantile(MC_REAL as f64 - 1.0, 0.975).unwrap();
+            let q = stochvib::estimate::student_t_quantile(mc_real as f64 - 1.0, 0.975).unwrap();
             let se = (st.var.upper - st.var.estimate) / q;
             jobs.insert(
                 key.to_string(),
-                json!({"seconds": t, "n": MC_REAL * MC_N, "check": st.var.estimate, "check_se": se,
+                json!({"seconds": t, "n": mc_real * mc_n, "check": st.var.estimate, "check_se": se,
                        "mean": [st.mean.lower, st.mean.estimate, st.mean.upper],
                        "var": [st.var.lower, st.var.estimate, st.var.upper],
                        "sigma": [st.sigma.0, st.sigma.1, st.sigma.2]}),
@@ -229,7 +260,7 @@ fn main() {
             for (fft, tag) in [(false, ""), (true, "_fft")] {
                 let mut st = None;
                 let (t, _) = best(mc_reps, 1, || {
-                    let s = pool.install(|| pipe.batch(MC_REAL, fft));
+                    let s = pool.install(|| pipe.batch(mc_real, fft));
                     st = Some(s);
                     s.var.estimate
                 });
@@ -237,7 +268,7 @@ fn main() {
             }
             let mut st = None;
             let (t, _) = best(mc_reps, 1, || {
-                let s = pool.install(|| exact.batch(MC_REAL));
+                let s = pool.install(|| exact.batch(mc_real));
                 st = Some(s);
                 s.var.estimate
             });
@@ -269,37 +300,49 @@ fn main() {
                 json!({"seconds": r.0, "n": 8, "check": r.1}),
             );
         }
+        let mut put_floor = |key: &str, (t, check): (f64, f64)| {
+            eprintln!("{key:32} {t:12.6e} s");
+            jobs.insert(key.into(), json!({"seconds": t, "n": mc_real * mc_n, "check": check}));
+        };
         // floor: draw the N normals of a realization + one inverse real FFT of length N, per realization
         // (1 thread; the same work as numpy's floor job)
-        let fft = RealFftPlanner::<f64>::new().plan_fft_inverse(MC_N);
+        let fft = RealFftPlanner::<f64>::new().plan_fft_inverse(mc_n);
         let mut coef = fft.make_input_vec();
         let mut out = fft.make_output_vec();
         let mut scratch = fft.make_scratch_vec();
-        let mut normals = vec![0.0; MC_N + 2];
+        let mut normals = vec![0.0; mc_n + 2];
         let r = best(mc_reps, 1, || {
             let mut acc = 0.0;
-            for i in 0..MC_REAL as u64 {
+            for i in 0..mc_real as u64 {
                 fill_standard_normal(&mut stream(MC_SEED, i), &mut normals);
                 for (c, p) in coef.iter_mut().zip(normals.chunks_exact(2)) {
                     *c = realfft::num_complex::Complex::new(p[0], p[1]);
                 }
                 coef[0].im = 0.0;
-                coef[MC_N / 2].im = 0.0;
+                coef[mc_n / 2].im = 0.0;
                 fft.process_with_scratch(&mut coef, &mut out, &mut scratch).unwrap();
                 acc += out[1];
             }
             acc
         });
-        eprintln!("{:32} {:12.6e} s", "mc_floor_1t", r.0);
-        jobs.insert(
-            "mc_floor_1t".into(),
-            json!({"seconds": r.0, "n": MC_REAL * MC_N, "check": r.1}),
-        );
+        put_floor("mc_floor_1t", r);
+        // the exact route's floor: its normals alone (one per state and step, as GaussMarkov::advance draws
+        // them), per realization, 1 thread
+        let mut normals = vec![0.0; exact.gm.n_states() * mc_n];
+        let r = best(mc_reps, 1, || {
+            let mut acc = 0.0;
+            for i in 0..mc_real as u64 {
+                fill_standard_normal(&mut stream(MC_SEED, i), &mut normals);
+                acc += normals[1];
+            }
+            acc
+        });
+        put_floor("mc_exact_floor_1t", r);
         mc_info.insert("analytic_variance".into(), json!(analytic));
         mc_info.insert("input_grid_variance".into(), json!(pipe.generator.grid_variance()));
         mc_info.insert("warmup_periods".into(), json!(pipe.warmup));
-        mc_info.insert("realizations".into(), json!(MC_REAL));
-        mc_info.insert("samples".into(), json!(MC_N));
+        mc_info.insert("realizations".into(), json!(mc_real));
+        mc_info.insert("samples".into(), json!(mc_n));
     }
 
     let doc = json!({
@@ -314,9 +357,9 @@ fn main() {
     println!("{}", serde_json::to_string_pretty(&doc).unwrap());
 }
 
-/// Jobs of issue #7 (HDF5 write through the library's `store` writer; the dynamic-stiffness chain), timed
+/// Jobs of the HDF5 write and chain comparison (HDF5 write through the library's `store` writer; the dynamic-stiffness chain), timed
 /// like the rest (best of `reps`); see `benches/h5chain/mod.rs` for the problems.
-fn hdf5_and_chain_jobs(reps: usize) -> Vec<(String, Value)> {
+fn hdf5_and_chain_jobs(reps: usize, smoke: bool) -> Vec<(String, Value)> {
     use h5chain::*;
     use stochvib::store::Compression;
     let mut out = Vec::new();
@@ -332,21 +375,26 @@ fn hdf5_and_chain_jobs(reps: usize) -> Vec<(String, Value)> {
     // HDF5: write 1000 × 2¹⁶ f64 (524 MB) through RunWriter, timed from create to finish (fsync + rename
     // included) or to drop (close, no fsync); the data are read back afterwards (not timed) for the check.
     let dir = h5_tmpdir("compare");
+    let (rows, deflate_rows, cols) = if smoke {
+        (4, 2, 1 << 12)
+    } else {
+        (H5_ROWS, H5_DEFLATE_ROWS, H5_COLS)
+    };
     let cases: [(&str, usize, Compression, bool, usize); 3] = [
-        ("h5_write_none", H5_ROWS, Compression::None, true, reps),
-        ("h5_write_none_nosync", H5_ROWS, Compression::None, false, reps),
+        ("h5_write_none", rows, Compression::None, true, reps),
+        ("h5_write_none_nosync", rows, Compression::None, false, reps),
         (
             "h5_write_deflate1",
-            H5_DEFLATE_ROWS,
+            deflate_rows,
             Compression::DEFLATE_FAST,
             true,
             reps.min(2),
         ),
     ];
-    let mut data = h5_data(H5_ROWS, H5_COLS);
+    let mut data = h5_data(rows, cols);
     for (key, rows, comp, finish, r) in cases {
         if data.nrows() != rows {
-            data = h5_data(rows, H5_COLS);
+            data = h5_data(rows, cols);
         }
         let path = dir.join(format!("{key}.h5"));
         let mut t_best = f64::INFINITY;
@@ -359,7 +407,7 @@ fn hdf5_and_chain_jobs(reps: usize) -> Vec<(String, Value)> {
             t_best = t_best.min(t0.elapsed().as_secs_f64());
         }
         let check = h5_read_check(&written);
-        let bytes = rows * H5_COLS * 8;
+        let bytes = rows * cols * 8;
         let size = std::fs::metadata(&written).map(|m| m.len()).unwrap_or(0);
         let _ = std::fs::remove_file(&written);
         put(
@@ -379,6 +427,7 @@ fn hdf5_and_chain_jobs(reps: usize) -> Vec<(String, Value)> {
         ("chain_sweep_1e5", 100_000),
         ("chain_sweep_1e6", 1_000_000),
     ] {
+        let n = if smoke { n.min(10_000) } else { n };
         let (ch, torques) = chain(n);
         let inner = (1_000_000 / n).clamp(1, 100);
         let r = best(reps, inner, || {

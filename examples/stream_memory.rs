@@ -5,7 +5,7 @@
 //! Loan); samples are produced in chunks of 4096 and folded into Welford moments, so memory does not grow
 //! with the record length.
 //!
-//! Run: `cargo run --release --example stream_memory [samples]` (default 10⁸; `1e9` for the issue #7 check:
+//! Run: `cargo run --release --example stream_memory [samples]` (default 10⁸; `1e9` for the 10⁹-sample check:
 //! a 10⁹-sample realization with peak memory < 100 MB).
 
 use std::sync::Arc;

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The whole test suite: installs what is missing, then runs every test (unit, integration, doc), then builds
+# The whole test suite: installs what is missing, then runs every test (unit, integration, doc), then the
+# comparison harnesses at tiny sizes (benches/compare/run.sh --smoke), then builds
 # the Python package and runs its tests (python/test.sh; STOCHVIB_SKIP_PYTHON=1 skips them), then the
 # cluster tests on a real single-node SLURM cluster (tests/slurm/smoke.sh, example-array.sh and
 # real-array.sh: about 5-8 s each, plus about 16 s the first time for the Debian packages slurmctld, slurmd,
@@ -15,6 +16,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/ensure-deps.sh --with-h5py
 cargo test --locked "$@"
+# the comparison harnesses (Rust and numpy/scipy/h5py sides) once at tiny sizes, ~1 min: a change that breaks
+# one of them, or a row of benches/RESULTS.md's table, fails here (STOCHVIB_SKIP_COMPARE=1 skips it)
+if [ "${STOCHVIB_SKIP_COMPARE:-0}" != 1 ]; then
+  bash benches/compare/run.sh --smoke >/dev/null
+fi
 if [ "${STOCHVIB_SKIP_PYTHON:-0}" != 1 ]; then
   bash python/test.sh
 fi

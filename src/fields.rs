@@ -100,6 +100,38 @@ pub fn parse_toml(text: &str, path: &Path) -> Result<toml::Table> {
     })
 }
 
+thread_local! {
+    /// The (file, dotted key path) queried on this thread while recording ([`record_keys`]); `None` when off.
+    static QUERIED_KEYS: RefCell<Option<BTreeSet<(PathBuf, String)>>> = const { RefCell::new(None) };
+}
+
+/// Test hook for the key reference: `record_keys(true)` starts recording, on this thread, the file and the
+/// dotted path of every key a [`Fields`] reader asks for (array indices written `[]`: `input[].spectrum`);
+/// `record_keys(false)` stops and returns what was recorded. Off by default: a query then costs one
+/// thread-local read.
+#[doc(hidden)]
+pub fn record_keys(on: bool) -> BTreeSet<(PathBuf, String)> {
+    QUERIED_KEYS.with(|k| std::mem::replace(&mut *k.borrow_mut(), on.then(BTreeSet::new)).unwrap_or_default())
+}
+
+/// `input[2].road` → `input[].road`.
+fn without_indices(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    let mut in_index = false;
+    for c in path.chars() {
+        match c {
+            '[' => in_index = true,
+            ']' => {
+                in_index = false;
+                out.push_str("[]");
+            }
+            _ if in_index => {}
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
 /// A TOML table being read from a file.
 #[derive(Debug)]
 pub struct Fields<'a> {
@@ -184,6 +216,11 @@ impl<'a> Fields<'a> {
 
     /// The raw value of `key`, marking it used.
     pub fn get(&self, key: &str) -> Option<&'a toml::Value> {
+        QUERIED_KEYS.with(|k| {
+            if let Some(keys) = k.borrow_mut().as_mut() {
+                keys.insert((self.file.clone(), without_indices(&self.path(key))));
+            }
+        });
         self.used.borrow_mut().insert(key.to_string());
         self.table.get(key)
     }

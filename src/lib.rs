@@ -39,7 +39,7 @@
 //! ```
 //!
 //! # Layers
-//! Data flows one way, and no module imports from a layer above its own (checked by `tests/layers.rs`):
+//! Data flows one way, and no module imports from a layer above its own (checked by `tests/suite/layers.rs`):
 //!
 //! | layer | modules | what |
 //! |---|---|---|
@@ -48,13 +48,18 @@
 //! | 2 | [`system`] | frequency responses: state space, transfer functions, multi-degree-of-freedom models |
 //! | 3 | [`response`], [`comfort`] | response statistics: variance three ways, moments, crossing rates; ISO 2631 weightings and exposure |
 //! | 4 | [`estimate`], [`store`], [`fatigue`] | estimators with intervals; HDF5 run files; S–N curves, rainflow, spectral fatigue |
-//! | 5 | [`simulate`], [`road`] | Monte Carlo runs; measured and synthesised road profiles, IRI, a profile replayed through a model |
+//! | 5 | [`simulate`], [`road`], [`nonlinear`] | Monte Carlo runs; measured and synthesised road profiles, IRI, a profile replayed through a model; nonlinear elements and their three routes |
 //! | 6 | [`models`] | the catalogue of the source documents |
 //! | 7 | [`scenario`] | scenario, spectrum and reference files; the spectrum catalogue; the registry of model kinds |
 //! | 8 | [`report`], [`plot`] | what the command-line tool prints and draws |
 //! | 9 | [`prelude`] | the common imports |
 
 #![warn(missing_docs)]
+
+/// The README's Rust example, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeExample;
 
 pub mod coherence;
 pub mod comfort;
@@ -65,6 +70,7 @@ pub mod fields;
 pub mod io_rules;
 pub mod linalg;
 pub mod models;
+pub mod nonlinear;
 pub mod numbers;
 pub mod plot;
 pub mod prelude;

@@ -2,11 +2,13 @@
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
+use stochvib::nonlinear::monte_carlo::NonlinearRunOptions;
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::table::{ReportFormat, ToMarkdown};
 use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{
-    load_document, load_scenario, Catalogue, Document, Scenario, Sweep, SweepMode, SweepParam, SweepSpec,
+    load_document, load_scenario, Catalogue, Document, NonlinearAnswers, Scenario, Sweep, SweepMode, SweepParam,
+    SweepSpec,
 };
 use stochvib::simulate::{merge_runs, part_path, resolve_part, suggest_step, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
@@ -81,6 +83,10 @@ struct Step {
     /// this many hours [default: 24].
     #[arg(long, value_name = "H")]
     max_hours: Option<f64>,
+    /// Burn-in of a nonlinear run before its record, s (default: computed from the slowest decay rate of the
+    /// Gaussian equivalent).
+    #[arg(long)]
+    burn_in: Option<f64>,
 }
 
 impl Step {
@@ -124,6 +130,34 @@ impl Step {
         let (dt, d) = (self.dt.unwrap_or(s.dt_s), self.duration.unwrap_or(s.duration_s));
         eprintln!("time step {dt} s, duration {d} s (suggested: {})", s.reason);
         Ok((dt, d))
+    }
+
+    /// The options of a nonlinear run: the given step and duration, the missing ones suggested for route 2
+    /// (said on stderr), the burn-in.
+    fn nonlinear(
+        &self,
+        sc: &Scenario,
+        answers: &NonlinearAnswers,
+        run: RunOptions,
+    ) -> stochvib::Result<NonlinearRunOptions> {
+        let (dt, duration) = match (self.dt, self.duration) {
+            (Some(dt), Some(d)) => (dt, d),
+            _ => {
+                let s = sc.suggest_nonlinear_step(answers)?;
+                let (dt, d) = (self.dt.unwrap_or(s.dt_s), self.duration.unwrap_or(s.duration_s));
+                eprintln!("time step {dt} s, duration {d} s (suggested for route 2: {})", s.reason);
+                (dt, d)
+            }
+        };
+        Ok(NonlinearRunOptions {
+            run: RunOptions {
+                dt_s: dt,
+                duration_s: duration,
+                ..run
+            },
+            burn_in_s: self.burn_in,
+            halving_checks: None,
+        })
     }
 }
 
@@ -603,6 +637,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
             };
             effort.apply(&mut sc)?;
+            if let Some(answers) = sc.nonlinear_answers()? {
+                return analyze_nonlinear(&sc, &answers, monte_carlo, seed, &step, &plots, &output, &catalogue);
+            }
             let mut r = report::analysis_report(&sc)?;
             if let Some(n) = monte_carlo {
                 let (dt, duration) = step.resolve(&sc)?;
@@ -706,6 +743,30 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 None => None,
             };
             let sc = load_scenario(&scenario, catalogue.dir())?;
+            if let Some(answers) = sc.nonlinear_answers()? {
+                let base = RunOptions {
+                    shard_size,
+                    store_raw,
+                    compression,
+                    route,
+                    confidence,
+                    overwrite,
+                    part: choice.as_ref().map(|c| c.part),
+                    ..RunOptions::new(realizations, 1.0, 1.0, seed)
+                };
+                let opts = step.nonlinear(&sc, &answers, base)?;
+                let output = shard_output(output, &choice)?;
+                let s = sc.simulate_nonlinear(&answers, &opts, &output, &progress_printer())?;
+                print(&s, json)?;
+                if let Some(pdir) = plots {
+                    for f in run_plots(&s.run.path, &pdir, catalogue.dir())? {
+                        if !json {
+                            emit_line(&f.display().to_string());
+                        }
+                    }
+                }
+                return Ok(());
+            }
             let (dt, duration) = step.resolve(&sc)?;
             let opts = RunOptions {
                 shard_size,
@@ -719,20 +780,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 max_hours: step.max_hours(),
                 ..RunOptions::new(realizations, duration, dt, seed)
             };
-            let output = match &choice {
-                None => output,
-                Some(c) => {
-                    output_dir(
-                        &output,
-                        "with --shard, -o names the run directory that receives shard-<I>-of-<N>.h5 files",
-                    )?;
-                    eprintln!("shard {} of {} ({})", c.part.index, c.part.count, c.source);
-                    for n in &c.notes {
-                        eprintln!("warning: {n}");
-                    }
-                    part_path(&output, c.part)
-                }
-            };
+            let output = shard_output(output, &choice)?;
             let flag = |e| named_by_flag(e, "--realizations");
             let estimate = stochvib::simulate::resources::estimate_text(
                 &opts,
@@ -1062,6 +1110,49 @@ fn named_by_flag(e: stochvib::Error, count: &str) -> stochvib::Error {
         }
         other => other,
     }
+}
+
+/// The run file of `simulate`: `-o` itself, or with `--shard` the shard file in the run directory `-o`.
+fn shard_output(output: PathBuf, choice: &Option<stochvib::simulate::ShardChoice>) -> anyhow::Result<PathBuf> {
+    let Some(c) = choice else { return Ok(output) };
+    output_dir(
+        &output,
+        "with --shard, -o names the run directory that receives shard-<I>-of-<N>.h5 files",
+    )?;
+    eprintln!("shard {} of {} ({})", c.part.index, c.part.count, c.source);
+    for n in &c.notes {
+        eprintln!("warning: {n}");
+    }
+    Ok(part_path(&output, c.part))
+}
+
+/// `analyze` of a scenario with nonlinear elements: routes 1 and 3, and route 2 with `--monte-carlo N`.
+#[allow(clippy::too_many_arguments)]
+fn analyze_nonlinear(
+    sc: &Scenario,
+    answers: &NonlinearAnswers,
+    monte_carlo: Option<usize>,
+    seed: u64,
+    step: &Step,
+    plots: &Option<PathBuf>,
+    output: &Output,
+    catalogue: &Catalogue,
+) -> anyhow::Result<()> {
+    let mc = match monte_carlo {
+        Some(n) => {
+            let opts = step.nonlinear(sc, answers, RunOptions::new(n, 1.0, 1.0, seed))?;
+            let (s, pictures) =
+                sc.simulate_nonlinear_temporary(answers, &opts, &std::env::temp_dir(), &progress_printer(), |path| {
+                    plots.as_ref().map(|out| run_plots(path, out, catalogue.dir()))
+                })?;
+            if let (Some(files), Some(out)) = (pictures, plots) {
+                eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
+            }
+            Some(s)
+        }
+        None => None,
+    };
+    print_as(&report::nonlinear_report(sc, answers, mc.as_ref())?, output.format())
 }
 
 /// Refuses Monte Carlo and pictures for a file without a random input.

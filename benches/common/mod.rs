@@ -304,7 +304,7 @@ pub fn all_spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
     ]
 }
 
-/// Monte Carlo pipeline job (issue #7): realizations, samples per realization, time step (s), seed.
+/// Monte Carlo pipeline job: realizations, samples per realization, time step (s), seed.
 pub const MC_REAL: usize = 1000;
 /// Samples per realization, 2¹⁶.
 pub const MC_N: usize = 1 << 16;

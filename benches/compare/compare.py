@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """numpy/scipy side of the stochvib benchmark comparison (see benches/RESULTS.md).
 
-    python3 compare.py run [--reps N] > py.json        time the jobs, print JSON
+    python3 compare.py run [--reps N] [--smoke] > py.json   time the jobs, print JSON (--smoke: tiny sizes, once)
     python3 compare.py table rust.json py.json         print the comparison table
     python3 compare.py sweep [--reps N]                only the scipy sweep loops (benches/RESULTS.md)
     python3 compare.py sweep-cli [--reps N]            `stochvib sweep` of 10^6 points beside the scipy loop
@@ -139,10 +139,15 @@ def state_matrices(c2, b2):
     return a, h
 
 
+SMOKE = False  # tiny sizes (compare.py run --smoke, beside compare_rust --smoke): apply_smoke()
+
+
 def grid():
     w = lambda f: 2 * math.pi * f  # noqa: E731
     c2s = np.linspace(M2 * w(0.8) ** 2, M2 * w(2.5) ** 2, N_C2)
     b2s = np.linspace(1.0e3, 3.0e4, N_B2)
+    if SMOKE:  # every 20th and 25th value, as examples/compare_rust.rs --smoke
+        c2s, b2s = c2s[::20], b2s[::25]
     c2, b2 = np.meshgrid(c2s, b2s, indexing="ij")
     return c2.ravel(), b2.ravel()
 
@@ -204,9 +209,10 @@ def sweep_jobs(reps):
     """The sweep rows of benches/RESULTS.md: the 1-output 10^5-point loop (the historical baseline) and the
     4-output loop on the scenario's 10^4-point grid (the same job as the Rust rows)."""
     out = {}
+    side = 10 if SMOKE else 100
     for key, n, fn in [
-        ("sweep_lyapunov", N_C2 * N_B2, sweep_lyapunov),
-        ("sweep_lyapunov_4_outputs", 100 * 100, sweep_lyapunov_4_outputs),
+        ("sweep_lyapunov", grid()[0].size, sweep_lyapunov),
+        ("sweep_lyapunov_4_outputs", side * side, lambda: sweep_lyapunov_4_outputs(side, side)),
     ]:
         t, check = best(reps, fn)
         out[key] = {"seconds": t, "n": n, "us_per_point": t / n * 1e6, "check": check}
@@ -236,9 +242,12 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
     ]
     n = n_side * n_side
     rows = {}
-    for name, extra in [("h5", ["-o", os.path.join(out_dir, "table.h5")]),
-                        ("csv", ["-o", os.path.join(out_dir, "table.csv")]),
-                        ("csv-stdout", [])]:
+    # (name, extra arguments, environment, CSV read from a pipe)
+    one = dict(os.environ, RAYON_NUM_THREADS="1")
+    for name, extra, env, pipe in [("h5", ["-o", os.path.join(out_dir, "table.h5")], None, False),
+                                   ("csv", ["-o", os.path.join(out_dir, "table.csv")], None, False),
+                                   ("csv-pipe", [], None, True),
+                                   ("h5-1thread", ["-o", os.path.join(out_dir, "table.h5")], one, False)]:
         runs = []
         for _ in range(reps):
             for f in ("table.h5", "table.csv"):
@@ -249,7 +258,13 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
             rss_file = os.path.join(out_dir, "rss")
             wrap = ["/usr/bin/time", "-f", "%M", "-o", rss_file] if os.path.exists("/usr/bin/time") else []
             t0 = time.perf_counter()
-            child = subprocess.Popen(wrap + args + extra, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            child = subprocess.Popen(wrap + args + extra, env=env, stderr=subprocess.PIPE,
+                                     stdout=subprocess.PIPE if pipe else subprocess.DEVNULL)
+            if pipe:  # the table read from a pipe as a consumer would, 1 MiB at a time
+                fd = child.stdout.fileno()
+                while os.read(fd, 1 << 20):
+                    pass
+                child.stdout.close()
             _, status, ru = os.wait4(child.pid, 0)
             wall = time.perf_counter() - t0
             err = child.stderr.read().decode()
@@ -269,7 +284,7 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
             "best_sys_s": best_run[2],
             "peak_rss_mb": max(r[3] for r in runs),
         }
-    scipy = sweep_jobs(2)["sweep_lyapunov_4_outputs"]["us_per_point"]
+    scipy = sweep_jobs(1 if SMOKE else 2)["sweep_lyapunov_4_outputs"]["us_per_point"]
     for name, r in rows.items():
         t_scipy = scipy * 1e-6 * n
         r["scipy_us_per_point"] = scipy
@@ -338,6 +353,16 @@ def quad4():
     return 2 * val
 
 
+def run_densities(reps):
+    """The density jobs alone (run.sh alternates them with the Rust side's, round after round)."""
+    jobs = {}
+    w = np.linspace(0.01, 100.0, N_DENSITY)
+    for name, fn in densities().items():
+        t, check = best(reps, lambda: fn(w).sum(), inner=20)
+        jobs[f"density_{name}"] = {"seconds": t, "n": N_DENSITY, "check": check}
+    return {"side": "python", "numpy": np.__version__, "jobs": jobs}
+
+
 def run_analytic(reps):
     jobs = {}
 
@@ -349,8 +374,8 @@ def run_analytic(reps):
     for name, fn in densities().items():
         put(f"density_{name}", N_DENSITY, best(reps, lambda: fn(w).sum(), inner=20))
     put("variance_lyapunov", 1, best(reps, variance_single, inner=200))
-    put("sweep_numpy_table", N_C2 * N_B2, best(reps, sweep_numpy_table))
-    put("sweep_lyapunov", N_C2 * N_B2, best(min(reps, 2), sweep_lyapunov))
+    put("sweep_numpy_table", grid()[0].size, best(reps, sweep_numpy_table))
+    put("sweep_lyapunov", grid()[0].size, best(min(reps, 2), sweep_lyapunov))
     put("quad4", 1, best(reps, quad4, inner=5))
     return {
         "side": "python",
@@ -429,7 +454,7 @@ def table_analytic(rust_path, py_path):
     print("\n".join(out))
 
 
-# --- issue #7: HDF5 write (h5py) and the dynamic-stiffness chain (scipy banded / numpy dense) -------------
+# --- HDF5 write (h5py) and the dynamic-stiffness chain (scipy banded / numpy dense) -------------
 # Same problems as benches/h5chain/mod.rs.
 H5_ROWS, H5_COLS, H5_SHARD, H5_DEFLATE_ROWS = 1000, 1 << 16, 50, 100
 H5_CHUNK = (2, 1 << 16)  # stochvib::store::layout::chunk_shape(2^16, 50): 1 MiB chunks
@@ -550,6 +575,7 @@ def chain_jobs(reps):
         ("chain_banded_1e6", 1_000_000, chain_banded),
         ("chain_dense_400", 400, chain_dense),
     ]:
+        n = min(n, 10_000) if SMOKE else n
         inner = max(1, min(100, 1_000_000 // n)) if fn is chain_banded else 5
         t, check = best(reps, lambda: fn(n), inner=inner)
         out[key] = {"seconds": t, "n": n, "check": check, "seconds_per_mass": t / n}
@@ -600,7 +626,7 @@ def table_h5_chain(rust_path, py_path):
     print("\n".join([""] + lines))
 
 
-# --- 5. Monte Carlo pipeline (issue #7) ----------------------------------------------------------------
+# --- 5. Monte Carlo pipeline ----------------------------------------------------------------
 # Same job as McSpectral in benches/common/mod.rs: SDOF x'' + 2 zeta w x' + w^2 x = u (w = 10 rad/s,
 # zeta = 0.05, output x) under K(tau) = e^{-3|tau|}; MC_REAL realizations x 2^16 samples, dt = 0.01 s.
 # Spectral representation with Rayleigh amplitudes on the FFT grid (numpy real FFT), the model discretised
@@ -793,11 +819,110 @@ def table(rust_path, py_path):
     mc_table(json.load(open(rust_path)), json.load(open(py_path)))
 
 
+# --- the one table (benches/RESULTS.md) ------------------------------------------------------------------
+CMD_RUN = "`compare_rust` + `compare.py run`"
+CMD_CLI = "`compare.py sweep-cli`"
+CMD_DENS = "`compare_rust --only density` / `compare.py run --only density`, alternated, median of the rounds"
+
+
+def summary_rows(rust, py, sweeps):
+    """(job, size, ours s, peer name, peer s or None, ratio, ratio text, state key, command) of every row."""
+    rj, pj = rust["jobs"], py["jobs"]
+    rows = []
+
+    def vs(job, size, rk, peer, pk, cmd=CMD_RUN, state="run"):
+        r, p = rj.get(rk), pj.get(pk)
+        if r and p:
+            rows.append((job, size, r["seconds"], peer, p["seconds"], p["seconds"] / r["seconds"], state, cmd))
+
+    for k in sorted(k[8:] for k in rj if k.startswith("density_")):
+        if "density_rounds" in rust:  # medians of the alternating rounds (run.sh)
+            t, tp = rust["density_rounds"][k], py["density_rounds"][k]
+            rows.append((f"density, {k}", f"{rj['density_' + k]['n']} pts", t, "numpy (vectorised)", tp, tp / t,
+                         "density", CMD_DENS))
+            continue
+        vs(f"density, {k}", f"{rj['density_' + k]['n']} pts", "density_" + k, "numpy (vectorised)", "density_" + k)
+    vs("variance, 1 model, integral table", "1 model", "variance_table", "scipy solve_continuous_lyapunov", "variance_lyapunov")
+    n = rj["sweep_table"]["n"]
+    vs("variance sweep, table I_n, 1 thread", f"{n} pts", "sweep_table", "scipy lyap per point", "sweep_lyapunov")
+    vs("variance sweep, table I_n, 2 threads", f"{n} pts", "sweep_table_par", "scipy lyap per point", "sweep_lyapunov")
+    vs("type-4 quadrature rel 1e-8", "1 integral", "quad4_library", "scipy quad", "quad4")
+    mb = rj["h5_write_none"]["n"] / 1e6
+    vs("HDF5 write, no compression, until fsync", f"{mb:.0f} MB", "h5_write_none", "h5py", "h5_write_none")
+    vs("HDF5 write, no compression, until close", f"{mb:.0f} MB", "h5_write_none_nosync", "h5py", "h5_write_none_nosync")
+    mbd = rj["h5_write_deflate1"]["n"] / 1e6
+    vs("HDF5 write, shuffle+deflate:1, until fsync", f"{mbd:.0f} MB", "h5_write_deflate1", "h5py", "h5_write_deflate1")
+    vs("chain, O(n) sweep", f"n = {rj['chain_sweep_1e6']['n']}", "chain_sweep_1e6", "scipy solve_banded", "chain_banded_1e6")
+    mc = f"{rust['mc']['realizations']} x {rust['mc']['samples']}"
+    vs("MC one FFT, 1 thread", mc, "mc_pipeline_fft_1t", "numpy one FFT", "mc_pipeline_fft")
+    vs("MC time stepping, 1 thread", mc, "mc_pipeline_1t", "numpy/scipy lfilter", "mc_pipeline")
+    # ours against ours: the floor (ratio = ours / floor, target <= 1.1) and the scaling (1 thread / 2 threads)
+    for job, rk, fk in [("MC one FFT / its floor (normals + 1 irfft)", "mc_pipeline_fft_1t", "mc_floor_1t"),
+                        ("MC exact route / its floor (its normals)", "mc_exact_1t", "mc_exact_floor_1t")]:
+        if rk in rj and fk in rj:
+            t, f = rj[rk]["seconds"], rj[fk]["seconds"]
+            rows.append((job, mc, t, "Rust floor, same run", f, f / t, "run", CMD_RUN))
+    for job, k in [("MC one FFT", "mc_pipeline_fft"), ("MC time stepping", "mc_pipeline"), ("MC exact route", "mc_exact"),
+                   ("calibration spin loops", "mc_spin")]:
+        if f"{k}_1t" in rj and f"{k}_2t" in rj:
+            t1, t2 = rj[f"{k}_1t"]["seconds"], rj[f"{k}_2t"]["seconds"]
+            rows.append((f"{job}, 2 threads vs 1", mc, t2, "ours, 1 thread", t1, t1 / t2, "run", CMD_RUN))
+    for state, sw in sweeps.items():
+        for fmt, r in sw.items():
+            if not isinstance(r, dict) or "median_wall_s" not in r:
+                continue
+            t_scipy = r["scipy_us_per_point"] * 1e-6 * r["points"]
+            rows.append((f"`stochvib sweep` -> {fmt}", f"{r['points']} pts", r["median_wall_s"],
+                         "scipy lyap per point (4 outputs)", t_scipy, t_scipy / r["median_wall_s"], state, CMD_CLI))
+        if "h5" in sw and "h5-1thread" in sw:
+            t1, t2 = sw["h5-1thread"]["median_wall_s"], sw["h5"]["median_wall_s"]
+            rows.append(("`stochvib sweep` -> h5, 2 threads vs 1", f"{sw['h5']['points']} pts", t2, "ours, 1 thread", t1,
+                         t1 / t2, state, CMD_CLI))
+    return rows
+
+
+def summary(d):
+    """Prints the one table of benches/RESULTS.md from run.sh's output directory `d`."""
+    rust, py = json.load(open(os.path.join(d, "rust.json"))), json.load(open(os.path.join(d, "python.json")))
+    rounds = sorted(f for f in os.listdir(d) if f.startswith("density-rust-"))
+    if rounds:  # median over the alternating rounds of each side
+        import statistics
+
+        for side, doc, prefix in (("rust", rust, "density-rust-"), ("python", py, "density-python-")):
+            runs = [json.load(open(os.path.join(d, f.replace("density-rust-", prefix))))["jobs"] for f in rounds]
+            doc["density_rounds"] = {k[8:]: statistics.median(r[k]["seconds"] for r in runs) for k in runs[0]}
+    sweeps, states = {}, {}
+    for name in ("quiet", "busy"):
+        f = os.path.join(d, f"sweep-{name}.json")
+        if os.path.exists(f):
+            sweeps[name] = json.load(open(f))
+    for name in ("run", "density", "quiet", "busy"):
+        f = os.path.join(d, f"state-{name}.txt")
+        states[name] = open(f).read().strip() if os.path.exists(f) else "?"
+    out = [
+        "| job | size | ours | best Python peer | peer | ratio peer/ours | machine state | command |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for job, size, t, peer, tp, ratio, state, cmd in summary_rows(rust, py, sweeps):
+        out.append(f"| {job} | {size} | {fmt_t(t)} | {peer} | {fmt_t(tp)} | {ratio:.3g}x | {states[state]} | {cmd} |")
+    print("\n".join(out))
+
+
+def apply_smoke():
+    """Tiny sizes for the CI smoke run (the same as examples/compare_rust.rs --smoke)."""
+    global SMOKE, H5_ROWS, H5_DEFLATE_ROWS, H5_COLS, H5_CHUNK, MC_REAL, MC_N, MC_CHUNK
+    SMOKE = True
+    H5_ROWS, H5_DEFLATE_ROWS, H5_COLS, H5_CHUNK = 4, 2, 1 << 12, (2, 1 << 12)
+    MC_REAL, MC_N, MC_CHUNK = 4, 1 << 12, 4
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("run")
     r.add_argument("--reps", type=int, default=5)
+    r.add_argument("--smoke", action="store_true", help="every job once at a tiny size")
+    r.add_argument("--only", choices=["density"], help="only the density jobs")
     t = sub.add_parser("table")
     t.add_argument("rust")
     t.add_argument("python")
@@ -808,15 +933,28 @@ def main():
     c.add_argument("--binary", default="target/release/stochvib")
     c.add_argument("--out-dir", default=None, help="where the tables go (default: a temporary directory)")
     c.add_argument("--side", type=int, default=1000, help="values per key (points = side^2)")
+    c.add_argument("--smoke", action="store_true", help="tiny scipy loop (10 x 10 points)")
+    m = sub.add_parser("summary", help="the one table of benches/RESULTS.md from the JSON of one run.sh run")
+    m.add_argument("dir", help="run.sh's output directory (rust.json, python.json, sweep-*.json, state-*.txt)")
     a = ap.parse_args()
+    if a.cmd == "summary":
+        summary(a.dir)
+        return
     if a.cmd == "sweep-cli":
         import tempfile
 
+        if a.smoke:
+            apply_smoke()
         with tempfile.TemporaryDirectory() as tmp:
             print(json.dumps(sweep_cli(a.reps, a.binary, a.out_dir or tmp, a.side), indent=1))
         return
     if a.cmd == "run":
-        print(json.dumps(run(a.reps), indent=1))
+        if a.smoke:
+            apply_smoke()
+        if a.only == "density":
+            print(json.dumps(run_densities(a.reps), indent=1))
+        else:
+            print(json.dumps(run(1 if a.smoke else a.reps), indent=1))
     elif a.cmd == "sweep":
         print(json.dumps(sweep_jobs(a.reps), indent=1))
     else:

@@ -1,52 +1,144 @@
 #!/usr/bin/env bash
-# Side-by-side timing of stochvib (Rust, release) against numpy/scipy on the same jobs and problem sizes.
+# Side-by-side timing of stochvib (Rust, release) against numpy/scipy/h5py on the same jobs and problem
+# sizes, in one run, and the one table of benches/RESULTS.md written from it.
 #
-#   bash benches/compare/run.sh            # from the repository root (or anywhere)
-#   REPS=3 bash benches/compare/run.sh     # fewer repetitions
+#   bash benches/compare/run.sh              # the full comparison (~15 min on 2 cores); writes the table
+#                                            # into benches/RESULTS.md (between its table markers)
+#   bash benches/compare/run.sh --smoke      # every harness once at tiny sizes (seconds; scripts/test.sh):
+#                                            # fails when a harness breaks or a row of the table is missing
+#   REPS=3 bash benches/compare/run.sh       # fewer repetitions (default 5; Monte Carlo at most 3)
+#   bash benches/compare/run.sh --no-write   # the table only in $OUT/table.md
+#   bash benches/compare/run.sh --tunables   # also the analytic/MC jobs with
+#                                            # GLIBC_TUNABLES=glibc.cpu.x86_rep_movsb_threshold=100000000
 #
-# Runs both sides twice: with GLIBC_TUNABLES unset, then with
-# GLIBC_TUNABLES=glibc.cpu.x86_rep_movsb_threshold=100000000 (see DESIGN.md §8), and prints one table per
-# setting. Timings are the best of REPS repetitions; on a shared machine compare the ratios, not the
-# absolute times. JSON results are left in $OUT (default: a temporary directory).
+# Order: the Rust jobs, then the Python jobs (quiet machine), then the densities again in alternating rounds
+# (their table rows are the medians of the rounds), then `stochvib sweep` of 10^6 points to HDF5,
+# to a CSV file and as CSV read from a pipe beside the scipy loop, once on the quiet machine and once with
+# one core kept busy (stress-ng --cpu 1 when installed, else a shell busy loop). The machine state (load
+# average) is recorded before each phase. Timings are the best of REPS repetitions, the `stochvib sweep`
+# rows the median of REPS runs. JSON results are left in $OUT (default: a temporary directory).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
+smoke=0 write=1 tunables=0
+for a in "$@"; do
+    case "$a" in
+    --smoke) smoke=1 write=0 ;;
+    --no-write) write=0 ;;
+    --tunables) tunables=1 ;;
+    *) echo "run.sh: unknown option $a" >&2; exit 2 ;;
+    esac
+done
 reps="${REPS:-5}"
 out="${OUT:-$(mktemp -d)}"
 mkdir -p "$out"
+cd "$root"
 
+# numpy/scipy/h5py: pip (plain, then --break-system-packages for an externally managed Python), then
+# Debian's packages
 if ! python3 -c "import numpy, scipy, h5py" 2>/dev/null; then
-    echo "installing numpy, scipy, h5py with pip" >&2
-    python3 -m pip install --quiet numpy scipy h5py \
-        || python3 -m pip install --quiet --break-system-packages numpy scipy h5py
+    echo "run.sh: installing numpy, scipy, h5py" >&2
+    python3 -m pip install --quiet --disable-pip-version-check numpy scipy h5py 2>/dev/null \
+        || python3 -m pip install --quiet --disable-pip-version-check --break-system-packages numpy scipy h5py 2>/dev/null \
+        || { apt-get install -y -qq python3-numpy python3-scipy python3-h5py >/dev/null 2>&1 \
+             || { apt-get update -qq >/dev/null 2>&1 && apt-get install -y -qq python3-numpy python3-scipy python3-h5py >/dev/null; }; }
+    python3 -c "import numpy, scipy, h5py"
 fi
 
-echo "building the Rust side (release)" >&2
-(cd "$root" && cargo build --release --quiet --example compare_rust)
 target="${CARGO_TARGET_DIR:-$root/target}"
-bin="$target/release/examples/compare_rust"
+if [ "$smoke" = 1 ]; then
+    # the test profile's library (already built by `cargo test`): seconds, not a release build
+    echo "run.sh --smoke: building the harness and stochvib (test profile)" >&2
+    cargo build --locked --quiet --profile test --example compare_rust --bin stochvib
+    bin="$target/debug/examples/compare_rust" cli="$target/debug/stochvib"
+    rust_args=(--smoke) py_args=(--smoke) cli_args=(--smoke --side 20 --reps 1)
+else
+    echo "run.sh: building the Rust side (release)" >&2
+    cargo build --locked --release --quiet --example compare_rust --bin stochvib
+    bin="$target/release/examples/compare_rust" cli="$target/release/stochvib"
+    rust_args=(--reps "$reps") py_args=(--reps "$reps") cli_args=(--reps "$reps")
+fi
 
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), \
-$(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)"
-for tun in "" "glibc.cpu.x86_rep_movsb_threshold=100000000"; do
-    tag="${tun:+tunables}"
-    tag="${tag:-plain}"
-    echo "running ($tag): Rust, then Python" >&2
-    if [ -n "$tun" ]; then
-        GLIBC_TUNABLES="$tun" "$bin" --reps "$reps" >"$out/rust-$tag.json"
-        GLIBC_TUNABLES="$tun" python3 "$here/compare.py" run --reps "$reps" >"$out/python-$tag.json"
-    else
-        env -u GLIBC_TUNABLES "$bin" --reps "$reps" >"$out/rust-$tag.json"
-        env -u GLIBC_TUNABLES python3 "$here/compare.py" run --reps "$reps" >"$out/python-$tag.json"
-    fi
-    echo
-    python3 "$here/compare.py" table "$out/rust-$tag.json" "$out/python-$tag.json"
+state() { # the machine state of a phase: what else runs, and the load average
+    printf '%s, load %s' "$1" "$(cut -d' ' -f1 /proc/loadavg)" >"$out/state-$2.txt"
+}
+cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+simd="$(grep -m1 '^flags' /proc/cpuinfo | grep -o -w -E 'avx512f|avx2|sse2' | sort -u | tr '\n' ' ')"
+echo "machine: $(nproc) cores, $cpu ($simd), $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)" | tee "$out/machine.txt"
+
+state "as found" run
+echo "run.sh: Rust jobs, then Python jobs" >&2
+env -u GLIBC_TUNABLES "$bin" "${rust_args[@]}" >"$out/rust.json"
+env -u GLIBC_TUNABLES python3 "$here/compare.py" run "${py_args[@]}" >"$out/python.json"
+python3 "$here/compare.py" table "$out/rust.json" "$out/python.json" >"$out/details.md"
+
+# the densities take microseconds: a load that changes between the Rust and the Python phase above would
+# decide their ratio, so they are also run in alternating rounds (Rust, numpy, Rust, ...), median per side
+rounds=$([ "$smoke" = 1 ] && echo 1 || echo 5)
+echo "run.sh: densities, $rounds alternating rounds" >&2
+state "as found" density
+for i in $(seq 1 "$rounds"); do
+    env -u GLIBC_TUNABLES "$bin" --only density "${rust_args[@]}" >"$out/density-rust-$i.json" 2>/dev/null
+    env -u GLIBC_TUNABLES python3 "$here/compare.py" run --only density "${py_args[@]}" >"$out/density-python-$i.json"
 done
-echo
-# ISO 2631-1 weighted r.m.s. over a 100 x 100 seat sweep (issue 18): the scipy Lyapunov loop; the Rust side
-# of the same sweep is the criterion bench `cargo bench --bench weighting` (see benches/RESULTS.md)
-echo "running: ISO 2631-1 a_w sweep, scipy side" >&2
-echo "ISO 2631-1 a_w sweep (scipy tf2ss + solve_continuous_lyapunov; Rust: cargo bench --bench weighting)"
-env -u GLIBC_TUNABLES python3 "$here/weighting.py" --reps "$(( reps < 3 ? reps : 3 ))" | tee "$out/weighting-python.txt"
-echo
-echo "JSON results in $out" >&2
+
+echo "run.sh: stochvib sweep beside the scipy loop, quiet machine" >&2
+state "as found" quiet
+python3 "$here/compare.py" sweep-cli --binary "$cli" "${cli_args[@]}" >"$out/sweep-quiet.json"
+echo "run.sh: the same with one core busy" >&2
+if command -v stress-ng >/dev/null; then
+    stress-ng --cpu 1 --quiet --timeout 3600s & busy=$!
+    what="1 core busy (stress-ng --cpu 1)"
+else
+    bash -c 'while :; do :; done' & busy=$!
+    what="1 core busy (shell loop)"
+fi
+trap 'kill "$busy" 2>/dev/null || true' EXIT
+sleep 2
+state "$what" busy
+python3 "$here/compare.py" sweep-cli --binary "$cli" "${cli_args[@]}" >"$out/sweep-busy.json"
+kill "$busy" 2>/dev/null || true
+wait "$busy" 2>/dev/null || true
+trap - EXIT
+
+python3 "$here/compare.py" summary "$out" >"$out/table.md"
+{
+    echo "One run of \`bash benches/compare/run.sh\` at commit \`$(git rev-parse --short HEAD 2>/dev/null || echo '?')\`, $(date -u '+%Y-%m-%d %H:%M UTC'); $(cat "$out/machine.txt")."
+    echo "Rust $(rustc --version | cut -d' ' -f2) release (generic x86-64: SIMD chosen at run time); $(python3 -c 'import sys, numpy, scipy, h5py; print(f"Python {sys.version.split()[0]}, numpy {numpy.__version__}, scipy {scipy.__version__}, h5py {h5py.__version__} (HDF5 {h5py.version.hdf5_version})")')."
+    echo
+    cat "$out/table.md"
+} >"$out/results.md"
+cat "$out/results.md"
+
+if [ "$smoke" = 1 ]; then
+    # every row of the table present, every time a number
+    rows=$(grep -c '^| ' "$out/table.md")
+    if [ "$rows" -lt 30 ] || grep -q -E '\| (nan|inf|-) ' "$out/table.md"; then
+        echo "run.sh --smoke: the table is incomplete ($((rows - 2)) rows): a harness is broken (see $out)" >&2
+        exit 1
+    fi
+    echo "run.sh --smoke: every harness ran, $((rows - 2)) rows ($out)" >&2
+fi
+if [ "$tunables" = 1 ]; then
+    tun="glibc.cpu.x86_rep_movsb_threshold=100000000"
+    GLIBC_TUNABLES="$tun" "$bin" "${rust_args[@]}" >"$out/rust-tunables.json"
+    GLIBC_TUNABLES="$tun" python3 "$here/compare.py" run "${py_args[@]}" >"$out/python-tunables.json"
+    python3 "$here/compare.py" table "$out/rust-tunables.json" "$out/python-tunables.json" | tee "$out/details-tunables.md"
+fi
+if [ "$smoke" = 0 ]; then
+    # ISO 2631-1 weighted r.m.s. over a 100 x 100 seat sweep: the scipy side (the Rust side is the criterion
+    # bench `cargo bench --bench weighting`; see benches/HISTORY.md)
+    env -u GLIBC_TUNABLES python3 "$here/weighting.py" --reps "$(( reps < 3 ? reps : 3 ))" | tee "$out/weighting-python.txt"
+fi
+if [ "$write" = 1 ]; then
+    python3 - "$root/benches/RESULTS.md" "$out/results.md" <<'PY'
+import sys
+path, table = sys.argv[1], open(sys.argv[2]).read().strip()
+text = open(path).read()
+begin, end = "<!-- table: written by benches/compare/run.sh -->", "<!-- end of table -->"
+i, j = text.index(begin) + len(begin), text.index(end)
+open(path, "w").write(text[:i] + "\n" + table + "\n" + text[j:])
+PY
+    echo "run.sh: the table is in benches/RESULTS.md" >&2
+fi
+echo "run.sh: JSON and tables in $out" >&2

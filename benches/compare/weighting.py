@@ -1,6 +1,6 @@
 """ISO 2631-1 weighted r.m.s. a_w of the operator seat over a stiffness x damping sweep with scipy: per point
 the state space of white noise -> cab floor -> seat acceleration (scipy.signal.tf2ss) in series with the four
-sections of W_k, and scipy.linalg.solve_continuous_lyapunov (the "scipy Lyapunov loop" of issue 18). Same model, input and grid
+sections of W_k, and scipy.linalg.solve_continuous_lyapunov (the "scipy Lyapunov loop"). Same model, input and grid
 as benches/weighting.rs (100 x 100 points). Prints a_w at the catalogue point and the time per point.
 
     python3 benches/compare/weighting.py [--reps 3]     (also run by benches/compare/run.sh)

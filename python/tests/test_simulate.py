@@ -158,19 +158,30 @@ def test_sigint_while_computing_stops_the_run(tmp_path):
         os.kill(os.getpid(), signal.SIGINT)
 
     n, shard = 400, 5  # 80 shards of 5 × 4000 samples (about 0.5 s in all): the signal arrives long before the end
-    th = threading.Thread(target=send_sigint_after_first_shard)
-    th.start()
-    with pytest.raises(KeyboardInterrupt):
-        stochvib.simulate(SCENARIO, n, path, progress=calls.__setitem__, dt=0.01, duration=40.0, seed=3, shard_size=shard)
-    th.join()
+    # Python's own SIGINT handler, as in a terminal: a shell starts a background job with SIGINT ignored, and
+    # then Python installs no handler (the test would be killed or the signal lost instead of testing stochvib)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        th = threading.Thread(target=send_sigint_after_first_shard)
+        th.start()
+        with pytest.raises(KeyboardInterrupt):
+            stochvib.simulate(SCENARIO, n, path, progress=calls.__setitem__, dt=0.01, duration=40.0, seed=3, shard_size=shard)
+        th.join()
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert not path.exists() and (tmp_path / "sig.h5.tmp").is_file()
     r = stochvib.simulate(SCENARIO, n, path, progress=False, dt=0.01, duration=40.0, seed=3, shard_size=shard)
     assert 1 <= r.resumed_shards < n // shard
 
 
 CHILD = """
+import signal
 import sys
 import stochvib
+
+# Python's own SIGINT handler, as in a terminal, even when this test runs as a background job (started with
+# SIGINT ignored, which the child inherits and for which Python would install no handler)
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 def progress(done, total):
     print(done, flush=True)

@@ -7,6 +7,7 @@
 //! * [`expm`](mod@expm) — the matrix exponential with overflow and shape checks.
 //! * [`transfer`] — numerator and denominator of a state-space transfer function in a frequency-scaled
 //!   variable (stiff systems keep their digits).
+//! * [`vmath`] — vectorised `exp` and `ln` with run-time CPU dispatch (AVX-512, AVX2, SSE2), for grids.
 //! * [`poly`] — real polynomials with ascending coefficients: evaluation, products, roots, the Hurwitz
 //!   test and spectral factorisation of non-negative polynomials in ω².
 //!
@@ -18,6 +19,7 @@ pub mod integral_table;
 pub mod lyapunov;
 pub mod poly;
 pub mod transfer;
+pub mod vmath;
 
 pub use expm::expm;
 pub use integral_table::{h2_integral, integral_closed_form, integral_i_n};

@@ -25,6 +25,7 @@ pub mod chart;
 pub mod comfort_plots;
 pub mod mc_plots;
 pub mod model_plots;
+pub mod nonlinear_plots;
 pub mod road_plots;
 pub mod run_plots;
 pub mod scenario_plots;

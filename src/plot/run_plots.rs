@@ -35,6 +35,10 @@ pub struct OutputCharts {
     pub histogram: Option<Histogram>,
     /// Correlation estimate against the model K(τ) from the stored analytic density (raw data only).
     pub correlation: Option<LineChart>,
+    /// A nonlinear run's response histogram against route 1's Gaussian and the exact density (linear and
+    /// logarithmic density axis; [`super::nonlinear_plots`]); the raw histogram and correlation, whose
+    /// references are those of a linear model, are then not drawn.
+    pub response_density: Option<(LineChart, LineChart)>,
 }
 
 /// The `title` key of the scenario text stored in the file, or `None` if absent or unparsable.
@@ -150,6 +154,7 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
     };
     let psds = run.psd()?;
     let stats = run.statistics()?;
+    let response = run.response_histograms()?;
     let mut out = Vec::new();
     for sig in &meta.outputs {
         let name = &sig.name;
@@ -186,7 +191,15 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
             unit,
         )?;
         welch.series[0].name = format!("Welch estimate (ν = {})", crate::numbers::num(psd.dof));
-        welch.series[1].name = "continuous-time analytic density".into();
+        welch.series[1].name = if response.is_empty() {
+            "continuous-time analytic density".into()
+        } else {
+            "route 1: density of the equivalent linear system (an approximation)".into()
+        };
+        let response_density = response
+            .iter()
+            .find(|h| &h.output == name)
+            .map(|h| super::nonlinear_plots::histogram_charts(&scenario, h));
         if let Some(e) = &psd.expected {
             let coverage = psd
                 .coverage()
@@ -201,7 +214,7 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
             );
         }
         let (mut realizations, mut histogram, mut correlation) = (None, None, None);
-        if meta.store_raw {
+        if meta.store_raw && response.is_empty() {
             let n = meta.n_samples;
             let nr = meta.n_realizations;
             // excerpts
@@ -316,6 +329,7 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
             realizations,
             histogram,
             correlation,
+            response_density,
         });
     }
     Ok(out)
@@ -351,6 +365,10 @@ pub fn run_plots(path: &Path, dir: &Path, spectra_dir: &Path) -> Result<Vec<Path
         }
         if let Some(c) = &oc.correlation {
             files.extend(c.render(dir, &format!("{s}-correlation"))?);
+        }
+        if let Some((lin, log)) = &oc.response_density {
+            files.extend(lin.render(dir, &format!("{s}-histogram"))?);
+            files.extend(log.render(dir, &format!("{s}-histogram-log"))?);
         }
     }
     for c in rainflow_charts(path)? {

@@ -158,35 +158,7 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         title: sc.title.clone(),
         scenario: sc.path.display().to_string(),
         model: sc.model.description.clone(),
-        input: if sc.inputs.len() <= 1 && sc.input.coherence.is_none() {
-            format!(
-                "{}{}",
-                crate::scenario::input_as_written(&sc.input, &sc.path),
-                sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
-            )
-        } else {
-            // `[[input]]` tables: name, spectrum, coherence of a road
-            let each: Vec<String> = sc
-                .inputs
-                .iter()
-                .map(|i| {
-                    format!(
-                        "{}: {}{}",
-                        i.name,
-                        crate::scenario::input_as_written(i, &sc.path),
-                        i.coherence
-                            .as_ref()
-                            .map(|c| format!(", two tracks, {c}"))
-                            .unwrap_or_default()
-                    )
-                })
-                .collect();
-            format!(
-                "{}{}",
-                each.join("; "),
-                sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
-            )
-        },
+        input: input_description(sc),
         band_rad_s: sc.analysis.band,
         duration_s: sc.analysis.duration,
         outputs,
@@ -196,6 +168,40 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
             Some(crate::scenario::verdict_analysis(sc)?)
         },
     })
+}
+
+/// The scenario's input as a report line: the spectrum as written (each `[[input]]` table with its name and a
+/// road's coherence) and the speed.
+pub(crate) fn input_description(sc: &Scenario) -> String {
+    if sc.inputs.len() <= 1 && sc.input.coherence.is_none() {
+        format!(
+            "{}{}",
+            crate::scenario::input_as_written(&sc.input, &sc.path),
+            sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
+        )
+    } else {
+        // `[[input]]` tables: name, spectrum, coherence of a road
+        let each: Vec<String> = sc
+            .inputs
+            .iter()
+            .map(|i| {
+                format!(
+                    "{}: {}{}",
+                    i.name,
+                    crate::scenario::input_as_written(i, &sc.path),
+                    i.coherence
+                        .as_ref()
+                        .map(|c| format!(", two tracks, {c}"))
+                        .unwrap_or_default()
+                )
+            })
+            .collect();
+        format!(
+            "{}{}",
+            each.join("; "),
+            sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
+        )
+    }
 }
 
 fn opt(v: Option<f64>) -> String {

@@ -5,7 +5,9 @@ pub mod analysis;
 pub mod band_report;
 pub mod book;
 pub mod catalogue;
+mod float_text;
 pub mod markdown;
+pub mod nonlinear_report;
 pub mod replay_report;
 pub mod road_report;
 pub mod spectrum_report;
@@ -21,6 +23,7 @@ pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use book::{book_report, BookReport};
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
 pub use markdown::inspect_markdown;
+pub use nonlinear_report::{nonlinear_report, NonlinearReport};
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
 pub use sweep_stream::{stream_sweep_csv, write_sweep_table, StreamOptions, StreamedTable};
 pub use sweep_table::{

@@ -124,9 +124,14 @@ pub fn spectrum_report_at(file: &SpectrumFile, convention: Convention, points: &
         DensityPoints::Angular(w) => w.clone(),
         DensityPoints::Cyclic(f) => f.iter().map(|f| 2.0 * std::f64::consts::PI * f).collect(),
     };
+    // The same batch path as every other caller of a density table (the Python package included),
+    // so a value printed here is bit-identical to the one an array evaluation returns.
+    let mut canonical = vec![0.0; omegas.len()];
+    s.density_into(&omegas, &mut canonical);
     let density = omegas
         .iter()
-        .map(|&w| convention.from_canonical(w, s.density(w)))
+        .zip(&canonical)
+        .map(|(&w, &v)| convention.from_canonical(w, v))
         .collect();
     let abscissa_unit = if convention.is_cyclic() {
         s.domain().cyclic_unit()

@@ -152,16 +152,16 @@ pub fn stream_sweep_csv(
     let mut out = std::io::BufWriter::with_capacity(1 << 20, out);
     out.write_all(csv_header(&sweep_identity(sweep, mc)).as_bytes())
         .map_err(io)?;
-    let mut text = String::new();
     let (mut out, errors) = pipeline(sweep, 0..n, mc, opts, progress, out, |w, b| {
-        text.clear();
-        match b {
+        let blocks = match b {
             Block::Rows { points, stats, errors } => {
-                tabulate(sweep, points.clone(), stats, errors.clone(), mc).push_csv_rows(&mut text)
+                tabulate(sweep, points.clone(), stats, errors.clone(), mc).csv_row_blocks()
             }
-            Block::Table(t) => t.push_csv_rows(&mut text),
-        }
-        w.write_all(text.as_bytes()).map_err(io)
+            Block::Table(t) => t.csv_row_blocks(),
+        };
+        blocks
+            .iter()
+            .try_for_each(|text| w.write_all(text.as_bytes()).map_err(io))
     })?;
     out.flush().map_err(io)?;
     Ok(StreamedTable { n_points: n, errors })

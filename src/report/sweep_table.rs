@@ -362,11 +362,12 @@ impl TableFormat {
     }
 }
 
-/// `,` and the value as `num` writes it, appended to `s` (no intermediate string).
+/// `,` and the value as `{:e}` writes it (the shortest round-trip digits: up to 17 significant digits),
+/// appended to `s` without an intermediate string ([`push_exp`](super::float_text::push_exp)).
 fn push_num(s: &mut String, v: Option<f64>) {
     s.push(',');
     if let Some(x) = v {
-        let _ = write!(s, "{x:e}");
+        super::float_text::push_exp(s, x);
     }
 }
 
@@ -581,6 +582,17 @@ impl SweepResults {
     /// The CSV lines of the points held (no header), appended to `s`: [`to_csv`](Self::to_csv) of a table is
     /// its header followed by the lines of its blocks, in order.
     pub fn push_csv_rows(&self, s: &mut String) {
+        let blocks = self.csv_row_blocks();
+        s.reserve(blocks.iter().map(String::len).sum());
+        for b in &blocks {
+            s.push_str(b);
+        }
+    }
+
+    /// The CSV lines of the points held, formatted in blocks of 4096 points on all cores: joined in order
+    /// they are [`push_csv_rows`](Self::push_csv_rows)'s text (a stream writes them one by one, without
+    /// the copy of joining them).
+    pub(crate) fn csv_row_blocks(&self) -> Vec<String> {
         let mc = self.identity.monte_carlo.is_some();
         let n_out = self.identity.outputs.len();
         let nk = self.n_keys();
@@ -601,7 +613,7 @@ impl SweepResults {
         use rayon::prelude::*;
         const BLOCK: usize = 4096;
         let n_rows = self.points.len();
-        let blocks: Vec<String> = (0..n_rows.div_ceil(BLOCK))
+        (0..n_rows.div_ceil(BLOCK))
             .into_par_iter()
             .map(|blk| {
                 let rows = blk * BLOCK..((blk + 1) * BLOCK).min(n_rows);
@@ -611,7 +623,7 @@ impl SweepResults {
                     let err = self.error_of(p);
                     for (j, (name, unit)) in outputs.iter().enumerate() {
                         let v = &self.values[row * n_out + j];
-                        let _ = write!(s, "{p}");
+                        super::float_text::push_int(&mut s, p);
                         for (k, vals) in params.iter().enumerate() {
                             s.push(',');
                             s.push_str(&vals[self.value_index[row * nk + k]]);
@@ -642,16 +654,16 @@ impl SweepResults {
                             s.push(',');
                             s.push_str(m.map_or("", |m| if m.covers { "yes" } else { "no" }));
                         }
-                        let _ = writeln!(s, ",{}", err.map(csv_field).unwrap_or_default());
+                        s.push(',');
+                        if let Some(e) = err {
+                            s.push_str(&csv_field(e));
+                        }
+                        s.push('\n');
                     }
                 }
                 s
             })
-            .collect();
-        s.reserve(blocks.iter().map(String::len).sum());
-        for b in &blocks {
-            s.push_str(b);
-        }
+            .collect()
     }
 
     /// The table as JSON: the identity and one object per point and output.

@@ -9,6 +9,8 @@
 mod catalogue;
 pub mod generic;
 pub mod inputs;
+pub mod nonlinear_keys;
+mod nonlinear_run;
 mod profile_identity;
 pub mod reference;
 mod registry;
@@ -22,6 +24,7 @@ pub mod verdict_spec;
 pub mod workday;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
+pub use nonlinear_run::NonlinearAnswers;
 pub use profile_identity::input_as_written;
 pub use reference::ReferenceTable;
 pub use registry::{

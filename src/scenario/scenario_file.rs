@@ -143,6 +143,9 @@ pub struct Scenario {
     pub excitation: Excitation,
     /// Report options.
     pub analysis: AnalysisOptions,
+    /// The nonlinear elements (`[[model.nonlinear]]`, [`super::nonlinear_keys`]) on `model`, whose system is
+    /// then their linear part; `None` for a linear scenario.
+    pub nonlinear: Option<Arc<crate::nonlinear::NonlinearModel>>,
 }
 
 impl Scenario {
@@ -301,6 +304,15 @@ impl Scenario {
     /// # Errors
     /// As [`crate::simulate::run()`].
     pub fn simulate(&self, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
+        // a model with nonlinear elements: route 2 with its default burn-in and checks
+        if let Some(answers) = self.nonlinear_answers()? {
+            let o = crate::nonlinear::monte_carlo::NonlinearRunOptions {
+                run: opts.clone(),
+                burn_in_s: None,
+                halving_checks: None,
+            };
+            return self.simulate_nonlinear(&answers, &o, out, progress).map(|s| s.run);
+        }
         let r = if self.analysis.verdicts.is_empty() {
             crate::simulate::run(&self.run_input(), opts, out, progress)
         } else {
@@ -412,9 +424,19 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
     let mf = f.sub("model")?;
     let kind = mf.string("kind")?.to_string();
     let built = build_model(&kind, &mf, ModelContext { speed, several_inputs })?;
-    mf.finish()?;
+    let has_nonlinear = mf.get("nonlinear").is_some();
     let model = match built {
         BuiltModel::Deterministic(model) => {
+            mf.finish()?;
+            if has_nonlinear {
+                return Err(mf.error(
+                    "nonlinear",
+                    "[[model.nonlinear]]",
+                    format!(
+                        "kind `{kind}` is a deterministic model: nonlinear elements need a model with a random input"
+                    ),
+                ));
+            }
             for key in ["input", "analysis"] {
                 if let Some(v) = root.get(key) {
                     return Err(f.error(
@@ -435,7 +457,9 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         }
         BuiltModel::Stochastic(m) => m,
     };
-    check_model(&f, &kind, &model)?;
+    let (model, nonlinear, regime_outputs) = super::nonlinear_run::attach(&mf, model)?;
+    mf.finish()?;
+    check_model(&f, &kind, &model, nonlinear.is_none())?;
     let catalogue = Catalogue::new(spectra_dir);
     let (inputs, excitation) = match root.get("input") {
         Some(toml::Value::Array(tables)) => {
@@ -488,12 +512,28 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
             let af = f.sub("analysis")?;
             let mut opts = analysis_options(&af, &model)?;
             opts.verdicts = super::verdict_spec::parse_verdicts(&af, &model, speed)?;
+            if nonlinear.is_some() && !opts.verdicts.is_empty() {
+                return Err(af.error(
+                    "comfort",
+                    "[analysis.comfort] / [analysis.fatigue]",
+                    "verdicts are evaluated on linear models only: a model with [[model.nonlinear]] elements takes none",
+                ));
+            }
             super::verdict_spec::check_fatigue_moments(&f, &opts.verdicts, &model, &excitation)?;
             af.finish()?;
             opts
         }
     };
     f.finish()?;
+    let mut analysis = analysis;
+    // every regime (contact, lift-off) is counted on an output: the outputs added for them are simulated
+    for name in &regime_outputs {
+        if let Ok(i) = model.system.output_index(name)
+            && !analysis.outputs.contains(&i)
+        {
+            analysis.outputs.push(i);
+        }
+    }
     Ok(Document::Stochastic(Box::new(Scenario {
         path: path.to_path_buf(),
         text: text.to_string(),
@@ -506,6 +546,7 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         spectra_dir: spectra_dir.to_path_buf(),
         excitation,
         analysis,
+        nonlinear,
     })))
 }
 
@@ -536,9 +577,10 @@ pub(super) fn input_kurtosis(inf: &Fields) -> Result<Option<f64>> {
     Ok(Some(k))
 }
 
-/// Output names unique, and the system asymptotically stable (a stationary response exists), else an error
-/// naming the file and the `[model]` table.
-fn check_model(f: &Fields, kind: &str, model: &ModelInstance) -> Result<()> {
+/// Output names unique, and (`stable`) the system asymptotically stable (a stationary response exists), else
+/// an error naming the file and the `[model]` table. A model with nonlinear elements is not checked for
+/// stability here: its Gaussian equivalent's stability is route 1's outcome.
+fn check_model(f: &Fields, kind: &str, model: &ModelInstance, stable: bool) -> Result<()> {
     let outs = model.system.outputs();
     if let Some(k) = (1..outs.len()).find(|&k| outs[..k].iter().any(|o| o.name == outs[k].name)) {
         return Err(f.error(
@@ -547,7 +589,7 @@ fn check_model(f: &Fields, kind: &str, model: &ModelInstance) -> Result<()> {
             "two outputs have this name: every output needs its own name",
         ));
     }
-    if let Some(ss) = model.system.state_space() {
+    if let Some(ss) = model.system.state_space().filter(|_| stable) {
         ss.require_stable().map_err(|e| {
             let reason = match e {
                 Error::InvalidParameter { value, reason, .. } => format!("{reason} ({value})"),

@@ -64,6 +64,8 @@ pub(crate) struct Scratch {
     fft_scratch: Vec<Complex<f64>>,
     fir: Option<super::FirScratch>,
     laplace: Vec<super::LaplaceScratch>,
+    /// One output's samples of a whole record (reused from realization to realization).
+    sig: Vec<f64>,
 }
 
 impl Scratch {
@@ -98,6 +100,7 @@ impl Scratch {
                 Engine::Spectral { laplace, .. } => laplace.iter().map(|l| l.scratch()).collect(),
                 _ => vec![],
             },
+            sig: Vec::new(),
         }
     }
 }
@@ -330,13 +333,20 @@ pub(crate) fn realize(
             Engine::SpectralStream(_) => {}
         }
     }
-    let mut sig = vec![0.0; n];
+    let mut sig = std::mem::take(&mut s.sig);
+    sig.resize(n, 0.0);
     for r in 0..p {
+        // one pass: the copy and both running sums, each in time order from −0.0 as `Iterator::sum` of f64
+        // folds (bit-identical to two sums over the copy; the two chains of additions overlap)
+        let (mut sum, mut sq) = (-0.0f64, -0.0f64);
         for (k, v) in sig.iter_mut().enumerate() {
-            *v = s.buf[k * stride + r];
+            let x = s.buf[k * stride + r];
+            *v = x;
+            sum += x;
+            sq += x * x;
         }
-        out.m.push(sig.iter().sum::<f64>() / n as f64);
-        out.v.push(sig.iter().map(|v| v * v).sum::<f64>() / n as f64);
+        out.m.push(sum / n as f64);
+        out.v.push(sq / n as f64);
         let mut ws = plan.welch.sums();
         plan.welch.accumulate(&sig, &mut ws, &mut s.welch)?;
         out.welch.push(ws);
@@ -344,5 +354,6 @@ pub(crate) fn realize(
             out.raw.push(sig.clone());
         }
     }
+    s.sig = sig;
     Ok(out)
 }

@@ -153,9 +153,14 @@ pub fn merge_runs(
         }
     }
     // the shared values themselves, from the first file (checked against its checksums)
-    let (stats0, psd0, rain0) = {
+    let (stats0, psd0, rain0, hist0) = {
         let run = first.open()?;
-        (run.statistics()?, run.psd()?, run.rainflow()?)
+        (
+            run.statistics()?,
+            run.psd()?,
+            run.rainflow()?,
+            run.response_histograms()?,
+        )
     };
     let confidence = match opts.confidence {
         Some(c) => c,
@@ -326,6 +331,7 @@ pub fn merge_runs(
     }
     let rainflow = finish_verdicts(&writer, &meta, confidence, &stats0, &rain0, &first.path, &mut stats)?;
     finish_bands(&writer, &meta, confidence, &stats0, &first.path, &mut stats)?;
+    crate::nonlinear::monte_carlo::finish_merged(&mut writer, &meta, confidence, &stats0, &hist0, &mut stats)?;
     writer.write_statistics(&stats)?;
     for r in &rainflow {
         writer.write_rainflow(r)?;

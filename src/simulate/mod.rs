@@ -65,3 +65,9 @@ pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
 pub use summary::RunSummary;
 pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};
+// the engine and plan of linear runs, for the input synthesis of nonlinear runs (crate::nonlinear)
+pub(crate) use engine::{realize, Scratch};
+pub(crate) use finish::{
+    density_estimate, interval as finish_interval, output_statistics, read_output as read_output_accumulators, Analytic,
+};
+pub(crate) use plan::{plan, Plan};

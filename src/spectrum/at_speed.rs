@@ -78,13 +78,9 @@ impl Spectrum for AtSpeed {
         let mut scaled = [0.0; CHUNK];
         for (w, o) in omega.chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
             let m = w.len().min(o.len());
-            for (s, &x) in scaled.iter_mut().zip(&w[..m]) {
-                *s = x / self.speed;
-            }
+            crate::linalg::vmath::map(&w[..m], &mut scaled[..m], |x| x / self.speed);
             self.inner.density_into(&scaled[..m], &mut o[..m]);
-            for v in &mut o[..m] {
-                *v /= self.speed;
-            }
+            crate::linalg::vmath::div_in_place(&mut o[..m], self.speed);
         }
     }
     fn high_frequency(&self) -> Asymptote {

@@ -66,6 +66,14 @@ impl Spectrum for Gaussian {
     fn density(&self, omega: f64) -> f64 {
         self.prefactor * (-omega * omega / (4.0 * self.alpha)).exp()
     }
+    /// The formula of `density` with the vectorised [`vmath::exp`](crate::linalg::vmath::exp) on the CPU's
+    /// widest SIMD unit: within `vmath::EXP_ULP_BOUND` + 1 ulp of `density`.
+    fn density_into(&self, omega: &[f64], out: &mut [f64]) {
+        use crate::linalg::vmath;
+        vmath::map(omega, out, |w: f64| {
+            self.prefactor * vmath::exp(-w * w / (4.0 * self.alpha))
+        });
+    }
     fn high_frequency(&self) -> Asymptote {
         Asymptote::Vanishing
     }

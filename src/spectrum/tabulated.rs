@@ -106,8 +106,47 @@ impl Tabulated {
         self.density[k] * (self.slopes[k] * (w / self.omega[k]).ln()).exp()
     }
 
+    /// The segment of `density` at w ≥ 0 (the last k ≤ n − 2 with ω_k ≤ w), None outside the table,
+    /// found by walking from the segment `k` of the previous point (a binary search when w lies below it).
+    #[inline]
+    fn walk(&self, k: &mut usize, w: f64) -> Option<usize> {
+        let n = self.omega.len();
+        if w < self.omega[0] || w > self.omega[n - 1] {
+            return None;
+        }
+        if w < self.omega[*k] {
+            *k = self.omega.partition_point(|&x| x <= w).saturating_sub(1).min(n - 2);
+        } else {
+            while *k + 1 < n - 1 && self.omega[*k + 1] <= w {
+                *k += 1;
+            }
+        }
+        Some(*k)
+    }
+
     fn slope(&self, k: usize) -> f64 {
         (self.density[k + 1] / self.density[k]).ln() / (self.omega[k + 1] / self.omega[k]).ln()
+    }
+}
+
+/// `out[i] = level[i]·exp(slope[i]·ln(w[i]/node[i]))` by [`vmath`](crate::linalg::vmath)'s functions, as a
+/// [`Task`](crate::linalg::vmath::Task) compiled for the CPU's widest SIMD unit.
+struct Segments<'a> {
+    level: &'a [f64],
+    slope: &'a [f64],
+    w: &'a [f64],
+    node: &'a [f64],
+    out: &'a mut [f64],
+}
+
+impl crate::linalg::vmath::Task for Segments<'_> {
+    #[inline(always)]
+    fn run(&mut self) {
+        use crate::linalg::vmath::{exp, ln};
+        let args = self.level.iter().zip(self.slope).zip(self.w.iter().zip(self.node));
+        for (o, ((&l, &p), (&w, &wk))) in self.out.iter_mut().zip(args) {
+            *o = l * exp(p * ln(w / wk));
+        }
     }
 }
 
@@ -134,26 +173,31 @@ impl Spectrum for Tabulated {
         let k = self.omega.partition_point(|&x| x <= w).saturating_sub(1).min(n - 2);
         self.segment(k, w)
     }
-    /// The same values as `density` point by point; on an ascending grid the segment is found by walking
-    /// from the previous point's segment instead of a binary search per point.
+    /// The formula of `density` with the vectorised [`vmath::exp`](crate::linalg::vmath::exp) and
+    /// [`vmath::ln`](crate::linalg::vmath::ln) (within 4 ulp of `density` where |p_k ln(ω/ω_k)| ≤ 1, and
+    /// exact at the nodes); the segments are found first, in blocks of 256 points, by walking from the
+    /// previous point's segment instead of a binary search per point.
     fn density_into(&self, omega: &[f64], out: &mut [f64]) {
-        let n = self.omega.len();
+        use crate::linalg::vmath;
+        const BLOCK: usize = 256;
         let mut k = 0;
-        for (o, &om) in out.iter_mut().zip(omega) {
-            let w = om.abs();
-            *o = if w < self.omega[0] || w > self.omega[n - 1] {
-                0.0
-            } else {
-                // the segment of `density`: the last k ≤ n − 2 with ω_k ≤ w
-                if w < self.omega[k] {
-                    k = self.omega.partition_point(|&x| x <= w).saturating_sub(1).min(n - 2);
-                } else {
-                    while k + 1 < n - 1 && self.omega[k + 1] <= w {
-                        k += 1;
-                    }
-                }
-                self.segment(k, w)
-            };
+        let (mut aw, mut node, mut slope, mut level) = ([1.0; BLOCK], [1.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
+        for (w, o) in omega.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
+            let m = w.len().min(o.len());
+            for i in 0..m {
+                let a = w[i].abs();
+                (aw[i], node[i], slope[i], level[i]) = match self.walk(&mut k, a) {
+                    Some(k) => (a, self.omega[k], self.slopes[k], self.density[k]),
+                    None => (1.0, 1.0, 0.0, 0.0),
+                };
+            }
+            vmath::run(&mut Segments {
+                level: &level[..m],
+                slope: &slope[..m],
+                w: &aw[..m],
+                node: &node[..m],
+                out: &mut o[..m],
+            });
         }
     }
     fn high_frequency(&self) -> Asymptote {

@@ -227,3 +227,17 @@ pub fn chunk_shape(n_samples: usize, shard_size: usize) -> (usize, usize) {
     let rows = (1..=limit).rev().find(|r| shard.is_multiple_of(*r)).unwrap_or(1);
     (rows, columns)
 }
+
+/// Group of the response histograms of a nonlinear run (optional: only runs of a model with nonlinear
+/// elements have it); one subgroup per output ([`super::ResponseHistogram`]).
+pub const GROUP_RESPONSE_HISTOGRAM: &str = "response_histogram";
+/// Dataset: route 1's Gaussian density at the bin centres (optional).
+pub const DS_GAUSSIAN: &str = "gaussian";
+/// Dataset: the exact (Fokker–Planck) density at the bin centres (optional).
+pub const DS_EXACT: &str = "exact";
+/// Attribute: fraction of the samples below the first edge.
+pub const ATTR_BELOW: &str = "below";
+/// Attribute: fraction of the samples above the last edge.
+pub const ATTR_ABOVE: &str = "above";
+/// Attribute: samples counted.
+pub const ATTR_SAMPLES: &str = "samples";

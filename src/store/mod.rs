@@ -10,11 +10,13 @@ pub mod layout;
 mod parts;
 mod rainflow;
 mod reader;
+mod response_histogram;
 mod writer;
 
 pub use parts::{find_run_files, MergedFrom, PartFile, PartSet, RawStorage, VirtualSource};
 pub use rainflow::RainflowHistogram;
 pub use reader::{abbreviated_list, summarize, RunFile, RunInfo, Verification, LISTED_FILES};
+pub use response_histogram::ResponseHistogram;
 pub(crate) use writer::metadata_differences;
 pub use writer::RunWriter;
 pub use writer::{process_alive, CreateOptions};

@@ -490,6 +490,32 @@ impl RunFile {
         Ok(out)
     }
 
+    /// The response histograms of a nonlinear run (`/response_histogram`, optional: empty when the file
+    /// has none), each checked against its `@crc32`.
+    ///
+    /// # Errors
+    /// [`Error::Hdf5`] if a histogram is malformed or its checksum does not match.
+    pub fn response_histograms(&self) -> Result<Vec<super::ResponseHistogram>> {
+        let p = &self.path;
+        if !self.file.link_exists(L::GROUP_RESPONSE_HISTOGRAM) {
+            return Ok(Vec::new());
+        }
+        let parent = self
+            .file
+            .group(L::GROUP_RESPONSE_HISTOGRAM)
+            .map_err(h5err(p, "opening /response_histogram"))?;
+        let mut out = Vec::new();
+        for sig in &self.meta.outputs {
+            if parent.link_exists(&sig.name) {
+                let g = parent
+                    .group(&sig.name)
+                    .map_err(h5err(p, "opening a response histogram"))?;
+                out.push(super::ResponseHistogram::read(&g, &sig.name, p)?);
+            }
+        }
+        Ok(out)
+    }
+
     /// The rainflow range histograms of the run's fatigue verdict channels (`/rainflow`, optional: empty
     /// when the file has none), each checked against its `@crc32`.
     ///

@@ -1,6 +1,19 @@
 //! Writing a run: temporary name, shard by shard, rename on completion, resume after interruption.
 
 use super::checksum::crc32_f64;
+
+/// Raw data of a shard from which its checksums are computed on a second thread, beside the write.
+const OVERLAP_CHECKSUM_BYTES: usize = 1 << 20;
+
+/// The checksums of a shard: each raw array (row-major little-endian bytes), then each accumulator.
+fn shard_sums(inputs: &[ArrayView2<'_, f64>], outputs: &[ArrayView2<'_, f64>], accumulators: &[&[f64]]) -> Vec<u32> {
+    inputs
+        .iter()
+        .chain(outputs)
+        .map(|a| crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])))
+        .chain(accumulators.iter().map(|a| crc32_f64(a)))
+        .collect()
+}
 use super::chunks;
 use super::layout as L;
 use super::parts::{MergedFrom, RawStorage};
@@ -646,6 +659,28 @@ impl RunWriter {
                 ));
             }
         }
+        // the checksums are computed on another thread while the rows are written (or filtered): the data
+        // are read once more from memory, but that pass is off the write's critical path
+        let sums = std::thread::scope(|scope| -> Result<Vec<u32>> {
+            let bytes: usize = inputs.iter().chain(outputs).map(|a| a.len() * 8).sum();
+            let sums =
+                (bytes >= OVERLAP_CHECKSUM_BYTES).then(|| scope.spawn(|| shard_sums(inputs, outputs, accumulators)));
+            self.write_rows(range, inputs, outputs)?;
+            Ok(match sums {
+                Some(h) => h.join().unwrap_or_else(|p| std::panic::resume_unwind(p)),
+                None => shard_sums(inputs, outputs, accumulators),
+            })
+        })?;
+        self.finish_shard(row, accumulators, sums)
+    }
+
+    /// Writes the rows `range` of every input and output (filtered on all threads when compressed).
+    fn write_rows(
+        &self,
+        range: std::ops::Range<usize>,
+        inputs: &[ArrayView2<'_, f64>],
+        outputs: &[ArrayView2<'_, f64>],
+    ) -> Result<()> {
         let e = |what: &str| h5err(&self.tmp, what);
         for (ds, a) in self
             .inputs
@@ -668,13 +703,7 @@ impl RunWriter {
                 }
             }
         }
-        let sums: Vec<u32> = inputs
-            .iter()
-            .chain(outputs)
-            .map(|a| crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[])))
-            .chain(accumulators.iter().map(|a| crc32_f64(a)))
-            .collect();
-        self.finish_shard(row, accumulators, sums)
+        Ok(())
     }
 
     /// Writes a shard's accumulators and checksums, flushes, marks it complete and flushes again.
@@ -1058,6 +1087,27 @@ impl RunWriter {
         self.file.flush().map_err(e("flushing a rainflow histogram"))
     }
 
+    /// Writes the response histogram of a nonlinear run's output under `/response_histogram/<output>`
+    /// (replacing an existing one).
+    ///
+    /// # Errors
+    /// An output that is not one of the run's; HDF5 failures.
+    pub fn write_response_histogram(&mut self, h: &super::ResponseHistogram) -> Result<()> {
+        self.check_signal_name("response_histogram", &h.output)?;
+        let e = |what: &str| h5err(&self.tmp, what);
+        let parent = if self.file.link_exists(L::GROUP_RESPONSE_HISTOGRAM) {
+            self.file
+                .group(L::GROUP_RESPONSE_HISTOGRAM)
+                .map_err(e("opening /response_histogram"))?
+        } else {
+            self.file
+                .create_group(L::GROUP_RESPONSE_HISTOGRAM)
+                .map_err(e("creating /response_histogram"))?
+        };
+        h.write(&parent, &self.tmp)?;
+        self.file.flush().map_err(e("flushing a response histogram"))
+    }
+
     fn check_signal_name(&self, field: &str, name: &str) -> Result<()> {
         if self
             .meta
@@ -1166,7 +1216,7 @@ fn raw_chunk(meta: &RunMetadata) -> (usize, usize) {
 /// [`L::chunk_shape`]), and a chunk that does not fit the cache is written by HDF5 straight from the
 /// caller's buffer to the file. With HDF5's default 1 MiB cache, a 1 MiB chunk is "cacheable" and every
 /// byte is first copied into the cache and then written out: one extra memcpy of the whole run (and
-/// glibc's memcpy of such buffers is slow on some machines, DESIGN.md §8). Compressed shards are filtered
+/// glibc's memcpy of such buffers is slow on some machines, see benches/HISTORY.md). Compressed shards are filtered
 /// by the writer and stored with `H5Dwrite_chunk` (see `chunks.rs`), which bypasses the cache; HDF5's
 /// default cache is kept for them.
 fn open_file(path: &Path, mode: OpenMode, compression: Compression) -> hdf5::Result<File> {
@@ -1418,7 +1468,7 @@ fn write_root_attrs(file: &File, m: &RunMetadata, version: u32) -> hdf5::Result<
     Ok(())
 }
 
-fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
+pub(super) fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
     loc.new_attr::<T>().shape(()).create(name)?.write_scalar(&value)
 }
 
@@ -1427,7 +1477,7 @@ fn to_vlu(text: &str) -> hdf5::Result<VarLenUnicode> {
         .map_err(|err| hdf5::Error::from(format!("text {text:?} cannot be stored: {err}")))
 }
 
-fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
+pub(super) fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
     let v = to_vlu(value)?;
     loc.new_attr::<VarLenUnicode>().shape(()).create(name)?.write_scalar(&v)
 }

@@ -699,4 +699,106 @@ impl FrequencyResponse for Mdof {
     fn state_space(&self) -> Option<&StateSpace> {
         self.ss.as_ref()
     }
+    fn as_mdof(&self) -> Option<&Mdof> {
+        Some(self)
+    }
+}
+
+/// The weights of an output y = g_qᵀ q + g_vᵀ q̇ + g_aᵀ q̈ + h_uᵀ u + h_dᵀ u̇ (u: every input, base then
+/// force), as [`Mdof::output_weights`] returns them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OutputWeights<'a> {
+    /// g_q.
+    pub q: &'a [f64],
+    /// g_v.
+    pub v: &'a [f64],
+    /// g_a.
+    pub a: &'a [f64],
+    /// h_u.
+    pub u: &'a [f64],
+    /// h_d.
+    pub du: &'a [f64],
+}
+
+/// The parts of a model that nonlinear elements are built on ([`crate::nonlinear`]).
+impl Mdof {
+    /// The spring–damper elements (empty for a model given by its matrices).
+    pub fn elements(&self) -> &[Element] {
+        &self.elements
+    }
+    /// The coordinates' names and units.
+    pub fn coordinates(&self) -> &[(String, String)] {
+        &self.coords
+    }
+    /// M⁻¹.
+    pub fn mass_inverse(&self) -> &DMatrix<f64> {
+        &self.m_inv
+    }
+    /// K_u (n × base inputs).
+    pub fn base_stiffness(&self) -> &DMatrix<f64> {
+        &self.ku
+    }
+    /// B_u (n × base inputs).
+    pub fn base_damping(&self) -> &DMatrix<f64> {
+        &self.bu
+    }
+    /// F (n × force inputs).
+    pub fn force_distribution(&self) -> &DMatrix<f64> {
+        &self.f
+    }
+    /// The weights of output `r`, if it exists.
+    pub fn output_weights(&self, r: usize) -> Option<OutputWeights<'_>> {
+        self.combos.get(r).map(|k| OutputWeights {
+            q: k.q.as_slice(),
+            v: k.v.as_slice(),
+            a: k.a.as_slice(),
+            u: k.u.as_slice(),
+            du: k.du.as_slice(),
+        })
+    }
+
+    /// The model with more spring–damper elements, of any sign (the Gaussian equivalents of nonlinear
+    /// elements may stiffen or soften): each adds k d dᵀ to C, b d dᵀ to B (and k g, b g to the base
+    /// columns of a base element), as in [`Mdof::from_elements`]; the outputs are kept. Adding no element
+    /// gives an identical model.
+    ///
+    /// # Errors
+    /// A point of the wrong length, an unknown base input, non-finite values.
+    pub fn with_added_elements(&self, extra: &[Element]) -> Result<Mdof> {
+        let n = self.n_coords();
+        let mut out = self.clone();
+        for e in extra {
+            if e.point.len() != n || !(e.stiffness.is_finite() && e.damping.is_finite()) {
+                return Err(Error::invalid(
+                    &format!("element `{}`", e.name),
+                    format!("{:?}, k = {}, b = {}", e.point, e.stiffness, e.damping),
+                    format!("need {n} point weights and finite coefficients"),
+                ));
+            }
+            let g = DVector::from_column_slice(&e.point);
+            let d = match &e.to {
+                Attach::Ground => g.clone(),
+                Attach::Base(j) if *j < self.n_base() => {
+                    out.ku.column_mut(*j).axpy(e.stiffness, &g, 1.0);
+                    out.bu.column_mut(*j).axpy(e.damping, &g, 1.0);
+                    g.clone()
+                }
+                Attach::Point(h) if h.len() == n => &g - DVector::from_column_slice(h),
+                other => {
+                    return Err(Error::invalid(
+                        &format!("element `{}`.to", e.name),
+                        format!("{other:?}"),
+                        "not an input or a point of this model",
+                    ))
+                }
+            };
+            out.c += e.stiffness * &d * d.transpose();
+            out.b += e.damping * &d * d.transpose();
+            out.elements.push(e.clone());
+        }
+        if !extra.is_empty() {
+            out.rebuild_state_space()?;
+        }
+        Ok(out)
+    }
 }

@@ -20,7 +20,7 @@ mod state_space;
 mod transfer_function;
 mod transfer_row;
 
-pub use mdof::{modal_analysis, Attach, Element, Mdof, Output, Quantity};
+pub use mdof::{modal_analysis, Attach, Element, Mdof, Output, OutputWeights, Quantity};
 pub use oscillator::Drive;
 pub use state_space::StateSpace;
 pub use transfer_function::TransferFunction;
@@ -65,6 +65,12 @@ pub trait FrequencyResponse: Debug + Send + Sync {
     fn natural_frequencies(&self) -> Vec<f64>;
     /// The exact state-space form, when the system is finite-dimensional.
     fn state_space(&self) -> Option<&StateSpace>;
+
+    /// The multi-degree-of-freedom model behind the response, when it is one (nonlinear elements are
+    /// placed on its coordinates).
+    fn as_mdof(&self) -> Option<&Mdof> {
+        None
+    }
 
     /// Index of the output called `name`.
     ///

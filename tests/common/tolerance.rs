@@ -11,6 +11,12 @@
 /// a few exactly representable terms): each rounding is at most ε/2, so 4ε allows about eight of them.
 pub const ULPS: f64 = 4.0 * f64::EPSILON;
 
+/// A density evaluated on a grid by `density_into` (the vectorised `exp`/`ln` of `linalg::vmath`, each within
+/// 2 ulp of libm, or a power by multiplications instead of `powf`) against its scalar oracle `density`: 2 ulp
+/// from `exp`, 2 from `ln` amplified by |p ln(ω/ω_k)| ≤ 1 in a tabulated segment, and up to 4 roundings
+/// placed differently by the two formulas (ε/2 each): 8ε relative.
+pub const SIMD_DENSITY: f64 = 8.0 * f64::EPSILON;
+
 /// A short computation without cancellation (a closed form of a handful of operations, a quadrature rule
 /// or polynomial sum of up to ~40 terms of one sign, a 16-point FFT, the factorisation of a quadratic,
 /// the round-off floor of an integrator's error estimate, 25ε·∫|f|): n roundings of ≤ ε/2 add at worst
@@ -170,3 +176,43 @@ pub const TRANSFER_POLYNOMIALS: f64 = 2.0 * CONDITION_CHECKED;
 /// derivative by sin(2π/p)/(2π/p) ≈ 1 − (2π/p)²/6; at p = 200 these are 8.2e-5 and 1.6e-4, and a residual
 /// transient after a skip of 14 decay times is below 1e-6. 1e-3 leaves a factor of five.
 pub const REPLAY_SINE_AMPLITUDE: f64 = 1e-3;
+
+// ---- nonlinear elements and their three routes ----
+
+/// Route 1 (statistical linearization) against the fixed point of its own equations solved another way (a
+/// root of 3εσ⁴ + σ² − σ₀² = 0, a scalar bisection): the iteration stops when no σ changes by more than
+/// 1e-10 relative between iterations; under-relaxed by ½ with a contraction factor ≤ 0.9 the distance left to
+/// the fixed point is at most ~10 times the last change, 1e-9 in σ, 2e-9 in σ²; 1e-8 leaves a factor of five.
+pub const ROUTE1_ITERATION: f64 = 1e-8;
+
+/// A trapezoid rule written in a test, on pieces whose ends are the integrand's kinks (so each piece is
+/// smooth) with steps of σ/2000 over μ ± 12σ: the error per piece is ≈ h²/12·∫|f″| ≈ 2e-8 of the integral
+/// for the Gaussian-weighted piecewise polynomials of the element laws (measured ≤ 3e-9); 1e-7.
+pub const TRAPEZOID_PIECEWISE: f64 = 1e-7;
+
+/// A stop of finite contact stiffness against the rigid (perfectly elastic) wall it tends to: the exact
+/// variance converges as κ^{-1/2} (κ = k_c/k); at κ = 10⁶ and clearance d = σ₀ the gap is 6.3e-4 of σ₀² (the
+/// closed forms of both, computed in tests/suite/nonlinear_routes.rs); 1e-3.
+pub const RIGID_STOP: f64 = 1e-3;
+
+/// The Gaussian closure's modelling error in the mean shift of an asymmetric damper (jacking): route 1's
+/// E[F_d] assumes a Gaussian damper velocity, whose actual law is slightly non-Gaussian; seeded Monte Carlo
+/// puts the exact mean 0.3 % (SDOF, c_r/c_c = 3) to 1 % (quarter car) from the closed form; 2 %.
+pub const JACKING_CLOSURE: f64 = 2e-2;
+
+/// Observed order of the splitting integrator from the error envelope (the worst case over ten neighbouring
+/// step counts, so that where the contact falls within a step averages out) at n and 8n steps per period:
+/// second order gives log₂-ratios near 2 per halving; a kink in the force can make single steps erratic, so
+/// the test requires at least 1.8 per halving on average (a first-order scheme would give 1).
+pub const SPLITTING_MIN_ORDER: f64 = 1.8;
+
+/// The false-failure probability of one statistical assertion of the route-2 tests: their intervals are
+/// Student-t intervals across realizations at confidence 1 − MC_FALSE_FAILURE; with at most five such
+/// assertions a test fails falsely with probability ≤ 10⁻⁶.
+pub const MC_FALSE_FAILURE: f64 = 2e-7;
+
+/// Up-crossings counted on the samples of a path miss the crossings that happen and reverse within one
+/// step: an independent seeded computation (BAOAB, a two-sided stop at d = σ₀, κ = 100) measured the
+/// sampled contact rate within 0.3 % of the exact one at h·ω_c = 0.6 and 0.3, +3 % only at h·ω_c = 1.2
+/// (ω_c the contact frequency); the tests take h·ω_c ≤ 0.35, where 2 % leaves a margin.
+pub const SAMPLED_CROSSINGS: f64 = 2e-2;

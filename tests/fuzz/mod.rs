@@ -1,4 +1,4 @@
-//! Fuzz and corruption harnesses (issue 16, "robust under hostile input and faults"), shared by
+//! Fuzz and corruption harnesses, shared by
 //! `examples/fuzz.rs` and `examples/corrupt_runs.rs` (long runs) and by `tests/fuzz_inputs.rs` and
 //! `tests/fuzz_run_files.rs` (bounded runs with a fixed seed).
 //!

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cluster contract end to end on a real SLURM cluster with the real stochvib binary (issue 19):
+# The cluster contract end to end on a real SLURM cluster with the real stochvib binary:
 #
 #   STOCHVIB=/path/to/stochvib tests/slurm/real-array.sh
 #

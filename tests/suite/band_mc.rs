@@ -1,4 +1,4 @@
-//! Band r.m.s. from Monte Carlo (`[analysis] bands` in `simulate`, issue 18 point 4): the per-realization
+//! Band r.m.s. from Monte Carlo (`[analysis] bands` in `simulate`): the per-realization
 //! band mean squares of the Welch estimates, their Student-t intervals against the expected band values of the
 //! simulated process, the pipeline against a recomputation from the raw records, the bit-identical merge of a
 //! two-shard run, and a band-less run left as it was.

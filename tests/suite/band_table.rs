@@ -1,4 +1,4 @@
-//! Band tables of an output (issue 18, point 4): IEC 61260-1 base-10 band r.m.s. by the band integral of
+//! Band tables of an output: IEC 61260-1 base-10 band r.m.s. by the band integral of
 //! the output density, against a closed form, the whole-axis sum against the Lyapunov σ², and the
 //! scenario key `[analysis] bands` with its validation and its place in the `analyze` report.
 
@@ -22,7 +22,7 @@ const ALPHA: f64 = 2.0; // 1/s
 const D: f64 = 1.0e-4; // m²
 
 /// # Closed form
-/// S_u(ω) = αD/(π(α² + ω²)) (DESIGN.md §2, type 1), |H(iω)|² = a²/(a² + ω²), and by partial fractions
+/// S_u(ω) = αD/(π(α² + ω²)) (type 1, docs/conventions.md), |H(iω)|² = a²/(a² + ω²), and by partial fractions
 /// 1/((α² + ω²)(a² + ω²)) = [1/(α² + ω²) − 1/(a² + ω²)]/(a² − α²), with ∫ dω/(c² + ω²) = atan(ω/c)/c.
 /// The band mean square over [f_1, f_2] (both signs of ω, so twice the positive-ω integral), ωₖ = 2πfₖ:
 /// ```text

@@ -1,4 +1,4 @@
-//! Issue 18's comfort report: the motion sickness dose value (MSDV) of a Wf axis in `analyze`, and the
+//! The comfort report: the motion sickness dose value (MSDV) of a Wf axis in `analyze`, and the
 //! picture of a comfort axis (weighted density, one-third-octave band r.m.s., ISO 2631-1 Annex C scale).
 //!
 //! Provenance of the expected values:

@@ -123,14 +123,14 @@ fn registry_agrees_with_the_files_the_error_and_the_docs() {
     for k in kind_names() {
         assert!(msg.contains(k), "unknown-kind error does not list {k}: {msg}");
     }
-    // `stochvib models` lists them, and the README's table names every kind
+    // `stochvib models` lists them, and the model catalogue page (docs/models.md) names every kind
     let models = String::from_utf8_lossy(&run(&["models"]).stdout).into_owned();
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let catalogue = std::fs::read_to_string(root().join("docs/models.md")).unwrap();
     for k in MODEL_KINDS {
         assert!(models.contains(k.name) && models.contains(k.summary), "{}", k.name);
         assert!(
-            readme.contains(&format!("`{}`", k.name)),
-            "README does not document kind {}",
+            catalogue.contains(&format!("`{}`", k.name)),
+            "docs/models.md does not document kind {}",
             k.name
         );
     }

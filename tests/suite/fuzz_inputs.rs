@@ -1,4 +1,4 @@
-//! Bounded structured fuzzing of the input files (issue 16): a fixed seed, 300 mutated copies of the
+//! Bounded structured fuzzing of the input files: a fixed seed, 300 mutated copies of the
 //! shipped scenario, reference and spectrum files through the library's entry points (in worker
 //! processes, with a per-case time limit) and every tenth through the CLI, plus the special files (FIFO,
 //! directory, `/dev/zero`, `/dev/urandom`, empty, missing, symbolic-link loop, NUL bytes, a scenario whose

@@ -1,4 +1,4 @@
-//! Bounded corruption of HDF5 run files (issue 16): a fixed seed, 40 damaged copies of small run files
+//! Bounded corruption of HDF5 run files: a fixed seed, 40 damaged copies of small run files
 //! written by the library (statistics only; raw data; raw data with deflate:1; a road scenario on the
 //! spectral route) and of the `.tmp` files their interrupted runs leave, through `stochvib inspect`,
 //! `inspect --json`, `plot` and the resuming `simulate`.

@@ -1,4 +1,4 @@
-//! Non-Gaussian roads (issue 17, point 5): the Laplace moving average (LMA) of K. Bogsjö, K. Podgórski and
+//! Non-Gaussian roads: the Laplace moving average (LMA) of K. Bogsjö, K. Podgórski and
 //! I. Rychlik, "Models for road surface roughness", Vehicle System Dynamics 50(5), 2012, keeps the spectrum
 //! and reaches the prescribed kurtosis; the responses of a quarter car to it keep the Gaussian σ while their
 //! fourth moments and extremes grow; kurtosis 3 is the Gaussian case.

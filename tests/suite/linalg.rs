@@ -118,7 +118,7 @@ fn hurwitz_from(real: &[f64], pairs: &[(f64, f64)], lead: f64) -> Vec<f64> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(crate::common::proptest_config(200))]
 
     /// Iₙ(cB, A) = c² Iₙ(B, A), Iₙ(B, cA) = Iₙ/c², and frequency scaling
     /// Bₖ → Bₖ α⁻ᵏ, Aₖ → Aₖ α⁻ᵏ (H(s) → H(s/α)) gives α Iₙ.

@@ -1,4 +1,4 @@
-//! `stochvib merge` of many shard files and of verdict runs (issues 19 and 18): the merge reads every
+//! `stochvib merge` of many shard files and of verdict runs: the merge reads every
 //! file's header first, then folds the files one at a time; verdict scenarios (ISO 2631-1 metrics and
 //! rainflow) run as cluster shards and merge bit-identically; `inspect` abbreviates long shard lists.
 //!

@@ -1,4 +1,4 @@
-//! Every finite answer, every time (issue 15): delayed inputs give their variance and moments exactly, the
+//! Every finite answer, every time: delayed inputs give their variance and moments exactly, the
 //! integral table never prints a wrong number, every kind of non-answer says which it is, units of derived
 //! outputs follow from the coordinates, and Welch estimates are compared with their own expectation.
 

@@ -62,6 +62,7 @@ fn significant_digits(s: &str) -> usize {
 }
 
 proptest! {
+    #![proptest_config(crate::common::proptest_config(256))]
     #[test]
     fn every_written_number_has_four_figures_and_stands_for_its_value(
         m in 1.0f64..10.0, e in -12i32..12, neg in any::<bool>()

@@ -318,7 +318,7 @@ fn random_case(ws: &[f64], zs: &[f64], gains: &[f64], a_in: f64, b_in: f64) -> (
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(crate::common::proptest_config(48))]
     #[test]
     fn prop_three_methods_agree(
         w1 in 0.5f64..20.0, w2 in 0.5f64..20.0, z1 in 0.02f64..0.9, z2 in 0.02f64..0.9,

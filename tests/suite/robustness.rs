@@ -1,4 +1,4 @@
-//! Robustness under careless or hostile use (issue 16): every case here failed before its fix — a resume
+//! Robustness under careless or hostile use: every case here failed before its fix — a resume
 //! that mixed a changed spectrum into an old run, two processes on one output, a kill during set-up, an
 //! `--overwrite` that deleted first, sizes that panicked or aborted, damaged run files, values read with
 //! the wrong unit or attributed to the wrong key, and files that hung the reader.

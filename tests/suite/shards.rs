@@ -1,4 +1,4 @@
-//! Cluster shards and parameter studies (issue 19): `simulate --shard I --of N`, `merge`, `sweep`.
+//! Cluster shards and parameter studies: `simulate --shard I --of N`, `merge`, `sweep`.
 //!
 //! Provenance of the expected values:
 //! * Merged files are compared with a different computation: the single-process run of the same scenario,

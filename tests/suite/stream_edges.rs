@@ -1,4 +1,4 @@
-//! The streamed spectral route on outputs dominated by a sharp band edge (issue 16, point 6): the quarter
+//! The streamed spectral route on outputs dominated by a sharp band edge: the quarter
 //! car's body displacement on an ISO 8608 road, whose kernel decays only like 1/t, is designed on a grid
 //! the design predicts, with memory independent of the duration; a tolerance that no grid can meet fails at
 //! once with the numbers; the per-bin transfer of the design (Schur form) agrees with an LU solve per bin.

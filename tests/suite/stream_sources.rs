@@ -1,5 +1,5 @@
-//! The streamed spectral route with several independent input sources (`[[input]]` tables, issue 16
-//! point 6): one white noise per component of every source through its own kernels, summed per output (a
+//! The streamed spectral route with several independent input sources (`[[input]]` tables):
+//! one white noise per component of every source through its own kernels, summed per output (a
 //! multi-component source's coherence mixing is part of its kernels). Statistics bit-identical for any
 //! block size; σ intervals cover the simulated and the analytic σ.
 

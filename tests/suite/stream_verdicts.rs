@@ -1,4 +1,4 @@
-//! Verdict channels evaluated block by block (issue 16, point 6): the ISO 2631-1 metrics (weighted a_w,
+//! Verdict channels evaluated block by block: the ISO 2631-1 metrics (weighted a_w,
 //! VDV with its fourth-power sums, MTVV over the 1 s running r.m.s. across block edges, crest factor) and
 //! the rainflow damage and range histogram (the counter's residue carried across blocks) of a
 //! statistics-only run, on the exact route and on the streamed spectral route.

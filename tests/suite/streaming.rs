@@ -1,4 +1,4 @@
-//! The streamed spectral route (issue 16, point 6): white noise through FIR kernels designed from the
+//! The streamed spectral route: white noise through FIR kernels designed from the
 //! spectrum and the first-order-hold response, filtered by overlap-save with a fixed FFT size, so that a
 //! statistics-only run of any (non-rational, delayed) input has memory independent of the duration.
 

@@ -3,7 +3,7 @@
 //! `rand`'s value-stability tests).
 //!
 //! Provenance: the pinned bit patterns were printed by `stochvib simulate … --json` at commit 67bb861 (before
-//! the architecture rework of issue 14) for the two runs below, one per route. They pin behaviour, not
+//! the architecture rework) for the two runs below, one per route. They pin behaviour, not
 //! correctness: that the statistics are right is tested against the analytic values in `mc_pipeline.rs`.
 //! A deliberate change of the generators or of the route must update these pins in the same commit, with
 //! the reason.

@@ -1,4 +1,4 @@
-//! The verdicts of a scenario three ways (issue 18): ISO 2631-1 weighted r.m.s. a_w by the Lyapunov
+//! The verdicts of a scenario three ways: ISO 2631-1 weighted r.m.s. a_w by the Lyapunov
 //! route, by quadrature and by an independent product-form integral in this file, and by Monte Carlo with
 //! the weighting filter simulated exactly; VDV against its Gaussian value; spectral fatigue damage against
 //! rainflow counting of simulated stresses; and the refusal of bad `[analysis.comfort]` /

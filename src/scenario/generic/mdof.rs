@@ -128,23 +128,7 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
                 )
             })? as usize,
     };
-    let point = |key: &str, v: &toml::Value, ff: &Fields| -> Result<Vec<f64>> {
-        let arr = v
-            .as_array()
-            .ok_or_else(|| ff.error(key, v, format!("expected {n} weights of the coordinates")))?;
-        if arr.len() != n {
-            return Err(ff.error(key, v, format!("expected {n} weights (one per coordinate)")));
-        }
-        arr.iter()
-            .enumerate()
-            .map(|(j, x)| {
-                x.as_float()
-                    .or_else(|| x.as_integer().map(|k| k as f64))
-                    .filter(|w| w.is_finite())
-                    .ok_or_else(|| ff.error(&format!("{key}[{j}]"), x, "expected a finite number"))
-            })
-            .collect()
-    };
+    let point = |key: &str, v: &toml::Value, ff: &Fields| coordinate_weights(ff, key, v, n);
     let mut elements = Vec::new();
     if let Some(ev) = f.get("element") {
         let earr = ev
@@ -164,21 +148,7 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
             } else {
                 (Dim::STIFFNESS, Dim::DAMPING)
             };
-            let to = match ef.require("to")? {
-                toml::Value::String(s) if s == "ground" => Attach::Ground,
-                toml::Value::String(s) if s.starts_with("base") => {
-                    let j: usize = s[4..]
-                        .trim()
-                        .parse()
-                        .map_err(|_| ef.error("to", s, "expected \"base <index>\""))?;
-                    if j >= n_base {
-                        return Err(ef.error("to", s, format!("only {n_base} base inputs (set model.base_inputs)")));
-                    }
-                    Attach::Base(j)
-                }
-                v @ toml::Value::Array(_) => Attach::Point(point("to", v, &ef)?),
-                v => return Err(ef.error("to", v, "expected \"ground\", \"base <j>\" or a point array")),
-            };
+            let to = attachment(&ef, n, n_base)?;
             let stiffness = ef.opt_quantity("stiffness", kd)?.unwrap_or(0.0);
             let damping = ef.opt_quantity("damping", bd)?.unwrap_or(0.0);
             for (k, v) in [("stiffness", stiffness), ("damping", damping)] {
@@ -326,5 +296,50 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
         system: Arc::new(model),
         layout,
         description: format!("MDOF model, {n} coordinates"),
+    })
+}
+
+/// The weights of the `n` coordinates under `key` (a point, or an element's far end).
+///
+/// # Errors
+/// [`Error::File`](crate::Error::File) naming the key and value: not an array of `n` finite numbers.
+pub(crate) fn coordinate_weights(ff: &Fields, key: &str, v: &toml::Value, n: usize) -> Result<Vec<f64>> {
+    let arr = v
+        .as_array()
+        .ok_or_else(|| ff.error(key, v, format!("expected {n} weights of the coordinates")))?;
+    if arr.len() != n {
+        return Err(ff.error(key, v, format!("expected {n} weights (one per coordinate)")));
+    }
+    arr.iter()
+        .enumerate()
+        .map(|(j, x)| {
+            x.as_float()
+                .or_else(|| x.as_integer().map(|k| k as f64))
+                .filter(|w| w.is_finite())
+                .ok_or_else(|| ff.error(&format!("{key}[{j}]"), x, "expected a finite number"))
+        })
+        .collect()
+}
+
+/// The far end of an element, key `to`: `"ground"`, `"base <j>"` or a point (weights of the `n` coordinates).
+///
+/// # Errors
+/// [`Error::File`](crate::Error::File) naming `to` and its value: missing, malformed, or a base input the
+/// model does not have.
+pub(crate) fn attachment(ef: &Fields, n: usize, n_base: usize) -> Result<Attach> {
+    Ok(match ef.require("to")? {
+        toml::Value::String(s) if s == "ground" => Attach::Ground,
+        toml::Value::String(s) if s.starts_with("base") => {
+            let j: usize = s[4..]
+                .trim()
+                .parse()
+                .map_err(|_| ef.error("to", s, "expected \"base <index>\""))?;
+            if j >= n_base {
+                return Err(ef.error("to", s, format!("only {n_base} base inputs (set model.base_inputs)")));
+            }
+            Attach::Base(j)
+        }
+        v @ toml::Value::Array(_) => Attach::Point(coordinate_weights(ef, "to", v, n)?),
+        v => return Err(ef.error("to", v, "expected \"ground\", \"base <j>\" or a point array")),
     })
 }

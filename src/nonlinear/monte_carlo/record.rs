@@ -1,0 +1,127 @@
+//! The statistics of one realization of route 2, accumulated sample by sample in time order.
+//!
+//! # Formula
+//! For output y with reference c (route 1's mean), over the N recorded samples of duration T = NΔt:
+//! * the sums S_p = Σ (y_k − c)^p, p = 1…4, in time order from −0.0 (S₁, S₂ are the standard moments
+//!   accumulator of a linear run: the time averages m = S₁/N, v = S₂/N);
+//! * mean μ̂ = c + S₁/N; variance σ̂² = S₂/N − (S₁/N)²; the central fourth moment
+//!   μ̂₄ = S₄/N − 4 m S₃/N + 6 m² S₂/N − 3 m⁴ (m = S₁/N), for the pooled kurtosis ([`super::stats`]);
+//! * max |y|; the up-crossings of every level a (y_{k−1} < a ≤ y_k) per second, count/T;
+//! * a histogram of y on fixed bins (with an underflow and an overflow count);
+//! * for an element with a regime (a stop in contact, a tyre off the road): the fraction of samples in the
+//!   regime and the entries into it per second.
+
+/// The running statistics of one output.
+#[derive(Debug, Clone)]
+pub(crate) struct OutputRecord {
+    centre: f64,
+    pub(crate) s: [f64; 4],
+    max_abs: f64,
+    levels: Vec<f64>,
+    counts: Vec<u64>,
+    prev: Option<f64>,
+    hist_lo: f64,
+    hist_width: f64,
+    /// bins + 2: underflow, the bins, overflow.
+    pub(crate) hist: Vec<f64>,
+    n: usize,
+}
+
+impl OutputRecord {
+    pub(crate) fn new(centre: f64, levels: &[f64], hist_lo: f64, hist_width: f64, bins: usize) -> Self {
+        OutputRecord {
+            centre,
+            s: [-0.0; 4],
+            max_abs: 0.0,
+            levels: levels.to_vec(),
+            counts: vec![0; levels.len()],
+            prev: None,
+            hist_lo,
+            hist_width,
+            hist: vec![0.0; bins + 2],
+            n: 0,
+        }
+    }
+
+    /// Adds sample y; returns y − c (the value for the Welch estimate and the standard moments).
+    #[inline]
+    pub(crate) fn push(&mut self, y: f64) -> f64 {
+        let d = y - self.centre;
+        let d2 = d * d;
+        self.s[0] += d;
+        self.s[1] += d2;
+        self.s[2] += d2 * d;
+        self.s[3] += d2 * d2;
+        self.max_abs = self.max_abs.max(y.abs());
+        if let Some(p) = self.prev {
+            for (a, c) in self.levels.iter().zip(self.counts.iter_mut()) {
+                if p < *a && y >= *a {
+                    *c += 1;
+                }
+            }
+        }
+        self.prev = Some(y);
+        let b = ((y - self.hist_lo) / self.hist_width).floor();
+        let last = self.hist.len() - 1;
+        let i = if b < 0.0 || b.is_nan() {
+            0
+        } else if b >= (last - 1) as f64 {
+            last
+        } else {
+            b as usize + 1
+        };
+        self.hist[i] += 1.0;
+        self.n += 1;
+        d
+    }
+
+    /// The realization's values: [mean, variance, central fourth moment, max |y|, rate of each level...]
+    /// (T = recorded duration, s).
+    pub(crate) fn values(&self, duration: f64) -> Vec<f64> {
+        let (m, n) = (self.s[0] / self.n as f64, self.n as f64);
+        let var = self.s[1] / n - m * m;
+        let mu4 = self.s[3] / n - 4.0 * m * self.s[2] / n + 6.0 * m * m * self.s[1] / n - 3.0 * m.powi(4);
+        let mut v = vec![self.centre + m, var, mu4, self.max_abs];
+        v.extend(self.counts.iter().map(|c| *c as f64 / duration));
+        v
+    }
+
+    /// (time average of y − c, of (y − c)²): the standard moments accumulator.
+    pub(crate) fn moments(&self) -> (f64, f64) {
+        (self.s[0] / self.n as f64, self.s[1] / self.n as f64)
+    }
+
+    /// (mean, σ) of the record.
+    pub(crate) fn mean_sigma(&self) -> (f64, f64) {
+        let v = self.values(1.0);
+        (v[0], v[1].max(0.0).sqrt())
+    }
+}
+
+/// The regime of one element over a realization.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct RegimeRecord {
+    engaged: u64,
+    entries: u64,
+    prev: Option<bool>,
+    n: u64,
+}
+
+impl RegimeRecord {
+    #[inline]
+    pub(crate) fn push(&mut self, engaged: bool) {
+        if engaged {
+            self.engaged += 1;
+            if self.prev == Some(false) {
+                self.entries += 1;
+            }
+        }
+        self.prev = Some(engaged);
+        self.n += 1;
+    }
+
+    /// (fraction of samples engaged, entries per second).
+    pub(crate) fn values(&self, duration: f64) -> (f64, f64) {
+        (self.engaged as f64 / self.n as f64, self.entries as f64 / duration)
+    }
+}
