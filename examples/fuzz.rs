@@ -4,7 +4,8 @@
 //! ```text
 //! cargo build --release                      # the CLI binary the harness also runs
 //! cargo run --release --example fuzz -- --cases 20000 [--seed S] [--cli-every K] [--jobs J]
-//!     [--timeout-ms T] [--findings DIR] [--no-minimize] [--no-special] [--bin PATH]
+//!     [--timeout-ms T] [--findings DIR] [--no-minimize] [--no-special] [--bin PATH] [--budget-s S]
+//!     [--totals FILE.json]
 //! ```
 //!
 //! Prints a summary (cases, outcomes, findings by class and by signature) and writes one minimised
@@ -23,7 +24,7 @@ use std::time::Duration;
 fn usage() -> ! {
     eprintln!(
         "usage: fuzz --cases N [--seed S] [--cli-every K] [--jobs J] [--timeout-ms T] [--findings DIR] \
-         [--no-minimize] [--no-special] [--bin PATH]"
+         [--no-minimize] [--no-special] [--bin PATH] [--budget-s S] [--totals FILE.json]"
     );
     std::process::exit(2)
 }
@@ -44,6 +45,8 @@ fn main() {
     let mut findings = root.join("target/fuzz-findings");
     let mut minimize = true;
     let mut special = true;
+    let mut budget = None;
+    let mut totals: Option<PathBuf> = None;
     let mut bin = exe
         .parent()
         .and_then(|d| d.parent())
@@ -62,6 +65,8 @@ fn main() {
             "--bin" => bin = PathBuf::from(val()),
             "--no-minimize" => minimize = false,
             "--no-special" => special = false,
+            "--budget-s" => budget = Some(Duration::from_secs(val().parse().unwrap_or_else(|_| usage()))),
+            "--totals" => totals = Some(PathBuf::from(val())),
             _ => usage(),
         }
     }
@@ -94,9 +99,14 @@ fn main() {
             cmd
         }),
         progress: true,
+        budget,
     };
     let s = input_campaign::run(&c);
     println!("{}", s.render());
+    if let Some(t) = totals {
+        let json = s.totals_json();
+        std::fs::write(&t, serde_json::to_string_pretty(&json).unwrap()).expect("write the totals");
+    }
     println!("reproducers: {}", findings.join("inputs").display());
     if !s.hard().is_empty() {
         std::process::exit(1);

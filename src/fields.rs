@@ -389,10 +389,42 @@ impl<'a> Fields<'a> {
     /// # Errors
     /// Missing key, not a finite number.
     pub fn number(&self, key: &str) -> Result<f64> {
+        self.number_in(key, "")
+    }
+
+    /// A required plain number whose unit is fixed by the format (`unit`, e.g. `(rad/m)·m^a`; empty for a
+    /// dimensionless number): a quantity with a unit is refused saying that the key takes the number alone,
+    /// in that unit.
+    ///
+    /// # Errors
+    /// Missing key, not a finite number.
+    ///
+    /// # Examples
+    /// ```
+    /// let t: toml::Table = toml::from_str("omega_p = \"1 rad/m\"").unwrap();
+    /// let f = stochvib::fields::Fields::new(std::path::Path::new("s.toml"), "road.coherence", &t);
+    /// let e = f.number_in("omega_p", "(rad/m)·m^a").unwrap_err().to_string();
+    /// assert!(e.contains("without a unit") && e.contains("(rad/m)·m^a"), "{e}");
+    /// ```
+    pub fn number_in(&self, key: &str, unit: &str) -> Result<f64> {
         let v = self.require(key)?;
         match v.as_float().or_else(|| v.as_integer().map(|n| n as f64)) {
             Some(f) => crate::units::check_magnitude(f).map_err(|r| self.error(key, v, r)),
-            None => Err(self.error(key, v, "expected a finite number")),
+            None => match v.as_str() {
+                Some(t) if crate::units::parse_quantity(t).is_ok() => {
+                    let what = if unit.is_empty() {
+                        "a plain (dimensionless) number".to_string()
+                    } else {
+                        format!("a plain number in {unit}")
+                    };
+                    Err(self.error(
+                        key,
+                        v,
+                        format!("`{key}` is {what}, written without a unit (a unit text is not read here)"),
+                    ))
+                }
+                _ => Err(self.error(key, v, "expected a finite number")),
+            },
         }
     }
 

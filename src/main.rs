@@ -80,9 +80,9 @@ struct Step {
     #[arg(long)]
     duration: Option<f64>,
     /// Refuse a Monte Carlo run whose time estimate (a lower bound: one normal draw per sample) exceeds
-    /// this many hours.
-    #[arg(long, value_name = "H", default_value_t = stochvib::simulate::resources::DEFAULT_MAX_HOURS)]
-    max_hours: f64,
+    /// this many hours [default: 24].
+    #[arg(long, value_name = "H")]
+    max_hours: Option<f64>,
     /// Burn-in of a nonlinear run before its record, s (default: computed from the slowest decay rate of the
     /// Gaussian equivalent).
     #[arg(long)]
@@ -90,6 +90,37 @@ struct Step {
 }
 
 impl Step {
+    /// `--max-hours`, or its default.
+    fn max_hours(&self) -> f64 {
+        self.max_hours
+            .unwrap_or(stochvib::simulate::resources::DEFAULT_MAX_HOURS)
+    }
+
+    /// Refuses the flags of a Monte Carlo batch given without `--monte-carlo` (they would change nothing),
+    /// and a batch of fewer than 2 realizations (`flag` names the count).
+    fn check_batch(&self, flag: &str, realizations: Option<usize>) -> anyhow::Result<()> {
+        if let Some(n) = realizations {
+            if n < 2 {
+                anyhow::bail!(
+                    "{flag} {n}: a Monte Carlo batch needs at least 2 realizations (the interval of σ is taken across \
+                     realizations)"
+                );
+            }
+            return Ok(());
+        }
+        let given = [
+            ("--dt", self.dt.is_some()),
+            ("--duration", self.duration.is_some()),
+            ("--max-hours", self.max_hours.is_some()),
+        ];
+        if let Some((flag, _)) = given.iter().find(|g| g.1) {
+            anyhow::bail!(
+                "{flag} sets the Monte Carlo batch, and there is none: give --monte-carlo N, or leave {flag} out"
+            );
+        }
+        Ok(())
+    }
+
     /// The given values, the missing ones suggested from what the scenario's run of `realizations` must
     /// resolve (said on stderr).
     fn resolve(&self, sc: &Scenario, realizations: usize) -> stochvib::Result<(f64, f64)> {
@@ -172,7 +203,7 @@ enum Command {
         #[arg(long)]
         json: bool,
         /// Print the full report of every entry.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "json")]
         full: bool,
     },
     /// Analyse a road profile (CSV: a distance column and one column per track, with units): the spatial
@@ -235,7 +266,7 @@ enum Command {
         #[arg(short = 'o', long = "output")]
         output: Option<PathBuf>,
         /// Replace an existing history file.
-        #[arg(long)]
+        #[arg(long, requires = "output")]
         overwrite: bool,
         #[command(flatten)]
         spectra: SpectraDir,
@@ -260,7 +291,7 @@ enum Command {
         #[arg(long, value_name = "N")]
         monte_carlo: Option<usize>,
         /// Master seed of the Monte Carlo column.
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, requires = "monte_carlo")]
         seed: u64,
         #[command(flatten)]
         step: Step,
@@ -276,9 +307,9 @@ enum Command {
         /// Output directory (created if missing).
         #[arg(short = 'o', long)]
         out: PathBuf,
-        /// Convention of the densities.
-        #[arg(long, value_enum, default_value_t = Convention::OneSidedCyclic)]
-        convention: Convention,
+        /// Convention of the densities of a scenario's pictures [default: one-sided-cyclic].
+        #[arg(long, value_enum)]
+        convention: Option<Convention>,
         #[command(flatten)]
         spectra: SpectraDir,
     },
@@ -314,8 +345,8 @@ enum Command {
         /// Store every realization of every output.
         #[arg(long)]
         store_raw: bool,
-        /// Compression of raw data: none, fast, best, deflate, deflate:N (N = 1-9).
-        #[arg(long, default_value = "none")]
+        /// Compression of raw data: none, fast, best, deflate, deflate:N (N = 1-9) (with --store-raw).
+        #[arg(long, default_value = "none", requires = "store_raw")]
         compression: Compression,
         /// Route of the realizations.
         #[arg(long, alias = "method", value_enum, default_value_t = Route::Auto)]
@@ -324,9 +355,9 @@ enum Command {
         #[arg(long, default_value_t = 0.95)]
         confidence: f64,
         /// Streamed spectral route: fraction of each output's variance its kernels may leave outside their
-        /// window (the variance is biased low by at most this; default 1e-4).
-        #[arg(long, default_value_t = stochvib::simulate::fir_stream::TAIL_FRACTION)]
-        stream_tail: f64,
+        /// window (the variance is biased low by at most this) [default: 1e-4].
+        #[arg(long)]
+        stream_tail: Option<f64>,
         /// Replace an existing finished OUTPUT (a run file only; replaced when the new run is complete) and
         /// discard an interrupted run of different settings.
         #[arg(long)]
@@ -393,19 +424,19 @@ enum Command {
         #[command(flatten)]
         step: Step,
         /// Master seed of the Monte Carlo batches.
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, requires = "monte_carlo")]
         seed: u64,
         /// Realizations per internal shard of the Monte Carlo batches.
-        #[arg(long, default_value_t = 50)]
+        #[arg(long, default_value_t = 50, requires = "monte_carlo")]
         shard_size: usize,
         /// Confidence of the Monte Carlo intervals.
-        #[arg(long, default_value_t = 0.95)]
+        #[arg(long, default_value_t = 0.95, requires = "monte_carlo")]
         confidence: f64,
         /// Replace an existing table or shard file.
-        #[arg(long)]
+        #[arg(long, requires = "output")]
         overwrite: bool,
-        /// Print JSON instead of CSV (without -o).
-        #[arg(long)]
+        /// Print JSON instead of CSV (without -o: a table's format comes from -o's extension).
+        #[arg(long, conflicts_with = "output")]
         json: bool,
         #[command(flatten)]
         spectra: SpectraDir,
@@ -594,6 +625,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             effort,
         } => {
             let catalogue = spectra.catalogue();
+            step.check_batch("--monte-carlo", monte_carlo)?;
             let mut sc = match load_document(&scenario, catalogue.dir())? {
                 Document::Stochastic(sc) => sc,
                 Document::Deterministic(d) => {
@@ -613,7 +645,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             if let Some(n) = monte_carlo {
                 let (dt, duration) = step.resolve(&sc, n)?;
                 let opts = RunOptions {
-                    max_hours: step.max_hours,
+                    max_hours: step.max_hours(),
                     ..RunOptions::new(n, duration, dt, seed)
                 };
                 let progress = progress_printer();
@@ -622,7 +654,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     |path| sc.simulate(&opts, path, &progress),
                     // the run's own pictures (Welch band vs analytic density) before the file goes
                     |path| plots.as_ref().map(|out| run_plots(path, out, catalogue.dir())),
-                )?;
+                )
+                .map_err(|e| named_by_flag(sc.name_run_error(e), "--monte-carlo"))?;
                 attach_monte_carlo(&mut r, &summary);
                 if let (Some(files), Some(out)) = (pictures, &plots) {
                     eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
@@ -647,13 +680,19 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
             };
             let files = if has(&["h5", "hdf5"]) {
+                if let Some(c) = convention {
+                    anyhow::bail!(
+                        "--convention {c:?}: a run file's pictures are drawn in the convention the file stores; \
+                         --convention applies to a scenario's pictures"
+                    );
+                }
                 // every checksum, as `inspect`: a damaged file is an error naming the damaged part
                 check_in_child(&input, true)?;
                 run_plots(&input, &out, catalogue.dir())?
             } else if has(&["toml"]) {
                 let sc = load_scenario(&input, catalogue.dir())?;
                 let opts = ScenarioPlotOptions {
-                    convention,
+                    convention: convention.unwrap_or(Convention::OneSidedCyclic),
                     ..ScenarioPlotOptions::default()
                 };
                 scenario_plots_with(&sc, &out, &opts)?
@@ -687,9 +726,20 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             plots,
         } => {
             let catalogue = spectra.catalogue();
+            step.check_batch("--realizations", Some(realizations))?;
+            if let (Some(t), Route::Exact | Route::Spectral) = (stream_tail, route) {
+                anyhow::bail!(
+                    "--stream-tail {t}: sets the streamed spectral route's kernels, and --route {} does not stream; \
+                     leave it out, or use --route spectral-stream (or auto)",
+                    format!("{route:?}").to_lowercase()
+                );
+            }
             // the shard before anything else: a task outside a scheduler fails at once
             let choice = match &shard {
-                Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok())?),
+                Some(spec) => Some(
+                    resolve_part(spec, of, &|k| std::env::var(k).ok())
+                        .map_err(|e| named_by_flag(e, "--realizations"))?,
+                ),
                 None => None,
             };
             let sc = load_scenario(&scenario, catalogue.dir())?;
@@ -702,7 +752,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     confidence,
                     overwrite,
                     part: choice.as_ref().map(|c| c.part),
-                    max_hours: step.max_hours,
+                    max_hours: step.max_hours(),
                     ..RunOptions::new(realizations, 1.0, 1.0, seed)
                 };
                 let opts = step.nonlinear(&sc, &answers, base)?;
@@ -725,19 +775,23 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 compression,
                 route,
                 confidence,
-                stream_tail,
+                stream_tail: stream_tail.unwrap_or(stochvib::simulate::fir_stream::TAIL_FRACTION),
                 overwrite,
                 part: choice.as_ref().map(|c| c.part),
-                max_hours: step.max_hours,
+                max_hours: step.max_hours(),
                 ..RunOptions::new(realizations, duration, dt, seed)
             };
             let output = shard_output(output, &choice)?;
-            let signals = sc.analysis.outputs.len() + if store_raw { sc.input_signals().len() } else { 0 };
-            eprintln!(
-                "{}",
-                stochvib::simulate::resources::estimate_text(&opts, sc.excitation.spectra().len(), signals)?
-            );
-            let s = sc.simulate(&opts, &output, &progress_printer())?;
+            let flag = |e| named_by_flag(e, "--realizations");
+            let estimate = stochvib::simulate::resources::estimate_text(
+                &opts,
+                sc.excitation.spectra().len(),
+                sc.analysis.outputs.len(),
+                sc.input_signals().len(),
+            )
+            .map_err(flag)?;
+            eprintln!("{estimate}");
+            let s = sc.simulate(&opts, &output, &progress_printer()).map_err(flag)?;
             print(&s, json)?;
             if let Some(pdir) = plots {
                 for f in run_plots(&s.path, &pdir, catalogue.dir())? {
@@ -757,6 +811,18 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         } => {
             let sweeps = report::find_sweep_shards(&inputs)?;
             if !sweeps.is_empty() {
+                let run_only = [
+                    ("--copy", copy),
+                    ("--confidence", confidence.is_some()),
+                    ("--json", json),
+                ];
+                if let Some((flag, _)) = run_only.iter().find(|f| f.1) {
+                    anyhow::bail!(
+                        "{flag} applies to a merge of Monte Carlo run files; these are sweep shard files ({}), \
+                         merged into one table as they are: leave {flag} out",
+                        sweeps[0].display()
+                    );
+                }
                 let (mut runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
                 runs.retain(|r| r.extension().is_none_or(|e| e != "json"));
                 if !runs.is_empty() {
@@ -800,8 +866,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             json,
             spectra,
         } => {
+            step.check_batch("--monte-carlo", monte_carlo)?;
+            let flag = |e| named_by_flag(e, "--monte-carlo");
             let choice = match &shard {
-                Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok())?),
+                Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok()).map_err(flag)?),
                 None => None,
             };
             let catalogue = spectra.catalogue();
@@ -824,7 +892,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                         shard_size,
                         confidence,
                     };
-                    report::check_monte_carlo_time(&sweep, &m, step.max_hours)?;
+                    report::check_monte_carlo_time(&sweep, &m, step.max_hours()).map_err(flag)?;
                     Some(m)
                 }
                 None => None,
@@ -836,6 +904,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                         .ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
                     output_dir(&dir, "with --shard, -o names the directory of the shard files")?;
                     eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
+                    for n in &c.notes {
+                        eprintln!("warning: {n}");
+                    }
                     let (path, sh, fresh) =
                         report::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
                     eprintln!(
@@ -1007,6 +1078,39 @@ fn refuse_shard_as_output(output: &Path, inputs: &[PathBuf]) -> anyhow::Result<(
         );
     }
     Ok(())
+}
+
+/// The flags that set the fields of [`RunOptions`], by the names the library's errors give them.
+const RUN_FLAGS: [(&str, &str); 9] = [
+    ("realizations", "--realizations"),
+    ("shard size", "--shard-size"),
+    ("dt", "--dt"),
+    ("duration", "--duration"),
+    ("confidence", "--confidence"),
+    ("stream tail", "--stream-tail"),
+    ("max hours", "--max-hours"),
+    ("of", "--of"),
+    ("shard", "--shard"),
+];
+
+/// A library error about a value the user gave as a flag, named by that flag: `flags` maps the library's
+/// parameter names to the flags (`count` names the flag of the number of realizations, which is
+/// `--realizations` for `simulate` and `--monte-carlo` for `analyze` and `sweep`).
+fn named_by_flag(e: stochvib::Error, count: &str) -> stochvib::Error {
+    match e {
+        stochvib::Error::InvalidParameter { name, value, reason } => {
+            let flag = match name.as_str() {
+                "realizations" => Some(count),
+                n => RUN_FLAGS.iter().find(|(k, _)| *k == n).map(|(_, f)| *f),
+            };
+            stochvib::Error::InvalidParameter {
+                name: flag.map_or(name, str::to_string),
+                value,
+                reason,
+            }
+        }
+        other => other,
+    }
 }
 
 /// The run file of `simulate`: `-o` itself, or with `--shard` the shard file in the run directory `-o`.

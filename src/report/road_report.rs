@@ -4,7 +4,8 @@
 
 use crate::error::Result;
 pub use crate::road::default_segment;
-use crate::road::{fit_iso8608, iri, spatial_cross_spectrum, spatial_psd, Detrend, Profile, Waviness};
+use crate::road::spatial_psd::check_density_input;
+use crate::road::{fit_iso8608, iri, spatial_cross_spectrum, spatial_psd, Detrend, Profile, Track, Waviness};
 use serde::Serialize;
 use std::fmt;
 use std::path::Path;
@@ -143,57 +144,33 @@ pub struct RoadReport {
 pub fn road_report(path: &Path, opts: &RoadReportOptions) -> Result<RoadReport> {
     let p = Profile::read_csv(path)?;
     let n = p.len();
-    let m = opts.segment_len.unwrap_or_else(|| default_segment(n));
     let detrended = p.detrended(opts.detrend);
+    for (t, d) in p.tracks.iter().zip(&detrended.tracks) {
+        check_density_input(path, &t.name, &t.elevation_m, &d.elevation_m)?;
+    }
+    let m = match opts.segment_len {
+        None => default_segment(n),
+        Some(m) if m >= 4 && m % 2 == 0 && m <= n => m,
+        Some(m) => {
+            return Err(crate::Error::invalid(
+                "--segment",
+                m,
+                format!("expected an even number of samples from 4 to the profile's {n} samples"),
+            ))
+        }
+    };
     let mut tracks = Vec::new();
     let mut meta = None;
     for (t, d) in p.tracks.iter().zip(&detrended.tracks) {
-        let psd = spatial_psd(&d.elevation_m, p.step_m, m)?;
-        let density = (0..psd.n.len())
-            .map(|i| {
-                psd.interval(i, opts.confidence).map(|iv| DensityRow {
-                    n: psd.n[i],
-                    g_d: psd.g_d[i],
-                    lower: iv.lower,
-                    upper: iv.upper,
-                })
-            })
-            .collect::<Result<Vec<_>>>()?;
-        let mut fits = Vec::new();
-        for (mode, w) in [("fixed w = 2", Waviness::Fixed(2.0)), ("free w", Waviness::Free)] {
-            let fit = fit_iso8608(&psd, w, None)?;
-            let g = fit.g0_interval(opts.confidence)?;
-            let wi = if matches!(w, Waviness::Free) {
-                let i = fit.waviness_interval(opts.confidence)?;
-                (i.lower, i.upper)
-            } else {
-                (fit.waviness, fit.waviness)
-            };
-            fits.push(FitRow {
-                waviness_mode: mode.into(),
-                g0_m3: fit.g0_m3,
-                g0_interval: (g.lower, g.upper),
-                waviness: fit.waviness,
-                waviness_interval: wi,
-                class: format!("{:?}", fit.class),
-                band: fit.band,
-                reduced_chi2: fit.reduced_chi2,
-            });
-        }
-        let sigma = (d.elevation_m.iter().map(|y| y * y).sum::<f64>() / n as f64).sqrt();
-        tracks.push(TrackReport {
-            name: t.name.clone(),
-            sigma_m: sigma,
-            iri_m_per_km: iri(&t.elevation_m, p.step_m)?.m_per_km,
-            fits,
-            density,
-        });
+        let (track, psd) = track_report(t, d, p.step_m, m, opts).map_err(|e| in_track(path, &t.name, e))?;
+        tracks.push(track);
         meta = Some((psd.segments, psd.dof));
     }
     let (segments, dof) = meta.unwrap_or((0, 0.0));
     let (coherence_tracks, coherence) = if detrended.tracks.len() >= 2 {
         let (l, r) = (&detrended.tracks[0], &detrended.tracks[1]);
-        let cs = spatial_cross_spectrum(&l.elevation_m, &r.elevation_m, p.step_m, m)?;
+        let cs = spatial_cross_spectrum(&l.elevation_m, &r.elevation_m, p.step_m, m)
+            .map_err(|e| in_track(path, &format!("{} and {}", l.name, r.name), e))?;
         let rows = (0..cs.n.len())
             .map(|i| {
                 cs.squared_coherence_interval(i, opts.confidence)
@@ -223,6 +200,73 @@ pub fn road_report(path: &Path, opts: &RoadReportOptions) -> Result<RoadReport> 
         coherence_tracks,
         coherence,
     })
+}
+
+/// One track's density, ISO 8608 fits and IRI (`t` as read, `d` detrended), and its Welch estimate.
+fn track_report(
+    t: &Track,
+    d: &Track,
+    step_m: f64,
+    m: usize,
+    opts: &RoadReportOptions,
+) -> Result<(TrackReport, crate::road::SpatialPsd)> {
+    let psd = spatial_psd(&d.elevation_m, step_m, m)?;
+    let density = (0..psd.n.len())
+        .map(|i| {
+            psd.interval(i, opts.confidence).map(|iv| DensityRow {
+                n: psd.n[i],
+                g_d: psd.g_d[i],
+                lower: iv.lower,
+                upper: iv.upper,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let mut fits = Vec::new();
+    for (mode, w) in [("fixed w = 2", Waviness::Fixed(2.0)), ("free w", Waviness::Free)] {
+        let fit = fit_iso8608(&psd, w, None)?;
+        let g = fit.g0_interval(opts.confidence)?;
+        let wi = if matches!(w, Waviness::Free) {
+            let i = fit.waviness_interval(opts.confidence)?;
+            (i.lower, i.upper)
+        } else {
+            (fit.waviness, fit.waviness)
+        };
+        fits.push(FitRow {
+            waviness_mode: mode.into(),
+            g0_m3: fit.g0_m3,
+            g0_interval: (g.lower, g.upper),
+            waviness: fit.waviness,
+            waviness_interval: wi,
+            class: format!("{:?}", fit.class),
+            band: fit.band,
+            reduced_chi2: fit.reduced_chi2,
+        });
+    }
+    let sigma = (d.elevation_m.iter().map(|y| y * y).sum::<f64>() / d.elevation_m.len() as f64).sqrt();
+    let track = TrackReport {
+        name: t.name.clone(),
+        sigma_m: sigma,
+        iri_m_per_km: iri(&t.elevation_m, step_m)?.m_per_km,
+        fits,
+        density,
+    };
+    Ok((track, psd))
+}
+
+/// An error about one track of the profile `path`, naming the file and the column: a fit or an estimate
+/// the track is too short (or too coarse) for is a property of the file, not of a library parameter.
+fn in_track(path: &Path, track: &str, e: crate::Error) -> crate::Error {
+    use crate::Error;
+    match e {
+        Error::File { .. } | Error::Io { .. } | Error::Parse { .. } => e,
+        Error::InvalidParameter { name, value, reason } => Error::in_file(
+            path,
+            format!("column {track}"),
+            value,
+            format!("{name}: {reason} (the profile is too short or too coarse for it)"),
+        ),
+        other => Error::in_file(path, format!("column {track}"), "…", other.to_string()),
+    }
 }
 
 /// About 16 bins spread evenly in log n over `rows` (every bin when there are fewer).

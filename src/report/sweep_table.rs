@@ -297,7 +297,8 @@ fn add_monte_carlo(sweep: &Sweep, t: &mut SweepResults, m: SweepMonteCarlo, prog
                 confidence: m.confidence,
                 ..RunOptions::new(m.realizations, m.duration_s, m.dt_s, m.seed)
             };
-            let (summary, ()) = run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |_| ())?;
+            let (summary, ()) =
+                run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |_| ()).map_err(|e| sc.name_run_error(e))?;
             Ok(sweep
                 .outputs()
                 .iter()
@@ -339,7 +340,7 @@ impl TableFormat {
     /// From a file name's extension (`.csv`, `.json`, `.h5`/`.hdf5`).
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming `output` for another extension.
+    /// [`Error::Io`] naming the file for another extension.
     pub fn from_path(path: &Path) -> Result<TableFormat> {
         match path
             .extension()
@@ -350,11 +351,13 @@ impl TableFormat {
             Some("csv") => Ok(TableFormat::Csv),
             Some("json") => Ok(TableFormat::Json),
             Some("h5" | "hdf5") => Ok(TableFormat::Hdf5),
-            _ => Err(Error::invalid(
-                "output",
-                path.display(),
-                "a table is written as .csv, .json or .h5 (from the file name's extension)",
-            )),
+            _ => Err(Error::Io {
+                path: path.to_path_buf(),
+                source: std::io::Error::new(
+                    std::io::ErrorKind::InvalidInput,
+                    "a table is written as .csv, .json or .h5 (from the file name's extension); nothing was written",
+                ),
+            }),
         }
     }
 }
@@ -493,7 +496,7 @@ pub fn check_table_resources(
         let memory = rows * per_row as u128 + n * identity.params.len() as u128 * 8;
         crate::io_rules::check_memory(
             memory,
-            "param",
+            "--param",
             &points,
             "a JSON table (built whole before it is written)",
             "write a .csv or .h5 table instead (streamed in bounded memory), or use fewer points",
@@ -502,7 +505,7 @@ pub fn check_table_resources(
     crate::io_rules::check_disk(
         file,
         path,
-        "param",
+        "--param",
         &points,
         "the table",
         "fewer values per --param, fewer keys, or another disk (CSV on stdout without -o needs no disk)",

@@ -322,6 +322,67 @@ pub fn spatial_cross_spectrum(
     })
 }
 
+/// Fewest samples of a track whose density is estimated: one Welch segment of 16 samples (the smallest
+/// default segment, [`default_segment`]), whose bins n = 1/(16Δx) … 7/(16Δx) are the least an ISO 8608 fit
+/// can be tried on.
+pub const MIN_DENSITY_SAMPLES: usize = 16;
+
+/// A track is flat when, after its trend is removed, its σ is at most this fraction of its largest
+/// elevation: what is left is the rounding noise of the numbers (a double resolves about 10⁻¹⁶ of a value,
+/// the detrending adds a few roundings), four decades below this, not a roughness.
+pub const FLAT_FRACTION: f64 = 1e-12;
+
+/// Refuses a track of a profile file `file` whose density cannot be estimated or fitted: fewer than
+/// [`MIN_DENSITY_SAMPLES`] samples, or flat (`detrended` — the track after its trend is removed — has
+/// σ ≤ [`FLAT_FRACTION`]·max|`raw`|: a constant or a straight line, whose "density" would be rounding
+/// noise fitted as a road of class A).
+///
+/// # Errors
+/// [`Error::File`] naming the file and the track, with the number of rows or the σ and the largest
+/// elevation.
+///
+/// # Examples
+/// ```
+/// use stochvib::road::spatial_psd::check_density_input;
+/// let f = std::path::Path::new("p.csv");
+/// let ramp: Vec<f64> = (0..1000).map(|k| 1e-3 + 1e-6 * k as f64).collect();
+/// let detrended = stochvib::road::Detrend::Linear.apply(&ramp);
+/// let e = check_density_input(f, "left", &ramp, &detrended).unwrap_err().to_string();
+/// assert!(e.contains("flat"), "{e}");
+/// let e = check_density_input(f, "left", &ramp[..2], &detrended[..2]).unwrap_err().to_string();
+/// assert!(e.contains("2 rows"), "{e}");
+/// ```
+pub fn check_density_input(file: &std::path::Path, track: &str, raw: &[f64], detrended: &[f64]) -> Result<()> {
+    let key = format!("column {track}");
+    if raw.len() < MIN_DENSITY_SAMPLES {
+        return Err(Error::in_file(
+            file,
+            key,
+            format!("{} rows", raw.len()),
+            format!(
+                "too few rows: a density needs at least {MIN_DENSITY_SAMPLES} samples (one Welch segment of \
+                 {MIN_DENSITY_SAMPLES}); give a longer profile"
+            ),
+        ));
+    }
+    let peak = raw.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let sigma = (detrended.iter().map(|v| v * v).sum::<f64>() / detrended.len() as f64).sqrt();
+    if sigma <= FLAT_FRACTION * peak || peak == 0.0 {
+        return Err(Error::in_file(
+            file,
+            key,
+            format!("σ = {sigma:e} m after the trend, largest |elevation| {peak:e} m"),
+            format!(
+                "the track is flat (a constant or a straight line): what is left after its trend is removed is \
+                 at most {FLAT_FRACTION:e} of its elevations, the rounding noise of its numbers; it has no \
+                 roughness whose density could be estimated or fitted (a flat track is not a road of ISO 8608 \
+                 class A)"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The default Welch segment for `samples` samples: the largest power of two M ≥ 16 with
 /// M ≤ 2·samples/9, i.e. at least 8 half-overlapping segments (for fewer than 72 samples: 16, or the
 /// largest even number ≤ samples).

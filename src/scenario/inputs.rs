@@ -312,7 +312,9 @@ fn coherence_from_fields(cf: &Fields, width_m: f64) -> Result<Arc<dyn Coherence>
                     None => 1.0,
                     Some(_) => cf.number("a")?,
                 };
-                let (omega_p, wv, p) = (cf.number("omega_p")?, cf.number("w")?, cf.number("p")?);
+                // Ω_p's unit (rad/m)·m^a depends on the exponent a: a plain number in SI
+                let omega_p = cf.number_in("omega_p", "(rad/m)·m^a (SI, with a the exponent `a`)")?;
+                let (wv, p) = (cf.number("w")?, cf.number("p")?);
                 Arc::new(
                     AmmonBormann::new(width_m, omega_p, wv, p, a, values).map_err(|e| cf.wrap_param(e, "omega_p"))?,
                 )

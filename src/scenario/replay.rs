@@ -167,6 +167,16 @@ fn measured_text(
                     ));
                 }
                 if let Some(toml::Value::Table(road)) = t.get_mut("road") {
+                    if let Some(given) = &opts.track {
+                        return Err(Error::invalid(
+                            "--track",
+                            given,
+                            format!(
+                                "input[{i}] is a road of two tracks, replayed on the profile's columns `left` and \
+                                 `right`; --track chooses the column under a road of one track: leave it out"
+                            ),
+                        ));
+                    }
                     for side in ["left", "right"] {
                         need(side, &format!("input[{i}] is a road of two tracks, `left` and `right`"))?;
                     }
@@ -293,7 +303,13 @@ pub fn replay_scenario(
         source,
     })?;
     let (text, analytic_track) = measured_text(scenario, &abs, &profile, &track, opts, speed)?;
-    let measured = parse_scenario(&text, &scenario.path, &scenario.spectra_dir)?;
+    let measured = parse_scenario(&text, &scenario.path, &scenario.spectra_dir).map_err(|e| match e {
+        // the speed the text holds is --speed's when one was given
+        Error::File { key, reason, .. } if opts.speed_m_s.is_some() && key.ends_with("speed") => {
+            Error::invalid("--speed", crate::numbers::num(speed), format!("{reason} (m/s)"))
+        }
+        e => e,
+    })?;
     let wheels = wheels_of(&measured, &track, speed)?;
     let ss = measured.model.system.state_space().ok_or_else(|| {
         Error::in_file(
@@ -314,7 +330,16 @@ pub fn replay_scenario(
             skip_m: opts.skip_m,
             start: opts.start,
         },
-    )?;
+    )
+    .map_err(|e| match e {
+        // the length skipped is --skip's
+        Error::InvalidParameter { name, value, reason } if name == "skip" => Error::InvalidParameter {
+            name: "--skip".into(),
+            value,
+            reason,
+        },
+        e => e,
+    })?;
     let mut outputs = Vec::new();
     for &i in &scenario.analysis.outputs {
         let analytic_sigma = analyze_output(measured.model.system.as_ref(), &measured.excitation, i)?

@@ -316,6 +316,7 @@ impl Scenario {
             return self.simulate_nonlinear(&answers, &o, out, progress).map(|s| s.run);
         }
         self.with_simulated_input(|input| crate::simulate::run(input, opts, out, progress))
+            .map_err(|e| self.name_run_error(e))
     }
 
     /// Calls `f` with the subject of this scenario's Monte Carlo run as [`Scenario::simulate`] runs it: with
@@ -330,6 +331,29 @@ impl Scenario {
         } else {
             super::verdict_run::with_verdict_input(self, f)
         }
+    }
+
+    /// An error of a Monte Carlo run of this scenario, naming the scenario's key where the run refused a
+    /// value the file gave: a kurtosis above what the run's grid can represent
+    /// ([`max_kurtosis`](crate::simulate::laplace::max_kurtosis)) becomes an [`Error::File`] naming
+    /// `input.kurtosis` (or `input[i].kurtosis`); any other error is returned as it is.
+    pub fn name_run_error(&self, e: Error) -> Error {
+        let Error::InvalidParameter { name, value, reason } = &e else {
+            return e;
+        };
+        if name != "kurtosis" {
+            return e;
+        }
+        let shown = |k: f64| crate::numbers::num(k) == *value;
+        let key = match &self.excitation {
+            Excitation::Sources { .. } if self.inputs.len() > 1 => self
+                .inputs
+                .iter()
+                .position(|i| i.kurtosis.is_some_and(shown))
+                .map_or("input".to_string(), |i| format!("input[{i}].kurtosis")),
+            _ => "input.kurtosis".to_string(),
+        };
+        Error::in_file(&self.path, key, value, reason.clone())
     }
 }
 
@@ -584,11 +608,23 @@ fn check_model(f: &Fields, kind: &str, model: &ModelInstance, stable: bool) -> R
                 Error::InvalidParameter { value, reason, .. } => format!("{reason} ({value})"),
                 other => other.to_string(),
             };
-            f.error(
-                "model",
-                kind,
-                format!("{reason}: check the stiffnesses, dampings and masses (or poles) of the model"),
-            )
+            // a transfer function's poles are the roots of its denominator: name it
+            let denominator = f
+                .get("model")
+                .and_then(|m| m.get("denominator"))
+                .filter(|_| kind == "transfer-function");
+            match denominator {
+                Some(d) => f.error(
+                    "model.denominator",
+                    d,
+                    format!("{reason}: D(s) has a root with Re s ≥ 0 (a pole in the right half-plane or on the axis)"),
+                ),
+                None => f.error(
+                    "model",
+                    kind,
+                    format!("{reason}: check the stiffnesses, dampings and masses (or poles) of the model"),
+                ),
+            }
         })?;
     }
     Ok(())

@@ -279,8 +279,9 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
                         )
                     })? as usize,
             };
-            let psd = crate::road::spatial_psd(&detrend.apply(&track.elevation_m), profile.step_m, m)
-                .map_err(|e| f.wrap("file", e))?;
+            let detrended = detrend.apply(&track.elevation_m);
+            crate::road::spatial_psd::check_density_input(&path, &track.name, &track.elevation_m, &detrended)?;
+            let psd = crate::road::spatial_psd(&detrended, profile.step_m, m).map_err(|e| f.wrap("file", e))?;
             Arc::new(
                 Tabulated::new(Convention::OneSidedCyclic, psd.n, psd.g_d, Domain::Spatial)
                     .map_err(|e| f.wrap("file", e))?,

@@ -135,7 +135,7 @@ impl SweepParam {
     /// assert!(SweepParam::parse("model.zeta2").is_err());
     /// ```
     pub fn parse(text: &str) -> Result<SweepParam> {
-        let bad = |why: &str| Error::invalid("param", text, why.to_string());
+        let bad = |why: &str| Error::invalid("--param", text, why.to_string());
         let (key, values) = text
             .split_once('=')
             .ok_or_else(|| bad("expected KEY=VALUES, e.g. model.omega2=1 Hz,1.5 Hz or input.speed=10..30:5 m/s"))?;
@@ -242,14 +242,14 @@ impl SweepSpec {
     pub fn new(params: Vec<SweepParam>, mode: SweepMode) -> Result<SweepSpec> {
         if params.is_empty() {
             return Err(Error::invalid(
-                "param",
+                "--param",
                 "<none>",
                 "give at least one --param KEY=VALUES",
             ));
         }
         for (i, p) in params.iter().enumerate() {
             if params[..i].iter().any(|q| q.key == p.key) {
-                return Err(Error::invalid("param", &p.key, "the key is given twice"));
+                return Err(Error::invalid("--param", &p.key, "the key is given twice"));
             }
         }
         // each key with its number of values, for the messages
@@ -262,7 +262,7 @@ impl SweepSpec {
         };
         if mode == SweepMode::Zip && params.iter().any(|p| p.values.len() != params[0].values.len()) {
             return Err(Error::invalid(
-                "param",
+                "--param",
                 counts(", "),
                 "--zip needs the same number of values for every key",
             ));
@@ -271,7 +271,7 @@ impl SweepSpec {
             && crate::io_rules::checked_product(params.iter().map(|p| p.values.len())).is_none_or(|n| n > MAX_POINTS)
         {
             return Err(Error::invalid(
-                "param",
+                "--param",
                 counts(" × "),
                 format!("the grid has more than {MAX_POINTS:e} points: fewer values, fewer keys, or --zip"),
             ));
@@ -371,12 +371,13 @@ struct SpeedExcitation {
 enum Excitations {
     /// Only `model.*` keys vary and the model's input layout stays the base's: the base excitation.
     Base(Box<ExactEvaluator>),
-    /// `input.speed` varies too: one excitation per distinct speed value (index of its value).
-    PerSpeed {
-        param: usize,
-        cache: Vec<Option<SpeedExcitation>>,
-    },
+    /// `input.speed` varies too: one excitation per distinct speed value (index of its value), built at its
+    /// first use (a study of 10⁶ speeds does not build 10⁶ excitations before its first point).
+    PerSpeed { param: usize, cache: Vec<SpeedCache> },
 }
+
+/// The excitation of one speed value once built; `None` inside: that speed is refused.
+type SpeedCache = std::sync::OnceLock<Option<Box<SpeedExcitation>>>;
 
 /// Largest number of keys of a numeric builder (the values of a point live on the stack).
 const MAX_NUMERIC_KEYS: usize = 16;
@@ -476,7 +477,7 @@ impl<'a> Sweep<'a> {
         let root = crate::fields::parse_toml(&base.text, &base.path)?;
         for p in &spec.params {
             let mut probe = root.clone();
-            set_key(&mut probe, &p.key, p.values[0].clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+            set_key(&mut probe, &p.key, p.values[0].clone()).map_err(|why| Error::invalid("--param", &p.key, why))?;
         }
         let model_only = |k: &str| k.starts_with("model.");
         let speed = spec.params.iter().position(|p| p.key == "input.speed");
@@ -509,10 +510,7 @@ impl<'a> Sweep<'a> {
         if let Some(Excitations::PerSpeed { param, .. }) = &sweep.fast {
             let param = *param;
             let n = sweep.spec.params[param].values.len();
-            let mut cache = Vec::with_capacity(n);
-            for v in 0..n {
-                cache.push(sweep.speed_excitation(param, v).ok());
-            }
+            let cache = (0..n).map(|_| SpeedCache::new()).collect();
             sweep.fast = Some(Excitations::PerSpeed { param, cache });
         }
         if sweep.fast.is_some() {
@@ -526,9 +524,37 @@ impl<'a> Sweep<'a> {
                 Err(reason) => SweepPath::ModelTable { reason },
             };
         }
-        sweep.scenario_at(0)?;
+        sweep.scenario_at(0).map_err(|e| sweep.name_point_error(0, e))?;
         sweep.evaluate(0)?;
         Ok(sweep)
+    }
+
+    /// An error of point `point` about a key the study varies (the key, or a key inside it), named as the
+    /// user wrote it: `--param KEY=VALUE` with the value at that point, instead of the scenario file's key
+    /// (the file does not hold that value); any other error unchanged.
+    pub fn name_point_error(&self, point: usize, e: Error) -> Error {
+        let Error::File { file, key, reason, .. } = &e else {
+            return e;
+        };
+        // `model.element[0].stiffness` as a sweep key is `model.element.0.stiffness`
+        let key = key.replace('[', ".").replace(']', "");
+        let inside = |p: &SweepParam| key == p.key || key.starts_with(&format!("{}.", p.key));
+        let Some(k) = self
+            .spec
+            .params
+            .iter()
+            .position(inside)
+            .filter(|_| *file == self.base.path)
+        else {
+            return e;
+        };
+        let p = &self.spec.params[k];
+        let value = value_text(&p.values[self.spec.indices(point)[k]]);
+        Error::invalid(
+            "--param",
+            format!("{}={value}", p.key),
+            format!("{reason} (point {point} of the study)"),
+        )
     }
 
     /// The numeric path of this study, or why there is none.
@@ -617,7 +643,7 @@ impl<'a> Sweep<'a> {
     pub fn table_at(&self, point: usize) -> Result<toml::Table> {
         let mut root = self.root.clone();
         for (p, v) in self.spec.params.iter().zip(self.spec.values(point)) {
-            set_key(&mut root, &p.key, v.clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+            set_key(&mut root, &p.key, v.clone()).map_err(|why| Error::invalid("--param", &p.key, why))?;
         }
         Ok(root)
     }
@@ -633,6 +659,15 @@ impl<'a> Sweep<'a> {
             reason: e.to_string(),
         })?;
         parse_scenario(&text, &self.base.path, &self.base.spectra_dir)
+    }
+
+    /// The excitation at value `v` of the speed key `param` from `cache`, built at its first use; `None` for
+    /// a speed that is refused ([`speed_excitation`](Self::speed_excitation) gives the error).
+    fn speed_entry<'s>(&self, cache: &'s [SpeedCache], param: usize, v: usize) -> Option<&'s SpeedExcitation> {
+        cache
+            .get(v)?
+            .get_or_init(|| self.speed_excitation(param, v).ok().map(Box::new))
+            .as_deref()
     }
 
     /// The excitation of the base model's input layout at value `v` of the speed parameter `param`.
@@ -679,6 +714,17 @@ impl<'a> Sweep<'a> {
     /// [`evaluate`](Self::evaluate) into `out` (cleared first), with a state space to write the numeric
     /// path's matrices into.
     fn evaluate_in(
+        &self,
+        point: usize,
+        scratch: Option<&mut StateSpace>,
+        out: &mut Vec<PointStatistics>,
+    ) -> Result<()> {
+        self.evaluate_point(point, scratch, out)
+            .map_err(|e| self.name_point_error(point, e))
+    }
+
+    /// [`evaluate_in`](Self::evaluate_in) with the errors as the evaluation gives them.
+    fn evaluate_point(
         &self,
         point: usize,
         scratch: Option<&mut StateSpace>,
@@ -740,8 +786,8 @@ impl<'a> Sweep<'a> {
         let values = &values[..num.base.len()];
         let (ev, exc) = match (fast, speed_index) {
             (Excitations::Base(ev), _) => (&**ev, &self.base.excitation),
-            (Excitations::PerSpeed { cache, .. }, Some(v)) => {
-                let e = cache.get(v)?.as_ref()?;
+            (Excitations::PerSpeed { param, cache }, Some(v)) => {
+                let e = self.speed_entry(cache, *param, v)?;
                 (&e.evaluator, &e.excitation)
             }
             (Excitations::PerSpeed { .. }, None) => return None,
@@ -788,6 +834,11 @@ impl<'a> Sweep<'a> {
     /// # Errors
     /// As [`evaluate`](Self::evaluate).
     pub fn evaluate_general(&self, point: usize) -> Result<Vec<PointStatistics>> {
+        self.general_point(point).map_err(|e| self.name_point_error(point, e))
+    }
+
+    /// [`evaluate_general`](Self::evaluate_general) with the errors as the evaluation gives them.
+    fn general_point(&self, point: usize) -> Result<Vec<PointStatistics>> {
         let Some(fast) = &self.fast else {
             let sc = self.scenario_at(point)?;
             let outputs = self.check_outputs(&sc.model)?;
@@ -798,15 +849,15 @@ impl<'a> Sweep<'a> {
         let mut model_table = self.root["model"].as_table().cloned().unwrap_or_default();
         for (p, v) in self.spec.params.iter().zip(&values) {
             if let Some(rest) = p.key.strip_prefix("model.") {
-                set_key(&mut model_table, rest, (*v).clone()).map_err(|why| Error::invalid("param", &p.key, why))?;
+                set_key(&mut model_table, rest, (*v).clone()).map_err(|why| Error::invalid("--param", &p.key, why))?;
             }
         }
         let fresh;
         let at_speed = match fast {
             Excitations::Base(_) => None,
-            Excitations::PerSpeed { param, cache } => match cache.get(idx[*param]) {
-                Some(Some(e)) => Some(e),
-                _ => {
+            Excitations::PerSpeed { param, cache } => match self.speed_entry(cache, *param, idx[*param]) {
+                Some(e) => Some(e),
+                None => {
                     fresh = self.speed_excitation(*param, idx[*param])?;
                     Some(&fresh)
                 }

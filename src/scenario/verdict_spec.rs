@@ -35,7 +35,8 @@
 //! distance under 1 km ([`MIN_DESIGN_DISTANCE_M`]).
 //!
 //! Every key is checked: a misspelled key, an unknown weighting, location, axis or method, a weighting on a
-//! non-acceleration output, k ≤ 0, C ≤ 0, a negative duration, and a fatigue output whose λ₄ diverges are
+//! non-acceleration output, an exposure action value at or above its limit value (`a8_action` ≥ `a8_limit`,
+//! `vdv_action` ≥ `vdv_limit`), k ≤ 0, C ≤ 0, a negative duration, and a fatigue output whose λ₄ diverges are
 //! refused naming the file, the key, the value and the reason.
 
 use crate::comfort::{axis_factor, Axis, DirectiveLimits, Location, Purpose, Weighting};
@@ -227,6 +228,27 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
         vdv_action: positive("vdv_action", plain("vdv_action")?, d.vdv_action)?,
         vdv_limit: positive("vdv_limit", plain("vdv_limit")?, d.vdv_limit)?,
     };
+    for (action, limit, a, l) in [
+        ("a8_action", "a8_limit", limits.a8_action, limits.a8_limit),
+        ("vdv_action", "vdv_limit", limits.vdv_action, limits.vdv_limit),
+    ] {
+        if l <= a {
+            // the key the file gives (the other is the Directive's value)
+            let (key, value) = match f.get(limit) {
+                Some(v) => (limit, v.to_string()),
+                None => (action, f.get(action).map_or(a.to_string(), |v| v.to_string())),
+            };
+            return Err(f.error(
+                key,
+                value,
+                format!(
+                    "the exposure limit value must be above the exposure action value ({action} = {a}, {limit} = \
+                     {l}): the Directive's verdicts are `below action`, `above action` and `above limit`, in that \
+                     order"
+                ),
+            ));
+        }
+    }
     let arr = match f.require("axis")? {
         toml::Value::Array(a) if !a.is_empty() => a,
         v => return Err(f.error("axis", v, "expected one or more [[analysis.comfort.axis]] tables")),
@@ -376,6 +398,9 @@ fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Resul
         let key = match &e {
             Error::InvalidParameter { name, .. } if name == "amplitude" => "reference_amplitude".to_string(),
             Error::InvalidParameter { name, .. } if name == "cycles" => "reference_cycles".to_string(),
+            // C is the file's `c`, or derived from the reference point as N·S_a^k (its exponent k overflows it)
+            Error::InvalidParameter { name, .. } if name == "C" && f.get("c").is_some() => "c".to_string(),
+            Error::InvalidParameter { name, .. } if name == "C" => "k".to_string(),
             Error::InvalidParameter { name, .. } => name.clone(),
             _ => "k".to_string(),
         };

@@ -52,11 +52,23 @@ pub const LAPLACE_DRAWS: &str = "Laplace increments ε_k = √Γ_k·Z_k, k = 0..
 ///   (a longer kernel) brings it closer to 3.
 /// * κ = 3 is ν̃ = 0: Γ ≡ 1, ε = Z is Gaussian white noise and W_j are exactly the complex Gaussian
 ///   coefficients of the Rayleigh draw (the same law, other draws).
+/// * Largest kurtosis on the grid ([`max_kurtosis`]): the N increments of one realization are N numbers,
+///   and N numbers have a kurtosis N·Σε⁴/(Σε²)² ≤ N (since Σε⁴ ≤ (Σε²)²), reached when one of them carries
+///   everything. Increments of kurtosis E ε⁴/(E ε²)² = 3(1 + ν̃) > N cannot be represented by a realization:
+///   its variance is then carried by fewer than about three increments (the Gamma draws of shape 1/ν̃ are
+///   almost all zero: Σ_k Γ_k ~ Gamma(N/ν̃, ν̃), of shape N/ν̃ < 3), most realizations are nearly zero and
+///   the Monte Carlo σ collapses (κ = 10⁹ gave σ = 0 where the process has σ = 1.9·10⁻²). So
+/// ```text
+/// 3(1 + ν̃) ≤ N   ⟺   κ ≤ κ_max = 3 + r·(N − 3)
+/// ```
+///   With f_l ≈ Δt·f(lΔt), r·N ≈ T·∫f⁴/(∫f²)² (T = NΔt): the bound grows with the duration of a realization
+///   (the number of kernel lengths it holds), not with a finer step.
 ///
 /// # Errors
 /// [`LaplaceMovingAverage::new`]: the errors of [`SpectralGenerator::new`]; a kurtosis that is not finite or
-/// below 3 (a Laplace moving average cannot be lighter-tailed than a Gaussian); a spectrum that is zero on
-/// the whole grid. [`LaplaceMovingAverage::from_generator`]: the kurtosis errors, and a phase-only generator.
+/// below 3 (a Laplace moving average cannot be lighter-tailed than a Gaussian) or above [`max_kurtosis`] of
+/// the grid; a spectrum that is zero on the whole grid. [`LaplaceMovingAverage::from_generator`]: the
+/// kurtosis errors, and a phase-only generator.
 ///
 /// # Examples
 /// ```
@@ -114,6 +126,21 @@ impl LaplaceScratch {
     }
 }
 
+/// The largest kurtosis a Laplace moving average of `n` samples per realization with kernel ratio
+/// `kernel_ratio` r = Σf⁴/(Σf²)² can represent: κ_max = 3 + r·(n − 3) (see [`LaplaceMovingAverage`],
+/// "Largest kurtosis on the grid": the increments' kurtosis 3(1 + ν̃) must not exceed n).
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::laplace::max_kurtosis;
+/// // a kernel of one tap (r = 1, white increments): the increments' own bound n
+/// assert_eq!(max_kurtosis(1.0, 1000), 1000.0);
+/// assert!((max_kurtosis(1.768e-2, 13536) - 242.2).abs() < 0.1);
+/// ```
+pub fn max_kurtosis(kernel_ratio: f64, n: usize) -> f64 {
+    3.0 + kernel_ratio * (n as f64 - 3.0)
+}
+
 /// The kernel ratio r = Σ f_l⁴ / (Σ f_l²)² of the kernel whose transform on the grid is `amp[j]` (j = 0..=N/2,
 /// Hermitian extension; the imaginary parts of bins 0 and N/2 are ignored), f_l = N^{−1/2}·(inverse FFT)_l;
 /// returns (Σ f⁴, Σ f²).
@@ -137,6 +164,33 @@ fn kernel_sums(amp: &[Complex<f64>], n: usize) -> Result<(f64, f64)> {
         s4 += sq * sq;
     }
     Ok((s4, s2))
+}
+
+/// Refuses a kurtosis above [`max_kurtosis`] of the grid of `spectral` (N samples, kernel ratio r).
+fn check_representable(kurtosis: f64, kernel_ratio: f64, spectral: &SpectralGenerator) -> Result<()> {
+    let n = spectral.len();
+    let max = max_kurtosis(kernel_ratio, n);
+    if kurtosis <= max {
+        return Ok(());
+    }
+    let num = crate::numbers::num;
+    Err(Error::invalid(
+        "kurtosis",
+        num(kurtosis),
+        format!(
+            "a Laplace moving average of N = {n} samples per realization (Δt = {} s, duration {} s) with this \
+             spectrum's kernel ratio r = Σf⁴/(Σf²)² = {kernel_ratio:.4e} can have a kurtosis of at most \
+             3 + r·(N − 3) = {:.4}: its increments would need a kurtosis 3(1 + ν) = {:.4e} above N, the largest \
+             N numbers can have, so a realization would hold fewer than three increments that carry its \
+             variance and the Monte Carlo σ would collapse; give a kurtosis of at most {:.4}, or longer \
+             realizations (the bound grows in proportion to the duration)",
+            num(spectral.dt()),
+            num(n as f64 * spectral.dt()),
+            max,
+            3.0 * (1.0 + (kurtosis - 3.0) / (3.0 * kernel_ratio)),
+            max,
+        ),
+    ))
 }
 
 impl LaplaceMovingAverage {
@@ -175,6 +229,7 @@ impl LaplaceMovingAverage {
             ));
         }
         let kernel_ratio = s4 / (s2 * s2);
+        check_representable(kurtosis, kernel_ratio, &spectral)?;
         let nu_steps = (kurtosis - 3.0) / (3.0 * kernel_ratio);
         let gamma = if nu_steps > 0.0 {
             Some(Gamma::new(1.0 / nu_steps, nu_steps).map_err(|e| {

@@ -130,6 +130,7 @@ pub fn merge_runs(
     progress: &dyn Fn(usize, usize),
 ) -> Result<MergeSummary> {
     let tmp = tmp_path(out);
+    refuse_shard_output(out)?;
     // pass 1: every file's header and the fingerprint of its shared values; the files are closed again
     let set = PartSet::open(inputs, &[out, &tmp])?;
     let meta = set.meta.clone();
@@ -194,6 +195,8 @@ pub fn merge_runs(
         },
         &from,
     )?;
+    // a merge refused from here on (a damaged shard found in pass 2) leaves no .tmp of its own behind
+    let mut created = RemoveOnError((!writer.resumed()).then(|| writer.tmp_path().to_path_buf()));
     let n_shards = meta.n_shards();
     let names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
     // the statistics, as a single-process run finishes them
@@ -246,6 +249,12 @@ pub fn merge_runs(
                 reason: format!("its /shards datasets do not have one row per shard ({})", local.len()),
             });
         }
+        let raw_columns = if meta.store_raw {
+            meta.inputs.len() + meta.outputs.len()
+        } else {
+            0
+        };
+        verify_rows(&p.path, &p.meta, &names, &accs, &sums, raw_columns)?;
         for (r, b) in local.clone().enumerate() {
             let rows = meta.shard_range(b).len();
             for (jm, jw, fold) in &mut folds {
@@ -331,6 +340,7 @@ pub fn merge_runs(
         writer.write_psd(psd)?;
     }
     let path = writer.finish()?;
+    created.0 = None;
     let mut notes: Vec<String> = set
         .ignored
         .iter()
@@ -353,6 +363,77 @@ pub fn merge_runs(
         outputs: stats,
         notes,
     })
+}
+
+/// Removes the temporary file a merge created when the merge returns with an error before its final rename
+/// (nothing is left of a refused merge); `None` once renamed, or for a `.tmp` the merge resumed.
+struct RemoveOnError(Option<PathBuf>);
+
+impl Drop for RemoveOnError {
+    fn drop(&mut self) {
+        if let Some(p) = self.0.take() {
+            let _ = std::fs::remove_file(p);
+        }
+    }
+}
+
+/// Refuses a merged file `out` that is an existing shard file of a cluster run (`merge SHARD-0 SHARD-1 …`
+/// takes the first shard for the output): a shard file is never written over, whatever `--overwrite` says.
+fn refuse_shard_output(out: &Path) -> Result<()> {
+    if !crate::io_rules::starts_with(out, crate::io_rules::HDF5_SIGNATURE) {
+        return Ok(());
+    }
+    let part = crate::store::RunFile::open_any(out).ok().and_then(|run| run.part());
+    match part {
+        None => Ok(()),
+        Some(p) => Err(Error::Hdf5 {
+            path: out.to_path_buf(),
+            reason: format!(
+                "is a shard file of a cluster run (shard {} of {}), not a merged file: a shard file is never \
+                 written over; the first argument of merge is the merged file — `stochvib merge MERGED.h5 SHARDS…` \
+                 (list this file among the shards); nothing was written",
+                p.index, p.count
+            ),
+        }),
+    }
+}
+
+/// Refuses a shard file whose accumulator rows (`accs[j]`, one row per internal shard of the file) do not
+/// match their checksums (column `raw_columns + j` of `sums`), before anything of it is folded: the error
+/// names the file, the dataset, the internal shard and the part to compute again.
+fn verify_rows(
+    path: &Path,
+    meta: &crate::store::RunMetadata,
+    names: &[&str],
+    accs: &[ndarray::Array2<f64>],
+    sums: &ndarray::Array2<u32>,
+    raw_columns: usize,
+) -> Result<()> {
+    for ((j, a), name) in accs.iter().enumerate().zip(names) {
+        for (r, row) in a.rows().into_iter().enumerate() {
+            let row = row.as_standard_layout();
+            let crc = crate::store::checksum::crc32_f64(row.as_slice().unwrap_or(&[]));
+            if sums.get((r, raw_columns + j)) == Some(&crc) {
+                continue;
+            }
+            let again = meta.part.map_or(String::new(), |p| {
+                format!(
+                    "; compute it again (stochvib simulate … --shard {} --of {} --overwrite, the same settings) and \
+                     merge again",
+                    p.index, p.count
+                )
+            });
+            return Err(Error::Hdf5 {
+                path: path.to_path_buf(),
+                reason: format!(
+                    "checksum mismatch in shards/{name} (internal shard {}): this shard file is damaged (its data are \
+                     not what was written){again}",
+                    meta.local_shards().start + r
+                ),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The verdict statistics of a merged run (`vdv`, `mtvv`, `crest_factor` of every comfort channel,

@@ -21,6 +21,7 @@
 //!   --of N`) and the bit-identical merge of the parts ([`merge_runs`]).
 
 pub mod accumulators;
+pub mod agreement;
 pub mod bands;
 pub mod basic_method;
 pub mod batch;

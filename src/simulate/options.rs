@@ -2,6 +2,7 @@
 
 use super::RunInput;
 use crate::error::{require_positive, Error, Result};
+use crate::numbers::num;
 use crate::response::Excitation;
 use crate::store::Compression;
 use serde::Serialize;
@@ -155,19 +156,26 @@ impl RunOptions {
         }
         require_positive("dt", self.dt_s)?;
         require_positive("duration", self.duration_s)?;
+        if self.max_hours.is_nan() || self.max_hours <= 0.0 {
+            return Err(Error::invalid(
+                "max hours",
+                self.max_hours,
+                "the cap on a run's computing time must be > 0 hours",
+            ));
+        }
         if !(self.confidence > 0.0 && self.confidence < 1.0) {
             return Err(Error::invalid("confidence", self.confidence, "must lie in (0, 1)"));
         }
         let ratio = (self.duration_s / self.dt_s).round();
         // NaN (0/0 cannot happen: both are > 0) and infinity fail this too
+        let (d, dt) = (num(self.duration_s), num(self.dt_s));
         if ratio.is_nan() || ratio > MAX_SAMPLES as f64 {
             return Err(Error::invalid(
                 "duration",
-                format!("{} s", self.duration_s),
+                format!("{d} s at Δt = {dt} s"),
                 format!(
-                    "gives {ratio:e} samples per realization at Δt = {} s, more than the {MAX_SAMPLES:e} a realization \
-                     may have: a shorter --duration or a longer --dt",
-                    self.dt_s
+                    "gives {ratio:.4e} samples per realization, more than the 2⁵⁰ ≈ 1.126e15 a realization may \
+                     have: a shorter --duration or a longer --dt"
                 ),
             ));
         }
@@ -176,8 +184,8 @@ impl RunOptions {
         if n < 16 {
             return Err(Error::invalid(
                 "duration",
-                format!("{} s", self.duration_s),
-                format!("gives {n} samples at Δt = {} s; need at least 16", self.dt_s),
+                format!("{d} s at Δt = {dt} s"),
+                format!("gives {n} samples per realization; need at least 16: a longer --duration or a shorter --dt"),
             ));
         }
         Ok(n)

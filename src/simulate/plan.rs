@@ -38,9 +38,10 @@ pub(crate) struct PlannedOutput {
     /// Exact marginal kurtosis E y⁴/(E y²)² of the simulated process when an input is non-Gaussian (a
     /// Laplace moving average, [`laplace_generators`]); `None` for Gaussian inputs (kurtosis 3).
     pub kurtosis: Option<f64>,
-    /// Coefficient of variation of one realization's mean square (1/N)Σy_k² on the spectral route
-    /// ([`mean_square_cv`]); `None` on the other routes.
-    pub mean_square_cv: Option<f64>,
+    /// Exact standard deviation of one realization's mean square v_i = (1/N)Σy_k² on the (whole-record)
+    /// spectral route, Gaussian or not ([`mean_square_sd`]); `None` on the other routes. The run checks its
+    /// Monte Carlo variance against `discrete_variance` with it ([`super::agreement`]).
+    pub mean_square_sd: Option<f64>,
 }
 
 /// Everything a run needs besides the file: the route's engine, sizes, outputs and remarks.
@@ -143,7 +144,8 @@ pub fn planned_variances(input: &RunInput, opts: &RunOptions) -> Result<Vec<Plan
             name: o.signal.name,
             analytic: o.analytic_variance,
             discrete: o.discrete_variance,
-            mean_square_cv: o.mean_square_cv,
+            // the spread of one realization's mean square relative to its mean, the discrete variance
+            mean_square_cv: o.mean_square_sd.map(|sd| sd / o.discrete_variance),
         })
         .collect())
 }
@@ -334,7 +336,7 @@ fn plan_with(input: &RunInput, opts: &RunOptions, schur_grid: bool) -> Result<Pl
                 analytic_variance: f.variance,
                 discrete_variance: cov[(r, r)],
                 kurtosis: None,
-                mean_square_cv: None,
+                mean_square_sd: None,
             })
             .collect();
         notes.push(
@@ -368,19 +370,19 @@ fn plan_with(input: &RunInput, opts: &RunOptions, schur_grid: bool) -> Result<Pl
             memory_bytes,
         });
     }
-    let (engine, discrete, autocov, kurtosis, cv) =
+    let (engine, discrete, autocov, moments) =
         spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len(), schur_grid)?;
     let outputs = finite
         .into_iter()
         .zip(discrete)
-        .enumerate()
-        .map(|(r, (f, dv))| PlannedOutput {
+        .zip(moments)
+        .map(|((f, dv), m)| PlannedOutput {
             index: f.index,
             signal: Signal::new(&f.info.name, &f.info.unit),
             analytic_variance: f.variance,
             discrete_variance: dv,
-            kurtosis: kurtosis.get(r).copied(),
-            mean_square_cv: cv.get(r).copied(),
+            kurtosis: m.kurtosis,
+            mean_square_sd: Some(m.mean_square_sd),
         })
         .collect();
     Ok(Plan {
@@ -545,7 +547,7 @@ fn streamed_plan(
             analytic_variance: f.variance,
             discrete_variance: *dv,
             kurtosis: None,
-            mean_square_cv: None,
+            mean_square_sd: None,
         })
         .collect();
     Ok(Plan {
@@ -637,11 +639,48 @@ struct SpectralInput {
     mixing: Option<(std::sync::Arc<dyn crate::coherence::SpectralMatrix>, usize, usize)>,
 }
 
+/// Exact higher moments of one simulated output process of the spectral route.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct OutputMoments {
+    /// Marginal kurtosis (non-Gaussian inputs; `None` for Gaussian ones).
+    kurtosis: Option<f64>,
+    /// Standard deviation of one realization's mean square ([`mean_square_sd`]).
+    mean_square_sd: f64,
+}
+
+/// The standard deviation of one realization's mean square v = (1/N)Σ_k y_k² of a periodic stationary
+/// process of N samples with power `power[j]` in bin j (j = 0..=N/2, K(m) = Σ_j power_j cos(2πjm/N)) and
+/// fourth-cumulant term `cumulant` = Σ_g 3ν̃_g D_g² (0 for a Gaussian process).
+///
+/// # Formula
+/// Cov(y_k², y_l²) = 2K(k − l)² + κ₄(y_k, y_k, y_l, y_l); for a Laplace moving average
+/// y = Σ_g Σ_m g⁽ᵍ⁾_m ε⁽ᵍ⁾_{k−m} the joint cumulant is Σ_g 3ν̃_g Σ_m (g⁽ᵍ⁾_{k−m})²(g⁽ᵍ⁾_{l−m})² (the increments'
+/// fourth cumulant is 3ν̃). Summed over k, l on the period (Σ_k (g_{k−m})² = D_g for every m):
+/// ```text
+/// Var v = (2 Σ_m K(m)² + Σ_g 3ν̃_g D_g²) / N,   Σ_m K(m)² = N (p₀² + p_{N/2}²) + (N/2) Σ_{0<j<N/2} p_j²
+/// ```
+/// (orthogonality of the cosines over the period).
+fn mean_square_sd(power: &[f64], n: usize, cumulant: f64) -> f64 {
+    let nf = n as f64;
+    let last = power.len().saturating_sub(1);
+    let k2: f64 = power
+        .iter()
+        .enumerate()
+        .map(|(j, p)| {
+            if j == 0 || j == last {
+                nf * p * p
+            } else {
+                0.5 * nf * p * p
+            }
+        })
+        .sum();
+    ((2.0 * k2 + cumulant) / nf).sqrt()
+}
+
 /// The spectral engine: one generator per independent process, the inputs as (generator, gain, shift), and
 /// the discrete transfer gains from every generator's coefficients to every output; returns the engine, the
 /// exact variance of each simulated (grid, first-order-hold, periodic) output process, its autocovariance,
-/// (non-Gaussian inputs only; empty otherwise) its exact kurtosis, and the coefficient of variation of one
-/// realization's mean square ([`mean_square_cv`]).
+/// and its exact kurtosis (non-Gaussian inputs) and standard deviation of a realization's mean square.
 #[allow(clippy::type_complexity)]
 fn spectral_engine(
     input: &RunInput,
@@ -651,7 +690,7 @@ fn spectral_engine(
     notes: &mut Vec<String>,
     lags: usize,
     schur_grid: bool,
-) -> Result<(Engine, Vec<f64>, Vec<Vec<f64>>, Vec<f64>, Vec<f64>)> {
+) -> Result<(Engine, Vec<f64>, Vec<Vec<f64>>, Vec<OutputMoments>)> {
     let (sys, exc, dt) = (input.system, input.excitation, opts.dt_s);
     let ss = sys.state_space().ok_or_else(|| Error::Numerical {
         what: "spectral Monte Carlo".into(),
@@ -675,17 +714,27 @@ fn spectral_engine(
         .iter()
         .map(|p| periodic_autocovariance(p, n, lags))
         .collect::<Result<Vec<_>>>()?;
-    let cv = spectrum.iter().map(|p| mean_square_cv(p, n)).collect();
     notes.push(
         "spectral route bias: the synthesised input is the spectrum on the FFT grid (truncated at Nyquist, \
          sampled at Δω = 2π/(NΔt)); `discrete σ` is the exact σ of that simulated process"
             .into(),
     );
-    let (laplace, kurtosis) = if input.is_non_gaussian() {
+    let (laplace, cumulants) = if input.is_non_gaussian() {
         laplace_generators(exc, &generators, &gains, &input.kurtosis, outputs, sys, notes)?
     } else {
         (vec![], vec![])
     };
+    let moments = spectrum
+        .iter()
+        .enumerate()
+        .map(|(r, p)| {
+            let c = cumulants.get(r).copied();
+            OutputMoments {
+                kurtosis: c.map(|c| c.0),
+                mean_square_sd: mean_square_sd(p, n, c.map_or(0.0, |c| c.1)),
+            }
+        })
+        .collect();
     Ok((
         Engine::Spectral {
             laplace,
@@ -700,34 +749,18 @@ fn spectral_engine(
         },
         discrete,
         autocov,
-        kurtosis,
-        cv,
+        moments,
     ))
 }
 
-/// The coefficient of variation of one realization's mean square m = (1/N)Σ_k y_k² of the periodic Gaussian
-/// process whose variance per bin is `power[j]` (j = 0..=N/2, K(0) = Σ power).
-///
-/// # Formula
-/// Over a whole period m = Σ_j P_j (Parseval), P_j the power of bin j: exponential with mean p_j for an
-/// interior bin (Rayleigh amplitude, uniform phase: independent across bins), p_j χ²₁ at j = 0 and N/2. So
-/// ```text
-/// Var m = Σ_interior p_j² + 2 p_0² + 2 p_{N/2}²,        cv = √(Var m) / Σ_j p_j
-/// ```
-/// (a lower bound for a Laplace moving-average input, whose powers have heavier tails).
-fn mean_square_cv(power: &[f64], n: usize) -> f64 {
-    let total: f64 = power.iter().sum();
-    let var: f64 = power
-        .iter()
-        .enumerate()
-        .map(|(j, p)| if j == 0 || j == n / 2 { 2.0 * p * p } else { p * p })
-        .sum();
-    var.sqrt() / total
-}
+/// The Laplace moving averages of a run's generators and, per output, its exact kurtosis and the fourth-cumulant
+/// term of its mean square (see [`laplace_generators`]).
+type LaplaceGenerators = (Vec<super::LaplaceMovingAverage>, Vec<(f64, f64)>);
 
 /// The Laplace moving averages of a non-Gaussian run, one per generator (generator g with the kurtosis
-/// `kurtosis[g]`, κ = 3 for `None`), a note per generator (its ν) and per output (its kurtosis), and the exact
-/// kurtosis of every simulated output process.
+/// `kurtosis[g]`, κ = 3 for `None`), a note per generator (its ν) and per output (its kurtosis), and for every
+/// simulated output process its exact kurtosis and the fourth-cumulant term Σ_g 3ν̃_g D_g² of its mean
+/// square's variance ([`mean_square_sd`]).
 ///
 /// # Formula
 /// Output r is y = Σ_g Σ_m g^{(g)}_m ε^{(g)}_{k−m}, a sum of independent filtered Laplace moving averages;
@@ -751,7 +784,7 @@ fn laplace_generators(
     outputs: &[usize],
     sys: &dyn FrequencyResponse,
     notes: &mut Vec<String>,
-) -> Result<(Vec<super::LaplaceMovingAverage>, Vec<f64>)> {
+) -> Result<LaplaceGenerators> {
     if kurtosis.len() != generators.len() {
         return Err(Error::invalid(
             "kurtosis",
@@ -803,11 +836,12 @@ fn laplace_generators(
     let names = sys.outputs();
     let mut out = Vec::with_capacity(outputs.len());
     for (r, &o) in outputs.iter().enumerate() {
-        let (mut k4, mut var) = (0.0, 0.0);
+        let (mut k4, mut var, mut cum) = (0.0, 0.0, 0.0);
         for (l, g) in lma.iter().zip(gains) {
             let (a, b) = l.filtered_cumulants(&g[r])?;
             k4 += a;
             var += b;
+            cum += 3.0 * l.nu_steps() * b * b;
         }
         let kappa = if var > 0.0 { 3.0 + k4 / (var * var) } else { 3.0 };
         if var > 0.0 {
@@ -818,7 +852,7 @@ fn laplace_generators(
                 kappa
             ));
         }
-        out.push(kappa);
+        out.push((kappa, cum));
     }
     Ok((lma, out))
 }

@@ -191,9 +191,39 @@ pub fn run_time_lower_bound(realizations: f64, n: usize, processes: usize, threa
     realizations * n as f64 * processes.max(1) as f64 / (MAX_DRAWS_PER_S * threads.max(1) as f64)
 }
 
-/// What a run of `opts` with `processes` input processes and `signals` stored signals (outputs and
-/// recorded inputs) will at least take, in words, before anything is planned: samples, raw data (with
-/// `--store-raw`) and the computing time's lower bound ([`run_time_lower_bound`]).
+/// Bytes of the run file of `opts` with `outputs` simulated outputs and `raw_inputs` recorded input
+/// processes (with `--store-raw`): raw rows, the accumulators of every shard (moments and Welch sums; verdict
+/// and band accumulators come on top), checksums and 1 MiB of metadata — the estimate of
+/// [`RunMetadata::estimated_file_bytes`] before the run is planned.
+///
+/// # Formula
+/// With R realizations of this file, N samples, p outputs, q recorded inputs, s = shard size, B shards, M the
+/// Welch segment (N/8, even, 4..1024): raw R·N·(p + q)·8 (with raw data), accumulators B·p·(2s + M/2 + 3)·8,
+/// checksums B·(p + q + 2p + 1)·4, plus 2²⁰.
+///
+/// # Errors
+/// The options' errors ([`RunOptions::samples`]).
+pub fn file_bytes(opts: &RunOptions, outputs: usize, raw_inputs: usize) -> Result<u128> {
+    let n = opts.samples()?;
+    let count = opts.part.map_or(1, |p| p.count).max(1) as u128;
+    let s = opts.shard_size.min(opts.realizations).max(1) as u128;
+    let shards = (opts.realizations as u128).div_ceil(s).div_ceil(count);
+    let rows = (opts.realizations as u128).div_ceil(count);
+    let (p, q) = (outputs as u128, if opts.store_raw { raw_inputs as u128 } else { 0 });
+    let raw = if opts.store_raw {
+        rows * n as u128 * (p + q) * F64
+    } else {
+        0
+    };
+    let bins = (((n / 8) & !1).clamp(4, 1024) / 2 + 1) as u128;
+    let acc = shards * p * (2 * s + bins + 2) * F64;
+    let checks = shards * (q + (if opts.store_raw { p } else { 0 }) + 2 * p + 1) * 4;
+    Ok(raw + acc + checks + (1 << 20))
+}
+
+/// What a run of `opts` with `processes` input processes, `outputs` simulated outputs and `raw_inputs`
+/// recorded input processes will at least take, in words, before anything is planned: samples, the run
+/// file's size ([`file_bytes`]) and the computing time's lower bound ([`run_time_lower_bound`]).
 ///
 /// # Errors
 /// The options' errors ([`RunOptions::samples`]).
@@ -201,26 +231,21 @@ pub fn run_time_lower_bound(realizations: f64, n: usize, processes: usize, threa
 /// # Examples
 /// ```
 /// use stochvib::simulate::{resources::estimate_text, RunOptions};
-/// let t = estimate_text(&RunOptions::new(1000, 100.0, 0.01, 1), 1, 2).unwrap();
-/// assert!(t.starts_with("estimate: 1000 realizations × 10000 samples"), "{t}");
+/// let t = estimate_text(&RunOptions::new(1000, 100.0, 0.01, 1), 1, 2, 1).unwrap();
+/// assert!(t.starts_with("estimate: 1000 realizations × 10000 samples, a file of"), "{t}");
 /// ```
-pub fn estimate_text(opts: &RunOptions, processes: usize, signals: usize) -> Result<String> {
+pub fn estimate_text(opts: &RunOptions, processes: usize, outputs: usize, raw_inputs: usize) -> Result<String> {
     let n = opts.samples()?;
     let local = opts.realizations as f64 / opts.part.map_or(1, |p| p.count) as f64;
     let threads = rayon::current_num_threads();
     let t = run_time_lower_bound(local, n, processes, threads);
-    let raw = if opts.store_raw {
-        format!(
-            ", raw data {}",
-            crate::io_rules::bytes_text((local * n as f64 * signals as f64 * 8.0) as u128)
-        )
-    } else {
-        String::new()
-    };
+    let bytes = file_bytes(opts, outputs, raw_inputs)?;
     Ok(format!(
-        "estimate: {} realizations × {n} samples{raw}; computing takes at least {} on {threads} threads (refused \
-         above --max-hours {})",
+        "estimate: {} realizations × {n} samples, a file of {}{}; computing takes at least {} on {threads} threads \
+         (refused above --max-hours {})",
         opts.realizations,
+        crate::io_rules::bytes_text(bytes),
+        if opts.store_raw { " with raw data" } else { "" },
         crate::io_rules::duration_text(t),
         crate::numbers::num(opts.max_hours)
     ))

@@ -53,7 +53,9 @@
 //! and the central limit theorem (approximate at extreme confidence: the v_i are slightly skewed); the σ
 //! interval is the square root of its bounds. The mean of the fluctuation gets a Student-t interval around
 //! the analytic value 0. Welch densities (Hann, 50 % overlap, M = N/8 capped to 1024) are averaged over
-//! realizations, with χ² intervals, and compared with the analytic output density.
+//! realizations, with χ² intervals, and compared with the analytic output density. On the spectral route the
+//! spread of v_i is known exactly too, and a run whose mean of the v_i lies outside distribution-free bounds
+//! around σ²_d fails instead of reporting success ([`super::agreement`]).
 //!
 //! # Resuming
 //! Per shard the file stores, per output, the accumulators of [`super::accumulators`] (the time averages
@@ -207,6 +209,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     let acc = |name: &str, shard: usize| writer.read_accumulator(name, shard);
     for (o, exp) in plan.outputs.iter().zip(expected) {
         let (m, v, ws) = read_output(&acc, &meta, &o.signal.name, &plan.welch)?;
+        super::agreement::check_mean_square(o, &v)?;
         let analytic = Analytic::from_variances(o.analytic_variance, o.discrete_variance);
         stats.push(output_statistics(&o.signal, &analytic, &m, &v, opts.confidence)?);
         let mut psd = density_estimate(&o.signal, &plan.welch, &ws, opts.confidence, |omega| {

@@ -102,6 +102,12 @@ pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<
             "SLURM_ARRAY_TASK_MAX+1"
         };
         let count = count.or(max.map(|mx| mx + 1));
+        if let Some(why) = one_based(min, max, of) {
+            if of.is_some_and(|n| index >= n) || of.is_none() {
+                return Err(Error::invalid("shard", format!("SLURM_ARRAY_TASK_ID={index}"), why));
+            }
+            notes.push(why);
+        }
         let (n, source) = match of {
             Some(n) => {
                 if let (true, Some(c)) = (whole_array, count)
@@ -166,6 +172,22 @@ pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<
         "no scheduler index in the environment: neither SLURM_ARRAY_TASK_ID (a SLURM job array, sbatch \
          --array=0-N-1) nor JOB_COMPLETION_INDEX (a Kubernetes Indexed Job) is set; outside a scheduler give \
          the index: --shard I --of N",
+    ))
+}
+
+/// The warning for a SLURM array numbered from 1 (`--array=1-N`, SLURM_ARRAY_TASK_MIN = 1): shard indices
+/// are 0-based, so shard 0 would never run and task N would be out of range. `None` for any other array
+/// (a resubmitted subset such as `--array=2,5` starts above 1 and is no mistake).
+fn one_based(min: Option<usize>, max: Option<usize>, of: Option<usize>) -> Option<String> {
+    let (Some(1), Some(mx)) = (min, max) else { return None };
+    if of.is_some_and(|n| n != mx) {
+        return None;
+    }
+    Some(format!(
+        "this SLURM array is numbered from 1 (SLURM_ARRAY_TASK_MIN=1, SLURM_ARRAY_TASK_MAX={mx}) but shard indices \
+         are 0-based: with --array=1-{mx} shard 0 is never computed and task {mx} is out of range; submit the \
+         array as --array=0-{} (the merge names any shard that is missing)",
+        mx - 1
     ))
 }
 

@@ -87,32 +87,40 @@ impl RationalSpectrum {
                 return Err(Error::invalid(name, format!("{c:?}"), "coefficients must be finite"));
             }
         }
-        let (num, den) = if *den.last().unwrap() < 0.0 {
+        let (given_num, given_den) = (format!("{num:?}"), format!("{den:?}"));
+        let flipped = *den.last().unwrap() < 0.0;
+        let (num, den) = if flipped {
             (num.iter().map(|v| -v).collect(), den.iter().map(|v| -v).collect())
         } else {
             (num, den)
         };
-        // Factorise both; this also checks N ≥ 0 and D > 0 on the real ω axis.
+        let sign = if flipped {
+            " (N and D taken with the sign of D's leading coefficient)"
+        } else {
+            ""
+        };
+        // Factorise both, the denominator first (a real pole is a fault of D whatever N is); this also checks
+        // D > 0 and N ≥ 0 on the real ω axis.
+        let (a, _) = poly::spectral_factor(&den).map_err(|e| {
+            Error::invalid(
+                "denominator",
+                &given_den,
+                format!("D(ω²) must be > 0 for all real ω: S has a pole on the real axis{sign} ({e})"),
+            )
+        })?;
         let scaled: Vec<f64> = num.iter().map(|v| v * 2.0 * PI).collect();
         let (b, _) = poly::spectral_factor(&scaled).map_err(|e| {
             Error::invalid(
                 "numerator",
-                format!("{num:?}"),
-                format!("N(ω²) must be ≥ 0 for all real ω ({e})"),
-            )
-        })?;
-        let (a, _) = poly::spectral_factor(&den).map_err(|e| {
-            Error::invalid(
-                "denominator",
-                format!("{den:?}"),
-                format!("D(ω²) must be > 0 for all real ω ({e})"),
+                &given_num,
+                format!("N(ω²) must be ≥ 0 for all real ω{sign} ({e})"),
             )
         })?;
         let poles = poly::roots(&a)?;
         if poles.iter().any(|p| p.re >= 0.0) {
             return Err(Error::invalid(
                 "denominator",
-                format!("{den:?}"),
+                &given_den,
                 "D(ω²) vanishes at a real frequency: S has a pole on the real axis",
             ));
         }

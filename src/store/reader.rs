@@ -154,10 +154,14 @@ impl RunFile {
         if !self.meta.accumulators.iter().any(|a| a.0 == name) {
             return Err(Error::invalid("accumulator", name, "not in this run"));
         }
-        self.file
-            .dataset(&format!("{}/{}", L::GROUP_SHARDS, name))
-            .and_then(|d| d.read_2d::<f64>())
-            .map_err(h5err(&self.path, "reading an accumulator"))
+        let what = format!("{}/{name}", L::GROUP_SHARDS);
+        let d = self
+            .file
+            .dataset(&what)
+            .map_err(h5err(&self.path, "opening an accumulator"))?;
+        let len = self.meta.accumulators.iter().find(|a| a.0 == name).map_or(0, |a| a.1);
+        check_shape(&d, &[self.meta.local_shards().len(), len], &self.path, &what)?;
+        d.read_2d::<f64>().map_err(h5err(&self.path, "reading an accumulator"))
     }
 
     /// The checksums of every internal shard of the file (rows as in
@@ -169,9 +173,13 @@ impl RunFile {
         if self.format_version < 2 {
             return Ok(None);
         }
-        self.file
-            .dataset(&format!("{}/{}", L::GROUP_SHARDS, L::DS_SHARDS_CHECKSUMS))
-            .and_then(|d| d.read_2d::<u32>())
+        let what = format!("{}/{}", L::GROUP_SHARDS, L::DS_SHARDS_CHECKSUMS);
+        let d = self
+            .file
+            .dataset(&what)
+            .map_err(h5err(&self.path, "opening /shards/checksums"))?;
+        check_checksum_shape(&d, &self.meta, &self.path)?;
+        d.read_2d::<u32>()
             .map(Some)
             .map_err(h5err(&self.path, "reading /shards/checksums"))
     }
@@ -447,9 +455,7 @@ impl RunFile {
             }
             let g = parent.group(&sig.name).map_err(h5err(p, "opening a density group"))?;
             let read = |name: &str| -> Result<Vec<f64>> {
-                g.dataset(name)
-                    .and_then(|d| d.read_raw::<f64>())
-                    .map_err(h5err(p, &format!("reading psd/{}/{name}", sig.name)))
+                read_whole(&g, name, MAX_LIST_LEN, p, &format!("psd/{}/{name}", sig.name))
             };
             let est = PsdEstimate {
                 output: sig.name.clone(),
@@ -531,9 +537,7 @@ impl RunFile {
             }
             let g = parent.group(&sig.name).map_err(h5err(p, "opening a rainflow group"))?;
             let read = |name: &str| -> Result<Vec<f64>> {
-                g.dataset(name)
-                    .and_then(|d| d.read_raw::<f64>())
-                    .map_err(h5err(p, &format!("reading rainflow/{}/{name}", sig.name)))
+                read_whole(&g, name, MAX_LIST_LEN, p, &format!("rainflow/{}/{name}", sig.name))
             };
             let h = super::RainflowHistogram {
                 output: sig.name.clone(),
@@ -573,6 +577,7 @@ impl RunFile {
             .dataset(L::DS_SHARDS_CHECKSUMS)
             .map_err(h5err(p, "opening /shards/checksums"))?;
         let names = attr_string_list(&sums, L::ATTR_CHECKED, p)?;
+        check_checksum_shape(&sums, &self.meta, p)?;
         let table = sums.read_2d::<u32>().map_err(h5err(p, "reading /shards/checksums"))?;
         if table.nrows() != self.meta.local_shards().len() || table.ncols() < names.len() {
             return Err(damaged(p, "shards/checksums"));
@@ -1019,10 +1024,7 @@ pub(crate) fn shared_fingerprint(file: &File, p: &Path, meta: &RunMetadata) -> R
         if !g.link_exists(name) {
             return Ok(marker);
         }
-        let v = g
-            .dataset(name)
-            .and_then(|d| d.read_raw::<f64>())
-            .map_err(h5err(p, &format!("reading {what}/{name}")))?;
+        let v: Vec<f64> = read_whole(g, name, MAX_LIST_LEN, p, &format!("{what}/{name}"))?;
         Ok(f64::from_bits(
             super::checksum::crc32_f64(&v) as u64 | ((v.len() as u64) << 32),
         ))
@@ -1106,7 +1108,12 @@ fn read_parts_group(file: &File, path: &Path, meta: &RunMetadata) -> Result<Opti
     let g = file.group(L::GROUP_PARTS).map_err(h5err(path, "opening /parts"))?;
     let list = |name: &str| -> Result<Vec<usize>> {
         g.attr(name)
-            .and_then(|a| a.read_raw::<u64>())
+            .and_then(|a| {
+                if a.size() > MAX_LIST_LEN {
+                    return Err(format!("{} entries, more than a merge has shard files", a.size()).into());
+                }
+                a.read_raw::<u64>()
+            })
             .map(|v| v.into_iter().map(|x| x as usize).collect())
             .map_err(|e| missing_or(&g, name, path, e))
     };
@@ -1125,10 +1132,17 @@ fn read_parts_group(file: &File, path: &Path, meta: &RunMetadata) -> Result<Opti
 
 /// The `/shards/complete` flags.
 pub(crate) fn read_shards_complete(file: &File, path: &Path, n_shards: usize) -> Result<Vec<bool>> {
-    let flags = file
+    let d = file
         .dataset(&format!("{}/{}", L::GROUP_SHARDS, L::DS_SHARDS_COMPLETE))
-        .and_then(|d| d.read_raw::<u8>())
-        .map_err(h5err(path, "reading /shards/complete"))?;
+        .map_err(h5err(path, "opening /shards/complete"))?;
+    if d.size() != n_shards {
+        return Err(bad(
+            path,
+            "shards/complete",
+            &format!("has {} entries, expected {n_shards}", d.size()),
+        ));
+    }
+    let flags = d.read_raw::<u8>().map_err(h5err(path, "reading /shards/complete"))?;
     if flags.len() != n_shards {
         return Err(bad(
             path,
@@ -1228,11 +1242,37 @@ fn attr_scalar<T: hdf5::H5Type>(loc: &Location, name: &str, path: &Path) -> Resu
         .map_err(|e| missing_or(loc, name, path, e))
 }
 
+/// Most bytes of the strings of one attribute: the longest string a writer stores is the scenario's text,
+/// a TOML file of at most 16 MiB (the input rule); more is a damaged file or one this toolkit did not write.
+pub(crate) const MAX_ATTRIBUTE_BYTES: usize = crate::fields::MAX_INPUT_FILE_BYTES as usize;
+
+/// Most elements of a list attribute or of a dataset that is read whole (names, density estimates,
+/// histograms): a run has a few dozen signals and at most 513 density bins.
+pub(crate) const MAX_LIST_LEN: usize = 1 << 20;
+
+/// Refuses strings of more than [`MAX_ATTRIBUTE_BYTES`] read from attribute `name`.
+fn bounded_strings(loc: &Location, name: &str, path: &Path, bytes: usize) -> Result<()> {
+    if bytes > MAX_ATTRIBUTE_BYTES {
+        return Err(bad(
+            path,
+            &format!("{}@{name}", loc.name()),
+            &format!(
+                "holds {bytes} bytes of text, more than the {MAX_ATTRIBUTE_BYTES} a run file's attribute has: the \
+                 file is damaged or was not written by stochvib"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 fn attr_string(loc: &Location, name: &str, path: &Path) -> Result<String> {
-    loc.attr(name)
+    let s = loc
+        .attr(name)
         .and_then(|a| a.read_scalar::<VarLenUnicode>())
         .map(|v| v.as_str().to_string())
-        .map_err(|e| missing_or(loc, name, path, e))
+        .map_err(|e| missing_or(loc, name, path, e))?;
+    bounded_strings(loc, name, path, s.len())?;
+    Ok(s)
 }
 
 fn attr_string_list(loc: &Location, name: &str, path: &Path) -> Result<Vec<String>> {
@@ -1240,7 +1280,75 @@ fn attr_string_list(loc: &Location, name: &str, path: &Path) -> Result<Vec<Strin
     if attr.size() == 0 {
         return Ok(Vec::new());
     }
-    attr.read_raw::<VarLenUnicode>()
+    if attr.size() > MAX_LIST_LEN {
+        return Err(bad(
+            path,
+            &format!("{}@{name}", loc.name()),
+            &format!(
+                "lists {} names, more than the {MAX_LIST_LEN} a run file has: the file is damaged",
+                attr.size()
+            ),
+        ));
+    }
+    let v: Vec<String> = attr
+        .read_raw::<VarLenUnicode>()
         .map(|v| v.into_iter().map(|x| x.as_str().to_string()).collect())
-        .map_err(|e| missing_or(loc, name, path, e))
+        .map_err(|e| missing_or(loc, name, path, e))?;
+    bounded_strings(loc, name, path, v.iter().map(String::len).sum())?;
+    Ok(v)
+}
+
+/// Reads dataset `name` of `g` whole, refusing (before reading) one of more than `max` elements: a damaged
+/// or foreign file may declare a dataset far larger than what is stored (an unwritten chunked dataset).
+pub(crate) fn read_whole<T: hdf5::H5Type>(
+    g: &hdf5::Group,
+    name: &str,
+    max: usize,
+    path: &Path,
+    what: &str,
+) -> Result<Vec<T>> {
+    let d = g.dataset(name).map_err(h5err(path, &format!("opening {what}")))?;
+    if d.size() > max {
+        return Err(bad(
+            path,
+            what,
+            &format!(
+                "has {} elements, more than the {max} a run file has there: the file is damaged",
+                d.size()
+            ),
+        ));
+    }
+    d.read_raw::<T>().map_err(h5err(path, &format!("reading {what}")))
+}
+
+/// Refuses a `/shards/checksums` table that does not have one row per internal shard of the file and at
+/// most [`MAX_LIST_LEN`] columns, before it is read whole.
+fn check_checksum_shape(d: &hdf5::Dataset, meta: &RunMetadata, path: &Path) -> Result<()> {
+    let shape = d.shape();
+    if shape.len() != 2 || shape[0] != meta.local_shards().len() || shape[1] > MAX_LIST_LEN {
+        return Err(bad(
+            path,
+            "shards/checksums",
+            &format!(
+                "has the shape {shape:?}, expected {} rows (one per shard): the file is damaged",
+                meta.local_shards().len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a dataset whose shape is not `expected` before it is read whole.
+fn check_shape(d: &hdf5::Dataset, expected: &[usize], path: &Path, what: &str) -> Result<()> {
+    if d.shape() != expected {
+        return Err(bad(
+            path,
+            what,
+            &format!(
+                "has the shape {:?}, expected {expected:?}: the file is damaged",
+                d.shape()
+            ),
+        ));
+    }
+    Ok(())
 }

@@ -69,6 +69,8 @@ enum Existing {
     Replace(String),
     /// Another run with completed shards: refuse (unless overwriting).
     Different(String, usize),
+    /// Not an HDF5 file at all (not a run this toolkit left): refuse (unless overwriting).
+    Foreign,
 }
 
 impl RunWriter {
@@ -197,6 +199,19 @@ impl RunWriter {
                          asks",
                         tmp.display()
                     )),
+                    Existing::Foreign if options.overwrite => notes.push(format!(
+                        "replaced {}: it was not an HDF5 file (not an interrupted run), as --overwrite asks",
+                        tmp.display()
+                    )),
+                    Existing::Foreign => {
+                        return Err(Error::Hdf5 {
+                            path: tmp,
+                            reason: "is in the way of this run's temporary file and is not an HDF5 file (not a run \
+                                     this toolkit interrupted): it is never removed silently; remove it, choose \
+                                     another output, or pass --overwrite to replace it"
+                                .into(),
+                        })
+                    }
                     Existing::Different(diff, done) => {
                         return Err(Error::Hdf5 {
                             path: tmp,
@@ -241,7 +256,7 @@ impl RunWriter {
             return Existing::Busy(format!("(pid {pid})"));
         }
         if !is_hdf5(tmp) {
-            return Existing::Different("content: it is not an HDF5 file".into(), usize::MAX);
+            return Existing::Foreign;
         }
         let file = match open_file(tmp, OpenMode::ReadWrite, meta.compression) {
             Ok(f) => f,
@@ -381,12 +396,14 @@ impl RunWriter {
             .create(L::DS_SHARDS_COMPLETE)
             .map_err(e("creating /shards/complete"))?;
         let checked = checked_datasets(meta);
+        // Allocated in full now and never filled (as the raw data): the file system gives the space as the
+        // shards are written (a sparse file), so a run of 10⁹ realizations does not write gigabytes of fill
+        // before computing; a row is read only once `complete` (filled with 0 above) says it was written.
         let checksums = shards
             .new_dataset::<u32>()
             .shape((n_shards, checked.len().max(1)))
             .alloc_time(Some(hdf5::dataset::AllocTime::Early))
-            .fill_value(0u32)
-            .fill_time(hdf5::dataset::FillTime::Alloc)
+            .fill_time(hdf5::dataset::FillTime::Never)
             .create(L::DS_SHARDS_CHECKSUMS)
             .map_err(e("creating /shards/checksums"))?;
         let refs: Vec<&str> = checked.iter().map(|s| s.as_str()).collect();
@@ -397,8 +414,7 @@ impl RunWriter {
                 .new_dataset::<f64>()
                 .shape((n_shards, *len))
                 .alloc_time(Some(hdf5::dataset::AllocTime::Early))
-                .fill_value(f64::NAN)
-                .fill_time(hdf5::dataset::FillTime::Alloc)
+                .fill_time(hdf5::dataset::FillTime::Never)
                 .create(name.as_str())
                 .map_err(e("creating an accumulator dataset"))?;
             accumulators.push(ds);

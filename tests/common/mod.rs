@@ -198,6 +198,30 @@ pub fn cli_within<S: AsRef<std::ffi::OsStr>>(
     child.wait_with_output().unwrap()
 }
 
+/// A fresh empty directory `stochvib-GROUP-PID-TAG` in the system's temporary directory.
+pub fn scratch_dir(group: &str, tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("stochvib-{group}-{}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The stderr of `stochvib ARGS` run in `cwd` ([`cli_within`], 120 s), which must fail with status `code`
+/// (1: refused by the tool; 2: by the argument parser) without a panic.
+pub fn cli_fails(code: i32, args: &[&str], cwd: &std::path::Path) -> String {
+    let o = cli_within(args, cwd, std::time::Duration::from_secs(120));
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert_eq!(
+        o.status.code(),
+        Some(code),
+        "`{}`: {:?}\n{err}",
+        args.join(" "),
+        o.status
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}
+
 /// The names in `dir`, sorted.
 pub fn listing(dir: &std::path::Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)

@@ -6,6 +6,7 @@
 //! its range is done, and with [`EXIT_RESTART`] after a timeout (the hung thread cannot be stopped, so the
 //! process is replaced). A worker that dies otherwise while a case is running has crashed on that case.
 
+use super::commands::{self, Context, Fixtures};
 use super::inputs::{self, Case, Corpus, DocKind, Finding, Outcome};
 use super::mutate::{all_paths, normalize_path, remove, Seg};
 use super::process::{self, Exit};
@@ -53,6 +54,9 @@ pub struct CheckSpec {
     pub kind: DocKind,
     /// Index into `Convention::ALL`.
     pub convention: usize,
+    /// The arguments of a command case ([`Case::args`]).
+    #[serde(default)]
+    pub args: Vec<String>,
 }
 
 /// A protocol message.
@@ -92,19 +96,47 @@ fn conv_index(c: Convention) -> usize {
     Convention::ALL.iter().position(|x| *x == c).unwrap_or(0)
 }
 
+/// The context of the command cases of a campaign whose scratch directory is `scratch`.
+pub fn context(root: &Path, scratch: &Path) -> Context {
+    Context {
+        root: root.to_path_buf(),
+        fixtures: scratch.join("fixtures"),
+    }
+}
+
+/// Evaluates a case of any kind in this process under `dir`.
+pub fn run_any(
+    corpus: &Corpus,
+    case: &Case,
+    dir: &Path,
+    limit: Duration,
+    ctx: &Context,
+) -> (Outcome, Vec<Finding>, Duration) {
+    if case.kind.is_command() {
+        commands::run_case(case, dir, limit, ctx)
+    } else {
+        inputs::run_case(corpus, case, dir, limit)
+    }
+}
+
 /// The body of a worker process; never returns.
 pub fn worker_main(cfg: &WorkerConfig) -> ! {
     inputs::install_panic_hook();
     let corpus = Corpus::load(&cfg.root);
+    let ctx = context(&cfg.root, &cfg.scratch);
     let limit = Duration::from_millis(cfg.limit_ms);
     if let Some(c) = &cfg.check {
-        let o = inputs::run_limited(
-            c.kind,
-            &c.path,
-            &corpus.spectra_dir,
-            Convention::ALL[c.convention],
-            limit,
-        );
+        let o = if c.kind.is_command() {
+            commands::run_limited(c.kind, &c.path, &c.args, &ctx, limit)
+        } else {
+            inputs::run_limited(
+                c.kind,
+                &c.path,
+                &corpus.spectra_dir,
+                Convention::ALL[c.convention],
+                limit,
+            )
+        };
         let restart = matches!(o, Outcome::Timeout { .. });
         emit(&Msg::Checked { outcome: o });
         std::process::exit(if restart { EXIT_RESTART } else { 0 });
@@ -114,7 +146,7 @@ pub fn worker_main(cfg: &WorkerConfig) -> ! {
     while i < cfg.to {
         emit(&Msg::Start { index: i });
         let case = inputs::generate(&corpus, cfg.seed, i);
-        let (outcome, findings, el) = inputs::run_case(&corpus, &case, &dir, limit);
+        let (outcome, findings, el) = run_any(&corpus, &case, &dir, limit, &ctx);
         let timeout = matches!(outcome, Outcome::Timeout { .. });
         emit(&Msg::Done {
             index: i,
@@ -168,7 +200,12 @@ pub struct Campaign {
     pub worker: WorkerCommand,
     /// Print progress to stderr.
     pub progress: bool,
+    /// Stop starting new cases after this long (the cases run so far are counted).
+    pub budget: Option<Duration>,
 }
+
+/// Cases one worker process evaluates before the supervisor checks the time budget and starts the next.
+const CASES_PER_WORKER: u64 = 20_000;
 
 /// Where a finding came from.
 #[derive(Debug, Clone)]
@@ -236,9 +273,104 @@ pub struct Summary {
     pub elapsed: Duration,
     /// Slowest in-process case, ms.
     pub slowest_ms: u64,
+    /// Totals per format or command ([`DocKind::label`]; special files and output targets separately).
+    pub formats: BTreeMap<String, FormatTotals>,
+    /// Whether the time budget stopped the campaign before all its cases.
+    pub stopped_by_budget: bool,
+}
+
+/// The totals of one format or command: cases evaluated in-process, CLI runs, and the cases that panicked,
+/// died of a signal or hung (in-process or in the CLI), and that broke any asserted invariant.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct FormatTotals {
+    /// Cases evaluated in-process.
+    pub cases: u64,
+    /// CLI runs.
+    pub cli_runs: u64,
+    /// Panics (in-process, or a CLI exit 101).
+    pub panics: u64,
+    /// Deaths by a signal (a worker process, or the CLI).
+    pub signals: u64,
+    /// Time limits passed (in-process, or the CLI).
+    pub hangs: u64,
+    /// Cases with a finding of an asserted class (panics, signals and hangs included).
+    pub findings: u64,
+    /// In-process time of the cases, ms.
+    #[serde(default)]
+    pub ms: u64,
+}
+
+impl FormatTotals {
+    /// Adds one case: evaluated in-process or not, run through the CLI or not, with these findings.
+    pub fn count(&mut self, in_process: bool, cli: bool, findings: &[Finding]) {
+        let has = |classes: &[&str]| findings.iter().any(|f| classes.contains(&f.class.as_str()));
+        self.cases += u64::from(in_process);
+        self.cli_runs += u64::from(cli);
+        self.panics += u64::from(has(&["panic", "cli-panic"]));
+        self.signals += u64::from(has(&["crash", "cli-crash"]));
+        self.hangs += u64::from(has(&["timeout", "cli-timeout"]));
+        self.findings += u64::from(findings.iter().any(|f| !inputs::is_soft(&f.class)));
+    }
+
+    /// The sum of two totals.
+    pub fn plus(self, o: FormatTotals) -> FormatTotals {
+        FormatTotals {
+            cases: self.cases + o.cases,
+            cli_runs: self.cli_runs + o.cli_runs,
+            panics: self.panics + o.panics,
+            signals: self.signals + o.signals,
+            hangs: self.hangs + o.hangs,
+            findings: self.findings + o.findings,
+            ms: self.ms + o.ms,
+        }
+    }
+}
+
+/// The per-format totals as a markdown table with a total row.
+pub fn totals_table(formats: &BTreeMap<String, FormatTotals>) -> String {
+    use std::fmt::Write as _;
+    let mut s = String::from(
+        "| format / command | in-process cases | CLI runs | panics | signals | hangs | cases with findings | ms per \
+         case |\n|---|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    let mut all = FormatTotals::default();
+    for (k, t) in formats {
+        all = all.plus(*t);
+        let _ = writeln!(
+            s,
+            "| {k} | {} | {} | {} | {} | {} | {} | {:.1} |",
+            t.cases,
+            t.cli_runs,
+            t.panics,
+            t.signals,
+            t.hangs,
+            t.findings,
+            t.ms as f64 / t.cases.max(1) as f64
+        );
+    }
+    let _ = writeln!(
+        s,
+        "| **total** | **{}** | **{}** | **{}** | **{}** | **{}** | **{}** | {:.1} |",
+        all.cases,
+        all.cli_runs,
+        all.panics,
+        all.signals,
+        all.hangs,
+        all.findings,
+        all.ms as f64 / all.cases.max(1) as f64
+    );
+    s
 }
 
 impl Summary {
+    /// Counts one case of format `format` in [`Summary::formats`].
+    fn tally(&mut self, format: &str, in_process: bool, cli: bool, findings: &[Finding]) {
+        self.formats
+            .entry(format.to_string())
+            .or_default()
+            .count(in_process, cli, findings);
+    }
+
     fn add(&mut self, src: Source, findings: &[Finding], describe: &str, command: &str) {
         let mut classes: Vec<&str> = findings.iter().map(|f| f.class.as_str()).collect();
         classes.sort();
@@ -268,6 +400,21 @@ impl Summary {
         }
     }
 
+    /// The totals of a campaign as JSON (seed, cases, special files, CLI runs, seconds, whether the budget
+    /// stopped it, hard findings by class, per-format totals).
+    pub fn totals_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "seed": self.seed,
+            "cases": self.cases,
+            "special": self.special,
+            "cli_runs": self.cli_runs,
+            "seconds": self.elapsed.as_secs_f64(),
+            "stopped_by_budget": self.stopped_by_budget,
+            "hard_findings": self.hard(),
+            "formats": self.formats,
+        })
+    }
+
     /// Cases with a hard (asserted) finding, by class.
     pub fn hard(&self) -> BTreeMap<String, usize> {
         self.by_class
@@ -293,6 +440,7 @@ impl Summary {
             self.slowest_ms
         );
         let _ = writeln!(s, "outcomes: {}", fmt_counts(&self.outcomes));
+        let _ = write!(s, "{}", totals_table(&self.formats));
         let _ = writeln!(s, "cases with findings, by class (hard): {}", fmt_counts(&self.hard()));
         let soft: BTreeMap<String, usize> = self
             .by_class
@@ -447,22 +595,38 @@ pub fn check_in_worker(c: &Campaign, spec: CheckSpec, limit: Duration) -> std::r
     }
 }
 
-fn run_cli(c: &Campaign, case: &Case, path: &Path, lib: &str) -> Vec<Finding> {
+/// Runs the CLI on a case written under `dir` (given the library's outcome label `lib`); its findings,
+/// or `None` when the case is not run through the CLI (a sweep too large to run whole).
+fn run_cli(c: &Campaign, case: &Case, dir: &Path, lib: &str) -> Option<Vec<Finding>> {
     let json = case.index % 2 == 1;
-    let args = inputs::cli_args(case.kind, path, &c.root.join("spectra"), json);
+    let ctx = context(&c.root, &c.scratch);
+    let (path, args) = if case.kind.is_command() {
+        let path = commands::write_case(case, dir, &ctx);
+        let args = commands::cli_args(case, &path, &ctx, json)?;
+        (path, args)
+    } else {
+        let path = inputs::write_case(case, dir);
+        let args = inputs::cli_args(case.kind, &path, &c.root.join("spectra"), json);
+        (path, args)
+    };
     let mut cmd = Command::new(&c.bin);
     cmd.args(&args);
     if let Some(d) = path.parent().filter(|d| d.is_dir()) {
         cmd.current_dir(d);
     }
     let out = process::run(cmd, c.cli_limit, process::DEFAULT_MEMORY_LIMIT);
-    inputs::check_cli(case, path, &args, lib, &out)
+    Some(if case.kind.is_command() {
+        commands::check_cli(case, &args, lib, &out)
+    } else {
+        inputs::check_cli(case, &path, &args, lib, &out)
+    })
 }
 
-fn cli_command_line(kind: DocKind, file: &str) -> String {
-    match kind {
+fn cli_command_line(case: &Case, file: &str) -> String {
+    match case.kind {
         DocKind::Data => format!("stochvib analyze {file} --spectra-dir spectra"),
         DocKind::Spectrum => format!("stochvib spectrum {file}"),
+        _ => commands::command_line(case, file),
     }
 }
 
@@ -472,6 +636,7 @@ pub fn run(c: &Campaign) -> Summary {
     let corpus = Arc::new(Corpus::load(&c.root));
     let _ = std::fs::remove_dir_all(&c.scratch);
     std::fs::create_dir_all(&c.scratch).unwrap();
+    Fixtures::ensure(&c.root, &context(&c.root, &c.scratch).fixtures);
     let summary = Arc::new(Mutex::new(Summary {
         seed: c.seed,
         ..Summary::default()
@@ -487,12 +652,16 @@ pub fn run(c: &Campaign) -> Summary {
             let cli_dir = c.scratch.join(format!("cli-{j}"));
             let mut next = j;
             while next < c.cases {
+                if c.budget.is_some_and(|b| start.elapsed() > b) {
+                    summary.lock().unwrap().stopped_by_budget = true;
+                    break;
+                }
                 let cfg = WorkerConfig {
                     root: c.root.clone(),
                     scratch: c.scratch.clone(),
                     seed: c.seed,
                     from: next,
-                    to: c.cases,
+                    to: c.cases.min(next + CASES_PER_WORKER * jobs),
                     stride: jobs,
                     limit_ms: c.limit.as_millis() as u64,
                     check: None,
@@ -516,19 +685,25 @@ pub fn run(c: &Campaign) -> Summary {
                     let case = inputs::generate(&corpus, c.seed, index);
                     let label = outcome.label();
                     let mut all = findings;
-                    let do_cli = c.cli_every > 0 && index % c.cli_every == 0;
+                    let mut do_cli = c.cli_every > 0 && index % c.cli_every == 0;
                     if do_cli {
-                        let path = inputs::write_case(&case, &cli_dir);
-                        all.extend(run_cli(&c, &case, &path, &label));
+                        match run_cli(&c, &case, &cli_dir, &label) {
+                            Some(f) => all.extend(f),
+                            None => do_cli = false,
+                        }
                     }
                     let mut s = summary.lock().unwrap();
                     s.cases += 1;
                     s.cli_runs += u64::from(do_cli);
+                    s.tally(case.kind.label(), true, do_cli, &all);
+                    if let Some(t) = s.formats.get_mut(case.kind.label()) {
+                        t.ms += ms;
+                    }
                     if !label.starts_with("timeout") {
                         s.slowest_ms = s.slowest_ms.max(ms);
                     }
                     *s.outcomes.entry(label).or_default() += 1;
-                    let cmdline = cli_command_line(case.kind, &case.file_name);
+                    let cmdline = cli_command_line(&case, &case.file_name);
                     s.add(Source::Case(index), &all, &case.describe(), &cmdline);
                     if c.progress && s.cases % 500 == 0 {
                         eprintln!(
@@ -540,7 +715,7 @@ pub fn run(c: &Campaign) -> Summary {
                     }
                 });
                 match (exit, running) {
-                    (Exit::Code(0), None) => break,
+                    (Exit::Code(0), None) => next = last_done.map(|i| i + jobs).unwrap_or(next + jobs),
                     (Exit::Code(EXIT_RESTART), None) => {
                         summary.lock().unwrap().restarts += 1;
                         next = last_done.map(|i| i + jobs).unwrap_or(next + jobs);
@@ -552,7 +727,8 @@ pub fn run(c: &Campaign) -> Summary {
                         s.cases += 1;
                         s.restarts += 1;
                         *s.outcomes.entry("crash".into()).or_default() += 1;
-                        let cmdline = cli_command_line(case.kind, &case.file_name);
+                        let cmdline = cli_command_line(&case, &case.file_name);
+                        s.tally(case.kind.label(), true, false, std::slice::from_ref(&f));
                         s.add(Source::Case(i), &[f], &case.describe(), &cmdline);
                         next = i + jobs;
                     }
@@ -573,6 +749,31 @@ pub fn run(c: &Campaign) -> Summary {
     s
 }
 
+/// Writes `case` under `dir` and describes it for a worker's check; also returns its path.
+fn spec_of(c: &Campaign, case: &Case, dir: &Path) -> (CheckSpec, PathBuf) {
+    let path = if case.kind.is_command() {
+        commands::write_case(case, dir, &context(&c.root, &c.scratch))
+    } else {
+        inputs::write_case(case, dir)
+    };
+    let spec = CheckSpec {
+        path: path.clone(),
+        kind: case.kind,
+        convention: conv_index(case.convention),
+        args: case.args.clone(),
+    };
+    (spec, path)
+}
+
+/// The findings of an outcome of `case` at `path`, by its kind.
+fn check_any(c: &Campaign, case: &Case, path: &Path, o: &Outcome) -> Vec<Finding> {
+    if case.kind.is_command() {
+        commands::check(case, path, o, &context(&c.root, &c.scratch))
+    } else {
+        inputs::check(case, path, o)
+    }
+}
+
 /// Evaluates a timed-out case again with a 15× limit: a slow case finishes, a hang does not.
 fn recheck_timeouts(c: &Campaign, corpus: &Corpus, s: &mut Summary) {
     let long = c.limit * 15;
@@ -582,12 +783,7 @@ fn recheck_timeouts(c: &Campaign, corpus: &Corpus, s: &mut Summary) {
         }
         let Source::Case(i) = r.first else { continue };
         let case = inputs::generate(corpus, c.seed, i);
-        let path = inputs::write_case(&case, &c.scratch.join("recheck"));
-        let spec = CheckSpec {
-            path,
-            kind: case.kind,
-            convention: conv_index(case.convention),
-        };
+        let (spec, _) = spec_of(c, &case, &c.scratch.join("recheck"));
         let t = Instant::now();
         r.recheck = Some(match check_in_worker(c, spec, long) {
             Ok(Outcome::Timeout { .. }) => format!("still running after {:.0} s: a hang", long.as_secs_f64()),
@@ -611,9 +807,12 @@ struct Special {
     path: PathBuf,
     note: &'static str,
     text: Vec<u8>,
+    /// The command's arguments ([`Case::args`]).
+    args: Vec<String>,
 }
 
-fn mkfifo(p: &Path) {
+/// Makes a FIFO at `p` (replacing what is there).
+pub fn mkfifo(p: &Path) {
     let _ = std::fs::remove_file(p);
     let c = std::ffi::CString::new(p.as_os_str().as_encoded_bytes()).unwrap();
     // SAFETY: a valid NUL-terminated path.
@@ -661,6 +860,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: fifo.clone(),
             note: "a FIFO nobody writes to, given as the scenario file",
             text: vec![],
+            args: vec![],
         },
         Special {
             name: "fifo-as-spectrum",
@@ -668,6 +868,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: fifo,
             note: "the same FIFO given as a spectrum file",
             text: vec![],
+            args: vec![],
         },
         Special {
             name: "directory",
@@ -675,6 +876,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: dir,
             note: "a directory named like a scenario file",
             text: vec![],
+            args: vec![],
         },
         Special {
             name: "dev-zero",
@@ -682,6 +884,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: "/dev/zero".into(),
             note: "/dev/zero as the scenario file (endless NUL bytes)",
             text: vec![],
+            args: vec![],
         },
         Special {
             name: "dev-urandom",
@@ -689,6 +892,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: "/dev/urandom".into(),
             note: "/dev/urandom as the spectrum file (endless random bytes)",
             text: vec![],
+            args: vec![],
         },
         Special {
             name: "empty",
@@ -696,6 +900,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: empty,
             note: "an empty scenario file",
             text: vec![],
+            args: vec![],
         },
         Special {
             name: "missing",
@@ -703,6 +908,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: d.join("no-such-file.toml"),
             note: "a path that does not exist",
             text: vec![],
+            args: vec![],
         },
         Special {
             name: "symlink-loop",
@@ -710,6 +916,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: lp,
             note: "a symbolic link to itself",
             text: vec![],
+            args: vec![],
         },
         Special {
             name: "nul-bytes",
@@ -717,6 +924,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: nul,
             note: "NUL bytes before a key",
             text: b"\0\0\0title = 1\n".to_vec(),
+            args: vec![],
         },
         Special {
             name: "spectrum-is-fifo",
@@ -724,6 +932,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: sf,
             note: "a scenario whose [input] spectrum is the path of a FIFO",
             text: sft,
+            args: vec![],
         },
         Special {
             name: "spectrum-is-dev-zero",
@@ -731,6 +940,7 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: sz,
             note: "a scenario whose [input] spectrum is /dev/zero",
             text: szt,
+            args: vec![],
         },
         Special {
             name: "big-comment",
@@ -738,8 +948,128 @@ fn specials(c: &Campaign) -> Vec<Special> {
             path: big,
             note: "20 MiB of comment lines before a valid scenario (must succeed, quickly)",
             text: vec![],
+            args: vec![],
         },
     ]
+    .into_iter()
+    .chain(command_specials(c, &d))
+    .collect()
+}
+
+/// The special files of the command cases: a FIFO, `/dev/zero`, a directory and a 2 GiB (sparse) file as
+/// a road profile, a FIFO as a replayed profile and as a workday file, a workday whose scenario is
+/// `/dev/zero`, a 1 MiB line in a profile, a FIFO and `/dev/null` in a merge set.
+fn command_specials(c: &Campaign, d: &Path) -> Vec<Special> {
+    let fifo = d.join("fifo.csv");
+    mkfifo(&fifo);
+    let dir = d.join("directory.csv");
+    std::fs::create_dir_all(&dir).unwrap();
+    let big = d.join("huge-sparse.csv");
+    std::fs::File::create(&big).unwrap().set_len(2 << 30).unwrap();
+    let long = d.join("long-line.csv");
+    let mut t = b"distance [m], left [mm]\n0.0,".to_vec();
+    t.extend(std::iter::repeat_n(b'1', 1 << 20));
+    std::fs::write(&long, &t).unwrap();
+    let zero_day = d.join("dev-zero-day.toml");
+    std::fs::write(
+        &zero_day,
+        "title = \"x\"\n[[task]]\nname = \"a\"\nscenario = \"/dev/zero\"\nduration = \"1 h\"\n",
+    )
+    .unwrap();
+    let road = Corpus::load(&c.root)
+        .commands
+        .road_scenarios
+        .first()
+        .cloned()
+        .unwrap_or_default();
+    let sp = |name, kind, path: &Path, note, args: Vec<String>| Special {
+        name,
+        kind,
+        path: path.to_path_buf(),
+        note,
+        text: vec![],
+        args,
+    };
+    vec![
+        sp(
+            "profile-fifo",
+            DocKind::Profile,
+            &fifo,
+            "a FIFO nobody writes to as the road profile",
+            vec![],
+        ),
+        sp(
+            "profile-dev-zero",
+            DocKind::Profile,
+            Path::new("/dev/zero"),
+            "/dev/zero as the road profile",
+            vec![],
+        ),
+        sp(
+            "profile-directory",
+            DocKind::Profile,
+            &dir,
+            "a directory named like a profile",
+            vec![],
+        ),
+        sp(
+            "profile-2-gib",
+            DocKind::Profile,
+            &big,
+            "a 2 GiB (sparse) profile: refused by its size, unread",
+            vec![],
+        ),
+        sp(
+            "profile-long-line",
+            DocKind::Profile,
+            &long,
+            "a profile whose second line is 1 MiB long",
+            vec![],
+        ),
+        sp(
+            "replay-fifo",
+            DocKind::Replay,
+            &fifo,
+            "a FIFO as the replayed profile",
+            vec![road],
+        ),
+        sp(
+            "workday-fifo",
+            DocKind::Workday,
+            &fifo,
+            "a FIFO as the workday file",
+            vec![],
+        ),
+        sp(
+            "workday-dev-zero",
+            DocKind::Workday,
+            &zero_day,
+            "a workday whose scenario is /dev/zero",
+            vec![],
+        ),
+        sp(
+            "merge-fifo",
+            DocKind::Merge,
+            &d.join("merged.h5"),
+            "a FIFO among the shard files",
+            merge_args(&["A0", "fifo", "A1", "A2"]),
+        ),
+        sp(
+            "merge-dev-null",
+            DocKind::Merge,
+            &d.join("merged.h5"),
+            "/dev/null among the shard files",
+            merge_args(&["A0", "devnull", "A1", "A2"]),
+        ),
+    ]
+}
+
+fn merge_args(members: &[&str]) -> Vec<String> {
+    members
+        .iter()
+        .map(|m| m.to_string())
+        .chain(["out=new".to_string(), "seed=1".into()])
+        .collect()
 }
 
 fn special_case(sp: &Special) -> Case {
@@ -758,6 +1088,7 @@ fn special_case(sp: &Special) -> Case {
         convention: Convention::TwoSidedAngular,
         doc: None,
         must_reject: vec![],
+        args: sp.args.clone(),
     }
 }
 
@@ -768,28 +1099,50 @@ fn run_special(c: &Campaign, s: &mut Summary) {
             path: sp.path.clone(),
             kind: sp.kind,
             convention: 0,
+            args: sp.args.clone(),
         };
         let (label, mut f) = match check_in_worker(c, spec, c.special_limit) {
-            Ok(o) => (o.label(), inputs::check(&case, &sp.path, &o)),
+            Ok(o) => (o.label(), check_any(c, &case, &sp.path, &o)),
             Err(f) => ("crash".to_string(), vec![f]),
         };
-        let args = inputs::cli_args(sp.kind, &sp.path, &c.root.join("spectra"), false);
+        let ctx = context(&c.root, &c.scratch);
+        let args = if sp.kind.is_command() {
+            commands::cli_args(&case, &sp.path, &ctx, false).unwrap_or_default()
+        } else {
+            inputs::cli_args(sp.kind, &sp.path, &c.root.join("spectra"), false)
+        };
         let mut cmd = Command::new(&c.bin);
         cmd.args(&args);
         let out = process::run(cmd, c.special_limit, process::DEFAULT_MEMORY_LIMIT);
-        f.extend(inputs::check_cli(&case, &sp.path, &args, &label, &out));
+        f.extend(if sp.kind.is_command() {
+            commands::check_cli(&case, &args, &label, &out)
+        } else {
+            inputs::check_cli(&case, &sp.path, &args, &label, &out)
+        });
         s.special += 1;
         s.cli_runs += 1;
+        s.tally("special files (input rule)", true, true, &f);
         *s.outcomes.entry(format!("special:{label}")).or_default() += 1;
         let cmdline = format!(
             "{} ({})",
-            cli_command_line(sp.kind, &sp.path.display().to_string()),
+            cli_command_line(&case, &sp.path.display().to_string()),
             sp.note
         );
         if c.progress {
             eprintln!("[fuzz] special {}: library {label}, CLI {}", sp.name, out.exit);
         }
         s.add(Source::Special(sp.name.into()), &f, sp.note, &cmdline);
+    }
+    let ctx = context(&c.root, &c.scratch);
+    for p in commands::output_probes(&ctx, &c.scratch.join("output-rule")) {
+        let f = commands::run_output_probe(&c.bin, &p, c.cli_limit);
+        s.special += 1;
+        s.cli_runs += 1;
+        s.tally("output targets (output rule, CLI)", false, true, &f);
+        if c.progress {
+            eprintln!("[fuzz] output rule {}: {} findings", p.name, f.len());
+        }
+        s.add(Source::Special(p.name.into()), &f, p.name, &p.args.join(" "));
     }
 }
 
@@ -799,20 +1152,15 @@ fn run_special(c: &Campaign, s: &mut Summary) {
 
 /// Whether `cand` (written under `dir`) still shows signature `sig` of class `class`.
 fn reproduces(c: &Campaign, cand: &Case, class: &str, sig: &str, dir: &Path) -> bool {
-    let path = inputs::write_case(cand, dir);
-    let spec = CheckSpec {
-        path: path.clone(),
-        kind: cand.kind,
-        convention: conv_index(cand.convention),
-    };
+    let (spec, path) = spec_of(c, cand, dir);
     let outcome = check_in_worker(c, spec, c.limit);
     if class == "crash" {
         return matches!(outcome, Err(f) if f.signature == sig);
     }
     let Ok(o) = outcome else { return false };
-    let mut found = inputs::check(cand, &path, &o);
+    let mut found = check_any(c, cand, &path, &o);
     if class.starts_with("cli-") {
-        found.extend(run_cli(c, cand, &path, &o.label()));
+        found.extend(run_cli(c, cand, dir, &o.label()).unwrap_or_default());
     }
     found.iter().any(|f| f.signature == sig)
 }
@@ -913,7 +1261,7 @@ fn write_reproducers(c: &Campaign, corpus: &Corpus, s: &mut Summary, dir: &Path)
         let r = s.signatures.get_mut(k).unwrap();
         let Source::Case(i) = r.first else { continue };
         let case = inputs::generate(corpus, c.seed, i);
-        let case = if c.minimize && !inputs::is_soft(&r.class) {
+        let case = if c.minimize && !inputs::is_soft(&r.class) && !case.kind.is_command() {
             if c.progress {
                 eprintln!("[fuzz] minimising {} ({} of {})", r.signature, n + 1, keys.len());
             }
@@ -931,7 +1279,7 @@ fn write_reproducers(c: &Campaign, corpus: &Corpus, s: &mut Summary, dir: &Path)
         std::fs::create_dir_all(&sub).unwrap();
         let p = sub.join(&case.file_name);
         std::fs::write(&p, &case.bytes).unwrap();
-        r.command = cli_command_line(case.kind, &p.display().to_string());
+        r.command = cli_command_line(&case, &p.display().to_string());
         r.reproducer_text = std::str::from_utf8(&case.bytes)
             .ok()
             .filter(|t| t.len() <= 3000)

@@ -53,7 +53,7 @@ use stochvib::Error;
 use toml::{Table, Value};
 
 /// Which entry points a file goes through.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum DocKind {
     /// A file of `data/` (scenario, deterministic model or reference table): `load_document` and the
     /// matching report; CLI `stochvib analyze FILE`.
@@ -61,6 +61,40 @@ pub enum DocKind {
     /// A spectrum file: `load_spectrum` (`parse_spectrum`) and `spectrum_report`; CLI `stochvib spectrum
     /// FILE`.
     Spectrum,
+    /// A road profile (CSV) with `road`'s options: `road_report`; CLI `stochvib road FILE …`
+    /// ([`super::commands`]).
+    Profile,
+    /// A profile replayed through a road scenario with `replay`'s flags: `replay_scenario`; CLI `stochvib
+    /// replay SCENARIO FILE …`.
+    Replay,
+    /// A shipped scenario with `sweep`'s `--param` grids and flags: `Sweep::new` and the first points; CLI
+    /// `stochvib sweep SCENARIO --param …`.
+    Sweep,
+    /// A set of run or sweep shard files and a merged-file target: `merge_runs` / `merge_sweep`; CLI
+    /// `stochvib merge OUT FILES…`.
+    Merge,
+    /// A workday file: `load_workday` and `workday_exposure`; CLI `stochvib workday FILE`.
+    Workday,
+}
+
+impl DocKind {
+    /// The format or command a case exercises, for the per-format totals.
+    pub fn label(self) -> &'static str {
+        match self {
+            DocKind::Data => "scenario TOML (analyze)",
+            DocKind::Spectrum => "spectrum TOML (spectrum)",
+            DocKind::Profile => "road profile CSV (road)",
+            DocKind::Replay => "replay (profile + flags)",
+            DocKind::Sweep => "sweep (--param grids, flags)",
+            DocKind::Merge => "merge (shard sets)",
+            DocKind::Workday => "workday TOML (workday)",
+        }
+    }
+
+    /// Whether the case is one of [`super::commands`].
+    pub fn is_command(self) -> bool {
+        !matches!(self, DocKind::Data | DocKind::Spectrum)
+    }
 }
 
 /// One shipped file.
@@ -88,6 +122,8 @@ pub struct Corpus {
     /// For each stochastic scenario (by `rel`): the unit of its input process and the (name, unit) of its
     /// system's outputs, as the library reads the unmutated file.
     pub units: BTreeMap<String, (String, Vec<(String, String)>)>,
+    /// The material of the command cases ([`super::commands`]).
+    pub commands: super::commands::CommandCorpus,
 }
 
 fn toml_files(dir: &Path) -> Vec<PathBuf> {
@@ -130,8 +166,10 @@ impl Corpus {
         vocabulary.sort();
         vocabulary.dedup();
         let mut units = BTreeMap::new();
+        let mut stochastic = Vec::new();
         for s in seeds.iter().filter(|s| s.kind == DocKind::Data) {
             if let Ok(Document::Stochastic(sc)) = load_document(&root.join(&s.rel), &root.join("spectra")) {
+                stochastic.push((s.rel.clone(), s.table.clone()));
                 let outs = sc
                     .model
                     .system
@@ -148,6 +186,7 @@ impl Corpus {
             seeds,
             vocabulary,
             units,
+            commands: super::commands::CommandCorpus::load(root, &stochastic),
         }
     }
 
@@ -182,6 +221,9 @@ pub struct Case {
     /// that is still in the final document. The signature key is the original key of a rename and
     /// `<table>.<new key>` for an added key, so that random key names do not split one root cause.
     pub must_reject: Vec<(String, String, String)>,
+    /// The command's arguments besides the file ([`super::commands`]: flags, the scenario of a replay or
+    /// a sweep, the members of a merge set); empty for the TOML cases.
+    pub args: Vec<String>,
 }
 
 impl Case {
@@ -193,6 +235,9 @@ impl Case {
             .map(|m| format!("{} {} {}", m.op, m.path, m.detail).trim().to_string())
             .collect();
         parts.extend(self.raw.iter().cloned());
+        if !self.args.is_empty() {
+            parts.push(format!("args {}", mutate::short_to(&self.args.join(" "), 200)));
+        }
         format!("{} ← {}", self.origin, parts.join("; "))
     }
 }
@@ -209,6 +254,9 @@ fn same_value(a: &Value, b: &Value) -> bool {
 /// Case `index` of `seed`: a shipped file, 0–3 structured mutations, sometimes a raw one.
 pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
     let mut rng = case_rng(seed, index);
+    if let Some(c) = super::commands::generate(corpus, &mut rng, index) {
+        return c;
+    }
     let data: Vec<&SeedDoc> = corpus.seeds.iter().filter(|s| s.kind == DocKind::Data).collect();
     let spectra: Vec<&SeedDoc> = corpus.seeds.iter().filter(|s| s.kind == DocKind::Spectrum).collect();
     let origin = if rng.random_bool(0.65) {
@@ -316,6 +364,7 @@ pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
         convention,
         doc,
         must_reject,
+        args: Vec::new(),
     }
 }
 
@@ -535,7 +584,7 @@ pub fn evaluate(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention
                 empty: false,
             })
         }
-        DocKind::Data => {
+        _ => {
             let doc = match load_document(path, spectra_dir) {
                 Ok(d) => d,
                 Err(e) => return err(&e, 1),
@@ -620,17 +669,25 @@ pub fn install_panic_hook() {
 /// Runs [`evaluate`] in a fresh thread with `catch_unwind`, giving up after `limit`. A thread that does not
 /// finish is left running (the caller decides whether to restart the process).
 pub fn run_limited(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention, limit: Duration) -> Outcome {
+    let (p, sd) = (path.to_path_buf(), spectra_dir.to_path_buf());
+    limited(limit, move |st| evaluate(kind, &p, &sd, conv, st))
+}
+
+/// Runs `eval` (given the stage counter it advances) in a fresh thread with `catch_unwind`, giving up after
+/// `limit`; the outcome, a panic with its location, or a timeout naming the stage. A thread that does not
+/// finish is left running (the caller decides whether to restart the process).
+pub fn limited(limit: Duration, eval: impl FnOnce(&AtomicU8) -> Outcome + Send + 'static) -> Outcome {
     install_panic_hook();
     let stage = Arc::new(AtomicU8::new(0));
     let (tx, rx) = std::sync::mpsc::channel();
-    let (p, sd, st) = (path.to_path_buf(), spectra_dir.to_path_buf(), stage.clone());
+    let st = stage.clone();
     if let Ok(mut g) = LAST_PANIC.lock() {
         *g = None;
     }
     std::thread::Builder::new()
         .name("fuzz-case".into())
         .spawn(move || {
-            let r = std::panic::catch_unwind(AssertUnwindSafe(|| evaluate(kind, &p, &sd, conv, &st)));
+            let r = std::panic::catch_unwind(AssertUnwindSafe(|| eval(&st)));
             let _ = tx.send(r);
         })
         .expect("spawn a case thread");
@@ -752,8 +809,8 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome) -> Vec<Finding> {
         })
     };
     let doc_kind = match case.kind {
-        DocKind::Data => "data",
         DocKind::Spectrum => "spectrum",
+        _ => "data",
     };
     let shown = |m: &str| mutate::short_to(&m.replace(&path.display().to_string(), &case.file_name), 240);
     let parsed: Option<Table> = std::str::from_utf8(&case.bytes)
@@ -891,8 +948,8 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome) -> Vec<Finding> {
 /// Arguments of the CLI run of a case file.
 pub fn cli_args(kind: DocKind, path: &Path, spectra_dir: &Path, json: bool) -> Vec<String> {
     let mut a: Vec<String> = match kind {
-        DocKind::Data => vec!["analyze".into(), path.display().to_string()],
         DocKind::Spectrum => vec!["spectrum".into(), path.display().to_string()],
+        _ => vec!["analyze".into(), path.display().to_string()],
     };
     a.push("--spectra-dir".into());
     a.push(spectra_dir.display().to_string());

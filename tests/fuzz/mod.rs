@@ -4,12 +4,15 @@
 //!
 //! * [`mutate`]: a structure-aware TOML mutator (no fuzzing crate, stable Rust).
 //! * [`inputs`]: input-file cases, their evaluation through the library's entry points, the invariants.
+//! * [`commands`]: the other formats and commands (road profiles, `replay`, `sweep`, `merge` sets,
+//!   `workday` files): generation, evaluation, invariants.
 //! * [`input_campaign`]: worker processes, supervisor, CLI runs, special files, minimisation, reproducers.
 //! * [`runs`]: corruption of HDF5 run files and of interrupted runs' `.tmp` files.
 //! * [`floats`]: the non-finite number scan of a report (through serde).
 //! * [`process`]: child processes with a time limit and an address-space limit.
 #![allow(dead_code)] // each harness uses a different subset
 
+pub mod commands;
 pub mod floats;
 pub mod input_campaign;
 pub mod inputs;

@@ -132,13 +132,12 @@ impl Variant {
             self.seed.to_string(),
             "--shard-size".into(),
             self.shard_size.to_string(),
-            "--compression".into(),
-            self.compression.into(),
             "--spectra-dir".into(),
             root.join("spectra").display().to_string(),
         ];
+        // --compression applies to the raw data only (without --store-raw it is refused as without effect)
         if self.store_raw {
-            a.push("--store-raw".into());
+            a.extend(["--store-raw".into(), "--compression".into(), self.compression.into()]);
         }
         a
     }

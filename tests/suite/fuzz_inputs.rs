@@ -47,17 +47,51 @@ fn fuzz_inputs_worker() {
     input_campaign::worker_main(&cfg);
 }
 
+/// The campaign of `scripts/fuzz-campaign.sh`: configured by `STOCHVIB_FUZZ_CAMPAIGN` (JSON: seed, cases,
+/// budget_s, cli_every, timeout_ms, totals, findings, bin: the CLI to run), run with this binary as the worker and the CLI built
+/// for the tests; the totals (cases, CLI runs, panics, signals, hangs per format and command) are written
+/// to `totals` as JSON. Without the variable it does nothing.
 #[test]
-fn inputs_keep_the_invariants() {
+#[ignore = "the long campaign of scripts/fuzz-campaign.sh"]
+fn fuzz_campaign() {
+    let Ok(json) = std::env::var("STOCHVIB_FUZZ_CAMPAIGN") else {
+        return;
+    };
+    let cfg: serde_json::Value = serde_json::from_str(&json).expect("campaign configuration");
+    let num = |k: &str, d: u64| cfg.get(k).and_then(|v| v.as_u64()).unwrap_or(d);
+    let text = |k: &str| cfg.get(k).and_then(|v| v.as_str()).map(PathBuf::from);
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let seed = num("seed", 1);
+    let mut c = campaign(seed, num("cases", 1000), num("cli_every", 1000));
+    c.limit = Duration::from_millis(num("timeout_ms", 10_000));
+    c.budget = cfg.get("budget_s").and_then(|v| v.as_u64()).map(Duration::from_secs);
+    c.scratch = tmp.join(format!("fuzz-campaign-{seed}-{}", std::process::id()));
+    c.findings_dir = Some(text("findings").unwrap_or_else(|| tmp.join(format!("fuzz-campaign-findings-{seed}"))));
+    c.progress = true;
+    // the CLI of the campaign's snapshot (scripts/fuzz-campaign.sh copies it), else the one built for the tests
+    c.bin = text("bin").unwrap_or(c.bin);
+    let s = input_campaign::run(&c);
+    let _ = std::fs::remove_dir_all(&c.scratch);
+    println!("{}", s.render());
+    let mut totals = s.totals_json();
+    totals["source"] = serde_json::json!(root.display().to_string());
+    let out = text("totals").unwrap_or_else(|| tmp.join(format!("fuzz-campaign-{seed}.json")));
+    std::fs::write(&out, serde_json::to_string_pretty(&totals).unwrap()).expect("write the totals");
+    println!("totals: {}", out.display());
+}
+
+/// The campaign of this file's tests: `cases` cases of `seed`, every `cli_every`-th through the CLI.
+fn campaign(seed: u64, cases: u64, cli_every: u64) -> Campaign {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let exe = std::env::current_exe().expect("own path");
-    let c = Campaign {
+    Campaign {
         root,
-        seed: SEED,
-        cases: CASES,
+        seed,
+        cases,
         jobs: 1,
-        cli_every: CLI_EVERY,
+        cli_every,
         limit: CASE_LIMIT,
         cli_limit: CLI_LIMIT,
         special_limit: SPECIAL_LIMIT,
@@ -79,7 +113,14 @@ fn inputs_keep_the_invariants() {
             cmd
         }),
         progress: false,
-    };
+        budget: None,
+    }
+}
+
+#[test]
+fn inputs_keep_the_invariants() {
+    let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let c = campaign(SEED, CASES, CLI_EVERY);
     let s = input_campaign::run(&c);
     let _ = std::fs::remove_dir_all(&c.scratch);
     assert_eq!(s.cases, CASES, "every case was evaluated");

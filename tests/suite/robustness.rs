@@ -486,7 +486,7 @@ fn values_are_checked_and_errors_name_the_key_written() {
             "[model]\nkind = \"transfer-function\"\nnumerator = [1.0]\ndenominator = [-1.0, 1.0]\noutput = { name = \
              \"x\", unit = \"m\" }\n[input]\nspectrum = \"type1\"\n"
                 .into(),
-            "key `model`",
+            "key `model.denominator`",
         ),
     ];
     for (tag, text, key) in cases {

@@ -129,7 +129,7 @@ fn unstable_scenario_is_refused() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.contains("stable") && e.contains("u.toml") && e.contains("key `model`"),
+        e.contains("stable") && e.contains("u.toml") && e.contains("key `model.denominator`"),
         "{e}"
     );
 }

@@ -230,7 +230,7 @@ fn bad_verdict_keys_are_refused_with_key_value_and_reason() {
             t.replace("reference_amplitude = \"120 MPa\"", "c = -1.0")
                 .replace("reference_cycles = 2e6\n", "")
         },
-        "analysis.fatigue.C",
+        "analysis.fatigue.c",
         "",
     );
     refused(

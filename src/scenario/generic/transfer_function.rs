@@ -14,6 +14,16 @@ use crate::models::{InputLayout, ModelInstance};
 use crate::system::{TransferFunction, TransferRow};
 use std::sync::Arc;
 
+/// The key of the polynomial a constructor's error is about: `numerator` (`input k: numerator` of a row too)
+/// or `denominator` (what a zero, a degree or a pole is measured against); non-finite coefficients are
+/// reported by the reader before.
+fn blamed_key(e: &crate::Error) -> &'static str {
+    match e {
+        crate::Error::InvalidParameter { name, .. } if name.ends_with("numerator") => "numerator",
+        _ => "denominator",
+    }
+}
+
 /// Builds the model of a `kind = "transfer-function"` `[model]` table (see the module docs).
 ///
 /// # Errors
@@ -37,7 +47,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
                 ));
             }
         }
-        let tf = TransferFunction::new(num, den, out).map_err(|e| f.wrap("denominator", e))?;
+        let tf = TransferFunction::new(num, den, out).map_err(|e| f.wrap(blamed_key(&e), e))?;
         return Ok(ModelInstance {
             system: Arc::new(tf),
             layout: InputLayout::Single,
@@ -46,7 +56,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
     }
     let nums = f.number_rows("numerator")?;
     let m = nums.len();
-    let row = TransferRow::new(nums, den, out).map_err(|e| f.wrap("numerator", e))?;
+    let row = TransferRow::new(nums, den, out).map_err(|e| f.wrap(blamed_key(&e), e))?;
     let layout = track_layout(f, m)?;
     Ok(ModelInstance {
         system: Arc::new(row),
