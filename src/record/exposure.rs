@@ -23,7 +23,7 @@ pub const BLOCK_SAMPLES: usize = 1 << 16;
 
 /// Bins kept by the envelope of each weighted signal (for the time-history picture): between this and twice
 /// this.
-pub const ENVELOPE_BINS: usize = 1024;
+pub const ENVELOPE_BINS: usize = 300;
 
 /// Which channel is which axis at which location.
 ///
@@ -220,8 +220,17 @@ impl Evaluator {
         };
         info.require_dim(index, dim, what)?;
         let fs = info.sample_rate_hz;
-        let filter = DigitalWeighting::new(weighting, fs)?;
-        let band_list = filter.check_bands()?;
+        let in_record = |e: Error| match e {
+            Error::InvalidParameter { value, reason, .. } => Error::in_file(
+                &info.source,
+                format!("sample rate (channel `{}`, {weighting})", assignment.channel),
+                value,
+                reason,
+            ),
+            other => other,
+        };
+        let filter = DigitalWeighting::new(weighting, fs).map_err(in_record)?;
+        let band_list = filter.check_bands().map_err(in_record)?;
         let dt = 1.0 / fs;
         let segment_len = segment_for(&band_list[0], fs, info.samples_hint);
         Ok(Evaluator {

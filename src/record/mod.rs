@@ -39,4 +39,4 @@ pub use exposure::{
 pub use fatigue_record::{evaluate_fatigue, FatigueEvaluation, FatigueOptions, MeanStressCorrection};
 pub use filter::{Biquad, DigitalWeighting, FilterState, WeightingErrorRow, MAX_BAND_ERROR_DB};
 pub use running::{Envelope, EnvelopeBin, ExponentialRms, RunningRms};
-pub use source::{open_record, parse_unit, Channel, RecordInfo, RecordOptions, RecordReader, TimeBase};
+pub use source::{open_record, parse_quantity, parse_unit, Channel, RecordInfo, RecordOptions, RecordReader, TimeBase};

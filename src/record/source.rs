@@ -213,3 +213,36 @@ pub fn check_rate(rate_hz: f64) -> Result<f64> {
         Err(Error::invalid("--sample-rate", rate_hz, "a sample rate must be finite and > 0 Hz"))
     }
 }
+
+/// A quantity in a record's units, `"100 MPa"`, `"1500 ustrain"`, `"0.5 gn"`: (SI value, dimension), with the
+/// units of [`parse_unit`]; `what` names it in the error (a flag).
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `what` for a missing or non-finite number or an unknown unit.
+///
+/// # Examples
+/// ```
+/// use stochvib::record::parse_quantity;
+/// use stochvib::units::Dim;
+/// assert_eq!(parse_quantity("100 MPa", "--sn-amplitude").unwrap(), (1e8, Dim::new(-1, 1, -2)));
+/// assert!(parse_quantity("100", "--sn-amplitude").is_err());
+/// ```
+pub fn parse_quantity(text: &str, what: &str) -> Result<(f64, Dim)> {
+    let t = text.trim();
+    let split = t.find(|c: char| c.is_whitespace());
+    let (number, unit) = match split {
+        Some(i) => (&t[..i], t[i..].trim()),
+        None => (t, ""),
+    };
+    let v: f64 = number
+        .parse()
+        .map_err(|_| Error::invalid(what, text, "expected a number and a unit, e.g. `100 MPa`"))?;
+    if !v.is_finite() {
+        return Err(Error::invalid(what, text, "the number must be finite"));
+    }
+    if unit.is_empty() {
+        return Err(Error::invalid(what, text, "a unit is required (e.g. `100 MPa`, `800 ustrain`): never guessed"));
+    }
+    let (to_si, dim) = parse_unit(unit).map_err(|r| Error::invalid(what, text, r))?;
+    Ok((v * to_si, dim))
+}
