@@ -1,5 +1,6 @@
 //! The `stochvib` command-line tool: parses arguments, calls the library, prints.
 
+#[path = "main/record_cli.rs"]
 mod record_cli;
 
 use clap::{Parser, Subcommand};
