@@ -105,11 +105,22 @@ pub fn exposure(a: ExposureArgs) -> anyhow::Result<()> {
         super::output_dir(dir, "--plots names the directory of the pictures")?;
     }
     let mut reader = open_record(&a.record, &a.record_args.options()?)?;
-    let e = evaluate_exposure(reader.as_mut(), &options)?;
-    let report = ExposureReport(e);
-    super::print_as(&report, a.output.format())?;
-    if let Some(dir) = a.plots {
-        let files = stochvib::plot::record_plots::exposure_plots(&report.0, &dir)?;
+    let report = ExposureReport(evaluate_exposure(reader.as_mut(), &options)?);
+    print_and_draw(&report, &a.output, a.plots, |r, dir| {
+        stochvib::plot::record_plots::exposure_plots(&r.0, dir)
+    })
+}
+
+/// Prints `report`, then draws its pictures into `plots` (when given) with `draw`.
+fn print_and_draw<T: std::fmt::Display + serde::Serialize + stochvib::report::table::ToMarkdown>(
+    report: &T,
+    output: &super::Output,
+    plots: Option<PathBuf>,
+    draw: impl FnOnce(&T, &std::path::Path) -> stochvib::Result<Vec<PathBuf>>,
+) -> anyhow::Result<()> {
+    super::print_as(report, output.format())?;
+    if let Some(dir) = plots {
+        let files = draw(report, &dir)?;
         eprintln!("wrote {} pictures to {}", files.len(), dir.display());
     }
     Ok(())
@@ -183,7 +194,10 @@ fn sn_curve(a: &FatigueArgs) -> anyhow::Result<(SnCurve, Dim)> {
         .as_deref()
         .map(|t| same_dim("--endurance", t, dim))
         .transpose()?;
-    Ok((SnCurve::from_reference_point(a.sn_slope, amplitude, a.sn_cycles, endurance)?, dim))
+    Ok((
+        SnCurve::from_reference_point(a.sn_slope, amplitude, a.sn_cycles, endurance)?,
+        dim,
+    ))
 }
 
 /// `stochvib fatigue`.
@@ -216,12 +230,9 @@ pub fn fatigue(a: FatigueArgs) -> anyhow::Result<()> {
     }
     let mut reader = open_record(&a.record, &a.record_args.options()?)?;
     let report = FatigueReport(evaluate_fatigue(reader.as_mut(), &options)?);
-    super::print_as(&report, a.output.format())?;
-    if let Some(dir) = a.plots {
-        let files = stochvib::plot::record_plots::fatigue_plots(&report.0, &dir)?;
-        eprintln!("wrote {} pictures to {}", files.len(), dir.display());
-    }
-    Ok(())
+    print_and_draw(&report, &a.output, a.plots, |r, dir| {
+        stochvib::plot::record_plots::fatigue_plots(&r.0, dir)
+    })
 }
 
 /// `stochvib weighting NAME`.
@@ -242,7 +253,10 @@ pub struct WeightingArgs {
 /// `stochvib weighting`.
 pub fn weighting(a: WeightingArgs) -> anyhow::Result<()> {
     let w = Weighting::parse(&a.name)?;
-    super::print_as(&WeightingReport::new(w, &a.frequency, a.sample_rate)?, a.output.format())
+    super::print_as(
+        &WeightingReport::new(w, &a.frequency, a.sample_rate)?,
+        a.output.format(),
+    )
 }
 
 /// `stochvib coherence`.

@@ -14,7 +14,13 @@ use std::path::{Path, PathBuf};
 fn stem(prefix: &str, name: &str) -> String {
     let safe: String = name
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect();
     format!("{prefix}-{safe}")
 }
@@ -36,9 +42,19 @@ pub fn time_history_chart(e: &ExposureEvaluation, a: &AxisEvaluation) -> LineCha
         .map(|b| (b.time_s * scale, b.running_rms))
         .collect();
     let mut c = LineChart::new(
-        format!("{} ({}-weighted, {} {}): weighted acceleration and running r.m.s.", a.channel, a.weighting, a.location.label(), a.axis.label()),
+        format!(
+            "{} ({}-weighted, {} {}): weighted acceleration and running r.m.s.",
+            a.channel,
+            a.weighting,
+            a.location.label(),
+            a.axis.label()
+        ),
         format!("time [{unit}]"),
-        format!("{}-weighted acceleration a_w(t) [{}]", a.weighting, a.weighting.quantity().unit),
+        format!(
+            "{}-weighted acceleration a_w(t) [{}]",
+            a.weighting,
+            a.weighting.quantity().unit
+        ),
     );
     c.bands.push(Band {
         name: "a_w(t): smallest to largest sample per time bin".into(),
@@ -46,8 +62,17 @@ pub fn time_history_chart(e: &ExposureEvaluation, a: &AxisEvaluation) -> LineCha
         upper,
         color: Some(0),
     });
-    c.series.push(Series::line(format!("running r.m.s., τ = {} s (linear), largest per bin", num(e.tau_s)), running).with_color(1));
-    c.hlines.push(Marker::new(a.metrics.a_w, format!("a_w = {} (whole record)", sig4(a.metrics.a_w))));
+    c.series.push(
+        Series::line(
+            format!("running r.m.s., τ = {} s (linear), largest per bin", num(e.tau_s)),
+            running,
+        )
+        .with_color(1),
+    );
+    c.hlines.push(Marker::new(
+        a.metrics.a_w,
+        format!("a_w = {} (whole record)", sig4(a.metrics.a_w)),
+    ));
     if let Some(m) = a.metrics.mtvv {
         c.hlines.push(Marker::new(m, format!("MTVV = {}", sig4(m))));
     }
@@ -61,7 +86,10 @@ pub fn band_chart(e: &ExposureEvaluation) -> Option<LineChart> {
     let mut c = LineChart::new(
         format!(
             "{}: one-third-octave bands against the ISO 2631-1 comfort scale",
-            e.record.source.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+            e.record
+                .source
+                .file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
         ),
         "frequency f [Hz]",
         "band r.m.s. of the weighted acceleration [m/s²]",
@@ -78,7 +106,8 @@ pub fn band_chart(e: &ExposureEvaluation) -> Option<LineChart> {
             stairs.push((b.band.upper_hz, b.rms));
             top = top.max(b.rms);
         }
-        c.series.push(Series::line(format!("{} ({})", a.channel, a.weighting), stairs).with_color(i));
+        c.series
+            .push(Series::line(format!("{} ({})", a.channel, a.weighting), stairs).with_color(i));
     }
     if c.series.is_empty() {
         return None;
@@ -86,7 +115,10 @@ pub fn band_chart(e: &ExposureEvaluation) -> Option<LineChart> {
     for r in ComfortReaction::ALL.iter().skip(1) {
         let at = r.range().0;
         if at <= 4.0 * top.max(0.1) {
-            c.hlines.push(Marker::new(at, format!("{} from {} m/s² (overall a_v)", r.label(), num(at))));
+            c.hlines.push(Marker::new(
+                at,
+                format!("{} from {} m/s² (overall a_v)", r.label(), num(at)),
+            ));
         }
     }
     c.legend = Legend::LowerLeft;
@@ -114,7 +146,11 @@ pub fn exposure_plots(e: &ExposureEvaluation, dir: &Path) -> Result<Vec<PathBuf>
 pub fn range_histogram_chart(e: &FatigueEvaluation) -> LineChart {
     let hist = e.matrix.range_histogram();
     let w = e.matrix.range_width;
-    let counts: Vec<(f64, f64)> = hist.iter().filter(|(_, n)| *n > 0.0).map(|(lo, n)| (lo + 0.5 * w, *n)).collect();
+    let counts: Vec<(f64, f64)> = hist
+        .iter()
+        .filter(|(_, n)| *n > 0.0)
+        .map(|(lo, n)| (lo + 0.5 * w, *n))
+        .collect();
     let mut c = LineChart::new(
         format!("Rainflow ranges of {}", e.channel),
         "stress range ΔS (SI)",
@@ -131,7 +167,10 @@ pub fn range_histogram_chart(e: &FatigueEvaluation) -> LineChart {
             .filter(|(_, n)| **n > 0.0)
             .map(|(i, n)| ((i as f64 + 0.5) * w, *n))
             .collect();
-        c.series.push(Series::line("Dirlik's expected count (the record's Welch moments)", pts));
+        c.series.push(Series::line(
+            "Dirlik's expected count (the record's Welch moments)",
+            pts,
+        ));
     }
     c.max_decades = Some(8.0);
     c
@@ -144,15 +183,26 @@ pub fn matrix_chart(e: &FatigueEvaluation) -> LineChart {
     for (i, row) in m.counts.iter().enumerate() {
         for (j, &n) in row.iter().enumerate() {
             if n > 0.0 {
-                let p = (m.mean_origin + (j as f64 + 0.5) * m.mean_width, (i as f64 + 0.5) * m.range_width);
+                let p = (
+                    m.mean_origin + (j as f64 + 0.5) * m.mean_width,
+                    (i as f64 + 0.5) * m.range_width,
+                );
                 by_decade.entry(n.log10().floor() as i32).or_default().push(p);
             }
         }
     }
-    let mut c = LineChart::new(format!("Rainflow matrix of {}", e.channel), "cycle mean S_m (SI)", "cycle range ΔS (SI)");
+    let mut c = LineChart::new(
+        format!("Rainflow matrix of {}", e.channel),
+        "cycle mean S_m (SI)",
+        "cycle range ΔS (SI)",
+    );
     for (k, (d, pts)) in by_decade.into_iter().enumerate() {
         c.series.push(
-            Series::markers(format!("{} to {} cycles per cell", num(10f64.powi(d)), num(10f64.powi(d + 1))), pts).with_color(k),
+            Series::markers(
+                format!("{} to {} cycles per cell", num(10f64.powi(d)), num(10f64.powi(d + 1))),
+                pts,
+            )
+            .with_color(k),
         );
     }
     c.legend = Legend::UpperRight;

@@ -133,4 +133,3 @@ fn band_mean_square(f: &[f64], g: &[f64], df: f64, lo: f64, hi: f64) -> f64 {
     }
     sum
 }
-

@@ -68,7 +68,9 @@ impl<R: Read> Read for LineLimited<R> {
                 if self.since_newline > MAX_LINE_BYTES {
                     return Err(std::io::Error::new(
                         std::io::ErrorKind::InvalidData,
-                        format!("a line is longer than the {MAX_LINE_BYTES} bytes a line may have (is it a text file?)"),
+                        format!(
+                            "a line is longer than the {MAX_LINE_BYTES} bytes a line may have (is it a text file?)"
+                        ),
                     ));
                 }
             }
@@ -291,7 +293,12 @@ impl CsvRecord {
     fn field_value(&self, line: u64, c: usize) -> Result<f64> {
         let raw = &self.row[c];
         let text = std::str::from_utf8(raw).map_err(|_| {
-            Error::in_file(&self.info.source, format!("line {line}, column {}", c + 1), "<bytes>", "not UTF-8 text")
+            Error::in_file(
+                &self.info.source,
+                format!("line {line}, column {}", c + 1),
+                "<bytes>",
+                "not UTF-8 text",
+            )
         })?;
         let key = || format!("line {line}, column {}", c + 1);
         if text.is_empty() {
@@ -396,7 +403,11 @@ impl CsvRecord {
                     "inconsistent sample rate: the whole record ({} rows) has {} Hz, {} {} Hz (tolerance {})",
                     t.rows,
                     crate::numbers::num(whole),
-                    if t.stated { "--sample-rate states" } else { "its first rows have" },
+                    if t.stated {
+                        "--sample-rate states"
+                    } else {
+                        "its first rows have"
+                    },
                     crate::numbers::num(reference),
                     RATE_TOLERANCE
                 ),
@@ -419,7 +430,10 @@ fn check_time(t: &mut TimeCheck, file: &Path, line: u64, time: f64) -> Result<()
                     file,
                     key(),
                     shown(),
-                    format!("non-monotone time: the previous row (line {prev_line}) has {} s", crate::numbers::num(prev)),
+                    format!(
+                        "non-monotone time: the previous row (line {prev_line}) has {} s",
+                        crate::numbers::num(prev)
+                    ),
                 ));
             }
             if dt > 1.5 * t.step {
@@ -560,7 +574,12 @@ fn parse_header(row: &csv::ByteRecord, line: u64, path: &Path, options: &RecordO
             return Err(Error::in_file(path, key, cell.trim(), "empty column name"));
         }
         if names.iter().any(|n| n == name) {
-            return Err(Error::in_file(path, key, cell.trim(), format!("column name `{name}` repeated")));
+            return Err(Error::in_file(
+                path,
+                key,
+                cell.trim(),
+                format!("column name `{name}` repeated"),
+            ));
         }
         names.push(name.to_string());
         let stated = options.units.iter().find(|(n, _)| n == name).map(|(_, u)| u.as_str());
@@ -616,4 +635,3 @@ fn parse_header(row: &csv::ByteRecord, line: u64, path: &Path, options: &RecordO
     }
     Ok((channels, value_columns, time))
 }
-

@@ -59,10 +59,15 @@ impl AxisAssignment {
         let (loc, axis) = place
             .split_once(':')
             .ok_or_else(|| bad("expected CHANNEL=LOCATION:AXIS, e.g. seat_z=seat-surface:z"))?;
-        let location = [Location::SeatSurface, Location::SeatBack, Location::Feet, Location::StandingFloor]
-            .into_iter()
-            .find(|l| l.label() == loc.trim())
-            .ok_or_else(|| bad("unknown location; expected seat-surface, seat-back, feet or standing-floor"))?;
+        let location = [
+            Location::SeatSurface,
+            Location::SeatBack,
+            Location::Feet,
+            Location::StandingFloor,
+        ]
+        .into_iter()
+        .find(|l| l.label() == loc.trim())
+        .ok_or_else(|| bad("unknown location; expected seat-surface, seat-back, feet or standing-floor"))?;
         let axis = [Axis::X, Axis::Y, Axis::Z, Axis::Rx, Axis::Ry, Axis::Rz]
             .into_iter()
             .find(|a| a.label() == axis.trim())
@@ -266,7 +271,11 @@ impl Evaluator {
         self.bands.push(&self.weighted)?;
         let missing = self.weighted.len() - self.running.len();
         for (i, &v) in self.weighted.iter().enumerate() {
-            let r = if i < missing { f64::NAN } else { self.running[i - missing] };
+            let r = if i < missing {
+                f64::NAN
+            } else {
+                self.running[i - missing]
+            };
             self.envelope.add(v, r);
         }
         Ok(())
@@ -358,7 +367,11 @@ fn resolve_axes(info: &RecordInfo, options: &ExposureOptions) -> Result<Vec<Axis
         return Err(Error::in_file(
             &info.source,
             "channels",
-            info.channels.iter().map(|c| c.name.as_str()).collect::<Vec<_>>().join(", "),
+            info.channels
+                .iter()
+                .map(|c| c.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
             "which channel is which axis? name them with --axis CHANNEL=LOCATION:AXIS (e.g. seat_z=seat-surface:z), \
              or name the columns x, y, z for the seat surface",
         ));
@@ -403,7 +416,11 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
     if let Some(t) = options.exposure_s
         && !(t.is_finite() && t > 0.0)
     {
-        return Err(Error::invalid("--exposure", t, "an exposure duration must be finite and > 0 s"));
+        return Err(Error::invalid(
+            "--exposure",
+            t,
+            "an exposure duration must be finite and > 0 s",
+        ));
     }
     let mut block: Vec<Vec<f64>> = vec![Vec::with_capacity(BLOCK_SAMPLES); info.channels.len()];
     let mut samples = 0usize;
@@ -460,7 +477,9 @@ fn summarise(
         .then(|| vector_sum(Purpose::Comfort, &comfort_values))
         .transpose()?;
     let seat = values(&|a| a.location == Location::SeatSurface && a.health.is_some());
-    let health_vector = (!seat.is_empty()).then(|| vector_sum(Purpose::Health, &seat)).transpose()?;
+    let health_vector = (!seat.is_empty())
+        .then(|| vector_sum(Purpose::Health, &seat))
+        .transpose()?;
     let top = |f: fn(&HealthAxis) -> f64| {
         axes.iter()
             .filter_map(|a| a.health.map(|h| (a.channel.clone(), f(&h))))
@@ -468,7 +487,11 @@ fn summarise(
     };
     let (a8, vdv) = (top(|h| h.a8), top(|h| h.daily_vdv));
     let verdict = match (&a8, &vdv) {
-        (Some((_, a8)), Some((_, vdv))) => Some(ExposureVerdict::assess(*a8, Some(*vdv), comfort.as_ref().map(|c| c.a_v))?),
+        (Some((_, a8)), Some((_, vdv))) => Some(ExposureVerdict::assess(
+            *a8,
+            Some(*vdv),
+            comfort.as_ref().map(|c| c.a_v),
+        )?),
         _ => None,
     };
     Ok(ExposureEvaluation {

@@ -129,7 +129,9 @@ impl RangeMeanMatrix {
         while c.range >= n as f64 * self.range_width {
             self.range_width *= 2.0;
             for i in 0..n / 2 {
-                let merged: Vec<f64> = (0..n).map(|j| self.counts[2 * i][j] + self.counts[2 * i + 1][j]).collect();
+                let merged: Vec<f64> = (0..n)
+                    .map(|j| self.counts[2 * i][j] + self.counts[2 * i + 1][j])
+                    .collect();
                 self.counts[i] = merged;
             }
             for row in self.counts.iter_mut().skip(n / 2) {
@@ -386,7 +388,11 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
             return Err(Error::in_file(
                 &info.source,
                 "channels",
-                info.channels.iter().map(|c| c.name.as_str()).collect::<Vec<_>>().join(", "),
+                info.channels
+                    .iter()
+                    .map(|c| c.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 "the record has several channels: name the stress with --channel",
             ))
         }
@@ -398,7 +404,9 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
         return Err(Error::invalid("--gate", g, "a hysteresis gate must be finite and > 0"));
     }
     let dt = 1.0 / info.sample_rate_hz;
-    let m = options.segment_len.unwrap_or_else(|| default_segment(info.samples_hint));
+    let m = options
+        .segment_len
+        .unwrap_or_else(|| default_segment(info.samples_hint));
     let welch = Welch::new(m, dt)?.with_segment_mean_removed();
     let mut spectral = SpectralSums::new(&welch);
     let mut counter = RainflowCounter::new();
@@ -485,7 +493,9 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
         damage_uncorrected: damage_plain,
         life_s: duration_s / damage,
         life_uncorrected_s: life_plain,
-        matrix: tally.matrix.unwrap_or_else(|| RangeMeanMatrix::new(MATRIX_BINS, 1.0, 0.0, 1.0)),
+        matrix: tally
+            .matrix
+            .unwrap_or_else(|| RangeMeanMatrix::new(MATRIX_BINS, 1.0, 0.0, 1.0)),
         samples_per_peak: moments.as_ref().map(|m| info.sample_rate_hz / m.nu_peak()),
         spectral: moments.as_ref().map(MomentsSummary::of),
         moments,
@@ -514,7 +524,9 @@ fn method_lives(cmp: &MethodComparison, rainflow_life: f64) -> (Vec<MethodLife>,
 
 /// A matrix sized from the first block: ranges up to twice its span, means over twice its span.
 fn first_matrix(x: &[f64]) -> RangeMeanMatrix {
-    let (lo, hi) = x.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    let (lo, hi) = x
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
     let span = if hi > lo { hi - lo } else { hi.abs().max(1.0) };
     let n = MATRIX_BINS as f64;
     RangeMeanMatrix::new(MATRIX_BINS, 2.0 * span / n, 0.5 * (lo + hi) - span, 2.0 * span / n)
@@ -559,6 +571,9 @@ impl SpectralSums {
         let est = w.finish(&self.sums)?;
         let (f, g) = est.one_sided_cyclic();
         // a record without fluctuation has no moments (m₀ = 0): no spectral estimate then
-        Ok((SpectralMoments::from_tabulated_one_sided_hz(&f, &g, false).ok(), est.segments))
+        Ok((
+            SpectralMoments::from_tabulated_one_sided_hz(&f, &g, false).ok(),
+            est.segments,
+        ))
     }
 }

@@ -90,7 +90,11 @@ fn analog_factors(w: Weighting) -> Vec<([f64; 3], [f64; 3], f64)> {
     if p.f4_hz.is_finite() {
         // (1 + s/ω₃)/(1 + s/(Q₄ω₄) + s²/ω₄²) = (ω₄² + (ω₄²/ω₃)s)/(s² + ω₄s/Q₄ + ω₄²)
         let w4 = TAU * p.f4_hz;
-        let n1 = if p.f3_hz.is_finite() { w4 * w4 / (TAU * p.f3_hz) } else { 0.0 };
+        let n1 = if p.f3_hz.is_finite() {
+            w4 * w4 / (TAU * p.f3_hz)
+        } else {
+            0.0
+        };
         out.push(([w4 * w4, n1, 0.0], [w4 * w4, w4 / p.q4, 1.0], w4));
     }
     if p.f5_hz.is_finite() && p.f6_hz.is_finite() {
@@ -177,11 +181,12 @@ impl DigitalWeighting {
                     "sample rate",
                     format!("{sample_rate_hz} Hz"),
                     format!(
-                        "too low for {weighting}: its pole at {} Hz lies at or above the Nyquist frequency {} Hz \
-                         (the weighting needs a sample rate above {} Hz, and above 400 Hz to keep its 80 Hz band \
-                         within {MAX_BAND_ERROR_DB} dB)",
+                        "too low for {weighting}: its pole at {} Hz lies at or above the Nyquist frequency {} Hz, \
+                         so the band(s) {} are lost (the weighting needs a sample rate above {} Hz, and above \
+                         400 Hz to keep its 80 Hz band within {MAX_BAND_ERROR_DB} dB)",
                         crate::numbers::num(wp / TAU),
                         crate::numbers::num(sample_rate_hz / 2.0),
+                        bands_above(weighting, sample_rate_hz / 2.0),
                         crate::numbers::num(wp / PI),
                     ),
                 ));
@@ -320,6 +325,23 @@ impl DigitalWeighting {
             4 => cascade::<4>(&self.sections, &mut state.state, self.gain, x, y),
             _ => unreachable!("a weighting has 2 to 4 sections"),
         }
+    }
+}
+
+/// The labels of the one-third-octave bands of `weighting`'s evaluation range whose upper edge is at or
+/// above `nyquist_hz` (or, when none is, of its top band: a pole above the Nyquist frequency distorts it).
+fn bands_above(weighting: Weighting, nyquist_hz: f64) -> String {
+    let (lo, hi) = weighting.evaluation_range_hz();
+    let bands = bands_covering(BandFraction::ThirdOctave, lo, hi).unwrap_or_default();
+    let lost: Vec<String> = bands
+        .iter()
+        .filter(|b| b.upper_hz >= nyquist_hz)
+        .map(|b| b.label())
+        .collect();
+    match (lost.is_empty(), bands.last()) {
+        (false, _) => lost.join(", "),
+        (true, Some(top)) => top.label(),
+        (true, None) => format!("up to {hi} Hz"),
     }
 }
 

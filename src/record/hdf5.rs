@@ -78,7 +78,10 @@ impl Hdf5Record {
                 _ => {}
             }
             let short = name.trim_start_matches('/').to_string();
-            let unit = match (string_attr(&ds, "unit"), options.units.iter().find(|(n, _)| *n == short)) {
+            let unit = match (
+                string_attr(&ds, "unit"),
+                options.units.iter().find(|(n, _)| *n == short),
+            ) {
                 (Some(u), None) => u,
                 (None, Some((_, u))) => u.clone(),
                 (Some(u), Some((_, s))) => {
@@ -89,15 +92,13 @@ impl Hdf5Record {
                         format!("the file gives this unit and --unit gives `{s}`: give one"),
                     ))
                 }
-                (None, None) => {
-                    return Err(Error::in_file(
-                        path,
-                        format!("{key}, attribute unit"),
-                        "<missing>",
-                        "the dataset has no `unit` attribute: add one (e.g. `m/s^2`) or state it with --unit NAME=UNIT; \
+                (None, None) => return Err(Error::in_file(
+                    path,
+                    format!("{key}, attribute unit"),
+                    "<missing>",
+                    "the dataset has no `unit` attribute: add one (e.g. `m/s^2`) or state it with --unit NAME=UNIT; \
                          a unit is never guessed",
-                    ))
-                }
+                )),
             };
             channels.push(channel(path, &format!("{key}, attribute unit"), &short, &unit)?);
             if let Some(r) = rate_attr(&file, &ds, name, path)? {
@@ -106,10 +107,20 @@ impl Hdf5Record {
             datasets.push(ds);
         }
         let (len_name, len) = len.ok_or_else(|| {
-            Error::in_file(path, "datasets", "<none>", "the file has no one-dimensional numeric dataset in its root group")
+            Error::in_file(
+                path,
+                "datasets",
+                "<none>",
+                "the file has no one-dimensional numeric dataset in its root group",
+            )
         })?;
         if len == 0 {
-            return Err(Error::in_file(path, format!("dataset {len_name}"), "0 samples", "the record is empty"));
+            return Err(Error::in_file(
+                path,
+                format!("dataset {len_name}"),
+                "0 samples",
+                "the record is empty",
+            ));
         }
         let (sample_rate_hz, time_base) = resolve_rate(path, &rates, options.sample_rate_hz)?;
         Ok(Hdf5Record {
@@ -192,7 +203,9 @@ fn string_attr(ds: &hdf5::Dataset, name: &str) -> Option<String> {
     if let Ok(v) = a.read_scalar::<VarLenUnicode>() {
         return Some(v.as_str().to_string());
     }
-    a.read_scalar::<hdf5::types::VarLenAscii>().ok().map(|v| v.as_str().to_string())
+    a.read_scalar::<hdf5::types::VarLenAscii>()
+        .ok()
+        .map(|v| v.as_str().to_string())
 }
 
 /// Every one-dimensional numeric dataset of the root group, in name order.
@@ -234,9 +247,14 @@ impl RecordReader for Hdf5Record {
                 continue;
             }
             let key = format!("dataset /{}", ch.name);
-            let block = ds
-                .read_slice_1d::<f64, _>(s![self.pos..self.pos + n])
-                .map_err(|e| Error::in_file(&self.info.source, &key, "<unreadable>", format!("samples {}..{}: {e}", self.pos, self.pos + n)))?;
+            let block = ds.read_slice_1d::<f64, _>(s![self.pos..self.pos + n]).map_err(|e| {
+                Error::in_file(
+                    &self.info.source,
+                    &key,
+                    "<unreadable>",
+                    format!("samples {}..{}: {e}", self.pos, self.pos + n),
+                )
+            })?;
             o.extend(block.iter().map(|v| v * ch.to_si));
             if let Some(i) = o.iter().position(|v| !v.is_finite()) {
                 return Err(not_finite(&self.info.source, &key, self.pos + i, block[i]));
@@ -256,4 +274,3 @@ pub(crate) fn not_finite(file: &Path, key: &str, index: usize, value: f64) -> Er
         "not finite (NaN or infinity): gaps and overloads must be repaired or the record split before the evaluation",
     )
 }
-

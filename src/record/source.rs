@@ -68,7 +68,11 @@ impl RecordInfo {
                 name,
                 format!(
                     "no such channel; the record has {}",
-                    self.channels.iter().map(|c| format!("`{}`", c.name)).collect::<Vec<_>>().join(", ")
+                    self.channels
+                        .iter()
+                        .map(|c| format!("`{}`", c.name))
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ),
             )
         })
@@ -87,7 +91,10 @@ impl RecordInfo {
             &self.source,
             format!("channel `{}`", c.name),
             format!("[{}]", c.unit),
-            format!("the unit has dimension {}, but {what} is needed (dimension {dim})", c.dim),
+            format!(
+                "the unit has dimension {}, but {what} is needed (dimension {dim})",
+                c.dim
+            ),
         ))
     }
 }
@@ -210,7 +217,11 @@ pub fn check_rate(rate_hz: f64) -> Result<f64> {
     if rate_hz.is_finite() && rate_hz > 0.0 {
         Ok(rate_hz)
     } else {
-        Err(Error::invalid("--sample-rate", rate_hz, "a sample rate must be finite and > 0 Hz"))
+        Err(Error::invalid(
+            "--sample-rate",
+            rate_hz,
+            "a sample rate must be finite and > 0 Hz",
+        ))
     }
 }
 
@@ -241,7 +252,11 @@ pub fn parse_quantity(text: &str, what: &str) -> Result<(f64, Dim)> {
         return Err(Error::invalid(what, text, "the number must be finite"));
     }
     if unit.is_empty() {
-        return Err(Error::invalid(what, text, "a unit is required (e.g. `100 MPa`, `800 ustrain`): never guessed"));
+        return Err(Error::invalid(
+            what,
+            text,
+            "a unit is required (e.g. `100 MPa`, `800 ustrain`): never guessed",
+        ));
     }
     let (to_si, dim) = parse_unit(unit).map_err(|r| Error::invalid(what, text, r))?;
     Ok((v * to_si, dim))

@@ -52,7 +52,10 @@ impl WavRecord {
             return Err(Error::invalid(
                 "--channels",
                 options.channel_names.join(","),
-                format!("{} names for a WAV file of {n_ch} channels", options.channel_names.len()),
+                format!(
+                    "{} names for a WAV file of {n_ch} channels",
+                    options.channel_names.len()
+                ),
             ));
         };
         let full = options.full_scale.as_deref().ok_or_else(|| {
@@ -71,7 +74,11 @@ impl WavRecord {
             channels.push(channel(path, "--full-scale", name, unit)?);
         }
         let float = spec.sample_format == hound::SampleFormat::Float;
-        let format_full = if float { 1.0 } else { 2f64.powi(i32::from(spec.bits_per_sample) - 1) };
+        let format_full = if float {
+            1.0
+        } else {
+            2f64.powi(i32::from(spec.bits_per_sample) - 1)
+        };
         let scale = value * channels[0].to_si / format_full;
         for c in &mut channels {
             c.unit = format!("{unit} (full scale {value})");
@@ -119,13 +126,20 @@ impl RecordReader for WavRecord {
         let n_ch = out.len();
         let path = self.info.source.clone();
         let truncated = |frame: usize, e: hound::Error| {
-            Error::in_file(&path, format!("frame {frame}"), "<samples>", format!("truncated or unreadable: {e}"))
+            Error::in_file(
+                &path,
+                format!("frame {frame}"),
+                "<samples>",
+                format!("truncated or unreadable: {e}"),
+            )
         };
         if self.float {
             let mut it = self.reader.samples::<f32>();
             for k in 0..n {
                 for (c, o) in out.iter_mut().enumerate().take(n_ch) {
-                    let v = it.next().ok_or_else(|| truncated(self.frame + k, hound::Error::UnfinishedSample))?;
+                    let v = it
+                        .next()
+                        .ok_or_else(|| truncated(self.frame + k, hound::Error::UnfinishedSample))?;
                     let v = f64::from(v.map_err(|e| truncated(self.frame + k, e))?);
                     if !v.is_finite() {
                         return Err(not_finite(&path, &format!("channel {}", c + 1), self.frame + k, v));
@@ -137,7 +151,9 @@ impl RecordReader for WavRecord {
             let mut it = self.reader.samples::<i32>();
             for k in 0..n {
                 for o in out.iter_mut().take(n_ch) {
-                    let v = it.next().ok_or_else(|| truncated(self.frame + k, hound::Error::UnfinishedSample))?;
+                    let v = it
+                        .next()
+                        .ok_or_else(|| truncated(self.frame + k, hound::Error::UnfinishedSample))?;
                     o.push(f64::from(v.map_err(|e| truncated(self.frame + k, e))?) * self.scale);
                 }
             }

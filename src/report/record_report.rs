@@ -32,11 +32,20 @@ pub fn axis_table(axes: &[AxisEvaluation]) -> Table {
         .num("MTVV [m/s²]", &col(&|a| a.mtvv))
         .num("VDV [m/s^1.75]", &col(&|a| Some(a.metrics.vdv)))
         .num("crest factor", &col(&|a| opt(a.metrics.check.crest_factor)))
-        .num("MTVV/a_w", &col(&|a| opt(a.mtvv).zip(Some(a.metrics.a_w)).map(|(m, w)| m / w)))
+        .num(
+            "MTVV/a_w",
+            &col(&|a| opt(a.mtvv).zip(Some(a.metrics.a_w)).map(|(m, w)| m / w)),
+        )
         .num("VDV/(a_w T^¼)", &col(&|a| opt(a.metrics.check.vdv_ratio)))
         .text(
             "basic method",
-            axes.iter().map(|a| if a.metrics.check.basic_method_sufficient { "sufficient" } else { "NOT sufficient" }),
+            axes.iter().map(|a| {
+                if a.metrics.check.basic_method_sufficient {
+                    "sufficient"
+                } else {
+                    "NOT sufficient"
+                }
+            }),
         )
         .num("k (health)", &col(&|a| a.health.map(|h| h.k)))
         .num("A(8) [m/s²]", &col(&|a| a.health.map(|h| h.a8)))
@@ -47,9 +56,18 @@ pub fn axis_table(axes: &[AxisEvaluation]) -> Table {
 pub fn sickness_table(axes: &[AxisEvaluation]) -> Table {
     Table::default()
         .text("channel", axes.iter().map(|a| a.channel.clone()))
-        .num("a_w (Wf) [m/s²]", &axes.iter().map(|a| Some(a.metrics.a_w)).collect::<Vec<_>>())
-        .num("MSDV record [m/s^1.5]", &axes.iter().map(|a| Some(a.metrics.msdv)).collect::<Vec<_>>())
-        .num("MSDV exposure [m/s^1.5]", &axes.iter().map(|a| a.msdv_exposure).collect::<Vec<_>>())
+        .num(
+            "a_w (Wf) [m/s²]",
+            &axes.iter().map(|a| Some(a.metrics.a_w)).collect::<Vec<_>>(),
+        )
+        .num(
+            "MSDV record [m/s^1.5]",
+            &axes.iter().map(|a| Some(a.metrics.msdv)).collect::<Vec<_>>(),
+        )
+        .num(
+            "MSDV exposure [m/s^1.5]",
+            &axes.iter().map(|a| a.msdv_exposure).collect::<Vec<_>>(),
+        )
 }
 
 /// The band table: one row per one-third-octave band, one column per axis (band r.m.s. of the weighted
@@ -127,7 +145,12 @@ fn exposure_facts(e: &ExposureEvaluation) -> Vec<(&'static str, String)> {
         ("record", format!("{} ({})", e.record.source.display(), e.record.format)),
         (
             "sampling",
-            format!("{} samples at {} Hz ({:?})", e.samples, num(e.record.sample_rate_hz), e.record.time_base),
+            format!(
+                "{} samples at {} Hz ({:?})",
+                e.samples,
+                num(e.record.sample_rate_hz),
+                e.record.time_base
+            ),
         ),
         ("duration", format!("{} s", sig4(e.duration_s))),
         ("exposure", format!("{} h", sig4(e.exposure_s / 3600.0))),
@@ -151,7 +174,10 @@ impl fmt::Display for ExposureReport {
         let all: Vec<AxisEvaluation> = e.axes.iter().chain(&e.motion_sickness).cloned().collect();
         if let Some(t) = band_table(&all) {
             writeln!(f)?;
-            writeln!(f, "  one-third-octave band r.m.s. of the weighted signals (* fewer bins than resolve the band)")?;
+            writeln!(
+                f,
+                "  one-third-octave band r.m.s. of the weighted signals (* fewer bins than resolve the band)"
+            )?;
             write!(f, "{}", t.aligned("  "))?;
         }
         writeln!(f)?;
@@ -171,7 +197,10 @@ impl ToMarkdown for ExposureReport {
             s += &format!("\n## Axes\n\n{}", axis_table(&e.axes).markdown());
         }
         if !e.motion_sickness.is_empty() {
-            s += &format!("\n## Motion sickness\n\n{}", sickness_table(&e.motion_sickness).markdown());
+            s += &format!(
+                "\n## Motion sickness\n\n{}",
+                sickness_table(&e.motion_sickness).markdown()
+            );
         }
         let all: Vec<AxisEvaluation> = e.axes.iter().chain(&e.motion_sickness).cloned().collect();
         if let Some(t) = band_table(&all) {
@@ -215,7 +244,13 @@ pub fn matrix_table(e: &FatigueEvaluation) -> Table {
     let rows: Vec<usize> = (0..n).filter(|&i| m.counts[i].iter().any(|v| *v > 0.0)).collect();
     let mut t = Table::default().text(
         "range \\ mean",
-        rows.iter().map(|&i| format!("{}–{}", sig4(i as f64 * m.range_width), sig4((i + 1) as f64 * m.range_width))),
+        rows.iter().map(|&i| {
+            format!(
+                "{}–{}",
+                sig4(i as f64 * m.range_width),
+                sig4((i + 1) as f64 * m.range_width)
+            )
+        }),
     );
     for &j in &used {
         let centre = m.mean_origin + (j as f64 + 0.5) * m.mean_width;
@@ -226,12 +261,19 @@ pub fn matrix_table(e: &FatigueEvaluation) -> Table {
 
 fn fatigue_lines(e: &FatigueEvaluation) -> Vec<String> {
     let mut out = vec![
-        format!("S–N curve {} (amplitudes, SI); mean-stress correction {}", e.sn, e.mean_stress.label()),
+        format!(
+            "S–N curve {} (amplitudes, SI); mean-stress correction {}",
+            e.sn,
+            e.mean_stress.label()
+        ),
         format!(
             "rainflow: {} full and {} half cycles (residue) {}; Miner damage {} with the correction, {} without",
             e.full_cycles,
             e.half_cycles,
-            e.gate.map_or_else(|| "without a gate".to_string(), |g| format!("after a hysteresis gate of {}", sig4(g))),
+            e.gate.map_or_else(
+                || "without a gate".to_string(),
+                |g| format!("after a hysteresis gate of {}", sig4(g))
+            ),
             sig4(e.damage),
             sig4(e.damage_uncorrected)
         ),
@@ -277,7 +319,12 @@ fn fatigue_facts(e: &FatigueEvaluation) -> Vec<(&'static str, String)> {
         ("channel", e.channel.clone()),
         (
             "sampling",
-            format!("{} samples at {} Hz, {} s", e.samples, num(e.record.sample_rate_hz), sig4(e.duration_s)),
+            format!(
+                "{} samples at {} Hz, {} s",
+                e.samples,
+                num(e.record.sample_rate_hz),
+                sig4(e.duration_s)
+            ),
         ),
         (
             "values",
@@ -309,7 +356,10 @@ impl ToMarkdown for FatigueReport {
         let e = &self.0;
         let mut s = format!("# Fatigue of {}\n\n", e.channel);
         s += &facts(&fatigue_facts(e));
-        s += &format!("\n## Life by rainflow and by the spectral methods\n\n{}\n", method_table(e).markdown());
+        s += &format!(
+            "\n## Life by rainflow and by the spectral methods\n\n{}\n",
+            method_table(e).markdown()
+        );
         s += &fatigue_lines(e).iter().map(|l| format!("- {l}\n")).collect::<String>();
         s += &format!("\n## Range–mean matrix\n\n{}", matrix_table(e).markdown());
         s
@@ -338,7 +388,11 @@ impl WeightingReport {
     /// A frequency that is not finite and > 0; the errors of [`DigitalWeighting::new`].
     pub fn new(weighting: Weighting, frequencies_hz: &[f64], sample_rate_hz: Option<f64>) -> Result<Self> {
         if let Some(f) = frequencies_hz.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
-            return Err(crate::Error::invalid("--frequency", f, "frequencies must be finite and > 0 Hz"));
+            return Err(crate::Error::invalid(
+                "--frequency",
+                f,
+                "frequencies must be finite and > 0 Hz",
+            ));
         }
         let digital = match sample_rate_hz {
             Some(r) => Some(DigitalWeighting::new(weighting, r)?),
@@ -394,7 +448,10 @@ impl WeightingReport {
                 self.standard,
                 num(r)
             ),
-            None => format!("{} ({}), analytic: K·H_h·H_l·H_t·H_s at s = i2πf", self.weighting, self.standard),
+            None => format!(
+                "{} ({}), analytic: K·H_h·H_l·H_t·H_s at s = i2πf",
+                self.weighting, self.standard
+            ),
         }
     }
 }

@@ -65,7 +65,11 @@ pub fn coherence_report(
     confidence: f64,
 ) -> Result<CoherenceReport> {
     if let Some(f) = frequencies.iter().find(|f| !(f.is_finite() && **f >= 0.0)) {
-        return Err(Error::invalid("--frequency", f, "spatial frequencies must be finite and >= 0 cycles/m"));
+        return Err(Error::invalid(
+            "--frequency",
+            f,
+            "spatial frequencies must be finite and >= 0 cycles/m",
+        ));
     }
     let at = |n: f64| {
         let rho = model.as_ref().map(|m| m.coherence_amplitude(n));
@@ -81,7 +85,11 @@ pub fn coherence_report(
     };
     let Some(path) = profile else {
         if model.is_none() {
-            return Err(Error::invalid("--model", "<none>", "give a coherence model (--model) or a profile (--profile)"));
+            return Err(Error::invalid(
+                "--model",
+                "<none>",
+                "give a coherence model (--model) or a profile (--profile)",
+            ));
         }
         let ns: Vec<f64> = if frequencies.is_empty() {
             (0..=12).map(|k| 0.01 * 10f64.powf(k as f64 / 4.0)).collect()
@@ -106,7 +114,12 @@ pub fn coherence_report(
     };
     let p = Profile::read_csv(path)?.detrended(Detrend::Linear);
     if p.tracks.len() < 2 {
-        return Err(Error::in_file(path, "header", p.tracks.len(), "the coherence needs a profile of two tracks"));
+        return Err(Error::in_file(
+            path,
+            "header",
+            p.tracks.len(),
+            "the coherence needs a profile of two tracks",
+        ));
     }
     let m = segment.unwrap_or_else(|| default_segment(p.len()));
     let cs = spatial_cross_spectrum(&p.tracks[0].elevation_m, &p.tracks[1].elevation_m, p.step_m, m)?;
@@ -148,7 +161,9 @@ impl CoherenceReport {
     fn lines(&self) -> Vec<String> {
         let mut out = Vec::new();
         if let Some(m) = &self.model {
-            out.push(format!("model: {m} (ρ the coherence amplitude, S_LR = ρS; γ² = ρ² the squared coherence)"));
+            out.push(format!(
+                "model: {m} (ρ the coherence amplitude, S_LR = ρS; γ² = ρ² the squared coherence)"
+            ));
         }
         if let (Some(p), Some((l, r)), Some((k, nu))) = (&self.profile, &self.tracks, self.segments) {
             out.push(format!(
@@ -231,7 +246,10 @@ impl IriReport {
             "expected, with the 250 mm moving average".to_string(),
             "expected, without the moving average".to_string(),
         ];
-        let mut v = vec![Some(self.expected.m_per_km), Some(self.expected.without_moving_average_m_per_km)];
+        let mut v = vec![
+            Some(self.expected.m_per_km),
+            Some(self.expected.without_moving_average_m_per_km),
+        ];
         for m in &self.measured {
             what.push(format!("measured, track {}", m.track));
             v.push(Some(m.m_per_km));

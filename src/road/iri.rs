@@ -242,7 +242,11 @@ pub fn expected_iri(road: &dyn crate::spectrum::Spectrum) -> Result<ExpectedIri>
     let variance = |ma: bool| -> Result<f64> {
         let integrand = |n: f64| {
             let h = golden_relative_velocity(n).norm_sqr();
-            let s = if ma && n > 0.0 { (PI * n * b).sin() / (PI * n * b) } else { 1.0 };
+            let s = if ma && n > 0.0 {
+                (PI * n * b).sin() / (PI * n * b)
+            } else {
+                1.0
+            };
             h * s * s * 4.0 * PI * road.density(TAU * n)
         };
         let mut breaks = vec![0.045, 0.45];

@@ -274,10 +274,20 @@ pub(crate) fn track_index(f: &Fields, key: &str, v: &toml::Value) -> Result<usiz
 pub fn coherence_from_toml(text: &str, width_m: f64) -> Result<Arc<dyn Coherence>> {
     let file = Path::new("--model");
     let doc: toml::Table = toml::from_str(&format!("coherence = {text}")).map_err(|e| {
-        crate::Error::in_file(file, "coherence", crate::io_rules::excerpt(text), format!("not a TOML inline table: {}", e.message()))
+        crate::Error::in_file(
+            file,
+            "coherence",
+            crate::io_rules::excerpt(text),
+            format!("not a TOML inline table: {}", e.message()),
+        )
     })?;
     let Some(toml::Value::Table(t)) = doc.get("coherence") else {
-        return Err(crate::Error::in_file(file, "coherence", crate::io_rules::excerpt(text), "expected an inline table { kind = … }"));
+        return Err(crate::Error::in_file(
+            file,
+            "coherence",
+            crate::io_rules::excerpt(text),
+            "expected an inline table { kind = … }",
+        ));
     };
     let f = Fields::new(file, "coherence", t);
     let c = coherence_from_fields(&f, width_m)?;
