@@ -214,3 +214,9 @@ pub const IRI_EXPECTED: f64 = 1e-5;
 /// transient overshoots the steady amplitude — by 2.6 % for Wk at 4 Hz (scipy: the analog weighting by the
 /// bilinear transform, started at rest, 120 s at 1 kHz); 4 % leaves a margin. Upper bound only.
 pub const RECORD_START_OVERSHOOT: f64 = 4e-2;
+
+/// The running r.m.s., VDV and MTVV of sampled sines and bursts (10 kHz, each sample held over its step)
+/// against their continuous closed forms: the rectangle rule is exact for sin² and sin⁴ over whole periods,
+/// the hold shifts the exponential form by O((ωdt)²) < 1e-5 and the window position of the linear form by
+/// O(dt²); the closed forms are printed to 6 digits (5e-7). 1e-4.
+pub const RUNNING_RMS_SAMPLED: f64 = 1e-4;

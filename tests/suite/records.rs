@@ -10,7 +10,7 @@
 
 use crate::common::tolerance::{
     EXACT, IRI_EXPECTED, ISO8041_OWN_DB, ISO8041_OWN_PHASE_DEG, MINER_BLOCK_BOUNDARY, PRINTED_3_DIGITS,
-    RECORD_SINE_TRANSIENT, RECORD_START_OVERSHOOT, WAV_FLOAT32, WELCH_WINDOW_BIAS,
+    RECORD_SINE_TRANSIENT, RECORD_START_OVERSHOOT, RUNNING_RMS_SAMPLED, WAV_FLOAT32, WELCH_WINDOW_BIAS,
 };
 use nalgebra::Complex;
 use rand::{RngExt, SeedableRng};
@@ -604,6 +604,19 @@ fn bad_records_are_refused_with_file_line_and_value() {
 
 /// A stress record in MPa at a stated rate, one channel, evaluated with an S–N curve N·S_a^k = C.
 fn fatigue_of(dir: &Path, name: &str, values: &[f64], k: f64, c_mpa: f64) -> stochvib::record::FatigueEvaluation {
+    fatigue_with(dir, name, values, k, c_mpa, MeanStressCorrection::None, None)
+}
+
+/// As [`fatigue_of`], with a mean-stress correction and a hysteresis gate (Pa).
+fn fatigue_with(
+    dir: &Path,
+    name: &str,
+    values: &[f64],
+    k: f64,
+    c_mpa: f64,
+    mean_stress: MeanStressCorrection,
+    gate: Option<f64>,
+) -> stochvib::record::FatigueEvaluation {
     let file = dir.join(name);
     let mut text = String::from("stress [MPa]\n");
     for v in values {
@@ -621,8 +634,8 @@ fn fatigue_of(dir: &Path, name: &str, values: &[f64], k: f64, c_mpa: f64) -> sto
         channel: None,
         sn,
         sn_dim: Dim::new(-1, 1, -2),
-        mean_stress: MeanStressCorrection::None,
-        gate: None,
+        mean_stress,
+        gate,
         segment_len: Some(8),
     };
     evaluate_fatigue(r.as_mut(), &options).unwrap()
@@ -889,6 +902,8 @@ fn cli_coherence_and_iri_as_numbers() {
         "coherence",
         "--profile",
         "data/measured-profile.csv",
+        "--segment",
+        "128", // 65 rows: the helper reads the output after the exit, so it must fit a pipe's 64 KiB
         "--format",
         "json",
     ]);
@@ -920,4 +935,187 @@ fn cli_coherence_and_iri_as_numbers() {
         let v = m["m_per_km"].as_f64().unwrap();
         assert!(v > 8.690343 / SQRT_2 && v < 8.690343 * SQRT_2, "{m}");
     }
+}
+
+/// The running r.m.s. of ISO 2631-1 6.3.1 (τ = 1 s) against closed forms, streamed in uneven blocks:
+/// * exponential form, a steady sine of amplitude A: max a_w(t₀) = (A/√2)·√(1 + 1/√(1 + 4ω²τ²)) (the mean
+///   square's response to sin² = (1 − cos 2ωt)/2 through the first-order low pass 1/(1 + iωτ) at 2ω):
+///   0.760650 (0.5 Hz), 0.734618 (1 Hz), 0.714104 (4 Hz) for A = 1;
+/// * a burst of 4 Hz, amplitude A = 1, D = 0.5 s (two periods) inside 10 s of silence: VDV = A(3D/8)^{1/4} =
+///   0.658037, linear MTVV (τ ≥ D) = A√(D/(2τ)) = 0.5, a_w = A√(D/(2T)) = 0.158114;
+/// * linear form, a steady sine: max = (A/√2)·√(1 + |sin ωτ|/(ωτ)) = 0.778526 at 0.75 Hz.
+/// Sampled at 10 kHz with each sample held over its step; the rectangle rule of sin² and sin⁴ over whole
+/// periods is exact, the hold shifts the exponential form by O((ωdt)²) < 1e-5: `RUNNING_RMS_SAMPLED`.
+#[test]
+fn running_rms_vdv_and_mtvv_of_sines_and_bursts_are_closed_forms() {
+    use stochvib::comfort::SignalMetricsStream;
+    use stochvib::record::ExponentialRms;
+    let dt = 1e-4;
+    let sine = |f: f64, t: f64| -> Vec<f64> {
+        (0..(t / dt) as usize)
+            .map(|i| (TAU * f * i as f64 * dt).sin())
+            .collect()
+    };
+    for (f, expected) in [(0.5, 0.760650), (1.0, 0.734618), (4.0, 0.714104)] {
+        let x = sine(f, 30.0);
+        let mut r = ExponentialRms::new(dt, 1.0).unwrap();
+        let (mut rest, mut k) = (&x[..], 1);
+        while !rest.is_empty() {
+            let n = (k * 7919 % 50_000 + 1).min(rest.len()); // uneven blocks
+            r.push(&rest[..n]);
+            rest = &rest[n..];
+            k += 1;
+        }
+        let got = r.mtvv();
+        assert!(
+            rel(got, expected) < RUNNING_RMS_SAMPLED,
+            "exponential MTVV at {f} Hz: {got} vs {expected}"
+        );
+    }
+    let mut burst = vec![0.0; (10.0 / dt) as usize];
+    let start = (4.0 / dt) as usize;
+    for (i, v) in sine(4.0, 0.5).into_iter().enumerate() {
+        burst[start + i] = v;
+    }
+    let mut s = SignalMetricsStream::new(dt, 1.0).unwrap();
+    for b in burst.chunks(33_333) {
+        s.push(b).unwrap();
+    }
+    let m = s.finish().unwrap();
+    assert!(
+        rel(m.vdv, (3.0 * 0.5f64 / 8.0).powf(0.25)) < RUNNING_RMS_SAMPLED,
+        "burst VDV {}",
+        m.vdv
+    );
+    assert!(
+        rel(m.mtvv.unwrap(), 0.5) < RUNNING_RMS_SAMPLED,
+        "burst MTVV {:?}",
+        m.mtvv
+    );
+    assert!(
+        rel(m.a_w, (0.5f64 / 20.0).sqrt()) < RUNNING_RMS_SAMPLED,
+        "burst a_w {}",
+        m.a_w
+    );
+    let mut s = SignalMetricsStream::new(dt, 1.0).unwrap();
+    s.push(&sine(0.75, 20.0)).unwrap();
+    let m = s.finish().unwrap();
+    assert!(
+        rel(m.mtvv.unwrap(), 0.778526) < RUNNING_RMS_SAMPLED,
+        "linear MTVV {:?}",
+        m.mtvv
+    );
+}
+
+/// The mean-stress correction and the hysteresis gate of `fatigue`:
+/// * Goodman: 2000 reversals between 150 and 50 MPa (mean 100, amplitude 50) are 999.5 cycles of range
+///   100; with S_u = 400 MPa the equivalent amplitude is 50/(1 − 100/400) = 66.667 MPa, so with k = 5,
+///   C = 1e15 MPa⁵: D = 999.5·66.667⁵/1e15, and uncorrected 999.5·50⁵/1e15.
+/// * Gate: ±100 MPa reversals with a 3 MPa ripple at every extreme (100, 97, 100 / −100, −97, −100): with a
+///   gate of 10 MPa the ripples are removed and the count is that of the clean ±100 sequence, 999 ranges of
+///   200 = 499.5 cycles, D = 499.5·100⁵/1e15; without the gate the ripples add at least 999 full cycles (the first ripple holds the start: a half cycle).
+#[test]
+fn goodman_correction_and_hysteresis_gate() {
+    let dir = scratch("goodman");
+    let v: Vec<f64> = (0..2000).map(|i| if i % 2 == 0 { 150.0 } else { 50.0 }).collect();
+    let goodman = MeanStressCorrection::Goodman { ultimate: 400e6 };
+    let e = fatigue_with(&dir, "mean.csv", &v, 5.0, 1e15, goodman, None);
+    let eq: f64 = 50.0 / (1.0 - 100.0 / 400.0);
+    assert!(
+        rel(e.damage, 999.5 * eq.powi(5) / 1e15) < EXACT,
+        "Goodman D {}",
+        e.damage
+    );
+    assert!(
+        rel(e.damage_uncorrected, 999.5 * 50f64.powi(5) / 1e15) < EXACT,
+        "D {}",
+        e.damage_uncorrected
+    );
+    let mut rippled = Vec::new();
+    for _ in 0..500 {
+        rippled.extend_from_slice(&[-100.0, -97.0, -100.0, 100.0, 97.0, 100.0]);
+    }
+    let gated = fatigue_with(
+        &dir,
+        "ripple.csv",
+        &rippled,
+        5.0,
+        1e15,
+        MeanStressCorrection::None,
+        Some(10e6),
+    );
+    assert!(
+        rel(gated.damage, 499.5 * 100f64.powi(5) / 1e15) < EXACT,
+        "gated D {}",
+        gated.damage
+    );
+    let raw = fatigue_with(
+        &dir,
+        "ripple2.csv",
+        &rippled,
+        5.0,
+        1e15,
+        MeanStressCorrection::None,
+        None,
+    );
+    assert!(
+        raw.full_cycles >= gated.full_cycles + 999,
+        "{} vs {}",
+        raw.full_cycles,
+        gated.full_cycles
+    );
+    assert!(raw.damage > gated.damage);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The pictures: `exposure --plots` writes the weighted time history with its running r.m.s. and the band
+/// spectrum against the comfort scale, `fatigue --plots` the range histogram against Dirlik's density and
+/// the rainflow matrix, each as SVG and PNG (non-empty files; the PNG with its signature).
+#[test]
+fn cli_pictures_are_written() {
+    let dir = scratch("pictures");
+    write_csv(&dir.join("seat.csv"), "time [s],z [m/s^2]", 1000.0, 20_000, |t| {
+        vec![(TAU * 4.0 * t).sin()]
+    });
+    write_csv(&dir.join("axle.csv"), "time [s],stress [MPa]", 100.0, 20_000, |t| {
+        vec![50.0 * (TAU * 3.0 * t).sin() + 20.0 * (TAU * 7.3 * t).sin()]
+    });
+    let limit = std::time::Duration::from_secs(300);
+    for args in [
+        vec!["exposure", "seat.csv", "--plots", "e"],
+        vec![
+            "fatigue",
+            "axle.csv",
+            "--sn-slope",
+            "5",
+            "--sn-amplitude",
+            "100 MPa",
+            "--sn-cycles",
+            "1e6",
+            "--plots",
+            "f",
+        ],
+    ] {
+        let out = crate::common::cli_within(&args, &dir, limit);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let sub = dir.join(args[args.len() - 1]);
+        let names = crate::common::listing(&sub);
+        assert!(
+            names.iter().filter(|n| n.ends_with(".svg")).count() >= 2,
+            "{args:?}: {names:?}"
+        );
+        assert!(
+            names.iter().filter(|n| n.ends_with(".png")).count() >= 2,
+            "{args:?}: {names:?}"
+        );
+        for n in names.iter().filter(|n| n.ends_with(".png")) {
+            let bytes = std::fs::read(sub.join(n)).unwrap();
+            assert!(bytes.starts_with(b"\x89PNG"), "{n}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }
