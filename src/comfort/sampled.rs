@@ -461,7 +461,7 @@ impl SignalMetricsStream {
             self.ring[slot] = v;
             if j + 1 >= n {
                 let start = j + 1 - n;
-                if start % n == 0 {
+                if start.is_multiple_of(n) {
                     let mut s = (0.0, 0.0);
                     for k in 0..n {
                         let a = self.ring[(start + k) % n];

@@ -15,11 +15,11 @@
 //! # Pieces
 //! * [`source`]: channels, units, time bases, [`RecordReader`], [`open_record`].
 //! * [`csv`](mod@csv), [`hdf5`](mod@hdf5), [`wav`]: the three readers.
-//! * [`filter`]: [`DigitalWeighting`].
+//! * [`filter`] — [`DigitalWeighting`].
 //! * [`running`]: the exponential running r.m.s. and the decimated envelope of a long signal.
 //! * [`bands`]: band values from a streamed Welch density.
-//! * [`exposure`]: [`evaluate_exposure`].
-//! * [`fatigue_record`]: [`evaluate_fatigue`].
+//! * [`exposure`] — [`evaluate_exposure`].
+//! * [`fatigue_record`] — [`evaluate_fatigue`].
 
 pub mod bands;
 pub mod csv;

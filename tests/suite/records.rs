@@ -112,10 +112,10 @@ fn sine_response(filter: &DigitalWeighting, fs: f64, f_hz: f64) -> Complex<f64> 
     filter.filter(&mut state, &x, &mut y);
     // y ≈ Re(H e^{iωt})·(−i)… : for x = sin ωt, y = |H| sin(ωt + φ) = a sin ωt + b cos ωt, H = a + ib
     let (mut a, mut b) = (0.0, 0.0);
-    for i in settle..settle + n {
+    for (i, yi) in y.iter().enumerate().skip(settle) {
         let t = TAU * f_hz * i as f64 / fs;
-        a += y[i] * t.sin();
-        b += y[i] * t.cos();
+        a += yi * t.sin();
+        b += yi * t.cos();
     }
     // a whole number of samples per sum only approximately spans whole periods: n samples span `periods`
     // periods to within one sample, so the projection error is O(1/n)
@@ -944,6 +944,7 @@ fn cli_coherence_and_iri_as_numbers() {
 /// * a burst of 4 Hz, amplitude A = 1, D = 0.5 s (two periods) inside 10 s of silence: VDV = A(3D/8)^{1/4} =
 ///   0.658037, linear MTVV (τ ≥ D) = A√(D/(2τ)) = 0.5, a_w = A√(D/(2T)) = 0.158114;
 /// * linear form, a steady sine: max = (A/√2)·√(1 + |sin ωτ|/(ωτ)) = 0.778526 at 0.75 Hz.
+///
 /// Sampled at 10 kHz with each sample held over its step; the rectangle rule of sin² and sin⁴ over whole
 /// periods is exact, the hold shifts the exponential form by O((ωdt)²) < 1e-5: `RUNNING_RMS_SAMPLED`.
 #[test]
