@@ -48,7 +48,7 @@
 //! | 2 | [`system`] | frequency responses: state space, transfer functions, multi-degree-of-freedom models |
 //! | 3 | [`response`], [`comfort`] | response statistics: variance three ways, moments, crossing rates; ISO 2631 weightings and exposure |
 //! | 4 | [`estimate`], [`store`], [`fatigue`] | estimators with intervals; HDF5 run files; S–N curves, rainflow, spectral fatigue |
-//! | 5 | [`simulate`], [`road`], [`nonlinear`] | Monte Carlo runs; measured and synthesised road profiles, IRI, a profile replayed through a model; nonlinear elements and their three routes |
+//! | 5 | [`simulate`], [`road`], [`nonlinear`], [`record`] | Monte Carlo runs; measured and synthesised road profiles, IRI, a profile replayed through a model; nonlinear elements and their three routes; measured records (CSV, HDF5, WAV): ISO 2631-1 exposure and rainflow fatigue |
 //! | 6 | [`models`] | the catalogue of the source documents |
 //! | 7 | [`scenario`] | scenario, spectrum and reference files; the spectrum catalogue; the registry of model kinds |
 //! | 8 | [`report`], [`plot`] | what the command-line tool prints and draws |
@@ -76,6 +76,7 @@ pub mod plot;
 pub mod prelude;
 pub mod quad;
 pub mod quad_oscillatory;
+pub mod record;
 pub mod report;
 pub mod response;
 pub mod road;

@@ -1,5 +1,8 @@
 //! The `stochvib` command-line tool: parses arguments, calls the library, prints.
 
+#[path = "main/record_cli.rs"]
+mod record_cli;
+
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use stochvib::nonlinear::monte_carlo::NonlinearRunOptions;
@@ -484,6 +487,23 @@ enum Command {
         #[command(flatten)]
         spectra: SpectraDir,
     },
+    /// ISO 2631-1 evaluation of a measured acceleration record (CSV, HDF5, WAV): digital weighting per ISO 8041,
+    /// a_w, running r.m.s., MTVV, VDV, crest factor, basic-method criteria per axis, one-third-octave bands,
+    /// the comfort vector sum, A(8) and daily VDV against Directive 2002/44/EC and Annex B, MSDV for Wf
+    /// channels (docs/records.md).
+    Exposure(record_cli::ExposureArgs),
+    /// Fatigue of a measured stress or strain record: rainflow (ASTM E1049), range–mean matrix, Miner damage
+    /// with an S–N curve and a mean-stress correction, beside the five spectral methods from the record's
+    /// own Welch density (docs/records.md).
+    Fatigue(record_cli::FatigueArgs),
+    /// A frequency weighting (ISO 2631-1, ISO 2631-4): magnitude and phase, and with --sample-rate its
+    /// digital realisation and error.
+    Weighting(record_cli::WeightingArgs),
+    /// The coherence of two road tracks as numbers: a model (--model) and/or a measured profile (--profile).
+    Coherence(record_cli::CoherenceArgs),
+    /// The expected IRI of a road spectrum (golden car, 80 km/h, 250 mm moving average) beside the IRI of a
+    /// measured profile.
+    Iri(record_cli::IriArgs),
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
     Spectrum {
         /// Catalogue name (e.g. `iso8608-c`) or path to a spectrum file.
@@ -985,6 +1005,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let r = stochvib::scenario::workday::workday_exposure(&day, spectra.catalogue().dir())?;
             print_as(&report::WorkdayReport(r), output.format())?;
         }
+        Command::Exposure(a) => record_cli::exposure(a)?,
+        Command::Fatigue(a) => record_cli::fatigue(a)?,
+        Command::Weighting(a) => record_cli::weighting(a)?,
+        Command::Coherence(a) => record_cli::coherence(a)?,
+        Command::Iri(a) => record_cli::iri(a)?,
         Command::Spectrum {
             name,
             convention,

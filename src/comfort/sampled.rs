@@ -398,3 +398,171 @@ impl SignalMetrics {
         })
     }
 }
+
+/// [`SignalMetrics`] accumulated block by block, in time order, with memory independent of the record's
+/// length (one running-r.m.s. window): the same values as [`SignalMetrics::with_integration_time`] on the
+/// whole record, bit for bit, for any split into blocks.
+///
+/// # Formula
+/// As [`SignalMetrics`]: compensated (Neumaier) sums of a² and a⁴ carried across blocks, the peak, and the
+/// sliding window sum of the running r.m.s. (recomputed from the window's samples every n samples, as
+/// [`running_rms`] does), whose maximum gives the MTVV = √(max window sum / n).
+///
+/// # Errors
+/// [`SignalMetricsStream::new`] as [`SignalMetrics::with_integration_time`]; [`SignalMetricsStream::push`]
+/// a non-finite sample (named by its index in the record); [`SignalMetricsStream::finish`] an empty record.
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{SignalMetrics, SignalMetricsStream};
+/// let a: Vec<f64> = (0..700).map(|k| (0.07 * k as f64).sin() * (1.0 + 0.01 * k as f64)).collect();
+/// let mut s = SignalMetricsStream::new(0.01, 1.0).unwrap();
+/// for block in a.chunks(33) {
+///     s.push(block).unwrap();
+/// }
+/// assert_eq!(s.finish().unwrap(), SignalMetrics::from_samples(&a, 0.01).unwrap());
+/// ```
+#[derive(Debug, Clone)]
+pub struct SignalMetricsStream {
+    dt_s: f64,
+    sum2: (f64, f64),
+    sum4: (f64, f64),
+    peak: f64,
+    samples: usize,
+    /// the last `ring.len()` samples (the running-r.m.s. window), slot j mod n holds sample j
+    ring: Vec<f64>,
+    window_sum: f64,
+    max_window_sum: f64,
+}
+
+/// Adds v to a Neumaier-compensated sum (sum, compensation), as [`compensated_sum`] does term by term.
+#[inline(always)]
+fn compensated_add(acc: &mut (f64, f64), v: f64) {
+    let (sum, comp) = acc;
+    let t = *sum + v;
+    if sum.abs() >= v.abs() {
+        *comp += (*sum - t) + v;
+    } else {
+        *comp += (v - t) + *sum;
+    }
+    *sum = t;
+}
+
+impl SignalMetricsStream {
+    /// An empty record sampled at step `dt_s` with the running-r.m.s. integration time `tau_s`
+    /// ([`MTVV_INTEGRATION_TIME_S`] for the standard's MTVV).
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn new(dt_s: f64, tau_s: f64) -> Result<Self> {
+        if !(dt_s.is_finite() && dt_s > 0.0) {
+            return Err(Error::invalid("dt", dt_s, "the time step must be finite and > 0 s"));
+        }
+        let n = window(dt_s, tau_s)?;
+        Ok(SignalMetricsStream {
+            dt_s,
+            sum2: (0.0, 0.0),
+            sum4: (0.0, 0.0),
+            peak: 0.0,
+            samples: 0,
+            ring: vec![0.0; n],
+            window_sum: 0.0,
+            max_window_sum: 0.0,
+        })
+    }
+
+    /// Samples consumed so far.
+    pub fn samples(&self) -> usize {
+        self.samples
+    }
+
+    /// Samples per running-r.m.s. window, n = round(τ/dt).
+    pub fn window_samples(&self) -> usize {
+        self.ring.len()
+    }
+
+    /// Adds the next samples of the record.
+    ///
+    /// # Errors
+    /// See the type's `# Errors`; the block is then not consumed.
+    pub fn push(&mut self, x: &[f64]) -> Result<()> {
+        self.push_each(x, |_| {})
+    }
+
+    /// As [`SignalMetricsStream::push`], calling `running` with the running mean square
+    /// (1/n)·Σ_{k=j−n+1}^{j} a_k² of every sample j that completes a window (its square root is the
+    /// running r.m.s. a_w(t_j) of ISO 2631-1 6.3.1).
+    ///
+    /// # Errors
+    /// As [`SignalMetricsStream::push`].
+    pub fn push_each(&mut self, x: &[f64], mut running: impl FnMut(f64)) -> Result<()> {
+        if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(Error::invalid(
+                &format!("samples[{}]", self.samples + i),
+                v,
+                "every sample must be finite",
+            ));
+        }
+        let n = self.ring.len();
+        let inv_n = 1.0 / n as f64;
+        for &v in x {
+            let v2 = v * v;
+            compensated_add(&mut self.sum2, v2);
+            compensated_add(&mut self.sum4, v2 * v2);
+            self.peak = self.peak.max(v.abs());
+            let j = self.samples;
+            let slot = j % n;
+            let old = self.ring[slot]; // sample j − n (when j ≥ n)
+            self.ring[slot] = v;
+            if j + 1 >= n {
+                let start = j + 1 - n;
+                if start.is_multiple_of(n) {
+                    let mut s = (0.0, 0.0);
+                    for k in 0..n {
+                        let a = self.ring[(start + k) % n];
+                        compensated_add(&mut s, a * a);
+                    }
+                    self.window_sum = s.0 + s.1;
+                } else {
+                    self.window_sum += v2 - old * old;
+                }
+                let w = self.window_sum.max(0.0);
+                self.max_window_sum = self.max_window_sum.max(w);
+                running(w * inv_n);
+            }
+            self.samples += 1;
+        }
+        Ok(())
+    }
+
+    /// The metrics of the record so far.
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn finish(&self) -> Result<SignalMetrics> {
+        let n = self.samples;
+        if n == 0 {
+            return Err(Error::invalid("samples", "[] (length 0)", "the signal is empty"));
+        }
+        let n_win = self.ring.len();
+        let duration_s = n as f64 * self.dt_s;
+        let (sum2, sum4) = (self.sum2.0 + self.sum2.1, self.sum4.0 + self.sum4.1);
+        let a_w = (sum2 / n as f64).sqrt();
+        let vdv = (sum4 * self.dt_s).powf(0.25);
+        let msdv = (sum2 * self.dt_s).sqrt();
+        let mtvv = (n_win <= n).then(|| (self.max_window_sum / n_win as f64).sqrt());
+        let check = BasicMethodCheck::new(a_w, self.peak, mtvv, vdv, duration_s)?;
+        Ok(SignalMetrics {
+            samples: n,
+            dt_s: self.dt_s,
+            duration_s,
+            a_w,
+            peak: self.peak,
+            vdv,
+            msdv,
+            mtvv,
+            mtvv_integration_time_s: n_win as f64 * self.dt_s,
+            check,
+        })
+    }
+}

@@ -380,6 +380,29 @@ impl Weighting {
         }
     }
 
+    /// The frequency range of an evaluation with this weighting, Hz: 0.1–0.5 Hz for motion sickness (Wf,
+    /// ISO 2631-1:1997 clause 9), 0.5–80 Hz for health, comfort and perception (clause 6.4; ISO 2631-4 for
+    /// Wb).
+    ///
+    /// # Formula
+    /// None (the ranges of the standards).
+    ///
+    /// # Errors
+    /// None.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::comfort::Weighting;
+    /// assert_eq!(Weighting::Wf.evaluation_range_hz(), (0.1, 0.5));
+    /// assert_eq!(Weighting::Wk.evaluation_range_hz(), (0.5, 80.0));
+    /// ```
+    pub fn evaluation_range_hz(self) -> (f64, f64) {
+        match self {
+            Weighting::Wf => (0.1, 0.5),
+            _ => (0.5, 80.0),
+        }
+    }
+
     /// The frequency response H(iω), evaluated literally as the product K·H_h·H_l·H_t·H_s of the standard.
     ///
     /// # Formula

@@ -51,6 +51,7 @@ pub struct Welch {
     norm: f64,
     c2: f64,
     plan: Arc<dyn RealToComplex<f64>>,
+    remove_mean: bool,
 }
 
 impl std::fmt::Debug for Welch {
@@ -58,6 +59,7 @@ impl std::fmt::Debug for Welch {
         f.debug_struct("Welch")
             .field("m", &self.m)
             .field("dt", &self.dt)
+            .field("remove_mean", &self.remove_mean)
             .finish()
     }
 }
@@ -240,7 +242,27 @@ impl Welch {
             norm,
             c2: c * c,
             plan: RealFftPlanner::<f64>::new().plan_fft_forward(m),
+            remove_mean: false,
         })
+    }
+
+    /// The same estimator with each segment's mean subtracted before the window (scipy's
+    /// `detrend="constant"`): a constant offset of the record (a static stress, gravity) then leaks no power
+    /// into the lowest bins.
+    ///
+    /// # Formula
+    /// x^{(s)}_k − (1/M)Σ_k x^{(s)}_k in place of x^{(s)}_k in the type's formula.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::estimate::Welch;
+    /// let w = Welch::new(64, 0.01).unwrap().with_segment_mean_removed();
+    /// let est = w.estimate(&vec![5.0; 256]).unwrap();
+    /// assert!(est.density.iter().all(|d| *d < 1e-25));
+    /// ```
+    pub fn with_segment_mean_removed(mut self) -> Self {
+        self.remove_mean = true;
+        self
     }
 
     /// Segment length M.
@@ -312,8 +334,13 @@ impl Welch {
     /// Adds one windowed segment's periodogram to `sums.sum` (segment count and ν are the caller's).
     fn segment(&self, seg: &[f64], sums: &mut WelchSums, scratch: &mut WelchScratch) -> Result<()> {
         let scale = self.dt / (2.0 * PI * self.norm);
+        let mean = if self.remove_mean {
+            seg.iter().sum::<f64>() / seg.len() as f64
+        } else {
+            0.0
+        };
         for ((d, v), w) in scratch.input.iter_mut().zip(seg).zip(&self.window) {
-            *d = v * w;
+            *d = (v - mean) * w;
         }
         self.plan
             .process_with_scratch(&mut scratch.input, &mut scratch.spectrum, &mut scratch.fft)

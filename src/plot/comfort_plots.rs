@@ -2,22 +2,13 @@
 //! in Hz, its one-third-octave band r.m.s. values, and the ISO 2631-1 Annex C comfort reaction scale.
 
 use super::chart::{Legend, LineChart, Marker, SecondaryAxis, Series};
-use crate::comfort::{band_rms, bands_covering, weighted_output, BandFraction, ComfortReaction, Weighting};
+use crate::comfort::{band_rms, bands_covering, weighted_output, BandFraction, ComfortReaction};
 use crate::error::{Error, Result};
 use crate::numbers::num;
 use crate::response::output_density;
 use crate::scenario::Scenario;
 use crate::system::FrequencyResponse;
 use std::f64::consts::PI;
-
-/// The frequency range of the one-third-octave bands drawn for a weighting, Hz: 0.1–0.5 Hz for motion
-/// sickness (Wf, ISO 2631-1:1997 clause 9.2 and Annex A), 0.5–80 Hz for health and comfort (clause 6.4).
-fn band_range_hz(w: Weighting) -> (f64, f64) {
-    match w {
-        Weighting::Wf => (0.1, 0.5),
-        _ => (0.5, 80.0),
-    }
-}
 
 /// Comfort axis `axis` of the scenario's `[analysis.comfort]`: the density of the weighted acceleration
 /// a_w(t) = W(s)·y(t) (log–log, one-sided in Hz), and on the secondary axis the r.m.s. value of every
@@ -62,7 +53,7 @@ pub fn weighted_density_chart(sc: &Scenario, axis: usize) -> Result<LineChart> {
     let ws = weighted_output(ss, spec.output, &spec.weighting)?;
     let name = ws.outputs()[0].name.clone();
     let density_hz = |f: f64| 4.0 * PI * output_density(&ws, &sc.excitation, 0, 2.0 * PI * f);
-    let (lo, hi) = band_range_hz(spec.weighting);
+    let (lo, hi) = spec.weighting.evaluation_range_hz();
     let bands = bands_covering(BandFraction::ThirdOctave, lo, hi)?;
     let mut stairs = Vec::with_capacity(2 * bands.len());
     let mut total = 0.0;

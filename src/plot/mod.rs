@@ -12,6 +12,8 @@
 //! * [`model_plots`]: catalogue-model pictures from plain data (octave-band RMS against limits, mine-hoist
 //!   frequencies and modes over ξ, balancer D_y/D_x over r, scraper σ over speed).
 //!
+//! * [`record_plots`]: the pictures of `stochvib exposure` and `stochvib fatigue` (weighted time history,
+//!   band spectrum against the comfort scale, rainflow ranges against Dirlik, the rainflow matrix).
 //! * [`road_plots`](mod@road_plots): the pictures of `stochvib road PROFILE.csv --plots DIR` (measured density
 //!   with its χ² band, the ISO 8608 fits and class limits, the two-track coherence).
 //! * [`run_plots`](mod@run_plots): the pictures of a Monte Carlo run file (`stochvib plot run.h5`).
@@ -26,6 +28,7 @@ pub mod comfort_plots;
 pub mod mc_plots;
 pub mod model_plots;
 pub mod nonlinear_plots;
+pub mod record_plots;
 pub mod road_plots;
 pub mod run_plots;
 pub mod scenario_plots;

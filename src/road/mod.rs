@@ -25,7 +25,7 @@ pub mod spatial_psd;
 pub mod synthesis;
 
 pub use detrend::Detrend;
-pub use iri::{golden_car, iri, Iri};
+pub use iri::{expected_iri, golden_car, iri, ExpectedIri, Iri};
 pub use iso_fit::{fit_iso8608, iso8608_class, IsoFit, Waviness};
 pub use profile::{CsvReadOptions, CsvWriteOptions, LengthUnit, Profile, RawProfile, Track};
 pub use replay::{OutputStatistics, Replay, ReplayOptions, Start, Wheel};

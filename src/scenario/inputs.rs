@@ -264,6 +264,41 @@ pub(crate) fn track_index(f: &Fields, key: &str, v: &toml::Value) -> Result<usiz
     }
 }
 
+/// A coherence model written as a TOML inline table, e.g. `{ kind = "dodds-robson", waviness = 2 }` (the
+/// `coherence` table of a scenario's road, same kinds and keys), for tracks `width_m` apart.
+///
+/// # Errors
+/// [`crate::Error::File`] naming `--model` and the key, value and reason; text that is not a TOML inline table.
+///
+/// # Examples
+/// ```
+/// let c = stochvib::scenario::coherence_from_toml(r#"{ kind = "constant", coherence_amplitude = 0.5 }"#, 1.5).unwrap();
+/// assert_eq!(c.squared_coherence(0.3), 0.25);
+/// ```
+pub fn coherence_from_toml(text: &str, width_m: f64) -> Result<Arc<dyn Coherence>> {
+    let file = Path::new("--model");
+    let doc: toml::Table = toml::from_str(&format!("coherence = {text}")).map_err(|e| {
+        crate::Error::in_file(
+            file,
+            "coherence",
+            crate::io_rules::excerpt(text),
+            format!("not a TOML inline table: {}", e.message()),
+        )
+    })?;
+    let Some(toml::Value::Table(t)) = doc.get("coherence") else {
+        return Err(crate::Error::in_file(
+            file,
+            "coherence",
+            crate::io_rules::excerpt(text),
+            "expected an inline table { kind = … }",
+        ));
+    };
+    let f = Fields::new(file, "coherence", t);
+    let c = coherence_from_fields(&f, width_m)?;
+    f.finish()?;
+    Ok(c)
+}
+
 /// The coherence of a `road.coherence` table for tracks `width_m` apart.
 fn coherence_from_fields(cf: &Fields, width_m: f64) -> Result<Arc<dyn Coherence>> {
     let kind = cf.string("kind")?;

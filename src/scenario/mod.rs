@@ -27,6 +27,7 @@ pub mod verdict_spec;
 pub mod workday;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
+pub use inputs::coherence_from_toml;
 pub use nonlinear_run::NonlinearAnswers;
 pub use profile_identity::input_as_written;
 pub use reference::ReferenceTable;

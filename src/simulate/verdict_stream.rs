@@ -3,7 +3,7 @@
 //! record, bit for bit, for any block size.
 
 use super::VerdictChannels;
-use crate::comfort::{BasicMethodCheck, MTVV_INTEGRATION_TIME_S};
+use crate::comfort::{SignalMetricsStream, MTVV_INTEGRATION_TIME_S};
 use crate::error::{Error, Result};
 use crate::fatigue::{Cycle, RainflowCounter, RangeHistogram};
 
@@ -11,15 +11,7 @@ use crate::fatigue::{Cycle, RainflowCounter, RangeHistogram};
 #[derive(Debug, Clone)]
 struct ComfortState {
     output: usize,
-    /// Kahan–Babuška sums (sum, compensation) of a² and a⁴, as the whole-record compensated sums
-    sum2: (f64, f64),
-    sum4: (f64, f64),
-    peak: f64,
-    samples: usize,
-    /// the last `ring.len()` samples (the MTVV window), slot j mod n holds sample j
-    ring: Vec<f64>,
-    window_sum: f64,
-    mtvv: f64,
+    metrics: SignalMetricsStream,
 }
 
 /// The running state of one fatigue channel.
@@ -67,17 +59,6 @@ pub struct VerdictStream {
     channels: VerdictChannels,
 }
 
-fn compensated_add(acc: &mut (f64, f64), v: f64) {
-    let (sum, comp) = acc;
-    let t = *sum + v;
-    if sum.abs() >= v.abs() {
-        *comp += (*sum - t) + v;
-    } else {
-        *comp += (v - t) + *sum;
-    }
-    *sum = t;
-}
-
 impl VerdictStream {
     /// A fresh state for one realization of the channels `channels`; `outputs` are the simulated output
     /// names in row order.
@@ -100,20 +81,13 @@ impl VerdictStream {
                 "the time step must be finite, > 0 s and at most 2 s",
             ));
         }
-        let n_win = n_win as usize;
         let comfort = channels
             .comfort
             .iter()
             .map(|c| {
                 Ok(ComfortState {
                     output: find(&c.output)?,
-                    sum2: (0.0, 0.0),
-                    sum4: (0.0, 0.0),
-                    peak: 0.0,
-                    samples: 0,
-                    ring: vec![0.0; n_win],
-                    window_sum: 0.0,
-                    mtvv: 0.0,
+                    metrics: SignalMetricsStream::new(dt_s, MTVV_INTEGRATION_TIME_S)?,
                 })
             })
             .collect::<Result<Vec<_>>>()?;
@@ -148,37 +122,7 @@ impl VerdictStream {
     /// See the type's `# Errors`.
     pub fn push(&mut self, output: usize, x: &[f64]) -> Result<()> {
         for c in self.comfort.iter_mut().filter(|c| c.output == output) {
-            if let Some((i, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-                return Err(Error::invalid(
-                    &format!("samples[{}]", c.samples + i),
-                    v,
-                    "every sample must be finite",
-                ));
-            }
-            let n = c.ring.len();
-            for &v in x {
-                compensated_add(&mut c.sum2, v * v);
-                compensated_add(&mut c.sum4, (v * v) * (v * v));
-                c.peak = c.peak.max(v.abs());
-                let j = c.samples;
-                let old = c.ring[j % n]; // sample j − n (when j ≥ n)
-                c.ring[j % n] = v;
-                if j + 1 >= n {
-                    let start = j + 1 - n;
-                    if start % n == 0 {
-                        let mut s = (0.0, 0.0);
-                        for k in 0..n {
-                            let a = c.ring[(start + k) % n];
-                            compensated_add(&mut s, a * a);
-                        }
-                        c.window_sum = s.0 + s.1;
-                    } else {
-                        c.window_sum += v * v - old * old;
-                    }
-                    c.mtvv = c.mtvv.max((c.window_sum.max(0.0) / n as f64).sqrt());
-                }
-                c.samples += 1;
-            }
+            c.metrics.push(x)?;
         }
         for (f, ch) in self.fatigue.iter_mut().zip(&self.channels.fatigue) {
             if f.0.output != output {
@@ -206,19 +150,12 @@ impl VerdictStream {
     pub fn finish(self) -> Result<Vec<Vec<f64>>> {
         let mut out = Vec::with_capacity(self.comfort.len() + self.fatigue.len());
         for c in &self.comfort {
-            if c.samples == 0 {
-                return Err(Error::invalid("samples", "[] (length 0)", "the signal is empty"));
-            }
-            let (sum2, sum4) = (c.sum2.0 + c.sum2.1, c.sum4.0 + c.sum4.1);
-            let a_w = (sum2 / c.samples as f64).sqrt();
-            let vdv = (sum4 * self.dt_s).powf(0.25);
-            let mtvv = (c.ring.len() <= c.samples).then_some(c.mtvv);
-            let check = BasicMethodCheck::new(a_w, c.peak, mtvv, vdv, c.samples as f64 * self.dt_s)?;
+            let m = c.metrics.finish()?;
             out.push(vec![
-                a_w,
-                vdv.powi(4),
-                mtvv.unwrap_or(f64::NAN),
-                check.crest_factor.unwrap_or(f64::NAN),
+                m.a_w,
+                m.vdv.powi(4),
+                m.mtvv.unwrap_or(f64::NAN),
+                m.check.crest_factor.unwrap_or(f64::NAN),
             ]);
         }
         for ((mut state, _), ch) in self.fatigue.into_iter().zip(&self.channels.fatigue) {

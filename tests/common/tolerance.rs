@@ -224,3 +224,47 @@ pub const MC_FALSE_FAILURE: f64 = 2e-7;
 /// sampled contact rate within 0.3 % of the exact one at h·ω_c = 0.6 and 0.3, +3 % only at h·ω_c = 1.2
 /// (ω_c the contact frequency); the tests take h·ω_c ≤ 0.35, where 2 % leaves a margin.
 pub const SAMPLED_CROSSINGS: f64 = 2e-2;
+
+/// Three printed digits of a table (ISO 2631-1:1997 Table 3 prints |W|×1000 to the unit): the rounding of
+/// the last printed digit, relative, on top of the half unit.
+pub const PRINTED_3_DIGITS: f64 = 5e-4;
+
+/// Our own tolerance of the digital ISO 8041 weighting (bilinear sections prewarped at their poles) at
+/// f_s = 1 kHz over the one-third-octave centres 0.5–80 Hz, dB. The same design computed independently
+/// (scipy) errs by at most 0.12 dB, at 79.4 Hz, where the 100 Hz band limit nears the Nyquist frequency;
+/// the projection of a 2 s steady sine adds O(1/n) ≈ 1e-4. ISO 8041 allows about ±1 dB in the main range.
+pub const ISO8041_OWN_DB: f64 = 0.15;
+
+/// Our own tolerance of the digital weighting's phase against the analytic phase at the same centres,
+/// degrees: the bilinear frequency warping shifts the phase most at the top band (measured ≈ 1.2° at
+/// 79.4 Hz); 2° leaves a margin.
+pub const ISO8041_OWN_PHASE_DEG: f64 = 2.0;
+
+/// Closed-form exposure values of a sinusoidal record through the digital weighting (a_w, VDV, MTVV, A(8),
+/// MSDV): the filter starts at rest, so its start-up transient (the 0.4 Hz high pass decays as
+/// e^{−1.78 t}; Wf's 0.08 Hz one as e^{−0.36 t}) perturbs the first seconds of a 120 s (800 s) record;
+/// with the digital error at 2–4 Hz (≤ 0.01 dB ≈ 1e-3) 1 % bounds both.
+pub const RECORD_SINE_TRANSIENT: f64 = 1e-2;
+
+/// A WAV float sample is an f32: its rounding, relative to full scale (2⁻²⁴ of a value ≤ 1, doubled).
+pub const WAV_FLOAT32: f64 = 1.2e-7;
+
+/// Miner damage of constant-amplitude blocks counted by rainflow: at each of the two block junctions up to
+/// two half cycles take a range spanning both blocks (≤ 150 MPa in place of 200 or 100), each at most
+/// 1e-5 of damage against D = 0.0141: ≤ 4·1e-5/0.0141 = 2.8e-3; 3e-3.
+pub const MINER_BLOCK_BOUNDARY: f64 = 3e-3;
+
+/// The expected IRI by quadrature against an independent quadrature (scipy, printed to 7 digits); the
+/// moving average's sinc² makes the integrand oscillate, which adaptive quadrature resolves to ≈ 1e-8.
+pub const IRI_EXPECTED: f64 = 1e-5;
+
+/// Maxima of a sinusoidal record through a weighting started at rest (peak, crest factor, MTVV): the start-up
+/// transient overshoots the steady amplitude — by 2.6 % for Wk at 4 Hz (scipy: the analog weighting by the
+/// bilinear transform, started at rest, 120 s at 1 kHz); 4 % leaves a margin. Upper bound only.
+pub const RECORD_START_OVERSHOOT: f64 = 4e-2;
+
+/// The running r.m.s., VDV and MTVV of sampled sines and bursts (10 kHz, each sample held over its step)
+/// against their continuous closed forms: the rectangle rule is exact for sin² and sin⁴ over whole periods,
+/// the hold shifts the exponential form by O((ωdt)²) < 1e-5 and the window position of the linear form by
+/// O(dt²); the closed forms are printed to 6 digits (5e-7). 1e-4.
+pub const RUNNING_RMS_SAMPLED: f64 = 1e-4;

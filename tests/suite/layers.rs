@@ -23,7 +23,7 @@ const LAYERS: &[&[&str]] = &[
     &["system"],
     &["response", "comfort"],
     &["estimate", "store", "fatigue"],
-    &["simulate", "road", "nonlinear"],
+    &["simulate", "road", "nonlinear", "record"],
     &["models"],
     &["scenario"],
     &["report", "plot"],

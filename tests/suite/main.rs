@@ -46,6 +46,7 @@ mod numerical_truth;
 mod output_rule;
 mod plots;
 mod quad;
+mod records;
 mod report_format;
 mod response;
 mod road;

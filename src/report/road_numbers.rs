@@ -1,0 +1,290 @@
+//! Road building blocks as numbers: `stochvib coherence` (the coherence of a model and/or a measured
+//! two-track profile, per frequency) and `stochvib iri` (the expected IRI of a road spectrum beside the IRI of
+//! a measured profile).
+
+use super::table::{facts, Table, ToMarkdown};
+use crate::coherence::Coherence;
+use crate::error::{Error, Result};
+use crate::numbers::sig4;
+use crate::road::{default_segment, expected_iri, iri, spatial_cross_spectrum, Detrend, ExpectedIri, Profile};
+use crate::scenario::SpectrumFile;
+use serde::Serialize;
+use std::fmt;
+use std::path::Path;
+use std::sync::Arc;
+
+/// One frequency of a [`CoherenceReport`].
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct CoherenceRow {
+    /// n, cycles/m.
+    pub n: f64,
+    /// The model's coherence amplitude ρ(n).
+    pub model_coherence_amplitude: Option<f64>,
+    /// The model's squared coherence γ²(n) = ρ².
+    pub model_squared_coherence: Option<f64>,
+    /// The profile's estimate γ̂²(n).
+    pub measured_squared_coherence: Option<f64>,
+    /// Its Fisher-z interval.
+    pub lower: Option<f64>,
+    /// Its Fisher-z interval.
+    pub upper: Option<f64>,
+}
+
+/// The report of `stochvib coherence`.
+#[derive(Debug, Clone, Serialize)]
+pub struct CoherenceReport {
+    /// The model, described.
+    pub model: Option<String>,
+    /// The profile file.
+    pub profile: Option<String>,
+    /// The tracks of the estimate.
+    pub tracks: Option<(String, String)>,
+    /// Confidence of the intervals.
+    pub confidence: f64,
+    /// Welch segments of the estimate and ν.
+    pub segments: Option<(u64, f64)>,
+    /// The rows.
+    pub rows: Vec<CoherenceRow>,
+}
+
+/// The coherence of `model` at `frequencies` (default 0.01–10 cycles/m, four per decade), or at the bins of
+/// the measured `profile`'s first two tracks with the model beside.
+///
+/// # Formula
+/// Model: ρ(n) and γ² = ρ² ([`Coherence`]). Profile: γ̂² = |Ĝ_LR|²/(Ĝ_LL Ĝ_RR) of the linearly detrended
+/// tracks by Welch ([`spatial_cross_spectrum`]), with the Fisher-z interval.
+///
+/// # Errors
+/// Neither a model nor a profile; a frequency not finite and ≥ 0; a profile of one track; the errors of
+/// [`Profile::read_csv`] and of the estimate.
+pub fn coherence_report(
+    model: Option<Arc<dyn Coherence>>,
+    profile: Option<&Path>,
+    frequencies: &[f64],
+    segment: Option<usize>,
+    confidence: f64,
+) -> Result<CoherenceReport> {
+    if let Some(f) = frequencies.iter().find(|f| !(f.is_finite() && **f >= 0.0)) {
+        return Err(Error::invalid(
+            "--frequency",
+            f,
+            "spatial frequencies must be finite and >= 0 cycles/m",
+        ));
+    }
+    let at = |n: f64| {
+        let rho = model.as_ref().map(|m| m.coherence_amplitude(n));
+        (rho, rho.map(|r| r * r))
+    };
+    let mut report = CoherenceReport {
+        model: model.as_ref().map(|m| m.describe()),
+        profile: profile.map(|p| p.display().to_string()),
+        tracks: None,
+        confidence,
+        segments: None,
+        rows: Vec::new(),
+    };
+    let Some(path) = profile else {
+        if model.is_none() {
+            return Err(Error::invalid(
+                "--model",
+                "<none>",
+                "give a coherence model (--model) or a profile (--profile)",
+            ));
+        }
+        let ns: Vec<f64> = if frequencies.is_empty() {
+            (0..=12).map(|k| 0.01 * 10f64.powf(k as f64 / 4.0)).collect()
+        } else {
+            frequencies.to_vec()
+        };
+        report.rows = ns
+            .into_iter()
+            .map(|n| {
+                let (r, g) = at(n);
+                CoherenceRow {
+                    n,
+                    model_coherence_amplitude: r,
+                    model_squared_coherence: g,
+                    measured_squared_coherence: None,
+                    lower: None,
+                    upper: None,
+                }
+            })
+            .collect();
+        return Ok(report);
+    };
+    let p = Profile::read_csv(path)?.detrended(Detrend::Linear);
+    if p.tracks.len() < 2 {
+        return Err(Error::in_file(
+            path,
+            "header",
+            p.tracks.len(),
+            "the coherence needs a profile of two tracks",
+        ));
+    }
+    let m = segment.unwrap_or_else(|| default_segment(p.len()));
+    let cs = spatial_cross_spectrum(&p.tracks[0].elevation_m, &p.tracks[1].elevation_m, p.step_m, m)?;
+    for i in 0..cs.n.len() {
+        let iv = cs.squared_coherence_interval(i, confidence)?;
+        let (r, g) = at(cs.n[i]);
+        report.rows.push(CoherenceRow {
+            n: cs.n[i],
+            model_coherence_amplitude: r,
+            model_squared_coherence: g,
+            measured_squared_coherence: Some(iv.estimate),
+            lower: Some(iv.lower),
+            upper: Some(iv.upper),
+        });
+    }
+    report.tracks = Some((p.tracks[0].name.clone(), p.tracks[1].name.clone()));
+    report.segments = Some((cs.segments, cs.dof));
+    Ok(report)
+}
+
+impl CoherenceReport {
+    fn table(&self) -> Table {
+        let col = |f: fn(&CoherenceRow) -> Option<f64>| self.rows.iter().map(f).collect::<Vec<_>>();
+        let mut t = Table::default().num("n [cycles/m]", &col(|r| Some(r.n)));
+        if self.model.is_some() {
+            t = t
+                .num("ρ model", &col(|r| r.model_coherence_amplitude))
+                .num("γ² model", &col(|r| r.model_squared_coherence));
+        }
+        if self.profile.is_some() {
+            t = t
+                .num("γ² measured", &col(|r| r.measured_squared_coherence))
+                .num("lower", &col(|r| r.lower))
+                .num("upper", &col(|r| r.upper));
+        }
+        t
+    }
+
+    fn lines(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if let Some(m) = &self.model {
+            out.push(format!(
+                "model: {m} (ρ the coherence amplitude, S_LR = ρS; γ² = ρ² the squared coherence)"
+            ));
+        }
+        if let (Some(p), Some((l, r)), Some((k, nu))) = (&self.profile, &self.tracks, self.segments) {
+            out.push(format!(
+                "profile {p}: γ̂² of tracks {l} and {r} (linear trend removed; Welch, {k} segments, ν = {}), {} % \
+                 Fisher-z interval",
+                sig4(nu),
+                sig4(self.confidence * 100.0)
+            ));
+        }
+        out
+    }
+}
+
+impl fmt::Display for CoherenceReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for l in self.lines() {
+            writeln!(f, "{l}")?;
+        }
+        write!(f, "{}", self.table().aligned("  "))
+    }
+}
+
+impl ToMarkdown for CoherenceReport {
+    fn markdown(&self) -> String {
+        let mut s = "# Coherence of two tracks\n\n".to_string();
+        s += &self.lines().iter().map(|l| format!("- {l}\n")).collect::<String>();
+        s + "\n" + &self.table().markdown()
+    }
+}
+
+/// One measured track's IRI.
+#[derive(Debug, Clone, Serialize)]
+pub struct TrackIri {
+    /// Track name.
+    pub track: String,
+    /// IRI, m/km.
+    pub m_per_km: f64,
+}
+
+/// The report of `stochvib iri`.
+#[derive(Debug, Clone, Serialize)]
+pub struct IriReport {
+    /// The spectrum's name and description.
+    pub spectrum: String,
+    /// The expectation from the spectrum.
+    pub expected: ExpectedIri,
+    /// The profile file and its tracks' IRI.
+    pub profile: Option<String>,
+    /// Per track.
+    pub measured: Vec<TrackIri>,
+}
+
+/// The expected IRI of `spectrum` ([`expected_iri`]) beside the IRI of each track of `profile` ([`iri`]).
+///
+/// # Errors
+/// The errors of [`expected_iri`], [`Profile::read_csv`] and [`iri`].
+pub fn iri_report(spectrum: &SpectrumFile, profile: Option<&Path>) -> Result<IriReport> {
+    let expected = expected_iri(spectrum.spectrum.as_ref())?;
+    let mut measured = Vec::new();
+    if let Some(path) = profile {
+        let p = Profile::read_csv(path)?;
+        for t in &p.tracks {
+            measured.push(TrackIri {
+                track: t.name.clone(),
+                m_per_km: iri(&t.elevation_m, p.step_m)?.m_per_km,
+            });
+        }
+    }
+    Ok(IriReport {
+        spectrum: format!("{} ({})", spectrum.name, spectrum.description),
+        expected,
+        profile: profile.map(|p| p.display().to_string()),
+        measured,
+    })
+}
+
+impl IriReport {
+    fn table(&self) -> Table {
+        let mut what = vec![
+            "expected, with the 250 mm moving average".to_string(),
+            "expected, without the moving average".to_string(),
+        ];
+        let mut v = vec![
+            Some(self.expected.m_per_km),
+            Some(self.expected.without_moving_average_m_per_km),
+        ];
+        for m in &self.measured {
+            what.push(format!("measured, track {}", m.track));
+            v.push(Some(m.m_per_km));
+        }
+        Table::default().text("IRI", what).num("m/km", &v)
+    }
+
+    fn lines(&self) -> Vec<String> {
+        vec![
+            format!("spectrum {}", self.spectrum),
+            format!(
+                "E[IRI] = 1000 √(2/π) σ_rv / v: golden car (ASTM E1926) at 80 km/h, σ_rv of its relative velocity over \
+                 {}–{} cycles/m (Gaussian profile: E|X| = √(2/π) σ)",
+                sig4(self.expected.band_cycles_per_m.0),
+                sig4(self.expected.band_cycles_per_m.1)
+            ),
+        ]
+    }
+}
+
+impl fmt::Display for IriReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for l in self.lines() {
+            writeln!(f, "{l}")?;
+        }
+        write!(f, "{}", self.table().aligned("  "))
+    }
+}
+
+impl ToMarkdown for IriReport {
+    fn markdown(&self) -> String {
+        let mut s = "# International Roughness Index\n\n".to_string();
+        s += &facts(&[("spectrum", self.spectrum.clone())]);
+        s += "\n";
+        s += &self.lines()[1..].iter().map(|l| format!("- {l}\n")).collect::<String>();
+        s + "\n" + &self.table().markdown()
+    }
+}
