@@ -10,6 +10,7 @@ pub mod layout;
 mod parts;
 mod rainflow;
 mod reader;
+pub mod transient_series;
 mod writer;
 
 pub use parts::{find_run_files, MergedFrom, PartFile, PartSet, RawStorage, VirtualSource};

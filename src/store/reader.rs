@@ -176,6 +176,11 @@ impl RunFile {
             .map_err(h5err(&self.path, "reading /shards/checksums"))
     }
 
+    /// The open file (for the optional groups read by [`super::transient_series`]).
+    pub(super) fn h5(&self) -> &File {
+        &self.file
+    }
+
     /// The part of the run this file holds (a shard file), or `None` for a whole run.
     pub fn part(&self) -> Option<Part> {
         self.meta.part
@@ -1166,7 +1171,7 @@ fn check_psd(e: &PsdEstimate, path: &Path) -> Result<()> {
 }
 
 /// A checksum mismatch.
-fn damaged(path: &Path, what: &str) -> Error {
+pub(super) fn damaged(path: &Path, what: &str) -> Error {
     Error::Hdf5 {
         path: path.to_path_buf(),
         reason: format!("checksum mismatch in {what}: the file is damaged (its data are not what was written)"),
@@ -1196,13 +1201,13 @@ fn missing_or(loc: &Location, name: &str, path: &Path, e: hdf5::Error) -> Error 
     }
 }
 
-fn attr_scalar<T: hdf5::H5Type>(loc: &Location, name: &str, path: &Path) -> Result<T> {
+pub(super) fn attr_scalar<T: hdf5::H5Type>(loc: &Location, name: &str, path: &Path) -> Result<T> {
     loc.attr(name)
         .and_then(|a| a.read_scalar::<T>())
         .map_err(|e| missing_or(loc, name, path, e))
 }
 
-fn attr_string(loc: &Location, name: &str, path: &Path) -> Result<String> {
+pub(super) fn attr_string(loc: &Location, name: &str, path: &Path) -> Result<String> {
     loc.attr(name)
         .and_then(|a| a.read_scalar::<VarLenUnicode>())
         .map(|v| v.as_str().to_string())

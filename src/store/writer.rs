@@ -1071,6 +1071,11 @@ impl RunWriter {
         self.file.flush().map_err(e("flushing a rainflow histogram"))
     }
 
+    /// The open `.tmp` file and its path (for the optional groups written by [`super::transient_series`]).
+    pub(super) fn h5(&self) -> (&File, &Path) {
+        (&self.file, &self.tmp)
+    }
+
     fn check_signal_name(&self, field: &str, name: &str) -> Result<()> {
         if self
             .meta
@@ -1431,7 +1436,7 @@ fn write_root_attrs(file: &File, m: &RunMetadata, version: u32) -> hdf5::Result<
     Ok(())
 }
 
-fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
+pub(super) fn write_scalar_attr<T: hdf5::H5Type>(loc: &Location, name: &str, value: T) -> hdf5::Result<()> {
     loc.new_attr::<T>().shape(()).create(name)?.write_scalar(&value)
 }
 
@@ -1440,7 +1445,7 @@ fn to_vlu(text: &str) -> hdf5::Result<VarLenUnicode> {
         .map_err(|err| hdf5::Error::from(format!("text {text:?} cannot be stored: {err}")))
 }
 
-fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
+pub(super) fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
     let v = to_vlu(value)?;
     loc.new_attr::<VarLenUnicode>().shape(()).create(name)?.write_scalar(&v)
 }

@@ -51,6 +51,7 @@ mod stream_sources;
 mod stream_verdicts;
 mod streaming;
 mod sweep_stream;
+mod transient_exact;
 mod two_tracks;
 mod two_tracks_mc;
 mod value_stability;
