@@ -89,10 +89,18 @@ pub fn ers_fds(density: &dyn Fn(f64) -> f64, breakpoints: &[f64], opts: &ErsFdsO
 
 fn check(opts: &ErsFdsOptions) -> Result<()> {
     if !(opts.q > 0.5 && opts.q.is_finite()) {
-        return Err(Error::invalid("quality factor", opts.q, "Q = 1/(2ζ) must be > 0.5 and finite"));
+        return Err(Error::invalid(
+            "quality factor",
+            opts.q,
+            "Q = 1/(2ζ) must be > 0.5 and finite",
+        ));
     }
     if let Some(f) = opts.frequencies_hz.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
-        return Err(Error::invalid("frequency", f, "natural frequencies must be finite and > 0 Hz"));
+        return Err(Error::invalid(
+            "frequency",
+            f,
+            "natural frequencies must be finite and > 0 Hz",
+        ));
     }
     let m = &opts.material;
     for (name, v) in [("duration", opts.duration_s), ("b", m.b), ("K", m.k), ("C", m.c)] {
@@ -106,7 +114,11 @@ fn check(opts: &ErsFdsOptions) -> Result<()> {
 fn point(density: &dyn Fn(f64) -> f64, breakpoints: &[f64], f0: f64, opts: &ErsFdsOptions) -> Result<ErsFdsPoint> {
     let w0 = 2.0 * PI * f0;
     let h2 = |w: f64| 1.0 / ((w0 * w0 - w * w).powi(2) + (w * w0 / opts.q).powi(2));
-    let mut bp: Vec<f64> = breakpoints.iter().copied().filter(|b| *b > 0.0 && b.is_finite()).collect();
+    let mut bp: Vec<f64> = breakpoints
+        .iter()
+        .copied()
+        .filter(|b| *b > 0.0 && b.is_finite())
+        .collect();
     let half = w0 / (2.0 * opts.q);
     bp.extend([w0 - half, w0, w0 + half]);
     bp.retain(|b| *b > 0.0);
@@ -122,7 +134,11 @@ fn point(density: &dyn Fn(f64) -> f64, breakpoints: &[f64], f0: f64, opts: &ErsF
     let z = z2.sqrt();
     let n0 = v2.sqrt() / (2.0 * PI * z);
     let nt = n0 * opts.duration_s;
-    let ers = if nt > 1.0 { w0 * w0 * z * (2.0 * nt.ln()).sqrt() } else { f64::NAN };
+    let ers = if nt > 1.0 {
+        w0 * w0 * z * (2.0 * nt.ln()).sqrt()
+    } else {
+        f64::NAN
+    };
     let m = &opts.material;
     let fds = m.k.powf(m.b) / m.c * nt * (2f64.sqrt() * z).powf(m.b) * statrs::function::gamma::gamma(1.0 + m.b / 2.0);
     Ok(ErsFdsPoint {

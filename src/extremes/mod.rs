@@ -1,7 +1,7 @@
 //! Extremes of a mission: the distribution of the largest value of a Gaussian response over a duration T,
 //! peak factors, first-passage probabilities, and the spectra used to tailor a test from a response
 //! (Lalanne's extreme response and fatigue damage spectra). The formulas, sources and conventions are
-//! collected in `docs/extremes.md`.
+//! collected in `docs/transients.md`.
 //!
 //! # Conventions (read this first)
 //! * A maximum is either of y itself (**one-sided**, [`Barrier::OneSided`]: up-crossings of +b count) or of

@@ -1,6 +1,6 @@
 //! The `/transient` group of a run file: the time series of Monte Carlo statistics of a non-stationary run
 //! beside the exact curves, and the per-realization maxima of the mission with the analytic distributions
-//! (layout: `docs/run-file-format.md`, "Transient runs").
+//! (layout: `docs/transients.md`, "The `/transient` group of a run file").
 
 use super::checksum::Crc32;
 use super::reader::{attr_scalar, attr_string, damaged};
@@ -176,7 +176,11 @@ impl RunWriter {
         let names: Vec<String> = self.metadata().outputs.iter().map(|o| o.name.clone()).collect();
         for o in &s.outputs {
             if !names.contains(&o.output) {
-                return Err(Error::invalid("transient output", &o.output, "not an output of this run"));
+                return Err(Error::invalid(
+                    "transient output",
+                    &o.output,
+                    "not an output of this run",
+                ));
             }
             if o.arrays().iter().any(|a| a.len() != s.times.len()) {
                 return Err(Error::invalid(
@@ -235,8 +239,14 @@ impl RunFile {
                 continue;
             }
             let og = g.group(&sig.name).map_err(h5err(p, "opening a transient group"))?;
-            let series = SERIES_DATASETS.iter().map(|n| read_f64(&og, n, p)).collect::<Result<_>>()?;
-            let maxima = MAXIMA_DATASETS.iter().map(|n| read_f64(&og, n, p)).collect::<Result<_>>()?;
+            let series = SERIES_DATASETS
+                .iter()
+                .map(|n| read_f64(&og, n, p))
+                .collect::<Result<_>>()?;
+            let maxima = MAXIMA_DATASETS
+                .iter()
+                .map(|n| read_f64(&og, n, p))
+                .collect::<Result<_>>()?;
             let o = TransientOutput::from_arrays(&sig.name, attr_string(&og, "unit", p)?, series, maxima);
             if attr_scalar::<u32>(&og, "crc32", p)? != o.checksum() {
                 return Err(damaged(p, &format!("transient/{}", sig.name)));

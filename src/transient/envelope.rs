@@ -43,7 +43,10 @@ impl Envelope {
     /// See the type's `# Errors`.
     pub fn table(times: Vec<f64>, values: Vec<f64>) -> Result<Self> {
         let table = PiecewiseLinear::new(times, values).map_err(|e| rename(e, "value", "envelope"))?;
-        Ok(Envelope { table, intensity: false })
+        Ok(Envelope {
+            table,
+            intensity: false,
+        })
     }
 
     /// The intensity envelope e(t) = a(t)² through (t\[k\], e\[k\]), e ≥ 0.
@@ -81,7 +84,11 @@ impl Envelope {
     /// a(t).
     pub fn value(&self, t: f64) -> f64 {
         let v = self.table.value(t);
-        if self.intensity { v.sqrt() } else { v }
+        if self.intensity {
+            v.sqrt()
+        } else {
+            v
+        }
     }
 
     /// da/dt (for an intensity table: ė/(2a); 0 where a = 0 and e is flat).
@@ -91,7 +98,11 @@ impl Envelope {
             return s;
         }
         let a = self.value(t);
-        if s == 0.0 { 0.0 } else { s / (2.0 * a) }
+        if s == 0.0 {
+            0.0
+        } else {
+            s / (2.0 * a)
+        }
     }
 
     /// Whether a ≡ 1.

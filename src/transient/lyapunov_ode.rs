@@ -205,8 +205,17 @@ pub fn propagate(
     let mut h = (span / 100.0).max(f64::MIN_POSITIVE);
     for (k, &target) in times.iter().enumerate() {
         while t < target {
-            let end = sys.knots().iter().copied().find(|x| *x > t).map_or(target, |x| x.min(target));
-            let step = if h >= end - t || end - t - h < 1e-12 * end.abs().max(1.0) { end - t } else { h };
+            let end = sys
+                .knots()
+                .iter()
+                .copied()
+                .find(|x| *x > t)
+                .map_or(target, |x| x.min(target));
+            let step = if h >= end - t || end - t - h < 1e-12 * end.abs().max(1.0) {
+                end - t
+            } else {
+                h
+            };
             let (p1, m1, err, exact) = it.trial(t, step, &p, &m)?;
             if err > it.opts.rel_tol && step > 1e-12 * span.max(1.0) {
                 it.report.rejected += 1;

@@ -126,7 +126,10 @@ impl<'a> McPlan<'a> {
     /// # Errors
     /// An output without a finite variance; the start's errors; a covariance that is not one.
     pub fn new(sys: &'a TimeVaryingSystem, outputs: Vec<usize>, start: &Start, grid: McGrid) -> Result<Self> {
-        if let Some(&i) = outputs.iter().find(|&&i| i >= sys.outputs().len() || sys.unavailable(i).is_some()) {
+        if let Some(&i) = outputs
+            .iter()
+            .find(|&&i| i >= sys.outputs().len() || sys.unavailable(i).is_some())
+        {
             return Err(Error::invalid(
                 "output",
                 i,

@@ -29,7 +29,12 @@ pub fn is_transient_layout(accumulators: &[(String, usize)]) -> bool {
 pub fn layout(outputs: &[String], n_stored: usize, shard_size: usize) -> Vec<(String, usize)> {
     outputs
         .iter()
-        .flat_map(|o| [(series_accumulator(o), 2 * n_stored), (maxima_accumulator(o), 2 * shard_size)])
+        .flat_map(|o| {
+            [
+                (series_accumulator(o), 2 * n_stored),
+                (maxima_accumulator(o), 2 * shard_size),
+            ]
+        })
         .collect()
 }
 
@@ -149,7 +154,11 @@ pub fn finish(
     let shards: Vec<(usize, usize)> = meta.local_shards().map(|b| (b, meta.shard_range(b).len())).collect();
     let r: usize = shards.iter().map(|s| s.1).sum();
     if r < 2 {
-        return Err(Error::invalid("realizations", r, "the ensemble statistics need at least 2 realizations"));
+        return Err(Error::invalid(
+            "realizations",
+            r,
+            "the ensemble statistics need at least 2 realizations",
+        ));
     }
     let epsilon = crate::extremes::dkw_epsilon(r, 1.0 - confidence)?;
     let mut outputs = Vec::new();
@@ -185,7 +194,11 @@ fn fold_series(acc: &AccumulatorReader<'_>, output: &str, shards: &[(usize, usiz
     for &(b, rows) in shards {
         let a = acc(&series_accumulator(output), b)?;
         if a.len() != 2 * k {
-            return Err(Error::invalid("accumulator", series_accumulator(output), "wrong length: the file is damaged"));
+            return Err(Error::invalid(
+                "accumulator",
+                series_accumulator(output),
+                "wrong length: the file is damaged",
+            ));
         }
         fold.add(rows, &a);
     }
@@ -202,7 +215,11 @@ fn read_maxima(
     for &(b, rows) in shards {
         let a = acc(&maxima_accumulator(output), b)?;
         if a.len() != 2 * shard_size {
-            return Err(Error::invalid("accumulator", maxima_accumulator(output), "wrong length: the file is damaged"));
+            return Err(Error::invalid(
+                "accumulator",
+                maxima_accumulator(output),
+                "wrong length: the file is damaged",
+            ));
         }
         y.extend_from_slice(&a[..rows]);
         abs.extend_from_slice(&a[shard_size..shard_size + rows]);
@@ -259,11 +276,21 @@ fn output_series(
 fn maxima_verdicts(o: &TransientOutput, confidence: f64) -> Result<MaximaVerdicts> {
     let mut verdicts = Vec::new();
     for (samples, label, curves) in [
-        (&o.max_y, "max y", [(&o.cdf_max_y_rice, "Poisson (Rice)"), (&o.cdf_max_y_vanmarcke, "Vanmarcke (1975)")]),
+        (
+            &o.max_y,
+            "max y",
+            [
+                (&o.cdf_max_y_rice, "Poisson (Rice)"),
+                (&o.cdf_max_y_vanmarcke, "Vanmarcke (1975)"),
+            ],
+        ),
         (
             &o.max_abs_y,
             "max |y|",
-            [(&o.cdf_max_abs_y_rice, "Poisson (Rice)"), (&o.cdf_max_abs_y_vanmarcke, "Vanmarcke (1975)")],
+            [
+                (&o.cdf_max_abs_y_rice, "Poisson (Rice)"),
+                (&o.cdf_max_abs_y_vanmarcke, "Vanmarcke (1975)"),
+            ],
         ),
     ] {
         let emp = EmpiricalDistribution::new(samples, confidence)?;

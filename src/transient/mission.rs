@@ -44,7 +44,12 @@ pub fn stationary_moments(fr: &Frozen, i: usize, rel_tol: f64) -> Result<Station
             None => f64::NAN,
         }
     };
-    let mut bp: Vec<f64> = fr.f.complex_eigenvalues().iter().map(|l| l.norm()).filter(|w| *w > 0.0).collect();
+    let mut bp: Vec<f64> =
+        fr.f.complex_eigenvalues()
+            .iter()
+            .map(|l| l.norm())
+            .filter(|w| *w > 0.0)
+            .collect();
     bp.sort_by(f64::total_cmp);
     bp.dedup();
     let q = QuadOptions {

@@ -43,7 +43,7 @@ pub use mc_engine::McGrid;
 pub use mission::{stationary_moments, StationaryMoments};
 pub use monte_carlo::{merge_transient, run_transient, TransientRunInput, TransientRunOptions, TransientRunSummary};
 pub use profile::PiecewiseLinear;
-pub use schedule::{check_stability, FixedSystem, ModelAt, Schedule, ScheduledSystem, SystemFamily};
+pub use schedule::{check_stability, FamilyBuilder, FixedSystem, ModelAt, Schedule, ScheduledSystem, SystemFamily};
 pub use series::{solve, Crossings, OutputSeries, TransientSolution};
 pub use speed_profile::SpeedProfile;
 pub use system::{Frozen, InputModel, Start, TimeVaryingSystem, TransientInput};

@@ -1,6 +1,6 @@
 //! Monte Carlo of a non-stationary response: realizations stepped exactly with the frozen coefficients,
 //! the ensemble statistics at every stored time written to a run file beside the exact curves; resumable,
-//! in cluster shards, and merged bit-identically (layout: `docs/run-file-format.md`, "Transient runs").
+//! in cluster shards, and merged bit-identically (layout: `docs/transients.md`, "The `/transient` group of a run file").
 
 use super::mc_engine::{McGrid, McPlan, RealizationState};
 use super::mc_finish::{finish, is_transient_layout, layout, AnalyticOutput, AnalyticSide, Finished, MaximaVerdicts};
@@ -199,7 +199,13 @@ fn check_options(opts: &TransientRunOptions, exact: &TransientSolution) -> Resul
         return Err(Error::invalid("confidence", opts.confidence, "must be in (0, 1)"));
     }
     let times = opts.grid.stored_times();
-    if exact.times.len() != times.len() || exact.times.iter().zip(&times).any(|(a, b)| (a - b).abs() > 1e-9 * b.max(1.0)) {
+    if exact.times.len() != times.len()
+        || exact
+            .times
+            .iter()
+            .zip(&times)
+            .any(|(a, b)| (a - b).abs() > 1e-9 * b.max(1.0))
+    {
         return Err(Error::invalid(
             "exact",
             exact.times.len(),
@@ -262,7 +268,13 @@ fn write_finished(writer: &mut RunWriter, fin: &Finished) -> Result<()> {
     writer.write_transient(&fin.series)
 }
 
-fn summary(path: PathBuf, meta: &RunMetadata, resumed: usize, fin: Finished, notes: Vec<String>) -> TransientRunSummary {
+fn summary(
+    path: PathBuf,
+    meta: &RunMetadata,
+    resumed: usize,
+    fin: Finished,
+    notes: Vec<String>,
+) -> TransientRunSummary {
     let sigma_coverage = fin
         .series
         .outputs
@@ -293,8 +305,8 @@ pub fn is_transient_run(meta: &RunMetadata) -> bool {
     is_transient_layout(&meta.accumulators)
 }
 
-/// Merges the shard files of a transient run (see [`crate::simulate::merge_runs`], which calls this for
-/// transient runs): the accumulators of every internal shard in order, finished by the code of a
+/// Merges the shard files of a transient run (the counterpart of [`crate::simulate::merge_runs`], which
+/// does not handle transient runs): the accumulators of every internal shard in order, finished by the code of a
 /// single-process run, so the statistics are bit-identical; the analytic side is taken from the first
 /// shard file (every shard file stores the same, which the shared fingerprint checks).
 ///
@@ -313,7 +325,10 @@ pub fn merge_transient(
     if let Some(p) = set.parts[1..].iter().find(|p| p.shared != first.shared) {
         return Err(Error::Hdf5 {
             path: p.path.clone(),
-            reason: format!("its exact values differ from those of {}: one of them is damaged", first.path.display()),
+            reason: format!(
+                "its exact values differ from those of {}: one of them is damaged",
+                first.path.display()
+            ),
         });
     }
     let stored = first.open()?.transient()?.ok_or_else(|| Error::Hdf5 {
@@ -350,31 +365,23 @@ pub fn merge_transient(
     )?;
     write_finished(&mut writer, &fin)?;
     let path = writer.finish()?;
-    let notes = set.ignored.iter().map(|(p, why)| format!("{}: {why}", p.display())).collect();
+    let notes = set
+        .ignored
+        .iter()
+        .map(|(p, why)| format!("{}: {why}", p.display()))
+        .collect();
     Ok(summary(path, &meta, 0, fin, notes))
 }
 
 /// Copies (or references) every part's shards into the merged writer, in shard order.
-fn adopt_parts(
-    writer: &mut RunWriter,
-    set: &PartSet,
-    raw: RawStorage,
-    progress: &dyn Fn(usize, usize),
-) -> Result<()> {
+fn adopt_parts(writer: &mut RunWriter, set: &PartSet, raw: RawStorage, progress: &dyn Fn(usize, usize)) -> Result<()> {
     let meta = &set.meta;
     let names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
     progress(0, meta.n_shards());
     for p in &set.parts {
         let run = p.open()?;
         let local = p.meta.local_shards();
-        let accs = names
-            .iter()
-            .map(|n| run.read_accumulator_rows(n))
-            .collect::<Result<Vec<_>>>()?;
-        let sums = run.shard_checksum_rows()?.ok_or_else(|| Error::Hdf5 {
-            path: p.path.clone(),
-            reason: "a shard file without checksums: cannot be merged".into(),
-        })?;
+        let (accs, sums) = p.shard_rows(&run, &names)?;
         if raw == RawStorage::Copied {
             copy_rows(writer, &run, meta, local.clone(), &accs)?;
         } else {

@@ -93,7 +93,10 @@ impl PiecewiseLinear {
 
     /// The segment k with t_k ≤ t < t_{k+1}, clamped to the table.
     fn segment(&self, t: f64) -> usize {
-        self.t.partition_point(|x| *x <= t).saturating_sub(1).min(self.t.len().saturating_sub(2))
+        self.t
+            .partition_point(|x| *x <= t)
+            .saturating_sub(1)
+            .min(self.t.len().saturating_sub(2))
     }
 
     /// y(t).

@@ -74,9 +74,7 @@ impl SpeedProfile {
             return Err(Error::invalid(
                 "acceleration",
                 a,
-                format!(
-                    "goes the wrong way from {v0} m/s to {v1} m/s (positive to speed up, negative to brake)"
-                ),
+                format!("goes the wrong way from {v0} m/s to {v1} m/s (positive to speed up, negative to brake)"),
             ));
         }
         let t1 = t0 + (v1 - v0) / a;

@@ -168,7 +168,11 @@ impl TimeVaryingSystem {
         let filter = match &input.model {
             InputModel::Rational { filter } | InputModel::SpatialRational { filter, .. } => Some(filter_parts(filter)?),
             InputModel::White { density } if !(density.is_finite() && *density >= 0.0) => {
-                return Err(Error::invalid("density", density, "a white-noise density is finite and >= 0"));
+                return Err(Error::invalid(
+                    "density",
+                    density,
+                    "a white-noise density is finite and >= 0",
+                ));
             }
             _ => None,
         };
@@ -266,7 +270,11 @@ impl TimeVaryingSystem {
             InputModel::SpatialRational { .. } => "rational road under v(t)".to_string(),
             InputModel::WhiteSlope { coefficient, .. } => format!("w = 2 road, S(Omega) = {coefficient:e}/Omega^2"),
         };
-        let env = if self.input.envelope.is_unit() { "" } else { ", enveloped" };
+        let env = if self.input.envelope.is_unit() {
+            ""
+        } else {
+            ", enveloped"
+        };
         format!("{}; {inp}{env}", self.family.describe())
     }
 
@@ -277,7 +285,11 @@ impl TimeVaryingSystem {
     pub fn frozen(&self, t: f64) -> Result<Frozen> {
         let m = self.family.at(t).map_err(|e| at_time(e, t))?;
         let ss = m.ss.combine_inputs(&self.input.gains)?;
-        let (a, ad, mu) = (self.input.envelope.value(t), self.input.envelope.slope(t), self.input.mean);
+        let (a, ad, mu) = (
+            self.input.envelope.value(t),
+            self.input.envelope.slope(t),
+            self.input.mean,
+        );
         let forcing = m.forcing.unwrap_or_else(|| DVector::zeros(self.n_system));
         let y0 = (&ss.d * a + &ss.e * ad).column(0) * mu;
         let bx = ss.b.column(0) * (a * mu) + forcing;
@@ -375,7 +387,8 @@ impl TimeVaryingSystem {
                         y0: DVector::zeros(0),
                     };
                     if crate::linalg::is_stable(&sub.f) {
-                        p.view_mut((0, 0), (nf, nf)).copy_from(&stationary(&sub, "the input filter")?.0);
+                        p.view_mut((0, 0), (nf, nf))
+                            .copy_from(&stationary(&sub, "the input filter")?.0);
                     }
                 }
                 let mut m = DVector::zeros(n);
@@ -407,7 +420,11 @@ fn stationary(fr: &Frozen, what: &str) -> Result<(DMatrix<f64>, DVector<f64>)> {
         });
     }
     let p = crate::linalg::solve_continuous_lyapunov(&fr.f, &(&fr.g * fr.g.transpose()))?;
-    let m = fr.f.clone().lu().solve(&(-&fr.b)).unwrap_or_else(|| DVector::zeros(fr.b.len()));
+    let m =
+        fr.f.clone()
+            .lu()
+            .solve(&(-&fr.b))
+            .unwrap_or_else(|| DVector::zeros(fr.b.len()));
     Ok((p, m))
 }
 
