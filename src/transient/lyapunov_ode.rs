@@ -163,6 +163,9 @@ impl Integrator<'_> {
     }
 }
 
+/// What [`propagate`] calls at every stored time: (k, t_k, P, m, accumulated error estimate).
+pub type Visit<'a> = dyn FnMut(usize, f64, &DMatrix<f64>, &DVector<f64>, f64) -> Result<()> + 'a;
+
 /// Propagates the mean and covariance of `sys` from (P(0), m(0)) = (`p0`, `m0`) to every time of `times`
 /// (increasing, ≥ 0), calling `visit(k, t_k, P, m, error)` at each, where `error` is the accumulated
 /// relative error estimate of the variances up to t_k.
@@ -186,7 +189,7 @@ pub fn propagate(
     m0: DVector<f64>,
     times: &[f64],
     opts: &ExactOptions,
-    visit: &mut dyn FnMut(usize, f64, &DMatrix<f64>, &DVector<f64>, f64) -> Result<()>,
+    visit: &mut Visit<'_>,
 ) -> Result<StepReport> {
     check_times(times)?;
     if !(opts.rel_tol > 0.0 && opts.rel_tol < 1.0) {

@@ -90,6 +90,9 @@ fn flat(m: &DMatrix<f64>) -> Vec<f64> {
         .collect()
 }
 
+/// The step transitions and output maps of a block (equal neighbours shared).
+type BlockTables = (Vec<Arc<StepDisc>>, Vec<Arc<OutputMap>>);
+
 /// What every realization of a run shares: the system, the selected outputs, the start and the grid.
 pub struct McPlan<'a> {
     sys: &'a TimeVaryingSystem,
@@ -169,7 +172,7 @@ impl<'a> McPlan<'a> {
     }
 
     /// The transitions of steps `j0..j1` and the output maps of points `j0..=j1`, equal neighbours shared.
-    fn block_tables(&self, j0: usize, j1: usize) -> Result<(Vec<Arc<StepDisc>>, Vec<Arc<OutputMap>>)> {
+    fn block_tables(&self, j0: usize, j1: usize) -> Result<BlockTables> {
         let dt = self.grid.dt;
         let mut steps: Vec<Arc<StepDisc>> = Vec::with_capacity(j1 - j0);
         let mut last: Option<(Frozen, Arc<StepDisc>)> = None;

@@ -215,13 +215,11 @@ fn check_options(opts: &TransientRunOptions, exact: &TransientSolution) -> Resul
     Ok(())
 }
 
+/// A shard's accumulators (in the layout's order) and its raw rows per output (empty without raw storage).
+type ShardData = (Vec<Vec<f64>>, Vec<Array2<f64>>);
+
 /// One shard: its accumulators (in the layout's order) and, with raw storage, its rows per output.
-fn run_shard(
-    plan: &McPlan<'_>,
-    meta: &RunMetadata,
-    shard: usize,
-    opts: &TransientRunOptions,
-) -> Result<(Vec<Vec<f64>>, Vec<Array2<f64>>)> {
+fn run_shard(plan: &McPlan<'_>, meta: &RunMetadata, shard: usize, opts: &TransientRunOptions) -> Result<ShardData> {
     let range = meta.shard_range(shard);
     let (p, k, ss) = (plan.outputs().len(), plan.grid().n_stored(), meta.shard_size);
     let mut states: Vec<RealizationState> = range.clone().map(|i| plan.initial(opts.seed, i as u64)).collect();

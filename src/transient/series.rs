@@ -114,7 +114,7 @@ impl TransientSolution {
 /// end on a used point).
 fn trapezoid(t: &[f64], y: &[f64], stride: usize) -> Option<f64> {
     let n = t.len();
-    if n < 2 || (n - 1) % stride != 0 || (n - 1) / stride == 0 {
+    if n < 2 || !(n - 1).is_multiple_of(stride) || (n - 1) / stride == 0 {
         return None;
     }
     Some(
