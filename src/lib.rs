@@ -46,9 +46,9 @@
 //! | 0 | [`error`], [`numbers`], [`units`], [`fields`], [`io_rules`], [`quad`], [`quad_oscillatory`], [`linalg`] | errors, units, file fields, the file and resource rules, numerics |
 //! | 1 | [`spectrum`], [`coherence`] | spectral densities and correlation functions; coherence of parallel tracks |
 //! | 2 | [`system`] | frequency responses: state space, transfer functions, multi-degree-of-freedom models |
-//! | 3 | [`response`], [`comfort`] | response statistics: variance three ways, moments, crossing rates; ISO 2631 weightings and exposure |
+//! | 3 | [`response`], [`comfort`], [`extremes`] | response statistics: variance three ways, moments, crossing rates; ISO 2631 weightings and exposure; extremes of a mission, ERS and FDS |
 //! | 4 | [`estimate`], [`store`], [`fatigue`] | estimators with intervals; HDF5 run files; S–N curves, rainflow, spectral fatigue |
-//! | 5 | [`simulate`], [`road`], [`nonlinear`], [`record`] | Monte Carlo runs; measured and synthesised road profiles, IRI, a profile replayed through a model; nonlinear elements and their three routes; measured records (CSV, HDF5, WAV): ISO 2631-1 exposure and rainflow fatigue |
+//! | 5 | [`simulate`], [`road`], [`nonlinear`], [`record`], [`transient`] | Monte Carlo runs; measured and synthesised road profiles, IRI, a profile replayed through a model; nonlinear elements and their three routes; measured records (CSV, HDF5, WAV): ISO 2631-1 exposure and rainflow fatigue; non-stationary response (exact and Monte Carlo) |
 //! | 6 | [`models`] | the catalogue of the source documents |
 //! | 7 | [`scenario`] | scenario, spectrum and reference files; the spectrum catalogue; the registry of model kinds |
 //! | 8 | [`report`], [`plot`] | what the command-line tool prints and draws |
@@ -65,6 +65,7 @@ pub mod coherence;
 pub mod comfort;
 pub mod error;
 pub mod estimate;
+pub mod extremes;
 pub mod fatigue;
 pub mod fields;
 pub mod io_rules;
@@ -85,6 +86,7 @@ pub mod simulate;
 pub mod spectrum;
 pub mod store;
 pub mod system;
+pub mod transient;
 pub mod units;
 
 pub use error::{Error, Result};

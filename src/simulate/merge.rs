@@ -235,14 +235,7 @@ pub fn merge_runs(
     for p in &set.parts {
         let run = p.open()?;
         let local = p.meta.local_shards();
-        let accs = names
-            .iter()
-            .map(|n| run.read_accumulator_rows(n))
-            .collect::<Result<Vec<_>>>()?;
-        let sums = run.shard_checksum_rows()?.ok_or_else(|| Error::Hdf5 {
-            path: p.path.clone(),
-            reason: "a shard file without checksums (format 1): cannot be merged".into(),
-        })?;
+        let (accs, sums) = p.shard_rows(&run, &names)?;
         if accs.iter().any(|a| a.nrows() != local.len()) || sums.nrows() != local.len() {
             return Err(Error::Hdf5 {
                 path: p.path.clone(),

@@ -11,6 +11,7 @@ mod parts;
 mod rainflow;
 mod reader;
 mod response_histogram;
+pub mod transient_series;
 mod writer;
 
 pub use parts::{find_run_files, MergedFrom, PartFile, PartSet, RawStorage, VirtualSource};

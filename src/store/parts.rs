@@ -11,6 +11,7 @@
 use super::layout as L;
 use super::{Part, RunFile, RunMetadata};
 use crate::error::{Error, Result};
+use ndarray::Array2;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -147,6 +148,23 @@ fn stamp(path: &Path) -> (u64, Option<std::time::SystemTime>) {
 }
 
 impl PartFile {
+    /// The rows of the accumulators `names` and the shard checksums of `run` (this part's file, opened by
+    /// [`PartFile::open`]), one row per local shard.
+    ///
+    /// # Errors
+    /// A missing accumulator; a file without checksums (format 1), which cannot be merged.
+    pub(crate) fn shard_rows(&self, run: &RunFile, names: &[&str]) -> Result<(Vec<Array2<f64>>, Array2<u32>)> {
+        let accs = names
+            .iter()
+            .map(|n| run.read_accumulator_rows(n))
+            .collect::<Result<Vec<_>>>()?;
+        let sums = run.shard_checksum_rows()?.ok_or_else(|| Error::Hdf5 {
+            path: self.path.clone(),
+            reason: "a shard file without checksums (format 1): cannot be merged".into(),
+        })?;
+        Ok((accs, sums))
+    }
+
     /// Opens the shard file again to read its data, without reading its header again: its size and
     /// modification time must still be those of when [`PartSet::open`] read it.
     ///

@@ -184,6 +184,11 @@ impl RunFile {
             .map_err(h5err(&self.path, "reading /shards/checksums"))
     }
 
+    /// The open file (for the optional groups read by [`super::transient_series`]).
+    pub(super) fn h5(&self) -> &File {
+        &self.file
+    }
+
     /// The part of the run this file holds (a shard file), or `None` for a whole run.
     pub fn part(&self) -> Option<Part> {
         self.meta.part
@@ -1206,7 +1211,7 @@ fn check_psd(e: &PsdEstimate, path: &Path) -> Result<()> {
 }
 
 /// A checksum mismatch.
-fn damaged(path: &Path, what: &str) -> Error {
+pub(super) fn damaged(path: &Path, what: &str) -> Error {
     Error::Hdf5 {
         path: path.to_path_buf(),
         reason: format!("checksum mismatch in {what}: the file is damaged (its data are not what was written)"),
@@ -1236,7 +1241,7 @@ fn missing_or(loc: &Location, name: &str, path: &Path, e: hdf5::Error) -> Error 
     }
 }
 
-fn attr_scalar<T: hdf5::H5Type>(loc: &Location, name: &str, path: &Path) -> Result<T> {
+pub(super) fn attr_scalar<T: hdf5::H5Type>(loc: &Location, name: &str, path: &Path) -> Result<T> {
     loc.attr(name)
         .and_then(|a| a.read_scalar::<T>())
         .map_err(|e| missing_or(loc, name, path, e))
@@ -1265,7 +1270,7 @@ fn bounded_strings(loc: &Location, name: &str, path: &Path, bytes: usize) -> Res
     Ok(())
 }
 
-fn attr_string(loc: &Location, name: &str, path: &Path) -> Result<String> {
+pub(super) fn attr_string(loc: &Location, name: &str, path: &Path) -> Result<String> {
     let s = loc
         .attr(name)
         .and_then(|a| a.read_scalar::<VarLenUnicode>())

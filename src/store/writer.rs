@@ -1108,6 +1108,11 @@ impl RunWriter {
         self.file.flush().map_err(e("flushing a response histogram"))
     }
 
+    /// The open `.tmp` file and its path (for the optional groups written by [`super::transient_series`]).
+    pub(super) fn h5(&self) -> (&File, &Path) {
+        (&self.file, &self.tmp)
+    }
+
     fn check_signal_name(&self, field: &str, name: &str) -> Result<()> {
         if self
             .meta

@@ -1,0 +1,49 @@
+//! Non-stationary response: inputs and systems that change over a manoeuvre (a vehicle accelerating or
+//! braking over a rough road, a load building up on start-up, a hoist winding its rope), the exact
+//! time-varying mean and covariance, and the crossing rates and expected crossings over a mission. The
+//! formulas, keys and conventions are collected in `docs/transients.md`.
+//!
+//! # Conventions (read this first)
+//! * Time t in s from the start of the manoeuvre (t = 0).
+//! * A speed profile v(t) ≥ 0 (m/s) maps the road coordinate x(t) = ∫₀ᵗ v ds onto time ([`SpeedProfile`]).
+//! * White noise of two-sided density S₀ has E\[w(t)w(t+τ)\] = 2πS₀δ(τ); the Lyapunov noise matrix of a
+//!   white input is Q = 2πS₀ (the crate's convention, `crate::spectrum`).
+//! * An envelope a(t) multiplies a stationary process: u(t) = a(t)s(t) ([`Envelope`]).
+//! * A scheduled system takes its model's equations at the parameter values of each instant (frozen
+//!   coefficients, [`SystemFamily`]).
+//!
+//! # Pieces
+//! * [`PiecewiseLinear`], [`SpeedProfile`], [`Envelope`], [`Schedule`]: the time functions, validated.
+//! * [`TimeVaryingSystem`]: a (scheduled) system and its random input in the form ż = F(t)z + G(t)w + b(t),
+//!   y = H(t)z + y₀(t) with unit-intensity white noise — exact for white inputs, rational spectra (a
+//!   spatial shaping filter under v(t) becomes a time-varying filter) and w = 2 roads (white road velocity).
+//! * [`propagate`] / [`solve`]: the differential Lyapunov equation Ṗ = FP + PFᵀ + GGᵀ, ṁ = Fm + b by matrix
+//!   exponentials on an adaptive grid with an error estimate, and the output statistics over time
+//!   ([`TransientSolution`]).
+//! * [`monte_carlo`]: the same by simulation ([`mc_engine`], [`mc_finish`]), stored as time series of
+//!   statistics in a run file; [`mission`]: the analytic distributions of the maxima of a mission.
+
+mod envelope;
+pub mod inputs;
+pub mod lyapunov_ode;
+pub mod mc_engine;
+pub mod mc_finish;
+pub mod mission;
+pub mod monte_carlo;
+mod profile;
+mod schedule;
+pub mod series;
+mod speed_profile;
+pub mod system;
+
+pub use envelope::Envelope;
+pub use inputs::{input_model, white_slope_coefficient};
+pub use lyapunov_ode::{propagate, ExactOptions, StepReport};
+pub use mc_engine::McGrid;
+pub use mission::{stationary_moments, StationaryMoments};
+pub use monte_carlo::{merge_transient, run_transient, TransientRunInput, TransientRunOptions, TransientRunSummary};
+pub use profile::PiecewiseLinear;
+pub use schedule::{check_stability, FamilyBuilder, FixedSystem, ModelAt, Schedule, ScheduledSystem, SystemFamily};
+pub use series::{solve, Crossings, OutputSeries, TransientSolution};
+pub use speed_profile::SpeedProfile;
+pub use system::{Frozen, InputModel, Start, TimeVaryingSystem, TransientInput};

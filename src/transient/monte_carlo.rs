@@ -1,0 +1,428 @@
+//! Monte Carlo of a non-stationary response: realizations stepped exactly with the frozen coefficients,
+//! the ensemble statistics at every stored time written to a run file beside the exact curves; resumable,
+//! in cluster shards, and merged bit-identically (layout: `docs/transients.md`, "The `/transient` group of a run file").
+
+use super::mc_engine::{McGrid, McPlan, RealizationState};
+use super::mc_finish::{finish, is_transient_layout, layout, AnalyticOutput, AnalyticSide, Finished, MaximaVerdicts};
+use super::series::TransientSolution;
+use super::system::{Start, TimeVaryingSystem};
+use crate::error::{Error, Result};
+use crate::store::{
+    Compression, CreateOptions, OutputStatistics, Part, PartSet, Provenance, RawStorage, RunFile, RunMetadata,
+    RunWriter, Signal, SignalGroup,
+};
+use ndarray::Array2;
+use std::path::{Path, PathBuf};
+
+/// Options of a transient Monte Carlo run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransientRunOptions {
+    /// Realizations.
+    pub realizations: usize,
+    /// The grid.
+    pub grid: McGrid,
+    /// Master seed; realization i uses stream (seed, i).
+    pub seed: u64,
+    /// Realizations per shard.
+    pub shard_size: usize,
+    /// Confidence of the intervals and of the DKW band.
+    pub confidence: f64,
+    /// Store every realization at the stored times.
+    pub store_raw: bool,
+    /// Compression of the raw data.
+    pub compression: Compression,
+    /// The part of a cluster run (`--shard I --of N`).
+    pub part: Option<Part>,
+    /// Replace a finished file / discard an interrupted run of other settings.
+    pub overwrite: bool,
+}
+
+/// What a run is made of besides its options.
+#[derive(Debug, Clone)]
+pub struct TransientRunInput<'a> {
+    /// The system and input.
+    pub sys: &'a TimeVaryingSystem,
+    /// Output indices to simulate.
+    pub outputs: Vec<usize>,
+    /// The start.
+    pub start: Start,
+    /// The exact solution at the grid's stored times (the analytic curves).
+    pub exact: &'a TransientSolution,
+    /// Whether Vanmarcke's stationary form applies (time-invariant, stationary start).
+    pub stationary: bool,
+    /// The scenario text (identifies the run).
+    pub scenario_text: String,
+    /// What else identifies the run.
+    pub provenance: Vec<Provenance>,
+}
+
+/// What a transient run (or merge) did.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct TransientRunSummary {
+    /// The run file.
+    pub path: PathBuf,
+    /// Realizations of the run.
+    pub n_realizations: usize,
+    /// Internal shards of this file.
+    pub n_shards: usize,
+    /// Shards found complete on disk (resumed).
+    pub resumed_shards: usize,
+    /// The part, for a cluster shard.
+    pub part: Option<Part>,
+    /// The statistics of the last stored time.
+    pub outputs: Vec<OutputStatistics>,
+    /// The maxima verdicts.
+    pub verdicts: Vec<MaximaVerdicts>,
+    /// Fraction of stored times at which the σ interval covers the exact σ, per output.
+    pub sigma_coverage: Vec<(String, f64)>,
+    /// DKW half-width.
+    pub dkw_epsilon: f64,
+    /// Remarks.
+    pub notes: Vec<String>,
+}
+
+/// The generator text of a transient run.
+fn generator(grid: &McGrid) -> String {
+    format!(
+        "{}; transient: exact transition of the frozen coefficients at the step midpoints (Van Loan), dt = {} s, \
+         stored every {} steps",
+        crate::simulate::GENERATOR,
+        grid.dt,
+        grid.store_every
+    )
+}
+
+/// The metadata of the run.
+fn metadata(input: &TransientRunInput<'_>, opts: &TransientRunOptions) -> Result<RunMetadata> {
+    let outputs: Vec<Signal> = input
+        .outputs
+        .iter()
+        .map(|&i| {
+            let o = &input.sys.outputs()[i];
+            Signal::new(&o.name, &o.unit)
+        })
+        .collect();
+    let names: Vec<String> = outputs.iter().map(|s| s.name.clone()).collect();
+    let shard_size = opts.shard_size.min(opts.realizations).max(1);
+    let meta = RunMetadata {
+        scenario_text: input.scenario_text.clone(),
+        seed: opts.seed,
+        generator: generator(&opts.grid),
+        dt: opts.grid.dt * opts.grid.store_every as f64,
+        n_samples: opts.grid.n_stored(),
+        n_realizations: opts.realizations,
+        shard_size,
+        inputs: vec![],
+        outputs,
+        accumulators: layout(&names, opts.grid.n_stored(), shard_size),
+        store_raw: opts.store_raw,
+        compression: opts.compression,
+        provenance: input.provenance.clone(),
+        part: opts.part,
+    };
+    meta.validate()?;
+    Ok(meta)
+}
+
+/// The analytic side from the exact solution.
+fn analytic(input: &TransientRunInput<'_>) -> Result<AnalyticSide> {
+    let method = format!(
+        "differential Lyapunov equation, matrix exponentials on an adaptive grid ({} steps, {} exact), accumulated \
+         relative error estimate {:.1e}",
+        input.exact.report.steps, input.exact.report.exact_steps, input.exact.report.max_error_estimate
+    );
+    super::mission::analytic_side(input.exact, input.sys, &input.outputs, input.stationary, method)
+}
+
+/// Runs the transient Monte Carlo batch into `out` (resuming an interrupted run of the same settings).
+///
+/// # Formula
+/// Realization i draws from stream (seed, i): n normals for z₀ = m₀ + L₀ε (L₀L₀ᵀ = P(0)), then n normals per
+/// step for z ← Φ_jz + Γ_j + L_jε_j, with Φ_j, Q_j = L_jL_jᵀ, Γ_j the exact transition over the step of the
+/// coefficients frozen at its midpoint (exact for coefficients constant over the step). At every stored
+/// time the shard stores the mean and M₂ of its realizations (two passes, realization order), and every
+/// realization's max y and max |y| over all grid points; the statistics fold the shards in order
+/// ([`super::mc_finish::finish`]).
+///
+/// # Errors
+/// Invalid options; the plan's, the store's and the exact route's errors; an existing finished `out`
+/// without `overwrite`.
+pub fn run_transient(
+    input: &TransientRunInput<'_>,
+    opts: &TransientRunOptions,
+    out: &Path,
+    progress: &dyn Fn(usize, usize),
+) -> Result<TransientRunSummary> {
+    check_options(opts, input.exact)?;
+    let plan = McPlan::new(input.sys, input.outputs.clone(), &input.start, opts.grid)?;
+    let meta = metadata(input, opts)?;
+    let analytic = analytic(input)?;
+    let mut writer = RunWriter::create_with(
+        out,
+        &meta,
+        CreateOptions {
+            overwrite: opts.overwrite,
+            ..CreateOptions::default()
+        },
+    )?;
+    let notes = writer.notes().to_vec();
+    let n_shards = meta.local_shards().len();
+    let resumed = writer.completed_shards().len();
+    progress(resumed, n_shards);
+    let mut done = resumed;
+    for shard in writer.pending_shards() {
+        let (accs, raw) = run_shard(&plan, &meta, shard, opts)?;
+        let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
+        let raw_views: Vec<_> = raw.iter().map(|a| a.view()).collect();
+        writer.write_shard(shard, &[], &raw_views, &acc_refs)?;
+        done += 1;
+        progress(done, n_shards);
+    }
+    let times = opts.grid.stored_times();
+    let fin = finish(
+        &|name, b| writer.read_accumulator(name, b),
+        &meta,
+        &times,
+        &analytic,
+        opts.confidence,
+    )?;
+    write_finished(&mut writer, &fin)?;
+    let path = writer.finish()?;
+    Ok(summary(path, &meta, resumed, fin, notes))
+}
+
+fn check_options(opts: &TransientRunOptions, exact: &TransientSolution) -> Result<()> {
+    if opts.realizations < 2 {
+        return Err(Error::invalid("realizations", opts.realizations, "need at least 2"));
+    }
+    if !(opts.confidence > 0.0 && opts.confidence < 1.0) {
+        return Err(Error::invalid("confidence", opts.confidence, "must be in (0, 1)"));
+    }
+    let times = opts.grid.stored_times();
+    if exact.times.len() != times.len()
+        || exact
+            .times
+            .iter()
+            .zip(&times)
+            .any(|(a, b)| (a - b).abs() > 1e-9 * b.max(1.0))
+    {
+        return Err(Error::invalid(
+            "exact",
+            exact.times.len(),
+            "the exact solution must be computed at the grid's stored times",
+        ));
+    }
+    Ok(())
+}
+
+/// A shard's accumulators (in the layout's order) and its raw rows per output (empty without raw storage).
+type ShardData = (Vec<Vec<f64>>, Vec<Array2<f64>>);
+
+/// One shard: its accumulators (in the layout's order) and, with raw storage, its rows per output.
+fn run_shard(plan: &McPlan<'_>, meta: &RunMetadata, shard: usize, opts: &TransientRunOptions) -> Result<ShardData> {
+    let range = meta.shard_range(shard);
+    let (p, k, ss) = (plan.outputs().len(), plan.grid().n_stored(), meta.shard_size);
+    let mut states: Vec<RealizationState> = range.clone().map(|i| plan.initial(opts.seed, i as u64)).collect();
+    let rows = states.len();
+    let mut series = vec![vec![0.0; 2 * k]; p];
+    let mut raw = if opts.store_raw {
+        vec![Array2::<f64>::zeros((rows, k)); p]
+    } else {
+        Vec::new()
+    };
+    for (j0, j1) in plan.blocks() {
+        let block = plan.advance(&mut states, j0, j1)?;
+        let per = block.stored.first().map_or(0, |v| v.len() / p.max(1));
+        for s in 0..per {
+            let at = block.first_stored + s;
+            for o in 0..p {
+                let values: Vec<f64> = block.stored.iter().map(|v| v[s * p + o]).collect();
+                let mean = values.iter().sum::<f64>() / rows as f64;
+                series[o][at] = mean;
+                series[o][k + at] = values.iter().map(|v| (v - mean) * (v - mean)).sum();
+                if opts.store_raw {
+                    for (r, v) in values.iter().enumerate() {
+                        raw[o][(r, at)] = *v;
+                    }
+                }
+            }
+        }
+    }
+    let mut accs = Vec::with_capacity(2 * p);
+    for (o, s) in series.into_iter().enumerate() {
+        accs.push(s);
+        let mut m = vec![0.0; 2 * ss];
+        for (r, st) in states.iter().enumerate() {
+            m[r] = st.max_y[o];
+            m[ss + r] = st.max_abs[o];
+        }
+        accs.push(m);
+    }
+    Ok((accs, raw))
+}
+
+fn write_finished(writer: &mut RunWriter, fin: &Finished) -> Result<()> {
+    writer.write_statistics(&fin.statistics)?;
+    writer.write_transient(&fin.series)
+}
+
+fn summary(
+    path: PathBuf,
+    meta: &RunMetadata,
+    resumed: usize,
+    fin: Finished,
+    notes: Vec<String>,
+) -> TransientRunSummary {
+    let sigma_coverage = fin
+        .series
+        .outputs
+        .iter()
+        .map(|o| {
+            let covered = (0..o.sigma.len())
+                .filter(|&j| o.sigma_lower[j] <= o.exact_sigma[j] && o.exact_sigma[j] <= o.sigma_upper[j])
+                .count();
+            (o.output.clone(), covered as f64 / o.sigma.len() as f64)
+        })
+        .collect();
+    TransientRunSummary {
+        path,
+        n_realizations: meta.n_realizations,
+        n_shards: meta.local_shards().len(),
+        resumed_shards: resumed,
+        part: meta.part,
+        outputs: fin.statistics,
+        verdicts: fin.verdicts,
+        sigma_coverage,
+        dkw_epsilon: fin.series.dkw_epsilon,
+        notes,
+    }
+}
+
+/// Whether the run file at `path` (or the first run file among shard inputs) is a transient run.
+pub fn is_transient_run(meta: &RunMetadata) -> bool {
+    is_transient_layout(&meta.accumulators)
+}
+
+/// Merges the shard files of a transient run (the counterpart of [`crate::simulate::merge_runs`], which
+/// does not handle transient runs): the accumulators of every internal shard in order, finished by the code of a
+/// single-process run, so the statistics are bit-identical; the analytic side is taken from the first
+/// shard file (every shard file stores the same, which the shared fingerprint checks).
+///
+/// # Errors
+/// As [`crate::simulate::merge_runs`]; a shard file without its `/transient` group.
+pub fn merge_transient(
+    out: &Path,
+    inputs: &[PathBuf],
+    opts: &crate::simulate::MergeOptions,
+    progress: &dyn Fn(usize, usize),
+) -> Result<TransientRunSummary> {
+    let tmp = crate::store::tmp_path(out);
+    let set = PartSet::open(inputs, &[out, &tmp])?;
+    let meta = set.meta.clone();
+    let first = &set.parts[0];
+    if let Some(p) = set.parts[1..].iter().find(|p| p.shared != first.shared) {
+        return Err(Error::Hdf5 {
+            path: p.path.clone(),
+            reason: format!(
+                "its exact values differ from those of {}: one of them is damaged",
+                first.path.display()
+            ),
+        });
+    }
+    let stored = first.open()?.transient()?.ok_or_else(|| Error::Hdf5 {
+        path: first.path.clone(),
+        reason: "a transient shard file without its /transient group: the file is damaged".into(),
+    })?;
+    let confidence = opts.confidence.unwrap_or(stored.confidence);
+    let raw = match (meta.store_raw, opts.copy) {
+        (false, _) => RawStorage::None,
+        (true, true) => RawStorage::Copied,
+        (true, false) => RawStorage::Virtual,
+    };
+    let from = set.merged_from(out, raw);
+    let mut writer = RunWriter::create_merged(
+        out,
+        &meta,
+        CreateOptions {
+            overwrite: opts.overwrite,
+            ..CreateOptions::default()
+        },
+        &from,
+    )?;
+    adopt_parts(&mut writer, &set, raw, progress)?;
+    let analytic = AnalyticSide {
+        method: stored.exact_method.clone(),
+        outputs: stored.outputs.iter().map(AnalyticOutput::from_stored).collect(),
+    };
+    let fin = finish(
+        &|name, b| writer.read_accumulator(name, b),
+        &meta,
+        &stored.times,
+        &analytic,
+        confidence,
+    )?;
+    write_finished(&mut writer, &fin)?;
+    let path = writer.finish()?;
+    let notes = set
+        .ignored
+        .iter()
+        .map(|(p, why)| format!("{}: {why}", p.display()))
+        .collect();
+    Ok(summary(path, &meta, 0, fin, notes))
+}
+
+/// Copies (or references) every part's shards into the merged writer, in shard order.
+fn adopt_parts(writer: &mut RunWriter, set: &PartSet, raw: RawStorage, progress: &dyn Fn(usize, usize)) -> Result<()> {
+    let meta = &set.meta;
+    let names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
+    progress(0, meta.n_shards());
+    for p in &set.parts {
+        let run = p.open()?;
+        let local = p.meta.local_shards();
+        let (accs, sums) = p.shard_rows(&run, &names)?;
+        if raw == RawStorage::Copied {
+            copy_rows(writer, &run, meta, local.clone(), &accs)?;
+        } else {
+            let views: Vec<_> = accs.iter().map(|a| a.view()).collect();
+            writer.adopt_shards(local.start, &views, sums.view())?;
+        }
+        progress(local.end, meta.n_shards());
+    }
+    Ok(())
+}
+
+/// The raw rows and accumulators of the shards `local` of `run`, written into the merged file.
+fn copy_rows(
+    writer: &mut RunWriter,
+    run: &RunFile,
+    meta: &RunMetadata,
+    local: std::ops::Range<usize>,
+    accs: &[Array2<f64>],
+) -> Result<()> {
+    for (r, b) in local.enumerate() {
+        let range = meta.shard_range(b);
+        let outs = meta
+            .outputs
+            .iter()
+            .map(|s| run.read_signals(SignalGroup::Outputs, &s.name, range.clone()))
+            .collect::<Result<Vec<_>>>()?;
+        let ov: Vec<_> = outs.iter().map(|a| a.view()).collect();
+        let rows: Vec<Vec<f64>> = accs.iter().map(|a| a.row(r).to_vec()).collect();
+        let refs: Vec<&[f64]> = rows.iter().map(|a| a.as_slice()).collect();
+        writer.write_shard(b, &[], &ov, &refs)?;
+    }
+    Ok(())
+}
+
+/// Reads the finished transient series and statistics of a run file (for `inspect` and `plot`).
+///
+/// # Errors
+/// The store's errors; a run file that is not a transient run.
+pub fn read_transient_run(path: &Path) -> Result<(RunFile, crate::store::transient_series::TransientSeries)> {
+    let run = RunFile::open(path)?;
+    let series = run.transient()?.ok_or_else(|| Error::Hdf5 {
+        path: path.to_path_buf(),
+        reason: "not a transient run (no /transient group)".into(),
+    })?;
+    Ok((run, series))
+}
