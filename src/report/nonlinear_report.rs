@@ -90,6 +90,8 @@ pub struct NonlinearReport {
     pub elements: Vec<ElementRow>,
     /// The outputs.
     pub outputs: Vec<NonlinearOutput>,
+    /// The outputs without statistics (route 2 would not simulate them), each with the reason.
+    pub skipped: Vec<crate::simulate::SkippedOutput>,
     /// Route 2: realizations, route, step, burn-in and notes (with `--monte-carlo`).
     pub monte_carlo: Option<String>,
     /// Verdicts: route 1 outside route 2's interval, said loudly.
@@ -107,7 +109,9 @@ pub fn nonlinear_report(
 ) -> Result<NonlinearReport> {
     let model = sc.nonlinear_model().expect("a nonlinear scenario");
     let input = sc.nonlinear_run_input(answers);
-    let refs = reference_table(&input)?;
+    // the static equilibrium and output plan of the model's linear part: a fault is the model's, name it
+    let (refs, skipped) = reference_table(&input)
+        .map_err(|e| crate::error::Error::in_file(&sc.path, "model", &sc.kind, e.to_string()))?;
     let r1 = answers.route1.converged();
     let route1 = match &answers.route1 {
         Route1Outcome::Converged(r) => format!(
@@ -152,6 +156,7 @@ pub fn nonlinear_report(
         route3,
         elements,
         outputs,
+        skipped,
         monte_carlo: mc.map(|m| {
             format!(
                 "{} realizations, {} route, Δt = {} s, burn-in {:.4} s, {} samples each; {}",
@@ -291,6 +296,10 @@ impl fmt::Display for NonlinearReport {
             }
             writeln!(f)?;
         }
+        for k in &self.skipped {
+            writeln!(f)?;
+            writeln!(f, "output {}: no statistics: {}", k.name, k.reason)?;
+        }
         for o in &self.outputs {
             writeln!(f)?;
             writeln!(f, "output {} [{}]", o.name, o.unit)?;
@@ -378,6 +387,9 @@ impl ToMarkdown for NonlinearReport {
                     .unwrap_or_else(|| "not run (--monte-carlo N)".into()),
             ),
         ]));
+        for k in &self.skipped {
+            s.push_str(&format!("\n### {}\n\nno statistics: {}\n", k.name, k.reason));
+        }
         for o in &self.outputs {
             s.push_str(&format!("\n### {} [{}]\n\n", o.name, o.unit));
             s.push_str(

@@ -80,6 +80,8 @@ impl Scenario {
             lower_bias(input, &mut s, realizations)?;
             Ok(s)
         })
+        // the planned runs refuse what the run would (a kurtosis beyond the grid): name the file's key
+        .map_err(|e| self.name_run_error(e))
     }
 }
 

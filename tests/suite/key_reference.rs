@@ -63,6 +63,8 @@ gains = [1, 1]"#,
         all.push((name, model + &two_track_input(coherence)));
     }
     all.push(("road-section", body_on_two_tracks("") + ROAD_SECTION));
+    all.push(("enveloped-road", body_on_two_tracks("") + ENVELOPED_ROAD));
+    all.push(("enveloped-input", QUADRATIC_DAMPERS.to_string() + ENVELOPED_INPUT));
     all.push(("several-inputs", body_on_two_tracks("forces = [[1]]") + SEVERAL_INPUTS));
     all
 }
@@ -120,6 +122,49 @@ drives = [0, 1]
 tracks = ["left", "right"]
 positions = ["0 m", "0 m"]
 gains = [1, 1]
+"#;
+
+/// An `[[input]]` road on both tracks with an explicit band and a tyre's enveloping.
+const ENVELOPED_ROAD: &str = r#"
+[[input]]
+spectrum = "iso8608-c"
+band = ["0.011 cycles/m", "30 cycles/m"]
+enveloping = { kind = "moving-average", length = "0.25 m" }
+speed = "3 m/s"
+drives = [0, 1]
+positions = ["0 m", "0 m"]
+gains = [1, 1]
+"#;
+
+/// A quarter car whose damper is two quadratic dampers (one symmetric coefficient, one asymmetric pair).
+const QUADRATIC_DAMPERS: &str = r#"
+[model]
+kind = "quarter-car"
+sprung_mass = "300 kg"
+unsprung_mass = "40 kg"
+suspension_stiffness = "20 kN/m"
+suspension_damping = "1 kN*s/m"
+tyre_stiffness = "200 kN/m"
+[[model.nonlinear]]
+kind = "quadratic-damper"
+name = "symmetric"
+across = "suspension"
+coefficient = "500 N*s^2/m^2"
+[[model.nonlinear]]
+kind = "quadratic-damper"
+name = "asymmetric"
+across = "suspension"
+rebound_coefficient = "800 N*s^2/m^2"
+compression_coefficient = "300 N*s^2/m^2"
+"#;
+
+/// An `[input]` road with an explicit band and a tyre's enveloping.
+const ENVELOPED_INPUT: &str = r#"
+[input]
+spectrum = "iso8608-c"
+band = ["0.011 cycles/m", "30 cycles/m"]
+enveloping = { kind = "moving-average", length = "0.25 m" }
+speed = "3 m/s"
 "#;
 
 /// The quarter car of `data/quarter-car.toml` as full matrices, with a relative output.

@@ -223,7 +223,7 @@ fn quarter_car_on_a_laplace_road_keeps_sigma_not_extremes() {
     // * κ = 3: covers 3 and the Gaussian σ like the Gaussian run.
     // The 26 intervals at 2.5e-8 each: union bound 6.5e-7 ≤ 1e-6.
     let conf = 1.0 - 2.5e-8;
-    let dir = tempfile_dir();
+    let dir = crate::common::scratch_dir("laplace", "extremes");
     let r = 200;
     let mut opts = RunOptions::new(r, 40.0, 0.005, 17);
     opts.store_raw = true;
@@ -306,12 +306,6 @@ fn predicted_kurtosis(s: &stochvib::simulate::RunSummary, name: &str) -> f64 {
     rest.split_whitespace().next().unwrap().parse().unwrap()
 }
 
-fn tempfile_dir() -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-laplace-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 #[test]
 fn bad_kurtosis_values_name_file_key_value_and_reason() {
     let root = common::root();
@@ -330,7 +324,7 @@ fn bad_kurtosis_values_name_file_key_value_and_reason() {
     let sc = quarter_car(Some(6.0));
     let mut opts = RunOptions::new(2, 4.0, 0.005, 1);
     opts.route = Route::Exact;
-    let out = tempfile_dir().join("exact.h5");
+    let out = crate::common::scratch_dir("laplace", "exact").join("exact.h5");
     let e = stochvib::simulate::run(&sc.run_input(), &opts, &out, &|_, _| {})
         .unwrap_err()
         .to_string();
@@ -397,7 +391,7 @@ fn non_gaussian_vdv_is_predicted_from_the_weighted_output_kurtosis() {
     // (κ_w ≈ 5.9 here: the Gaussian value is ≈ 15 % lower in VDV, the interval's half-width ≈ 6 %); the σ
     // interval at the same confidence covers σ_d, the σ of the Gaussian run (same spectrum). Two intervals:
     // nominal false-failure probability ≤ 5e-7 ≤ 1e-6 (CLT for the mean of VDV_i⁴).
-    let dir = tempfile_dir();
+    let dir = crate::common::scratch_dir("laplace", "vdv");
     let w = "seat_acc_Wk";
     let (dt, duration) = (0.005, 20.0);
     let mut opts = RunOptions::new(300, duration, dt, 23);
@@ -499,7 +493,7 @@ fn merged_shards_of_a_non_gaussian_verdict_run_keep_its_vdv_prediction() {
     // non-Gaussian analytic VDV and its method text included (the merge takes them from the shard files).
     use stochvib::simulate::{merge_runs, part_path, MergeOptions};
     use stochvib::store::Part;
-    let dir = tempfile_dir().join("merge");
+    let dir = crate::common::scratch_dir("laplace", "merge");
     std::fs::create_dir_all(&dir).unwrap();
     let sc = operator_seat(Some(6.0));
     let mut opts = RunOptions::new(8, 4.0, 0.005, 5);

@@ -657,16 +657,18 @@ pub struct OutputReferences {
     pub rows: Vec<(String, String, Option<f64>, Option<f64>)>,
 }
 
-/// The references of every output route 2 would simulate (the outputs it would skip are left out): what
+/// The references of every output route 2 would simulate, and the outputs it would skip with the reason: what
 /// `analyze` prints for routes 1 and 3, under the names of the run's statistics.
 ///
 /// # Errors
 /// An input mean without a static equilibrium; route 3's quadratures.
-pub fn reference_table(input: &NonlinearRunInput) -> Result<Vec<OutputReferences>> {
+pub fn reference_table(
+    input: &NonlinearRunInput,
+) -> Result<(Vec<OutputReferences>, Vec<crate::simulate::SkippedOutput>)> {
     let lin = input.model.linear();
     let (q_eq, u_mean) = plan::equilibrium(lin, input.excitation)?;
-    let (outputs, _) = plan::plan_outputs(input, &q_eq, &u_mean)?;
-    Ok(outputs
+    let (outputs, skipped) = plan::plan_outputs(input, &q_eq, &u_mean)?;
+    let refs = outputs
         .iter()
         .map(|o| {
             let t = templates(o, input);
@@ -685,7 +687,8 @@ pub fn reference_table(input: &NonlinearRunInput) -> Result<Vec<OutputReferences
                     .collect(),
             }
         })
-        .collect())
+        .collect();
+    Ok((refs, skipped))
 }
 
 impl std::fmt::Display for NonlinearRunSummary {
