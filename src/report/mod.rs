@@ -6,6 +6,8 @@ pub mod band_report;
 pub mod book;
 pub mod catalogue;
 mod float_text;
+pub mod handover;
+pub mod html;
 pub mod markdown;
 pub mod replay_report;
 pub mod road_report;

@@ -21,6 +21,7 @@ mod fast_sweep;
 mod fatigue;
 mod fuzz_inputs;
 mod fuzz_run_files;
+mod html_report;
 mod laplace_road;
 mod layers;
 mod limits;
