@@ -34,7 +34,7 @@ pub fn escape(text: &str) -> String {
 /// Escaped text with code spans: a pair of backticks encloses `<code>`; an unpaired backtick stays text.
 fn inline(text: &str) -> String {
     let parts: Vec<&str> = text.split('`').collect();
-    if parts.len() % 2 == 0 {
+    if parts.len().is_multiple_of(2) {
         return escape(text);
     }
     let mut out = String::new();

@@ -41,15 +41,15 @@ fn well_formed(html: &str) -> Result<(), String> {
     while let Some(k) = html[i..].find(['<', '&']) {
         let at = i + k;
         let rest = &html[at..];
-        if rest.starts_with('&') {
-            let ent = rest[1..].split(';').next().unwrap_or("");
+        if let Some(after) = rest.strip_prefix('&') {
+            let ent = after.split(';').next().unwrap_or("");
             let ok = ent.len() < 10
                 && !ent.is_empty()
                 && (ent.chars().all(|c| c.is_ascii_alphabetic())
                     || ent
                         .strip_prefix('#')
                         .is_some_and(|d| d.chars().all(|c| c.is_ascii_digit())));
-            if !ok || !rest[1..].contains(';') {
+            if !ok || !after.contains(';') {
                 return Err(format!("bare & at {at}: {}", &rest[..rest.len().min(30)]));
             }
             i = at + 1;
