@@ -316,6 +316,24 @@ enum Command {
         #[command(flatten)]
         spectra: SpectraDir,
     },
+    /// Write one report of a scenario to hand over (docs/report.md): provenance, the scenario file as written,
+    /// the model and its poles, every output's statistics and variance methods, the verdicts and the
+    /// pictures; a self-contained HTML file (inline SVG and CSS), or markdown with the pictures beside it.
+    Report {
+        /// Scenario file (TOML, see data/).
+        scenario: PathBuf,
+        /// Output file (written under a temporary name and renamed when complete).
+        #[arg(short = 'o', long = "output")]
+        output: PathBuf,
+        /// html (one self-contained file) or markdown (pictures in the directory <stem>-pictures beside it).
+        #[arg(long, value_enum, default_value_t = report::handover::HandoverFormat::Html)]
+        format: report::handover::HandoverFormat,
+        /// Replace an existing report of the same name.
+        #[arg(long)]
+        overwrite: bool,
+        #[command(flatten)]
+        spectra: SpectraDir,
+    },
     /// Monte Carlo run of a scenario written to an HDF5 file (layout: docs/run-file-format.md).
     Simulate {
         /// Scenario file (TOML, see data/).
@@ -686,6 +704,17 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 let files = scenario_plots_with(&sc, &out, &ScenarioPlotOptions::default())?;
                 eprintln!("wrote {} pictures to {}", files.len(), out.display());
             }
+        }
+        Command::Report {
+            scenario,
+            output,
+            format,
+            overwrite,
+            spectra,
+        } => {
+            let doc = load_document(&scenario, spectra.catalogue().dir())?;
+            let written = report::handover::write_handover(&doc, &scenario, &output, format, overwrite)?;
+            eprintln!("wrote {}", written.display());
         }
         Command::Plot {
             input,

@@ -62,7 +62,7 @@ impl ToMarkdown for AnalysisReport {
 }
 
 /// One output: its facts, levels, variance methods and bands.
-fn output_markdown(r: &AnalysisReport, o: &OutputReport) -> String {
+pub(super) fn output_markdown(r: &AnalysisReport, o: &OutputReport) -> String {
     let st = &o.statistics;
     let u = st.unit.as_str();
     let mut rows = vec![

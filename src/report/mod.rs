@@ -6,6 +6,8 @@ pub mod band_report;
 pub mod book;
 pub mod catalogue;
 mod float_text;
+pub mod handover;
+pub mod html;
 pub mod markdown;
 pub mod mc_verdicts;
 pub mod nonlinear_report;

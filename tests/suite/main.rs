@@ -24,6 +24,7 @@ mod fast_sweep;
 mod fatigue;
 mod fuzz_inputs;
 mod fuzz_run_files;
+mod html_report;
 mod input_band;
 mod input_coverage;
 mod input_keys;

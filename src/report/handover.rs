@@ -1,0 +1,268 @@
+//! `stochvib report SCENARIO.toml -o report.html`: one document an engineer hands over — the provenance
+//! (toolkit version, size and CRC-32 of every file read), the scenario file as written, the model with its
+//! poles, every output's statistics and variance methods, the verdicts, and the pictures of `stochvib plot`.
+//!
+//! The document is written once as markdown ([`handover_markdown`]); the HTML form is that markdown through
+//! [`super::html::markdown_to_html`] with the pictures inlined as SVG, so both forms hold the same content.
+//! The HTML file is self-contained (inline CSS and SVG, no script, no external address); the markdown file
+//! links its pictures in a directory `<stem>-pictures` beside it. Both are written under the output rule
+//! ([`crate::io_rules::Staged`]).
+
+use super::table::{facts, Table, ToMarkdown};
+use crate::error::{Error, Result};
+use crate::scenario::{Document, Scenario};
+use std::path::{Path, PathBuf};
+
+/// The form of the report.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum HandoverFormat {
+    /// One self-contained HTML file (inline SVG pictures and CSS).
+    #[default]
+    Html,
+    /// Markdown, the pictures (SVG and PNG) in the directory `<stem>-pictures` beside it.
+    Markdown,
+}
+
+/// The kind of file `stochvib report` writes, for the output rule: recognised by its first line.
+pub const HANDOVER: crate::io_rules::OutputKind = crate::io_rules::OutputKind {
+    what: "stochvib report",
+    recognizes: is_handover,
+    replaceable: false,
+};
+
+/// The first line of the markdown form.
+const MARKDOWN_MARK: &str = "<!-- stochvib report -->";
+
+fn is_handover(path: &Path) -> bool {
+    crate::io_rules::starts_with(path, super::html::PAGE_MARK.as_bytes())
+        || crate::io_rules::starts_with(path, MARKDOWN_MARK.as_bytes())
+}
+
+/// Writes the report of `doc` (loaded from `file`) to `out` in `format` and returns the path written.
+///
+/// The output is checked before any work: never one of the files the document was read from, a directory,
+/// a device or a file of another kind; an existing report only with `overwrite`.
+///
+/// # Errors
+/// The refusals of the output rule ([`crate::io_rules::check_output`]); [`Error::Io`] reading the inputs or
+/// writing the report; the errors of the analysis and the pictures.
+pub fn write_handover(
+    doc: &Document,
+    file: &Path,
+    out: &Path,
+    format: HandoverFormat,
+    overwrite: bool,
+) -> Result<PathBuf> {
+    let sources = source_files(doc, file);
+    let inputs: Vec<&Path> = sources.iter().map(PathBuf::as_path).collect();
+    let staged = crate::io_rules::Staged::begin(out, HANDOVER, &inputs, overwrite)?;
+    let text = match format {
+        HandoverFormat::Html => {
+            let dir = TempDir::new()?;
+            let md = handover_markdown(doc, file, &sources, &dir.0, &dir.0)?;
+            let title = md
+                .lines()
+                .find_map(|l| l.strip_prefix("# "))
+                .unwrap_or("stochvib report");
+            super::html::page(
+                title,
+                &super::html::markdown_to_html(&md, &|p| inline_svg(Path::new(p))),
+            )
+        }
+        HandoverFormat::Markdown => {
+            let name = format!("{}-pictures", out.file_stem().unwrap_or_default().to_string_lossy());
+            let dir = crate::io_rules::parent_dir(out).join(&name);
+            handover_markdown(doc, file, &sources, &dir, Path::new(&name))?
+        }
+    };
+    std::fs::write(staged.temporary(), text).map_err(|source| Error::Io {
+        path: staged.temporary().to_path_buf(),
+        source,
+    })?;
+    staged.commit()
+}
+
+/// The files `doc` was read from: the scenario file first.
+fn source_files(doc: &Document, file: &Path) -> Vec<PathBuf> {
+    match doc {
+        Document::Stochastic(sc) => {
+            let mut f = sc.source_files();
+            f.retain(|p| p != file);
+            f.insert(0, file.to_path_buf());
+            f
+        }
+        _ => vec![file.to_path_buf()],
+    }
+}
+
+/// The report as markdown: the pictures are drawn into `dir` and linked as `link/<name>.svg`.
+///
+/// # Errors
+/// As [`write_handover`].
+pub fn handover_markdown(doc: &Document, file: &Path, sources: &[PathBuf], dir: &Path, link: &Path) -> Result<String> {
+    let text = crate::fields::read_text_file(file)?;
+    let mut s = format!("{MARKDOWN_MARK}\n\n# {}\n\n", title(doc));
+    s += &format!("## Provenance\n\n{}\n", provenance(sources)?);
+    let f = fence_for(&text);
+    s += &format!(
+        "## Scenario file `{}`\n\n{f}toml\n{}\n{f}\n\n",
+        file.display(),
+        text.trim_end()
+    );
+    match doc {
+        Document::Stochastic(sc) => s += &stochastic_sections(sc, dir, link)?,
+        Document::Deterministic(d) => s += &results_section(&super::deterministic_report(d)?.markdown()),
+        Document::Reference(t) => s += &results_section(&super::reference_report(t).markdown()),
+    }
+    Ok(s)
+}
+
+fn title(doc: &Document) -> &str {
+    match doc {
+        Document::Stochastic(sc) => &sc.title,
+        Document::Deterministic(d) => &d.title,
+        Document::Reference(t) => &t.title,
+    }
+}
+
+/// A fence longer than every run of backticks in `text` (at least three).
+fn fence_for(text: &str) -> String {
+    let longest = text.split(|c| c != '`').map(str::len).max().unwrap_or(0);
+    "`".repeat(longest.max(2) + 1)
+}
+
+/// A report's markdown as one section: its own title dropped, its headings one level down.
+fn results_section(md: &str) -> String {
+    let body: Vec<String> = md
+        .lines()
+        .skip_while(|l| l.trim().is_empty())
+        .skip_while(|l| l.starts_with("# "))
+        .map(|l| {
+            if l.starts_with('#') {
+                format!("#{l}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect();
+    format!("## Results\n\n{}\n", body.join("\n"))
+}
+
+/// The toolkit version, and the size and CRC-32 of every file read.
+fn provenance(sources: &[PathBuf]) -> Result<String> {
+    let mut rows = (Vec::new(), Vec::new(), Vec::new());
+    for p in sources {
+        let (bytes, crc) = match checksum(p) {
+            Ok((n, c)) => (n.to_string(), format!("{c:08x}")),
+            Err(_) => ("—".into(), "— (built-in catalogue, not on disk)".into()),
+        };
+        rows.0.push(format!("`{}`", p.display()));
+        rows.1.push(bytes);
+        rows.2.push(crc);
+    }
+    let tool = facts(&[("toolkit", format!("stochvib {}", env!("CARGO_PKG_VERSION")))]);
+    let t = Table::default()
+        .text("file read", rows.0)
+        .raw("size [bytes]", rows.1)
+        .text("CRC-32 (ISO-HDLC)", rows.2);
+    Ok(format!("{tool}\n{}", t.markdown()))
+}
+
+/// Size and CRC-32/ISO-HDLC of a file, read in pieces.
+fn checksum(path: &Path) -> std::io::Result<(u64, u32)> {
+    use std::io::Read;
+    let mut f = std::fs::File::open(path)?;
+    let (mut h, mut n, mut buf) = (crc32fast::Hasher::new(), 0u64, vec![0u8; 1 << 16]);
+    loop {
+        let k = f.read(&mut buf)?;
+        if k == 0 {
+            return Ok((n, h.finalize()));
+        }
+        h.update(&buf[..k]);
+        n += k as u64;
+    }
+}
+
+/// Model and poles, outputs, verdicts and pictures of a scenario with a random input.
+fn stochastic_sections(sc: &Scenario, dir: &Path, link: &Path) -> Result<String> {
+    let mut r = super::analysis_report(sc)?;
+    let verdicts = r.verdicts.take();
+    let outputs = std::mem::take(&mut r.outputs);
+    let head = results_section(&r.markdown()).replacen("## Results", "## Model and input", 1);
+    let mut s = format!("{head}\n{}", poles_markdown(sc));
+    s += "\n## Outputs\n";
+    for o in &outputs {
+        s += &super::markdown::output_markdown(&r, o).replace("\n## ", "\n### ");
+    }
+    if let Some(v) = verdicts {
+        s += &format!("\n## Verdicts\n{}", v.markdown().replace("\n## ", "\n### "));
+    }
+    s += "\n## Pictures\n\n";
+    for f in crate::plot::scenario_plots(sc, dir)? {
+        if f.extension().is_some_and(|e| e == "svg") {
+            let name = f.file_name().unwrap_or_default();
+            let stem = f.file_stem().unwrap_or_default().to_string_lossy();
+            s += &format!("![{stem}]({})\n\n", link.join(name).display());
+        }
+    }
+    Ok(s)
+}
+
+/// The poles of the model's state space: natural frequency ω_n = |λ| and damping ratio ζ = −Re λ / |λ| of
+/// each pole with Im λ ≥ 0 (one of each complex pair), by increasing ω_n.
+fn poles_markdown(sc: &Scenario) -> String {
+    let Some(ss) = sc.model.system.state_space() else {
+        return "The model has no finite state space: no pole table.\n".into();
+    };
+    let mut poles: Vec<(f64, f64)> =
+        ss.a.complex_eigenvalues()
+            .iter()
+            .filter(|l| l.im >= 0.0 && l.norm() > 0.0)
+            .map(|l| (l.norm(), -l.re / l.norm()))
+            .collect();
+    poles.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let col = |f: &dyn Fn(&(f64, f64)) -> f64| poles.iter().map(|p| Some(f(p))).collect::<Vec<_>>();
+    let t = Table::default()
+        .raw("pole", 1..=poles.len())
+        .num("ω_n [rad/s]", &col(&|p| p.0))
+        .num("f_n [Hz]", &col(&|p| p.0 / (2.0 * std::f64::consts::PI)))
+        .num("damping ratio ζ", &col(&|p| p.1));
+    format!(
+        "\nPoles of the state space (one of each complex pair; ζ ≥ 1 for a real pole; poles at 0 left out):\n\n{}",
+        t.markdown()
+    )
+}
+
+/// The SVG of a picture file for inlining in HTML: from `<svg`, without the XML namespace attribute (HTML
+/// puts `<svg>` in it; the report holds no address).
+fn inline_svg(path: &Path) -> Option<String> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let start = text.find("<svg")?;
+    Some(
+        text[start..]
+            .trim_end()
+            .replacen(" xmlns=\"http://www.w3.org/2000/svg\"", "", 1),
+    )
+}
+
+/// A directory of this process's own under the system's temporary directory, removed when dropped.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new() -> Result<TempDir> {
+        static COUNT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let n = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("stochvib-report-{}-{n}", std::process::id()));
+        std::fs::create_dir_all(&dir).map_err(|source| Error::Io {
+            path: dir.clone(),
+            source,
+        })?;
+        Ok(TempDir(dir))
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
