@@ -408,6 +408,7 @@ impl PyScenario {
                 verdicts: Default::default(),
                 bands: None,
             },
+            nonlinear: None,
         };
         Ok(PyScenario {
             doc: Document::Stochastic(Box::new(sc)),

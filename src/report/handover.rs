@@ -53,6 +53,18 @@ pub fn write_handover(
     format: HandoverFormat,
     overwrite: bool,
 ) -> Result<PathBuf> {
+    if let Document::Stochastic(sc) = doc
+        && sc.nonlinear.is_some()
+    {
+        return Err(crate::error::Error::in_file(
+            file,
+            "model.nonlinear",
+            "[[model.nonlinear]]",
+            "the hand-over report of a model with nonlinear elements is not available yet (its statistics come \
+             from three routes, not from the linear analysis this report holds); `stochvib analyze FILE --format \
+             markdown` writes the three routes; nothing was written",
+        ));
+    }
     let sources = source_files(doc, file);
     let inputs: Vec<&Path> = sources.iter().map(PathBuf::as_path).collect();
     let staged = crate::io_rules::Staged::begin(out, HANDOVER, &inputs, overwrite)?;
