@@ -43,11 +43,8 @@ fn resolve(page: &Path, target: &str) -> Option<PathBuf> {
     let mut p = page.parent().unwrap().strip_prefix(root()).unwrap().to_path_buf();
     for c in Path::new(target).components() {
         match c {
-            Component::ParentDir => {
-                if !p.pop() {
-                    return None;
-                }
-            }
+            Component::ParentDir if !p.pop() => return None,
+            Component::ParentDir => {}
             Component::Normal(s) => p.push(s),
             _ => {}
         }
