@@ -20,7 +20,8 @@ fn opt(v: Option<f64>) -> Option<f64> {
     v.filter(|x| x.is_finite())
 }
 
-/// The per-axis table: a_w, MTVV, VDV, crest factor, the basic-method ratios, and the health values.
+/// The per-axis table: a_w, MTVV, VDV, crest factor, the basic-method ratios, which metric governs (ISO
+/// 2631-1 6.3.3: none above its threshold, the r.m.s.; else the one furthest above), and the health values.
 pub fn axis_table(axes: &[AxisEvaluation]) -> Table {
     let col = |f: &dyn Fn(&AxisEvaluation) -> Option<f64>| axes.iter().map(f).collect::<Vec<_>>();
     Table::default()
@@ -47,6 +48,7 @@ pub fn axis_table(axes: &[AxisEvaluation]) -> Table {
                 }
             }),
         )
+        .text("governs", axes.iter().map(|a| a.metrics.check.governing.label()))
         .num("k (health)", &col(&|a| a.health.map(|h| h.k)))
         .num("A(8) [m/s²]", &col(&|a| a.health.map(|h| h.a8)))
         .num("VDV day [m/s^1.75]", &col(&|a| a.health.map(|h| h.daily_vdv)))

@@ -283,6 +283,51 @@ fn exposure_of_sinusoids_is_the_closed_form() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Which metric governs a measured record (ISO 2631-1:1997 6.3.3, thresholds 9, 1.5, 1.75): a steady 4 Hz
+/// sine of amplitude B through Wk has crest factor √2, MTVV/a_w = 1 and VDV/(a_w T^¼) = √2·(3/8)^¼ = 1.107
+/// (∫sin⁴ = 3T/8), all below their thresholds: the r.m.s. governs, the basic method suffices. The same sine
+/// as a 1 s burst in a 64 s record (a second axis: feet, z, also Wk): a_w = (B/√2)·√(1/64) = B/(8√2); the linear 1 s running r.m.s. reaches
+/// B/√2, so MTVV/a_w = 8 (5.3 × its threshold); crest factor B/a_w = 8√2 = 11.3 (1.26 ×); VDV = B(3/8)^¼ over
+/// T = 64 s, T^¼ = 2√2, so VDV/(a_w T^¼) = 4·(3/8)^¼ = 3.13 (1.79 ×): the MTVV governs. (B |W_k(4 Hz)| cancels
+/// from every ratio; the weighting's start-up transient moves them by a few per cent, far from every threshold.)
+#[test]
+fn the_governing_metric_of_a_record_is_named() {
+    let dir = scratch("governing");
+    let file = dir.join("seat.csv");
+    let fs = 1000.0;
+    write_csv(
+        &file,
+        "time [s],steady [m/s^2],burst [m/s^2]",
+        fs,
+        (64.0 * fs) as usize,
+        |t| {
+            let s = (TAU * 4.0 * t).sin();
+            vec![s, if (30.0..31.0).contains(&t) { s } else { 0.0 }]
+        },
+    );
+    let mut reader = open_record(&file, &RecordOptions::default()).unwrap();
+    let options = ExposureOptions {
+        axes: vec![
+            AxisAssignment::parse("steady=seat-surface:z").unwrap(),
+            AxisAssignment::parse("burst=feet:z").unwrap(),
+        ],
+        ..ExposureOptions::default()
+    };
+    let e = evaluate_exposure(reader.as_mut(), &options).unwrap();
+    let (steady, burst) = (&e.axes[0].metrics.check, &e.axes[1].metrics.check);
+    assert!(steady.basic_method_sufficient, "{steady:?}");
+    assert_eq!(steady.governing, stochvib::comfort::Governing::Rms);
+    assert!(!burst.basic_method_sufficient, "{burst:?}");
+    assert_eq!(burst.governing, stochvib::comfort::Governing::Mtvv, "{burst:?}");
+    // the report names it
+    let table = stochvib::report::record_report::axis_table(&e.axes).markdown();
+    assert!(
+        table.contains("governs") && table.contains("MTVV") && table.contains("r.m.s. (basic method)"),
+        "{table}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Motion sickness: a vertical sine of amplitude A at 0.25 Hz, T = 800 s at 20 Hz, evaluated with Wf: a_w =
 /// |Wf(0.25 Hz)|·A/√2 and MSDV = a_w·√T (ISO 2631-1 clause 9); the record has no time column, its rate is
 /// stated.
