@@ -268,3 +268,39 @@ pub fn welch<'py>(
     d.set_item("dof", est.dof)?;
     Ok(d)
 }
+
+/// The International Roughness Index (ASTM E1926: golden car at 80 km/h, 250 mm moving average) of one
+/// track's elevations ``z`` (m) sampled every ``step`` m: a dict ``m_per_km``, ``moving_average_samples``,
+/// ``moving_average_base_m``, ``steps``, ``length_m``.
+#[pyfunction]
+pub fn iri<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, step: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyDict>> {
+    let step = crate::quantity::quantity(py, step, "step", "m")?;
+    let zs = vector(py, z, "z")?;
+    let r = detached_if(py, zs.len(), crate::spectrum::DETACH_MIN_POINTS, || {
+        Ok(stochvib::road::iri(&zs, step)?)
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("m_per_km", r.m_per_km)?;
+    d.set_item("moving_average_samples", r.moving_average_samples)?;
+    d.set_item("moving_average_base_m", r.moving_average_base_m)?;
+    d.set_item("steps", r.steps)?;
+    d.set_item("length_m", r.length_m)?;
+    Ok(d)
+}
+
+/// The expected IRI of a spatial road spectrum (the `stochvib iri` expectation): a dict ``m_per_km``,
+/// ``without_moving_average_m_per_km``, ``sigma_relative_velocity_m_s``, ``band_cycles_per_m``.
+#[pyfunction]
+pub fn expected_iri<'py>(py: Python<'py>, spectrum: &Bound<'py, crate::spectrum::PySpectrum>) -> PyResult<Bound<'py, PyAny>> {
+    let s = spectrum.get().spectrum.clone();
+    let e = crate::errors::detached(py, || Ok(stochvib::road::expected_iri(&*s)?))?;
+    to_python(py, &e)
+}
+
+/// The ISO 8608 class ("A" … "H") of a road whose G_d(n₀ = 0.1 cycles/m) is ``g0`` m³ (class limits at the
+/// geometric means between the classes' values; a limit belongs to the rougher class).
+#[pyfunction]
+pub fn iso8608_class(py: Python<'_>, g0: &Bound<'_, PyAny>) -> PyResult<String> {
+    let g0 = crate::quantity::quantity(py, g0, "g0", "m^3")?;
+    Ok(call(py, || stochvib::road::iso8608_class(g0))?.to_string())
+}

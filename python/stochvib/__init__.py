@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, Callable, Dict, Literal, Optional, Sequen
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-from . import comfort, errors, estimate, fatigue, linalg
+from . import comfort, errors, estimate, fatigue, linalg, road
 from .estimate import WelchEstimate, welch
 from . import _stochvib
 from ._stochvib import ISO_BAND, Scenario, Spectrum, System, __version__
@@ -69,6 +69,7 @@ __all__ = [
     "estimate",
     "comfort",
     "fatigue",
+    "road",
     "AnalysisResult",
     "OutputResult",
     "VarianceMethod",

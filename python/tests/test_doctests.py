@@ -9,7 +9,7 @@ import inspect
 import pytest
 
 import stochvib
-from stochvib import _stochvib, comfort, errors, estimate, fatigue, results
+from stochvib import _stochvib, comfort, errors, estimate, fatigue, results, road
 
 
 def native_docstrings():
@@ -30,7 +30,7 @@ def python_docstrings():
     out = []
     finder = doctest.DocTestFinder()
     native = {d for _, d in native_docstrings()}
-    for mod in (stochvib, comfort, errors, estimate, fatigue, results):
+    for mod in (stochvib, comfort, errors, estimate, fatigue, results, road):
         for t in finder.find(mod, mod.__name__):
             if t.examples and t.docstring not in native:  # the native classes' methods: found above
                 out.append((t.name, t.docstring))

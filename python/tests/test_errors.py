@@ -97,9 +97,11 @@ def test_file_error_names_the_path():
     assert e.value.path == "data/no-such-file.toml"
 
 
-def test_quadrature_failure_class():
-    # The library's Error::Quadrature is NotConvergedError (a NumericalError): built here directly, since the
-    # public calls report a quadrature that does not converge in the result instead of raising.
-    err = NotConvergedError("quadrature of x did not converge", what="x", estimate=1.0, abs_error=0.5, evaluations=7)
+def test_quadrature_that_does_not_converge_is_not_converged_error():
+    # K(τ) of an ISO 8608 road at a lag of 1000 km: the oscillatory quadrature runs out of subintervals
+    with pytest.raises(NotConvergedError) as e:
+        Spectrum.iso8608("C").correlation(1e6)
+    err = e.value
     assert isinstance(err, stochvib.NumericalError) and isinstance(err, ArithmeticError)
-    assert err.estimate == 1.0 and err.evaluations == 7 and err.hint is None
+    assert str(err).startswith("quadrature of ") and "did not converge" in str(err)
+    assert err.evaluations > 0 and err.abs_error > 0 and err.estimate is not None

@@ -158,3 +158,24 @@ def test_welch_against_scipy_and_its_intervals():
     np.testing.assert_allclose(est.upper[5], nu * pxx[5] / chi2.ppf(0.025, nu), rtol=1e-9)
     with pytest.raises(InvalidInputError):
         stochvib.welch(x, fs, nperseg=511)
+
+
+def read_profile(root):
+    """data/measured-profile.csv: distance (m), left and right elevations (mm)."""
+    d = np.loadtxt(root / "data" / "measured-profile.csv", delimiter=",", comments="#", skiprows=7)
+    return d[1, 0] - d[0, 0], d[:, 1] / 1000.0, d[:, 2] / 1000.0
+
+
+def test_iri_and_iso_class_against_the_cli(cli, root):
+    # the Rust library's answer for the same profile and spectrum: `stochvib iri iso8608-c --profile … --json`
+    want = cli.json("iri", "iso8608-c", "--profile", "data/measured-profile.csv")
+    step, left, right = read_profile(root)
+    assert step == pytest.approx(0.05)
+    got = [stochvib.road.iri(left, step).m_per_km, stochvib.road.iri(right, "5 cm").m_per_km]
+    np.testing.assert_allclose(got, [m["m_per_km"] for m in want["measured"]], rtol=1e-12)
+    e = stochvib.road.expected_iri(stochvib.Spectrum.load("iso8608-c"))
+    assert e.m_per_km == want["expected"]["m_per_km"]
+    # ISO 8608 class limits (Table F.2): C is 128e-6 ≤ G_d(n₀) < 512e-6 m³, a limit belongs to the rougher class
+    assert [stochvib.road.iso8608_class(g) for g in (256e-6, 128e-6, 127e-6, 512e-6)] == ["C", "C", "B", "D"]
+    with pytest.raises(InvalidInputError):
+        stochvib.road.iso8608_class(-1.0)
