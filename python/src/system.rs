@@ -447,6 +447,45 @@ impl PySystem {
         Ok(result.into_any())
     }
 
+    /// The system whose single output is output ``output`` passed through the ISO 2631-1 / ISO 8041
+    /// frequency weighting ``weighting`` ("Wk", "Wd", ...): W(iω)·H_output(iω), a state-space system with
+    /// the same inputs (and input layout), whose output ``<output>_<W>`` has the weighted r.m.s. a_w as its
+    /// σ under a stationary input — ``stochvib.analyze(system.weighted("seat_acc", "Wk"), road, speed=…)``.
+    ///
+    /// Raises :class:`InvalidInputError` for an unknown output or weighting, an output that is not the
+    /// acceleration the weighting applies to, and :class:`NotApplicableError` for a system without a
+    /// finite state-space form.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import numpy as np, stochvib
+    /// >>> seat = stochvib.System.mdof(mass=[[80.0]], damping=[[1e3]], stiffness=[[5e4]],
+    /// ...     base_stiffness=[[5e4]], base_damping=[[1e3]], outputs={"acc": ("acceleration", [1])})
+    /// >>> w = seat.weighted("acc", "Wk")
+    /// >>> w.outputs
+    /// [('acc_Wk', 'm/s^2')]
+    /// >>> h, hw = seat.frequency_response(f=4.0)[0, 0], w.frequency_response(f=4.0)[0, 0]
+    /// >>> bool(np.isclose(hw, stochvib.comfort.weighting("Wk", f=4.0) * h, rtol=1e-9))
+    /// True
+    fn weighted(&self, py: Python<'_>, output: &str, weighting: &str) -> PyResult<Self> {
+        let w = call(py, || stochvib::comfort::Weighting::parse(weighting))?;
+        let i = call(py, || self.system.output_index(output))?;
+        let Some(ss) = self.system.state_space() else {
+            return Err(not_applicable(
+                py,
+                format!("weighting an output needs a finite state-space form; this {} has none", self.kind),
+            ));
+        };
+        let ws = call(py, || stochvib::comfort::weighted_output(&ss, i, &w))?;
+        Ok(PySystem {
+            system: Arc::new(ws),
+            layout: self.layout.clone(),
+            description: format!("{} (output {output} weighted by {})", self.description, w.name()),
+            kind: self.kind.clone(),
+            mass_stiffness: None,
+        })
+    }
+
     /// Undamped natural frequencies (rad/s, ascending) and mass-normalised mode shapes (columns) of
     /// C φ = ω² M φ, for systems built with :meth:`mdof`. Rigid-body modes have ω = 0. Other systems raise
     /// :class:`NotApplicableError` (use :meth:`natural_frequencies`).

@@ -304,3 +304,19 @@ pub fn iso8608_class(py: Python<'_>, g0: &Bound<'_, PyAny>) -> PyResult<String> 
     let g0 = crate::quantity::quantity(py, g0, "g0", "m^3")?;
     Ok(call(py, || stochvib::road::iso8608_class(g0))?.to_string())
 }
+
+/// The Directive 2002/44/EC daily exposure A(8) = a_w·√(T/8 h) (m/s²) of a weighted r.m.s. ``a_w`` (m/s²,
+/// already multiplied by the axis factor k) over ``duration`` (s, or with a unit "4 h").
+#[pyfunction]
+pub fn daily_exposure_a8(py: Python<'_>, a_w: f64, duration: &Bound<'_, PyAny>) -> PyResult<f64> {
+    let t = crate::quantity::quantity(py, duration, "duration", "s")?;
+    call(py, || stochvib::comfort::daily_exposure_a8(a_w, t))
+}
+
+/// The vibration dose value (m/s^1.75) of a stationary Gaussian weighted acceleration of r.m.s. ``a_w``
+/// over ``duration``: VDV = (3 T)^(1/4) a_w (the fourth-power mean of a Gaussian process).
+#[pyfunction]
+pub fn vdv_gaussian(py: Python<'_>, a_w: f64, duration: &Bound<'_, PyAny>) -> PyResult<f64> {
+    let t = crate::quantity::quantity(py, duration, "duration", "s")?;
+    call(py, || stochvib::comfort::vdv_gaussian(a_w, t))
+}

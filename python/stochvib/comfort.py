@@ -14,14 +14,14 @@ True
 
 from __future__ import annotations
 
-from typing import Optional, Tuple
+from typing import Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _stochvib
 
-__all__ = ["weighting", "weighting_filter", "WEIGHTINGS"]
+__all__ = ["weighting", "weighting_filter", "a8", "vdv_gaussian", "WEIGHTINGS"]
 
 WEIGHTINGS = ("Wk", "Wd", "Wc", "We", "Wj", "Wb", "Wf")
 """The frequency weightings of ISO 2631-1 (Wk, Wd, Wc, We, Wj, Wf) and ISO 2631-4 (Wb)."""
@@ -82,3 +82,35 @@ def weighting_filter(name: str, *, order: str = "descending") -> Tuple[npt.NDArr
     (3, 6)
     """
     return _stochvib.weighting_filter(name, order=order)
+
+
+def a8(a_w: float, duration: Union[float, str]) -> float:
+    """The daily exposure A(8) = a_w √(T/8 h) of Directive 2002/44/EC, m/s².
+
+    Parameters
+    ----------
+    a_w : float
+        Weighted r.m.s. acceleration, m/s², already multiplied by the axis factor k (1.4 for x, y seated).
+    duration : float or str
+        The daily exposure T in s, or with a unit ("4 h").
+
+    Examples
+    --------
+    >>> from stochvib import comfort
+    >>> round(comfort.a8(1.0, "2 h"), 12)  # √(2/8)
+    0.5
+    """
+    return _stochvib.daily_exposure_a8(a_w, duration)
+
+
+def vdv_gaussian(a_w: float, duration: Union[float, str]) -> float:
+    """The vibration dose value of a stationary Gaussian weighted acceleration, VDV = (3T)^¼ a_w, m/s^1.75
+    (the fourth moment of a Gaussian is 3σ⁴; compare the standard's estimate 1.4 a_w T^¼).
+
+    Examples
+    --------
+    >>> from stochvib import comfort
+    >>> round(comfort.vdv_gaussian(0.5, "8 h") / (3 * 28800) ** 0.25, 12)
+    0.5
+    """
+    return _stochvib.vdv_gaussian(a_w, duration)

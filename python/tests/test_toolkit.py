@@ -179,3 +179,30 @@ def test_iri_and_iso_class_against_the_cli(cli, root):
     assert [stochvib.road.iso8608_class(g) for g in (256e-6, 128e-6, 127e-6, 512e-6)] == ["C", "C", "B", "D"]
     with pytest.raises(InvalidInputError):
         stochvib.road.iso8608_class(-1.0)
+
+
+def test_weighted_output_of_any_system_gives_a_w_two_ways():
+    # A seat on a vibrating floor: m = 80 kg, k = 50 kN/m, b = 1 kN s/m, base input; the Wk-weighted seat
+    # acceleration's σ is a_w. Way 1: analyze (Lyapunov) of System.weighted; way 2: ∫|W H|² S dω with the
+    # arrays of frequency_response and density (trapezoid); and W·H checked against comfort.weighting.
+    seat = stochvib.System.mdof(mass=[[80.0]], damping=[[1e3]], stiffness=[[5e4]], base_stiffness=[[5e4]],
+                                base_damping=[[1e3]], outputs={"acc": ("acceleration", [1])})
+    w = seat.weighted("acc", "Wk")
+    assert w.outputs == [("acc_Wk", "m/s^2")] and w.n_inputs == 1
+    floor = stochvib.Spectrum.exp_cosine(0.05, 3.0, 30.0, unit="m")  # floor displacement, m
+    r = stochvib.analyze(w, floor)
+    a_w = r["acc_Wk"].sigma
+    omega = np.linspace(0.0, 4000.0, 2_000_001)
+    sy = np.abs(w.frequency_response(omega)[0, 0]) ** 2 * floor.density(omega)
+    var_trapz = 2.0 * np.sum(0.5 * (sy[1:] + sy[:-1]) * np.diff(omega))
+    assert a_w == pytest.approx(math.sqrt(var_trapz), rel=1e-5)  # trapezoid on a 2 mrad/s grid, tail cut at 4000
+    # the series connection against the product of the two responses (two exact evaluations; below 1 rad/s
+    # both are ~1e-12 and the state-space solve loses digits to cancellation)
+    wg = np.geomspace(1.0, 1000.0, 500)
+    h = seat.frequency_response(wg)[0, 0] * comfort.weighting("Wk", wg)
+    np.testing.assert_allclose(w.frequency_response(wg)[0, 0], h, rtol=REL_POLY, atol=0)
+    # A(8) and the Gaussian VDV of that a_w
+    assert comfort.a8(a_w, "8 h") == pytest.approx(a_w, rel=1e-15)
+    assert comfort.vdv_gaussian(a_w, 3600.0) == pytest.approx((3 * 3600.0) ** 0.25 * a_w, rel=1e-12)
+    with pytest.raises(InvalidInputError, match="Wz"):
+        seat.weighted("acc", "Wz")
