@@ -618,6 +618,49 @@ impl PyScenario {
             .call1((to_python(py, &summary)?, summary.to_string(), how))
     }
 
+    /// The density of output ``output`` (a name) under the scenario's input, as an array shaped as the
+    /// argument: the two-sided S_y(ω) at ``omega`` (rad/s; rad/m along a road has become time through the
+    /// speed), or the one-sided G_y(f) = 4π S_y(2πf) at ``f`` (Hz, scipy.signal.welch's). ``convention``
+    /// as for :meth:`Spectrum.density`. Delays, several inputs and catalogue layouts are included; for the
+    /// weighted density use a system from :meth:`System.weighted`.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> sc.output_density("y", [0.0, 1.0]).shape
+    /// (2,)
+    #[pyo3(signature = (output, omega=None, *, f=None, convention=None))]
+    fn output_density<'py>(
+        &self,
+        py: Python<'py>,
+        output: &str,
+        omega: Option<&Bound<'py, PyAny>>,
+        f: Option<&Bound<'py, PyAny>>,
+        convention: Option<&str>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+        let sc = self.stochastic(py)?;
+        let sys = &*sc.model.system;
+        let i = call(py, || sys.output_index(output))?;
+        let od = call(py, || stochvib::response::OutputDensity::new(sys, &sc.excitation, i))?;
+        let (conv, x) = crate::spectrum::density_argument(py, omega, f, convention)?;
+        let shape = x.shape().to_vec();
+        // SAFETY: every element is written by `convert_density` before the array is returned.
+        let out = unsafe { PyArrayDyn::<f64>::new(py, shape.clone(), false) };
+        {
+            let xr = x.readonly();
+            let mut rw = out.readwrite();
+            let (xs, os) = (xr.as_slice()?, rw.as_slice_mut()?);
+            let eval = |w: &[f64], o: &mut [f64]| o.iter_mut().zip(w).for_each(|(y, &w)| *y = od.density(w));
+            crate::errors::detached_if(py, xs.len(), crate::spectrum::DETACH_MIN_POINTS / 16, || {
+                crate::spectrum::convert_density(eval, conv, xs, os);
+                Ok(())
+            })?;
+        }
+        crate::spectrum::scalar_or_array(py, out, shape.is_empty())
+    }
+
     /// Title of the scenario.
     #[getter]
     fn title(&self) -> &str {

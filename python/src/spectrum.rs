@@ -96,12 +96,18 @@ impl PySpectrum {
 
 /// S in `conv` at the abscissae `x` (same length as `out`).
 fn density_in(s: &dyn Spectrum, conv: Convention, x: &[f64], out: &mut [f64]) {
+    convert_density(|w, o| s.density_into(w, o), conv, x, out)
+}
+
+/// A two-sided angular density `eval(ω, out)` evaluated in `conv` at the abscissae `x` (same length as
+/// `out`): ω from the convention's abscissa, the ordinate converted, one-sided conventions 0 below zero.
+pub fn convert_density(eval: impl Fn(&[f64], &mut [f64]), conv: Convention, x: &[f64], out: &mut [f64]) {
     if conv == Convention::TwoSidedAngular {
-        s.density_into(x, out);
+        eval(x, out);
         return;
     }
     let omega: Vec<f64> = x.iter().map(|&v| conv.to_canonical(v, 0.0).0).collect();
-    s.density_into(&omega, out);
+    eval(&omega, out);
     let one_sided = conv.is_one_sided();
     for ((o, &w), &v) in out.iter_mut().zip(&omega).zip(x) {
         *o = if one_sided && v < 0.0 {
@@ -114,7 +120,7 @@ fn density_in(s: &dyn Spectrum, conv: Convention, x: &[f64], out: &mut [f64]) {
 
 /// The convention and the abscissae of `density(omega=…)` / `density(f=…, …)`: with `omega` (rad/s) an
 /// angular convention, with `f` (Hz) the one-sided cyclic one.
-fn density_argument<'py>(
+pub fn density_argument<'py>(
     py: Python<'py>,
     omega: Option<&Bound<'py, PyAny>>,
     f: Option<&Bound<'py, PyAny>>,

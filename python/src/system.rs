@@ -473,7 +473,10 @@ impl PySystem {
         let Some(ss) = self.system.state_space() else {
             return Err(not_applicable(
                 py,
-                format!("weighting an output needs a finite state-space form; this {} has none", self.kind),
+                format!(
+                    "weighting an output needs a finite state-space form; this {} has none",
+                    self.kind
+                ),
             ));
         };
         let ws = call(py, || stochvib::comfort::weighted_output(&ss, i, &w))?;

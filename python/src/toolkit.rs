@@ -291,7 +291,10 @@ pub fn iri<'py>(py: Python<'py>, z: &Bound<'py, PyAny>, step: &Bound<'py, PyAny>
 /// The expected IRI of a spatial road spectrum (the `stochvib iri` expectation): a dict ``m_per_km``,
 /// ``without_moving_average_m_per_km``, ``sigma_relative_velocity_m_s``, ``band_cycles_per_m``.
 #[pyfunction]
-pub fn expected_iri<'py>(py: Python<'py>, spectrum: &Bound<'py, crate::spectrum::PySpectrum>) -> PyResult<Bound<'py, PyAny>> {
+pub fn expected_iri<'py>(
+    py: Python<'py>,
+    spectrum: &Bound<'py, crate::spectrum::PySpectrum>,
+) -> PyResult<Bound<'py, PyAny>> {
     let s = spectrum.get().spectrum.clone();
     let e = crate::errors::detached(py, || Ok(stochvib::road::expected_iri(&*s)?))?;
     to_python(py, &e)

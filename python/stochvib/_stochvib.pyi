@@ -241,6 +241,15 @@ class Scenario:
     ) -> AnalysisResult:
         """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``); ``rel_tol``,
         ``max_subintervals``, ``max_half_periods`` override the quadratures' ``[analysis.quadrature]``."""
+    def output_density(
+        self,
+        output: str,
+        omega: Optional[ArrayLike] = None,
+        *,
+        f: Optional[ArrayLike] = None,
+        convention: Optional[Convention] = None,
+    ) -> Union[float, FloatArray]:
+        """S_y(ω) (rad/s) or the one-sided G_y(f) (Hz) of an output, shaped as the argument."""
     def tables(self) -> TablesResult:
         """The result tables of a deterministic model or a reference table."""
     def simulate(

@@ -206,3 +206,19 @@ def test_weighted_output_of_any_system_gives_a_w_two_ways():
     assert comfort.vdv_gaussian(a_w, 3600.0) == pytest.approx((3 * 3600.0) ** 0.25 * a_w, rel=1e-12)
     with pytest.raises(InvalidInputError, match="Wz"):
         seat.weighted("acc", "Wz")
+
+
+def test_output_density_arrays_against_frequency_response_and_the_variance():
+    # S_y = |H|² S_u for a single-input system; its integral is the analytic variance (Lyapunov)
+    sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    sys_, load = sc.system, sc.input
+    w = np.linspace(0.0, 400.0, 400_001)
+    sy = sc.output_density("y", w)
+    np.testing.assert_allclose(sy, np.abs(sys_.frequency_response(w)[0, 0]) ** 2 * load.density(w), rtol=1e-10)
+    var = 2.0 * np.sum(0.5 * (sy[1:] + sy[:-1]) * np.diff(w))
+    assert var == pytest.approx(stochvib.analyze(sc)["y"].variance, rel=1e-4)  # trapezoid, tail beyond 400 rad/s
+    f = w[:1000] / (2 * np.pi)
+    np.testing.assert_allclose(sc.output_density("y", f=f), 4 * np.pi * sy[:1000], rtol=1e-12)
+    assert sc.output_density("y", w.reshape(400_001, 1)).shape == (400_001, 1)
+    with pytest.raises(InvalidInputError, match="no such output"):
+        sc.output_density("nope", w)
