@@ -343,7 +343,7 @@ impl PySpectrum {
     /// Every spectrum of the catalogue directory (see :meth:`load`), as a dict name → Spectrum, sorted by
     /// name. Invalid files are left out with a ``StochvibWarning`` naming the file and the reason.
     #[staticmethod]
-    #[pyo3(signature = (spectra_dir=None))]
+    #[pyo3(signature = (*, spectra_dir=None))]
     fn catalogue<'py>(py: Python<'py>, spectra_dir: Option<PathBuf>) -> PyResult<Bound<'py, PyDict>> {
         let entries = call(py, || catalogue(spectra_dir).entries())?;
         let d = PyDict::new(py);

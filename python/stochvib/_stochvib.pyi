@@ -91,7 +91,7 @@ class Spectrum:
     def load(path_or_name: PathLike, *, spectra_dir: Optional[PathLike] = None) -> Spectrum:
         """A catalogue name (``spectra/<name>.toml``) or a spectrum file path."""
     @staticmethod
-    def catalogue(spectra_dir: Optional[PathLike] = None) -> Dict[str, Spectrum]:
+    def catalogue(*, spectra_dir: Optional[PathLike] = None) -> Dict[str, Spectrum]:
         """Every valid spectrum of the catalogue directory, by name."""
     @overload
     def density(

@@ -330,7 +330,7 @@ def test_catalogue_directory_and_invalid_files(root, tmp_path):
     (tmp_path / "good.toml").write_text((root / "spectra" / "type1.toml").read_text())
     (tmp_path / "bad.toml").write_text('kind = "exponential"\nvariance = -1\nalpha = "1 1/s"\n')
     with pytest.warns(stochvib.StochvibWarning, match="bad.toml"):
-        cat = Spectrum.catalogue(tmp_path)
+        cat = Spectrum.catalogue(spectra_dir=tmp_path)
     assert list(cat) == ["good"]
     assert Spectrum.load("good", spectra_dir=tmp_path).variance() == Spectrum.load("type1").variance()
     with pytest.raises(stochvib.FileError) as e:
