@@ -26,8 +26,29 @@ REL_TRAPZ = 1e-7
 # a_w of a sine through the digital weighting (bilinear transform at 1 kHz, started at rest): the
 # realisation error at 4 Hz (< 0.1 dB, ISO 8041 allows far more) and the start-up transient over 120 s.
 REL_DIGITAL = 2e-2
-# A(8) = a_w √(T_exp/8 h) recomputed from the reported a_w: a few roundings.
+# A(8) = a_w √(T_exp/8 h), Miner sums, VDV: the same formula recomputed here from the reported values, or
+# the same sum in another order: a few roundings.
 REL_FORMULA = 1e-12
+# Rainflow ranges and means are differences and half-sums of the same samples in both counts: exact up to
+# the last bit of the half-sum.
+REL_RAINFLOW, ABS_RAINFLOW = 1e-15, 1e-12
+# scipy.signal.welch (numpy's pocketfft) against the library (realfft) on 512-point segments: FFT rounding;
+# f_j = j·fs/M computed two ways.
+REL_WELCH, REL_FREQ = 1e-9, 1e-14
+# χ² quantiles by scipy.stats against the library's own: both to ~1e-12 and more.
+REL_CHI2 = 1e-9
+# The output density: the library's modal form against |H|² S from the dense frequency response.
+REL_DENSITY = 1e-10
+# G(f) = 4π S(2πf) recomputed from S: a product of rounded numbers.
+REL_CONVERSION = 1e-12
+# A trapezoid of a smooth, fast-decaying output density on a grid of 1 mrad/s to 400 rad/s (the tail beyond
+# holds < 1e-5 of the variance for the conveyor idler: |H|² S ~ ω⁻⁶) against the exact variance.
+REL_TRAPZ_VARIANCE = 1e-4
+# The same for the weighted seat on a 2 mrad/s grid to 4000 rad/s (Wk falls as ω⁻², the seat as ω⁻¹).
+REL_TRAPZ_WEIGHTED = 1e-5
+# The library's IRI against the command-line tool's on the same profile (the CSV's 0.001 mm rounding is the
+# same for both; what remains is the CSV parse): the same computation.
+REL_SAME = 1e-12
 
 
 @pytest.mark.parametrize("f,want", [(1.0, 0.482), (8.0, 1.036), (16.0, 0.768), (31.5, 0.405)])
@@ -83,12 +104,12 @@ def test_rainflow_against_an_independent_astm_transcription():
     got = sorted(zip(c.range.tolist(), c.mean.tolist(), c.count.tolist()))
     want = astm_e1049_three_point(x)
     assert len(got) == len(want)
-    np.testing.assert_allclose(np.array(got), np.array(want), rtol=1e-15, atol=1e-12)
+    np.testing.assert_allclose(np.array(got), np.array(want), rtol=REL_RAINFLOW, atol=ABS_RAINFLOW)
     np.testing.assert_array_equal(c.amplitude, c.range / 2)
     assert np.all(c.start < c.end) and c.start.dtype == np.int64
     # Miner's damage from the arrays, against the same sum over the transcription
     k, cc = 3.0, 1e9
-    assert c.damage(k=k, c=cc) == pytest.approx(sum(n * (r / 2) ** k for r, _, n in want) / cc, rel=1e-12)
+    assert c.damage(k=k, c=cc) == pytest.approx(sum(n * (r / 2) ** k for r, _, n in want) / cc, rel=REL_FORMULA)
     with pytest.raises(InvalidInputError, match="1-D"):
         fatigue.rainflow(np.ones((2, 2)))
 
@@ -104,7 +125,7 @@ def test_spectral_fatigue_narrow_band_closed_form():
     assert r["NarrowBand"].damage_rate == pytest.approx(want, rel=REL_TRAPZ)
     assert r["NarrowBand"].life == pytest.approx(1 / want, rel=REL_TRAPZ)
     # the narrow-band estimate is the conservative one (Wirsching & Light 1980): no method predicts less life
-    assert min(e.life for e in r.estimates) == pytest.approx(r["NarrowBand"].life, rel=1e-12)
+    assert min(e.life for e in r.estimates) == pytest.approx(r["NarrowBand"].life, rel=REL_FORMULA)
     # from a Spectrum: its one-sided density as arrays
     t3 = stochvib.Spectrum.exp_cosine(1.0, 2.0, 60.0)
     ff = np.linspace(0.0, 200.0, 4001)
@@ -143,19 +164,19 @@ def test_welch_against_scipy_and_its_intervals():
     est = stochvib.welch(x, fs, nperseg=512)
     f_ref, p_ref = signal.welch(x, fs, nperseg=512)
     f, pxx = est
-    np.testing.assert_allclose(f, f_ref, rtol=1e-14, atol=0)
-    np.testing.assert_allclose(pxx, p_ref, rtol=1e-9, atol=0)
+    np.testing.assert_allclose(f, f_ref, rtol=REL_FREQ, atol=0)
+    np.testing.assert_allclose(pxx, p_ref, rtol=REL_WELCH, atol=0)
     # intervals: lower < G < upper, and Welch's ν = 36K²/(19K − 1) for K segments (Hann, 50 % overlap)
     k = est.segments
     assert k == (x.size - 512) // 256 + 1
-    assert est.dof == pytest.approx(36 * k * k / (19 * k - 1), rel=1e-12)
+    assert est.dof == pytest.approx(36 * k * k / (19 * k - 1), rel=REL_FORMULA)
     assert np.all(est.lower[1:-1] < pxx[1:-1]) and np.all(pxx[1:-1] < est.upper[1:-1])
     # χ² interval inside: [ν G/χ²_{ν,0.975}, ν G/χ²_{ν,0.025}], from scipy.stats
     from scipy.stats import chi2
 
     nu = est.dof
-    np.testing.assert_allclose(est.lower[5], nu * pxx[5] / chi2.ppf(0.975, nu), rtol=1e-9)
-    np.testing.assert_allclose(est.upper[5], nu * pxx[5] / chi2.ppf(0.025, nu), rtol=1e-9)
+    np.testing.assert_allclose(est.lower[5], nu * pxx[5] / chi2.ppf(0.975, nu), rtol=REL_CHI2)
+    np.testing.assert_allclose(est.upper[5], nu * pxx[5] / chi2.ppf(0.025, nu), rtol=REL_CHI2)
     with pytest.raises(InvalidInputError):
         stochvib.welch(x, fs, nperseg=511)
 
@@ -172,7 +193,7 @@ def test_iri_and_iso_class_against_the_cli(cli, root):
     step, left, right = read_profile(root)
     assert step == pytest.approx(0.05)
     got = [stochvib.road.iri(left, step).m_per_km, stochvib.road.iri(right, "5 cm").m_per_km]
-    np.testing.assert_allclose(got, [m["m_per_km"] for m in want["measured"]], rtol=1e-12)
+    np.testing.assert_allclose(got, [m["m_per_km"] for m in want["measured"]], rtol=REL_SAME)
     e = stochvib.road.expected_iri(stochvib.Spectrum.load("iso8608-c"))
     assert e.m_per_km == want["expected"]["m_per_km"]
     # ISO 8608 class limits (Table F.2): C is 128e-6 ≤ G_d(n₀) < 512e-6 m³, a limit belongs to the rougher class
@@ -195,15 +216,15 @@ def test_weighted_output_of_any_system_gives_a_w_two_ways():
     omega = np.linspace(0.0, 4000.0, 2_000_001)
     sy = np.abs(w.frequency_response(omega)[0, 0]) ** 2 * floor.density(omega)
     var_trapz = 2.0 * np.sum(0.5 * (sy[1:] + sy[:-1]) * np.diff(omega))
-    assert a_w == pytest.approx(math.sqrt(var_trapz), rel=1e-5)  # trapezoid on a 2 mrad/s grid, tail cut at 4000
+    assert a_w == pytest.approx(math.sqrt(var_trapz), rel=REL_TRAPZ_WEIGHTED)
     # the series connection against the product of the two responses (two exact evaluations; below 1 rad/s
     # both are ~1e-12 and the state-space solve loses digits to cancellation)
     wg = np.geomspace(1.0, 1000.0, 500)
     h = seat.frequency_response(wg)[0, 0] * comfort.weighting("Wk", wg)
     np.testing.assert_allclose(w.frequency_response(wg)[0, 0], h, rtol=REL_POLY, atol=0)
     # A(8) and the Gaussian VDV of that a_w
-    assert comfort.a8(a_w, "8 h") == pytest.approx(a_w, rel=1e-15)
-    assert comfort.vdv_gaussian(a_w, 3600.0) == pytest.approx((3 * 3600.0) ** 0.25 * a_w, rel=1e-12)
+    assert comfort.a8(a_w, "8 h") == pytest.approx(a_w, rel=REL_FORMULA)
+    assert comfort.vdv_gaussian(a_w, 3600.0) == pytest.approx((3 * 3600.0) ** 0.25 * a_w, rel=REL_FORMULA)
     with pytest.raises(InvalidInputError, match="Wz"):
         seat.weighted("acc", "Wz")
 
@@ -212,13 +233,13 @@ def test_output_density_arrays_against_frequency_response_and_the_variance():
     # S_y = |H|² S_u for a single-input system; its integral is the analytic variance (Lyapunov)
     sc = stochvib.Scenario.load("data/conveyor-idler.toml")
     sys_, load = sc.system, sc.input
-    w = np.linspace(0.0, 400.0, 400_001)
+    w = np.linspace(0.0, 400.0, 400_001)  # 1 mrad/s
     sy = sc.output_density("y", w)
-    np.testing.assert_allclose(sy, np.abs(sys_.frequency_response(w)[0, 0]) ** 2 * load.density(w), rtol=1e-10)
+    np.testing.assert_allclose(sy, np.abs(sys_.frequency_response(w)[0, 0]) ** 2 * load.density(w), rtol=REL_DENSITY)
     var = 2.0 * np.sum(0.5 * (sy[1:] + sy[:-1]) * np.diff(w))
-    assert var == pytest.approx(stochvib.analyze(sc)["y"].variance, rel=1e-4)  # trapezoid, tail beyond 400 rad/s
+    assert var == pytest.approx(stochvib.analyze(sc)["y"].variance, rel=REL_TRAPZ_VARIANCE)
     f = w[:1000] / (2 * np.pi)
-    np.testing.assert_allclose(sc.output_density("y", f=f), 4 * np.pi * sy[:1000], rtol=1e-12)
+    np.testing.assert_allclose(sc.output_density("y", f=f), 4 * np.pi * sy[:1000], rtol=REL_CONVERSION)
     assert sc.output_density("y", w.reshape(400_001, 1)).shape == (400_001, 1)
     with pytest.raises(InvalidInputError, match="no such output"):
         sc.output_density("nope", w)
