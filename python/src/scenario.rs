@@ -164,8 +164,7 @@ fn excitation(
         (None, Some(InputLayout::TwoTracks { .. })) => Err(invalid_input(
             py,
             "the model stands on two tracks: load a scenario with an [[input]] road table (Scenario.load) to \
-             give the road, its coherence and the speed"
-                .to_string(),
+             give the road, its coherence and the speed",
         )),
         (None, None) if sys.system.n_inputs() == 1 => call(py, || Excitation::single(s, mean)),
         (None, None) => Err(invalid_input(
@@ -218,7 +217,7 @@ fn input_spectra(py: Python<'_>, input: &Bound<'_, PyAny>) -> PyResult<Vec<Py<Py
 
 /// A report of the library.
 enum AnyReport {
-    Analysis(AnalysisReport),
+    Analysis(Box<AnalysisReport>),
     Tables(TablesReport),
 }
 
@@ -226,7 +225,7 @@ enum AnyReport {
 fn document_report<'py>(py: Python<'py>, doc: &Document) -> PyResult<(String, Bound<'py, PyAny>, String)> {
     let r = detached(py, || {
         Ok(match doc {
-            Document::Stochastic(sc) => AnyReport::Analysis(analysis_report(sc)?),
+            Document::Stochastic(sc) => AnyReport::Analysis(Box::new(analysis_report(sc)?)),
             Document::Deterministic(d) => AnyReport::Tables(deterministic_report(d)?),
             Document::Reference(t) => AnyReport::Tables(reference_report(t)),
         })

@@ -18,7 +18,7 @@ use stochvib::spectrum::{
 pub const DETACH_MIN_POINTS: usize = 2048;
 
 /// A pair of coefficient arrays (numerator, denominator).
-type Coefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+pub type Coefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// A stationary random process described by its spectral density.
 ///

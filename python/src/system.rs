@@ -479,7 +479,7 @@ impl PySystem {
                 ),
             ));
         };
-        let ws = call(py, || stochvib::comfort::weighted_output(&ss, i, &w))?;
+        let ws = call(py, || stochvib::comfort::weighted_output(ss, i, &w))?;
         Ok(PySystem {
             system: Arc::new(ws),
             layout: self.layout.clone(),

@@ -51,11 +51,7 @@ pub fn weighting_response<'py>(
 /// ``order="ascending"``: ``scipy.signal.freqs(b, a, omega)`` is :func:`weighting_response`.
 #[pyfunction]
 #[pyo3(signature = (name, *, order="descending"))]
-pub fn weighting_filter<'py>(
-    py: Python<'py>,
-    name: &str,
-    order: &str,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+pub fn weighting_filter<'py>(py: Python<'py>, name: &str, order: &str) -> PyResult<crate::spectrum::Coefficients<'py>> {
     let desc = crate::arrays::descending(py, order)?;
     let w = call(py, || Weighting::parse(name))?;
     let (num, den) = w.polynomials();
