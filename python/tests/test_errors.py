@@ -1,5 +1,5 @@
 """The error hierarchy (StochvibError → InvalidInputError (ValueError), UnitError, DivergentError,
-NotConvergedError, FileError): each raised where the issue's traps were, with the command-line tool's message
+NotConvergedError, FileError): each raised where the old API's traps were, with the command-line tool's message
 and hint."""
 
 from __future__ import annotations
