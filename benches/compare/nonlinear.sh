@@ -74,14 +74,8 @@ for row in rows:
 PY
 cat "$out/table.md"
 if [ "$write" = 1 ]; then
-    python3 - "$root/benches/RESULTS.md" "$out/table.md" <<'PY'
-import sys
-path, table = sys.argv[1], open(sys.argv[2]).read().strip()
-text = open(path).read()
-begin, end = "<!-- nonlinear table: written by benches/compare/nonlinear.sh -->", "<!-- end of nonlinear table -->"
-i, j = text.index(begin) + len(begin), text.index(end)
-open(path, "w").write(text[:i] + "\n" + table + "\n" + text[j:])
-PY
+    python3 "$here/write_section.py" "$root/benches/RESULTS.md" "$out/table.md" \
+        "<!-- nonlinear table: written by benches/compare/nonlinear.sh -->" "<!-- end of nonlinear table -->"
     echo "nonlinear.sh: the table is in benches/RESULTS.md" >&2
 fi
 echo "nonlinear.sh: JSON in $out" >&2

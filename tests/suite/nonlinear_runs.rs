@@ -195,7 +195,7 @@ fn inspect_and_plot_of_a_nonlinear_run() {
         "simulate", sc, "--realizations", "4", "--duration", "200", "--dt", "0.05", "-o", "run.h5",
     ]);
     let text = ok(&["inspect", "run.h5"]);
-    for word in ["kurtosis", "max_abs", "route 1"] {
+    for word in ["sigma_response", "kurtosis", "max_abs"] {
         assert!(text.contains(word), "inspect lacks `{word}`:\n{text}");
     }
     let json: serde_json::Value = serde_json::from_str(&ok(&["inspect", "run.h5", "--json"])).unwrap();
