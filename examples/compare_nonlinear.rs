@@ -76,7 +76,10 @@ fn statistics_crc(s: &NonlinearRunSummary) -> u32 {
 }
 
 fn pool(threads: usize) -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool")
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
 }
 
 /// The linear part of the scenario as a scenario of its own: no nonlinear tables, the damper's mean.
@@ -118,14 +121,20 @@ fn main() {
     for threads in [1, 2] {
         let p = pool(threads);
         let (wall, cpu, s) = best(reps, || p.install(|| nonlinear_run(&sc, &answers, &opts, &out)));
-        rows.insert(format!("route2_{threads}_threads"), json!({"seconds": wall, "cpu_seconds": cpu}));
+        rows.insert(
+            format!("route2_{threads}_threads"),
+            json!({"seconds": wall, "cpu_seconds": cpu}),
+        );
         summary = Some(s);
     }
     // what a second core gives at all on this machine now: the same fixed arithmetic on 1 and 2 threads
     for threads in [1, 2] {
         let p = pool(threads);
         let (wall, cpu, _) = best(reps, || p.install(spin));
-        rows.insert(format!("spin_{threads}_threads"), json!({"seconds": wall, "cpu_seconds": cpu}));
+        rows.insert(
+            format!("spin_{threads}_threads"),
+            json!({"seconds": wall, "cpu_seconds": cpu}),
+        );
     }
     let s = summary.unwrap();
     let travel = s.run.outputs.iter().find(|o| o.output == "travel").unwrap();
@@ -138,7 +147,9 @@ fn main() {
         ..opts.clone()
     };
     let p1 = pool(1);
-    let (lw, lc, ls) = best(reps, || p1.install(|| lin.simulate(&lin_opts, &out, &|_, _| {}).unwrap()));
+    let (lw, lc, ls) = best(reps, || {
+        p1.install(|| lin.simulate(&lin_opts, &out, &|_, _| {}).unwrap())
+    });
     rows.insert(
         "linear_1_thread".into(),
         json!({"seconds": lw, "cpu_seconds": lc, "route": ls.route.name(), "samples": ls.n_samples}),

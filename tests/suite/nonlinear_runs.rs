@@ -65,7 +65,8 @@ fn run(sc: &Scenario, dir: &Path, r: usize, t: f64, seed: u64) -> NonlinearRunSu
 }
 
 fn stat<'a>(o: &'a OutputStatistics, name: &str) -> &'a stochvib::store::Statistic {
-    o.get(name).unwrap_or_else(|| panic!("no statistic `{name}` for {}", o.output))
+    o.get(name)
+        .unwrap_or_else(|| panic!("no statistic `{name}` for {}", o.output))
 }
 
 /// The linear part's analytic σ of every output named, inside route 2's interval of σ.
@@ -108,7 +109,11 @@ fn route2_zero_nonlinearity_on_two_coherent_tracks_gives_the_linear_sigma() {
     let dir = common::scratch_dir("nl-runs", "tracks");
     let sc = variant("full-vehicle-two-tracks.toml", &far_stop("suspension_fl"), None);
     let s = run(&sc, &dir, 20, 100.0, 12);
-    assert!(s.run.notes.iter().any(|n| n.contains("two coherent tracks")), "{:?}", s.run.notes);
+    assert!(
+        s.run.notes.iter().any(|n| n.contains("two coherent tracks")),
+        "{:?}",
+        s.run.notes
+    );
     assert_linear_sigma(&sc, &s, &["roll", "travel_rr"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -165,7 +170,9 @@ fn interrupted_nonlinear_run_resumes_bit_identically() {
     assert!(!cut.exists() && stochvib::store::tmp_path(&cut).exists());
     let resumed = sc.simulate_nonlinear(&answers, &opts(false), &cut, &|_, _| {}).unwrap();
     assert_eq!((resumed.run.resumed_shards, resumed.run.n_shards), (2, 4));
-    let full = sc.simulate_nonlinear(&answers, &opts(true), &whole, &|_, _| {}).unwrap();
+    let full = sc
+        .simulate_nonlinear(&answers, &opts(true), &whole, &|_, _| {})
+        .unwrap();
     assert_eq!(
         common::stored_statistic_bits(&resumed.run.outputs),
         common::stored_statistic_bits(&full.run.outputs)
@@ -192,7 +199,16 @@ fn inspect_and_plot_of_a_nonlinear_run() {
     };
     let sc = scenario.to_str().unwrap();
     ok(&[
-        "simulate", sc, "--realizations", "4", "--duration", "200", "--dt", "0.05", "-o", "run.h5",
+        "simulate",
+        sc,
+        "--realizations",
+        "4",
+        "--duration",
+        "200",
+        "--dt",
+        "0.05",
+        "-o",
+        "run.h5",
     ]);
     let text = ok(&["inspect", "run.h5"]);
     for word in ["sigma_response", "kurtosis", "max_abs"] {
@@ -209,7 +225,11 @@ fn inspect_and_plot_of_a_nonlinear_run() {
     let density: Vec<&String> = svgs.iter().filter(|s| s.contains("response density")).collect();
     assert_eq!(density.len(), 2, "a linear and a log response-density picture");
     for s in density {
-        for label in ["route 2: nonlinear Monte Carlo", "route 1: Gaussian", "route 3: exact stationary density"] {
+        for label in [
+            "route 2: nonlinear Monte Carlo",
+            "route 1: Gaussian",
+            "route 3: exact stationary density",
+        ] {
             assert!(s.contains(label), "the picture lacks `{label}`");
         }
     }
@@ -276,10 +296,12 @@ fn route2_rare_tyre_lift_off_matches_the_gaussian_closed_form() {
 /// the system — at most the linear part's π/(8ω_max) (ω_max = √(k/m) for this underdamped oscillator
 /// of reduced mass m = 1/κ, stiffness k = 6500 N/m) and at most 0.05·σ_v/(κF_c) (F_c = 15 N, σ_v route 1's
 /// σ of the sliding velocity), the duration at least 20/σ_min of the linear part (σ_min = b/(2m), the decay
-/// rate of the frictionless seat, b = 2·4.22 1/s·m) — and `analyze --monte-carlo` runs on it without
-/// --dt/--duration.
+/// rate of the frictionless seat, b = 2·4.22 1/s·m) and at least ten burn-ins (BURN_IN_DECAY/σ_min of the
+/// Gaussian equivalent) — and `analyze --monte-carlo` runs on it without --dt/--duration.
 #[test]
 fn friction_seat_default_step_is_derived_from_the_system() {
+    use stochvib::nonlinear::monte_carlo::{BURN_IN_DECAY, RECORD_BURN_INS};
+    use stochvib::system::FrequencyResponse;
     let path = common::root().join("data/operator-seat-friction.toml");
     let sc = stochvib::scenario::load_scenario(&path, &common::root().join("spectra")).unwrap();
     let answers = sc.nonlinear_answers().unwrap().unwrap();
@@ -292,6 +314,11 @@ fn friction_seat_default_step_is_derived_from_the_system() {
     assert!(s.dt_s <= std::f64::consts::PI / (8.0 * omega_max), "{s:?}");
     assert!(s.dt_s * 15.0 / m <= 0.05 * sigma_v * (1.0 + 1e-12), "{s:?}");
     assert!(s.duration_s >= 20.0 / decay, "{s:?}");
+    // at least RECORD_BURN_INS burn-ins of BURN_IN_DECAY/σ_min, σ_min the Gaussian equivalent's slowest decay
+    let eq = &answers.route1.converged().unwrap().equivalent;
+    let ev = eq.state_space().unwrap().a.complex_eigenvalues();
+    let smin = ev.iter().map(|l| -l.re).fold(f64::INFINITY, f64::min);
+    assert!(s.duration_s >= RECORD_BURN_INS * BURN_IN_DECAY / smin, "{s:?}");
     assert!(s.reason.contains("dry friction"), "{}", s.reason);
     let dir = common::scratch_dir("nl-runs", "seat");
     let o = common::cli_within(

@@ -33,7 +33,7 @@ pub mod stats;
 mod step;
 
 pub use plan::BURN_IN_DECAY;
-pub use step::suggest_nonlinear_step;
+pub use step::{suggest_nonlinear_step, RECORD_BURN_INS};
 
 use crate::error::{Error, Result};
 use crate::nonlinear::{NonlinearModel, Route1, Stationary};

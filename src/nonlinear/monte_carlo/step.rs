@@ -7,6 +7,9 @@ use crate::response::Excitation;
 use crate::simulate::{suggest_step, RunInput, StepSuggestion};
 use crate::system::Mdof;
 
+/// Least record length of a default route-2 run, in burn-ins.
+pub const RECORD_BURN_INS: f64 = 10.0;
+
 /// A time step and duration for route 2, derived from the system:
 /// * those of a linear run ([`suggest_step`]) of the Gaussian equivalent (route 1, else the linear part);
 ///   with an element that can stick (dry friction) also of the linear part, the shorter step and the longer
@@ -18,12 +21,25 @@ use crate::system::Mdof;
 /// * Δt shortened so that dry friction changes the relative velocity by at most [`FRICTION_STEP`]·σ_v in a
 ///   step, κ F_c Δt ≤ FRICTION_STEP·σ_v (κ = dᵀM⁻¹d, σ_v route 1's σ of the element's velocity): the
 ///   splitting resolves each slip and the stick velocity is held to that fraction of σ_v;
-/// * kept a whole fraction of the smallest input delay.
+/// * kept a whole fraction of the smallest input delay;
+/// * the duration at least [`RECORD_BURN_INS`] burn-ins ([`BURN_IN_DECAY`](super::BURN_IN_DECAY)/σ_min of
+///   the Gaussian equivalent, what every realization computes and discards before its record): the burn-in
+///   then costs at most a tenth of the work, and every realization's time averages run over at least
+///   10·BURN_IN_DECAY ≈ 140 decay times of its slowest mode.
 ///
 /// # Errors
 /// As [`suggest_step`] for the reference system.
 pub fn suggest_nonlinear_step(input: &NonlinearRunInput) -> Result<StepSuggestion> {
     let mut s = linear_suggestion(input)?;
+    if let Some(burn) = super::plan::default_burn_in(input) {
+        let t = crate::simulate::readable_duration(RECORD_BURN_INS * burn);
+        if t > s.duration_s {
+            s.duration_s = t;
+            s.reason.push_str(&format!(
+                "; duration {RECORD_BURN_INS} burn-ins of {burn:.4} s (the burn-in at most a tenth of the work)"
+            ));
+        }
+    }
     let moments = input.route1.map(|r| r.moments.as_slice());
     let mut bounds = Vec::new();
     let wc = plan::contact_frequency(input.model, moments);
@@ -46,15 +62,7 @@ pub fn suggest_nonlinear_step(input: &NonlinearRunInput) -> Result<StepSuggestio
 /// [`suggest_step`] of the Gaussian equivalent, and with a sticking element also of the linear part.
 fn linear_suggestion(input: &NonlinearRunInput) -> Result<StepSuggestion> {
     let lin = input.model.linear();
-    let suggest = |sys: &Mdof| {
-        suggest_step(&RunInput::new(
-            sys,
-            input.excitation,
-            input.outputs.clone(),
-            vec![],
-            "",
-        ))
-    };
+    let suggest = |sys: &Mdof| suggest_step(&RunInput::new(sys, input.excitation, input.outputs.clone(), vec![], ""));
     let Some(r) = input.route1 else {
         return suggest(lin);
     };
@@ -67,7 +75,8 @@ fn linear_suggestion(input: &NonlinearRunInput) -> Result<StepSuggestion> {
         }
         if l.duration_s > s.duration_s {
             s.duration_s = l.duration_s;
-            s.reason.push_str("; duration of the linear part (dry friction: slower than the equivalent)");
+            s.reason
+                .push_str("; duration of the linear part (dry friction: slower than the equivalent)");
         }
     }
     Ok(s)
