@@ -8,6 +8,8 @@
 #   bash benches/compare/nonlinear.sh                # R = 512 realizations x 30 s, best of 3 (~5 min)
 #   R=64 T=10 REPS=1 bash benches/compare/nonlinear.sh --no-write    # a quick look
 #   CHUNK=128 bash benches/compare/nonlinear.sh      # numpy on 128 realizations at a time (default: all)
+#   PROFILE=test bash benches/compare/nonlinear.sh   # the Rust side in the test profile (opt-level 2, debug
+#                                                    # assertions on) when a release build is out of reach
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -18,14 +20,16 @@ for a in "$@"; do
     *) echo "nonlinear.sh: unknown option $a" >&2; exit 2 ;;
     esac
 done
-r="${R:-512}" t="${T:-30}" reps="${REPS:-3}" chunk="${CHUNK:-0}"
+r="${R:-512}" t="${T:-30}" reps="${REPS:-3}" chunk="${CHUNK:-0}" profile="${PROFILE:-release}"
 out="${OUT:-$(mktemp -d)}"
 mkdir -p "$out"
 cd "$root"
 python3 -c "import numpy, scipy" || { echo "nonlinear.sh: needs numpy and scipy (see run.sh)" >&2; exit 1; }
-echo "nonlinear.sh: building the Rust side (release)" >&2
-cargo build --locked --release --quiet --example compare_nonlinear
-bin="${CARGO_TARGET_DIR:-$root/target}/release/examples/compare_nonlinear"
+echo "nonlinear.sh: building the Rust side ($profile profile)" >&2
+cargo build --locked --profile "$profile" --quiet --example compare_nonlinear
+dir=$([ "$profile" = release ] && echo release || echo debug)
+bin="${CARGO_TARGET_DIR:-$root/target}/$dir/examples/compare_nonlinear"
+echo "$profile" >"$out/profile.txt"
 cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "$(nproc) cores, $cpu, $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)" >"$out/machine.txt"
 cut -d' ' -f1 /proc/loadavg >"$out/load-rust.txt"
@@ -41,7 +45,8 @@ import json, subprocess, sys, datetime
 out = sys.argv[1]
 rs, py = json.load(open(f"{out}/rust.json")), json.load(open(f"{out}/python.json"))
 j = rs["jobs"]
-machine, lr, lp = (open(f"{out}/{f}").read().strip() for f in ("machine.txt", "load-rust.txt", "load-python.txt"))
+machine, lr, lp, profile = (open(f"{out}/{f}").read().strip()
+                             for f in ("machine.txt", "load-rust.txt", "load-python.txt", "profile.txt"))
 def t(s):
     return f"{s * 1e3:.3g} ms" if s < 1 else f"{s:.3g} s"
 def pair(d):
@@ -63,7 +68,8 @@ rows = [
     ("route 1 per parameter point", "1 point, 3 outputs", pair(j["route1_point"]), "-", "-", "-", f"load {lr}"),
 ]
 print(f"One run of {cmd} (R={rs['realizations']}, T={rs['samples'] * rs['dt']:.3g} s) on "
-      f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC; machine: {machine}; numpy {py['numpy']}.")
+      f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC; machine: {machine}; Rust {profile} profile; "
+      f"numpy {py['numpy']}.")
 print(f"Checks both sides agree on: σ of the travel {rs['sigma_travel_m']:.4g} m (ours) / {py['sigma_travel_m']:.4g} m (numpy); "
       f"stop contact fraction {rs['stop_contact_fraction']:.3g} / {py['stop_contact_fraction']:.3g}.")
 print()
