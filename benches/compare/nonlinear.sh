@@ -10,6 +10,7 @@
 #   CHUNK=128 bash benches/compare/nonlinear.sh      # numpy on 128 realizations at a time (default: all)
 #   PROFILE=test bash benches/compare/nonlinear.sh   # the Rust side in the test profile (opt-level 2, debug
 #                                                    # assertions on) when a release build is out of reach
+#   NO_BUILD=1 bash benches/compare/nonlinear.sh     # the example binary as it is (no cargo build)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -25,10 +26,14 @@ out="${OUT:-$(mktemp -d)}"
 mkdir -p "$out"
 cd "$root"
 python3 -c "import numpy, scipy" || { echo "nonlinear.sh: needs numpy and scipy (see run.sh)" >&2; exit 1; }
-echo "nonlinear.sh: building the Rust side ($profile profile)" >&2
-cargo build --locked --profile "$profile" --quiet --example compare_nonlinear
 dir=$([ "$profile" = release ] && echo release || echo debug)
 bin="${CARGO_TARGET_DIR:-$root/target}/$dir/examples/compare_nonlinear"
+if [ "${NO_BUILD:-0}" = 1 ]; then
+    echo "nonlinear.sh: the Rust side as built ($bin, $profile profile)" >&2
+else
+    echo "nonlinear.sh: building the Rust side ($profile profile)" >&2
+    cargo build --locked --profile "$profile" --quiet --example compare_nonlinear
+fi
 echo "$profile" >"$out/profile.txt"
 cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "$(nproc) cores, $cpu, $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)" >"$out/machine.txt"
