@@ -131,14 +131,8 @@ if [ "$smoke" = 0 ]; then
     env -u GLIBC_TUNABLES python3 "$here/weighting.py" --reps "$(( reps < 3 ? reps : 3 ))" | tee "$out/weighting-python.txt"
 fi
 if [ "$write" = 1 ]; then
-    python3 - "$root/benches/RESULTS.md" "$out/results.md" <<'PY'
-import sys
-path, table = sys.argv[1], open(sys.argv[2]).read().strip()
-text = open(path).read()
-begin, end = "<!-- table: written by benches/compare/run.sh -->", "<!-- end of table -->"
-i, j = text.index(begin) + len(begin), text.index(end)
-open(path, "w").write(text[:i] + "\n" + table + "\n" + text[j:])
-PY
+    python3 "$here/write_section.py" "$root/benches/RESULTS.md" "$out/results.md" \
+        "<!-- table: written by benches/compare/run.sh -->" "<!-- end of table -->"
     echo "run.sh: the table is in benches/RESULTS.md" >&2
 fi
 echo "run.sh: JSON and tables in $out" >&2

@@ -101,6 +101,9 @@ impl ForceLaw for CoulombFriction {
     fn can_stick(&self) -> bool {
         true
     }
+    fn sliding_force(&self) -> f64 {
+        self.force
+    }
     fn stiffness_bound(&self, _m: &ElementMoments) -> f64 {
         0.0
     }

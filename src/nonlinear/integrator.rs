@@ -36,6 +36,12 @@ use std::sync::Arc;
 /// within 1 % on a stiff two-sided stop).
 pub const CONTACT_STEP: f64 = 0.25;
 
+/// Default resolution of dry friction: a step changes the element's relative velocity by at most this
+/// fraction of its σ_v (κF_cΔt ≤ FRICTION_STEP·σ_v). The friction kick holds a sticking element's velocity
+/// within κF_cΔt of zero (the linear flow moves it off zero by less than that in a step, the next kick
+/// brings it back), so this is also the bound of the velocity's error while it sticks.
+pub const FRICTION_STEP: f64 = 0.05;
+
 /// The element kicks of a model: directions, M⁻¹d, κ and the base input of every element.
 #[derive(Debug, Clone)]
 pub(crate) struct Kicks {

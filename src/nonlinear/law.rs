@@ -109,6 +109,13 @@ pub trait ForceLaw: Debug + Send + Sync {
         false
     }
 
+    /// The magnitude of a force that does not vanish as the velocity goes to zero (dry friction's F_c), N;
+    /// 0 for every other law. With κ it is the rate κF_c at which the force alone changes the relative
+    /// velocity, which bounds route 2's default step.
+    fn sliding_force(&self) -> f64 {
+        0.0
+    }
+
     /// Whether the element can stick (dry friction): route 1 then checks that its Gaussian equivalent does
     /// not lock the element.
     fn can_stick(&self) -> bool {

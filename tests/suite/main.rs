@@ -44,6 +44,7 @@ mod monte_carlo;
 mod multi_input_scenarios;
 mod nonlinear_monte_carlo;
 mod nonlinear_routes;
+mod nonlinear_runs;
 mod numerical_truth;
 mod output_rule;
 mod plots;

@@ -30,8 +30,10 @@ mod plan;
 pub mod record;
 mod references;
 pub mod stats;
+mod step;
 
 pub use plan::BURN_IN_DECAY;
+pub use step::{suggest_nonlinear_step, RECORD_BURN_INS};
 
 use crate::error::{Error, Result};
 use crate::nonlinear::{NonlinearModel, Route1, Stationary};
@@ -606,42 +608,6 @@ fn refuse_inputs_as_output(input: &NonlinearRunInput, out: &Path) -> Result<()> 
         });
     }
     Ok(())
-}
-
-/// A time step and duration for route 2: those of a linear run of the Gaussian equivalent (route 1, else the
-/// linear part; [`suggest_step`](crate::simulate::suggest_step)), with Δt shortened to
-/// [`CONTACT_STEP`](crate::nonlinear::integrator::CONTACT_STEP)/ω_c for the stiffest element (ω_c = √(κ k),
-/// k its largest stiffness over route 1's response) and kept a whole fraction of the smallest input delay.
-///
-/// # Errors
-/// As [`suggest_step`](crate::simulate::suggest_step) for the reference system.
-pub fn suggest_nonlinear_step(input: &NonlinearRunInput) -> Result<crate::simulate::StepSuggestion> {
-    use crate::nonlinear::integrator::CONTACT_STEP;
-    let sys: &dyn crate::system::FrequencyResponse = match input.route1 {
-        Some(r) => &r.equivalent,
-        None => input.model.linear(),
-    };
-    let ri = crate::simulate::RunInput::new(sys, input.excitation, input.outputs.clone(), vec![], "");
-    let mut s = crate::simulate::suggest_step(&ri)?;
-    let wc = plan::contact_frequency(input.model, input.route1.map(|r| r.moments.as_slice()));
-    if wc > 0.0 && CONTACT_STEP / wc < s.dt_s {
-        let mut dt = CONTACT_STEP / wc;
-        let delays: Vec<f64> = match input.excitation {
-            Excitation::Track { delays, .. } => delays.clone(),
-            Excitation::Sources { inputs, .. } => inputs.iter().map(|m| m.delay).collect(),
-            Excitation::Independent { .. } => vec![],
-        };
-        let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
-        if let Some(tau) = delays.iter().map(|t| t - t0).filter(|t| *t > 0.0).reduce(f64::min) {
-            dt = tau / (tau / dt).ceil();
-        }
-        s.reason = format!(
-            "{}; Δt shortened to {dt:.4e} s = {CONTACT_STEP}/ω_c for the stiffest element (ω_c = {wc:.4e} rad/s)",
-            s.reason
-        );
-        s.dt_s = dt;
-    }
-    Ok(s)
 }
 
 /// The statistics route 2 estimates for one output, with their reference values, as a report lists them.

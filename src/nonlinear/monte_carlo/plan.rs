@@ -124,6 +124,12 @@ fn start_model<'a>(input: &'a NonlinearRunInput) -> Result<&'a Mdof> {
     ))
 }
 
+/// The default burn-in, s: [`BURN_IN_DECAY`]/σ_min of the model that starts the realizations (`None` without
+/// one).
+pub(crate) fn default_burn_in(input: &NonlinearRunInput) -> Option<f64> {
+    Some(BURN_IN_DECAY / slowest_decay(start_model(input).ok()?)?)
+}
+
 /// The largest contact frequency √(κ_e k_e) of the elements over the response route 1 predicts (rad/s).
 pub(crate) fn contact_frequency(model: &NonlinearModel, moments: Option<&[ElementMoments]>) -> f64 {
     model
@@ -168,7 +174,7 @@ pub(crate) fn plan(input: &NonlinearRunInput, opts: &NonlinearRunOptions) -> Res
     }
     let burn = match (opts.burn_in_s, &start) {
         (Some(b), _) => b,
-        (None, Ok(s)) => BURN_IN_DECAY / slowest_decay(s).unwrap_or(f64::NAN),
+        (None, Ok(_)) => default_burn_in(input).unwrap_or(f64::NAN),
         (None, Err(e)) => return Err(Error::invalid("burn-in", "<not given>", e.to_string())),
     };
     if !(burn.is_finite() && burn >= 0.0) {

@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# Route 2 (nonlinear Monte Carlo) of data/quarter-car-bump-stops.toml against the numpy implementation of
+# the same integrator and step vectorised over realizations (benches/compare/nonlinear.py), its 2-thread
+# scaling, its cost per sample against the linear run of the same model, and route 1 per parameter point;
+# prints the table of benches/RESULTS.md (section "Nonlinear machines") and, without --no-write, writes it
+# there between its markers.
+#
+#   bash benches/compare/nonlinear.sh                # R = 512 realizations x 30 s, best of 3 (~5 min)
+#   R=64 T=10 REPS=1 bash benches/compare/nonlinear.sh --no-write    # a quick look
+#   CHUNK=128 bash benches/compare/nonlinear.sh      # numpy on 128 realizations at a time (default: all)
+#   PROFILE=test bash benches/compare/nonlinear.sh   # the Rust side in the test profile (opt-level 2, debug
+#                                                    # assertions on) when a release build is out of reach
+#   NO_BUILD=1 bash benches/compare/nonlinear.sh     # the example binary as it is (no cargo build)
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+write=1
+for a in "$@"; do
+    case "$a" in
+    --no-write) write=0 ;;
+    *) echo "nonlinear.sh: unknown option $a" >&2; exit 2 ;;
+    esac
+done
+r="${R:-512}" t="${T:-30}" reps="${REPS:-3}" chunk="${CHUNK:-0}" profile="${PROFILE:-release}"
+out="${OUT:-$(mktemp -d)}"
+mkdir -p "$out"
+cd "$root"
+python3 -c "import numpy, scipy" || { echo "nonlinear.sh: needs numpy and scipy (see run.sh)" >&2; exit 1; }
+dir=$([ "$profile" = release ] && echo release || echo debug)
+bin="${CARGO_TARGET_DIR:-$root/target}/$dir/examples/compare_nonlinear"
+if [ "${NO_BUILD:-0}" = 1 ]; then
+    echo "nonlinear.sh: the Rust side as built ($bin, $profile profile)" >&2
+else
+    echo "nonlinear.sh: building the Rust side ($profile profile)" >&2
+    cargo build --locked --profile "$profile" --quiet --example compare_nonlinear
+fi
+echo "$profile" >"$out/profile.txt"
+cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+echo "$(nproc) cores, $cpu, $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)" >"$out/machine.txt"
+cut -d' ' -f1 /proc/loadavg >"$out/load-rust.txt"
+echo "nonlinear.sh: Rust side, $r realizations x $t s" >&2
+"$bin" --realizations "$r" --duration "$t" --reps "$reps" >"$out/rust.json"
+read -r n burn dt < <(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(d['samples'], d['burn'], d['dt'])" "$out/rust.json")
+cut -d' ' -f1 /proc/loadavg >"$out/load-python.txt"
+echo "nonlinear.sh: numpy side, the same $r x ($burn + $n) steps of $dt s" >&2
+python3 "$here/nonlinear.py" --realizations "$r" --samples "$n" --burn "$burn" --dt "$dt" --chunk "$chunk" \
+    --reps "$reps" >"$out/python.json"
+python3 - "$out" <<'PY' >"$out/table.md"
+import json, subprocess, sys, datetime
+out = sys.argv[1]
+rs, py = json.load(open(f"{out}/rust.json")), json.load(open(f"{out}/python.json"))
+j = rs["jobs"]
+machine, lr, lp, profile = (open(f"{out}/{f}").read().strip()
+                             for f in ("machine.txt", "load-rust.txt", "load-python.txt", "profile.txt"))
+def t(s):
+    return f"{s * 1e3:.3g} ms" if s < 1 else f"{s:.3g} s"
+def pair(d):
+    return f"{t(d['seconds'])} (CPU {t(d['cpu_seconds'])})"
+size = f"{rs['realizations']} x {rs['samples']} (+{rs['burn']} burn-in), dt = {rs['dt']:.3g} s"
+cmd = "`bash benches/compare/nonlinear.sh`"
+one, two, lin = j["route2_1_threads"], j["route2_2_threads"], j["linear_1_thread"]
+rows = [
+    ("route 2 vs numpy, 1 thread (wall)", size, pair(one), f"numpy, {py['chunk']} realizations at a time", pair(py),
+     f"{py['seconds'] / one['seconds']:.3g}x", f"load {lr} / {lp}"),
+    ("route 2 vs numpy, 1 thread (CPU time)", size, t(one["cpu_seconds"]), "numpy (process CPU time)", t(py["cpu_seconds"]),
+     f"{py['cpu_seconds'] / one['cpu_seconds']:.3g}x", f"load {lr} / {lp}"),
+    ("route 2, 2 threads vs 1", size, pair(two), "ours, 1 thread", pair(one),
+     f"{one['seconds'] / two['seconds']:.3g}x", f"load {lr}"),
+    ("calibration spin loops, 2 threads vs 1", "64 x 3.1e5 multiply-adds", pair(j["spin_2_threads"]), "ours, 1 thread",
+     pair(j["spin_1_threads"]), f"{j['spin_1_threads']['seconds'] / j['spin_2_threads']['seconds']:.3g}x", f"load {lr}"),
+    ("route 2 per sample vs linear run per sample, 1 thread", f"{size}; linear: {lin['route']} route", pair(one),
+     "linear run of the linear part", pair(lin), f"{lin['seconds'] / one['seconds']:.3g}x (route 2 costs {one['seconds'] / lin['seconds']:.3g}x)", f"load {lr}"),
+    ("route 1 per parameter point", "1 point, 3 outputs", pair(j["route1_point"]), "-", "-", "-", f"load {lr}"),
+]
+print(f"One run of {cmd} (R={rs['realizations']}, T={rs['samples'] * rs['dt']:.3g} s) on "
+      f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC; machine: {machine}; Rust {profile} profile; "
+      f"numpy {py['numpy']}.")
+print(f"Checks both sides agree on: σ of the travel {rs['sigma_travel_m']:.4g} m (ours) / {py['sigma_travel_m']:.4g} m (numpy); "
+      f"stop contact fraction {rs['stop_contact_fraction']:.3g} / {py['stop_contact_fraction']:.3g}.")
+print()
+print("| job | size | ours | peer | peer time | ratio peer/ours | machine state |")
+print("|---|---|---|---|---|---|---|")
+for row in rows:
+    print("| " + " | ".join(row) + " |")
+PY
+cat "$out/table.md"
+if [ "$write" = 1 ]; then
+    python3 "$here/write_section.py" "$root/benches/RESULTS.md" "$out/table.md" \
+        "<!-- nonlinear table: written by benches/compare/nonlinear.sh -->" "<!-- end of nonlinear table -->"
+    echo "nonlinear.sh: the table is in benches/RESULTS.md" >&2
+fi
+echo "nonlinear.sh: JSON in $out" >&2

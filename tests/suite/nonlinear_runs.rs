@@ -1,0 +1,331 @@
+//! Route 2 (nonlinear Monte Carlo) on the inputs of the spectral route — wheelbase delays, two coherent
+//! tracks, a non-Gaussian (Laplace) road — with zero nonlinearity against the linear analytic answer; resume
+//! of an interrupted nonlinear run; `inspect` and `plot` of a nonlinear run file.
+//!
+//! Zero nonlinearity: a two-sided stop with a clearance of 10 m on a suspension whose travel has σ of a few
+//! centimetres (a 100σ event: never reached), so the equations of motion are the linear part's and route 2
+//! must reproduce the linear part's σ, which the analytic machinery (Lyapunov, quadrature) gives
+//! independently of any time stepping. Every such assertion is a Student-t interval across realizations at
+//! confidence 1 − MC_FALSE_FAILURE (false failure ≤ 2·10⁻⁷ each, at most three per test: ≤ 10⁻⁶ per test).
+//! The per-realization variances are time averages over hundreds of correlation times (close to normal), and
+//! a synthesised record's variance is the sum of its spectral lines, which differs from the continuous
+//! integral by far less than the interval's half-width at these record lengths. Seeded: a given build gives
+//! the same numbers every time.
+
+use crate::common;
+use common::tolerance::MC_FALSE_FAILURE;
+use std::path::Path;
+use stochvib::nonlinear::monte_carlo::{NonlinearRunOptions, NonlinearRunSummary};
+use stochvib::scenario::{parse_scenario, Scenario};
+use stochvib::simulate::RunOptions;
+use stochvib::store::{OutputStatistics, RunFile};
+
+/// A stop too far away to be reached, `across` the named element (soft, so that it does not shorten the
+/// step route 2 takes for its contact frequency).
+fn far_stop(across: &str) -> String {
+    format!(
+        "\n[[model.nonlinear]]\nkind = \"bump-stop\"\nname = \"far_stop\"\nacross = \"{across}\"\n\
+         upper_clearance = \"10 m\"\nlower_clearance = \"10 m\"\nstiffness = \"1 kN/m\"\n"
+    )
+}
+
+/// The catalogue scenario `file` with `extra` inserted before its `[input]` (or `[[input]]`) table and
+/// `replace` applied.
+fn variant(file: &str, extra: &str, replace: Option<(&str, &str)>) -> Scenario {
+    let path = common::root().join("data").join(file);
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    if let Some((from, to)) = replace {
+        assert!(text.contains(from), "{file} has no `{from}`");
+        text = text.replace(from, to);
+    }
+    let at = text.find("\n[[input]]").or_else(|| text.find("\n[input]")).unwrap();
+    let text = format!("{}{extra}{}", &text[..at], &text[at..]);
+    parse_scenario(&text, &path, &common::root().join("spectra")).unwrap()
+}
+
+fn options(r: usize, t: f64, dt: f64, seed: u64) -> NonlinearRunOptions {
+    NonlinearRunOptions {
+        run: RunOptions {
+            confidence: 1.0 - MC_FALSE_FAILURE,
+            overwrite: true,
+            ..RunOptions::new(r, t, dt, seed)
+        },
+        burn_in_s: None,
+        halving_checks: None,
+    }
+}
+
+/// Route 2 of `sc` at its suggested step into `dir/run.h5`.
+fn run(sc: &Scenario, dir: &Path, r: usize, t: f64, seed: u64) -> NonlinearRunSummary {
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
+    let _serial = common::hdf5_serial();
+    sc.simulate_nonlinear(&answers, &options(r, t, dt, seed), &dir.join("run.h5"), &|_, _| {})
+        .unwrap()
+}
+
+fn stat<'a>(o: &'a OutputStatistics, name: &str) -> &'a stochvib::store::Statistic {
+    o.get(name)
+        .unwrap_or_else(|| panic!("no statistic `{name}` for {}", o.output))
+}
+
+/// The linear part's analytic σ of every output named, inside route 2's interval of σ.
+fn assert_linear_sigma(sc: &Scenario, s: &NonlinearRunSummary, names: &[&str]) {
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let linear = answers.linear_statistics.unwrap();
+    for name in names {
+        let exact = linear.iter().find(|l| l.name == *name).unwrap().sigma.unwrap();
+        let o = s.run.outputs.iter().find(|o| o.output == *name).unwrap();
+        let iv = &stat(o, "sigma_response").interval;
+        assert!(
+            iv.lower <= exact && exact <= iv.upper,
+            "{name}: the linear σ {exact} outside route 2's [{}, {}]",
+            iv.lower,
+            iv.upper
+        );
+    }
+}
+
+/// The half car of `data/half-car.toml` (ISO 8608 class C at 10 m/s, the rear wheel 0.27 s behind the front
+/// one) with a far stop on the front suspension: route 2 (spectral route, the delay a circular shift of the
+/// synthesised road) covers the linear σ of the pitch, which the delay decides (in phase the two wheels
+/// excite bounce only), and of the rear travel. 20 realizations × 150 s.
+#[test]
+fn route2_zero_nonlinearity_with_wheelbase_delay_gives_the_linear_sigma() {
+    let dir = common::scratch_dir("nl-runs", "delay");
+    let sc = variant("half-car.toml", &far_stop("front"), None);
+    let s = run(&sc, &dir, 20, 150.0, 11);
+    assert!(s.run.notes.iter().any(|n| n.contains("delay")), "{:?}", s.run.notes);
+    assert_linear_sigma(&sc, &s, &["pitch", "rear_travel"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The full vehicle of `data/full-vehicle-two-tracks.toml` (two coherent tracks of an ISO 8608 class C road,
+/// Dodds–Robson coherence, rear wheels 0.135 s behind) with a far stop on the front-left suspension: route 2
+/// covers the linear σ of the roll (decided by the coherence of the two tracks) and of the rear-right travel.
+/// 20 realizations × 100 s.
+#[test]
+fn route2_zero_nonlinearity_on_two_coherent_tracks_gives_the_linear_sigma() {
+    let dir = common::scratch_dir("nl-runs", "tracks");
+    let sc = variant("full-vehicle-two-tracks.toml", &far_stop("suspension_fl"), None);
+    let s = run(&sc, &dir, 20, 100.0, 12);
+    assert!(
+        s.run.notes.iter().any(|n| n.contains("two coherent tracks")),
+        "{:?}",
+        s.run.notes
+    );
+    assert_linear_sigma(&sc, &s, &["roll", "travel_rr"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The quarter car of `data/quarter-car-model.toml` on a Laplace road of kurtosis 6 (the same spectrum,
+/// heavier tails) with a far stop on the suspension: the σ of a linear response depends on the spectrum
+/// only, so route 2 covers the linear σ of the travel and of the body acceleration, while the travel's
+/// kurtosis interval lies above the Gaussian 3 (a filtered Laplace moving average keeps excess kurtosis;
+/// the direction is the prediction, its size is checked for linear runs in `laplace_road.rs`).
+/// 30 realizations × 100 s.
+#[test]
+fn route2_zero_nonlinearity_on_a_laplace_road_gives_the_linear_sigma() {
+    let dir = common::scratch_dir("nl-runs", "laplace");
+    let sc = variant(
+        "quarter-car-model.toml",
+        &far_stop("suspension"),
+        Some(("speed = \"20 m/s\"", "speed = \"20 m/s\"\nkurtosis = 6")),
+    );
+    let s = run(&sc, &dir, 30, 100.0, 13);
+    assert!(s.run.generator.contains("Laplace"), "{}", s.run.generator);
+    assert_linear_sigma(&sc, &s, &["travel", "body_acc"]);
+    let travel = s.run.outputs.iter().find(|o| o.output == "travel").unwrap();
+    let k = &stat(travel, "kurtosis").interval;
+    assert!(k.lower > 3.0, "travel kurtosis [{}, {}] not above 3", k.lower, k.upper);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A nonlinear run interrupted after two of its four shards (the progress callback panics; the dropped
+/// writer leaves `run.h5.tmp`) resumes them and ends with every statistic, the Welch densities and the
+/// response histograms bit-identical to an uninterrupted run.
+#[test]
+fn interrupted_nonlinear_run_resumes_bit_identically() {
+    let dir = common::scratch_dir("nl-runs", "resume");
+    let sc = variant("quarter-car-bump-stops.toml", "", None);
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
+    let opts = |overwrite| NonlinearRunOptions {
+        run: RunOptions {
+            shard_size: 2,
+            overwrite,
+            ..RunOptions::new(8, 5.0, dt, 21)
+        },
+        burn_in_s: None,
+        halving_checks: None,
+    };
+    let _serial = common::hdf5_serial();
+    let (cut, whole) = (dir.join("cut.h5"), dir.join("whole.h5"));
+    let interrupted = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        sc.simulate_nonlinear(&answers, &opts(false), &cut, &|done, _| {
+            assert!(done < 2, "interrupted after two shards");
+        })
+    }));
+    assert!(interrupted.is_err());
+    assert!(!cut.exists() && stochvib::store::tmp_path(&cut).exists());
+    let resumed = sc.simulate_nonlinear(&answers, &opts(false), &cut, &|_, _| {}).unwrap();
+    assert_eq!((resumed.run.resumed_shards, resumed.run.n_shards), (2, 4));
+    let full = sc
+        .simulate_nonlinear(&answers, &opts(true), &whole, &|_, _| {})
+        .unwrap();
+    assert_eq!(
+        common::stored_statistic_bits(&resumed.run.outputs),
+        common::stored_statistic_bits(&full.run.outputs)
+    );
+    assert_eq!(common::psd_bits(&cut), common::psd_bits(&whole));
+    let hist = |p: &Path| RunFile::open(p).unwrap().response_histograms().unwrap();
+    assert_eq!(hist(&cut), hist(&whole));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `stochvib simulate` of the Duffing catalogue scenario writes a nonlinear run; `inspect` lists its
+/// nonlinear statistics (text and JSON) and `plot` draws every output's response histogram against route 1's
+/// Gaussian, and the displacement's also against route 3's exact density, on a linear and a logarithmic
+/// axis (Δt = 0.01 s: h·ω_c = 0.43 at the stiffest point route 1 predicts).
+#[test]
+fn inspect_and_plot_of_a_nonlinear_run() {
+    let dir = common::scratch_dir("nl-runs", "cli");
+    let scenario = common::root().join("data/duffing-white-noise.toml");
+    let limit = std::time::Duration::from_secs(600);
+    let ok = |args: &[&str]| {
+        let o = common::cli_within(args, &dir, limit);
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(o.status.success(), "`stochvib {}`: {err}", args.join(" "));
+        String::from_utf8_lossy(&o.stdout).into_owned()
+    };
+    let sc = scenario.to_str().unwrap();
+    ok(&[
+        "simulate",
+        sc,
+        "--realizations",
+        "4",
+        "--duration",
+        "100",
+        "--dt",
+        "0.01",
+        "-o",
+        "run.h5",
+    ]);
+    let text = ok(&["inspect", "run.h5"]);
+    for word in ["sigma_response", "kurtosis", "max_abs"] {
+        assert!(text.contains(word), "inspect lacks `{word}`:\n{text}");
+    }
+    let json: serde_json::Value = serde_json::from_str(&ok(&["inspect", "run.h5", "--json"])).unwrap();
+    assert!(json.to_string().contains("kurtosis"));
+    ok(&["plot", "run.h5", "-o", "pictures"]);
+    let pictures = dir.join("pictures");
+    let svg = |name: &str| std::fs::read_to_string(pictures.join(name)).unwrap();
+    // x (displacement) has route 3's exact density; v (velocity) has routes 1 and 2 only
+    for (name, exact) in [("x", true), ("v", false)] {
+        for file in [format!("{name}-histogram.svg"), format!("{name}-histogram-log.svg")] {
+            let s = svg(&file);
+            assert!(s.contains("response density"), "{file}");
+            assert!(s.contains("route 2: nonlinear Monte Carlo"), "{file}");
+            assert!(s.contains("route 1: Gaussian"), "{file}");
+            assert_eq!(s.contains("route 3: exact stationary density"), exact, "{file}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Φ(x) by the complementary error function of statrs (an independent implementation).
+fn normal_cdf(x: f64) -> f64 {
+    0.5 * statrs::function::erf::erfc(-x / std::f64::consts::SQRT_2)
+}
+
+/// The quarter car of `data/quarter-car-model.toml` (ISO 8608 class C at 20 m/s) whose tyre may lift off
+/// (`tyre-contact`), with the static load set to u = 3 times the linear σ_F of the dynamic tyre force:
+/// lift-off is rare and the unilateral tyre acts only during it, so route 2's fraction of time lifted and
+/// its rate of lift-offs are the Gaussian closed forms of the linear quarter car, P = Φ(−u) = 1.35·10⁻³
+/// and Rice's ν = σ_Ḟ/(2πσ_F)·e^{−u²/2}, within RARE_LIFT_OFF (the effect of the unilateral contact, see
+/// its derivation) plus the Monte Carlo interval (two intervals at 1 − MC_FALSE_FAILURE). σ_F and σ_Ḟ are
+/// the linear analytic answers (Lyapunov/quadrature of the linear part, not route 2).
+/// 40 realizations × 600 s.
+#[test]
+fn route2_rare_tyre_lift_off_matches_the_gaussian_closed_form() {
+    use common::tolerance::RARE_LIFT_OFF;
+    let dir = common::scratch_dir("nl-runs", "lift-off");
+    let contact = |load: f64| {
+        format!(
+            "\n[[model.nonlinear]]\nkind = \"tyre-contact\"\nname = \"tyre_contact\"\nacross = \"tyre\"\n\
+             static_load = \"{load} N\"\n"
+        )
+    };
+    let probe = variant("quarter-car-model.toml", &contact(1e6), None);
+    let linear = probe.nonlinear_answers().unwrap().unwrap().linear_statistics.unwrap();
+    let f = linear.iter().find(|l| l.name == "tyre_force").unwrap();
+    let (sigma_f, sigma_fdot) = (f.sigma.unwrap(), f.lambda2.unwrap().sqrt());
+    let u = 3.0;
+    let sc = variant("quarter-car-model.toml", &contact(u * sigma_f), None);
+    let s = run(&sc, &dir, 40, 600.0, 31);
+    let find = |prefix: &str| {
+        s.run
+            .outputs
+            .iter()
+            .flat_map(|o| o.statistics.iter())
+            .find(|st| st.name.starts_with(prefix))
+            .unwrap_or_else(|| panic!("no `{prefix}`"))
+            .interval
+    };
+    let p = normal_cdf(-u);
+    let rate = sigma_fdot / (2.0 * std::f64::consts::PI * sigma_f) * (-0.5 * u * u).exp();
+    for (name, exact, iv) in [
+        ("fraction", p, find("lift_off_fraction")),
+        ("rate", rate, find("lift_off_rate")),
+    ] {
+        let (lo, hi) = (exact * (1.0 - RARE_LIFT_OFF), exact * (1.0 + RARE_LIFT_OFF));
+        assert!(
+            iv.lower <= hi && iv.upper >= lo,
+            "lift-off {name}: route 2 [{}, {}] apart from the Gaussian {exact} ± {RARE_LIFT_OFF} relative",
+            iv.lower,
+            iv.upper
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The friction seat of the catalogue (`data/operator-seat-friction.toml`): its default step is derived from
+/// the system — at most the linear part's π/(8ω_max) (ω_max = √(k/m) for this underdamped oscillator
+/// of reduced mass m = 1/κ, stiffness k = 6500 N/m) and at most 0.05·σ_v/(κF_c) (F_c = 15 N, σ_v route 1's
+/// σ of the sliding velocity), the duration at least 20/σ_min of the linear part (σ_min = b/(2m), the decay
+/// rate of the frictionless seat, b = 2·4.22 1/s·m) and at least ten burn-ins (BURN_IN_DECAY/σ_min of the
+/// Gaussian equivalent) — and `analyze --monte-carlo` runs on it without --dt/--duration.
+#[test]
+fn friction_seat_default_step_is_derived_from_the_system() {
+    use stochvib::nonlinear::monte_carlo::{BURN_IN_DECAY, RECORD_BURN_INS};
+    use stochvib::system::FrequencyResponse;
+    let path = common::root().join("data/operator-seat-friction.toml");
+    let sc = stochvib::scenario::load_scenario(&path, &common::root().join("spectra")).unwrap();
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let s = sc.suggest_nonlinear_step(&answers).unwrap();
+    let model = sc.nonlinear_model().unwrap();
+    let m = 1.0 / model.kappa(0);
+    let omega_max = (6500.0 / m).sqrt();
+    let sigma_v = answers.route1.converged().unwrap().moments[0].sigma_v;
+    let decay = 4.22;
+    assert!(s.dt_s <= std::f64::consts::PI / (8.0 * omega_max), "{s:?}");
+    assert!(s.dt_s * 15.0 / m <= 0.05 * sigma_v * (1.0 + 1e-12), "{s:?}");
+    assert!(s.duration_s >= 20.0 / decay, "{s:?}");
+    // at least RECORD_BURN_INS burn-ins of BURN_IN_DECAY/σ_min, σ_min the Gaussian equivalent's slowest decay
+    let eq = &answers.route1.converged().unwrap().equivalent;
+    let ev = eq.state_space().unwrap().a.complex_eigenvalues();
+    let smin = ev.iter().map(|l| -l.re).fold(f64::INFINITY, f64::min);
+    assert!(s.duration_s >= RECORD_BURN_INS * BURN_IN_DECAY / smin, "{s:?}");
+    assert!(s.reason.contains("dry friction"), "{}", s.reason);
+    let dir = common::scratch_dir("nl-runs", "seat");
+    let o = common::cli_within(
+        &["analyze", path.to_str().unwrap(), "--monte-carlo", "4"],
+        &dir,
+        std::time::Duration::from_secs(600),
+    );
+    let (out, err) = (String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("suggested for route 2"), "{err}");
+    assert!(out.contains("sigma_response"), "{out}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
