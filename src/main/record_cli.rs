@@ -115,7 +115,10 @@ fn check_plots(dir: Option<&std::path::Path>) -> anyhow::Result<()> {
     if let Some(dir) = dir
         && std::fs::metadata(dir).is_ok_and(|m| !m.is_dir())
     {
-        anyhow::bail!("{}: is not a directory: --plots names the directory of the pictures; nothing was written", dir.display());
+        anyhow::bail!(
+            "{}: is not a directory: --plots names the directory of the pictures; nothing was written",
+            dir.display()
+        );
     }
     Ok(())
 }
