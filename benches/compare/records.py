@@ -42,6 +42,14 @@ AXES = (("x", "Wd"), ("y", "Wd"), ("z", "Wk"))
 
 
 # --- records ------------------------------------------------------------------------------------------------
+def ar2(f0_hz, zeta):
+    """Denominator of an AR(2) resonance at f0 (Hz) with damping ratio zeta, sampled at FS (poles of the
+    continuous resonance mapped by z = e^{s/FS})."""
+    w0 = 2 * np.pi * f0_hz / FS
+    r = np.exp(-zeta * w0)
+    return [1.0, -2 * r * np.cos(w0 * np.sqrt(1 - zeta * zeta)), r * r]
+
+
 def make(path, hours, seed):
     """A three-axis seat record: per axis an AR(2) resonance at 4 Hz (zeta 0.2) driven by Gaussian noise,
     block by block (memory one block)."""
@@ -50,9 +58,7 @@ def make(path, hours, seed):
 
     n = int(round(hours * 3600 * FS))
     rng = np.random.default_rng(seed)
-    w0, zeta = 2 * np.pi * 4.0 / FS, 0.2
-    r = np.exp(-zeta * w0)
-    a = [1.0, -2 * r * np.cos(w0 * np.sqrt(1 - zeta * zeta)), r * r]
+    a = ar2(4.0, 0.2)
     tmp = path + ".part"
     with h5py.File(tmp, "w") as f:
         dsets = {}
@@ -77,9 +83,7 @@ def make_stress(path, samples, seed):
     from scipy.signal import lfilter
 
     rng = np.random.default_rng(seed)
-    w0, zeta = 2 * np.pi * 50.0 / FS, 0.05
-    r = np.exp(-zeta * w0)
-    a = [1.0, -2 * r * np.cos(w0 * np.sqrt(1 - zeta * zeta)), r * r]
+    a = ar2(50.0, 0.05)
     tmp = path + ".part"
     with h5py.File(tmp, "w") as f:
         d = f.create_dataset("s", shape=(samples,), dtype="f8")

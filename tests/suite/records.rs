@@ -474,23 +474,7 @@ fn readers_round_trip() {
     }
     // HDF5
     let h5 = dir.join("c.h5");
-    {
-        let _serial = crate::common::hdf5_serial();
-        let f = hdf5::File::create(&h5).unwrap();
-        let data: Vec<f64> = (0..n).map(sig).collect();
-        let ds = f.new_dataset_builder().with_data(&data).create("z").unwrap();
-        let unit: hdf5::types::VarLenUnicode = "m/s^2".parse().unwrap();
-        ds.new_attr::<hdf5::types::VarLenUnicode>()
-            .create("unit")
-            .unwrap()
-            .write_scalar(&unit)
-            .unwrap();
-        ds.new_attr::<f64>()
-            .create("sample_rate")
-            .unwrap()
-            .write_scalar(&250.0)
-            .unwrap();
-    }
+    write_h5_acceleration(&h5, &(0..n).map(sig).collect::<Vec<_>>(), 250.0);
     let c = {
         let _serial = crate::common::hdf5_serial();
         read_all(&h5, &RecordOptions::default())
@@ -547,6 +531,25 @@ fn readers_round_trip() {
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An HDF5 record of one acceleration channel `z` in m/s² at `rate_hz` (the `unit` and `sample_rate`
+/// attributes of the reader's layout).
+fn write_h5_acceleration(path: &Path, data: &[f64], rate_hz: f64) {
+    let _serial = crate::common::hdf5_serial();
+    let f = hdf5::File::create(path).unwrap();
+    let ds = f.new_dataset_builder().with_data(data).create("z").unwrap();
+    let unit: hdf5::types::VarLenUnicode = "m/s^2".parse().unwrap();
+    ds.new_attr::<hdf5::types::VarLenUnicode>()
+        .create("unit")
+        .unwrap()
+        .write_scalar(&unit)
+        .unwrap();
+    ds.new_attr::<f64>()
+        .create("sample_rate")
+        .unwrap()
+        .write_scalar(&rate_hz)
+        .unwrap();
 }
 
 /// Every sample of every channel, read in blocks of 64.
@@ -1365,23 +1368,11 @@ fn truncated_hdf5_and_wav_records_are_refused() {
     let dir = scratch("truncated");
     let n = 4000;
     let h5 = dir.join("cut.h5");
-    {
-        let _serial = crate::common::hdf5_serial();
-        let f = hdf5::File::create(&h5).unwrap();
-        let data: Vec<f64> = (0..n).map(|i| (0.03 * i as f64).sin()).collect();
-        let ds = f.new_dataset_builder().with_data(&data).create("z").unwrap();
-        let unit: hdf5::types::VarLenUnicode = "m/s^2".parse().unwrap();
-        ds.new_attr::<hdf5::types::VarLenUnicode>()
-            .create("unit")
-            .unwrap()
-            .write_scalar(&unit)
-            .unwrap();
-        ds.new_attr::<f64>()
-            .create("sample_rate")
-            .unwrap()
-            .write_scalar(&1000.0)
-            .unwrap();
-    }
+    write_h5_acceleration(
+        &h5,
+        &(0..n).map(|i| (0.03 * i as f64).sin()).collect::<Vec<_>>(),
+        1000.0,
+    );
     let wav = dir.join("cut.wav");
     let spec = hound::WavSpec {
         channels: 2,
