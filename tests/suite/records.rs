@@ -794,27 +794,31 @@ impl RecordReader for MemoryRecord {
 /// zero elsewhere (spectral synthesis: independent Gaussian real and imaginary parts in every bin of the
 /// band, one inverse FFT), scaled to σ = 40 MPa. Seeded.
 fn band_limited_gaussian(seed: u64) -> Vec<f64> {
-    use realfft::RealFftPlanner;
     let n = 1usize << 22;
     let df = 1000.0 / n as f64;
+    let mut x = gaussian_lines(seed, n, (0..=n / 2).filter(|&j| (5.0..15.0).contains(&(j as f64 * df))));
+    let sd = (x.iter().map(|v| v * v).sum::<f64>() / n as f64).sqrt();
+    x.iter_mut().for_each(|v| *v *= 40.0 / sd);
+    x
+}
+
+/// n samples of Σ_k X_k e^{i2πjk/n} + conjugate (the unnormalised inverse real FFT) with independent standard
+/// normal real and imaginary parts of X_k in the bins `bins` (drawn in their order), zero elsewhere. Seeded.
+fn gaussian_lines(seed: u64, n: usize, bins: impl Iterator<Item = usize>) -> Vec<f64> {
+    use realfft::RealFftPlanner;
     let mut rng = rand::rngs::Xoshiro256PlusPlus::seed_from_u64(seed);
     let mut spectrum = vec![realfft::num_complex::Complex::new(0.0, 0.0); n / 2 + 1];
-    for (j, c) in spectrum.iter_mut().enumerate() {
-        let f = j as f64 * df;
-        if (5.0..15.0).contains(&f) {
-            *c = realfft::num_complex::Complex::new(
-                rng.sample(rand_distr::StandardNormal),
-                rng.sample(rand_distr::StandardNormal),
-            );
-        }
+    for k in bins {
+        spectrum[k] = realfft::num_complex::Complex::new(
+            rng.sample(rand_distr::StandardNormal),
+            rng.sample(rand_distr::StandardNormal),
+        );
     }
     let mut x = vec![0.0; n];
     RealFftPlanner::<f64>::new()
         .plan_fft_inverse(n)
         .process(&mut spectrum, &mut x)
         .unwrap();
-    let sd = (x.iter().map(|v| v * v).sum::<f64>() / n as f64).sqrt();
-    x.iter_mut().for_each(|v| *v *= 40.0 / sd);
     x
 }
 
@@ -1216,24 +1220,11 @@ fn cli_pictures_are_written() {
 /// inverse FFT, scaled by the fixed c = 1/√(4M) (M bins) so that the expected mean square is 1 (m/s²)²: a
 /// bin contributes 2c²|X_k|² = 4c²E_k to the mean square, E_k = |X_k|²/2 ~ Exp(1). Seeded.
 fn white_band(seed: u64, n: usize, lo: f64, hi: f64) -> Vec<f64> {
-    use realfft::RealFftPlanner;
     let t = n as f64 / 1000.0;
-    let bins = white_band_bins(n, lo, hi);
-    let mut rng = rand::rngs::Xoshiro256PlusPlus::seed_from_u64(seed);
-    let mut spectrum = vec![realfft::num_complex::Complex::new(0.0, 0.0); n / 2 + 1];
-    for k in bins.clone() {
-        spectrum[k] = realfft::num_complex::Complex::new(
-            rng.sample(rand_distr::StandardNormal),
-            rng.sample(rand_distr::StandardNormal),
-        );
-    }
-    let mut x = vec![0.0; n];
-    RealFftPlanner::<f64>::new()
-        .plan_fft_inverse(n)
-        .process(&mut spectrum, &mut x)
-        .unwrap();
-    let c = 1.0 / (4.0 * bins.count() as f64).sqrt();
     assert!(lo * t > 1.0 && hi * t < n as f64 / 2.0);
+    let bins = white_band_bins(n, lo, hi);
+    let c = 1.0 / (4.0 * bins.clone().count() as f64).sqrt();
+    let mut x = gaussian_lines(seed, n, bins);
     x.iter_mut().for_each(|v| *v *= c);
     x
 }
