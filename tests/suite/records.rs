@@ -1284,8 +1284,10 @@ fn a_w_of_band_limited_white_noise_is_the_analytic_value() {
             .map(|k| 4.0 * c2 * analytic(w, k as f64 / t).norm_sqr())
             .collect();
         let mu: f64 = ck.iter().sum();
-        let v: f64 = ck.iter().map(|c| c * c).sum();
-        let b = 2.0 * ck.iter().fold(0.0f64, |m, c| m.max(*c));
+        // the digital c_k are at most (1 + NOISE_WEIGHTING_REALISATION)·c_k: v and b from that upper bound
+        let up = 1.0 + NOISE_WEIGHTING_REALISATION;
+        let v: f64 = ck.iter().map(|c| c * c * up * up).sum();
+        let b = 2.0 * up * ck.iter().fold(0.0f64, |m, c| m.max(*c));
         let stat = b * l + (b * b * l * l + 2.0 * l * v).sqrt();
         let (a1, a2) = (one.axes[i].metrics.a_w, two.axes[i].metrics.a_w);
         let s = 2.0 * a2 * a2 - a1 * a1;
