@@ -1253,7 +1253,8 @@ fn white_band_bins(n: usize, lo: f64, hi: f64) -> std::ops::RangeInclusive<usize
 /// S − E[S] = Σ c_k(E_k − 1), c_k = 4c²|H_k|², a sum of independent centred exponentials, which satisfies
 /// Bernstein's moment condition with variance v = Σc_k² and scale b = 2·max c_k, so
 /// P(|S − E S| ≥ t) ≤ 2exp(−t²/(2(v + bt))). With t = bL + √(b²L² + 2Lv), L = ln(2/5e-7), each channel fails
-/// falsely with probability ≤ 5e-7, the test ≤ 1e-6 (about 5.5 s.d., ≈ 2 % of μ here).
+/// falsely with probability ≤ 5e-7, the test ≤ 1e-6 (about 5.5 s.d.: 8.9 % of μ for Wd, whose weight lies mostly
+/// at 1–2 Hz, so that few lines carry the mean square; a longer record narrows it as 1/√T).
 #[test]
 fn a_w_of_band_limited_white_noise_is_the_analytic_value() {
     let n = 1usize << 20;
@@ -1297,7 +1298,7 @@ fn a_w_of_band_limited_white_noise_is_the_analytic_value() {
             "{channel} ({w}): steady a_w² {s} against the analytic {mu} (allowed ±{allowed}, of which {stat} \
              statistical); a_w of one period {a1}"
         );
-        assert!(stat < 0.03 * mu, "{channel}: the test is too weak: ±{stat} of {mu}");
+        assert!(stat < 0.1 * mu, "{channel}: the test is too weak: ±{stat} of {mu}");
     }
 }
 
