@@ -448,6 +448,15 @@ fn compensated_add(acc: &mut (f64, f64), v: f64) {
     *sum = t;
 }
 
+/// Σ a² over a window in order, compensated (the sum [`SignalMetricsStream`] restarts from every n samples).
+fn window_mean_square_sum(window: &[f64]) -> f64 {
+    let mut s = (0.0, 0.0);
+    for a in window {
+        compensated_add(&mut s, a * a);
+    }
+    s.0 + s.1
+}
+
 impl SignalMetricsStream {
     /// An empty record sampled at step `dt_s` with the running-r.m.s. integration time `tau_s`
     /// ([`MTVV_INTEGRATION_TIME_S`] for the standard's MTVV).
@@ -505,33 +514,34 @@ impl SignalMetricsStream {
         }
         let n = self.ring.len();
         let inv_n = 1.0 / n as f64;
+        let (mut sum2, mut sum4, mut peak) = (self.sum2, self.sum4, self.peak);
+        let (mut window_sum, mut max_window_sum) = (self.window_sum, self.max_window_sum);
+        let mut j = self.samples;
+        // slot = j mod n, carried instead of divided; the window that ends at sample j starts at j + 1 − n,
+        // a multiple of n exactly when slot = n − 1, and then the ring holds it in order
+        let mut slot = j % n;
         for &v in x {
             let v2 = v * v;
-            compensated_add(&mut self.sum2, v2);
-            compensated_add(&mut self.sum4, v2 * v2);
-            self.peak = self.peak.max(v.abs());
-            let j = self.samples;
-            let slot = j % n;
+            compensated_add(&mut sum2, v2);
+            compensated_add(&mut sum4, v2 * v2);
+            peak = peak.max(v.abs());
             let old = self.ring[slot]; // sample j − n (when j ≥ n)
             self.ring[slot] = v;
             if j + 1 >= n {
-                let start = j + 1 - n;
-                if start.is_multiple_of(n) {
-                    let mut s = (0.0, 0.0);
-                    for k in 0..n {
-                        let a = self.ring[(start + k) % n];
-                        compensated_add(&mut s, a * a);
-                    }
-                    self.window_sum = s.0 + s.1;
+                if slot == n - 1 {
+                    window_sum = window_mean_square_sum(&self.ring);
                 } else {
-                    self.window_sum += v2 - old * old;
+                    window_sum += v2 - old * old;
                 }
-                let w = self.window_sum.max(0.0);
-                self.max_window_sum = self.max_window_sum.max(w);
+                let w = window_sum.max(0.0);
+                max_window_sum = max_window_sum.max(w);
                 running(w * inv_n);
             }
-            self.samples += 1;
+            j += 1;
+            slot = if slot + 1 == n { 0 } else { slot + 1 };
         }
+        (self.sum2, self.sum4, self.peak) = (sum2, sum4, peak);
+        (self.window_sum, self.max_window_sum, self.samples) = (window_sum, max_window_sum, j);
         Ok(())
     }
 

@@ -101,9 +101,7 @@ pub fn exposure(a: ExposureArgs) -> anyhow::Result<()> {
         running: a.running,
         ..ExposureOptions::default()
     };
-    if let Some(dir) = &a.plots {
-        super::output_dir(dir, "--plots names the directory of the pictures")?;
-    }
+    check_plots(a.plots.as_deref())?;
     let mut reader = open_record(&a.record, &a.record_args.options()?)?;
     let report = ExposureReport(evaluate_exposure(reader.as_mut(), &options)?);
     print_and_draw(&report, &a.output, a.plots, |r, dir| {
@@ -111,13 +109,30 @@ pub fn exposure(a: ExposureArgs) -> anyhow::Result<()> {
     })
 }
 
-/// Prints `report`, then draws its pictures into `plots` (when given) with `draw`.
+/// What `--plots` names: refused before the record is read when it exists and is not a directory. The directory
+/// itself is made only after the record was evaluated ([`print_and_draw`]), so a refused record leaves nothing.
+fn check_plots(dir: Option<&std::path::Path>) -> anyhow::Result<()> {
+    if let Some(dir) = dir
+        && std::fs::metadata(dir).is_ok_and(|m| !m.is_dir())
+    {
+        anyhow::bail!(
+            "{}: is not a directory: --plots names the directory of the pictures; nothing was written",
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// Prints `report`, then makes the directory `plots` (when given) and draws its pictures into it with `draw`.
 fn print_and_draw<T: std::fmt::Display + serde::Serialize + stochvib::report::table::ToMarkdown>(
     report: &T,
     output: &super::Output,
     plots: Option<PathBuf>,
     draw: impl FnOnce(&T, &std::path::Path) -> stochvib::Result<Vec<PathBuf>>,
 ) -> anyhow::Result<()> {
+    if let Some(dir) = &plots {
+        super::output_dir(dir, "--plots names the directory of the pictures")?;
+    }
     super::print_as(report, output.format())?;
     if let Some(dir) = plots {
         let files = draw(report, &dir)?;
@@ -225,9 +240,7 @@ pub fn fatigue(a: FatigueArgs) -> anyhow::Result<()> {
         gate: a.gate.as_deref().map(|t| same_dim("--gate", t, sn_dim)).transpose()?,
         segment_len: a.segment,
     };
-    if let Some(dir) = &a.plots {
-        super::output_dir(dir, "--plots names the directory of the pictures")?;
-    }
+    check_plots(a.plots.as_deref())?;
     let mut reader = open_record(&a.record, &a.record_args.options()?)?;
     let report = FatigueReport(evaluate_fatigue(reader.as_mut(), &options)?);
     print_and_draw(&report, &a.output, a.plots, |r, dir| {

@@ -21,6 +21,10 @@ use rayon::prelude::*;
 /// Samples per channel read at a time.
 pub const BLOCK_SAMPLES: usize = 1 << 16;
 
+/// Samples of one channel weighted and passed through the accumulators at a time: the weighted chunk and its
+/// running r.m.s. stay in the processor's first-level cache between the passes.
+const CHUNK_SAMPLES: usize = 2048;
+
 /// Bins kept by the envelope of each weighted signal (for the time-history picture): between this and twice
 /// this.
 pub const ENVELOPE_BINS: usize = 300;
@@ -255,11 +259,12 @@ impl Evaluator {
         })
     }
 
-    /// Weights the next samples and feeds every accumulator.
+    /// Weights the next samples and feeds every accumulator, [`CHUNK_SAMPLES`] at a time.
     fn push(&mut self, x: &[f64]) -> Result<()> {
-        if x.is_empty() {
-            return Ok(());
-        }
+        x.chunks(CHUNK_SAMPLES).try_for_each(|c| self.push_chunk(c))
+    }
+
+    fn push_chunk(&mut self, x: &[f64]) -> Result<()> {
         let filter = &self.filter;
         let state = self.state.get_or_insert_with(|| filter.state_at_rest(x[0]));
         self.weighted.resize(x.len(), 0.0);

@@ -380,6 +380,8 @@ pub struct WeightingReport {
     pub sample_rate_hz: Option<f64>,
     /// One row per frequency (digital columns equal to the analytic ones without a sample rate).
     pub rows: Vec<WeightingErrorRow>,
+    /// The digital realisation (its second-order sections and gain, e.g. for `scipy.signal.sosfilt`).
+    pub digital: Option<DigitalWeighting>,
 }
 
 impl WeightingReport {
@@ -423,6 +425,7 @@ impl WeightingReport {
             standard: weighting.quantity().standard,
             sample_rate_hz,
             rows,
+            digital,
         })
     }
 

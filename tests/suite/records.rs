@@ -9,8 +9,9 @@
 //! quadrature and Lyapunov solution (Python, scipy).
 
 use crate::common::tolerance::{
-    EXACT, IRI_EXPECTED, ISO8041_OWN_DB, ISO8041_OWN_PHASE_DEG, MINER_BLOCK_BOUNDARY, PRINTED_3_DIGITS,
-    RECORD_SINE_TRANSIENT, RECORD_START_OVERSHOOT, RUNNING_RMS_SAMPLED, WAV_FLOAT32, WELCH_WINDOW_BIAS,
+    EXACT, IRI_EXPECTED, ISO8041_OWN_DB, ISO8041_OWN_PHASE_DEG, MINER_BLOCK_BOUNDARY, NOISE_WEIGHTING_REALISATION,
+    PRINTED_3_DIGITS, RECORD_SINE_TRANSIENT, RECORD_START_OVERSHOOT, RUNNING_RMS_SAMPLED, WAV_FLOAT32,
+    WELCH_WINDOW_BIAS,
 };
 use nalgebra::Complex;
 use rand::{RngExt, SeedableRng};
@@ -473,23 +474,7 @@ fn readers_round_trip() {
     }
     // HDF5
     let h5 = dir.join("c.h5");
-    {
-        let _serial = crate::common::hdf5_serial();
-        let f = hdf5::File::create(&h5).unwrap();
-        let data: Vec<f64> = (0..n).map(sig).collect();
-        let ds = f.new_dataset_builder().with_data(&data).create("z").unwrap();
-        let unit: hdf5::types::VarLenUnicode = "m/s^2".parse().unwrap();
-        ds.new_attr::<hdf5::types::VarLenUnicode>()
-            .create("unit")
-            .unwrap()
-            .write_scalar(&unit)
-            .unwrap();
-        ds.new_attr::<f64>()
-            .create("sample_rate")
-            .unwrap()
-            .write_scalar(&250.0)
-            .unwrap();
-    }
+    write_h5_acceleration(&h5, &(0..n).map(sig).collect::<Vec<_>>(), 250.0);
     let c = {
         let _serial = crate::common::hdf5_serial();
         read_all(&h5, &RecordOptions::default())
@@ -546,6 +531,25 @@ fn readers_round_trip() {
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An HDF5 record of one acceleration channel `z` in m/s² at `rate_hz` (the `unit` and `sample_rate`
+/// attributes of the reader's layout).
+fn write_h5_acceleration(path: &Path, data: &[f64], rate_hz: f64) {
+    let _serial = crate::common::hdf5_serial();
+    let f = hdf5::File::create(path).unwrap();
+    let ds = f.new_dataset_builder().with_data(data).create("z").unwrap();
+    let unit: hdf5::types::VarLenUnicode = "m/s^2".parse().unwrap();
+    ds.new_attr::<hdf5::types::VarLenUnicode>()
+        .create("unit")
+        .unwrap()
+        .write_scalar(&unit)
+        .unwrap();
+    ds.new_attr::<f64>()
+        .create("sample_rate")
+        .unwrap()
+        .write_scalar(&rate_hz)
+        .unwrap();
 }
 
 /// Every sample of every channel, read in blocks of 64.
@@ -724,28 +728,45 @@ fn miner_damage_of_constant_amplitude_blocks() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// A record held in memory, served in blocks: one stress channel in MPa at 1 kHz.
+/// A record held in memory, served in blocks at 1 kHz: one stress channel in MPa ([`MemoryRecord::new`]) or
+/// acceleration channels in m/s² ([`MemoryRecord::accelerations`]).
 struct MemoryRecord {
     info: RecordInfo,
-    samples: Vec<f64>,
+    samples: Vec<Vec<f64>>,
     pos: usize,
 }
 
 impl MemoryRecord {
     fn new(samples: Vec<f64>) -> Self {
+        let stress = Channel {
+            name: "stress".into(),
+            unit: "MPa".into(),
+            to_si: 1e6,
+            dim: Dim::new(-1, 1, -2),
+        };
+        Self::with(vec![(stress, samples)])
+    }
+
+    fn accelerations(channels: Vec<(&str, Vec<f64>)>) -> Self {
+        let channel = |name: &str| Channel {
+            name: name.into(),
+            unit: "m/s^2".into(),
+            to_si: 1.0,
+            dim: Dim::ACCELERATION,
+        };
+        Self::with(channels.into_iter().map(|(n, x)| (channel(n), x)).collect())
+    }
+
+    fn with(channels: Vec<(Channel, Vec<f64>)>) -> Self {
+        let (channels, samples): (Vec<Channel>, Vec<Vec<f64>>) = channels.into_iter().unzip();
         MemoryRecord {
             info: RecordInfo {
                 source: PathBuf::from("generated"),
                 format: "generated",
                 sample_rate_hz: 1000.0,
                 time_base: TimeBase::Stated,
-                channels: vec![Channel {
-                    name: "stress".into(),
-                    unit: "MPa".into(),
-                    to_si: 1e6,
-                    dim: Dim::new(-1, 1, -2),
-                }],
-                samples_hint: Some(samples.len()),
+                channels,
+                samples_hint: Some(samples[0].len()),
             },
             samples,
             pos: 0,
@@ -759,9 +780,11 @@ impl RecordReader for MemoryRecord {
     }
 
     fn read_block(&mut self, out: &mut [Vec<f64>], max: usize) -> stochvib::Result<usize> {
-        let n = max.min(self.samples.len() - self.pos);
-        out[0].clear();
-        out[0].extend(self.samples[self.pos..self.pos + n].iter().map(|v| v * 1e6));
+        let n = max.min(self.samples[0].len() - self.pos);
+        for ((o, x), c) in out.iter_mut().zip(&self.samples).zip(&self.info.channels) {
+            o.clear();
+            o.extend(x[self.pos..self.pos + n].iter().map(|v| v * c.to_si));
+        }
         self.pos += n;
         Ok(n)
     }
@@ -771,27 +794,31 @@ impl RecordReader for MemoryRecord {
 /// zero elsewhere (spectral synthesis: independent Gaussian real and imaginary parts in every bin of the
 /// band, one inverse FFT), scaled to σ = 40 MPa. Seeded.
 fn band_limited_gaussian(seed: u64) -> Vec<f64> {
-    use realfft::RealFftPlanner;
     let n = 1usize << 22;
     let df = 1000.0 / n as f64;
+    let mut x = gaussian_lines(seed, n, (0..=n / 2).filter(|&j| (5.0..15.0).contains(&(j as f64 * df))));
+    let sd = (x.iter().map(|v| v * v).sum::<f64>() / n as f64).sqrt();
+    x.iter_mut().for_each(|v| *v *= 40.0 / sd);
+    x
+}
+
+/// n samples of Σ_k X_k e^{i2πjk/n} + conjugate (the unnormalised inverse real FFT) with independent standard
+/// normal real and imaginary parts of X_k in the bins `bins` (drawn in their order), zero elsewhere. Seeded.
+fn gaussian_lines(seed: u64, n: usize, bins: impl Iterator<Item = usize>) -> Vec<f64> {
+    use realfft::RealFftPlanner;
     let mut rng = rand::rngs::Xoshiro256PlusPlus::seed_from_u64(seed);
     let mut spectrum = vec![realfft::num_complex::Complex::new(0.0, 0.0); n / 2 + 1];
-    for (j, c) in spectrum.iter_mut().enumerate() {
-        let f = j as f64 * df;
-        if (5.0..15.0).contains(&f) {
-            *c = realfft::num_complex::Complex::new(
-                rng.sample(rand_distr::StandardNormal),
-                rng.sample(rand_distr::StandardNormal),
-            );
-        }
+    for k in bins {
+        spectrum[k] = realfft::num_complex::Complex::new(
+            rng.sample(rand_distr::StandardNormal),
+            rng.sample(rand_distr::StandardNormal),
+        );
     }
     let mut x = vec![0.0; n];
     RealFftPlanner::<f64>::new()
         .plan_fft_inverse(n)
         .process(&mut spectrum, &mut x)
         .unwrap();
-    let sd = (x.iter().map(|v| v * v).sum::<f64>() / n as f64).sqrt();
-    x.iter_mut().for_each(|v| *v *= 40.0 / sd);
     x
 }
 
@@ -878,7 +905,8 @@ fn expected_iri_of_iso_classes_is_the_closed_form() {
 
 /// The command-line tool: `exposure` on a record prints a_w and the verdict; `weighting Wk` prints the
 /// analytic magnitude at the asked frequency (Table 3: 0.967 at 4 Hz); a bad record exits non-zero naming the
-/// file and the line, and writes nothing.
+/// file and the line, and writes nothing: not even the directory `--plots` names (for `exposure` and
+/// `fatigue`).
 #[test]
 fn cli_exposure_weighting_and_refusal() {
     let dir = scratch("cli");
@@ -902,7 +930,28 @@ fn cli_exposure_weighting_and_refusal() {
         !out.status.success() && err.contains("bad.csv") && err.contains("line 3"),
         "{err}"
     );
-    assert!(!plots.exists() || crate::common::listing(&plots).is_empty());
+    assert!(
+        !plots.exists(),
+        "the refused record left the directory of the pictures behind"
+    );
+    std::fs::write(dir.join("bad-stress.csv"), "time [s],s [MPa]\n0,1\n0.001,x\n").unwrap();
+    let fatigue = [
+        "fatigue",
+        "bad-stress.csv",
+        "--sn-slope",
+        "5",
+        "--sn-amplitude",
+        "100 MPa",
+        "--plots",
+        "pictures",
+    ];
+    let out = crate::common::cli_within(&fatigue, &dir, limit);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && err.contains("bad-stress.csv"), "{err}");
+    assert!(
+        !plots.exists(),
+        "the refused stress record left the directory of the pictures behind"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -1162,6 +1211,205 @@ fn cli_pictures_are_written() {
             let bytes = std::fs::read(sub.join(n)).unwrap();
             assert!(bytes.starts_with(b"\x89PNG"), "{n}");
         }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Band-limited Gaussian white noise of n samples at 1 kHz, periodic with T = n/f_s: in every bin f_k = k/T
+/// with `lo` ≤ f_k ≤ `hi` independent standard normal real and imaginary parts X_k, zero elsewhere, one
+/// inverse FFT, scaled by the fixed c = 1/√(4M) (M bins) so that the expected mean square is 1 (m/s²)²: a
+/// bin contributes 2c²|X_k|² = 4c²E_k to the mean square, E_k = |X_k|²/2 ~ Exp(1). Seeded.
+fn white_band(seed: u64, n: usize, lo: f64, hi: f64) -> Vec<f64> {
+    let t = n as f64 / 1000.0;
+    assert!(lo * t > 1.0 && hi * t < n as f64 / 2.0);
+    let bins = white_band_bins(n, lo, hi);
+    let c = 1.0 / (4.0 * bins.clone().count() as f64).sqrt();
+    let mut x = gaussian_lines(seed, n, bins);
+    x.iter_mut().for_each(|v| *v *= c);
+    x
+}
+
+/// The FFT bins k of `white_band`: lo ≤ k/T ≤ hi.
+fn white_band_bins(n: usize, lo: f64, hi: f64) -> std::ops::RangeInclusive<usize> {
+    let t = n as f64 / 1000.0;
+    (lo * t).ceil() as usize..=(hi * t).floor() as usize
+}
+
+/// a_w of band-limited white noise records against the analytic value of the same spectrum.
+///
+/// The record's spectrum is flat over the lines f_k = k/T, 1 ≤ f_k ≤ 20 Hz (`white_band`, σ² = 1 (m/s²)²,
+/// T = 2²⁰/1 kHz = 1048.6 s), so the analytic weighted mean square is
+/// μ = Σ_k 4c²|W(f_k)|² = σ²·mean_k |W(f_k)|², with W the analytic ISO 2631-1 weighting written out in this
+/// file (Wd for the x channel, Wk for z); it equals ∫|W|²G df of the flat density G = σ²/(19 Hz) up to the
+/// Riemann error O(Δf²), Δf = 1/T.
+///
+/// What the record gives: the weighted signal of a periodic record is, after the filter's start-up, periodic,
+/// and its mean square over one period is S = Σ_k 4c²|H(f_k)|²E_k (Parseval) with H the digital weighting.
+/// The start-up is removed exactly by evaluating the record of one period (a₁) and of two periods (a₂): the
+/// first periods are identical, the second is in steady state (the slowest pole decays as e^{−1.78 t/s}), so
+/// S = 2a₂² − a₁².
+///
+/// Tolerance: the digital |H|² differs from |W|² over 1–20 Hz by at most `NOISE_WEIGHTING_REALISATION`; and
+/// S − E[S] = Σ c_k(E_k − 1), c_k = 4c²|H_k|², a sum of independent centred exponentials, which satisfies
+/// Bernstein's moment condition with variance v = Σc_k² and scale b = 2·max c_k, so
+/// P(|S − E S| ≥ t) ≤ 2exp(−t²/(2(v + bt))). With t = bL + √(b²L² + 2Lv), L = ln(2/5e-7), each channel fails
+/// falsely with probability ≤ 5e-7, the test ≤ 1e-6 (about 5.5 s.d.: 8.9 % of μ for Wd, whose weight lies mostly
+/// at 1–2 Hz, so that few lines carry the mean square; a longer record narrows it as 1/√T).
+#[test]
+fn a_w_of_band_limited_white_noise_is_the_analytic_value() {
+    let n = 1usize << 20;
+    let (lo, hi) = (1.0, 20.0);
+    let x = white_band(31, n, lo, hi);
+    let z = white_band(32, n, lo, hi);
+    let twice = |v: &[f64]| [v, v].concat();
+    let options = ExposureOptions::default();
+    let one = evaluate_exposure(
+        &mut MemoryRecord::accelerations(vec![("x", x.clone()), ("z", z.clone())]),
+        &options,
+    )
+    .unwrap();
+    let two = evaluate_exposure(
+        &mut MemoryRecord::accelerations(vec![("x", twice(&x)), ("z", twice(&z))]),
+        &options,
+    )
+    .unwrap();
+    let bins = white_band_bins(n, lo, hi);
+    let c2 = 1.0 / (4.0 * bins.clone().count() as f64);
+    let t = n as f64 / 1000.0;
+    let l = (2.0f64 / 5e-7).ln();
+    for (i, (channel, w)) in [("x", "Wd"), ("z", "Wk")].into_iter().enumerate() {
+        assert_eq!(one.axes[i].channel, channel);
+        assert_eq!(one.axes[i].weighting, Weighting::parse(w).unwrap());
+        let ck: Vec<f64> = bins
+            .clone()
+            .map(|k| 4.0 * c2 * analytic(w, k as f64 / t).norm_sqr())
+            .collect();
+        let mu: f64 = ck.iter().sum();
+        // the digital c_k are at most (1 + NOISE_WEIGHTING_REALISATION)·c_k: v and b from that upper bound
+        let up = 1.0 + NOISE_WEIGHTING_REALISATION;
+        let v: f64 = ck.iter().map(|c| c * c * up * up).sum();
+        let b = 2.0 * up * ck.iter().fold(0.0f64, |m, c| m.max(*c));
+        let stat = b * l + (b * b * l * l + 2.0 * l * v).sqrt();
+        let (a1, a2) = (one.axes[i].metrics.a_w, two.axes[i].metrics.a_w);
+        let s = 2.0 * a2 * a2 - a1 * a1;
+        let allowed = stat + mu * NOISE_WEIGHTING_REALISATION;
+        assert!(
+            (s - mu).abs() <= allowed,
+            "{channel} ({w}): steady a_w² {s} against the analytic {mu} (allowed ±{allowed}, of which {stat} \
+             statistical); a_w of one period {a1}"
+        );
+        assert!(stat < 0.1 * mu, "{channel}: the test is too weak: ±{stat} of {mu}");
+    }
+}
+
+/// Gerber and SWT mean-stress corrections against their closed forms (k = 5, C = 1e15 MPa⁵, the record of
+/// 2000 reversals is 999.5 cycles of one range and mean, half cycles counted 0.5):
+/// * tensile mean: reversals between 150 and 50 MPa (S_m = 100, S_a = 50), S_u = 400 MPa:
+///   Gerber S_a,eq = 50/(1 − (100/400)²) = 53.333 MPa; SWT S_a,eq = √(S_max·S_a) = √(150·50) = 86.603 MPa;
+/// * compressive mean: between −50 and −150 MPa (S_m = −100): Gerber credits no compressive mean
+///   (S_a,eq = S_a = 50); SWT has S_max = −50 ≤ 0, no damage;
+/// * mean −25, amplitude 50 (between 25 and −75): SWT √(25·50) = 35.355 MPa.
+///
+/// D = 999.5·S_a,eq⁵/1e15 (Smith, Watson & Topper 1970; Gerber 1874; as in Dowling, "Mechanical Behavior of
+/// Materials", 4th ed. 2013, eqs. 10.14 and 10.23).
+#[test]
+fn gerber_and_swt_corrections_are_the_closed_forms() {
+    let dir = scratch("gerber-swt");
+    let reversals = |hi: f64, lo: f64| -> Vec<f64> { (0..2000).map(|i| if i % 2 == 0 { hi } else { lo }).collect() };
+    let gerber = MeanStressCorrection::Gerber { ultimate: 400e6 };
+    let swt = MeanStressCorrection::Swt;
+    let damage = |eq: f64| 999.5 * eq.powi(5) / 1e15;
+    let cases = [
+        (
+            "gerber-tension.csv",
+            (150.0, 50.0),
+            gerber,
+            damage(50.0 / (1.0 - 0.25f64.powi(2))),
+        ),
+        ("swt-tension.csv", (150.0, 50.0), swt, damage((150.0f64 * 50.0).sqrt())),
+        ("gerber-compression.csv", (-50.0, -150.0), gerber, damage(50.0)),
+        ("swt-compression.csv", (-50.0, -150.0), swt, 0.0),
+        ("swt-crossing.csv", (25.0, -75.0), swt, damage((25.0f64 * 50.0).sqrt())),
+    ];
+    for (name, (hi, lo), correction, expected) in cases {
+        let e = fatigue_with(&dir, name, &reversals(hi, lo), 5.0, 1e15, correction, None);
+        let cycles = e.full_cycles as f64 + 0.5 * e.half_cycles as f64;
+        assert_eq!(
+            cycles, 999.5,
+            "{name}: {} full and {} half cycles",
+            e.full_cycles, e.half_cycles
+        );
+        let ok = if expected == 0.0 {
+            e.damage == 0.0
+        } else {
+            rel(e.damage, expected) < EXACT
+        };
+        assert!(ok, "{name}: D {} against {expected}", e.damage);
+        assert!(
+            rel(e.damage_uncorrected, damage(50.0)) < EXACT,
+            "{name}: uncorrected D {}",
+            e.damage_uncorrected
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Truncated binary records are refused with the file and the reason, and nothing is written (the directory
+/// `--plots` names is not made): an HDF5 record cut to half its length, a WAV record whose data chunk ends
+/// early (the header promises 4000 frames, the file holds about 1500).
+#[test]
+fn truncated_hdf5_and_wav_records_are_refused() {
+    let dir = scratch("truncated");
+    let n = 4000;
+    let h5 = dir.join("cut.h5");
+    write_h5_acceleration(
+        &h5,
+        &(0..n).map(|i| (0.03 * i as f64).sin()).collect::<Vec<_>>(),
+        1000.0,
+    );
+    let wav = dir.join("cut.wav");
+    let spec = hound::WavSpec {
+        channels: 2,
+        sample_rate: 1000,
+        bits_per_sample: 16,
+        sample_format: hound::SampleFormat::Int,
+    };
+    let mut w = hound::WavWriter::create(&wav, spec).unwrap();
+    for i in 0..2 * n {
+        w.write_sample(((0.03 * i as f64).sin() * 10_000.0) as i16).unwrap();
+    }
+    w.finalize().unwrap();
+    for file in [&h5, &wav] {
+        let len = std::fs::metadata(file).unwrap().len();
+        let cut = if file == &wav { 44 + 6000 } else { len / 2 };
+        let f = std::fs::OpenOptions::new().write(true).open(file).unwrap();
+        f.set_len(cut).unwrap();
+    }
+    let limit = std::time::Duration::from_secs(300);
+    let cases: [(&str, &[&str], &[&str]); 2] = [
+        ("cut.h5", &[], &["truncat", "HDF5"]),
+        (
+            "cut.wav",
+            &["--full-scale", "50 m/s^2", "--channels", "x,z"],
+            &["truncated", "frame"],
+        ),
+    ];
+    for (name, extra, reasons) in cases {
+        let mut args = vec!["exposure", name, "--plots", "pictures"];
+        args.extend_from_slice(extra);
+        let out = crate::common::cli_within(&args, &dir, limit);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{name}: accepted");
+        assert!(err.contains(name), "{name}: the error does not name the file: {err}");
+        assert!(
+            reasons.iter().any(|r| err.contains(r)),
+            "{name}: the error gives no reason ({reasons:?}): {err}"
+        );
+        assert_eq!(
+            crate::common::listing(&dir),
+            ["cut.h5", "cut.wav"],
+            "{name}: something was written"
+        );
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
