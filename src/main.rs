@@ -1,9 +1,9 @@
 //! The `stochvib` command-line tool: parses arguments, calls the library, prints.
 
-#[path = "main/record_cli.rs"]
-mod record_cli;
 #[path = "main/optimize_cli.rs"]
 mod optimize_cli;
+#[path = "main/record_cli.rs"]
+mod record_cli;
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};

@@ -15,7 +15,12 @@ pub struct OptimizeArgs {
     params: Vec<String>,
     /// The quantity to minimise: sigma(OUTPUT), 3sigma(OUTPUT), peak3(OUTPUT), a_w(OUTPUT), a_v, A8, VDV,
     /// damage_rate, life.
-    #[arg(long, value_name = "QUANTITY", required_unless_present = "maximize", conflicts_with = "maximize")]
+    #[arg(
+        long,
+        value_name = "QUANTITY",
+        required_unless_present = "maximize",
+        conflicts_with = "maximize"
+    )]
     minimize: Option<String>,
     /// The quantity to maximise (same names as --minimize).
     #[arg(long, value_name = "QUANTITY")]
@@ -41,7 +46,11 @@ pub struct OptimizeArgs {
 pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
     let catalogue = a.spectra.catalogue();
     let sc = load_scenario(&a.scenario, catalogue.dir())?;
-    let params = a.params.iter().map(|p| Param::parse(p)).collect::<Result<Vec<_>, _>>()?;
+    let params = a
+        .params
+        .iter()
+        .map(|p| Param::parse(p))
+        .collect::<Result<Vec<_>, _>>()?;
     let (flag, goal, text) = match (&a.minimize, &a.maximize) {
         (Some(q), _) => ("--minimize", Goal::Minimize, q),
         (None, Some(q)) => ("--maximize", Goal::Maximize, q),

@@ -53,13 +53,25 @@ impl Param {
             .split_once(':')
             .ok_or_else(|| bad("expected LOW:HIGH after `=`, e.g. 200:5000 N*s/m"))?;
         let (hv, hdim) = parse_quantity(hi).map_err(|e| bad(&format!("upper bound: {e}")))?;
-        let unit = hi.trim().trim_start_matches(|c: char| c.is_ascii_digit() || "+-.eE".contains(c));
+        let unit = hi
+            .trim()
+            .trim_start_matches(|c: char| c.is_ascii_digit() || "+-.eE".contains(c));
         let unit = unit.trim().to_string();
-        let scale = if unit.is_empty() { 1.0 } else { parse_quantity(&format!("1 {unit}"))?.0 };
-        let lo_text = if lo.trim().parse::<f64>().is_ok() { format!("{lo} {unit}") } else { lo.to_string() };
+        let scale = if unit.is_empty() {
+            1.0
+        } else {
+            parse_quantity(&format!("1 {unit}"))?.0
+        };
+        let lo_text = if lo.trim().parse::<f64>().is_ok() {
+            format!("{lo} {unit}")
+        } else {
+            lo.to_string()
+        };
         let (lv, ldim) = parse_quantity(&lo_text).map_err(|e| bad(&format!("lower bound: {e}")))?;
         if ldim != hdim {
-            return Err(bad(&format!("the bounds have different dimensions ({ldim} and {hdim})")));
+            return Err(bad(&format!(
+                "the bounds have different dimensions ({ldim} and {hdim})"
+            )));
         }
         if lv >= hv {
             return Err(bad(&format!(
@@ -136,7 +148,10 @@ impl Constraint {
         let (limit, dim) = parse_quantity(v).map_err(|e| bad(e.to_string()))?;
         match quantity.dim {
             Some(d) if d != dim => {
-                return Err(bad(format!("the limit has dimension {dim}; {} is in {}", quantity.text, quantity.unit)));
+                return Err(bad(format!(
+                    "the limit has dimension {dim}; {} is in {}",
+                    quantity.text, quantity.unit
+                )));
             }
             None if dim != crate::units::Dim::DIMENSIONLESS => {
                 return Err(bad(format!("write the limit as a number in {}", quantity.unit)));
@@ -144,7 +159,9 @@ impl Constraint {
             _ => {}
         }
         if limit == 0.0 {
-            return Err(bad("a limit of 0 cannot be met by a variance; give a positive limit".into()));
+            return Err(bad(
+                "a limit of 0 cannot be met by a variance; give a positive limit".into()
+            ));
         }
         Ok(Constraint {
             quantity,
@@ -218,7 +235,11 @@ impl<'a> Problem<'a> {
     ) -> Result<Problem<'a>> {
         let root = crate::fields::parse_toml(&base.text, &base.path)?;
         if params.is_empty() {
-            return Err(Error::invalid("--param", "<none>", "give at least one --param KEY=LOW:HIGH"));
+            return Err(Error::invalid(
+                "--param",
+                "<none>",
+                "give at least one --param KEY=LOW:HIGH",
+            ));
         }
         for (i, p) in params.iter().enumerate() {
             if lookup(&root, &p.key).is_none() {
@@ -361,7 +382,11 @@ impl Fast {
 
     fn values(&self, model: &crate::models::ModelInstance, pb: &Problem, x: &[f64]) -> Result<PointValues> {
         let sys = model.system.as_ref();
-        let idx = self.outputs.iter().map(|o| sys.output_index(o)).collect::<Result<Vec<_>>>()?;
+        let idx = self
+            .outputs
+            .iter()
+            .map(|o| sys.output_index(o))
+            .collect::<Result<Vec<_>>>()?;
         let st = self.evaluator.evaluate(sys, &pb.base.excitation, &idx)?;
         let mut q = std::iter::once(&pb.objective)
             .chain(pb.constraints.iter().map(|c| &c.quantity))

@@ -101,7 +101,8 @@ impl Quantity {
         match &self.kind {
             QuantityKind::Sigma(o) | QuantityKind::ThreeSigma(o) | QuantityKind::Peak3(o) => {
                 let i = sc.model.system.output_index(o)?;
-                let st = ExactEvaluator::new(&sc.excitation).evaluate(sc.model.system.as_ref(), &sc.excitation, &[i])?;
+                let st =
+                    ExactEvaluator::new(&sc.excitation).evaluate(sc.model.system.as_ref(), &sc.excitation, &[i])?;
                 self.of_statistics(&st[0])
             }
             _ => {
@@ -163,10 +164,13 @@ fn unit_of(kind: &QuantityKind, sc: &Scenario) -> std::result::Result<String, St
     let spec = &sc.analysis.verdicts;
     let output_unit = |o: &str| {
         let outs = sc.model.system.outputs();
-        outs.iter().find(|x| x.name == o).map(|x| x.unit.clone()).ok_or_else(|| {
-            let names: Vec<&str> = outs.iter().map(|x| x.name.as_str()).collect();
-            format!("the model has no output `{o}` (its outputs: {})", names.join(", "))
-        })
+        outs.iter()
+            .find(|x| x.name == o)
+            .map(|x| x.unit.clone())
+            .ok_or_else(|| {
+                let names: Vec<&str> = outs.iter().map(|x| x.name.as_str()).collect();
+                format!("the model has no output `{o}` (its outputs: {})", names.join(", "))
+            })
     };
     let comfort = || {
         spec.comfort

@@ -153,7 +153,10 @@ const FAILED: f64 = 1e30;
 impl Scaled<'_, '_> {
     fn x_of(&self, u: &[f64]) -> Vec<f64> {
         let p = &self.problem.params;
-        u.iter().zip(p).map(|(&u, p)| p.low + u.clamp(0.0, 1.0) * (p.high - p.low)).collect()
+        u.iter()
+            .zip(p)
+            .map(|(&u, p)| p.low + u.clamp(0.0, 1.0) * (p.high - p.low))
+            .collect()
     }
 
     fn values(&self, u: &[f64]) -> Option<PointValues> {
@@ -176,7 +179,8 @@ impl Scaled<'_, '_> {
     /// Constraint j scaled by its limit, ≥ 0 when met (COBYLA's convention).
     fn constraint(&self, j: usize, u: &[f64]) -> f64 {
         let c = &self.problem.constraints[j];
-        self.values(u).map_or(-FAILED, |v| c.margin(v.constrained[j]) / c.limit.abs())
+        self.values(u)
+            .map_or(-FAILED, |v| c.margin(v.constrained[j]) / c.limit.abs())
     }
 }
 
@@ -194,10 +198,20 @@ impl Scaled<'_, '_> {
 /// When no start's end point can be evaluated (the scenario's error at the centre).
 pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
     let n = problem.params.len();
-    let centre = problem.evaluate(&problem.params.iter().map(|p| 0.5 * (p.low + p.high)).collect::<Vec<_>>())?;
+    let centre = problem.evaluate(
+        &problem
+            .params
+            .iter()
+            .map(|p| 0.5 * (p.low + p.high))
+            .collect::<Vec<_>>(),
+    )?;
     let scaled = Scaled {
         problem,
-        f_scale: if centre.objective != 0.0 { centre.objective.abs() } else { 1.0 },
+        f_scale: if centre.objective != 0.0 {
+            centre.objective.abs()
+        } else {
+            1.0
+        },
         last: RefCell::new(None),
         evaluations: RefCell::new(0),
     };
@@ -210,7 +224,13 @@ pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
         what: "optimisation".into(),
         reason: "no start ended at a point the scenario accepts".into(),
     })?;
-    Ok(describe(problem, best, starts.clone(), *scaled.evaluations.borrow(), opts))
+    Ok(describe(
+        problem,
+        best,
+        starts.clone(),
+        *scaled.evaluations.borrow(),
+        opts,
+    ))
 }
 
 fn run_start(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {
@@ -263,11 +283,20 @@ fn pick<'s>(problem: &Problem, starts: &'s [StartResult], tol: f64) -> Option<&'
     let feasible = ends.iter().filter(|v| violation(problem, v) <= tol);
     feasible
         .min_by(|a, b| (sign * a.objective).total_cmp(&(sign * b.objective)))
-        .or_else(|| ends.iter().min_by(|a, b| violation(problem, a).total_cmp(&violation(problem, b))))
+        .or_else(|| {
+            ends.iter()
+                .min_by(|a, b| violation(problem, a).total_cmp(&violation(problem, b)))
+        })
         .copied()
 }
 
-fn describe(problem: &Problem, best: &PointValues, starts: Vec<StartResult>, evals: usize, o: &SolveOptions) -> Solution {
+fn describe(
+    problem: &Problem,
+    best: &PointValues,
+    starts: Vec<StartResult>,
+    evals: usize,
+    o: &SolveOptions,
+) -> Solution {
     let constraints: Vec<ConstraintState> = problem
         .constraints
         .iter()
@@ -321,9 +350,21 @@ fn describe(problem: &Problem, best: &PointValues, starts: Vec<StartResult>, eva
 
 impl std::fmt::Display for Solution {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let goal = if self.goal == Goal::Maximize { "maximum" } else { "minimum" };
-        let state = if self.feasible { "" } else { " (INFEASIBLE: the least violating point)" };
-        writeln!(f, "{goal} of {}{state}: {:.6e} {}", self.objective, self.value, self.unit)?;
+        let goal = if self.goal == Goal::Maximize {
+            "maximum"
+        } else {
+            "minimum"
+        };
+        let state = if self.feasible {
+            ""
+        } else {
+            " (INFEASIBLE: the least violating point)"
+        };
+        writeln!(
+            f,
+            "{goal} of {}{state}: {:.6e} {}",
+            self.objective, self.value, self.unit
+        )?;
         for p in &self.params {
             let b = p.at_bound.map(|b| format!("  (at the {b} bound)")).unwrap_or_default();
             writeln!(f, "  {} = {}  ({:.9e} SI){b}", p.key, p.text, p.value)?;

@@ -83,7 +83,11 @@ pub fn sweep_verdicts(sweep: &Sweep) -> Result<VerdictSweep> {
     columns.extend(quantities.iter().map(|q| format!("{} [{}]", q.text, q.unit)));
     let mut rows = Vec::with_capacity(spec.n_points());
     for point in 0..spec.n_points() {
-        let mut values: Vec<Option<f64>> = spec.values(point).into_iter().map(|v| si_value(v).map(|x| x.0)).collect();
+        let mut values: Vec<Option<f64>> = spec
+            .values(point)
+            .into_iter()
+            .map(|v| si_value(v).map(|x| x.0))
+            .collect();
         let answer = sweep
             .scenario_at(point)
             .map_err(|e| sweep.name_point_error(point, e))

@@ -3,7 +3,7 @@
 //! constraint where the closed form puts them, an infeasible problem and bad input.
 
 use crate::common;
-use crate::common::tolerance::{OPTIMUM_ON_CONSTRAINT, OPTIMUM_INTERIOR};
+use crate::common::tolerance::{OPTIMUM_INTERIOR, OPTIMUM_ON_CONSTRAINT};
 use std::f64::consts::PI;
 use std::path::PathBuf;
 use stochvib::optimize::{solve, Constraint, Goal, Param, Problem, Quantity, Solution, SolveOptions};
@@ -51,7 +51,11 @@ fn scenario(tag: &str, text: &str) -> Scenario {
 
 fn run(sc: &Scenario, params: &[&str], goal: Goal, objective: &str, constraints: &[&str]) -> Solution {
     let params = params.iter().map(|p| Param::parse(p).unwrap()).collect();
-    let flag = if goal == Goal::Minimize { "--minimize" } else { "--maximize" };
+    let flag = if goal == Goal::Minimize {
+        "--minimize"
+    } else {
+        "--maximize"
+    };
     let objective = Quantity::parse(flag, objective, sc).unwrap();
     let constraints = constraints.iter().map(|c| Constraint::parse(c, sc).unwrap()).collect();
     let problem = Problem::new(sc, params, objective, goal, constraints).unwrap();
@@ -69,12 +73,21 @@ fn run(sc: &Scenario, params: &[&str], goal: Goal, objective: &str, constraints:
 #[test]
 fn quarter_car_comfort_optimum_is_ks_sqrt_m_over_kt() {
     let sc = scenario("qc-free", QUARTER_CAR);
-    let a = run(&sc, &["model.suspension_damping=0.2:6 kN*s/m"], Goal::Minimize, "sigma(body_acc)", &[]);
+    let a = run(
+        &sc,
+        &["model.suspension_damping=0.2:6 kN*s/m"],
+        Goal::Minimize,
+        "sigma(body_acc)",
+        &[],
+    );
     let m = M_S + M_U;
     let c_opt = K_S * (m / K_T).sqrt();
     let var_min = 2.0 * PI * s0() * K_S * (K_T * m).sqrt() / (M_S * M_S);
     assert!(common::rel(a.params[0].value, c_opt) < OPTIMUM_INTERIOR, "{a}");
-    assert!(common::rel(a.value, var_min.sqrt()) < OPTIMUM_INTERIOR * OPTIMUM_INTERIOR, "{a}");
+    assert!(
+        common::rel(a.value, var_min.sqrt()) < OPTIMUM_INTERIOR * OPTIMUM_INTERIOR,
+        "{a}"
+    );
     assert!(a.feasible && a.params[0].at_bound.is_none(), "{a}");
 }
 
@@ -143,7 +156,10 @@ fn quarter_car_infeasible_constraint_named_with_its_shortfall() {
     let c = &a.constraints[0];
     assert!(!c.met && common::rel(c.value, at_bound) < OPTIMUM_ON_CONSTRAINT, "{a}");
     let v = a.violations();
-    assert!(v.len() == 1 && v[0].contains("3sigma(travel) <= 5 mm") && v[0].contains("cannot be met"), "{v:?}");
+    assert!(
+        v.len() == 1 && v[0].contains("3sigma(travel) <= 5 mm") && v[0].contains("cannot be met"),
+        "{v:?}"
+    );
     assert!(common::rel(-c.margin, at_bound - 0.005) < OPTIMUM_ON_CONSTRAINT, "{a}");
 }
 
@@ -180,9 +196,18 @@ spectrum = {{ kind = "rational", unit = "N", numerator = [0.01], denominator = [
         k = w0 * w0
     );
     let sc = scenario("sdof", &text);
-    let a = run(&sc, &["model.element.0.damping=1:40 N*s/m"], Goal::Minimize, "sigma(mount_force)", &[]);
+    let a = run(
+        &sc,
+        &["model.element.0.damping=1:40 N*s/m"],
+        Goal::Minimize,
+        "sigma(mount_force)",
+        &[],
+    );
     assert!(common::rel(a.params[0].value, w0) < OPTIMUM_INTERIOR, "{a}");
-    assert!(common::rel(a.value, (2.0 * PI * 0.01 * w0).sqrt()) < OPTIMUM_INTERIOR * OPTIMUM_INTERIOR, "{a}");
+    assert!(
+        common::rel(a.value, (2.0 * PI * 0.01 * w0).sqrt()) < OPTIMUM_INTERIOR * OPTIMUM_INTERIOR,
+        "{a}"
+    );
 }
 
 /// A main mass M = 1 kg on a spring K = 1 N/m (ω_M = 1 rad/s, undamped) with an absorber m = μM on a spring
@@ -269,7 +294,13 @@ fn warburton_absorber_under_white_base_acceleration() {
 #[test]
 fn maximum_at_a_bound_is_named() {
     let sc = scenario("qc-max", QUARTER_CAR);
-    let a = run(&sc, &["model.suspension_damping=0.2:6 kN*s/m"], Goal::Maximize, "sigma(travel)", &[]);
+    let a = run(
+        &sc,
+        &["model.suspension_damping=0.2:6 kN*s/m"],
+        Goal::Maximize,
+        "sigma(travel)",
+        &[],
+    );
     assert_eq!(a.params[0].at_bound, Some("lower"), "{a}");
     let expected = (PI * s0() * (M_S + M_U) / 200.0).sqrt();
     assert!(common::rel(a.value, expected) < OPTIMUM_ON_CONSTRAINT, "{a}");
@@ -280,25 +311,37 @@ fn data_dir() -> PathBuf {
 }
 
 fn catalogue_quarter_car() -> Scenario {
-    load_scenario(&data_dir().join("quarter-car-model.toml"), &common::root().join("spectra")).unwrap()
+    load_scenario(
+        &data_dir().join("quarter-car-model.toml"),
+        &common::root().join("spectra"),
+    )
+    .unwrap()
 }
 
 /// Bounds the wrong way round, a parameter the scenario does not have, an unknown quantity, an output the
 /// model does not have, a limit of the wrong dimension: each refused with the flag and the reason.
 #[test]
 fn bad_input_is_refused_clearly() {
-    let e = Param::parse("model.suspension_damping=6:0.2 kN*s/m").unwrap_err().to_string();
+    let e = Param::parse("model.suspension_damping=6:0.2 kN*s/m")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("--param") && e.contains("wrong way round"), "{e}");
     let sc = catalogue_quarter_car();
     let q = || Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap();
     let p = vec![Param::parse("model.no_such_key=1:2 kN/m").unwrap()];
-    let e = Problem::new(&sc, p, q(), Goal::Minimize, vec![]).unwrap_err().to_string();
+    let e = Problem::new(&sc, p, q(), Goal::Minimize, vec![])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("model.no_such_key") && e.contains("no such value"), "{e}");
     let e = Quantity::parse("--minimize", "comfort", &sc).unwrap_err().to_string();
     assert!(e.contains("--minimize") && e.contains("unknown quantity"), "{e}");
-    let e = Quantity::parse("--minimize", "sigma(seat)", &sc).unwrap_err().to_string();
+    let e = Quantity::parse("--minimize", "sigma(seat)", &sc)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("no output `seat`") && e.contains("body_acc"), "{e}");
-    let e = Constraint::parse("3sigma(travel) <= 40 kg", &sc).unwrap_err().to_string();
+    let e = Constraint::parse("3sigma(travel) <= 40 kg", &sc)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("--constraint") && e.contains("dimension"), "{e}");
     let e = Quantity::parse("--minimize", "a_v", &sc).unwrap_err().to_string();
     assert!(e.contains("[analysis.comfort]"), "{e}");
@@ -322,12 +365,28 @@ fn command_prints_the_answer_and_fails_when_infeasible() {
     let o = common::cli_within(&args, &root, std::time::Duration::from_secs(120));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{out}\n{}", String::from_utf8_lossy(&o.stderr));
-    assert!(out.contains("minimum of sigma(body_acc)") && out.contains("3sigma(travel) <= 40 mm"), "{out}");
+    assert!(
+        out.contains("minimum of sigma(body_acc)") && out.contains("3sigma(travel) <= 40 mm"),
+        "{out}"
+    );
     let mut bad = args;
     bad[7] = "3sigma(travel) <= 1 mm";
     let err = common::cli_fails(1, &bad, &root);
-    assert!(err.contains("infeasible") && err.contains("3sigma(travel) <= 1 mm") && err.contains("beyond"), "{err}");
-    let err = common::cli_fails(1, &["optimize", "data/quarter-car-model.toml", "--param",
-        "model.suspension_damping=6:0.2 kN*s/m", "--minimize", "sigma(body_acc)"], &root);
+    assert!(
+        err.contains("infeasible") && err.contains("3sigma(travel) <= 1 mm") && err.contains("beyond"),
+        "{err}"
+    );
+    let err = common::cli_fails(
+        1,
+        &[
+            "optimize",
+            "data/quarter-car-model.toml",
+            "--param",
+            "model.suspension_damping=6:0.2 kN*s/m",
+            "--minimize",
+            "sigma(body_acc)",
+        ],
+        &root,
+    );
     assert!(err.contains("wrong way round"), "{err}");
 }

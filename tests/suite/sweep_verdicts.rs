@@ -36,7 +36,12 @@ fn verdict_columns_equal_analyze_of_the_substituted_files() {
         ],
         &root,
     );
-    let cols: Vec<&str> = sweep["columns"].as_array().unwrap().iter().map(|c| c.as_str().unwrap()).collect();
+    let cols: Vec<&str> = sweep["columns"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_str().unwrap())
+        .collect();
     assert_eq!(cols[1], "model.stiffness [kg s^-2]", "{cols:?}");
     let col = |name: &str| cols.iter().position(|c| c.starts_with(name)).unwrap() - 1; // values skip `point`
     let dir = common::scratch_dir("sweep-verdicts", "files");
@@ -44,7 +49,11 @@ fn verdict_columns_equal_analyze_of_the_substituted_files() {
         let v = row["values"].as_array().unwrap();
         assert_eq!(num(&v[0]), k);
         let file = dir.join(format!("seat-{k}.toml"));
-        std::fs::write(&file, base.replace("stiffness = \"6500 N/m\"", &format!("stiffness = \"{k} N/m\""))).unwrap();
+        std::fs::write(
+            &file,
+            base.replace("stiffness = \"6500 N/m\"", &format!("stiffness = \"{k} N/m\"")),
+        )
+        .unwrap();
         let a = json_of(&["analyze", file.to_str().unwrap(), "--json"], &root);
         let comfort = &a["verdicts"]["comfort"];
         let fatigue = &a["verdicts"]["fatigue"];
@@ -56,12 +65,21 @@ fn verdict_columns_equal_analyze_of_the_substituted_files() {
             ("a_v", num(&comfort["a_v"])),
             ("A8", num(&comfort["health"]["verdict"]["a8"])),
             ("VDV", num(&comfort["health"]["verdict"]["vdv"])),
-            ("damage_rate", methods.iter().map(|m| num(&m["damage_rate"])).fold(0.0, f64::max)),
-            ("life", methods.iter().map(|m| num(&m["life_s"])).fold(f64::INFINITY, f64::min)),
+            (
+                "damage_rate",
+                methods.iter().map(|m| num(&m["damage_rate"])).fold(0.0, f64::max),
+            ),
+            (
+                "life",
+                methods.iter().map(|m| num(&m["life_s"])).fold(f64::INFINITY, f64::min),
+            ),
         ];
         for (name, want) in expected {
             let got = num(&v[col(name)]);
-            assert!(common::rel(got, want) < SWEEP_AGAINST_ANALYZE, "{name} at {k} N/m: {got} vs analyze {want}");
+            assert!(
+                common::rel(got, want) < SWEEP_AGAINST_ANALYZE,
+                "{name} at {k} N/m: {got} vs analyze {want}"
+            );
         }
     }
 }
@@ -71,7 +89,13 @@ fn verdict_columns_equal_analyze_of_the_substituted_files() {
 fn verdict_csv_has_units_in_the_header() {
     let root = common::root();
     let o = common::cli_within(
-        &["sweep", "data/operator-seat-verdicts.toml", "--param", "model.stiffness=5 kN/m,8 kN/m", "--verdicts"],
+        &[
+            "sweep",
+            "data/operator-seat-verdicts.toml",
+            "--param",
+            "model.stiffness=5 kN/m,8 kN/m",
+            "--verdicts",
+        ],
         &root,
         Duration::from_secs(300),
     );
@@ -79,8 +103,14 @@ fn verdict_csv_has_units_in_the_header() {
     let text = String::from_utf8(o.stdout).unwrap();
     let mut lines = text.lines();
     let header = lines.next().unwrap();
-    assert!(header.starts_with("point,model.stiffness [kg s^-2],sigma(seat) [m],"), "{header}");
-    assert!(header.contains("a_v [m/s^2]") && header.contains("life [s]") && header.ends_with(",error"), "{header}");
+    assert!(
+        header.starts_with("point,model.stiffness [kg s^-2],sigma(seat) [m],"),
+        "{header}"
+    );
+    assert!(
+        header.contains("a_v [m/s^2]") && header.contains("life [s]") && header.ends_with(",error"),
+        "{header}"
+    );
     let first: Vec<&str> = lines.next().unwrap().split(',').collect();
     assert_eq!(first[1].parse::<f64>().unwrap(), 5000.0);
     assert_eq!(lines.count(), 1);
