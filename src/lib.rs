@@ -51,7 +51,7 @@
 //! | 5 | [`simulate`], [`road`], [`nonlinear`], [`record`], [`transient`] | Monte Carlo runs; measured and synthesised road profiles, IRI, a profile replayed through a model; nonlinear elements and their three routes; measured records (CSV, HDF5, WAV): ISO 2631-1 exposure and rainflow fatigue; non-stationary response (exact and Monte Carlo) |
 //! | 6 | [`models`] | the catalogue of the source documents |
 //! | 7 | [`scenario`] | scenario, spectrum and reference files; the spectrum catalogue; the registry of model kinds |
-//! | 8 | [`report`], [`plot`] | what the command-line tool prints and draws |
+//! | 8 | [`report`], [`plot`], [`optimize`] | what the command-line tool prints and draws; design by constrained optimisation over scenario values |
 //! | 9 | [`prelude`] | the common imports |
 
 #![warn(missing_docs)]
@@ -73,6 +73,7 @@ pub mod linalg;
 pub mod models;
 pub mod nonlinear;
 pub mod numbers;
+pub mod optimize;
 pub mod plot;
 pub mod prelude;
 pub mod quad;

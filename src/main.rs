@@ -1,5 +1,7 @@
 //! The `stochvib` command-line tool: parses arguments, calls the library, prints.
 
+#[path = "main/optimize_cli.rs"]
+mod optimize_cli;
 #[path = "main/record_cli.rs"]
 mod record_cli;
 
@@ -459,6 +461,11 @@ enum Command {
         /// Print JSON instead of CSV (without -o: a table's format comes from -o's extension).
         #[arg(long, conflicts_with = "output")]
         json: bool,
+        /// One row per point: the swept values as SI numbers (unit in the header) and what `analyze`
+        /// reports as verdicts: σ of each output, a_w per comfort axis, a_v, A(8), VDV, damage rate, life
+        /// (CSV; JSON with --json; -o FILE.csv or FILE.json).
+        #[arg(long, conflicts_with_all = ["shard", "monte_carlo"])]
+        verdicts: bool,
         #[command(flatten)]
         spectra: SpectraDir,
     },
@@ -522,6 +529,9 @@ enum Command {
     /// The expected IRI of a road spectrum (golden car, 80 km/h, 250 mm moving average) beside the IRI of a
     /// measured profile.
     Iri(record_cli::IriArgs),
+    /// Minimise or maximise a reported quantity (σ, 3σ, a_w, A(8), VDV, damage rate, life) over scenario
+    /// values between bounds, subject to constraints on other quantities (docs/optimisation.md).
+    Optimize(optimize_cli::OptimizeArgs),
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
     Spectrum {
         /// Catalogue name (e.g. `iso8608-c`) or path to a spectrum file.
@@ -913,6 +923,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             confidence,
             overwrite,
             json,
+            verdicts,
             spectra,
         } => {
             step.check_batch("--monte-carlo", monte_carlo)?;
@@ -930,6 +941,9 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
             let sweep = Sweep::new(&sc, SweepSpec::new(params, mode)?)?;
             eprintln!("sweep: {}", sweep.path());
+            if verdicts {
+                return optimize_cli::sweep_verdicts(&sweep, output.as_deref(), json, overwrite);
+            }
             let mc = match monte_carlo {
                 Some(n) => {
                     let (dt, duration) = step.resolve(&sc, n)?;
@@ -1039,6 +1053,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Weighting(a) => record_cli::weighting(a)?,
         Command::Coherence(a) => record_cli::coherence(a)?,
         Command::Iri(a) => record_cli::iri(a)?,
+        Command::Optimize(a) => optimize_cli::optimize(a)?,
         Command::Spectrum {
             name,
             convention,

@@ -19,6 +19,7 @@ pub mod spectrum_report;
 mod sweep_h5;
 pub mod sweep_stream;
 pub mod sweep_table;
+pub mod sweep_verdicts;
 pub mod table;
 pub mod tables;
 pub mod verdict_report;

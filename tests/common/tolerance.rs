@@ -296,3 +296,26 @@ pub const ADAPTIVE_ROUTE: f64 = 1e-7;
 /// by about 1/u² and the entries (decided before each lift-off, changed only through the next one) by
 /// less: 11 % at u = 3, an order-of-magnitude argument, not a bound: twice that, relative.
 pub const RARE_LIFT_OFF: f64 = 0.25;
+
+// ---- optimisation (COBYLA, src/optimize) ----
+
+/// The location of an interior optimum found by COBYLA against its closed form. Near a smooth minimum
+/// f(x*) + ½f''δ², so an objective known to relative rounding ε_f ≈ 1e-15 locates x* only to
+/// δ/x* ≈ √(2ε_f f/(f''x*²)) ≈ 3e-8 for the problems here, and COBYLA stops when its trust region has
+/// shrunk to ρ_end = 1e-9 of the range, a few ρ from the minimum of its linear models. Measured: 5.0e-8
+/// (quarter-car c_opt and the margin of the inactive constraint 8.3e-8), 2.6e-9 (ζ = ½), 3.2e-9 to 4.2e-8
+/// (Warburton f, ζ); 1e-6. The objective's value there is within (1e-6)² = 1e-12 of its minimum (measured
+/// 1.6e-13).
+pub const OPTIMUM_INTERIOR: f64 = 1e-6;
+
+/// An optimum on an active constraint or a bound against its closed form: COBYLA linearises the constraint
+/// and meets it to about ρ_end = 1e-9 of the range; the value at a bound is exact up to the rounding of
+/// the model. Measured: 7.9e-10 (c* on 3σ_travel = 40 mm), 3.9e-10 (3σ_travel there), 1.3e-12 (at a bound);
+/// 1e-8.
+pub const OPTIMUM_ON_CONSTRAINT: f64 = 1e-8;
+
+/// `stochvib sweep --verdicts` against `stochvib analyze --json` of the same scenario written by hand: the
+/// verdicts run the same code on the same matrices (equal bit for bit); σ is the exact route of the sweep
+/// evaluator against the exact column of `analyze` (integral table or Lyapunov on the same model, a few
+/// hundred roundings); 1e-12.
+pub const SWEEP_AGAINST_ANALYZE: f64 = 1e-12;

@@ -26,7 +26,7 @@ const LAYERS: &[&[&str]] = &[
     &["simulate", "road", "nonlinear", "record", "transient"],
     &["models"],
     &["scenario"],
-    &["report", "plot"],
+    &["report", "plot", "optimize"],
     &["prelude", "lib"],
 ];
 

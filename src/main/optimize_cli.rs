@@ -1,0 +1,116 @@
+//! `stochvib optimize`: the argument struct and its handler, which parse, call the library and print.
+
+use std::path::PathBuf;
+use stochvib::optimize::{solve, Constraint, Goal, Param, Problem, Quantity, SolveOptions};
+use stochvib::scenario::load_scenario;
+
+/// `stochvib optimize SCENARIO --param KEY=LOW:HIGH … --minimize QUANTITY [--constraint …]`.
+#[derive(clap::Args)]
+pub struct OptimizeArgs {
+    /// Scenario file (TOML, see data/).
+    scenario: PathBuf,
+    /// KEY=LOW:HIGH: a value of the scenario file and its bounds with a unit, e.g.
+    /// `model.suspension_damping=0.2:6 kN*s/m` (repeatable).
+    #[arg(long = "param", value_name = "KEY=LOW:HIGH", required = true)]
+    params: Vec<String>,
+    /// The quantity to minimise: sigma(OUTPUT), 3sigma(OUTPUT), peak3(OUTPUT), a_w(OUTPUT), a_v, A8, VDV,
+    /// damage_rate, life.
+    #[arg(
+        long,
+        value_name = "QUANTITY",
+        required_unless_present = "maximize",
+        conflicts_with = "maximize"
+    )]
+    minimize: Option<String>,
+    /// The quantity to maximise (same names as --minimize).
+    #[arg(long, value_name = "QUANTITY")]
+    maximize: Option<String>,
+    /// "QUANTITY <= VALUE UNIT" or "QUANTITY >= VALUE UNIT", e.g. "3sigma(travel) <= 40 mm" (repeatable).
+    #[arg(long = "constraint", value_name = "CONSTRAINT")]
+    constraints: Vec<String>,
+    /// Number of starts (the centre of the box, then Halton points).
+    #[arg(long, default_value_t = 4)]
+    starts: usize,
+    /// Most evaluations per start.
+    #[arg(long, default_value_t = 2000)]
+    max_evaluations: usize,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    spectra: super::SpectraDir,
+}
+
+/// Runs the optimisation and prints the answer; an infeasible problem prints the least violating point and
+/// fails with the constraints it cannot meet.
+pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
+    let catalogue = a.spectra.catalogue();
+    let sc = load_scenario(&a.scenario, catalogue.dir())?;
+    let params = a
+        .params
+        .iter()
+        .map(|p| Param::parse(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let (flag, goal, text) = match (&a.minimize, &a.maximize) {
+        (Some(q), _) => ("--minimize", Goal::Minimize, q),
+        (None, Some(q)) => ("--maximize", Goal::Maximize, q),
+        (None, None) => anyhow::bail!("give --minimize QUANTITY or --maximize QUANTITY"),
+    };
+    if a.starts == 0 {
+        anyhow::bail!("--starts 0: at least one start is needed");
+    }
+    let objective = Quantity::parse(flag, text, &sc)?;
+    let constraints = a
+        .constraints
+        .iter()
+        .map(|c| Constraint::parse(c, &sc))
+        .collect::<Result<Vec<_>, _>>()?;
+    let problem = Problem::new(&sc, params, objective, goal, constraints)?;
+    let opts = SolveOptions {
+        starts: a.starts,
+        max_evaluations: a.max_evaluations,
+        ..SolveOptions::default()
+    };
+    let answer = solve(&problem, &opts)?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&answer)?);
+    } else {
+        print!("{answer}");
+    }
+    if !answer.feasible {
+        anyhow::bail!("infeasible: {}", answer.violations().join("; "));
+    }
+    Ok(())
+}
+
+/// `stochvib sweep --verdicts`: the table to `output` (CSV or JSON by its extension) or stdout.
+pub fn sweep_verdicts(
+    sweep: &stochvib::scenario::Sweep,
+    output: Option<&std::path::Path>,
+    json: bool,
+    overwrite: bool,
+) -> anyhow::Result<()> {
+    if let Some(p) = output
+        && !p.extension().is_some_and(|e| e == "csv" || e == "json")
+    {
+        anyhow::bail!("-o {}: a verdict table is written as .csv or .json", p.display());
+    }
+    let t = stochvib::report::sweep_verdicts::sweep_verdicts(sweep)?;
+    let as_json = json || output.is_some_and(|p| p.extension().is_some_and(|e| e == "json"));
+    let text = if as_json { t.to_json()? + "\n" } else { t.to_csv() };
+    match output {
+        None => print!("{text}"),
+        Some(p) => {
+            if p.exists() && !overwrite {
+                anyhow::bail!("{} exists: give --overwrite to replace it", p.display());
+            }
+            let tmp = p.with_extension("tmp");
+            std::fs::write(&tmp, text)?;
+            std::fs::rename(&tmp, p)?;
+        }
+    }
+    for r in t.rows.iter().filter(|r| r.error.is_some()) {
+        eprintln!("point {}: {}", r.point, r.error.as_deref().unwrap_or(""));
+    }
+    Ok(())
+}

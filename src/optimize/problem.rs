@@ -1,0 +1,415 @@
+//! The optimisation problem: named scenario parameters with bounds, an objective and constraints, read
+//! from command-line text and checked against the scenario.
+
+use super::quantity::Quantity;
+use crate::error::{Error, Result};
+use crate::fields::Fields;
+use crate::response::ExactEvaluator;
+use crate::scenario::{build_model, parse_scenario, BuiltModel, ModelContext, Scenario};
+use crate::units::parse_quantity;
+use serde::Serialize;
+
+/// A scenario key varied between bounds, e.g. `model.suspension_damping=200:5000 N*s/m`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Param {
+    /// The dotted scenario key (as for `stochvib sweep --param`).
+    pub key: String,
+    /// Lower bound, SI.
+    pub low: f64,
+    /// Upper bound, SI.
+    pub high: f64,
+    /// The unit the values are written in when substituted (the upper bound's unit; empty: a number).
+    pub unit: String,
+    /// The SI value of one `unit`.
+    #[serde(skip)]
+    scale: f64,
+}
+
+impl Param {
+    /// Parses `KEY=LOW:HIGH [UNIT]` or `KEY=LOW UNIT:HIGH UNIT`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `--param`: no `=` or `:`, a bound that is not a quantity, bounds
+    /// of different dimensions, `LOW ≥ HIGH`.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::optimize::Param;
+    /// let p = Param::parse("model.suspension_damping=0.2:5 kN*s/m").unwrap();
+    /// assert_eq!((p.low, p.high), (200.0, 5000.0));
+    /// assert_eq!(p.value_text(1250.0), "1.25 kN*s/m");
+    /// assert!(Param::parse("model.suspension_damping=5:0.2 kN*s/m").is_err()); // reversed
+    /// ```
+    pub fn parse(text: &str) -> Result<Param> {
+        let bad = |why: &str| Error::invalid("--param", text, why.to_string());
+        let (key, range) = text
+            .split_once('=')
+            .ok_or_else(|| bad("expected KEY=LOW:HIGH, e.g. model.suspension_damping=200:5000 N*s/m"))?;
+        let key = key.trim();
+        if key.is_empty() || key.split('.').any(|s| s.trim().is_empty()) {
+            return Err(bad("the key must be a dotted path such as model.suspension_damping"));
+        }
+        let (lo, hi) = range
+            .split_once(':')
+            .ok_or_else(|| bad("expected LOW:HIGH after `=`, e.g. 200:5000 N*s/m"))?;
+        let (hv, hdim) = parse_quantity(hi).map_err(|e| bad(&format!("upper bound: {e}")))?;
+        let unit = hi
+            .trim()
+            .trim_start_matches(|c: char| c.is_ascii_digit() || "+-.eE".contains(c));
+        let unit = unit.trim().to_string();
+        let scale = if unit.is_empty() {
+            1.0
+        } else {
+            parse_quantity(&format!("1 {unit}"))?.0
+        };
+        let lo_text = if lo.trim().parse::<f64>().is_ok() {
+            format!("{lo} {unit}")
+        } else {
+            lo.to_string()
+        };
+        let (lv, ldim) = parse_quantity(&lo_text).map_err(|e| bad(&format!("lower bound: {e}")))?;
+        if ldim != hdim {
+            return Err(bad(&format!(
+                "the bounds have different dimensions ({ldim} and {hdim})"
+            )));
+        }
+        if lv >= hv {
+            return Err(bad(&format!(
+                "the lower bound ({lv:e}) must be below the upper bound ({hv:e}): bounds the wrong way round?"
+            )));
+        }
+        Ok(Param {
+            key: key.to_string(),
+            low: lv,
+            high: hv,
+            unit,
+            scale,
+        })
+    }
+
+    /// The SI value `x` as scenario text in the parameter's unit.
+    pub fn value_text(&self, x: f64) -> String {
+        if self.unit.is_empty() {
+            format!("{x}")
+        } else {
+            format!("{} {}", x / self.scale, self.unit)
+        }
+    }
+
+    fn toml_value(&self, x: f64) -> toml::Value {
+        if self.unit.is_empty() {
+            toml::Value::Float(x)
+        } else {
+            toml::Value::String(self.value_text(x))
+        }
+    }
+}
+
+/// Which side of the limit is allowed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Relation {
+    /// `QUANTITY <= LIMIT`.
+    #[serde(rename = "<=")]
+    AtMost,
+    /// `QUANTITY >= LIMIT`.
+    #[serde(rename = ">=")]
+    AtLeast,
+}
+
+/// A constraint `QUANTITY <= LIMIT` or `QUANTITY >= LIMIT`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Constraint {
+    /// The constrained quantity.
+    pub quantity: Quantity,
+    /// Which side is allowed.
+    pub relation: Relation,
+    /// The limit, SI.
+    pub limit: f64,
+    /// The text as given.
+    pub text: String,
+}
+
+impl Constraint {
+    /// Parses `QUANTITY <= VALUE UNIT` (or `>=`), e.g. `3sigma(travel) <= 40 mm`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `--constraint`: no relation, an unknown quantity, a limit that is
+    /// not a quantity of the quantity's dimension, a limit of 0 (the margin is relative to it).
+    pub fn parse(text: &str, sc: &Scenario) -> Result<Constraint> {
+        let bad = |why: String| Error::invalid("--constraint", text, why);
+        let (q, relation, v) = if let Some((q, v)) = text.split_once("<=") {
+            (q, Relation::AtMost, v)
+        } else if let Some((q, v)) = text.split_once(">=") {
+            (q, Relation::AtLeast, v)
+        } else {
+            return Err(bad("expected QUANTITY <= VALUE UNIT or QUANTITY >= VALUE UNIT".into()));
+        };
+        let quantity = Quantity::parse("--constraint", q, sc)?;
+        let (limit, dim) = parse_quantity(v).map_err(|e| bad(e.to_string()))?;
+        match quantity.dim {
+            Some(d) if d != dim => {
+                return Err(bad(format!(
+                    "the limit has dimension {dim}; {} is in {}",
+                    quantity.text, quantity.unit
+                )));
+            }
+            None if dim != crate::units::Dim::DIMENSIONLESS => {
+                return Err(bad(format!("write the limit as a number in {}", quantity.unit)));
+            }
+            _ => {}
+        }
+        if limit == 0.0 {
+            return Err(bad(
+                "a limit of 0 cannot be met by a variance; give a positive limit".into()
+            ));
+        }
+        Ok(Constraint {
+            quantity,
+            relation,
+            limit,
+            text: text.trim().to_string(),
+        })
+    }
+
+    /// The margin (limit − value for `<=`, value − limit for `>=`), ≥ 0 when met, SI.
+    pub fn margin(&self, value: f64) -> f64 {
+        match self.relation {
+            Relation::AtMost => self.limit - value,
+            Relation::AtLeast => value - self.limit,
+        }
+    }
+}
+
+/// Minimise or maximise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Goal {
+    /// Smallest value.
+    Minimize,
+    /// Largest value.
+    Maximize,
+}
+
+/// A whole problem over one scenario.
+#[derive(Debug)]
+pub struct Problem<'a> {
+    base: &'a Scenario,
+    root: toml::Table,
+    /// Set when only `model.*` keys vary and every quantity is a σ: the base excitation's evaluator, and
+    /// each point rebuilds the model from its `[model]` table alone (as `stochvib sweep` does).
+    fast: Option<Fast>,
+    /// The parameters.
+    pub params: Vec<Param>,
+    /// The objective.
+    pub objective: Quantity,
+    /// Minimise or maximise.
+    pub goal: Goal,
+    /// The constraints.
+    pub constraints: Vec<Constraint>,
+}
+
+/// The values of the objective and of every constraint's quantity at one point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PointValues {
+    /// The parameters, SI.
+    pub x: Vec<f64>,
+    /// The objective, SI.
+    pub objective: f64,
+    /// Each constraint's quantity, SI.
+    pub constrained: Vec<f64>,
+}
+
+impl<'a> Problem<'a> {
+    /// Checks the parameters against `base` (every key is a value of the scenario file, given once) and
+    /// evaluates the centre of the box (so that a value the scenario refuses fails at once).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `--param` for a key the scenario does not have or a repeated key;
+    /// the scenario's errors at the centre.
+    pub fn new(
+        base: &'a Scenario,
+        params: Vec<Param>,
+        objective: Quantity,
+        goal: Goal,
+        constraints: Vec<Constraint>,
+    ) -> Result<Problem<'a>> {
+        let root = crate::fields::parse_toml(&base.text, &base.path)?;
+        if params.is_empty() {
+            return Err(Error::invalid(
+                "--param",
+                "<none>",
+                "give at least one --param KEY=LOW:HIGH",
+            ));
+        }
+        for (i, p) in params.iter().enumerate() {
+            if lookup(&root, &p.key).is_none() {
+                return Err(Error::invalid(
+                    "--param",
+                    &p.key,
+                    "the scenario has no such value (a parameter must be a value written in the scenario file)",
+                ));
+            }
+            if params[..i].iter().any(|q| q.key == p.key) {
+                return Err(Error::invalid("--param", &p.key, "given twice"));
+            }
+        }
+        let fast = Fast::new(base, &params, &objective, &constraints);
+        let problem = Problem {
+            base,
+            root,
+            fast,
+            params,
+            objective,
+            goal,
+            constraints,
+        };
+        let centre: Vec<f64> = problem.params.iter().map(|p| 0.5 * (p.low + p.high)).collect();
+        problem.evaluate(&centre)?;
+        Ok(problem)
+    }
+
+    /// The scenario with the parameters set to `x` (SI).
+    ///
+    /// # Errors
+    /// The scenario reader's errors for the substituted values.
+    pub fn scenario_at(&self, x: &[f64]) -> Result<Scenario> {
+        let mut root = self.root.clone();
+        for (p, &v) in self.params.iter().zip(x) {
+            crate::scenario::sweep::set_key(&mut root, &p.key, p.toml_value(v))
+                .map_err(|why| Error::invalid("--param", &p.key, why))?;
+        }
+        let text = toml::to_string(&root).map_err(|e| Error::Numerical {
+            what: "writing the substituted scenario".into(),
+            reason: e.to_string(),
+        })?;
+        parse_scenario(&text, &self.base.path, &self.base.spectra_dir).map_err(|e| self.name_error(x, e))
+    }
+
+    /// Every quantity of the problem at `x`.
+    ///
+    /// # Errors
+    /// As [`scenario_at`](Self::scenario_at), and the quantities' errors.
+    pub fn evaluate(&self, x: &[f64]) -> Result<PointValues> {
+        if let Some(fast) = &self.fast
+            && let Some(v) = fast.evaluate(self, x)
+        {
+            return v.map_err(|e| self.name_error(x, e));
+        }
+        let sc = self.scenario_at(x)?;
+        let all: Vec<&Quantity> = std::iter::once(&self.objective)
+            .chain(self.constraints.iter().map(|c| &c.quantity))
+            .collect();
+        let mut v = Quantity::values(&all, &sc)?;
+        let objective = v.remove(0);
+        Ok(PointValues {
+            x: x.to_vec(),
+            objective,
+            constrained: v,
+        })
+    }
+
+    /// A scenario error at `x` named by the parameters' values.
+    fn name_error(&self, x: &[f64], e: Error) -> Error {
+        let at: Vec<String> = self
+            .params
+            .iter()
+            .zip(x)
+            .map(|(p, &v)| format!("{}={}", p.key, p.value_text(v)))
+            .collect();
+        Error::invalid("--param", at.join(" "), e.to_string())
+    }
+}
+
+/// The model-table path: the outputs of every quantity and the base excitation's evaluator.
+struct Fast {
+    evaluator: ExactEvaluator,
+    /// Per quantity (objective first, then the constraints), its index in `outputs`.
+    slots: Vec<usize>,
+    /// The output names evaluated.
+    outputs: Vec<String>,
+}
+
+impl std::fmt::Debug for Fast {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Fast").field("outputs", &self.outputs).finish()
+    }
+}
+
+impl Fast {
+    fn new(base: &Scenario, params: &[Param], objective: &Quantity, constraints: &[Constraint]) -> Option<Fast> {
+        let quantities = std::iter::once(objective).chain(constraints.iter().map(|c| &c.quantity));
+        let mut outputs: Vec<String> = Vec::new();
+        let mut slots = Vec::new();
+        for q in quantities {
+            let o = q.output()?;
+            slots.push(outputs.iter().position(|x| x == o).unwrap_or_else(|| {
+                outputs.push(o.to_string());
+                outputs.len() - 1
+            }));
+        }
+        let model_only = params.iter().all(|p| p.key.starts_with("model."));
+        (model_only && base.inputs.len() <= 1 && base.nonlinear.is_none()).then(|| Fast {
+            evaluator: ExactEvaluator::new(&base.excitation),
+            slots,
+            outputs,
+        })
+    }
+
+    /// The values at `x` by the rebuilt model, or `None` when the model's input layout changed (then the
+    /// whole scenario is read).
+    fn evaluate(&self, pb: &Problem, x: &[f64]) -> Option<Result<PointValues>> {
+        let mut table = pb.root.get("model")?.as_table()?.clone();
+        for (p, &v) in pb.params.iter().zip(x) {
+            let rest = p.key.strip_prefix("model.")?;
+            crate::scenario::sweep::set_key(&mut table, rest, p.toml_value(v)).ok()?;
+        }
+        let f = Fields::new(&pb.base.path, "model", &table);
+        let _ = f.get("kind"); // read by the scenario reader, not by the model
+        let ctx = ModelContext {
+            speed: pb.base.input.speed,
+            several_inputs: false,
+        };
+        let model = match build_model(&pb.base.kind, &f, ctx).and_then(|m| f.finish().map(|()| m)) {
+            Ok(BuiltModel::Stochastic(m)) => m,
+            Ok(BuiltModel::Deterministic(_)) => return None,
+            Err(e) => return Some(Err(e)),
+        };
+        if model.layout != pb.base.model.layout {
+            return None;
+        }
+        Some(self.values(&model, pb, x))
+    }
+
+    fn values(&self, model: &crate::models::ModelInstance, pb: &Problem, x: &[f64]) -> Result<PointValues> {
+        let sys = model.system.as_ref();
+        let idx = self
+            .outputs
+            .iter()
+            .map(|o| sys.output_index(o))
+            .collect::<Result<Vec<_>>>()?;
+        let st = self.evaluator.evaluate(sys, &pb.base.excitation, &idx)?;
+        let mut q = std::iter::once(&pb.objective)
+            .chain(pb.constraints.iter().map(|c| &c.quantity))
+            .zip(&self.slots)
+            .map(|(q, &k)| q.of_statistics(&st[k]));
+        Ok(PointValues {
+            x: x.to_vec(),
+            objective: q.next().unwrap_or(Ok(f64::NAN))?,
+            constrained: q.collect::<Result<Vec<_>>>()?,
+        })
+    }
+}
+
+/// The value at dotted `key` of `root` (an array element by its index).
+fn lookup<'t>(root: &'t toml::Table, key: &str) -> Option<&'t toml::Value> {
+    let mut segs = key.split('.').map(str::trim);
+    let mut v = root.get(segs.next()?)?;
+    for s in segs {
+        v = match v {
+            toml::Value::Table(t) => t.get(s)?,
+            toml::Value::Array(a) => a.get(s.parse::<usize>().ok()?)?,
+            _ => return None,
+        };
+    }
+    Some(v)
+}

@@ -1,0 +1,409 @@
+//! Several COBYLA runs from spread starts; the best feasible end point with its active constraints, or the
+//! least infeasible one with what it misses by.
+
+use super::problem::{Goal, PointValues, Problem, Relation};
+use crate::error::{Error, Result};
+use serde::Serialize;
+use std::cell::RefCell;
+
+/// How hard to search.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveOptions {
+    /// Number of starts (the centre of the box, then the Halton points 2, 3, … of the box).
+    pub starts: usize,
+    /// Most evaluations per start.
+    pub max_evaluations: usize,
+    /// Final trust-region radius of COBYLA as a fraction of each parameter's range (ρ_end).
+    pub x_tolerance: f64,
+    /// A constraint is active when its margin is within this fraction of its limit; a parameter is at a
+    /// bound when within this fraction of its range.
+    pub active_tolerance: f64,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            starts: 4,
+            max_evaluations: 2000,
+            x_tolerance: 1e-9,
+            active_tolerance: 1e-5,
+        }
+    }
+}
+
+/// One start's end.
+#[derive(Debug, Clone, Serialize)]
+pub struct StartResult {
+    /// Start point, SI.
+    pub start: Vec<f64>,
+    /// End point and its values; `None` when the end point could not be evaluated.
+    pub end: Option<PointValues>,
+    /// Evaluations used.
+    pub evaluations: usize,
+    /// COBYLA's status.
+    pub status: String,
+}
+
+/// A constraint at the answer.
+#[derive(Debug, Clone, Serialize)]
+pub struct ConstraintState {
+    /// As given.
+    pub text: String,
+    /// The quantity's value, SI.
+    pub value: f64,
+    /// The limit, SI.
+    pub limit: f64,
+    /// Its unit.
+    pub unit: String,
+    /// limit − value (`<=`) or value − limit (`>=`): ≥ 0 when met, SI.
+    pub margin: f64,
+    /// Active: met with a margin within the tolerance (the optimum lies on it).
+    pub active: bool,
+    /// Met (margin ≥ −tolerance·|limit|).
+    pub met: bool,
+}
+
+/// A parameter at the answer.
+#[derive(Debug, Clone, Serialize)]
+pub struct ParamState {
+    /// The key.
+    pub key: String,
+    /// The value, SI.
+    pub value: f64,
+    /// The value as scenario text (in the unit of the bound).
+    pub text: String,
+    /// `Some("lower")` or `Some("upper")` when at a bound.
+    pub at_bound: Option<&'static str>,
+}
+
+/// The answer of [`solve`].
+#[derive(Debug, Clone, Serialize)]
+pub struct Solution {
+    /// Minimise or maximise.
+    pub goal: Goal,
+    /// The objective's text and unit.
+    pub objective: String,
+    /// Its unit.
+    pub unit: String,
+    /// Its value at the answer, SI.
+    pub value: f64,
+    /// Every constraint is met at the answer.
+    pub feasible: bool,
+    /// The parameters at the answer.
+    pub params: Vec<ParamState>,
+    /// The constraints at the answer.
+    pub constraints: Vec<ConstraintState>,
+    /// Every start.
+    pub starts: Vec<StartResult>,
+    /// Evaluations in all.
+    pub evaluations: usize,
+}
+
+impl Solution {
+    /// The constraints that are not met, with the amount, as one sentence each.
+    pub fn violations(&self) -> Vec<String> {
+        self.constraints
+            .iter()
+            .filter(|c| !c.met)
+            .map(|c| {
+                format!(
+                    "`{}` cannot be met: at the best point the value is {:.6e} {u}, beyond the limit {:.6e} {u} by \
+                     {:.6e} {u} ({:.3} %)",
+                    c.text,
+                    c.value,
+                    c.limit,
+                    -c.margin,
+                    -100.0 * c.margin / c.limit.abs(),
+                    u = c.unit
+                )
+            })
+            .collect()
+    }
+}
+
+/// The k-th point of the Halton sequence in [0, 1]^n (bases 2, 3, 5, …; k ≥ 1).
+fn halton(k: usize, n: usize) -> Vec<f64> {
+    const PRIMES: [usize; 12] = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37];
+    (0..n)
+        .map(|d| {
+            let b = PRIMES[d % PRIMES.len()];
+            let (mut f, mut r, mut i) = (1.0, 0.0, k);
+            while i > 0 {
+                f /= b as f64;
+                r += f * (i % b) as f64;
+                i /= b;
+            }
+            r
+        })
+        .collect()
+}
+
+/// The problem in unit coordinates u ∈ [0, 1]ⁿ, with the last evaluation kept (COBYLA asks for the
+/// objective and then each constraint at one point).
+struct Scaled<'p, 'a> {
+    problem: &'p Problem<'a>,
+    f_scale: f64,
+    last: RefCell<Option<(Vec<f64>, Option<PointValues>)>>,
+    evaluations: RefCell<usize>,
+}
+
+/// What an evaluation that fails returns: far worse than any value of a scaled problem.
+const FAILED: f64 = 1e30;
+
+impl Scaled<'_, '_> {
+    fn x_of(&self, u: &[f64]) -> Vec<f64> {
+        let p = &self.problem.params;
+        u.iter()
+            .zip(p)
+            .map(|(&u, p)| p.low + u.clamp(0.0, 1.0) * (p.high - p.low))
+            .collect()
+    }
+
+    fn values(&self, u: &[f64]) -> Option<PointValues> {
+        if let Some((lu, v)) = &*self.last.borrow()
+            && lu == u
+        {
+            return v.clone();
+        }
+        *self.evaluations.borrow_mut() += 1;
+        let v = self.problem.evaluate(&self.x_of(u)).ok();
+        *self.last.borrow_mut() = Some((u.to_vec(), v.clone()));
+        v
+    }
+
+    fn objective(&self, u: &[f64]) -> f64 {
+        let sign = if self.problem.goal == Goal::Maximize { -1.0 } else { 1.0 };
+        self.values(u).map_or(FAILED, |v| sign * v.objective / self.f_scale)
+    }
+
+    /// Constraint j scaled by its limit, ≥ 0 when met (COBYLA's convention).
+    fn constraint(&self, j: usize, u: &[f64]) -> f64 {
+        let c = &self.problem.constraints[j];
+        self.values(u)
+            .map_or(-FAILED, |v| c.margin(v.constrained[j]) / c.limit.abs())
+    }
+}
+
+/// Minimises (or maximises) the problem's objective subject to its constraints and bounds by COBYLA
+/// (Powell 1994) from `opts.starts` starts, and returns the best end point: the feasible one with the best
+/// objective, or, when no start ends feasible, the one with the smallest largest relative violation.
+///
+/// # Formula
+/// In unit coordinates u = (x − low)/(high − low) ∈ [0, 1]ⁿ, minimise s·f(x)/|f(x_c)| (s = −1 to
+/// maximise, x_c the centre) subject to g_j(x) = m_j(x)/|L_j| ≥ 0, m_j the margin of constraint j
+/// (L_j − q_j for `<=`, q_j − L_j for `>=`). COBYLA builds linear models of f and every g_j from n + 1
+/// points and takes trust-region steps; ρ shrinks from 0.25 to `x_tolerance`. No derivatives are used.
+///
+/// # Errors
+/// When no start's end point can be evaluated (the scenario's error at the centre).
+pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
+    let n = problem.params.len();
+    let centre = problem.evaluate(
+        &problem
+            .params
+            .iter()
+            .map(|p| 0.5 * (p.low + p.high))
+            .collect::<Vec<_>>(),
+    )?;
+    let scaled = Scaled {
+        problem,
+        f_scale: if centre.objective != 0.0 {
+            centre.objective.abs()
+        } else {
+            1.0
+        },
+        last: RefCell::new(None),
+        evaluations: RefCell::new(0),
+    };
+    let mut starts = Vec::new();
+    for k in 0..opts.starts.max(1) {
+        let u0 = if k == 0 { vec![0.5; n] } else { halton(k + 1, n) }; // halton(1) is the centre
+        starts.push(run_start(&scaled, &u0, opts));
+    }
+    let best = pick(problem, &starts, opts.active_tolerance).ok_or_else(|| Error::Numerical {
+        what: "optimisation".into(),
+        reason: "no start ended at a point the scenario accepts".into(),
+    })?;
+    Ok(describe(
+        problem,
+        best,
+        starts.clone(),
+        *scaled.evaluations.borrow(),
+        opts,
+    ))
+}
+
+fn run_start(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {
+    let before = *s.evaluations.borrow();
+    let f = |u: &[f64], _: &mut ()| s.objective(u);
+    // one closure type for every constraint (COBYLA's slice of constraints has one element type)
+    let cons: Vec<_> = (0..s.problem.constraints.len())
+        .map(|j| move |u: &[f64], _: &mut ()| s.constraint(j, u))
+        .collect();
+    let tols = cobyla::StopTols {
+        xtol_abs: vec![opts.x_tolerance; u0.len()],
+        ..Default::default()
+    };
+    let bounds = vec![(0.0, 1.0); u0.len()];
+    let out = cobyla::minimize(
+        f,
+        u0,
+        &bounds,
+        &cons,
+        (),
+        opts.max_evaluations,
+        cobyla::RhoBeg::All(0.25),
+        Some(tols),
+    );
+    let (status, u) = match out {
+        Ok((st, u, _)) => (format!("{st:?}"), u),
+        Err((st, u, _)) => (format!("{st:?}"), u),
+    };
+    StartResult {
+        start: s.x_of(u0),
+        end: s.values(&u),
+        evaluations: *s.evaluations.borrow() - before,
+        status,
+    }
+}
+
+/// The largest relative violation of a point (0 when feasible).
+fn violation(problem: &Problem, v: &PointValues) -> f64 {
+    problem
+        .constraints
+        .iter()
+        .zip(&v.constrained)
+        .map(|(c, &q)| (-c.margin(q) / c.limit.abs()).max(0.0))
+        .fold(0.0, f64::max)
+}
+
+fn pick<'s>(problem: &Problem, starts: &'s [StartResult], tol: f64) -> Option<&'s PointValues> {
+    let sign = if problem.goal == Goal::Maximize { -1.0 } else { 1.0 };
+    let ends: Vec<&PointValues> = starts.iter().filter_map(|s| s.end.as_ref()).collect();
+    let feasible = ends.iter().filter(|v| violation(problem, v) <= tol);
+    feasible
+        .min_by(|a, b| (sign * a.objective).total_cmp(&(sign * b.objective)))
+        .or_else(|| {
+            ends.iter()
+                .min_by(|a, b| violation(problem, a).total_cmp(&violation(problem, b)))
+        })
+        .copied()
+}
+
+fn describe(
+    problem: &Problem,
+    best: &PointValues,
+    starts: Vec<StartResult>,
+    evals: usize,
+    o: &SolveOptions,
+) -> Solution {
+    let constraints: Vec<ConstraintState> = problem
+        .constraints
+        .iter()
+        .zip(&best.constrained)
+        .map(|(c, &q)| {
+            let m = c.margin(q);
+            let tol = o.active_tolerance * c.limit.abs();
+            ConstraintState {
+                text: c.text.clone(),
+                value: q,
+                limit: c.limit,
+                unit: c.quantity.unit.clone(),
+                margin: m,
+                active: m.abs() <= tol,
+                met: m >= -tol,
+            }
+        })
+        .collect();
+    let params = problem
+        .params
+        .iter()
+        .zip(&best.x)
+        .map(|(p, &x)| {
+            let tol = o.active_tolerance * (p.high - p.low);
+            ParamState {
+                key: p.key.clone(),
+                value: x,
+                text: p.value_text(x),
+                at_bound: if x - p.low <= tol {
+                    Some("lower")
+                } else if p.high - x <= tol {
+                    Some("upper")
+                } else {
+                    None
+                },
+            }
+        })
+        .collect();
+    Solution {
+        goal: problem.goal,
+        objective: problem.objective.text.clone(),
+        unit: problem.objective.unit.clone(),
+        value: best.objective,
+        feasible: constraints.iter().all(|c| c.met),
+        params,
+        constraints,
+        starts,
+        evaluations: evals,
+    }
+}
+
+impl std::fmt::Display for Solution {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let goal = if self.goal == Goal::Maximize {
+            "maximum"
+        } else {
+            "minimum"
+        };
+        let state = if self.feasible {
+            ""
+        } else {
+            " (INFEASIBLE: the least violating point)"
+        };
+        writeln!(
+            f,
+            "{goal} of {}{state}: {:.6e} {}",
+            self.objective, self.value, self.unit
+        )?;
+        for p in &self.params {
+            let b = p.at_bound.map(|b| format!("  (at the {b} bound)")).unwrap_or_default();
+            writeln!(f, "  {} = {}  ({:.9e} SI){b}", p.key, p.text, p.value)?;
+        }
+        for c in &self.constraints {
+            let state = match (c.met, c.active) {
+                (true, true) => "ACTIVE",
+                (true, false) => "inactive",
+                _ => "VIOLATED",
+            };
+            writeln!(
+                f,
+                "  constraint {}: value {:.6e} {u}, margin {:.6e} {u} ({:.3} % of the limit)  {state}",
+                c.text,
+                c.value,
+                c.margin,
+                100.0 * c.margin / c.limit.abs(),
+                u = c.unit
+            )?;
+        }
+        for v in self.violations() {
+            writeln!(f, "  {v}")?;
+        }
+        let ends = self.starts.iter().filter(|s| s.end.is_some()).count();
+        writeln!(
+            f,
+            "  {} starts ({ends} ended at an evaluable point), {} evaluations, COBYLA",
+            self.starts.len(),
+            self.evaluations
+        )
+    }
+}
+
+/// `Relation` as text.
+impl std::fmt::Display for Relation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Relation::AtMost => "<=",
+            Relation::AtLeast => ">=",
+        })
+    }
+}

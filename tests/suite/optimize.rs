@@ -1,0 +1,392 @@
+//! `stochvib optimize` and [`stochvib::optimize`]: optima against closed forms (quarter car under white
+//! road velocity, base-excited oscillator, Warburton's tuned-mass absorber), an active and an inactive
+//! constraint where the closed form puts them, an infeasible problem and bad input.
+
+use crate::common;
+use crate::common::tolerance::{OPTIMUM_INTERIOR, OPTIMUM_ON_CONSTRAINT};
+use std::f64::consts::PI;
+use std::path::PathBuf;
+use stochvib::optimize::{solve, Constraint, Goal, Param, Problem, Quantity, Solution, SolveOptions};
+use stochvib::scenario::{load_scenario, Scenario};
+
+/// Quarter car (m_s = 400 kg, m_u = 40 kg, k_s = 20 kN/m, k_t = 200 kN/m, no tyre damping) on an ISO 8608
+/// class C road without band limits (w = 2: the road velocity is white) at v = 20 m/s.
+const QUARTER_CAR: &str = r#"
+title = "Quarter car under white road velocity"
+source = "test: closed forms of the white-velocity quarter car"
+[model]
+kind = "quarter-car"
+sprung_mass = "400 kg"
+unsprung_mass = "40 kg"
+suspension_stiffness = "20 kN/m"
+suspension_damping = "1.5 kN*s/m"
+tyre_stiffness = "200 kN/m"
+[input]
+spectrum = { kind = "iso8608", class = "C", bound = "mean", unbounded = true }
+speed = "20 m/s"
+[analysis]
+outputs = ["body_acc", "travel", "tyre_force"]
+"#;
+
+const M_S: f64 = 400.0;
+const M_U: f64 = 40.0;
+const K_S: f64 = 20e3;
+const K_T: f64 = 200e3;
+
+/// Two-sided density of the road velocity q̇ = v dq/dx for an ISO 8608 road with w = 2: the one-sided
+/// cyclic spatial density G_d(n) = G_d(n₀)(n₀/n)² gives q̇ the one-sided cyclic temporal density
+/// (2πf)²·G_d(f/v)/v = 4π²n₀²G_d(n₀)v, constant; two-sided angular: divide by 4π, S₀ = πn₀²G_d(n₀)v.
+/// Class C: G_d(n₀) = 256·10⁻⁶ m³ at n₀ = 0.1 cycles/m (ISO 8608:2016 Table 3); S₀ = 1.608495·10⁻⁴ m²/s.
+fn s0() -> f64 {
+    PI * 0.1f64.powi(2) * 256e-6 * 20.0
+}
+
+/// Writes `text` as a scenario in a scratch directory and loads it.
+fn scenario(tag: &str, text: &str) -> Scenario {
+    let dir = common::scratch_dir("optimize", tag);
+    let path = dir.join("scenario.toml");
+    std::fs::write(&path, text).unwrap();
+    load_scenario(&path, &common::root().join("spectra")).unwrap()
+}
+
+fn run(sc: &Scenario, params: &[&str], goal: Goal, objective: &str, constraints: &[&str]) -> Solution {
+    let params = params.iter().map(|p| Param::parse(p).unwrap()).collect();
+    let flag = if goal == Goal::Minimize {
+        "--minimize"
+    } else {
+        "--maximize"
+    };
+    let objective = Quantity::parse(flag, objective, sc).unwrap();
+    let constraints = constraints.iter().map(|c| Constraint::parse(c, sc).unwrap()).collect();
+    let problem = Problem::new(sc, params, objective, goal, constraints).unwrap();
+    solve(&problem, &SolveOptions::default()).unwrap()
+}
+
+/// Quarter car: with the state X = [x_s − x_u, ẋ_s, x_u − q, ẋ_u] driven by white q̇ of density S₀, the
+/// stationary Lyapunov equation AP + PAᵀ + 2πS₀BBᵀ = 0 solved by hand (M = m_s + m_u) gives
+///
+/// σ²_acc = πS₀(k_t c² + k_s²M)/(c m_s²),  σ²_travel = πS₀M/c.
+///
+/// d/dc of (k_t c² + k_s²M)/c is k_t − k_s²M/c², zero at c_opt = k_s√(M/k_t) = 938.083152 N s/m, where
+/// σ²_acc = 2πS₀k_s√(k_t M)/m_s² (σ_acc = 1.08861804 m/s²). These are the classical white-velocity
+/// results (Gobbi & Mastinu 2001, J. Sound Vib. 245(3) 457–481, derive the same closed forms).
+#[test]
+fn quarter_car_comfort_optimum_is_ks_sqrt_m_over_kt() {
+    let sc = scenario("qc-free", QUARTER_CAR);
+    let a = run(
+        &sc,
+        &["model.suspension_damping=0.2:6 kN*s/m"],
+        Goal::Minimize,
+        "sigma(body_acc)",
+        &[],
+    );
+    let m = M_S + M_U;
+    let c_opt = K_S * (m / K_T).sqrt();
+    let var_min = 2.0 * PI * s0() * K_S * (K_T * m).sqrt() / (M_S * M_S);
+    assert!(common::rel(a.params[0].value, c_opt) < OPTIMUM_INTERIOR, "{a}");
+    assert!(
+        common::rel(a.value, var_min.sqrt()) < OPTIMUM_INTERIOR * OPTIMUM_INTERIOR,
+        "{a}"
+    );
+    assert!(a.feasible && a.params[0].at_bound.is_none(), "{a}");
+}
+
+/// Minimise σ_acc subject to 3σ_travel ≤ d. With σ²_travel = πS₀M/c (above) the constraint is
+/// c ≥ c_min = 9πS₀M/d², and σ²_acc is convex in c with its minimum at c_opt, so the optimum is
+/// c* = max(c_opt, c_min). d = 40 mm: c_min = 1250.6763 N s/m > c_opt = 938.08: the constraint is active
+/// and c* = c_min, where 3σ_travel = d exactly and σ_acc = 1.111054 m/s².
+#[test]
+fn quarter_car_travel_constraint_active_where_the_closed_form_says() {
+    let sc = scenario("qc-active", QUARTER_CAR);
+    let a = run(
+        &sc,
+        &["model.suspension_damping=0.2:6 kN*s/m"],
+        Goal::Minimize,
+        "sigma(body_acc)",
+        &["3sigma(travel) <= 40 mm"],
+    );
+    let m = M_S + M_U;
+    let c_min = 9.0 * PI * s0() * m / 0.04f64.powi(2);
+    assert!(c_min > K_S * (m / K_T).sqrt());
+    assert!(common::rel(a.params[0].value, c_min) < OPTIMUM_ON_CONSTRAINT, "{a}");
+    let var_acc = PI * s0() * (K_T * c_min * c_min + K_S * K_S * m) / (c_min * M_S * M_S);
+    assert!(common::rel(a.value, var_acc.sqrt()) < OPTIMUM_ON_CONSTRAINT, "{a}");
+    let c = &a.constraints[0];
+    assert!(a.feasible && c.active && c.met, "{a}");
+    assert!(common::rel(c.value, 0.04) < OPTIMUM_ON_CONSTRAINT, "{a}");
+}
+
+/// As above with d = 60 mm: c_min = 9πS₀M/d² = 555.8561 N s/m < c_opt, so the optimum is c_opt and the
+/// constraint is inactive with the margin d − 3√(πS₀M/c_opt) = 60 − 46.186 mm.
+#[test]
+fn quarter_car_travel_constraint_inactive_where_the_closed_form_says() {
+    let sc = scenario("qc-inactive", QUARTER_CAR);
+    let a = run(
+        &sc,
+        &["model.suspension_damping=0.2:6 kN*s/m"],
+        Goal::Minimize,
+        "sigma(body_acc)",
+        &["3sigma(travel) <= 60 mm"],
+    );
+    let m = M_S + M_U;
+    let c_opt = K_S * (m / K_T).sqrt();
+    assert!(common::rel(a.params[0].value, c_opt) < OPTIMUM_INTERIOR, "{a}");
+    let margin = 0.06 - 3.0 * (PI * s0() * m / c_opt).sqrt();
+    let c = &a.constraints[0];
+    assert!(!c.active && c.met, "{a}");
+    assert!(common::rel(c.margin, margin) < OPTIMUM_INTERIOR, "{a}");
+}
+
+/// 3σ_travel ≤ 5 mm needs c ≥ 9πS₀M/d² = 8.0·10⁴ N s/m, beyond the upper bound 6 kN s/m: infeasible. The
+/// least violating point is the upper bound (σ_travel falls with c), where 3σ_travel = 3√(πS₀M/6000)
+/// = 18.26 mm: the answer says the constraint cannot be met and by how much.
+#[test]
+fn quarter_car_infeasible_constraint_named_with_its_shortfall() {
+    let sc = scenario("qc-infeasible", QUARTER_CAR);
+    let a = run(
+        &sc,
+        &["model.suspension_damping=0.2:6 kN*s/m"],
+        Goal::Minimize,
+        "sigma(body_acc)",
+        &["3sigma(travel) <= 5 mm"],
+    );
+    let at_bound = 3.0 * (PI * s0() * (M_S + M_U) / 6000.0).sqrt();
+    assert!(!a.feasible, "{a}");
+    assert_eq!(a.params[0].at_bound, Some("upper"), "{a}");
+    let c = &a.constraints[0];
+    assert!(!c.met && common::rel(c.value, at_bound) < OPTIMUM_ON_CONSTRAINT, "{a}");
+    let v = a.violations();
+    assert!(
+        v.len() == 1 && v[0].contains("3sigma(travel) <= 5 mm") && v[0].contains("cannot be met"),
+        "{v:?}"
+    );
+    assert!(common::rel(-c.margin, at_bound - 0.005) < OPTIMUM_ON_CONSTRAINT, "{a}");
+}
+
+/// Base-excited oscillator (ω₀ = 2π·1.5 rad/s) under white base acceleration ü of density S₀ = 0.01: in the
+/// relative coordinate z = x − u, m z̈ + c ż + k z = −m ü, so the model is a unit mass on a mount to ground
+/// driven by the force −m ü (white, density m²S₀), and the absolute acceleration is ẍ = −(c ż + k z)/m: σ_ẍ
+/// is σ of the mount's element force over m = 1 kg. H(s) = (ω₀² + 2ζω₀s)/(s² + 2ζω₀s + ω₀²) and the
+/// integral table I₂ = π(B₀²/A₀ + B₁²/A₂)/A₁ give σ²_ẍ = πS₀ω₀(1 + 4ζ²)/(2ζ), least at ζ = ½ (d/dζ of
+/// 1/(2ζ) + 2ζ vanishes), σ²_min = 2πS₀ω₀. ζ = ½ is c = 2ζ√(km) = √k = ω₀ (m = 1 kg).
+#[test]
+fn base_excited_oscillator_absolute_acceleration_optimum_is_zeta_half() {
+    let w0 = 2.0 * PI * 1.5;
+    let text = format!(
+        r#"
+title = "SDOF under white base acceleration, relative coordinate"
+source = "test"
+[model]
+kind = "mdof"
+coordinates = [{{ name = "z", unit = "m", mass = "1 kg" }}]
+forces = [[1.0]]
+[[model.element]]
+name = "mount"
+point = [1.0]
+to = "ground"
+stiffness = "{k} N/m"
+damping = "5 N*s/m"
+[[model.output]]
+name = "mount_force"
+quantity = "element-force"
+element = "mount"
+[input]
+spectrum = {{ kind = "rational", unit = "N", numerator = [0.01], denominator = [1.0] }}
+"#,
+        k = w0 * w0
+    );
+    let sc = scenario("sdof", &text);
+    let a = run(
+        &sc,
+        &["model.element.0.damping=1:40 N*s/m"],
+        Goal::Minimize,
+        "sigma(mount_force)",
+        &[],
+    );
+    assert!(common::rel(a.params[0].value, w0) < OPTIMUM_INTERIOR, "{a}");
+    assert!(
+        common::rel(a.value, (2.0 * PI * 0.01 * w0).sqrt()) < OPTIMUM_INTERIOR * OPTIMUM_INTERIOR,
+        "{a}"
+    );
+}
+
+/// A main mass M = 1 kg on a spring K = 1 N/m (ω_M = 1 rad/s, undamped) with an absorber m = μM on a spring
+/// k_a and damper c_a; f = ω_a/ω_M = √(k_a/m), ζ_a = c_a/(2√(k_a m)). `forces` drives the main mass (case F)
+/// or both masses in proportion to their mass (case A: base acceleration in coordinates relative to the
+/// base, −M ü and −m ü); the objective is σ of the main mass's (relative) displacement.
+fn absorber(tag: &str, force_point: &str, mu: f64) -> Scenario {
+    let text = format!(
+        r#"
+title = "Tuned-mass absorber on an undamped main system"
+source = "test: Warburton (1982)"
+[model]
+kind = "mdof"
+coordinates = [{{ name = "main", unit = "m", mass = "1 kg" }}, {{ name = "absorber", unit = "m", mass = "{mu} kg" }}]
+forces = [{force_point}]
+[[model.element]]
+name = "main_spring"
+point = [1.0, 0.0]
+to = "ground"
+stiffness = "1 N/m"
+[[model.element]]
+name = "absorber"
+point = [0.0, 1.0]
+to = [1.0, 0.0]
+stiffness = "{k} N/m"
+damping = "{c} N*s/m"
+[[model.output]]
+name = "main"
+quantity = "displacement"
+point = [1.0, 0.0]
+[input]
+spectrum = {{ kind = "rational", unit = "N", numerator = [1.0], denominator = [1.0] }}
+"#,
+        k = mu * 0.9 * 0.9,
+        c = 2.0 * mu * 0.1 * 0.9,
+    );
+    scenario(tag, &text)
+}
+
+/// The optimum (f, ζ) of an absorber problem over k_a ∈ [0.6, 1.2]·μ, c_a ∈ [0.02, 0.5]·μ.
+fn absorber_optimum(sc: &Scenario, mu: f64) -> (f64, f64) {
+    let params = [
+        format!("model.element.1.stiffness={}:{} N/m", 0.6 * mu, 1.2 * mu),
+        format!("model.element.1.damping={}:{} N*s/m", 0.02 * mu, 0.5 * mu),
+    ];
+    let p: Vec<&str> = params.iter().map(String::as_str).collect();
+    let a = run(sc, &p, Goal::Minimize, "sigma(main)", &[]);
+    let (k, c) = (a.params[0].value, a.params[1].value);
+    ((k / mu).sqrt(), c / (2.0 * (k * mu).sqrt()))
+}
+
+/// Warburton (1982), "Optimum absorber parameters for various combinations of response and excitation
+/// parameters", Earthquake Eng. Struct. Dyn. 10, 381–401: for white-noise force on the undamped main mass,
+/// the displacement variance is least at f = √(1 + μ/2)/(1 + μ), ζ = √(μ(1 + 3μ/4)/(4(1 + μ)(1 + μ/2))).
+/// At μ = 0.05: f = 0.96421223, ζ = 0.10977223 (an independent Lyapunov + Nelder–Mead minimisation in
+/// scipy agreed to 8 digits).
+#[test]
+fn warburton_absorber_under_white_force() {
+    let mu = 0.05;
+    let sc = absorber("warburton-f", "[1.0, 0.0]", mu);
+    let (f, z) = absorber_optimum(&sc, mu);
+    let f_opt = (1.0 + mu / 2.0).sqrt() / (1.0 + mu);
+    let z_opt = (mu * (1.0 + 0.75 * mu) / (4.0 * (1.0 + mu) * (1.0 + mu / 2.0))).sqrt();
+    assert!(common::rel(f, f_opt) < OPTIMUM_INTERIOR, "f = {f}, expected {f_opt}");
+    assert!(common::rel(z, z_opt) < OPTIMUM_INTERIOR, "ζ = {z}, expected {z_opt}");
+}
+
+/// Warburton (1982), as above, for white base acceleration and the displacement of the main mass relative
+/// to the base: f = √(1 − μ/2)/(1 + μ), ζ = √(μ(1 − μ/4)/(4(1 + μ)(1 − μ/2))); at μ = 0.05 f = 0.94040084,
+/// ζ = 0.10980613.
+#[test]
+fn warburton_absorber_under_white_base_acceleration() {
+    let mu = 0.05;
+    let sc = absorber("warburton-a", &format!("[1.0, {mu}]"), mu);
+    let (f, z) = absorber_optimum(&sc, mu);
+    let f_opt = (1.0 - mu / 2.0).sqrt() / (1.0 + mu);
+    let z_opt = (mu * (1.0 - 0.25 * mu) / (4.0 * (1.0 + mu) * (1.0 - mu / 2.0))).sqrt();
+    assert!(common::rel(f, f_opt) < OPTIMUM_INTERIOR, "f = {f}, expected {f_opt}");
+    assert!(common::rel(z, z_opt) < OPTIMUM_INTERIOR, "ζ = {z}, expected {z_opt}");
+}
+
+/// Maximising: the largest σ_travel over c ∈ [0.2, 6] kN s/m is at the lower bound (σ²_travel = πS₀M/c
+/// falls with c), and the answer says the parameter is at its lower bound.
+#[test]
+fn maximum_at_a_bound_is_named() {
+    let sc = scenario("qc-max", QUARTER_CAR);
+    let a = run(
+        &sc,
+        &["model.suspension_damping=0.2:6 kN*s/m"],
+        Goal::Maximize,
+        "sigma(travel)",
+        &[],
+    );
+    assert_eq!(a.params[0].at_bound, Some("lower"), "{a}");
+    let expected = (PI * s0() * (M_S + M_U) / 200.0).sqrt();
+    assert!(common::rel(a.value, expected) < OPTIMUM_ON_CONSTRAINT, "{a}");
+}
+
+fn data_dir() -> PathBuf {
+    common::root().join("data")
+}
+
+fn catalogue_quarter_car() -> Scenario {
+    load_scenario(
+        &data_dir().join("quarter-car-model.toml"),
+        &common::root().join("spectra"),
+    )
+    .unwrap()
+}
+
+/// Bounds the wrong way round, a parameter the scenario does not have, an unknown quantity, an output the
+/// model does not have, a limit of the wrong dimension: each refused with the flag and the reason.
+#[test]
+fn bad_input_is_refused_clearly() {
+    let e = Param::parse("model.suspension_damping=6:0.2 kN*s/m")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("--param") && e.contains("wrong way round"), "{e}");
+    let sc = catalogue_quarter_car();
+    let q = || Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap();
+    let p = vec![Param::parse("model.no_such_key=1:2 kN/m").unwrap()];
+    let e = Problem::new(&sc, p, q(), Goal::Minimize, vec![])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("model.no_such_key") && e.contains("no such value"), "{e}");
+    let e = Quantity::parse("--minimize", "comfort", &sc).unwrap_err().to_string();
+    assert!(e.contains("--minimize") && e.contains("unknown quantity"), "{e}");
+    let e = Quantity::parse("--minimize", "sigma(seat)", &sc)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no output `seat`") && e.contains("body_acc"), "{e}");
+    let e = Constraint::parse("3sigma(travel) <= 40 kg", &sc)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("--constraint") && e.contains("dimension"), "{e}");
+    let e = Quantity::parse("--minimize", "a_v", &sc).unwrap_err().to_string();
+    assert!(e.contains("[analysis.comfort]"), "{e}");
+}
+
+/// The command: the catalogue quarter car (m_s = 300 kg) with the travel constraint prints the optimum and
+/// names the constraint; an infeasible one fails (status 1) naming the constraint and its shortfall.
+#[test]
+fn command_prints_the_answer_and_fails_when_infeasible() {
+    let root = common::root();
+    let args = [
+        "optimize",
+        "data/quarter-car-model.toml",
+        "--param",
+        "model.suspension_damping=0.2:6 kN*s/m",
+        "--minimize",
+        "sigma(body_acc)",
+        "--constraint",
+        "3sigma(travel) <= 40 mm",
+    ];
+    let o = common::cli_within(&args, &root, std::time::Duration::from_secs(120));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{out}\n{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        out.contains("minimum of sigma(body_acc)") && out.contains("3sigma(travel) <= 40 mm"),
+        "{out}"
+    );
+    let mut bad = args;
+    bad[7] = "3sigma(travel) <= 1 mm";
+    let err = common::cli_fails(1, &bad, &root);
+    assert!(
+        err.contains("infeasible") && err.contains("3sigma(travel) <= 1 mm") && err.contains("beyond"),
+        "{err}"
+    );
+    let err = common::cli_fails(
+        1,
+        &[
+            "optimize",
+            "data/quarter-car-model.toml",
+            "--param",
+            "model.suspension_damping=6:0.2 kN*s/m",
+            "--minimize",
+            "sigma(body_acc)",
+        ],
+        &root,
+    );
+    assert!(err.contains("wrong way round"), "{err}");
+}
