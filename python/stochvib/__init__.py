@@ -52,6 +52,7 @@ from .results import (
     OutputResult,
     Report,
     RunResult,
+    SweepResult,
     TablesResult,
     VarianceMethod,
 )
@@ -76,6 +77,7 @@ __all__ = [
     "LevelCrossing",
     "TablesResult",
     "RunResult",
+    "SweepResult",
     "Report",
     "StochvibError",
     "InvalidInputError",

@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
 
-from .results import AnalysisResult, RunResult, TablesResult
+from .results import AnalysisResult, RunResult, SweepResult, TablesResult
 
 __version__: str
 ISO_BAND: Tuple[float, float]
@@ -250,6 +250,8 @@ class Scenario:
         convention: Optional[Convention] = None,
     ) -> Union[float, FloatArray]:
         """S_y(ω) (rad/s) or the one-sided G_y(f) (Hz) of an output, shaped as the argument."""
+    def sweep(self, params: Mapping[str, Union[str, Sequence[Quantity]]], *, zip: bool = False) -> SweepResult:
+        """The exact statistics at every point of a parameter study (grid, or ``zip``)."""
     def tables(self) -> TablesResult:
         """The result tables of a deterministic model or a reference table."""
     def simulate(

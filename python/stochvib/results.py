@@ -40,6 +40,7 @@ __all__ = [
     "Report",
     "ExposureResult",
     "AxisExposure",
+    "SweepResult",
 ]
 
 
@@ -557,3 +558,71 @@ class ExposureResult(_Text):
     def __repr__(self) -> str:
         head = f"ExposureResult: T = {_e(self.duration_s)} s, T_exp = {_e(self.exposure_s)} s, A(8) = {_e(self.a8)} m/s^2"
         return "\n".join([head, *[repr(a) for a in self.axes + self.motion_sickness]])
+
+
+class SweepResult:
+    """The exact statistics at every point of a parameter study (:meth:`Scenario.sweep`; the data of
+    ``stochvib sweep SCENARIO --param … --json``).
+
+    Attributes
+    ----------
+    params : dict
+        key → the values swept (strings as given, with units), in order.
+    mode : str
+        "grid" (every combination; the first key varies slowest) or "zip" (the k-th values together).
+    shape : tuple of int
+        The study's shape: one axis per key for a grid, ``(n_points,)`` for zip.
+    outputs : list of str
+    rows : list of dict
+        One per (point, output): ``point``, ``params``, ``output``, ``unit``, ``method``, ``mean``, ``sigma``,
+        ``variance``, ``lower_3sigma``, ``upper_3sigma``, ``lambda2``, ``zero_upcrossing_rate``, ``error``
+        (the reason a point failed, else None).
+    """
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self._data = data
+        ident = data["identity"]
+        self.params: Dict[str, List[str]] = {k: list(v) for k, v in ident["params"]}
+        self.mode: str = ident["mode"]
+        self.outputs: List[str] = [o for o, _ in ident["outputs"]]
+        self.n_points: int = data["n_points"]
+        self.rows: List[Dict[str, Any]] = data["rows"]
+        grid = self.mode == "grid"
+        self.shape: Tuple[int, ...] = tuple(len(v) for v in self.params.values()) if grid else (self.n_points,)
+
+    def statistic(self, output: str, name: str = "sigma") -> Any:
+        """The statistic ``name`` ("sigma", "mean", "variance", "zero_upcrossing_rate", …) of ``output`` at
+        every point as a numpy array of :attr:`shape` (NaN where a point failed)."""
+        import numpy as np
+
+        if output not in self.outputs:
+            raise KeyError(f"no output {output!r}; the outputs are {self.outputs}")
+        out = np.full(self.n_points, np.nan)
+        for r in self.rows:
+            if r["output"] == output and r.get(name) is not None:
+                out[r["point"]] = r[name]
+        return out.reshape(self.shape)
+
+    def sigma(self, output: str) -> Any:
+        """σ of ``output`` at every point, shaped as :attr:`shape`."""
+        return self.statistic(output, "sigma")
+
+    def to_dict(self) -> Dict[str, Any]:
+        """A deep copy of the data, as ``stochvib sweep … --json`` prints it."""
+        return copy.deepcopy(self._data)
+
+    def to_dataframe(self) -> Any:
+        """One row per (point, output), one column per swept key (pandas)."""
+        return _dataframe(
+            [{**{k: v for k, v in r.items() if k not in ("params", "monte_carlo")}, **r["params"]} for r in self.rows]
+        )
+
+    def __repr__(self) -> str:
+        keys = ", ".join(f"{k} ({len(v)} values)" for k, v in self.params.items())
+        failed = len({r["point"] for r in self.rows if r.get("error")})
+        head = f"SweepResult: {self.n_points} points ({self.mode} of {keys}), {failed} failed"
+        rows = [f"{'output':<14} {'min sigma':>12} {'max sigma':>12}"]
+        for o in self.outputs:
+            s = [r["sigma"] for r in self.rows if r["output"] == o and r.get("sigma") is not None]
+            rows.append(f"{o:<14} {_e(min(s) if s else None):>12} {_e(max(s) if s else None):>12}")
+        return "\n".join([head, *rows])
