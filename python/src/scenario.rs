@@ -263,6 +263,48 @@ fn with_progress<T>(
     r
 }
 
+/// The file of part `shard` = (I, N) of a run in the directory `path` (created), or `path` itself.
+fn shard_path(
+    py: Python<'_>,
+    path: PathBuf,
+    shard: Option<(usize, usize)>,
+) -> PyResult<(PathBuf, Option<stochvib::store::Part>)> {
+    let Some((index, count)) = shard else {
+        return Ok((path, None));
+    };
+    let part = call(py, || stochvib::store::Part::new(index, count))?;
+    lib(
+        py,
+        std::fs::create_dir_all(&path).map_err(|source| Error::Io {
+            path: path.clone(),
+            source,
+        }),
+    )?;
+    Ok((stochvib::simulate::part_path(&path, part), Some(part)))
+}
+
+/// Joins the part files of a sharded run (``stochvib merge OUT INPUTS…``; ``inputs`` files or directories)
+/// into the run file ``path``: ``(data, text)`` of the merge summary.
+#[pyfunction]
+#[pyo3(signature = (path, inputs, *, copy=false, overwrite=false, confidence=None))]
+pub fn merge<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    inputs: Vec<PathBuf>,
+    copy: bool,
+    overwrite: bool,
+    confidence: Option<f64>,
+) -> PyResult<(Bound<'py, PyAny>, String)> {
+    use stochvib::simulate::{merge_runs, MergeOptions};
+    let opts = MergeOptions {
+        copy,
+        overwrite,
+        confidence,
+    };
+    let s = detached(py, || Ok(merge_runs(&path, &inputs, &opts, &|_, _| {})?))?;
+    Ok((to_python(py, &s)?, s.to_string()))
+}
+
 /// `KEY=VALUES` texts (the CLI's `--param`) of a dict key → a range string or a sequence of values.
 fn sweep_params(params: &Bound<'_, PyDict>) -> PyResult<Vec<String>> {
     let text = |v: &Bound<'_, PyAny>| -> PyResult<String> { Ok(v.str()?.to_cow()?.into_owned()) };
@@ -629,8 +671,10 @@ impl PyScenario {
     /// ``overwrite=True``. ``store_raw`` keeps every realization (``compression``: "none", "fast", "best",
     /// "deflate:N"); ``route``: "auto", "exact" or "spectral"; ``confidence`` of the intervals.
     /// ``progress``: True (a bar on stderr, tqdm's when installed), False, or a callable(done, total).
-    /// The GIL is released while the run computes.
-    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None))]
+    /// The GIL is released while the run computes. ``shard=(I, N)`` runs part I of N of the run (as
+    /// ``stochvib simulate --shard I --of N -o DIR``): ``path`` is then the run directory (created) that
+    /// receives ``shard-<I>-of-<N>.h5``; :func:`stochvib.merge` joins the parts.
+    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -647,8 +691,10 @@ impl PyScenario {
         confidence: f64,
         overwrite: bool,
         progress: Option<Py<PyAny>>,
+        shard: Option<(usize, usize)>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
+        let (path, part) = shard_path(py, path, shard)?;
         let dt = quantity::optional(py, dt, "dt", "s")?;
         let duration = quantity::optional(py, duration, "duration", "s")?;
         let compression: Compression = call(py, || compression.parse())?;
@@ -671,6 +717,7 @@ impl PyScenario {
                     compression,
                     route,
                     confidence,
+                    part,
                     ..RunOptions::new(realizations, d, dt, seed)
                 };
                 sc.simulate(&opts, &path, cb).map(|s| (s, how))

@@ -269,8 +269,10 @@ class Scenario:
         confidence: float = 0.95,
         overwrite: bool = False,
         progress: Progress = True,
+        shard: Optional[Tuple[int, int]] = None,
     ) -> RunResult:
-        """A seeded Monte Carlo run into the HDF5 file ``path`` (dt, duration in s)."""
+        """A seeded Monte Carlo run into the HDF5 file ``path`` (dt, duration in s); with ``shard=(I, N)``
+        part I of N into the directory ``path``."""
     @property
     def title(self) -> str: ...
     @property
@@ -317,6 +319,14 @@ def welch(
 def iri(z: ArrayLike, step: Quantity) -> Dict[str, Any]: ...
 def expected_iri(spectrum: Spectrum) -> Dict[str, Any]: ...
 def iso8608_class(g0: Quantity) -> str: ...
+def merge(
+    path: PathLike,
+    inputs: Sequence[PathLike],
+    *,
+    copy: bool = False,
+    overwrite: bool = False,
+    confidence: Optional[float] = None,
+) -> Tuple[Dict[str, Any], str]: ...
 def road_profile(
     tracks: List[Tuple[str, ArrayLike]],
     step: Quantity,
