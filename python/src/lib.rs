@@ -37,6 +37,7 @@ fn _stochvib(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(toolkit::iso8608_class, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::road_profile, m)?)?;
     m.add_function(wrap_pyfunction!(scenario::merge, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::coherence_amplitude, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::daily_exposure_a8, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::vdv_gaussian, m)?)?;
     m.add_function(wrap_pyfunction!(_check_panic_guard, m)?)?;

@@ -372,3 +372,23 @@ pub fn road_profile<'py>(
     })?;
     to_python(py, &r)
 }
+
+/// The coherence amplitude ρ(n) of two road tracks ``track_width`` apart under the coherence ``model`` (a
+/// dict as a scenario road's ``coherence`` table: kinds "dodds-robson", "ammon-bormann", "tabulated",
+/// "constant") at the spatial frequencies ``n`` (cycles/m), shaped as ``n``; γ² = ρ².
+#[pyfunction]
+#[pyo3(signature = (model, n, *, track_width))]
+pub fn coherence_amplitude<'py>(
+    py: Python<'py>,
+    model: &Bound<'py, PyDict>,
+    n: &Bound<'py, PyAny>,
+    track_width: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    use numpy::IntoPyArray;
+    let width = crate::quantity::quantity(py, track_width, "track_width", "m")?;
+    let text = toml::Value::Table(crate::convert::toml_table(py, "model", model)?).to_string();
+    let c = call(py, || stochvib::scenario::coherence_from_toml(&text, width))?;
+    let x = real_array(py, n, "n")?;
+    let out = x.readonly().as_array().mapv(|v| c.coherence_amplitude(v));
+    Ok(out.into_pyarray(py))
+}

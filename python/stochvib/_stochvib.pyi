@@ -327,6 +327,7 @@ def merge(
     overwrite: bool = False,
     confidence: Optional[float] = None,
 ) -> Tuple[Dict[str, Any], str]: ...
+def coherence_amplitude(model: Dict[str, Any], n: ArrayLike, *, track_width: Quantity) -> FloatArray: ...
 def road_profile(
     tracks: List[Tuple[str, ArrayLike]],
     step: Quantity,

@@ -21,7 +21,7 @@ import numpy.typing as npt
 
 from . import _stochvib
 from ._stochvib import Spectrum
-from .errors import InvalidInputError
+from .errors import FileError, InvalidInputError
 
 __all__ = [
     "iri",
@@ -34,6 +34,7 @@ __all__ = [
     "TrackAnalysis",
     "IsoFit",
     "TrackCoherence",
+    "coherence",
 ]
 
 
@@ -329,3 +330,60 @@ def analyze_profile(
         d["confidence"],
         d,
     )
+
+
+def coherence(
+    model: Mapping[str, Any],
+    n: npt.ArrayLike,
+    *,
+    track_width: Union[float, str] = "1.5 m",
+    squared: bool = False,
+) -> Union[float, npt.NDArray[np.float64]]:
+    """The coherence of two road tracks under a coherence model, as an array (``stochvib coherence --model``).
+
+    Parameters
+    ----------
+    model : mapping
+        The model as a scenario road's ``coherence`` table: ``{"kind": "dodds-robson", "waviness": 2}``
+        (isotropic surface, Dodds & Robson 1973), ``{"kind": "ammon-bormann", ...}``, ``{"kind": "tabulated",
+        ...}``, ``{"kind": "constant", "coherence_amplitude": 0.5}``.
+    n : array_like
+        Spatial frequencies, cycles/m (any shape).
+    track_width : float or str, keyword-only
+        The distance of the tracks, m (or with a unit).
+    squared : bool, keyword-only
+        Return γ²(n) = ρ(n)² instead of the amplitude ρ(n) (S_LR = ρ S for two tracks of density S).
+
+    Returns
+    -------
+    float or ndarray
+        ρ(n) (or γ²), shaped as ``n``.
+
+    Raises
+    ------
+    InvalidInputError
+        A bad argument; an unknown kind or a bad value of the model (named by its key).
+
+    Examples
+    --------
+    The isotropic surface with w = 2 has ρ = x K₁(x), x = 2πnB:
+
+    >>> import numpy as np
+    >>> from scipy.special import k1
+    >>> from stochvib import road
+    >>> n = np.array([0.05, 0.1, 0.5])
+    >>> x = 2 * np.pi * n * 1.5
+    >>> bool(np.allclose(road.coherence({"kind": "dodds-robson", "waviness": 2}, n), x * k1(x), rtol=1e-9))
+    True
+    """
+    try:
+        rho = _stochvib.coherence_amplitude(dict(model), n, track_width=track_width)
+    except FileError as e:  # the library names the model as the CLI's --model: name the dict's key instead
+        if e.path != "--model":
+            raise
+        key = (e.key or "").split(".", 1)[-1]
+        raise InvalidInputError(
+            f"model[{key!r}] = {e.value}: {e.reason}", name=f"model.{key}", value=e.value, reason=e.reason
+        ) from None
+    out = rho * rho if squared else rho
+    return float(out) if np.ndim(out) == 0 else out

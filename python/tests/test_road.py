@@ -18,6 +18,9 @@ from stochvib import InvalidInputError
 # the test does with numpy, and computes the step as the mean spacing; what remains is a few roundings of the
 # parse and of the step, carried through FFTs of 2048 points and a least-squares fit.
 REL_SAME = 1e-9
+# The library's K₁ (its own series / asymptotic expansion) against scipy.special.k1 (Cephes): both to ~1e-14,
+# the product x K₁(x) near 1e-15; 1e-9 leaves room for the library's stated accuracy of its Bessel function.
+REL_BESSEL = 1e-9
 # scipy.signal.welch (pocketfft) against the library (realfft) on 256-point segments: FFT rounding.
 REL_WELCH = 1e-9
 
@@ -88,3 +91,26 @@ def test_profile_analysis_bad_input():
         stochvib.road.analyze_profile(np.r_[np.zeros(99), math.nan], 0.1)
     with pytest.raises(InvalidInputError, match="segment"):
         stochvib.road.analyze_profile(np.random.default_rng(0).normal(size=4096), 0.1, segment=7)
+
+
+def test_coherence_model_against_bessel_and_the_cli(cli):
+    """Dodds & Robson's isotropic surface with w = 2: ρ(n) = x K₁(x), x = 2πnB (scipy.special.k1), and the
+    tool's numbers for the same model (``stochvib coherence --model … --json``)."""
+    from scipy.special import k1
+
+    model = {"kind": "dodds-robson", "waviness": 2}
+    n = np.array([[0.01, 0.1], [0.5, 2.0]])
+    x = 2 * np.pi * n * 1.5
+    rho = stochvib.road.coherence(model, n)
+    assert rho.shape == (2, 2)
+    np.testing.assert_allclose(rho, x * k1(x), rtol=REL_BESSEL)
+    want = cli.json("coherence", "--model", '{ kind = "dodds-robson", waviness = 2 }', "--frequency", "0.1,1")
+    got = stochvib.road.coherence(model, [0.1, 1.0], track_width="150 cm", squared=True)
+    np.testing.assert_allclose(got, [r["model_squared_coherence"] for r in want["rows"]], rtol=REL_SAME)
+    assert stochvib.road.coherence({"kind": "constant", "coherence_amplitude": 0.5}, 0.3) == 0.5
+    # a bad model is an InvalidInputError naming the dict's key (not a FileError naming a file or flag)
+    with pytest.raises(InvalidInputError, match=r"model\['kind'\] = nonsense: expected dodds-robson"):
+        stochvib.road.coherence({"kind": "nonsense"}, 0.3)
+    with pytest.raises(InvalidInputError, match="waviness") as e:
+        stochvib.road.coherence({"kind": "dodds-robson", "waviness": -1}, 0.3)
+    assert e.value.name == "model.waviness"
