@@ -305,6 +305,23 @@ pub fn merge<'py>(
     Ok((to_python(py, &s)?, s.to_string()))
 }
 
+/// Refuses (with `refuse`) a Monte Carlo run of a model with nonlinear elements: route 2 is the command-line
+/// tool's for now, and the linear part alone would be a silently wrong answer.
+fn refuse_nonlinear_run(py: Python<'_>, sc: &Scenario, refuse: bool, what: &str) -> PyResult<()> {
+    if !refuse {
+        return Ok(());
+    }
+    Err(crate::errors::not_applicable(
+        py,
+        format!(
+            "{}: {what} of a model with nonlinear elements (route 2, the time-domain Monte Carlo) is not available \
+             from Python yet; analyze() gives routes 1 and 3, `stochvib simulate` or `stochvib analyze --monte-carlo N` \
+             route 2",
+            sc.path.display()
+        ),
+    ))
+}
+
 /// `KEY=VALUES` texts (the CLI's `--param`) of a dict key → a range string or a sequence of values.
 fn sweep_params(params: &Bound<'_, PyDict>) -> PyResult<Vec<String>> {
     let text = |v: &Bound<'_, PyAny>| -> PyResult<String> { Ok(v.str()?.to_cow()?.into_owned()) };
@@ -569,6 +586,14 @@ impl PyScenario {
             Document::Stochastic(sc) => sc,
             _ => self.stochastic(py)?,
         };
+        if let Some(answers) = call(py, || sc.nonlinear_answers())? {
+            refuse_nonlinear_run(py, sc, monte_carlo.is_some(), "analyze(monte_carlo=N)")?;
+            let r = call(py, || stochvib::report::nonlinear_report(sc, &answers, None))?;
+            return py
+                .import("stochvib.results")?
+                .getattr("NonlinearResult")?
+                .call1((to_python(py, &r)?, r.to_string()));
+        }
         let (kind, data, text) = match monte_carlo {
             None => document_report(py, doc)?,
             Some(n) => {
@@ -694,6 +719,8 @@ impl PyScenario {
         shard: Option<(usize, usize)>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
+        let nonlinear = call(py, || sc.nonlinear_answers())?.is_some();
+        refuse_nonlinear_run(py, sc, nonlinear, "simulate()")?;
         let (path, part) = shard_path(py, path, shard)?;
         let dt = quantity::optional(py, dt, "dt", "s")?;
         let duration = quantity::optional(py, duration, "duration", "s")?;

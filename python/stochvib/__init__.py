@@ -51,6 +51,8 @@ from .results import (
     LevelCrossing,
     OutputResult,
     Report,
+    NonlinearOutput,
+    NonlinearResult,
     RunResult,
     SweepResult,
     TablesResult,
@@ -79,6 +81,8 @@ __all__ = [
     "TablesResult",
     "RunResult",
     "SweepResult",
+    "NonlinearResult",
+    "NonlinearOutput",
     "Report",
     "StochvibError",
     "InvalidInputError",
@@ -144,7 +148,7 @@ def analyze(
     rel_tol: Optional[float] = None,
     max_subintervals: Optional[int] = None,
     max_half_periods: Optional[int] = None,
-) -> AnalysisResult:
+) -> Union[AnalysisResult, NonlinearResult]:
     """Response statistics of a scenario, or of ``system`` driven by ``input`` (the ``stochvib analyze`` report).
 
     Quantities (``speed`` in m/s, ``positions`` in m, ``duration_s``, ``dt``, ``duration`` in s) are numbers

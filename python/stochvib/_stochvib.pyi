@@ -14,7 +14,7 @@ from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequen
 import numpy as np
 import numpy.typing as npt
 
-from .results import AnalysisResult, RunResult, SweepResult, TablesResult
+from .results import AnalysisResult, NonlinearResult, RunResult, SweepResult, TablesResult
 
 __version__: str
 ISO_BAND: Tuple[float, float]
@@ -238,7 +238,7 @@ class Scenario:
         rel_tol: Optional[float] = None,
         max_subintervals: Optional[int] = None,
         max_half_periods: Optional[int] = None,
-    ) -> AnalysisResult:
+    ) -> Union[AnalysisResult, NonlinearResult]:
         """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``); ``rel_tol``,
         ``max_subintervals``, ``max_half_periods`` override the quadratures' ``[analysis.quadrature]``."""
     def output_density(

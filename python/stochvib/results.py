@@ -41,6 +41,8 @@ __all__ = [
     "ExposureResult",
     "AxisExposure",
     "SweepResult",
+    "NonlinearResult",
+    "NonlinearOutput",
 ]
 
 
@@ -625,4 +627,69 @@ class SweepResult:
         for o in self.outputs:
             s = [r["sigma"] for r in self.rows if r["output"] == o and r.get("sigma") is not None]
             rows.append(f"{o:<14} {_e(min(s) if s else None):>12} {_e(max(s) if s else None):>12}")
+        return "\n".join([head, *rows])
+
+
+class NonlinearOutput:
+    """One output of a model with nonlinear elements: ``name``, ``unit``, and per statistic
+    ("mean_response", "sigma_response", "kurtosis", "upcrossing_rate[<level>]", …) the value by route 1
+    (statistical linearisation, Gaussian) and the exact one (route 3, where it applies): ``rows`` maps the
+    statistic to a dict ``route1``, ``exact``, ``unit``; ``route1_nu0`` the zero-upcrossing rate by route 1."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self._data = data
+        self.name: str = data["name"]
+        self.unit: str = data["unit"]
+        self.route1_nu0: Optional[float] = data.get("route1_nu0")
+        self.rows: Dict[str, Dict[str, Any]] = {r["statistic"]: r for r in data.get("rows", [])}
+
+    def route1(self, statistic: str = "sigma_response") -> Optional[float]:
+        """The statistic by route 1 (statistical linearisation), or None where it gives none."""
+        return self.rows[statistic].get("route1")
+
+    def exact(self, statistic: str = "sigma_response") -> Optional[float]:
+        """The statistic by route 3 (the exact stationary density), or None where route 3 does not apply."""
+        return self.rows[statistic].get("exact")
+
+    @property
+    def sigma(self) -> Optional[float]:
+        """σ of the output: the exact one where route 3 applies, else route 1's."""
+        e = self.exact()
+        return e if e is not None else self.route1()
+
+    def __repr__(self) -> str:
+        return f"NonlinearOutput {self.name} [{self.unit}]: sigma route 1 {_e(self.route1())}, exact {_e(self.exact())}"
+
+
+class NonlinearResult(_Text):
+    """The analysis of a model with nonlinear elements (``stochvib analyze`` of such a file): route 1
+    (statistical linearisation; ``route1`` says how it converged, ``route1_converged``) and route 3 (the exact
+    stationary density where it applies; ``route3`` says whether and why). ``result["x"]`` is a
+    :class:`NonlinearOutput`; ``elements`` the equivalent linear elements (dicts, as the ``--json``)."""
+
+    def __init__(self, data: Dict[str, Any], text: str) -> None:
+        self._data = data
+        self._text = text
+        self.outputs: Dict[str, NonlinearOutput] = {o["name"]: NonlinearOutput(o) for o in data.get("outputs", [])}
+
+    def __getitem__(self, name: str) -> NonlinearOutput:
+        if name not in self.outputs:
+            raise KeyError(f"no output {name!r}; the outputs are {list(self.outputs)}")
+        return self.outputs[name]
+
+    def to_dataframe(self) -> Any:
+        """One row per (output, statistic): route1, exact, unit."""
+        return _dataframe(
+            [
+                {"output": o.name, "statistic": k, "unit": r.get("unit"), "route1": r.get("route1"), "exact": r.get("exact")}
+                for o in self.outputs.values()
+                for k, r in o.rows.items()
+            ]
+        )
+
+    def __repr__(self) -> str:
+        head = f"NonlinearResult: {self._data.get('title')}  ({self._data.get('scenario')})"
+        rows = [f"{'output':<14} {'unit':<8} {'sigma route 1':>14} {'sigma exact':>14}"]
+        for o in self.outputs.values():
+            rows.append(f"{o.name:<14} {o.unit:<8} {_e(o.route1()):>14} {_e(o.exact()):>14}")
         return "\n".join([head, *rows])
