@@ -35,6 +35,9 @@ fn _stochvib(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(toolkit::iri, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::expected_iri, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::iso8608_class, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::road_profile, m)?)?;
+    m.add_function(wrap_pyfunction!(scenario::merge, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::coherence_amplitude, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::daily_exposure_a8, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::vdv_gaussian, m)?)?;
     m.add_function(wrap_pyfunction!(_check_panic_guard, m)?)?;

@@ -263,6 +263,84 @@ fn with_progress<T>(
     r
 }
 
+/// The file of part `shard` = (I, N) of a run in the directory `path` (created), or `path` itself.
+fn shard_path(
+    py: Python<'_>,
+    path: PathBuf,
+    shard: Option<(usize, usize)>,
+) -> PyResult<(PathBuf, Option<stochvib::store::Part>)> {
+    let Some((index, count)) = shard else {
+        return Ok((path, None));
+    };
+    let part = call(py, || stochvib::store::Part::new(index, count))?;
+    lib(
+        py,
+        std::fs::create_dir_all(&path).map_err(|source| Error::Io {
+            path: path.clone(),
+            source,
+        }),
+    )?;
+    Ok((stochvib::simulate::part_path(&path, part), Some(part)))
+}
+
+/// Joins the part files of a sharded run (``stochvib merge OUT INPUTS…``; ``inputs`` files or directories)
+/// into the run file ``path``: ``(data, text)`` of the merge summary.
+#[pyfunction]
+#[pyo3(signature = (path, inputs, *, copy=false, overwrite=false, confidence=None))]
+pub fn merge<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    inputs: Vec<PathBuf>,
+    copy: bool,
+    overwrite: bool,
+    confidence: Option<f64>,
+) -> PyResult<(Bound<'py, PyAny>, String)> {
+    use stochvib::simulate::{merge_runs, MergeOptions};
+    let opts = MergeOptions {
+        copy,
+        overwrite,
+        confidence,
+    };
+    let s = detached(py, || Ok(merge_runs(&path, &inputs, &opts, &|_, _| {})?))?;
+    Ok((to_python(py, &s)?, s.to_string()))
+}
+
+/// Refuses (with `refuse`) a Monte Carlo run of a model with nonlinear elements: route 2 is the command-line
+/// tool's for now, and the linear part alone would be a silently wrong answer.
+fn refuse_nonlinear_run(py: Python<'_>, sc: &Scenario, refuse: bool, what: &str) -> PyResult<()> {
+    if !refuse {
+        return Ok(());
+    }
+    Err(crate::errors::not_applicable(
+        py,
+        format!(
+            "{}: {what} of a model with nonlinear elements (route 2, the time-domain Monte Carlo) is not available \
+             from Python yet; analyze() gives routes 1 and 3, `stochvib simulate` or `stochvib analyze --monte-carlo N` \
+             route 2",
+            sc.path.display()
+        ),
+    ))
+}
+
+/// `KEY=VALUES` texts (the CLI's `--param`) of a dict key → a range string or a sequence of values.
+fn sweep_params(params: &Bound<'_, PyDict>) -> PyResult<Vec<String>> {
+    let text = |v: &Bound<'_, PyAny>| -> PyResult<String> { Ok(v.str()?.to_cow()?.into_owned()) };
+    params
+        .iter()
+        .map(|(k, v)| {
+            let values = if v.is_instance_of::<pyo3::types::PyString>() {
+                text(&v)?
+            } else {
+                v.try_iter()?
+                    .map(|x| text(&x?))
+                    .collect::<PyResult<Vec<_>>>()?
+                    .join(",")
+            };
+            Ok(format!("{}={values}", text(&k)?))
+        })
+        .collect()
+}
+
 /// After a run that stopped early in this process, which goes on living: removes `<path>.tmp.owner` if it
 /// names this process. The library writes that file while a run is being written (another process seeing a
 /// live pid there refuses to touch the `.tmp`) and leaves it when its writer stops early; a CLI process that
@@ -508,6 +586,14 @@ impl PyScenario {
             Document::Stochastic(sc) => sc,
             _ => self.stochastic(py)?,
         };
+        if let Some(answers) = call(py, || sc.nonlinear_answers())? {
+            refuse_nonlinear_run(py, sc, monte_carlo.is_some(), "analyze(monte_carlo=N)")?;
+            let r = call(py, || stochvib::report::nonlinear_report(sc, &answers, None))?;
+            return py
+                .import("stochvib.results")?
+                .getattr("NonlinearResult")?
+                .call1((to_python(py, &r)?, r.to_string()));
+        }
         let (kind, data, text) = match monte_carlo {
             None => document_report(py, doc)?,
             Some(n) => {
@@ -529,6 +615,55 @@ impl PyScenario {
             "TablesResult"
         };
         py.import("stochvib.results")?.getattr(class)?.call1((data, text))
+    }
+
+    /// The exact statistics at every point of a parameter study (``stochvib sweep SCENARIO --param … --json``).
+    ///
+    /// Parameters
+    /// ----------
+    /// params : dict
+    ///     A scenario key (``"model.c"``, ``"input.speed"``, ``"model.element.0.stiffness"``) → its values: a
+    ///     sequence of numbers or strings with units, or a range string ``"A..B:n"`` / ``"A..B:n:log"``.
+    /// zip : bool, keyword-only
+    ///     The k-th values of every key together instead of the grid of every combination.
+    ///
+    /// Returns
+    /// -------
+    /// SweepResult
+    ///     ``statistic(output, name)`` as an array of the study's shape; a failed point is NaN, its reason
+    ///     in ``rows``.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown key, a bad value or range, keys of different lengths with ``zip``.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> r = sc.sweep({"model.c": ["50 kN/m", "100 kN/m"]})
+    /// >>> r.statistic("y", "mean").round(12).tolist()  # the static deflection M_F / c = 10 kN / c
+    /// [0.2, 0.1]
+    #[pyo3(signature = (params, *, zip=false))]
+    fn sweep<'py>(&self, py: Python<'py>, params: &Bound<'py, PyDict>, zip: bool) -> PyResult<Bound<'py, PyAny>> {
+        use stochvib::scenario::{Sweep, SweepMode, SweepParam, SweepSpec};
+        let sc = self.stochastic(py)?;
+        let params = sweep_params(params)?;
+        let json = detached(py, || {
+            let params = params
+                .iter()
+                .map(|p| SweepParam::parse(p))
+                .collect::<stochvib::Result<Vec<_>>>()?;
+            let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
+            let sweep = Sweep::new(sc, SweepSpec::new(params, mode)?)?;
+            let n = sweep.spec().n_points();
+            Ok(stochvib::report::compute_sweep(&sweep, 0..n, true, None, &|_, _| ())?.to_json()?)
+        })?;
+        let v: serde_json::Value = serde_json::from_str(&json).map_err(|e| invalid_input(py, e.to_string()))?;
+        py.import("stochvib.results")?
+            .getattr("SweepResult")?
+            .call1((to_python(py, &v)?,))
     }
 
     /// The result tables of a deterministic model (a hoist, a chain) or of a reference table of the sources
@@ -561,8 +696,10 @@ impl PyScenario {
     /// ``overwrite=True``. ``store_raw`` keeps every realization (``compression``: "none", "fast", "best",
     /// "deflate:N"); ``route``: "auto", "exact" or "spectral"; ``confidence`` of the intervals.
     /// ``progress``: True (a bar on stderr, tqdm's when installed), False, or a callable(done, total).
-    /// The GIL is released while the run computes.
-    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None))]
+    /// The GIL is released while the run computes. ``shard=(I, N)`` runs part I of N of the run (as
+    /// ``stochvib simulate --shard I --of N -o DIR``): ``path`` is then the run directory (created) that
+    /// receives ``shard-<I>-of-<N>.h5``; :func:`stochvib.merge` joins the parts.
+    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -579,8 +716,12 @@ impl PyScenario {
         confidence: f64,
         overwrite: bool,
         progress: Option<Py<PyAny>>,
+        shard: Option<(usize, usize)>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
+        let nonlinear = call(py, || sc.nonlinear_answers())?.is_some();
+        refuse_nonlinear_run(py, sc, nonlinear, "simulate()")?;
+        let (path, part) = shard_path(py, path, shard)?;
         let dt = quantity::optional(py, dt, "dt", "s")?;
         let duration = quantity::optional(py, duration, "duration", "s")?;
         let compression: Compression = call(py, || compression.parse())?;
@@ -603,6 +744,7 @@ impl PyScenario {
                     compression,
                     route,
                     confidence,
+                    part,
                     ..RunOptions::new(realizations, d, dt, seed)
                 };
                 sc.simulate(&opts, &path, cb).map(|s| (s, how))

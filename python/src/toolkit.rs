@@ -319,3 +319,76 @@ pub fn vdv_gaussian(py: Python<'_>, a_w: f64, duration: &Bound<'_, PyAny>) -> Py
     let t = crate::quantity::quantity(py, duration, "duration", "s")?;
     call(py, || stochvib::comfort::vdv_gaussian(a_w, t))
 }
+
+/// The `stochvib road` analysis of tracks given as arrays: ``tracks`` a list of (name, elevations in m),
+/// equally spaced by ``step``; the report's data as a dict (its ``--json``), the profile named ``<arrays>``.
+#[pyfunction]
+#[pyo3(signature = (tracks, step, *, segment=None, detrend="linear", confidence=0.95))]
+pub fn road_profile<'py>(
+    py: Python<'py>,
+    tracks: Vec<(String, Bound<'py, PyAny>)>,
+    step: &Bound<'py, PyAny>,
+    segment: Option<usize>,
+    detrend: &str,
+    confidence: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    use stochvib::report::road_report::{profile_report, RoadReportOptions};
+    use stochvib::road::{Detrend, Profile, Track};
+    let step = crate::quantity::quantity(py, step, "step", "m")?;
+    let detrend = match detrend {
+        "mean" => Detrend::Mean,
+        "linear" => Detrend::Linear,
+        other => {
+            return Err(invalid_input(
+                py,
+                format!("detrend={other:?}: expected \"mean\" or \"linear\""),
+            ))
+        }
+    };
+    if !(confidence > 0.0 && confidence < 1.0) {
+        return Err(invalid_input(
+            py,
+            format!("confidence={confidence}: expected a number in (0, 1)"),
+        ));
+    }
+    let tracks = tracks
+        .into_iter()
+        .map(|(name, z)| {
+            Ok(Track {
+                elevation_m: vector(py, &z, &name)?,
+                name,
+            })
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let work = tracks.iter().map(|t| t.elevation_m.len()).sum();
+    let opts = RoadReportOptions {
+        segment_len: segment,
+        detrend,
+        confidence,
+    };
+    let r = detached_if(py, work, crate::spectrum::DETACH_MIN_POINTS, || {
+        let p = Profile::new(step, 0.0, tracks)?;
+        Ok(profile_report(&p, std::path::Path::new("<arrays>"), &opts)?)
+    })?;
+    to_python(py, &r)
+}
+
+/// The coherence amplitude ρ(n) of two road tracks ``track_width`` apart under the coherence ``model`` (a
+/// dict as a scenario road's ``coherence`` table: kinds "dodds-robson", "ammon-bormann", "tabulated",
+/// "constant") at the spatial frequencies ``n`` (cycles/m), shaped as ``n``; γ² = ρ².
+#[pyfunction]
+#[pyo3(signature = (model, n, *, track_width))]
+pub fn coherence_amplitude<'py>(
+    py: Python<'py>,
+    model: &Bound<'py, PyDict>,
+    n: &Bound<'py, PyAny>,
+    track_width: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    use numpy::IntoPyArray;
+    let width = crate::quantity::quantity(py, track_width, "track_width", "m")?;
+    let text = toml::Value::Table(crate::convert::toml_table(py, "model", model)?).to_string();
+    let c = call(py, || stochvib::scenario::coherence_from_toml(&text, width))?;
+    let x = real_array(py, n, "n")?;
+    let out = x.readonly().as_array().mapv(|v| c.coherence_amplitude(v));
+    Ok(out.into_pyarray(py))
+}

@@ -51,7 +51,10 @@ from .results import (
     LevelCrossing,
     OutputResult,
     Report,
+    NonlinearOutput,
+    NonlinearResult,
     RunResult,
+    SweepResult,
     TablesResult,
     VarianceMethod,
 )
@@ -62,6 +65,7 @@ __all__ = [
     "Scenario",
     "analyze",
     "simulate",
+    "merge",
     "exposure",
     "ExposureResult",
     "welch",
@@ -76,6 +80,9 @@ __all__ = [
     "LevelCrossing",
     "TablesResult",
     "RunResult",
+    "SweepResult",
+    "NonlinearResult",
+    "NonlinearOutput",
     "Report",
     "StochvibError",
     "InvalidInputError",
@@ -141,7 +148,7 @@ def analyze(
     rel_tol: Optional[float] = None,
     max_subintervals: Optional[int] = None,
     max_half_periods: Optional[int] = None,
-) -> AnalysisResult:
+) -> Union[AnalysisResult, NonlinearResult]:
     """Response statistics of a scenario, or of ``system`` driven by ``input`` (the ``stochvib analyze`` report).
 
     Quantities (``speed`` in m/s, ``positions`` in m, ``duration_s``, ``dt``, ``duration`` in s) are numbers
@@ -237,6 +244,7 @@ def simulate(
     overwrite: bool = False,
     progress: Union[bool, Callable[[int, int], Any]] = True,
     spectra_dir: Optional[PathLike] = None,
+    shard: Optional[Tuple[int, int]] = None,
 ) -> RunResult:
     """A seeded Monte Carlo run written to the HDF5 file ``path`` (``stochvib simulate``); returns a
     :class:`RunResult` with the file path and the statistics (σ with its interval against the analytic σ).
@@ -249,6 +257,9 @@ def simulate(
     resumes. ``store_raw`` keeps every realization (``compression``: "none", "fast", "best", "deflate:N");
     ``route``: "auto", "exact" (rational inputs without delays) or "spectral"; ``confidence`` of the
     intervals; ``progress``: True (a bar), False or a callable(done, total). The GIL is released.
+    ``shard=(I, N)``: part I of N of the run (``stochvib simulate --shard I --of N -o DIR``), ``path`` the run
+    directory receiving ``shard-<I>-of-<N>.h5``; :func:`merge` joins the parts into one run file with the
+    statistics of the unsharded run.
     """
     kw: Dict[str, Any] = {}
     for k, v in (("speed", speed), ("positions", positions), ("mean", mean), ("outputs", outputs)):
@@ -268,7 +279,59 @@ def simulate(
         confidence=confidence,
         overwrite=overwrite,
         progress=progress,
+        shard=shard,
     )
+
+
+def merge(
+    path: PathLike,
+    inputs: Union[PathLike, Sequence[PathLike]],
+    *,
+    copy: bool = False,
+    overwrite: bool = False,
+    confidence: Optional[float] = None,
+) -> RunResult:
+    """Joins the part files of a sharded run into one run file (``stochvib merge OUT INPUTS…``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The merged run file (HDF5), written as ``path.tmp`` and renamed when complete.
+    inputs : path or sequence of paths
+        The part files, or directories holding them (``shard-<I>-of-<N>.h5``); every part must be there
+        and of the same run (scenario, seed, step).
+    copy : bool, keyword-only
+        Copy stored raw realizations into the merged file instead of referencing the part files.
+    overwrite : bool, keyword-only
+        Replace an existing run file at ``path``.
+    confidence : float, keyword-only
+        Of the intervals; default that of the parts.
+
+    Returns
+    -------
+    RunResult
+        The merged statistics: those of the same run made in one piece (realization i uses the random
+        stream (seed, i) in any part).
+
+    Raises
+    ------
+    FileError
+        A missing or foreign part, a damaged file, an existing ``path`` without ``overwrite``.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, stochvib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> for i in range(2):
+    ...     _ = stochvib.simulate("data/conveyor-idler.toml", 20, d / "parts", shard=(i, 2), shard_size=10,
+    ...                           progress=False)
+    >>> m = stochvib.merge(d / "run.h5", d / "parts")
+    >>> m.n_realizations, m.path.name
+    (20, 'run.h5')
+    """
+    ins = [inputs] if isinstance(inputs, (str, os.PathLike)) else list(inputs)
+    data, text = _stochvib.merge(path, ins, copy=copy, overwrite=overwrite, confidence=confidence)
+    return RunResult(data, text, "merged from the parts (their step)")
 
 
 def exposure(

@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
 
-from .results import AnalysisResult, RunResult, TablesResult
+from .results import AnalysisResult, NonlinearResult, RunResult, SweepResult, TablesResult
 
 __version__: str
 ISO_BAND: Tuple[float, float]
@@ -238,7 +238,7 @@ class Scenario:
         rel_tol: Optional[float] = None,
         max_subintervals: Optional[int] = None,
         max_half_periods: Optional[int] = None,
-    ) -> AnalysisResult:
+    ) -> Union[AnalysisResult, NonlinearResult]:
         """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``); ``rel_tol``,
         ``max_subintervals``, ``max_half_periods`` override the quadratures' ``[analysis.quadrature]``."""
     def output_density(
@@ -250,6 +250,8 @@ class Scenario:
         convention: Optional[Convention] = None,
     ) -> Union[float, FloatArray]:
         """S_y(ω) (rad/s) or the one-sided G_y(f) (Hz) of an output, shaped as the argument."""
+    def sweep(self, params: Mapping[str, Union[str, Sequence[Quantity]]], *, zip: bool = False) -> SweepResult:
+        """The exact statistics at every point of a parameter study (grid, or ``zip``)."""
     def tables(self) -> TablesResult:
         """The result tables of a deterministic model or a reference table."""
     def simulate(
@@ -267,8 +269,10 @@ class Scenario:
         confidence: float = 0.95,
         overwrite: bool = False,
         progress: Progress = True,
+        shard: Optional[Tuple[int, int]] = None,
     ) -> RunResult:
-        """A seeded Monte Carlo run into the HDF5 file ``path`` (dt, duration in s)."""
+        """A seeded Monte Carlo run into the HDF5 file ``path`` (dt, duration in s); with ``shard=(I, N)``
+        part I of N into the directory ``path``."""
     @property
     def title(self) -> str: ...
     @property
@@ -315,5 +319,22 @@ def welch(
 def iri(z: ArrayLike, step: Quantity) -> Dict[str, Any]: ...
 def expected_iri(spectrum: Spectrum) -> Dict[str, Any]: ...
 def iso8608_class(g0: Quantity) -> str: ...
+def merge(
+    path: PathLike,
+    inputs: Sequence[PathLike],
+    *,
+    copy: bool = False,
+    overwrite: bool = False,
+    confidence: Optional[float] = None,
+) -> Tuple[Dict[str, Any], str]: ...
+def coherence_amplitude(model: Dict[str, Any], n: ArrayLike, *, track_width: Quantity) -> FloatArray: ...
+def road_profile(
+    tracks: List[Tuple[str, ArrayLike]],
+    step: Quantity,
+    *,
+    segment: Optional[int] = ...,
+    detrend: str = ...,
+    confidence: float = ...,
+) -> Dict[str, Any]: ...
 def daily_exposure_a8(a_w: float, duration: Quantity) -> float: ...
 def vdv_gaussian(a_w: float, duration: Quantity) -> float: ...

@@ -40,6 +40,9 @@ __all__ = [
     "Report",
     "ExposureResult",
     "AxisExposure",
+    "SweepResult",
+    "NonlinearResult",
+    "NonlinearOutput",
 ]
 
 
@@ -557,3 +560,136 @@ class ExposureResult(_Text):
     def __repr__(self) -> str:
         head = f"ExposureResult: T = {_e(self.duration_s)} s, T_exp = {_e(self.exposure_s)} s, A(8) = {_e(self.a8)} m/s^2"
         return "\n".join([head, *[repr(a) for a in self.axes + self.motion_sickness]])
+
+
+class SweepResult:
+    """The exact statistics at every point of a parameter study (:meth:`Scenario.sweep`; the data of
+    ``stochvib sweep SCENARIO --param … --json``).
+
+    Attributes
+    ----------
+    params : dict
+        key → the values swept (strings as given, with units), in order.
+    mode : str
+        "grid" (every combination; the first key varies slowest) or "zip" (the k-th values together).
+    shape : tuple of int
+        The study's shape: one axis per key for a grid, ``(n_points,)`` for zip.
+    outputs : list of str
+    rows : list of dict
+        One per (point, output): ``point``, ``params``, ``output``, ``unit``, ``method``, ``mean``, ``sigma``,
+        ``variance``, ``lower_3sigma``, ``upper_3sigma``, ``lambda2``, ``zero_upcrossing_rate``, ``error``
+        (the reason a point failed, else None).
+    """
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self._data = data
+        ident = data["identity"]
+        self.params: Dict[str, List[str]] = {k: list(v) for k, v in ident["params"]}
+        self.mode: str = ident["mode"]
+        self.outputs: List[str] = [o for o, _ in ident["outputs"]]
+        self.n_points: int = data["n_points"]
+        self.rows: List[Dict[str, Any]] = data["rows"]
+        grid = self.mode == "grid"
+        self.shape: Tuple[int, ...] = tuple(len(v) for v in self.params.values()) if grid else (self.n_points,)
+
+    def statistic(self, output: str, name: str = "sigma") -> Any:
+        """The statistic ``name`` ("sigma", "mean", "variance", "zero_upcrossing_rate", …) of ``output`` at
+        every point as a numpy array of :attr:`shape` (NaN where a point failed)."""
+        import numpy as np
+
+        if output not in self.outputs:
+            raise KeyError(f"no output {output!r}; the outputs are {self.outputs}")
+        out = np.full(self.n_points, np.nan)
+        for r in self.rows:
+            if r["output"] == output and r.get(name) is not None:
+                out[r["point"]] = r[name]
+        return out.reshape(self.shape)
+
+    def sigma(self, output: str) -> Any:
+        """σ of ``output`` at every point, shaped as :attr:`shape`."""
+        return self.statistic(output, "sigma")
+
+    def to_dict(self) -> Dict[str, Any]:
+        """A deep copy of the data, as ``stochvib sweep … --json`` prints it."""
+        return copy.deepcopy(self._data)
+
+    def to_dataframe(self) -> Any:
+        """One row per (point, output), one column per swept key (pandas)."""
+        return _dataframe(
+            [{**{k: v for k, v in r.items() if k not in ("params", "monte_carlo")}, **r["params"]} for r in self.rows]
+        )
+
+    def __repr__(self) -> str:
+        keys = ", ".join(f"{k} ({len(v)} values)" for k, v in self.params.items())
+        failed = len({r["point"] for r in self.rows if r.get("error")})
+        head = f"SweepResult: {self.n_points} points ({self.mode} of {keys}), {failed} failed"
+        rows = [f"{'output':<14} {'min sigma':>12} {'max sigma':>12}"]
+        for o in self.outputs:
+            s = [r["sigma"] for r in self.rows if r["output"] == o and r.get("sigma") is not None]
+            rows.append(f"{o:<14} {_e(min(s) if s else None):>12} {_e(max(s) if s else None):>12}")
+        return "\n".join([head, *rows])
+
+
+class NonlinearOutput:
+    """One output of a model with nonlinear elements: ``name``, ``unit``, and per statistic
+    ("mean_response", "sigma_response", "kurtosis", "upcrossing_rate[<level>]", …) the value by route 1
+    (statistical linearisation, Gaussian) and the exact one (route 3, where it applies): ``rows`` maps the
+    statistic to a dict ``route1``, ``exact``, ``unit``; ``route1_nu0`` the zero-upcrossing rate by route 1."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self._data = data
+        self.name: str = data["name"]
+        self.unit: str = data["unit"]
+        self.route1_nu0: Optional[float] = data.get("route1_nu0")
+        self.rows: Dict[str, Dict[str, Any]] = {r["statistic"]: r for r in data.get("rows", [])}
+
+    def route1(self, statistic: str = "sigma_response") -> Optional[float]:
+        """The statistic by route 1 (statistical linearisation), or None where it gives none."""
+        return self.rows[statistic].get("route1")
+
+    def exact(self, statistic: str = "sigma_response") -> Optional[float]:
+        """The statistic by route 3 (the exact stationary density), or None where route 3 does not apply."""
+        return self.rows[statistic].get("exact")
+
+    @property
+    def sigma(self) -> Optional[float]:
+        """σ of the output: the exact one where route 3 applies, else route 1's."""
+        e = self.exact()
+        return e if e is not None else self.route1()
+
+    def __repr__(self) -> str:
+        return f"NonlinearOutput {self.name} [{self.unit}]: sigma route 1 {_e(self.route1())}, exact {_e(self.exact())}"
+
+
+class NonlinearResult(_Text):
+    """The analysis of a model with nonlinear elements (``stochvib analyze`` of such a file): route 1
+    (statistical linearisation; ``route1`` says how it converged, ``route1_converged``) and route 3 (the exact
+    stationary density where it applies; ``route3`` says whether and why). ``result["x"]`` is a
+    :class:`NonlinearOutput`; ``elements`` the equivalent linear elements (dicts, as the ``--json``)."""
+
+    def __init__(self, data: Dict[str, Any], text: str) -> None:
+        self._data = data
+        self._text = text
+        self.outputs: Dict[str, NonlinearOutput] = {o["name"]: NonlinearOutput(o) for o in data.get("outputs", [])}
+
+    def __getitem__(self, name: str) -> NonlinearOutput:
+        if name not in self.outputs:
+            raise KeyError(f"no output {name!r}; the outputs are {list(self.outputs)}")
+        return self.outputs[name]
+
+    def to_dataframe(self) -> Any:
+        """One row per (output, statistic): route1, exact, unit."""
+        return _dataframe(
+            [
+                {"output": o.name, "statistic": k, "unit": r.get("unit"), "route1": r.get("route1"), "exact": r.get("exact")}
+                for o in self.outputs.values()
+                for k, r in o.rows.items()
+            ]
+        )
+
+    def __repr__(self) -> str:
+        head = f"NonlinearResult: {self._data.get('title')}  ({self._data.get('scenario')})"
+        rows = [f"{'output':<14} {'unit':<8} {'sigma route 1':>14} {'sigma exact':>14}"]
+        for o in self.outputs.values():
+            rows.append(f"{o.name:<14} {o.unit:<8} {_e(o.route1()):>14} {_e(o.exact()):>14}")
+        return "\n".join([head, *rows])

@@ -142,7 +142,15 @@ pub struct RoadReport {
 /// assert_eq!(r.tracks[0].fits[0].class, "C");
 /// ```
 pub fn road_report(path: &Path, opts: &RoadReportOptions) -> Result<RoadReport> {
-    let p = Profile::read_csv(path)?;
+    profile_report(&Profile::read_csv(path)?, path, opts)
+}
+
+/// The report of a profile already in memory (e.g. arrays from the Python package); `path` names its
+/// source in the report and in errors about a track.
+///
+/// # Errors
+/// As [`road_report`], less the reading.
+pub fn profile_report(p: &Profile, path: &Path, opts: &RoadReportOptions) -> Result<RoadReport> {
     let n = p.len();
     let detrended = p.detrended(opts.detrend);
     for (t, d) in p.tracks.iter().zip(&detrended.tracks) {
