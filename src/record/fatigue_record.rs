@@ -472,9 +472,17 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
     let (moments, segments) = spectral.moments(&welch)?;
     let damage = tally.damage / options.sn.c();
     let damage_plain = tally.damage_plain / options.sn.c();
+    require_damage(&info, &channel, "rainflow (Miner)", damage)?;
+    require_damage(&info, &channel, "rainflow (Miner) without the mean-stress correction", damage_plain)?;
     let life_plain = duration_s / damage_plain;
     let (methods, spread) = match &moments {
-        Some(mo) => method_lives(&compare_methods(mo, &options.sn)?, life_plain),
+        Some(mo) => {
+            let cmp = compare_methods(mo, &options.sn)?;
+            for e in &cmp.estimates {
+                require_damage(&info, &channel, e.name, e.damage_rate)?;
+            }
+            method_lives(&cmp, life_plain)
+        }
         None => (Vec::new(), None),
     };
     Ok(FatigueEvaluation {
@@ -505,6 +513,30 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
         spread,
         record: info,
     })
+}
+
+/// Refuses a damage (or damage rate) of `method` that is 0 — no cycle does damage within the range of f64
+/// (all below the endurance limit, or amplitudes so small that S^k underflows): the life would be
+/// infinite — or not finite (amplitudes whose S^k overflows), naming the record and the channel.
+///
+/// # Errors
+/// [`Error::File`] naming the record's channel.
+fn require_damage(info: &RecordInfo, channel: &str, method: &str, damage: f64) -> Result<()> {
+    if damage.is_finite() && damage > 0.0 {
+        return Ok(());
+    }
+    let why = if damage == 0.0 {
+        "no damage within the range of f64 (every cycle below the endurance limit, or S^k below the smallest \
+         number): the life is not a finite number; check the S–N curve's point and the channel's unit"
+    } else {
+        "a damage that is not a finite number (S^k overflows): check the S–N curve's point and the channel's unit"
+    };
+    Err(Error::in_file(
+        &info.source,
+        "channel",
+        channel,
+        format!("{method} gives {why}"),
+    ))
 }
 
 /// The methods' lives against the rainflow life, and their spread.

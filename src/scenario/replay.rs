@@ -340,6 +340,7 @@ pub fn replay_scenario(
         },
         e => e,
     })?;
+    require_finite_statistics(&replay, &profile, profile_path)?;
     let mut outputs = Vec::new();
     for &i in &scenario.analysis.outputs {
         let analytic_sigma = analyze_output(measured.model.system.as_ref(), &measured.excitation, i)?
@@ -371,4 +372,42 @@ pub fn replay_scenario(
         outputs,
         analytic_track,
     })
+}
+
+/// Refuses a replay whose statistics left the range of f64 (elevations so large that their squares or
+/// the response overflow), naming the profile's largest elevation: its track, distance and value.
+///
+/// # Errors
+/// [`Error::File`] naming the profile, the track and the largest |elevation|.
+fn require_finite_statistics(replay: &Replay, profile: &Profile, file: &Path) -> Result<()> {
+    let bad = replay.outputs.iter().find(|o| {
+        let crest_ok = o.sigma == 0.0 || o.crest_factor.is_finite();
+        !([o.mean, o.sigma, o.rms, o.min, o.max].iter().all(|v| v.is_finite()) && crest_ok)
+    });
+    let Some(o) = bad else { return Ok(()) };
+    let (track, k, z) = profile
+        .tracks
+        .iter()
+        .flat_map(|t| t.elevation_m.iter().enumerate().map(move |(k, z)| (t, k, *z)))
+        .fold(None, |best: Option<(&crate::road::Track, usize, f64)>, c| match best {
+            Some(b) if b.2.abs() >= c.2.abs() => Some(b),
+            _ => Some(c),
+        })
+        .expect("a profile has a track of at least 2 samples");
+    let n = crate::numbers::num;
+    Err(Error::in_file(
+        file,
+        format!("track `{}`", track.name),
+        format!("{} m", n(z)),
+        format!(
+            "the replayed output `{}` leaves the range of f64 (mean {}, σ {}, r.m.s. {}): the largest elevation, \
+             {} m at distance {} m, is not a road's; check the column's values and unit",
+            o.name,
+            n(o.mean),
+            n(o.sigma),
+            n(o.rms),
+            n(z),
+            n(profile.distance_m(k))
+        ),
+    ))
 }
