@@ -682,9 +682,10 @@ fn workday_case(corpus: &Corpus, rng: &mut Rng, case: &mut Case) {
         case.raw.push(d);
     }
     if case.raw.is_empty() {
-        for m in &case.mutations {
+        for (i, m) in case.mutations.iter().enumerate() {
             if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness)
                 && mutate::get(&doc, p).is_some_and(|x| x.to_string() == v.to_string())
+                && mutate::expectation_holds(&case.mutations, i)
             {
                 case.must_reject
                     .push((class.clone(), mutate::path_str(p), mutate::path_str(p)));
@@ -1235,6 +1236,7 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<
                     }
                 }
                 ("InvalidParameter", _, Some(name)) if name.starts_with("--") => {}
+                ("InvalidParameter", _, Some(name)) if super::records::names_a_positional(case, name, &e.message) => {}
                 ("InvalidParameter", _, Some(name)) => add(
                     "error-not-a-flag",
                     format!("{what}: parameter `{name}` is not what the user wrote"),
@@ -1425,7 +1427,12 @@ pub fn check_cli(case: &Case, args: &[String], lib: &str, out: &super::process::
                 .iter()
                 .any(|a| a.starts_with('/') && out.stderr.contains(a.as_str()))
                 || out.stderr.contains("--")
-                || out.stderr.contains(&case.file_name);
+                || out.stderr.contains(&case.file_name)
+                || (case.kind == DocKind::Record
+                    && case
+                        .args
+                        .get(1)
+                        .is_some_and(|v| out.stderr.contains(&format!("\"{v}\""))));
             if !first_err.starts_with("error") || !named {
                 add(
                     "cli-error-message",

@@ -334,7 +334,15 @@ fn added_family(corpus: &Corpus, seed: u64, index: u64) -> Option<Case> {
         0..=5 => Some(super::commands::record(corpus, &mut rng, index)),
         6..=11 => {
             let (origin, doc, mutations) = super::nonlinear::mutated(corpus, &mut rng)?;
-            Some(finish(&mut rng, index, &origin, DocKind::Nonlinear, doc, mutations, false))
+            Some(finish(
+                &mut rng,
+                index,
+                &origin,
+                DocKind::Nonlinear,
+                doc,
+                mutations,
+                false,
+            ))
         }
         _ => None,
     }
@@ -367,9 +375,10 @@ fn finish(
     if raw.is_empty()
         && let Some(d) = &doc
     {
-        for m in &mutations {
+        for (i, m) in mutations.iter().enumerate() {
             if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness)
                 && get(d, p).is_some_and(|x| same_value(x, v))
+                && mutate::expectation_holds(&mutations, i)
             {
                 let sig = match m.op.as_str() {
                     "rename" => m.path.clone(),
@@ -388,11 +397,7 @@ fn finish(
         }
     }
     let convention = Convention::ALL[rng.random_range(0..Convention::ALL.len())];
-    let file_name = Path::new(origin)
-        .file_name()
-        .unwrap()
-        .to_string_lossy()
-        .into_owned();
+    let file_name = Path::new(origin).file_name().unwrap().to_string_lossy().into_owned();
     Case {
         index,
         origin: origin.to_string(),

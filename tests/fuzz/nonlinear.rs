@@ -46,7 +46,9 @@ fn origins(corpus: &Corpus) -> Vec<(&str, &Table)> {
         .iter()
         .filter(|s| {
             let model = s.table.get("model").and_then(Value::as_table);
-            model.is_some_and(|m| m.contains_key("nonlinear") || m.get("kind").and_then(Value::as_str) == Some("quarter-car"))
+            model.is_some_and(|m| {
+                m.contains_key("nonlinear") || m.get("kind").and_then(Value::as_str) == Some("quarter-car")
+            })
         })
         .map(|s| (s.rel.as_str(), &s.table))
         .collect()

@@ -46,13 +46,27 @@ fn maybe(rng: &mut Rng, a: &mut Vec<String>, p: f64, name: &str, values: &[&str]
 
 /// The record options every record command shares.
 fn record_flags(rng: &mut Rng, a: &mut Vec<String>) {
-    maybe(rng, a, 0.2, "--sample-rate", &["100", "50", "0", "-1", "NaN", "1e308", "1e-300", "inf"]);
+    maybe(
+        rng,
+        a,
+        0.2,
+        "--sample-rate",
+        &["100", "50", "0", "-1", "NaN", "1e308", "1e-300", "inf"],
+    );
     maybe(
         rng,
         a,
         0.15,
         "--unit",
-        &["x=m/s^2", "stress=MPa", "x", "z=furlong", "=m", "stress=m/s^2", "nope=m"],
+        &[
+            "x=m/s^2",
+            "stress=MPa",
+            "x",
+            "z=furlong",
+            "=m",
+            "stress=m/s^2",
+            "nope=m",
+        ],
     );
     if rng.random_bool(0.05) {
         a.push("--decimal-comma".into());
@@ -83,7 +97,9 @@ fn exposure_flags(rng: &mut Rng, a: &mut Vec<String>) {
         a,
         0.3,
         "--exposure",
-        &["8 h", "150 min", "0 h", "-1 h", "1e308 h", "NaN h", "8", "8 kg", "1e-300 s"],
+        &[
+            "8 h", "150 min", "0 h", "-1 h", "1e308 h", "NaN h", "8", "8 kg", "1e-300 s",
+        ],
     );
     maybe(rng, a, 0.2, "--running", &["linear", "exponential", "cubic"]);
 }
@@ -93,19 +109,62 @@ fn fatigue_flags(rng: &mut Rng, a: &mut Vec<String>) {
     a.push("--sn-slope".into());
     a.push(pick(rng, &["3", "5", "0", "-3", "NaN", "1e308", "1e-300", "40"]).into());
     let points = [
-        "80 MPa", "160 MPa", "0 MPa", "-5 MPa", "1e308 MPa", "80", "80 furlong", "80 m/s^2", "1e-300 MPa", "NaN MPa",
+        "80 MPa",
+        "160 MPa",
+        "0 MPa",
+        "-5 MPa",
+        "1e308 MPa",
+        "80",
+        "80 furlong",
+        "80 m/s^2",
+        "1e-300 MPa",
+        "NaN MPa",
     ];
-    let which = if rng.random_bool(0.5) { "--sn-amplitude" } else { "--sn-range" };
+    let which = if rng.random_bool(0.5) {
+        "--sn-amplitude"
+    } else {
+        "--sn-range"
+    };
     if rng.random_bool(0.95) {
         a.push(which.into());
         a.push(pick(rng, &points).into());
     }
-    maybe(rng, a, 0.3, "--sn-cycles", &["2e6", "0", "-1", "NaN", "1e308", "1", "1e-300"]);
-    maybe(rng, a, 0.2, "--endurance", &["20 MPa", "0 MPa", "1e308 MPa", "20 m", "-1 MPa"]);
-    maybe(rng, a, 0.3, "--mean-stress", &["none", "goodman", "gerber", "swt", "bogus"]);
-    maybe(rng, a, 0.3, "--ultimate", &["500 MPa", "10 MPa", "0 MPa", "-1 MPa", "500 m", "1e308 MPa"]);
+    maybe(
+        rng,
+        a,
+        0.3,
+        "--sn-cycles",
+        &["2e6", "0", "-1", "NaN", "1e308", "1", "1e-300"],
+    );
+    maybe(
+        rng,
+        a,
+        0.2,
+        "--endurance",
+        &["20 MPa", "0 MPa", "1e308 MPa", "20 m", "-1 MPa"],
+    );
+    maybe(
+        rng,
+        a,
+        0.3,
+        "--mean-stress",
+        &["none", "goodman", "gerber", "swt", "bogus"],
+    );
+    maybe(
+        rng,
+        a,
+        0.3,
+        "--ultimate",
+        &["500 MPa", "10 MPa", "0 MPa", "-1 MPa", "500 m", "1e308 MPa"],
+    );
     maybe(rng, a, 0.2, "--gate", &["1 MPa", "0 MPa", "1e308 MPa", "-1 MPa", "1 m"]);
-    maybe(rng, a, 0.2, "--segment", &["0", "1", "2", "64", "1048576", "18446744073709551615"]);
+    maybe(
+        rng,
+        a,
+        0.2,
+        "--segment",
+        &["0", "1", "2", "64", "1048576", "18446744073709551615"],
+    );
 }
 
 fn coherence_flags(rng: &mut Rng, a: &mut Vec<String>) {
@@ -137,7 +196,13 @@ fn coherence_flags(rng: &mut Rng, a: &mut Vec<String>) {
         "--frequency",
         &["0.1,1,10", "0", "-1", "NaN", "1e308", "0.01", "1e-300"],
     );
-    maybe(rng, a, 0.2, "--segment", &["0", "1", "2", "64", "1048576", "18446744073709551615"]);
+    maybe(
+        rng,
+        a,
+        0.2,
+        "--segment",
+        &["0", "1", "2", "64", "1048576", "18446744073709551615"],
+    );
     maybe(rng, a, 0.15, "--confidence", &["0.95", "0", "1", "NaN", "1.5"]);
 }
 
@@ -174,7 +239,13 @@ pub fn record_case(cc: &super::commands::CommandCorpus, rng: &mut Rng, case: &mu
             case.file_name = "unused.csv".into();
             let names = ["Wk", "Wd", "Wc", "We", "Wj", "Wb", "Wf", "Wz", "wk", ""];
             a.push(pick(rng, &names).into());
-            maybe(rng, &mut a, 0.4, "--frequency", &["1,2,4", "0", "-1", "NaN", "1e308", "1e-300"]);
+            maybe(
+                rng,
+                &mut a,
+                0.4,
+                "--frequency",
+                &["1,2,4", "0", "-1", "NaN", "1e308", "1e-300"],
+            );
             maybe(
                 rng,
                 &mut a,
@@ -302,13 +373,16 @@ fn eval_exposure(path: &Path, args: &[String]) -> Step<Outcome> {
     };
     let exposure_s = match one(args, "--exposure") {
         None => None,
-        Some(t) => Some(
-            stochvib::units::parse_as(t, Dim::TIME).map_err(|e| flag_refusal("--exposure", t, &e.to_string()))?,
-        ),
+        Some(t) => {
+            Some(stochvib::units::parse_as(t, Dim::TIME).map_err(|e| flag_refusal("--exposure", t, &e.to_string()))?)
+        }
     };
     let options = ExposureOptions {
         axes: lib(axes, "start")?,
-        motion_sickness: values(args, "--motion-sickness").iter().map(|s| s.to_string()).collect(),
+        motion_sickness: values(args, "--motion-sickness")
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
         exposure_s,
         running,
         ..ExposureOptions::default()
@@ -322,30 +396,21 @@ fn eval_exposure(path: &Path, args: &[String]) -> Step<Outcome> {
 
 /// An amplitude-like flag in SI with the S–N curve's dimension (as the handler's `same_dim`).
 fn same_dim(flag: &str, text: &str, dim: Dim) -> Step<f64> {
-    let (v, d) = lib(stochvib::record::parse_quantity(text, flag), "start")?;
-    if d != dim {
-        return Err(flag_refusal(flag, text, "another dimension than the S–N curve's"));
-    }
-    Ok(v)
+    lib(stochvib::record::quantity_of_dim(flag, text, dim), "start")
 }
 
 fn sn_curve(args: &[String]) -> Step<(stochvib::fatigue::SnCurve, Dim)> {
+    use stochvib::record::SnPoint;
     let slope: f64 = number(args, "--sn-slope")?.ok_or_else(|| clap("no --sn-slope".into()))?;
     let cycles: f64 = number(args, "--sn-cycles")?.unwrap_or(2e6);
-    let (flag, point) = match (one(args, "--sn-amplitude"), one(args, "--sn-range")) {
-        (Some(p), None) => ("--sn-amplitude", p),
-        (None, Some(p)) => ("--sn-range", p),
+    let point = match (one(args, "--sn-amplitude"), one(args, "--sn-range")) {
+        (Some(p), None) => SnPoint::Amplitude(p),
+        (None, Some(p)) => SnPoint::Range(p),
         (Some(_), Some(_)) => return Err(clap("--sn-amplitude with --sn-range".into())),
         (None, None) => return Err(flag_refusal("--sn-amplitude", "<none>", "give the S–N curve's point")),
     };
-    let (v, dim) = lib(stochvib::record::parse_quantity(point, flag), "start")?;
-    let amplitude = if flag == "--sn-range" { v / 2.0 } else { v };
-    let endurance = match one(args, "--endurance") {
-        None => None,
-        Some(t) => Some(same_dim("--endurance", t, dim)?),
-    };
-    let sn = stochvib::fatigue::SnCurve::from_reference_point(slope, amplitude, cycles, endurance);
-    Ok((lib(sn, "start")?, dim))
+    let sn = stochvib::record::sn_curve_from_flags(slope, point, cycles, one(args, "--endurance"));
+    lib(sn, "start")
 }
 
 fn eval_fatigue(path: &Path, args: &[String]) -> Step<Outcome> {
@@ -439,6 +504,17 @@ pub fn cli_args(case: &Case, path: &Path, spectra: &Path) -> Vec<String> {
             .map(|x| if x == "<file>" { file.clone() } else { x.clone() }),
     );
     a
+}
+
+/// Whether an error named `name` names a positional argument of the case's command by its role, with the
+/// value the user typed in its message: `iri`'s `spectrum`, `weighting`'s `weighting` (they have no flag).
+pub fn names_a_positional(case: &Case, name: &str, message: &str) -> bool {
+    let role = match case.args.first().map(String::as_str) {
+        Some("iri") => "spectrum",
+        Some("weighting") => "weighting",
+        _ => return false,
+    };
+    name == role && case.args.get(1).is_some_and(|v| message.contains(v.as_str()))
 }
 
 /// A command line for the reproducers.

@@ -141,8 +141,16 @@ fn the_record_commands_and_nonlinear_sections_are_case_families() {
     let corpus = Corpus::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")));
     let cases: Vec<_> = (0..1000).map(|i| generate(&corpus, SEED, i)).collect();
     let in_suite = |k: DocKind| cases[..CASES as usize].iter().filter(|c| c.kind == k).count();
-    assert!(in_suite(DocKind::Record) >= 5, "{} record cases", in_suite(DocKind::Record));
-    assert!(in_suite(DocKind::Nonlinear) >= 5, "{} nonlinear cases", in_suite(DocKind::Nonlinear));
+    assert!(
+        in_suite(DocKind::Record) >= 5,
+        "{} record cases",
+        in_suite(DocKind::Record)
+    );
+    assert!(
+        in_suite(DocKind::Nonlinear) >= 5,
+        "{} nonlinear cases",
+        in_suite(DocKind::Nonlinear)
+    );
     for cmd in fuzz::records::COMMANDS {
         assert!(
             cases.iter().any(|c| c.kind == DocKind::Record && c.args[0] == cmd),
@@ -200,7 +208,9 @@ fn free_text_of_the_reference_file_is_not_classified_as_quantities() {
 #[test]
 #[ignore = "a tool: reproduces campaign cases by seed and number"]
 fn fuzz_scan() {
-    let Ok(spec) = std::env::var("STOCHVIB_FUZZ_SCAN") else { return };
+    let Ok(spec) = std::env::var("STOCHVIB_FUZZ_SCAN") else {
+        return;
+    };
     let words: Vec<&str> = spec.split_whitespace().collect();
     let num = |i: usize| words.get(i).and_then(|w| w.parse::<u64>().ok()).expect("SEED FROM TO");
     let (seed, from, to) = (num(0), num(1), num(2));
@@ -228,4 +238,39 @@ fn fuzz_scan() {
         }
         println!("  file {}", case_dir.display());
     }
+}
+
+/// A name is a label, not a quantity (findings of seeds 2832 and 2833: a workday task renamed `"3 furlong"`
+/// or `"4 s"` was counted as an accepted unit), and a wrong-unit judgment is relative to the shipped value
+/// it replaced: a band edge set to `"3 kg m^2"` by one mutation and to `"1 Hz"` by the next is right.
+#[test]
+fn names_are_free_text_and_a_unit_is_judged_against_the_shipped_value() {
+    use fuzz::mutate::{expectation_holds, free_text, Mutation, Seg};
+    let path = |k: &[&str]| -> Vec<Seg> { k.iter().map(|s| Seg::Key(s.to_string())).collect() };
+    assert!(free_text(&[
+        Seg::Key("task".into()),
+        Seg::Index(1),
+        Seg::Key("name".into())
+    ]));
+    assert!(!free_text(&path(&["task", "duration"])));
+    let m = |p: &str, segs: Vec<Seg>, must: Option<&str>| Mutation {
+        op: "replace".into(),
+        path: p.into(),
+        detail: String::new(),
+        must_reject: must.map(str::to_string),
+        witness: Some((segs, toml::Value::String("1 Hz".into()))),
+    };
+    let mut edge = path(&["analysis", "band"]);
+    edge.push(Seg::Index(1));
+    let set = m(
+        "analysis.band",
+        path(&["analysis", "band"]),
+        Some("wrong-unit-accepted"),
+    );
+    let replaced = m("analysis.band[1]", edge.clone(), Some("wrong-unit-accepted"));
+    assert!(expectation_holds(std::slice::from_ref(&replaced), 0));
+    assert!(!expectation_holds(&[set.clone(), replaced], 1));
+    // an unknown unit stays an unknown unit whatever came before
+    let unknown = m("analysis.band[1]", edge, Some("unknown-unit-accepted"));
+    assert!(expectation_holds(&[set, unknown], 1));
 }
