@@ -133,6 +133,19 @@ pub enum Error {
 }
 
 impl Error {
+    /// This error with an [`Error::InvalidParameter`] named `from` renamed `to` (a library parameter named as
+    /// the flag the user wrote); any other error unchanged.
+    pub fn renamed(self, from: &str, to: &str) -> Error {
+        match self {
+            Error::InvalidParameter { name, value, reason } if name == from => Error::InvalidParameter {
+                name: to.to_string(),
+                value,
+                reason,
+            },
+            other => other,
+        }
+    }
+
     /// Shorthand for [`Error::InvalidParameter`].
     pub fn invalid(name: &str, value: impl std::fmt::Display, reason: impl Into<String>) -> Self {
         Error::InvalidParameter {

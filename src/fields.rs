@@ -189,12 +189,14 @@ impl<'a> Fields<'a> {
                         let i: usize = i.parse().ok()?;
                         self.table.get(name)?.as_array()?.get(i)
                     });
+                // a key the constructor says is missing (a required value that no key gave) stays `<missing>`
+                let missing = matches!(&other, Error::InvalidParameter { value, .. } if value == "<missing>");
                 let value = self
                     .table
                     .get(key)
                     .or(element)
                     .map(|v| v.to_string())
-                    .unwrap_or_else(|| "<derived>".into());
+                    .unwrap_or_else(|| if missing { "<missing>" } else { "<derived>" }.into());
                 self.error(key, value, other.to_string())
             }
         }

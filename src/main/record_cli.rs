@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use stochvib::comfort::Weighting;
 use stochvib::fatigue::SnCurve;
 use stochvib::record::{
-    evaluate_exposure, evaluate_fatigue, open_record, parse_quantity, AxisAssignment, ExposureOptions, FatigueOptions,
-    MeanStressCorrection, RecordOptions, RunningRms,
+    evaluate_exposure, evaluate_fatigue, open_record, AxisAssignment, ExposureOptions, FatigueOptions,
+    MeanStressCorrection, RecordOptions, RunningRms, SnPoint,
 };
 use stochvib::report::record_report::{ExposureReport, FatigueReport, WeightingReport};
 use stochvib::units::Dim;
@@ -187,32 +187,22 @@ pub struct FatigueArgs {
 
 /// An amplitude-like flag in SI with the dimension it must share with the S–N point.
 fn same_dim(flag: &str, text: &str, dim: Dim) -> anyhow::Result<f64> {
-    let (v, d) = parse_quantity(text, flag)?;
-    if d != dim {
-        anyhow::bail!("{flag} {text}: its unit has dimension {d}, the S–N curve's {dim}");
-    }
-    Ok(v)
+    Ok(stochvib::record::quantity_of_dim(flag, text, dim)?)
 }
 
 /// The S–N curve and its dimension from the flags.
 fn sn_curve(a: &FatigueArgs) -> anyhow::Result<(SnCurve, Dim)> {
-    let (point, is_range) = match (&a.sn_amplitude, &a.sn_range) {
-        (Some(p), None) => (p.as_str(), false),
-        (None, Some(p)) => (p.as_str(), true),
+    let point = match (&a.sn_amplitude, &a.sn_range) {
+        (Some(p), None) => SnPoint::Amplitude(p),
+        (None, Some(p)) => SnPoint::Range(p),
         _ => anyhow::bail!("give the S–N curve's point: --sn-amplitude VALUE UNIT or --sn-range VALUE UNIT"),
     };
-    let flag = if is_range { "--sn-range" } else { "--sn-amplitude" };
-    let (v, dim) = parse_quantity(point, flag)?;
-    let amplitude = if is_range { v / 2.0 } else { v };
-    let endurance = a
-        .endurance
-        .as_deref()
-        .map(|t| same_dim("--endurance", t, dim))
-        .transpose()?;
-    Ok((
-        SnCurve::from_reference_point(a.sn_slope, amplitude, a.sn_cycles, endurance)?,
-        dim,
-    ))
+    Ok(stochvib::record::sn_curve_from_flags(
+        a.sn_slope,
+        point,
+        a.sn_cycles,
+        a.endurance.as_deref(),
+    )?)
 }
 
 /// `stochvib fatigue`.

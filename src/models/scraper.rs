@@ -746,6 +746,9 @@ pub fn parse_table_8_1(text: &str, path: &std::path::Path) -> Result<(Vec<f64>, 
         .iter()
         .map(|v| crate::units::parse_value(v, Dim::VELOCITY).map_err(|r| f.error("speeds", v, r)))
         .collect::<Result<Vec<f64>>>()?;
+    if speeds.is_empty() {
+        return Err(f.error("speeds", "[]", "the table needs at least one speed (a column)"));
+    }
     let rows = f
         .require("row")?
         .as_array()
@@ -773,6 +776,9 @@ pub fn parse_table_8_1(text: &str, path: &std::path::Path) -> Result<(Vec<f64>, 
             Ok(row)
         })
         .collect::<Result<Vec<_>>>()?;
+    if rows.is_empty() {
+        return Err(f.error("row", "[]", "the table needs at least one [[row]]: nothing to report"));
+    }
     // the transcription's descriptive keys: read (so that a misspelt one is refused) but not used
     for k in ["reference", "title", "source", "status"] {
         f.opt_string(k)?;

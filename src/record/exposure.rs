@@ -407,7 +407,12 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
     let axes = resolve_axes(&info, options)?;
     let mut evaluators = Vec::new();
     for a in axes {
-        let w = axis_factor(Purpose::Comfort, a.location, a.axis)?.weighting;
+        let w = axis_factor(Purpose::Comfort, a.location, a.axis)
+            .map_err(|e| {
+                let written = format!("{}={}:{}", a.channel, a.location.label(), a.axis.label());
+                Error::invalid("--axis", written, e.to_string())
+            })?
+            .weighting;
         evaluators.push((Evaluator::new(&info, a, w, options.tau_s)?, false));
     }
     for c in &options.motion_sickness {

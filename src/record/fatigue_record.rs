@@ -96,6 +96,71 @@ pub struct FatigueOptions {
     pub segment_len: Option<usize>,
 }
 
+/// The point of an S–N curve as `stochvib fatigue` takes it: an amplitude (`--sn-amplitude`) or a range
+/// (`--sn-range`, halved), each a number with its unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SnPoint<'a> {
+    /// `--sn-amplitude`.
+    Amplitude(&'a str),
+    /// `--sn-range`.
+    Range(&'a str),
+}
+
+/// A quantity given by `flag` (a number and a unit) in SI, which must have the dimension `dim`.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `flag`: not a number with a unit, or another dimension.
+pub fn quantity_of_dim(flag: &str, text: &str, dim: Dim) -> Result<f64> {
+    let (v, d) = super::source::parse_quantity(text, flag)?;
+    if d != dim {
+        return Err(Error::invalid(
+            flag,
+            text,
+            format!("its unit has dimension {d}, the S–N curve's {dim}"),
+        ));
+    }
+    Ok(v)
+}
+
+/// The S–N curve N·S_a^k = C of `stochvib fatigue`'s flags: slope k (`--sn-slope`), a point (amplitude or
+/// range with its unit) endured for `cycles` (`--sn-cycles`), an optional endurance limit (`--endurance`,
+/// the point's dimension); returns the curve and the dimension of its amplitudes.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming the flag whose value [`SnCurve::from_reference_point`] refuses.
+pub fn sn_curve_from_flags(
+    slope: f64,
+    point: SnPoint<'_>,
+    cycles: f64,
+    endurance: Option<&str>,
+) -> Result<(SnCurve, Dim)> {
+    let (flag, text) = match point {
+        SnPoint::Amplitude(t) => ("--sn-amplitude", t),
+        SnPoint::Range(t) => ("--sn-range", t),
+    };
+    let (v, dim) = super::source::parse_quantity(text, flag)?;
+    let amplitude = if matches!(point, SnPoint::Range(_)) { v / 2.0 } else { v };
+    let endurance_limit = endurance.map(|t| quantity_of_dim("--endurance", t, dim)).transpose()?;
+    let sn = SnCurve::from_reference_point(slope, amplitude, cycles, endurance_limit).map_err(|e| match e {
+        Error::InvalidParameter { name, value, reason } => {
+            let flag = match name.as_str() {
+                "amplitude" => flag,
+                "cycles" => "--sn-cycles",
+                "endurance_limit" => "--endurance",
+                "k" | "slope" => "--sn-slope",
+                _ => flag, // C, from the point, its cycles and the slope
+            };
+            Error::InvalidParameter {
+                name: flag.to_string(),
+                value,
+                reason: format!("{reason} (the S–N curve's `{name}`)"),
+            }
+        }
+        other => other,
+    })?;
+    Ok((sn, dim))
+}
+
 /// A histogram of cycles over range × mean whose bins widen (pairs merge) when a cycle falls outside, so it
 /// holds any record in fixed memory.
 ///
@@ -407,7 +472,9 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
     let m = options
         .segment_len
         .unwrap_or_else(|| default_segment(info.samples_hint));
-    let welch = Welch::new(m, dt)?.with_segment_mean_removed();
+    let welch = Welch::new(m, dt)
+        .map_err(|e| e.renamed("segment length", "--segment"))?
+        .with_segment_mean_removed();
     let mut spectral = SpectralSums::new(&welch);
     let mut counter = RainflowCounter::new();
     let mut gate = options.gate.map(Gate::new);
@@ -472,9 +539,22 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
     let (moments, segments) = spectral.moments(&welch)?;
     let damage = tally.damage / options.sn.c();
     let damage_plain = tally.damage_plain / options.sn.c();
+    require_damage(&info, &channel, "rainflow (Miner)", damage)?;
+    require_damage(
+        &info,
+        &channel,
+        "rainflow (Miner) without the mean-stress correction",
+        damage_plain,
+    )?;
     let life_plain = duration_s / damage_plain;
     let (methods, spread) = match &moments {
-        Some(mo) => method_lives(&compare_methods(mo, &options.sn)?, life_plain),
+        Some(mo) => {
+            let cmp = compare_methods(mo, &options.sn)?;
+            for e in &cmp.estimates {
+                require_damage(&info, &channel, e.name, e.damage_rate)?;
+            }
+            method_lives(&cmp, life_plain)
+        }
         None => (Vec::new(), None),
     };
     Ok(FatigueEvaluation {
@@ -505,6 +585,30 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
         spread,
         record: info,
     })
+}
+
+/// Refuses a damage (or damage rate) of `method` that is 0 — no cycle does damage within the range of f64
+/// (all below the endurance limit, or amplitudes so small that S^k underflows): the life would be
+/// infinite — or not finite (amplitudes whose S^k overflows), naming the record and the channel.
+///
+/// # Errors
+/// [`Error::File`] naming the record's channel.
+fn require_damage(info: &RecordInfo, channel: &str, method: &str, damage: f64) -> Result<()> {
+    if damage.is_finite() && damage > 0.0 {
+        return Ok(());
+    }
+    let why = if damage == 0.0 {
+        "no damage within the range of f64 (every cycle below the endurance limit, or S^k below the smallest \
+         number): the life is not a finite number; check the S–N curve's point and the channel's unit"
+    } else {
+        "a damage that is not a finite number (S^k overflows): check the S–N curve's point and the channel's unit"
+    };
+    Err(Error::in_file(
+        &info.source,
+        "channel",
+        channel,
+        format!("{method} gives {why}"),
+    ))
 }
 
 /// The methods' lives against the rainflow life, and their spread.

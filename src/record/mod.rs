@@ -36,7 +36,10 @@ pub use exposure::{
     evaluate_exposure, AxisAssignment, AxisEvaluation, ExposureEvaluation, ExposureOptions, HealthAxis,
     RealisationError,
 };
-pub use fatigue_record::{evaluate_fatigue, FatigueEvaluation, FatigueOptions, MeanStressCorrection};
+pub use fatigue_record::{
+    evaluate_fatigue, quantity_of_dim, sn_curve_from_flags, FatigueEvaluation, FatigueOptions, MeanStressCorrection,
+    SnPoint,
+};
 pub use filter::{Biquad, DigitalWeighting, FilterState, WeightingErrorRow, MAX_BAND_ERROR_DB};
 pub use running::{Envelope, EnvelopeBin, ExponentialRms, RunningRms};
 pub use source::{open_record, parse_quantity, parse_unit, Channel, RecordInfo, RecordOptions, RecordReader, TimeBase};

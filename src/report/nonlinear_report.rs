@@ -107,11 +107,14 @@ pub fn nonlinear_report(
     answers: &NonlinearAnswers,
     mc: Option<&NonlinearRunSummary>,
 ) -> Result<NonlinearReport> {
+    report_of(sc, answers, mc).map_err(|e| sc.name_model_error(e))
+}
+
+fn report_of(sc: &Scenario, answers: &NonlinearAnswers, mc: Option<&NonlinearRunSummary>) -> Result<NonlinearReport> {
     let model = sc.nonlinear_model().expect("a nonlinear scenario");
     let input = sc.nonlinear_run_input(answers);
     // the static equilibrium and output plan of the model's linear part: a fault is the model's, name it
-    let (refs, skipped) = reference_table(&input)
-        .map_err(|e| crate::error::Error::in_file(&sc.path, "model", &sc.kind, e.to_string()))?;
+    let (refs, skipped) = reference_table(&input)?;
     let r1 = answers.route1.converged();
     let route1 = match &answers.route1 {
         Route1Outcome::Converged(r) => format!(

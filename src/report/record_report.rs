@@ -384,6 +384,33 @@ pub struct WeightingReport {
     pub digital: Option<DigitalWeighting>,
 }
 
+/// Refuses a row with a value that is not finite (a frequency so high that 2πf or its powers overflow),
+/// naming `--frequency` (or `--sample-rate` when the frequencies are the default ones, up to the Nyquist
+/// frequency) with the row's frequency.
+fn require_finite_rows(rows: &[WeightingErrorRow], default_frequencies: bool) -> Result<()> {
+    let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+    for r in rows {
+        let analytic = finite(&[r.frequency_hz, r.analytic_magnitude, r.analytic_phase_deg]);
+        let digital = finite(&[r.digital_magnitude, r.digital_phase_deg, r.error_db, r.phase_error_deg]);
+        // the analytic weighting depends on the frequency alone, the digital one on the sample rate too
+        let flag = match (analytic, digital) {
+            (true, true) => continue,
+            (false, _) if !default_frequencies => "--frequency",
+            _ => "--sample-rate",
+        };
+        return Err(crate::Error::invalid(
+            flag,
+            num(r.frequency_hz),
+            format!(
+                "the weighting at {} Hz is not a finite number in f64 arithmetic (2πf, its powers or the \
+                 sampled filter overflow): give frequencies and a sample rate of the weighting's range",
+                num(r.frequency_hz)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 impl WeightingReport {
     /// The weighting at `frequencies_hz` (default: the one-third-octave centres of its evaluation range, or up
     /// to the Nyquist frequency).
@@ -398,8 +425,11 @@ impl WeightingReport {
                 "frequencies must be finite and > 0 Hz",
             ));
         }
+        // the sample rate is the flag's: name it so
         let digital = match sample_rate_hz {
-            Some(r) => Some(DigitalWeighting::new(weighting, r)?),
+            Some(r) => {
+                Some(DigitalWeighting::new(weighting, r).map_err(|e| e.renamed("sample rate", "--sample-rate"))?)
+            }
             None => None,
         };
         let rows = if frequencies_hz.is_empty() {
@@ -420,6 +450,7 @@ impl WeightingReport {
                 })
                 .collect()
         };
+        require_finite_rows(&rows, frequencies_hz.is_empty())?;
         Ok(WeightingReport {
             weighting,
             standard: weighting.quantity().standard,

@@ -122,7 +122,8 @@ pub fn coherence_report(
         ));
     }
     let m = segment.unwrap_or_else(|| default_segment(p.len()));
-    let cs = spatial_cross_spectrum(&p.tracks[0].elevation_m, &p.tracks[1].elevation_m, p.step_m, m)?;
+    let cs = spatial_cross_spectrum(&p.tracks[0].elevation_m, &p.tracks[1].elevation_m, p.step_m, m)
+        .map_err(|e| e.renamed("segment length", "--segment"))?;
     for i in 0..cs.n.len() {
         let iv = cs.squared_coherence_interval(i, confidence)?;
         let (r, g) = at(cs.n[i]);
@@ -203,6 +204,15 @@ pub struct TrackIri {
     pub m_per_km: f64,
 }
 
+/// A band edge: its value, or `unbounded` for the infinite edge of a spectrum without an upper limit.
+fn edge(x: f64) -> String {
+    if x.is_finite() {
+        sig4(x)
+    } else {
+        "unbounded".to_string()
+    }
+}
+
 /// The report of `stochvib iri`.
 #[derive(Debug, Clone, Serialize)]
 pub struct IriReport {
@@ -221,7 +231,13 @@ pub struct IriReport {
 /// # Errors
 /// The errors of [`expected_iri`], [`Profile::read_csv`] and [`iri`].
 pub fn iri_report(spectrum: &SpectrumFile, profile: Option<&Path>) -> Result<IriReport> {
-    let expected = expected_iri(spectrum.spectrum.as_ref())?;
+    // a spectrum the IRI does not apply to is named as the user wrote it (the command's SPECTRUM)
+    let expected = expected_iri(spectrum.spectrum.as_ref()).map_err(|e| match e {
+        Error::NotApplicable { method, reason } => {
+            Error::invalid("spectrum", &spectrum.name, format!("{method} does not apply: {reason}"))
+        }
+        other => other,
+    })?;
     let mut measured = Vec::new();
     if let Some(path) = profile {
         let p = Profile::read_csv(path)?;
@@ -263,8 +279,8 @@ impl IriReport {
             format!(
                 "E[IRI] = 1000 √(2/π) σ_rv / v: golden car (ASTM E1926) at 80 km/h, σ_rv of its relative velocity over \
                  {}–{} cycles/m (Gaussian profile: E|X| = √(2/π) σ)",
-                sig4(self.expected.band_cycles_per_m.0),
-                sig4(self.expected.band_cycles_per_m.1)
+                edge(self.expected.band_cycles_per_m.0),
+                edge(self.expected.band_cycles_per_m.1)
             ),
         ]
     }

@@ -24,7 +24,10 @@ pub enum Outcome {
 impl From<Result<f64>> for Outcome {
     fn from(r: Result<f64>) -> Self {
         match r {
-            Ok(v) => Outcome::Value(v),
+            Ok(v) if v.is_finite() => Outcome::Value(v),
+            Ok(v) => Outcome::NoValue {
+                error: format!("the value is not a finite number ({v}) in f64 arithmetic"),
+            },
             Err(e) => Outcome::NoValue { error: e.to_string() },
         }
     }

@@ -197,8 +197,17 @@ pub struct ExpectedIri {
     pub without_moving_average_m_per_km: f64,
     /// σ of the golden car's relative velocity with the moving average, m/s.
     pub sigma_relative_velocity_m_s: f64,
-    /// The band of the spectrum integrated over, cycles/m.
+    /// The band of the spectrum integrated over, cycles/m (an infinite upper edge for a spectrum without
+    /// one; `null` in JSON).
+    #[serde(serialize_with = "finite_or_null")]
     pub band_cycles_per_m: (f64, f64),
+}
+
+/// A pair of band edges with a non-finite edge as `None` (JSON has no infinity).
+fn finite_or_null<S: serde::Serializer>(band: &(f64, f64), s: S) -> std::result::Result<S::Ok, S::Error> {
+    use serde::Serialize;
+    let f = |x: f64| x.is_finite().then_some(x);
+    (f(band.0), f(band.1)).serialize(s)
 }
 
 /// The expected IRI of a road of spatial spectrum S(Ω) (the crate's two-sided density in rad/m).

@@ -71,6 +71,19 @@ impl Scenario {
         let Some(model) = self.nonlinear_model() else {
             return Ok(None);
         };
+        self.answers_of(model).map(Some).map_err(|e| self.name_model_error(e))
+    }
+
+    /// An error of the nonlinear routes, naming the file's `model` (its linear part and elements) unless it
+    /// names a key already: an unstable linear part, a quadrature of the model's response that fails.
+    pub fn name_model_error(&self, e: crate::Error) -> crate::Error {
+        match e {
+            e @ crate::Error::File { .. } => e,
+            e => crate::Error::in_file(&self.path, "model", &self.kind, e.to_string()),
+        }
+    }
+
+    fn answers_of(&self, model: &NonlinearModel) -> Result<NonlinearAnswers> {
         let opts = Route1Options {
             effort: self.analysis.effort.clone(),
             ..Route1Options::default()
@@ -91,12 +104,12 @@ impl Scenario {
         };
         let route3 = WhiteNoiseOscillator::from_model(model, &self.excitation)
             .and_then(|o| o.stationary().map_err(|e| e.to_string()));
-        Ok(Some(NonlinearAnswers {
+        Ok(NonlinearAnswers {
             route1,
             route1_statistics,
             linear_statistics,
             route3,
-        }))
+        })
     }
 
     /// The subject of a route-2 run of this scenario with the `answers` of routes 1 and 3.

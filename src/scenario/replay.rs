@@ -294,6 +294,7 @@ pub fn replay_scenario(
         }
     };
     let profile = Profile::read_csv(profile_path)?;
+    require_representable(&profile, profile_path)?;
     let track = match &opts.track {
         Some(t) => t.clone(),
         None => profile.tracks[0].name.clone(),
@@ -340,6 +341,7 @@ pub fn replay_scenario(
         },
         e => e,
     })?;
+    require_finite_statistics(&replay, &profile, profile_path)?;
     let mut outputs = Vec::new();
     for &i in &scenario.analysis.outputs {
         let analytic_sigma = analyze_output(measured.model.system.as_ref(), &measured.excitation, i)?
@@ -371,4 +373,77 @@ pub fn replay_scenario(
         outputs,
         analytic_track,
     })
+}
+
+/// Refuses a profile whose elevations are too large for the statistics of a replay and of its measured
+/// density to stay finite: every |z| must be below √(f64::MAX)/N (N samples), so that a sum of N squares
+/// (σ, r.m.s., the Welch sums) stays below f64::MAX.
+///
+/// # Errors
+/// [`Error::File`] naming the profile, the track and the largest |elevation|.
+fn require_representable(profile: &Profile, file: &Path) -> Result<()> {
+    let bound = f64::MAX.sqrt() / profile.len() as f64;
+    if largest_elevation(profile).2.abs() < bound {
+        return Ok(());
+    }
+    let n = crate::numbers::num;
+    Err(elevation_error(profile, file, |at| {
+        format!(
+            "the elevation at distance {} m is beyond what the statistics of {} samples can hold in f64 (|z| < {} \
+             m); check the column's values and unit",
+            n(at),
+            profile.len(),
+            n(bound)
+        )
+    }))
+}
+
+/// The track, index and value of the largest |elevation| of `profile`.
+fn largest_elevation(profile: &Profile) -> (&crate::road::Track, usize, f64) {
+    profile
+        .tracks
+        .iter()
+        .flat_map(|t| t.elevation_m.iter().enumerate().map(move |(k, z)| (t, k, *z)))
+        .fold(None, |best: Option<(&crate::road::Track, usize, f64)>, c| match best {
+            Some(b) if b.2.abs() >= c.2.abs() => Some(b),
+            _ => Some(c),
+        })
+        .expect("a profile has a track of at least 2 samples")
+}
+
+/// An error naming the profile, the track of its largest |elevation| and that value, with the reason
+/// `why(distance of that elevation, m)`.
+fn elevation_error(profile: &Profile, file: &Path, why: impl FnOnce(f64) -> String) -> Error {
+    let (track, k, z) = largest_elevation(profile);
+    Error::in_file(
+        file,
+        format!("track `{}`", track.name),
+        format!("{} m", crate::numbers::num(z)),
+        why(profile.distance_m(k)),
+    )
+}
+
+/// Refuses a replay whose statistics left the range of f64 (elevations so large that their squares or
+/// the response overflow), naming the profile's largest elevation: its track, distance and value.
+///
+/// # Errors
+/// [`Error::File`] naming the profile, the track and the largest |elevation|.
+fn require_finite_statistics(replay: &Replay, profile: &Profile, file: &Path) -> Result<()> {
+    let bad = replay.outputs.iter().find(|o| {
+        let crest_ok = o.sigma == 0.0 || o.crest_factor.is_finite();
+        !([o.mean, o.sigma, o.rms, o.min, o.max].iter().all(|v| v.is_finite()) && crest_ok)
+    });
+    let Some(o) = bad else { return Ok(()) };
+    let n = crate::numbers::num;
+    Err(elevation_error(profile, file, |at| {
+        format!(
+            "the replayed output `{}` leaves the range of f64 (mean {}, σ {}, r.m.s. {}): the largest elevation, \
+             at distance {} m, is not a road's; check the column's values and unit",
+            o.name,
+            n(o.mean),
+            n(o.sigma),
+            n(o.rms),
+            n(at)
+        )
+    }))
 }

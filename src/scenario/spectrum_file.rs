@@ -103,6 +103,29 @@ pub fn parse_spectrum(text: &str, path: &Path) -> Result<SpectrumFile> {
     })
 }
 
+/// A decay rate (α of e^{−α|τ|} or e^{−ατ²}, the poles α, β of the (8.66) road): a quantity of `dim` whose
+/// unit names no angle. `Hz`, `rad`, `cycles` and `deg` would scale it by 2π or π/180 (the SI value of a
+/// frequency is angular), which a decay rate does not have: `"1 Hz"` is refused, `"1 1/s"` is the rate.
+///
+/// # Errors
+/// [`Error::File`] naming the key: an angle in the unit, or as [`Fields::quantity`].
+fn decay_rate(f: &Fields, key: &str, dim: Dim) -> Result<f64> {
+    if let Some(toml::Value::String(text)) = f.get(key) {
+        let angle = text
+            .split(|c: char| !c.is_alphanumeric())
+            .any(|t| t.ends_with("Hz") || t.ends_with("rad") || ["cycle", "cycles", "deg"].contains(&t));
+        if angle {
+            return Err(f.error(
+                key,
+                text,
+                "a decay rate carries no angle or cycle (Hz, rad, cycles, deg would scale it by 2π or π/180): \
+                 write it in 1/s, or 1/m for a spatial spectrum (1/s^2, 1/m^2 for a gaussian α)",
+            ));
+        }
+    }
+    f.quantity(key, dim)
+}
+
 /// Builds the spectrum described by the keys of `f` (also used for inline spectra in scenario files).
 ///
 /// # Errors
@@ -128,7 +151,7 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
     let spectrum: Arc<dyn Spectrum> = match kind {
         "exponential" | "gaussian" => {
             let d = f.quantity("variance", var_dim)?;
-            let a = f.quantity("alpha", if kind == "gaussian" { pow(lag, -2) } else { inv_lag })?;
+            let a = decay_rate(f, "alpha", if kind == "gaussian" { pow(lag, -2) } else { inv_lag })?;
             if kind == "gaussian" {
                 Arc::new(Gaussian::new(d, a, domain).map_err(|e| w(param_key(&e), e))?)
             } else {
@@ -137,7 +160,7 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
         }
         "exp-cosine" | "gauss-cosine" => {
             let d = f.quantity("variance", var_dim)?;
-            let a = f.quantity("alpha", if kind == "gauss-cosine" { pow(lag, -2) } else { inv_lag })?;
+            let a = decay_rate(f, "alpha", if kind == "gauss-cosine" { pow(lag, -2) } else { inv_lag })?;
             let b = f.quantity("beta", inv_lag)?;
             if kind == "gauss-cosine" {
                 Arc::new(GaussCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
@@ -233,8 +256,8 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
                 (Some(_), Some(_)) => return Err(f.error("sigma_q", "both", "give `dq` or `sigma_q`, not both")),
                 (None, None) => return Err(f.error("dq", "<missing>", "give `dq` (variance) or `sigma_q`")),
             };
-            let a = f.quantity("alpha", inv_lag)?;
-            let b = f.quantity("beta", inv_lag)?;
+            let a = decay_rate(f, "alpha", inv_lag)?;
+            let b = decay_rate(f, "beta", inv_lag)?;
             Arc::new(TwoPoleRoad::new(dq, a, b, form).map_err(|e| w(param_key(&e), e))?)
         }
         "measured-profile" => {

@@ -525,8 +525,35 @@ impl<'a> Sweep<'a> {
             };
         }
         sweep.scenario_at(0).map_err(|e| sweep.name_point_error(0, e))?;
-        sweep.evaluate(0)?;
+        sweep.evaluate(0).map_err(|e| sweep.name_first_point_error(e))?;
         Ok(sweep)
+    }
+
+    /// An error of the study's first point, evaluated before the study starts: a key of the file or a flag
+    /// as [`name_point_error`](Self::name_point_error) names it; any other error (a moment quadrature that
+    /// does not converge, an output the substituted model lacks) is `--param` with the point's values, the
+    /// scenario file and the point in the reason.
+    fn name_first_point_error(&self, e: Error) -> Error {
+        match self.name_point_error(0, e) {
+            e @ Error::File { .. } => e,
+            Error::InvalidParameter { name, value, reason } if name.starts_with("--") => {
+                Error::InvalidParameter { name, value, reason }
+            }
+            other => {
+                let at: Vec<String> = self
+                    .spec
+                    .params
+                    .iter()
+                    .zip(self.spec.indices(0))
+                    .map(|(p, i)| format!("{}={}", p.key, value_text(&p.values[i])))
+                    .collect();
+                Error::invalid(
+                    "--param",
+                    at.join(" "),
+                    format!("point 0 of the study of {}: {other}", self.base.path.display()),
+                )
+            }
+        }
     }
 
     /// An error of point `point` about a key the study varies (the key, or a key inside it), named as the

@@ -470,6 +470,26 @@ pub fn stress_moments(
     Ok((m, how, quad))
 }
 
+/// Why a damage rate of 0 (underflow: the life exceeds the range of f64) or ∞ is not a result.
+fn damage_out_of_range(method: &str, rate: f64, m: &SpectralMoments) -> Error {
+    let what = if rate == 0.0 {
+        "is 0 within the range of f64 (no damage: the life would be infinite)".to_string()
+    } else {
+        format!(
+            "is {rate}, not a finite number (the method's formula fails for these spectral moments, or the stress \
+             overflows the S–N curve)"
+        )
+    };
+    Error::NotApplicable {
+        method: format!("the fatigue life of {method}"),
+        reason: format!(
+            "the damage rate {what} for a stress of σ = {} (stress_factor and the S–N curve make no life that \
+             can be printed)",
+            crate::numbers::num(m.m0().sqrt())
+        ),
+    }
+}
+
 fn fatigue_verdict(sc: &Scenario, spec: &FatigueSpec) -> Result<FatigueVerdict> {
     let key = "analysis.fatigue.output";
     let sys = sc.model.system.as_ref();
@@ -492,10 +512,19 @@ fn fatigue_verdict(sc: &Scenario, spec: &FatigueSpec) -> Result<FatigueVerdict> 
     )
     .map_err(|e| file_error(sc, key, &spec.output_name, e))?;
     let all = compare_methods(&m, &spec.sn)?;
-    let methods: Vec<FatigueMethodResult> = all
-        .estimates
-        .iter()
-        .filter(|e| spec.methods.contains(&e.kind))
+    let chosen = all.estimates.iter().filter(|e| spec.methods.contains(&e.kind));
+    if let Some(e) = chosen
+        .clone()
+        .find(|e| !(e.damage_rate.is_finite() && e.damage_rate > 0.0))
+    {
+        return Err(file_error(
+            sc,
+            key,
+            &spec.output_name,
+            damage_out_of_range(e.name, e.damage_rate, &m),
+        ));
+    }
+    let methods: Vec<FatigueMethodResult> = chosen
         .map(|e| FatigueMethodResult {
             method: e.name.to_string(),
             damage_rate: e.damage_rate,

@@ -126,7 +126,9 @@ impl Spectrum for TwoPoleRoad {
         Ok(match self.form {
             Form::AsPrinted => self.printed_variance() * (-a * x).exp(),
             Form::Consistent => {
-                // (β e^{−αx} − α e^{−βx})/(β−α) = e^{−αx} [1 + α (1 − e^{−(β−α)x})/(β−α)], stable as β → α
+                // (β e^{−αx} − α e^{−βx})/(β−α) = e^{−αx} [1 + α (1 − e^{−(β−α)x})/(β−α)], stable as β → α;
+                // symmetric in α and β, so taken with α ≤ β (else e^{−(β−α)x} overflows for a large α)
+                let (a, b) = (a.min(b), a.max(b));
                 let d = b - a;
                 let ratio = if d == 0.0 { x } else { -(-d * x).exp_m1() / d };
                 self.dq * (-a * x).exp() * (1.0 + a * ratio)

@@ -170,23 +170,60 @@ impl SpawnSerial for std::process::Command {
 /// Runs the command-line tool in `cwd` with the source tree's catalogue (`$STOCHVIB_SPECTRA`), stdin
 /// closed, output captured; a command still running after `limit` has hung (a FIFO opened for writing
 /// blocks until a reader comes, one opened for reading until a writer does): it is killed and the test
-/// fails naming it.
+/// fails naming it. Both pipes are read while the child runs (one thread each), so a child that writes
+/// more than a pipe holds (64 KiB on Linux) does not block on a full pipe while the test waits for it.
 pub fn cli_within<S: AsRef<std::ffi::OsStr>>(
     args: &[S],
     cwd: &std::path::Path,
     limit: std::time::Duration,
 ) -> std::process::Output {
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
-        .current_dir(cwd)
+    cli_limited(args, cwd, limit, None)
+}
+
+/// Resource limits of a child process: CPU seconds (`RLIMIT_CPU`: the kernel stops a child that computes
+/// longer, whatever the load of the machine) and bytes of address space (`RLIMIT_AS`: an allocation
+/// beyond it fails).
+#[derive(Debug, Clone, Copy)]
+pub struct ChildLimits {
+    /// CPU time, s (user + system, all threads).
+    pub cpu_s: u64,
+    /// Address space, bytes.
+    pub memory: u64,
+}
+
+/// [`cli_within`] with the child under `limits` (applied between fork and exec).
+pub fn cli_limited<S: AsRef<std::ffi::OsStr>>(
+    args: &[S],
+    cwd: &std::path::Path,
+    limit: std::time::Duration,
+    limits: Option<ChildLimits>,
+) -> std::process::Output {
+    use std::io::Read;
+    let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"));
+    cmd.current_dir(cwd)
         .env("STOCHVIB_SPECTRA", root().join("spectra"))
         .args(args)
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn_serial()
-        .unwrap();
+        .stderr(std::process::Stdio::piped());
+    if let Some(l) = limits {
+        set_limits(&mut cmd, l);
+    }
+    let mut child = cmd.spawn_serial().unwrap();
+    let drain = |mut r: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            let _ = r.read_to_end(&mut v);
+            v
+        })
+    };
+    let out = drain(Box::new(child.stdout.take().unwrap()));
+    let err = drain(Box::new(child.stderr.take().unwrap()));
     let start = std::time::Instant::now();
-    while child.try_wait().unwrap().is_none() {
+    let status = loop {
+        if let Some(st) = child.try_wait().unwrap() {
+            break st;
+        }
         if start.elapsed() > limit {
             let _ = child.kill();
             let _ = child.wait();
@@ -194,14 +231,56 @@ pub fn cli_within<S: AsRef<std::ffi::OsStr>>(
             panic!("`stochvib {}` hung", words.join(" "));
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    std::process::Output {
+        status,
+        stdout: out.join().unwrap(),
+        stderr: err.join().unwrap(),
     }
-    child.wait_with_output().unwrap()
 }
 
-/// A fresh empty directory `stochvib-GROUP-PID-TAG` in the system's temporary directory.
+fn set_limits(cmd: &mut std::process::Command, l: ChildLimits) {
+    use std::os::unix::process::CommandExt;
+    // SAFETY: only async-signal-safe calls (setrlimit) run between fork and exec.
+    unsafe {
+        cmd.pre_exec(move || {
+            for (resource, soft, hard) in [
+                (libc::RLIMIT_CPU, l.cpu_s, l.cpu_s + 5),
+                (libc::RLIMIT_AS, l.memory, l.memory),
+                (libc::RLIMIT_CORE, 0, 0),
+            ] {
+                let lim = libc::rlimit {
+                    rlim_cur: soft as libc::rlim_t,
+                    rlim_max: hard as libc::rlim_t,
+                };
+                if libc::setrlimit(resource, &lim) != 0 {
+                    return Err(std::io::Error::last_os_error());
+                }
+            }
+            Ok(())
+        });
+    }
+}
+
+/// The path `stochvib-GROUP-PID-TAG` in the system's temporary directory (not created). The suite is one
+/// binary whose tests run in parallel threads of one process: the process id only separates concurrent
+/// runs of the suite, so every test names its own `(group, tag)` (the file's group, the test's tag).
+pub fn scratch_path(group: &str, tag: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("stochvib-{group}-{}-{tag}", std::process::id()))
+}
+
+/// A fresh empty directory [`scratch_path`]`(group, tag)` (what an earlier run left there is removed).
 pub fn scratch_dir(group: &str, tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-{group}-{}-{tag}", std::process::id()));
+    let d = scratch_path(group, tag);
     let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The directory [`scratch_path`]`(group, tag)`, created if missing and kept if there (for a test that
+/// comes back to its files).
+pub fn scratch_kept(group: &str, tag: &str) -> PathBuf {
+    let d = scratch_path(group, tag);
     std::fs::create_dir_all(&d).unwrap();
     d
 }

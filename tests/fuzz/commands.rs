@@ -1,7 +1,7 @@
 //! Command cases: the formats and commands beyond the TOML input files — road profiles (CSV) through
 //! `road`, a profile through `replay` with its flags, `sweep` grids and flags, `merge` sets of run and sweep
-//! shard files, `workday` files — their generation from shipped files and fixtures, their evaluation
-//! through the library's entry points, and their invariants.
+//! shard files, `workday` files, and the record commands of [`super::records`] — their generation from
+//! shipped files and fixtures, their evaluation through the library's entry points, and their invariants.
 //!
 //! # Invariants (besides `panic`, `timeout` and `crash`, as for the TOML cases)
 //! * An error names what the user wrote: [`Error::File`], [`Error::Parse`], [`Error::Io`] or
@@ -244,7 +244,20 @@ pub fn generate(corpus: &Corpus, rng: &mut Rng, index: u64) -> Option<Case> {
         41..=45 if !cc.workdays.is_empty() => DocKind::Workday,
         _ => return None,
     };
-    let mut case = Case {
+    let mut case = blank(kind, index);
+    match kind {
+        DocKind::Profile => profile_case(cc, rng, &mut case, 1..4),
+        DocKind::Replay => replay_case(cc, rng, &mut case),
+        DocKind::Sweep => sweep_case(cc, rng, &mut case),
+        DocKind::Merge => merge_case(rng, &mut case),
+        _ => workday_case(corpus, rng, &mut case),
+    }
+    Some(case)
+}
+
+/// A command case `index` of `kind` with nothing in it yet.
+fn blank(kind: DocKind, index: u64) -> Case {
+    Case {
         index,
         origin: String::new(),
         kind,
@@ -256,15 +269,14 @@ pub fn generate(corpus: &Corpus, rng: &mut Rng, index: u64) -> Option<Case> {
         doc: None,
         must_reject: Vec::new(),
         args: Vec::new(),
-    };
-    match kind {
-        DocKind::Profile => profile_case(cc, rng, &mut case, 1..4),
-        DocKind::Replay => replay_case(cc, rng, &mut case),
-        DocKind::Sweep => sweep_case(cc, rng, &mut case),
-        DocKind::Merge => merge_case(rng, &mut case),
-        _ => workday_case(corpus, rng, &mut case),
     }
-    Some(case)
+}
+
+/// A record-command case `index` ([`super::records`]).
+pub fn record(corpus: &Corpus, rng: &mut Rng, index: u64) -> Case {
+    let mut case = blank(DocKind::Record, index);
+    super::records::record_case(&corpus.commands, rng, &mut case);
+    case
 }
 
 fn pick<'a, T>(rng: &mut Rng, v: &'a [T]) -> &'a T {
@@ -281,7 +293,7 @@ const CELLS: &[&str] = &[
 const UNITS: &[&str] = &["furlong", "", "M", "km", "um", "µm", "mm ", "m/s", "1", "[mm]", "mm]["];
 
 /// A profile CSV from a seed with `n` structure-aware mutations (cells, header, rows, delimiters).
-fn profile_case(cc: &CommandCorpus, rng: &mut Rng, case: &mut Case, n: std::ops::Range<usize>) {
+pub(super) fn profile_case(cc: &CommandCorpus, rng: &mut Rng, case: &mut Case, n: std::ops::Range<usize>) {
     let (name, bytes) = pick(rng, &cc.profiles).clone();
     case.origin = format!("profile {name}");
     case.file_name = name;
@@ -310,7 +322,7 @@ fn header_line(lines: &[String]) -> Option<usize> {
 }
 
 /// One CSV mutation; returns its description.
-fn mutate_profile(rng: &mut Rng, lines: &mut Vec<String>) -> String {
+pub(super) fn mutate_profile(rng: &mut Rng, lines: &mut Vec<String>) -> String {
     // earlier mutations may have deleted every line (the arms below index a line)
     if lines.is_empty() {
         return "no line left".into();
@@ -670,9 +682,10 @@ fn workday_case(corpus: &Corpus, rng: &mut Rng, case: &mut Case) {
         case.raw.push(d);
     }
     if case.raw.is_empty() {
-        for m in &case.mutations {
+        for (i, m) in case.mutations.iter().enumerate() {
             if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness)
                 && mutate::get(&doc, p).is_some_and(|x| x.to_string() == v.to_string())
+                && mutate::expectation_holds(&case.mutations, i)
             {
                 case.must_reject
                     .push((class.clone(), mutate::path_str(p), mutate::path_str(p)));
@@ -701,7 +714,7 @@ impl Context {
     }
 }
 
-fn fail(e: &Error, stage: &str) -> Outcome {
+pub(super) fn fail(e: &Error, stage: &str) -> Outcome {
     let (variant, file, key, value) = match e {
         Error::File { file, key, value, .. } => ("File", Some(file.clone()), Some(key.clone()), Some(value.clone())),
         Error::Parse { file, .. } => ("Parse", Some(file.clone()), None, None),
@@ -725,7 +738,7 @@ fn fail(e: &Error, stage: &str) -> Outcome {
     })
 }
 
-fn ok<T: serde::Serialize>(what: &str, r: &T) -> Outcome {
+pub(super) fn ok<T: serde::Serialize>(what: &str, r: &T) -> Outcome {
     Outcome::Ok(Success {
         what: what.into(),
         non_finite: super::floats::non_finite(r)
@@ -762,6 +775,7 @@ pub fn evaluate(kind: DocKind, path: &Path, args: &[String], ctx: &Context, stag
         DocKind::Replay => eval_replay(path, args, ctx),
         DocKind::Sweep => eval_sweep(args, ctx),
         DocKind::Merge => eval_merge(path, args, ctx),
+        DocKind::Record => super::records::evaluate(path, args, &ctx.spectra()),
         _ => eval_workday(path, ctx),
     };
     stage.store(4, Ordering::SeqCst);
@@ -1222,6 +1236,7 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<
                     }
                 }
                 ("InvalidParameter", _, Some(name)) if name.starts_with("--") => {}
+                ("InvalidParameter", _, Some(name)) if super::records::names_a_positional(case, name, &e.message) => {}
                 ("InvalidParameter", _, Some(name)) => add(
                     "error-not-a-flag",
                     format!("{what}: parameter `{name}` is not what the user wrote"),
@@ -1306,6 +1321,7 @@ pub fn cli_args(case: &Case, path: &Path, ctx: &Context, json: bool) -> Option<V
             }
             a
         }
+        DocKind::Record => return Some(super::records::cli_args(case, path, &ctx.spectra())),
         DocKind::Merge => {
             let set = materialize(&merge_dir(path), &case.args, ctx);
             let mut a = vec!["merge".into(), set.out.display().to_string()];
@@ -1411,7 +1427,12 @@ pub fn check_cli(case: &Case, args: &[String], lib: &str, out: &super::process::
                 .iter()
                 .any(|a| a.starts_with('/') && out.stderr.contains(a.as_str()))
                 || out.stderr.contains("--")
-                || out.stderr.contains(&case.file_name);
+                || out.stderr.contains(&case.file_name)
+                || (case.kind == DocKind::Record
+                    && case
+                        .args
+                        .get(1)
+                        .is_some_and(|v| out.stderr.contains(&format!("\"{v}\""))));
             if !first_err.starts_with("error") || !named {
                 add(
                     "cli-error-message",
@@ -1438,6 +1459,7 @@ pub fn command_line(case: &Case, file: &str) -> String {
         DocKind::Replay => format!("stochvib replay {} {file} {}", case.args[0], case.args[1..].join(" ")),
         DocKind::Sweep => format!("stochvib sweep {}", case.args.join(" ")),
         DocKind::Merge => format!("stochvib merge <target> <members> ({})", case.args.join(" ")),
+        DocKind::Record => super::records::command_line(case, file),
         _ => format!("stochvib workday {file}"),
     }
 }

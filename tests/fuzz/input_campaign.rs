@@ -624,7 +624,7 @@ fn run_cli(c: &Campaign, case: &Case, dir: &Path, lib: &str) -> Option<Vec<Findi
 
 fn cli_command_line(case: &Case, file: &str) -> String {
     match case.kind {
-        DocKind::Data => format!("stochvib analyze {file} --spectra-dir spectra"),
+        DocKind::Data | DocKind::Nonlinear => format!("stochvib analyze {file} --spectra-dir spectra"),
         DocKind::Spectrum => format!("stochvib spectrum {file}"),
         _ => commands::command_line(case, file),
     }

@@ -75,6 +75,12 @@ pub enum DocKind {
     Merge,
     /// A workday file: `load_workday` and `workday_exposure`; CLI `stochvib workday FILE`.
     Workday,
+    /// A measured record or profile through a record command (`exposure`, `fatigue`, `coherence`, `iri`,
+    /// `weighting`) with its flags ([`super::records`]).
+    Record,
+    /// A scenario with `[[model.nonlinear]]` elements whose element tables are mutated (or an element
+    /// added to a linear model of coordinates): as [`DocKind::Data`].
+    Nonlinear,
 }
 
 impl DocKind {
@@ -88,12 +94,14 @@ impl DocKind {
             DocKind::Sweep => "sweep (--param grids, flags)",
             DocKind::Merge => "merge (shard sets)",
             DocKind::Workday => "workday TOML (workday)",
+            DocKind::Record => "record commands (exposure, fatigue, coherence, iri, weighting)",
+            DocKind::Nonlinear => "nonlinear sections ([[model.nonlinear]], analyze)",
         }
     }
 
     /// Whether the case is one of [`super::commands`].
     pub fn is_command(self) -> bool {
-        !matches!(self, DocKind::Data | DocKind::Spectrum)
+        !matches!(self, DocKind::Data | DocKind::Spectrum | DocKind::Nonlinear)
     }
 }
 
@@ -253,6 +261,9 @@ fn same_value(a: &Value, b: &Value) -> bool {
 
 /// Case `index` of `seed`: a shipped file, 0–3 structured mutations, sometimes a raw one.
 pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
+    if let Some(c) = added_family(corpus, seed, index) {
+        return c;
+    }
     let mut rng = case_rng(seed, index);
     if let Some(c) = super::commands::generate(corpus, &mut rng, index) {
         return c;
@@ -311,6 +322,43 @@ pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
             done += 1;
         }
     }
+    finish(&mut rng, index, &origin.rel, origin.kind, doc, mutations, pure_raw)
+}
+
+/// A case of the families added after the campaigns of seeds 2828–2833 (record commands 6 %, nonlinear
+/// sections 6 %), drawn from a stream of its own: every other case of a seed is the case it was, so a
+/// reproducer of those campaigns still regenerates from its seed and number.
+fn added_family(corpus: &Corpus, seed: u64, index: u64) -> Option<Case> {
+    let mut rng = case_rng(seed ^ 0xfa31_17e5_0000_0000, index);
+    match rng.random_range(0..100) {
+        0..=5 => Some(super::commands::record(corpus, &mut rng, index)),
+        6..=11 => {
+            let (origin, doc, mutations) = super::nonlinear::mutated(corpus, &mut rng)?;
+            Some(finish(
+                &mut rng,
+                index,
+                &origin,
+                DocKind::Nonlinear,
+                doc,
+                mutations,
+                false,
+            ))
+        }
+        _ => None,
+    }
+}
+
+/// Case `index` from a mutated document: serialised, sometimes mutated byte-wise (always when
+/// `pure_raw`), with the `must_reject` expectations that still hold in the final document.
+fn finish(
+    rng: &mut Rng,
+    index: u64,
+    origin: &str,
+    kind: DocKind,
+    doc: Table,
+    mutations: Vec<Mutation>,
+    pure_raw: bool,
+) -> Case {
     let (mut bytes, doc) = match toml::to_string(&doc) {
         Ok(t) => (t.into_bytes(), Some(doc)),
         Err(e) => (
@@ -320,16 +368,17 @@ pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
     };
     let mut raw = Vec::new();
     if pure_raw || rng.random_bool(0.12) {
-        raw.push(mutate::mutate_bytes(&mut rng, &mut bytes));
+        raw.push(mutate::mutate_bytes(rng, &mut bytes));
     }
     // The expectations that still hold in the final document (a later mutation may have undone one).
     let mut must_reject = Vec::new();
     if raw.is_empty()
         && let Some(d) = &doc
     {
-        for m in &mutations {
+        for (i, m) in mutations.iter().enumerate() {
             if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness)
                 && get(d, p).is_some_and(|x| same_value(x, v))
+                && mutate::expectation_holds(&mutations, i)
             {
                 let sig = match m.op.as_str() {
                     "rename" => m.path.clone(),
@@ -348,15 +397,11 @@ pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
         }
     }
     let convention = Convention::ALL[rng.random_range(0..Convention::ALL.len())];
-    let file_name = Path::new(&origin.rel)
-        .file_name()
-        .unwrap()
-        .to_string_lossy()
-        .into_owned();
+    let file_name = Path::new(origin).file_name().unwrap().to_string_lossy().into_owned();
     Case {
         index,
-        origin: origin.rel.clone(),
-        kind: origin.kind,
+        origin: origin.to_string(),
+        kind,
         file_name,
         bytes,
         mutations,

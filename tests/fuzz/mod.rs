@@ -6,6 +6,9 @@
 //! * [`inputs`]: input-file cases, their evaluation through the library's entry points, the invariants.
 //! * [`commands`]: the other formats and commands (road profiles, `replay`, `sweep`, `merge` sets,
 //!   `workday` files): generation, evaluation, invariants.
+//! * [`nonlinear`]: mutations of the `[[model.nonlinear]]` element tables of scenarios.
+//! * [`records`]: the record commands (`exposure`, `fatigue`, `coherence`, `iri`, `weighting`) with
+//!   their flags.
 //! * [`input_campaign`]: worker processes, supervisor, CLI runs, special files, minimisation, reproducers.
 //! * [`runs`]: corruption of HDF5 run files and of interrupted runs' `.tmp` files.
 //! * [`floats`]: the non-finite number scan of a report (through serde).
@@ -17,5 +20,7 @@ pub mod floats;
 pub mod input_campaign;
 pub mod inputs;
 pub mod mutate;
+pub mod nonlinear;
 pub mod process;
+pub mod records;
 pub mod runs;

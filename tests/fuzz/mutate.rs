@@ -363,7 +363,8 @@ fn is_numeric(v: &Value) -> bool {
 
 /// True for a value that is free text of a reference file or a description, never read as a quantity:
 /// everything under `printed_parameters` and `not_printed`, and `printed_symbol`, `status`, `source`,
-/// `title`, `description` anywhere.
+/// `title`, `description` and `name` anywhere (a name is a label: a workday task called `"3 furlong"` or
+/// `"nan m"` is a strange name, not a quantity with an unknown unit or a non-finite number).
 pub fn free_text(p: &[Seg]) -> bool {
     let keys: Vec<&str> = p
         .iter()
@@ -375,7 +376,12 @@ pub fn free_text(p: &[Seg]) -> bool {
     matches!(keys.first(), Some(&"printed_parameters") | Some(&"not_printed"))
         || matches!(
             keys.last(),
-            Some(&"printed_symbol") | Some(&"status") | Some(&"source") | Some(&"title") | Some(&"description")
+            Some(&"printed_symbol")
+                | Some(&"status")
+                | Some(&"source")
+                | Some(&"title")
+                | Some(&"description")
+                | Some(&"name")
         )
 }
 
@@ -729,4 +735,25 @@ pub fn mutate_bytes(rng: &mut Rng, bytes: &mut Vec<u8>) -> String {
             "line ends to CRLF".into()
         }
     }
+}
+
+/// Whether the expectation of mutation `i` still says something: a `wrong-unit-accepted` judgment is
+/// relative to the value the mutation replaced, so it holds only when that value was the shipped one — not
+/// when an earlier mutation of the case had set the same key or a table around it (a band edge `"3 kg m^2"`
+/// set by one mutation and replaced by `"1 Hz"` by the next is right, not wrong).
+pub fn expectation_holds(mutations: &[Mutation], i: usize) -> bool {
+    let m = &mutations[i];
+    if m.must_reject.as_deref() != Some("wrong-unit-accepted") {
+        return true;
+    }
+    let at = |m: &Mutation| match &m.witness {
+        Some((p, _)) => path_str(p),
+        None => m.path.clone(),
+    };
+    let here = at(m);
+    !mutations[..i].iter().any(|e| {
+        let there = at(e);
+        here.strip_prefix(&there)
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with('.') || rest.starts_with('['))
+    })
 }

@@ -52,10 +52,7 @@ fn quarter_car(bands: bool) -> Scenario {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stochvib-band-mc-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    crate::common::scratch_dir("band-mc", name)
 }
 
 fn fresh(path: &Path) -> &Path {

@@ -35,7 +35,7 @@ fn a_file_checksummed_by_the_table_loop_still_verifies() {
         .expect("the sample is in the file");
     let mut damaged = bytes.clone();
     damaged[at] ^= 0x01;
-    let p = std::env::temp_dir().join(format!("stochvib-crc-stability-{}.h5", std::process::id()));
+    let p = crate::common::scratch_kept("crc-stability", "damaged").join("run.h5");
     std::fs::write(&p, damaged).unwrap();
     let e = RunFile::open(&p).and_then(|r| r.verify()).unwrap_err().to_string();
     let _ = std::fs::remove_file(&p);

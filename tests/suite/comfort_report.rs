@@ -63,7 +63,7 @@ fn weighted_density_picture_holds_density_bands_and_comfort_scale() {
     );
     // a_w ≈ 0.33 m/s², no band above it: the scale is drawn up to 2·a_w (0.315 and 0.5 m/s²)
     assert_eq!(sec.hlines.len(), 3, "a_w and two reactions");
-    let dir = std::env::temp_dir().join(format!("stochvib-comfort-pic-{}", std::process::id()));
+    let dir = crate::common::scratch_path("comfort-report", "pic");
     let files = c.render(&dir, "weighted").unwrap();
     let svg = std::fs::read_to_string(files.iter().find(|f| f.extension().unwrap() == "svg").unwrap()).unwrap();
     for label in [

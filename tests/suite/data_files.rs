@@ -112,7 +112,7 @@ fn registry_agrees_with_the_files_the_error_and_the_docs() {
         assert_eq!(matches!(doc, Document::Stochastic(_)), k.stochastic, "{}", k.name);
     }
     // the unknown-kind error lists every kind of the registry
-    let dir = std::env::temp_dir().join(format!("stochvib-kinds-{}", std::process::id()));
+    let dir = crate::common::scratch_path("data-files", "kinds");
     std::fs::create_dir_all(&dir).unwrap();
     let bad = dir.join("bad.toml");
     std::fs::write(&bad, "[model]\nkind = \"hovercraft\"\n[input]\nspectrum = \"type1\"\n").unwrap();
@@ -226,7 +226,7 @@ fn quarter_car_model_matches_its_transfer_function_and_the_mdof_file() {
 /// `simulate` without `--dt`/`--duration` takes the suggested ones and says what it chose.
 #[test]
 fn simulate_suggests_its_step() {
-    let dir = std::env::temp_dir().join(format!("stochvib-suggest-{}", std::process::id()));
+    let dir = crate::common::scratch_path("data-files", "suggest");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("run.h5");
     let _ = std::fs::remove_file(&out);

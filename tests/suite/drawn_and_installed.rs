@@ -11,10 +11,7 @@ use stochvib::scenario::load_scenario;
 use stochvib::scenario::replay::{replay_scenario, ScenarioReplayOptions};
 
 fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-drawn-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("drawn", tag)
 }
 
 fn run(exe: &Path, args: &[&str], cwd: &Path) -> Output {

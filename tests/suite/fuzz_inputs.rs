@@ -66,7 +66,7 @@ fn fuzz_campaign() {
     let mut c = campaign(seed, num("cases", 1000), num("cli_every", 1000));
     c.limit = Duration::from_millis(num("timeout_ms", 10_000));
     c.budget = cfg.get("budget_s").and_then(|v| v.as_u64()).map(Duration::from_secs);
-    c.scratch = tmp.join(format!("fuzz-campaign-{seed}-{}", std::process::id()));
+    c.scratch = crate::common::scratch_path("fuzz-campaign", &seed.to_string());
     c.findings_dir = Some(text("findings").unwrap_or_else(|| tmp.join(format!("fuzz-campaign-findings-{seed}"))));
     c.progress = true;
     // the CLI of the campaign's snapshot (scripts/fuzz-campaign.sh copies it), else the one built for the tests
@@ -95,7 +95,7 @@ fn campaign(seed: u64, cases: u64, cli_every: u64) -> Campaign {
         limit: CASE_LIMIT,
         cli_limit: CLI_LIMIT,
         special_limit: SPECIAL_LIMIT,
-        scratch: tmp.join(format!("fuzz-inputs-{}", std::process::id())),
+        scratch: crate::common::scratch_path("fuzz-inputs", &format!("seed-{seed}")),
         findings_dir: Some(tmp.join("fuzz-findings")),
         minimize: false,
         special: true,
@@ -132,6 +132,38 @@ fn inputs_keep_the_invariants() {
     );
 }
 
+/// The record commands (`exposure`, `fatigue`, `coherence`, `iri`, `weighting`) and the nonlinear sections are
+/// case families of the harness, each in the 300 cases of the suite's run: 6 % of a seed's cases each, so
+/// about 18 of 300, and every record command among the first 1000.
+#[test]
+fn the_record_commands_and_nonlinear_sections_are_case_families() {
+    use fuzz::inputs::{generate, Corpus, DocKind};
+    let corpus = Corpus::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+    let cases: Vec<_> = (0..1000).map(|i| generate(&corpus, SEED, i)).collect();
+    let in_suite = |k: DocKind| cases[..CASES as usize].iter().filter(|c| c.kind == k).count();
+    assert!(
+        in_suite(DocKind::Record) >= 5,
+        "{} record cases",
+        in_suite(DocKind::Record)
+    );
+    assert!(
+        in_suite(DocKind::Nonlinear) >= 5,
+        "{} nonlinear cases",
+        in_suite(DocKind::Nonlinear)
+    );
+    for cmd in fuzz::records::COMMANDS {
+        assert!(
+            cases.iter().any(|c| c.kind == DocKind::Record && c.args[0] == cmd),
+            "no `{cmd}` case"
+        );
+    }
+    // the nonlinear cases mutate the element tables
+    let nonlinear = cases.iter().filter(|c| c.kind == DocKind::Nonlinear);
+    assert!(nonlinear
+        .flat_map(|c| &c.mutations)
+        .any(|m| m.path.starts_with("model.nonlinear") && m.op != "add-element"));
+}
+
 /// The harness does not take free text for quantities (a finding of the 20,000-case campaign of seed 2027):
 /// Table 8.1's transcription holds the print's text (`omega0 = "17...20 1/s"`, `sqrt_dq = "3.5 cm"` under
 /// `printed_parameters`, `printed_symbol = "sigma_x1"`), which no reader interprets, so replacing it with a
@@ -166,4 +198,79 @@ fn free_text_of_the_reference_file_is_not_classified_as_quantities() {
         .find(|p| path_str(p) == "model.coordinates[0].mass")
         .expect("the quarter car's body mass");
     assert!(!free_text(&mass));
+}
+
+/// Reproduces cases of a campaign in this process: `STOCHVIB_FUZZ_SCAN="SEED FROM TO [CLASS…]"` evaluates
+/// cases FROM..TO of SEED (each regenerated from the seed and its number alone) and prints every case with
+/// a finding of one of the classes (all classes when none is named): its description, outcome and
+/// findings, and the case file under the target's temporary directory. Without the variable it does
+/// nothing.
+#[test]
+#[ignore = "a tool: reproduces campaign cases by seed and number"]
+fn fuzz_scan() {
+    let Ok(spec) = std::env::var("STOCHVIB_FUZZ_SCAN") else {
+        return;
+    };
+    let words: Vec<&str> = spec.split_whitespace().collect();
+    let num = |i: usize| words.get(i).and_then(|w| w.parse::<u64>().ok()).expect("SEED FROM TO");
+    let (seed, from, to) = (num(0), num(1), num(2));
+    let classes = &words[3..];
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fuzz-scan-{seed}"));
+    let corpus = fuzz::inputs::Corpus::load(&root);
+    let ctx = input_campaign::context(&root, &dir);
+    fuzz::commands::Fixtures::ensure(&root, &ctx.fixtures);
+    for i in from..to {
+        let case = fuzz::inputs::generate(&corpus, seed, i);
+        let case_dir = dir.join(format!("case-{i}"));
+        let (o, f, _) = input_campaign::run_any(&corpus, &case, &case_dir, CASE_LIMIT, &ctx);
+        let hits: Vec<_> = f
+            .iter()
+            .filter(|x| classes.is_empty() || classes.contains(&x.class.as_str()))
+            .collect();
+        if hits.is_empty() {
+            let _ = std::fs::remove_dir_all(&case_dir);
+            continue;
+        }
+        println!("case {i}: {}\n  outcome {}: {:?}", case.describe(), o.label(), o);
+        for h in hits {
+            println!("  {} | {} | {}", h.class, h.signature, h.detail);
+        }
+        println!("  file {}", case_dir.display());
+    }
+}
+
+/// A name is a label, not a quantity (findings of seeds 2832 and 2833: a workday task renamed `"3 furlong"`
+/// or `"4 s"` was counted as an accepted unit), and a wrong-unit judgment is relative to the shipped value
+/// it replaced: a band edge set to `"3 kg m^2"` by one mutation and to `"1 Hz"` by the next is right.
+#[test]
+fn names_are_free_text_and_a_unit_is_judged_against_the_shipped_value() {
+    use fuzz::mutate::{expectation_holds, free_text, Mutation, Seg};
+    let path = |k: &[&str]| -> Vec<Seg> { k.iter().map(|s| Seg::Key(s.to_string())).collect() };
+    assert!(free_text(&[
+        Seg::Key("task".into()),
+        Seg::Index(1),
+        Seg::Key("name".into())
+    ]));
+    assert!(!free_text(&path(&["task", "duration"])));
+    let m = |p: &str, segs: Vec<Seg>, must: Option<&str>| Mutation {
+        op: "replace".into(),
+        path: p.into(),
+        detail: String::new(),
+        must_reject: must.map(str::to_string),
+        witness: Some((segs, toml::Value::String("1 Hz".into()))),
+    };
+    let mut edge = path(&["analysis", "band"]);
+    edge.push(Seg::Index(1));
+    let set = m(
+        "analysis.band",
+        path(&["analysis", "band"]),
+        Some("wrong-unit-accepted"),
+    );
+    let replaced = m("analysis.band[1]", edge.clone(), Some("wrong-unit-accepted"));
+    assert!(expectation_holds(std::slice::from_ref(&replaced), 0));
+    assert!(!expectation_holds(&[set.clone(), replaced], 1));
+    // an unknown unit stays an unknown unit whatever came before
+    let unknown = m("analysis.band[1]", edge, Some("unknown-unit-accepted"));
+    assert!(expectation_holds(&[set, unknown], 1));
 }

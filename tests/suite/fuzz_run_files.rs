@@ -52,7 +52,7 @@ fn run_files_survive_corruption() {
     let cfg = Config {
         root,
         bin: PathBuf::from(env!("CARGO_BIN_EXE_stochvib")),
-        work: tmp.join(format!("fuzz-run-files-{}", std::process::id())),
+        work: crate::common::scratch_path("fuzz-run-files", "work"),
         findings_dir: Some(tmp.join("fuzz-findings")),
         cases: CASES,
         seed: SEED,

@@ -17,10 +17,7 @@ use std::time::Duration;
 const LIMIT: Duration = Duration::from_secs(600);
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-html-report-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("html-report", name)
 }
 
 /// Runs the tool from the source tree; (success, stdout, stderr).

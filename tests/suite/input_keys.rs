@@ -313,7 +313,7 @@ fn default_monte_carlo_of_an_enveloped_road_covers_the_analytic_sigma() {
         ..RunOptions::new(40, s.duration_s, s.dt_s, 5)
     };
     assert_eq!(planned_memory(&sc.run_input(), &opts).unwrap().route, Route::Spectral);
-    let file = std::env::temp_dir().join(format!("stochvib-input-keys-{}.h5", std::process::id()));
+    let file = crate::common::scratch_kept("input-keys", "run").join("run.h5");
     let run = sc.simulate(&opts, &file, &|_, _| {}).unwrap();
     let _ = std::fs::remove_file(&file);
     for name in ["body_acc", "travel"] {

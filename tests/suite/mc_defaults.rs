@@ -28,7 +28,7 @@ fn half_car_wk() -> Scenario {
 
 /// A run file of this test process in the temporary directory.
 fn scratch(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("stochvib-mc-defaults-{name}-{}.h5", std::process::id()))
+    crate::common::scratch_kept("mc-defaults", name).join("run.h5")
 }
 
 /// |σ_d/σ − 1| of the weighted output for a run with `opts`.

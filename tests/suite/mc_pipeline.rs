@@ -26,9 +26,7 @@ fn scenario(name: &str) -> Scenario {
 }
 
 fn scratch_dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-mc-pipeline-{}-{tag}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_kept("mc-pipeline", tag)
 }
 
 /// Statistic `name` of a simulated output.

@@ -453,7 +453,7 @@ fn raw_records_of_a_two_track_road_hold_the_tracks_themselves() {
     // false failure < 1e-9 for a Gaussian r, seed fixed).
     use stochvib::simulate::RunOptions;
     use stochvib::store::{RunFile, SignalGroup};
-    let dir = std::env::temp_dir().join(format!("stochvib-raw-tracks-{}", std::process::id()));
+    let dir = crate::common::scratch_path("multi-input", "raw-tracks");
     std::fs::create_dir_all(&dir).unwrap();
     for rho in [1.0, 0.0] {
         let road = format!(
@@ -595,7 +595,7 @@ fn the_input_pictures_draw_every_source_and_the_cross_spectrum_of_a_road() {
     let coh = &c.secondary.as_ref().unwrap().series[0].points;
     assert_eq!(coh.len(), c.series[0].points.len());
     assert!(coh.iter().all(|p| (p.1 - 0.25).abs() <= ROUNDING), "{coh:?}");
-    let dir = std::env::temp_dir().join(format!("stochvib-input-pictures-{}", std::process::id()));
+    let dir = crate::common::scratch_path("multi-input", "input-pictures");
     let _ = std::fs::remove_dir_all(&dir);
     let files = scenario_plots(&sc, &dir).unwrap();
     for stem in ["input-density", "input-coherence", "input-cross-spectrum-road"] {
@@ -648,7 +648,7 @@ fn kurtosis_of_an_input_table_makes_its_source_alone_non_gaussian() {
     //     κ_y − 3 = (κ_{y_L} − 3)·v_L²/(v_L + v_R)².
     // The oracle is the pair of one-road runs (the right road's gain set to 0, and the left road's), each
     // planned alone: other excitations than the two-source run under test.
-    let dir = std::env::temp_dir().join(format!("stochvib-kurtosis-sources-{}", std::process::id()));
+    let dir = crate::common::scratch_path("multi-input", "kurtosis-sources");
     std::fs::create_dir_all(&dir).unwrap();
     let mut opts = RunOptions::new(2, 10.24, 0.01, 3);
     opts.route = Route::Spectral;
@@ -732,7 +732,7 @@ fn a_two_track_run_says_what_its_inputs_are() {
     // copies of one process" (the one-track reason).
     use stochvib::simulate::RunOptions;
     let sc = full_vehicle_file();
-    let dir = std::env::temp_dir().join(format!("stochvib-two-track-notes-{}", std::process::id()));
+    let dir = crate::common::scratch_path("multi-input", "two-track-notes");
     std::fs::create_dir_all(&dir).unwrap();
     let mut opts = RunOptions::new(2, 2.56, 0.005, 1);
     opts.overwrite = true;

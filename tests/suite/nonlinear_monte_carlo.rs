@@ -22,9 +22,7 @@ use stochvib::simulate::RunOptions;
 use stochvib::store::OutputStatistics;
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-nl-mc-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_kept("nl-mc", name)
 }
 
 /// A one-coordinate scenario: spring k = 1 N/m with damping `c`, white force of density `s_f`, the given

@@ -114,7 +114,7 @@ fn delayed_half_car_monte_carlo_agrees() {
     let dt = 2.6 / 11.0 / 20.0;
     let mut o = RunOptions::new(400, 60.0, dt, 15);
     o.confidence = 1.0 - 1e-8;
-    let out = std::env::temp_dir().join(format!("stochvib-truth-mc-{}.h5", std::process::id()));
+    let out = crate::common::scratch_kept("truth", "mc").join("run.h5");
     let _ = std::fs::remove_file(&out);
     let s = sc.simulate(&o, &out, &|_, _| {}).unwrap();
     std::fs::remove_file(&out).unwrap();
@@ -337,7 +337,7 @@ fn welch_bands_cover_their_expectation_at_the_nominal_rate() {
         let sc = stochvib::scenario::load_scenario(&root().join("data").join(file), &root().join("spectra")).unwrap();
         let (mut covered, mut n) = (0usize, 0usize);
         for seed in 0..60u64 {
-            let out = std::env::temp_dir().join(format!("stochvib-welch-{}-{seed}.h5", std::process::id()));
+            let out = crate::common::scratch_kept("truth", "welch").join(format!("run-{seed}.h5"));
             let _ = std::fs::remove_file(&out);
             let s = sc
                 .simulate(&RunOptions::new(20, 20.0, dt, 1000 + seed), &out, &|_, _| {})
@@ -558,7 +558,7 @@ fn random_delayed_cases_monte_carlo_agrees() {
         let sc = scenario(&text);
         let mut o = RunOptions::new(200, 60.0, 0.01, 31 + case as u64);
         o.confidence = 1.0 - 2.5e-7;
-        let out = std::env::temp_dir().join(format!("stochvib-truth-rand-{}-{case}.h5", std::process::id()));
+        let out = crate::common::scratch_kept("truth", "rand").join(format!("run-{case}.h5"));
         let _ = std::fs::remove_file(&out);
         let s = sc
             .simulate(&o, &out, &|_, _| {})

@@ -16,10 +16,7 @@ use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
 fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-output-rule-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("output-rule", tag)
 }
 
 /// Runs the tool in `cwd`; 120 s means it hung (a FIFO opened for writing blocks until a reader comes).

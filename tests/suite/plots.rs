@@ -12,7 +12,7 @@ use stochvib::scenario::load_scenario;
 use stochvib::Error;
 
 fn out_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-test-plots-{}-{name}", std::process::id()));
+    let d = crate::common::scratch_path("test-plots", name);
     let _ = std::fs::remove_dir_all(&d);
     d
 }

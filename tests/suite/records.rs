@@ -28,10 +28,7 @@ use stochvib::units::Dim;
 
 /// A fresh directory for one test's files.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stochvib-records-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    crate::common::scratch_dir("records", name)
 }
 
 /// ISO 2631-1:1997 Annex A, written out independently of the crate: W = K·H_h·H_l·H_t·H_s with

@@ -165,7 +165,7 @@ fn markdown_reports_are_tables_with_one_notation_per_column() {
     let md = run(&["analyze", "data/reference/table-8-1.toml", "--format", "markdown"]);
     check_columns(&md, "reference table");
     // a run file
-    let dir = std::env::temp_dir().join(format!("stochvib-md-inspect-{}", std::process::id()));
+    let dir = crate::common::scratch_path("report-format", "md-inspect");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("run.h5");
     let o = out.to_str().unwrap();

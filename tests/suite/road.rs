@@ -338,7 +338,7 @@ fn demo_profile() -> Profile {
 
 #[test]
 fn csv_round_trip() {
-    let dir = std::env::temp_dir().join(format!("stochvib-road-{}", std::process::id()));
+    let dir = crate::common::scratch_path("road", "csv-round-trip");
     std::fs::create_dir_all(&dir).unwrap();
     let p = demo_profile();
     // in m with shortest round-trip text: elevations bit for bit; the step is re-estimated from the

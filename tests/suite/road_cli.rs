@@ -87,7 +87,7 @@ fn the_road_command_prints_text_and_json_and_names_a_bad_file() {
     // every bin j = 1 … M/2 − 1
     assert_eq!(v["tracks"][0]["density"].as_array().unwrap().len(), 511);
     // a CSV with a distance going backwards: the error names the file and the line
-    let dir = std::env::temp_dir().join(format!("stochvib-road-cli-{}", std::process::id()));
+    let dir = crate::common::scratch_path("road-cli", "bad-csv");
     std::fs::create_dir_all(&dir).unwrap();
     let bad = dir.join("bad.csv");
     let mut text = String::from("distance [m], z [mm]\n");

@@ -70,7 +70,7 @@ fn root() -> PathBuf {
 }
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-replay-{}", std::process::id()));
+    let d = crate::common::scratch_path("replay", name);
     std::fs::create_dir_all(&d).unwrap();
     d.join(name)
 }
@@ -528,7 +528,7 @@ fn bad_replays_name_the_file_the_key_the_value_and_the_reason() {
 #[test]
 fn a_resume_after_the_measured_profile_changed_is_refused() {
     let _serial = common::hdf5_serial(); // no fork while a file is open
-    let d = std::env::temp_dir().join(format!("stochvib-replay-identity-{}", std::process::id()));
+    let d = crate::common::scratch_path("replay", "identity");
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     let csv_text = std::fs::read_to_string(root().join("data/measured-profile.csv")).unwrap();

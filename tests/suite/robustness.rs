@@ -13,10 +13,7 @@ use stochvib::simulate::RunOptions;
 use stochvib::store::{tmp_path, RunFile};
 
 fn dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-robust-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("robust", tag)
 }
 
 fn cli(args: &[&str], cwd: &Path) -> Output {

@@ -23,7 +23,7 @@ const SHARD_SIZE: usize = 3; // 4 shards: rows 0-2, 3-5, 6-8, 9
 const CRASH_ENV: &str = "STOCHVIB_STORE_CRASH_CHILD";
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("stochvib-store-tests-{}", std::process::id()));
+    let dir = crate::common::scratch_path("store-tests", name);
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join(name);
     let _ = std::fs::remove_file(&p);

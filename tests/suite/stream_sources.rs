@@ -13,10 +13,7 @@ fn root() -> PathBuf {
 }
 
 fn dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-stream-src-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("stream-src", tag)
 }
 
 fn parse(text: &str) -> Scenario {

@@ -11,10 +11,7 @@ use stochvib::simulate::{Route, RunOptions, RunSummary};
 use stochvib::store::RunFile;
 
 fn dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-stream-verdicts-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("stream-verdicts", tag)
 }
 
 /// The operator seat of the catalogue with a comfort channel (`seat_acc_Wk`) and a fatigue channel

@@ -13,10 +13,7 @@ use stochvib::simulate::resources::memory_bytes;
 use stochvib::simulate::{planned_memory, stream, FirSynthesis, Route, RunOptions, RunSummary};
 
 fn dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-stream-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("stream", tag)
 }
 
 /// A shipped scenario with its `[analysis]` outputs replaced by `outputs`.

@@ -39,10 +39,7 @@ fn study(sc: &Scenario) -> Sweep<'_> {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-sweep-stream-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("sweep-stream", name)
 }
 
 fn opts(block_points: usize, parallel: bool) -> StreamOptions {

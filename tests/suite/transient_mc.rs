@@ -40,7 +40,7 @@ fn caughey_stumpf_var(t: f64) -> f64 {
 
 /// A fresh path for `name` in this process's scratch directory (earlier files of the name removed).
 fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("stochvib-transient-mc-{}", std::process::id()));
+    let dir = crate::common::scratch_path("transient-mc", name);
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join(name);
     let _ = std::fs::remove_file(&p);

@@ -88,7 +88,7 @@ fn roll_and_bounce_of_two_coherent_tracks_by_monte_carlo() {
     // two outputs, each interval at 1 − 5e-7: false failure ≤ 1e-6 (Bonferroni; Student-t across 40
     // independent realizations of a time average over 200 s ≫ the 0.3 s correlation time, so near-normal)
     opts.confidence = 1.0 - 5e-7;
-    let file = std::env::temp_dir().join(format!("stochvib-two-tracks-mc-{}.h5", std::process::id()));
+    let file = crate::common::scratch_kept("two-tracks-mc", "run").join("run.h5");
     let _ = std::fs::remove_file(&file);
     let mc = run(&input, &opts, &file, &|_, _| {}).unwrap();
     std::fs::remove_file(&file).unwrap();

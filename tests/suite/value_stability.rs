@@ -18,7 +18,7 @@ type Pins = &'static [(&'static str, [u64; 9])];
 
 fn check(file: &str, opts: RunOptions, route: Route, pins: Pins) {
     let sc = load_scenario(&root().join("data").join(file), &root().join("spectra")).unwrap();
-    let out = std::env::temp_dir().join(format!("stochvib-pin-{}-{file}.h5", std::process::id()));
+    let out = crate::common::scratch_kept("pin", file).join("run.h5");
     let _ = std::fs::remove_file(&out);
     let s = sc.simulate(&opts, &out, &|_, _| {}).unwrap();
     std::fs::remove_file(&out).unwrap();

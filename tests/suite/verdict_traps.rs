@@ -139,7 +139,7 @@ fn implausible_durations_are_refused_naming_the_value_in_hours() {
 
 #[test]
 fn the_cli_refuses_a_bare_exposure_and_prints_nothing() {
-    let dir = std::env::temp_dir().join(format!("stochvib-bare-exposure-{}", std::process::id()));
+    let dir = crate::common::scratch_path("verdict-traps", "bare-exposure");
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("seat.toml");
     // the copy sits in another directory: its inline spectrum needs no catalogue file

@@ -129,7 +129,7 @@ fn monte_carlo_agrees_with_analytic_a_w_vdv_and_spectral_fatigue() {
         confidence: 1.0 - 2.5e-7,
         ..RunOptions::new(200, 60.0, 0.005, 18)
     };
-    let out = std::env::temp_dir().join(format!("stochvib-verdicts-{}.h5", std::process::id()));
+    let out = crate::common::scratch_kept("verdicts", "run").join("run.h5");
     let _ = std::fs::remove_file(&out);
     let s = sc.simulate(&opts, &out, &|_, _| {}).unwrap();
     // a_w: the exact route simulates W_k·H exactly (Van Loan), so the MC σ estimates the analytic a_w
@@ -186,7 +186,7 @@ fn monte_carlo_agrees_with_analytic_a_w_vdv_and_spectral_fatigue() {
         .sum();
     assert_eq!(drawn.to_bits(), stored.to_bits());
     assert!(h[0].dirlik.is_some() && chart.series.len() == 2);
-    let pics = std::env::temp_dir().join(format!("stochvib-verdict-pics-{}", std::process::id()));
+    let pics = crate::common::scratch_path("verdicts", "pics");
     let files = stochvib::plot::run_plots(&s.path, &pics, &root().join("spectra")).unwrap();
     assert!(
         files.iter().any(|f| f.to_string_lossy().ends_with("-rainflow.svg")),

@@ -21,9 +21,7 @@ use stochvib::scenario::{load_scenario, parse_scenario, verdict_analysis};
 const T0: f64 = 8.0 * 3600.0;
 
 fn temp_dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-workday-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_kept("workday", tag)
 }
 
 fn data(f: &str) -> String {

@@ -285,9 +285,11 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
         model = model.with_output(&name, quantity).map_err(|e| f.wrap("output", e))?;
     }
     if n_base + forces.len() == 0 {
+        // the count as written, or `<missing>` when the file has no `base_inputs` (its default is 0)
+        let written = f.get("base_inputs").map_or("<missing>".to_string(), |v| v.to_string());
         return Err(f.error(
             "base_inputs",
-            0,
+            written,
             "a generic mdof scenario needs at least one input: base_inputs > 0 or forces",
         ));
     }
