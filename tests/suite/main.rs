@@ -22,6 +22,7 @@ mod extremes;
 mod fast_paths;
 mod fast_sweep;
 mod fatigue;
+mod fft_paths;
 mod fuzz_inputs;
 mod fuzz_run_files;
 mod html_report;
