@@ -778,7 +778,11 @@ fn analyze_command(cmd: Command) -> anyhow::Result<()> {
         let (dt, duration) = step.resolve(&sc, n)?;
         let opts = RunOptions {
             max_hours: step.max_hours(),
-            ..RunOptions::new(n, duration, dt, seed)
+            realizations: n,
+            duration_s: duration,
+            dt_s: dt,
+            seed,
+            ..RunOptions::default()
         };
         let progress = progress_printer();
         let (summary, pictures) = stochvib::simulate::run_temporary_with(
@@ -898,7 +902,11 @@ fn simulate_command(cmd: Command) -> anyhow::Result<()> {
             overwrite,
             part: choice.as_ref().map(|c| c.part),
             max_hours: step.max_hours(),
-            ..RunOptions::new(realizations, 1.0, 1.0, seed)
+            realizations,
+            duration_s: 1.0,
+            dt_s: 1.0,
+            seed,
+            ..RunOptions::default()
         };
         let opts = step.nonlinear(&sc, &answers, base)?;
         let output = shard_output(output, &choice)?;
@@ -924,7 +932,11 @@ fn simulate_command(cmd: Command) -> anyhow::Result<()> {
         overwrite,
         part: choice.as_ref().map(|c| c.part),
         max_hours: step.max_hours(),
-        ..RunOptions::new(realizations, duration, dt, seed)
+        realizations,
+        duration_s: duration,
+        dt_s: dt,
+        seed,
+        ..RunOptions::default()
     };
     let output = shard_output(output, &choice)?;
     let flag = |e| named_by_flag(e, "--realizations");
@@ -1247,7 +1259,17 @@ fn analyze_nonlinear(
 ) -> anyhow::Result<()> {
     let mc = match monte_carlo {
         Some(n) => {
-            let opts = step.nonlinear(sc, answers, RunOptions::new(n, 1.0, 1.0, seed))?;
+            let opts = step.nonlinear(
+                sc,
+                answers,
+                RunOptions {
+                    realizations: n,
+                    duration_s: 1.0,
+                    dt_s: 1.0,
+                    seed,
+                    ..RunOptions::default()
+                },
+            )?;
             let (s, pictures) =
                 sc.simulate_nonlinear_temporary(answers, &opts, &std::env::temp_dir(), &progress_printer(), |path| {
                     plots.as_ref().map(|out| run_plots(path, out, catalogue.dir()))

@@ -582,7 +582,10 @@ fn integrate_parts(
         Err(Error::Quadrature { estimate, .. }) => *estimate,
         Err(_) => 0.0,
     };
-    parts.push(part(format!("non-oscillating tail [{head_end:e}, {hi:e}] rad/s"), steady)?);
+    parts.push(part(
+        format!("non-oscillating tail [{head_end:e}, {hi:e}] rad/s"),
+        steady,
+    )?);
     let head_value = match &parts[0].1 {
         Ok(r) => r.value,
         Err((est, ..)) => *est,

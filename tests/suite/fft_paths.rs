@@ -60,7 +60,10 @@ fn every_fft_path_agrees_with_the_scalar_one_to_rounding_but_not_to_the_bit() {
                 "n = {n}: {name} differs from scalar by {:.3e} (relative, normwise)",
                 diff / scale
             );
-            let same_bits = y.iter().zip(reference).all(|(a, b)| a.re.to_bits() == b.re.to_bits() && a.im.to_bits() == b.im.to_bits());
+            let same_bits = y
+                .iter()
+                .zip(reference)
+                .all(|(a, b)| a.re.to_bits() == b.re.to_bits() && a.im.to_bits() == b.im.to_bits());
             assert!(
                 !same_bits,
                 "n = {n}: {name} gives the scalar path's bits: docs/cluster.md says the paths differ in the last bits"

@@ -179,6 +179,11 @@ fn the_cli_holds_no_unit_tests() {
     for f in files {
         let text = std::fs::read_to_string(&f).unwrap();
         let tests = text.lines().filter(|l| code(l).contains("#[test]")).count();
-        assert_eq!(tests, 0, "{}: #[test] in the CLI, which has no test harness (Cargo.toml)", f.display());
+        assert_eq!(
+            tests,
+            0,
+            "{}: #[test] in the CLI, which has no test harness (Cargo.toml)",
+            f.display()
+        );
     }
 }

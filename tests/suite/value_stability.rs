@@ -40,7 +40,13 @@ fn check(file: &str, opts: RunOptions, route: Route, pins: Pins) {
 fn exact_route_statistics_are_pinned() {
     check(
         "conveyor-idler.toml",
-        RunOptions::new(30, 5.0, 0.01, 3),
+        RunOptions {
+            realizations: 30,
+            duration_s: 5.0,
+            dt_s: 0.01,
+            seed: 3,
+            ..RunOptions::default()
+        },
         Route::Exact,
         &[
             (
@@ -100,7 +106,13 @@ fn spectral_route_statistics_are_pinned() {
     }
     check(
         "half-car.toml",
-        RunOptions::new(20, 10.0, 0.009, 7),
+        RunOptions {
+            realizations: 20,
+            duration_s: 10.0,
+            dt_s: 0.009,
+            seed: 7,
+            ..RunOptions::default()
+        },
         Route::Spectral,
         &[
             (
