@@ -74,16 +74,16 @@ def sigma_h2(c2, b2, spectrum):
     """σ of ẍ₂ (m/s²) at every grid point: numpy polynomials, one stochvib.linalg.h2_integral call."""
     import stochvib
 
-    fnum, fden = spectrum.shaping_filter()
+    fnum, fden = spectrum.shaping_filter(order="ascending")
     num, den = polynomials(c2, b2, fnum, fden)
-    return np.sqrt(stochvib.linalg.h2_integral(num, den) / (2.0 * math.pi))
+    return np.sqrt(stochvib.linalg.h2_integral(num, den, order="ascending") / (2.0 * math.pi))
 
 
 def sigma_scipy_lyapunov(c2, b2, spectrum):
     """σ of ẍ₂ (m/s²) at every grid point by a loop of scipy.linalg.solve_continuous_lyapunov."""
     from scipy.linalg import solve_continuous_lyapunov
 
-    fnum, fden = spectrum.shaping_filter()
+    fnum, fden = spectrum.shaping_filter(order="ascending")
     assert len(fnum) == 1 and len(fden) == 2, "first-order road filter expected"
     pole, gain = fden[0] / fden[1], fnum[0] / fden[1]
     a = np.zeros((5, 5))

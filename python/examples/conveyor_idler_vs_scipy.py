@@ -23,7 +23,8 @@ result = scenario.analyze()
 y = result["y"]
 print(f"M_y = {y.mean:.6f} m, sigma_y = {y.sigma:.6f} m, a* = M_y + 3 sigma_y = {y.three_sigma[1]:.6f} m")
 for m in y.methods:  # Lyapunov, integral table, quadrature (with its error estimate)
-    print(f"  {m['method']:<15} variance {m['value']:.12e}  error estimate {m['error_estimate']}  ({m['status']})")
+    print(f"  {m.method:<15} variance {m.value:.12e}  error estimate {m.error_estimate}  ({m.status})")
+print(repr(result))  # the table of every output, as the command line prints it
 
 # %% [markdown]
 # The input: two-sided angular density S_F(ω) = αD/(π(α² + ω²)), D = σ_F².
@@ -45,6 +46,12 @@ system = scenario.system
 h_stochvib = system.frequency_response(omega)[0, 0]  # output y, input F
 _, h_scipy = signal.freqresp(signal.TransferFunction([1.0], [m, b, c]), w=omega)
 assert np.allclose(h_stochvib, h_scipy, rtol=1e-12, atol=0)
+# the same system built as scipy builds it: coefficients in descending powers of s
+tf = stochvib.System.transfer_function([1.0], [m, b, c], output="y", unit="m")
+assert np.allclose(tf.frequency_response(omega)[0, 0], h_scipy, rtol=1e-12, atol=0)
+# and from the matrices, by name (no B/C confusion with state_space)
+sdof = stochvib.System.mdof(mass=[[m]], damping=[[b]], stiffness=[[c]])
+assert np.allclose(sdof.frequency_response(omega)[0, 0], h_scipy, rtol=1e-12, atol=0)
 
 
 def s_y(w):

@@ -7,7 +7,7 @@
 
 use crate::errors::invalid_input;
 use nalgebra::DMatrix;
-use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyModule};
@@ -143,4 +143,77 @@ pub fn check_out<'py>(
         return Err(invalid_input(py, format!("`out` cannot be written: {e}")));
     }
     Ok(a.clone())
+}
+
+/// Polynomial coefficients in ASCENDING powers (the library's order), from coefficients given in `order`:
+/// "descending" (highest power first, scipy.signal's and python-control's order) or "ascending".
+///
+/// # Errors
+/// As [`vector`], plus an `order` that is neither.
+pub fn polynomial(py: Python<'_>, obj: &Bound<'_, PyAny>, name: &str, order: &str) -> PyResult<Vec<f64>> {
+    let mut v = vector(py, obj, name)?;
+    if descending(py, order)? {
+        v.reverse();
+    }
+    Ok(v)
+}
+
+/// Whether `order` is "descending" (true) or "ascending" (false).
+///
+/// # Errors
+/// `InvalidInputError` for anything else.
+pub fn descending(py: Python<'_>, order: &str) -> PyResult<bool> {
+    match order {
+        "descending" => Ok(true),
+        "ascending" => Ok(false),
+        other => crate::errors::lib(
+            py,
+            Err(stochvib::Error::invalid(
+                "order",
+                other,
+                "expected \"descending\" (highest power first, as scipy.signal) or \"ascending\"",
+            )),
+        ),
+    }
+}
+
+/// A vector of coefficients in ascending powers as a new 1-D array in `order`.
+pub fn polynomial_to_py<'py>(py: Python<'py>, coeffs: &[f64], descending: bool) -> Bound<'py, PyArray1<f64>> {
+    let mut v = coeffs.to_vec();
+    if descending {
+        v.reverse();
+    }
+    PyArray1::from_vec(py, v)
+}
+
+/// The angular frequencies of an `omega=` (rad/s) or `f=` (Hz, converted: ω = 2πf) argument, exactly one
+/// of which must be given.
+///
+/// # Errors
+/// `InvalidInputError` when both or neither are given, or as [`real_array`].
+pub fn angular<'py>(
+    py: Python<'py>,
+    omega: Option<&Bound<'py, PyAny>>,
+    f: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    match (omega, f) {
+        (Some(w), None) => real_array(py, w, "omega"),
+        (None, Some(f)) => {
+            let f = real_array(py, f, "f")?;
+            // SAFETY: every element is written below before the array is used.
+            let w = unsafe { PyArrayDyn::<f64>::new(py, f.shape().to_vec(), false) };
+            {
+                let fr = f.readonly();
+                let mut wr = w.readwrite();
+                for (o, &x) in wr.as_slice_mut()?.iter_mut().zip(fr.as_slice()?) {
+                    *o = 2.0 * std::f64::consts::PI * x;
+                }
+            }
+            Ok(w)
+        }
+        _ => Err(invalid_input(
+            py,
+            "give exactly one of `omega` (angular frequency, rad/s) and `f` (frequency, Hz)",
+        )),
+    }
 }

@@ -87,6 +87,22 @@ pub fn invalid_input(py: Python<'_>, message: impl AsRef<str>) -> PyErr {
     raise(py, "InvalidInputError", message.as_ref(), &[])
 }
 
+/// `UnitError` for the quantity string `text` given as the parameter `name`: the library's
+/// `InvalidParameter` message ("invalid parameter `speed` = \"10 kmh\": unknown unit …").
+pub fn unit_error(py: Python<'_>, name: &str, text: &str, reason: &str) -> PyErr {
+    let msg = Error::invalid(name, format!("{text:?}"), reason).to_string();
+    raise(
+        py,
+        "UnitError",
+        &msg,
+        &[
+            ("name", obj(py, name)),
+            ("value", obj(py, text)),
+            ("reason", obj(py, reason)),
+        ],
+    )
+}
+
 /// `NotApplicableError(message)`.
 pub fn not_applicable(py: Python<'_>, message: impl AsRef<str>) -> PyErr {
     raise(py, "NotApplicableError", message.as_ref(), &[])
@@ -114,7 +130,7 @@ pub fn lib_error(py: Python<'_>, e: &Error) -> PyErr {
         ),
         Error::Unit { text, reason } => raise(
             py,
-            "InvalidInputError",
+            "UnitError",
             &msg,
             &[("value", obj(py, text)), ("reason", obj(py, reason))],
         ),
@@ -138,7 +154,7 @@ pub fn lib_error(py: Python<'_>, e: &Error) -> PyErr {
             reason,
         } => raise(
             py,
-            "NumericalError",
+            "NotConvergedError",
             &msg,
             &[
                 ("what", obj(py, what)),

@@ -13,9 +13,11 @@ mod errors;
 mod interrupt;
 mod linalg;
 mod names;
+mod quantity;
 mod scenario;
 mod spectrum;
 mod system;
+mod toolkit;
 
 /// Native part of the stochvib Python package (import `stochvib`, not this module).
 #[pymodule]
@@ -24,6 +26,17 @@ fn _stochvib(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<system::PySystem>()?;
     m.add_class::<scenario::PyScenario>()?;
     m.add_function(wrap_pyfunction!(linalg::h2_integral, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::weighting_response, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::weighting_filter, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::rainflow, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::spectral_fatigue, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::exposure, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::welch, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::iri, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::expected_iri, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::iso8608_class, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::daily_exposure_a8, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::vdv_gaussian, m)?)?;
     m.add_function(wrap_pyfunction!(_check_panic_guard, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ISO_BAND", stochvib::spectrum::ISO_BAND)?;

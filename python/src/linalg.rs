@@ -7,9 +7,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyFloat;
 use stochvib::linalg::h2_integral as lib_h2_integral;
 
-/// ∫_{−∞}^{∞} |N(iω)/D(iω)|² dω for real polynomials N, D in s, coefficients in ASCENDING powers of s
-/// (the table Iₙ of James, Nichols & Phillips; Newland, Appendix 1). Exact; requires deg N < deg D and D
-/// Hurwitz (all roots in Re s < 0).
+/// ∫_{−∞}^{∞} |N(iω)/D(iω)|² dω for real polynomials N, D in s, coefficients in DESCENDING powers of s
+/// (highest first, as scipy.signal; ``order="ascending"`` for lowest first) — the table Iₙ of James,
+/// Nichols & Phillips; Newland, Appendix 1. Exact; requires deg N < deg D and D Hurwitz (all roots in
+/// Re s < 0).
 ///
 /// For a stable filter H = N/D driven by white noise of two-sided density S₀ the output variance is
 /// S₀ · h2_integral(N, D); with the shaping filter (B, A) of a rational input spectrum
@@ -17,14 +18,26 @@ use stochvib::linalg::h2_integral as lib_h2_integral;
 /// h2_integral(N·B, D·A) / (2π).
 ///
 /// ``numerator``, ``denominator``: 1-D (one integral, a float) or 2-D with one row per integral (an array;
-/// zero-padded trailing coefficients are trimmed). Raises :class:`DivergentError` when deg N ≥ deg D and
+/// zero padding on the high-power side — leading zeros in descending order — is trimmed). Raises :class:`DivergentError` when deg N ≥ deg D and
 /// :class:`InvalidInputError` for an unstable denominator, naming the row. The GIL is released.
+///
+/// Examples
+/// --------
+/// ∫ dω/|iω + 2|² = π/2:
+///
+/// >>> import math
+/// >>> from stochvib.linalg import h2_integral
+/// >>> round(h2_integral([1.0], [1.0, 2.0]) / (math.pi / 2), 12)
+/// 1.0
 #[pyfunction]
+#[pyo3(signature = (numerator, denominator, *, order="descending"))]
 pub fn h2_integral<'py>(
     py: Python<'py>,
     numerator: &Bound<'py, PyAny>,
     denominator: &Bound<'py, PyAny>,
+    order: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let desc = crate::arrays::descending(py, order)?;
     let n = real_array(py, numerator, "numerator")?;
     let d = real_array(py, denominator, "denominator")?;
     let (ns, ds) = (n.shape().to_vec(), d.shape().to_vec());
@@ -49,6 +62,16 @@ pub fn h2_integral<'py>(
     let nr = n.readonly();
     let dr = d.readonly();
     let (nsl, dsl) = (nr.as_slice()?, dr.as_slice()?);
+    // the library's order (ascending): every row reversed, in one copy
+    let flipped =
+        |x: &[f64], k: usize| -> Vec<f64> { x.chunks(k.max(1)).flat_map(|r| r.iter().rev().copied()).collect() };
+    let (nf, df);
+    let (nsl, dsl) = if desc {
+        (nf, df) = (flipped(nsl, kn), flipped(dsl, kd));
+        (&nf[..], &df[..])
+    } else {
+        (nsl, dsl)
+    };
     let values = detached(py, || {
         let mut out = Vec::with_capacity(rn);
         for r in 0..rn {

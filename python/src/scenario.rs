@@ -5,6 +5,7 @@ use crate::convert::to_python;
 use crate::errors::{call, detached, invalid_input, lib};
 use crate::interrupt::run_interruptible;
 use crate::names::catalogue;
+use crate::quantity;
 use crate::spectrum::PySpectrum;
 use crate::system::PySystem;
 use pyo3::prelude::*;
@@ -41,17 +42,55 @@ impl PyScenario {
                 py,
                 format!(
                     "{}: `{}` is a deterministic model without a random input: there is nothing to simulate \
-                     or to analyse statistically (analyze() returns its result tables)",
+                     or to analyse statistically (tables() returns its result tables)",
                     d.path.display(),
                     d.kind
                 ),
             )),
             Document::Reference(r) => Err(crate::errors::not_applicable(
                 py,
-                format!("{}: a reference table of the sources, not a scenario", r.path.display()),
+                format!(
+                    "{}: a reference table of the sources, not a scenario (tables() returns it)",
+                    r.path.display()
+                ),
             )),
         }
     }
+}
+
+/// No stationary response without asymptotic stability: `DivergentError` with the command-line tool's
+/// diagnosis and hint (what to check), as `stochvib analyze` gives it for the same model in a file.
+fn require_stable(py: Python<'_>, sys: &PySystem) -> PyResult<()> {
+    let Some(ss) = sys.system.state_space() else {
+        return Ok(());
+    };
+    let Err(e) = ss.require_stable() else {
+        return Ok(());
+    };
+    let reason = match e {
+        Error::InvalidParameter { value, reason, .. } => format!("{reason} ({value})"),
+        other => other.to_string(),
+    };
+    let hint = if sys.kind == "transfer-function" {
+        "D(s) has a root with Re s ≥ 0 (a pole in the right half-plane or on the axis)"
+    } else {
+        "check the stiffnesses, dampings and masses (or poles) of the model"
+    };
+    let quantity = format!("the stationary response of the {}", sys.description);
+    let e = Error::Divergent {
+        quantity: quantity.clone(),
+        reason: format!("{reason}: {hint}"),
+    };
+    Err(crate::errors::raise(
+        py,
+        "DivergentError",
+        &e.to_string(),
+        &[
+            ("quantity", quantity.into_py_any(py)?),
+            ("reason", reason.into_py_any(py)?),
+            ("hint", hint.into_py_any(py)?),
+        ],
+    ))
 }
 
 /// The temporal process a spectrum gives the system: itself, or a spatial one at `speed`.
@@ -125,8 +164,7 @@ fn excitation(
         (None, Some(InputLayout::TwoTracks { .. })) => Err(invalid_input(
             py,
             "the model stands on two tracks: load a scenario with an [[input]] road table (Scenario.load) to \
-             give the road, its coherence and the speed"
-                .to_string(),
+             give the road, its coherence and the speed",
         )),
         (None, None) if sys.system.n_inputs() == 1 => call(py, || Excitation::single(s, mean)),
         (None, None) => Err(invalid_input(
@@ -179,7 +217,7 @@ fn input_spectra(py: Python<'_>, input: &Bound<'_, PyAny>) -> PyResult<Vec<Py<Py
 
 /// A report of the library.
 enum AnyReport {
-    Analysis(AnalysisReport),
+    Analysis(Box<AnalysisReport>),
     Tables(TablesReport),
 }
 
@@ -187,7 +225,7 @@ enum AnyReport {
 fn document_report<'py>(py: Python<'py>, doc: &Document) -> PyResult<(String, Bound<'py, PyAny>, String)> {
     let r = detached(py, || {
         Ok(match doc {
-            Document::Stochastic(sc) => AnyReport::Analysis(analysis_report(sc)?),
+            Document::Stochastic(sc) => AnyReport::Analysis(Box::new(analysis_report(sc)?)),
             Document::Deterministic(d) => AnyReport::Tables(deterministic_report(d)?),
             Document::Reference(t) => AnyReport::Tables(reference_report(t)),
         })
@@ -276,22 +314,29 @@ impl PyScenario {
     ///   a band-limited σ; ``duration_s``: the duration for exceedance probabilities and expected peaks
     ///   (default 1 h); ``levels``: dict output name → levels (output's SI unit) for Rice crossing rates.
     #[staticmethod]
-    #[pyo3(signature = (system, input, *, speed=None, positions=None, mean=None, outputs=None, band_rad_s=None, duration_s=3600.0, levels=None, title=None))]
+    #[pyo3(signature = (system, input, *, speed=None, positions=None, mean=None, outputs=None, band_rad_s=None, duration_s=None, levels=None, title=None))]
     #[allow(clippy::too_many_arguments)]
     fn from_system(
         py: Python<'_>,
         system: &Bound<'_, PySystem>,
         input: &Bound<'_, PyAny>,
-        speed: Option<f64>,
-        positions: Option<Vec<f64>>,
+        speed: Option<&Bound<'_, PyAny>>,
+        positions: Option<&Bound<'_, PyAny>>,
         mean: Option<&Bound<'_, PyAny>>,
         outputs: Option<Vec<String>>,
         band_rad_s: Option<(f64, f64)>,
-        duration_s: f64,
+        duration_s: Option<&Bound<'_, PyAny>>,
         levels: Option<&Bound<'_, PyDict>>,
         title: Option<String>,
     ) -> PyResult<Self> {
         let sys = system.get();
+        require_stable(py, sys)?;
+        let speed = quantity::optional(py, speed, "speed", "m/s")?;
+        let positions = positions
+            .filter(|p| !p.is_none())
+            .map(|p| quantity::sequence(py, p, "positions", "m"))
+            .transpose()?;
+        let duration_s = quantity::optional(py, duration_s, "duration_s", "s")?.unwrap_or(3600.0);
         let spectra = input_spectra(py, input)?;
         let arcs: Vec<Arc<dyn Spectrum>> = spectra.iter().map(|s| s.get().spectrum.clone()).collect();
         let means: Vec<f64> = match mean {
@@ -415,9 +460,9 @@ impl PyScenario {
         })
     }
 
-    /// The ``stochvib analyze`` report: an :class:`AnalysisResult` (σ, 3σ bounds, crossing rates, every
-    /// variance method with its error estimate, per output) for a stochastic scenario, a :class:`Report` of
-    /// result tables for a deterministic model or a reference table.
+    /// The ``stochvib analyze`` report of a stochastic scenario: an :class:`AnalysisResult` (σ, 3σ bounds,
+    /// crossing rates, every variance method with its error estimate, per output). A deterministic model or
+    /// a reference table raises :class:`NotApplicableError` (their tables: :meth:`tables`).
     ///
     /// ``monte_carlo=N`` adds the Monte Carlo column (σ from N realizations with its 95 % interval and
     /// whether it covers the analytic σ; the run file goes to a temporary directory and is removed), with
@@ -434,13 +479,15 @@ impl PyScenario {
         py: Python<'py>,
         monte_carlo: Option<usize>,
         seed: u64,
-        dt: Option<f64>,
-        duration: Option<f64>,
+        dt: Option<&Bound<'py, PyAny>>,
+        duration: Option<&Bound<'py, PyAny>>,
         progress: Option<Py<PyAny>>,
         rel_tol: Option<f64>,
         max_subintervals: Option<usize>,
         max_half_periods: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let dt = quantity::optional(py, dt, "dt", "s")?;
+        let duration = quantity::optional(py, duration, "duration", "s")?;
         let effort_given = rel_tol.is_some() || max_subintervals.is_some() || max_half_periods.is_some();
         let tuned: Document;
         let doc = match &self.doc {
@@ -457,13 +504,13 @@ impl PyScenario {
             }
             _ => &self.doc,
         };
+        let sc = match doc {
+            Document::Stochastic(sc) => sc,
+            _ => self.stochastic(py)?,
+        };
         let (kind, data, text) = match monte_carlo {
             None => document_report(py, doc)?,
             Some(n) => {
-                let sc = match doc {
-                    Document::Stochastic(sc) => sc,
-                    _ => self.stochastic(py)?,
-                };
                 let mut r = detached(py, || Ok(analysis_report(sc)?))?;
                 let summary = with_progress(py, progress, |cb| {
                     run_interruptible(py, cb, |cb| {
@@ -482,8 +529,31 @@ impl PyScenario {
                 ("analysis".to_string(), to_python(py, &r)?, r.to_string())
             }
         };
-        let class = if kind == "analysis" { "AnalysisResult" } else { "Report" };
+        let class = if kind == "analysis" {
+            "AnalysisResult"
+        } else {
+            "TablesResult"
+        };
         py.import("stochvib.results")?.getattr(class)?.call1((data, text))
+    }
+
+    /// The result tables of a deterministic model (a hoist, a chain) or of a reference table of the sources
+    /// — the ``stochvib analyze`` report of such a file — as a :class:`TablesResult`. A stochastic scenario
+    /// raises :class:`NotApplicableError` (use :meth:`analyze`).
+    fn tables<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if let Document::Stochastic(sc) = &self.doc {
+            return Err(crate::errors::not_applicable(
+                py,
+                format!(
+                    "{}: a stochastic scenario: analyze() returns its statistics",
+                    sc.path.display()
+                ),
+            ));
+        }
+        let (_, data, text) = document_report(py, &self.doc)?;
+        py.import("stochvib.results")?
+            .getattr("TablesResult")?
+            .call1((data, text))
     }
 
     /// Runs a seeded Monte Carlo batch of ``realizations`` into the HDF5 file ``path`` (readable by h5py;
@@ -505,8 +575,8 @@ impl PyScenario {
         py: Python<'py>,
         realizations: usize,
         path: PathBuf,
-        dt: Option<f64>,
-        duration: Option<f64>,
+        dt: Option<&Bound<'py, PyAny>>,
+        duration: Option<&Bound<'py, PyAny>>,
         seed: u64,
         shard_size: usize,
         store_raw: bool,
@@ -517,6 +587,8 @@ impl PyScenario {
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
+        let dt = quantity::optional(py, dt, "dt", "s")?;
+        let duration = quantity::optional(py, duration, "duration", "s")?;
         let compression: Compression = call(py, || compression.parse())?;
         let route = call(py, || route.parse())?;
         if overwrite && path.exists() {
@@ -553,6 +625,49 @@ impl PyScenario {
         py.import("stochvib.results")?
             .getattr("RunResult")?
             .call1((to_python(py, &summary)?, summary.to_string(), how))
+    }
+
+    /// The density of output ``output`` (a name) under the scenario's input, as an array shaped as the
+    /// argument: the two-sided S_y(ω) at ``omega`` (rad/s; rad/m along a road has become time through the
+    /// speed), or the one-sided G_y(f) = 4π S_y(2πf) at ``f`` (Hz, scipy.signal.welch's). ``convention``
+    /// as for :meth:`Spectrum.density`. Delays, several inputs and catalogue layouts are included; for the
+    /// weighted density use a system from :meth:`System.weighted`.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> sc.output_density("y", [0.0, 1.0]).shape
+    /// (2,)
+    #[pyo3(signature = (output, omega=None, *, f=None, convention=None))]
+    fn output_density<'py>(
+        &self,
+        py: Python<'py>,
+        output: &str,
+        omega: Option<&Bound<'py, PyAny>>,
+        f: Option<&Bound<'py, PyAny>>,
+        convention: Option<&str>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+        let sc = self.stochastic(py)?;
+        let sys = &*sc.model.system;
+        let i = call(py, || sys.output_index(output))?;
+        let od = call(py, || stochvib::response::OutputDensity::new(sys, &sc.excitation, i))?;
+        let (conv, x) = crate::spectrum::density_argument(py, omega, f, convention)?;
+        let shape = x.shape().to_vec();
+        // SAFETY: every element is written by `convert_density` before the array is returned.
+        let out = unsafe { PyArrayDyn::<f64>::new(py, shape.clone(), false) };
+        {
+            let xr = x.readonly();
+            let mut rw = out.readwrite();
+            let (xs, os) = (xr.as_slice()?, rw.as_slice_mut()?);
+            let eval = |w: &[f64], o: &mut [f64]| o.iter_mut().zip(w).for_each(|(y, &w)| *y = od.density(w));
+            crate::errors::detached_if(py, xs.len(), crate::spectrum::DETACH_MIN_POINTS / 16, || {
+                crate::spectrum::convert_density(eval, conv, xs, os);
+                Ok(())
+            })?;
+        }
+        crate::spectrum::scalar_or_array(py, out, shape.is_empty())
     }
 
     /// Title of the scenario.

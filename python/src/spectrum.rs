@@ -18,7 +18,7 @@ use stochvib::spectrum::{
 pub const DETACH_MIN_POINTS: usize = 2048;
 
 /// A pair of coefficient arrays (numerator, denominator).
-type Coefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+pub type Coefficients<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// A stationary random process described by its spectral density.
 ///
@@ -96,12 +96,18 @@ impl PySpectrum {
 
 /// S in `conv` at the abscissae `x` (same length as `out`).
 fn density_in(s: &dyn Spectrum, conv: Convention, x: &[f64], out: &mut [f64]) {
+    convert_density(|w, o| s.density_into(w, o), conv, x, out)
+}
+
+/// A two-sided angular density `eval(ω, out)` evaluated in `conv` at the abscissae `x` (same length as
+/// `out`): ω from the convention's abscissa, the ordinate converted, one-sided conventions 0 below zero.
+pub fn convert_density(eval: impl Fn(&[f64], &mut [f64]), conv: Convention, x: &[f64], out: &mut [f64]) {
     if conv == Convention::TwoSidedAngular {
-        s.density_into(x, out);
+        eval(x, out);
         return;
     }
     let omega: Vec<f64> = x.iter().map(|&v| conv.to_canonical(v, 0.0).0).collect();
-    s.density_into(&omega, out);
+    eval(&omega, out);
     let one_sided = conv.is_one_sided();
     for ((o, &w), &v) in out.iter_mut().zip(&omega).zip(x) {
         *o = if one_sided && v < 0.0 {
@@ -110,6 +116,46 @@ fn density_in(s: &dyn Spectrum, conv: Convention, x: &[f64], out: &mut [f64]) {
             conv.from_canonical(w, *o).1
         };
     }
+}
+
+/// The convention and the abscissae of `density(omega=…)` / `density(f=…, …)`: with `omega` (rad/s) an
+/// angular convention, with `f` (Hz) the one-sided cyclic one.
+pub fn density_argument<'py>(
+    py: Python<'py>,
+    omega: Option<&Bound<'py, PyAny>>,
+    f: Option<&Bound<'py, PyAny>>,
+    convention: Option<&str>,
+) -> PyResult<(Convention, Bound<'py, PyArrayDyn<f64>>)> {
+    let (x, by_f) = match (omega, f) {
+        (Some(w), None) => (real_array(py, w, "omega")?, false),
+        (None, Some(f)) => (real_array(py, f, "f")?, true),
+        _ => {
+            return Err(invalid_input(
+                py,
+                "give exactly one of `omega` (angular frequency, rad/s) and `f` (frequency, Hz)",
+            ))
+        }
+    };
+    let default = if by_f { "one-sided-cyclic" } else { "two-sided-angular" };
+    let conv = crate::names::convention(py, convention.unwrap_or(default))?;
+    let cyclic = conv == Convention::OneSidedCyclic;
+    if cyclic != by_f {
+        let why = if by_f {
+            "an angular density is a function of ω in rad/s: pass omega=2*np.pi*f, or use the default \
+             one-sided-cyclic G(f) with f="
+        } else {
+            "a one-sided-cyclic density G(f) is a function of f in Hz: pass f= (omega= is in rad/s)"
+        };
+        return Err(invalid_input(
+            py,
+            format!(
+                "convention {:?} with `{}`: {why}",
+                convention.unwrap_or(default),
+                if by_f { "f" } else { "omega" }
+            ),
+        ));
+    }
+    Ok((conv, x))
 }
 
 /// Returns a Python float for a 0-d result, else the array.
@@ -171,22 +217,40 @@ impl PySpectrum {
         Self::make(py, || GaussCosine::new(variance, alpha, beta, d), unit)
     }
 
-    /// A rational density S(ω) = Σ nₖ ω^{2k} / Σ dₖ ω^{2k} (two-sided angular).
+    /// A rational density S(ω) = N(ω²)/D(ω²) (two-sided angular).
     ///
-    /// ``numerator``, ``denominator``: coefficients in ASCENDING powers of ω² (SI units). Example: type 1
-    /// with D = 1, α = 1 is ``rational([1/pi], [1, 1])``.
+    /// Parameters
+    /// ----------
+    /// numerator, denominator : array_like
+    ///     Coefficients of N and D as polynomials in ω², in DESCENDING powers (highest first, as numpy's
+    ///     ``polyval`` and scipy.signal), SI units.
+    /// order : {"descending", "ascending"}, keyword-only
+    ///     ``"ascending"`` takes them lowest power first (the spectrum files' convention).
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     SI unit of the process.
+    ///
+    /// Examples
+    /// --------
+    /// Type 1 with D = 1, α = 1: S(ω) = 1/(π(ω² + 1)):
+    ///
+    /// >>> import math, stochvib
+    /// >>> s = stochvib.Spectrum.rational([1 / math.pi], [1.0, 1.0])
+    /// >>> round(s.variance(), 12)
+    /// 1.0
     #[staticmethod]
-    #[pyo3(signature = (numerator, denominator, *, domain="temporal", unit="m"))]
+    #[pyo3(signature = (numerator, denominator, *, order="descending", domain="temporal", unit="m"))]
     fn rational(
         py: Python<'_>,
         numerator: &Bound<'_, PyAny>,
         denominator: &Bound<'_, PyAny>,
+        order: &str,
         domain: &str,
         unit: &str,
     ) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        let n = crate::arrays::vector(py, numerator, "numerator")?;
-        let den = crate::arrays::vector(py, denominator, "denominator")?;
+        let n = crate::arrays::polynomial(py, numerator, "numerator", order)?;
+        let den = crate::arrays::polynomial(py, denominator, "denominator", order)?;
         Self::make(py, || RationalSpectrum::new(n, den, d), unit)
     }
 
@@ -279,7 +343,7 @@ impl PySpectrum {
     /// Every spectrum of the catalogue directory (see :meth:`load`), as a dict name → Spectrum, sorted by
     /// name. Invalid files are left out with a ``StochvibWarning`` naming the file and the reason.
     #[staticmethod]
-    #[pyo3(signature = (spectra_dir=None))]
+    #[pyo3(signature = (*, spectra_dir=None))]
     fn catalogue<'py>(py: Python<'py>, spectra_dir: Option<PathBuf>) -> PyResult<Bound<'py, PyDict>> {
         let entries = call(py, || catalogue(spectra_dir).entries())?;
         let d = PyDict::new(py);
@@ -300,28 +364,55 @@ impl PySpectrum {
         Ok(d)
     }
 
-    /// The density at ``omega`` (any shape; a scalar gives a float), in ``convention``:
+    /// The spectral density at angular frequencies ``omega`` (rad/s) or at frequencies ``f`` (Hz).
     ///
-    /// * "two-sided-angular" (default): S(ω), ω in rad/s (rad/m), in unit²·s/rad (unit²·m/rad);
-    /// * "one-sided-angular": G(ω) = 2S(ω), ω ≥ 0 (0 for ω < 0);
-    /// * "one-sided-cyclic": G(f) = 4π S(2πf), ``omega`` is then f in Hz (cycles/m), unit²/Hz;
-    ///   0 for f < 0 — the convention of ``scipy.signal.welch(..., return_onesided=True)``;
-    /// * "engineering": Ŝ(ω) = 2π S(ω).
+    /// Parameters
+    /// ----------
+    /// omega : array_like, optional
+    ///     ω in rad/s (rad/m for a spatial process), any shape; a scalar gives a float.
+    /// f : array_like, keyword-only, optional
+    ///     f in Hz (cycles/m for a spatial process) instead. Exactly one of ``omega`` and ``f``.
+    /// convention : str, keyword-only, optional
+    ///     With ``omega``: "two-sided-angular" (default) S(ω) in unit²·s/rad, "one-sided-angular"
+    ///     G(ω) = 2S(ω) for ω ≥ 0 (0 below), or "engineering" Ŝ(ω) = 2π S(ω).
+    ///     With ``f``: "one-sided-cyclic" (the default and the only one) G(f) = 4π S(2πf) in unit²/Hz,
+    ///     0 for f < 0 — the convention of ``scipy.signal.welch`` and ISO 8608.
+    /// out : numpy.ndarray, keyword-only, optional
+    ///     A float64 C-contiguous array of the result's shape to write into (not converted).
     ///
-    /// ``omega`` is converted to a C-contiguous float64 array if it is not one (lists, integers, strided
-    /// or Fortran-ordered arrays); complex or non-numeric input raises :class:`InvalidInputError`.
-    /// ``out``: an optional float64 C-contiguous array of the same shape to write into (not converted).
-    /// The GIL is released during the evaluation.
-    #[pyo3(signature = (omega, convention="two-sided-angular", *, out=None))]
+    /// Returns
+    /// -------
+    /// float or numpy.ndarray of float64
+    ///     The density, shaped as the argument.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     Both or neither of ``omega`` and ``f``; a convention that does not belong to the argument
+    ///     (hertz are never taken in an argument named ``omega``); complex or non-numeric input.
+    ///
+    /// Arguments are converted to C-contiguous float64 when they are not (lists, integers, strided or
+    /// Fortran-ordered arrays). The GIL is released for long arrays.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> road = stochvib.Spectrum.iso8608("C")
+    /// >>> round(road.density(f=0.1) * 1e6, 6)  # G_d(n0) of class C, m³
+    /// 256.0
+    /// >>> t1 = stochvib.Spectrum.exponential(1.0, 1.0)
+    /// >>> round(t1.density(0.0) * 3.141592653589793, 12)  # S(0) = D/(πα)
+    /// 1.0
+    #[pyo3(signature = (omega=None, *, f=None, convention=None, out=None))]
     fn density<'py>(
         &self,
         py: Python<'py>,
-        omega: &Bound<'py, PyAny>,
-        convention: &str,
+        omega: Option<&Bound<'py, PyAny>>,
+        f: Option<&Bound<'py, PyAny>>,
+        convention: Option<&str>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let conv = crate::names::convention(py, convention)?;
-        let x = real_array(py, omega, "omega")?;
+        let (conv, x) = density_argument(py, omega, f, convention)?;
         let shape = x.shape().to_vec();
         let result = match out {
             Some(o) => check_out(py, o, &shape)?,
@@ -382,7 +473,9 @@ impl PySpectrum {
 
     /// The temporal process a vehicle at ``speed`` (m/s) feels from this spatial (road) spectrum:
     /// S_t(ω) = S_Ω(ω/v)/v, ω in rad/s. Raises :class:`InvalidInputError` for a temporal spectrum.
-    fn at_speed(&self, py: Python<'_>, speed: f64) -> PyResult<Self> {
+    /// ``speed`` may carry a unit ("36 km/h").
+    fn at_speed(&self, py: Python<'_>, speed: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let speed = crate::quantity::quantity(py, speed, "speed", "m/s")?;
         let a = call(py, || AtSpeed::new(self.spectrum.clone(), speed))?;
         Ok(PySpectrum {
             spectrum: Arc::new(a),
@@ -399,22 +492,34 @@ impl PySpectrum {
         })
     }
 
-    /// The rational form as (numerator, denominator) coefficients in ascending powers of ω²
-    /// (S = N(ω²)/D(ω²), two-sided angular), or None when the density is not rational.
-    #[getter]
-    fn rational_coefficients<'py>(&self, py: Python<'py>) -> Option<Coefficients<'py>> {
-        self.spectrum.rational().map(|r| {
+    /// The rational form S = N(ω²)/D(ω²) (two-sided angular) as (N, D) coefficient arrays in powers of ω²,
+    /// DESCENDING unless ``order="ascending"``; None when the density is not rational.
+    #[pyo3(signature = (*, order="descending"))]
+    fn rational_coefficients<'py>(&self, py: Python<'py>, order: &str) -> PyResult<Option<Coefficients<'py>>> {
+        let desc = crate::arrays::descending(py, order)?;
+        Ok(self.spectrum.rational().map(|r| {
             (
-                PyArray1::from_slice(py, r.numerator()),
-                PyArray1::from_slice(py, r.denominator()),
+                crate::arrays::polynomial_to_py(py, r.numerator(), desc),
+                crate::arrays::polynomial_to_py(py, r.denominator(), desc),
             )
-        })
+        }))
     }
 
-    /// The stable minimum-phase shaping filter (B, A), coefficients in ascending powers of s, with
-    /// S(ω) = |B(iω)/A(iω)|² / (2π): unit-intensity white noise (E[w(t)w(t+τ)] = δ(τ)) through B/A has this
-    /// spectrum. Raises :class:`NotApplicableError` for a non-rational density.
-    fn shaping_filter<'py>(&self, py: Python<'py>) -> PyResult<Coefficients<'py>> {
+    /// The stable minimum-phase shaping filter (b, a) with S(ω) = |b(iω)/a(iω)|² / (2π): unit-intensity
+    /// white noise (E[w(t)w(t+τ)] = δ(τ)) through b/a has this spectrum.
+    ///
+    /// Coefficients in powers of s, DESCENDING unless ``order="ascending"`` (``scipy.signal.freqs(b, a)``
+    /// takes them as returned). Raises :class:`NotApplicableError` for a non-rational density.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> b, a = stochvib.Spectrum.exponential(1.0, 2.0).shaping_filter()
+    /// >>> [round(float(x), 12) for x in a], [round(float(x * x), 12) for x in b]  # √(2αD)/(s + α)
+    /// ([1.0, 2.0], [4.0])
+    #[pyo3(signature = (*, order="descending"))]
+    fn shaping_filter<'py>(&self, py: Python<'py>, order: &str) -> PyResult<Coefficients<'py>> {
+        let desc = crate::arrays::descending(py, order)?;
         let r = self.spectrum.rational().ok_or_else(|| {
             not_applicable(
                 py,
@@ -425,7 +530,10 @@ impl PySpectrum {
             )
         })?;
         let f = call(py, || r.shaping_filter())?;
-        Ok((PyArray1::from_vec(py, f.num), PyArray1::from_vec(py, f.den)))
+        Ok((
+            crate::arrays::polynomial_to_py(py, &f.num, desc),
+            crate::arrays::polynomial_to_py(py, &f.den, desc),
+        ))
     }
 
     /// "temporal" (ω in rad/s, τ in s) or "spatial" (Ω in rad/m, lag in m).

@@ -1,6 +1,6 @@
 //! `stochvib.System`: a linear system known through its frequency response H(iω) (outputs × inputs).
 
-use crate::arrays::{matrix, matrix_to_py, real_array, vector};
+use crate::arrays::{matrix, matrix_to_py, vector};
 use crate::convert::{to_python, toml_table};
 use crate::errors::{call, detached_if, invalid_input, lib, not_applicable};
 use numpy::{Complex64, PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
@@ -111,33 +111,61 @@ fn quantity(py: Python<'_>, name: &str, kind: &str, point: Vec<f64>) -> PyResult
 impl PySystem {
     /// A multi-degree-of-freedom model M q̈ + B q̇ + C q = K_u u + B_u u̇ + F f.
     ///
-    /// ``M``, ``B``, ``C``: n × n mass (kg or kg m²), damping (N s/m) and stiffness (N/m) matrices, M
-    /// symmetric positive definite, B and C symmetric. Inputs are the base (kinematic) inputs u (columns of
-    /// ``K_u``, ``B_u``, n × n_base, default none) followed by the forces f (columns of ``F``, n × n_force;
-    /// default the identity — one force per coordinate — when there are no base inputs).
-    /// ``coordinates``: names or (name, unit) pairs (default q1…qn in m). ``outputs``: dict name →
-    /// (quantity, g) with quantity "displacement", "velocity" or "acceleration" of the point gᵀq (default:
-    /// the displacement of every coordinate).
+    /// Parameters
+    /// ----------
+    /// mass, damping, stiffness : array_like, n × n
+    ///     M (kg or kg m², symmetric positive definite), B (N s/m, symmetric) and C (N/m, symmetric).
+    ///     Keyword-only: ``mdof(mass=M, damping=B, stiffness=C)`` (state_space's B and C are other
+    ///     matrices).
+    /// base_stiffness, base_damping : array_like, n × n_base, optional
+    ///     K_u (N/m) and B_u (N s/m): how the base (kinematic) inputs u push the coordinates.
+    /// forces : array_like, n × n_force, optional
+    ///     F: how the force inputs f enter; default the identity (one force per coordinate) when there
+    ///     are no base inputs. Inputs are ordered base inputs first, then forces.
+    /// coordinates : sequence of str or (str, str), optional
+    ///     Names or (name, unit) pairs of q (default q1…qn in m).
+    /// outputs : dict, optional
+    ///     name → (quantity, g) with quantity "displacement", "velocity" or "acceleration" of the point
+    ///     gᵀq (default: the displacement of every coordinate).
+    ///
+    /// Returns
+    /// -------
+    /// System
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A matrix of the wrong shape, not symmetric, M not positive definite.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> s = stochvib.System.mdof(mass=[[20.0]], damping=[[60.0]], stiffness=[[8000.0]])
+    /// >>> s.outputs
+    /// [('q1', 'm')]
     #[staticmethod]
-    #[pyo3(signature = (M, B, C, *, K_u=None, B_u=None, F=None, coordinates=None, outputs=None))]
-    #[allow(non_snake_case, clippy::too_many_arguments)]
+    #[pyo3(signature = (*, mass, damping, stiffness, base_stiffness=None, base_damping=None, forces=None, coordinates=None, outputs=None))]
+    #[allow(clippy::too_many_arguments)]
     fn mdof(
         py: Python<'_>,
-        M: &Bound<'_, PyAny>,
-        B: &Bound<'_, PyAny>,
-        C: &Bound<'_, PyAny>,
-        K_u: Option<&Bound<'_, PyAny>>,
-        B_u: Option<&Bound<'_, PyAny>>,
-        F: Option<&Bound<'_, PyAny>>,
+        mass: &Bound<'_, PyAny>,
+        damping: &Bound<'_, PyAny>,
+        stiffness: &Bound<'_, PyAny>,
+        base_stiffness: Option<&Bound<'_, PyAny>>,
+        base_damping: Option<&Bound<'_, PyAny>>,
+        forces: Option<&Bound<'_, PyAny>>,
         coordinates: Option<&Bound<'_, PyAny>>,
         outputs: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Self> {
-        let m = matrix(py, M, "M")?;
-        let b = matrix(py, B, "B")?;
-        let c = matrix(py, C, "C")?;
+        let m = matrix(py, mass, "mass")?;
+        let b = matrix(py, damping, "damping")?;
+        let c = matrix(py, stiffness, "stiffness")?;
         let n = m.nrows();
         let opt = |x: Option<&Bound<'_, PyAny>>, name: &str| x.map(|x| matrix(py, x, name)).transpose();
-        let (ku, bu) = match (opt(K_u, "K_u")?, opt(B_u, "B_u")?) {
+        let (ku, bu) = match (
+            opt(base_stiffness, "base_stiffness")?,
+            opt(base_damping, "base_damping")?,
+        ) {
             (None, None) => (nalgebra::DMatrix::zeros(n, 0), nalgebra::DMatrix::zeros(n, 0)),
             (Some(k), None) => {
                 let z = nalgebra::DMatrix::zeros(k.nrows(), k.ncols());
@@ -146,7 +174,7 @@ impl PySystem {
             (None, Some(bb)) => (nalgebra::DMatrix::zeros(bb.nrows(), bb.ncols()), bb),
             (Some(k), Some(bb)) => (k, bb),
         };
-        let f = match opt(F, "F")? {
+        let f = match opt(forces, "forces")? {
             Some(f) => f,
             None if ku.ncols() == 0 => nalgebra::DMatrix::identity(n, n),
             None => nalgebra::DMatrix::zeros(n, 0),
@@ -228,12 +256,38 @@ impl PySystem {
 
     /// A single-input single-output transfer function H(s) = N(s)/D(s).
     ///
-    /// ``numerator``, ``denominator``: real coefficients, in ASCENDING powers of s by default (the
-    /// library's and the scenario files' convention); ``order="descending"`` takes them highest power
-    /// first, as ``scipy.signal.TransferFunction`` does. The numerator may exceed the denominator degree by
-    /// one (a derivative feedthrough, e.g. a damper's base-velocity term).
+    /// Parameters
+    /// ----------
+    /// numerator, denominator : array_like
+    ///     Real coefficients in DESCENDING powers of s (highest power first), as ``scipy.signal.freqs``,
+    ///     ``scipy.signal.TransferFunction`` and ``control.tf`` take them.
+    /// order : {"descending", "ascending"}, keyword-only
+    ///     ``"ascending"`` takes the coefficients lowest power first (the scenario files' convention).
+    /// output, unit : str, keyword-only
+    ///     The output's name and SI unit.
+    ///
+    /// The numerator may exceed the denominator degree by one (a derivative feedthrough, e.g. a damper's
+    /// base-velocity term).
+    ///
+    /// Returns
+    /// -------
+    /// System
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     Non-finite coefficients, a zero leading denominator coefficient, a bad ``order``.
+    ///
+    /// Examples
+    /// --------
+    /// H(s) = 1/(s² + 2s + 5), as ``scipy.signal.freqs([1], [1, 2, 5])``:
+    ///
+    /// >>> import stochvib
+    /// >>> h = stochvib.System.transfer_function([1.0], [1.0, 2.0, 5.0])
+    /// >>> complex(h.frequency_response(0.0)[0, 0])
+    /// (0.2+0j)
     #[staticmethod]
-    #[pyo3(signature = (numerator, denominator, *, order="ascending", output="y", unit="1"))]
+    #[pyo3(signature = (numerator, denominator, *, order="descending", output="y", unit="1"))]
     fn transfer_function(
         py: Python<'_>,
         numerator: &Bound<'_, PyAny>,
@@ -242,25 +296,8 @@ impl PySystem {
         output: &str,
         unit: &str,
     ) -> PyResult<Self> {
-        let mut n = vector(py, numerator, "numerator")?;
-        let mut d = vector(py, denominator, "denominator")?;
-        match order {
-            "ascending" => {}
-            "descending" => {
-                n.reverse();
-                d.reverse();
-            }
-            other => {
-                return lib(
-                    py,
-                    Err(Error::invalid(
-                        "order",
-                        other,
-                        "expected \"ascending\" or \"descending\"",
-                    )),
-                )
-            }
-        }
+        let n = crate::arrays::polynomial(py, numerator, "numerator", order)?;
+        let d = crate::arrays::polynomial(py, denominator, "denominator", order)?;
         let tf = call(py, || TransferFunction::new(n, d, OutputInfo::new(output, unit)))?;
         Ok(PySystem {
             system: Arc::new(tf),
@@ -276,9 +313,25 @@ impl PySystem {
     /// strings carry units ("70 kN/m", "30 t"). ``speed`` (m/s) is the ``[input] speed`` some models need.
     /// Deterministic kinds (the hoists, the chain) have no frequency response for random analysis: load
     /// their scenario file with :meth:`Scenario.load` instead.
+    ///
+    /// A bad value raises :class:`InvalidInputError` (a bad unit :class:`UnitError`) naming the parameter.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> car = stochvib.System.model("quarter-car", sprung_mass="300 kg", unsprung_mass="40 kg",
+    /// ...     suspension_stiffness="20 kN/m", suspension_damping="1.5 kN*s/m", tyre_stiffness="200 kN/m")
+    /// >>> [name for name, unit in car.outputs][:2]
+    /// ['body', 'body_acc']
     #[staticmethod]
     #[pyo3(signature = (kind, *, speed=None, **params))]
-    fn model(py: Python<'_>, kind: &str, speed: Option<f64>, params: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+    fn model(
+        py: Python<'_>,
+        kind: &str,
+        speed: Option<&Bound<'_, PyAny>>,
+        params: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<Self> {
+        let speed = crate::quantity::optional(py, speed, "speed", "m/s")?;
         if let Some(k) = stochvib::scenario::model_kind(kind).filter(|k| !k.stochastic) {
             return Err(not_applicable(
                 py,
@@ -295,17 +348,16 @@ impl PySystem {
         };
         let path = Path::new("System.model");
         let f = stochvib::fields::Fields::new(path, "model", &table);
-        let built = call(py, || {
-            build_model(
-                kind,
-                &f,
-                ModelContext {
-                    speed,
-                    several_inputs: false,
-                },
-            )
-        })?;
-        call(py, || f.finish())?;
+        let built = build_model(
+            kind,
+            &f,
+            ModelContext {
+                speed,
+                several_inputs: false,
+            },
+        )
+        .and_then(|b| f.finish().map(|()| b))
+        .map_err(|e| model_param_error(py, e, &table))?;
         match built {
             BuiltModel::Stochastic(m) => Ok(PySystem::from_instance(&m, kind)),
             BuiltModel::Deterministic(_) => Err(not_applicable(
@@ -331,11 +383,39 @@ impl PySystem {
         Ok(PySystem::from_instance(&sc.model, &sc.kind))
     }
 
-    /// H(iω) at ``omega`` (rad/s, or rad/m for a system driven along a road; any shape) as a complex128
-    /// array of shape (outputs, inputs, *omega.shape): y(iω) = H(iω) u(iω). A scalar ``omega`` gives an
-    /// (outputs, inputs) array. The GIL is released.
-    fn frequency_response<'py>(&self, py: Python<'py>, omega: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
-        let x = real_array(py, omega, "omega")?;
+    /// The frequency response H(iω): y(iω) = H(iω) u(iω).
+    ///
+    /// Parameters
+    /// ----------
+    /// omega : array_like, optional
+    ///     Angular frequencies ω in rad/s (rad/m for a system driven along a road), any shape.
+    /// f : array_like, keyword-only, optional
+    ///     Cyclic frequencies in Hz instead (ω = 2πf). Exactly one of ``omega`` and ``f``.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray of complex128
+    ///     Shape (outputs, inputs, *omega.shape); a scalar gives an (outputs, inputs) array. For a SISO
+    ///     system ``h[0, 0]`` is what ``scipy.signal.freqs(b, a, worN=omega)[1]`` returns.
+    ///
+    /// The GIL is released for long arrays.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import numpy as np, stochvib
+    /// >>> h = stochvib.System.transfer_function([1.0], [1.0, 1.0])
+    /// >>> h.frequency_response(np.array([0.0, 1.0])).shape
+    /// (1, 1, 2)
+    /// >>> round(float(abs(h.frequency_response(f=1 / (2 * np.pi))[0, 0])) ** 2, 12)  # |1/(1 + i)|²
+    /// 0.5
+    #[pyo3(signature = (omega=None, *, f=None))]
+    fn frequency_response<'py>(
+        &self,
+        py: Python<'py>,
+        omega: Option<&Bound<'py, PyAny>>,
+        f: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let x = crate::arrays::angular(py, omega, f)?;
         let (p, m) = (self.system.outputs().len(), self.system.n_inputs());
         let mut dims = vec![p, m];
         dims.extend_from_slice(x.shape());
@@ -365,6 +445,48 @@ impl PySystem {
             })?;
         }
         Ok(result.into_any())
+    }
+
+    /// The system whose single output is output ``output`` passed through the ISO 2631-1 / ISO 8041
+    /// frequency weighting ``weighting`` ("Wk", "Wd", ...): W(iω)·H_output(iω), a state-space system with
+    /// the same inputs (and input layout), whose output ``<output>_<W>`` has the weighted r.m.s. a_w as its
+    /// σ under a stationary input — ``stochvib.analyze(system.weighted("seat_acc", "Wk"), road, speed=…)``.
+    ///
+    /// Raises :class:`InvalidInputError` for an unknown output or weighting, an output that is not the
+    /// acceleration the weighting applies to, and :class:`NotApplicableError` for a system without a
+    /// finite state-space form.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import numpy as np, stochvib
+    /// >>> seat = stochvib.System.mdof(mass=[[80.0]], damping=[[1e3]], stiffness=[[5e4]],
+    /// ...     base_stiffness=[[5e4]], base_damping=[[1e3]], outputs={"acc": ("acceleration", [1])})
+    /// >>> w = seat.weighted("acc", "Wk")
+    /// >>> w.outputs
+    /// [('acc_Wk', 'm/s^2')]
+    /// >>> h, hw = seat.frequency_response(f=4.0)[0, 0], w.frequency_response(f=4.0)[0, 0]
+    /// >>> bool(np.isclose(hw, stochvib.comfort.weighting("Wk", f=4.0) * h, rtol=1e-9))
+    /// True
+    fn weighted(&self, py: Python<'_>, output: &str, weighting: &str) -> PyResult<Self> {
+        let w = call(py, || stochvib::comfort::Weighting::parse(weighting))?;
+        let i = call(py, || self.system.output_index(output))?;
+        let Some(ss) = self.system.state_space() else {
+            return Err(not_applicable(
+                py,
+                format!(
+                    "weighting an output needs a finite state-space form; this {} has none",
+                    self.kind
+                ),
+            ));
+        };
+        let ws = call(py, || stochvib::comfort::weighted_output(ss, i, &w))?;
+        Ok(PySystem {
+            system: Arc::new(ws),
+            layout: self.layout.clone(),
+            description: format!("{} (output {output} weighted by {})", self.description, w.name()),
+            kind: self.kind.clone(),
+            mass_stiffness: None,
+        })
     }
 
     /// Undamped natural frequencies (rad/s, ascending) and mass-normalised mode shapes (columns) of
@@ -451,4 +573,39 @@ impl PySystem {
             outs.join(", ")
         )
     }
+}
+
+/// An error of a catalogue model built from keyword arguments: the library names the key of the
+/// `[model]` table of a pseudo-file "System.model"; here it names the keyword argument instead, as
+/// `InvalidInputError`, or `UnitError` when the argument was a string whose unit is unknown or of the wrong
+/// dimension.
+fn model_param_error(py: Python<'_>, e: Error, params: &toml::Table) -> PyErr {
+    let (file, key, value, reason) = match e {
+        Error::File {
+            file,
+            key,
+            value,
+            reason,
+        } => (file, key, value, reason),
+        other => return crate::errors::lib_error(py, &other),
+    };
+    if file != Path::new("System.model") {
+        return crate::errors::lib_error(
+            py,
+            &Error::File {
+                file,
+                key,
+                value,
+                reason,
+            },
+        );
+    }
+    let name = key.strip_prefix("model.").unwrap_or(&key).to_string();
+    if let Some(toml::Value::String(text)) = params.get(&name) {
+        let bad_unit = stochvib::units::parse_quantity(text).is_err() || reason.contains("dimension is");
+        if bad_unit {
+            return crate::errors::unit_error(py, &name, text, &reason);
+        }
+    }
+    crate::errors::lib_error(py, &Error::InvalidParameter { name, value, reason })
 }

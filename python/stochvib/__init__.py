@@ -5,38 +5,56 @@ Spectral densities of random roads and loads (:class:`Spectrum`), linear models 
 the closed-form integral table, adaptive quadrature — (:func:`analyze`), and by seeded Monte Carlo runs
 stored in HDF5 (:func:`simulate`).
 
-Conventions (the same as the Rust library and the command-line tool):
+Conventions (those of scipy.signal where scipy has one):
 
-* every spectral density is the TWO-SIDED density in ANGULAR frequency S(ω), ω in rad/s (rad/m for road
-  profiles), with variance D = ∫_{-∞}^{∞} S(ω) dω; ``Spectrum.density(x, convention=...)`` converts to
-  "one-sided-angular" G(ω) = 2S, "one-sided-cyclic" G(f) = 4πS(2πf) (f in Hz or cycles/m, scipy's
-  ``welch`` convention) and "engineering" Ŝ = 2πS;
-* frequencies: ω in rad/s, f in Hz, n in cycles/m; every other quantity in SI units; strings with units
-  ("70 kN/m") are accepted where scenario files accept them (:meth:`System.model`);
-* polynomial coefficients in ascending powers (of ω² for rational spectra, of s for transfer functions),
-  unless ``order="descending"`` is given.
+* polynomial coefficients in DESCENDING powers (highest first) like ``scipy.signal`` and
+  ``python-control``; ``order="ascending"`` takes them lowest first (the scenario files' order);
+* angular frequency is ``omega=`` in rad/s (rad/m for road profiles), frequency is ``f=`` in Hz (cycles/m):
+  hertz are never taken in an argument named ``omega``;
+* every spectral density is the TWO-SIDED density in ANGULAR frequency S(ω), with variance
+  D = ∫_{-∞}^{∞} S(ω) dω; ``Spectrum.density(f=...)`` gives the one-sided G(f) = 4πS(2πf) of
+  ``scipy.signal.welch``;
+* numpy arrays in and out, any shape; options are keyword-only;
+* every other quantity in SI units; a string with a unit ("10.8 km/h", "70 kN/m") is accepted wherever a
+  quantity is.
 
 Errors are :class:`StochvibError` subclasses (see :mod:`stochvib.errors`) with the command-line tool's
-messages.
+messages. A table mapping scipy / python-control calls to stochvib's is in ``docs/python.md``.
 """
 
 from __future__ import annotations
 
 import os
-from typing import Any, Callable, Dict, Literal, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, Literal, Optional, Sequence, Tuple, Union
 
-from . import errors, linalg
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+from . import comfort, errors, estimate, fatigue, linalg, road
+from .estimate import WelchEstimate, welch
+from . import _stochvib
 from ._stochvib import ISO_BAND, Scenario, Spectrum, System, __version__
 from .errors import (
     DivergentError,
     FileError,
     InvalidInputError,
     NotApplicableError,
+    NotConvergedError,
     NumericalError,
     StochvibError,
     StochvibWarning,
+    UnitError,
 )
-from .results import AnalysisResult, OutputResult, Report, RunResult
+from .results import (
+    AnalysisResult,
+    ExposureResult,
+    LevelCrossing,
+    OutputResult,
+    Report,
+    RunResult,
+    TablesResult,
+    VarianceMethod,
+)
 
 __all__ = [
     "Spectrum",
@@ -44,15 +62,28 @@ __all__ = [
     "Scenario",
     "analyze",
     "simulate",
+    "exposure",
+    "ExposureResult",
+    "welch",
+    "WelchEstimate",
+    "estimate",
+    "comfort",
+    "fatigue",
+    "road",
     "AnalysisResult",
     "OutputResult",
+    "VarianceMethod",
+    "LevelCrossing",
+    "TablesResult",
     "RunResult",
     "Report",
     "StochvibError",
     "InvalidInputError",
+    "UnitError",
     "NotApplicableError",
     "DivergentError",
     "NumericalError",
+    "NotConvergedError",
     "FileError",
     "StochvibWarning",
     "ISO_BAND",
@@ -62,6 +93,8 @@ __all__ = [
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
+Quantity = Union[float, str]
+"""A number (SI) or a string with a unit ("10.8 km/h")."""
 Input = Union[Spectrum, str, "os.PathLike[str]", Sequence[Spectrum]]
 
 
@@ -92,24 +125,27 @@ def analyze(
     subject: Union[Scenario, System, PathLike],
     input: Optional[Input] = None,
     *,
-    speed: Optional[float] = None,
-    positions: Optional[Sequence[float]] = None,
+    speed: Optional[Quantity] = None,
+    positions: Optional[Sequence[Quantity]] = None,
     mean: Optional[Union[float, Sequence[float]]] = None,
     outputs: Optional[Sequence[str]] = None,
     band_rad_s: Optional[Tuple[float, float]] = None,
-    duration_s: Optional[float] = None,
+    duration_s: Optional[Quantity] = None,
     levels: Optional[Dict[str, Sequence[float]]] = None,
     monte_carlo: Optional[int] = None,
     seed: int = 1,
-    dt: Optional[float] = None,
-    duration: Optional[float] = None,
+    dt: Optional[Quantity] = None,
+    duration: Optional[Quantity] = None,
     progress: Union[bool, Callable[[int, int], Any]] = True,
     spectra_dir: Optional[PathLike] = None,
     rel_tol: Optional[float] = None,
     max_subintervals: Optional[int] = None,
     max_half_periods: Optional[int] = None,
-) -> Union[AnalysisResult, Report]:
+) -> AnalysisResult:
     """Response statistics of a scenario, or of ``system`` driven by ``input`` (the ``stochvib analyze`` report).
+
+    Quantities (``speed`` in m/s, ``positions`` in m, ``duration_s``, ``dt``, ``duration`` in s) are numbers
+    in SI units or strings with a unit: ``analyze(car, road, speed="72 km/h")``.
 
     ``subject``: a :class:`Scenario`, a scenario file path, or a :class:`System` with ``input`` — one
     :class:`Spectrum` or a catalogue name such as "iso8608-c" (one process; a spatial road spectrum needs
@@ -131,6 +167,29 @@ def analyze(
     effort of the quadratures, over the scenario's ``[analysis.quadrature]`` (the CLI's ``--rel-tol``,
     ``--max-subintervals``, ``--max-half-periods``). A quadrature that does not converge is reported, not
     raised: its method entry has ``status`` "not-converged", the estimate and which option to raise.
+
+    Returns
+    -------
+    AnalysisResult
+        One :class:`OutputResult` per output; ``str()`` is the CLI's text, ``to_dict()`` its ``--json``.
+
+    Raises
+    ------
+    DivergentError
+        An unstable system (no stationary response), with the diagnosis and what to check.
+    InvalidInputError, UnitError
+        A bad argument (a spatial input without ``speed``, an unknown output, a bad unit).
+    NotApplicableError
+        A file that is a deterministic model or a reference table (see :meth:`Scenario.tables`).
+
+    Examples
+    --------
+    >>> import stochvib
+    >>> car = stochvib.System.model("quarter-car", sprung_mass="300 kg", unsprung_mass="40 kg",
+    ...     suspension_stiffness="20 kN/m", suspension_damping="1.5 kN*s/m", tyre_stiffness="200 kN/m")
+    >>> r = stochvib.analyze(car, stochvib.Spectrum.iso8608("C"), speed="72 km/h")
+    >>> r["travel"].unit, r["travel"].sigma > 0
+    ('m', True)
     """
     kw: Dict[str, Any] = {}
     for k, v in (
@@ -163,12 +222,12 @@ def simulate(
     path: PathLike,
     *,
     input: Optional[Input] = None,
-    speed: Optional[float] = None,
-    positions: Optional[Sequence[float]] = None,
+    speed: Optional[Quantity] = None,
+    positions: Optional[Sequence[Quantity]] = None,
     mean: Optional[Union[float, Sequence[float]]] = None,
     outputs: Optional[Sequence[str]] = None,
-    dt: Optional[float] = None,
-    duration: Optional[float] = None,
+    dt: Optional[Quantity] = None,
+    duration: Optional[Quantity] = None,
     seed: int = 1,
     shard_size: int = 50,
     store_raw: bool = False,
@@ -210,3 +269,69 @@ def simulate(
         overwrite=overwrite,
         progress=progress,
     )
+
+
+def exposure(
+    a: Union["npt.ArrayLike", Dict[str, "npt.ArrayLike"]],
+    fs: float,
+    *,
+    axes: Optional[Sequence[str]] = None,
+    exposure: Optional[Quantity] = None,
+    motion_sickness: Optional[Sequence[str]] = None,
+) -> ExposureResult:
+    """The ISO 2631-1 evaluation of measured (or simulated) accelerations: a_w, VDV, MSDV, MTVV, crest
+    factor, the Directive's A(8) and daily VDV, the comfort vector sum — ``stochvib exposure`` on arrays.
+
+    Parameters
+    ----------
+    a : array_like or dict
+        Unweighted acceleration in m/s² (rad/s² for rotations): a 1-D array (the vertical seat-surface
+        axis, channel "z"), a 2-D array of shape (n, 3) (columns x, y, z of the seat surface), or a dict
+        channel name → 1-D array (channels x, y, z are the seat surface unless ``axes`` says otherwise).
+    fs : float
+        Sample rate, Hz.
+    axes : sequence of str, keyword-only, optional
+        "CHANNEL=LOCATION:AXIS", LOCATION one of seat-surface, seat-back, feet, standing-floor, AXIS one of
+        x, y, z, rx, ry, rz.
+    exposure : float or str, keyword-only, optional
+        The daily exposure T_exp in s or with a unit ("4 h"); default the record's duration.
+    motion_sickness : sequence of str, keyword-only, optional
+        Channels evaluated with Wf (MSDV).
+
+    Returns
+    -------
+    ExposureResult
+
+    Raises
+    ------
+    InvalidInputError
+        Channels of different lengths, a sample rate that loses a weighting band, an unknown axis.
+
+    Examples
+    --------
+    A 4 Hz vertical sine of amplitude 1 m/s² for 60 s: a_w = |W_k(4 Hz)|/√2.
+
+    >>> import numpy as np, stochvib
+    >>> fs = 1000.0
+    >>> t = np.arange(0, 60.0, 1 / fs)
+    >>> r = stochvib.exposure(np.sin(2 * np.pi * 4.0 * t), fs)
+    >>> wk = abs(stochvib.comfort.weighting("Wk", f=4.0))
+    >>> round(float(r["z"].a_w / (wk / np.sqrt(2))), 2)
+    1.0
+    """
+    import numpy as np
+
+    if isinstance(a, dict):
+        channels = dict(a)
+    else:
+        arr = np.asarray(a)
+        if arr.ndim == 1:
+            channels = {"z": arr}
+        elif arr.ndim == 2 and arr.shape[1] == 3:
+            channels = {"x": arr[:, 0], "y": arr[:, 1], "z": arr[:, 2]}
+        else:
+            raise InvalidInputError(
+                f"`a` has shape {arr.shape}: expected 1-D (the vertical axis), (n, 3) (x, y, z) or a dict of channels"
+            )
+    data, text = _stochvib.exposure(channels, fs, axes=list(axes) if axes else None, exposure_s=exposure, motion_sickness=list(motion_sickness) if motion_sickness else None)
+    return ExposureResult(data, text)

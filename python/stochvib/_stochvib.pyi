@@ -1,7 +1,8 @@
 """Type stubs of the native module (import these names from ``stochvib``).
 
-Units: ω in rad/s (rad/m for road profiles), f in Hz, n in cycles/m, τ in s (m), everything else SI.
-Densities: two-sided angular S(ω) unless ``convention=`` says otherwise.
+Units: ω in rad/s (``omega=``; rad/m for road profiles), f in Hz (``f=``; cycles/m), τ in s (m), everything
+else SI; a string with a unit is accepted where a ``Quantity`` is. Densities: two-sided angular S(ω) unless
+``convention=`` says otherwise. Polynomial coefficients: descending powers unless ``order="ascending"``.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple
 import numpy as np
 import numpy.typing as npt
 
-from .results import AnalysisResult, Report, RunResult
+from .results import AnalysisResult, RunResult, TablesResult
 
 __version__: str
 ISO_BAND: Tuple[float, float]
@@ -25,6 +26,8 @@ PathLike = Union[str, os.PathLike[str]]
 Convention = Literal["two-sided-angular", "one-sided-angular", "one-sided-cyclic", "engineering"]
 Domain = Literal["temporal", "spatial"]
 Progress = Union[bool, Callable[[int, int], Any]]
+Order = Literal["descending", "ascending"]
+Quantity = Union[float, str]
 
 class Spectrum:
     """A stationary random process described by its spectral density S(ω) (two-sided, angular)."""
@@ -47,9 +50,14 @@ class Spectrum:
         """Type 4: K = D e^{−ατ²} cos βτ; α in 1/s², β in rad/s."""
     @staticmethod
     def rational(
-        numerator: ArrayLike, denominator: ArrayLike, *, domain: Domain = "temporal", unit: str = "m"
+        numerator: ArrayLike,
+        denominator: ArrayLike,
+        *,
+        order: Order = "descending",
+        domain: Domain = "temporal",
+        unit: str = "m",
     ) -> Spectrum:
-        """S(ω) = N(ω²)/D(ω²), coefficients in ascending powers of ω²."""
+        """S(ω) = N(ω²)/D(ω²), coefficients in descending powers of ω² unless order="ascending"."""
     @staticmethod
     def iso8608(
         road_class: str,
@@ -83,13 +91,23 @@ class Spectrum:
     def load(path_or_name: PathLike, *, spectra_dir: Optional[PathLike] = None) -> Spectrum:
         """A catalogue name (``spectra/<name>.toml``) or a spectrum file path."""
     @staticmethod
-    def catalogue(spectra_dir: Optional[PathLike] = None) -> Dict[str, Spectrum]:
+    def catalogue(*, spectra_dir: Optional[PathLike] = None) -> Dict[str, Spectrum]:
         """Every valid spectrum of the catalogue directory, by name."""
     @overload
-    def density(self, omega: float, convention: Convention = ..., *, out: None = None) -> float: ...
+    def density(
+        self, omega: float, *, f: None = None, convention: Optional[Convention] = None, out: None = None
+    ) -> float: ...
     @overload
-    def density(self, omega: ArrayLike, convention: Convention = ..., *, out: Optional[FloatArray] = None) -> FloatArray:
-        """The density at ``omega`` in ``convention`` (for "one-sided-cyclic", ``omega`` is f in Hz or cycles/m)."""
+    def density(
+        self,
+        omega: Optional[ArrayLike] = None,
+        *,
+        f: Optional[ArrayLike] = None,
+        convention: Optional[Convention] = None,
+        out: Optional[FloatArray] = None,
+    ) -> Union[float, FloatArray]:
+        """S(ω) at ``omega`` (rad/s; conventions two-sided-angular, one-sided-angular, engineering), or the
+        one-sided G(f) = 4πS(2πf) at ``f`` (Hz)."""
     @overload
     def correlation(self, tau: float) -> float: ...
     @overload
@@ -97,13 +115,12 @@ class Spectrum:
         """K(τ) = ∫ S(ω) cos ωτ dω, τ in s (m)."""
     def variance(self) -> float:
         """D = ∫ S dω in unit²; raises DivergentError when infinite."""
-    def at_speed(self, speed: float) -> Spectrum:
+    def at_speed(self, speed: Quantity) -> Spectrum:
         """The temporal spectrum S_t(ω) = S_Ω(ω/v)/v of a spatial one at ``speed`` m/s."""
-    @property
-    def rational_coefficients(self) -> Optional[Tuple[FloatArray, FloatArray]]:
-        """(N, D) in ascending powers of ω², or None."""
-    def shaping_filter(self) -> Tuple[FloatArray, FloatArray]:
-        """(B, A) in ascending powers of s with S = |B(iω)/A(iω)|²/(2π)."""
+    def rational_coefficients(self, *, order: Order = "descending") -> Optional[Tuple[FloatArray, FloatArray]]:
+        """(N, D) in powers of ω² (descending unless order="ascending"), or None."""
+    def shaping_filter(self, *, order: Order = "descending") -> Tuple[FloatArray, FloatArray]:
+        """(b, a) in powers of s (descending unless order="ascending") with S = |b(iω)/a(iω)|²/(2π)."""
     @property
     def domain(self) -> Domain: ...
     @property
@@ -124,13 +141,13 @@ class System:
 
     @staticmethod
     def mdof(
-        M: ArrayLike,
-        B: ArrayLike,
-        C: ArrayLike,
         *,
-        K_u: Optional[ArrayLike] = None,
-        B_u: Optional[ArrayLike] = None,
-        F: Optional[ArrayLike] = None,
+        mass: ArrayLike,
+        damping: ArrayLike,
+        stiffness: ArrayLike,
+        base_stiffness: Optional[ArrayLike] = None,
+        base_damping: Optional[ArrayLike] = None,
+        forces: Optional[ArrayLike] = None,
         coordinates: Optional[Sequence[OutputSpec]] = None,
         outputs: Optional[Dict[str, Tuple[Literal["displacement", "velocity", "acceleration"], ArrayLike]]] = None,
     ) -> System:
@@ -151,13 +168,13 @@ class System:
         numerator: ArrayLike,
         denominator: ArrayLike,
         *,
-        order: Literal["ascending", "descending"] = "ascending",
+        order: Order = "descending",
         output: str = "y",
         unit: str = "1",
     ) -> System:
-        """H(s) = N(s)/D(s), ascending powers of s unless order="descending" (scipy.signal's)."""
+        """H(s) = N(s)/D(s), descending powers of s (scipy.signal's) unless order="ascending"."""
     @staticmethod
-    def model(kind: str, *, speed: Optional[float] = None, **params: Any) -> System:
+    def model(kind: str, *, speed: Optional[Quantity] = None, **params: Any) -> System:
         """A catalogue model built from keyword arguments (SI numbers or strings with units)."""
     @staticmethod
     def models() -> List[Dict[str, Any]]:
@@ -165,11 +182,12 @@ class System:
     @staticmethod
     def load(path: PathLike, *, spectra_dir: Optional[PathLike] = None) -> System:
         """The system of a scenario file."""
-    @overload
-    def frequency_response(self, omega: float) -> npt.NDArray[np.complex128]: ...
-    @overload
-    def frequency_response(self, omega: ArrayLike) -> npt.NDArray[np.complex128]:
-        """H(iω), complex, shape (outputs, inputs, *omega.shape); ω in rad/s."""
+    def frequency_response(
+        self, omega: Optional[ArrayLike] = None, *, f: Optional[ArrayLike] = None
+    ) -> npt.NDArray[np.complex128]:
+        """H(iω), complex, shape (outputs, inputs, *omega.shape); ω in rad/s, or f in Hz."""
+    def weighted(self, output: str, weighting: str) -> System:
+        """Output ``output`` through the ISO weighting ``weighting`` (W·H), same inputs and layout."""
     def modes(self) -> Tuple[FloatArray, FloatArray]:
         """Undamped ω (rad/s) and mass-normalised mode shapes (columns); System.mdof systems only."""
     def natural_frequencies(self) -> FloatArray:
@@ -199,12 +217,12 @@ class Scenario:
         system: System,
         input: Union[Spectrum, str, os.PathLike[str], Sequence[Spectrum]],
         *,
-        speed: Optional[float] = None,
-        positions: Optional[Sequence[float]] = None,
+        speed: Optional[Quantity] = None,
+        positions: Optional[Sequence[Quantity]] = None,
         mean: Optional[Union[float, Sequence[float]]] = None,
         outputs: Optional[Sequence[str]] = None,
         band_rad_s: Optional[Tuple[float, float]] = None,
-        duration_s: float = 3600.0,
+        duration_s: Optional[Quantity] = None,
         levels: Optional[Dict[str, Sequence[float]]] = None,
         title: Optional[str] = None,
     ) -> Scenario:
@@ -214,22 +232,33 @@ class Scenario:
         *,
         monte_carlo: Optional[int] = None,
         seed: int = 1,
-        dt: Optional[float] = None,
-        duration: Optional[float] = None,
+        dt: Optional[Quantity] = None,
+        duration: Optional[Quantity] = None,
         progress: Progress = True,
         rel_tol: Optional[float] = None,
         max_subintervals: Optional[int] = None,
         max_half_periods: Optional[int] = None,
-    ) -> Union[AnalysisResult, Report]:
+    ) -> AnalysisResult:
         """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``); ``rel_tol``,
         ``max_subintervals``, ``max_half_periods`` override the quadratures' ``[analysis.quadrature]``."""
+    def output_density(
+        self,
+        output: str,
+        omega: Optional[ArrayLike] = None,
+        *,
+        f: Optional[ArrayLike] = None,
+        convention: Optional[Convention] = None,
+    ) -> Union[float, FloatArray]:
+        """S_y(ω) (rad/s) or the one-sided G_y(f) (Hz) of an output, shaped as the argument."""
+    def tables(self) -> TablesResult:
+        """The result tables of a deterministic model or a reference table."""
     def simulate(
         self,
         realizations: int,
         path: PathLike,
         *,
-        dt: Optional[float] = None,
-        duration: Optional[float] = None,
+        dt: Optional[Quantity] = None,
+        duration: Optional[Quantity] = None,
         seed: int = 1,
         shard_size: int = 50,
         store_raw: bool = False,
@@ -260,7 +289,31 @@ class Scenario:
     def text(self) -> str: ...
 
 @overload
-def h2_integral(numerator: Sequence[float], denominator: Sequence[float]) -> float: ...
+def h2_integral(numerator: Sequence[float], denominator: Sequence[float], *, order: Order = "descending") -> float: ...
 @overload
-def h2_integral(numerator: ArrayLike, denominator: ArrayLike) -> Any:
-    """∫|N(iω)/D(iω)|² dω, ascending powers of s; 2-D arguments: one integral per row."""
+def h2_integral(numerator: ArrayLike, denominator: ArrayLike, *, order: Order = "descending") -> Any:
+    """∫|N(iω)/D(iω)|² dω, descending powers of s unless order="ascending"; 2-D arguments: one per row."""
+def weighting_response(
+    name: str, omega: Optional[ArrayLike] = None, *, f: Optional[ArrayLike] = None
+) -> npt.NDArray[np.complex128]: ...
+def weighting_filter(name: str, *, order: Order = "descending") -> Tuple[FloatArray, FloatArray]: ...
+def rainflow(x: ArrayLike) -> Dict[str, npt.NDArray[Any]]: ...
+def spectral_fatigue(
+    f: ArrayLike, G: ArrayLike, *, k: float, c: float, endurance_limit: Optional[float] = None
+) -> List[Dict[str, Any]]: ...
+def exposure(
+    channels: Dict[str, ArrayLike],
+    fs: float,
+    *,
+    axes: Optional[List[str]] = None,
+    exposure_s: Optional[Quantity] = None,
+    motion_sickness: Optional[List[str]] = None,
+) -> Tuple[Dict[str, Any], str]: ...
+def welch(
+    x: ArrayLike, fs: float, *, nperseg: int = 256, detrend: bool = True, confidence: float = 0.95
+) -> Dict[str, Any]: ...
+def iri(z: ArrayLike, step: Quantity) -> Dict[str, Any]: ...
+def expected_iri(spectrum: Spectrum) -> Dict[str, Any]: ...
+def iso8608_class(g0: Quantity) -> str: ...
+def daily_exposure_a8(a_w: float, duration: Quantity) -> float: ...
+def vdv_gaussian(a_w: float, duration: Quantity) -> float: ...

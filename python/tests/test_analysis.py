@@ -29,7 +29,7 @@ D_F, ALPHA = 4.0, 5.0
 
 def sdof():
     return System.mdof(
-        [[M]], [[B]], [[K]], coordinates=[("x", "m")], outputs={"x": ("displacement", [1]), "v": ("velocity", [1])}
+        mass=[[M]], damping=[[B]], stiffness=[[K]], coordinates=[("x", "m")], outputs={"x": ("displacement", [1]), "v": ("velocity", [1])}
     )
 
 
@@ -83,7 +83,10 @@ def test_lyapunov_variance_against_scipy():
 def test_divergent_acceleration_is_reported_with_the_diagnosis():
     # base-excited mass through a spring and a damper: H_acc(iω) = −ω²(k + iωb)/(k − mω² + iωb) → ~ iωb/m·(−1),
     # |H|² ~ (b/m)² ω², times a type-1 input ~ ω⁻²: S_y tends to a constant and ∫S_y dω diverges.
-    base = System.mdof([[M]], [[B]], [[K]], K_u=[[K]], B_u=[[B]], outputs={"acc": ("acceleration", [1])})
+    base = System.mdof(
+        mass=[[M]], damping=[[B]], stiffness=[[K]], base_stiffness=[[K]], base_damping=[[B]],
+        outputs={"acc": ("acceleration", [1])},
+    )
     road = Spectrum.exponential(1e-4, 2.0)
     r = stochvib.analyze(base, road, band_rad_s=(0.0, 200.0))
     acc = r["acc"]
@@ -125,12 +128,17 @@ def test_analysis_identical_to_cli(cli, path):
 
 
 def test_deterministic_and_reference_files_identical_to_cli(cli):
+    # one result type per kind of analysis: tables() for these files, analyze() refuses them
     for path in ("data/mine-hoist.toml", "data/reference/table-8-1.toml"):
-        r = Scenario.load(path).analyze()
-        assert isinstance(r, stochvib.Report) and not isinstance(r, stochvib.AnalysisResult)
+        r = Scenario.load(path).tables()
+        assert isinstance(r, stochvib.TablesResult) and not isinstance(r, stochvib.AnalysisResult)
         assert r.to_dict() == cli.json("analyze", path)
+        with pytest.raises(stochvib.NotApplicableError, match=r"tables\(\)"):
+            stochvib.analyze(path)
     with pytest.raises(stochvib.NotApplicableError, match="deterministic"):
         Scenario.load("data/mine-hoist.toml").system
+    with pytest.raises(stochvib.NotApplicableError, match="analyze"):
+        Scenario.load("data/quarter-car.toml").tables()
 
 
 def test_from_system_equals_the_scenario_file():
@@ -153,7 +161,7 @@ def test_analysis_argument_errors():
         stochvib.analyze(sys, road)  # a spatial spectrum needs a speed
     with pytest.raises(InvalidInputError, match="no such output; the system has: x, v"):
         stochvib.analyze(sys, Spectrum.exponential(1, 1), outputs=["y"])
-    two = System.mdof(np.eye(2), np.eye(2), np.eye(2))
+    two = System.mdof(mass=np.eye(2), damping=np.eye(2), stiffness=np.eye(2))
     with pytest.raises(InvalidInputError, match="2 inputs"):
         stochvib.analyze(two, Spectrum.exponential(1, 1))
     # one independent spectrum per input, or one track with positions

@@ -27,32 +27,36 @@ REL_METHODS = 1e-9
 
 
 def test_closed_forms():
-    # H = 1/(s + 2): ∫ dω/(4 + ω²) = π/2
-    assert h2_integral([1.0], [2.0, 1.0]) == pytest.approx(math.pi / 2, rel=REL_CLOSED)
+    # H = 1/(s + 2): ∫ dω/(4 + ω²) = π/2 (coefficients descending, as scipy.signal)
+    assert h2_integral([1.0], [1.0, 2.0]) == pytest.approx(math.pi / 2, rel=REL_CLOSED)
     # m ẍ + c ẋ + k x = f: the table's I₂ = π(A₀B₁² + A₂B₀²)/(A₀A₁A₂) with B = [1, 0], A = [k, c, m] is π/(kc)
     k, c, m = 50.0, 0.3, 2.0
-    assert h2_integral([1.0], [k, c, m]) == pytest.approx(math.pi / (k * c), rel=REL_CLOSED)
-    assert isinstance(h2_integral([1.0], [2.0, 1.0]), float)
+    assert h2_integral([1.0], [m, c, k]) == pytest.approx(math.pi / (k * c), rel=REL_CLOSED)
+    assert h2_integral([1.0], [k, c, m], order="ascending") == h2_integral([1.0], [m, c, k])
+    assert isinstance(h2_integral([1.0], [1.0, 2.0]), float)
 
 
 def test_rows_are_independent_integrals():
-    num = np.array([[1.0, 0.0], [1.0, 0.5], [2.0, 0.0]])
-    den = np.array([[2.0, 1.0, 0.0], [50.0, 0.3, 2.0], [1.0, 3.0, 1.0]])
+    num = np.array([[0.0, 1.0], [0.5, 1.0], [0.0, 2.0]])
+    den = np.array([[0.0, 1.0, 2.0], [2.0, 0.3, 50.0], [1.0, 3.0, 1.0]])
     rows = h2_integral(num, den)
     assert rows.shape == (3,)
     for i in range(3):
-        assert rows[i] == h2_integral(num[i], den[i])  # trailing zeros trimmed: the same integral
+        assert rows[i] == h2_integral(num[i], den[i])  # leading zeros trimmed: the same integral
+    np.testing.assert_array_equal(h2_integral(num[:, ::-1], den[:, ::-1], order="ascending"), rows)
 
 
 def test_errors_name_the_row():
     with pytest.raises(DivergentError):
-        h2_integral([0.0, 1.0], [2.0, 1.0])  # deg N = deg D: |H|² → 1
+        h2_integral([1.0, 0.0], [1.0, 2.0])  # deg N = deg D: |H|² → 1
     with pytest.raises(InvalidInputError, match=r"row 1"):
-        h2_integral(np.array([[1.0], [1.0]]), np.array([[2.0, 1.0], [-2.0, 1.0]]))  # s − 2: unstable
+        h2_integral(np.array([[1.0], [1.0]]), np.array([[1.0, 2.0], [1.0, -2.0]]))  # s − 2: unstable
     with pytest.raises(InvalidInputError, match="rows"):
         h2_integral(np.ones((2, 1)), np.ones((3, 2)))
     with pytest.raises(InvalidInputError, match="1-D or 2-D"):
         h2_integral(np.ones((2, 1, 1)), np.ones((2, 1, 2)))
+    with pytest.raises(InvalidInputError, match="order"):
+        h2_integral([1.0], [1.0, 2.0], order="up")
 
 
 def test_python_driven_sweep_agrees_with_scipy_and_the_library():

@@ -64,11 +64,32 @@ def stub_signatures():
     return out
 
 
+def stub_functions():
+    """Module-level function → [(parameter, kind)] declared in stochvib/_stochvib.pyi (the last overload)."""
+    tree = ast.parse((Path(stochvib.__file__).parent / "_stochvib.pyi").read_text())
+    out = {}
+    for n in tree.body:
+        if isinstance(n, ast.FunctionDef) and not n.name.startswith("_"):
+            a = n.args
+            params = [(x.arg, "positional") for x in a.posonlyargs + a.args] + [(x.arg, "keyword") for x in a.kwonlyargs]
+            out[n.name] = params
+    return out
+
+
+def test_stubs_cover_the_native_functions():
+    native = {n for n in dir(_stochvib) if not n.startswith("_") and inspect.isbuiltin(getattr(_stochvib, n))}
+    assert set(stub_functions()) == native
+
+
 def test_stub_signatures_match_the_native_methods():
     # Parameter names and kinds (positional / keyword-only / *args / **kwargs) of every method in the stubs
     # against the signatures PyO3 gives the native methods.
     stubs = stub_signatures()
     assert len(stubs) > 25
+    for name, params in stub_functions().items():
+        sig = inspect.signature(getattr(_stochvib, name))
+        runtime = [(p.name, KINDS[p.kind]) for p in sig.parameters.values()]
+        assert runtime == params, name
     for (cls, name), params in stubs.items():
         sig = inspect.signature(getattr(getattr(_stochvib, cls), name))
         runtime = [(p.name, KINDS[p.kind]) for p in sig.parameters.values() if p.name not in ("self", "cls")]
@@ -108,9 +129,13 @@ def test_installed_wheel_is_abi3_with_stubs():
 def test_exception_hierarchy():
     e = stochvib.errors
     assert issubclass(e.InvalidInputError, ValueError) and issubclass(e.InvalidInputError, e.StochvibError)
-    assert issubclass(e.DivergentError, ArithmeticError)
+    assert issubclass(e.UnitError, e.InvalidInputError) and issubclass(e.UnitError, ValueError)
+    assert issubclass(e.DivergentError, ArithmeticError) and issubclass(e.DivergentError, e.StochvibError)
     assert issubclass(e.NumericalError, ArithmeticError)
-    assert issubclass(e.FileError, OSError)
+    assert issubclass(e.NotConvergedError, e.NumericalError) and issubclass(e.NotConvergedError, e.StochvibError)
+    assert issubclass(e.FileError, OSError) and issubclass(e.FileError, e.StochvibError)
     assert issubclass(e.NotApplicableError, ValueError)
+    for name in ("StochvibError", "InvalidInputError", "UnitError", "DivergentError", "NotConvergedError", "FileError"):
+        assert getattr(stochvib, name) is getattr(e, name)
     err = e.FileError("f.toml: key `a` = 1: bad", path="f.toml", key="a")
     assert str(err) == "f.toml: key `a` = 1: bad" and err.key == "a" and err.path == "f.toml" and err.quantity is None

@@ -276,7 +276,7 @@ def test_gil_released_while_a_run_computes(tmp_path):
 
 
 def test_simulate_a_system_built_in_python(tmp_path):
-    sys_ = System.mdof([[20.0]], [[60.0]], [[8000.0]], outputs={"x": ("displacement", [1])})
+    sys_ = System.mdof(mass=[[20.0]], damping=[[60.0]], stiffness=[[8000.0]], outputs={"x": ("displacement", [1])})
     load = Spectrum.exponential(4.0, 5.0, unit="N")
     r = stochvib.simulate(sys_, 10, tmp_path / "s.h5", input=load, dt=0.005, duration=4.0, progress=False)
     assert r.route == "exact"

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy import integrate
+from scipy import integrate, signal
 
 import stochvib
 from stochvib import DivergentError, InvalidInputError, NotApplicableError, Spectrum
@@ -97,15 +97,16 @@ def test_standard_density_conventions(name, make, s, k):
     sp = make()
     w = np.linspace(0.0, 30.0, 301)
     f = w / (2.0 * np.pi)
-    np.testing.assert_allclose(sp.density(w, "one-sided-angular"), 2.0 * s(w), rtol=REL_FORMULA, atol=0)
+    np.testing.assert_allclose(sp.density(w, convention="one-sided-angular"), 2.0 * s(w), rtol=REL_FORMULA, atol=0)
+    np.testing.assert_allclose(sp.density(f=f), 4.0 * np.pi * s(2.0 * np.pi * f), rtol=REL_FORMULA, atol=0)
     np.testing.assert_allclose(
-        sp.density(f, "one-sided-cyclic"), 4.0 * np.pi * s(2.0 * np.pi * f), rtol=REL_FORMULA, atol=0
+        sp.density(f=f, convention="one-sided-cyclic"), sp.density(f=f), rtol=0, atol=0
     )
-    np.testing.assert_allclose(sp.density(w, "engineering"), 2.0 * np.pi * s(w), rtol=REL_FORMULA, atol=0)
-    assert np.all(sp.density(-w[1:], "one-sided-angular") == 0.0)
-    assert np.all(sp.density(-f[1:], "one-sided-cyclic") == 0.0)
+    np.testing.assert_allclose(sp.density(w, convention="engineering"), 2.0 * np.pi * s(w), rtol=REL_FORMULA, atol=0)
+    assert np.all(sp.density(-w[1:], convention="one-sided-angular") == 0.0)
+    assert np.all(sp.density(f=-f[1:]) == 0.0)
     # each convention integrates to the same variance D = 2 (one-sided over [0, ∞), ∫Ŝ/2π over the line)
-    g = lambda x: sp.density(x, "one-sided-cyclic")  # noqa: E731
+    g = lambda x: sp.density(f=x)  # noqa: E731
     d_cyc = integrate.quad(g, 0, np.inf, epsabs=0, epsrel=1e-11, limit=400)[0]
     assert d_cyc == pytest.approx(2.0, rel=REL_QUAD)
 
@@ -128,38 +129,46 @@ def test_rational_type1_equivalence():
     r = Spectrum.rational([1.0 / math.pi], [1.0, 1.0])
     np.testing.assert_allclose(r.density(OMEGA), s1(OMEGA, 1.0, 1.0), rtol=REL_FORMULA, atol=0)
     assert r.variance() == pytest.approx(1.0, rel=REL_CLOSED)
-    num, den = r.rational_coefficients
+    num, den = r.rational_coefficients()
     np.testing.assert_allclose(num, [1.0 / math.pi], rtol=REL_FORMULA)
     np.testing.assert_allclose(den, [1.0, 1.0], rtol=REL_FORMULA)
+    # type 1 with D = 2, α = 3: S = αD/(π(α² + ω²)) = (6/π) / (ω² + 9): descending [1, 9], ascending [9, 1]
+    t = Spectrum.rational([6.0 / math.pi], [1.0, 9.0])
+    np.testing.assert_allclose(t.density(OMEGA), s1(OMEGA, 2.0, 3.0), rtol=REL_FORMULA, atol=0)
+    asc = Spectrum.rational([6.0 / math.pi], [9.0, 1.0], order="ascending")
+    np.testing.assert_array_equal(asc.density(OMEGA), t.density(OMEGA))
+    np.testing.assert_allclose(t.rational_coefficients(order="ascending")[1], [9.0, 1.0], rtol=REL_FORMULA)
 
 
 @pytest.mark.parametrize("make", [lambda: Spectrum.exponential(2.0, 1.5), lambda: Spectrum.exp_cosine(2.0, 1.5, 6.0)])
 def test_shaping_filter_reproduces_density(make):
-    # S(ω) = |B(iω)/A(iω)|²/(2π), B, A ascending in s: evaluated with numpy.polynomial
+    # S(ω) = |b(iω)/a(iω)|²/(2π), b, a descending in s: evaluated by scipy.signal.freqs
     sp = make()
     b, a = sp.shaping_filter()
-    s = 1j * OMEGA
-    h = np.polynomial.polynomial.polyval(s, b) / np.polynomial.polynomial.polyval(s, a)
+    _, h = signal.freqs(b, a, worN=OMEGA)
     np.testing.assert_allclose(np.abs(h) ** 2 / (2 * np.pi), sp.density(OMEGA), rtol=1e-10, atol=0)
-    assert np.all(np.real(np.roots(a[::-1])) < 0)  # Hurwitz
+    assert np.all(np.real(np.roots(a)) < 0)  # Hurwitz
+    ba, aa = sp.shaping_filter(order="ascending")
+    np.testing.assert_array_equal(ba, b[::-1])
+    np.testing.assert_array_equal(aa, a[::-1])
     with pytest.raises(NotApplicableError, match="not rational"):
         Spectrum.gaussian(1.0, 1.0).shaping_filter()
-    assert Spectrum.gaussian(1.0, 1.0).rational_coefficients is None
+    assert Spectrum.gaussian(1.0, 1.0).rational_coefficients() is None
 
 
 def test_iso8608_class_c():
     # ISO 8608:2016 Table C.1 (via DESIGN §2): class C geometric mean G_d(n₀ = 0.1 cycles/m) = 256e-6 m³.
     c = Spectrum.iso8608("C")
     assert c.domain == "spatial" and c.unit == "m"
-    assert c.density(0.1, "one-sided-cyclic") == pytest.approx(256e-6, rel=REL_CLOSED)
+    assert c.density(f=0.1) == pytest.approx(256e-6, rel=REL_CLOSED)
     # G_d(n) = G_d(n₀)(n/n₀)^{-2} inside the band 0.011..2.83, zero outside
     n = np.array([0.005, 0.02, 0.1, 1.0, 2.0, 3.0])
     expected = np.where((n >= 0.011) & (n <= 2.83), 256e-6 * (n / 0.1) ** -2.0, 0.0)
-    np.testing.assert_allclose(c.density(n, "one-sided-cyclic"), expected, rtol=REL_FORMULA, atol=0)
+    np.testing.assert_allclose(c.density(f=n), expected, rtol=REL_FORMULA, atol=0)
     # D = ∫_{n₁}^{n₂} G₀ n₀² n^{-2} dn = G₀ n₀² (1/n₁ − 1/n₂)
     assert c.variance() == pytest.approx(256e-6 * 0.01 * (1 / 0.011 - 1 / 2.83), rel=REL_CLOSED)
     # upper bound is twice the geometric mean (ISO 8608 class limits)
-    assert Spectrum.iso8608("c", bound="upper").density(0.1, "one-sided-cyclic") == pytest.approx(512e-6, rel=REL_CLOSED)
+    assert Spectrum.iso8608("c", bound="upper").density(f=0.1) == pytest.approx(512e-6, rel=REL_CLOSED)
 
 
 def test_unbounded_road_variance_is_divergent_with_diagnosis():
@@ -188,7 +197,7 @@ def test_tabulated_and_band_white():
     t = Spectrum.tabulated([1.0, 10.0], [1.0, 0.01], convention="one-sided-cyclic")
     assert t.variance() == pytest.approx(0.9, rel=REL_CLOSED)
     f = np.array([1.0, 2.0, 5.0, 10.0])
-    np.testing.assert_allclose(t.density(f, "one-sided-cyclic"), f**-2.0, rtol=REL_FORMULA)
+    np.testing.assert_allclose(t.density(f=f), f**-2.0, rtol=REL_FORMULA)
     # level 1e-3 /Hz one-sided on 1..10 Hz: D = 9e-3
     w = Spectrum.band_white(1e-3, 1.0, 10.0, convention="one-sided-cyclic")
     assert w.variance() == pytest.approx(9e-3, rel=REL_CLOSED)
@@ -228,7 +237,7 @@ def test_catalogue_identical_to_cli(cli, name, convention):
         assert sp.correlation(lags).tolist() == model
     x = np.array([d[0] for d in rep["density"]])
     want = np.array([d[1] for d in rep["density"]])
-    got = sp.density(x, convention)
+    got = sp.density(f=x) if convention == "one-sided-cyclic" else sp.density(x, convention=convention)
     if convention == "two-sided-angular":
         assert got.tolist() == want.tolist()  # bit-identical
     else:
@@ -281,7 +290,7 @@ def test_refused_inputs(t1):
     with pytest.raises(InvalidInputError, match="omega"):
         t1.density([[1.0, 2.0], [3.0]])  # ragged
     with pytest.raises(InvalidInputError, match="convention"):
-        t1.density(1.0, "one-sided")
+        t1.density(1.0, convention="one-sided")
 
 
 def test_out_argument(t1):
@@ -321,9 +330,44 @@ def test_catalogue_directory_and_invalid_files(root, tmp_path):
     (tmp_path / "good.toml").write_text((root / "spectra" / "type1.toml").read_text())
     (tmp_path / "bad.toml").write_text('kind = "exponential"\nvariance = -1\nalpha = "1 1/s"\n')
     with pytest.warns(stochvib.StochvibWarning, match="bad.toml"):
-        cat = Spectrum.catalogue(tmp_path)
+        cat = Spectrum.catalogue(spectra_dir=tmp_path)
     assert list(cat) == ["good"]
     assert Spectrum.load("good", spectra_dir=tmp_path).variance() == Spectrum.load("type1").variance()
     with pytest.raises(stochvib.FileError) as e:
         Spectrum.load("bad", spectra_dir=tmp_path)
     assert e.value.key == "variance"
+
+
+def test_trap_density_never_takes_hertz_in_omega():
+    # The trap: density(omega, convention="one-sided-cyclic") took hertz in an argument named omega.
+    # Now omega= is rad/s and f= is Hz; the cyclic convention belongs to f= only.
+    t1 = Spectrum.exponential(2.0, 1.5)
+    f = np.array([0.1, 0.5, 2.0])
+    np.testing.assert_allclose(t1.density(f=f), 4 * np.pi * s1(2 * np.pi * f, 2.0, 1.5), rtol=REL_FORMULA, atol=0)
+    np.testing.assert_allclose(t1.density(omega=2 * np.pi * f), s1(2 * np.pi * f, 2.0, 1.5), rtol=REL_FORMULA, atol=0)
+    with pytest.raises(InvalidInputError, match="pass f="):
+        t1.density(f, convention="one-sided-cyclic")
+    with pytest.raises(InvalidInputError, match="rad/s"):
+        t1.density(f=f, convention="two-sided-angular")
+    with pytest.raises(InvalidInputError, match="exactly one"):
+        t1.density(1.0, f=1.0)
+    with pytest.raises(InvalidInputError, match="exactly one"):
+        t1.density()
+    with pytest.raises(TypeError):  # the convention is keyword-only
+        t1.density(f, "one-sided-angular")
+
+
+def test_density_broadcasts_over_any_shape():
+    t1 = Spectrum.exponential(2.0, 1.5)
+    w = np.linspace(0.0, 10.0, 24).reshape(2, 3, 4)
+    assert t1.density(w).shape == (2, 3, 4)
+    np.testing.assert_array_equal(t1.density(w).ravel(), t1.density(w.ravel()))
+    assert t1.density(f=w).shape == (2, 3, 4)
+
+
+def test_at_speed_accepts_a_unit():
+    road = Spectrum.iso8608("C")
+    np.testing.assert_array_equal(road.at_speed("72 km/h").density(OMEGA), road.at_speed(20.0).density(OMEGA))
+    with pytest.raises(stochvib.UnitError) as e:
+        road.at_speed("72 km")
+    assert e.value.name == "speed" and "dimension" in str(e.value)
