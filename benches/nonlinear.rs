@@ -37,7 +37,11 @@ fn nonlinear(c: &mut Criterion) {
     let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
     let run = RunOptions {
         overwrite: true,
-        ..RunOptions::new(R, DURATION_S, dt, 1)
+        realizations: R,
+        duration_s: DURATION_S,
+        dt_s: dt,
+        seed: 1,
+        ..RunOptions::default()
     };
     let n = run.samples().unwrap();
     let out = std::env::temp_dir().join(format!("stochvib-bench-nonlinear-{}.h5", std::process::id()));

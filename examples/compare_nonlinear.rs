@@ -114,7 +114,13 @@ fn main() {
     let step = sc.suggest_nonlinear_step(&answers).unwrap();
     let dir = std::env::temp_dir().join(format!("stochvib-compare-nonlinear-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let opts = RunOptions::new(r, duration, step.dt_s, 1);
+    let opts = RunOptions {
+        realizations: r,
+        duration_s: duration,
+        dt_s: step.dt_s,
+        seed: 1,
+        ..RunOptions::default()
+    };
     let out = dir.join("run.h5");
     let mut rows = serde_json::Map::new();
     let mut summary = None;

@@ -11,7 +11,15 @@ use stochvib::prelude::*;
 fn main() -> Result<()> {
     let speed: f64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(20.0);
     // a passenger-car corner: body 300 kg, wheel 40 kg, spring 20 kN/m, damper 1.5 kN s/m, tyre 200 kN/m
-    let car = QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3)?;
+    let car = QuarterCar {
+        sprung_mass: 300.0,
+        unsprung_mass: 40.0,
+        suspension_stiffness: 20e3,
+        suspension_damping: 1.5e3,
+        tyre_stiffness: 200e3,
+        tyre_damping: 0.0,
+    }
+    .build()?;
     let sys = car.system()?;
     let names = ["body_acc", "travel", "tyre_force"];
     let outputs = names.iter().map(|n| sys.output_index(n)).collect::<Result<Vec<_>>>()?;
@@ -58,7 +66,13 @@ fn main() -> Result<()> {
     let step = suggest_step(&input)?;
     let file = std::env::temp_dir().join(format!("stochvib-quarter-car-{}.h5", std::process::id()));
     let _ = std::fs::remove_file(&file);
-    let opts = RunOptions::new(200, 20.0, step.dt_s, 2026);
+    let opts = RunOptions {
+        realizations: 200,
+        duration_s: 20.0,
+        dt_s: step.dt_s,
+        seed: 2026,
+        ..RunOptions::default()
+    };
     let mc = run(&input, &opts, &file, &|_, _| {})?;
     println!(
         "  Monte Carlo: {} realizations x {} samples, Δt = {:.4e} s ({} route)",

@@ -31,7 +31,13 @@ fn main() -> stochvib::Result<()> {
         );
     let sc = parse_scenario(&text, path, Path::new("spectra"))?;
     let dt = 0.004;
-    let mut opts = RunOptions::new(2, samples * dt, dt, 7);
+    let mut opts = RunOptions {
+        realizations: 2,
+        duration_s: samples * dt,
+        dt_s: dt,
+        seed: 7,
+        ..RunOptions::default()
+    };
     opts.route = Route::SpectralStream;
     opts.overwrite = true;
     let input = sc.run_input();

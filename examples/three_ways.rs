@@ -39,7 +39,18 @@ fn main() -> Result<()> {
     );
     let file = std::env::temp_dir().join(format!("stochvib-three-ways-{}.h5", std::process::id()));
     let _ = std::fs::remove_file(&file);
-    let mc = run(&input, &RunOptions::new(400, 30.0, 0.01, 1), &file, &|_, _| {})?;
+    let mc = run(
+        &input,
+        &RunOptions {
+            realizations: 400,
+            duration_s: 30.0,
+            dt_s: 0.01,
+            seed: 1,
+            ..RunOptions::default()
+        },
+        &file,
+        &|_, _| {},
+    )?;
     for o in &mc.outputs {
         let s = o.get("variance").unwrap();
         println!(

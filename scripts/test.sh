@@ -41,7 +41,9 @@ require | auto) ;;
   exit 2
   ;;
 esac
-cargo build --locked --bin stochvib
+# the binary `cargo test` built (a no-op after it; `cargo build --bin stochvib` would compile the library once
+# more, in the dev profile and without the dev-dependencies' features)
+cargo test --locked --no-run --quiet
 # the cluster tests, in order: the cluster itself (tests/slurm/smoke.sh, one cycle), the shipped
 # examples/cluster/slurm-array.sbatch with its dependent merge job (tests/slurm/example-array.sh, stochvib
 # played by a stub that checks every argument), and the real run (tests/slurm/real-array.sh); exit 77 of

@@ -16,7 +16,15 @@
 //! use stochvib::prelude::*;
 //! use std::sync::Arc;
 //!
-//! let car = QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3)?; // kg, kg, N/m, N s/m, N/m
+//! let car = QuarterCar {
+//!     sprung_mass: 300.0,         // kg
+//!     unsprung_mass: 40.0,        // kg
+//!     suspension_stiffness: 20e3, // N/m
+//!     suspension_damping: 1.5e3,  // N s/m
+//!     tyre_stiffness: 200e3,      // N/m
+//!     tyre_damping: 0.0,          // N s/m
+//! }
+//! .build()?;
 //! let sys = car.system()?;
 //! let road = Excitation::road(Arc::new(PowerLaw::iso_class(IsoClass::C)?), 20.0, &[0.0])?;
 //! let outputs = vec![sys.output_index("body_acc")?, sys.output_index("travel")?];
@@ -28,7 +36,8 @@
 //! let input = RunInput::new(&sys, &road, outputs, vec![Signal::new("road", "m")], "quarter car, class C");
 //! let file = std::env::temp_dir().join(format!("stochvib-crate-example-{}.h5", std::process::id()));
 //! # let _ = std::fs::remove_file(&file);
-//! let mc = run(&input, &RunOptions::new(20, 20.0, 0.005, 7), &file, &|_, _| {})?;
+//! let opts = RunOptions { realizations: 20, duration_s: 20.0, dt_s: 0.005, seed: 7, ..RunOptions::default() };
+//! let mc = run(&input, &opts, &file, &|_, _| {})?;
 //! for o in &mc.outputs {
 //!     let s = o.get("sigma").unwrap();
 //!     let (iv, analytic) = (s.interval, s.analytic.unwrap());

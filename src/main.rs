@@ -581,79 +581,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
         }
         Command::Models { json } => print(&report::models_report(), json)?,
-        Command::Road {
-            profile,
-            segment,
-            detrend,
-            confidence,
-            output,
-            plots,
-        } => {
-            let detrend = match detrend.as_str() {
-                "mean" => stochvib::road::Detrend::Mean,
-                "linear" => stochvib::road::Detrend::Linear,
-                other => anyhow::bail!("--detrend {other}: expected `mean` or `linear`"),
-            };
-            if !(confidence > 0.0 && confidence < 1.0) {
-                anyhow::bail!("--confidence {confidence}: expected a number in (0, 1)");
-            }
-            let opts = report::road_report::RoadReportOptions {
-                segment_len: segment,
-                detrend,
-                confidence,
-            };
-            let r = report::road_report::road_report(&profile, &opts)?;
-            print_as(&r, output.format())?;
-            if let Some(out) = plots {
-                let files = stochvib::plot::road_plots(&r, &out)?;
-                eprintln!("wrote {} pictures to {}", files.len(), out.display());
-            }
-        }
-        Command::Replay {
-            scenario,
-            profile,
-            speed,
-            skip,
-            zero_start,
-            track,
-            detrend,
-            output,
-            overwrite,
-            spectra,
-            json,
-        } => {
-            let detrend = match detrend.as_str() {
-                "mean" => stochvib::road::Detrend::Mean,
-                "linear" => stochvib::road::Detrend::Linear,
-                other => anyhow::bail!("--detrend {other}: expected `mean` or `linear`"),
-            };
-            let catalogue = spectra.catalogue();
-            let sc = load_scenario(&scenario, catalogue.dir())?;
-            let opts = stochvib::scenario::replay::ScenarioReplayOptions {
-                speed_m_s: speed,
-                skip_m: skip,
-                start: if zero_start {
-                    stochvib::road::Start::Zero
-                } else {
-                    stochvib::road::Start::Static
-                },
-                track,
-                detrend,
-            };
-            let mut inputs = sc.source_files();
-            inputs.push(profile.clone());
-            let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-            if let Some(out) = &output {
-                // the output rule before the work
-                stochvib::io_rules::check_output(out, &stochvib::road::replay::HISTORY_CSV, &inputs, overwrite)?;
-            }
-            let r = stochvib::scenario::replay::replay_scenario(&sc, &profile, &opts)?;
-            if let Some(out) = output {
-                r.replay.write_csv_from(&out, overwrite, &inputs)?;
-                eprintln!("wrote {}", out.display());
-            }
-            print(&r, json)?
-        }
+        cmd @ Command::Road { .. } => road_command(cmd)?,
+        cmd @ Command::Replay { .. } => replay_command(cmd)?,
         Command::Book { json, plots, spectra } => {
             print(&report::book_report(), json)?;
             if let Some(out) = plots {
@@ -662,59 +591,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 }
             }
         }
-        Command::Analyze {
-            scenario,
-            spectra,
-            output,
-            plots,
-            monte_carlo,
-            seed,
-            step,
-            effort,
-        } => {
-            let catalogue = spectra.catalogue();
-            step.check_batch("--monte-carlo", monte_carlo)?;
-            let mut sc = match load_document(&scenario, catalogue.dir())? {
-                Document::Stochastic(sc) => sc,
-                Document::Deterministic(d) => {
-                    no_simulation(&scenario, monte_carlo, &plots)?;
-                    return print_as(&report::deterministic_report(&d)?, output.format());
-                }
-                Document::Reference(t) => {
-                    no_simulation(&scenario, monte_carlo, &plots)?;
-                    return print_as(&report::reference_report(&t), output.format());
-                }
-            };
-            effort.apply(&mut sc)?;
-            if let Some(answers) = sc.nonlinear_answers()? {
-                return analyze_nonlinear(&sc, &answers, monte_carlo, seed, &step, &plots, &output, &catalogue);
-            }
-            let mut r = report::analysis_report(&sc)?;
-            if let Some(n) = monte_carlo {
-                let (dt, duration) = step.resolve(&sc, n)?;
-                let opts = RunOptions {
-                    max_hours: step.max_hours(),
-                    ..RunOptions::new(n, duration, dt, seed)
-                };
-                let progress = progress_printer();
-                let (summary, pictures) = stochvib::simulate::run_temporary_with(
-                    &std::env::temp_dir(),
-                    |path| sc.simulate(&opts, path, &progress),
-                    // the run's own pictures (Welch band vs analytic density) before the file goes
-                    |path| plots.as_ref().map(|out| run_plots(path, out, catalogue.dir())),
-                )
-                .map_err(|e| named_by_flag(sc.name_run_error(e), "--monte-carlo"))?;
-                attach_monte_carlo(&mut r, &summary);
-                if let (Some(files), Some(out)) = (pictures, &plots) {
-                    eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
-                }
-            }
-            print_as(&r, output.format())?;
-            if let Some(out) = plots {
-                let files = scenario_plots_with(&sc, &out, &ScenarioPlotOptions::default())?;
-                eprintln!("wrote {} pictures to {}", files.len(), out.display());
-            }
-        }
+        cmd @ Command::Analyze { .. } => analyze_command(cmd)?,
         Command::Report {
             scenario,
             output,
@@ -726,301 +603,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             let written = report::handover::write_handover(&doc, &scenario, &output, format, overwrite)?;
             eprintln!("wrote {}", written.display());
         }
-        Command::Plot {
-            input,
-            out,
-            convention,
-            spectra,
-        } => {
-            let catalogue = spectra.catalogue();
-            let has = |ext: &[&str]| {
-                input
-                    .extension()
-                    .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
-            };
-            let files = if has(&["h5", "hdf5"]) {
-                if let Some(c) = convention {
-                    anyhow::bail!(
-                        "--convention {c:?}: a run file's pictures are drawn in the convention the file stores; \
-                         --convention applies to a scenario's pictures"
-                    );
-                }
-                // every checksum, as `inspect`: a damaged file is an error naming the damaged part
-                check_in_child(&input, true)?;
-                run_plots(&input, &out, catalogue.dir())?
-            } else if has(&["toml"]) {
-                let sc = load_scenario(&input, catalogue.dir())?;
-                let opts = ScenarioPlotOptions {
-                    convention: convention.unwrap_or(Convention::OneSidedCyclic),
-                    ..ScenarioPlotOptions::default()
-                };
-                scenario_plots_with(&sc, &out, &opts)?
-            } else {
-                anyhow::bail!(
-                    "{}: can plot scenario files (.toml) and Monte Carlo run files (.h5)",
-                    input.display()
-                );
-            };
-            for f in files {
-                emit_line(&f.display().to_string());
-            }
-        }
-        Command::Simulate {
-            scenario,
-            realizations,
-            step,
-            seed,
-            output,
-            shard,
-            of,
-            shard_size,
-            store_raw,
-            compression,
-            route,
-            confidence,
-            stream_tail,
-            overwrite,
-            spectra,
-            json,
-            plots,
-        } => {
-            let catalogue = spectra.catalogue();
-            step.check_batch("--realizations", Some(realizations))?;
-            if let (Some(t), Route::Exact | Route::Spectral) = (stream_tail, route) {
-                anyhow::bail!(
-                    "--stream-tail {t}: sets the streamed spectral route's kernels, and --route {} does not stream; \
-                     leave it out, or use --route spectral-stream (or auto)",
-                    format!("{route:?}").to_lowercase()
-                );
-            }
-            // the shard before anything else: a task outside a scheduler fails at once
-            let choice = match &shard {
-                Some(spec) => Some(
-                    resolve_part(spec, of, &|k| std::env::var(k).ok())
-                        .map_err(|e| named_by_flag(e, "--realizations"))?,
-                ),
-                None => None,
-            };
-            let sc = load_scenario(&scenario, catalogue.dir())?;
-            if let Some(answers) = sc.nonlinear_answers()? {
-                let base = RunOptions {
-                    shard_size,
-                    store_raw,
-                    compression,
-                    route,
-                    confidence,
-                    overwrite,
-                    part: choice.as_ref().map(|c| c.part),
-                    max_hours: step.max_hours(),
-                    ..RunOptions::new(realizations, 1.0, 1.0, seed)
-                };
-                let opts = step.nonlinear(&sc, &answers, base)?;
-                let output = shard_output(output, &choice)?;
-                let s = sc.simulate_nonlinear(&answers, &opts, &output, &progress_printer())?;
-                print(&s, json)?;
-                if let Some(pdir) = plots {
-                    for f in run_plots(&s.run.path, &pdir, catalogue.dir())? {
-                        if !json {
-                            emit_line(&f.display().to_string());
-                        }
-                    }
-                }
-                return Ok(());
-            }
-            let (dt, duration) = step.resolve(&sc, realizations)?;
-            let opts = RunOptions {
-                shard_size,
-                store_raw,
-                compression,
-                route,
-                confidence,
-                stream_tail: stream_tail.unwrap_or(stochvib::simulate::fir_stream::TAIL_FRACTION),
-                overwrite,
-                part: choice.as_ref().map(|c| c.part),
-                max_hours: step.max_hours(),
-                ..RunOptions::new(realizations, duration, dt, seed)
-            };
-            let output = shard_output(output, &choice)?;
-            let flag = |e| named_by_flag(e, "--realizations");
-            let estimate = stochvib::simulate::resources::estimate_text(
-                &opts,
-                sc.excitation.spectra().len(),
-                sc.analysis.outputs.len(),
-                sc.input_signals().len(),
-            )
-            .map_err(flag)?;
-            eprintln!("{estimate}");
-            let s = sc.simulate(&opts, &output, &progress_printer()).map_err(flag)?;
-            print(&s, json)?;
-            if let Some(pdir) = plots {
-                for f in run_plots(&s.path, &pdir, catalogue.dir())? {
-                    if !json {
-                        emit_line(&f.display().to_string());
-                    }
-                }
-            }
-        }
-        Command::Merge {
-            output,
-            inputs,
-            copy,
-            overwrite,
-            confidence,
-            json,
-        } => {
-            let sweeps = report::find_sweep_shards(&inputs)?;
-            if !sweeps.is_empty() {
-                let run_only = [
-                    ("--copy", copy),
-                    ("--confidence", confidence.is_some()),
-                    ("--json", json),
-                ];
-                if let Some((flag, _)) = run_only.iter().find(|f| f.1) {
-                    anyhow::bail!(
-                        "{flag} applies to a merge of Monte Carlo run files; these are sweep shard files ({}), \
-                         merged into one table as they are: leave {flag} out",
-                        sweeps[0].display()
-                    );
-                }
-                let (mut runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
-                runs.retain(|r| r.extension().is_none_or(|e| e != "json"));
-                if !runs.is_empty() {
-                    anyhow::bail!(
-                        "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
-                        sweeps[0].display(),
-                        runs[0].display()
-                    );
-                }
-                let t = report::merge_sweep(&output, &inputs, overwrite)?;
-                eprintln!(
-                    "merged {} points ({} failed) into {}",
-                    t.n_points,
-                    t.errors.len(),
-                    output.display()
-                );
-                return Ok(());
-            }
-            refuse_shard_as_output(&output, &inputs)?;
-            let opts = MergeOptions {
-                copy,
-                overwrite,
-                confidence,
-            };
-            let s = merge_runs(&output, &inputs, &opts, &|_, _| {})?;
-            print(&s, json)?;
-        }
-        Command::Sweep {
-            scenario,
-            params,
-            zip,
-            output,
-            shard,
-            of,
-            monte_carlo,
-            step,
-            seed,
-            shard_size,
-            confidence,
-            overwrite,
-            json,
-            verdicts,
-            spectra,
-        } => {
-            step.check_batch("--monte-carlo", monte_carlo)?;
-            let flag = |e| named_by_flag(e, "--monte-carlo");
-            let choice = match &shard {
-                Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok()).map_err(flag)?),
-                None => None,
-            };
-            let catalogue = spectra.catalogue();
-            let sc = load_scenario(&scenario, catalogue.dir())?;
-            let params = params
-                .iter()
-                .map(|p| SweepParam::parse(p))
-                .collect::<Result<Vec<_>, _>>()?;
-            let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
-            let sweep = Sweep::new(&sc, SweepSpec::new(params, mode)?)?;
-            eprintln!("sweep: {}", sweep.path());
-            if verdicts {
-                return optimize_cli::sweep_verdicts(&sweep, output.as_deref(), json, overwrite);
-            }
-            let mc = match monte_carlo {
-                Some(n) => {
-                    let (dt, duration) = step.resolve(&sc, n)?;
-                    let m = report::SweepMonteCarlo {
-                        realizations: n,
-                        duration_s: duration,
-                        dt_s: dt,
-                        seed,
-                        shard_size,
-                        confidence,
-                    };
-                    report::check_monte_carlo_time(&sweep, &m, step.max_hours()).map_err(flag)?;
-                    Some(m)
-                }
-                None => None,
-            };
-            let progress = progress_printer();
-            match choice {
-                Some(c) => {
-                    let dir = output
-                        .ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
-                    output_dir(&dir, "with --shard, -o names the directory of the shard files")?;
-                    eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
-                    for n in &c.notes {
-                        eprintln!("warning: {n}");
-                    }
-                    let (path, sh, fresh) =
-                        report::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
-                    eprintln!(
-                        "{} {}: points {}..{} of {} ({} failed)",
-                        if fresh {
-                            "wrote"
-                        } else {
-                            "already complete (nothing to do):"
-                        },
-                        path.display(),
-                        sh.results.points.start,
-                        sh.results.points.end,
-                        sh.results.n_points,
-                        sh.results.errors.len()
-                    );
-                }
-                None => {
-                    let opts = report::StreamOptions::default();
-                    match output {
-                        Some(path) => {
-                            let t = report::write_sweep_table(&sweep, &path, overwrite, mc, opts, &progress)?;
-                            eprintln!(
-                                "wrote {} points ({} failed) to {}",
-                                t.n_points,
-                                t.errors.len(),
-                                path.display()
-                            );
-                        }
-                        None if json => {
-                            let n = sweep.spec().n_points();
-                            emit_line(&report::compute_sweep(&sweep, 0..n, true, mc, &progress)?.to_json()?)
-                        }
-                        None => {
-                            let out = std::io::stdout();
-                            match report::stream_sweep_csv(&sweep, out, Path::new("<stdout>"), mc, opts, &progress) {
-                                // a closed pipe (`stochvib sweep ... | head`): the evaluation has stopped and
-                                // the writer thread has ended; end quietly, as `emit` does
-                                Err(stochvib::Error::Io { source, .. })
-                                    if source.kind() == std::io::ErrorKind::BrokenPipe =>
-                                {
-                                    std::process::exit(0)
-                                }
-                                r => {
-                                    r?;
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        cmd @ Command::Plot { .. } => plot_command(cmd)?,
+        cmd @ Command::Simulate { .. } => simulate_command(cmd)?,
+        cmd @ Command::Merge { .. } => merge_command(cmd)?,
+        cmd @ Command::Sweep { .. } => sweep_command(cmd)?,
         Command::CheckRun { file, full } => {
             let run = RunFile::open_any(&file)?;
             run.statistics()?;
@@ -1074,6 +660,484 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 anyhow::bail!("invalid frequency {x}: frequencies must be finite and >= 0");
             }
             print(&report::spectrum_report_at(&file, convention, &points), json)?;
+        }
+    }
+    Ok(())
+}
+
+/// `stochvib road`.
+fn road_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Road {
+        profile,
+        segment,
+        detrend,
+        confidence,
+        output,
+        plots,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Road")
+    };
+    let detrend = match detrend.as_str() {
+        "mean" => stochvib::road::Detrend::Mean,
+        "linear" => stochvib::road::Detrend::Linear,
+        other => anyhow::bail!("--detrend {other}: expected `mean` or `linear`"),
+    };
+    if !(confidence > 0.0 && confidence < 1.0) {
+        anyhow::bail!("--confidence {confidence}: expected a number in (0, 1)");
+    }
+    let opts = report::road_report::RoadReportOptions {
+        segment_len: segment,
+        detrend,
+        confidence,
+    };
+    let r = report::road_report::road_report(&profile, &opts)?;
+    print_as(&r, output.format())?;
+    if let Some(out) = plots {
+        let files = stochvib::plot::road_plots(&r, &out)?;
+        eprintln!("wrote {} pictures to {}", files.len(), out.display());
+    }
+    Ok(())
+}
+
+/// `stochvib replay`.
+fn replay_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Replay {
+        scenario,
+        profile,
+        speed,
+        skip,
+        zero_start,
+        track,
+        detrend,
+        output,
+        overwrite,
+        spectra,
+        json,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Replay")
+    };
+    let detrend = match detrend.as_str() {
+        "mean" => stochvib::road::Detrend::Mean,
+        "linear" => stochvib::road::Detrend::Linear,
+        other => anyhow::bail!("--detrend {other}: expected `mean` or `linear`"),
+    };
+    let catalogue = spectra.catalogue();
+    let sc = load_scenario(&scenario, catalogue.dir())?;
+    let opts = stochvib::scenario::replay::ScenarioReplayOptions {
+        speed_m_s: speed,
+        skip_m: skip,
+        start: if zero_start {
+            stochvib::road::Start::Zero
+        } else {
+            stochvib::road::Start::Static
+        },
+        track,
+        detrend,
+    };
+    let mut inputs = sc.source_files();
+    inputs.push(profile.clone());
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    if let Some(out) = &output {
+        // the output rule before the work
+        stochvib::io_rules::check_output(out, &stochvib::road::replay::HISTORY_CSV, &inputs, overwrite)?;
+    }
+    let r = stochvib::scenario::replay::replay_scenario(&sc, &profile, &opts)?;
+    if let Some(out) = output {
+        r.replay.write_csv_from(&out, overwrite, &inputs)?;
+        eprintln!("wrote {}", out.display());
+    }
+    print(&r, json)?;
+    Ok(())
+}
+
+/// `stochvib analyze`.
+fn analyze_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Analyze {
+        scenario,
+        spectra,
+        output,
+        plots,
+        monte_carlo,
+        seed,
+        step,
+        effort,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Analyze")
+    };
+    let catalogue = spectra.catalogue();
+    step.check_batch("--monte-carlo", monte_carlo)?;
+    let mut sc = match load_document(&scenario, catalogue.dir())? {
+        Document::Stochastic(sc) => sc,
+        Document::Deterministic(d) => {
+            no_simulation(&scenario, monte_carlo, &plots)?;
+            return print_as(&report::deterministic_report(&d)?, output.format());
+        }
+        Document::Reference(t) => {
+            no_simulation(&scenario, monte_carlo, &plots)?;
+            return print_as(&report::reference_report(&t), output.format());
+        }
+    };
+    effort.apply(&mut sc)?;
+    if let Some(answers) = sc.nonlinear_answers()? {
+        return analyze_nonlinear(&sc, &answers, monte_carlo, seed, &step, &plots, &output, &catalogue);
+    }
+    let mut r = report::analysis_report(&sc)?;
+    if let Some(n) = monte_carlo {
+        let (dt, duration) = step.resolve(&sc, n)?;
+        let opts = RunOptions {
+            max_hours: step.max_hours(),
+            realizations: n,
+            duration_s: duration,
+            dt_s: dt,
+            seed,
+            ..RunOptions::default()
+        };
+        let progress = progress_printer();
+        let (summary, pictures) = stochvib::simulate::run_temporary_with(
+            &std::env::temp_dir(),
+            |path| sc.simulate(&opts, path, &progress),
+            // the run's own pictures (Welch band vs analytic density) before the file goes
+            |path| plots.as_ref().map(|out| run_plots(path, out, catalogue.dir())),
+        )
+        .map_err(|e| named_by_flag(sc.name_run_error(e), "--monte-carlo"))?;
+        attach_monte_carlo(&mut r, &summary);
+        if let (Some(files), Some(out)) = (pictures, &plots) {
+            eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
+        }
+    }
+    print_as(&r, output.format())?;
+    if let Some(out) = plots {
+        let files = scenario_plots_with(&sc, &out, &ScenarioPlotOptions::default())?;
+        eprintln!("wrote {} pictures to {}", files.len(), out.display());
+    }
+    Ok(())
+}
+
+/// `stochvib plot`.
+fn plot_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Plot {
+        input,
+        out,
+        convention,
+        spectra,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Plot")
+    };
+    let catalogue = spectra.catalogue();
+    let has = |ext: &[&str]| {
+        input
+            .extension()
+            .is_some_and(|e| ext.iter().any(|x| e.eq_ignore_ascii_case(x)))
+    };
+    let files = if has(&["h5", "hdf5"]) {
+        if let Some(c) = convention {
+            anyhow::bail!(
+                "--convention {c:?}: a run file's pictures are drawn in the convention the file stores; \
+                 --convention applies to a scenario's pictures"
+            );
+        }
+        // every checksum, as `inspect`: a damaged file is an error naming the damaged part
+        check_in_child(&input, true)?;
+        run_plots(&input, &out, catalogue.dir())?
+    } else if has(&["toml"]) {
+        let sc = load_scenario(&input, catalogue.dir())?;
+        let opts = ScenarioPlotOptions {
+            convention: convention.unwrap_or(Convention::OneSidedCyclic),
+            ..ScenarioPlotOptions::default()
+        };
+        scenario_plots_with(&sc, &out, &opts)?
+    } else {
+        anyhow::bail!(
+            "{}: can plot scenario files (.toml) and Monte Carlo run files (.h5)",
+            input.display()
+        );
+    };
+    for f in files {
+        emit_line(&f.display().to_string());
+    }
+    Ok(())
+}
+
+/// `stochvib simulate`.
+fn simulate_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Simulate {
+        scenario,
+        realizations,
+        step,
+        seed,
+        output,
+        shard,
+        of,
+        shard_size,
+        store_raw,
+        compression,
+        route,
+        confidence,
+        stream_tail,
+        overwrite,
+        spectra,
+        json,
+        plots,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Simulate")
+    };
+    let catalogue = spectra.catalogue();
+    step.check_batch("--realizations", Some(realizations))?;
+    if let (Some(t), Route::Exact | Route::Spectral) = (stream_tail, route) {
+        anyhow::bail!(
+            "--stream-tail {t}: sets the streamed spectral route's kernels, and --route {} does not stream; \
+             leave it out, or use --route spectral-stream (or auto)",
+            format!("{route:?}").to_lowercase()
+        );
+    }
+    // the shard before anything else: a task outside a scheduler fails at once
+    let choice = match &shard {
+        Some(spec) => {
+            Some(resolve_part(spec, of, &|k| std::env::var(k).ok()).map_err(|e| named_by_flag(e, "--realizations"))?)
+        }
+        None => None,
+    };
+    let sc = load_scenario(&scenario, catalogue.dir())?;
+    if let Some(answers) = sc.nonlinear_answers()? {
+        let base = RunOptions {
+            shard_size,
+            store_raw,
+            compression,
+            route,
+            confidence,
+            overwrite,
+            part: choice.as_ref().map(|c| c.part),
+            max_hours: step.max_hours(),
+            realizations,
+            duration_s: 1.0,
+            dt_s: 1.0,
+            seed,
+            ..RunOptions::default()
+        };
+        let opts = step.nonlinear(&sc, &answers, base)?;
+        let output = shard_output(output, &choice)?;
+        let s = sc.simulate_nonlinear(&answers, &opts, &output, &progress_printer())?;
+        print(&s, json)?;
+        if let Some(pdir) = plots {
+            for f in run_plots(&s.run.path, &pdir, catalogue.dir())? {
+                if !json {
+                    emit_line(&f.display().to_string());
+                }
+            }
+        }
+        return Ok(());
+    }
+    let (dt, duration) = step.resolve(&sc, realizations)?;
+    let opts = RunOptions {
+        shard_size,
+        store_raw,
+        compression,
+        route,
+        confidence,
+        stream_tail: stream_tail.unwrap_or(stochvib::simulate::fir_stream::TAIL_FRACTION),
+        overwrite,
+        part: choice.as_ref().map(|c| c.part),
+        max_hours: step.max_hours(),
+        realizations,
+        duration_s: duration,
+        dt_s: dt,
+        seed,
+        ..RunOptions::default()
+    };
+    let output = shard_output(output, &choice)?;
+    let flag = |e| named_by_flag(e, "--realizations");
+    let estimate = stochvib::simulate::resources::estimate_text(
+        &opts,
+        sc.excitation.spectra().len(),
+        sc.analysis.outputs.len(),
+        sc.input_signals().len(),
+    )
+    .map_err(flag)?;
+    eprintln!("{estimate}");
+    let s = sc.simulate(&opts, &output, &progress_printer()).map_err(flag)?;
+    print(&s, json)?;
+    if let Some(pdir) = plots {
+        for f in run_plots(&s.path, &pdir, catalogue.dir())? {
+            if !json {
+                emit_line(&f.display().to_string());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `stochvib merge`.
+fn merge_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Merge {
+        output,
+        inputs,
+        copy,
+        overwrite,
+        confidence,
+        json,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Merge")
+    };
+    let sweeps = report::find_sweep_shards(&inputs)?;
+    if !sweeps.is_empty() {
+        let run_only = [
+            ("--copy", copy),
+            ("--confidence", confidence.is_some()),
+            ("--json", json),
+        ];
+        if let Some((flag, _)) = run_only.iter().find(|f| f.1) {
+            anyhow::bail!(
+                "{flag} applies to a merge of Monte Carlo run files; these are sweep shard files ({}), \
+                 merged into one table as they are: leave {flag} out",
+                sweeps[0].display()
+            );
+        }
+        let (mut runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
+        runs.retain(|r| r.extension().is_none_or(|e| e != "json"));
+        if !runs.is_empty() {
+            anyhow::bail!(
+                "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
+                sweeps[0].display(),
+                runs[0].display()
+            );
+        }
+        let t = report::merge_sweep(&output, &inputs, overwrite)?;
+        eprintln!(
+            "merged {} points ({} failed) into {}",
+            t.n_points,
+            t.errors.len(),
+            output.display()
+        );
+        return Ok(());
+    }
+    refuse_shard_as_output(&output, &inputs)?;
+    let opts = MergeOptions {
+        copy,
+        overwrite,
+        confidence,
+    };
+    let s = merge_runs(&output, &inputs, &opts, &|_, _| {})?;
+    print(&s, json)?;
+    Ok(())
+}
+
+/// `stochvib sweep`.
+fn sweep_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Sweep {
+        scenario,
+        params,
+        zip,
+        output,
+        shard,
+        of,
+        monte_carlo,
+        step,
+        seed,
+        shard_size,
+        confidence,
+        overwrite,
+        json,
+        verdicts,
+        spectra,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Sweep")
+    };
+    step.check_batch("--monte-carlo", monte_carlo)?;
+    let flag = |e| named_by_flag(e, "--monte-carlo");
+    let choice = match &shard {
+        Some(spec) => Some(resolve_part(spec, of, &|k| std::env::var(k).ok()).map_err(flag)?),
+        None => None,
+    };
+    let catalogue = spectra.catalogue();
+    let sc = load_scenario(&scenario, catalogue.dir())?;
+    let params = params
+        .iter()
+        .map(|p| SweepParam::parse(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
+    let sweep = Sweep::new(&sc, SweepSpec::new(params, mode)?)?;
+    eprintln!("sweep: {}", sweep.path());
+    if verdicts {
+        return optimize_cli::sweep_verdicts(&sweep, output.as_deref(), json, overwrite);
+    }
+    let mc = match monte_carlo {
+        Some(n) => {
+            let (dt, duration) = step.resolve(&sc, n)?;
+            let m = report::SweepMonteCarlo {
+                realizations: n,
+                duration_s: duration,
+                dt_s: dt,
+                seed,
+                shard_size,
+                confidence,
+            };
+            report::check_monte_carlo_time(&sweep, &m, step.max_hours()).map_err(flag)?;
+            Some(m)
+        }
+        None => None,
+    };
+    let progress = progress_printer();
+    match choice {
+        Some(c) => {
+            let dir =
+                output.ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
+            output_dir(&dir, "with --shard, -o names the directory of the shard files")?;
+            eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
+            for n in &c.notes {
+                eprintln!("warning: {n}");
+            }
+            let (path, sh, fresh) = report::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
+            eprintln!(
+                "{} {}: points {}..{} of {} ({} failed)",
+                if fresh {
+                    "wrote"
+                } else {
+                    "already complete (nothing to do):"
+                },
+                path.display(),
+                sh.results.points.start,
+                sh.results.points.end,
+                sh.results.n_points,
+                sh.results.errors.len()
+            );
+        }
+        None => {
+            let opts = report::StreamOptions::default();
+            match output {
+                Some(path) => {
+                    let t = report::write_sweep_table(&sweep, &path, overwrite, mc, opts, &progress)?;
+                    eprintln!(
+                        "wrote {} points ({} failed) to {}",
+                        t.n_points,
+                        t.errors.len(),
+                        path.display()
+                    );
+                }
+                None if json => {
+                    let n = sweep.spec().n_points();
+                    emit_line(&report::compute_sweep(&sweep, 0..n, true, mc, &progress)?.to_json()?)
+                }
+                None => {
+                    let out = std::io::stdout();
+                    match report::stream_sweep_csv(&sweep, out, Path::new("<stdout>"), mc, opts, &progress) {
+                        // a closed pipe (`stochvib sweep ... | head`): the evaluation has stopped and
+                        // the writer thread has ended; end quietly, as `emit` does
+                        Err(stochvib::Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => {
+                            std::process::exit(0)
+                        }
+                        r => {
+                            r?;
+                        }
+                    }
+                }
+            }
         }
     }
     Ok(())
@@ -1210,7 +1274,17 @@ fn analyze_nonlinear(
 ) -> anyhow::Result<()> {
     let mc = match monte_carlo {
         Some(n) => {
-            let opts = step.nonlinear(sc, answers, RunOptions::new(n, 1.0, 1.0, seed))?;
+            let opts = step.nonlinear(
+                sc,
+                answers,
+                RunOptions {
+                    realizations: n,
+                    duration_s: 1.0,
+                    dt_s: 1.0,
+                    seed,
+                    ..RunOptions::default()
+                },
+            )?;
             let (s, pictures) =
                 sc.simulate_nonlinear_temporary(answers, &opts, &std::env::temp_dir(), &progress_printer(), |path| {
                     plots.as_ref().map(|out| run_plots(path, out, catalogue.dir()))

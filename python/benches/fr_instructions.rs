@@ -12,10 +12,18 @@ fn main() {
     let w: Vec<f64> = (0..n)
         .map(|i| 0.01 + (100.0 - 0.01) * i as f64 / (n - 1) as f64)
         .collect();
-    let sys = QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3)
-        .unwrap()
-        .system()
-        .unwrap();
+    let sys = QuarterCar {
+        sprung_mass: 300.0,
+        unsprung_mass: 40.0,
+        suspension_stiffness: 20e3,
+        suspension_damping: 1.5e3,
+        tyre_stiffness: 200e3,
+        tyre_damping: 0.0,
+    }
+    .build()
+    .unwrap()
+    .system()
+    .unwrap();
     let (p, m) = (sys.outputs().len(), sys.n_inputs());
     let mut acc = 0.0;
     for _ in 0..k {

@@ -49,10 +49,18 @@ fn spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
 /// The quarter car of `data/quarter-car-model.toml` (300 kg, 40 kg, 20 kN/m, 1.5 kN s/m, 200 kN/m):
 /// 4 outputs × 1 input.
 pub fn quarter_car() -> Mdof {
-    QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3)
-        .unwrap()
-        .system()
-        .unwrap()
+    QuarterCar {
+        sprung_mass: 300.0,
+        unsprung_mass: 40.0,
+        suspension_stiffness: 20e3,
+        suspension_damping: 1.5e3,
+        tyre_stiffness: 200e3,
+        tyre_damping: 0.0,
+    }
+    .build()
+    .unwrap()
+    .system()
+    .unwrap()
 }
 
 fn bench(c: &mut Criterion) {

@@ -601,7 +601,13 @@ impl PyScenario {
                 let summary = with_progress(py, progress, |cb| {
                     run_interruptible(py, cb, |cb| {
                         let (dt, d, _) = step(sc, dt, duration)?;
-                        let opts = RunOptions::new(n, d, dt, seed);
+                        let opts = RunOptions {
+                            realizations: n,
+                            duration_s: d,
+                            dt_s: dt,
+                            seed,
+                            ..RunOptions::default()
+                        };
                         run_temporary(&sc.run_input(), &opts, &std::env::temp_dir(), cb, |_| ()).map(|(s, _)| s)
                     })
                 })?;
@@ -745,7 +751,11 @@ impl PyScenario {
                     route,
                     confidence,
                     part,
-                    ..RunOptions::new(realizations, d, dt, seed)
+                    realizations,
+                    duration_s: d,
+                    dt_s: dt,
+                    seed,
+                    ..RunOptions::default()
                 };
                 sc.simulate(&opts, &path, cb).map(|s| (s, how))
             })

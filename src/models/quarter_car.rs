@@ -19,13 +19,22 @@
 //! k_t = 653 per unit sprung mass ([`QuarterCar::golden_car`]).
 //!
 //! # Errors
-//! [`QuarterCar::new`] rejects non-positive masses and stiffnesses, negative damping, non-finite values.
+//! [`QuarterCar::build`] rejects non-positive masses and stiffnesses, negative damping, non-finite values.
 //!
 //! # Examples
 //! ```
 //! use stochvib::models::quarter_car::QuarterCar;
 //! use stochvib::system::FrequencyResponse;
-//! let car = QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3).unwrap();
+//! let car = QuarterCar {
+//!     sprung_mass: 300.0,
+//!     unsprung_mass: 40.0,
+//!     suspension_stiffness: 20e3,
+//!     suspension_damping: 1.5e3,
+//!     tyre_stiffness: 200e3,
+//!     tyre_damping: 0.0,
+//! }
+//! .build()
+//! .unwrap();
 //! let sys = car.system().unwrap();
 //! // the body follows a slow road one to one
 //! assert!((sys.static_gain().unwrap()[(0, 0)] - 1.0).abs() < 1e-12);
@@ -57,26 +66,12 @@ pub struct QuarterCar {
 }
 
 impl QuarterCar {
-    /// A quarter car without tyre damping.
+    /// The car of these fields, checked: named fields instead of five bare numbers of different meaning.
     ///
     /// # Errors
     /// See the module's `# Errors`.
-    pub fn new(
-        sprung_mass: f64,
-        unsprung_mass: f64,
-        suspension_stiffness: f64,
-        suspension_damping: f64,
-        tyre_stiffness: f64,
-    ) -> Result<Self> {
-        QuarterCar {
-            sprung_mass,
-            unsprung_mass,
-            suspension_stiffness,
-            suspension_damping,
-            tyre_stiffness,
-            tyre_damping: 0.0,
-        }
-        .validated()
+    pub fn build(self) -> Result<Self> {
+        self.validated()
     }
 
     /// The same car with tyre damping c_t (N s/m).
@@ -115,13 +110,15 @@ impl QuarterCar {
     /// # Errors
     /// Missing keys, wrong units, invalid values (named by file and key).
     pub fn from_fields(f: &Fields) -> Result<Self> {
-        let car = QuarterCar::new(
-            f.quantity("sprung_mass", Dim::MASS)?,
-            f.quantity("unsprung_mass", Dim::MASS)?,
-            f.quantity("suspension_stiffness", Dim::STIFFNESS)?,
-            f.quantity("suspension_damping", Dim::DAMPING)?,
-            f.quantity("tyre_stiffness", Dim::STIFFNESS)?,
-        )
+        let car = QuarterCar {
+            sprung_mass: f.quantity("sprung_mass", Dim::MASS)?,
+            unsprung_mass: f.quantity("unsprung_mass", Dim::MASS)?,
+            suspension_stiffness: f.quantity("suspension_stiffness", Dim::STIFFNESS)?,
+            suspension_damping: f.quantity("suspension_damping", Dim::DAMPING)?,
+            tyre_stiffness: f.quantity("tyre_stiffness", Dim::STIFFNESS)?,
+            tyre_damping: 0.0,
+        }
+        .build()
         .map_err(|e| f.wrap_param(e, "sprung_mass"))?;
         match f.opt_quantity("tyre_damping", Dim::DAMPING)? {
             Some(ct) => car.with_tyre_damping(ct).map_err(|e| f.wrap_param(e, "tyre_damping")),

@@ -295,7 +295,11 @@ fn add_monte_carlo(sweep: &Sweep, t: &mut SweepResults, m: SweepMonteCarlo, prog
             let opts = RunOptions {
                 shard_size: m.shard_size,
                 confidence: m.confidence,
-                ..RunOptions::new(m.realizations, m.duration_s, m.dt_s, m.seed)
+                realizations: m.realizations,
+                duration_s: m.duration_s,
+                dt_s: m.dt_s,
+                seed: m.seed,
+                ..RunOptions::default()
             };
             let (summary, ()) =
                 run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |_| ()).map_err(|e| sc.name_run_error(e))?;
@@ -519,7 +523,14 @@ pub fn check_table_resources(
 /// # Errors
 /// The batch's invalid options; [`Error::InvalidParameter`] naming `monte-carlo` with the estimate.
 pub fn check_monte_carlo_time(sweep: &Sweep, mc: &SweepMonteCarlo, max_hours: f64) -> Result<()> {
-    let n = RunOptions::new(mc.realizations, mc.duration_s, mc.dt_s, mc.seed).samples()?;
+    let n = RunOptions {
+        realizations: mc.realizations,
+        duration_s: mc.duration_s,
+        dt_s: mc.dt_s,
+        seed: mc.seed,
+        ..RunOptions::default()
+    }
+    .samples()?;
     let points = sweep.spec().n_points();
     let processes = sweep.scenario().excitation.spectra().len();
     let threads = rayon::current_num_threads();

@@ -336,6 +336,41 @@ pub fn spectral_moment_oscillatory(
     k: u32,
     opts: &OscillatoryOptions,
 ) -> Result<QuadResult> {
+    check_arguments(sys, exc, i, k, opts)?;
+    let name = &sys.outputs()[i].name;
+    let quantity = if k == 0 {
+        format!("variance of `{name}`")
+    } else {
+        format!("spectral moment λ{k} of `{name}`")
+    };
+    let (lo, hi) = exc.support();
+    if lo >= hi {
+        return Ok(QuadResult {
+            value: 0.0,
+            abs_error: 0.0,
+            evaluations: 0,
+        });
+    }
+    let (taus, members, inputs) = delay_groups(exc);
+    let classes = lag_classes(&taus, &inputs);
+    let (head_end, head_bps) = head_interval(sys, exc, lo, hi, &classes, opts);
+    let integrand = Integrand {
+        row: GroupedRow::new(sys, i, &members),
+        inputs,
+        k,
+    };
+    let parts = integrate_parts(&integrand, &classes, (lo, head_end, hi), head_bps, opts)?;
+    sum_parts(&parts, &quantity, opts)
+}
+
+/// The checks of [`spectral_moment_oscillatory`]'s arguments (its `# Errors` other than the quadrature's).
+fn check_arguments(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    i: usize,
+    k: u32,
+    opts: &OscillatoryOptions,
+) -> Result<()> {
     opts.validate()?;
     if opts.rel_tol == 0.0 && opts.abs_tol == 0.0 {
         return Err(Error::invalid(
@@ -361,24 +396,14 @@ pub fn spectral_moment_oscillatory(
     if let Some(ss) = sys.state_space() {
         ss.require_stable()?;
     }
-    check_moment(sys, exc, i, k)?;
-    let name = sys.outputs()[i].name.clone();
-    let quantity = if k == 0 {
-        format!("variance of `{name}`")
-    } else {
-        format!("spectral moment λ{k} of `{name}`")
-    };
-    let (lo, hi) = exc.support();
-    if lo >= hi {
-        return Ok(QuadResult {
-            value: 0.0,
-            abs_error: 0.0,
-            evaluations: 0,
-        });
-    }
+    check_moment(sys, exc, i, k)
+}
 
-    // delay groups (a track) or one group per input (independent processes), and the lag classes
-    let (taus, members, inputs): (Vec<f64>, Vec<Group>, Inputs) = match exc {
+/// The delay groups of the inputs (a track: inputs of equal delay; independent processes: one group per
+/// input; sources: inputs of one source component at one delay), each with its members (input, gain), and
+/// what the integrand needs to evaluate their cross-densities.
+fn delay_groups(exc: &Excitation) -> (Vec<f64>, Vec<Group>, Inputs) {
+    match exc {
         Excitation::Track {
             spectrum,
             delays,
@@ -430,9 +455,13 @@ pub fn spectral_moment_oscillatory(
             };
             (taus, members, inputs)
         }
-    };
-    // only groups of one source correlate (for a track or independent inputs: every pair of delay groups)
-    let same_source = |d: usize, e: usize| match &inputs {
+    }
+}
+
+/// The positive lags τ_d − τ_e between delay groups that correlate (for a track or independent inputs every
+/// pair; for sources only groups of one source), lags within `LAG_MERGE` relative merged into one class.
+fn lag_classes(taus: &[f64], inputs: &Inputs) -> Vec<LagClass> {
+    let same_source = |d: usize, e: usize| match inputs {
         Inputs::Sources { keys, .. } => keys[d].0 == keys[e].0,
         _ => true,
     };
@@ -452,9 +481,21 @@ pub fn spectral_moment_oscillatory(
             }
         }
     }
-    let lag_max = classes.iter().map(|c| c.lag).fold(0.0, f64::max);
+    classes
+}
 
-    // head end W and breakpoints
+/// The end W of the head interval [lo, W] (`HEAD_FACTOR` × the largest breakpoint, the whole support when
+/// that reaches half of it) and the head's breakpoints: the natural frequencies, the excitation's
+/// breakpoints and the half-periods π/τ_max of the longest lag (at most `max_half_periods` of them).
+fn head_interval(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    lo: f64,
+    hi: f64,
+    classes: &[LagClass],
+    opts: &OscillatoryOptions,
+) -> (f64, Vec<f64>) {
+    let lag_max = classes.iter().map(|c| c.lag).fold(0.0, f64::max);
     let mut bps = sys.natural_frequencies();
     bps.extend(exc.breakpoints());
     bps.retain(|w| w.is_finite() && *w > lo && *w < hi);
@@ -467,7 +508,7 @@ pub fn spectral_moment_oscillatory(
         head_end = hi;
     }
     let head_end = head_end.min(hi);
-    let mut head_bps = bps.clone();
+    let mut head_bps = bps;
     if lag_max > 0.0 {
         let h = PI / lag_max;
         let first = (lo / h).floor() as usize + 1;
@@ -477,27 +518,47 @@ pub fn spectral_moment_oscillatory(
             m += 1;
         }
     }
+    (head_end, head_bps)
+}
 
-    let integrand = Integrand {
-        row: GroupedRow::new(sys, i, &members),
-        inputs,
-        k,
-    };
+/// One part of the integral: its label and its result, or what an unconverged part left.
+type Part = (String, std::result::Result<QuadResult, Unconverged>);
 
-    // Parts: (label, result or (estimate, error, evaluations, reason))
-    let mut parts: Vec<(String, std::result::Result<QuadResult, Unconverged>)> = Vec::new();
-    let split = |e: Error| -> Result<Unconverged> {
-        match e {
-            Error::Quadrature {
-                estimate,
-                abs_error,
-                evaluations,
-                reason,
-                ..
-            } => Ok((estimate, abs_error, evaluations, reason)),
-            e => Err(e),
-        }
-    };
+/// A quadrature error split into what an unconverged part leaves (estimate, error, evaluations, reason);
+/// any other error passes through.
+fn unconverged(e: Error) -> Result<Unconverged> {
+    match e {
+        Error::Quadrature {
+            estimate,
+            abs_error,
+            evaluations,
+            reason,
+            ..
+        } => Ok((estimate, abs_error, evaluations, reason)),
+        e => Err(e),
+    }
+}
+
+/// A part's result, an unconverged part kept with its estimate.
+fn part(label: String, r: Result<QuadResult>) -> Result<Part> {
+    Ok((
+        label,
+        match r {
+            Ok(r) => Ok(r),
+            Err(e) => Err(unconverged(e)?),
+        },
+    ))
+}
+
+/// The integral over [lo, hi] in parts: the head [lo, W] with its breakpoints, then (W < hi) the
+/// non-oscillating tail and one oscillating tail per lag class, the tails sharing the error budget.
+fn integrate_parts(
+    integrand: &Integrand,
+    classes: &[LagClass],
+    (lo, head_end, hi): (f64, f64, f64),
+    head_bps: Vec<f64>,
+    opts: &OscillatoryOptions,
+) -> Result<Vec<Part>> {
     let head_opts = QuadOptions {
         rel_tol: opts.rel_tol / 2.0,
         abs_tol: opts.abs_tol / 8.0,
@@ -505,62 +566,51 @@ pub fn spectral_moment_oscillatory(
         breakpoints: head_bps,
     };
     let head = integrate(|w| integrand.full(w), lo, head_end, &head_opts);
-    parts.push((
-        format!("head [{lo:e}, {head_end:e}] rad/s"),
-        match head {
-            Ok(r) => Ok(r),
-            Err(e) => Err(split(e)?),
-        },
-    ));
-
-    if head_end < hi {
-        // non-oscillating tail
-        let tail_opts = QuadOptions {
-            rel_tol: opts.rel_tol / 4.0,
-            abs_tol: opts.abs_tol / 8.0,
-            max_subintervals: opts.max_subintervals,
-            breakpoints: Vec::new(),
-        };
-        let steady = integrate(|w| integrand.steady(w), head_end, hi, &tail_opts);
-        let steady_value = match &steady {
-            Ok(r) => r.value,
-            Err(Error::Quadrature { estimate, .. }) => *estimate,
-            Err(_) => 0.0,
-        };
-        parts.push((
-            format!("non-oscillating tail [{head_end:e}, {hi:e}] rad/s"),
-            match steady {
-                Ok(r) => Ok(r),
-                Err(e) => Err(split(e)?),
-            },
-        ));
-        // oscillating tails, one per lag class
-        let head_value = match &parts[0].1 {
-            Ok(r) => r.value,
-            Err((est, ..)) => *est,
-        };
-        let scale = head_value.abs() + steady_value.abs();
-        let budget = opts.abs_tol.max(opts.rel_tol * scale) / (4.0 * classes.len().max(1) as f64);
-        for c in &classes {
-            let o = OscillatoryOptions {
-                rel_tol: 0.0,
-                abs_tol: budget.max(f64::MIN_POSITIVE),
-                ..opts.clone()
-            };
-            let r = integrate_oscillatory(|w| integrand.oscillating(c, w), head_end, hi, PI / c.lag, &o);
-            parts.push((
-                format!("oscillating tail of the lag {:e} s from {head_end:e} rad/s", c.lag),
-                match r {
-                    Ok(r) => Ok(r),
-                    Err(e) => Err(split(e)?),
-                },
-            ));
-        }
+    let mut parts = vec![part(format!("head [{lo:e}, {head_end:e}] rad/s"), head)?];
+    if head_end >= hi {
+        return Ok(parts);
     }
+    let tail_opts = QuadOptions {
+        rel_tol: opts.rel_tol / 4.0,
+        abs_tol: opts.abs_tol / 8.0,
+        max_subintervals: opts.max_subintervals,
+        breakpoints: Vec::new(),
+    };
+    let steady = integrate(|w| integrand.steady(w), head_end, hi, &tail_opts);
+    let steady_value = match &steady {
+        Ok(r) => r.value,
+        Err(Error::Quadrature { estimate, .. }) => *estimate,
+        Err(_) => 0.0,
+    };
+    parts.push(part(
+        format!("non-oscillating tail [{head_end:e}, {hi:e}] rad/s"),
+        steady,
+    )?);
+    let head_value = match &parts[0].1 {
+        Ok(r) => r.value,
+        Err((est, ..)) => *est,
+    };
+    let scale = head_value.abs() + steady_value.abs();
+    let budget = opts.abs_tol.max(opts.rel_tol * scale) / (4.0 * classes.len().max(1) as f64);
+    for c in classes {
+        let o = OscillatoryOptions {
+            rel_tol: 0.0,
+            abs_tol: budget.max(f64::MIN_POSITIVE),
+            ..opts.clone()
+        };
+        let r = integrate_oscillatory(|w| integrand.oscillating(c, w), head_end, hi, PI / c.lag, &o);
+        let label = format!("oscillating tail of the lag {:e} s from {head_end:e} rad/s", c.lag);
+        parts.push(part(label, r)?);
+    }
+    Ok(parts)
+}
 
+/// Twice the sum of the parts (the density is even in ω), or an [`Error::Quadrature`] naming every part
+/// that did not converge, with the sum of the estimates.
+fn sum_parts(parts: &[Part], quantity: &str, opts: &OscillatoryOptions) -> Result<QuadResult> {
     let (mut value, mut abs_error, mut evaluations) = (0.0, 0.0, 0usize);
     let mut failures = Vec::new();
-    for (label, p) in &parts {
+    for (label, p) in parts {
         match p {
             Ok(r) => {
                 value += r.value;

@@ -161,7 +161,13 @@ type OverTarget = (String, f64, f64);
 /// bias is within its target): the number of e-fold reductions of the bias still missing.
 fn bias_excess(input: &RunInput, dt: f64, duration: f64, realizations: usize) -> Result<(f64, Vec<OverTarget>)> {
     let r = realizations.max(2);
-    let opts = RunOptions::new(r, duration, dt, 1);
+    let opts = RunOptions {
+        realizations: r,
+        duration_s: duration,
+        dt_s: dt,
+        seed: 1,
+        ..RunOptions::default()
+    };
     let weighted = |name: &str| input.verdicts.comfort.iter().any(|c| c.output == name);
     let over: Vec<OverTarget> = planned_variances(input, &opts)?
         .into_iter()

@@ -112,7 +112,15 @@ impl std::fmt::Display for MergeSummary {
 /// let sc = load_scenario(Path::new("data/conveyor-idler.toml"), Path::new("spectra")).unwrap();
 /// let dir = std::env::temp_dir().join(format!("stochvib-doc-merge-{}", std::process::id()));
 /// std::fs::create_dir_all(&dir).unwrap();
-/// let opts = |part| RunOptions { shard_size: 5, part, ..RunOptions::new(20, 2.0, 0.01, 3) };
+/// let opts = |part| RunOptions {
+///     realizations: 20,
+///     duration_s: 2.0,
+///     dt_s: 0.01,
+///     seed: 3,
+///     shard_size: 5,
+///     part,
+///     ..RunOptions::default()
+/// };
 /// let whole = sc.simulate(&opts(None), &dir.join("whole.h5"), &|_, _| {}).unwrap();
 /// for i in [1, 0] {
 ///     let p = Part::new(i, 2).unwrap();

@@ -105,20 +105,25 @@ pub struct RunOptions {
     pub max_hours: f64,
 }
 
-impl RunOptions {
-    /// Options with shard size 50, no raw data, no compression, [`Route::Auto`], confidence 0.95.
+impl Default for RunOptions {
+    /// The four sizes of a run left unset — 0 realizations, NaN duration and time step, seed 0 — so that a run
+    /// refuses options that do not name them ([`RunOptions::samples`]); shard size 50, no raw data, no
+    /// compression, [`Route::Auto`], confidence 0.95, and the defaults of the other fields. Name the sizes
+    /// with the struct update syntax (duration and time step cannot be swapped unseen):
     ///
     /// # Examples
     /// ```
-    /// let o = stochvib::simulate::RunOptions::new(100, 10.0, 0.01, 1);
-    /// assert_eq!(o.shard_size, 50);
+    /// use stochvib::simulate::RunOptions;
+    /// let o = RunOptions { realizations: 100, duration_s: 10.0, dt_s: 0.01, seed: 1, ..RunOptions::default() };
+    /// assert_eq!((o.shard_size, o.samples().unwrap()), (50, 1000));
+    /// assert!(RunOptions::default().samples().is_err());
     /// ```
-    pub fn new(realizations: usize, duration_s: f64, dt_s: f64, seed: u64) -> RunOptions {
+    fn default() -> RunOptions {
         RunOptions {
-            realizations,
-            duration_s,
-            dt_s,
-            seed,
+            realizations: 0,
+            duration_s: f64::NAN,
+            dt_s: f64::NAN,
+            seed: 0,
             shard_size: 50,
             store_raw: false,
             compression: Compression::None,
@@ -131,7 +136,9 @@ impl RunOptions {
             max_hours: super::resources::DEFAULT_MAX_HOURS,
         }
     }
+}
 
+impl RunOptions {
     /// Checks the options and returns the number of samples per realization, N = round(T/Δt) made even.
     ///
     /// # Errors

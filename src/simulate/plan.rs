@@ -95,7 +95,8 @@ pub struct PlannedMemory {
 /// use stochvib::simulate::{planned_memory, Route, RunOptions};
 /// use std::path::Path;
 /// let sc = load_scenario(Path::new("data/conveyor-idler.toml"), Path::new("spectra")).unwrap();
-/// let m = planned_memory(&sc.run_input(), &RunOptions::new(20, 5.0, 0.01, 1)).unwrap();
+/// let opts = RunOptions { realizations: 20, duration_s: 5.0, dt_s: 0.01, seed: 1, ..RunOptions::default() };
+/// let m = planned_memory(&sc.run_input(), &opts).unwrap();
 /// assert_eq!(m.route, Route::Exact);
 /// assert!(m.bytes > 0);
 /// ```

@@ -46,8 +46,9 @@ pub fn memory_bytes(n: usize, p: usize, g: usize, opts: &RunOptions, threads: us
 /// # Examples
 /// ```
 /// use stochvib::simulate::{RunOptions, resources::exact_block_memory_bytes};
-/// let short = exact_block_memory_bytes(6, 3, 3, 1 << 14, 1 << 20, &RunOptions::new(10, 1e2, 0.01, 1), 2);
-/// let long = exact_block_memory_bytes(6, 3, 3, 1 << 14, 1 << 40, &RunOptions::new(10, 1e2, 0.01, 1), 2);
+/// let opts = RunOptions { realizations: 10, duration_s: 1e2, dt_s: 0.01, seed: 1, ..RunOptions::default() };
+/// let short = exact_block_memory_bytes(6, 3, 3, 1 << 14, 1 << 20, &opts, 2);
+/// let long = exact_block_memory_bytes(6, 3, 3, 1 << 14, 1 << 40, &opts, 2);
 /// assert_eq!(short, long);
 /// ```
 pub fn exact_block_memory_bytes(
@@ -128,8 +129,10 @@ pub struct StreamSizes {
 /// ```
 /// use stochvib::simulate::{RunOptions, resources::{streamed_memory_bytes, StreamSizes}};
 /// let z = StreamSizes { taps: 1000, fft_len: 4096, grid_len: 8192, block_steps: 16384, outputs: 2, generators: 1 };
-/// let short = streamed_memory_bytes(&z, &RunOptions::new(10, 1e2, 0.01, 1), 2);
-/// let long = streamed_memory_bytes(&z, &RunOptions::new(10, 1e7, 0.01, 1), 2);
+/// let opts1 = RunOptions { realizations: 10, duration_s: 1e2, dt_s: 0.01, seed: 1, ..RunOptions::default() };
+/// let opts2 = RunOptions { duration_s: 1e7, ..opts1.clone() };
+/// let short = streamed_memory_bytes(&z, &opts1, 2);
+/// let long = streamed_memory_bytes(&z, &opts2, 2);
 /// assert_eq!(short, long);
 /// ```
 pub fn streamed_memory_bytes(z: &StreamSizes, opts: &RunOptions, threads: usize) -> u128 {
@@ -231,7 +234,8 @@ pub fn file_bytes(opts: &RunOptions, outputs: usize, raw_inputs: usize) -> Resul
 /// # Examples
 /// ```
 /// use stochvib::simulate::{resources::estimate_text, RunOptions};
-/// let t = estimate_text(&RunOptions::new(1000, 100.0, 0.01, 1), 1, 2, 1).unwrap();
+/// let opts = RunOptions { realizations: 1000, duration_s: 100.0, dt_s: 0.01, seed: 1, ..RunOptions::default() };
+/// let t = estimate_text(&opts, 1, 2, 1).unwrap();
 /// assert!(t.starts_with("estimate: 1000 realizations × 10000 samples, a file of"), "{t}");
 /// ```
 pub fn estimate_text(opts: &RunOptions, processes: usize, outputs: usize, raw_inputs: usize) -> Result<String> {

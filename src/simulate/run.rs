@@ -97,7 +97,8 @@ pub const WARMUP_DECAY: f64 = 36.0;
 /// let sc = load_scenario(Path::new("data/conveyor-idler.toml"), Path::new("spectra")).unwrap();
 /// let out = std::env::temp_dir().join(format!("stochvib-doc-run-{}.h5", std::process::id()));
 /// # let _ = std::fs::remove_file(&out);
-/// let s = run(&sc.run_input(), &RunOptions::new(20, 5.0, 0.01, 1), &out, &|done, total| eprintln!("{done}/{total}"))
+/// let opts = RunOptions { realizations: 20, duration_s: 5.0, dt_s: 0.01, seed: 1, ..RunOptions::default() };
+/// let s = run(&sc.run_input(), &opts, &out, &|done, total| eprintln!("{done}/{total}"))
 ///     .unwrap();
 /// assert_eq!(s.route, Route::Exact); // exponential (rational) lump load, one input
 /// // the exact route simulates the stationary response: its variance is the analytic one
@@ -411,7 +412,8 @@ fn refuse_inputs_as_output(input: &RunInput, out: &Path) -> Result<()> {
 /// use std::path::Path;
 /// let sc = load_scenario(Path::new("data/conveyor-idler.toml"), Path::new("spectra")).unwrap();
 /// let dir = std::env::temp_dir();
-/// let (s, existed) = run_temporary(&sc.run_input(), &RunOptions::new(10, 2.0, 0.01, 1), &dir, &|_, _| {}, |p| p.is_file())
+/// let opts = RunOptions { realizations: 10, duration_s: 2.0, dt_s: 0.01, seed: 1, ..RunOptions::default() };
+/// let (s, existed) = run_temporary(&sc.run_input(), &opts, &dir, &|_, _| {}, |p| p.is_file())
 ///     .unwrap();
 /// assert!(existed && !s.path.exists());
 /// ```

@@ -23,6 +23,14 @@ pub const SIMD_DENSITY: f64 = 8.0 * f64::EPSILON;
 /// linearly, about 45ε for these sizes.
 pub const ROUNDING: f64 = 1e-14;
 
+/// Two FFT code paths of rustfft (AVX with FMA, SSE4.1, scalar) on one input, normwise: ‖y_a − y_b‖₂/‖y‖₂.
+/// Each path errs by at most log₂n·η/(1 − log₂n·η) normwise with η = μ + γ₄(√2 + μ) ≈ 7ε for twiddle factors
+/// accurate to μ ≈ ε (Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed. 2002, Thm 24.2, for
+/// Cooley–Tukey); two paths differ by at most twice that: 2·17·7ε ≈ 5.3e-14 for n ≤ 2¹⁷. Sizes with large
+/// prime factors run Rader's or Bluestein's algorithm (an FFT of about 2n points and two twiddle products
+/// more): 1e-13; measured ≤ 1.2e-15 over the sizes of `fft_paths.rs` (SSE4.1 and AVX paths against scalar, AMD EPYC).
+pub const FFT_PATHS: f64 = 1e-13;
+
 /// Closed form vs closed form (two algebraically equal expressions evaluated in f64): a few ulps, with
 /// room for cancellation in sums of a handful of terms.
 pub const EXACT: f64 = 1e-12;

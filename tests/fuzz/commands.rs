@@ -198,7 +198,11 @@ impl Fixtures {
         let opts = |seed, part| stochvib::simulate::RunOptions {
             shard_size: 2,
             part,
-            ..stochvib::simulate::RunOptions::new(6, 2.0, 0.01, seed)
+            realizations: 6,
+            duration_s: 2.0,
+            dt_s: 0.01,
+            seed,
+            ..Default::default()
         };
         let quiet = |_: usize, _: usize| {};
         for (sub, seed, count) in [("a", 3, 3), ("b", 4, 2)] {

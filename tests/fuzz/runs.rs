@@ -110,7 +110,13 @@ pub const VARIANTS: [Variant; 4] = [
 impl Variant {
     /// The library options of this variant.
     pub fn options(&self) -> RunOptions {
-        let mut o = RunOptions::new(self.realizations, self.duration, self.dt, self.seed);
+        let mut o = RunOptions {
+            realizations: self.realizations,
+            duration_s: self.duration,
+            dt_s: self.dt,
+            seed: self.seed,
+            ..RunOptions::default()
+        };
         o.shard_size = self.shard_size;
         o.store_raw = self.store_raw;
         o.compression = Compression::parse(self.compression).expect("a valid compression");

@@ -113,7 +113,13 @@ fn band_rms_intervals_cover_the_expected_band_values_of_the_simulated_process() 
     // Spectral route (the road spectrum is not rational). Δt = 8 ms puts the Nyquist frequency (62.5 Hz)
     // above the road band (2.83 cycles/m · 20 m/s = 56.6 Hz); 80 s gives Welch segments of M = 1024 samples
     // (Δf = 0.122 Hz, K = 18 segments, ν ≈ 34 per bin and realization).
-    let mut opts = RunOptions::new(300, 80.0, 0.008, 2026);
+    let mut opts = RunOptions {
+        realizations: 300,
+        duration_s: 80.0,
+        dt_s: 0.008,
+        seed: 2026,
+        ..RunOptions::default()
+    };
     opts.confidence = 1.0 - P_FALSE;
     let dir = scratch("coverage");
     let out = dir.join("qc.h5");
@@ -175,7 +181,13 @@ fn band_rms_intervals_cover_the_expected_band_values_of_the_simulated_process() 
 fn band_estimates_are_the_band_integrals_of_each_realizations_welch_estimate() {
     let _serial = common::hdf5_serial();
     let sc = quarter_car(true);
-    let mut opts = RunOptions::new(6, 20.0, 0.008, 5);
+    let mut opts = RunOptions {
+        realizations: 6,
+        duration_s: 20.0,
+        dt_s: 0.008,
+        seed: 5,
+        ..RunOptions::default()
+    };
     opts.store_raw = true;
     let dir = scratch("raw");
     let out = dir.join("qc.h5");
@@ -219,7 +231,11 @@ fn a_two_shard_run_merged_is_bit_identical_and_a_band_less_run_is_unchanged() {
     let opts = |part| RunOptions {
         shard_size: 3,
         part,
-        ..RunOptions::new(10, 10.0, 0.008, 77)
+        realizations: 10,
+        duration_s: 10.0,
+        dt_s: 0.008,
+        seed: 77,
+        ..RunOptions::default()
     };
     let single = dir.join("single.h5");
     sc.simulate(&opts(None), fresh(&single), &|_, _| {}).unwrap();

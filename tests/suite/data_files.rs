@@ -193,7 +193,18 @@ fn deterministic_results_agree_with_their_independent_routes() {
 #[test]
 fn quarter_car_model_matches_its_transfer_function_and_the_mdof_file() {
     let (ms, mu, ks, cs, kt) = (300.0, 40.0, 20e3, 1.5e3, 200e3);
-    let car = QuarterCar::new(ms, mu, ks, cs, kt).unwrap().system().unwrap();
+    let car = QuarterCar {
+        sprung_mass: ms,
+        unsprung_mass: mu,
+        suspension_stiffness: ks,
+        suspension_damping: cs,
+        tyre_stiffness: kt,
+        tyre_damping: 0.0,
+    }
+    .build()
+    .unwrap()
+    .system()
+    .unwrap();
     let Document::Stochastic(file) =
         load_document(&root().join("data/quarter-car.toml"), &root().join("spectra")).unwrap()
     else {

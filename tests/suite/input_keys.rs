@@ -144,7 +144,11 @@ fn the_exact_route_refuses_an_enveloped_road_and_quadrature_answers() {
     );
     let exact = RunOptions {
         route: Route::Exact,
-        ..RunOptions::new(4, 10.0, 0.005, 1)
+        realizations: 4,
+        duration_s: 10.0,
+        dt_s: 0.005,
+        seed: 1,
+        ..RunOptions::default()
     };
     let e = planned_memory(&env.run_input(), &exact).unwrap_err().to_string();
     assert!(e.contains("rational"), "{e}");
@@ -310,7 +314,11 @@ fn default_monte_carlo_of_an_enveloped_road_covers_the_analytic_sigma() {
     );
     let opts = RunOptions {
         confidence: 1.0 - 2.5e-7,
-        ..RunOptions::new(40, s.duration_s, s.dt_s, 5)
+        realizations: 40,
+        duration_s: s.duration_s,
+        dt_s: s.dt_s,
+        seed: 5,
+        ..RunOptions::default()
     };
     assert_eq!(planned_memory(&sc.run_input(), &opts).unwrap().route, Route::Spectral);
     let file = crate::common::scratch_kept("input-keys", "run").join("run.h5");

@@ -225,7 +225,13 @@ fn quarter_car_on_a_laplace_road_keeps_sigma_not_extremes() {
     let conf = 1.0 - 2.5e-8;
     let dir = crate::common::scratch_dir("laplace", "extremes");
     let r = 200;
-    let mut opts = RunOptions::new(r, 40.0, 0.005, 17);
+    let mut opts = RunOptions {
+        realizations: r,
+        duration_s: 40.0,
+        dt_s: 0.005,
+        seed: 17,
+        ..RunOptions::default()
+    };
     opts.store_raw = true;
     opts.route = Route::Spectral;
     opts.overwrite = true;
@@ -322,7 +328,13 @@ fn bad_kurtosis_values_name_file_key_value_and_reason() {
     }
     // a non-Gaussian input is simulated on the spectral route only
     let sc = quarter_car(Some(6.0));
-    let mut opts = RunOptions::new(2, 4.0, 0.005, 1);
+    let mut opts = RunOptions {
+        realizations: 2,
+        duration_s: 4.0,
+        dt_s: 0.005,
+        seed: 1,
+        ..RunOptions::default()
+    };
     opts.route = Route::Exact;
     let out = crate::common::scratch_dir("laplace", "exact").join("exact.h5");
     let e = stochvib::simulate::run(&sc.run_input(), &opts, &out, &|_, _| {})
@@ -394,7 +406,13 @@ fn non_gaussian_vdv_is_predicted_from_the_weighted_output_kurtosis() {
     let dir = crate::common::scratch_dir("laplace", "vdv");
     let w = "seat_acc_Wk";
     let (dt, duration) = (0.005, 20.0);
-    let mut opts = RunOptions::new(300, duration, dt, 23);
+    let mut opts = RunOptions {
+        realizations: 300,
+        duration_s: duration,
+        dt_s: dt,
+        seed: 23,
+        ..RunOptions::default()
+    };
     opts.route = Route::Spectral;
     opts.overwrite = true;
     opts.confidence = 1.0 - 2.5e-7;
@@ -496,7 +514,13 @@ fn merged_shards_of_a_non_gaussian_verdict_run_keep_its_vdv_prediction() {
     let dir = crate::common::scratch_dir("laplace", "merge");
     std::fs::create_dir_all(&dir).unwrap();
     let sc = operator_seat(Some(6.0));
-    let mut opts = RunOptions::new(8, 4.0, 0.005, 5);
+    let mut opts = RunOptions {
+        realizations: 8,
+        duration_s: 4.0,
+        dt_s: 0.005,
+        seed: 5,
+        ..RunOptions::default()
+    };
     opts.shard_size = 4;
     opts.overwrite = true;
     let whole = sc.simulate(&opts, &dir.join("whole.h5"), &|_, _| {}).unwrap();

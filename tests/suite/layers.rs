@@ -168,3 +168,22 @@ fn scanner_finds_paths_and_skips_comments() {
     assert_eq!(layer_of("report"), Some(8));
     assert!(layer_of("simulate") < layer_of("scenario"));
 }
+
+/// The binary target is built without a test harness (`test = false` in Cargo.toml: the suite tests the CLI
+/// through the binary), so a unit test in `src/main.rs` or `src/main/` would never run: there must be none.
+#[test]
+fn the_cli_holds_no_unit_tests() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = vec![root.join("main.rs")];
+    rust_files(&root.join("main"), &mut files);
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let tests = text.lines().filter(|l| code(l).contains("#[test]")).count();
+        assert_eq!(
+            tests,
+            0,
+            "{}: #[test] in the CLI, which has no test harness (Cargo.toml)",
+            f.display()
+        );
+    }
+}

@@ -296,7 +296,13 @@ fn plot_verifies_checksums_like_inspect() {
     let d = scratch("plot-damaged");
     let sc =
         stochvib::scenario::load_scenario(&root().join("data/conveyor-idler.toml"), &root().join("spectra")).unwrap();
-    let mut o = stochvib::simulate::RunOptions::new(8, 2.0, 0.01, 11);
+    let mut o = stochvib::simulate::RunOptions {
+        realizations: 8,
+        duration_s: 2.0,
+        dt_s: 0.01,
+        seed: 11,
+        ..Default::default()
+    };
     o.shard_size = 2;
     o.store_raw = true;
     let good = d.join("good.h5");

@@ -23,6 +23,8 @@ mod fast_paths;
 mod fast_sweep;
 mod fatigue;
 mod fuzz_findings;
+
+mod fft_paths;
 mod fuzz_inputs;
 mod fuzz_run_files;
 mod html_report;

@@ -58,12 +58,25 @@ fn weighted_bias(sc: &Scenario, opts: &RunOptions) -> f64 {
 fn default_run_of_a_wk_output_covers_the_analytic_a_w() {
     let sc = half_car_wk();
     let old = suggest_step(&sc.run_input()).unwrap();
-    let old_bias = weighted_bias(&sc, &RunOptions::new(40, old.duration_s, old.dt_s, 1));
+    let old_bias = weighted_bias(
+        &sc,
+        &RunOptions {
+            realizations: 40,
+            duration_s: old.duration_s,
+            dt_s: old.dt_s,
+            seed: 1,
+            ..RunOptions::default()
+        },
+    );
     assert!(old_bias < -0.03, "the model-only default's bias {old_bias}");
     let s = sc.suggest_step(40).unwrap();
     let opts = RunOptions {
         confidence: 1.0 - 1e-6,
-        ..RunOptions::new(40, s.duration_s, s.dt_s, 7)
+        realizations: 40,
+        duration_s: s.duration_s,
+        dt_s: s.dt_s,
+        seed: 7,
+        ..RunOptions::default()
     };
     let bias = weighted_bias(&sc, &opts);
     assert!(bias.abs() <= 1e-3, "suggested Δt = {} s: bias {bias}", s.dt_s);
@@ -100,7 +113,13 @@ fn default_run_of_a_wk_output_covers_the_analytic_a_w() {
 fn planned_discrete_variance_is_the_runs_sigma_discrete() {
     let sc = half_car_wk();
     let s = sc.suggest_step(40).unwrap();
-    let opts = RunOptions::new(2, s.duration_s, s.dt_s, 5);
+    let opts = RunOptions {
+        realizations: 2,
+        duration_s: s.duration_s,
+        dt_s: s.dt_s,
+        seed: 5,
+        ..RunOptions::default()
+    };
     let planned = with_verdict_input(&sc, |input| planned_variances(input, &opts)).unwrap();
     let file = scratch("planned");
     let run = sc.simulate(&opts, &file, &|_, _| {}).unwrap();
@@ -129,7 +148,13 @@ fn planned_discrete_variance_is_the_runs_sigma_discrete() {
 fn a_miss_names_the_discretisation_bias() {
     let sc = half_car_wk();
     let old = suggest_step(&sc.run_input()).unwrap();
-    let opts = RunOptions::new(40, old.duration_s, old.dt_s, 3);
+    let opts = RunOptions {
+        realizations: 40,
+        duration_s: old.duration_s,
+        dt_s: old.dt_s,
+        seed: 3,
+        ..RunOptions::default()
+    };
     let file = scratch("old");
     let run = sc.simulate(&opts, &file, &|_, _| {}).unwrap();
     let _ = std::fs::remove_file(&file);
@@ -242,7 +267,11 @@ fn basic_method_check_of_a_run_and_analyze_monte_carlo() {
     let s = sc.suggest_step(30).unwrap();
     let opts = RunOptions {
         confidence: 1.0 - 5e-7,
-        ..RunOptions::new(30, s.duration_s, s.dt_s, 11)
+        realizations: 30,
+        duration_s: s.duration_s,
+        dt_s: s.dt_s,
+        seed: 11,
+        ..RunOptions::default()
     };
     let file = scratch("seat");
     let run = sc.simulate(&opts, &file, &|_, _| {}).unwrap();

@@ -71,7 +71,13 @@ fn catalogue_monte_carlo_sigma_covers_analytic() {
     let mut failures = Vec::new();
     for (k, (file, dt, dur, route, n_out)) in cases.iter().enumerate() {
         let sc = scenario(file);
-        let mut opts = RunOptions::new(600, *dur, *dt, 1000 + k as u64);
+        let mut opts = RunOptions {
+            realizations: 600,
+            duration_s: *dur,
+            dt_s: *dt,
+            seed: 1000 + k as u64,
+            ..RunOptions::default()
+        };
         opts.confidence = 1.0 - P_FALSE;
         if k == 1 {
             opts.route = Route::Spectral;
@@ -141,26 +147,68 @@ fn delays_must_be_whole_steps_and_bad_options_are_refused() {
     let sc = scenario("half-car.toml");
     // half car: wheelbase delay 2.7 m / 10 m/s = 0.27 s, not a multiple of 0.007 s (0.27/0.007 = 38.57)
     let e = sc
-        .simulate(&RunOptions::new(4, 2.0, 0.007, 1), &dir.join("a.h5"), &|_, _| {})
+        .simulate(
+            &RunOptions {
+                realizations: 4,
+                duration_s: 2.0,
+                dt_s: 0.007,
+                seed: 1,
+                ..RunOptions::default()
+            },
+            &dir.join("a.h5"),
+            &|_, _| {},
+        )
         .unwrap_err();
     assert!(e.to_string().contains("not an integer number of steps"), "{e}");
     // the exact route cannot represent a pure delay
-    let mut o = RunOptions::new(4, 2.0, 0.01, 1);
+    let mut o = RunOptions {
+        realizations: 4,
+        duration_s: 2.0,
+        dt_s: 0.01,
+        seed: 1,
+        ..RunOptions::default()
+    };
     o.route = Route::Exact;
     assert!(sc.simulate(&o, &dir.join("b.h5"), &|_, _| {}).is_err());
     // one realization gives no interval; too short a record gives no Welch segment
     assert!(sc
-        .simulate(&RunOptions::new(1, 2.0, 0.01, 1), &dir.join("c.h5"), &|_, _| {})
+        .simulate(
+            &RunOptions {
+                realizations: 1,
+                duration_s: 2.0,
+                dt_s: 0.01,
+                seed: 1,
+                ..RunOptions::default()
+            },
+            &dir.join("c.h5"),
+            &|_, _| {}
+        )
         .is_err());
     assert!(sc
-        .simulate(&RunOptions::new(4, 0.05, 0.01, 1), &dir.join("d.h5"), &|_, _| {})
+        .simulate(
+            &RunOptions {
+                realizations: 4,
+                duration_s: 0.05,
+                dt_s: 0.01,
+                seed: 1,
+                ..RunOptions::default()
+            },
+            &dir.join("d.h5"),
+            &|_, _| {}
+        )
         .is_err());
     assert!(!dir.join("a.h5").exists() && !tmp_path(&dir.join("a.h5")).exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 
 fn small_opts(seed: u64) -> RunOptions {
-    let mut o = RunOptions::new(8, 2.0, 0.01, seed);
+    let mut o = RunOptions {
+        realizations: 8,
+        duration_s: 2.0,
+        dt_s: 0.01,
+        seed,
+        ..RunOptions::default()
+    };
     o.shard_size = 2;
     o
 }
@@ -170,7 +218,13 @@ fn run_file_read_back_by_crate_and_h5py() {
     let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let dir = scratch_dir("readback");
     let sc = scenario("conveyor-idler.toml");
-    let mut opts = RunOptions::new(6, 3.0, 0.01, 77);
+    let mut opts = RunOptions {
+        realizations: 6,
+        duration_s: 3.0,
+        dt_s: 0.01,
+        seed: 77,
+        ..RunOptions::default()
+    };
     opts.shard_size = 4;
     opts.store_raw = true;
     let path = dir.join("run.h5");
@@ -407,7 +461,13 @@ fn raw_inputs_are_stored_on_both_routes() {
     let _serial = common::hdf5_serial(); // see its docs: no fork while a file is open
     let dir = scratch_dir("raw-inputs");
     let sc = scenario("conveyor-idler.toml");
-    let mut opts = RunOptions::new(400, 20.0, 0.01, 4242);
+    let mut opts = RunOptions {
+        realizations: 400,
+        duration_s: 20.0,
+        dt_s: 0.01,
+        seed: 4242,
+        ..RunOptions::default()
+    };
     opts.store_raw = true;
     opts.shard_size = 100;
     let out = dir.join("conveyor.h5");
@@ -427,7 +487,13 @@ fn raw_inputs_are_stored_on_both_routes() {
     let iv = stochvib::estimate::mean_interval(&v, 1.0 - 1e-7).unwrap();
     assert!(iv.covers(4.0e6), "{iv:?}");
     let sc = scenario("half-car.toml");
-    let mut opts = RunOptions::new(4, 20.0, 0.01, 7);
+    let mut opts = RunOptions {
+        realizations: 4,
+        duration_s: 20.0,
+        dt_s: 0.01,
+        seed: 7,
+        ..RunOptions::default()
+    };
     opts.store_raw = true;
     let out = dir.join("half-car.h5");
     let s = sc.simulate(&opts, fresh(&out), &|_, _| {});

@@ -112,7 +112,11 @@ fn verdict_runs_merge_bit_identically() {
     let opts = |part| RunOptions {
         shard_size: 2,
         part,
-        ..RunOptions::new(7, 4.0, 0.005, 18)
+        realizations: 7,
+        duration_s: 4.0,
+        dt_s: 0.005,
+        seed: 18,
+        ..RunOptions::default()
     };
     let whole = dir.join("whole.h5");
     simulate(&sc, &opts(None), &whole);
@@ -193,7 +197,11 @@ fn many_small_shards_merge_and_inspect_abbreviates() {
     let opts = |part| RunOptions {
         shard_size: 1,
         part,
-        ..RunOptions::new(R, 1.0, 0.01, 5)
+        realizations: R,
+        duration_s: 1.0,
+        dt_s: 0.01,
+        seed: 5,
+        ..RunOptions::default()
     };
     let whole = dir.join("whole.h5");
     simulate(&sc, &opts(None), &whole);

@@ -466,7 +466,13 @@ speed = "15 m/s"
         let sc = parse(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
         let names: Vec<String> = sc.input_signals().iter().map(|s| s.name.clone()).collect();
         assert_eq!(names, ["road_left", "road_right"]);
-        let mut opts = RunOptions::new(4, 20.48, 0.01, 17);
+        let mut opts = RunOptions {
+            realizations: 4,
+            duration_s: 20.48,
+            dt_s: 0.01,
+            seed: 17,
+            ..RunOptions::default()
+        };
         opts.store_raw = true;
         let out = dir.join(format!("rho{rho}.h5"));
         let _ = std::fs::remove_file(&out);
@@ -650,7 +656,13 @@ fn kurtosis_of_an_input_table_makes_its_source_alone_non_gaussian() {
     // planned alone: other excitations than the two-source run under test.
     let dir = crate::common::scratch_path("multi-input", "kurtosis-sources");
     std::fs::create_dir_all(&dir).unwrap();
-    let mut opts = RunOptions::new(2, 10.24, 0.01, 3);
+    let mut opts = RunOptions {
+        realizations: 2,
+        duration_s: 10.24,
+        dt_s: 0.01,
+        seed: 3,
+        ..RunOptions::default()
+    };
     opts.route = Route::Spectral;
     opts.overwrite = true;
     let run = |text: &str, tag: &str| {
@@ -734,7 +746,13 @@ fn a_two_track_run_says_what_its_inputs_are() {
     let sc = full_vehicle_file();
     let dir = crate::common::scratch_path("multi-input", "two-track-notes");
     std::fs::create_dir_all(&dir).unwrap();
-    let mut opts = RunOptions::new(2, 2.56, 0.005, 1);
+    let mut opts = RunOptions {
+        realizations: 2,
+        duration_s: 2.56,
+        dt_s: 0.005,
+        seed: 1,
+        ..RunOptions::default()
+    };
     opts.overwrite = true;
     let s = sc.simulate(&opts, &dir.join("run.h5"), &|_, _| {}).unwrap();
     assert!(

@@ -72,7 +72,11 @@ fn run(sc: &Scenario, name: &str, r: usize, t: f64, dt: f64, seed: u64) -> Nonli
     let opts = NonlinearRunOptions {
         run: RunOptions {
             confidence: 1.0 - MC_FALSE_FAILURE,
-            ..RunOptions::new(r, t, dt, seed)
+            realizations: r,
+            duration_s: t,
+            dt_s: dt,
+            seed,
+            ..RunOptions::default()
         },
         burn_in_s: None,
         halving_checks: None,
@@ -278,7 +282,11 @@ fn route2_parts_merge_bit_identically() {
         run: RunOptions {
             shard_size: 2,
             part,
-            ..RunOptions::new(6, 40.0, 0.02, 5)
+            realizations: 6,
+            duration_s: 40.0,
+            dt_s: 0.02,
+            seed: 5,
+            ..RunOptions::default()
         },
         burn_in_s: None,
         halving_checks: None,

@@ -48,7 +48,11 @@ fn options(r: usize, t: f64, dt: f64, seed: u64) -> NonlinearRunOptions {
         run: RunOptions {
             confidence: 1.0 - MC_FALSE_FAILURE,
             overwrite: true,
-            ..RunOptions::new(r, t, dt, seed)
+            realizations: r,
+            duration_s: t,
+            dt_s: dt,
+            seed,
+            ..RunOptions::default()
         },
         burn_in_s: None,
         halving_checks: None,
@@ -154,7 +158,11 @@ fn interrupted_nonlinear_run_resumes_bit_identically() {
         run: RunOptions {
             shard_size: 2,
             overwrite,
-            ..RunOptions::new(8, 5.0, dt, 21)
+            realizations: 8,
+            duration_s: 5.0,
+            dt_s: dt,
+            seed: 21,
+            ..RunOptions::default()
         },
         burn_in_s: None,
         halving_checks: None,

@@ -112,7 +112,13 @@ fn delayed_half_car_variances_and_moments_are_finite_and_agree() {
 fn delayed_half_car_monte_carlo_agrees() {
     let sc = scenario(&half_car(""));
     let dt = 2.6 / 11.0 / 20.0;
-    let mut o = RunOptions::new(400, 60.0, dt, 15);
+    let mut o = RunOptions {
+        realizations: 400,
+        duration_s: 60.0,
+        dt_s: dt,
+        seed: 15,
+        ..RunOptions::default()
+    };
     o.confidence = 1.0 - 1e-8;
     let out = crate::common::scratch_kept("truth", "mc").join("run.h5");
     let _ = std::fs::remove_file(&out);
@@ -340,7 +346,17 @@ fn welch_bands_cover_their_expectation_at_the_nominal_rate() {
             let out = crate::common::scratch_kept("truth", "welch").join(format!("run-{seed}.h5"));
             let _ = std::fs::remove_file(&out);
             let s = sc
-                .simulate(&RunOptions::new(20, 20.0, dt, 1000 + seed), &out, &|_, _| {})
+                .simulate(
+                    &RunOptions {
+                        realizations: 20,
+                        duration_s: 20.0,
+                        dt_s: dt,
+                        seed: 1000 + seed,
+                        ..RunOptions::default()
+                    },
+                    &out,
+                    &|_, _| {},
+                )
                 .unwrap();
             let run = stochvib::store::RunFile::open(&s.path).unwrap();
             for p in run.psd().unwrap().iter().take(2) {
@@ -556,7 +572,13 @@ fn random_delayed_cases_monte_carlo_agrees() {
             positions.join(", ")
         );
         let sc = scenario(&text);
-        let mut o = RunOptions::new(200, 60.0, 0.01, 31 + case as u64);
+        let mut o = RunOptions {
+            realizations: 200,
+            duration_s: 60.0,
+            dt_s: 0.01,
+            seed: 31 + case as u64,
+            ..RunOptions::default()
+        };
         o.confidence = 1.0 - 2.5e-7;
         let out = crate::common::scratch_kept("truth", "rand").join(format!("run-{case}.h5"));
         let _ = std::fs::remove_file(&out);

@@ -640,7 +640,13 @@ fn conveyor_run(tag: &str, store_raw: bool) -> (PathBuf, PathBuf) {
     std::fs::create_dir_all(&dir).unwrap();
     let sc = load_scenario(&root().join("data/conveyor-idler.toml"), &root().join("spectra")).unwrap();
     // 40 realizations of 10 s at dt = 0.01 s: 1000 samples each
-    let mut opts = RunOptions::new(40, 10.0, 0.01, 2024);
+    let mut opts = RunOptions {
+        realizations: 40,
+        duration_s: 10.0,
+        dt_s: 0.01,
+        seed: 2024,
+        ..RunOptions::default()
+    };
     opts.shard_size = 20;
     opts.store_raw = store_raw;
     let path = dir.join("run.h5");

@@ -554,7 +554,13 @@ fn a_resume_after_the_measured_profile_changed_is_refused() {
         id.text,
         format!("profile.csv ({} bytes, CRC-32 {crc:08x})", csv_text.len())
     );
-    let mut opts = stochvib::simulate::RunOptions::new(8, 2.0, 0.01, 11);
+    let mut opts = stochvib::simulate::RunOptions {
+        realizations: 8,
+        duration_s: 2.0,
+        dt_s: 0.01,
+        seed: 11,
+        ..Default::default()
+    };
     opts.shard_size = 2;
     let out = d.join("run.h5");
     let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {

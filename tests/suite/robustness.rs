@@ -67,7 +67,13 @@ fn interrupt(sc: &Scenario, opts: &RunOptions, out: &Path, shards: usize) {
 }
 
 fn opts() -> RunOptions {
-    let mut o = RunOptions::new(8, 2.0, 0.01, 11);
+    let mut o = RunOptions {
+        realizations: 8,
+        duration_s: 2.0,
+        dt_s: 0.01,
+        seed: 11,
+        ..RunOptions::default()
+    };
     o.shard_size = 2;
     o
 }
@@ -297,9 +303,21 @@ fn sizes_are_checked_before_allocating() {
     // statistics-only exact run of that length streams in blocks and is accepted
     // (`a_huge_statistics_only_exact_run_streams`).
     let t0 = std::time::Instant::now();
-    let mut raw = RunOptions::new(4, 2.0e7, 0.01, 1);
+    let mut raw = RunOptions {
+        realizations: 4,
+        duration_s: 2.0e7,
+        dt_s: 0.01,
+        seed: 1,
+        ..RunOptions::default()
+    };
     raw.store_raw = true;
-    let mut spectral = RunOptions::new(4, 2.0e7, 0.01, 1);
+    let mut spectral = RunOptions {
+        realizations: 4,
+        duration_s: 2.0e7,
+        dt_s: 0.01,
+        seed: 1,
+        ..RunOptions::default()
+    };
     spectral.route = stochvib::simulate::Route::Spectral;
     for (k, long) in [raw, spectral].iter().enumerate() {
         let e = sc
@@ -310,7 +328,13 @@ fn sizes_are_checked_before_allocating() {
         assert!(!d.join(format!("long{k}.h5.tmp")).exists());
     }
     // 10¹³ realizations: the accumulators alone need ~10¹⁶ bytes
-    let many = RunOptions::new(10_000_000_000_000, 2.0, 0.01, 1);
+    let many = RunOptions {
+        realizations: 10_000_000_000_000,
+        duration_s: 2.0,
+        dt_s: 0.01,
+        seed: 1,
+        ..RunOptions::default()
+    };
     let e = sc
         .simulate(&many, &d.join("many.h5"), &|_, _| {})
         .unwrap_err()
@@ -331,7 +355,19 @@ fn a_huge_statistics_only_exact_run_streams() {
     let d = dir("huge-exact");
     let sc = load(&root().join("data/conveyor-idler.toml"));
     let input = sc.run_input();
-    let planned = |duration: f64| planned_memory(&input, &RunOptions::new(4, duration, 0.01, 1)).unwrap();
+    let planned = |duration: f64| {
+        planned_memory(
+            &input,
+            &RunOptions {
+                realizations: 4,
+                duration_s: duration,
+                dt_s: 0.01,
+                seed: 1,
+                ..RunOptions::default()
+            },
+        )
+        .unwrap()
+    };
     let (short, huge) = (planned(1.0e3), planned(2.0e7));
     assert_eq!((short.route, huge.route), (Route::Exact, Route::Exact));
     assert_eq!(
@@ -339,13 +375,31 @@ fn a_huge_statistics_only_exact_run_streams() {
         "the block memory does not depend on the duration"
     );
     // the whole record of one realization alone is N·8 bytes per signal: 16 GB at N = 2·10⁹
-    let whole = memory_bytes(2_000_000_000, 1, 1, &RunOptions::new(4, 2.0e7, 0.01, 1), 1);
+    let whole = memory_bytes(
+        2_000_000_000,
+        1,
+        1,
+        &RunOptions {
+            realizations: 4,
+            duration_s: 2.0e7,
+            dt_s: 0.01,
+            seed: 1,
+            ..RunOptions::default()
+        },
+        1,
+    );
     assert!(
         whole >= 16_000_000_000 && huge.bytes < 64 << 20,
         "{} vs {whole}",
         huge.bytes
     );
-    let o = RunOptions::new(2, 2.0e4, 0.01, 3);
+    let o = RunOptions {
+        realizations: 2,
+        duration_s: 2.0e4,
+        dt_s: 0.01,
+        seed: 3,
+        ..RunOptions::default()
+    };
     let s = sc.simulate(&o, &d.join("long.h5"), &|_, _| {}).unwrap();
     assert_eq!((s.route, s.n_samples), (Route::Exact, 2_000_000));
     let _ = std::fs::remove_dir_all(&d);
@@ -361,7 +415,13 @@ fn exact_route_statistics_are_bit_identical_for_any_block_size() {
     let sc = load(&root().join("data/scraper-sprung-cab.toml"));
     let mut bits = Vec::new();
     for (k, block) in [1usize, 7, 1000, usize::MAX].into_iter().enumerate() {
-        let mut o = RunOptions::new(6, 4.0, 0.01, 5);
+        let mut o = RunOptions {
+            realizations: 6,
+            duration_s: 4.0,
+            dt_s: 0.01,
+            seed: 5,
+            ..RunOptions::default()
+        };
         o.shard_size = 4;
         o.block_steps = block;
         let out = d.join(format!("b{k}.h5"));

@@ -83,7 +83,11 @@ fn opts(seed: u64, part: Option<Part>) -> RunOptions {
         shard_size: SHARD_SIZE,
         store_raw: true,
         part,
-        ..RunOptions::new(R, 1.0, 0.01, seed)
+        realizations: R,
+        duration_s: 1.0,
+        dt_s: 0.01,
+        seed,
+        ..RunOptions::default()
     }
 }
 

@@ -30,7 +30,13 @@ fn quarter_car(outputs: &[&str]) -> Scenario {
 }
 
 fn streamed(duration: f64, dt: f64, tail: f64) -> RunOptions {
-    let mut o = RunOptions::new(2, duration, dt, 1);
+    let mut o = RunOptions {
+        realizations: 2,
+        duration_s: duration,
+        dt_s: dt,
+        seed: 1,
+        ..RunOptions::default()
+    };
     o.route = Route::SpectralStream;
     o.stream_tail = tail;
     o

@@ -117,7 +117,13 @@ speed = "15 m/s"
 }
 
 fn streamed(realizations: usize, duration: f64, dt: f64, seed: u64) -> RunOptions {
-    let mut o = RunOptions::new(realizations, duration, dt, seed);
+    let mut o = RunOptions {
+        realizations,
+        duration_s: duration,
+        dt_s: dt,
+        seed,
+        ..RunOptions::default()
+    };
     o.route = Route::SpectralStream;
     o
 }

@@ -59,7 +59,13 @@ fn exact_route_verdicts_stream_bit_identically_to_the_whole_record() {
     .into_iter()
     .enumerate()
     {
-        let mut o = RunOptions::new(3, 200.0, 0.005, 5);
+        let mut o = RunOptions {
+            realizations: 3,
+            duration_s: 200.0,
+            dt_s: 0.005,
+            seed: 5,
+            ..RunOptions::default()
+        };
         o.shard_size = 2;
         o.block_steps = block;
         o.store_raw = raw;
@@ -86,7 +92,13 @@ fn streamed_spectral_route_carries_the_verdict_channels() {
     let sc = seat();
     let mut all = Vec::new();
     for (k, block) in [1usize, 7, 5000, usize::MAX].into_iter().enumerate() {
-        let mut o = RunOptions::new(3, 20.0, 0.005, 9);
+        let mut o = RunOptions {
+            realizations: 3,
+            duration_s: 20.0,
+            dt_s: 0.005,
+            seed: 9,
+            ..RunOptions::default()
+        };
         o.route = Route::SpectralStream;
         o.shard_size = 2;
         o.block_steps = block;
@@ -96,7 +108,13 @@ fn streamed_spectral_route_carries_the_verdict_channels() {
         all.push(bits(&s, &out));
     }
     assert!(all.windows(2).all(|w| w[0] == w[1]));
-    let mut o = RunOptions::new(100, 60.0, 0.005, 10);
+    let mut o = RunOptions {
+        realizations: 100,
+        duration_s: 60.0,
+        dt_s: 0.005,
+        seed: 10,
+        ..RunOptions::default()
+    };
     o.route = Route::SpectralStream;
     o.confidence = 1.0 - 1e-7;
     let s = sc.simulate(&o, &d.join("cover.h5"), &|_, _| {}).unwrap();

@@ -47,7 +47,13 @@ fn half_car() -> Scenario {
 }
 
 fn streamed(realizations: usize, duration: f64, dt: f64, seed: u64) -> RunOptions {
-    let mut o = RunOptions::new(realizations, duration, dt, seed);
+    let mut o = RunOptions {
+        realizations,
+        duration_s: duration,
+        dt_s: dt,
+        seed,
+        ..RunOptions::default()
+    };
     o.route = Route::SpectralStream;
     o
 }
@@ -121,7 +127,13 @@ fn streamed_sigma_covers_the_simulated_and_the_analytic_sigma() {
         o.shard_size = 20;
         let s = sc.simulate(&o, &d.join(format!("s{k}.h5")), &|_, _| {}).unwrap();
         assert_eq!(s.route, Route::SpectralStream);
-        let mut p = RunOptions::new(2, (1 << 19) as f64 * dt, *dt, 1);
+        let mut p = RunOptions {
+            realizations: 2,
+            duration_s: (1 << 19) as f64 * dt,
+            dt_s: *dt,
+            seed: 1,
+            ..RunOptions::default()
+        };
         p.route = Route::Spectral;
         let periodic = sc.simulate(&p, &d.join(format!("p{k}.h5")), &|_, _| {}).unwrap();
         for name in names {
@@ -255,7 +267,13 @@ fn planned_memory_does_not_grow_with_the_duration() {
     // a few MB: kernels of a few thousand taps (not a bound of the design, a check that nothing of the
     // record's size is counted: 10⁹ samples would be 8 GB per signal)
     assert!(planned[0] < 1 << 30, "{}", planned[0]);
-    let auto = RunOptions::new(10, 1e11 * dt, dt, 1);
+    let auto = RunOptions {
+        realizations: 10,
+        duration_s: 1e11 * dt,
+        dt_s: dt,
+        seed: 1,
+        ..RunOptions::default()
+    };
     let m = planned_memory(&input, &auto).unwrap();
     assert_eq!(m.route, Route::SpectralStream);
     assert_eq!(m.bytes, planned[0]);

@@ -189,7 +189,16 @@ fn first_order_under_amplitude_ramp() {
 #[test]
 fn quarter_car_accelerating_on_a_w2_road() {
     let (ms, mu, ks, cs, kt) = (400.0, 40.0, 20e3, 1.5e3, 200e3);
-    let car = QuarterCar::new(ms, mu, ks, cs, kt).unwrap();
+    let car = QuarterCar {
+        sprung_mass: ms,
+        unsprung_mass: mu,
+        suspension_stiffness: ks,
+        suspension_damping: cs,
+        tyre_stiffness: kt,
+        tyre_damping: 0.0,
+    }
+    .build()
+    .unwrap();
     let mdof = car.system().unwrap();
     let ss = mdof.state_space().unwrap().clone();
     let road = PowerLaw::iso8608(IsoClass::D, IsoBound::GeometricMean, None).unwrap();
@@ -234,7 +243,16 @@ fn quarter_car_accelerating_on_a_w2_road() {
 /// the transient; started in the stationary state it stays there.
 #[test]
 fn stationary_input_through_the_transient_path() {
-    let car = QuarterCar::new(300.0, 40.0, 20e3, 1.5e3, 200e3).unwrap();
+    let car = QuarterCar {
+        sprung_mass: 300.0,
+        unsprung_mass: 40.0,
+        suspension_stiffness: 20e3,
+        suspension_damping: 1.5e3,
+        tyre_stiffness: 200e3,
+        tyre_damping: 0.0,
+    }
+    .build()
+    .unwrap();
     let mdof = car.system().unwrap();
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
     let exc = Excitation::road(road.clone(), 10.0, &[0.0]).unwrap();

@@ -157,7 +157,16 @@ fn assert_sigma_chi2(sigma: &[f64], exact: &[f64], r: usize, p: f64, what: &str)
 #[test]
 fn quarter_car_accelerating_by_monte_carlo() {
     let _serial = common::hdf5_serial();
-    let car = QuarterCar::new(400.0, 40.0, 20e3, 1.5e3, 200e3).unwrap();
+    let car = QuarterCar {
+        sprung_mass: 400.0,
+        unsprung_mass: 40.0,
+        suspension_stiffness: 20e3,
+        suspension_damping: 1.5e3,
+        tyre_stiffness: 200e3,
+        tyre_damping: 0.0,
+    }
+    .build()
+    .unwrap();
     let mdof = car.system().unwrap();
     let road = PowerLaw::iso8608(IsoClass::D, IsoBound::GeometricMean, None).unwrap();
     let v = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();

@@ -84,7 +84,13 @@ fn roll_and_bounce_of_two_coherent_tracks_by_monte_carlo() {
         source_signals(&exc, "m"),
         "two tracks, MC check",
     );
-    let mut opts = RunOptions::new(40, 200.0, 0.01, 20240517);
+    let mut opts = RunOptions {
+        realizations: 40,
+        duration_s: 200.0,
+        dt_s: 0.01,
+        seed: 20240517,
+        ..RunOptions::default()
+    };
     // two outputs, each interval at 1 − 5e-7: false failure ≤ 1e-6 (Bonferroni; Student-t across 40
     // independent realizations of a time average over 200 s ≫ the 0.3 s correlation time, so near-normal)
     opts.confidence = 1.0 - 5e-7;

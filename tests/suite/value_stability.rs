@@ -40,7 +40,13 @@ fn check(file: &str, opts: RunOptions, route: Route, pins: Pins) {
 fn exact_route_statistics_are_pinned() {
     check(
         "conveyor-idler.toml",
-        RunOptions::new(30, 5.0, 0.01, 3),
+        RunOptions {
+            realizations: 30,
+            duration_s: 5.0,
+            dt_s: 0.01,
+            seed: 3,
+            ..RunOptions::default()
+        },
         Route::Exact,
         &[
             (
@@ -75,12 +81,38 @@ fn exact_route_statistics_are_pinned() {
     );
 }
 
-/// Spectral route: half car with the wheelbase delay, 20 realizations × 10 s at Δt = 0.009 s, seed 7.
+/// Whether this build and CPU run the FFT path that wrote the spectral route's pins: rustfft's AVX code, which
+/// it takes on CPUs with AVX and FMA (`docs/cluster.md`, "Which numbers are identical on which machines").
+/// Every number of the spectral route passes through an FFT, whose other paths differ in the last bits.
+fn on_the_fft_path_of_the_pins() -> bool {
+    #[cfg(all(feature = "simd-fft", target_arch = "x86_64"))]
+    {
+        std::arch::is_x86_feature_detected!("avx") && std::arch::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(all(feature = "simd-fft", target_arch = "x86_64")))]
+    {
+        false
+    }
+}
+
+/// Spectral route: half car with the wheelbase delay, 20 realizations × 10 s at Δt = 0.009 s, seed 7. Pinned
+/// on the FFT path of AVX with FMA only (see [`on_the_fft_path_of_the_pins`]); elsewhere the test says that
+/// it did not check.
 #[test]
 fn spectral_route_statistics_are_pinned() {
+    if !on_the_fft_path_of_the_pins() {
+        eprintln!("value_stability: the spectral route's pins were NOT checked: they hold on rustfft's AVX+FMA path");
+        return;
+    }
     check(
         "half-car.toml",
-        RunOptions::new(20, 10.0, 0.009, 7),
+        RunOptions {
+            realizations: 20,
+            duration_s: 10.0,
+            dt_s: 0.009,
+            seed: 7,
+            ..RunOptions::default()
+        },
         Route::Spectral,
         &[
             (

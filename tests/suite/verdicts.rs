@@ -127,7 +127,11 @@ fn monte_carlo_agrees_with_analytic_a_w_vdv_and_spectral_fatigue() {
     // VDV⁴ and damage), so ≤ 7.5e-7 < 1e-6 by the union bound.
     let opts = RunOptions {
         confidence: 1.0 - 2.5e-7,
-        ..RunOptions::new(200, 60.0, 0.005, 18)
+        realizations: 200,
+        duration_s: 60.0,
+        dt_s: 0.005,
+        seed: 18,
+        ..RunOptions::default()
     };
     let out = crate::common::scratch_kept("verdicts", "run").join("run.h5");
     let _ = std::fs::remove_file(&out);

@@ -154,7 +154,11 @@ impl InputSynthesis {
         let opts = RunOptions {
             route: Route::Spectral,
             store_raw: true,
-            ..RunOptions::new(2, n as f64 * dt, dt, 0)
+            realizations: 2,
+            duration_s: n as f64 * dt,
+            dt_s: dt,
+            seed: 0,
+            ..RunOptions::default()
         };
         let plan = simulate::plan(&input, &opts)?;
         if let Some(s) = plan.skipped.first() {
