@@ -2,6 +2,8 @@
 
 #[path = "main/record_cli.rs"]
 mod record_cli;
+#[path = "main/transient_cli.rs"]
+mod transient_cli;
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -523,6 +525,10 @@ enum Command {
     /// measured profile.
     Iri(record_cli::IriArgs),
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
+    /// Non-stationary response of a scenario with [transient] (docs/transients.md): σ(t), mean(t), ν₀⁺(t),
+    /// ν⁺(b, t) and a_w(t) by the exact route, the expected up-crossings and P(max |y| > b) of the mission;
+    /// with --monte-carlo N -o FILE the same by simulation into a run file, σ(t) beside the exact curve.
+    Transient(transient_cli::TransientArgs),
     Spectrum {
         /// Catalogue name (e.g. `iso8608-c`) or path to a spectrum file.
         name: String,
@@ -896,6 +902,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 overwrite,
                 confidence,
             };
+            if let Some(s) = transient_cli::merge_transient_if(&output, &inputs, &opts)? {
+                eprintln!("merged {} realizations of a transient run into {}", s.n_realizations, s.path.display());
+                return if json { print_json(&s) } else { Ok(()) };
+            }
             let s = merge_runs(&output, &inputs, &opts, &|_, _| {})?;
             print(&s, json)?;
         }
@@ -1039,6 +1049,17 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Weighting(a) => record_cli::weighting(a)?,
         Command::Coherence(a) => record_cli::coherence(a)?,
         Command::Iri(a) => record_cli::iri(a)?,
+        Command::Transient(args) => transient_cli::transient(
+            args,
+            &|d| {
+                SpectraDir {
+                    spectra_dir: d.clone(),
+                }
+                .catalogue()
+            },
+            &progress_printer(),
+            &shard_output,
+        )?,
         Command::Spectrum {
             name,
             convention,

@@ -21,6 +21,7 @@ pub mod sweep_stream;
 pub mod sweep_table;
 pub mod table;
 pub mod tables;
+pub mod transient_report;
 pub mod verdict_report;
 pub mod workday_report;
 

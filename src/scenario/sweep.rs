@@ -323,7 +323,7 @@ impl SweepSpec {
 }
 
 /// Sets the dotted `key` of `root` to `value` (an array element by its index).
-fn set_key(root: &mut toml::Table, key: &str, value: toml::Value) -> std::result::Result<(), String> {
+pub(crate) fn set_key(root: &mut toml::Table, key: &str, value: toml::Value) -> std::result::Result<(), String> {
     let segs: Vec<&str> = key.split('.').map(str::trim).collect();
     let mut table = root;
     for (i, seg) in segs[..segs.len() - 1].iter().enumerate() {

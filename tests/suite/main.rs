@@ -66,6 +66,7 @@ mod streaming;
 mod sweep_stream;
 mod transient_exact;
 mod transient_mc;
+mod transient_scenario;
 mod transient_schedule;
 mod two_tracks;
 mod two_tracks_mc;
