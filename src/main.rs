@@ -903,7 +903,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 confidence,
             };
             if let Some(s) = transient_cli::merge_transient_if(&output, &inputs, &opts)? {
-                eprintln!("merged {} realizations of a transient run into {}", s.n_realizations, s.path.display());
+                eprintln!(
+                    "merged {} realizations of a transient run into {}",
+                    s.n_realizations,
+                    s.path.display()
+                );
                 return if json { print_json(&s) } else { Ok(()) };
             }
             let s = merge_runs(&output, &inputs, &opts, &|_, _| {})?;
@@ -1051,12 +1055,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Iri(a) => record_cli::iri(a)?,
         Command::Transient(args) => transient_cli::transient(
             args,
-            &|d| {
-                SpectraDir {
-                    spectra_dir: d.clone(),
-                }
-                .catalogue()
-            },
+            &|d| SpectraDir { spectra_dir: d.clone() }.catalogue(),
             &progress_printer(),
             &shard_output,
         )?,

@@ -66,7 +66,9 @@ pub fn transient(
     shard_output: &dyn Fn(PathBuf, &Option<stochvib::simulate::ShardChoice>) -> anyhow::Result<PathBuf>,
 ) -> anyhow::Result<()> {
     let choice = match &a.shard {
-        Some(spec) => Some(stochvib::simulate::resolve_part(spec, a.of, &|k| std::env::var(k).ok())?),
+        Some(spec) => Some(stochvib::simulate::resolve_part(spec, a.of, &|k| {
+            std::env::var(k).ok()
+        })?),
         None => None,
     };
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;
@@ -96,7 +98,10 @@ pub fn transient(
         _ => None,
     };
     let comparison = match &mc {
-        Some(s) => Some(SigmaComparisons(compare_sigma(&read_transient_run(&s.path)?.1, VERDICT_ALPHA)?)),
+        Some(s) => Some(SigmaComparisons(compare_sigma(
+            &read_transient_run(&s.path)?.1,
+            VERDICT_ALPHA,
+        )?)),
         None => None,
     };
     if a.json {
@@ -130,7 +135,11 @@ fn print_summary(s: &TransientRunSummary) {
                 b.method,
                 b.distance,
                 b.at,
-                if b.inside { "inside the band" } else { "OUTSIDE the band" }
+                if b.inside {
+                    "inside the band"
+                } else {
+                    "OUTSIDE the band"
+                }
             );
         }
     }
@@ -146,12 +155,20 @@ pub fn merge_transient_if(
     opts: &stochvib::simulate::MergeOptions,
 ) -> anyhow::Result<Option<TransientRunSummary>> {
     let (runs, _) = stochvib::store::find_run_files(inputs, &[output])?;
-    let Some(first) = runs.iter().find(|r| r.extension().is_some_and(|e| e == "h5" || e == "hdf5")) else {
+    let Some(first) = runs
+        .iter()
+        .find(|r| r.extension().is_some_and(|e| e == "h5" || e == "hdf5"))
+    else {
         return Ok(None);
     };
     let meta = stochvib::store::RunFile::open(first)?.metadata().clone();
     if !stochvib::transient::monte_carlo::is_transient_run(&meta) {
         return Ok(None);
     }
-    Ok(Some(stochvib::transient::merge_transient(output, inputs, opts, &|_, _| {})?))
+    Ok(Some(stochvib::transient::merge_transient(
+        output,
+        inputs,
+        opts,
+        &|_, _| {},
+    )?))
 }

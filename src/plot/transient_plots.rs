@@ -25,7 +25,8 @@ pub fn sigma_chart(series: &TransientSeries, o: &TransientOutput) -> LineChart {
     });
     c.series
         .push(Series::line(format!("Monte Carlo ({} realizations)", o.max_y.len()), zip(&o.sigma)).with_color(0));
-    c.series.push(Series::dashed("exact (differential Lyapunov)", zip(&o.exact_sigma)).with_color(1));
+    c.series
+        .push(Series::dashed("exact (differential Lyapunov)", zip(&o.exact_sigma)).with_color(1));
     c.legend = Legend::LowerRight;
     c
 }
@@ -52,10 +53,21 @@ pub fn maxima_chart(series: &TransientSeries, o: &TransientOutput) -> LineChart 
         color: Some(0),
     });
     c.series.push(Series::line("empirical", emp).with_color(0));
-    let analytic: Vec<(f64, f64)> = o.levels.iter().copied().zip(o.cdf_max_abs_y_rice.iter().copied()).collect();
-    c.series.push(Series::dashed("Poisson, integrated Rice rate", analytic).with_color(1));
+    let analytic: Vec<(f64, f64)> = o
+        .levels
+        .iter()
+        .copied()
+        .zip(o.cdf_max_abs_y_rice.iter().copied())
+        .collect();
+    c.series
+        .push(Series::dashed("Poisson, integrated Rice rate", analytic).with_color(1));
     if o.cdf_max_abs_y_vanmarcke.iter().all(|v| v.is_finite()) {
-        let v: Vec<(f64, f64)> = o.levels.iter().copied().zip(o.cdf_max_abs_y_vanmarcke.iter().copied()).collect();
+        let v: Vec<(f64, f64)> = o
+            .levels
+            .iter()
+            .copied()
+            .zip(o.cdf_max_abs_y_vanmarcke.iter().copied())
+            .collect();
         c.series.push(Series::dashed("Vanmarcke (1975)", v).with_color(2));
     }
     c.legend = Legend::LowerRight;

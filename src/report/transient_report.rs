@@ -80,7 +80,11 @@ impl fmt::Display for TransientAnalysis {
 
 impl TransientAnalysis {
     fn fmt_extremes(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let st: Vec<_> = self.stationary.iter().filter_map(|(n, s)| s.as_ref().map(|s| (n, s))).collect();
+        let st: Vec<_> = self
+            .stationary
+            .iter()
+            .filter_map(|(n, s)| s.as_ref().map(|s| (n, s)))
+            .collect();
         if !st.is_empty() {
             writeln!(
                 f,
@@ -88,7 +92,8 @@ impl TransientAnalysis {
                  stationary state)",
                 short(self.mission_duration)
             )?;
-            let pf = |p: Option<crate::extremes::PeakFactor>, s: &crate::scenario::transient_answers::StationaryExtremes| {
+            let pf = |p: Option<crate::extremes::PeakFactor>,
+                      s: &crate::scenario::transient_answers::StationaryExtremes| {
                 p.map(|p| s.mean.abs() + p.mean * s.sigma)
             };
             let t = Table::default()
@@ -96,7 +101,10 @@ impl TransientAnalysis {
                 .num("σ", &st.iter().map(|s| Some(s.1.sigma)).collect::<Vec<_>>())
                 .num("ν₀⁺ [Hz]", &st.iter().map(|s| Some(s.1.nu0_plus)).collect::<Vec<_>>())
                 .num("δ (Vanmarcke)", &st.iter().map(|s| Some(s.1.delta)).collect::<Vec<_>>())
-                .num("E max|y| Davenport", &st.iter().map(|s| pf(s.1.davenport, s.1)).collect::<Vec<_>>())
+                .num(
+                    "E max|y| Davenport",
+                    &st.iter().map(|s| pf(s.1.davenport, s.1)).collect::<Vec<_>>(),
+                )
                 .num(
                     "E max|y| Der Kiureghian",
                     &st.iter().map(|s| pf(s.1.der_kiureghian, s.1)).collect::<Vec<_>>(),
@@ -115,11 +123,23 @@ impl TransientAnalysis {
         let t = Table::default()
             .text("output", m.iter().map(|r| r.output.clone()))
             .text("b", m.iter().map(|r| format!("{} {}", short(r.level), r.unit)))
-            .num("E N⁺(b)", &m.iter().map(|r| Some(r.expected_upcrossings)).collect::<Vec<_>>())
-            .num("P integrated rate", &m.iter().map(|r| Some(r.p_integrated_rate)).collect::<Vec<_>>())
+            .num(
+                "E N⁺(b)",
+                &m.iter().map(|r| Some(r.expected_upcrossings)).collect::<Vec<_>>(),
+            )
+            .num(
+                "P integrated rate",
+                &m.iter().map(|r| Some(r.p_integrated_rate)).collect::<Vec<_>>(),
+            )
             .num("P Poisson (stat.)", &m.iter().map(|r| r.p_poisson).collect::<Vec<_>>())
-            .num("P Vanmarcke (stat.)", &m.iter().map(|r| r.p_vanmarcke).collect::<Vec<_>>())
-            .num("P Der Kiureghian (stat.)", &m.iter().map(|r| r.p_der_kiureghian).collect::<Vec<_>>());
+            .num(
+                "P Vanmarcke (stat.)",
+                &m.iter().map(|r| r.p_vanmarcke).collect::<Vec<_>>(),
+            )
+            .num(
+                "P Der Kiureghian (stat.)",
+                &m.iter().map(|r| r.p_der_kiureghian).collect::<Vec<_>>(),
+            );
         write!(f, "{}", t.aligned("  "))
     }
 }
@@ -153,7 +173,11 @@ impl fmt::Display for SigmaComparisons {
                     "covers",
                     idx.iter().map(|&k| {
                         let r = &c.rows[k];
-                        if r.3 <= r.1 && r.1 <= r.4 || r.1 == r.2 { "yes" } else { "no" }
+                        if r.3 <= r.1 && r.1 <= r.4 || r.1 == r.2 {
+                            "yes"
+                        } else {
+                            "no"
+                        }
                     }),
                 );
             write!(f, "{}", t.aligned("  "))?;

@@ -862,7 +862,10 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
     };
     let mission = match f.get("mission") {
         None => None,
-        Some(_) => Some(super::transient_keys::mission(&f.sub("mission")?, model.system.outputs())?),
+        Some(_) => Some(super::transient_keys::mission(
+            &f.sub("mission")?,
+            model.system.outputs(),
+        )?),
     };
     let bands = match f.get("bands") {
         None => None,

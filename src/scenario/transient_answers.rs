@@ -135,12 +135,7 @@ pub fn transient_analysis(sc: &Scenario) -> Result<TransientAnalysis> {
 /// The answers from a solved setup.
 pub fn answers(sc: &Scenario, setup: &TransientSetup, sol: &TransientSolution) -> TransientAnalysis {
     let window = *sol.times.last().unwrap_or(&0.0);
-    let duration = sc
-        .analysis
-        .mission
-        .as_ref()
-        .and_then(|m| m.duration)
-        .unwrap_or(window);
+    let duration = sc.analysis.mission.as_ref().and_then(|m| m.duration).unwrap_or(window);
     let mut notes = Vec::new();
     let outputs: Vec<OutputOverTime> = setup.outputs.iter().map(|&i| over_time(sc, setup, sol, i)).collect();
     let stationary: Vec<(String, Option<StationaryExtremes>)> = setup

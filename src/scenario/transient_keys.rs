@@ -110,7 +110,10 @@ fn table_error(f: &Fields, e: crate::Error, values: &str) -> crate::Error {
 /// of time), a negative speed, an acceleration that never reaches `to`, both forms or neither.
 pub fn speed_profile(f: &Fields) -> Result<SpeedProfile> {
     if f.get("times").is_some() || f.get("speeds").is_some() {
-        if let Some(k) = ["from", "to", "acceleration", "start"].iter().find(|k| f.get(k).is_some()) {
+        if let Some(k) = ["from", "to", "acceleration", "start"]
+            .iter()
+            .find(|k| f.get(k).is_some())
+        {
             return Err(f.error(
                 k,
                 f.get(k).map_or(String::new(), |v| v.to_string()),
@@ -124,7 +127,11 @@ pub fn speed_profile(f: &Fields) -> Result<SpeedProfile> {
             return Err(f.error(
                 "speeds",
                 f.get("speeds").map_or(String::new(), |v| v.to_string()),
-                format!("{} speeds for {} times: give one speed per time", speeds.len(), times.len()),
+                format!(
+                    "{} speeds for {} times: give one speed per time",
+                    speeds.len(),
+                    times.len()
+                ),
             ));
         }
         let v = SpeedProfile::table(times, speeds).map_err(|e| table_error(f, e, "speeds"))?;
@@ -168,7 +175,11 @@ pub fn envelope(f: &Fields) -> Result<Envelope> {
         return Err(f.error(
             key,
             f.get(key).map_or(String::new(), |v| v.to_string()),
-            format!("{} values for {} times: give one value per time", values.len(), times.len()),
+            format!(
+                "{} values for {} times: give one value per time",
+                values.len(),
+                times.len()
+            ),
         ));
     }
     let e = if intensity {
@@ -184,17 +195,21 @@ pub fn envelope(f: &Fields) -> Result<Envelope> {
 /// The envelope's values: numbers, each finite (named by its index).
 fn envelope_values(f: &Fields, key: &str) -> Result<Vec<f64>> {
     let v = f.require(key)?;
-    let arr = v.as_array().ok_or_else(|| f.error(key, v, "expected an array of numbers"))?;
+    let arr = v
+        .as_array()
+        .ok_or_else(|| f.error(key, v, "expected an array of numbers"))?;
     arr.iter()
         .enumerate()
-        .map(|(i, x)| match x.as_float().or_else(|| x.as_integer().map(|n| n as f64)) {
-            Some(y) if y.is_finite() => Ok(y),
-            _ => Err(f.error(
-                &format!("{key}[{i}]"),
-                x,
-                "an envelope value is a finite number (dimensionless)",
-            )),
-        })
+        .map(
+            |(i, x)| match x.as_float().or_else(|| x.as_integer().map(|n| n as f64)) {
+                Some(y) if y.is_finite() => Ok(y),
+                _ => Err(f.error(
+                    &format!("{key}[{i}]"),
+                    x,
+                    "an envelope value is a finite number (dimensionless)",
+                )),
+            },
+        )
         .collect()
 }
 
@@ -295,7 +310,11 @@ fn schedules(f: &Fields) -> Result<Vec<ScheduledKey>> {
             return Err(sf.error(
                 "values",
                 sf.get("values").map_or(String::new(), |v| v.to_string()),
-                format!("{} values for {} times: give one value per time", values.len(), times.len()),
+                format!(
+                    "{} values for {} times: give one value per time",
+                    values.len(),
+                    times.len()
+                ),
             ));
         }
         let profile = PiecewiseLinear::new(times, values).map_err(|e| table_error(&sf, e, "values"))?;
@@ -355,7 +374,11 @@ pub fn mission(f: &Fields, outputs: &[crate::system::OutputInfo]) -> Result<Miss
         let key = format!("levels.{name}");
         let i = outputs.iter().position(|o| &o.name == name).ok_or_else(|| {
             let names: Vec<&str> = outputs.iter().map(|o| o.name.as_str()).collect();
-            f.error(&key, name, format!("no such output; the model has: {}", names.join(", ")))
+            f.error(
+                &key,
+                name,
+                format!("no such output; the model has: {}", names.join(", ")),
+            )
         })?;
         let arr = v
             .as_array()

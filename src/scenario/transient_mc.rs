@@ -75,7 +75,10 @@ pub fn simulate_transient(
     if outputs.is_empty() {
         return Err(Error::NotApplicable {
             method: "transient Monte Carlo".into(),
-            reason: format!("no reported output has a finite σ and crossing rates: {}", notes.join("; ")),
+            reason: format!(
+                "no reported output has a finite σ and crossing rates: {}",
+                notes.join("; ")
+            ),
         });
     }
     let duration = *setup.times.last().unwrap_or(&0.0);

@@ -79,7 +79,9 @@ fn gains(sc: &Scenario) -> Result<Vec<f64>> {
             "the wheels are at different positions ({positions:?} m): under a varying speed their delays vary in \
              time, which the exact route does not model; use a model with one contact point"
         ))),
-        InputLayout::TwoTracks { .. } => Err(refuse("a road of two tracks: the transient routes take one track".into())),
+        InputLayout::TwoTracks { .. } => Err(refuse(
+            "a road of two tracks: the transient routes take one track".into(),
+        )),
     }
 }
 
@@ -130,7 +132,11 @@ fn family(sc: &Scenario, spec: &TransientSpec) -> Result<(Arc<dyn SystemFamily>,
         path: sc.path.clone(),
         kind: sc.kind.clone(),
         speed: sc.input.speed,
-        table: root.get("model").and_then(|m| m.as_table()).cloned().unwrap_or_default(),
+        table: root
+            .get("model")
+            .and_then(|m| m.as_table())
+            .cloned()
+            .unwrap_or_default(),
         keys: spec.schedules.clone(),
         axes: axes(sc),
     };
@@ -244,7 +250,11 @@ pub fn transient_setup(sc: &Scenario) -> Result<TransientSetup> {
 fn unstable(sc: &Scenario, spec: &TransientSpec, e: Error) -> Error {
     match e {
         Error::InvalidParameter { name, value, reason } => {
-            let key = if spec.schedules.is_empty() { "model" } else { "transient.schedule" };
+            let key = if spec.schedules.is_empty() {
+                "model"
+            } else {
+                "transient.schedule"
+            };
             file_error(&sc.path, key, value, &format!("{name}: {reason}"))
         }
         other => other,
