@@ -188,7 +188,11 @@ fn over_time(sc: &Scenario, setup: &TransientSetup, sol: &TransientSolution, i: 
         .find(|w| w.1 == i)
         .map(|w| sol.outputs[w.0].name.clone());
     let rates_ok = o.unavailable.is_none() && o.rate_note.is_none();
-    let levels = weighted_of.is_none().then(|| levels_of(sc, i)).unwrap_or_default();
+    let levels = if weighted_of.is_none() {
+        levels_of(sc, i)
+    } else {
+        Vec::new()
+    };
     OutputOverTime {
         name: o.name.clone(),
         unit: o.unit.clone(),

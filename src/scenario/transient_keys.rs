@@ -223,7 +223,7 @@ pub fn transient_section(f: &Fields) -> Result<TransientSpec> {
     let step = f.opt_quantity("step", Dim::TIME)?;
     for (k, x) in [("duration", duration), ("step", step)] {
         if let Some(x) = x
-            && !(x > 0.0)
+            && (x.is_nan() || x <= 0.0)
         {
             return Err(f.error(k, x, "a time span > 0"));
         }
@@ -361,7 +361,7 @@ fn schedule_values(sf: &Fields) -> Result<Vec<f64>> {
 pub fn mission(f: &Fields, outputs: &[crate::system::OutputInfo]) -> Result<MissionSpec> {
     let duration = f.opt_everyday_quantity("duration", crate::fields::EverydayUnit::HOUR)?;
     if let Some(d) = duration
-        && !(d > 0.0)
+        && (d.is_nan() || d <= 0.0)
     {
         return Err(f.error("duration", d, "must be > 0"));
     }
@@ -417,7 +417,7 @@ pub fn input_speed_profile(inf: &Fields) -> Result<Option<(SpeedProfile, f64)>> 
     let values = v.table_points().values();
     let end = *values.last().expect("a table has a point");
     let stationary = if end > 0.0 { end } else { v.table_points().range().1 };
-    if !(stationary > 0.0) {
+    if stationary.is_nan() || stationary <= 0.0 {
         return Err(pf.error(
             "speeds",
             pf.get("speeds").map_or(String::new(), |x| x.to_string()),
