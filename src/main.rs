@@ -4,6 +4,8 @@
 mod optimize_cli;
 #[path = "main/record_cli.rs"]
 mod record_cli;
+#[path = "main/transient_cli.rs"]
+mod transient_cli;
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -532,6 +534,10 @@ enum Command {
     /// Minimise or maximise a reported quantity (σ, 3σ, a_w, A(8), VDV, damage rate, life) over scenario
     /// values between bounds, subject to constraints on other quantities (docs/optimisation.md).
     Optimize(optimize_cli::OptimizeArgs),
+    /// Non-stationary response of a scenario with [transient] (docs/transients.md): σ(t), mean(t), ν₀⁺(t),
+    /// ν⁺(b, t) and a_w(t) by the exact route, the expected up-crossings and P(max |y| > b) of the mission;
+    /// with --monte-carlo N -o FILE the same by simulation into a run file, σ(t) beside the exact curve.
+    Transient(transient_cli::TransientArgs),
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
     Spectrum {
         /// Catalogue name (e.g. `iso8608-c`) or path to a spectrum file.
@@ -640,6 +646,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Coherence(a) => record_cli::coherence(a)?,
         Command::Iri(a) => record_cli::iri(a)?,
         Command::Optimize(a) => optimize_cli::optimize(a)?,
+        Command::Transient(args) => transient_cli::transient(
+            args,
+            &|d| SpectraDir { spectra_dir: d.clone() }.catalogue(),
+            &progress_printer(),
+            &shard_output,
+        )?,
         Command::Spectrum {
             name,
             convention,
@@ -1022,6 +1034,14 @@ fn merge_command(cmd: Command) -> anyhow::Result<()> {
         overwrite,
         confidence,
     };
+    if let Some(s) = transient_cli::merge_transient_if(&output, &inputs, &opts)? {
+        eprintln!(
+            "merged {} realizations of a transient run into {}",
+            s.n_realizations,
+            s.path.display()
+        );
+        return if json { print_json(&s) } else { Ok(()) };
+    }
     let s = merge_runs(&output, &inputs, &opts, &|_, _| {})?;
     print(&s, json)?;
     Ok(())

@@ -530,8 +530,10 @@ impl PyScenario {
                 effort: OscillatoryOptions::default(),
                 verdicts: Default::default(),
                 bands: None,
+                mission: None,
             },
             nonlinear: None,
+            transient: None,
         };
         Ok(PyScenario {
             doc: Document::Stochastic(Box::new(sc)),

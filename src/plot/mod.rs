@@ -32,6 +32,7 @@ pub mod record_plots;
 pub mod road_plots;
 pub mod run_plots;
 pub mod scenario_plots;
+pub mod transient_plots;
 
 pub use book_plots::book_plots;
 pub use chart::{

@@ -353,6 +353,10 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
 /// assert!(!files.is_empty());
 /// ```
 pub fn run_plots(path: &Path, dir: &Path, spectra_dir: &Path) -> Result<Vec<PathBuf>> {
+    // a transient run: σ(t) against the exact curve, and the maxima of the mission
+    if let Some(files) = super::transient_plots::transient_plots(path, dir)? {
+        return Ok(files);
+    }
     let mut files = Vec::new();
     for oc in run_charts(path, spectra_dir)? {
         let s = super::chart::file_stem(&oc.output);

@@ -22,6 +22,7 @@ pub mod sweep_table;
 pub mod sweep_verdicts;
 pub mod table;
 pub mod tables;
+pub mod transient_report;
 pub mod verdict_report;
 pub mod workday_report;
 

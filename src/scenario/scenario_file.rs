@@ -87,6 +87,9 @@ pub struct AnalysisOptions {
     /// `[analysis] bands = "octave" | "third-octave"`: report each output's band table
     /// ([`crate::comfort::output_band_table`]) and, in Monte Carlo runs, the band r.m.s. estimates.
     pub bands: Option<crate::comfort::BandFraction>,
+    /// `[analysis.mission]`: the duration and clearances of P(max |y| > b within T)
+    /// ([`super::transient_keys::mission`]).
+    pub mission: Option<super::transient_keys::MissionSpec>,
 }
 
 /// The random input of a scenario as written: the process, its unit and where it came from.
@@ -148,6 +151,9 @@ pub struct Scenario {
     /// The nonlinear elements (`[[model.nonlinear]]`, [`super::nonlinear_keys`]) on `model`, whose system is
     /// then their linear part; `None` for a linear scenario.
     pub nonlinear: Option<Arc<crate::nonlinear::NonlinearModel>>,
+    /// The non-stationary keys (`[input.speed_profile]`, `[input.envelope]`, `[transient]`,
+    /// [`super::transient_keys`]); `None` when the scenario has none.
+    pub transient: Option<Box<super::transient_keys::TransientSpec>>,
 }
 
 impl Scenario {
@@ -417,6 +423,7 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
     let title = f.opt_string("title")?.unwrap_or("").to_string();
     let source = f.opt_string("source")?.unwrap_or("").to_string();
     let several_inputs = matches!(root.get("input"), Some(toml::Value::Array(_)));
+    let mut speed_profile = None;
     let speed = match root.get("input").and_then(|v| v.as_table()) {
         Some(t) => {
             let inf = Fields::new(path, "input", t);
@@ -426,7 +433,8 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
             {
                 return Err(inf.error("speed", v, "must be > 0"));
             }
-            v
+            speed_profile = super::transient_keys::input_speed_profile(&inf)?;
+            v.or(speed_profile.as_ref().map(|p: &(_, f64)| p.1))
         }
         None => match root.get("input").and_then(|v| v.as_array()) {
             Some(tables) => super::inputs::common_speed(path, tables)?,
@@ -473,6 +481,7 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
     mf.finish()?;
     check_model(&f, &kind, &model, nonlinear.is_none())?;
     let catalogue = Catalogue::new(spectra_dir);
+    let mut envelope = None;
     let (inputs, excitation) = match root.get("input") {
         Some(toml::Value::Array(tables)) => {
             let _ = f.get("input");
@@ -489,6 +498,11 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
                 Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
             };
             let kurtosis = input_kurtosis(&inf)?;
+            let _ = inf.get("speed_profile");
+            envelope = match inf.get("envelope") {
+                None => None,
+                Some(_) => Some(super::transient_keys::envelope(&inf.sub("envelope")?)?),
+            };
             inf.finish()?;
             let excitation = build_excitation(&inf, &model.layout, sf.spectrum.clone(), speed, mean)?;
             let name = if sf.spectrum.domain() == Domain::Spatial {
@@ -537,6 +551,7 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
             opts
         }
     };
+    let transient = super::transient_keys::assemble(&f, speed_profile.map(|p| p.0), envelope)?;
     f.finish()?;
     let mut analysis = analysis;
     // every regime (contact, lift-off) is counted on an output: the outputs added for them are simulated
@@ -560,6 +575,7 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         excitation,
         analysis,
         nonlinear,
+        transient,
     })))
 }
 
@@ -844,6 +860,13 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
             effort
         }
     };
+    let mission = match f.get("mission") {
+        None => None,
+        Some(_) => Some(super::transient_keys::mission(
+            &f.sub("mission")?,
+            model.system.outputs(),
+        )?),
+    };
     let bands = match f.get("bands") {
         None => None,
         Some(v) => Some(match v.as_str() {
@@ -866,5 +889,6 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
         effort,
         verdicts: Default::default(),
         bands,
+        mission,
     })
 }

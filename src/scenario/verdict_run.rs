@@ -39,6 +39,15 @@ pub fn verdict_system(sc: &Scenario) -> Result<(StateSpace, Vec<usize>)> {
         .as_ref()
         .map(|c| c.axes.clone())
         .unwrap_or_default();
+    with_weighted_outputs(ss, &axes)
+}
+
+/// `ss` with the weighted outputs of `axes` appended (in axis order), and their output indices (the
+/// formula of [`verdict_system`]).
+///
+/// # Errors
+/// The errors of [`weighted_output`].
+pub fn with_weighted_outputs(ss: &StateSpace, axes: &[super::ComfortAxisSpec]) -> Result<(StateSpace, Vec<usize>)> {
     let parts: Vec<StateSpace> = axes
         .iter()
         .map(|a| weighted_output(ss, a.output, &a.weighting))

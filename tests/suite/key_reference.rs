@@ -66,8 +66,31 @@ gains = [1, 1]"#,
     all.push(("enveloped-road", body_on_two_tracks("") + ENVELOPED_ROAD));
     all.push(("enveloped-input", QUADRATIC_DAMPERS.to_string() + ENVELOPED_INPUT));
     all.push(("several-inputs", body_on_two_tracks("forces = [[1]]") + SEVERAL_INPUTS));
+    all.push(("transient-table", TRANSIENT_TABLE.to_string()));
     all
 }
+
+/// The transient keys no catalogue scenario reaches: a speed-profile table, an intensity envelope, a stated
+/// start and the route's tolerance.
+const TRANSIENT_TABLE: &str = r#"
+[model]
+kind = "transfer-function"
+numerator = [1.0]
+denominator = [4.0, 0.4, 1.0]
+output = { name = "y", unit = "m" }
+[input]
+spectrum = { kind = "exponential", domain = "spatial", variance = "1 cm^2", alpha = "0.2 1/m" }
+[input.speed_profile]
+times = ["0 s", "4 s"]
+speeds = ["10 m/s", "0 m/s"]
+[input.envelope]
+times = ["0 s", "1 s"]
+intensity = [0.0, 1.0]
+[transient]
+duration = "5 s"
+state = [0.01, 0.0]
+rel_tol = 1e-8
+"#;
 
 /// A body on a spring and damper over each of two tracks (mdof) with the `[model]` keys `model_keys`; more
 /// outputs, the inputs and the analysis follow.

@@ -72,6 +72,7 @@ mod sweep_stream;
 mod sweep_verdicts;
 mod transient_exact;
 mod transient_mc;
+mod transient_scenario;
 mod transient_schedule;
 mod two_tracks;
 mod two_tracks_mc;

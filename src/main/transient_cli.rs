@@ -1,0 +1,174 @@
+//! `stochvib transient SCENARIO [--monte-carlo N -o run.h5]` and the merge of transient shard files: parse
+//! the arguments, call the library, print.
+
+use std::path::{Path, PathBuf};
+use stochvib::report::transient_report::SigmaComparisons;
+use stochvib::scenario::transient_answers::answers;
+use stochvib::scenario::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
+use stochvib::scenario::transient_run::{exact_solution, transient_setup};
+use stochvib::scenario::{load_scenario, Catalogue};
+use stochvib::store::Compression;
+use stochvib::transient::monte_carlo::read_transient_run;
+use stochvib::transient::TransientRunSummary;
+
+/// False-alarm probability of the σ(t) verdict over all reported times together.
+pub const VERDICT_ALPHA: f64 = 1e-3;
+
+/// `stochvib transient`.
+#[derive(clap::Args)]
+pub struct TransientArgs {
+    /// Scenario file with a [transient] section (docs/transients.md).
+    scenario: PathBuf,
+    /// Monte Carlo realizations of the same transient (written to -o).
+    #[arg(long, value_name = "N", requires = "output")]
+    monte_carlo: Option<usize>,
+    /// The run file of --monte-carlo (written as FILE.tmp and renamed when complete; an interrupted run
+    /// resumes); with --shard, the run directory that receives DIR/shard-<I>-of-<N>.h5.
+    #[arg(short = 'o', long = "output", requires = "monte_carlo")]
+    output: Option<PathBuf>,
+    /// Master seed; realization i uses stream (seed, i).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Integration steps per reported interval of the Monte Carlo realizations.
+    #[arg(long, default_value_t = 4)]
+    substeps: usize,
+    /// Realizations per shard.
+    #[arg(long, default_value_t = 50)]
+    shard_size: usize,
+    /// Compute only shard I of N of the run (merge the files with `stochvib merge`).
+    #[arg(long, value_name = "I|auto", requires = "monte_carlo")]
+    shard: Option<String>,
+    /// N, the number of shards (with --shard).
+    #[arg(long, value_name = "N", requires = "shard")]
+    of: Option<usize>,
+    /// Store every realization at the reported times.
+    #[arg(long)]
+    store_raw: bool,
+    /// Confidence of the per-time intervals and of the DKW band of the maxima.
+    #[arg(long, default_value_t = 0.95)]
+    confidence: f64,
+    /// Replace an existing finished run file.
+    #[arg(long)]
+    overwrite: bool,
+    /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the built-in catalogue).
+    #[arg(long)]
+    spectra_dir: Option<PathBuf>,
+    /// Print JSON (every reported time).
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `stochvib transient`; `catalogue` resolves `--spectra-dir`, `progress` prints the shards.
+pub fn transient(
+    a: TransientArgs,
+    catalogue: &dyn Fn(&Option<PathBuf>) -> Catalogue,
+    progress: &dyn Fn(usize, usize),
+    shard_output: &dyn Fn(PathBuf, &Option<stochvib::simulate::ShardChoice>) -> anyhow::Result<PathBuf>,
+) -> anyhow::Result<()> {
+    let choice = match &a.shard {
+        Some(spec) => Some(stochvib::simulate::resolve_part(spec, a.of, &|k| {
+            std::env::var(k).ok()
+        })?),
+        None => None,
+    };
+    let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;
+    let setup = transient_setup(&sc)?;
+    let sol = exact_solution(&sc, &setup)?;
+    let r = answers(&sc, &setup, &sol);
+    let mc = match (a.monte_carlo, &a.output) {
+        (Some(n), Some(out)) => {
+            let out = shard_output(out.clone(), &choice)?;
+            let opts = TransientMcOptions {
+                realizations: n,
+                substeps: a.substeps,
+                seed: a.seed,
+                shard_size: a.shard_size,
+                confidence: a.confidence,
+                store_raw: a.store_raw,
+                compression: Compression::default(),
+                part: choice.as_ref().map(|c| c.part),
+                overwrite: a.overwrite,
+            };
+            let (summary, notes) = simulate_transient(&sc, &setup, &sol, &opts, &out, progress)?;
+            for n in notes {
+                eprintln!("note: {n}");
+            }
+            Some(summary)
+        }
+        _ => None,
+    };
+    let comparison = match &mc {
+        Some(s) => Some(SigmaComparisons(compare_sigma(
+            &read_transient_run(&s.path)?.1,
+            VERDICT_ALPHA,
+        )?)),
+        None => None,
+    };
+    if a.json {
+        let all = serde_json::json!({ "exact": r, "monte_carlo": mc, "sigma": comparison });
+        println!("{}", serde_json::to_string_pretty(&all)?);
+        return Ok(());
+    }
+    print!("{r}");
+    if let (Some(s), Some(c)) = (&mc, &comparison) {
+        print!("{c}");
+        print_summary(s);
+    }
+    Ok(())
+}
+
+/// The run file and the verdicts of the maxima against their DKW band.
+fn print_summary(s: &TransientRunSummary) {
+    println!(
+        "\nrun file {} ({} realizations, {} shards, {} resumed); DKW band ε = {:.4}",
+        s.path.display(),
+        s.n_realizations,
+        s.n_shards,
+        s.resumed_shards,
+        s.dkw_epsilon
+    );
+    for v in &s.verdicts {
+        for b in &v.verdicts {
+            println!(
+                "  {} {}: largest distance {:.4} at {:.4e} ({})",
+                v.output,
+                b.method,
+                b.distance,
+                b.at,
+                if b.inside {
+                    "inside the band"
+                } else {
+                    "OUTSIDE the band"
+                }
+            );
+        }
+    }
+    for n in &s.notes {
+        println!("note: {n}");
+    }
+}
+
+/// Merges transient shard files, if `inputs` hold them (None: not a transient run, merge as usual).
+pub fn merge_transient_if(
+    output: &Path,
+    inputs: &[PathBuf],
+    opts: &stochvib::simulate::MergeOptions,
+) -> anyhow::Result<Option<TransientRunSummary>> {
+    let (runs, _) = stochvib::store::find_run_files(inputs, &[output])?;
+    let Some(first) = runs
+        .iter()
+        .find(|r| r.extension().is_some_and(|e| e == "h5" || e == "hdf5"))
+    else {
+        return Ok(None);
+    };
+    let meta = stochvib::store::RunFile::open(first)?.metadata().clone();
+    if !stochvib::transient::monte_carlo::is_transient_run(&meta) {
+        return Ok(None);
+    }
+    Ok(Some(stochvib::transient::merge_transient(
+        output,
+        inputs,
+        opts,
+        &|_, _| {},
+    )?))
+}

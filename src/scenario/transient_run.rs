@@ -1,0 +1,279 @@
+//! A scenario's non-stationary analysis (`stochvib transient`): the scenario's system, input, speed
+//! profile, envelope and schedules as a [`TimeVaryingSystem`], the exact route on the reported times, the
+//! crossing rates, the running ISO 2631-1 weighted r.m.s. a_w(t) of the comfort axes, and the extremes of
+//! the mission (`docs/transients.md`).
+
+use super::transient_keys::{ScheduledKey, TransientSpec};
+use super::Scenario;
+use crate::error::{Error, Result};
+use crate::fields::Fields;
+use crate::models::InputLayout;
+use crate::system::StateSpace;
+use crate::transient::{
+    check_stability, input_model, solve, ExactOptions, FamilyBuilder, FixedSystem, Schedule, ScheduledSystem,
+    SpeedProfile, Start, SystemFamily, TimeVaryingSystem, TransientInput, TransientSolution,
+};
+use std::path::Path;
+use std::sync::Arc;
+
+/// Stored times of the exact route when `[transient] step` is absent: duration/400.
+pub const DEFAULT_INTERVALS: usize = 400;
+
+/// A scenario set up for the transient routes.
+#[derive(Debug, Clone)]
+pub struct TransientSetup {
+    /// The system (the model with the weighted outputs of `[analysis.comfort]` appended) and its input.
+    pub sys: TimeVaryingSystem,
+    /// The reported outputs (indices into the system's outputs): `[analysis] outputs`, then the weighted.
+    pub outputs: Vec<usize>,
+    /// Per comfort axis: (the acceleration output, its weighted output), indices into the system's outputs.
+    pub weighted: Vec<(usize, usize)>,
+    /// The start.
+    pub start: Start,
+    /// The reported (stored) times: 0, Δ, …, T.
+    pub times: Vec<f64>,
+    /// Error control of the exact route.
+    pub options: ExactOptions,
+    /// Time-invariant and started in its stationary state (Vanmarcke's stationary form applies).
+    pub stationary: bool,
+}
+
+/// The scenario's `[transient]` keys, or an error naming the missing duration.
+fn spec_of(sc: &Scenario) -> Result<(&TransientSpec, f64)> {
+    let missing = |why: &str| Error::File {
+        file: sc.path.clone(),
+        key: "transient.duration".into(),
+        value: "<missing>".into(),
+        reason: why.into(),
+    };
+    let spec = sc.transient.as_deref().ok_or_else(|| {
+        missing("a transient analysis needs a [transient] section with the duration of the time window, e.g. duration = \"20 s\"")
+    })?;
+    let d = spec
+        .duration
+        .ok_or_else(|| missing("the time window [0, duration] of the transient analysis, e.g. duration = \"20 s\""))?;
+    Ok((spec, d))
+}
+
+/// The reported times 0, Δ, …, T with Δ = `step` rounded to divide T (DEFAULT_INTERVALS without a step).
+pub fn report_times(duration: f64, step: Option<f64>) -> Vec<f64> {
+    let n = step.map_or(DEFAULT_INTERVALS, |s| ((duration / s).round() as usize).max(1));
+    (0..=n).map(|k| duration * k as f64 / n as f64).collect()
+}
+
+/// The gains of the one input process at the system inputs, or why the exact route cannot take the layout.
+fn gains(sc: &Scenario) -> Result<Vec<f64>> {
+    let refuse = |reason: String| Error::NotApplicable {
+        method: "transient analysis".into(),
+        reason,
+    };
+    if sc.inputs.len() != 1 {
+        return Err(refuse(
+            "several [[input]] sources: the transient routes take one random input ([input])".into(),
+        ));
+    }
+    match &sc.model.layout {
+        InputLayout::Single => Ok(vec![1.0]),
+        InputLayout::Track { positions, gains } if positions.iter().all(|p| *p == positions[0]) => Ok(gains.clone()),
+        InputLayout::Track { positions, .. } => Err(refuse(format!(
+            "the wheels are at different positions ({positions:?} m): under a varying speed their delays vary in \
+             time, which the exact route does not model; use a model with one contact point"
+        ))),
+        InputLayout::TwoTracks { .. } => Err(refuse(
+            "a road of two tracks: the transient routes take one track".into(),
+        )),
+    }
+}
+
+/// The speed profile of the input: `[input.speed_profile]`, else the constant `[input] speed`.
+fn speed_of(sc: &Scenario, spec: &TransientSpec) -> Result<Option<SpeedProfile>> {
+    match (&spec.speed_profile, sc.input.speed) {
+        (Some(v), _) => Ok(Some(v.clone())),
+        (None, Some(v)) => SpeedProfile::constant(v).map(Some),
+        (None, None) => Ok(None),
+    }
+}
+
+/// The comfort axes of `[analysis.comfort]`.
+fn axes(sc: &Scenario) -> Vec<super::ComfortAxisSpec> {
+    sc.analysis
+        .verdicts
+        .comfort
+        .as_ref()
+        .map(|c| c.axes.clone())
+        .unwrap_or_default()
+}
+
+/// What rebuilds the model at the scheduled values: the file, the kind, the speed, the `[model]` table.
+#[derive(Debug, Clone)]
+struct Rebuild {
+    path: std::path::PathBuf,
+    kind: String,
+    speed: Option<f64>,
+    table: toml::Table,
+    keys: Vec<ScheduledKey>,
+    axes: Vec<super::ComfortAxisSpec>,
+}
+
+/// The family of the scenario's system: fixed, or rebuilt from the `[model]` table with the scheduled keys
+/// substituted at every time.
+fn family(sc: &Scenario, spec: &TransientSpec) -> Result<(Arc<dyn SystemFamily>, Vec<usize>)> {
+    let ss = sc.model.system.state_space().ok_or_else(|| Error::NotApplicable {
+        method: "transient analysis".into(),
+        reason: "the model has no state-space form".into(),
+    })?;
+    let (ext, weighted) = super::verdict_run::with_weighted_outputs(ss, &axes(sc))?;
+    if spec.schedules.is_empty() {
+        let fixed = FixedSystem::new(ext, None, &sc.model.description)?;
+        return Ok((Arc::new(fixed), weighted));
+    }
+    let root = crate::fields::parse_toml(&sc.text, &sc.path)?;
+    let rebuild = Rebuild {
+        path: sc.path.clone(),
+        kind: sc.kind.clone(),
+        speed: sc.input.speed,
+        table: root
+            .get("model")
+            .and_then(|m| m.as_table())
+            .cloned()
+            .unwrap_or_default(),
+        keys: spec.schedules.clone(),
+        axes: axes(sc),
+    };
+    let build: Arc<FamilyBuilder> = Arc::new(move |values: &[f64]| {
+        let ss = rebuild.model_at(values)?;
+        Ok((super::verdict_run::with_weighted_outputs(&ss, &rebuild.axes)?.0, None))
+    });
+    let schedules = spec
+        .schedules
+        .iter()
+        .map(|s| Schedule {
+            name: format!("model.{}", s.key),
+            unit: "SI".into(),
+            profile: s.profile.clone(),
+        })
+        .collect();
+    let fam = ScheduledSystem::new(schedules, build, &sc.model.description);
+    Ok((Arc::new(fam), weighted))
+}
+
+impl Rebuild {
+    /// The model's state space with the scheduled keys set to `values` (SI).
+    fn model_at(&self, values: &[f64]) -> Result<StateSpace> {
+        let mut t = self.table.clone();
+        for (k, v) in self.keys.iter().zip(values) {
+            super::sweep::set_key(&mut t, &k.key, toml::Value::Float(*v))
+                .map_err(|why| file_error(&self.path, &format!("model.{}", k.key), v, &why))?;
+        }
+        let f = Fields::new(&self.path, "model", &t);
+        let ctx = super::ModelContext {
+            speed: self.speed,
+            several_inputs: false,
+        };
+        match super::build_model(&self.kind, &f, ctx)? {
+            super::BuiltModel::Stochastic(m) => m.system.state_space().cloned().ok_or_else(|| Error::NotApplicable {
+                method: "transient analysis".into(),
+                reason: "the scheduled model has no state-space form".into(),
+            }),
+            super::BuiltModel::Deterministic(_) => Err(file_error(
+                &self.path,
+                "model.kind",
+                &self.kind,
+                "a deterministic model has no random input",
+            )),
+        }
+    }
+}
+
+fn file_error(path: &Path, key: &str, value: impl std::fmt::Display, reason: &str) -> Error {
+    Error::File {
+        file: path.to_path_buf(),
+        key: key.into(),
+        value: value.to_string(),
+        reason: reason.into(),
+    }
+}
+
+/// The scenario set up for the transient routes.
+///
+/// # Errors
+/// A scenario without `[transient] duration`; nonlinear elements; several sources or wheels at different
+/// positions; an input without an exact route (the library's reason); a schedule under which the system
+/// is unstable at some time (file, key `transient.schedule`, the time and the eigenvalue).
+pub fn transient_setup(sc: &Scenario) -> Result<TransientSetup> {
+    let (spec, duration) = spec_of(sc)?;
+    if sc.nonlinear.is_some() {
+        return Err(Error::NotApplicable {
+            method: "transient analysis".into(),
+            reason: "the model has [[model.nonlinear]] elements: the transient routes are linear".into(),
+        });
+    }
+    let gains = gains(sc)?;
+    let (fam, weighted) = family(sc, spec)?;
+    let times = report_times(duration, spec.step);
+    let mut check: Vec<f64> = times.clone();
+    check.extend(fam.knots().into_iter().filter(|t| *t <= duration));
+    check_stability(fam.as_ref(), &check).map_err(|e| unstable(sc, spec, e))?;
+    let speed = speed_of(sc, spec)?;
+    let model = input_model(sc.input.spectrum.as_ref(), speed.as_ref())?;
+    let input = TransientInput {
+        model,
+        envelope: spec.envelope.clone(),
+        mean: sc.input.mean,
+        gains,
+    };
+    let sys = TimeVaryingSystem::new(fam, input)?;
+    let p = sc.model.system.outputs().len();
+    let weighted: Vec<(usize, usize)> = weighted
+        .iter()
+        .enumerate()
+        .map(|(j, &w)| (sc.analysis.verdicts.comfort.as_ref().map_or(0, |c| c.axes[j].output), w))
+        .collect();
+    let mut outputs: Vec<usize> = sc.analysis.outputs.iter().copied().filter(|i| *i < p).collect();
+    outputs.extend(weighted.iter().map(|w| w.1));
+    let stationary = sys.is_invariant() && spec.start == Start::Stationary;
+    Ok(TransientSetup {
+        sys,
+        outputs,
+        weighted,
+        start: spec.start.clone(),
+        times,
+        options: ExactOptions {
+            rel_tol: spec.rel_tol.unwrap_or(ExactOptions::default().rel_tol),
+            ..ExactOptions::default()
+        },
+        stationary,
+    })
+}
+
+/// An instability found on the schedule (or the fixed model) as a file error naming the time.
+fn unstable(sc: &Scenario, spec: &TransientSpec, e: Error) -> Error {
+    match e {
+        Error::InvalidParameter { name, value, reason } => {
+            let key = if spec.schedules.is_empty() {
+                "model"
+            } else {
+                "transient.schedule"
+            };
+            file_error(&sc.path, key, value, &format!("{name}: {reason}"))
+        }
+        other => other,
+    }
+}
+
+/// Solves the exact route of `setup` at its reported times.
+///
+/// # Errors
+/// The errors of [`solve`] (a stationary start of a system without a stationary state, a stated state of
+/// the wrong length).
+pub fn exact_solution(sc: &Scenario, setup: &TransientSetup) -> Result<TransientSolution> {
+    solve(&setup.sys, &setup.start, &setup.times, &setup.options).map_err(|e| match e {
+        Error::InvalidParameter { name, value, reason } if name == "state" => {
+            file_error(&sc.path, "transient.state", value, &reason)
+        }
+        Error::NotApplicable { method, reason } if method == "stationary start" => {
+            file_error(&sc.path, "transient.start", "stationary", &reason)
+        }
+        other => other,
+    })
+}
