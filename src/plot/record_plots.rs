@@ -170,7 +170,7 @@ pub fn range_histogram_chart(e: &FatigueEvaluation) -> LineChart {
         c.series.push(Series::line(
             "Dirlik's expected count (the record's Welch moments)",
             pts,
-        ));
+        ).analytic());
     }
     c.max_decades = Some(8.0);
     c

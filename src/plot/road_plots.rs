@@ -158,7 +158,7 @@ pub fn road_density_chart(report: &RoadReport, track: usize) -> Result<LineChart
             .collect();
         chart
             .series
-            .push(Series::dashed(format!("class limit {label}: {} m³ at n0, w = 2", num(g)), pts).with_color(7));
+            .push(Series::dashed(format!("class limit {label}: {} m³ at n0, w = 2", num(g)), pts).with_color(7).limit());
     }
     chart.legend = Legend::UpperRight;
     Ok(chart)
