@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the system libraries stochvib needs when they are missing (Debian/Ubuntu):
-#   libhdf5-dev + pkg-config (always), python3 + h5py (with --with-h5py, for the file-layout tests).
+#   libhdf5-dev + pkg-config (always), python3 + h5py (with --with-h5py, for the file-layout tests),
+#   chromium-headless-shell + poppler-utils + python3 html5lib (with --with-browser, for the test that opens
+#   the HTML report in a real browser, prints it to PDF and validates it: tests/suite/report_browser.rs).
 # Uses sudo only when not root. Does nothing when everything is present.
 set -euo pipefail
 SUDO=""
@@ -24,5 +26,21 @@ if [ "${1:-}" = "--with-h5py" ]; then
     python3 -m pip install --quiet h5py 2>/dev/null \
       || python3 -m pip install --quiet --break-system-packages h5py 2>/dev/null \
       || apt_install python3-h5py
+  fi
+fi
+if [ "${1:-}" = "--with-browser" ] || [ "${2:-}" = "--with-browser" ]; then
+  if ! command -v chromium-headless-shell >/dev/null 2>&1 || ! command -v pdftoppm >/dev/null 2>&1; then
+    echo "ensure-deps: installing chromium-headless-shell poppler-utils" >&2
+    apt_install chromium-headless-shell poppler-utils
+  fi
+  if ! command -v python3 >/dev/null 2>&1; then
+    echo "ensure-deps: installing python3" >&2
+    apt_install python3 python3-pip
+  fi
+  if ! python3 -c 'import html5lib' >/dev/null 2>&1; then
+    echo "ensure-deps: installing html5lib" >&2
+    python3 -m pip install --quiet html5lib 2>/dev/null \
+      || python3 -m pip install --quiet --break-system-packages html5lib 2>/dev/null \
+      || apt_install python3-html5lib
   fi
 fi
