@@ -5,8 +5,8 @@
 //! with the bundled DejaVu Sans font (`assets/DejaVuSans.ttf`, registered once with
 //! [`plotters::style::register_font`]), so no system font library (fontconfig, freetype) is needed.
 
-use crate::error::{Error, Result};
 use super::draw::{BarsWithRange, Draw};
+use crate::error::{Error, Result};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -157,8 +157,8 @@ impl Marker {
 }
 
 /// Where the legend box should go: the corner tried first. The legend is placed where it covers no data
-/// (the preferred corner, the other corners, the middles of the edges, in that order), and outside the
-/// plotting area, to its right, when every such place holds data ([`crate::plot::legend`]).
+/// (the preferred corner, the other corners, the middles of the edges, a grid, in that order), and outside
+/// the plotting area, below it, when every such place holds data ([`crate::plot::legend`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Legend {
     /// Upper right corner of the plotting area.

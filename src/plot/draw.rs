@@ -28,7 +28,10 @@ const X_AREA: u32 = 48;
 const Y_AREA: u32 = 80;
 
 /// The area below the title, inside the outer margin.
-fn titled<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, title: &str) -> std::result::Result<DrawingArea<DB, Shift>, String> {
+fn titled<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+) -> std::result::Result<DrawingArea<DB, Shift>, String> {
     root.fill(&WHITE).map_err(err)?;
     root.margin(12, 12, 12, 12).titled(title, TITLE_FONT).map_err(err)
 }
@@ -36,7 +39,10 @@ fn titled<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, title: &str) -> std
 /// A logarithmic axis over `r` with a tick at every decade (see [`log_ticks`]).
 fn log_axis(r: (f64, f64), pixels: u32) -> impl AsRangedCoord<Value = f64, CoordDescType: ValueFormatter<f64>> {
     let (labelled, minor) = log_ticks(r, pixels as f64);
-    (r.0..r.1).log_scale().with_key_points(labelled).with_light_points(minor)
+    (r.0..r.1)
+        .log_scale()
+        .with_key_points(labelled)
+        .with_light_points(minor)
 }
 
 impl Draw for Prepared {
@@ -107,7 +113,11 @@ fn marked(s: &Series) -> impl Iterator<Item = usize> + '_ {
         (_, Role::Data) => (n / 8).max(1),
         _ => 0,
     };
-    let offset = if step > 1 { (s.color.unwrap_or(0) * step / 5 + step / 2) % step } else { 0 };
+    let offset = if step > 1 {
+        (s.color.unwrap_or(0) * step / 5 + step / 2) % step
+    } else {
+        0
+    };
     (0..n).filter(move |i| step > 0 && i % step == offset)
 }
 
@@ -120,7 +130,9 @@ macro_rules! draw_series {
         let stroke = c.stroke_width(width(s));
         match s.style {
             LineStyle::Solid => {
-                $chart.$method(LineSeries::new(s.points.iter().cloned(), stroke)).map_err(err)?;
+                $chart
+                    .$method(LineSeries::new(s.points.iter().cloned(), stroke))
+                    .map_err(err)?;
             }
             LineStyle::Dashed => {
                 $chart
@@ -198,7 +210,10 @@ impl Geometry<'_> {
             l.occupied.polyline([a, b]);
             self.label_vline(&mut l, m, a.0, k);
         }
-        let y2 = p.secondary.iter().flat_map(|sa| sa.hlines.iter().map(|m| (m, self.map2)));
+        let y2 = p
+            .secondary
+            .iter()
+            .flat_map(|sa| sa.hlines.iter().map(|m| (m, self.map2)));
         for (m, map) in p.hlines.iter().map(|m| (m, self.map)).chain(y2) {
             let (a, b) = (map((p.x.0, m.at)), map((p.x.1, m.at)));
             l.occupied.polyline([a, b]);
@@ -260,9 +275,23 @@ impl Geometry<'_> {
         let y = self.plot.y0 + 3 + (k % 4) as i32 * (h + 3) + h;
         let rgb = if k == 0 { BLACK } else { RGBColor(70, 70, 70) };
         if px + 4 + w <= self.plot.x1 {
-            self.push_label(l, &m.label, (px + 4 + w, y), Pos::new(HPos::Right, VPos::Bottom), rgb, (w, h));
+            self.push_label(
+                l,
+                &m.label,
+                (px + 4 + w, y),
+                Pos::new(HPos::Right, VPos::Bottom),
+                rgb,
+                (w, h),
+            );
         } else {
-            self.push_label(l, &m.label, (px - 4, y), Pos::new(HPos::Right, VPos::Bottom), rgb, (w, h));
+            self.push_label(
+                l,
+                &m.label,
+                (px - 4, y),
+                Pos::new(HPos::Right, VPos::Bottom),
+                rgb,
+                (w, h),
+            );
         }
     }
 
@@ -319,6 +348,13 @@ fn measure<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>) -> impl Fn(&str) -
     }
 }
 
+/// The legend's place outside the plotting area `plot`: below the x axis label, at the bottom of `area`,
+/// aligned with the plot's left edge (or the area's right edge when it is wider than the plot).
+fn below<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, plot: PixelBox, size: (i32, i32)) -> (i32, i32) {
+    let (x, y) = area.get_pixel_range();
+    (plot.x0.min(x.end - size.0 - 2).max(x.start), y.end - size.1 - 2)
+}
+
 /// The legend's place: inside where the data are not, else `None` (the caller makes room outside).
 fn legend_place(entries: &[Entry], size: (i32, i32), l: &Layout, preferred: Legend) -> Option<Option<(i32, i32)>> {
     if entries.is_empty() {
@@ -348,7 +384,7 @@ where
             .x_label_area_size(X_AREA)
             .y_label_area_size(Y_AREA)
             .right_y_label_area_size(if p.secondary.is_some() { Y_AREA } else { 0 })
-            .margin_right(extra)
+            .margin_bottom(extra)
             .build_cartesian_2d(xr, yr)
             .map_err(err)
     };
@@ -358,19 +394,28 @@ where
         let map = |q: (f64, f64)| chart.backend_coord(&q);
         let map2 = |q: (f64, f64)| {
             let t = (q.1 - y2.0) / (y2.1 - y2.0);
-            (map((q.0, p.y.0)).0, plot.y1 - (t * (plot.y1 - plot.y0) as f64).round() as i32)
+            (
+                map((q.0, p.y.0)).0,
+                plot.y1 - (t * (plot.y1 - plot.y0) as f64).round() as i32,
+            )
         };
         let m = measure(area);
-        Geometry { plot, map: &map, map2: &map2, measure: &m }.layout(p)
+        Geometry {
+            plot,
+            map: &map,
+            map2: &map2,
+            measure: &m,
+        }
+        .layout(p)
     };
     let mut chart = build(0)?;
     let mut l = layout(&chart);
     let at = match legend_place(&entries, size, &l, p.legend) {
         Some(at) => at,
         None => {
-            chart = build(size.0 + 12)?;
+            chart = build(size.1 + 8)?;
             l = layout(&chart);
-            Some((area.get_pixel_range().0.end - size.0 - 2, l.plot.y0))
+            Some(below(area, l.plot, size))
         }
     };
     match (&p.secondary, p.y2) {
@@ -411,7 +456,15 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    let label = |log: bool, range: (f64, f64)| move |v: &f64| if log { log_tick_in(*v, range) } else { tick_in(*v, range) };
+    let label = |log: bool, range: (f64, f64)| {
+        move |v: &f64| {
+            if log {
+                log_tick_in(*v, range)
+            } else {
+                tick_in(*v, range)
+            }
+        }
+    };
     let (fx, fy) = (label(p.log_x, p.x), label(p.log_y, p.y));
     chart
         .configure_mesh()
@@ -429,14 +482,19 @@ where
     for r in &p.rects {
         let corners = [(r.0, p.y.0.max(0.0)), (r.1, r.2)];
         chart
-            .draw_series([Rectangle::new(corners, bar.mix(0.35).filled()), Rectangle::new(corners, bar.stroke_width(1))])
+            .draw_series([
+                Rectangle::new(corners, bar.mix(0.35).filled()),
+                Rectangle::new(corners, bar.stroke_width(1)),
+            ])
             .map_err(err)?;
     }
     for b in &p.bands {
         let mut poly = b.lower.clone();
         poly.extend(b.upper.iter().rev().cloned());
         let fill = colour(b.color.unwrap_or(0)).mix(BAND_OPACITY).filled();
-        chart.draw_series(std::iter::once(Polygon::new(poly, fill))).map_err(err)?;
+        chart
+            .draw_series(std::iter::once(Polygon::new(poly, fill)))
+            .map_err(err)?;
     }
     for s in ordered(&p.series) {
         draw_series!(chart, draw_series, s);
@@ -444,11 +502,15 @@ where
     for (k, m) in p.vlines.iter().enumerate() {
         let c = if k == 0 { BLACK } else { RGBColor(90, 90, 90) };
         let line = vec![(m.at, p.y.0), (m.at, p.y.1)];
-        chart.draw_series(DashedLineSeries::new(line, 6, 4, c.stroke_width(1))).map_err(err)?;
+        chart
+            .draw_series(DashedLineSeries::new(line, 6, 4, c.stroke_width(1)))
+            .map_err(err)?;
     }
     for m in &p.hlines {
         let line = vec![(p.x.0, m.at), (p.x.1, m.at)];
-        chart.draw_series(DashedLineSeries::new(line, 6, 4, BLACK.stroke_width(1))).map_err(err)?;
+        chart
+            .draw_series(DashedLineSeries::new(line, 6, 4, BLACK.stroke_width(1)))
+            .map_err(err)?;
     }
     Ok(())
 }
@@ -509,7 +571,7 @@ impl Draw for BarsWithRange<'_> {
             ChartBuilder::on(&area)
                 .x_label_area_size(X_AREA)
                 .y_label_area_size(Y_AREA)
-                .margin_right(extra)
+                .margin_bottom(extra)
                 .build_cartesian_2d((0..last).into_segmented(), y.0..y.1)
                 .map_err(err)
         };
@@ -519,9 +581,8 @@ impl Draw for BarsWithRange<'_> {
         let at = match legend_place(&entries, size, &self.layout(&chart), Legend::UpperLeft) {
             Some(at) => at,
             None => {
-                chart = build(size.0 + 12)?;
-                let top = plot_box(chart.plotting_area()).y0;
-                Some((area.get_pixel_range().0.end - size.0 - 2, top))
+                chart = build(size.1 + 8)?;
+                Some(below(&area, plot_box(chart.plotting_area()), size))
             }
         };
         self.draw_bars(&mut chart)?;
@@ -532,22 +593,25 @@ impl Draw for BarsWithRange<'_> {
     }
 }
 
-type BarCoord = Cartesian2d<plotters::coord::ranged1d::SegmentedCoord<plotters::coord::types::RangedCoordusize>, plotters::coord::types::RangedCoordf64>;
+type BarCoord = Cartesian2d<
+    plotters::coord::ranged1d::SegmentedCoord<plotters::coord::types::RangedCoordusize>,
+    plotters::coord::types::RangedCoordf64,
+>;
 
 impl BarsWithRange<'_> {
     fn layout<DB: DrawingBackend>(&self, chart: &ChartContext<DB, BarCoord>) -> Layout {
         let b = self.0;
         let mut occupied = Occupied::default();
-        for i in 0..b.values.len() {
+        for (i, (&v, limit)) in b.values.iter().zip(&b.limits).enumerate() {
             let p0 = chart.backend_coord(&(SegmentValue::Exact(i), 0.0));
-            let p1 = chart.backend_coord(&(SegmentValue::Exact(i + 1), b.values[i]));
+            let p1 = chart.backend_coord(&(SegmentValue::Exact(i + 1), v));
             occupied.boxes.push(PixelBox {
                 x0: p0.0.min(p1.0),
                 y0: p0.1.min(p1.1),
                 x1: p0.0.max(p1.0),
                 y1: p0.1.max(p1.1),
             });
-            if let Some(l) = b.limits[i] {
+            if let Some(l) = *limit {
                 let a = chart.backend_coord(&(SegmentValue::Exact(i), l));
                 let c = chart.backend_coord(&(SegmentValue::Exact(i + 1), l));
                 occupied.polyline([(a.0, a.1 - 2), (c.0, c.1 - 2), (c.0, c.1 + 2), (a.0, a.1 + 2)]);

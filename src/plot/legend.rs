@@ -2,8 +2,8 @@
 //! markers, line labels) are collected first, then the legend box goes into the first place among the
 //! preferred corner, the other three corners, the middles of the top and bottom edges, then every place of
 //! a 12-pixel grid over the plotting area (the nearest to the preferred corner first) that touches none of
-//! them; when every place touches data, the chart is drawn narrower and the legend goes outside, to the
-//! right of the plotting area.
+//! them; when every place touches data, the chart is drawn shorter and the legend goes outside, below the
+//! x axis label.
 
 use super::chart::Legend;
 use super::style::{colour, shape, LABEL_FONT};
@@ -146,7 +146,11 @@ impl Occupied {
 pub fn size<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, entries: &[Entry]) -> Result<(i32, i32), String> {
     let mut w = 0;
     for e in entries {
-        w = w.max(area.estimate_text_size(&e.label, &TextStyle::from(LABEL_FONT.into_font())).map_err(|e| e.to_string())?.0 as i32);
+        w = w.max(
+            area.estimate_text_size(&e.label, &TextStyle::from(LABEL_FONT.into_font()))
+                .map_err(|e| e.to_string())?
+                .0 as i32,
+        );
     }
     Ok((PAD + SAMPLE_W + GAP + w + PAD, 2 * PAD + ROW * entries.len() as i32))
 }
@@ -168,8 +172,15 @@ pub fn place(plot: PixelBox, size: (i32, i32), occupied: &Occupied, preferred: L
         Legend::LowerRight => (right, bottom),
         _ => (right, top),
     };
-    let (mid_x, mid_y) = ((left + right) / 2, (top + bottom) / 2);
-    let named = [(right, top), (left, top), (right, bottom), (left, bottom), (mid_x, top), (mid_x, bottom)];
+    let mid_x = (left + right) / 2;
+    let named = [
+        (right, top),
+        (left, top),
+        (right, bottom),
+        (left, bottom),
+        (mid_x, top),
+        (mid_x, bottom),
+    ];
     // then every place of a grid, the nearest to the preferred corner first
     let mut grid: Vec<(i32, i32)> = (left..=right)
         .step_by(GRID)
@@ -203,8 +214,12 @@ pub fn draw<DB: DrawingBackend>(
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let corner = (at.0 + size.0, at.1 + size.1);
     root.draw(&Rectangle::new([at, corner], WHITE.filled())).map_err(err)?;
-    root.draw(&Rectangle::new([at, corner], BORDER.stroke_width(1))).map_err(err)?;
-    let text = LABEL_FONT.into_font().color(&BLACK).pos(Pos::new(HPos::Left, VPos::Center));
+    root.draw(&Rectangle::new([at, corner], BORDER.stroke_width(1)))
+        .map_err(err)?;
+    let text = LABEL_FONT
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Left, VPos::Center));
     for (i, e) in entries.iter().enumerate() {
         let y = at.1 + PAD + ROW * i as i32 + ROW / 2;
         let x = at.0 + PAD;
@@ -238,18 +253,23 @@ fn draw_sample<DB: DrawingBackend>(
             }
             if let Some(s) = marker {
                 root.draw(&Polygon::new(
-                    shape(s, MARKER_R).into_iter().map(|(dx, dy)| (x + SAMPLE_W / 2 + dx, y + dy)).collect::<Vec<_>>(),
+                    shape(s, MARKER_R)
+                        .into_iter()
+                        .map(|(dx, dy)| (x + SAMPLE_W / 2 + dx, y + dy))
+                        .collect::<Vec<_>>(),
                     c.filled(),
                 ))?;
             }
             Ok(())
         }
-        Sample::Fill { rgb, opacity } => {
-            root.draw(&Rectangle::new([(x, y - 6), (x + SAMPLE_W, y + 6)], rgb.mix(opacity).filled()))
-        }
-        Sample::Stroke { width } => {
-            root.draw(&PathElement::new(vec![(x, y), (x + SAMPLE_W, y)], BLACK.stroke_width(width)))
-        }
+        Sample::Fill { rgb, opacity } => root.draw(&Rectangle::new(
+            [(x, y - 6), (x + SAMPLE_W, y + 6)],
+            rgb.mix(opacity).filled(),
+        )),
+        Sample::Stroke { width } => root.draw(&PathElement::new(
+            vec![(x, y), (x + SAMPLE_W, y)],
+            BLACK.stroke_width(width),
+        )),
     }
 }
 
@@ -285,7 +305,12 @@ mod tests {
         let at = place(plot, (100, 50), &occ, Legend::UpperRight).unwrap();
         assert_eq!(at, (292, 242));
         // data everywhere: no place inside
-        occ.boxes.push(PixelBox { x0: 0, y0: 0, x1: 400, y1: 300 });
+        occ.boxes.push(PixelBox {
+            x0: 0,
+            y0: 0,
+            x1: 400,
+            y1: 300,
+        });
         assert_eq!(place(plot, (100, 50), &occ, Legend::UpperRight), None);
     }
 }

@@ -85,7 +85,11 @@ pub fn log_ticks(range: (f64, f64), pixels: f64) -> (Vec<f64>, Vec<f64>) {
     };
     let decades = multiples(&[1.0]);
     let all: Vec<f64> = (1..10).map(f64::from).collect();
-    let minor = if decades.len() <= 7 { multiples(&all) } else { decades.clone() };
+    let minor = if decades.len() <= 7 {
+        multiples(&all)
+    } else {
+        decades.clone()
+    };
     if decades.len() >= 3 {
         let fit = (pixels / MIN_LABEL_GAP).floor().max(2.0) as usize;
         let stride = decades.len().div_ceil(fit).max(1) as i32;
@@ -97,7 +101,11 @@ pub fn log_ticks(range: (f64, f64), pixels: f64) -> (Vec<f64>, Vec<f64>) {
         return (labelled, minor);
     }
     let one_two_five = multiples(&[1.0, 2.0, 5.0]);
-    let labelled = if one_two_five.len() >= 3 { one_two_five } else { multiples(&all) };
+    let labelled = if one_two_five.len() >= 3 {
+        one_two_five
+    } else {
+        multiples(&all)
+    };
     (labelled, minor)
 }
 
