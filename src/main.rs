@@ -718,13 +718,20 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             spectra,
         } => {
             let catalogue = spectra.catalogue();
-            let is_run = |p: &Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("h5") || e.eq_ignore_ascii_case("hdf5"));
+            let is_run = |p: &Path| {
+                p.extension()
+                    .is_some_and(|e| e.eq_ignore_ascii_case("h5") || e.eq_ignore_ascii_case("hdf5"))
+            };
             // every checksum first, in a child process, as `plot` and `inspect`: a damaged file is an error
             for r in run.iter().chain(Some(&scenario).filter(|p| is_run(p))) {
                 check_in_child(r, true)?;
             }
             let written = if is_run(&scenario) {
-                anyhow::ensure!(run.is_none(), "--run: {} is already a run file; give a scenario file and --run RUN.h5, or the run file alone", scenario.display());
+                anyhow::ensure!(
+                    run.is_none(),
+                    "--run: {} is already a run file; give a scenario file and --run RUN.h5, or the run file alone",
+                    scenario.display()
+                );
                 report::run_handover::write_run_handover(&scenario, &output, format, overwrite, catalogue.dir())?
             } else {
                 let doc = load_document(&scenario, catalogue.dir())?;

@@ -8,7 +8,9 @@
 //! interval covers it, the coverage count, the density estimates and rainflow histograms (the tables of
 //! `stochvib inspect --format markdown`), and the pictures of `stochvib plot RUN.h5`.
 
-use super::handover::{fence_for, mark, pictures_markdown, provenance, results_section, write_document, HandoverFormat};
+use super::handover::{
+    fence_for, mark, pictures_markdown, provenance, results_section, write_document, HandoverFormat,
+};
 use super::table::facts;
 use crate::error::Result;
 use crate::store::RunFile;
@@ -48,10 +50,7 @@ pub fn run_handover_markdown(run: &Path, spectra_dir: &Path, dir: &Path, link: &
     let f = fence_for(&text);
     let mut s = format!("{}# Monte Carlo run: {title}\n\n", mark());
     s += &format!("## Provenance\n\n{}\n", provenance(&[run.to_path_buf()])?);
-    s += &format!(
-        "## Scenario stored in the run\n\n{f}toml\n{}\n{f}\n\n",
-        text.trim_end()
-    );
+    s += &format!("## Scenario stored in the run\n\n{f}toml\n{}\n{f}\n\n", text.trim_end());
     drop(file);
     s += &run_section(run, None, spectra_dir, dir, link)?;
     Ok(s)
@@ -76,9 +75,16 @@ pub fn run_section(
         ("run file", format!("`{}`", run.display())),
         (
             "written by",
-            format!("stochvib {} (run file format {})", file.toolkit_version(), file.format_version()),
+            format!(
+                "stochvib {} (run file format {})",
+                file.toolkit_version(),
+                file.format_version()
+            ),
         ),
-        ("metadata digest (CRC-32 of the canonical metadata)", format!("{:08x}", m.digest())),
+        (
+            "metadata digest (CRC-32 of the canonical metadata)",
+            format!("{:08x}", m.digest()),
+        ),
         (
             "stored checksums verified",
             format!("{} of {}, all match", checked.checked, checked.checked),
@@ -96,8 +102,11 @@ pub fn run_section(
     identity.push(("coverage", coverage(&file)?));
     drop(file);
     let tables = results_section(&super::inspect_markdown(run)?).replacen("## Results", "", 1);
-    let pictures = pictures_markdown(&crate::plot::run_plots(run, dir, spectra_dir)?, link)
-        .replacen("## Pictures", "## Pictures of the run", 1);
+    let pictures = pictures_markdown(&crate::plot::run_plots(run, dir, spectra_dir)?, link).replacen(
+        "## Pictures",
+        "## Pictures of the run",
+        1,
+    );
     Ok(format!("## Monte Carlo run\n\n{}{tables}{pictures}", facts(&identity)))
 }
 
