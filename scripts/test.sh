@@ -14,7 +14,7 @@
 # A cluster that starts and a test that then fails always fails the suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/ensure-deps.sh --with-h5py
+bash scripts/ensure-deps.sh --with-h5py --with-browser
 cargo test --locked "$@"
 # the comparison harnesses (Rust and numpy/scipy/h5py sides) once at tiny sizes, ~1 min: a change that breaks
 # one of them, or a row of benches/RESULTS.md's table, fails here (STOCHVIB_SKIP_COMPARE=1 skips it)

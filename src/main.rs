@@ -322,10 +322,14 @@ enum Command {
     },
     /// Write one report of a scenario to hand over (docs/report.md): provenance, the scenario file as written,
     /// the model and its poles, every output's statistics and variance methods, the verdicts and the
-    /// pictures; a self-contained HTML file (inline SVG and CSS), or markdown with the pictures beside it.
+    /// pictures; a self-contained HTML file (inline SVG and CSS), or markdown with the pictures beside it. Of a
+    /// Monte Carlo run file (RUN.h5), or with --run: the run's statistics, intervals, coverage and pictures.
     Report {
-        /// Scenario file (TOML, see data/).
+        /// Scenario file (TOML, see data/) or Monte Carlo run file (.h5).
         scenario: PathBuf,
+        /// A Monte Carlo run of the scenario (RUN.h5): its section follows the scenario's.
+        #[arg(long)]
+        run: Option<PathBuf>,
         /// Output file (written under a temporary name and renamed when complete).
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
@@ -600,13 +604,33 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         cmd @ Command::Analyze { .. } => analyze_command(cmd)?,
         Command::Report {
             scenario,
+            run,
             output,
             format,
             overwrite,
             spectra,
         } => {
-            let doc = load_document(&scenario, spectra.catalogue().dir())?;
-            let written = report::handover::write_handover(&doc, &scenario, &output, format, overwrite)?;
+            let catalogue = spectra.catalogue();
+            let is_run = |p: &Path| {
+                p.extension()
+                    .is_some_and(|e| e.eq_ignore_ascii_case("h5") || e.eq_ignore_ascii_case("hdf5"))
+            };
+            // every checksum first, in a child process, as `plot` and `inspect`: a damaged file is an error
+            for r in run.iter().chain(Some(&scenario).filter(|p| is_run(p))) {
+                check_in_child(r, true)?;
+            }
+            let written = if is_run(&scenario) {
+                anyhow::ensure!(
+                    run.is_none(),
+                    "--run: {} is already a run file; give a scenario file and --run RUN.h5, or the run file alone",
+                    scenario.display()
+                );
+                report::run_handover::write_run_handover(&scenario, &output, format, overwrite, catalogue.dir())?
+            } else {
+                let doc = load_document(&scenario, catalogue.dir())?;
+                let run = run.as_deref().map(|r| (r, catalogue.dir()));
+                report::handover::write_handover(&doc, &scenario, &output, format, overwrite, run)?
+            };
             eprintln!("wrote {}", written.display());
         }
         cmd @ Command::Plot { .. } => plot_command(cmd)?,

@@ -5,9 +5,8 @@
 //! with the bundled DejaVu Sans font (`assets/DejaVuSans.ttf`, registered once with
 //! [`plotters::style::register_font`]), so no system font library (fontconfig, freetype) is needed.
 
+use super::draw::{BarsWithRange, Draw};
 use crate::error::{Error, Result};
-use plotters::coord::ranged1d::{AsRangedCoord, SegmentValue, ValueFormatter};
-use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -42,22 +41,6 @@ fn plot_error(what: &str, reason: impl Into<String>) -> Error {
     }
 }
 
-/// Colours used for series by index (the "tab10" palette).
-const PALETTE: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-];
-
-fn colour(i: usize) -> RGBColor {
-    PALETTE[i % PALETTE.len()]
-}
-
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LineStyle {
@@ -67,6 +50,20 @@ pub enum LineStyle {
     Dashed,
     /// One filled circle per point, no line.
     Markers,
+}
+
+/// What a series is, which decides its drawing order and look.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Role {
+    /// A computed or measured curve (an estimate, a simulation, a fit): drawn over the analytic curves, in
+    /// its palette colour with its marker shape every few points.
+    #[default]
+    Data,
+    /// An analytic (exact, model) curve: drawn first, behind the data, wider, without markers.
+    Analytic,
+    /// A limit or threshold (a class limit, a boundary): thin, labelled on the line at its right end
+    /// instead of in the legend.
+    Limit,
 }
 
 /// One named series of (x, y) points.
@@ -80,6 +77,8 @@ pub struct Series {
     pub style: LineStyle,
     /// Palette index; `None` uses the series' position in the chart.
     pub color: Option<usize>,
+    /// Data, analytic curve or limit.
+    pub role: Role,
 }
 
 impl Series {
@@ -90,6 +89,7 @@ impl Series {
             points,
             style: LineStyle::Solid,
             color: None,
+            role: Role::Data,
         }
     }
     /// A dashed line.
@@ -105,6 +105,16 @@ impl Series {
             style: LineStyle::Markers,
             ..Series::line(name, points)
         }
+    }
+    /// Marks the series as an analytic curve (drawn behind the data).
+    pub fn analytic(mut self) -> Self {
+        self.role = Role::Analytic;
+        self
+    }
+    /// Marks the series as a limit line (labelled on the line, not in the legend).
+    pub fn limit(mut self) -> Self {
+        self.role = Role::Limit;
+        self
     }
     /// Sets the palette index of the colour.
     pub fn with_color(mut self, index: usize) -> Self {
@@ -146,7 +156,9 @@ impl Marker {
     }
 }
 
-/// Where the legend box goes.
+/// Where the legend box should go: the corner tried first. The legend is placed where it covers no data
+/// (the preferred corner, the other corners, the middles of the edges, a grid, in that order), and outside
+/// the plotting area, below it, when every such place holds data ([`crate::plot::legend`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Legend {
     /// Upper right corner of the plotting area.
@@ -600,22 +612,22 @@ impl BarChart {
 }
 
 /// Everything needed to draw a line chart or histogram, after filtering and range finding.
-struct Prepared {
-    title: String,
-    x_label: String,
-    y_label: String,
-    log_x: bool,
-    log_y: bool,
-    x: (f64, f64),
-    y: (f64, f64),
-    series: Vec<Series>,
-    bands: Vec<Band>,
-    rects: Vec<(f64, f64, f64)>,
-    vlines: Vec<Marker>,
-    hlines: Vec<Marker>,
-    secondary: Option<SecondaryAxis>,
-    y2: Option<(f64, f64)>,
-    legend: Legend,
+pub(super) struct Prepared {
+    pub(super) title: String,
+    pub(super) x_label: String,
+    pub(super) y_label: String,
+    pub(super) log_x: bool,
+    pub(super) log_y: bool,
+    pub(super) x: (f64, f64),
+    pub(super) y: (f64, f64),
+    pub(super) series: Vec<Series>,
+    pub(super) bands: Vec<Band>,
+    pub(super) rects: Vec<(f64, f64, f64)>,
+    pub(super) vlines: Vec<Marker>,
+    pub(super) hlines: Vec<Marker>,
+    pub(super) secondary: Option<SecondaryAxis>,
+    pub(super) y2: Option<(f64, f64)>,
+    pub(super) legend: Legend,
 }
 
 fn filter_points(points: &[(f64, f64)], log_x: bool, log_y: bool) -> (Vec<(f64, f64)>, usize) {
@@ -693,48 +705,6 @@ fn padded_range(values: &[f64], log: bool) -> (f64, f64) {
         (lo - d, hi + d)
     }
 }
-
-/// Tick label on an axis spanning `range`: a value within 1e-9 of the axis' magnitude of zero is rounding
-/// noise of the tick placement (e.g. `-2.7e-20` on a 1e-3 axis) and is labelled `0`.
-fn tick_in(v: f64, range: (f64, f64)) -> String {
-    if v.abs() <= 1e-9 * range.0.abs().max(range.1.abs()) {
-        return "0".into();
-    }
-    tick(v)
-}
-
-/// Tick label: up to 4 significant digits, plain in [1e-3, 1e5), otherwise `1.5e-6`.
-fn tick(v: f64) -> String {
-    if v == 0.0 {
-        return "0".into();
-    }
-    let a = v.abs();
-    if (1e-3..1e5).contains(&a) {
-        let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
-        let s = format!("{v:.decimals$}");
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
-    } else {
-        let s = format!("{v:.2e}");
-        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
-        let m = if m.contains('.') {
-            m.trim_end_matches('0').trim_end_matches('.')
-        } else {
-            m
-        };
-        format!("{m}e{e}")
-    }
-}
-
-/// Something that draws itself on any plotters back end.
-trait Draw {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> std::result::Result<(), String>;
-}
-
-struct BarsWithRange<'a>(&'a BarChart, (f64, f64));
 
 /// Renders with both back ends; a panic inside plotters is turned into an error.
 fn render_both<T: Draw>(dir: &Path, stem: &str, item: &T) -> Result<Vec<PathBuf>> {
@@ -815,313 +785,6 @@ pub fn picture_dir(dir: &Path) -> Result<()> {
         path: dir.to_path_buf(),
         source,
     })
-}
-
-fn legend_position(l: Legend) -> Option<SeriesLabelPosition> {
-    match l {
-        Legend::UpperRight => Some(SeriesLabelPosition::UpperRight),
-        Legend::UpperLeft => Some(SeriesLabelPosition::UpperLeft),
-        Legend::LowerLeft => Some(SeriesLabelPosition::LowerLeft),
-        Legend::LowerRight => Some(SeriesLabelPosition::LowerRight),
-        Legend::Hidden => None,
-    }
-}
-
-fn err<E: std::fmt::Display>(e: E) -> String {
-    e.to_string()
-}
-
-const TITLE_FONT: (&str, u32) = ("sans-serif", 18);
-const DESC_FONT: (&str, u32) = ("sans-serif", 15);
-const LABEL_FONT: (&str, u32) = ("sans-serif", 12);
-
-/// Draws one series on a chart context through `$method` (`draw_series` or `draw_secondary_series`).
-macro_rules! draw_series {
-    ($chart:expr_2021, $method:ident, $s:expr_2021) => {{
-        let s: &Series = $s;
-        let c = colour(s.color.unwrap_or(0));
-        let anno = match s.style {
-            LineStyle::Solid => $chart
-                .$method(LineSeries::new(s.points.iter().cloned(), c.stroke_width(2)))
-                .map_err(err)?,
-            LineStyle::Dashed => $chart
-                .$method(DashedLineSeries::new(s.points.iter().cloned(), 8, 5, c.stroke_width(2)))
-                .map_err(err)?,
-            LineStyle::Markers => $chart
-                .$method(s.points.iter().map(|p| Circle::new(*p, 3, c.filled())))
-                .map_err(err)?,
-        };
-        if !s.name.is_empty() {
-            let style = s.style;
-            let markers = style == LineStyle::Markers;
-            anno.label(s.name.clone()).legend(move |(x, y)| {
-                let path = if markers { vec![] } else { vec![(0, 0), (20, 0)] };
-                let dot = if markers { c.filled() } else { c.mix(0.0).filled() };
-                EmptyElement::at((x, y)) + Circle::new((10, 0), 3, dot) + PathElement::new(path, c.stroke_width(2))
-            });
-        }
-    }};
-}
-
-impl Draw for Prepared {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> std::result::Result<(), String> {
-        root.fill(&WHITE).map_err(err)?;
-        let (x, y) = (self.x.0..self.x.1, self.y.0..self.y.1);
-        match (self.log_x, self.log_y) {
-            (false, false) => draw_lines(root, self, x, y),
-            (true, false) => draw_lines(root, self, x.log_scale(), y),
-            (false, true) => draw_lines(root, self, x, y.log_scale()),
-            (true, true) => draw_lines(root, self, x.log_scale(), y.log_scale()),
-        }
-    }
-}
-
-fn draw_lines<DB, X, Y>(root: &DrawingArea<DB, Shift>, p: &Prepared, xr: X, yr: Y) -> std::result::Result<(), String>
-where
-    DB: DrawingBackend,
-    X: AsRangedCoord<Value = f64> + Clone,
-    Y: AsRangedCoord<Value = f64>,
-    X::CoordDescType: ValueFormatter<f64>,
-    Y::CoordDescType: ValueFormatter<f64>,
-{
-    let mut chart = ChartBuilder::on(root)
-        .caption(&p.title, TITLE_FONT)
-        .margin(12)
-        .x_label_area_size(48)
-        .y_label_area_size(80)
-        .right_y_label_area_size(if p.secondary.is_some() { 80 } else { 0 })
-        .build_cartesian_2d(xr.clone(), yr)
-        .map_err(err)?;
-    match (&p.secondary, p.y2) {
-        (Some(sa), Some(y2)) => {
-            // the secondary coordinates must be set before the primary mesh is drawn, or the primary labels
-            // are drawn on the right-hand axis too
-            let mut dc = chart.set_secondary_coord(xr, y2.0..y2.1);
-            draw_primary(&mut dc, p)?;
-            dc.configure_secondary_axes()
-                .y_desc(sa.y_label.as_str())
-                .y_label_formatter(&|v| tick_in(*v, y2))
-                .axis_desc_style(DESC_FONT)
-                .label_style(LABEL_FONT)
-                .draw()
-                .map_err(err)?;
-            for s in &sa.series {
-                draw_series!(dc, draw_secondary_series, s);
-            }
-            for m in &sa.hlines {
-                let c = RGBColor(90, 90, 90);
-                let anno = dc
-                    .draw_secondary_series(DashedLineSeries::new(
-                        vec![(p.x.0, m.at), (p.x.1, m.at)],
-                        3,
-                        3,
-                        c.stroke_width(1),
-                    ))
-                    .map_err(err)?;
-                if !m.label.is_empty() {
-                    anno.label(m.label.clone())
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(1)));
-                }
-            }
-            if let Some(pos) = legend_position(p.legend) {
-                dc.configure_series_labels()
-                    .position(pos)
-                    .background_style(WHITE.mix(0.85))
-                    .border_style(BLACK)
-                    .label_font(LABEL_FONT)
-                    .draw()
-                    .map_err(err)?;
-            }
-        }
-        _ => {
-            draw_primary(&mut chart, p)?;
-            if let Some(pos) = legend_position(p.legend) {
-                chart
-                    .configure_series_labels()
-                    .position(pos)
-                    .background_style(WHITE.mix(0.85))
-                    .border_style(BLACK)
-                    .label_font(LABEL_FONT)
-                    .draw()
-                    .map_err(err)?;
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Mesh, bars, bands, series and marker lines against the primary axes.
-fn draw_primary<'a, DB, X, Y>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    p: &Prepared,
-) -> std::result::Result<(), String>
-where
-    DB: DrawingBackend + 'a,
-    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
-{
-    chart
-        .configure_mesh()
-        .x_desc(p.x_label.as_str())
-        .y_desc(p.y_label.as_str())
-        .x_label_formatter(&|v| tick_in(*v, p.x))
-        .y_label_formatter(&|v| tick_in(*v, p.y))
-        .axis_desc_style(DESC_FONT)
-        .label_style(LABEL_FONT)
-        .light_line_style(RGBColor(235, 235, 235))
-        .bold_line_style(RGBColor(200, 200, 200))
-        .draw()
-        .map_err(err)?;
-    for r in &p.rects {
-        chart
-            .draw_series(std::iter::once(Rectangle::new(
-                [(r.0, p.y.0.max(0.0)), (r.1, r.2)],
-                colour(0).mix(0.45).filled(),
-            )))
-            .map_err(err)?;
-        chart
-            .draw_series(std::iter::once(Rectangle::new(
-                [(r.0, p.y.0.max(0.0)), (r.1, r.2)],
-                colour(0).stroke_width(1),
-            )))
-            .map_err(err)?;
-    }
-    for b in &p.bands {
-        let c = colour(b.color.unwrap_or(0));
-        let mut poly = b.lower.clone();
-        poly.extend(b.upper.iter().rev().cloned());
-        let anno = chart
-            .draw_series(std::iter::once(Polygon::new(poly, c.mix(0.22).filled())))
-            .map_err(err)?;
-        if !b.name.is_empty() {
-            anno.label(b.name.clone())
-                .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], c.mix(0.22).filled()));
-        }
-    }
-    for s in &p.series {
-        draw_series!(chart, draw_series, s);
-    }
-    for (k, m) in p.vlines.iter().enumerate() {
-        let c = if k == 0 { BLACK } else { RGBColor(90, 90, 90) };
-        let anno = chart
-            .draw_series(DashedLineSeries::new(
-                vec![(m.at, p.y.0), (m.at, p.y.1)],
-                6,
-                4,
-                c.stroke_width(1),
-            ))
-            .map_err(err)?;
-        if !m.label.is_empty() {
-            anno.label(m.label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(1)));
-        }
-    }
-    for m in &p.hlines {
-        let anno = chart
-            .draw_series(DashedLineSeries::new(
-                vec![(p.x.0, m.at), (p.x.1, m.at)],
-                6,
-                4,
-                BLACK.stroke_width(1),
-            ))
-            .map_err(err)?;
-        if !m.label.is_empty() {
-            anno.label(m.label.clone())
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(1)));
-        }
-    }
-    Ok(())
-}
-
-impl Draw for BarsWithRange<'_> {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> std::result::Result<(), String> {
-        let (b, y) = (self.0, self.1);
-        root.fill(&WHITE).map_err(err)?;
-        let n = b.categories.len();
-        // plotters' segmented 0..k has k + 1 segments (the end is inclusive); one category keeps 0..1
-        let last = if n >= 2 { n - 1 } else { n };
-        let mut chart = ChartBuilder::on(root)
-            .caption(&b.title, TITLE_FONT)
-            .margin(12)
-            .x_label_area_size(48)
-            .y_label_area_size(80)
-            .build_cartesian_2d((0..last).into_segmented(), y.0..y.1)
-            .map_err(err)?;
-        let cats = &b.categories;
-        chart
-            .configure_mesh()
-            .disable_x_mesh()
-            .x_labels(n + 1)
-            .x_desc(b.x_label.as_str())
-            .y_desc(b.y_label.as_str())
-            .x_label_formatter(&|v| match v {
-                SegmentValue::CenterOf(i) => cats.get(*i).cloned().unwrap_or_default(),
-                _ => String::new(),
-            })
-            .y_label_formatter(&|v| tick_in(*v, y))
-            .axis_desc_style(DESC_FONT)
-            .label_style(LABEL_FONT)
-            .light_line_style(RGBColor(235, 235, 235))
-            .draw()
-            .map_err(err)?;
-        let pass = RGBColor(44, 160, 44);
-        let fail = RGBColor(214, 39, 40);
-        let none = colour(0);
-        type Member = Box<dyn Fn(f64, Option<f64>) -> bool>;
-        let groups: [(&str, RGBColor, Member); 3] = [
-            ("within limit", pass, Box::new(|v, l| l.is_some_and(|l| v <= l))),
-            ("over limit", fail, Box::new(|v, l| l.is_some_and(|l| v > l))),
-            ("no limit", none, Box::new(|_, l| l.is_none())),
-        ];
-        for (name, c, member) in groups.iter() {
-            let bars: Vec<_> = (0..n)
-                .filter(|&i| member(b.values[i], b.limits[i]))
-                .map(|i| {
-                    let mut r = Rectangle::new(
-                        [(SegmentValue::Exact(i), 0.0), (SegmentValue::Exact(i + 1), b.values[i])],
-                        c.mix(0.8).filled(),
-                    );
-                    r.set_margin(0, 0, 8, 8);
-                    r
-                })
-                .collect();
-            if bars.is_empty() {
-                continue;
-            }
-            let c = *c;
-            chart
-                .draw_series(bars)
-                .map_err(err)?
-                .label(*name)
-                .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], c.mix(0.8).filled()));
-        }
-        let limits: Vec<_> = (0..n)
-            .filter_map(|i| {
-                b.limits[i].map(|l| {
-                    PathElement::new(
-                        vec![(SegmentValue::Exact(i), l), (SegmentValue::Exact(i + 1), l)],
-                        BLACK.stroke_width(3),
-                    )
-                })
-            })
-            .collect();
-        if !limits.is_empty() {
-            chart
-                .draw_series(limits)
-                .map_err(err)?
-                .label("limit")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(3)));
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(LABEL_FONT)
-            .draw()
-            .map_err(err)?;
-        Ok(())
-    }
 }
 
 /// A file-name-safe version of a signal name: ASCII letters, digits, `-` and `_` kept, anything else `_`.

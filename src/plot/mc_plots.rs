@@ -90,10 +90,8 @@ pub fn histogram_chart(
             (y, (-0.5 * z * z).exp() / (sigma * (2.0 * PI).sqrt()))
         })
         .collect();
-    h.curves.push(Series::line(
-        format!("N(M, σ): M = {}, σ = {} {unit}", num(mean), num(sigma)),
-        pts,
-    ));
+    h.curves
+        .push(Series::line(format!("N(M, σ): M = {}, σ = {} {unit}", num(mean), num(sigma)), pts).analytic());
     h.vlines = vec![
         Marker::new(mean, "M"),
         Marker::new(mean - 3.0 * sigma, "M ± 3σ"),
@@ -158,8 +156,11 @@ pub fn welch_chart(
     });
     c.series
         .push(Series::line("Welch estimate", zip(estimate)).with_color(0));
-    c.series
-        .push(Series::dashed("analytic density", analytic.to_vec()).with_color(1));
+    c.series.push(
+        Series::dashed("analytic density", analytic.to_vec())
+            .with_color(1)
+            .analytic(),
+    );
     c.legend = Legend::LowerLeft;
     Ok(c)
 }
@@ -206,7 +207,8 @@ pub fn correlation_chart(
     }
     c.series
         .push(Series::line("estimate K̂(τ)", zip(estimate)).with_color(0));
-    c.series.push(Series::dashed("model K(τ)", zip(model)).with_color(1));
+    c.series
+        .push(Series::dashed("model K(τ)", zip(model)).with_color(1).analytic());
     c.hlines.push(Marker::new(0.0, ""));
     Ok(c)
 }

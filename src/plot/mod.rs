@@ -20,11 +20,18 @@
 //! * [`book_plots`](mod@book_plots): the pictures of `stochvib book --plots DIR`, every catalogue model's data
 //!   computed with the library.
 //!
-//! Axis labels carry the quantity and its unit; titles name the scenario or model.
+//! * [`style`](mod@style): the look every chart shares (Okabe–Ito palette, marker shapes, fonts, tick labels
+//!   in engineering notation at the decades of a logarithmic axis); [`legend`](mod@legend): the legend placed
+//!   where the data are not. The drawing itself is in the private module `draw`.
+//!
+//! Axis labels carry the quantity and its unit; titles name the scenario or model. `docs/gallery.md` shows
+//! one picture of each kind.
 
 pub mod book_plots;
 pub mod chart;
 pub mod comfort_plots;
+mod draw;
+pub mod legend;
 pub mod mc_plots;
 pub mod model_plots;
 pub mod nonlinear_plots;
@@ -34,9 +41,11 @@ pub mod run_plots;
 pub mod scenario_plots;
 pub mod transient_plots;
 
+pub mod style;
+
 pub use book_plots::book_plots;
 pub use chart::{
-    Band, BarChart, Histogram, Legend, LineChart, LineStyle, Marker, SecondaryAxis, Series, HEIGHT, WIDTH,
+    Band, BarChart, Histogram, Legend, LineChart, LineStyle, Marker, Role, SecondaryAxis, Series, HEIGHT, WIDTH,
 };
 pub use road_plots::road_plots;
 pub use run_plots::{rainflow_charts, run_plots};

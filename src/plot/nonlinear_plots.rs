@@ -64,8 +64,11 @@ pub fn histogram_charts(title: &str, h: &ResponseHistogram) -> (LineChart, LineC
             );
         }
         if let Some(e) = &h.exact {
-            c.series
-                .push(Series::line("route 3: exact stationary density (Fokker–Planck)", pts(e)).with_color(2));
+            c.series.push(
+                Series::line("route 3: exact stationary density (Fokker–Planck)", pts(e))
+                    .with_color(2)
+                    .analytic(),
+            );
         }
         c
     };

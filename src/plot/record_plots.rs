@@ -167,10 +167,8 @@ pub fn range_histogram_chart(e: &FatigueEvaluation) -> LineChart {
             .filter(|(_, n)| **n > 0.0)
             .map(|(i, n)| ((i as f64 + 0.5) * w, *n))
             .collect();
-        c.series.push(Series::line(
-            "Dirlik's expected count (the record's Welch moments)",
-            pts,
-        ));
+        c.series
+            .push(Series::line("Dirlik's expected count (the record's Welch moments)", pts).analytic());
     }
     c.max_decades = Some(8.0);
     c

@@ -156,9 +156,11 @@ pub fn road_density_chart(report: &RoadReport, track: usize) -> Result<LineChart
             .into_iter()
             .map(|n| (n, g * (n / N0).powi(-2)))
             .collect();
-        chart
-            .series
-            .push(Series::dashed(format!("class limit {label}: {} m³ at n0, w = 2", num(g)), pts).with_color(7));
+        chart.series.push(
+            Series::dashed(format!("class limit {label}: {} m³ at n0, w = 2", num(g)), pts)
+                .with_color(7)
+                .limit(),
+        );
     }
     chart.legend = Legend::UpperRight;
     Ok(chart)

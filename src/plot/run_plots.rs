@@ -210,7 +210,8 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
                     format!("expected estimate (window ⊛ sampled density{coverage})"),
                     f.iter().cloned().zip(g(e)).collect(),
                 )
-                .with_color(2),
+                .with_color(2)
+                .analytic(),
             );
         }
         let (mut realizations, mut histogram, mut correlation) = (None, None, None);
@@ -419,7 +420,7 @@ pub fn rainflow_charts(path: &Path) -> Result<Vec<(String, LineChart)>> {
                 .collect();
             if !expected.is_empty() {
                 c.series
-                    .push(Series::line("Dirlik's expected count (analytic moments)", expected));
+                    .push(Series::line("Dirlik's expected count (analytic moments)", expected).analytic());
             }
         }
         out.push((h.output.clone(), c));

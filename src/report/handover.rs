@@ -38,7 +38,9 @@ fn is_handover(path: &Path) -> bool {
         || crate::io_rules::starts_with(path, MARKDOWN_MARK.as_bytes())
 }
 
-/// Writes the report of `doc` (loaded from `file`) to `out` in `format` and returns the path written.
+/// Writes the report of `doc` (loaded from `file`) to `out` in `format` and returns the path written; with
+/// `run = Some((RUN.h5, spectra directory))` the Monte Carlo run's section follows
+/// ([`super::run_handover::run_section`]).
 ///
 /// The output is checked before any work: never one of the files the document was read from, a directory,
 /// a device or a file of another kind; an existing report only with `overwrite`.
@@ -52,6 +54,7 @@ pub fn write_handover(
     out: &Path,
     format: HandoverFormat,
     overwrite: bool,
+    run: Option<(&Path, &Path)>,
 ) -> Result<PathBuf> {
     if let Document::Stochastic(sc) = doc
         && sc.nonlinear.is_some()
@@ -66,12 +69,37 @@ pub fn write_handover(
         ));
     }
     let sources = source_files(doc, file);
-    let inputs: Vec<&Path> = sources.iter().map(PathBuf::as_path).collect();
+    let mut inputs = sources.clone();
+    inputs.extend(run.map(|r| r.0.to_path_buf()));
+    write_document(out, format, &inputs, overwrite, &|dir, link| {
+        let mut s = handover_markdown(doc, file, &sources, dir, link)?;
+        if let Some((run, spectra_dir)) = run {
+            let text = crate::fields::read_text_file(file)?;
+            s += &super::run_handover::run_section(run, Some(&text), spectra_dir, dir, link)?;
+        }
+        Ok(s)
+    })
+}
+
+/// Writes a report whose markdown `build(dir, link)` makes (its pictures drawn into `dir`, linked as
+/// `link/<name>.svg`) to `out` in `format`, under the output rule with `inputs` as the files it was read
+/// from; returns the path written.
+///
+/// # Errors
+/// The refusals of the output rule; [`Error::Io`] writing; the errors of `build`.
+pub(super) fn write_document(
+    out: &Path,
+    format: HandoverFormat,
+    inputs: &[PathBuf],
+    overwrite: bool,
+    build: &dyn Fn(&Path, &Path) -> Result<String>,
+) -> Result<PathBuf> {
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     let staged = crate::io_rules::Staged::begin(out, HANDOVER, &inputs, overwrite)?;
     let text = match format {
         HandoverFormat::Html => {
             let dir = TempDir::new()?;
-            let md = handover_markdown(doc, file, &sources, &dir.0, &dir.0)?;
+            let md = build(&dir.0, &dir.0)?;
             let title = md
                 .lines()
                 .find_map(|l| l.strip_prefix("# "))
@@ -84,7 +112,7 @@ pub fn write_handover(
         HandoverFormat::Markdown => {
             let name = format!("{}-pictures", out.file_stem().unwrap_or_default().to_string_lossy());
             let dir = crate::io_rules::parent_dir(out).join(&name);
-            handover_markdown(doc, file, &sources, &dir, Path::new(&name))?
+            build(&dir, Path::new(&name))?
         }
     };
     std::fs::write(staged.temporary(), text).map_err(|source| Error::Io {
@@ -113,7 +141,7 @@ fn source_files(doc: &Document, file: &Path) -> Vec<PathBuf> {
 /// As [`write_handover`].
 pub fn handover_markdown(doc: &Document, file: &Path, sources: &[PathBuf], dir: &Path, link: &Path) -> Result<String> {
     let text = crate::fields::read_text_file(file)?;
-    let mut s = format!("{MARKDOWN_MARK}\n\n# {}\n\n", title(doc));
+    let mut s = format!("{}# {}\n\n", mark(), title(doc));
     s += &format!("## Provenance\n\n{}\n", provenance(sources)?);
     let f = fence_for(&text);
     s += &format!(
@@ -129,6 +157,11 @@ pub fn handover_markdown(doc: &Document, file: &Path, sources: &[PathBuf], dir: 
     Ok(s)
 }
 
+/// The first line of the markdown form, and the blank line after it.
+pub(super) fn mark() -> String {
+    format!("{MARKDOWN_MARK}\n\n")
+}
+
 fn title(doc: &Document) -> &str {
     match doc {
         Document::Stochastic(sc) => &sc.title,
@@ -138,13 +171,13 @@ fn title(doc: &Document) -> &str {
 }
 
 /// A fence longer than every run of backticks in `text` (at least three).
-fn fence_for(text: &str) -> String {
+pub(super) fn fence_for(text: &str) -> String {
     let longest = text.split(|c| c != '`').map(str::len).max().unwrap_or(0);
     "`".repeat(longest.max(2) + 1)
 }
 
 /// A report's markdown as one section: its own title dropped, its headings one level down.
-fn results_section(md: &str) -> String {
+pub(super) fn results_section(md: &str) -> String {
     let body: Vec<String> = md
         .lines()
         .skip_while(|l| l.trim().is_empty())
@@ -161,7 +194,7 @@ fn results_section(md: &str) -> String {
 }
 
 /// The toolkit version, and the size and CRC-32 of every file read.
-fn provenance(sources: &[PathBuf]) -> Result<String> {
+pub(super) fn provenance(sources: &[PathBuf]) -> Result<String> {
     let mut rows = (Vec::new(), Vec::new(), Vec::new());
     for p in sources {
         let (bytes, crc) = match checksum(p) {
@@ -181,7 +214,7 @@ fn provenance(sources: &[PathBuf]) -> Result<String> {
 }
 
 /// Size and CRC-32/ISO-HDLC of a file, read in pieces.
-fn checksum(path: &Path) -> std::io::Result<(u64, u32)> {
+pub(super) fn checksum(path: &Path) -> std::io::Result<(u64, u32)> {
     use std::io::Read;
     let mut f = std::fs::File::open(path)?;
     let (mut h, mut n, mut buf) = (crc32fast::Hasher::new(), 0u64, vec![0u8; 1 << 16]);
@@ -209,15 +242,21 @@ fn stochastic_sections(sc: &Scenario, dir: &Path, link: &Path) -> Result<String>
     if let Some(v) = verdicts {
         s += &format!("\n## Verdicts\n{}", v.markdown().replace("\n## ", "\n### "));
     }
-    s += "\n## Pictures\n\n";
-    for f in crate::plot::scenario_plots(sc, dir)? {
+    s += &pictures_markdown(&crate::plot::scenario_plots(sc, dir)?, link);
+    Ok(s)
+}
+
+/// The section of the pictures `files` (their SVG forms), linked as `link/<name>.svg`.
+pub(super) fn pictures_markdown(files: &[PathBuf], link: &Path) -> String {
+    let mut s = "\n## Pictures\n\n".to_string();
+    for f in files {
         if f.extension().is_some_and(|e| e == "svg") {
             let name = f.file_name().unwrap_or_default();
             let stem = f.file_stem().unwrap_or_default().to_string_lossy();
             s += &format!("![{stem}]({})\n\n", link.join(name).display());
         }
     }
-    Ok(s)
+    s
 }
 
 /// The poles of the model's state space: natural frequency ω_n = |λ| and damping ratio ζ = −Re λ / |λ| of

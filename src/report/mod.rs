@@ -15,6 +15,7 @@ pub mod record_report;
 pub mod replay_report;
 pub mod road_numbers;
 pub mod road_report;
+pub mod run_handover;
 pub mod spectrum_report;
 mod sweep_h5;
 pub mod sweep_stream;

@@ -195,10 +195,13 @@ fn check_common(html: &str, scenario: &str) {
 }
 
 /// Every `data/*.toml` that `analyze` accepts gets a report with every output's σ, the pictures of
-/// `plot`, the verdicts, the provenance and the file as written.
+/// `plot`, the verdicts, the provenance and the file as written; every report passes the HTML validator
+/// of `report_browser` (html5lib).
 #[test]
 fn every_data_scenario_has_a_complete_self_contained_report() {
     let work = tmp("all");
+    // every report also through the HTML validator (html5lib), when the browser test's tools are present
+    let validate = crate::report_browser::tools_present();
     let (mut reported, mut nonlinear) = (0, 0);
     for f in crate::common::listing(&root().join("data")) {
         let Some(stem) = f.strip_suffix(".toml") else { continue };
@@ -223,6 +226,9 @@ fn every_data_scenario_has_a_complete_self_contained_report() {
         assert!(ok, "report {scenario}: {err}");
         let html = std::fs::read_to_string(&html_path).unwrap();
         check_common(&html, &scenario);
+        if validate {
+            crate::report_browser::validate(&html_path);
+        }
         if json.get("outputs").is_some() {
             let dir = work.join(stem);
             std::fs::create_dir_all(&dir).unwrap();

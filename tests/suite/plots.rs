@@ -311,10 +311,10 @@ fn octave_bars_are_coloured_by_pass_or_fail() {
             "over limit",
         ],
     );
-    // bars are rectangles filled with the pass (#2CA02C) or fail (#D62728) colour; one more of each for the
-    // legend swatch
-    let red = svg.matches("fill=\"#D62728\"").count();
-    let green = svg.matches("fill=\"#2CA02C\"").count();
+    // bars are rectangles filled with the pass (bluish green #009E73) or fail (vermillion #D55E00) colour of
+    // the Okabe–Ito palette; one more of each for the legend swatch
+    let red = svg.matches("fill=\"#D55E00\"").count();
+    let green = svg.matches("fill=\"#009E73\"").count();
     assert_eq!((red, green), (3 + 1, 4 + 1));
     // a single category renders too
     let one =
@@ -571,11 +571,11 @@ mod book {
         // σ_a = σ_v λ = 0.488 < 0.57 m/s²
         assert!((a.values[2] - sv * lambda).abs() <= EXACT * sv * lambda);
         assert!(a.values[2] < a.limits[2].unwrap());
-        // colours in the written picture: one red bar (plus the legend swatch)
+        // colours in the written picture: one vermillion (over-limit) bar (plus the legend swatch)
         let dir = out_dir("book-seat");
         let files = find(&pics, "seat-example-7-2-velocity").render(&dir, "v").unwrap();
         let svg = check_pair(&files, &["Example 7.2"]);
-        assert_eq!(svg.matches("fill=\"#D62728\"").count(), 1 + 1);
+        assert_eq!(svg.matches("fill=\"#D55E00\"").count(), 1 + 1);
 
         // random scenario: the band variances are disjoint parts of the whole-axis variance (Lyapunov,
         // an independent method), so they sum to no more than it
