@@ -313,7 +313,8 @@ pub struct FatigueEvaluation {
     pub damage: f64,
     /// Miner damage without a correction (what the spectral methods estimate).
     pub damage_uncorrected: f64,
-    /// Life T/D with the correction, s.
+    /// Life T/D with the correction, s; infinite (`null` in JSON, "unlimited" in text) when the corrected
+    /// damage is 0 (SWT with every cycle's peak in compression).
     pub life_s: f64,
     /// Life T/D without a correction, s.
     pub life_uncorrected_s: f64,
@@ -539,7 +540,11 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
     let (moments, segments) = spectral.moments(&welch)?;
     let damage = tally.damage / options.sn.c();
     let damage_plain = tally.damage_plain / options.sn.c();
-    require_damage(&info, &channel, "rainflow (Miner)", damage)?;
+    // a corrected damage of exactly 0 is an answer (SWT: a cycle whose peak stays in compression does no
+    // damage; its life is unlimited and printed so); the uncorrected damage must be a number
+    if damage != 0.0 {
+        require_damage(&info, &channel, "rainflow (Miner)", damage)?;
+    }
     require_damage(
         &info,
         &channel,

@@ -238,6 +238,16 @@ pub fn method_table(e: &FatigueEvaluation) -> Table {
         .num("life / rainflow life", &ratio)
 }
 
+/// A life in hours, or "unlimited" when no cycle does damage (a corrected damage of 0: e.g. SWT with every
+/// cycle's peak in compression).
+fn life_hours(life_s: f64) -> String {
+    if life_s.is_finite() {
+        format!("{} h", sig4(life_s / 3600.0))
+    } else {
+        "unlimited (no cycle does damage)".to_string()
+    }
+}
+
 /// The range–mean matrix as a table (rows: range bins; columns: mean bins with any count).
 pub fn matrix_table(e: &FatigueEvaluation) -> Table {
     let m = &e.matrix;
@@ -280,8 +290,8 @@ fn fatigue_lines(e: &FatigueEvaluation) -> Vec<String> {
             sig4(e.damage_uncorrected)
         ),
         format!(
-            "life with the correction {} h, without {} h",
-            sig4(e.life_s / 3600.0),
+            "life with the correction {}, without {} h",
+            life_hours(e.life_s),
             sig4(e.life_uncorrected_s / 3600.0)
         ),
     ];
