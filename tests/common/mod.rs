@@ -262,11 +262,38 @@ fn set_limits(cmd: &mut std::process::Command, l: ChildLimits) {
     }
 }
 
-/// The path `stochvib-GROUP-PID-TAG` in the system's temporary directory (not created). The suite is one
-/// binary whose tests run in parallel threads of one process: the process id only separates concurrent
-/// runs of the suite, so every test names its own `(group, tag)` (the file's group, the test's tag).
+/// The directory of this run of the suite, `stochvib-suite-PID` in the system's temporary directory: made on
+/// first use and removed with everything in it when the suite process exits (an `atexit` handler: it runs
+/// when the test harness returns or calls `exit`, whether tests passed or failed), so repeated runs leave
+/// nothing behind. Set `STOCHVIB_KEEP_SCRATCH=1` to keep it for a post-mortem; a run killed by a signal
+/// leaves it too.
+static SUITE_SCRATCH: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+
+extern "C" fn remove_suite_scratch() {
+    if let Some(d) = SUITE_SCRATCH.get() {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
+
+fn suite_scratch() -> &'static std::path::Path {
+    SUITE_SCRATCH.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("stochvib-suite-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        if std::env::var_os("STOCHVIB_KEEP_SCRATCH").is_none() {
+            // SAFETY: registers a plain `extern "C"` function; it only reads a set `OnceLock` and removes files.
+            let registered = unsafe { libc::atexit(remove_suite_scratch) };
+            assert_eq!(registered, 0, "atexit refused the scratch cleanup");
+        }
+        d
+    })
+}
+
+/// The path `GROUP-TAG` in this run's scratch directory (the path itself is not created; its parent is). The
+/// suite is one binary whose tests run in parallel threads of one process: the process id only separates
+/// concurrent runs of the suite, so every test names its own `(group, tag)` (the file's group, the test's
+/// tag).
 pub fn scratch_path(group: &str, tag: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("stochvib-{group}-{}-{tag}", std::process::id()))
+    suite_scratch().join(format!("{group}-{tag}"))
 }
 
 /// A fresh empty directory [`scratch_path`]`(group, tag)` (what an earlier run left there is removed).

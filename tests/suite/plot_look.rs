@@ -477,10 +477,7 @@ fn kind_of(stem: &str) -> Option<&'static str> {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-plot-look-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("plot-look", name)
 }
 
 #[test]

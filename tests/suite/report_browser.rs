@@ -27,10 +27,7 @@ const BROWSER_LIMIT: Duration = Duration::from_secs(180);
 const SKIP: &str = "STOCHVIB_SKIP_BROWSER";
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("stochvib-report-browser-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    crate::common::scratch_dir("report-browser", name)
 }
 
 /// Whether the browser tests run: the tools are present, or the developer opted out (then `false`, with a
