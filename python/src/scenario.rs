@@ -890,7 +890,7 @@ impl PyScenario {
     /// --------
     /// >>> import stochvib
     /// >>> r = stochvib.Scenario.load("data/quarter-car-accelerating.toml").transient()
-    /// >>> r.times[0], r.times[-1]
+    /// >>> float(r.times[0]), float(r.times[-1])
     /// (0.0, 15.0)
     #[pyo3(signature = (*, monte_carlo=None, path=None, seed=1, substeps=4, shard_size=50, confidence=0.95, store_raw=false, overwrite=false, progress=None, shard=None))]
     #[allow(clippy::too_many_arguments)]

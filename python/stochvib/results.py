@@ -5,7 +5,11 @@
   :class:`LevelCrossing` rates;
 * :class:`TablesResult` — the result tables of a deterministic model or a reference table of the sources;
 * :class:`RunResult` — a finished Monte Carlo run (the HDF5 file and its statistics);
-* :class:`ExposureResult` — the ISO 2631-1 evaluation of acceleration records (:func:`stochvib.exposure`).
+* :class:`ExposureResult` — the ISO 2631-1 evaluation of acceleration records (:func:`stochvib.exposure`);
+* :class:`SweepResult` — a parameter study, with its Monte Carlo batches (:meth:`Scenario.sweep`);
+* :class:`NonlinearResult`, :class:`NonlinearRunResult` — routes 1 to 3 of a model with nonlinear elements;
+* :class:`OptimizeResult` — an optimum under constraints (:meth:`Scenario.optimize`);
+* :class:`TransientResult` — σ(t) and the mission extremes of a transient (:meth:`Scenario.transient`).
 
 ``repr()`` reads like the command-line tool's table, ``str()`` is the tool's full text, ``to_dict()`` the
 ``--json`` data (plain dicts, lists, floats, strings and None), ``to_dataframe()`` a pandas DataFrame (one

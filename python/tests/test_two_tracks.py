@@ -52,9 +52,13 @@ def test_full_vehicle_on_two_tracks_matches_the_cli(cli):
     for g, w in zip(got, want["outputs"]):
         for key in ("mean", "variance", "sigma", "lambda2", "zero_upcrossing_rate"):
             assert g["statistics"][key] == pytest.approx(w["statistics"][key], rel=REL_SAME, abs=0.0), key
-        methods = {m["method"]: m["outcome"].get("value") for m in w["statistics"]["methods"]}
+        methods = {m["method"]: m["outcome"] for m in w["statistics"]["methods"]}
+        assert [m["method"] for m in g["statistics"]["methods"]] == list(methods)
         for m in g["statistics"]["methods"]:
-            assert m["outcome"].get("value") == pytest.approx(methods[m["method"]], rel=REL_SAME), m["method"]
+            want_m = methods[m["method"]]
+            assert m["outcome"]["status"] == want_m["status"], m["method"]
+            if want_m.get("value") is not None:
+                assert m["outcome"]["value"] == pytest.approx(want_m["value"], rel=REL_SAME), m["method"]
 
 
 def test_full_vehicle_monte_carlo_matches_the_cli(cli):
