@@ -405,7 +405,6 @@ impl PyScenario {
     /// * ``outputs``: the output names to report (default all); ``band_rad_s``: (ω₁, ω₂) in rad/s for
     ///   a band-limited σ; ``duration_s``: the duration for exceedance probabilities and expected peaks
     ///   (default 1 h); ``levels``: dict output name → levels (output's SI unit) for Rice crossing rates.
-    #[staticmethod]
     ///
     /// A road of two coherent tracks (a scenario file's ``[[input]] road = { spectrum, coherence,
     /// track_width }``): ``input`` the spatial spectrum of each track, ``coherence`` the coherence model
@@ -414,6 +413,7 @@ impl PyScenario {
     /// ("left"/"right"; default the model's layout) and ``positions`` (m behind the first contact: the
     /// wheelbase delays ℓ/v; default the model's). A catalogue model on two tracks (``full-vehicle``) needs
     /// only ``coherence`` and ``speed``.
+    #[staticmethod]
     #[pyo3(signature = (system, input, *, speed=None, positions=None, mean=None, outputs=None, band_rad_s=None, duration_s=None, levels=None, title=None, coherence=None, track_width=None, tracks=None))]
     #[allow(clippy::too_many_arguments)]
     fn from_system(
