@@ -1,6 +1,7 @@
 """Python call overhead and the Python-driven variance sweep, measured in one run.
 
     python3 python/bench/overhead.py [--out results.json] [--no-cargo] [--rounds R] [--scipy-fraction F]
+                                     [--no-rust-sweep]
 
 1. Runs the criterion bench ``python/benches/overhead.rs`` (``cargo bench -p stochvib-python --bench overhead``)
    and, on the same machine right after, times the same calls through the installed Python package with
@@ -79,9 +80,12 @@ def main() -> None:
     ap.add_argument("--no-cargo", action="store_true", help="reuse the last criterion results")
     ap.add_argument("--scipy-fraction", type=float, default=1.0, help="time scipy on this fraction of the grid")
     ap.add_argument("--rounds", type=int, default=3, help="rounds of (criterion bench, timeit)")
+    ap.add_argument(
+        "--no-rust-sweep", action="store_true", help="skip the Rust sweep bench (the sweep's Python/Rust row)"
+    )
     a = ap.parse_args()
 
-    if not a.no_cargo:
+    if not a.no_cargo and not a.no_rust_sweep:
         run_cargo(["bench", "--bench", "sweep", "--", "--noplot", "table_h2_integral_1e5"])
 
     w = np.linspace(0.01, 100.0, N)

@@ -13,11 +13,15 @@ mod errors;
 mod interrupt;
 mod linalg;
 mod names;
+mod nonlinear_run;
+mod optimize;
 mod quantity;
 mod scenario;
 mod spectrum;
 mod system;
 mod toolkit;
+mod transient;
+mod two_tracks;
 
 /// Native part of the stochvib Python package (import `stochvib`, not this module).
 #[pymodule]

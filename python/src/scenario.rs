@@ -5,9 +5,11 @@ use crate::convert::to_python;
 use crate::errors::{call, detached, invalid_input, lib};
 use crate::interrupt::run_interruptible;
 use crate::names::catalogue;
+use crate::nonlinear_run;
 use crate::quantity;
 use crate::spectrum::PySpectrum;
 use crate::system::PySystem;
+use crate::two_tracks::{self, TwoTrackArgs};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use pyo3::IntoPyObjectExt;
@@ -163,8 +165,8 @@ fn excitation(
         (None, Some(InputLayout::Single)) => call(py, || Excitation::single(s, mean)),
         (None, Some(InputLayout::TwoTracks { .. })) => Err(invalid_input(
             py,
-            "the model stands on two tracks: load a scenario with an [[input]] road table (Scenario.load) to \
-             give the road, its coherence and the speed",
+            "the model stands on two tracks: give coherence= (the coherence model between the tracks) and \
+             speed=",
         )),
         (None, None) if sys.system.n_inputs() == 1 => call(py, || Excitation::single(s, mean)),
         (None, None) => Err(invalid_input(
@@ -305,23 +307,6 @@ pub fn merge<'py>(
     Ok((to_python(py, &s)?, s.to_string()))
 }
 
-/// Refuses (with `refuse`) a Monte Carlo run of a model with nonlinear elements: route 2 is the command-line
-/// tool's for now, and the linear part alone would be a silently wrong answer.
-fn refuse_nonlinear_run(py: Python<'_>, sc: &Scenario, refuse: bool, what: &str) -> PyResult<()> {
-    if !refuse {
-        return Ok(());
-    }
-    Err(crate::errors::not_applicable(
-        py,
-        format!(
-            "{}: {what} of a model with nonlinear elements (route 2, the time-domain Monte Carlo) is not available \
-             from Python yet; analyze() gives routes 1 and 3, `stochvib simulate` or `stochvib analyze --monte-carlo N` \
-             route 2",
-            sc.path.display()
-        ),
-    ))
-}
-
 /// `KEY=VALUES` texts (the CLI's `--param`) of a dict key → a range string or a sequence of values.
 fn sweep_params(params: &Bound<'_, PyDict>) -> PyResult<Vec<String>> {
     let text = |v: &Bound<'_, PyAny>| -> PyResult<String> { Ok(v.str()?.to_cow()?.into_owned()) };
@@ -353,6 +338,35 @@ fn release_claim(path: &Path) {
     if std::fs::read_to_string(&owner).is_ok_and(|s| s.trim() == std::process::id().to_string()) {
         let _ = std::fs::remove_file(owner);
     }
+}
+
+/// The Monte Carlo batch of every point of a sweep (`stochvib sweep --monte-carlo N`): Δt and duration as
+/// given, the missing ones suggested from the scenario for `n` realizations, the batch's time checked.
+fn sweep_monte_carlo(
+    sc: &Scenario,
+    sweep: &stochvib::scenario::Sweep,
+    n: usize,
+    (dt, duration): (Option<f64>, Option<f64>),
+    (seed, shard_size, confidence): (u64, usize, f64),
+) -> stochvib::Result<stochvib::report::SweepMonteCarlo> {
+    let (dt_s, duration_s) = match (dt, duration) {
+        (Some(dt), Some(d)) => (dt, d),
+        _ => {
+            let s = sc.suggest_step(n)?;
+            (dt.unwrap_or(s.dt_s), duration.unwrap_or(s.duration_s))
+        }
+    };
+    let m = stochvib::report::SweepMonteCarlo {
+        realizations: n,
+        duration_s,
+        dt_s,
+        seed,
+        shard_size,
+        confidence,
+    };
+    let hours = stochvib::simulate::resources::DEFAULT_MAX_HOURS;
+    stochvib::report::check_monte_carlo_time(sweep, &m, hours)?;
+    Ok(m)
 }
 
 /// Time step and duration: as given, the missing ones suggested from the system (with the reason).
@@ -391,8 +405,16 @@ impl PyScenario {
     /// * ``outputs``: the output names to report (default all); ``band_rad_s``: (ω₁, ω₂) in rad/s for
     ///   a band-limited σ; ``duration_s``: the duration for exceedance probabilities and expected peaks
     ///   (default 1 h); ``levels``: dict output name → levels (output's SI unit) for Rice crossing rates.
+    ///
+    /// A road of two coherent tracks (a scenario file's ``[[input]] road = { spectrum, coherence,
+    /// track_width }``): ``input`` the spatial spectrum of each track, ``coherence`` the coherence model
+    /// between the tracks (a dict as the file's ``coherence`` table, e.g. ``{"kind": "dodds-robson",
+    /// "waviness": 2}``), ``track_width`` (m; default the model's), ``tracks`` the track of each system input
+    /// ("left"/"right"; default the model's layout) and ``positions`` (m behind the first contact: the
+    /// wheelbase delays ℓ/v; default the model's). A catalogue model on two tracks (``full-vehicle``) needs
+    /// only ``coherence`` and ``speed``.
     #[staticmethod]
-    #[pyo3(signature = (system, input, *, speed=None, positions=None, mean=None, outputs=None, band_rad_s=None, duration_s=None, levels=None, title=None))]
+    #[pyo3(signature = (system, input, *, speed=None, positions=None, mean=None, outputs=None, band_rad_s=None, duration_s=None, levels=None, title=None, coherence=None, track_width=None, tracks=None))]
     #[allow(clippy::too_many_arguments)]
     fn from_system(
         py: Python<'_>,
@@ -406,6 +428,9 @@ impl PyScenario {
         duration_s: Option<&Bound<'_, PyAny>>,
         levels: Option<&Bound<'_, PyDict>>,
         title: Option<String>,
+        coherence: Option<&Bound<'_, PyDict>>,
+        track_width: Option<&Bound<'_, PyAny>>,
+        tracks: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let sys = system.get();
         require_stable(py, sys)?;
@@ -431,7 +456,30 @@ impl PyScenario {
                 return lib(py, Err(Error::invalid("speed", v, "must be finite and > 0")));
             }
         }
-        let exc = excitation(py, sys, &arcs, speed, positions, means.clone())?;
+        let two = TwoTrackArgs {
+            coherence,
+            track_width: quantity::optional(py, track_width, "track_width", "m")?,
+            tracks: tracks.map(|t| two_tracks::track_indices(py, t)).transpose()?,
+        };
+        let on_two_tracks = two.given() || matches!(sys.layout, Some(InputLayout::TwoTracks { .. }));
+        let (exc, coherence) = if on_two_tracks {
+            if arcs.len() != 1 || means.len() != 1 {
+                return Err(invalid_input(
+                    py,
+                    "a road of two tracks is one spectrum (that of each track) with one mean",
+                ));
+            }
+            let (e, d) = two_tracks::excitation(
+                py,
+                (&sys.layout, sys.system.n_inputs()),
+                &arcs[0],
+                (speed, positions, means[0]),
+                two,
+            )?;
+            (e, Some(d))
+        } else {
+            (excitation(py, sys, &arcs, speed, positions, means.clone())?, None)
+        };
         let names: Vec<String> = sys.system.outputs().iter().map(|o| o.name.clone()).collect();
         let index = |n: &str| call(py, || sys.system.output_index(n));
         let outputs = match outputs {
@@ -508,7 +556,7 @@ impl PyScenario {
             speed,
             mean: means[0],
             name: "input".into(),
-            coherence: None,
+            coherence,
             kurtosis: None,
         };
         let sc = Scenario {
@@ -552,7 +600,12 @@ impl PyScenario {
     /// ``rel_tol``, ``max_subintervals`` and ``max_half_periods`` override the effort of the quadratures
     /// (the scenario's ``[analysis.quadrature]``; the CLI's ``--rel-tol``, ``--max-subintervals``,
     /// ``--max-half-periods``; defaults 1e-10, 2000, 10 000).
-    #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None))]
+    ///
+    /// A model with nonlinear elements gives a :class:`NonlinearResult` (routes 1 and 3); ``monte_carlo=N``
+    /// adds route 2 (the time-domain Monte Carlo of the nonlinear equations, as ``stochvib analyze
+    /// --monte-carlo N``: Δt and the duration suggested for route 2 when not given, ``burn_in`` in s, default
+    /// from the slowest decay rate of the Gaussian equivalent).
+    #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None, burn_in=None))]
     #[allow(clippy::too_many_arguments)]
     fn analyze<'py>(
         &self,
@@ -565,9 +618,11 @@ impl PyScenario {
         rel_tol: Option<f64>,
         max_subintervals: Option<usize>,
         max_half_periods: Option<usize>,
+        burn_in: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let dt = quantity::optional(py, dt, "dt", "s")?;
         let duration = quantity::optional(py, duration, "duration", "s")?;
+        let burn_in = quantity::optional(py, burn_in, "burn_in", "s")?;
         let effort_given = rel_tol.is_some() || max_subintervals.is_some() || max_half_periods.is_some();
         let tuned: Document;
         let doc = match &self.doc {
@@ -589,8 +644,21 @@ impl PyScenario {
             _ => self.stochastic(py)?,
         };
         if let Some(answers) = call(py, || sc.nonlinear_answers())? {
-            refuse_nonlinear_run(py, sc, monte_carlo.is_some(), "analyze(monte_carlo=N)")?;
-            let r = call(py, || stochvib::report::nonlinear_report(sc, &answers, None))?;
+            let mc = match monte_carlo {
+                None => None,
+                Some(n) => Some(with_progress(py, progress, |cb| {
+                    run_interruptible(py, cb, |cb| {
+                        let run = RunOptions {
+                            realizations: n,
+                            seed,
+                            ..RunOptions::default()
+                        };
+                        let (opts, _) = nonlinear_run::options(sc, &answers, run, (dt, duration, burn_in))?;
+                        nonlinear_run::temporary(sc, &answers, &opts, cb)
+                    })
+                })?),
+            };
+            let r = call(py, || stochvib::report::nonlinear_report(sc, &answers, mc.as_ref()))?;
             return py
                 .import("stochvib.results")?
                 .getattr("NonlinearResult")?
@@ -634,6 +702,15 @@ impl PyScenario {
     ///     sequence of numbers or strings with units, or a range string ``"A..B:n"`` / ``"A..B:n:log"``.
     /// zip : bool, keyword-only
     ///     The k-th values of every key together instead of the grid of every combination.
+    /// monte_carlo : int, keyword-only, optional
+    ///     Realizations of a seeded Monte Carlo batch at every point (``stochvib sweep --monte-carlo N``):
+    ///     σ with its interval and whether it covers the exact σ (:meth:`SweepResult.monte_carlo`).
+    /// seed, dt, duration, shard_size, confidence : keyword-only
+    ///     Of the batches: master seed (the same at every point), time step and realization duration (s or
+    ///     a unit string; suggested from the scenario when not given), realizations per shard, confidence
+    ///     of the intervals.
+    /// progress : bool or callable, keyword-only
+    ///     With ``monte_carlo``: a bar on stderr (True), none (False) or a callable(done, total) per point.
     ///
     /// Returns
     /// -------
@@ -644,7 +721,8 @@ impl PyScenario {
     /// Raises
     /// ------
     /// InvalidInputError
-    ///     An unknown key, a bad value or range, keys of different lengths with ``zip``.
+    ///     An unknown key, a bad value or range, keys of different lengths with ``zip``, fewer than 2
+    ///     realizations, a batch that would take longer than 24 h.
     ///
     /// Examples
     /// --------
@@ -653,25 +731,236 @@ impl PyScenario {
     /// >>> r = sc.sweep({"model.c": ["50 kN/m", "100 kN/m"]})
     /// >>> r.statistic("y", "mean").round(12).tolist()  # the static deflection M_F / c = 10 kN / c
     /// [0.2, 0.1]
-    #[pyo3(signature = (params, *, zip=false))]
-    fn sweep<'py>(&self, py: Python<'py>, params: &Bound<'py, PyDict>, zip: bool) -> PyResult<Bound<'py, PyAny>> {
+    #[pyo3(signature = (params, *, zip=false, monte_carlo=None, seed=1, dt=None, duration=None, shard_size=50, confidence=0.95, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn sweep<'py>(
+        &self,
+        py: Python<'py>,
+        params: &Bound<'py, PyDict>,
+        zip: bool,
+        monte_carlo: Option<usize>,
+        seed: u64,
+        dt: Option<&Bound<'py, PyAny>>,
+        duration: Option<&Bound<'py, PyAny>>,
+        shard_size: usize,
+        confidence: f64,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         use stochvib::scenario::{Sweep, SweepMode, SweepParam, SweepSpec};
         let sc = self.stochastic(py)?;
         let params = sweep_params(params)?;
-        let json = detached(py, || {
+        let (dt, duration) = (
+            quantity::optional(py, dt, "dt", "s")?,
+            quantity::optional(py, duration, "duration", "s")?,
+        );
+        if monte_carlo.is_some_and(|n| n < 2) {
+            return Err(invalid_input(
+                py,
+                "`monte_carlo`: a Monte Carlo batch needs at least 2 realizations (the interval of σ is taken \
+                 across realizations)",
+            ));
+        }
+        let compute = |cb: &(dyn Fn(usize, usize) + Sync)| -> stochvib::Result<String> {
             let params = params
                 .iter()
                 .map(|p| SweepParam::parse(p))
                 .collect::<stochvib::Result<Vec<_>>>()?;
             let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
             let sweep = Sweep::new(sc, SweepSpec::new(params, mode)?)?;
+            let mc = match monte_carlo {
+                None => None,
+                Some(n) => Some(sweep_monte_carlo(
+                    sc,
+                    &sweep,
+                    n,
+                    (dt, duration),
+                    (seed, shard_size, confidence),
+                )?),
+            };
             let n = sweep.spec().n_points();
-            Ok(stochvib::report::compute_sweep(&sweep, 0..n, true, None, &|_, _| ())?.to_json()?)
-        })?;
+            stochvib::report::compute_sweep(&sweep, 0..n, true, mc, cb)?.to_json()
+        };
+        let json = match monte_carlo {
+            None => detached(py, || Ok(compute(&|_, _| ())?))?,
+            Some(_) => with_progress(py, progress, |cb| run_interruptible(py, cb, compute))?,
+        };
         let v: serde_json::Value = serde_json::from_str(&json).map_err(|e| invalid_input(py, e.to_string()))?;
         py.import("stochvib.results")?
             .getattr("SweepResult")?
             .call1((to_python(py, &v)?,))
+    }
+
+    /// The parameters that minimise (or maximise) a response quantity under constraints (``stochvib optimize
+    /// SCENARIO --param … --minimize … --json``): several COBYLA runs from spread starts over the box of the
+    /// bounds, each point analysed exactly.
+    ///
+    /// Parameters
+    /// ----------
+    /// params : dict
+    ///     A scenario key → its bounds: ``(low, high)`` (numbers in SI units or strings with units) or
+    ///     ``"LOW:HIGH UNIT"``, e.g. ``{"model.suspension_damping": ("0.2 kN*s/m", "6 kN*s/m")}``.
+    /// minimize, maximize : str, keyword-only
+    ///     Exactly one: the quantity, ``sigma(OUTPUT)``, ``3sigma(OUTPUT)``, ``peak3(OUTPUT)``,
+    ///     ``a_w(OUTPUT)``, ``a_v``, ``A8``, ``VDV``, ``damage_rate``, ``life``.
+    /// constraints : sequence of str, keyword-only
+    ///     ``"QUANTITY <= VALUE UNIT"`` or ``"QUANTITY >= VALUE UNIT"``, e.g. ``"3sigma(travel) <= 40 mm"``.
+    /// starts : int, keyword-only
+    ///     Starts: the centre of the box, then Halton points.
+    /// max_evaluations : int, keyword-only
+    ///     Most evaluations per start.
+    ///
+    /// Returns
+    /// -------
+    /// OptimizeResult
+    ///     ``value`` (SI), ``params`` (each ``key``, ``value``, ``text``, ``at_bound``), ``constraints``,
+    ///     ``feasible`` and ``violations`` (an infeasible problem is answered with its least violating point,
+    ///     not raised; the command-line tool then exits with an error).
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown key or quantity, bounds the wrong way round, both or neither of minimize/maximize.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> r = sc.optimize({"model.c": ("50 kN/m", "200 kN/m")}, minimize="sigma(y)", starts=1)
+    /// >>> r.params[0].at_bound  # σ of the deflection falls with the stiffness
+    /// 'upper'
+    #[pyo3(signature = (params, *, minimize=None, maximize=None, constraints=vec![], starts=4, max_evaluations=2000))]
+    #[allow(clippy::too_many_arguments)]
+    fn optimize<'py>(
+        &self,
+        py: Python<'py>,
+        params: &Bound<'py, PyDict>,
+        minimize: Option<String>,
+        maximize: Option<String>,
+        constraints: Vec<String>,
+        starts: usize,
+        max_evaluations: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let sc = self.stochastic(py)?;
+        let task = crate::optimize::Task {
+            minimize,
+            maximize,
+            constraints,
+            starts,
+            max_evaluations,
+        };
+        let (data, text) = crate::optimize::optimize(py, sc, params, task)?;
+        py.import("stochvib.results")?
+            .getattr("OptimizeResult")?
+            .call1((data, text))
+    }
+
+    /// The non-stationary response of a scenario with a ``[transient]`` section (``stochvib transient
+    /// SCENARIO --json``): σ(t), the mean and the crossing rates at the reported times by the exact route,
+    /// the mission extremes; with ``monte_carlo=N`` a seeded batch of the same transient whose σ(t) is
+    /// compared with the exact one (simultaneous level 1 − 10⁻³ over the reported times).
+    ///
+    /// Parameters
+    /// ----------
+    /// monte_carlo : int, keyword-only, optional
+    ///     Realizations of the batch.
+    /// path : path, keyword-only, optional
+    ///     Its run file (HDF5; written as ``path.tmp`` and renamed, an interrupted run resumes); None: a
+    ///     temporary file, removed afterwards. With ``shard=(I, N)`` the run directory receiving
+    ///     ``shard-<I>-of-<N>.h5`` (:func:`stochvib.merge` joins the parts).
+    /// seed, substeps, shard_size, confidence, store_raw, overwrite : keyword-only
+    ///     Master seed (realization i uses the stream (seed, i)); integration steps per reported interval;
+    ///     realizations per shard; confidence of the per-time intervals and of the DKW band of the maxima;
+    ///     keep every realization; replace a finished run file.
+    /// progress : bool or callable, keyword-only
+    ///     A bar (True), none (False) or a callable(done, total).
+    ///
+    /// Returns
+    /// -------
+    /// TransientResult
+    ///     ``times``, ``outputs[name]`` (``sigma``, ``mean``, ``nu0_plus`` arrays over ``times``),
+    ///     ``mission``; ``monte_carlo`` and ``sigma_comparison`` with a batch. ``to_dict()`` is the
+    ///     ``--json`` of ``stochvib transient``.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError, FileError
+    ///     No ``[transient]`` section, a bad schedule, a model with nonlinear elements.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> r = stochvib.Scenario.load("data/quarter-car-accelerating.toml").transient()
+    /// >>> float(r.times[0]), float(r.times[-1])
+    /// (0.0, 15.0)
+    #[pyo3(signature = (*, monte_carlo=None, path=None, seed=1, substeps=4, shard_size=50, confidence=0.95, store_raw=false, overwrite=false, progress=None, shard=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn transient<'py>(
+        &self,
+        py: Python<'py>,
+        monte_carlo: Option<usize>,
+        path: Option<PathBuf>,
+        seed: u64,
+        substeps: usize,
+        shard_size: usize,
+        confidence: f64,
+        store_raw: bool,
+        overwrite: bool,
+        progress: Option<Py<PyAny>>,
+        shard: Option<(usize, usize)>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        use crate::transient::{transient, Batch};
+        let sc = self.stochastic(py)?;
+        if shard.is_some() && path.is_none() {
+            return Err(invalid_input(
+                py,
+                "`shard`: needs path= (the run directory of the shard files)",
+            ));
+        }
+        let part = shard
+            .map(|(i, n)| call(py, || stochvib::store::Part::new(i, n)))
+            .transpose()?;
+        let batch = monte_carlo.map(|n| Batch {
+            opts: stochvib::scenario::transient_mc::TransientMcOptions {
+                realizations: n,
+                substeps,
+                seed,
+                shard_size,
+                confidence,
+                store_raw,
+                compression: Compression::default(),
+                part,
+                overwrite,
+            },
+            path,
+        });
+        let place = |p: PathBuf| -> stochvib::Result<PathBuf> {
+            let Some(part) = part else { return Ok(p) };
+            std::fs::create_dir_all(&p).map_err(|source| Error::Io {
+                path: p.clone(),
+                source,
+            })?;
+            Ok(stochvib::simulate::part_path(&p, part))
+        };
+        let progress = if batch.is_some() {
+            progress
+        } else {
+            Some(false.into_py_any(py)?)
+        };
+        let a = with_progress(py, progress, |cb| {
+            run_interruptible(py, cb, |cb| transient(sc, batch.map(|b| (b, &place as _)), cb))
+        })?;
+        let (mc, sigma, notes) = match &a.monte_carlo {
+            Some((s, c, n)) => (Some(s), Some(c), n.clone()),
+            None => (None, None, Vec::new()),
+        };
+        let data = serde_json::json!({ "exact": a.exact, "monte_carlo": mc, "sigma": sigma });
+        let mut text = a.exact.to_string();
+        if let Some(c) = sigma {
+            text.push_str(&c.to_string());
+        }
+        py.import("stochvib.results")?
+            .getattr("TransientResult")?
+            .call1((to_python(py, &data)?, text, notes))
     }
 
     /// The result tables of a deterministic model (a hoist, a chain) or of a reference table of the sources
@@ -707,7 +996,11 @@ impl PyScenario {
     /// The GIL is released while the run computes. ``shard=(I, N)`` runs part I of N of the run (as
     /// ``stochvib simulate --shard I --of N -o DIR``): ``path`` is then the run directory (created) that
     /// receives ``shard-<I>-of-<N>.h5``; :func:`stochvib.merge` joins the parts.
-    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None))]
+    ///
+    /// A model with nonlinear elements runs route 2 (the nonlinear equations in time, as ``stochvib
+    /// simulate`` of such a file; Δt and the duration suggested for route 2 when not given; ``burn_in`` in s)
+    /// and returns a :class:`NonlinearRunResult`.
+    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None, burn_in=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -725,13 +1018,14 @@ impl PyScenario {
         overwrite: bool,
         progress: Option<Py<PyAny>>,
         shard: Option<(usize, usize)>,
+        burn_in: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
-        let nonlinear = call(py, || sc.nonlinear_answers())?.is_some();
-        refuse_nonlinear_run(py, sc, nonlinear, "simulate()")?;
+        let answers = call(py, || sc.nonlinear_answers())?;
         let (path, part) = shard_path(py, path, shard)?;
         let dt = quantity::optional(py, dt, "dt", "s")?;
         let duration = quantity::optional(py, duration, "duration", "s")?;
+        let burn_in = quantity::optional(py, burn_in, "burn_in", "s")?;
         let compression: Compression = call(py, || compression.parse())?;
         let route = call(py, || route.parse())?;
         if overwrite && path.exists() {
@@ -743,21 +1037,41 @@ impl PyScenario {
                 }),
             )?;
         }
+        let base = RunOptions {
+            shard_size,
+            store_raw,
+            compression,
+            route,
+            confidence,
+            part,
+            realizations,
+            seed,
+            ..RunOptions::default()
+        };
+        if let Some(answers) = answers {
+            let outcome = with_progress(py, progress, |cb| {
+                run_interruptible(py, cb, |cb| {
+                    let (opts, how) = nonlinear_run::options(sc, &answers, base, (dt, duration, burn_in))?;
+                    sc.simulate_nonlinear(&answers, &opts, &path, cb).map(|s| (s, how))
+                })
+            });
+            if outcome.is_err() {
+                release_claim(&path);
+            }
+            let (summary, how) = outcome?;
+            return py.import("stochvib.results")?.getattr("NonlinearRunResult")?.call1((
+                to_python(py, &summary)?,
+                summary.to_string(),
+                how,
+            ));
+        }
         let outcome = with_progress(py, progress, |cb| {
             run_interruptible(py, cb, |cb| {
                 let (dt, d, how) = step(sc, dt, duration)?;
                 let opts = RunOptions {
-                    shard_size,
-                    store_raw,
-                    compression,
-                    route,
-                    confidence,
-                    part,
-                    realizations,
                     duration_s: d,
                     dt_s: dt,
-                    seed,
-                    ..RunOptions::default()
+                    ..base
                 };
                 sc.simulate(&opts, &path, cb).map(|s| (s, how))
             })

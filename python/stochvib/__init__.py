@@ -53,9 +53,12 @@ from .results import (
     Report,
     NonlinearOutput,
     NonlinearResult,
+    NonlinearRunResult,
+    OptimizeResult,
     RunResult,
     SweepResult,
     TablesResult,
+    TransientResult,
     VarianceMethod,
 )
 
@@ -83,6 +86,9 @@ __all__ = [
     "SweepResult",
     "NonlinearResult",
     "NonlinearOutput",
+    "NonlinearRunResult",
+    "OptimizeResult",
+    "TransientResult",
     "Report",
     "StochvibError",
     "InvalidInputError",
@@ -148,6 +154,10 @@ def analyze(
     rel_tol: Optional[float] = None,
     max_subintervals: Optional[int] = None,
     max_half_periods: Optional[int] = None,
+    burn_in: Optional[Quantity] = None,
+    coherence: Optional[Dict[str, Any]] = None,
+    track_width: Optional[Quantity] = None,
+    tracks: Optional[Sequence[Union[str, int]]] = None,
 ) -> Union[AnalysisResult, NonlinearResult]:
     """Response statistics of a scenario, or of ``system`` driven by ``input`` (the ``stochvib analyze`` report).
 
@@ -167,8 +177,16 @@ def analyze(
     (ω₁, ω₂ in rad/s). An infinite variance is reported, not raised: ``sigma`` is None,
     ``variance_outcome["status"]`` is "divergent" and ``variance_note`` holds the diagnosis.
 
+    A road of two coherent tracks (left and right wheels, as a scenario file's ``[[input]] road``): ``input``
+    the spatial spectrum of each track, ``coherence`` the coherence model between them (a dict as the file's
+    ``coherence`` table, e.g. ``{"kind": "dodds-robson", "waviness": 2}``), ``track_width`` (m, default the
+    model's), ``tracks`` ("left"/"right" per system input, default the model's layout) and ``positions`` (m
+    behind the first contact: the wheelbase delays ℓ/v).
+
     ``monte_carlo=N`` adds a Monte Carlo column (N seeded realizations, time step ``dt`` s and realization
-    ``duration`` s suggested when not given, ``progress`` bar; Ctrl-C stops it).
+    ``duration`` s suggested when not given, ``progress`` bar; Ctrl-C stops it); for a model with nonlinear
+    elements it runs route 2 (the nonlinear equations in time; ``burn_in`` in s, default from the slowest
+    decay rate of the Gaussian equivalent).
 
     ``rel_tol`` (default 1e-10), ``max_subintervals`` (2000) and ``max_half_periods`` (10 000) set the
     effort of the quadratures, over the scenario's ``[analysis.quadrature]`` (the CLI's ``--rel-tol``,
@@ -207,6 +225,9 @@ def analyze(
         ("band_rad_s", band_rad_s),
         ("duration_s", duration_s),
         ("levels", levels),
+        ("coherence", coherence),
+        ("track_width", track_width),
+        ("tracks", tracks),
     ):
         if v is not None:
             kw[k] = v
@@ -220,6 +241,7 @@ def analyze(
         rel_tol=rel_tol,
         max_subintervals=max_subintervals,
         max_half_periods=max_half_periods,
+        burn_in=burn_in,
     )
 
 
@@ -245,7 +267,11 @@ def simulate(
     progress: Union[bool, Callable[[int, int], Any]] = True,
     spectra_dir: Optional[PathLike] = None,
     shard: Optional[Tuple[int, int]] = None,
-) -> RunResult:
+    burn_in: Optional[Quantity] = None,
+    coherence: Optional[Dict[str, Any]] = None,
+    track_width: Optional[Quantity] = None,
+    tracks: Optional[Sequence[Union[str, int]]] = None,
+) -> Union[RunResult, NonlinearRunResult]:
     """A seeded Monte Carlo run written to the HDF5 file ``path`` (``stochvib simulate``); returns a
     :class:`RunResult` with the file path and the statistics (σ with its interval against the analytic σ).
 
@@ -259,10 +285,20 @@ def simulate(
     intervals; ``progress``: True (a bar), False or a callable(done, total). The GIL is released.
     ``shard=(I, N)``: part I of N of the run (``stochvib simulate --shard I --of N -o DIR``), ``path`` the run
     directory receiving ``shard-<I>-of-<N>.h5``; :func:`merge` joins the parts into one run file with the
-    statistics of the unsharded run.
+    statistics of the unsharded run. ``coherence``/``track_width``/``tracks``: a road of two coherent tracks
+    as in :func:`analyze`. A model with nonlinear elements runs route 2 (``burn_in`` in s) and returns a
+    :class:`NonlinearRunResult`.
     """
     kw: Dict[str, Any] = {}
-    for k, v in (("speed", speed), ("positions", positions), ("mean", mean), ("outputs", outputs)):
+    for k, v in (
+        ("speed", speed),
+        ("positions", positions),
+        ("mean", mean),
+        ("outputs", outputs),
+        ("coherence", coherence),
+        ("track_width", track_width),
+        ("tracks", tracks),
+    ):
         if v is not None:
             kw[k] = v
     sc = _scenario(subject, input, kw, spectra_dir)
@@ -280,6 +316,7 @@ def simulate(
         overwrite=overwrite,
         progress=progress,
         shard=shard,
+        burn_in=burn_in,
     )
 
 

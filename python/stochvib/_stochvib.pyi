@@ -14,7 +14,16 @@ from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequen
 import numpy as np
 import numpy.typing as npt
 
-from .results import AnalysisResult, NonlinearResult, RunResult, SweepResult, TablesResult
+from .results import (
+    AnalysisResult,
+    NonlinearResult,
+    NonlinearRunResult,
+    OptimizeResult,
+    RunResult,
+    SweepResult,
+    TablesResult,
+    TransientResult,
+)
 
 __version__: str
 ISO_BAND: Tuple[float, float]
@@ -225,8 +234,13 @@ class Scenario:
         duration_s: Optional[Quantity] = None,
         levels: Optional[Dict[str, Sequence[float]]] = None,
         title: Optional[str] = None,
+        coherence: Optional[Mapping[str, Any]] = None,
+        track_width: Optional[Quantity] = None,
+        tracks: Optional[Sequence[Union[str, int]]] = None,
     ) -> Scenario:
-        """``system`` driven by ``input`` (speed m/s, positions m, band rad/s, duration s)."""
+        """``system`` driven by ``input`` (speed m/s, positions m, band rad/s, duration s); a road of two
+        coherent tracks with ``coherence`` (a dict as a scenario road's table), ``track_width`` (m) and
+        ``tracks`` ("left"/"right" per system input)."""
     def analyze(
         self,
         *,
@@ -238,9 +252,11 @@ class Scenario:
         rel_tol: Optional[float] = None,
         max_subintervals: Optional[int] = None,
         max_half_periods: Optional[int] = None,
+        burn_in: Optional[Quantity] = None,
     ) -> Union[AnalysisResult, NonlinearResult]:
-        """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``); ``rel_tol``,
-        ``max_subintervals``, ``max_half_periods`` override the quadratures' ``[analysis.quadrature]``."""
+        """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``, route 2 for a
+        nonlinear model with ``burn_in`` in s); ``rel_tol``, ``max_subintervals``, ``max_half_periods``
+        override the quadratures' ``[analysis.quadrature]``."""
     def output_density(
         self,
         output: str,
@@ -250,8 +266,47 @@ class Scenario:
         convention: Optional[Convention] = None,
     ) -> Union[float, FloatArray]:
         """S_y(ω) (rad/s) or the one-sided G_y(f) (Hz) of an output, shaped as the argument."""
-    def sweep(self, params: Mapping[str, Union[str, Sequence[Quantity]]], *, zip: bool = False) -> SweepResult:
-        """The exact statistics at every point of a parameter study (grid, or ``zip``)."""
+    def sweep(
+        self,
+        params: Mapping[str, Union[str, Sequence[Quantity]]],
+        *,
+        zip: bool = False,
+        monte_carlo: Optional[int] = None,
+        seed: int = 1,
+        dt: Optional[Quantity] = None,
+        duration: Optional[Quantity] = None,
+        shard_size: int = 50,
+        confidence: float = 0.95,
+        progress: Progress = True,
+    ) -> SweepResult:
+        """The exact statistics at every point of a parameter study (grid, or ``zip``), with a Monte Carlo
+        batch of ``monte_carlo`` realizations per point."""
+    def optimize(
+        self,
+        params: Mapping[str, Union[str, Sequence[Quantity]]],
+        *,
+        minimize: Optional[str] = None,
+        maximize: Optional[str] = None,
+        constraints: Sequence[str] = ...,
+        starts: int = 4,
+        max_evaluations: int = 2000,
+    ) -> OptimizeResult:
+        """The parameters (key → (low, high)) minimising or maximising a quantity under constraints."""
+    def transient(
+        self,
+        *,
+        monte_carlo: Optional[int] = None,
+        path: Optional[PathLike] = None,
+        seed: int = 1,
+        substeps: int = 4,
+        shard_size: int = 50,
+        confidence: float = 0.95,
+        store_raw: bool = False,
+        overwrite: bool = False,
+        progress: Progress = True,
+        shard: Optional[Tuple[int, int]] = None,
+    ) -> TransientResult:
+        """σ(t) and the mission extremes of a ``[transient]`` scenario, with a Monte Carlo batch."""
     def tables(self) -> TablesResult:
         """The result tables of a deterministic model or a reference table."""
     def simulate(
@@ -270,9 +325,10 @@ class Scenario:
         overwrite: bool = False,
         progress: Progress = True,
         shard: Optional[Tuple[int, int]] = None,
-    ) -> RunResult:
+        burn_in: Optional[Quantity] = None,
+    ) -> Union[RunResult, NonlinearRunResult]:
         """A seeded Monte Carlo run into the HDF5 file ``path`` (dt, duration in s); with ``shard=(I, N)``
-        part I of N into the directory ``path``."""
+        part I of N into the directory ``path``; route 2 of a nonlinear model (``burn_in`` in s)."""
     @property
     def title(self) -> str: ...
     @property

@@ -5,7 +5,11 @@
   :class:`LevelCrossing` rates;
 * :class:`TablesResult` — the result tables of a deterministic model or a reference table of the sources;
 * :class:`RunResult` — a finished Monte Carlo run (the HDF5 file and its statistics);
-* :class:`ExposureResult` — the ISO 2631-1 evaluation of acceleration records (:func:`stochvib.exposure`).
+* :class:`ExposureResult` — the ISO 2631-1 evaluation of acceleration records (:func:`stochvib.exposure`);
+* :class:`SweepResult` — a parameter study, with its Monte Carlo batches (:meth:`Scenario.sweep`);
+* :class:`NonlinearResult`, :class:`NonlinearRunResult` — routes 1 to 3 of a model with nonlinear elements;
+* :class:`OptimizeResult` — an optimum under constraints (:meth:`Scenario.optimize`);
+* :class:`TransientResult` — σ(t) and the mission extremes of a transient (:meth:`Scenario.transient`).
 
 ``repr()`` reads like the command-line tool's table, ``str()`` is the tool's full text, ``to_dict()`` the
 ``--json`` data (plain dicts, lists, floats, strings and None), ``to_dataframe()`` a pandas DataFrame (one
@@ -43,6 +47,12 @@ __all__ = [
     "SweepResult",
     "NonlinearResult",
     "NonlinearOutput",
+    "NonlinearRunResult",
+    "OptimizeResult",
+    "OptimizedParam",
+    "ConstraintState",
+    "TransientResult",
+    "TransientOutput",
 ]
 
 
@@ -609,6 +619,34 @@ class SweepResult:
         """σ of ``output`` at every point, shaped as :attr:`shape`."""
         return self.statistic(output, "sigma")
 
+    @property
+    def monte_carlo_options(self) -> Optional[Dict[str, Any]]:
+        """The batch of every point (``realizations``, ``duration_s``, ``dt_s``, ``seed``, ``shard_size``,
+        ``confidence``), or None for a study without Monte Carlo."""
+        return self._data["identity"].get("monte_carlo")
+
+    def monte_carlo(self, output: str) -> Dict[str, Any]:
+        """The Monte Carlo σ of ``output`` at every point (a study with ``monte_carlo=N``): a dict of arrays of
+        :attr:`shape` — ``sigma`` (the estimate), ``lower``, ``upper`` (its interval) and ``covers`` (whether the
+        interval covers the exact σ; False where a point failed). NaN where a point has no batch."""
+        import numpy as np
+
+        if self.monte_carlo_options is None:
+            raise KeyError("this study has no Monte Carlo batches: sweep(..., monte_carlo=N)")
+        if output not in self.outputs:
+            raise KeyError(f"no output {output!r}; the outputs are {self.outputs}")
+        out = {k: np.full(self.n_points, np.nan) for k in ("sigma", "lower", "upper")}
+        covers = np.zeros(self.n_points, dtype=bool)
+        for r in self.rows:
+            mc = r.get("monte_carlo")
+            if r["output"] == output and mc is not None:
+                for k in out:
+                    out[k][r["point"]] = mc[k]
+                covers[r["point"]] = mc["covers"]
+        res: Dict[str, Any] = {k: v.reshape(self.shape) for k, v in out.items()}
+        res["covers"] = covers.reshape(self.shape)
+        return res
+
     def to_dict(self) -> Dict[str, Any]:
         """A deep copy of the data, as ``stochvib sweep … --json`` prints it."""
         return copy.deepcopy(self._data)
@@ -651,6 +689,12 @@ class NonlinearOutput:
         """The statistic by route 3 (the exact stationary density), or None where route 3 does not apply."""
         return self.rows[statistic].get("exact")
 
+    def route2(self, statistic: str = "sigma_response") -> Optional[Dict[str, float]]:
+        """The statistic by route 2 (the Monte Carlo of the nonlinear equations, ``analyze(monte_carlo=N)``):
+        a dict ``estimate``, ``lower``, ``upper``, ``confidence``; None without a batch."""
+        mc = self.rows[statistic].get("monte_carlo")
+        return None if mc is None else dict(mc)
+
     @property
     def sigma(self) -> Optional[float]:
         """σ of the output: the exact one where route 3 applies, else route 1's."""
@@ -689,7 +733,201 @@ class NonlinearResult(_Text):
 
     def __repr__(self) -> str:
         head = f"NonlinearResult: {self._data.get('title')}  ({self._data.get('scenario')})"
-        rows = [f"{'output':<14} {'unit':<8} {'sigma route 1':>14} {'sigma exact':>14}"]
+        rows = [f"{'output':<14} {'unit':<8} {'sigma route 1':>14} {'sigma exact':>14} {'sigma route 2':>14}"]
         for o in self.outputs.values():
-            rows.append(f"{o.name:<14} {o.unit:<8} {_e(o.route1()):>14} {_e(o.exact()):>14}")
+            r2 = o.route2() if "sigma_response" in o.rows else None
+            mc = None if r2 is None else r2.get("estimate")
+            rows.append(f"{o.name:<14} {o.unit:<8} {_e(o.route1()):>14} {_e(o.exact()):>14} {_e(mc):>14}")
+        return "\n".join([head, *rows])
+
+
+class NonlinearRunResult(RunResult):
+    """A finished route-2 run of a model with nonlinear elements (:func:`stochvib.simulate` of such a
+    scenario; the data of ``stochvib simulate --json``): the attributes of :class:`RunResult` (the run as a
+    linear run reports it, its statistics against route 1's Gaussian σ), and ``burn_in_s`` (s) and
+    ``halving_checks`` (realizations repeated with Δt/2 to check the step)."""
+
+    def __init__(self, data: Dict[str, Any], text: str, step: str) -> None:
+        super().__init__(data["run"], text, step)
+        self._data = data
+        self.burn_in_s: float = data["burn_in_s"]
+        self.halving_checks: int = data["halving_checks"]
+
+    def __repr__(self) -> str:
+        return super().__repr__() + f"\nburn-in {_e(self.burn_in_s)} s, {self.halving_checks} dt-halving checks"
+
+
+@dataclass(frozen=True, repr=False)
+class OptimizedParam(_Mapping):
+    """A parameter at the answer of :meth:`Scenario.optimize`: ``key``, ``value`` (SI), ``text`` (in the unit
+    of the bounds), ``at_bound`` ("lower", "upper" or None)."""
+
+    key: str
+    value: float
+    text: str
+    at_bound: Optional[str]
+
+    def __repr__(self) -> str:
+        b = "" if self.at_bound is None else f"  (at the {self.at_bound} bound)"
+        return f"{self.key} = {self.text}  ({_e(self.value, 9)} SI){b}"
+
+
+@dataclass(frozen=True, repr=False)
+class ConstraintState(_Mapping):
+    """A constraint at the answer of :meth:`Scenario.optimize`: ``text`` as given, ``value`` and ``limit``
+    (SI, in ``unit``), ``margin`` (≥ 0 when met), ``active`` (the optimum lies on it), ``met``."""
+
+    text: str
+    value: float
+    limit: float
+    unit: str
+    margin: float
+    active: bool
+    met: bool
+
+    def __repr__(self) -> str:
+        state = "ACTIVE" if self.met and self.active else ("inactive" if self.met else "VIOLATED")
+        return f"constraint {self.text}: value {_e(self.value)} {self.unit}, margin {_e(self.margin)} {self.unit}  {state}"
+
+
+class OptimizeResult(_Text):
+    """The answer of :meth:`Scenario.optimize` (the data of ``stochvib optimize --json``).
+
+    Attributes
+    ----------
+    goal : str
+        "minimize" or "maximize".
+    objective, unit : str
+        The quantity and its SI unit.
+    value : float
+        The quantity at the answer, SI.
+    feasible : bool
+        Every constraint met; when False the answer is the least violating point and ``violations`` says
+        by how much each constraint is missed.
+    params : list of OptimizedParam
+    constraints : list of ConstraintState
+    evaluations : int
+        Analyses in all starts.
+    """
+
+    def __init__(self, data: Dict[str, Any], text: str) -> None:
+        self._data = data
+        self._text = text
+        self.goal: str = str(data["goal"]).lower()
+        self.objective: str = data["objective"]
+        self.unit: str = data["unit"]
+        self.value: float = data["value"]
+        self.feasible: bool = data["feasible"]
+        self.evaluations: int = data["evaluations"]
+        self.params: List[OptimizedParam] = [
+            OptimizedParam(p["key"], p["value"], p["text"], p.get("at_bound")) for p in data["params"]
+        ]
+        self.constraints: List[ConstraintState] = [
+            ConstraintState(**{k: c[k] for k in ("text", "value", "limit", "unit", "margin", "active", "met")})
+            for c in data["constraints"]
+        ]
+
+    @property
+    def x(self) -> Dict[str, float]:
+        """key → the parameter's value at the answer (SI)."""
+        return {p.key: p.value for p in self.params}
+
+    @property
+    def violations(self) -> List[str]:
+        """One sentence per constraint that is not met (empty when feasible), as the command-line tool says it."""
+        return [line.strip() for line in self._text.splitlines() if "cannot be met" in line]
+
+    def to_dataframe(self) -> Any:
+        """One row per parameter: key, value, text, at_bound."""
+        return _dataframe([{"key": p.key, "value": p.value, "text": p.text, "at_bound": p.at_bound} for p in self.params])
+
+    def __repr__(self) -> str:
+        state = "" if self.feasible else " (INFEASIBLE: the least violating point)"
+        head = f"OptimizeResult: {self.goal} of {self.objective}{state}: {_e(self.value)} {self.unit}"
+        return "\n".join([head, *(f"  {p!r}" for p in self.params), *(f"  {c!r}" for c in self.constraints)])
+
+
+class TransientOutput:
+    """One output of a transient analysis over the reported times: ``name``, ``unit``, numpy arrays ``mean``,
+    ``sigma`` (σ(t); for a weighted output the running r.m.s. a_w(t)) and ``nu0_plus`` (Hz),
+    ``upcrossing_rates`` (level → array of ν⁺(b, t) in Hz), ``weighted_of``, ``note``."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        import numpy as np
+
+        self._data = data
+        self.name: str = data["name"]
+        self.unit: str = data["unit"]
+        self.weighted_of: Optional[str] = data.get("weighted_of")
+        self.note: Optional[str] = data.get("note")
+        self.mean = np.asarray(data["mean"], dtype=float)
+        self.sigma = np.asarray(data["sigma"], dtype=float)
+        self.nu0_plus = np.asarray(data["nu0_plus"], dtype=float)
+        self.upcrossing_rates: Dict[float, Any] = {b: np.asarray(r, dtype=float) for b, r in data.get("upcrossing_rates", [])}
+
+    def __repr__(self) -> str:
+        return f"TransientOutput {self.name} [{self.unit}]: max sigma {_e(float(self.sigma.max()) if self.sigma.size else None)}"
+
+
+class TransientResult(_Text):
+    """The non-stationary response of a scenario with a ``[transient]`` section (:meth:`Scenario.transient`;
+    ``to_dict()`` is the ``--json`` of ``stochvib transient``: ``exact``, ``monte_carlo``, ``sigma``).
+
+    Attributes
+    ----------
+    times : numpy.ndarray
+        The reported times, s.
+    outputs : dict
+        name → :class:`TransientOutput` (σ(t), mean, ν₀⁺(t) by the exact route).
+    mission : list of dict
+        Per (output, level): expected up-crossings and the probability of exceeding the level in the mission
+        (``p_integrated_rate``, ``p_poisson``, ``p_vanmarcke``, ``p_der_kiureghian``).
+    mission_duration : float
+        s.
+    monte_carlo : dict or None
+        With a batch: the run summary (``path``, ``n_realizations``, the DKW verdicts of the maxima).
+    sigma_comparison : list of dict or None
+        With a batch, per output: ``rows`` (t, exact σ, Monte Carlo σ, lower, upper), ``coverage``,
+        ``simultaneous_confidence``, ``outside`` (times where the exact σ is outside the simultaneous interval).
+    notes : list of str
+        Outputs left out of the batch and why.
+    """
+
+    def __init__(self, data: Dict[str, Any], text: str, notes: List[str]) -> None:
+        import numpy as np
+
+        self._data = data
+        self._text = text
+        self.notes = list(notes)
+        exact = data["exact"]
+        self.times = np.asarray(exact["times"], dtype=float)
+        self.outputs: Dict[str, TransientOutput] = {o["name"]: TransientOutput(o) for o in exact["outputs"]}
+        self.mission: List[Dict[str, Any]] = exact.get("mission", [])
+        self.mission_duration: float = exact["mission_duration"]
+        self.monte_carlo: Optional[Dict[str, Any]] = data.get("monte_carlo")
+        self.sigma_comparison: Optional[List[Dict[str, Any]]] = data.get("sigma")
+
+    def __getitem__(self, name: str) -> TransientOutput:
+        if name not in self.outputs:
+            raise KeyError(f"no output {name!r}; the outputs are {list(self.outputs)}")
+        return self.outputs[name]
+
+    def to_dataframe(self) -> Any:
+        """One row per (time, output): t, output, mean, sigma, nu0_plus."""
+        return _dataframe(
+            [
+                {"t": float(t), "output": o.name, "mean": float(o.mean[k]), "sigma": float(o.sigma[k]), "nu0_plus": float(o.nu0_plus[k])}
+                for o in self.outputs.values()
+                for k, t in enumerate(self.times)
+            ]
+        )
+
+    def __repr__(self) -> str:
+        head = f"TransientResult: {self._data['exact'].get('title')}  ({len(self.times)} times to {_e(float(self.times[-1]))} s)"
+        rows = [f"{'output':<16} {'unit':<8} {'max sigma':>12} {'sigma(T)':>12}"]
+        for o in self.outputs.values():
+            rows.append(f"{o.name:<16} {o.unit:<8} {_e(float(o.sigma.max())):>12} {_e(float(o.sigma[-1])):>12}")
+        if self.sigma_comparison:
+            for c in self.sigma_comparison:
+                rows.append(f"Monte Carlo {c['output']}: coverage {c['coverage']:.3f}, {len(c['outside'])} times outside")
         return "\n".join([head, *rows])

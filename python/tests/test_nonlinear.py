@@ -1,5 +1,6 @@
 """A scenario with nonlinear elements from Python: analyze() gives routes 1 and 3 as a NonlinearResult, not
-the linear part's answer; the exact σ of the Duffing oscillator under white noise against the stationary
+the linear part's answer, and route 2 (the Monte Carlo of the nonlinear equations) as the command-line tool
+runs it; the exact σ of the Duffing oscillator under white noise against the stationary
 Fokker–Planck density computed here with scipy (Caughey 1963; Lin 1967, ch. 10): for m ẍ + c ẋ + U'(x) = w
 with white w, p(x, v) ∝ exp(−(m v²/2 + U(x))/θ), θ = m σ_v², σ_v that of the linear oscillator (π S₀/(c m));
 here U = k x²/2 + k₃ x⁴/4, m = 1 kg, k = (2π)² N/m, k₃ = 394 784.176 N/m³, the linear σ₀ = 1 cm, so
@@ -13,14 +14,13 @@ import pytest
 from scipy import integrate
 
 import stochvib
-from stochvib import NotApplicableError
 
 # Two adaptive quadratures of the same smooth, fast-decaying density (the library's and scipy's QUADPACK):
 # both to ~1e-10 relative.
 REL_QUAD = 1e-8
 
 
-def test_duffing_routes_against_fokker_planck(root, tmp_path):
+def test_duffing_routes_against_fokker_planck(root):
     sc = stochvib.Scenario.load(root / "data" / "duffing-white-noise.toml")
     r = sc.analyze(progress=False)
     assert isinstance(r, stochvib.NonlinearResult) and r.route1_converged
@@ -36,9 +36,32 @@ def test_duffing_routes_against_fokker_planck(root, tmp_path):
     assert r["x"].route1() < r["x"].exact() < sigma0
     assert r["x"].rows["kurtosis"]["exact"] < 3.0 == r["x"].route1("kurtosis")
     assert "route 1" in repr(r) and "Duffing" in str(r)
-    # route 2 (Monte Carlo) is refused clearly, nothing written
-    with pytest.raises(NotApplicableError, match="nonlinear"):
-        sc.simulate(20, tmp_path / "run.h5", progress=False)
-    with pytest.raises(NotApplicableError, match="nonlinear"):
-        sc.analyze(monte_carlo=20, progress=False)
-    assert not list(tmp_path.iterdir())
+    assert r["x"].route2() is None  # no batch asked for
+
+
+# The route-2 batch below: the same seeded realizations through the command-line tool and Python.
+ROUTE2 = ("--dt", "0.01", "--duration", "60", "--seed", "3")
+
+
+def test_route2_analyze_matches_the_cli(cli, root):
+    want = cli.json("analyze", "data/duffing-white-noise.toml", "--monte-carlo", "8", *ROUTE2)
+    sc = stochvib.Scenario.load(root / "data" / "duffing-white-noise.toml")
+    r = sc.analyze(monte_carlo=8, dt=0.01, duration=60.0, seed=3, progress=False)
+    got = r.to_dict()
+    for g, w in zip(got["outputs"], want["outputs"]):
+        assert [row["monte_carlo"] for row in g["rows"]] == [row["monte_carlo"] for row in w["rows"]]
+    mc = r["x"].route2()
+    assert set(mc) == {"estimate", "lower", "upper", "confidence"} and mc["lower"] < mc["estimate"] < mc["upper"]
+    assert "sigma route 2" in repr(r)
+
+
+def test_route2_simulate_writes_the_run_of_the_cli(cli, root, tmp_path):
+    want = cli.json("simulate", "data/duffing-white-noise.toml", "--realizations", "6", "-o", str(tmp_path / "cli.h5"), *ROUTE2)
+    sc = stochvib.Scenario.load(root / "data" / "duffing-white-noise.toml")
+    r = sc.simulate(6, tmp_path / "py.h5", dt=0.01, duration=60.0, seed=3, progress=False)
+    assert isinstance(r, stochvib.NonlinearRunResult) and r.path == tmp_path / "py.h5" and r.path.is_file()
+    assert r.step == "given" and r.n_realizations == 6
+    got = r.to_dict()
+    assert got["burn_in_s"] == want["burn_in_s"] > 0 and got["halving_checks"] == want["halving_checks"]
+    assert [o["statistics"] for o in got["run"]["outputs"]] == [o["statistics"] for o in want["run"]["outputs"]]
+    assert set(r.sigma) == {o["output"] for o in want["run"]["outputs"]}

@@ -49,3 +49,29 @@ def test_sweep_bad_key(root):
     sc = stochvib.Scenario.load(root / "data" / "conveyor-idler.toml")
     with pytest.raises(InvalidInputError, match="unknown key"):
         sc.sweep({"model.omega2": [1.0, 2.0]})
+
+
+def test_sweep_with_monte_carlo_against_the_cli(cli, root):
+    # the same seeded batch at every point (realization i uses the stream (seed, i)): the CLI's numbers
+    want = cli.json(
+        "sweep", "data/conveyor-idler.toml", "--param", "model.c=50 kN/m,70 kN/m",
+        "--monte-carlo", "6", "--dt", "0.01", "--duration", "20", "--seed", "5",
+    )
+    sc = stochvib.Scenario.load(root / "data" / "conveyor-idler.toml")
+    r = sc.sweep({"model.c": ["50 kN/m", "70 kN/m"]}, monte_carlo=6, dt=0.01, duration="20 s", seed=5, progress=False)
+    assert r.monte_carlo_options["realizations"] == 6 and r.monte_carlo_options["seed"] == 5
+    mc = r.monte_carlo("y")
+    assert mc["sigma"].shape == r.shape == (2,)
+    for row in want["rows"]:
+        if row["output"] == "y":
+            k = row["point"]
+            assert (mc["sigma"][k], mc["lower"][k], mc["upper"][k], mc["covers"][k]) == (
+                row["monte_carlo"]["sigma"], row["monte_carlo"]["lower"], row["monte_carlo"]["upper"], row["monte_carlo"]["covers"],
+            )
+    assert np.all(mc["lower"] < mc["sigma"]) and np.all(mc["sigma"] < mc["upper"])
+    # the exact columns are those of the study without Monte Carlo
+    np.testing.assert_array_equal(r.sigma("y"), sc.sweep({"model.c": ["50 kN/m", "70 kN/m"]}).sigma("y"))
+    with pytest.raises(KeyError, match="no Monte Carlo"):
+        sc.sweep({"model.c": ["50 kN/m"]}).monte_carlo("y")
+    with pytest.raises(InvalidInputError, match="at least 2"):
+        sc.sweep({"model.c": ["50 kN/m"]}, monte_carlo=1)
