@@ -655,7 +655,7 @@ impl PyScenario {
     /// [0.2, 0.1]
     #[pyo3(signature = (params, *, zip=false))]
     fn sweep<'py>(&self, py: Python<'py>, params: &Bound<'py, PyDict>, zip: bool) -> PyResult<Bound<'py, PyAny>> {
-        use stochvib::scenario::{Sweep, SweepMode, SweepParam, SweepSpec};
+        use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
         let sc = self.stochastic(py)?;
         let params = sweep_params(params)?;
         let json = detached(py, || {
@@ -666,7 +666,7 @@ impl PyScenario {
             let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
             let sweep = Sweep::new(sc, SweepSpec::new(params, mode)?)?;
             let n = sweep.spec().n_points();
-            Ok(stochvib::report::compute_sweep(&sweep, 0..n, true, None, &|_, _| ())?.to_json()?)
+            Ok(stochvib::study::compute_sweep(&sweep, 0..n, true, None, &|_, _| ())?.to_json()?)
         })?;
         let v: serde_json::Value = serde_json::from_str(&json).map_err(|e| invalid_input(py, e.to_string()))?;
         py.import("stochvib.results")?

@@ -37,9 +37,9 @@
 use super::sweep_h5::H5TableWriter;
 use crate::error::{Error, Result};
 use crate::response::{PointStatistics, VarianceMethod};
-use crate::scenario::{sweep_value_text, Sweep, SweepMode, FAILED_POINT};
 use crate::simulate::{run_temporary, RunOptions};
 use crate::store::Part;
+use crate::study::{sweep_value_text, Sweep, SweepMode, FAILED_POINT};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

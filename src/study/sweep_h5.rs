@@ -7,8 +7,8 @@
 use super::sweep_table::{OutputValues, SweepIdentity, SweepResults};
 use crate::error::{Error, Result};
 use crate::response::PointStatistics;
-use crate::scenario::Sweep;
 use crate::store::{h5err as h5, open_sec2, OpenMode};
+use crate::study::Sweep;
 use hdf5::types::VarLenUnicode;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
