@@ -16,7 +16,7 @@ use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
 use stochvib::simulate::{merge_runs, part_path, resolve_part, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
-use stochvib::store::{summarize, Compression, RunFile};
+use stochvib::store::{Compression, RunFile};
 use stochvib::study::{self, NonlinearAnswers, Sweep, SweepMode, SweepParam, SweepSpec};
 
 /// Stochastic vibration and random-road analysis of machines.
@@ -654,7 +654,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             match output.format() {
                 ReportFormat::Json => print_json(&RunFile::open(&file)?.info()?)?,
                 ReportFormat::Markdown => emit(&report::inspect_markdown(&file)?),
-                ReportFormat::Text => emit(&summarize(&file)?),
+                ReportFormat::Text => emit(&report::summarize(&file)?),
             }
         }
         Command::Workday { file, spectra, output } => {
