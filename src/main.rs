@@ -14,10 +14,11 @@ use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::table::{ReportFormat, ToMarkdown};
 use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
-use stochvib::simulate::{merge_runs, part_path, resolve_part, MergeOptions, Route, RunOptions};
+use stochvib::simulate::{merge_runs, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
 use stochvib::store::{Compression, RunFile};
 use stochvib::study::{self, NonlinearAnswers, Sweep, SweepMode, SweepParam, SweepSpec};
+use stochvib::study::{part_path, resolve_part};
 
 /// Stochastic vibration and random-road analysis of machines.
 #[derive(Parser)]
@@ -1289,7 +1290,7 @@ fn named_by_flag(e: stochvib::Error, count: &str) -> stochvib::Error {
 }
 
 /// The run file of `simulate`: `-o` itself, or with `--shard` the shard file in the run directory `-o`.
-fn shard_output(output: PathBuf, choice: &Option<stochvib::simulate::ShardChoice>) -> anyhow::Result<PathBuf> {
+fn shard_output(output: PathBuf, choice: &Option<stochvib::study::ShardChoice>) -> anyhow::Result<PathBuf> {
     let Some(c) = choice else { return Ok(output) };
     output_dir(
         &output,

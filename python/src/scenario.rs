@@ -280,7 +280,7 @@ fn shard_path(
             source,
         }),
     )?;
-    Ok((stochvib::simulate::part_path(&path, part), Some(part)))
+    Ok((stochvib::study::part_path(&path, part), Some(part)))
 }
 
 /// Joins the part files of a sharded run (``stochvib merge OUT INPUTS…``; ``inputs`` files or directories)

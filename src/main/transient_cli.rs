@@ -63,12 +63,10 @@ pub fn transient(
     a: TransientArgs,
     catalogue: &dyn Fn(&Option<PathBuf>) -> Catalogue,
     progress: &dyn Fn(usize, usize),
-    shard_output: &dyn Fn(PathBuf, &Option<stochvib::simulate::ShardChoice>) -> anyhow::Result<PathBuf>,
+    shard_output: &dyn Fn(PathBuf, &Option<stochvib::study::ShardChoice>) -> anyhow::Result<PathBuf>,
 ) -> anyhow::Result<()> {
     let choice = match &a.shard {
-        Some(spec) => Some(stochvib::simulate::resolve_part(spec, a.of, &|k| {
-            std::env::var(k).ok()
-        })?),
+        Some(spec) => Some(stochvib::study::resolve_part(spec, a.of, &|k| std::env::var(k).ok())?),
         None => None,
     };
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;

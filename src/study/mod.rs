@@ -5,6 +5,8 @@
 //!   ([`sweep_table`], written as CSV, JSON or HDF5, streamed block by block by [`sweep_stream`]), split
 //!   into shard files of a cluster run and merged ([`merge_sweep`]), and the verdicts of every point
 //!   ([`sweep_verdicts`]).
+//! * The shard contract of a cluster run ([`shard`]: which part a process computes, from `--shard I --of N`
+//!   or the scheduler, and the file it writes), shared by runs and parameter studies.
 //! * A scenario's Monte Carlo run ([`Scenario::simulate`](crate::scenario::Scenario::simulate)).
 //! * A measured road profile replayed through a scenario's model ([`replay`]).
 //! * The verdicts of a scenario: analytic ([`verdict_analysis`], with the input's coverage of the
@@ -22,6 +24,7 @@ mod nonlinear_run;
 pub mod replay;
 pub mod run_step;
 mod scenario_run;
+pub mod shard;
 pub mod sweep;
 mod sweep_h5;
 pub mod sweep_stream;
@@ -35,6 +38,7 @@ mod verdict_run;
 pub mod workday;
 
 pub use nonlinear_run::NonlinearAnswers;
+pub use shard::{part_path, resolve_part, ShardChoice};
 pub use sweep::{
     substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec, FAILED_POINT,
 };

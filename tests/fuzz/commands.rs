@@ -208,7 +208,7 @@ impl Fixtures {
         for (sub, seed, count) in [("a", 3, 3), ("b", 4, 2)] {
             for i in 0..count {
                 let p = stochvib::store::Part::new(i, count).unwrap();
-                let out = stochvib::simulate::part_path(&dir.join(sub), p);
+                let out = stochvib::study::part_path(&dir.join(sub), p);
                 sc.simulate(&opts(seed, Some(p)), &out, &quiet).unwrap();
             }
         }
