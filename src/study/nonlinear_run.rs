@@ -1,4 +1,4 @@
-//! Scenarios with nonlinear elements (`[[model.nonlinear]]`, [`super::nonlinear_keys`]): their three
+//! Scenarios with nonlinear elements (`[[model.nonlinear]]`, [`crate::scenario::nonlinear_keys`]): their three
 //! routes — route 1 (statistical linearization, an approximation), route 3 (the exact density, where it
 //! applies) and route 2 (nonlinear Monte Carlo into a run file).
 
