@@ -57,8 +57,9 @@ fn sweep(c: &mut Criterion) {
 /// the table.
 fn scenario_sweep(c: &mut Criterion) {
     use std::path::Path;
-    use stochvib::report::compute_sweep;
-    use stochvib::scenario::{load_scenario, Sweep, SweepMode, SweepParam, SweepSpec};
+    use stochvib::scenario::load_scenario;
+    use stochvib::study::compute_sweep;
+    use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
     let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
     let spec = SweepSpec::new(
         vec![
@@ -92,7 +93,7 @@ fn scenario_sweep(c: &mut Criterion) {
     let table = compute_sweep(&sweep, 0..n, true, None, &|_, _| {}).unwrap();
     g.bench_function("to_csv_1e4", |b| b.iter(|| table.to_csv().len()));
     // rows into one flat buffer (nothing allocated per point), all cores
-    let mut rows = vec![stochvib::scenario::FAILED_POINT; n * sweep.outputs().len()];
+    let mut rows = vec![stochvib::study::FAILED_POINT; n * sweep.outputs().len()];
     g.bench_function("evaluate_into_1e4_all_cores", |b| {
         b.iter(|| sweep.evaluate_into(0..n, true, &mut rows).len())
     });
@@ -101,10 +102,10 @@ fn scenario_sweep(c: &mut Criterion) {
     let dir = std::env::temp_dir().join(format!("stochvib-bench-sweep-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("table.h5");
-    let opts = stochvib::report::StreamOptions::default();
+    let opts = stochvib::study::StreamOptions::default();
     g.bench_function("write_sweep_table_h5_1e4", |b| {
         b.iter(|| {
-            stochvib::report::write_sweep_table(&sweep, &path, true, None, opts, &|_, _| {})
+            stochvib::study::write_sweep_table(&sweep, &path, true, None, opts, &|_, _| {})
                 .unwrap()
                 .n_points
         })

@@ -14,8 +14,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use stochvib::nonlinear::monte_carlo::{NonlinearRunOptions, NonlinearRunSummary};
 use stochvib::nonlinear::{linearize, Route1Options};
-use stochvib::scenario::{load_scenario, parse_scenario, NonlinearAnswers, Scenario};
+use stochvib::scenario::{load_scenario, parse_scenario, Scenario};
 use stochvib::simulate::RunOptions;
+use stochvib::study::NonlinearAnswers;
 
 /// Process CPU time, s (all threads).
 fn cpu_seconds() -> f64 {

@@ -13,13 +13,12 @@ use stochvib::nonlinear::monte_carlo::NonlinearRunOptions;
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::table::{ReportFormat, ToMarkdown};
 use stochvib::report::{self, attach_monte_carlo};
-use stochvib::scenario::{
-    load_document, load_scenario, Catalogue, Document, NonlinearAnswers, Scenario, Sweep, SweepMode, SweepParam,
-    SweepSpec,
-};
-use stochvib::simulate::{merge_runs, part_path, resolve_part, MergeOptions, Route, RunOptions};
+use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
+use stochvib::simulate::{merge_runs, MergeOptions, Route, RunOptions};
 use stochvib::spectrum::Convention;
-use stochvib::store::{summarize, Compression, RunFile};
+use stochvib::store::{Compression, RunFile};
+use stochvib::study::{self, NonlinearAnswers, Sweep, SweepMode, SweepParam, SweepSpec};
+use stochvib::study::{part_path, resolve_part};
 
 /// Stochastic vibration and random-road analysis of machines.
 #[derive(Parser)]
@@ -656,12 +655,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             match output.format() {
                 ReportFormat::Json => print_json(&RunFile::open(&file)?.info()?)?,
                 ReportFormat::Markdown => emit(&report::inspect_markdown(&file)?),
-                ReportFormat::Text => emit(&summarize(&file)?),
+                ReportFormat::Text => emit(&report::summarize(&file)?),
             }
         }
         Command::Workday { file, spectra, output } => {
-            let day = stochvib::scenario::workday::load_workday(&file)?;
-            let r = stochvib::scenario::workday::workday_exposure(&day, spectra.catalogue().dir())?;
+            let day = stochvib::study::workday::load_workday(&file)?;
+            let r = stochvib::study::workday::workday_exposure(&day, spectra.catalogue().dir())?;
             print_as(&report::WorkdayReport(r), output.format())?;
         }
         Command::Exposure(a) => record_cli::exposure(a)?,
@@ -761,7 +760,7 @@ fn replay_command(cmd: Command) -> anyhow::Result<()> {
     };
     let catalogue = spectra.catalogue();
     let sc = load_scenario(&scenario, catalogue.dir())?;
-    let opts = stochvib::scenario::replay::ScenarioReplayOptions {
+    let opts = stochvib::study::replay::ScenarioReplayOptions {
         speed_m_s: speed,
         skip_m: skip,
         start: if zero_start {
@@ -779,7 +778,7 @@ fn replay_command(cmd: Command) -> anyhow::Result<()> {
         // the output rule before the work
         stochvib::io_rules::check_output(out, &stochvib::road::replay::HISTORY_CSV, &inputs, overwrite)?;
     }
-    let r = stochvib::scenario::replay::replay_scenario(&sc, &profile, &opts)?;
+    let r = stochvib::study::replay::replay_scenario(&sc, &profile, &opts)?;
     if let Some(out) = output {
         r.replay.write_csv_from(&out, overwrite, &inputs)?;
         eprintln!("wrote {}", out.display());
@@ -1020,7 +1019,7 @@ fn merge_command(cmd: Command) -> anyhow::Result<()> {
     else {
         unreachable!("run passes only Command::Merge")
     };
-    let sweeps = report::find_sweep_shards(&inputs)?;
+    let sweeps = study::find_sweep_shards(&inputs)?;
     if !sweeps.is_empty() {
         let run_only = [
             ("--copy", copy),
@@ -1043,7 +1042,7 @@ fn merge_command(cmd: Command) -> anyhow::Result<()> {
                 runs[0].display()
             );
         }
-        let t = report::merge_sweep(&output, &inputs, overwrite)?;
+        let t = study::merge_sweep(&output, &inputs, overwrite)?;
         eprintln!(
             "merged {} points ({} failed) into {}",
             t.n_points,
@@ -1114,7 +1113,7 @@ fn sweep_command(cmd: Command) -> anyhow::Result<()> {
     let mc = match monte_carlo {
         Some(n) => {
             let (dt, duration) = step.resolve(&sc, n)?;
-            let m = report::SweepMonteCarlo {
+            let m = study::SweepMonteCarlo {
                 realizations: n,
                 duration_s: duration,
                 dt_s: dt,
@@ -1122,7 +1121,7 @@ fn sweep_command(cmd: Command) -> anyhow::Result<()> {
                 shard_size,
                 confidence,
             };
-            report::check_monte_carlo_time(&sweep, &m, step.max_hours()).map_err(flag)?;
+            study::check_monte_carlo_time(&sweep, &m, step.max_hours()).map_err(flag)?;
             Some(m)
         }
         None => None,
@@ -1137,7 +1136,7 @@ fn sweep_command(cmd: Command) -> anyhow::Result<()> {
             for n in &c.notes {
                 eprintln!("warning: {n}");
             }
-            let (path, sh, fresh) = report::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
+            let (path, sh, fresh) = study::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
             eprintln!(
                 "{} {}: points {}..{} of {} ({} failed)",
                 if fresh {
@@ -1153,10 +1152,10 @@ fn sweep_command(cmd: Command) -> anyhow::Result<()> {
             );
         }
         None => {
-            let opts = report::StreamOptions::default();
+            let opts = study::StreamOptions::default();
             match output {
                 Some(path) => {
-                    let t = report::write_sweep_table(&sweep, &path, overwrite, mc, opts, &progress)?;
+                    let t = study::write_sweep_table(&sweep, &path, overwrite, mc, opts, &progress)?;
                     eprintln!(
                         "wrote {} points ({} failed) to {}",
                         t.n_points,
@@ -1166,11 +1165,11 @@ fn sweep_command(cmd: Command) -> anyhow::Result<()> {
                 }
                 None if json => {
                     let n = sweep.spec().n_points();
-                    emit_line(&report::compute_sweep(&sweep, 0..n, true, mc, &progress)?.to_json()?)
+                    emit_line(&study::compute_sweep(&sweep, 0..n, true, mc, &progress)?.to_json()?)
                 }
                 None => {
                     let out = std::io::stdout();
-                    match report::stream_sweep_csv(&sweep, out, Path::new("<stdout>"), mc, opts, &progress) {
+                    match study::stream_sweep_csv(&sweep, out, Path::new("<stdout>"), mc, opts, &progress) {
                         // a closed pipe (`stochvib sweep ... | head`): the evaluation has stopped and
                         // the writer thread has ended; end quietly, as `emit` does
                         Err(stochvib::Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => {
@@ -1291,7 +1290,7 @@ fn named_by_flag(e: stochvib::Error, count: &str) -> stochvib::Error {
 }
 
 /// The run file of `simulate`: `-o` itself, or with `--shard` the shard file in the run directory `-o`.
-fn shard_output(output: PathBuf, choice: &Option<stochvib::simulate::ShardChoice>) -> anyhow::Result<PathBuf> {
+fn shard_output(output: PathBuf, choice: &Option<stochvib::study::ShardChoice>) -> anyhow::Result<PathBuf> {
     let Some(c) = choice else { return Ok(output) };
     output_dir(
         &output,

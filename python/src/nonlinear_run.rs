@@ -2,8 +2,9 @@
 //! equations (`stochvib simulate` and `stochvib analyze --monte-carlo N` of such a scenario).
 
 use stochvib::nonlinear::monte_carlo::{NonlinearRunOptions, NonlinearRunSummary};
-use stochvib::scenario::{NonlinearAnswers, Scenario};
+use stochvib::scenario::Scenario;
 use stochvib::simulate::RunOptions;
+use stochvib::study::NonlinearAnswers;
 
 /// The options of a route-2 run: `run` with the given Δt and duration, the missing ones suggested for route 2
 /// (as the command-line tool does), the burn-in (s; None: computed from the slowest decay rate of the

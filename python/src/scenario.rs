@@ -282,7 +282,7 @@ fn shard_path(
             source,
         }),
     )?;
-    Ok((stochvib::simulate::part_path(&path, part), Some(part)))
+    Ok((stochvib::study::part_path(&path, part), Some(part)))
 }
 
 /// Joins the part files of a sharded run (``stochvib merge OUT INPUTS…``; ``inputs`` files or directories)
@@ -344,11 +344,11 @@ fn release_claim(path: &Path) {
 /// given, the missing ones suggested from the scenario for `n` realizations, the batch's time checked.
 fn sweep_monte_carlo(
     sc: &Scenario,
-    sweep: &stochvib::scenario::Sweep,
+    sweep: &stochvib::study::Sweep,
     n: usize,
     (dt, duration): (Option<f64>, Option<f64>),
     (seed, shard_size, confidence): (u64, usize, f64),
-) -> stochvib::Result<stochvib::report::SweepMonteCarlo> {
+) -> stochvib::Result<stochvib::study::SweepMonteCarlo> {
     let (dt_s, duration_s) = match (dt, duration) {
         (Some(dt), Some(d)) => (dt, d),
         _ => {
@@ -356,7 +356,7 @@ fn sweep_monte_carlo(
             (dt.unwrap_or(s.dt_s), duration.unwrap_or(s.duration_s))
         }
     };
-    let m = stochvib::report::SweepMonteCarlo {
+    let m = stochvib::study::SweepMonteCarlo {
         realizations: n,
         duration_s,
         dt_s,
@@ -365,7 +365,7 @@ fn sweep_monte_carlo(
         confidence,
     };
     let hours = stochvib::simulate::resources::DEFAULT_MAX_HOURS;
-    stochvib::report::check_monte_carlo_time(sweep, &m, hours)?;
+    stochvib::study::check_monte_carlo_time(sweep, &m, hours)?;
     Ok(m)
 }
 
@@ -746,7 +746,7 @@ impl PyScenario {
         confidence: f64,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        use stochvib::scenario::{Sweep, SweepMode, SweepParam, SweepSpec};
+        use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
         let sc = self.stochastic(py)?;
         let params = sweep_params(params)?;
         let (dt, duration) = (
@@ -778,7 +778,7 @@ impl PyScenario {
                 )?),
             };
             let n = sweep.spec().n_points();
-            stochvib::report::compute_sweep(&sweep, 0..n, true, mc, cb)?.to_json()
+            stochvib::study::compute_sweep(&sweep, 0..n, true, mc, cb)?.to_json()
         };
         let json = match monte_carlo {
             None => detached(py, || Ok(compute(&|_, _| ())?))?,
@@ -920,7 +920,7 @@ impl PyScenario {
             .map(|(i, n)| call(py, || stochvib::store::Part::new(i, n)))
             .transpose()?;
         let batch = monte_carlo.map(|n| Batch {
-            opts: stochvib::scenario::transient_mc::TransientMcOptions {
+            opts: stochvib::study::transient_mc::TransientMcOptions {
                 realizations: n,
                 substeps,
                 seed,
@@ -939,7 +939,7 @@ impl PyScenario {
                 path: p.clone(),
                 source,
             })?;
-            Ok(stochvib::simulate::part_path(&p, part))
+            Ok(stochvib::study::part_path(&p, part))
         };
         let progress = if batch.is_some() {
             progress

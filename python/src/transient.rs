@@ -4,10 +4,10 @@
 
 use std::path::{Path, PathBuf};
 use stochvib::report::transient_report::SigmaComparisons;
-use stochvib::scenario::transient_answers::{answers, TransientAnalysis};
-use stochvib::scenario::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
-use stochvib::scenario::transient_run::{exact_solution, transient_setup};
 use stochvib::scenario::Scenario;
+use stochvib::study::transient_answers::{answers, TransientAnalysis};
+use stochvib::study::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
+use stochvib::study::transient_run::{exact_solution, transient_setup};
 use stochvib::transient::monte_carlo::read_transient_run;
 use stochvib::transient::TransientRunSummary;
 

@@ -1,6 +1,7 @@
 //! Correlation-function estimates: across realizations (textbook (8.11)) and by time averaging.
 
-use super::moments::{chi_squared_quantile, Interval};
+use super::interval::Interval;
+use super::moments::chi_squared_quantile;
 use crate::error::{Error, Result};
 
 /// The across-realization estimate (textbook (8.11)) of the correlation function K(t₁, t₂) from the values

@@ -1,6 +1,6 @@
 //! Cross-spectral density and coherence of two records by averaged periodograms, with intervals.
 
-use super::moments::Interval;
+use super::interval::Interval;
 use crate::error::{require_positive, Error, Result};
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;

@@ -1,6 +1,7 @@
 //! Statistical estimators for Monte Carlo results, each with a confidence interval to compare with the
 //! analytic value ([`Interval::covers`], [`Comparison`]).
 //!
+//! * [`interval`]: the one interval type of the crate, [`Interval`], and [`Comparison`].
 //! * [`moments`]: mean (Student-t), variance and σ (χ²) across independent realizations; streaming
 //!   [`RunningMoments`] (Welford).
 //! * [`welch`]: Welch density estimate (Hann, 50 % overlap) in the canonical two-sided angular convention,
@@ -10,13 +11,15 @@
 
 pub mod correlation;
 pub mod cross_spectrum;
+pub mod interval;
 pub mod moments;
 pub mod welch;
 
 pub use correlation::{ensemble_correlation, time_correlation};
 pub use cross_spectrum::{cross_spectrum, CrossSpectrum};
+pub use interval::{Comparison, Interval};
 pub use moments::{
     chi2_interval, chi_squared_quantile, mean_interval, std_interval, student_t_quantile, variance_interval,
-    variance_interval_known_mean, Comparison, Interval, RunningMoments,
+    variance_interval_known_mean, RunningMoments,
 };
 pub use welch::{Welch, WelchEstimate, WelchScratch, WelchStream, WelchSums};

@@ -1,6 +1,7 @@
 //! Welch's averaged-periodogram density estimate (Hann window, 50 % overlap) with χ² intervals.
 
-use super::moments::{chi2_interval, Interval};
+use super::interval::Interval;
+use super::moments::chi2_interval;
 use crate::error::{require_positive, Error, Result};
 use realfft::num_complex::Complex;
 use realfft::{RealFftPlanner, RealToComplex};

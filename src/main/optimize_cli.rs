@@ -85,7 +85,7 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
 
 /// `stochvib sweep --verdicts`: the table to `output` (CSV or JSON by its extension) or stdout.
 pub fn sweep_verdicts(
-    sweep: &stochvib::scenario::Sweep,
+    sweep: &stochvib::study::Sweep,
     output: Option<&std::path::Path>,
     json: bool,
     overwrite: bool,
@@ -95,7 +95,7 @@ pub fn sweep_verdicts(
     {
         anyhow::bail!("-o {}: a verdict table is written as .csv or .json", p.display());
     }
-    let t = stochvib::report::sweep_verdicts::sweep_verdicts(sweep)?;
+    let t = stochvib::study::sweep_verdicts::sweep_verdicts(sweep)?;
     let as_json = json || output.is_some_and(|p| p.extension().is_some_and(|e| e == "json"));
     let text = if as_json { t.to_json()? + "\n" } else { t.to_csv() };
     match output {

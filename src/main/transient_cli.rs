@@ -3,11 +3,11 @@
 
 use std::path::{Path, PathBuf};
 use stochvib::report::transient_report::SigmaComparisons;
-use stochvib::scenario::transient_answers::answers;
-use stochvib::scenario::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
-use stochvib::scenario::transient_run::{exact_solution, transient_setup};
 use stochvib::scenario::{load_scenario, Catalogue};
 use stochvib::store::Compression;
+use stochvib::study::transient_answers::answers;
+use stochvib::study::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
+use stochvib::study::transient_run::{exact_solution, transient_setup};
 use stochvib::transient::monte_carlo::read_transient_run;
 use stochvib::transient::TransientRunSummary;
 
@@ -63,12 +63,10 @@ pub fn transient(
     a: TransientArgs,
     catalogue: &dyn Fn(&Option<PathBuf>) -> Catalogue,
     progress: &dyn Fn(usize, usize),
-    shard_output: &dyn Fn(PathBuf, &Option<stochvib::simulate::ShardChoice>) -> anyhow::Result<PathBuf>,
+    shard_output: &dyn Fn(PathBuf, &Option<stochvib::study::ShardChoice>) -> anyhow::Result<PathBuf>,
 ) -> anyhow::Result<()> {
     let choice = match &a.shard {
-        Some(spec) => Some(stochvib::simulate::resolve_part(spec, a.of, &|k| {
-            std::env::var(k).ok()
-        })?),
+        Some(spec) => Some(stochvib::study::resolve_part(spec, a.of, &|k| std::env::var(k).ok())?),
         None => None,
     };
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;

@@ -275,7 +275,7 @@ impl<'a> Problem<'a> {
     pub fn scenario_at(&self, x: &[f64]) -> Result<Scenario> {
         let mut root = self.root.clone();
         for (p, &v) in self.params.iter().zip(x) {
-            crate::scenario::sweep::set_key(&mut root, &p.key, p.toml_value(v))
+            crate::study::sweep::set_key(&mut root, &p.key, p.toml_value(v))
                 .map_err(|why| Error::invalid("--param", &p.key, why))?;
         }
         let text = toml::to_string(&root).map_err(|e| Error::Numerical {
@@ -361,7 +361,7 @@ impl Fast {
         let mut table = pb.root.get("model")?.as_table()?.clone();
         for (p, &v) in pb.params.iter().zip(x) {
             let rest = p.key.strip_prefix("model.")?;
-            crate::scenario::sweep::set_key(&mut table, rest, p.toml_value(v)).ok()?;
+            crate::study::sweep::set_key(&mut table, rest, p.toml_value(v)).ok()?;
         }
         let f = Fields::new(&pb.base.path, "model", &table);
         let _ = f.get("kind"); // read by the scenario reader, not by the model

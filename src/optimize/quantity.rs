@@ -3,7 +3,8 @@
 
 use crate::error::{Error, Result};
 use crate::response::{ExactEvaluator, PointStatistics};
-use crate::scenario::{verdict_analysis, Scenario, VerdictAnalysis};
+use crate::scenario::Scenario;
+use crate::study::{verdict_analysis, VerdictAnalysis};
 use crate::units::{unit_dim, Dim};
 use serde::Serialize;
 

@@ -82,7 +82,7 @@ fn scenario_correlation(
     let extended;
     let mut sys = sc.model.system.as_ref();
     if !sys.outputs().iter().any(|o| o.name == name) && !sc.analysis.verdicts.is_empty() {
-        extended = crate::scenario::verdict_system(sc)?.0;
+        extended = crate::study::verdict_system(sc)?.0;
         sys = &extended;
     }
     let i = sys

@@ -107,7 +107,7 @@ pub struct AnalysisReport {
     pub outputs: Vec<OutputReport>,
     /// The comfort/exposure and fatigue verdicts (`[analysis.comfort]`, `[analysis.fatigue]`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub verdicts: Option<crate::scenario::VerdictAnalysis>,
+    pub verdicts: Option<crate::study::VerdictAnalysis>,
     /// The Monte Carlo a_w, VDV, damage rate and basic-method check beside the analytic values
     /// (`--monte-carlo N` of a scenario with verdicts).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -170,7 +170,7 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         verdicts: if sc.analysis.verdicts.is_empty() {
             None
         } else {
-            Some(crate::scenario::verdict_analysis(sc)?)
+            Some(crate::study::verdict_analysis(sc)?)
         },
         monte_carlo_verdicts: None,
     })

@@ -17,9 +17,9 @@ pub struct BandSection {
     /// Why it could not.
     pub note: Option<String>,
     /// When the input stops below the table's top band: the bands above its edge with the input's power law
-    /// continued ([`crate::scenario::input_coverage::band_coverage`]).
+    /// continued ([`crate::study::input_coverage::band_coverage`]).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub input_coverage: Option<crate::scenario::input_coverage::BandCoverage>,
+    pub input_coverage: Option<crate::study::input_coverage::BandCoverage>,
 }
 
 /// The band section of output `i` when the scenario asks for bands (`None` otherwise).
@@ -53,8 +53,8 @@ pub fn band_section(sc: &Scenario, i: usize, st: &ResponseStatistics) -> Option<
     );
     Some(match r {
         Ok(t) => {
-            let names = crate::scenario::input_coverage::source_names(sc);
-            let (input_coverage, note) = match crate::scenario::input_coverage::band_coverage(
+            let names = crate::study::input_coverage::source_names(sc);
+            let (input_coverage, note) = match crate::study::input_coverage::band_coverage(
                 sc.model.system.as_ref(),
                 &sc.excitation,
                 i,

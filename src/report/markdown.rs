@@ -13,7 +13,7 @@ use crate::fields::EverydayUnit;
 use crate::models::results::Cell;
 use crate::numbers::{num, sig4};
 use crate::response::{Outcome, ResponseStatistics};
-use crate::scenario::{ComfortVerdict, FatigueVerdict, VerdictAnalysis};
+use crate::study::{ComfortVerdict, FatigueVerdict, VerdictAnalysis};
 use std::fmt::Write as _;
 use std::path::Path;
 

@@ -5,7 +5,6 @@ pub mod analysis;
 pub mod band_report;
 pub mod book;
 pub mod catalogue;
-mod float_text;
 pub mod handover;
 pub mod html;
 pub mod markdown;
@@ -16,11 +15,8 @@ pub mod replay_report;
 pub mod road_numbers;
 pub mod road_report;
 pub mod run_handover;
+pub mod run_summary;
 pub mod spectrum_report;
-mod sweep_h5;
-pub mod sweep_stream;
-pub mod sweep_table;
-pub mod sweep_verdicts;
 pub mod table;
 pub mod tables;
 pub mod transient_report;
@@ -32,11 +28,7 @@ pub use book::{book_report, BookReport};
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
 pub use markdown::inspect_markdown;
 pub use nonlinear_report::{nonlinear_report, NonlinearReport};
+pub use run_summary::summarize;
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
-pub use sweep_stream::{stream_sweep_csv, write_sweep_table, StreamOptions, StreamedTable};
-pub use sweep_table::{
-    check_monte_carlo_time, check_table_resources, compute_sweep, find_sweep_shards, merge_sweep, run_sweep_shard,
-    SweepMonteCarlo, SweepResults, TableFormat, SWEEP_SHARD, SWEEP_TABLE,
-};
 pub use tables::{deterministic_report, reference_report, TablesReport};
 pub use workday_report::WorkdayReport;

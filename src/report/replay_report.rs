@@ -1,8 +1,8 @@
 //! `stochvib replay SCENARIO PROFILE.csv`: a measured road profile replayed through a scenario's model
-//! ([`crate::scenario::replay::replay_scenario`]), each reported output's replayed statistics beside the
+//! ([`crate::study::replay::replay_scenario`]), each reported output's replayed statistics beside the
 //! analytic σ from the profile's own measured density.
 
-use crate::scenario::replay::ScenarioReplay;
+use crate::study::replay::ScenarioReplay;
 use std::fmt;
 
 impl fmt::Display for ScenarioReplay {

@@ -4,8 +4,8 @@
 
 use super::table::Table;
 use crate::numbers::short;
-use crate::scenario::transient_answers::{OutputOverTime, TransientAnalysis};
-use crate::scenario::transient_mc::SigmaComparison;
+use crate::study::transient_answers::{OutputOverTime, TransientAnalysis};
+use crate::study::transient_mc::SigmaComparison;
 use std::fmt;
 
 /// Rows of a printed time table (the JSON has every reported time).
@@ -93,7 +93,7 @@ impl TransientAnalysis {
                 short(self.mission_duration)
             )?;
             let pf = |p: Option<crate::extremes::PeakFactor>,
-                      s: &crate::scenario::transient_answers::StationaryExtremes| {
+                      s: &crate::study::transient_answers::StationaryExtremes| {
                 p.map(|p| s.mean.abs() + p.mean * s.sigma)
             };
             let t = Table::default()

@@ -9,7 +9,7 @@ use super::table::Table;
 use crate::comfort::{Axis, ExposureVerdict, LimitCheck, Location, Purpose, Weighting, ZonePosition};
 use crate::fields::EverydayUnit;
 use crate::numbers::{num, sig4, sig_column};
-use crate::scenario::{
+use crate::study::{
     ComfortAxisResult, ComfortVerdict, FatigueVerdict, HealthAxisResult, HealthEvaluation, VerdictAnalysis,
 };
 use std::fmt;

@@ -7,7 +7,7 @@ use super::verdict_report::health_lines;
 use crate::comfort::Axis;
 use crate::fields::EverydayUnit;
 use crate::numbers::sig4;
-use crate::scenario::workday::{TaskExposure, WorkdayExposure};
+use crate::study::workday::{TaskExposure, WorkdayExposure};
 use serde::Serialize;
 use std::fmt;
 
@@ -45,7 +45,7 @@ pub fn task_table(day: &WorkdayExposure) -> Table {
         let weighted = |t: &TaskExposure| t.axes.iter().find(|a| a.axis == axis).map(|a| a.weighted);
         t = t.num(&head, &tasks.iter().map(weighted).collect::<Vec<_>>());
     }
-    let top = |t: &TaskExposure, f: fn(&crate::scenario::workday::TaskAxis) -> f64| {
+    let top = |t: &TaskExposure, f: fn(&crate::study::workday::TaskAxis) -> f64| {
         t.axes
             .iter()
             .map(f)

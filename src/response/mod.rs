@@ -11,11 +11,11 @@ mod continued;
 mod delayed;
 mod delayed_quadrature;
 mod density;
+mod exact_evaluator;
 mod excitation;
 mod outcome;
 mod sources;
 mod statistics;
-mod sweep;
 mod variance;
 
 pub use continued::{continue_excitation, Continued, ContinuedSource};
@@ -24,14 +24,14 @@ pub use delayed_quadrature::{
     moments_oscillatory, spectral_moment_oscillatory, variance_oscillatory, OscillatoryMoments,
 };
 pub use density::OutputDensity;
+pub(crate) use exact_evaluator::{lyapunov_point, Leverrier, TransferBuilder, TransferPolynomials};
+pub use exact_evaluator::{ExactEvaluator, PointStatistics};
 pub use excitation::Excitation;
 pub use outcome::Outcome;
 pub use sources::{InputMap, Source};
 pub use statistics::{
     analyze_output, analyze_output_with, ResponseStatistics, VarianceMethod, VarianceValue, TABLE_AGREEMENT,
 };
-pub(crate) use sweep::{lyapunov_point, Leverrier, TransferBuilder, TransferPolynomials};
-pub use sweep::{ExactEvaluator, PointStatistics};
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{
     band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,

@@ -393,3 +393,29 @@ pub fn with_regime_outputs(model: NonlinearModel) -> Result<(NonlinearModel, Vec
 }
 
 use crate::system::FrequencyResponse;
+
+/// Reads `[[model.nonlinear]]` of `mf` onto `model`: the model's system becomes the linear part (with the
+/// elements' linear parts and an output per otherwise uncounted regime); returns the outputs added.
+///
+/// # Errors
+/// [`Error::File`](crate::Error::File) naming the key, value and reason.
+pub(super) fn attach(
+    mf: &Fields,
+    model: crate::models::ModelInstance,
+) -> Result<(crate::models::ModelInstance, Option<Arc<NonlinearModel>>, Vec<String>)> {
+    let Some(nl) = parse_nonlinear(mf, model.system.as_mdof())? else {
+        return Ok((model, None, Vec::new()));
+    };
+    let (nl, added) = with_regime_outputs(nl).map_err(|e| mf.wrap("nonlinear", e))?;
+    let names: Vec<String> = nl
+        .elements()
+        .iter()
+        .map(|e| format!("{} ({})", e.name, e.law.describe()))
+        .collect();
+    let instance = crate::models::ModelInstance {
+        system: Arc::new(nl.linear().clone()),
+        layout: model.layout,
+        description: format!("{}; nonlinear elements: {}", model.description, names.join("; ")),
+    };
+    Ok((instance, Some(Arc::new(nl)), added))
+}

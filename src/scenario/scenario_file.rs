@@ -61,7 +61,7 @@ use crate::models::results::DeterministicModel;
 use crate::models::{InputLayout, ModelInstance};
 use crate::quad_oscillatory::OscillatoryOptions;
 use crate::response::Excitation;
-use crate::simulate::{RunInput, RunOptions, RunSummary};
+use crate::simulate::RunInput;
 use crate::spectrum::{AtSpeed, Domain, Spectrum};
 use crate::store::{Provenance, Signal};
 use crate::units::Dim;
@@ -307,38 +307,6 @@ impl Scenario {
         }
     }
 
-    /// Runs a Monte Carlo batch of this scenario into the HDF5 file `out` ([`crate::simulate::run()`]).
-    ///
-    /// # Errors
-    /// As [`crate::simulate::run()`].
-    pub fn simulate(&self, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
-        // a model with nonlinear elements: route 2 with its default burn-in and checks
-        if let Some(answers) = self.nonlinear_answers()? {
-            let o = crate::nonlinear::monte_carlo::NonlinearRunOptions {
-                run: opts.clone(),
-                burn_in_s: None,
-                halving_checks: None,
-            };
-            return self.simulate_nonlinear(&answers, &o, out, progress).map(|s| s.run);
-        }
-        self.with_simulated_input(|input| crate::simulate::run(input, opts, out, progress))
-            .map_err(|e| self.name_run_error(e))
-    }
-
-    /// Calls `f` with the subject of this scenario's Monte Carlo run as [`Scenario::simulate`] runs it: with
-    /// verdicts the system extended by the weighted outputs and the verdict channels
-    /// ([`super::verdict_run::with_verdict_input`]), else [`Scenario::run_input`].
-    ///
-    /// # Errors
-    /// Those of building the verdict system; what `f` returns.
-    pub fn with_simulated_input<T>(&self, f: impl FnOnce(&RunInput) -> Result<T>) -> Result<T> {
-        if self.analysis.verdicts.is_empty() {
-            f(&self.run_input())
-        } else {
-            super::verdict_run::with_verdict_input(self, f)
-        }
-    }
-
     /// An error of a Monte Carlo run of this scenario, naming the scenario's key where the run refused a
     /// value the file gave: a kurtosis above what the run's grid can represent
     /// ([`max_kurtosis`](crate::simulate::laplace::max_kurtosis)) becomes an [`Error::File`] naming
@@ -477,7 +445,7 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         }
         BuiltModel::Stochastic(m) => m,
     };
-    let (model, nonlinear, regime_outputs) = super::nonlinear_run::attach(&mf, model)?;
+    let (model, nonlinear, regime_outputs) = super::nonlinear_keys::attach(&mf, model)?;
     mf.finish()?;
     check_model(&f, &kind, &model, nonlinear.is_none())?;
     let catalogue = Catalogue::new(spectra_dir);

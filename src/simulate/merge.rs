@@ -106,7 +106,8 @@ impl std::fmt::Display for MergeSummary {
 /// # Examples
 /// ```
 /// use stochvib::scenario::load_scenario;
-/// use stochvib::simulate::{merge_runs, part_path, MergeOptions, RunOptions};
+/// use stochvib::simulate::{merge_runs, MergeOptions, RunOptions};
+/// use stochvib::study::part_path;
 /// use stochvib::store::{Part, RunFile};
 /// use std::path::Path;
 /// let sc = load_scenario(Path::new("data/conveyor-idler.toml"), Path::new("spectra")).unwrap();

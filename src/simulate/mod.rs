@@ -17,7 +17,7 @@
 //! * Whole runs to HDF5 ([`run()`](run::run)): the subject ([`RunInput`]), the options ([`RunOptions`],
 //!   [`Route`], [`suggest_step`]), the plan (route choice with its reasons), the engine, the typed per-shard
 //!   [`accumulators`] and the [`RunSummary`].
-//! * Beyond one machine: one part of a run per process ([`resolve_part`], [`part_path`]; `simulate --shard I
+//! * Beyond one machine: one part of a run per process ([`crate::study::shard`]; `simulate --shard I
 //!   --of N`) and the bit-identical merge of the parts ([`merge_runs`]).
 
 pub mod accumulators;
@@ -28,6 +28,7 @@ pub mod batch;
 pub mod discretize;
 mod engine;
 mod finish;
+mod finished_part;
 pub mod fir_stream;
 mod input;
 pub mod laplace;
@@ -36,10 +37,9 @@ mod options;
 mod plan;
 pub mod resources;
 pub mod rng;
-pub mod road;
+pub mod road_track;
 pub mod run;
 pub mod shaping;
-mod shard;
 pub mod spectral;
 mod summary;
 pub mod transfer_grid;
@@ -60,10 +60,9 @@ pub use merge::{merge_runs, MergeOptions, MergeSummary};
 pub use options::{readable_duration, readable_step, suggest_step, Route, RunOptions, StepSuggestion};
 pub use plan::{planned_memory, planned_variances, PlannedMemory, PlannedVariance, SkippedOutput};
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
-pub use road::{RoadScratch, RoadTrack};
+pub use road_track::{RoadScratch, RoadTrack};
 pub use run::{run, run_temporary, run_temporary_with, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
-pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
 pub use summary::{coverage_cause, covers_word, RunSummary};
 pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};

@@ -159,7 +159,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     input.verdicts.check(&names)?;
     meta.validate()?;
     // cluster shard: a complete shard file of this run is the result (a rerun does nothing)
-    if let Some(done) = super::shard::finished_part(&meta, &plan, out, opts)? {
+    if let Some(done) = super::finished_part::finished_part(&meta, &plan, out, opts)? {
         return Ok(done);
     }
     super::resources::check_disk(&meta, out)?;

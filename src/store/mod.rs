@@ -16,7 +16,7 @@ mod writer;
 
 pub use parts::{find_run_files, MergedFrom, PartFile, PartSet, RawStorage, VirtualSource};
 pub use rainflow::RainflowHistogram;
-pub use reader::{abbreviated_list, summarize, RunFile, RunInfo, Verification, LISTED_FILES};
+pub use reader::{abbreviated_list, RunFile, RunInfo, Verification, LISTED_FILES};
 pub use response_histogram::ResponseHistogram;
 pub(crate) use writer::metadata_differences;
 pub use writer::RunWriter;

@@ -208,18 +208,18 @@ impl Fixtures {
         for (sub, seed, count) in [("a", 3, 3), ("b", 4, 2)] {
             for i in 0..count {
                 let p = stochvib::store::Part::new(i, count).unwrap();
-                let out = stochvib::simulate::part_path(&dir.join(sub), p);
+                let out = stochvib::study::part_path(&dir.join(sub), p);
                 sc.simulate(&opts(seed, Some(p)), &out, &quiet).unwrap();
             }
         }
         sc.simulate(&opts(3, None), &dir.join("whole.h5"), &quiet).unwrap();
         let qc = stochvib::scenario::load_scenario(&root.join("data/quarter-car-model.toml"), &spectra).unwrap();
-        let param = stochvib::scenario::SweepParam::parse("model.sprung_mass=250 kg..350 kg:4").unwrap();
-        let spec = stochvib::scenario::SweepSpec::new(vec![param], stochvib::scenario::SweepMode::Grid).unwrap();
-        let sweep = stochvib::scenario::Sweep::new(&qc, spec).unwrap();
+        let param = stochvib::study::SweepParam::parse("model.sprung_mass=250 kg..350 kg:4").unwrap();
+        let spec = stochvib::study::SweepSpec::new(vec![param], stochvib::study::SweepMode::Grid).unwrap();
+        let sweep = stochvib::study::Sweep::new(&qc, spec).unwrap();
         for i in 0..2 {
             let p = stochvib::store::Part::new(i, 2).unwrap();
-            stochvib::report::run_sweep_shard(&sweep, p, &dir.join("s"), false, None, false, &quiet).unwrap();
+            stochvib::study::run_sweep_shard(&sweep, p, &dir.join("s"), false, None, false, &quiet).unwrap();
         }
         std::fs::write(dir.join("READY"), "").unwrap();
         f
@@ -827,7 +827,7 @@ fn eval_road(path: &Path, args: &[String]) -> Outcome {
 }
 
 fn eval_replay(path: &Path, args: &[String], ctx: &Context) -> Outcome {
-    use stochvib::scenario::replay::{replay_scenario, ScenarioReplayOptions};
+    use stochvib::study::replay::{replay_scenario, ScenarioReplayOptions};
     let (speed, skip) = match (parsed::<f64>(args, "--speed"), parsed::<f64>(args, "--skip")) {
         (Ok(a), Ok(b)) => (a, b),
         (Err(w), _) | (_, Err(w)) => return clap_refusal(w),
@@ -862,7 +862,7 @@ fn eval_replay(path: &Path, args: &[String], ctx: &Context) -> Outcome {
 }
 
 fn eval_sweep(args: &[String], ctx: &Context) -> Outcome {
-    use stochvib::scenario::{Sweep, SweepMode, SweepParam, SweepSpec};
+    use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
     let sc = match stochvib::scenario::load_scenario(&ctx.root.join(&args[0]), &ctx.spectra()) {
         Ok(sc) => sc,
         Err(e) => return fail(&e, "load"),
@@ -1078,12 +1078,12 @@ fn merge_dir(path: &Path) -> PathBuf {
 
 fn eval_merge(path: &Path, args: &[String], ctx: &Context) -> Outcome {
     let set = materialize(&merge_dir(path), args, ctx);
-    let sweeps = match stochvib::report::find_sweep_shards(&set.inputs) {
+    let sweeps = match stochvib::study::find_sweep_shards(&set.inputs) {
         Ok(s) => s,
         Err(e) => return fail(&e, "load"),
     };
     if !sweeps.is_empty() {
-        return match stochvib::report::merge_sweep(&set.out, &set.inputs, set.overwrite) {
+        return match stochvib::study::merge_sweep(&set.out, &set.inputs, set.overwrite) {
             Ok(t) => ok("merge-sweep", &t.errors),
             Err(e) => fail(&e, "report"),
         };
@@ -1126,7 +1126,7 @@ fn eval_merge(path: &Path, args: &[String], ctx: &Context) -> Outcome {
 }
 
 fn eval_workday(path: &Path, ctx: &Context) -> Outcome {
-    use stochvib::scenario::workday::{load_workday, workday_exposure};
+    use stochvib::study::workday::{load_workday, workday_exposure};
     let day = match load_workday(path) {
         Ok(d) => d,
         Err(e) => return fail(&e, "load"),
@@ -1351,15 +1351,15 @@ fn sweep_points(case: &Case) -> usize {
         .args
         .windows(2)
         .filter(|w| w[0] == "--param")
-        .map(|w| stochvib::scenario::SweepParam::parse(&w[1]).ok())
+        .map(|w| stochvib::study::SweepParam::parse(&w[1]).ok())
         .collect();
     let mode = if case.args.iter().any(|a| a == "--zip") {
-        stochvib::scenario::SweepMode::Zip
+        stochvib::study::SweepMode::Zip
     } else {
-        stochvib::scenario::SweepMode::Grid
+        stochvib::study::SweepMode::Grid
     };
     params
-        .and_then(|p| stochvib::scenario::SweepSpec::new(p, mode).ok())
+        .and_then(|p| stochvib::study::SweepSpec::new(p, mode).ok())
         .map_or(0, |s| s.n_points())
 }
 

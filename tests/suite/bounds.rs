@@ -367,7 +367,7 @@ fn a_one_based_slurm_array_is_warned_about() {
             _ => None,
         }
     };
-    let c = stochvib::simulate::resolve_part("auto", Some(4), &env("2", "1", "4")).unwrap();
+    let c = stochvib::study::resolve_part("auto", Some(4), &env("2", "1", "4")).unwrap();
     assert_eq!(c.part.index, 2);
     assert!(
         c.notes
@@ -376,15 +376,15 @@ fn a_one_based_slurm_array_is_warned_about() {
         "{:?}",
         c.notes
     );
-    let e = stochvib::simulate::resolve_part("auto", Some(4), &env("4", "1", "4"))
+    let e = stochvib::study::resolve_part("auto", Some(4), &env("4", "1", "4"))
         .unwrap_err()
         .to_string();
     assert!(e.contains("0-based") && e.contains("--array=0-3"), "{e}");
-    let e = stochvib::simulate::resolve_part("auto", None, &env("1", "1", "4"))
+    let e = stochvib::study::resolve_part("auto", None, &env("1", "1", "4"))
         .unwrap_err()
         .to_string();
     assert!(e.contains("0-based"), "{e}");
-    let c = stochvib::simulate::resolve_part("auto", Some(4), &env("2", "2", "3")).unwrap();
+    let c = stochvib::study::resolve_part("auto", Some(4), &env("2", "2", "3")).unwrap();
     assert!(c.notes.is_empty(), "{:?}", c.notes);
     // the CLI prints the warning
     let d = scratch("slurm");

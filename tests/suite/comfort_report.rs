@@ -12,7 +12,9 @@
 
 use crate::common;
 
-use stochvib::scenario::{parse_scenario, verdict_analysis};
+use stochvib::scenario::parse_scenario;
+
+use stochvib::study::verdict_analysis;
 
 const QUADRATURE: f64 = common::tolerance::QUADRATURE;
 

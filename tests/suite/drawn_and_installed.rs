@@ -8,7 +8,7 @@ use crate::common::{self, root, tolerance, SpawnSerial};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use stochvib::scenario::load_scenario;
-use stochvib::scenario::replay::{replay_scenario, ScenarioReplayOptions};
+use stochvib::study::replay::{replay_scenario, ScenarioReplayOptions};
 
 fn scratch(tag: &str) -> PathBuf {
     crate::common::scratch_dir("drawn", tag)

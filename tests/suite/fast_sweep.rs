@@ -2,7 +2,7 @@
 //! where the integral table's condition check fails.
 //!
 //! * `response::ExactEvaluator` (integral table by Faddeev–LeVerrier polynomials, pivot-ratio check) and
-//!   `scenario::Sweep::evaluate` against `response::variance_lyapunov` of the same point's scenario.
+//!   `study::Sweep::evaluate` against `response::variance_lyapunov` of the same point's scenario.
 //! * `comfort::WeightedEvaluator` (input filter × W_k premultiplied, one scaled table integral per point)
 //!   against `variance_lyapunov` of `comfort::weighted_output` (the cascade's Lyapunov covariance).
 //!
@@ -18,8 +18,9 @@ use std::sync::Arc;
 use stochvib::comfort::{weighted_output, WeightedEvaluator, WeightedRoute, Weighting};
 use stochvib::models::operator_seat::OperatorSeat;
 use stochvib::response::{variance_lyapunov, ExactEvaluator, Excitation, VarianceMethod};
-use stochvib::scenario::{load_scenario, parse_scenario, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec};
+use stochvib::scenario::{load_scenario, parse_scenario};
 use stochvib::spectrum::{Domain, RationalSpectrum};
+use stochvib::study::{Sweep, SweepMode, SweepParam, SweepPath, SweepSpec};
 use stochvib::system::FrequencyResponse;
 
 fn rel(a: f64, b: f64) -> f64 {

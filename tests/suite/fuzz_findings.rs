@@ -73,7 +73,7 @@ fn an_error_of_the_nonlinear_routes_is_named_in_the_file() {
 /// is refused naming the profile, the track and the value, instead of a report with infinite σ and r.m.s.
 #[test]
 fn a_replay_of_a_profile_beyond_f64_range_is_refused_naming_the_cell() {
-    use stochvib::scenario::replay::{replay_scenario, ScenarioReplayOptions};
+    use stochvib::study::replay::{replay_scenario, ScenarioReplayOptions};
     let d = scratch("huge-cell");
     let csv = std::fs::read_to_string(root().join("data/measured-profile.csv")).unwrap();
     let mut lines: Vec<String> = csv.lines().map(str::to_string).collect();

@@ -10,7 +10,8 @@ use common::tolerance::{EXACT, QUADRATURE};
 use common::{rel, root};
 use std::f64::consts::PI;
 use stochvib::comfort::Weighting;
-use stochvib::scenario::{parse_scenario, verdict_analysis, Scenario};
+use stochvib::scenario::{parse_scenario, Scenario};
+use stochvib::study::verdict_analysis;
 
 const SPEED: f64 = 3.0;
 

@@ -9,7 +9,8 @@ use crate::common;
 use common::tolerance::{EXACT, QUADRATURE};
 use common::{rel, root};
 use std::f64::consts::PI;
-use stochvib::scenario::{parse_scenario, verdict_analysis, Scenario};
+use stochvib::scenario::{parse_scenario, Scenario};
+use stochvib::study::verdict_analysis;
 
 fn parse(text: &str) -> Scenario {
     parse_scenario(text, &root().join("data/input-coverage.toml"), &root().join("spectra")).unwrap()

@@ -485,11 +485,11 @@ fn non_gaussian_vdv_is_predicted_from_the_weighted_output_kurtosis() {
     assert!(text.contains("(κ_w T)^(1/4)·σ_w, κ_w = "), "{text}");
     assert!(format!("{g}").contains("(3T)^(1/4)·σ_w (Gaussian)"));
     // `analyze` (no Monte Carlo) says that its Gaussian VDV does not hold for this input
-    let v = stochvib::scenario::verdict_analysis(&sc).unwrap();
+    let v = stochvib::study::verdict_analysis(&sc).unwrap();
     let c = v.comfort.as_ref().unwrap();
     assert_eq!(c.non_gaussian_input.as_deref(), Some("input kurtosis 6")); // a temporal `[input]` is `input`
     assert!(format!("{v}").contains("do NOT hold"), "{v}");
-    let vg = stochvib::scenario::verdict_analysis(&operator_seat(None)).unwrap();
+    let vg = stochvib::study::verdict_analysis(&operator_seat(None)).unwrap();
     assert!(vg.comfort.as_ref().unwrap().non_gaussian_input.is_none());
     assert!(!format!("{vg}").contains("do NOT hold"));
     let _ = std::fs::remove_dir_all(&dir);
@@ -509,8 +509,9 @@ fn damage_rate(outputs: &[stochvib::store::OutputStatistics]) -> &stochvib::stor
 fn merged_shards_of_a_non_gaussian_verdict_run_keep_its_vdv_prediction() {
     // A cluster run (2 shard files of 4 realizations) merged equals the single-process run bit for bit, the
     // non-Gaussian analytic VDV and its method text included (the merge takes them from the shard files).
-    use stochvib::simulate::{merge_runs, part_path, MergeOptions};
+    use stochvib::simulate::{merge_runs, MergeOptions};
     use stochvib::store::Part;
+    use stochvib::study::part_path;
     let dir = crate::common::scratch_dir("laplace", "merge");
     std::fs::create_dir_all(&dir).unwrap();
     let sc = operator_seat(Some(6.0));

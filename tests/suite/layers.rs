@@ -26,7 +26,8 @@ const LAYERS: &[&[&str]] = &[
     &["simulate", "road", "nonlinear", "record", "transient"],
     &["models"],
     &["scenario"],
-    &["report", "plot", "optimize"],
+    &["study", "optimize"],
+    &["report", "plot"],
     &["prelude", "lib"],
 ];
 
@@ -165,8 +166,9 @@ fn scanner_finds_paths_and_skips_comments() {
         grouped("use crate::{report::a, simulate::{b, c}, error};"),
         ["report", "simulate", "error"]
     );
-    assert_eq!(layer_of("report"), Some(8));
+    assert_eq!(layer_of("report"), Some(9));
     assert!(layer_of("simulate") < layer_of("scenario"));
+    assert!(layer_of("scenario") < layer_of("study") && layer_of("study") < layer_of("report"));
 }
 
 /// The binary target is built without a test harness (`test = false` in Cargo.toml: the suite tests the CLI

@@ -12,8 +12,9 @@ use common::tolerance::{EXACT, ROUNDING, SCHUR_GRID_VARIANCE};
 use common::SpawnSerial;
 use std::f64::consts::PI;
 use stochvib::comfort::{Governing, SignalMetrics};
-use stochvib::scenario::{parse_scenario, with_verdict_input, Scenario};
+use stochvib::scenario::{parse_scenario, Scenario};
 use stochvib::simulate::{planned_variances, suggest_step, RunOptions};
+use stochvib::study::with_verdict_input;
 
 /// The half car of `data/half-car.toml` (ISO 8608 class C at 10 m/s, wheelbase delay 0.27 s: the spectral
 /// route) with the driver's body acceleration judged as a Wk seat-surface z axis.
@@ -177,7 +178,7 @@ fn a_miss_names_the_discretisation_bias() {
 fn the_default_step_resolves_the_fatigue_stress_peaks() {
     let path = root().join("data/operator-seat-verdicts.toml");
     let sc = stochvib::scenario::load_scenario(&path, &root().join("spectra")).unwrap();
-    let f = stochvib::scenario::verdict_analysis(&sc).unwrap().fatigue.unwrap();
+    let f = stochvib::study::verdict_analysis(&sc).unwrap().fatigue.unwrap();
     let m = f.moments_quadrature.expect("the stress's moments by quadrature");
     let nu_p = (m[3] / m[2]).sqrt();
     let limit = 1.0 / (32.0 * nu_p);

@@ -13,8 +13,9 @@ use crate::common::SpawnSerial;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use stochvib::scenario::{load_scenario, Scenario};
-use stochvib::simulate::{part_path, MergeOptions, RunOptions};
+use stochvib::simulate::{MergeOptions, RunOptions};
 use stochvib::store::{Part, PsdEstimate, RainflowHistogram, RunFile};
+use stochvib::study::part_path;
 
 /// Serialises this binary's in-process HDF5 work with the spawning of child processes: a child forked while
 /// a test thread holds an HDF5 file open inherits its descriptor and its flock(2) lock (until exec closes

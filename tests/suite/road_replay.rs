@@ -1,5 +1,5 @@
 //! A road profile replayed through a model (`stochvib replay`, [`stochvib::road::replay()`],
-//! [`stochvib::scenario::replay::replay_scenario`]): the steady-state response to a sinusoidal profile
+//! [`stochvib::study::replay::replay_scenario`]): the steady-state response to a sinusoidal profile
 //! against the closed-form transfer function of the quarter car, the delay between wheels on one track,
 //! the synthetic class C profile against its own measured density and against a periodic FFT filtering,
 //! and the errors.
@@ -39,7 +39,7 @@ use std::path::{Path, PathBuf};
 use stochvib::road::replay::{replay, settling_length, ReplayOptions, Start, Wheel};
 use stochvib::road::{CsvWriteOptions, Detrend, Profile, Track};
 use stochvib::scenario::load_scenario;
-use stochvib::scenario::replay::{replay_scenario, ScenarioReplayOptions};
+use stochvib::study::replay::{replay_scenario, ScenarioReplayOptions};
 use stochvib::system::{OutputInfo, StateSpace};
 
 /// What is left of the start-up transient after the skipped length, relative to the output's amplitude:

@@ -16,9 +16,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use stochvib::response::{analyze_output, ExactEvaluator, Excitation, VarianceMethod};
 use stochvib::scenario::{load_scenario, Scenario};
-use stochvib::simulate::{part_path, resolve_part, MergeOptions, RunOptions};
+use stochvib::simulate::{MergeOptions, RunOptions};
 use stochvib::spectrum::{Domain, Exponential, GaussCosine};
 use stochvib::store::{Compression, Part, PsdEstimate, RunFile, SignalGroup};
+use stochvib::study::{part_path, resolve_part};
 use stochvib::system::{OutputInfo, StateSpace, TransferFunction};
 
 // ---- tolerances -------------------------------------------------------------------------------------------

@@ -11,9 +11,10 @@ use ndarray::Array2;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use stochvib::estimate::Interval;
+use stochvib::report::summarize;
 use stochvib::store::{
-    summarize, tmp_path, Compression, OutputStatistics, PsdEstimate, RunFile, RunMetadata, RunWriter, Signal,
-    SignalGroup, Statistic,
+    tmp_path, Compression, OutputStatistics, PsdEstimate, RunFile, RunMetadata, RunWriter, Signal, SignalGroup,
+    Statistic,
 };
 use stochvib::Error;
 

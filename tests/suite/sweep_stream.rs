@@ -1,9 +1,9 @@
-//! `stochvib sweep`'s tables written while they are computed (`report::write_sweep_table`,
-//! `report::stream_sweep_csv`, `scenario::Sweep::evaluate_into`): blocks of points are evaluated and
+//! `stochvib sweep`'s tables written while they are computed (`study::write_sweep_table`,
+//! `study::stream_sweep_csv`, `study::Sweep::evaluate_into`): blocks of points are evaluated and
 //! handed to a writer thread, so memory does not grow with the study.
 //!
 //! Provenance of the expected values:
-//! * the whole table of the same study, built in memory by `report::compute_sweep` and written by
+//! * the whole table of the same study, built in memory by `study::compute_sweep` and written by
 //!   `SweepResults::write`/`to_csv` (the path merge and the shard tables take): a streamed table must
 //!   equal it byte for byte (CSV) or bit for bit in every dataset (HDF5), for blocks that do not divide the
 //!   number of points, on one core and on all. For HDF5 both go through the same dataset writer, so the
@@ -19,8 +19,9 @@ use crate::common;
 use crate::common::SpawnSerial;
 use common::tolerance::TRANSFER_POLYNOMIALS;
 use std::path::{Path, PathBuf};
-use stochvib::report::{compute_sweep, stream_sweep_csv, write_sweep_table, StreamOptions, SweepMonteCarlo};
-use stochvib::scenario::{load_scenario, Scenario, Sweep, SweepMode, SweepParam, SweepSpec, FAILED_POINT};
+use stochvib::scenario::{load_scenario, Scenario};
+use stochvib::study::{compute_sweep, stream_sweep_csv, write_sweep_table, StreamOptions, SweepMonteCarlo};
+use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec, FAILED_POINT};
 
 fn scraper() -> Scenario {
     load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap()

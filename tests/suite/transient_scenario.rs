@@ -10,11 +10,12 @@ use std::f64::consts::PI;
 use std::path::Path;
 use std::time::Duration;
 use stochvib::response::analyze_output;
-use stochvib::scenario::transient_answers::transient_analysis;
-use stochvib::scenario::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
-use stochvib::scenario::transient_run::{exact_solution, transient_setup};
-use stochvib::scenario::{load_scenario, parse_scenario, verdict_analysis, Scenario};
+use stochvib::scenario::{load_scenario, parse_scenario, Scenario};
 use stochvib::store::Compression;
+use stochvib::study::transient_answers::transient_analysis;
+use stochvib::study::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
+use stochvib::study::transient_run::{exact_solution, transient_setup};
+use stochvib::study::verdict_analysis;
 use stochvib::transient::monte_carlo::read_transient_run;
 use stochvib::Error;
 

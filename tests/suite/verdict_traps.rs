@@ -17,7 +17,8 @@ use common::tolerance::QUADRATURE;
 use common::{rel, root};
 use stochvib::comfort::{Purpose, Weighting};
 use stochvib::response::Excitation;
-use stochvib::scenario::{parse_scenario, verdict_analysis, Scenario};
+use stochvib::scenario::{parse_scenario, Scenario};
+use stochvib::study::verdict_analysis;
 
 fn seat_file() -> std::path::PathBuf {
     root().join("data/operator-seat-verdicts.toml")

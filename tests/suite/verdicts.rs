@@ -11,9 +11,10 @@ use common::{rel, root};
 use std::f64::consts::PI;
 use stochvib::comfort::Weighting;
 use stochvib::response::{analyze_output, Excitation};
-use stochvib::scenario::{load_scenario, parse_scenario, verdict_analysis, Scenario};
+use stochvib::scenario::{load_scenario, parse_scenario, Scenario};
 use stochvib::simulate::RunOptions;
 use stochvib::store::RunFile;
+use stochvib::study::verdict_analysis;
 
 /// Dirlik's (1985) empirical rainflow-amplitude density reproduces simulated rainflow damage of Gaussian
 /// processes to within about ±10–15 % over the bandwidths and S–N slopes k = 3…5 of the comparisons in

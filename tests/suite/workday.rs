@@ -15,8 +15,9 @@ use common::tolerance::QUADRATURE;
 use common::{rel, root};
 use std::path::{Path, PathBuf};
 use stochvib::comfort::{Axis, Weighting};
-use stochvib::scenario::workday::{load_workday, parse_workday, workday_exposure};
-use stochvib::scenario::{load_scenario, parse_scenario, verdict_analysis};
+use stochvib::scenario::{load_scenario, parse_scenario};
+use stochvib::study::verdict_analysis;
+use stochvib::study::workday::{load_workday, parse_workday, workday_exposure};
 
 const T0: f64 = 8.0 * 3600.0;
 

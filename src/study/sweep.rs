@@ -21,7 +21,7 @@
 //! point, and the input's shaping filter is factored once per distinct speed); any other key goes through
 //! the scenario reader with the substituted text ([`Sweep::scenario_at`]), which gives the same scenario.
 //!
-//! When the model kind has a numeric builder ([`NumericModel`](super::NumericModel)) and every key of the
+//! When the model kind has a numeric builder ([`NumericModel`](crate::scenario::NumericModel)) and every key of the
 //! `[model]` table and every swept `model.*` key is one of its keys, the study takes the numeric path
 //! ([`SweepPath::Numeric`]): every value of every key is read once (as the model's reader reads it), and
 //! per point the numbers are substituted and the state space is written in place (one per worker), then
@@ -35,13 +35,13 @@
 //! A point the builder declines (a value its reader or the model refuses) takes the general path, which
 //! names the error. [`Sweep::path`] says which path a study takes and why not the numeric one.
 
-use super::registry::{build_model, BuiltModel, ModelContext};
-use super::scenario_file::{build_excitation, parse_scenario, Scenario};
 use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::response::{
     lyapunov_point, ExactEvaluator, Excitation, PointStatistics, TransferBuilder, TransferPolynomials, VarianceMethod,
 };
+use crate::scenario::scenario_file::{build_excitation, parse_scenario, Scenario};
+use crate::scenario::{build_model, BuiltModel, ModelContext};
 use crate::system::StateSpace;
 use crate::units::Dim;
 use serde::Serialize;
@@ -125,10 +125,10 @@ impl SweepParam {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::scenario::SweepParam;
+    /// use stochvib::study::SweepParam;
     /// let p = SweepParam::parse("model.omega2=1 Hz..2 Hz:3").unwrap();
     /// assert_eq!(p.key, "model.omega2");
-    /// let v: Vec<String> = p.values.iter().map(stochvib::scenario::sweep_value_text).collect();
+    /// let v: Vec<String> = p.values.iter().map(stochvib::study::sweep_value_text).collect();
     /// assert_eq!(v, ["1 Hz", "1.5 Hz", "2 Hz"]);
     /// let q = SweepParam::parse("model.zeta2=0.2,0.3").unwrap();
     /// assert_eq!(q.values, vec![toml::Value::Float(0.2), toml::Value::Float(0.3)]);
@@ -403,7 +403,7 @@ struct NumericPath {
 /// Which way a study's points are computed ([`Sweep::path`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum SweepPath {
-    /// The kind's numeric builder ([`NumericModel`](super::NumericModel)): per point the swept numbers are
+    /// The kind's numeric builder ([`NumericModel`](crate::scenario::NumericModel)): per point the swept numbers are
     /// substituted and the state space is written in place; nothing is parsed or named per point.
     Numeric {
         /// The model kind.
@@ -463,7 +463,8 @@ impl<'a> Sweep<'a> {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::scenario::{load_scenario, Sweep, SweepMode, SweepParam, SweepSpec};
+    /// use stochvib::scenario::load_scenario;
+    /// use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
     /// use std::path::Path;
     /// let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
     /// let spec = SweepSpec::new(vec![SweepParam::parse("model.omega2=1 Hz,2 Hz").unwrap()], SweepMode::Grid).unwrap();
@@ -587,7 +588,7 @@ impl<'a> Sweep<'a> {
     /// The numeric path of this study, or why there is none.
     fn numeric_path(&self) -> std::result::Result<NumericPath, String> {
         let kind = &self.base.kind;
-        let numeric = super::registry::model_kind(kind)
+        let numeric = crate::scenario::model_kind(kind)
             .and_then(|k| k.numeric())
             .ok_or_else(|| format!("kind `{kind}` has no numeric builder"))?;
         let keys = numeric.keys;
@@ -993,7 +994,8 @@ impl<'a> Sweep<'a> {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::scenario::{load_scenario, Sweep, SweepMode, SweepParam, SweepSpec, FAILED_POINT};
+    /// use stochvib::scenario::load_scenario;
+    /// use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec, FAILED_POINT};
     /// use std::path::Path;
     /// let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
     /// let spec = SweepSpec::new(vec![SweepParam::parse("model.zeta2=0.1..0.4:4").unwrap()], SweepMode::Grid).unwrap();

@@ -3,11 +3,11 @@
 //! crossing rates, the running ISO 2631-1 weighted r.m.s. a_w(t) of the comfort axes, and the extremes of
 //! the mission (`docs/transients.md`).
 
-use super::transient_keys::{ScheduledKey, TransientSpec};
-use super::Scenario;
 use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::models::InputLayout;
+use crate::scenario::transient_keys::{ScheduledKey, TransientSpec};
+use crate::scenario::Scenario;
 use crate::system::StateSpace;
 use crate::transient::{
     check_stability, input_model, solve, ExactOptions, FamilyBuilder, FixedSystem, Schedule, ScheduledSystem,
@@ -95,7 +95,7 @@ fn speed_of(sc: &Scenario, spec: &TransientSpec) -> Result<Option<SpeedProfile>>
 }
 
 /// The comfort axes of `[analysis.comfort]`.
-fn axes(sc: &Scenario) -> Vec<super::ComfortAxisSpec> {
+fn axes(sc: &Scenario) -> Vec<crate::scenario::ComfortAxisSpec> {
     sc.analysis
         .verdicts
         .comfort
@@ -112,7 +112,7 @@ struct Rebuild {
     speed: Option<f64>,
     table: toml::Table,
     keys: Vec<ScheduledKey>,
-    axes: Vec<super::ComfortAxisSpec>,
+    axes: Vec<crate::scenario::ComfortAxisSpec>,
 }
 
 /// The family of the scenario's system: fixed, or rebuilt from the `[model]` table with the scheduled keys
@@ -166,16 +166,18 @@ impl Rebuild {
                 .map_err(|why| file_error(&self.path, &format!("model.{}", k.key), v, &why))?;
         }
         let f = Fields::new(&self.path, "model", &t);
-        let ctx = super::ModelContext {
+        let ctx = crate::scenario::ModelContext {
             speed: self.speed,
             several_inputs: false,
         };
-        match super::build_model(&self.kind, &f, ctx)? {
-            super::BuiltModel::Stochastic(m) => m.system.state_space().cloned().ok_or_else(|| Error::NotApplicable {
-                method: "transient analysis".into(),
-                reason: "the scheduled model has no state-space form".into(),
-            }),
-            super::BuiltModel::Deterministic(_) => Err(file_error(
+        match crate::scenario::build_model(&self.kind, &f, ctx)? {
+            crate::scenario::BuiltModel::Stochastic(m) => {
+                m.system.state_space().cloned().ok_or_else(|| Error::NotApplicable {
+                    method: "transient analysis".into(),
+                    reason: "the scheduled model has no state-space form".into(),
+                })
+            }
+            crate::scenario::BuiltModel::Deterministic(_) => Err(file_error(
                 &self.path,
                 "model.kind",
                 &self.kind,

@@ -37,9 +37,9 @@
 use super::sweep_h5::H5TableWriter;
 use crate::error::{Error, Result};
 use crate::response::{PointStatistics, VarianceMethod};
-use crate::scenario::{sweep_value_text, Sweep, SweepMode, FAILED_POINT};
 use crate::simulate::{run_temporary, RunOptions};
 use crate::store::Part;
+use crate::study::{sweep_value_text, Sweep, SweepMode, FAILED_POINT};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -81,48 +81,49 @@ pub struct SweepIdentity {
     pub toolkit_version: String,
 }
 
-/// The method that computed a variance (a copy of [`VarianceMethod`] that can be read back).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Method {
-    /// Lyapunov equation.
-    Lyapunov,
-    /// Covariance of the augmented system at the lags between delayed inputs.
-    LyapunovDelays,
-    /// Integral table I_n.
-    IntegralTable,
-    /// Quadrature.
-    Quadrature,
-}
-
-impl Method {
-    /// The code of the HDF5 table's `method` dataset (255 marks a failed point).
-    pub(crate) fn code(self) -> u8 {
-        match self {
-            Method::Lyapunov => 0,
-            Method::IntegralTable => 1,
-            Method::Quadrature => 2,
-            Method::LyapunovDelays => 3,
-        }
-    }
-    fn name(self) -> &'static str {
-        match self {
-            Method::Lyapunov => "lyapunov",
-            Method::IntegralTable => "integral-table",
-            Method::Quadrature => "quadrature",
-            Method::LyapunovDelays => "lyapunov-delays",
-        }
+/// The code of a [`VarianceMethod`] in the HDF5 table's `method` dataset (255 marks a failed point).
+pub(crate) fn method_code(m: VarianceMethod) -> u8 {
+    match m {
+        VarianceMethod::Lyapunov => 0,
+        VarianceMethod::IntegralTable => 1,
+        VarianceMethod::Quadrature => 2,
+        VarianceMethod::LyapunovDelays => 3,
     }
 }
 
-impl From<VarianceMethod> for Method {
-    fn from(m: VarianceMethod) -> Method {
-        match m {
-            VarianceMethod::Lyapunov => Method::Lyapunov,
-            VarianceMethod::IntegralTable => Method::IntegralTable,
-            VarianceMethod::Quadrature => Method::Quadrature,
-            VarianceMethod::LyapunovDelays => Method::LyapunovDelays,
-        }
+/// The name of a [`VarianceMethod`] in the table's `method` column and in its JSON form (kebab case:
+/// `lyapunov-delays` where the reports print [`VarianceMethod::name`], `lyapunov (delays)`).
+fn method_name(m: VarianceMethod) -> &'static str {
+    match m {
+        VarianceMethod::Lyapunov => "lyapunov",
+        VarianceMethod::IntegralTable => "integral-table",
+        VarianceMethod::Quadrature => "quadrature",
+        VarianceMethod::LyapunovDelays => "lyapunov-delays",
+    }
+}
+
+/// [`OutputValues::method`] in the JSON of a table or shard file, by [`method_name`], read back.
+mod method_text {
+    use super::{method_name, VarianceMethod};
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(m: &VarianceMethod, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(method_name(*m))
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> std::result::Result<VarianceMethod, D::Error> {
+        let text = String::deserialize(d)?;
+        [
+            VarianceMethod::Lyapunov,
+            VarianceMethod::IntegralTable,
+            VarianceMethod::Quadrature,
+            VarianceMethod::LyapunovDelays,
+        ]
+        .into_iter()
+        .find(|&m| method_name(m) == text)
+        .ok_or_else(|| {
+            serde::de::Error::unknown_variant(&text, &["lyapunov", "lyapunov-delays", "integral-table", "quadrature"])
+        })
     }
 }
 
@@ -149,7 +150,8 @@ pub struct OutputValues {
     /// λ₂.
     pub lambda2: Option<f64>,
     /// The method.
-    pub method: Method,
+    #[serde(with = "method_text")]
+    pub method: VarianceMethod,
     /// Monte Carlo, when run (None also for an output the run skipped).
     pub mc: Option<McValues>,
 }
@@ -160,7 +162,7 @@ impl OutputValues {
             mean: s.mean,
             variance: s.variance,
             lambda2: s.lambda2,
-            method: s.method.into(),
+            method: s.method,
             mc: None,
         }
     }
@@ -438,7 +440,7 @@ pub(crate) fn point_bytes(identity: &SweepIdentity, format: TableFormat) -> u128
         mean: widest,
         variance: Some(f64::MAX),
         lambda2: widest,
-        method: Method::LyapunovDelays,
+        method: VarianceMethod::LyapunovDelays,
         mc: identity.monte_carlo.map(|_| McValues {
             sigma: wide,
             lower: wide,
@@ -645,7 +647,7 @@ impl SweepResults {
                         s.push(',');
                         s.push_str(unit);
                         s.push(',');
-                        s.push_str(if err.is_some() { "" } else { v.method.name() });
+                        s.push_str(if err.is_some() { "" } else { method_name(v.method) });
                         for x in [
                             v.mean,
                             v.sigma(),
@@ -735,7 +737,7 @@ impl SweepResults {
                             params,
                             output: name,
                             unit,
-                            method: err.is_none().then(|| v.method.name()),
+                            method: err.is_none().then(|| method_name(v.method)),
                             mean: v.mean,
                             sigma: v.sigma(),
                             variance: v.variance,

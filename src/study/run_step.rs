@@ -25,9 +25,9 @@
 //! exact route has no bias: nothing is tightened there. Δt is rounded down to a readable value ([`readable_step`], delays whole steps) and
 //! the duration up to two significant digits ([`readable_duration`]).
 
-use super::Scenario;
 use crate::error::Result;
 use crate::response::analyze_output;
+use crate::scenario::Scenario;
 use crate::simulate::{
     planned_variances, readable_duration, readable_step, suggest_step, PlannedVariance, RunInput, RunOptions,
     StepSuggestion,

@@ -25,12 +25,12 @@
 //! tyre, its enveloping (`enveloping = { kind = "moving-average", length = "0.25 m" }`); `docs/comfort.md`
 //! says when each applies.
 
-use super::Scenario;
 use crate::comfort::{output_band_row, BandTable, Weighting};
 use crate::error::{Error, Result};
 use crate::fatigue::SpectralMoments;
 use crate::quad_oscillatory::OscillatoryOptions;
 use crate::response::{analyze_output_with, continue_excitation, ContinuedSource, Excitation};
+use crate::scenario::Scenario;
 use crate::system::FrequencyResponse;
 use serde::Serialize;
 use std::f64::consts::PI;

@@ -1,12 +1,12 @@
 //! A scenario replayed on a measured road profile: the scenario's wheels (its input map, tracks and
 //! positions) follow the profile's tracks at a speed ([`crate::road::replay()`]), and beside each replayed σ
 //! the analytic σ of the same scenario whose road spectrum is the profile's own measured density
-//! (`measured-profile`, [`super::spectrum_file`]).
+//! (`measured-profile`, [`crate::scenario::spectrum_file`]).
 
-use super::scenario_file::{parse_scenario, Scenario};
 use crate::error::{Error, Result};
 use crate::response::{analyze_output, Excitation, Source};
 use crate::road::{Detrend, Profile, Replay, ReplayOptions, Start, Wheel};
+use crate::scenario::scenario_file::{parse_scenario, Scenario};
 use crate::spectrum::Domain;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -118,7 +118,7 @@ fn measured_text(
     let file = &scenario.path;
     let mut root: toml::Table = crate::fields::parse_toml(&scenario.text, file)?;
     // a `[road]` section is the one `[[input]]` table it stands for
-    super::inputs::road_section_as_input(&mut root, file)?;
+    crate::scenario::inputs::road_section_as_input(&mut root, file)?;
     let speed_text = toml::Value::String(format!("{speed:?} m/s"));
     let not_a_road = |key: &str, reference: &str| {
         Error::in_file(

@@ -3,9 +3,9 @@
 //! with the exact curve, with a verdict that holds for every reported time at once.
 
 use super::transient_run::TransientSetup;
-use super::Scenario;
 use crate::error::{Error, Result};
 use crate::estimate::chi2_interval;
+use crate::scenario::Scenario;
 use crate::store::transient_series::TransientSeries;
 use crate::store::{Compression, Part};
 use crate::transient::{

@@ -5,9 +5,9 @@
 //! ([`crate::simulate::verdicts`]).
 
 use super::verdict_analysis::stress_moments;
-use super::Scenario;
 use crate::comfort::weighted_output;
 use crate::error::{Error, Result};
+use crate::scenario::Scenario;
 use crate::simulate::{ComfortChannel, FatigueChannel, RunInput, RunOptions, RunSummary, VerdictChannels};
 use crate::system::{FrequencyResponse, OutputInfo, StateSpace};
 use nalgebra::DMatrix;
@@ -47,7 +47,10 @@ pub fn verdict_system(sc: &Scenario) -> Result<(StateSpace, Vec<usize>)> {
 ///
 /// # Errors
 /// The errors of [`weighted_output`].
-pub fn with_weighted_outputs(ss: &StateSpace, axes: &[super::ComfortAxisSpec]) -> Result<(StateSpace, Vec<usize>)> {
+pub fn with_weighted_outputs(
+    ss: &StateSpace,
+    axes: &[crate::scenario::ComfortAxisSpec],
+) -> Result<(StateSpace, Vec<usize>)> {
     let parts: Vec<StateSpace> = axes
         .iter()
         .map(|a| weighted_output(ss, a.output, &a.weighting))

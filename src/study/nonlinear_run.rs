@@ -1,47 +1,17 @@
-//! Scenarios with nonlinear elements (`[[model.nonlinear]]`, [`super::nonlinear_keys`]): their three
+//! Scenarios with nonlinear elements (`[[model.nonlinear]]`, [`crate::scenario::nonlinear_keys`]): their three
 //! routes — route 1 (statistical linearization, an approximation), route 3 (the exact density, where it
 //! applies) and route 2 (nonlinear Monte Carlo into a run file).
 
-use super::nonlinear_keys::{parse_nonlinear, with_regime_outputs};
-use super::Scenario;
 use crate::error::Result;
-use crate::fields::Fields;
-use crate::models::ModelInstance;
 use crate::nonlinear::monte_carlo::{
     run_nonlinear, suggest_nonlinear_step, NonlinearRunInput, NonlinearRunOptions, NonlinearRunSummary,
 };
 use crate::nonlinear::{linearize, NonlinearModel, Route1Options, Route1Outcome, Stationary, WhiteNoiseOscillator};
 use crate::response::{analyze_output_with, ResponseStatistics};
+use crate::scenario::Scenario;
 use crate::simulate::StepSuggestion;
 use crate::system::FrequencyResponse;
 use std::path::Path;
-use std::sync::Arc;
-
-/// Reads `[[model.nonlinear]]` of `mf` onto `model`: the model's system becomes the linear part (with the
-/// elements' linear parts and an output per otherwise uncounted regime); returns the outputs added.
-///
-/// # Errors
-/// [`Error::File`](crate::Error::File) naming the key, value and reason.
-pub(super) fn attach(
-    mf: &Fields,
-    model: ModelInstance,
-) -> Result<(ModelInstance, Option<Arc<NonlinearModel>>, Vec<String>)> {
-    let Some(nl) = parse_nonlinear(mf, model.system.as_mdof())? else {
-        return Ok((model, None, Vec::new()));
-    };
-    let (nl, added) = with_regime_outputs(nl).map_err(|e| mf.wrap("nonlinear", e))?;
-    let names: Vec<String> = nl
-        .elements()
-        .iter()
-        .map(|e| format!("{} ({})", e.name, e.law.describe()))
-        .collect();
-    let instance = ModelInstance {
-        system: Arc::new(nl.linear().clone()),
-        layout: model.layout,
-        description: format!("{}; nonlinear elements: {}", model.description, names.join("; ")),
-    };
-    Ok((instance, Some(Arc::new(nl)), added))
-}
 
 /// The analytic answers of a nonlinear scenario: route 1 with its output statistics, the linear part's
 /// statistics, and route 3 or why it does not apply.

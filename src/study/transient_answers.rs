@@ -3,9 +3,9 @@
 //! extremes table, stationary and non-stationary (`docs/transients.md`).
 
 use super::transient_run::{exact_solution, transient_setup, TransientSetup};
-use super::Scenario;
 use crate::error::Result;
 use crate::extremes::{davenport, der_kiureghian, Barrier, CrossingMoments, ExceedanceMethod, PeakFactor};
+use crate::scenario::Scenario;
 use crate::transient::{stationary_moments, Start, StepReport, TransientSolution};
 
 /// One reported output over time (vectors indexed like [`TransientAnalysis::times`]; empty when the output

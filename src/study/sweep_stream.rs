@@ -16,7 +16,7 @@ use super::sweep_table::{
 };
 use crate::error::{Error, Result};
 use crate::response::PointStatistics;
-use crate::scenario::{Sweep, FAILED_POINT};
+use crate::study::{Sweep, FAILED_POINT};
 use std::io::Write;
 use std::ops::Range;
 use std::path::Path;
@@ -68,8 +68,9 @@ pub struct StreamedTable {
 ///
 /// # Examples
 /// ```
-/// use stochvib::report::{write_sweep_table, StreamOptions};
-/// use stochvib::scenario::{load_scenario, Sweep, SweepMode, SweepParam, SweepSpec};
+/// use stochvib::study::{write_sweep_table, StreamOptions};
+/// use stochvib::scenario::load_scenario;
+/// use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
 /// use std::path::Path;
 /// let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
 /// let spec = SweepSpec::new(vec![SweepParam::parse("model.zeta2=0.1..0.4:7").unwrap()], SweepMode::Grid).unwrap();

@@ -7,16 +7,13 @@
 //!   merge is bit-identical to that run.
 //! * The part writes `DIR/shard-<I>-of-<N>.h5` ([`Part::file_name`]), a complete run file of format 3
 //!   written under a temporary name and renamed when complete, like every run file.
-//! * A rerun of a part resumes its `.tmp`; a rerun of a finished part with the same run is a no-op
-//!   ([`finished_part`]); a finished file of another run under that name is never replaced (unless
-//!   `--overwrite`).
+//! * A rerun of a part resumes its `.tmp`; a rerun of a finished part with the same run is a no-op (the
+//!   run itself checks it, [`crate::simulate::run()`]); a finished file of another run under that name is
+//!   never replaced (unless `--overwrite`).
 //! * `--shard auto` reads I from the scheduler ([`resolve_part`]).
 
-use super::plan::Plan;
-use super::run::summary_of_file;
-use super::{RunOptions, RunSummary};
 use crate::error::{Error, Result};
-use crate::store::{metadata_differences, Part, RunFile, RunMetadata};
+use crate::store::Part;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -48,7 +45,7 @@ pub struct ShardChoice {
 ///
 /// # Examples
 /// ```
-/// use stochvib::simulate::resolve_part;
+/// use stochvib::study::resolve_part;
 /// let env = |k: &str| match k {
 ///     "SLURM_ARRAY_TASK_ID" => Some("2".to_string()),
 ///     "SLURM_ARRAY_TASK_MIN" => Some("0".to_string()),
@@ -199,69 +196,10 @@ fn opt(v: Option<usize>) -> String {
 ///
 /// # Examples
 /// ```
-/// use stochvib::{simulate::part_path, store::Part};
+/// use stochvib::{study::part_path, store::Part};
 /// let p = part_path(std::path::Path::new("runs/a"), Part::new(2, 4).unwrap());
 /// assert_eq!(p, std::path::Path::new("runs/a/shard-2-of-4.h5"));
 /// ```
 pub fn part_path(dir: &Path, part: Part) -> PathBuf {
     dir.join(part.file_name())
-}
-
-/// The summary of `out` when it is already the finished shard file of this run (a rerun is a no-op);
-/// `None` when there is nothing there (or `--overwrite` asks to replace it), or when the run is not a part.
-///
-/// # Errors
-/// [`Error::Hdf5`] when `out` is something else: a shard file of another run (naming what differs), not
-/// a complete run file, or a damaged one (a checksum fails: [`RunFile::verify`]). Nothing is replaced or
-/// deleted.
-pub(crate) fn finished_part(
-    meta: &RunMetadata,
-    plan: &Plan,
-    out: &Path,
-    opts: &RunOptions,
-) -> Result<Option<RunSummary>> {
-    let Some(part) = meta.part else { return Ok(None) };
-    if !out.is_file() || opts.overwrite {
-        return Ok(None);
-    }
-    let in_the_way = |reason: String| Error::Hdf5 {
-        path: out.to_path_buf(),
-        reason,
-    };
-    let run = RunFile::open(out).map_err(|e| {
-        in_the_way(format!(
-            "is in the way of shard {} of {} and is not its finished file ({e}); nothing is overwritten: remove \
-             it, choose another run directory, or pass --overwrite",
-            part.index, part.count
-        ))
-    })?;
-    let mut differ = metadata_differences(run.metadata(), meta);
-    if run.toolkit_version() != crate::store::layout::TOOLKIT_VERSION {
-        differ.push(format!("toolkit version ({})", run.toolkit_version()));
-    }
-    if run.metadata().part != meta.part {
-        differ.push("shard index or count".into());
-    }
-    if !differ.is_empty() {
-        return Err(in_the_way(format!(
-            "holds a finished shard file of another run (differs in {}); nothing is overwritten: use another run \
-             directory for this run, or pass --overwrite",
-            differ.join(", ")
-        )));
-    }
-    // a finished file is the result only if its checksums hold (as `inspect` checks them)
-    run.verify().map_err(|e| {
-        in_the_way(format!(
-            "is the finished file of shard {} of {} but is damaged ({e}); nothing is overwritten: pass --overwrite \
-             to compute the shard again",
-            part.index, part.count
-        ))
-    })?;
-    let note = format!(
-        "shard {} of {} is already complete in {}: nothing to do (a rerun of a finished shard is a no-op)",
-        part.index,
-        part.count,
-        out.display()
-    );
-    summary_of_file(&run, plan, vec![note]).map(Some)
 }

@@ -34,13 +34,13 @@
 //! and the day's A(8) and VDV are judged against the Directive's action and limit values and the Annex B
 //! zones ([`ExposureVerdict`]).
 
-use super::scenario_file::{load_scenario, parse_scenario, Scenario};
 use crate::comfort::{
     daily_exposure_a8_periods, vdv_gaussian, vdv_total, Axis, DirectiveLimits, ExposurePeriod, ExposureVerdict,
     HealthGuidanceZone,
 };
 use crate::error::{Error, Result};
 use crate::fields::{read_text_file, EverydayUnit, Fields};
+use crate::scenario::scenario_file::{load_scenario, parse_scenario, Scenario};
 use crate::spectrum::Domain;
 use crate::units::Dim;
 use serde::Serialize;
@@ -83,7 +83,7 @@ pub struct Workday {
 ///
 /// # Examples
 /// ```
-/// use stochvib::scenario::workday::load_workday;
+/// use stochvib::study::workday::load_workday;
 /// let day = load_workday(std::path::Path::new("data/workday/scraper-operator.toml")).unwrap();
 /// assert_eq!(day.tasks.len(), 3);
 /// ```
@@ -369,7 +369,7 @@ fn day_axis(tasks: &[TaskExposure], axis: Axis) -> Result<Option<DayAxis>> {
 ///
 /// # Examples
 /// ```no_run
-/// use stochvib::scenario::workday::{load_workday, workday_exposure};
+/// use stochvib::study::workday::{load_workday, workday_exposure};
 /// let day = load_workday(std::path::Path::new("data/workday/scraper-operator.toml")).unwrap();
 /// let e = workday_exposure(&day, std::path::Path::new("spectra")).unwrap();
 /// println!("A(8) = {} m/s² ({:?})", e.verdict.a8, e.dominant_a8);

@@ -7,8 +7,8 @@
 use super::sweep_table::{OutputValues, SweepIdentity, SweepResults};
 use crate::error::{Error, Result};
 use crate::response::PointStatistics;
-use crate::scenario::Sweep;
 use crate::store::{h5err as h5, open_sec2, OpenMode};
+use crate::study::Sweep;
 use hdf5::types::VarLenUnicode;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -287,7 +287,11 @@ impl H5TableWriter {
                         }
                         covers[r] = v.mc.map_or(0, |m| u8::from(m.covers));
                     }
-                    code[r] = if failed(r) { FAILED } else { v.method.code() };
+                    code[r] = if failed(r) {
+                        FAILED
+                    } else {
+                        super::sweep_table::method_code(v.method)
+                    };
                 }
                 for (col, ds) in exact.iter().chain(&mc).zip(&sets.numbers) {
                     ds.write_slice(col, rows.clone())?;

@@ -5,8 +5,6 @@
 //! 1.4·a_wy, a_wz, beside the evaluation of the scenario's purpose), and the spectral fatigue damage and life of a
 //! stress output by every method, with the moments used.
 
-use super::verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec};
-use super::Scenario;
 use crate::comfort::{
     comfort_reactions, daily_exposure_a8, directive_factor, msdv, vdv_gaussian, weighted_output, Axis, AxisFactor,
     ComfortReaction, ExposureVerdict, HealthGuidanceZone, Location, Purpose, VectorSumTerm, Weighting,
@@ -16,6 +14,8 @@ use crate::fatigue::{compare_methods, SpectralMoments};
 use crate::response::{
     analyze_output_with, spectral_moment_quadrature, Excitation, OutputDensity, ResponseStatistics, VarianceMethod,
 };
+use crate::scenario::verdict_spec::{ComfortAxisSpec, ComfortSpec, FatigueSpec};
+use crate::scenario::Scenario;
 use crate::system::FrequencyResponse;
 use serde::Serialize;
 use std::f64::consts::PI;

@@ -9,7 +9,8 @@
 use super::sweep_table::csv_field;
 use crate::error::{Error, Result};
 use crate::optimize::Quantity;
-use crate::scenario::{sweep_value_text, Scenario, Sweep};
+use crate::scenario::Scenario;
+use crate::study::{sweep_value_text, Sweep};
 use crate::units::{parse_quantity, Dim};
 use serde::Serialize;
 

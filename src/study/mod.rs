@@ -1,0 +1,54 @@
+//! Studies: what is run on a scenario read by [`crate::scenario`], built on [`crate::response`],
+//! [`crate::simulate`] and [`crate::store`].
+//!
+//! * Parameter studies ([`sweep`]): a scenario over a grid or a list of key values, their table
+//!   ([`sweep_table`], written as CSV, JSON or HDF5, streamed block by block by [`sweep_stream`]), split
+//!   into shard files of a cluster run and merged ([`merge_sweep`]), and the verdicts of every point
+//!   ([`sweep_verdicts`]).
+//! * The shard contract of a cluster run ([`shard`]: which part a process computes, from `--shard I --of N`
+//!   or the scheduler, and the file it writes), shared by runs and parameter studies.
+//! * A scenario's Monte Carlo run ([`Scenario::simulate`](crate::scenario::Scenario::simulate)).
+//! * A measured road profile replayed through a scenario's model ([`replay`]).
+//! * The verdicts of a scenario: analytic ([`verdict_analysis`], with the input's coverage of the
+//!   frequencies they need, [`input_coverage`]) and by Monte Carlo with the weighted outputs appended
+//!   ([`verdict_run`]), the time step of a scenario's run ([`run_step`]) and a working day of tasks
+//!   ([`workday`]).
+//! * Non-stationary runs ([`transient_run`], [`transient_answers`], [`transient_mc`]) and the three routes
+//!   of a scenario with nonlinear elements ([`nonlinear_run`]).
+//!
+//! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
+
+mod float_text;
+pub mod input_coverage;
+mod nonlinear_run;
+pub mod replay;
+pub mod run_step;
+mod scenario_run;
+pub mod shard;
+pub mod sweep;
+mod sweep_h5;
+pub mod sweep_stream;
+pub mod sweep_table;
+pub mod sweep_verdicts;
+pub mod transient_answers;
+pub mod transient_mc;
+pub mod transient_run;
+pub mod verdict_analysis;
+mod verdict_run;
+pub mod workday;
+
+pub use nonlinear_run::NonlinearAnswers;
+pub use shard::{part_path, resolve_part, ShardChoice};
+pub use sweep::{
+    substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec, FAILED_POINT,
+};
+pub use sweep_stream::{stream_sweep_csv, write_sweep_table, StreamOptions, StreamedTable};
+pub use sweep_table::{
+    check_monte_carlo_time, check_table_resources, compute_sweep, find_sweep_shards, merge_sweep, run_sweep_shard,
+    SweepMonteCarlo, SweepResults, TableFormat, SWEEP_SHARD, SWEEP_TABLE,
+};
+pub use verdict_analysis::{
+    verdict_analysis, ComfortAxisResult, ComfortVerdict, FatigueMethodResult, FatigueVerdict, HealthAxisResult,
+    HealthEvaluation, VerdictAnalysis,
+};
+pub use verdict_run::{simulate_with_verdicts, verdict_system, with_verdict_input};
