@@ -54,8 +54,12 @@ pub struct CommandCorpus {
     pub workdays: Vec<(String, Table)>,
     /// The scenarios of [`super::optimize::SCENARIOS`]: (path, sweepable keys with a template value each,
     /// outputs (name, unit)).
-    pub optimize_scenarios: Vec<(String, Vec<(String, Value)>, Vec<(String, String)>)>,
+    pub optimize_scenarios: Vec<OptimizeScenario>,
 }
+
+/// A scenario of the optimize cases: (path, sweepable keys with a template value each, outputs (name,
+/// unit)).
+pub type OptimizeScenario = (String, Vec<(String, Value)>, Vec<(String, String)>);
 
 impl CommandCorpus {
     /// Reads the material under `root`.

@@ -68,7 +68,7 @@ fn param(rng: &mut Rng, keys: &[(String, Value)]) -> String {
         0 => format!("{hi}:{lo} {unit}"),
         1 => format!("{lo}:{lo} {unit}"),
         2 => format!("{lo} {unit}:{hi} {unit}"),
-        3 => format!("{lo}"),
+        3 => lo.clone(),
         4 => format!("{lo}..{hi} {unit}"),
         _ => format!("{lo}:{hi} {unit}"),
     };
@@ -178,28 +178,29 @@ fn values<'a>(args: &'a [String], name: &str) -> Vec<&'a str> {
 }
 
 /// A count flag as clap parses it.
-fn count(args: &[String], name: &str, default: usize) -> Result<usize, Outcome> {
+fn count(args: &[String], name: &str, default: usize) -> Result<usize, Box<Outcome>> {
     match values(args, name).last() {
         None => Ok(default),
-        Some(v) => v.parse().map_err(|_| clap(format!("{name} {v}"))),
+        Some(v) => v.parse().map_err(|_| Box::new(clap(format!("{name} {v}")))),
     }
 }
 
 /// Evaluates an optimize case (no time limit; panics propagate).
 pub fn evaluate(args: &[String], ctx: &Context) -> Outcome {
-    run(args, ctx).unwrap_or_else(|o| o)
+    run(args, ctx).unwrap_or_else(|o| *o)
 }
 
-fn run(args: &[String], ctx: &Context) -> Result<Outcome, Outcome> {
-    let lib = |e: stochvib::Error, stage: &str| fail(&e, stage);
+fn run(args: &[String], ctx: &Context) -> Result<Outcome, Box<Outcome>> {
+    let lib = |e: stochvib::Error, stage: &str| Box::new(fail(&e, stage));
+    let refuse = |what: &str| Box::new(clap(what.to_string()));
     let params = values(args, "--param");
     let (min, max) = (values(args, "--minimize"), values(args, "--maximize"));
     if params.is_empty() {
-        return Err(clap("no --param".into()));
+        return Err(refuse("no --param"));
     }
     let (flag, goal, text) = match (min.last(), max.last()) {
-        (Some(_), Some(_)) => return Err(clap("--minimize with --maximize".into())),
-        (None, None) => return Err(clap("neither --minimize nor --maximize".into())),
+        (Some(_), Some(_)) => return Err(refuse("--minimize with --maximize")),
+        (None, None) => return Err(refuse("neither --minimize nor --maximize")),
         (Some(q), None) => ("--minimize", Goal::Minimize, *q),
         (None, Some(q)) => ("--maximize", Goal::Maximize, *q),
     };

@@ -405,9 +405,9 @@ fn an_iri_or_a_flag_beyond_f64_is_refused_by_name() {
 
 /// Findings of seeds 2834 and 2835 (`phantom-key`): a quadratic damper without any coefficient was
 /// reported as `model.nonlinear[0].coefficient = <derived>` (the file has no such key): it is `<missing>`
-/// now. A constant-acceleration speed profile starting at 2·10²³ s (its times collapse in rounding: 2·10²³
-/// + 10 s = 2·10²³ s) was blamed on `input.speed_profile.time[2]` (the keys are `from`, `to`,
-/// `acceleration`, `start`): it names `start` with its value.
+/// now. A constant-acceleration speed profile starting at 2·10²³ s (its times collapse in rounding: 10 s
+/// after 2·10²³ s is 2·10²³ s again) was blamed on `input.speed_profile.time[2]` (the keys are `from`,
+/// `to`, `acceleration`, `start`): it names `start` with its value.
 #[test]
 fn a_missing_damper_coefficient_and_a_collapsing_speed_profile_name_keys_of_the_file() {
     let path = root().join("data/quarter-car-model.toml");
@@ -463,4 +463,19 @@ fn a_workday_key_renamed_back_is_no_typo_and_a_real_typo_is_refused() {
     let (file, key, _) = file_key(&e);
     assert_eq!(file, path);
     assert!(key.contains("sscenario") || key.contains("scenario"), "{e}");
+}
+
+/// Found while adding the transient case family: `[transient] duration = "1e9 s"` at the scenario's step of
+/// 0.05 s asks for 2·10¹⁰ reported times (160 GB of times alone), and `stochvib transient` aborted on the
+/// allocation; more than 10⁶ reported times are refused before anything is allocated, naming
+/// `transient.step`, the count and the cap.
+#[test]
+fn a_transient_of_too_many_reported_times_is_refused_by_key() {
+    let path = root().join("data/quarter-car-accelerating.toml");
+    let text = data_text("quarter-car-accelerating.toml").replacen("duration = \"15 s\"", "duration = \"1e9 s\"", 1);
+    let sc = parse_scenario(&text, &path, &spectra()).unwrap();
+    let e = stochvib::scenario::transient_run::transient_setup(&sc).unwrap_err();
+    let (file, key, _) = file_key(&e);
+    assert_eq!((file, key.as_str()), (path, "transient.step"), "{e}");
+    assert!(e.to_string().contains("2e10 reported times"), "{e}");
 }
