@@ -181,20 +181,10 @@ impl<'a> Fields<'a> {
         match e {
             Error::File { .. } => e,
             other => {
-                // `name[i]` names an element of the array `name`
-                let element = key
-                    .strip_suffix(']')
-                    .and_then(|k| k.split_once('['))
-                    .and_then(|(name, i)| {
-                        let i: usize = i.parse().ok()?;
-                        self.table.get(name)?.as_array()?.get(i)
-                    });
                 // a key the constructor says is missing (a required value that no key gave) stays `<missing>`
                 let missing = matches!(&other, Error::InvalidParameter { value, .. } if value == "<missing>");
                 let value = self
-                    .table
-                    .get(key)
-                    .or(element)
+                    .lookup(key)
                     .map(|v| v.to_string())
                     .unwrap_or_else(|| if missing { "<missing>" } else { "<derived>" }.into());
                 self.error(key, value, other.to_string())
@@ -203,17 +193,32 @@ impl<'a> Fields<'a> {
     }
 
     /// Wraps a constructor's [`Error::InvalidParameter`] so that it names the file key of the same name as the
-    /// parameter (constructors name their parameters after the file keys); any other error is attributed to
-    /// `fallback`.
+    /// parameter (constructors name their parameters after the file keys); any other error, and a parameter
+    /// that is no key of the table (a value derived from other keys, e.g. the times of a constant
+    /// acceleration, or a default of absent keys) is attributed to `fallback` when the table has it. A
+    /// parameter the constructor reports as `<missing>` keeps its name.
     pub fn wrap_param(&self, e: Error, fallback: &str) -> Error {
         let key = match &e {
             // the edges of a `band = [low, high]` key
             Error::InvalidParameter { name, .. } if name == "band.low" => "band[0]".to_string(),
             Error::InvalidParameter { name, .. } if name == "band.high" => "band[1]".to_string(),
-            Error::InvalidParameter { name, .. } => name.clone(),
+            Error::InvalidParameter { name, value, .. }
+                if value == "<missing>" || self.lookup(name).is_some() || self.table.get(fallback).is_none() =>
+            {
+                name.clone()
+            }
             _ => fallback.to_string(),
         };
         self.wrap(&key, e)
+    }
+
+    /// The value of `key` in the table, or of `name[i]`, an element of the array `name`.
+    fn lookup(&self, key: &str) -> Option<&'a toml::Value> {
+        let element = || {
+            let (name, i) = key.strip_suffix(']')?.split_once('[')?;
+            self.table.get(name)?.as_array()?.get(i.parse::<usize>().ok()?)
+        };
+        self.table.get(key).or_else(element)
     }
 
     /// The raw value of `key`, marking it used.

@@ -229,7 +229,8 @@ pub fn check_rate(rate_hz: f64) -> Result<f64> {
 /// units of [`parse_unit`]; `what` names it in the error (a flag).
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] naming `what` for a missing or non-finite number or an unknown unit.
+/// [`Error::InvalidParameter`] naming `what` for a missing or non-finite number (also once converted to SI)
+/// or an unknown unit.
 ///
 /// # Examples
 /// ```
@@ -259,5 +260,12 @@ pub fn parse_quantity(text: &str, what: &str) -> Result<(f64, Dim)> {
         ));
     }
     let (to_si, dim) = parse_unit(unit).map_err(|r| Error::invalid(what, text, r))?;
+    if !(v * to_si).is_finite() {
+        return Err(Error::invalid(
+            what,
+            text,
+            format!("in SI units ({unit} is {to_si:e} SI) the value is beyond the range of f64"),
+        ));
+    }
     Ok((v * to_si, dim))
 }

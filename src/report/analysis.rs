@@ -117,13 +117,15 @@ pub struct AnalysisReport {
 /// Runs every analysis of the scenario.
 ///
 /// # Errors
-/// Only when the scenario's system and excitation do not fit together; divergent or inapplicable methods
-/// are reported inside.
+/// Only when the scenario's system and excitation do not fit together (or the system is found unstable),
+/// named as the file's `model`; divergent or inapplicable methods are reported inside.
 pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
     let sys = sc.model.system.as_ref();
     let mut outputs = Vec::new();
     for &i in &sc.analysis.outputs {
-        let st = analyze_output_with(sys, &sc.excitation, i, &sc.analysis.effort)?;
+        // an error naming no key (a system found unstable here, not when the file was read) names the model
+        let st =
+            analyze_output_with(sys, &sc.excitation, i, &sc.analysis.effort).map_err(|e| sc.name_model_error(e))?;
         let bounds = st.bounds(3.0);
         let (band_sigma, band_note) = match sc.analysis.band {
             None => (None, None),
@@ -170,7 +172,7 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         verdicts: if sc.analysis.verdicts.is_empty() {
             None
         } else {
-            Some(crate::study::verdict_analysis(sc)?)
+            Some(crate::study::verdict_analysis(sc).map_err(|e| sc.name_model_error(e))?)
         },
         monte_carlo_verdicts: None,
     })

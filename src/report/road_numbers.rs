@@ -64,6 +64,13 @@ pub fn coherence_report(
     segment: Option<usize>,
     confidence: f64,
 ) -> Result<CoherenceReport> {
+    if !(confidence > 0.0 && confidence < 1.0) {
+        return Err(Error::invalid(
+            "--confidence",
+            confidence,
+            "the confidence of the intervals must lie in (0, 1)",
+        ));
+    }
     if let Some(f) = frequencies.iter().find(|f| !(f.is_finite() && **f >= 0.0)) {
         return Err(Error::invalid(
             "--frequency",
@@ -123,9 +130,11 @@ pub fn coherence_report(
     }
     let m = segment.unwrap_or_else(|| default_segment(p.len()));
     let cs = spatial_cross_spectrum(&p.tracks[0].elevation_m, &p.tracks[1].elevation_m, p.step_m, m)
-        .map_err(|e| e.renamed("segment length", "--segment"))?;
+        .map_err(|e| segment_error(e, path, &p, segment))?;
     for i in 0..cs.n.len() {
-        let iv = cs.squared_coherence_interval(i, confidence)?;
+        let iv = cs
+            .squared_coherence_interval(i, confidence)
+            .map_err(|e| segment_error(e, path, &p, segment))?;
         let (r, g) = at(cs.n[i]);
         report.rows.push(CoherenceRow {
             n: cs.n[i],
@@ -139,6 +148,25 @@ pub fn coherence_report(
     report.tracks = Some((p.tracks[0].name.clone(), p.tracks[1].name.clone()));
     report.segments = Some((cs.segments, cs.dof));
     Ok(report)
+}
+
+/// An error of the coherence estimate named by what the user wrote: the `--segment` flag when it gave the
+/// segment (with the profile's length), else the profile itself, whose tracks are too short for the default
+/// segment.
+fn segment_error(e: Error, path: &Path, p: &Profile, segment: Option<usize>) -> Error {
+    let why = match e {
+        Error::InvalidParameter { name, value, reason } => format!("{name} = {value}: {reason}"),
+        other => return other,
+    };
+    match segment {
+        Some(m) => Error::invalid("--segment", m, format!("{why} (the profile has {} samples)", p.len())),
+        None => Error::in_file(
+            path,
+            format!("column {} and {}", p.tracks[0].name, p.tracks[1].name),
+            format!("{} rows", p.len()),
+            format!("{why}: the profile is too short for a coherence estimate"),
+        ),
+    }
 }
 
 impl CoherenceReport {
@@ -244,7 +272,7 @@ pub fn iri_report(spectrum: &SpectrumFile, profile: Option<&Path>) -> Result<Iri
         for t in &p.tracks {
             measured.push(TrackIri {
                 track: t.name.clone(),
-                m_per_km: iri(&t.elevation_m, p.step_m)?.m_per_km,
+                m_per_km: track_iri(path, t, p.step_m)?,
             });
         }
     }
@@ -254,6 +282,35 @@ pub fn iri_report(spectrum: &SpectrumFile, profile: Option<&Path>) -> Result<Iri
         profile: profile.map(|p| p.display().to_string()),
         measured,
     })
+}
+
+/// The IRI of one track of the profile `path`, m/km; what the IRI refuses (a step longer than 11 m, a
+/// track too short) and a non-finite IRI (elevations beyond what f64 sums can hold) name the file and the
+/// column.
+fn track_iri(path: &Path, t: &crate::road::Track, step_m: f64) -> Result<f64> {
+    let key = format!("column {}", t.name);
+    let m_per_km = iri(&t.elevation_m, step_m)
+        .map_err(|e| match e {
+            Error::InvalidParameter { name, value, reason } => Error::in_file(
+                path,
+                &key,
+                &value,
+                format!("{name} = {value}: {reason} (the profile is too short or too coarse for the IRI)"),
+            ),
+            other => other,
+        })?
+        .m_per_km;
+    if !m_per_km.is_finite() {
+        let peak = t.elevation_m.iter().fold(0.0f64, |a, z| a.max(z.abs()));
+        return Err(Error::in_file(
+            path,
+            &key,
+            format!("largest |elevation| {peak:e} m"),
+            "the IRI of this track is not a finite number: its elevations are beyond what the golden car's \
+             sums can hold in f64; check the column's values and unit",
+        ));
+    }
+    Ok(m_per_km)
 }
 
 impl IriReport {

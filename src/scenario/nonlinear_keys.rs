@@ -292,10 +292,15 @@ fn law(
         )?),
         "quadratic-damper" => {
             let c = shared(value, "coefficient", false)?;
-            Arc::new(QuadraticDamper::new(
-                value("rebound_coefficient")?.or(c).unwrap_or(0.0),
-                value("compression_coefficient")?.or(c).unwrap_or(0.0),
-            )?)
+            let (r, p) = (value("rebound_coefficient")?, value("compression_coefficient")?);
+            if c.is_none() && r.is_none() && p.is_none() {
+                return Err(Error::invalid(
+                    "coefficient",
+                    "<missing>",
+                    "give `coefficient` (or `rebound_coefficient`, `compression_coefficient`), > 0 on one side",
+                ));
+            }
+            Arc::new(QuadraticDamper::new(r.or(c).unwrap_or(0.0), p.or(c).unwrap_or(0.0))?)
         }
         "coulomb-friction" => Arc::new(CoulombFriction::new(value("force")?.unwrap_or(0.0))?),
         "tyre-contact" => {

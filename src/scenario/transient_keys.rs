@@ -147,7 +147,13 @@ pub fn speed_profile(f: &Fields) -> Result<SpeedProfile> {
             return Err(f.error(k, x, "a speed is >= 0: the road is traversed in one direction"));
         }
     }
-    let v = SpeedProfile::constant_acceleration(v0, v1, a, t0).map_err(|e| f.wrap_param(e, "acceleration"))?;
+    // times that collapse in rounding (t0 + (v1 − v0)/a = t0) are the start's doing, else the acceleration's
+    let blamed = if f.get("start").is_some() && t0 + (v1 - v0).abs() / a.abs() == t0 {
+        "start"
+    } else {
+        "acceleration"
+    };
+    let v = SpeedProfile::constant_acceleration(v0, v1, a, t0).map_err(|e| f.wrap_param(e, blamed))?;
     f.finish()?;
     Ok(v)
 }

@@ -44,8 +44,9 @@ impl Scenario {
         self.answers_of(model).map(Some).map_err(|e| self.name_model_error(e))
     }
 
-    /// An error of the nonlinear routes, naming the file's `model` (its linear part and elements) unless it
-    /// names a key already: an unstable linear part, a quadrature of the model's response that fails.
+    /// An error of the nonlinear routes or of a report, naming the file's `model` (its linear part and
+    /// elements) unless it names a key already: an unstable linear part, a system found unstable with its
+    /// excitation, a quadrature of the model's response that fails.
     pub fn name_model_error(&self, e: crate::Error) -> crate::Error {
         match e {
             e @ crate::Error::File { .. } => e,

@@ -201,8 +201,42 @@ fn file_error(path: &Path, key: &str, value: impl std::fmt::Display, reason: &st
 /// # Errors
 /// A scenario without `[transient] duration`; nonlinear elements; several sources or wheels at different
 /// positions; an input without an exact route (the library's reason); a schedule under which the system
-/// is unstable at some time (file, key `transient.schedule`, the time and the eigenvalue).
+/// is unstable at some time (file, key `transient.schedule`, the time and the eigenvalue); a step that gives
+/// more than [`MAX_REPORTED_TIMES`] reported times (key `transient.step`). A reason that names no key is
+/// given as the file's `transient` section.
 pub fn transient_setup(sc: &Scenario) -> Result<TransientSetup> {
+    setup_of(sc).map_err(|e| match e {
+        e @ (Error::File { .. } | Error::Io { .. } | Error::Parse { .. }) => e,
+        // a reason of the library (no exact route for this input, nonlinear elements) is the section's
+        other => file_error(&sc.path, "transient", "[transient]", &other.to_string()),
+    })
+}
+
+/// Most reported times of a transient analysis (the exact route keeps its moments at each of them, the Monte
+/// Carlo route its accumulators): 10⁶, some tens of MB for a few outputs.
+pub const MAX_REPORTED_TIMES: f64 = 1e6;
+
+/// The reported times of `spec` over `duration`, refused beyond [`MAX_REPORTED_TIMES`] (naming the step,
+/// the count and the cap) before anything is allocated.
+fn checked_times(sc: &Scenario, spec: &TransientSpec, duration: f64) -> Result<Vec<f64>> {
+    let count = spec.step.map(|s| (duration / s).round());
+    if let (Some(s), Some(n)) = (spec.step, count)
+        && (n.is_nan() || n > MAX_REPORTED_TIMES)
+    {
+        return Err(file_error(
+            &sc.path,
+            "transient.step",
+            format!("{s} s"),
+            &format!(
+                "{n:e} reported times over the duration {duration} s: more than the {MAX_REPORTED_TIMES:e} the \
+                 transient routes keep in memory; give a longer step or a shorter duration"
+            ),
+        ));
+    }
+    Ok(report_times(duration, spec.step))
+}
+
+fn setup_of(sc: &Scenario) -> Result<TransientSetup> {
     let (spec, duration) = spec_of(sc)?;
     if sc.nonlinear.is_some() {
         return Err(Error::NotApplicable {
@@ -212,7 +246,7 @@ pub fn transient_setup(sc: &Scenario) -> Result<TransientSetup> {
     }
     let gains = gains(sc)?;
     let (fam, weighted) = family(sc, spec)?;
-    let times = report_times(duration, spec.step);
+    let times = checked_times(sc, spec, duration)?;
     let mut check: Vec<f64> = times.clone();
     check.extend(fam.knots().into_iter().filter(|t| *t <= duration));
     check_stability(fam.as_ref(), &check).map_err(|e| unstable(sc, spec, e))?;

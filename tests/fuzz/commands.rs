@@ -52,7 +52,14 @@ pub struct CommandCorpus {
     pub sweep_scenarios: Vec<(String, Vec<(String, Value)>)>,
     /// Workday files with absolute scenario paths: (file name, table).
     pub workdays: Vec<(String, Table)>,
+    /// The scenarios of [`super::optimize::SCENARIOS`]: (path, sweepable keys with a template value each,
+    /// outputs (name, unit)).
+    pub optimize_scenarios: Vec<OptimizeScenario>,
 }
+
+/// A scenario of the optimize cases: (path, sweepable keys with a template value each, outputs (name,
+/// unit)).
+pub type OptimizeScenario = (String, Vec<(String, Value)>, Vec<(String, String)>);
 
 impl CommandCorpus {
     /// Reads the material under `root`.
@@ -91,6 +98,7 @@ impl CommandCorpus {
         ];
         let spectra = root.join("spectra");
         let mut road_scenarios = Vec::new();
+        let mut optimize_scenarios = Vec::new();
         let mut sweep_scenarios = Vec::new();
         for (rel, table) in stochastic {
             let Ok(sc) = stochvib::scenario::load_scenario(&root.join(rel), &spectra) else {
@@ -98,6 +106,11 @@ impl CommandCorpus {
             };
             if sc.input.spectrum.domain() == Domain::Spatial {
                 road_scenarios.push(rel.clone());
+            }
+            if super::optimize::SCENARIOS.contains(&rel.as_str()) {
+                let outputs = sc.model.system.outputs().iter();
+                let outputs = outputs.map(|o| (o.name.clone(), o.unit.clone())).collect();
+                optimize_scenarios.push((rel.clone(), sweep_keys(table), outputs));
             }
             sweep_scenarios.push((rel.clone(), sweep_keys(table)));
         }
@@ -125,6 +138,7 @@ impl CommandCorpus {
             road_scenarios,
             sweep_scenarios,
             workdays,
+            optimize_scenarios,
         }
     }
 }
@@ -274,6 +288,13 @@ fn blank(kind: DocKind, index: u64) -> Case {
         must_reject: Vec::new(),
         args: Vec::new(),
     }
+}
+
+/// An optimize case `index` ([`super::optimize`]).
+pub fn optimize(corpus: &Corpus, rng: &mut Rng, index: u64) -> Case {
+    let mut case = blank(DocKind::Optimize, index);
+    super::optimize::optimize_case(&corpus.commands, rng, &mut case);
+    case
 }
 
 /// A record-command case `index` ([`super::records`]).
@@ -530,6 +551,20 @@ fn sweep_case(cc: &CommandCorpus, rng: &mut Rng, case: &mut Case) {
     case.args = a;
 }
 
+/// The number and unit of a template value (`"20 kN/m"` → (20, "kN/m"); a number is SI; else 1).
+pub(super) fn number_unit(v: &Value) -> (f64, String) {
+    match v {
+        Value::String(s) => {
+            let mut it = s.splitn(2, ' ');
+            let x = it.next().and_then(|n| n.parse::<f64>().ok()).unwrap_or(1.0);
+            (x, it.next().unwrap_or("").to_string())
+        }
+        Value::Integer(i) => (*i as f64, String::new()),
+        Value::Float(f) => (*f, String::new()),
+        _ => (1.0, String::new()),
+    }
+}
+
 /// One `KEY=VALUES` text.
 fn sweep_param(rng: &mut Rng, keys: &[(String, Value)]) -> String {
     let (key, v) = if keys.is_empty() || rng.random_bool(0.1) {
@@ -547,18 +582,7 @@ fn sweep_param(rng: &mut Rng, keys: &[(String, Value)]) -> String {
         pick(rng, keys).clone()
     };
     let key = if rng.random_bool(0.05) { format!("{key}x") } else { key };
-    let (x, unit) = match &v {
-        Value::String(s) => {
-            let mut it = s.splitn(2, ' ');
-            (
-                it.next().and_then(|n| n.parse::<f64>().ok()).unwrap_or(1.0),
-                it.next().unwrap_or("").to_string(),
-            )
-        }
-        Value::Integer(i) => (*i as f64, String::new()),
-        Value::Float(f) => (*f, String::new()),
-        _ => (1.0, String::new()),
-    };
+    let (x, unit) = number_unit(&v);
     let unit = if rng.random_bool(0.05) { "furlong".into() } else { unit };
     let scaled = |rng: &mut Rng| -> String {
         match rng.random_range(0..12) {
@@ -671,7 +695,7 @@ fn workday_case(corpus: &Corpus, rng: &mut Rng, case: &mut Case) {
     let (name, table) = pick(rng, &corpus.commands.workdays).clone();
     case.origin = format!("data/workday/{name}");
     case.file_name = name;
-    let mut doc = table;
+    let mut doc = table.clone();
     for _ in 0..rng.random_range(1..4) * 5 {
         if case.mutations.len() >= 3 {
             break;
@@ -687,8 +711,12 @@ fn workday_case(corpus: &Corpus, rng: &mut Rng, case: &mut Case) {
     }
     if case.raw.is_empty() {
         for (i, m) in case.mutations.iter().enumerate() {
+            // a key renamed back to its shipped name (`scenario` → `sscenario` → `scenario`: the vocabulary of
+            // typos has no workday keys) is no typo
+            let shipped = |p: &[Seg], v: &Value| mutate::get(&table, p).is_some_and(|x| x.to_string() == v.to_string());
             if let (Some(class), Some((p, v))) = (&m.must_reject, &m.witness)
                 && mutate::get(&doc, p).is_some_and(|x| x.to_string() == v.to_string())
+                && !shipped(p, v)
                 && mutate::expectation_holds(&case.mutations, i)
             {
                 case.must_reject
@@ -780,6 +808,7 @@ pub fn evaluate(kind: DocKind, path: &Path, args: &[String], ctx: &Context, stag
         DocKind::Sweep => eval_sweep(args, ctx),
         DocKind::Merge => eval_merge(path, args, ctx),
         DocKind::Record => super::records::evaluate(path, args, &ctx.spectra()),
+        DocKind::Optimize => super::optimize::evaluate(args, ctx),
         _ => eval_workday(path, ctx),
     };
     stage.store(4, Ordering::SeqCst);
@@ -787,7 +816,7 @@ pub fn evaluate(kind: DocKind, path: &Path, args: &[String], ctx: &Context, stag
 }
 
 /// Flags clap refuses before the command runs: the case is then only a CLI case.
-fn clap_refusal(what: String) -> Outcome {
+pub(super) fn clap_refusal(what: String) -> Outcome {
     Outcome::Err(Failure {
         variant: "Clap".into(),
         message: format!("the command line refuses {what}"),
@@ -1163,7 +1192,7 @@ pub fn run_limited(kind: DocKind, path: &Path, args: &[String], ctx: &Context, l
 pub fn write_case(case: &Case, dir: &Path, ctx: &Context) -> PathBuf {
     std::fs::create_dir_all(dir).unwrap();
     match case.kind {
-        DocKind::Sweep => ctx.root.join(&case.args[0]),
+        DocKind::Sweep | DocKind::Optimize => ctx.root.join(&case.args[0]),
         DocKind::Merge => dir.join(&case.file_name),
         _ => inputs::write_case(case, dir),
     }
@@ -1326,6 +1355,7 @@ pub fn cli_args(case: &Case, path: &Path, ctx: &Context, json: bool) -> Option<V
             a
         }
         DocKind::Record => return Some(super::records::cli_args(case, path, &ctx.spectra())),
+        DocKind::Optimize => return Some(super::optimize::cli_args(case, ctx, json)),
         DocKind::Merge => {
             let set = materialize(&merge_dir(path), &case.args, ctx);
             let mut a = vec!["merge".into(), set.out.display().to_string()];
@@ -1388,6 +1418,16 @@ pub fn check_cli(case: &Case, args: &[String], lib: &str, out: &super::process::
         .find(|l| l.starts_with("error"))
         .unwrap_or("")
         .to_string();
+    if let Some(expected) = super::optimize::infeasible_as_expected(lib, out) {
+        if !expected {
+            add(
+                "cli-inconsistent",
+                format!("{cmd} does not fail with \"infeasible\" after printing an infeasible answer"),
+                mutate::short(&first_err),
+            );
+        }
+        return f;
+    }
     match out.exit {
         Exit::Timeout => add(
             "cli-timeout",
@@ -1432,11 +1472,7 @@ pub fn check_cli(case: &Case, args: &[String], lib: &str, out: &super::process::
                 .any(|a| a.starts_with('/') && out.stderr.contains(a.as_str()))
                 || out.stderr.contains("--")
                 || out.stderr.contains(&case.file_name)
-                || (case.kind == DocKind::Record
-                    && case
-                        .args
-                        .get(1)
-                        .is_some_and(|v| out.stderr.contains(&format!("\"{v}\""))));
+                || (case.kind == DocKind::Record && super::records::cli_names_a_positional(case, &out.stderr));
             if !first_err.starts_with("error") || !named {
                 add(
                     "cli-error-message",
@@ -1464,6 +1500,7 @@ pub fn command_line(case: &Case, file: &str) -> String {
         DocKind::Sweep => format!("stochvib sweep {}", case.args.join(" ")),
         DocKind::Merge => format!("stochvib merge <target> <members> ({})", case.args.join(" ")),
         DocKind::Record => super::records::command_line(case, file),
+        DocKind::Optimize => format!("stochvib optimize {}", case.args.join(" ")),
         _ => format!("stochvib workday {file}"),
     }
 }

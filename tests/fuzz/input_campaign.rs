@@ -625,6 +625,10 @@ fn run_cli(c: &Campaign, case: &Case, dir: &Path, lib: &str) -> Option<Vec<Findi
 fn cli_command_line(case: &Case, file: &str) -> String {
     match case.kind {
         DocKind::Data | DocKind::Nonlinear => format!("stochvib analyze {file} --spectra-dir spectra"),
+        DocKind::Transient => format!(
+            "stochvib transient {file} --spectra-dir spectra {}",
+            super::transient::cli_tail(Path::new(file)).join(" ")
+        ),
         DocKind::Spectrum => format!("stochvib spectrum {file}"),
         _ => commands::command_line(case, file),
     }

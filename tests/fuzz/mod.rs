@@ -9,6 +9,8 @@
 //! * [`nonlinear`]: mutations of the `[[model.nonlinear]]` element tables of scenarios.
 //! * [`records`]: the record commands (`exposure`, `fatigue`, `coherence`, `iri`, `weighting`) with
 //!   their flags.
+//! * [`transient`]: mutations of the non-stationary keys of transient scenarios (`stochvib transient`).
+//! * [`optimize`]: `stochvib optimize` with hostile parameters, bounds, objectives and constraints.
 //! * [`input_campaign`]: worker processes, supervisor, CLI runs, special files, minimisation, reproducers.
 //! * [`runs`]: corruption of HDF5 run files and of interrupted runs' `.tmp` files.
 //! * [`floats`]: the non-finite number scan of a report (through serde).
@@ -21,6 +23,8 @@ pub mod input_campaign;
 pub mod inputs;
 pub mod mutate;
 pub mod nonlinear;
+pub mod optimize;
 pub mod process;
 pub mod records;
 pub mod runs;
+pub mod transient;

@@ -517,6 +517,20 @@ pub fn names_a_positional(case: &Case, name: &str, message: &str) -> bool {
     name == role && case.args.get(1).is_some_and(|v| message.contains(v.as_str()))
 }
 
+/// Whether the CLI's stderr names a positional argument of the case's command with the value typed: quoted
+/// (`"Wz"`), or as the parameter of its role (`` `spectrum` = type1``).
+pub fn cli_names_a_positional(case: &Case, stderr: &str) -> bool {
+    let Some(v) = case.args.get(1).filter(|v| !v.is_empty() && !v.starts_with("--")) else {
+        return false;
+    };
+    let role = match case.args[0].as_str() {
+        "iri" => "spectrum",
+        "weighting" => "weighting",
+        _ => return stderr.contains(&format!("\"{v}\"")),
+    };
+    stderr.contains(&format!("\"{v}\"")) || stderr.contains(&format!("`{role}` = {v}"))
+}
+
 /// A command line for the reproducers.
 pub fn command_line(case: &Case, file: &str) -> String {
     let args: Vec<String> = case.args[1..]

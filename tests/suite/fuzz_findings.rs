@@ -1,4 +1,4 @@
-//! The findings of the fuzz campaigns of seeds 2830–2833, each a regression test: a message that named a
+//! The findings of the fuzz campaigns of seeds 2830–2835, each a regression test: a message that named a
 //! key the file does not have, a success that printed a non-finite number, an error that named no file,
 //! key or flag, a reference table reported empty, a decay rate accepted in Hz. The expectations are the
 //! names the user wrote and closed forms stated in each test, nothing computed by the code under test.
@@ -313,4 +313,169 @@ fn a_record_without_damage_and_an_axis_without_weighting_are_refused_by_name() {
     let e = evaluate_exposure(reader.as_mut(), &options).unwrap_err();
     assert_eq!(parameter(&e), "--axis", "{e}");
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A profile of `rows` rows of the shipped two-track profile (its comments dropped) at `dir/name`, with
+/// `edit` applied to the data lines.
+fn short_profile(dir: &Path, name: &str, rows: usize, edit: impl Fn(Vec<String>) -> Vec<String>) -> PathBuf {
+    let text = data_text("measured-profile.csv");
+    let lines: Vec<String> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .take(rows)
+        .map(str::to_string)
+        .collect();
+    let body = edit(lines).join("\n");
+    let p = dir.join(name);
+    std::fs::write(&p, format!("distance [m], left [mm], right [mm]\n{body}\n")).unwrap();
+    p
+}
+
+/// Findings of seeds 2834 and 2835 (`error-not-a-flag`): `stochvib coherence` named the estimator's
+/// `confidence`, `record length` and `segments`, `stochvib iri` the IRI's `profile length` and `step`. Now a
+/// confidence outside (0, 1) is `--confidence`; a segment longer than the profile (or leaving one segment)
+/// is `--segment` when the flag gave it, else the profile's columns; a profile shorter than the IRI needs
+/// (11 m plus the 250 mm base: 226 samples at 0.05 m) or sampled coarser than 11 m (a distance column in km:
+/// Δx = 50 m) names the profile file and the column.
+#[test]
+fn coherence_and_iri_name_the_flag_or_the_profile() {
+    use stochvib::report::road_numbers::{coherence_report, iri_report};
+    let d = scratch("road-numbers");
+    let whole = root().join("data/measured-profile.csv");
+    for c in [f64::NAN, 0.0, 1.0, 1.5] {
+        let e = coherence_report(None, Some(&whole), &[], None, c).unwrap_err();
+        assert_eq!(parameter(&e), "--confidence", "{e}");
+    }
+    // 10,000 samples: a segment of 2^20 is longer than the profile
+    let e = coherence_report(None, Some(&whole), &[], Some(1 << 20), 0.95).unwrap_err();
+    assert_eq!(parameter(&e), "--segment", "{e}");
+    assert!(e.to_string().contains("10000 samples"), "{e}");
+    // 15 rows: the default segment (16, or the largest even number ≤ 15: 14) leaves one segment
+    let short = short_profile(&d, "short.csv", 15, |l| l);
+    let e = coherence_report(None, Some(&short), &[], None, 0.95).unwrap_err();
+    let (file, key, _) = file_key(&e);
+    assert_eq!((file, key.as_str()), (short.clone(), "column left and right"), "{e}");
+    let catalogue = stochvib::scenario::Catalogue::new(spectra());
+    let road = catalogue.resolve("iso8608-c", None).unwrap();
+    let e = iri_report(&road, Some(&short)).unwrap_err();
+    let (file, key, _) = file_key(&e);
+    assert_eq!((file, key.as_str()), (short, "column left"), "{e}");
+    assert!(e.to_string().contains("11 m"), "{e}");
+    let km = short_profile(&d, "km.csv", 400, |l| l);
+    std::fs::write(
+        &km,
+        std::fs::read_to_string(&km)
+            .unwrap()
+            .replace("distance [m]", "distance [km]"),
+    )
+    .unwrap();
+    let e = iri_report(&road, Some(&km)).unwrap_err();
+    let (file, key, _) = file_key(&e);
+    assert_eq!((file, key.as_str()), (km, "column left"), "{e}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Findings of seeds 2834 and 2835 (`non-finite-result`): `stochvib iri` of a profile with a cell of 1e308
+/// (mm: 1e305 m) printed an IRI of `inf` m/km; it is refused naming the profile, the column and the largest
+/// elevation. `stochvib fatigue --ultimate "1e308 MPa"` (1e314 Pa, beyond f64) echoed an infinite ultimate
+/// strength; a record quantity whose SI value is not finite is refused naming the flag.
+#[test]
+fn an_iri_or_a_flag_beyond_f64_is_refused_by_name() {
+    use stochvib::record::{parse_quantity, quantity_of_dim};
+    let d = scratch("beyond-f64");
+    let huge = short_profile(&d, "huge.csv", 1200, |mut l| {
+        l[600] = "30.00,1e308,-1.0".into();
+        l
+    });
+    let catalogue = stochvib::scenario::Catalogue::new(spectra());
+    let road = catalogue.resolve("iso8608-h", None).unwrap();
+    let e = stochvib::report::road_numbers::iri_report(&road, Some(&huge)).unwrap_err();
+    let (file, key, _) = file_key(&e);
+    assert_eq!((file, key.as_str()), (huge, "column left"), "{e}");
+    assert!(e.to_string().contains("not a finite number"), "{e}");
+    let stress = stochvib::units::Dim::new(-1, 1, -2);
+    let e = quantity_of_dim("--ultimate", "1e308 MPa", stress).unwrap_err();
+    assert_eq!(parameter(&e), "--ultimate", "{e}");
+    let e = parse_quantity("1e308 MPa", "--sn-amplitude").unwrap_err();
+    assert_eq!(parameter(&e), "--sn-amplitude", "{e}");
+    assert_eq!(quantity_of_dim("--ultimate", "500 MPa", stress).unwrap(), 5e8);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Findings of seeds 2834 and 2835 (`phantom-key`): a quadratic damper without any coefficient was
+/// reported as `model.nonlinear[0].coefficient = <derived>` (the file has no such key): it is `<missing>`
+/// now. A constant-acceleration speed profile starting at 2·10²³ s (its times collapse in rounding: 10 s
+/// after 2·10²³ s is 2·10²³ s again) was blamed on `input.speed_profile.time[2]` (the keys are `from`,
+/// `to`, `acceleration`, `start`): it names `start` with its value.
+#[test]
+fn a_missing_damper_coefficient_and_a_collapsing_speed_profile_name_keys_of_the_file() {
+    let path = root().join("data/quarter-car-model.toml");
+    let text = data_text("quarter-car-model.toml")
+        + "\n[[model.nonlinear]]\nkind = \"quadratic-damper\"\nacross = \"suspension\"\n";
+    let e = parse_scenario(&text, &path, &spectra()).unwrap_err();
+    let (_, key, value) = file_key(&e);
+    assert_eq!(
+        (key.as_str(), value.as_str()),
+        ("model.nonlinear[0].coefficient", "<missing>"),
+        "{e}"
+    );
+    let path = root().join("data/quarter-car-accelerating.toml");
+    let text = data_text("quarter-car-accelerating.toml").replace("start = \"1 s\"", "start = \"2e23 s\"");
+    let e = parse_scenario(&text, &path, &spectra()).unwrap_err();
+    let (_, key, value) = file_key(&e);
+    assert_eq!(key, "input.speed_profile.start", "{e}");
+    assert!(value.contains("2e23"), "{e}");
+}
+
+/// Finding of seeds 2834 and 2835 (`error-without-file-key`): the accelerating quarter car with an output
+/// weight of −1.6·10¹³ on the wheel's acceleration is found unstable only by the report's check of the
+/// system and its excitation ("max Re(eigenvalue) > 0"), which named no file; the error now names the
+/// file's `model`.
+#[test]
+fn an_unstable_system_found_by_the_report_names_the_model() {
+    let path = root().join("data/quarter-car-accelerating.toml");
+    let text = data_text("quarter-car-accelerating.toml").replacen(
+        "quantity = \"acceleration\"\npoint = [1, 0]",
+        "quantity = \"acceleration\"\npoint = [1, -16209687282898.85]",
+        1,
+    );
+    let sc = parse_scenario(&text, &path, &spectra()).unwrap();
+    let e = stochvib::report::analysis_report(&sc).unwrap_err();
+    let (file, key, _) = file_key(&e);
+    assert_eq!((file, key.as_str()), (path, "model"), "{e}");
+    assert!(e.to_string().contains("stable"), "{e}");
+}
+
+/// Finding of seed 2834 (`typo-accepted`, a harness misjudgement): a workday task's `scenario` renamed to
+/// `sscenario` and back to `scenario` was expected to be refused as a typo (the typo vocabulary holds no
+/// workday keys); the harness no longer expects a key renamed back to its shipped name to be refused. A
+/// real typo of the key is refused by the reader, naming the key.
+#[test]
+fn a_workday_key_renamed_back_is_no_typo_and_a_real_typo_is_refused() {
+    let corpus = crate::fuzz::inputs::Corpus::load(&root());
+    let case = crate::fuzz::inputs::generate(&corpus, 2834, 89476);
+    assert_eq!(case.kind, crate::fuzz::inputs::DocKind::Workday, "{}", case.describe());
+    assert!(case.must_reject.is_empty(), "{:?}", case.must_reject);
+    let path = root().join("data/workday/scraper-operator.toml");
+    let text = data_text("workday/scraper-operator.toml").replacen("scenario = ", "sscenario = ", 1);
+    let e = stochvib::study::workday::parse_workday(&text, &path).unwrap_err();
+    let (file, key, _) = file_key(&e);
+    assert_eq!(file, path);
+    assert!(key.contains("sscenario") || key.contains("scenario"), "{e}");
+}
+
+/// Found while adding the transient case family: `[transient] duration = "1e9 s"` at the scenario's step of
+/// 0.05 s asks for 2·10¹⁰ reported times (160 GB of times alone), and `stochvib transient` aborted on the
+/// allocation; more than 10⁶ reported times are refused before anything is allocated, naming
+/// `transient.step`, the count and the cap.
+#[test]
+fn a_transient_of_too_many_reported_times_is_refused_by_key() {
+    let path = root().join("data/quarter-car-accelerating.toml");
+    let text = data_text("quarter-car-accelerating.toml").replacen("duration = \"15 s\"", "duration = \"1e9 s\"", 1);
+    let sc = parse_scenario(&text, &path, &spectra()).unwrap();
+    let e = stochvib::study::transient_run::transient_setup(&sc).unwrap_err();
+    let (file, key, _) = file_key(&e);
+    assert_eq!((file, key.as_str()), (path, "transient.step"), "{e}");
+    assert!(e.to_string().contains("2e10 reported times"), "{e}");
 }
