@@ -46,16 +46,7 @@ impl fmt::Display for TransientAnalysis {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "{}", self.title)?;
         writeln!(f, "  {}", self.description)?;
-        writeln!(
-            f,
-            "  start: {:?}; exact route: {} steps ({} exact), {} matrix exponentials, accumulated relative error \
-             estimate {:.1e}",
-            self.start,
-            self.report.steps,
-            self.report.exact_steps,
-            self.report.exponentials,
-            self.report.max_error_estimate
-        )?;
+        writeln!(f, "  start: {:?}; {}", self.start, self.route)?;
         for o in &self.outputs {
             match &o.weighted_of {
                 Some(a) => writeln!(f, "\n{} (ISO 2631-1 weighted {a}: running r.m.s. a_w(t))", o.name)?,
