@@ -76,7 +76,8 @@ pub fn transient(
         anyhow::ensure!(
             a.monte_carlo.is_none(),
             "{}: --monte-carlo of a transient needs an input with an exact route (rational, white, or a w = 2 road \
-             without a band); this input is answered by the evolutionary route only",
+             without a band); this input is answered by the evolutionary route only (the Monte Carlo of a road \
+             synthesised on a spatial grid is the library's transient::road_grid_monte_carlo, not yet a command)",
             a.scenario.display()
         );
         let r = evolutionary_analysis(&sc)?;

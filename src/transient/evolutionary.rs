@@ -61,6 +61,9 @@ fn spectrum_at(input: &EvolutionaryInput, t: f64) -> Result<Option<Arc<dyn Spect
     }
 }
 
+/// Per output at one time: (mean, σ², λ₂) of the frozen stationary state.
+type PointStats = Vec<(f64, f64, f64)>;
+
 /// The frozen stationary statistics at t: per output (mean, σ², λ₂), and τ(t). A standing vehicle on a road
 /// (v = 0) or an unstable frozen system gives NaN.
 fn frozen_point(
@@ -68,7 +71,7 @@ fn frozen_point(
     input: &EvolutionaryInput,
     t: f64,
     outputs: usize,
-) -> Result<(Vec<(f64, f64, f64)>, f64)> {
+) -> Result<(PointStats, f64)> {
     let ss = family.at(t)?.ss;
     let abscissa = ss.spectral_abscissa();
     let tau = if abscissa < 0.0 { -1.0 / abscissa } else { f64::INFINITY };
@@ -183,7 +186,11 @@ pub fn solve_evolutionary(
             "a stated start: the route starts stationary or from rest",
         ));
     }
-    if times.is_empty() || times.windows(2).any(|w| !(w[1] > w[0])) || times[0] < 0.0 {
+    if times.is_empty()
+        || times.iter().any(|t| !t.is_finite())
+        || times.windows(2).any(|w| w[1] <= w[0])
+        || times[0] < 0.0
+    {
         return Err(Error::invalid(
             "times",
             times.len(),
@@ -210,7 +217,10 @@ pub fn solve_evolutionary(
         })
         .collect();
     // the start itself (t = 0) is exact by construction: the route needs one later time
-    if errors.iter().all(|e| e.iter().skip(1).all(|d| !(*d <= max_error))) {
+    if errors
+        .iter()
+        .all(|e| e.iter().skip(1).all(|d| d.is_nan() || *d > max_error))
+    {
         return Err(not_available(&format!(
             "the input or the system changes too fast against the system's memory (first-order error estimate \
              above {max_error} at every time)"
@@ -244,7 +254,7 @@ fn not_available(reason: &str) -> Error {
 fn output_series(
     info: &crate::system::OutputInfo,
     times: &[f64],
-    stats: &[Vec<(f64, f64, f64)>],
+    stats: &[PointStats],
     i: usize,
     delta: &[f64],
     max_error: f64,

@@ -153,7 +153,7 @@ pub fn road_grid_monte_carlo(
             reason: "one input (the road elevation) without a u̇ term: combine the inputs first".into(),
         });
     }
-    if opts.realizations < 2 || !(opts.dx > 0.0) {
+    if opts.realizations < 2 || opts.dx.is_nan() || opts.dx <= 0.0 {
         return Err(Error::invalid(
             "realizations/dx",
             opts.realizations,

@@ -241,17 +241,16 @@ fn quarter_car_accelerating_against_the_exact_route() {
     let mut worst = 0.0f64;
     for name in ["body_acc", "travel"] {
         let i = mdof.output_index(name).unwrap();
-        for k in 0..times.len() {
+        for (k, t) in times.iter().enumerate() {
             let s = evo.solution.outputs[i].sigma[k];
             let delta = evo.error_estimate[i][k];
             let p = exact.outputs[i].sigma[k].powi(2);
-            assert!(delta <= 0.05 && s.is_finite(), "{name} at {} s: δ = {delta}", times[k]);
+            assert!(delta <= 0.05 && s.is_finite(), "{name} at {t} s: δ = {delta}");
             let err = rel(s * s, p);
             worst = worst.max(err / delta.max(1e-12));
             assert!(
                 err <= delta + ADAPTIVE_ROUTE,
-                "{name} at {} s: error {err}, δ = {delta}",
-                times[k]
+                "{name} at {t} s: error {err}, δ = {delta}"
             );
         }
     }
