@@ -247,14 +247,16 @@ fn quarter_car_accelerating_against_the_exact_route() {
             let p = exact.outputs[i].sigma[k].powi(2);
             assert!(delta <= 0.05 && s.is_finite(), "{name} at {t} s: δ = {delta}");
             let err = rel(s * s, p);
-            worst = worst.max(err / delta.max(1e-12));
+            if delta > 1e-3 {
+                worst = worst.max(err / delta);
+            }
             assert!(
                 err <= delta + ADAPTIVE_ROUTE,
                 "{name} at {t} s: error {err}, δ = {delta}"
             );
         }
     }
-    eprintln!("largest error/δ: {worst}");
+    eprintln!("largest error/δ where δ > 1e-3: {worst}");
 }
 
 /// A ramp over 0.05 s against a relaxation time of 0.25 s is not slow: the route refuses with "use Monte
