@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 use stochvib::report::transient_report::SigmaComparisons;
 use stochvib::scenario::{load_scenario, Catalogue};
 use stochvib::store::Compression;
-use stochvib::study::transient_answers::answers;
+use stochvib::study::transient_answers::{answers, evolutionary_analysis};
 use stochvib::study::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
-use stochvib::study::transient_run::{exact_solution, transient_setup};
+use stochvib::study::transient_run::{exact_solution, has_exact_route, transient_setup};
 use stochvib::transient::monte_carlo::read_transient_run;
 use stochvib::transient::TransientRunSummary;
 
@@ -70,6 +70,25 @@ pub fn transient(
         None => None,
     };
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;
+    if !has_exact_route(&sc)? {
+        anyhow::ensure!(
+            a.monte_carlo.is_none(),
+            "{}: --monte-carlo of a transient needs an input with an exact route (rational, white, or a w = 2 road \
+             without a band); this input is answered by the evolutionary route only (the Monte Carlo of a road \
+             synthesised on a spatial grid is the library's transient::road_grid_monte_carlo, not yet a command)",
+            a.scenario.display()
+        );
+        let r = evolutionary_analysis(&sc)?;
+        if a.json {
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&serde_json::json!({ "evolutionary": r }))?
+            );
+        } else {
+            print!("{r}");
+        }
+        return Ok(());
+    }
     let setup = transient_setup(&sc)?;
     let sol = exact_solution(&sc, &setup)?;
     let r = answers(&sc, &setup, &sol);

@@ -24,7 +24,9 @@ pub fn printed_indices(n: usize, rows: usize) -> Vec<usize> {
 /// The time table of one output.
 fn output_table(times: &[f64], o: &OutputOverTime) -> Table {
     let idx = printed_indices(times.len(), PRINTED_ROWS);
-    let col = |v: &[f64]| -> Vec<Option<f64>> { idx.iter().map(|&k| v.get(k).copied()).collect() };
+    // NaN (the evolutionary route where its assumption fails) prints as a dash
+    let col =
+        |v: &[f64]| -> Vec<Option<f64>> { idx.iter().map(|&k| v.get(k).copied().filter(|x| !x.is_nan())).collect() };
     let (sigma_head, mean_head) = match &o.weighted_of {
         Some(_) => (format!("a_w(t) [{}]", o.unit), format!("mean [{}]", o.unit)),
         None => (format!("σ(t) [{}]", o.unit), format!("mean(t) [{}]", o.unit)),
@@ -46,16 +48,7 @@ impl fmt::Display for TransientAnalysis {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "{}", self.title)?;
         writeln!(f, "  {}", self.description)?;
-        writeln!(
-            f,
-            "  start: {:?}; exact route: {} steps ({} exact), {} matrix exponentials, accumulated relative error \
-             estimate {:.1e}",
-            self.start,
-            self.report.steps,
-            self.report.exact_steps,
-            self.report.exponentials,
-            self.report.max_error_estimate
-        )?;
+        writeln!(f, "  start: {:?}; {}", self.start, self.route)?;
         for o in &self.outputs {
             match &o.weighted_of {
                 Some(a) => writeln!(f, "\n{} (ISO 2631-1 weighted {a}: running r.m.s. a_w(t))", o.name)?,

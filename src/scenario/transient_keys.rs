@@ -16,6 +16,7 @@
 //! duration = "20 s"                # the time window [0, duration]
 //! step = "0.05 s"                  # spacing of the reported times (default duration/400)
 //! start = "rest"                   # or "stationary" (default), or state = [x₀, …] (SI, the model's states)
+//! max_error = 0.05                 # evolutionary route (non-rational inputs): largest error estimate δ(t)
 //!
 //! [[transient.schedule]]           # a model key as a piecewise-linear function of time
 //! key = "model.element.0.stiffness"
@@ -47,6 +48,8 @@ pub struct TransientSpec {
     pub step: Option<f64>,
     /// `[transient] rel_tol`: the local relative error of the exact route's steps.
     pub rel_tol: Option<f64>,
+    /// `[transient] max_error`: the evolutionary route's largest error estimate δ(t) of a reported value.
+    pub max_error: Option<f64>,
     /// `[[transient.schedule]]`.
     pub schedules: Vec<ScheduledKey>,
 }
@@ -239,16 +242,8 @@ pub fn transient_section(f: &Fields) -> Result<TransientSpec> {
     {
         return Err(f.error("step", s, format!("longer than the duration {d} s")));
     }
-    let rel_tol = match f.get("rel_tol") {
-        None => None,
-        Some(v) => Some(f.number("rel_tol").and_then(|x| {
-            if x > 0.0 && x < 1e-2 {
-                Ok(x)
-            } else {
-                Err(f.error("rel_tol", v, "a relative error in (0, 0.01)"))
-            }
-        })?),
-    };
+    let rel_tol = bounded(f, "rel_tol", 1e-2)?;
+    let max_error = bounded(f, "max_error", 1.0)?;
     let start = start(f)?;
     let schedules = schedules(f)?;
     f.finish()?;
@@ -259,8 +254,23 @@ pub fn transient_section(f: &Fields) -> Result<TransientSpec> {
         duration,
         step,
         rel_tol,
+        max_error,
         schedules,
     })
+}
+
+/// An optional relative error `key` in (0, `upper`).
+fn bounded(f: &Fields, key: &str, upper: f64) -> Result<Option<f64>> {
+    match f.get(key) {
+        None => Ok(None),
+        Some(v) => f.number(key).and_then(|x| {
+            if x > 0.0 && x < upper {
+                Ok(Some(x))
+            } else {
+                Err(f.error(key, v, format!("a relative error in (0, {upper})")))
+            }
+        }),
+    }
 }
 
 fn start(f: &Fields) -> Result<Start> {
@@ -457,6 +467,7 @@ pub fn assemble(
         duration: None,
         step: None,
         rel_tol: None,
+        max_error: None,
         schedules: Vec::new(),
     });
     spec.speed_profile = speed_profile;

@@ -2,7 +2,7 @@
 //! running weighted r.m.s. a_w(t) of the comfort axes, the expected up-crossings over the mission and the
 //! extremes table, stationary and non-stationary (`docs/transients.md`).
 
-use super::transient_run::{exact_solution, transient_setup, TransientSetup};
+use super::transient_run::{evolutionary_setup, exact_solution, has_exact_route, transient_setup, TransientSetup};
 use crate::error::Result;
 use crate::extremes::{davenport, der_kiureghian, Barrier, CrossingMoments, ExceedanceMethod, PeakFactor};
 use crate::scenario::Scenario;
@@ -88,8 +88,10 @@ pub struct TransientAnalysis {
     pub stationary: Vec<(String, Option<StationaryExtremes>)>,
     /// The mission table.
     pub mission: Vec<MissionRow>,
-    /// The exact route's integration report (steps, error estimate).
+    /// The exact route's integration report (steps, error estimate; zero for the evolutionary route).
     pub report: StepReport,
+    /// Which route answered, with its error estimate, in one line.
+    pub route: String,
     /// Remarks.
     pub notes: Vec<String>,
 }
@@ -122,14 +124,87 @@ pub fn integrate_held(t: &[f64], y: &[f64], t_end: f64) -> f64 {
     acc + y[last] * (t_end - t[last]).max(0.0)
 }
 
-/// The analysis of a scenario with `[transient]`.
+/// The analysis of a scenario with `[transient]`: the exact route, or the evolutionary route for an input
+/// without one ([`has_exact_route`]).
 ///
 /// # Errors
-/// The errors of [`transient_setup`] and [`exact_solution`].
+/// The errors of [`transient_setup`] and [`exact_solution`], or of [`evolutionary_setup`].
 pub fn transient_analysis(sc: &Scenario) -> Result<TransientAnalysis> {
+    if !has_exact_route(sc)? {
+        return evolutionary_analysis(sc);
+    }
     let setup = transient_setup(sc)?;
     let sol = exact_solution(sc, &setup)?;
     Ok(answers(sc, &setup, &sol))
+}
+
+/// The analysis of a scenario by the evolutionary route ([`evolutionary_setup`]): σ(t), ν₀⁺(t) and the
+/// crossing rates of the frozen system where the error estimate allows, the mission's integrated rates over
+/// those times (n/a at the others: no stationary extremes, a note says where).
+///
+/// # Errors
+/// The errors of [`evolutionary_setup`].
+pub fn evolutionary_analysis(sc: &Scenario) -> Result<TransientAnalysis> {
+    let ev = evolutionary_setup(sc)?;
+    let sol = &ev.solution.solution;
+    let window = *sol.times.last().unwrap_or(&0.0);
+    let duration = sc.analysis.mission.as_ref().and_then(|m| m.duration).unwrap_or(window);
+    let outputs: Vec<OutputOverTime> = ev
+        .outputs
+        .iter()
+        .map(|&i| over_time(sc, &ev.weighted, sol, i))
+        .collect();
+    let missing = |i: usize| sol.outputs[i].sigma.iter().filter(|s| s.is_nan()).count();
+    let mut notes = Vec::new();
+    for &i in &ev.outputs {
+        let n = missing(i);
+        if n > 0 {
+            notes.push(format!(
+                "`{}`: n/a at {n} of {} times, where the error estimate δ(t) exceeds {}: use Monte Carlo there",
+                sol.outputs[i].name,
+                sol.times.len(),
+                ev.solution.max_error
+            ));
+        }
+    }
+    let mission = ev
+        .outputs
+        .iter()
+        .filter(|&&i| missing(i) == 0)
+        .flat_map(|&i| {
+            levels_of(sc, i)
+                .into_iter()
+                .filter_map(move |b| mission_row(sol, i, b, duration, None))
+        })
+        .collect();
+    let worst = sol
+        .error_estimate
+        .iter()
+        .copied()
+        .filter(|d| *d <= ev.solution.max_error)
+        .fold(0.0, f64::max);
+    Ok(TransientAnalysis {
+        title: sc.title.clone(),
+        description: ev.description,
+        start: sol.start.clone(),
+        times: sol.times.clone(),
+        outputs,
+        mission_duration: duration,
+        stationary: ev
+            .outputs
+            .iter()
+            .map(|&i| (sol.outputs[i].name.clone(), None))
+            .collect(),
+        mission,
+        report: sol.report,
+        route: format!(
+            "evolutionary-spectrum route (the system frozen at each time in the stationary state of the input's \
+             evolutionary spectrum; no exact route for this input): values where the lag estimate δ(t) <= {}, \
+             largest δ reported {worst:.1e}",
+            ev.solution.max_error
+        ),
+        notes,
+    })
 }
 
 /// The answers from a solved setup.
@@ -137,7 +212,11 @@ pub fn answers(sc: &Scenario, setup: &TransientSetup, sol: &TransientSolution) -
     let window = *sol.times.last().unwrap_or(&0.0);
     let duration = sc.analysis.mission.as_ref().and_then(|m| m.duration).unwrap_or(window);
     let mut notes = Vec::new();
-    let outputs: Vec<OutputOverTime> = setup.outputs.iter().map(|&i| over_time(sc, setup, sol, i)).collect();
+    let outputs: Vec<OutputOverTime> = setup
+        .outputs
+        .iter()
+        .map(|&i| over_time(sc, &setup.weighted, sol, i))
+        .collect();
     let stationary: Vec<(String, Option<StationaryExtremes>)> = setup
         .outputs
         .iter()
@@ -176,14 +255,18 @@ pub fn answers(sc: &Scenario, setup: &TransientSetup, sol: &TransientSolution) -
         stationary,
         mission,
         report: sol.report,
+        route: format!(
+            "exact route: {} steps ({} exact), {} matrix exponentials, accumulated error estimate {:.1e} (relative \
+             to the largest variance of each state over the window)",
+            sol.report.steps, sol.report.exact_steps, sol.report.exponentials, sol.report.max_error_estimate
+        ),
         notes,
     }
 }
 
-fn over_time(sc: &Scenario, setup: &TransientSetup, sol: &TransientSolution, i: usize) -> OutputOverTime {
+fn over_time(sc: &Scenario, weighted: &[(usize, usize)], sol: &TransientSolution, i: usize) -> OutputOverTime {
     let o = &sol.outputs[i];
-    let weighted_of = setup
-        .weighted
+    let weighted_of = weighted
         .iter()
         .find(|w| w.1 == i)
         .map(|w| sol.outputs[w.0].name.clone());

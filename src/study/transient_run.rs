@@ -10,8 +10,9 @@ use crate::scenario::transient_keys::{ScheduledKey, TransientSpec};
 use crate::scenario::Scenario;
 use crate::system::StateSpace;
 use crate::transient::{
-    check_stability, input_model, solve, ExactOptions, FamilyBuilder, FixedSystem, Schedule, ScheduledSystem,
-    SpeedProfile, Start, SystemFamily, TimeVaryingSystem, TransientInput, TransientSolution,
+    check_stability, input_model, solve, solve_evolutionary, EvolutionaryInput, EvolutionarySolution, ExactOptions,
+    FamilyBuilder, FixedSystem, Schedule, ScheduledSystem, SpeedProfile, Start, SystemFamily, TimeVaryingSystem,
+    TransientInput, TransientSolution,
 };
 use std::path::Path;
 use std::sync::Arc;
@@ -196,6 +197,31 @@ fn file_error(path: &Path, key: &str, value: impl std::fmt::Display, reason: &st
     }
 }
 
+/// The reported outputs (`[analysis] outputs`, then the weighted ones) and per comfort axis (its
+/// acceleration output, its weighted output), from the weighted outputs' indices.
+fn reported(sc: &Scenario, weighted: &[usize]) -> (Vec<usize>, Vec<(usize, usize)>) {
+    let p = sc.model.system.outputs().len();
+    let weighted: Vec<(usize, usize)> = weighted
+        .iter()
+        .enumerate()
+        .map(|(j, &w)| (sc.analysis.verdicts.comfort.as_ref().map_or(0, |c| c.axes[j].output), w))
+        .collect();
+    let mut outputs: Vec<usize> = sc.analysis.outputs.iter().copied().filter(|i| *i < p).collect();
+    outputs.extend(weighted.iter().map(|w| w.1));
+    (outputs, weighted)
+}
+
+/// Refuses a model with nonlinear elements.
+fn require_linear(sc: &Scenario) -> Result<()> {
+    if sc.nonlinear.is_some() {
+        return Err(Error::NotApplicable {
+            method: "transient analysis".into(),
+            reason: "the model has [[model.nonlinear]] elements: the transient routes are linear".into(),
+        });
+    }
+    Ok(())
+}
+
 /// The scenario set up for the transient routes.
 ///
 /// # Errors
@@ -238,12 +264,7 @@ fn checked_times(sc: &Scenario, spec: &TransientSpec, duration: f64) -> Result<V
 
 fn setup_of(sc: &Scenario) -> Result<TransientSetup> {
     let (spec, duration) = spec_of(sc)?;
-    if sc.nonlinear.is_some() {
-        return Err(Error::NotApplicable {
-            method: "transient analysis".into(),
-            reason: "the model has [[model.nonlinear]] elements: the transient routes are linear".into(),
-        });
-    }
+    require_linear(sc)?;
     let gains = gains(sc)?;
     let (fam, weighted) = family(sc, spec)?;
     let times = checked_times(sc, spec, duration)?;
@@ -259,14 +280,7 @@ fn setup_of(sc: &Scenario) -> Result<TransientSetup> {
         gains,
     };
     let sys = TimeVaryingSystem::new(fam, input)?;
-    let p = sc.model.system.outputs().len();
-    let weighted: Vec<(usize, usize)> = weighted
-        .iter()
-        .enumerate()
-        .map(|(j, &w)| (sc.analysis.verdicts.comfort.as_ref().map_or(0, |c| c.axes[j].output), w))
-        .collect();
-    let mut outputs: Vec<usize> = sc.analysis.outputs.iter().copied().filter(|i| *i < p).collect();
-    outputs.extend(weighted.iter().map(|w| w.1));
+    let (outputs, weighted) = reported(sc, &weighted);
     let stationary = sys.is_invariant() && spec.start == Start::Stationary;
     Ok(TransientSetup {
         sys,
@@ -311,5 +325,71 @@ pub fn exact_solution(sc: &Scenario, setup: &TransientSetup) -> Result<Transient
             file_error(&sc.path, "transient.start", "stationary", &reason)
         }
         other => other,
+    })
+}
+
+/// Whether the scenario's input has an exact (differential Lyapunov) route: a rational or white input, a
+/// rational road, a w = 2 road without a band. Otherwise `stochvib transient` takes the evolutionary route.
+///
+/// # Errors
+/// A scenario without `[transient] duration`; an invalid speed profile.
+pub fn has_exact_route(sc: &Scenario) -> Result<bool> {
+    let (spec, _) = spec_of(sc)?;
+    let speed = speed_of(sc, spec)?;
+    Ok(!matches!(
+        input_model(sc.input.spectrum.as_ref(), speed.as_ref()),
+        Err(Error::NotApplicable { .. })
+    ))
+}
+
+/// A scenario solved by the evolutionary-spectrum route ([`solve_evolutionary`]).
+#[derive(Debug, Clone)]
+pub struct EvolutionarySetup {
+    /// The solution (NaN where its error estimate exceeds the threshold).
+    pub solution: EvolutionarySolution,
+    /// The reported outputs, as [`TransientSetup::outputs`].
+    pub outputs: Vec<usize>,
+    /// The comfort axes, as [`TransientSetup::weighted`].
+    pub weighted: Vec<(usize, usize)>,
+    /// The model, its schedules and its input in one line.
+    pub description: String,
+}
+
+/// The evolutionary route of a scenario whose input has no exact route (tabulated, measured, band-limited
+/// spectra): the frozen system at every reported time under the input's evolutionary spectrum, with the
+/// threshold `[transient] max_error` on its error estimate (default
+/// [`crate::transient::evolutionary::DEFAULT_MAX_ERROR`]).
+///
+/// # Errors
+/// The layout and stability errors of [`transient_setup`]; the errors of [`solve_evolutionary`] (no time where
+/// the slow-variation assumption holds: "not available: use Monte Carlo"; a stated start).
+pub fn evolutionary_setup(sc: &Scenario) -> Result<EvolutionarySetup> {
+    let (spec, duration) = spec_of(sc)?;
+    require_linear(sc)?;
+    let gains = gains(sc)?;
+    let (fam, weighted) = family(sc, spec)?;
+    let times = report_times(duration, spec.step);
+    let input = EvolutionaryInput {
+        spectrum: sc.input.spectrum.clone(),
+        speed: speed_of(sc, spec)?,
+        envelope: spec.envelope.clone(),
+        mean: sc.input.mean,
+        gains,
+    };
+    let max_error = spec
+        .max_error
+        .unwrap_or(crate::transient::evolutionary::DEFAULT_MAX_ERROR);
+    let solution = solve_evolutionary(fam.as_ref(), &input, &spec.start, &times, max_error).map_err(|e| match e {
+        Error::NotApplicable { method, reason } if reason.starts_with("a stated start") => {
+            file_error(&sc.path, "transient.state", "<state>", &format!("{method}: {reason}"))
+        }
+        other => other,
+    })?;
+    let (outputs, weighted) = reported(sc, &weighted);
+    Ok(EvolutionarySetup {
+        solution,
+        outputs,
+        weighted,
+        description: format!("{}; {} (no exact route)", fam.describe(), sc.input.spectrum.describe()),
     })
 }

@@ -9,8 +9,11 @@ use nalgebra::{DMatrix, DVector};
 /// Error control of [`propagate`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct ExactOptions {
-    /// Local relative error allowed per step (on every variance of the states and every mean, relative to
-    /// the largest variance of that state seen so far, and to the standard deviation for the means).
+    /// Local error allowed per step, relative to the scale of each state over the window: a variance error
+    /// relative to the largest variance of that state over the window, a mean error relative to the largest
+    /// standard deviation plus the largest |mean| (both from a pilot pass, raised by what the accurate pass
+    /// finds). A state whose variance starts at 0 (a start from rest) is judged against the size it reaches,
+    /// not against its own near-zero value.
     pub rel_tol: f64,
     /// Steps allowed in all (a refused run names it).
     pub max_steps: usize,
@@ -36,7 +39,8 @@ pub struct StepReport {
     pub rejected: usize,
     /// Matrix exponentials computed.
     pub exponentials: usize,
-    /// The largest accumulated error estimate (relative) at any stored time.
+    /// The accumulated error estimate at the end of the window, relative to the largest variance of each
+    /// state over the window (see [`propagate`]); the largest of the stored times' estimates.
     pub max_error_estimate: f64,
 }
 
@@ -88,10 +92,14 @@ fn apply(tr: &Transition, p: &DMatrix<f64>, m: &DVector<f64>) -> (DMatrix<f64>, 
 struct Integrator<'a> {
     sys: &'a TimeVaryingSystem,
     opts: ExactOptions,
-    /// The largest variance of each state seen so far (error scale).
+    /// The largest variance of each state over the window (the pilot's, raised by the accurate pass).
     scale: Vec<f64>,
-    /// Accumulated local error estimates, relative to `scale`.
-    error: f64,
+    /// The largest |mean| of each state over the window (likewise).
+    mean_scale: Vec<f64>,
+    /// Accumulated absolute local error estimates of each state's variance.
+    error_p: Vec<f64>,
+    /// Accumulated absolute local error estimates of each state's mean.
+    error_m: Vec<f64>,
     report: StepReport,
     /// The last constant-coefficient transition and its step.
     cache: Option<(Frozen, f64, Transition)>,
@@ -121,24 +129,24 @@ impl Integrator<'_> {
     /// the step: constant), the step is exact. Otherwise the step is taken once over h (P_h) and as two
     /// half steps (P_{h/2}); the local error of P_{h/2} is estimated by (P_{h/2} − P_h)/3 (Richardson, order
     /// 2) and the extrapolated P_{h/2} + (P_{h/2} − P_h)/3 is kept.
-    fn trial(
-        &mut self,
-        t: f64,
-        h: f64,
-        p: &DMatrix<f64>,
-        m: &DVector<f64>,
-    ) -> Result<(DMatrix<f64>, DVector<f64>, f64, bool)> {
+    fn trial(&mut self, t: f64, h: f64, p: &DMatrix<f64>, m: &DVector<f64>) -> Result<Trial> {
         let mid = self.sys.frozen(t + 0.5 * h)?;
+        let exact = |tr: &Transition| {
+            let (p, m) = apply(tr, p, m);
+            Trial {
+                dp: DVector::zeros(p.nrows()),
+                dm: DVector::zeros(m.len()),
+                p,
+                m,
+                exact: true,
+            }
+        };
         if self.sys.is_invariant() {
-            let tr = self.cached(mid, h)?;
-            let (p1, m1) = apply(&tr, p, m);
-            return Ok((p1, m1, 0.0, true));
+            return Ok(exact(&self.cached(mid, h)?));
         }
         let (q1, q3) = (self.sys.frozen(t + 0.25 * h)?, self.sys.frozen(t + 0.75 * h)?);
         if q1 == mid && q3 == mid {
-            let tr = self.cached(mid, h)?;
-            let (p1, m1) = apply(&tr, p, m);
-            return Ok((p1, m1, 0.0, true));
+            return Ok(exact(&self.cached(mid, h)?));
         }
         let c = &mut self.report.exponentials;
         let (pa, ma) = apply(&transition(&mid, h, c)?, p, m);
@@ -146,29 +154,99 @@ impl Integrator<'_> {
         let (pb, mb) = apply(&transition(&q3, 0.5 * h, c)?, &ph, &mh);
         let dp = (&pb - &pa) / 3.0;
         let dm = (&mb - &ma) / 3.0;
-        let err = self.error_norm(&pb, &dp, &mb, &dm);
-        Ok((pb + dp, mb + dm, err, false))
+        Ok(Trial {
+            p: pb + &dp,
+            m: mb + &dm,
+            dp: dp.diagonal().abs(),
+            dm: dm.abs(),
+            exact: false,
+        })
     }
 
-    /// max over the states of |ΔP_ii|/scale_i and |Δm_i|/(√scale_i + |m_i|).
-    fn error_norm(&self, p: &DMatrix<f64>, dp: &DMatrix<f64>, m: &DVector<f64>, dm: &DVector<f64>) -> f64 {
+    /// max over the states of ΔP_i/scale_i and Δm_i/(√scale_i + mean_scale_i), with the scales raised to
+    /// the state's current variance and |mean| (errors of the variances `dp` and means `dm`, absolute).
+    fn error_norm(&self, p: &DMatrix<f64>, m: &DVector<f64>, dp: &[f64], dm: &[f64]) -> f64 {
         (0..p.nrows())
             .map(|i| {
                 let s = self.scale[i].max(p[(i, i)]).max(f64::MIN_POSITIVE);
-                let ep = dp[(i, i)].abs() / s;
-                let em = dm[i].abs() / (s.sqrt() + m[i].abs()).max(f64::MIN_POSITIVE);
-                ep.max(em)
+                let ms = self.mean_scale[i].max(m[i].abs());
+                (dp[i] / s).max(dm[i] / (s.sqrt() + ms).max(f64::MIN_POSITIVE))
             })
             .fold(0.0, f64::max)
     }
+
+    /// The accumulated error estimate relative to the scales (see [`Integrator::error_norm`]).
+    fn accumulated(&self, p: &DMatrix<f64>, m: &DVector<f64>) -> f64 {
+        self.error_norm(p, m, &self.error_p, &self.error_m)
+    }
+
+    /// Raises the scales to the state's variances and |means| after an accepted step.
+    fn raise_scales(&mut self, p: &DMatrix<f64>, m: &DVector<f64>) {
+        for i in 0..p.nrows() {
+            self.scale[i] = self.scale[i].max(p[(i, i)]);
+            self.mean_scale[i] = self.mean_scale[i].max(m[i].abs());
+        }
+    }
+}
+
+/// One trial step: the new covariance and mean, the absolute local error estimates of each state's
+/// variance and mean (zero for an exact step), and whether it was exact.
+struct Trial {
+    p: DMatrix<f64>,
+    m: DVector<f64>,
+    dp: DVector<f64>,
+    dm: DVector<f64>,
+    exact: bool,
+}
+
+/// Number of pilot steps over the window at least (the pilot's scale is sampled at their ends).
+const PILOT_STEPS: usize = 256;
+
+/// The largest variance and |mean| of each state over the window by a pilot pass: midpoint-frozen
+/// transitions without error control on the stored times and knots, each interval cut into pieces of at
+/// most 1/[`PILOT_STEPS`] of the window. A scale for the error control, within a few per cent of the accurate
+/// pass's (the accurate pass raises it where it is larger).
+fn pilot_scales(
+    sys: &TimeVaryingSystem,
+    p0: &DMatrix<f64>,
+    m0: &DVector<f64>,
+    times: &[f64],
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let span = times.last().copied().unwrap_or(0.0);
+    let mut ends: Vec<f64> = times
+        .iter()
+        .chain(sys.knots())
+        .copied()
+        .filter(|t| *t > 0.0 && *t <= span)
+        .collect();
+    ends.sort_by(f64::total_cmp);
+    ends.dedup();
+    let (mut p, mut m, mut t) = (p0.clone(), m0.clone(), 0.0);
+    let mut var: Vec<f64> = p.diagonal().iter().copied().collect();
+    let mut mean: Vec<f64> = m.iter().map(|x| x.abs()).collect();
+    let mut count = 0;
+    for end in ends {
+        let pieces = ((end - t) * PILOT_STEPS as f64 / span).ceil().max(1.0) as usize;
+        let h = (end - t) / pieces as f64;
+        for j in 0..pieces {
+            let fr = sys.frozen(t + (j as f64 + 0.5) * h)?;
+            (p, m) = apply(&transition(&fr, h, &mut count)?, &p, &m);
+            for i in 0..p.nrows() {
+                var[i] = var[i].max(p[(i, i)]);
+                mean[i] = mean[i].max(m[i].abs());
+            }
+        }
+        t = end;
+    }
+    Ok((var, mean))
 }
 
 /// What [`propagate`] calls at every stored time: (k, t_k, P, m, accumulated error estimate).
 pub type Visit<'a> = dyn FnMut(usize, f64, &DMatrix<f64>, &DVector<f64>, f64) -> Result<()> + 'a;
 
 /// Propagates the mean and covariance of `sys` from (P(0), m(0)) = (`p0`, `m0`) to every time of `times`
-/// (increasing, ≥ 0), calling `visit(k, t_k, P, m, error)` at each, where `error` is the accumulated
-/// relative error estimate of the variances up to t_k.
+/// (increasing, ≥ 0), calling `visit(k, t_k, P, m, error)` at each, where `error` is the accumulated error
+/// estimate up to t_k relative to the scale of each state over the window (below).
 ///
 /// # Formula
 /// ```text
@@ -177,8 +255,15 @@ pub type Visit<'a> = dyn FnMut(usize, f64, &DMatrix<f64>, &DVector<f64>, f64) ->
 /// integrated step by step with the exact transition of the frozen coefficients ([`Integrator::trial`]:
 /// exact where the coefficients are constant, else midpoint coefficients with step doubling). The step
 /// adapts to keep the local error estimate below `rel_tol` (new step h·min(4, max(0.2, 0.9(tol/err)^{1/3}))),
-/// and ends at every stored time and every knot of the coefficients. The error reported at t_k is the sum of
-/// the local estimates so far (an upper estimate for a stable system, whose errors decay).
+/// and ends at every stored time and every knot of the coefficients.
+///
+/// Errors are measured against the scale of each state over the whole window: a variance error against
+/// the state's largest variance s_i, a mean error against √s_i plus its largest |mean|. Time-varying
+/// systems take these scales from a pilot pass ([`pilot_scales`]); the accurate pass raises them where it
+/// finds more. The estimate reported at t_k is max_i of the accumulated absolute local estimates so far over
+/// those scales: an upper estimate for a stable system, whose errors decay. (An error relative to each
+/// step's own variance would be meaningless where the variance is near 0, at a start from rest, and would
+/// force the steps there down to nothing.)
 ///
 /// # Errors
 /// Times that are negative, not finite or not increasing; more than `max_steps` steps; the model's errors;
@@ -195,11 +280,22 @@ pub fn propagate(
     if !(opts.rel_tol > 0.0 && opts.rel_tol < 1.0) {
         return Err(Error::invalid("rel_tol", opts.rel_tol, "must be in (0, 1)"));
     }
+    let n = p0.nrows();
+    let (scale, mean_scale) = if sys.is_invariant() {
+        (
+            p0.diagonal().iter().copied().collect(),
+            m0.iter().map(|x| x.abs()).collect(),
+        )
+    } else {
+        pilot_scales(sys, &p0, &m0, times)?
+    };
     let mut it = Integrator {
         sys,
         opts: *opts,
-        scale: (0..p0.nrows()).map(|i| p0[(i, i)]).collect(),
-        error: 0.0,
+        scale,
+        mean_scale,
+        error_p: vec![0.0; n],
+        error_m: vec![0.0; n],
         report: StepReport::default(),
         cache: None,
     };
@@ -219,16 +315,21 @@ pub fn propagate(
             } else {
                 h
             };
-            let (p1, m1, err, exact) = it.trial(t, step, &p, &m)?;
+            let tr = it.trial(t, step, &p, &m)?;
+            let err = it.error_norm(&tr.p, &tr.m, tr.dp.as_slice(), tr.dm.as_slice());
             if err > it.opts.rel_tol && step > 1e-12 * span.max(1.0) {
                 it.report.rejected += 1;
                 h = step * (0.9 * (it.opts.rel_tol / err).cbrt()).max(0.2);
                 continue;
             }
-            (p, m, t) = (p1, m1, if step == end - t { end } else { t + step });
-            it.error += err;
+            (p, m, t) = (tr.p, tr.m, if step == end - t { end } else { t + step });
+            for i in 0..n {
+                it.error_p[i] += tr.dp[i];
+                it.error_m[i] += tr.dm[i];
+            }
+            it.raise_scales(&p, &m);
             it.report.steps += 1;
-            it.report.exact_steps += usize::from(exact);
+            it.report.exact_steps += usize::from(tr.exact);
             if it.report.steps > it.opts.max_steps {
                 return Err(Error::invalid(
                     "max_steps",
@@ -236,17 +337,15 @@ pub fn propagate(
                     format!("the exact route needed more steps by t = {t} s: loosen rel_tol or raise max_steps"),
                 ));
             }
-            for (i, s) in it.scale.iter_mut().enumerate() {
-                *s = s.max(p[(i, i)]);
-            }
-            h = if exact {
+            h = if tr.exact {
                 h.max(step)
             } else {
                 step * (0.9 * (it.opts.rel_tol / err.max(1e-300)).cbrt()).clamp(0.2, 4.0)
             };
         }
-        it.report.max_error_estimate = it.report.max_error_estimate.max(it.error);
-        visit(k, target, &p, &m, it.error)?;
+        let error = it.accumulated(&p, &m);
+        it.report.max_error_estimate = it.report.max_error_estimate.max(error);
+        visit(k, target, &p, &m, error)?;
     }
     Ok(it.report)
 }

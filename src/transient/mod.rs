@@ -20,10 +20,15 @@
 //! * [`propagate`] / [`solve`]: the differential Lyapunov equation Ṗ = FP + PFᵀ + GGᵀ, ṁ = Fm + b by matrix
 //!   exponentials on an adaptive grid with an error estimate, and the output statistics over time
 //!   ([`TransientSolution`]).
+//! * [`evolutionary`]: inputs without a finite shaping filter (tabulated, measured, band-limited) by the
+//!   evolutionary spectrum of the frozen system, with its slow-variation assumption checked at every time.
+//! * [`road_grid`]: Monte Carlo of a vehicle on a road synthesised on a spatial grid and sampled along x(t),
+//!   for any road spectrum under a speed profile.
 //! * [`monte_carlo`]: the same by simulation ([`mc_engine`], [`mc_finish`]), stored as time series of
 //!   statistics in a run file; [`mission`]: the analytic distributions of the maxima of a mission.
 
 mod envelope;
+pub mod evolutionary;
 pub mod inputs;
 pub mod lyapunov_ode;
 pub mod mc_engine;
@@ -31,18 +36,21 @@ pub mod mc_finish;
 pub mod mission;
 pub mod monte_carlo;
 mod profile;
+pub mod road_grid;
 mod schedule;
 pub mod series;
 mod speed_profile;
 pub mod system;
 
 pub use envelope::Envelope;
+pub use evolutionary::{solve_evolutionary, EvolutionaryInput, EvolutionarySolution};
 pub use inputs::{input_model, white_slope_coefficient};
 pub use lyapunov_ode::{propagate, ExactOptions, StepReport};
 pub use mc_engine::McGrid;
 pub use mission::{stationary_moments, StationaryMoments};
 pub use monte_carlo::{merge_transient, run_transient, TransientRunInput, TransientRunOptions, TransientRunSummary};
 pub use profile::PiecewiseLinear;
+pub use road_grid::{road_grid_monte_carlo, RoadGridOptions, RoadGridStatistics};
 pub use schedule::{check_stability, FamilyBuilder, FixedSystem, ModelAt, Schedule, ScheduledSystem, SystemFamily};
 pub use series::{solve, Crossings, OutputSeries, TransientSolution};
 pub use speed_profile::SpeedProfile;

@@ -128,7 +128,7 @@ fn metadata(input: &TransientRunInput<'_>, opts: &TransientRunOptions) -> Result
 fn analytic(input: &TransientRunInput<'_>) -> Result<AnalyticSide> {
     let method = format!(
         "differential Lyapunov equation, matrix exponentials on an adaptive grid ({} steps, {} exact), accumulated \
-         relative error estimate {:.1e}",
+         error estimate {:.1e} relative to the largest variance of each state",
         input.exact.report.steps, input.exact.report.exact_steps, input.exact.report.max_error_estimate
     );
     super::mission::analytic_side(input.exact, input.sys, &input.outputs, input.stationary, method)

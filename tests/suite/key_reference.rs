@@ -71,7 +71,7 @@ gains = [1, 1]"#,
 }
 
 /// The transient keys no catalogue scenario reaches: a speed-profile table, an intensity envelope, a stated
-/// start and the route's tolerance.
+/// start, the exact route's tolerance and the evolutionary route's threshold.
 const TRANSIENT_TABLE: &str = r#"
 [model]
 kind = "transfer-function"
@@ -90,6 +90,7 @@ intensity = [0.0, 1.0]
 duration = "5 s"
 state = [0.01, 0.0]
 rel_tol = 1e-8
+max_error = 0.1
 "#;
 
 /// A body on a spring and damper over each of two tracks (mdof) with the `[model]` keys `model_keys`; more
