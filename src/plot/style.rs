@@ -212,3 +212,13 @@ mod tests {
         assert_eq!(log_ticks((2.5, 8.0), 380.0).0, vec![3.0, 4.0, 5.0, 6.0, 7.0, 8.0]);
     }
 }
+
+/// The reciprocal of a unit for an axis label: `1/m`, and `1/(m/s^2)` for a compound unit (never the
+/// ambiguous `1/m/s^2`).
+pub fn per_unit(unit: &str) -> String {
+    if unit.contains(['/', ' ', '*', '·']) {
+        format!("1/({unit})")
+    } else {
+        format!("1/{unit}")
+    }
+}
