@@ -28,13 +28,27 @@ const X_AREA: u32 = 48;
 const Y_AREA: u32 = 80;
 
 /// The area below the title, inside the outer margin.
+/// The title is drawn smaller (down to [`SMALLEST_TITLE`] pixels) when it is wider than the picture.
 fn titled<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
 ) -> std::result::Result<DrawingArea<DB, Shift>, String> {
     root.fill(&WHITE).map_err(err)?;
-    root.margin(12, 12, 12, 12).titled(title, TITLE_FONT).map_err(err)
+    let area = root.margin(12, 12, 12, 12);
+    let width = area.dim_in_pixel().0;
+    let wide = |size: u32| {
+        area.estimate_text_size(title, &TextStyle::from((TITLE_FONT.0, size).into_font()))
+            .is_ok_and(|(w, _)| w > width)
+    };
+    let size = (SMALLEST_TITLE..=TITLE_FONT.1)
+        .rev()
+        .find(|&s| !wide(s))
+        .unwrap_or(SMALLEST_TITLE);
+    area.titled(title, (TITLE_FONT.0, size)).map_err(err)
 }
+
+/// Smallest font of a long title, pixels (the size of the tick labels).
+const SMALLEST_TITLE: u32 = 12;
 
 /// A logarithmic axis over `r` with a tick at every decade (see [`log_ticks`]).
 fn log_axis(r: (f64, f64), pixels: u32) -> impl AsRangedCoord<Value = f64, CoordDescType: ValueFormatter<f64>> {
@@ -220,14 +234,9 @@ impl Geometry<'_> {
                     width: 1,
                     shape: None,
                 };
-                self.place_line_label(
-                    &mut l,
-                    short,
-                    at,
-                    (self.map)(*last),
-                    sample,
-                    colour(s.color.unwrap_or(7)),
-                );
+                let rgb = colour(s.color.unwrap_or(7));
+                let draw = |l: &mut Layout, at| self.label_at_end(l, short, at, rgb);
+                self.place_line_label(&mut l, short, (at, (self.map)(*last)), sample, draw);
             }
         }
         for (k, m) in p.vlines.iter().enumerate() {
@@ -246,8 +255,8 @@ impl Geometry<'_> {
             let along = along.take_while(|q| q.0 > self.plot.x0);
             let first = (self.plot.x1 - 3, a.1 - 2);
             let at = self.clear_of_data(&l, &data, &m.label, first, along);
-            let sample = Sample::Stroke { width: 1 };
-            self.place_line_label(&mut l, &m.label, at, first, sample, RGBColor(40, 40, 40));
+            let draw = |l: &mut Layout, at| self.label_at_end(l, &m.label, at, RGBColor(40, 40, 40));
+            self.place_line_label(&mut l, &m.label, (at, first), Sample::Stroke { width: 1 }, draw);
         }
         l
     }
@@ -298,27 +307,26 @@ impl Geometry<'_> {
             .find(|&at| clear(at))
     }
 
-    /// Draws the label `text` of a limit or threshold line at `at`; without a clear place (`at` None) the
-    /// first layout moves it into the legend (with `sample`), a later one draws it at `first` unless the
-    /// legend already has it.
+    /// Draws the label `text` of a limit or threshold line at `at` (by `draw`); without a clear place (`at`
+    /// None) the first layout moves it into the legend (with `sample`), a later one draws it at `first`
+    /// unless the legend already has it.
     fn place_line_label(
         &self,
         l: &mut Layout,
         text: &str,
-        at: Option<(i32, i32)>,
-        first: (i32, i32),
+        (at, first): (Option<(i32, i32)>, (i32, i32)),
         sample: Sample,
-        rgb: RGBColor,
+        draw: impl FnOnce(&mut Layout, (i32, i32)),
     ) {
-        match (at, self.legend_has) {
-            (Some(at), Some(legend)) if !legend.iter().any(|e| e.label == text) => self.label_at_end(l, text, at, rgb),
-            (Some(at), None) => self.label_at_end(l, text, at, rgb),
+        let in_legend = self.legend_has.map(|lg| lg.iter().any(|e| e.label == text));
+        match (at, in_legend) {
+            (Some(at), None | Some(false)) => draw(l, at),
             (None, None) => l.in_legend.push(Entry {
                 label: text.to_string(),
                 sample,
             }),
-            (None, Some(legend)) if !legend.iter().any(|e| e.label == text) => self.label_at_end(l, text, first, rgb),
-            _ => {}
+            (None, Some(false)) => draw(l, first),
+            (_, Some(true)) => {}
         }
     }
 
@@ -358,7 +366,7 @@ impl Geometry<'_> {
     /// A vertical line's label near the top of the plot, right of the line (left of it near the right
     /// edge), staggered down by the line's index so that neighbouring lines' labels do not overlap; when
     /// that place covers `data` or an earlier label, the first row further down (then the other side of the
-    /// line) that is clear of both.
+    /// line) that is clear of both; in the legend when none is.
     fn label_vline(&self, l: &mut Layout, m: &Marker, px: i32, k: usize, data: &Occupied) {
         if m.label.is_empty() {
             return;
@@ -382,10 +390,11 @@ impl Geometry<'_> {
         let rows = (k % 4) as i32..(self.plot.y1 - self.plot.y0) / (h + 3);
         let corner = std::iter::once(first)
             .chain(rows.flat_map(|j| [(right, row(j)), (other, row(j))]))
-            .find(|&c| clear(c))
-            .unwrap_or(first);
+            .find(|&c| clear(c));
         let rgb = if k == 0 { BLACK } else { RGBColor(70, 70, 70) };
-        self.push_label(l, &m.label, corner, Pos::new(HPos::Right, VPos::Bottom), rgb, (w, h));
+        let pos = Pos::new(HPos::Right, VPos::Bottom);
+        let draw = |l: &mut Layout, c| self.push_label(l, &m.label, c, pos, rgb, (w, h));
+        self.place_line_label(l, &m.label, (corner, first), Sample::Stroke { width: 1 }, draw);
     }
 
     /// Records a label whose right-bottom corner is `corner`, and its box as occupied.

@@ -437,9 +437,11 @@ fn check_line_labels(path: &Path, els: &[El]) {
     for l in els.iter().filter(|e| is_label(e)) {
         let (x, y, w, h) = (l.num("x"), l.num("y"), l.num("width"), l.num("height"));
         let inner = (x + 1.0, y + 1.0, x + w - 1.0, y + h - 1.0);
+        // the label's text ends at the box's right-bottom corner less the box's 3-pixel margin
+        let at = |t: &El| (t.num("x") - (x + w - 3.0)).abs() <= 1.0 && (t.num("y") - (y + h - 3.0)).abs() <= 1.0;
         let text = els
             .iter()
-            .find(|t| t.tag == "text" && (t.num("y") - (y + h / 2.0)).abs() <= h && t.num("x") <= x + w + 1.0)
+            .find(|t| t.tag == "text" && at(t))
             .map_or("", |t| t.text.as_str());
         for e in els[..first].iter().filter(|e| is_data(e)) {
             for (a, c) in segments(e) {
