@@ -182,6 +182,16 @@ pub fn tick(v: f64) -> String {
     }
 }
 
+/// The reciprocal of a unit for an axis label: `1/m`, and `1/(m/s^2)` for a compound unit (never the
+/// ambiguous `1/m/s^2`).
+pub fn per_unit(unit: &str) -> String {
+    if unit.contains(['/', ' ', '*', '·']) {
+        format!("1/({unit})")
+    } else {
+        format!("1/{unit}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -210,15 +220,5 @@ mod tests {
         // within one decade: 1, 2, 5 or every integer multiple
         assert_eq!(log_ticks((1.5, 30.0), 380.0).0, vec![2.0, 5.0, 10.0, 20.0]);
         assert_eq!(log_ticks((2.5, 8.0), 380.0).0, vec![3.0, 4.0, 5.0, 6.0, 7.0, 8.0]);
-    }
-}
-
-/// The reciprocal of a unit for an axis label: `1/m`, and `1/(m/s^2)` for a compound unit (never the
-/// ambiguous `1/m/s^2`).
-pub fn per_unit(unit: &str) -> String {
-    if unit.contains(['/', ' ', '*', '·']) {
-        format!("1/({unit})")
-    } else {
-        format!("1/{unit}")
     }
 }

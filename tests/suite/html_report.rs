@@ -1,6 +1,7 @@
 //! `stochvib report SCENARIO -o report.html|md`: the report of every scenario of `data/` that `analyze`
 //! accepts is written (with the three routes of a nonlinear model, the transient answers and mission
-//! extremes of a scenario with `[transient]`; the working day of `data/workday/`), is well-formed (every element closed, every `&` an entity: [`well_formed`]), is
+//! extremes of a scenario with `[transient]`; the working day of `data/workday/`), is well-formed (every
+//! element closed, every `&` an entity: [`well_formed`]), is
 //! self-contained (no address, no `src=`/`href=`, no script), and holds what it claims to hold.
 //!
 //! Provenance of the expected values: σ of each output from `stochvib analyze --json` (a separate command

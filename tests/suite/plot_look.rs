@@ -7,7 +7,8 @@
 //!   crosses no segment of a curve, band or marker and no bar drawn before it;
 //! * the label of every limit and threshold line (on its translucent white box) covers no curve, band edge
 //!   or marker of the data;
-//! * every curve is drawn in a colour of the Okabe–Ito palette (or grey/black for reference lines);
+//! * every curve is drawn in a colour of the Okabe–Ito palette (or grey/black for reference lines), and two
+//!   data series carry marker shapes of their own (greyscale);
 //! * no text is a placeholder (`(SI)`, `inline`) and every axis title names its unit;
 //! * the Welch picture draws its analytic curves before (behind) the estimate and its interval band
 //!   translucent; the road density labels its class-limit lines on the line, not in the legend;
@@ -623,6 +624,34 @@ fn check_welch_and_road(seen: &BTreeMap<&str, PathBuf>) {
         .collect();
     assert!(!limits.is_empty(), "no class limit labelled");
     assert!(limits.iter().all(|&i| i < legend), "a class limit is in the legend");
+    check_marker_shapes(&seen["output-density"]);
+}
+
+/// Greyscale: the two data series of an output density (the density and its cumulative variance) carry
+/// marker shapes of different vertex counts (circle, square), each in its series' palette colour.
+fn check_marker_shapes(path: &Path) {
+    let els = parse(&std::fs::read_to_string(path).unwrap());
+    let mut shapes: BTreeMap<String, std::collections::BTreeSet<usize>> = BTreeMap::new();
+    for e in els
+        .iter()
+        .filter(|e| e.tag == "polygon" && PALETTE[..7].contains(&e.get("fill")))
+    {
+        let p = e.points();
+        let span = |f: fn(&(f64, f64)) -> f64| {
+            let v: Vec<f64> = p.iter().map(f).collect();
+            v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
+        };
+        if span(|q| q.0) <= 12.0 && span(|q| q.1) <= 12.0 {
+            shapes.entry(e.get("fill").to_string()).or_default().insert(p.len());
+        }
+    }
+    assert!(shapes.len() >= 2, "{}: markers in {shapes:?}", path.display());
+    let counts: Vec<&std::collections::BTreeSet<usize>> = shapes.values().collect();
+    assert!(
+        counts.iter().all(|c| c.len() == 1) && counts[0] != counts[1],
+        "{}: marker shapes {shapes:?}",
+        path.display()
+    );
 }
 
 #[test]
