@@ -323,8 +323,10 @@ enum Command {
     /// the model and its poles, every output's statistics and variance methods, the verdicts and the
     /// pictures; a self-contained HTML file (inline SVG and CSS), or markdown with the pictures beside it. Of a
     /// Monte Carlo run file (RUN.h5), or with --run: the run's statistics, intervals, coverage and pictures.
+    /// Of a scenario with [transient]: also σ(t), mean(t) and the mission extremes; with nonlinear elements:
+    /// the three routes; of a workday file: the daily exposure.
     Report {
-        /// Scenario file (TOML, see data/) or Monte Carlo run file (.h5).
+        /// Scenario file (TOML, see data/), workday file, or Monte Carlo run file (.h5).
         scenario: PathBuf,
         /// A Monte Carlo run of the scenario (RUN.h5): its section follows the scenario's.
         #[arg(long)]
@@ -488,6 +490,9 @@ enum Command {
     Workday {
         /// Workday file (TOML).
         file: PathBuf,
+        /// Draw the day's A(8) per axis against the limit value into DIR (SVG and PNG; docs/gallery.md).
+        #[arg(long, value_name = "DIR")]
+        plots: Option<PathBuf>,
         #[command(flatten)]
         spectra: SpectraDir,
         #[command(flatten)]
@@ -625,6 +630,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     scenario.display()
                 );
                 report::run_handover::write_run_handover(&scenario, &output, format, overwrite, catalogue.dir())?
+            } else if report::workday_handover::is_workday_file(&scenario) {
+                anyhow::ensure!(run.is_none(), "--run: a workday file has no Monte Carlo run");
+                let dir = catalogue.dir();
+                report::workday_handover::write_workday_handover(&scenario, &output, format, overwrite, dir)?
             } else {
                 let doc = load_document(&scenario, catalogue.dir())?;
                 let run = run.as_deref().map(|r| (r, catalogue.dir()));
@@ -658,9 +667,19 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 ReportFormat::Text => emit(&report::summarize(&file)?),
             }
         }
-        Command::Workday { file, spectra, output } => {
+        Command::Workday {
+            file,
+            plots,
+            spectra,
+            output,
+        } => {
             let day = stochvib::study::workday::load_workday(&file)?;
             let r = stochvib::study::workday::workday_exposure(&day, spectra.catalogue().dir())?;
+            if let Some(dir) = plots {
+                for f in stochvib::plot::comfort_plots::workday_chart(&r)?.render(&dir, "workday-a8")? {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
             print_as(&report::WorkdayReport(r), output.format())?;
         }
         Command::Exposure(a) => record_cli::exposure(a)?,

@@ -56,6 +56,9 @@ pub struct TransientArgs {
     /// Print JSON (every reported time).
     #[arg(long)]
     json: bool,
+    /// Draw σ(t) and mean(t) of every output by the exact route into DIR (SVG and PNG; docs/gallery.md).
+    #[arg(long, value_name = "DIR")]
+    plots: Option<PathBuf>,
 }
 
 /// Runs `stochvib transient`; `catalogue` resolves `--spectra-dir`, `progress` prints the shards.
@@ -92,6 +95,11 @@ pub fn transient(
     let setup = transient_setup(&sc)?;
     let sol = exact_solution(&sc, &setup)?;
     let r = answers(&sc, &setup, &sol);
+    if let Some(dir) = &a.plots {
+        for f in stochvib::plot::transient_plots::exact_plots(&r, dir)? {
+            eprintln!("wrote {}", f.display());
+        }
+    }
     let mc = match (a.monte_carlo, &a.output) {
         (Some(n), Some(out)) => {
             let out = shard_output(out.clone(), &choice)?;

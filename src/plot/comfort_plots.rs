@@ -82,10 +82,7 @@ pub fn weighted_density_chart(sc: &Scenario, axis: usize) -> Result<LineChart> {
     for r in ComfortReaction::ALL.iter().skip(1) {
         let at = r.range().0;
         if at <= top || hlines.len() == 1 {
-            hlines.push(Marker::new(
-                at,
-                format!("ISO 2631-1 Annex C: {} from {} m/s²", r.label(), num(at)),
-            ));
+            hlines.push(Marker::new(at, format!("{} from {} m/s²", r.label(), num(at))));
         }
     }
     let mut chart = LineChart::new(
@@ -108,4 +105,31 @@ pub fn weighted_density_chart(sc: &Scenario, axis: usize) -> Result<LineChart> {
     });
     chart.legend = Legend::UpperRight;
     Ok(chart)
+}
+
+/// The daily exposure of a working day (`stochvib workday --plots`, `stochvib report WORKDAY.toml`) as
+/// bars: each task's share k·a_w·√(T/8 h) on its largest axis (no limit: a share is not an exposure), then
+/// the day's A(8) of every axis against the exposure limit value of Directive 2002/44/EC (1.15 m/s²; the
+/// action value is in the report's verdict).
+///
+/// # Errors
+/// The errors of [`super::BarChart::new`].
+pub fn workday_chart(day: &crate::study::workday::WorkdayExposure) -> Result<super::BarChart> {
+    let share = |t: &crate::study::workday::TaskExposure| t.axes.iter().map(|a| a.a8).fold(0.0, f64::max);
+    let mut names: Vec<String> = day.tasks.iter().map(|t| t.task.name.clone()).collect();
+    let mut values: Vec<f64> = day.tasks.iter().map(share).collect();
+    let mut limits: Vec<Option<f64>> = vec![None; names.len()];
+    for a in &day.axes {
+        names.push(format!("the day, axis {}", a.axis.label()));
+        values.push(a.a8);
+        limits.push(Some(day.verdict.directive_a8.limit));
+    }
+    super::BarChart::new(
+        format!("{}: daily exposure A(8)", day.title),
+        "task (its share on its largest axis) and the day (health weighting k = 1.4 for x and y, 1 for z)",
+        "A(8) [m/s²]",
+        names,
+        values,
+        limits,
+    )
 }

@@ -28,13 +28,27 @@ const X_AREA: u32 = 48;
 const Y_AREA: u32 = 80;
 
 /// The area below the title, inside the outer margin.
+/// The title is drawn smaller (down to [`SMALLEST_TITLE`] pixels) when it is wider than the picture.
 fn titled<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
 ) -> std::result::Result<DrawingArea<DB, Shift>, String> {
     root.fill(&WHITE).map_err(err)?;
-    root.margin(12, 12, 12, 12).titled(title, TITLE_FONT).map_err(err)
+    let area = root.margin(12, 12, 12, 12);
+    let width = area.dim_in_pixel().0;
+    let wide = |size: u32| {
+        area.estimate_text_size(title, &TextStyle::from((TITLE_FONT.0, size).into_font()))
+            .is_ok_and(|(w, _)| w > width)
+    };
+    let size = (SMALLEST_TITLE..=TITLE_FONT.1)
+        .rev()
+        .find(|&s| !wide(s))
+        .unwrap_or(SMALLEST_TITLE);
+    area.titled(title, (TITLE_FONT.0, size)).map_err(err)
 }
+
+/// Smallest font of a long title, pixels (the size of the tick labels).
+const SMALLEST_TITLE: u32 = 12;
 
 /// A logarithmic axis over `r` with a tick at every decade (see [`log_ticks`]).
 fn log_axis(r: (f64, f64), pixels: u32) -> impl AsRangedCoord<Value = f64, CoordDescType: ValueFormatter<f64>> {
@@ -162,6 +176,8 @@ struct Layout {
     plot: PixelBox,
     occupied: Occupied,
     labels: Vec<LineLabel>,
+    /// Labels of limit and threshold lines with no place clear of the data: legend entries instead.
+    in_legend: Vec<Entry>,
 }
 
 /// Pixel geometry of a line chart, from the data → pixel maps of the primary and secondary axes.
@@ -170,6 +186,9 @@ struct Geometry<'a> {
     map: &'a dyn Fn((f64, f64)) -> (i32, i32),
     map2: &'a dyn Fn((f64, f64)) -> (i32, i32),
     measure: &'a dyn Fn(&str) -> (i32, i32),
+    /// The labels an earlier layout moved into the legend (not drawn on their lines); `None` in the first
+    /// layout, which moves the labels that have no clear place.
+    legend_has: Option<&'a [Entry]>,
 }
 
 impl Geometry<'_> {
@@ -178,6 +197,7 @@ impl Geometry<'_> {
             plot: self.plot,
             occupied: Occupied::default(),
             labels: Vec::new(),
+            in_legend: Vec::new(),
         };
         for r in &p.rects {
             let (a, b) = ((self.map)((r.0, p.y.0.max(0.0))), (self.map)((r.1, r.2)));
@@ -192,23 +212,37 @@ impl Geometry<'_> {
             l.occupied.polyline(b.lower.iter().map(|q| (self.map)(*q)));
             l.occupied.polyline(b.upper.iter().map(|q| (self.map)(*q)));
         }
-        for s in &p.series {
+        for s in p.series.iter().filter(|s| s.role != Role::Limit) {
             self.occupy(&mut l.occupied, s, self.map);
         }
         for s in p.secondary.iter().flat_map(|sa| sa.series.iter()) {
             self.occupy(&mut l.occupied, s, self.map2);
         }
+        // what a line label must not cover: the data (not the limit and threshold lines it labels)
+        let data = l.occupied.clone();
+        for s in p.series.iter().filter(|s| s.role == Role::Limit) {
+            self.occupy(&mut l.occupied, s, self.map);
+        }
         for s in p.series.iter().filter(|s| s.role == Role::Limit && !s.name.is_empty()) {
             if let Some(last) = s.points.last() {
-                let at = (self.map)(*last);
                 let short = s.name.split(": ").next().unwrap_or(&s.name);
-                self.label_at_end(&mut l, short, at, colour(s.color.unwrap_or(7)));
+                let along = s.points.iter().rev().map(|q| (self.map)(*q));
+                let at = self.clear_of_data(&l, &data, short, (self.map)(*last), along);
+                let sample = Sample::Line {
+                    colour: s.color.unwrap_or(7),
+                    dashed: s.style == LineStyle::Dashed,
+                    width: 1,
+                    shape: None,
+                };
+                let rgb = colour(s.color.unwrap_or(7));
+                let draw = |l: &mut Layout, at| self.label_at_end(l, short, at, rgb);
+                self.place_line_label(&mut l, short, (at, (self.map)(*last)), sample, draw);
             }
         }
         for (k, m) in p.vlines.iter().enumerate() {
             let (a, b) = ((self.map)((m.at, p.y.0)), (self.map)((m.at, p.y.1)));
             l.occupied.polyline([a, b]);
-            self.label_vline(&mut l, m, a.0, k);
+            self.label_vline(&mut l, m, a.0, k, &data);
         }
         let y2 = p
             .secondary
@@ -217,8 +251,12 @@ impl Geometry<'_> {
         for (m, map) in p.hlines.iter().map(|m| (m, self.map)).chain(y2) {
             let (a, b) = (map((p.x.0, m.at)), map((p.x.1, m.at)));
             l.occupied.polyline([a, b]);
-            let at = (self.plot.x1 - 3, a.1 - 2);
-            self.label_at_end(&mut l, &m.label, at, RGBColor(40, 40, 40));
+            let along = (0..).map(|k| (self.plot.x1 - 3 - LABEL_STEP * k, a.1));
+            let along = along.take_while(|q| q.0 > self.plot.x0);
+            let first = (self.plot.x1 - 3, a.1 - 2);
+            let at = self.clear_of_data(&l, &data, &m.label, first, along);
+            let draw = |l: &mut Layout, at| self.label_at_end(l, &m.label, at, RGBColor(40, 40, 40));
+            self.place_line_label(&mut l, &m.label, (at, first), Sample::Stroke { width: 1 }, draw);
         }
         l
     }
@@ -239,13 +277,62 @@ impl Geometry<'_> {
         }
     }
 
-    /// A label ending at `at` (right, bottom), moved inside the plot and left of earlier labels it would
-    /// cover.
-    fn label_at_end(&self, l: &mut Layout, text: &str, at: (i32, i32), rgb: RGBColor) {
+    /// Where the label `text` of a line goes (the `at` of [`Self::label_at_end`]): `first` (the line's
+    /// right end) when the label placed from there covers none of the `data`; else the first point of
+    /// `along` (points of the line from its right end) where the label above the line, or else below it,
+    /// is clear of them; `None` when no place is.
+    fn clear_of_data(
+        &self,
+        l: &Layout,
+        data: &Occupied,
+        text: &str,
+        first: (i32, i32),
+        along: impl Iterator<Item = (i32, i32)>,
+    ) -> Option<(i32, i32)> {
         if text.is_empty() {
-            return;
+            return Some(first);
         }
         let (w, h) = (self.measure)(text);
+        let clear = |at: (i32, i32)| {
+            let b = self.end_label_box(l, at, (w, h));
+            let inside = b.y0 >= self.plot.y0 && b.y1 <= self.plot.y1 && b.x0 >= self.plot.x0;
+            inside && !data.touches(b.grown(LABEL_PAD))
+        };
+        if clear(first) {
+            return Some(first);
+        }
+        along
+            .map(|q| (q.0.min(self.plot.x1 - 3), q.1))
+            .flat_map(|q| [(q.0, q.1 - 2), (q.0, q.1 + h + 4)])
+            .find(|&at| clear(at))
+    }
+
+    /// Draws the label `text` of a limit or threshold line at `at` (by `draw`); without a clear place (`at`
+    /// None) the first layout moves it into the legend (with `sample`), a later one draws it at `first`
+    /// unless the legend already has it.
+    fn place_line_label(
+        &self,
+        l: &mut Layout,
+        text: &str,
+        (at, first): (Option<(i32, i32)>, (i32, i32)),
+        sample: Sample,
+        draw: impl FnOnce(&mut Layout, (i32, i32)),
+    ) {
+        let in_legend = self.legend_has.map(|lg| lg.iter().any(|e| e.label == text));
+        match (at, in_legend) {
+            (Some(at), None | Some(false)) => draw(l, at),
+            (None, None) => l.in_legend.push(Entry {
+                label: text.to_string(),
+                sample,
+            }),
+            (None, Some(false)) => draw(l, first),
+            (_, Some(true)) => {}
+        }
+    }
+
+    /// The box of a label of size `(w, h)` ending at `at` (right, bottom), moved inside the plot and left
+    /// of the earlier labels of `l` it would cover.
+    fn end_label_box(&self, l: &Layout, at: (i32, i32), (w, h): (i32, i32)) -> PixelBox {
         let mut x1 = at.0.min(self.plot.x1 - 3);
         let y1 = if at.1 - h < self.plot.y0 { at.1 + h + 4 } else { at.1 };
         let mut b = PixelBox {
@@ -262,37 +349,52 @@ impl Geometry<'_> {
             b = PixelBox { x0: x1 - w, x1, ..b };
         }
         let x1 = x1.max(self.plot.x0 + w + 3);
-        self.push_label(l, text, (x1, b.y1), Pos::new(HPos::Right, VPos::Bottom), rgb, (w, h));
+        PixelBox { x0: x1 - w, x1, ..b }
     }
 
-    /// A vertical line's label at the top of the plot, right of the line (left of it near the right edge),
-    /// staggered down by the line's index so that neighbouring lines' labels do not overlap.
-    fn label_vline(&self, l: &mut Layout, m: &Marker, px: i32, k: usize) {
+    /// A label ending at `at` (right, bottom), moved inside the plot and left of earlier labels it would
+    /// cover.
+    fn label_at_end(&self, l: &mut Layout, text: &str, at: (i32, i32), rgb: RGBColor) {
+        if text.is_empty() {
+            return;
+        }
+        let (w, h) = (self.measure)(text);
+        let b = self.end_label_box(l, at, (w, h));
+        self.push_label(l, text, (b.x1, b.y1), Pos::new(HPos::Right, VPos::Bottom), rgb, (w, h));
+    }
+
+    /// A vertical line's label near the top of the plot, right of the line (left of it near the right
+    /// edge), staggered down by the line's index so that neighbouring lines' labels do not overlap; when
+    /// that place covers `data` or an earlier label, the first row further down (then the other side of the
+    /// line) that is clear of both; in the legend when none is.
+    fn label_vline(&self, l: &mut Layout, m: &Marker, px: i32, k: usize, data: &Occupied) {
         if m.label.is_empty() {
             return;
         }
         let (w, h) = (self.measure)(&m.label);
-        let y = self.plot.y0 + 3 + (k % 4) as i32 * (h + 3) + h;
+        let row = |j: i32| self.plot.y0 + 3 + j * (h + 3) + h;
+        let right = if px + 4 + w <= self.plot.x1 { px + 4 + w } else { px - 4 };
+        let first = (right, row((k % 4) as i32));
+        let other = if right == px - 4 { px + 4 + w } else { px - 4 };
+        let clear = |c: (i32, i32)| {
+            let b = PixelBox {
+                x0: c.0 - w,
+                y0: c.1 - h,
+                x1: c.0,
+                y1: c.1,
+            };
+            let inside = b.x0 > self.plot.x0 && b.x1 < self.plot.x1 && b.y1 < self.plot.y1;
+            let b = b.grown(LABEL_PAD);
+            inside && !data.touches(b) && !l.labels.iter().any(|o| o.bbox.overlaps(&b))
+        };
+        let rows = (k % 4) as i32..(self.plot.y1 - self.plot.y0) / (h + 3);
+        let corner = std::iter::once(first)
+            .chain(rows.flat_map(|j| [(right, row(j)), (other, row(j))]))
+            .find(|&c| clear(c));
         let rgb = if k == 0 { BLACK } else { RGBColor(70, 70, 70) };
-        if px + 4 + w <= self.plot.x1 {
-            self.push_label(
-                l,
-                &m.label,
-                (px + 4 + w, y),
-                Pos::new(HPos::Right, VPos::Bottom),
-                rgb,
-                (w, h),
-            );
-        } else {
-            self.push_label(
-                l,
-                &m.label,
-                (px - 4, y),
-                Pos::new(HPos::Right, VPos::Bottom),
-                rgb,
-                (w, h),
-            );
-        }
+        let pos = Pos::new(HPos::Right, VPos::Bottom);
+        let draw = |l: &mut Layout, c| self.push_label(l, &m.label, c, pos, rgb, (w, h));
+        self.place_line_label(l, &m.label, (corner, first), Sample::Stroke { width: 1 }, draw);
     }
 
     /// Records a label whose right-bottom corner is `corner`, and its box as occupied.
@@ -314,6 +416,9 @@ impl Geometry<'_> {
         });
     }
 }
+
+/// Step along a horizontal line between the places tried for its label, pixels.
+const LABEL_STEP: i32 = 12;
 
 /// Room kept around a line label, pixels (the estimated text width is a little short of the rendered one).
 const LABEL_PAD: i32 = 3;
@@ -376,8 +481,6 @@ where
     X::CoordDescType: ValueFormatter<f64>,
     Y::CoordDescType: ValueFormatter<f64>,
 {
-    let entries = line_entries(p);
-    let size = legend::size(area, &entries)?;
     let build = |extra: i32| {
         let (xr, yr) = axes();
         ChartBuilder::on(area)
@@ -388,7 +491,8 @@ where
             .build_cartesian_2d(xr, yr)
             .map_err(err)
     };
-    let layout = |chart: &ChartContext<DB, Cartesian2d<X::CoordDescType, Y::CoordDescType>>| {
+    let layout = |chart: &ChartContext<DB, Cartesian2d<X::CoordDescType, Y::CoordDescType>>,
+                  legend_has: Option<&[Entry]>| {
         let plot = plot_box(chart.plotting_area());
         let y2 = p.y2.unwrap_or((0.0, 1.0));
         let map = |q: (f64, f64)| chart.backend_coord(&q);
@@ -405,16 +509,20 @@ where
             map: &map,
             map2: &map2,
             measure: &m,
+            legend_has,
         }
         .layout(p)
     };
     let mut chart = build(0)?;
-    let mut l = layout(&chart);
+    let mut l = layout(&chart, None);
+    let mut entries = line_entries(p);
+    entries.append(&mut l.in_legend);
+    let size = legend::size(area, &entries)?;
     let at = match legend_place(&entries, size, &l, p.legend) {
         Some(at) => at,
         None => {
             chart = build(size.1 + 8)?;
-            l = layout(&chart);
+            l = layout(&chart, Some(&entries));
             Some(below(area, l.plot, size))
         }
     };
@@ -621,6 +729,7 @@ impl BarsWithRange<'_> {
             plot: plot_box(chart.plotting_area()),
             occupied,
             labels: Vec::new(),
+            in_legend: Vec::new(),
         }
     }
 

@@ -134,7 +134,7 @@ impl Occupied {
         }
     }
     /// Whether anything lies in `b`.
-    fn touches(&self, b: PixelBox) -> bool {
+    pub fn touches(&self, b: PixelBox) -> bool {
         self.boxes.iter().any(|o| o.overlaps(&b)) || self.segments.iter().any(|s| b.cut_by(s.0, s.1))
     }
 }

@@ -76,7 +76,7 @@ pub fn histogram_chart(
     let mut h = Histogram::new(
         title,
         format!("{quantity} y [{unit}]"),
-        format!("probability density [1/{unit}]"),
+        format!("probability density [{}]", super::style::per_unit(unit)),
         samples.to_vec(),
     );
     h.bins = bins;

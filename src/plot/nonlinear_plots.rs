@@ -44,7 +44,7 @@ pub fn histogram_charts(title: &str, h: &ResponseHistogram) -> (LineChart, LineC
                 if log { " (log)" } else { "" }
             ),
             format!("{} [{}]", h.output, h.unit),
-            format!("probability density [1/{}]", h.unit),
+            format!("probability density [{}]", super::style::per_unit(&h.unit)),
         );
         c.log_y = log;
         c.series.push(Series::markers(

@@ -151,10 +151,12 @@ pub fn range_histogram_chart(e: &FatigueEvaluation) -> LineChart {
         .filter(|(_, n)| *n > 0.0)
         .map(|(lo, n)| (lo + 0.5 * w, *n))
         .collect();
+    let (sym, unit, scale) = stress_axis(e);
+    let counts: Vec<(f64, f64)> = counts.into_iter().map(|(r, n)| (r * scale, n)).collect();
     let mut c = LineChart::new(
         format!("Rainflow ranges of {}", e.channel),
-        "stress range ΔS (SI)",
-        "cycles per range bin",
+        format!("{} range Δ{sym} [{unit}]", quantity_of(&sym)),
+        format!("cycles per range bin (bin width {} {unit})", num(w * scale)),
     );
     c.log_y = true;
     c.series.push(Series::markers("rainflow count (ASTM E1049)", counts));
@@ -165,7 +167,7 @@ pub fn range_histogram_chart(e: &FatigueEvaluation) -> LineChart {
             .iter()
             .enumerate()
             .filter(|(_, n)| **n > 0.0)
-            .map(|(i, n)| ((i as f64 + 0.5) * w, *n))
+            .map(|(i, n)| ((i as f64 + 0.5) * w * scale, *n))
             .collect();
         c.series
             .push(Series::line("Dirlik's expected count (the record's Welch moments)", pts).analytic());
@@ -177,13 +179,14 @@ pub fn range_histogram_chart(e: &FatigueEvaluation) -> LineChart {
 /// The range–mean matrix as markers, one series per decade of counts.
 pub fn matrix_chart(e: &FatigueEvaluation) -> LineChart {
     let m = &e.matrix;
+    let (sym, unit, scale) = stress_axis(e);
     let mut by_decade: std::collections::BTreeMap<i32, Vec<(f64, f64)>> = Default::default();
     for (i, row) in m.counts.iter().enumerate() {
         for (j, &n) in row.iter().enumerate() {
             if n > 0.0 {
                 let p = (
-                    m.mean_origin + (j as f64 + 0.5) * m.mean_width,
-                    (i as f64 + 0.5) * m.range_width,
+                    (m.mean_origin + (j as f64 + 0.5) * m.mean_width) * scale,
+                    (i as f64 + 0.5) * m.range_width * scale,
                 );
                 by_decade.entry(n.log10().floor() as i32).or_default().push(p);
             }
@@ -191,8 +194,8 @@ pub fn matrix_chart(e: &FatigueEvaluation) -> LineChart {
     }
     let mut c = LineChart::new(
         format!("Rainflow matrix of {}", e.channel),
-        "cycle mean S_m (SI)",
-        "cycle range ΔS (SI)",
+        format!("cycle mean {sym}_m [{unit}]"),
+        format!("cycle range Δ{sym} [{unit}]"),
     );
     for (k, (d, pts)) in by_decade.into_iter().enumerate() {
         c.series.push(
@@ -205,6 +208,38 @@ pub fn matrix_chart(e: &FatigueEvaluation) -> LineChart {
     }
     c.legend = Legend::UpperRight;
     c
+}
+
+/// The fatigue charts' axis in the unit the record's channel is written in: (symbol, unit, factor from SI to
+/// that unit): `S` for a stress (a unit of dimension Pa, e.g. MPa), `ε` for a strain (dimensionless, e.g.
+/// µm/m), the channel's name for another quantity (a force, a torque); the SI unit when the channel is
+/// not among the record's (it always is: [`FatigueEvaluation::channel`] is built from it).
+fn stress_axis(e: &FatigueEvaluation) -> (String, String, f64) {
+    let c = e
+        .record
+        .channels
+        .iter()
+        .find(|c| format!("{} [{}]", c.name, c.unit) == e.channel);
+    let Some(c) = c.filter(|c| c.to_si.is_finite() && c.to_si > 0.0) else {
+        return ("S".into(), "SI unit".into(), 1.0);
+    };
+    let sym = if c.dim == crate::units::Dim::new(-1, 1, -2) {
+        "S".to_string()
+    } else if c.dim == crate::units::Dim::DIMENSIONLESS {
+        "ε".to_string()
+    } else {
+        format!("({})", c.name)
+    };
+    (sym, c.unit.clone(), 1.0 / c.to_si)
+}
+
+/// The quantity a symbol of [`stress_axis`] stands for.
+fn quantity_of(sym: &str) -> &'static str {
+    match sym {
+        "S" => "stress",
+        "ε" => "strain",
+        _ => "load",
+    }
 }
 
 /// Writes the fatigue pictures into `dir`: `fatigue-ranges` and `fatigue-matrix` (SVG and PNG each).

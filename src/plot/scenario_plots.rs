@@ -103,7 +103,8 @@ pub fn scenario_plots_with(sc: &Scenario, dir: &Path, opts: &ScenarioPlotOptions
 pub fn input_density_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<LineChart> {
     let unit = opts.input_unit.clone().unwrap_or_else(|| sc.input.unit.clone());
     if sc.inputs.len() <= 1 {
-        let spectra = [(sc.input.reference.as_str(), sc.input.spectrum.as_ref())];
+        let name = input_name(sc, &sc.input);
+        let spectra = [(name.as_str(), sc.input.spectrum.as_ref())];
         return spectra_chart(
             &format!("Input density: {}", sc.title),
             &spectra,
@@ -113,7 +114,7 @@ pub fn input_density_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<
         );
     }
     // every `[[input]]` table drawn on the first one's axes (the others get their own chart)
-    let names: Vec<String> = sc.inputs.iter().map(source_label).collect();
+    let names: Vec<String> = sc.inputs.iter().map(|i| source_label(sc, i)).collect();
     let spectra: Vec<(&str, &dyn Spectrum)> = sc
         .inputs
         .iter()
@@ -131,10 +132,29 @@ pub fn input_density_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<
 }
 
 /// Legend text of an `[[input]]` source: its name and spectrum reference (`road: iso8608-c, each track`).
-fn source_label(inp: &crate::scenario::ScenarioInput) -> String {
+fn source_label(sc: &Scenario, inp: &crate::scenario::ScenarioInput) -> String {
+    let reference = input_name(sc, inp);
     match &inp.coherence {
-        Some(_) => format!("{}: {}, each track", inp.name, inp.reference),
-        None => format!("{}: {}", inp.name, inp.reference),
+        Some(_) => format!("{}: {reference}, each track", inp.name),
+        None => format!("{}: {reference}", inp.name),
+    }
+}
+
+/// The spectrum of an input as the scenario names it: a measured profile by its CSV file and track
+/// (`measured-profile.csv (measured profile, track left)`), a table written in the scenario by its `name`,
+/// else by its kind (`gauss-cosine spectrum, written in the scenario`), any other spectrum by its reference
+/// as written.
+fn input_name(sc: &Scenario, inp: &crate::scenario::ScenarioInput) -> String {
+    let table = toml::from_str::<toml::Table>(&inp.spectrum_text).unwrap_or_default();
+    let key = |k: &str| table.get(k).and_then(|v| v.as_str());
+    match (key("kind"), inp.origin == crate::scenario::SpectrumOrigin::Inline) {
+        (Some("measured-profile"), _) => crate::scenario::input_as_written(inp, &sc.path),
+        (Some(kind), true) => match (key("name"), key("class")) {
+            (Some(name), _) => name.to_string(),
+            (None, Some(class)) => format!("{kind} class {class}, written in the scenario"),
+            (None, None) => format!("{kind} spectrum, written in the scenario"),
+        },
+        _ => inp.reference.clone(),
     }
 }
 
@@ -156,7 +176,7 @@ pub fn source_density_chart(sc: &Scenario, i: usize, opts: &ScenarioPlotOptions)
         .inputs
         .get(i)
         .ok_or_else(|| Error::invalid("input", i, format!("the scenario has {} inputs", sc.inputs.len())))?;
-    let label = source_label(inp);
+    let label = source_label(sc, inp);
     spectra_chart(
         &format!("Input density of {}: {}", inp.name, sc.title),
         &[(label.as_str(), inp.spectrum.as_ref())],
@@ -363,6 +383,8 @@ pub fn spectra_chart(
     );
     chart.log_x = true;
     chart.log_y = true;
+    // a density falling off exponentially (Gaussian-cosine) reaches 1e-300 within its support
+    chart.max_decades = Some(INPUT_DECADES);
     for (name, s) in spectra {
         let (slo, shi) = s.support();
         let pts = grid
@@ -375,6 +397,9 @@ pub fn spectra_chart(
     chart.legend = Legend::LowerLeft;
     Ok(chart)
 }
+
+/// Decades below its peak an input density chart shows.
+const INPUT_DECADES: f64 = 30.0;
 
 /// Log–log chart of |H_ij(iω)|² of output `output` for every input j, against frequency (Hz or rad/s per
 /// `opts.convention`), with the system's natural frequencies marked.

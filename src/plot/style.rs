@@ -182,6 +182,16 @@ pub fn tick(v: f64) -> String {
     }
 }
 
+/// The reciprocal of a unit for an axis label: `1/m`, and `1/(m/s^2)` for a compound unit (never the
+/// ambiguous `1/m/s^2`).
+pub fn per_unit(unit: &str) -> String {
+    if unit.contains(['/', ' ', '*', '·']) {
+        format!("1/({unit})")
+    } else {
+        format!("1/{unit}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

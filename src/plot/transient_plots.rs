@@ -1,10 +1,13 @@
 //! Pictures of a transient Monte Carlo run (`stochvib plot run.h5` of `stochvib transient --monte-carlo`):
 //! per output, the Monte Carlo σ(t) with its per-time interval band against the exact σ(t), and the
 //! empirical distribution of the per-realization maxima of |y| with its DKW band against the analytic
-//! distribution (Poisson at the integrated Rice rate).
+//! distribution (Poisson at the integrated Rice rate). And the exact answers of a scenario with
+//! `[transient]` (`stochvib transient SCENARIO --plots DIR`, `stochvib report`): per output σ(t) and
+//! mean(t) by the exact route.
 
 use super::chart::{file_stem, Band, Legend, LineChart, Series};
 use crate::error::Result;
+use crate::study::transient_answers::{OutputOverTime, TransientAnalysis};
 use crate::store::transient_series::{TransientOutput, TransientSeries};
 use crate::store::RunFile;
 use std::path::{Path, PathBuf};
@@ -90,4 +93,48 @@ pub fn transient_plots(path: &Path, dir: &Path) -> Result<Option<Vec<PathBuf>>> 
         files.extend(maxima_chart(&series, o).render(dir, &format!("{s}-maxima"))?);
     }
     Ok(Some(files))
+}
+
+/// σ(t) and mean(t) of one output by the exact route (for a weighted output the running r.m.s. a_w(t));
+/// `None` for an output without a finite σ.
+pub fn exact_chart(a: &TransientAnalysis, o: &OutputOverTime) -> Option<LineChart> {
+    if o.sigma.is_empty() {
+        return None;
+    }
+    let zip = |y: &[f64]| a.times.iter().copied().zip(y.iter().copied()).collect::<Vec<_>>();
+    let (title, sigma, y) = match &o.weighted_of {
+        Some(w) => (
+            format!("{}: running r.m.s. of the ISO 2631-1 weighted {w} over time", o.name),
+            "running r.m.s. a_w(t), exact (differential Lyapunov)".to_string(),
+            format!("a_w(t) of {} [{}]", o.name, o.unit),
+        ),
+        None => (
+            format!("{}: standard deviation and mean over time", o.name),
+            "σ(t), exact (differential Lyapunov)".to_string(),
+            format!("σ(t) and mean(t) of {} [{}]", o.name, o.unit),
+        ),
+    };
+    let mut c = LineChart::new(title, "time t [s]", y);
+    c.series
+        .push(Series::line(sigma, zip(&o.sigma)).analytic().with_color(0));
+    if o.weighted_of.is_none() {
+        c.series
+            .push(Series::dashed("mean(t), exact", zip(&o.mean)).analytic().with_color(1));
+    }
+    c.legend = Legend::LowerRight;
+    Some(c)
+}
+
+/// The pictures of the exact transient answers: `<output>-transient` per output with a finite σ.
+///
+/// # Errors
+/// The errors of [`LineChart::render`].
+pub fn exact_plots(a: &TransientAnalysis, dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for o in &a.outputs {
+        if let Some(c) = exact_chart(a, o) {
+            files.extend(c.render(dir, &format!("{}-transient", file_stem(&o.name)))?);
+        }
+    }
+    Ok(files)
 }

@@ -56,18 +56,6 @@ pub fn write_handover(
     overwrite: bool,
     run: Option<(&Path, &Path)>,
 ) -> Result<PathBuf> {
-    if let Document::Stochastic(sc) = doc
-        && sc.nonlinear.is_some()
-    {
-        return Err(crate::error::Error::in_file(
-            file,
-            "model.nonlinear",
-            "[[model.nonlinear]]",
-            "the hand-over report of a model with nonlinear elements is not available yet (its statistics come \
-             from three routes, not from the linear analysis this report holds); `stochvib analyze FILE --format \
-             markdown` writes the three routes; nothing was written",
-        ));
-    }
     let sources = source_files(doc, file);
     let mut inputs = sources.clone();
     inputs.extend(run.map(|r| r.0.to_path_buf()));
@@ -228,8 +216,12 @@ pub(super) fn checksum(path: &Path) -> std::io::Result<(u64, u32)> {
     }
 }
 
-/// Model and poles, outputs, verdicts and pictures of a scenario with a random input.
+/// Model and poles, outputs, verdicts, the transient answers and mission extremes (`[transient]`) and
+/// pictures of a scenario with a random input; the three routes of a model with nonlinear elements.
 fn stochastic_sections(sc: &Scenario, dir: &Path, link: &Path) -> Result<String> {
+    if let Some(answers) = sc.nonlinear_answers()? {
+        return nonlinear_sections(sc, &answers, dir, link);
+    }
     let mut r = super::analysis_report(sc)?;
     let verdicts = r.verdicts.take();
     let outputs = std::mem::take(&mut r.outputs);
@@ -242,7 +234,30 @@ fn stochastic_sections(sc: &Scenario, dir: &Path, link: &Path) -> Result<String>
     if let Some(v) = verdicts {
         s += &format!("\n## Verdicts\n{}", v.markdown().replace("\n## ", "\n### "));
     }
-    s += &pictures_markdown(&crate::plot::scenario_plots(sc, dir)?, link);
+    let mut pictures = crate::plot::scenario_plots(sc, dir)?;
+    if sc.transient.is_some() {
+        let a = crate::study::transient_answers::transient_analysis(sc)?;
+        s += &format!("\n{}", super::transient_report::transient_markdown(&a));
+        pictures.extend(crate::plot::transient_plots::exact_plots(&a, dir)?);
+    }
+    s += &pictures_markdown(&pictures, link);
+    Ok(s)
+}
+
+/// The three routes of a model with nonlinear elements (`stochvib analyze FILE --format markdown`), and the
+/// input density (the linear-model pictures of `stochvib plot` do not describe its response).
+fn nonlinear_sections(
+    sc: &Scenario,
+    answers: &crate::study::NonlinearAnswers,
+    dir: &Path,
+    link: &Path,
+) -> Result<String> {
+    let md = super::nonlinear_report(sc, answers, None)?.markdown();
+    let body: Vec<&str> = md.lines().skip_while(|l| l.starts_with("## ")).collect();
+    let mut s = format!("## Nonlinear response: three routes\n{}\n", body.join("\n"));
+    let opts = crate::plot::ScenarioPlotOptions::default();
+    let pictures = crate::plot::scenario_plots::input_density_chart(sc, &opts)?.render(dir, "input-density")?;
+    s += &pictures_markdown(&pictures, link);
     Ok(s)
 }
 

@@ -21,6 +21,7 @@ pub mod table;
 pub mod tables;
 pub mod transient_report;
 pub mod verdict_report;
+pub mod workday_handover;
 pub mod workday_report;
 
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};

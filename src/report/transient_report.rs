@@ -2,9 +2,9 @@
 //! up-crossings and the extremes table of the mission, and with `--monte-carlo` the Monte Carlo σ(t) beside
 //! the exact one with its verdict (every number in full in `--json`).
 
-use super::table::Table;
+use super::table::{facts, Table};
 use crate::numbers::short;
-use crate::study::transient_answers::{OutputOverTime, TransientAnalysis};
+use crate::study::transient_answers::{MissionRow, OutputOverTime, StationaryExtremes, TransientAnalysis};
 use crate::study::transient_mc::SigmaComparison;
 use std::fmt;
 
@@ -73,68 +73,117 @@ impl fmt::Display for TransientAnalysis {
 
 impl TransientAnalysis {
     fn fmt_extremes(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(t) = self.stationary_table() {
+            writeln!(f, "\n{}", self.stationary_heading())?;
+            write!(f, "{}", t.aligned("  "))?;
+        }
+        if let Some(t) = self.mission_table() {
+            writeln!(f, "\n{}", self.mission_heading())?;
+            write!(f, "{}", t.aligned("  "))?;
+        }
+        Ok(())
+    }
+
+    fn stationary_heading(&self) -> String {
+        format!(
+            "Stationary extremes of max |y| over T = {} s (the system frozen at the window's end, in its \
+             stationary state)",
+            short(self.mission_duration)
+        )
+    }
+
+    fn mission_heading(&self) -> String {
+        format!(
+            "Mission of T = {} s: expected up-crossings of +b and P(max |y| > b within T)",
+            short(self.mission_duration)
+        )
+    }
+
+    /// The stationary extremes of the outputs that have them (None: none has).
+    fn stationary_table(&self) -> Option<Table> {
         let st: Vec<_> = self
             .stationary
             .iter()
             .filter_map(|(n, s)| s.as_ref().map(|s| (n, s)))
             .collect();
-        if !st.is_empty() {
-            writeln!(
-                f,
-                "\nStationary extremes of max |y| over T = {} s (the system frozen at the window's end, in its \
-                 stationary state)",
-                short(self.mission_duration)
-            )?;
-            let pf = |p: Option<crate::extremes::PeakFactor>,
-                      s: &crate::study::transient_answers::StationaryExtremes| {
-                p.map(|p| s.mean.abs() + p.mean * s.sigma)
-            };
-            let t = Table::default()
+        if st.is_empty() {
+            return None;
+        }
+        let pf =
+            |p: Option<crate::extremes::PeakFactor>, s: &StationaryExtremes| p.map(|p| s.mean.abs() + p.mean * s.sigma);
+        let col = |g: &dyn Fn(&StationaryExtremes) -> Option<f64>| st.iter().map(|s| g(s.1)).collect::<Vec<_>>();
+        Some(
+            Table::default()
                 .text("output", st.iter().map(|s| s.0.clone()))
-                .num("σ", &st.iter().map(|s| Some(s.1.sigma)).collect::<Vec<_>>())
-                .num("ν₀⁺ [Hz]", &st.iter().map(|s| Some(s.1.nu0_plus)).collect::<Vec<_>>())
-                .num("δ (Vanmarcke)", &st.iter().map(|s| Some(s.1.delta)).collect::<Vec<_>>())
-                .num(
-                    "E max|y| Davenport",
-                    &st.iter().map(|s| pf(s.1.davenport, s.1)).collect::<Vec<_>>(),
-                )
-                .num(
-                    "E max|y| Der Kiureghian",
-                    &st.iter().map(|s| pf(s.1.der_kiureghian, s.1)).collect::<Vec<_>>(),
-                );
-            write!(f, "{}", t.aligned("  "))?;
-        }
-        if self.mission.is_empty() {
-            return Ok(());
-        }
-        writeln!(
-            f,
-            "\nMission of T = {} s: expected up-crossings of +b and P(max |y| > b within T)",
-            short(self.mission_duration)
-        )?;
-        let m = &self.mission;
-        let t = Table::default()
-            .text("output", m.iter().map(|r| r.output.clone()))
-            .text("b", m.iter().map(|r| format!("{} {}", short(r.level), r.unit)))
-            .num(
-                "E N⁺(b)",
-                &m.iter().map(|r| Some(r.expected_upcrossings)).collect::<Vec<_>>(),
-            )
-            .num(
-                "P integrated rate",
-                &m.iter().map(|r| Some(r.p_integrated_rate)).collect::<Vec<_>>(),
-            )
-            .num("P Poisson (stat.)", &m.iter().map(|r| r.p_poisson).collect::<Vec<_>>())
-            .num(
-                "P Vanmarcke (stat.)",
-                &m.iter().map(|r| r.p_vanmarcke).collect::<Vec<_>>(),
-            )
-            .num(
-                "P Der Kiureghian (stat.)",
-                &m.iter().map(|r| r.p_der_kiureghian).collect::<Vec<_>>(),
-            );
-        write!(f, "{}", t.aligned("  "))
+                .num("σ", &col(&|s| Some(s.sigma)))
+                .num("ν₀⁺ [Hz]", &col(&|s| Some(s.nu0_plus)))
+                .num("δ (Vanmarcke)", &col(&|s| Some(s.delta)))
+                .num("E max|y| Davenport", &col(&|s| pf(s.davenport, s)))
+                .num("E max|y| Der Kiureghian", &col(&|s| pf(s.der_kiureghian, s))),
+        )
     }
+
+    /// The mission table: E N⁺(b) and P(max |y| > b) by the integrated rate and the end-state methods.
+    fn mission_table(&self) -> Option<Table> {
+        let m = &self.mission;
+        if m.is_empty() {
+            return None;
+        }
+        let col = |g: &dyn Fn(&MissionRow) -> Option<f64>| m.iter().map(g).collect::<Vec<_>>();
+        Some(
+            Table::default()
+                .text("output", m.iter().map(|r| r.output.clone()))
+                .text("b", m.iter().map(|r| format!("{} {}", short(r.level), r.unit)))
+                .num("E N⁺(b)", &col(&|r| Some(r.expected_upcrossings)))
+                .num("P integrated rate", &col(&|r| Some(r.p_integrated_rate)))
+                .num("P Poisson (stat.)", &col(&|r| r.p_poisson))
+                .num("P Vanmarcke (stat.)", &col(&|r| r.p_vanmarcke))
+                .num("P Der Kiureghian (stat.)", &col(&|r| r.p_der_kiureghian)),
+        )
+    }
+}
+
+/// The transient answers as a section of the hand-over report (`## Transient response and mission
+/// extremes`): the exact route, per output its time table ([`PRINTED_ROWS`] times), the stationary
+/// extremes, the mission table and the notes; the same tables as `stochvib transient`.
+pub fn transient_markdown(a: &TransientAnalysis) -> String {
+    let mut s = "## Transient response and mission extremes\n\n".to_string();
+    s += &facts(&[
+        ("system", a.description.clone()),
+        ("start", format!("{:?}", a.start).to_lowercase()),
+        (
+            "exact route",
+            format!(
+                "{} steps ({} exact), {} matrix exponentials, accumulated relative error estimate {:.1e}",
+                a.report.steps, a.report.exact_steps, a.report.exponentials, a.report.max_error_estimate
+            ),
+        ),
+        ("mission duration T", format!("{} s", short(a.mission_duration))),
+    ]);
+    for o in &a.outputs {
+        s += &match &o.weighted_of {
+            Some(w) => format!("\n### {} (ISO 2631-1 weighted {w}: running r.m.s. a_w(t))\n\n", o.name),
+            None => format!("\n### {} [{}]\n\n", o.name, o.unit),
+        };
+        if let Some(n) = &o.note {
+            s += &format!("{n}\n\n");
+        }
+        if !o.sigma.is_empty() {
+            s += &output_table(&a.times, o).markdown();
+        }
+    }
+    if let Some(t) = a.stationary_table() {
+        s += &format!(
+            "\n### Stationary extremes\n\n{}\n\n{}",
+            a.stationary_heading(),
+            t.markdown()
+        );
+    }
+    if let Some(t) = a.mission_table() {
+        s += &format!("\n### Mission\n\n{}\n\n{}", a.mission_heading(), t.markdown());
+    }
+    s += &a.notes.iter().map(|n| format!("\n- note: {n}")).collect::<String>();
+    s + "\n"
 }
 
 /// The Monte Carlo σ(t) of every simulated output beside the exact σ(t), with the verdicts.

@@ -1,5 +1,7 @@
 //! `stochvib report SCENARIO -o report.html|md`: the report of every scenario of `data/` that `analyze`
-//! accepts is written, is well-formed (every element closed, every `&` an entity: [`well_formed`]), is
+//! accepts is written (with the three routes of a nonlinear model, the transient answers and mission
+//! extremes of a scenario with `[transient]`; the working day of `data/workday/`), is well-formed (every
+//! element closed, every `&` an entity: [`well_formed`]), is
 //! self-contained (no address, no `src=`/`href=`, no script), and holds what it claims to hold.
 //!
 //! Provenance of the expected values: σ of each output from `stochvib analyze --json` (a separate command
@@ -7,7 +9,8 @@
 //! `PRINTED_4_DIGITS`); the pictures from the file names `stochvib plot` writes; the CRC-32 and size of the
 //! scenario file computed here with `crc32fast` from the bytes on disk; the single isolator's pole from the
 //! closed form ω₀ = √(k/m), ζ as written in its file; the scenario text escaped by this file's own
-//! replacements.
+//! replacements; the transient mission table from `stochvib transient --json`, the nonlinear routes from
+//! `analyze --json`, the day's A(8) from `stochvib workday --json` (separate commands, full precision).
 
 use crate::common::tolerance::PRINTED_4_DIGITS;
 use crate::common::{cli_within, rel, root};
@@ -134,8 +137,9 @@ fn plot_stems(scenario: &str, dir: &Path) -> Vec<String> {
     v
 }
 
-/// Checks the report of one stochastic scenario against its `analyze --json` and `plot`.
-fn check_stochastic(html: &str, scenario: &str, json: &serde_json::Value, work: &Path) {
+/// Checks the report of one stochastic scenario against its `analyze --json` and `plot` (and, with
+/// `[transient]`, against `transient --json` and `transient --plots`); returns whether it is transient.
+fn check_stochastic(html: &str, scenario: &str, json: &serde_json::Value, work: &Path) -> bool {
     for o in json["outputs"].as_array().unwrap() {
         let st = &o["statistics"];
         let name = st["name"].as_str().unwrap();
@@ -145,7 +149,15 @@ fn check_stochastic(html: &str, scenario: &str, json: &serde_json::Value, work: 
             assert!(rel(p, sigma) < PRINTED_4_DIGITS, "{scenario} {name}: σ {p} vs {sigma}");
         }
     }
-    let stems = plot_stems(scenario, &work.join("plots"));
+    let mut stems = plot_stems(scenario, &work.join("plots"));
+    let transient = std::fs::read_to_string(root().join(scenario))
+        .unwrap()
+        .lines()
+        .any(|l| l.starts_with("[transient]"));
+    if transient {
+        stems.extend(check_transient(html, scenario, &work.join("transient")));
+        stems.sort();
+    }
     let mut figures: Vec<String> = html
         .split("<figcaption>")
         .skip(1)
@@ -161,6 +173,90 @@ fn check_stochastic(html: &str, scenario: &str, json: &serde_json::Value, work: 
     if json.get("verdicts").is_some() {
         assert!(html.contains("<h2>Verdicts</h2>"), "{scenario}: verdicts");
     }
+    transient
+}
+
+/// The cells of the rows of the first table after `heading` (tags stripped).
+fn table_after(html: &str, heading: &str) -> Vec<Vec<String>> {
+    let at = html.find(heading).unwrap_or_else(|| panic!("no {heading}"));
+    let t = &html[at..];
+    let t = &t[t.find("<tbody>").unwrap()..t.find("</table>").unwrap()];
+    t.split("<tr>")
+        .skip(1)
+        .map(|r| {
+            r.split("<td")
+                .skip(1)
+                .map(|c| c.split_once('>').unwrap().1.split('<').next().unwrap().to_string())
+                .collect()
+        })
+        .collect()
+}
+
+/// The transient section of a scenario with `[transient]`: the mission table's E N⁺(b) and P(max |y| > b)
+/// by the integrated rate against `stochvib transient --json` (every digit; the report prints four), and
+/// the stems of the pictures `stochvib transient --plots` draws.
+fn check_transient(html: &str, scenario: &str, dir: &Path) -> Vec<String> {
+    assert!(
+        html.contains("<h2>Transient response and mission extremes</h2>"),
+        "{scenario}"
+    );
+    let (ok, out, err) = cli(&["transient", scenario, "--json", "--plots", dir.to_str().unwrap()]);
+    assert!(ok, "transient {scenario}: {err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let mission = json["exact"]["mission"].as_array().unwrap();
+    let rows = table_after(html, "<h3>Mission</h3>");
+    assert_eq!(rows.len(), mission.len(), "{scenario}: mission rows");
+    for (r, m) in rows.iter().zip(mission) {
+        assert_eq!(r[0], m["output"].as_str().unwrap());
+        for (cell, key) in [(2, "expected_upcrossings"), (3, "p_integrated_rate")] {
+            let (p, want) = (r[cell].parse::<f64>().unwrap(), m[key].as_f64().unwrap());
+            assert!(
+                rel(p, want) < PRINTED_4_DIGITS || (p - want).abs() < 1e-300,
+                "{scenario} {key}: {p} vs {want}"
+            );
+        }
+    }
+    for o in json["exact"]["outputs"].as_array().unwrap() {
+        assert!(html.contains(&escaped(o["name"].as_str().unwrap())), "{scenario}");
+    }
+    let mut stems: Vec<String> = crate::common::listing(dir)
+        .into_iter()
+        .filter_map(|f| f.strip_suffix(".svg").map(str::to_string))
+        .collect();
+    assert!(
+        stems.iter().all(|s| s.ends_with("-transient")) && !stems.is_empty(),
+        "{stems:?}"
+    );
+    stems.sort();
+    stems
+}
+
+/// The three routes of a model with nonlinear elements: every output's σ by route 1 and the exact route
+/// (route 3) against `analyze --json` (the report prints six digits), and the input density picture.
+fn check_nonlinear(html: &str, scenario: &str, json: &serde_json::Value) {
+    assert!(html.contains("<h2>Nonlinear response: three routes</h2>"), "{scenario}");
+    for o in json["outputs"].as_array().unwrap() {
+        let name = o["name"].as_str().unwrap();
+        let head = format!("<h3>{} [{}]</h3>", escaped(name), escaped(o["unit"].as_str().unwrap()));
+        let rows = table_after(html, &head);
+        let printed = rows.iter().find(|r| r[0] == "sigma_response").expect("a σ row");
+        let row = o["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["statistic"] == "sigma_response");
+        for (cell, key) in [(1, "route1"), (2, "exact")] {
+            if let Some(want) = row.and_then(|r| r[key].as_f64()) {
+                let p: f64 = printed[cell].parse().unwrap();
+                assert!(
+                    rel(p, want) < PRINTED_4_DIGITS,
+                    "{scenario} {name} {key}: {p} vs {want}"
+                );
+            }
+        }
+    }
+    assert_eq!(html.matches("<svg").count(), 1, "{scenario}: the input density");
+    assert!(html.contains("<figcaption>input-density<"), "{scenario}");
 }
 
 /// Deterministic models and reference tables: every table title of `analyze --json`.
@@ -202,7 +298,7 @@ fn every_data_scenario_has_a_complete_self_contained_report() {
     let work = tmp("all");
     // every report also through the HTML validator (html5lib), when the browser test's tools are present
     let validate = crate::report_browser::tools_present();
-    let (mut reported, mut nonlinear) = (0, 0);
+    let (mut reported, mut nonlinear, mut transient) = (0, 0, 0);
     for f in crate::common::listing(&root().join("data")) {
         let Some(stem) = f.strip_suffix(".toml") else { continue };
         let scenario = format!("data/{f}");
@@ -213,34 +309,27 @@ fn every_data_scenario_has_a_complete_self_contained_report() {
         let json: serde_json::Value = serde_json::from_str(&out).unwrap();
         let html_path = work.join(format!("{stem}.html"));
         let (ok, _, err) = cli(&["report", &scenario, "-o", html_path.to_str().unwrap()]);
-        if json.get("route1").is_some() {
-            // a model with nonlinear elements: refused, naming the key, and nothing written
-            assert!(
-                !ok && err.contains("model.nonlinear") && err.contains("not available yet"),
-                "{err}"
-            );
-            assert!(!html_path.exists(), "{scenario}");
-            nonlinear += 1;
-            continue;
-        }
         assert!(ok, "report {scenario}: {err}");
         let html = std::fs::read_to_string(&html_path).unwrap();
         check_common(&html, &scenario);
         if validate {
             crate::report_browser::validate(&html_path);
         }
-        if json.get("outputs").is_some() {
+        if json.get("route1").is_some() {
+            check_nonlinear(&html, &scenario, &json);
+            nonlinear += 1;
+        } else if json.get("outputs").is_some() {
             let dir = work.join(stem);
             std::fs::create_dir_all(&dir).unwrap();
-            check_stochastic(&html, &scenario, &json, &dir);
+            transient += usize::from(check_stochastic(&html, &scenario, &json, &dir));
         } else {
             check_tables(&html, &scenario, &json);
         }
         reported += 1;
     }
     assert!(
-        reported >= 16 && nonlinear >= 3,
-        "{reported} reports, {nonlinear} nonlinear refusals"
+        reported >= 19 && nonlinear >= 3 && transient >= 2,
+        "{reported} reports, {nonlinear} nonlinear, {transient} transient"
     );
     std::fs::remove_dir_all(&work).unwrap();
 }
@@ -344,5 +433,46 @@ fn a_bad_output_is_refused_cleanly() {
         ["dir", "notes.html", "r.html", "s.toml"],
         "no temporary file left"
     );
+    std::fs::remove_dir_all(&work).unwrap();
+}
+
+/// `stochvib report WORKDAY.toml`: the working day of `data/workday/`: self-contained and well-formed, the
+/// workday file and every task's scenario file with its CRC-32, the day's A(8) and VDV per axis against
+/// `stochvib workday --json` (every digit; the report prints four), the verdict and the A(8) picture.
+#[test]
+fn the_workday_report_holds_the_day() {
+    let work = tmp("workday");
+    let day = "data/workday/scraper-operator.toml";
+    let out = work.join("day.html");
+    let (ok, _, err) = cli(&["report", day, "-o", out.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let html = std::fs::read_to_string(&out).unwrap();
+    check_common(&html, day);
+    if crate::report_browser::tools_present() {
+        crate::report_browser::validate(&out);
+    }
+    for task in ["data/scraper-cab-comfort.toml", "data/operator-seat-verdicts.toml"] {
+        let crc = format!(
+            "<td>{:08x}</td>",
+            crc32fast::hash(&std::fs::read(root().join(task)).unwrap())
+        );
+        assert!(html.contains(&crc), "{task}: CRC-32");
+    }
+    let (ok, json, err) = cli(&["workday", day, "--json"]);
+    assert!(ok, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let rows = table_after(&html, "<h3>The day</h3>");
+    let axes = json["axes"].as_array().unwrap();
+    assert_eq!(rows.len(), axes.len());
+    for (r, a) in rows.iter().zip(axes) {
+        assert_eq!(r[0], a["axis"].as_str().unwrap());
+        for (cell, key) in [(1, "a8"), (2, "vdv")] {
+            let (p, want) = (r[cell].parse::<f64>().unwrap(), a[key].as_f64().unwrap());
+            assert!(rel(p, want) < PRINTED_4_DIGITS, "{key}: {p} vs {want}");
+        }
+    }
+    assert!(html.contains("Directive 2002/44/EC"), "the verdict");
+    assert_eq!(html.matches("<svg").count(), 1);
+    assert!(html.contains("<figcaption>workday-a8<"));
     std::fs::remove_dir_all(&work).unwrap();
 }

@@ -5,7 +5,11 @@
 //!   not a place on it), and its labels are powers of ten or 1-2-5 steps;
 //! * the legend box (the one rectangle drawn with the legend's border colour) lies inside the picture and
 //!   crosses no segment of a curve, band or marker and no bar drawn before it;
-//! * every curve is drawn in a colour of the Okabe–Ito palette (or grey/black for reference lines);
+//! * the label of every limit and threshold line (on its translucent white box) covers no curve, band edge
+//!   or marker of the data;
+//! * every curve is drawn in a colour of the Okabe–Ito palette (or grey/black for reference lines), and two
+//!   data series carry marker shapes of their own (greyscale);
+//! * no text is a placeholder (`(SI)`, `inline`) and every axis title names its unit;
 //! * the Welch picture draws its analytic curves before (behind) the estimate and its interval band
 //!   translucent; the road density labels its class-limit lines on the line, not in the legend;
 //! * the same input gives the same bytes (the scenario pictures drawn twice).
@@ -128,10 +132,22 @@ pub const KINDS: &[(&str, &str, usize, &str)] = &[
         9,
         "a catalogue model's curves over a parameter",
     ),
+    (
+        "transient",
+        "-transient",
+        10,
+        "σ(t) and mean(t) of a non-stationary response, exact route",
+    ),
+    (
+        "workday-a8",
+        "workday-a8",
+        11,
+        "daily exposure A(8): each task's share and the day against the limit value (bars)",
+    ),
 ];
 
 /// Category axes (bar charts): their x labels are names, not a scale.
-const BAR_KINDS: &[&str] = &["book-bars"];
+const BAR_KINDS: &[&str] = &["book-bars", "workday-a8"];
 
 /// The commands, run from the source tree; `{D}` is the output directory, `{R}` the records' directory.
 pub fn commands() -> Vec<Vec<&'static str>> {
@@ -176,6 +192,8 @@ pub fn commands() -> Vec<Vec<&'static str>> {
             "{D}",
         ],
         vec!["book", "--plots", "{D}"],
+        vec!["transient", "data/quarter-car-accelerating.toml", "--plots", "{D}"],
+        vec!["workday", "data/workday/scraper-operator.toml", "--plots", "{D}"],
     ]
 }
 
@@ -373,8 +391,70 @@ fn check_picture(path: &Path, kind: &str) -> usize {
         }
     }
     check_legend(path, &els);
+    check_axis_titles(path, &els, BAR_KINDS.contains(&kind));
+    check_line_labels(path, &els);
     check_colours(path, &els);
     logs
+}
+
+/// No text is a placeholder (`(SI)` for a unit, `inline` for a spectrum written in the scenario); every axis
+/// title (the rotated y titles, the centred x title under the axis) names its unit in brackets, or is a
+/// count of cycles; the x axis of a bar chart names categories.
+fn check_axis_titles(path: &Path, els: &[El], category_x: bool) {
+    for e in els.iter().filter(|e| e.tag == "text") {
+        let placeholder = e.text.contains("(SI)") || e.text.split([' ', ',', ':']).any(|w| w == "inline");
+        assert!(!placeholder, "{}: placeholder text `{}`", path.display(), e.text);
+        let y_title = e.get("transform").starts_with("rotate");
+        let x_title = e.get("text-anchor") == "middle" && e.get("dy") == "-0.5ex" && !category_x;
+        if y_title || x_title {
+            assert!(
+                e.text.contains('[') && e.text.contains(']') || e.text.starts_with("cycles"),
+                "{}: axis title without a unit: `{}`",
+                path.display(),
+                e.text
+            );
+        }
+    }
+}
+
+/// The curves, bands and markers of the data: drawn in a colour of the palette (not the greys and black
+/// of axes, grid, limit and threshold lines), wider than a hair line or filled.
+fn is_data(e: &El) -> bool {
+    let data_colour = |c: &str| PALETTE[..7].contains(&c);
+    match e.tag.as_str() {
+        "polyline" => data_colour(e.get("stroke")) && e.get("stroke-width") != "1",
+        "polygon" => data_colour(e.get("fill")),
+        _ => false,
+    }
+}
+
+/// The labels written on limit and threshold lines (each on a translucent white box drawn after the data)
+/// cover no curve, band edge or marker of the data.
+fn check_line_labels(path: &Path, els: &[El]) {
+    let is_label = |e: &El| e.tag == "rect" && e.get("fill") == "#FFFFFF" && e.get("opacity") == "0.75";
+    let Some(first) = els.iter().position(is_label) else {
+        return;
+    };
+    for l in els.iter().filter(|e| is_label(e)) {
+        let (x, y, w, h) = (l.num("x"), l.num("y"), l.num("width"), l.num("height"));
+        let inner = (x + 1.0, y + 1.0, x + w - 1.0, y + h - 1.0);
+        // the label's text ends at the box's right-bottom corner less the box's 3-pixel margin
+        let at = |t: &El| (t.num("x") - (x + w - 3.0)).abs() <= 1.0 && (t.num("y") - (y + h - 3.0)).abs() <= 1.0;
+        let text = els
+            .iter()
+            .find(|t| t.tag == "text" && at(t))
+            .map_or("", |t| t.text.as_str());
+        for e in els[..first].iter().filter(|e| is_data(e)) {
+            for (a, c) in segments(e) {
+                assert!(
+                    !crosses(inner, a, c),
+                    "{}: the line label `{text}` {inner:?} covers a {} segment {a:?}–{c:?} of the data",
+                    path.display(),
+                    e.tag
+                );
+            }
+        }
+    }
 }
 
 fn segments(e: &El) -> Vec<((f64, f64), (f64, f64))> {
@@ -541,6 +621,34 @@ fn check_welch_and_road(seen: &BTreeMap<&str, PathBuf>) {
         .collect();
     assert!(!limits.is_empty(), "no class limit labelled");
     assert!(limits.iter().all(|&i| i < legend), "a class limit is in the legend");
+    check_marker_shapes(&seen["output-density"]);
+}
+
+/// Greyscale: the two data series of an output density (the density and its cumulative variance) carry
+/// marker shapes of different vertex counts (circle, square), each in its series' palette colour.
+fn check_marker_shapes(path: &Path) {
+    let els = parse(&std::fs::read_to_string(path).unwrap());
+    let mut shapes: BTreeMap<String, std::collections::BTreeSet<usize>> = BTreeMap::new();
+    for e in els
+        .iter()
+        .filter(|e| e.tag == "polygon" && PALETTE[..7].contains(&e.get("fill")))
+    {
+        let p = e.points();
+        let span = |f: fn(&(f64, f64)) -> f64| {
+            let v: Vec<f64> = p.iter().map(f).collect();
+            v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
+        };
+        if span(|q| q.0) <= 12.0 && span(|q| q.1) <= 12.0 {
+            shapes.entry(e.get("fill").to_string()).or_default().insert(p.len());
+        }
+    }
+    assert!(shapes.len() >= 2, "{}: markers in {shapes:?}", path.display());
+    let counts: Vec<&std::collections::BTreeSet<usize>> = shapes.values().collect();
+    assert!(
+        counts.iter().all(|c| c.len() == 1) && counts[0] != counts[1],
+        "{}: marker shapes {shapes:?}",
+        path.display()
+    );
 }
 
 #[test]
@@ -579,6 +687,20 @@ fn the_checks_find_a_zero_on_a_log_axis_and_a_covering_legend() {
                stroke=\"#404040\"/></svg>";
     let r = std::panic::catch_unwind(|| check_legend(Path::new("t.svg"), &parse(svg)));
     assert!(r.is_err());
+    // a threshold label over a curve of the data, and the same label beside it
+    let label = |y: u32| {
+        format!(
+            "<svg><polyline stroke=\"#0072B2\" stroke-width=\"2\" points=\"0,50 100,50 \"/><polyline \
+             stroke=\"#282828\" stroke-width=\"1\" points=\"0,{y} 100,{y} \"/><rect x=\"40\" y=\"{}\" \
+             width=\"50\" height=\"12\" opacity=\"0.75\" fill=\"#FFFFFF\" stroke=\"none\"/><text x=\"88\" \
+             y=\"{y}\">comfort limit</text></svg>",
+            y - 12
+        )
+    };
+    let over = label(56);
+    let r = std::panic::catch_unwind(|| check_line_labels(Path::new("t.svg"), &parse(&over)));
+    assert!(r.is_err(), "a label over the data passes");
+    check_line_labels(Path::new("t.svg"), &parse(&label(30)));
 }
 
 #[test]

@@ -272,10 +272,14 @@ fn scenario_reports_render_print_and_validate() {
     if !tools_present() {
         return;
     }
-    for (k, scenario) in ["data/quarter-car.toml", "data/operator-seat-verdicts.toml"]
-        .iter()
-        .enumerate()
-    {
+    let scenarios = [
+        "data/quarter-car.toml",
+        "data/operator-seat-verdicts.toml",
+        "data/quarter-car-accelerating.toml",
+        "data/duffing-white-noise.toml",
+        "data/workday/scraper-operator.toml",
+    ];
+    for (k, scenario) in scenarios.iter().enumerate() {
         let dir = tmp(&format!("scenario-{k}"));
         check_in_browser(&report(scenario, &dir), &dir);
     }
