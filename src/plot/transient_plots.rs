@@ -7,9 +7,9 @@
 
 use super::chart::{file_stem, Band, Legend, LineChart, Series};
 use crate::error::Result;
-use crate::study::transient_answers::{OutputOverTime, TransientAnalysis};
 use crate::store::transient_series::{TransientOutput, TransientSeries};
 use crate::store::RunFile;
+use crate::study::transient_answers::{OutputOverTime, TransientAnalysis};
 use std::path::{Path, PathBuf};
 
 /// σ(t) of one output: the Monte Carlo estimate and its interval band against the exact curve.
