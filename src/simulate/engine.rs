@@ -273,6 +273,9 @@ pub(crate) fn realize(
     Ok(out)
 }
 
+/// The samples of every output and of every input process of one realization (`samples[r][k]`).
+pub(crate) type Samples = (Vec<Vec<f64>>, Vec<Vec<f64>>);
+
 /// One realization's samples of every output and, with `inputs`, of every input process: the draws and
 /// the bits of [`realize`] with `keep_raw`, without its time averages and Welch sums (for a caller that
 /// only needs the samples: route 2's input synthesis).
@@ -284,7 +287,7 @@ pub(crate) fn samples(
     s: &mut Scratch,
     rng: &mut rand::rngs::Xoshiro256PlusPlus,
     inputs: bool,
-) -> Result<(Vec<Vec<f64>>, Vec<Vec<f64>>)> {
+) -> Result<Samples> {
     fill(plan, s, rng, inputs)?;
     let stride = plan.stride;
     let raw = (0..plan.outputs.len())
