@@ -11,6 +11,10 @@
 #   PROFILE=test bash benches/compare/nonlinear.sh   # the Rust side in the test profile (opt-level 2, debug
 #                                                    # assertions on) when a release build is out of reach
 #   NO_BUILD=1 bash benches/compare/nonlinear.sh     # the example binary as it is (no cargo build)
+#   BEFORE=path/to/compare_nonlinear BEFORE_LABEL="main at abc1234" bash benches/compare/nonlinear.sh
+#                                                    # also an earlier build of the example, run just before
+#                                                    # ours on the same job: a before/after row, and whether
+#                                                    # the statistics' CRC-32 is the same (bit-identical)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -37,6 +41,12 @@ fi
 echo "$profile" >"$out/profile.txt"
 cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "$(nproc) cores, $cpu, $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)" >"$out/machine.txt"
+if [ -n "${BEFORE:-}" ]; then
+    cut -d' ' -f1 /proc/loadavg >"$out/load-before.txt"
+    echo "nonlinear.sh: the earlier build $BEFORE, $r realizations x $t s" >&2
+    "$BEFORE" --realizations "$r" --duration "$t" --reps "$reps" >"$out/before.json"
+    echo "${BEFORE_LABEL:-the earlier build}" >"$out/before-label.txt"
+fi
 cut -d' ' -f1 /proc/loadavg >"$out/load-rust.txt"
 echo "nonlinear.sh: Rust side, $r realizations x $t s" >&2
 "$bin" --realizations "$r" --duration "$t" --reps "$reps" >"$out/rust.json"
@@ -46,7 +56,7 @@ echo "nonlinear.sh: numpy side, the same $r x ($burn + $n) steps of $dt s" >&2
 python3 "$here/nonlinear.py" --realizations "$r" --samples "$n" --burn "$burn" --dt "$dt" --chunk "$chunk" \
     --reps "$reps" >"$out/python.json"
 python3 - "$out" <<'PY' >"$out/table.md"
-import json, subprocess, sys, datetime
+import json, os, subprocess, sys, datetime
 out = sys.argv[1]
 rs, py = json.load(open(f"{out}/rust.json")), json.load(open(f"{out}/python.json"))
 j = rs["jobs"]
@@ -72,11 +82,22 @@ rows = [
      "linear run of the linear part", pair(lin), f"{lin['seconds'] / one['seconds']:.3g}x (route 2 costs {one['seconds'] / lin['seconds']:.3g}x)", f"load {lr}"),
     ("route 1 per parameter point", "1 point, 3 outputs", pair(j["route1_point"]), "-", "-", "-", f"load {lr}"),
 ]
+before = None
+if os.path.exists(f"{out}/before.json"):
+    before = json.load(open(f"{out}/before.json"))
+    b1 = before["jobs"]["route2_1_threads"]
+    label, lb = (open(f"{out}/{f}").read().strip() for f in ("before-label.txt", "load-before.txt"))
+    rows.insert(2, ("route 2, this build vs an earlier one, 1 thread (CPU time)", size, t(one["cpu_seconds"]), label,
+                    t(b1["cpu_seconds"]), f"{b1['cpu_seconds'] / one['cpu_seconds']:.3g}x", f"load {lb} / {lr}"))
 print(f"One run of {cmd} (R={rs['realizations']}, T={rs['samples'] * rs['dt']:.3g} s) on "
       f"{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC; machine: {machine}; Rust {profile} profile; "
       f"numpy {py['numpy']}.")
 print(f"Checks both sides agree on: σ of the travel {rs['sigma_travel_m']:.4g} m (ours) / {py['sigma_travel_m']:.4g} m (numpy); "
       f"stop contact fraction {rs['stop_contact_fraction']:.3g} / {py['stop_contact_fraction']:.3g}.")
+if before is not None:
+    same = before["statistics_crc32"] == rs["statistics_crc32"]
+    print(f"CRC-32 of every statistic's bits: {before['statistics_crc32']} ({label}) / {rs['statistics_crc32']} (this build): "
+          f"{'bit-identical' if same else 'DIFFERENT'}.")
 print()
 print("| job | size | ours | peer | peer time | ratio peer/ours | machine state |")
 print("|---|---|---|---|---|---|---|")

@@ -28,7 +28,7 @@
 //! ```
 
 use super::gauss::{pdf, prob_positive, standardized};
-use super::{ElementMoments, Equivalent, ForceLaw};
+use super::{ElementMoments, Equivalent, ForceLaw, Kernel};
 use crate::error::{Error, Result};
 
 /// A bilinear damper (see the module docs).
@@ -99,6 +99,9 @@ impl ForceLaw for BilinearDamper {
         }
         // v(τ) = v e^{−rate sgn v}; impulse = (v − v(τ))/κ
         -v * (-rate * v.signum()).exp_m1() / kappa
+    }
+    fn kernel(&self, kappa: f64, tau: f64) -> Option<Kernel> {
+        Some(Kernel::bilinear(self.half_difference(), kappa, tau))
     }
     fn potential(&self, _x: f64) -> Option<f64> {
         None

@@ -28,7 +28,7 @@
 //! ```
 
 use super::gauss::{negative_part, positive_part, prob_positive};
-use super::{ElementMoments, Equivalent, ForceLaw, Regime};
+use super::{ElementMoments, Equivalent, ForceLaw, Kernel, Regime};
 use crate::error::{Error, Result};
 
 /// One side of a stop: clearance (m) and contact stiffness (N/m).
@@ -161,6 +161,14 @@ impl ForceLaw for BumpStop {
     }
     fn engaged(&self, x: f64) -> bool {
         self.upper.is_some_and(|s| x > s.clearance) || self.lower.is_some_and(|s| x < -s.clearance)
+    }
+    fn kernel(&self, _kappa: f64, tau: f64) -> Option<Kernel> {
+        let side = |s: Option<StopSide>| s.map(|s| (s.clearance, s.stiffness));
+        Some(Kernel::Stop {
+            upper: side(self.upper),
+            lower: side(self.lower),
+            tau,
+        })
     }
     fn stiffness_bound(&self, _m: &ElementMoments) -> f64 {
         let k = |s: Option<StopSide>| s.map_or(0.0, |s| s.stiffness);

@@ -26,7 +26,7 @@
 //! resolve the contact frequency ω_c = √(κ k_c) (κ = dᵀM⁻¹d); route 2 takes h ≤ [`CONTACT_STEP`]/ω_c by
 //! default and refuses h > 2/ω_c (unstable).
 
-use super::NonlinearModel;
+use super::{Kernel, NonlinearModel};
 use crate::error::{Error, Result};
 use crate::system::FrequencyResponse;
 use nalgebra::DMatrix;
@@ -128,7 +128,7 @@ impl Kicks {
     }
 
     /// Deflection x_e and rate v_e of element e.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn kinematics(&self, e: usize, q: &[f64], qdot: &[f64], u: &[f64], ud: &[f64]) -> (f64, f64) {
         let k = &self.items[e];
         let mut x = 0.0;
@@ -148,43 +148,64 @@ impl Kicks {
         (x, v)
     }
 
+    /// The kicks of duration τ, with every element's [`Kernel`] where its law has one.
+    pub(crate) fn prepared(&self, tau: f64) -> Prepared<'_> {
+        Prepared {
+            kicks: self,
+            tau,
+            kernels: self.items.iter().map(|k| k.law.kernel(k.kappa, tau)).collect(),
+        }
+    }
+}
+
+/// The element kicks of one duration τ (see [`Kicks::prepared`]).
+pub(crate) struct Prepared<'a> {
+    kicks: &'a Kicks,
+    tau: f64,
+    kernels: Vec<Option<Kernel>>,
+}
+
+impl Prepared<'_> {
     /// The exact flow of every element over τ, in order (or in reverse order): p −= d J, q̇ −= M⁻¹d J.
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn kick(
-        &self,
-        q: &[f64],
-        p: &mut [f64],
-        qdot: &mut [f64],
-        u: &[f64],
-        ud: &[f64],
-        tau: f64,
-        reverse: bool,
-    ) {
-        for step in 0..self.items.len() {
-            let e = if reverse { self.items.len() - 1 - step } else { step };
-            let (x, v) = self.kinematics(e, q, qdot, u, ud);
-            let k = &self.items[e];
-            let j = k.law.impulse(x, v, k.kappa, tau);
+    pub(crate) fn kick(&self, q: &[f64], p: &mut [f64], qdot: &mut [f64], u: &[f64], ud: &[f64], reverse: bool) {
+        let items = &self.kicks.items;
+        for step in 0..items.len() {
+            let e = if reverse { items.len() - 1 - step } else { step };
+            let (x, v) = self.kicks.kinematics(e, q, qdot, u, ud);
+            let k = &items[e];
+            let j = match &self.kernels[e] {
+                Some(kernel) => kernel.impulse(x, v),
+                None => k.law.impulse(x, v, k.kappa, self.tau),
+            };
             if j != 0.0 {
-                for i in 0..self.n {
-                    p[i] -= k.d[i] * j;
-                    qdot[i] -= k.minv_d[i] * j;
+                for ((pi, qi), (d, md)) in p.iter_mut().zip(qdot.iter_mut()).zip(k.d.iter().zip(&k.minv_d)) {
+                    *pi -= d * j;
+                    *qi -= md * j;
                 }
             }
         }
     }
 
-    /// Every element's remainder force F_e at the state (for acceleration outputs and statistics).
-    pub(crate) fn forces(&self, q: &[f64], qdot: &[f64], u: &[f64], ud: &[f64], out: &mut [f64]) {
-        for (e, f) in out.iter_mut().enumerate() {
-            let (x, v) = self.kinematics(e, q, qdot, u, ud);
-            *f = self.items[e].law.force(x, v);
+    /// Every element's remainder force F_e and deflection x_e at the state (for acceleration outputs and
+    /// statistics).
+    pub(crate) fn forces(&self, q: &[f64], qdot: &[f64], u: &[f64], ud: &[f64], out: &mut [f64], xe: &mut [f64]) {
+        for (e, (f, xo)) in out.iter_mut().zip(xe.iter_mut()).enumerate() {
+            let (x, v) = self.kicks.kinematics(e, q, qdot, u, ud);
+            *xo = x;
+            *f = match &self.kernels[e] {
+                Some(kernel) => kernel.force(x, v),
+                None => self.kicks.items[e].law.force(x, v),
+            };
         }
     }
 
     /// Whether element e is in its regime at deflection x.
+    #[inline]
     pub(crate) fn engaged(&self, e: usize, x: f64) -> bool {
-        self.items[e].law.engaged(x)
+        match &self.kernels[e] {
+            Some(kernel) => kernel.engaged(x),
+            None => self.kicks.items[e].law.engaged(x),
+        }
     }
 }
 
@@ -236,16 +257,17 @@ pub fn free_response(
     let mut next = vec![0.0; 2 * n];
     let nb = lin.n_inputs();
     let zeros = vec![0.0; nb.max(1)];
+    let half = kicks.prepared(0.5 * h);
     for _ in 0..steps {
         let (q, p) = x.split_at_mut(n);
-        kicks.kick(q, p, &mut qdot, &zeros, &zeros, 0.5 * h, false);
+        half.kick(q, p, &mut qdot, &zeros, &zeros, false);
         for (i, o) in next.iter_mut().enumerate() {
             *o = (0..2 * n).map(|j| phi[i * 2 * n + j] * x[j]).sum();
         }
         x.copy_from_slice(&next);
         let (q, p) = x.split_at_mut(n);
         kicks.velocities(p, &zeros, &mut qdot);
-        kicks.kick(q, p, &mut qdot, &zeros, &zeros, 0.5 * h, true);
+        half.kick(q, p, &mut qdot, &zeros, &zeros, true);
     }
     let (q, p) = x.split_at(n);
     kicks.velocities(p, &zeros, &mut qdot);

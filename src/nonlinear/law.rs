@@ -1,6 +1,7 @@
 //! The force law of a nonlinear element: its force, its Gaussian expectations (route 1), the exact flow of
 //! its force alone (route 2) and its potential (route 3).
 
+use super::Kernel;
 use serde::Serialize;
 use std::fmt::Debug;
 
@@ -88,6 +89,14 @@ pub trait ForceLaw: Debug + Send + Sync {
     fn impulse(&self, x: f64, v: f64, kappa: f64, tau: f64) -> f64 {
         let _ = kappa;
         tau * self.force(x, v)
+    }
+
+    /// The law in closed form for route 2's inner loop at κ and a kick duration τ ([`Kernel`]: the same
+    /// bits as [`ForceLaw::force`], [`ForceLaw::impulse`] and [`ForceLaw::engaged`], with the constants of
+    /// the step computed once); `None` (the default) evaluates the trait methods.
+    fn kernel(&self, kappa: f64, tau: f64) -> Option<Kernel> {
+        let _ = (kappa, tau);
+        None
     }
 
     /// The potential V(x) = ∫₀ˣ F dx of a force of x alone (J), `None` for a velocity law.

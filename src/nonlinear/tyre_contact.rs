@@ -27,7 +27,7 @@
 //! ```
 
 use super::gauss::{positive_part, prob_positive};
-use super::{ElementMoments, Equivalent, ForceLaw, Regime};
+use super::{ElementMoments, Equivalent, ForceLaw, Kernel, Regime};
 use crate::error::{Error, Result};
 
 /// Unilateral contact of a tyre spring (see the module docs).
@@ -108,6 +108,13 @@ impl ForceLaw for TyreContact {
     }
     fn engaged(&self, x: f64) -> bool {
         x > self.static_deflection()
+    }
+    fn kernel(&self, _kappa: f64, tau: f64) -> Option<Kernel> {
+        Some(Kernel::Lift {
+            stiffness: self.stiffness,
+            deflection: self.static_deflection(),
+            tau,
+        })
     }
     fn stiffness_bound(&self, _m: &ElementMoments) -> f64 {
         self.stiffness

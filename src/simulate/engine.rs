@@ -235,6 +235,85 @@ pub(crate) fn realize(
     match &plan.engine {
         Engine::Exact(gm) if plan.block_steps > 0 && !keep_raw => return realize_in_blocks(plan, gm, s, rng, verdicts),
         Engine::SpectralStream(fir) if !keep_raw => return realize_streamed(plan, fir, s, rng, verdicts),
+        _ => fill(plan, s, rng, keep_raw)?,
+    }
+    let mut out = Realization {
+        m: Vec::with_capacity(p),
+        v: Vec::with_capacity(p),
+        welch: Vec::with_capacity(p),
+        raw: Vec::new(),
+        raw_inputs: Vec::new(),
+    };
+    if keep_raw {
+        out.raw_inputs = raw_inputs(plan, s);
+    }
+    let stride = plan.stride;
+    let mut sig = std::mem::take(&mut s.sig);
+    sig.resize(n, 0.0);
+    for r in 0..p {
+        // one pass: the copy and both running sums, each in time order from −0.0 as `Iterator::sum` of f64
+        // folds (bit-identical to two sums over the copy; the two chains of additions overlap)
+        let (mut sum, mut sq) = (-0.0f64, -0.0f64);
+        for (k, v) in sig.iter_mut().enumerate() {
+            let x = s.buf[k * stride + r];
+            *v = x;
+            sum += x;
+            sq += x * x;
+        }
+        out.m.push(sum / n as f64);
+        out.v.push(sq / n as f64);
+        let mut ws = plan.welch.sums();
+        plan.welch.accumulate(&sig, &mut ws, &mut s.welch)?;
+        out.welch.push(ws);
+        if keep_raw {
+            out.raw.push(sig.clone());
+        }
+    }
+    s.sig = sig;
+    Ok(out)
+}
+
+/// The samples of every output and of every input process of one realization (`samples[r][k]`).
+pub(crate) type Samples = (Vec<Vec<f64>>, Vec<Vec<f64>>);
+
+/// One realization's samples of every output and, with `inputs`, of every input process: the draws and
+/// the bits of [`realize`] with `keep_raw`, without its time averages and Welch sums (for a caller that
+/// only needs the samples: route 2's input synthesis).
+///
+/// # Errors
+/// An FFT failure; the streamed spectral route (it keeps no samples).
+pub(crate) fn samples(
+    plan: &Plan,
+    s: &mut Scratch,
+    rng: &mut rand::rngs::Xoshiro256PlusPlus,
+    inputs: bool,
+) -> Result<Samples> {
+    fill(plan, s, rng, inputs)?;
+    let stride = plan.stride;
+    let raw = (0..plan.outputs.len())
+        .map(|r| (0..plan.n).map(|k| s.buf[k * stride + r]).collect())
+        .collect();
+    Ok((raw, if inputs { raw_inputs(plan, s) } else { Vec::new() }))
+}
+
+/// The samples of every input process of a whole-record realization in `s`.
+fn raw_inputs(plan: &Plan, s: &Scratch) -> Vec<Vec<f64>> {
+    match &plan.engine {
+        Engine::Exact(_) => (plan.outputs.len()..plan.stride)
+            .map(|r| (0..plan.n).map(|k| s.buf[k * plan.stride + r]).collect())
+            .collect(),
+        // the recorded period is aligned with the input processes' own samples
+        Engine::Spectral { .. } => s.q.clone(),
+        Engine::SpectralStream(_) => Vec::new(),
+    }
+}
+
+/// The samples of a whole-record realization into `s.buf` (and with `keep_raw` the input processes into
+/// `s.q` on the spectral route).
+fn fill(plan: &Plan, s: &mut Scratch, rng: &mut rand::rngs::Xoshiro256PlusPlus, keep_raw: bool) -> Result<()> {
+    let n = plan.n;
+    let p = plan.outputs.len();
+    match &plan.engine {
         Engine::SpectralStream(_) => {
             return Err(Error::invalid(
                 "store raw",
@@ -313,47 +392,5 @@ pub(crate) fn realize(
             }
         }
     }
-    let stride = plan.stride;
-    let mut out = Realization {
-        m: Vec::with_capacity(p),
-        v: Vec::with_capacity(p),
-        welch: Vec::with_capacity(p),
-        raw: Vec::new(),
-        raw_inputs: Vec::new(),
-    };
-    if keep_raw {
-        match &plan.engine {
-            Engine::Exact(_) => {
-                for r in p..stride {
-                    out.raw_inputs.push((0..n).map(|k| s.buf[k * stride + r]).collect());
-                }
-            }
-            // the recorded period is aligned with the input processes' own samples
-            Engine::Spectral { .. } => out.raw_inputs = s.q.clone(),
-            Engine::SpectralStream(_) => {}
-        }
-    }
-    let mut sig = std::mem::take(&mut s.sig);
-    sig.resize(n, 0.0);
-    for r in 0..p {
-        // one pass: the copy and both running sums, each in time order from −0.0 as `Iterator::sum` of f64
-        // folds (bit-identical to two sums over the copy; the two chains of additions overlap)
-        let (mut sum, mut sq) = (-0.0f64, -0.0f64);
-        for (k, v) in sig.iter_mut().enumerate() {
-            let x = s.buf[k * stride + r];
-            *v = x;
-            sum += x;
-            sq += x * x;
-        }
-        out.m.push(sum / n as f64);
-        out.v.push(sq / n as f64);
-        let mut ws = plan.welch.sums();
-        plan.welch.accumulate(&sig, &mut ws, &mut s.welch)?;
-        out.welch.push(ws);
-        if keep_raw {
-            out.raw.push(sig.clone());
-        }
-    }
-    s.sig = sig;
-    Ok(out)
+    Ok(())
 }

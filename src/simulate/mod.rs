@@ -67,7 +67,7 @@ pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
 pub use summary::{coverage_cause, covers_word, RunSummary};
 pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};
 // the engine and plan of linear runs, for the input synthesis of nonlinear runs (crate::nonlinear)
-pub(crate) use engine::{realize, Scratch};
+pub(crate) use engine::{samples, Scratch};
 pub(crate) use finish::{
     density_estimate, interval as finish_interval, output_statistics, read_output as read_output_accumulators, Analytic,
 };

@@ -547,3 +547,36 @@ fn splitting_integrator_is_second_order_through_contact() {
     let (q, qd) = free_response(&model, &[0.0], &[0.4], 0.1, 50).unwrap();
     assert!((q[0] - 0.4 * 5.0f64.sin()).abs() < 1e-12 && (qd[0] - 0.4 * 5.0f64.cos()).abs() < 1e-12);
 }
+
+/// Every law's [`Kernel`](stochvib::nonlinear::Kernel) (route 2's closed forms with the constants of a step)
+/// gives the bits of the law's own trait methods, at and around the kinks and at ±0.
+#[test]
+fn kernels_give_the_bits_of_their_laws() {
+    let laws: Vec<Box<dyn ForceLaw>> = vec![
+        Box::new(BumpStop::new(Some((0.07, 3e5)), Some((0.05, 2e5))).unwrap()),
+        Box::new(BumpStop::new(None, Some((0.05, 2e5))).unwrap()),
+        Box::new(TyreContact::new(2e5, 3335.4).unwrap()),
+        Box::new(BilinearDamper::new(2200.0, 800.0).unwrap()),
+        Box::new(BilinearDamper::new(800.0, 2200.0).unwrap()),
+        Box::new(BilinearDamper::new(1.0, 1.0).unwrap()),
+    ];
+    let (kappa, tau) = (1.0 / 300.0 + 1.0 / 40.0, 0.5 * 0.0027);
+    let points = [
+        -0.2, -0.05, -0.049, -1e-9, -0.0, 0.0, 1e-9, 0.0166, 0.0167, 0.07, 0.0700001, 0.3,
+    ];
+    for law in &laws {
+        let k = law.kernel(kappa, tau).expect("a kernel");
+        for &x in &points {
+            for &v in &points {
+                assert_eq!(
+                    k.force(x, v).to_bits(),
+                    law.force(x, v).to_bits(),
+                    "{law:?} F({x}, {v})"
+                );
+                let (a, b) = (k.impulse(x, v), law.impulse(x, v, kappa, tau));
+                assert_eq!(a.to_bits(), b.to_bits(), "{law:?} J({x}, {v})");
+            }
+            assert_eq!(k.engaged(x), law.engaged(x), "{law:?} engaged({x})");
+        }
+    }
+}

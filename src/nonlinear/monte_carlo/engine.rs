@@ -7,6 +7,7 @@ use super::plan::{Flow, NlPlan};
 use super::record::{OutputRecord, RegimeRecord};
 use crate::error::Result;
 use crate::estimate::{WelchScratch, WelchSums};
+use crate::nonlinear::integrator::Prepared;
 use crate::simulate::{standard_normal, Scratch};
 use rand::rngs::Xoshiro256PlusPlus;
 
@@ -149,8 +150,9 @@ impl Path for HoldPath<'_> {
 
 /// Drives a path through `burn` + `rec` samples of step h; `sink(y, x)` gets every recorded sample's outputs
 /// and element deflections.
-fn drive(plan: &NlPlan, path: &mut dyn Path, h: f64, burn: usize, rec: usize, sink: &mut dyn FnMut(&[f64], &[f64])) {
+fn drive<P: Path>(plan: &NlPlan, path: &mut P, h: f64, burn: usize, rec: usize, mut sink: impl FnMut(&[f64], &[f64])) {
     let (n, nb, ne) = (plan.n_coords, plan.n_base, plan.kicks.len());
+    let half = plan.kicks.prepared(0.5 * h);
     let m = plan.u_mean.len();
     let mut ut = vec![0.0; m];
     let mut ud = vec![0.0; nb.max(1)];
@@ -161,36 +163,28 @@ fn drive(plan: &NlPlan, path: &mut dyn Path, h: f64, burn: usize, rec: usize, si
     let mut xe = vec![0.0; ne];
     let mut fe = vec![0.0; ne];
     let mech = path.mech();
-    let refresh = |path: &mut dyn Path,
-                   k: usize,
-                   ut: &mut [f64],
-                   ud: &mut [f64],
-                   ua: &mut [f64],
-                   q: &mut [f64],
-                   qdot: &mut [f64]| {
-        path.inputs(k, ut, ud);
-        for j in 0..nb {
-            ua[j] = plan.u_mean[j] + ut[j];
-        }
-        let st = path.state();
-        for i in 0..n {
-            q[i] = plan.q_eq[i] + st[mech + i];
-        }
-        plan.kicks.velocities(&st[mech + n..mech + 2 * n], ut, qdot);
-    };
+    let refresh =
+        |path: &mut P, k: usize, ut: &mut [f64], ud: &mut [f64], ua: &mut [f64], q: &mut [f64], qdot: &mut [f64]| {
+            path.inputs(k, ut, ud);
+            for j in 0..nb {
+                ua[j] = plan.u_mean[j] + ut[j];
+            }
+            let st = path.state();
+            for i in 0..n {
+                q[i] = plan.q_eq[i] + st[mech + i];
+            }
+            plan.kicks.velocities(&st[mech + n..mech + 2 * n], ut, qdot);
+        };
     refresh(path, 0, &mut ut, &mut ud, &mut ua, &mut q, &mut qdot);
     for k in 0..burn + rec {
         if k >= burn {
             path.outputs(k, &ut, &ud, &mut y);
-            plan.kicks.forces(&q, &qdot, &ua, &ud, &mut fe);
+            half.forces(&q, &qdot, &ua, &ud, &mut fe, &mut xe);
             for (o, po) in y.iter_mut().zip(&plan.outputs) {
                 *o += po.offset;
                 for (w, f) in po.acc.iter().zip(&fe) {
                     *o -= w * f;
                 }
-            }
-            for (e, x) in xe.iter_mut().enumerate() {
-                *x = plan.kicks.kinematics(e, &q, &qdot, &ua, &ud).0;
             }
             sink(&y, &xe);
         }
@@ -199,12 +193,12 @@ fn drive(plan: &NlPlan, path: &mut dyn Path, h: f64, burn: usize, rec: usize, si
         }
         let st = path.state();
         let (_, rest) = st.split_at_mut(mech + n);
-        plan.kicks.kick(&q, &mut rest[..n], &mut qdot, &ua, &ud, 0.5 * h, false);
+        half.kick(&q, &mut rest[..n], &mut qdot, &ua, &ud, false);
         path.step(k);
         refresh(path, k + 1, &mut ut, &mut ud, &mut ua, &mut q, &mut qdot);
         let st = path.state();
         let (_, rest) = st.split_at_mut(mech + n);
-        plan.kicks.kick(&q, &mut rest[..n], &mut qdot, &ua, &ud, 0.5 * h, true);
+        half.kick(&q, &mut rest[..n], &mut qdot, &ua, &ud, true);
     }
 }
 
@@ -229,6 +223,8 @@ impl NlScratch {
 /// The records of one realization.
 struct Sink<'a> {
     plan: &'a NlPlan,
+    /// The element laws (for their regimes).
+    regime: Prepared<'a>,
     records: Vec<OutputRecord>,
     regimes: Vec<RegimeRecord>,
     block: Vec<Vec<f64>>,
@@ -259,6 +255,7 @@ impl<'a> Sink<'a> {
         let p = plan.outputs.len();
         Sink {
             plan,
+            regime: plan.kicks.prepared(0.5 * plan.h),
             records: records(plan),
             regimes: vec![RegimeRecord::default(); plan.kicks.len()],
             block: vec![vec![0.0; BLOCK]; p],
@@ -278,7 +275,7 @@ impl<'a> Sink<'a> {
             }
         }
         for (e, rg) in self.regimes.iter_mut().enumerate() {
-            rg.push(self.plan.kicks.engaged(e, x[e]));
+            rg.push(self.regime.engaged(e, x[e]));
         }
         self.filled += 1;
         if self.filled == BLOCK {
@@ -321,18 +318,14 @@ pub(crate) fn realize(
         Flow::Exact(f) => {
             let mut path = exact_path(plan, f, &f.coarse, Noise::Stream(rng));
             let ws = &mut s.welch;
-            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, &mut |y, x| {
-                sink.push(y, x, ws)
-            });
+            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, |y, x| sink.push(y, x, ws));
         }
         Flow::Hold { flow, inputs, rates } => {
             let sc = s.inputs.as_mut().expect("a spectral plan has an input scratch");
-            let smp = inputs.draw(sc, rng)?;
+            let smp = inputs.draw(sc, rng, keep_raw)?;
             let mut path = hold_path(flow, &flow.coarse, &smp.u, &smp.rates, rates);
             let ws = &mut s.welch;
-            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, &mut |y, x| {
-                sink.push(y, x, ws)
-            });
+            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, |y, x| sink.push(y, x, ws));
             if keep_raw {
                 raw_inputs = smp.processes.iter().map(|p| p[plan.n_burn..].to_vec()).collect();
             }
@@ -409,24 +402,24 @@ fn halving_check(
             let w: Vec<f64> = (0..2 * total * f.nz).map(|_| standard_normal(rng)).collect();
             let mut pc = exact_path(plan, f, &f.coarse, Noise::Coarse(&w));
             pc.z.iter_mut().zip(&z0).for_each(|(a, b)| *a += b);
-            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, &mut |y, _| {
+            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, |y, _| {
                 push_all(&mut coarse, y)
             });
             let mut pf = exact_path(plan, f, &f.fine, Noise::Fine(&w));
             pf.z.iter_mut().zip(&z0).for_each(|(a, b)| *a += b);
-            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, &mut |y, _| {
+            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, |y, _| {
                 push_all(&mut fine, y)
             });
         }
         (Flow::Hold { flow, rates, .. }, Some(smp)) => {
             let mut pc = hold_path(flow, &flow.coarse, &smp.u, &smp.rates, rates);
-            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, &mut |y, _| {
+            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, |y, _| {
                 push_all(&mut coarse, y)
             });
             let u2 = smp.u.iter().map(|x| refine(x)).collect::<Result<Vec<_>>>()?;
             let r2 = smp.rates.iter().map(|x| refine(x)).collect::<Result<Vec<_>>>()?;
             let mut pf = hold_path(flow, &flow.fine, &u2, &r2, rates);
-            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, &mut |y, _| {
+            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, |y, _| {
                 push_all(&mut fine, y)
             });
         }

@@ -185,7 +185,7 @@ impl InputSynthesis {
         simulate::Scratch::new(&self.plan)
     }
 
-    /// Realization `rng`'s inputs.
+    /// Realization `rng`'s inputs, with the recorded input processes if `processes` (else none).
     ///
     /// # Errors
     /// An FFT failure.
@@ -193,15 +193,12 @@ impl InputSynthesis {
         &self,
         s: &mut simulate::Scratch,
         rng: &mut rand::rngs::Xoshiro256PlusPlus,
+        processes: bool,
     ) -> Result<InputSamples> {
-        let mut re = simulate::realize(&self.plan, s, rng, true, None)?;
-        let rates = re.raw.split_off(self.m);
+        let (mut u, processes) = simulate::samples(&self.plan, s, rng, processes)?;
+        let rates = u.split_off(self.m);
         debug_assert_eq!(rates.len(), self.n_rates);
-        Ok(InputSamples {
-            u: re.raw,
-            rates,
-            processes: re.raw_inputs,
-        })
+        Ok(InputSamples { u, rates, processes })
     }
 }
 

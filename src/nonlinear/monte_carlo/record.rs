@@ -44,7 +44,7 @@ impl OutputRecord {
     }
 
     /// Adds sample y; returns y − c (the value for the Welch estimate and the standard moments).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn push(&mut self, y: f64) -> f64 {
         let d = y - self.centre;
         let d2 = d * d;

@@ -1,0 +1,118 @@
+//! An element's force law as a closed form for route 2's inner loop: the force, the impulse of its exact
+//! flow over a fixed τ and its regime, with every constant of the step computed once.
+//!
+//! # Formula
+//! The same expressions, evaluated in the same order, as the law's own [`ForceLaw`](super::ForceLaw)
+//! methods (so a run gives the same bits through either):
+//! * a bump stop, F(x) = k_u (x − d_u)₊ − k_l (−d_l − x)₊, impulse τF(x), engaged beyond either clearance;
+//! * a tyre contact, F(x) = −k_t (x − s₀)₊, impulse τF(x), engaged (off the road) for x > s₀;
+//! * a bilinear damper's remainder F(v) = Δ|v|, whose flow v(τ) = v e^{−κΔτ sgn v} gives the impulse
+//!   J = −v (e^{∓κΔτ} − 1)/κ: the two factors e^{−κΔτ} − 1 (v > 0) and e^{κΔτ} − 1 (v < 0) are the
+//!   kernel's constants instead of an `expm1` at every kick.
+//!
+//! Laws without a kernel are evaluated through their trait methods.
+
+/// A force law in closed form with the constants of one kick duration τ (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Kernel {
+    /// A bump stop.
+    Stop {
+        /// (clearance d_u, m; stiffness k_u, N/m) of the upper side.
+        upper: Option<(f64, f64)>,
+        /// (clearance d_l, m; stiffness k_l, N/m) of the lower side.
+        lower: Option<(f64, f64)>,
+        /// τ, s.
+        tau: f64,
+    },
+    /// A tyre contact.
+    Lift {
+        /// k_t, N/m.
+        stiffness: f64,
+        /// s₀, m.
+        deflection: f64,
+        /// τ, s.
+        tau: f64,
+    },
+    /// A bilinear damper's remainder.
+    Bilinear {
+        /// Δ = (c_r − c_c)/2, N s/m.
+        half_difference: f64,
+        /// κ, 1/kg.
+        kappa: f64,
+        /// κΔτ.
+        rate: f64,
+        /// e^{−κΔτ} − 1 (the flow factor for v > 0).
+        rebound: f64,
+        /// e^{κΔτ} − 1 (for v < 0).
+        compression: f64,
+    },
+}
+
+impl Kernel {
+    /// The kernel of a bilinear damper with Δ = `half_difference` at κ and τ.
+    pub fn bilinear(half_difference: f64, kappa: f64, tau: f64) -> Kernel {
+        let rate = kappa * half_difference * tau;
+        Kernel::Bilinear {
+            half_difference,
+            kappa,
+            rate,
+            rebound: (-rate).exp_m1(),
+            compression: rate.exp_m1(),
+        }
+    }
+
+    /// The remainder F(x, v), N.
+    #[inline]
+    pub fn force(&self, x: f64, v: f64) -> f64 {
+        match *self {
+            Kernel::Stop { upper, lower, .. } => {
+                let up = upper.map_or(0.0, |(d, k)| k * (x - d).max(0.0));
+                let lo = lower.map_or(0.0, |(d, k)| k * (-d - x).max(0.0));
+                up - lo
+            }
+            Kernel::Lift {
+                stiffness, deflection, ..
+            } => -stiffness * (x - deflection).max(0.0),
+            Kernel::Bilinear { half_difference, .. } => half_difference * v.abs(),
+        }
+    }
+
+    /// The impulse of the exact flow over τ, N s.
+    #[inline]
+    pub fn impulse(&self, x: f64, v: f64) -> f64 {
+        match *self {
+            Kernel::Stop { tau, .. } | Kernel::Lift { tau, .. } => tau * self.force(x, v),
+            Kernel::Bilinear {
+                kappa,
+                rate,
+                rebound,
+                compression,
+                ..
+            } => {
+                if rate == 0.0 || v == 0.0 {
+                    return 0.0;
+                }
+                let f = if v > 0.0 {
+                    rebound
+                } else if v < 0.0 {
+                    compression
+                } else {
+                    (-rate * v.signum()).exp_m1()
+                };
+                -v * f / kappa
+            }
+        }
+    }
+
+    /// Whether the element is in its regime at deflection x.
+    #[inline]
+    pub fn engaged(&self, x: f64) -> bool {
+        match *self {
+            Kernel::Stop { upper, lower, .. } => {
+                upper.is_some_and(|(d, _)| x > d) || lower.is_some_and(|(d, _)| x < -d)
+            }
+            Kernel::Lift { deflection, .. } => x > deflection,
+            Kernel::Bilinear { .. } => false,
+        }
+    }
+}
