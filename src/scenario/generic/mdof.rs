@@ -115,8 +115,11 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
     })
 }
 
+/// The (name, unit) of each coordinate, and the masses of the element form (kg or kg m²; none with matrices).
+type Coordinates = (Vec<(String, String)>, Vec<f64>);
+
 /// `coordinates`: the (name, unit) of each coordinate and, in the element form, its mass (kg or kg m²).
-fn coordinates(f: &Fields, matrix_form: bool) -> Result<(Vec<(String, String)>, Vec<f64>)> {
+fn coordinates(f: &Fields, matrix_form: bool) -> Result<Coordinates> {
     let cv = f.require("coordinates")?;
     let carr = cv
         .as_array()
