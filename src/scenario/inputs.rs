@@ -44,8 +44,12 @@
 //!   Monte Carlo runs then draw every source the Laplace way (the others with κ = 3, Gaussian). A road of
 //!   two tracks refuses it: mixing two Laplace moving averages to the prescribed coherence would not keep
 //!   the prescribed kurtosis of each track.
+//! * The keys of each table are declared in the key tables of [`super::input_keys`], which the scenario
+//!   file reference shows: an `[[input]]` table's unknown-key check and its "known keys" list come from
+//!   [`input_keys::INPUT`], and the key reference test checks every table against the keys read here.
 
 use super::catalogue::{Catalogue, SpectrumOrigin};
+use super::input_keys;
 use super::scenario_file::{quantity_in_unit, resolution_reason, ScenarioInput};
 use super::spectrum_file::spectrum_from_fields;
 use super::SpectrumFile;
@@ -145,22 +149,6 @@ pub(crate) fn road_section_keys(e: crate::Error) -> crate::Error {
         e => e,
     }
 }
-
-/// The keys of an `[[input]]` table.
-const INPUT_KEYS: [&str; 12] = [
-    "name",
-    "spectrum",
-    "road",
-    "band",
-    "enveloping",
-    "speed",
-    "mean",
-    "drives",
-    "tracks",
-    "positions",
-    "gains",
-    "kurtosis",
-];
 
 /// The common `speed` of the `[[input]]` tables (m/s), if any gives one.
 ///
@@ -299,7 +287,8 @@ pub fn coherence_from_toml(text: &str, width_m: f64) -> Result<Arc<dyn Coherence
     Ok(c)
 }
 
-/// The coherence of a `road.coherence` table for tracks `width_m` apart.
+/// The coherence of a `road.coherence` table for tracks `width_m` apart (the keys of the tables
+/// [`input_keys::COHERENCE`] and of each kind).
 fn coherence_from_fields(cf: &Fields, width_m: f64) -> Result<Arc<dyn Coherence>> {
     let kind = cf.string("kind")?;
     let w = |key: &str, e| cf.wrap(key, e);
@@ -311,50 +300,7 @@ fn coherence_from_fields(cf: &Fields, width_m: f64) -> Result<Arc<dyn Coherence>
             };
             Arc::new(IsotropicCoherence::new(width_m, waviness).map_err(|e| w("waviness", e))?)
         }
-        "ammon-bormann" => match cf.get("preset") {
-            Some(v) => {
-                let preset = match v.as_str() {
-                    Some("iso-a") => AmmonBormannRoad::IsoA,
-                    Some("iso-b") => AmmonBormannRoad::IsoB,
-                    Some("iso-c") => AmmonBormannRoad::IsoC,
-                    Some("iso-d") => AmmonBormannRoad::IsoD,
-                    Some("iso-e") => AmmonBormannRoad::IsoE,
-                    Some("major-road-concrete") => AmmonBormannRoad::MajorRoadConcrete,
-                    Some("major-road-asphaltic-concrete") => AmmonBormannRoad::MajorRoadAsphalticConcrete,
-                    Some("main-road-asphaltic-concrete-on-pavement") => {
-                        AmmonBormannRoad::MainRoadAsphalticConcreteOnPavement
-                    }
-                    Some("main-road-asphaltic-concrete") => AmmonBormannRoad::MainRoadAsphalticConcrete,
-                    Some("track-tiled-concrete-pavement") => AmmonBormannRoad::TrackTiledConcretePavement,
-                    _ => {
-                        return Err(cf.error(
-                            "preset",
-                            v,
-                            "expected iso-a … iso-e, major-road-concrete, major-road-asphaltic-concrete, \
-                             main-road-asphaltic-concrete-on-pavement, main-road-asphaltic-concrete or \
-                             track-tiled-concrete-pavement",
-                        ))
-                    }
-                };
-                Arc::new(AmmonBormann::preset(preset, width_m).map_err(|e| w("preset", e))?)
-            }
-            None => {
-                let values = match cf.opt_string("values")? {
-                    None => CoherenceKind::SquaredCoherence,
-                    Some(s) => s.parse().map_err(|e| w("values", e))?,
-                };
-                let a = match cf.get("a") {
-                    None => 1.0,
-                    Some(_) => cf.number("a")?,
-                };
-                // Ω_p's unit (rad/m)·m^a depends on the exponent a: a plain number in SI
-                let omega_p = cf.number_in("omega_p", "(rad/m)·m^a (SI, with a the exponent `a`)")?;
-                let (wv, p) = (cf.number("w")?, cf.number("p")?);
-                Arc::new(
-                    AmmonBormann::new(width_m, omega_p, wv, p, a, values).map_err(|e| cf.wrap_param(e, "omega_p"))?,
-                )
-            }
-        },
+        "ammon-bormann" => ammon_bormann(cf, width_m)?,
         "tabulated" => {
             let n = cf.numbers("n")?;
             let (key, values) = match (cf.get("squared_coherence"), cf.get("coherence_amplitude")) {
@@ -384,6 +330,64 @@ fn coherence_from_fields(cf: &Fields, width_m: f64) -> Result<Arc<dyn Coherence>
         }
     };
     Ok(c)
+}
+
+/// The Ammon–Bormann presets by their `preset` names.
+const AMMON_BORMANN_PRESETS: [(&str, AmmonBormannRoad); 10] = [
+    ("iso-a", AmmonBormannRoad::IsoA),
+    ("iso-b", AmmonBormannRoad::IsoB),
+    ("iso-c", AmmonBormannRoad::IsoC),
+    ("iso-d", AmmonBormannRoad::IsoD),
+    ("iso-e", AmmonBormannRoad::IsoE),
+    ("major-road-concrete", AmmonBormannRoad::MajorRoadConcrete),
+    (
+        "major-road-asphaltic-concrete",
+        AmmonBormannRoad::MajorRoadAsphalticConcrete,
+    ),
+    (
+        "main-road-asphaltic-concrete-on-pavement",
+        AmmonBormannRoad::MainRoadAsphalticConcreteOnPavement,
+    ),
+    (
+        "main-road-asphaltic-concrete",
+        AmmonBormannRoad::MainRoadAsphalticConcrete,
+    ),
+    (
+        "track-tiled-concrete-pavement",
+        AmmonBormannRoad::TrackTiledConcretePavement,
+    ),
+];
+
+/// `kind = "ammon-bormann"`: a `preset`, or `omega_p`, `w`, `p`, `a` and `values`.
+fn ammon_bormann(cf: &Fields, width_m: f64) -> Result<Arc<dyn Coherence>> {
+    if let Some(v) = cf.get("preset") {
+        let Some((_, preset)) = AMMON_BORMANN_PRESETS.iter().find(|(name, _)| v.as_str() == Some(*name)) else {
+            return Err(cf.error(
+                "preset",
+                v,
+                "expected iso-a … iso-e, major-road-concrete, major-road-asphaltic-concrete, \
+                 main-road-asphaltic-concrete-on-pavement, main-road-asphaltic-concrete or \
+                 track-tiled-concrete-pavement",
+            ));
+        };
+        return Ok(Arc::new(
+            AmmonBormann::preset(*preset, width_m).map_err(|e| cf.wrap("preset", e))?,
+        ));
+    }
+    let values = match cf.opt_string("values")? {
+        None => CoherenceKind::SquaredCoherence,
+        Some(s) => s.parse().map_err(|e| cf.wrap("values", e))?,
+    };
+    let a = match cf.get("a") {
+        None => 1.0,
+        Some(_) => cf.number("a")?,
+    };
+    // Ω_p's unit (rad/m)·m^a depends on the exponent a: a plain number in SI
+    let omega_p = cf.number_in("omega_p", "(rad/m)·m^a (SI, with a the exponent `a`)")?;
+    let (wv, p) = (cf.number("w")?, cf.number("p")?);
+    Ok(Arc::new(
+        AmmonBormann::new(width_m, omega_p, wv, p, a, values).map_err(|e| cf.wrap_param(e, "omega_p"))?,
+    ))
 }
 
 /// An optional array `key` of `len` values read by `item`.
@@ -433,254 +437,24 @@ pub(crate) fn parse_inputs(
     speed: Option<f64>,
     catalogue: &Catalogue,
 ) -> Result<(Vec<ScenarioInput>, Excitation)> {
-    let path = f.file();
-    let base = path.parent();
     if tables.is_empty() {
         return Err(f.error("input", "[]", "no [[input]] table: give at least one"));
     }
+    let reader = InputReader {
+        f,
+        n_tables: tables.len(),
+        n_inputs,
+        layout,
+        speed,
+        catalogue,
+    };
     let mut inputs = Vec::new();
     let mut sources = Vec::new();
     let mut maps: Vec<Option<(usize, InputMap)>> = vec![None; n_inputs];
     for (i, v) in tables.iter().enumerate() {
-        let key = format!("input[{i}]");
-        let t = v
-            .as_table()
-            .ok_or_else(|| f.error(&key, v, "expected an [[input]] table"))?;
-        let inf = Fields::new(path, &key, t);
-        // a misspelt key is named before a key it may have meant is reported missing
-        if let Some((k, v)) = t.iter().find(|(k, _)| !INPUT_KEYS.contains(&k.as_str())) {
-            return Err(inf.error(
-                k,
-                v,
-                format!("unknown key (known keys here: {})", INPUT_KEYS.join(", ")),
-            ));
-        }
-        let _ = inf.get("speed"); // read by common_speed
-        let need_speed = |what: &str| {
-            speed.ok_or_else(|| {
-                inf.error(
-                    "speed",
-                    "<missing>",
-                    format!("{what}: give the speed (e.g. speed = \"20 m/s\")"),
-                )
-            })
-        };
-        let (reference, sf, source, coherence) = match (inf.get("spectrum"), inf.get("road")) {
-            (Some(_), None) => {
-                let (reference, mut sf) = resolve_spectrum(&inf, "spectrum", catalogue, base)?;
-                sf.spectrum = super::input_filters::apply_input_keys(&inf, &sf, &reference)?;
-                let temporal: Arc<dyn Spectrum> = match sf.spectrum.domain() {
-                    Domain::Temporal => sf.spectrum.clone(),
-                    Domain::Spatial => {
-                        let v = need_speed("the spectrum is spatial (a road)")?;
-                        Arc::new(AtSpeed::new(sf.spectrum.clone(), v).map_err(|e| inf.wrap("speed", e))?)
-                    }
-                };
-                (reference, sf, Source::Process(temporal), None)
-            }
-            (None, Some(_)) => {
-                let rf = inf.sub("road")?;
-                let (reference, mut sf) = resolve_spectrum(&rf, "spectrum", catalogue, base)?;
-                if sf.spectrum.domain() != Domain::Spatial {
-                    return Err(rf.error(
-                        "spectrum",
-                        &reference,
-                        "a road of two tracks needs a spatial spectrum (a profile in cycles/m or rad/m)",
-                    ));
-                }
-                let model_width = match layout {
-                    InputLayout::TwoTracks { track_width, .. } => *track_width,
-                    _ => None,
-                };
-                let width = match (rf.opt_quantity("track_width", Dim::LENGTH)?, model_width) {
-                    (Some(w), _) => w,
-                    (None, Some(b)) => b,
-                    (None, None) => {
-                        return Err(rf.error("track_width", "<missing>", "required (a length, e.g. \"1.5 m\")"))
-                    }
-                };
-                if !(width.is_finite() && width > 0.0) {
-                    return Err(rf.error("track_width", width, "must be a finite length > 0"));
-                }
-                if let Some(b) = model_width
-                    && (width - b).abs() > 1e-9 * b
-                {
-                    return Err(rf.error(
-                        "track_width",
-                        rf.get("track_width").map_or(width.to_string(), |v| v.to_string()),
-                        format!(
-                            "the model's track width is {b} m (model.track_width): the coherence between the \
-                                 tracks is that of tracks {width} m apart, but the wheels run {b} m apart; give \
-                                 the model's width (or leave track_width out to use it)"
-                        ),
-                    ));
-                }
-                sf.spectrum = super::input_filters::apply_input_keys(&inf, &sf, &reference)?;
-                let cf = rf.sub("coherence")?;
-                let coh = coherence_from_fields(&cf, width)?;
-                cf.finish()?;
-                rf.finish()?;
-                let v = need_speed("a road is a spatial process")?;
-                let desc = coh.describe();
-                let tracks = TwoTracks::new(sf.spectrum.clone(), coh, v).map_err(|e| rf.wrap("spectrum", e))?;
-                (reference, sf, Source::Matrix(Arc::new(tracks)), Some(desc))
-            }
-            (Some(_), Some(_)) => {
-                return Err(inf.error(
-                    "road",
-                    "{ … }",
-                    "give either spectrum (one process) or road (two tracks), not both",
-                ))
-            }
-            (None, None) => {
-                return Err(inf.error(
-                    "spectrum",
-                    "<missing>",
-                    "give spectrum = … (one process) or road = { spectrum, coherence, track_width } (two tracks)",
-                ))
-            }
-        };
-        let mean = match inf.get("mean") {
-            None => 0.0,
-            Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
-        };
-        let name = inf
-            .opt_string("name")?
-            .map(str::to_string)
-            .unwrap_or_else(|| format!("input_{i}"));
-        if name.is_empty() || name.contains(['/', ' ']) {
-            return Err(inf.error("name", &name, "a signal name: not empty, without spaces or '/'"));
-        }
-        if let Some(k) = inputs.iter().position(|x: &ScenarioInput| x.name == name) {
-            return Err(inf.error("name", &name, format!("input[{k}] has this name already")));
-        }
-        let drives: Vec<usize> = match inf.get("drives") {
-            None if tables.len() == 1 => (0..n_inputs).collect(),
-            None => {
-                return Err(inf.error(
-                    "drives",
-                    "<missing>",
-                    format!(
-                        "with several [[input]] tables each names the model inputs it drives (0 to {})",
-                        n_inputs as i64 - 1
-                    ),
-                ))
-            }
-            Some(v) => {
-                let arr = v
-                    .as_array()
-                    .filter(|a| !a.is_empty())
-                    .ok_or_else(|| inf.error("drives", v, "expected a non-empty array of model input indices"))?;
-                arr.iter()
-                    .enumerate()
-                    .map(|(k, x)| {
-                        x.as_integer()
-                            .filter(|j| (0..n_inputs as i64).contains(j))
-                            .map(|j| j as usize)
-                            .ok_or_else(|| {
-                                inf.error(
-                                    &format!("drives[{k}]"),
-                                    x,
-                                    format!("expected a model input index from 0 to {}", n_inputs as i64 - 1),
-                                )
-                            })
-                    })
-                    .collect::<Result<_>>()?
-            }
-        };
-        let m = drives.len();
-        let positions = opt_array(&inf, "positions", m, |k, x| {
-            let p = crate::units::parse_value(x, Dim::LENGTH).map_err(|r| inf.error(k, x, r))?;
-            if !(p.is_finite() && p >= 0.0) {
-                return Err(inf.error(k, x, "must be a finite distance >= 0 behind the first contact"));
-            }
-            Ok(p)
-        })?;
-        let gains = opt_array(&inf, "gains", m, |k, x| {
-            x.as_float()
-                .or_else(|| x.as_integer().map(|g| g as f64))
-                .filter(|g| g.is_finite())
-                .ok_or_else(|| inf.error(k, x, "expected a finite number"))
-        })?;
-        let tracks = opt_array(&inf, "tracks", m, |k, x| track_index(&inf, k, x))?;
-        let is_road = matches!(source, Source::Matrix(_));
-        if tracks.is_some() && !is_road {
-            return Err(inf.error(
-                "tracks",
-                inf.get("tracks").map_or(String::new(), |v| v.to_string()),
-                "only a road of two tracks (road = { … }) has tracks; this input is one process",
-            ));
-        }
-        let s = sources.len();
-        for (k, &j) in drives.iter().enumerate() {
-            let (own_track, own_pos, own_gain) = layout_of(layout, j);
-            let position = positions.as_ref().map_or(own_pos, |p| p[k]);
-            let gain = gains.as_ref().map_or(own_gain, |g| g[k]);
-            let component = if is_road {
-                match tracks.as_ref().map(|t| t[k]).or(own_track) {
-                    Some(c) => c,
-                    None => {
-                        return Err(inf.error(
-                            "tracks",
-                            "<missing>",
-                            format!(
-                                "model input {j} has no track: name the track of each driven input, \
-                                 tracks = [\"left\", \"right\", …]"
-                            ),
-                        ))
-                    }
-                }
-            } else {
-                0
-            };
-            let delay = if position == 0.0 {
-                0.0
-            } else {
-                position / need_speed(&format!("model input {j} is {position} m behind the first contact"))?
-            };
-            if let Some((other, _)) = maps[j] {
-                return Err(inf.error(
-                    &format!("drives[{k}]"),
-                    j,
-                    format!("model input {j} is driven by input[{other}] already: each model input by one table"),
-                ));
-            }
-            maps[j] = Some((
-                i,
-                InputMap {
-                    source: s,
-                    component,
-                    delay,
-                    gain,
-                    mean: gain * mean,
-                },
-            ));
-        }
-        let kurtosis = super::scenario_file::input_kurtosis(&inf)?;
-        if let (Some(_), Source::Matrix(_)) = (kurtosis, &source) {
-            return Err(inf.error(
-                "kurtosis",
-                inf.get("kurtosis").map_or(String::new(), |v| v.to_string()),
-                "a non-Gaussian road of two tracks with a coherence is not available: a Laplace moving average per \
-                 track mixed to the prescribed cross-spectrum would not keep the prescribed kurtosis, and no sound \
-                 construction of a non-Gaussian pair with a given coherence is implemented; give `kurtosis` to an \
-                 [[input]] of one process (spectrum = …), or use a Gaussian road",
-            ));
-        }
-        inf.finish()?;
+        let (input, source) = reader.table(i, v, &inputs, sources.len(), &mut maps)?;
         sources.push(source);
-        inputs.push(ScenarioInput {
-            reference,
-            spectrum: sf.spectrum,
-            unit: sf.unit,
-            origin: sf.origin,
-            spectrum_text: sf.text,
-            speed,
-            mean,
-            name,
-            coherence,
-            kurtosis,
-        });
+        inputs.push(input);
     }
     let maps = maps
         .into_iter()
@@ -697,4 +471,326 @@ pub(crate) fn parse_inputs(
         .collect::<Result<Vec<_>>>()?;
     let excitation = Excitation::sources(sources, maps).map_err(|e| f.wrap("input", e))?;
     Ok((inputs, excitation))
+}
+
+/// What every `[[input]]` table is read against: the scenario, the model's inputs and layout, the common speed.
+struct InputReader<'a> {
+    f: &'a Fields<'a>,
+    n_tables: usize,
+    n_inputs: usize,
+    layout: &'a InputLayout,
+    speed: Option<f64>,
+    catalogue: &'a Catalogue,
+}
+
+/// The source of one `[[input]]` table: the reference as written, the spectrum file, the source, and the
+/// coherence described (a road of two tracks).
+type TableSource = (String, SpectrumFile, Source, Option<String>);
+
+/// Where the driven inputs of one table sit: `positions`, `gains` and `tracks` as written (one per driven
+/// input), and whether the table is a road of two tracks.
+struct Wiring {
+    positions: Option<Vec<f64>>,
+    gains: Option<Vec<f64>>,
+    tracks: Option<Vec<usize>>,
+    is_road: bool,
+}
+
+impl InputReader<'_> {
+    /// Reads table `i` (`v`), after the tables `earlier`, as source number `s`; records the model inputs it
+    /// drives in `maps`.
+    fn table(
+        &self,
+        i: usize,
+        v: &toml::Value,
+        earlier: &[ScenarioInput],
+        s: usize,
+        maps: &mut [Option<(usize, InputMap)>],
+    ) -> Result<(ScenarioInput, Source)> {
+        let key = format!("input[{i}]");
+        let t = v
+            .as_table()
+            .ok_or_else(|| self.f.error(&key, v, "expected an [[input]] table"))?;
+        let inf = Fields::new(self.f.file(), &key, t);
+        // a misspelt key is named before a key it may have meant is reported missing
+        if let Some((k, v)) = t.iter().find(|(k, _)| !input_keys::INPUT.contains(k)) {
+            let known = input_keys::INPUT.names().join(", ");
+            return Err(inf.error(k, v, format!("unknown key (known keys here: {known})")));
+        }
+        let _ = inf.get("speed"); // read by common_speed
+        let (reference, sf, source, coherence) = self.source(&inf)?;
+        let mean = match inf.get("mean") {
+            None => 0.0,
+            Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
+        };
+        let name = input_name(&inf, i, earlier)?;
+        let drives = self.drives(&inf)?;
+        let wiring = wiring(&inf, drives.len(), matches!(source, Source::Matrix(_)))?;
+        self.map_drives(&inf, i, s, &drives, &wiring, mean, maps)?;
+        let kurtosis = super::scenario_file::input_kurtosis(&inf)?;
+        if let (Some(_), Source::Matrix(_)) = (kurtosis, &source) {
+            return Err(road_kurtosis(&inf));
+        }
+        inf.finish()?;
+        let input = ScenarioInput {
+            reference,
+            spectrum: sf.spectrum,
+            unit: sf.unit,
+            origin: sf.origin,
+            spectrum_text: sf.text,
+            speed: self.speed,
+            mean,
+            name,
+            coherence,
+            kurtosis,
+        };
+        Ok((input, source))
+    }
+
+    /// The common speed, or an error at `speed` saying `what` needs it.
+    fn need_speed(&self, inf: &Fields, what: &str) -> Result<f64> {
+        self.speed.ok_or_else(|| {
+            inf.error(
+                "speed",
+                "<missing>",
+                format!("{what}: give the speed (e.g. speed = \"20 m/s\")"),
+            )
+        })
+    }
+
+    /// The source of a table: `spectrum` (one process) or `road` (two tracks).
+    fn source(&self, inf: &Fields) -> Result<TableSource> {
+        match (inf.get("spectrum"), inf.get("road")) {
+            (Some(_), None) => self.process(inf),
+            (None, Some(_)) => self.road(inf),
+            (Some(_), Some(_)) => Err(inf.error(
+                "road",
+                "{ … }",
+                "give either spectrum (one process) or road (two tracks), not both",
+            )),
+            (None, None) => Err(inf.error(
+                "spectrum",
+                "<missing>",
+                "give spectrum = … (one process) or road = { spectrum, coherence, track_width } (two tracks)",
+            )),
+        }
+    }
+
+    /// `spectrum = …`: one process (a spatial one at the common speed).
+    fn process(&self, inf: &Fields) -> Result<TableSource> {
+        let (reference, mut sf) = resolve_spectrum(inf, "spectrum", self.catalogue, self.f.file().parent())?;
+        sf.spectrum = super::input_filters::apply_input_keys(inf, &sf, &reference)?;
+        let temporal: Arc<dyn Spectrum> = match sf.spectrum.domain() {
+            Domain::Temporal => sf.spectrum.clone(),
+            Domain::Spatial => {
+                let v = self.need_speed(inf, "the spectrum is spatial (a road)")?;
+                Arc::new(AtSpeed::new(sf.spectrum.clone(), v).map_err(|e| inf.wrap("speed", e))?)
+            }
+        };
+        Ok((reference, sf, Source::Process(temporal), None))
+    }
+
+    /// `road = { spectrum, track_width, coherence }`: a road of two tracks.
+    fn road(&self, inf: &Fields) -> Result<TableSource> {
+        let rf = inf.sub("road")?;
+        let (reference, mut sf) = resolve_spectrum(&rf, "spectrum", self.catalogue, self.f.file().parent())?;
+        if sf.spectrum.domain() != Domain::Spatial {
+            return Err(rf.error(
+                "spectrum",
+                &reference,
+                "a road of two tracks needs a spatial spectrum (a profile in cycles/m or rad/m)",
+            ));
+        }
+        let width = track_width(&rf, self.layout)?;
+        sf.spectrum = super::input_filters::apply_input_keys(inf, &sf, &reference)?;
+        let cf = rf.sub("coherence")?;
+        let coh = coherence_from_fields(&cf, width)?;
+        cf.finish()?;
+        rf.finish()?;
+        let v = self.need_speed(inf, "a road is a spatial process")?;
+        let desc = coh.describe();
+        let tracks = TwoTracks::new(sf.spectrum.clone(), coh, v).map_err(|e| rf.wrap("spectrum", e))?;
+        Ok((reference, sf, Source::Matrix(Arc::new(tracks)), Some(desc)))
+    }
+
+    /// `drives`: the model inputs the table drives (every one when there is one table and no `drives`).
+    fn drives(&self, inf: &Fields) -> Result<Vec<usize>> {
+        let last = self.n_inputs as i64 - 1;
+        let Some(v) = inf.get("drives") else {
+            if self.n_tables == 1 {
+                return Ok((0..self.n_inputs).collect());
+            }
+            return Err(inf.error(
+                "drives",
+                "<missing>",
+                format!("with several [[input]] tables each names the model inputs it drives (0 to {last})"),
+            ));
+        };
+        let arr = v
+            .as_array()
+            .filter(|a| !a.is_empty())
+            .ok_or_else(|| inf.error("drives", v, "expected a non-empty array of model input indices"))?;
+        arr.iter()
+            .enumerate()
+            .map(|(k, x)| {
+                x.as_integer()
+                    .filter(|j| (0..self.n_inputs as i64).contains(j))
+                    .map(|j| j as usize)
+                    .ok_or_else(|| {
+                        let reason = format!("expected a model input index from 0 to {last}");
+                        inf.error(&format!("drives[{k}]"), x, reason)
+                    })
+            })
+            .collect()
+    }
+
+    /// Records in `maps` how table `i` (source `s`, of mean `mean`) drives each of `drives`: its track,
+    /// delay and gain, as written in `wiring` or else the model's own layout.
+    #[allow(clippy::too_many_arguments)]
+    fn map_drives(
+        &self,
+        inf: &Fields,
+        i: usize,
+        s: usize,
+        drives: &[usize],
+        wiring: &Wiring,
+        mean: f64,
+        maps: &mut [Option<(usize, InputMap)>],
+    ) -> Result<()> {
+        for (k, &j) in drives.iter().enumerate() {
+            let (own_track, own_pos, own_gain) = layout_of(self.layout, j);
+            let position = wiring.positions.as_ref().map_or(own_pos, |p| p[k]);
+            let gain = wiring.gains.as_ref().map_or(own_gain, |g| g[k]);
+            let component = match (wiring.is_road, wiring.tracks.as_ref().map(|t| t[k]).or(own_track)) {
+                (false, _) => 0,
+                (true, Some(c)) => c,
+                (true, None) => return Err(no_track(inf, j)),
+            };
+            let delay = if position == 0.0 {
+                0.0
+            } else {
+                position
+                    / self.need_speed(
+                        inf,
+                        &format!("model input {j} is {position} m behind the first contact"),
+                    )?
+            };
+            if let Some((other, _)) = maps[j] {
+                return Err(inf.error(
+                    &format!("drives[{k}]"),
+                    j,
+                    format!("model input {j} is driven by input[{other}] already: each model input by one table"),
+                ));
+            }
+            let map = InputMap {
+                source: s,
+                component,
+                delay,
+                gain,
+                mean: gain * mean,
+            };
+            maps[j] = Some((i, map));
+        }
+        Ok(())
+    }
+}
+
+/// `road.track_width`, or the model's own; it must be a finite length > 0 equal to the model's.
+fn track_width(rf: &Fields, layout: &InputLayout) -> Result<f64> {
+    let model_width = match layout {
+        InputLayout::TwoTracks { track_width, .. } => *track_width,
+        _ => None,
+    };
+    let width = match (rf.opt_quantity("track_width", Dim::LENGTH)?, model_width) {
+        (Some(w), _) => w,
+        (None, Some(b)) => b,
+        (None, None) => return Err(rf.error("track_width", "<missing>", "required (a length, e.g. \"1.5 m\")")),
+    };
+    if !(width.is_finite() && width > 0.0) {
+        return Err(rf.error("track_width", width, "must be a finite length > 0"));
+    }
+    if let Some(b) = model_width
+        && (width - b).abs() > 1e-9 * b
+    {
+        return Err(rf.error(
+            "track_width",
+            rf.get("track_width").map_or(width.to_string(), |v| v.to_string()),
+            format!(
+                "the model's track width is {b} m (model.track_width): the coherence between the \
+                                 tracks is that of tracks {width} m apart, but the wheels run {b} m apart; give \
+                                 the model's width (or leave track_width out to use it)"
+            ),
+        ));
+    }
+    Ok(width)
+}
+
+/// `name` of table `i` (default `input_<i>`): a signal name no earlier table has.
+fn input_name(inf: &Fields, i: usize, earlier: &[ScenarioInput]) -> Result<String> {
+    let name = inf
+        .opt_string("name")?
+        .map(str::to_string)
+        .unwrap_or_else(|| format!("input_{i}"));
+    if name.is_empty() || name.contains(['/', ' ']) {
+        return Err(inf.error("name", &name, "a signal name: not empty, without spaces or '/'"));
+    }
+    if let Some(k) = earlier.iter().position(|x| x.name == name) {
+        return Err(inf.error("name", &name, format!("input[{k}] has this name already")));
+    }
+    Ok(name)
+}
+
+/// `positions`, `gains` and `tracks` of a table driving `m` inputs (`is_road`: a road of two tracks).
+fn wiring(inf: &Fields, m: usize, is_road: bool) -> Result<Wiring> {
+    let positions = opt_array(inf, "positions", m, |k, x| {
+        let p = crate::units::parse_value(x, Dim::LENGTH).map_err(|r| inf.error(k, x, r))?;
+        if !(p.is_finite() && p >= 0.0) {
+            return Err(inf.error(k, x, "must be a finite distance >= 0 behind the first contact"));
+        }
+        Ok(p)
+    })?;
+    let gains = opt_array(inf, "gains", m, |k, x| {
+        x.as_float()
+            .or_else(|| x.as_integer().map(|g| g as f64))
+            .filter(|g| g.is_finite())
+            .ok_or_else(|| inf.error(k, x, "expected a finite number"))
+    })?;
+    let tracks = opt_array(inf, "tracks", m, |k, x| track_index(inf, k, x))?;
+    if tracks.is_some() && !is_road {
+        return Err(inf.error(
+            "tracks",
+            inf.get("tracks").map_or(String::new(), |v| v.to_string()),
+            "only a road of two tracks (road = { … }) has tracks; this input is one process",
+        ));
+    }
+    Ok(Wiring {
+        positions,
+        gains,
+        tracks,
+        is_road,
+    })
+}
+
+/// The error of a road's model input `j` that no track is given for.
+fn no_track(inf: &Fields, j: usize) -> crate::Error {
+    inf.error(
+        "tracks",
+        "<missing>",
+        format!(
+            "model input {j} has no track: name the track of each driven input, \
+                                 tracks = [\"left\", \"right\", …]"
+        ),
+    )
+}
+
+/// The error of `kurtosis` in a road of two tracks.
+fn road_kurtosis(inf: &Fields) -> crate::Error {
+    inf.error(
+        "kurtosis",
+        inf.get("kurtosis").map_or(String::new(), |v| v.to_string()),
+        "a non-Gaussian road of two tracks with a coherence is not available: a Laplace moving average per \
+                 track mixed to the prescribed cross-spectrum would not keep the prescribed kurtosis, and no sound \
+                 construction of a non-Gaussian pair with a given coherence is implemented; give `kurtosis` to an \
+                 [[input]] of one process (spectrum = …), or use a Gaussian road",
+    )
 }

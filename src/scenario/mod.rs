@@ -8,7 +8,9 @@
 mod catalogue;
 pub mod generic;
 mod input_filters;
+pub mod input_keys;
 pub mod inputs;
+pub mod key_table;
 pub mod nonlinear_keys;
 mod profile_identity;
 pub mod reference;

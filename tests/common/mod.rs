@@ -2,7 +2,12 @@
 //! tolerances and the relative difference used in assertions.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod response_only;
+pub mod scenario_text;
 pub mod tolerance;
+pub mod two_wheel_body;
+
+pub use scenario_text::{quarter_car_scenario, two_wheels};
 
 use std::path::PathBuf;
 
@@ -381,4 +386,25 @@ pub fn simpson_log(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
         sum += if k % 2 == 1 { 4.0 } else { 2.0 } * g(ua + k as f64 * h);
     }
     sum * h / 3.0
+}
+
+/// Options of a streamed spectral run (route `SpectralStream`) of `realizations` realizations of
+/// `duration` s at steps of `dt` s from `seed`.
+pub fn streamed(realizations: usize, duration: f64, dt: f64, seed: u64) -> stochvib::simulate::RunOptions {
+    let mut o = stochvib::simulate::RunOptions {
+        realizations,
+        duration_s: duration,
+        dt_s: dt,
+        seed,
+        ..stochvib::simulate::RunOptions::default()
+    };
+    o.route = stochvib::simulate::Route::SpectralStream;
+    o
+}
+
+/// The bits of every statistic of the run summary `s` and of every Welch density of its run file `out`.
+pub fn run_bits(s: &stochvib::simulate::RunSummary, out: &std::path::Path) -> Vec<u64> {
+    let mut v = statistic_bits(s);
+    v.extend(psd_bits(out));
+    v
 }

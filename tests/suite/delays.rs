@@ -6,8 +6,9 @@
 
 use crate::common;
 use common::rel;
+use common::response_only::ResponseOnly;
 
-use nalgebra::{Complex, DMatrix};
+use nalgebra::DMatrix;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::f64::consts::PI;
@@ -20,8 +21,8 @@ use stochvib::response::{
     variance_lyapunov_delayed, variance_oscillatory, variance_quadrature, DelayedCovariance, Excitation,
 };
 use stochvib::spectrum::{
-    Asymptote, AtSpeed, Domain, ExpCosine, Exponential, Gaussian, IsoBound, IsoClass, PowerLaw, RationalSpectrum,
-    Spectrum, ISO_BAND,
+    AtSpeed, Domain, ExpCosine, Exponential, Gaussian, IsoBound, IsoClass, PowerLaw, RationalSpectrum, Spectrum,
+    ISO_BAND,
 };
 use stochvib::system::{Attach, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace};
 use stochvib::Error;
@@ -57,38 +58,6 @@ fn first_order_two_inputs(t: f64) -> StateSpace {
         vec![OutputInfo::new("y", "m")],
     )
     .unwrap()
-}
-
-/// The same frequency response without a state-space form (exercises the dense path of the quadrature
-/// and the "not applicable" answer of the exact route).
-#[derive(Debug)]
-struct NoStateSpace(StateSpace);
-
-impl FrequencyResponse for NoStateSpace {
-    fn n_inputs(&self) -> usize {
-        self.0.n_inputs()
-    }
-    fn outputs(&self) -> &[OutputInfo] {
-        self.0.outputs()
-    }
-    fn response(&self, omega: f64) -> DMatrix<Complex<f64>> {
-        self.0.response(omega)
-    }
-    fn static_gain(&self) -> Option<DMatrix<f64>> {
-        self.0.static_gain()
-    }
-    fn high_frequency(&self) -> Vec<Vec<Asymptote>> {
-        self.0.high_frequency()
-    }
-    fn low_frequency(&self) -> Vec<Vec<Asymptote>> {
-        self.0.low_frequency()
-    }
-    fn natural_frequencies(&self) -> Vec<f64> {
-        self.0.natural_frequencies()
-    }
-    fn state_space(&self) -> Option<&StateSpace> {
-        None
-    }
 }
 
 fn is_divergent<T: std::fmt::Debug>(r: &Result<T, Error>) -> bool {
@@ -146,7 +115,7 @@ fn first_order_two_inputs_type1_closed_form() {
         }
 
         let opts = OscillatoryOptions::default();
-        let dense = NoStateSpace(sys.clone());
+        let dense = ResponseOnly(sys.clone());
         for s in [&sys as &dyn FrequencyResponse, &dense] {
             let m = moments_oscillatory(s, &exc, 0, &opts);
             let qv = m.variance.unwrap();

@@ -9,12 +9,13 @@
 //! of the same H(iω) = C(iωI − A)⁻¹B + D + iωE); the closed forms are derived in the comments.
 
 use crate::common;
+use common::response_only::ResponseOnly;
 use common::tolerance::{FACTORISATION, SIMD_DENSITY};
-use nalgebra::{Complex, DMatrix};
+use nalgebra::DMatrix;
 use std::f64::consts::PI;
 use std::sync::Arc;
 use stochvib::response::{output_density, Excitation, OutputDensity};
-use stochvib::spectrum::{Asymptote, Domain, ExpCosine, Exponential, GaussCosine, Spectrum};
+use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosine, Spectrum};
 use stochvib::system::{FrequencyResponse, OutputInfo, StateSpace};
 
 /// SplitMix64: a small deterministic generator (no statistical claims are made from it; it only picks
@@ -168,38 +169,6 @@ fn output_density_fast_critically_damped_closed_form() {
             (got - closed).abs() < FACTORISATION * closed,
             "ω = {w}: {got} vs {closed}"
         );
-    }
-}
-
-/// A system known only through its response (no state space) takes the dense row with the same input
-/// combination: compare with the state-space system it wraps.
-#[derive(Debug)]
-struct ResponseOnly(StateSpace);
-
-impl FrequencyResponse for ResponseOnly {
-    fn n_inputs(&self) -> usize {
-        self.0.n_inputs()
-    }
-    fn outputs(&self) -> &[OutputInfo] {
-        self.0.outputs()
-    }
-    fn response(&self, omega: f64) -> DMatrix<Complex<f64>> {
-        self.0.response(omega)
-    }
-    fn static_gain(&self) -> Option<DMatrix<f64>> {
-        self.0.static_gain()
-    }
-    fn high_frequency(&self) -> Vec<Vec<Asymptote>> {
-        self.0.high_frequency()
-    }
-    fn low_frequency(&self) -> Vec<Vec<Asymptote>> {
-        self.0.low_frequency()
-    }
-    fn natural_frequencies(&self) -> Vec<f64> {
-        self.0.natural_frequencies()
-    }
-    fn state_space(&self) -> Option<&StateSpace> {
-        None
     }
 }
 

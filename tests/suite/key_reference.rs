@@ -15,7 +15,12 @@
 //!   to be read.
 //!
 //! A key read by some reader but in no table fails the test, naming the key and the file that reached it; a
-//! key in a table (not pending) that no reader asked for fails it too. Keys read inside an inline spectrum
+//! key in a table (not pending) that no reader asked for fails it too.
+//!
+//! The sections of the readers driven by a declarative key table ([`stochvib::scenario::key_table`]) are
+//! those tables as rendered ([`key_tables_are_the_page`]): the tables are their one source, and through the
+//! page they are checked against the keys the readers ask for. `STOCHVIB_WRITE_KEY_TABLES=1 cargo test --test
+//! suite key_reference::` rewrites those sections from the tables. Keys read inside an inline spectrum
 //! (`input.spectrum.alpha`, `input[].road.spectrum.kind`) are spectrum-file keys.
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -529,4 +534,52 @@ fn every_documented_key_is_read() {
         "documented keys no reader accepts:\n{}",
         unread.join("\n")
     );
+}
+
+/// The lines of the table below the one marker line `marker` of `text`: (index of the marker, the table's
+/// lines with their newlines).
+fn section(text: &str, marker: &str) -> (usize, String) {
+    let lines: Vec<&str> = text.lines().collect();
+    let at: Vec<usize> = (0..lines.len()).filter(|&i| lines[i].trim() == marker).collect();
+    assert_eq!(at.len(), 1, "{}: the marker `{marker}` must stand once", PAGES[0]);
+    let table: String = lines[at[0] + 1..]
+        .iter()
+        .take_while(|l| l.trim_start().starts_with('|'))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    (at[0], table)
+}
+
+/// `text` with the section of every key table replaced by the table as rendered.
+fn with_key_tables(text: &str) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    for table in stochvib::scenario::key_table::KEY_TABLES {
+        let (at, old) = section(&(lines.join("\n") + "\n"), &table.marker());
+        let new: Vec<String> = table.markdown().lines().map(str::to_string).collect();
+        lines.splice(at + 1..at + 1 + old.lines().count(), new);
+    }
+    lines.join("\n") + "\n"
+}
+
+/// The sections of [`stochvib::scenario::key_table::KEY_TABLES`] on the reference page are the tables as
+/// rendered, row for row; with `STOCHVIB_WRITE_KEY_TABLES=1` the page is rewritten from the tables first.
+#[test]
+fn key_tables_are_the_page() {
+    let path = common::root().join(PAGES[0]);
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    if std::env::var_os("STOCHVIB_WRITE_KEY_TABLES").is_some() {
+        text = with_key_tables(&text);
+        std::fs::write(&path, &text).unwrap();
+    }
+    assert!(stochvib::scenario::key_table::KEY_TABLES.len() >= 11);
+    for table in stochvib::scenario::key_table::KEY_TABLES {
+        let (_, written) = section(&text, &table.marker());
+        assert_eq!(
+            written,
+            table.markdown(),
+            "{}: the table below `{}` is not the key table (STOCHVIB_WRITE_KEY_TABLES=1 rewrites it)",
+            PAGES[0],
+            table.marker()
+        );
+    }
 }

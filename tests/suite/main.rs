@@ -32,6 +32,7 @@ mod input_band;
 mod input_coverage;
 mod input_keys;
 mod key_reference;
+mod key_table_errors;
 mod laplace_road;
 mod layers;
 mod limits;

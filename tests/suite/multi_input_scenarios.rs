@@ -44,28 +44,6 @@ fn stats(sc: &Scenario, name: &str) -> (f64, f64) {
     (st.variance.unwrap(), st.mean.unwrap())
 }
 
-// A quarter car (body 300 kg, wheel 40 kg, suspension 20 kN/m and 1.5 kN s/m, tyre 200 kN/m).
-const QUARTER_CAR: &str = r#"
-coordinates = [
-  { name = "body", unit = "m", mass = "300 kg" },
-  { name = "wheel", unit = "m", mass = "40 kg" },
-]
-[[model.element]]
-name = "suspension"
-point = [1, 0]
-to = [0, 1]
-stiffness = "20 kN/m"
-damping = "1.5 kN*s/m"
-[[model.output]]
-name = "body"
-quantity = "displacement"
-point = [1, 0]
-[[model.output]]
-name = "travel"
-quantity = "deflection"
-element = "suspension"
-"#;
-
 const ROAD: &str = r#"{ kind = "exponential", domain = "spatial", variance = "1 cm^2", alpha = "0.2 1/m" }"#;
 const FORCE: &str = r#"{ kind = "exponential", unit = "N", variance = "1e4 N^2", alpha = "3 1/s" }"#;
 
@@ -77,18 +55,10 @@ fn a_road_and_a_force_on_one_model_add_their_variances_and_means() {
     // excitation variants, other code paths than the [[input]] sources under test.
     // Means (closed form, statics): the road mean μ_r lifts the whole car by μ_r; a mean force F on the body
     // compresses the suspension and the tyre in series: body = μ_r + F(1/k + 1/k_t), travel = F/k.
-    let both = format!(
-        r#"[model]
-kind = "mdof"
-base_inputs = 1
-forces = [[1, 0]]
-{QUARTER_CAR}
-[[model.element]]
-name = "tyre"
-point = [0, 1]
-to = "base 0"
-stiffness = "200 kN/m"
-
+    let both = common::quarter_car_scenario()
+        .force()
+        .then(&format!(
+            r#"
 [[input]]
 name = "road"
 spectrum = {ROAD}
@@ -102,38 +72,16 @@ spectrum = {FORCE}
 mean = "100 N"
 drives = [1]
 "#
-    );
-    let road_only = format!(
-        r#"[model]
-kind = "mdof"
-base_inputs = 1
-{QUARTER_CAR}
-[[model.element]]
-name = "tyre"
-point = [0, 1]
-to = "base 0"
-stiffness = "200 kN/m"
-
-[input]
-spectrum = {ROAD}
-speed = "20 m/s"
-"#
-    );
-    let force_only = format!(
-        r#"[model]
-kind = "mdof"
-forces = [[1, 0]]
-{QUARTER_CAR}
-[[model.element]]
-name = "tyre"
-point = [0, 1]
-to = "ground"
-stiffness = "200 kN/m"
-
-[input]
-spectrum = {FORCE}
-"#
-    );
+        ))
+        .text();
+    let road_only = common::quarter_car_scenario()
+        .then(&format!("\n[input]\nspectrum = {ROAD}\nspeed = \"20 m/s\"\n"))
+        .text();
+    let force_only = common::quarter_car_scenario()
+        .force()
+        .tyre_on_ground()
+        .then(&format!("\n[input]\nspectrum = {FORCE}\n"))
+        .text();
     let (sb, sr, sf) = (parse(&both), parse(&road_only), parse(&force_only));
     assert!(matches!(sb.excitation, Excitation::Sources { .. }));
     assert_eq!(sb.inputs.len(), 2);
@@ -156,44 +104,6 @@ spectrum = {FORCE}
     assert!(e.contains("model.forces") && e.contains("[[input]]"), "{e}");
 }
 
-// A body in bounce z and roll φ on two wheels whose `[model] tracks` name their tracks.
-fn two_wheels(tracks: &str, gains: &str, input: &str) -> String {
-    format!(
-        r#"[model]
-kind = "mdof"
-base_inputs = 2
-{tracks}
-gains = {gains}
-positions = ["0 m", "0 m"]
-coordinates = [
-  {{ name = "z", unit = "m", mass = "800 kg" }},
-  {{ name = "phi", unit = "rad", mass = "300 kg*m^2" }},
-]
-[[model.element]]
-name = "left"
-point = [1, 0.75]
-to = "base 0"
-stiffness = "30 kN/m"
-damping = "2 kN*s/m"
-[[model.element]]
-name = "right"
-point = [1, -0.75]
-to = "base 1"
-stiffness = "30 kN/m"
-damping = "2 kN*s/m"
-[[model.output]]
-name = "bounce"
-quantity = "displacement"
-point = [1, 0]
-[[model.output]]
-name = "roll"
-quantity = "displacement"
-point = [0, 1]
-{input}
-"#
-    )
-}
-
 #[test]
 fn wheels_that_name_their_tracks_see_the_sum_and_difference_of_the_tracks() {
     // Closed form (derived here): the symmetric body obeys M z̈ + 2C ż + 2K z = 2(C ḃ + K b) with
@@ -209,9 +119,9 @@ road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "const
 speed = "15 m/s"
 "#
     );
-    let sc = parse(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    let sc = parse(&common::two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
     let single = |gains: &str| {
-        parse(&two_wheels(
+        parse(&common::two_wheels(
             "",
             gains,
             &format!("[input]\nspectrum = {ROAD}\nspeed = \"15 m/s\"\n"),
@@ -224,7 +134,7 @@ speed = "15 m/s"
         assert!((v - oracle).abs() <= QUADRATURE * oracle, "{name}: {v:e} vs {oracle:e}");
     }
     // the same tracks written in the [[input]] table instead of the model give the same excitation
-    let in_table = parse(&two_wheels(
+    let in_table = parse(&common::two_wheels(
         "",
         "[1, 1]",
         &format!("{road}tracks = [\"left\", \"right\"]\npositions = [\"0 m\", \"0 m\"]\n"),
@@ -335,19 +245,7 @@ fn full_vehicle_modes_match_the_decoupled_closed_forms() {
 
 #[test]
 fn bad_input_tables_name_the_file_the_key_the_value_and_the_reason() {
-    let model = format!(
-        r#"[model]
-kind = "mdof"
-base_inputs = 1
-forces = [[1, 0]]
-{QUARTER_CAR}
-[[model.element]]
-name = "tyre"
-point = [0, 1]
-to = "base 0"
-stiffness = "200 kN/m"
-"#
-    );
+    let model = common::quarter_car_scenario().force().text();
     let road = format!("[[input]]\nspectrum = {ROAD}\nspeed = \"20 m/s\"\ndrives = [0]\n");
     let force = format!("[[input]]\nspectrum = {FORCE}\ndrives = [1]\n");
     let cases: Vec<(String, &[&str])> = vec![
@@ -463,7 +361,7 @@ road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "const
 speed = "15 m/s"
 "#
         );
-        let sc = parse(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+        let sc = parse(&common::two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
         let names: Vec<String> = sc.input_signals().iter().map(|s| s.name.clone()).collect();
         assert_eq!(names, ["road_left", "road_right"]);
         let mut opts = RunOptions {
@@ -514,7 +412,7 @@ fn the_input_coherence_chart_draws_the_squared_coherence_of_each_road() {
     // Constant coherence amplitude ρ = 0.5: γ² = ρ² = 0.25 at every n (closed form); a scenario without a
     // road of two tracks has no such chart.
     use stochvib::plot::scenario_plots::{input_coherence_chart, ScenarioPlotOptions};
-    let sc = parse(&two_wheels(
+    let sc = parse(&common::two_wheels(
         r#"tracks = ["left", "right"]"#,
         "[1, 1]",
         &constant_coherence_road(),
@@ -527,7 +425,7 @@ fn the_input_coherence_chart_draws_the_squared_coherence_of_each_road() {
     let pts = &chart.series[0].points;
     assert!((pts[0].0 - 1e-3).abs() <= ROUNDING && (pts[pts.len() - 1].0 - 10.0).abs() <= 1e-12);
     assert!(pts.iter().all(|p| (p.1 - 0.25).abs() <= ROUNDING), "{pts:?}");
-    let single = parse(&two_wheels(
+    let single = parse(&common::two_wheels(
         "",
         "[1, 1]",
         &format!("[input]\nspectrum = {ROAD}\nspeed = \"15 m/s\"\n"),
@@ -541,7 +439,7 @@ fn the_input_coherence_chart_draws_the_squared_coherence_of_each_road() {
 /// `extra_left` added to the left table.
 fn two_process_roads(extra_left: &str) -> String {
     let road2 = r#"{ kind = "exponential", domain = "spatial", variance = "4 cm^2", alpha = "0.5 1/m" }"#;
-    two_wheels(
+    common::two_wheels(
         "",
         "[1, 1]",
         &format!(
@@ -570,7 +468,7 @@ fn the_input_pictures_draw_every_source_and_the_cross_spectrum_of_a_road() {
     // exponential road's one-sided density G(n) = 4π S(2πn) = 4αD/(α² + 4π²n²) (S(Ω) = αD/(π(α² + Ω²)),
     // D = 1e-4 m², α = 0.2 1/m); the cross-spectrum is G_LR = ρ G (co-spectrum ρG, quad-spectrum 0: the
     // tracks are in phase) and γ² = ρ² = 0.25.
-    let sc = parse(&two_wheels(
+    let sc = parse(&common::two_wheels(
         r#"tracks = ["left", "right"]"#,
         "[1, 1]",
         &constant_coherence_road(),
@@ -718,7 +616,7 @@ speed = "15 m/s"
 kurtosis = 6
 "#
     );
-    let e = parse_err(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    let e = parse_err(&common::two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
     for part in [
         "test-multi.toml",
         "input[0].kurtosis",
@@ -817,7 +715,7 @@ fn a_road_track_width_other_than_the_vehicles_is_refused() {
     let road = format!(
         "[[input]]\nroad = {{ spectrum = {ROAD}, coherence = {{ kind = \"constant\", coherence_amplitude = 0.5 }} }}\nspeed = \"15 m/s\"\n"
     );
-    let err = parse_err(&two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
+    let err = parse_err(&common::two_wheels(r#"tracks = ["left", "right"]"#, "[1, 1]", &road));
     assert!(err.contains("track_width") && err.contains("required"), "{err}");
 }
 

@@ -4,9 +4,10 @@
 //! block size; σ intervals cover the simulated and the analytic σ.
 
 use crate::common;
+use common::{run_bits as bits, streamed};
 use std::path::{Path, PathBuf};
 use stochvib::scenario::{parse_scenario, Scenario};
-use stochvib::simulate::{Route, RunOptions, RunSummary};
+use stochvib::simulate::Route;
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
@@ -31,35 +32,11 @@ const FORCE: &str = r#"{ kind = "exponential", unit = "N", variance = "1e4 N^2",
 /// A quarter car (body 300 kg, wheel 40 kg, suspension 20 kN/m and 1.5 kN s/m, tyre 200 kN/m) on a road
 /// (20 m/s) with an independent force on the body: two sources.
 fn road_and_force() -> Scenario {
-    parse(&format!(
-        r#"[model]
-kind = "mdof"
-base_inputs = 1
-forces = [[1, 0]]
-coordinates = [
-  {{ name = "body", unit = "m", mass = "300 kg" }},
-  {{ name = "wheel", unit = "m", mass = "40 kg" }},
-]
-[[model.element]]
-name = "suspension"
-point = [1, 0]
-to = [0, 1]
-stiffness = "20 kN/m"
-damping = "1.5 kN*s/m"
-[[model.element]]
-name = "tyre"
-point = [0, 1]
-to = "base 0"
-stiffness = "200 kN/m"
-[[model.output]]
-name = "body"
-quantity = "displacement"
-point = [1, 0]
-[[model.output]]
-name = "travel"
-quantity = "deflection"
-element = "suspension"
-
+    parse(
+        &common::quarter_car_scenario()
+            .force()
+            .then(&format!(
+                r#"
 [[input]]
 name = "road"
 spectrum = {ROAD}
@@ -71,67 +48,25 @@ name = "load"
 spectrum = {FORCE}
 drives = [1]
 "#
-    ))
+            ))
+            .text(),
+    )
 }
 
 /// A body in bounce and roll on two wheels on two road tracks of constant coherence 0.4 (one
 /// two-component source: its kernels carry the coherence mixing).
 fn two_tracks() -> Scenario {
-    parse(&format!(
-        r#"[model]
-kind = "mdof"
-base_inputs = 2
-tracks = ["left", "right"]
-gains = [1, 1]
-positions = ["0 m", "0 m"]
-coordinates = [
-  {{ name = "z", unit = "m", mass = "800 kg" }},
-  {{ name = "phi", unit = "rad", mass = "300 kg*m^2" }},
-]
-[[model.element]]
-name = "left"
-point = [1, 0.75]
-to = "base 0"
-stiffness = "30 kN/m"
-damping = "2 kN*s/m"
-[[model.element]]
-name = "right"
-point = [1, -0.75]
-to = "base 1"
-stiffness = "30 kN/m"
-damping = "2 kN*s/m"
-[[model.output]]
-name = "bounce"
-quantity = "displacement"
-point = [1, 0]
-[[model.output]]
-name = "roll"
-quantity = "displacement"
-point = [0, 1]
-
+    parse(&common::two_wheels(
+        r#"tracks = ["left", "right"]"#,
+        "[1, 1]",
+        &format!(
+            r#"
 [[input]]
 road = {{ spectrum = {ROAD}, track_width = "1.5 m", coherence = {{ kind = "constant", coherence_amplitude = 0.4 }} }}
 speed = "15 m/s"
 "#
+        ),
     ))
-}
-
-fn streamed(realizations: usize, duration: f64, dt: f64, seed: u64) -> RunOptions {
-    let mut o = RunOptions {
-        realizations,
-        duration_s: duration,
-        dt_s: dt,
-        seed,
-        ..RunOptions::default()
-    };
-    o.route = Route::SpectralStream;
-    o
-}
-
-fn bits(s: &RunSummary, out: &Path) -> Vec<u64> {
-    let mut v = common::statistic_bits(s);
-    v.extend(common::psd_bits(out));
-    v
 }
 
 /// (a) Bit-identical statistics and densities for blocks of 1, 7 and 5000 steps and whole realizations:

@@ -5,8 +5,9 @@
 use crate::common;
 use common::root;
 use common::tolerance::EXACT;
+use common::{run_bits as bits, streamed};
 use realfft::num_complex::Complex;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stochvib::scenario::{parse_scenario, Scenario};
 use stochvib::simulate::fir_stream::{GRID_TOLERANCE, TAIL_FRACTION};
 use stochvib::simulate::resources::memory_bytes;
@@ -44,24 +45,6 @@ fn quarter_car() -> Scenario {
 /// L/v = 2.7 m / 10 m/s = 0.27 s = 90 steps of 3 ms.
 fn half_car() -> Scenario {
     scenario("half-car.toml", &["front_travel", "rear_travel", "body_acc"])
-}
-
-fn streamed(realizations: usize, duration: f64, dt: f64, seed: u64) -> RunOptions {
-    let mut o = RunOptions {
-        realizations,
-        duration_s: duration,
-        dt_s: dt,
-        seed,
-        ..RunOptions::default()
-    };
-    o.route = Route::SpectralStream;
-    o
-}
-
-fn bits(s: &RunSummary, out: &Path) -> Vec<u64> {
-    let mut v = common::statistic_bits(s);
-    v.extend(common::psd_bits(out));
-    v
 }
 
 /// (a) The statistics and densities of a streamed run are bit-identical for any block size (1, 7 and 5000

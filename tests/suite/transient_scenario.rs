@@ -30,41 +30,11 @@ fn scenario(text: &str) -> stochvib::Result<Scenario> {
 /// The quarter car of `data/quarter-car.toml` (m_s = 300 kg, m_u = 40 kg, k_s = 20 kN/m, c_s = 1.5 kN s/m,
 /// k_t = 200 kN/m) with the outputs body, body_acc, travel, tyre_force, then `rest`.
 fn quarter_car(rest: &str) -> String {
-    format!(
-        r#"title = "quarter car"
-[model]
-kind = "mdof"
-base_inputs = 1
-coordinates = [{{ name = "body", mass = "300 kg" }}, {{ name = "wheel", mass = "40 kg" }}]
-[[model.element]]
-name = "suspension"
-point = [1, 0]
-to = [0, 1]
-stiffness = "20 kN/m"
-damping = "1.5 kN*s/m"
-[[model.element]]
-name = "tyre"
-point = [0, 1]
-to = "base 0"
-stiffness = "200 kN/m"
-[[model.output]]
-name = "body"
-quantity = "displacement"
-point = [1, 0]
-[[model.output]]
-name = "body_acc"
-quantity = "acceleration"
-point = [1, 0]
-[[model.output]]
-name = "travel"
-quantity = "deflection"
-element = "suspension"
-[[model.output]]
-name = "tyre_force"
-quantity = "spring-force"
-element = "tyre"
-{rest}"#
-    )
+    crate::common::quarter_car_scenario()
+        .title("quarter car")
+        .outputs(&["body", "body_acc", "travel", "tyre_force"])
+        .then(rest)
+        .text()
 }
 
 /// A rational road (spatial exponential correlation, D = 32 cm², α = 0.16 1/m) at a constant 10 m/s,

@@ -10,37 +10,9 @@ use std::sync::Arc;
 use stochvib::coherence::{Coherence, ConstantCoherence, IsotropicCoherence, TwoTracks};
 use stochvib::response::{analyze_output, variance_lyapunov, Excitation, InputMap, Source};
 use stochvib::spectrum::{Domain, Exponential, Spectrum};
-use stochvib::system::{Attach, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, TransferFunction};
+use stochvib::system::{Attach, Element, FrequencyResponse, Mdof, Quantity};
 
-// Symmetric body on two wheels (left at +h, right at −h): bounce z, roll φ.
-const M: f64 = 800.0; // kg
-const I: f64 = 300.0; // kg m²
-const H: f64 = 0.75; // m, half track width
-const K: f64 = 3.0e4; // N/m per wheel
-const C: f64 = 2.0e3; // N s/m per wheel
-const V: f64 = 15.0; // m/s
-
-fn body() -> Mdof {
-    let el = |name: &str, y: f64, j: usize| Element {
-        name: name.into(),
-        point: vec![1.0, y],
-        to: Attach::Base(j),
-        stiffness: K,
-        damping: C,
-    };
-    Mdof::from_elements(
-        &[("z", "m"), ("phi", "rad")],
-        &[M, I],
-        vec![el("left", H, 0), el("right", -H, 1)],
-        2,
-        &[],
-    )
-    .unwrap()
-    .with_output("bounce", Quantity::Displacement(vec![1.0, 0.0]))
-    .unwrap()
-    .with_output("roll", Quantity::Displacement(vec![0.0, 1.0]))
-    .unwrap()
-}
+use common::two_wheel_body::{body, C, H, K, V};
 
 fn road() -> Arc<dyn Spectrum> {
     // type 1 in space (book (8.45) form): D = 1e-4 m², α = 0.2 rad/m
@@ -57,13 +29,9 @@ fn tracks(coh: Arc<dyn Coherence>) -> Arc<TwoTracks> {
 
 #[test]
 fn symmetric_vehicle_matches_the_bounce_and_roll_closed_forms() {
-    // Oracle (derived here): with u_L, u_R under the wheels at ±h, the equations of motion are
-    //   M z̈ + 2C ż + 2K z = 2(C ḃ + K b),            b = (u_L + u_R)/2,
-    //   I φ̈ + 2Ch² φ̇ + 2Kh² φ = 2h(C ḋ + K d),       d = (u_L − u_R)/2,
-    // and for S_LL = S_RR = S, S_LR = ρS (ρ constant): S_b = S(1 + ρ)/2, S_d = S(1 − ρ)/2, S_bd = 0.
-    // So bounce and roll are single-input transfer functions driven by a type-1 spectrum of variance
-    // D(1 ± ρ)/2: exact Lyapunov variances on a different model (transfer functions) and a different
-    // excitation (one scaled process) than the two-track route under test.
+    // Oracle: the closed forms of `common::two_wheel_body::closed_form_variances` (derived in its doc):
+    // bounce and roll are single-input transfer functions driven by the road of variance D(1 ± ρ)/2, exact
+    // Lyapunov variances on another model and another excitation than the two-track route under test.
     let rho = 0.4;
     let sys = body();
     let exc = Excitation::two_tracks(
@@ -71,28 +39,7 @@ fn symmetric_vehicle_matches_the_bounce_and_roll_closed_forms() {
         &[(0, 0.0), (1, 0.0)],
     )
     .unwrap();
-    let scaled = |f: f64| {
-        let s: Arc<dyn Spectrum> = Arc::new(Exponential::new(1e-4 * f, 0.2, Domain::Spatial).unwrap());
-        Excitation::road(s, V, &[0.0]).unwrap()
-    };
-    let bounce_tf = TransferFunction::new(
-        vec![2.0 * K, 2.0 * C],
-        vec![2.0 * K, 2.0 * C, M],
-        OutputInfo::new("z", "m"),
-    )
-    .unwrap();
-    let roll_tf = TransferFunction::new(
-        vec![2.0 * H * K, 2.0 * H * C],
-        vec![2.0 * K * H * H, 2.0 * C * H * H, I],
-        OutputInfo::new("phi", "rad"),
-    )
-    .unwrap();
-    let zb = variance_lyapunov(&bounce_tf, &scaled((1.0 + rho) / 2.0), 0)
-        .unwrap()
-        .variance;
-    let zr = variance_lyapunov(&roll_tf, &scaled((1.0 - rho) / 2.0), 0)
-        .unwrap()
-        .variance;
+    let (zb, zr) = common::two_wheel_body::closed_form_variances(rho);
     for (name, oracle) in [("bounce", zb), ("roll", zr)] {
         let st = analyze_output(&sys, &exc, output(&sys, name)).unwrap();
         // the exact route does not apply (a coherence matrix has no rational factorisation): quadrature

@@ -8,75 +8,25 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 use stochvib::coherence::{ConstantCoherence, TwoTracks};
 use stochvib::estimate::cross_spectrum;
-use stochvib::response::{variance_lyapunov, Excitation};
+use stochvib::response::Excitation;
 use stochvib::simulate::{run, source_signals, standard_normal, stream, RunInput, RunOptions};
 use stochvib::spectrum::{Domain, Exponential, Spectrum};
-use stochvib::system::{Attach, Element, Mdof, OutputInfo, Quantity, TransferFunction};
 
-const M: f64 = 800.0;
-const I: f64 = 300.0;
-const H: f64 = 0.75;
-const K: f64 = 3.0e4;
-const C: f64 = 2.0e3;
-const V: f64 = 15.0;
-
-fn body() -> Mdof {
-    let el = |name: &str, y: f64, j: usize| Element {
-        name: name.into(),
-        point: vec![1.0, y],
-        to: Attach::Base(j),
-        stiffness: K,
-        damping: C,
-    };
-    Mdof::from_elements(
-        &[("z", "m"), ("phi", "rad")],
-        &[M, I],
-        vec![el("left", H, 0), el("right", -H, 1)],
-        2,
-        &[],
-    )
-    .unwrap()
-    .with_output("bounce", Quantity::Displacement(vec![1.0, 0.0]))
-    .unwrap()
-    .with_output("roll", Quantity::Displacement(vec![0.0, 1.0]))
-    .unwrap()
-}
+use common::two_wheel_body::{body, V};
 
 #[test]
 fn roll_and_bounce_of_two_coherent_tracks_by_monte_carlo() {
-    // Closed forms (derived in tests/two_tracks.rs): bounce is driven by (L + R)/2 with density
-    // S(1 + ρ)/2, roll by (L − R)/2 with S(1 − ρ)/2; each a single-input transfer function whose exact
-    // Lyapunov variance is the analytic value. A synthesis that got the cross-spectrum wrong (phase
+    // Closed forms (derived in `common::two_wheel_body::closed_form_variances`): bounce is driven by
+    // (L + R)/2 with density S(1 + ρ)/2, roll by (L − R)/2 with S(1 − ρ)/2; each a single-input transfer
+    // function whose exact Lyapunov variance is the analytic value. A synthesis that got the cross-spectrum wrong (phase
     // mixing, or no √(1 − ρ²) term) would move the roll variance by a factor of order one.
     let rho = 0.4;
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(1e-4, 0.2, Domain::Spatial).unwrap());
     let tracks = Arc::new(TwoTracks::new(road, Arc::new(ConstantCoherence::new(rho).unwrap()), V).unwrap());
     let exc = Excitation::two_tracks(tracks, &[(0, 0.0), (1, 0.0)]).unwrap();
     let sys = body();
-    let scaled = |f: f64| {
-        let s: Arc<dyn Spectrum> = Arc::new(Exponential::new(1e-4 * f, 0.2, Domain::Spatial).unwrap());
-        Excitation::road(s, V, &[0.0]).unwrap()
-    };
-    let bounce_tf = TransferFunction::new(
-        vec![2.0 * K, 2.0 * C],
-        vec![2.0 * K, 2.0 * C, M],
-        OutputInfo::new("z", "m"),
-    )
-    .unwrap();
-    let roll_tf = TransferFunction::new(
-        vec![2.0 * H * K, 2.0 * H * C],
-        vec![2.0 * K * H * H, 2.0 * C * H * H, I],
-        OutputInfo::new("phi", "rad"),
-    )
-    .unwrap();
-    let closed = [
-        variance_lyapunov(&bounce_tf, &scaled((1.0 + rho) / 2.0), 0)
-            .unwrap()
-            .variance,
-        variance_lyapunov(&roll_tf, &scaled((1.0 - rho) / 2.0), 0)
-            .unwrap()
-            .variance,
-    ];
+    let (zb, zr) = common::two_wheel_body::closed_form_variances(rho);
+    let closed = [zb, zr];
     let input = RunInput::new(
         &sys,
         &exc,

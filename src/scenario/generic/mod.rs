@@ -3,5 +3,6 @@
 
 mod io;
 pub mod mdof;
+pub mod mdof_keys;
 pub mod state_space;
 pub mod transfer_function;
