@@ -930,6 +930,7 @@ impl PyScenario {
                 compression: Compression::default(),
                 part,
                 overwrite,
+                max_hours: stochvib::simulate::resources::DEFAULT_MAX_HOURS,
             },
             path,
         });

@@ -34,6 +34,10 @@ pub struct OptimizeArgs {
     /// Most evaluations per start.
     #[arg(long, default_value_t = 2000)]
     max_evaluations: usize,
+    /// Refuse a search whose time estimate (a lower bound: n + 1 evaluations per start, each as long as the
+    /// centre's) exceeds this many hours.
+    #[arg(long, value_name = "H", default_value_t = stochvib::simulate::resources::DEFAULT_MAX_HOURS)]
+    max_hours: f64,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -69,9 +73,17 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
     let opts = SolveOptions {
         starts: a.starts,
         max_evaluations: a.max_evaluations,
+        max_hours: a.max_hours,
         ..SolveOptions::default()
     };
-    let answer = solve(&problem, &opts)?;
+    let answer = solve(&problem, &opts).map_err(|e| match e {
+        // the search's own limits, named by their flags
+        stochvib::Error::InvalidParameter { name, value, reason } if name == "starts" || name == "max hours" => {
+            let name = if name == "starts" { "--starts" } else { "--max-hours" }.to_string();
+            stochvib::Error::InvalidParameter { name, value, reason }
+        }
+        other => other,
+    })?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&answer)?);
     } else {

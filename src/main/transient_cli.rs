@@ -50,6 +50,10 @@ pub struct TransientArgs {
     /// Replace an existing finished run file.
     #[arg(long)]
     overwrite: bool,
+    /// Refuse a Monte Carlo batch whose time estimate (a lower bound: one normal draw per state and step)
+    /// exceeds this many hours.
+    #[arg(long, value_name = "H", default_value_t = stochvib::simulate::resources::DEFAULT_MAX_HOURS, requires = "monte_carlo")]
+    max_hours: f64,
     /// Directory of spectrum files (default: $STOCHVIB_SPECTRA, else ./spectra, else the built-in catalogue).
     #[arg(long)]
     spectra_dir: Option<PathBuf>,
@@ -113,8 +117,10 @@ pub fn transient(
                 compression: Compression::default(),
                 part: choice.as_ref().map(|c| c.part),
                 overwrite: a.overwrite,
+                max_hours: a.max_hours,
             };
-            let (summary, notes) = simulate_transient(&sc, &setup, &sol, &opts, &out, progress)?;
+            let (summary, notes) = simulate_transient(&sc, &setup, &sol, &opts, &out, progress)
+                .map_err(|e| super::named_by_flag(e, "--monte-carlo"))?;
             for n in notes {
                 eprintln!("note: {n}");
             }

@@ -18,6 +18,8 @@ pub struct SolveOptions {
     /// A constraint is active when its margin is within this fraction of its limit; a parameter is at a
     /// bound when within this fraction of its range.
     pub active_tolerance: f64,
+    /// Refuse a search whose computing time's lower bound exceeds this many hours ([`check_budget`]).
+    pub max_hours: f64,
 }
 
 impl Default for SolveOptions {
@@ -27,6 +29,7 @@ impl Default for SolveOptions {
             max_evaluations: 2000,
             x_tolerance: 1e-9,
             active_tolerance: 1e-5,
+            max_hours: crate::simulate::resources::DEFAULT_MAX_HOURS,
         }
     }
 }
@@ -198,6 +201,7 @@ impl Scaled<'_, '_> {
 /// When no start's end point can be evaluated (the scenario's error at the centre).
 pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
     let n = problem.params.len();
+    let clock = std::time::Instant::now();
     let centre = problem.evaluate(
         &problem
             .params
@@ -205,6 +209,7 @@ pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
             .map(|p| 0.5 * (p.low + p.high))
             .collect::<Vec<_>>(),
     )?;
+    check_budget(problem, opts, clock.elapsed().as_secs_f64())?;
     let scaled = Scaled {
         problem,
         f_scale: if centre.objective != 0.0 {
@@ -231,6 +236,45 @@ pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
         *scaled.evaluations.borrow(),
         opts,
     ))
+}
+
+/// Refuses, before the search, a number of starts whose results do not fit in memory or whose computing time's
+/// lower bound exceeds `opts.max_hours`.
+///
+/// # Formula
+/// COBYLA evaluates at least n + 1 points per start (its first simplex), so the search takes at least
+/// S·(n + 1)·t_c, with S starts, n parameters and t_c the measured time of the centre's evaluation. Every
+/// start's result is kept (the answer lists them): S·(b + 8·(3n + m + 8)) bytes, b the size of a
+/// [`StartResult`], m the constraints. `--max-evaluations` only caps a start that does not converge.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `starts` with the estimate and what to change.
+pub fn check_budget(problem: &Problem, opts: &SolveOptions, centre_s: f64) -> Result<()> {
+    let (n, m) = (problem.params.len() as u128, problem.constraints.len() as u128);
+    let starts = opts.starts.max(1);
+    let per_start = std::mem::size_of::<StartResult>() as u128 + 8 * (3 * n + m + 8);
+    crate::io_rules::check_memory(
+        starts as u128 * per_start,
+        "starts",
+        starts,
+        "keeping every start's result",
+        "fewer --starts",
+    )?;
+    if opts.max_hours.is_nan() || opts.max_hours <= 0.0 {
+        return Err(Error::invalid("max hours", opts.max_hours, "must be > 0"));
+    }
+    crate::io_rules::check_time(
+        starts as f64 * (n + 1) as f64 * centre_s,
+        opts.max_hours,
+        "starts",
+        starts,
+        &format!(
+            "{starts} starts × at least {} evaluations of {} s (the centre's)",
+            n + 1,
+            crate::numbers::short(centre_s)
+        ),
+        "fewer --starts",
+    )
 }
 
 fn run_start(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {

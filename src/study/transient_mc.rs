@@ -35,6 +35,8 @@ pub struct TransientMcOptions {
     pub part: Option<Part>,
     /// Replace a finished file.
     pub overwrite: bool,
+    /// Refuse a batch whose computing time's lower bound exceeds this many hours.
+    pub max_hours: f64,
 }
 
 /// The outputs a run simulates: the reported outputs with a finite σ and crossing rates (the analytic
@@ -107,6 +109,7 @@ pub fn simulate_transient(
         compression: opts.compression,
         part: opts.part,
         overwrite: opts.overwrite,
+        max_hours: opts.max_hours,
     };
     Ok((run_transient(&input, &run, out, progress)?, notes))
 }

@@ -35,6 +35,9 @@ pub struct TransientRunOptions {
     pub part: Option<Part>,
     /// Replace a finished file / discard an interrupted run of other settings.
     pub overwrite: bool,
+    /// Refuse a batch whose computing time's lower bound exceeds this many hours (the stationary runs' cap,
+    /// [`crate::simulate::resources::DEFAULT_MAX_HOURS`], by default in the CLI).
+    pub max_hours: f64,
 }
 
 /// What a run is made of besides its options.
@@ -156,6 +159,7 @@ pub fn run_transient(
     check_options(opts, input.exact)?;
     let plan = McPlan::new(input.sys, input.outputs.clone(), &input.start, opts.grid)?;
     let meta = metadata(input, opts)?;
+    check_resources(&meta, opts, input.sys.n_states(), out)?;
     let analytic = analytic(input)?;
     let mut writer = RunWriter::create_with(
         out,
@@ -189,6 +193,36 @@ pub fn run_transient(
     write_finished(&mut writer, &fin)?;
     let path = writer.finish()?;
     Ok(summary(path, &meta, resumed, fin, notes))
+}
+
+/// Refuses, before anything is allocated or written, a batch whose computing time's lower bound exceeds
+/// `opts.max_hours` or whose run file would not fit on the disk of `out` — the rules of the stationary runs.
+///
+/// # Formula
+/// Time ≥ R·N·g / (r·P) ([`crate::simulate::resources::run_time_lower_bound`]): R realizations of this file,
+/// N = the grid's steps, g the normals drawn per step (one per state of the augmented system), r the fastest
+/// normal draw rate, P threads.
+/// File: [`RunMetadata::estimated_file_bytes`].
+fn check_resources(meta: &RunMetadata, opts: &TransientRunOptions, states: usize, out: &Path) -> Result<()> {
+    use crate::simulate::resources::{check_disk, run_time_lower_bound};
+    if opts.max_hours.is_nan() || opts.max_hours <= 0.0 {
+        return Err(Error::invalid("max hours", opts.max_hours, "must be > 0"));
+    }
+    let local = meta.local_realizations().len();
+    let threads = rayon::current_num_threads();
+    let t = run_time_lower_bound(local as f64, opts.grid.n_steps, states, threads);
+    crate::io_rules::check_time(
+        t,
+        opts.max_hours,
+        "realizations",
+        opts.realizations,
+        &format!(
+            "{local} realizations × {} steps × {states} states on {threads} threads",
+            opts.grid.n_steps
+        ),
+        "fewer realizations, fewer --substeps, or a cluster run (--shard I --of N)",
+    )?;
+    check_disk(meta, out)
 }
 
 fn check_options(opts: &TransientRunOptions, exact: &TransientSolution) -> Result<()> {

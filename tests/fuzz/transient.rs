@@ -187,6 +187,7 @@ fn small_run(
         compression: stochvib::store::Compression::default(),
         part: None,
         overwrite: false,
+        max_hours: stochvib::simulate::resources::DEFAULT_MAX_HOURS,
     };
     let r = simulate_transient(sc, setup, sol, &opts, out, &|_, _| {}).and_then(|(s, _)| {
         let series = stochvib::transient::monte_carlo::read_transient_run(&s.path)?.1;

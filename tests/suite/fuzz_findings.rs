@@ -479,3 +479,58 @@ fn a_transient_of_too_many_reported_times_is_refused_by_key() {
     assert_eq!((file, key.as_str()), (path, "transient.step"), "{e}");
     assert!(e.to_string().contains("2e10 reported times"), "{e}");
 }
+
+/// A transient Monte Carlo batch of 10⁹ realizations started at once and wrote a run file of hundreds of
+/// gigabytes before anything told the user: it is refused before anything is written, naming
+/// `--monte-carlo` with the time estimate and the `--max-hours` cap, like the stationary runs (and a batch
+/// whose file does not fit on the disk is refused likewise). The estimate is a lower bound (one normal draw
+/// per state and step, at most 2·10⁸ draws per second per thread): 10¹² realizations of the accelerating
+/// quarter car's 1200 steps of at least 4 states take at least 4.8·10¹⁵ / (2·10⁸ P) s, 139 days on P = 2
+/// threads and above 24 h for any P < 277. Nothing is left in the output directory.
+#[test]
+fn a_transient_batch_beyond_the_time_cap_is_refused_before_writing() {
+    let dir = scratch("transient-batch-cap");
+    let out = dir.join("run.h5");
+    let scenario = root().join("data/quarter-car-accelerating.toml");
+    let err = common::cli_fails(
+        1,
+        &[
+            "transient",
+            scenario.to_str().unwrap(),
+            "--monte-carlo",
+            "1000000000000",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        &root(),
+    );
+    assert!(
+        err.contains("--monte-carlo") && err.contains("would take at least"),
+        "{err}"
+    );
+    assert!(err.contains("--max-hours"), "{err}");
+    assert!(common::listing(&dir).is_empty(), "{:?}", common::listing(&dir));
+}
+
+/// `optimize --starts 10¹²` kept every start's result and ran without an estimate: it is refused before the
+/// search, naming `starts`, because 10¹² results of at least 100 bytes each (10¹⁴ bytes) exceed the memory
+/// of any machine this runs on.
+#[test]
+fn an_optimisation_of_absurdly_many_starts_is_refused_by_name() {
+    let err = common::cli_fails(
+        1,
+        &[
+            "optimize",
+            "data/quarter-car-model.toml",
+            "--param",
+            "model.suspension_damping=0.2:6 kN*s/m",
+            "--minimize",
+            "sigma(body_acc)",
+            "--starts",
+            "1000000000000",
+        ],
+        &root(),
+    );
+    assert!(err.contains("--starts") && err.contains("1000000000000"), "{err}");
+    assert!(err.contains("fewer --starts"), "{err}");
+}

@@ -59,6 +59,7 @@ fn options(realizations: usize, grid: McGrid, part: Option<Part>) -> TransientRu
         compression: Compression::None,
         part,
         overwrite: false,
+        max_hours: stochvib::simulate::resources::DEFAULT_MAX_HOURS,
     }
 }
 

@@ -246,6 +246,7 @@ fn hoist_winding_schedule_and_monte_carlo() {
         compression: Compression::default(),
         part: None,
         overwrite: false,
+        max_hours: stochvib::simulate::resources::DEFAULT_MAX_HOURS,
     };
     let (summary, _) = simulate_transient(&sc, &setup, &sol, &opts, &out, &|_, _| {}).unwrap();
     assert_eq!(summary.n_realizations, 400);
