@@ -6,6 +6,7 @@
 //!
 //! [`replay`] replays a measured road profile through a scenario's model (`stochvib replay`).
 
+mod butterworth_keys;
 mod catalogue;
 pub mod generic;
 pub mod input_coverage;
@@ -19,6 +20,7 @@ mod registry;
 pub mod replay;
 pub mod run_step;
 pub mod scenario_file;
+pub mod seat_factor;
 pub mod spectrum_file;
 pub mod sweep;
 pub mod transient_answers;
