@@ -29,6 +29,22 @@ impl ButterworthFilter {
         crate::error::require_positive(&format!("{name}.corner"), self.corner).map(drop)
     }
 
+    /// The monic Butterworth polynomial Π (s − p_k), |p_k| = ω_c in the left half plane: the quadratic factors
+    /// s² + 2ω_c sin((2k + 1)π/(2n)) s + ω_c² and, for odd n, s + ω_c (ascending powers of s). Its
+    /// |·|² at s = iω is ω_c²ⁿ + ω²ⁿ.
+    fn poles_polynomial(&self) -> Vec<f64> {
+        let (n, w) = (self.order, self.corner);
+        let mut p = vec![1.0];
+        for k in 0..n / 2 {
+            let angle = (2 * k + 1) as f64 * std::f64::consts::PI / (2 * n) as f64;
+            p = poly::mul(&p, &[w * w, 2.0 * w * angle.sin(), 1.0]);
+        }
+        if n % 2 == 1 {
+            p = poly::mul(&p, &[w, 1.0]);
+        }
+        p
+    }
+
     /// 1 + (x/ω_c²)ⁿ, ascending powers of x = ω².
     fn denominator(&self) -> Vec<f64> {
         let mut d = vec![0.0; self.order as usize + 1];
@@ -88,11 +104,20 @@ pub fn butterworth_band(
             ),
         ));
     }
-    let mut num = vec![0.0; (hp_order - integrate) as usize + 1];
-    num[(hp_order - integrate) as usize] = level * high_pass.map_or(1.0, |h| h.corner.powi(-2 * h.order as i32));
+    let k = (hp_order - integrate) as usize;
+    let mut num = vec![0.0; k + 1];
+    num[k] = level * high_pass.map_or(1.0, |h| h.corner.powi(-2 * h.order as i32));
     let mut den = low_pass.denominator();
+    // the spectral factor in closed form: B(s) = √(2πS₀) ω_l^m sᵏ, A(s) = B_m(s; ω_l) B_n(s; ω_h)
+    let mut b = vec![0.0; k + 1];
+    b[k] = (2.0 * std::f64::consts::PI * level).sqrt() * low_pass.corner.powi(low_pass.order as i32);
+    let mut a = low_pass.poles_polynomial();
+    let mut corners = vec![low_pass.corner];
     if let Some(h) = high_pass {
         den = poly::mul(&den, &h.denominator());
+        a = poly::mul(&a, &h.poles_polynomial());
+        corners.push(h.corner);
     }
-    RationalSpectrum::new(num, den, domain)
+    corners.sort_by(f64::total_cmp);
+    RationalSpectrum::with_factor(num, den, domain, (b, a), corners)
 }
