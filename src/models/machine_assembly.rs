@@ -31,7 +31,7 @@
 //!
 //! # Errors
 //! [`MachineAssembly::mdof`] rejects masses, inertias, stiffnesses and track widths that are not finite and
-//! > 0, negative dampings, fewer than two axles or an axle of different track width from the first (the
+//! positive, negative dampings, fewer than two axles or an axle of different track width from the first (the
 //! road's two tracks are one distance apart), a cab with fewer than three mounts, a seat without a cab.
 
 use super::{InputLayout, ModelInstance};

@@ -177,7 +177,7 @@ impl RationalSpectrum {
             corners,
         };
         s.filter.residual = s.filter_residual();
-        if !(s.filter.residual <= 1e-9) {
+        if s.filter.residual.is_nan() || s.filter.residual > 1e-9 {
             return Err(Error::invalid(
                 "factor",
                 s.filter.residual,

@@ -13,9 +13,12 @@ use nalgebra::Complex;
 use std::f64::consts::PI;
 use stochvib::scenario::{load_spectrum, parse_scenario, verdict_analysis};
 
+/// A class: (name, high-pass order, corner Hz, low-pass order, corner Hz, G_p, target r.m.s., band edge Hz).
+type Class = (&'static str, i32, f64, i32, f64, f64, f64, f64);
+
 /// (class, high-pass order, corner Hz, low-pass order, corner Hz, G_p (m/s²)²/Hz, target r.m.s. m/s², upper
 /// band edge Hz), the table of the standard as the toolbox gives it.
-const CLASSES: [(&str, i32, f64, i32, f64, f64, f64, f64); 9] = [
+const CLASSES: [Class; 9] = [
     ("em1", 4, 1.5, 4, 2.5, 2.82, 1.71, 11.22),
     ("em2", 4, 1.5, 4, 3.0, 2.72, 2.05, 11.22),
     ("em3", 4, 1.5, 4, 3.0, 1.93, 1.73, 11.22),
@@ -28,7 +31,7 @@ const CLASSES: [(&str, i32, f64, i32, f64, f64, f64, f64); 9] = [
 ];
 
 /// The one-sided class density G(f) in (m/s²)²/Hz: G_p |H_HP|² |H_LP|² with exact Butterworth magnitudes.
-fn class_density(c: &(&str, i32, f64, i32, f64, f64, f64, f64), f: f64) -> f64 {
+fn class_density(c: &Class, f: f64) -> f64 {
     let hp = (f / c.2).powi(2 * c.1);
     c.5 * hp / (1.0 + hp) / (1.0 + (f / c.4).powi(2 * c.3))
 }
@@ -111,7 +114,7 @@ fn wk(f: f64) -> f64 {
 
 /// A seat of natural frequency 1.5 Hz and damping ratio 0.3 (the textbook seat: m_pr = 5/7·70 + 25 = 75 kg)
 /// on the platform, class `c` read as the platform displacement.
-fn seat_scenario(c: &(&str, i32, f64, i32, f64, f64, f64, f64)) -> String {
+fn seat_scenario(c: &Class) -> String {
     let w = 2.0 * PI * 1.5;
     format!(
         r#"title = "seat test"
