@@ -199,6 +199,9 @@ impl ToMarkdown for VerdictAnalysis {
         if let Some(x) = &self.fatigue {
             s += &fatigue_markdown(x);
         }
+        if let Some(x) = &self.seat_factor {
+            s += &format!("\n## Seat factor\n\n```text\n{}\n```\n", x.lines().join("\n"));
+        }
         s
     }
 }

@@ -215,6 +215,12 @@ impl fmt::Display for VerdictAnalysis {
                 writeln!(f, "  {v}")?;
             }
         }
+        if let Some(s) = &self.seat_factor {
+            writeln!(f)?;
+            for l in s.lines() {
+                writeln!(f, "{l}")?;
+            }
+        }
         Ok(())
     }
 }

@@ -5,6 +5,7 @@
 //! written and the reason ([`Error::File`](crate::Error::File)). What is run on a scenario (sweeps,
 //! replays, verdicts, transients, nonlinear routes) is [`crate::study`].
 
+mod butterworth_keys;
 mod catalogue;
 pub mod generic;
 mod input_filters;
@@ -16,6 +17,7 @@ mod profile_identity;
 pub mod reference;
 mod registry;
 pub mod scenario_file;
+pub mod seat_factor;
 pub mod spectrum_file;
 pub mod transient_keys;
 pub mod verdict_spec;

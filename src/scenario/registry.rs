@@ -189,6 +189,15 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         numeric: None,
     },
     ModelKind {
+        name: "machine",
+        family: Family::Catalogue,
+        stochastic: true,
+        summary: "machine assembly: body on axles (oscillating or suspended as options), cab on mounts, seat; two road tracks",
+        example: "data/wheel-loader-cab-seat.toml",
+        build: |f, _| stochastic(crate::models::machine_keys::from_fields(f)),
+        numeric: None,
+    },
+    ModelKind {
         name: "operator-seat",
         family: Family::Catalogue,
         stochastic: true,

@@ -173,6 +173,7 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
             let d = f.numbers("denominator")?;
             Arc::new(RationalSpectrum::new(n, d, domain).map_err(|e| w(param_key(&e), e))?)
         }
+        "butterworth-band" => Arc::new(super::butterworth_keys::butterworth_from_fields(f, domain, inv_lag)?),
         "band-white" => {
             let c = convention(f)?;
             let level = f.number("level")?;
@@ -315,7 +316,7 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
                 "kind",
                 other,
                 "unknown kind; expected exponential, gaussian, exp-cosine, gauss-cosine, rational, band-white, \
-                 tabulated, power-law, iso8608, two-pole-road, measured-profile",
+                 butterworth-band, tabulated, power-law, iso8608, two-pole-road, measured-profile",
             ))
         }
     };

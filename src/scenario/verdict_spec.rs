@@ -116,12 +116,14 @@ pub struct VerdictSpec {
     pub comfort: Option<ComfortSpec>,
     /// `[analysis.fatigue]`, if present.
     pub fatigue: Option<FatigueSpec>,
+    /// `[analysis.seat_factor]`, if present.
+    pub seat_factor: Option<super::seat_factor::SeatFactorSpec>,
 }
 
 impl VerdictSpec {
     /// True when the scenario asks for no verdict.
     pub fn is_empty(&self) -> bool {
-        self.comfort.is_none() && self.fatigue.is_none()
+        self.comfort.is_none() && self.fatigue.is_none() && self.seat_factor.is_none()
     }
 }
 
@@ -151,7 +153,20 @@ pub fn parse_verdicts(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> 
             Some(spec)
         }
     };
-    Ok(VerdictSpec { comfort, fatigue })
+    let seat_factor = match f.get("seat_factor") {
+        None => None,
+        Some(_) => {
+            let c = f.sub("seat_factor")?;
+            let spec = super::seat_factor::parse_seat_factor(&c, model)?;
+            c.finish()?;
+            Some(spec)
+        }
+    };
+    Ok(VerdictSpec {
+        comfort,
+        fatigue,
+        seat_factor,
+    })
 }
 
 /// Refuses a fatigue output whose spectral moment λ₄ (needed by every method but the narrow-band one)

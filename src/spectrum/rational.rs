@@ -142,6 +142,51 @@ impl RationalSpectrum {
         Ok(s)
     }
 
+    /// [`RationalSpectrum::new`] with the spectral factor B(s)/A(s) given in closed form (Butterworth poles,
+    /// say): for densities of high order whose poles the factorisation of D(ω²) from its coefficients cannot
+    /// resolve (coefficients spanning 40 decades); `corners` are the pole magnitudes |p| (rad per lag unit).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for empty or non-finite coefficients, or a factor whose |B/A|²/(2π) differs
+    /// from N/D by more than 1e-9 (relative) on the check grid.
+    pub fn with_factor(
+        num: Vec<f64>,
+        den: Vec<f64>,
+        domain: Domain,
+        filter: (Vec<f64>, Vec<f64>),
+        corners: Vec<f64>,
+    ) -> Result<Self> {
+        for (name, c) in [("numerator", &num), ("denominator", &den), ("factor", &filter.1)] {
+            if c.iter().all(|v| *v == 0.0) || c.iter().any(|v| !v.is_finite()) {
+                return Err(Error::invalid(
+                    name,
+                    format!("{c:?}"),
+                    "coefficients must be finite, not all zero",
+                ));
+            }
+        }
+        let mut s = RationalSpectrum {
+            num: poly::trim(&num),
+            den: poly::trim(&den),
+            domain,
+            filter: ShapingFilter {
+                num: filter.0,
+                den: filter.1,
+                residual: 0.0,
+            },
+            corners,
+        };
+        s.filter.residual = s.filter_residual();
+        if s.filter.residual.is_nan() || s.filter.residual > 1e-9 {
+            return Err(Error::invalid(
+                "factor",
+                s.filter.residual,
+                "the given spectral factor does not reproduce N(ω²)/D(ω²)",
+            ));
+        }
+        Ok(s)
+    }
+
     /// Numerator coefficients in ascending powers of ω².
     pub fn numerator(&self) -> &[f64] {
         &self.num
@@ -270,7 +315,13 @@ impl Spectrum for RationalSpectrum {
             return Err(self.improper());
         }
         let f = self.shaping_filter()?;
-        Ok(crate::linalg::h2_integral(&f.num, &f.den)? / (2.0 * PI))
+        match crate::linalg::h2_integral(&f.num, &f.den) {
+            Ok(v) => Ok(v / (2.0 * PI)),
+            // a filter of high order whose Hurwitz system is numerically singular (an 8th-order Butterworth
+            // pair): the density itself is still exact, so integrate it
+            Err(Error::Numerical { .. }) => super::numeric::variance(self).map(|r| r.value),
+            Err(e) => Err(e),
+        }
     }
     fn rational(&self) -> Option<RationalSpectrum> {
         Some(self.clone())

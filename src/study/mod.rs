@@ -24,6 +24,7 @@ mod nonlinear_run;
 pub mod replay;
 pub mod run_step;
 mod scenario_run;
+pub mod seat_factor;
 pub mod shard;
 pub mod sweep;
 mod sweep_h5;

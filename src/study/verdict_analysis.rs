@@ -177,6 +177,8 @@ pub struct VerdictAnalysis {
     pub comfort: Option<ComfortVerdict>,
     /// Fatigue.
     pub fatigue: Option<FatigueVerdict>,
+    /// The SEAT value of `[analysis.seat_factor]`.
+    pub seat_factor: Option<super::seat_factor::SeatFactorResult>,
 }
 
 /// The verdicts of `[analysis.comfort]` and `[analysis.fatigue]` of a scenario (empty without them).
@@ -203,7 +205,45 @@ pub fn verdict_analysis(sc: &Scenario) -> Result<VerdictAnalysis> {
         Some(f) => Some(fatigue_verdict(sc, f)?),
         None => None,
     };
-    Ok(VerdictAnalysis { comfort, fatigue })
+    let seat_factor = match &spec.seat_factor {
+        Some(s) => Some(super::seat_factor::seat_factor(sc, s)?),
+        None => None,
+    };
+    Ok(VerdictAnalysis {
+        comfort,
+        fatigue,
+        seat_factor,
+    })
+}
+
+/// a_w of an already weighted system `ws` under the scenario's input: (the exact value where available, by
+/// Lyapunov, by quadrature); errors name `key` and `name`.
+pub(crate) fn weighted_rms_pair(
+    sc: &Scenario,
+    ws: &crate::system::StateSpace,
+    key: &str,
+    name: &str,
+) -> Result<(f64, Option<f64>, Option<f64>)> {
+    let st = analyze_output_with(ws, &sc.excitation, 0, &sc.analysis.effort)?;
+    let a_w = st.sigma.ok_or_else(|| {
+        file_error(
+            sc,
+            key,
+            name,
+            Error::Numerical {
+                what: format!("weighted r.m.s. of `{name}`"),
+                reason: st.variance_outcome.describe(),
+            },
+        )
+    })?;
+    let value = |m: &[VarianceMethod]| {
+        (st.methods.iter())
+            .find(|v| m.contains(&v.method))
+            .and_then(|v| v.value())
+            .map(f64::sqrt)
+    };
+    let lyap = value(&[VarianceMethod::Lyapunov, VarianceMethod::LyapunovDelays]);
+    Ok((a_w, lyap, value(&[VarianceMethod::Quadrature])))
 }
 
 fn file_error(sc: &Scenario, key: &str, value: &str, e: Error) -> Error {

@@ -516,6 +516,22 @@ impl Mdof {
         Ok(self)
     }
 
+    /// [`Mdof::with_output`] for a point whose weights are lever arms (m/rad) on angles alone, such as the
+    /// lateral or longitudinal motion of a point at a height from roll or pitch: a length (m, m/s, m/s²),
+    /// where `with_output` would call a point of angles alone an angle.
+    ///
+    /// # Errors
+    /// As [`Mdof::with_output`].
+    pub fn with_lever_output(self, name: &str, quantity: Quantity) -> Result<Self> {
+        let mut m = self.with_output(name, quantity)?;
+        let last = m.infos.len() - 1;
+        let info = OutputInfo::new(name, m.infos[last].unit.replacen("rad", "m", 1));
+        m.outputs[last].info = info.clone();
+        m.infos[last] = info;
+        m.rebuild_state_space()?;
+        Ok(m)
+    }
+
     /// Number of coordinates.
     pub fn n_coords(&self) -> usize {
         self.m.nrows()

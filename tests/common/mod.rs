@@ -408,3 +408,30 @@ pub fn run_bits(s: &stochvib::simulate::RunSummary, out: &std::path::Path) -> Ve
     v.extend(psd_bits(out));
     v
 }
+
+/// The passenger car of `data/full-vehicle-two-tracks.toml` written as a machine: suspended wheels, no tyre
+/// damping, no cab; a body point at the full vehicle's seat (0.3 m ahead, 0.35 m left).
+pub const CAR_AS_MACHINE: &str = r#"title = "car as machine"
+[model]
+kind = "machine"
+body = { mass = "1400 kg", pitch_inertia = "2100 kg*m^2", roll_inertia = "500 kg*m^2", height = "0.5 m" }
+[[model.axle]]
+name = "front"
+position = "1.2 m"
+track_width = "1.5 m"
+tyre_stiffness = "200 kN/m"
+suspension = { stiffness = "25 kN/m", damping = "2000 N*s/m", unsprung_mass = "40 kg" }
+[[model.axle]]
+name = "rear"
+position = "-1.5 m"
+track_width = "1.5 m"
+tyre_stiffness = "200 kN/m"
+suspension = { stiffness = "22 kN/m", damping = "1800 N*s/m", unsprung_mass = "35 kg" }
+[[model.output]]
+name = "seat_acc"
+part = "body"
+point = ["0.3 m", "0.35 m", "0.9 m"]
+direction = "z"
+[analysis]
+outputs = ["bounce", "pitch", "roll", "seat_acc", "travel_front_left", "tyre_force_rear_right"]
+"#;

@@ -72,6 +72,7 @@ gains = [1, 1]"#,
     all.push(("enveloped-input", QUADRATIC_DAMPERS.to_string() + ENVELOPED_INPUT));
     all.push(("several-inputs", body_on_two_tracks("forces = [[1]]") + SEVERAL_INPUTS));
     all.push(("transient-table", TRANSIENT_TABLE.to_string()));
+    all.push(("machine-suspended", machine_suspended()));
     all
 }
 
@@ -250,6 +251,17 @@ kurtosis = 3
 "#;
 
 /// Every key of the verdict sections the shipped files leave out (the S–N curve by `c`).
+/// A machine with suspended wheels (the keys of `model.axle[].suspension`) on a road of two tracks.
+fn machine_suspended() -> String {
+    common::CAR_AS_MACHINE.to_string()
+        + r#"
+[[input]]
+name = "road"
+road = { spectrum = "iso8608-c", track_width = "1.5 m", coherence = { kind = "dodds-robson", waviness = 2 } }
+speed = "20 m/s"
+"#
+}
+
 const VERDICTS: &str = r#"
 [model]
 kind = "operator-seat"
