@@ -4,7 +4,8 @@
 use super::chart::{Legend, LineChart, Marker, SecondaryAxis, Series};
 use crate::error::{Error, Result};
 use crate::numbers::num;
-use crate::response::{band_variance, output_density, variance_quadrature};
+use crate::quad_oscillatory::OscillatoryOptions;
+use crate::response::{band_variance_with, output_density, variance_quadrature};
 use crate::scenario::Scenario;
 use crate::spectrum::{Convention, Domain, Spectrum};
 use std::f64::consts::PI;
@@ -456,6 +457,34 @@ pub fn transfer_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) 
     Ok(chart)
 }
 
+/// The cumulative variance σ²(ω_k) at the grid points (see [`output_density_chart`]) and whether it starts at
+/// ω = 0. Each segment is integrated to the default relative tolerance or to an absolute tolerance of that
+/// fraction of the whole-axis variance `whole`, whichever is looser: a segment holding a negligible share of
+/// the variance (e.g. at a band edge of a road) needs no more, and its own relative tolerance may be out of
+/// reach there.
+fn cumulative_variance(
+    sc: &Scenario,
+    output: usize,
+    grid: &[f64],
+    whole: Option<f64>,
+    conv: Convention,
+) -> Result<(Vec<(f64, f64)>, bool)> {
+    let (sys, exc) = (sc.model.system.as_ref(), &sc.excitation);
+    let mut q = OscillatoryOptions::default();
+    q.abs_tol = whole.map_or(0.0, |v| q.rel_tol * v);
+    let (mut acc, from_zero) = match band_variance_with(sys, exc, output, (0.0, grid[0]), &q) {
+        Ok(r) => (r.value, true),
+        Err(Error::Divergent { .. }) => (0.0, false),
+        Err(e) => return Err(e),
+    };
+    let mut cumulative = vec![(frequency(conv, grid[0]), acc)];
+    for k in 1..grid.len() {
+        acc += band_variance_with(sys, exc, output, (grid[k - 1], grid[k]), &q)?.value;
+        cumulative.push((frequency(conv, grid[k]), acc));
+    }
+    Ok((cumulative, from_zero))
+}
+
 /// Log–log chart of the density of output `output` in `opts.convention`, with the cumulative variance on
 /// a linear right-hand axis and the whole-axis variance as a horizontal line.
 ///
@@ -495,26 +524,17 @@ pub fn output_density_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOpt
         .iter()
         .map(|&w| conv.from_canonical(w, output_density(sys, exc, output, w)))
         .collect();
-    let (mut acc, from_zero) = match band_variance(sys, exc, output, 0.0, grid[0]) {
-        Ok(r) => (r.value, true),
-        Err(Error::Divergent { .. }) => (0.0, false),
+    let var_unit = squared(&info.unit);
+    let whole = match variance_quadrature(sys, exc, output) {
+        Ok(r) => Some(r.value),
+        Err(Error::Divergent { .. }) => None,
         Err(e) => return Err(e),
     };
-    let mut cumulative = vec![(frequency(conv, grid[0]), acc)];
-    for k in 1..grid.len() {
-        acc += band_variance(sys, exc, output, grid[k - 1], grid[k])?.value;
-        cumulative.push((frequency(conv, grid[k]), acc));
-    }
-    let var_unit = squared(&info.unit);
+    let (cumulative, from_zero) = cumulative_variance(sc, output, &grid, whole, conv)?;
     let fsym = if conv.is_cyclic() { "f" } else { "ω" };
     let mut hlines = Vec::new();
-    match variance_quadrature(sys, exc, output) {
-        Ok(r) => hlines.push(Marker::new(
-            r.value,
-            format!("σ² (whole axis) = {} {var_unit}", num(r.value)),
-        )),
-        Err(Error::Divergent { .. }) => {}
-        Err(e) => return Err(e),
+    if let Some(v) = whole {
+        hlines.push(Marker::new(v, format!("σ² (whole axis) = {} {var_unit}", num(v))));
     }
     let cum_name = if from_zero {
         format!("cumulative variance σ²({fsym})")

@@ -34,7 +34,7 @@ pub use statistics::{
 };
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{
-    band_variance, output_density, output_high_frequency, output_low_frequency, spectral_moment_quadrature,
-    spectral_moment_quadrature_with, variance_integral_table, variance_lyapunov, variance_quadrature, LyapunovMoments,
-    INTEGRAL_TABLE_MAX_ERROR,
+    band_variance, band_variance_with, output_density, output_high_frequency, output_low_frequency,
+    spectral_moment_quadrature, spectral_moment_quadrature_with, variance_integral_table, variance_lyapunov,
+    variance_quadrature, LyapunovMoments, INTEGRAL_TABLE_MAX_ERROR,
 };

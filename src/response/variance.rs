@@ -289,6 +289,22 @@ pub fn spectral_moment_quadrature_with(
 /// # Errors
 /// [`Error::InvalidParameter`] unless 0 ≤ ω₁ < ω₂ < ∞.
 pub fn band_variance(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, w1: f64, w2: f64) -> Result<QuadResult> {
+    band_variance_with(sys, exc, i, (w1, w2), &OscillatoryOptions::default())
+}
+
+/// [`band_variance`] with the tolerances of `opts`: e.g. an absolute tolerance that is a fraction of the
+/// whole-axis variance, for one band of many whose sum is what matters (a band holding a negligible share
+/// of the variance then does not need `opts.rel_tol` of its own tiny value).
+///
+/// # Errors
+/// As [`band_variance`].
+pub fn band_variance_with(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    i: usize,
+    (w1, w2): (f64, f64),
+    opts: &OscillatoryOptions,
+) -> Result<QuadResult> {
     check_io(sys, exc, i)?;
     if !(w1 >= 0.0 && w2 > w1 && w2.is_finite()) {
         return Err(Error::invalid(
@@ -307,7 +323,7 @@ pub fn band_variance(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize, w1
             reason: "the band starts at ω = 0 where the output density is not integrable".into(),
         });
     }
-    moment_integral(sys, exc, i, 0, w1, w2, &OscillatoryOptions::default())
+    moment_integral(sys, exc, i, 0, w1, w2, opts)
 }
 
 /// Checks that `exc` drives every input of `sys`, that output `i` exists and that the system is stable.
