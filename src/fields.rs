@@ -212,13 +212,24 @@ impl<'a> Fields<'a> {
         self.wrap(&key, e)
     }
 
-    /// The value of `key` in the table, or of `name[i]`, an element of the array `name`.
+    /// The value of `key` in the table: a key, `name[i]` (an element of the array `name`), or a dotted path
+    /// of these into nested tables (`axle[1].track_width`).
     fn lookup(&self, key: &str) -> Option<&'a toml::Value> {
-        let element = || {
-            let (name, i) = key.strip_suffix(']')?.split_once('[')?;
-            self.table.get(name)?.as_array()?.get(i.parse::<usize>().ok()?)
+        if let Some(v) = self.table.get(key) {
+            return Some(v);
+        }
+        let step = |t: &'a toml::Table, part: &str| -> Option<&'a toml::Value> {
+            match part.strip_suffix(']').and_then(|p| p.split_once('[')) {
+                Some((name, i)) => t.get(name)?.as_array()?.get(i.parse::<usize>().ok()?),
+                None => t.get(part),
+            }
         };
-        self.table.get(key).or_else(element)
+        let mut parts = key.split('.');
+        let mut v = step(self.table, parts.next()?)?;
+        for part in parts {
+            v = step(v.as_table()?, part)?;
+        }
+        Some(v)
     }
 
     /// The raw value of `key`, marking it used.
