@@ -739,10 +739,22 @@ pub fn evaluate(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention
 static LAST_PANIC: Mutex<Option<(String, String)>> = Mutex::new(None);
 static HOOK: Once = Once::new();
 
-/// Replaces the panic hook by one that records the location and message silently.
+thread_local! {
+    /// Set in the threads that evaluate a fuzz case ([`limited`]): their panics are findings, recorded
+    /// silently; a panic anywhere else (another test of the suite failing) goes to the previous hook.
+    static CASE_THREAD: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Installs a panic hook that records the location and message of a panic in a fuzz-case thread silently and
+/// passes every other panic to the hook it replaces, so a test that fails beside the fuzz tests in the same
+/// process still prints why.
 pub fn install_panic_hook() {
     HOOK.call_once(|| {
-        std::panic::set_hook(Box::new(|info| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !CASE_THREAD.with(|c| c.get()) {
+                return previous(info);
+            }
             let loc = info
                 .location()
                 .map(|l| format!("{}:{}:{}", l.file(), l.line(), l.column()))
@@ -759,6 +771,11 @@ pub fn install_panic_hook() {
             }
         }));
     });
+}
+
+/// The (location, message) the hook recorded last, if any.
+pub fn recorded_panic() -> Option<(String, String)> {
+    LAST_PANIC.lock().ok().and_then(|g| g.clone())
 }
 
 /// Runs [`evaluate`] in a fresh thread with `catch_unwind`, giving up after `limit`. A thread that does not
@@ -782,6 +799,7 @@ pub fn limited(limit: Duration, eval: impl FnOnce(&AtomicU8) -> Outcome + Send +
     std::thread::Builder::new()
         .name("fuzz-case".into())
         .spawn(move || {
+            CASE_THREAD.with(|c| c.set(true));
             let r = std::panic::catch_unwind(AssertUnwindSafe(|| eval(&st)));
             let _ = tx.send(r);
         })

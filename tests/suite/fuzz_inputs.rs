@@ -345,3 +345,24 @@ fn names_are_free_text_and_a_unit_is_judged_against_the_shipped_value() {
     let unknown = m("analysis.band[1]", edge, Some("unknown-unit-accepted"));
     assert!(expectation_holds(&[set, unknown], 1));
 }
+
+/// The harness's panic hook records a panic of a fuzz-case thread silently and passes every other panic to
+/// the hook it replaced: a test failing elsewhere in the suite process must still print why (a process-wide
+/// silent hook once swallowed the message of a failing store test). A panic outside a case thread is never
+/// what the hook records (other fuzz tests running at the same time may only clear the record or record
+/// their own cases, never this message).
+#[test]
+fn the_panic_hook_is_silent_only_in_fuzz_case_threads() {
+    let o = fuzz::inputs::limited(Duration::from_secs(60), |_| panic!("inside a fuzz case"));
+    match o {
+        fuzz::inputs::Outcome::Panic { message, .. } => assert_eq!(message, "inside a fuzz case"),
+        _ => panic!("the case's panic was not caught"),
+    }
+    let outside = std::thread::spawn(|| panic!("outside a fuzz case")).join();
+    assert!(outside.is_err());
+    let recorded = fuzz::inputs::recorded_panic();
+    assert!(
+        recorded.as_ref().is_none_or(|(_, m)| m != "outside a fuzz case"),
+        "{recorded:?}"
+    );
+}
