@@ -649,7 +649,7 @@ pub(crate) fn h5err(path: &Path, context: &str) -> impl Fn(hdf5::Error) -> Error
 }
 
 /// How [`open_sec2`] opens a file.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, PartialEq, Eq)]
 pub(crate) enum OpenMode {
     /// Create; fail if the file exists.
     CreateExcl,
@@ -668,23 +668,48 @@ pub(crate) enum OpenMode {
 /// lock file" until that child exits. The open and the `fcntl` happen under one hold of the HDF5 library
 /// lock, so no other HDF5 call can delay the `fcntl`; a child forked in the microseconds between the two
 /// system calls can still inherit the descriptor (HDF5 offers no way to pass `O_CLOEXEC`).
+///
+/// Even a descriptor marked close-on-exec lives in a child from its fork to its exec (milliseconds on a busy
+/// machine): an open of an existing file that finds it locked (`EAGAIN`) is tried again after 10, 20, 40, …
+/// ms, [`LOCK_RETRIES`] times (about 2.5 s in all), before the error is returned. A file really held by
+/// another writer stays locked for that long and is still reported.
 pub(crate) fn open_sec2(
     path: &Path,
     mode: OpenMode,
-    customize: impl FnOnce(&mut hdf5::FileBuilder),
+    customize: impl Fn(&mut hdf5::FileBuilder),
 ) -> hdf5::Result<hdf5::File> {
-    hdf5::sync::sync(|| {
-        let mut b = hdf5::File::with_options();
-        b.with_fapl(|p| p.sec2());
-        customize(&mut b);
-        let file = match mode {
-            OpenMode::CreateExcl => b.create_excl(path),
-            OpenMode::ReadWrite => b.open_rw(path),
-            OpenMode::Read => b.open(path),
-        }?;
-        close_on_exec(&file);
-        Ok(file)
-    })
+    let open = || {
+        hdf5::sync::sync(|| {
+            let mut b = hdf5::File::with_options();
+            b.with_fapl(|p| p.sec2());
+            customize(&mut b);
+            let file = match mode {
+                OpenMode::CreateExcl => b.create_excl(path),
+                OpenMode::ReadWrite => b.open_rw(path),
+                OpenMode::Read => b.open(path),
+            }?;
+            close_on_exec(&file);
+            Ok(file)
+        })
+    };
+    let mut wait = std::time::Duration::from_millis(10);
+    for _ in 0..LOCK_RETRIES {
+        match open() {
+            Err(e) if mode != OpenMode::CreateExcl && is_lock_busy(&e) => std::thread::sleep(wait),
+            other => return other,
+        }
+        wait *= 2;
+    }
+    open()
+}
+
+/// Retries of an open that found the file locked ([`open_sec2`]).
+const LOCK_RETRIES: usize = 8;
+
+/// Whether HDF5 refused an open because another open file description holds the file's lock.
+fn is_lock_busy(e: &hdf5::Error) -> bool {
+    let text = e.to_string();
+    text.contains("unable to lock file") && text.contains("errno = 11")
 }
 
 /// Starts a child process so that it inherits no descriptor of a run file: the spawn runs under HDF5's
