@@ -435,3 +435,18 @@ direction = "z"
 [analysis]
 outputs = ["bounce", "pitch", "roll", "seat_acc", "travel_front_left", "tyre_force_rear_right"]
 "#;
+
+/// The passenger-car corner of `data/quarter-car.toml` (300 kg, 40 kg, 20 kN/m, 1.5 kN s/m, tyre 200 kN/m, no
+/// tyre damping), the model the transient tests drive.
+pub fn passenger_quarter_car() -> stochvib::models::quarter_car::QuarterCar {
+    stochvib::models::quarter_car::QuarterCar {
+        sprung_mass: 300.0,
+        unsprung_mass: 40.0,
+        suspension_stiffness: 20e3,
+        suspension_damping: 1.5e3,
+        tyre_stiffness: 200e3,
+        tyre_damping: 0.0,
+    }
+    .build()
+    .unwrap()
+}

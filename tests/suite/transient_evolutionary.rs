@@ -8,7 +8,6 @@ use crate::transient_exact::system;
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::PI;
 use std::sync::Arc;
-use stochvib::models::quarter_car::QuarterCar;
 use stochvib::spectrum::{BandWhite, Convention, Domain, Exponential, Spectrum};
 use stochvib::system::{FrequencyResponse, OutputInfo, StateSpace};
 use stochvib::transient::{
@@ -203,16 +202,7 @@ fn band_limited_white_under_an_amplitude_ramp_against_priestley() {
 /// δ(t) (plus the exact route's tolerance), at every reported time.
 #[test]
 fn quarter_car_accelerating_against_the_exact_route() {
-    let car = QuarterCar {
-        sprung_mass: 300.0,
-        unsprung_mass: 40.0,
-        suspension_stiffness: 20e3,
-        suspension_damping: 1.5e3,
-        tyre_stiffness: 200e3,
-        tyre_damping: 0.0,
-    }
-    .build()
-    .unwrap();
+    let car = crate::common::passenger_quarter_car();
     let mdof = car.system().unwrap();
     let ss = mdof.state_space().unwrap().clone();
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());

@@ -297,16 +297,7 @@ fn quarter_car_accelerating_on_a_w2_road() {
 /// the transient; started in the stationary state it stays there.
 #[test]
 fn stationary_input_through_the_transient_path() {
-    let car = QuarterCar {
-        sprung_mass: 300.0,
-        unsprung_mass: 40.0,
-        suspension_stiffness: 20e3,
-        suspension_damping: 1.5e3,
-        tyre_stiffness: 200e3,
-        tyre_damping: 0.0,
-    }
-    .build()
-    .unwrap();
+    let car = crate::common::passenger_quarter_car();
     let mdof = car.system().unwrap();
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
     let exc = Excitation::road(road.clone(), 10.0, &[0.0]).unwrap();

@@ -4,7 +4,6 @@
 
 use std::sync::Arc;
 use stochvib::estimate::chi_squared_quantile;
-use stochvib::models::quarter_car::QuarterCar;
 use stochvib::spectrum::{Domain, Exponential, IsoBound, IsoClass, PowerLaw, Spectrum};
 use stochvib::system::FrequencyResponse;
 use stochvib::transient::{
@@ -23,16 +22,7 @@ use stochvib::transient::{
 /// (ΩΔx)²/6 at the body mode, 10⁻⁴) — are far inside the bounds (about ±30 % at R = 1000).
 #[test]
 fn quarter_car_accelerating_on_a_grid_road_against_the_exact_route() {
-    let car = QuarterCar {
-        sprung_mass: 300.0,
-        unsprung_mass: 40.0,
-        suspension_stiffness: 20e3,
-        suspension_damping: 1.5e3,
-        tyre_stiffness: 200e3,
-        tyre_damping: 0.0,
-    }
-    .build()
-    .unwrap();
+    let car = crate::common::passenger_quarter_car();
     let mdof = car.system().unwrap();
     let ss = mdof.state_space().unwrap().clone();
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
@@ -80,16 +70,7 @@ fn quarter_car_accelerating_on_a_grid_road_against_the_exact_route() {
 /// density; a standing start (v(0) = 0) has no run-in: refused.
 #[test]
 fn grid_road_refusals() {
-    let car = QuarterCar {
-        sprung_mass: 300.0,
-        unsprung_mass: 40.0,
-        suspension_stiffness: 20e3,
-        suspension_damping: 1.5e3,
-        tyre_stiffness: 200e3,
-        tyre_damping: 0.0,
-    }
-    .build()
-    .unwrap();
+    let car = crate::common::passenger_quarter_car();
     let ss = car.system().unwrap().state_space().unwrap().clone();
     let times: Vec<f64> = (0..=4).map(|k| k as f64 * 0.5).collect();
     let opts = RoadGridOptions {
@@ -122,16 +103,7 @@ fn grid_road_refusals() {
 /// pairs, widened by δ, fail with probability ≤ 10⁻⁶.
 #[test]
 fn evolutionary_route_on_a_band_limited_road_against_grid_monte_carlo() {
-    let car = QuarterCar {
-        sprung_mass: 300.0,
-        unsprung_mass: 40.0,
-        suspension_stiffness: 20e3,
-        suspension_damping: 1.5e3,
-        tyre_stiffness: 200e3,
-        tyre_damping: 0.0,
-    }
-    .build()
-    .unwrap();
+    let car = crate::common::passenger_quarter_car();
     let mdof = car.system().unwrap();
     let ss = mdof.state_space().unwrap().clone();
     let road: Arc<dyn Spectrum> =
