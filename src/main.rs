@@ -14,11 +14,11 @@ use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
 use stochvib::report::table::{ReportFormat, ToMarkdown};
 use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
-use stochvib::simulate::{merge_runs, MergeOptions, Route, RunOptions};
+use stochvib::simulate::{Route, RunOptions};
 use stochvib::spectrum::Convention;
 use stochvib::store::{Compression, RunFile};
 use stochvib::study::{self, NonlinearAnswers, Sweep, SweepMode, SweepParam, SweepSpec};
-use stochvib::study::{part_path, resolve_part};
+use stochvib::study::{merge_runs, part_path, resolve_part, MergeOptions};
 
 /// Stochastic vibration and random-road analysis of machines.
 #[derive(Parser)]

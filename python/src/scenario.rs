@@ -297,7 +297,7 @@ pub fn merge<'py>(
     overwrite: bool,
     confidence: Option<f64>,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
-    use stochvib::simulate::{merge_runs, MergeOptions};
+    use stochvib::study::{merge_runs, MergeOptions};
     let opts = MergeOptions {
         copy,
         overwrite,

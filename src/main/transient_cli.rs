@@ -183,7 +183,7 @@ fn print_summary(s: &TransientRunSummary) {
 pub fn merge_transient_if(
     output: &Path,
     inputs: &[PathBuf],
-    opts: &stochvib::simulate::MergeOptions,
+    opts: &stochvib::study::MergeOptions,
 ) -> anyhow::Result<Option<TransientRunSummary>> {
     let (runs, _) = stochvib::store::find_run_files(inputs, &[output])?;
     let Some(first) = runs

@@ -1,6 +1,6 @@
 //! Finishing a run from its per-shard accumulators: the statistics of every output and its Welch density.
 //! One code path for a run of one process ([`run()`](super::run())), a shard file of a cluster run, and a
-//! merge of shard files ([`merge_runs`](super::merge_runs)), so that the three give bit-identical numbers
+//! merge of shard files ([`merge_runs`](crate::study::merge_runs)), so that the three give bit-identical numbers
 //! for the same realizations.
 //!
 //! # Formula

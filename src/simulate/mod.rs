@@ -18,7 +18,7 @@
 //!   [`Route`], [`suggest_step`]), the plan (route choice with its reasons), the engine, the typed per-shard
 //!   [`accumulators`] and the [`RunSummary`].
 //! * Beyond one machine: one part of a run per process ([`crate::study::shard`]; `simulate --shard I
-//!   --of N`) and the bit-identical merge of the parts ([`merge_runs`]).
+//!   --of N`) and the bit-identical merge of the parts ([`crate::study::merge_runs`]).
 
 pub mod accumulators;
 pub mod agreement;
@@ -32,7 +32,6 @@ mod finished_part;
 pub mod fir_stream;
 mod input;
 pub mod laplace;
-mod merge;
 mod options;
 mod plan;
 pub mod resources;
@@ -56,7 +55,6 @@ pub use discretize::{
 pub use fir_stream::{FirScratch, FirSynthesis, KernelDesign};
 pub use input::{source_signals, RunInput};
 pub use laplace::{LaplaceMovingAverage, LaplaceScratch, LAPLACE_DRAWS};
-pub use merge::{merge_runs, MergeOptions, MergeSummary};
 pub use options::{readable_duration, readable_step, suggest_step, Route, RunOptions, StepSuggestion};
 pub use plan::{planned_memory, planned_variances, PlannedMemory, PlannedVariance, SkippedOutput};
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
@@ -64,11 +62,14 @@ pub use road_track::{RoadScratch, RoadTrack};
 pub use run::{run, run_temporary, run_temporary_with, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
+pub(crate) use summary::write_band_tables;
 pub use summary::{coverage_cause, covers_word, RunSummary};
 pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};
-// the engine and plan of linear runs, for the input synthesis of nonlinear runs (crate::nonlinear)
+// the engine and plan of linear runs, for the input synthesis of nonlinear runs (crate::nonlinear), and the
+// finishing of a run's statistics, for the merge of shard files (crate::study)
 pub(crate) use engine::{samples, Scratch};
 pub(crate) use finish::{
-    density_estimate, interval as finish_interval, output_statistics, read_output as read_output_accumulators, Analytic,
+    density_estimate, interval as finish_interval, output_statistics, read_output as read_output_accumulators,
+    Analytic, OutputFold,
 };
 pub(crate) use plan::{plan, Plan};

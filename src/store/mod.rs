@@ -7,6 +7,7 @@
 pub mod checksum;
 mod chunks;
 pub mod layout;
+mod merge_options;
 mod parts;
 mod rainflow;
 mod reader;
@@ -14,6 +15,7 @@ mod response_histogram;
 pub mod transient_series;
 mod writer;
 
+pub use merge_options::MergeOptions;
 pub use parts::{find_run_files, MergedFrom, PartFile, PartSet, RawStorage, VirtualSource};
 pub use rainflow::RainflowHistogram;
 pub use reader::{abbreviated_list, RunFile, RunInfo, Verification, LISTED_FILES};

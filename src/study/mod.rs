@@ -6,7 +6,8 @@
 //!   into shard files of a cluster run and merged ([`merge_sweep`]), and the verdicts of every point
 //!   ([`sweep_verdicts`]).
 //! * The shard contract of a cluster run ([`shard`]: which part a process computes, from `--shard I --of N`
-//!   or the scheduler, and the file it writes), shared by runs and parameter studies.
+//!   or the scheduler, and the file it writes), shared by runs and parameter studies, and the bit-identical
+//!   merge of a run's shard files ([`merge_runs`]).
 //! * A scenario's Monte Carlo run ([`Scenario::simulate`](crate::scenario::Scenario::simulate)).
 //! * A measured road profile replayed through a scenario's model ([`replay`]).
 //! * The verdicts of a scenario: analytic ([`verdict_analysis`], with the input's coverage of the
@@ -20,6 +21,7 @@
 
 mod float_text;
 pub mod input_coverage;
+mod merge;
 mod nonlinear_run;
 pub mod replay;
 pub mod run_step;
@@ -38,6 +40,8 @@ pub mod verdict_analysis;
 mod verdict_run;
 pub mod workday;
 
+pub use crate::store::MergeOptions;
+pub use merge::{merge_runs, MergeSummary};
 pub use nonlinear_run::NonlinearAnswers;
 pub use shard::{part_path, resolve_part, ShardChoice};
 pub use sweep::{

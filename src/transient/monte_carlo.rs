@@ -337,17 +337,17 @@ pub fn is_transient_run(meta: &RunMetadata) -> bool {
     is_transient_layout(&meta.accumulators)
 }
 
-/// Merges the shard files of a transient run (the counterpart of [`crate::simulate::merge_runs`], which
+/// Merges the shard files of a transient run (the counterpart of [`crate::study::merge_runs`], which
 /// does not handle transient runs): the accumulators of every internal shard in order, finished by the code of a
 /// single-process run, so the statistics are bit-identical; the analytic side is taken from the first
 /// shard file (every shard file stores the same, which the shared fingerprint checks).
 ///
 /// # Errors
-/// As [`crate::simulate::merge_runs`]; a shard file without its `/transient` group.
+/// As [`crate::study::merge_runs`]; a shard file without its `/transient` group.
 pub fn merge_transient(
     out: &Path,
     inputs: &[PathBuf],
-    opts: &crate::simulate::MergeOptions,
+    opts: &crate::store::MergeOptions,
     progress: &dyn Fn(usize, usize),
 ) -> Result<TransientRunSummary> {
     let tmp = crate::store::tmp_path(out);
@@ -368,11 +368,7 @@ pub fn merge_transient(
         reason: "a transient shard file without its /transient group: the file is damaged".into(),
     })?;
     let confidence = opts.confidence.unwrap_or(stored.confidence);
-    let raw = match (meta.store_raw, opts.copy) {
-        (false, _) => RawStorage::None,
-        (true, true) => RawStorage::Copied,
-        (true, false) => RawStorage::Virtual,
-    };
+    let raw = opts.raw_storage(meta.store_raw);
     let from = set.merged_from(out, raw);
     let mut writer = RunWriter::create_merged(
         out,

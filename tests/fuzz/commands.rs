@@ -1117,12 +1117,12 @@ fn eval_merge(path: &Path, args: &[String], ctx: &Context) -> Outcome {
             Err(e) => fail(&e, "report"),
         };
     }
-    let opts = stochvib::simulate::MergeOptions {
+    let opts = stochvib::study::MergeOptions {
         copy: set.copy,
         overwrite: set.overwrite,
         confidence: None,
     };
-    match stochvib::simulate::merge_runs(&set.out, &set.inputs, &opts, &|_, _| {}) {
+    match stochvib::study::merge_runs(&set.out, &set.inputs, &opts, &|_, _| {}) {
         Ok(s) => {
             let same = !set.run_a
                 || s.outputs

@@ -17,9 +17,9 @@ use std::path::{Path, PathBuf};
 use stochvib::comfort::{output_band_table, BandFraction, BandTable};
 use stochvib::estimate::Welch;
 use stochvib::scenario::{parse_scenario, Scenario};
-use stochvib::simulate::{merge_runs, MergeOptions, RunOptions};
+use stochvib::simulate::RunOptions;
 use stochvib::store::{tmp_path, OutputStatistics, Part, PsdEstimate, RunFile, SignalGroup};
-use stochvib::study::part_path;
+use stochvib::study::{merge_runs, part_path, MergeOptions};
 
 /// Per-band false-failure probability of the coverage test. At most 4 outputs × 22 bands = 88 intervals
 /// are tested (asserted below), so by the union bound the test fails falsely with probability ≤ 88·2e-9 ≈

@@ -509,9 +509,9 @@ fn damage_rate(outputs: &[stochvib::store::OutputStatistics]) -> &stochvib::stor
 fn merged_shards_of_a_non_gaussian_verdict_run_keep_its_vdv_prediction() {
     // A cluster run (2 shard files of 4 realizations) merged equals the single-process run bit for bit, the
     // non-Gaussian analytic VDV and its method text included (the merge takes them from the shard files).
-    use stochvib::simulate::{merge_runs, MergeOptions};
     use stochvib::store::Part;
     use stochvib::study::part_path;
+    use stochvib::study::{merge_runs, MergeOptions};
     let dir = crate::common::scratch_dir("laplace", "merge");
     std::fs::create_dir_all(&dir).unwrap();
     let sc = operator_seat(Some(6.0));

@@ -13,9 +13,9 @@ use crate::common::SpawnSerial;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use stochvib::scenario::{load_scenario, Scenario};
-use stochvib::simulate::{MergeOptions, RunOptions};
+use stochvib::simulate::RunOptions;
 use stochvib::store::{Part, PsdEstimate, RainflowHistogram, RunFile};
-use stochvib::study::part_path;
+use stochvib::study::{part_path, MergeOptions};
 
 /// Serialises this binary's in-process HDF5 work with the spawning of child processes: a child forked while
 /// a test thread holds an HDF5 file open inherits its descriptor and its flock(2) lock (until exec closes
@@ -41,9 +41,9 @@ fn simulate(sc: &Scenario, o: &RunOptions, path: &Path) {
     sc.simulate(o, path, &|_, _| {}).unwrap();
 }
 
-fn merge(out: &Path, inputs: &[PathBuf]) -> stochvib::error::Result<stochvib::simulate::MergeSummary> {
+fn merge(out: &Path, inputs: &[PathBuf]) -> stochvib::error::Result<stochvib::study::MergeSummary> {
     let _g = spawn_lock();
-    stochvib::simulate::merge_runs(out, inputs, &MergeOptions::default(), &|_, _| {})
+    stochvib::study::merge_runs(out, inputs, &MergeOptions::default(), &|_, _| {})
 }
 
 fn bits(v: &[f64]) -> Vec<u64> {

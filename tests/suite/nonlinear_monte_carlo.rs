@@ -346,9 +346,9 @@ fn bad_nonlinear_input_is_refused_with_key_value_and_reason() {
 /// including the nonlinear ones, and the response histograms), as linear runs do.
 #[test]
 fn route2_parts_merge_bit_identically() {
-    use stochvib::simulate::{merge_runs, MergeOptions};
     use stochvib::store::{Part, RunFile};
     use stochvib::study::part_path;
+    use stochvib::study::{merge_runs, MergeOptions};
     let stop = "[[model.nonlinear]]\nkind = \"bump-stop\"\nname = \"stops\"\nacross = \"spring\"\n\
                 upper_clearance = \"1 m\"\nlower_clearance = \"1 m\"\nstiffness = \"100 N/m\"";
     let sc = scenario("merge", &oscillator_text(0.4, 0.4 / PI, stop, ""));

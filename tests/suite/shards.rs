@@ -16,10 +16,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use stochvib::response::{analyze_output, ExactEvaluator, Excitation, VarianceMethod};
 use stochvib::scenario::{load_scenario, Scenario};
-use stochvib::simulate::{MergeOptions, RunOptions};
+use stochvib::simulate::RunOptions;
 use stochvib::spectrum::{Domain, Exponential, GaussCosine};
 use stochvib::store::{Compression, Part, PsdEstimate, RunFile, SignalGroup};
-use stochvib::study::{part_path, resolve_part};
+use stochvib::study::{part_path, resolve_part, MergeOptions};
 use stochvib::system::{OutputInfo, StateSpace, TransferFunction};
 
 // ---- tolerances -------------------------------------------------------------------------------------------
@@ -56,15 +56,15 @@ fn simulate(sc: &Scenario, o: &RunOptions, path: &Path) -> stochvib::simulate::R
     sc.simulate(o, path, &|_, _| {}).unwrap()
 }
 
-/// `stochvib::simulate::merge_runs` under [`SPAWN`].
+/// `stochvib::study::merge_runs` under [`SPAWN`].
 fn merge_runs(
     out: &Path,
     inputs: &[PathBuf],
     opts: &MergeOptions,
     progress: &dyn Fn(usize, usize),
-) -> stochvib::error::Result<stochvib::simulate::MergeSummary> {
+) -> stochvib::error::Result<stochvib::study::MergeSummary> {
     let _g = spawn_lock();
-    stochvib::simulate::merge_runs(out, inputs, opts, progress)
+    stochvib::study::merge_runs(out, inputs, opts, progress)
 }
 
 fn scratch(name: &str) -> PathBuf {

@@ -238,7 +238,7 @@ fn parts_merge_bit_identically() {
     let merged = merge_transient(
         &scratch("merged.h5"),
         &parts,
-        &stochvib::simulate::MergeOptions::default(),
+        &stochvib::study::MergeOptions::default(),
         &|_, _| {},
     )
     .unwrap();

@@ -5,7 +5,7 @@
 //! Part I of N holds whole internal shards ([`Part`](crate::store::Part)); the merge checks that the parts
 //! cover every internal shard b = 0 … B−1 exactly once ([`PartSet::open`]), copies each shard's
 //! accumulators (the time averages m_i, v_i and the Welch sums) in the order b = 0, 1, …, B−1, and finishes
-//! the statistics with the code of a single-process run ([`super::finish`]): the values are the same
+//! the statistics with the code of a single-process run (`simulate`'s `finish`): the values are the same
 //! floating-point operations in the same order, so they are bit-identical, for any N and any order of the
 //! inputs. The analytic values, the analytic density and the expected Welch estimate are taken from the shard files (they are the same
 //! numbers in every file, which is checked).
@@ -16,25 +16,17 @@
 //! paths are stored relative to the merged file's directory, so the merged file and the run directory may
 //! move together. With `copy` the rows are copied into the merged file, which then stands alone.
 
-use super::accumulators::{Moments, WelchAccumulator};
-use super::finish::{density_estimate, output_statistics, Analytic, OutputFold};
-use super::verdicts::{set_analytic, VerdictChannels};
 use crate::error::{Error, Result};
 use crate::estimate::Welch;
-use crate::store::{tmp_path, CreateOptions, OutputStatistics, PartSet, RawStorage, RunWriter, SignalGroup};
+use crate::simulate::accumulators::{Moments, WelchAccumulator};
+use crate::simulate::bands;
+use crate::simulate::verdicts::{set_analytic, VerdictChannels};
+use crate::simulate::{density_estimate, output_statistics, write_band_tables, Analytic, OutputFold};
+use crate::store::{
+    tmp_path, CreateOptions, MergeOptions, OutputStatistics, PartSet, RawStorage, RunWriter, SignalGroup,
+};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
-
-/// Options of [`merge_runs`].
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct MergeOptions {
-    /// Copy the raw realizations into the merged file instead of referencing the shard files.
-    pub copy: bool,
-    /// Replace an existing finished run file at `out` (at the final rename).
-    pub overwrite: bool,
-    /// Confidence of the intervals; default: that of the shard files (which must then agree).
-    pub confidence: Option<f64>,
-}
 
 /// What [`merge_runs`] did.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -89,7 +81,7 @@ impl std::fmt::Display for MergeSummary {
                 100.0 * iv.confidence
             )?;
         }
-        super::summary::write_band_tables(f, &self.outputs)
+        write_band_tables(f, &self.outputs)
     }
 }
 
@@ -106,8 +98,8 @@ impl std::fmt::Display for MergeSummary {
 /// # Examples
 /// ```
 /// use stochvib::scenario::load_scenario;
-/// use stochvib::simulate::{merge_runs, MergeOptions, RunOptions};
-/// use stochvib::study::part_path;
+/// use stochvib::simulate::RunOptions;
+/// use stochvib::study::{merge_runs, part_path, MergeOptions};
 /// use stochvib::store::{Part, RunFile};
 /// use std::path::Path;
 /// let sc = load_scenario(Path::new("data/conveyor-idler.toml"), Path::new("spectra")).unwrap();
@@ -143,11 +135,7 @@ pub fn merge_runs(
     // pass 1: every file's header and the fingerprint of its shared values; the files are closed again
     let set = PartSet::open(inputs, &[out, &tmp])?;
     let meta = set.meta.clone();
-    let raw = match (meta.store_raw, opts.copy) {
-        (false, _) => RawStorage::None,
-        (true, true) => RawStorage::Copied,
-        (true, false) => RawStorage::Virtual,
-    };
+    let raw = opts.raw_storage(meta.store_raw);
     let first = &set.parts[0];
     for p in &set.parts[1..] {
         if p.shared != first.shared {
@@ -524,7 +512,7 @@ fn finish_verdicts(
 
 /// The band r.m.s. statistics of a merged run (`band_rms[…]`, `band_rms_expected[…]`, appended to their
 /// outputs' statistics as a single-process run appends them), from the merged band accumulators of every
-/// internal shard in order ([`super::bands`], the code of a single-process run). The band labels and their
+/// internal shard in order ([`crate::simulate::bands`], the code of a single-process run). The band labels and their
 /// analytic and expected values depend on the plan only: they are taken from the first shard file.
 ///
 /// # Errors
@@ -539,13 +527,13 @@ fn finish_bands(
 ) -> Result<()> {
     let shards: Vec<(usize, usize)> = (0..meta.n_shards()).map(|b| (b, meta.shard_range(b).len())).collect();
     for sig in &meta.outputs {
-        let name = super::bands::accumulator_name(&sig.name);
+        let name = bands::accumulator_name(&sig.name);
         if !meta.accumulators.iter().any(|a| a.0 == name) {
             continue;
         }
         let stored = stats0.iter().find(|o| o.output == sig.name);
-        let (labels, analytic, expected) = stored.map(super::bands::stored_bands).unwrap_or_default();
-        let per_band = super::bands::read_bands(
+        let (labels, analytic, expected) = stored.map(bands::stored_bands).unwrap_or_default();
+        let per_band = bands::read_bands(
             &|n, b| writer.read_accumulator(n, b),
             &sig.name,
             &shards,
@@ -563,7 +551,7 @@ fn finish_bands(
                 ),
             });
         }
-        let extra = super::bands::band_statistics(&sig.unit, &labels, &per_band, &analytic, &expected, confidence)?;
+        let extra = bands::band_statistics(&sig.unit, &labels, &per_band, &analytic, &expected, confidence)?;
         if let Some(st) = stats.iter_mut().find(|s| s.output == sig.name) {
             st.statistics.extend(extra);
         }
