@@ -44,7 +44,13 @@ use std::f64::consts::PI;
 /// Largest state count of the stack-based integral-table route (the table's order n + filter order ≤ 7).
 pub(crate) const MAX_STATES: usize = 7;
 
-/// The exact statistics of one output of one system (see [`ExactEvaluator`]).
+/// The exact statistics of one output of one system (see [`ExactEvaluator`]): the one-route summary of a
+/// point of a parameter study, from which every table column (σ, 3σ bounds, ν₀⁺) is derived.
+///
+/// Not the same type as [`ResponseStatistics`](super::ResponseStatistics), the report of one analysis:
+/// that one holds every method's outcome with their agreement, λ₄ and the bandwidth, and why a value is
+/// missing; this one holds the values of one exact route only (four words, for 10⁶ points). The derived
+/// quantities (the bounds M ± kσ, ν₀⁺) are computed by the same functions in both.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PointStatistics {
     /// M_y = H(0)·M_u (None when the static gain is infinite).
@@ -63,12 +69,14 @@ impl PointStatistics {
         self.variance.map(f64::sqrt)
     }
 
-    /// Zero up-crossing rate ν₀⁺ = (1/2π)√(λ₂/λ₀), 1/s.
+    /// The bounds M_y ± kσ_y (as [`ResponseStatistics::bounds`](super::ResponseStatistics::bounds)).
+    pub fn bounds(&self, k: f64) -> Option<(f64, f64)> {
+        super::statistics::bounds(self.mean, self.sigma(), k)
+    }
+
+    /// Zero up-crossing rate ν₀⁺ = (1/2π)√(λ₂/λ₀), 1/s (per metre for a spatial system).
     pub fn zero_upcrossing_rate(&self) -> Option<f64> {
-        match (self.variance, self.lambda2) {
-            (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * PI)),
-            _ => None,
-        }
+        super::statistics::zero_upcrossing_rate(self.variance, self.lambda2)
     }
 }
 

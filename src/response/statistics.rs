@@ -65,7 +65,28 @@ impl VarianceValue {
     }
 }
 
-/// Statistics of one output.
+/// The bounds M_y ± kσ_y, when both are finite numbers.
+pub(crate) fn bounds(mean: Option<f64>, sigma: Option<f64>, k: f64) -> Option<(f64, f64)> {
+    let (m, s) = (mean?, sigma?);
+    Some((m - k * s, m + k * s))
+}
+
+/// Rice's zero (mean-level) up-crossing rate ν₀⁺ = (1/2π)√(λ₂/λ₀) from the variance λ₀ and λ₂; none
+/// without both or for λ₀ = 0.
+pub(crate) fn zero_upcrossing_rate(variance: Option<f64>, lambda2: Option<f64>) -> Option<f64> {
+    match (variance, lambda2) {
+        (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * PI)),
+        _ => None,
+    }
+}
+
+/// Statistics of one output: the report of one analysis, every variance method with its outcome and
+/// their agreement.
+///
+/// The fast path of parameter studies and optimisation computes one exact route per point instead:
+/// [`PointStatistics`](super::PointStatistics), a separate type because it holds four words where this
+/// one holds every method's outcome and why a value is missing. Their shared derived quantities (the
+/// bounds M ± kσ, ν₀⁺) are computed by the same functions.
 #[derive(Debug, Clone, Serialize)]
 pub struct ResponseStatistics {
     /// Output name.
@@ -270,10 +291,7 @@ pub fn analyze_output_with(
     let lambda2_outcome = not_without("λ₂", l2o, &variance_outcome);
     let lambda4_outcome = not_without("λ₄", l4o, &lambda2_outcome);
     let (lambda2, lambda4) = (lambda2_outcome.value(), lambda4_outcome.value());
-    let zero_upcrossing_rate = match (variance, lambda2) {
-        (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * PI)),
-        _ => None,
-    };
+    let zero_upcrossing_rate = zero_upcrossing_rate(variance, lambda2);
     let bandwidth = match (variance, lambda2, lambda4) {
         (Some(l0), Some(l2), Some(l4)) if l0 > 0.0 && l4 > 0.0 => Some((1.0 - l2 * l2 / (l0 * l4)).max(0.0).sqrt()),
         _ => None,
@@ -298,7 +316,7 @@ pub fn analyze_output_with(
 impl ResponseStatistics {
     /// The bounds M_y ± kσ_y (k = 3: two-sided probability 0.9973 for a Gaussian output).
     pub fn bounds(&self, k: f64) -> Option<(f64, f64)> {
-        Some((self.mean? - k * self.sigma?, self.mean? + k * self.sigma?))
+        bounds(self.mean, self.sigma, k)
     }
 
     /// Rice's rate of up-crossings of level `a`: ν_a⁺ = ν₀⁺ exp(−(a − M_y)²/(2σ_y²)).

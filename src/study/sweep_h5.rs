@@ -30,7 +30,7 @@ const MC_COLUMNS: [&str; 3] = ["mc_sigma", "mc_lower", "mc_upper"];
 /// One row of [`EXACT_COLUMNS`] (NaN where a value does not exist).
 #[inline]
 fn exact_row(v: &OutputValues) -> [f64; 7] {
-    let (lo, hi) = v.bounds().unzip();
+    let (lo, hi) = v.bounds(3.0).unzip();
     [
         v.mean,
         v.variance,

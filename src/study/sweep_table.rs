@@ -102,7 +102,7 @@ fn method_name(m: VarianceMethod) -> &'static str {
     }
 }
 
-/// [`OutputValues::method`] in the JSON of a table or shard file, by [`method_name`], read back.
+/// [`OutputRow`]'s `method` in the JSON of a table or shard file, by [`method_name`], read back.
 mod method_text {
     use super::{method_name, VarianceMethod};
     use serde::{Deserialize, Deserializer, Serializer};
@@ -127,7 +127,14 @@ mod method_text {
     }
 }
 
-/// The Monte Carlo σ of one output at one point.
+/// The Monte Carlo σ of one output at one point: the `sigma` statistic of the point's run
+/// ([`crate::store::Statistic`]) cut down to what a row of the table holds.
+///
+/// A separate type, not the stored [`Statistic`](crate::store::Statistic): a table row is flat and fixed
+/// in size (four columns per output: `mc_sigma`, `mc_lower`, `mc_upper`, `mc_covers`), while the stored
+/// statistic carries its name, unit, method text, analytic value and confidence (the table's confidence is
+/// that of its [`SweepMonteCarlo`], one for every point). It is made from the stored statistic in one place
+/// only, [`McValues::from_sigma`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct McValues {
     /// Estimate of σ.
@@ -140,46 +147,80 @@ pub struct McValues {
     pub covers: bool,
 }
 
-/// The values of one output at one point.
+impl McValues {
+    /// The table's values of a run's `sigma` statistic: its estimate and interval bounds, and whether the
+    /// interval covers the analytic σ (`false` when there is no analytic value to cover).
+    pub fn from_sigma(s: &crate::store::Statistic) -> McValues {
+        McValues {
+            sigma: s.interval.estimate,
+            lower: s.interval.lower,
+            upper: s.interval.upper,
+            covers: s.covers == Some(true),
+        }
+    }
+}
+
+/// The values of one output at one point: the exact statistics of the point, [`PointStatistics`] (which an
+/// `OutputValues` dereferences to: `v.mean`, `v.sigma()`, `v.bounds(3.0)`), and the Monte Carlo σ when a
+/// batch was run.
+///
+/// In a table or shard file (JSON) the row is flat — `mean`, `variance`, `lambda2`, `method` (the table's
+/// method text, `lyapunov-delays`), `mc` — the layout of the private `OutputRow`, into and from which it converts (the one place
+/// where the two meet).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(from = "OutputRow", into = "OutputRow")]
 pub struct OutputValues {
-    /// M_y.
-    pub mean: Option<f64>,
-    /// D_y (None: infinite).
-    pub variance: Option<f64>,
-    /// λ₂.
-    pub lambda2: Option<f64>,
-    /// The method.
-    #[serde(with = "method_text")]
-    pub method: VarianceMethod,
+    /// The exact statistics (mean, variance, λ₂ and the route that computed them).
+    pub exact: PointStatistics,
     /// Monte Carlo, when run (None also for an output the run skipped).
     pub mc: Option<McValues>,
 }
 
+impl std::ops::Deref for OutputValues {
+    type Target = PointStatistics;
+    fn deref(&self) -> &PointStatistics {
+        &self.exact
+    }
+}
+
 impl OutputValues {
     pub(crate) fn from_point(s: &PointStatistics) -> OutputValues {
-        OutputValues {
-            mean: s.mean,
-            variance: s.variance,
-            lambda2: s.lambda2,
-            method: s.method,
-            mc: None,
-        }
+        OutputValues { exact: *s, mc: None }
     }
-    /// σ.
-    pub fn sigma(&self) -> Option<f64> {
-        self.variance.map(f64::sqrt)
+}
+
+/// The stored layout of [`OutputValues`] in the JSON of a table or shard file: one flat row.
+#[derive(Clone, Copy, Serialize, Deserialize)]
+struct OutputRow {
+    mean: Option<f64>,
+    variance: Option<f64>,
+    lambda2: Option<f64>,
+    #[serde(with = "method_text")]
+    method: VarianceMethod,
+    mc: Option<McValues>,
+}
+
+impl From<OutputRow> for OutputValues {
+    fn from(r: OutputRow) -> OutputValues {
+        let exact = PointStatistics {
+            mean: r.mean,
+            variance: r.variance,
+            lambda2: r.lambda2,
+            method: r.method,
+        };
+        OutputValues { exact, mc: r.mc }
     }
-    /// M ± 3σ.
-    pub fn bounds(&self) -> Option<(f64, f64)> {
-        let (m, s) = (self.mean?, self.sigma()?);
-        Some((m - 3.0 * s, m + 3.0 * s))
-    }
-    /// ν₀⁺ = (1/2π)√(λ₂/λ₀).
-    pub fn zero_upcrossing_rate(&self) -> Option<f64> {
-        match (self.variance, self.lambda2) {
-            (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * std::f64::consts::PI)),
-            _ => None,
+}
+
+impl From<OutputValues> for OutputRow {
+    fn from(v: OutputValues) -> OutputRow {
+        let e = v.exact;
+        OutputRow {
+            mean: e.mean,
+            variance: e.variance,
+            lambda2: e.lambda2,
+            method: e.method,
+            mc: v.mc,
         }
     }
 }
@@ -308,14 +349,7 @@ fn add_monte_carlo(sweep: &Sweep, t: &mut SweepResults, m: SweepMonteCarlo, prog
             Ok(sweep
                 .outputs()
                 .iter()
-                .map(|name| {
-                    summary.statistic(name, "sigma").map(|s| McValues {
-                        sigma: s.interval.estimate,
-                        lower: s.interval.lower,
-                        upper: s.interval.upper,
-                        covers: s.covers == Some(true),
-                    })
-                })
+                .map(|name| summary.statistic(name, "sigma").map(McValues::from_sigma))
                 .collect())
         };
         match run() {
@@ -437,10 +471,12 @@ pub(crate) fn point_bytes(identity: &SweepIdentity, format: TableFormat) -> u128
     let wide = -1.234_567_890_123_456_7e-308;
     let widest = Some(wide);
     let value = OutputValues {
-        mean: widest,
-        variance: Some(f64::MAX),
-        lambda2: widest,
-        method: VarianceMethod::LyapunovDelays,
+        exact: PointStatistics {
+            mean: widest,
+            variance: Some(f64::MAX),
+            lambda2: widest,
+            method: VarianceMethod::LyapunovDelays,
+        },
         mc: identity.monte_carlo.map(|_| McValues {
             sigma: wide,
             lower: wide,
@@ -641,7 +677,7 @@ impl SweepResults {
                             s.push(',');
                             s.push_str(&vals[self.value_index[row * nk + k]]);
                         }
-                        let (lo, hi) = v.bounds().unzip();
+                        let (lo, hi) = v.bounds(3.0).unzip();
                         s.push(',');
                         s.push_str(name);
                         s.push(',');
@@ -731,7 +767,7 @@ impl SweepResults {
                             let (key, vals) = &t.identity.params[k];
                             params.insert(key.clone(), vals[t.value_index[row * nk + k]].clone().into());
                         }
-                        let (lo, hi) = v.bounds().unzip();
+                        let (lo, hi) = v.bounds(3.0).unzip();
                         Row {
                             point: p,
                             params,
