@@ -673,7 +673,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             spectra,
             output,
         } => {
-            let day = stochvib::study::workday::load_workday(&file)?;
+            let day = stochvib::scenario::workday_file::load_workday(&file)?;
             let r = stochvib::study::workday::workday_exposure(&day, spectra.catalogue().dir())?;
             if let Some(dir) = plots {
                 for f in stochvib::plot::comfort_plots::workday_chart(&r)?.render(&dir, "workday-a8")? {

@@ -9,7 +9,8 @@ use super::handover::{
 use super::table::ToMarkdown;
 use super::WorkdayReport;
 use crate::error::Result;
-use crate::study::workday::{load_workday, workday_exposure};
+use crate::scenario::workday_file::load_workday;
+use crate::study::workday::workday_exposure;
 use std::path::{Path, PathBuf};
 
 /// Whether `path` is a workday file: a TOML table with `[[task]]` tables and no `[model]`.

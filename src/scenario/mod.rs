@@ -1,5 +1,5 @@
-//! Input files: spectrum files (`spectra/*.toml`), scenario files (`data/*.toml`) and reference tables
-//! (`data/reference/*.toml`), the spectrum catalogue and the registry of model kinds.
+//! Input files: spectrum files (`spectra/*.toml`), scenario files (`data/*.toml`), reference tables
+//! (`data/reference/*.toml`) and workday files ([`workday_file`]), the spectrum catalogue and the registry of model kinds.
 //!
 //! Every value read from a file is validated; an error names the file, the dotted key, the value as
 //! written and the reason ([`Error::File`](crate::Error::File)). What is run on a scenario (sweeps,
@@ -21,6 +21,7 @@ pub mod seat_factor;
 pub mod spectrum_file;
 pub mod transient_keys;
 pub mod verdict_spec;
+pub mod workday_file;
 
 pub use catalogue::{spectrum_catalogue, Catalogue, CatalogueEntry, SpectrumOrigin};
 pub use inputs::coherence_from_toml;

@@ -1155,7 +1155,8 @@ fn eval_merge(path: &Path, args: &[String], ctx: &Context) -> Outcome {
 }
 
 fn eval_workday(path: &Path, ctx: &Context) -> Outcome {
-    use stochvib::study::workday::{load_workday, workday_exposure};
+    use stochvib::scenario::workday_file::load_workday;
+    use stochvib::study::workday::workday_exposure;
     let day = match load_workday(path) {
         Ok(d) => d,
         Err(e) => return fail(&e, "load"),

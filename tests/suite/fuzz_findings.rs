@@ -459,7 +459,7 @@ fn a_workday_key_renamed_back_is_no_typo_and_a_real_typo_is_refused() {
     assert!(case.must_reject.is_empty(), "{:?}", case.must_reject);
     let path = root().join("data/workday/scraper-operator.toml");
     let text = data_text("workday/scraper-operator.toml").replacen("scenario = ", "sscenario = ", 1);
-    let e = stochvib::study::workday::parse_workday(&text, &path).unwrap_err();
+    let e = stochvib::scenario::workday_file::parse_workday(&text, &path).unwrap_err();
     let (file, key, _) = file_key(&e);
     assert_eq!(file, path);
     assert!(key.contains("sscenario") || key.contains("scenario"), "{e}");

@@ -461,7 +461,7 @@ fn every_key_read() -> BTreeMap<Key, PathBuf> {
             let text = std::fs::read_to_string(&path).unwrap();
             read.extend(keys_read(file_kind, &path, &text, || {
                 match file_kind {
-                    "workday" => stochvib::study::workday::parse_workday(&text, &path).map(drop),
+                    "workday" => stochvib::scenario::workday_file::parse_workday(&text, &path).map(drop),
                     "spectrum" => stochvib::scenario::parse_spectrum(&text, &path).map(drop),
                     _ => stochvib::scenario::parse_document(&text, &path, &spectra).map(drop),
                 }

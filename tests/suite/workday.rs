@@ -17,7 +17,8 @@ use std::path::{Path, PathBuf};
 use stochvib::comfort::{Axis, Weighting};
 use stochvib::scenario::{load_scenario, parse_scenario};
 use stochvib::study::verdict_analysis;
-use stochvib::study::workday::{load_workday, parse_workday, workday_exposure};
+use stochvib::scenario::workday_file::{load_workday, parse_workday};
+use stochvib::study::workday::workday_exposure;
 
 const T0: f64 = 8.0 * 3600.0;
 
