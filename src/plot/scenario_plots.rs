@@ -4,8 +4,7 @@
 use super::chart::{Legend, LineChart, Marker, SecondaryAxis, Series};
 use crate::error::{Error, Result};
 use crate::numbers::num;
-use crate::quad_oscillatory::OscillatoryOptions;
-use crate::response::{band_variance_with, output_density, variance_quadrature};
+use crate::response::{cumulative_variance, output_density, variance_quadrature};
 use crate::scenario::Scenario;
 use crate::spectrum::{Convention, Domain, Spectrum};
 use std::f64::consts::PI;
@@ -457,41 +456,13 @@ pub fn transfer_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) 
     Ok(chart)
 }
 
-/// The cumulative variance σ²(ω_k) at the grid points (see [`output_density_chart`]) and whether it starts at
-/// ω = 0. Each segment is integrated to the default relative tolerance or to an absolute tolerance of that
-/// fraction of the whole-axis variance `whole`, whichever is looser: a segment holding a negligible share of
-/// the variance (e.g. at a band edge of a road) needs no more, and its own relative tolerance may be out of
-/// reach there.
-fn cumulative_variance(
-    sc: &Scenario,
-    output: usize,
-    grid: &[f64],
-    whole: Option<f64>,
-    conv: Convention,
-) -> Result<(Vec<(f64, f64)>, bool)> {
-    let (sys, exc) = (sc.model.system.as_ref(), &sc.excitation);
-    let mut q = OscillatoryOptions::default();
-    q.abs_tol = whole.map_or(0.0, |v| q.rel_tol * v);
-    let (mut acc, from_zero) = match band_variance_with(sys, exc, output, (0.0, grid[0]), &q) {
-        Ok(r) => (r.value, true),
-        Err(Error::Divergent { .. }) => (0.0, false),
-        Err(e) => return Err(e),
-    };
-    let mut cumulative = vec![(frequency(conv, grid[0]), acc)];
-    for k in 1..grid.len() {
-        acc += band_variance_with(sys, exc, output, (grid[k - 1], grid[k]), &q)?.value;
-        cumulative.push((frequency(conv, grid[k]), acc));
-    }
-    Ok((cumulative, from_zero))
-}
-
 /// Log–log chart of the density of output `output` in `opts.convention`, with the cumulative variance on
 /// a linear right-hand axis and the whole-axis variance as a horizontal line.
 ///
 /// # Formula
 /// S_y(ω) = H S_u Hᴴ ([`output_density`]). The cumulative variance at grid point ω_k is
-/// σ²(ω_k) = 2∫_0^{ω_k} S_y dω = ∫_0^{f_k} G_y df, accumulated segment by segment with
-/// [`band_variance`] (adaptive Gauss–Kronrod quadrature, [`crate::quad::integrate`], per segment; no
+/// σ²(ω_k) = 2∫_0^{ω_k} S_y dω = ∫_0^{f_k} G_y df ([`cumulative_variance`]: accumulated segment by segment
+/// with [`band_variance`](crate::response::band_variance), adaptive Gauss–Kronrod quadrature per segment; no
 /// trapezoid). When S_y is not integrable at ω = 0 the curve starts at the first grid point (and its label
 /// says so). The horizontal line is [`variance_quadrature`] over the whole axis, so the gap between the
 /// curve's end and the line is the variance beyond the plotted range.
@@ -530,7 +501,12 @@ pub fn output_density_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOpt
         Err(Error::Divergent { .. }) => None,
         Err(e) => return Err(e),
     };
-    let (cumulative, from_zero) = cumulative_variance(sc, output, &grid, whole, conv)?;
+    let (cumulative, from_zero) = cumulative_variance(sys, exc, output, &grid, whole)?;
+    let cumulative: Vec<(f64, f64)> = grid
+        .iter()
+        .zip(cumulative)
+        .map(|(&w, v)| (frequency(conv, w), v))
+        .collect();
     let fsym = if conv.is_cyclic() { "f" } else { "ω" };
     let mut hlines = Vec::new();
     if let Some(v) = whole {

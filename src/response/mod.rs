@@ -8,6 +8,7 @@
 //! ```
 
 mod continued;
+mod cumulative;
 mod delayed;
 mod delayed_quadrature;
 mod density;
@@ -19,6 +20,7 @@ mod statistics;
 mod variance;
 
 pub use continued::{continue_excitation, Continued, ContinuedSource};
+pub use cumulative::cumulative_variance;
 pub use delayed::{delayed_augmented_system, variance_lyapunov_delayed, DelayedAugmentedSystem, DelayedCovariance};
 pub use delayed_quadrature::{
     moments_oscillatory, spectral_moment_oscillatory, variance_oscillatory, OscillatoryMoments,
