@@ -59,8 +59,8 @@
 //! | 4 | [`estimate`], [`store`], [`fatigue`] | estimators with intervals; HDF5 run files; S–N curves, rainflow, spectral fatigue |
 //! | 5 | [`simulate`], [`road`], [`nonlinear`], [`record`], [`transient`] | Monte Carlo runs; measured and synthesised road profiles, IRI, a profile replayed through a model; nonlinear elements and their three routes; measured records (CSV, HDF5, WAV): ISO 2631-1 exposure and rainflow fatigue; non-stationary response (exact and Monte Carlo) |
 //! | 6 | [`models`] | the catalogue of the source documents |
-//! | 7 | [`scenario`] | reading scenario, spectrum and reference files; the spectrum catalogue; the registry of model kinds |
-//! | 8 | [`study`], [`optimize`] | what is run on a scenario: parameter sweeps and their tables, shard files and merge; replay of a measured profile; analytic and Monte Carlo verdicts; a working day; transients; the nonlinear routes; design by constrained optimisation over scenario values |
+//! | 7 | [`scenario`] | reading scenario, spectrum, reference and workday files; the spectrum catalogue; the registry of model kinds |
+//! | 8 | [`study`], [`optimize`] | what is run on a scenario: the numbers of the analysis and spectrum reports; parameter sweeps and their tables, shard files and the merge of runs and tables; replay of a measured profile; analytic and Monte Carlo verdicts; a working day; transients; the nonlinear routes; design by constrained optimisation over scenario values |
 //! | 9 | [`report`], [`plot`] | what the command-line tool prints and draws |
 //! | 10 | [`prelude`] | the common imports |
 

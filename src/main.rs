@@ -11,14 +11,14 @@ use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use stochvib::nonlinear::monte_carlo::NonlinearRunOptions;
 use stochvib::plot::{run_plots, scenario_plots_with, ScenarioPlotOptions};
+use stochvib::report;
 use stochvib::report::table::{ReportFormat, ToMarkdown};
-use stochvib::report::{self, attach_monte_carlo};
 use stochvib::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
 use stochvib::simulate::{Route, RunOptions};
 use stochvib::spectrum::Convention;
 use stochvib::store::{Compression, RunFile};
 use stochvib::study::{self, NonlinearAnswers, Sweep, SweepMode, SweepParam, SweepSpec};
-use stochvib::study::{merge_runs, part_path, resolve_part, MergeOptions};
+use stochvib::study::{attach_monte_carlo, merge_runs, part_path, resolve_part, MergeOptions};
 
 /// Stochastic vibration and random-road analysis of machines.
 #[derive(Parser)]
@@ -704,16 +704,16 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         } => {
             let file = spectra.catalogue().resolve(&name, None)?;
             let points = match (omega, frequency) {
-                (Some(w), _) => report::DensityPoints::Angular(w),
-                (None, Some(f)) => report::DensityPoints::Cyclic(f),
-                (None, None) => report::DensityPoints::Characteristic,
+                (Some(w), _) => study::DensityPoints::Angular(w),
+                (None, Some(f)) => study::DensityPoints::Cyclic(f),
+                (None, None) => study::DensityPoints::Characteristic,
             };
-            if let report::DensityPoints::Angular(v) | report::DensityPoints::Cyclic(v) = &points
+            if let study::DensityPoints::Angular(v) | study::DensityPoints::Cyclic(v) = &points
                 && let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0)
             {
                 anyhow::bail!("invalid frequency {x}: frequencies must be finite and >= 0");
             }
-            print(&report::spectrum_report_at(&file, convention, &points), json)?;
+            print(&study::spectrum_report_at(&file, convention, &points), json)?;
         }
     }
     Ok(())
@@ -838,7 +838,7 @@ fn analyze_command(cmd: Command) -> anyhow::Result<()> {
     if let Some(answers) = sc.nonlinear_answers()? {
         return analyze_nonlinear(&sc, &answers, monte_carlo, seed, &step, &plots, &output, &catalogue);
     }
-    let mut r = report::analysis_report(&sc)?;
+    let mut r = study::analysis_report(&sc)?;
     if let Some(n) = monte_carlo {
         let (dt, duration) = step.resolve(&sc, n)?;
         let opts = RunOptions {

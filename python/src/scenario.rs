@@ -17,14 +17,13 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use stochvib::models::InputLayout;
 use stochvib::quad_oscillatory::OscillatoryOptions;
-use stochvib::report::{
-    analysis_report, attach_monte_carlo, deterministic_report, reference_report, AnalysisReport, TablesReport,
-};
+use stochvib::report::{deterministic_report, reference_report, TablesReport};
 use stochvib::response::Excitation;
 use stochvib::scenario::{load_document, AnalysisOptions, Document, Scenario, ScenarioInput};
 use stochvib::simulate::{run_temporary, suggest_step, RunOptions};
 use stochvib::spectrum::{AtSpeed, Domain, Spectrum};
 use stochvib::store::Compression;
+use stochvib::study::{analysis_report, attach_monte_carlo, AnalysisReport};
 use stochvib::Error;
 
 /// A scenario: a model, its random input and what to report — read from a scenario file

@@ -1,10 +1,10 @@
 //! The `stochvib spectra` report: every spectrum of a catalogue directory with its variance and σ, and the
 //! files that failed to load with their errors; and the `stochvib models` list of model kinds.
 
-use super::spectrum_report::{spectrum_report, Outcome, SpectrumReport};
 use crate::error::Result;
 use crate::scenario::{Catalogue, ModelKind, MODEL_KINDS};
 use crate::spectrum::Convention;
+use crate::study::spectrum_report::{spectrum_report, Outcome, SpectrumReport};
 use serde::Serialize;
 use std::fmt;
 

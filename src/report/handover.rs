@@ -222,7 +222,7 @@ fn stochastic_sections(sc: &Scenario, dir: &Path, link: &Path) -> Result<String>
     if let Some(answers) = sc.nonlinear_answers()? {
         return nonlinear_sections(sc, &answers, dir, link);
     }
-    let mut r = super::analysis_report(sc)?;
+    let mut r = crate::study::analysis_report(sc)?;
     let verdicts = r.verdicts.take();
     let outputs = std::mem::take(&mut r.outputs);
     let head = results_section(&r.markdown()).replacen("## Results", "## Model and input", 1);

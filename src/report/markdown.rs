@@ -2,8 +2,6 @@
 //! paste into a report, an issue or a wiki. The numbers follow the table rule of [`super::table`]: four
 //! significant figures, one notation per column; JSON keeps every digit.
 
-use super::analysis::{AnalysisReport, OutputReport};
-use super::band_report::BandSection;
 use super::road_report::{RoadReport, TrackReport};
 use super::table::{facts, Table, ToMarkdown};
 use super::tables::TablesReport;
@@ -13,6 +11,8 @@ use crate::fields::EverydayUnit;
 use crate::models::results::Cell;
 use crate::numbers::{num, sig4};
 use crate::response::{Outcome, ResponseStatistics};
+use crate::study::analysis::{AnalysisReport, OutputReport};
+use crate::study::band_section::BandSection;
 use crate::study::{ComfortVerdict, FatigueVerdict, VerdictAnalysis};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -89,7 +89,8 @@ pub(super) fn output_markdown(r: &AnalysisReport, o: &OutputReport) -> String {
     rows.push(("expected largest peak", with_unit(o.expected_largest_peak, u)));
     let mut s = format!("\n## Output `{}` [{u}]\n\n{}", st.name, facts(&rows));
     if !o.levels.is_empty() {
-        let col = |f: &dyn Fn(&super::analysis::LevelRow) -> Option<f64>| o.levels.iter().map(f).collect::<Vec<_>>();
+        let col =
+            |f: &dyn Fn(&crate::study::analysis::LevelRow) -> Option<f64>| o.levels.iter().map(f).collect::<Vec<_>>();
         let t = Table::default()
             .num(&format!("level [{u}]"), &col(&|l| Some(l.level)))
             .num("up-crossings [1/s]", &col(&|l| l.upcrossing_rate))
@@ -106,7 +107,7 @@ pub(super) fn output_markdown(r: &AnalysisReport, o: &OutputReport) -> String {
     s
 }
 
-fn monte_carlo_cell(mc: &super::analysis::MonteCarloColumn, u: &str) -> String {
+fn monte_carlo_cell(mc: &crate::study::analysis::MonteCarloColumn, u: &str) -> String {
     match (&mc.sigma, mc.covered) {
         (Some(iv), Some(c)) => format!(
             "{} {u} [{}, {}] ({} %, {} realizations, {}); covers the analytic σ: {}",

@@ -1,14 +1,16 @@
 //! Reports: the tables the command-line tool prints, as plain data (serialisable to JSON) plus a text
-//! rendering. The CLI only parses arguments, calls these and prints.
+//! rendering. The CLI only parses arguments, calls these and prints. Where a report's numbers are computed
+//! by [`crate::study`] (the analysis, its band tables and Monte Carlo verdicts, a spectrum's numbers), the
+//! module here only renders them.
 
-pub mod analysis;
-pub mod band_report;
+pub mod analysis_text;
+pub mod band_text;
 pub mod book;
 pub mod catalogue;
 pub mod handover;
 pub mod html;
 pub mod markdown;
-pub mod mc_verdicts;
+pub mod mc_verdicts_text;
 pub mod nonlinear_report;
 pub mod record_report;
 pub mod replay_report;
@@ -16,7 +18,7 @@ pub mod road_numbers;
 pub mod road_report;
 pub mod run_handover;
 pub mod run_summary;
-pub mod spectrum_report;
+pub mod spectrum_text;
 pub mod table;
 pub mod tables;
 pub mod transient_report;
@@ -24,12 +26,10 @@ pub mod verdict_report;
 pub mod workday_handover;
 pub mod workday_report;
 
-pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use book::{book_report, BookReport};
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
 pub use markdown::inspect_markdown;
 pub use nonlinear_report::{nonlinear_report, NonlinearReport};
 pub use run_summary::summarize;
-pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
 pub use tables::{deterministic_report, reference_report, TablesReport};
 pub use workday_report::WorkdayReport;

@@ -154,7 +154,7 @@ fn report_of(sc: &Scenario, answers: &NonlinearAnswers, mc: Option<&NonlinearRun
         title: sc.title.clone(),
         scenario: sc.path.display().to_string(),
         model: sc.model.description.clone(),
-        input: super::analysis::input_description(sc),
+        input: crate::study::analysis::input_description(sc),
         route1_converged: r1.is_some(),
         route1,
         route3,

@@ -17,10 +17,16 @@
 //! * Non-stationary runs ([`transient_run`], [`transient_answers`], [`transient_mc`]) and the three routes
 //!   of a scenario with nonlinear elements ([`nonlinear_run`]).
 //!
+//! * What `stochvib analyze` and `stochvib spectrum` report ([`analysis`] with its band tables,
+//!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]).
+//!
 //! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
 
+pub mod analysis;
+pub mod band_section;
 mod float_text;
 pub mod input_coverage;
+pub mod mc_verdicts;
 mod merge;
 mod nonlinear_run;
 pub mod replay;
@@ -28,6 +34,7 @@ pub mod run_step;
 mod scenario_run;
 pub mod seat_factor;
 pub mod shard;
+pub mod spectrum_report;
 pub mod sweep;
 mod sweep_h5;
 pub mod sweep_stream;
@@ -41,9 +48,11 @@ mod verdict_run;
 pub mod workday;
 
 pub use crate::store::MergeOptions;
+pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use merge::{merge_runs, MergeSummary};
 pub use nonlinear_run::NonlinearAnswers;
 pub use shard::{part_path, resolve_part, ShardChoice};
+pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
 pub use sweep::{
     substituted_text, value_text as sweep_value_text, Sweep, SweepMode, SweepParam, SweepPath, SweepSpec, FAILED_POINT,
 };

@@ -49,6 +49,7 @@ use stochvib::report;
 use stochvib::scenario::{load_document, load_spectrum, Document};
 use stochvib::simulate::splitmix64;
 use stochvib::spectrum::Convention;
+use stochvib::study;
 use stochvib::Error;
 use toml::{Table, Value};
 
@@ -646,7 +647,7 @@ pub fn evaluate(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention
                 Err(e) => return err(&e, 1),
             };
             set(2);
-            let r = report::spectrum_report(&f, conv);
+            let r = study::spectrum_report(&f, conv);
             set(3);
             let _ = format!("{r}");
             set(4);
@@ -687,7 +688,7 @@ pub fn evaluate(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention
                         }
                         Ok(None) => {}
                     }
-                    let r = match report::analysis_report(&sc) {
+                    let r = match study::analysis_report(&sc) {
                         Ok(r) => r,
                         Err(e) => return err(&e, 2),
                     };

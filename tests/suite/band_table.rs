@@ -9,7 +9,7 @@ use std::f64::consts::PI;
 use std::path::Path;
 use std::sync::Arc;
 use stochvib::comfort::{bands_covering, output_band_row, output_band_table, BandFraction, BAND_COVERAGE};
-use stochvib::report::analysis_report;
+use stochvib::study::analysis_report;
 use stochvib::response::{variance_lyapunov, Excitation};
 use stochvib::scenario::parse_scenario;
 use stochvib::spectrum::{Domain, Exponential};

@@ -5,7 +5,7 @@
 
 use crate::common::{self, root, tolerance::ROUNDING};
 use std::path::{Path, PathBuf};
-use stochvib::report::spectrum_report::Outcome;
+use stochvib::study::spectrum_report::Outcome;
 use stochvib::scenario::{parse_document, parse_scenario, parse_spectrum};
 use stochvib::spectrum::Convention;
 use stochvib::Error;
@@ -102,7 +102,7 @@ fn the_two_pole_road_correlation_is_finite_at_an_extreme_alpha() {
         .unwrap()
         .replace("alpha = \"0.3 1/m\"", "alpha = \"1152921504606846976 1/m\"");
     let f = parse_spectrum(&text, Path::new("book-8-66.toml")).unwrap();
-    let r = stochvib::report::spectrum_report(&f, Convention::TwoSidedAngular);
+    let r = stochvib::study::spectrum_report(&f, Convention::TwoSidedAngular);
     let (dq, a, b) = (0.035f64 * 0.035, 2f64.powi(60), 12.0);
     for (tau, exact, _) in &r.correlation {
         let Outcome::Value(k) = exact else {
@@ -131,7 +131,7 @@ fn a_damage_rate_that_underflows_is_refused_not_an_infinite_life() {
         .replace("stress_factor = \"1.29313e10 Pa/m\"", "stress_factor = \"1e-100 Pa/m\"");
     let path = root().join("data/operator-seat-verdicts.toml");
     let sc = parse_scenario(&text, &path, &spectra()).unwrap();
-    let e = stochvib::report::analysis_report(&sc).unwrap_err();
+    let e = stochvib::study::analysis_report(&sc).unwrap_err();
     let (file, key, _) = file_key(&e);
     assert_eq!(file, path);
     assert!(key.starts_with("analysis.fatigue"), "{e}");
@@ -441,7 +441,7 @@ fn an_unstable_system_found_by_the_report_names_the_model() {
         1,
     );
     let sc = parse_scenario(&text, &path, &spectra()).unwrap();
-    let e = stochvib::report::analysis_report(&sc).unwrap_err();
+    let e = stochvib::study::analysis_report(&sc).unwrap_err();
     let (file, key, _) = file_key(&e);
     assert_eq!((file, key.as_str()), (path, "model"), "{e}");
     assert!(e.to_string().contains("stable"), "{e}");

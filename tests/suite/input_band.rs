@@ -72,7 +72,7 @@ fn an_input_band_below_the_weighting_band_is_flagged_and_continued() {
     );
     assert!(rel(cov.covered_fraction, (ax.a_w / oracle).powi(2)) < QUADRATURE);
     assert!(cov.covered_fraction < 0.9, "{}", cov.covered_fraction);
-    let text = stochvib::report::analysis_report(&sc).unwrap().to_string();
+    let text = stochvib::study::analysis_report(&sc).unwrap().to_string();
     assert!(
         text.contains("INPUT BAND: the input `road` stops at 8.490 Hz"),
         "{text}"

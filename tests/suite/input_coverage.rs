@@ -65,7 +65,7 @@ fn several_independent_inputs_are_assessed_per_source() {
     let rear_alone = (ax.a_w / a_w(2.83, top)).powi(2);
     assert!(rel(cov.sources[0].covered_fraction.unwrap(), front_alone) < QUADRATURE);
     assert!(rel(cov.sources[1].covered_fraction.unwrap(), rear_alone) < QUADRATURE);
-    let text = stochvib::report::analysis_report(&sc).unwrap().to_string();
+    let text = stochvib::study::analysis_report(&sc).unwrap().to_string();
     assert!(
         text.contains("the inputs stop at `front` 8.490 Hz, `rear` 30.000 Hz"),
         "{text}"
@@ -121,7 +121,7 @@ fn quarter_car(band: Option<f64>, extra: &str) -> Scenario {
 fn a_band_table_above_the_input_band_is_flagged_and_continued() {
     let with_bands = |band| quarter_car(band, "bands = \"third-octave\"\n");
     let sc = with_bands(None);
-    let r = stochvib::report::analysis_report(&sc).unwrap();
+    let r = stochvib::study::analysis_report(&sc).unwrap();
     let o = r.outputs.iter().find(|o| o.statistics.name == "body_acc").unwrap();
     let section = o.bands.as_ref().unwrap();
     let table = section.table.as_ref().unwrap();
@@ -134,7 +134,7 @@ fn a_band_table_above_the_input_band_is_flagged_and_continued() {
         table.rows.iter().filter(|r| r.band.upper_hz > 8.49).count()
     );
     let fixed = with_bands(Some(top / 3.0));
-    let rf = stochvib::report::analysis_report(&fixed).unwrap();
+    let rf = stochvib::study::analysis_report(&fixed).unwrap();
     let of = rf.outputs.iter().find(|o| o.statistics.name == "body_acc").unwrap();
     let tf = of.bands.as_ref().unwrap().table.as_ref().unwrap();
     for b in &cov.bands {
@@ -179,7 +179,7 @@ fn fatigue_moments_above_the_input_band_are_flagged_and_continued() {
         );
     }
     assert!(cov.covered_fractions[2] < cov.covered_fractions[0]);
-    let text = stochvib::report::analysis_report(&sc).unwrap().to_string();
+    let text = stochvib::study::analysis_report(&sc).unwrap().to_string();
     assert!(
         text.contains("below 10 × the model's fastest natural frequency"),
         "{text}"

@@ -65,7 +65,7 @@ fn moving_average_gain_at_known_wavenumbers() {
             "n = {n}: {ratio} vs {expected}"
         );
     }
-    let text = stochvib::report::analysis_report(&sc).unwrap().to_string();
+    let text = stochvib::study::analysis_report(&sc).unwrap().to_string();
     assert!(text.contains("moving average of length 0.25 m"), "{text}");
 }
 

@@ -206,7 +206,7 @@ fn the_default_step_resolves_the_band_table() {
         &root().join("spectra"),
     )
     .unwrap();
-    let r = stochvib::report::analysis_report(&sc).unwrap();
+    let r = stochvib::study::analysis_report(&sc).unwrap();
     let table = r.outputs[0].bands.as_ref().unwrap().table.as_ref().unwrap();
     let top = table.rows.last().unwrap().band.upper_hz;
     assert!((top / 10f64.powf(2.35) - 1.0).abs() < EXACT, "{top}");

@@ -97,7 +97,7 @@ fn delayed_half_car_variances_and_moments_are_finite_and_agree() {
         }
     }
     // the report shows the row and a finite sigma for every output
-    let r = stochvib::report::analysis_report(&sc).unwrap();
+    let r = stochvib::study::analysis_report(&sc).unwrap();
     let text = format!("{r}");
     assert!(
         text.contains("lyapunov (delays)") && !text.contains("sigma         infinite"),

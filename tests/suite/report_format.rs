@@ -225,7 +225,7 @@ fn inputs_are_echoed_as_written() {
     );
     let sc =
         stochvib::scenario::parse_scenario(&scenario, &root().join("data/p.toml"), &root().join("spectra")).unwrap();
-    let r = stochvib::report::analysis_report(&sc).unwrap();
+    let r = stochvib::study::analysis_report(&sc).unwrap();
     assert_eq!(
         r.input,
         "measured-profile.csv (measured profile, track right) at 20 m/s"

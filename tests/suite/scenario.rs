@@ -4,7 +4,7 @@
 use crate::common;
 use common::tolerance::{EXACT, QUADRATURE};
 use std::path::{Path, PathBuf};
-use stochvib::report::analysis_report;
+use stochvib::study::analysis_report;
 use stochvib::scenario::{load_scenario, parse_scenario};
 use stochvib::Error;
 

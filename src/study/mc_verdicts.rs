@@ -2,12 +2,11 @@
 //! weighted output a_w, the VDV of the simulated records and scaled to the daily exposure, ISO 2631-1's
 //! basic-method check and the governing metric; per fatigue output the rainflow damage rate against
 //! Dirlik's; and, for every interval that misses its analytic value, whether the discretisation bias or
-//! chance is the cause.
+//! chance is the cause. [`crate::report::mc_verdicts_text`] prints them.
 
 use crate::estimate::Interval;
-use crate::simulate::{coverage_cause, covers_word, RunBasicMethod, RunSummary};
+use crate::simulate::{coverage_cause, RunBasicMethod, RunSummary};
 use serde::Serialize;
-use std::fmt;
 
 /// One Monte Carlo statistic beside its analytic value.
 #[derive(Debug, Clone, Serialize)]
@@ -82,49 +81,4 @@ pub fn mc_verdicts(run: &RunSummary) -> Option<McVerdicts> {
         values,
         basic_method: run.basic_method.clone(),
     })
-}
-
-impl fmt::Display for McVerdicts {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f)?;
-        writeln!(
-            f,
-            "Monte Carlo verdict values ({} realizations of T = {} s, Δt = {} s)",
-            self.realizations, self.duration_s, self.dt_s
-        )?;
-        writeln!(
-            f,
-            "  {:<18} {:<12} {:>13} {:>13} {:>29}  covers",
-            "output", "quantity", "analytic", "MC", "interval"
-        )?;
-        let e = |v: Option<f64>| v.map_or("—".to_string(), |x| format!("{x:.6e}"));
-        for v in &self.values {
-            let iv = &v.interval;
-            writeln!(
-                f,
-                "  {:<18} {:<12} {:>13} {:>13.6e} [{:.6e}, {:.6e}]  {} ({} %) {}",
-                v.output,
-                v.quantity,
-                e(v.analytic),
-                iv.estimate,
-                iv.lower,
-                iv.upper,
-                covers_word(v.covers),
-                100.0 * iv.confidence,
-                v.unit
-            )?;
-            if let Some(c) = &v.cause {
-                writeln!(f, "    {c}")?;
-            }
-        }
-        writeln!(
-            f,
-            "  (VDV over the record T; over a daily exposure T_e a stationary output gives VDV·(T_e/T)^(1/4); the \
-             damage rate's analytic value is Dirlik's)"
-        )?;
-        for b in &self.basic_method {
-            writeln!(f, "  basic method, {}: {}", b.output, b.describe())?;
-        }
-        Ok(())
-    }
 }

@@ -1,11 +1,11 @@
 //! The `stochvib analyze` report: per output, the mean, σ, 3σ bounds, crossing rates and every variance
-//! method with its value and its relative difference to the reference.
+//! method with its value and its relative difference to the reference, as computed; [`crate::report::analysis_text`]
+//! prints it.
 
 use crate::error::Result;
-use crate::response::{analyze_output_with, band_variance, Outcome, ResponseStatistics};
+use crate::response::{analyze_output_with, band_variance, ResponseStatistics};
 use crate::scenario::Scenario;
 use serde::Serialize;
-use std::fmt;
 
 /// A level and its Rice up-crossing rate and exceedance probability within the scenario's duration.
 #[derive(Debug, Clone, Serialize)]
@@ -39,7 +39,7 @@ pub struct OutputReport {
     pub monte_carlo: Option<MonteCarloColumn>,
     /// Band r.m.s. table (`[analysis] bands`), if requested.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub bands: Option<super::band_report::BandSection>,
+    pub bands: Option<super::band_section::BandSection>,
 }
 
 /// The Monte Carlo σ of one output against the analytic σ (see [`crate::simulate::run()`]).
@@ -107,7 +107,7 @@ pub struct AnalysisReport {
     pub outputs: Vec<OutputReport>,
     /// The comfort/exposure and fatigue verdicts (`[analysis.comfort]`, `[analysis.fatigue]`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub verdicts: Option<crate::study::VerdictAnalysis>,
+    pub verdicts: Option<super::VerdictAnalysis>,
     /// The Monte Carlo a_w, VDV, damage rate and basic-method check beside the analytic values
     /// (`--monte-carlo N` of a scenario with verdicts).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -148,7 +148,7 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
                 exceedance_probability: st.exceedance_probability(a, sc.analysis.duration),
             })
             .collect();
-        let bands = super::band_report::band_section(sc, i, &st);
+        let bands = super::band_section::band_section(sc, i, &st);
         outputs.push(OutputReport {
             bands,
             lower_3sigma: bounds.map(|b| b.0),
@@ -172,7 +172,7 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
         verdicts: if sc.analysis.verdicts.is_empty() {
             None
         } else {
-            Some(crate::study::verdict_analysis(sc).map_err(|e| sc.name_model_error(e))?)
+            Some(super::verdict_analysis(sc).map_err(|e| sc.name_model_error(e))?)
         },
         monte_carlo_verdicts: None,
     })
@@ -209,135 +209,5 @@ pub(crate) fn input_description(sc: &Scenario) -> String {
             each.join("; "),
             sc.input.speed.map(|v| format!(" at {v} m/s")).unwrap_or_default()
         )
-    }
-}
-
-fn opt(v: Option<f64>) -> String {
-    v.map(|x| format!("{x:.6e}")).unwrap_or_else(|| "—".into())
-}
-
-impl fmt::Display for AnalysisReport {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "scenario  {}  ({})", self.title, self.scenario)?;
-        writeln!(f, "model     {}", self.model)?;
-        writeln!(f, "input     {}", self.input)?;
-        for o in &self.outputs {
-            let s = &o.statistics;
-            writeln!(f)?;
-            writeln!(f, "output {} [{}]", s.name, s.unit)?;
-            writeln!(f, "  mean          {}", opt(s.mean))?;
-            match s.sigma {
-                Some(sig) => writeln!(f, "  sigma         {sig:.6e}")?,
-                None => writeln!(f, "  sigma         {}", s.variance_outcome.describe())?,
-            }
-            if let Some(mc) = &o.monte_carlo {
-                match (&mc.sigma, mc.covered) {
-                    (Some(iv), Some(c)) => writeln!(
-                        f,
-                        "  sigma MC      {:.6e}  [{:.6e}, {:.6e}] ({} %, {} realizations, {})  covers analytic: {}{}",
-                        iv.estimate,
-                        iv.lower,
-                        iv.upper,
-                        100.0 * iv.confidence,
-                        mc.realizations,
-                        mc.method,
-                        if c { "yes" } else { "NO" },
-                        mc.discrete_sigma
-                            .map(|d| format!("  (discrete-process σ {d:.6e})"))
-                            .unwrap_or_default()
-                    )?,
-                    _ => writeln!(f, "  sigma MC      — {}", mc.note.as_deref().unwrap_or(""))?,
-                }
-            }
-            writeln!(f, "  3σ bounds     [{}, {}]", opt(o.lower_3sigma), opt(o.upper_3sigma))?;
-            if let (Some((a, b)), true) = (self.band_rad_s, o.band_sigma.is_some() || o.band_note.is_some()) {
-                let band = format!(
-                    "{:.3}–{:.3} Hz",
-                    a / (2.0 * std::f64::consts::PI),
-                    b / (2.0 * std::f64::consts::PI)
-                );
-                match (o.band_sigma, &o.band_note) {
-                    (Some(v), _) => writeln!(f, "  sigma {band}  {v:.6e}")?,
-                    (None, Some(n)) => writeln!(f, "  sigma {band}  — {n}")?,
-                    _ => {}
-                }
-            }
-            match s.rate_note() {
-                None => writeln!(
-                    f,
-                    "  ν0+ (zero up-crossings) {} /s   bandwidth ε {}",
-                    opt(s.zero_upcrossing_rate),
-                    opt(s.bandwidth)
-                )?,
-                Some(why) => writeln!(f, "  ν0+ (zero up-crossings) — ({why})")?,
-            }
-            writeln!(
-                f,
-                "  expected largest peak in {} s: {}",
-                self.duration_s,
-                opt(o.expected_largest_peak)
-            )?;
-            for l in &o.levels {
-                writeln!(
-                    f,
-                    "  level {:.6e}: up-crossing rate {} /s, P(exceed in {} s) {}",
-                    l.level,
-                    opt(l.upcrossing_rate),
-                    self.duration_s,
-                    opt(l.exceedance_probability)
-                )?;
-            }
-            writeln!(
-                f,
-                "  {:<17} {:>14} {:>11} {:>11}  note",
-                "variance method", "value", "error est.", "rel. diff"
-            )?;
-            for m in &s.methods {
-                let (value, error, note) = match &m.outcome {
-                    Outcome::Value { value, error_estimate } => (
-                        format!("{value:.6e}"),
-                        error_estimate.map(|e| format!("{e:.1e}")),
-                        String::new(),
-                    ),
-                    Outcome::Divergent { reason } => ("infinite".into(), None, reason.clone()),
-                    Outcome::NotConverged {
-                        estimate,
-                        error_estimate,
-                        reason,
-                        ..
-                    } => (
-                        format!("~{estimate:.6e}"),
-                        Some(format!("{error_estimate:.1e}")),
-                        format!("not converged: {reason}"),
-                    ),
-                    Outcome::Unreliable { value, reason } => (
-                        format!("({value:.6e})"),
-                        None,
-                        format!("unreliable, not used: {reason}"),
-                    ),
-                    Outcome::NotApplicable { reason } => ("—".into(), None, reason.clone()),
-                    Outcome::Failed { reason } => ("—".into(), None, format!("failed: {reason}")),
-                };
-                writeln!(
-                    f,
-                    "  {:<17} {:>14} {:>11} {:>11}  {}",
-                    m.method.name(),
-                    value,
-                    error.unwrap_or_else(|| "—".into()),
-                    m.rel_diff.map(|e| format!("{e:.1e}")).unwrap_or_else(|| "—".into()),
-                    note
-                )?;
-            }
-            if let Some(b) = &o.bands {
-                write!(f, "{b}")?;
-            }
-        }
-        if let Some(v) = &self.verdicts {
-            write!(f, "{v}")?;
-        }
-        if let Some(v) = &self.monte_carlo_verdicts {
-            write!(f, "{v}")?;
-        }
-        Ok(())
     }
 }

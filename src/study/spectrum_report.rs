@@ -1,12 +1,11 @@
 //! The `stochvib spectrum` report: variance two ways, correlation at a few lags, density at a few
-//! frequencies in a chosen convention.
+//! frequencies in a chosen convention, as computed; [`crate::report::spectrum_text`] prints it.
 
 use crate::error::Result;
 use crate::numbers::rel_diff;
 use crate::scenario::SpectrumFile;
 use crate::spectrum::{numeric, Convention, Spectrum};
 use serde::Serialize;
-use std::fmt;
 
 /// A value or the reason there is none (divergent, failed).
 #[derive(Debug, Clone, Serialize)]
@@ -29,15 +28,6 @@ impl From<Result<f64>> for Outcome {
                 error: format!("the value is not a finite number ({v}) in f64 arithmetic"),
             },
             Err(e) => Outcome::NoValue { error: e.to_string() },
-        }
-    }
-}
-
-impl fmt::Display for Outcome {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Outcome::Value(v) => write!(f, "{v:.6e}"),
-            Outcome::NoValue { error } => write!(f, "none: {error}"),
         }
     }
 }
@@ -178,51 +168,5 @@ fn characteristic_frequency(s: &dyn Spectrum) -> f64 {
         hi / 2.0
     } else {
         1.0
-    }
-}
-
-impl fmt::Display for SpectrumReport {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let lag = if self.domain == "spatial" { "m" } else { "s" };
-        writeln!(f, "spectrum  {}", self.name)?;
-        writeln!(f, "model     {}", self.model)?;
-        if !self.source.is_empty() {
-            writeln!(f, "source    {}", self.source)?;
-        }
-        writeln!(f, "domain    {} (process unit {})", self.domain, self.unit)?;
-        writeln!(f, "variance  {}  [{}^2]", self.variance, self.unit)?;
-        write!(f, "  by quadrature {}", self.variance_quadrature)?;
-        if let Some(e) = self.variance_quadrature_error {
-            write!(f, " ± {e:.1e}")?;
-        }
-        if let Some(r) = self.variance_rel_diff {
-            write!(f, "   (relative difference {r:.1e})")?;
-        }
-        writeln!(f)?;
-        writeln!(f, "sigma     {}  [{}]", self.sigma, self.unit)?;
-        writeln!(f, "correlation K(tau) [{}^2]:", self.unit)?;
-        writeln!(
-            f,
-            "  {:>12}  {:>14}  {:>14}",
-            format!("tau [{lag}]"),
-            "model",
-            "quadrature"
-        )?;
-        for (t, a, b) in &self.correlation {
-            writeln!(f, "  {t:>12.4e}  {:>14}  {:>14}", short(a), short(b))?;
-        }
-        writeln!(f, "density ({}):", self.convention)?;
-        writeln!(f, "  {:>14}  {:>14}", format!("[{}]", self.abscissa_unit), "value")?;
-        for (x, v) in &self.density {
-            writeln!(f, "  {x:>14.4e}  {v:>14.6e}")?;
-        }
-        Ok(())
-    }
-}
-
-fn short(o: &Outcome) -> String {
-    match o {
-        Outcome::Value(v) => format!("{v:.6e}"),
-        Outcome::NoValue { .. } => "infinite/none".to_string(),
     }
 }
