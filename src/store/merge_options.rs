@@ -3,7 +3,7 @@
 //! They say how the merged file is stored (where its raw realizations are, whether an existing file is
 //! replaced, the confidence of its intervals), so they live with the store both merges write to.
 
-use super::RawStorage;
+use super::{CreateOptions, RawStorage};
 
 /// Options of a merge of shard files ([`crate::study::merge_runs`], [`crate::transient::merge_transient`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -25,6 +25,15 @@ impl MergeOptions {
             (false, _) => RawStorage::None,
             (true, true) => RawStorage::Copied,
             (true, false) => RawStorage::Virtual,
+        }
+    }
+
+    /// How the merged file's writer treats what is already at `out`: replaced with
+    /// [`MergeOptions::overwrite`]; an interrupted merge of the same shards resumed (no `restart`).
+    pub fn create_options(&self) -> CreateOptions {
+        CreateOptions {
+            overwrite: self.overwrite,
+            ..CreateOptions::default()
         }
     }
 }

@@ -22,9 +22,7 @@ use crate::simulate::accumulators::{Moments, WelchAccumulator};
 use crate::simulate::bands;
 use crate::simulate::verdicts::{set_analytic, VerdictChannels};
 use crate::simulate::{density_estimate, output_statistics, write_band_tables, Analytic, OutputFold};
-use crate::store::{
-    tmp_path, CreateOptions, MergeOptions, OutputStatistics, PartSet, RawStorage, RunWriter, SignalGroup,
-};
+use crate::store::{tmp_path, MergeOptions, OutputStatistics, PartSet, RawStorage, RunWriter, SignalGroup};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -183,15 +181,7 @@ pub fn merge_runs(
         }
     };
     let from = set.merged_from(out, raw);
-    let mut writer = RunWriter::create_merged(
-        out,
-        &meta,
-        CreateOptions {
-            overwrite: opts.overwrite,
-            ..CreateOptions::default()
-        },
-        &from,
-    )?;
+    let mut writer = RunWriter::create_merged(out, &meta, opts.create_options(), &from)?;
     // a merge refused from here on (a damaged shard found in pass 2) leaves no .tmp of its own behind
     let mut created = RemoveOnError((!writer.resumed()).then(|| writer.tmp_path().to_path_buf()));
     let n_shards = meta.n_shards();

@@ -370,15 +370,7 @@ pub fn merge_transient(
     let confidence = opts.confidence.unwrap_or(stored.confidence);
     let raw = opts.raw_storage(meta.store_raw);
     let from = set.merged_from(out, raw);
-    let mut writer = RunWriter::create_merged(
-        out,
-        &meta,
-        CreateOptions {
-            overwrite: opts.overwrite,
-            ..CreateOptions::default()
-        },
-        &from,
-    )?;
+    let mut writer = RunWriter::create_merged(out, &meta, opts.create_options(), &from)?;
     adopt_parts(&mut writer, &set, raw, progress)?;
     let analytic = AnalyticSide {
         method: stored.exact_method.clone(),
