@@ -9,10 +9,10 @@ use std::f64::consts::PI;
 use std::path::Path;
 use std::sync::Arc;
 use stochvib::comfort::{bands_covering, output_band_row, output_band_table, BandFraction, BAND_COVERAGE};
-use stochvib::study::analysis_report;
 use stochvib::response::{variance_lyapunov, Excitation};
 use stochvib::scenario::parse_scenario;
 use stochvib::spectrum::{Domain, Exponential};
+use stochvib::study::analysis_report;
 use stochvib::system::{OutputInfo, TransferFunction};
 
 /// First-order filter H(s) = a/(s + a) on an exponentially correlated input (type 1) of variance D and

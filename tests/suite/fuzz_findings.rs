@@ -5,9 +5,9 @@
 
 use crate::common::{self, root, tolerance::ROUNDING};
 use std::path::{Path, PathBuf};
-use stochvib::study::spectrum_report::Outcome;
 use stochvib::scenario::{parse_document, parse_scenario, parse_spectrum};
 use stochvib::spectrum::Convention;
+use stochvib::study::spectrum_report::Outcome;
 use stochvib::Error;
 
 fn scratch(tag: &str) -> PathBuf {

@@ -4,8 +4,8 @@
 use crate::common;
 use common::tolerance::{EXACT, QUADRATURE};
 use std::path::{Path, PathBuf};
-use stochvib::study::analysis_report;
 use stochvib::scenario::{load_scenario, parse_scenario};
+use stochvib::study::analysis_report;
 use stochvib::Error;
 
 fn spectra() -> PathBuf {

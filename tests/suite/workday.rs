@@ -15,9 +15,9 @@ use common::tolerance::QUADRATURE;
 use common::{rel, root};
 use std::path::{Path, PathBuf};
 use stochvib::comfort::{Axis, Weighting};
+use stochvib::scenario::workday_file::{load_workday, parse_workday};
 use stochvib::scenario::{load_scenario, parse_scenario};
 use stochvib::study::verdict_analysis;
-use stochvib::scenario::workday_file::{load_workday, parse_workday};
 use stochvib::study::workday::workday_exposure;
 
 const T0: f64 = 8.0 * 3600.0;
