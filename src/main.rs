@@ -711,7 +711,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             if let study::DensityPoints::Angular(v) | study::DensityPoints::Cyclic(v) = &points
                 && let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0)
             {
-                anyhow::bail!("invalid frequency {x}: frequencies must be finite and >= 0");
+                let flag = match points {
+                    report::DensityPoints::Angular(_) => "--omega",
+                    _ => "--frequency",
+                };
+                anyhow::bail!("{flag} {x}: frequencies must be finite and >= 0");
             }
             print(&study::spectrum_report_at(&file, convention, &points), json)?;
         }
@@ -956,6 +960,9 @@ fn simulate_command(cmd: Command) -> anyhow::Result<()> {
         }
         None => None,
     };
+    if let Some(dir) = &plots {
+        stochvib::plot::chart::check_picture_dir(dir)?; // before the run file is written
+    }
     let sc = load_scenario(&scenario, catalogue.dir())?;
     if let Some(answers) = sc.nonlinear_answers()? {
         let base = RunOptions {
@@ -1003,7 +1010,6 @@ fn simulate_command(cmd: Command) -> anyhow::Result<()> {
         seed,
         ..RunOptions::default()
     };
-    let output = shard_output(output, &choice)?;
     let flag = |e| named_by_flag(e, "--realizations");
     let estimate = stochvib::simulate::resources::estimate_text(
         &opts,
@@ -1013,6 +1019,8 @@ fn simulate_command(cmd: Command) -> anyhow::Result<()> {
     )
     .map_err(flag)?;
     eprintln!("{estimate}");
+    // the run directory of a shard only once the options hold (a refused run creates nothing)
+    let output = shard_output(output, &choice)?;
     let s = sc.simulate(&opts, &output, &progress_printer()).map_err(flag)?;
     print(&s, json)?;
     if let Some(pdir) = plots {

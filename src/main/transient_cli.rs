@@ -76,6 +76,9 @@ pub fn transient(
         Some(spec) => Some(stochvib::study::resolve_part(spec, a.of, &|k| std::env::var(k).ok())?),
         None => None,
     };
+    if let Some(dir) = &a.plots {
+        stochvib::plot::chart::check_picture_dir(dir)?; // before any work
+    }
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;
     if !has_exact_route(&sc)? {
         anyhow::ensure!(

@@ -771,20 +771,28 @@ fn is_picture(path: &Path) -> bool {
 /// # Errors
 /// [`Error::Parse`] naming `dir` for a file, FIFO or device; [`Error::Io`] if it cannot be created.
 pub fn picture_dir(dir: &Path) -> Result<()> {
-    if let Ok(m) = std::fs::metadata(dir)
-        && !m.is_dir()
-    {
-        return Err(Error::Parse {
-            file: dir.to_path_buf(),
-            reason: "exists and is not a directory: the pictures go into a directory (-o DIR, --plots DIR); \
-                     nothing was written"
-                .into(),
-        });
-    }
+    check_picture_dir(dir)?;
     std::fs::create_dir_all(dir).map_err(|source| Error::Io {
         path: dir.to_path_buf(),
         source,
     })
+}
+
+/// Refuses a picture directory `dir` that exists and is not a directory, creating nothing: a command that
+/// writes other files before its pictures (`simulate --plots`, `transient --plots`) asks this before its work.
+///
+/// # Errors
+/// [`Error::Parse`] naming `dir` for a file, FIFO or device.
+pub fn check_picture_dir(dir: &Path) -> Result<()> {
+    match std::fs::metadata(dir) {
+        Ok(m) if !m.is_dir() => Err(Error::Parse {
+            file: dir.to_path_buf(),
+            reason: "exists and is not a directory: the pictures go into a directory (-o DIR, --plots DIR); \
+                     nothing was written"
+                .into(),
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// A file-name-safe version of a signal name: ASCII letters, digits, `-` and `_` kept, anything else `_`.

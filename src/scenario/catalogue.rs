@@ -158,7 +158,8 @@ impl Catalogue {
         if let Some(b) = base.filter(|_| given.is_relative()) {
             candidates.push(b.join(given));
         }
-        let Some(path) = candidates.iter().find(|p| p.is_file()) else {
+        // anything that exists goes to the reader, whose input rule names a FIFO, a device or a directory
+        let Some(path) = candidates.iter().find(|p| p.exists()) else {
             return Err(Error::invalid(
                 "spectrum",
                 reference,

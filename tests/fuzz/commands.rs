@@ -274,7 +274,7 @@ pub fn generate(corpus: &Corpus, rng: &mut Rng, index: u64) -> Option<Case> {
 }
 
 /// A command case `index` of `kind` with nothing in it yet.
-fn blank(kind: DocKind, index: u64) -> Case {
+pub(super) fn blank(kind: DocKind, index: u64) -> Case {
     Case {
         index,
         origin: String::new(),
@@ -1185,6 +1185,11 @@ pub fn run_case(case: &Case, dir: &Path, limit: Duration, ctx: &Context) -> (Out
 /// [`evaluate`] with a time limit.
 pub fn run_limited(kind: DocKind, path: &Path, args: &[String], ctx: &Context, limit: Duration) -> Outcome {
     let (p, a, c) = (path.to_path_buf(), args.to_vec(), ctx.clone());
+    if kind.is_cli_only() {
+        // the child process has the limit; the thread waits a little longer for its report
+        let f = move |st: &AtomicU8| super::cli_commands::evaluate(&p, &a, &c, limit, st);
+        return inputs::limited(limit + Duration::from_secs(5), f);
+    }
     inputs::limited(limit, move |st| evaluate(kind, &p, &a, &c, st))
 }
 
@@ -1216,6 +1221,9 @@ fn names_a_case_file(case: &Case, path: &Path, named: &Path, ctx: &Context) -> b
 
 /// The findings of one evaluation of a command case.
 pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<Finding> {
+    if case.kind.is_cli_only() {
+        return super::cli_commands::check(case, path, outcome);
+    }
     let mut f = Vec::new();
     let what = case.kind.label();
     let mut add = |class: &str, signature: String, detail: String| {
@@ -1328,6 +1336,9 @@ pub fn check(case: &Case, path: &Path, outcome: &Outcome, ctx: &Context) -> Vec<
 /// The CLI arguments of a command case whose file is at `path`, or `None` when the CLI is not run (a
 /// sweep too large to run whole).
 pub fn cli_args(case: &Case, path: &Path, ctx: &Context, json: bool) -> Option<Vec<String>> {
+    if case.kind.is_cli_only() {
+        return None; // each case is a CLI run already
+    }
     let file = path.display().to_string();
     let spectra = ["--spectra-dir".to_string(), ctx.spectra().display().to_string()];
     let mut a: Vec<String> = match case.kind {
@@ -1502,6 +1513,7 @@ pub fn command_line(case: &Case, file: &str) -> String {
         DocKind::Merge => format!("stochvib merge <target> <members> ({})", case.args.join(" ")),
         DocKind::Record => super::records::command_line(case, file),
         DocKind::Optimize => format!("stochvib optimize {}", case.args.join(" ")),
+        k if k.is_cli_only() => super::cli_commands::command_line(case, file),
         _ => format!("stochvib workday {file}"),
     }
 }

@@ -580,6 +580,7 @@ pub fn check_in_worker(c: &Campaign, spec: CheckSpec, limit: Duration) -> std::r
         check: Some(spec.clone()),
     };
     let mut cmd = (c.worker)(&cfg);
+    cmd.env("STOCHVIB_FUZZ_BIN", &c.bin);
     if let Some(d) = spec.path.parent().filter(|d| d.is_dir()) {
         cmd.current_dir(d);
     }
@@ -671,6 +672,7 @@ pub fn run(c: &Campaign) -> Summary {
                     check: None,
                 };
                 let mut cmd = (c.worker)(&cfg);
+                cmd.env("STOCHVIB_FUZZ_BIN", &c.bin);
                 let wdir = c.scratch.join(format!("worker-{j}"));
                 std::fs::create_dir_all(&wdir).unwrap();
                 cmd.current_dir(&wdir);

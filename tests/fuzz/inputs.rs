@@ -88,6 +88,20 @@ pub enum DocKind {
     /// A shipped scenario with `optimize`'s flags (parameters and bounds, objective, constraints, starts)
     /// ([`super::optimize`]); CLI `stochvib optimize SCENARIO --param …`.
     Optimize,
+    /// `stochvib simulate` with hostile flags and output targets, run through the CLI
+    /// ([`super::cli_commands`]).
+    Simulate,
+    /// `stochvib plot` of a (mutated) scenario or a run file with hostile flags and targets, through the CLI.
+    Plot,
+    /// `stochvib report` of a (mutated) scenario, a workday or a run file with hostile flags and targets,
+    /// through the CLI.
+    Report,
+    /// `stochvib inspect` and `stochvib check-run` of run files whole, damaged or of another kind, through
+    /// the CLI.
+    Inspect,
+    /// `stochvib book`, `spectra` and `models` with their flags and hostile `--spectra-dir`/`--plots`,
+    /// through the CLI.
+    Catalogue,
 }
 
 impl DocKind {
@@ -105,7 +119,20 @@ impl DocKind {
             DocKind::Nonlinear => "nonlinear sections ([[model.nonlinear]], analyze)",
             DocKind::Transient => "transient sections ([transient], speed profile, envelope, schedule, mission)",
             DocKind::Optimize => "optimize (--param bounds, objective, constraints)",
+            DocKind::Simulate => "simulate and analyze flags (counts, steps, shards, -o targets, .tmp)",
+            DocKind::Plot => "plot (scenarios, run files, flags, targets)",
+            DocKind::Report => "report (scenarios, workdays, run files, flags, targets)",
+            DocKind::Inspect => "inspect and check-run (run files, flags)",
+            DocKind::Catalogue => "book, spectra, models, spectrum (flags, names, --spectra-dir, --plots)",
         }
+    }
+
+    /// Whether the case is run through the CLI binary only ([`super::cli_commands`]).
+    pub fn is_cli_only(self) -> bool {
+        matches!(
+            self,
+            DocKind::Simulate | DocKind::Plot | DocKind::Report | DocKind::Inspect | DocKind::Catalogue
+        )
     }
 
     /// Whether the case is one of [`super::commands`].
@@ -273,7 +300,10 @@ fn same_value(a: &Value, b: &Value) -> bool {
 
 /// Case `index` of `seed`: a shipped file, 0–3 structured mutations, sometimes a raw one.
 pub fn generate(corpus: &Corpus, seed: u64, index: u64) -> Case {
-    if let Some(c) = added_family(corpus, seed, index).or_else(|| later_family(corpus, seed, index)) {
+    if let Some(c) = added_family(corpus, seed, index)
+        .or_else(|| later_family(corpus, seed, index))
+        .or_else(|| cli_family(corpus, seed, index))
+    {
         return c;
     }
     let mut rng = case_rng(seed, index);
@@ -375,6 +405,24 @@ fn later_family(corpus: &Corpus, seed: u64, index: u64) -> Option<Case> {
         15..=29 => Some(super::commands::optimize(corpus, &mut rng, index)),
         _ => None,
     }
+}
+
+/// A case of the families added after the campaigns of seeds 2836–2837 (the CLI-only commands of
+/// [`super::cli_commands`]: `simulate` 1 %, `analyze` with flags 0.5 %, `spectrum` with flags 0.3 %, `plot`
+/// 0.6 %, `report` 0.5 %, `inspect` and `check-run` 0.4 % each, `book`, `spectra`, `models` 0.2 % each: 4.3 %
+/// in all), drawn from a stream of its own and only where the
+/// earlier families have no case: every other case of a seed is the case it was.
+fn cli_family(corpus: &Corpus, seed: u64, index: u64) -> Option<Case> {
+    let mut rng = case_rng(seed ^ 0xc11f_a317_0000_0000, index);
+    // shares in ‰, in the order of super::cli_commands::COMMANDS
+    const SHARES: [u32; 10] = [10, 5, 3, 6, 5, 4, 4, 2, 2, 2];
+    let mut r = rng.random_range(0..1000u32);
+    let which = SHARES.iter().position(|&s| {
+        let hit = r < s;
+        r = r.saturating_sub(s);
+        hit
+    })?;
+    Some(super::cli_commands::case(corpus, &mut rng, index, which))
 }
 
 /// Case `index` from a mutated document: serialised, sometimes mutated byte-wise (always when

@@ -11,12 +11,15 @@
 //!   their flags.
 //! * [`transient`]: mutations of the non-stationary keys of transient scenarios (`stochvib transient`).
 //! * [`optimize`]: `stochvib optimize` with hostile parameters, bounds, objectives and constraints.
+//! * [`cli_commands`]: `simulate`, `plot`, `report`, `inspect`, `check-run`, `book`, `spectra`, `models`
+//!   through the CLI with hostile flags, inputs and output targets.
 //! * [`input_campaign`]: worker processes, supervisor, CLI runs, special files, minimisation, reproducers.
 //! * [`runs`]: corruption of HDF5 run files and of interrupted runs' `.tmp` files.
 //! * [`floats`]: the non-finite number scan of a report (through serde).
 //! * [`process`]: child processes with a time limit and an address-space limit.
 #![allow(dead_code)] // each harness uses a different subset
 
+pub mod cli_commands;
 pub mod commands;
 pub mod floats;
 pub mod input_campaign;

@@ -534,3 +534,85 @@ fn an_optimisation_of_absurdly_many_starts_is_refused_by_name() {
     assert!(err.contains("--starts") && err.contains("1000000000000"), "{err}");
     assert!(err.contains("fewer --starts"), "{err}");
 }
+
+/// Found by the CLI-command family (seed 16): `simulate --plots FILE`, where FILE is a regular file (or a
+/// FIFO), wrote the whole run file and only then failed on the pictures, with a message ending "nothing was
+/// written". The picture directory is now checked before the run: the command fails naming the flag's
+/// target and leaves no run file, no `.tmp` and the target as it was; `transient --plots` does the same before
+/// its exact route.
+#[test]
+fn simulate_and_transient_check_their_picture_directory_before_the_work() {
+    let dir = scratch("plots-before-work");
+    std::fs::create_dir_all(&dir).unwrap();
+    let pictures = dir.join("pictures.csv");
+    std::fs::write(&pictures, "a, b\n1, 2\n").unwrap();
+    let run = dir.join("run.h5");
+    let p = |x: &Path| x.to_str().unwrap().to_string();
+    let simulate = [
+        "simulate",
+        "data/conveyor-idler.toml",
+        "--realizations",
+        "4",
+        "--duration",
+        "2",
+        "--dt",
+        "0.01",
+        "-o",
+        &p(&run),
+        "--plots",
+        &p(&pictures),
+    ];
+    let err = common::cli_fails(1, &simulate, &root());
+    assert!(err.contains("pictures.csv") && err.contains("not a directory"), "{err}");
+    let transient = [
+        "transient",
+        "data/quarter-car-accelerating.toml",
+        "--plots",
+        &p(&pictures),
+    ];
+    let err = common::cli_fails(1, &transient, &root());
+    assert!(err.contains("pictures.csv") && err.contains("not a directory"), "{err}");
+    assert_eq!(std::fs::read_to_string(&pictures).unwrap(), "a, b\n1, 2\n");
+    assert_eq!(
+        common::listing(&dir),
+        vec!["pictures.csv".to_string()],
+        "only the target is there"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Found by the CLI-command family (seed 2838, case 2379): `simulate --shard 2 --of 3 --duration NaN -o
+/// run.h5` created the run directory `run.h5` and then refused `--duration`, leaving an empty directory
+/// behind. The options are checked before the directory is made: nothing is created. And `spectrum
+/// --frequency inf` said "invalid frequency inf" without naming the flag (seed 2838, case 2821): it names
+/// `--frequency` (and `--omega` for `--omega`).
+#[test]
+fn a_refused_shard_run_creates_nothing_and_spectrum_names_its_frequency_flag() {
+    let dir = scratch("refused-shard");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("run.h5");
+    let args = [
+        "simulate",
+        "data/conveyor-idler.toml",
+        "--realizations",
+        "4",
+        "--duration",
+        "NaN",
+        "--dt",
+        "0.01",
+        "--shard",
+        "2",
+        "--of",
+        "3",
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let err = common::cli_fails(1, &args, &root());
+    assert!(err.contains("--duration") && err.contains("NaN"), "{err}");
+    assert!(common::listing(&dir).is_empty(), "{:?}", common::listing(&dir));
+    for (flag, value) in [("--frequency", "inf"), ("--omega", "-1")] {
+        let err = common::cli_fails(1, &["spectrum", "book-8-45", flag, value], &root());
+        assert!(err.contains(&format!("{flag} {value}")), "{err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

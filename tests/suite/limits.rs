@@ -210,14 +210,16 @@ fn polynomials_of_huge_degree_are_refused() {
 }
 
 /// The input rule for every file input: a FIFO (which would block), a device (`/dev/zero` never ends) and
-/// a directory are refused before anything is read — profiles and records (`road`, `replay`), scenario
-/// files (`analyze`), run files (`inspect`, `plot`), sweep shard files (`merge`); a 2 GiB profile is refused
+/// a directory are refused before anything is read — profiles and records (`road`, `replay`, `exposure`,
+/// `fatigue`, `coherence`, `iri`; CSV, WAV, HDF5), scenario files (`analyze`, `transient`, `optimize`,
+/// `report`), workday and spectrum files, run files (`inspect`, `plot`, `report`, `check-run`), sweep shard
+/// files (`merge`); a 2 GiB profile is refused
 /// by its size at once (it used to take 4.2 GB of memory), without reading it.
 #[test]
 fn file_inputs_refuse_fifos_devices_and_huge_files() {
     let _serial = common::hdf5_serial(); // no fork while a file of this binary is open
     let d = scratch("inputs");
-    for name in ["p.csv", "s.toml", "r.h5", "sweep-shard-0-of-1.json"] {
+    for name in ["p.csv", "s.toml", "r.h5", "sweep-shard-0-of-1.json", "w.wav"] {
         mkfifo(&d.join(name));
     }
     let quarter = root().join("data/quarter-car.toml");
@@ -233,6 +235,30 @@ fn file_inputs_refuse_fifos_devices_and_huge_files() {
         vec!["inspect", "r.h5"],
         vec!["plot", "r.h5", "-o", "pictures"],
         vec!["merge", "t.csv", "sweep-shard-0-of-1.json"],
+        // the commands that came later: records, profiles of the record commands, workday, spectrum,
+        // transient, optimize and report files, check-run
+        vec!["exposure", "p.csv"],
+        vec!["exposure", "w.wav"],
+        vec!["exposure", "r.h5"],
+        vec!["fatigue", "p.csv", "--sn-slope", "3", "--sn-amplitude", "80 MPa"],
+        vec!["coherence", "--profile", "p.csv"],
+        vec!["iri", "iso8608-c", "--profile", "p.csv"],
+        vec!["workday", "s.toml"],
+        vec!["spectrum", "s.toml"],
+        vec!["spectrum", "."],
+        vec!["transient", "s.toml"],
+        vec![
+            "optimize",
+            "s.toml",
+            "--param",
+            "model.zeta=0.1:0.2",
+            "--minimize",
+            "sigma(y)",
+        ],
+        vec!["report", "s.toml", "-o", "x.html"],
+        vec!["report", "r.h5", "-o", "x.html"],
+        vec!["report", q, "--run", "r.h5", "-o", "x.html"],
+        vec!["check-run", "r.h5"],
     ];
     for args in cases {
         let e = refused(&args, &d);
@@ -288,7 +314,8 @@ fn bad_values_are_quoted_as_bounded_excerpts() {
 
 /// `plot` verifies every checksum of a run file as `inspect` does: a flipped bit in a raw sample (which the
 /// pictures read) or in an accumulator of the last shard (which they do not) makes `plot` fail naming the
-/// file and the damaged dataset, and write nothing; the library's `run_plots` refuses the same file.
+/// file and the damaged dataset, and write nothing; the library's `run_plots` refuses the same file, and so
+/// does `report` (of the run file, and of its scenario with `--run`).
 #[test]
 fn plot_verifies_checksums_like_inspect() {
     let _serial = common::hdf5_serial(); // no fork while a file of this binary is open
@@ -346,6 +373,26 @@ fn plot_verifies_checksums_like_inspect() {
             .to_string();
         assert!(e.contains("checksum mismatch") && e.contains(&part), "{e}");
         assert!(!pictures.exists());
+        // `report` reads run files too: of the run alone, and as the `--run` of its scenario
+        let sc_path = root().join("data/conveyor-idler.toml");
+        for args in [
+            vec!["report", p.to_str().unwrap(), "-o", "r.html"],
+            vec![
+                "report",
+                sc_path.to_str().unwrap(),
+                "--run",
+                p.to_str().unwrap(),
+                "-o",
+                "r.html",
+            ],
+        ] {
+            let e = refused(&args, &d);
+            assert!(
+                e.contains(p.to_str().unwrap()) && e.contains("damaged") && e.contains(&part),
+                "{e}"
+            );
+            assert!(!d.join("r.html").exists());
+        }
     }
     let out = cli(&["plot", good.to_str().unwrap(), "-o", "pictures"], &d);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));

@@ -1,5 +1,5 @@
 //! The output rule, the same for every command that writes (`simulate`, `merge` of runs and of sweep
-//! shards, `sweep` tables and shard files, `replay -o`, and the pictures of `plot`, `analyze --plots` and
+//! shards, `sweep` tables and shard files, `replay -o`, `report -o`, and the pictures of `plot`, `analyze --plots` and
 //! `road --plots`): one table of commands × hostile targets — the command's own input (named directly, or
 //! through a symbolic or hard link), a directory, a FIFO, a device node, a file of another kind — run with
 //! and without `--overwrite`. Every case must fail with a message naming the target, leave the target and
@@ -347,6 +347,18 @@ fn writers(i: &Inputs) -> Vec<Writer> {
             input: i.run.clone(),
             overwrite: false,
             others: vec![i.scenario.clone(), i.run.clone()],
+        },
+        Writer {
+            name: "report",
+            args: Box::new({
+                let sc = sc.clone();
+                move |t| s(&["report", &sc, "-o", &p(t)])
+            }),
+            target: "report.html",
+            in_dir: false,
+            input: i.scenario.clone(),
+            overwrite: true,
+            others: vec![i.profile.clone(), i.run.clone()],
         },
         Writer {
             name: "analyze --plots",
