@@ -209,7 +209,10 @@ impl Spectrum for Tabulated {
                 node: self.omega[seg],
             };
             if run < SHORT {
-                omega[i..i + run].iter().zip(&mut out[i..i + run]).for_each(|(&w, o)| *o = law.at(w));
+                omega[i..i + run]
+                    .iter()
+                    .zip(&mut out[i..i + run])
+                    .for_each(|(&w, o)| *o = law.at(w));
             } else {
                 vmath::map(&omega[i..i + run], &mut out[i..i + run], law);
             }

@@ -42,7 +42,9 @@ fn exp_form(text: &[u8], out: &mut [u8; 40]) -> usize {
     out[0] = b'-';
     let mut len = neg;
     // Żmij's exponent is `e±d`, `e±dd` or `e-ddd`: its 'e' is one of the last five characters
-    let e_at = (3..=5).find(|&k| t.len() > k && t[t.len() - k] == b'e').map(|k| t.len() - k);
+    let e_at = (3..=5)
+        .find(|&k| t.len() > k && t[t.len() - k] == b'e')
+        .map(|k| t.len() - k);
     let e10 = if let Some(e) = e_at {
         // d[.ddd]e±x: the significand as it is
         out[len..len + e].copy_from_slice(&t[..e]);

@@ -328,7 +328,10 @@ fn tabulated_density_into_does_not_depend_on_the_order() {
     let eval = |grid: &[f64]| {
         let mut out = vec![f64::NAN; grid.len()];
         t.density_into(grid, &mut out);
-        grid.iter().zip(out).map(|(w, o)| (w.to_bits(), o.to_bits())).collect::<Vec<_>>()
+        grid.iter()
+            .zip(out)
+            .map(|(w, o)| (w.to_bits(), o.to_bits()))
+            .collect::<Vec<_>>()
     };
     let mut reference = eval(&asc);
     reference.sort();
