@@ -87,6 +87,13 @@ fn main() {
         println!("{}", serde_json::to_string_pretty(&doc).unwrap());
         return;
     }
+    // `--only h5`: the HDF5 write and chain jobs alone (to time them, and the process's CPU, by themselves)
+    if args.windows(2).any(|w| w[0] == "--only" && w[1] == "h5") {
+        let jobs: Map<String, Value> = hdf5_and_chain_jobs(reps, smoke).into_iter().collect();
+        let doc = json!({"side": "rust", "jobs": Value::Object(jobs)});
+        println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+        return;
+    }
 
     // 2. one variance of the 2-DOF scraper (cab acceleration) under the rational road, three ways
     let exc = Excitation::single(road(), 0.0).expect("temporal road");

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """numpy/scipy side of the stochvib benchmark comparison (see benches/RESULTS.md).
 
-    python3 compare.py run [--reps N] [--smoke] > py.json   time the jobs, print JSON (--smoke: tiny sizes, once)
+    python3 compare.py run [--reps N] [--smoke] [--only density|h5] > py.json   time the jobs, print JSON
+                                                       (--smoke: tiny sizes, once; --only: one group)
     python3 compare.py table rust.json py.json         print the comparison table
     python3 compare.py sweep [--reps N]                only the scipy sweep loops (benches/RESULTS.md)
     python3 compare.py sweep-cli [--reps N]            `stochvib sweep` of 10^6 points beside the scipy loop
@@ -922,7 +923,7 @@ def main():
     r = sub.add_parser("run")
     r.add_argument("--reps", type=int, default=5)
     r.add_argument("--smoke", action="store_true", help="every job once at a tiny size")
-    r.add_argument("--only", choices=["density"], help="only the density jobs")
+    r.add_argument("--only", choices=["density", "h5"], help="only the density jobs, or the HDF5 write and chain jobs")
     t = sub.add_parser("table")
     t.add_argument("rust")
     t.add_argument("python")
@@ -953,6 +954,10 @@ def main():
             apply_smoke()
         if a.only == "density":
             print(json.dumps(run_densities(a.reps), indent=1))
+        elif a.only == "h5":
+            doc = {"side": "python", "jobs": {}}
+            run_h5_chain(1 if a.smoke else a.reps, doc)
+            print(json.dumps(doc, indent=1))
         else:
             print(json.dumps(run(1 if a.smoke else a.reps), indent=1))
     elif a.cmd == "sweep":

@@ -129,24 +129,35 @@ impl Tabulated {
     }
 }
 
-/// `out[i] = level[i]·exp(slope[i]·ln(w[i]/node[i]))` by [`vmath`](crate::linalg::vmath)'s functions, as a
-/// [`Task`](crate::linalg::vmath::Task) compiled for the CPU's widest SIMD unit.
-struct Segments<'a> {
-    level: &'a [f64],
-    slope: &'a [f64],
-    w: &'a [f64],
-    node: &'a [f64],
-    out: &'a mut [f64],
+/// One segment's law `level·exp(slope·ln(|ω|/node))` by [`vmath`](crate::linalg::vmath)'s functions, as a
+/// [`Kernel`](crate::linalg::vmath::Kernel) compiled for the CPU's widest SIMD unit.
+struct Segment {
+    level: f64,
+    slope: f64,
+    node: f64,
 }
 
-impl crate::linalg::vmath::Task for Segments<'_> {
+impl crate::linalg::vmath::Kernel for Segment {
     #[inline(always)]
-    fn run(&mut self) {
+    fn at(&self, w: f64) -> f64 {
         use crate::linalg::vmath::{exp, ln};
-        let args = self.level.iter().zip(self.slope).zip(self.w.iter().zip(self.node));
-        for (o, ((&l, &p), (&w, &wk))) in self.out.iter_mut().zip(args) {
-            *o = l * exp(p * ln(w / wk));
-        }
+        self.level * exp(self.slope * ln(w.abs() / self.node))
+    }
+}
+
+impl Tabulated {
+    /// How many of `omega` (from its start) lie in segment `k` as [`walk`](Self::walk) assigns them:
+    /// ω_k ≤ |ω| < ω_{k+1}, the table's last point included in the last segment.
+    fn run_in_segment(&self, k: usize, omega: &[f64]) -> usize {
+        let (wk, top) = (self.omega[k], self.omega[k + 1]);
+        let last = k + 2 == self.omega.len();
+        omega
+            .iter()
+            .take_while(|w| {
+                let a = w.abs();
+                a >= wk && (a < top || (last && a == top))
+            })
+            .count()
     }
 }
 
@@ -178,26 +189,34 @@ impl Spectrum for Tabulated {
     /// exact at the nodes); the segments are found first, in blocks of 256 points, by walking from the
     /// previous point's segment instead of a binary search per point.
     fn density_into(&self, omega: &[f64], out: &mut [f64]) {
-        use crate::linalg::vmath;
-        const BLOCK: usize = 256;
-        let mut k = 0;
-        let (mut aw, mut node, mut slope, mut level) = ([1.0; BLOCK], [1.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
-        for (w, o) in omega.chunks(BLOCK).zip(out.chunks_mut(BLOCK)) {
-            let m = w.len().min(o.len());
-            for i in 0..m {
-                let a = w[i].abs();
-                (aw[i], node[i], slope[i], level[i]) = match self.walk(&mut k, a) {
-                    Some(k) => (a, self.omega[k], self.slopes[k], self.density[k]),
-                    None => (1.0, 1.0, 0.0, 0.0),
-                };
+        use crate::linalg::vmath::{self, Kernel};
+        // runs of points in one segment (an ascending or descending grid: a run per segment) go through the
+        // vectorised law of the segment; a short run (points in no order) point by point with the same
+        // formula, so the bits do not depend on the order of the points
+        const SHORT: usize = 8;
+        let m = omega.len().min(out.len());
+        let (mut i, mut k) = (0, 0);
+        while i < m {
+            let Some(seg) = self.walk(&mut k, omega[i].abs()) else {
+                out[i] = 0.0;
+                i += 1;
+                continue;
+            };
+            let run = 1 + self.run_in_segment(seg, &omega[i + 1..m]);
+            let law = Segment {
+                level: self.density[seg],
+                slope: self.slopes[seg],
+                node: self.omega[seg],
+            };
+            if run < SHORT {
+                omega[i..i + run]
+                    .iter()
+                    .zip(&mut out[i..i + run])
+                    .for_each(|(&w, o)| *o = law.at(w));
+            } else {
+                vmath::map(&omega[i..i + run], &mut out[i..i + run], law);
             }
-            vmath::run(&mut Segments {
-                level: &level[..m],
-                slope: &slope[..m],
-                w: &aw[..m],
-                node: &node[..m],
-                out: &mut o[..m],
-            });
+            i += run;
         }
     }
     fn high_frequency(&self) -> Asymptote {

@@ -27,56 +27,67 @@ pub(crate) fn push_exp(s: &mut String, x: f64) {
         return;
     }
     let mut buf = zmij::Buffer::new();
-    let text = buf.format_finite(x).as_bytes();
     let mut out = [0u8; 40];
-    let mut len = 0;
-    let text = match text.split_first() {
-        Some((b'-', rest)) => {
-            out[0] = b'-';
-            len = 1;
-            rest
+    let len = exp_form(buf.format_finite(x).as_bytes(), &mut out);
+    // SAFETY: `out[..len]` holds ASCII only (Żmij's digits, '.', '-', 'e' and itoa's digits): valid UTF-8.
+    s.push_str(unsafe { std::str::from_utf8_unchecked(&out[..len]) });
+}
+
+/// Rewrites Żmij's text (`-0.00123`, `12.5`, `100.0`, `1e+20`, `1.5e-7`, `0.0`) as `{:e}`'s (`-1.23e-3`,
+/// `1.25e1`, `1e2`, `1e20`, `1.5e-7`, `0e0`) into `out`; returns the length written. Żmij writes no trailing
+/// zero but the `.0` of an integer, and the exponential form only outside its fixed-point range.
+fn exp_form(text: &[u8], out: &mut [u8; 40]) -> usize {
+    let neg = usize::from(text[0] == b'-');
+    let t = &text[neg..];
+    out[0] = b'-';
+    let mut len = neg;
+    // Żmij's exponent is `e±d`, `e±dd` or `e-ddd`: its 'e' is one of the last five characters
+    let e_at = (3..=5)
+        .find(|&k| t.len() > k && t[t.len() - k] == b'e')
+        .map(|k| t.len() - k);
+    let e10 = if let Some(e) = e_at {
+        // d[.ddd]e±x: the significand as it is
+        out[len..len + e].copy_from_slice(&t[..e]);
+        len += e;
+        parse_exponent(&t[e + 1..])
+    } else if t[0] != b'0' {
+        // ddd.ddd or ddd00.0: the first digit, the point, the other digits without the point
+        let p = t.iter().position(|&c| c == b'.').unwrap_or(t.len());
+        let frac = if &t[p..] == b".0" { &[][..] } else { &t[p + 1..] };
+        let mut int = &t[..p];
+        if frac.is_empty() {
+            while int.len() > 1 && int[int.len() - 1] == b'0' {
+                int = &int[..int.len() - 1];
+            }
         }
-        _ => text,
-    };
-    let (mantissa, exp) = match text.iter().position(|&c| c == b'e') {
-        Some(i) => (&text[..i], parse_exponent(&text[i + 1..])),
-        None => (text, 0),
-    };
-    let point = mantissa.iter().position(|&c| c == b'.').unwrap_or(mantissa.len());
-    let (int, frac) = (&mantissa[..point], mantissa.get(point + 1..).unwrap_or(&[]));
-    // the significant digits (zmij writes no leading zero but the "0" of 0.000ddd) and the decimal exponent
-    // of the first one
-    let mut digits = [0u8; 32];
-    let (n, e10) = if int != b"0" {
-        digits[..int.len()].copy_from_slice(int);
-        digits[int.len()..int.len() + frac.len()].copy_from_slice(frac);
-        (int.len() + frac.len(), exp + int.len() as i32 - 1)
+        out[len] = t[0];
+        out[len + 1] = b'.';
+        let rest = &int[1..];
+        out[len + 2..len + 2 + rest.len()].copy_from_slice(rest);
+        out[len + 2 + rest.len()..len + 2 + rest.len() + frac.len()].copy_from_slice(frac);
+        let n = rest.len() + frac.len();
+        len += if n == 0 { 1 } else { 2 + n };
+        p as i32 - 1
     } else {
-        let zeros = frac.iter().take_while(|&&c| c == b'0').count();
-        digits[..frac.len() - zeros].copy_from_slice(&frac[zeros..]);
-        (frac.len() - zeros, exp - 1 - zeros as i32)
-    };
-    let n = digits[..n].iter().rposition(|&c| c != b'0').map_or(0, |i| i + 1);
-    if n == 0 {
-        out[len..len + 3].copy_from_slice(b"0e0");
-        len += 3;
-    } else {
-        out[len] = digits[0];
-        len += 1;
-        if n > 1 {
-            out[len] = b'.';
-            out[len + 1..len + n].copy_from_slice(&digits[1..n]);
-            len += n;
+        // 0.000ddd (or 0.0)
+        let zeros = t[2..].iter().take_while(|&&c| c == b'0').count();
+        let d = &t[2 + zeros..];
+        if d.is_empty() {
+            out[len..len + 3].copy_from_slice(b"0e0");
+            return len + 3;
         }
-        out[len] = b'e';
-        len += 1;
-        let mut ib = itoa::Buffer::new();
-        let e = ib.format(e10).as_bytes();
-        out[len..len + e.len()].copy_from_slice(e);
-        len += e.len();
-    }
-    // ASCII digits, '.', 'e' and '-' only
-    s.push_str(std::str::from_utf8(&out[..len]).unwrap_or_default());
+        out[len] = d[0];
+        out[len + 1] = b'.';
+        out[len + 2..len + 1 + d.len()].copy_from_slice(&d[1..]);
+        len += if d.len() == 1 { 1 } else { 1 + d.len() };
+        -(zeros as i32) - 1
+    };
+    out[len] = b'e';
+    len += 1;
+    let mut ib = itoa::Buffer::new();
+    let e = ib.format(e10).as_bytes();
+    out[len..len + e.len()].copy_from_slice(e);
+    len + e.len()
 }
 
 /// A decimal exponent as zmij writes it (`+20`, `-7`, `5`).
