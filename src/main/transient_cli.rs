@@ -140,7 +140,8 @@ pub fn transient(
     };
     let r = answers.map(|a| a.2);
     if a.json {
-        let all = serde_json::json!({ "exact": r, "evolutionary": evolutionary, "monte_carlo": mc, "sigma": comparison });
+        let all =
+            serde_json::json!({ "exact": r, "evolutionary": evolutionary, "monte_carlo": mc, "sigma": comparison });
         println!("{}", serde_json::to_string_pretty(&all)?);
         return Ok(());
     }

@@ -14,7 +14,8 @@ use crate::store::{Compression, Part};
 use crate::transient::mc_finish::AnalyticSide;
 use crate::transient::mission::analytic_side;
 use crate::transient::{
-    run_road_grid, run_transient, McGrid, RoadGridRunInput, TransientRunInput, TransientRunOptions, TransientRunSummary, TransientSolution,
+    run_road_grid, run_transient, McGrid, RoadGridRunInput, TransientRunInput, TransientRunOptions,
+    TransientRunSummary, TransientSolution,
 };
 use std::path::Path;
 
@@ -218,7 +219,11 @@ pub fn default_road_step(setup: &RoadGridSetup) -> f64 {
         .iter()
         .map(|l| l.norm())
         .fold(0.0, f64::max);
-    if w_max > 0.0 { 0.1 * v_ref / w_max } else { v_ref * 0.01 }
+    if w_max > 0.0 {
+        0.1 * v_ref / w_max
+    } else {
+        v_ref * 0.01
+    }
 }
 
 /// The analytic side of a road-grid run and the outputs it simulates: the exact route where the road has
@@ -246,12 +251,18 @@ fn road_grid_analytic(sc: &Scenario, outputs: &[usize]) -> Result<(AnalyticSide,
     let outs: Vec<usize> = outputs
         .iter()
         .copied()
-        .filter(|&i| match sol.outputs[i].unavailable.as_ref().or(sol.outputs[i].rate_note.as_ref()) {
-            Some(why) => {
-                notes.push(format!("`{}` is not simulated: {why}", sol.outputs[i].name));
-                false
+        .filter(|&i| {
+            match sol.outputs[i]
+                .unavailable
+                .as_ref()
+                .or(sol.outputs[i].rate_note.as_ref())
+            {
+                Some(why) => {
+                    notes.push(format!("`{}` is not simulated: {why}", sol.outputs[i].name));
+                    false
+                }
+                None => true,
             }
-            None => true,
         })
         .collect();
     let method = format!(
@@ -283,7 +294,11 @@ pub fn simulate_road_grid(
     let setup = road_grid_setup(sc)?;
     let dx = road_step.unwrap_or_else(|| default_road_step(&setup));
     if !(dx.is_finite() && dx > 0.0) {
-        return Err(Error::invalid("road step", dx, "the grid step Δx must be finite and > 0 m"));
+        return Err(Error::invalid(
+            "road step",
+            dx,
+            "the grid step Δx must be finite and > 0 m",
+        ));
     }
     let (analytic, outputs, mut notes) = road_grid_analytic(sc, &setup.outputs)?;
     if outputs.is_empty() {

@@ -113,7 +113,11 @@ pub fn run_road_grid(
     let times = opts.grid.stored_times();
     check_options(opts, &times)?;
     if !(input.dx.is_finite() && input.dx > 0.0) {
-        return Err(Error::invalid("road step", input.dx, "the grid step Δx must be finite and > 0 m"));
+        return Err(Error::invalid(
+            "road step",
+            input.dx,
+            "the grid step Δx must be finite and > 0 m",
+        ));
     }
     let infos = input.ss.outputs();
     if let Some(&i) = input.outputs.iter().find(|&&i| i >= infos.len()) {
@@ -129,7 +133,11 @@ pub fn run_road_grid(
         rows: input.outputs.clone(),
     };
     let id = RunIdentity {
-        outputs: input.outputs.iter().map(|&i| Signal::new(&infos[i].name, &infos[i].unit)).collect(),
+        outputs: input
+            .outputs
+            .iter()
+            .map(|&i| Signal::new(&infos[i].name, &infos[i].unit))
+            .collect(),
         scenario_text: input.scenario_text.clone(),
         provenance: input.provenance.clone(),
         generator: generator(&plan, run_in),

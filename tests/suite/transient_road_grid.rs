@@ -177,11 +177,20 @@ fn transient_command_runs_the_road_grid_against_the_exact_route() {
     use stochvib::study::transient_mc::compare_sigma;
     use stochvib::transient::monte_carlo::read_transient_run;
     let dir = scratch_dir("transient-road-grid", "cli");
-    let text = accelerating_on(r#"{ kind = "exponential", domain = "spatial", variance = "32 cm^2", alpha = "0.16 1/m" }"#);
+    let text =
+        accelerating_on(r#"{ kind = "exponential", domain = "spatial", variance = "32 cm^2", alpha = "0.16 1/m" }"#);
     std::fs::write(dir.join("road.toml"), text).unwrap();
     let limit = std::time::Duration::from_secs(900);
     let run = |extra: &[&str]| {
-        let mut args = vec!["transient", "road.toml", "--monte-carlo", "200", "--road-grid", "--seed", "3"];
+        let mut args = vec![
+            "transient",
+            "road.toml",
+            "--monte-carlo",
+            "200",
+            "--road-grid",
+            "--seed",
+            "3",
+        ];
         args.extend_from_slice(extra);
         let o = cli_within(&args, &dir, limit);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -190,7 +199,11 @@ fn transient_command_runs_the_road_grid_against_the_exact_route() {
     let out = run(&["-o", "one.h5"]);
     assert!(out.contains("Monte Carlo σ(t) of travel"), "{out}");
     let (file, series) = read_transient_run(&dir.join("one.h5")).unwrap();
-    assert!(file.metadata().generator.contains("spatial grid"), "{}", file.metadata().generator);
+    assert!(
+        file.metadata().generator.contains("spatial grid"),
+        "{}",
+        file.metadata().generator
+    );
     assert_eq!(series.times.len(), 81);
     for c in compare_sigma(&series, 5e-7).unwrap() {
         assert!(c.outside.is_empty(), "{}: {}", c.output, c.verdict());
@@ -216,7 +229,12 @@ fn transient_command_runs_the_road_grid_against_the_exact_route() {
         limit,
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let generator = read_transient_run(&dir.join("iso.h5")).unwrap().0.metadata().generator.clone();
+    let generator = read_transient_run(&dir.join("iso.h5"))
+        .unwrap()
+        .0
+        .metadata()
+        .generator
+        .clone();
     assert!(generator.contains("spatial grid"), "{generator}");
     let _ = std::fs::remove_dir_all(&dir);
 }
