@@ -6,7 +6,7 @@ use stochvib::report::transient_report::SigmaComparisons;
 use stochvib::scenario::{load_scenario, Catalogue};
 use stochvib::store::Compression;
 use stochvib::study::transient_answers::{answers, evolutionary_analysis};
-use stochvib::study::transient_mc::{compare_sigma, simulate_transient, TransientMcOptions};
+use stochvib::study::transient_mc::{compare_sigma, simulate_road_grid, simulate_transient, TransientMcOptions};
 use stochvib::study::transient_run::{exact_solution, has_exact_route, transient_setup};
 use stochvib::transient::monte_carlo::read_transient_run;
 use stochvib::transient::TransientRunSummary;
@@ -60,6 +60,13 @@ pub struct TransientArgs {
     /// Print JSON (every reported time).
     #[arg(long)]
     json: bool,
+    /// Monte Carlo on roads synthesised on a spatial grid and sampled along x(t) (for a road under a speed
+    /// profile; taken by itself for a road without an exact route).
+    #[arg(long, requires = "monte_carlo")]
+    road_grid: bool,
+    /// The grid step Δx of --road-grid, m (default: 0.1·v_min/ω_max of the vehicle).
+    #[arg(long, value_name = "M", requires = "monte_carlo")]
+    road_step: Option<f64>,
     /// Draw σ(t) and mean(t) of every output by the exact route into DIR (SVG and PNG; docs/gallery.md).
     #[arg(long, value_name = "DIR")]
     plots: Option<PathBuf>,
@@ -80,33 +87,26 @@ pub fn transient(
         stochvib::plot::chart::check_picture_dir(dir)?; // before any work
     }
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;
-    if !has_exact_route(&sc)? {
-        anyhow::ensure!(
-            a.monte_carlo.is_none(),
-            "{}: --monte-carlo of a transient needs an input with an exact route (rational, white, or a w = 2 road \
-             without a band); this input is answered by the evolutionary route only (the Monte Carlo of a road \
-             synthesised on a spatial grid is the library's transient::road_grid_monte_carlo, not yet a command)",
-            a.scenario.display()
-        );
-        let r = evolutionary_analysis(&sc)?;
-        if a.json {
-            println!(
-                "{}",
-                serde_json::to_string_pretty(&serde_json::json!({ "evolutionary": r }))?
-            );
-        } else {
-            print!("{r}");
+    let exact = has_exact_route(&sc)?;
+    let answers = if exact {
+        let setup = transient_setup(&sc)?;
+        let sol = exact_solution(&sc, &setup)?;
+        let r = answers(&sc, &setup, &sol);
+        if let Some(dir) = &a.plots {
+            for f in stochvib::plot::transient_plots::exact_plots(&r, dir)? {
+                eprintln!("wrote {}", f.display());
+            }
         }
-        return Ok(());
-    }
-    let setup = transient_setup(&sc)?;
-    let sol = exact_solution(&sc, &setup)?;
-    let r = answers(&sc, &setup, &sol);
-    if let Some(dir) = &a.plots {
-        for f in stochvib::plot::transient_plots::exact_plots(&r, dir)? {
-            eprintln!("wrote {}", f.display());
-        }
-    }
+        Some((setup, sol, r))
+    } else {
+        None
+    };
+    let evolutionary = match (&answers, a.monte_carlo) {
+        (Some(_), _) => None,
+        // with a road-grid run, a road on which the evolutionary route holds at no time still gets its run
+        (None, Some(_)) => evolutionary_analysis(&sc).map_err(|e| eprintln!("note: {e}")).ok(),
+        (None, None) => Some(evolutionary_analysis(&sc)?),
+    };
     let mc = match (a.monte_carlo, &a.output) {
         (Some(n), Some(out)) => {
             let out = shard_output(out.clone(), &choice)?;
@@ -122,8 +122,11 @@ pub fn transient(
                 overwrite: a.overwrite,
                 max_hours: a.max_hours,
             };
-            let (summary, notes) = simulate_transient(&sc, &setup, &sol, &opts, &out, progress)
-                .map_err(|e| super::named_by_flag(e, "--monte-carlo"))?;
+            let ran = match &answers {
+                Some((setup, sol, _)) if !a.road_grid => simulate_transient(&sc, setup, sol, &opts, &out, progress),
+                _ => simulate_road_grid(&sc, &opts, a.road_step, &out, progress),
+            };
+            let (summary, notes) = ran.map_err(|e| super::named_by_flag(e, "--monte-carlo"))?;
             for n in notes {
                 eprintln!("note: {n}");
             }
@@ -138,12 +141,16 @@ pub fn transient(
         )?)),
         None => None,
     };
+    let r = answers.map(|a| a.2);
     if a.json {
-        let all = serde_json::json!({ "exact": r, "monte_carlo": mc, "sigma": comparison });
+        let all =
+            serde_json::json!({ "exact": r, "evolutionary": evolutionary, "monte_carlo": mc, "sigma": comparison });
         println!("{}", serde_json::to_string_pretty(&all)?);
         return Ok(());
     }
-    print!("{r}");
+    if let Some(r) = r.as_ref().or(evolutionary.as_ref()) {
+        print!("{r}");
+    }
     if let (Some(s), Some(c)) = (&mc, &comparison) {
         print!("{c}");
         print_summary(s);

@@ -2,14 +2,20 @@
 //! [`crate::transient::run_transient`] on the scenario's setup, and the comparison of the ensemble σ(t)
 //! with the exact curve, with a verdict that holds for every reported time at once.
 
-use super::transient_run::TransientSetup;
+use super::transient_run::{
+    evolutionary_setup, exact_solution, has_exact_route, road_grid_setup, transient_setup, RoadGridSetup,
+    TransientSetup,
+};
 use crate::error::{Error, Result};
 use crate::estimate::chi2_interval;
 use crate::scenario::Scenario;
 use crate::store::transient_series::TransientSeries;
 use crate::store::{Compression, Part};
+use crate::transient::mc_finish::AnalyticSide;
+use crate::transient::mission::analytic_side;
 use crate::transient::{
-    run_transient, McGrid, TransientRunInput, TransientRunOptions, TransientRunSummary, TransientSolution,
+    run_road_grid, run_transient, McGrid, RoadGridRunInput, TransientRunInput, TransientRunOptions,
+    TransientRunSummary, TransientSolution,
 };
 use std::path::Path;
 
@@ -99,19 +105,7 @@ pub fn simulate_transient(
         scenario_text: sc.text.clone(),
         provenance: sc.run_input().provenance,
     };
-    let run = TransientRunOptions {
-        realizations: opts.realizations,
-        grid,
-        seed: opts.seed,
-        shard_size: opts.shard_size,
-        confidence: opts.confidence,
-        store_raw: opts.store_raw,
-        compression: opts.compression,
-        part: opts.part,
-        overwrite: opts.overwrite,
-        max_hours: opts.max_hours,
-    };
-    Ok((run_transient(&input, &run, out, progress)?, notes))
+    Ok((run_transient(&input, &run_options(opts, grid), out, progress)?, notes))
 }
 
 /// The Monte Carlo σ(t) of one output against the exact σ(t).
@@ -142,7 +136,7 @@ impl SigmaComparison {
             None => format!(
                 "agree: the exact σ(t) lies inside the simultaneous {} % band at every one of the {} times",
                 100.0 * self.simultaneous_confidence,
-                self.rows.len()
+                self.rows.iter().filter(|r| !r.1.is_nan()).count()
             ),
             Some(t) => format!(
                 "DISAGREE: the exact σ lies outside the simultaneous {} % band at {} of {} times (first t = {t} s)",
@@ -160,7 +154,8 @@ impl SigmaComparison {
 /// At each of the K times, σ̂² (R − 1)/σ² ~ χ²_{R−1} for the Gaussian response of a linear system, so
 /// [σ̂²(R−1)/χ²_{R−1}(1 − α/2K), σ̂²(R−1)/χ²_{R−1}(α/2K)] covers σ² at every time at once with probability
 /// ≥ 1 − α (Bonferroni). A time with σ = 0 exactly (a start at rest) counts as inside when
-/// |σ̂ − σ| ≤ 10⁻¹² max σ.
+/// |σ̂ − σ| ≤ 10⁻¹² max σ. A time whose analytic σ is NaN (where the evolutionary route reports none) is
+/// not compared (and not counted in the coverage).
 ///
 /// # Errors
 /// α outside (0, 1); fewer than 2 realizations.
@@ -181,6 +176,10 @@ pub fn compare_sigma(series: &TransientSeries, alpha: f64) -> Result<Vec<SigmaCo
             let mut covered = 0usize;
             for (j, &t) in series.times.iter().enumerate() {
                 let (ex, est) = (o.exact_sigma[j], o.sigma[j]);
+                if ex.is_nan() {
+                    rows.push((t, ex, est, o.sigma_lower[j], o.sigma_upper[j]));
+                    continue;
+                }
                 let iv = chi2_interval(est * est, r as f64 - 1.0, level)?;
                 let tiny = (ex - est).abs() <= 1e-12 * scale;
                 if !(tiny || (iv.lower.sqrt() <= ex && ex <= iv.upper.sqrt())) {
@@ -191,16 +190,157 @@ pub fn compare_sigma(series: &TransientSeries, alpha: f64) -> Result<Vec<SigmaCo
                 }
                 rows.push((t, ex, est, o.sigma_lower[j], o.sigma_upper[j]));
             }
+            let compared = rows.iter().filter(|row| !row.1.is_nan()).count().max(1);
             Ok(SigmaComparison {
                 output: o.output.clone(),
                 unit: o.unit.clone(),
                 realizations: r,
                 confidence: series.confidence,
-                coverage: covered as f64 / k as f64,
+                coverage: covered as f64 / compared as f64,
                 rows,
                 simultaneous_confidence: 1.0 - alpha,
                 outside,
             })
         })
         .collect()
+}
+
+/// The default road step Δx of the road-grid route: 0.1·v_ref/ω_max, with ω_max the largest |λ(A)| of the
+/// vehicle and v_ref the profile's smallest speed (a tenth of its largest where it stops), so that the
+/// vehicle's fastest mode sees the grid at ΩΔx ≤ 0.1 (the linear interpolation loses about (ΩΔx)²/6 ≈
+/// 0.2 % of the power there).
+pub fn default_road_step(setup: &RoadGridSetup) -> f64 {
+    let (lo, hi) = setup.speed.table_points().range();
+    let v_ref = if lo > 0.0 { lo } else { 0.1 * hi };
+    let w_max = setup
+        .ss
+        .a
+        .complex_eigenvalues()
+        .iter()
+        .map(|l| l.norm())
+        .fold(0.0, f64::max);
+    if w_max > 0.0 {
+        0.1 * v_ref / w_max
+    } else {
+        v_ref * 0.01
+    }
+}
+
+/// The analytic side of a road-grid run and the outputs it simulates: the exact route where the road has
+/// one, else the evolutionary route (NaN where its error estimate exceeds `[transient] max_error`; the
+/// distributions of the maxima are then NaN and have no verdict).
+fn road_grid_analytic(sc: &Scenario, outputs: &[usize]) -> Result<(AnalyticSide, Vec<usize>, Vec<String>)> {
+    if has_exact_route(sc)? {
+        let setup = transient_setup(sc)?;
+        let sol = exact_solution(sc, &setup)?;
+        let (outs, notes) = simulated_outputs(&setup, &sol);
+        let fr0 = if setup.stationary {
+            Some(setup.sys.frozen(0.0)?)
+        } else {
+            None
+        };
+        let method = format!(
+            "differential Lyapunov equation (the exact route), accumulated error estimate {:.1e}",
+            sol.report.max_error_estimate
+        );
+        return Ok((analytic_side(&sol, fr0.as_ref(), &outs, method)?, outs, notes));
+    }
+    let ev = evolutionary_setup(sc)?;
+    let sol = &ev.solution.solution;
+    let mut notes = Vec::new();
+    let outs: Vec<usize> = outputs
+        .iter()
+        .copied()
+        .filter(|&i| {
+            match sol.outputs[i]
+                .unavailable
+                .as_ref()
+                .or(sol.outputs[i].rate_note.as_ref())
+            {
+                Some(why) => {
+                    notes.push(format!("`{}` is not simulated: {why}", sol.outputs[i].name));
+                    false
+                }
+                None => true,
+            }
+        })
+        .collect();
+    let method = format!(
+        "evolutionary spectrum of the frozen system (no exact route); NaN where its error estimate exceeds {}",
+        ev.solution.max_error
+    );
+    Ok((analytic_side(sol, None, &outs, method)?, outs, notes))
+}
+
+/// Runs the road-grid Monte Carlo of the scenario's transient into `out` (resuming an interrupted run): a
+/// road synthesised on a spatial grid of step `road_step` (default [`default_road_step`]) and sampled along
+/// x(t), for any road spectrum under a speed profile; the analytic curves of [`road_grid_analytic`].
+///
+/// # Formula
+/// The integration step is Δt = step/s with s = max(`substeps`, ⌈step·v_max/Δx⌉), so that the vehicle moves
+/// at most one grid step per integration step (the first-order hold then interpolates the road as finely as
+/// the grid does).
+///
+/// # Errors
+/// The refusals of [`road_grid_setup`]; no output to simulate; the errors of
+/// [`crate::transient::run_road_grid`].
+pub fn simulate_road_grid(
+    sc: &Scenario,
+    opts: &TransientMcOptions,
+    road_step: Option<f64>,
+    out: &Path,
+    progress: &dyn Fn(usize, usize),
+) -> Result<(TransientRunSummary, Vec<String>)> {
+    let setup = road_grid_setup(sc)?;
+    let dx = road_step.unwrap_or_else(|| default_road_step(&setup));
+    if !(dx.is_finite() && dx > 0.0) {
+        return Err(Error::invalid(
+            "road step",
+            dx,
+            "the grid step Δx must be finite and > 0 m",
+        ));
+    }
+    let (analytic, outputs, mut notes) = road_grid_analytic(sc, &setup.outputs)?;
+    if outputs.is_empty() {
+        return Err(Error::NotApplicable {
+            method: "road-grid Monte Carlo".into(),
+            reason: format!("no reported output to simulate: {}", notes.join("; ")),
+        });
+    }
+    let duration = *setup.times.last().unwrap_or(&0.0);
+    let intervals = setup.times.len() - 1;
+    let step = duration / intervals as f64;
+    let v_max = setup.speed.table_points().range().1;
+    let substeps = opts.substeps.max((step * v_max / dx).ceil() as usize).max(1);
+    notes.push(format!(
+        "road-grid Monte Carlo: Δx = {dx:.4e} m, {substeps} integration steps per reported interval"
+    ));
+    let grid = McGrid::new(duration, duration / (intervals * substeps) as f64, substeps)?;
+    let input = RoadGridRunInput {
+        ss: &setup.ss,
+        spectrum: sc.input.spectrum.as_ref(),
+        speed: &setup.speed,
+        outputs,
+        dx,
+        analytic,
+        scenario_text: sc.text.clone(),
+        provenance: sc.run_input().provenance,
+    };
+    Ok((run_road_grid(&input, &run_options(opts, grid), out, progress)?, notes))
+}
+
+/// The run options of `opts` on `grid`.
+fn run_options(opts: &TransientMcOptions, grid: McGrid) -> TransientRunOptions {
+    TransientRunOptions {
+        realizations: opts.realizations,
+        grid,
+        seed: opts.seed,
+        shard_size: opts.shard_size,
+        confidence: opts.confidence,
+        store_raw: opts.store_raw,
+        compression: opts.compression,
+        part: opts.part,
+        overwrite: opts.overwrite,
+        max_hours: opts.max_hours,
+    }
 }

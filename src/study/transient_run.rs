@@ -393,3 +393,74 @@ pub fn evolutionary_setup(sc: &Scenario) -> Result<EvolutionarySetup> {
         description: format!("{}; {} (no exact route)", fam.describe(), sc.input.spectrum.describe()),
     })
 }
+
+/// A scenario set up for the road-grid Monte Carlo ([`crate::transient::run_road_grid`]).
+#[derive(Debug, Clone)]
+pub struct RoadGridSetup {
+    /// The model with the weighted outputs appended, its inputs combined into one (the road under the
+    /// wheels, B·g and D·g with the layout's gains g).
+    pub ss: StateSpace,
+    /// v(t).
+    pub speed: SpeedProfile,
+    /// The reported outputs, as [`TransientSetup::outputs`].
+    pub outputs: Vec<usize>,
+    /// The reported times.
+    pub times: Vec<f64>,
+}
+
+/// The scenario set up for the road-grid Monte Carlo: a road (spatial spectrum) under a speed profile (or
+/// the constant `[input] speed`), a fixed linear model with one contact position, no envelope, a zero mean,
+/// and a stationary start (the run-in at v(0) > 0 puts every realization in its stationary state at t = 0).
+///
+/// # Errors
+/// Each condition that does not hold, as a file error on the `transient` section with the reason; the
+/// errors of [`transient_setup`] that do not concern the input's route.
+pub fn road_grid_setup(sc: &Scenario) -> Result<RoadGridSetup> {
+    road_grid_of(sc).map_err(|e| match e {
+        e @ (Error::File { .. } | Error::Io { .. } | Error::Parse { .. }) => e,
+        other => file_error(&sc.path, "transient", "[transient]", &other.to_string()),
+    })
+}
+
+fn road_grid_of(sc: &Scenario) -> Result<RoadGridSetup> {
+    let (spec, duration) = spec_of(sc)?;
+    require_linear(sc)?;
+    let refuse = |reason: &str| Error::NotApplicable {
+        method: "road-grid Monte Carlo".into(),
+        reason: reason.into(),
+    };
+    let speed = speed_of(sc, spec)?.filter(|_| sc.input.spectrum.domain() == crate::spectrum::Domain::Spatial);
+    let speed = speed.ok_or_else(|| refuse("it takes a road (spatial) spectrum under a speed or a speed profile"))?;
+    if !spec.schedules.is_empty() || !spec.envelope.is_unit() || sc.input.mean != 0.0 {
+        return Err(refuse(
+            "it takes a fixed model (no [[transient.schedule]]), no envelope and a zero-mean road",
+        ));
+    }
+    if spec.start != Start::Stationary {
+        return Err(refuse(
+            "it starts every realization in its stationary state at v(0) (a run-in): give start = \"stationary\"",
+        ));
+    }
+    let g = gains(sc)?;
+    let g = nalgebra::DMatrix::from_column_slice(g.len(), 1, &g);
+    let (fam, weighted) = family(sc, spec)?;
+    let ext = fam.at(0.0)?.ss;
+    let b = &ext.b * &g;
+    let d = &ext.d * &g;
+    let e = &ext.e * &g;
+    let ss = StateSpace::new(
+        ext.a.clone(),
+        b,
+        ext.c.clone(),
+        Some(d),
+        Some(e),
+        crate::system::FrequencyResponse::outputs(&ext).to_vec(),
+    )?;
+    let (outputs, _) = reported(sc, &weighted);
+    Ok(RoadGridSetup {
+        ss,
+        speed,
+        outputs,
+        times: checked_times(sc, spec, duration)?,
+    })
+}

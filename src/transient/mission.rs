@@ -3,7 +3,7 @@
 
 use super::mc_finish::{AnalyticOutput, AnalyticSide};
 use super::series::TransientSolution;
-use super::system::{Frozen, TimeVaryingSystem};
+use super::system::Frozen;
 use crate::error::{Error, Result};
 use crate::extremes::{exceedance_vanmarcke, Barrier};
 use crate::quad::{integrate, QuadOptions};
@@ -80,19 +80,17 @@ fn levels(sol: &TransientSolution, i: usize) -> Vec<f64> {
 
 /// The analytic side of a Monte Carlo run of outputs `outputs` of `sys`: the exact curves and the
 /// distributions of the maxima (Poisson at the integrated Rice rate, F(b) = exp(−∫ν dt); Vanmarcke's form
-/// when `stationary` — a time-invariant system started in its stationary state).
+/// with `stationary`, the frozen system at t = 0 of a time-invariant system started in its stationary state).
 ///
 /// # Errors
 /// An output without crossing rates (ẏ with a white component); the quadrature of the moments.
 pub fn analytic_side(
     sol: &TransientSolution,
-    sys: &TimeVaryingSystem,
+    stationary: Option<&Frozen>,
     outputs: &[usize],
-    stationary: bool,
     method: String,
 ) -> Result<AnalyticSide> {
     let duration = sol.times.last().copied().unwrap_or(0.0) - sol.times.first().copied().unwrap_or(0.0);
-    let fr0 = sys.frozen(0.0)?;
     let outputs = outputs
         .iter()
         .map(|&i| {
@@ -110,10 +108,10 @@ pub fn analytic_side(
                     .collect()
             };
             let van = |barrier: Barrier| -> Result<Vec<f64>> {
-                if !stationary {
+                let Some(fr0) = stationary else {
                     return Ok(vec![f64::NAN; lv.len()]);
-                }
-                let m = stationary_moments(&fr0, i, 1e-9)?;
+                };
+                let m = stationary_moments(fr0, i, 1e-9)?;
                 let (mean, sigma) = (o.mean[0], o.sigma[0]);
                 lv.iter()
                     .map(|&b| {

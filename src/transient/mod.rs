@@ -23,7 +23,7 @@
 //! * [`evolutionary`]: inputs without a finite shaping filter (tabulated, measured, band-limited) by the
 //!   evolutionary spectrum of the frozen system, with its slow-variation assumption checked at every time.
 //! * [`road_grid`]: Monte Carlo of a vehicle on a road synthesised on a spatial grid and sampled along x(t),
-//!   for any road spectrum under a speed profile.
+//!   for any road spectrum under a speed profile; [`road_grid_run`] stores it as a transient run file.
 //! * [`monte_carlo`]: the same by simulation ([`mc_engine`], [`mc_finish`]), stored as time series of
 //!   statistics in a run file; [`mission`]: the analytic distributions of the maxima of a mission.
 
@@ -37,6 +37,7 @@ pub mod mission;
 pub mod monte_carlo;
 mod profile;
 pub mod road_grid;
+pub mod road_grid_run;
 mod schedule;
 pub mod series;
 mod speed_profile;
@@ -51,6 +52,7 @@ pub use mission::{stationary_moments, StationaryMoments};
 pub use monte_carlo::{merge_transient, run_transient, TransientRunInput, TransientRunOptions, TransientRunSummary};
 pub use profile::PiecewiseLinear;
 pub use road_grid::{road_grid_monte_carlo, RoadGridOptions, RoadGridStatistics};
+pub use road_grid_run::{run_road_grid, RoadGridRunInput};
 pub use schedule::{check_stability, FamilyBuilder, FixedSystem, ModelAt, Schedule, ScheduledSystem, SystemFamily};
 pub use series::{solve, Crossings, OutputSeries, TransientSolution};
 pub use speed_profile::SpeedProfile;

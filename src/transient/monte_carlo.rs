@@ -2,7 +2,7 @@
 //! the ensemble statistics at every stored time written to a run file beside the exact curves; resumable,
 //! in cluster shards, and merged bit-identically (layout: `docs/transients.md`, "The `/transient` group of a run file").
 
-use super::mc_engine::{McGrid, McPlan, RealizationState};
+use super::mc_engine::{McGrid, McPlan, RealizationState, ShardBlock};
 use super::mc_finish::{finish, is_transient_layout, layout, AnalyticOutput, AnalyticSide, Finished, MaximaVerdicts};
 use super::series::TransientSolution;
 use super::system::{Start, TimeVaryingSystem};
@@ -95,32 +95,36 @@ fn generator(grid: &McGrid) -> String {
     )
 }
 
+/// What identifies a run besides its options: the outputs, the scenario text, the provenance, the generator.
+pub(crate) struct RunIdentity {
+    /// The simulated outputs.
+    pub outputs: Vec<Signal>,
+    /// The scenario text.
+    pub scenario_text: String,
+    /// What else identifies the run.
+    pub provenance: Vec<Provenance>,
+    /// The generator text.
+    pub generator: String,
+}
+
 /// The metadata of the run.
-fn metadata(input: &TransientRunInput<'_>, opts: &TransientRunOptions) -> Result<RunMetadata> {
-    let outputs: Vec<Signal> = input
-        .outputs
-        .iter()
-        .map(|&i| {
-            let o = &input.sys.outputs()[i];
-            Signal::new(&o.name, &o.unit)
-        })
-        .collect();
-    let names: Vec<String> = outputs.iter().map(|s| s.name.clone()).collect();
+pub(crate) fn metadata(id: RunIdentity, opts: &TransientRunOptions) -> Result<RunMetadata> {
+    let names: Vec<String> = id.outputs.iter().map(|s| s.name.clone()).collect();
     let shard_size = opts.shard_size.min(opts.realizations).max(1);
     let meta = RunMetadata {
-        scenario_text: input.scenario_text.clone(),
+        scenario_text: id.scenario_text,
         seed: opts.seed,
-        generator: generator(&opts.grid),
+        generator: id.generator,
         dt: opts.grid.dt * opts.grid.store_every as f64,
         n_samples: opts.grid.n_stored(),
         n_realizations: opts.realizations,
         shard_size,
         inputs: vec![],
-        outputs,
+        outputs: id.outputs,
         accumulators: layout(&names, opts.grid.n_stored(), shard_size),
         store_raw: opts.store_raw,
         compression: opts.compression,
-        provenance: input.provenance.clone(),
+        provenance: id.provenance,
         part: opts.part,
     };
     meta.validate()?;
@@ -134,7 +138,12 @@ fn analytic(input: &TransientRunInput<'_>) -> Result<AnalyticSide> {
          error estimate {:.1e} relative to the largest variance of each state",
         input.exact.report.steps, input.exact.report.exact_steps, input.exact.report.max_error_estimate
     );
-    super::mission::analytic_side(input.exact, input.sys, &input.outputs, input.stationary, method)
+    let fr0 = if input.stationary {
+        Some(input.sys.frozen(0.0)?)
+    } else {
+        None
+    };
+    super::mission::analytic_side(input.exact, fr0.as_ref(), &input.outputs, method)
 }
 
 /// Runs the transient Monte Carlo batch into `out` (resuming an interrupted run of the same settings).
@@ -156,14 +165,38 @@ pub fn run_transient(
     out: &Path,
     progress: &dyn Fn(usize, usize),
 ) -> Result<TransientRunSummary> {
-    check_options(opts, input.exact)?;
+    check_options(opts, &input.exact.times)?;
     let plan = McPlan::new(input.sys, input.outputs.clone(), &input.start, opts.grid)?;
-    let meta = metadata(input, opts)?;
+    let id = RunIdentity {
+        outputs: input
+            .outputs
+            .iter()
+            .map(|&i| {
+                let o = &input.sys.outputs()[i];
+                Signal::new(&o.name, &o.unit)
+            })
+            .collect(),
+        scenario_text: input.scenario_text.clone(),
+        provenance: input.provenance.clone(),
+        generator: generator(&opts.grid),
+    };
+    let meta = metadata(id, opts)?;
     check_resources(&meta, opts, input.sys.n_states(), out)?;
-    let analytic = analytic(input)?;
+    run_batch(&plan, &meta, &analytic(input)?, opts, out, progress)
+}
+
+/// Writes the pending shards of `meta` run by `source` into `out` (resuming), then the statistics.
+pub(crate) fn run_batch(
+    source: &dyn ShardSource,
+    meta: &RunMetadata,
+    analytic: &AnalyticSide,
+    opts: &TransientRunOptions,
+    out: &Path,
+    progress: &dyn Fn(usize, usize),
+) -> Result<TransientRunSummary> {
     let mut writer = RunWriter::create_with(
         out,
-        &meta,
+        meta,
         CreateOptions {
             overwrite: opts.overwrite,
             ..CreateOptions::default()
@@ -175,7 +208,7 @@ pub fn run_transient(
     progress(resumed, n_shards);
     let mut done = resumed;
     for shard in writer.pending_shards() {
-        let (accs, raw) = run_shard(&plan, &meta, shard, opts)?;
+        let (accs, raw) = run_shard(source, meta, shard, opts)?;
         let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
         let raw_views: Vec<_> = raw.iter().map(|a| a.view()).collect();
         writer.write_shard(shard, &[], &raw_views, &acc_refs)?;
@@ -185,14 +218,14 @@ pub fn run_transient(
     let times = opts.grid.stored_times();
     let fin = finish(
         &|name, b| writer.read_accumulator(name, b),
-        &meta,
+        meta,
         &times,
-        &analytic,
+        analytic,
         opts.confidence,
     )?;
     write_finished(&mut writer, &fin)?;
     let path = writer.finish()?;
-    Ok(summary(path, &meta, resumed, fin, notes))
+    Ok(summary(path, meta, resumed, fin, notes))
 }
 
 /// Refuses, before anything is allocated or written, a batch whose computing time's lower bound exceeds
@@ -203,7 +236,7 @@ pub fn run_transient(
 /// N = the grid's steps, g the normals drawn per step (one per state of the augmented system), r the fastest
 /// normal draw rate, P threads.
 /// File: [`RunMetadata::estimated_file_bytes`].
-fn check_resources(meta: &RunMetadata, opts: &TransientRunOptions, states: usize, out: &Path) -> Result<()> {
+pub(crate) fn check_resources(meta: &RunMetadata, opts: &TransientRunOptions, states: usize, out: &Path) -> Result<()> {
     use crate::simulate::resources::{check_disk, run_time_lower_bound};
     if opts.max_hours.is_nan() || opts.max_hours <= 0.0 {
         return Err(Error::invalid("max hours", opts.max_hours, "must be > 0"));
@@ -225,7 +258,8 @@ fn check_resources(meta: &RunMetadata, opts: &TransientRunOptions, states: usize
     check_disk(meta, out)
 }
 
-fn check_options(opts: &TransientRunOptions, exact: &TransientSolution) -> Result<()> {
+/// Refuses R < 2, a confidence outside (0, 1), and analytic curves not at the grid's stored times.
+pub(crate) fn check_options(opts: &TransientRunOptions, exact_times: &[f64]) -> Result<()> {
     if opts.realizations < 2 {
         return Err(Error::invalid("realizations", opts.realizations, "need at least 2"));
     }
@@ -233,16 +267,15 @@ fn check_options(opts: &TransientRunOptions, exact: &TransientSolution) -> Resul
         return Err(Error::invalid("confidence", opts.confidence, "must be in (0, 1)"));
     }
     let times = opts.grid.stored_times();
-    if exact.times.len() != times.len()
-        || exact
-            .times
+    if exact_times.len() != times.len()
+        || exact_times
             .iter()
             .zip(&times)
             .any(|(a, b)| (a - b).abs() > 1e-9 * b.max(1.0))
     {
         return Err(Error::invalid(
             "exact",
-            exact.times.len(),
+            exact_times.len(),
             "the exact solution must be computed at the grid's stored times",
         ));
     }
@@ -252,20 +285,60 @@ fn check_options(opts: &TransientRunOptions, exact: &TransientSolution) -> Resul
 /// A shard's accumulators (in the layout's order) and its raw rows per output (empty without raw storage).
 type ShardData = (Vec<Vec<f64>>, Vec<Array2<f64>>);
 
+/// Every realization's largest y and largest |y| per output over the grid.
+pub(crate) type Maxima = (Vec<f64>, Vec<f64>);
+
+/// What steps the realizations of a shard: the exact transitions of the frozen coefficients ([`McPlan`]) or
+/// the road synthesised on a spatial grid ([`super::road_grid_run`]).
+pub(crate) trait ShardSource: Sync {
+    /// The number of simulated outputs.
+    fn n_outputs(&self) -> usize;
+    /// Runs realizations `range` (realization i from stream (seed, i)), handing the stored outputs to `sink`
+    /// block by block in time order; returns every realization's maxima.
+    fn realizations(
+        &self,
+        range: std::ops::Range<usize>,
+        seed: u64,
+        sink: &mut dyn FnMut(ShardBlock),
+    ) -> Result<Vec<Maxima>>;
+}
+
+impl ShardSource for McPlan<'_> {
+    fn n_outputs(&self) -> usize {
+        self.outputs().len()
+    }
+
+    fn realizations(
+        &self,
+        range: std::ops::Range<usize>,
+        seed: u64,
+        sink: &mut dyn FnMut(ShardBlock),
+    ) -> Result<Vec<Maxima>> {
+        let mut states: Vec<RealizationState> = range.map(|i| self.initial(seed, i as u64)).collect();
+        for (j0, j1) in self.blocks() {
+            sink(self.advance(&mut states, j0, j1)?);
+        }
+        Ok(states.into_iter().map(|s| (s.max_y, s.max_abs)).collect())
+    }
+}
+
 /// One shard: its accumulators (in the layout's order) and, with raw storage, its rows per output.
-fn run_shard(plan: &McPlan<'_>, meta: &RunMetadata, shard: usize, opts: &TransientRunOptions) -> Result<ShardData> {
+fn run_shard(
+    source: &dyn ShardSource,
+    meta: &RunMetadata,
+    shard: usize,
+    opts: &TransientRunOptions,
+) -> Result<ShardData> {
     let range = meta.shard_range(shard);
-    let (p, k, ss) = (plan.outputs().len(), plan.grid().n_stored(), meta.shard_size);
-    let mut states: Vec<RealizationState> = range.clone().map(|i| plan.initial(opts.seed, i as u64)).collect();
-    let rows = states.len();
+    let (p, k, ss) = (source.n_outputs(), meta.n_samples, meta.shard_size);
+    let rows = range.len();
     let mut series = vec![vec![0.0; 2 * k]; p];
     let mut raw = if opts.store_raw {
         vec![Array2::<f64>::zeros((rows, k)); p]
     } else {
         Vec::new()
     };
-    for (j0, j1) in plan.blocks() {
-        let block = plan.advance(&mut states, j0, j1)?;
+    let maxima = source.realizations(range, opts.seed, &mut |block| {
         let per = block.stored.first().map_or(0, |v| v.len() / p.max(1));
         for s in 0..per {
             let at = block.first_stored + s;
@@ -281,14 +354,14 @@ fn run_shard(plan: &McPlan<'_>, meta: &RunMetadata, shard: usize, opts: &Transie
                 }
             }
         }
-    }
+    })?;
     let mut accs = Vec::with_capacity(2 * p);
     for (o, s) in series.into_iter().enumerate() {
         accs.push(s);
         let mut m = vec![0.0; 2 * ss];
-        for (r, st) in states.iter().enumerate() {
-            m[r] = st.max_y[o];
-            m[ss + r] = st.max_abs[o];
+        for (r, (max_y, max_abs)) in maxima.iter().enumerate() {
+            m[r] = max_y[o];
+            m[ss + r] = max_abs[o];
         }
         accs.push(m);
     }

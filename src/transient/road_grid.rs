@@ -39,17 +39,17 @@ pub struct RoadGridStatistics {
 }
 
 /// Path positions on the road grid: the run-in at v(0) from −L_run to 0, then x(t) = ∫₀ᵗv ds.
-struct Path {
+pub(crate) struct Path {
     /// Road coordinate (from the grid's start) at every integration step.
     positions: Vec<f64>,
     /// The integration step index of every reported time.
     reported: Vec<usize>,
     /// Δt of the integration steps.
-    dt: f64,
+    pub(crate) dt: f64,
 }
 
 /// The integration grid: run-in steps at v(0), then `substeps` per reported interval (uniform times).
-fn path(speed: &SpeedProfile, ss: &StateSpace, times: &[f64], substeps: usize) -> Result<(Path, f64)> {
+pub(crate) fn path(speed: &SpeedProfile, ss: &StateSpace, times: &[f64], substeps: usize) -> Result<(Path, f64)> {
     let uniform = times.len() >= 2
         && times[0] == 0.0
         && times
@@ -89,28 +89,77 @@ fn sample(h: &[f64], dx: f64, p: f64) -> f64 {
     h[k] * (1.0 - f) + h[k + 1] * f
 }
 
-/// Runs one realization through the discretised system, feeding the outputs at the reported steps to `acc`.
-fn realization(ss: &StateSpace, d: &FirstOrderHold, h: &[f64], dx: f64, path: &Path, acc: &mut [Vec<RunningMoments>]) {
+/// One realization through the discretised system: the outputs `rows` of y = Cx + Du at the reported steps
+/// (time-major, `rows.len()` per time), and each one's largest y and |y| over every step from t = 0 on.
+pub(crate) fn realization(
+    ss: &StateSpace,
+    d: &FirstOrderHold,
+    h: &[f64],
+    dx: f64,
+    path: &Path,
+    rows: &[usize],
+) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     let n = ss.a.nrows();
     let mut x = DVector::zeros(n);
     let mut u0 = sample(h, dx, path.positions[0]);
     let mut next = path.reported.iter().peekable();
-    let mut j = 0;
+    let mut stored = Vec::with_capacity(path.reported.len() * rows.len());
+    let (mut max_y, mut max_abs) = (vec![f64::NEG_INFINITY; rows.len()], vec![0.0_f64; rows.len()]);
     for (k, &p) in path.positions.iter().enumerate() {
         let u = sample(h, dx, p);
         if k > 0 {
             x = &d.phi * &x + d.gamma0.column(0) * u0 + d.gamma1.column(0) * u;
         }
         u0 = u;
-        if next.peek() == Some(&&k) {
-            next.next();
-            let y = &ss.c * &x + ss.d.column(0) * u;
-            for (i, a) in acc.iter_mut().enumerate() {
-                a[j].push(y[i]);
+        if k < path.reported[0] {
+            continue;
+        }
+        let is_reported = next.peek() == Some(&&k);
+        for (o, &i) in rows.iter().enumerate() {
+            let y = (ss.c.row(i) * &x)[0] + ss.d[(i, 0)] * u;
+            max_y[o] = max_y[o].max(y);
+            max_abs[o] = max_abs[o].max(y.abs());
+            if is_reported {
+                stored.push(y);
             }
-            j += 1;
+        }
+        if is_reported {
+            next.next();
         }
     }
+    (stored, max_y, max_abs)
+}
+
+/// The road generator of a path: a power-of-two grid of step Δx longer than the path.
+pub(crate) fn grid_generator(spectrum: &dyn Spectrum, path: &Path, dx: f64) -> Result<SpectralGenerator> {
+    let length = path.positions.iter().copied().fold(0.0, f64::max) + 2.0 * dx;
+    let n = ((length / dx).ceil() as usize).next_power_of_two().max(2);
+    SpectralGenerator::new(spectrum, dx, n, Amplitudes::Rayleigh)
+}
+
+/// Refuses a temporal spectrum, several inputs or a u̇ term, v(0) = 0.
+pub(crate) fn check_road(ss: &StateSpace, spectrum: &dyn Spectrum, speed: &SpeedProfile) -> Result<()> {
+    if spectrum.domain() != Domain::Spatial {
+        return Err(Error::invalid(
+            "spectrum",
+            spectrum.describe(),
+            "a road (spatial) spectrum",
+        ));
+    }
+    if ss.b.ncols() != 1 || ss.e.iter().any(|v| *v != 0.0) {
+        return Err(Error::NotApplicable {
+            method: "road-grid Monte Carlo".into(),
+            reason: "one input (the road elevation) without a u̇ term: combine the inputs first".into(),
+        });
+    }
+    if speed.speed(0.0) <= 0.0 {
+        return Err(Error::invalid(
+            "speed",
+            0.0,
+            "v(0) > 0: the run-in starts the vehicle in its stationary state",
+        ));
+    }
+    Ok(())
 }
 
 /// Ensemble mean and variance of every output of `ss` (one input, the road elevation, felt with `gains`)
@@ -140,19 +189,7 @@ pub fn road_grid_monte_carlo(
     times: &[f64],
     opts: &RoadGridOptions,
 ) -> Result<RoadGridStatistics> {
-    if spectrum.domain() != Domain::Spatial {
-        return Err(Error::invalid(
-            "spectrum",
-            spectrum.describe(),
-            "a road (spatial) spectrum",
-        ));
-    }
-    if ss.b.ncols() != 1 || ss.e.iter().any(|v| *v != 0.0) {
-        return Err(Error::NotApplicable {
-            method: "road-grid Monte Carlo".into(),
-            reason: "one input (the road elevation) without a u̇ term: combine the inputs first".into(),
-        });
-    }
+    check_road(ss, spectrum, speed)?;
     if opts.realizations < 2 || opts.dx.is_nan() || opts.dx <= 0.0 {
         return Err(Error::invalid(
             "realizations/dx",
@@ -160,25 +197,22 @@ pub fn road_grid_monte_carlo(
             "R >= 2 and dx > 0",
         ));
     }
-    if speed.speed(0.0) <= 0.0 {
-        return Err(Error::invalid(
-            "speed",
-            0.0,
-            "v(0) > 0: the run-in starts the vehicle in its stationary state",
-        ));
-    }
     let (path, run_in) = path(speed, ss, times, opts.substeps)?;
-    let length = path.positions.iter().copied().fold(0.0, f64::max) + 2.0 * opts.dx;
-    let n = ((length / opts.dx).ceil() as usize).next_power_of_two().max(2);
-    let generator = SpectralGenerator::new(spectrum, opts.dx, n, Amplitudes::Rayleigh)?;
+    let generator = grid_generator(spectrum, &path, opts.dx)?;
     let d = foh(&ss.a, &ss.b, path.dt)?;
     let p = ss.c.nrows();
+    let rows: Vec<usize> = (0..p).collect();
     let mut acc = vec![vec![RunningMoments::default(); times.len()]; p];
     let mut scratch = generator.scratch();
-    let mut h = vec![0.0; n];
+    let mut h = vec![0.0; generator.len()];
     for i in 0..opts.realizations {
         generator.generate(&mut stream(opts.seed, i as u64), &mut scratch, &mut h)?;
-        realization(ss, &d, &h, opts.dx, &path, &mut acc);
+        let (stored, _, _) = realization(ss, &d, &h, opts.dx, &path, &rows);
+        for (j, y) in stored.chunks(p).enumerate() {
+            for (i, a) in acc.iter_mut().enumerate() {
+                a[j].push(y[i]);
+            }
+        }
     }
     Ok(RoadGridStatistics {
         times: times.to_vec(),

@@ -147,3 +147,94 @@ fn evolutionary_route_on_a_band_limited_road_against_grid_monte_carlo() {
         }
     }
 }
+
+/// The quarter car (`common::quarter_car_scenario`) accelerating at 1 m/s² from 5 to 15 m/s (from t = 1 s)
+/// on `road`, started in its stationary state, 8 s reported every 0.1 s.
+fn accelerating_on(road: &str) -> String {
+    crate::common::quarter_car_scenario()
+        .title("quarter car accelerating on a grid road")
+        .outputs(&["body_acc", "travel"])
+        .then(&format!(
+            "[input]\nspectrum = {road}\n[input.speed_profile]\nfrom = \"5 m/s\"\nto = \"15 m/s\"\n\
+             acceleration = \"1 m/s^2\"\nstart = \"1 s\"\n[analysis]\noutputs = [\"body_acc\", \"travel\"]\n\
+             [transient]\nduration = \"8 s\"\nstep = \"0.1 s\"\nstart = \"stationary\"\n"
+        ))
+        .text()
+}
+
+/// `stochvib transient --monte-carlo 200 --road-grid` on a rational road (spatial exponential correlation,
+/// D = 32 cm², α = 0.16 1/m), where the exact route (the road's filter under v(t)) also applies: the run
+/// file's ensemble σ(t) of both outputs lies inside the simultaneous χ² band of `compare_sigma` at every one
+/// of the 81 times. For the Gaussian response (R − 1)s²/σ² ~ χ²_{R−1}; α = 5·10⁻⁷ per output, so a false
+/// failure has probability ≤ 10⁻⁶ when both routes are right. The grid's biases at the default step
+/// (ΩΔx ≤ 0.1 at the fastest mode: ≤ 0.2 % of the variance) are far inside the band (about ±40 % at
+/// R = 200). Two shards merged by `stochvib merge` give the single run's statistics bit for bit, and
+/// `plot` draws σ(t). On an ISO 8608 road with its band edges (no exact route) the command takes the road
+/// grid by itself and compares with the evolutionary route.
+#[test]
+fn transient_command_runs_the_road_grid_against_the_exact_route() {
+    use crate::common::{cli_within, scratch_dir};
+    use stochvib::study::transient_mc::compare_sigma;
+    use stochvib::transient::monte_carlo::read_transient_run;
+    let dir = scratch_dir("transient-road-grid", "cli");
+    let text =
+        accelerating_on(r#"{ kind = "exponential", domain = "spatial", variance = "32 cm^2", alpha = "0.16 1/m" }"#);
+    std::fs::write(dir.join("road.toml"), text).unwrap();
+    let limit = std::time::Duration::from_secs(900);
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "transient",
+            "road.toml",
+            "--monte-carlo",
+            "200",
+            "--road-grid",
+            "--seed",
+            "3",
+        ];
+        args.extend_from_slice(extra);
+        let o = cli_within(&args, &dir, limit);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout).into_owned()
+    };
+    let out = run(&["-o", "one.h5"]);
+    assert!(out.contains("Monte Carlo σ(t) of travel"), "{out}");
+    let (file, series) = read_transient_run(&dir.join("one.h5")).unwrap();
+    assert!(
+        file.metadata().generator.contains("spatial grid"),
+        "{}",
+        file.metadata().generator
+    );
+    assert_eq!(series.times.len(), 81);
+    for c in compare_sigma(&series, 5e-7).unwrap() {
+        assert!(c.outside.is_empty(), "{}: {}", c.output, c.verdict());
+    }
+    run(&["--shard", "0", "--of", "2", "-o", "parts"]);
+    run(&["--shard", "1", "--of", "2", "-o", "parts"]);
+    let m = cli_within(&["merge", "merged.h5", "parts"], &dir, limit);
+    assert!(m.status.success(), "{}", String::from_utf8_lossy(&m.stderr));
+    let merged = read_transient_run(&dir.join("merged.h5")).unwrap().1;
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for (a, b) in series.outputs.iter().zip(&merged.outputs) {
+        assert_eq!(bits(&a.sigma), bits(&b.sigma), "{}", a.output);
+        assert_eq!(bits(&a.max_abs_y), bits(&b.max_abs_y), "{}", a.output);
+    }
+    let p = cli_within(&["plot", "one.h5", "-o", "pictures"], &dir, limit);
+    assert!(p.status.success(), "{}", String::from_utf8_lossy(&p.stderr));
+    assert!(dir.join("pictures/travel-sigma.svg").is_file());
+    let iso = accelerating_on(r#""iso8608-c""#);
+    std::fs::write(dir.join("iso.toml"), iso).unwrap();
+    let o = cli_within(
+        &["transient", "iso.toml", "--monte-carlo", "20", "-o", "iso.h5"],
+        &dir,
+        limit,
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let generator = read_transient_run(&dir.join("iso.h5"))
+        .unwrap()
+        .0
+        .metadata()
+        .generator
+        .clone();
+    assert!(generator.contains("spatial grid"), "{generator}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
