@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
 # The Python package's build and tests: installs maturin, numpy, scipy, pytest and h5py with pip when they
-# are missing, builds the package from this checkout (maturin, release profile, abi3 wheel) and installs it,
+# are missing, builds the package from this checkout (maturin, abi3 wheel) and installs it,
 # then runs the pytest suite. Called by scripts/test.sh after the Rust suite (whose debug `stochvib` binary the
 # tests compare against; they build it when it is missing).
+#
+# The package is built in cargo's dev profile (STOCHVIB_PYTHON_PROFILE=release for the release build a plain
+# `pip install ./python` makes): its dependencies and the library are then the very artifacts `cargo test
+# --workspace` compiled (same settings, same features; see Cargo.toml's profiles and python/Cargo.toml), and
+# only the bindings and PyO3 are compiled here: the Python tests run the very library the Rust tests ran.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY="${PYTHON:-python3}"
@@ -24,7 +29,8 @@ if [ "${#missing[@]}" -gt 0 ]; then
   pip_install "${missing[@]}"
 fi
 start=$(date +%s)
-echo "python/test.sh: building and installing the stochvib Python package (release)" >&2
-pip_install --no-build-isolation --force-reinstall --no-deps ./python
+profile="${STOCHVIB_PYTHON_PROFILE:-dev}"
+echo "python/test.sh: building and installing the stochvib Python package (cargo profile $profile)" >&2
+MATURIN_PEP517_ARGS="--profile $profile" pip_install --no-build-isolation --force-reinstall --no-deps ./python
 echo "python/test.sh: package built and installed in $(( $(date +%s) - start )) s" >&2
 "$PY" -m pytest -q python/tests

@@ -15,7 +15,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/ensure-deps.sh --with-h5py --with-browser
-cargo test --locked "$@"
+# --workspace: the dependencies get the features of the whole workspace, the Python package's included (its
+# crate has no Rust tests, nothing of it is compiled here), so that python/test.sh reuses this build
+cargo test --locked --workspace "$@"
 # the comparison harnesses (Rust and numpy/scipy/h5py sides) once at tiny sizes, ~1 min: a change that breaks
 # one of them, or a row of benches/RESULTS.md's table, fails here (STOCHVIB_SKIP_COMPARE=1 skips it)
 if [ "${STOCHVIB_SKIP_COMPARE:-0}" != 1 ]; then
@@ -42,8 +44,8 @@ require | auto) ;;
   ;;
 esac
 # the binary `cargo test` built (a no-op after it; `cargo build --bin stochvib` would compile the library once
-# more, in the dev profile and without the dev-dependencies' features)
-cargo test --locked --no-run --quiet
+# more, without the dev-dependencies' features)
+cargo test --locked --workspace --no-run --quiet
 # the cluster tests, in order: the cluster itself (tests/slurm/smoke.sh, one cycle), the shipped
 # examples/cluster/slurm-array.sbatch with its dependent merge job (tests/slurm/example-array.sh, stochvib
 # played by a stub that checks every argument), and the real run (tests/slurm/real-array.sh); exit 77 of

@@ -47,9 +47,10 @@ fi
 
 target="${CARGO_TARGET_DIR:-$root/target}"
 if [ "$smoke" = 1 ]; then
-    # the test profile's library (already built by `cargo test`): seconds, not a release build
+    # the test profile's library (already built by `cargo test --workspace`, with the same features): seconds,
+    # not a release build
     echo "run.sh --smoke: building the harness and stochvib (test profile)" >&2
-    cargo build --locked --quiet --profile test --example compare_rust --bin stochvib
+    cargo build --locked --quiet --workspace --profile test --example compare_rust --bin stochvib
     bin="$target/debug/examples/compare_rust" cli="$target/debug/stochvib"
     rust_args=(--smoke) py_args=(--smoke) cli_args=(--smoke --side 20 --reps 1)
 else

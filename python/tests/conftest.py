@@ -21,16 +21,16 @@ def root() -> Path:
 
 
 def _find_cli() -> Path:
-    """STOCHVIB_CLI, else the binary of this checkout brought up to date by `cargo test --no-run` (a no-op after
-    `cargo test`, which built it in its profile and with its features; `cargo build --bin stochvib` would compile
-    the library once more in the dev profile; a stale binary would compare the package with an older library),
-    else a built binary."""
+    """STOCHVIB_CLI, else the binary of this checkout brought up to date by `cargo test --workspace --no-run` (a
+    no-op after scripts/test.sh's `cargo test --workspace`, which built it in its profile and with its features;
+    `cargo build --bin stochvib` would compile the library once more with other features; a stale binary would
+    compare the package with an older library), else a built binary."""
     env = os.environ.get("STOCHVIB_CLI")
     if env:
         return Path(env)
     cargo = shutil.which("cargo")
     if cargo is not None:
-        subprocess.run([cargo, "test", "--quiet", "--locked", "--no-run"], cwd=ROOT, check=True)
+        subprocess.run([cargo, "test", "--quiet", "--locked", "--workspace", "--no-run"], cwd=ROOT, check=True)
         return ROOT / "target" / "debug" / "stochvib"
     for profile in ("debug", "release"):
         p = ROOT / "target" / profile / "stochvib"
