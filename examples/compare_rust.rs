@@ -72,6 +72,14 @@ fn main() {
         jobs.insert(key.to_string(), json!({"seconds": t, "n": n, "check": check}));
     };
 
+    // `--only h5`: the HDF5 write and chain jobs alone (to time them, and the process's CPU, by themselves)
+    if args.windows(2).any(|w| w[0] == "--only" && w[1] == "h5") {
+        let jobs: Map<String, Value> = hdf5_and_chain_jobs(reps, smoke).into_iter().collect();
+        let doc = json!({"side": "rust", "jobs": Value::Object(jobs)});
+        println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+        return;
+    }
+
     // 1. density of every spectrum type on 10⁴ points
     let wgrid = density_grid();
     let mut out = vec![0.0; wgrid.len()];
@@ -83,13 +91,6 @@ fn main() {
         put(&format!("density_{name}"), N_DENSITY, r);
     }
     if only_density {
-        let doc = json!({"side": "rust", "jobs": Value::Object(jobs)});
-        println!("{}", serde_json::to_string_pretty(&doc).unwrap());
-        return;
-    }
-    // `--only h5`: the HDF5 write and chain jobs alone (to time them, and the process's CPU, by themselves)
-    if args.windows(2).any(|w| w[0] == "--only" && w[1] == "h5") {
-        let jobs: Map<String, Value> = hdf5_and_chain_jobs(reps, smoke).into_iter().collect();
         let doc = json!({"side": "rust", "jobs": Value::Object(jobs)});
         println!("{}", serde_json::to_string_pretty(&doc).unwrap());
         return;
