@@ -424,6 +424,20 @@ impl Summary {
             .collect()
     }
 
+    /// Hard findings that are findings of the code, not of the machine: [`Summary::hard`] without the
+    /// time-outs whose every signature finished when evaluated again with the 15× limit ("slow, not hung").
+    /// A loaded machine can push a case past its limit; a hang stays a hang under the longer limit.
+    pub fn hard_not_slow(&self) -> BTreeMap<String, usize> {
+        let slow_only = |class: &str| {
+            let mut records = self.signatures.values().filter(|r| r.class == class).peekable();
+            records.peek().is_some()
+                && records.all(|r| r.recheck.as_deref().is_some_and(|x| x.ends_with("slow, not hung")))
+        };
+        let mut hard = self.hard();
+        hard.retain(|class, _| !(class == "timeout" && slow_only(class)));
+        hard
+    }
+
     /// Text report.
     pub fn render(&self) -> String {
         use std::fmt::Write as _;
