@@ -303,13 +303,11 @@ fn directive_limits(f: &Fields) -> Result<DirectiveLimits> {
     Ok(limits)
 }
 
-/// One `[[analysis.comfort.axis]]` table (`af`) for `purpose`.
+/// The `location` and `axis` of a `[[analysis.comfort.axis]]` table.
 ///
 /// # Errors
-/// An unknown output, location, axis or weighting; a factor that is not > 0; an output that is not an
-/// acceleration; an unknown key.
-fn comfort_axis(af: &Fields, model: &ModelInstance, purpose: Purpose) -> Result<ComfortAxisSpec> {
-    let (output, output_name) = output_index(af, "output", model)?;
+/// An unknown location or axis.
+fn location_and_axis(af: &Fields) -> Result<(Location, Axis)> {
     let location = match af.string("location")? {
         "seat-surface" | "seat" => Location::SeatSurface,
         "seat-back" | "back" => Location::SeatBack,
@@ -332,6 +330,17 @@ fn comfort_axis(af: &Fields, model: &ModelInstance, purpose: Purpose) -> Result<
         "rz" => Axis::Rz,
         s => return Err(af.error("axis", s, "expected x, y, z, rx, ry or rz")),
     };
+    Ok((location, axis))
+}
+
+/// One `[[analysis.comfort.axis]]` table (`af`) for `purpose`.
+///
+/// # Errors
+/// An unknown output, location, axis or weighting; a factor that is not > 0; an output that is not an
+/// acceleration; an unknown key.
+fn comfort_axis(af: &Fields, model: &ModelInstance, purpose: Purpose) -> Result<ComfortAxisSpec> {
+    let (output, output_name) = output_index(af, "output", model)?;
+    let (location, axis) = location_and_axis(af)?;
     let standard = axis_factor(purpose, location, axis);
     let weighting = match af.opt_string("weighting")? {
         Some(w) => Weighting::parse(w).map_err(|e| af.wrap("weighting", e))?,
