@@ -544,6 +544,11 @@ impl<'a> Fields<'a> {
             .collect()
     }
 
+    /// The keys of the table as written, with their values, in the table's order.
+    pub fn entries(&self) -> impl Iterator<Item = (&'a String, &'a toml::Value)> + use<'a> {
+        self.table.iter()
+    }
+
     /// Fails on any key that was never read: catches typos such as `alpah`.
     ///
     /// # Errors

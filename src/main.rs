@@ -578,22 +578,7 @@ fn main() {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Spectra { spectra, json, full } => {
-            let r = report::catalogue_report(&spectra.catalogue())?;
-            for msg in &r.failures {
-                eprintln!("error: {msg}");
-            }
-            if json {
-                print_json(&r.spectra)?;
-            } else if full {
-                emit(&format!("{r:#}"));
-            } else {
-                emit(&format!("{r}"));
-            }
-            if !r.failures.is_empty() {
-                anyhow::bail!("{} spectrum file(s) in {} are invalid", r.failures.len(), r.dir);
-            }
-        }
+        cmd @ Command::Spectra { .. } => spectra_command(cmd)?,
         Command::Models { json } => print(&report::models_report(), json)?,
         cmd @ Command::Road { .. } => road_command(cmd)?,
         cmd @ Command::Replay { .. } => replay_command(cmd)?,
@@ -606,59 +591,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             }
         }
         cmd @ Command::Analyze { .. } => analyze_command(cmd)?,
-        Command::Report {
-            scenario,
-            run,
-            output,
-            format,
-            overwrite,
-            spectra,
-        } => {
-            let catalogue = spectra.catalogue();
-            let is_run = |p: &Path| {
-                p.extension()
-                    .is_some_and(|e| e.eq_ignore_ascii_case("h5") || e.eq_ignore_ascii_case("hdf5"))
-            };
-            // every checksum first, in a child process, as `plot` and `inspect`: a damaged file is an error
-            for r in run.iter().chain(Some(&scenario).filter(|p| is_run(p))) {
-                check_in_child(r, true)?;
-            }
-            let written = if is_run(&scenario) {
-                anyhow::ensure!(
-                    run.is_none(),
-                    "--run: {} is already a run file; give a scenario file and --run RUN.h5, or the run file alone",
-                    scenario.display()
-                );
-                report::run_handover::write_run_handover(&scenario, &output, format, overwrite, catalogue.dir())?
-            } else if report::workday_handover::is_workday_file(&scenario) {
-                anyhow::ensure!(run.is_none(), "--run: a workday file has no Monte Carlo run");
-                let dir = catalogue.dir();
-                report::workday_handover::write_workday_handover(&scenario, &output, format, overwrite, dir)?
-            } else {
-                let doc = load_document(&scenario, catalogue.dir())?;
-                let run = run.as_deref().map(|r| (r, catalogue.dir()));
-                report::handover::write_handover(&doc, &scenario, &output, format, overwrite, run)?
-            };
-            eprintln!("wrote {}", written.display());
-        }
+        cmd @ Command::Report { .. } => report_command(cmd)?,
         cmd @ Command::Plot { .. } => plot_command(cmd)?,
         cmd @ Command::Simulate { .. } => simulate_command(cmd)?,
         cmd @ Command::Merge { .. } => merge_command(cmd)?,
         cmd @ Command::Sweep { .. } => sweep_command(cmd)?,
-        Command::CheckRun { file, full } => {
-            let run = RunFile::open_any(&file)?;
-            run.statistics()?;
-            run.psd()?;
-            if full {
-                run.verify()?;
-            } else if run.metadata().store_raw && run.metadata().n_realizations > 0 {
-                // what `plot` reads: the first realizations of every signal
-                let rows = 0..run.metadata().n_realizations.min(3);
-                for s in &run.metadata().outputs {
-                    run.read_signals(stochvib::store::SignalGroup::Outputs, &s.name, rows.clone())?;
-                }
-            }
-        }
+        cmd @ Command::CheckRun { .. } => check_run_command(cmd)?,
         Command::Inspect { file, output } => {
             check_in_child(&file, true)?;
             match output.format() {
@@ -667,21 +605,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 ReportFormat::Text => emit(&report::summarize(&file)?),
             }
         }
-        Command::Workday {
-            file,
-            plots,
-            spectra,
-            output,
-        } => {
-            let day = stochvib::scenario::workday_file::load_workday(&file)?;
-            let r = stochvib::study::workday::workday_exposure(&day, spectra.catalogue().dir())?;
-            if let Some(dir) = plots {
-                for f in stochvib::plot::comfort_plots::workday_chart(&r)?.render(&dir, "workday-a8")? {
-                    eprintln!("wrote {}", f.display());
-                }
-            }
-            print_as(&report::WorkdayReport(r), output.format())?;
-        }
+        cmd @ Command::Workday { .. } => workday_command(cmd)?,
         Command::Exposure(a) => record_cli::exposure(a)?,
         Command::Fatigue(a) => record_cli::fatigue(a)?,
         Command::Weighting(a) => record_cli::weighting(a)?,
@@ -694,32 +618,146 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             &progress_printer(),
             &shard_output,
         )?,
-        Command::Spectrum {
-            name,
-            convention,
-            omega,
-            frequency,
-            spectra,
-            json,
-        } => {
-            let file = spectra.catalogue().resolve(&name, None)?;
-            let points = match (omega, frequency) {
-                (Some(w), _) => study::DensityPoints::Angular(w),
-                (None, Some(f)) => study::DensityPoints::Cyclic(f),
-                (None, None) => study::DensityPoints::Characteristic,
-            };
-            if let study::DensityPoints::Angular(v) | study::DensityPoints::Cyclic(v) = &points
-                && let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0)
-            {
-                let flag = match points {
-                    report::DensityPoints::Angular(_) => "--omega",
-                    _ => "--frequency",
-                };
-                anyhow::bail!("{flag} {x}: frequencies must be finite and >= 0");
-            }
-            print(&study::spectrum_report_at(&file, convention, &points), json)?;
+        cmd @ Command::Spectrum { .. } => spectrum_command(cmd)?,
+    }
+    Ok(())
+}
+
+/// `stochvib spectra`.
+fn spectra_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Spectra { spectra, json, full } = cmd else {
+        unreachable!("run passes only Command::Spectra")
+    };
+    let r = report::catalogue_report(&spectra.catalogue())?;
+    for msg in &r.failures {
+        eprintln!("error: {msg}");
+    }
+    if json {
+        print_json(&r.spectra)?;
+    } else if full {
+        emit(&format!("{r:#}"));
+    } else {
+        emit(&format!("{r}"));
+    }
+    if !r.failures.is_empty() {
+        anyhow::bail!("{} spectrum file(s) in {} are invalid", r.failures.len(), r.dir);
+    }
+    Ok(())
+}
+
+/// `stochvib report`.
+fn report_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Report {
+        scenario,
+        run,
+        output,
+        format,
+        overwrite,
+        spectra,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Report")
+    };
+    let catalogue = spectra.catalogue();
+    let is_run = |p: &Path| {
+        p.extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("h5") || e.eq_ignore_ascii_case("hdf5"))
+    };
+    // every checksum first, in a child process, as `plot` and `inspect`: a damaged file is an error
+    for r in run.iter().chain(Some(&scenario).filter(|p| is_run(p))) {
+        check_in_child(r, true)?;
+    }
+    let written = if is_run(&scenario) {
+        anyhow::ensure!(
+            run.is_none(),
+            "--run: {} is already a run file; give a scenario file and --run RUN.h5, or the run file alone",
+            scenario.display()
+        );
+        report::run_handover::write_run_handover(&scenario, &output, format, overwrite, catalogue.dir())?
+    } else if report::workday_handover::is_workday_file(&scenario) {
+        anyhow::ensure!(run.is_none(), "--run: a workday file has no Monte Carlo run");
+        let dir = catalogue.dir();
+        report::workday_handover::write_workday_handover(&scenario, &output, format, overwrite, dir)?
+    } else {
+        let doc = load_document(&scenario, catalogue.dir())?;
+        let run = run.as_deref().map(|r| (r, catalogue.dir()));
+        report::handover::write_handover(&doc, &scenario, &output, format, overwrite, run)?
+    };
+    eprintln!("wrote {}", written.display());
+    Ok(())
+}
+
+/// `stochvib check-run` (hidden): reads a run file as `plot` and `inspect` do, in the child they start.
+fn check_run_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::CheckRun { file, full } = cmd else {
+        unreachable!("run passes only Command::CheckRun")
+    };
+    let run = RunFile::open_any(&file)?;
+    run.statistics()?;
+    run.psd()?;
+    if full {
+        run.verify()?;
+    } else if run.metadata().store_raw && run.metadata().n_realizations > 0 {
+        // what `plot` reads: the first realizations of every signal
+        let rows = 0..run.metadata().n_realizations.min(3);
+        for s in &run.metadata().outputs {
+            run.read_signals(stochvib::store::SignalGroup::Outputs, &s.name, rows.clone())?;
         }
     }
+    Ok(())
+}
+
+/// `stochvib workday`.
+fn workday_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Workday {
+        file,
+        plots,
+        spectra,
+        output,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Workday")
+    };
+    let day = stochvib::scenario::workday_file::load_workday(&file)?;
+    let r = stochvib::study::workday::workday_exposure(&day, spectra.catalogue().dir())?;
+    if let Some(dir) = plots {
+        for f in stochvib::plot::comfort_plots::workday_chart(&r)?.render(&dir, "workday-a8")? {
+            eprintln!("wrote {}", f.display());
+        }
+    }
+    print_as(&report::WorkdayReport(r), output.format())?;
+    Ok(())
+}
+
+/// `stochvib spectrum`.
+fn spectrum_command(cmd: Command) -> anyhow::Result<()> {
+    let Command::Spectrum {
+        name,
+        convention,
+        omega,
+        frequency,
+        spectra,
+        json,
+    } = cmd
+    else {
+        unreachable!("run passes only Command::Spectrum")
+    };
+    let file = spectra.catalogue().resolve(&name, None)?;
+    let points = match (omega, frequency) {
+        (Some(w), _) => study::DensityPoints::Angular(w),
+        (None, Some(f)) => study::DensityPoints::Cyclic(f),
+        (None, None) => study::DensityPoints::Characteristic,
+    };
+    if let study::DensityPoints::Angular(v) | study::DensityPoints::Cyclic(v) = &points
+        && let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0)
+    {
+        let flag = match points {
+            study::DensityPoints::Angular(_) => "--omega",
+            _ => "--frequency",
+        };
+        anyhow::bail!("{flag} {x}: frequencies must be finite and >= 0");
+    }
+    print(&study::spectrum_report_at(&file, convention, &points), json)?;
     Ok(())
 }
 

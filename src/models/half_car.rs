@@ -57,12 +57,23 @@ pub const DECOUPLING_TOL: f64 = 1e-9;
 /// See the module docs.
 ///
 /// # Errors
-/// [`HalfCar::new`] rejects non-positive M, ρ, a, b, c₁, c₂, negative b₁, b₂ and non-finite values.
+/// [`HalfCar::build`] and [`HalfCar::new`] reject non-positive M, ρ, a, b, c₁, c₂, negative b₁, b₂ and non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::models::half_car::HalfCar;
-/// let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 0.0, 0.0).unwrap();
+/// let car = HalfCar {
+///     mass: 1490.0,
+///     radius_of_gyration: 1.23,
+///     front_distance: 1.42,
+///     rear_distance: 1.28,
+///     front_stiffness: 3.2e4,
+///     rear_stiffness: 4.3e4,
+///     front_damping: 0.0,
+///     rear_damping: 0.0,
+/// }
+/// .build()
+/// .unwrap();
 /// let (m1, m2, m3) = car.masses();
 /// assert!((m1 * m2 - m3 * m3 - (1490.0f64 * 1.23 / 2.7).powi(2)).abs() < 1e-6);
 /// ```
@@ -125,6 +136,23 @@ impl HalfCar {
             front_damping: require_non_negative("front_damping", front_damping)?,
             rear_damping: require_non_negative("rear_damping", rear_damping)?,
         })
+    }
+
+    /// The car of these fields, checked: named fields instead of eight bare numbers of different meaning.
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn build(self) -> Result<Self> {
+        HalfCar::new(
+            self.mass,
+            self.radius_of_gyration,
+            self.front_distance,
+            self.rear_distance,
+            self.front_stiffness,
+            self.rear_stiffness,
+            self.front_damping,
+            self.rear_damping,
+        )
     }
 
     /// Wheelbase L = a + b, m.

@@ -165,7 +165,7 @@ fn enveloped(inf: &Fields, spectrum: Arc<dyn Spectrum>, reference: &str) -> Resu
             "must be a finite length > 0 (a tyre's contact patch: 0.1–0.3 m)",
         ));
     }
-    ef.finish()?;
+    super::input_keys::ENVELOPING.finish(&ef, &[])?;
     if spectrum.domain() != Domain::Spatial {
         return Err(inf.error(
             "enveloping",

@@ -177,3 +177,99 @@ pub const CONSTANT: KeyTable = KeyTable {
         "the same coherence at every wavenumber",
     )],
 };
+
+/// `[input]`: one random process drives every input of the model.
+pub const PROCESS: KeyTable = KeyTable {
+    file: "scenario",
+    prefix: "input",
+    kind: None,
+    keys: &[
+        key("spectrum", "catalogue name, path, or inline table of [spectrum-file keys](spectrum-files.md)", "required", r#"an unknown name or path: the resolution's reason; another type: "expected a catalogue name, a path or an inline table""#),
+        key("band", "two frequencies with units of the spectrum's variable (`cycles/m`, `rad/m`; `Hz`, `rad/s`)", "the spectrum's own", "0 ≤ low < high; a bare `1/m` or `1/s` is refused (it would be rad/m). Replaces the own band of `iso8608`, `power-law`, `band-white`; restricts any other spectrum, and cannot extend a tabulated or measured one beyond its data"),
+        key("enveloping", "table `{ kind, length }`", "none", "a road (spatial spectrum) only: the profile seen through a tyre's contact patch, applied after the band"),
+        key("speed", "quantity, m/s", "none", r#"> 0 ("must be > 0"); required for a spatial spectrum ("the input spectrum is spatial (a road): give the speed …") and for wheels at different positions"#),
+        key("mean", "number (SI) or quantity in the process's unit", "0", "a string needs the process's dimension"),
+        key("kurtosis", "number κ", "Gaussian", r#"≥ 3, finite: a Laplace moving average of this marginal kurtosis with the same spectrum ("must be finite and >= 3 …")"#),
+        key("speed_profile", "table `[input.speed_profile]`", "constant `speed`", "a speed v(t) for `stochvib transient` (below); without `speed`, the stationary analyses take the profile's final speed (its largest if it ends at rest)"),
+        key("envelope", "table `[input.envelope]`", "a = 1", "an amplitude envelope u(t) = a(t)·s(t) for `stochvib transient` (below)"),
+    ],
+};
+
+/// `enveloping = { kind, length }` of `[input]`: a tyre's contact patch.
+pub const ENVELOPING: KeyTable = KeyTable {
+    file: "scenario",
+    prefix: "input.enveloping",
+    kind: None,
+    keys: &[
+        key(
+            "kind",
+            "string",
+            "required",
+            r#"`moving-average`: \|H(n)\|² = (sin(πnL)/(πnL))²"#,
+        ),
+        key("length", "quantity, m", "required", "> 0 (a contact patch: 0.1–0.3 m)"),
+    ],
+};
+
+/// `[input.speed_profile]`: v(t) over a road, a table or constant acceleration.
+pub const SPEED_PROFILE: KeyTable = KeyTable {
+    file: "scenario",
+    prefix: "input.speed_profile",
+    kind: None,
+    keys: &[
+        key(
+            "times",
+            "array of times",
+            "with `speeds`",
+            r#"increasing strictly ("not after times[k−1] …: the table is not a function of time"), finite"#,
+        ),
+        key(
+            "speeds",
+            "array of speeds, one per time",
+            "with `times`",
+            r#"≥ 0 ("a speed is >= 0: the road is traversed in one direction"); one per time; not all 0 ("the vehicle never moves")"#,
+        ),
+        key("from", "speed", "required without `times`", "≥ 0"),
+        key("to", "speed", "required without `times`", "≥ 0"),
+        key(
+            "acceleration",
+            "acceleration, m/s²",
+            "required without `times`",
+            r#"finite, ≠ 0, of the sign that goes from `from` to `to` ("goes the wrong way …")"#,
+        ),
+        key(
+            "start",
+            "time",
+            "`0 s`",
+            r#"≥ 0: v = `from` until then; the table form refuses it ("… not both")"#,
+        ),
+    ],
+};
+
+/// `[input.envelope]`: an amplitude envelope.
+pub const ENVELOPE: KeyTable = KeyTable {
+    file: "scenario",
+    prefix: "input.envelope",
+    kind: None,
+    keys: &[
+        key("times", "array of times", "required", "increasing strictly, finite"),
+        key(
+            "amplitude",
+            "array of numbers a(t), one per time",
+            "give `amplitude` or `intensity`",
+            r#"finite ("an envelope value is a finite number")"#,
+        ),
+        key(
+            "intensity",
+            "array of numbers a(t)², one per time",
+            "give `amplitude` or `intensity`",
+            r#"finite, ≥ 0 ("an intensity … is >= 0")"#,
+        ),
+    ],
+};
+
+/// `enveloping = { kind, length }` of an `[[input]]` table (and of `[road]`): as in `[input]`.
+pub const ENVELOPING_EACH: KeyTable = KeyTable {
+    prefix: "input[].enveloping",
+    ..ENVELOPING
+};

@@ -108,7 +108,7 @@ pub(crate) fn road_section_as_input(root: &mut toml::Table, path: &Path) -> Resu
     input.insert("name".into(), toml::Value::String("road".into()));
     for (k, v) in t {
         match k.as_str() {
-            "spectrum" | "coherence" | "track_width" => road.insert(k.clone(), v.clone()),
+            k if input_keys::ROAD.contains(k) => road.insert(k.to_string(), v.clone()),
             // every other key as in an [[input]] table (unknown ones refused there, named road.<key>)
             _ => input.insert(k.clone(), v.clone()),
         };
@@ -283,8 +283,24 @@ pub fn coherence_from_toml(text: &str, width_m: f64) -> Result<Arc<dyn Coherence
     };
     let f = Fields::new(file, "coherence", t);
     let c = coherence_from_fields(&f, width_m)?;
-    f.finish()?;
+    coherence_finish(&f)?;
     Ok(c)
+}
+
+/// The unknown-key check of a `road.coherence` table `cf`: `kind` ([`input_keys::COHERENCE`]) and the keys of
+/// the table of its kind.
+///
+/// # Errors
+/// The first key that the coherence's kind does not take.
+fn coherence_finish(cf: &Fields) -> Result<()> {
+    let kind = cf.get("kind").and_then(|v| v.as_str());
+    let table = super::key_table::KEY_TABLES
+        .iter()
+        .find(|t| t.prefix == input_keys::COHERENCE.prefix && t.kind.is_some() && t.kind == kind);
+    match table {
+        Some(t) => t.finish(cf, &input_keys::COHERENCE.names()),
+        None => input_keys::COHERENCE.finish(cf, &[]),
+    }
 }
 
 /// The coherence of a `road.coherence` table for tracks `width_m` apart (the keys of the tables
@@ -605,8 +621,8 @@ impl InputReader<'_> {
         sf.spectrum = super::input_filters::apply_input_keys(inf, &sf, &reference)?;
         let cf = rf.sub("coherence")?;
         let coh = coherence_from_fields(&cf, width)?;
-        cf.finish()?;
-        rf.finish()?;
+        coherence_finish(&cf)?;
+        input_keys::ROAD.finish(&rf, &[])?;
         let v = self.need_speed(inf, "a road is a spatial process")?;
         let desc = coh.describe();
         let tracks = TwoTracks::new(sf.spectrum.clone(), coh, v).map_err(|e| rf.wrap("spectrum", e))?;

@@ -6,6 +6,9 @@
 //! [`KeyTable::marker`]; the key reference test checks that the page holds exactly that text, and that the
 //! keys the readers ask for are the keys of the tables.
 
+use crate::error::Result;
+use crate::fields::Fields;
+
 /// One key of a section.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Key {
@@ -53,6 +56,27 @@ impl KeyTable {
         self.keys.iter().any(|k| k.name == name)
     }
 
+    /// The unknown-key check of a reader of this section, once it has read the table `f`: the first key of `f`
+    /// that is neither a key of this table nor one of `also` is refused, "unknown key (known keys here: …)"
+    /// listing those keys alphabetically; then [`Fields::finish`] refuses a key of the table that this reading
+    /// left unread (a key of the section's other form, e.g. `from` beside `times`), as before.
+    ///
+    /// # Errors
+    /// [`crate::Error::File`] naming the key, its value and the reason.
+    pub fn finish(&self, f: &Fields, also: &[&str]) -> Result<()> {
+        if let Some((k, v)) = f
+            .entries()
+            .find(|(k, _)| !self.contains(k) && !also.contains(&k.as_str()))
+        {
+            let mut known = self.names();
+            known.extend(also);
+            known.sort_unstable();
+            known.dedup();
+            return Err(f.error(k, v, format!("unknown key (known keys here: {})", known.join(", "))));
+        }
+        f.finish()
+    }
+
     /// The marker line that precedes the table in the reference page: `<!-- keys: FILE PREFIX [kind=KIND] -->`.
     pub fn marker(&self) -> String {
         match self.kind {
@@ -79,10 +103,45 @@ impl KeyTable {
 
 /// Every section whose reference is generated from its key table, in the order of the reference page.
 pub const KEY_TABLES: &[&KeyTable] = &[
+    &super::top_keys::TOP,
+    &super::top_keys::MODEL,
     &super::generic::mdof_keys::MDOF,
     &super::generic::mdof_keys::COORDINATE,
     &super::generic::mdof_keys::ELEMENT,
     &super::generic::mdof_keys::OUTPUT,
+    &super::model_keys::TRANSFER_FUNCTION,
+    &super::model_keys::TRANSFER_FUNCTION_OUTPUT,
+    &super::model_keys::STATE_SPACE,
+    &super::model_keys::STATE_SPACE_OUTPUTS,
+    &super::model_keys::QUARTER_CAR,
+    &super::model_keys::ISOLATOR_SINGLE,
+    &super::model_keys::ISOLATOR_TWO_STAGE,
+    &super::model_keys::HALF_CAR,
+    &super::model_keys::FULL_VEHICLE,
+    &super::model_keys::FULL_VEHICLE_SUSPENSION_STIFFNESS,
+    &super::model_keys::FULL_VEHICLE_SUSPENSION_DAMPING,
+    &super::model_keys::FULL_VEHICLE_UNSPRUNG_MASS,
+    &super::model_keys::FULL_VEHICLE_SEAT,
+    &super::model_keys::MACHINE,
+    &super::model_keys::MACHINE_BODY,
+    &super::model_keys::MACHINE_AXLE,
+    &super::model_keys::MACHINE_OSCILLATING,
+    &super::model_keys::MACHINE_SUSPENSION,
+    &super::model_keys::MACHINE_CAB,
+    &super::model_keys::MACHINE_MOUNT,
+    &super::model_keys::MACHINE_SEAT,
+    &super::model_keys::MACHINE_OUTPUT,
+    &super::model_keys::OPERATOR_SEAT,
+    &super::model_keys::BALANCER_BOGIE,
+    &super::model_keys::CONVEYOR_IDLER,
+    &super::model_keys::SCRAPER_RIGID_CAB,
+    &super::model_keys::SCRAPER_SPRUNG_CAB,
+    &super::model_keys::THREE_MASS_HOIST,
+    &super::model_keys::DYNAMIC_STIFFNESS_CHAIN,
+    &super::model_keys::MINE_HOIST,
+    &super::input_keys::PROCESS,
+    &super::input_keys::ENVELOPING,
+    &super::input_keys::ENVELOPING_EACH,
     &super::input_keys::INPUT,
     &super::input_keys::ROAD,
     &super::input_keys::COHERENCE,
@@ -90,4 +149,15 @@ pub const KEY_TABLES: &[&KeyTable] = &[
     &super::input_keys::AMMON_BORMANN,
     &super::input_keys::TABULATED,
     &super::input_keys::CONSTANT,
+    &super::input_keys::SPEED_PROFILE,
+    &super::input_keys::ENVELOPE,
+    &super::analysis_keys::ANALYSIS,
+    &super::analysis_keys::QUADRATURE,
+    &super::analysis_keys::COMFORT,
+    &super::analysis_keys::COMFORT_AXIS,
+    &super::analysis_keys::FATIGUE,
+    &super::analysis_keys::SEAT_FACTOR,
+    &super::analysis_keys::MISSION,
+    &super::transient_key_table::TRANSIENT,
+    &super::transient_key_table::SCHEDULE,
 ];

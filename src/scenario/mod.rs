@@ -5,6 +5,7 @@
 //! written and the reason ([`Error::File`](crate::Error::File)). What is run on a scenario (sweeps,
 //! replays, verdicts, transients, nonlinear routes) is [`crate::study`].
 
+pub mod analysis_keys;
 mod butterworth_keys;
 mod catalogue;
 pub mod generic;
@@ -12,6 +13,7 @@ mod input_filters;
 pub mod input_keys;
 pub mod inputs;
 pub mod key_table;
+pub mod model_keys;
 pub mod nonlinear_keys;
 mod profile_identity;
 pub mod reference;
@@ -19,6 +21,8 @@ mod registry;
 pub mod scenario_file;
 pub mod seat_factor;
 pub mod spectrum_file;
+pub mod top_keys;
+pub mod transient_key_table;
 pub mod transient_keys;
 pub mod verdict_spec;
 pub mod workday_file;

@@ -64,6 +64,7 @@ use crate::response::Excitation;
 use crate::simulate::RunInput;
 use crate::spectrum::{AtSpeed, Domain, Spectrum};
 use crate::store::{Provenance, Signal};
+use crate::transient::{Envelope, SpeedProfile};
 use crate::units::Dim;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -391,137 +392,33 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
     let title = f.opt_string("title")?.unwrap_or("").to_string();
     let source = f.opt_string("source")?.unwrap_or("").to_string();
     let several_inputs = matches!(root.get("input"), Some(toml::Value::Array(_)));
-    let mut speed_profile = None;
-    let speed = match root.get("input").and_then(|v| v.as_table()) {
-        Some(t) => {
-            let inf = Fields::new(path, "input", t);
-            let v = inf.opt_quantity("speed", Dim::VELOCITY)?;
-            if let Some(v) = v
-                && (v.is_nan() || v <= 0.0)
-            {
-                return Err(inf.error("speed", v, "must be > 0"));
-            }
-            speed_profile = super::transient_keys::input_speed_profile(&inf)?;
-            v.or(speed_profile.as_ref().map(|p: &(_, f64)| p.1))
-        }
-        None => match root.get("input").and_then(|v| v.as_array()) {
-            Some(tables) => super::inputs::common_speed(path, tables)?,
-            None => None,
-        },
-    };
+    let (speed, speed_profile) = input_speed(&root, path)?;
     let mf = f.sub("model")?;
     let kind = mf.string("kind")?.to_string();
     let built = build_model(&kind, &mf, ModelContext { speed, several_inputs })?;
     let has_nonlinear = mf.get("nonlinear").is_some();
     let model = match built {
         BuiltModel::Deterministic(model) => {
-            mf.finish()?;
-            if has_nonlinear {
-                return Err(mf.error(
-                    "nonlinear",
-                    "[[model.nonlinear]]",
-                    format!(
-                        "kind `{kind}` is a deterministic model: nonlinear elements need a model with a random input"
-                    ),
-                ));
-            }
-            for key in ["input", "analysis"] {
-                if let Some(v) = root.get(key) {
-                    return Err(f.error(
-                        key,
-                        v,
-                        format!("kind `{kind}` is a deterministic model: it takes no [{key}] section"),
-                    ));
-                }
-            }
-            f.finish()?;
-            return Ok(Document::Deterministic(DeterministicScenario {
-                path: path.to_path_buf(),
-                title,
-                source,
-                kind,
-                model,
-            }));
+            return deterministic_document(&f, &mf, &root, kind, model, has_nonlinear, (title, source));
         }
         BuiltModel::Stochastic(m) => m,
     };
     let (model, nonlinear, regime_outputs) = super::nonlinear_keys::attach(&mf, model)?;
-    mf.finish()?;
+    model_finish(&mf, &kind)?;
     check_model(&f, &kind, &model, nonlinear.is_none())?;
     let catalogue = Catalogue::new(spectra_dir);
-    let mut envelope = None;
-    let (inputs, excitation) = match root.get("input") {
+    let (inputs, excitation, envelope) = match root.get("input") {
         Some(toml::Value::Array(tables)) => {
             let _ = f.get("input");
-            super::inputs::parse_inputs(&f, tables, model.system.n_inputs(), &model.layout, speed, &catalogue)?
+            let (n, layout) = (model.system.n_inputs(), &model.layout);
+            let (inputs, excitation) = super::inputs::parse_inputs(&f, tables, n, layout, speed, &catalogue)?;
+            (inputs, excitation, None)
         }
-        _ => {
-            let inf = f.sub("input")?;
-            let _ = inf.get("speed");
-            let (reference, mut sf) = super::inputs::resolve_spectrum(&inf, "spectrum", &catalogue, path.parent())?;
-            sf.spectrum = super::input_filters::apply_input_keys(&inf, &sf, &reference)?;
-            // the mean is in the input process's own unit: a number (SI) or a quantity of that dimension
-            let mean = match inf.get("mean") {
-                None => 0.0,
-                Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
-            };
-            let kurtosis = input_kurtosis(&inf)?;
-            let _ = inf.get("speed_profile");
-            envelope = match inf.get("envelope") {
-                None => None,
-                Some(_) => Some(super::transient_keys::envelope(&inf.sub("envelope")?)?),
-            };
-            inf.finish()?;
-            let excitation = build_excitation(&inf, &model.layout, sf.spectrum.clone(), speed, mean)?;
-            let name = if sf.spectrum.domain() == Domain::Spatial {
-                "road"
-            } else {
-                "input"
-            };
-            let input = ScenarioInput {
-                reference,
-                spectrum: sf.spectrum,
-                unit: sf.unit,
-                origin: sf.origin,
-                spectrum_text: sf.text,
-                speed,
-                mean,
-                name: name.to_string(),
-                coherence: None,
-                kurtosis,
-            };
-            (vec![input], excitation)
-        }
+        _ => one_process(&f, &model, speed, &catalogue)?,
     };
-
-    let analysis = match root.get("analysis") {
-        None => {
-            f.get("analysis");
-            AnalysisOptions {
-                outputs: (0..model.system.outputs().len()).collect(),
-                duration: 3600.0,
-                ..Default::default()
-            }
-        }
-        Some(_) => {
-            let af = f.sub("analysis")?;
-            let mut opts = analysis_options(&af, &model)?;
-            opts.verdicts = super::verdict_spec::parse_verdicts(&af, &model, speed)?;
-            if nonlinear.is_some() && !opts.verdicts.is_empty() {
-                return Err(af.error(
-                    "comfort",
-                    "[analysis.comfort] / [analysis.fatigue]",
-                    "verdicts are evaluated on linear models only: a model with [[model.nonlinear]] elements takes none",
-                ));
-            }
-            super::verdict_spec::check_fatigue_moments(&f, &opts.verdicts, &model, &excitation)?;
-            af.finish()?;
-            opts
-        }
-    };
+    let mut analysis = analysis_section(&f, &model, speed, nonlinear.is_some(), &excitation)?;
     let transient = super::transient_keys::assemble(&f, speed_profile.map(|p| p.0), envelope)?;
-    f.finish()?;
-    let mut analysis = analysis;
+    super::top_keys::TOP.finish(&f, &[])?;
     // every regime (contact, lift-off) is counted on an output: the outputs added for them are simulated
     for name in &regime_outputs {
         if let Ok(i) = model.system.output_index(name)
@@ -545,6 +442,166 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         nonlinear,
         transient,
     })))
+}
+
+/// A speed profile with the speed of the stationary analyses (m/s).
+type ProfileAndSpeed = (SpeedProfile, f64);
+
+/// The speed of the scenario (m/s): `[input] speed`, else the stationary speed of `[input.speed_profile]`
+/// (with the profile), or the common speed of the `[[input]]` tables.
+///
+/// # Errors
+/// A speed that is not > 0, a malformed profile, `[[input]]` tables of different speeds.
+fn input_speed(root: &toml::Table, path: &Path) -> Result<(Option<f64>, Option<ProfileAndSpeed>)> {
+    match root.get("input") {
+        Some(toml::Value::Table(t)) => {
+            let inf = Fields::new(path, "input", t);
+            let v = inf.opt_quantity("speed", Dim::VELOCITY)?;
+            if let Some(v) = v
+                && (v.is_nan() || v <= 0.0)
+            {
+                return Err(inf.error("speed", v, "must be > 0"));
+            }
+            let profile = super::transient_keys::input_speed_profile(&inf)?;
+            Ok((v.or(profile.as_ref().map(|p| p.1)), profile))
+        }
+        Some(toml::Value::Array(tables)) => Ok((super::inputs::common_speed(path, tables)?, None)),
+        _ => Ok((None, None)),
+    }
+}
+
+/// The document of a deterministic model: its `[model]` (`mf`) checked, no nonlinear elements, no `[input]`
+/// or `[analysis]`; `header` is (title, source).
+///
+/// # Errors
+/// An unknown key, nonlinear elements, an `[input]` or `[analysis]` section.
+fn deterministic_document(
+    f: &Fields,
+    mf: &Fields,
+    root: &toml::Table,
+    kind: String,
+    model: Box<dyn DeterministicModel>,
+    has_nonlinear: bool,
+    (title, source): (String, String),
+) -> Result<Document> {
+    model_finish(mf, &kind)?;
+    if has_nonlinear {
+        return Err(mf.error(
+            "nonlinear",
+            "[[model.nonlinear]]",
+            format!("kind `{kind}` is a deterministic model: nonlinear elements need a model with a random input"),
+        ));
+    }
+    for key in ["input", "analysis"] {
+        if let Some(v) = root.get(key) {
+            return Err(f.error(
+                key,
+                v,
+                format!("kind `{kind}` is a deterministic model: it takes no [{key}] section"),
+            ));
+        }
+    }
+    f.finish()?;
+    Ok(Document::Deterministic(DeterministicScenario {
+        path: f.file().to_path_buf(),
+        title,
+        source,
+        kind,
+        model,
+    }))
+}
+
+/// The one process of `[input]` (a table): its spectrum with the band and enveloping, mean, kurtosis and
+/// envelope, and the excitation of the model's inputs at `speed`.
+///
+/// # Errors
+/// The errors of each key (file, key, value, reason).
+fn one_process(
+    f: &Fields,
+    model: &ModelInstance,
+    speed: Option<f64>,
+    catalogue: &Catalogue,
+) -> Result<(Vec<ScenarioInput>, Excitation, Option<Envelope>)> {
+    let inf = f.sub("input")?;
+    let _ = inf.get("speed");
+    let (reference, mut sf) = super::inputs::resolve_spectrum(&inf, "spectrum", catalogue, f.file().parent())?;
+    sf.spectrum = super::input_filters::apply_input_keys(&inf, &sf, &reference)?;
+    // the mean is in the input process's own unit: a number (SI) or a quantity of that dimension
+    let mean = match inf.get("mean") {
+        None => 0.0,
+        Some(v) => quantity_in_unit(&inf, "mean", v, &sf.unit, &format!("the input process `{reference}`"))?,
+    };
+    let kurtosis = input_kurtosis(&inf)?;
+    let _ = inf.get("speed_profile");
+    let envelope = match inf.get("envelope") {
+        None => None,
+        Some(_) => Some(super::transient_keys::envelope(&inf.sub("envelope")?)?),
+    };
+    super::input_keys::PROCESS.finish(&inf, &[])?;
+    let excitation = build_excitation(&inf, &model.layout, sf.spectrum.clone(), speed, mean)?;
+    let name = if sf.spectrum.domain() == Domain::Spatial {
+        "road"
+    } else {
+        "input"
+    };
+    let input = ScenarioInput {
+        reference,
+        spectrum: sf.spectrum,
+        unit: sf.unit,
+        origin: sf.origin,
+        spectrum_text: sf.text,
+        speed,
+        mean,
+        name: name.to_string(),
+        coherence: None,
+        kurtosis,
+    };
+    Ok((vec![input], excitation, envelope))
+}
+
+/// `[analysis]` with its verdicts (every output over 1 h when absent).
+///
+/// # Errors
+/// The errors of each key; verdicts on a model with nonlinear elements; a fatigue output of infinite λ₄.
+fn analysis_section(
+    f: &Fields,
+    model: &ModelInstance,
+    speed: Option<f64>,
+    nonlinear: bool,
+    excitation: &Excitation,
+) -> Result<AnalysisOptions> {
+    if f.get("analysis").is_none() {
+        return Ok(AnalysisOptions {
+            outputs: (0..model.system.outputs().len()).collect(),
+            duration: 3600.0,
+            ..Default::default()
+        });
+    }
+    let af = f.sub("analysis")?;
+    let mut opts = analysis_options(&af, model)?;
+    opts.verdicts = super::verdict_spec::parse_verdicts(&af, model, speed)?;
+    if nonlinear && !opts.verdicts.is_empty() {
+        return Err(af.error(
+            "comfort",
+            "[analysis.comfort] / [analysis.fatigue]",
+            "verdicts are evaluated on linear models only: a model with [[model.nonlinear]] elements takes none",
+        ));
+    }
+    super::verdict_spec::check_fatigue_moments(f, &opts.verdicts, model, excitation)?;
+    super::analysis_keys::ANALYSIS.finish(&af, &[])?;
+    Ok(opts)
+}
+
+/// The unknown-key check of `[model]` of kind `kind`: the table of its kind with the keys of every kind
+/// ([`super::top_keys::MODEL`]).
+///
+/// # Errors
+/// The first key of the table that the kind does not take.
+fn model_finish(mf: &Fields, kind: &str) -> Result<()> {
+    match super::model_keys::model_table(kind) {
+        Some(table) => table.finish(mf, &super::top_keys::MODEL.names()),
+        None => mf.finish(),
+    }
 }
 
 /// `[input] kurtosis`: absent (Gaussian), or a finite number ≥ 3, else an error naming the file, the key, the
@@ -724,57 +781,8 @@ pub(crate) fn build_excitation(
 
 fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions> {
     let names: Vec<String> = model.system.outputs().iter().map(|o| o.name.clone()).collect();
-    let find = |key: &str, n: &str| -> Result<usize> {
-        names
-            .iter()
-            .position(|x| x == n)
-            .ok_or_else(|| f.error(key, n, format!("no such output; the model has: {}", names.join(", "))))
-    };
-    let outputs = match f.get("outputs") {
-        None => (0..names.len()).collect(),
-        Some(v) => {
-            let arr = v
-                .as_array()
-                .ok_or_else(|| f.error("outputs", v, "expected an array of output names"))?;
-            if arr.is_empty() {
-                return Err(f.error(
-                    "outputs",
-                    v,
-                    format!(
-                        "names no output: leave the key out for every output ({})",
-                        names.join(", ")
-                    ),
-                ));
-            }
-            let idx = arr
-                .iter()
-                .map(|x| {
-                    x.as_str()
-                        .ok_or_else(|| f.error("outputs", x, "expected a string"))
-                        .and_then(|n| find("outputs", n))
-                })
-                .collect::<Result<Vec<_>>>()?;
-            if let Some(k) = (1..idx.len()).find(|&k| idx[..k].contains(&idx[k])) {
-                return Err(f.error("outputs", v, format!("names `{}` twice", names[idx[k]])));
-            }
-            idx
-        }
-    };
-    let band = match f.get("band") {
-        None => None,
-        Some(v) => {
-            let arr = v
-                .as_array()
-                .filter(|a| a.len() == 2)
-                .ok_or_else(|| f.error("band", v, "expected two frequencies"))?;
-            let lo = f.angular_frequency(&arr[0], "band[0]", Dim::FREQUENCY)?;
-            let hi = f.angular_frequency(&arr[1], "band[1]", Dim::FREQUENCY)?;
-            if !(lo >= 0.0 && hi > lo) {
-                return Err(f.error("band", v, "need 0 <= low < high"));
-            }
-            Some((lo, hi))
-        }
-    };
+    let outputs = analysis_outputs(f, &names)?;
+    let band = analysis_band(f)?;
     // the duration of the exceedance probabilities and expected peaks: with its unit (a bare `8` is not 8 h)
     let duration = f
         .opt_everyday_quantity("duration", crate::fields::EverydayUnit::HOUR)?
@@ -782,51 +790,10 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
     if duration.is_nan() || duration <= 0.0 {
         return Err(f.error("duration", duration, "must be > 0"));
     }
-    let mut levels = Vec::new();
-    if let Some(v) = f.get("levels") {
-        let t = v
-            .as_table()
-            .ok_or_else(|| f.error("levels", v, "expected a table: output name = [levels]"))?;
-        for (name, lv) in t {
-            let key = format!("levels.{name}");
-            let i = find(&key, name)?;
-            let arr = lv.as_array().ok_or_else(|| f.error(&key, lv, "expected an array"))?;
-            let unit = &model.system.outputs()[i].unit;
-            let vals = arr
-                .iter()
-                .map(|x| quantity_in_unit(f, &key, x, unit, &format!("output `{name}`")))
-                .collect::<Result<Vec<_>>>()?;
-            levels.push((i, vals));
-        }
-    }
+    let levels = analysis_levels(f, model, &names)?;
     let effort = match f.get("quadrature") {
         None => OscillatoryOptions::default(),
-        Some(_) => {
-            let q = f.sub("quadrature")?;
-            let d = OscillatoryOptions::default();
-            let count = |key: &str, default: usize| -> Result<usize> {
-                match q.get(key) {
-                    None => Ok(default),
-                    Some(v) => v
-                        .as_integer()
-                        .filter(|k| (1..=100_000_000).contains(k))
-                        .map(|k| k as usize)
-                        .ok_or_else(|| q.error(key, v, "expected a count from 1 to 10^8")),
-                }
-            };
-            let effort = OscillatoryOptions {
-                rel_tol: match q.get("rel_tol") {
-                    None => d.rel_tol,
-                    Some(_) => q.number("rel_tol")?,
-                },
-                max_subintervals: count("max_subintervals", d.max_subintervals)?,
-                max_half_periods: count("max_half_periods", d.max_half_periods)?,
-                ..d
-            };
-            effort.validate().map_err(|e| q.wrap_param(e, "rel_tol"))?;
-            q.finish()?;
-            effort
-        }
+        Some(_) => quadrature_effort(&f.sub("quadrature")?)?,
     };
     let mission = match f.get("mission") {
         None => None,
@@ -859,4 +826,126 @@ fn analysis_options(f: &Fields, model: &ModelInstance) -> Result<AnalysisOptions
         bands,
         mission,
     })
+}
+
+/// The index of the output `name` among `names`, else an error at `key` listing them.
+fn output_position(f: &Fields, names: &[String], key: &str, name: &str) -> Result<usize> {
+    names.iter().position(|x| x == name).ok_or_else(|| {
+        f.error(
+            key,
+            name,
+            format!("no such output; the model has: {}", names.join(", ")),
+        )
+    })
+}
+
+/// `[analysis] outputs`: the indices of the named outputs (every output when absent).
+///
+/// # Errors
+/// Not an array of names, an empty array, an unknown name, a name twice.
+fn analysis_outputs(f: &Fields, names: &[String]) -> Result<Vec<usize>> {
+    let Some(v) = f.get("outputs") else {
+        return Ok((0..names.len()).collect());
+    };
+    let arr = v
+        .as_array()
+        .ok_or_else(|| f.error("outputs", v, "expected an array of output names"))?;
+    if arr.is_empty() {
+        return Err(f.error(
+            "outputs",
+            v,
+            format!(
+                "names no output: leave the key out for every output ({})",
+                names.join(", ")
+            ),
+        ));
+    }
+    let idx = arr
+        .iter()
+        .map(|x| {
+            x.as_str()
+                .ok_or_else(|| f.error("outputs", x, "expected a string"))
+                .and_then(|n| output_position(f, names, "outputs", n))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    if let Some(k) = (1..idx.len()).find(|&k| idx[..k].contains(&idx[k])) {
+        return Err(f.error("outputs", v, format!("names `{}` twice", names[idx[k]])));
+    }
+    Ok(idx)
+}
+
+/// `[analysis] band`: two frequencies (rad/s), if given.
+///
+/// # Errors
+/// Not two frequencies, or not 0 ≤ low < high.
+fn analysis_band(f: &Fields) -> Result<Option<(f64, f64)>> {
+    let Some(v) = f.get("band") else {
+        return Ok(None);
+    };
+    let arr = v
+        .as_array()
+        .filter(|a| a.len() == 2)
+        .ok_or_else(|| f.error("band", v, "expected two frequencies"))?;
+    let lo = f.angular_frequency(&arr[0], "band[0]", Dim::FREQUENCY)?;
+    let hi = f.angular_frequency(&arr[1], "band[1]", Dim::FREQUENCY)?;
+    if !(lo >= 0.0 && hi > lo) {
+        return Err(f.error("band", v, "need 0 <= low < high"));
+    }
+    Ok(Some((lo, hi)))
+}
+
+/// `[analysis] levels`: per output the levels in its unit (SI).
+///
+/// # Errors
+/// Not a table, an unknown output, a level that is not a value of the output's dimension.
+fn analysis_levels(f: &Fields, model: &ModelInstance, names: &[String]) -> Result<Vec<(usize, Vec<f64>)>> {
+    let mut levels = Vec::new();
+    let Some(v) = f.get("levels") else {
+        return Ok(levels);
+    };
+    let t = v
+        .as_table()
+        .ok_or_else(|| f.error("levels", v, "expected a table: output name = [levels]"))?;
+    for (name, lv) in t {
+        let key = format!("levels.{name}");
+        let i = output_position(f, names, &key, name)?;
+        let arr = lv.as_array().ok_or_else(|| f.error(&key, lv, "expected an array"))?;
+        let unit = &model.system.outputs()[i].unit;
+        let vals = arr
+            .iter()
+            .map(|x| quantity_in_unit(f, &key, x, unit, &format!("output `{name}`")))
+            .collect::<Result<Vec<_>>>()?;
+        levels.push((i, vals));
+    }
+    Ok(levels)
+}
+
+/// `[analysis.quadrature]` (`q`): the effort of the adaptive quadrature, the defaults where a key is absent.
+///
+/// # Errors
+/// A count outside 1 … 10⁸, a tolerance the quadrature refuses, an unknown key.
+fn quadrature_effort(q: &Fields) -> Result<OscillatoryOptions> {
+    let d = OscillatoryOptions::default();
+    let count = |key: &str, default: usize| -> Result<usize> {
+        match q.get(key) {
+            None => Ok(default),
+            Some(v) => v
+                .as_integer()
+                .filter(|k| (1..=100_000_000).contains(k))
+                .map(|k| k as usize)
+                .ok_or_else(|| q.error(key, v, "expected a count from 1 to 10^8")),
+        }
+    };
+    let effort = OscillatoryOptions {
+        rel_tol: match q.get("rel_tol") {
+            None => d.rel_tol,
+            Some(_) => q.number("rel_tol")?,
+        },
+        max_subintervals: count("max_subintervals", d.max_subintervals)?,
+        max_half_periods: count("max_half_periods", d.max_half_periods)?,
+        ..d
+    };
+    effort.validate().map_err(|e| q.wrap_param(e, "rel_tol"))?;
+    super::analysis_keys::QUADRATURE.finish(q, &[])?;
+    Ok(effort)
 }

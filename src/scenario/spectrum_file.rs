@@ -147,170 +147,27 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
     };
     let var_dim = pow(unit_dim, 2);
     let inv_lag = pow(lag, -1);
+    let dims = Dims {
+        domain,
+        unit: unit_dim,
+        variance: var_dim,
+        inv_lag,
+    };
     let w = |key: &str, e: Error| f.wrap(key, e);
     let spectrum: Arc<dyn Spectrum> = match kind {
-        "exponential" | "gaussian" => {
-            let d = f.quantity("variance", var_dim)?;
-            let a = decay_rate(f, "alpha", if kind == "gaussian" { pow(lag, -2) } else { inv_lag })?;
-            if kind == "gaussian" {
-                Arc::new(Gaussian::new(d, a, domain).map_err(|e| w(param_key(&e), e))?)
-            } else {
-                Arc::new(Exponential::new(d, a, domain).map_err(|e| w(param_key(&e), e))?)
-            }
-        }
-        "exp-cosine" | "gauss-cosine" => {
-            let d = f.quantity("variance", var_dim)?;
-            let a = decay_rate(f, "alpha", if kind == "gauss-cosine" { pow(lag, -2) } else { inv_lag })?;
-            let b = f.quantity("beta", inv_lag)?;
-            if kind == "gauss-cosine" {
-                Arc::new(GaussCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
-            } else {
-                Arc::new(ExpCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
-            }
-        }
+        "exponential" | "gaussian" | "exp-cosine" | "gauss-cosine" => decaying(f, &dims, kind)?,
         "rational" => {
             let n = f.numbers("numerator")?;
             let d = f.numbers("denominator")?;
             Arc::new(RationalSpectrum::new(n, d, domain).map_err(|e| w(param_key(&e), e))?)
         }
         "butterworth-band" => Arc::new(super::butterworth_keys::butterworth_from_fields(f, domain, inv_lag)?),
-        "band-white" => {
-            let c = convention(f)?;
-            let level = f.number("level")?;
-            let (lo, hi) = band(f, "band", inv_lag)?.ok_or_else(|| f.error("band", "<missing>", "required"))?;
-            let (_, s0) = c.to_canonical(1.0, level);
-            if level.is_nan() || level < 0.0 {
-                return Err(f.error(
-                    "level",
-                    f.get("level").map_or("?".into(), |v| v.to_string()),
-                    "must be >= 0",
-                ));
-            }
-            Arc::new(BandWhite::new(Convention::TwoSidedAngular, s0, lo, hi, domain).map_err(|e| w("band", e))?)
-        }
-        "tabulated" => {
-            let c = convention(f)?;
-            let fu = f.string("frequency_unit")?;
-            let scale = frequency_scale(f, fu, inv_lag)?;
-            let x = f.numbers("frequencies")?;
-            let v = f.numbers("values")?;
-            // Abscissae → the convention's own abscissa unit (cyclic or angular), exactly.
-            let to_conv = if c.is_cyclic() { scale / (2.0 * PI) } else { scale };
-            let x: Vec<f64> = x.iter().map(|xi| xi * to_conv).collect();
-            Arc::new(Tabulated::new(c, x, v, domain).map_err(|e| w(param_key(&e), e))?)
-        }
-        "power-law" => {
-            let g0 = f.number("g0")?;
-            let n0v = f.require("n0")?;
-            let n0 = f.angular_frequency(n0v, "n0", inv_lag)? / (2.0 * PI);
-            let wav = f.number("waviness")?;
-            let b = band(f, "band", inv_lag)?.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
-            Arc::new(PowerLaw::new(g0, n0, wav, b, domain).map_err(|e| w(param_key(&e), e))?)
-        }
-        "iso8608" => {
-            if domain != Domain::Spatial {
-                return Err(f.error(
-                    "domain",
-                    "temporal",
-                    "ISO 8608 spectra are spatial: set domain = \"spatial\"",
-                ));
-            }
-            let class: IsoClass = f.string("class")?.parse().map_err(|e| w("class", e))?;
-            let bound: IsoBound = match f.opt_string("bound")? {
-                None => IsoBound::GeometricMean,
-                Some(b) => b.parse().map_err(|e| w("bound", e))?,
-            };
-            let unbounded = match f.get("unbounded") {
-                None => false,
-                Some(v) => v
-                    .as_bool()
-                    .ok_or_else(|| f.error("unbounded", v, "expected true or false"))?,
-            };
-            let b = band(f, "band", inv_lag)?.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
-            if unbounded && b.is_some() {
-                return Err(f.error("unbounded", "true", "contradicts the `band` key: give one of them"));
-            }
-            let b = if unbounded { None } else { Some(b.unwrap_or(ISO_BAND)) };
-            Arc::new(PowerLaw::iso8608(class, bound, b).map_err(|e| f.wrap_param(e, "band"))?)
-        }
-        "two-pole-road" => {
-            if domain != Domain::Spatial {
-                return Err(f.error(
-                    "domain",
-                    "temporal",
-                    "the (8.66) road is spatial: set domain = \"spatial\"",
-                ));
-            }
-            let form = match f.string("form")? {
-                "as-printed" => Form::AsPrinted,
-                "consistent" => Form::Consistent,
-                other => return Err(f.error("form", other, "expected \"as-printed\" or \"consistent\"")),
-            };
-            let dq = match (f.opt_quantity("dq", var_dim)?, f.opt_quantity("sigma_q", unit_dim)?) {
-                (Some(d), None) => d,
-                (None, Some(s)) => {
-                    if s < 0.0 {
-                        return Err(f.error("sigma_q", s, "must be >= 0"));
-                    }
-                    s * s
-                }
-                (Some(_), Some(_)) => return Err(f.error("sigma_q", "both", "give `dq` or `sigma_q`, not both")),
-                (None, None) => return Err(f.error("dq", "<missing>", "give `dq` (variance) or `sigma_q`")),
-            };
-            let a = decay_rate(f, "alpha", inv_lag)?;
-            let b = decay_rate(f, "beta", inv_lag)?;
-            Arc::new(TwoPoleRoad::new(dq, a, b, form).map_err(|e| w(param_key(&e), e))?)
-        }
-        "measured-profile" => {
-            if domain != Domain::Spatial {
-                return Err(f.error(
-                    "domain",
-                    "temporal",
-                    "a road profile is spatial: set domain = \"spatial\"",
-                ));
-            }
-            let file = f.string("file")?;
-            let path = match f.file().parent() {
-                Some(dir) => dir.join(file),
-                None => Path::new(file).to_path_buf(),
-            };
-            let profile = crate::road::Profile::read_csv(&path).map_err(|e| f.wrap("file", e))?;
-            let track = match f.opt_string("track")? {
-                None => profile
-                    .tracks
-                    .first()
-                    .ok_or_else(|| f.error("file", file, "the profile has no track column"))?,
-                Some(name) => profile.track(name).map_err(|e| f.wrap("track", e))?,
-            };
-            let detrend = match f.opt_string("detrend")? {
-                None | Some("linear") => crate::road::Detrend::Linear,
-                Some("mean") => crate::road::Detrend::Mean,
-                Some(other) => return Err(f.error("detrend", other, "expected \"linear\" or \"mean\"")),
-            };
-            let m = match f.get("segment") {
-                None => crate::road::default_segment(profile.len()),
-                Some(v) => v
-                    .as_integer()
-                    .filter(|m| *m >= 4 && m % 2 == 0 && *m as usize <= profile.len())
-                    .ok_or_else(|| {
-                        f.error(
-                            "segment",
-                            v,
-                            format!(
-                                "expected an even number of samples from 4 to the record's {}",
-                                profile.len()
-                            ),
-                        )
-                    })? as usize,
-            };
-            let detrended = detrend.apply(&track.elevation_m);
-            crate::road::spatial_psd::check_density_input(&path, &track.name, &track.elevation_m, &detrended)?;
-            let psd = crate::road::spatial_psd(&detrended, profile.step_m, m).map_err(|e| f.wrap("file", e))?;
-            Arc::new(
-                Tabulated::new(Convention::OneSidedCyclic, psd.n, psd.g_d, Domain::Spatial)
-                    .map_err(|e| f.wrap("file", e))?,
-            )
-        }
+        "band-white" => band_white(f, &dims)?,
+        "tabulated" => tabulated(f, &dims)?,
+        "power-law" => power_law(f, &dims)?,
+        "iso8608" => iso8608(f, &dims)?,
+        "two-pole-road" => two_pole_road(f, &dims)?,
+        "measured-profile" => measured_profile(f, &dims)?,
         other => {
             return Err(f.error(
                 "kind",
@@ -321,6 +178,206 @@ pub fn spectrum_from_fields(f: &Fields) -> Result<Arc<dyn Spectrum>> {
         }
     };
     Ok(spectrum)
+}
+
+/// The kinds of a variance and decay rates: `exponential`, `gaussian`, `exp-cosine`, `gauss-cosine`.
+///
+/// # Errors
+/// [`Error::File`] naming the key.
+fn decaying(f: &Fields, dims: &Dims, kind: &str) -> Result<Arc<dyn Spectrum>> {
+    let w = |key: &str, e: Error| f.wrap(key, e);
+    let domain = dims.domain;
+    let d = f.quantity("variance", dims.variance)?;
+    let gauss = kind == "gaussian" || kind == "gauss-cosine";
+    let a = decay_rate(f, "alpha", if gauss { pow(dims.inv_lag, 2) } else { dims.inv_lag })?;
+    if kind == "gaussian" || kind == "exponential" {
+        return Ok(if gauss {
+            Arc::new(Gaussian::new(d, a, domain).map_err(|e| w(param_key(&e), e))?)
+        } else {
+            Arc::new(Exponential::new(d, a, domain).map_err(|e| w(param_key(&e), e))?)
+        });
+    }
+    let b = f.quantity("beta", dims.inv_lag)?;
+    Ok(if gauss {
+        Arc::new(GaussCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
+    } else {
+        Arc::new(ExpCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
+    })
+}
+
+/// `kind = "power-law"`: G₀ at n₀, the waviness, an optional band.
+///
+/// # Errors
+/// [`Error::File`] naming the key.
+fn power_law(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
+    let g0 = f.number("g0")?;
+    let n0v = f.require("n0")?;
+    let n0 = f.angular_frequency(n0v, "n0", d.inv_lag)? / (2.0 * PI);
+    let wav = f.number("waviness")?;
+    let b = band(f, "band", d.inv_lag)?.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
+    Ok(Arc::new(
+        PowerLaw::new(g0, n0, wav, b, d.domain).map_err(|e| f.wrap(param_key(&e), e))?,
+    ))
+}
+
+/// The dimensions of a spectrum file's quantities: its domain, the process's unit, the variance's, and the
+/// inverse lag (1/s or 1/m).
+struct Dims {
+    domain: Domain,
+    unit: Dim,
+    variance: Dim,
+    inv_lag: Dim,
+}
+
+/// Refuses a temporal `domain` for a kind that is spatial by definition (`what`: "… are spatial").
+fn require_spatial(f: &Fields, domain: Domain, what: &str) -> Result<()> {
+    if domain == Domain::Spatial {
+        return Ok(());
+    }
+    Err(f.error("domain", "temporal", format!("{what}: set domain = \"spatial\"")))
+}
+
+/// `kind = "band-white"`: a level on a band.
+///
+/// # Errors
+/// [`Error::File`] naming the key.
+fn band_white(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
+    let c = convention(f)?;
+    let level = f.number("level")?;
+    let (lo, hi) = band(f, "band", d.inv_lag)?.ok_or_else(|| f.error("band", "<missing>", "required"))?;
+    let (_, s0) = c.to_canonical(1.0, level);
+    if level.is_nan() || level < 0.0 {
+        return Err(f.error(
+            "level",
+            f.get("level").map_or("?".into(), |v| v.to_string()),
+            "must be >= 0",
+        ));
+    }
+    Ok(Arc::new(
+        BandWhite::new(Convention::TwoSidedAngular, s0, lo, hi, d.domain).map_err(|e| f.wrap("band", e))?,
+    ))
+}
+
+/// `kind = "tabulated"`: values over frequencies.
+///
+/// # Errors
+/// [`Error::File`] naming the key.
+fn tabulated(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
+    let c = convention(f)?;
+    let fu = f.string("frequency_unit")?;
+    let scale = frequency_scale(f, fu, d.inv_lag)?;
+    let x = f.numbers("frequencies")?;
+    let v = f.numbers("values")?;
+    // Abscissae → the convention's own abscissa unit (cyclic or angular), exactly.
+    let to_conv = if c.is_cyclic() { scale / (2.0 * PI) } else { scale };
+    let x: Vec<f64> = x.iter().map(|xi| xi * to_conv).collect();
+    Ok(Arc::new(
+        Tabulated::new(c, x, v, d.domain).map_err(|e| f.wrap(param_key(&e), e))?,
+    ))
+}
+
+/// `kind = "iso8608"`: the ISO 8608 road of a class and bound.
+///
+/// # Errors
+/// [`Error::File`] naming the key.
+fn iso8608(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
+    require_spatial(f, d.domain, "ISO 8608 spectra are spatial")?;
+    let class: IsoClass = f.string("class")?.parse().map_err(|e| f.wrap("class", e))?;
+    let bound: IsoBound = match f.opt_string("bound")? {
+        None => IsoBound::GeometricMean,
+        Some(b) => b.parse().map_err(|e| f.wrap("bound", e))?,
+    };
+    let unbounded = match f.get("unbounded") {
+        None => false,
+        Some(v) => v
+            .as_bool()
+            .ok_or_else(|| f.error("unbounded", v, "expected true or false"))?,
+    };
+    let b = band(f, "band", d.inv_lag)?.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
+    if unbounded && b.is_some() {
+        return Err(f.error("unbounded", "true", "contradicts the `band` key: give one of them"));
+    }
+    let b = if unbounded { None } else { Some(b.unwrap_or(ISO_BAND)) };
+    Ok(Arc::new(
+        PowerLaw::iso8608(class, bound, b).map_err(|e| f.wrap_param(e, "band"))?,
+    ))
+}
+
+/// `kind = "two-pole-road"`: the road of Sukharev (2012) (8.66).
+///
+/// # Errors
+/// [`Error::File`] naming the key.
+fn two_pole_road(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
+    require_spatial(f, d.domain, "the (8.66) road is spatial")?;
+    let form = match f.string("form")? {
+        "as-printed" => Form::AsPrinted,
+        "consistent" => Form::Consistent,
+        other => return Err(f.error("form", other, "expected \"as-printed\" or \"consistent\"")),
+    };
+    let dq = match (f.opt_quantity("dq", d.variance)?, f.opt_quantity("sigma_q", d.unit)?) {
+        (Some(v), None) => v,
+        (None, Some(s)) => {
+            if s < 0.0 {
+                return Err(f.error("sigma_q", s, "must be >= 0"));
+            }
+            s * s
+        }
+        (Some(_), Some(_)) => return Err(f.error("sigma_q", "both", "give `dq` or `sigma_q`, not both")),
+        (None, None) => return Err(f.error("dq", "<missing>", "give `dq` (variance) or `sigma_q`")),
+    };
+    let a = decay_rate(f, "alpha", d.inv_lag)?;
+    let b = decay_rate(f, "beta", d.inv_lag)?;
+    Ok(Arc::new(
+        TwoPoleRoad::new(dq, a, b, form).map_err(|e| f.wrap(param_key(&e), e))?,
+    ))
+}
+
+/// `kind = "measured-profile"`: the density of a road profile (CSV) by Welch's method.
+///
+/// # Errors
+/// [`Error::File`] naming the key.
+fn measured_profile(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
+    require_spatial(f, d.domain, "a road profile is spatial")?;
+    let file = f.string("file")?;
+    let path = match f.file().parent() {
+        Some(dir) => dir.join(file),
+        None => Path::new(file).to_path_buf(),
+    };
+    let profile = crate::road::Profile::read_csv(&path).map_err(|e| f.wrap("file", e))?;
+    let track = match f.opt_string("track")? {
+        None => profile
+            .tracks
+            .first()
+            .ok_or_else(|| f.error("file", file, "the profile has no track column"))?,
+        Some(name) => profile.track(name).map_err(|e| f.wrap("track", e))?,
+    };
+    let detrend = match f.opt_string("detrend")? {
+        None | Some("linear") => crate::road::Detrend::Linear,
+        Some("mean") => crate::road::Detrend::Mean,
+        Some(other) => return Err(f.error("detrend", other, "expected \"linear\" or \"mean\"")),
+    };
+    let m = match f.get("segment") {
+        None => crate::road::default_segment(profile.len()),
+        Some(v) => v
+            .as_integer()
+            .filter(|m| *m >= 4 && m % 2 == 0 && *m as usize <= profile.len())
+            .ok_or_else(|| {
+                f.error(
+                    "segment",
+                    v,
+                    format!(
+                        "expected an even number of samples from 4 to the record's {}",
+                        profile.len()
+                    ),
+                )
+            })? as usize,
+    };
+    let detrended = detrend.apply(&track.elevation_m);
+    crate::road::spatial_psd::check_density_input(&path, &track.name, &track.elevation_m, &detrended)?;
+    let psd = crate::road::spatial_psd(&detrended, profile.step_m, m).map_err(|e| f.wrap("file", e))?;
+    Ok(Arc::new(
+        Tabulated::new(Convention::OneSidedCyclic, psd.n, psd.g_d, Domain::Spatial).map_err(|e| f.wrap("file", e))?,
+    ))
 }
 
 /// Maps a constructor's parameter name onto the file key it came from.

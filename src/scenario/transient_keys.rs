@@ -138,7 +138,7 @@ pub fn speed_profile(f: &Fields) -> Result<SpeedProfile> {
             ));
         }
         let v = SpeedProfile::table(times, speeds).map_err(|e| table_error(f, e, "speeds"))?;
-        f.finish()?;
+        super::input_keys::SPEED_PROFILE.finish(f, &[])?;
         return Ok(v);
     }
     let v0 = f.quantity("from", Dim::VELOCITY)?;
@@ -157,7 +157,7 @@ pub fn speed_profile(f: &Fields) -> Result<SpeedProfile> {
         "acceleration"
     };
     let v = SpeedProfile::constant_acceleration(v0, v1, a, t0).map_err(|e| f.wrap_param(e, blamed))?;
-    f.finish()?;
+    super::input_keys::SPEED_PROFILE.finish(f, &[])?;
     Ok(v)
 }
 
@@ -197,7 +197,7 @@ pub fn envelope(f: &Fields) -> Result<Envelope> {
         Envelope::table(times, values)
     };
     let e = e.map_err(|e| table_error(f, e, key))?;
-    f.finish()?;
+    super::input_keys::ENVELOPE.finish(f, &[])?;
     Ok(e)
 }
 
@@ -246,7 +246,7 @@ pub fn transient_section(f: &Fields) -> Result<TransientSpec> {
     let max_error = bounded(f, "max_error", 1.0)?;
     let start = start(f)?;
     let schedules = schedules(f)?;
-    f.finish()?;
+    super::transient_key_table::TRANSIENT.finish(f, &[])?;
     Ok(TransientSpec {
         speed_profile: None,
         envelope: Envelope::unit(),
@@ -334,7 +334,7 @@ fn schedules(f: &Fields) -> Result<Vec<ScheduledKey>> {
             ));
         }
         let profile = PiecewiseLinear::new(times, values).map_err(|e| table_error(&sf, e, "values"))?;
-        sf.finish()?;
+        super::transient_key_table::SCHEDULE.finish(&sf, &[])?;
         out.push(ScheduledKey {
             key: inner.to_string(),
             profile,
@@ -414,7 +414,7 @@ pub fn mission(f: &Fields, outputs: &[crate::system::OutputInfo]) -> Result<Miss
             .collect::<Result<Vec<_>>>()?;
         levels.push((i, vals));
     }
-    f.finish()?;
+    super::analysis_keys::MISSION.finish(f, &[])?;
     Ok(MissionSpec { duration, levels })
 }
 

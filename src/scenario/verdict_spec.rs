@@ -140,7 +140,7 @@ pub fn parse_verdicts(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> 
         Some(_) => {
             let c = f.sub("comfort")?;
             let spec = parse_comfort(&c, model)?;
-            c.finish()?;
+            super::analysis_keys::COMFORT.finish(&c, &[])?;
             Some(spec)
         }
     };
@@ -149,7 +149,7 @@ pub fn parse_verdicts(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> 
         Some(_) => {
             let c = f.sub("fatigue")?;
             let spec = parse_fatigue(&c, model, speed)?;
-            c.finish()?;
+            super::analysis_keys::FATIGUE.finish(&c, &[])?;
             Some(spec)
         }
     };
@@ -158,7 +158,7 @@ pub fn parse_verdicts(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> 
         Some(_) => {
             let c = f.sub("seat_factor")?;
             let spec = super::seat_factor::parse_seat_factor(&c, model)?;
-            c.finish()?;
+            super::analysis_keys::SEAT_FACTOR.finish(&c, &[])?;
             Some(spec)
         }
     };
@@ -219,6 +219,42 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
             "a daily exposure is at most 24 h",
         ));
     }
+    let limits = directive_limits(f)?;
+    let arr = match f.require("axis")? {
+        toml::Value::Array(a) if !a.is_empty() => a,
+        v => return Err(f.error("axis", v, "expected one or more [[analysis.comfort.axis]] tables")),
+    };
+    let mut axes: Vec<ComfortAxisSpec> = Vec::new();
+    for (j, v) in arr.iter().enumerate() {
+        let key = format!("axis[{j}]");
+        let t = v.as_table().ok_or_else(|| f.error(&key, v, "expected a table"))?;
+        let a = comfort_axis(&Fields::new(f.file(), &f.path(&key), t), model, purpose)?;
+        if axes.iter().any(|b| {
+            b.location == a.location
+                && b.axis == a.axis
+                && (b.weighting == Weighting::Wf) == (a.weighting == Weighting::Wf)
+        }) {
+            return Err(f.error(
+                &key,
+                format!("{} {}", a.location.label(), a.axis.label()),
+                "each location and axis may appear once (and once more with Wf, for motion sickness)",
+            ));
+        }
+        axes.push(a);
+    }
+    Ok(ComfortSpec {
+        purpose,
+        exposure_s,
+        limits,
+        axes,
+    })
+}
+
+/// The action and limit values of `[analysis.comfort]` (`f`), the Directive's where a key is absent.
+///
+/// # Errors
+/// A value that is not > 0, a limit not above its action value.
+fn directive_limits(f: &Fields) -> Result<DirectiveLimits> {
     let d = DirectiveLimits::WHOLE_BODY;
     let positive = |key: &str, v: Option<f64>, default: f64| -> Result<f64> {
         match v {
@@ -264,94 +300,87 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
             ));
         }
     }
-    let arr = match f.require("axis")? {
-        toml::Value::Array(a) if !a.is_empty() => a,
-        v => return Err(f.error("axis", v, "expected one or more [[analysis.comfort.axis]] tables")),
+    Ok(limits)
+}
+
+/// The `location` and `axis` of a `[[analysis.comfort.axis]]` table.
+///
+/// # Errors
+/// An unknown location or axis.
+fn location_and_axis(af: &Fields) -> Result<(Location, Axis)> {
+    let location = match af.string("location")? {
+        "seat-surface" | "seat" => Location::SeatSurface,
+        "seat-back" | "back" => Location::SeatBack,
+        "feet" => Location::Feet,
+        "standing-floor" | "floor" => Location::StandingFloor,
+        s => {
+            return Err(af.error(
+                "location",
+                s,
+                "expected seat-surface, seat-back, feet or standing-floor",
+            ))
+        }
     };
-    let mut axes = Vec::new();
-    for (j, v) in arr.iter().enumerate() {
-        let key = format!("axis[{j}]");
-        let t = v.as_table().ok_or_else(|| f.error(&key, v, "expected a table"))?;
-        let af = Fields::new(f.file(), &f.path(&key), t);
-        let (output, output_name) = output_index(&af, "output", model)?;
-        let location = match af.string("location")? {
-            "seat-surface" | "seat" => Location::SeatSurface,
-            "seat-back" | "back" => Location::SeatBack,
-            "feet" => Location::Feet,
-            "standing-floor" | "floor" => Location::StandingFloor,
-            s => {
-                return Err(af.error(
-                    "location",
-                    s,
-                    "expected seat-surface, seat-back, feet or standing-floor",
-                ))
+    let axis = match af.string("axis")? {
+        "x" => Axis::X,
+        "y" => Axis::Y,
+        "z" => Axis::Z,
+        "rx" => Axis::Rx,
+        "ry" => Axis::Ry,
+        "rz" => Axis::Rz,
+        s => return Err(af.error("axis", s, "expected x, y, z, rx, ry or rz")),
+    };
+    Ok((location, axis))
+}
+
+/// One `[[analysis.comfort.axis]]` table (`af`) for `purpose`.
+///
+/// # Errors
+/// An unknown output, location, axis or weighting; a factor that is not > 0; an output that is not an
+/// acceleration; an unknown key.
+fn comfort_axis(af: &Fields, model: &ModelInstance, purpose: Purpose) -> Result<ComfortAxisSpec> {
+    let (output, output_name) = output_index(af, "output", model)?;
+    let (location, axis) = location_and_axis(af)?;
+    let standard = axis_factor(purpose, location, axis);
+    let weighting = match af.opt_string("weighting")? {
+        Some(w) => Weighting::parse(w).map_err(|e| af.wrap("weighting", e))?,
+        None => standard
+            .as_ref()
+            .map(|s| s.weighting)
+            .map_err(|e| af.error("axis", axis.label(), e.to_string()))?,
+    };
+    let k = match af.get("k") {
+        Some(_) => {
+            let k = af.number("k")?;
+            if k.is_nan() || k <= 0.0 {
+                return Err(af.error("k", k, "a multiplying factor must be > 0"));
             }
-        };
-        let axis = match af.string("axis")? {
-            "x" => Axis::X,
-            "y" => Axis::Y,
-            "z" => Axis::Z,
-            "rx" => Axis::Rx,
-            "ry" => Axis::Ry,
-            "rz" => Axis::Rz,
-            s => return Err(af.error("axis", s, "expected x, y, z, rx, ry or rz")),
-        };
-        let standard = axis_factor(purpose, location, axis);
-        let weighting = match af.opt_string("weighting")? {
-            Some(w) => Weighting::parse(w).map_err(|e| af.wrap("weighting", e))?,
-            None => standard
-                .as_ref()
-                .map(|s| s.weighting)
-                .map_err(|e| af.error("axis", axis.label(), e.to_string()))?,
-        };
-        let k = match af.get("k") {
-            Some(_) => {
-                let k = af.number("k")?;
-                if k.is_nan() || k <= 0.0 {
-                    return Err(af.error("k", k, "a multiplying factor must be > 0"));
-                }
-                k
-            }
-            None => standard
-                .map(|s| s.k)
-                .map_err(|e| af.error("axis", axis.label(), e.to_string()))?,
-        };
-        // the weighting applies to an acceleration: refuse any other output here, naming the key
-        if let Some(ss) = model.system.state_space() {
-            crate::comfort::weighted_output(ss, output, &weighting).map_err(|e| {
-                let reason = match e {
-                    Error::InvalidParameter { reason, value, .. } => format!("its unit is {value}: {reason}"),
-                    other => other.to_string(),
-                };
-                af.error("output", &output_name, reason)
-            })?;
-        } else {
-            return Err(af.error("output", &output_name, "the model has no state-space form to weight"));
+            k
         }
-        af.finish()?;
-        if axes.iter().any(|a: &ComfortAxisSpec| {
-            a.location == location && a.axis == axis && (a.weighting == Weighting::Wf) == (weighting == Weighting::Wf)
-        }) {
-            return Err(f.error(
-                &key,
-                format!("{} {}", location.label(), axis.label()),
-                "each location and axis may appear once (and once more with Wf, for motion sickness)",
-            ));
-        }
-        axes.push(ComfortAxisSpec {
-            output,
-            output_name,
-            location,
-            axis,
-            weighting,
-            k,
-        });
+        None => standard
+            .map(|s| s.k)
+            .map_err(|e| af.error("axis", axis.label(), e.to_string()))?,
+    };
+    // the weighting applies to an acceleration: refuse any other output here, naming the key
+    if let Some(ss) = model.system.state_space() {
+        crate::comfort::weighted_output(ss, output, &weighting).map_err(|e| {
+            let reason = match e {
+                Error::InvalidParameter { reason, value, .. } => format!("its unit is {value}: {reason}"),
+                other => other.to_string(),
+            };
+            af.error("output", &output_name, reason)
+        })?;
+    } else {
+        return Err(af.error("output", &output_name, "the model has no state-space form to weight"));
     }
-    Ok(ComfortSpec {
-        purpose,
-        exposure_s,
-        limits,
-        axes,
+    super::analysis_keys::COMFORT_AXIS.finish(af, &[])?;
+    Ok(ComfortAxisSpec {
+        output,
+        output_name,
+        location,
+        axis,
+        weighting,
+        k,
     })
 }
 

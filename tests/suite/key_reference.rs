@@ -583,7 +583,7 @@ fn key_tables_are_the_page() {
         text = with_key_tables(&text);
         std::fs::write(&path, &text).unwrap();
     }
-    assert!(stochvib::scenario::key_table::KEY_TABLES.len() >= 11);
+    assert!(stochvib::scenario::key_table::KEY_TABLES.len() >= 57);
     for table in stochvib::scenario::key_table::KEY_TABLES {
         let (_, written) = section(&text, &table.marker());
         assert_eq!(

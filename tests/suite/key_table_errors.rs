@@ -1,7 +1,9 @@
 //! Every error of the `[[input]]` reader and of the `kind = "mdof"` reader, pinned to the letter: the key it
 //! names and its reason. The expected texts are the messages of the readers as they were before they were
 //! split around their key tables (`src/scenario/inputs.rs`, `src/scenario/generic/mdof.rs` at the commit
-//! that introduced the tables), so a change of any message fails here.
+//! that introduced the tables), so a change of any message fails here. The unknown-key errors of the other
+//! sections whose readers take their check from a key table are pinned the same way
+//! ([`every_section_unknown_key_is_the_same`]).
 
 use crate::common;
 use stochvib::Error;
@@ -45,7 +47,7 @@ fn one_mass() -> String {
 fn error_of(text: &str) -> (String, String) {
     let root = common::root();
     let path = root.join("data").join("key-table-errors.toml");
-    match stochvib::scenario::parse_scenario(text, &path, &root.join("spectra")) {
+    match stochvib::scenario::parse_document(text, &path, &root.join("spectra")) {
         Err(Error::File { key, reason, .. }) => (key, reason),
         Err(e) => panic!("not a file error: {e}\n{text}"),
         Ok(_) => panic!("accepted:\n{text}"),
@@ -349,4 +351,185 @@ fn every_mdof_error_is_the_same() {
         ),
     ];
     check(&cases);
+}
+
+/// A transfer function 1/(4s² + 0.4s + 1) with the output `y` in m.
+const TRANSFER: &str = r#"[model]
+kind = "transfer-function"
+numerator = [1.0]
+denominator = [4.0, 0.4, 1.0]
+output = { name = "y", unit = "m" }
+"#;
+
+/// [`TRANSFER`] on a road at 10 m/s.
+fn on_road() -> String {
+    TRANSFER.to_string()
+        + r#"[input]
+spectrum = { kind = "exponential", domain = "spatial", variance = "1 cm^2", alpha = "0.2 1/m" }
+speed = "10 m/s"
+"#
+}
+
+/// The operator seat of Sukharev (2012) 7.6 under its cab-floor process (outputs `seat_acc`, `travel`).
+const SEAT: &str = r#"[model]
+kind = "operator-seat"
+operator_mass = "80 kg"
+seat_mass = "26 kg"
+stiffness = "6500 N/m"
+damping_rate = "4.22 1/s"
+[input]
+spectrum = { kind = "rational", domain = "temporal", unit = "m", numerator = [9.978705857784458], denominator = [124596039.48735943, -448861.0914846832, 404.2589962686201, 1.0] }
+"#;
+
+/// The `[model]` table of a data file with the unknown key `extra = 1`.
+fn model_with_extra(file: &str) -> String {
+    let text = std::fs::read_to_string(common::root().join("data").join(file)).unwrap();
+    text.replacen("[model]\n", "[model]\nextra = 1\n", 1)
+}
+
+/// An unknown key `extra` in every section whose reader takes its unknown-key check from a key table: the
+/// key named and the keys listed. The lists are the keys each reader asked for, alphabetically, as the
+/// readers' unknown-key check (`Fields::finish`) wrote them before the tables (the sections of
+/// `src/scenario/scenario_file.rs`, `verdict_spec.rs`, `transient_keys.rs`, `input_filters.rs`,
+/// `inputs.rs`, `generic/io.rs` and `generic/mdof.rs` at the commit that introduced the tables).
+#[test]
+fn every_section_unknown_key_is_the_same() {
+    let unknown = |known: &str| format!("unknown key (known keys here: {known})");
+    let white = format!("{TRANSFER}[input]\nspectrum = \"white-1-80hz\"\n");
+    let comfort = |section: &str, axis: &str| {
+        format!(
+            "{SEAT}[analysis.comfort]\nexposure = \"6 h\"\n{section}[[analysis.comfort.axis]]\noutput = \
+             \"seat_acc\"\nlocation = \"seat-surface\"\naxis = \"z\"\n{axis}"
+        )
+    };
+    let road = |road: &str, coherence: &str| {
+        format!(
+            "{}[[input]]\nroad = {{ spectrum = \"iso8608-c\", track_width = \"1.5 m\", {road}coherence = {{ kind = \
+             \"dodds-robson\"{coherence} }} }}\nspeed = \"20 m/s\"\ntracks = [\"left\", \"right\"]\n",
+            body_model().replace("forces = [[1]]\n", "")
+        )
+    };
+    let cases: Vec<(String, &str, String)> = vec![
+        (
+            format!("extra = 1\n{white}"),
+            "extra",
+            unknown("analysis, input, model, source, title, transient"),
+        ),
+        (
+            format!("{white}extra = 1\n"),
+            "input.extra",
+            unknown("band, envelope, enveloping, kurtosis, mean, spectrum, speed, speed_profile"),
+        ),
+        (
+            on_road() + "enveloping = { kind = \"moving-average\", length = \"0.25 m\", extra = 1 }\n",
+            "input.enveloping.extra",
+            unknown("kind, length"),
+        ),
+        (
+            on_road()
+                + "[input.speed_profile]\ntimes = [\"0 s\", \"4 s\"]\nspeeds = [\"10 m/s\", \"0 m/s\"]\nextra = 1\n",
+            "input.speed_profile.extra",
+            unknown("acceleration, from, speeds, start, times, to"),
+        ),
+        (
+            on_road()
+                + "[input.speed_profile]\nfrom = \"0 m/s\"\nto = \"10 m/s\"\nacceleration = \"2 m/s^2\"\nextra = 1\n",
+            "input.speed_profile.extra",
+            unknown("acceleration, from, speeds, start, times, to"),
+        ),
+        (
+            on_road() + "[input.envelope]\ntimes = [\"0 s\", \"1 s\"]\nintensity = [0.0, 1.0]\nextra = 1\n",
+            "input.envelope.extra",
+            unknown("amplitude, intensity, times"),
+        ),
+        (
+            format!("{white}[analysis]\nextra = 1\n"),
+            "analysis.extra",
+            unknown("band, bands, comfort, duration, fatigue, levels, mission, outputs, quadrature, seat_factor"),
+        ),
+        (
+            format!("{white}[analysis.quadrature]\nrel_tol = 1e-8\nextra = 1\n"),
+            "analysis.quadrature.extra",
+            unknown("max_half_periods, max_subintervals, rel_tol"),
+        ),
+        (
+            comfort("extra = 1\n", ""),
+            "analysis.comfort.extra",
+            unknown("a8_action, a8_limit, axis, exposure, purpose, vdv_action, vdv_limit"),
+        ),
+        (
+            comfort("", "extra = 1\n"),
+            "analysis.comfort.axis[0].extra",
+            unknown("axis, k, location, output, weighting"),
+        ),
+        (
+            format!(
+                "{SEAT}[analysis.fatigue]\noutput = \"travel\"\nstress_factor = 1.29313e10\nk = 5\n\
+                 reference_amplitude = \"100 MPa\"\nreference_cycles = 2e6\nextra = 1\n"
+            ),
+            "analysis.fatigue.extra",
+            unknown(
+                "bins, c, design_distance, design_life, endurance_limit, k, methods, output, reference_amplitude, \
+                 reference_cycles, stress_factor",
+            ),
+        ),
+        (
+            format!("{SEAT}[analysis.seat_factor]\nseat = \"seat_acc\"\nfloor = \"base 0\"\nextra = 1\n"),
+            "analysis.seat_factor.extra",
+            unknown("floor, seat, weighting"),
+        ),
+        (
+            on_road() + "[transient]\nduration = \"5 s\"\n[analysis.mission]\nlevels = { y = [\"1 cm\"] }\nextra = 1\n",
+            "analysis.mission.extra",
+            unknown("duration, levels"),
+        ),
+        (
+            on_road() + "[transient]\nduration = \"5 s\"\nextra = 1\n",
+            "transient.extra",
+            unknown("duration, max_error, rel_tol, schedule, start, state, step"),
+        ),
+        (
+            on_road()
+                + "[transient]\nduration = \"5 s\"\n[[transient.schedule]]\nkey = \"model.denominator\"\n\
+                   times = [\"0 s\", \"1 s\"]\nvalues = [1.0, 2.0]\nextra = 1\n",
+            "transient.schedule[0].extra",
+            unknown("key, times, values"),
+        ),
+        (
+            model_with_extra("quarter-car-model.toml"),
+            "model.extra",
+            unknown(
+                "kind, nonlinear, sprung_mass, suspension_damping, suspension_stiffness, tyre_damping, \
+                 tyre_stiffness, unsprung_mass",
+            ),
+        ),
+        (
+            model_with_extra("mine-hoist.toml"),
+            "model.extra",
+            unknown(
+                "chord_angle, chord_length, drum_inertia, drum_radius, end_mass, kind, lift_height, \
+                 max_hanging_length, nonlinear, rope_area_factor, rope_diameter, rope_mass_factor, \
+                 rope_mass_per_metre, sheave_inertia, sheave_radius, steel_density, young_modulus",
+            ),
+        ),
+        (
+            white.replace("unit = \"m\" }", "unit = \"m\", extra = 1 }"),
+            "model.output.extra",
+            unknown("name, unit"),
+        ),
+        (
+            road("", ", extra = 1"),
+            "input[0].road.coherence.extra",
+            unknown("kind, waviness"),
+        ),
+        (
+            road("extra = 1, ", ""),
+            "input[0].road.extra",
+            unknown("coherence, spectrum, track_width"),
+        ),
+    ];
+    for (text, key, reason) in &cases {
+        let (k, r) = error_of(text);
+        assert_eq!((k.as_str(), r.as_str()), (*key, reason.as_str()), "\n{text}");
+    }
 }

@@ -18,7 +18,7 @@ pub fn output_info(f: &Fields, key: &str) -> Result<OutputInfo> {
         .ok_or_else(|| f.error(key, v, "expected { name = \"..\", unit = \"..\" }"))?;
     let of = Fields::new(f.file(), &f.path(key), t);
     let info = OutputInfo::new(of.string("name")?, of.opt_string("unit")?.unwrap_or("m"));
-    of.finish()?;
+    crate::scenario::model_keys::TRANSFER_FUNCTION_OUTPUT.finish(&of, &[])?;
     Ok(info)
 }
 
@@ -39,7 +39,7 @@ pub fn output_list(f: &Fields, key: &str) -> Result<Vec<OutputInfo>> {
                 .ok_or_else(|| f.error(&format!("{key}[{i}]"), x, "expected { name, unit }"))?;
             let of = Fields::new(f.file(), &f.path(&format!("{key}[{i}]")), t);
             let info = OutputInfo::new(of.string("name")?, of.opt_string("unit")?.unwrap_or("m"));
-            of.finish()?;
+            crate::scenario::model_keys::STATE_SPACE_OUTPUTS.finish(&of, &[])?;
             Ok(info)
         })
         .collect()

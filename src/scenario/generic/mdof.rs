@@ -95,7 +95,7 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
         let of = Fields::new(f.file(), &f.path(&key), t);
         let name = of.string("name")?.to_string();
         let quantity = output_quantity(&of, n, n_base, &names)?;
-        of.finish()?;
+        super::mdof_keys::OUTPUT.finish(&of, &[])?;
         model = model.with_output(&name, quantity).map_err(|e| f.wrap("output", e))?;
     }
     if n_base + forces.len() == 0 {
@@ -181,7 +181,7 @@ fn coordinate(cf: &Fields, matrix_form: bool) -> Result<(String, String, Option<
         }
         mass = Some(m);
     }
-    cf.finish()?;
+    super::mdof_keys::COORDINATE.finish(cf, &[])?;
     Ok((name, unit, mass))
 }
 
@@ -242,7 +242,7 @@ fn element(ef: &Fields, coords: &[(String, String)], n_base: usize) -> Result<El
             return Err(ef.error(k, ef.get(k).map_or("?".into(), |x| x.to_string()), "must be >= 0"));
         }
     }
-    ef.finish()?;
+    super::mdof_keys::ELEMENT.finish(ef, &[])?;
     Ok(Element {
         name,
         point: p,
