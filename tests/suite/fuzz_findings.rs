@@ -610,7 +610,7 @@ fn a_refused_shard_run_creates_nothing_and_spectrum_names_its_frequency_flag() {
     let err = common::cli_fails(1, &args, &root());
     assert!(err.contains("--duration") && err.contains("NaN"), "{err}");
     assert!(common::listing(&dir).is_empty(), "{:?}", common::listing(&dir));
-    for (flag, value) in [("--frequency", "inf"), ("--omega", "-1")] {
+    for (flag, value) in [("--frequency", "inf"), ("--omega", "NaN")] {
         let err = common::cli_fails(1, &["spectrum", "book-8-45", flag, value], &root());
         assert!(err.contains(&format!("{flag} {value}")), "{err}");
     }
