@@ -195,7 +195,32 @@ impl Effort {
         if let Some(v) = self.max_half_periods {
             e.max_half_periods = v;
         }
-        e.validate()
+        // a value of a flag is named by the flag (one of the file's [analysis.quadrature] is read and checked
+        // with the file)
+        let given = [
+            ("rel_tol", "--rel-tol", self.rel_tol.is_some()),
+            (
+                "max_subintervals",
+                "--max-subintervals",
+                self.max_subintervals.is_some(),
+            ),
+            (
+                "max_half_periods",
+                "--max-half-periods",
+                self.max_half_periods.is_some(),
+            ),
+        ];
+        e.validate().map_err(|err| match err {
+            stochvib::Error::InvalidParameter { name, value, reason } => {
+                let flag = given.iter().find(|g| g.0 == name && g.2).map(|g| g.1.to_string());
+                stochvib::Error::InvalidParameter {
+                    name: flag.unwrap_or(name),
+                    value,
+                    reason,
+                }
+            }
+            other => other,
+        })
     }
 }
 

@@ -610,9 +610,24 @@ fn a_refused_shard_run_creates_nothing_and_spectrum_names_its_frequency_flag() {
     let err = common::cli_fails(1, &args, &root());
     assert!(err.contains("--duration") && err.contains("NaN"), "{err}");
     assert!(common::listing(&dir).is_empty(), "{:?}", common::listing(&dir));
-    for (flag, value) in [("--frequency", "inf"), ("--omega", "-1")] {
+    for (flag, value) in [("--frequency", "inf"), ("--omega", "NaN")] {
         let err = common::cli_fails(1, &["spectrum", "book-8-45", flag, value], &root());
         assert!(err.contains(&format!("{flag} {value}")), "{err}");
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Found by the CLI-command family (seed 2838, case 7104): `analyze --max-subintervals 0` was refused as
+/// "invalid parameter `max_subintervals`", the library's field: the flags of the quadrature effort are named
+/// as the flags (`--max-subintervals`, `--rel-tol`, `--max-half-periods`) with the value typed.
+#[test]
+fn the_quadrature_effort_flags_are_named_as_flags() {
+    for (flag, value) in [
+        ("--max-subintervals", "0"),
+        ("--rel-tol", "NaN"),
+        ("--max-half-periods", "0"),
+    ] {
+        let err = common::cli_fails(1, &["analyze", "data/conveyor-idler.toml", flag, value], &root());
+        assert!(err.contains(&format!("`{flag}` = {value}")), "{err}");
+    }
 }
