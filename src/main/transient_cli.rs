@@ -86,6 +86,10 @@ pub fn transient(
     if let Some(dir) = &a.plots {
         stochvib::plot::chart::check_picture_dir(dir)?; // before any work
     }
+    if let (Some(_), Some(out), None) = (a.monte_carlo, &a.output, &choice) {
+        // the run file's target before the exact route and its pictures (the writer checks it again)
+        stochvib::io_rules::check_output(out, &stochvib::store::RUN_FILE, &[&a.scenario], a.overwrite)?;
+    }
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;
     let exact = has_exact_route(&sc)?;
     let answers = if exact {

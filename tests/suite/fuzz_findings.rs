@@ -631,3 +631,35 @@ fn the_quadrature_effort_flags_are_named_as_flags() {
         assert!(err.contains(&format!("`{flag}` = {value}")), "{err}");
     }
 }
+
+/// Left open by the CLI-command family: `transient --monte-carlo -o TARGET` checked its target only after
+/// the exact route, so a refused target cost the route's work and left its pictures behind. The target is
+/// now checked with the picture directory, before any work: the scenario itself as `-o` is refused and
+/// no picture is written.
+#[test]
+fn a_transient_run_checks_its_target_before_the_exact_route() {
+    let dir = scratch("transient-target-first");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scenario = dir.join("car.toml");
+    std::fs::copy(root().join("data/quarter-car-accelerating.toml"), &scenario).unwrap();
+    let before = std::fs::read(&scenario).unwrap();
+    let pictures = dir.join("pictures");
+    let p = |x: &Path| x.to_str().unwrap().to_string();
+    let args = [
+        "transient",
+        &p(&scenario),
+        "--monte-carlo",
+        "4",
+        "-o",
+        &p(&scenario),
+        "--overwrite",
+        "--plots",
+        &p(&pictures),
+    ];
+    let err = common::cli_fails(1, &args, &root());
+    assert!(err.contains("car.toml"), "{err}");
+    assert_eq!(std::fs::read(&scenario).unwrap(), before, "the scenario is untouched");
+    let drawn = std::fs::read_dir(&pictures).map(|d| d.count()).unwrap_or(0);
+    assert_eq!(drawn, 0, "no picture before the target was checked");
+    let _ = std::fs::remove_dir_all(&dir);
+}
