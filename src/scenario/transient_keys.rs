@@ -30,7 +30,7 @@
 
 use crate::error::Result;
 use crate::fields::Fields;
-use crate::transient::{Envelope, PiecewiseLinear, SpeedProfile, Start};
+use crate::transient::{Envelope, PiecewiseLinear, RopeFormula, SpeedProfile, Start};
 use crate::units::Dim;
 
 /// The non-stationary part of a scenario (present when any of its keys is).
@@ -60,8 +60,10 @@ pub struct TransientSpec {
 pub struct ScheduledKey {
     /// The key inside `[model]` (`element.0.stiffness` for `model.element.0.stiffness`).
     pub key: String,
-    /// The values (SI) over time.
+    /// The values (SI) over time; with `rope`, the rope length l(t) in m.
     pub profile: PiecewiseLinear,
+    /// `rope = { formula = ..., ... }`: the key's value is this function of the rope length l(t).
+    pub rope: Option<RopeFormula>,
 }
 
 /// `[analysis.mission]`.
@@ -321,7 +323,16 @@ fn schedules(f: &Fields) -> Result<Vec<ScheduledKey>> {
             return Err(sf.error("key", key, "scheduled twice"));
         }
         let times = quantities(&sf, "times", Dim::TIME)?;
-        let values = schedule_values(&sf)?;
+        let rope = rope_formula(&sf)?;
+        let values = match rope {
+            Some(_) => quantities(&sf, "values", Dim::LENGTH)?,
+            None => schedule_values(&sf)?,
+        };
+        if rope.is_some()
+            && let Some((i, l)) = values.iter().enumerate().find(|(_, l)| !(l.is_finite() && **l > 0.0))
+        {
+            return Err(sf.error(&format!("values[{i}]"), l, "a rope length is finite and > 0 m"));
+        }
         if values.len() != times.len() {
             return Err(sf.error(
                 "values",
@@ -338,9 +349,58 @@ fn schedules(f: &Fields) -> Result<Vec<ScheduledKey>> {
         out.push(ScheduledKey {
             key: inner.to_string(),
             profile,
+            rope,
         });
     }
     Ok(out)
+}
+
+/// `rope = { formula = "stiffness", axial_rigidity = ... }` (EF/l), `{ formula = "rayleigh-mass" | "lumped-mass",
+/// end_mass = ..., mass_per_metre = ... }` (m + γl/3, m + γl/4) of a schedule table, if any.
+fn rope_formula(sf: &Fields) -> Result<Option<RopeFormula>> {
+    if sf.get("rope").is_none() {
+        return Ok(None);
+    }
+    let rf = sf.sub("rope")?;
+    let positive = |key: &str, dim: Dim| -> Result<f64> {
+        let v = rf.quantity(key, dim)?;
+        if !(v.is_finite() && v > 0.0) {
+            return Err(rf.error(key, v, "must be finite and > 0"));
+        }
+        Ok(v)
+    };
+    let formula = rf.string("formula")?;
+    let f = match formula {
+        "stiffness" => RopeFormula::Stiffness {
+            axial_rigidity: positive("axial_rigidity", Dim::FORCE)?,
+        },
+        "rayleigh-mass" | "lumped-mass" => {
+            let (end_mass, mass_per_metre) = (
+                positive("end_mass", Dim::MASS)?,
+                positive("mass_per_metre", Dim::new(-1, 1, 0))?,
+            );
+            if formula == "rayleigh-mass" {
+                RopeFormula::RayleighMass {
+                    end_mass,
+                    mass_per_metre,
+                }
+            } else {
+                RopeFormula::LumpedMass {
+                    end_mass,
+                    mass_per_metre,
+                }
+            }
+        }
+        other => {
+            return Err(rf.error(
+                "formula",
+                other,
+                "one of \"stiffness\" (EF/l), \"rayleigh-mass\" (m + γl/3), \"lumped-mass\" (m + γl/4)",
+            ));
+        }
+    };
+    rf.finish()?;
+    Ok(Some(f))
 }
 
 /// The values of a schedule in SI: numbers, or quantities of one dimension (that of the first value).

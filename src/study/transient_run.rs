@@ -163,6 +163,12 @@ impl Rebuild {
     fn model_at(&self, values: &[f64]) -> Result<StateSpace> {
         let mut t = self.table.clone();
         for (k, v) in self.keys.iter().zip(values) {
+            let v = &match &k.rope {
+                Some(r) => r
+                    .value(*v)
+                    .map_err(|e| file_error(&self.path, &format!("model.{}", k.key), v, &e.to_string()))?,
+                None => *v,
+            };
             super::sweep::set_key(&mut t, &k.key, toml::Value::Float(*v))
                 .map_err(|why| file_error(&self.path, &format!("model.{}", k.key), v, &why))?;
         }

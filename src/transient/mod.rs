@@ -38,6 +38,7 @@ pub mod monte_carlo;
 mod profile;
 pub mod road_grid;
 pub mod road_grid_run;
+pub mod rope;
 mod schedule;
 pub mod series;
 mod speed_profile;
@@ -53,6 +54,7 @@ pub use monte_carlo::{merge_transient, run_transient, TransientRunInput, Transie
 pub use profile::PiecewiseLinear;
 pub use road_grid::{road_grid_monte_carlo, RoadGridOptions, RoadGridStatistics};
 pub use road_grid_run::{run_road_grid, RoadGridRunInput};
+pub use rope::RopeFormula;
 pub use schedule::{check_stability, FamilyBuilder, FixedSystem, ModelAt, Schedule, ScheduledSystem, SystemFamily};
 pub use series::{solve, Crossings, OutputSeries, TransientSolution};
 pub use speed_profile::SpeedProfile;

@@ -4,7 +4,7 @@
 //! winding hoist against closed forms and Monte Carlo, the mission's crossings against Rice's formula, and
 //! bad input refused with file, key, value and reason.
 
-use crate::common::tolerance::{ADAPTIVE_ROUTE, ERROR_ESTIMATE_FROM_REST, PRINTED_5_DIGITS, QUADRATURE};
+use crate::common::tolerance::{ADAPTIVE_ROUTE, ERROR_ESTIMATE_FROM_REST, QUADRATURE, SMALL_DECOMPOSITION};
 use crate::common::{cli_within, rel, root, scratch_dir};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -203,9 +203,12 @@ fn quarter_car_accelerating_catalogue_scenario() {
     assert_eq!(a.mission.len(), 3);
 }
 
-/// The catalogue's winding hoist (data/hoist-winding.toml): at each tabulated time the frozen system is
-/// the skip on a rope of stiffness EF/l (EF = E ā d_k² = 2.06e11 · 0.315 · 0.0465² N) and mass
-/// m + γl/3, l = 700 m − 10 m/s · t: ω = √(EF/(l(m + γl/3))), the schedule's values printed to 5 digits.
+/// The catalogue's winding hoist (data/hoist-winding.toml): its schedules give the rope length l(t) =
+/// 700 m − 10 m/s · t and the rope formulas `stiffness` and `rayleigh-mass`, so at every time the frozen
+/// system is the skip on a rope of stiffness EF/l (EF = E ā d_k² = 2.06e11 · 0.315 · 0.0465² N) and mass
+/// m + γl/3: ω = √(EF/(l(m + γl/3))), derived here from the source's E, ā, d_k, γ and m (not from the file's
+/// EF), and equal to the modulus of the frozen 2 × 2 state matrix's eigenvalues (their product is k/m) to an
+/// eigensolver's rounding, also between the schedule's two times (t = 20, 45, 57.5 s).
 /// Started from rest under an envelope that starts at 0, the exact route's error estimate (relative to the
 /// largest variance of each state over the window) stays below [`ERROR_ESTIMATE_FROM_REST`].
 /// Monte Carlo (400 realizations, seed 11) of the same transient agrees with the exact σ(t) of the rope
@@ -221,11 +224,8 @@ fn hoist_winding_schedule_and_monte_carlo() {
     for t in [0.0, 20.0, 45.0, 57.5, 62.5] {
         let l = 700.0 - 10.0 * t;
         let omega = (ef / (l * (10000.0 + 8.4 * l / 3.0))).sqrt();
-        let f = setup.sys.frozen(t).unwrap().f;
-        let n = f.nrows();
-        let a = f.view((n - 2, n - 2), (2, 2)).into_owned();
-        let w: f64 = a.complex_eigenvalues().iter().map(|l| l.norm()).fold(0.0, f64::max);
-        assert!(rel(w, omega) < PRINTED_5_DIGITS, "t = {t}: {w} vs {omega}");
+        let w = skip_frequency(&setup, t);
+        assert!(rel(w, omega) < SMALL_DECOMPOSITION, "t = {t}: {w} vs {omega}");
     }
     let sol = exact_solution(&sc, &setup).unwrap();
     // from rest under an envelope that starts at 0: the estimate relative to the window's largest variances
@@ -256,6 +256,14 @@ fn hoist_winding_schedule_and_monte_carlo() {
         assert_eq!(c.rows.len(), 501);
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The modulus of the eigenvalues of the skip's 2 × 2 block of the frozen state matrix at t (√(k/m)).
+fn skip_frequency(setup: &stochvib::study::transient_run::TransientSetup, t: f64) -> f64 {
+    let f = setup.sys.frozen(t).unwrap().f;
+    let n = f.nrows();
+    let a = f.view((n - 2, n - 2), (2, 2)).into_owned();
+    a.complex_eigenvalues().iter().map(|l| l.norm()).fold(0.0, f64::max)
 }
 
 fn file_error(r: stochvib::Result<impl std::fmt::Debug>) -> (String, String, String) {
@@ -434,4 +442,28 @@ step = "0.5 s"
     let e = transient_analysis(&scenario(&stated).unwrap()).unwrap_err();
     let (key, _, _) = file_error(Err::<(), _>(e));
     assert_eq!(key, "transient.state");
+}
+
+/// The rope formula `lumped-mass` (Dvornikov et al. 2014, eq. (14): m + γl/4) on the catalogue hoist's
+/// winding: the frozen frequency equals √(EF/(l(m + γl/4))) derived here from E, ā, d_k, γ and m; a rope
+/// length that is not > 0 and an unknown formula are refused naming the key.
+#[test]
+fn rope_formulas_of_a_schedule() {
+    let text = std::fs::read_to_string(root().join("data/hoist-winding.toml")).unwrap();
+    let sc = scenario(&text.replace("rayleigh-mass", "lumped-mass")).unwrap();
+    let setup = transient_setup(&sc).unwrap();
+    let ef = 2.06e11 * 0.315 * 0.0465f64.powi(2);
+    for t in [0.0, 31.25, 62.5] {
+        let l = 700.0 - 10.0 * t;
+        let omega = (ef / (l * (10000.0 + 8.4 * l / 4.0))).sqrt();
+        let w = skip_frequency(&setup, t);
+        assert!(rel(w, omega) < SMALL_DECOMPOSITION, "t = {t}: {w} vs {omega}");
+    }
+    let negative = text.replacen(r#"values = ["700 m", "75 m"]"#, r#"values = ["700 m", "-5 m"]"#, 1);
+    let (key, _, reason) = file_error(scenario(&negative));
+    assert!(key.ends_with("values[1]"), "{key}");
+    assert!(reason.contains("rope length"), "{reason}");
+    let (key, value, _) = file_error(scenario(&text.replace("rayleigh-mass", "cubic")));
+    assert!(key.ends_with("rope.formula"), "{key}");
+    assert_eq!(value, "cubic");
 }
