@@ -160,4 +160,5 @@ pub const KEY_TABLES: &[&KeyTable] = &[
     &super::analysis_keys::MISSION,
     &super::transient_key_table::TRANSIENT,
     &super::transient_key_table::SCHEDULE,
+    &super::transient_key_table::ROPE,
 ];

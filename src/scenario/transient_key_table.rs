@@ -39,9 +39,33 @@ pub const SCHEDULE: KeyTable = KeyTable {
         ),
         key(
             "values",
-            "array, one per time, of numbers (SI) or quantities of one dimension",
+            "array, one per time, of numbers (SI) or quantities of one dimension; with `rope`, rope lengths",
             "required",
-            r#"as the key takes them; the model's reader checks each value; a value at which the system is unstable is refused naming the time ("the system is unstable at t = … s")"#,
+            r#"as the key takes them; the model's reader checks each value; a value at which the system is unstable is refused naming the time ("the system is unstable at t = … s"); with `rope`, lengths > 0 ("a rope length is finite and > 0 m"): the winding schedule l(t), linear between its times"#,
         ),
+        key(
+            "rope",
+            "table `{ formula = …, … }`",
+            "none",
+            r#"the key's value is a function of the rope length l(t) given by `values` (below; [transients.md](transients.md), "Time-varying systems")"#,
+        ),
+    ],
+};
+
+/// `rope = { … }` of a schedule: the scheduled key as a function of the rope length.
+pub const ROPE: KeyTable = KeyTable {
+    file: "scenario",
+    prefix: "transient.schedule[].rope",
+    kind: None,
+    keys: &[
+        key(
+            "formula",
+            "string",
+            "required",
+            "`stiffness` (EF/l: Dvornikov, Kondrakhin & Velebnik 2014, eq. (3)), `rayleigh-mass` (m + γl/3: the textbook's reduction of the rope to its end), `lumped-mass` (m + γl/4: the skip's entry of the mass matrix, Dvornikov et al. 2014, eq. (14))",
+        ),
+        key("axial_rigidity", "force", "required by `stiffness`", "> 0: EF = E·ā·d_k² of the rope"),
+        key("end_mass", "mass", "required by the masses", "> 0: m, the skip"),
+        key("mass_per_metre", "mass per length", "required by the masses", "> 0: γ of the rope"),
     ],
 };

@@ -399,7 +399,7 @@ fn rope_formula(sf: &Fields) -> Result<Option<RopeFormula>> {
             ));
         }
     };
-    rf.finish()?;
+    super::transient_key_table::ROPE.finish(&rf, &[])?;
     Ok(Some(f))
 }
 
