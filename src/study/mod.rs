@@ -26,6 +26,7 @@ pub mod run_step;
 mod scenario_run;
 pub mod seat_factor;
 pub mod shard;
+pub mod static_sag;
 pub mod sweep;
 mod sweep_h5;
 pub mod sweep_stream;
