@@ -75,12 +75,18 @@ impl ParetoProblem<'_> {
     /// Both quantities at `x`.
     fn both(&self, x: &[f64]) -> Result<[f64; 2]> {
         let [a, b] = self.quantities.clone();
-        let problem = Problem::new(self.base, self.params.clone(), a, Goal::Minimize, vec![Constraint {
-            quantity: b,
-            relation: Relation::AtMost,
-            limit: 1.0,
-            text: String::new(),
-        }])?;
+        let problem = Problem::new(
+            self.base,
+            self.params.clone(),
+            a,
+            Goal::Minimize,
+            vec![Constraint {
+                quantity: b,
+                relation: Relation::AtMost,
+                limit: 1.0,
+                text: String::new(),
+            }],
+        )?;
         let v = problem.evaluate(x)?;
         Ok([v.objective, v.constrained[0]])
     }
@@ -94,14 +100,22 @@ impl ParetoProblem<'_> {
 /// (the problem is infeasible: its violations); the errors of [`Problem::new`] and [`solve`].
 pub fn pareto(problem: &ParetoProblem, n: usize, opts: &SolveOptions) -> Result<ParetoFront> {
     if n < 2 {
-        return Err(Error::invalid("--points", n, "a front needs at least its two ends: give 2 or more"));
+        return Err(Error::invalid(
+            "--points",
+            n,
+            "a front needs at least its two ends: give 2 or more",
+        ));
     }
     let mut evaluations = 0;
     let mut end = |which: usize| -> Result<ParetoPoint> {
         let s = problem.minimise(which, None, opts)?;
         evaluations += s.evaluations;
         if !s.feasible {
-            return Err(Error::invalid("--constraint", s.violations().join("; "), "no point meets every constraint"));
+            return Err(Error::invalid(
+                "--constraint",
+                s.violations().join("; "),
+                "no point meets every constraint",
+            ));
         }
         let x: Vec<f64> = s.params.iter().map(|p| p.value).collect();
         Ok(ParetoPoint {

@@ -230,7 +230,9 @@ impl H5TableWriter {
         let width = self.verdicts.len();
         let write = || -> hdf5::Result<()> {
             for (k, ds) in self.verdicts.iter().enumerate() {
-                let col: Vec<f64> = (0..n).map(|r| block.verdicts[r * width + k].unwrap_or(f64::NAN)).collect();
+                let col: Vec<f64> = (0..n)
+                    .map(|r| block.verdicts[r * width + k].unwrap_or(f64::NAN))
+                    .collect();
                 ds.write_slice(&col, start..start + n)?;
             }
             Ok(())

@@ -236,7 +236,11 @@ pub fn sweep_identity(sweep: &Sweep, mc: Option<SweepMonteCarlo>) -> SweepIdenti
             .map(|&i| (names[i].name.clone(), names[i].unit.clone()))
             .collect(),
         monte_carlo: mc,
-        verdicts: sweep.verdicts().iter().map(|q| (q.text.clone(), q.unit.clone())).collect(),
+        verdicts: sweep
+            .verdicts()
+            .iter()
+            .map(|q| (q.text.clone(), q.unit.clone()))
+            .collect(),
         toolkit_version: crate::store::layout::TOOLKIT_VERSION.to_string(),
     }
 }
