@@ -84,20 +84,13 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
         ..SolveOptions::default()
     };
     if let Some(second) = &a.pareto {
-        let second = Quantity::parse("--pareto", second, &sc)?;
         let problem = ParetoProblem {
+            quantities: [objective, Quantity::parse("--pareto", second, &sc)?],
             base: &sc,
             params,
-            quantities: [objective, second],
             constraints,
         };
-        let front = pareto(&problem, a.points, &opts)?;
-        if a.json {
-            println!("{}", serde_json::to_string_pretty(&front)?);
-        } else {
-            print!("{}", front.to_csv());
-        }
-        return Ok(());
+        return print_front(&problem, a.points, &opts, a.json);
     }
     let problem = Problem::new(&sc, params, objective, goal, constraints)?;
     let answer = solve(&problem, &opts).map_err(|e| match e {
@@ -115,6 +108,17 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
     }
     if !answer.feasible {
         anyhow::bail!("infeasible: {}", answer.violations().join("; "));
+    }
+    Ok(())
+}
+
+/// `--pareto`: the front of `problem` with `points` points, printed as CSV (JSON with `json`).
+fn print_front(problem: &ParetoProblem, points: usize, opts: &SolveOptions, json: bool) -> anyhow::Result<()> {
+    let front = pareto(problem, points, opts)?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(&front)?);
+    } else {
+        print!("{}", front.to_csv());
     }
     Ok(())
 }

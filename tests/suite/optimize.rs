@@ -438,3 +438,40 @@ fn quarter_car_pareto_front_of_comfort_and_travel_is_the_closed_form_curve() {
         .to_csv()
         .starts_with("point,model.suspension_damping [SI],sigma(body_acc) [m/s^2],sigma(travel) [m],"));
 }
+
+/// `stochvib optimize --pareto`: the front as a CSV table (a header with the units, one row per point, the
+/// first quantity rising and the second falling along it), and `--points 1` refused by its flag.
+#[test]
+fn command_prints_the_pareto_front() {
+    let root = common::root();
+    let mut args = vec![
+        "optimize",
+        "data/quarter-car-model.toml",
+        "--param",
+        "model.suspension_damping=0.2:6 kN*s/m",
+        "--minimize",
+        "sigma(body_acc)",
+        "--pareto",
+        "sigma(travel)",
+        "--points",
+        "3",
+    ];
+    let o = common::cli_within(&args, &root, std::time::Duration::from_secs(300));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{out}\n{}", String::from_utf8_lossy(&o.stderr));
+    let mut lines = out.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "point,model.suspension_damping [SI],sigma(body_acc) [m/s^2],sigma(travel) [m],limit,feasible"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').skip(1).take(3).map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 3, "{out}");
+    for w in rows.windows(2) {
+        assert!(w[0][1] < w[1][1] && w[0][2] > w[1][2], "{out}");
+    }
+    args[9] = "1";
+    let err = common::cli_fails(1, &args, &root);
+    assert!(err.contains("--points"), "{err}");
+}
