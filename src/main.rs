@@ -495,8 +495,9 @@ enum Command {
         json: bool,
         /// One row per point: the swept values as SI numbers (unit in the header) and what `analyze`
         /// reports as verdicts: σ of each output, a_w per comfort axis, a_v, A(8), VDV, damage rate, life
-        /// (CSV; JSON with --json; -o FILE.csv or FILE.json).
-        #[arg(long, conflicts_with_all = ["shard", "monte_carlo"])]
+        /// (CSV; JSON with --json; -o FILE.csv or FILE.json; -o FILE.h5 holds them in its verdicts/ group
+        /// beside the per-output statistics; shard files carry them and their merge keeps them).
+        #[arg(long)]
         verdicts: bool,
         #[command(flatten)]
         spectra: SpectraDir,
@@ -1196,10 +1197,8 @@ fn sweep_command(cmd: Command) -> anyhow::Result<()> {
         .collect::<Result<Vec<_>, _>>()?;
     let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
     let sweep = Sweep::new(&sc, SweepSpec::new(params, mode)?)?;
+    let sweep = if verdicts { sweep.with_verdicts()? } else { sweep };
     eprintln!("sweep: {}", sweep.path());
-    if verdicts {
-        return optimize_cli::sweep_verdicts(&sweep, output.as_deref(), json, overwrite);
-    }
     let mc = match monte_carlo {
         Some(n) => {
             let (dt, duration) = step.resolve(&sc, n)?;

@@ -1,7 +1,7 @@
 //! `stochvib optimize`: the argument struct and its handler, which parse, call the library and print.
 
 use std::path::PathBuf;
-use stochvib::optimize::{solve, Constraint, Goal, Param, Problem, Quantity, SolveOptions};
+use stochvib::optimize::{pareto, solve, Constraint, Goal, Param, ParetoProblem, Problem, Quantity, SolveOptions};
 use stochvib::scenario::load_scenario;
 
 /// `stochvib optimize SCENARIO --param KEY=LOW:HIGH … --minimize QUANTITY [--constraint …]`.
@@ -14,7 +14,7 @@ pub struct OptimizeArgs {
     #[arg(long = "param", value_name = "KEY=LOW:HIGH", required = true)]
     params: Vec<String>,
     /// The quantity to minimise: sigma(OUTPUT), 3sigma(OUTPUT), peak3(OUTPUT), a_w(OUTPUT), a_v, A8, VDV,
-    /// damage_rate, life.
+    /// damage_rate, life, static_sag(ELEMENT).
     #[arg(
         long,
         value_name = "QUANTITY",
@@ -38,6 +38,14 @@ pub struct OptimizeArgs {
     /// centre's) exceeds this many hours.
     #[arg(long, value_name = "H", default_value_t = stochvib::simulate::resources::DEFAULT_MAX_HOURS)]
     max_hours: f64,
+    /// A second quantity, also minimised: print the Pareto front of --minimize and this one (ε-constraint
+    /// method: --minimize with this quantity held below a ladder of limits) as a CSV table instead of one
+    /// optimum.
+    #[arg(long, value_name = "QUANTITY", requires = "minimize")]
+    pareto: Option<String>,
+    /// Points of the Pareto front, its two ends included (with --pareto).
+    #[arg(long, default_value_t = 7, requires = "pareto")]
+    points: usize,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -69,13 +77,22 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
         .iter()
         .map(|c| Constraint::parse(c, &sc))
         .collect::<Result<Vec<_>, _>>()?;
-    let problem = Problem::new(&sc, params, objective, goal, constraints)?;
     let opts = SolveOptions {
         starts: a.starts,
         max_evaluations: a.max_evaluations,
         max_hours: a.max_hours,
         ..SolveOptions::default()
     };
+    if let Some(second) = &a.pareto {
+        let problem = ParetoProblem {
+            quantities: [objective, Quantity::parse("--pareto", second, &sc)?],
+            base: &sc,
+            params,
+            constraints,
+        };
+        return print_front(&problem, a.points, &opts, a.json);
+    }
+    let problem = Problem::new(&sc, params, objective, goal, constraints)?;
     let answer = solve(&problem, &opts).map_err(|e| match e {
         // the search's own limits, named by their flags
         stochvib::Error::InvalidParameter { name, value, reason } if name == "starts" || name == "max hours" => {
@@ -95,34 +112,13 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `stochvib sweep --verdicts`: the table to `output` (CSV or JSON by its extension) or stdout.
-pub fn sweep_verdicts(
-    sweep: &stochvib::study::Sweep,
-    output: Option<&std::path::Path>,
-    json: bool,
-    overwrite: bool,
-) -> anyhow::Result<()> {
-    if let Some(p) = output
-        && !p.extension().is_some_and(|e| e == "csv" || e == "json")
-    {
-        anyhow::bail!("-o {}: a verdict table is written as .csv or .json", p.display());
-    }
-    let t = stochvib::study::sweep_verdicts::sweep_verdicts(sweep)?;
-    let as_json = json || output.is_some_and(|p| p.extension().is_some_and(|e| e == "json"));
-    let text = if as_json { t.to_json()? + "\n" } else { t.to_csv() };
-    match output {
-        None => print!("{text}"),
-        Some(p) => {
-            if p.exists() && !overwrite {
-                anyhow::bail!("{} exists: give --overwrite to replace it", p.display());
-            }
-            let tmp = p.with_extension("tmp");
-            std::fs::write(&tmp, text)?;
-            std::fs::rename(&tmp, p)?;
-        }
-    }
-    for r in t.rows.iter().filter(|r| r.error.is_some()) {
-        eprintln!("point {}: {}", r.point, r.error.as_deref().unwrap_or(""));
+/// `--pareto`: the front of `problem` with `points` points, printed as CSV (JSON with `json`).
+fn print_front(problem: &ParetoProblem, points: usize, opts: &SolveOptions, json: bool) -> anyhow::Result<()> {
+    let front = pareto(problem, points, opts)?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(&front)?);
+    } else {
+        print!("{}", front.to_csv());
     }
     Ok(())
 }

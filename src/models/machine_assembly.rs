@@ -40,7 +40,7 @@ use crate::system::{Attach, Element, Mdof, Quantity};
 use std::sync::Arc;
 
 /// Standard gravity, m/s² (for the static deflections).
-pub const GRAVITY: f64 = 9.80665;
+pub use crate::system::mdof::GRAVITY;
 
 /// A rigid body: mass, pitch and roll inertias about its centre of gravity, and where that is (x, y, z).
 #[derive(Debug, Clone, PartialEq)]
@@ -542,31 +542,7 @@ impl MachineAssembly {
     /// # Errors
     /// [`Error::Numerical`] if the stiffness matrix is singular (a mechanism).
     pub fn static_deflections(&self, m: &Mdof) -> Result<Vec<(String, f64)>> {
-        let coords = self.coordinates();
-        let load = nalgebra::DVector::from_iterator(
-            coords.len(),
-            coords.iter().map(|c| if c.1 == "m" { -GRAVITY * c.2 } else { 0.0 }),
-        );
-        let q = m
-            .stiffness()
-            .clone()
-            .lu()
-            .solve(&load)
-            .ok_or_else(|| Error::Numerical {
-                what: "static deflection".into(),
-                reason: "the stiffness matrix is singular: a part is not held".into(),
-            })?;
-        Ok(m.elements()
-            .iter()
-            .map(|e| {
-                let far = match &e.to {
-                    Attach::Point(h) => h.iter().zip(q.iter()).map(|(w, x)| w * x).sum::<f64>(),
-                    _ => 0.0,
-                };
-                let near: f64 = e.point.iter().zip(q.iter()).map(|(w, x)| w * x).sum();
-                (e.name.clone(), far - near)
-            })
-            .collect())
+        m.static_deflections()
     }
 
     /// The random-road model: [`MachineAssembly::mdof`] with its extra outputs `extra` (name, quantity at a

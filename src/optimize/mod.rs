@@ -7,7 +7,8 @@
 //! * [`Constraint`]: `QUANTITY <= LIMIT` or `>=`;
 //! * [`Problem`]: the scenario with the values substituted at each point (the substituted text is read by
 //!   the scenario reader, so each point is the scenario `stochvib analyze` would read);
-//! * [`solve`]: COBYLA (Powell 1994, the `cobyla` crate's translation of NLopt's) from several starts.
+//! * [`solve`]: COBYLA (Powell 1994, the `cobyla` crate's translation of NLopt's) from several starts;
+//! * [`pareto`]: the Pareto front of two quantities by the ε-constraint method.
 //!
 //! COBYLA is derivative-free: it handles the bounds and every inequality constraint by linear models
 //! built from n + 1 points, so no gradient of a quantity is needed (the analytic Lyapunov sensitivities
@@ -28,10 +29,12 @@
 //! assert!(answer.constraints[0].margin >= -1e-9);
 //! ```
 
+pub mod pareto;
 pub mod problem;
 pub mod quantity;
 pub mod solve;
 
+pub use pareto::{pareto, ParetoFront, ParetoPoint, ParetoProblem};
 pub use problem::{Constraint, Goal, Param, PointValues, Problem, Relation};
 pub use quantity::{Quantity, QuantityKind, QUANTITY_FORMS};
 pub use solve::{solve, ConstraintState, ParamState, Solution, SolveOptions, StartResult};

@@ -30,6 +30,9 @@ pub enum QuantityKind {
     DamageRate,
     /// The shortest life over the spectral fatigue methods, s.
     Life,
+    /// The static compression of a spring element under gravity, m
+    /// ([`static_sag`](crate::study::static_sag::static_sag); the kinds whose lengths are vertical).
+    StaticSag(String),
 }
 
 /// A quantity as the user named it, with the dimension of its values.
@@ -48,7 +51,7 @@ pub struct Quantity {
 
 /// The names [`Quantity::parse`] accepts, for error messages.
 pub const QUANTITY_FORMS: &str = "sigma(OUTPUT), 3sigma(OUTPUT), peak3(OUTPUT), a_w(OUTPUT), a_v, A8, VDV, \
-                                  damage_rate, life";
+                                  damage_rate, life, static_sag(ELEMENT)";
 
 impl Quantity {
     /// Parses `text` and checks it against the scenario: the output exists, or the scenario has the
@@ -79,6 +82,7 @@ impl Quantity {
             ("VDV", None) => QuantityKind::Vdv,
             ("damage_rate", None) => QuantityKind::DamageRate,
             ("life", None) => QuantityKind::Life,
+            ("static_sag", Some(e)) => QuantityKind::StaticSag(e.into()),
             _ => return Err(bad(format!("unknown quantity; the quantities are {QUANTITY_FORMS}"))),
         };
         let unit = unit_of(&kind, sc).map_err(bad)?;
@@ -106,6 +110,7 @@ impl Quantity {
                     ExactEvaluator::new(&sc.excitation).evaluate(sc.model.system.as_ref(), &sc.excitation, &[i])?;
                 self.of_statistics(&st[0])
             }
+            QuantityKind::StaticSag(e) => crate::study::static_sag::static_sag_of(sc, e),
             _ => {
                 let v = verdict_analysis(sc)?;
                 verdict_value(&self.kind, sc, &v).ok_or_else(|| none("the verdict was not computed"))
@@ -118,7 +123,8 @@ impl Quantity {
     /// # Errors
     /// As [`value`](Self::value).
     pub fn values(quantities: &[&Quantity], sc: &Scenario) -> Result<Vec<f64>> {
-        let verdicts = if quantities.iter().any(|q| q.output().is_none()) {
+        let verdict = |q: &Quantity| q.output().is_none() && !matches!(q.kind, QuantityKind::StaticSag(_));
+        let verdicts = if quantities.iter().any(|q| verdict(q)) {
             Some(verdict_analysis(sc)?)
         } else {
             None
@@ -126,7 +132,7 @@ impl Quantity {
         quantities
             .iter()
             .map(|q| match &verdicts {
-                Some(v) if q.output().is_none() => verdict_value(&q.kind, sc, v).ok_or_else(|| Error::Numerical {
+                Some(v) if verdict(q) => verdict_value(&q.kind, sc, v).ok_or_else(|| Error::Numerical {
                     what: q.text.clone(),
                     reason: "the verdict was not computed".into(),
                 }),
@@ -196,6 +202,13 @@ fn unit_of(kind: &QuantityKind, sc: &Scenario) -> std::result::Result<String, St
         QuantityKind::Vdv => comfort().map(|_| "m/s^1.75".into()),
         QuantityKind::DamageRate => fatigue().map(|_| "1/s".into()),
         QuantityKind::Life => fatigue().map(|_| "s".into()),
+        QuantityKind::StaticSag(e) => {
+            let springs = crate::study::static_sag::sag_elements(sc)?;
+            if !springs.contains(e) {
+                return Err(format!("no spring element `{e}` (its springs: {})", springs.join(", ")));
+            }
+            Ok("m".into())
+        }
     }
 }
 

@@ -15,6 +15,13 @@ impl fmt::Display for AnalysisReport {
         writeln!(f, "scenario  {}  ({})", self.title, self.scenario)?;
         writeln!(f, "model     {}", self.model)?;
         writeln!(f, "input     {}", self.input)?;
+        if let Some(sag) = &self.static_sag {
+            let each: Vec<String> = sag
+                .iter()
+                .map(|s| format!("{} {} m", s.element, crate::numbers::sig4(s.deflection_m)))
+                .collect();
+            writeln!(f, "sag       static compression under gravity: {}", each.join(", "))?;
+        }
         for o in &self.outputs {
             let s = &o.statistics;
             writeln!(f)?;

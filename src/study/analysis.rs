@@ -112,6 +112,10 @@ pub struct AnalysisReport {
     /// (`--monte-carlo N` of a scenario with verdicts).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub monte_carlo_verdicts: Option<super::mc_verdicts::McVerdicts>,
+    /// The static compression of every spring under gravity, for the kinds that define it
+    /// ([`crate::study::static_sag`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub static_sag: Option<Vec<crate::study::static_sag::StaticSag>>,
 }
 
 /// Runs every analysis of the scenario.
@@ -175,6 +179,9 @@ pub fn analysis_report(sc: &Scenario) -> Result<AnalysisReport> {
             Some(super::verdict_analysis(sc).map_err(|e| sc.name_model_error(e))?)
         },
         monte_carlo_verdicts: None,
+        static_sag: crate::study::static_sag::static_sag(sc)
+            .transpose()
+            .map_err(|e| sc.name_model_error(e))?,
     })
 }
 

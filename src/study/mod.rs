@@ -35,6 +35,7 @@ mod scenario_run;
 pub mod seat_factor;
 pub mod shard;
 pub mod spectrum_report;
+pub mod static_sag;
 pub mod sweep;
 mod sweep_h5;
 pub mod sweep_stream;

@@ -441,6 +441,8 @@ pub struct Sweep<'a> {
     numeric: Option<NumericPath>,
     path: SweepPath,
     output_names: Vec<String>,
+    /// The verdict columns of every point ([`with_verdicts`](Sweep::with_verdicts)); empty: none.
+    verdicts: Vec<crate::optimize::Quantity>,
 }
 
 impl std::fmt::Debug for Sweep<'_> {
@@ -507,6 +509,7 @@ impl<'a> Sweep<'a> {
                 reason: "a key outside `model.*` and `input.speed` varies".into(),
             },
             output_names,
+            verdicts: Vec::new(),
         };
         if let Some(Excitations::PerSpeed { param, .. }) = &sweep.fast {
             let param = *param;
@@ -665,6 +668,22 @@ impl<'a> Sweep<'a> {
     /// The names of the outputs evaluated at every point (the scenario's `[analysis] outputs`).
     pub fn outputs(&self) -> &[String] {
         &self.output_names
+    }
+
+    /// The study with the verdict columns of `stochvib sweep --verdicts` at every point
+    /// ([`verdict_quantities`](super::sweep_verdicts::verdict_quantities)): every table, shard file and
+    /// merge of it carries them.
+    ///
+    /// # Errors
+    /// None expected (every name is taken from the scenario).
+    pub fn with_verdicts(mut self) -> Result<Self> {
+        self.verdicts = super::sweep_verdicts::verdict_quantities(self.base)?;
+        Ok(self)
+    }
+
+    /// The verdict columns (empty without [`with_verdicts`](Self::with_verdicts)).
+    pub fn verdicts(&self) -> &[crate::optimize::Quantity] {
+        &self.verdicts
     }
 
     /// The scenario's root table with point `point`'s values substituted.

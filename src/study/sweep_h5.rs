@@ -68,6 +68,8 @@ pub(crate) struct H5TableWriter {
     n_keys: usize,
     value_index: hdf5::Dataset,
     outputs: Vec<OutputSets>,
+    /// The verdict columns (`verdicts/<k>`), empty without.
+    verdicts: Vec<hdf5::Dataset>,
     monte_carlo: bool,
     errors: Vec<(usize, String)>,
     /// Rows written so far (blocks come in order).
@@ -94,6 +96,22 @@ fn list_attr(loc: &hdf5::Location, name: &str, values: &[&str]) -> hdf5::Result<
     Ok(())
 }
 
+/// The datasets `verdicts/<k>` of `columns` (quantity, unit) with `n` rows; no group without columns.
+fn verdict_sets(file: &hdf5::File, columns: &[(String, String)], n: usize) -> hdf5::Result<Vec<hdf5::Dataset>> {
+    if columns.is_empty() {
+        return Ok(Vec::new());
+    }
+    let g = file.create_group("verdicts")?;
+    let mut sets = Vec::with_capacity(columns.len());
+    for (k, (quantity, unit)) in columns.iter().enumerate() {
+        let ds = g.new_dataset::<f64>().shape(n).create(k.to_string().as_str())?;
+        str_attr(&ds, "quantity", quantity)?;
+        str_attr(&ds, "unit", unit)?;
+        sets.push(ds);
+    }
+    Ok(sets)
+}
+
 impl H5TableWriter {
     /// Creates the file at `path` (which must not exist) for the points `rows` of the study `identity` of `n_points` points:
     /// attributes, the key values, and every dataset at its final length.
@@ -110,7 +128,7 @@ impl H5TableWriter {
         let n = rows.len();
         let n_keys = identity.params.len();
         let monte_carlo = identity.monte_carlo.is_some();
-        let make = || -> hdf5::Result<(hdf5::Dataset, Vec<OutputSets>)> {
+        let make = || -> hdf5::Result<(hdf5::Dataset, Vec<OutputSets>, Vec<hdf5::Dataset>)> {
             str_attr(&file, "format", "stochvib sweep table")?;
             file.new_attr::<u32>()
                 .shape(())
@@ -171,9 +189,10 @@ impl H5TableWriter {
                     covers,
                 });
             }
-            Ok((value_index, sets))
+            let verdicts = verdict_sets(&file, &identity.verdicts, n)?;
+            Ok((value_index, sets, verdicts))
         };
-        let (value_index, outputs) = make().map_err(h5(path, "creating the table"))?;
+        let (value_index, outputs, verdicts) = make().map_err(h5(path, "creating the table"))?;
         Ok(H5TableWriter {
             path: path.to_path_buf(),
             file,
@@ -181,6 +200,7 @@ impl H5TableWriter {
             n_keys,
             value_index,
             outputs,
+            verdicts,
             monte_carlo,
             errors: Vec::new(),
             written: 0,
@@ -193,16 +213,31 @@ impl H5TableWriter {
     /// A block out of order or of another width (a bug: [`Error::Numerical`]); HDF5 errors.
     pub(crate) fn append(&mut self, block: &SweepResults) -> Result<()> {
         let n = block.points.len();
-        if block.values.len() != n * self.outputs.len() || block.value_index.len() != n * self.n_keys {
+        if block.values.len() != n * self.outputs.len()
+            || block.value_index.len() != n * self.n_keys
+            || block.verdicts.len() != n * self.verdicts.len()
+        {
             return Err(self.out_of_order(&block.points));
         }
+        let start = self.written;
         let n_keys = self.n_keys;
         let idx = |r: usize, out: &mut [u64]| {
             for (o, &i) in out.iter_mut().zip(&block.value_index[r * n_keys..]) {
                 *o = i as u64;
             }
         };
-        self.append_rows(block.points.clone(), idx, |i| block.values[i], &block.errors)
+        self.append_rows(block.points.clone(), idx, |i| block.values[i], &block.errors)?;
+        let width = self.verdicts.len();
+        let write = || -> hdf5::Result<()> {
+            for (k, ds) in self.verdicts.iter().enumerate() {
+                let col: Vec<f64> = (0..n)
+                    .map(|r| block.verdicts[r * width + k].unwrap_or(f64::NAN))
+                    .collect();
+                ds.write_slice(&col, start..start + n)?;
+            }
+            Ok(())
+        };
+        write().map_err(h5(&self.path, "writing the table"))
     }
 
     /// Writes the evaluated rows `stats` of the points `points` of `sweep` ([`Sweep::evaluate_into`], failed
@@ -218,7 +253,11 @@ impl H5TableWriter {
         stats: &[PointStatistics],
         errors: &[(usize, String)],
     ) -> Result<()> {
-        if stats.len() != points.len() * self.outputs.len() || sweep.spec().params.len() != self.n_keys {
+        // (a study with verdict columns is written whole, by `append`)
+        if stats.len() != points.len() * self.outputs.len()
+            || sweep.spec().params.len() != self.n_keys
+            || !self.verdicts.is_empty()
+        {
             return Err(self.out_of_order(&points));
         }
         let (spec, first) = (sweep.spec(), points.start);
@@ -336,7 +375,7 @@ impl H5TableWriter {
         };
         write().map_err(h5(&self.path, "writing the table"))?;
         let path = self.path;
-        drop((self.value_index, self.outputs));
+        drop((self.value_index, self.outputs, self.verdicts));
         self.file.close().map_err(h5(&path, "closing the table"))
     }
 }

@@ -105,25 +105,25 @@ pub fn write_sweep_table(
             source,
         })
     };
-    let t = match format {
-        TableFormat::Json => {
-            let t = compute_sweep(sweep, 0..n, opts.parallel, mc, progress)?;
-            t.write_json(created(std::fs::File::create(&tmp))?)?;
-            StreamedTable {
-                n_points: n,
-                errors: t.errors,
-            }
+    // a JSON table is one document, and a table with verdict columns is evaluated whole
+    let whole = format == TableFormat::Json || !sweep.verdicts().is_empty();
+    let t = if whole {
+        let t = compute_sweep(sweep, 0..n, opts.parallel, mc, progress)?;
+        t.write_format(&tmp, format)?;
+        StreamedTable {
+            n_points: n,
+            errors: t.errors,
         }
-        TableFormat::Csv => stream_sweep_csv(sweep, created(std::fs::File::create(&tmp))?, path, mc, opts, progress)?,
-        TableFormat::Hdf5 => {
-            let w = H5TableWriter::create(&tmp, &sweep_identity(sweep, mc), n, 0..n)?;
-            let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, |w, b| match b {
-                Block::Rows { points, stats, errors } => w.append_evaluated(sweep, points.clone(), stats, errors),
-                Block::Table(t) => w.append(t),
-            })?;
-            w.finish()?;
-            StreamedTable { n_points: n, errors }
-        }
+    } else if format == TableFormat::Csv {
+        stream_sweep_csv(sweep, created(std::fs::File::create(&tmp))?, path, mc, opts, progress)?
+    } else {
+        let w = H5TableWriter::create(&tmp, &sweep_identity(sweep, mc), n, 0..n)?;
+        let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, |w, b| match b {
+            Block::Rows { points, stats, errors } => w.append_evaluated(sweep, points.clone(), stats, errors),
+            Block::Table(t) => w.append(t),
+        })?;
+        w.finish()?;
+        StreamedTable { n_points: n, errors }
     };
     // the temporary file is removed when `staged` is dropped without a commit (any error above)
     staged.commit()?;
@@ -151,6 +151,17 @@ pub fn stream_sweep_csv(
     };
     let n = sweep.spec().n_points();
     let mut out = std::io::BufWriter::with_capacity(1 << 20, out);
+    if !sweep.verdicts().is_empty() {
+        // one row per point: the table is evaluated whole
+        let t = compute_sweep(sweep, 0..n, opts.parallel, mc, progress)?;
+        out.write_all(super::sweep_verdicts::VerdictSweep::of(&t).to_csv().as_bytes())
+            .and_then(|()| out.flush())
+            .map_err(io)?;
+        return Ok(StreamedTable {
+            n_points: n,
+            errors: t.errors,
+        });
+    }
     out.write_all(csv_header(&sweep_identity(sweep, mc)).as_bytes())
         .map_err(io)?;
     let (mut out, errors) = pipeline(sweep, 0..n, mc, opts, progress, out, |w, b| {

@@ -25,6 +25,8 @@
 //! │   ├── method            u8 [n_points]  0 Lyapunov, 1 integral table, 2 quadrature,
 //! │   │                     3 Lyapunov with delays, 255 failed
 //! │   └── mc_sigma, mc_lower, mc_upper  f64 [n_points], mc_covers u8 [n_points]   (with Monte Carlo)
+//! ├── verdicts/<k>          f64 [n_points]  @quantity, @unit: the k-th verdict column of `--verdicts`
+//! │                         (σ, a_w, a_v, A8, VDV, damage_rate, life; SI; NaN where it does not exist)
 //! └── errors/               point u64 [n_failed], message string [n_failed]
 //! ```
 //!
@@ -77,6 +79,10 @@ pub struct SweepIdentity {
     pub outputs: Vec<(String, String)>,
     /// The Monte Carlo batch per point, if any.
     pub monte_carlo: Option<SweepMonteCarlo>,
+    /// The verdict columns (quantity, unit) of `stochvib sweep --verdicts` ([`Sweep::with_verdicts`]);
+    /// empty without.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub verdicts: Vec<(String, String)>,
     /// stochvib version.
     pub toolkit_version: String,
 }
@@ -241,6 +247,10 @@ pub struct SweepResults {
     pub values: Vec<OutputValues>,
     /// Failed points with the reason.
     pub errors: Vec<(usize, String)>,
+    /// The verdict columns' values at every point held (row-major: point, column of
+    /// [`SweepIdentity::verdicts`]; SI; `None` where the value does not exist); empty without verdicts.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub verdicts: Vec<Option<f64>>,
 }
 
 /// The identity of `sweep` with Monte Carlo options `mc`.
@@ -267,6 +277,11 @@ pub fn sweep_identity(sweep: &Sweep, mc: Option<SweepMonteCarlo>) -> SweepIdenti
             .map(|&i| (names[i].name.clone(), names[i].unit.clone()))
             .collect(),
         monte_carlo: mc,
+        verdicts: sweep
+            .verdicts()
+            .iter()
+            .map(|q| (q.text.clone(), q.unit.clone()))
+            .collect(),
         toolkit_version: crate::store::layout::TOOLKIT_VERSION.to_string(),
     }
 }
@@ -291,6 +306,7 @@ pub fn compute_sweep(
     if let Some(m) = mc {
         add_monte_carlo(sweep, &mut t, m, progress);
     }
+    super::sweep_verdicts::add_verdicts(sweep, &mut t, parallel);
     Ok(t)
 }
 
@@ -317,6 +333,7 @@ pub(crate) fn tabulate(
         value_index,
         values: stats.iter().map(OutputValues::from_point).collect(),
         errors,
+        verdicts: Vec::new(),
     }
 }
 
@@ -436,7 +453,10 @@ fn is_sweep_shard(path: &Path) -> bool {
 fn is_sweep_table(path: &Path) -> bool {
     match TableFormat::from_path(path) {
         Ok(TableFormat::Csv) => crate::io_rules::starts_with(path, b"point,"),
-        Ok(TableFormat::Json) => crate::io_rules::starts_with(path, b"{\n  \"identity\""),
+        Ok(TableFormat::Json) => {
+            crate::io_rules::starts_with(path, b"{\n  \"identity\"")
+                || crate::io_rules::starts_with(path, b"{\n  \"columns\"")
+        }
         Ok(TableFormat::Hdf5) => {
             crate::io_rules::starts_with(path, crate::io_rules::HDF5_SIGNATURE)
                 && hdf5::File::open(path)
@@ -496,11 +516,13 @@ pub(crate) fn point_bytes(identity: &SweepIdentity, format: TableFormat) -> u128
         value_index: longest,
         values: vec![value; identity.outputs.len()],
         errors: Vec::new(),
+        verdicts: vec![widest; identity.verdicts.len()],
     };
     let empty = SweepResults {
         points: 0..0,
         value_index: Vec::new(),
         values: Vec::new(),
+        verdicts: Vec::new(),
         ..one.clone()
     };
     let size = |t: &SweepResults| match format {
@@ -512,7 +534,9 @@ pub(crate) fn point_bytes(identity: &SweepIdentity, format: TableFormat) -> u128
             text.len()
         }
     };
-    size(&one).saturating_sub(size(&empty)) as u128
+    // a verdict table's CSV line per point: its columns as wide as numbers can be
+    let verdict_row = (identity.params.len() + identity.verdicts.len() + 2) * 25;
+    (size(&one).saturating_sub(size(&empty)) + if identity.verdicts.is_empty() { 0 } else { verdict_row }) as u128
 }
 
 /// The resource rule for a study's table at `path`: a JSON table, whose rows are built whole in memory
@@ -614,15 +638,20 @@ impl SweepResults {
         self.identity.params.len()
     }
 
-    fn error_of(&self, point: usize) -> Option<&str> {
+    pub(crate) fn error_of(&self, point: usize) -> Option<&str> {
         self.errors
             .binary_search_by_key(&point, |e| e.0)
             .ok()
             .map(|i| self.errors[i].1.as_str())
     }
 
-    /// The table as CSV: a header line, then one line per point and output.
+    /// The table as CSV: a header line, then one line per point and output. A table with verdict columns
+    /// is written as CSV and JSON in the form of `stochvib sweep --verdicts` (one row per point,
+    /// [`VerdictSweep`](super::sweep_verdicts::VerdictSweep)), as HDF5 whole with its `verdicts/` group.
     pub fn to_csv(&self) -> String {
+        if !self.identity.verdicts.is_empty() {
+            return super::sweep_verdicts::VerdictSweep::of(self).to_csv();
+        }
         let mut s = csv_header(&self.identity);
         self.push_csv_rows(&mut s);
         s
@@ -733,7 +762,15 @@ impl SweepResults {
     ///
     /// # Errors
     /// I/O errors of `w`.
-    pub fn write_json(&self, w: impl std::io::Write) -> Result<()> {
+    pub fn write_json(&self, mut w: impl std::io::Write) -> Result<()> {
+        if !self.identity.verdicts.is_empty() {
+            // the one-row-per-point form (see to_csv)
+            let text = super::sweep_verdicts::VerdictSweep::of(self).to_json()?;
+            return w.write_all(text.as_bytes()).map_err(|e| Error::Numerical {
+                what: "writing JSON".into(),
+                reason: e.to_string(),
+            });
+        }
         #[derive(Serialize)]
         struct Row<'a> {
             point: usize,
@@ -829,19 +866,23 @@ impl SweepResults {
     /// As [`write`](Self::write).
     pub fn write_from(&self, path: &Path, overwrite: bool, inputs: &[&Path]) -> Result<()> {
         let (format, staged) = prepare_table(path, overwrite, inputs)?;
-        let tmp = staged.temporary().to_path_buf();
+        self.write_format(staged.temporary(), format)?;
+        staged.commit().map(|_| ())
+    }
+
+    /// Writes the table to the new file `tmp` in `format`.
+    pub(crate) fn write_format(&self, tmp: &Path, format: TableFormat) -> Result<()> {
         let io = |source| Error::Io {
-            path: tmp.clone(),
+            path: tmp.to_path_buf(),
             source,
         };
         match format {
-            TableFormat::Csv => std::fs::write(&tmp, self.to_csv()).map_err(io),
-            TableFormat::Json => std::fs::File::create(&tmp)
+            TableFormat::Csv => std::fs::write(tmp, self.to_csv()).map_err(io),
+            TableFormat::Json => std::fs::File::create(tmp)
                 .map_err(io)
                 .and_then(|file| self.write_json(file)),
-            TableFormat::Hdf5 => self.write_h5(&tmp),
-        }?;
-        staged.commit().map(|_| ())
+            TableFormat::Hdf5 => self.write_h5(tmp),
+        }
     }
 
     fn write_h5(&self, path: &Path) -> Result<()> {
@@ -1047,6 +1088,17 @@ pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<Sw
         same
     });
     let n_points = shards[0].1.results.n_points;
+    let width = identity.verdicts.len();
+    for (f, s) in &shards {
+        if s.results.verdicts.len() != s.results.points.len() * width {
+            problems.push(format!(
+                "{}: holds {} verdict values for {} points of {width} verdict columns",
+                f.display(),
+                s.results.verdicts.len(),
+                s.results.points.len()
+            ));
+        }
+    }
     problems.extend(coverage_problems(&shards, n_points));
     if !problems.is_empty() {
         return Err(fail(format!(
@@ -1062,11 +1114,13 @@ pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<Sw
         value_index: Vec::new(),
         values: Vec::new(),
         errors: Vec::new(),
+        verdicts: Vec::new(),
     };
     for (_, s) in shards {
         all.value_index.extend(s.results.value_index);
         all.values.extend(s.results.values);
         all.errors.extend(s.results.errors);
+        all.verdicts.extend(s.results.verdicts);
     }
     // in point order whatever a shard file holds (the HDF5 writer marks failed rows by a binary search)
     all.errors.sort_by_key(|e| e.0);

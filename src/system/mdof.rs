@@ -736,6 +736,50 @@ pub struct OutputWeights<'a> {
     pub du: &'a [f64],
 }
 
+/// Standard gravity, m/s² (static deflections).
+pub const GRAVITY: f64 = 9.80665;
+
+impl Mdof {
+    /// The static deflection of every element under gravity, (element name, m; > 0 is compression), for a
+    /// model whose every length coordinate is vertical (positive up) and whose angles carry no weight.
+    ///
+    /// # Formula
+    /// K q_s = −g M e (e: 1 on each length coordinate, 0 on each angle: a unit lift of the whole model),
+    /// and an element from its point gᵀq to its far end hᵀq (a base or the ground: 0) is compressed by
+    /// δ = hᵀq_s − gᵀq_s. A mass m on a spring k from the ground: δ = m g/k.
+    ///
+    /// # Errors
+    /// [`Error::Numerical`] when K is singular (a part held by no spring).
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::system::{Drive, Mdof, mdof::GRAVITY};
+    /// let m = Mdof::oscillator(80.0, 8000.0, 400.0, Drive::Base).unwrap();
+    /// let d = m.static_deflections().unwrap();
+    /// assert!((d[0].1 - 80.0 * GRAVITY / 8000.0).abs() < 1e-15);
+    /// ```
+    pub fn static_deflections(&self) -> Result<Vec<(String, f64)>> {
+        let lift = DVector::from_iterator(self.n_coords(), self.coords.iter().map(|c| f64::from(c.1 == "m")));
+        let load = -GRAVITY * (&self.m * lift);
+        let q = self.c.clone().lu().solve(&load).ok_or_else(|| Error::Numerical {
+            what: "static deflection".into(),
+            reason: "the stiffness matrix is singular: a part is not held by a spring".into(),
+        })?;
+        let at = |w: &[f64]| w.iter().zip(q.iter()).map(|(w, x)| w * x).sum::<f64>();
+        Ok(self
+            .elements
+            .iter()
+            .map(|e| {
+                let far = match &e.to {
+                    Attach::Point(h) => at(h),
+                    _ => 0.0,
+                };
+                (e.name.clone(), far - at(&e.point))
+            })
+            .collect())
+    }
+}
+
 /// The parts of a model that nonlinear elements are built on ([`crate::nonlinear`]).
 impl Mdof {
     /// The spring–damper elements (empty for a model given by its matrices).

@@ -309,3 +309,218 @@ fn wheel_loader_scenario_and_bad_keys() {
         assert!(e.contains(key), "{key}: {e}");
     }
 }
+
+/// The analytic σ of a whole machine against Monte Carlo: the symmetric machine with cab and seat (tyre
+/// damping raised to 8 kN s/m per tyre, a bounce damping ratio near 0.1) on the textbook type-1 road
+/// (eq. 8.45, rational: D = 2.25 cm², α = 3.5 1/m) at 5 m/s on two tracks of constant coherence 0.5,
+/// wheelbase 3 m (delays).
+///
+/// * analytic: on a road of two tracks with a coherence the evaluator has no exact route (neither
+///   `lyapunov` nor `lyapunov (delays)`: it does not factor the two tracks' cross-spectral matrix), so the
+///   reference is the Fourier-weighted adaptive quadrature of S_y, whose own error estimate is within
+///   `QUADRATURE` of its value, and the exact routes must say that they do not apply (not a number);
+/// * Monte Carlo: 40 realizations of 200 s at Δt = 0.02 s (spectral route, the only one for delayed
+///   inputs), seed 20261127. The Student-t interval of σ across realizations (each a time average over
+///   200 s, ≫ the slowest mode's correlation time 1/(ζω) ≈ 0.6 s, so near-normal) at confidence
+///   1 − `MC_FALSE_FAILURE` covers the exact σ of the simulated grid process (`sigma_discrete`) for each of
+///   four outputs: false failure ≤ 4 × 2e-7 < 1e-6 (union bound). That grid process's σ lies within
+///   `SPECTRAL_GRID_BIAS` of the analytic one (the road on the record's frequency grid up to Nyquist,
+///   157 rad/s, far above the 2.6–3.4 Hz rigid-body modes and the 1.4 Hz seat).
+#[test]
+fn machine_quadrature_agrees_with_monte_carlo() {
+    use common::tolerance::{MC_FALSE_FAILURE, QUADRATURE, SPECTRAL_GRID_BIAS};
+    use stochvib::response::{Outcome, VarianceMethod};
+    use stochvib::simulate::{run, RunOptions};
+    let text = symmetric("")
+        .replace("tyre_damping = \"2 kN*s/m\"", "tyre_damping = \"8 kN*s/m\"")
+        .replace(
+            "outputs = [\"roll\", \"pitch\", \"seat_acc\", \"seat_y\"]",
+            "outputs = [\"bounce\", \"roll\", \"cab_pitch\", \"seat_travel\"]",
+        )
+        + r#"
+[[input]]
+name = "road"
+road = { spectrum = "book-8-45", track_width = "2.0 m", coherence = { kind = "constant", coherence_amplitude = 0.5 } }
+speed = "5 m/s"
+"#;
+    let sc = scenario(&text);
+    let names = ["bounce", "roll", "cab_pitch", "seat_travel"];
+    let mut exact = Vec::new();
+    for name in names {
+        let st = analyze_output(sc.model.system.as_ref(), &sc.excitation, index(&sc, name)).unwrap();
+        let outcome = |m: VarianceMethod| &st.methods.iter().find(|v| v.method == m).unwrap().outcome;
+        for m in [VarianceMethod::Lyapunov, VarianceMethod::LyapunovDelays] {
+            assert!(
+                matches!(outcome(m), Outcome::NotApplicable { .. }),
+                "{name}: {m:?} {:?}",
+                outcome(m)
+            );
+        }
+        let Outcome::Value { value, error_estimate } = outcome(VarianceMethod::Quadrature) else {
+            panic!("{name}: {st:?}")
+        };
+        assert!(
+            error_estimate.unwrap() <= QUADRATURE * value,
+            "{name}: {value:e} ± {error_estimate:?}"
+        );
+        exact.push(value.sqrt());
+    }
+    let mut opts = RunOptions {
+        realizations: 40,
+        duration_s: 200.0,
+        dt_s: 0.02,
+        seed: 20261127,
+        ..RunOptions::default()
+    };
+    opts.confidence = 1.0 - MC_FALSE_FAILURE;
+    let file = common::scratch_dir("machine-assembly", "mc").join("run.h5");
+    let mc = run(&sc.run_input(), &opts, &file, &|_, _| {}).unwrap();
+    for (name, sigma) in names.iter().zip(exact) {
+        let o = mc.outputs.iter().find(|o| o.output == *name).unwrap();
+        let s = o.get("sigma_discrete").unwrap();
+        let grid = s.analytic.unwrap();
+        assert!(
+            s.covers == Some(true),
+            "{name}: σ_d = {grid:e} not in [{:e}, {:e}]",
+            s.interval.lower,
+            s.interval.upper
+        );
+        assert!(
+            rel(grid, sigma) <= SPECTRAL_GRID_BIAS,
+            "{name}: grid σ {grid:e} vs analytic {sigma:e}"
+        );
+    }
+}
+
+/// The machine of `machine_three_ways_agree_with_monte_carlo` (tyre damping 8 kN s/m, the type-1 road at
+/// 5 m/s on two tracks of coherence 0.5) with `extra` (nonlinear elements) before its input and the seat
+/// damping `seat_damping` N s/m.
+fn machine_on_type1_road(extra: &str, seat_damping: f64) -> Scenario {
+    let text = symmetric("")
+        .replace("tyre_damping = \"2 kN*s/m\"", "tyre_damping = \"8 kN*s/m\"")
+        .replace(
+            "damping = \"450 N*s/m\"",
+            &format!("damping = \"{seat_damping} N*s/m\""),
+        )
+        .replace(
+            "outputs = [\"roll\", \"pitch\", \"seat_acc\", \"seat_y\"]",
+            "outputs = [\"bounce\", \"roll\", \"seat_travel\"]",
+        );
+    let at = text.find("[analysis]").unwrap();
+    scenario(&format!(
+        "{}{extra}\n{}\n[[input]]\nname = \"road\"\nroad = {{ spectrum = \"book-8-45\", track_width = \"2.0 m\", \
+         coherence = {{ kind = \"constant\", coherence_amplitude = 0.5 }} }}\nspeed = \"5 m/s\"\n",
+        &text[..at],
+        &text[at..]
+    ))
+}
+
+/// σ of `name` and of its rate (√λ₂) in the linear scenario `sc`.
+fn sigma_and_rate(sc: &Scenario, name: &str) -> (f64, f64) {
+    let st = analyze_output(sc.model.system.as_ref(), &sc.excitation, index(sc, name)).unwrap();
+    (st.sigma.unwrap(), st.lambda2.unwrap().sqrt())
+}
+
+/// A friction seat in a whole machine, route 1: Coulomb friction F_c = 120 N across the seat (450 N s/m) has
+/// the Gaussian equivalent damping c_eq = E[dF/dv] = F_c √(2/π)/σ_v for a zero-mean Gaussian seat velocity
+/// (Caughey 1963; F = F_c sgn v). So route 1's answer is the linear machine with seat damping 450 + c_eq where
+/// c_eq solves c_eq = F_c √(2/π)/σ_v(450 + c_eq), σ_v the seat travel's rate √λ₂ of that linear machine.
+/// The test solves this scalar equation by bisection on linear scenarios it writes itself (c_eq ↦ c_eq −
+/// F_c√(2/π)/σ_v(450 + c_eq) increases: more damping, slower seat), and route 1's σ of every output equals
+/// that machine's within `ROUTE1_ITERATION`.
+#[test]
+fn friction_seat_in_a_machine_route1_is_the_equivalent_damping_fixed_point() {
+    use common::tolerance::ROUTE1_ITERATION;
+    let (f_c, c) = (120.0, 450.0);
+    let friction = format!(
+        "\n[[model.nonlinear]]\nkind = \"coulomb-friction\"\nname = \"guide\"\nacross = \"seat\"\nforce = \"{f_c} N\"\n"
+    );
+    let sc = machine_on_type1_road(&friction, c);
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let route1 = answers.route1_statistics.expect("route 1 converges");
+    let gap = |c_eq: f64| {
+        let (_, rate) = sigma_and_rate(&machine_on_type1_road("", c + c_eq), "seat_travel");
+        c_eq - f_c * (2.0 / std::f64::consts::PI).sqrt() / rate
+    };
+    let (mut lo, mut hi) = (0.0, 1.0e5);
+    assert!(gap(lo) < 0.0 && gap(hi) > 0.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if gap(mid) < 0.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let equivalent = machine_on_type1_road("", c + 0.5 * (lo + hi));
+    for name in ["bounce", "roll", "seat_travel"] {
+        let want = sigma_and_rate(&equivalent, name).0;
+        let got = route1.iter().find(|s| s.name == name).unwrap().sigma.unwrap();
+        assert!(
+            rel(got, want) < ROUTE1_ITERATION,
+            "{name}: route 1 {got:e} vs the fixed point {want:e}"
+        );
+    }
+    // the friction is felt: the seat moves less than on its linear damper alone
+    let frictionless = sigma_and_rate(&machine_on_type1_road("", c), "seat_travel").0;
+    assert!(sigma_and_rate(&equivalent, "seat_travel").0 < 0.9 * frictionless);
+}
+
+/// A friction seat in a whole machine, route 2 (nonlinear Monte Carlo on the spectral route: the two tracks
+/// and the wheelbase delay). Zero nonlinearity first: a stop 10 m away across the seat (never reached) must
+/// give the linear machine's σ of the seat travel and of the roll, inside route 2's Student-t intervals at
+/// 1 − `MC_FALSE_FAILURE`. Then the Coulomb friction of 120 N across the seat: route 2's whole interval of the
+/// seat travel's σ lies below the frictionless σ (friction only dissipates: the predicted direction; route 1
+/// puts it 27 % below). Three intervals: false failure ≤ 6e-7. 16 realizations × 100 s each.
+#[test]
+fn friction_seat_in_a_machine_route2() {
+    use common::tolerance::MC_FALSE_FAILURE;
+    use stochvib::nonlinear::monte_carlo::NonlinearRunOptions;
+    use stochvib::simulate::RunOptions;
+    let run = |sc: &Scenario, tag: &str| {
+        let answers = sc.nonlinear_answers().unwrap().unwrap();
+        let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
+        let opts = NonlinearRunOptions {
+            run: RunOptions {
+                confidence: 1.0 - MC_FALSE_FAILURE,
+                overwrite: true,
+                realizations: 16,
+                duration_s: 100.0,
+                dt_s: dt,
+                seed: 30,
+                ..RunOptions::default()
+            },
+            burn_in_s: None,
+            halving_checks: None,
+        };
+        let file = common::scratch_dir("machine-assembly", tag).join("run.h5");
+        let _serial = common::hdf5_serial();
+        let s = sc.simulate_nonlinear(&answers, &opts, &file, &|_, _| {}).unwrap();
+        move |name: &str| {
+            let o = s.run.outputs.iter().find(|o| o.output == name).unwrap();
+            let i = &o.get("sigma_response").unwrap().interval;
+            (i.lower, i.upper)
+        }
+    };
+    let linear = machine_on_type1_road("", 450.0);
+    let far = "\n[[model.nonlinear]]\nkind = \"bump-stop\"\nname = \"far_stop\"\nacross = \"seat\"\n\
+               upper_clearance = \"10 m\"\nlower_clearance = \"10 m\"\nstiffness = \"1 kN/m\"\n";
+    let iv = run(&machine_on_type1_road(far, 450.0), "far-stop");
+    for name in ["seat_travel", "roll"] {
+        let exact = sigma_and_rate(&linear, name).0;
+        let (lower, upper) = iv(name);
+        assert!(
+            lower <= exact && exact <= upper,
+            "{name}: linear σ {exact:e} outside [{lower:e}, {upper:e}]"
+        );
+    }
+    let friction = "\n[[model.nonlinear]]\nkind = \"coulomb-friction\"\nname = \"guide\"\nacross = \"seat\"\n\
+                    force = \"120 N\"\n";
+    let iv = run(&machine_on_type1_road(friction, 450.0), "friction");
+    let frictionless = sigma_and_rate(&linear, "seat_travel").0;
+    let (lower, upper) = iv("seat_travel");
+    assert!(
+        upper < frictionless,
+        "friction seat σ in [{lower:e}, {upper:e}], frictionless {frictionless:e}"
+    );
+}

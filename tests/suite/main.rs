@@ -68,6 +68,7 @@ mod scenario;
 mod seat_test_inputs;
 mod shards;
 mod spectra;
+mod static_sag;
 mod store;
 mod stream_edges;
 mod stream_sources;

@@ -390,3 +390,88 @@ fn command_prints_the_answer_and_fails_when_infeasible() {
     );
     assert!(err.contains("wrong way round"), "{err}");
 }
+
+/// The Pareto front of comfort against travel for the white-velocity quarter car, c ∈ [0.2, 6] kN s/m.
+/// With σ²_acc(c) = πS₀(k_t c² + k_s²M)/(c m_s²) and σ²_travel(c) = πS₀M/c (above), σ_travel falls with c
+/// everywhere and σ_acc rises for c > c_opt, so the front is the curve (σ_acc(c), σ_travel(c)) for
+/// c ∈ [c_opt, 6000]: its ends are c_opt (min σ_acc, interior) and the upper bound (min σ_travel), and the
+/// point with the limit ε on σ_travel sits where the limit is active, c = πS₀M/ε², with σ_acc(c) there.
+#[test]
+fn quarter_car_pareto_front_of_comfort_and_travel_is_the_closed_form_curve() {
+    use stochvib::optimize::{pareto, ParetoProblem};
+    let sc = scenario("qc-pareto", QUARTER_CAR);
+    let problem = ParetoProblem {
+        base: &sc,
+        params: vec![Param::parse("model.suspension_damping=0.2:6 kN*s/m").unwrap()],
+        quantities: [
+            Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap(),
+            Quantity::parse("--pareto", "sigma(travel)", &sc).unwrap(),
+        ],
+        constraints: Vec::new(),
+    };
+    let front = pareto(&problem, 5, &SolveOptions::default()).unwrap();
+    assert_eq!(front.points.len(), 5);
+    let m = M_S + M_U;
+    let acc = |c: f64| (PI * s0() * (K_T * c * c + K_S * K_S * m) / (c * M_S * M_S)).sqrt();
+    let travel = |c: f64| (PI * s0() * m / c).sqrt();
+    let c_opt = K_S * (m / K_T).sqrt();
+    let first = &front.points[0];
+    assert!(common::rel(first.params[0], c_opt) < OPTIMUM_INTERIOR, "{first:?}");
+    let last = &front.points[4];
+    assert!(common::rel(last.params[0], 6000.0) < OPTIMUM_ON_CONSTRAINT, "{last:?}");
+    for p in &front.points[1..4] {
+        let eps = p.limit.unwrap();
+        let c = PI * s0() * m / (eps * eps);
+        assert!(p.feasible);
+        assert!(common::rel(p.params[0], c) < OPTIMUM_ON_CONSTRAINT, "{p:?} vs c = {c}");
+        assert!(common::rel(p.values[0], acc(c)) < OPTIMUM_ON_CONSTRAINT, "{p:?}");
+        assert!(common::rel(p.values[1], travel(c)) < OPTIMUM_ON_CONSTRAINT, "{p:?}");
+    }
+    for w in front.points.windows(2) {
+        assert!(
+            w[0].values[0] < w[1].values[0] && w[0].values[1] > w[1].values[1],
+            "{:?}",
+            front.points
+        );
+    }
+    assert!(front
+        .to_csv()
+        .starts_with("point,model.suspension_damping [SI],sigma(body_acc) [m/s^2],sigma(travel) [m],"));
+}
+
+/// `stochvib optimize --pareto`: the front as a CSV table (a header with the units, one row per point, the
+/// first quantity rising and the second falling along it), and `--points 1` refused by its flag.
+#[test]
+fn command_prints_the_pareto_front() {
+    let root = common::root();
+    let mut args = vec![
+        "optimize",
+        "data/quarter-car-model.toml",
+        "--param",
+        "model.suspension_damping=0.2:6 kN*s/m",
+        "--minimize",
+        "sigma(body_acc)",
+        "--pareto",
+        "sigma(travel)",
+        "--points",
+        "3",
+    ];
+    let o = common::cli_within(&args, &root, std::time::Duration::from_secs(300));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{out}\n{}", String::from_utf8_lossy(&o.stderr));
+    let mut lines = out.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "point,model.suspension_damping [SI],sigma(body_acc) [m/s^2],sigma(travel) [m],limit,feasible"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').skip(1).take(3).map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 3, "{out}");
+    for w in rows.windows(2) {
+        assert!(w[0][1] < w[1][1] && w[0][2] > w[1][2], "{out}");
+    }
+    args[9] = "1";
+    let err = common::cli_fails(1, &args, &root);
+    assert!(err.contains("--points"), "{err}");
+}

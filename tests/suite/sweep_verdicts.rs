@@ -115,3 +115,86 @@ fn verdict_csv_has_units_in_the_header() {
     assert_eq!(first[1].parse::<f64>().unwrap(), 5000.0);
     assert_eq!(lines.count(), 1);
 }
+
+/// The verdict columns travel with the study into every table form and through a cluster run: the
+/// operator seat over three stiffnesses (5, 6.5 and 8 kN/m) with `--verdicts` written as an HDF5 table and
+/// as two shard files merged into HDF5 and CSV.
+///
+/// Provenance: the values of `verdict_columns_equal_analyze_of_the_substituted_files` (the verdicts
+/// against `analyze` of files written by hand) are the same computation; here
+/// * the HDF5 `verdicts/<k>` column of σ(seat) and σ(travel) (each point's scenario read again and solved
+///   by the exact evaluator) equals the table's own `outputs/<name>/sigma` (the sweep's numeric path, a
+///   different route) within `SWEEP_AGAINST_ANALYZE`;
+/// * every other verdict column equals the one-row-per-point table of `sweep_verdicts` bit for bit, and
+///   the merged shards equal the whole table bit for bit (each point is evaluated alone, so a split into
+///   parts cannot change it); the merged CSV is the whole study's verdict CSV byte for byte.
+#[test]
+fn verdict_columns_in_hdf5_and_in_merged_shards() {
+    use std::path::Path;
+    use stochvib::scenario::load_scenario;
+    use stochvib::store::Part;
+    use stochvib::study::{merge_sweep, run_sweep_shard, write_sweep_table, StreamOptions};
+    use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
+    let sc = load_scenario(Path::new("data/operator-seat-verdicts.toml"), Path::new("spectra")).unwrap();
+    let spec = || {
+        let p = SweepParam::parse("model.stiffness=5 kN/m,6.5 kN/m,8 kN/m").unwrap();
+        SweepSpec::new(vec![p], SweepMode::Grid).unwrap()
+    };
+    let sweep = Sweep::new(&sc, spec()).unwrap().with_verdicts().unwrap();
+    let want = stochvib::study::sweep_verdicts::sweep_verdicts(&sweep).unwrap();
+    assert!(want.rows.iter().all(|r| r.error.is_none()), "{:?}", want.rows);
+    let dir = common::scratch_dir("sweep-verdicts", "h5-shards");
+    let whole = dir.join("whole.h5");
+    let quiet = |_: usize, _: usize| {};
+    write_sweep_table(&sweep, &whole, false, None, StreamOptions::default(), &quiet).unwrap();
+    let shards = dir.join("shards");
+    std::fs::create_dir_all(&shards).unwrap();
+    for i in 0..2 {
+        let (path, ..) =
+            run_sweep_shard(&sweep, Part::new(i, 2).unwrap(), &shards, false, None, false, &quiet).unwrap();
+        let text = std::fs::read_to_string(path).unwrap();
+        assert!(
+            text.contains("\"verdicts\""),
+            "a shard file without its verdicts: {text}"
+        );
+    }
+    let merged = dir.join("merged.h5");
+    merge_sweep(&merged, std::slice::from_ref(&shards), false).unwrap();
+    merge_sweep(&dir.join("merged.csv"), std::slice::from_ref(&shards), false).unwrap();
+    assert_eq!(std::fs::read_to_string(dir.join("merged.csv")).unwrap(), want.to_csv());
+    let quantities: Vec<String> = want.columns[2..]
+        .iter()
+        .map(|c| c.split(" [").next().unwrap().to_string())
+        .collect();
+    for file in [&whole, &merged] {
+        let _g = common::hdf5_serial();
+        let f = hdf5::File::open(file).unwrap();
+        for (k, q) in quantities.iter().enumerate() {
+            let ds = f.dataset(&format!("verdicts/{k}")).unwrap();
+            let name = ds
+                .attr("quantity")
+                .unwrap()
+                .read_scalar::<hdf5::types::VarLenUnicode>()
+                .unwrap();
+            assert_eq!(name.as_str(), q);
+            let col: Vec<f64> = ds.read_raw().unwrap();
+            for (row, got) in want.rows.iter().zip(&col) {
+                assert_eq!(
+                    got.to_bits(),
+                    row.values[1 + k].unwrap().to_bits(),
+                    "{q} in {}",
+                    file.display()
+                );
+            }
+            if let Some(out) = q.strip_prefix("sigma(").and_then(|r| r.strip_suffix(')')) {
+                let fast: Vec<f64> = f.dataset(&format!("outputs/{out}/sigma")).unwrap().read_raw().unwrap();
+                for (a, b) in col.iter().zip(&fast) {
+                    assert!(
+                        common::rel(*a, *b) < SWEEP_AGAINST_ANALYZE,
+                        "{q}: {a} vs the sweep's {b}"
+                    );
+                }
+            }
+        }
+    }
+}
