@@ -19,6 +19,7 @@
 //! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
 
 mod float_text;
+pub mod merge_kind;
 pub mod input_coverage;
 mod nonlinear_run;
 pub mod replay;
