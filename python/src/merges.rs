@@ -25,7 +25,9 @@ fn require_kind(py: Python<'_>, output: &Path, inputs: &[PathBuf], want: MergeKi
     let kind = lib(py, merge_kind(output, inputs))?;
     let stationary_parts = || -> PyResult<bool> {
         let (runs, _) = lib(py, stochvib::store::find_run_files(inputs, &[output]))?;
-        Ok(runs.iter().any(|r| r.extension().is_some_and(|e| e == "h5" || e == "hdf5")))
+        Ok(runs
+            .iter()
+            .any(|r| r.extension().is_some_and(|e| e == "h5" || e == "hdf5")))
     };
     if kind == want || (kind == MergeKind::Run && (want == MergeKind::Sweep || !stationary_parts()?)) {
         return Ok(());
@@ -58,7 +60,11 @@ pub fn merge<'py>(
     confidence: Option<f64>,
     transient: bool,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
-    let kind = if transient { MergeKind::Transient } else { MergeKind::Run };
+    let kind = if transient {
+        MergeKind::Transient
+    } else {
+        MergeKind::Run
+    };
     require_kind(py, &path, &inputs, kind)?;
     let opts = MergeOptions {
         copy,
@@ -92,7 +98,9 @@ pub fn merge_sweep<'py>(
     overwrite: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     require_kind(py, &path, &inputs, MergeKind::Sweep)?;
-    let json = detached(py, || Ok(stochvib::study::merge_sweep(&path, &inputs, overwrite)?.to_json()?))?;
+    let json = detached(py, || {
+        Ok(stochvib::study::merge_sweep(&path, &inputs, overwrite)?.to_json()?)
+    })?;
     let v: serde_json::Value = serde_json::from_str(&json).map_err(|e| invalid_input(py, e.to_string()))?;
     to_python(py, &v)
 }

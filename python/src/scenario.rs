@@ -805,7 +805,10 @@ impl PyScenario {
                     let (file, sh, _) = stochvib::study::run_sweep_shard(&sweep, part, dir, true, mc, overwrite, cb)?;
                     Ok((sh.results.to_json()?, Some(file)))
                 }
-                _ => Ok((stochvib::study::compute_sweep(&sweep, 0..n, true, mc, cb)?.to_json()?, None)),
+                _ => Ok((
+                    stochvib::study::compute_sweep(&sweep, 0..n, true, mc, cb)?.to_json()?,
+                    None,
+                )),
             }
         };
         let (json, file) = match (monte_carlo, shard) {

@@ -19,8 +19,8 @@
 //! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
 
 mod float_text;
-pub mod merge_kind;
 pub mod input_coverage;
+pub mod merge_kind;
 mod nonlinear_run;
 pub mod replay;
 pub mod run_step;
