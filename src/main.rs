@@ -40,17 +40,7 @@ impl SpectraDir {
     /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the built-in
     /// catalogue embedded in the binary.
     fn catalogue(&self) -> Catalogue {
-        if let Some(d) = &self.spectra_dir {
-            return Catalogue::new(d);
-        }
-        if let Ok(d) = std::env::var("STOCHVIB_SPECTRA") {
-            return Catalogue::new(d);
-        }
-        let local = PathBuf::from("spectra");
-        if local.is_dir() {
-            return Catalogue::new(local);
-        }
-        Catalogue::bundled()
+        Catalogue::chosen(self.spectra_dir.as_deref())
     }
 }
 
