@@ -40,17 +40,7 @@ impl SpectraDir {
     /// The catalogue: `--spectra-dir`, else `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the built-in
     /// catalogue embedded in the binary.
     fn catalogue(&self) -> Catalogue {
-        if let Some(d) = &self.spectra_dir {
-            return Catalogue::new(d);
-        }
-        if let Ok(d) = std::env::var("STOCHVIB_SPECTRA") {
-            return Catalogue::new(d);
-        }
-        let local = PathBuf::from("spectra");
-        if local.is_dir() {
-            return Catalogue::new(local);
-        }
-        Catalogue::bundled()
+        Catalogue::chosen(self.spectra_dir.as_deref())
     }
 }
 
@@ -1110,8 +1100,9 @@ fn merge_command(cmd: Command) -> anyhow::Result<()> {
     else {
         unreachable!("run passes only Command::Merge")
     };
-    let sweeps = study::find_sweep_shards(&inputs)?;
-    if !sweeps.is_empty() {
+    let kind = study::merge_kind::merge_kind(&output, &inputs)?;
+    if kind == study::merge_kind::MergeKind::Sweep {
+        let sweeps = study::find_sweep_shards(&inputs)?;
         let run_only = [
             ("--copy", copy),
             ("--confidence", confidence.is_some()),
@@ -1124,15 +1115,6 @@ fn merge_command(cmd: Command) -> anyhow::Result<()> {
                 sweeps[0].display()
             );
         }
-        let (mut runs, _) = stochvib::store::find_run_files(&inputs, &[&output])?;
-        runs.retain(|r| r.extension().is_none_or(|e| e != "json"));
-        if !runs.is_empty() {
-            anyhow::bail!(
-                "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
-                sweeps[0].display(),
-                runs[0].display()
-            );
-        }
         let t = study::merge_sweep(&output, &inputs, overwrite)?;
         eprintln!(
             "merged {} points ({} failed) into {}",
@@ -1142,13 +1124,13 @@ fn merge_command(cmd: Command) -> anyhow::Result<()> {
         );
         return Ok(());
     }
-    refuse_shard_as_output(&output, &inputs)?;
     let opts = MergeOptions {
         copy,
         overwrite,
         confidence,
     };
-    if let Some(s) = transient_cli::merge_transient_if(&output, &inputs, &opts)? {
+    if kind == study::merge_kind::MergeKind::Transient {
+        let s = stochvib::transient::merge_transient(&output, &inputs, &opts, &|_, _| {})?;
         eprintln!(
             "merged {} realizations of a transient run into {}",
             s.n_realizations,
@@ -1323,26 +1305,6 @@ fn output_dir(dir: &Path, what: &str) -> anyhow::Result<()> {
         anyhow::bail!("{}: is not a directory: {what}; nothing was written", dir.display());
     }
     std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))
-}
-
-/// The output rule for `merge`: the merged file is never one of the shard files it merges (named, or a
-/// shard file in a named directory); a whole run already there (an earlier merge) is what `--overwrite`
-/// replaces.
-fn refuse_shard_as_output(output: &Path, inputs: &[PathBuf]) -> anyhow::Result<()> {
-    let (files, _) = stochvib::store::find_run_files(inputs, &[])?;
-    let named = inputs.iter().any(|i| stochvib::io_rules::same_file(i, output));
-    let shard = || {
-        files.iter().any(|f| stochvib::io_rules::same_file(f, output))
-            && RunFile::open_any(output).is_ok_and(|r| r.part().is_some())
-    };
-    if named || shard() {
-        anyhow::bail!(
-            "{}: is one of the shard files to merge: the merged file needs a name of its own (e.g. DIR/merged.h5); \
-             nothing was written",
-            output.display()
-        );
-    }
-    Ok(())
 }
 
 /// The flags that set the fields of [`RunOptions`], by the names the library's errors give them.

@@ -12,6 +12,7 @@ mod convert;
 mod errors;
 mod interrupt;
 mod linalg;
+mod merges;
 mod names;
 mod nonlinear_run;
 mod optimize;
@@ -40,7 +41,8 @@ fn _stochvib(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(toolkit::expected_iri, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::iso8608_class, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::road_profile, m)?)?;
-    m.add_function(wrap_pyfunction!(scenario::merge, m)?)?;
+    m.add_function(wrap_pyfunction!(merges::merge, m)?)?;
+    m.add_function(wrap_pyfunction!(merges::merge_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::coherence_amplitude, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::daily_exposure_a8, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::vdv_gaussian, m)?)?;

@@ -38,15 +38,5 @@ pub fn domain_name(d: Domain) -> &'static str {
 /// `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the built-in catalogue (the `spectra/` files
 /// embedded when the package was built).
 pub fn catalogue(spectra_dir: Option<PathBuf>) -> Catalogue {
-    if let Some(d) = spectra_dir {
-        return Catalogue::new(d);
-    }
-    if let Ok(d) = std::env::var("STOCHVIB_SPECTRA") {
-        return Catalogue::new(d);
-    }
-    let local = PathBuf::from("spectra");
-    if local.is_dir() {
-        return Catalogue::new(local);
-    }
-    Catalogue::bundled()
+    Catalogue::chosen(spectra_dir.as_deref())
 }

@@ -284,26 +284,36 @@ fn shard_path(
     Ok((stochvib::study::part_path(&path, part), Some(part)))
 }
 
-/// Joins the part files of a sharded run (``stochvib merge OUT INPUTS…``; ``inputs`` files or directories)
-/// into the run file ``path``: ``(data, text)`` of the merge summary.
-#[pyfunction]
-#[pyo3(signature = (path, inputs, *, copy=false, overwrite=false, confidence=None))]
-pub fn merge<'py>(
-    py: Python<'py>,
-    path: PathBuf,
-    inputs: Vec<PathBuf>,
-    copy: bool,
-    overwrite: bool,
-    confidence: Option<f64>,
-) -> PyResult<(Bound<'py, PyAny>, String)> {
-    use stochvib::study::{merge_runs, MergeOptions};
-    let opts = MergeOptions {
-        copy,
-        overwrite,
-        confidence,
-    };
-    let s = detached(py, || Ok(merge_runs(&path, &inputs, &opts, &|_, _| {})?))?;
-    Ok((to_python(py, &s)?, s.to_string()))
+/// The study of `sc` over `params` (`KEY=VALUES` texts), a grid or, with `zip`, the k-th values together.
+fn build_sweep<'a>(sc: &'a Scenario, params: &[String], zip: bool) -> stochvib::Result<stochvib::study::Sweep<'a>> {
+    use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
+    let params = params
+        .iter()
+        .map(|p| SweepParam::parse(p))
+        .collect::<stochvib::Result<Vec<_>>>()?;
+    let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
+    Sweep::new(sc, SweepSpec::new(params, mode)?)
+}
+
+/// The part of a sweep in shards: `shard` = (I, N) with `path` the directory of the shard files.
+fn sweep_part(
+    py: Python<'_>,
+    shard: Option<(usize, usize)>,
+    path: Option<&Path>,
+) -> PyResult<Option<stochvib::store::Part>> {
+    match (shard, path) {
+        (None, None) => Ok(None),
+        (None, Some(_)) => Err(invalid_input(
+            py,
+            "`path`: names the directory of the shard files of sweep(..., shard=(I, N)); without shard \
+             the study is returned, not written",
+        )),
+        (Some(_), None) => Err(invalid_input(
+            py,
+            "`shard`: needs path= (the directory of the shard files)",
+        )),
+        (Some((i, n)), Some(_)) => Ok(Some(call(py, || stochvib::store::Part::new(i, n))?)),
+    }
 }
 
 /// `KEY=VALUES` texts (the CLI's `--param`) of a dict key → a range string or a sequence of values.
@@ -709,13 +719,23 @@ impl PyScenario {
     ///     a unit string; suggested from the scenario when not given), realizations per shard, confidence
     ///     of the intervals.
     /// progress : bool or callable, keyword-only
-    ///     With ``monte_carlo``: a bar on stderr (True), none (False) or a callable(done, total) per point.
+    ///     With ``monte_carlo`` or ``shard``: a bar on stderr (True), none (False) or a callable(done, total)
+    ///     per point.
+    /// shard : (int, int), keyword-only, optional
+    ///     ``(I, N)``: evaluate only part I of N of the points into the shard file
+    ///     ``path/sweep-shard-<I>-of-<N>.json`` (``stochvib sweep --shard I --of N -o DIR``); a rerun whose
+    ///     file is already there for the same study does nothing. :func:`stochvib.merge_sweep` joins the parts.
+    /// path : path, keyword-only, optional
+    ///     With ``shard``: the directory of the shard files (created).
+    /// overwrite : bool, keyword-only
+    ///     With ``shard``: replace a shard file of another study.
     ///
     /// Returns
     /// -------
     /// SweepResult
     ///     ``statistic(output, name)`` as an array of the study's shape; a failed point is NaN, its reason
-    ///     in ``rows``.
+    ///     in ``rows``. With ``shard``, only the part's points hold numbers (``points``), and ``path`` is the
+    ///     shard file.
     ///
     /// Raises
     /// ------
@@ -730,7 +750,7 @@ impl PyScenario {
     /// >>> r = sc.sweep({"model.c": ["50 kN/m", "100 kN/m"]})
     /// >>> r.statistic("y", "mean").round(12).tolist()  # the static deflection M_F / c = 10 kN / c
     /// [0.2, 0.1]
-    #[pyo3(signature = (params, *, zip=false, monte_carlo=None, seed=1, dt=None, duration=None, shard_size=50, confidence=0.95, progress=None))]
+    #[pyo3(signature = (params, *, zip=false, monte_carlo=None, seed=1, dt=None, duration=None, shard_size=50, confidence=0.95, progress=None, shard=None, path=None, overwrite=false))]
     #[allow(clippy::too_many_arguments)]
     fn sweep<'py>(
         &self,
@@ -744,9 +764,12 @@ impl PyScenario {
         shard_size: usize,
         confidence: f64,
         progress: Option<Py<PyAny>>,
+        shard: Option<(usize, usize)>,
+        path: Option<PathBuf>,
+        overwrite: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
         let sc = self.stochastic(py)?;
+        let part = sweep_part(py, shard, path.as_deref())?;
         let params = sweep_params(params)?;
         let (dt, duration) = (
             quantity::optional(py, dt, "dt", "s")?,
@@ -759,13 +782,8 @@ impl PyScenario {
                  across realizations)",
             ));
         }
-        let compute = |cb: &(dyn Fn(usize, usize) + Sync)| -> stochvib::Result<String> {
-            let params = params
-                .iter()
-                .map(|p| SweepParam::parse(p))
-                .collect::<stochvib::Result<Vec<_>>>()?;
-            let mode = if zip { SweepMode::Zip } else { SweepMode::Grid };
-            let sweep = Sweep::new(sc, SweepSpec::new(params, mode)?)?;
+        let compute = |cb: &(dyn Fn(usize, usize) + Sync)| -> stochvib::Result<(String, Option<PathBuf>)> {
+            let sweep = build_sweep(sc, &params, zip)?;
             let mc = match monte_carlo {
                 None => None,
                 Some(n) => Some(sweep_monte_carlo(
@@ -777,16 +795,86 @@ impl PyScenario {
                 )?),
             };
             let n = sweep.spec().n_points();
-            stochvib::study::compute_sweep(&sweep, 0..n, true, mc, cb)?.to_json()
+            match (part, &path) {
+                (Some(part), Some(dir)) => {
+                    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+                        path: dir.clone(),
+                        source,
+                    })?;
+                    let (file, sh, _) = stochvib::study::run_sweep_shard(&sweep, part, dir, true, mc, overwrite, cb)?;
+                    Ok((sh.results.to_json()?, Some(file)))
+                }
+                _ => Ok((
+                    stochvib::study::compute_sweep(&sweep, 0..n, true, mc, cb)?.to_json()?,
+                    None,
+                )),
+            }
         };
-        let json = match monte_carlo {
-            None => detached(py, || Ok(compute(&|_, _| ())?))?,
-            Some(_) => with_progress(py, progress, |cb| run_interruptible(py, cb, compute))?,
+        let (json, file) = match (monte_carlo, shard) {
+            (None, None) => detached(py, || Ok(compute(&|_, _| ())?))?,
+            _ => with_progress(py, progress, |cb| run_interruptible(py, cb, compute))?,
         };
         let v: serde_json::Value = serde_json::from_str(&json).map_err(|e| invalid_input(py, e.to_string()))?;
         py.import("stochvib.results")?
             .getattr("SweepResult")?
-            .call1((to_python(py, &v)?,))
+            .call1((to_python(py, &v)?, file))
+    }
+
+    /// The verdicts of every point of a parameter study (``stochvib sweep SCENARIO --param … --verdicts
+    /// --json``): the swept values and every number :meth:`analyze` reports as a verdict — σ of each output,
+    /// a_w of each comfort axis, a_v, A(8), VDV, the largest damage rate and the shortest life — each point
+    /// being the scenario file with the values substituted and read again.
+    ///
+    /// Parameters
+    /// ----------
+    /// params : dict
+    ///     A scenario key → its values, as for :meth:`sweep`.
+    /// zip : bool, keyword-only
+    ///     The k-th values of every key together instead of the grid of every combination.
+    ///
+    /// Returns
+    /// -------
+    /// VerdictTable
+    ///     ``columns`` (with their SI units), ``rows`` (``point``, ``values``, ``error``);
+    ///     ``column(name)`` as an array of the study's shape; ``to_csv()`` is the command's CSV.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown key, a bad value or range, keys of different lengths with ``zip``.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> t = sc.sweep_verdicts({"model.c": ["50 kN/m", "100 kN/m"]})
+    /// >>> t.columns[:2]
+    /// ['point', 'model.c [kg s^-2]']
+    /// >>> t.column("model.c [kg s^-2]").tolist()
+    /// [50000.0, 100000.0]
+    #[pyo3(signature = (params, *, zip=false))]
+    fn sweep_verdicts<'py>(
+        &self,
+        py: Python<'py>,
+        params: &Bound<'py, PyDict>,
+        zip: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let sc = self.stochastic(py)?;
+        let params = sweep_params(params)?;
+        let json = detached(py, || {
+            let sweep = build_sweep(sc, &params, zip)?;
+            let shape: Vec<usize> = match sweep.spec().mode {
+                stochvib::study::SweepMode::Grid => sweep.spec().params.iter().map(|p| p.values.len()).collect(),
+                stochvib::study::SweepMode::Zip => vec![sweep.spec().n_points()],
+            };
+            let t = stochvib::study::sweep_verdicts::sweep_verdicts(&sweep)?;
+            Ok((t.to_json()?, t.to_csv(), shape))
+        })?;
+        let (json, csv, shape) = json;
+        let v: serde_json::Value = serde_json::from_str(&json).map_err(|e| invalid_input(py, e.to_string()))?;
+        py.import("stochvib.results")?
+            .getattr("VerdictTable")?
+            .call1((to_python(py, &v)?, csv, shape))
     }
 
     /// The parameters that minimise (or maximise) a response quantity under constraints (``stochvib optimize

@@ -25,7 +25,7 @@ messages. A table mapping scipy / python-control calls to stochvib's is in ``doc
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Any, Callable, Dict, Literal, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -59,7 +59,9 @@ from .results import (
     SweepResult,
     TablesResult,
     TransientResult,
+    TransientRunResult,
     VarianceMethod,
+    VerdictTable,
 )
 
 __all__ = [
@@ -69,6 +71,8 @@ __all__ = [
     "analyze",
     "simulate",
     "merge",
+    "merge_transient",
+    "merge_sweep",
     "exposure",
     "ExposureResult",
     "welch",
@@ -89,26 +93,25 @@ __all__ = [
     "NonlinearRunResult",
     "OptimizeResult",
     "TransientResult",
+    "TransientRunResult",
+    "VerdictTable",
     "Report",
-    "StochvibError",
-    "InvalidInputError",
-    "UnitError",
-    "NotApplicableError",
-    "DivergentError",
-    "NumericalError",
-    "NotConvergedError",
-    "FileError",
-    "StochvibWarning",
     "ISO_BAND",
     "linalg",
     "errors",
     "__version__",
 ]
+__all__ += errors.__all__  # StochvibError and its subclasses, StochvibWarning
 
 PathLike = Union[str, "os.PathLike[str]"]
 Quantity = Union[float, str]
 """A number (SI) or a string with a unit ("10.8 km/h")."""
 Input = Union[Spectrum, str, "os.PathLike[str]", Sequence[Spectrum]]
+
+
+def _given(**kw: Any) -> Dict[str, Any]:
+    """The keyword arguments that were given (not None)."""
+    return {k: v for k, v in kw.items() if v is not None}
 
 
 def _scenario(
@@ -216,21 +219,8 @@ def analyze(
     >>> r["travel"].unit, r["travel"].sigma > 0
     ('m', True)
     """
-    kw: Dict[str, Any] = {}
-    for k, v in (
-        ("speed", speed),
-        ("positions", positions),
-        ("mean", mean),
-        ("outputs", outputs),
-        ("band_rad_s", band_rad_s),
-        ("duration_s", duration_s),
-        ("levels", levels),
-        ("coherence", coherence),
-        ("track_width", track_width),
-        ("tracks", tracks),
-    ):
-        if v is not None:
-            kw[k] = v
+    kw = _given(speed=speed, positions=positions, mean=mean, outputs=outputs, band_rad_s=band_rad_s)
+    kw.update(_given(duration_s=duration_s, levels=levels, coherence=coherence, track_width=track_width, tracks=tracks))
     sc = _scenario(subject, input, kw, spectra_dir)
     return sc.analyze(
         monte_carlo=monte_carlo,
@@ -289,18 +279,8 @@ def simulate(
     as in :func:`analyze`. A model with nonlinear elements runs route 2 (``burn_in`` in s) and returns a
     :class:`NonlinearRunResult`.
     """
-    kw: Dict[str, Any] = {}
-    for k, v in (
-        ("speed", speed),
-        ("positions", positions),
-        ("mean", mean),
-        ("outputs", outputs),
-        ("coherence", coherence),
-        ("track_width", track_width),
-        ("tracks", tracks),
-    ):
-        if v is not None:
-            kw[k] = v
+    kw = _given(speed=speed, positions=positions, mean=mean, outputs=outputs)
+    kw.update(_given(coherence=coherence, track_width=track_width, tracks=tracks))
     sc = _scenario(subject, input, kw, spectra_dir)
     return sc.simulate(
         realizations,
@@ -353,7 +333,11 @@ def merge(
     Raises
     ------
     FileError
-        A missing or foreign part, a damaged file, an existing ``path`` without ``overwrite``.
+        A missing or foreign part, a damaged file, an existing ``path`` without ``overwrite``, ``path`` one
+        of the parts.
+    InvalidInputError
+        Parts of a transient run or of a parameter study (the message names :func:`merge_transient` or
+        :func:`merge_sweep`).
 
     Examples
     --------
@@ -366,9 +350,103 @@ def merge(
     >>> m.n_realizations, m.path.name
     (20, 'run.h5')
     """
-    ins = [inputs] if isinstance(inputs, (str, os.PathLike)) else list(inputs)
-    data, text = _stochvib.merge(path, ins, copy=copy, overwrite=overwrite, confidence=confidence)
+    data, text = _stochvib.merge(path, _paths(inputs), copy=copy, overwrite=overwrite, confidence=confidence)
     return RunResult(data, text, "merged from the parts (their step)")
+
+
+def _paths(inputs: Union[PathLike, Sequence[PathLike]]) -> List[PathLike]:
+    return [inputs] if isinstance(inputs, (str, os.PathLike)) else list(inputs)
+
+
+def merge_transient(
+    path: PathLike,
+    inputs: Union[PathLike, Sequence[PathLike]],
+    *,
+    copy: bool = False,
+    overwrite: bool = False,
+    confidence: Optional[float] = None,
+) -> TransientRunResult:
+    """Joins the part files of a transient Monte Carlo run (``Scenario.transient(monte_carlo=N, path=DIR,
+    shard=(I, N))``, ``stochvib transient --monte-carlo N --shard I --of N -o DIR``) into one run file, as
+    ``stochvib merge OUT DIR`` does.
+
+    Parameters
+    ----------
+    path, inputs, copy, overwrite, confidence
+        As for :func:`merge`: the merged run file, the part files (or their directories), and the options.
+
+    Returns
+    -------
+    TransientRunResult
+        The merged run: the statistics at the last stored time, the σ(t) coverage and the verdicts on the
+        maxima; the same numbers as the run made in one piece.
+
+    Raises
+    ------
+    FileError
+        A missing or foreign part, a damaged file, an existing ``path`` without ``overwrite``, ``path``
+        one of the parts.
+    InvalidInputError
+        Parts of a stationary run or of a parameter study (the message names :func:`merge` or
+        :func:`merge_sweep`).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, stochvib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> sc = stochvib.Scenario.load("data/quarter-car-accelerating.toml")
+    >>> for i in range(2):
+    ...     _ = sc.transient(monte_carlo=8, path=d / "parts", shard=(i, 2), shard_size=4, progress=False)
+    >>> m = stochvib.merge_transient(d / "run.h5", d / "parts")
+    >>> m.n_realizations, m.path.name
+    (8, 'run.h5')
+    """
+    data, text = _stochvib.merge(
+        path, _paths(inputs), copy=copy, overwrite=overwrite, confidence=confidence, transient=True
+    )
+    return TransientRunResult(data, text)
+
+
+def merge_sweep(path: PathLike, inputs: Union[PathLike, Sequence[PathLike]], *, overwrite: bool = False) -> SweepResult:
+    """Joins the shard files of a parameter study (``Scenario.sweep(params, shard=(I, N), path=DIR)``,
+    ``stochvib sweep --shard I --of N -o DIR``) into one table, as ``stochvib merge TABLE DIR`` does: the
+    same file as the study made in one piece.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The table: CSV, JSON or HDF5 from its extension (``.csv``, ``.json``, ``.h5``).
+    inputs : path or sequence of paths
+        The shard files (``sweep-shard-<I>-of-<N>.json``), or directories holding them; every part must be
+        there and of the same study.
+    overwrite : bool, keyword-only
+        Replace an existing table.
+
+    Returns
+    -------
+    SweepResult
+        The whole study (``path`` is the table).
+
+    Raises
+    ------
+    FileError
+        A missing, duplicate or foreign shard, an existing ``path`` without ``overwrite``.
+    InvalidInputError
+        Part files of a Monte Carlo run (the message names :func:`merge` or :func:`merge_transient`).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, stochvib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    >>> for i in range(2):
+    ...     _ = sc.sweep({"model.c": "50 kN/m..200 kN/m:4"}, shard=(i, 2), path=d / "parts", progress=False)
+    >>> t = stochvib.merge_sweep(d / "table.csv", d / "parts")
+    >>> t.n_points, t.path.name
+    (4, 'table.csv')
+    """
+    data = _stochvib.merge_sweep(path, _paths(inputs), overwrite=overwrite)
+    return SweepResult(data, path)
 
 
 def exposure(

@@ -23,6 +23,7 @@ from .results import (
     SweepResult,
     TablesResult,
     TransientResult,
+    VerdictTable,
 )
 
 __version__: str
@@ -278,9 +279,20 @@ class Scenario:
         shard_size: int = 50,
         confidence: float = 0.95,
         progress: Progress = True,
+        shard: Optional[Tuple[int, int]] = None,
+        path: Optional[PathLike] = None,
+        overwrite: bool = False,
     ) -> SweepResult:
         """The exact statistics at every point of a parameter study (grid, or ``zip``), with a Monte Carlo
-        batch of ``monte_carlo`` realizations per point."""
+        batch of ``monte_carlo`` realizations per point; with ``shard=(I, N)`` part I of the points into the
+        shard file ``path/sweep-shard-<I>-of-<N>.json``."""
+    def sweep_verdicts(
+        self,
+        params: Mapping[str, Union[str, Sequence[Quantity]]],
+        *,
+        zip: bool = False,
+    ) -> VerdictTable:
+        """The verdicts (σ, a_w, a_v, A(8), VDV, damage rate, life) at every point of a parameter study."""
     def optimize(
         self,
         params: Mapping[str, Union[str, Sequence[Quantity]]],
@@ -382,7 +394,9 @@ def merge(
     copy: bool = False,
     overwrite: bool = False,
     confidence: Optional[float] = None,
+    transient: bool = False,
 ) -> Tuple[Dict[str, Any], str]: ...
+def merge_sweep(path: PathLike, inputs: Sequence[PathLike], *, overwrite: bool = False) -> Dict[str, Any]: ...
 def coherence_amplitude(model: Dict[str, Any], n: ArrayLike, *, track_width: Quantity) -> FloatArray: ...
 def road_profile(
     tracks: List[Tuple[str, ArrayLike]],

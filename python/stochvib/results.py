@@ -32,7 +32,7 @@ import copy
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, Iterator, List, Optional, Tuple
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple
 
 __all__ = [
     "AnalysisResult",
@@ -72,6 +72,13 @@ def _dataframe(rows: List[Dict[str, Any]]) -> Any:
     except ImportError as e:  # pragma: no cover - depends on the environment
         raise ImportError("to_dataframe() needs pandas (pip install pandas); to_dict() has the same data") from e
     return pd.DataFrame(rows)
+
+
+def _output(outputs: Any, name: str) -> Any:
+    """``outputs[name]`` (a dict by name, or a list of names), else KeyError naming the outputs there are."""
+    if name not in outputs:
+        raise KeyError(f"no output {name!r}; the outputs are {list(outputs)}")
+    return outputs[name] if isinstance(outputs, dict) else name
 
 
 class _Mapping:
@@ -458,6 +465,40 @@ class RunResult(_Text):
 
 
 
+class TransientRunResult(RunResult):
+    """A merged transient Monte Carlo run (:func:`merge_transient`; ``to_dict()`` is ``stochvib merge OUT
+    PARTS… --json`` of a transient run's parts).
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The merged run file.
+    n_realizations : int
+    statistics : dict
+        As :attr:`RunResult.statistics`, at the last stored time.
+    sigma_coverage : dict
+        output → the fraction of stored times at which the σ interval covers the exact σ.
+    verdicts : list of dict
+        The verdicts on the maxima over the run (DKW band of half-width ``dkw_epsilon``).
+    notes : list of str
+    """
+
+    def __init__(self, data: Dict[str, Any], text: str) -> None:
+        super().__init__(data, text, "merged from the parts (their step)")
+        self.sigma_coverage: Dict[str, float] = {k: v for k, v in data.get("sigma_coverage", [])}
+        self.verdicts: List[Dict[str, Any]] = data.get("verdicts", [])
+        self.dkw_epsilon: float = data["dkw_epsilon"]
+        self.notes: List[str] = list(data.get("notes", []))
+
+    def __repr__(self) -> str:
+        head = f"TransientRunResult: {self.path} ({self.n_realizations} realizations)"
+        rows = [f"{'output':<14} {'sigma(T)':>12} {'sigma coverage':>15}"]
+        for o, stats in self.statistics.items():
+            cov = self.sigma_coverage.get(o)
+            rows.append(f"{o:<14} {_e(stats.get('sigma', {}).get('estimate')):>12} {_e(cov, 3):>15}")
+        return "\n".join([head, *rows])
+
+
 @dataclass(frozen=True, repr=False)
 class AxisExposure:
     """One evaluated channel of an exposure evaluation (values of the weighted acceleration a_w(t)).
@@ -589,16 +630,23 @@ class SweepResult:
         One per (point, output): ``point``, ``params``, ``output``, ``unit``, ``method``, ``mean``, ``sigma``,
         ``variance``, ``lower_3sigma``, ``upper_3sigma``, ``lambda2``, ``zero_upcrossing_rate``, ``error``
         (the reason a point failed, else None).
+    points : range
+        The points held: all of them, or those of one shard (``sweep(..., shard=(I, N))``).
+    path : pathlib.Path or None
+        The file written: the shard file of ``sweep(..., shard=...)``, the table of :func:`merge_sweep`.
     """
 
-    def __init__(self, data: Dict[str, Any]) -> None:
+    def __init__(self, data: Dict[str, Any], path: Optional[Any] = None) -> None:
         self._data = data
+        self.path: Optional[Path] = None if path is None else Path(path)
         ident = data["identity"]
         self.params: Dict[str, List[str]] = {k: list(v) for k, v in ident["params"]}
         self.mode: str = ident["mode"]
         self.outputs: List[str] = [o for o, _ in ident["outputs"]]
         self.n_points: int = data["n_points"]
         self.rows: List[Dict[str, Any]] = data["rows"]
+        held = [r["point"] for r in self.rows]
+        self.points: range = range(min(held), max(held) + 1) if held else range(self.n_points)
         grid = self.mode == "grid"
         self.shape: Tuple[int, ...] = tuple(len(v) for v in self.params.values()) if grid else (self.n_points,)
 
@@ -607,8 +655,7 @@ class SweepResult:
         every point as a numpy array of :attr:`shape` (NaN where a point failed)."""
         import numpy as np
 
-        if output not in self.outputs:
-            raise KeyError(f"no output {output!r}; the outputs are {self.outputs}")
+        _output(self.outputs, output)
         out = np.full(self.n_points, np.nan)
         for r in self.rows:
             if r["output"] == output and r.get(name) is not None:
@@ -633,8 +680,7 @@ class SweepResult:
 
         if self.monte_carlo_options is None:
             raise KeyError("this study has no Monte Carlo batches: sweep(..., monte_carlo=N)")
-        if output not in self.outputs:
-            raise KeyError(f"no output {output!r}; the outputs are {self.outputs}")
+        _output(self.outputs, output)
         out = {k: np.full(self.n_points, np.nan) for k in ("sigma", "lower", "upper")}
         covers = np.zeros(self.n_points, dtype=bool)
         for r in self.rows:
@@ -665,6 +711,64 @@ class SweepResult:
         for o in self.outputs:
             s = [r["sigma"] for r in self.rows if r["output"] == o and r.get("sigma") is not None]
             rows.append(f"{o:<14} {_e(min(s) if s else None):>12} {_e(max(s) if s else None):>12}")
+        return "\n".join([head, *rows])
+
+
+class VerdictTable:
+    """The verdicts at every point of a parameter study (:meth:`Scenario.sweep_verdicts`; ``to_dict()`` is
+    ``stochvib sweep SCENARIO --param … --verdicts --json``, ``to_csv()`` its CSV).
+
+    Attributes
+    ----------
+    columns : list of str
+        ``point``, the swept keys, then the quantities, each with its SI unit (``model.c [kg s^-2]``,
+        ``sigma(y) [m]``, ``a_v [m/s^2]``).
+    rows : list of dict
+        One per point: ``point``, ``values`` (in the order of the columns after ``point``; None where a value
+        does not exist), ``error`` (why the point failed, else None).
+    shape : tuple of int
+        The study's shape: one axis per key for a grid, ``(n_points,)`` for zip.
+    """
+
+    def __init__(self, data: Dict[str, Any], csv: str, shape: Sequence[int]) -> None:
+        self._data = data
+        self._csv = csv
+        self.columns: List[str] = list(data["columns"])
+        self.rows: List[Dict[str, Any]] = data["rows"]
+        self.shape: Tuple[int, ...] = tuple(shape)
+
+    def column(self, name: str) -> Any:
+        """The column ``name`` (as in :attr:`columns`, unit included) at every point as a numpy array of
+        :attr:`shape` (NaN where a value does not exist)."""
+        import numpy as np
+
+        if name not in self.columns[1:]:
+            raise KeyError(f"no column {name!r}; the columns are {self.columns}")
+        k = self.columns.index(name) - 1
+        out = np.array([np.nan if r["values"][k] is None else r["values"][k] for r in self.rows], dtype=float)
+        return out.reshape(self.shape)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """A deep copy of the data, as ``stochvib sweep … --verdicts --json`` prints it."""
+        return copy.deepcopy(self._data)
+
+    def to_csv(self) -> str:
+        """The table as ``stochvib sweep … --verdicts`` prints it."""
+        return self._csv
+
+    def to_dataframe(self) -> Any:
+        """One row per point, one column per entry of :attr:`columns`, and ``error`` (pandas)."""
+        return _dataframe(
+            [{"point": r["point"], **dict(zip(self.columns[1:], r["values"])), "error": r["error"]} for r in self.rows]
+        )
+
+    def __repr__(self) -> str:
+        failed = sum(1 for r in self.rows if r.get("error"))
+        head = f"VerdictTable: {len(self.rows)} points, {len(self.columns) - 1} columns, {failed} failed"
+        rows = [f"{'column':<32} {'min':>12} {'max':>12}"]
+        for c in self.columns[1:]:
+            v = [x for x in self.column(c).ravel().tolist() if x == x]
+            rows.append(f"{c:<32} {_e(min(v) if v else None):>12} {_e(max(v) if v else None):>12}")
         return "\n".join([head, *rows])
 
 
@@ -717,9 +821,7 @@ class NonlinearResult(_Text):
         self.outputs: Dict[str, NonlinearOutput] = {o["name"]: NonlinearOutput(o) for o in data.get("outputs", [])}
 
     def __getitem__(self, name: str) -> NonlinearOutput:
-        if name not in self.outputs:
-            raise KeyError(f"no output {name!r}; the outputs are {list(self.outputs)}")
-        return self.outputs[name]
+        return _output(self.outputs, name)
 
     def to_dataframe(self) -> Any:
         """One row per (output, statistic): route1, exact, unit."""
@@ -908,9 +1010,7 @@ class TransientResult(_Text):
         self.sigma_comparison: Optional[List[Dict[str, Any]]] = data.get("sigma")
 
     def __getitem__(self, name: str) -> TransientOutput:
-        if name not in self.outputs:
-            raise KeyError(f"no output {name!r}; the outputs are {list(self.outputs)}")
-        return self.outputs[name]
+        return _output(self.outputs, name)
 
     def to_dataframe(self) -> Any:
         """One row per (time, output): t, output, mean, sigma, nu0_plus."""

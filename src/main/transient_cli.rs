@@ -1,7 +1,7 @@
 //! `stochvib transient SCENARIO [--monte-carlo N -o run.h5]` and the merge of transient shard files: parse
 //! the arguments, call the library, print.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stochvib::report::transient_report::SigmaComparisons;
 use stochvib::scenario::{load_scenario, Catalogue};
 use stochvib::store::Compression;
@@ -191,29 +191,4 @@ fn print_summary(s: &TransientRunSummary) {
     for n in &s.notes {
         println!("note: {n}");
     }
-}
-
-/// Merges transient shard files, if `inputs` hold them (None: not a transient run, merge as usual).
-pub fn merge_transient_if(
-    output: &Path,
-    inputs: &[PathBuf],
-    opts: &stochvib::study::MergeOptions,
-) -> anyhow::Result<Option<TransientRunSummary>> {
-    let (runs, _) = stochvib::store::find_run_files(inputs, &[output])?;
-    let Some(first) = runs
-        .iter()
-        .find(|r| r.extension().is_some_and(|e| e == "h5" || e == "hdf5"))
-    else {
-        return Ok(None);
-    };
-    let meta = stochvib::store::RunFile::open(first)?.metadata().clone();
-    if !stochvib::transient::monte_carlo::is_transient_run(&meta) {
-        return Ok(None);
-    }
-    Ok(Some(stochvib::transient::merge_transient(
-        output,
-        inputs,
-        opts,
-        &|_, _| {},
-    )?))
 }

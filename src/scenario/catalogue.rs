@@ -83,6 +83,22 @@ impl Catalogue {
         Catalogue::new(BUILT_IN)
     }
 
+    /// The catalogue a command uses: `dir` if given (`--spectra-dir`, `spectra_dir=`), else
+    /// `$STOCHVIB_SPECTRA`, else `./spectra` if it exists, else the [built-in](Self::bundled) one.
+    pub fn chosen(dir: Option<&Path>) -> Self {
+        if let Some(d) = dir {
+            return Catalogue::new(d);
+        }
+        if let Ok(d) = std::env::var("STOCHVIB_SPECTRA") {
+            return Catalogue::new(d);
+        }
+        let local = PathBuf::from("spectra");
+        if local.is_dir() {
+            return Catalogue::new(local);
+        }
+        Catalogue::bundled()
+    }
+
     /// Whether this is the built-in catalogue.
     pub fn is_built_in(&self) -> bool {
         self.dir == Path::new(BUILT_IN)

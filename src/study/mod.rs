@@ -28,6 +28,7 @@ mod float_text;
 pub mod input_coverage;
 pub mod mc_verdicts;
 mod merge;
+pub mod merge_kind;
 mod nonlinear_run;
 pub mod replay;
 pub mod run_step;
