@@ -42,6 +42,10 @@ pub const CONTACT_STEP: f64 = 0.25;
 /// brings it back), so this is also the bound of the velocity's error while it sticks.
 pub const FRICTION_STEP: f64 = 0.05;
 
+/// One value per lane: realizations stepped in lockstep keep each state variable as an array over them
+/// (structure of arrays); a lane does the scalar arithmetic of a lone realization, in the same order.
+pub(crate) type Lanes<const L: usize> = [f64; L];
+
 /// The element kicks of a model: directions, M⁻¹d, κ and the base input of every element.
 #[derive(Debug, Clone)]
 pub(crate) struct Kicks {
@@ -110,39 +114,62 @@ impl Kicks {
         self.items.len()
     }
 
-    /// q̇ = M⁻¹(p + B_u u) into `qdot` (u: the base inputs first).
+    /// q̇ = M⁻¹(p + B_u u) into `qdot` (u: the base inputs first), lane by lane.
+    #[inline(always)]
     #[allow(clippy::needless_range_loop)] // row-major matrix products read clearest with indices
-    pub(crate) fn velocities(&self, p: &[f64], u: &[f64], qdot: &mut [f64]) {
-        let n = self.n;
+    pub(crate) fn velocities<const L: usize>(&self, p: &[Lanes<L>], u: &[Lanes<L>], qdot: &mut [Lanes<L>]) {
+        let (n, nb) = (self.n, self.n_base);
         for (r, out) in qdot.iter_mut().enumerate() {
-            let mut s = 0.0;
+            let mut s = [0.0; L];
             for c in 0..n {
                 let mut pc = p[c];
-                for j in 0..self.n_base {
-                    pc += self.bu[c * self.n_base + j] * u[j];
+                for j in 0..nb {
+                    let b = self.bu[c * nb + j];
+                    for l in 0..L {
+                        pc[l] += b * u[j][l];
+                    }
                 }
-                s += self.minv[r * n + c] * pc;
+                let m = self.minv[r * n + c];
+                for l in 0..L {
+                    s[l] += m * pc[l];
+                }
             }
             *out = s;
         }
     }
 
-    /// Deflection x_e and rate v_e of element e.
+    /// Deflection x_e and rate v_e of element e, lane by lane.
     #[inline(always)]
-    pub(crate) fn kinematics(&self, e: usize, q: &[f64], qdot: &[f64], u: &[f64], ud: &[f64]) -> (f64, f64) {
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    pub(crate) fn kinematics<const L: usize>(
+        &self,
+        e: usize,
+        q: &[Lanes<L>],
+        qdot: &[Lanes<L>],
+        u: &[Lanes<L>],
+        ud: &[Lanes<L>],
+    ) -> (Lanes<L>, Lanes<L>) {
         let k = &self.items[e];
-        let mut x = 0.0;
-        let mut v = 0.0;
+        let mut x = [0.0; L];
+        let mut v = [0.0; L];
         for (i, d) in k.d.iter().enumerate() {
-            x += d * q[i];
+            for l in 0..L {
+                x[l] += d * q[i][l];
+            }
             if k.velocity {
-                v += d * qdot[i];
+                for l in 0..L {
+                    v[l] += d * qdot[i][l];
+                }
             }
         }
         if let Some(j) = k.base {
-            x -= u[j];
+            for l in 0..L {
+                x[l] -= u[j][l];
+            }
             if k.velocity {
-                v -= ud[j];
+                for l in 0..L {
+                    v[l] -= ud[j][l];
+                }
             }
         }
         (x, v)
@@ -166,41 +193,76 @@ pub(crate) struct Prepared<'a> {
 }
 
 impl Prepared<'_> {
-    /// The exact flow of every element over τ, in order (or in reverse order): p −= d J, q̇ −= M⁻¹d J.
-    pub(crate) fn kick(&self, q: &[f64], p: &mut [f64], qdot: &mut [f64], u: &[f64], ud: &[f64], reverse: bool) {
+    /// The exact flow of every element over τ, in order (or in reverse order): p −= d J, q̇ −= M⁻¹d J, lane
+    /// by lane (a lane whose impulse is 0 keeps its bits).
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    pub(crate) fn kick<const L: usize>(
+        &self,
+        q: &[Lanes<L>],
+        p: &mut [Lanes<L>],
+        qdot: &mut [Lanes<L>],
+        u: &[Lanes<L>],
+        ud: &[Lanes<L>],
+        reverse: bool,
+    ) {
         let items = &self.kicks.items;
         for step in 0..items.len() {
             let e = if reverse { items.len() - 1 - step } else { step };
             let (x, v) = self.kicks.kinematics(e, q, qdot, u, ud);
             let k = &items[e];
-            let j = match &self.kernels[e] {
-                Some(kernel) => kernel.impulse(x, v),
-                None => k.law.impulse(x, v, k.kappa, self.tau),
-            };
-            if j != 0.0 {
-                for ((pi, qi), (d, md)) in p.iter_mut().zip(qdot.iter_mut()).zip(k.d.iter().zip(&k.minv_d)) {
-                    *pi -= d * j;
-                    *qi -= md * j;
+            let mut j = [0.0; L];
+            match &self.kernels[e] {
+                Some(kernel) => kernel.impulses(&x, &v, &mut j),
+                None => {
+                    for l in 0..L {
+                        j[l] = k.law.impulse(x[l], v[l], k.kappa, self.tau);
+                    }
+                }
+            }
+            for ((pi, qi), (d, md)) in p.iter_mut().zip(qdot.iter_mut()).zip(k.d.iter().zip(&k.minv_d)) {
+                for l in 0..L {
+                    let moved = j[l] != 0.0;
+                    pi[l] = if moved { pi[l] - d * j[l] } else { pi[l] };
+                    qi[l] = if moved { qi[l] - md * j[l] } else { qi[l] };
                 }
             }
         }
     }
 
     /// Every element's remainder force F_e and deflection x_e at the state (for acceleration outputs and
-    /// statistics).
-    pub(crate) fn forces(&self, q: &[f64], qdot: &[f64], u: &[f64], ud: &[f64], out: &mut [f64], xe: &mut [f64]) {
+    /// statistics), lane by lane.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    pub(crate) fn forces<const L: usize>(
+        &self,
+        q: &[Lanes<L>],
+        qdot: &[Lanes<L>],
+        u: &[Lanes<L>],
+        ud: &[Lanes<L>],
+        out: &mut [Lanes<L>],
+        xe: &mut [Lanes<L>],
+    ) {
         for (e, (f, xo)) in out.iter_mut().zip(xe.iter_mut()).enumerate() {
             let (x, v) = self.kicks.kinematics(e, q, qdot, u, ud);
             *xo = x;
-            *f = match &self.kernels[e] {
-                Some(kernel) => kernel.force(x, v),
-                None => self.kicks.items[e].law.force(x, v),
-            };
+            match &self.kernels[e] {
+                Some(kernel) => {
+                    for l in 0..L {
+                        f[l] = kernel.force(x[l], v[l]);
+                    }
+                }
+                None => {
+                    for l in 0..L {
+                        f[l] = self.kicks.items[e].law.force(x[l], v[l]);
+                    }
+                }
+            }
         }
     }
 
     /// Whether element e is in its regime at deflection x.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn engaged(&self, e: usize, x: f64) -> bool {
         match &self.kernels[e] {
             Some(kernel) => kernel.engaged(x),
@@ -252,24 +314,25 @@ pub fn free_response(
     let phi = row_major(&crate::linalg::expm(&(&ss.a * h))?);
     let kicks = Kicks::new(model);
     let mv = lin.mass() * nalgebra::DVector::from_column_slice(v0);
-    let mut x: Vec<f64> = q0.iter().copied().chain(mv.iter().copied()).collect();
-    let mut qdot = v0.to_vec();
+    let mut x: Vec<Lanes<1>> = q0.iter().chain(mv.iter()).map(|v| [*v]).collect();
+    let mut qdot: Vec<Lanes<1>> = v0.iter().map(|v| [*v]).collect();
     let mut next = vec![0.0; 2 * n];
     let nb = lin.n_inputs();
-    let zeros = vec![0.0; nb.max(1)];
+    let zeros = vec![[0.0]; nb.max(1)];
     let half = kicks.prepared(0.5 * h);
     for _ in 0..steps {
         let (q, p) = x.split_at_mut(n);
         half.kick(q, p, &mut qdot, &zeros, &zeros, false);
         for (i, o) in next.iter_mut().enumerate() {
-            *o = (0..2 * n).map(|j| phi[i * 2 * n + j] * x[j]).sum();
+            *o = (0..2 * n).map(|j| phi[i * 2 * n + j] * x[j][0]).sum();
         }
-        x.copy_from_slice(&next);
+        x.iter_mut().zip(&next).for_each(|(a, b)| *a = [*b]);
         let (q, p) = x.split_at_mut(n);
         kicks.velocities(p, &zeros, &mut qdot);
         half.kick(q, p, &mut qdot, &zeros, &zeros, true);
     }
     let (q, p) = x.split_at(n);
     kicks.velocities(p, &zeros, &mut qdot);
-    Ok((q.to_vec(), qdot))
+    let q = q.iter().map(|v| v[0]).collect();
+    Ok((q, qdot.iter().map(|v| v[0]).collect()))
 }

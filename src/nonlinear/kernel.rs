@@ -62,7 +62,7 @@ impl Kernel {
     }
 
     /// The remainder F(x, v), N.
-    #[inline]
+    #[inline(always)]
     pub fn force(&self, x: f64, v: f64) -> f64 {
         match *self {
             Kernel::Stop { upper, lower, .. } => {
@@ -104,8 +104,50 @@ impl Kernel {
         }
     }
 
+    /// [`Kernel::impulse`] of every lane (realizations in lockstep): the same expressions lane by lane, with
+    /// the branches as selects so that the lanes vectorise. A stop side that is absent acts as clearance ∞
+    /// and stiffness 0, whose term k (x − d)₊ is +0 as the absent side's 0 is.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    pub fn impulses<const L: usize>(&self, x: &[f64; L], v: &[f64; L], j: &mut [f64; L]) {
+        match *self {
+            Kernel::Stop { upper, lower, tau } => {
+                let (du, ku) = upper.unwrap_or((f64::INFINITY, 0.0));
+                let (dl, kl) = lower.unwrap_or((f64::INFINITY, 0.0));
+                for l in 0..L {
+                    let up = ku * (x[l] - du).max(0.0);
+                    let lo = kl * (-dl - x[l]).max(0.0);
+                    j[l] = tau * (up - lo);
+                }
+            }
+            Kernel::Lift {
+                stiffness,
+                deflection,
+                tau,
+            } => {
+                for l in 0..L {
+                    j[l] = tau * (-stiffness * (x[l] - deflection).max(0.0));
+                }
+            }
+            Kernel::Bilinear {
+                kappa,
+                rate,
+                rebound,
+                compression,
+                ..
+            } => {
+                for l in 0..L {
+                    // v NaN: −v·f/κ is v's NaN, as through the law's e^{…} − 1 of NaN
+                    let f = if v[l] > 0.0 { rebound } else { compression };
+                    let flow = -v[l] * f / kappa;
+                    j[l] = if rate == 0.0 || v[l] == 0.0 { 0.0 } else { flow };
+                }
+            }
+        }
+    }
+
     /// Whether the element is in its regime at deflection x.
-    #[inline]
+    #[inline(always)]
     pub fn engaged(&self, x: f64) -> bool {
         match *self {
             Kernel::Stop { upper, lower, .. } => {

@@ -549,7 +549,8 @@ fn splitting_integrator_is_second_order_through_contact() {
 }
 
 /// Every law's [`Kernel`](stochvib::nonlinear::Kernel) (route 2's closed forms with the constants of a step)
-/// gives the bits of the law's own trait methods, at and around the kinks and at ±0.
+/// gives the bits of the law's own trait methods, at and around the kinks and at ±0, one point at a time and
+/// lane by lane (`Kernel::impulses`, the realizations route 2 steps in lockstep).
 #[test]
 fn kernels_give_the_bits_of_their_laws() {
     let laws: Vec<Box<dyn ForceLaw>> = vec![
@@ -577,6 +578,15 @@ fn kernels_give_the_bits_of_their_laws() {
                 assert_eq!(a.to_bits(), b.to_bits(), "{law:?} J({x}, {v})");
             }
             assert_eq!(k.engaged(x), law.engaged(x), "{law:?} engaged({x})");
+            // the lanes of realizations stepped in lockstep: the bits of the law, lane by lane
+            let (mut by_v, mut by_x) = ([0.0; 12], [0.0; 12]);
+            k.impulses(&[x; 12], &points, &mut by_v);
+            k.impulses(&points, &[x; 12], &mut by_x);
+            for (l, &p) in points.iter().enumerate() {
+                let (a, b) = (law.impulse(x, p, kappa, tau), law.impulse(p, x, kappa, tau));
+                assert_eq!(by_v[l].to_bits(), a.to_bits(), "{law:?} lanes J({x}, {p})");
+                assert_eq!(by_x[l].to_bits(), b.to_bits(), "{law:?} lanes J({p}, {x})");
+            }
         }
     }
 }

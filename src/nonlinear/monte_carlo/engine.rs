@@ -1,5 +1,8 @@
-//! One realization of route 2: the splitting integrator driven through burn-in and record, its samples fed
-//! to the records of every output; and the Δt-halving check of a realization.
+//! The realizations of route 2: the splitting integrator driven through burn-in and record, its samples fed
+//! to the records of every output; and the Δt-halving check of a realization. On the spectral route
+//! [`LANES`] realizations are stepped in lockstep, every state variable an array over them (structure of
+//! arrays), so that the per-step arithmetic vectorises across realizations; each lane does exactly the
+//! operations of a lone realization in the same order, so the results of a seed keep their bits.
 
 use super::flow::{ExactFlow, FohFlow, HoldStep, NoisyStep};
 use super::inputs::{refine, InputSamples};
@@ -7,9 +10,12 @@ use super::plan::{Flow, NlPlan};
 use super::record::{OutputRecord, RegimeRecord};
 use crate::error::Result;
 use crate::estimate::{WelchScratch, WelchSums};
-use crate::nonlinear::integrator::Prepared;
-use crate::simulate::{standard_normal, Scratch};
+use crate::linalg::vmath;
+use crate::nonlinear::integrator::{Lanes, Prepared};
+use crate::simulate::{splitmix64, standard_normal, stream, Scratch};
 use rand::rngs::Xoshiro256PlusPlus;
+use rayon::prelude::*;
+use std::ops::Range;
 
 /// Samples per block fed to the Welch estimate.
 const BLOCK: usize = 4096;
@@ -27,14 +33,18 @@ pub(crate) struct NlRealization {
     pub raw_inputs: Vec<Vec<f64>>,
 }
 
-/// A path of the linear flow: how to read the inputs and outputs from its state and advance it.
-trait Path {
-    fn state(&mut self) -> &mut [f64];
+/// Realizations the spectral route steps in lockstep (see [`realize_range`]).
+pub(crate) const LANES: usize = 4;
+
+/// A path of the linear flow for L realizations in lockstep: how to read the inputs and outputs from its
+/// state and advance it (every quantity one [`Lanes`] value per state variable, input or output).
+trait Path<const L: usize> {
+    fn state(&mut self) -> &mut [Lanes<L>];
     fn mech(&self) -> usize;
     /// ũ of every input (base, then force; 0 where not needed) and u̇ of the base inputs at sample k.
-    fn inputs(&self, k: usize, u: &mut [f64], ud: &mut [f64]);
+    fn inputs(&self, k: usize, u: &mut [Lanes<L>], ud: &mut [Lanes<L>]);
     /// The linear part of every output at sample k.
-    fn outputs(&self, k: usize, u: &[f64], ud: &[f64], y: &mut [f64]);
+    fn outputs(&self, k: usize, u: &[Lanes<L>], ud: &[Lanes<L>], y: &mut [Lanes<L>]);
     /// Advances the state from sample k to k + 1.
     fn step(&mut self, k: usize);
 }
@@ -49,141 +59,186 @@ enum Noise<'a> {
     Coarse(&'a [f64]),
 }
 
+/// The exact route's path: one realization (its noise is drawn in the order of a linear run).
 struct ExactPath<'a> {
     flow: &'a ExactFlow,
     step: &'a NoisyStep,
     noise: Noise<'a>,
-    z: Vec<f64>,
+    z: Vec<Lanes<1>>,
     w: Vec<f64>,
     next: Vec<f64>,
 }
 
-impl Path for ExactPath<'_> {
-    fn state(&mut self) -> &mut [f64] {
+impl Path<1> for ExactPath<'_> {
+    fn state(&mut self) -> &mut [Lanes<1>] {
         &mut self.z
     }
     fn mech(&self) -> usize {
         self.flow.mech
     }
-    fn inputs(&self, _k: usize, u: &mut [f64], ud: &mut [f64]) {
-        let dot = |r: &[f64]| r.iter().zip(&self.z).map(|(a, b)| a * b).sum::<f64>();
+    fn inputs(&self, _k: usize, u: &mut [Lanes<1>], ud: &mut [Lanes<1>]) {
+        let z = self.z.as_flattened();
+        let dot = |r: &[f64]| r.iter().zip(z).map(|(a, b)| a * b).sum::<f64>();
         for (j, row) in self.flow.u_rows.iter().enumerate() {
-            u[j] = dot(row);
-            ud[j] = self.flow.ud_rows[j].as_deref().map_or(0.0, dot);
+            u[j] = [dot(row)];
+            ud[j] = [self.flow.ud_rows[j].as_deref().map_or(0.0, dot)];
         }
     }
-    fn outputs(&self, _k: usize, _u: &[f64], _ud: &[f64], y: &mut [f64]) {
+    fn outputs(&self, _k: usize, _u: &[Lanes<1>], _ud: &[Lanes<1>], y: &mut [Lanes<1>]) {
         for (o, row) in y.iter_mut().zip(&self.flow.out_rows) {
             let mut s = 0.0;
-            for (a, b) in row.iter().zip(&self.z) {
+            for (a, b) in row.iter().zip(self.z.as_flattened()) {
                 s += a * b;
             }
-            *o = s;
+            *o = [s];
         }
     }
     fn step(&mut self, k: usize) {
         let n = self.flow.nz;
+        let z = self.z.as_flattened_mut();
         match &mut self.noise {
-            Noise::Stream(rng) => self.flow.step(self.step, &mut self.z, &mut self.w, &mut self.next, rng),
+            Noise::Stream(rng) => self.flow.step(self.step, z, &mut self.w, &mut self.next, rng),
             Noise::Fine(w) => self
                 .flow
-                .step_with(self.step, &mut self.z, &w[k * n..(k + 1) * n], &mut self.next),
+                .step_with(self.step, z, &w[k * n..(k + 1) * n], &mut self.next),
             Noise::Coarse(w) => {
                 let (w1, w2) = (&w[2 * k * n..(2 * k + 1) * n], &w[(2 * k + 1) * n..(2 * k + 2) * n]);
                 self.flow.coupled_noise(w1, w2, &mut self.w);
-                self.flow.step_noise(self.step, &mut self.z, &self.w, &mut self.next);
+                self.flow.step_noise(self.step, z, &self.w, &mut self.next);
             }
         }
     }
 }
 
-struct HoldPath<'a> {
+/// The spectral route's path: L realizations, each with its own synthesised inputs.
+struct HoldPath<'a, const L: usize> {
     flow: &'a FohFlow,
     step: &'a HoldStep,
-    u: &'a [Vec<f64>],
-    rates: &'a [Vec<f64>],
+    /// Per lane: the input samples u\[j\]\[k\] and the rates u̇\[r\]\[k\].
+    u: [&'a [Vec<f64>]; L],
+    rates: [&'a [Vec<f64>]; L],
     rate_inputs: &'a [usize],
-    x: Vec<f64>,
-    next: Vec<f64>,
-    u0: Vec<f64>,
-    u1: Vec<f64>,
+    x: Vec<Lanes<L>>,
+    next: Vec<Lanes<L>>,
+    u0: Vec<Lanes<L>>,
+    u1: Vec<Lanes<L>>,
 }
 
-impl Path for HoldPath<'_> {
-    fn state(&mut self) -> &mut [f64] {
+impl<const L: usize> HoldPath<'_, L> {
+    /// Every input's sample k into `out`.
+    #[inline(always)]
+    fn gather(&self, k: usize, out: &mut [Lanes<L>]) {
+        for (j, o) in out.iter_mut().enumerate().take(self.u[0].len()) {
+            *o = std::array::from_fn(|l| self.u[l][j][k]);
+        }
+    }
+}
+
+impl<const L: usize> Path<L> for HoldPath<'_, L> {
+    #[inline(always)]
+    fn state(&mut self) -> &mut [Lanes<L>] {
         &mut self.x
     }
     fn mech(&self) -> usize {
         0
     }
-    fn inputs(&self, k: usize, u: &mut [f64], ud: &mut [f64]) {
-        for (j, s) in self.u.iter().enumerate() {
-            u[j] = s[k];
-        }
-        ud.iter_mut().for_each(|v| *v = 0.0);
+    #[inline(always)]
+    fn inputs(&self, k: usize, u: &mut [Lanes<L>], ud: &mut [Lanes<L>]) {
+        self.gather(k, u);
+        ud.iter_mut().for_each(|v| *v = [0.0; L]);
         for (r, &j) in self.rate_inputs.iter().enumerate() {
-            ud[j] = self.rates[r][k];
+            ud[j] = std::array::from_fn(|l| self.rates[l][r][k]);
         }
     }
-    fn outputs(&self, _k: usize, u: &[f64], ud: &[f64], y: &mut [f64]) {
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    fn outputs(&self, _k: usize, u: &[Lanes<L>], ud: &[Lanes<L>], y: &mut [Lanes<L>]) {
         let f = self.flow;
         for (r, o) in y.iter_mut().enumerate() {
-            let mut s = 0.0;
+            let mut s = [0.0; L];
             for (a, b) in f.c_rows[r].iter().zip(&self.x) {
-                s += a * b;
+                for l in 0..L {
+                    s[l] += a * b[l];
+                }
             }
             for j in 0..f.m {
-                s += f.d_rows[r][j] * u[j] + f.e_rows[r][j] * ud[j];
+                let (d, e) = (f.d_rows[r][j], f.e_rows[r][j]);
+                for l in 0..L {
+                    s[l] += d * u[j][l] + e * ud[j][l];
+                }
             }
             *o = s;
         }
     }
+    #[inline(always)]
     fn step(&mut self, k: usize) {
-        for (j, s) in self.u.iter().enumerate() {
-            self.u0[j] = s[k];
-            self.u1[j] = s[k + 1];
-        }
-        self.flow
-            .step(self.step, &mut self.x, &self.u0, &self.u1, &mut self.next);
+        let (mut u0, mut u1) = (std::mem::take(&mut self.u0), std::mem::take(&mut self.u1));
+        self.gather(k, &mut u0);
+        self.gather(k + 1, &mut u1);
+        self.flow.step(self.step, &mut self.x, &u0, &u1, &mut self.next);
+        (self.u0, self.u1) = (u0, u1);
     }
 }
 
 /// Drives a path through `burn` + `rec` samples of step h; `sink(y, x)` gets every recorded sample's outputs
-/// and element deflections.
-fn drive<P: Path>(plan: &NlPlan, path: &mut P, h: f64, burn: usize, rec: usize, mut sink: impl FnMut(&[f64], &[f64])) {
+/// and element deflections (one [`Lanes`] value each). Always inlined, with the per-step work it calls, so
+/// that [`Drive`] compiles all of it for the instruction set it runs on.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+fn drive<const L: usize, P: Path<L>>(
+    plan: &NlPlan,
+    path: &mut P,
+    h: f64,
+    burn: usize,
+    rec: usize,
+    mut sink: impl FnMut(&[Lanes<L>], &[Lanes<L>]),
+) {
     let (n, nb, ne) = (plan.n_coords, plan.n_base, plan.kicks.len());
     let half = plan.kicks.prepared(0.5 * h);
     let m = plan.u_mean.len();
-    let mut ut = vec![0.0; m];
-    let mut ud = vec![0.0; nb.max(1)];
-    let mut ua = vec![0.0; nb.max(1)];
-    let mut q = vec![0.0; n];
-    let mut qdot = vec![0.0; n];
-    let mut y = vec![0.0; plan.outputs.len()];
-    let mut xe = vec![0.0; ne];
-    let mut fe = vec![0.0; ne];
+    let mut ut = vec![[0.0; L]; m];
+    let mut ud = vec![[0.0; L]; nb.max(1)];
+    let mut ua = vec![[0.0; L]; nb.max(1)];
+    let mut q = vec![[0.0; L]; n];
+    let mut qdot = vec![[0.0; L]; n];
+    let mut y = vec![[0.0; L]; plan.outputs.len()];
+    let mut xe = vec![[0.0; L]; ne];
+    let mut fe = vec![[0.0; L]; ne];
     let mech = path.mech();
-    let refresh =
-        |path: &mut P, k: usize, ut: &mut [f64], ud: &mut [f64], ua: &mut [f64], q: &mut [f64], qdot: &mut [f64]| {
-            path.inputs(k, ut, ud);
-            for j in 0..nb {
-                ua[j] = plan.u_mean[j] + ut[j];
+    let refresh = |path: &mut P,
+                   k: usize,
+                   ut: &mut [Lanes<L>],
+                   ud: &mut [Lanes<L>],
+                   ua: &mut [Lanes<L>],
+                   q: &mut [Lanes<L>],
+                   qdot: &mut [Lanes<L>]| {
+        path.inputs(k, ut, ud);
+        for j in 0..nb {
+            for l in 0..L {
+                ua[j][l] = plan.u_mean[j] + ut[j][l];
             }
-            let st = path.state();
-            for i in 0..n {
-                q[i] = plan.q_eq[i] + st[mech + i];
+        }
+        let st = path.state();
+        for i in 0..n {
+            for l in 0..L {
+                q[i][l] = plan.q_eq[i] + st[mech + i][l];
             }
-            plan.kicks.velocities(&st[mech + n..mech + 2 * n], ut, qdot);
-        };
+        }
+        plan.kicks.velocities(&st[mech + n..mech + 2 * n], ut, qdot);
+    };
     refresh(path, 0, &mut ut, &mut ud, &mut ua, &mut q, &mut qdot);
     for k in 0..burn + rec {
         if k >= burn {
             path.outputs(k, &ut, &ud, &mut y);
             half.forces(&q, &qdot, &ua, &ud, &mut fe, &mut xe);
             for (o, po) in y.iter_mut().zip(&plan.outputs) {
-                *o += po.offset;
+                for l in 0..L {
+                    o[l] += po.offset;
+                }
                 for (w, f) in po.acc.iter().zip(&fe) {
-                    *o -= w * f;
+                    for l in 0..L {
+                        o[l] -= w * f[l];
+                    }
                 }
             }
             sink(&y, &xe);
@@ -199,6 +254,23 @@ fn drive<P: Path>(plan: &NlPlan, path: &mut P, h: f64, burn: usize, rec: usize, 
         let st = path.state();
         let (_, rest) = st.split_at_mut(mech + n);
         half.kick(&q, &mut rest[..n], &mut qdot, &ua, &ud, true);
+    }
+}
+
+/// [`drive`] over a run's burn-in and record as a [`vmath::Task`]: compiled for the widest instruction set
+/// of the processor, whose vectors hold more lanes at once; the same operations (no fused multiply-add),
+/// so the same bits on every instruction set.
+struct Drive<'a, const L: usize, P, S> {
+    plan: &'a NlPlan,
+    path: &'a mut P,
+    sink: S,
+}
+
+impl<const L: usize, P: Path<L>, S: FnMut(&[Lanes<L>], &[Lanes<L>])> vmath::Task for Drive<'_, L, P, S> {
+    #[inline(always)]
+    fn run(&mut self) {
+        let plan = self.plan;
+        drive::<L, P>(plan, self.path, plan.h, plan.n_burn, plan.n, &mut self.sink);
     }
 }
 
@@ -267,15 +339,17 @@ impl<'a> Sink<'a> {
         }
     }
 
-    fn push(&mut self, y: &[f64], x: &[f64], scratch: &mut WelchScratch) {
-        for (r, &v) in y.iter().enumerate() {
-            self.block[r][self.filled] = self.records[r].push(v);
+    /// Lane `l` of the outputs y and the element deflections x.
+    #[inline(always)]
+    fn push<const L: usize>(&mut self, y: &[Lanes<L>], x: &[Lanes<L>], l: usize, scratch: &mut WelchScratch) {
+        for (r, v) in y.iter().enumerate() {
+            self.block[r][self.filled] = self.records[r].push(v[l]);
             if let Some(raw) = &mut self.raw {
-                raw[r].push(v);
+                raw[r].push(v[l]);
             }
         }
         for (e, rg) in self.regimes.iter_mut().enumerate() {
-            rg.push(self.regime.engaged(e, x[e]));
+            rg.push(self.regime.engaged(e, x[e][l]));
         }
         self.filled += 1;
         if self.filled == BLOCK {
@@ -299,49 +373,127 @@ impl<'a> Sink<'a> {
     }
 }
 
-/// Realization i: its inputs from `rng` (spectral route) or its noise (exact route), and, for i below the
-/// plan's number of checks, the Δt-halving check from the stream `check`.
+/// The stream of the Δt-halving check of realization i (independent of the realization's own stream).
+fn check_stream(seed: u64, i: u64) -> Xoshiro256PlusPlus {
+    stream(splitmix64(seed ^ 0x5851_f42d_4c95_7f2d), i)
+}
+
+/// Realizations `range` of the run of `seed`, in order, spread over the thread pool: on the spectral route
+/// [`LANES`] at a time in lockstep (a lane's arithmetic is that of a lone realization, so every sample has
+/// the same bits whatever the grouping), the rest one at a time.
 ///
 /// # Errors
 /// An FFT or Welch failure.
-pub(crate) fn realize(
+pub(crate) fn realize_range(plan: &NlPlan, seed: u64, range: Range<u64>, keep_raw: bool) -> Result<Vec<NlRealization>> {
+    let width = match plan.flow {
+        Flow::Hold { .. } => LANES as u64,
+        Flow::Exact(_) => 1,
+    };
+    let starts: Vec<u64> = range.clone().step_by(width as usize).collect();
+    let groups = starts
+        .into_par_iter()
+        .map_init(
+            || NlScratch::new(plan),
+            |s, a| match plan.flow {
+                Flow::Hold { .. } if a + width <= range.end => realize_hold::<LANES>(plan, s, seed, a, keep_raw),
+                Flow::Hold { .. } => (a..range.end)
+                    .map(|i| Ok(realize_hold::<1>(plan, s, seed, i, keep_raw)?.remove(0)))
+                    .collect(),
+                Flow::Exact(_) => Ok(vec![realize_exact(plan, s, seed, a, keep_raw)?]),
+            },
+        )
+        .collect::<Vec<_>>();
+    let mut out = Vec::with_capacity((range.end - range.start) as usize);
+    for g in groups {
+        out.extend(g?);
+    }
+    Ok(out)
+}
+
+/// Realization i on the exact route: its noise from its stream, and the Δt-halving check for i below the
+/// plan's number of checks.
+fn realize_exact(plan: &NlPlan, s: &mut NlScratch, seed: u64, i: u64, keep_raw: bool) -> Result<NlRealization> {
+    let Flow::Exact(f) = &plan.flow else {
+        unreachable!("an exact-route plan")
+    };
+    let mut rng = stream(seed, i);
+    let mut sink = Sink::new(plan, keep_raw);
+    let mut path = exact_path(plan, f, &f.coarse, Noise::Stream(&mut rng));
+    let ws = &mut s.welch;
+    drive::<1, _>(plan, &mut path, plan.h, plan.n_burn, plan.n, |y, x| {
+        sink.push(y, x, 0, ws)
+    });
+    conclude(plan, s, sink, seed, i, None, Vec::new())
+}
+
+/// Realizations first..first + L on the spectral route: every lane's inputs synthesised from its stream,
+/// the L stepped in lockstep, then each concluded as a lone realization.
+fn realize_hold<const L: usize>(
     plan: &NlPlan,
     s: &mut NlScratch,
-    rng: &mut Xoshiro256PlusPlus,
-    check: Option<&mut Xoshiro256PlusPlus>,
+    seed: u64,
+    first: u64,
     keep_raw: bool,
-) -> Result<NlRealization> {
-    let mut sink = Sink::new(plan, keep_raw);
-    let mut raw_inputs = Vec::new();
-    let mut samples = None;
-    match &plan.flow {
-        Flow::Exact(f) => {
-            let mut path = exact_path(plan, f, &f.coarse, Noise::Stream(rng));
-            let ws = &mut s.welch;
-            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, |y, x| sink.push(y, x, ws));
-        }
-        Flow::Hold { flow, inputs, rates } => {
-            let sc = s.inputs.as_mut().expect("a spectral plan has an input scratch");
-            let smp = inputs.draw(sc, rng, keep_raw)?;
-            let mut path = hold_path(flow, &flow.coarse, &smp.u, &smp.rates, rates);
-            let ws = &mut s.welch;
-            drive(plan, &mut path, plan.h, plan.n_burn, plan.n, |y, x| sink.push(y, x, ws));
-            if keep_raw {
-                raw_inputs = smp.processes.iter().map(|p| p[plan.n_burn..].to_vec()).collect();
+) -> Result<Vec<NlRealization>> {
+    let Flow::Hold { flow, inputs, rates } = &plan.flow else {
+        unreachable!("a spectral-route plan")
+    };
+    let sc = s.inputs.as_mut().expect("a spectral plan has an input scratch");
+    let smp = (0..L as u64)
+        .map(|l| inputs.draw(sc, &mut stream(seed, first + l), keep_raw))
+        .collect::<Result<Vec<_>>>()?;
+    let mut sinks: Vec<Sink> = (0..L).map(|_| Sink::new(plan, keep_raw)).collect();
+    let mut path = hold_path::<L>(
+        flow,
+        &flow.coarse,
+        std::array::from_fn(|l| &smp[l].u[..]),
+        std::array::from_fn(|l| &smp[l].rates[..]),
+        rates,
+    );
+    let ws = &mut s.welch;
+    vmath::run(&mut Drive {
+        plan,
+        path: &mut path,
+        sink: |y: &[Lanes<L>], x: &[Lanes<L>]| {
+            for (l, sink) in sinks.iter_mut().enumerate() {
+                sink.push(y, x, l, ws);
             }
-            samples = Some(smp);
-        }
+        },
+    });
+    let mut out = Vec::with_capacity(L);
+    for ((l, sink), smp) in sinks.into_iter().enumerate().zip(&smp) {
+        let raw_inputs = if keep_raw {
+            smp.processes.iter().map(|p| p[plan.n_burn..].to_vec()).collect()
+        } else {
+            Vec::new()
+        };
+        out.push(conclude(plan, s, sink, seed, first + l as u64, Some(smp), raw_inputs)?);
     }
+    Ok(out)
+}
+
+/// A realization's records closed (the last Welch block), its Δt-halving check if i is below the plan's
+/// number of checks, and its results.
+fn conclude(
+    plan: &NlPlan,
+    s: &mut NlScratch,
+    mut sink: Sink,
+    seed: u64,
+    i: u64,
+    samples: Option<&InputSamples>,
+    raw_inputs: Vec<Vec<f64>>,
+) -> Result<NlRealization> {
     sink.flush(&mut s.welch);
     for (st, ws) in sink.streams.iter_mut().zip(sink.welch.iter_mut()) {
         plan.welch.end_record(st, ws)?;
     }
-    if let Some(e) = sink.err {
+    if let Some(e) = sink.err.take() {
         return Err(e);
     }
-    let halving = match check {
-        Some(c) => Some(halving_check(plan, c, samples.as_ref())?),
-        None => None,
+    let halving = if (i as usize) < plan.checks {
+        Some(halving_check(plan, &mut check_stream(seed, i), samples)?)
+    } else {
+        None
     };
     finish(plan, sink, halving, raw_inputs)
 }
@@ -360,27 +512,27 @@ fn exact_path<'a>(plan: &NlPlan, f: &'a ExactFlow, step: &'a NoisyStep, mut nois
         noise,
         w: vec![0.0; f.nz],
         next: vec![0.0; f.nz],
-        z,
+        z: z.into_iter().map(|v| [v]).collect(),
     }
 }
 
-fn hold_path<'a>(
+fn hold_path<'a, const L: usize>(
     f: &'a FohFlow,
     step: &'a HoldStep,
-    u: &'a [Vec<f64>],
-    rates: &'a [Vec<f64>],
+    u: [&'a [Vec<f64>]; L],
+    rates: [&'a [Vec<f64>]; L],
     rate_inputs: &'a [usize],
-) -> HoldPath<'a> {
+) -> HoldPath<'a, L> {
     HoldPath {
         flow: f,
         step,
         u,
         rates,
         rate_inputs,
-        x: vec![0.0; f.nx],
-        next: vec![0.0; f.nx],
-        u0: vec![0.0; f.m],
-        u1: vec![0.0; f.m],
+        x: vec![[0.0; L]; f.nx],
+        next: vec![[0.0; L]; f.nx],
+        u0: vec![[0.0; L]; f.m],
+        u1: vec![[0.0; L]; f.m],
     }
 }
 
@@ -401,25 +553,25 @@ fn halving_check(
             f.start.initial_state(rng, &mut z0);
             let w: Vec<f64> = (0..2 * total * f.nz).map(|_| standard_normal(rng)).collect();
             let mut pc = exact_path(plan, f, &f.coarse, Noise::Coarse(&w));
-            pc.z.iter_mut().zip(&z0).for_each(|(a, b)| *a += b);
-            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, |y, _| {
+            pc.z.iter_mut().zip(&z0).for_each(|(a, b)| a[0] += b);
+            drive::<1, _>(plan, &mut pc, plan.h, plan.n_burn, plan.n, |y, _| {
                 push_all(&mut coarse, y)
             });
             let mut pf = exact_path(plan, f, &f.fine, Noise::Fine(&w));
-            pf.z.iter_mut().zip(&z0).for_each(|(a, b)| *a += b);
-            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, |y, _| {
+            pf.z.iter_mut().zip(&z0).for_each(|(a, b)| a[0] += b);
+            drive::<1, _>(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, |y, _| {
                 push_all(&mut fine, y)
             });
         }
         (Flow::Hold { flow, rates, .. }, Some(smp)) => {
-            let mut pc = hold_path(flow, &flow.coarse, &smp.u, &smp.rates, rates);
-            drive(plan, &mut pc, plan.h, plan.n_burn, plan.n, |y, _| {
+            let mut pc = hold_path(flow, &flow.coarse, [&smp.u[..]], [&smp.rates[..]], rates);
+            drive::<1, _>(plan, &mut pc, plan.h, plan.n_burn, plan.n, |y, _| {
                 push_all(&mut coarse, y)
             });
             let u2 = smp.u.iter().map(|x| refine(x)).collect::<Result<Vec<_>>>()?;
             let r2 = smp.rates.iter().map(|x| refine(x)).collect::<Result<Vec<_>>>()?;
-            let mut pf = hold_path(flow, &flow.fine, &u2, &r2, rates);
-            drive(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, |y, _| {
+            let mut pf = hold_path(flow, &flow.fine, [&u2[..]], [&r2[..]], rates);
+            drive::<1, _>(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, |y, _| {
                 push_all(&mut fine, y)
             });
         }
@@ -435,9 +587,9 @@ fn halving_check(
         .collect())
 }
 
-fn push_all(r: &mut [OutputRecord], y: &[f64]) {
-    for (rec, &v) in r.iter_mut().zip(y) {
-        rec.push(v);
+fn push_all(r: &mut [OutputRecord], y: &[Lanes<1>]) {
+    for (rec, v) in r.iter_mut().zip(y) {
+        rec.push(v[0]);
     }
 }
 

@@ -11,6 +11,7 @@
 //! the equilibrium back where the elements need absolute deflections.
 
 use crate::error::{Error, Result};
+use crate::nonlinear::integrator::Lanes;
 use crate::response::{augmented_system, Excitation};
 use crate::simulate::{covariance_factor, foh, van_loan, GaussMarkov};
 use crate::system::{FrequencyResponse, Mdof, Quantity};
@@ -296,52 +297,35 @@ impl FohFlow {
         })
     }
 
-    /// x ← Φx + Γ₀u₀ + Γ₁u₁ (the common sizes through [`hold_step`], the same arithmetic unrolled).
+    /// x ← Φx + Γ₀u₀ + Γ₁u₁ lane by lane (every row's sum from 0, Φ_ij x_j over j, then Γ₀u₀ + Γ₁u₁ per
+    /// input, in a lane's order whatever the number of lanes).
+    #[inline(always)]
     #[allow(clippy::needless_range_loop)] // row-major matrix products read clearest with indices
-    pub(crate) fn step(&self, s: &HoldStep, x: &mut [f64], u0: &[f64], u1: &[f64], next: &mut [f64]) {
+    pub(crate) fn step<const L: usize>(
+        &self,
+        s: &HoldStep,
+        x: &mut [Lanes<L>],
+        u0: &[Lanes<L>],
+        u1: &[Lanes<L>],
+        next: &mut [Lanes<L>],
+    ) {
         let (n, m) = (self.nx, self.m);
-        match (n, m) {
-            (2, 1) => return hold_step::<2, 1>(s, x, u0, u1),
-            (4, 1) => return hold_step::<4, 1>(s, x, u0, u1),
-            (4, 2) => return hold_step::<4, 2>(s, x, u0, u1),
-            (8, 2) => return hold_step::<8, 2>(s, x, u0, u1),
-            _ => {}
-        }
         for (i, o) in next.iter_mut().enumerate() {
-            let mut acc = 0.0;
+            let mut acc = [0.0; L];
             for j in 0..n {
-                acc += s.phi[i * n + j] * x[j];
+                let a = s.phi[i * n + j];
+                for l in 0..L {
+                    acc[l] += a * x[j][l];
+                }
             }
             for j in 0..m {
-                acc += s.g0[i * m + j] * u0[j] + s.g1[i * m + j] * u1[j];
+                let (a, b) = (s.g0[i * m + j], s.g1[i * m + j]);
+                for l in 0..L {
+                    acc[l] += a * u0[j][l] + b * u1[j][l];
+                }
             }
             *o = acc;
         }
         x.copy_from_slice(next);
     }
-}
-
-/// [`FohFlow::step`] for N states and M inputs known at compile time: each row's sum in the same order
-/// (0, then Φ_ij x_j over j, then Γ₀u₀ + Γ₁u₁ per input), so the same bits.
-#[inline]
-#[allow(clippy::needless_range_loop)] // row-major matrix products read clearest with indices
-fn hold_step<const N: usize, const M: usize>(s: &HoldStep, x: &mut [f64], u0: &[f64], u1: &[f64]) {
-    let (phi, g0, g1) = (&s.phi[..N * N], &s.g0[..N * M], &s.g1[..N * M]);
-    let (xs, u0, u1): (&[f64; N], &[f64; M], &[f64; M]) = (
-        x[..N].try_into().expect("N states"),
-        u0[..M].try_into().expect("M inputs"),
-        u1[..M].try_into().expect("M inputs"),
-    );
-    let mut next = [0.0; N];
-    for (i, o) in next.iter_mut().enumerate() {
-        let mut acc = 0.0;
-        for j in 0..N {
-            acc += phi[i * N + j] * xs[j];
-        }
-        for j in 0..M {
-            acc += g0[i * M + j] * u0[j] + g1[i * M + j] * u1[j];
-        }
-        *o = acc;
-    }
-    x[..N].copy_from_slice(&next);
 }

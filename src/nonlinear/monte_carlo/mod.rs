@@ -38,9 +38,9 @@ pub use step::{suggest_nonlinear_step, RECORD_BURN_INS};
 use crate::error::{Error, Result};
 use crate::nonlinear::{NonlinearModel, Route1, Stationary};
 use crate::response::{Excitation, ResponseStatistics};
-use crate::simulate::{accumulators, run_batch, splitmix64, stream, Analytic, RunOptions, RunSummary};
+use crate::simulate::{accumulators, Analytic, RunOptions, RunSummary};
 use crate::store::{CreateOptions, OutputStatistics, Provenance, RunMetadata, RunWriter, Signal, Statistic};
-use engine::{realize, NlRealization, NlScratch};
+use engine::{realize_range, NlRealization};
 use plan::NlPlan;
 use std::path::{Path, PathBuf};
 
@@ -98,11 +98,6 @@ pub struct NonlinearRunSummary {
     pub halving_checks: usize,
 }
 
-/// The stream of the Δt-halving check of realization i (independent of the realization's own stream).
-fn check_stream(seed: u64, i: u64) -> rand::rngs::Xoshiro256PlusPlus {
-    stream(splitmix64(seed ^ 0x5851_f42d_4c95_7f2d), i)
-}
-
 /// Runs route 2 of `input` into the HDF5 file `out` (see the module docs); resumes an interrupted run of the
 /// same subject and options.
 ///
@@ -139,17 +134,7 @@ pub fn run_nonlinear(
     let mut done = resumed;
     for shard in writer.pending_shards() {
         let range = meta.shard_range(shard);
-        let batch = run_batch(
-            ro.seed,
-            range.start as u64..range.end as u64,
-            || NlScratch::new(&plan),
-            |s, i, rng| {
-                let mut c = check_stream(ro.seed, i);
-                let check = ((i as usize) < plan.checks).then_some(&mut c);
-                realize(&plan, s, rng, check, ro.store_raw)
-            },
-        );
-        let results = batch.into_results().into_iter().collect::<Result<Vec<_>>>()?;
+        let results = realize_range(&plan, ro.seed, range.start as u64..range.end as u64, ro.store_raw)?;
         write_shard(
             &mut writer,
             shard,
