@@ -47,7 +47,7 @@ fn static_sag_against_closed_forms() {
     ];
     for (file, springs) in cases {
         let sc = load(file);
-        let report = stochvib::report::analysis::analysis_report(&sc).unwrap();
+        let report = stochvib::study::analysis_report(&sc).unwrap();
         let listed = report
             .static_sag
             .as_ref()
