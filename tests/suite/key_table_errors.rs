@@ -493,7 +493,17 @@ fn every_section_unknown_key_is_the_same() {
                 + "[transient]\nduration = \"5 s\"\n[[transient.schedule]]\nkey = \"model.denominator\"\n\
                    times = [\"0 s\", \"1 s\"]\nvalues = [1.0, 2.0]\nextra = 1\n",
             "transient.schedule[0].extra",
-            unknown("key, times, values"),
+            // `rope` (the rope-length formulas of a winding schedule) is a key of the schedule since this pin
+            // was transcribed: the list of known keys names it
+            unknown("key, rope, times, values"),
+        ),
+        (
+            on_road()
+                + "[transient]\nduration = \"5 s\"\n[[transient.schedule]]\nkey = \"model.denominator\"\n\
+                   times = [\"0 s\", \"1 s\"]\nvalues = [1.0, 2.0]\n\
+                   rope = { formula = \"stiffness\", axial_rigidity = \"1 MN\", extra = 1 }\n",
+            "transient.schedule[0].rope.extra",
+            unknown("axial_rigidity, end_mass, formula, mass_per_metre"),
         ),
         (
             model_with_extra("quarter-car-model.toml"),
