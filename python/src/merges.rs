@@ -6,8 +6,8 @@ use crate::convert::to_python;
 use crate::errors::{detached, invalid_input, lib};
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
-use stochvib::study::{merge_runs, MergeOptions};
 use stochvib::study::merge_kind::{merge_kind, MergeKind};
+use stochvib::study::{merge_runs, MergeOptions};
 
 /// The Python function that joins files of `kind`.
 fn function_of(kind: MergeKind) -> &'static str {
