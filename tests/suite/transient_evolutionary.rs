@@ -8,7 +8,7 @@ use crate::transient_exact::system;
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::PI;
 use std::sync::Arc;
-use stochvib::spectrum::{BandWhite, Convention, Domain, Exponential, Spectrum};
+use stochvib::spectrum::{BandWhite, Convention, Domain, Spectrum};
 use stochvib::system::{FrequencyResponse, OutputInfo, StateSpace};
 use stochvib::transient::{
     input_model, solve, solve_evolutionary, Envelope, EvolutionaryInput, ExactOptions, FixedSystem, InputModel,
@@ -202,23 +202,14 @@ fn band_limited_white_under_an_amplitude_ramp_against_priestley() {
 /// δ(t) (plus the exact route's tolerance), at every reported time.
 #[test]
 fn quarter_car_accelerating_against_the_exact_route() {
-    let car = crate::common::passenger_quarter_car();
-    let mdof = car.system().unwrap();
-    let ss = mdof.state_space().unwrap().clone();
-    let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
-    let v = SpeedProfile::constant_acceleration(5.0, 15.0, 0.25, 2.0).unwrap();
     let times: Vec<f64> = (0..=100).map(|k| k as f64 * 0.5).collect();
-    let exact = solve(
-        &system(
-            ss.clone(),
-            input_model(road.as_ref(), Some(&v)).unwrap(),
-            Envelope::unit(),
-        ),
-        &Start::Stationary,
-        &times,
-        &ExactOptions::default(),
-    )
-    .unwrap();
+    let crate::transient_exact::DirtRoadCar {
+        mdof,
+        ss,
+        road,
+        speed: v,
+        exact,
+    } = crate::transient_exact::dirt_road_car(0.25, &times);
     let fam = FixedSystem::new(ss, None, "quarter car").unwrap();
     let evo = solve_evolutionary(
         &fam,

@@ -19,6 +19,41 @@ use stochvib::transient::{
     TransientInput,
 };
 
+/// The passenger quarter car (`common::passenger_quarter_car`) accelerating at `acceleration` from 5 to
+/// 15 m/s (from t = 2 s) on the textbook's graded dirt road (Sukharev (2012) (8.69): spatial type 1,
+/// D = 32 cm², α = 0.16 1/m), started stationary, with its exact route at `times`: the set-up the
+/// evolutionary and the road-grid routes are checked against.
+pub(crate) struct DirtRoadCar {
+    pub mdof: stochvib::system::Mdof,
+    pub ss: StateSpace,
+    pub road: Arc<dyn Spectrum>,
+    pub speed: SpeedProfile,
+    pub exact: stochvib::transient::TransientSolution,
+}
+
+/// [`DirtRoadCar`] at `acceleration` (m/s²), the exact route evaluated at `times` (s).
+pub(crate) fn dirt_road_car(acceleration: f64, times: &[f64]) -> DirtRoadCar {
+    let mdof = crate::common::passenger_quarter_car().system().unwrap();
+    let ss = mdof.state_space().unwrap().clone();
+    let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
+    let speed = SpeedProfile::constant_acceleration(5.0, 15.0, acceleration, 2.0).unwrap();
+    let model = input_model(road.as_ref(), Some(&speed)).unwrap();
+    let exact = solve(
+        &system(ss.clone(), model, Envelope::unit()),
+        &Start::Stationary,
+        times,
+        &ExactOptions::default(),
+    )
+    .unwrap();
+    DirtRoadCar {
+        mdof,
+        ss,
+        road,
+        speed,
+        exact,
+    }
+}
+
 /// `ss` driven by one input process (gain 1 at every input) as a time-invariant family.
 pub(crate) fn system(ss: StateSpace, model: InputModel, envelope: Envelope) -> TimeVaryingSystem {
     let gains = vec![1.0; ss.b.ncols()];

@@ -4,11 +4,11 @@
 
 use std::sync::Arc;
 use stochvib::estimate::chi_squared_quantile;
-use stochvib::spectrum::{Domain, Exponential, IsoBound, IsoClass, PowerLaw, Spectrum};
+use stochvib::spectrum::{IsoBound, IsoClass, PowerLaw, Spectrum};
 use stochvib::system::FrequencyResponse;
 use stochvib::transient::{
-    input_model, road_grid_monte_carlo, solve, solve_evolutionary, Envelope, EvolutionaryInput, ExactOptions,
-    FixedSystem, RoadGridOptions, SpeedProfile, Start,
+    input_model, road_grid_monte_carlo, solve_evolutionary, Envelope, EvolutionaryInput, FixedSystem, RoadGridOptions,
+    SpeedProfile, Start,
 };
 
 /// A quarter car (m_s = 300, m_u = 40 kg, k_s = 20 kN/m, c_s = 1.5 kN s/m, k_t = 200 kN/m) accelerating at
@@ -22,23 +22,14 @@ use stochvib::transient::{
 /// (ΩΔx)²/6 at the body mode, 10⁻⁴) — are far inside the bounds (about ±30 % at R = 1000).
 #[test]
 fn quarter_car_accelerating_on_a_grid_road_against_the_exact_route() {
-    let car = crate::common::passenger_quarter_car();
-    let mdof = car.system().unwrap();
-    let ss = mdof.state_space().unwrap().clone();
-    let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
-    let v = SpeedProfile::constant_acceleration(5.0, 15.0, 0.5, 2.0).unwrap();
     let times: Vec<f64> = (0..=60).map(|k| k as f64 * 0.5).collect();
-    let exact = solve(
-        &crate::transient_exact::system(
-            ss.clone(),
-            input_model(road.as_ref(), Some(&v)).unwrap(),
-            Envelope::unit(),
-        ),
-        &Start::Stationary,
-        &times,
-        &ExactOptions::default(),
-    )
-    .unwrap();
+    let crate::transient_exact::DirtRoadCar {
+        mdof,
+        ss,
+        road,
+        speed: v,
+        exact,
+    } = crate::transient_exact::dirt_road_car(0.5, &times);
     let opts = RoadGridOptions {
         dx: 0.02,
         substeps: 400,
