@@ -1308,7 +1308,7 @@ fn output_dir(dir: &Path, what: &str) -> anyhow::Result<()> {
 }
 
 /// The flags that set the fields of [`RunOptions`], by the names the library's errors give them.
-const RUN_FLAGS: [(&str, &str); 9] = [
+const RUN_FLAGS: [(&str, &str); 11] = [
     ("realizations", "--realizations"),
     ("shard size", "--shard-size"),
     ("dt", "--dt"),
@@ -1318,6 +1318,8 @@ const RUN_FLAGS: [(&str, &str); 9] = [
     ("max hours", "--max-hours"),
     ("of", "--of"),
     ("shard", "--shard"),
+    ("road step", "--road-step"),
+    ("substeps", "--substeps"),
 ];
 
 /// A library error about a value the user gave as a flag, named by that flag: `flags` maps the library's

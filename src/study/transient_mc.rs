@@ -91,9 +91,7 @@ pub fn simulate_transient(
     }
     let duration = *setup.times.last().unwrap_or(&0.0);
     let intervals = setup.times.len() - 1;
-    if opts.substeps == 0 {
-        return Err(Error::invalid("substeps", 0, "must be >= 1"));
-    }
+    check_substeps(opts.substeps, intervals)?;
     let dt = duration / (intervals * opts.substeps) as f64;
     let grid = McGrid::new(duration, dt, opts.substeps)?;
     let input = TransientRunInput {
@@ -272,6 +270,27 @@ fn road_grid_analytic(sc: &Scenario, outputs: &[usize]) -> Result<(AnalyticSide,
     Ok((analytic_side(sol, None, &outs, method)?, outs, notes))
 }
 
+/// The most integration steps (and, on a road grid, road points) one realization of a transient Monte Carlo
+/// may take: 2²⁶ ≈ 6.7·10⁷, half a gigabyte of road in f64. More `substeps` or a finer `road step` is refused
+/// before any work (the counts are formed in f64, so no product overflows).
+pub const MAX_STEPS_PER_REALIZATION: f64 = (1u64 << 26) as f64;
+
+/// Refuses `substeps` of 0 or more than [`MAX_STEPS_PER_REALIZATION`] steps over `intervals` reported intervals.
+fn check_substeps(substeps: usize, intervals: usize) -> Result<()> {
+    let steps = substeps as f64 * intervals as f64;
+    if substeps == 0 || steps > MAX_STEPS_PER_REALIZATION {
+        return Err(Error::invalid(
+            "substeps",
+            substeps,
+            format!(
+                "must be >= 1, and at most {MAX_STEPS_PER_REALIZATION:e} integration steps per realization \
+                 over the {intervals} reported intervals (this asks {steps:.3e})"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Runs the road-grid Monte Carlo of the scenario's transient into `out` (resuming an interrupted run): a
 /// road synthesised on a spatial grid of step `road_step` (default [`default_road_step`]) and sampled along
 /// x(t), for any road spectrum under a speed profile; the analytic curves of [`road_grid_analytic`].
@@ -311,7 +330,24 @@ pub fn simulate_road_grid(
     let intervals = setup.times.len() - 1;
     let step = duration / intervals as f64;
     let v_max = setup.speed.table_points().range().1;
-    let substeps = opts.substeps.max((step * v_max / dx).ceil() as usize).max(1);
+    // in f64 before any cast: a tiny Δx must be refused, not overflow a count
+    let per_interval = (step * v_max / dx).ceil();
+    let road_points = v_max * duration / dx;
+    if per_interval * intervals as f64 > MAX_STEPS_PER_REALIZATION || road_points > MAX_STEPS_PER_REALIZATION {
+        return Err(Error::invalid(
+            "road step",
+            dx,
+            format!(
+                "a grid step of {dx:e} m over the mission (up to {:.3e} m at {v_max} m/s) needs {:.3e} road \
+                 points and {:.3e} integration steps per realization; at most {MAX_STEPS_PER_REALIZATION:e} each",
+                v_max * duration,
+                road_points,
+                per_interval * intervals as f64
+            ),
+        ));
+    }
+    check_substeps(opts.substeps, intervals)?;
+    let substeps = opts.substeps.max(per_interval as usize);
     notes.push(format!(
         "road-grid Monte Carlo: Δx = {dx:.4e} m, {substeps} integration steps per reported interval"
     ));
