@@ -92,11 +92,32 @@ impl ParetoProblem<'_> {
     }
 }
 
+/// Refuses, after the two ends, a front of `n` points whose list does not fit in memory or whose inner
+/// points, each a search like an end's (`per_point_s` measured), would take longer than `max_hours`.
+fn check_front_budget(n: usize, per_point_s: f64, max_hours: f64) -> Result<()> {
+    let what = format!("a front of {n} points");
+    crate::io_rules::check_memory(
+        n as u128 * std::mem::size_of::<ParetoPoint>() as u128,
+        "--points",
+        n,
+        &what,
+        "fewer --points",
+    )?;
+    let estimate = (n - 2) as f64 * per_point_s;
+    let what = format!(
+        "{what}: {} inner searches of about {} s (an end's)",
+        n - 2,
+        crate::numbers::short(per_point_s)
+    );
+    crate::io_rules::check_time(estimate, max_hours, "--points", n, &what, "fewer --points")
+}
+
 /// The front of `problem` with `n` ≥ 2 points (see the module docs), each optimum found by [`solve`] with
 /// `opts`.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] naming `--points` for n < 2; an end point that meets not every constraint
+/// [`Error::InvalidParameter`] naming `--points` for n < 2 or for a front whose estimate (after its two ends)
+/// exceeds `opts.max_hours` or the memory; an end point that meets not every constraint
 /// (the problem is infeasible: its violations); the errors of [`Problem::new`] and [`solve`].
 pub fn pareto(problem: &ParetoProblem, n: usize, opts: &SolveOptions) -> Result<ParetoFront> {
     if n < 2 {
@@ -125,7 +146,9 @@ pub fn pareto(problem: &ParetoProblem, n: usize, opts: &SolveOptions) -> Result<
             feasible: true,
         })
     };
+    let clock = std::time::Instant::now();
     let (a, b) = (end(0)?, end(1)?);
+    check_front_budget(n, clock.elapsed().as_secs_f64() / 2.0, opts.max_hours)?;
     let (hi, lo) = (a.values[1], b.values[1]);
     let mut points = vec![a];
     for k in 1..n - 1 {

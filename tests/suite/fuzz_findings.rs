@@ -692,3 +692,30 @@ fn a_tiny_road_step_or_huge_substeps_is_refused_by_its_flag() {
     assert!(common::listing(&dir).is_empty(), "nothing written");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Found in the final review: `optimize --pareto … --points 18446744073709551615` searched on with no
+/// estimate. The front is now checked after its two ends: its list against the memory, and its inner
+/// searches, each costing about one end's search, against `--max-hours`. A million points under a cap of
+/// 3.6 s needs every search to take under 3.6 µs; one evaluation of the quarter car alone takes longer.
+#[test]
+fn a_pareto_front_of_absurdly_many_points_is_refused_by_name() {
+    let base = [
+        "optimize",
+        "data/quarter-car-model.toml",
+        "--param",
+        "model.suspension_damping=0.2:6 kN*s/m",
+        "--minimize",
+        "sigma(body_acc)",
+        "--pareto",
+        "sigma(travel)",
+    ];
+    for extra in [
+        &["--points", "18446744073709551615"][..],
+        &["--points", "1000000", "--max-hours", "0.001"][..],
+    ] {
+        let mut args = base.to_vec();
+        args.extend(extra);
+        let err = common::cli_fails(1, &args, &root());
+        assert!(err.contains("--points") && err.contains("fewer --points"), "{err}");
+    }
+}
