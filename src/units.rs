@@ -21,6 +21,11 @@
 //!
 //! A caller that wants a value in hertz must divide by 2π itself; this module never does it silently.
 //!
+//! # Sample rates
+//! A sample rate counts samples per second; it is no angle. [`parse_sample_rate`] reads `Hz` as one per
+//! second and `S` (`sample`, `samples`; with prefixes: `kS/s`) as a count, and refuses angles: `"200 Hz"`,
+//! `"200 1/s"` and `"200 S/s"` are all 200 per second. Every other text parses as above.
+//!
 //! # Formula
 //! The accepted grammar (whitespace may appear between any two tokens except where noted):
 //!
@@ -250,6 +255,49 @@ pub fn check_magnitude(x: f64) -> std::result::Result<f64, String> {
 /// assert_eq!(parse_quantity("450 kg m^2").unwrap(), (450.0, Dim::INERTIA));
 /// ```
 pub fn parse_quantity(text: &str) -> Result<(f64, Dim)> {
+    parse_quantity_in(text, Reading::Angular)
+}
+
+/// Parses a sample rate (a count of samples per second): `"200 Hz"`, `"200 1/s"`, `"200 S/s"`, `"2 kS/s"`,
+/// `"200 samples/s"`, `"0.2 1/ms"` → 200 (per second). Here `Hz` is one event per second — not 2π rad/s as
+/// in [`parse_quantity`] — and `S` (`sample`, `samples`) counts samples; an angle (`rad`, `cycle`, `deg`) is
+/// refused. Every other unit reads as in [`parse_quantity`]; a bare number is refused (it has no dimension).
+///
+/// # Errors
+/// [`Error::Unit`] for everything [`parse_quantity`] rejects, an angle, and a dimension other than `s^-1`.
+///
+/// # Examples
+/// ```
+/// use stochvib::units::parse_sample_rate;
+/// assert_eq!(parse_sample_rate("200 Hz").unwrap(), 200.0);
+/// assert_eq!(parse_sample_rate("200 1/s").unwrap(), 200.0);
+/// assert_eq!(parse_sample_rate("2 kS/s").unwrap(), 2000.0);
+/// assert!(parse_sample_rate("200 rad/s").is_err() && parse_sample_rate("200 m").is_err());
+/// ```
+pub fn parse_sample_rate(text: &str) -> Result<f64> {
+    let (v, d) = parse_quantity_in(text, Reading::Count)?;
+    if d != Dim::FREQUENCY {
+        return Err(Error::Unit {
+            text: text.to_string(),
+            reason: format!(
+                "dimension is {d}, expected s^-1 (a sample rate: samples per second, e.g. \"200 Hz\", \"200 1/s\" \
+                 or \"200 S/s\")"
+            ),
+        });
+    }
+    Ok(v)
+}
+
+/// How a unit expression reads frequencies: as angles per second (`Hz` = 2π rad/s; [`parse_quantity`]) or
+/// as counts of events per second (`Hz` = 1/s, `S` a sample; [`parse_sample_rate`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Reading {
+    Angular,
+    Count,
+}
+
+/// [`parse_quantity`] in the reading `reading`.
+fn parse_quantity_in(text: &str, reading: Reading) -> Result<(f64, Dim)> {
     let err = |reason: String| Error::Unit {
         text: text.to_string(),
         reason,
@@ -273,7 +321,7 @@ pub fn parse_quantity(text: &str) -> Result<(f64, Dim)> {
         return Err(err(format!("number `{number_str}` is not finite")));
     }
     let tokens = tokenize(rest).map_err(err)?;
-    let unit = parse_unit_expr(&tokens).map_err(err)?;
+    let unit = parse_unit_expr(&tokens, reading).map_err(err)?;
     if !unit.scale_is_representable() {
         return Err(err(format!(
             "the scale of unit `{}` is outside the range of f64",
@@ -659,6 +707,27 @@ const UNITS: &[NamedUnit] = &[
     ("deg", PI, 180.0, 0, Dim::DIMENSIONLESS, false),
 ];
 
+/// The units of [`Reading::Count`] that differ from [`UNITS`]: `Hz` is one event per second and a sample
+/// `S` (`sample`, `samples`) is a count; the angles of [`UNITS`] (its dimensionless units) are not counts.
+const COUNT_UNITS: &[NamedUnit] = &[
+    ("Hz", 1.0, 1.0, 0, Dim::FREQUENCY, true),
+    ("S", 1.0, 1.0, 0, Dim::DIMENSIONLESS, true),
+    ("sample", 1.0, 1.0, 0, Dim::DIMENSIONLESS, false),
+    ("samples", 1.0, 1.0, 0, Dim::DIMENSIONLESS, false),
+];
+
+/// The named unit `name` in `reading`.
+fn named_unit(name: &str, reading: Reading) -> Option<&'static NamedUnit> {
+    let angular = || UNITS.iter().find(|u| u.0 == name);
+    match reading {
+        Reading::Angular => angular(),
+        Reading::Count => COUNT_UNITS
+            .iter()
+            .find(|u| u.0 == name)
+            .or_else(|| angular().filter(|u| u.4 != Dim::DIMENSIONLESS)),
+    }
+}
+
 const PREFIXES: &[(char, i32)] = &[
     ('G', 9),
     ('M', 6),
@@ -672,8 +741,8 @@ const PREFIXES: &[(char, i32)] = &[
 ];
 
 /// Whole-name match first, then one prefix character + a prefixable name.
-fn lookup_unit(word: &str) -> Option<Unit> {
-    let named = |name: &str| UNITS.iter().find(|u| u.0 == name);
+fn lookup_unit(word: &str, reading: Reading) -> Option<Unit> {
+    let named = |name: &str| named_unit(name, reading);
     if let Some(&(_, num, den, pow10, dim, _)) = named(word) {
         return Some(Unit { num, den, pow10, dim });
     }
@@ -690,7 +759,14 @@ fn lookup_unit(word: &str) -> Option<Unit> {
     })
 }
 
-fn unknown_unit(word: &str) -> String {
+fn unknown_unit(word: &str, reading: Reading) -> String {
+    if reading == Reading::Count && lookup_unit(word, Reading::Angular).is_some() {
+        return format!(
+            "`{word}` is an angle, not a count: a sample rate is in samples per second (write e.g. \"200 Hz\", \
+             \"200 1/s\" or \"200 S/s\")"
+        );
+    }
+    let lookup_unit = |w: &str| lookup_unit(w, reading);
     let mut reason = format!("unknown unit `{word}`");
     // A product written without a separator, e.g. `Nm`, `kgm`.
     let split = word
@@ -708,7 +784,11 @@ fn unknown_unit(word: &str) -> String {
             " (for a product write `{a} {b}` or `{a}*{b}`; letters written together are one unit)"
         ));
     } else {
-        reason.push_str(" (known: m g t s min h N Pa J W Hz rad cycle cycles deg, prefixes G M k c m u µ n)");
+        let known = match reading {
+            Reading::Angular => "m g t s min h N Pa J W Hz rad cycle cycles deg",
+            Reading::Count => "m g t s min h N Pa J W Hz S sample samples",
+        };
+        reason.push_str(&format!(" (known: {known}, prefixes G M k c m u µ n)"));
     }
     reason
 }
@@ -726,7 +806,7 @@ fn describe(t: &Tok) -> String {
 }
 
 /// Parses `product := factor { [sep] factor }` starting at `*i`; stops before `/`, `)` or the end.
-fn parse_product(toks: &[Tok], i: &mut usize) -> std::result::Result<Unit, String> {
+fn parse_product(toks: &[Tok], i: &mut usize, reading: Reading) -> std::result::Result<Unit, String> {
     let mut unit = Unit::ONE;
     loop {
         let word = match toks.get(*i) {
@@ -737,7 +817,7 @@ fn parse_product(toks: &[Tok], i: &mut usize) -> std::result::Result<Unit, Strin
             Some(t) => return Err(format!("expected a unit, found {}", describe(t))),
             None => return Err("expected a unit, found the end of the text".into()),
         };
-        let factor = lookup_unit(word).ok_or_else(|| unknown_unit(word))?;
+        let factor = lookup_unit(word, reading).ok_or_else(|| unknown_unit(word, reading))?;
         *i += 1;
         let mut power = 1;
         if let Some(Tok::Pow { p, text, spaced }) = toks.get(*i) {
@@ -767,7 +847,7 @@ fn parse_product(toks: &[Tok], i: &mut usize) -> std::result::Result<Unit, Strin
     }
 }
 
-fn parse_unit_expr(toks: &[Tok]) -> std::result::Result<Unit, String> {
+fn parse_unit_expr(toks: &[Tok], reading: Reading) -> std::result::Result<Unit, String> {
     let mut i = 0;
     let numerator = match toks.first() {
         None => return Ok(Unit::ONE),
@@ -779,7 +859,7 @@ fn parse_unit_expr(toks: &[Tok]) -> std::result::Result<Unit, String> {
             Unit::ONE
         }
         Some(Tok::Slash) => Unit::ONE,
-        Some(_) => parse_product(toks, &mut i)?,
+        Some(_) => parse_product(toks, &mut i, reading)?,
     };
     let mut unit = numerator;
     if toks.get(i) == Some(&Tok::Slash) {
@@ -788,14 +868,14 @@ fn parse_unit_expr(toks: &[Tok]) -> std::result::Result<Unit, String> {
             None => return Err("dangling `/`: expected a unit after it".into()),
             Some(Tok::LParen) => {
                 i += 1;
-                let d = parse_product(toks, &mut i)?;
+                let d = parse_product(toks, &mut i, reading)?;
                 if toks.get(i) != Some(&Tok::RParen) {
                     return Err("unbalanced `(`: expected `)` after the denominator".into());
                 }
                 i += 1;
                 d
             }
-            Some(_) => parse_product(toks, &mut i)?,
+            Some(_) => parse_product(toks, &mut i, reading)?,
         };
         unit = unit.times_pow(&den, -1)?;
     }
@@ -1080,6 +1160,43 @@ mod tests {
         assert_eq!(parse_value(&doc["c"], Dim::VELOCITY), Ok(2.0));
     }
 
+    /// A sample rate counts samples per second (no 2π): every spelling of 200 per second is 200.
+    #[test]
+    fn sample_rates_are_counts_per_second() {
+        for text in ["200 Hz", "200 1/s", "200 /s", "200 S/s", "200 samples/s", "200 s^-1", "0.2 kHz", "0.2 kS/s"] {
+            let v = parse_sample_rate(text).unwrap_or_else(|e| panic!("{text}: {e}"));
+            assert!(close(v, 200.0), "{text}: {v}");
+        }
+        assert_eq!(parse_sample_rate("12000 1/min").unwrap(), 200.0);
+        assert_eq!(parse_sample_rate("1 MS/s").unwrap(), 1e6);
+    }
+
+    /// Angles, other dimensions and bare numbers are no sample rates; the reason says what one is.
+    #[test]
+    fn sample_rate_errors() {
+        let reason = |text: &str| match parse_sample_rate(text) {
+            Err(Error::Unit { text: t, reason }) => {
+                assert_eq!(t, text);
+                reason
+            }
+            other => panic!("{text}: expected a unit error, got {other:?}"),
+        };
+        assert!(reason("200 rad/s").contains("`rad` is an angle"), "{}", reason("200 rad/s"));
+        assert!(reason("200 cycles/s").contains("`cycles` is an angle"));
+        for text in ["200 m", "200", "200 Hz s"] {
+            assert!(reason(text).contains("expected s^-1 (a sample rate"), "{text}: {}", reason(text));
+        }
+        assert!(reason("200 furlong/s").contains("known: m g t s min h N Pa J W Hz S sample samples"));
+    }
+
+    /// The sample-rate reading leaves every other parse as it was: `Hz` stays 2π rad/s and `S` unknown.
+    #[test]
+    fn the_angular_reading_is_unchanged() {
+        check("2 Hz", 4.0 * PI, Dim::FREQUENCY);
+        assert!(reason("200 S/s").starts_with("unknown unit `S`"));
+        assert!(reason("3 samples").starts_with("unknown unit `samples`"));
+    }
+
     proptest! {
         // a fixed seed: the same cases on every run (proptest's default seed is random)
         #![proptest_config(ProptestConfig { rng_seed: proptest::test_runner::RngSeed::Fixed(0x5eed_2026), failure_persistence: None, ..ProptestConfig::default() })]
@@ -1116,6 +1233,18 @@ mod tests {
         fn arbitrary_text_never_panics(s in "[0-9a-zA-Zµμ .*/^()+\\-·⋅²³⁻¹%#]{0,16}") {
             match parse_quantity(&s) {
                 Ok((v, _)) => prop_assert!(v.is_finite()),
+                Err(Error::Unit { text, reason }) => {
+                    prop_assert_eq!(text, s);
+                    prop_assert!(!reason.is_empty());
+                }
+                Err(e) => prop_assert!(false, "unexpected error kind {:?}", e),
+            }
+        }
+
+        #[test]
+        fn sample_rate_text_never_panics(s in "[0-9a-zA-Zµμ .*/^()+\\-·⋅²³⁻¹%#]{0,16}") {
+            match parse_sample_rate(&s) {
+                Ok(v) => prop_assert!(v.is_finite()),
                 Err(Error::Unit { text, reason }) => {
                     prop_assert_eq!(text, s);
                     prop_assert!(!reason.is_empty());
