@@ -1,8 +1,8 @@
 # %% [markdown]
 # # A Duffing oscillator under white noise: the three routes from Python
 #
-# A hardening spring (k₃ x³) makes the response non-Gaussian. `analyze` of a scenario with
-# `[[model.nonlinear]]` gives route 1 (statistical linearisation, Gaussian), route 3 (the exact stationary
+# A hardening spring (k₃ x³) makes the response non-Gaussian. `analyze_nonlinear` of a scenario with
+# `[[model.nonlinear]]` (`analyze` refuses it and names this function) gives route 1 (statistical linearisation, Gaussian), route 3 (the exact stationary
 # density of the Fokker–Planck equation, where it applies) and with `monte_carlo=N` route 2 (the nonlinear
 # equations integrated in time, seeded). Here ε σ₀² = 1: the exact variance is 0.4679 σ₀², route 1 gives
 # 0.4343 σ₀² (Caughey 1963; Lin 1967, ch. 10).
@@ -11,7 +11,7 @@
 import stochvib
 
 sc = stochvib.Scenario.load("data/duffing-white-noise.toml")
-r = sc.analyze(monte_carlo=40, dt=0.01, duration=200.0, seed=1, progress=False)
+r = sc.analyze_nonlinear(monte_carlo=40, dt=0.01, duration=200.0, seed=1, progress=False)
 print(repr(r))
 x = r["x"]
 sigma0 = 0.01

@@ -7,6 +7,7 @@
 
 use pyo3::prelude::*;
 
+mod analysis;
 mod arrays;
 mod convert;
 mod errors;
@@ -17,6 +18,7 @@ mod names;
 mod nonlinear_run;
 mod optimize;
 mod quantity;
+mod reports;
 mod scenario;
 mod spectrum;
 mod system;
@@ -46,6 +48,9 @@ fn _stochvib(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(toolkit::coherence_amplitude, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::daily_exposure_a8, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::vdv_gaussian, m)?)?;
+    m.add_function(wrap_pyfunction!(reports::replay, m)?)?;
+    m.add_function(wrap_pyfunction!(reports::workday, m)?)?;
+    m.add_function(wrap_pyfunction!(reports::inspect, m)?)?;
     m.add_function(wrap_pyfunction!(_check_panic_guard, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("ISO_BAND", stochvib::spectrum::ISO_BAND)?;

@@ -6,7 +6,7 @@
 use crate::errors::{invalid_input, unit_error};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyString};
-use stochvib::units::{parse_as, unit_dim};
+use stochvib::units::{parse_as, parse_sample_rate, unit_dim};
 use stochvib::Error;
 
 /// The value of `obj` in the SI unit `unit` (e.g. "m/s"): a real number as it is, a string parsed with
@@ -16,10 +16,32 @@ use stochvib::Error;
 /// `UnitError` naming `name` for a string whose unit is unknown or of another dimension;
 /// `InvalidInputError` for anything that is neither a number nor a string (booleans included).
 pub fn quantity(py: Python<'_>, obj: &Bound<'_, PyAny>, name: &str, unit: &str) -> PyResult<f64> {
+    read(py, obj, name, unit, |text| {
+        let dim = unit_dim(unit).ok_or_else(|| Error::invalid(name, unit, "not a coherent SI unit"))?;
+        parse_as(text, dim)
+    })
+}
+
+/// A sample rate (samples per second): a real number as it is (Hz), a string parsed by the library's
+/// sample-rate reading ("200 Hz", "200 1/s", "200 S/s" are 200; [`parse_sample_rate`]).
+///
+/// # Errors
+/// As [`quantity`].
+pub fn sample_rate(py: Python<'_>, obj: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
+    read(py, obj, name, "Hz", parse_sample_rate)
+}
+
+/// A number as it is, a string through `parse`; `UnitError` naming `name` for a bad string.
+fn read(
+    py: Python<'_>,
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    unit: &str,
+    parse: impl FnOnce(&str) -> stochvib::Result<f64>,
+) -> PyResult<f64> {
     if obj.is_instance_of::<PyString>() {
         let text: String = obj.extract()?;
-        let dim = unit_dim(unit).ok_or_else(|| invalid_input(py, format!("`{unit}` is not a coherent SI unit")))?;
-        return parse_as(&text, dim).map_err(|e| match e {
+        return parse(&text).map_err(|e| match e {
             Error::Unit { reason, .. } => unit_error(py, name, &text, &format!("{reason} ({name} is in {unit})")),
             other => crate::errors::lib_error(py, &other),
         });

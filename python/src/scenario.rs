@@ -1,6 +1,7 @@
 //! `stochvib.Scenario`: a scenario file, or a system with its random input built in Python; its analysis
 //! (the `stochvib analyze` report) and its Monte Carlo runs (`stochvib simulate`).
 
+use crate::analysis;
 use crate::convert::to_python;
 use crate::errors::{call, detached, invalid_input, lib};
 use crate::interrupt::run_interruptible;
@@ -20,10 +21,10 @@ use stochvib::quad_oscillatory::OscillatoryOptions;
 use stochvib::report::{deterministic_report, reference_report, TablesReport};
 use stochvib::response::Excitation;
 use stochvib::scenario::{load_document, AnalysisOptions, Document, Scenario, ScenarioInput};
-use stochvib::simulate::{run_temporary, suggest_step, RunOptions};
+use stochvib::simulate::{suggest_step, RunOptions};
 use stochvib::spectrum::{AtSpeed, Domain, Spectrum};
 use stochvib::store::Compression;
-use stochvib::study::{analysis_report, attach_monte_carlo, AnalysisReport};
+use stochvib::study::{analysis_report, AnalysisReport};
 use stochvib::Error;
 
 /// A scenario: a model, its random input and what to report — read from a scenario file
@@ -239,7 +240,7 @@ fn document_report<'py>(py: Python<'py>, doc: &Document) -> PyResult<(String, Bo
 
 /// Calls `f` with the progress callable of `stochvib._progress.make(progress)` and calls its `close`
 /// afterwards, whatever happens; `progress` None means the default, True.
-fn with_progress<T>(
+pub(crate) fn with_progress<T>(
     py: Python<'_>,
     progress: Option<Py<PyAny>>,
     f: impl FnOnce(Option<Py<PyAny>>) -> PyResult<T>,
@@ -379,7 +380,7 @@ fn sweep_monte_carlo(
 }
 
 /// Time step and duration: as given, the missing ones suggested from the system (with the reason).
-fn step(sc: &Scenario, dt: Option<f64>, duration: Option<f64>) -> stochvib::Result<(f64, f64, String)> {
+pub(crate) fn step(sc: &Scenario, dt: Option<f64>, duration: Option<f64>) -> stochvib::Result<(f64, f64, String)> {
     if let (Some(dt), Some(d)) = (dt, duration) {
         return Ok((dt, d, "given".into()));
     }
@@ -389,6 +390,118 @@ fn step(sc: &Scenario, dt: Option<f64>, duration: Option<f64>) -> stochvib::Resu
         duration.unwrap_or(s.duration_s),
         format!("suggested: {}", s.reason),
     ))
+}
+
+/// The band `(ω₁, ω₂)` of a band-limited σ: two quantities in rad/s ("1 Hz" is 2π rad/s).
+fn band(py: Python<'_>, band: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64, f64)>> {
+    let Some(b) = band.filter(|b| !b.is_none()) else {
+        return Ok(None);
+    };
+    match quantity::sequence(py, b, "band_rad_s", "rad/s")?[..] {
+        [low, high] => Ok(Some((low, high))),
+        _ => Err(invalid_input(py, "`band_rad_s`: expected (low, high), two quantities in rad/s")),
+    }
+}
+
+/// The Monte Carlo batch of `monte_carlo` realizations, its quantities (Δt, duration, burn-in: s or unit
+/// strings) read.
+fn batch<'py>(
+    py: Python<'py>,
+    monte_carlo: Option<usize>,
+    seed: u64,
+    (dt, duration, burn_in): (Option<&Bound<'py, PyAny>>, Option<&Bound<'py, PyAny>>, Option<&Bound<'py, PyAny>>),
+) -> PyResult<Option<analysis::Batch>> {
+    let dt = quantity::optional(py, dt, "dt", "s")?;
+    let duration = quantity::optional(py, duration, "duration", "s")?;
+    let burn_in = quantity::optional(py, burn_in, "burn_in", "s")?;
+    Ok(monte_carlo.map(|n| (n, seed, dt, duration, burn_in)))
+}
+
+/// `Scenario.simulate` (`nonlinear` false) and `Scenario.simulate_nonlinear` (true): the run of one kind of
+/// model into `path`, the other kind refused by name.
+#[allow(clippy::too_many_arguments)]
+fn simulate_run<'py>(
+    py: Python<'py>,
+    sc: &Scenario,
+    nonlinear: bool,
+    realizations: usize,
+    path: PathBuf,
+    dt: Option<&Bound<'py, PyAny>>,
+    duration: Option<&Bound<'py, PyAny>>,
+    seed: u64,
+    shard_size: usize,
+    store_raw: bool,
+    compression: &str,
+    route: &str,
+    confidence: f64,
+    overwrite: bool,
+    progress: Option<Py<PyAny>>,
+    shard: Option<(usize, usize)>,
+    burn_in: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    analysis::require_kind(py, sc, nonlinear, ("simulate", "simulate_nonlinear"))?;
+    let answers = call(py, || sc.nonlinear_answers())?;
+    let (path, part) = shard_path(py, path, shard)?;
+    let dt = quantity::optional(py, dt, "dt", "s")?;
+    let duration = quantity::optional(py, duration, "duration", "s")?;
+    let burn_in = quantity::optional(py, burn_in, "burn_in", "s")?;
+    let compression: Compression = call(py, || compression.parse())?;
+    let route = call(py, || route.parse())?;
+    if overwrite && path.exists() {
+        lib(
+            py,
+            std::fs::remove_file(&path).map_err(|source| Error::Io {
+                path: path.clone(),
+                source,
+            }),
+        )?;
+    }
+    let base = RunOptions {
+        shard_size,
+        store_raw,
+        compression,
+        route,
+        confidence,
+        part,
+        realizations,
+        seed,
+        ..RunOptions::default()
+    };
+    if let Some(answers) = answers {
+        let outcome = with_progress(py, progress, |cb| {
+            run_interruptible(py, cb, |cb| {
+                let (opts, how) = nonlinear_run::options(sc, &answers, base, (dt, duration, burn_in))?;
+                sc.simulate_nonlinear(&answers, &opts, &path, cb).map(|s| (s, how))
+            })
+        });
+        if outcome.is_err() {
+            release_claim(&path);
+        }
+        let (summary, how) = outcome?;
+        return py.import("stochvib.results")?.getattr("NonlinearRunResult")?.call1((
+            to_python(py, &summary)?,
+            summary.to_string(),
+            how,
+        ));
+    }
+    let outcome = with_progress(py, progress, |cb| {
+        run_interruptible(py, cb, |cb| {
+            let (dt, d, how) = step(sc, dt, duration)?;
+            let opts = RunOptions {
+                duration_s: d,
+                dt_s: dt,
+                ..base
+            };
+            sc.simulate(&opts, &path, cb).map(|s| (s, how))
+        })
+    });
+    if outcome.is_err() {
+        release_claim(&path);
+    }
+    let (summary, how) = outcome?;
+    py.import("stochvib.results")?
+        .getattr("RunResult")?
+        .call1((to_python(py, &summary)?, summary.to_string(), how))
 }
 
 #[pymethods]
@@ -411,7 +524,8 @@ impl PyScenario {
     /// * One process felt by several inputs: ``positions`` (m behind the first contact point; delays
     ///   ℓ/v), or the input layout of a catalogue model or scenario file; a single-input system needs neither.
     /// * ``mean``: the mean of the process (its unit), or one per independent process.
-    /// * ``outputs``: the output names to report (default all); ``band_rad_s``: (ω₁, ω₂) in rad/s for
+    /// * ``outputs``: the output names to report (default all); ``band_rad_s``: (ω₁, ω₂) in rad/s (or unit
+    ///   strings: "1 Hz" is 2π rad/s) for
     ///   a band-limited σ; ``duration_s``: the duration for exceedance probabilities and expected peaks
     ///   (default 1 h); ``levels``: dict output name → levels (output's SI unit) for Rice crossing rates.
     ///
@@ -433,7 +547,7 @@ impl PyScenario {
         positions: Option<&Bound<'_, PyAny>>,
         mean: Option<&Bound<'_, PyAny>>,
         outputs: Option<Vec<String>>,
-        band_rad_s: Option<(f64, f64)>,
+        band_rad_s: Option<&Bound<'_, PyAny>>,
         duration_s: Option<&Bound<'_, PyAny>>,
         levels: Option<&Bound<'_, PyDict>>,
         title: Option<String>,
@@ -449,6 +563,7 @@ impl PyScenario {
             .map(|p| quantity::sequence(py, p, "positions", "m"))
             .transpose()?;
         let duration_s = quantity::optional(py, duration_s, "duration_s", "s")?.unwrap_or(3600.0);
+        let band_rad_s = band(py, band_rad_s)?;
         let spectra = input_spectra(py, input)?;
         let arcs: Vec<Arc<dyn Spectrum>> = spectra.iter().map(|s| s.get().spectrum.clone()).collect();
         let means: Vec<f64> = match mean {
@@ -597,9 +712,10 @@ impl PyScenario {
         })
     }
 
-    /// The ``stochvib analyze`` report of a stochastic scenario: an :class:`AnalysisResult` (σ, 3σ bounds,
-    /// crossing rates, every variance method with its error estimate, per output). A deterministic model or
-    /// a reference table raises :class:`NotApplicableError` (their tables: :meth:`tables`).
+    /// The ``stochvib analyze`` report of a stochastic scenario of a linear model: an :class:`AnalysisResult`
+    /// (σ, 3σ bounds, crossing rates, every variance method with its error estimate, per output). A model with
+    /// nonlinear elements raises :class:`InvalidInputError` naming :meth:`analyze_nonlinear`; a deterministic
+    /// model or a reference table raises :class:`NotApplicableError` (their tables: :meth:`tables`).
     ///
     /// ``monte_carlo=N`` adds the Monte Carlo column (σ from N realizations with its 95 % interval and
     /// whether it covers the analytic σ; the run file goes to a temporary directory and is removed), with
@@ -609,12 +725,7 @@ impl PyScenario {
     /// ``rel_tol``, ``max_subintervals`` and ``max_half_periods`` override the effort of the quadratures
     /// (the scenario's ``[analysis.quadrature]``; the CLI's ``--rel-tol``, ``--max-subintervals``,
     /// ``--max-half-periods``; defaults 1e-10, 2000, 10 000).
-    ///
-    /// A model with nonlinear elements gives a :class:`NonlinearResult` (routes 1 and 3); ``monte_carlo=N``
-    /// adds route 2 (the time-domain Monte Carlo of the nonlinear equations, as ``stochvib analyze
-    /// --monte-carlo N``: Δt and the duration suggested for route 2 when not given, ``burn_in`` in s, default
-    /// from the slowest decay rate of the Gaussian equivalent).
-    #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None, burn_in=None))]
+    #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None))]
     #[allow(clippy::too_many_arguments)]
     fn analyze<'py>(
         &self,
@@ -627,79 +738,40 @@ impl PyScenario {
         rel_tol: Option<f64>,
         max_subintervals: Option<usize>,
         max_half_periods: Option<usize>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let sc = analysis::tuned(py, self.stochastic(py)?, (rel_tol, max_subintervals, max_half_periods))?;
+        let batch = batch(py, monte_carlo, seed, (dt, duration, None))?;
+        analysis::linear(py, &sc, batch, progress)
+    }
+
+    /// Routes 1 and 3 of a scenario with nonlinear elements (``[[model.nonlinear]]``; ``stochvib analyze`` of
+    /// such a file): a :class:`NonlinearResult` (route 1, statistical linearisation, and route 3, the exact
+    /// stationary density where it applies). A linear model raises :class:`InvalidInputError` naming
+    /// :meth:`analyze`.
+    ///
+    /// ``monte_carlo=N`` adds route 2 (the time-domain Monte Carlo of the nonlinear equations, as ``stochvib
+    /// analyze --monte-carlo N``: ``seed``, Δt ``dt`` and the realization ``duration`` in s suggested for
+    /// route 2 when not given, ``burn_in`` in s, default from the slowest decay rate of the Gaussian
+    /// equivalent; ``progress`` as for :meth:`analyze`). ``rel_tol``, ``max_subintervals``,
+    /// ``max_half_periods`` as for :meth:`analyze`.
+    #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None, burn_in=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn analyze_nonlinear<'py>(
+        &self,
+        py: Python<'py>,
+        monte_carlo: Option<usize>,
+        seed: u64,
+        dt: Option<&Bound<'py, PyAny>>,
+        duration: Option<&Bound<'py, PyAny>>,
+        progress: Option<Py<PyAny>>,
+        rel_tol: Option<f64>,
+        max_subintervals: Option<usize>,
+        max_half_periods: Option<usize>,
         burn_in: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let dt = quantity::optional(py, dt, "dt", "s")?;
-        let duration = quantity::optional(py, duration, "duration", "s")?;
-        let burn_in = quantity::optional(py, burn_in, "burn_in", "s")?;
-        let effort_given = rel_tol.is_some() || max_subintervals.is_some() || max_half_periods.is_some();
-        let tuned: Document;
-        let doc = match &self.doc {
-            Document::Stochastic(sc) if effort_given => {
-                // As the CLI's flags: the given values replace the scenario's, then the whole is validated.
-                let mut sc = sc.clone();
-                let e = &mut sc.analysis.effort;
-                e.rel_tol = rel_tol.unwrap_or(e.rel_tol);
-                e.max_subintervals = max_subintervals.unwrap_or(e.max_subintervals);
-                e.max_half_periods = max_half_periods.unwrap_or(e.max_half_periods);
-                call(py, || e.validate())?;
-                tuned = Document::Stochastic(sc);
-                &tuned
-            }
-            _ => &self.doc,
-        };
-        let sc = match doc {
-            Document::Stochastic(sc) => sc,
-            _ => self.stochastic(py)?,
-        };
-        if let Some(answers) = call(py, || sc.nonlinear_answers())? {
-            let mc = match monte_carlo {
-                None => None,
-                Some(n) => Some(with_progress(py, progress, |cb| {
-                    run_interruptible(py, cb, |cb| {
-                        let run = RunOptions {
-                            realizations: n,
-                            seed,
-                            ..RunOptions::default()
-                        };
-                        let (opts, _) = nonlinear_run::options(sc, &answers, run, (dt, duration, burn_in))?;
-                        nonlinear_run::temporary(sc, &answers, &opts, cb)
-                    })
-                })?),
-            };
-            let r = call(py, || stochvib::report::nonlinear_report(sc, &answers, mc.as_ref()))?;
-            return py
-                .import("stochvib.results")?
-                .getattr("NonlinearResult")?
-                .call1((to_python(py, &r)?, r.to_string()));
-        }
-        let (kind, data, text) = match monte_carlo {
-            None => document_report(py, doc)?,
-            Some(n) => {
-                let mut r = detached(py, || Ok(analysis_report(sc)?))?;
-                let summary = with_progress(py, progress, |cb| {
-                    run_interruptible(py, cb, |cb| {
-                        let (dt, d, _) = step(sc, dt, duration)?;
-                        let opts = RunOptions {
-                            realizations: n,
-                            duration_s: d,
-                            dt_s: dt,
-                            seed,
-                            ..RunOptions::default()
-                        };
-                        run_temporary(&sc.run_input(), &opts, &std::env::temp_dir(), cb, |_| ()).map(|(s, _)| s)
-                    })
-                })?;
-                attach_monte_carlo(&mut r, &summary);
-                ("analysis".to_string(), to_python(py, &r)?, r.to_string())
-            }
-        };
-        let class = if kind == "analysis" {
-            "AnalysisResult"
-        } else {
-            "TablesResult"
-        };
-        py.import("stochvib.results")?.getattr(class)?.call1((data, text))
+        let sc = analysis::tuned(py, self.stochastic(py)?, (rel_tol, max_subintervals, max_half_periods))?;
+        let batch = batch(py, monte_carlo, seed, (dt, duration, burn_in))?;
+        analysis::nonlinear(py, &sc, batch, progress)
     }
 
     /// The exact statistics at every point of a parameter study (``stochvib sweep SCENARIO --param … --json``).
@@ -1085,12 +1157,41 @@ impl PyScenario {
     /// ``stochvib simulate --shard I --of N -o DIR``): ``path`` is then the run directory (created) that
     /// receives ``shard-<I>-of-<N>.h5``; :func:`stochvib.merge` joins the parts.
     ///
-    /// A model with nonlinear elements runs route 2 (the nonlinear equations in time, as ``stochvib
-    /// simulate`` of such a file; Δt and the duration suggested for route 2 when not given; ``burn_in`` in s)
-    /// and returns a :class:`NonlinearRunResult`.
-    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None, burn_in=None))]
+    /// A model with nonlinear elements raises :class:`InvalidInputError` naming :meth:`simulate_nonlinear`.
+    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        realizations: usize,
+        path: PathBuf,
+        dt: Option<&Bound<'py, PyAny>>,
+        duration: Option<&Bound<'py, PyAny>>,
+        seed: u64,
+        shard_size: usize,
+        store_raw: bool,
+        compression: &str,
+        route: &str,
+        confidence: f64,
+        overwrite: bool,
+        progress: Option<Py<PyAny>>,
+        shard: Option<(usize, usize)>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let sc = self.stochastic(py)?;
+        simulate_run(
+            py, sc, false, realizations, path, dt, duration, seed, shard_size, store_raw, compression, route,
+            confidence, overwrite, progress, shard, None,
+        )
+    }
+
+    /// Route 2 of a model with nonlinear elements into the HDF5 file ``path``: the nonlinear equations in
+    /// time, as ``stochvib simulate`` of such a file, returning a :class:`NonlinearRunResult` (Δt and the
+    /// duration suggested for route 2 when not given; ``burn_in`` in s, default from the slowest decay rate
+    /// of the Gaussian equivalent). The other arguments as for :meth:`simulate`. A linear model raises
+    /// :class:`InvalidInputError` naming :meth:`simulate`.
+    #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None, burn_in=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate_nonlinear<'py>(
         &self,
         py: Python<'py>,
         realizations: usize,
@@ -1109,68 +1210,10 @@ impl PyScenario {
         burn_in: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
-        let answers = call(py, || sc.nonlinear_answers())?;
-        let (path, part) = shard_path(py, path, shard)?;
-        let dt = quantity::optional(py, dt, "dt", "s")?;
-        let duration = quantity::optional(py, duration, "duration", "s")?;
-        let burn_in = quantity::optional(py, burn_in, "burn_in", "s")?;
-        let compression: Compression = call(py, || compression.parse())?;
-        let route = call(py, || route.parse())?;
-        if overwrite && path.exists() {
-            lib(
-                py,
-                std::fs::remove_file(&path).map_err(|source| Error::Io {
-                    path: path.clone(),
-                    source,
-                }),
-            )?;
-        }
-        let base = RunOptions {
-            shard_size,
-            store_raw,
-            compression,
-            route,
-            confidence,
-            part,
-            realizations,
-            seed,
-            ..RunOptions::default()
-        };
-        if let Some(answers) = answers {
-            let outcome = with_progress(py, progress, |cb| {
-                run_interruptible(py, cb, |cb| {
-                    let (opts, how) = nonlinear_run::options(sc, &answers, base, (dt, duration, burn_in))?;
-                    sc.simulate_nonlinear(&answers, &opts, &path, cb).map(|s| (s, how))
-                })
-            });
-            if outcome.is_err() {
-                release_claim(&path);
-            }
-            let (summary, how) = outcome?;
-            return py.import("stochvib.results")?.getattr("NonlinearRunResult")?.call1((
-                to_python(py, &summary)?,
-                summary.to_string(),
-                how,
-            ));
-        }
-        let outcome = with_progress(py, progress, |cb| {
-            run_interruptible(py, cb, |cb| {
-                let (dt, d, how) = step(sc, dt, duration)?;
-                let opts = RunOptions {
-                    duration_s: d,
-                    dt_s: dt,
-                    ..base
-                };
-                sc.simulate(&opts, &path, cb).map(|s| (s, how))
-            })
-        });
-        if outcome.is_err() {
-            release_claim(&path);
-        }
-        let (summary, how) = outcome?;
-        py.import("stochvib.results")?
-            .getattr("RunResult")?
-            .call1((to_python(py, &summary)?, summary.to_string(), how))
+        simulate_run(
+            py, sc, true, realizations, path, dt, duration, seed, shard_size, store_raw, compression, route,
+            confidence, overwrite, progress, shard, burn_in,
+        )
     }
 
     /// The density of output ``output`` (a name) under the scenario's input, as an array shaped as the

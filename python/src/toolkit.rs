@@ -145,7 +145,8 @@ impl RecordReader for ArrayRecord {
 }
 
 /// The ISO 2631-1 evaluation of acceleration records held in arrays (the `stochvib exposure` command):
-/// ``channels`` name → 1-D array in m/s² (rad/s² for rotations), all of one length, sampled at ``fs`` Hz.
+/// ``channels`` name → 1-D array in m/s² (rad/s² for rotations), all of one length, sampled at ``fs`` Hz
+/// (or a sample-rate string: "200 Hz", "200 1/s", "200 S/s").
 /// ``axes``: "CHANNEL=LOCATION:AXIS" strings (default: channels x, y, z on the seat surface);
 /// ``exposure_s``: the daily exposure (default the record's duration); ``motion_sickness``: channels for
 /// Wf. Returns (data, text): the report's data (as ``--json``) and its text.
@@ -154,12 +155,13 @@ impl RecordReader for ArrayRecord {
 pub fn exposure<'py>(
     py: Python<'py>,
     channels: &Bound<'py, PyDict>,
-    fs: f64,
+    fs: &Bound<'py, PyAny>,
     axes: Option<Vec<String>>,
     exposure_s: Option<&Bound<'py, PyAny>>,
     motion_sickness: Option<Vec<String>>,
 ) -> PyResult<(Bound<'py, PyAny>, String)> {
-    let exposure_s = crate::quantity::optional(py, exposure_s, "exposure_s", "s")?;
+    let fs = crate::quantity::sample_rate(py, fs, "fs")?;
+    let exposure_s = crate::quantity::optional(py, exposure_s, "exposure", "s")?;
     let mut names = Vec::new();
     let mut data = Vec::new();
     for (k, v) in channels.iter() {
@@ -229,11 +231,12 @@ pub fn exposure<'py>(
 pub fn welch<'py>(
     py: Python<'py>,
     x: &Bound<'py, PyAny>,
-    fs: f64,
+    fs: &Bound<'py, PyAny>,
     nperseg: usize,
     detrend: bool,
     confidence: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let fs = crate::quantity::sample_rate(py, fs, "fs")?;
     let xs = vector(py, x, "x")?;
     let n = xs.len();
     let (est, lo, hi) = detached_if(py, n, crate::spectrum::DETACH_MIN_POINTS, || {
@@ -307,7 +310,8 @@ pub fn iso8608_class(py: Python<'_>, g0: &Bound<'_, PyAny>) -> PyResult<String> 
 /// The Directive 2002/44/EC daily exposure A(8) = a_w·√(T/8 h) (m/s²) of a weighted r.m.s. ``a_w`` (m/s²,
 /// already multiplied by the axis factor k) over ``duration`` (s, or with a unit "4 h").
 #[pyfunction]
-pub fn daily_exposure_a8(py: Python<'_>, a_w: f64, duration: &Bound<'_, PyAny>) -> PyResult<f64> {
+pub fn daily_exposure_a8(py: Python<'_>, a_w: &Bound<'_, PyAny>, duration: &Bound<'_, PyAny>) -> PyResult<f64> {
+    let a_w = crate::quantity::quantity(py, a_w, "a_w", "m/s^2")?;
     let t = crate::quantity::quantity(py, duration, "duration", "s")?;
     call(py, || stochvib::comfort::daily_exposure_a8(a_w, t))
 }
@@ -315,7 +319,8 @@ pub fn daily_exposure_a8(py: Python<'_>, a_w: f64, duration: &Bound<'_, PyAny>) 
 /// The vibration dose value (m/s^1.75) of a stationary Gaussian weighted acceleration of r.m.s. ``a_w``
 /// over ``duration``: VDV = (3 T)^(1/4) a_w (the fourth-power mean of a Gaussian process).
 #[pyfunction]
-pub fn vdv_gaussian(py: Python<'_>, a_w: f64, duration: &Bound<'_, PyAny>) -> PyResult<f64> {
+pub fn vdv_gaussian(py: Python<'_>, a_w: &Bound<'_, PyAny>, duration: &Bound<'_, PyAny>) -> PyResult<f64> {
+    let a_w = crate::quantity::quantity(py, a_w, "a_w", "m/s^2")?;
     let t = crate::quantity::quantity(py, duration, "duration", "s")?;
     call(py, || stochvib::comfort::vdv_gaussian(a_w, t))
 }

@@ -63,13 +63,19 @@ from .results import (
     VarianceMethod,
     VerdictTable,
 )
+from .reports import ReplayedOutput, ReplayResult, RunInfo, WorkdayAxis, WorkdayResult, WorkdayTask
 
 __all__ = [
     "Spectrum",
     "System",
     "Scenario",
     "analyze",
+    "analyze_nonlinear",
     "simulate",
+    "simulate_nonlinear",
+    "replay",
+    "workday",
+    "inspect",
     "merge",
     "merge_transient",
     "merge_sweep",
@@ -95,6 +101,12 @@ __all__ = [
     "TransientResult",
     "TransientRunResult",
     "VerdictTable",
+    "ReplayResult",
+    "ReplayedOutput",
+    "WorkdayResult",
+    "WorkdayTask",
+    "WorkdayAxis",
+    "RunInfo",
     "Report",
     "ISO_BAND",
     "linalg",
@@ -106,6 +118,8 @@ __all__ += errors.__all__  # StochvibError and its subclasses, StochvibWarning
 PathLike = Union[str, "os.PathLike[str]"]
 Quantity = Union[float, str]
 """A number (SI) or a string with a unit ("10.8 km/h")."""
+SampleRate = Union[float, str]
+"""Samples per second: a number (Hz) or a string ("200 Hz", "200 1/s", "200 S/s" are all 200)."""
 Input = Union[Spectrum, str, "os.PathLike[str]", Sequence[Spectrum]]
 
 
@@ -145,7 +159,7 @@ def analyze(
     positions: Optional[Sequence[Quantity]] = None,
     mean: Optional[Union[float, Sequence[float]]] = None,
     outputs: Optional[Sequence[str]] = None,
-    band_rad_s: Optional[Tuple[float, float]] = None,
+    band_rad_s: Optional[Tuple[Quantity, Quantity]] = None,
     duration_s: Optional[Quantity] = None,
     levels: Optional[Dict[str, Sequence[float]]] = None,
     monte_carlo: Optional[int] = None,
@@ -157,12 +171,12 @@ def analyze(
     rel_tol: Optional[float] = None,
     max_subintervals: Optional[int] = None,
     max_half_periods: Optional[int] = None,
-    burn_in: Optional[Quantity] = None,
     coherence: Optional[Dict[str, Any]] = None,
     track_width: Optional[Quantity] = None,
     tracks: Optional[Sequence[Union[str, int]]] = None,
-) -> Union[AnalysisResult, NonlinearResult]:
-    """Response statistics of a scenario, or of ``system`` driven by ``input`` (the ``stochvib analyze`` report).
+) -> AnalysisResult:
+    """Response statistics of a linear model: a scenario, or ``system`` driven by ``input`` (the ``stochvib
+    analyze`` report). A model with nonlinear elements is refused: :func:`analyze_nonlinear` analyses it.
 
     Quantities (``speed`` in m/s, ``positions`` in m, ``duration_s``, ``dt``, ``duration`` in s) are numbers
     in SI units or strings with a unit: ``analyze(car, road, speed="72 km/h")``.
@@ -177,7 +191,7 @@ def analyze(
     integral table, quadrature) with its value, error estimate and relative difference, spectral moments,
     Rice zero up-crossing rate ν₀⁺ (1/s), bandwidth, expected largest peak in ``duration_s`` (default 3600 s),
     crossing rates of ``levels`` ({output: [levels in the output's SI unit]}), σ in ``band_rad_s``
-    (ω₁, ω₂ in rad/s). An infinite variance is reported, not raised: ``sigma`` is None,
+    (ω₁, ω₂ in rad/s, or unit strings: "1 Hz" is 2π rad/s). An infinite variance is reported, not raised: ``sigma`` is None,
     ``variance_outcome["status"]`` is "divergent" and ``variance_note`` holds the diagnosis.
 
     A road of two coherent tracks (left and right wheels, as a scenario file's ``[[input]] road``): ``input``
@@ -187,9 +201,7 @@ def analyze(
     behind the first contact: the wheelbase delays ℓ/v).
 
     ``monte_carlo=N`` adds a Monte Carlo column (N seeded realizations, time step ``dt`` s and realization
-    ``duration`` s suggested when not given, ``progress`` bar; Ctrl-C stops it); for a model with nonlinear
-    elements it runs route 2 (the nonlinear equations in time; ``burn_in`` in s, default from the slowest
-    decay rate of the Gaussian equivalent).
+    ``duration`` s suggested when not given, ``progress`` bar; Ctrl-C stops it).
 
     ``rel_tol`` (default 1e-10), ``max_subintervals`` (2000) and ``max_half_periods`` (10 000) set the
     effort of the quadratures, over the scenario's ``[analysis.quadrature]`` (the CLI's ``--rel-tol``,
@@ -206,7 +218,8 @@ def analyze(
     DivergentError
         An unstable system (no stationary response), with the diagnosis and what to check.
     InvalidInputError, UnitError
-        A bad argument (a spatial input without ``speed``, an unknown output, a bad unit).
+        A bad argument (a spatial input without ``speed``, an unknown output, a bad unit); a model with
+        nonlinear elements (the message names :func:`analyze_nonlinear`).
     NotApplicableError
         A file that is a deterministic model or a reference table (see :meth:`Scenario.tables`).
 
@@ -223,6 +236,69 @@ def analyze(
     kw.update(_given(duration_s=duration_s, levels=levels, coherence=coherence, track_width=track_width, tracks=tracks))
     sc = _scenario(subject, input, kw, spectra_dir)
     return sc.analyze(
+        monte_carlo=monte_carlo,
+        seed=seed,
+        dt=dt,
+        duration=duration,
+        progress=progress,
+        rel_tol=rel_tol,
+        max_subintervals=max_subintervals,
+        max_half_periods=max_half_periods,
+    )
+
+
+def analyze_nonlinear(
+    subject: Union[Scenario, PathLike],
+    *,
+    monte_carlo: Optional[int] = None,
+    seed: int = 1,
+    dt: Optional[Quantity] = None,
+    duration: Optional[Quantity] = None,
+    burn_in: Optional[Quantity] = None,
+    progress: Union[bool, Callable[[int, int], Any]] = True,
+    spectra_dir: Optional[PathLike] = None,
+    rel_tol: Optional[float] = None,
+    max_subintervals: Optional[int] = None,
+    max_half_periods: Optional[int] = None,
+) -> NonlinearResult:
+    """Routes 1 to 3 of a model with nonlinear elements (``[[model.nonlinear]]``; ``stochvib analyze`` of such a
+    file).
+
+    Parameters
+    ----------
+    subject : Scenario or path
+        A scenario with nonlinear elements, or its file.
+    monte_carlo : int, keyword-only, optional
+        Realizations of route 2, the time-domain Monte Carlo of the nonlinear equations (``stochvib analyze
+        --monte-carlo N``); ``seed``, ``dt`` and ``duration`` (s or unit strings; suggested for route 2 when
+        not given), ``burn_in`` (s; default from the slowest decay rate of the Gaussian equivalent),
+        ``progress`` as for :func:`analyze`.
+    spectra_dir, rel_tol, max_subintervals, max_half_periods
+        As for :func:`analyze`.
+
+    Returns
+    -------
+    NonlinearResult
+        Route 1 (statistical linearisation), route 3 (the exact stationary density where it applies) and,
+        with ``monte_carlo``, route 2 per output.
+
+    Raises
+    ------
+    InvalidInputError
+        A linear model (the message names :func:`analyze`).
+
+    Examples
+    --------
+    >>> import stochvib
+    >>> r = stochvib.analyze_nonlinear("data/duffing-white-noise.toml")
+    >>> r["x"].route1() < r["x"].exact() < 0.01  # a hardening spring: below the linear σ₀ = 1 cm
+    True
+    """
+    if not isinstance(subject, Scenario):
+        if not isinstance(subject, (str, os.PathLike)):
+            raise InvalidInputError(f"expected a Scenario or a scenario file path, not {type(subject).__name__}")
+        subject = Scenario.load(subject, spectra_dir=spectra_dir)
+    return subject.analyze_nonlinear(
         monte_carlo=monte_carlo,
         seed=seed,
         dt=dt,
@@ -257,11 +333,10 @@ def simulate(
     progress: Union[bool, Callable[[int, int], Any]] = True,
     spectra_dir: Optional[PathLike] = None,
     shard: Optional[Tuple[int, int]] = None,
-    burn_in: Optional[Quantity] = None,
     coherence: Optional[Dict[str, Any]] = None,
     track_width: Optional[Quantity] = None,
     tracks: Optional[Sequence[Union[str, int]]] = None,
-) -> Union[RunResult, NonlinearRunResult]:
+) -> RunResult:
     """A seeded Monte Carlo run written to the HDF5 file ``path`` (``stochvib simulate``); returns a
     :class:`RunResult` with the file path and the statistics (σ with its interval against the analytic σ).
 
@@ -276,13 +351,60 @@ def simulate(
     ``shard=(I, N)``: part I of N of the run (``stochvib simulate --shard I --of N -o DIR``), ``path`` the run
     directory receiving ``shard-<I>-of-<N>.h5``; :func:`merge` joins the parts into one run file with the
     statistics of the unsharded run. ``coherence``/``track_width``/``tracks``: a road of two coherent tracks
-    as in :func:`analyze`. A model with nonlinear elements runs route 2 (``burn_in`` in s) and returns a
-    :class:`NonlinearRunResult`.
+    as in :func:`analyze`. A model with nonlinear elements raises :class:`InvalidInputError` naming
+    :func:`simulate_nonlinear`.
     """
     kw = _given(speed=speed, positions=positions, mean=mean, outputs=outputs)
     kw.update(_given(coherence=coherence, track_width=track_width, tracks=tracks))
     sc = _scenario(subject, input, kw, spectra_dir)
     return sc.simulate(
+        realizations,
+        path,
+        dt=dt,
+        duration=duration,
+        seed=seed,
+        shard_size=shard_size,
+        store_raw=store_raw,
+        compression=compression,
+        route=route,
+        confidence=confidence,
+        overwrite=overwrite,
+        progress=progress,
+        shard=shard,
+    )
+
+
+def simulate_nonlinear(
+    subject: Union[Scenario, PathLike],
+    realizations: int,
+    path: PathLike,
+    *,
+    dt: Optional[Quantity] = None,
+    duration: Optional[Quantity] = None,
+    burn_in: Optional[Quantity] = None,
+    seed: int = 1,
+    shard_size: int = 50,
+    store_raw: bool = False,
+    compression: str = "none",
+    route: Literal["auto", "exact", "spectral"] = "auto",
+    confidence: float = 0.95,
+    overwrite: bool = False,
+    progress: Union[bool, Callable[[int, int], Any]] = True,
+    spectra_dir: Optional[PathLike] = None,
+    shard: Optional[Tuple[int, int]] = None,
+) -> NonlinearRunResult:
+    """Route 2 of a model with nonlinear elements written to the HDF5 file ``path`` (``stochvib simulate`` of
+    such a file): the nonlinear equations integrated in time, seeded.
+
+    ``subject`` a :class:`Scenario` with ``[[model.nonlinear]]`` or its file; ``dt`` and ``duration`` (s or
+    unit strings) suggested for route 2 when not given; ``burn_in`` (s) before the record, default from the
+    slowest decay rate of the Gaussian equivalent; the other arguments as for :func:`simulate`. Returns a
+    :class:`NonlinearRunResult` (the statistics against route 1's Gaussian σ, ``burn_in_s``,
+    ``halving_checks``). A linear model raises :class:`InvalidInputError` naming :func:`simulate`.
+    """
+    if not isinstance(subject, Scenario):
+        subject = _scenario(subject, None, {}, spectra_dir)
+    return subject.simulate_nonlinear(
         realizations,
         path,
         dt=dt,
@@ -451,7 +573,7 @@ def merge_sweep(path: PathLike, inputs: Union[PathLike, Sequence[PathLike]], *, 
 
 def exposure(
     a: Union["npt.ArrayLike", Dict[str, "npt.ArrayLike"]],
-    fs: float,
+    fs: SampleRate,
     *,
     axes: Optional[Sequence[str]] = None,
     exposure: Optional[Quantity] = None,
@@ -466,8 +588,8 @@ def exposure(
         Unweighted acceleration in m/s² (rad/s² for rotations): a 1-D array (the vertical seat-surface
         axis, channel "z"), a 2-D array of shape (n, 3) (columns x, y, z of the seat surface), or a dict
         channel name → 1-D array (channels x, y, z are the seat surface unless ``axes`` says otherwise).
-    fs : float
-        Sample rate, Hz.
+    fs : float or str
+        Sample rate, Hz, or a string: "1 kHz", "1000 1/s" and "1000 S/s" are all 1000 samples per second.
     axes : sequence of str, keyword-only, optional
         "CHANNEL=LOCATION:AXIS", LOCATION one of seat-surface, seat-back, feet, standing-floor, AXIS one of
         x, y, z, rx, ry, rz.
@@ -484,6 +606,8 @@ def exposure(
     ------
     InvalidInputError
         Channels of different lengths, a sample rate that loses a weighting band, an unknown axis.
+    UnitError
+        A sample rate or exposure string with an unknown unit or another dimension (``"200 rad/s"``).
 
     Examples
     --------
@@ -513,3 +637,141 @@ def exposure(
             )
     data, text = _stochvib.exposure(channels, fs, axes=list(axes) if axes else None, exposure_s=exposure, motion_sickness=list(motion_sickness) if motion_sickness else None)
     return ExposureResult(data, text)
+
+
+def replay(
+    scenario: Union[Scenario, PathLike],
+    profile: PathLike,
+    *,
+    speed: Optional[Quantity] = None,
+    skip: Optional[Quantity] = None,
+    zero_start: bool = False,
+    track: Optional[str] = None,
+    detrend: Literal["linear", "mean"] = "linear",
+    history: Optional[PathLike] = None,
+    overwrite: bool = False,
+    spectra_dir: Optional[PathLike] = None,
+) -> ReplayResult:
+    """A measured road profile replayed through a scenario's model as a deterministic input, beside the
+    analytic σ from the profile's own measured density (``stochvib replay SCENARIO PROFILE``).
+
+    Each wheel follows its track (delay = position/speed) and the model is stepped exactly between samples.
+
+    Parameters
+    ----------
+    scenario : Scenario or path
+        A scenario whose inputs are roads.
+    profile : path
+        The profile CSV (header ``distance [m], left [mm], right [mm]``, every column ``name [unit]``).
+    speed : float or str, keyword-only, optional
+        m/s or a unit string ("54 km/h"); default the scenario's speed.
+    skip : float or str, keyword-only, optional
+        Length (m) skipped before the statistics; default the settling length v·7/min|Re λ|.
+    zero_start : bool, keyword-only
+        Start from x = 0 instead of the static state under the first input sample.
+    track : str, keyword-only, optional
+        The profile column under a road of one track (default the first).
+    detrend : {"linear", "mean"}, keyword-only
+        Removed from every track (and before the measured density).
+    history : path, keyword-only, optional
+        Write the history of every output (after the skipped length) to this CSV file (``-o``);
+        ``overwrite`` replaces an existing one.
+
+    Returns
+    -------
+    ReplayResult
+        Per output the replayed mean, σ, min, max, crest factor and the analytic σ (``result["x1"]``).
+
+    Raises
+    ------
+    FileError
+        A scenario input that is not a road, no speed, a missing track, a profile too short.
+    InvalidInputError, UnitError
+        A bad ``detrend``, ``speed`` or ``skip``.
+
+    Examples
+    --------
+    >>> import stochvib
+    >>> r = stochvib.replay("data/quarter-car.toml", "data/measured-profile.csv", speed="54 km/h")
+    >>> r.speed_m_s, 0.8 < r["travel"].ratio < 1.25
+    (15.0, True)
+    """
+    json_text, text = _stochvib.replay(
+        scenario,
+        profile,
+        speed=speed,
+        skip=skip,
+        zero_start=zero_start,
+        track=track,
+        detrend=detrend,
+        history=history,
+        overwrite=overwrite,
+        spectra_dir=spectra_dir,
+    )
+    return ReplayResult(json_text, text)
+
+
+def workday(path: PathLike, *, spectra_dir: Optional[PathLike] = None) -> WorkdayResult:
+    """The daily vibration exposure of a working day of several tasks (``stochvib workday FILE``): per task
+    and axis k·a_w with the health factors, the day's A(8) = √(Σ (k a_w)² T / 8 h) and VDV = (Σ VDV⁴)^(1/4)
+    per axis, against Directive 2002/44/EC and ISO 2631-1 Annex B.
+
+    Parameters
+    ----------
+    path : path
+        The workday file ([[task]] tables naming a scenario with [analysis.comfort], an optional speed and
+        a duration; format in docs/comfort.md).
+    spectra_dir : path, keyword-only, optional
+        The spectrum catalogue (as :meth:`Scenario.load`).
+
+    Returns
+    -------
+    WorkdayResult
+        ``tasks``, ``axes`` (the day's A(8) and VDV per axis), ``a8`` and ``vdv`` (m/s², m/s^1.75),
+        ``verdict``; ``to_markdown()`` the ``--format markdown`` report.
+
+    Raises
+    ------
+    FileError
+        A bad workday file or task scenario, naming the file and key.
+
+    Examples
+    --------
+    >>> import stochvib
+    >>> day = stochvib.workday("data/workday/scraper-operator.toml")
+    >>> day.a8 == max(a.a8 for a in day.axes)
+    True
+    """
+    return WorkdayResult(*_stochvib.workday(path, spectra_dir=spectra_dir))
+
+
+def inspect(path: PathLike) -> RunInfo:
+    """The identity, sizes and statistics of a Monte Carlo run file (``stochvib inspect FILE``), after
+    checking every checksum of the file as the command does.
+
+    Parameters
+    ----------
+    path : path
+        A finished run file (HDF5), whole, merged or one shard.
+
+    Returns
+    -------
+    RunInfo
+        ``seed``, ``dt`` (s), ``n_samples``, ``n_realizations``, ``outputs``, ``statistics``; ``str()`` the
+        command's text summary, ``to_markdown()`` its ``--format markdown``.
+
+    Raises
+    ------
+    FileError
+        No such file, not a run file, an unfinished run (``.tmp``), a damaged file (checksum mismatch).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, stochvib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.h5"
+    >>> _ = stochvib.simulate("data/conveyor-idler.toml", 20, path, progress=False)
+    >>> info = stochvib.inspect(path)
+    >>> info.n_realizations, info.seed
+    (20, 1)
+    """
+    return RunInfo(*_stochvib.inspect(path))

@@ -38,6 +38,8 @@ Domain = Literal["temporal", "spatial"]
 Progress = Union[bool, Callable[[int, int], Any]]
 Order = Literal["descending", "ascending"]
 Quantity = Union[float, str]
+SampleRate = Union[float, str]
+"""Samples per second: a number (Hz) or a string ("200 Hz", "200 1/s", "200 S/s" are all 200)."""
 
 class Spectrum:
     """A stationary random process described by its spectral density S(ω) (two-sided, angular)."""
@@ -231,7 +233,7 @@ class Scenario:
         positions: Optional[Sequence[Quantity]] = None,
         mean: Optional[Union[float, Sequence[float]]] = None,
         outputs: Optional[Sequence[str]] = None,
-        band_rad_s: Optional[Tuple[float, float]] = None,
+        band_rad_s: Optional[Tuple[Quantity, Quantity]] = None,
         duration_s: Optional[Quantity] = None,
         levels: Optional[Dict[str, Sequence[float]]] = None,
         title: Optional[str] = None,
@@ -253,11 +255,26 @@ class Scenario:
         rel_tol: Optional[float] = None,
         max_subintervals: Optional[int] = None,
         max_half_periods: Optional[int] = None,
+    ) -> AnalysisResult:
+        """The ``stochvib analyze`` report of a linear model (with a Monte Carlo column for
+        ``monte_carlo=N``); ``rel_tol``, ``max_subintervals``, ``max_half_periods`` override the quadratures'
+        ``[analysis.quadrature]``. A model with nonlinear elements raises InvalidInputError naming
+        :meth:`analyze_nonlinear`."""
+    def analyze_nonlinear(
+        self,
+        *,
+        monte_carlo: Optional[int] = None,
+        seed: int = 1,
+        dt: Optional[Quantity] = None,
+        duration: Optional[Quantity] = None,
+        progress: Progress = True,
+        rel_tol: Optional[float] = None,
+        max_subintervals: Optional[int] = None,
+        max_half_periods: Optional[int] = None,
         burn_in: Optional[Quantity] = None,
-    ) -> Union[AnalysisResult, NonlinearResult]:
-        """The ``stochvib analyze`` report (with a Monte Carlo column for ``monte_carlo=N``, route 2 for a
-        nonlinear model with ``burn_in`` in s); ``rel_tol``, ``max_subintervals``, ``max_half_periods``
-        override the quadratures' ``[analysis.quadrature]``."""
+    ) -> NonlinearResult:
+        """Routes 1 and 3 of a model with nonlinear elements, route 2 with ``monte_carlo=N`` (``burn_in`` in
+        s). A linear model raises InvalidInputError naming :meth:`analyze`."""
     def output_density(
         self,
         output: str,
@@ -337,10 +354,30 @@ class Scenario:
         overwrite: bool = False,
         progress: Progress = True,
         shard: Optional[Tuple[int, int]] = None,
+    ) -> RunResult:
+        """A seeded Monte Carlo run of a linear model into the HDF5 file ``path`` (dt, duration in s); with
+        ``shard=(I, N)`` part I of N into the directory ``path``. A model with nonlinear elements raises
+        InvalidInputError naming :meth:`simulate_nonlinear`."""
+    def simulate_nonlinear(
+        self,
+        realizations: int,
+        path: PathLike,
+        *,
+        dt: Optional[Quantity] = None,
+        duration: Optional[Quantity] = None,
+        seed: int = 1,
+        shard_size: int = 50,
+        store_raw: bool = False,
+        compression: str = "none",
+        route: Literal["auto", "exact", "spectral"] = "auto",
+        confidence: float = 0.95,
+        overwrite: bool = False,
+        progress: Progress = True,
+        shard: Optional[Tuple[int, int]] = None,
         burn_in: Optional[Quantity] = None,
-    ) -> Union[RunResult, NonlinearRunResult]:
-        """A seeded Monte Carlo run into the HDF5 file ``path`` (dt, duration in s); with ``shard=(I, N)``
-        part I of N into the directory ``path``; route 2 of a nonlinear model (``burn_in`` in s)."""
+    ) -> NonlinearRunResult:
+        """Route 2 of a model with nonlinear elements into ``path`` (``burn_in`` in s). A linear model raises
+        InvalidInputError naming :meth:`simulate`."""
     @property
     def title(self) -> str: ...
     @property
@@ -375,14 +412,14 @@ def spectral_fatigue(
 ) -> List[Dict[str, Any]]: ...
 def exposure(
     channels: Dict[str, ArrayLike],
-    fs: float,
+    fs: SampleRate,
     *,
     axes: Optional[List[str]] = None,
     exposure_s: Optional[Quantity] = None,
     motion_sickness: Optional[List[str]] = None,
 ) -> Tuple[Dict[str, Any], str]: ...
 def welch(
-    x: ArrayLike, fs: float, *, nperseg: int = 256, detrend: bool = True, confidence: float = 0.95
+    x: ArrayLike, fs: SampleRate, *, nperseg: int = 256, detrend: bool = True, confidence: float = 0.95
 ) -> Dict[str, Any]: ...
 def iri(z: ArrayLike, step: Quantity) -> Dict[str, Any]: ...
 def expected_iri(spectrum: Spectrum) -> Dict[str, Any]: ...
@@ -406,5 +443,23 @@ def road_profile(
     detrend: str = ...,
     confidence: float = ...,
 ) -> Dict[str, Any]: ...
-def daily_exposure_a8(a_w: float, duration: Quantity) -> float: ...
-def vdv_gaussian(a_w: float, duration: Quantity) -> float: ...
+def daily_exposure_a8(a_w: Quantity, duration: Quantity) -> float: ...
+def vdv_gaussian(a_w: Quantity, duration: Quantity) -> float: ...
+def replay(
+    scenario: Union[Scenario, PathLike],
+    profile: PathLike,
+    *,
+    speed: Optional[Quantity] = None,
+    skip: Optional[Quantity] = None,
+    zero_start: bool = False,
+    track: Optional[str] = None,
+    detrend: Literal["linear", "mean"] = "linear",
+    history: Optional[PathLike] = None,
+    overwrite: bool = False,
+    spectra_dir: Optional[PathLike] = None,
+) -> Tuple[str, str]:
+    """``stochvib replay``: (the ``--json`` text, the text report)."""
+def workday(path: PathLike, *, spectra_dir: Optional[PathLike] = None) -> Tuple[str, str, str]:
+    """``stochvib workday``: (the ``--json`` text, the text report, the markdown report)."""
+def inspect(path: PathLike) -> Tuple[str, str, str]:
+    """``stochvib inspect``: (the ``--json`` text, the text summary, the markdown summary)."""

@@ -84,15 +84,21 @@ def weighting_filter(name: str, *, order: str = "descending") -> Tuple[npt.NDArr
     return _stochvib.weighting_filter(name, order=order)
 
 
-def a8(a_w: float, duration: Union[float, str]) -> float:
+def a8(a_w: Union[float, str], duration: Union[float, str]) -> float:
     """The daily exposure A(8) = a_w √(T/8 h) of Directive 2002/44/EC, m/s².
 
     Parameters
     ----------
-    a_w : float
-        Weighted r.m.s. acceleration, m/s², already multiplied by the axis factor k (1.4 for x, y seated).
+    a_w : float or str
+        Weighted r.m.s. acceleration, m/s² (or a unit string, "0.5 m/s^2"), already multiplied by the axis
+        factor k (1.4 for x, y seated).
     duration : float or str
         The daily exposure T in s, or with a unit ("4 h").
+
+    Raises
+    ------
+    UnitError
+        A string of another dimension, naming the argument.
 
     Examples
     --------
@@ -103,9 +109,10 @@ def a8(a_w: float, duration: Union[float, str]) -> float:
     return _stochvib.daily_exposure_a8(a_w, duration)
 
 
-def vdv_gaussian(a_w: float, duration: Union[float, str]) -> float:
+def vdv_gaussian(a_w: Union[float, str], duration: Union[float, str]) -> float:
     """The vibration dose value of a stationary Gaussian weighted acceleration, VDV = (3T)^¼ a_w, m/s^1.75
-    (the fourth moment of a Gaussian is 3σ⁴; compare the standard's estimate 1.4 a_w T^¼).
+    (the fourth moment of a Gaussian is 3σ⁴; compare the standard's estimate 1.4 a_w T^¼); ``a_w`` in m/s²
+    and ``duration`` in s, or unit strings as for :func:`a8`.
 
     Examples
     --------

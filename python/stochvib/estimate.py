@@ -12,7 +12,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Dict, Iterator
+from typing import Any, Dict, Iterator, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -58,7 +58,7 @@ class WelchEstimate:
 
 
 def welch(
-    x: npt.ArrayLike, fs: float, *, nperseg: int = 256, detrend: bool = True, confidence: float = 0.95
+    x: npt.ArrayLike, fs: Union[float, str], *, nperseg: int = 256, detrend: bool = True, confidence: float = 0.95
 ) -> WelchEstimate:
     """Welch's averaged-periodogram density of a record, with confidence intervals.
 
@@ -66,8 +66,8 @@ def welch(
     ----------
     x : array_like, 1-D
         The record, sampled at ``fs``.
-    fs : float
-        Sample rate, Hz.
+    fs : float or str
+        Sample rate, Hz, or a string: "200 Hz", "200 1/s" and "200 S/s" are all 200 samples per second.
     nperseg : int, keyword-only
         Segment length M (even, ≥ 4); Hann window, 50 % overlap (scipy.signal.welch's defaults).
     detrend : bool, keyword-only
@@ -84,6 +84,8 @@ def welch(
     ------
     InvalidInputError
         An odd or too short ``nperseg``, a record shorter than one segment, a bad ``confidence``.
+    UnitError
+        A sample-rate string with an unknown unit or another dimension ("200 rad/s").
     """
     d = _stochvib.welch(x, fs, nperseg=nperseg, detrend=detrend, confidence=confidence)
     return WelchEstimate(d["f"], d["G"], d["lower"], d["upper"], d["segments"], d["dof"], confidence)

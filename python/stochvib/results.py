@@ -428,15 +428,7 @@ class RunResult(_Text):
         self.statistics = self._statistics()
 
     def _statistics(self) -> Dict[str, Dict[str, Dict[str, Any]]]:
-        out: Dict[str, Dict[str, Dict[str, Any]]] = {}
-        for o in self._data.get("outputs", []):
-            stats = {}
-            for s in o.get("statistics", []):
-                entry = dict(s.get("interval", {}))
-                entry.update({k: v for k, v in s.items() if k not in ("interval", "name")})
-                stats[s["name"]] = entry
-            out[o["output"]] = stats
-        return out
+        return _run_statistics(self._data.get("outputs", []))
 
     @property
     def sigma(self) -> Dict[str, float]:
@@ -445,23 +437,45 @@ class RunResult(_Text):
 
     def to_dataframe(self) -> Any:
         """One row per (output, statistic): estimate, lower, upper, confidence, analytic, covers."""
-        rows = [
-            {"output": o, "statistic": name, **{k: v for k, v in s.items() if not isinstance(v, (dict, list))}}
-            for o, stats in self.statistics.items()
-            for name, s in stats.items()
-        ]
-        return _dataframe(rows)
+        return _statistics_dataframe(self.statistics)
 
     def __repr__(self) -> str:
         head = f"RunResult: {self.path} ({self.n_realizations} realizations, route {self.route})"
-        rows = [f"{'output':<14} {'sigma':>12} {'lower':>12} {'upper':>12} {'analytic':>12}  covers"]
-        for o, stats in self.statistics.items():
-            s = stats.get("sigma", {})
-            rows.append(
-                f"{o:<14} {_e(s.get('estimate')):>12} {_e(s.get('lower')):>12} {_e(s.get('upper')):>12} "
-                f"{_e(s.get('analytic')):>12}  {s.get('covers')}"
-            )
-        return "\n".join([head, *rows])
+        return "\n".join([head, *_sigma_rows(self.statistics)])
+
+
+def _run_statistics(outputs: List[Dict[str, Any]]) -> Dict[str, Dict[str, Dict[str, Any]]]:
+    """output → statistic name → its interval and fields, from a run's per-output statistics (``--json``)."""
+    out: Dict[str, Dict[str, Dict[str, Any]]] = {}
+    for o in outputs:
+        stats = {}
+        for s in o.get("statistics", []):
+            entry = dict(s.get("interval", {}))
+            entry.update({k: v for k, v in s.items() if k not in ("interval", "name")})
+            stats[s["name"]] = entry
+        out[o["output"]] = stats
+    return out
+
+
+def _statistics_dataframe(statistics: Dict[str, Dict[str, Dict[str, Any]]]) -> Any:
+    rows = [
+        {"output": o, "statistic": name, **{k: v for k, v in s.items() if not isinstance(v, (dict, list))}}
+        for o, stats in statistics.items()
+        for name, s in stats.items()
+    ]
+    return _dataframe(rows)
+
+
+def _sigma_rows(statistics: Dict[str, Dict[str, Dict[str, Any]]]) -> List[str]:
+    """The σ table of a run: estimate, interval, analytic σ and whether the interval covers it."""
+    rows = [f"{'output':<14} {'sigma':>12} {'lower':>12} {'upper':>12} {'analytic':>12}  covers"]
+    for o, stats in statistics.items():
+        s = stats.get("sigma", {})
+        rows.append(
+            f"{o:<14} {_e(s.get('estimate')):>12} {_e(s.get('lower')):>12} {_e(s.get('upper')):>12} "
+            f"{_e(s.get('analytic')):>12}  {s.get('covers')}"
+        )
+    return rows
 
 
 

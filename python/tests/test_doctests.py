@@ -43,7 +43,8 @@ ALL = native_docstrings() + python_docstrings()
 def test_there_are_examples():
     names = {n for n, _ in ALL}
     assert len(ALL) >= 15
-    for must in ("System.transfer_function", "Spectrum.density", "stochvib.analyze", "stochvib.exposure"):
+    for must in ("System.transfer_function", "Spectrum.density", "stochvib.analyze", "stochvib.exposure", "stochvib.analyze_nonlinear",
+                 "stochvib.replay", "stochvib.workday", "stochvib.inspect"):
         assert any(must in n for n in names), must
 
 

@@ -1,5 +1,5 @@
-"""A scenario with nonlinear elements from Python: analyze() gives routes 1 and 3 as a NonlinearResult, not
-the linear part's answer, and route 2 (the Monte Carlo of the nonlinear equations) as the command-line tool
+"""A scenario with nonlinear elements from Python: analyze_nonlinear() gives routes 1 and 3 as a NonlinearResult
+(analyze() refuses it, naming analyze_nonlinear; analyze_nonlinear() refuses a linear model, naming analyze), and route 2 (the Monte Carlo of the nonlinear equations) as the command-line tool
 runs it; the exact σ of the Duffing oscillator under white noise against the stationary
 Fokker–Planck density computed here with scipy (Caughey 1963; Lin 1967, ch. 10): for m ẍ + c ẋ + U'(x) = w
 with white w, p(x, v) ∝ exp(−(m v²/2 + U(x))/θ), θ = m σ_v², σ_v that of the linear oscillator (π S₀/(c m));
@@ -22,7 +22,7 @@ REL_QUAD = 1e-8
 
 def test_duffing_routes_against_fokker_planck(root):
     sc = stochvib.Scenario.load(root / "data" / "duffing-white-noise.toml")
-    r = sc.analyze(progress=False)
+    r = sc.analyze_nonlinear(progress=False)
     assert isinstance(r, stochvib.NonlinearResult) and r.route1_converged
     k, k3, sigma0 = (2 * math.pi) ** 2, 394784.1760435743, 0.01
     theta = k * sigma0**2
@@ -39,6 +39,31 @@ def test_duffing_routes_against_fokker_planck(root):
     assert r["x"].route2() is None  # no batch asked for
 
 
+def test_one_function_and_one_result_type_per_kind_of_model(root):
+    # analyze() is for linear models and always gives an AnalysisResult; analyze_nonlinear() for models with
+    # nonlinear elements and always gives a NonlinearResult; each refuses the other kind, naming the other
+    duffing = root / "data" / "duffing-white-noise.toml"
+    with pytest.raises(stochvib.InvalidInputError, match=r"nonlinear elements.*stochvib\.analyze_nonlinear\(\)"):
+        stochvib.analyze(duffing)
+    with pytest.raises(stochvib.InvalidInputError, match=r"analyze_nonlinear"):
+        stochvib.Scenario.load(duffing).analyze(monte_carlo=4, progress=False)
+    with pytest.raises(stochvib.InvalidInputError, match=r"is linear.*stochvib\.analyze\(\)"):
+        stochvib.analyze_nonlinear("data/quarter-car.toml")
+    assert isinstance(stochvib.analyze_nonlinear(duffing), stochvib.NonlinearResult)
+    assert type(stochvib.analyze("data/quarter-car.toml")) is stochvib.AnalysisResult
+    # the same for the Monte Carlo runs: simulate() → RunResult, simulate_nonlinear() → NonlinearRunResult
+    with pytest.raises(stochvib.InvalidInputError, match=r"nonlinear elements.*stochvib\.simulate_nonlinear\(\)"):
+        stochvib.simulate(duffing, 4, root / "never.h5", progress=False)
+    with pytest.raises(stochvib.InvalidInputError, match=r"is linear.*stochvib\.simulate\(\)"):
+        stochvib.simulate_nonlinear("data/quarter-car.toml", 4, root / "never.h5", progress=False)
+    assert not (root / "never.h5").exists()
+    # the signatures say so (no union decided by the file)
+    assert stochvib.analyze.__annotations__["return"] == "AnalysisResult"
+    assert stochvib.analyze_nonlinear.__annotations__["return"] == "NonlinearResult"
+    assert stochvib.simulate.__annotations__["return"] == "RunResult"
+    assert stochvib.simulate_nonlinear.__annotations__["return"] == "NonlinearRunResult"
+
+
 # The route-2 batch below: the same seeded realizations through the command-line tool and Python.
 ROUTE2 = ("--dt", "0.01", "--duration", "60", "--seed", "3")
 
@@ -46,7 +71,7 @@ ROUTE2 = ("--dt", "0.01", "--duration", "60", "--seed", "3")
 def test_route2_analyze_matches_the_cli(cli, root):
     want = cli.json("analyze", "data/duffing-white-noise.toml", "--monte-carlo", "8", *ROUTE2)
     sc = stochvib.Scenario.load(root / "data" / "duffing-white-noise.toml")
-    r = sc.analyze(monte_carlo=8, dt=0.01, duration=60.0, seed=3, progress=False)
+    r = sc.analyze_nonlinear(monte_carlo=8, dt=0.01, duration=60.0, seed=3, progress=False)
     got = r.to_dict()
     for g, w in zip(got["outputs"], want["outputs"]):
         assert [row["monte_carlo"] for row in g["rows"]] == [row["monte_carlo"] for row in w["rows"]]
@@ -58,7 +83,7 @@ def test_route2_analyze_matches_the_cli(cli, root):
 def test_route2_simulate_writes_the_run_of_the_cli(cli, root, tmp_path):
     want = cli.json("simulate", "data/duffing-white-noise.toml", "--realizations", "6", "-o", str(tmp_path / "cli.h5"), *ROUTE2)
     sc = stochvib.Scenario.load(root / "data" / "duffing-white-noise.toml")
-    r = sc.simulate(6, tmp_path / "py.h5", dt=0.01, duration=60.0, seed=3, progress=False)
+    r = sc.simulate_nonlinear(6, tmp_path / "py.h5", dt=0.01, duration=60.0, seed=3, progress=False)
     assert isinstance(r, stochvib.NonlinearRunResult) and r.path == tmp_path / "py.h5" and r.path.is_file()
     assert r.step == "given" and r.n_realizations == 6
     got = r.to_dict()
