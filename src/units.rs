@@ -1163,7 +1163,16 @@ mod tests {
     /// A sample rate counts samples per second (no 2π): every spelling of 200 per second is 200.
     #[test]
     fn sample_rates_are_counts_per_second() {
-        for text in ["200 Hz", "200 1/s", "200 /s", "200 S/s", "200 samples/s", "200 s^-1", "0.2 kHz", "0.2 kS/s"] {
+        for text in [
+            "200 Hz",
+            "200 1/s",
+            "200 /s",
+            "200 S/s",
+            "200 samples/s",
+            "200 s^-1",
+            "0.2 kHz",
+            "0.2 kS/s",
+        ] {
             let v = parse_sample_rate(text).unwrap_or_else(|e| panic!("{text}: {e}"));
             assert!(close(v, 200.0), "{text}: {v}");
         }
@@ -1181,10 +1190,18 @@ mod tests {
             }
             other => panic!("{text}: expected a unit error, got {other:?}"),
         };
-        assert!(reason("200 rad/s").contains("`rad` is an angle"), "{}", reason("200 rad/s"));
+        assert!(
+            reason("200 rad/s").contains("`rad` is an angle"),
+            "{}",
+            reason("200 rad/s")
+        );
         assert!(reason("200 cycles/s").contains("`cycles` is an angle"));
         for text in ["200 m", "200", "200 Hz s"] {
-            assert!(reason(text).contains("expected s^-1 (a sample rate"), "{text}: {}", reason(text));
+            assert!(
+                reason(text).contains("expected s^-1 (a sample rate"),
+                "{text}: {}",
+                reason(text)
+            );
         }
         assert!(reason("200 furlong/s").contains("known: m g t s min h N Pa J W Hz S sample samples"));
     }

@@ -58,7 +58,12 @@ pub fn require_kind(py: Python<'_>, sc: &Scenario, nonlinear: bool, (linear, oth
 }
 
 /// The `stochvib analyze` report of a linear scenario, with the Monte Carlo column of `batch`.
-pub fn linear<'py>(py: Python<'py>, sc: &Scenario, batch: Option<Batch>, progress: Option<Py<PyAny>>) -> PyResult<Bound<'py, PyAny>> {
+pub fn linear<'py>(
+    py: Python<'py>,
+    sc: &Scenario,
+    batch: Option<Batch>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
     require_kind(py, sc, false, ("analyze", "analyze_nonlinear"))?;
     let mut r = detached(py, || Ok(analysis_report(sc)?))?;
     if let Some((n, seed, dt, duration, _)) = batch {
@@ -84,7 +89,12 @@ pub fn linear<'py>(py: Python<'py>, sc: &Scenario, batch: Option<Batch>, progres
 
 /// Routes 1 and 3 of a scenario with nonlinear elements, and route 2 (the time-domain Monte Carlo of the
 /// nonlinear equations) with `batch`, as `stochvib analyze [--monte-carlo N]` of such a file.
-pub fn nonlinear<'py>(py: Python<'py>, sc: &Scenario, batch: Option<Batch>, progress: Option<Py<PyAny>>) -> PyResult<Bound<'py, PyAny>> {
+pub fn nonlinear<'py>(
+    py: Python<'py>,
+    sc: &Scenario,
+    batch: Option<Batch>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
     require_kind(py, sc, true, ("analyze", "analyze_nonlinear"))?;
     let Some(answers) = call(py, || sc.nonlinear_answers())? else {
         return Err(invalid_input(py, "the model has no nonlinear elements"));

@@ -59,7 +59,12 @@ pub fn replay<'py>(
     let detrend = match detrend {
         "mean" => Detrend::Mean,
         "linear" => Detrend::Linear,
-        other => return Err(invalid_input(py, format!("`detrend` = {other:?}: expected \"mean\" or \"linear\""))),
+        other => {
+            return Err(invalid_input(
+                py,
+                format!("`detrend` = {other:?}: expected \"mean\" or \"linear\""),
+            ))
+        }
     };
     let opts = ScenarioReplayOptions {
         speed_m_s: quantity::optional(py, speed, "speed", "m/s")?,
@@ -96,7 +101,9 @@ pub fn workday(py: Python<'_>, path: PathBuf, spectra_dir: Option<PathBuf>) -> P
     let cat = catalogue(spectra_dir);
     let r = detached(py, || {
         let day = stochvib::scenario::workday_file::load_workday(&path)?;
-        Ok(stochvib::report::WorkdayReport(stochvib::study::workday::workday_exposure(&day, cat.dir())?))
+        Ok(stochvib::report::WorkdayReport(
+            stochvib::study::workday::workday_exposure(&day, cat.dir())?,
+        ))
     })?;
     let (json, text) = printed(py, &r)?;
     Ok((json, text, r.markdown()))
@@ -119,6 +126,7 @@ pub fn inspect(py: Python<'_>, path: PathBuf) -> PyResult<(String, String, Strin
             stochvib::report::inspect_markdown(&path)?,
         ))
     })?;
-    let json = serde_json::to_string_pretty(&info).map_err(|e| invalid_input(py, format!("serialising a report: {e}")))?;
+    let json =
+        serde_json::to_string_pretty(&info).map_err(|e| invalid_input(py, format!("serialising a report: {e}")))?;
     Ok((json + "\n", text, markdown))
 }

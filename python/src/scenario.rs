@@ -399,7 +399,10 @@ fn band(py: Python<'_>, band: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64
     };
     match quantity::sequence(py, b, "band_rad_s", "rad/s")?[..] {
         [low, high] => Ok(Some((low, high))),
-        _ => Err(invalid_input(py, "`band_rad_s`: expected (low, high), two quantities in rad/s")),
+        _ => Err(invalid_input(
+            py,
+            "`band_rad_s`: expected (low, high), two quantities in rad/s",
+        )),
     }
 }
 
@@ -409,7 +412,11 @@ fn batch<'py>(
     py: Python<'py>,
     monte_carlo: Option<usize>,
     seed: u64,
-    (dt, duration, burn_in): (Option<&Bound<'py, PyAny>>, Option<&Bound<'py, PyAny>>, Option<&Bound<'py, PyAny>>),
+    (dt, duration, burn_in): (
+        Option<&Bound<'py, PyAny>>,
+        Option<&Bound<'py, PyAny>>,
+        Option<&Bound<'py, PyAny>>,
+    ),
 ) -> PyResult<Option<analysis::Batch>> {
     let dt = quantity::optional(py, dt, "dt", "s")?;
     let duration = quantity::optional(py, duration, "duration", "s")?;
@@ -1179,8 +1186,23 @@ impl PyScenario {
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
         simulate_run(
-            py, sc, false, realizations, path, dt, duration, seed, shard_size, store_raw, compression, route,
-            confidence, overwrite, progress, shard, None,
+            py,
+            sc,
+            false,
+            realizations,
+            path,
+            dt,
+            duration,
+            seed,
+            shard_size,
+            store_raw,
+            compression,
+            route,
+            confidence,
+            overwrite,
+            progress,
+            shard,
+            None,
         )
     }
 
@@ -1211,8 +1233,23 @@ impl PyScenario {
     ) -> PyResult<Bound<'py, PyAny>> {
         let sc = self.stochastic(py)?;
         simulate_run(
-            py, sc, true, realizations, path, dt, duration, seed, shard_size, store_raw, compression, route,
-            confidence, overwrite, progress, shard, burn_in,
+            py,
+            sc,
+            true,
+            realizations,
+            path,
+            dt,
+            duration,
+            seed,
+            shard_size,
+            store_raw,
+            compression,
+            route,
+            confidence,
+            overwrite,
+            progress,
+            shard,
+            burn_in,
         )
     }
 
