@@ -406,17 +406,16 @@ fn band(py: Python<'_>, band: Option<&Bound<'_, PyAny>>) -> PyResult<Option<(f64
     }
 }
 
+/// An optional quantity argument as given in Python (a number or a unit string).
+type QuantityArg<'a, 'py> = Option<&'a Bound<'py, PyAny>>;
+
 /// The Monte Carlo batch of `monte_carlo` realizations, its quantities (Δt, duration, burn-in: s or unit
 /// strings) read.
 fn batch<'py>(
     py: Python<'py>,
     monte_carlo: Option<usize>,
     seed: u64,
-    (dt, duration, burn_in): (
-        Option<&Bound<'py, PyAny>>,
-        Option<&Bound<'py, PyAny>>,
-        Option<&Bound<'py, PyAny>>,
-    ),
+    (dt, duration, burn_in): (QuantityArg<'_, 'py>, QuantityArg<'_, 'py>, QuantityArg<'_, 'py>),
 ) -> PyResult<Option<analysis::Batch>> {
     let dt = quantity::optional(py, dt, "dt", "s")?;
     let duration = quantity::optional(py, duration, "duration", "s")?;
