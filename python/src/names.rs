@@ -40,3 +40,15 @@ pub fn domain_name(d: Domain) -> &'static str {
 pub fn catalogue(spectra_dir: Option<PathBuf>) -> Catalogue {
     Catalogue::chosen(spectra_dir.as_deref())
 }
+
+/// A [`stochvib::road::Detrend`] by its name (`mean`, `linear`), as the command-line tool's `--detrend`.
+pub fn detrend(py: Python<'_>, name: &str) -> PyResult<stochvib::road::Detrend> {
+    match name {
+        "mean" => Ok(stochvib::road::Detrend::Mean),
+        "linear" => Ok(stochvib::road::Detrend::Linear),
+        other => Err(crate::errors::invalid_input(
+            py,
+            format!("detrend={other:?}: expected \"mean\" or \"linear\""),
+        )),
+    }
+}

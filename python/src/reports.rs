@@ -9,7 +9,7 @@ use crate::quantity;
 use crate::scenario::PyScenario;
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
-use stochvib::road::{Detrend, Start};
+use stochvib::road::Start;
 use stochvib::store::RunFile;
 use stochvib::study::replay::{replay_scenario, ScenarioReplayOptions};
 
@@ -56,16 +56,7 @@ pub fn replay<'py>(
     overwrite: bool,
     spectra_dir: Option<PathBuf>,
 ) -> PyResult<(String, String)> {
-    let detrend = match detrend {
-        "mean" => Detrend::Mean,
-        "linear" => Detrend::Linear,
-        other => {
-            return Err(invalid_input(
-                py,
-                format!("`detrend` = {other:?}: expected \"mean\" or \"linear\""),
-            ))
-        }
-    };
+    let detrend = crate::names::detrend(py, detrend)?;
     let opts = ScenarioReplayOptions {
         speed_m_s: quantity::optional(py, speed, "speed", "m/s")?,
         skip_m: quantity::optional(py, skip, "skip", "m")?,

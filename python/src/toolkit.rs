@@ -338,18 +338,9 @@ pub fn road_profile<'py>(
     confidence: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     use stochvib::report::road_report::{profile_report, RoadReportOptions};
-    use stochvib::road::{Detrend, Profile, Track};
+    use stochvib::road::{Profile, Track};
     let step = crate::quantity::quantity(py, step, "step", "m")?;
-    let detrend = match detrend {
-        "mean" => Detrend::Mean,
-        "linear" => Detrend::Linear,
-        other => {
-            return Err(invalid_input(
-                py,
-                format!("detrend={other:?}: expected \"mean\" or \"linear\""),
-            ))
-        }
-    };
+    let detrend = crate::names::detrend(py, detrend)?;
     if !(confidence > 0.0 && confidence < 1.0) {
         return Err(invalid_input(
             py,
