@@ -141,4 +141,11 @@ pub trait Coherence: Debug + Send + Sync {
     fn track_width(&self) -> Option<f64> {
         None
     }
+
+    /// ρ₀ when the amplitude is the same at every spatial frequency (a [`ConstantCoherence`]), `None` for a
+    /// model that depends on n: only a constant coherence lets [`TwoTracks`] factor into independent
+    /// processes ([`SpectralMatrix::independent_parts`]).
+    fn constant_amplitude(&self) -> Option<f64> {
+        None
+    }
 }
