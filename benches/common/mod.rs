@@ -89,9 +89,17 @@ pub fn type4_upper() -> f64 {
 
 /// The library's sprung-cab system for one (c₂, b₂): every output, names and description included.
 pub fn scraper(c2: f64, b2: f64) -> stochvib::models::ModelInstance {
-    ScraperSprungCab::new(M1, c1(), b1(), M2, c2, b2)
-        .and_then(|s| s.instance())
-        .expect("valid scraper parameters")
+    ScraperSprungCab {
+        m1: M1,
+        c1: c1(),
+        b1: b1(),
+        m2: M2,
+        c2,
+        b2,
+    }
+    .build()
+    .and_then(|s| s.instance())
+    .expect("valid scraper parameters")
 }
 
 /// σ of the cab acceleration through the public API, as a user would write it per point: build the model

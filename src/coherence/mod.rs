@@ -39,7 +39,7 @@ mod spectral_matrix;
 mod tabulated;
 mod two_tracks;
 
-pub use ammon_bormann::{AmmonBormann, AmmonBormannRoad};
+pub use ammon_bormann::{AmmonBormann, AmmonBormannParameters, AmmonBormannRoad};
 pub use constant::ConstantCoherence;
 pub use isotropic::IsotropicCoherence;
 pub use spectral_matrix::{check_spectral_matrix, semidefinite_cholesky, SpectralMatrix, SPECTRAL_MATRIX_TOLERANCE};

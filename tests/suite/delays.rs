@@ -270,7 +270,18 @@ fn first_order_two_inputs_gaussian_closed_form() {
 /// `spectral_moment_quadrature`: no splitting, no half-period sums), which converges on a finite range.
 #[test]
 fn iso_band_limited_road_matches_plain_adaptive_quadrature() {
-    let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 2.2e3, 2.6e3).unwrap();
+    let car = HalfCar {
+        mass: 1490.0,
+        radius_of_gyration: 1.23,
+        front_distance: 1.42,
+        rear_distance: 1.28,
+        front_stiffness: 3.2e4,
+        rear_stiffness: 4.3e4,
+        front_damping: 2.2e3,
+        rear_damping: 2.6e3,
+    }
+    .build()
+    .unwrap();
     let sys = car.mdof(0.9).unwrap();
     let l = car.wheelbase();
     let opts = OscillatoryOptions::default();
@@ -591,7 +602,18 @@ fn three_equally_spaced_axles_share_a_lag() {
 /// Lyapunov equation of the system with both shaping filters).
 #[test]
 fn independent_inputs_match_variance_lyapunov() {
-    let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 2.2e3, 2.6e3).unwrap();
+    let car = HalfCar {
+        mass: 1490.0,
+        radius_of_gyration: 1.23,
+        front_distance: 1.42,
+        rear_distance: 1.28,
+        front_stiffness: 3.2e4,
+        rear_stiffness: 4.3e4,
+        front_damping: 2.2e3,
+        rear_damping: 2.6e3,
+    }
+    .build()
+    .unwrap();
     let sys = car.mdof(0.9).unwrap();
     let front: Arc<dyn Spectrum> =
         Arc::new(AtSpeed::new(Arc::new(Exponential::new(1e-4, 0.1, Domain::Spatial).unwrap()), 11.0).unwrap());
@@ -674,7 +696,18 @@ fn acceleration_under_delayed_type1_road_is_divergent() {
 /// which must reproduce the one-copy answer: (Σ𝒞_g) P (Σ𝒞_g)ᵀ = Σ_gh 𝒞_g P₂ 𝒞_hᵀ.
 #[test]
 fn equal_delays_reduce_to_variance_lyapunov() {
-    let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 2.2e3, 2.6e3).unwrap();
+    let car = HalfCar {
+        mass: 1490.0,
+        radius_of_gyration: 1.23,
+        front_distance: 1.42,
+        rear_distance: 1.28,
+        front_stiffness: 3.2e4,
+        rear_stiffness: 4.3e4,
+        front_damping: 2.2e3,
+        rear_damping: 2.6e3,
+    }
+    .build()
+    .unwrap();
     let sys = car.mdof(0.9).unwrap();
     let spatial = Arc::new(ExpCosine::new(1e-4, 0.12, 0.6, Domain::Spatial).unwrap());
     let road: Arc<dyn Spectrum> = Arc::new(AtSpeed::new(spatial, 12.0).unwrap());
