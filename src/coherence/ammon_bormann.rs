@@ -3,7 +3,7 @@
 
 use super::{Coherence, CoherenceKind};
 use crate::error::{require_positive, Result};
-use crate::spectrum::{IsoBound, IsoClass, PowerLaw, ISO_N0};
+use crate::spectrum::{IsoBound, IsoClass, PowerLaw, PowerLawParameters, ISO_N0};
 use std::f64::consts::PI;
 
 /// The empirical two-track coherence model of Ammon & Bormann (1991; we could not obtain the paper and
@@ -231,7 +231,7 @@ impl AmmonBormannRoad {
     /// ```
     ///
     /// # Errors
-    /// As [`PowerLaw::new`] for the band.
+    /// As [`PowerLawParameters::build`](crate::spectrum::PowerLawParameters::build) for the band.
     ///
     /// # Examples
     /// ```
@@ -247,7 +247,14 @@ impl AmmonBormannRoad {
         let (phi0, w, ..) = self.row();
         let phi0 = phi0.unwrap_or(f64::NAN);
         let g0 = 2.0 * PI * phi0 * (2.0 * PI * ISO_N0).powf(-w);
-        PowerLaw::new(g0, ISO_N0, w, band, crate::spectrum::Domain::Spatial)
+        PowerLawParameters {
+            g0,
+            n0: ISO_N0,
+            waviness: w,
+            band,
+            domain: crate::spectrum::Domain::Spatial,
+        }
+        .build()
     }
 }
 

@@ -144,7 +144,15 @@ pub fn harmonic_band_rms(amplitude: f64, f_hz: f64) -> Vec<f64> {
 /// use stochvib::response::Excitation;
 /// use stochvib::spectrum::{BandWhite, Convention, Domain};
 /// let (seat, _, _) = example_7_2();
-/// let g = BandWhite::new(Convention::OneSidedCyclic, 1e-6, 3.0, 5.0, Domain::Temporal).unwrap();
+/// let g = BandWhiteParameters {
+///     convention: Convention::OneSidedCyclic,
+///     level: 1e-6,
+///     lo: 3.0,
+///     hi: 5.0,
+///     domain: Domain::Temporal,
+/// }
+/// .build()
+/// .unwrap();
 /// let exc = Excitation::single(std::sync::Arc::new(g), 0.0).unwrap();
 /// let v = random_band_rms(&seat.mdof().unwrap(), &exc, 1).unwrap();
 /// assert!(v[2] > 0.0 && v[0] == 0.0);

@@ -541,7 +541,15 @@ impl ScraperSprungCab {
 /// # Errors
 /// None in practice (constant valid parameters).
 pub fn book_road_8_66(form: Form) -> Result<Arc<dyn Spectrum>> {
-    Ok(Arc::new(TwoPoleRoad::new(0.035 * 0.035, 0.3, 12.0, form)?))
+    Ok(Arc::new(
+        TwoPoleRoad {
+            dq: 0.035 * 0.035,
+            alpha: 0.3,
+            beta: 12.0,
+            form,
+        }
+        .build()?,
+    ))
 }
 
 /// The book's graded dirt road (8.69): spatial type 1, D_q = 32 cm², α = 0.16·10⁻² 1/cm = 0.16 1/m.

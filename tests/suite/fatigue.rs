@@ -33,7 +33,7 @@ use stochvib::fatigue::{
 };
 use stochvib::quad::{integrate, QuadOptions};
 use stochvib::simulate::{stream, uniform01, Amplitudes, SpectralGenerator};
-use stochvib::spectrum::{BandWhite, Convention, Domain, Exponential, Gaussian, Spectrum};
+use stochvib::spectrum::{BandWhiteParameters, Convention, Domain, Exponential, Gaussian, Spectrum};
 use stochvib::Error;
 
 // ---- named tolerances ----------------------------------------------------------------------------------
@@ -526,7 +526,15 @@ fn moments_of_ideal_band() {
     assert!(rel(m.m0_75().unwrap(), ex(0.75)) < QUADRATURE);
     assert!(rel(m.m1_5().unwrap(), ex(1.5)) < QUADRATURE);
     // The same band as a crate spectrum (BandWhite, one-sided Hz level g): G(f) = 4π S(2πf) = g.
-    let s = BandWhite::new(Convention::OneSidedCyclic, g, f1, f2, Domain::Temporal).unwrap();
+    let s = BandWhiteParameters {
+        convention: Convention::OneSidedCyclic,
+        level: g,
+        lo: f1,
+        hi: f2,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     let ms = SpectralMoments::from_spectrum(&s, 0.0, f64::INFINITY).unwrap();
     assert!(rel(ms.m4(), ex(4.0)) < QUADRATURE);
 }
@@ -1050,7 +1058,15 @@ fn monte_carlo_rainflow_damage_matches_dirlik() {
     let n = 1 << 17;
     let records = 128;
     let k = 3.0;
-    let s = BandWhite::new(Convention::OneSidedCyclic, 1.0, f1, f2, Domain::Temporal).unwrap();
+    let s = BandWhiteParameters {
+        convention: Convention::OneSidedCyclic,
+        level: 1.0,
+        lo: f1,
+        hi: f2,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     let generator = SpectralGenerator::new(&s, dt, n, Amplitudes::Rayleigh).unwrap();
     // Moments of the simulated (line) spectrum itself: lines at f_j = j/(NΔt) with variance 2S(ω_j)Δω.
     let dw = 2.0 * PI / (n as f64 * dt);

@@ -24,7 +24,7 @@ use stochvib::models::operator_seat::{
 use stochvib::models::worked_example::{BookRow, EXPLAIN_ABOVE};
 use stochvib::models::InputLayout;
 use stochvib::response::{band_variance, Excitation};
-use stochvib::spectrum::{BandWhite, Convention, Domain};
+use stochvib::spectrum::{BandWhiteParameters, Convention, Domain};
 use stochvib::system::FrequencyResponse;
 
 // ---------------------------------------------------------------- isolation 7.1 / 7.2
@@ -549,7 +549,17 @@ fn random_band_rms_matches_independent_simpson_rule() {
     let (seat, _, _) = operator_seat::example_7_2();
     let g = 1.0e-6;
     let (f1, f2) = (3.0, 5.0);
-    let spec = Arc::new(BandWhite::new(Convention::OneSidedCyclic, g, f1, f2, Domain::Temporal).unwrap());
+    let spec = Arc::new(
+        BandWhiteParameters {
+            convention: Convention::OneSidedCyclic,
+            level: g,
+            lo: f1,
+            hi: f2,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .unwrap(),
+    );
     let sys = seat.mdof().unwrap();
     let exc = Excitation::single(spec, 0.0).unwrap();
     let v = random_band_rms(&sys, &exc, 1).unwrap();

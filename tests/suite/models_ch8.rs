@@ -81,7 +81,16 @@ fn bogie_sigma_independent_of_speed() {
 #[test]
 fn bogie_general_road_by_superposition() {
     let (a, bb, d) = (3.5, 20.0, 1.0e-4);
-    let road: Arc<dyn Spectrum> = Arc::new(TwoPoleRoad::new(d, a, bb, Form::Consistent).unwrap());
+    let road: Arc<dyn Spectrum> = Arc::new(
+        TwoPoleRoad {
+            dq: d,
+            alpha: a,
+            beta: bb,
+            form: Form::Consistent,
+        }
+        .build()
+        .unwrap(),
+    );
     let b = BalancerBogie {
         r: 0.11,
         ell: 0.6,
