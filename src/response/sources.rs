@@ -240,7 +240,8 @@ fn source_track(
 ///
 /// # Errors
 /// [`Error::NotApplicable`] when the matrix has no such factorisation (a coherence that depends on the
-/// frequency) or the density is not rational.
+/// frequency), an input of the source is delayed (the delayed exact route of the parts lost its accuracy on
+/// a machine with tyre damping, a negative variance, so it is not used) or the density is not rational.
 fn matrix_parts(m: &dyn SpectralMatrix, inputs: &[InputMap], s: usize) -> Result<Vec<Excitation>> {
     let refuse = |why: String| Error::NotApplicable {
         method: "exact (Lyapunov) variance".into(),
@@ -253,6 +254,13 @@ fn matrix_parts(m: &dyn SpectralMatrix, inputs: &[InputMap], s: usize) -> Result
                 .into(),
         ));
     };
+    if inputs.iter().any(|i| i.source == s && i.delay != 0.0) {
+        return Err(refuse(
+            "has delayed inputs (a wheelbase): its factorisation into sum and difference processes is used \
+             only without delays"
+                .into(),
+        ));
+    }
     let density = m.component(0);
     let Some(rational) = density.rational() else {
         return Err(refuse(format!(

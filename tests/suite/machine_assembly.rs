@@ -321,26 +321,26 @@ fn wheel_loader_scenario_and_bad_keys() {
     }
 }
 
-/// A whole machine three ways: the symmetric machine with cab and seat (tyre damping raised to 8 kN s/m per
-/// tyre, a bounce damping ratio near 0.1) on the textbook type-1 road (eq. 8.45, rational: D = 2.25 cm²,
-/// α = 3.5 1/m) at 5 m/s on two tracks of constant coherence 0.5, wheelbase 3 m (delays).
+/// The analytic σ of a whole machine against Monte Carlo: the symmetric machine with cab and seat (tyre
+/// damping raised to 8 kN s/m per tyre, a bounce damping ratio near 0.1) on the textbook type-1 road
+/// (eq. 8.45, rational: D = 2.25 cm², α = 3.5 1/m) at 5 m/s on two tracks of constant coherence 0.5,
+/// wheelbase 3 m (delays).
 ///
-/// * exact: a constant coherence ρ factors the tracks into independent sum and difference processes of
-///   densities S(1 ± ρ)/2 (`docs/models.md`), each a rational track felt with the wheelbase delay, so
-///   `lyapunov (delays)` applies (and `lyapunov` says it does not: the delays);
-/// * quadrature: the Fourier-weighted adaptive quadrature of S_y from the two-track matrix itself (no
-///   factorisation), whose own error estimate is within `QUADRATURE` of its value, equals the exact value
-///   within `FOURIER` (the oscillatory tails' extrapolation);
+/// * analytic: with the wheelbase delay the evaluator has no exact route here (neither `lyapunov` nor
+///   `lyapunov (delays)`: the factorisation of a constant coherence into sum and difference processes is
+///   used only without delays), so the reference is the Fourier-weighted adaptive quadrature of S_y,
+///   whose own error estimate is within `QUADRATURE` of its value, and the exact routes must say that they
+///   do not apply (not a number);
 /// * Monte Carlo: 40 realizations of 200 s at Δt = 0.02 s (spectral route, the only one for delayed
 ///   inputs), seed 20261127. The Student-t interval of σ across realizations (each a time average over
 ///   200 s, ≫ the slowest mode's correlation time 1/(ζω) ≈ 0.6 s, so near-normal) at confidence
 ///   1 − `MC_FALSE_FAILURE` covers the exact σ of the simulated grid process (`sigma_discrete`) for each of
 ///   four outputs: false failure ≤ 4 × 2e-7 < 1e-6 (union bound). That grid process's σ lies within
-///   `SPECTRAL_GRID_BIAS` of the exact one (the road on the record's frequency grid up to Nyquist,
+///   `SPECTRAL_GRID_BIAS` of the analytic one (the road on the record's frequency grid up to Nyquist,
 ///   157 rad/s, far above the 2.6–3.4 Hz rigid-body modes and the 1.4 Hz seat).
 #[test]
-fn machine_three_ways_agree_with_monte_carlo() {
-    use common::tolerance::{FOURIER, MC_FALSE_FAILURE, QUADRATURE, SPECTRAL_GRID_BIAS};
+fn machine_quadrature_agrees_with_monte_carlo() {
+    use common::tolerance::{MC_FALSE_FAILURE, QUADRATURE, SPECTRAL_GRID_BIAS};
     use stochvib::response::{Outcome, VarianceMethod};
     use stochvib::simulate::{run, RunOptions};
     let text = symmetric("")
@@ -361,14 +361,13 @@ speed = "5 m/s"
     for name in names {
         let st = analyze_output(sc.model.system.as_ref(), &sc.excitation, index(&sc, name)).unwrap();
         let outcome = |m: VarianceMethod| &st.methods.iter().find(|v| v.method == m).unwrap().outcome;
-        assert!(
-            matches!(outcome(VarianceMethod::Lyapunov), Outcome::NotApplicable { .. }),
-            "{name}: {:?}",
-            outcome(VarianceMethod::Lyapunov)
-        );
-        let Outcome::Value { value: x, .. } = outcome(VarianceMethod::LyapunovDelays) else {
-            panic!("{name}: {st:?}")
-        };
+        for m in [VarianceMethod::Lyapunov, VarianceMethod::LyapunovDelays] {
+            assert!(
+                matches!(outcome(m), Outcome::NotApplicable { .. }),
+                "{name}: {m:?} {:?}",
+                outcome(m)
+            );
+        }
         let Outcome::Value { value, error_estimate } = outcome(VarianceMethod::Quadrature) else {
             panic!("{name}: {st:?}")
         };
@@ -376,12 +375,7 @@ speed = "5 m/s"
             error_estimate.unwrap() <= QUADRATURE * value,
             "{name}: {value:e} ± {error_estimate:?}"
         );
-        assert!(
-            rel(*value, *x) <= FOURIER,
-            "{name}: quadrature {value:e} vs exact {x:e}"
-        );
-        assert_eq!(st.variance, Some(*x));
-        exact.push(x.sqrt());
+        exact.push(value.sqrt());
     }
     let mut opts = RunOptions {
         realizations: 40,
@@ -405,12 +399,12 @@ speed = "5 m/s"
         );
         assert!(
             rel(grid, sigma) <= SPECTRAL_GRID_BIAS,
-            "{name}: grid σ {grid:e} vs exact {sigma:e}"
+            "{name}: grid σ {grid:e} vs analytic {sigma:e}"
         );
     }
 }
 
-/// The machine of `machine_three_ways_agree_with_monte_carlo` (tyre damping 8 kN s/m, the type-1 road at
+/// The machine of `machine_quadrature_agrees_with_monte_carlo` (tyre damping 8 kN s/m, the type-1 road at
 /// 5 m/s on two tracks of coherence 0.5) with `extra` (nonlinear elements) before its input and the seat
 /// damping `seat_damping` N s/m.
 fn machine_on_type1_road(extra: &str, seat_damping: f64) -> Scenario {
