@@ -37,7 +37,13 @@ fn rainflow_1e8(c: &mut Criterion) {
 }
 
 fn dirlik(c: &mut Criterion) {
-    let sn = SnCurve::new(SN_K, SN_C, None).unwrap();
+    let sn = SnCurve {
+        k: SN_K,
+        c: SN_C,
+        endurance_limit: None,
+    }
+    .build()
+    .unwrap();
     let mut g = c.benchmark_group("dirlik");
     g.bench_function("life_from_density", |b| {
         b.iter(|| {

@@ -26,7 +26,14 @@ fn input() -> Excitation {
 
 /// a_w of one (stiffness N/m, damping N s/m) point.
 fn a_w(exc: &Excitation, k: f64, b: f64) -> f64 {
-    let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap();
+    let seat = OperatorSeat {
+        operator_mass: 80.0,
+        seat_mass: 26.0,
+        stiffness: k,
+        damping: b,
+    }
+    .build()
+    .unwrap();
     let m = seat.instance().unwrap();
     let ss = m.system.state_space().unwrap();
     let i = ss.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
@@ -37,7 +44,14 @@ fn a_w(exc: &Excitation, k: f64, b: f64) -> f64 {
 /// a_w of one point by the prepared [`WeightedEvaluator`] (the poles of W_k and of the input filter found
 /// once; per point the model, its state space, Faddeev–LeVerrier and the checked residue sum).
 fn a_w_fast(ev: &WeightedEvaluator, exc: &Excitation, k: f64, b: f64) -> f64 {
-    let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap();
+    let seat = OperatorSeat {
+        operator_mass: 80.0,
+        seat_mass: 26.0,
+        stiffness: k,
+        damping: b,
+    }
+    .build()
+    .unwrap();
     let m = seat.instance().unwrap();
     let ss = m.system.state_space().unwrap();
     let i = ss.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
@@ -81,7 +95,15 @@ fn weighting(c: &mut Criterion) {
             let mut acc = 0.0;
             for &k in &ks {
                 for &b in &bs {
-                    let (num, den) = OperatorSeat::new(80.0, 26.0, k, b).unwrap().seat_acc_transfer();
+                    let (num, den) = OperatorSeat {
+                        operator_mass: 80.0,
+                        seat_mass: 26.0,
+                        stiffness: k,
+                        damping: b,
+                    }
+                    .build()
+                    .unwrap()
+                    .seat_acc_transfer();
                     acc += ev.a_w_rational(&num, &den, &exc).unwrap().a_w;
                 }
             }

@@ -18,7 +18,7 @@ use stochvib::quad::{integrate, QuadOptions};
 use stochvib::response::{
     output_density, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation, OutputDensity,
 };
-use stochvib::spectrum::{Domain, GaussCosine};
+use stochvib::spectrum::{Domain, GaussCosineParameters};
 #[path = "../tests/common/tolerance.rs"]
 #[allow(dead_code)]
 mod tolerance;
@@ -178,7 +178,14 @@ fn main() {
     put("sweep_api", n_sweep, (t_api * step as f64, check_api));
 
     // 4. type-4 (GaussCosine) input through the 2-DOF model: σ² of the cab acceleration by quadrature
-    let s4 = GaussCosine::new(T4.0, T4.1, T4.2, Domain::Temporal).unwrap();
+    let s4 = GaussCosineParameters {
+        variance: T4.0,
+        alpha: T4.1,
+        beta: T4.2,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     let exc4 = Excitation::single(type4(), 0.0).unwrap();
     let mut points = sys.natural_frequencies();
     points.push(T4.2);

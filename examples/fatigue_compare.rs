@@ -71,7 +71,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     // Dirlik life from the density (moments by adaptive quadrature) and from given moments.
-    let sn = SnCurve::new(SN_K, SN_C, None)?;
+    let sn = SnCurve {
+        k: SN_K,
+        c: SN_C,
+        endurance_limit: None,
+    }
+    .build()?;
     let mut best_density = f64::INFINITY;
     let mut life = 0.0;
     let mut m = SpectralMoments::new(1.0, 1.0, 1.0, 1.0)?;

@@ -18,7 +18,15 @@ fn main() -> Result<()> {
     // (the force through the damper, b(ẋ − u̇), has an infinite variance here: the type-3 density decays like
     // ω⁻², so u̇ is white at high frequency; `analyze_output` reports that divergence instead of a number)
     // base motion: type 3, D = 1 cm², α = 2 1/s, β = 15 rad/s (two-sided angular density, see `spectrum`)
-    let base = Arc::new(ExpCosine::new(1e-4, 2.0, 15.0, Domain::Temporal)?);
+    let base = Arc::new(
+        ExpCosine {
+            variance: 1e-4,
+            alpha: 2.0,
+            beta: 15.0,
+            domain: Domain::Temporal,
+        }
+        .build()?,
+    );
     let exc = Excitation::single(base, 0.0)?;
     for i in 0..sys.outputs().len() {
         let name = &sys.outputs()[i].name;

@@ -10,8 +10,8 @@ pub use crate::response::{analyze_output, band_variance, output_density, Excitat
 pub use crate::scenario::{load_document, load_scenario, Catalogue, Document, Scenario};
 pub use crate::simulate::{run, suggest_step, Route, RunInput, RunOptions, RunSummary};
 pub use crate::spectrum::{
-    AtSpeed, BandWhite, Convention, Domain, ExpCosine, Exponential, GaussCosine, Gaussian, IsoClass, PowerLaw,
-    RationalSpectrum, Spectrum, Tabulated,
+    AtSpeed, BandWhite, BandWhiteParameters, Convention, Domain, ExpCosine, Exponential, GaussCosine,
+    GaussCosineParameters, Gaussian, IsoClass, PowerLaw, PowerLawParameters, RationalSpectrum, Spectrum, Tabulated,
 };
 pub use crate::store::{RunFile, Signal};
 pub use crate::system::{

@@ -13,7 +13,7 @@ use std::sync::Arc;
 use stochvib::linalg::{h2_integral, solve_continuous_lyapunov};
 use stochvib::models::scraper::{book_road_8_69, ScraperSprungCab};
 use stochvib::response::{variance_lyapunov, Excitation};
-use stochvib::spectrum::{AtSpeed, Domain, GaussCosine, Spectrum};
+use stochvib::spectrum::{AtSpeed, Domain, GaussCosine, GaussCosineParameters, Spectrum};
 
 /// Front mass m₁, kg.
 pub const M1: f64 = 3.0e4;
@@ -78,7 +78,16 @@ pub const T4: (f64, f64, f64) = (1.0e-3, 20.0, 15.0);
 
 /// The type-4 input as a spectrum.
 pub fn type4() -> Arc<dyn Spectrum> {
-    Arc::new(GaussCosine::new(T4.0, T4.1, T4.2, Domain::Temporal).expect("valid constants"))
+    Arc::new(
+        GaussCosineParameters {
+            variance: T4.0,
+            alpha: T4.1,
+            beta: T4.2,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .expect("valid constants"),
+    )
 }
 
 /// Upper limit of the finite-interval quadrature job, rad/s: β + 40√α, where the type-4 density has
@@ -89,9 +98,17 @@ pub fn type4_upper() -> f64 {
 
 /// The library's sprung-cab system for one (c₂, b₂): every output, names and description included.
 pub fn scraper(c2: f64, b2: f64) -> stochvib::models::ModelInstance {
-    ScraperSprungCab::new(M1, c1(), b1(), M2, c2, b2)
-        .and_then(|s| s.instance())
-        .expect("valid scraper parameters")
+    ScraperSprungCab {
+        m1: M1,
+        c1: c1(),
+        b1: b1(),
+        m2: M2,
+        c2,
+        b2,
+    }
+    .build()
+    .and_then(|s| s.instance())
+    .expect("valid scraper parameters")
 }
 
 /// σ of the cab acceleration through the public API, as a user would write it per point: build the model
@@ -266,8 +283,8 @@ pub fn density_grid() -> Vec<f64> {
 pub fn all_spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
     use stochvib::spectrum::two_pole_road::Form;
     use stochvib::spectrum::{
-        BandWhite, Convention, ExpCosine, Exponential, Gaussian, IsoBound, IsoClass, PowerLaw, RationalSpectrum,
-        Tabulated, TwoPoleRoad, ISO_BAND,
+        BandWhiteParameters, Convention, ExpCosine, Exponential, Gaussian, IsoBound, IsoClass, PowerLaw,
+        RationalSpectrum, Tabulated, TwoPoleRoad, ISO_BAND,
     };
     let t = Domain::Temporal;
     let tab_x: Vec<f64> = (0..20).map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 19.0)).collect();
@@ -278,15 +295,49 @@ pub fn all_spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
             Arc::new(Exponential::new(1.0, 2.0, t).unwrap()) as Arc<dyn Spectrum>,
         ),
         ("gaussian", Arc::new(Gaussian::new(1.0, 2.0, t).unwrap())),
-        ("exp_cosine", Arc::new(ExpCosine::new(1.0, 1.0, 5.0, t).unwrap())),
-        ("gauss_cosine", Arc::new(GaussCosine::new(1.0, 2.0, 5.0, t).unwrap())),
+        (
+            "exp_cosine",
+            Arc::new(
+                ExpCosine {
+                    variance: 1.0,
+                    alpha: 1.0,
+                    beta: 5.0,
+                    domain: t,
+                }
+                .build()
+                .unwrap(),
+            ),
+        ),
+        (
+            "gauss_cosine",
+            Arc::new(
+                GaussCosineParameters {
+                    variance: 1.0,
+                    alpha: 2.0,
+                    beta: 5.0,
+                    domain: t,
+                }
+                .build()
+                .unwrap(),
+            ),
+        ),
         (
             "rational",
             Arc::new(RationalSpectrum::new(vec![1.0, 0.5], vec![1.0, 0.3, 0.02], t).unwrap()),
         ),
         (
             "band_white",
-            Arc::new(BandWhite::new(Convention::TwoSidedAngular, 0.1, 1.0, 50.0, t).unwrap()),
+            Arc::new(
+                BandWhiteParameters {
+                    convention: Convention::TwoSidedAngular,
+                    level: 0.1,
+                    lo: 1.0,
+                    hi: 50.0,
+                    domain: t,
+                }
+                .build()
+                .unwrap(),
+            ),
         ),
         (
             "tabulated",
@@ -298,7 +349,16 @@ pub fn all_spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
         ),
         (
             "two_pole_road",
-            Arc::new(TwoPoleRoad::new(0.035 * 0.035, 0.3, 12.0, Form::Consistent).unwrap()),
+            Arc::new(
+                TwoPoleRoad {
+                    dq: 0.035 * 0.035,
+                    alpha: 0.3,
+                    beta: 12.0,
+                    form: Form::Consistent,
+                }
+                .build()
+                .unwrap(),
+            ),
         ),
         ("at_speed", road()),
     ]

@@ -41,7 +41,16 @@ fn spectra() -> Vec<(&'static str, Arc<dyn Spectrum>)> {
         ),
         (
             "gauss_cosine",
-            Arc::new(GaussCosine::new(2.0, 1.5, 6.0, Domain::Temporal).unwrap()),
+            Arc::new(
+                GaussCosineParameters {
+                    variance: 2.0,
+                    alpha: 1.5,
+                    beta: 6.0,
+                    domain: Domain::Temporal,
+                }
+                .build()
+                .unwrap(),
+            ),
         ),
     ]
 }

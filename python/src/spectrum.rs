@@ -10,8 +10,8 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use stochvib::scenario::{SpectrumFile, SpectrumOrigin};
 use stochvib::spectrum::{
-    AtSpeed, BandWhite, Convention, ExpCosine, Exponential, GaussCosine, Gaussian, IsoBound, IsoClass, PowerLaw,
-    RationalSpectrum, Spectrum, Tabulated, ISO_BAND,
+    AtSpeed, BandWhiteParameters, Convention, ExpCosine, Exponential, GaussCosineParameters, Gaussian, IsoBound,
+    IsoClass, PowerLaw, PowerLawParameters, RationalSpectrum, Spectrum, Tabulated, ISO_BAND,
 };
 
 /// Grids shorter than this are evaluated without releasing the GIL (releasing costs more than the work).
@@ -203,7 +203,19 @@ impl PySpectrum {
     #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
     fn exp_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, || ExpCosine::new(variance, alpha, beta, d), unit)
+        Self::make(
+            py,
+            || {
+                ExpCosine {
+                    variance,
+                    alpha,
+                    beta,
+                    domain: d,
+                }
+                .build()
+            },
+            unit,
+        )
     }
 
     /// Type 4: K(τ) = D e^{−ατ²} cos βτ,
@@ -214,7 +226,19 @@ impl PySpectrum {
     #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
     fn gauss_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, || GaussCosine::new(variance, alpha, beta, d), unit)
+        Self::make(
+            py,
+            || {
+                GaussCosineParameters {
+                    variance,
+                    alpha,
+                    beta,
+                    domain: d,
+                }
+                .build()
+            },
+            unit,
+        )
     }
 
     /// A rational density S(ω) = N(ω²)/D(ω²) (two-sided angular).
@@ -282,7 +306,20 @@ impl PySpectrum {
         unit: &str,
     ) -> PyResult<Self> {
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, || PowerLaw::new(g0, n0, waviness, band, d), unit)
+        Self::make(
+            py,
+            || {
+                PowerLawParameters {
+                    g0,
+                    n0,
+                    waviness,
+                    band,
+                    domain: d,
+                }
+                .build()
+            },
+            unit,
+        )
     }
 
     /// A measured density given at points, interpolated linearly in log–log coordinates, zero outside.
@@ -323,7 +360,20 @@ impl PySpectrum {
     ) -> PyResult<Self> {
         let c = crate::names::convention(py, convention)?;
         let d = crate::names::domain(py, domain)?;
-        Self::make(py, || BandWhite::new(c, level, low, high, d), unit)
+        Self::make(
+            py,
+            || {
+                BandWhiteParameters {
+                    convention: c,
+                    level,
+                    lo: low,
+                    hi: high,
+                    domain: d,
+                }
+                .build()
+            },
+            unit,
+        )
     }
 
     /// A spectrum file or catalogue entry: a catalogue name (e.g. "iso8608-c", "type3") is looked up in the

@@ -99,7 +99,7 @@ pub fn spectral_fatigue<'py>(
     endurance_limit: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (fs, gs) = (vector(py, f, "f")?, vector(py, G, "G")?);
-    let sn = call(py, || SnCurve::new(k, c, endurance_limit))?;
+    let sn = call(py, || SnCurve { k, c, endurance_limit }.build())?;
     let cmp = call(py, || {
         let m = SpectralMoments::from_tabulated_one_sided_hz(&fs, &gs, true)?;
         compare_methods(&m, &sn)

@@ -3,7 +3,7 @@
 
 use super::{Coherence, CoherenceKind};
 use crate::error::{require_positive, Result};
-use crate::spectrum::{IsoBound, IsoClass, PowerLaw, ISO_N0};
+use crate::spectrum::{IsoBound, IsoClass, PowerLaw, PowerLawParameters, ISO_N0};
 use std::f64::consts::PI;
 
 /// The empirical two-track coherence model of Ammon & Bormann (1991; we could not obtain the paper and
@@ -28,11 +28,11 @@ use std::f64::consts::PI;
 /// neither ρ = f nor γ² = f.
 ///
 /// # Errors
-/// [`AmmonBormann::new`] rejects non-positive or non-finite B, Ω_p, w, p and negative or non-finite a.
+/// [`AmmonBormannParameters::build`] rejects non-positive or non-finite B, Ω_p, w, p and negative or non-finite a.
 ///
 /// # Examples
 /// ```
-/// use stochvib::coherence::{AmmonBormann, AmmonBormannRoad, Coherence, CoherenceKind};
+/// use stochvib::coherence::{AmmonBormann, AmmonBormannParameters, AmmonBormannRoad, Coherence, CoherenceKind};
 /// // ISO class C preset (Ω_p = 3.0, p = 1.3, a = 1, w = 2) for a 2 m track width: at Ω = 1.5 rad/m,
 /// // Ω B/Ω_p = 1 and f = 2^{−1.3}
 /// let c = AmmonBormann::preset(AmmonBormannRoad::IsoC, 2.0).unwrap();
@@ -40,7 +40,16 @@ use std::f64::consts::PI;
 /// assert!((c.formula_value(n) - 2f64.powf(-1.3)).abs() < 1e-15);
 /// assert!((c.squared_coherence(n) - 2f64.powf(-1.3)).abs() < 1e-15);   // presets are γ²
 /// // the same formula declared as an amplitude gives ρ = f:
-/// let rho = AmmonBormann::new(2.0, 3.0, 2.0, 1.3, 1.0, CoherenceKind::CoherenceAmplitude).unwrap();
+/// let rho = AmmonBormannParameters {
+///     track_width_m: 2.0,
+///     omega_p: 3.0,
+///     w: 2.0,
+///     p: 1.3,
+///     a: 1.0,
+///     kind: CoherenceKind::CoherenceAmplitude,
+/// }
+/// .build()
+/// .unwrap();
 /// assert!((rho.coherence_amplitude(n) - 2f64.powf(-1.3)).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -52,6 +61,79 @@ pub struct AmmonBormann {
     a: f64,
     kind: CoherenceKind,
     label: String,
+}
+
+/// The parameters of an [`AmmonBormann`] coherence as named fields; [`AmmonBormannParameters::build`]
+/// checks them and gives the model.
+///
+/// # Formula
+/// f(2πn) = [1 + (2πn B^a/Ω_p)^w]^{−p}, the amplitude ρ or the squared coherence γ² as `kind` says (see
+/// [`AmmonBormann`]).
+///
+/// # Errors
+/// [`AmmonBormannParameters::build`] rejects non-positive or non-finite B, Ω_p, w, p and negative or
+/// non-finite a.
+///
+/// # Examples
+/// ```
+/// use stochvib::coherence::{AmmonBormannParameters, Coherence, CoherenceKind};
+/// let rho = AmmonBormannParameters {
+///     track_width_m: 2.0,
+///     omega_p: 3.0,
+///     w: 2.0,
+///     p: 1.3,
+///     a: 1.0,
+///     kind: CoherenceKind::CoherenceAmplitude,
+/// }
+/// .build()
+/// .unwrap();
+/// assert_eq!(rho.coherence_amplitude(0.0), 1.0);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AmmonBormannParameters {
+    /// B, the track width, m.
+    pub track_width_m: f64,
+    /// Ω_p, (rad/m)·m^a.
+    pub omega_p: f64,
+    /// w, the exponent of the frequency (no unit).
+    pub w: f64,
+    /// p, the outer exponent (no unit).
+    pub p: f64,
+    /// a, the exponent of the track width (no unit).
+    pub a: f64,
+    /// Whether the formula's value is the amplitude ρ or the squared coherence γ².
+    pub kind: CoherenceKind,
+}
+
+impl AmmonBormannParameters {
+    /// The model of these parameters, checked.
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn build(self) -> Result<AmmonBormann> {
+        let AmmonBormannParameters {
+            track_width_m,
+            omega_p,
+            w,
+            p,
+            a,
+            kind,
+        } = self;
+        require_positive("track_width", track_width_m)?;
+        require_positive("omega_p", omega_p)?;
+        require_positive("w", w)?;
+        require_positive("p", p)?;
+        crate::error::require_non_negative("a", a)?;
+        Ok(AmmonBormann {
+            track_width: track_width_m,
+            omega_p,
+            w,
+            p,
+            a,
+            kind,
+            label: "Ammon & Bormann coherence".into(),
+        })
+    }
 }
 
 /// Published parameter sets of the [`AmmonBormann`] model, as tabulated in Project Chrono's
@@ -149,7 +231,7 @@ impl AmmonBormannRoad {
     /// ```
     ///
     /// # Errors
-    /// As [`PowerLaw::new`] for the band.
+    /// As [`PowerLawParameters::build`](crate::spectrum::PowerLawParameters::build) for the band.
     ///
     /// # Examples
     /// ```
@@ -165,33 +247,18 @@ impl AmmonBormannRoad {
         let (phi0, w, ..) = self.row();
         let phi0 = phi0.unwrap_or(f64::NAN);
         let g0 = 2.0 * PI * phi0 * (2.0 * PI * ISO_N0).powf(-w);
-        PowerLaw::new(g0, ISO_N0, w, band, crate::spectrum::Domain::Spatial)
+        PowerLawParameters {
+            g0,
+            n0: ISO_N0,
+            waviness: w,
+            band,
+            domain: crate::spectrum::Domain::Spatial,
+        }
+        .build()
     }
 }
 
 impl AmmonBormann {
-    /// The model for track width `track_width_m` (B, m), Ω_p (`omega_p`, (rad/m)·m^a), exponents w, p and
-    /// a, with `kind` saying whether the formula's value f is the amplitude ρ or the squared coherence γ².
-    ///
-    /// # Errors
-    /// See the type's `# Errors`.
-    pub fn new(track_width_m: f64, omega_p: f64, w: f64, p: f64, a: f64, kind: CoherenceKind) -> Result<Self> {
-        require_positive("track_width", track_width_m)?;
-        require_positive("omega_p", omega_p)?;
-        require_positive("w", w)?;
-        require_positive("p", p)?;
-        crate::error::require_non_negative("a", a)?;
-        Ok(AmmonBormann {
-            track_width: track_width_m,
-            omega_p,
-            w,
-            p,
-            a,
-            kind,
-            label: "Ammon & Bormann coherence".into(),
-        })
-    }
-
     /// A preset of [`AmmonBormannRoad`] for track width `track_width_m` (m), taken as the squared
     /// coherence (see the type docs).
     ///
@@ -199,7 +266,15 @@ impl AmmonBormann {
     /// A non-positive or non-finite track width.
     pub fn preset(road: AmmonBormannRoad, track_width_m: f64) -> Result<Self> {
         let (_, w, omega_p, p, a) = road.row();
-        let mut m = AmmonBormann::new(track_width_m, omega_p, w, p, a, CoherenceKind::SquaredCoherence)?;
+        let mut m = AmmonBormannParameters {
+            track_width_m,
+            omega_p,
+            w,
+            p,
+            a,
+            kind: CoherenceKind::SquaredCoherence,
+        }
+        .build()?;
         m.label = format!("Ammon & Bormann coherence, preset {road:?}");
         Ok(m)
     }

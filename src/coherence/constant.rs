@@ -54,4 +54,7 @@ impl Coherence for ConstantCoherence {
             f64::NAN
         }
     }
+    fn constant_amplitude(&self) -> Option<f64> {
+        Some(self.rho)
+    }
 }

@@ -39,7 +39,7 @@ mod spectral_matrix;
 mod tabulated;
 mod two_tracks;
 
-pub use ammon_bormann::{AmmonBormann, AmmonBormannRoad};
+pub use ammon_bormann::{AmmonBormann, AmmonBormannParameters, AmmonBormannRoad};
 pub use constant::ConstantCoherence;
 pub use isotropic::IsotropicCoherence;
 pub use spectral_matrix::{check_spectral_matrix, semidefinite_cholesky, SpectralMatrix, SPECTRAL_MATRIX_TOLERANCE};
@@ -139,6 +139,13 @@ pub trait Coherence: Debug + Send + Sync {
 
     /// The track width B in m that the model was built for, if it depends on one.
     fn track_width(&self) -> Option<f64> {
+        None
+    }
+
+    /// ρ₀ when the amplitude is the same at every spatial frequency (a [`ConstantCoherence`]), `None` for a
+    /// model that depends on n: only a constant coherence lets [`TwoTracks`] factor into independent
+    /// processes ([`SpectralMatrix::independent_parts`]).
+    fn constant_amplitude(&self) -> Option<f64> {
         None
     }
 }

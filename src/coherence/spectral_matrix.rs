@@ -50,6 +50,22 @@ pub trait SpectralMatrix: Debug + Send + Sync {
     /// The m × m matrix S(ω), two-sided, ω in rad/s.
     fn matrix(&self, omega: f64) -> DMatrix<Complex<f64>>;
 
+    /// An exact factorisation into independent processes with constant coefficients, when the matrix has
+    /// one: parts (q_k, a_k) with
+    ///
+    /// ```text
+    /// x_c(t) = Σ_k a_ck w_k(t),   w_k mutually uncorrelated with densities q_k S₀₀(ω),
+    /// so that S_cd(ω) = Σ_k q_k a_ck a_dk S₀₀(ω)          (q_k ≥ 0, every component of density S₀₀)
+    /// ```
+    ///
+    /// With it, an output driven by the components is a sum of outputs driven by independent single
+    /// processes, each with the rational form of S₀₀ when that is rational: the exact (Lyapunov) routes
+    /// apply. `None` (the default) when no such factorisation is known: a coherence that depends on the
+    /// frequency makes the mixing depend on ω.
+    fn independent_parts(&self) -> Option<Vec<(f64, Vec<f64>)>> {
+        None
+    }
+
     /// The normalised matrix C_cd(ω) = S_cd/√(S_cc S_dd) (the complex coherence; C_cc = 1), with C_cd = 0
     /// where a diagonal density vanishes.
     ///

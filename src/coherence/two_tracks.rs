@@ -102,6 +102,17 @@ impl SpectralMatrix for TwoTracks {
         DMatrix::from_row_slice(2, 2, &[Complex::new(s, 0.0), x, x, Complex::new(s, 0.0)])
     }
 
+    /// For a constant coherence ρ₀ the sum and difference processes s = (L + R)/2, d = (L − R)/2 are
+    /// uncorrelated with densities S(1 + ρ₀)/2 and S(1 − ρ₀)/2, and L = s + d, R = s − d (see the type's
+    /// formula; derivation in `docs/models.md`).
+    fn independent_parts(&self) -> Option<Vec<(f64, Vec<f64>)>> {
+        let rho = self.coherence.constant_amplitude()?;
+        Some(vec![
+            ((1.0 + rho) / 2.0, vec![1.0, 1.0]),
+            ((1.0 - rho) / 2.0, vec![1.0, -1.0]),
+        ])
+    }
+
     fn coherence_matrix(&self, omega: f64) -> DMatrix<Complex<f64>> {
         let r = Complex::new(self.rho(omega), 0.0);
         let one = Complex::new(1.0, 0.0);

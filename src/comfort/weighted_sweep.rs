@@ -208,7 +208,7 @@ impl WeightedEvaluator {
     /// use std::sync::Arc;
     /// let exc = Excitation::single(Arc::new(Exponential::new(1e-4, 20.0, Domain::Temporal).unwrap()), 0.0).unwrap();
     /// let ev = WeightedEvaluator::new(&exc, Weighting::Wk).unwrap();
-    /// let seat = OperatorSeat::new(80.0, 26.0, 6500.0, 600.0).unwrap();
+    /// let seat = OperatorSeat { operator_mass: 80.0, seat_mass: 26.0, stiffness: 6500.0, damping: 600.0 }.build().unwrap();
     /// let (num, den) = seat.seat_acc_transfer();
     /// let fast = ev.a_w_rational(&num, &den, &exc).unwrap();
     /// assert_eq!(fast.route, WeightedRoute::Residues);

@@ -109,7 +109,7 @@ pub struct TurningPoint {
 /// ```
 /// use stochvib::fatigue::{RainflowCounter, SnCurve};
 /// // Streaming Miner damage of a long record read in chunks.
-/// let sn = SnCurve::new(3.0, 1e6, None).unwrap();
+/// let sn = SnCurve { k: 3.0, c: 1e6, endurance_limit: None }.build().unwrap();
 /// let mut damage = 0.0;
 /// let mut counter = RainflowCounter::new();
 /// let record = [-2.0, 1.0, -3.0, 5.0, -1.0, 3.0, -4.0, 4.0, -2.0];

@@ -19,30 +19,90 @@ use crate::numbers::num;
 /// extension). A curve published in ranges, N·ΔS^k = C_Δ, is the same curve with C = C_Δ·2^{−k}.
 ///
 /// # Errors
-/// [`SnCurve::new`] rejects k ≤ 0, C ≤ 0 and a negative endurance limit (and non-finite values), naming
+/// [`SnCurve::build`] rejects k ≤ 0, C ≤ 0 and a negative endurance limit (and non-finite values), naming
 /// the parameter, its value and the reason.
 ///
 /// # Examples
 /// ```
 /// use stochvib::fatigue::SnCurve;
 /// // N·S_a^3 = 1e12 (MPa, amplitude), no endurance limit.
-/// let sn = SnCurve::new(3.0, 1e12, None).unwrap();
+/// let sn = SnCurve { k: 3.0, c: 1e12, endurance_limit: None }.build().unwrap();
 /// assert!((sn.cycles_to_failure(100.0).unwrap() - 1e6).abs() < 1e-3);
 /// // 1000 full cycles at 100 MPa and one half cycle at 200 MPa: 1e-3 + 0.5·8e6/1e12.
 /// let d = sn.damage([(100.0, 1000.0), (200.0, 0.5)]).unwrap();
 /// assert!((d - (1e-3 + 4e-6)).abs() < 1e-15);
-/// assert!(SnCurve::new(-3.0, 1e12, None).is_err());
+/// assert!(SnCurve { k: -3.0, c: 1e12, endurance_limit: None }.build().is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SnCurve {
-    k: f64,
-    c: f64,
-    endurance_limit: Option<f64>,
+    /// k, the inverse slope (no unit), > 0.
+    pub k: f64,
+    /// C of N·S_a^k = C, amplitude convention, (signal unit)^k, > 0.
+    pub c: f64,
+    /// S_e, the endurance limit (an amplitude, signal unit), if any.
+    pub endurance_limit: Option<f64>,
+}
+
+/// An S–N curve given by one point of it: N₁ cycles to failure at amplitude S₁ and the inverse slope k;
+/// [`SnReferencePoint::build`] gives the [`SnCurve`] with C = N₁·S₁^k.
+///
+/// # Formula
+/// C = N₁ S₁^k.
+///
+/// # Errors
+/// [`SnReferencePoint::build`]: as [`SnCurve::build`], and [`Error::InvalidParameter`] naming `amplitude`
+/// or `cycles` unless both are finite and > 0.
+///
+/// # Examples
+/// ```
+/// use stochvib::fatigue::SnReferencePoint;
+/// // 2e6 cycles at 50 MPa amplitude, k = 3 (an EN 1993-1-9-like detail, written in amplitudes).
+/// let sn = SnReferencePoint { k: 3.0, amplitude: 50.0, cycles: 2e6, endurance_limit: None }.build().unwrap();
+/// assert!((sn.c() - 2e6 * 125_000.0).abs() < 1e-3);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SnReferencePoint {
+    /// k, the inverse slope (no unit), > 0.
+    pub k: f64,
+    /// S₁, the amplitude of the point (signal unit), > 0.
+    pub amplitude: f64,
+    /// N₁, the cycles to failure at S₁, > 0.
+    pub cycles: f64,
+    /// S_e, the endurance limit (an amplitude, signal unit), if any.
+    pub endurance_limit: Option<f64>,
+}
+
+/// An S–N curve published in **ranges**, N·ΔS^k = C_Δ, with an endurance limit given as a range ΔS_e (or
+/// `None`); [`SnRangeCurve::build`] gives the amplitude curve [`SnCurve`].
+///
+/// # Formula
+/// ΔS = 2S_a ⇒ N·(2S_a)^k = C_Δ ⇒ C = C_Δ·2^{−k};  S_e = ΔS_e/2.
+///
+/// # Errors
+/// [`SnRangeCurve::build`]: as [`SnCurve::build`] (the parameter named `C` is then C_Δ·2^{−k});
+/// `endurance_limit_range` must be finite and ≥ 0.
+///
+/// # Examples
+/// ```
+/// use stochvib::fatigue::SnRangeCurve;
+/// let sn = SnRangeCurve { k: 3.0, c_range: 8e12, endurance_limit_range: Some(100.0) }.build().unwrap();
+/// assert_eq!(sn.c(), 1e12);
+/// assert_eq!(sn.endurance_limit(), Some(50.0));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SnRangeCurve {
+    /// k, the inverse slope (no unit), > 0.
+    pub k: f64,
+    /// C_Δ of N·ΔS^k = C_Δ, (signal unit)^k, > 0.
+    pub c_range: f64,
+    /// ΔS_e, the endurance limit as a range (signal unit), if any.
+    pub endurance_limit_range: Option<f64>,
 }
 
 impl SnCurve {
-    /// Builds N·S_a^k = C with inverse slope `k`, intercept `c` (amplitude convention, in (signal
-    /// unit)^k) and an optional endurance limit `endurance_limit` = S_e (amplitude, signal unit).
+    /// The curve of these fields, checked: N·S_a^k = C with inverse slope `k`, intercept `c` (amplitude
+    /// convention, in (signal unit)^k) and an optional endurance limit `endurance_limit` = S_e (amplitude,
+    /// signal unit).
     ///
     /// # Formula
     /// See the type: N(S_a) = C·S_a^{−k} for S_a ≥ S_e.
@@ -54,12 +114,13 @@ impl SnCurve {
     /// # Examples
     /// ```
     /// use stochvib::fatigue::SnCurve;
-    /// let sn = SnCurve::new(5.0, 2e15, Some(40.0)).unwrap();
+    /// let sn = SnCurve { k: 5.0, c: 2e15, endurance_limit: Some(40.0) }.build().unwrap();
     /// assert_eq!(sn.endurance_limit(), Some(40.0));
-    /// let e = SnCurve::new(5.0, 0.0, None).unwrap_err().to_string();
+    /// let e = SnCurve { k: 5.0, c: 0.0, endurance_limit: None }.build().unwrap_err().to_string();
     /// assert!(e.contains("`C`") && e.contains("> 0"));
     /// ```
-    pub fn new(k: f64, c: f64, endurance_limit: Option<f64>) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let SnCurve { k, c, endurance_limit } = self;
         if !(k.is_finite() && k > 0.0) {
             return Err(Error::invalid("k", k, "the S-N inverse slope must be finite and > 0"));
         }
@@ -80,76 +141,6 @@ impl SnCurve {
             ));
         }
         Ok(SnCurve { k, c, endurance_limit })
-    }
-
-    /// Builds the curve through one point: `cycles` N₁ to failure at amplitude `amplitude` S₁, so that
-    /// C = N₁·S₁^k.
-    ///
-    /// # Formula
-    /// C = N₁ S₁^k.
-    ///
-    /// # Errors
-    /// As [`SnCurve::new`], and [`Error::InvalidParameter`] naming `amplitude` or `cycles` unless both are
-    /// finite and > 0.
-    ///
-    /// # Examples
-    /// ```
-    /// use stochvib::fatigue::SnCurve;
-    /// // 2e6 cycles at 50 MPa amplitude, k = 3 (an EN 1993-1-9-like detail, written in amplitudes).
-    /// let sn = SnCurve::from_reference_point(3.0, 50.0, 2e6, None).unwrap();
-    /// assert!((sn.c() - 2e6 * 125_000.0).abs() < 1e-3);
-    /// ```
-    pub fn from_reference_point(k: f64, amplitude: f64, cycles: f64, endurance_limit: Option<f64>) -> Result<Self> {
-        if !(amplitude.is_finite() && amplitude > 0.0) {
-            return Err(Error::invalid("amplitude", amplitude, "must be finite and > 0"));
-        }
-        if !(cycles.is_finite() && cycles > 0.0) {
-            return Err(Error::invalid("cycles", cycles, "must be finite and > 0"));
-        }
-        if !(k.is_finite() && k > 0.0) {
-            return Err(Error::invalid("k", k, "the S-N inverse slope must be finite and > 0"));
-        }
-        SnCurve::new(k, cycles * amplitude.powf(k), endurance_limit)
-    }
-
-    /// Builds the amplitude curve from a curve published in **ranges**, N·ΔS^k = C_Δ, with an endurance
-    /// limit given as a range ΔS_e (or `None`).
-    ///
-    /// # Formula
-    /// ΔS = 2S_a ⇒ N·(2S_a)^k = C_Δ ⇒ C = C_Δ·2^{−k};  S_e = ΔS_e/2.
-    ///
-    /// # Errors
-    /// As [`SnCurve::new`] (the parameter named `C` is then C_Δ·2^{−k}); `endurance_limit_range` must be
-    /// finite and ≥ 0.
-    ///
-    /// # Examples
-    /// ```
-    /// use stochvib::fatigue::SnCurve;
-    /// let sn = SnCurve::from_range_intercept(3.0, 8e12, Some(100.0)).unwrap();
-    /// assert_eq!(sn.c(), 1e12);
-    /// assert_eq!(sn.endurance_limit(), Some(50.0));
-    /// ```
-    pub fn from_range_intercept(k: f64, c_range: f64, endurance_limit_range: Option<f64>) -> Result<Self> {
-        if !(k.is_finite() && k > 0.0) {
-            return Err(Error::invalid("k", k, "the S-N inverse slope must be finite and > 0"));
-        }
-        if !(c_range.is_finite() && c_range > 0.0) {
-            return Err(Error::invalid(
-                "C_range",
-                c_range,
-                "the S-N intercept N*dS^k = C must be finite and > 0",
-            ));
-        }
-        if let Some(se) = endurance_limit_range
-            && !(se.is_finite() && se >= 0.0)
-        {
-            return Err(Error::invalid(
-                "endurance_limit_range",
-                se,
-                "the endurance limit (a range) must be finite and >= 0",
-            ));
-        }
-        SnCurve::new(k, c_range * 2f64.powf(-k), endurance_limit_range.map(|s| 0.5 * s))
     }
 
     /// The inverse slope k.
@@ -187,7 +178,7 @@ impl SnCurve {
     /// # Examples
     /// ```
     /// use stochvib::fatigue::SnCurve;
-    /// let sn = SnCurve::new(4.0, 1e10, Some(20.0)).unwrap();
+    /// let sn = SnCurve { k: 4.0, c: 1e10, endurance_limit: Some(20.0) }.build().unwrap();
     /// assert_eq!(sn.cycles_to_failure(10.0).unwrap(), f64::INFINITY);
     /// assert!((sn.cycles_to_failure(100.0).unwrap() - 1e2).abs() < 1e-9);
     /// ```
@@ -218,7 +209,7 @@ impl SnCurve {
     /// # Examples
     /// ```
     /// use stochvib::fatigue::SnCurve;
-    /// let sn = SnCurve::new(3.0, 1e9, Some(5.0)).unwrap();
+    /// let sn = SnCurve { k: 3.0, c: 1e9, endurance_limit: Some(5.0) }.build().unwrap();
     /// // The 4.0 cycle is below the endurance limit: only 10³·1 / 1e9 remains.
     /// assert_eq!(sn.damage([(10.0, 1.0), (4.0, 1e6)]).unwrap(), 1e-6);
     /// ```
@@ -259,7 +250,7 @@ impl SnCurve {
     /// ```
     /// use stochvib::fatigue::{rainflow, SnCurve};
     /// let cycles = rainflow(&[0.0, 2.0, 0.0]).unwrap(); // two half cycles of range 2 (amplitude 1)
-    /// let sn = SnCurve::new(3.0, 10.0, None).unwrap();
+    /// let sn = SnCurve { k: 3.0, c: 10.0, endurance_limit: None }.build().unwrap();
     /// assert_eq!(sn.damage_of_cycles(&cycles).unwrap(), 0.1);
     /// ```
     pub fn damage_of_cycles(&self, cycles: &[crate::fatigue::Cycle]) -> Result<f64> {
@@ -281,5 +272,74 @@ impl SnCurve {
                 num(self.c)
             ),
         }
+    }
+}
+
+impl SnReferencePoint {
+    /// The [`SnCurve`] through this point (see the type).
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn build(self) -> Result<SnCurve> {
+        let SnReferencePoint {
+            k,
+            amplitude,
+            cycles,
+            endurance_limit,
+        } = self;
+        if !(amplitude.is_finite() && amplitude > 0.0) {
+            return Err(Error::invalid("amplitude", amplitude, "must be finite and > 0"));
+        }
+        if !(cycles.is_finite() && cycles > 0.0) {
+            return Err(Error::invalid("cycles", cycles, "must be finite and > 0"));
+        }
+        if !(k.is_finite() && k > 0.0) {
+            return Err(Error::invalid("k", k, "the S-N inverse slope must be finite and > 0"));
+        }
+        SnCurve {
+            k,
+            c: cycles * amplitude.powf(k),
+            endurance_limit,
+        }
+        .build()
+    }
+}
+
+impl SnRangeCurve {
+    /// The amplitude [`SnCurve`] of this range curve (see the type).
+    ///
+    /// # Errors
+    /// See the type's `# Errors`.
+    pub fn build(self) -> Result<SnCurve> {
+        let SnRangeCurve {
+            k,
+            c_range,
+            endurance_limit_range,
+        } = self;
+        if !(k.is_finite() && k > 0.0) {
+            return Err(Error::invalid("k", k, "the S-N inverse slope must be finite and > 0"));
+        }
+        if !(c_range.is_finite() && c_range > 0.0) {
+            return Err(Error::invalid(
+                "C_range",
+                c_range,
+                "the S-N intercept N*dS^k = C must be finite and > 0",
+            ));
+        }
+        if let Some(se) = endurance_limit_range
+            && !(se.is_finite() && se >= 0.0)
+        {
+            return Err(Error::invalid(
+                "endurance_limit_range",
+                se,
+                "the endurance limit (a range) must be finite and >= 0",
+            ));
+        }
+        SnCurve {
+            k,
+            c: c_range * 2f64.powf(-k),
+            endurance_limit: endurance_limit_range.map(|s| 0.5 * s),
+        }
+        .build()
     }
 }

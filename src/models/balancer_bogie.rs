@@ -39,22 +39,25 @@ pub const CRITERION: f64 = 0.5;
 /// ℓ/v; σ_y does not depend on v (checked in the tests).
 ///
 /// # Errors
-/// [`BalancerBogie::new`] rejects r ≤ 0, ℓ ≤ 0, ℓ₁ outside [0, ℓ] and non-finite values.
+/// [`BalancerBogie::build`] rejects r ≤ 0, ℓ ≤ 0, ℓ₁ outside [0, ℓ] and non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::models::balancer_bogie::BalancerBogie;
 /// // book 8.5 example: r = 11 cm, ℓ = 60 cm, ℓ₁ = ℓ/2, road α = 0.035 1/cm, D_x = 2.25 cm²
-/// let b = BalancerBogie::new(0.11, 0.60, 0.30).unwrap();
+/// let b = BalancerBogie { r: 0.11, ell: 0.60, ell1: 0.30 }.build().unwrap();
 /// let c = b.closed_form(2.25e-4, 3.5).unwrap();
 /// assert!((c.dy / 2.25e-4 - 0.29577).abs() < 1e-5);   // the book prints 0.28 (see the book rows)
 /// assert!(!c.passes);                                 // σ_y/σ_x = 0.544 > 0.5
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BalancerBogie {
-    r: f64,
-    ell: f64,
-    ell1: f64,
+    /// r, the wheel radius, m.
+    pub r: f64,
+    /// ℓ, the wheel base, m.
+    pub ell: f64,
+    /// ℓ₁, the pivot's distance behind the front wheel, m.
+    pub ell1: f64,
 }
 
 /// The closed-form results (8.47)–(8.50) for a type-1 road.
@@ -114,11 +117,13 @@ pub fn rz_ratio(alpha: f64, r: f64, ell: f64) -> f64 {
 }
 
 impl BalancerBogie {
-    /// Builds the bogie: wheel radius `r` (m), wheel base `ell` (m), pivot `ell1` (m) behind the front wheel.
+    /// The bogie of these fields, checked: wheel radius `r` (m), wheel base `ell` (m), pivot `ell1` (m) behind
+    /// the front wheel.
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn new(r: f64, ell: f64, ell1: f64) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let BalancerBogie { r, ell, ell1 } = self;
         require_positive("r", r)?;
         require_positive("ell", ell)?;
         if !(ell1.is_finite() && (0.0..=ell).contains(&ell1)) {
@@ -152,7 +157,7 @@ impl BalancerBogie {
     /// ```
     /// use stochvib::models::balancer_bogie::BalancerBogie;
     /// // at 4αr = 1 the printed (8.48) is 0/0; the limit is D_x (1 + αℓ) e^{−αℓ}/2
-    /// let b = BalancerBogie::new(1.0 / (4.0 * 3.5), 0.6, 0.3).unwrap();
+    /// let b = BalancerBogie { r: 1.0 / (4.0 * 3.5), ell: 0.6, ell1: 0.3 }.build().unwrap();
     /// let c = b.closed_form(1.0, 3.5).unwrap();
     /// assert!((c.rz - 3.1 * (-2.1f64).exp() / 2.0).abs() < 1e-15);
     /// ```
@@ -197,7 +202,7 @@ impl BalancerBogie {
     /// ```
     /// use stochvib::models::{balancer_bogie::BalancerBogie, InputLayout};
     /// use stochvib::system::FrequencyResponse;
-    /// let m = BalancerBogie::new(0.11, 0.6, 0.3).unwrap().instance(10.0).unwrap();
+    /// let m = BalancerBogie { r: 0.11, ell: 0.6, ell1: 0.3 }.build().unwrap().instance(10.0).unwrap();
     /// assert_eq!(m.layout, InputLayout::Track { positions: vec![0.0, 0.6], gains: vec![1.0, 1.0] });
     /// assert_eq!(m.system.n_inputs(), 2);
     /// ```
@@ -252,7 +257,7 @@ impl BalancerBogie {
     /// use stochvib::models::balancer_bogie::BalancerBogie;
     /// use stochvib::spectrum::{Exponential, Domain};
     /// use std::sync::Arc;
-    /// let b = BalancerBogie::new(0.15, 0.6, 0.3).unwrap();
+    /// let b = BalancerBogie { r: 0.15, ell: 0.6, ell1: 0.3 }.build().unwrap();
     /// let road = Arc::new(Exponential::new(2.25e-4, 3.5, Domain::Spatial).unwrap());
     /// let (dy, dx) = b.variance_numerical(road, 5.0).unwrap();
     /// assert!((dy / dx - b.closed_form(dx, 3.5).unwrap().dy / dx).abs() < 1e-8);
@@ -305,7 +310,12 @@ pub fn sweep(alpha: f64, r: &[f64], ell: &[f64], ell1_fraction: &[f64]) -> Resul
                 if !(fi.is_finite() && (0.0..=1.0).contains(&fi)) {
                     return Err(Error::invalid("ell1_fraction", fi, "must lie in [0, 1]"));
                 }
-                let b = BalancerBogie::new(ri, li, fi * li)?;
+                let b = BalancerBogie {
+                    r: ri,
+                    ell: li,
+                    ell1: fi * li,
+                }
+                .build()?;
                 let c = b.closed_form(1.0, alpha)?;
                 out.push(SweepPoint {
                     r: ri,
@@ -329,7 +339,9 @@ pub fn from_fields(f: &Fields, speed: Option<f64>) -> Result<ModelInstance> {
     let r = f.quantity("r", Dim::LENGTH)?;
     let ell = f.quantity("ell", Dim::LENGTH)?;
     let ell1 = f.quantity("ell1", Dim::LENGTH)?;
-    let b = BalancerBogie::new(r, ell, ell1).map_err(|e| f.wrap_param(e, "r"))?;
+    let b = BalancerBogie { r, ell, ell1 }
+        .build()
+        .map_err(|e| f.wrap_param(e, "r"))?;
     let speed = speed.ok_or_else(|| {
         f.error(
             "kind",
@@ -347,7 +359,13 @@ pub fn book_rows() -> Vec<BookRow> {
     let (dx, alpha) = (2.25e-4, 3.5);
     let mut rows = Vec::new();
     for (r, printed) in [(0.11, 0.28), (0.15, 0.24)] {
-        let c = BalancerBogie::new(r, 0.60, 0.30).and_then(|b| b.closed_form(dx, alpha));
+        let c = BalancerBogie {
+            r,
+            ell: 0.60,
+            ell1: 0.30,
+        }
+        .build()
+        .and_then(|b| b.closed_form(dx, alpha));
         let computed = c.as_ref().ok().map(|c| c.dy / dx);
         rows.push(BookRow {
             example: example.into(),

@@ -38,24 +38,27 @@ pub const APPROXIMATION_TOLERANCE: f64 = 0.10;
 /// poor when the ratio differs from 1 by more than [`APPROXIMATION_TOLERANCE`].
 ///
 /// # Errors
-/// [`ConveyorIdler::new`] rejects m ≤ 0, c ≤ 0, b ≤ 0 (the approximation and the variance need damping)
+/// [`ConveyorIdler::build`] rejects m ≤ 0, c ≤ 0, b ≤ 0 (the approximation and the variance need damping)
 /// and non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::models::conveyor_idler::{ConveyorIdler, LumpLoad};
 /// // Example 8.1: m = 100 kg, c = 70 kN/m, β = 0.2; M_F = 10 kN, σ_F = 2 kN, α = 0.5 1/s
-/// let idler = ConveyorIdler::with_damping_ratio(100.0, 7.0e4, 0.2).unwrap();
-/// let r = idler.analyse(&LumpLoad::new(1.0e4, 4.0e6, 0.5).unwrap());
+/// let idler = ConveyorIdler { m: 100.0, c: 7.0e4, b: 0.0 }.with_damping_ratio(0.2).unwrap();
+/// let r = idler.analyse(&LumpLoad { mean: 1.0e4, variance: 4.0e6, alpha: 0.5 }.build().unwrap());
 /// assert!((r.sigma_exact - 0.029124).abs() < 1e-6);
 /// assert!(r.approximation_poor);        // α = 0.5 ≪ 2ζω₀ = 10.6
 /// assert!((r.variance_ratio - 22.0).abs() < 0.1);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ConveyorIdler {
-    m: f64,
-    c: f64,
-    b: f64,
+    /// m, the idler's mass, kg.
+    pub m: f64,
+    /// c, the support's stiffness, N/m.
+    pub c: f64,
+    /// b, the support's damping, N s/m.
+    pub b: f64,
 }
 
 /// The lump load: mean M_F (N), variance D_F (N²), correlation decay α (1/s).
@@ -70,11 +73,12 @@ pub struct LumpLoad {
 }
 
 impl LumpLoad {
-    /// Builds the load K_F = D_F e^{−α|τ|} with mean M_F.
+    /// The load of these fields, checked: K_F = D_F e^{−α|τ|} with mean M_F (N), D_F (N²), α (1/s).
     ///
     /// # Errors
     /// Non-finite mean, D_F < 0, α ≤ 0.
-    pub fn new(mean: f64, variance: f64, alpha: f64) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let LumpLoad { mean, variance, alpha } = self;
         crate::error::require_finite("mean", mean)?;
         Ok(LumpLoad {
             mean,
@@ -114,27 +118,33 @@ pub struct IdlerResult {
 }
 
 impl ConveyorIdler {
-    /// Builds the idler from m (kg), c (N/m), b (N s/m).
+    /// The idler of these fields, checked: m (kg), c (N/m), b (N s/m).
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn new(m: f64, c: f64, b: f64) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
         Ok(ConveyorIdler {
-            m: require_positive("m", m)?,
-            c: require_positive("c", c)?,
-            b: require_positive("b", b)?,
+            m: require_positive("m", self.m)?,
+            c: require_positive("c", self.c)?,
+            b: require_positive("b", self.b)?,
         })
     }
 
-    /// Builds the idler from m (kg), c (N/m) and the damping ratio ζ (the book's β): b = 2ζ√(cm).
+    /// The idler of these fields with the damping set from the damping ratio ζ (the book's β):
+    /// b = 2ζ√(cm) replaces `b`; checked.
     ///
     /// # Errors
-    /// As [`ConveyorIdler::new`]; ζ ≤ 0.
-    pub fn with_damping_ratio(m: f64, c: f64, zeta: f64) -> Result<Self> {
+    /// As [`ConveyorIdler::build`]; ζ ≤ 0.
+    pub fn with_damping_ratio(self, zeta: f64) -> Result<Self> {
+        let (m, c) = (self.m, self.c);
         require_positive("m", m)?;
         require_positive("c", c)?;
         require_positive("zeta", zeta)?;
-        ConveyorIdler::new(m, c, 2.0 * zeta * (c * m).sqrt())
+        ConveyorIdler {
+            b: 2.0 * zeta * (c * m).sqrt(),
+            ..self
+        }
+        .build()
     }
 
     /// ω₀ = √(c/m), rad/s.
@@ -155,8 +165,8 @@ impl ConveyorIdler {
     /// ```
     /// use stochvib::models::conveyor_idler::{ConveyorIdler, LumpLoad};
     /// // a fast-varying load (α = 500 1/s ≫ 2ζω₀): the approximation is adequate
-    /// let idler = ConveyorIdler::with_damping_ratio(100.0, 7.0e4, 0.2).unwrap();
-    /// let r = idler.analyse(&LumpLoad::new(0.0, 4.0e6, 500.0).unwrap());
+    /// let idler = ConveyorIdler { m: 100.0, c: 7.0e4, b: 0.0 }.with_damping_ratio(0.2).unwrap();
+    /// let r = idler.analyse(&LumpLoad { mean: 0.0, variance: 4.0e6, alpha: 500.0 }.build().unwrap());
     /// assert!(!r.approximation_poor && r.warning.is_none());
     /// ```
     pub fn analyse(&self, load: &LumpLoad) -> IdlerResult {
@@ -216,7 +226,7 @@ impl ConveyorIdler {
     /// ```
     /// use stochvib::models::conveyor_idler::ConveyorIdler;
     /// use stochvib::system::FrequencyResponse;
-    /// let m = ConveyorIdler::with_damping_ratio(100.0, 7.0e4, 0.2).unwrap().instance().unwrap();
+    /// let m = ConveyorIdler { m: 100.0, c: 7.0e4, b: 0.0 }.with_damping_ratio(0.2).unwrap().instance().unwrap();
     /// assert!((m.system.static_gain().unwrap()[(0, 0)] - 1.0 / 7.0e4).abs() < 1e-18);
     /// ```
     pub fn instance(&self) -> Result<ModelInstance> {
@@ -255,8 +265,8 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
         Some(_) => Some(f.number("zeta")?),
     };
     let idler = match (b, zeta) {
-        (Some(b), None) => ConveyorIdler::new(m, c, b),
-        (None, Some(z)) => ConveyorIdler::with_damping_ratio(m, c, z),
+        (Some(b), None) => ConveyorIdler { m, c, b }.build(),
+        (None, Some(z)) => ConveyorIdler { m, c, b: 0.0 }.with_damping_ratio(z),
         (Some(_), Some(_)) => return Err(f.error("zeta", "both", "give `b` or `zeta`, not both")),
         (None, None) => return Err(f.error("b", "<missing>", "give `b` (N s/m) or `zeta` (damping ratio)")),
     }
@@ -267,10 +277,20 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
 /// Example 8.1 (Sukharev (2012) 8.6, Example 8.1): every printed number against the code.
 pub fn book_rows() -> Vec<BookRow> {
     let example = "Sukharev (2012) 8.6, Example 8.1 (conveyor idler under lump load)";
-    let Ok(idler) = ConveyorIdler::with_damping_ratio(100.0, 7.0e4, 0.2) else {
+    let Ok(idler) = ConveyorIdler {
+        m: 100.0,
+        c: 7.0e4,
+        b: 0.0,
+    }
+    .with_damping_ratio(0.2) else {
         return Vec::new();
     };
-    let Ok(load) = LumpLoad::new(1.0e4, 2.0e3 * 2.0e3, 0.5) else {
+    let Ok(load) = LumpLoad {
+        mean: 1.0e4,
+        variance: 2.0e3 * 2.0e3,
+        alpha: 0.5,
+    }
+    .build() else {
         return Vec::new();
     };
     let r = idler.analyse(&load);

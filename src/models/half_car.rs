@@ -32,7 +32,7 @@
 //! ```
 //! use stochvib::models::half_car::HalfCar;
 //! // Example 7.1: M = 1.49 kN s²/m, a = 1.42 m, b = 1.28 m, ρ = 1.23 m, c₁ = 32 kN/m, c₂ = 43 kN/m
-//! let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 0.0, 0.0).unwrap();
+//! let car = HalfCar { mass: 1490.0, radius_of_gyration: 1.23, front_distance: 1.42, rear_distance: 1.28, front_stiffness: 3.2e4, rear_stiffness: 4.3e4, front_damping: 0.0, rear_damping: 0.0 }.build().unwrap();
 //! let [w1, w2] = car.frequency_equation_roots();
 //! assert!((w1 - 6.93).abs() < 0.01 && (w2 - 7.89).abs() < 0.01);
 //! ```
@@ -57,7 +57,7 @@ pub const DECOUPLING_TOL: f64 = 1e-9;
 /// See the module docs.
 ///
 /// # Errors
-/// [`HalfCar::build`] and [`HalfCar::new`] reject non-positive M, ρ, a, b, c₁, c₂, negative b₁, b₂ and non-finite values.
+/// [`HalfCar::build`] rejects non-positive M, ρ, a, b, c₁, c₂, negative b₁, b₂ and non-finite values.
 ///
 /// # Examples
 /// ```
@@ -111,21 +111,22 @@ pub struct Decoupling {
 }
 
 impl HalfCar {
-    /// Builds the model: M (kg), ρ (m), a, b (m), c₁, c₂ (N/m), b₁, b₂ (N s/m).
+    /// The car of these fields, checked: M (kg), ρ (m), a, b (m), c₁, c₂ (N/m), b₁, b₂ (N s/m) as named
+    /// fields instead of eight bare numbers of different meaning.
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        mass: f64,
-        radius_of_gyration: f64,
-        front_distance: f64,
-        rear_distance: f64,
-        front_stiffness: f64,
-        rear_stiffness: f64,
-        front_damping: f64,
-        rear_damping: f64,
-    ) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let HalfCar {
+            mass,
+            radius_of_gyration,
+            front_distance,
+            rear_distance,
+            front_stiffness,
+            rear_stiffness,
+            front_damping,
+            rear_damping,
+        } = self;
         Ok(HalfCar {
             mass: require_positive("mass", mass)?,
             radius_of_gyration: require_positive("radius_of_gyration", radius_of_gyration)?,
@@ -136,23 +137,6 @@ impl HalfCar {
             front_damping: require_non_negative("front_damping", front_damping)?,
             rear_damping: require_non_negative("rear_damping", rear_damping)?,
         })
-    }
-
-    /// The car of these fields, checked: named fields instead of eight bare numbers of different meaning.
-    ///
-    /// # Errors
-    /// See the type's `# Errors`.
-    pub fn build(self) -> Result<Self> {
-        HalfCar::new(
-            self.mass,
-            self.radius_of_gyration,
-            self.front_distance,
-            self.rear_distance,
-            self.front_stiffness,
-            self.rear_stiffness,
-            self.front_damping,
-            self.rear_damping,
-        )
     }
 
     /// Wheelbase L = a + b, m.
@@ -360,16 +344,17 @@ pub fn axle_natural_frequency(stiffness: f64, axle_load: f64, gravity: f64) -> R
 /// # Errors
 /// [`Error::File`] naming the key for a missing or invalid value.
 pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
-    let car = HalfCar::new(
-        f.quantity("mass", Dim::MASS)?,
-        f.quantity("radius_of_gyration", Dim::LENGTH)?,
-        f.quantity("front_distance", Dim::LENGTH)?,
-        f.quantity("rear_distance", Dim::LENGTH)?,
-        f.quantity("front_stiffness", Dim::STIFFNESS)?,
-        f.quantity("rear_stiffness", Dim::STIFFNESS)?,
-        f.opt_quantity("front_damping", Dim::DAMPING)?.unwrap_or(0.0),
-        f.opt_quantity("rear_damping", Dim::DAMPING)?.unwrap_or(0.0),
-    )
+    let car = HalfCar {
+        mass: f.quantity("mass", Dim::MASS)?,
+        radius_of_gyration: f.quantity("radius_of_gyration", Dim::LENGTH)?,
+        front_distance: f.quantity("front_distance", Dim::LENGTH)?,
+        rear_distance: f.quantity("rear_distance", Dim::LENGTH)?,
+        front_stiffness: f.quantity("front_stiffness", Dim::STIFFNESS)?,
+        rear_stiffness: f.quantity("rear_stiffness", Dim::STIFFNESS)?,
+        front_damping: f.opt_quantity("front_damping", Dim::DAMPING)?.unwrap_or(0.0),
+        rear_damping: f.opt_quantity("rear_damping", Dim::DAMPING)?.unwrap_or(0.0),
+    }
+    .build()
     .map_err(|e| f.wrap_param(e, "kind"))?;
     let x = f.opt_quantity("acc_point", Dim::LENGTH)?.unwrap_or(0.0);
     car.instance(x).map_err(|e| f.wrap("acc_point", e))
@@ -378,7 +363,18 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
 /// Example 7.1 (Sukharev (2012) 7.5): M = 1.49 kN s²/m, a = 1.42 m, b = 1.28 m, ρ = 1.23 m, c₁ = 32 kN/m,
 /// c₂ = 43 kN/m (no damping printed; none needed for natural frequencies).
 pub fn example_7_1() -> HalfCar {
-    HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 0.0, 0.0).expect("valid book parameters")
+    HalfCar {
+        mass: 1490.0,
+        radius_of_gyration: 1.23,
+        front_distance: 1.42,
+        rear_distance: 1.28,
+        front_stiffness: 3.2e4,
+        rear_stiffness: 4.3e4,
+        front_damping: 0.0,
+        rear_damping: 0.0,
+    }
+    .build()
+    .expect("valid book parameters")
 }
 
 /// Book rows: Example 7.1 (M₁, M₂, M₃, ω₁, ω₂, also through the printed (7.33) and through modal analysis)

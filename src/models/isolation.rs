@@ -34,7 +34,7 @@
 //! ```
 //! use stochvib::models::isolation::{transmissibility, SingleIsolator};
 //! assert!((transmissibility(2f64.sqrt(), 0.3) - 1.0).abs() < 1e-12);
-//! let iso = SingleIsolator::new(100.0, 1.0e4, 200.0).unwrap();
+//! let iso = SingleIsolator { mass: 100.0, stiffness: 1.0e4, damping: 200.0 }.build().unwrap();
 //! assert!((iso.natural_frequency() - 10.0).abs() < 1e-12);
 //! ```
 
@@ -70,12 +70,12 @@ pub fn transmissibility(r: f64, zeta: f64) -> f64 {
 /// See the module docs: ω₀ = √(c/m) (rad/s), ζ = b/(2√(cm)), η(k) = [`transmissibility`](k/ω₀, ζ).
 ///
 /// # Errors
-/// [`SingleIsolator::new`] rejects m ≤ 0, c ≤ 0, b < 0 and non-finite values.
+/// [`SingleIsolator::build`] rejects m ≤ 0, c ≤ 0, b < 0 and non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::models::isolation::SingleIsolator;
-/// let iso = SingleIsolator::new(100.0, 1.0e4, 200.0).unwrap(); // ω₀ = 10 rad/s, ζ = 0.1
+/// let iso = SingleIsolator { mass: 100.0, stiffness: 1.0e4, damping: 200.0 }.build().unwrap(); // ω₀ = 10 rad/s, ζ = 0.1
 /// assert!((iso.damping_ratio() - 0.1).abs() < 1e-15);
 /// assert!((iso.transmissibility(10.0 * 2f64.sqrt()) - 1.0).abs() < 1e-12);
 /// ```
@@ -90,11 +90,16 @@ pub struct SingleIsolator {
 }
 
 impl SingleIsolator {
-    /// Builds the isolator from m (kg), c (N/m), b (N s/m).
+    /// The isolator of these fields, checked: m (kg), c (N/m), b (N s/m).
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn new(mass: f64, stiffness: f64, damping: f64) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let SingleIsolator {
+            mass,
+            stiffness,
+            damping,
+        } = self;
         Ok(SingleIsolator {
             mass: require_positive("mass", mass)?,
             stiffness: require_positive("stiffness", stiffness)?,
@@ -164,12 +169,12 @@ impl SingleIsolator {
 /// m₁m₂ω⁴ − [c₁m₂ + (c₁+c₂)m₁]ω² + c₁c₂ = 0.
 ///
 /// # Errors
-/// [`TwoStageIsolator::new`] rejects non-positive masses and stiffnesses, negative damping, non-finite values.
+/// [`TwoStageIsolator::build`] rejects non-positive masses and stiffnesses, negative damping, non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::models::isolation::TwoStageIsolator;
-/// let t = TwoStageIsolator::new(100.0, 1e4, 0.0, 50.0, 2e4, 0.0).unwrap();
+/// let t = TwoStageIsolator { mass_1: 100.0, stiffness_1: 1e4, damping_1: 0.0, mass_2: 50.0, stiffness_2: 2e4, damping_2: 0.0 }.build().unwrap();
 /// // undamped: the exact formula is |(7.16)|
 /// let k = 40.0;
 /// assert!((t.transmissibility(k) - t.book_7_16(k).abs()).abs() < 1e-12);
@@ -191,29 +196,8 @@ pub struct TwoStageIsolator {
 }
 
 impl TwoStageIsolator {
-    /// Builds the isolator from m₁, c₁, b₁, m₂, c₂, b₂ (kg, N/m, N s/m).
-    ///
-    /// # Errors
-    /// See the type's `# Errors`.
-    pub fn new(
-        mass_1: f64,
-        stiffness_1: f64,
-        damping_1: f64,
-        mass_2: f64,
-        stiffness_2: f64,
-        damping_2: f64,
-    ) -> Result<Self> {
-        Ok(TwoStageIsolator {
-            mass_1: require_positive("mass_1", mass_1)?,
-            stiffness_1: require_positive("stiffness_1", stiffness_1)?,
-            damping_1: require_non_negative("damping_1", damping_1)?,
-            mass_2: require_positive("mass_2", mass_2)?,
-            stiffness_2: require_positive("stiffness_2", stiffness_2)?,
-            damping_2: require_non_negative("damping_2", damping_2)?,
-        })
-    }
-
-    /// The isolator of these fields, checked: named fields instead of six bare numbers of different meaning.
+    /// The isolator of these fields, checked: m₁, c₁, b₁, m₂, c₂, b₂ (kg, N/m, N s/m) as named fields
+    /// instead of six bare numbers of different meaning.
     ///
     /// # Errors
     /// See the type's `# Errors`.
@@ -235,14 +219,22 @@ impl TwoStageIsolator {
     /// assert!((iso.transmissibility(1e-6) - 1.0).abs() < 1e-9);
     /// ```
     pub fn build(self) -> Result<Self> {
-        TwoStageIsolator::new(
-            self.mass_1,
-            self.stiffness_1,
-            self.damping_1,
-            self.mass_2,
-            self.stiffness_2,
-            self.damping_2,
-        )
+        let TwoStageIsolator {
+            mass_1,
+            stiffness_1,
+            damping_1,
+            mass_2,
+            stiffness_2,
+            damping_2,
+        } = self;
+        Ok(TwoStageIsolator {
+            mass_1: require_positive("mass_1", mass_1)?,
+            stiffness_1: require_positive("stiffness_1", stiffness_1)?,
+            damping_1: require_non_negative("damping_1", damping_1)?,
+            mass_2: require_positive("mass_2", mass_2)?,
+            stiffness_2: require_positive("stiffness_2", stiffness_2)?,
+            damping_2: require_non_negative("damping_2", damping_2)?,
+        })
     }
 
     /// Complex ratio Q/F₀ = κ₁κ₂/Δ at k (rad/s).
@@ -386,9 +378,14 @@ pub fn from_fields_single(f: &Fields) -> Result<ModelInstance> {
         }
         (None, None) => 0.0,
     };
-    SingleIsolator::new(m, c, b)
-        .map_err(|e| f.wrap_param(e, "kind"))?
-        .instance()
+    SingleIsolator {
+        mass: m,
+        stiffness: c,
+        damping: b,
+    }
+    .build()
+    .map_err(|e| f.wrap_param(e, "kind"))?
+    .instance()
 }
 
 /// Reads a `kind = "isolator-two-stage"` `[model]` table: `mass_1`, `stiffness_1`, `damping_1` (optional,
@@ -403,9 +400,17 @@ pub fn from_fields_two_stage(f: &Fields) -> Result<ModelInstance> {
     let m2 = f.quantity("mass_2", Dim::MASS)?;
     let c2 = f.quantity("stiffness_2", Dim::STIFFNESS)?;
     let b2 = f.opt_quantity("damping_2", Dim::DAMPING)?.unwrap_or(0.0);
-    TwoStageIsolator::new(m1, c1, b1, m2, c2, b2)
-        .map_err(|e| f.wrap_param(e, "kind"))?
-        .instance()
+    TwoStageIsolator {
+        mass_1: m1,
+        stiffness_1: c1,
+        damping_1: b1,
+        mass_2: m2,
+        stiffness_2: c2,
+        damping_2: b2,
+    }
+    .build()
+    .map_err(|e| f.wrap_param(e, "kind"))?
+    .instance()
 }
 
 /// Frequency ratio r > 0 at which η(r, ζ) = 1, found by bisection on [1, 10] (η > 1 just above r = 1 and

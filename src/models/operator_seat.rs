@@ -35,7 +35,7 @@
 //! ```
 //! use stochvib::models::operator_seat::OperatorSeat;
 //! // Example 7.2: 80 kg operator, 26 kg seat, c = 6500 N/m, h = 4.22 1/s, u = 0.0035 sin 6πt
-//! let seat = OperatorSeat::with_damping_rate(80.0, 26.0, 6500.0, 4.22).unwrap();
+//! let seat = OperatorSeat { operator_mass: 80.0, seat_mass: 26.0, stiffness: 6500.0, damping: 0.0 }.with_damping_rate(4.22).unwrap();
 //! let r = seat.harmonic(0.0035, 6.0 * std::f64::consts::PI).unwrap();
 //! assert!((r.velocity_rms - 0.02588).abs() < 1e-4);
 //! ```
@@ -144,7 +144,15 @@ pub fn harmonic_band_rms(amplitude: f64, f_hz: f64) -> Vec<f64> {
 /// use stochvib::response::Excitation;
 /// use stochvib::spectrum::{BandWhite, Convention, Domain};
 /// let (seat, _, _) = example_7_2();
-/// let g = BandWhite::new(Convention::OneSidedCyclic, 1e-6, 3.0, 5.0, Domain::Temporal).unwrap();
+/// let g = BandWhiteParameters {
+///     convention: Convention::OneSidedCyclic,
+///     level: 1e-6,
+///     lo: 3.0,
+///     hi: 5.0,
+///     domain: Domain::Temporal,
+/// }
+/// .build()
+/// .unwrap();
 /// let exc = Excitation::single(std::sync::Arc::new(g), 0.0).unwrap();
 /// let v = random_band_rms(&seat.mdof().unwrap(), &exc, 1).unwrap();
 /// assert!(v[2] > 0.0 && v[0] == 0.0);
@@ -375,7 +383,7 @@ pub struct HarmonicResponse {
 /// # Examples
 /// ```
 /// use stochvib::models::operator_seat::OperatorSeat;
-/// let seat = OperatorSeat::with_damping_rate(80.0, 26.0, 6500.0, 4.22).unwrap();
+/// let seat = OperatorSeat { operator_mass: 80.0, seat_mass: 26.0, stiffness: 6500.0, damping: 0.0 }.with_damping_rate(4.22).unwrap();
 /// assert!((seat.reduced_mass() - (5.0 / 7.0 * 80.0 + 26.0)).abs() < 1e-12);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -391,11 +399,18 @@ pub struct OperatorSeat {
 }
 
 impl OperatorSeat {
-    /// Builds the model from the operator and seat masses (kg), c (N/m) and b (N s/m).
+    /// The seat of these fields, checked: the operator's and the seat's masses (kg), c (N/m) and b (N s/m) as
+    /// named fields instead of four bare numbers of different meaning.
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn new(operator_mass: f64, seat_mass: f64, stiffness: f64, damping: f64) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let OperatorSeat {
+            operator_mass,
+            seat_mass,
+            stiffness,
+            damping,
+        } = self;
         require_positive("operator_mass", operator_mass)?;
         if !(seat_mass.is_finite() && seat_mass >= 0.0) {
             return Err(Error::invalid("seat_mass", seat_mass, "must be finite and >= 0"));
@@ -412,16 +427,29 @@ impl OperatorSeat {
         })
     }
 
-    /// Builds the model with the book's damping rate h (s⁻¹): b = 2 h m_pr.
+    /// The seat of these fields with the damping set from the book's damping rate h (s⁻¹): b = 2 h m_pr
+    /// replaces `damping`; checked.
     ///
     /// # Errors
-    /// As [`OperatorSeat::new`]; h < 0.
-    pub fn with_damping_rate(operator_mass: f64, seat_mass: f64, stiffness: f64, h: f64) -> Result<Self> {
+    /// h < 0 or non-finite; then as [`OperatorSeat::build`].
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::models::operator_seat::OperatorSeat;
+    /// let unset = OperatorSeat { operator_mass: 70.0, seat_mass: 20.0, stiffness: 2.0e4, damping: 0.0 };
+    /// let seat = unset.with_damping_rate(3.0).unwrap();
+    /// assert!((seat.damping_rate() - 3.0).abs() < 1e-12);
+    /// ```
+    pub fn with_damping_rate(self, h: f64) -> Result<Self> {
         if !(h.is_finite() && h >= 0.0) {
             return Err(Error::invalid("damping_rate", h, "must be finite and >= 0"));
         }
-        let m_pr = 5.0 / 7.0 * operator_mass + seat_mass;
-        Self::new(operator_mass, seat_mass, stiffness, 2.0 * h * m_pr)
+        let m_pr = 5.0 / 7.0 * self.operator_mass + self.seat_mass;
+        OperatorSeat {
+            damping: 2.0 * h * m_pr,
+            ..self
+        }
+        .build()
     }
 
     /// m_pr = (5/7) m_operator + m_seat, kg.
@@ -512,7 +540,7 @@ impl OperatorSeat {
     /// ```
     /// use stochvib::models::operator_seat::OperatorSeat;
     /// use stochvib::system::FrequencyResponse;
-    /// let seat = OperatorSeat::new(80.0, 26.0, 6500.0, 600.0).unwrap();
+    /// let seat = OperatorSeat { operator_mass: 80.0, seat_mass: 26.0, stiffness: 6500.0, damping: 600.0 }.build().unwrap();
     /// let (num, den) = seat.seat_acc_transfer();
     /// let m = seat.instance().unwrap();
     /// let w = 9.0;
@@ -584,8 +612,20 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
         (Some(_), Some(v)) => {
             return Err(f.error("damping_rate", v, "give either `damping` or `damping_rate`, not both"))
         }
-        (Some(b), None) => OperatorSeat::new(mo, ms, c, b),
-        (None, Some(_)) => OperatorSeat::with_damping_rate(mo, ms, c, f.quantity("damping_rate", Dim::FREQUENCY)?),
+        (Some(b), None) => OperatorSeat {
+            operator_mass: mo,
+            seat_mass: ms,
+            stiffness: c,
+            damping: b,
+        }
+        .build(),
+        (None, Some(_)) => OperatorSeat {
+            operator_mass: mo,
+            seat_mass: ms,
+            stiffness: c,
+            damping: 0.0,
+        }
+        .with_damping_rate(f.quantity("damping_rate", Dim::FREQUENCY)?),
         (None, None) => {
             return Err(f.error(
                 "damping",
@@ -602,7 +642,14 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
 /// returns the model, A_u = 0.0035 m and λ = 6π rad/s.
 pub fn example_7_2() -> (OperatorSeat, f64, f64) {
     (
-        OperatorSeat::with_damping_rate(80.0, 26.0, 6500.0, 4.22).expect("valid book parameters"),
+        OperatorSeat {
+            operator_mass: 80.0,
+            seat_mass: 26.0,
+            stiffness: 6500.0,
+            damping: 0.0,
+        }
+        .with_damping_rate(4.22)
+        .expect("valid book parameters"),
         0.0035,
         6.0 * PI,
     )

@@ -31,7 +31,7 @@ pub const TABLE_8_1_TOML: &str = include_str!("../../data/reference/table-8-1.to
 /// the response module reports [`Error::Divergent`] (ask for a band instead).
 ///
 /// # Errors
-/// [`ScraperRigidCab::new`] rejects m₁ ≤ 0, c₁ ≤ 0, b₁ < 0 and non-finite values.
+/// [`ScraperRigidCab::build`] rejects m₁ ≤ 0, c₁ ≤ 0, b₁ < 0 and non-finite values.
 ///
 /// # Examples
 /// ```
@@ -40,7 +40,7 @@ pub const TABLE_8_1_TOML: &str = include_str!("../../data/reference/table-8-1.to
 /// // ω₀ = 18.5 rad/s, ζ₁ = 0.1, m₁ = 30 t, consistent (8.66) road at 10 m/s
 /// let m1 = 3.0e4;
 /// let c1 = m1 * 18.5f64.powi(2);
-/// let cab = ScraperRigidCab::new(m1, c1, 2.0 * 0.1 * (c1 * m1).sqrt()).unwrap();
+/// let cab = ScraperRigidCab { m1, c1, b1: 2.0 * 0.1 * (c1 * m1).sqrt() }.build().unwrap();
 /// let stats = respond(&cab.instance().unwrap(), book_road_8_66(Form::Consistent).unwrap(), 10.0).unwrap();
 /// assert_eq!(stats[0].name, "x1");
 /// assert!(stats[0].sigma.unwrap() > 0.035);   // above σ_q = 3.5 cm: resonance amplification
@@ -48,9 +48,12 @@ pub const TABLE_8_1_TOML: &str = include_str!("../../data/reference/table-8-1.to
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScraperRigidCab {
-    m1: f64,
-    c1: f64,
-    b1: f64,
+    /// m₁, the machine's mass, kg.
+    pub m1: f64,
+    /// c₁, the tyres' stiffness, N/m.
+    pub c1: f64,
+    /// b₁, the tyres' damping, N s/m.
+    pub b1: f64,
 }
 
 /// Scraper with a sprung (isolated) cab (8.65): adds the cab m₂ (kg) on c₂ (N/m), b₂ (N s/m).
@@ -67,14 +70,14 @@ pub struct ScraperRigidCab {
 /// constant, so σ_ẍ2 is finite under any road falling at least like ω⁻²; σ_ẍ1 behaves as for the rigid cab.
 ///
 /// # Errors
-/// [`ScraperSprungCab::new`] rejects masses or stiffnesses ≤ 0, negative damping and non-finite values.
+/// [`ScraperSprungCab::build`] rejects masses or stiffnesses ≤ 0, negative damping and non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::models::scraper::{ScraperSprungCab, book_road_8_69, respond};
 /// let (m1, m2) = (3.0e4, 2.0e3);
 /// let (c1, c2) = (m1 * 18.5f64.powi(2), m2 * 9.42f64.powi(2));
-/// let s = ScraperSprungCab::new(m1, c1, 1.1e5, m2, c2, 2.0 * 0.3 * (c2 * m2).sqrt()).unwrap();
+/// let s = ScraperSprungCab { m1, c1, b1: 1.1e5, m2, c2, b2: 2.0 * 0.3 * (c2 * m2).sqrt() }.build().unwrap();
 /// let stats = respond(&s.instance().unwrap(), book_road_8_69(), 10.0).unwrap();
 /// let names: Vec<_> = stats.iter().map(|o| o.name.as_str()).collect();
 /// assert_eq!(names, ["x1", "x2", "x1_acc", "x2_acc", "cab_travel"]);
@@ -83,12 +86,18 @@ pub struct ScraperRigidCab {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScraperSprungCab {
-    m1: f64,
-    c1: f64,
-    b1: f64,
-    m2: f64,
-    c2: f64,
-    b2: f64,
+    /// m₁, the machine's mass, kg.
+    pub m1: f64,
+    /// c₁, the tyres' stiffness, N/m.
+    pub c1: f64,
+    /// b₁, the tyres' damping, N s/m.
+    pub b1: f64,
+    /// m₂, the cab's mass, kg.
+    pub m2: f64,
+    /// c₂, the cab mounts' stiffness, N/m.
+    pub c2: f64,
+    /// b₂, the cab mounts' damping, N s/m.
+    pub b2: f64,
 }
 
 /// An output of [`base_excited`]: displacement or acceleration of the point gᵀq.
@@ -304,7 +313,7 @@ fn rigid_model(v: &[Option<f64>]) -> Option<ScraperRigidCab> {
     let m1 = v[0]?;
     let c1 = stiffness_value(v[1], v[2], m1)?;
     let b1 = damping_value(v[3], v[4], m1, c1)?;
-    ScraperRigidCab::new(m1, c1, b1).ok()
+    ScraperRigidCab { m1, c1, b1 }.build().ok()
 }
 
 /// The closed-form transfer polynomials of `scraper-rigid-cab` for the values of [`RIGID_KEYS`] (the
@@ -361,7 +370,7 @@ fn sprung_model(v: &[Option<f64>]) -> Option<ScraperSprungCab> {
     let m2 = v[5]?;
     let c2 = stiffness_value(v[6], v[7], m2)?;
     let b2 = damping_value(v[8], v[9], m2, c2)?;
-    ScraperSprungCab::new(m1, c1, b1, m2, c2, b2).ok()
+    ScraperSprungCab { m1, c1, b1, m2, c2, b2 }.build().ok()
 }
 
 /// The closed-form transfer polynomials of `scraper-sprung-cab` for the values of [`SPRUNG_KEYS`] (the
@@ -419,11 +428,12 @@ fn track_layout() -> InputLayout {
 }
 
 impl ScraperRigidCab {
-    /// Builds the rigid-cab model.
+    /// The model of these fields, checked: m₁ (kg), c₁ (N/m), b₁ (N s/m).
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn new(m1: f64, c1: f64, b1: f64) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let ScraperRigidCab { m1, c1, b1 } = self;
         Ok(ScraperRigidCab {
             m1: require_positive("m1", m1)?,
             c1: require_positive("c1", c1)?,
@@ -441,7 +451,7 @@ impl ScraperRigidCab {
     /// ```
     /// use stochvib::models::scraper::ScraperRigidCab;
     /// use stochvib::system::FrequencyResponse;
-    /// let m = ScraperRigidCab::new(3.0e4, 1.0e7, 1.0e5).unwrap().instance().unwrap();
+    /// let m = ScraperRigidCab { m1: 3.0e4, c1: 1.0e7, b1: 1.0e5 }.build().unwrap().instance().unwrap();
     /// assert!((m.system.static_gain().unwrap()[(0, 0)] - 1.0).abs() < 1e-12); // x1 follows q statically
     /// ```
     pub fn instance(&self) -> Result<ModelInstance> {
@@ -465,11 +475,13 @@ impl ScraperRigidCab {
 }
 
 impl ScraperSprungCab {
-    /// Builds the sprung-cab model.
+    /// The model of these fields, checked: m₁, c₁, b₁ of the machine and m₂, c₂, b₂ of the cab (kg, N/m,
+    /// N s/m) as named fields instead of six bare numbers of different meaning.
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn new(m1: f64, c1: f64, b1: f64, m2: f64, c2: f64, b2: f64) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let ScraperSprungCab { m1, c1, b1, m2, c2, b2 } = self;
         Ok(ScraperSprungCab {
             m1: require_positive("m1", m1)?,
             c1: require_positive("c1", c1)?,
@@ -490,7 +502,7 @@ impl ScraperSprungCab {
     /// ```
     /// use stochvib::models::scraper::ScraperSprungCab;
     /// use stochvib::system::FrequencyResponse;
-    /// let m = ScraperSprungCab::new(3.0e4, 1.0e7, 1.0e5, 2.0e3, 1.8e5, 1.1e4).unwrap().instance().unwrap();
+    /// let m = ScraperSprungCab { m1: 3.0e4, c1: 1.0e7, b1: 1.0e5, m2: 2.0e3, c2: 1.8e5, b2: 1.1e4 }.build().unwrap().instance().unwrap();
     /// let g = m.system.static_gain().unwrap();
     /// assert!((g[(1, 0)] - 1.0).abs() < 1e-12 && g[(4, 0)].abs() < 1e-12); // cab follows q, no static travel
     /// ```
@@ -529,7 +541,15 @@ impl ScraperSprungCab {
 /// # Errors
 /// None in practice (constant valid parameters).
 pub fn book_road_8_66(form: Form) -> Result<Arc<dyn Spectrum>> {
-    Ok(Arc::new(TwoPoleRoad::new(0.035 * 0.035, 0.3, 12.0, form)?))
+    Ok(Arc::new(
+        TwoPoleRoad {
+            dq: 0.035 * 0.035,
+            alpha: 0.3,
+            beta: 12.0,
+            form,
+        }
+        .build()?,
+    ))
 }
 
 /// The book's graded dirt road (8.69): spatial type 1, D_q = 32 cm², α = 0.16·10⁻² 1/cm = 0.16 1/m.
@@ -606,7 +626,8 @@ pub fn rigid_from_fields(f: &Fields) -> Result<ModelInstance> {
     let m1 = f.quantity("m1", Dim::MASS)?;
     let c1 = stiffness_or_frequency(f, "c1", "omega1", m1)?;
     let b1 = damping_or_ratio(f, "b1", "zeta1", m1, c1)?;
-    ScraperRigidCab::new(m1, c1, b1)
+    ScraperRigidCab { m1, c1, b1 }
+        .build()
         .map_err(|e| f.wrap_param(e, "m1"))?
         .instance()
 }
@@ -623,7 +644,8 @@ pub fn sprung_from_fields(f: &Fields) -> Result<ModelInstance> {
     let m2 = f.quantity("m2", Dim::MASS)?;
     let c2 = stiffness_or_frequency(f, "c2", "omega2", m2)?;
     let b2 = damping_or_ratio(f, "b2", "zeta2", m2, c2)?;
-    ScraperSprungCab::new(m1, c1, b1, m2, c2, b2)
+    ScraperSprungCab { m1, c1, b1, m2, c2, b2 }
+        .build()
         .map_err(|e| f.wrap_param(e, "m1"))?
         .instance()
 }
@@ -705,8 +727,16 @@ impl Table81Assumptions {
         let c2 = self.m2 * self.omega2 * self.omega2;
         let b2 = 2.0 * self.zeta2 * (c2 * self.m2).sqrt();
         Ok((
-            ScraperRigidCab::new(self.m1, c1, b1)?,
-            ScraperSprungCab::new(self.m1, c1, b1, self.m2, c2, b2)?,
+            ScraperRigidCab { m1: self.m1, c1, b1 }.build()?,
+            ScraperSprungCab {
+                m1: self.m1,
+                c1,
+                b1,
+                m2: self.m2,
+                c2,
+                b2,
+            }
+            .build()?,
         ))
     }
 }

@@ -62,7 +62,7 @@ use std::f64::consts::PI;
 /// is wrong (ω₁, ω₂, D₂₃ depend on c₂).
 ///
 /// # Errors
-/// [`ThreeMassHoist::new`] rejects non-positive or non-finite inertias and stiffnesses and non-finite
+/// [`ThreeMassHoist::build`] rejects non-positive or non-finite inertias and stiffnesses and non-finite
 /// torques; time-history functions reject a non-positive or non-finite horizon or step.
 ///
 /// # Examples
@@ -128,29 +128,41 @@ fn check_horizon(t_end: f64) -> Result<f64> {
 }
 
 impl ThreeMassHoist {
-    /// Builds the chain with the article's initial state M₁₂(0) = M_sp, M₂₃(0) = 0 (stated after (16') and
-    /// before (17)).
+    /// The chain of these fields, checked: inertias I₁, I₂, I₃ (kg m²), stiffnesses c₁, c₂ (N m/rad), torques
+    /// M_sp, M_B (N m) and the initial link moments (N m; the article's initial state is M₁₂(0) = M_sp,
+    /// M₂₃(0) = 0, stated after (16') and before (17)) as named fields instead of seven bare numbers.
     ///
     /// # Errors
-    /// Inertias and stiffnesses must be finite and > 0; torques finite.
-    pub fn new(i1: f64, i2: f64, i3: f64, c1: f64, c2: f64, m_start: f64, m_load: f64) -> Result<Self> {
-        require_positive("I1", i1)?;
-        require_positive("I2", i2)?;
-        require_positive("I3", i3)?;
-        require_positive("c1", c1)?;
-        require_positive("c2", c2)?;
-        require_finite("M_sp", m_start)?;
-        require_finite("M_B", m_load)?;
-        Ok(ThreeMassHoist {
-            i1,
-            i2,
-            i3,
-            c1,
-            c2,
-            m_start,
-            m_load,
-            initial_link_moments: (m_start, 0.0),
-        })
+    /// Inertias and stiffnesses must be finite and > 0; torques and initial moments finite.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::models::three_mass_hoist::ThreeMassHoist;
+    /// let h = ThreeMassHoist {
+    ///     i1: 10.0,
+    ///     i2: 2.0,
+    ///     i3: 50.0,
+    ///     c1: 1e4,
+    ///     c2: 5e3,
+    ///     m_start: 1000.0,
+    ///     m_load: 600.0,
+    ///     initial_link_moments: (1000.0, 0.0),
+    /// }
+    /// .build()
+    /// .unwrap();
+    /// assert_eq!(h, ThreeMassHoist::illustrative());
+    /// ```
+    pub fn build(self) -> Result<Self> {
+        require_positive("I1", self.i1)?;
+        require_positive("I2", self.i2)?;
+        require_positive("I3", self.i3)?;
+        require_positive("c1", self.c1)?;
+        require_positive("c2", self.c2)?;
+        require_finite("M_sp", self.m_start)?;
+        require_finite("M_B", self.m_load)?;
+        require_finite("M12(0)", self.initial_link_moments.0)?;
+        require_finite("M23(0)", self.initial_link_moments.1)?;
+        Ok(self)
     }
 
     /// Replaces the initial link moments (M₁₂(0), M₂₃(0)) in N m (initial velocities stay zero).
@@ -189,18 +201,27 @@ impl ThreeMassHoist {
             let v = f.quantity(k, d)?;
             require_positive(k, v).map_err(|e| f.wrap(k, e))
         };
-        let h = Self::new(
+        let (i1, i2, i3) = (
             pos("I1", Dim::INERTIA)?,
             pos("I2", Dim::INERTIA)?,
             pos("I3", Dim::INERTIA)?,
-            pos("c1", Dim::TORQUE)?,
-            pos("c2", Dim::TORQUE)?,
-            f.quantity("M_start", Dim::TORQUE)?,
-            f.quantity("M_load", Dim::TORQUE)?,
-        )?;
-        let m12 = f.opt_quantity("M12_initial", Dim::TORQUE)?.unwrap_or(h.m_start);
+        );
+        let (c1, c2) = (pos("c1", Dim::TORQUE)?, pos("c2", Dim::TORQUE)?);
+        let m_start = f.quantity("M_start", Dim::TORQUE)?;
+        let m_load = f.quantity("M_load", Dim::TORQUE)?;
+        let m12 = f.opt_quantity("M12_initial", Dim::TORQUE)?.unwrap_or(m_start);
         let m23 = f.opt_quantity("M23_initial", Dim::TORQUE)?.unwrap_or(0.0);
-        h.with_initial_link_moments(m12, m23)
+        ThreeMassHoist {
+            i1,
+            i2,
+            i3,
+            c1,
+            c2,
+            m_start,
+            m_load,
+            initial_link_moments: (m12, m23),
+        }
+        .build()
     }
 
     /// I = I₁ + I₂ + I₃, kg m².

@@ -6,7 +6,9 @@
 use super::source::{RecordInfo, RecordReader};
 use crate::error::{Error, Result};
 use crate::estimate::{Welch, WelchScratch, WelchStream, WelchSums};
-use crate::fatigue::{compare_methods, Cycle, MethodComparison, RainflowCounter, SnCurve, SpectralMoments};
+use crate::fatigue::{
+    compare_methods, Cycle, MethodComparison, RainflowCounter, SnCurve, SnReferencePoint, SpectralMoments,
+};
 use crate::units::Dim;
 
 /// Samples per block.
@@ -127,7 +129,7 @@ pub fn quantity_of_dim(flag: &str, text: &str, dim: Dim) -> Result<f64> {
 /// the point's dimension); returns the curve and the dimension of its amplitudes.
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] naming the flag whose value [`SnCurve::from_reference_point`] refuses.
+/// [`Error::InvalidParameter`] naming the flag whose value [`SnReferencePoint::build`](crate::fatigue::SnReferencePoint::build) refuses.
 pub fn sn_curve_from_flags(
     slope: f64,
     point: SnPoint<'_>,
@@ -141,7 +143,14 @@ pub fn sn_curve_from_flags(
     let (v, dim) = super::source::parse_quantity(text, flag)?;
     let amplitude = if matches!(point, SnPoint::Range(_)) { v / 2.0 } else { v };
     let endurance_limit = endurance.map(|t| quantity_of_dim("--endurance", t, dim)).transpose()?;
-    let sn = SnCurve::from_reference_point(slope, amplitude, cycles, endurance_limit).map_err(|e| match e {
+    let sn = SnReferencePoint {
+        k: slope,
+        amplitude,
+        cycles,
+        endurance_limit,
+    }
+    .build()
+    .map_err(|e| match e {
         Error::InvalidParameter { name, value, reason } => {
             let flag = match name.as_str() {
                 "amplitude" => flag,

@@ -668,7 +668,7 @@ fn sum_parts(parts: &[Part], quantity: &str, opts: &OscillatoryOptions) -> Resul
 /// let m = Mdof::from_elements(&[("z", "m"), ("phi", "rad")], &[1500.0, 1500.0 * 1.2f64.powi(2)],
 ///     vec![el("front", 1.3, 0), el("rear", -1.3, 1)], 2, &[]).unwrap()
 ///     .with_output("bounce", Quantity::Displacement(vec![1.0, 0.0])).unwrap();
-/// let road = Arc::new(ExpCosine::new(1e-4, 1.1, 3.0, Domain::Temporal).unwrap());
+/// let road = Arc::new(ExpCosine { variance: 1e-4, alpha: 1.1, beta: 3.0, domain: Domain::Temporal }.build().unwrap());
 /// let exc = Excitation::track(road, vec![0.0, 2.6 / 11.0], vec![1.0, 1.0], 0.0).unwrap();
 /// let q = variance_oscillatory(&m, &exc, 0, &OscillatoryOptions::default()).unwrap();
 /// let l = variance_lyapunov_delayed(&m, &exc, 0).unwrap();

@@ -204,6 +204,18 @@ fn single_source(sources: &[Source], inputs: &[InputMap], s: usize) -> Result<Op
     let Source::Process(sp) = &sources[s] else {
         return Ok(None);
     };
+    source_track(sp.clone(), inputs, s, |i| i.gain)
+}
+
+/// [`Excitation::Track`] of `spectrum` felt by the inputs of source `s` with their delays and the gains
+/// `gain(input)`, the other inputs with gain 0 and the delay of the source's first input; `None` when no
+/// input is driven by source `s`.
+fn source_track(
+    spectrum: Arc<dyn Spectrum>,
+    inputs: &[InputMap],
+    s: usize,
+    gain: impl Fn(&InputMap) -> f64,
+) -> Result<Option<Excitation>> {
     let Some(first) = inputs.iter().find(|i| i.source == s) else {
         return Ok(None);
     };
@@ -213,9 +225,55 @@ fn single_source(sources: &[Source], inputs: &[InputMap], s: usize) -> Result<Op
         .collect();
     let gains = inputs
         .iter()
-        .map(|i| if i.source == s { i.gain } else { 0.0 })
+        .map(|i| if i.source == s { gain(i) } else { 0.0 })
         .collect();
-    Excitation::track(sp.clone(), delays, gains, 0.0).map(Some)
+    Excitation::track(spectrum, delays, gains, 0.0).map(Some)
+}
+
+/// The independent single-process excitations that multi-component source `s` is the sum of, when its
+/// matrix factors with constant coefficients ([`SpectralMatrix::independent_parts`]) and its density is
+/// rational.
+///
+/// # Formula
+/// x_c = Σ_k a_ck w_k with independent w_k of density q_k S₀₀: part k is a track of density q_k S₀₀ felt
+/// by input j of source s with gain g_j a_{c_j k} and delay τ_j (parts of zero density are left out).
+///
+/// # Errors
+/// [`Error::NotApplicable`] when the matrix has no such factorisation (a coherence that depends on the
+/// frequency), an input of the source is delayed (the delayed exact route of the parts lost its accuracy on
+/// a machine with tyre damping, a negative variance, so it is not used) or the density is not rational.
+fn matrix_parts(m: &dyn SpectralMatrix, inputs: &[InputMap], s: usize) -> Result<Vec<Excitation>> {
+    let refuse = |why: String| Error::NotApplicable {
+        method: "exact (Lyapunov) variance".into(),
+        reason: format!("source {s} ({}) {why}; quadrature only", m.describe()),
+    };
+    let Some(parts) = m.independent_parts() else {
+        return Err(refuse(
+            "is a multi-component process whose cross-spectral matrix has no rational factorisation (a coherence \
+             function of n)"
+                .into(),
+        ));
+    };
+    if inputs.iter().any(|i| i.source == s && i.delay != 0.0) {
+        return Err(refuse(
+            "has delayed inputs (a wheelbase): its factorisation into sum and difference processes is used \
+             only without delays"
+                .into(),
+        ));
+    }
+    let density = m.component(0);
+    let Some(rational) = density.rational() else {
+        return Err(refuse(format!(
+            "factors into independent parts of densities proportional to {}, which is not rational",
+            density.describe()
+        )));
+    };
+    let mut out = Vec::new();
+    for (q, a) in parts.into_iter().filter(|(q, _)| *q > 0.0) {
+        let spectrum: Arc<dyn Spectrum> = Arc::new(rational.scaled(q)?);
+        out.extend(source_track(spectrum, inputs, s, |i| i.gain * a[i.component])?);
+    }
+    Ok(out)
 }
 
 /// The exact variance and moments λ₂, λ₄ of output i under a general excitation: the sum over the
@@ -223,12 +281,14 @@ fn single_source(sources: &[Source], inputs: &[InputMap], s: usize) -> Result<Op
 ///
 /// # Formula
 /// Sources are independent, so S_y = Σ_s S_y^{(s)} and λ_k = Σ_s λ_k^{(s)}; each single-process source is
-/// a track felt with delays and gains ([`variance_lyapunov`] or [`variance_lyapunov_delayed`]).
+/// a track felt with delays and gains ([`variance_lyapunov`] or [`variance_lyapunov_delayed`]), and a
+/// multi-component source whose matrix factors into independent parts (two tracks of constant coherence:
+/// sum and difference processes) is the sum of its parts, each such a track.
 ///
 /// # Errors
-/// [`Error::NotApplicable`] when a source is a multi-component process (two tracks with a coherence
-/// function: the matrix has no rational factorisation, quadrature only) or a source's spectrum is not
-/// rational; the errors of the per-source methods otherwise.
+/// [`Error::NotApplicable`] when a source is a multi-component process without a constant factorisation
+/// (two tracks with a coherence function of n: quadrature only) or a source's spectrum is not rational;
+/// the errors of the per-source methods otherwise.
 pub(crate) fn variance_exact(
     sys: &dyn FrequencyResponse,
     sources: &[Source],
@@ -241,27 +301,20 @@ pub(crate) fn variance_exact(
         lambda4: Ok(0.0),
     };
     for (s, src) in sources.iter().enumerate() {
-        if let Source::Matrix(m) = src {
-            return Err(Error::NotApplicable {
-                method: "exact (Lyapunov) variance".into(),
-                reason: format!(
-                    "source {s} ({}) is a multi-component process whose cross-spectral matrix has no rational \
-                     factorisation (a coherence function of n); quadrature only",
-                    m.describe()
-                ),
-            });
+        let parts = match src {
+            Source::Process(_) => single_source(sources, inputs, s)?.into_iter().collect(),
+            Source::Matrix(m) => matrix_parts(m.as_ref(), inputs, s)?,
+        };
+        for exc in parts {
+            let part = if exc.delay_free() {
+                variance_lyapunov(sys, &exc, i)?
+            } else {
+                variance_lyapunov_delayed(sys, &exc, i)?
+            };
+            total.variance += part.variance;
+            total.lambda2 = add(total.lambda2, part.lambda2);
+            total.lambda4 = add(total.lambda4, part.lambda4);
         }
-        let Some(exc) = single_source(sources, inputs, s)? else {
-            continue;
-        };
-        let part = if exc.delay_free() {
-            variance_lyapunov(sys, &exc, i)?
-        } else {
-            variance_lyapunov_delayed(sys, &exc, i)?
-        };
-        total.variance += part.variance;
-        total.lambda2 = add(total.lambda2, part.lambda2);
-        total.lambda4 = add(total.lambda4, part.lambda4);
     }
     Ok(total)
 }

@@ -54,8 +54,8 @@ use super::scenario_file::{quantity_in_unit, resolution_reason, ScenarioInput};
 use super::spectrum_file::spectrum_from_fields;
 use super::SpectrumFile;
 use crate::coherence::{
-    AmmonBormann, AmmonBormannRoad, Coherence, CoherenceKind, ConstantCoherence, IsotropicCoherence,
-    TabulatedCoherence, TwoTracks,
+    AmmonBormann, AmmonBormannParameters, AmmonBormannRoad, Coherence, CoherenceKind, ConstantCoherence,
+    IsotropicCoherence, TabulatedCoherence, TwoTracks,
 };
 use crate::error::Result;
 use crate::fields::Fields;
@@ -402,7 +402,16 @@ fn ammon_bormann(cf: &Fields, width_m: f64) -> Result<Arc<dyn Coherence>> {
     let omega_p = cf.number_in("omega_p", "(rad/m)·m^a (SI, with a the exponent `a`)")?;
     let (wv, p) = (cf.number("w")?, cf.number("p")?);
     Ok(Arc::new(
-        AmmonBormann::new(width_m, omega_p, wv, p, a, values).map_err(|e| cf.wrap_param(e, "omega_p"))?,
+        AmmonBormannParameters {
+            track_width_m: width_m,
+            omega_p,
+            w: wv,
+            p,
+            a,
+            kind: values,
+        }
+        .build()
+        .map_err(|e| cf.wrap_param(e, "omega_p"))?,
     ))
 }
 

@@ -32,8 +32,9 @@ use super::catalogue::SpectrumOrigin;
 use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::spectrum::{
-    two_pole_road::Form, BandWhite, Convention, Domain, ExpCosine, Exponential, GaussCosine, Gaussian, IsoBound,
-    IsoClass, PowerLaw, RationalSpectrum, Spectrum, Tabulated, TwoPoleRoad, ISO_BAND,
+    two_pole_road::Form, BandWhiteParameters, Convention, Domain, ExpCosine, Exponential, GaussCosineParameters,
+    Gaussian, IsoBound, IsoClass, PowerLaw, PowerLawParameters, RationalSpectrum, Spectrum, Tabulated, TwoPoleRoad,
+    ISO_BAND,
 };
 use crate::units::{self, Dim};
 use std::f64::consts::PI;
@@ -199,9 +200,27 @@ fn decaying(f: &Fields, dims: &Dims, kind: &str) -> Result<Arc<dyn Spectrum>> {
     }
     let b = f.quantity("beta", dims.inv_lag)?;
     Ok(if gauss {
-        Arc::new(GaussCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
+        Arc::new(
+            GaussCosineParameters {
+                variance: d,
+                alpha: a,
+                beta: b,
+                domain,
+            }
+            .build()
+            .map_err(|e| w(param_key(&e), e))?,
+        )
     } else {
-        Arc::new(ExpCosine::new(d, a, b, domain).map_err(|e| w(param_key(&e), e))?)
+        Arc::new(
+            ExpCosine {
+                variance: d,
+                alpha: a,
+                beta: b,
+                domain,
+            }
+            .build()
+            .map_err(|e| w(param_key(&e), e))?,
+        )
     })
 }
 
@@ -216,7 +235,15 @@ fn power_law(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
     let wav = f.number("waviness")?;
     let b = band(f, "band", d.inv_lag)?.map(|(a, b)| (a / (2.0 * PI), b / (2.0 * PI)));
     Ok(Arc::new(
-        PowerLaw::new(g0, n0, wav, b, d.domain).map_err(|e| f.wrap(param_key(&e), e))?,
+        PowerLawParameters {
+            g0,
+            n0,
+            waviness: wav,
+            band: b,
+            domain: d.domain,
+        }
+        .build()
+        .map_err(|e| f.wrap(param_key(&e), e))?,
     ))
 }
 
@@ -254,7 +281,15 @@ fn band_white(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
         ));
     }
     Ok(Arc::new(
-        BandWhite::new(Convention::TwoSidedAngular, s0, lo, hi, d.domain).map_err(|e| f.wrap("band", e))?,
+        BandWhiteParameters {
+            convention: Convention::TwoSidedAngular,
+            level: s0,
+            lo,
+            hi,
+            domain: d.domain,
+        }
+        .build()
+        .map_err(|e| f.wrap("band", e))?,
     ))
 }
 
@@ -328,7 +363,14 @@ fn two_pole_road(f: &Fields, d: &Dims) -> Result<Arc<dyn Spectrum>> {
     let a = decay_rate(f, "alpha", d.inv_lag)?;
     let b = decay_rate(f, "beta", d.inv_lag)?;
     Ok(Arc::new(
-        TwoPoleRoad::new(dq, a, b, form).map_err(|e| f.wrap(param_key(&e), e))?,
+        TwoPoleRoad {
+            dq,
+            alpha: a,
+            beta: b,
+            form,
+        }
+        .build()
+        .map_err(|e| f.wrap(param_key(&e), e))?,
     ))
 }
 

@@ -41,7 +41,7 @@
 
 use crate::comfort::{axis_factor, Axis, DirectiveLimits, Location, Purpose, Weighting};
 use crate::error::{Error, Result};
-use crate::fatigue::{SnCurve, SpectralMethodKind};
+use crate::fatigue::{SnCurve, SnReferencePoint, SpectralMethodKind};
 use crate::fields::{EverydayUnit, Fields};
 use crate::models::ModelInstance;
 use crate::response::Excitation;
@@ -423,12 +423,23 @@ fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Resul
     let sn = match (f.get("c"), f.get("reference_amplitude")) {
         (Some(_), None) => {
             let c = f.number("c")?;
-            SnCurve::new(k, c, endurance)
+            SnCurve {
+                k,
+                c,
+                endurance_limit: endurance,
+            }
+            .build()
         }
         (None, Some(_)) => {
             let a = f.quantity("reference_amplitude", stress_dim)?;
             let n = f.number("reference_cycles")?;
-            SnCurve::from_reference_point(k, a, n, endurance)
+            SnReferencePoint {
+                k,
+                amplitude: a,
+                cycles: n,
+                endurance_limit: endurance,
+            }
+            .build()
         }
         _ => {
             return Err(f.error(

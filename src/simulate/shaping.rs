@@ -339,7 +339,7 @@ fn kernel_dyn(
 /// ```
 /// use stochvib::simulate::shaping_simulator;
 /// use stochvib::spectrum::{ExpCosine, Domain, Spectrum};
-/// let s = ExpCosine::new(2.0, 0.5, 3.0, Domain::Temporal).unwrap();
+/// let s = ExpCosine { variance: 2.0, alpha: 0.5, beta: 3.0, domain: Domain::Temporal }.build().unwrap();
 /// let gm = shaping_simulator(&s, 0.01).unwrap();
 /// assert!((gm.output_covariance()[(0, 0)] - 2.0).abs() < 1e-9);
 /// // lag-one autocovariance is K(Δt) exactly

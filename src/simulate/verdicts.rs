@@ -166,7 +166,12 @@ impl VerdictChannels {
                 ch.fatigue.push(FatigueChannel {
                     output: output.into(),
                     stress_factor: 1.0,
-                    sn: SnCurve::new(3.0, 1.0, None)?,
+                    sn: SnCurve {
+                        k: 3.0,
+                        c: 1.0,
+                        endurance_limit: None,
+                    }
+                    .build()?,
                     max_range: 1.0,
                     bins,
                     sn_unit: String::new(),
@@ -447,7 +452,13 @@ mod tests {
     #[test]
     fn encode_then_finish_round_trips() {
         // two realizations of a sinusoid of amplitude 2 (a_w = √2, CF = √2) and of a square wave ±1
-        let sn = SnCurve::new(3.0, 1.0, None).unwrap();
+        let sn = SnCurve {
+            k: 3.0,
+            c: 1.0,
+            endurance_limit: None,
+        }
+        .build()
+        .unwrap();
         let ch = VerdictChannels {
             comfort: vec![ComfortChannel { output: "a".into() }],
             fatigue: vec![FatigueChannel {

@@ -19,7 +19,15 @@ use crate::error::{require_non_negative, Error, Result};
 /// ```
 /// use stochvib::spectrum::{BandWhite, Convention, Domain, Spectrum};
 /// // A one-sided 1e-3 m²/Hz level from 1 Hz to 10 Hz: variance 9e-3 m².
-/// let w = BandWhite::new(Convention::OneSidedCyclic, 1e-3, 1.0, 10.0, Domain::Temporal).unwrap();
+/// let w = BandWhiteParameters {
+///     convention: Convention::OneSidedCyclic,
+///     level: 1e-3,
+///     lo: 1.0,
+///     hi: 10.0,
+///     domain: Domain::Temporal,
+/// }
+/// .build()
+/// .unwrap();
 /// assert!((w.variance().unwrap() - 9e-3).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -30,13 +38,54 @@ pub struct BandWhite {
     domain: Domain,
 }
 
-impl BandWhite {
-    /// Builds the band-limited white density from a level and band edges written in `convention`
-    /// (band edges in Hz or cycles/m for `OneSidedCyclic`, in rad/s or rad/m otherwise).
+/// The parameters of a [`BandWhite`] density (a level between two band edges, written in a `convention`) as
+/// named fields.
+///
+/// # Errors
+/// As [`BandWhite`]'s `# Errors`.
+///
+/// # Examples
+/// ```
+/// use stochvib::spectrum::{BandWhiteParameters, Convention, Domain, Spectrum};
+/// let w = BandWhiteParameters {
+///     convention: Convention::TwoSidedAngular,
+///     level: 1e-3,
+///     lo: 0.0,
+///     hi: 4.5,
+///     domain: Domain::Temporal,
+/// }
+/// .build()
+/// .unwrap();
+/// assert!((w.variance().unwrap() - 9e-3).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BandWhiteParameters {
+    /// How `level`, `lo` and `hi` are written (band edges in Hz or cycles/m for `OneSidedCyclic`, in rad/s or
+    /// rad/m otherwise).
+    pub convention: Convention,
+    /// The density level ≥ 0 in `convention`.
+    pub level: f64,
+    /// The lower band edge ≥ 0 in `convention`.
+    pub lo: f64,
+    /// The upper band edge > `lo` in `convention`.
+    pub hi: f64,
+    /// Temporal or spatial.
+    pub domain: Domain,
+}
+
+impl BandWhiteParameters {
+    /// The [`BandWhite`] of these parameters, checked.
     ///
     /// # Errors
-    /// See the type's `# Errors`.
-    pub fn new(convention: Convention, level: f64, lo: f64, hi: f64, domain: Domain) -> Result<Self> {
+    /// See [`BandWhite`]'s `# Errors`.
+    pub fn build(self) -> Result<BandWhite> {
+        let BandWhiteParameters {
+            convention,
+            level,
+            lo,
+            hi,
+            domain,
+        } = self;
         require_non_negative("level", level)?;
         require_non_negative("band.low", lo)?;
         if !(hi.is_finite() && hi > lo) {

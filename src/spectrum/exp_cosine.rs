@@ -15,28 +15,38 @@ use std::f64::consts::PI;
 /// (α² + (ω−β)²)(α² + (ω+β)²) = (ω² − α² − β²)² + 4α²ω². Rational, with a second-order shaping filter.
 ///
 /// # Errors
-/// [`ExpCosine::new`] rejects α ≤ 0, β < 0, D < 0 and non-finite values.
+/// [`ExpCosine::build`] rejects α ≤ 0, β < 0, D < 0 and non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::spectrum::{ExpCosine, Domain, Spectrum};
-/// let s = ExpCosine::new(1.0, 0.5, 3.0, Domain::Temporal).unwrap();
+/// let s = ExpCosine { variance: 1.0, alpha: 0.5, beta: 3.0, domain: Domain::Temporal }.build().unwrap();
 /// assert!((s.correlation(0.2).unwrap() - (-0.1f64).exp() * 0.6f64.cos()).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct ExpCosine {
-    variance: f64,
-    alpha: f64,
-    beta: f64,
-    domain: Domain,
+    /// D = K(0), the variance, (unit of the process)².
+    pub variance: f64,
+    /// α > 0, the decay rate, 1/s or 1/m (the lag unit of `domain`).
+    pub alpha: f64,
+    /// β ≥ 0, the frequency of the oscillation, rad/s or rad/m.
+    pub beta: f64,
+    /// Temporal or spatial.
+    pub domain: Domain,
 }
 
 impl ExpCosine {
-    /// Builds K(τ) = D e^{−α|τ|} cos βτ.
+    /// The density of these fields, checked: K(τ) = D e^{−α|τ|} cos βτ.
     ///
     /// # Errors
     /// `variance` ≥ 0, `alpha` > 0, `beta` ≥ 0, all finite.
-    pub fn new(variance: f64, alpha: f64, beta: f64, domain: Domain) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let ExpCosine {
+            variance,
+            alpha,
+            beta,
+            domain,
+        } = self;
         if !(beta.is_finite() && beta >= 0.0) {
             return Err(Error::invalid("beta", beta, "must be finite and >= 0"));
         }

@@ -15,12 +15,12 @@ use std::f64::consts::PI;
 /// this one integrates to D. Not rational.
 ///
 /// # Errors
-/// [`GaussCosine::new`] rejects α ≤ 0, β < 0, D < 0 and non-finite values.
+/// [`GaussCosineParameters::build`] rejects α ≤ 0, β < 0, D < 0 and non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::spectrum::{GaussCosine, Domain, Spectrum};
-/// let s = GaussCosine::new(1.0, 0.5, 3.0, Domain::Temporal).unwrap();
+/// let s = GaussCosineParameters { variance: 1.0, alpha: 0.5, beta: 3.0, domain: Domain::Temporal }.build().unwrap();
 /// assert!((s.correlation(1.0).unwrap() - (-0.5f64).exp() * 3.0f64.cos()).abs() < 1e-15);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
@@ -33,12 +33,42 @@ pub struct GaussCosine {
     prefactor: f64,
 }
 
-impl GaussCosine {
-    /// Builds K(τ) = D e^{−ατ²} cos βτ.
+/// The parameters of a [`GaussCosine`] density (type 4, K(τ) = D e^{−ατ²} cos βτ) as named fields.
+///
+/// # Errors
+/// As [`GaussCosine`]'s `# Errors`.
+///
+/// # Examples
+/// ```
+/// use stochvib::spectrum::{Domain, GaussCosineParameters, Spectrum};
+/// let s = GaussCosineParameters { variance: 2.0, alpha: 0.5, beta: 3.0, domain: Domain::Temporal };
+/// let s = s.build().unwrap();
+/// assert!((s.variance().unwrap() - 2.0).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GaussCosineParameters {
+    /// D = K(0) ≥ 0, the variance, (unit of the process)².
+    pub variance: f64,
+    /// α > 0, 1/s² or 1/m² (the lag unit of `domain`, squared).
+    pub alpha: f64,
+    /// β ≥ 0, rad/s or rad/m.
+    pub beta: f64,
+    /// Temporal or spatial.
+    pub domain: Domain,
+}
+
+impl GaussCosineParameters {
+    /// The [`GaussCosine`] of these parameters, checked.
     ///
     /// # Errors
     /// `variance` ≥ 0, `alpha` > 0, `beta` ≥ 0, all finite.
-    pub fn new(variance: f64, alpha: f64, beta: f64, domain: Domain) -> Result<Self> {
+    pub fn build(self) -> Result<GaussCosine> {
+        let GaussCosineParameters {
+            variance,
+            alpha,
+            beta,
+            domain,
+        } = self;
         if !(beta.is_finite() && beta >= 0.0) {
             return Err(Error::invalid("beta", beta, "must be finite and >= 0"));
         }

@@ -43,15 +43,15 @@ pub mod two_pole_road;
 
 pub use at_speed::AtSpeed;
 pub use band_limited::BandLimited;
-pub use band_white::BandWhite;
+pub use band_white::{BandWhite, BandWhiteParameters};
 pub use butterworth::{butterworth_band, ButterworthFilter, MAX_BUTTERWORTH_ORDER};
 pub use convention::Convention;
 pub use exp_cosine::ExpCosine;
 pub use exponential::Exponential;
-pub use gauss_cosine::GaussCosine;
+pub use gauss_cosine::{GaussCosine, GaussCosineParameters};
 pub use gaussian::Gaussian;
 pub use moving_average::{sinc_squared, MovingAverage};
-pub use power_law::{IsoBound, IsoClass, PowerLaw, ISO_BAND, ISO_N0, ISO_WAVINESS};
+pub use power_law::{IsoBound, IsoClass, PowerLaw, PowerLawParameters, ISO_BAND, ISO_N0, ISO_WAVINESS};
 pub use rational::{RationalSpectrum, ShapingFilter};
 pub use tabulated::Tabulated;
 pub use two_pole_road::TwoPoleRoad;

@@ -58,7 +58,9 @@ const MAX_ZERO_BREAKPOINTS: usize = 256;
 /// ```
 /// use stochvib::spectrum::{Domain, MovingAverage, PowerLaw, Spectrum};
 /// use std::sync::Arc;
-/// let road = Arc::new(PowerLaw::new(64e-6, 0.1, 2.0, Some((0.011, 30.0)), Domain::Spatial).unwrap());
+/// let band = Some((0.011, 30.0));
+/// let road = PowerLawParameters { g0: 64e-6, n0: 0.1, waviness: 2.0, band, domain: Domain::Spatial };
+/// let road = Arc::new(road.build().unwrap());
 /// let tyre = MovingAverage::new(road.clone(), 0.25).unwrap();
 /// let w = 2.0 * std::f64::consts::PI * 2.0; // n = 2 cycles/m = 1/(2L)
 /// let pi2 = std::f64::consts::PI * std::f64::consts::PI;

@@ -25,7 +25,7 @@ pub const ISO_BAND: (f64, f64) = (0.011, 2.83);
 /// n → ∞ for w ≤ 1): [`Spectrum::variance`] then returns [`Error::Divergent`] asking for a band.
 ///
 /// # Errors
-/// [`PowerLaw::new`] rejects non-positive or non-finite G_d(n₀), n₀, w, and a band that is not
+/// [`PowerLawParameters::build`] rejects non-positive or non-finite G_d(n₀), n₀, w, and a band that is not
 /// 0 < n₁ < n₂ < ∞.
 ///
 /// # Examples
@@ -146,13 +146,46 @@ impl FromStr for IsoBound {
     }
 }
 
-impl PowerLaw {
-    /// Builds G(n) = g0 (n/n0)^{−w} (one-sided cyclic), optionally restricted to the band `[n₁, n₂]`
-    /// (cycles/m for spatial, Hz for temporal).
+/// The parameters of a [`PowerLaw`] density G(n) = G(n₀)(n/n₀)^{−w} as named fields.
+///
+/// # Errors
+/// As [`PowerLaw`]'s `# Errors`.
+///
+/// # Examples
+/// ```
+/// use stochvib::spectrum::{Domain, PowerLawParameters, Spectrum};
+/// let band = Some((0.011, 2.83));
+/// let p = PowerLawParameters { g0: 256e-6, n0: 0.1, waviness: 2.0, band, domain: Domain::Spatial };
+/// let p = p.build().unwrap();
+/// assert!(p.variance().unwrap() > 0.0);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PowerLawParameters {
+    /// G(n₀) > 0, the one-sided cyclic density at n₀ (m³ for a spatial road).
+    pub g0: f64,
+    /// n₀ > 0, the reference frequency (cycles/m for spatial, Hz for temporal).
+    pub n0: f64,
+    /// w > 0, the exponent: G(n) = G(n₀)(n/n₀)^{−w}.
+    pub waviness: f64,
+    /// The band [n₁, n₂] outside which G = 0 (cycles/m or Hz), if any.
+    pub band: Option<(f64, f64)>,
+    /// Temporal or spatial.
+    pub domain: Domain,
+}
+
+impl PowerLawParameters {
+    /// The [`PowerLaw`] of these parameters, checked.
     ///
     /// # Errors
-    /// See the type's `# Errors`.
-    pub fn new(g0: f64, n0: f64, waviness: f64, band: Option<(f64, f64)>, domain: Domain) -> Result<Self> {
+    /// See [`PowerLaw`]'s `# Errors`.
+    pub fn build(self) -> Result<PowerLaw> {
+        let PowerLawParameters {
+            g0,
+            n0,
+            waviness,
+            band,
+            domain,
+        } = self;
         require_positive("g0", g0)?;
         require_positive("n0", n0)?;
         require_positive("waviness", waviness)?;
@@ -175,15 +208,24 @@ impl PowerLaw {
             label: format!("power law G(n0) = {}", crate::numbers::num(g0)),
         })
     }
+}
 
+impl PowerLaw {
     /// ISO 8608 class `class` (n₀ = 0.1 cycles/m, w = 2), spatial, with an optional band in cycles/m
     /// (the standard one is [`ISO_BAND`]).
     ///
     /// # Errors
-    /// As [`IsoClass::g0`] for an undefined bound, as [`PowerLaw::new`] for the band.
+    /// As [`IsoClass::g0`] for an undefined bound, as [`PowerLawParameters::build`] for the band.
     pub fn iso8608(class: IsoClass, bound: IsoBound, band: Option<(f64, f64)>) -> Result<Self> {
         let g0 = class.g0(bound)?;
-        let mut p = PowerLaw::new(g0, ISO_N0, ISO_WAVINESS, band, Domain::Spatial)?;
+        let mut p = PowerLawParameters {
+            g0,
+            n0: ISO_N0,
+            waviness: ISO_WAVINESS,
+            band,
+            domain: Domain::Spatial,
+        }
+        .build()?;
         p.label = format!("ISO 8608 class {class} ({bound:?}), G_d(n0) = {g0} m^3");
         Ok(p)
     }

@@ -212,6 +212,27 @@ impl RationalSpectrum {
         Ok(self.filter.clone())
     }
 
+    /// The density q·S(ω), q > 0: the same poles, the numerator scaled by q and the shaping filter's numerator
+    /// by √q (so the factor is not recomputed and stays exact).
+    ///
+    /// # Errors
+    /// `q` must be finite and > 0.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::spectrum::{Domain, RationalSpectrum, Spectrum};
+    /// let s = RationalSpectrum::new(vec![1.0], vec![1.0, 1.0], Domain::Temporal).unwrap();
+    /// let h = s.scaled(0.25).unwrap();
+    /// assert!((h.density(2.0) - 0.25 * s.density(2.0)).abs() < 1e-15);
+    /// ```
+    pub fn scaled(&self, q: f64) -> Result<RationalSpectrum> {
+        crate::error::require_positive("scale", q)?;
+        let mut s = self.clone();
+        s.num.iter_mut().for_each(|c| *c *= q);
+        s.filter.num.iter_mut().for_each(|c| *c *= q.sqrt());
+        Ok(s)
+    }
+
     /// The spectrum of the same profile seen at speed `v` (for a spatial spectrum): S_t(ω) = S(ω/v)/v.
     ///
     /// # Errors

@@ -30,31 +30,36 @@ pub enum Form {
 /// stated wherever the spectrum is used). With those values the printed form's variance is 1.0244 D_q.
 ///
 /// # Errors
-/// [`TwoPoleRoad::new`] rejects D_q < 0, α ≤ 0, β ≤ 0 and non-finite values.
+/// [`TwoPoleRoad::build`] rejects D_q < 0, α ≤ 0, β ≤ 0 and non-finite values.
 ///
 /// # Examples
 /// ```
 /// use stochvib::spectrum::{TwoPoleRoad, two_pole_road::Form, Spectrum};
-/// let c = TwoPoleRoad::new(0.035f64.powi(2), 0.3, 12.0, Form::Consistent).unwrap();
+/// let c = TwoPoleRoad { dq: 0.035f64.powi(2), alpha: 0.3, beta: 12.0, form: Form::Consistent }.build().unwrap();
 /// assert!((c.variance().unwrap() - 0.035f64.powi(2)).abs() < 1e-18);
-/// let p = TwoPoleRoad::new(0.035f64.powi(2), 0.3, 12.0, Form::AsPrinted).unwrap();
+/// let p = TwoPoleRoad { dq: 0.035f64.powi(2), alpha: 0.3, beta: 12.0, form: Form::AsPrinted }.build().unwrap();
 /// let ratio = 12.0 * 12.3 / (0.09 + 144.0);
 /// assert!((p.variance().unwrap() / 0.035f64.powi(2) - ratio).abs() < 1e-14);
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct TwoPoleRoad {
-    dq: f64,
-    alpha: f64,
-    beta: f64,
-    form: Form,
+    /// D_q, the profile's variance, m².
+    pub dq: f64,
+    /// α > 0, 1/m.
+    pub alpha: f64,
+    /// β > 0, 1/m.
+    pub beta: f64,
+    /// The formula as printed or in its dimensionally consistent form.
+    pub form: Form,
 }
 
 impl TwoPoleRoad {
-    /// Builds the (8.66) road with D_q (m²), α and β (1/m).
+    /// The (8.66) road of these fields, checked: D_q (m²), α and β (1/m).
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn new(dq: f64, alpha: f64, beta: f64, form: Form) -> Result<Self> {
+    pub fn build(self) -> Result<Self> {
+        let TwoPoleRoad { dq, alpha, beta, form } = self;
         Ok(TwoPoleRoad {
             dq: require_non_negative("dq", dq)?,
             alpha: require_positive("alpha", alpha)?,

@@ -7,7 +7,8 @@
 use std::f64::consts::PI;
 use stochvib::coherence::bessel_k::{bessel_k, bessel_k_scaled, bessel_k_x_pow};
 use stochvib::coherence::{
-    AmmonBormann, AmmonBormannRoad, Coherence, CoherenceKind, ConstantCoherence, IsotropicCoherence, TabulatedCoherence,
+    AmmonBormann, AmmonBormannParameters, AmmonBormannRoad, Coherence, CoherenceKind, ConstantCoherence,
+    IsotropicCoherence, TabulatedCoherence,
 };
 
 // ---- named tolerances -------------------------------------------------------------------------------
@@ -253,8 +254,26 @@ fn ammon_bormann_formula_and_kind() {
     let om = omp / b.powf(a);
     let n = om / (2.0 * PI);
     let want = 2f64.powf(-0.75);
-    let sq = AmmonBormann::new(b, omp, w, p, a, CoherenceKind::SquaredCoherence).unwrap();
-    let amp = AmmonBormann::new(b, omp, w, p, a, CoherenceKind::CoherenceAmplitude).unwrap();
+    let sq = AmmonBormannParameters {
+        track_width_m: b,
+        omega_p: omp,
+        w,
+        p,
+        a,
+        kind: CoherenceKind::SquaredCoherence,
+    }
+    .build()
+    .unwrap();
+    let amp = AmmonBormannParameters {
+        track_width_m: b,
+        omega_p: omp,
+        w,
+        p,
+        a,
+        kind: CoherenceKind::CoherenceAmplitude,
+    }
+    .build()
+    .unwrap();
     assert!((sq.formula_value(n) - want).abs() < EXACT);
     assert!((sq.squared_coherence(n) - want).abs() < EXACT);
     assert!((sq.coherence_amplitude(n) - want.sqrt()).abs() < EXACT);
@@ -263,11 +282,28 @@ fn ammon_bormann_formula_and_kind() {
     assert_eq!(sq.coherence_amplitude(0.0), 1.0);
     assert!(sq.describe().contains("squared_coherence"));
     // invalid parameters name themselves
-    let e = AmmonBormann::new(b, -2.0, w, p, a, CoherenceKind::SquaredCoherence)
-        .unwrap_err()
-        .to_string();
+    let e = AmmonBormannParameters {
+        track_width_m: b,
+        omega_p: -2.0,
+        w,
+        p,
+        a,
+        kind: CoherenceKind::SquaredCoherence,
+    }
+    .build()
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("omega_p"), "{e}");
-    assert!(AmmonBormann::new(b, omp, w, 0.0, a, CoherenceKind::SquaredCoherence).is_err());
+    assert!(AmmonBormannParameters {
+        track_width_m: b,
+        omega_p: omp,
+        w,
+        p: 0.0,
+        a,
+        kind: CoherenceKind::SquaredCoherence
+    }
+    .build()
+    .is_err());
 }
 
 #[test]

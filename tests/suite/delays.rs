@@ -270,7 +270,18 @@ fn first_order_two_inputs_gaussian_closed_form() {
 /// `spectral_moment_quadrature`: no splitting, no half-period sums), which converges on a finite range.
 #[test]
 fn iso_band_limited_road_matches_plain_adaptive_quadrature() {
-    let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 2.2e3, 2.6e3).unwrap();
+    let car = HalfCar {
+        mass: 1490.0,
+        radius_of_gyration: 1.23,
+        front_distance: 1.42,
+        rear_distance: 1.28,
+        front_stiffness: 3.2e4,
+        rear_stiffness: 4.3e4,
+        front_damping: 2.2e3,
+        rear_damping: 2.6e3,
+    }
+    .build()
+    .unwrap();
     let sys = car.mdof(0.9).unwrap();
     let l = car.wheelbase();
     let opts = OscillatoryOptions::default();
@@ -423,7 +434,16 @@ impl Case {
         };
         let m = m.with_output("out", quantity).unwrap();
         let spatial: Arc<dyn Spectrum> = if self.road_type3 {
-            Arc::new(ExpCosine::new(1e-4, self.alpha, self.beta, Domain::Spatial).unwrap())
+            Arc::new(
+                ExpCosine {
+                    variance: 1e-4,
+                    alpha: self.alpha,
+                    beta: self.beta,
+                    domain: Domain::Spatial,
+                }
+                .build()
+                .unwrap(),
+            )
         } else {
             Arc::new(Exponential::new(1e-4, self.alpha, Domain::Spatial).unwrap())
         };
@@ -571,7 +591,16 @@ fn three_equally_spaced_axles_share_a_lag() {
     .with_output("front", Quantity::Velocity(vec![1.0, 1.35]))
     .unwrap();
     let v = 7.3;
-    let spatial = Arc::new(ExpCosine::new(1e-4, 0.2, 0.8, Domain::Spatial).unwrap());
+    let spatial = Arc::new(
+        ExpCosine {
+            variance: 1e-4,
+            alpha: 0.2,
+            beta: 0.8,
+            domain: Domain::Spatial,
+        }
+        .build()
+        .unwrap(),
+    );
     let road: Arc<dyn Spectrum> = Arc::new(AtSpeed::new(spatial, v).unwrap());
     let exc = Excitation::track(road, vec![0.0, 1.35 / v, 2.7 / v], vec![1.0; 3], 0.0).unwrap();
     for i in 0..2 {
@@ -591,12 +620,37 @@ fn three_equally_spaced_axles_share_a_lag() {
 /// Lyapunov equation of the system with both shaping filters).
 #[test]
 fn independent_inputs_match_variance_lyapunov() {
-    let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 2.2e3, 2.6e3).unwrap();
+    let car = HalfCar {
+        mass: 1490.0,
+        radius_of_gyration: 1.23,
+        front_distance: 1.42,
+        rear_distance: 1.28,
+        front_stiffness: 3.2e4,
+        rear_stiffness: 4.3e4,
+        front_damping: 2.2e3,
+        rear_damping: 2.6e3,
+    }
+    .build()
+    .unwrap();
     let sys = car.mdof(0.9).unwrap();
     let front: Arc<dyn Spectrum> =
         Arc::new(AtSpeed::new(Arc::new(Exponential::new(1e-4, 0.1, Domain::Spatial).unwrap()), 11.0).unwrap());
-    let rear: Arc<dyn Spectrum> =
-        Arc::new(AtSpeed::new(Arc::new(ExpCosine::new(4e-5, 0.2, 0.5, Domain::Spatial).unwrap()), 11.0).unwrap());
+    let rear: Arc<dyn Spectrum> = Arc::new(
+        AtSpeed::new(
+            Arc::new(
+                ExpCosine {
+                    variance: 4e-5,
+                    alpha: 0.2,
+                    beta: 0.5,
+                    domain: Domain::Spatial,
+                }
+                .build()
+                .unwrap(),
+            ),
+            11.0,
+        )
+        .unwrap(),
+    );
     let exc = Excitation::independent(vec![front, rear], vec![0.0, 0.0]).unwrap();
     let opts = OscillatoryOptions::default();
     for i in 0..sys.outputs().len() {
@@ -674,9 +728,29 @@ fn acceleration_under_delayed_type1_road_is_divergent() {
 /// which must reproduce the one-copy answer: (Σ𝒞_g) P (Σ𝒞_g)ᵀ = Σ_gh 𝒞_g P₂ 𝒞_hᵀ.
 #[test]
 fn equal_delays_reduce_to_variance_lyapunov() {
-    let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 2.2e3, 2.6e3).unwrap();
+    let car = HalfCar {
+        mass: 1490.0,
+        radius_of_gyration: 1.23,
+        front_distance: 1.42,
+        rear_distance: 1.28,
+        front_stiffness: 3.2e4,
+        rear_stiffness: 4.3e4,
+        front_damping: 2.2e3,
+        rear_damping: 2.6e3,
+    }
+    .build()
+    .unwrap();
     let sys = car.mdof(0.9).unwrap();
-    let spatial = Arc::new(ExpCosine::new(1e-4, 0.12, 0.6, Domain::Spatial).unwrap());
+    let spatial = Arc::new(
+        ExpCosine {
+            variance: 1e-4,
+            alpha: 0.12,
+            beta: 0.6,
+            domain: Domain::Spatial,
+        }
+        .build()
+        .unwrap(),
+    );
     let road: Arc<dyn Spectrum> = Arc::new(AtSpeed::new(spatial, 12.0).unwrap());
     for delays in [vec![0.0, 0.0], vec![0.4, 0.4], vec![0.0, 1e-200]] {
         let exc = Excitation::track(road.clone(), delays.clone(), vec![1.0, 0.8], 0.0).unwrap();

@@ -15,7 +15,7 @@ use nalgebra::DMatrix;
 use std::f64::consts::PI;
 use std::sync::Arc;
 use stochvib::response::{output_density, Excitation, OutputDensity};
-use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosine, Spectrum};
+use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosineParameters, Spectrum};
 use stochvib::system::{FrequencyResponse, OutputInfo, StateSpace};
 
 /// SplitMix64: a small deterministic generator (no statistical claims are made from it; it only picks
@@ -67,8 +67,26 @@ fn spectra() -> Vec<Arc<dyn Spectrum>> {
     let t = Domain::Temporal;
     vec![
         Arc::new(Exponential::new(1.0, 2.0, t).unwrap()),
-        Arc::new(GaussCosine::new(0.5, 300.0, 4.0, t).unwrap()),
-        Arc::new(ExpCosine::new(2.0, 0.7, 2.5, t).unwrap()),
+        Arc::new(
+            GaussCosineParameters {
+                variance: 0.5,
+                alpha: 300.0,
+                beta: 4.0,
+                domain: t,
+            }
+            .build()
+            .unwrap(),
+        ),
+        Arc::new(
+            ExpCosine {
+                variance: 2.0,
+                alpha: 0.7,
+                beta: 2.5,
+                domain: t,
+            }
+            .build()
+            .unwrap(),
+        ),
     ]
 }
 
@@ -215,7 +233,7 @@ fn output_density_fast_rejects_bad_arguments() {
 fn density_into_equals_density() {
     use stochvib::spectrum::two_pole_road::Form;
     use stochvib::spectrum::{
-        AtSpeed, BandWhite, Convention, Gaussian, IsoBound, IsoClass, PowerLaw, RationalSpectrum, Tabulated,
+        AtSpeed, BandWhiteParameters, Convention, Gaussian, IsoBound, IsoClass, PowerLaw, RationalSpectrum, Tabulated,
         TwoPoleRoad, ISO_BAND,
     };
     let t = Domain::Temporal;
@@ -228,11 +246,30 @@ fn density_into_equals_density() {
         true,
     ));
     all.push((
-        Arc::new(BandWhite::new(Convention::TwoSidedAngular, 0.1, 1.0, 50.0, t).unwrap()),
+        Arc::new(
+            BandWhiteParameters {
+                convention: Convention::TwoSidedAngular,
+                level: 0.1,
+                lo: 1.0,
+                hi: 50.0,
+                domain: t,
+            }
+            .build()
+            .unwrap(),
+        ),
         true,
     ));
     all.push((
-        Arc::new(TwoPoleRoad::new(1e-3, 0.3, 12.0, Form::Consistent).unwrap()),
+        Arc::new(
+            TwoPoleRoad {
+                dq: 1e-3,
+                alpha: 0.3,
+                beta: 12.0,
+                form: Form::Consistent,
+            }
+            .build()
+            .unwrap(),
+        ),
         true,
     ));
     all.push((Arc::new(Gaussian::new(1.0, 2.0, t).unwrap()), false));

@@ -140,7 +140,16 @@ fn weighted_evaluator_equals_lyapunov_over_a_seat_grid() {
         let k = 300.0 * 10f64.powf(5.0 * i as f64 / 23.0);
         for j in 0..24 {
             let b = 2.0 * 10f64.powf(5.0 * j as f64 / 23.0);
-            let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap().instance().unwrap();
+            let seat = OperatorSeat {
+                operator_mass: 80.0,
+                seat_mass: 26.0,
+                stiffness: k,
+                damping: b,
+            }
+            .build()
+            .unwrap()
+            .instance()
+            .unwrap();
             let ss = seat.system.state_space().unwrap();
             let out = ss.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
             let fast = ev.a_w(ss, out, &exc).unwrap();
@@ -178,7 +187,16 @@ fn weighted_evaluator_equals_lyapunov_over_a_seat_grid() {
         (m_pr * w6 * w6, m_pr * w6 / 0.91),
         (6500.0, 2.0 * (6500.0 * m_pr).sqrt()),
     ] {
-        let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap().instance().unwrap();
+        let seat = OperatorSeat {
+            operator_mass: 80.0,
+            seat_mass: 26.0,
+            stiffness: k,
+            damping: b,
+        }
+        .build()
+        .unwrap()
+        .instance()
+        .unwrap();
         let ss = seat.system.state_space().unwrap();
         let out = ss.outputs().iter().position(|o| o.name == "seat_acc").unwrap();
         let fast = ev.a_w(ss, out, &exc).unwrap();
@@ -196,10 +214,16 @@ fn weighted_evaluator_errors() {
     assert!(WeightedEvaluator::new(&delayed, Weighting::Wk).is_err());
     let exc = seat_input();
     let ev = WeightedEvaluator::new(&exc, Weighting::Wk).unwrap();
-    let seat = OperatorSeat::new(80.0, 26.0, 6500.0, 600.0)
-        .unwrap()
-        .instance()
-        .unwrap();
+    let seat = OperatorSeat {
+        operator_mass: 80.0,
+        seat_mass: 26.0,
+        stiffness: 6500.0,
+        damping: 600.0,
+    }
+    .build()
+    .unwrap()
+    .instance()
+    .unwrap();
     let ss = seat.system.state_space().unwrap();
     let travel = ss.outputs().iter().position(|o| o.unit == "m").unwrap();
     let e = ev.a_w(ss, travel, &exc).unwrap_err().to_string();
@@ -402,7 +426,14 @@ fn weighted_evaluator_on_transfer_polynomials_equals_lyapunov() {
         let k = 300.0 * 10f64.powf(5.0 * i as f64 / 23.0);
         for j in 0..24 {
             let b = 2.0 * 10f64.powf(5.0 * j as f64 / 23.0);
-            let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap();
+            let seat = OperatorSeat {
+                operator_mass: 80.0,
+                seat_mass: 26.0,
+                stiffness: k,
+                damping: b,
+            }
+            .build()
+            .unwrap();
             let (num, den) = seat.seat_acc_transfer();
             let fast = ev.a_w_rational(&num, &den, &exc).unwrap();
             let m = seat.instance().unwrap();
@@ -434,7 +465,14 @@ fn weighted_evaluator_on_transfer_polynomials_equals_lyapunov() {
         (m_pr * w6 * w6, m_pr * w6 / 0.91),
         (6500.0, 2.0 * (6500.0 * m_pr).sqrt()),
     ] {
-        let seat = OperatorSeat::new(80.0, 26.0, k, b).unwrap();
+        let seat = OperatorSeat {
+            operator_mass: 80.0,
+            seat_mass: 26.0,
+            stiffness: k,
+            damping: b,
+        }
+        .build()
+        .unwrap();
         let (num, den) = seat.seat_acc_transfer();
         let fast = ev.a_w_rational(&num, &den, &exc).unwrap();
         assert_eq!(fast.route, WeightedRoute::LyapunovFallback, "k {k}, b {b}");

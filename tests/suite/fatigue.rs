@@ -27,13 +27,13 @@ use statrs::function::gamma::gamma;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 use stochvib::fatigue::{
-    compare_methods, rainflow, Cycle, Dirlik, NarrowBand, RainflowCounter, RangeHistogram, SnCurve, SpectralMethod,
-    SpectralMethodKind, SpectralMoments, TovoBenasciutti, TovoBenasciuttiVariant, WirschingLight, ZhaoBaker,
-    ZhaoBakerVariant,
+    compare_methods, rainflow, Cycle, Dirlik, NarrowBand, RainflowCounter, RangeHistogram, SnCurve, SnRangeCurve,
+    SpectralMethod, SpectralMethodKind, SpectralMoments, TovoBenasciutti, TovoBenasciuttiVariant, WirschingLight,
+    ZhaoBaker, ZhaoBakerVariant,
 };
 use stochvib::quad::{integrate, QuadOptions};
 use stochvib::simulate::{stream, uniform01, Amplitudes, SpectralGenerator};
-use stochvib::spectrum::{BandWhite, Convention, Domain, Exponential, Gaussian, Spectrum};
+use stochvib::spectrum::{BandWhiteParameters, Convention, Domain, Exponential, Gaussian, Spectrum};
 use stochvib::Error;
 
 // ---- named tolerances ----------------------------------------------------------------------------------
@@ -90,7 +90,13 @@ fn by_range(cycles: &[Cycle]) -> BTreeMap<i64, f64> {
 #[test]
 fn sn_curve_cycles_and_miner_sum() {
     // N·S^k = C: k = 4, C = 1e14 → N(100) = 1e14/1e8 = 1e6; N(50) = 1.6e7.
-    let sn = SnCurve::new(4.0, 1e14, None).unwrap();
+    let sn = SnCurve {
+        k: 4.0,
+        c: 1e14,
+        endurance_limit: None,
+    }
+    .build()
+    .unwrap();
     assert!(rel(sn.cycles_to_failure(100.0).unwrap(), 1e6) < EXACT);
     assert!(rel(sn.cycles_to_failure(50.0).unwrap(), 1.6e7) < EXACT);
     // Miner: 1000 cycles at 100 (1e-3) + a half cycle at 200 (0.5·1.6e9/1e14 = 8e-6).
@@ -98,14 +104,26 @@ fn sn_curve_cycles_and_miner_sum() {
     assert!(rel(d, 1e-3 + 8e-6) < EXACT);
     // A range-based curve N·ΔS^k = C_Δ is the same curve: N at amplitude S equals N at range 2S.
     let c_range = 3.2e15; // N(ΔS = 200) = 3.2e15 / 1.6e9 = 2e6
-    let sn_r = SnCurve::from_range_intercept(4.0, c_range, None).unwrap();
+    let sn_r = SnRangeCurve {
+        k: 4.0,
+        c_range,
+        endurance_limit_range: None,
+    }
+    .build()
+    .unwrap();
     assert!(rel(sn_r.cycles_to_failure(100.0).unwrap(), 2e6) < EXACT);
 }
 
 #[test]
 fn endurance_limit_convention() {
     // Amplitudes strictly below S_e do no damage; S_a = S_e damages.
-    let sn = SnCurve::new(3.0, 1e9, Some(10.0)).unwrap();
+    let sn = SnCurve {
+        k: 3.0,
+        c: 1e9,
+        endurance_limit: Some(10.0),
+    }
+    .build()
+    .unwrap();
     assert_eq!(sn.cycles_to_failure(9.999).unwrap(), f64::INFINITY);
     assert!(rel(sn.cycles_to_failure(10.0).unwrap(), 1e6) < EXACT);
     let d = sn.damage([(9.999, 1e9), (10.0, 1.0), (20.0, 0.5)]).unwrap();
@@ -124,12 +142,24 @@ fn sn_curve_bad_input_names_parameter() {
         (3.0, 1e9, Some(-1.0), "`endurance_limit`"),
         (3.0, 1e9, Some(f64::NAN), "`endurance_limit`"),
     ] {
-        let e = SnCurve::new(k, c, se).unwrap_err();
+        let e = SnCurve {
+            k,
+            c,
+            endurance_limit: se,
+        }
+        .build()
+        .unwrap_err();
         assert!(matches!(e, Error::InvalidParameter { .. }));
         let s = e.to_string();
         assert!(s.contains(name), "{s} should name {name}");
     }
-    let sn = SnCurve::new(3.0, 1e9, None).unwrap();
+    let sn = SnCurve {
+        k: 3.0,
+        c: 1e9,
+        endurance_limit: None,
+    }
+    .build()
+    .unwrap();
     assert!(sn
         .cycles_to_failure(f64::NAN)
         .unwrap_err()
@@ -496,7 +526,15 @@ fn moments_of_ideal_band() {
     assert!(rel(m.m0_75().unwrap(), ex(0.75)) < QUADRATURE);
     assert!(rel(m.m1_5().unwrap(), ex(1.5)) < QUADRATURE);
     // The same band as a crate spectrum (BandWhite, one-sided Hz level g): G(f) = 4π S(2πf) = g.
-    let s = BandWhite::new(Convention::OneSidedCyclic, g, f1, f2, Domain::Temporal).unwrap();
+    let s = BandWhiteParameters {
+        convention: Convention::OneSidedCyclic,
+        level: g,
+        lo: f1,
+        hi: f2,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     let ms = SpectralMoments::from_spectrum(&s, 0.0, f64::INFINITY).unwrap();
     assert!(rel(ms.m4(), ex(4.0)) < QUADRATURE);
 }
@@ -687,13 +725,25 @@ fn narrow_band_closed_forms() {
     for se in [0.0, 1.0, 3.0] {
         let x = se * se / (2.0 * m0);
         let lim = if se > 0.0 { Some(se) } else { None };
-        let sn2 = SnCurve::new(2.0, 1e5, lim).unwrap();
+        let sn2 = SnCurve {
+            k: 2.0,
+            c: 1e5,
+            endurance_limit: lim,
+        }
+        .build()
+        .unwrap();
         let d2 = nu * 2.0 * m0 * (1.0 + x) * (-x).exp() / 1e5;
         assert!(
             rel(NarrowBand.damage_rate(&m, &sn2).unwrap(), d2) < EXACT,
             "k = 2, S_e = {se}"
         );
-        let sn4 = SnCurve::new(4.0, 1e7, lim).unwrap();
+        let sn4 = SnCurve {
+            k: 4.0,
+            c: 1e7,
+            endurance_limit: lim,
+        }
+        .build()
+        .unwrap();
         let d4 = nu * 4.0 * m0 * m0 * (x * x + 2.0 * x + 2.0) * (-x).exp() / 1e7;
         assert!(
             rel(NarrowBand.damage_rate(&m, &sn4).unwrap(), d4) < EXACT,
@@ -728,7 +778,13 @@ fn densities_integrate_to_one_and_damage_is_their_moment() {
         );
         for k in [3.0, 5.5] {
             for se in [None, Some(0.7 * s0), Some(2.5 * s0)] {
-                let sn = SnCurve::new(k, 1e9, se).unwrap();
+                let sn = SnCurve {
+                    k,
+                    c: 1e9,
+                    endurance_limit: se,
+                }
+                .build()
+                .unwrap();
                 let lo = se.unwrap_or(0.0);
                 let mut b = bps.clone();
                 b.retain(|&x| x > lo);
@@ -807,7 +863,13 @@ fn every_method_tends_to_rayleigh_for_a_narrow_band() {
         let eta = 1.0 - m.alpha2();
         assert!(rel(eta, 2.0 * r * r / 3.0) < 0.05, "η = {eta}");
         for k in [3.0, 5.0, 8.0] {
-            let sn = SnCurve::new(k, 1e12, None).unwrap();
+            let sn = SnCurve {
+                k,
+                c: 1e12,
+                endurance_limit: None,
+            }
+            .build()
+            .unwrap();
             let nb = NarrowBand.damage_rate(&m, &sn).unwrap();
             let ratio = |d: f64| d / nb - 1.0;
             let tb = ratio(TovoBenasciutti::default().damage_rate(&m, &sn).unwrap());
@@ -839,7 +901,13 @@ fn every_method_tends_to_rayleigh_for_a_narrow_band() {
         .unwrap()
         .with_fractional(4.0 * 25f64.powf(0.75), 4.0 * 25f64.powf(1.5))
         .unwrap();
-    let sn = SnCurve::new(4.0, 1e12, None).unwrap();
+    let sn = SnCurve {
+        k: 4.0,
+        c: 1e12,
+        endurance_limit: None,
+    }
+    .build()
+    .unwrap();
     let nb = NarrowBand.damage_rate(&tone, &sn).unwrap();
     let methods: [&dyn SpectralMethod; 6] = [
         &WirschingLight,
@@ -906,7 +974,13 @@ fn methods_agree_with_flife_on_a_bimodal_density() {
         ),
     ];
     for (k, c, lives) in cases {
-        let sn = SnCurve::new(k, c, None).unwrap();
+        let sn = SnCurve {
+            k,
+            c,
+            endurance_limit: None,
+        }
+        .build()
+        .unwrap();
         let methods: [(&dyn SpectralMethod, f64); 7] = [
             (&NarrowBand, FLIFE),
             (&WirschingLight, FLIFE),
@@ -946,7 +1020,13 @@ fn methods_agree_with_flife_on_a_bimodal_density() {
 #[test]
 fn compare_methods_reports_every_method() {
     let (_, m, _) = test_moments().remove(1);
-    let sn = SnCurve::new(4.0, 1e12, None).unwrap();
+    let sn = SnCurve {
+        k: 4.0,
+        c: 1e12,
+        endurance_limit: None,
+    }
+    .build()
+    .unwrap();
     let cmp = compare_methods(&m, &sn).unwrap();
     assert_eq!(cmp.estimates.len(), SpectralMethodKind::ALL.len());
     for e in &cmp.estimates {
@@ -978,7 +1058,15 @@ fn monte_carlo_rainflow_damage_matches_dirlik() {
     let n = 1 << 17;
     let records = 128;
     let k = 3.0;
-    let s = BandWhite::new(Convention::OneSidedCyclic, 1.0, f1, f2, Domain::Temporal).unwrap();
+    let s = BandWhiteParameters {
+        convention: Convention::OneSidedCyclic,
+        level: 1.0,
+        lo: f1,
+        hi: f2,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     let generator = SpectralGenerator::new(&s, dt, n, Amplitudes::Rayleigh).unwrap();
     // Moments of the simulated (line) spectrum itself: lines at f_j = j/(NΔt) with variance 2S(ω_j)Δω.
     let dw = 2.0 * PI / (n as f64 * dt);
@@ -991,7 +1079,13 @@ fn monte_carlo_rainflow_damage_matches_dirlik() {
         }
     }
     let m = SpectralMoments::new(mom[0], mom[1], mom[2], mom[4]).unwrap();
-    let sn = SnCurve::new(k, 1.0, None).unwrap();
+    let sn = SnCurve {
+        k,
+        c: 1.0,
+        endurance_limit: None,
+    }
+    .build()
+    .unwrap();
     let dirlik = Dirlik.damage_rate(&m, &sn).unwrap();
 
     let mut scratch = generator.scratch();

@@ -70,6 +70,17 @@ fn machine_without_cab_is_the_full_vehicle() {
         let va = analyze_output(car.model.system.as_ref(), &car.excitation, index(&car, a)).unwrap();
         let vb = analyze_output(machine.model.system.as_ref(), &machine.excitation, index(&machine, b)).unwrap();
         assert!(rel(va.variance.unwrap(), vb.variance.unwrap()) < CONDITIONED, "{a}");
+        // a coherence that depends on n (Dodds–Robson) has no factorisation with constant coefficients
+        let exact = vb
+            .methods
+            .iter()
+            .find(|m| m.method.name() == "lyapunov (delays)")
+            .unwrap();
+        assert!(
+            format!("{:?}", exact.outcome).contains("a coherence function of n"),
+            "{b}: {:?}",
+            exact.outcome
+        );
     }
 }
 
@@ -315,10 +326,11 @@ fn wheel_loader_scenario_and_bad_keys() {
 /// (eq. 8.45, rational: D = 2.25 cm², α = 3.5 1/m) at 5 m/s on two tracks of constant coherence 0.5,
 /// wheelbase 3 m (delays).
 ///
-/// * analytic: on a road of two tracks with a coherence the evaluator has no exact route (neither
-///   `lyapunov` nor `lyapunov (delays)`: it does not factor the two tracks' cross-spectral matrix), so the
-///   reference is the Fourier-weighted adaptive quadrature of S_y, whose own error estimate is within
-///   `QUADRATURE` of its value, and the exact routes must say that they do not apply (not a number);
+/// * analytic: with the wheelbase delay the evaluator has no exact route here (neither `lyapunov` nor
+///   `lyapunov (delays)`: the factorisation of a constant coherence into sum and difference processes is
+///   used only without delays), so the reference is the Fourier-weighted adaptive quadrature of S_y,
+///   whose own error estimate is within `QUADRATURE` of its value, and the exact routes must say that they
+///   do not apply (not a number);
 /// * Monte Carlo: 40 realizations of 200 s at Δt = 0.02 s (spectral route, the only one for delayed
 ///   inputs), seed 20261127. The Student-t interval of σ across realizations (each a time average over
 ///   200 s, ≫ the slowest mode's correlation time 1/(ζω) ≈ 0.6 s, so near-normal) at confidence
@@ -392,7 +404,7 @@ speed = "5 m/s"
     }
 }
 
-/// The machine of `machine_three_ways_agree_with_monte_carlo` (tyre damping 8 kN s/m, the type-1 road at
+/// The machine of `machine_quadrature_agrees_with_monte_carlo` (tyre damping 8 kN s/m, the type-1 road at
 /// 5 m/s on two tracks of coherence 0.5) with `extra` (nonlinear elements) before its input and the seat
 /// damping `seat_damping` N s/m.
 fn machine_on_type1_road(extra: &str, seat_damping: f64) -> Scenario {

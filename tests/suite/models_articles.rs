@@ -243,12 +243,33 @@ fn three_mass_static_initial_state_gives_no_oscillation() {
 
 #[test]
 fn three_mass_bad_input_and_data_file() {
+    let base = ThreeMassHoist::illustrative();
     assert!(matches!(
-        ThreeMassHoist::new(-1.0, 2.0, 50.0, 1e4, 5e3, 1000.0, 600.0),
+        ThreeMassHoist {
+            i1: -1.0,
+            ..base.clone()
+        }
+        .build(),
         Err(Error::InvalidParameter { .. })
     ));
-    assert!(ThreeMassHoist::new(10.0, 2.0, 50.0, 0.0, 5e3, 1000.0, 600.0).is_err());
-    assert!(ThreeMassHoist::new(10.0, 2.0, 50.0, 1e4, 5e3, f64::NAN, 600.0).is_err());
+    assert!(ThreeMassHoist {
+        c1: 0.0,
+        ..base.clone()
+    }
+    .build()
+    .is_err());
+    assert!(ThreeMassHoist {
+        m_start: f64::NAN,
+        ..base.clone()
+    }
+    .build()
+    .is_err());
+    assert!(ThreeMassHoist {
+        initial_link_moments: (0.0, f64::INFINITY),
+        ..base
+    }
+    .build()
+    .is_err());
     let h = ThreeMassHoist::illustrative();
     assert!(h.link_moments_rk4(0.0, 1e-3).is_err());
     assert!(h.link_moments_rk4(1.0, -1e-3).is_err());
@@ -511,15 +532,17 @@ fn hoist_without_rope_mass_reduces_to_three_mass_chain() {
     p.rope_mass_per_metre = 0.0;
     let h = MineHoist::new(p.clone()).unwrap();
     for l2 in [75.0, 400.0, 700.0] {
-        let chain = ThreeMassHoist::new(
-            p.drum_inertia / 4.0,
-            p.sheave_inertia / 4.0,
-            p.end_mass,
-            h.chord_stiffness(),
-            h.hanging_stiffness(l2).unwrap(),
-            0.0,
-            0.0,
-        )
+        let chain = ThreeMassHoist {
+            i1: p.drum_inertia / 4.0,
+            i2: p.sheave_inertia / 4.0,
+            i3: p.end_mass,
+            c1: h.chord_stiffness(),
+            c2: h.hanging_stiffness(l2).unwrap(),
+            m_start: 0.0,
+            m_load: 0.0,
+            initial_link_moments: (0.0, 0.0),
+        }
+        .build()
         .unwrap();
         let (c1, c2) = chain.natural_frequencies();
         let (w1, w2) = h.frequencies_closed_form(l2).unwrap();

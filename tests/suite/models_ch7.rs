@@ -24,7 +24,7 @@ use stochvib::models::operator_seat::{
 use stochvib::models::worked_example::{BookRow, EXPLAIN_ABOVE};
 use stochvib::models::InputLayout;
 use stochvib::response::{band_variance, Excitation};
-use stochvib::spectrum::{BandWhite, Convention, Domain};
+use stochvib::spectrum::{BandWhiteParameters, Convention, Domain};
 use stochvib::system::FrequencyResponse;
 
 // ---------------------------------------------------------------- isolation 7.1 / 7.2
@@ -38,7 +38,13 @@ fn single_isolator_closed_form_matches_mdof_force_and_base_routes() {
         let m: f64 = 100.0;
         let c = 1.0e4; // ω₀ = 10 rad/s
         let b = 2.0 * zeta * (c * m).sqrt();
-        let iso = SingleIsolator::new(m, c, b).unwrap();
+        let iso = SingleIsolator {
+            mass: m,
+            stiffness: c,
+            damping: b,
+        }
+        .build()
+        .unwrap();
         let force = iso.mdof_force().unwrap();
         let base = iso.mdof_base().unwrap();
         for &r in &[0.1, 0.5, 0.9, 1.3, SQRT_2, 2.0, 4.0, 20.0] {
@@ -78,7 +84,16 @@ fn single_isolator_special_values() {
 
 #[test]
 fn two_stage_exact_formula_matches_mdof_and_book_7_16_when_undamped() {
-    let damped = TwoStageIsolator::new(100.0, 1.0e4, 150.0, 40.0, 3.0e4, 300.0).unwrap();
+    let damped = TwoStageIsolator {
+        mass_1: 100.0,
+        stiffness_1: 1.0e4,
+        damping_1: 150.0,
+        mass_2: 40.0,
+        stiffness_2: 3.0e4,
+        damping_2: 300.0,
+    }
+    .build()
+    .unwrap();
     let force = damped.mdof_force().unwrap();
     let base = damped.mdof_base().unwrap();
     for &k in &[0.5, 5.0, 9.0, 12.0, 25.0, 31.0, 60.0, 300.0] {
@@ -93,7 +108,16 @@ fn two_stage_exact_formula_matches_mdof_and_book_7_16_when_undamped() {
     }
     // Undamped: Δ expands to c₁c₂ − [c₁m₂ + (c₁+c₂)m₁]k² + m₁m₂k⁴, so the exact ratio is the book's signed
     // (7.16); η = |η*|, negative between the two natural frequencies.
-    let t = TwoStageIsolator::new(100.0, 1.0e4, 0.0, 40.0, 3.0e4, 0.0).unwrap();
+    let t = TwoStageIsolator {
+        mass_1: 100.0,
+        stiffness_1: 1.0e4,
+        damping_1: 0.0,
+        mass_2: 40.0,
+        stiffness_2: 3.0e4,
+        damping_2: 0.0,
+    }
+    .build()
+    .unwrap();
     let [w1, w2] = t.natural_frequencies();
     for &k in &[1.0, 0.5 * (w1 + w2), 2.0 * w2, 10.0 * w2] {
         let exact = t.ratio(k);
@@ -116,7 +140,16 @@ fn two_stage_exact_formula_matches_mdof_and_book_7_16_when_undamped() {
 fn two_stage_natural_frequencies_match_modal_analysis() {
     // Independent route: modal_analysis of the assembled Mdof (Cholesky + symmetric eigen) vs the
     // quadratic formula in ω² (roots of m₁m₂ω⁴ − [c₁m₂ + (c₁+c₂)m₁]ω² + c₁c₂).
-    let t = TwoStageIsolator::new(800.0, 8.0e4, 0.0, 200.0, 4.0e5, 0.0).unwrap();
+    let t = TwoStageIsolator {
+        mass_1: 800.0,
+        stiffness_1: 8.0e4,
+        damping_1: 0.0,
+        mass_2: 200.0,
+        stiffness_2: 4.0e5,
+        damping_2: 0.0,
+    }
+    .build()
+    .unwrap();
     let (w, _) = t.mdof_force().unwrap().modes().unwrap();
     let f = t.natural_frequencies();
     assert!(rel(w[0], f[0]) < FACTORISATION && rel(w[1], f[1]) < FACTORISATION);
@@ -126,10 +159,37 @@ fn two_stage_natural_frequencies_match_modal_analysis() {
 
 #[test]
 fn isolation_rejects_bad_parameters() {
-    assert!(SingleIsolator::new(0.0, 1.0, 0.0).is_err());
-    assert!(SingleIsolator::new(1.0, -1.0, 0.0).is_err());
-    assert!(SingleIsolator::new(1.0, 1.0, f64::NAN).is_err());
-    assert!(TwoStageIsolator::new(1.0, 1.0, 0.0, 1.0, 1.0, -1.0).is_err());
+    assert!(SingleIsolator {
+        mass: 0.0,
+        stiffness: 1.0,
+        damping: 0.0
+    }
+    .build()
+    .is_err());
+    assert!(SingleIsolator {
+        mass: 1.0,
+        stiffness: -1.0,
+        damping: 0.0
+    }
+    .build()
+    .is_err());
+    assert!(SingleIsolator {
+        mass: 1.0,
+        stiffness: 1.0,
+        damping: f64::NAN
+    }
+    .build()
+    .is_err());
+    assert!(TwoStageIsolator {
+        mass_1: 1.0,
+        stiffness_1: 1.0,
+        damping_1: 0.0,
+        mass_2: 1.0,
+        stiffness_2: 1.0,
+        damping_2: -1.0
+    }
+    .build()
+    .is_err());
 }
 
 // ---------------------------------------------------------------- half car 7.5
@@ -140,8 +200,30 @@ fn half_car_frequency_equation_matches_modal_analysis() {
     // modal_analysis of the (z, φ) model assembled by Mdof from the two spring elements (independent).
     let cases = [
         half_car::example_7_1(),
-        HalfCar::new(1200.0, 1.1, 1.0, 1.6, 2.0e4, 2.5e4, 0.0, 0.0).unwrap(),
-        HalfCar::new(20000.0, 2.0, 2.5, 1.5, 6.0e5, 4.0e5, 0.0, 0.0).unwrap(),
+        HalfCar {
+            mass: 1200.0,
+            radius_of_gyration: 1.1,
+            front_distance: 1.0,
+            rear_distance: 1.6,
+            front_stiffness: 2.0e4,
+            rear_stiffness: 2.5e4,
+            front_damping: 0.0,
+            rear_damping: 0.0,
+        }
+        .build()
+        .unwrap(),
+        HalfCar {
+            mass: 20000.0,
+            radius_of_gyration: 2.0,
+            front_distance: 2.5,
+            rear_distance: 1.5,
+            front_stiffness: 6.0e5,
+            rear_stiffness: 4.0e5,
+            front_damping: 0.0,
+            rear_damping: 0.0,
+        }
+        .build()
+        .unwrap(),
     ];
     for car in &cases {
         let roots = car.frequency_equation_roots();
@@ -190,7 +272,18 @@ fn half_car_decoupled_cases_have_pure_modes() {
     // c₁a = c₂b (a = 1.2, b = 1.5, c₁ = 5e4, c₂ = 4e4): K_b is diagonal, so the modes are pure bounce
     // (φ = 0) with ω² = (c₁+c₂)/M and pure pitch (z = 0) with ω² = (c₁a² + c₂b²)/(Mρ²) (module docs).
     let (m, rho, a, b, c1, c2) = (1500.0, 1.3, 1.2, 1.5, 5.0e4, 4.0e4);
-    let car = HalfCar::new(m, rho, a, b, c1, c2, 0.0, 0.0).unwrap();
+    let car = HalfCar {
+        mass: m,
+        radius_of_gyration: rho,
+        front_distance: a,
+        rear_distance: b,
+        front_stiffness: c1,
+        rear_stiffness: c2,
+        front_damping: 0.0,
+        rear_damping: 0.0,
+    }
+    .build()
+    .unwrap();
     let d = car.decoupling();
     assert!(d.bounce_pitch_uncoupled && !d.conjugate_axles);
     let (w, modes) = car.mdof(0.0).unwrap().modes().unwrap();
@@ -210,7 +303,18 @@ fn half_car_decoupled_cases_have_pure_modes() {
     }
     // ab = ρ² (a = 1.2, b = 1.5, ρ = √1.8): M₃ = 0; the axle points are conjugate: each mode moves one axle
     // only (z₁ = z + aφ = 0 or z₂ = z − bφ = 0), with ω² = c₁/M₁ and c₂/M₂ (7.34).
-    let car = HalfCar::new(m, 1.8f64.sqrt(), a, b, 3.0e4, 4.5e4, 0.0, 0.0).unwrap();
+    let car = HalfCar {
+        mass: m,
+        radius_of_gyration: 1.8f64.sqrt(),
+        front_distance: a,
+        rear_distance: b,
+        front_stiffness: 3.0e4,
+        rear_stiffness: 4.5e4,
+        front_damping: 0.0,
+        rear_damping: 0.0,
+    }
+    .build()
+    .unwrap();
     let d = car.decoupling();
     assert!(d.conjugate_axles && !d.bounce_pitch_uncoupled);
     let (m1, m2, m3) = car.masses();
@@ -225,7 +329,18 @@ fn half_car_decoupled_cases_have_pure_modes() {
         assert!(z1.abs().min(z2.abs()) < FACTORISATION * z1.abs().max(z2.abs()));
     }
     // both conditions: equal frequencies (c₁/M₁ = c₂/M₂ ⇔ c₁a = c₂b when ab = ρ²)
-    let car = HalfCar::new(m, 1.8f64.sqrt(), a, b, 5.0e4, 4.0e4, 0.0, 0.0).unwrap();
+    let car = HalfCar {
+        mass: m,
+        radius_of_gyration: 1.8f64.sqrt(),
+        front_distance: a,
+        rear_distance: b,
+        front_stiffness: 5.0e4,
+        rear_stiffness: 4.0e4,
+        front_damping: 0.0,
+        rear_damping: 0.0,
+    }
+    .build()
+    .unwrap();
     let d = car.decoupling();
     assert!(d.conjugate_axles && d.bounce_pitch_uncoupled);
     let [w1, w2] = car.frequency_equation_roots();
@@ -236,7 +351,18 @@ fn half_car_decoupled_cases_have_pure_modes() {
 fn half_car_track_instance_matches_book_7_31_in_axle_coordinates() {
     // Independent route: a direct 2×2 complex solve of (7.31) with dampers in the axle coordinates (z₁, z₂)
     // with the book's masses M₁, M₂, M₃; then z = (a z₂ + b z₁)/L and φ = (z₁ − z₂)/L (7.28).
-    let car = HalfCar::new(1490.0, 1.23, 1.42, 1.28, 3.2e4, 4.3e4, 2.2e3, 2.6e3).unwrap();
+    let car = HalfCar {
+        mass: 1490.0,
+        radius_of_gyration: 1.23,
+        front_distance: 1.42,
+        rear_distance: 1.28,
+        front_stiffness: 3.2e4,
+        rear_stiffness: 4.3e4,
+        front_damping: 2.2e3,
+        rear_damping: 2.6e3,
+    }
+    .build()
+    .unwrap();
     let xp = 0.9;
     let inst = car.instance(xp).unwrap();
     let l = car.wheelbase();
@@ -423,7 +549,17 @@ fn random_band_rms_matches_independent_simpson_rule() {
     let (seat, _, _) = operator_seat::example_7_2();
     let g = 1.0e-6;
     let (f1, f2) = (3.0, 5.0);
-    let spec = Arc::new(BandWhite::new(Convention::OneSidedCyclic, g, f1, f2, Domain::Temporal).unwrap());
+    let spec = Arc::new(
+        BandWhiteParameters {
+            convention: Convention::OneSidedCyclic,
+            level: g,
+            lo: f1,
+            hi: f2,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .unwrap(),
+    );
     let sys = seat.mdof().unwrap();
     let exc = Excitation::single(spec, 0.0).unwrap();
     let v = random_band_rms(&sys, &exc, 1).unwrap();

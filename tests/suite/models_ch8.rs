@@ -44,7 +44,7 @@ fn bogie_closed_form_vs_quadrature_route() {
         (0.3, 0.4, 0.1),
         (1.0 / 14.0, 0.6, 0.2),
     ] {
-        let b = BalancerBogie::new(r, l, l1).unwrap();
+        let b = BalancerBogie { r, ell: l, ell1: l1 }.build().unwrap();
         let c = b.closed_form(DX, ALPHA).unwrap();
         let (dy, dx) = b.variance_numerical(road.clone(), 5.0).unwrap();
         assert!(rel(dx, DX) < EXACT);
@@ -61,7 +61,13 @@ fn bogie_closed_form_vs_quadrature_route() {
 #[test]
 fn bogie_sigma_independent_of_speed() {
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(DX, ALPHA, Domain::Spatial).unwrap());
-    let b = BalancerBogie::new(0.11, 0.6, 0.3).unwrap();
+    let b = BalancerBogie {
+        r: 0.11,
+        ell: 0.6,
+        ell1: 0.3,
+    }
+    .build()
+    .unwrap();
     let (d1, _) = b.variance_numerical(road.clone(), 1.0).unwrap();
     for v in [0.3, 7.0, 40.0] {
         let (dv, _) = b.variance_numerical(road.clone(), v).unwrap();
@@ -75,8 +81,23 @@ fn bogie_sigma_independent_of_speed() {
 #[test]
 fn bogie_general_road_by_superposition() {
     let (a, bb, d) = (3.5, 20.0, 1.0e-4);
-    let road: Arc<dyn Spectrum> = Arc::new(TwoPoleRoad::new(d, a, bb, Form::Consistent).unwrap());
-    let b = BalancerBogie::new(0.11, 0.6, 0.25).unwrap();
+    let road: Arc<dyn Spectrum> = Arc::new(
+        TwoPoleRoad {
+            dq: d,
+            alpha: a,
+            beta: bb,
+            form: Form::Consistent,
+        }
+        .build()
+        .unwrap(),
+    );
+    let b = BalancerBogie {
+        r: 0.11,
+        ell: 0.6,
+        ell1: 0.25,
+    }
+    .build()
+    .unwrap();
     let expected = (bb * b.closed_form(d, a).unwrap().dy - a * b.closed_form(d, bb).unwrap().dy) / (bb - a);
     let (dy, _) = b.variance_numerical(road, 3.0).unwrap();
     assert!(rel(dy, expected) < QUADRATURE, "{dy} vs {expected}");
@@ -94,7 +115,11 @@ fn bogie_book_example_recomputed() {
         (0.11, 0.3937008, 0.1978467, 0.2957737, 0.5438508),
         (0.15, 0.3225806, 0.1906423, 0.2566115, 0.5065684),
     ] {
-        let c = BalancerBogie::new(r, 0.6, 0.3).unwrap().closed_form(DX, ALPHA).unwrap();
+        let c = BalancerBogie { r, ell: 0.6, ell1: 0.3 }
+            .build()
+            .unwrap()
+            .closed_form(DX, ALPHA)
+            .unwrap();
         assert!(rel(c.dz / DX, dz) < PRINTED_7_DIGITS);
         assert!(rel(c.rz / DX, rz) < PRINTED_7_DIGITS);
         assert!(rel(c.dy / DX, dy) < PRINTED_7_DIGITS);
@@ -131,7 +156,13 @@ fn bogie_singularity_continuity() {
     }
     // and the numerical route agrees at the singular point itself
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(DX, ALPHA, Domain::Spatial).unwrap());
-    let b = BalancerBogie::new(r0, l, 0.3).unwrap();
+    let b = BalancerBogie {
+        r: r0,
+        ell: l,
+        ell1: 0.3,
+    }
+    .build()
+    .unwrap();
     let (dy, _) = b.variance_numerical(road, 2.0).unwrap();
     assert!(rel(dy, b.closed_form(DX, ALPHA).unwrap().dy) < QUADRATURE);
 }
@@ -141,12 +172,22 @@ fn bogie_singularity_continuity() {
 #[test]
 fn bogie_limits() {
     let r = 1e-9;
-    let c = BalancerBogie::new(r, 0.6, 0.3).unwrap().closed_form(DX, ALPHA).unwrap();
+    let c = BalancerBogie { r, ell: 0.6, ell1: 0.3 }
+        .build()
+        .unwrap()
+        .closed_form(DX, ALPHA)
+        .unwrap();
     assert!((c.dz / DX - 1.0).abs() <= 4.0 * ALPHA * r);
     assert!((c.rz / DX - (-ALPHA * 0.6).exp()).abs() <= 8.0 * ALPHA * r);
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(DX, ALPHA, Domain::Spatial).unwrap());
     for l1 in [0.0, 0.6] {
-        let b = BalancerBogie::new(0.11, 0.6, l1).unwrap();
+        let b = BalancerBogie {
+            r: 0.11,
+            ell: 0.6,
+            ell1: l1,
+        }
+        .build()
+        .unwrap();
         let c = b.closed_form(DX, ALPHA).unwrap();
         assert!(rel(c.dy, c.dz) < EXACT);
         assert!(rel(c.dz, DX / (1.0 + 4.0 * ALPHA * 0.11)) < EXACT);
@@ -157,7 +198,15 @@ fn bogie_limits() {
 
 #[test]
 fn bogie_instance_layout_and_sweep() {
-    let m = BalancerBogie::new(0.11, 0.6, 0.3).unwrap().instance(10.0).unwrap();
+    let m = BalancerBogie {
+        r: 0.11,
+        ell: 0.6,
+        ell1: 0.3,
+    }
+    .build()
+    .unwrap()
+    .instance(10.0)
+    .unwrap();
     assert_eq!(
         m.layout,
         InputLayout::Track {
@@ -172,15 +221,32 @@ fn bogie_instance_layout_and_sweep() {
     let s = sweep(ALPHA, &[0.11, 0.15], &[0.6, 1.0], &[0.0, 0.5]).unwrap();
     assert_eq!(s.len(), 8);
     for p in &s {
-        let c = BalancerBogie::new(p.r, p.ell, p.ell1)
-            .unwrap()
-            .closed_form(1.0, ALPHA)
-            .unwrap();
+        let c = BalancerBogie {
+            r: p.r,
+            ell: p.ell,
+            ell1: p.ell1,
+        }
+        .build()
+        .unwrap()
+        .closed_form(1.0, ALPHA)
+        .unwrap();
         assert!(rel(p.ratio, c.dy) < EXACT);
     }
     assert!(sweep(ALPHA, &[0.1], &[0.6], &[1.5]).is_err());
-    assert!(BalancerBogie::new(0.1, 0.6, 0.7).is_err());
-    assert!(BalancerBogie::new(-0.1, 0.6, 0.3).is_err());
+    assert!(BalancerBogie {
+        r: 0.1,
+        ell: 0.6,
+        ell1: 0.7
+    }
+    .build()
+    .is_err());
+    assert!(BalancerBogie {
+        r: -0.1,
+        ell: 0.6,
+        ell1: 0.3
+    }
+    .build()
+    .is_err());
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -203,7 +269,7 @@ fn idler_three_methods_vs_closed_form() {
         (100.0, 7.0e4, 0.2, 4.0e6, 40.0, 0.0),
         (20.0, 5.0e3, 0.05, 1.0, 3.0, 2.0),
     ] {
-        let idler = ConveyorIdler::with_damping_ratio(m, c, zeta).unwrap();
+        let idler = ConveyorIdler { m, c, b: 0.0 }.with_damping_ratio(zeta).unwrap();
         let inst = idler.instance().unwrap();
         assert_eq!(inst.layout, InputLayout::Single);
         let load: Arc<dyn Spectrum> = Arc::new(Exponential::new(df, a, Domain::Temporal).unwrap());
@@ -227,7 +293,15 @@ fn idler_three_methods_vs_closed_form() {
         let lv = variance_lyapunov(sys, &exc, 1).unwrap();
         assert!(rel(lv.variance, vel) < FACTORISATION);
         // the model's own closed form
-        let r = idler.analyse(&LumpLoad::new(mf, df, a).unwrap());
+        let r = idler.analyse(
+            &LumpLoad {
+                mean: mf,
+                variance: df,
+                alpha: a,
+            }
+            .build()
+            .unwrap(),
+        );
         assert!(rel(r.sigma_exact.powi(2), expected) < EXACT);
         assert!(rel(r.sigma_velocity_exact.powi(2), vel) < EXACT);
     }
@@ -246,9 +320,18 @@ fn idler_example_8_1() {
     let am = DMatrix::from_row_slice(3, 3, &[0.0, 1.0, 0.0, -w0 * w0, -2.0 * zeta * w0, 1.0, 0.0, 0.0, -a]);
     let b = DMatrix::from_row_slice(3, 1, &[0.0, 0.0, (2.0 * a * dx).sqrt()]);
     let p = solve_continuous_lyapunov(&am, &(&b * b.transpose())).unwrap();
-    let r = ConveyorIdler::with_damping_ratio(m, c, zeta)
+    let r = ConveyorIdler { m, c, b: 0.0 }
+        .with_damping_ratio(zeta)
         .unwrap()
-        .analyse(&LumpLoad::new(1.0e4, df, a).unwrap());
+        .analyse(
+            &LumpLoad {
+                mean: 1.0e4,
+                variance: df,
+                alpha: a,
+            }
+            .build()
+            .unwrap(),
+        );
     assert!(rel(r.sigma_exact.powi(2), p[(0, 0)]) < FACTORISATION);
     assert!(rel(r.sigma_exact.powi(2), 8.48180e-4) < PRINTED_6_DIGITS);
     assert!(rel(r.sigma_exact, 0.0291235) < PRINTED_6_DIGITS);
@@ -269,9 +352,17 @@ fn idler_example_8_1() {
 fn idler_ratio_formula_and_limits() {
     let (m, c, zeta): (f64, f64, f64) = (100.0, 7.0e4, 0.2);
     let w0 = (c / m).sqrt();
-    let idler = ConveyorIdler::with_damping_ratio(m, c, zeta).unwrap();
+    let idler = ConveyorIdler { m, c, b: 0.0 }.with_damping_ratio(zeta).unwrap();
     for a in [0.01, 0.5, 10.0, 1e3, 1e6] {
-        let r = idler.analyse(&LumpLoad::new(0.0, 1.0, a).unwrap());
+        let r = idler.analyse(
+            &LumpLoad {
+                mean: 0.0,
+                variance: 1.0,
+                alpha: a,
+            }
+            .build()
+            .unwrap(),
+        );
         let ratio = (a + 2.0 * zeta * w0) * (a * a + w0 * w0) / (a * (w0 * w0 + a * a + 2.0 * a * zeta * w0));
         assert!(rel(r.variance_ratio, ratio) < EXACT);
         assert!(rel(r.sigma_exact.powi(2) / r.sigma_white_noise.powi(2), ratio) < EXACT);
@@ -283,11 +374,27 @@ fn idler_ratio_formula_and_limits() {
     // α → ∞: with x = 2ζω₀/α, y = ω₀²/α² the ratio is (1 + x)(1 + y)/(1 + x + y) = 1 + xy/(1 + x + y), so
     // 0 < ratio − 1 < xy = 2ζω₀³/α³ (≈ 7e-15 at α = 1e6), plus the rounding of the two variances
     let a = 1e6;
-    let r = idler.analyse(&LumpLoad::new(0.0, 1.0, a).unwrap());
+    let r = idler.analyse(
+        &LumpLoad {
+            mean: 0.0,
+            variance: 1.0,
+            alpha: a,
+        }
+        .build()
+        .unwrap(),
+    );
     assert!((r.variance_ratio - 1.0).abs() < 2.0 * zeta * w0.powi(3) / a.powi(3) + EXACT && !r.approximation_poor);
     // α → 0: σ_y² → D_x/ω₀⁴ with relative error O(α/(ζω₀))
     let a = 1e-6;
-    let r = idler.analyse(&LumpLoad::new(0.0, 1.0, a).unwrap());
+    let r = idler.analyse(
+        &LumpLoad {
+            mean: 0.0,
+            variance: 1.0,
+            alpha: a,
+        }
+        .build()
+        .unwrap(),
+    );
     let qs = 1.0 / (m * m) / w0.powi(4);
     assert!(rel(r.sigma_exact.powi(2), qs) < 10.0 * a / (zeta * w0));
 }
@@ -298,7 +405,13 @@ fn idler_ratio_formula_and_limits() {
 fn rigid(w0: f64, zeta: f64) -> ScraperRigidCab {
     let m1 = 3.0e4;
     let c1 = m1 * w0 * w0;
-    ScraperRigidCab::new(m1, c1, 2.0 * zeta * (c1 * m1).sqrt()).unwrap()
+    ScraperRigidCab {
+        m1,
+        c1,
+        b1: 2.0 * zeta * (c1 * m1).sqrt(),
+    }
+    .build()
+    .unwrap()
 }
 
 /// Rigid cab with b₁ > 0 under (8.69) (type 1, density ∝ ω⁻²): |H_ẍ1|² ∝ ω², so the acceleration variance
@@ -322,10 +435,18 @@ fn scraper_rigid_acceleration_divergence() {
     assert!(printed[1].sigma.is_none());
     // the sprung cab's acceleration stays finite under (8.69) (|H_ẍ2|² → const, road ∝ ω⁻²) while x1_acc
     // diverges as for the rigid cab
-    let s = ScraperSprungCab::new(3.0e4, 1.0e7, 1.1e5, 2.0e3, 1.8e5, 1.1e4)
-        .unwrap()
-        .instance()
-        .unwrap();
+    let s = ScraperSprungCab {
+        m1: 3.0e4,
+        c1: 1.0e7,
+        b1: 1.1e5,
+        m2: 2.0e3,
+        c2: 1.8e5,
+        b2: 1.1e4,
+    }
+    .build()
+    .unwrap()
+    .instance()
+    .unwrap();
     let st = respond(&s, book_road_8_69(), 10.0).unwrap();
     assert!(st[2].sigma.is_none() && st[3].sigma.is_some());
 }
@@ -357,10 +478,18 @@ fn scraper_consistent_road_methods_agree() {
     let road = AtSpeed::new(book_road_8_66(Form::Consistent).unwrap(), 10.0).unwrap();
     let exc = Excitation::single(Arc::new(road), 0.0).unwrap();
     let r = rigid(18.5, 0.1).instance().unwrap();
-    let s = ScraperSprungCab::new(3.0e4, 1.0e7, 1.1e5, 2.0e3, 1.8e5, 1.1e4)
-        .unwrap()
-        .instance()
-        .unwrap();
+    let s = ScraperSprungCab {
+        m1: 3.0e4,
+        c1: 1.0e7,
+        b1: 1.1e5,
+        m2: 2.0e3,
+        c2: 1.8e5,
+        b2: 1.1e4,
+    }
+    .build()
+    .unwrap()
+    .instance()
+    .unwrap();
     for inst in [&r, &s] {
         let sys = inst.system.as_ref();
         for i in 0..sys.outputs().len() {
@@ -377,7 +506,8 @@ fn scraper_consistent_road_methods_agree() {
 #[test]
 fn scraper_sprung_response_explicit() {
     let (m1, c1, b1, m2, c2, b2) = (3.0e4, 1.0e7, 1.1e5, 2.0e3, 1.8e5, 1.1e4);
-    let inst = ScraperSprungCab::new(m1, c1, b1, m2, c2, b2)
+    let inst = ScraperSprungCab { m1, c1, b1, m2, c2, b2 }
+        .build()
         .unwrap()
         .instance()
         .unwrap();
@@ -404,10 +534,18 @@ fn scraper_sprung_response_explicit() {
 /// = 3.5 cm and σ_ẍ → 0 like v^{3/2}; at v = 0.01 m/s the temporal corner β v = 0.12 rad/s gives errors O((βv/ω₀)²).
 #[test]
 fn scraper_quasi_static_limit() {
-    let s = ScraperSprungCab::new(3.0e4, 1.0e7, 1.1e5, 2.0e3, 1.8e5, 1.1e4)
-        .unwrap()
-        .instance()
-        .unwrap();
+    let s = ScraperSprungCab {
+        m1: 3.0e4,
+        c1: 1.0e7,
+        b1: 1.1e5,
+        m2: 2.0e3,
+        c2: 1.8e5,
+        b2: 1.1e4,
+    }
+    .build()
+    .unwrap()
+    .instance()
+    .unwrap();
     let stats = respond(&s, book_road_8_66(Form::Consistent).unwrap(), 0.01).unwrap();
     assert!(rel(stats[0].sigma.unwrap(), 0.035) < QUASI_STATIC);
     assert!(rel(stats[1].sigma.unwrap(), 0.035) < QUASI_STATIC);

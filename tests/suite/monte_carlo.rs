@@ -97,7 +97,14 @@ fn shaping_generators_have_the_analytic_variance() {
     // N σ̂²/D ~ χ²_N exactly (i.i.d. zero-mean normal samples, one per realization); the interval fails to
     // cover D with probability 1e-6 per model. Analytic D: the type's parameter (K(0) = D).
     let t1 = Exponential::new(1.5, 2.0, Domain::Temporal).unwrap();
-    let t3 = ExpCosine::new(2.0, 0.5, 3.0, Domain::Temporal).unwrap();
+    let t3 = ExpCosine {
+        variance: 2.0,
+        alpha: 0.5,
+        beta: 3.0,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     for (name, s, d) in [("type 1", &t1 as &dyn Spectrum, 1.5), ("type 3", &t3, 2.0)] {
         let gm = shaping_simulator(s, 0.01).unwrap();
         // the discrete model is stationary with exactly variance D (Lyapunov, to factorisation accuracy)
@@ -121,7 +128,14 @@ fn spectral_generator_has_the_grid_variance() {
     let dt = 0.01;
     let wn = PI / dt;
     let t1 = Exponential::new(1.5, 2.0, Domain::Temporal).unwrap();
-    let t3 = ExpCosine::new(2.0, 0.5, 3.0, Domain::Temporal).unwrap();
+    let t3 = ExpCosine {
+        variance: 2.0,
+        alpha: 0.5,
+        beta: 3.0,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     let tail1 = 2.0 * 1.5 / PI * (PI / 2.0 - (wn / 2.0).atan());
     let tail3 = 2.0 / PI * (PI - ((wn - 3.0) / 0.5).atan() - ((wn + 3.0) / 0.5).atan());
     for (name, s, d, tail) in [
@@ -283,7 +297,14 @@ fn correlation_estimates_match_k_of_tau() {
     // (8.11) across realizations: type 3 (D = 2, α = 0.5, β = 3) exact samples at steps 200 and 200 + m;
     // the interval is exact for Gaussian pairs (see ensemble_correlation); two lags at 1 − 5e-7 each, so
     // the false-failure probability is ≤ 1e-6. Analytic K(τ) = D e^{−α|τ|} cos βτ.
-    let s = ExpCosine::new(2.0, 0.5, 3.0, Domain::Temporal).unwrap();
+    let s = ExpCosine {
+        variance: 2.0,
+        alpha: 0.5,
+        beta: 3.0,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     let dt = 0.01;
     let gm = shaping_simulator(&s, dt).unwrap();
     let lags = [10usize, 50];

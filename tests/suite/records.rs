@@ -18,7 +18,7 @@ use rand::{RngExt, SeedableRng};
 use std::f64::consts::{PI, SQRT_2, TAU};
 use std::path::{Path, PathBuf};
 use stochvib::comfort::Weighting;
-use stochvib::fatigue::SnCurve;
+use stochvib::fatigue::SnReferencePoint;
 use stochvib::record::{
     evaluate_exposure, evaluate_fatigue, open_record, AxisAssignment, BandAnalyzer, Channel, DigitalWeighting,
     ExposureOptions, FatigueOptions, MeanStressCorrection, RecordInfo, RecordOptions, RecordReader, TimeBase,
@@ -675,7 +675,14 @@ fn fatigue_with(
     };
     let mut r = open_record(&file, &opts).unwrap();
     // N·S_a^k = C with S_a in MPa: in Pa C·(1e6)^k; the reference point S_a = 1 MPa, N = C
-    let sn = SnCurve::from_reference_point(k, 1e6, c_mpa, None).unwrap();
+    let sn = SnReferencePoint {
+        k,
+        amplitude: 1e6,
+        cycles: c_mpa,
+        endurance_limit: None,
+    }
+    .build()
+    .unwrap();
     let options = FatigueOptions {
         channel: None,
         sn,
@@ -831,7 +838,14 @@ fn gaussian_lines(seed: u64, n: usize, bins: impl Iterator<Item = usize>) -> Vec
 #[test]
 fn rainflow_life_of_a_gaussian_record_agrees_with_the_spectral_methods() {
     let mut r = MemoryRecord::new(band_limited_gaussian(2024));
-    let sn = SnCurve::from_reference_point(3.0, 1e6, 1e12, None).unwrap();
+    let sn = SnReferencePoint {
+        k: 3.0,
+        amplitude: 1e6,
+        cycles: 1e12,
+        endurance_limit: None,
+    }
+    .build()
+    .unwrap();
     let options = FatigueOptions {
         channel: None,
         sn,

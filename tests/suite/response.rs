@@ -11,7 +11,7 @@ use std::sync::Arc;
 use stochvib::response::{
     analyze_output, band_variance, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation,
 };
-use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosine, RationalSpectrum, Spectrum};
+use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosineParameters, RationalSpectrum, Spectrum};
 use stochvib::system::{
     Attach, Drive, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace, TransferFunction,
 };
@@ -313,7 +313,16 @@ fn random_case(ws: &[f64], zs: &[f64], gains: &[f64], a_in: f64, b_in: f64) -> (
         c[(0, 2 * k + 1)] = 0.3 * g;
     }
     let sys = StateSpace::new(a, b, c, None, None, vec![OutputInfo::new("y", "m")]).unwrap();
-    let input: Arc<dyn Spectrum> = Arc::new(ExpCosine::new(1.0, a_in, b_in, Domain::Temporal).unwrap());
+    let input: Arc<dyn Spectrum> = Arc::new(
+        ExpCosine {
+            variance: 1.0,
+            alpha: a_in,
+            beta: b_in,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .unwrap(),
+    );
     (sys, Excitation::single(input, 0.0).unwrap())
 }
 
@@ -339,7 +348,16 @@ proptest! {
 fn non_rational_input_uses_quadrature() {
     let sys = sdof(5.0, 0.1);
     let exc = Excitation::single(
-        Arc::new(GaussCosine::new(1.0, 2.0, 5.0, Domain::Temporal).unwrap()),
+        Arc::new(
+            GaussCosineParameters {
+                variance: 1.0,
+                alpha: 2.0,
+                beta: 5.0,
+                domain: Domain::Temporal,
+            }
+            .build()
+            .unwrap(),
+        ),
         0.0,
     )
     .unwrap();
@@ -395,7 +413,16 @@ fn cross_spectral_matrix_matches_fast_path() {
         )
         .unwrap()
     };
-    let x = Arc::new(ExpCosine::new(1.0, 0.7, 2.0, Domain::Temporal).unwrap());
+    let x = Arc::new(
+        ExpCosine {
+            variance: 1.0,
+            alpha: 0.7,
+            beta: 2.0,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .unwrap(),
+    );
     let exc = Excitation::track(x, vec![0.0, 0.37], vec![1.0, -0.6], 0.0).unwrap();
     for w in [0.0, 0.5, 2.0, 9.0] {
         let h = two.response(w);

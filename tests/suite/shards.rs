@@ -17,7 +17,7 @@ use std::process::Command;
 use stochvib::response::{analyze_output, ExactEvaluator, Excitation, VarianceMethod};
 use stochvib::scenario::{load_scenario, Scenario};
 use stochvib::simulate::RunOptions;
-use stochvib::spectrum::{Domain, Exponential, GaussCosine};
+use stochvib::spectrum::{Domain, Exponential, GaussCosineParameters};
 use stochvib::store::{Compression, Part, PsdEstimate, RunFile, SignalGroup};
 use stochvib::study::{part_path, resolve_part, MergeOptions};
 use stochvib::system::{OutputInfo, StateSpace, TransferFunction};
@@ -612,7 +612,16 @@ fn exact_evaluator_matches_closed_forms_and_analyze() {
     assert_eq!(st2.variance, full.variance);
     // quadrature route: a non-rational (type 4) input
     let g = Excitation::single(
-        std::sync::Arc::new(GaussCosine::new(1e-3, 20.0, 15.0, Domain::Temporal).unwrap()),
+        std::sync::Arc::new(
+            GaussCosineParameters {
+                variance: 1e-3,
+                alpha: 20.0,
+                beta: 15.0,
+                domain: Domain::Temporal,
+            }
+            .build()
+            .unwrap(),
+        ),
         0.0,
     )
     .unwrap();

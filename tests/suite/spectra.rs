@@ -13,9 +13,10 @@ use std::path::Path;
 use std::sync::Arc;
 use stochvib::scenario::{load_spectrum, parse_spectrum, spectrum_catalogue};
 use stochvib::spectrum::two_pole_road::Form;
+use stochvib::spectrum::PowerLawParameters;
 use stochvib::spectrum::{
-    numeric, AtSpeed, BandWhite, Convention, Domain, ExpCosine, Exponential, GaussCosine, Gaussian, IsoBound, IsoClass,
-    PowerLaw, RationalSpectrum, Spectrum, Tabulated, TwoPoleRoad, ISO_BAND,
+    numeric, AtSpeed, BandWhiteParameters, Convention, Domain, ExpCosine, Exponential, GaussCosineParameters, Gaussian,
+    IsoBound, IsoClass, PowerLaw, RationalSpectrum, Spectrum, Tabulated, TwoPoleRoad, ISO_BAND,
 };
 use stochvib::Error;
 
@@ -40,33 +41,79 @@ fn cases() -> Vec<Case> {
         k: Box::new(move |t: f64| d * (-a * t * t).exp()),
     });
     v.push(Case {
-        s: Arc::new(ExpCosine::new(d, a, b, Domain::Temporal).unwrap()),
+        s: Arc::new(
+            ExpCosine {
+                variance: d,
+                alpha: a,
+                beta: b,
+                domain: Domain::Temporal,
+            }
+            .build()
+            .unwrap(),
+        ),
         d,
         k: Box::new(move |t: f64| d * (-a * t.abs()).exp() * (b * t).cos()),
     });
     v.push(Case {
-        s: Arc::new(GaussCosine::new(d, a, b, Domain::Temporal).unwrap()),
+        s: Arc::new(
+            GaussCosineParameters {
+                variance: d,
+                alpha: a,
+                beta: b,
+                domain: Domain::Temporal,
+            }
+            .build()
+            .unwrap(),
+        ),
         d,
         k: Box::new(move |t: f64| d * (-a * t * t).exp() * (b * t).cos()),
     });
     // (8.66) consistent: K = D_q (β e^{−α|x|} − α e^{−β|x|})/(β − α)
     let (dq, al, be) = (0.035f64.powi(2), 0.3, 12.0);
     v.push(Case {
-        s: Arc::new(TwoPoleRoad::new(dq, al, be, Form::Consistent).unwrap()),
+        s: Arc::new(
+            TwoPoleRoad {
+                dq,
+                alpha: al,
+                beta: be,
+                form: Form::Consistent,
+            }
+            .build()
+            .unwrap(),
+        ),
         d: dq,
         k: Box::new(move |x: f64| dq * (be * (-al * x.abs()).exp() - al * (-be * x.abs()).exp()) / (be - al)),
     });
     // (8.66) as printed: one pole, D = D_q β(α+β)/(α²+β²)
     let dp = dq * be * (al + be) / (al * al + be * be);
     v.push(Case {
-        s: Arc::new(TwoPoleRoad::new(dq, al, be, Form::AsPrinted).unwrap()),
+        s: Arc::new(
+            TwoPoleRoad {
+                dq,
+                alpha: al,
+                beta: be,
+                form: Form::AsPrinted,
+            }
+            .build()
+            .unwrap(),
+        ),
         d: dp,
         k: Box::new(move |x: f64| dp * (-al * x.abs()).exp()),
     });
     // band-limited white: K = 2 S0 (sin ω2τ − sin ω1τ)/τ
     let (s0, w1, w2) = (0.3, 2.0, 9.0);
     v.push(Case {
-        s: Arc::new(BandWhite::new(Convention::TwoSidedAngular, s0, w1, w2, Domain::Temporal).unwrap()),
+        s: Arc::new(
+            BandWhiteParameters {
+                convention: Convention::TwoSidedAngular,
+                level: s0,
+                lo: w1,
+                hi: w2,
+                domain: Domain::Temporal,
+            }
+            .build()
+            .unwrap(),
+        ),
         d: 2.0 * s0 * (w2 - w1),
         k: Box::new(move |t: f64| {
             if t == 0.0 {
@@ -216,7 +263,14 @@ fn unbounded_power_law_is_divergent() {
 /// s² + 2αs + α² + β².
 #[test]
 fn shaping_filters_reproduce_rational_spectra() {
-    let t3 = ExpCosine::new(1.3, 0.4, 5.0, Domain::Temporal).unwrap();
+    let t3 = ExpCosine {
+        variance: 1.3,
+        alpha: 0.4,
+        beta: 5.0,
+        domain: Domain::Temporal,
+    }
+    .build()
+    .unwrap();
     let r3 = t3.rational().unwrap();
     let f3 = r3.shaping_filter().unwrap();
     let a = &f3.den;
@@ -228,7 +282,14 @@ fn shaping_filters_reproduce_rational_spectra() {
     for s in [
         &t3 as &dyn Spectrum,
         &t1,
-        &TwoPoleRoad::new(1e-3, 0.3, 12.0, Form::Consistent).unwrap(),
+        &TwoPoleRoad {
+            dq: 1e-3,
+            alpha: 0.3,
+            beta: 12.0,
+            form: Form::Consistent,
+        }
+        .build()
+        .unwrap(),
     ] {
         let r = s.rational().unwrap();
         let f = r.shaping_filter().unwrap();
@@ -388,7 +449,16 @@ fn rational_density_into_matches_density() {
 /// scales with it.
 #[test]
 fn spatial_to_temporal() {
-    let road: Arc<dyn Spectrum> = Arc::new(TwoPoleRoad::new(1e-3, 0.3, 12.0, Form::Consistent).unwrap());
+    let road: Arc<dyn Spectrum> = Arc::new(
+        TwoPoleRoad {
+            dq: 1e-3,
+            alpha: 0.3,
+            beta: 12.0,
+            form: Form::Consistent,
+        }
+        .build()
+        .unwrap(),
+    );
     for v in [1.0, 5.0, 15.0] {
         let t = AtSpeed::new(road.clone(), v).unwrap();
         assert!(rel(numeric::variance(&t).unwrap().value, 1e-3) < QUADRATURE);
@@ -416,13 +486,57 @@ fn bad_parameters_rejected() {
     ] {
         assert!(Exponential::new(d, a, Domain::Temporal).is_err(), "{d} {a}");
         assert!(Gaussian::new(d, a, Domain::Temporal).is_err());
-        assert!(ExpCosine::new(d, a, 1.0, Domain::Temporal).is_err());
-        assert!(GaussCosine::new(d, a, 1.0, Domain::Temporal).is_err());
+        assert!(ExpCosine {
+            variance: d,
+            alpha: a,
+            beta: 1.0,
+            domain: Domain::Temporal
+        }
+        .build()
+        .is_err());
+        assert!(GaussCosineParameters {
+            variance: d,
+            alpha: a,
+            beta: 1.0,
+            domain: Domain::Temporal
+        }
+        .build()
+        .is_err());
     }
-    assert!(ExpCosine::new(1.0, 1.0, -1.0, Domain::Temporal).is_err());
-    assert!(TwoPoleRoad::new(1.0, 0.0, 1.0, Form::Consistent).is_err());
-    assert!(PowerLaw::new(1.0, 0.1, 2.0, Some((0.5, 0.1)), Domain::Spatial).is_err());
-    assert!(BandWhite::new(Convention::OneSidedCyclic, 1.0, 5.0, 1.0, Domain::Temporal).is_err());
+    assert!(ExpCosine {
+        variance: 1.0,
+        alpha: 1.0,
+        beta: -1.0,
+        domain: Domain::Temporal
+    }
+    .build()
+    .is_err());
+    assert!(TwoPoleRoad {
+        dq: 1.0,
+        alpha: 0.0,
+        beta: 1.0,
+        form: Form::Consistent
+    }
+    .build()
+    .is_err());
+    assert!(PowerLawParameters {
+        g0: 1.0,
+        n0: 0.1,
+        waviness: 2.0,
+        band: Some((0.5, 0.1)),
+        domain: Domain::Spatial
+    }
+    .build()
+    .is_err());
+    assert!(BandWhiteParameters {
+        convention: Convention::OneSidedCyclic,
+        level: 1.0,
+        lo: 5.0,
+        hi: 1.0,
+        domain: Domain::Temporal
+    }
+    .build()
+    .is_err());
     assert!(Tabulated::new(
         Convention::OneSidedCyclic,
         vec![1.0, 1.0],
@@ -527,8 +641,10 @@ proptest! {
         let list: Vec<Box<dyn Spectrum>> = vec![
             Box::new(Exponential::new(d, a, Domain::Temporal).unwrap()),
             Box::new(Gaussian::new(d, a, Domain::Temporal).unwrap()),
-            Box::new(ExpCosine::new(d, a, b, Domain::Temporal).unwrap()),
-            Box::new(GaussCosine::new(d, a, b, Domain::Temporal).unwrap()),
+            Box::new(ExpCosine { variance: d, alpha: a, beta: b, domain: Domain::Temporal }.build().unwrap()),
+            Box::new(
+                GaussCosineParameters { variance: d, alpha: a, beta: b, domain: Domain::Temporal }.build().unwrap(),
+            ),
         ];
         for s in list {
             let q = numeric::variance(s.as_ref()).unwrap().value;
@@ -550,7 +666,7 @@ proptest! {
     /// Type 3's rational form and shaping filter reproduce its density for random parameters.
     #[test]
     fn prop_type3_factorisation(d in 1e-3f64..10.0, a in 0.05f64..5.0, b in 0.0f64..20.0) {
-        let s = ExpCosine::new(d, a, b, Domain::Temporal).unwrap();
+        let s = ExpCosine { variance: d, alpha: a, beta: b, domain: Domain::Temporal }.build().unwrap();
         let r = s.rational().unwrap();
         let f = r.shaping_filter().unwrap();
         prop_assert!(f.residual < FACTORISATION, "residual {}", f.residual);

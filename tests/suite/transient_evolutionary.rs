@@ -8,7 +8,7 @@ use crate::transient_exact::system;
 use nalgebra::{Complex, DMatrix};
 use std::f64::consts::PI;
 use std::sync::Arc;
-use stochvib::spectrum::{BandWhite, Convention, Domain, Spectrum};
+use stochvib::spectrum::{BandWhiteParameters, Convention, Domain, Spectrum};
 use stochvib::system::{FrequencyResponse, OutputInfo, StateSpace};
 use stochvib::transient::{
     input_model, solve, solve_evolutionary, Envelope, EvolutionaryInput, ExactOptions, FixedSystem, InputModel,
@@ -48,8 +48,17 @@ fn input(spectrum: Arc<dyn Spectrum>, speed: Option<SpeedProfile>, envelope: Env
 #[test]
 fn band_limited_white_under_an_intensity_ramp() {
     let (alpha, s0, w1, w2, tr) = (2.0, 0.5, 1.0, 30.0, 10.0);
-    let band: Arc<dyn Spectrum> =
-        Arc::new(BandWhite::new(Convention::TwoSidedAngular, s0, w1, w2, Domain::Temporal).unwrap());
+    let band: Arc<dyn Spectrum> = Arc::new(
+        BandWhiteParameters {
+            convention: Convention::TwoSidedAngular,
+            level: s0,
+            lo: w1,
+            hi: w2,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .unwrap(),
+    );
     assert!(
         input_model(band.as_ref(), None).is_err(),
         "no exact route for a band-limited input"
@@ -92,8 +101,17 @@ fn band_limited_white_under_an_intensity_ramp() {
 #[test]
 fn error_estimate_bounds_the_exact_lag_of_a_first_order_system() {
     let (alpha, s1, tr) = (2.0, 0.5, 10.0);
-    let white: Arc<dyn Spectrum> =
-        Arc::new(BandWhite::new(Convention::TwoSidedAngular, s1, 0.0, 1e9, Domain::Temporal).unwrap());
+    let white: Arc<dyn Spectrum> = Arc::new(
+        BandWhiteParameters {
+            convention: Convention::TwoSidedAngular,
+            level: s1,
+            lo: 0.0,
+            hi: 1e9,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .unwrap(),
+    );
     let env = Envelope::intensity(vec![0.0, tr], vec![0.0, 1.0]).unwrap();
     let times: Vec<f64> = (1..=150).map(|k| k as f64 * 0.1).collect();
     let exact = solve(
@@ -144,8 +162,17 @@ fn error_estimate_bounds_the_exact_lag_of_a_first_order_system() {
 #[test]
 fn band_limited_white_under_an_amplitude_ramp_against_priestley() {
     let (alpha, s0, w1, w2, tr) = (2.0, 0.5, 1.0, 30.0, 20.0);
-    let band: Arc<dyn Spectrum> =
-        Arc::new(BandWhite::new(Convention::TwoSidedAngular, s0, w1, w2, Domain::Temporal).unwrap());
+    let band: Arc<dyn Spectrum> = Arc::new(
+        BandWhiteParameters {
+            convention: Convention::TwoSidedAngular,
+            level: s0,
+            lo: w1,
+            hi: w2,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .unwrap(),
+    );
     let fam = FixedSystem::new(first_order(alpha), None, "first order").unwrap();
     let times: Vec<f64> = (0..=60).map(|k| k as f64 * 0.5).collect();
     let env = Envelope::ramp(tr).unwrap();
@@ -244,8 +271,17 @@ fn quarter_car_accelerating_against_the_exact_route() {
 /// Carlo" when no time qualifies, and a stated start is refused.
 #[test]
 fn fast_changes_and_stated_starts_are_refused() {
-    let band: Arc<dyn Spectrum> =
-        Arc::new(BandWhite::new(Convention::TwoSidedAngular, 0.5, 1.0, 30.0, Domain::Temporal).unwrap());
+    let band: Arc<dyn Spectrum> = Arc::new(
+        BandWhiteParameters {
+            convention: Convention::TwoSidedAngular,
+            level: 0.5,
+            lo: 1.0,
+            hi: 30.0,
+            domain: Domain::Temporal,
+        }
+        .build()
+        .unwrap(),
+    );
     let fam = FixedSystem::new(first_order(2.0), None, "first order").unwrap();
     let inp = input(band, None, Envelope::ramp(0.05).unwrap());
     let times: Vec<f64> = (0..=10).map(|k| k as f64 * 0.01).collect();

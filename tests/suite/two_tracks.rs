@@ -42,20 +42,46 @@ fn symmetric_vehicle_matches_the_bounce_and_roll_closed_forms() {
     let (zb, zr) = common::two_wheel_body::closed_form_variances(rho);
     for (name, oracle) in [("bounce", zb), ("roll", zr)] {
         let st = analyze_output(&sys, &exc, output(&sys, name)).unwrap();
-        // the exact route does not apply (a coherence matrix has no rational factorisation): quadrature
         let q = st.methods.iter().find(|m| m.method.name() == "quadrature").unwrap();
         let v = q.value().unwrap();
         assert!(
             (v - oracle).abs() <= QUADRATURE * oracle,
             "{name}: {v:e} vs closed form {oracle:e}"
         );
-        assert_eq!(st.variance, Some(v));
+        // a constant coherence factors the tracks into the independent sum and difference processes of
+        // densities S(1 ± ρ)/2: the exact route applies to the two-wheel model itself
         let ly = st.methods.iter().find(|m| m.method.name() == "lyapunov").unwrap();
+        let x = ly.value().unwrap_or_else(|| panic!("{name}: {ly:?}"));
         assert!(
-            ly.value().is_none(),
-            "{name}: the exact route must say it does not apply"
+            (x - oracle).abs() <= FACTORISATION * oracle,
+            "{name}: lyapunov {x:e} vs closed form {oracle:e}"
         );
+        assert_eq!(st.variance, Some(x));
     }
+}
+
+/// A coherence that depends on the spatial frequency (the isotropic surface of Dodds & Robson) makes the
+/// mixing of the tracks depend on ω: no factorisation into independent processes with constant
+/// coefficients, so the exact route refuses and says why, and the quadrature is the answer.
+#[test]
+fn a_coherence_function_of_frequency_keeps_the_exact_route_refused() {
+    let sys = body();
+    let exc = Excitation::two_tracks(
+        tracks(Arc::new(IsotropicCoherence::new(1.5, 2.0).unwrap())),
+        &[(0, 0.0), (1, 0.0)],
+    )
+    .unwrap();
+    let st = analyze_output(&sys, &exc, output(&sys, "roll")).unwrap();
+    let ly = st.methods.iter().find(|m| m.method.name() == "lyapunov").unwrap();
+    let stochvib::response::Outcome::NotApplicable { reason } = &ly.outcome else {
+        panic!("{:?}", ly.outcome)
+    };
+    assert!(
+        reason.contains("no rational factorisation (a coherence function of n)"),
+        "{reason}"
+    );
+    let q = st.methods.iter().find(|m| m.method.name() == "quadrature").unwrap();
+    assert_eq!(st.variance, q.value());
 }
 
 #[test]
@@ -342,7 +368,14 @@ fn seven_dof_vehicle_does_not_roll_on_identical_tracks_and_adds_independent_ones
     .unwrap();
     for name in ["seat_acc", "roll", "pitch", "travel_rl", "tyre_force_fr"] {
         let i = output(&sys, name);
-        let q = analyze_output(&sys, &indep, i).unwrap().variance.unwrap();
+        let q = analyze_output(&sys, &indep, i)
+            .unwrap()
+            .methods
+            .iter()
+            .find(|m| m.method.name() == "quadrature")
+            .unwrap()
+            .value()
+            .unwrap();
         let st = analyze_output(&sys, &two_sources, i).unwrap();
         let exact = st
             .methods

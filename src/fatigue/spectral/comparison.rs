@@ -112,7 +112,7 @@ impl MethodComparison {
 /// ```
 /// use stochvib::fatigue::{compare_methods, SnCurve, SpectralMethodKind, SpectralMoments};
 /// let m = SpectralMoments::from_one_sided_hz(|_| 1.0, 50.0, 150.0, &[]).unwrap();
-/// let sn = SnCurve::new(4.0, 1e10, None).unwrap();
+/// let sn = SnCurve { k: 4.0, c: 1e10, endurance_limit: None }.build().unwrap();
 /// let cmp = compare_methods(&m, &sn).unwrap();
 /// // The narrow-band life is the shortest (it is conservative).
 /// let nb = cmp.get(SpectralMethodKind::NarrowBand).unwrap().life;

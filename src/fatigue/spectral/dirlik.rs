@@ -42,7 +42,7 @@ const NARROW_BAND_LIMIT: f64 = 1e-10;
 /// use stochvib::fatigue::{Dirlik, SnCurve, SpectralMethod, SpectralMoments};
 /// // Band-limited white noise 1 unit²/Hz on [50, 150] Hz; k = 4.
 /// let m = SpectralMoments::from_one_sided_hz(|_| 1.0, 50.0, 150.0, &[]).unwrap();
-/// let sn = SnCurve::new(4.0, 1e10, None).unwrap();
+/// let sn = SnCurve { k: 4.0, c: 1e10, endurance_limit: None }.build().unwrap();
 /// let c = Dirlik::coefficients(&m).unwrap();
 /// assert!((c.d1 + c.d2 + c.d3 - 1.0).abs() < 1e-14);
 /// let life = Dirlik.life(&m, &sn).unwrap();

@@ -53,7 +53,7 @@ pub use zhao_baker::{ZhaoBaker, ZhaoBakerCoefficients, ZhaoBakerVariant};
 /// ```
 /// use stochvib::fatigue::{Dirlik, NarrowBand, SnCurve, SpectralMethod, SpectralMoments};
 /// let m = SpectralMoments::new(100.0, 4.0e3, 1.7e5, 3.5e8).unwrap();
-/// let sn = SnCurve::new(4.0, 1e12, None).unwrap();
+/// let sn = SnCurve { k: 4.0, c: 1e12, endurance_limit: None }.build().unwrap();
 /// let methods: [&dyn SpectralMethod; 2] = [&NarrowBand, &Dirlik];
 /// for method in methods {
 ///     let rate = method.damage_rate(&m, &sn).unwrap();

@@ -25,7 +25,7 @@ use crate::fatigue::SnCurve;
 /// use stochvib::fatigue::{NarrowBand, SnCurve, SpectralMethod, SpectralMoments};
 /// // m0 = 1, ν₀⁺ = 10 Hz, k = 2: D/T = 10 · 2 · Γ(2) / C.
 /// let m = SpectralMoments::new(1.0, 10.0, 100.0, 1e4).unwrap();
-/// let sn = SnCurve::new(2.0, 1e6, None).unwrap();
+/// let sn = SnCurve { k: 2.0, c: 1e6, endurance_limit: None }.build().unwrap();
 /// assert!((NarrowBand.damage_rate(&m, &sn).unwrap() - 20.0 / 1e6).abs() < 1e-18);
 /// ```
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

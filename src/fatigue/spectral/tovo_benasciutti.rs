@@ -42,7 +42,7 @@ pub enum TovoBenasciuttiVariant {
 /// ```
 /// use stochvib::fatigue::{NarrowBand, SnCurve, SpectralMethod, SpectralMoments, TovoBenasciutti};
 /// let m = SpectralMoments::from_one_sided_hz(|_| 1.0, 50.0, 150.0, &[]).unwrap();
-/// let sn = SnCurve::new(4.0, 1e10, None).unwrap();
+/// let sn = SnCurve { k: 4.0, c: 1e10, endurance_limit: None }.build().unwrap();
 /// let tb = TovoBenasciutti::default();
 /// let b = tb.weight(&m);
 /// let expected = NarrowBand.damage_rate(&m, &sn).unwrap() * (b + (1.0 - b) * m.alpha2().powi(3));

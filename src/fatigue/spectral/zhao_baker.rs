@@ -47,7 +47,7 @@ pub enum ZhaoBakerVariant {
 /// // Bimodal: 0.125 unit²/Hz on [20, 60] Hz and 0.1 on [100, 120] Hz.
 /// let g = |f: f64| if (20.0..=60.0).contains(&f) { 0.125 } else if (100.0..=120.0).contains(&f) { 0.1 } else { 0.0 };
 /// let m = SpectralMoments::from_one_sided_hz_with_fractional(g, 0.0, 200.0, &[20.0, 60.0, 100.0, 120.0]).unwrap();
-/// let sn = SnCurve::new(3.0, 1e10, None).unwrap();
+/// let sn = SnCurve { k: 3.0, c: 1e10, endurance_limit: None }.build().unwrap();
 /// let general = ZhaoBaker::default().damage_rate(&m, &sn).unwrap();
 /// let k3 = ZhaoBaker::new(ZhaoBakerVariant::K3).damage_rate(&m, &sn).unwrap();
 /// assert!(general > 0.0 && k3 > 0.0);
