@@ -56,6 +56,7 @@ d, machine, l0, l1 = json.load(open(sys.argv[1])), sys.argv[2], sys.argv[3], sys
 j = d["jobs"]
 print(f"Thread scaling of route 2 ({d['realizations']} x {d['samples']} samples, best of the repetitions); "
       f"machine: {machine}; load average {l0} before, {l1} after (an idle machine reads < 0.5).")
+print()
 print("| job | 1 thread (wall / CPU) | 2 threads (wall / CPU) | speed-up (wall) |")
 print("|---|---|---|---|")
 for name, key in (("route 2", "route2"), ("calibration spin loops", "spin")):
