@@ -1,9 +1,13 @@
 //! The Rust side of `benches/compare/nonlinear.sh`: route 2 (nonlinear Monte Carlo) of
 //! `data/quarter-car-bump-stops.toml` on 1 and on 2 threads, the linear run of the same model (the linear
 //! part: the damper at the mean of its two coefficients, no stop, a tyre that holds) and route 1 per
-//! parameter point; prints JSON (seconds = best of several repetitions, wall and process CPU time).
+//! parameter point, and route 2 and the linear run of the same model on a rational road (where both take
+//! their exact routes); prints JSON (seconds = best of several repetitions, wall and process CPU time).
 //!
-//! Run: `cargo run --release --example compare_nonlinear -- [--realizations R] [--duration T] [--reps K]`.
+//! Run: `cargo run --release --example compare_nonlinear -- [--realizations R] [--duration T] [--reps K]
+//! [--scaling]`; `--scaling` times only route 2 and the calibration spin loops on 1 and 2 threads (the
+//! thread-scaling rows; `bash benches/compare/nonlinear.sh --scaling`); `--route2` times only route 2 on one
+//! thread (for a profiler: `perf record -e cpu-clock -- compare_nonlinear --route2 --reps 1`).
 //! The step is route 2's suggestion for the scenario and the burn-in route 2's default (both printed, so
 //! that `benches/compare/nonlinear.py` runs the same steps); no Δt-halving check (the numpy peer has none),
 //! statistics only (no raw samples), one temporary run file per run; routes 1 and 3 are computed once, before
@@ -107,6 +111,9 @@ fn main() {
     let r = arg(&args, "--realizations", 512.0) as usize;
     let duration = arg(&args, "--duration", 30.0);
     let reps = arg(&args, "--reps", 3.0) as usize;
+    let scaling_only = args.iter().any(|a| a == "--scaling");
+    let route2_only = args.iter().any(|a| a == "--route2");
+    let threads: &[usize] = if route2_only { &[1] } else { &[1, 2] };
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let spectra = root.join("spectra");
     let path = root.join("data/quarter-car-bump-stops.toml");
@@ -125,7 +132,7 @@ fn main() {
     let out = dir.join("run.h5");
     let mut rows = serde_json::Map::new();
     let mut summary = None;
-    for threads in [1, 2] {
+    for &threads in threads {
         let p = pool(threads);
         let (wall, cpu, s) = best(reps, || p.install(|| nonlinear_run(&sc, &answers, &opts, &out)));
         rows.insert(
@@ -135,7 +142,7 @@ fn main() {
         summary = Some(s);
     }
     // what a second core gives at all on this machine now: the same fixed arithmetic on 1 and 2 threads
-    for threads in [1, 2] {
+    for &threads in if route2_only { &[][..] } else { threads } {
         let p = pool(threads);
         let (wall, cpu, _) = best(reps, || p.install(spin));
         rows.insert(
@@ -144,18 +151,44 @@ fn main() {
         );
     }
     let s = summary.unwrap();
+    if !scaling_only && !route2_only {
+        single_thread_jobs(&sc, &path, &spectra, &opts, &out, reps, &mut rows);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
     let travel = s.run.outputs.iter().find(|o| o.output == "travel").unwrap();
     let stat = |name: &str| travel.get(name).map(|x| x.interval.estimate);
     let burn = (s.burn_in_s / s.run.dt_s).round() as usize;
+    let doc = json!({
+        "scenario": "data/quarter-car-bump-stops.toml",
+        "realizations": r, "samples": s.run.n_samples, "burn": burn, "dt": s.run.dt_s,
+        "step_reason": step.reason,
+        "sigma_travel_m": stat("sigma_response"),
+        "statistics_crc32": statistics_crc(&s),
+        "stop_contact_fraction": travel.statistics.iter().find(|x| x.name.contains("fraction")).map(|x| x.interval.estimate),
+        "jobs": rows,
+    });
+    println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+}
+
+/// The linear run of the same model and route 1 per parameter point, on one thread.
+fn single_thread_jobs(
+    sc: &Scenario,
+    path: &Path,
+    spectra: &Path,
+    opts: &RunOptions,
+    out: &Path,
+    reps: usize,
+    rows: &mut serde_json::Map<String, serde_json::Value>,
+) {
     // the linear run of the same model, same sizes, the route `auto` takes (ISO 8608 has no shaping filter)
-    let lin = parse_scenario(&linear_text(&std::fs::read_to_string(&path).unwrap()), &path, &spectra).unwrap();
+    let lin = parse_scenario(&linear_text(&std::fs::read_to_string(path).unwrap()), path, spectra).unwrap();
     let lin_opts = RunOptions {
         overwrite: true,
         ..opts.clone()
     };
     let p1 = pool(1);
     let (lw, lc, ls) = best(reps, || {
-        p1.install(|| lin.simulate(&lin_opts, &out, &|_, _| {}).unwrap())
+        p1.install(|| lin.simulate(&lin_opts, out, &|_, _| {}).unwrap())
     });
     rows.insert(
         "linear_1_thread".into(),
@@ -168,15 +201,24 @@ fn main() {
         p1.install(|| linearize(model, &exc, &Route1Options::default()).unwrap())
     });
     rows.insert("route1_point".into(), json!({"seconds": w1, "cpu_seconds": c1}));
-    std::fs::remove_dir_all(&dir).unwrap();
-    let doc = json!({
-        "scenario": "data/quarter-car-bump-stops.toml",
-        "realizations": r, "samples": s.run.n_samples, "burn": burn, "dt": s.run.dt_s,
-        "step_reason": step.reason,
-        "sigma_travel_m": stat("sigma_response"),
-        "statistics_crc32": statistics_crc(&s),
-        "stop_contact_fraction": travel.statistics.iter().find(|x| x.name.contains("fraction")).map(|x| x.interval.estimate),
-        "jobs": rows,
+    // the same model on a rational road (an exponential spatial spectrum, which has a shaping filter): the
+    // linear run takes its exact route, route 2 its exact flow (one realization at a time, no lockstep)
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("\"iso8608-d\"", "\"book-8-45\"");
+    let rational = parse_scenario(&text, path, spectra).unwrap();
+    let ra = rational.nonlinear_answers().unwrap().unwrap();
+    let (ew, ec, es) = best(reps, || p1.install(|| nonlinear_run(&rational, &ra, opts, out)));
+    rows.insert(
+        "route2_exact_1_thread".into(),
+        json!({"seconds": ew, "cpu_seconds": ec, "samples": es.run.n_samples, "route": es.run.route.name()}),
+    );
+    let lin = parse_scenario(&linear_text(&text), path, spectra).unwrap();
+    let (lw, lc, ls) = best(reps, || {
+        p1.install(|| lin.simulate(&lin_opts, out, &|_, _| {}).unwrap())
     });
-    println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+    rows.insert(
+        "linear_exact_1_thread".into(),
+        json!({"seconds": lw, "cpu_seconds": lc, "route": ls.route.name(), "samples": ls.n_samples}),
+    );
 }

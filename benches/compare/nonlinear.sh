@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Route 2 (nonlinear Monte Carlo) of data/quarter-car-bump-stops.toml against the numpy implementation of
 # the same integrator and step vectorised over realizations (benches/compare/nonlinear.py), its 2-thread
-# scaling, its cost per sample against the linear run of the same model, and route 1 per parameter point;
+# scaling, its cost per sample against the linear run of the same model (on the ISO road, and on a rational
+# road where both take their exact routes), and route 1 per parameter point;
 # prints the table of benches/RESULTS.md (section "Nonlinear machines") and, without --no-write, writes it
 # there between its markers.
 #
@@ -11,6 +12,9 @@
 #   PROFILE=test bash benches/compare/nonlinear.sh   # the Rust side in the test profile (opt-level 2, debug
 #                                                    # assertions on) when a release build is out of reach
 #   NO_BUILD=1 bash benches/compare/nonlinear.sh     # the example binary as it is (no cargo build)
+#   bash benches/compare/nonlinear.sh --scaling      # only route 2 and the calibration spin loops on 1 and
+#                                                    # 2 threads (no numpy, nothing written): the scaling
+#                                                    # rows, for an idle machine (~1 min at R=512, T=30 s)
 #   BEFORE=path/to/compare_nonlinear BEFORE_LABEL="main at abc1234" bash benches/compare/nonlinear.sh
 #                                                    # also an earlier build of the example, run just before
 #                                                    # ours on the same job: a before/after row, and whether
@@ -18,10 +22,11 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
-write=1
+write=1 scaling=0
 for a in "$@"; do
     case "$a" in
     --no-write) write=0 ;;
+    --scaling) scaling=1 write=0 ;;
     *) echo "nonlinear.sh: unknown option $a" >&2; exit 2 ;;
     esac
 done
@@ -41,6 +46,27 @@ fi
 echo "$profile" >"$out/profile.txt"
 cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "$(nproc) cores, $cpu, $(awk '/MemTotal/ {printf "%.1f GiB", $2/1048576}' /proc/meminfo)" >"$out/machine.txt"
+if [ "$scaling" = 1 ]; then
+    load0="$(cut -d' ' -f1 /proc/loadavg)"
+    echo "nonlinear.sh: route 2 and the spin loops on 1 and 2 threads, $r realizations x $t s" >&2
+    "$bin" --realizations "$r" --duration "$t" --reps "$reps" --scaling >"$out/scaling.json"
+    python3 - "$out/scaling.json" "$(cat "$out/machine.txt")" "$load0" "$(cut -d' ' -f1 /proc/loadavg)" <<'PY'
+import json, sys
+d, machine, l0, l1 = json.load(open(sys.argv[1])), sys.argv[2], sys.argv[3], sys.argv[4]
+j = d["jobs"]
+print(f"Thread scaling of route 2 ({d['realizations']} x {d['samples']} samples, best of the repetitions); "
+      f"machine: {machine}; load average {l0} before, {l1} after (an idle machine reads < 0.5).")
+print()
+print("| job | 1 thread (wall / CPU) | 2 threads (wall / CPU) | speed-up (wall) |")
+print("|---|---|---|---|")
+for name, key in (("route 2", "route2"), ("calibration spin loops", "spin")):
+    a, b = j[f"{key}_1_threads"], j[f"{key}_2_threads"]
+    print(f"| {name} | {a['seconds']:.3g} s / {a['cpu_seconds']:.3g} s | {b['seconds']:.3g} s / {b['cpu_seconds']:.3g} s "
+          f"| {a['seconds'] / b['seconds']:.3g}x |")
+PY
+    echo "nonlinear.sh: JSON in $out" >&2
+    exit 0
+fi
 if [ -n "${BEFORE:-}" ]; then
     cut -d' ' -f1 /proc/loadavg >"$out/load-before.txt"
     echo "nonlinear.sh: the earlier build $BEFORE, $r realizations x $t s" >&2
@@ -82,6 +108,11 @@ rows = [
      "linear run of the linear part", pair(lin), f"{lin['seconds'] / one['seconds']:.3g}x (route 2 costs {one['seconds'] / lin['seconds']:.3g}x)", f"load {lr}"),
     ("route 1 per parameter point", "1 point, 3 outputs", pair(j["route1_point"]), "-", "-", "-", f"load {lr}"),
 ]
+e2, le = j["route2_exact_1_thread"], j["linear_exact_1_thread"]
+rows.insert(-1, ("route 2 per sample vs the linear exact route, 1 thread", f"{size}; rational road (book-8-45): route 2 "
+                 f"{e2['route']}, linear {le['route']} route", pair(e2), "linear run of the linear part", pair(le),
+                 f"{le['seconds'] / e2['seconds']:.3g}x (route 2 costs {e2['seconds'] / le['seconds']:.3g}x, CPU "
+                 f"{e2['cpu_seconds'] / le['cpu_seconds']:.3g}x)", f"load {lr}"))
 before = None
 if os.path.exists(f"{out}/before.json"):
     before = json.load(open(f"{out}/before.json"))

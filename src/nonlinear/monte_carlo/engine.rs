@@ -180,7 +180,36 @@ impl<const L: usize> Path<L> for HoldPath<'_, L> {
     }
 }
 
-/// Drives a path through `burn` + `rec` samples of step h; `sink(y, x)` gets every recorded sample's outputs
+/// What takes every recorded sample of [`drive`]: the outputs y and the element deflections x (one
+/// [`Lanes`] value each). Always inlined into the drive loop (a closure's call is not, and its body would
+/// then miss the instruction set of [`Drive`]: the histogram's bin was a libm `floor` call).
+trait Records<const L: usize> {
+    fn record(&mut self, y: &[Lanes<L>], x: &[Lanes<L>]);
+}
+
+impl<const L: usize, F: FnMut(&[Lanes<L>], &[Lanes<L>])> Records<L> for F {
+    #[inline(always)]
+    fn record(&mut self, y: &[Lanes<L>], x: &[Lanes<L>]) {
+        self(y, x)
+    }
+}
+
+/// The records of L realizations stepped in lockstep: lane l feeds `sinks[l]`.
+struct LaneSinks<'s, 'p, 'w> {
+    sinks: &'s mut [Sink<'p>],
+    welch: &'w mut WelchScratch,
+}
+
+impl<const L: usize> Records<L> for LaneSinks<'_, '_, '_> {
+    #[inline(always)]
+    fn record(&mut self, y: &[Lanes<L>], x: &[Lanes<L>]) {
+        for (l, sink) in self.sinks.iter_mut().enumerate() {
+            sink.push(y, x, l, self.welch);
+        }
+    }
+}
+
+/// Drives a path through `burn` + `rec` samples of step h; `sink` gets every recorded sample's outputs
 /// and element deflections (one [`Lanes`] value each). Always inlined, with the per-step work it calls, so
 /// that [`Drive`] compiles all of it for the instruction set it runs on.
 #[inline(always)]
@@ -191,7 +220,7 @@ fn drive<const L: usize, P: Path<L>>(
     h: f64,
     burn: usize,
     rec: usize,
-    mut sink: impl FnMut(&[Lanes<L>], &[Lanes<L>]),
+    sink: &mut impl Records<L>,
 ) {
     let (n, nb, ne) = (plan.n_coords, plan.n_base, plan.kicks.len());
     let half = plan.kicks.prepared(0.5 * h);
@@ -241,7 +270,7 @@ fn drive<const L: usize, P: Path<L>>(
                     }
                 }
             }
-            sink(&y, &xe);
+            sink.record(&y, &xe);
         }
         if k + 1 == burn + rec {
             break;
@@ -266,7 +295,7 @@ struct Drive<'a, const L: usize, P, S> {
     sink: S,
 }
 
-impl<const L: usize, P: Path<L>, S: FnMut(&[Lanes<L>], &[Lanes<L>])> vmath::Task for Drive<'_, L, P, S> {
+impl<const L: usize, P: Path<L>, S: Records<L>> vmath::Task for Drive<'_, L, P, S> {
     #[inline(always)]
     fn run(&mut self) {
         let plan = self.plan;
@@ -420,9 +449,14 @@ fn realize_exact(plan: &NlPlan, s: &mut NlScratch, seed: u64, i: u64, keep_raw: 
     let mut sink = Sink::new(plan, keep_raw);
     let mut path = exact_path(plan, f, &f.coarse, Noise::Stream(&mut rng));
     let ws = &mut s.welch;
-    drive::<1, _>(plan, &mut path, plan.h, plan.n_burn, plan.n, |y, x| {
-        sink.push(y, x, 0, ws)
-    });
+    drive::<1, _>(
+        plan,
+        &mut path,
+        plan.h,
+        plan.n_burn,
+        plan.n,
+        &mut |y: &[Lanes<1>], x: &[Lanes<1>]| sink.push(y, x, 0, ws),
+    );
     conclude(plan, s, sink, seed, i, None, Vec::new())
 }
 
@@ -450,14 +484,12 @@ fn realize_hold<const L: usize>(
         std::array::from_fn(|l| &smp[l].rates[..]),
         rates,
     );
-    let ws = &mut s.welch;
     vmath::run(&mut Drive {
         plan,
         path: &mut path,
-        sink: |y: &[Lanes<L>], x: &[Lanes<L>]| {
-            for (l, sink) in sinks.iter_mut().enumerate() {
-                sink.push(y, x, l, ws);
-            }
+        sink: LaneSinks {
+            sinks: &mut sinks,
+            welch: &mut s.welch,
         },
     });
     let mut out = Vec::with_capacity(L);
@@ -554,26 +586,46 @@ fn halving_check(
             let w: Vec<f64> = (0..2 * total * f.nz).map(|_| standard_normal(rng)).collect();
             let mut pc = exact_path(plan, f, &f.coarse, Noise::Coarse(&w));
             pc.z.iter_mut().zip(&z0).for_each(|(a, b)| a[0] += b);
-            drive::<1, _>(plan, &mut pc, plan.h, plan.n_burn, plan.n, |y, _| {
-                push_all(&mut coarse, y)
-            });
+            drive::<1, _>(
+                plan,
+                &mut pc,
+                plan.h,
+                plan.n_burn,
+                plan.n,
+                &mut |y: &[Lanes<1>], _: &[Lanes<1>]| push_all(&mut coarse, y),
+            );
             let mut pf = exact_path(plan, f, &f.fine, Noise::Fine(&w));
             pf.z.iter_mut().zip(&z0).for_each(|(a, b)| a[0] += b);
-            drive::<1, _>(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, |y, _| {
-                push_all(&mut fine, y)
-            });
+            drive::<1, _>(
+                plan,
+                &mut pf,
+                0.5 * plan.h,
+                2 * plan.n_burn,
+                2 * plan.n,
+                &mut |y: &[Lanes<1>], _: &[Lanes<1>]| push_all(&mut fine, y),
+            );
         }
         (Flow::Hold { flow, rates, .. }, Some(smp)) => {
             let mut pc = hold_path(flow, &flow.coarse, [&smp.u[..]], [&smp.rates[..]], rates);
-            drive::<1, _>(plan, &mut pc, plan.h, plan.n_burn, plan.n, |y, _| {
-                push_all(&mut coarse, y)
-            });
+            drive::<1, _>(
+                plan,
+                &mut pc,
+                plan.h,
+                plan.n_burn,
+                plan.n,
+                &mut |y: &[Lanes<1>], _: &[Lanes<1>]| push_all(&mut coarse, y),
+            );
             let u2 = smp.u.iter().map(|x| refine(x)).collect::<Result<Vec<_>>>()?;
             let r2 = smp.rates.iter().map(|x| refine(x)).collect::<Result<Vec<_>>>()?;
             let mut pf = hold_path(flow, &flow.fine, [&u2[..]], [&r2[..]], rates);
-            drive::<1, _>(plan, &mut pf, 0.5 * plan.h, 2 * plan.n_burn, 2 * plan.n, |y, _| {
-                push_all(&mut fine, y)
-            });
+            drive::<1, _>(
+                plan,
+                &mut pf,
+                0.5 * plan.h,
+                2 * plan.n_burn,
+                2 * plan.n,
+                &mut |y: &[Lanes<1>], _: &[Lanes<1>]| push_all(&mut fine, y),
+            );
         }
         (Flow::Hold { .. }, None) => unreachable!("a spectral realization has its samples"),
     }

@@ -61,15 +61,7 @@ impl OutputRecord {
             }
         }
         self.prev = Some(y);
-        let b = ((y - self.hist_lo) / self.hist_width).floor();
-        let last = self.hist.len() - 1;
-        let i = if b < 0.0 || b.is_nan() {
-            0
-        } else if b >= (last - 1) as f64 {
-            last
-        } else {
-            b as usize + 1
-        };
+        let i = bin((y - self.hist_lo) / self.hist_width, self.hist.len() - 2);
         self.hist[i] += 1.0;
         self.n += 1;
         d
@@ -98,6 +90,21 @@ impl OutputRecord {
     }
 }
 
+/// The slot of t = (y − lo)/w in a histogram of `bins` bins with an underflow (slot 0) and an overflow
+/// (slot bins + 1): ⌊t⌋ + 1, clamped. Without a floor (a libm call on baseline x86-64): ⌊t⌋ < 0 ⇔ t < 0,
+/// ⌊t⌋ ≥ B ⇔ t ≥ B for the integer B = bins, and for 0 ≤ t < B the truncation `t as usize` is ⌊t⌋; NaN
+/// goes to the underflow.
+#[inline(always)]
+fn bin(t: f64, bins: usize) -> usize {
+    if t.is_nan() || t < 0.0 {
+        0
+    } else if t >= bins as f64 {
+        bins + 1
+    } else {
+        t as usize + 1
+    }
+}
+
 /// The regime of one element over a realization.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct RegimeRecord {
@@ -123,5 +130,51 @@ impl RegimeRecord {
     /// (fraction of samples engaged, entries per second).
     pub(crate) fn values(&self, duration: f64) -> (f64, f64) {
         (self.engaged as f64 / self.n as f64, self.entries as f64 / duration)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::bin;
+
+    /// The slot by the floor, as the histogram counted before [`bin`] (the reference).
+    fn by_floor(t: f64, bins: usize) -> usize {
+        let b = t.floor();
+        if b < 0.0 || b.is_nan() {
+            0
+        } else if b >= bins as f64 {
+            bins + 1
+        } else {
+            b as usize + 1
+        }
+    }
+
+    #[test]
+    fn bin_is_the_floor_slot_at_every_edge() {
+        let bins = 120;
+        let mut ts = vec![
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE,
+            1e300,
+            -1e300,
+        ];
+        for k in -3..=bins as i64 + 3 {
+            let x = k as f64;
+            ts.extend([x, x.next_up(), x.next_down(), x + 0.5]);
+        }
+        let mut u = 0x9e37_79b9_7f4a_7c15u64;
+        for _ in 0..100_000 {
+            u = u
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ts.push((u >> 11) as f64 / (1u64 << 53) as f64 * 140.0 - 10.0);
+        }
+        for t in ts {
+            assert_eq!(bin(t, bins), by_floor(t, bins), "t = {t:e}");
+        }
     }
 }
