@@ -264,7 +264,9 @@ impl LineChart {
         render_both(dir, stem, &p)
     }
 
-    fn prepare(&self, stem: &str) -> Result<Prepared> {
+    /// The series with the points the axes can draw, each with its colour, and a legend that counts the
+    /// points left out (≤ 0 on a log axis).
+    fn drawable_series(&self) -> Vec<Series> {
         let (lx, ly) = (self.log_x, self.log_y);
         let mut series: Vec<Series> = Vec::new();
         for (k, s) in self.series.iter().enumerate() {
@@ -277,6 +279,12 @@ impl LineChart {
             s2.points = points;
             series.push(s2);
         }
+        series
+    }
+
+    /// The bands with the points the axes can draw; a band with an empty side is left out.
+    fn drawable_bands(&self) -> Vec<Band> {
+        let (lx, ly) = (self.log_x, self.log_y);
         let mut bands = Vec::new();
         for b in &self.bands {
             let (lower, _) = filter_points(&b.lower, lx, ly);
@@ -289,13 +297,19 @@ impl LineChart {
                 });
             }
         }
-        let secondary = self.secondary.as_ref().map(|sa| {
+        bands
+    }
+
+    /// The secondary axis with the points it can draw (linear y), colours after the primary series', and
+    /// its finite markers.
+    fn drawable_secondary(&self) -> Option<SecondaryAxis> {
+        self.secondary.as_ref().map(|sa| {
             let series = sa
                 .series
                 .iter()
                 .enumerate()
                 .map(|(k, s)| {
-                    let (points, _) = filter_points(&s.points, lx, false);
+                    let (points, _) = filter_points(&s.points, self.log_x, false);
                     Series {
                         points,
                         color: Some(s.color.unwrap_or(self.series.len() + k)),
@@ -308,44 +322,38 @@ impl LineChart {
                 hlines: sa.hlines.iter().filter(|m| m.at.is_finite()).cloned().collect(),
                 y_label: sa.y_label.clone(),
             }
-        });
-        let n_points: usize =
-            series.iter().map(|s| s.points.len()).sum::<usize>() + bands.iter().map(|b| b.lower.len()).sum::<usize>();
-        if n_points == 0 {
-            return Err(plot_error(
-                stem,
-                "nothing to plot (no finite point drawable on these axes)",
-            ));
-        }
-        let vlines: Vec<Marker> = self
-            .vlines
-            .iter()
-            .filter(|m| m.at.is_finite() && (!lx || m.at > 0.0))
-            .cloned()
-            .collect();
-        let hlines: Vec<Marker> = self
-            .hlines
-            .iter()
-            .filter(|m| m.at.is_finite() && (!ly || m.at > 0.0))
-            .cloned()
-            .collect();
+        })
+    }
 
-        // x range
+    /// The x range: `x_range`, else the padded extent of every drawn point and vertical marker.
+    fn x_extent(&self, stem: &str, series: &[Series], bands: &[Band], vlines: &[Marker]) -> Result<(f64, f64)> {
         let mut xs: Vec<f64> = series.iter().flat_map(|s| s.points.iter().map(|p| p.0)).collect();
         xs.extend(bands.iter().flat_map(|b| b.lower.iter().chain(&b.upper).map(|p| p.0)));
         xs.extend(vlines.iter().map(|m| m.at));
-        let x = match self.x_range {
-            Some(r) => check_range("x_range", r, lx)?,
-            None => padded(&xs, lx).map_err(|r| plot_error(stem, &r))?,
-        };
-        // y range
+        Ok(match self.x_range {
+            Some(r) => check_range("x_range", r, self.log_x)?,
+            None => padded(&xs, self.log_x).map_err(|r| plot_error(stem, &r))?,
+        })
+    }
+
+    /// The y range: `y_range`, else the padded extent of the points within x, the bands and the horizontal
+    /// markers (on a log axis at most `max_decades` below the top).
+    fn y_extent(
+        &self,
+        stem: &str,
+        x: (f64, f64),
+        series: &[Series],
+        bands: &[Band],
+        hlines: &[Marker],
+    ) -> Result<(f64, f64)> {
+        let ly = self.log_y;
         let mut ys: Vec<f64> = series
             .iter()
             .flat_map(|s| s.points.iter().filter(|p| p.0 >= x.0 && p.0 <= x.1).map(|p| p.1))
             .collect();
         ys.extend(bands.iter().flat_map(|b| b.lower.iter().chain(&b.upper).map(|p| p.1)));
         ys.extend(hlines.iter().map(|m| m.at));
-        let y = match self.y_range {
+        Ok(match self.y_range {
             Some(r) => check_range("y_range", r, ly)?,
             None => {
                 if let (true, Some(dec)) = (ly, self.max_decades) {
@@ -355,7 +363,27 @@ impl LineChart {
                 }
                 padded(&ys, ly).map_err(|r| plot_error(stem, &r))?
             }
-        };
+        })
+    }
+
+    fn prepare(&self, stem: &str) -> Result<Prepared> {
+        let (lx, ly) = (self.log_x, self.log_y);
+        let mut series = self.drawable_series();
+        let bands = self.drawable_bands();
+        let secondary = self.drawable_secondary();
+        let n_points: usize =
+            series.iter().map(|s| s.points.len()).sum::<usize>() + bands.iter().map(|b| b.lower.len()).sum::<usize>();
+        if n_points == 0 {
+            return Err(plot_error(
+                stem,
+                "nothing to plot (no finite point drawable on these axes)",
+            ));
+        }
+        let vlines = drawable_markers(&self.vlines, lx);
+        let hlines = drawable_markers(&self.hlines, ly);
+
+        let x = self.x_extent(stem, &series, &bands, &vlines)?;
+        let y = self.y_extent(stem, x, &series, &bands, &hlines)?;
         let clip = |pts: &mut Vec<(f64, f64)>| pts.retain(|p| p.1 >= y.0 && p.1 <= y.1 && p.0 >= x.0 && p.0 <= x.1);
         for s in &mut series {
             clip(&mut s.points);
@@ -805,5 +833,14 @@ pub(crate) fn file_stem(name: &str) -> String {
                 '_'
             }
         })
+        .collect()
+}
+
+/// The markers a (log) axis can draw: finite, and positive on a log axis.
+fn drawable_markers(markers: &[Marker], log: bool) -> Vec<Marker> {
+    markers
+        .iter()
+        .filter(|m| m.at.is_finite() && (!log || m.at > 0.0))
+        .cloned()
         .collect()
 }

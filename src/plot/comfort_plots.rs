@@ -2,31 +2,29 @@
 //! in Hz, its one-third-octave band r.m.s. values, and the ISO 2631-1 Annex C comfort reaction scale.
 
 use super::chart::{Legend, LineChart, Marker, SecondaryAxis, Series};
-use crate::comfort::{band_rms, bands_covering, weighted_output, BandFraction, ComfortReaction};
-use crate::error::{Error, Result};
+use crate::comfort::ComfortReaction;
+use crate::error::Result;
 use crate::numbers::num;
-use crate::response::output_density;
 use crate::scenario::Scenario;
-use crate::system::FrequencyResponse;
-use std::f64::consts::PI;
+use crate::study::scenario_curves::{weighted_density, WeightedDensity};
 
 /// Comfort axis `axis` of the scenario's `[analysis.comfort]`: the density of the weighted acceleration
 /// a_w(t) = W(s)·y(t) (log–log, one-sided in Hz), and on the secondary axis the r.m.s. value of every
-/// one-third-octave band (IEC 61260-1 base-10 edges, [`bands_covering`]) drawn as a staircase over the
-/// bands, the overall a_w, and the lower bounds of the ISO 2631-1:1997 Annex C comfort reactions
+/// one-third-octave band (IEC 61260-1 base-10 edges, [`bands_covering`](crate::comfort::bands_covering))
+/// drawn as a staircase over the bands, the overall a_w, and the lower bounds of the ISO 2631-1:1997 Annex C comfort reactions
 /// ([`ComfortReaction::range`]: 0.315 m/s² "a little uncomfortable", 0.5, 0.8, 1.25, 2 m/s² "extremely
 /// uncomfortable"; those up to twice the largest value drawn, at least the first; the scale applies to the
 /// overall value, so the bars show where it comes from).
 ///
 /// # Formula
 /// G_w(f) = 4π·S_w(2πf) with S_w(ω) = |W(iω)|²·S_y(ω) the two-sided density of the weighted output
-/// ([`weighted_output`], [`output_density`]); band r.m.s. = (∫_{f₁}^{f₂} G_w df)^{1/2} ([`band_rms`]);
-/// a_w = (Σ band mean squares)^{1/2} over the drawn range.
+/// ([`weighted_output`](crate::comfort::weighted_output), [`output_density`](crate::response::output_density));
+/// band r.m.s. = (∫_{f₁}^{f₂} G_w df)^{1/2} ([`band_rms`](crate::comfort::band_rms)); a_w = (Σ band mean
+/// squares)^{1/2} over the drawn range; computed by [`weighted_density`].
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] naming `analysis.comfort.axis` for an axis index the scenario does not
-/// have; [`Error::NotApplicable`] for a model without a state-space form; the errors of
-/// [`weighted_output`] and [`band_rms`].
+/// Those of [`weighted_density`]: an axis index the scenario does not have, a model without a state-space
+/// form, the errors of the weighting and the band quadrature.
 ///
 /// # Examples
 /// ```
@@ -39,39 +37,14 @@ use std::f64::consts::PI;
 /// assert_eq!(c.secondary.as_ref().unwrap().series[0].points.len(), 46);
 /// ```
 pub fn weighted_density_chart(sc: &Scenario, axis: usize) -> Result<LineChart> {
-    let spec = sc
-        .analysis
-        .verdicts
-        .comfort
-        .as_ref()
-        .and_then(|c| c.axes.get(axis))
-        .ok_or_else(|| Error::invalid("analysis.comfort.axis", axis, "the scenario has no such comfort axis"))?;
-    let ss = sc.model.system.state_space().ok_or_else(|| Error::NotApplicable {
-        method: "frequency weighting".into(),
-        reason: "the model has no state-space form".into(),
-    })?;
-    let ws = weighted_output(ss, spec.output, &spec.weighting)?;
-    let name = ws.outputs()[0].name.clone();
-    let density_hz = |f: f64| 4.0 * PI * output_density(&ws, &sc.excitation, 0, 2.0 * PI * f);
-    let (lo, hi) = spec.weighting.evaluation_range_hz();
-    let bands = bands_covering(BandFraction::ThirdOctave, lo, hi)?;
-    let mut stairs = Vec::with_capacity(2 * bands.len());
-    let mut total = 0.0;
-    for b in &bands {
-        let r = band_rms(&density_hz, b)?;
-        total += r * r;
-        stairs.push((b.lower_hz, r));
-        stairs.push((b.upper_hz, r));
-    }
-    let a_w = total.sqrt();
-    let (f0, f1) = (bands[0].lower_hz, bands[bands.len() - 1].upper_hz);
-    let n = 400;
-    let density: Vec<(f64, f64)> = (0..=n)
-        .map(|k| {
-            let f = f0 * (f1 / f0).powf(k as f64 / n as f64);
-            (f, density_hz(f))
-        })
-        .collect();
+    let WeightedDensity {
+        name,
+        weighting,
+        range_hz: (lo, hi),
+        density,
+        bands: stairs,
+        a_w,
+    } = weighted_density(sc, axis)?;
     let mut hlines = vec![Marker::new(
         a_w,
         format!("a_w = {} m/s² ({} to {} Hz)", num(a_w), num(lo), num(hi)),
@@ -86,11 +59,7 @@ pub fn weighted_density_chart(sc: &Scenario, axis: usize) -> Result<LineChart> {
         }
     }
     let mut chart = LineChart::new(
-        format!(
-            "{} ({}-weighted): one-third-octave bands against the ISO 2631-1 comfort scale",
-            name,
-            spec.weighting.name()
-        ),
+        format!("{name} ({weighting}-weighted): one-third-octave bands against the ISO 2631-1 comfort scale"),
         "frequency f [Hz]",
         format!("one-sided density G(f) of {name} [(m/s²)²/Hz]"),
     );

@@ -8,7 +8,9 @@ use super::chart::{Histogram, LineChart, Series};
 use super::mc_plots::{correlation_chart, histogram_chart, realizations_chart, welch_chart};
 use crate::error::{Error, Result};
 use crate::estimate::time_correlation;
-use crate::store::{PsdEstimate, RunFile, SignalGroup};
+use crate::scenario::Scenario;
+use crate::store::{OutputStatistics, PsdEstimate, RunFile, RunMetadata, SignalGroup};
+use crate::study::scenario_curves::model_correlation;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
@@ -62,61 +64,13 @@ fn cosine_sum(omega: &[f64], s: &[f64], tau: f64) -> f64 {
     2.0 * k * dw
 }
 
-/// Model correlation K(mΔt), m = 0..=max_lag, of the scenario output `name`, and the frequency step used.
-///
-/// # Formula
-/// K(mΔt) = Σ_{j=0}^{L/2} w_j S_y(ω_j) Δω cos(ω_j mΔt), ω_j = jΔω, Δω = 2π/(LΔt), w_j = 2 except
-/// w_0 = w_{L/2} = 1: the two-sided integral ∫ S_y(ω) e^{iωτ} dω over |ω| ≤ π/Δt (the band a record sampled
-/// at Δt resolves), evaluated by one inverse real FFT of length L = 2^⌈log₂ max(8N, 2¹⁶)⌉ ≤ 2¹⁸, so the grid
-/// is 8× finer than the record's own and resolves narrow density peaks. S_y is the library's analytic output
-/// density ([`output_density`](crate::response::output_density)).
-fn scenario_correlation(
-    sc: &crate::scenario::Scenario,
-    name: &str,
-    dt: f64,
-    n: usize,
-    max_lag: usize,
-) -> Result<(Vec<f64>, f64)> {
-    // a weighted output of `[analysis.comfort]` (`<output>_<W>`) is an output of the system the run
-    // simulated: the scenario's system extended by the weighting filters
-    let extended;
-    let mut sys = sc.model.system.as_ref();
-    if !sys.outputs().iter().any(|o| o.name == name) && !sc.analysis.verdicts.is_empty() {
-        extended = crate::study::verdict_system(sc)?.0;
-        sys = &extended;
-    }
-    let i = sys
-        .outputs()
-        .iter()
-        .position(|o| o.name == name)
-        .ok_or_else(|| Error::invalid("output", name, "not an output of the stored scenario"))?;
-    let l = (8 * n)
-        .max(1 << 16)
-        .next_power_of_two()
-        .min(1 << 18)
-        .max(2 * (max_lag + 1));
-    let dw = 2.0 * PI / (l as f64 * dt);
-    let mut spec: Vec<realfft::num_complex::Complex<f64>> = (0..=l / 2)
-        .map(|j| {
-            let s = crate::response::output_density(sys, &sc.excitation, i, j as f64 * dw);
-            realfft::num_complex::Complex::new(s * dw, 0.0)
-        })
-        .collect();
-    let c2r = realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(l);
-    let mut k = vec![0.0; l];
-    c2r.process(&mut spec, &mut k)
-        .map_err(|e| Error::invalid("correlation FFT", l, e.to_string()))?;
-    k.truncate(max_lag + 1);
-    Ok((k, dw))
-}
-
 /// Builds the charts of every output of a run file without rendering them (see [`run_plots`]).
 ///
 /// # Formula
 /// Welch picture: one-sided cyclic G(f) = 4π S(ω) at f = ω/(2π) from the stored two-sided S(ω) (estimate,
 /// interval and analytic). Histogram: N(M, σ) with M = `@analytic` of `mean` and σ = `@analytic` of `sigma`.
 /// Correlation: K̂(mΔt) averaged over realizations ([`time_correlation`] with the known zero mean) against
-/// the model K(τ) of the scenario rebuilt from the text stored in the file (see `scenario_correlation`: one
+/// the model K(τ) of the scenario rebuilt from the text stored in the file ([`model_correlation`]: one
 /// inverse FFT of the analytic output density on a grid 8× finer than the record), up to
 /// τ_max = min(T/4, 2π/(4Δω_W)) with T the record length and Δω_W the Welch grid step, with the analytic
 /// σ² = K(0) marked and, for the spectral route, the variance σ²_d of the simulated FFT-grid process (the
@@ -157,49 +111,113 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
     let response = run.response_histograms()?;
     let mut out = Vec::new();
     for sig in &meta.outputs {
-        let name = &sig.name;
-        let unit = &sig.unit;
-        let title = format!("{scenario}: {name}");
-        let quantity = format!("output {name}");
-        let psd: &PsdEstimate = psds
+        let o = OutputPlot {
+            run: &run,
+            meta: &meta,
+            name: &sig.name,
+            unit: &sig.unit,
+            title: format!("{scenario}: {}", sig.name),
+            quantity: format!("output {}", sig.name),
+        };
+        let (psd, analytic) = stored_density(&psds, &sig.name)?;
+        let welch = o.welch(psd, analytic, response.is_empty())?;
+        let response_density = response
             .iter()
-            .find(|p| &p.output == name)
-            .ok_or_else(|| Error::invalid("output", name, "no density estimate in /psd"))?;
-        let analytic = psd
-            .analytic
-            .as_ref()
-            .ok_or_else(|| Error::invalid("output", name, "no analytic density in /psd"))?;
-        if psd.omega.len() < 2 || analytic.len() != psd.omega.len() {
-            return Err(Error::invalid(
-                "psd",
-                name,
-                "need at least two frequencies and one analytic value per frequency",
-            ));
+            .find(|h| h.output == sig.name)
+            .map(|h| super::nonlinear_plots::histogram_charts(&scenario, h));
+        let (mut realizations, mut histogram, mut correlation) = (None, None, None);
+        if meta.store_raw && response.is_empty() {
+            realizations = Some(o.excerpts()?);
+            let st = stats
+                .iter()
+                .find(|s| s.output == sig.name)
+                .ok_or_else(|| Error::invalid("output", &sig.name, "no statistics in /statistics"))?;
+            let (h, samples) = o.histogram(st)?;
+            histogram = Some(h);
+            correlation = Some(o.correlation(&samples, psd, analytic, st, model_sc.as_ref())?);
         }
+        out.push(OutputCharts {
+            output: sig.name.clone(),
+            welch,
+            realizations,
+            histogram,
+            correlation,
+            response_density,
+        });
+    }
+    Ok(out)
+}
+
+/// The Welch estimate of output `name` and the analytic density stored beside it, checked against its grid.
+fn stored_density<'a>(psds: &'a [PsdEstimate], name: &str) -> Result<(&'a PsdEstimate, &'a [f64])> {
+    let psd = psds
+        .iter()
+        .find(|p| p.output == name)
+        .ok_or_else(|| Error::invalid("output", name, "no density estimate in /psd"))?;
+    let analytic = psd
+        .analytic
+        .as_ref()
+        .ok_or_else(|| Error::invalid("output", name, "no analytic density in /psd"))?;
+    if psd.omega.len() < 2 || analytic.len() != psd.omega.len() {
+        return Err(Error::invalid(
+            "psd",
+            name,
+            "need at least two frequencies and one analytic value per frequency",
+        ));
+    }
+    Ok((psd, analytic))
+}
+
+/// The analytic value of statistic `key` of an output.
+fn analytic_statistic(st: &OutputStatistics, key: &str) -> Result<f64> {
+    st.statistics
+        .iter()
+        .find(|s| s.name == key)
+        .and_then(|s| s.analytic)
+        .ok_or_else(|| Error::invalid("statistic", key, format!("no @analytic for output {}", st.output)))
+}
+
+/// The samples the histogram drew from, with the realizations they span.
+struct Samples {
+    data: Vec<f64>,
+    realizations: usize,
+    mean: f64,
+    sigma: f64,
+}
+
+/// One output of a run file and the texts of its charts.
+struct OutputPlot<'a> {
+    run: &'a RunFile,
+    meta: &'a RunMetadata,
+    name: &'a str,
+    unit: &'a str,
+    title: String,
+    quantity: String,
+}
+
+impl OutputPlot<'_> {
+    /// The Welch estimate with its band against the analytic density, and the expected estimate when stored.
+    fn welch(&self, psd: &PsdEstimate, analytic: &[f64], linear: bool) -> Result<LineChart> {
         let f: Vec<f64> = psd.omega.iter().map(|w| w / (2.0 * PI)).collect();
         let g = |v: &[f64]| v.iter().map(|s| 4.0 * PI * s).collect::<Vec<f64>>();
         let ga: Vec<(f64, f64)> = f.iter().cloned().zip(g(analytic)).collect();
         let mut welch = welch_chart(
-            &title,
+            &self.title,
             &f,
             &g(&psd.density),
             &g(&psd.lower),
             &g(&psd.upper),
             psd.confidence,
             &ga,
-            &quantity,
-            unit,
+            &self.quantity,
+            self.unit,
         )?;
         welch.series[0].name = format!("Welch estimate (ν = {})", crate::numbers::num(psd.dof));
-        welch.series[1].name = if response.is_empty() {
+        welch.series[1].name = if linear {
             "continuous-time analytic density".into()
         } else {
             "route 1: density of the equivalent linear system (an approximation)".into()
         };
-        let response_density = response
-            .iter()
-            .find(|h| &h.output == name)
-            .map(|h| super::nonlinear_plots::histogram_charts(&scenario, h));
         if let Some(e) = &psd.expected {
             let coverage = psd
                 .coverage()
@@ -214,126 +232,141 @@ pub fn run_charts(path: &Path, spectra_dir: &Path) -> Result<Vec<OutputCharts>> 
                 .analytic(),
             );
         }
-        let (mut realizations, mut histogram, mut correlation) = (None, None, None);
-        if meta.store_raw && response.is_empty() {
-            let n = meta.n_samples;
-            let nr = meta.n_realizations;
-            // excerpts
-            let ne = EXCERPT_REALIZATIONS.min(nr);
-            let m = EXCERPT_SAMPLES.min(n);
-            let first = run.read_signals(SignalGroup::Outputs, name, 0..ne)?;
-            let t: Vec<f64> = (0..m).map(|k| k as f64 * meta.dt).collect();
-            let rows: Vec<(String, Vec<f64>)> = (0..ne)
-                .map(|i| {
-                    (
-                        format!("realization {i}"),
-                        first.row(i).iter().take(m).cloned().collect(),
-                    )
-                })
-                .collect();
-            let refs: Vec<(&str, &[f64])> = rows.iter().map(|(s, v)| (s.as_str(), &v[..])).collect();
-            realizations = Some(realizations_chart(&title, &t, &refs, &quantity, unit)?);
-            // histogram
-            let st = stats
-                .iter()
-                .find(|s| &s.output == name)
-                .ok_or_else(|| Error::invalid("output", name, "no statistics in /statistics"))?;
-            let an = |key: &str| {
-                st.statistics
-                    .iter()
-                    .find(|s| s.name == key)
-                    .and_then(|s| s.analytic)
-                    .ok_or_else(|| Error::invalid("statistic", key, format!("no @analytic for output {name}")))
-            };
-            let (mean, sigma) = (an("mean")?, an("sigma")?);
-            let nh = (MAX_HISTOGRAM_SAMPLES / n.max(1)).clamp(1, nr);
-            let all = run.read_signals(SignalGroup::Outputs, name, 0..nh)?;
-            let (data, _) = all.into_raw_vec_and_offset();
-            let mut h = histogram_chart(&title, &data, mean, sigma, &quantity, unit, None)?;
-            h.x_label = format!("{quantity} [{unit}]");
-            h.curves[0].name = format!(
-                "{} (analytic σ); {} samples of {nh} realizations",
-                h.curves[0].name,
-                data.len()
-            );
-            histogram = Some(h);
-            // correlation
-            let dw = psd.omega[1] - psd.omega[0];
-            let uniform = psd
-                .omega
-                .windows(2)
-                .all(|w| ((w[1] - w[0]) - dw).abs() <= 1e-9 * dw.abs().max(f64::MIN_POSITIVE));
-            if dw.is_nan() || dw <= 0.0 || !uniform {
-                return Err(Error::invalid("psd", name, "density grid is not uniform in ω"));
-            }
-            let tau_max = (n as f64 * meta.dt / 4.0).min(2.0 * PI / (4.0 * dw));
-            let max_lag = ((tau_max / meta.dt).floor() as usize).clamp(1, n.saturating_sub(1).max(1));
-            let nc = MAX_CORRELATION_REALIZATIONS.min(nr);
-            let rows = if nc <= nh {
-                None
-            } else {
-                Some(run.read_signals(SignalGroup::Outputs, name, 0..nc)?)
-            };
-            let mut k = vec![0.0; max_lag + 1];
-            for i in 0..nc {
-                let x: &[f64] = match &rows {
-                    Some(r) => r.row(i).to_slice().unwrap_or(&[]),
-                    None => &data[i * n..(i + 1) * n],
-                };
-                for (a, b) in k.iter_mut().zip(time_correlation(x, max_lag, Some(mean))?) {
-                    *a += b / nc as f64;
-                }
-            }
-            let lags: Vec<f64> = (0..=max_lag).map(|m| m as f64 * meta.dt).collect();
-            let (model, model_name) = match &model_sc {
-                Some(sc) => {
-                    let (k, dw_f) = scenario_correlation(sc, name, meta.dt, n, max_lag)?;
-                    let label = format!(
-                        "model K(τ) = ∫ S_y(ω) cos ωτ dω of the scenario, |ω| ≤ π/Δt, Δω = {} rad/s",
-                        crate::numbers::num(dw_f)
-                    );
-                    (k, label)
-                }
-                None => (
-                    lags.iter().map(|&tau| cosine_sum(&psd.omega, analytic, tau)).collect(),
-                    format!(
-                        "model K(τ) = 2Σ S(ω_j) cos(ω_j τ) Δω of the stored analytic S(ω), Δω = {} rad/s (scenario \
-                         not rebuilt: coarse)",
-                        crate::numbers::num(dw)
-                    ),
-                ),
-            };
-            let mut c = correlation_chart(&title, &lags, &k, &model, None, &quantity, unit)?;
-            c.series[0].name = format!("estimate K̂(τ), mean of {nc} realizations");
-            c.series[1].name = model_name;
-            c.hlines
-                .push(super::chart::Marker::new(sigma * sigma, "analytic σ² = K(0)"));
-            // the spectral route simulates the spectrum sampled on its FFT grid: its exact variance (stored as the
-            // `sigma_discrete` statistic) is what the estimate converges to; mark it when it differs visibly
-            if let Some(sd) = st
-                .statistics
-                .iter()
-                .find(|s| s.name == "sigma_discrete")
-                .and_then(|s| s.analytic)
-                && (sd * sd - sigma * sigma).abs() > 1e-3 * sigma * sigma
-            {
-                c.hlines.push(super::chart::Marker::new(
-                    sd * sd,
-                    "σ²_d of the simulated (FFT-grid) process: what the estimate converges to",
-                ));
-            }
-            correlation = Some(c);
-        }
-        out.push(OutputCharts {
-            output: name.clone(),
-            welch,
-            realizations,
-            histogram,
-            correlation,
-            response_density,
-        });
+        Ok(welch)
     }
-    Ok(out)
+
+    /// Excerpts of the first realizations.
+    fn excerpts(&self) -> Result<LineChart> {
+        let ne = EXCERPT_REALIZATIONS.min(self.meta.n_realizations);
+        let m = EXCERPT_SAMPLES.min(self.meta.n_samples);
+        let first = self.run.read_signals(SignalGroup::Outputs, self.name, 0..ne)?;
+        let t: Vec<f64> = (0..m).map(|k| k as f64 * self.meta.dt).collect();
+        let rows: Vec<(String, Vec<f64>)> = (0..ne)
+            .map(|i| {
+                (
+                    format!("realization {i}"),
+                    first.row(i).iter().take(m).cloned().collect(),
+                )
+            })
+            .collect();
+        let refs: Vec<(&str, &[f64])> = rows.iter().map(|(s, v)| (s.as_str(), &v[..])).collect();
+        realizations_chart(&self.title, &t, &refs, &self.quantity, self.unit)
+    }
+
+    /// The histogram of whole realizations (at most [`MAX_HISTOGRAM_SAMPLES`] samples) against N(M, σ)
+    /// of the analytic mean and σ, and the samples it drew.
+    fn histogram(&self, st: &OutputStatistics) -> Result<(Histogram, Samples)> {
+        let (mean, sigma) = (analytic_statistic(st, "mean")?, analytic_statistic(st, "sigma")?);
+        let n = self.meta.n_samples;
+        let nh = (MAX_HISTOGRAM_SAMPLES / n.max(1)).clamp(1, self.meta.n_realizations);
+        let all = self.run.read_signals(SignalGroup::Outputs, self.name, 0..nh)?;
+        let (data, _) = all.into_raw_vec_and_offset();
+        let mut h = histogram_chart(&self.title, &data, mean, sigma, &self.quantity, self.unit, None)?;
+        h.x_label = format!("{} [{}]", self.quantity, self.unit);
+        h.curves[0].name = format!(
+            "{} (analytic σ); {} samples of {nh} realizations",
+            h.curves[0].name,
+            data.len()
+        );
+        let samples = Samples {
+            data,
+            realizations: nh,
+            mean,
+            sigma,
+        };
+        Ok((h, samples))
+    }
+
+    /// The correlation estimate averaged over realizations against the model (see [`run_charts`]).
+    fn correlation(
+        &self,
+        samples: &Samples,
+        psd: &PsdEstimate,
+        analytic: &[f64],
+        st: &OutputStatistics,
+        model_sc: Option<&Scenario>,
+    ) -> Result<LineChart> {
+        let (n, dt) = (self.meta.n_samples, self.meta.dt);
+        let dw = uniform_step(&psd.omega, self.name)?;
+        let tau_max = (n as f64 * dt / 4.0).min(2.0 * PI / (4.0 * dw));
+        let max_lag = ((tau_max / dt).floor() as usize).clamp(1, n.saturating_sub(1).max(1));
+        let (k, nc) = self.estimated_correlation(samples, max_lag)?;
+        let lags: Vec<f64> = (0..=max_lag).map(|m| m as f64 * dt).collect();
+        let (model, model_name) = match model_sc {
+            Some(sc) => {
+                let (k, dw_f) = model_correlation(sc, self.name, dt, n, max_lag)?;
+                let label = format!(
+                    "model K(τ) = ∫ S_y(ω) cos ωτ dω of the scenario, |ω| ≤ π/Δt, Δω = {} rad/s",
+                    crate::numbers::num(dw_f)
+                );
+                (k, label)
+            }
+            None => (
+                lags.iter().map(|&tau| cosine_sum(&psd.omega, analytic, tau)).collect(),
+                format!(
+                    "model K(τ) = 2Σ S(ω_j) cos(ω_j τ) Δω of the stored analytic S(ω), Δω = {} rad/s (scenario \
+                     not rebuilt: coarse)",
+                    crate::numbers::num(dw)
+                ),
+            ),
+        };
+        let mut c = correlation_chart(&self.title, &lags, &k, &model, None, &self.quantity, self.unit)?;
+        c.series[0].name = format!("estimate K̂(τ), mean of {nc} realizations");
+        c.series[1].name = model_name;
+        let sigma = samples.sigma;
+        c.hlines
+            .push(super::chart::Marker::new(sigma * sigma, "analytic σ² = K(0)"));
+        // the spectral route simulates the spectrum sampled on its FFT grid: its exact variance (stored as the
+        // `sigma_discrete` statistic) is what the estimate converges to; mark it when it differs visibly
+        if let Some(sd) = st
+            .statistics
+            .iter()
+            .find(|s| s.name == "sigma_discrete")
+            .and_then(|s| s.analytic)
+            && (sd * sd - sigma * sigma).abs() > 1e-3 * sigma * sigma
+        {
+            c.hlines.push(super::chart::Marker::new(
+                sd * sd,
+                "σ²_d of the simulated (FFT-grid) process: what the estimate converges to",
+            ));
+        }
+        Ok(c)
+    }
+
+    /// K̂(mΔt), m = 0..=max_lag, averaged over the first [`MAX_CORRELATION_REALIZATIONS`] realizations
+    /// (reusing the histogram's samples where they cover them), and the count averaged.
+    fn estimated_correlation(&self, samples: &Samples, max_lag: usize) -> Result<(Vec<f64>, usize)> {
+        let n = self.meta.n_samples;
+        let nc = MAX_CORRELATION_REALIZATIONS.min(self.meta.n_realizations);
+        let rows = if nc <= samples.realizations {
+            None
+        } else {
+            Some(self.run.read_signals(SignalGroup::Outputs, self.name, 0..nc)?)
+        };
+        let mut k = vec![0.0; max_lag + 1];
+        for i in 0..nc {
+            let x: &[f64] = match &rows {
+                Some(r) => r.row(i).to_slice().unwrap_or(&[]),
+                None => &samples.data[i * n..(i + 1) * n],
+            };
+            for (a, b) in k.iter_mut().zip(time_correlation(x, max_lag, Some(samples.mean))?) {
+                *a += b / nc as f64;
+            }
+        }
+        Ok((k, nc))
+    }
+}
+
+/// The step Δω of a density grid, which must be uniform.
+fn uniform_step(omega: &[f64], name: &str) -> Result<f64> {
+    let dw = omega[1] - omega[0];
+    let uniform = omega
+        .windows(2)
+        .all(|w| ((w[1] - w[0]) - dw).abs() <= 1e-9 * dw.abs().max(f64::MIN_POSITIVE));
+    if dw.is_nan() || dw <= 0.0 || !uniform {
+        return Err(Error::invalid("psd", name, "density grid is not uniform in ω"));
+    }
+    Ok(dw)
 }
 
 /// Writes the pictures of a Monte Carlo run file into `dir` (created if missing), SVG and PNG each:

@@ -4,10 +4,12 @@
 use super::chart::{Legend, LineChart, Marker, SecondaryAxis, Series};
 use crate::error::{Error, Result};
 use crate::numbers::num;
-use crate::response::{cumulative_variance, output_density, variance_quadrature};
 use crate::scenario::Scenario;
 use crate::spectrum::{Convention, Domain, Spectrum};
-use std::f64::consts::PI;
+use crate::study::scenario_curves::{
+    coherence_curves, cross_spectra, output_density_curves, spectra_curves, transfer_curves, CrossSpectrum,
+    OutputDensityCurves, TransferCurves,
+};
 use std::path::{Path, PathBuf};
 
 /// Options of [`scenario_plots_with`].
@@ -195,83 +197,65 @@ pub fn source_density_chart(sc: &Scenario, i: usize, opts: &ScenarioPlotOptions)
 /// # Formula
 /// The source is the pair at the speed v (temporal, [`crate::coherence::TwoTracks`]); back in space,
 /// S_x(Ω) = v·S_t(vΩ) for every entry of the matrix, then [`Convention::from_canonical`] (G(n) = 4π S_x(2πn)
-/// by default). The Ω grid is that of the input density chart of the road's spectrum. A real coherence
+/// by default), computed by [`cross_spectra`]. The Ω grid is that of the input density chart of the road's
+/// spectrum. A real coherence
 /// (every kind of [`crate::coherence`]) gives Q ≡ 0: the series is then left out of the log axis and its
 /// legend says so.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for fewer than 20 points.
 pub fn input_cross_spectrum_charts(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<Vec<(String, LineChart)>> {
-    let crate::response::Excitation::Sources { sources, .. } = &sc.excitation else {
-        return Ok(Vec::new());
-    };
-    let Some(v) = sc.input.speed else { return Ok(Vec::new()) };
-    if opts.points < 20 {
-        return Err(Error::invalid(
-            "points",
-            opts.points,
-            "need at least 20 points per curve",
-        ));
-    }
     let conv = opts.convention;
-    let mut out = Vec::new();
-    for (s, src) in sources.iter().enumerate() {
-        let crate::response::Source::Matrix(m) = src else {
-            continue;
-        };
-        if m.n_components() < 2 {
-            continue;
-        }
-        let Some(inp) = sc.inputs.get(s) else { continue };
-        let (lo, hi) = spectrum_range(inp.spectrum.as_ref(), &[]);
-        let grid = log_grid(lo, hi, opts.points, &[]);
-        let (a, b) = (m.component_name(0), m.component_name(1));
-        let (mut auto, mut co, mut quad, mut coh) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for &om in &grid {
-            let sm = m.matrix(om * v);
-            let x = |z: f64| conv.from_canonical(om, v * z);
-            auto.push(x(sm[(0, 0)].re));
-            co.push(x(sm[(0, 1)].re));
-            quad.push(x(-sm[(0, 1)].im));
-            coh.push((x(0.0).0, m.coherence_matrix(om * v)[(0, 1)].norm_sqr()));
-        }
-        let unit = opts.input_unit.clone().unwrap_or_else(|| inp.unit.clone());
-        let mut chart = LineChart::new(
-            format!("Cross-spectrum of {}: {}", inp.name, sc.title),
-            frequency_label(conv, Domain::Spatial),
-            density_label(conv, Domain::Spatial, &format!("{a} and {b}"), &unit).replacen(
-                "density",
-                "(cross-)density",
-                1,
-            ),
-        );
-        chart.log_x = true;
-        chart.log_y = true;
-        chart.max_decades = Some(8.0);
-        chart
-            .series
-            .push(Series::line(format!("density of each track, G_{a} = G_{b}"), auto));
-        let real = quad.iter().all(|p| p.1 == 0.0);
-        let co_name = if real {
-            format!("co-spectrum C = Re G_{a},{b}; quad-spectrum Q ≡ 0 (real coherence)")
-        } else {
-            format!("co-spectrum C = Re G_{a},{b}")
-        };
-        chart.series.push(Series::dashed(co_name, co));
-        if !real {
+    let charts = cross_spectra(sc, conv, opts.points)?
+        .into_iter()
+        .map(|cs| {
+            let real = cs.is_real();
+            let CrossSpectrum {
+                input,
+                unit,
+                tracks: (a, b),
+                auto,
+                co,
+                quad,
+                coherence,
+            } = cs;
+            let unit = opts.input_unit.clone().unwrap_or(unit);
+            let mut chart = LineChart::new(
+                format!("Cross-spectrum of {input}: {}", sc.title),
+                frequency_label(conv, Domain::Spatial),
+                density_label(conv, Domain::Spatial, &format!("{a} and {b}"), &unit).replacen(
+                    "density",
+                    "(cross-)density",
+                    1,
+                ),
+            );
+            chart.log_x = true;
+            chart.log_y = true;
+            chart.max_decades = Some(8.0);
             chart
                 .series
-                .push(Series::dashed(format!("quad-spectrum Q = −Im G_{a},{b}"), quad));
-        }
-        chart.secondary = Some(SecondaryAxis {
-            y_label: "squared coherence γ² [-]".into(),
-            series: vec![Series::line(format!("γ² of {a} and {b} (right axis)"), coh)],
-            hlines: Vec::new(),
-        });
-        chart.legend = Legend::LowerLeft;
-        out.push((inp.name.clone(), chart));
-    }
-    Ok(out)
+                .push(Series::line(format!("density of each track, G_{a} = G_{b}"), auto));
+            let co_name = if real {
+                format!("co-spectrum C = Re G_{a},{b}; quad-spectrum Q ≡ 0 (real coherence)")
+            } else {
+                format!("co-spectrum C = Re G_{a},{b}")
+            };
+            chart.series.push(Series::dashed(co_name, co));
+            if !real {
+                chart
+                    .series
+                    .push(Series::dashed(format!("quad-spectrum Q = −Im G_{a},{b}"), quad));
+            }
+            chart.secondary = Some(SecondaryAxis {
+                y_label: "squared coherence γ² [-]".into(),
+                series: vec![Series::line(format!("γ² of {a} and {b} (right axis)"), coherence)],
+                hlines: Vec::new(),
+            });
+            chart.legend = Legend::LowerLeft;
+            (input, chart)
+        })
+        .collect();
+    Ok(charts)
 }
 
 /// Chart of the squared coherence γ²(n) = |S_LR|²/(S_LL S_RR) of every multi-component input of the
@@ -285,16 +269,11 @@ pub fn input_cross_spectrum_charts(sc: &Scenario, opts: &ScenarioPlotOptions) ->
 /// # Errors
 /// [`Error::InvalidParameter`] for fewer than 20 points.
 pub fn input_coherence_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Result<Option<LineChart>> {
-    let crate::response::Excitation::Sources { sources, .. } = &sc.excitation else {
+    let Some(curves) = coherence_curves(sc, opts.points)? else {
         return Ok(None);
     };
-    let Some(v) = sc.input.speed else { return Ok(None) };
-    if opts.points < 20 {
-        return Err(Error::invalid(
-            "points",
-            opts.points,
-            "need at least 20 points per curve",
-        ));
+    if curves.is_empty() {
+        return Ok(None);
     }
     let mut chart = LineChart::new(
         format!("Input coherence: {}", sc.title),
@@ -303,30 +282,8 @@ pub fn input_coherence_chart(sc: &Scenario, opts: &ScenarioPlotOptions) -> Resul
     );
     chart.log_x = true;
     chart.y_range = Some((0.0, 1.05));
-    for (s, src) in sources.iter().enumerate() {
-        let crate::response::Source::Matrix(m) = src else {
-            continue;
-        };
-        if m.n_components() < 2 {
-            continue;
-        }
-        let name = sc
-            .inputs
-            .get(s)
-            .map_or_else(|| format!("source {s}"), |i| i.name.clone());
-        let pts = (0..opts.points)
-            .map(|k| {
-                let n = 10f64.powf(-3.0 + 4.0 * k as f64 / (opts.points - 1) as f64);
-                (n, m.coherence_matrix(2.0 * PI * n * v)[(0, 1)].norm_sqr())
-            })
-            .collect();
-        chart.series.push(Series::line(
-            format!("{name}: {} and {}", m.component_name(0), m.component_name(1)),
-            pts,
-        ));
-    }
-    if chart.series.is_empty() {
-        return Ok(None);
+    for c in curves {
+        chart.series.push(Series::line(c.name, c.points));
     }
     chart.legend = Legend::LowerLeft;
     Ok(Some(chart))
@@ -355,27 +312,7 @@ pub fn spectra_chart(
     convention: Convention,
     points: usize,
 ) -> Result<LineChart> {
-    if spectra.is_empty() {
-        return Err(Error::invalid("spectra", 0, "need at least one spectrum"));
-    }
-    if points < 20 {
-        return Err(Error::invalid("points", points, "need at least 20 points per curve"));
-    }
-    let domain = spectra[0].1.domain();
-    if spectra.iter().any(|s| s.1.domain() != domain) {
-        return Err(Error::invalid(
-            "spectra",
-            "mixed domains",
-            "temporal and spatial spectra need different axes",
-        ));
-    }
-    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-    for (_, s) in spectra {
-        let (a, b) = spectrum_range(*s, &[]);
-        lo = lo.min(a);
-        hi = hi.max(b);
-    }
-    let grid = log_grid(lo, hi, points, &[]);
+    let (domain, curves) = spectra_curves(spectra, convention, points)?;
     let mut chart = LineChart::new(
         title,
         frequency_label(convention, domain),
@@ -385,14 +322,8 @@ pub fn spectra_chart(
     chart.log_y = true;
     // a density falling off exponentially (Gaussian-cosine) reaches 1e-300 within its support
     chart.max_decades = Some(INPUT_DECADES);
-    for (name, s) in spectra {
-        let (slo, shi) = s.support();
-        let pts = grid
-            .iter()
-            .filter(|w| **w >= slo && **w <= shi)
-            .map(|&w| convention.from_canonical(w, s.density(w)))
-            .collect();
-        chart.series.push(Series::line(*name, pts));
+    for c in curves {
+        chart.series.push(Series::line(c.name, c.points));
     }
     chart.legend = Legend::LowerLeft;
     Ok(chart)
@@ -406,30 +337,18 @@ const INPUT_DECADES: f64 = 30.0;
 ///
 /// # Formula
 /// The ω grid spans the natural frequencies |λ| and the input's breakpoints and support edges, a decade
-/// beyond each side, log-spaced, with the natural frequencies themselves included.
+/// beyond each side, log-spaced, with the natural frequencies themselves included ([`transfer_curves`]).
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for an output index out of range.
 pub fn transfer_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) -> Result<LineChart> {
-    let sys = sc.model.system.as_ref();
-    let info = sys.outputs().get(output).ok_or_else(|| {
-        Error::invalid(
-            "output",
-            output,
-            format!("the system has {} outputs", sys.outputs().len()),
-        )
-    })?;
     let conv = opts.convention;
+    let TransferCurves {
+        output: info,
+        per_input,
+        natural,
+    } = transfer_curves(sc, output, conv, opts.points)?;
     let in_unit = opts.input_unit.clone().unwrap_or_else(|| sc.input.unit.clone());
-    let grid = system_grid(sc, opts.points);
-    let m = sys.n_inputs();
-    let mut curves: Vec<Vec<(f64, f64)>> = vec![Vec::with_capacity(grid.len()); m];
-    for &w in &grid {
-        let h = sys.response(w);
-        for (j, c) in curves.iter_mut().enumerate() {
-            c.push((frequency(conv, w), h[(output, j)].norm_sqr()));
-        }
-    }
     let ratio = if info.unit == in_unit {
         "dimensionless".to_string()
     } else {
@@ -443,7 +362,8 @@ pub fn transfer_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) 
     chart.log_x = true;
     chart.log_y = true;
     chart.max_decades = Some(8.0);
-    for (j, c) in curves.into_iter().enumerate() {
+    let m = per_input.len();
+    for (j, c) in per_input.into_iter().enumerate() {
         let name = if m == 1 {
             format!("{} per unit input", info.name)
         } else {
@@ -451,7 +371,7 @@ pub fn transfer_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) 
         };
         chart.series.push(Series::line(name, c));
     }
-    chart.vlines = natural_frequency_markers(sc, conv);
+    chart.vlines = natural_frequency_markers(&natural, conv);
     chart.legend = Legend::LowerLeft;
     Ok(chart)
 }
@@ -460,53 +380,27 @@ pub fn transfer_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) 
 /// a linear right-hand axis and the whole-axis variance as a horizontal line.
 ///
 /// # Formula
-/// S_y(ω) = H S_u Hᴴ ([`output_density`]). The cumulative variance at grid point ω_k is
-/// σ²(ω_k) = 2∫_0^{ω_k} S_y dω = ∫_0^{f_k} G_y df ([`cumulative_variance`]: accumulated segment by segment
+/// S_y(ω) = H S_u Hᴴ, computed by [`output_density_curves`]. The cumulative variance at grid point ω_k is
+/// σ²(ω_k) = 2∫_0^{ω_k} S_y dω = ∫_0^{f_k} G_y df ([`cumulative_variance`](crate::response::cumulative_variance): accumulated segment by segment
 /// with [`band_variance`](crate::response::band_variance), adaptive Gauss–Kronrod quadrature per segment; no
 /// trapezoid). When S_y is not integrable at ω = 0 the curve starts at the first grid point (and its label
-/// says so). The horizontal line is [`variance_quadrature`] over the whole axis, so the gap between the
+/// says so). The horizontal line is
+/// [`variance_quadrature`](crate::response::variance_quadrature) over the whole axis, so the gap between the
 /// curve's end and the line is the variance beyond the plotted range.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] for an output index out of range; quadrature errors.
 pub fn output_density_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOptions) -> Result<LineChart> {
-    let sys = sc.model.system.as_ref();
-    let exc = &sc.excitation;
-    let info = sys.outputs().get(output).ok_or_else(|| {
-        Error::invalid(
-            "output",
-            output,
-            format!("the system has {} outputs", sys.outputs().len()),
-        )
-    })?;
     let conv = opts.convention;
-    let (slo, shi) = exc.support();
-    let grid: Vec<f64> = system_grid(sc, opts.points)
-        .into_iter()
-        .filter(|w| *w >= slo && *w <= shi)
-        .collect();
-    if grid.is_empty() {
-        return Err(Error::Numerical {
-            what: "plot output density".into(),
-            reason: "nothing to plot: the input's support lies outside the frequency grid".into(),
-        });
-    }
-    let density: Vec<(f64, f64)> = grid
-        .iter()
-        .map(|&w| conv.from_canonical(w, output_density(sys, exc, output, w)))
-        .collect();
+    let OutputDensityCurves {
+        output: info,
+        density,
+        cumulative,
+        from_zero,
+        whole,
+        natural,
+    } = output_density_curves(sc, output, conv, opts.points)?;
     let var_unit = squared(&info.unit);
-    let whole = match variance_quadrature(sys, exc, output) {
-        Ok(r) => Some(r.value),
-        Err(Error::Divergent { .. }) => None,
-        Err(e) => return Err(e),
-    };
-    let (cumulative, from_zero) = cumulative_variance(sys, exc, output, &grid, whole)?;
-    let cumulative: Vec<(f64, f64)> = grid
-        .iter()
-        .zip(cumulative)
-        .map(|(&w, v)| (frequency(conv, w), v))
-        .collect();
     let fsym = if conv.is_cyclic() { "f" } else { "ω" };
     let mut hlines = Vec::new();
     if let Some(v) = whole {
@@ -517,7 +411,7 @@ pub fn output_density_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOpt
     } else {
         format!(
             "cumulative variance from {fsym} = {} (not integrable at 0)",
-            num(frequency(conv, grid[0]))
+            num(cumulative[0].0)
         )
     };
     let mut chart = LineChart::new(
@@ -536,18 +430,9 @@ pub fn output_density_chart(sc: &Scenario, output: usize, opts: &ScenarioPlotOpt
         series: vec![Series::dashed(cum_name, cumulative)],
         hlines,
     });
-    chart.vlines = natural_frequency_markers(sc, conv);
+    chart.vlines = natural_frequency_markers(&natural, conv);
     chart.legend = Legend::LowerLeft;
     Ok(chart)
-}
-
-/// The frequency-axis value of ω in a convention: f = ω/2π (cyclic) or ω.
-fn frequency(conv: Convention, w: f64) -> f64 {
-    if conv.is_cyclic() {
-        w / (2.0 * PI)
-    } else {
-        w
-    }
 }
 
 fn frequency_label(conv: Convention, domain: Domain) -> String {
@@ -601,103 +486,20 @@ fn density_label(conv: Convention, domain: Domain, what: &str, unit: &str) -> St
     format!("density {sym} of {what} [{}/{per}]", squared(unit))
 }
 
-/// Frequency range of a spectrum for plotting (rad/s or rad/m): its support where finite, otherwise a
-/// factor 30 beyond its breakpoints and `hints`.
-fn spectrum_range(s: &dyn Spectrum, hints: &[f64]) -> (f64, f64) {
-    let (slo, shi) = s.support();
-    let marks: Vec<f64> = s
-        .breakpoints()
-        .into_iter()
-        .chain(hints.iter().cloned())
-        .chain([slo, shi])
-        .filter(|w| w.is_finite() && *w > 0.0)
-        .collect();
-    let (mlo, mhi) = if marks.is_empty() {
-        (0.1, 100.0)
-    } else {
-        (
-            marks.iter().cloned().fold(f64::INFINITY, f64::min),
-            marks.iter().cloned().fold(0.0, f64::max),
-        )
-    };
-    let lo = if slo > 0.0 && slo.is_finite() { slo } else { mlo / 30.0 };
-    let hi = if shi.is_finite() { shi } else { mhi * 30.0 };
-    if hi > lo {
-        (lo, hi)
-    } else {
-        (lo / 10.0, lo * 10.0)
-    }
-}
-
-/// ω grid (rad/s) for system plots: a decade beyond the natural frequencies and the input's breakpoints
-/// and finite support edges.
-fn system_grid(sc: &Scenario, points: usize) -> Vec<f64> {
-    let nat: Vec<f64> = sc
-        .model
-        .system
-        .natural_frequencies()
-        .into_iter()
-        .filter(|w| w.is_finite() && *w > 0.0)
-        .collect();
-    let (slo, shi) = sc.excitation.support();
-    let marks: Vec<f64> = nat
-        .iter()
-        .cloned()
-        .chain(sc.excitation.breakpoints())
-        .chain([slo, shi])
-        .filter(|w| w.is_finite() && *w > 0.0)
-        .collect();
-    let (lo, hi) = if marks.is_empty() {
-        (0.1, 100.0)
-    } else {
-        (
-            marks.iter().cloned().fold(f64::INFINITY, f64::min) / 10.0,
-            marks.iter().cloned().fold(0.0, f64::max) * 10.0,
-        )
-    };
-    let mut extra = nat;
-    extra.extend([slo, shi].into_iter().filter(|w| w.is_finite() && *w > 0.0));
-    log_grid(lo, hi, points.max(20), &extra)
-}
-
-/// `n` log-spaced points from `lo` to `hi`, with the `extra` points in range added; sorted, distinct.
-fn log_grid(lo: f64, hi: f64, n: usize, extra: &[f64]) -> Vec<f64> {
-    let n = n.max(2);
-    let r = (hi / lo).ln();
-    let mut g: Vec<f64> = (0..n)
-        .map(|k| lo * (r * k as f64 / (n - 1) as f64).exp())
-        .chain(extra.iter().cloned().filter(|w| *w >= lo && *w <= hi))
-        .collect();
-    g.sort_by(|a, b| a.total_cmp(b));
-    g.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs());
-    g
-}
-
-fn natural_frequency_markers(sc: &Scenario, conv: Convention) -> Vec<Marker> {
-    let mut nat: Vec<f64> = sc
-        .model
-        .system
-        .natural_frequencies()
-        .into_iter()
-        .filter(|w| w.is_finite() && *w > 0.0)
-        .collect();
-    nat.sort_by(|a, b| a.total_cmp(b));
-    nat.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
+/// Vertical markers at the natural frequencies (already in the convention's frequency), the first one
+/// labelled with the whole list.
+fn natural_frequency_markers(nat: &[f64], conv: Convention) -> Vec<Marker> {
     let unit = if conv.is_cyclic() { "Hz" } else { "rad/s" };
-    let list = nat
-        .iter()
-        .map(|w| num(frequency(conv, *w)))
-        .collect::<Vec<_>>()
-        .join(", ");
+    let list = nat.iter().map(|f| num(*f)).collect::<Vec<_>>().join(", ");
     nat.iter()
         .enumerate()
-        .map(|(k, w)| {
+        .map(|(k, f)| {
             let label = if k == 0 {
                 format!("natural frequencies |λ|: {list} {unit}")
             } else {
                 String::new()
             };
-            Marker::new(frequency(conv, *w), label)
+            Marker::new(*f, label)
         })
         .collect()
 }

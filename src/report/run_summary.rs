@@ -3,7 +3,9 @@
 
 use crate::error::Result;
 use crate::store::layout as L;
-use crate::store::{abbreviated_list, RunFile, LISTED_FILES, RESOLVED_BIAS};
+use crate::store::{
+    abbreviated_list, OutputStatistics, PsdEstimate, RainflowHistogram, RunFile, LISTED_FILES, RESOLVED_BIAS,
+};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -19,9 +21,21 @@ use std::path::Path;
 /// ```
 pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
     let run = RunFile::open_any(path.as_ref())?;
+    let mut s = String::new();
+    write_header(&mut s, &run);
+    write_signals(&mut s, &run);
+    write_statistics(&mut s, &run.statistics()?);
+    write_psd(&mut s, &run.psd()?);
+    for h in run.rainflow()? {
+        write_rainflow(&mut s, &h);
+    }
+    Ok(s)
+}
+
+/// The root attributes: status, versions, seed, grid, shards, provenance, storage and the scenario text.
+fn write_header(s: &mut String, run: &RunFile) {
     let m = run.metadata();
     let p = run.path();
-    let mut s = String::new();
     let done = run.completed_shards().len();
     let status = if run.is_complete() {
         "complete".to_string()
@@ -75,6 +89,11 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
     for line in m.scenario_text.lines() {
         let _ = writeln!(s, "    | {line}");
     }
+}
+
+/// Every input and output signal with its dataset's shape and chunks, and the accumulators.
+fn write_signals(s: &mut String, run: &RunFile) {
+    let m = run.metadata();
     for (group, signals) in [(L::GROUP_INPUTS, &m.inputs), (L::GROUP_OUTPUTS, &m.outputs)] {
         let _ = writeln!(s, "  /{group}: {} signal(s)", signals.len());
         for sig in signals.iter() {
@@ -93,7 +112,10 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
         let list: Vec<String> = m.accumulators.iter().map(|(n, l)| format!("{n}[{l}]")).collect();
         let _ = writeln!(s, "  /shards accumulators: {}", list.join(", "));
     }
-    let stats = run.statistics()?;
+}
+
+/// The statistics table.
+fn write_statistics(s: &mut String, stats: &[OutputStatistics]) {
     if !stats.is_empty() {
         let _ = writeln!(s, "  /statistics");
         let _ = writeln!(
@@ -101,7 +123,7 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
             "    {:<12} {:<10} {:>14} {:>14} {:>14} {:>6} {:>14} {:>6}  unit",
             "signal", "statistic", "estimate", "lower", "upper", "conf", "analytic", "covers"
         );
-        for st in &stats {
+        for st in stats {
             for x in &st.statistics {
                 let analytic = x.analytic.map_or("-".to_string(), |a| format!("{a:.6e}"));
                 let covers = x.covers.map_or("-", |c| if c { "yes" } else { "NO" });
@@ -121,13 +143,16 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
             }
         }
     }
-    let psd = run.psd()?;
+}
+
+/// The density estimates, with the coverage of the expected estimate.
+fn write_psd(s: &mut String, psd: &[PsdEstimate]) {
     if !psd.is_empty() {
         let _ = writeln!(
             s,
             "  /psd (two-sided angular S(omega), variance = integral of S d omega)"
         );
-        for e in &psd {
+        for e in psd {
             let lo = e.omega.first().copied().unwrap_or(f64::NAN);
             let hi = e.omega.last().copied().unwrap_or(f64::NAN);
             let _ = writeln!(
@@ -161,20 +186,21 @@ pub fn summarize(path: impl AsRef<Path>) -> Result<String> {
             }
         }
     }
-    for h in run.rainflow()? {
-        let total: f64 = h.counts.iter().sum();
-        let (top, n) = (h.edges.last().copied().unwrap_or(0.0), h.counts.len());
-        let _ = writeln!(
-            s,
-            "  /rainflow/{}  {n} range bins up to {top:.4e} {}; {total:.1} cycles per realization (+{:.2} above){}",
-            h.output,
-            h.unit,
-            h.overflow,
-            h.dirlik
-                .as_ref()
-                .map(|d| format!("; Dirlik expects {:.1}", d.iter().sum::<f64>()))
-                .unwrap_or_default()
-        );
-    }
-    Ok(s)
+}
+
+/// One rainflow histogram's line.
+fn write_rainflow(s: &mut String, h: &RainflowHistogram) {
+    let total: f64 = h.counts.iter().sum();
+    let (top, n) = (h.edges.last().copied().unwrap_or(0.0), h.counts.len());
+    let _ = writeln!(
+        s,
+        "  /rainflow/{}  {n} range bins up to {top:.4e} {}; {total:.1} cycles per realization (+{:.2} above){}",
+        h.output,
+        h.unit,
+        h.overflow,
+        h.dirlik
+            .as_ref()
+            .map(|d| format!("; Dirlik expects {:.1}", d.iter().sum::<f64>()))
+            .unwrap_or_default()
+    );
 }

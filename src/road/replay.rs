@@ -5,7 +5,7 @@
 use super::Profile;
 use crate::error::{Error, Result};
 use crate::simulate::SampledSystem;
-use crate::system::{FrequencyResponse as _, StateSpace};
+use crate::system::{FrequencyResponse as _, OutputInfo, StateSpace};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 use std::io::Write as _;
@@ -210,6 +210,83 @@ pub fn replay(
         return Err(Error::invalid("speed", v, "must be a finite speed > 0 m/s"));
     }
     let m = ss.b.ncols();
+    let columns = wheel_tracks(wheels, profile, file, m)?;
+    let dx = profile.step_m;
+    let dt = dx / v;
+    let n = profile.len();
+    let wheelbase = wheels.iter().map(|w| w.position_m).fold(0.0, f64::max);
+    let offsets = wheel_offsets(wheels, wheelbase, dx);
+    let interpolated = offsets.iter().any(|o| o.1 != 0.0);
+    // last k with i₀ + k (+1 if f > 0) ≤ N − 1, for every wheel
+    let last = offsets
+        .iter()
+        .map(|&(i0, f)| (n - 1) as i64 - i0 as i64 - i64::from(f > 0.0))
+        .min()
+        .unwrap_or((n - 1) as i64);
+    let skip_samples = skip_samples(ss, opts, dx)?;
+    let k_total = (last + 1).max(0) as usize;
+    if k_total < skip_samples + 2 {
+        return Err(too_short(file, profile, wheelbase, skip_samples, k_total));
+    }
+    let u = wheel_inputs(wheels, &columns, &offsets, k_total);
+    let (y, p) = respond(ss, &u, k_total, dt, opts.start)?;
+    let mut outputs = Vec::with_capacity(p);
+    let mut history = Vec::with_capacity(p);
+    for (i, info) in ss.outputs().iter().enumerate() {
+        let h: Vec<f64> = (skip_samples..k_total).map(|k| y[k * p + i]).collect();
+        outputs.push(history_statistics(info, &h));
+        history.push(h);
+    }
+    Ok(Replay {
+        speed_m_s: v,
+        dt_s: dt,
+        step_m: dx,
+        skip_m: skip_samples as f64 * dx,
+        skip_samples,
+        start: opts.start,
+        n_samples: k_total,
+        first_distance_m: profile.distance_m(offsets.iter().map(|o| o.0).max().unwrap_or(0) + skip_samples),
+        wheelbase_m: wheelbase,
+        interpolated,
+        outputs,
+        history,
+    })
+}
+
+/// The samples left out of the statistics: `opts.skip_m` (finite, ≥ 0), else the settling length, in whole
+/// profile steps `dx`.
+fn skip_samples(ss: &StateSpace, opts: &ReplayOptions, dx: f64) -> Result<usize> {
+    let skip_m = match opts.skip_m {
+        Some(s) if !(s.is_finite() && s >= 0.0) => {
+            return Err(Error::invalid("skip", s, "must be a finite length >= 0 m"))
+        }
+        Some(s) => s,
+        None => settling_length(ss, opts.speed_m_s)?,
+    };
+    Ok((skip_m / dx - 1e-9).ceil().max(0.0) as usize)
+}
+
+/// The refusal of a profile that leaves fewer than two samples after the wheelbase and the skipped length.
+fn too_short(file: &Path, profile: &Profile, wheelbase: f64, skip_samples: usize, k_total: usize) -> Error {
+    let dx = profile.step_m;
+    Error::in_file(
+        file,
+        "length",
+        format!("{} m", profile.length_m()),
+        format!(
+            "the profile is too short: the wheelbase {wheelbase} m plus the skipped length {:.6} m ({skip_samples} \
+             steps of {dx} m) leave {} samples to replay; need at least 2 (a longer profile, or a smaller \
+             --skip)",
+            skip_samples as f64 * dx,
+            k_total.saturating_sub(skip_samples)
+        ),
+    )
+}
+
+/// The profile column of every wheel, after checking the wheels: one per system input (`m`), each with a
+/// finite position ≥ 0, a finite gain and offset, and a track the profile has (else an error naming
+/// `file`).
+fn wheel_tracks<'a>(wheels: &[Wheel], profile: &'a Profile, file: &Path, m: usize) -> Result<Vec<&'a [f64]>> {
     if wheels.len() != m {
         return Err(Error::invalid(
             "wheels",
@@ -240,16 +317,16 @@ pub fn replay(
                 format!("model input {j} runs on track `{}`: {reason}", w.track),
             )
         })?;
-        columns.push(&track.elevation_m);
+        columns.push(track.elevation_m.as_slice());
     }
-    let dx = profile.step_m;
-    let dt = dx / v;
-    let n = profile.len();
-    let wheelbase = wheels.iter().map(|w| w.position_m).fold(0.0, f64::max);
-    // the foremost wheel starts on the first whole sample with every wheel on the profile
+    Ok(columns)
+}
+
+/// Per wheel, the whole offset i₀ and the fraction f of its sample index at k = 0: the foremost wheel
+/// starts on the first whole sample with every wheel (behind it by up to `wheelbase`) on the profile.
+fn wheel_offsets(wheels: &[Wheel], wheelbase: f64, dx: f64) -> Vec<(usize, f64)> {
     let base = (wheelbase / dx - 1e-9).ceil().max(0.0);
-    // per wheel: (whole offset i₀, fraction f) of its sample index at k = 0
-    let offsets: Vec<(usize, f64)> = wheels
+    wheels
         .iter()
         .map(|w| {
             let s = (base - w.position_m / dx).max(0.0);
@@ -260,39 +337,34 @@ pub fn replay(
                 (s.floor() as usize, s - s.floor())
             }
         })
-        .collect();
-    let interpolated = offsets.iter().any(|o| o.1 != 0.0);
-    // last k with i₀ + k (+1 if f > 0) ≤ N − 1, for every wheel
-    let last = offsets
-        .iter()
-        .map(|&(i0, f)| (n - 1) as i64 - i0 as i64 - i64::from(f > 0.0))
-        .min()
-        .unwrap_or((n - 1) as i64);
-    let skip_m = match opts.skip_m {
-        Some(s) if !(s.is_finite() && s >= 0.0) => {
-            return Err(Error::invalid("skip", s, "must be a finite length >= 0 m"))
+        .collect()
+}
+
+/// The inputs u\[k·m + j\] = g_j z_j(s_j(k)) + offset_j of `k_total` samples (see [`replay`]'s formula).
+fn wheel_inputs(wheels: &[Wheel], columns: &[&[f64]], offsets: &[(usize, f64)], k_total: usize) -> Vec<f64> {
+    let m = wheels.len();
+    let mut u = vec![0.0; k_total * m];
+    for (j, (w, &(i0, f))) in wheels.iter().zip(offsets).enumerate() {
+        let z = columns[j];
+        for k in 0..k_total {
+            let i = i0 + k;
+            let zi = if f == 0.0 {
+                z[i]
+            } else {
+                (1.0 - f) * z[i] + f * z[i + 1]
+            };
+            u[k * m + j] = w.gain * zi + w.offset;
         }
-        Some(s) => s,
-        None => settling_length(ss, v)?,
-    };
-    let skip_samples = (skip_m / dx - 1e-9).ceil().max(0.0) as usize;
-    let k_total = (last + 1).max(0) as usize;
-    if k_total < skip_samples + 2 {
-        return Err(Error::in_file(
-            file,
-            "length",
-            format!("{} m", profile.length_m()),
-            format!(
-                "the profile is too short: the wheelbase {wheelbase} m plus the skipped length {:.6} m ({skip_samples} \
-                 steps of {dx} m) leave {} samples to replay; need at least 2 (a longer profile, or a smaller \
-                 --skip)",
-                skip_samples as f64 * dx,
-                k_total.saturating_sub(skip_samples)
-            ),
-        ));
     }
-    // a derivative feedthrough E u̇ (a damper between the base and a reported mass: its acceleration) is
-    // added after the stepping, from the central difference of the replayed input (see the formula)
+    u
+}
+
+/// The outputs y\[k·p + i\] of `ss` stepped exactly under the `k_total` samples of inputs `u` at Δt = `dt`
+/// from `start`, and p; a derivative feedthrough E u̇ (a damper between the base and a reported mass: its
+/// acceleration) is added after the stepping, from the central difference of the replayed input (see
+/// [`replay`]'s formula).
+fn respond(ss: &StateSpace, u: &[f64], k_total: usize, dt: f64, start: Start) -> Result<(Vec<f64>, usize)> {
+    let m = ss.b.ncols();
     let derivative = ss.e.amax() != 0.0;
     let stepped = if derivative {
         StateSpace::new(
@@ -308,20 +380,7 @@ pub fn replay(
     };
     let sys = SampledSystem::new(&stepped, dt)?;
     let (ns, _, p) = sys.dims();
-    let mut u = vec![0.0; k_total * m];
-    for (j, (w, &(i0, f))) in wheels.iter().zip(&offsets).enumerate() {
-        let z = columns[j];
-        for k in 0..k_total {
-            let i = i0 + k;
-            let zi = if f == 0.0 {
-                z[i]
-            } else {
-                (1.0 - f) * z[i] + f * z[i + 1]
-            };
-            u[k * m + j] = w.gain * zi + w.offset;
-        }
-    }
-    let mut x = match opts.start {
+    let mut x = match start {
         Start::Zero => vec![0.0; ns],
         Start::Static => {
             if ns == 0 {
@@ -338,50 +397,33 @@ pub fn replay(
         }
     };
     let mut y = vec![0.0; k_total * p];
-    sys.respond(&u, &mut x, &mut y)?;
+    sys.respond(u, &mut x, &mut y)?;
     if derivative {
-        add_derivative_feedthrough(ss, &u, dt, &mut y);
+        add_derivative_feedthrough(ss, u, dt, &mut y);
     }
-    let kept = k_total - skip_samples;
-    let infos = ss.outputs();
-    let mut outputs = Vec::with_capacity(p);
-    let mut history = Vec::with_capacity(p);
-    for i in 0..p {
-        let h: Vec<f64> = (skip_samples..k_total).map(|k| y[k * p + i]).collect();
-        let kf = kept as f64;
-        let mean = h.iter().sum::<f64>() / kf;
-        let sigma = (h.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / kf).sqrt();
-        let rms = (h.iter().map(|v| v * v).sum::<f64>() / kf).sqrt();
-        let min = h.iter().copied().fold(f64::INFINITY, f64::min);
-        let max = h.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let peak = (max - mean).max(mean - min);
-        let crest_factor = if sigma > 0.0 { peak / sigma } else { f64::NAN };
-        outputs.push(OutputStatistics {
-            name: infos[i].name.clone(),
-            unit: infos[i].unit.clone(),
-            mean,
-            sigma,
-            rms,
-            min,
-            max,
-            crest_factor,
-        });
-        history.push(h);
+    Ok((y, p))
+}
+
+/// Mean, σ, r.m.s., extremes and crest factor of one output's replayed history.
+fn history_statistics(info: &OutputInfo, h: &[f64]) -> OutputStatistics {
+    let kf = h.len() as f64;
+    let mean = h.iter().sum::<f64>() / kf;
+    let sigma = (h.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / kf).sqrt();
+    let rms = (h.iter().map(|v| v * v).sum::<f64>() / kf).sqrt();
+    let min = h.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = h.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let peak = (max - mean).max(mean - min);
+    let crest_factor = if sigma > 0.0 { peak / sigma } else { f64::NAN };
+    OutputStatistics {
+        name: info.name.clone(),
+        unit: info.unit.clone(),
+        mean,
+        sigma,
+        rms,
+        min,
+        max,
+        crest_factor,
     }
-    Ok(Replay {
-        speed_m_s: v,
-        dt_s: dt,
-        step_m: dx,
-        skip_m: skip_samples as f64 * dx,
-        skip_samples,
-        start: opts.start,
-        n_samples: k_total,
-        first_distance_m: profile.distance_m(offsets.iter().map(|o| o.0).max().unwrap_or(0) + skip_samples),
-        wheelbase_m: wheelbase,
-        interpolated,
-        outputs,
-        history,
-    })
 }
 
 /// Adds E u̇_k to every output sample y_k (row-major `y[k·p + i]`, inputs `u[k·m + j]`), with u̇_k the

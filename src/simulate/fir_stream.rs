@@ -189,6 +189,185 @@ fn window_within(e: &[Vec<f64>], total: &[f64], tail: f64, limit: usize) -> (usi
     (a, b, out)
 }
 
+/// The kernels h\[g\]\[r\] on a grid of `l` points: the inverse FFTs of the spectra `spectra(l)`
+/// (checked: generators × outputs × (l/2 + 1) bins).
+fn grid_kernels(
+    spectra: &dyn Fn(usize) -> Result<KernelSpectra>,
+    l: usize,
+    planner: &mut RealFftPlanner<f64>,
+) -> Result<Vec<Vec<Vec<f64>>>> {
+    let b = spectra(l)?;
+    let p = b.first().map_or(0, |x| x.len());
+    if b.is_empty() || p == 0 || b.iter().any(|x| x.len() != p || x.iter().any(|y| y.len() != l / 2 + 1)) {
+        return Err(Error::invalid(
+            "kernel spectra",
+            l,
+            format!("need generators × outputs × {} bins", l / 2 + 1),
+        ));
+    }
+    let inverse = planner.plan_fft_inverse(l);
+    let mut h: Vec<Vec<Vec<f64>>> = Vec::with_capacity(b.len());
+    for bg in b {
+        let mut row = Vec::with_capacity(p);
+        for mut br in bg {
+            br[0].im = 0.0;
+            br[l / 2].im = 0.0;
+            let mut k = vec![0.0; l];
+            inverse.process(&mut br, &mut k).map_err(fft_error)?;
+            row.push(k);
+        }
+        h.push(row);
+    }
+    Ok(h)
+}
+
+/// The energy e\[r\]\[m\] = Σ_g h\[g\]\[r\]\[m\]² of every output's kernels at each lag, and its total (the
+/// grid variance), which must be finite.
+fn kernel_energies(h: &[Vec<Vec<f64>>], p: usize, l: usize) -> Result<(Vec<Vec<f64>>, Vec<f64>)> {
+    let mut e = vec![vec![0.0; l]; p];
+    for hg in h {
+        for (er, k) in e.iter_mut().zip(hg) {
+            er.iter_mut().zip(k).for_each(|(a, v)| *a += v * v);
+        }
+    }
+    let total: Vec<f64> = e.iter().map(|er| er.iter().sum()).collect();
+    if let Some(r) = total.iter().position(|t| !t.is_finite()) {
+        return Err(Error::Numerical {
+            what: "streamed spectral synthesis".into(),
+            reason: format!("the kernel of output {r} is not finite on a grid of {} points", l),
+        });
+    }
+    Ok((e, total))
+}
+
+/// The relative change |D_L − D_{L/2}|/D_L of every output's grid variance since the previous grid (0 for a
+/// zero variance); infinite without a previous grid.
+fn grid_change(total: &[f64], previous: Option<&[f64]>) -> Vec<f64> {
+    match previous {
+        Some(prev) => total
+            .iter()
+            .zip(prev)
+            .map(|(t, q)| if *t > 0.0 { (t - q).abs() / t } else { 0.0 })
+            .collect(),
+        None => vec![f64::INFINITY; total.len()],
+    }
+}
+
+/// The refusal at the largest grid: the output whose window does not fit, or whose grid variance still
+/// changes the most.
+fn largest_grid_error(fits: bool, taps: usize, outside: &[f64], change: &[f64], tail: f64, grid_tol: f64) -> Error {
+    let p = outside.len();
+    let (r, what) = if !fits {
+        let r = (0..p).max_by(|x, y| outside[*x].total_cmp(&outside[*y])).unwrap_or(0);
+        (
+            r,
+            format!(
+                "its kernel needs {taps} taps to keep all but {tail:e} of the variance, more than a quarter of the \
+                 largest grid"
+            ),
+        )
+    } else {
+        let r = (0..p).max_by(|x, y| change[*x].total_cmp(&change[*y])).unwrap_or(0);
+        (
+            r,
+            format!(
+                "its grid variance still changes by {:.3e} (> {grid_tol:e}) when the grid doubles",
+                change[r]
+            ),
+        )
+    };
+    Error::Numerical {
+        what: format!("streamed spectral synthesis of output {r}"),
+        reason: format!(
+            "{what} ({MAX_GRID} points): the spectrum has sharp edges or narrow peaks at this step; \
+             use the whole-record spectral route (--route spectral), a longer time step, or a smoother \
+             or band-limited output"
+        ),
+    }
+}
+
+/// The grid a window that does not fit needs: the energy outside the window extrapolated from the windows
+/// of L/8 and L/4 taps (outside fraction ∝ M^−α, α ≥ 1/2; α = 1 for a jump of the spectrum), with the
+/// numbers in the error when that grid is beyond the largest. `g` generators, L = the energies' length.
+fn needed_grid(e: &[Vec<f64>], total: &[f64], tail: f64, g: usize) -> Result<usize> {
+    let (l, p) = (e[0].len(), e.len());
+    let (.., out4) = window_within(e, total, tail, l / 4);
+    let (.., out8) = window_within(e, total, tail, l / 8);
+    let need = |r: usize| -> f64 {
+        if out4[r] <= tail {
+            return (l / 4) as f64;
+        }
+        let alpha = if out8[r] > out4[r] {
+            (out8[r] / out4[r]).log2().clamp(0.5, 8.0)
+        } else {
+            0.5
+        };
+        (l / 4) as f64 * (out4[r] / tail).powf(1.0 / alpha)
+    };
+    let r = (0..p).max_by(|x, y| need(*x).total_cmp(&need(*y))).unwrap_or(0);
+    let taps = need(r);
+    let grid = (4.0 * taps).min(1e30);
+    if grid > MAX_GRID as f64 {
+        let gf = g as f64;
+        let f = (4.0 * taps).log2().ceil().exp2();
+        // the design's tables (b, h, energies) and one thread's overlap-save buffers and the shared
+        // kernel spectra at that size
+        let design = super::resources::kernel_design_bytes(g, p, f as usize) as f64;
+        let stream = gf * f * 8.0
+            + (gf + 1.0) * f * 8.0
+            + 4.0 * f * 8.0
+            + 2.0 * p as f64 * f * 8.0
+            + gf * p as f64 * (taps * 8.0 + f * 8.0);
+        return Err(Error::Numerical {
+            what: format!("streamed spectral synthesis of output {r}"),
+            reason: format!(
+                "its kernel leaves {:.3e} of the variance outside {} taps and {:.3e} outside {} (a decay \
+                 like M^−{:.2}), so keeping all but the tolerated tail {tail:e} needs about {:.3e} taps: a \
+                 kernel grid of {:.3e} points (largest {MAX_GRID}) and about {:.1} GiB to design plus {:.1} \
+                 GiB to stream. The spectrum has a sharp edge or a narrow peak at this step: use the \
+                 whole-record spectral route (--route spectral), a larger tail tolerance (--stream-tail; \
+                 the variance is then biased low by at most that fraction), a longer time step, or a \
+                 smoother or band-limited output",
+                out8[r],
+                l / 8,
+                out4[r],
+                l / 4,
+                if out8[r] > out4[r] {
+                    (out8[r] / out4[r]).log2()
+                } else {
+                    0.0
+                },
+                taps,
+                grid,
+                design / (1u64 << 30) as f64,
+                stream / (1u64 << 30) as f64
+            ),
+        });
+    }
+    Ok((grid as usize).next_power_of_two())
+}
+
+/// The next grid's design tables (kernel spectra, kernels, energies) must fit in the available memory
+/// before they are allocated.
+fn check_design_memory(g: usize, p: usize, next: usize) -> Result<()> {
+    let design = super::resources::kernel_design_bytes(g, p, next) as f64;
+    if let Some(avail) = super::resources::available_memory()
+        && design > avail as f64
+    {
+        return Err(Error::Numerical {
+            what: "streamed spectral synthesis".into(),
+            reason: format!(
+                "designing its kernels on a grid of {next} points needs about {:.2} GiB, more than the \
+                     {:.2} GiB available: use the whole-record spectral route (--route spectral), a larger \
+                     tail tolerance (--stream-tail), a longer time step, or a smoother or band-limited output",
+                design / (1u64 << 30) as f64,
+                avail as f64 / (1u64 << 30) as f64
+            ),
+        });
+    }
+    Ok(())
+}
+
 impl FirSynthesis {
     /// A synthesis from explicit taps `kernels[g][r][i]` (every kernel of the same length T ≥ 1).
     ///
@@ -284,51 +463,12 @@ impl FirSynthesis {
         let mut planner = RealFftPlanner::<f64>::new();
         let mut previous: Option<Vec<f64>> = None;
         loop {
-            let b = spectra(l)?;
-            let p = b.first().map_or(0, |x| x.len());
-            if b.is_empty() || p == 0 || b.iter().any(|x| x.len() != p || x.iter().any(|y| y.len() != l / 2 + 1)) {
-                return Err(Error::invalid(
-                    "kernel spectra",
-                    l,
-                    format!("need generators × outputs × {} bins", l / 2 + 1),
-                ));
-            }
-            let inverse = planner.plan_fft_inverse(l);
-            let mut h: Vec<Vec<Vec<f64>>> = Vec::with_capacity(b.len());
-            for bg in b {
-                let mut row = Vec::with_capacity(p);
-                for mut br in bg {
-                    br[0].im = 0.0;
-                    br[l / 2].im = 0.0;
-                    let mut k = vec![0.0; l];
-                    inverse.process(&mut br, &mut k).map_err(fft_error)?;
-                    row.push(k);
-                }
-                h.push(row);
-            }
-            let mut e = vec![vec![0.0; l]; p];
-            for hg in &h {
-                for (er, k) in e.iter_mut().zip(hg) {
-                    er.iter_mut().zip(k).for_each(|(a, v)| *a += v * v);
-                }
-            }
-            let total: Vec<f64> = e.iter().map(|er| er.iter().sum()).collect();
-            if let Some(r) = total.iter().position(|t| !t.is_finite()) {
-                return Err(Error::Numerical {
-                    what: "streamed spectral synthesis".into(),
-                    reason: format!("the kernel of output {r} is not finite on a grid of {l} points"),
-                });
-            }
+            let h = grid_kernels(spectra, l, &mut planner)?;
+            let p = h[0].len();
+            let (e, total) = kernel_energies(&h, p, l)?;
             let (a, bb, outside) = window(&e, &total, tail);
             let fits = 4 * (a + bb) <= l;
-            let change: Vec<f64> = match &previous {
-                Some(prev) => total
-                    .iter()
-                    .zip(prev)
-                    .map(|(t, q)| if *t > 0.0 { (t - q).abs() / t } else { 0.0 })
-                    .collect(),
-                None => vec![f64::INFINITY; p],
-            };
+            let change = grid_change(&total, previous.as_deref());
             if fits && change.iter().all(|c| *c <= grid_tol) {
                 let taps = a + bb;
                 let kernels = h
@@ -352,108 +492,15 @@ impl FirSynthesis {
                 ));
             }
             if 2 * l > MAX_GRID {
-                let (r, what) = if !fits {
-                    let r = (0..p).max_by(|x, y| outside[*x].total_cmp(&outside[*y])).unwrap_or(0);
-                    (
-                        r,
-                        format!(
-                            "its kernel needs {} taps to keep all but {tail:e} of the variance, more than a quarter of \
-                             the largest grid",
-                            a + bb
-                        ),
-                    )
-                } else {
-                    let r = (0..p).max_by(|x, y| change[*x].total_cmp(&change[*y])).unwrap_or(0);
-                    (
-                        r,
-                        format!(
-                            "its grid variance still changes by {:.3e} (> {grid_tol:e}) when the grid doubles",
-                            change[r]
-                        ),
-                    )
-                };
-                return Err(Error::Numerical {
-                    what: format!("streamed spectral synthesis of output {r}"),
-                    reason: format!(
-                        "{what} ({MAX_GRID} points): the spectrum has sharp edges or narrow peaks at this step; \
-                         use the whole-record spectral route (--route spectral), a longer time step, or a smoother \
-                         or band-limited output"
-                    ),
-                });
+                return Err(largest_grid_error(fits, a + bb, &outside, &change, tail, grid_tol));
             }
-            // a window that does not fit: extrapolate the energy outside the window from the windows of
-            // L/8 and L/4 taps (outside fraction ∝ M^−α, α ≥ 1/2; α = 1 for a jump of the spectrum), jump to
-            // the grid it needs, or fail now with the numbers when that grid is beyond the largest
-            let mut next = 2 * l;
-            if !fits {
-                let (.., out4) = window_within(&e, &total, tail, l / 4);
-                let (.., out8) = window_within(&e, &total, tail, l / 8);
-                let need = |r: usize| -> f64 {
-                    if out4[r] <= tail {
-                        return (l / 4) as f64;
-                    }
-                    let alpha = if out8[r] > out4[r] {
-                        (out8[r] / out4[r]).log2().clamp(0.5, 8.0)
-                    } else {
-                        0.5
-                    };
-                    (l / 4) as f64 * (out4[r] / tail).powf(1.0 / alpha)
-                };
-                let r = (0..p).max_by(|x, y| need(*x).total_cmp(&need(*y))).unwrap_or(0);
-                let taps = need(r);
-                let grid = (4.0 * taps).min(1e30);
-                if grid > MAX_GRID as f64 {
-                    let g = h.len() as f64;
-                    let f = (4.0 * taps).log2().ceil().exp2();
-                    // the design's tables (b, h, energies) and one thread's overlap-save buffers and the shared
-                    // kernel spectra at that size
-                    let design = super::resources::kernel_design_bytes(h.len(), p, f as usize) as f64;
-                    let stream = g * f * 8.0
-                        + (g + 1.0) * f * 8.0
-                        + 4.0 * f * 8.0
-                        + 2.0 * p as f64 * f * 8.0
-                        + g * p as f64 * (taps * 8.0 + f * 8.0);
-                    return Err(Error::Numerical {
-                        what: format!("streamed spectral synthesis of output {r}"),
-                        reason: format!(
-                            "its kernel leaves {:.3e} of the variance outside {} taps and {:.3e} outside {} (a decay \
-                             like M^−{:.2}), so keeping all but the tolerated tail {tail:e} needs about {:.3e} taps: a \
-                             kernel grid of {:.3e} points (largest {MAX_GRID}) and about {:.1} GiB to design plus {:.1} \
-                             GiB to stream. The spectrum has a sharp edge or a narrow peak at this step: use the \
-                             whole-record spectral route (--route spectral), a larger tail tolerance (--stream-tail; \
-                             the variance is then biased low by at most that fraction), a longer time step, or a \
-                             smoother or band-limited output",
-                            out8[r],
-                            l / 8,
-                            out4[r],
-                            l / 4,
-                            if out8[r] > out4[r] { (out8[r] / out4[r]).log2() } else { 0.0 },
-                            taps,
-                            grid,
-                            design / (1u64 << 30) as f64,
-                            stream / (1u64 << 30) as f64
-                        ),
-                    });
-                }
-                next = next.max((grid as usize).next_power_of_two());
-            }
-            // the next grid's design tables (kernel spectra, kernels, energies) must fit in the available memory
-            // before they are allocated
-            let design = super::resources::kernel_design_bytes(h.len(), p, next) as f64;
-            if let Some(avail) = super::resources::available_memory()
-                && design > avail as f64
-            {
-                return Err(Error::Numerical {
-                    what: "streamed spectral synthesis".into(),
-                    reason: format!(
-                        "designing its kernels on a grid of {next} points needs about {:.2} GiB, more than the \
-                             {:.2} GiB available: use the whole-record spectral route (--route spectral), a larger \
-                             tail tolerance (--stream-tail), a longer time step, or a smoother or band-limited output",
-                        design / (1u64 << 30) as f64,
-                        avail as f64 / (1u64 << 30) as f64
-                    ),
-                });
-            }
+            // a window that does not fit: jump to the grid it needs (or fail now with the numbers)
+            let next = if fits {
+                2 * l
+            } else {
+                (2 * l).max(needed_grid(&e, &total, tail, h.len())?)
+            };
+            check_design_memory(h.len(), p, next)?;
             previous = Some(total);
             l = next;
         }

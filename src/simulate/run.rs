@@ -240,14 +240,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
             opts.confidence,
         )?);
     }
-    writer.write_statistics(&stats)?;
-    for r in &rainflow {
-        writer.write_rainflow(r)?;
-    }
-    for psd in &psds {
-        writer.write_psd(psd)?;
-    }
-    let path = writer.finish()?;
+    let path = writer.finish_with(&stats, &rainflow, &psds)?;
     Ok(RunSummary {
         path,
         route: plan.route,

@@ -245,6 +245,159 @@ pub fn find_run_files(inputs: &[PathBuf], exclude: &[&Path]) -> Result<(Vec<Path
     Ok((files, unfinished))
 }
 
+/// The headers of `files` as shard files; every file is closed again at once (memory and open files
+/// independent of their number). A file that is not a complete shard file is a problem.
+fn open_headers(files: Vec<PathBuf>, problems: &mut Vec<String>) -> Vec<PartFile> {
+    let mut opened = Vec::new();
+    for f in files {
+        let st = stamp(&f);
+        let read = RunFile::open(&f).and_then(|run| {
+            let values = match run.metadata().part {
+                Some(part) => Some((part, run.shared_fingerprint()?)),
+                None => None,
+            };
+            Ok((run, values))
+        });
+        match read {
+            Err(e) => problems.push(format!("{}: not a complete run file ({e})", f.display())),
+            Ok((run, None)) => problems.push(format!(
+                "{}: a whole run (written without --shard), not a shard file",
+                run.path().display()
+            )),
+            Ok((run, Some((part, (shared, confidence))))) => {
+                opened.push(PartFile {
+                    part,
+                    meta: run.metadata().clone(),
+                    format_version: run.format_version(),
+                    toolkit_version: run.toolkit_version().to_string(),
+                    shared,
+                    confidence,
+                    stamp: st,
+                    path: f,
+                });
+            }
+        }
+    }
+    opened
+}
+
+/// The run (its metadata without a part, and the toolkit version) that most files share, and its files in
+/// shard order; every other file is a foreign-file problem naming what differs.
+fn the_run(opened: Vec<PartFile>, problems: &mut Vec<String>) -> ((RunMetadata, String), Vec<PartFile>) {
+    let mut groups: Vec<((RunMetadata, String), Vec<usize>)> = Vec::new();
+    for (k, p) in opened.iter().enumerate() {
+        let id = (p.meta.whole(), p.toolkit_version.clone());
+        match groups.iter_mut().find(|(g, _)| *g == id) {
+            Some((_, members)) => members.push(k),
+            None => groups.push((id, vec![k])),
+        }
+    }
+    groups.sort_by_key(|g| std::cmp::Reverse(g.1.len()));
+    let ((meta, toolkit_version), members) = groups[0].clone();
+    for ((other, version), list) in &groups[1..] {
+        let mut differ = super::writer::metadata_differences(&meta, other);
+        if *version != toolkit_version {
+            differ.push(format!(
+                "toolkit version ({version} instead of {toolkit_version}: only shards computed by one \
+                 version are guaranteed to merge bit-identically)"
+            ));
+        }
+        for &k in list {
+            problems.push(format!(
+                "{}: foreign shard file: belongs to another run than the {} other file(s) (differs in {})",
+                opened[k].path.display(),
+                members.len(),
+                differ.join(", ")
+            ));
+        }
+    }
+    let mut parts: Vec<PartFile> = Vec::new();
+    for (k, p) in opened.into_iter().enumerate() {
+        if members.contains(&k) {
+            parts.push(p);
+        }
+    }
+    parts.sort_by_key(|p| (p.meta.local_shards().start, p.part.count, p.path.clone()));
+    ((meta, toolkit_version), parts)
+}
+
+/// A problem for every group of files that hold the same internal shard (`owners[b]`: the files holding
+/// shard b): duplicates of one shard, or overlapping splits.
+fn report_overlaps(parts: &[PartFile], owners: &[Vec<usize>], problems: &mut Vec<String>) {
+    let mut reported = Vec::new();
+    for list in owners.iter().filter(|l| l.len() > 1) {
+        if reported.contains(list) {
+            continue;
+        }
+        reported.push(list.clone());
+        let first = &parts[list[0]];
+        let same = list.iter().all(|&k| parts[k].part == first.part);
+        let described: Vec<String> = list.iter().map(|&k| describe(&parts[k])).collect();
+        problems.push(if same {
+            format!(
+                "duplicate shard {} of {}: {} hold the same realizations; keep one of them",
+                first.part.index,
+                first.part.count,
+                described.join(" and ")
+            )
+        } else {
+            format!(
+                "overlapping shard files: {} hold some of the same realizations (different --of); keep the \
+                 files of one split",
+                described.join(" and ")
+            )
+        });
+    }
+}
+
+/// The problem of internal shards no file holds: the shard indices to resubmit in the split most files
+/// use, with their realizations, and the unfinished files found for them.
+fn missing_shards(meta: &RunMetadata, parts: &[PartFile], missing: &[usize], unfinished: &[PathBuf]) -> String {
+    let n_shards = meta.n_shards();
+    let mut counts: Vec<(usize, usize)> = Vec::new();
+    for p in parts {
+        match counts.iter_mut().find(|c| c.0 == p.part.count) {
+            Some(c) => c.1 += 1,
+            None => counts.push((p.part.count, 1)),
+        }
+    }
+    counts.sort_by_key(|c| std::cmp::Reverse(c.1));
+    let n = counts[0].0;
+    let mut indices: Vec<usize> = missing.iter().map(|&b| Part::owner(b, n_shards, n)).collect();
+    indices.dedup();
+    let ranges: Vec<String> = indices
+        .iter()
+        .map(|&i| {
+            let s = Part { index: i, count: n }.shards(n_shards);
+            let (a, z) = (meta.shard_range(s.start).start, meta.shard_range(s.end - 1).end);
+            format!("{i} (realizations {a}..{z})")
+        })
+        .collect();
+    let list = indices.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(",");
+    let mut r = format!(
+        "missing shard(s) {} of {n}: no file holds their realizations; resubmit exactly these indices with \
+         the same parameters (SLURM: sbatch --array={list} ...; otherwise stochvib simulate ... --shard I \
+         --of {n} for each I), then merge again",
+        ranges.join(", ")
+    );
+    let expected: Vec<String> = indices
+        .iter()
+        .map(|&i| Part { index: i, count: n }.file_name() + L::TMP_SUFFIX)
+        .collect();
+    let interrupted: Vec<&PathBuf> = unfinished
+        .iter()
+        .filter(|u| {
+            u.file_name()
+                .is_some_and(|f| expected.iter().any(|e| *e == f.to_string_lossy()))
+        })
+        .collect();
+    if !interrupted.is_empty() {
+        let list: Vec<String> = interrupted.iter().map(|p| p.display().to_string()).collect();
+        let _ = write!(r, " (unfinished: {}; rerunning the shard resumes it)", list.join(", "));
+    }
+    r
+}
+
 impl PartSet {
     /// Opens the shard files of `inputs` (see [`find_run_files`]; `exclude` as there) and checks them.
     ///
@@ -274,75 +427,11 @@ impl PartSet {
             return Err(fail(r));
         }
         let mut problems = Vec::new();
-        // the headers only; every file is closed again at once (memory and open files independent of N)
-        let mut opened = Vec::new();
-        for f in files {
-            let st = stamp(&f);
-            let read = RunFile::open(&f).and_then(|run| {
-                let values = match run.metadata().part {
-                    Some(part) => Some((part, run.shared_fingerprint()?)),
-                    None => None,
-                };
-                Ok((run, values))
-            });
-            match read {
-                Err(e) => problems.push(format!("{}: not a complete run file ({e})", f.display())),
-                Ok((run, None)) => problems.push(format!(
-                    "{}: a whole run (written without --shard), not a shard file",
-                    run.path().display()
-                )),
-                Ok((run, Some((part, (shared, confidence))))) => {
-                    opened.push(PartFile {
-                        part,
-                        meta: run.metadata().clone(),
-                        format_version: run.format_version(),
-                        toolkit_version: run.toolkit_version().to_string(),
-                        shared,
-                        confidence,
-                        stamp: st,
-                        path: f,
-                    });
-                }
-            }
-        }
+        let opened = open_headers(files, &mut problems);
         if opened.is_empty() {
             return Err(fail(format!("no shard files to merge:\n  {}", problems.join("\n  "))));
         }
-        // the run: the identity most files share; every other file is foreign
-        let mut groups: Vec<((RunMetadata, String), Vec<usize>)> = Vec::new();
-        for (k, p) in opened.iter().enumerate() {
-            let id = (p.meta.whole(), p.toolkit_version.clone());
-            match groups.iter_mut().find(|(g, _)| *g == id) {
-                Some((_, members)) => members.push(k),
-                None => groups.push((id, vec![k])),
-            }
-        }
-        groups.sort_by_key(|g| std::cmp::Reverse(g.1.len()));
-        let ((meta, toolkit_version), members) = groups[0].clone();
-        for ((other, version), list) in &groups[1..] {
-            let mut differ = super::writer::metadata_differences(&meta, other);
-            if *version != toolkit_version {
-                differ.push(format!(
-                    "toolkit version ({version} instead of {toolkit_version}: only shards computed by one \
-                     version are guaranteed to merge bit-identically)"
-                ));
-            }
-            for &k in list {
-                problems.push(format!(
-                    "{}: foreign shard file: belongs to another run than the {} other file(s) (differs in {})",
-                    opened[k].path.display(),
-                    members.len(),
-                    differ.join(", ")
-                ));
-            }
-        }
-        let mut parts: Vec<PartFile> = Vec::new();
-        for (k, p) in opened.into_iter().enumerate() {
-            if members.contains(&k) {
-                parts.push(p);
-            }
-        }
-        parts.sort_by_key(|p| (p.meta.local_shards().start, p.part.count, p.path.clone()));
+        let ((meta, toolkit_version), parts) = the_run(opened, &mut problems);
         // coverage of the internal shards
         let n_shards = meta.n_shards();
         let mut owners: Vec<Vec<usize>> = vec![Vec::new(); n_shards];
@@ -351,75 +440,10 @@ impl PartSet {
                 owners[b].push(k);
             }
         }
-        let mut reported = Vec::new();
-        for list in owners.iter().filter(|l| l.len() > 1) {
-            if reported.contains(list) {
-                continue;
-            }
-            reported.push(list.clone());
-            let first = &parts[list[0]];
-            let same = list.iter().all(|&k| parts[k].part == first.part);
-            let described: Vec<String> = list.iter().map(|&k| describe(&parts[k])).collect();
-            problems.push(if same {
-                format!(
-                    "duplicate shard {} of {}: {} hold the same realizations; keep one of them",
-                    first.part.index,
-                    first.part.count,
-                    described.join(" and ")
-                )
-            } else {
-                format!(
-                    "overlapping shard files: {} hold some of the same realizations (different --of); keep the \
-                     files of one split",
-                    described.join(" and ")
-                )
-            });
-        }
+        report_overlaps(&parts, &owners, &mut problems);
         let missing: Vec<usize> = (0..n_shards).filter(|&b| owners[b].is_empty()).collect();
         if !missing.is_empty() {
-            // the split most files use tells which indices to resubmit
-            let mut counts: Vec<(usize, usize)> = Vec::new();
-            for p in &parts {
-                match counts.iter_mut().find(|c| c.0 == p.part.count) {
-                    Some(c) => c.1 += 1,
-                    None => counts.push((p.part.count, 1)),
-                }
-            }
-            counts.sort_by_key(|c| std::cmp::Reverse(c.1));
-            let n = counts[0].0;
-            let mut indices: Vec<usize> = missing.iter().map(|&b| Part::owner(b, n_shards, n)).collect();
-            indices.dedup();
-            let ranges: Vec<String> = indices
-                .iter()
-                .map(|&i| {
-                    let s = Part { index: i, count: n }.shards(n_shards);
-                    let (a, z) = (meta.shard_range(s.start).start, meta.shard_range(s.end - 1).end);
-                    format!("{i} (realizations {a}..{z})")
-                })
-                .collect();
-            let list = indices.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(",");
-            let mut r = format!(
-                "missing shard(s) {} of {n}: no file holds their realizations; resubmit exactly these indices with \
-                 the same parameters (SLURM: sbatch --array={list} ...; otherwise stochvib simulate ... --shard I \
-                 --of {n} for each I), then merge again",
-                ranges.join(", ")
-            );
-            let expected: Vec<String> = indices
-                .iter()
-                .map(|&i| Part { index: i, count: n }.file_name() + L::TMP_SUFFIX)
-                .collect();
-            let interrupted: Vec<&PathBuf> = unfinished
-                .iter()
-                .filter(|u| {
-                    u.file_name()
-                        .is_some_and(|f| expected.iter().any(|e| *e == f.to_string_lossy()))
-                })
-                .collect();
-            if !interrupted.is_empty() {
-                let list: Vec<String> = interrupted.iter().map(|p| p.display().to_string()).collect();
-                let _ = write!(r, " (unfinished: {}; rerunning the shard resumes it)", list.join(", "));
-            }
-            problems.push(r);
+            problems.push(missing_shards(&meta, &parts, &missing, &unfinished));
         }
         if !problems.is_empty() {
             return Err(fail(format!(

@@ -730,45 +730,8 @@ pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
             &format!("unknown compression {compression_label:?}"),
         )
     })?;
-    let mut signals = Vec::new();
-    for g in [L::GROUP_INPUTS, L::GROUP_OUTPUTS] {
-        let group = file
-            .group(g)
-            .map_err(h5err(path, &format!("missing group /{g}: not a stochvib run file")))?;
-        let names = attr_string_list(&group, L::ATTR_NAMES, path)?;
-        let units = attr_string_list(&group, L::ATTR_UNITS_LIST, path)?;
-        if names.len() != units.len() {
-            return Err(bad(
-                path,
-                g,
-                "the `names` and `units` attributes have different lengths",
-            ));
-        }
-        signals.push(
-            names
-                .into_iter()
-                .zip(units)
-                .map(|(name, unit)| Signal { name, unit })
-                .collect::<Vec<_>>(),
-        );
-    }
-    let outputs = signals.pop().unwrap_or_default();
-    let inputs = signals.pop().unwrap_or_default();
-    let shards = file
-        .group(L::GROUP_SHARDS)
-        .map_err(h5err(path, "missing group /shards: not a stochvib run file"))?;
-    let mut accumulators = Vec::new();
-    for name in attr_string_list(&shards, L::ATTR_ACCUMULATORS, path)? {
-        let ds = shards
-            .dataset(&name)
-            .map_err(h5err(path, &format!("missing accumulator dataset /shards/{name}")))?;
-        let len = ds
-            .shape()
-            .get(1)
-            .copied()
-            .ok_or_else(|| bad(path, &name, "accumulator is not 2-D"))?;
-        accumulators.push((name, len));
-    }
+    let (inputs, outputs) = read_signal_lists(file, path)?;
+    let accumulators = read_accumulator_list(file, path)?;
     let meta = RunMetadata {
         scenario_text: attr_string(file, L::ATTR_SCENARIO, path)?,
         seed: attr_scalar::<u64>(file, L::ATTR_SEED, path)?,
@@ -795,6 +758,19 @@ pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
             None
         },
     };
+    check_metadata(file, path, version, &meta, &usize_attr)?;
+    Ok(meta)
+}
+
+/// The metadata read from a file of format `version` against its checksum, its own rules, the shard count,
+/// the part attributes and the raw datasets' shapes.
+fn check_metadata(
+    file: &File,
+    path: &Path,
+    version: u32,
+    meta: &RunMetadata,
+    usize_attr: &dyn Fn(&str) -> Result<usize>,
+) -> Result<()> {
     if version >= 2 && attr_scalar::<u32>(file, L::ATTR_METADATA_CRC32, path)? != meta.digest() {
         return Err(damaged(
             path,
@@ -812,6 +788,65 @@ pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
             "does not equal ceil(n_realizations / shard_size)",
         ));
     }
+    check_part_attributes(path, meta, usize_attr)?;
+    if meta.store_raw {
+        check_raw_shapes(file, path, meta)?;
+    }
+    Ok(())
+}
+
+/// The input and output signal lists of a run file (`names` and `units` of `/inputs` and `/outputs`).
+fn read_signal_lists(file: &File, path: &Path) -> Result<(Vec<Signal>, Vec<Signal>)> {
+    let mut signals = Vec::new();
+    for g in [L::GROUP_INPUTS, L::GROUP_OUTPUTS] {
+        let group = file
+            .group(g)
+            .map_err(h5err(path, &format!("missing group /{g}: not a stochvib run file")))?;
+        let names = attr_string_list(&group, L::ATTR_NAMES, path)?;
+        let units = attr_string_list(&group, L::ATTR_UNITS_LIST, path)?;
+        if names.len() != units.len() {
+            return Err(bad(
+                path,
+                g,
+                "the `names` and `units` attributes have different lengths",
+            ));
+        }
+        signals.push(
+            names
+                .into_iter()
+                .zip(units)
+                .map(|(name, unit)| Signal { name, unit })
+                .collect::<Vec<_>>(),
+        );
+    }
+    let outputs = signals.pop().unwrap_or_default();
+    let inputs = signals.pop().unwrap_or_default();
+    Ok((inputs, outputs))
+}
+
+/// The accumulators of `/shards`: each dataset's name and row length.
+fn read_accumulator_list(file: &File, path: &Path) -> Result<Vec<(String, usize)>> {
+    let shards = file
+        .group(L::GROUP_SHARDS)
+        .map_err(h5err(path, "missing group /shards: not a stochvib run file"))?;
+    let mut accumulators = Vec::new();
+    for name in attr_string_list(&shards, L::ATTR_ACCUMULATORS, path)? {
+        let ds = shards
+            .dataset(&name)
+            .map_err(h5err(path, &format!("missing accumulator dataset /shards/{name}")))?;
+        let len = ds
+            .shape()
+            .get(1)
+            .copied()
+            .ok_or_else(|| bad(path, &name, "accumulator is not 2-D"))?;
+        accumulators.push((name, len));
+    }
+    Ok(accumulators)
+}
+
+/// The part attributes of a shard file (first shard, shard count, first realization, realization count)
+/// agree with its part index and count.
+fn check_part_attributes(path: &Path, meta: &RunMetadata, usize_attr: &dyn Fn(&str) -> Result<usize>) -> Result<()> {
     if meta.part.is_some() {
         let (sh, r) = (meta.local_shards(), meta.local_realizations());
         for (name, want) in [
@@ -825,28 +860,31 @@ pub(crate) fn read_metadata(file: &File, path: &Path) -> Result<RunMetadata> {
             }
         }
     }
-    if meta.store_raw {
-        for (g, list) in [(L::GROUP_INPUTS, &meta.inputs), (L::GROUP_OUTPUTS, &meta.outputs)] {
-            for sig in list.iter() {
-                let ds = file
-                    .dataset(&format!("{g}/{}", sig.name))
-                    .map_err(h5err(path, &format!("missing dataset /{g}/{}", sig.name)))?;
-                if ds.shape() != [meta.local_realizations().len(), meta.n_samples] {
-                    return Err(bad(
-                        path,
-                        &format!("{g}/{}", sig.name),
-                        &format!(
-                            "shape {:?} is not [realizations of the file, n_samples] = [{}, {}]",
-                            ds.shape(),
-                            meta.local_realizations().len(),
-                            meta.n_samples
-                        ),
-                    ));
-                }
+    Ok(())
+}
+
+/// Every raw dataset of a run with raw data is [realizations of the file, n_samples].
+fn check_raw_shapes(file: &File, path: &Path, meta: &RunMetadata) -> Result<()> {
+    for (g, list) in [(L::GROUP_INPUTS, &meta.inputs), (L::GROUP_OUTPUTS, &meta.outputs)] {
+        for sig in list.iter() {
+            let ds = file
+                .dataset(&format!("{g}/{}", sig.name))
+                .map_err(h5err(path, &format!("missing dataset /{g}/{}", sig.name)))?;
+            if ds.shape() != [meta.local_realizations().len(), meta.n_samples] {
+                return Err(bad(
+                    path,
+                    &format!("{g}/{}", sig.name),
+                    &format!(
+                        "shape {:?} is not [realizations of the file, n_samples] = [{}, {}]",
+                        ds.shape(),
+                        meta.local_realizations().len(),
+                        meta.n_samples
+                    ),
+                ));
             }
         }
     }
-    Ok(meta)
+    Ok(())
 }
 
 /// The fingerprint of the values every shard file of one run stores identically (they depend on the run's

@@ -1127,6 +1127,28 @@ impl RunWriter {
         }
     }
 
+    /// Writes the results of a finished run (its statistics, then every rainflow histogram and density
+    /// estimate, in order) and completes it ([`RunWriter::finish`]).
+    ///
+    /// # Errors
+    /// Those of [`RunWriter::write_statistics`], [`RunWriter::write_rainflow`], [`RunWriter::write_psd`] and
+    /// [`RunWriter::finish`].
+    pub fn finish_with(
+        mut self,
+        stats: &[OutputStatistics],
+        rainflow: &[super::RainflowHistogram],
+        psds: &[PsdEstimate],
+    ) -> Result<PathBuf> {
+        self.write_statistics(stats)?;
+        for r in rainflow {
+            self.write_rainflow(r)?;
+        }
+        for psd in psds {
+            self.write_psd(psd)?;
+        }
+        self.finish()
+    }
+
     /// Completes the run: checks that every shard is written, sets `@complete`, closes every handle,
     /// syncs the file to disk and renames `<final>.tmp` to `<final>`.
     ///

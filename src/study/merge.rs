@@ -22,7 +22,11 @@ use crate::simulate::accumulators::{Moments, WelchAccumulator};
 use crate::simulate::bands;
 use crate::simulate::verdicts::{set_analytic, VerdictChannels};
 use crate::simulate::{density_estimate, output_statistics, write_band_tables, Analytic, OutputFold};
-use crate::store::{tmp_path, MergeOptions, OutputStatistics, PartSet, RawStorage, RunWriter, SignalGroup};
+use crate::store::{
+    tmp_path, MergeOptions, OutputStatistics, PartFile, PartSet, PsdEstimate, RainflowHistogram, RawStorage,
+    ResponseHistogram, RunFile, RunMetadata, RunWriter, Signal, SignalGroup,
+};
+use ndarray::{Array2, ArrayView1};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -134,6 +138,59 @@ pub fn merge_runs(
     let set = PartSet::open(inputs, &[out, &tmp])?;
     let meta = set.meta.clone();
     let raw = opts.raw_storage(meta.store_raw);
+    check_shared_values(&set)?;
+    let first = &set.parts[0];
+    let shared = Shared::read(first)?;
+    let confidence = merge_confidence(opts, &set, &shared.stats)?;
+    let from = set.merged_from(out, raw);
+    let mut writer = RunWriter::create_merged(out, &meta, opts.create_options(), &from)?;
+    // a merge refused from here on (a damaged shard found in pass 2) leaves no .tmp of its own behind
+    let mut created = RemoveOnError((!writer.resumed()).then(|| writer.tmp_path().to_path_buf()));
+    let n_shards = meta.n_shards();
+    let names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
+    // the statistics, as a single-process run finishes them
+    let welch = welch_of(&meta)?;
+    let mut folds = output_folds(&meta, &names, &first.path, &welch)?;
+    progress(0, n_shards);
+    // pass 2: the files one at a time in realization order (one open file; memory independent of their
+    // number), each file's shards in one block
+    for p in &set.parts {
+        fold_part(p, &meta, &names, raw, &mut folds, &mut writer)?;
+        progress(p.meta.local_shards().end, n_shards);
+    }
+    let (mut stats, psds) = finish_outputs(&meta, folds, &shared, &welch, confidence, &first.path)?;
+    let rainflow = finish_channels(&mut writer, &meta, confidence, &shared, &first.path, &mut stats)?;
+    let path = writer.finish_with(&stats, &rainflow, &psds)?;
+    created.0 = None;
+    Ok(MergeSummary {
+        path,
+        files: set.parts.iter().map(|p| p.path.clone()).collect(),
+        n_realizations: meta.n_realizations,
+        n_shards,
+        raw,
+        outputs: stats,
+        notes: merge_notes(&set, raw, &from.files),
+    })
+}
+
+/// The statistics of the verdict channels, the bands and a nonlinear run's response histograms, appended
+/// to `stats` as a single-process run appends them; returns the rainflow histograms.
+fn finish_channels(
+    writer: &mut RunWriter,
+    meta: &RunMetadata,
+    confidence: f64,
+    shared: &Shared,
+    first: &Path,
+    stats: &mut [OutputStatistics],
+) -> Result<Vec<RainflowHistogram>> {
+    let rainflow = finish_verdicts(writer, meta, confidence, &shared.stats, &shared.rainflow, first, stats)?;
+    finish_bands(writer, meta, confidence, &shared.stats, first, stats)?;
+    crate::nonlinear::monte_carlo::finish_merged(writer, meta, confidence, &shared.stats, &shared.histograms, stats)?;
+    Ok(rainflow)
+}
+
+/// Refuses shard files whose shared values (analytic values, densities) differ from the first's.
+fn check_shared_values(set: &PartSet) -> Result<()> {
     let first = &set.parts[0];
     for p in &set.parts[1..] {
         if p.shared != first.shared {
@@ -147,46 +204,58 @@ pub fn merge_runs(
             });
         }
     }
-    // the shared values themselves, from the first file (checked against its checksums)
-    let (stats0, psd0, rain0, hist0) = {
+    Ok(())
+}
+
+/// The values every shard file stores alike, read from the first file (checked against its checksums).
+struct Shared {
+    stats: Vec<OutputStatistics>,
+    psd: Vec<PsdEstimate>,
+    rainflow: Vec<RainflowHistogram>,
+    histograms: Vec<ResponseHistogram>,
+}
+
+impl Shared {
+    fn read(first: &PartFile) -> Result<Shared> {
         let run = first.open()?;
-        (
-            run.statistics()?,
-            run.psd()?,
-            run.rainflow()?,
-            run.response_histograms()?,
-        )
-    };
-    let confidence = match opts.confidence {
-        Some(c) => c,
-        None => {
-            if let Some(p) = set.parts[1..].iter().find(|p| p.confidence != first.confidence) {
-                return Err(Error::invalid(
-                    "confidence",
-                    p.path.display(),
-                    format!(
-                        "the shard files were run with different --confidence ({} and {}): give the merge \
-                         --confidence",
-                        first.path.display(),
-                        p.path.display()
-                    ),
-                ));
-            }
-            stats0
-                .iter()
-                .flat_map(|o| &o.statistics)
-                .map(|s| s.interval.confidence)
-                .next()
-                .unwrap_or(0.95)
-        }
-    };
-    let from = set.merged_from(out, raw);
-    let mut writer = RunWriter::create_merged(out, &meta, opts.create_options(), &from)?;
-    // a merge refused from here on (a damaged shard found in pass 2) leaves no .tmp of its own behind
-    let mut created = RemoveOnError((!writer.resumed()).then(|| writer.tmp_path().to_path_buf()));
-    let n_shards = meta.n_shards();
-    let names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
-    // the statistics, as a single-process run finishes them
+        Ok(Shared {
+            stats: run.statistics()?,
+            psd: run.psd()?,
+            rainflow: run.rainflow()?,
+            histograms: run.response_histograms()?,
+        })
+    }
+}
+
+/// The confidence of the merged intervals: `opts.confidence`, else that of the shard files, which must
+/// agree.
+fn merge_confidence(opts: &MergeOptions, set: &PartSet, stats0: &[OutputStatistics]) -> Result<f64> {
+    if let Some(c) = opts.confidence {
+        return Ok(c);
+    }
+    let first = &set.parts[0];
+    if let Some(p) = set.parts[1..].iter().find(|p| p.confidence != first.confidence) {
+        return Err(Error::invalid(
+            "confidence",
+            p.path.display(),
+            format!(
+                "the shard files were run with different --confidence ({} and {}): give the merge \
+                 --confidence",
+                first.path.display(),
+                p.path.display()
+            ),
+        ));
+    }
+    Ok(stats0
+        .iter()
+        .flat_map(|o| &o.statistics)
+        .map(|s| s.interval.confidence)
+        .next()
+        .unwrap_or(0.95))
+}
+
+/// The Welch estimator of the run, from the length of its Welch accumulators.
+fn welch_of(meta: &RunMetadata) -> Result<Welch> {
     let bins = meta
         .accumulators
         .iter()
@@ -196,102 +265,140 @@ pub fn merge_runs(
             what: "merge".into(),
             reason: "the run has no Welch accumulator".into(),
         })?;
-    let welch = Welch::new(2 * (bins - 1), meta.dt)?;
-    // the time averages and Welch sums of every output, folded shard by shard as a single-process run
-    // reads them back
-    let mut folds: Vec<(usize, usize, OutputFold)> = meta
-        .outputs
+    Welch::new(2 * (bins - 1), meta.dt)
+}
+
+/// The fold of one output and the columns of its moment and Welch accumulators.
+type Fold = (usize, usize, OutputFold);
+
+/// The time averages and Welch sums of every output, folded shard by shard as a single-process run reads
+/// them back: nothing folded yet.
+fn output_folds(meta: &RunMetadata, names: &[&str], first: &Path, welch: &Welch) -> Result<Vec<Fold>> {
+    meta.outputs
         .iter()
         .map(|sig| {
             let at = |name: String| {
                 names.iter().position(|n| *n == name).ok_or_else(|| Error::Hdf5 {
-                    path: first.path.clone(),
+                    path: first.to_path_buf(),
                     reason: format!("no accumulator `{name}`"),
                 })
             };
             Ok((
                 at(Moments::name(&sig.name))?,
                 at(WelchAccumulator::name(&sig.name))?,
-                OutputFold::new(&welch),
+                OutputFold::new(welch),
             ))
         })
-        .collect::<Result<_>>()?;
-    progress(0, n_shards);
-    // pass 2: the files one at a time in realization order (one open file; memory independent of their
-    // number), each file's shards in one block
-    for p in &set.parts {
-        let run = p.open()?;
-        let local = p.meta.local_shards();
-        let (accs, sums) = p.shard_rows(&run, &names)?;
-        if accs.iter().any(|a| a.nrows() != local.len()) || sums.nrows() != local.len() {
+        .collect()
+}
+
+/// Pass 2 for one shard file: its accumulator rows checked and folded, and its shards written (copied or
+/// adopted) into the merged file.
+fn fold_part(
+    p: &PartFile,
+    meta: &RunMetadata,
+    names: &[&str],
+    raw: RawStorage,
+    folds: &mut [Fold],
+    writer: &mut RunWriter,
+) -> Result<()> {
+    let run = p.open()?;
+    let local = p.meta.local_shards();
+    let (accs, sums) = p.shard_rows(&run, names)?;
+    if accs.iter().any(|a| a.nrows() != local.len()) || sums.nrows() != local.len() {
+        return Err(Error::Hdf5 {
+            path: p.path.clone(),
+            reason: format!("its /shards datasets do not have one row per shard ({})", local.len()),
+        });
+    }
+    let raw_columns = if meta.store_raw {
+        meta.inputs.len() + meta.outputs.len()
+    } else {
+        0
+    };
+    verify_rows(&p.path, &p.meta, names, &accs, &sums, raw_columns)?;
+    for (r, b) in local.clone().enumerate() {
+        let rows = meta.shard_range(b).len();
+        for (jm, jw, fold) in folds.iter_mut() {
+            fold.add(
+                rows,
+                meta.shard_size,
+                &accs[*jm].row(r).to_vec(),
+                &accs[*jw].row(r).to_vec(),
+            )?;
+        }
+    }
+    if raw == RawStorage::Copied {
+        for (r, b) in local.clone().enumerate() {
+            let rows: Vec<Vec<f64>> = accs.iter().map(|a| a.row(r).to_vec()).collect();
+            copy_shard(p, &run, meta, b, &rows, sums.row(r), writer)?;
+        }
+    } else {
+        let views: Vec<_> = accs.iter().map(|a| a.view()).collect();
+        writer.adopt_shards(local.start, &views, sums.view())?;
+    }
+    Ok(())
+}
+
+/// Copies the raw rows of shard `b`, checked against their checksums `sums`, with its accumulator rows
+/// `accs` into the merged file.
+fn copy_shard(
+    p: &PartFile,
+    run: &RunFile,
+    meta: &RunMetadata,
+    b: usize,
+    accs: &[Vec<f64>],
+    sums: ArrayView1<'_, u32>,
+    writer: &mut RunWriter,
+) -> Result<()> {
+    let range = meta.shard_range(b);
+    let read = |g: SignalGroup, list: &[Signal]| -> Result<Vec<Array2<f64>>> {
+        list.iter()
+            .map(|s| run.read_signals(g, &s.name, range.clone()))
+            .collect()
+    };
+    let ins = read(SignalGroup::Inputs, &meta.inputs)?;
+    let outs = read(SignalGroup::Outputs, &meta.outputs)?;
+    for (j, a) in ins.iter().chain(&outs).enumerate() {
+        let crc = crate::store::checksum::crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[]));
+        if sums.get(j) != Some(&crc) {
             return Err(Error::Hdf5 {
                 path: p.path.clone(),
-                reason: format!("its /shards datasets do not have one row per shard ({})", local.len()),
+                reason: format!("checksum mismatch in the raw rows of shard {b}: the file is damaged"),
             });
         }
-        let raw_columns = if meta.store_raw {
-            meta.inputs.len() + meta.outputs.len()
-        } else {
-            0
-        };
-        verify_rows(&p.path, &p.meta, &names, &accs, &sums, raw_columns)?;
-        for (r, b) in local.clone().enumerate() {
-            let rows = meta.shard_range(b).len();
-            for (jm, jw, fold) in &mut folds {
-                fold.add(
-                    rows,
-                    meta.shard_size,
-                    &accs[*jm].row(r).to_vec(),
-                    &accs[*jw].row(r).to_vec(),
-                )?;
-            }
-        }
-        if raw == RawStorage::Copied {
-            for (r, b) in local.clone().enumerate() {
-                let range = meta.shard_range(b);
-                let read = |g: SignalGroup, list: &[crate::store::Signal]| -> Result<Vec<ndarray::Array2<f64>>> {
-                    list.iter()
-                        .map(|s| run.read_signals(g, &s.name, range.clone()))
-                        .collect()
-                };
-                let ins = read(SignalGroup::Inputs, &meta.inputs)?;
-                let outs = read(SignalGroup::Outputs, &meta.outputs)?;
-                for (j, a) in ins.iter().chain(&outs).enumerate() {
-                    let crc = crate::store::checksum::crc32_f64(a.as_standard_layout().as_slice().unwrap_or(&[]));
-                    if sums.get((r, j)) != Some(&crc) {
-                        return Err(Error::Hdf5 {
-                            path: p.path.clone(),
-                            reason: format!("checksum mismatch in the raw rows of shard {b}: the file is damaged"),
-                        });
-                    }
-                }
-                let iv: Vec<_> = ins.iter().map(|a| a.view()).collect();
-                let ov: Vec<_> = outs.iter().map(|a| a.view()).collect();
-                let rows: Vec<Vec<f64>> = accs.iter().map(|a| a.row(r).to_vec()).collect();
-                let acc_refs: Vec<&[f64]> = rows.iter().map(|a| a.as_slice()).collect();
-                writer.write_shard(b, &iv, &ov, &acc_refs)?;
-            }
-        } else {
-            let views: Vec<_> = accs.iter().map(|a| a.view()).collect();
-            writer.adopt_shards(local.start, &views, sums.view())?;
-        }
-        progress(local.end, n_shards);
     }
+    let iv: Vec<_> = ins.iter().map(|a| a.view()).collect();
+    let ov: Vec<_> = outs.iter().map(|a| a.view()).collect();
+    let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
+    writer.write_shard(b, &iv, &ov, &acc_refs)
+}
+
+/// The statistics and density estimate of every output from its folds, finished as a single-process run
+/// finishes them, with the analytic values and densities the shard files share.
+fn finish_outputs(
+    meta: &RunMetadata,
+    folds: Vec<Fold>,
+    shared: &Shared,
+    welch: &Welch,
+    confidence: f64,
+    first: &Path,
+) -> Result<(Vec<OutputStatistics>, Vec<PsdEstimate>)> {
     let mut stats = Vec::new();
     let mut psds = Vec::new();
     for (sig, (_, _, fold)) in meta.outputs.iter().zip(folds) {
         let (m, v, ws) = (fold.mean, fold.mean_square, fold.welch);
-        let stored = stats0.iter().find(|s| s.output == sig.name);
+        let stored = shared.stats.iter().find(|s| s.output == sig.name);
         let analytic = stored.and_then(Analytic::from_statistics).ok_or_else(|| Error::Hdf5 {
-            path: first.path.clone(),
+            path: first.to_path_buf(),
             reason: format!("no analytic values stored for output `{}`", sig.name),
         })?;
         stats.push(output_statistics(sig, &analytic, &m, &v, confidence)?);
-        let stored_psd = psd0.iter().find(|e| e.output == sig.name);
+        let stored_psd = shared.psd.iter().find(|e| e.output == sig.name);
         let dens = stored_psd.and_then(|e| e.analytic.clone());
-        let mut psd = density_estimate(sig, &welch, &ws, confidence, |omega| match &dens {
+        let mut psd = density_estimate(sig, welch, &ws, confidence, |omega| match &dens {
             Some(d) if d.len() != omega.len() => Err(Error::Hdf5 {
-                path: first.path.clone(),
+                path: first.to_path_buf(),
                 reason: format!("its analytic density of `{}` has another length", sig.name),
             }),
             _ => Ok(dens.clone()),
@@ -301,7 +408,7 @@ pub fn merge_runs(
         psd.expected = match stored_psd.and_then(|e| e.expected.clone()) {
             Some(e) if e.len() != psd.omega.len() => {
                 return Err(Error::Hdf5 {
-                    path: first.path.clone(),
+                    path: first.to_path_buf(),
                     reason: format!("its expected density of `{}` has another length", sig.name),
                 })
             }
@@ -309,18 +416,11 @@ pub fn merge_runs(
         };
         psds.push(psd);
     }
-    let rainflow = finish_verdicts(&writer, &meta, confidence, &stats0, &rain0, &first.path, &mut stats)?;
-    finish_bands(&writer, &meta, confidence, &stats0, &first.path, &mut stats)?;
-    crate::nonlinear::monte_carlo::finish_merged(&mut writer, &meta, confidence, &stats0, &hist0, &mut stats)?;
-    writer.write_statistics(&stats)?;
-    for r in &rainflow {
-        writer.write_rainflow(r)?;
-    }
-    for psd in &psds {
-        writer.write_psd(psd)?;
-    }
-    let path = writer.finish()?;
-    created.0 = None;
+    Ok((stats, psds))
+}
+
+/// The remarks of a merge: ignored files, and where virtual raw datasets read from.
+fn merge_notes(set: &PartSet, raw: RawStorage, files: &[String]) -> Vec<String> {
     let mut notes: Vec<String> = set
         .ignored
         .iter()
@@ -331,18 +431,10 @@ pub fn merge_runs(
             "the raw realizations are virtual datasets reading the shard files ({}, relative to the merged file's \
              directory): keep them there (move the merged file and the shard directory together), or merge with \
              --copy",
-            crate::store::abbreviated_list(&from.files, crate::store::LISTED_FILES)
+            crate::store::abbreviated_list(files, crate::store::LISTED_FILES)
         ));
     }
-    Ok(MergeSummary {
-        path,
-        files: set.parts.iter().map(|p| p.path.clone()).collect(),
-        n_realizations: meta.n_realizations,
-        n_shards,
-        raw,
-        outputs: stats,
-        notes,
-    })
+    notes
 }
 
 /// Removes the temporary file a merge created when the merge returns with an error before its final rename

@@ -17,6 +17,9 @@
 //! * Non-stationary runs ([`transient_run`], [`transient_answers`], [`transient_mc`]) and the three routes
 //!   of a scenario with nonlinear elements ([`nonlinear_run`]).
 //!
+//! * The curves of a scenario's pictures as plain data ([`scenario_curves`]: input densities, cross-spectra,
+//!   coherence, |H|², output densities with the cumulative variance, weighted densities, the model
+//!   correlation of a stored output), which [`crate::plot`] draws.
 //! * What `stochvib analyze` and `stochvib spectrum` report ([`analysis`] with its band tables,
 //!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]).
 //!
@@ -32,6 +35,7 @@ pub mod merge_kind;
 mod nonlinear_run;
 pub mod replay;
 pub mod run_step;
+pub mod scenario_curves;
 mod scenario_run;
 pub mod seat_factor;
 pub mod shard;

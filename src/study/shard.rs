@@ -59,12 +59,6 @@ pub struct ShardChoice {
 /// assert_eq!(resolve_part("1", Some(3), &|_: &str| None).unwrap().part.index, 1);
 /// ```
 pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<String>) -> Result<ShardChoice> {
-    let int = |name: &str, text: &str| -> Result<usize> {
-        text.trim()
-            .parse::<usize>()
-            .map_err(|_| Error::invalid("shard", format!("{name}={text}"), "expected a non-negative integer"))
-    };
-    let mut notes = Vec::new();
     let spec = spec.trim();
     if spec != "auto" {
         let index =
@@ -79,73 +73,11 @@ pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<
         return Ok(ShardChoice {
             part: Part::new(index, count)?,
             source: format!("--shard {index} --of {count}"),
-            notes,
+            notes: Vec::new(),
         });
     }
     if let Some(id) = env("SLURM_ARRAY_TASK_ID") {
-        let index = int("SLURM_ARRAY_TASK_ID", &id)?;
-        let read = |k: &str| env(k).map(|v| int(k, &v)).transpose();
-        let (min, max, count) = (
-            read("SLURM_ARRAY_TASK_MIN")?,
-            read("SLURM_ARRAY_TASK_MAX")?,
-            read("SLURM_ARRAY_TASK_COUNT")?,
-        );
-        // an array 0..N-1 says N: SLURM_ARRAY_TASK_COUNT, or MAX + 1 where COUNT is not set (older SLURM)
-        let whole_array =
-            matches!((min, max, count), (Some(0), Some(mx), c) if mx >= 1 && c.is_none_or(|c| c == mx + 1));
-        let count_name = if count.is_some() {
-            "SLURM_ARRAY_TASK_COUNT"
-        } else {
-            "SLURM_ARRAY_TASK_MAX+1"
-        };
-        let count = count.or(max.map(|mx| mx + 1));
-        if let Some(why) = one_based(min, max, of) {
-            if of.is_some_and(|n| index >= n) || of.is_none() {
-                return Err(Error::invalid("shard", format!("SLURM_ARRAY_TASK_ID={index}"), why));
-            }
-            notes.push(why);
-        }
-        let (n, source) = match of {
-            Some(n) => {
-                if let (true, Some(c)) = (whole_array, count)
-                    && c < n
-                {
-                    notes.push(format!(
-                        "this array has {c} tasks (indices 0..{}) but the run has --of {n} shards: submit \
-                             the indices {c}..{} too, or the merge will report them missing",
-                        c - 1,
-                        n - 1
-                    ));
-                }
-                (n, format!("SLURM_ARRAY_TASK_ID={index}, --of {n}"))
-            }
-            None if whole_array => {
-                let c = count.unwrap_or(0);
-                (
-                    c,
-                    format!("SLURM_ARRAY_TASK_ID={index} of {count_name}={c} (array 0..{})", c - 1),
-                )
-            }
-            None => {
-                return Err(Error::invalid(
-                    "of",
-                    "<missing>",
-                    format!(
-                        "--shard auto cannot tell the number of shards from this array (SLURM_ARRAY_TASK_MIN={}, \
-                         SLURM_ARRAY_TASK_MAX={}, SLURM_ARRAY_TASK_COUNT={}): only an array 0..N-1 of N >= 2 tasks \
-                         says N, and a resubmitted index (sbatch --array=7) runs in an array of its own; give --of N",
-                        opt(min),
-                        opt(max),
-                        opt(count)
-                    ),
-                ))
-            }
-        };
-        return Ok(ShardChoice {
-            part: Part::new(index, n)?,
-            source,
-            notes,
-        });
+        return slurm_part(&id, of, env);
     }
     if let Some(id) = env("JOB_COMPLETION_INDEX") {
         let index = int("JOB_COMPLETION_INDEX", &id)?;
@@ -160,7 +92,7 @@ pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<
         return Ok(ShardChoice {
             part: Part::new(index, n)?,
             source: format!("JOB_COMPLETION_INDEX={index}, --of {n}"),
-            notes,
+            notes: Vec::new(),
         });
     }
     Err(Error::invalid(
@@ -170,6 +102,84 @@ pub fn resolve_part(spec: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<
          --array=0-N-1) nor JOB_COMPLETION_INDEX (a Kubernetes Indexed Job) is set; outside a scheduler give \
          the index: --shard I --of N",
     ))
+}
+
+/// The value `text` of the variable or flag `name` as a non-negative integer.
+fn int(name: &str, text: &str) -> Result<usize> {
+    text.trim()
+        .parse::<usize>()
+        .map_err(|_| Error::invalid("shard", format!("{name}={text}"), "expected a non-negative integer"))
+}
+
+/// `--shard auto` in a SLURM job array: the index `id` (`SLURM_ARRAY_TASK_ID`), N from `of` or from an
+/// array 0..N-1 (see [`resolve_part`]).
+fn slurm_part(id: &str, of: Option<usize>, env: &dyn Fn(&str) -> Option<String>) -> Result<ShardChoice> {
+    let mut notes = Vec::new();
+    let index = int("SLURM_ARRAY_TASK_ID", id)?;
+    let read = |k: &str| env(k).map(|v| int(k, &v)).transpose();
+    let (min, max, count) = (
+        read("SLURM_ARRAY_TASK_MIN")?,
+        read("SLURM_ARRAY_TASK_MAX")?,
+        read("SLURM_ARRAY_TASK_COUNT")?,
+    );
+    // an array 0..N-1 says N: SLURM_ARRAY_TASK_COUNT, or MAX + 1 where COUNT is not set (older SLURM)
+    let whole_array = matches!((min, max, count), (Some(0), Some(mx), c) if mx >= 1 && c.is_none_or(|c| c == mx + 1));
+    let count_name = if count.is_some() {
+        "SLURM_ARRAY_TASK_COUNT"
+    } else {
+        "SLURM_ARRAY_TASK_MAX+1"
+    };
+    let count = count.or(max.map(|mx| mx + 1));
+    if let Some(why) = one_based(min, max, of) {
+        if of.is_some_and(|n| index >= n) || of.is_none() {
+            return Err(Error::invalid("shard", format!("SLURM_ARRAY_TASK_ID={index}"), why));
+        }
+        notes.push(why);
+    }
+    let (n, source) = match of {
+        Some(n) => {
+            if let (true, Some(c)) = (whole_array, count)
+                && c < n
+            {
+                notes.push(format!(
+                    "this array has {c} tasks (indices 0..{}) but the run has --of {n} shards: submit \
+                         the indices {c}..{} too, or the merge will report them missing",
+                    c - 1,
+                    n - 1
+                ));
+            }
+            (n, format!("SLURM_ARRAY_TASK_ID={index}, --of {n}"))
+        }
+        None if whole_array => {
+            let c = count.unwrap_or(0);
+            (
+                c,
+                format!("SLURM_ARRAY_TASK_ID={index} of {count_name}={c} (array 0..{})", c - 1),
+            )
+        }
+        None => return Err(unknown_count(min, max, count)),
+    };
+    Ok(ShardChoice {
+        part: Part::new(index, n)?,
+        source,
+        notes,
+    })
+}
+
+/// The refusal of `--shard auto` without `--of` in an array that does not say N.
+fn unknown_count(min: Option<usize>, max: Option<usize>, count: Option<usize>) -> Error {
+    Error::invalid(
+        "of",
+        "<missing>",
+        format!(
+            "--shard auto cannot tell the number of shards from this array (SLURM_ARRAY_TASK_MIN={}, \
+             SLURM_ARRAY_TASK_MAX={}, SLURM_ARRAY_TASK_COUNT={}): only an array 0..N-1 of N >= 2 tasks \
+             says N, and a resubmitted index (sbatch --array=7) runs in an array of its own; give --of N",
+            opt(min),
+            opt(max),
+            opt(count)
+        ),
+    )
 }
 
 /// The warning for a SLURM array numbered from 1 (`--array=1-N`, SLURM_ARRAY_TASK_MIN = 1): shard indices

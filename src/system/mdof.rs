@@ -84,6 +84,19 @@ struct Combination {
     du: DVector<f64>,
 }
 
+impl Combination {
+    /// y = 0 for `n` coordinates and `nu` inputs.
+    fn zero(n: usize, nu: usize) -> Combination {
+        Combination {
+            q: DVector::zeros(n),
+            v: DVector::zeros(n),
+            a: DVector::zeros(n),
+            u: DVector::zeros(nu),
+            du: DVector::zeros(nu),
+        }
+    }
+}
+
 /// A linear multi-degree-of-freedom model with base (kinematic) and force inputs.
 ///
 /// # Formula
@@ -351,160 +364,7 @@ impl Mdof {
     /// # Errors
     /// A point of the wrong length or an element index out of range.
     pub fn with_output(mut self, name: &str, quantity: Quantity) -> Result<Self> {
-        let n = self.n_coords();
-        let nu = self.n_inputs();
-        let zero = |k: usize| DVector::zeros(k);
-        let point = |g: &Vec<f64>| -> Result<DVector<f64>> {
-            if g.len() != n {
-                return Err(Error::invalid(
-                    &format!("output `{name}`"),
-                    g.len(),
-                    format!("point needs {n} entries"),
-                ));
-            }
-            Ok(DVector::from_column_slice(g))
-        };
-        // a point weighting lengths (m) and angles (rad), e.g. z + aφ, is a length: the weight of an angle is
-        // then a lever arm in m/rad; a point of angles alone is an angle
-        let unit_of = |g: &Vec<f64>| -> String {
-            let mut used = g
-                .iter()
-                .zip(&self.coords)
-                .filter(|(w, _)| **w != 0.0)
-                .map(|(_, c)| c.1.as_str());
-            let first = used.next();
-            match first {
-                Some("rad") if used.all(|u| u == "rad") => "rad".to_string(),
-                _ => "m".to_string(),
-            }
-        };
-        let element = |e: usize| -> Result<&Element> {
-            self.elements.get(e).ok_or_else(|| {
-                Error::invalid(
-                    &format!("output `{name}`"),
-                    e,
-                    format!("only {} elements", self.elements.len()),
-                )
-            })
-        };
-        // deflection δ = (g − g_far)ᵀ q − u_j
-        let deflection = |e: &Element| -> (DVector<f64>, DVector<f64>) {
-            let g = DVector::from_column_slice(&e.point);
-            let mut u = zero(nu);
-            let q = match &e.to {
-                Attach::Ground => g,
-                Attach::Base(j) => {
-                    u[*j] = -1.0;
-                    g
-                }
-                Attach::Point(h) => g - DVector::from_column_slice(h),
-            };
-            (q, u)
-        };
-        let (combo, unit) = match &quantity {
-            Quantity::Displacement(g) => (
-                Combination {
-                    q: point(g)?,
-                    v: zero(n),
-                    a: zero(n),
-                    u: zero(nu),
-                    du: zero(nu),
-                },
-                unit_of(g),
-            ),
-            Quantity::Velocity(g) => (
-                Combination {
-                    q: zero(n),
-                    v: point(g)?,
-                    a: zero(n),
-                    u: zero(nu),
-                    du: zero(nu),
-                },
-                format!("{}/s", unit_of(g)),
-            ),
-            Quantity::Acceleration(g) => (
-                Combination {
-                    q: zero(n),
-                    v: zero(n),
-                    a: point(g)?,
-                    u: zero(nu),
-                    du: zero(nu),
-                },
-                format!("{}/s^2", unit_of(g)),
-            ),
-            Quantity::RelativeDisplacement { point: g, base } | Quantity::RelativeVelocity { point: g, base } => {
-                if *base >= self.n_base() {
-                    return Err(Error::invalid(
-                        &format!("output `{name}`"),
-                        base,
-                        format!("only {} base inputs", self.n_base()),
-                    ));
-                }
-                let mut u = zero(nu);
-                u[*base] = -1.0;
-                let velocity = matches!(quantity, Quantity::RelativeVelocity { .. });
-                let combo = if velocity {
-                    Combination {
-                        q: zero(n),
-                        v: point(g)?,
-                        a: zero(n),
-                        u: zero(nu),
-                        du: u,
-                    }
-                } else {
-                    Combination {
-                        q: point(g)?,
-                        v: zero(n),
-                        a: zero(n),
-                        u,
-                        du: zero(nu),
-                    }
-                };
-                let unit = unit_of(g);
-                if unit != "m" {
-                    return Err(Error::invalid(
-                        &format!("output `{name}`"),
-                        format!("{g:?}"),
-                        "a point relative to a base input must be a length (a base input is a displacement in m)",
-                    ));
-                }
-                (combo, if velocity { "m/s".to_string() } else { unit })
-            }
-            Quantity::Deflection(e) => {
-                let el = element(*e)?;
-                let (q, u) = deflection(el);
-                (
-                    Combination {
-                        q,
-                        v: zero(n),
-                        a: zero(n),
-                        u,
-                        du: zero(nu),
-                    },
-                    unit_of(&el.point),
-                )
-            }
-            Quantity::SpringForce(e) | Quantity::DamperForce(e) | Quantity::ElementForce(e) => {
-                let el = element(*e)?;
-                let (q, u) = deflection(el);
-                let (k, b) = match quantity {
-                    Quantity::SpringForce(_) => (el.stiffness, 0.0),
-                    Quantity::DamperForce(_) => (0.0, el.damping),
-                    _ => (el.stiffness, el.damping),
-                };
-                let unit = if unit_of(&el.point) == "rad" { "N m" } else { "N" };
-                (
-                    Combination {
-                        q: &q * k,
-                        v: &q * b,
-                        a: zero(n),
-                        u: &u * k,
-                        du: &u * b,
-                    },
-                    unit.to_string(),
-                )
-            }
-        };
+        let (combo, unit) = self.combination(name, &quantity)?;
         let info = OutputInfo::new(name, unit);
         self.outputs.push(Output {
             info: info.clone(),
@@ -514,6 +374,156 @@ impl Mdof {
         self.combos.push(combo);
         self.rebuild_state_space()?;
         Ok(self)
+    }
+
+    /// The point gᵀq of output `name`, which must have one weight per coordinate.
+    fn output_point(&self, name: &str, g: &[f64]) -> Result<DVector<f64>> {
+        let n = self.n_coords();
+        if g.len() != n {
+            return Err(Error::invalid(
+                &format!("output `{name}`"),
+                g.len(),
+                format!("point needs {n} entries"),
+            ));
+        }
+        Ok(DVector::from_column_slice(g))
+    }
+
+    /// The unit of a point: one weighting lengths (m) and angles (rad), e.g. z + aφ, is a length (the weight
+    /// of an angle is then a lever arm in m/rad); a point of angles alone is an angle.
+    fn point_unit(&self, g: &[f64]) -> String {
+        let mut used = g
+            .iter()
+            .zip(&self.coords)
+            .filter(|(w, _)| **w != 0.0)
+            .map(|(_, c)| c.1.as_str());
+        let first = used.next();
+        match first {
+            Some("rad") if used.all(|u| u == "rad") => "rad".to_string(),
+            _ => "m".to_string(),
+        }
+    }
+
+    /// The combination y of the output `name` of `quantity`, and its unit (see [`Mdof::with_output`]).
+    fn combination(&self, name: &str, quantity: &Quantity) -> Result<(Combination, String)> {
+        let zero = Combination::zero(self.n_coords(), self.n_inputs());
+        Ok(match quantity {
+            Quantity::Displacement(g) => (
+                Combination {
+                    q: self.output_point(name, g)?,
+                    ..zero
+                },
+                self.point_unit(g),
+            ),
+            Quantity::Velocity(g) => (
+                Combination {
+                    v: self.output_point(name, g)?,
+                    ..zero
+                },
+                format!("{}/s", self.point_unit(g)),
+            ),
+            Quantity::Acceleration(g) => (
+                Combination {
+                    a: self.output_point(name, g)?,
+                    ..zero
+                },
+                format!("{}/s^2", self.point_unit(g)),
+            ),
+            Quantity::RelativeDisplacement { point: g, base } => self.relative(name, g, *base, false)?,
+            Quantity::RelativeVelocity { point: g, base } => self.relative(name, g, *base, true)?,
+            Quantity::Deflection(e) => {
+                let el = self.output_element(name, *e)?;
+                let (q, u) = self.deflection(el);
+                (Combination { q, u, ..zero }, self.point_unit(&el.point))
+            }
+            Quantity::SpringForce(e) | Quantity::DamperForce(e) | Quantity::ElementForce(e) => {
+                let el = self.output_element(name, *e)?;
+                let (q, u) = self.deflection(el);
+                let (k, b) = match quantity {
+                    Quantity::SpringForce(_) => (el.stiffness, 0.0),
+                    Quantity::DamperForce(_) => (0.0, el.damping),
+                    _ => (el.stiffness, el.damping),
+                };
+                let unit = if self.point_unit(&el.point) == "rad" {
+                    "N m"
+                } else {
+                    "N"
+                };
+                (
+                    Combination {
+                        q: &q * k,
+                        v: &q * b,
+                        u: &u * k,
+                        du: &u * b,
+                        ..zero
+                    },
+                    unit.to_string(),
+                )
+            }
+        })
+    }
+
+    /// A point relative to base input `base` (its displacement, or with `velocity` its velocity), which
+    /// must be a length.
+    fn relative(&self, name: &str, g: &[f64], base: usize, velocity: bool) -> Result<(Combination, String)> {
+        if base >= self.n_base() {
+            return Err(Error::invalid(
+                &format!("output `{name}`"),
+                base,
+                format!("only {} base inputs", self.n_base()),
+            ));
+        }
+        let zero = Combination::zero(self.n_coords(), self.n_inputs());
+        let mut u = DVector::zeros(self.n_inputs());
+        u[base] = -1.0;
+        let combo = if velocity {
+            Combination {
+                v: self.output_point(name, g)?,
+                du: u,
+                ..zero
+            }
+        } else {
+            Combination {
+                q: self.output_point(name, g)?,
+                u,
+                ..zero
+            }
+        };
+        let unit = self.point_unit(g);
+        if unit != "m" {
+            return Err(Error::invalid(
+                &format!("output `{name}`"),
+                format!("{g:?}"),
+                "a point relative to a base input must be a length (a base input is a displacement in m)",
+            ));
+        }
+        Ok((combo, if velocity { "m/s".to_string() } else { unit }))
+    }
+
+    /// Element `e` of output `name`.
+    fn output_element(&self, name: &str, e: usize) -> Result<&Element> {
+        self.elements.get(e).ok_or_else(|| {
+            Error::invalid(
+                &format!("output `{name}`"),
+                e,
+                format!("only {} elements", self.elements.len()),
+            )
+        })
+    }
+
+    /// The deflection δ = (g − g_far)ᵀ q − u_j of an element, as (g − g_far, the input weights).
+    fn deflection(&self, e: &Element) -> (DVector<f64>, DVector<f64>) {
+        let g = DVector::from_column_slice(&e.point);
+        let mut u = DVector::zeros(self.n_inputs());
+        let q = match &e.to {
+            Attach::Ground => g,
+            Attach::Base(j) => {
+                u[*j] = -1.0;
+                g
+            }
+            Attach::Point(h) => g - DVector::from_column_slice(h),
+        };
+        (q, u)
     }
 
     /// [`Mdof::with_output`] for a point whose weights are lever arms (m/rad) on angles alone, such as the

@@ -154,6 +154,35 @@ fn no_module_imports_from_a_higher_layer() {
     assert!(violations.is_empty(), "upward imports:\n{}", violations.join("\n"));
 }
 
+/// Modules whose code evaluates a model or a density: frequency responses, output densities, variances,
+/// quadrature. `plot/` draws curves that `study::scenario_curves` (and the other layers below) computed, so
+/// it uses none of them, though the layer order would allow it.
+const EVALUATION: &[&str] = &["response", "system", "quad", "quad_oscillatory", "linalg"];
+
+/// `plot/` only draws: no file of it uses an evaluation module ([`EVALUATION`]), by `use` or inline path.
+#[test]
+fn plot_uses_no_evaluation_module() {
+    let mut files = Vec::new();
+    rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src/plot"), &mut files);
+    files.sort();
+    assert!(files.len() > 5, "found only {} files in src/plot", files.len());
+    let mut found = Vec::new();
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap();
+        let joined: String = text.lines().map(code).collect::<Vec<_>>().join(" ");
+        let mut used: Vec<String> = text.lines().flat_map(|l| crate_paths(code(l))).collect();
+        used.extend(grouped(&joined));
+        for t in used.iter().filter(|t| EVALUATION.contains(&t.as_str())) {
+            found.push(format!("{}: uses `crate::{t}`", f.display()));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "plot/ evaluates instead of drawing:\n{}",
+        found.join("\n")
+    );
+}
+
 /// The scanner itself: a known upward import is found, comments are ignored.
 #[test]
 fn scanner_finds_paths_and_skips_comments() {
