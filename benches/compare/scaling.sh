@@ -12,7 +12,7 @@
 #   ROUTES="sweep transient" bash benches/compare/scaling.sh    # some routes only
 #
 # Routes (sizes at SCALE = 1): sweep (stochvib sweep of 10^6 points to HDF5), mc-spectral, mc-exact,
-# mc-stream (stochvib simulate data/quarter-car.toml, 200 realizations x 2^16 samples, the three routes),
+# mc-stream (stochvib simulate data/scraper-sprung-cab.toml, 200 realizations x 2^16 samples, the three routes),
 # nonlinear (stochvib simulate data/quarter-car-bump-stops.toml, 64 realizations x 60 s), transient
 # (stochvib transient benches/compare/transient-qc.toml --monte-carlo 10^4, 1200 steps each). Files go to
 # $OUT (default: a temporary directory). Memory at other sizes: run twice with two SCALEs; what grows with
@@ -53,11 +53,11 @@ cmd_of() {
     case "$1" in
     sweep) echo "$bin sweep data/scraper-sprung-cab.toml --param model.omega2=1Hz..2.5Hz:$side \
 --param model.zeta2=0.1..0.5:$side -o $f" ;;
-    mc-spectral) echo "$bin simulate data/quarter-car.toml --realizations $r_mc --dt $dt --duration $dur_mc \
+    mc-spectral) echo "$bin simulate data/scraper-sprung-cab.toml --realizations $r_mc --dt $dt --duration $dur_mc \
 --route spectral -o $f" ;;
-    mc-exact) echo "$bin simulate data/quarter-car.toml --realizations $r_mc --dt $dt --duration $dur_mc \
+    mc-exact) echo "$bin simulate data/scraper-sprung-cab.toml --realizations $r_mc --dt $dt --duration $dur_mc \
 --route exact -o $f" ;;
-    mc-stream) echo "$bin simulate data/quarter-car.toml --realizations $r_mc --dt $dt --duration $dur_mc \
+    mc-stream) echo "$bin simulate data/scraper-sprung-cab.toml --realizations $r_mc --dt $dt --duration $dur_mc \
 --route spectral-stream -o $f" ;;
     nonlinear) echo "$bin simulate data/quarter-car-bump-stops.toml --realizations $r_nl --dt $dt \
 --duration $dur_nl -o $f" ;;
