@@ -249,8 +249,6 @@ fn main() {
     let mc_reps = reps.min(3);
     let mut mc_info = Map::new();
     {
-        use realfft::RealFftPlanner;
-        use stochvib::simulate::{fill_standard_normal, stream};
         let pipe = McSpectral::new(mc_n);
         let exact = McExact::new(mc_n);
         let (ss, exc) = mc_sdof();
@@ -321,37 +319,13 @@ fn main() {
         };
         // floor: draw the N normals of a realization + one inverse real FFT of length N, per realization
         // (1 thread; the same work as numpy's floor job)
-        let fft = RealFftPlanner::<f64>::new().plan_fft_inverse(mc_n);
-        let mut coef = fft.make_input_vec();
-        let mut out = fft.make_output_vec();
-        let mut scratch = fft.make_scratch_vec();
-        let mut normals = vec![0.0; mc_n + 2];
-        let r = best(mc_reps, 1, || {
-            let mut acc = 0.0;
-            for i in 0..mc_real as u64 {
-                fill_standard_normal(&mut stream(MC_SEED, i), &mut normals);
-                for (c, p) in coef.iter_mut().zip(normals.chunks_exact(2)) {
-                    *c = realfft::num_complex::Complex::new(p[0], p[1]);
-                }
-                coef[0].im = 0.0;
-                coef[mc_n / 2].im = 0.0;
-                fft.process_with_scratch(&mut coef, &mut out, &mut scratch).unwrap();
-                acc += out[1];
-            }
-            acc
-        });
+        let mut floor = OneFftFloor::new(mc_n);
+        let r = best(mc_reps, 1, || floor.run(mc_real));
         put_floor("mc_floor_1t", r);
         // the exact route's floor: its normals alone (one per state and step, as GaussMarkov::advance draws
         // them), per realization, 1 thread
         let mut normals = vec![0.0; exact.gm.n_states() * mc_n];
-        let r = best(mc_reps, 1, || {
-            let mut acc = 0.0;
-            for i in 0..mc_real as u64 {
-                fill_standard_normal(&mut stream(MC_SEED, i), &mut normals);
-                acc += normals[1];
-            }
-            acc
-        });
+        let r = best(mc_reps, 1, || exact_floor(&mut normals, mc_real));
         put_floor("mc_exact_floor_1t", r);
         mc_info.insert("analytic_variance".into(), json!(analytic));
         mc_info.insert("input_grid_variance".into(), json!(pipe.generator.grid_variance()));

@@ -556,3 +556,57 @@ impl McExact {
         mc_stats(shard.results())
     }
 }
+
+/// The one-FFT route's floor: per realization of [`MC_SEED`], the N + 2 normals of its stream and one inverse
+/// real FFT of length N (the route without its gains, response and sums); one thread.
+pub struct OneFftFloor {
+    fft: Arc<dyn realfft::ComplexToReal<f64>>,
+    coef: Vec<realfft::num_complex::Complex<f64>>,
+    out: Vec<f64>,
+    scratch: Vec<realfft::num_complex::Complex<f64>>,
+    normals: Vec<f64>,
+}
+
+impl OneFftFloor {
+    /// The floor of realizations of `n` samples.
+    pub fn new(n: usize) -> OneFftFloor {
+        let fft = realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(n);
+        OneFftFloor {
+            coef: fft.make_input_vec(),
+            out: fft.make_output_vec(),
+            scratch: fft.make_scratch_vec(),
+            normals: vec![0.0; n + 2],
+            fft,
+        }
+    }
+
+    /// Realizations 0..r; returns a check value.
+    pub fn run(&mut self, r: usize) -> f64 {
+        let n = self.out.len();
+        let mut acc = 0.0;
+        for i in 0..r as u64 {
+            stochvib::simulate::fill_standard_normal(&mut stochvib::simulate::stream(MC_SEED, i), &mut self.normals);
+            for (c, p) in self.coef.iter_mut().zip(self.normals.chunks_exact(2)) {
+                *c = realfft::num_complex::Complex::new(p[0], p[1]);
+            }
+            self.coef[0].im = 0.0;
+            self.coef[n / 2].im = 0.0;
+            self.fft
+                .process_with_scratch(&mut self.coef, &mut self.out, &mut self.scratch)
+                .unwrap();
+            acc += self.out[1];
+        }
+        acc
+    }
+}
+
+/// The exact route's floor: its normals alone (`normals.len()` per realization of [`MC_SEED`]: one per
+/// state and step, as `GaussMarkov::advance` draws them), realizations 0..r, one thread; a check value.
+pub fn exact_floor(normals: &mut [f64], r: usize) -> f64 {
+    let mut acc = 0.0;
+    for i in 0..r as u64 {
+        stochvib::simulate::fill_standard_normal(&mut stochvib::simulate::stream(MC_SEED, i), normals);
+        acc += normals[1];
+    }
+    acc
+}

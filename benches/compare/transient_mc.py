@@ -3,6 +3,8 @@ to 20 m/s; 15 s; 1200 steps, every 4th stored) in numpy: the same generator and 
 (exact transition of the frozen coefficients at each step midpoint, Van Loan; z <- Phi z + L eps; mean and
 M2 at the stored times, max y and max |y| per realization), vectorised over the realizations."""
 import sys, time, os
+for _v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_v, "1")  # one BLAS thread (set before numpy loads): CPU time is then the work's
 import numpy as np
 from scipy.linalg import expm, cholesky
 

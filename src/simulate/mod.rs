@@ -31,6 +31,7 @@ mod finish;
 mod finished_part;
 pub mod fir_stream;
 mod input;
+pub(crate) mod lane_normals;
 pub mod laplace;
 mod options;
 mod plan;

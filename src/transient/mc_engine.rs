@@ -4,14 +4,22 @@
 
 use super::system::{Frozen, Start, TimeVaryingSystem};
 use crate::error::{Error, Result};
-use crate::simulate::{covariance_factor, fill_standard_normal, stream, van_loan};
+use crate::linalg::vmath;
+use crate::simulate::lane_normals::{LaneNormals, StreamRng};
+use crate::simulate::{covariance_factor, van_loan};
 use nalgebra::{DMatrix, DVector};
-use rand::rngs::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use std::sync::Arc;
 
 /// Steps per block of the step table (memory O(block · n²) whatever the duration).
 const BLOCK_STEPS: usize = 1024;
+
+/// Grids of at most this many steps keep every step's tables for all shards (≈ 50 values a step for the
+/// quarter car: 26 MB at 2¹⁶ steps).
+const CACHED_STEPS: usize = 1 << 16;
+
+/// Realizations stepped in lockstep (one AVX-512 register of f64).
+const LANES: usize = 8;
 
 /// The time grid of a Monte Carlo run: N steps of Δt, every k-th point stored.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -101,6 +109,9 @@ pub struct McPlan<'a> {
     m0: DVector<f64>,
     l0: Vec<f64>,
     n: usize,
+    /// The tables of every block, computed once for all shards when the grid has at most
+    /// [`CACHED_STEPS`] steps (else each shard computes each block's tables again, in O(block) memory).
+    tables: Option<Vec<BlockTables>>,
 }
 
 /// The per-realization results of a block of a shard.
@@ -114,9 +125,7 @@ pub(crate) struct ShardBlock {
 /// One realization's running state.
 pub(crate) struct RealizationState {
     z: Vec<f64>,
-    rng: Xoshiro256PlusPlus,
-    eps: Vec<f64>,
-    tmp: Vec<f64>,
+    rng: StreamRng,
     /// max y per output.
     pub max_y: Vec<f64>,
     /// max |y| per output.
@@ -127,7 +136,8 @@ impl<'a> McPlan<'a> {
     /// The plan of `sys`'s outputs `outputs` started as `start` on `grid`.
     ///
     /// # Errors
-    /// An output without a finite variance; the start's errors; a covariance that is not one.
+    /// An output without a finite variance; the start's errors; a covariance that is not one; the step
+    /// tables' errors (a transition or noise covariance that cannot be computed).
     pub fn new(sys: &'a TimeVaryingSystem, outputs: Vec<usize>, start: &Start, grid: McGrid) -> Result<Self> {
         if let Some(&i) = outputs
             .iter()
@@ -141,14 +151,20 @@ impl<'a> McPlan<'a> {
         }
         let (p0, m0) = sys.start(start)?;
         let l0 = flat(&covariance_factor(&p0)?);
-        Ok(McPlan {
+        let mut plan = McPlan {
             sys,
             outputs,
             grid,
             m0,
             l0,
             n: sys.n_states(),
-        })
+            tables: None,
+        };
+        if grid.n_steps <= CACHED_STEPS {
+            let all = plan.blocks().into_iter().map(|(j0, j1)| plan.block_tables(j0, j1));
+            plan.tables = Some(all.collect::<Result<_>>()?);
+        }
+        Ok(plan)
     }
 
     /// The grid.
@@ -210,71 +226,49 @@ impl<'a> McPlan<'a> {
         let n = self.n;
         let mut s = RealizationState {
             z: vec![0.0; n],
-            rng: stream(seed, i),
-            eps: vec![0.0; n],
-            tmp: vec![0.0; n],
+            rng: StreamRng::new(seed, i),
             max_y: vec![f64::NEG_INFINITY; self.outputs.len()],
             max_abs: vec![0.0; self.outputs.len()],
         };
-        fill_standard_normal(&mut s.rng, &mut s.eps);
+        let eps: Vec<f64> = (0..n).map(|_| s.rng.normal()).collect();
         for r in 0..n {
-            s.z[r] = self.m0[r] + (0..n).map(|c| self.l0[r * n + c] * s.eps[c]).sum::<f64>();
+            s.z[r] = self.m0[r] + (0..n).map(|c| self.l0[r * n + c] * eps[c]).sum::<f64>();
         }
         s
     }
 
-    /// The outputs of state `s` at a point with map `m`, into `y`; the maxima updated.
-    fn observe(&self, s: &mut RealizationState, m: &OutputMap, y: &mut [f64]) {
-        let n = self.n;
-        for (o, v) in y.iter_mut().enumerate() {
-            let x = m.y0[o] + (0..n).map(|c| m.h[o * n + c] * s.z[c]).sum::<f64>();
-            *v = x;
-            s.max_y[o] = s.max_y[o].max(x);
-            s.max_abs[o] = s.max_abs[o].max(x.abs());
-        }
-    }
-
-    /// One step: z ← Φz + Γ + Lε with n fresh normals.
-    fn step(&self, s: &mut RealizationState, d: &StepDisc) {
-        let n = self.n;
-        fill_standard_normal(&mut s.rng, &mut s.eps);
-        for r in 0..n {
-            let mut acc = d.gamma[r];
-            for c in 0..n {
-                acc += d.phi[r * n + c] * s.z[c];
-            }
-            for c in 0..n {
-                acc += d.l[r * n + c] * s.eps[c];
-            }
-            s.tmp[r] = acc;
-        }
-        std::mem::swap(&mut s.z, &mut s.tmp);
-    }
-
     /// Advances every realization of `states` over steps `j0..j1` (the point j0 already observed), and
     /// returns the outputs at the stored points of (j0, j1] (and at j0 = 0 itself).
+    ///
+    /// The realizations go [`LANES`] at a time in lockstep ([`Lockstep`]), the rest one at a time: a
+    /// lane's arithmetic and its order are those of a lone realization, so the bits do not depend on the
+    /// grouping (`tests::lockstep_gives_the_bits_of_one_realization_at_a_time`).
     pub(crate) fn advance(&self, states: &mut [RealizationState], j0: usize, j1: usize) -> Result<ShardBlock> {
-        let (steps, maps) = self.block_tables(j0, j1)?;
-        let p = self.outputs.len();
+        let computed;
+        let (steps, maps) = match &self.tables {
+            Some(t) => &t[j0 / BLOCK_STEPS],
+            None => {
+                computed = self.block_tables(j0, j1)?;
+                &computed
+            }
+        };
         let k = self.grid.store_every;
         let first_stored = if j0 == 0 { 0 } else { j0 / k + 1 };
+        let block = Block {
+            plan: self,
+            steps,
+            maps,
+            j0,
+            j1,
+        };
         let stored: Vec<Vec<f64>> = states
-            .par_iter_mut()
-            .map(|s| {
-                let mut out = Vec::new();
-                let mut y = vec![0.0; p];
-                if j0 == 0 {
-                    self.observe(s, &maps[0], &mut y);
-                    out.extend_from_slice(&y);
-                }
-                for (j, d) in (j0..j1).zip(&steps) {
-                    self.step(s, d);
-                    self.observe(s, &maps[j + 1 - j0], &mut y);
-                    if (j + 1) % k == 0 {
-                        out.extend_from_slice(&y);
-                    }
-                }
-                out
+            .par_chunks_mut(LANES)
+            .flat_map_iter(|chunk| match <&mut [RealizationState; LANES]>::try_from(&mut *chunk) {
+                Ok(lanes) => block.lockstep(lanes),
+                Err(_) => chunk
+                    .iter_mut()
+                    .flat_map(|s| block.lockstep(std::array::from_mut(s)))
+                    .collect(),
             })
             .collect();
         Ok(ShardBlock { stored, first_stored })
@@ -286,5 +280,227 @@ impl<'a> McPlan<'a> {
         (0..n.div_ceil(BLOCK_STEPS))
             .map(|b| (b * BLOCK_STEPS, ((b + 1) * BLOCK_STEPS).min(n)))
             .collect()
+    }
+}
+
+/// The tables of one block of steps, shared by every realization of a shard.
+struct Block<'b, 'a> {
+    plan: &'b McPlan<'a>,
+    steps: &'b [Arc<StepDisc>],
+    maps: &'b [Arc<OutputMap>],
+    j0: usize,
+    j1: usize,
+}
+
+impl Block<'_, '_> {
+    /// The L realizations `lanes` advanced over the block in lockstep; their stored outputs, in order.
+    fn lockstep<const L: usize>(&self, lanes: &mut [RealizationState; L]) -> Vec<Vec<f64>> {
+        let mut task = Lockstep {
+            block: self,
+            lanes,
+            out: vec![Vec::new(); L],
+        };
+        vmath::run(&mut task);
+        task.out
+    }
+}
+
+/// L realizations advanced over a block: each state variable, noise value and output one `[f64; L]` (one
+/// lane per realization), compiled for the widest instruction set by [`vmath::run`]. Every lane draws its
+/// normals from its own stream in the order of a lone realization (n per step), all lanes at once
+/// ([`LaneNormals`]: the bits of `rand_distr`'s `StandardNormal`).
+struct Lockstep<'t, 'b, 'a, const L: usize> {
+    block: &'t Block<'b, 'a>,
+    lanes: &'t mut [RealizationState; L],
+    out: Vec<Vec<f64>>,
+}
+
+impl<const L: usize> vmath::Task for Lockstep<'_, '_, '_, L> {
+    #[inline(always)]
+    fn run(&mut self) {
+        let b = self.block;
+        let (n, p, k) = (b.plan.n, b.plan.outputs.len(), b.plan.grid.store_every);
+        let mut z: Vec<[f64; L]> = (0..n).map(|c| std::array::from_fn(|l| self.lanes[l].z[c])).collect();
+        let mut tmp = vec![[0.0; L]; n];
+        let mut y = vec![[0.0; L]; p];
+        let mut max_y: Vec<[f64; L]> = (0..p)
+            .map(|o| std::array::from_fn(|l| self.lanes[l].max_y[o]))
+            .collect();
+        let mut max_abs: Vec<[f64; L]> = (0..p)
+            .map(|o| std::array::from_fn(|l| self.lanes[l].max_abs[o]))
+            .collect();
+        let mut eps = vec![[0.0; L]; n];
+        let mut normals = LaneNormals::new(std::array::from_fn(|l| self.lanes[l].rng));
+        if b.j0 == 0 {
+            observe(&b.maps[0], &z, &mut y, &mut max_y, &mut max_abs);
+            self.keep(&y);
+        }
+        for j in b.j0..b.j1 {
+            for e in &mut eps {
+                *e = normals.draw();
+            }
+            step(&b.steps[j - b.j0], &z, &eps, &mut tmp);
+            std::mem::swap(&mut z, &mut tmp);
+            observe(&b.maps[j + 1 - b.j0], &z, &mut y, &mut max_y, &mut max_abs);
+            if (j + 1) % k == 0 {
+                self.keep(&y);
+            }
+        }
+        for (l, s) in self.lanes.iter_mut().enumerate() {
+            s.rng = normals.stream(l);
+            s.z.iter_mut().zip(&z).for_each(|(v, zc)| *v = zc[l]);
+            s.max_y.iter_mut().zip(&max_y).for_each(|(v, m)| *v = m[l]);
+            s.max_abs.iter_mut().zip(&max_abs).for_each(|(v, m)| *v = m[l]);
+        }
+    }
+}
+
+impl<const L: usize> Lockstep<'_, '_, '_, L> {
+    /// Appends every lane's outputs `y` to its stored values.
+    #[inline(always)]
+    fn keep(&mut self, y: &[[f64; L]]) {
+        for (l, out) in self.out.iter_mut().enumerate() {
+            out.extend(y.iter().map(|v| v[l]));
+        }
+    }
+}
+
+/// One step of every lane: z' = Φz + Γ + Lε (per lane: Γ_r, then the Φ terms, then the L terms, in column
+/// order).
+#[inline(always)]
+fn step<const L: usize>(d: &StepDisc, z: &[[f64; L]], eps: &[[f64; L]], out: &mut [[f64; L]]) {
+    let n = z.len();
+    for (r, o) in out.iter_mut().enumerate() {
+        // a local accumulator (registers, one vector), stored once
+        let mut acc = [d.gamma[r]; L];
+        for (a, zc) in d.phi[r * n..][..n].iter().zip(z) {
+            (0..L).for_each(|l| acc[l] += a * zc[l]);
+        }
+        for (a, ec) in d.l[r * n..][..n].iter().zip(eps) {
+            (0..L).for_each(|l| acc[l] += a * ec[l]);
+        }
+        *o = acc;
+    }
+}
+
+/// Every lane's outputs y = y₀ + Σ_c h_c z_c (the sum from −0.0 in column order, as `Iterator::sum`), and
+/// the running max y and max |y| updated.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // lanes: several arrays indexed by the lane
+fn observe<const L: usize>(
+    m: &OutputMap,
+    z: &[[f64; L]],
+    y: &mut [[f64; L]],
+    max_y: &mut [[f64; L]],
+    max_abs: &mut [[f64; L]],
+) {
+    let n = z.len();
+    for (o, yo) in y.iter_mut().enumerate() {
+        let mut sum = [-0.0; L];
+        for (h, zc) in m.h[o * n..][..n].iter().zip(z) {
+            (0..L).for_each(|l| sum[l] += h * zc[l]);
+        }
+        let (mut v, mut hi, mut hi_abs) = (*yo, max_y[o], max_abs[o]);
+        for l in 0..L {
+            v[l] = m.y0[o] + sum[l];
+            hi[l] = hi[l].max(v[l]);
+            hi_abs[l] = hi_abs[l].max(v[l].abs());
+        }
+        (*yo, max_y[o], max_abs[o]) = (v, hi, hi_abs);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::quarter_car::QuarterCar;
+    use crate::spectrum::{IsoBound, IsoClass, PowerLaw};
+    use crate::system::FrequencyResponse;
+    use crate::transient::schedule::FixedSystem;
+    use crate::transient::{input_model, Envelope, SpeedProfile, TransientInput};
+
+    /// The quarter car accelerating from 5 to 15 m/s on a w = 2 road (every step's table differs).
+    fn accelerating_car() -> TimeVaryingSystem {
+        let car = QuarterCar {
+            sprung_mass: 400.0,
+            unsprung_mass: 40.0,
+            suspension_stiffness: 20e3,
+            suspension_damping: 1.5e3,
+            tyre_stiffness: 200e3,
+            tyre_damping: 0.0,
+        };
+        let mdof = car.build().unwrap().system().unwrap();
+        let road = PowerLaw::iso8608(IsoClass::D, IsoBound::GeometricMean, None).unwrap();
+        let v = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
+        let ss = mdof.state_space().unwrap().clone();
+        let gains = vec![1.0; ss.b.ncols()];
+        let input = TransientInput {
+            model: input_model(&road, Some(&v)).unwrap(),
+            envelope: Envelope::unit(),
+            mean: 0.0,
+            gains,
+        };
+        TimeVaryingSystem::new(Arc::new(FixedSystem::new(ss, None, "test").unwrap()), input).unwrap()
+    }
+
+    /// The oracle: one realization stepped alone with scalar loops (the engine's arithmetic before the
+    /// lanes), its stored outputs at every stored time and its maxima.
+    fn alone(plan: &McPlan, (steps, maps): &BlockTables, seed: u64, i: u64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let (n, g) = (plan.n, plan.grid);
+        let mut s = plan.initial(seed, i);
+        let mut eps = vec![0.0; n];
+        let mut stored = Vec::new();
+        for j in 0..=g.n_steps {
+            if j > 0 {
+                let d = &steps[j - 1];
+                eps.iter_mut().for_each(|e| *e = s.rng.normal());
+                s.z = (0..n)
+                    .map(|r| {
+                        let mut acc = d.gamma[r];
+                        (0..n).for_each(|c| acc += d.phi[r * n + c] * s.z[c]);
+                        (0..n).for_each(|c| acc += d.l[r * n + c] * eps[c]);
+                        acc
+                    })
+                    .collect();
+            }
+            let m = &maps[j];
+            for o in 0..plan.outputs.len() {
+                let x = m.y0[o] + (0..n).map(|c| m.h[o * n + c] * s.z[c]).sum::<f64>();
+                s.max_y[o] = s.max_y[o].max(x);
+                s.max_abs[o] = s.max_abs[o].max(x.abs());
+                if j % g.store_every == 0 {
+                    stored.push(x);
+                }
+            }
+        }
+        (stored, s.max_y, s.max_abs)
+    }
+
+    /// 11 realizations (one group of 8 lanes, three alone) over three blocks of the step table (the last
+    /// one short) and several draw-ahead spans: every stored output and maximum has the bits of the
+    /// realization stepped alone.
+    #[test]
+    fn lockstep_gives_the_bits_of_one_realization_at_a_time() {
+        let sys = accelerating_car();
+        let index = |name: &str| sys.outputs().iter().position(|o| o.name == name).unwrap();
+        let outputs = vec![index("body_acc"), index("travel")];
+        let grid = McGrid::new(2.25, 1e-3, 5).unwrap(); // 2250 steps: blocks of 1024, 1024 and 202
+        let plan = McPlan::new(&sys, outputs, &Start::Stationary, grid).unwrap();
+        let (seed, r) = (7, 11);
+        let mut states: Vec<RealizationState> = (0..r).map(|i| plan.initial(seed, i)).collect();
+        let mut stored = vec![Vec::new(); r as usize];
+        for (j0, j1) in plan.blocks() {
+            let b = plan.advance(&mut states, j0, j1).unwrap();
+            stored.iter_mut().zip(b.stored).for_each(|(s, v)| s.extend(v));
+        }
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let tables = plan.block_tables(0, grid.n_steps).unwrap();
+        for (i, (s, st)) in stored.iter().zip(&states).enumerate() {
+            let (want, max_y, max_abs) = alone(&plan, &tables, seed, i as u64);
+            assert_eq!(s.len(), grid.n_stored() * 2);
+            assert_eq!(bits(s), bits(&want), "realization {i}");
+            assert_eq!(bits(&st.max_y), bits(&max_y), "realization {i}");
+            assert_eq!(bits(&st.max_abs), bits(&max_abs), "realization {i}");
+        }
     }
 }

@@ -1,0 +1,239 @@
+//! The standard normals of L random streams drawn side by side: lane l gives, bit for bit, the variates
+//! `rand_distr::StandardNormal` draws from stream l ([`super::stream`]), in the same order, with the stream
+//! left in the same state; only the common case of the ziggurat runs in the lanes.
+//!
+//! # Formula
+//! xoshiro256++ (Blackman & Vigna, "Scrambled linear pseudorandom number generators", 2021), the state
+//! seeded as `Xoshiro256PlusPlus::seed_from_u64` does (four SplitMix64 outputs). The ziggurat of
+//! `rand_distr` 0.6 (Marsaglia & Tsang 2000, with its 256 boxes): a draw `b` gives the box i = b mod 256
+//! and u = (2 + (b ≫ 12)·2⁻⁵¹) − 3 ∈ [−1, 1); x = u·X_i is accepted at once when |x| < X_{i+1}.
+//! That case is done here in every lane; every other draw (≈ 1.2 %, and every draw of the two top boxes) is
+//! redone from the stream's state before it by `rand_distr` itself on that lane alone, so the rare paths
+//! (the tail, the wedges) are the crate's own code. The box edges X_i are read from `rand_distr` once
+//! ([`edges`]): a draw of box i with u = 2⁻⁵¹ is accepted and returns 2⁻⁵¹·X_i exactly.
+
+use rand::TryRng;
+use rand_distr::{Distribution, StandardNormal};
+use std::convert::Infallible;
+use std::sync::OnceLock;
+
+/// One random stream: the state of `rand`'s `Xoshiro256PlusPlus` held where the lanes can reach it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct StreamRng {
+    s: [u64; 4],
+}
+
+impl StreamRng {
+    /// Stream i of `seed`: the generator of [`super::stream`] in the same state.
+    pub(crate) fn new(seed: u64, i: u64) -> Self {
+        let mut state = super::stream_key(seed, i);
+        let s = std::array::from_fn(|_| {
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let z = state;
+            let z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            let z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        });
+        StreamRng { s }
+    }
+
+    /// The next standard normal of the stream.
+    #[inline]
+    pub(crate) fn normal(&mut self) -> f64 {
+        StandardNormal.sample(self)
+    }
+}
+
+impl TryRng for StreamRng {
+    type Error = Infallible;
+
+    #[inline]
+    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
+        self.try_next_u64().map(|v| (v >> 32) as u32)
+    }
+
+    #[inline]
+    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
+        let s = &mut self.s;
+        let res = s[0].wrapping_add(s[3]).rotate_left(23).wrapping_add(s[0]);
+        let t = s[1] << 17;
+        s[2] ^= s[0];
+        s[3] ^= s[1];
+        s[1] ^= s[2];
+        s[0] ^= s[3];
+        s[2] ^= t;
+        s[3] = s[3].rotate_left(45);
+        Ok(res)
+    }
+
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
+        for chunk in dst.chunks_mut(8) {
+            let v = self.try_next_u64()?.to_le_bytes();
+            chunk.copy_from_slice(&v[..chunk.len()]);
+        }
+        Ok(())
+    }
+}
+
+/// The ziggurat's box edges for the lanes: `x[i]` = X_i, and `accept[i]` = X_{i+1} for the boxes whose
+/// edges were read, 0 (never accepted in the lanes) for the others.
+struct Edges {
+    x: [f64; 256],
+    accept: [f64; 256],
+}
+
+/// A generator that returns one word, over and over.
+struct Fixed(u64);
+
+impl TryRng for Fixed {
+    type Error = Infallible;
+    fn try_next_u32(&mut self) -> Result<u32, Infallible> {
+        Ok((self.0 >> 32) as u32)
+    }
+    fn try_next_u64(&mut self) -> Result<u64, Infallible> {
+        Ok(self.0)
+    }
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Infallible> {
+        dst.fill(0);
+        Ok(())
+    }
+}
+
+/// X_i for i < 255, read from `rand_distr`: the word with box i and mantissa 2⁵¹ + 1 gives u = 2⁻⁵¹ exactly,
+/// accepted in every box below the top one (X_{i+1} > 2⁻⁵¹X_i), so the draw returns 2⁻⁵¹·X_i.
+fn edges() -> &'static Edges {
+    static EDGES: OnceLock<Edges> = OnceLock::new();
+    EDGES.get_or_init(|| {
+        let mut x = [0.0; 256];
+        for (i, v) in x.iter_mut().enumerate().take(255) {
+            let word = ((1u64 << 51) + 1) << 12 | i as u64;
+            let x: f64 = StandardNormal.sample(&mut Fixed(word));
+            *v = x * 2f64.powi(51);
+        }
+        // boxes 254 and 255 (X_255 unread) always go to the crate's code
+        let accept = std::array::from_fn(|i| if i < 254 { x[i + 1] } else { 0.0 });
+        Edges { x, accept }
+    })
+}
+
+/// L streams drawn side by side (see the module's formula).
+pub(crate) struct LaneNormals<const L: usize> {
+    s: [[u64; L]; 4],
+    edges: &'static Edges,
+}
+
+impl<const L: usize> LaneNormals<L> {
+    /// The lanes of `streams` (lane l from `streams[l]`, in its state).
+    pub(crate) fn new(streams: [StreamRng; L]) -> Self {
+        LaneNormals {
+            s: std::array::from_fn(|k| std::array::from_fn(|l| streams[l].s[k])),
+            edges: edges(),
+        }
+    }
+
+    /// Lane l's stream in its current state.
+    pub(crate) fn stream(&self, l: usize) -> StreamRng {
+        StreamRng {
+            s: std::array::from_fn(|k| self.s[k][l]),
+        }
+    }
+
+    /// The next standard normal of every lane.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lanes: several arrays indexed by the lane
+    pub(crate) fn draw(&mut self) -> [f64; L] {
+        let before = self.s;
+        // the state in locals (registers), stored once
+        let [mut s0, mut s1, mut s2, mut s3] = self.s;
+        let mut bits = [0u64; L];
+        for l in 0..L {
+            bits[l] = s0[l].wrapping_add(s3[l]).rotate_left(23).wrapping_add(s0[l]);
+            let t = s1[l] << 17;
+            s2[l] ^= s0[l];
+            s3[l] ^= s1[l];
+            s1[l] ^= s2[l];
+            s0[l] ^= s3[l];
+            s2[l] ^= t;
+            s3[l] = s3[l].rotate_left(45);
+        }
+        self.s = [s0, s1, s2, s3];
+        let e = self.edges;
+        let mut x = [0.0; L];
+        let mut ok = true;
+        for l in 0..L {
+            let i = (bits[l] & 0xff) as usize;
+            let u = f64::from_bits((bits[l] >> 12) | 0x4000_0000_0000_0000) - 3.0;
+            x[l] = u * e.x[i];
+            ok &= x[l].abs() < e.accept[i];
+        }
+        if !ok {
+            self.redo(&before, &bits, &mut x);
+        }
+        x
+    }
+
+    /// The lanes whose draw was not accepted at once, redone by `rand_distr` from their state `before`.
+    #[cold]
+    #[inline(never)]
+    #[allow(clippy::needless_range_loop)] // lanes: several arrays indexed by the lane
+    fn redo(&mut self, before: &[[u64; L]; 4], bits: &[u64; L], x: &mut [f64; L]) {
+        let e = self.edges;
+        for l in 0..L {
+            let i = (bits[l] & 0xff) as usize;
+            if x[l].abs() < e.accept[i] {
+                continue;
+            }
+            let mut r = StreamRng {
+                s: std::array::from_fn(|k| before[k][l]),
+            };
+            x[l] = r.normal();
+            (0..4).for_each(|k| self.s[k][l] = r.s[k]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulate::{fill_standard_normal, stream};
+    use rand::Rng;
+
+    #[test]
+    fn stream_rng_is_the_stream_of_rand() {
+        for i in [0, 1, 77, u64::MAX] {
+            let (mut a, mut b) = (StreamRng::new(5, i), stream(5, i));
+            for _ in 0..1000 {
+                assert_eq!(a.next_u64(), b.next_u64());
+            }
+        }
+    }
+
+    /// 8 lanes × 2·10⁵ draws (≈ 19,000 of them redone by `rand_distr`, ≈ 140 beyond X_0 = 3.91 from the tail
+    /// box among them) have the
+    /// bits of `fill_standard_normal` on each lane's stream, and leave each stream where it leaves it.
+    #[test]
+    fn lanes_give_the_bits_of_rand_distr() {
+        const L: usize = 8;
+        let n = 200_000;
+        let mut lanes = LaneNormals::<L>::new(std::array::from_fn(|l| StreamRng::new(3, l as u64)));
+        let got: Vec<[f64; L]> = (0..n).map(|_| lanes.draw()).collect();
+        for l in 0..L {
+            let mut want = vec![0.0; n];
+            let mut rng = stream(3, l as u64);
+            fill_standard_normal(&mut rng, &mut want);
+            assert!(
+                got.iter().zip(&want).all(|(g, w)| g[l].to_bits() == w.to_bits()),
+                "lane {l}"
+            );
+            assert_eq!(
+                lanes.stream(l).next_u64(),
+                rng.next_u64(),
+                "lane {l}: the stream's state"
+            );
+        }
+        assert!(
+            got.iter().any(|g| g.iter().any(|v| v.abs() > 3.92)),
+            "the tail box was drawn"
+        );
+    }
+}
