@@ -391,6 +391,19 @@ fn command_prints_the_answer_and_fails_when_infeasible() {
     assert!(err.contains("wrong way round"), "{err}");
 }
 
+/// σ_acc against σ_travel of `sc` over c ∈ [0.2, 6] kN s/m, without constraints.
+fn comfort_travel(sc: &Scenario) -> stochvib::optimize::ParetoProblem<'_> {
+    stochvib::optimize::ParetoProblem {
+        base: sc,
+        params: vec![Param::parse("model.suspension_damping=0.2:6 kN*s/m").unwrap()],
+        quantities: [
+            Quantity::parse("--minimize", "sigma(body_acc)", sc).unwrap(),
+            Quantity::parse("--pareto", "sigma(travel)", sc).unwrap(),
+        ],
+        constraints: Vec::new(),
+    }
+}
+
 /// The Pareto front of comfort against travel for the white-velocity quarter car, c ∈ [0.2, 6] kN s/m.
 /// With σ²_acc(c) = πS₀(k_t c² + k_s²M)/(c m_s²) and σ²_travel(c) = πS₀M/c (above), σ_travel falls with c
 /// everywhere and σ_acc rises for c > c_opt, so the front is the curve (σ_acc(c), σ_travel(c)) for
@@ -398,17 +411,9 @@ fn command_prints_the_answer_and_fails_when_infeasible() {
 /// point with the limit ε on σ_travel sits where the limit is active, c = πS₀M/ε², with σ_acc(c) there.
 #[test]
 fn quarter_car_pareto_front_of_comfort_and_travel_is_the_closed_form_curve() {
-    use stochvib::optimize::{pareto, ParetoProblem};
+    use stochvib::optimize::pareto;
     let sc = scenario("qc-pareto", QUARTER_CAR);
-    let problem = ParetoProblem {
-        base: &sc,
-        params: vec![Param::parse("model.suspension_damping=0.2:6 kN*s/m").unwrap()],
-        quantities: [
-            Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap(),
-            Quantity::parse("--pareto", "sigma(travel)", &sc).unwrap(),
-        ],
-        constraints: Vec::new(),
-    };
+    let problem = comfort_travel(&sc);
     let front = pareto(&problem, 5, &SolveOptions::default()).unwrap();
     assert_eq!(front.points.len(), 5);
     let m = M_S + M_U;
@@ -633,18 +638,10 @@ fn kkt_check_at_the_quarter_car_optima() {
 /// and `render` writes the SVG and PNG; the command writes `pareto-front.svg` with `--plots`.
 #[test]
 fn pareto_front_picture_holds_the_table_points() {
-    use stochvib::optimize::{pareto, ParetoProblem};
+    use stochvib::optimize::pareto;
     use stochvib::plot::pareto_plots::pareto_chart;
     let sc = scenario("qc-pareto-picture", QUARTER_CAR);
-    let problem = ParetoProblem {
-        base: &sc,
-        params: vec![Param::parse("model.suspension_damping=0.2:6 kN*s/m").unwrap()],
-        quantities: [
-            Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap(),
-            Quantity::parse("--pareto", "sigma(travel)", &sc).unwrap(),
-        ],
-        constraints: Vec::new(),
-    };
+    let problem = comfort_travel(&sc);
     let front = pareto(&problem, 4, &SolveOptions::default()).unwrap();
     let table: Vec<(f64, f64)> = front
         .to_csv()
