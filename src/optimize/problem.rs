@@ -426,9 +426,9 @@ impl Fast {
         let exc = &pb.base.excitation;
         let base = self.evaluator.realization(sys, exc, &idx)?;
         let mut directions = Vec::with_capacity(x.len());
-        for k in 0..x.len() {
+        for (k, (p, &xk)) in pb.params.iter().zip(x).enumerate() {
             // a step small against x_k (and against the range where x_k is 0): the matrices' central difference
-            let delta = 1e-5 * x[k].abs().max(1e-3 * (pb.params[k].high - pb.params[k].low));
+            let delta = 1e-5 * xk.abs().max(1e-3 * (p.high - p.low));
             let at = |s: f64| {
                 let mut y = x.to_vec();
                 y[k] += s * delta;

@@ -14,13 +14,13 @@
 //!   side: the same numbers as one table call per value). Nothing is allocated on the heap per system.
 //!   Each value passes the condition check of the table
 //!   ([`INTEGRAL_TABLE_MAX_ERROR`]: pivot ratio of the Hurwitz elimination · n · ε ≤ 1e-9); an output whose
-//!   variance or λ₂ fails it is computed by [`variance_lyapunov`] instead and its method says
-//!   [`VarianceMethod::Lyapunov`] — no unreliable table value is returned. The same fallback applies to
+//!   variance or λ₂ fails it is computed by [`variance_lyapunov`](super::variance_lyapunov) instead and its
+//!   method says [`VarianceMethod::Lyapunov`] — no unreliable table value is returned. The same fallback applies to
 //!   every output of a system whose Faddeev–LeVerrier recurrence lost digits: its Cayley–Hamilton
 //!   residual max|A M_n + δ₀ I|/|δ₀| (zero in exact arithmetic) exceeds [`INTEGRAL_TABLE_MAX_ERROR`].
 //! * [`VarianceMethod::Lyapunov`]: other delay-free rational inputs (several independent processes)
-//!   ([`variance_lyapunov`]), every output of a system from one Lyapunov solve; and one delay-free
-//!   *integrated white* process (a road of ISO waviness w = 2 without band limits: white road velocity),
+//!   ([`variance_lyapunov`](super::variance_lyapunov)), every output of a system from one Lyapunov solve;
+//!   and one delay-free *integrated white* process (a road of ISO waviness w = 2 without band limits: white road velocity),
 //!   by the realization of H(s)/s given below (an output with H(0) ≠ 0, such as an absolute displacement,
 //!   has an infinite variance under it, as the asymptote check of quadrature says).
 //! * [`VarianceMethod::Quadrature`]: any other input (delays, non-rational or tabulated spectra)
@@ -328,7 +328,7 @@ fn integrated_white_level(s: &dyn Spectrum) -> Option<f64> {
     let mut grid = (-40..=40)
         .map(|k| 10f64.powf(f64::from(k) / 4.0))
         .chain(s.breakpoints());
-    grid.all(|w| !(w > 0.0) || (s.density(w) * w * w / c0 - 1.0).abs() <= 1e-9)
+    grid.all(|w| w.is_nan() || w <= 0.0 || (s.density(w) * w * w / c0 - 1.0).abs() <= 1e-9)
         .then_some(c0)
 }
 

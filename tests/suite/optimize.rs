@@ -587,8 +587,8 @@ fn variance_sensitivities_of_the_absorber_match_finite_differences() {
     let problem = Problem::new(&sc, params, objective, Goal::Minimize, Vec::new()).unwrap();
     let x = [0.9 * mu, 0.1 * mu];
     let g = problem.gradients(&x).unwrap().unwrap();
-    for k in 0..2 {
-        let h = 1e-4 * x[k];
+    for (k, &xk) in x.iter().enumerate() {
+        let h = 1e-4 * xk;
         let mut p = x;
         let mut q = x;
         p[k] += h;
