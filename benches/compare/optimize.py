@@ -6,13 +6,17 @@ Problem (the same on both sides): quarter car m_s = 400 kg, m_u = 40 kg, k_s = 2
 minimise sigma(body acceleration) over the suspension damping c in [0.2, 6] kN s/m subject to
 3 sigma(travel) <= 40 mm. Closed form: c* = 9 pi S0 (m_s + m_u) / d^2 = 1250.6763 N s/m (the constraint is active).
 
-Ours: the whole `stochvib optimize` process (start-up, scenario reading, 4 COBYLA starts), median of REPS runs.
+Ours: the whole `stochvib optimize` process (start-up, scenario reading, 4 COBYLA starts), median of REPS runs;
+and, with --bench-binary (the `optimize` bench, benches/optimize.rs), the same work in one process without the
+start-up (read the scenario, build the problem, 4 starts), REPS x 20 repetitions, CPU and wall time per
+repetition: the like-for-like row against scipy, whose process start-up is not counted either.
 Peer: scipy.optimize.minimize(method="SLSQP") from the same 4 starts (the centre of the box and the Halton points
 1/4, 3/4, 1/8 of it, as ours), each evaluation of the objective and of the constraint one
 scipy.linalg.solve_continuous_lyapunov of the 4-state model (gradients by SLSQP's finite differences), in one
 Python process already started (its start-up is not counted); median of REPS runs.
 
-    python3 benches/compare/optimize.py --binary target/release/stochvib [--reps 7]
+    python3 benches/compare/optimize.py --binary target/release/stochvib [--reps 7] \
+        [--bench-binary target/release/deps/optimize-HASH]
 
 Prints one markdown row per side with the machine state (load average, CPU).
 """
@@ -81,6 +85,23 @@ def ours(binary, path):
     return dt, json.loads(out)["params"][0]["value"]
 
 
+def in_process(bench, path, reps):
+    """The bench binary's CPU and wall time per search (one run of `reps` searches in one process)."""
+    import json
+    out = subprocess.run([bench, path, str(reps)], check=True, capture_output=True, text=True,
+                         cwd=os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))).stdout
+    r = json.loads(out)
+    return r["cpu_s"], r["wall_s"], r["c"]
+
+
+def scipy_in_process(reps):
+    """scipy's CPU and wall time per search, `reps` searches."""
+    c0, w0 = time.process_time(), time.perf_counter()
+    for _ in range(reps):
+        c = scipy_optimum()
+    return (time.process_time() - c0) / reps, (time.perf_counter() - w0) / reps, c
+
+
 def cpu_name():
     try:
         for line in open("/proc/cpuinfo"):
@@ -95,6 +116,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--binary", default="target/release/stochvib")
     ap.add_argument("--reps", type=int, default=7)
+    ap.add_argument("--bench-binary", default=None, help="the built `optimize` bench (benches/optimize.rs)")
     a = ap.parse_args()
     closed = 9 * np.pi * S0 * (MS + MU) / LIMIT**2
     with tempfile.TemporaryDirectory() as d:
@@ -108,6 +130,10 @@ def main():
             t = time.perf_counter()
             c_py = scipy_optimum()
             py.append(time.perf_counter() - t)
+        rows = []
+        if a.bench_binary:
+            for _ in range(a.reps):  # alternated blocks of 20 searches a side
+                rows.append((in_process(a.bench_binary, path, 20), scipy_in_process(20)))
         load1 = os.getloadavg()[0]
     r, p = statistics.median(rust), statistics.median(py)
     print(f"closed form c* = {closed:.6f}; ours {c_ours:.6f}; scipy SLSQP {c_py:.6f}")
@@ -116,6 +142,14 @@ def main():
     print("|---|---|---|---|---|")
     print(f"| quarter car, min sigma_acc s.t. 3 sigma_travel <= 40 mm, 4 starts | {r * 1e3:.2f} ms (whole process) "
           f"| scipy SLSQP + solve_continuous_lyapunov | {p * 1e3:.2f} ms | {p / r:.2f}x |")
+    if rows:
+        med = lambda k, j: statistics.median(row[k][j] for row in rows)
+        ours_cpu, ours_wall, peer_cpu, peer_wall = med(0, 0), med(0, 1), med(1, 0), med(1, 1)
+        print(f"in process: ours c* = {rows[-1][0][2]:.6f}, scipy c* = {rows[-1][1][2]:.6f}")
+        print(f"| same, in process (no start-up on either side), median of {len(rows)} blocks of 20 "
+              f"| {ours_cpu * 1e3:.3f} ms CPU, {ours_wall * 1e3:.3f} ms wall | scipy SLSQP + solve_continuous_lyapunov "
+              f"| {peer_cpu * 1e3:.2f} ms CPU, {peer_wall * 1e3:.2f} ms wall "
+              f"| {peer_cpu / ours_cpu:.1f}x CPU ({peer_wall / ours_wall:.1f}x wall) |")
 
 
 if __name__ == "__main__":

@@ -46,6 +46,9 @@ pub struct OptimizeArgs {
     /// Points of the Pareto front, its two ends included (with --pareto).
     #[arg(long, default_value_t = 7, requires = "pareto")]
     points: usize,
+    /// With --pareto: also draw the front into this directory (`pareto-front.svg` and `.png`).
+    #[arg(long, value_name = "DIR", requires = "pareto")]
+    plots: Option<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -90,7 +93,7 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
             params,
             constraints,
         };
-        return print_front(&problem, a.points, &opts, a.json);
+        return print_front(&problem, a.points, &opts, a.json, a.plots.as_deref());
     }
     let problem = Problem::new(&sc, params, objective, goal, constraints)?;
     let answer = solve(&problem, &opts).map_err(|e| match e {
@@ -112,9 +115,25 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `--pareto`: the front of `problem` with `points` points, printed as CSV (JSON with `json`).
-fn print_front(problem: &ParetoProblem, points: usize, opts: &SolveOptions, json: bool) -> anyhow::Result<()> {
+/// `--pareto`: the front of `problem` with `points` points, printed as CSV (JSON with `json`), drawn into
+/// `plots` when given.
+fn print_front(
+    problem: &ParetoProblem,
+    points: usize,
+    opts: &SolveOptions,
+    json: bool,
+    plots: Option<&std::path::Path>,
+) -> anyhow::Result<()> {
+    if let Some(dir) = plots {
+        stochvib::plot::chart::check_picture_dir(dir)?;
+    }
     let front = pareto(problem, points, opts)?;
+    if let Some(dir) = plots {
+        let title = problem.base.title.as_str();
+        for f in stochvib::plot::pareto_plots::pareto_chart(title, &front).render(dir, "pareto-front")? {
+            eprintln!("wrote {}", f.display());
+        }
+    }
     if json {
         println!("{}", serde_json::to_string_pretty(&front)?);
     } else {

@@ -29,11 +29,13 @@
 //! assert!(answer.constraints[0].margin >= -1e-9);
 //! ```
 
+pub mod gradient;
 pub mod pareto;
 pub mod problem;
 pub mod quantity;
 pub mod solve;
 
+pub use gradient::{KktCheck, PointGradients, KKT_TOLERANCE};
 pub use pareto::{pareto, ParetoFront, ParetoPoint, ParetoProblem};
 pub use problem::{Constraint, Goal, Param, PointValues, Problem, Relation};
 pub use quantity::{Quantity, QuantityKind, QUANTITY_FORMS};

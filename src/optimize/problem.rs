@@ -1,9 +1,11 @@
 //! The optimisation problem: named scenario parameters with bounds, an objective and constraints, read
 //! from command-line text and checked against the scenario.
 
-use super::quantity::Quantity;
+use super::gradient::{variance_sensitivities, PointGradients};
+use super::quantity::{Quantity, QuantityKind};
 use crate::error::{Error, Result};
 use crate::fields::Fields;
+use crate::models::ModelInstance;
 use crate::response::ExactEvaluator;
 use crate::scenario::{build_model, parse_scenario, BuiltModel, ModelContext, Scenario};
 use crate::units::parse_quantity;
@@ -308,6 +310,19 @@ impl<'a> Problem<'a> {
         })
     }
 
+    /// The gradients of the objective and of every constraint's quantity at `x` (SI per SI unit of each
+    /// parameter) from the analytic sensitivity of the Lyapunov solution
+    /// ([`variance_sensitivities`](super::gradient::variance_sensitivities)), the model's matrices differenced
+    /// centrally ([`ExactEvaluator::realization_derivative`]). `None` where that does not apply: a parameter
+    /// outside `[model]`, a quantity other than σ or 3σ, an input with no exact route (quadrature), a model
+    /// without a state space.
+    ///
+    /// # Errors
+    /// The model's errors at `x` or at the difference points; the Lyapunov solver's.
+    pub fn gradients(&self, x: &[f64]) -> Option<Result<PointGradients>> {
+        self.fast.as_ref()?.gradients(self, x)
+    }
+
     /// A scenario error at `x` named by the parameters' values.
     fn name_error(&self, x: &[f64], e: Error) -> Error {
         let at: Vec<String> = self
@@ -349,7 +364,7 @@ impl Fast {
         }
         let model_only = params.iter().all(|p| p.key.starts_with("model."));
         (model_only && base.inputs.len() <= 1 && base.nonlinear.is_none()).then(|| Fast {
-            evaluator: ExactEvaluator::new(&base.excitation),
+            evaluator: ExactEvaluator::new(&base.excitation).variances_only(),
             slots,
             outputs,
         })
@@ -358,6 +373,11 @@ impl Fast {
     /// The values at `x` by the rebuilt model, or `None` when the model's input layout changed (then the
     /// whole scenario is read).
     fn evaluate(&self, pb: &Problem, x: &[f64]) -> Option<Result<PointValues>> {
+        Some(self.model_at(pb, x)?.and_then(|model| self.values(&model, pb, x)))
+    }
+
+    /// The model rebuilt at `x`, or `None` when its input layout changed.
+    fn model_at(&self, pb: &Problem, x: &[f64]) -> Option<Result<ModelInstance>> {
         let mut table = pb.root.get("model")?.as_table()?.clone();
         for (p, &v) in pb.params.iter().zip(x) {
             let rest = p.key.strip_prefix("model.")?;
@@ -377,10 +397,82 @@ impl Fast {
         if model.layout != pb.base.model.layout {
             return None;
         }
-        Some(self.values(&model, pb, x))
+        Some(Ok(model))
     }
 
-    fn values(&self, model: &crate::models::ModelInstance, pb: &Problem, x: &[f64]) -> Result<PointValues> {
+    /// The analytic gradients at `x` (see [`Problem::gradients`]).
+    fn gradients(&self, pb: &Problem, x: &[f64]) -> Option<Result<PointGradients>> {
+        let quantities: Vec<&Quantity> = std::iter::once(&pb.objective)
+            .chain(pb.constraints.iter().map(|c| &c.quantity))
+            .collect();
+        let sigma_like = |q: &Quantity| matches!(q.kind, QuantityKind::Sigma(_) | QuantityKind::ThreeSigma(_));
+        if !quantities.iter().all(|q| sigma_like(q)) {
+            return None;
+        }
+        let model = match self.model_at(pb, x)? {
+            Ok(m) => m,
+            Err(e) => return Some(Err(e)),
+        };
+        let sys = model.system.as_ref();
+        let idx = match self
+            .outputs
+            .iter()
+            .map(|o| sys.output_index(o))
+            .collect::<Result<Vec<_>>>()
+        {
+            Ok(i) => i,
+            Err(e) => return Some(Err(e)),
+        };
+        let exc = &pb.base.excitation;
+        let base = self.evaluator.realization(sys, exc, &idx)?;
+        let mut directions = Vec::with_capacity(x.len());
+        for (k, (p, &xk)) in pb.params.iter().zip(x).enumerate() {
+            // a step small against x_k (and against the range where x_k is 0): the matrices' central difference
+            let delta = 1e-5 * xk.abs().max(1e-3 * (p.high - p.low));
+            let at = |s: f64| {
+                let mut y = x.to_vec();
+                y[k] += s * delta;
+                self.model_at(pb, &y)
+            };
+            let (plus, minus) = match (at(1.0)?, at(-1.0)?) {
+                (Ok(p), Ok(m)) => (p, m),
+                (Err(e), _) | (_, Err(e)) => return Some(Err(e)),
+            };
+            let d = self.evaluator.realization_derivative(
+                sys,
+                plus.system.as_ref(),
+                minus.system.as_ref(),
+                delta,
+                exc,
+                &idx,
+            )?;
+            directions.push(d);
+        }
+        let result = (|| -> Result<PointGradients> {
+            let base = base?;
+            let directions = directions.into_iter().collect::<Result<Vec<_>>>()?;
+            let (var, dvar) = variance_sensitivities(&base, &directions)?;
+            // dσ/dx = dD/dx / (2σ); 3σ: three times that
+            let grad = |q: &Quantity, slot: usize| -> Vec<f64> {
+                let factor = if matches!(q.kind, QuantityKind::ThreeSigma(_)) {
+                    3.0
+                } else {
+                    1.0
+                };
+                dvar.iter()
+                    .map(|d| factor * d[slot] / (2.0 * var[slot].sqrt()))
+                    .collect()
+            };
+            let mut all = quantities.iter().zip(&self.slots).map(|(q, &s)| grad(q, s));
+            Ok(PointGradients {
+                objective: all.next().unwrap_or_default(),
+                constrained: all.collect(),
+            })
+        })();
+        Some(result)
+    }
+
+    fn values(&self, model: &ModelInstance, pb: &Problem, x: &[f64]) -> Result<PointValues> {
         let sys = model.system.as_ref();
         let idx = self
             .outputs

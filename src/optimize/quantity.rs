@@ -106,8 +106,11 @@ impl Quantity {
         match &self.kind {
             QuantityKind::Sigma(o) | QuantityKind::ThreeSigma(o) | QuantityKind::Peak3(o) => {
                 let i = sc.model.system.output_index(o)?;
-                let st =
-                    ExactEvaluator::new(&sc.excitation).evaluate(sc.model.system.as_ref(), &sc.excitation, &[i])?;
+                let st = ExactEvaluator::new(&sc.excitation).variances_only().evaluate(
+                    sc.model.system.as_ref(),
+                    &sc.excitation,
+                    &[i],
+                )?;
                 self.of_statistics(&st[0])
             }
             QuantityKind::StaticSag(e) => crate::study::static_sag::static_sag_of(sc, e),
@@ -118,7 +121,8 @@ impl Quantity {
         }
     }
 
-    /// The values of `quantities` for scenario `sc` (SI), the verdicts computed once for all of them.
+    /// The values of `quantities` for scenario `sc` (SI), the verdicts computed once for all of them and
+    /// the σ quantities' outputs in one evaluation (one Lyapunov solve on the Lyapunov routes).
     ///
     /// # Errors
     /// As [`value`](Self::value).
@@ -129,6 +133,20 @@ impl Quantity {
         } else {
             None
         };
+        let sys = sc.model.system.as_ref();
+        let outputs = quantities
+            .iter()
+            .filter_map(|q| q.output())
+            .map(|o| sys.output_index(o))
+            .collect::<Result<Vec<_>>>()?;
+        let stats = if outputs.is_empty() {
+            Vec::new()
+        } else {
+            ExactEvaluator::new(&sc.excitation)
+                .variances_only()
+                .evaluate(sys, &sc.excitation, &outputs)?
+        };
+        let mut stats = stats.iter();
         quantities
             .iter()
             .map(|q| match &verdicts {
@@ -136,6 +154,10 @@ impl Quantity {
                     what: q.text.clone(),
                     reason: "the verdict was not computed".into(),
                 }),
+                _ if q.output().is_some() => match stats.next() {
+                    Some(st) => q.of_statistics(st),
+                    None => q.value(sc),
+                },
                 _ => q.value(sc),
             })
             .collect()

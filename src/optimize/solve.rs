@@ -1,6 +1,7 @@
 //! Several COBYLA runs from spread starts; the best feasible end point with its active constraints, or the
 //! least infeasible one with what it misses by.
 
+use super::gradient::KktCheck;
 use super::problem::{Goal, PointValues, Problem, Relation};
 use crate::error::{Error, Result};
 use serde::Serialize;
@@ -100,6 +101,10 @@ pub struct Solution {
     pub starts: Vec<StartResult>,
     /// Evaluations in all.
     pub evaluations: usize,
+    /// The first-order optimality check at the answer with the analytic gradients ([`KktCheck`]); `None`
+    /// where the problem has none ([`Problem::gradients`]) or they failed there. COBYLA itself uses no
+    /// gradient.
+    pub kkt: Option<KktCheck>,
 }
 
 impl Solution {
@@ -359,7 +364,7 @@ fn describe(
             }
         })
         .collect();
-    let params = problem
+    let params: Vec<ParamState> = problem
         .params
         .iter()
         .zip(&best.x)
@@ -379,7 +384,18 @@ fn describe(
             }
         })
         .collect();
+    let active: Vec<bool> = constraints.iter().map(|c| c.active).collect();
+    let at_bound: Vec<i8> = params
+        .iter()
+        .map(|p| match p.at_bound {
+            Some("lower") => -1,
+            Some(_) => 1,
+            None => 0,
+        })
+        .collect();
+    let kkt = KktCheck::of(problem, best, &active, &at_bound).and_then(|r| r.ok());
     Solution {
+        kkt,
         goal: problem.goal,
         objective: problem.objective.text.clone(),
         unit: problem.objective.unit.clone(),
@@ -432,6 +448,9 @@ impl std::fmt::Display for Solution {
         for v in self.violations() {
             writeln!(f, "  {v}")?;
         }
+        if let Some(k) = &self.kkt {
+            write_kkt(f, self, k)?;
+        }
         let ends = self.starts.iter().filter(|s| s.end.is_some()).count();
         writeln!(
             f,
@@ -440,6 +459,49 @@ impl std::fmt::Display for Solution {
             self.evaluations
         )
     }
+}
+
+/// The KKT lines of an answer: the gradients, the active multipliers and the residual.
+fn write_kkt(f: &mut std::fmt::Formatter<'_>, s: &Solution, k: &KktCheck) -> std::fmt::Result {
+    let fmt = |g: &[f64]| {
+        let parts: Vec<String> = s
+            .params
+            .iter()
+            .zip(g)
+            .map(|(p, v)| format!("d/d {} = {v:.6e}", p.key))
+            .collect();
+        parts.join(", ")
+    };
+    writeln!(
+        f,
+        "  gradient (analytic Lyapunov sensitivities, SI): {}: {}",
+        s.objective,
+        fmt(&k.gradients.objective)
+    )?;
+    for ((c, g), mu) in s.constraints.iter().zip(&k.gradients.constrained).zip(&k.multipliers) {
+        let m = if c.active {
+            format!("  (multiplier {mu:.4e})")
+        } else {
+            String::new()
+        };
+        writeln!(f, "    {}: {}{m}", c.text, fmt(g))?;
+    }
+    writeln!(
+        f,
+        "  KKT: stationarity residual {:.3e} in unit coordinates (tolerance {:.0e}), multipliers {}: {}",
+        k.residual,
+        super::gradient::KKT_TOLERANCE,
+        if k.multipliers
+            .iter()
+            .chain(&k.bound_multipliers)
+            .all(|&m| m >= -super::gradient::KKT_TOLERANCE)
+        {
+            "≥ 0"
+        } else {
+            "NEGATIVE"
+        },
+        if k.satisfied { "satisfied" } else { "NOT satisfied" }
+    )
 }
 
 /// `Relation` as text.

@@ -19,6 +19,7 @@
 //! * [`run_plots`](mod@run_plots): the pictures of a Monte Carlo run file (`stochvib plot run.h5`).
 //! * [`book_plots`](mod@book_plots): the pictures of `stochvib book --plots DIR`, every catalogue model's data
 //!   computed with the library.
+//! * [`pareto_plots`]: the Pareto front of `stochvib optimize --pareto Q --plots DIR`.
 //!
 //! * [`style`](mod@style): the look every chart shares (Okabe–Ito palette, marker shapes, fonts, tick labels
 //!   in engineering notation at the decades of a logarithmic axis); [`legend`](mod@legend): the legend placed
@@ -35,6 +36,7 @@ pub mod legend;
 pub mod mc_plots;
 pub mod model_plots;
 pub mod nonlinear_plots;
+pub mod pareto_plots;
 pub mod record_plots;
 pub mod road_plots;
 pub mod run_plots;

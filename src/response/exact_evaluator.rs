@@ -14,12 +14,15 @@
 //!   side: the same numbers as one table call per value). Nothing is allocated on the heap per system.
 //!   Each value passes the condition check of the table
 //!   ([`INTEGRAL_TABLE_MAX_ERROR`]: pivot ratio of the Hurwitz elimination · n · ε ≤ 1e-9); an output whose
-//!   variance or λ₂ fails it is computed by [`variance_lyapunov`] instead and its method says
-//!   [`VarianceMethod::Lyapunov`] — no unreliable table value is returned. The same fallback applies to
+//!   variance or λ₂ fails it is computed by [`variance_lyapunov`](super::variance_lyapunov) instead and its
+//!   method says [`VarianceMethod::Lyapunov`] — no unreliable table value is returned. The same fallback applies to
 //!   every output of a system whose Faddeev–LeVerrier recurrence lost digits: its Cayley–Hamilton
 //!   residual max|A M_n + δ₀ I|/|δ₀| (zero in exact arithmetic) exceeds [`INTEGRAL_TABLE_MAX_ERROR`].
 //! * [`VarianceMethod::Lyapunov`]: other delay-free rational inputs (several independent processes)
-//!   ([`variance_lyapunov`]).
+//!   ([`variance_lyapunov`](super::variance_lyapunov)), every output of a system from one Lyapunov solve;
+//!   and one delay-free *integrated white* process (a road of ISO waviness w = 2 without band limits: white road velocity),
+//!   by the realization of H(s)/s given below (an output with H(0) ≠ 0, such as an absolute displacement,
+//!   has an infinite variance under it, as the asymptote check of quadrature says).
 //! * [`VarianceMethod::Quadrature`]: any other input (delays, non-rational or tabulated spectra)
 //!   ([`variance_quadrature`], [`spectral_moment_quadrature`]).
 //!
@@ -31,13 +34,27 @@
 //! D_y = (1/2π) ∫ |N_i F_num / (Δ F_den)|² dω = I_n/(2π),   λ₂ = (1/2π) ∫ ω² |…|² dω,   M_y = N_i(0)/Δ(0)·μ
 //! ```
 //! (F = F_num/F_den the shaping filter of the input process, driven by unit-intensity white noise.)
+//!
+//! Integrated white input u, S_u(ω) = S_v/ω² (u̇ = v white, E[v(t)v(t+τ)] = 2πS_v δ(τ)): with
+//! x̃ = x + A⁻¹b u (the state about its quasi-static value), ẋ = A x + b u gives
+//! ```text
+//! dx̃/dt = A x̃ + (A⁻¹b) v,   y_i = c_i x̃ + H_i(0) u + e_i v,   H_i(0) = d_i − c_i A⁻¹ b
+//! ```
+//! so for H_i(0) = 0 (the quasi-static output vanishes) and e_i = 0, y_i = c_i x̃ is the output of the
+//! stable, strictly proper realization (A, A⁻¹b, c_i) of H_i(s)/s driven by white v:
+//! A P + P Aᵀ + 2πS_v (A⁻¹b)(A⁻¹b)ᵀ = 0, D_y = c_i P c_iᵀ; λ₂ = (c_i A) P (c_i A)ᵀ when d_i = 0 (else ẏ has
+//! a white part and λ₂ = ∞). H_i(0) is tested with the tolerance of the low-frequency asymptote
+//! ([`FrequencyResponse::low_frequency`] of a state space: 10⁻¹²(‖D‖ + ‖C‖‖A⁻¹b‖)).
 
 use super::statistics::VarianceMethod;
-use super::variance::{spectral_moment_quadrature, variance_lyapunov, variance_quadrature, INTEGRAL_TABLE_MAX_ERROR};
+use super::variance::{
+    lyapunov_outputs, moments_of, spectral_moment_quadrature, variance_quadrature, AugmentedSystem, LyapunovMoments,
+    INTEGRAL_TABLE_MAX_ERROR,
+};
 use super::Excitation;
 use crate::error::{Error, Result};
 use crate::linalg::integral_table::H2Denominator;
-use crate::spectrum::ShapingFilter;
+use crate::spectrum::{Asymptote, ShapingFilter, Spectrum};
 use crate::system::FrequencyResponse;
 use std::f64::consts::PI;
 
@@ -90,6 +107,11 @@ enum Route {
         mean: f64,
     },
     Lyapunov,
+    /// One delay-free integrated white process (S_u = level/ω²): the input gains.
+    IntegratedWhite {
+        level: f64,
+        gains: Vec<f64>,
+    },
     Quadrature,
 }
 
@@ -113,6 +135,8 @@ enum Route {
 #[derive(Debug, Clone)]
 pub struct ExactEvaluator {
     route: Route,
+    /// Compute λ₂ (for ν₀⁺) where it costs a quadrature or a quadratic form ([`variances_only`](Self::variances_only)).
+    lambda2: bool,
 }
 
 impl ExactEvaluator {
@@ -129,7 +153,13 @@ impl ExactEvaluator {
                     gains: gains.clone(),
                     mean: *mean,
                 },
-                _ => Route::Quadrature,
+                _ => match integrated_white_level(spectrum.as_ref()) {
+                    Some(level) => Route::IntegratedWhite {
+                        level,
+                        gains: gains.clone(),
+                    },
+                    None => Route::Quadrature,
+                },
             },
             Excitation::Independent { spectra, .. }
                 if spectra
@@ -140,7 +170,15 @@ impl ExactEvaluator {
             }
             _ => Route::Quadrature,
         };
-        ExactEvaluator { route }
+        ExactEvaluator { route, lambda2: true }
+    }
+
+    /// The same evaluator computing variances (and means) only: λ₂ is left out where it would cost a
+    /// quadrature or a quadratic form of its own (the integral table's λ₂, nearly free, is still given), so
+    /// [`PointStatistics::lambda2`] may be `None`. For callers that need σ alone (optimisation).
+    pub fn variances_only(mut self) -> ExactEvaluator {
+        self.lambda2 = false;
+        self
     }
 
     /// The method the evaluator uses for a system of `n_states` states (state-space form) or `None` (no
@@ -150,7 +188,9 @@ impl ExactEvaluator {
             (Route::Table { filter, .. }, Some(n)) if n + filter.den.len() - 1 <= MAX_STATES => {
                 VarianceMethod::IntegralTable
             }
-            (Route::Table { .. } | Route::Lyapunov, Some(_)) => VarianceMethod::Lyapunov,
+            (Route::Table { .. } | Route::Lyapunov | Route::IntegratedWhite { .. }, Some(_)) => {
+                VarianceMethod::Lyapunov
+            }
             _ => VarianceMethod::Quadrature,
         }
     }
@@ -182,7 +222,17 @@ impl ExactEvaluator {
                 }
                 Ok(out)
             }
-            (VarianceMethod::Lyapunov, _, _) => outputs.iter().map(|&i| lyapunov_point(sys, exc, i)).collect(),
+            (VarianceMethod::Lyapunov, Route::IntegratedWhite { level, gains }, Some(ss)) => {
+                integrated_white_points(sys, ss, exc, *level, gains, outputs, self.upto())
+            }
+            (VarianceMethod::Lyapunov, _, _) => {
+                let moments = lyapunov_outputs(sys, exc, outputs, self.upto())?;
+                outputs
+                    .iter()
+                    .zip(moments)
+                    .map(|(&i, m)| lyapunov_statistics(static_mean(sys, exc, i), m))
+                    .collect()
+            }
             _ => outputs
                 .iter()
                 .map(|&i| {
@@ -192,7 +242,11 @@ impl ExactEvaluator {
                         Err(Error::Divergent { .. }) => None,
                         Err(e) => return Err(e),
                     };
-                    let lambda2 = variance.and(spectral_moment_quadrature(sys, exc, i, 2).ok().map(|q| q.value));
+                    let lambda2 = if self.lambda2 {
+                        variance.and(spectral_moment_quadrature(sys, exc, i, 2).ok().map(|q| q.value))
+                    } else {
+                        None
+                    };
                     Ok(PointStatistics {
                         mean,
                         variance,
@@ -205,10 +259,26 @@ impl ExactEvaluator {
     }
 }
 
-/// The statistics of output `i` by [`variance_lyapunov`].
+impl ExactEvaluator {
+    /// The highest spectral moment the Lyapunov routes compute.
+    fn upto(&self) -> u32 {
+        if self.lambda2 {
+            2
+        } else {
+            0
+        }
+    }
+}
+
+/// The statistics of output `i` by [`variance_lyapunov`](super::variance_lyapunov).
 pub(crate) fn lyapunov_point(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<PointStatistics> {
-    let mean = static_mean(sys, exc, i);
-    match variance_lyapunov(sys, exc, i) {
+    let m = lyapunov_outputs(sys, exc, &[i], 2)?.pop();
+    lyapunov_statistics(static_mean(sys, exc, i), m.unwrap_or_else(|| Err(unreachable_entry())))
+}
+
+/// An output's Lyapunov moments as point statistics: a divergent variance is `None`, other errors pass.
+fn lyapunov_statistics(mean: Option<f64>, m: Result<LyapunovMoments>) -> Result<PointStatistics> {
+    match m {
         Ok(m) => Ok(PointStatistics {
             mean,
             variance: Some(m.variance),
@@ -222,6 +292,192 @@ pub(crate) fn lyapunov_point(sys: &dyn FrequencyResponse, exc: &Excitation, i: u
             method: VarianceMethod::Lyapunov,
         }),
         Err(e) => Err(e),
+    }
+}
+
+/// The error of a per-output list that came back shorter than the outputs asked (not expected).
+fn unreachable_entry() -> Error {
+    Error::Numerical {
+        what: "Lyapunov moments".into(),
+        reason: "no entry for the output".into(),
+    }
+}
+
+/// S(ω) = S_v/ω² on the whole axis (an integrated white process, u̇ white of density S_v): its S_v, from
+/// the two power-law asymptotes (exponent −2 at both ends with one coefficient, no band), confirmed on the
+/// density itself at 81 log-spaced ω from 10⁻¹⁰ to 10¹⁰ and at its breakpoints (within 10⁻⁹ relative);
+/// `None` for any other spectrum.
+fn integrated_white_level(s: &dyn Spectrum) -> Option<f64> {
+    let (
+        Asymptote::Power {
+            exponent: e0,
+            coefficient: c0,
+        },
+        Asymptote::Power {
+            exponent: e1,
+            coefficient: c1,
+        },
+    ) = (s.low_frequency(), s.high_frequency())
+    else {
+        return None;
+    };
+    let level_ok = c0 > 0.0 && c0.is_finite() && (c0 - c1).abs() <= 1e-12 * c0;
+    if e0 != -2.0 || e1 != -2.0 || !level_ok || s.support() != (0.0, f64::INFINITY) {
+        return None;
+    }
+    let mut grid = (-40..=40)
+        .map(|k| 10f64.powf(f64::from(k) / 4.0))
+        .chain(s.breakpoints());
+    grid.all(|w| w.is_nan() || w <= 0.0 || (s.density(w) * w * w / c0 - 1.0).abs() <= 1e-9)
+        .then_some(c0)
+}
+
+/// The integrated-white route (module docs) for outputs `outputs` of `ss` driven through `gains` by a
+/// process of density `level`/ω², every output from one Lyapunov solve, moments up to λ_`upto`.
+#[allow(clippy::too_many_arguments)]
+fn integrated_white_points(
+    sys: &dyn FrequencyResponse,
+    ss: &crate::system::StateSpace,
+    exc: &Excitation,
+    level: f64,
+    gains: &[f64],
+    outputs: &[usize],
+    upto: u32,
+) -> Result<Vec<PointStatistics>> {
+    ss.require_stable()?;
+    let (aug, finite) = integrated_white_realization(ss, level, gains, outputs)?;
+    let names: Vec<&str> = outputs.iter().map(|&i| sys.outputs()[i].name.as_str()).collect();
+    let moments = moments_of(&aug, &names, upto)?;
+    outputs
+        .iter()
+        .zip(moments)
+        .zip(finite)
+        .map(|((&i, m), finite)| {
+            let mean = static_mean(sys, exc, i);
+            if !finite {
+                // the quasi-static part H(0)·u of a Wiener process: infinite variance
+                return lyapunov_statistics(mean, Err(divergent_at_zero(&sys.outputs()[i].name)));
+            }
+            lyapunov_statistics(mean, m)
+        })
+        .collect()
+}
+
+/// The realization (A, √(2πS_v)·A⁻¹b, C, √(2πS_v)·|e|) of H(s)/s for `outputs` (module docs), and per output
+/// whether H(0) = 0 (within the low-frequency asymptote's tolerance), i.e. whether its variance is finite.
+fn integrated_white_realization(
+    ss: &crate::system::StateSpace,
+    level: f64,
+    gains: &[f64],
+    outputs: &[usize],
+) -> Result<(AugmentedSystem, Vec<bool>)> {
+    let combined = ss.combine_inputs(gains)?;
+    let x = solve_a(&combined.a, &combined.b)?;
+    let h0 = &combined.d - &combined.c * &x;
+    let tol = 1e-12 * combined.d.norm() + 1e-12 * combined.c.norm() * x.norm();
+    let rows = combined.select_outputs(outputs)?;
+    let q = (2.0 * PI * level).sqrt();
+    let aug = AugmentedSystem {
+        a: rows.a.clone(),
+        g: x * q,
+        h: rows.c.clone(),
+        f: rows.e.abs() * q,
+    };
+    Ok((aug, outputs.iter().map(|&i| h0[(i, 0)].abs() <= tol).collect()))
+}
+
+/// A⁻¹ b.
+fn solve_a(a: &nalgebra::DMatrix<f64>, b: &nalgebra::DMatrix<f64>) -> Result<nalgebra::DMatrix<f64>> {
+    a.clone()
+        .lu()
+        .solve(b)
+        .ok_or_else(|| Error::invalid("A", "singular", "the system matrix is singular"))
+}
+
+impl ExactEvaluator {
+    /// The white-noise-driven realization ż = F z + G w, y = H z (one row of H per entry of `outputs`) whose
+    /// Lyapunov equation F P + P Fᵀ + G Gᵀ = 0 gives the variances D_y = diag(H P Hᵀ) on this evaluator's
+    /// exact routes: the system augmented with the input's shaping filter ([`augmented_system`](super::augmented_system))
+    /// or, for an integrated white input, the realization of H(s)/s (module docs). `None` on the quadrature
+    /// route or without a state space.
+    ///
+    /// # Errors
+    /// As [`augmented_system`](super::augmented_system); a singular A.
+    pub fn realization(
+        &self,
+        sys: &dyn FrequencyResponse,
+        exc: &Excitation,
+        outputs: &[usize],
+    ) -> Option<Result<AugmentedSystem>> {
+        let ss = sys.state_space()?;
+        match &self.route {
+            Route::Table { .. } | Route::Lyapunov => Some(super::variance::augmented_rows(ss, exc, outputs)),
+            Route::IntegratedWhite { level, gains } => {
+                Some(integrated_white_realization(ss, *level, gains, outputs).map(|(aug, _)| aug))
+            }
+            Route::Quadrature => None,
+        }
+    }
+
+    /// The derivative (dF, dG, dH) of [`realization`](Self::realization) along a parameter θ, from the systems
+    /// `plus` and `minus` built at θ ± δ and `sys` at θ: the model's matrices are differenced centrally,
+    /// (M(θ+δ) − M(θ−δ))/(2δ) (exact for entries affine in θ, as stiffness and damping are; O(δ²) else), and
+    /// carried through the realization analytically: the augmentation is affine in them, and the
+    /// integrated-white input column G = √(2πS_v) A⁻¹b has dG = √(2πS_v) A⁻¹(db − dA A⁻¹b).
+    /// `None` as [`realization`](Self::realization).
+    ///
+    /// # Errors
+    /// As [`realization`](Self::realization).
+    pub fn realization_derivative(
+        &self,
+        sys: &dyn FrequencyResponse,
+        plus: &dyn FrequencyResponse,
+        minus: &dyn FrequencyResponse,
+        delta: f64,
+        exc: &Excitation,
+        outputs: &[usize],
+    ) -> Option<Result<AugmentedSystem>> {
+        let diff = |p: &nalgebra::DMatrix<f64>, m: &nalgebra::DMatrix<f64>| (p - m) / (2.0 * delta);
+        if let Route::IntegratedWhite { level, gains } = &self.route {
+            let (ss, sp, sm) = (sys.state_space()?, plus.state_space()?, minus.state_space()?);
+            let derivative = || -> Result<AugmentedSystem> {
+                let [c0, cp, cm] =
+                    [ss, sp, sm].map(|s| s.combine_inputs(gains).and_then(|c| c.select_outputs(outputs)));
+                let (c0, cp, cm) = (c0?, cp?, cm?);
+                let da = diff(&cp.a, &cm.a);
+                let db = diff(&cp.b, &cm.b);
+                let x = solve_a(&c0.a, &c0.b)?;
+                let q = (2.0 * PI * level).sqrt();
+                Ok(AugmentedSystem {
+                    g: solve_a(&c0.a, &(db - &da * x))? * q,
+                    a: da,
+                    h: diff(&cp.c, &cm.c),
+                    f: diff(&cp.e, &cm.e) * q,
+                })
+            };
+            return Some(derivative());
+        }
+        let (p, m) = (
+            self.realization(plus, exc, outputs)?,
+            self.realization(minus, exc, outputs)?,
+        );
+        Some(p.and_then(|p| {
+            m.map(|m| AugmentedSystem {
+                a: diff(&p.a, &m.a),
+                g: diff(&p.g, &m.g),
+                h: diff(&p.h, &m.h),
+                f: diff(&p.f, &m.f),
+            })
+        }))
+    }
+}
+
+fn divergent_at_zero(name: &str) -> Error {
+    Error::Divergent {
+        quantity: format!("variance of `{name}`"),
+        reason: "H(0) ≠ 0 under an integrated white input (an unbounded road): the density grows like ω⁻² as \
+                 ω → 0"
+            .into(),
     }
 }
 

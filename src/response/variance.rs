@@ -444,6 +444,12 @@ pub struct AugmentedSystem {
 /// [`Error::NotApplicable`] for delayed inputs or non-rational input spectra; [`Error::Divergent`] for
 /// an input with a white-noise component that cannot be shaped; dimension errors from the system.
 pub fn augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<AugmentedSystem> {
+    augmented_rows(ss, exc, &[i])
+}
+
+/// As [`augmented_system`] for several outputs at once: `h` and `f` have one row per entry of `rows` (A and
+/// G do not depend on the outputs).
+pub(crate) fn augmented_rows(ss: &StateSpace, exc: &Excitation, rows: &[usize]) -> Result<AugmentedSystem> {
     if !exc.delay_free() {
         return Err(Error::NotApplicable {
             method: "exact (Lyapunov / integral-table) variance".into(),
@@ -475,7 +481,8 @@ pub fn augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<A
         Excitation::Independent { spectra, .. } => (ss.clone(), spectra.len()),
         Excitation::Sources { sources, inputs } => (combine_per_source(ss, sources.len(), inputs)?, sources.len()),
     };
-    let sys = sys.select_outputs(&[i])?;
+    let sys = sys.select_outputs(rows)?;
+    let k = rows.len();
     // Block-diagonal filter bank: ẋ_F = A_F x_F + B_F w, u = C_F x_F (strictly proper filters)
     let parts: Vec<StateSpace> = fl
         .iter()
@@ -509,10 +516,10 @@ pub fn augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> Result<A
     let mut g = DMatrix::zeros(nf + n, nproc);
     g.view_mut((0, 0), (nf, nproc)).copy_from(&bf);
     g.view_mut((nf, 0), (n, nproc)).copy_from(&(&sys.b * &df));
-    let mut h = DMatrix::zeros(1, nf + n);
-    h.view_mut((0, 0), (1, nf))
+    let mut h = DMatrix::zeros(k, nf + n);
+    h.view_mut((0, 0), (k, nf))
         .copy_from(&(&sys.d * &cf + &sys.e * &cf * &af));
-    h.view_mut((0, nf), (1, n)).copy_from(&sys.c);
+    h.view_mut((0, nf), (k, n)).copy_from(&sys.c);
     // white-noise feedthrough: exactly zero unless the system passes u (or u̇) and the filter has relative
     // degree zero (or one)
     let f = &sys.d * &df + &sys.e * &cf * &bf + (&sys.e * &df).abs();
@@ -551,39 +558,78 @@ fn combine_per_source(ss: &StateSpace, n_sources: usize, inputs: &[super::InputM
 /// [`Error::Numerical`] when the method does not apply (non-rational input, delays, no state space),
 /// [`Error::InvalidParameter`] for an unstable system, [`Error::Divergent`] for a white-noise component.
 pub fn variance_lyapunov(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> Result<LyapunovMoments> {
-    check_io(sys, exc, i)?;
+    let mut all = lyapunov_outputs(sys, exc, &[i], 4)?;
+    all.pop()
+        .unwrap_or_else(|| Err(white_divergence(&sys.outputs()[i].name, 0)))
+}
+
+/// [`variance_lyapunov`] of several outputs from one augmented system and one Lyapunov solve, the spectral
+/// moments up to λ_`upto` (0, 2 or 4; a moment above it is [`Error::NotApplicable`]). Each entry is that
+/// output's result ([`Error::Divergent`] for a white-noise component); the outer error is the system's
+/// (unstable, not applicable, a failed solve).
+///
+/// # Errors
+/// As [`variance_lyapunov`].
+pub(crate) fn lyapunov_outputs(
+    sys: &dyn FrequencyResponse,
+    exc: &Excitation,
+    outputs: &[usize],
+    upto: u32,
+) -> Result<Vec<Result<LyapunovMoments>>> {
+    for &i in outputs {
+        check_shapes(sys, exc, i)?;
+    }
     let ss = sys.state_space().ok_or_else(|| Error::NotApplicable {
         method: "Lyapunov variance".into(),
         reason: "the system has no finite state-space form".into(),
     })?;
-    // stability was checked by check_io (A's eigenvalues once per call)
-    let aug = augmented_system(ss, exc, i)?;
-    let name = &sys.outputs()[i].name;
+    // |H(iω)|² of an unstable system is finite, but no stationary response exists (A's eigenvalues once)
+    ss.require_stable()?;
+    let aug = augmented_rows(ss, exc, outputs)?;
+    let names: Vec<&str> = outputs.iter().map(|&i| sys.outputs()[i].name.as_str()).collect();
+    moments_of(&aug, &names, upto)
+}
+
+/// The moments of every output row of `aug` (named `names`) from one solve of F P + P Fᵀ + G Gᵀ = 0 (see
+/// [`variance_lyapunov`]'s formula), up to λ_`upto`.
+pub(crate) fn moments_of(aug: &AugmentedSystem, names: &[&str], upto: u32) -> Result<Vec<Result<LyapunovMoments>>> {
     let tiny = |m: &DMatrix<f64>, scale: f64| m.amax() <= 1e-12 * scale.max(1e-300);
-    if aug.f.amax() > 0.0 {
-        return Err(white_divergence(name, 0));
+    let not_asked = |k: u32| Error::NotApplicable {
+        method: format!("spectral moment λ{k}"),
+        reason: "not requested".into(),
+    };
+    if (0..names.len()).all(|r| aug.f.row(r).amax() > 0.0) {
+        // every output has a white-noise component: no solve needed to say so
+        return Ok(names.iter().map(|name| Err(white_divergence(name, 0))).collect());
     }
     let p = solve_continuous_lyapunov(&aug.a, &(&aug.g * aug.g.transpose()))?;
-    let var = (&aug.h * &p * aug.h.transpose())[(0, 0)];
-    let ha = &aug.h * &aug.a;
-    let hg = &aug.h * &aug.g;
-    let lambda2 = if tiny(&hg, aug.h.norm() * aug.g.norm()) {
-        Ok((&ha * &p * ha.transpose())[(0, 0)])
-    } else {
-        Err(white_divergence(name, 2))
+    let quad = |row: &DMatrix<f64>| (row * &p * row.transpose())[(0, 0)];
+    let one = |r: usize, name: &str| -> Result<LyapunovMoments> {
+        let h = aug.h.rows(r, 1).into_owned();
+        if aug.f.row(r).amax() > 0.0 {
+            return Err(white_divergence(name, 0));
+        }
+        let ha = &h * &aug.a;
+        let lambda2 = if upto < 2 {
+            Err(not_asked(2))
+        } else if tiny(&(&h * &aug.g), h.norm() * aug.g.norm()) {
+            Ok(quad(&ha))
+        } else {
+            Err(white_divergence(name, 2))
+        };
+        let lambda4 = match &lambda2 {
+            _ if upto < 4 => Err(not_asked(4)),
+            Ok(_) if tiny(&(&ha * &aug.g), ha.norm() * aug.g.norm()) => Ok(quad(&(&ha * &aug.a))),
+            _ => Err(white_divergence(name, 4)),
+        };
+        LyapunovMoments {
+            variance: quad(&h),
+            lambda2,
+            lambda4,
+        }
+        .checked("Lyapunov variance")
     };
-    let haa = &ha * &aug.a;
-    let hag = &ha * &aug.g;
-    let lambda4 = match &lambda2 {
-        Ok(_) if tiny(&hag, ha.norm() * aug.g.norm()) => Ok((&haa * &p * haa.transpose())[(0, 0)]),
-        _ => Err(white_divergence(name, 4)),
-    };
-    LyapunovMoments {
-        variance: var,
-        lambda2,
-        lambda4,
-    }
-    .checked("Lyapunov variance")
+    Ok(names.iter().enumerate().map(|(r, name)| one(r, name)).collect())
 }
 
 fn white_divergence(name: &str, k: u32) -> Error {

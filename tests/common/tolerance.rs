@@ -353,3 +353,14 @@ pub const ISO7096_PRINTED_TARGET: f64 = 5e-3;
 /// integral: the filter's polynomial coefficients span nine decades, and the augmented Lyapunov solution keeps
 /// about seven digits (measured: 2.0e-7 on EM1); 1e-6.
 pub const HIGH_ORDER_INPUT_LYAPUNOV: f64 = 1e-6;
+
+/// An analytic sensitivity of a σ against its closed-form derivative. The Lyapunov sensitivity is exact for
+/// the derivative of the model's matrices, which are differenced centrally with a step 10⁻⁵ of the value:
+/// exact for the damping (A is affine in c) up to the rounding of the difference, ε·|c|/δ ≈ 1e-11, plus the
+/// solves' relative accuracy ≈ 1e-13; 1e-8.
+pub const GRADIENT_CLOSED_FORM: f64 = 1e-8;
+
+/// An analytic sensitivity against a central finite difference of the evaluated σ with step h = 10⁻⁴x: the
+/// difference's truncation |σ'''|h²/(6|σ'|) ≈ (h/x)² = 1e-8 for these smooth, rational-in-x variances, its
+/// rounding ε·σ/(h·σ') ≈ 1e-12; 1e-6.
+pub const GRADIENT_FINITE_DIFFERENCE: f64 = 1e-6;

@@ -391,6 +391,19 @@ fn command_prints_the_answer_and_fails_when_infeasible() {
     assert!(err.contains("wrong way round"), "{err}");
 }
 
+/// σ_acc against σ_travel of `sc` over c ∈ [0.2, 6] kN s/m, without constraints.
+fn comfort_travel(sc: &Scenario) -> stochvib::optimize::ParetoProblem<'_> {
+    stochvib::optimize::ParetoProblem {
+        base: sc,
+        params: vec![Param::parse("model.suspension_damping=0.2:6 kN*s/m").unwrap()],
+        quantities: [
+            Quantity::parse("--minimize", "sigma(body_acc)", sc).unwrap(),
+            Quantity::parse("--pareto", "sigma(travel)", sc).unwrap(),
+        ],
+        constraints: Vec::new(),
+    }
+}
+
 /// The Pareto front of comfort against travel for the white-velocity quarter car, c ∈ [0.2, 6] kN s/m.
 /// With σ²_acc(c) = πS₀(k_t c² + k_s²M)/(c m_s²) and σ²_travel(c) = πS₀M/c (above), σ_travel falls with c
 /// everywhere and σ_acc rises for c > c_opt, so the front is the curve (σ_acc(c), σ_travel(c)) for
@@ -398,17 +411,9 @@ fn command_prints_the_answer_and_fails_when_infeasible() {
 /// point with the limit ε on σ_travel sits where the limit is active, c = πS₀M/ε², with σ_acc(c) there.
 #[test]
 fn quarter_car_pareto_front_of_comfort_and_travel_is_the_closed_form_curve() {
-    use stochvib::optimize::{pareto, ParetoProblem};
+    use stochvib::optimize::pareto;
     let sc = scenario("qc-pareto", QUARTER_CAR);
-    let problem = ParetoProblem {
-        base: &sc,
-        params: vec![Param::parse("model.suspension_damping=0.2:6 kN*s/m").unwrap()],
-        quantities: [
-            Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap(),
-            Quantity::parse("--pareto", "sigma(travel)", &sc).unwrap(),
-        ],
-        constraints: Vec::new(),
-    };
+    let problem = comfort_travel(&sc);
     let front = pareto(&problem, 5, &SolveOptions::default()).unwrap();
     assert_eq!(front.points.len(), 5);
     let m = M_S + M_U;
@@ -474,4 +479,211 @@ fn command_prints_the_pareto_front() {
     args[9] = "1";
     let err = common::cli_fails(1, &args, &root);
     assert!(err.contains("--points"), "{err}");
+}
+
+/// σ²_tyre of the white-velocity quarter car without tyre damping (M = m_s + m_u), from the stationary
+/// Lyapunov equation of the state [x_s − x_u, ẋ_s, x_u − q, ẋ_u] driven by q̇ solved symbolically (sympy):
+/// πS₀[k_t c²M² + k_s²M³ − 2k_s k_t m_s m_u M + k_t² m_s² m_u]/(c m_s²).
+fn tyre_force_variance(c: f64) -> f64 {
+    let m = M_S + M_U;
+    PI * s0()
+        * (K_T * c * c * m * m + K_S * K_S * m.powi(3) - 2.0 * K_S * K_T * M_S * M_U * m + K_T * K_T * M_S * M_S * M_U)
+        / (c * M_S * M_S)
+}
+
+/// The integrated-white route of the exact evaluator: the white-velocity quarter car's variances by one
+/// Lyapunov solve of the realization of H(s)/s equal the closed forms σ²_acc = πS₀(k_t c² + k_s²M)/(c m_s²),
+/// σ²_travel = πS₀M/c and σ²_tyre (above) to rounding, and the quadrature of the output density within its
+/// tolerance; the body's absolute displacement (H(0) = 1) has an infinite variance, as quadrature says;
+/// λ₂ of the travel equals quadrature's, and `variances_only` leaves it out.
+#[test]
+fn integrated_white_road_velocity_has_an_exact_lyapunov_route() {
+    use crate::common::tolerance::{EXACT_TRANSITIONS, QUADRATURE};
+    use stochvib::response::{spectral_moment_quadrature, variance_quadrature, ExactEvaluator, VarianceMethod};
+    let sc = scenario("qc-white-route", QUARTER_CAR);
+    let sys = sc.model.system.as_ref();
+    let idx = |o: &str| sys.output_index(o).unwrap();
+    let outputs = [idx("body_acc"), idx("travel"), idx("tyre_force"), idx("body")];
+    let ev = ExactEvaluator::new(&sc.excitation);
+    assert_eq!(ev.method(Some(4)), VarianceMethod::Lyapunov);
+    let st = ev.evaluate(sys, &sc.excitation, &outputs).unwrap();
+    let (c, m) = (1500.0, M_S + M_U);
+    let closed = [
+        PI * s0() * (K_T * c * c + K_S * K_S * m) / (c * M_S * M_S),
+        PI * s0() * m / c,
+        tyre_force_variance(c),
+    ];
+    for ((s, &want), &i) in st.iter().zip(&closed).zip(&outputs) {
+        let v = s.variance.unwrap();
+        assert_eq!(s.method, VarianceMethod::Lyapunov);
+        assert!(common::rel(v, want) < EXACT_TRANSITIONS, "output {i}: {v} vs {want}");
+        let q = variance_quadrature(sys, &sc.excitation, i).unwrap().value;
+        assert!(common::rel(v, q) < QUADRATURE, "output {i}: {v} vs quadrature {q}");
+    }
+    assert!(st[3].variance.is_none(), "{:?}", st[3]);
+    assert!(variance_quadrature(sys, &sc.excitation, outputs[3]).is_err());
+    let l2 = spectral_moment_quadrature(sys, &sc.excitation, outputs[1], 2)
+        .unwrap()
+        .value;
+    assert!(common::rel(st[1].lambda2.unwrap(), l2) < QUADRATURE);
+    let only = ev.variances_only().evaluate(sys, &sc.excitation, &outputs).unwrap();
+    assert!(only.iter().all(|s| s.lambda2.is_none()));
+    assert_eq!(only[1].variance, st[1].variance);
+}
+
+/// The analytic sensitivities: for the white-velocity quarter car, d/dc of σ²_acc = πS₀(k_t c² + k_s²M)/(c m_s²)
+/// is πS₀(k_t − k_s²M/c²)/m_s² and of σ²_travel = πS₀M/c is −πS₀M/c², so dσ/dc = (dσ²/dc)/(2σ) (sympy's
+/// derivative of its Lyapunov solution agrees); checked at c = 1.5 kN s/m for σ_acc and 3σ_travel, and
+/// against central finite differences of the evaluated quantities (step 10⁻⁴c).
+#[test]
+fn variance_sensitivities_match_the_closed_form_and_finite_differences() {
+    use crate::common::tolerance::{GRADIENT_CLOSED_FORM, GRADIENT_FINITE_DIFFERENCE};
+    let sc = scenario("qc-gradient", QUARTER_CAR);
+    let params = vec![Param::parse("model.suspension_damping=0.2:6 kN*s/m").unwrap()];
+    let objective = Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap();
+    let travel = Constraint::parse("3sigma(travel) <= 40 mm", &sc).unwrap();
+    let problem = Problem::new(&sc, params, objective, Goal::Minimize, vec![travel]).unwrap();
+    let (c, m) = (1500.0, M_S + M_U);
+    let g = problem.gradients(&[c]).unwrap().unwrap();
+    let acc = (PI * s0() * (K_T * c * c + K_S * K_S * m) / (c * M_S * M_S)).sqrt();
+    let d_acc = PI * s0() * (K_T - K_S * K_S * m / (c * c)) / (M_S * M_S) / (2.0 * acc);
+    let tr = (PI * s0() * m / c).sqrt();
+    let d_3tr = 3.0 * (-PI * s0() * m / (c * c)) / (2.0 * tr);
+    assert!(
+        common::rel(g.objective[0], d_acc) < GRADIENT_CLOSED_FORM,
+        "{g:?} vs {d_acc}"
+    );
+    assert!(
+        common::rel(g.constrained[0][0], d_3tr) < GRADIENT_CLOSED_FORM,
+        "{g:?} vs {d_3tr}"
+    );
+    let h = 1e-4 * c;
+    let (p, q) = (problem.evaluate(&[c + h]).unwrap(), problem.evaluate(&[c - h]).unwrap());
+    let fd_acc = (p.objective - q.objective) / (2.0 * h);
+    let fd_tr = (p.constrained[0] - q.constrained[0]) / (2.0 * h);
+    assert!(
+        common::rel(g.objective[0], fd_acc) < GRADIENT_FINITE_DIFFERENCE,
+        "{g:?} vs {fd_acc}"
+    );
+    assert!(
+        common::rel(g.constrained[0][0], fd_tr) < GRADIENT_FINITE_DIFFERENCE,
+        "{g:?} vs {fd_tr}"
+    );
+}
+
+/// The sensitivities on the rational-input route (the augmented system): the tuned-mass absorber under
+/// white force, σ of the main mass over the absorber's stiffness and damping, against central finite
+/// differences of the evaluated σ (step 10⁻⁴ of each value).
+#[test]
+fn variance_sensitivities_of_the_absorber_match_finite_differences() {
+    use crate::common::tolerance::GRADIENT_FINITE_DIFFERENCE;
+    let mu = 0.05;
+    let sc = absorber("absorber-gradient", "[1.0, 0.0]", mu);
+    let params = vec![
+        Param::parse(&format!("model.element.1.stiffness={}:{} N/m", 0.6 * mu, 1.2 * mu)).unwrap(),
+        Param::parse(&format!("model.element.1.damping={}:{} N*s/m", 0.02 * mu, 0.5 * mu)).unwrap(),
+    ];
+    let objective = Quantity::parse("--minimize", "sigma(main)", &sc).unwrap();
+    let problem = Problem::new(&sc, params, objective, Goal::Minimize, Vec::new()).unwrap();
+    let x = [0.9 * mu, 0.1 * mu];
+    let g = problem.gradients(&x).unwrap().unwrap();
+    for (k, &xk) in x.iter().enumerate() {
+        let h = 1e-4 * xk;
+        let mut p = x;
+        let mut q = x;
+        p[k] += h;
+        q[k] -= h;
+        let fd = (problem.evaluate(&p).unwrap().objective - problem.evaluate(&q).unwrap().objective) / (2.0 * h);
+        assert!(
+            common::rel(g.objective[k], fd) < GRADIENT_FINITE_DIFFERENCE,
+            "{k}: {g:?} vs {fd}"
+        );
+    }
+}
+
+/// The KKT check at the answers: on the active travel constraint (d = 40 mm) the objective's gradient is the
+/// constraint's times a positive multiplier, μ = (σ_acc'/σ_acc)/(3σ_travel'·(−1)/d) in unit coordinates
+/// (from the closed-form derivatives above at c* = 9πS₀M/d²; the answer is within `OPTIMUM_ON_CONSTRAINT` of
+/// c*, where both derivatives vary by O(1) relative per relative change of c, so μ is compared within
+/// `OPTIMUM_INTERIOR`); at the interior optimum (d = 60 mm) the gradient vanishes and the inactive
+/// constraint's multiplier is 0.
+#[test]
+fn kkt_check_at_the_quarter_car_optima() {
+    use stochvib::optimize::KKT_TOLERANCE;
+    let sc = scenario("qc-kkt", QUARTER_CAR);
+    let p = ["model.suspension_damping=0.2:6 kN*s/m"];
+    let a = run(&sc, &p, Goal::Minimize, "sigma(body_acc)", &["3sigma(travel) <= 40 mm"]);
+    let k = a.kkt.as_ref().expect("gradients on the exact route");
+    let m = M_S + M_U;
+    let c = 9.0 * PI * s0() * m / 0.04f64.powi(2);
+    let var_acc = PI * s0() * (K_T * c * c + K_S * K_S * m) / (c * M_S * M_S);
+    let rel_acc = PI * s0() * (K_T - K_S * K_S * m / (c * c)) / (M_S * M_S) / (2.0 * var_acc);
+    let rel_3tr = 3.0 * (PI * s0() * m / (c * c)) / (2.0 * (PI * s0() * m / c).sqrt()) / 0.04;
+    assert!(k.satisfied && k.residual <= KKT_TOLERANCE, "{a}");
+    assert!(
+        common::rel(k.multipliers[0], rel_acc / rel_3tr) < OPTIMUM_INTERIOR,
+        "{a}"
+    );
+    let text = a.to_string();
+    assert!(text.contains("KKT") && text.contains("satisfied"), "{text}");
+    let b = run(&sc, &p, Goal::Minimize, "sigma(body_acc)", &["3sigma(travel) <= 60 mm"]);
+    let k = b.kkt.as_ref().unwrap();
+    assert!(
+        k.satisfied && k.multipliers[0] == 0.0 && k.residual <= KKT_TOLERANCE,
+        "{b}"
+    );
+}
+
+/// The picture of the front: its markers are the table's points (the values `to_csv` prints, read back),
+/// and `render` writes the SVG and PNG; the command writes `pareto-front.svg` with `--plots`.
+#[test]
+fn pareto_front_picture_holds_the_table_points() {
+    use stochvib::optimize::pareto;
+    use stochvib::plot::pareto_plots::pareto_chart;
+    let sc = scenario("qc-pareto-picture", QUARTER_CAR);
+    let problem = comfort_travel(&sc);
+    let front = pareto(&problem, 4, &SolveOptions::default()).unwrap();
+    let table: Vec<(f64, f64)> = front
+        .to_csv()
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').skip(2).take(2).map(|x| x.parse().unwrap()).collect();
+            (v[0], v[1])
+        })
+        .collect();
+    let chart = pareto_chart(&sc.title, &front);
+    assert_eq!(chart.series[0].points, table);
+    let dir = common::scratch_dir("optimize", "pareto-picture");
+    let files = chart.render(&dir, "pareto-front").unwrap();
+    assert!(files
+        .iter()
+        .all(|f| f.exists() && std::fs::metadata(f).unwrap().len() > 0));
+    let svg = std::fs::read_to_string(&files[0]).unwrap();
+    assert!(
+        svg.contains("Pareto front") && svg.contains("sigma(travel) [m]"),
+        "{svg}"
+    );
+
+    let out = common::scratch_dir("optimize", "pareto-picture-cli");
+    let out_s = out.to_string_lossy().to_string();
+    let args = [
+        "optimize",
+        "data/quarter-car-model.toml",
+        "--param",
+        "model.suspension_damping=0.2:6 kN*s/m",
+        "--minimize",
+        "sigma(body_acc)",
+        "--pareto",
+        "sigma(travel)",
+        "--points",
+        "3",
+        "--plots",
+        &out_s,
+    ];
+    let o = common::cli_within(&args, &common::root(), std::time::Duration::from_secs(300));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let svg = std::fs::read_to_string(out.join("pareto-front.svg")).unwrap();
+    assert!(svg.trim_start().starts_with("<svg") && svg.contains("Pareto front"));
+    assert!(out.join("pareto-front.png").exists());
 }
