@@ -95,6 +95,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--binary", default="target/release/stochvib")
     ap.add_argument("--reps", type=int, default=7)
+    ap.add_argument("--rows", default=None, help="also write the row of benches/RESULTS.md's table to this JSON file")
     a = ap.parse_args()
     closed = 9 * np.pi * S0 * (MS + MU) / LIMIT**2
     with tempfile.TemporaryDirectory() as d:
@@ -116,6 +117,12 @@ def main():
     print("|---|---|---|---|---|")
     print(f"| quarter car, min sigma_acc s.t. 3 sigma_travel <= 40 mm, 4 starts | {r * 1e3:.2f} ms (whole process) "
           f"| scipy SLSQP + solve_continuous_lyapunov | {p * 1e3:.2f} ms | {p / r:.2f}x |")
+    if a.rows:
+        import json
+        row = dict(job="`stochvib optimize`, quarter car, 1 constraint, 4 starts (whole process)", size="1 parameter",
+                   ours_s=r, peer="scipy SLSQP + solve_continuous_lyapunov", peer_s=p, cmd="`optimize.py`")
+        with open(a.rows, "w") as f:
+            json.dump([row], f, indent=1)
 
 
 if __name__ == "__main__":
