@@ -906,6 +906,16 @@ def summary(d):
     ]
     for job, size, t, peer, tp, ratio, state, cmd in summary_rows(rust, py, sweeps):
         out.append(f"| {job} | {size} | {fmt_t(t)} | {peer} | {fmt_t(tp)} | {ratio:.3g}x | {states[state]} | {cmd} |")
+    # the harnesses with tables of their own (fatigue, nonlinear, transient, optimize, records): rows-NAME.json,
+    # measured in the state of state-NAME.txt
+    for f in sorted(f for f in os.listdir(d) if f.startswith("rows-") and f.endswith(".json")):
+        name = f[5:-5]
+        sf = os.path.join(d, f"state-{name}.txt")
+        state = open(sf).read().strip() if os.path.exists(sf) else "?"
+        for r in json.load(open(os.path.join(d, f))):
+            t, tp = r["ours_s"], r["peer_s"]
+            out.append(f"| {r['job']} | {r['size']} | {fmt_t(t)} | {r['peer']} | {fmt_t(tp)} | {tp / t:.3g}x | {state} "
+                       f"| {r['cmd']} |")
     print("\n".join(out))
 
 

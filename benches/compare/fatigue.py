@@ -97,9 +97,11 @@ def canonical(c):
 
 def run(args):
     if not args.no_build:
-        subprocess.run(["cargo", "build", "--release", "--quiet", "--example", "fatigue_compare"], cwd=ROOT, check=True)
+        subprocess.run(["cargo", "build", "--locked", "--profile", args.profile, "--quiet", "--example",
+                        "fatigue_compare"], cwd=ROOT, check=True)
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
-    binary = os.path.join(target, "release", "examples", "fatigue_compare")
+    binary = os.path.join(target, "release" if args.profile == "release" else "debug", "examples", "fatigue_compare")
+    table = []  # rows of benches/RESULTS.md's table (--rows)
     out = subprocess.run(
         [binary, "--n", str(args.n), "--reps", str(args.reps), "--check", str(args.check), "--dir", args.dir],
         check=True, capture_output=True, text=True,
@@ -136,6 +138,10 @@ def run(args):
         print(f"{'stochvib':<28}{args.n:>12}{rust['rainflow_s']:>12.3f}{rs * 1e9:>12.2f}{1.0:>12.1f}")
         for name, n_time, t, per in rows:
             print(f"{name:<28}{n_time:>12}{t:>12.3f}{per * 1e9:>12.2f}{per / rs:>12.1f}")
+        # the fastest package, per sample (the Python loops are timed on a prefix)
+        name, n_time, t, per = min(rows, key=lambda r: r[3])
+        table.append(dict(job="rainflow count + Miner, per sample", size=f"{args.n} samples",
+                          ours_s=rust["rainflow_s"] / args.n, peer=f"{name} ({n_time} samples)", peer_s=per))
     try:
         import fatpack
 
@@ -150,6 +156,7 @@ def run(args):
         import FLife
     except ImportError:
         print("FLife: not installed")
+        write_rows(args.rows, table)
         return
     print(f"\nDirlik, single-mode density (fn = {SDOF_FN} Hz, zeta = {SDOF_ZETA}), k = {SN_K}, C = {SN_C:g}")
     print(f"stochvib: moments by quadrature + damage {rust['dirlik_density_s'] * 1e6:.1f} us, damage from "
@@ -173,6 +180,17 @@ def run(args):
               f"x{t_all / rust['dirlik_density_s']:.0f} the quadrature route); Dirlik from moments {t_dk * 1e6:.1f} us "
               f"(x{t_dk / rust['dirlik_moments_s']:.0f}); life {life:.10e} s, relative difference to stochvib's "
               f"table {abs(life / life_tab - 1):.1e}, to its quadrature {abs(life / rust['dirlik_life_s'] - 1):.1e}")
+        table.append(dict(job="Dirlik life from a tabulated PSD", size=f"{len(f)} points", ours_s=t_tab,
+                          peer="FLife SpectralData + Dirlik", peer_s=t_all))
+    write_rows(args.rows, table)
+
+
+def write_rows(path, table):
+    """The rows of benches/RESULTS.md's table as JSON (run.sh), when asked for."""
+    if path:
+        cmd = "`fatigue.py run`"
+        with open(path, "w") as f:
+            json.dump([dict(r, cmd=cmd) for r in table], f, indent=1)
 
 
 def reference(_args):
@@ -209,6 +227,8 @@ def main():
     r.add_argument("--reps", type=int, default=3)
     r.add_argument("--check", type=int, default=1_000_000)
     r.add_argument("--no-build", action="store_true", help="use the example binary as already built")
+    r.add_argument("--profile", default="release", help="the cargo profile of the Rust side (run.sh --smoke: test)")
+    r.add_argument("--rows", default=None, help="also write the rows of benches/RESULTS.md's table to this JSON file")
     r.add_argument("--dir", default=os.path.join(os.environ.get("TMPDIR", "/tmp"), "stochvib-fatigue"))
     sub.add_parser("reference")
     a = p.parse_args()

@@ -117,6 +117,7 @@ def main():
     ap.add_argument("--binary", default="target/release/stochvib")
     ap.add_argument("--reps", type=int, default=7)
     ap.add_argument("--bench-binary", default=None, help="the built `optimize` bench (benches/optimize.rs)")
+    ap.add_argument("--rows", default=None, help="also write the row of benches/RESULTS.md's table to this JSON file")
     a = ap.parse_args()
     closed = 9 * np.pi * S0 * (MS + MU) / LIMIT**2
     with tempfile.TemporaryDirectory() as d:
@@ -150,6 +151,12 @@ def main():
               f"| {ours_cpu * 1e3:.3f} ms CPU, {ours_wall * 1e3:.3f} ms wall | scipy SLSQP + solve_continuous_lyapunov "
               f"| {peer_cpu * 1e3:.2f} ms CPU, {peer_wall * 1e3:.2f} ms wall "
               f"| {peer_cpu / ours_cpu:.1f}x CPU ({peer_wall / ours_wall:.1f}x wall) |")
+    if a.rows:
+        import json
+        row = dict(job="`stochvib optimize`, quarter car, 1 constraint, 4 starts (whole process)", size="1 parameter",
+                   ours_s=r, peer="scipy SLSQP + solve_continuous_lyapunov", peer_s=p, cmd="`optimize.py`")
+        with open(a.rows, "w") as f:
+            json.dump([row], f, indent=1)
 
 
 if __name__ == "__main__":

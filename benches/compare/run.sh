@@ -2,7 +2,7 @@
 # Side-by-side timing of stochvib (Rust, release) against numpy/scipy/h5py on the same jobs and problem
 # sizes, in one run, and the one table of benches/RESULTS.md written from it.
 #
-#   bash benches/compare/run.sh              # the full comparison (~15 min on 2 cores); writes the table
+#   bash benches/compare/run.sh              # the full comparison (~40 min on 2 cores); writes the table
 #                                            # into benches/RESULTS.md (between its table markers)
 #   bash benches/compare/run.sh --smoke      # every harness once at tiny sizes (seconds; scripts/test.sh):
 #                                            # fails when a harness breaks or a row of the table is missing
@@ -14,8 +14,11 @@
 # Order: the Rust jobs, then the Python jobs (quiet machine), then the densities again in alternating rounds
 # (their table rows are the medians of the rounds), then `stochvib sweep` of 10^6 points to HDF5,
 # to a CSV file and as CSV read from a pipe beside the scipy loop, once on the quiet machine and once with
-# one core kept busy (stress-ng --cpu 1 when installed, else a shell busy loop). The machine state (load
-# average) is recorded before each phase. Timings are the best of REPS repetitions, the `stochvib sweep`
+# one core kept busy (stress-ng --cpu 1 when installed, else a shell busy loop), then the harnesses with
+# tables of their own, each adding its rows: fatigue.py (rainflow, Dirlik), nonlinear.sh (route 2),
+# transient.py (transient Monte Carlo), optimize.py, records.py (`stochvib exposure`). The Python package's
+# call overhead (python/bench) and the ISO 2631 weighting sweep (weighting.py: scipy side only) are not in
+# the table. The machine state (load average) is recorded before each phase. Timings are the best of REPS repetitions, the `stochvib sweep`
 # rows the median of REPS runs. JSON results are left in $OUT (default: a temporary directory).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -35,7 +38,7 @@ mkdir -p "$out"
 cd "$root"
 
 # numpy/scipy/h5py: pip (plain, then --break-system-packages for an externally managed Python), then
-# Debian's packages
+# Debian's packages; the rainflow packages and FLife of fatigue.py: pip
 if ! python3 -c "import numpy, scipy, h5py" 2>/dev/null; then
     echo "run.sh: installing numpy, scipy, h5py" >&2
     python3 -m pip install --quiet --disable-pip-version-check numpy scipy h5py 2>/dev/null \
@@ -44,19 +47,27 @@ if ! python3 -c "import numpy, scipy, h5py" 2>/dev/null; then
              || { apt-get update -qq >/dev/null 2>&1 && apt-get install -y -qq python3-numpy python3-scipy python3-h5py >/dev/null; }; }
     python3 -c "import numpy, scipy, h5py"
 fi
+if ! python3 -c "import rainflow, fatpack, FLife" 2>/dev/null; then
+    echo "run.sh: installing rainflow, fatpack, FLife (fatigue.py's peers)" >&2
+    python3 -m pip install --quiet --disable-pip-version-check rainflow fatpack FLife 2>/dev/null \
+        || python3 -m pip install --quiet --disable-pip-version-check --break-system-packages rainflow fatpack FLife
+fi
+[ -x /usr/bin/time ] || apt-get install -y -qq time >/dev/null  # records.py times both sides with GNU time
 
 target="${CARGO_TARGET_DIR:-$root/target}"
 if [ "$smoke" = 1 ]; then
     # the test profile's library (already built by `cargo test --workspace`, with the same features): seconds,
     # not a release build
     echo "run.sh --smoke: building the harness and stochvib (test profile)" >&2
-    cargo build --locked --quiet --workspace --profile test --example compare_rust --bin stochvib
-    bin="$target/debug/examples/compare_rust" cli="$target/debug/stochvib"
+    cargo build --locked --quiet --workspace --profile test --example compare_rust --bin stochvib \
+        --example compare_nonlinear --example fatigue_compare
+    bin="$target/debug/examples/compare_rust" cli="$target/debug/stochvib" profile=test
     rust_args=(--smoke) py_args=(--smoke) cli_args=(--smoke --side 20 --reps 1)
 else
     echo "run.sh: building the Rust side (release)" >&2
-    cargo build --locked --release --quiet --example compare_rust --bin stochvib
-    bin="$target/release/examples/compare_rust" cli="$target/release/stochvib"
+    cargo build --locked --release --quiet --example compare_rust --bin stochvib \
+        --example compare_nonlinear --example fatigue_compare
+    bin="$target/release/examples/compare_rust" cli="$target/release/stochvib" profile=release
     rust_args=(--reps "$reps") py_args=(--reps "$reps") cli_args=(--reps "$reps")
 fi
 
@@ -102,6 +113,36 @@ kill "$busy" 2>/dev/null || true
 wait "$busy" 2>/dev/null || true
 trap - EXIT
 
+# the harnesses with tables of their own, each writing rows-NAME.json for the one table (compare.py summary)
+if [ "$smoke" = 1 ]; then
+    fatigue_args=(--n 200000 --check 20000 --reps 1) nl=(R=8 T=2 REPS=1) transient_r=40 opt_reps=1 hours=0.005
+else
+    fatigue_args=(--n 100000000 --check 1000000 --reps 3) nl=(R=512 T=30 REPS=3) transient_r=10000
+    opt_reps=7 hours=1
+fi
+echo "run.sh: fatigue.py (rainflow, Dirlik)" >&2
+state "as found" fatigue
+python3 "$here/fatigue.py" run --no-build --profile "$profile" "${fatigue_args[@]}" --dir "$out/fatigue" \
+    --rows "$out/rows-fatigue.json" >"$out/fatigue.txt"
+rm -f "$out"/fatigue/*.f64
+echo "run.sh: nonlinear.sh (route 2 against numpy)" >&2
+state "as found" nonlinear
+env "${nl[@]}" OUT="$out/nonlinear" PROFILE="$profile" NO_BUILD=1 bash "$here/nonlinear.sh" --no-write >"$out/nonlinear.txt"
+python3 "$here/rows.py" nonlinear "$out/nonlinear" >"$out/rows-nonlinear.json"
+echo "run.sh: transient.py (transient Monte Carlo against numpy)" >&2
+state "as found" transient
+python3 "$here/transient.py" --binary "$cli" --realizations "$transient_r" --rows "$out/rows-transient.json" \
+    >"$out/transient.txt"
+echo "run.sh: optimize.py (stochvib optimize against scipy.optimize)" >&2
+state "as found" optimize
+python3 "$here/optimize.py" --binary "$cli" --reps "$opt_reps" --rows "$out/rows-optimize.json" >"$out/optimize.txt"
+echo "run.sh: records.py (stochvib exposure against scipy.signal)" >&2
+state "as found" records
+python3 "$here/records.py" run --binary "$cli" --hours "$hours" --dir "$out/records" >"$out/records.json" \
+    2>"$out/records.log"
+rm -f "$out"/records/*.h5
+python3 "$here/rows.py" records "$out/records.json" >"$out/rows-records.json"
+
 python3 "$here/compare.py" summary "$out" >"$out/table.md"
 {
     echo "One run of \`bash benches/compare/run.sh\` at commit \`$(git rev-parse --short HEAD 2>/dev/null || echo '?')\`, $(date -u '+%Y-%m-%d %H:%M UTC'); $(cat "$out/machine.txt")."
@@ -114,7 +155,13 @@ cat "$out/results.md"
 if [ "$smoke" = 1 ]; then
     # every row of the table present, every time a number
     rows=$(grep -c '^| ' "$out/table.md")
-    if [ "$rows" -lt 30 ] || grep -q -E '\| (nan|inf|-) ' "$out/table.md"; then
+    for h in fatigue nonlinear transient optimize records; do
+        if ! grep -q '"job"' "$out/rows-$h.json"; then
+            echo "run.sh --smoke: the $h harness gave no row (see $out/$h.txt)" >&2
+            exit 1
+        fi
+    done
+    if [ "$rows" -lt 40 ] || grep -q -E '\| (nan|inf|-) ' "$out/table.md"; then
         echo "run.sh --smoke: the table is incomplete ($((rows - 2)) rows): a harness is broken (see $out)" >&2
         exit 1
     fi

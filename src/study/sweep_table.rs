@@ -419,12 +419,13 @@ impl TableFormat {
     }
 }
 
-/// `,` and the value as `{:e}` writes it (the shortest round-trip digits: up to 17 significant digits),
-/// appended to `s` without an intermediate string ([`push_exp`](super::float_text::push_exp)).
+/// `,` and the value as `{:.9e}` writes it ([`TABLE_DIGITS`](super::float_text::TABLE_DIGITS) = 10
+/// significant digits), appended to `s` without an intermediate string
+/// ([`push_fixed`](super::float_text::push_fixed)).
 fn push_num(s: &mut String, v: Option<f64>) {
     s.push(',');
     if let Some(x) = v {
-        super::float_text::push_exp(s, x);
+        super::float_text::push_fixed(s, x);
     }
 }
 
@@ -484,8 +485,8 @@ pub(crate) fn prepare_table(
 }
 
 /// The bytes one point takes in a table of `identity` in `format`, at most (failed points add their
-/// message): the rows of one point whose every number is printed at the greatest width (24 characters,
-/// `-1.2345678901234567e-308`) and whose every key takes its longest value, measured with the writers
+/// message): the rows of one point whose every number is printed at the greatest width (17 characters,
+/// `-1.234567890e-308`) and whose every key takes its longest value, measured with the writers
 /// themselves.
 pub(crate) fn point_bytes(identity: &SweepIdentity, format: TableFormat) -> u128 {
     let wide = -1.234_567_890_123_456_7e-308;

@@ -1,0 +1,43 @@
+#!/usr/bin/env python3
+"""The rows of benches/RESULTS.md's table from the JSON of the harnesses that print their own (run.sh):
+
+    python3 benches/compare/rows.py nonlinear DIR  > rows-nonlinear.json   # nonlinear.sh's OUT directory
+    python3 benches/compare/rows.py records FILE   > rows-records.json     # records.py run's stdout
+
+Each row: job, size, ours_s, peer, peer_s, cmd (compare.py summary adds the machine state and the ratio)."""
+import json
+import sys
+
+
+def nonlinear(d):
+    rs, py = json.load(open(f"{d}/rust.json")), json.load(open(f"{d}/python.json"))
+    one = rs["jobs"]["route2_1_threads"]
+    size = f"{rs['realizations']} x {rs['samples']} (+{rs['burn']} burn-in)"
+    cmd = "`nonlinear.sh`"
+    peer = f"numpy, {py['chunk']} realizations at a time"
+    return [
+        dict(job="nonlinear MC (route 2), quarter car with stops, 1 thread (wall)", size=size,
+             ours_s=one["seconds"], peer=peer, peer_s=py["seconds"], cmd=cmd),
+        dict(job="nonlinear MC (route 2), 1 thread (CPU time)", size=size, ours_s=one["cpu_seconds"],
+             peer=peer + " (CPU time)", peer_s=py["cpu_seconds"], cmd=cmd),
+    ]
+
+
+def records(path):
+    rows = []
+    for r in json.load(open(path)):
+        if "scipy_s" not in r:
+            continue
+        size = f"{r['samples']} samples ({r['hours']:g} h)"
+        peer = "scipy sosfilt + numpy, streamed"
+        rows.append(dict(job="`stochvib exposure`, 3 axes (wall)", size=size, ours_s=r["ours_s"], peer=peer,
+                         peer_s=r["scipy_s"], cmd="`records.py run`"))
+        if r["ours_cpu_s"] >= 0.01:  # GNU time's resolution (a smoke-sized record takes less)
+            rows.append(dict(job="`stochvib exposure`, 3 axes (CPU time)", size=size, ours_s=r["ours_cpu_s"],
+                             peer=peer + " (CPU time)", peer_s=r["scipy_cpu_s"], cmd="`records.py run`"))
+    return rows
+
+
+if __name__ == "__main__":
+    kind, arg = sys.argv[1], sys.argv[2]
+    print(json.dumps({"nonlinear": nonlinear, "records": records}[kind](arg), indent=1))
