@@ -186,7 +186,8 @@ pub fn transient_markdown(a: &TransientAnalysis) -> String {
     s + "\n"
 }
 
-/// The Monte Carlo σ(t) of every simulated output beside the exact σ(t), with the verdicts.
+/// The Monte Carlo σ(t) of every simulated output beside the analytic σ(t) of the route that produced it
+/// (the column is headed `exact σ` or `evolutionary σ`), with the verdicts.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SigmaComparisons(pub Vec<SigmaComparison>);
 
@@ -207,7 +208,7 @@ impl fmt::Display for SigmaComparisons {
             };
             let t = Table::default()
                 .num("t [s]", &col(|r| r.0))
-                .num("exact σ", &col(|r| r.1))
+                .num(&format!("{} σ", c.route), &col(|r| r.1))
                 .num("Monte Carlo σ", &col(|r| r.2))
                 .num("lower", &col(|r| r.3))
                 .num("upper", &col(|r| r.4))
@@ -225,7 +226,8 @@ impl fmt::Display for SigmaComparisons {
             write!(f, "{}", t.aligned("  "))?;
             writeln!(
                 f,
-                "  per-time intervals cover the exact σ at {} % of the {} times",
+                "  per-time intervals cover the {} σ at {} % of the {} times",
+                c.route,
                 short(100.0 * c.coverage),
                 c.rows.len()
             )?;

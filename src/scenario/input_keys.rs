@@ -37,6 +37,12 @@ pub const INPUT: KeyTable = KeyTable {
             r#"> 0; every table that gives one gives the same ("one machine moves at one speed")"#,
         ),
         key(
+            "speed_profile",
+            "table, as `[input.speed_profile]`",
+            "constant `speed`",
+            r#"v(t) for `stochvib transient`, in one table only ("one machine moves along one speed profile"); without `speed` the stationary analyses take its final speed"#,
+        ),
+        key(
             "mean",
             "number or quantity in the process's unit",
             "0",

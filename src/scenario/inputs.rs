@@ -179,6 +179,34 @@ pub(crate) fn common_speed(path: &Path, tables: &[toml::Value]) -> Result<Option
     Ok(speed.map(|s| s.1))
 }
 
+/// The one `speed_profile` of the `[[input]]` tables (v(t) for `stochvib transient`) with its stationary
+/// speed, if a table gives one.
+///
+/// # Errors
+/// A malformed profile; two tables that give one ("one machine moves along one speed profile").
+pub(crate) fn common_speed_profile(
+    path: &Path,
+    tables: &[toml::Value],
+) -> Result<Option<(crate::transient::SpeedProfile, f64)>> {
+    let mut found: Option<(usize, (crate::transient::SpeedProfile, f64))> = None;
+    for (i, v) in tables.iter().enumerate() {
+        let Some(t) = v.as_table() else { continue };
+        let inf = Fields::new(path, &format!("input[{i}]"), t);
+        let Some(p) = super::transient_keys::input_speed_profile(&inf)? else {
+            continue;
+        };
+        if let Some((i0, _)) = found {
+            return Err(inf.error(
+                "speed_profile",
+                "[table]",
+                format!("input[{i0}].speed_profile is given: one machine moves along one speed profile, give it once"),
+            ));
+        }
+        found = Some((i, p));
+    }
+    Ok(found.map(|f| f.1))
+}
+
 /// Resolves `key` of `inf` (a catalogue name, a path or an inline table of spectrum keys) into the
 /// reference as written and the spectrum file.
 ///
@@ -543,6 +571,7 @@ impl InputReader<'_> {
             return Err(inf.error(k, v, format!("unknown key (known keys here: {known})")));
         }
         let _ = inf.get("speed"); // read by common_speed
+        let _ = inf.get("speed_profile"); // read by common_speed_profile
         let (reference, sf, source, coherence) = self.source(&inf)?;
         let mean = match inf.get("mean") {
             None => 0.0,

@@ -465,7 +465,11 @@ fn input_speed(root: &toml::Table, path: &Path) -> Result<(Option<f64>, Option<P
             let profile = super::transient_keys::input_speed_profile(&inf)?;
             Ok((v.or(profile.as_ref().map(|p| p.1)), profile))
         }
-        Some(toml::Value::Array(tables)) => Ok((super::inputs::common_speed(path, tables)?, None)),
+        Some(toml::Value::Array(tables)) => {
+            let profile = super::inputs::common_speed_profile(path, tables)?;
+            let v = super::inputs::common_speed(path, tables)?;
+            Ok((v.or(profile.as_ref().map(|p| p.1)), profile))
+        }
         _ => Ok((None, None)),
     }
 }

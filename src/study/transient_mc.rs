@@ -117,13 +117,16 @@ pub struct SigmaComparison {
     pub realizations: usize,
     /// Confidence of the per-time intervals (as stored).
     pub confidence: f64,
-    /// Per reported time: (t, exact σ, Monte Carlo σ, lower, upper) of the per-time interval.
+    /// The route whose σ(t) the run is compared with: `exact` (the differential Lyapunov equation) or
+    /// `evolutionary` (the evolutionary spectrum of the frozen system), from the run's stored method.
+    pub route: String,
+    /// Per reported time: (t, analytic σ of `route`, Monte Carlo σ, lower, upper) of the per-time interval.
     pub rows: Vec<(f64, f64, f64, f64, f64)>,
-    /// Fraction of the times whose per-time interval covers the exact σ.
+    /// Fraction of the times whose per-time interval covers the analytic σ.
     pub coverage: f64,
     /// The simultaneous level 1 − α of the verdict (Bonferroni over the K times).
     pub simultaneous_confidence: f64,
-    /// Times at which the exact σ is outside the simultaneous interval.
+    /// Times at which the analytic σ is outside the simultaneous interval.
     pub outside: Vec<f64>,
 }
 
@@ -132,12 +135,14 @@ impl SigmaComparison {
     pub fn verdict(&self) -> String {
         match self.outside.first() {
             None => format!(
-                "agree: the exact σ(t) lies inside the simultaneous {} % band at every one of the {} times",
+                "agree: the {} σ(t) lies inside the simultaneous {} % band at every one of the {} times",
+                self.route,
                 100.0 * self.simultaneous_confidence,
                 self.rows.iter().filter(|r| !r.1.is_nan()).count()
             ),
             Some(t) => format!(
-                "DISAGREE: the exact σ lies outside the simultaneous {} % band at {} of {} times (first t = {t} s)",
+                "DISAGREE: the {} σ lies outside the simultaneous {} % band at {} of {} times (first t = {t} s)",
+                self.route,
                 100.0 * self.simultaneous_confidence,
                 self.outside.len(),
                 self.rows.len()
@@ -163,6 +168,7 @@ pub fn compare_sigma(series: &TransientSeries, alpha: f64) -> Result<Vec<SigmaCo
     }
     let k = series.times.len().max(1);
     let level = 1.0 - alpha / k as f64;
+    let route = route_of(&series.exact_method);
     series
         .outputs
         .iter()
@@ -192,6 +198,7 @@ pub fn compare_sigma(series: &TransientSeries, alpha: f64) -> Result<Vec<SigmaCo
             Ok(SigmaComparison {
                 output: o.output.clone(),
                 unit: o.unit.clone(),
+                route: route.to_string(),
                 realizations: r,
                 confidence: series.confidence,
                 coverage: covered as f64 / compared as f64,
@@ -203,22 +210,58 @@ pub fn compare_sigma(series: &TransientSeries, alpha: f64) -> Result<Vec<SigmaCo
         .collect()
 }
 
-/// The default road step Δx of the road-grid route: 0.1·v_ref/ω_max, with ω_max the largest |λ(A)| of the
-/// vehicle and v_ref the profile's smallest speed (a tenth of its largest where it stops), so that the
-/// vehicle's fastest mode sees the grid at ΩΔx ≤ 0.1 (the linear interpolation loses about (ΩΔx)²/6 ≈
-/// 0.2 % of the power there).
+/// The route that produced a run's analytic σ(t), from its stored method: `evolutionary` when the method
+/// names the evolutionary spectrum (the road-grid route on a road without an exact route), `stationary`
+/// (wheels at positions or on two tracks at a constant speed), `analytic` where there is none (NaN), else
+/// `exact`.
+pub fn route_of(method: &str) -> &'static str {
+    if method.starts_with("evolutionary") {
+        "evolutionary"
+    } else if method.starts_with("stationary") {
+        "stationary"
+    } else if method.starts_with("none") {
+        "analytic"
+    } else {
+        "exact"
+    }
+}
+
+/// The default road step Δx of the road-grid route.
+///
+/// # Formula
+/// Δx = 0.1 / min(ω_max/v_ref, Ω_hi), with ω_max the largest |λ| of the model's own A (the vehicle's
+/// fastest mode; the comfort weighting filters appended for `[analysis.comfort]` are left out: their poles
+/// at the band limit of ISO 2631-1 weight, but do not create, motion), v_ref the profile's smallest speed
+/// (a tenth of its largest where it stops), and Ω_hi the upper edge of the road's band (rad/m, ∞ without
+/// one). A reported output that passes the road directly (D ≠ 0: a tyre force) sees every wave of the
+/// road, so on a band-limited road it takes Δx = 0.1/Ω_hi. The vehicle's fastest mode, and the shortest
+/// wave the road has where an output follows it, then see the grid at ΩΔx ≤ 0.1: the linear interpolation
+/// loses about (ΩΔx)²/6 ≈ 0.2 % of the power there, less below. Without a mode or a band (a static model on
+/// an unbounded road) Δx = v_ref/100.
 pub fn default_road_step(setup: &RoadGridSetup) -> f64 {
     let (lo, hi) = setup.speed.table_points().range();
     let v_ref = if lo > 0.0 { lo } else { 0.1 * hi };
+    let n = setup.model_states.min(setup.ss.a.nrows());
     let w_max = setup
         .ss
         .a
+        .view((0, 0), (n, n))
+        .into_owned()
         .complex_eigenvalues()
         .iter()
         .map(|l| l.norm())
         .fold(0.0, f64::max);
-    if w_max > 0.0 {
-        0.1 * v_ref / w_max
+    let direct = setup
+        .outputs
+        .iter()
+        .any(|&i| i < setup.ss.d.nrows() && setup.ss.d.row(i).iter().any(|v| *v != 0.0));
+    let wavenumber = if direct && setup.band_edge.is_finite() {
+        setup.band_edge
+    } else {
+        (w_max / v_ref).min(setup.band_edge)
+    };
+    if wavenumber > 0.0 && wavenumber.is_finite() {
+        0.1 / wavenumber
     } else {
         v_ref * 0.01
     }
@@ -270,6 +313,71 @@ fn road_grid_analytic(sc: &Scenario, outputs: &[usize]) -> Result<(AnalyticSide,
     Ok((analytic_side(sol, None, &outs, method)?, outs, notes))
 }
 
+/// The analytic side of a road-grid run of wheels at positions or on two tracks, and the outputs it
+/// simulates (every reported output).
+///
+/// # Formula
+/// At a constant speed the response is stationary: per output the stationary analysis of the scenario
+/// (`analyze_output`: mean m, σ, ν₀⁺ from the inputs' cross-spectral matrix with the delays) at every time,
+/// and the Poisson distributions of the maxima at Rice's rates, F_y(b) = exp(−ν₀⁺T e^{−(b−m)²/2σ²}) and
+/// F_|y|(b) = exp(−ν₀⁺T(e^{−(b−m)²/2σ²} + e^{−(b+m)²/2σ²})). Under a varying speed there is no analytic
+/// route (the delays ℓ/v(t) vary in time; the coherent pair has no finite filter): NaN, and the run stands
+/// alone. The weighted comfort outputs have no stationary curve here (NaN).
+fn wheels_analytic(sc: &Scenario, setup: &RoadGridSetup) -> Result<(AnalyticSide, Vec<usize>, Vec<String>)> {
+    let k = setup.times.len();
+    let duration = *setup.times.last().unwrap_or(&0.0);
+    let sys = sc.model.system.as_ref();
+    let constant = setup.speed.table_points().is_constant();
+    let stationary = |i: usize| -> Option<(f64, f64, f64)> {
+        let st = crate::response::analyze_output(sys, &sc.excitation, i).ok()?;
+        Some((st.mean?, st.sigma?, st.zero_upcrossing_rate.unwrap_or(f64::NAN)))
+    };
+    let outputs = setup
+        .outputs
+        .iter()
+        .map(|&i| {
+            let (m, sd, nu) = match (constant, i < sys.outputs().len()) {
+                (true, true) => stationary(i).unwrap_or((f64::NAN, f64::NAN, f64::NAN)),
+                _ => (f64::NAN, f64::NAN, f64::NAN),
+            };
+            let (lo, hi) = (m.min(0.0), m.abs() + 7.0 * sd);
+            let n = crate::transient::mission::LEVELS;
+            let levels: Vec<f64> = (0..n).map(|j| lo + (hi - lo) * j as f64 / (n - 1) as f64).collect();
+            let up = |b: f64| nu * duration * (-(b - m).powi(2) / (2.0 * sd * sd)).exp();
+            let down = |b: f64| nu * duration * (-(b + m).powi(2) / (2.0 * sd * sd)).exp();
+            crate::transient::mc_finish::AnalyticOutput {
+                mean: vec![m; k],
+                sigma: vec![sd; k],
+                cdf_y_rice: levels.iter().map(|&b| (-up(b)).exp()).collect(),
+                cdf_abs_rice: levels.iter().map(|&b| (-up(b) - down(b)).exp()).collect(),
+                cdf_y_vanmarcke: vec![f64::NAN; n],
+                cdf_abs_vanmarcke: vec![f64::NAN; n],
+                levels,
+            }
+        })
+        .collect();
+    let method = if constant {
+        "stationary analysis at the constant speed (cross-spectral matrix of the wheels' inputs, with their \
+         delays), constant over time"
+    } else {
+        "none: wheels at positions or on two tracks under a varying speed have no finite-dimensional route \
+         (docs/transients.md); the Monte Carlo stands alone"
+    };
+    let notes = if constant {
+        Vec::new()
+    } else {
+        vec![format!("no analytic σ(t) to compare with: {method}")]
+    };
+    Ok((
+        AnalyticSide {
+            method: method.to_string(),
+            outputs,
+        },
+        setup.outputs.clone(),
+        notes,
+    ))
+}
+
 /// The most integration steps (and, on a road grid, road points) one realization of a transient Monte Carlo
 /// may take: 2²⁶ ≈ 6.7·10⁷, half a gigabyte of road in f64. More `substeps` or a finer `road step` is refused
 /// before any work (the counts are formed in f64, so no product overflows).
@@ -319,7 +427,10 @@ pub fn simulate_road_grid(
             "the grid step Δx must be finite and > 0 m",
         ));
     }
-    let (analytic, outputs, mut notes) = road_grid_analytic(sc, &setup.outputs)?;
+    let (analytic, outputs, mut notes) = match &setup.wheels {
+        Some(_) => wheels_analytic(sc, &setup)?,
+        None => road_grid_analytic(sc, &setup.outputs)?,
+    };
     if outputs.is_empty() {
         return Err(Error::NotApplicable {
             method: "road-grid Monte Carlo".into(),
@@ -354,6 +465,7 @@ pub fn simulate_road_grid(
     let grid = McGrid::new(duration, duration / (intervals * substeps) as f64, substeps)?;
     let input = RoadGridRunInput {
         ss: &setup.ss,
+        wheels: setup.wheels.as_ref(),
         spectrum: sc.input.spectrum.as_ref(),
         speed: &setup.speed,
         outputs,

@@ -11,8 +11,8 @@ use crate::scenario::Scenario;
 use crate::system::StateSpace;
 use crate::transient::{
     check_stability, input_model, solve, solve_evolutionary, EvolutionaryInput, EvolutionarySolution, ExactOptions,
-    FamilyBuilder, FixedSystem, Schedule, ScheduledSystem, SpeedProfile, Start, SystemFamily, TimeVaryingSystem,
-    TransientInput, TransientSolution,
+    ExtraSource, FamilyBuilder, FixedSystem, MatrixCoherence, Schedule, ScheduledSystem, SpeedProfile, Start,
+    SystemFamily, TimeVaryingSystem, TransientInput, TransientSolution, Wheel, WheelRoad,
 };
 use std::path::Path;
 use std::sync::Arc;
@@ -70,20 +70,101 @@ fn gains(sc: &Scenario) -> Result<Vec<f64>> {
     };
     if sc.inputs.len() != 1 {
         return Err(refuse(
-            "several [[input]] sources: the transient routes take one random input ([input])".into(),
+            "several [[input]] sources: the evolutionary route and the road-grid Monte Carlo take one random \
+             input ([input]); the exact route takes several when every one is rational (a rational or w = 2 \
+             temporal spectrum, a rational road), e.g. a band-limited road and a force; otherwise not available"
+                .into(),
         ));
     }
     match &sc.model.layout {
         InputLayout::Single => Ok(vec![1.0]),
         InputLayout::Track { positions, gains } if positions.iter().all(|p| *p == positions[0]) => Ok(gains.clone()),
         InputLayout::Track { positions, .. } => Err(refuse(format!(
-            "the wheels are at different positions ({positions:?} m): under a varying speed their delays vary in \
-             time, which the exact route does not model; use a model with one contact point"
+            "the wheels are at different positions ({positions:?} m): a pure delay is not finite-dimensional, and \
+             under a varying speed it varies in time, so the exact and evolutionary routes have no form of it; \
+             use `stochvib transient --monte-carlo N` (the road-grid Monte Carlo reads each wheel's road at \
+             x(t) - l), or a model with one contact point"
         ))),
         InputLayout::TwoTracks { .. } => Err(refuse(
-            "a road of two tracks: the transient routes take one track".into(),
+            "a road of two tracks: their coherence is not a rational function, so the pair has no finite shaping \
+             filter (no exact route), and the evolutionary route takes one process; use `stochvib transient \
+             --monte-carlo N` (the road-grid Monte Carlo synthesises the two tracks with their coherence)"
+                .into(),
         )),
     }
+}
+
+/// The gains of each independent `[[input]]` source at the model inputs (the one `[input]`: [`gains`]).
+///
+/// # Errors
+/// A road of two tracks (its coherence is not rational: no finite filter of the pair); a source whose
+/// inputs are at different positions (a pure delay is not finite-dimensional, and under a varying speed it
+/// varies in time); an excitation that is not one of independent sources.
+fn source_gains(sc: &Scenario) -> Result<Vec<Vec<f64>>> {
+    if sc.inputs.len() == 1 {
+        return Ok(vec![gains(sc)?]);
+    }
+    let refuse = |reason: String| Error::NotApplicable {
+        method: "exact (differential Lyapunov) route".into(),
+        reason,
+    };
+    let crate::response::Excitation::Sources { sources, inputs } = &sc.excitation else {
+        return Err(refuse("the [[input]] tables do not form independent sources".into()));
+    };
+    sources
+        .iter()
+        .enumerate()
+        .map(|(k, src)| {
+            let name = &sc.inputs[k].name;
+            if let crate::response::Source::Matrix(_) = src {
+                return Err(refuse(format!(
+                    "input `{name}` is a road of two tracks: their coherence is not a rational function, so the \
+                     pair has no finite shaping filter; not available: give each wheel line its own \
+                     one-track road, or use the stationary analyses"
+                )));
+            }
+            if inputs.iter().any(|m| m.source == k && m.delay != 0.0) {
+                return Err(refuse(format!(
+                    "input `{name}` reaches its model inputs at different positions: a pure delay is not \
+                     finite-dimensional, and under a varying speed it varies in time; not available: use a \
+                     model with one contact point per source"
+                )));
+            }
+            Ok(inputs
+                .iter()
+                .map(|m| if m.source == k { m.gain } else { 0.0 })
+                .collect())
+        })
+        .collect()
+}
+
+/// The time-varying system of the scenario's sources: the first is the [`TransientInput`] (with the
+/// envelope), the others [`ExtraSource`]s.
+fn sources_system(
+    sc: &Scenario,
+    spec: &TransientSpec,
+    fam: Arc<dyn SystemFamily>,
+    speed: Option<&SpeedProfile>,
+) -> Result<TimeVaryingSystem> {
+    let mut gains = source_gains(sc)?.into_iter();
+    let input = TransientInput {
+        model: input_model(sc.inputs[0].spectrum.as_ref(), speed)?,
+        envelope: spec.envelope.clone(),
+        mean: sc.inputs[0].mean,
+        gains: gains.next().unwrap_or_default(),
+    };
+    let extra = sc.inputs[1..]
+        .iter()
+        .zip(gains)
+        .map(|(inp, gains)| {
+            Ok(ExtraSource {
+                model: input_model(inp.spectrum.as_ref(), speed)?,
+                gains,
+                mean: inp.mean,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    TimeVaryingSystem::with_sources(fam, input, extra)
 }
 
 /// The speed profile of the input: `[input.speed_profile]`, else the constant `[input] speed`.
@@ -271,21 +352,13 @@ fn checked_times(sc: &Scenario, spec: &TransientSpec, duration: f64) -> Result<V
 fn setup_of(sc: &Scenario) -> Result<TransientSetup> {
     let (spec, duration) = spec_of(sc)?;
     require_linear(sc)?;
-    let gains = gains(sc)?;
     let (fam, weighted) = family(sc, spec)?;
     let times = checked_times(sc, spec, duration)?;
     let mut check: Vec<f64> = times.clone();
     check.extend(fam.knots().into_iter().filter(|t| *t <= duration));
     check_stability(fam.as_ref(), &check).map_err(|e| unstable(sc, spec, e))?;
     let speed = speed_of(sc, spec)?;
-    let model = input_model(sc.input.spectrum.as_ref(), speed.as_ref())?;
-    let input = TransientInput {
-        model,
-        envelope: spec.envelope.clone(),
-        mean: sc.input.mean,
-        gains,
-    };
-    let sys = TimeVaryingSystem::new(fam, input)?;
+    let sys = sources_system(sc, spec, fam, speed.as_ref())?;
     let (outputs, weighted) = reported(sc, &weighted);
     let stationary = sys.is_invariant() && spec.start == Start::Stationary;
     Ok(TransientSetup {
@@ -335,17 +408,24 @@ pub fn exact_solution(sc: &Scenario, setup: &TransientSetup) -> Result<Transient
 }
 
 /// Whether the scenario's input has an exact (differential Lyapunov) route: a rational or white input, a
-/// rational road, a w = 2 road without a band. Otherwise `stochvib transient` takes the evolutionary route.
+/// rational road, a w = 2 road without a band (for several sources: every one). A road under wheels at
+/// different positions or on two tracks has none (`stochvib transient --monte-carlo` takes the road grid);
+/// otherwise `stochvib transient` takes the evolutionary route.
 ///
 /// # Errors
 /// A scenario without `[transient] duration`; an invalid speed profile.
 pub fn has_exact_route(sc: &Scenario) -> Result<bool> {
     let (spec, _) = spec_of(sc)?;
     let speed = speed_of(sc, spec)?;
-    Ok(!matches!(
-        input_model(sc.input.spectrum.as_ref(), speed.as_ref()),
-        Err(Error::NotApplicable { .. })
-    ))
+    if sc.inputs.len() == 1 && speed.is_some() && matches!(wheel_road(sc), Ok(Some(_))) {
+        return Ok(false); // a road under wheels at positions or on two tracks: the road grid
+    }
+    Ok(sc.inputs.iter().all(|inp| {
+        !matches!(
+            input_model(inp.spectrum.as_ref(), speed.as_ref()),
+            Err(Error::NotApplicable { .. })
+        )
+    }))
 }
 
 /// A scenario solved by the evolutionary-spectrum route ([`solve_evolutionary`]).
@@ -400,6 +480,64 @@ pub fn evolutionary_setup(sc: &Scenario) -> Result<EvolutionarySetup> {
     })
 }
 
+/// The wheels of the scenario's one road when they are at different positions or on two tracks (the
+/// road-grid route reads the road under each, [`WheelRoad`]), or `None` for one contact position.
+///
+/// # Formula
+/// Wheel j of the stationary excitation, delayed by τ_j at the stationary speed v, is at ℓ_j = vτ_j on the
+/// road; two tracks keep their coherence, taken from the excitation's spectral matrix at v
+/// ([`MatrixCoherence`]).
+///
+/// # Errors
+/// Several `[[input]]` sources (the road-grid route takes one road).
+pub fn wheel_road(sc: &Scenario) -> Result<Option<WheelRoad>> {
+    use crate::response::{Excitation, Source};
+    let spectrum = sc.input.spectrum.clone();
+    let v = sc.input.speed.unwrap_or(1.0);
+    let road = |coherence: Option<Arc<dyn crate::coherence::Coherence>>, wheels: Vec<Wheel>| {
+        let moved = wheels.iter().any(|w| w.position != wheels[0].position);
+        (moved || coherence.is_some()).then(|| WheelRoad {
+            spectrum: spectrum.clone(),
+            coherence,
+            wheels,
+        })
+    };
+    match (&sc.excitation, &sc.model.layout) {
+        (Excitation::Sources { sources, inputs }, _) if sources.len() == 1 => {
+            let coherence: Option<Arc<dyn crate::coherence::Coherence>> = match &sources[0] {
+                Source::Matrix(m) => Some(Arc::new(MatrixCoherence::new(m.clone(), v)?)),
+                Source::Process(_) => None,
+            };
+            let wheels = inputs
+                .iter()
+                .map(|m| Wheel {
+                    track: m.component,
+                    position: m.delay * v,
+                    gain: m.gain,
+                })
+                .collect();
+            Ok(road(coherence, wheels))
+        }
+        (Excitation::Sources { .. }, _) => Err(Error::NotApplicable {
+            method: "road-grid Monte Carlo".into(),
+            reason: "several [[input]] sources: it takes one road (of one or two tracks)".into(),
+        }),
+        (_, InputLayout::Track { positions, gains }) => Ok(road(
+            None,
+            positions
+                .iter()
+                .zip(gains)
+                .map(|(&position, &gain)| Wheel {
+                    track: 0,
+                    position,
+                    gain,
+                })
+                .collect(),
+        )),
+        _ => Ok(None),
+    }
+}
+
 /// A scenario set up for the road-grid Monte Carlo ([`crate::transient::run_road_grid`]).
 #[derive(Debug, Clone)]
 pub struct RoadGridSetup {
@@ -412,6 +550,13 @@ pub struct RoadGridSetup {
     pub outputs: Vec<usize>,
     /// The reported times.
     pub times: Vec<f64>,
+    /// The model's own states (the first of `ss`'s states; the comfort weighting filters follow).
+    pub model_states: usize,
+    /// The upper edge of the road's band, rad/m (∞ for a road without one).
+    pub band_edge: f64,
+    /// The wheels at positions or on two tracks (then `ss` keeps one input per wheel), or `None` (one
+    /// contact position: the inputs combined into one).
+    pub wheels: Option<WheelRoad>,
 }
 
 /// The scenario set up for the road-grid Monte Carlo: a road (spatial spectrum) under a speed profile (or
@@ -447,10 +592,23 @@ fn road_grid_of(sc: &Scenario) -> Result<RoadGridSetup> {
             "it starts every realization in its stationary state at v(0) (a run-in): give start = \"stationary\"",
         ));
     }
-    let g = gains(sc)?;
-    let g = nalgebra::DMatrix::from_column_slice(g.len(), 1, &g);
+    let wheels = wheel_road(sc)?;
     let (fam, weighted) = family(sc, spec)?;
     let ext = fam.at(0.0)?.ss;
+    if wheels.is_some() {
+        let (outputs, _) = reported(sc, &weighted);
+        return Ok(RoadGridSetup {
+            ss: ext,
+            speed,
+            outputs,
+            times: checked_times(sc, spec, duration)?,
+            model_states: sc.model.system.state_space().map_or(0, |m| m.n_states()),
+            band_edge: sc.input.spectrum.support().1,
+            wheels,
+        });
+    }
+    let g = gains(sc)?;
+    let g = nalgebra::DMatrix::from_column_slice(g.len(), 1, &g);
     let b = &ext.b * &g;
     let d = &ext.d * &g;
     let e = &ext.e * &g;
@@ -468,5 +626,8 @@ fn road_grid_of(sc: &Scenario) -> Result<RoadGridSetup> {
         speed,
         outputs,
         times: checked_times(sc, spec, duration)?,
+        model_states: sc.model.system.state_space().map_or(0, |m| m.n_states()),
+        band_edge: sc.input.spectrum.support().1,
+        wheels: None,
     })
 }

@@ -20,10 +20,13 @@
 //! * [`propagate`] / [`solve`]: the differential Lyapunov equation Ṗ = FP + PFᵀ + GGᵀ, ṁ = Fm + b by matrix
 //!   exponentials on an adaptive grid with an error estimate, and the output statistics over time
 //!   ([`TransientSolution`]).
+//! * [`sources`]: several independent inputs ([`ExtraSource`]), their filters block-diagonal ahead of the
+//!   system ([`TimeVaryingSystem::with_sources`]).
 //! * [`evolutionary`]: inputs without a finite shaping filter (tabulated, measured, band-limited) by the
 //!   evolutionary spectrum of the frozen system, with its slow-variation assumption checked at every time.
 //! * [`road_grid`]: Monte Carlo of a vehicle on a road synthesised on a spatial grid and sampled along x(t),
-//!   for any road spectrum under a speed profile; [`road_grid_run`] stores it as a transient run file.
+//!   for any road spectrum under a speed profile; [`road_grid_run`] stores it as a transient run file;
+//!   [`road_wheels`]: the same for wheels at positions on one track or on two coherent tracks.
 //! * [`monte_carlo`]: the same by simulation ([`mc_engine`], [`mc_finish`]), stored as time series of
 //!   statistics in a run file; [`mission`]: the analytic distributions of the maxima of a mission.
 
@@ -38,9 +41,11 @@ pub mod monte_carlo;
 mod profile;
 pub mod road_grid;
 pub mod road_grid_run;
+pub mod road_wheels;
 pub mod rope;
 mod schedule;
 pub mod series;
+pub mod sources;
 mod speed_profile;
 pub mod system;
 
@@ -54,8 +59,10 @@ pub use monte_carlo::{merge_transient, run_transient, TransientRunInput, Transie
 pub use profile::PiecewiseLinear;
 pub use road_grid::{road_grid_monte_carlo, RoadGridOptions, RoadGridStatistics};
 pub use road_grid_run::{run_road_grid, RoadGridRunInput};
+pub use road_wheels::{road_wheels_monte_carlo, MatrixCoherence, Wheel, WheelRoad};
 pub use rope::RopeFormula;
 pub use schedule::{check_stability, FamilyBuilder, FixedSystem, ModelAt, Schedule, ScheduledSystem, SystemFamily};
 pub use series::{solve, Crossings, OutputSeries, TransientSolution};
+pub use sources::ExtraSource;
 pub use speed_profile::SpeedProfile;
 pub use system::{Frozen, InputModel, Start, TimeVaryingSystem, TransientInput};

@@ -41,9 +41,9 @@ pub struct RoadGridStatistics {
 /// Path positions on the road grid: the run-in at v(0) from −L_run to 0, then x(t) = ∫₀ᵗv ds.
 pub(crate) struct Path {
     /// Road coordinate (from the grid's start) at every integration step.
-    positions: Vec<f64>,
+    pub(crate) positions: Vec<f64>,
     /// The integration step index of every reported time.
-    reported: Vec<usize>,
+    pub(crate) reported: Vec<usize>,
     /// Δt of the integration steps.
     pub(crate) dt: f64,
 }
@@ -82,7 +82,7 @@ pub(crate) fn path(speed: &SpeedProfile, ss: &StateSpace, times: &[f64], substep
 }
 
 /// The road at position p by linear interpolation of the grid samples h (step dx).
-fn sample(h: &[f64], dx: f64, p: f64) -> f64 {
+pub(crate) fn sample(h: &[f64], dx: f64, p: f64) -> f64 {
     let s = p / dx;
     let k = (s.floor() as usize).min(h.len() - 2);
     let f = s - k as f64;
@@ -200,14 +200,27 @@ pub fn road_grid_monte_carlo(
     let (path, run_in) = path(speed, ss, times, opts.substeps)?;
     let generator = grid_generator(spectrum, &path, opts.dx)?;
     let d = foh(&ss.a, &ss.b, path.dt)?;
-    let p = ss.c.nrows();
-    let rows: Vec<usize> = (0..p).collect();
-    let mut acc = vec![vec![RunningMoments::default(); times.len()]; p];
+    let rows: Vec<usize> = (0..ss.c.nrows()).collect();
     let mut scratch = generator.scratch();
     let mut h = vec![0.0; generator.len()];
-    for i in 0..opts.realizations {
+    accumulate(times, rows.len(), opts.realizations, run_in, |i| {
         generator.generate(&mut stream(opts.seed, i as u64), &mut scratch, &mut h)?;
-        let (stored, _, _) = realization(ss, &d, &h, opts.dx, &path, &rows);
+        Ok(realization(ss, &d, &h, opts.dx, &path, &rows).0)
+    })
+}
+
+/// The ensemble statistics of `realizations` runs of `run` (realization i → its `p` outputs at each of the
+/// `times`, time-major), accumulated in realization order.
+pub(crate) fn accumulate(
+    times: &[f64],
+    p: usize,
+    realizations: usize,
+    run_in: f64,
+    mut run: impl FnMut(usize) -> Result<Vec<f64>>,
+) -> Result<RoadGridStatistics> {
+    let mut acc = vec![vec![RunningMoments::default(); times.len()]; p];
+    for i in 0..realizations {
+        let stored = run(i)?;
         for (j, y) in stored.chunks(p).enumerate() {
             for (i, a) in acc.iter_mut().enumerate() {
                 a[j].push(y[i]);
@@ -218,7 +231,7 @@ pub fn road_grid_monte_carlo(
         times: times.to_vec(),
         mean: acc.iter().map(|a| a.iter().map(|w| w.mean()).collect()).collect(),
         variance: acc.iter().map(|a| a.iter().map(|w| w.variance()).collect()).collect(),
-        realizations: opts.realizations,
+        realizations,
         run_in,
     })
 }

@@ -2,6 +2,7 @@
 //! input: what the exact route propagates and the Monte Carlo route steps.
 
 use super::schedule::{at_time, SystemFamily};
+use super::sources::{check_model, frozen_blocks, Block, ExtraSource};
 use super::{Envelope, SpeedProfile};
 use crate::error::{Error, Result};
 use crate::spectrum::ShapingFilter;
@@ -87,10 +88,10 @@ pub enum Start {
 
 /// The shaping filter as a state space ż_f = A_f z_f + B_f w, s = C_f z_f.
 #[derive(Debug, Clone)]
-struct FilterParts {
-    a: DMatrix<f64>,
-    b: DMatrix<f64>,
-    c: DMatrix<f64>,
+pub(super) struct FilterParts {
+    pub(super) a: DMatrix<f64>,
+    pub(super) b: DMatrix<f64>,
+    pub(super) c: DMatrix<f64>,
 }
 
 /// A system and its random input in the time-varying white-noise-driven form (see the module docs of
@@ -112,6 +113,7 @@ pub struct TimeVaryingSystem {
     family: Arc<dyn SystemFamily>,
     input: TransientInput,
     filter: Option<FilterParts>,
+    extra: Vec<(ExtraSource, Option<FilterParts>)>,
     n_system: usize,
     outputs: Vec<OutputInfo>,
     unavailable: Vec<Option<String>>,
@@ -157,7 +159,24 @@ impl TimeVaryingSystem {
     /// Gains that do not match the system's inputs; a filter with a white component; a w = 2 road on a
     /// scheduled system or on one with a free rigid-body mode (singular A); a model error at t = 0.
     pub fn new(family: Arc<dyn SystemFamily>, input: TransientInput) -> Result<Self> {
+        Self::with_sources(family, input, Vec::new())
+    }
+
+    /// The time-varying form of `family` driven by `input` and the independent `extra` sources, their
+    /// filters block-diagonal ahead of the system ([`super::sources`]); the envelope is the first input's.
+    ///
+    /// # Errors
+    /// Those of [`TimeVaryingSystem::new`]; a w = 2 road (white road velocity) among several sources (it is
+    /// exact only as the one input); gains of an extra source that do not match the system's inputs.
+    pub fn with_sources(family: Arc<dyn SystemFamily>, input: TransientInput, extra: Vec<ExtraSource>) -> Result<Self> {
         let ss0 = family.at(0.0).map_err(|e| at_time(e, 0.0))?.ss;
+        if !extra.is_empty() {
+            check_model(&input.model)?;
+        }
+        let extra = extra
+            .into_iter()
+            .map(|x| extra_parts(x, ss0.b.ncols()))
+            .collect::<Result<Vec<_>>>()?;
         if input.gains.len() != ss0.b.ncols() {
             return Err(Error::invalid(
                 "gains",
@@ -176,10 +195,7 @@ impl TimeVaryingSystem {
             }
             _ => None,
         };
-        let speed = match &input.model {
-            InputModel::SpatialRational { speed, .. } | InputModel::WhiteSlope { speed, .. } => Some(speed),
-            _ => None,
-        };
+        let speed = speed_of(&input.model);
         if matches!(input.model, InputModel::WhiteSlope { .. }) {
             if !family.is_constant() {
                 return Err(Error::NotApplicable {
@@ -200,22 +216,33 @@ impl TimeVaryingSystem {
         }
         let mut knots: Vec<f64> = family.knots();
         knots.extend(input.envelope.knots());
-        if let Some(v) = speed {
+        let speeds: Vec<&SpeedProfile> = speed
+            .into_iter()
+            .chain(extra.iter().filter_map(|(x, _)| speed_of(&x.model)))
+            .collect();
+        for v in &speeds {
             knots.extend(v.knots());
         }
         knots.retain(|t| *t > 0.0);
         knots.sort_by(f64::total_cmp);
         knots.dedup();
         let invariant =
-            family.is_constant() && input.envelope.is_unit() && speed.is_none_or(|v| v.table_points().is_constant());
+            family.is_constant() && input.envelope.is_unit() && speeds.iter().all(|v| v.table_points().is_constant());
         let combined = ss0.combine_inputs(&input.gains)?;
-        let unavailable = unavailable_outputs(&combined, &input.model, filter.as_ref())?;
+        let mut unavailable = unavailable_outputs(&combined, &input.model, filter.as_ref())?;
+        for (x, fp) in &extra {
+            let more = unavailable_outputs(&ss0.combine_inputs(&x.gains)?, &x.model, fp.as_ref())?;
+            for (u, m) in unavailable.iter_mut().zip(more) {
+                *u = u.take().or(m);
+            }
+        }
         Ok(TimeVaryingSystem {
             n_system: ss0.n_states(),
             outputs: ss0.outputs().to_vec(),
             family,
             input,
             filter,
+            extra,
             unavailable,
             knots,
             invariant,
@@ -229,7 +256,17 @@ impl TimeVaryingSystem {
 
     /// Number of filter states.
     pub fn n_filter(&self) -> usize {
-        self.filter.as_ref().map_or(0, |f| f.a.nrows())
+        let extra: usize = self
+            .extra
+            .iter()
+            .map(|(_, f)| f.as_ref().map_or(0, |f| f.a.nrows()))
+            .sum();
+        self.filter.as_ref().map_or(0, |f| f.a.nrows()) + extra
+    }
+
+    /// The independent sources besides [`TimeVaryingSystem::input`].
+    pub fn extra_sources(&self) -> impl Iterator<Item = &ExtraSource> {
+        self.extra.iter().map(|(x, _)| x)
     }
 
     /// The outputs.
@@ -275,7 +312,11 @@ impl TimeVaryingSystem {
         } else {
             ", enveloped"
         };
-        format!("{}; {inp}{env}", self.family.describe())
+        let more = match self.extra.len() {
+            0 => String::new(),
+            k => format!(" + {k} more independent input(s)"),
+        };
+        format!("{}; {inp}{env}{more}", self.family.describe())
     }
 
     /// The frozen form at time t.
@@ -284,6 +325,9 @@ impl TimeVaryingSystem {
     /// The model's error at t (with the time).
     pub fn frozen(&self, t: f64) -> Result<Frozen> {
         let m = self.family.at(t).map_err(|e| at_time(e, t))?;
+        if !self.extra.is_empty() {
+            return self.frozen_several(&m.ss, m.forcing, t);
+        }
         let ss = m.ss.combine_inputs(&self.input.gains)?;
         let (a, ad, mu) = (
             self.input.envelope.value(t),
@@ -325,6 +369,30 @@ impl TimeVaryingSystem {
                 reason: "a filtered input without its filter".into(),
             }),
         }
+    }
+
+    /// The frozen form with several independent sources ([`frozen_blocks`]).
+    fn frozen_several(&self, ss: &StateSpace, forcing: Option<DVector<f64>>, t: f64) -> Result<Frozen> {
+        let first = Block {
+            model: &self.input.model,
+            filter: self.filter.as_ref(),
+            gains: &self.input.gains,
+            mean: self.input.mean,
+            a: self.input.envelope.value(t),
+            ad: self.input.envelope.slope(t),
+        };
+        let blocks: Vec<Block> = std::iter::once(first)
+            .chain(self.extra.iter().map(|(x, fp)| Block {
+                model: &x.model,
+                filter: fp.as_ref(),
+                gains: &x.gains,
+                mean: x.mean,
+                a: 1.0,
+                ad: 0.0,
+            }))
+            .collect();
+        let forcing = forcing.unwrap_or_else(|| DVector::zeros(self.n_system));
+        frozen_blocks(ss, &blocks, forcing, t)
     }
 
     /// The frozen form with the input filter ahead of the system (see the type's formula).
@@ -397,6 +465,31 @@ impl TimeVaryingSystem {
             }
         }
     }
+}
+
+/// The speed profile of a road process.
+fn speed_of(model: &InputModel) -> Option<&SpeedProfile> {
+    match model {
+        InputModel::SpatialRational { speed, .. } | InputModel::WhiteSlope { speed, .. } => Some(speed),
+        _ => None,
+    }
+}
+
+/// An extra source checked against the system's `m` inputs, with its filter.
+fn extra_parts(x: ExtraSource, m: usize) -> Result<(ExtraSource, Option<FilterParts>)> {
+    check_model(&x.model)?;
+    if x.gains.len() != m {
+        return Err(Error::invalid(
+            "gains",
+            x.gains.len(),
+            format!("the system has {m} inputs"),
+        ));
+    }
+    let fp = match &x.model {
+        InputModel::Rational { filter } | InputModel::SpatialRational { filter, .. } => Some(filter_parts(filter)?),
+        _ => None,
+    };
+    Ok((x, fp))
 }
 
 fn singular(t: f64) -> Error {

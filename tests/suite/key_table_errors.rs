@@ -96,8 +96,8 @@ fn every_input_table_error_is_the_same() {
         (
             body(&[&road("drivs = [0]"), &force]),
             "input[0].drivs",
-            "unknown key (known keys here: name, spectrum, road, band, enveloping, speed, mean, drives, tracks, \
-             positions, gains, kurtosis)",
+            "unknown key (known keys here: name, spectrum, road, band, enveloping, speed, speed_profile, mean, drives, \
+             tracks, positions, gains, kurtosis)",
         ),
         (
             body(&[&road("spectrum = \"iso8608-c\""), &force]),

@@ -189,6 +189,8 @@ fn transient_command_runs_the_road_grid_against_the_exact_route() {
     };
     let out = run(&["-o", "one.h5"]);
     assert!(out.contains("Monte Carlo σ(t) of travel"), "{out}");
+    // the analytic column is labelled by the route that produced it
+    assert!(out.contains("exact σ") && !out.contains("evolutionary σ"), "{out}");
     let (file, series) = read_transient_run(&dir.join("one.h5")).unwrap();
     assert!(
         file.metadata().generator.contains("spatial grid"),
@@ -220,6 +222,11 @@ fn transient_command_runs_the_road_grid_against_the_exact_route() {
         limit,
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let iso_out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        iso_out.contains("evolutionary σ") && !iso_out.contains("exact σ"),
+        "{iso_out}"
+    );
     let generator = read_transient_run(&dir.join("iso.h5"))
         .unwrap()
         .0
@@ -228,4 +235,44 @@ fn transient_command_runs_the_road_grid_against_the_exact_route() {
         .clone();
     assert!(generator.contains("spatial grid"), "{generator}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The default road step of the catalogue's accelerating quarter car (`data/quarter-car-accelerating.toml`,
+/// 5 → 20 m/s, with a comfort axis on `body_acc`) follows the rule Δx = 0.1·v_ref/ω_max with v_ref = 5 m/s
+/// and ω_max the largest |λ| of the quarter car's own A = [[0, I], [−M⁻¹K, −M⁻¹C]] (M = diag(300, 40) kg,
+/// K = [[20, −20], [−20, 220]] kN/m, C = [[1.5, −1.5], [−1.5, 1.5]] kN s/m, assembled here by hand; the wheel
+/// hop at about 75 rad/s), not the ISO 2631-1 weighting filter's band-limit poles (hundreds of rad/s, a step
+/// under 1 mm). On a road band-limited below ω_max/v_ref (an ISO road to 0.5 cycles/m, Ω_hi = π rad/m) the
+/// step is 0.1/Ω_hi.
+#[test]
+fn default_road_step_from_the_model_poles_and_the_road_band() {
+    use nalgebra::DMatrix;
+    use stochvib::study::transient_mc::default_road_step;
+    use stochvib::study::transient_run::road_grid_setup;
+    let path = crate::common::root().join("data/quarter-car-accelerating.toml");
+    let sc = stochvib::scenario::load_scenario(&path, &crate::common::root().join("spectra")).unwrap();
+    let setup = road_grid_setup(&sc).unwrap();
+    assert!(setup.ss.a.nrows() > 4, "the comfort filter's states are appended");
+    let (ms, mu) = (300.0, 40.0);
+    let (ks, cs, kt) = (20e3, 1.5e3, 200e3);
+    let mut a = DMatrix::zeros(4, 4);
+    a[(0, 2)] = 1.0;
+    a[(1, 3)] = 1.0;
+    let (k, c) = ([[ks, -ks], [-ks, ks + kt]], [[cs, -cs], [-cs, cs]]);
+    for (i, m) in [ms, mu].iter().enumerate() {
+        for j in 0..2 {
+            a[(2 + i, j)] = -k[i][j] / m;
+            a[(2 + i, 2 + j)] = -c[i][j] / m;
+        }
+    }
+    let w_max = a.complex_eigenvalues().iter().map(|l| l.norm()).fold(0.0, f64::max);
+    assert!((70.0..80.0).contains(&w_max), "{w_max}");
+    let expected = 0.1 * 5.0 / w_max;
+    let dx = default_road_step(&setup);
+    assert!((dx / expected - 1.0).abs() < 1e-9, "{dx} vs {expected}");
+    let banded = stochvib::study::transient_run::RoadGridSetup {
+        band_edge: std::f64::consts::PI,
+        ..setup
+    };
+    assert!((default_road_step(&banded) - 0.1 / std::f64::consts::PI).abs() < 1e-15);
 }
