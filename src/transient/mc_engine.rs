@@ -413,23 +413,31 @@ fn observe<const L: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::models::quarter_car::QuarterCar;
     use crate::spectrum::{IsoBound, IsoClass, PowerLaw};
-    use crate::system::FrequencyResponse;
+    use crate::system::{Attach, Element, FrequencyResponse, Mdof, Quantity};
     use crate::transient::schedule::FixedSystem;
     use crate::transient::{input_model, Envelope, SpeedProfile, TransientInput};
 
     /// The quarter car accelerating from 5 to 15 m/s on a w = 2 road (every step's table differs).
     fn accelerating_car() -> TimeVaryingSystem {
-        let car = QuarterCar {
-            sprung_mass: 400.0,
-            unsprung_mass: 40.0,
-            suspension_stiffness: 20e3,
-            suspension_damping: 1.5e3,
-            tyre_stiffness: 200e3,
-            tyre_damping: 0.0,
+        // the catalogue quarter car's equations, built on the system layer (models sit above transient)
+        let element = |name: &str, point: Vec<f64>, to: Attach, stiffness: f64, damping: f64| Element {
+            name: name.into(),
+            point,
+            to,
+            stiffness,
+            damping,
         };
-        let mdof = car.build().unwrap().system().unwrap();
+        let els = vec![
+            element("suspension", vec![1.0, 0.0], Attach::Point(vec![0.0, 1.0]), 20e3, 1.5e3),
+            element("tyre", vec![0.0, 1.0], Attach::Base(0), 200e3, 0.0),
+        ];
+        let mdof = Mdof::from_elements(&[("body", "m"), ("wheel", "m")], &[400.0, 40.0], els, 1, &[])
+            .unwrap()
+            .with_output("body_acc", Quantity::Acceleration(vec![1.0, 0.0]))
+            .unwrap()
+            .with_output("travel", Quantity::Deflection(0))
+            .unwrap();
         let road = PowerLaw::iso8608(IsoClass::D, IsoBound::GeometricMean, None).unwrap();
         let v = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
         let ss = mdof.state_space().unwrap().clone();
