@@ -142,7 +142,7 @@ pub fn harmonic_band_rms(amplitude: f64, f_hz: f64) -> Vec<f64> {
 /// ```
 /// use stochvib::models::operator_seat::{example_7_2, random_band_rms};
 /// use stochvib::response::Excitation;
-/// use stochvib::spectrum::{BandWhite, Convention, Domain};
+/// use stochvib::spectrum::{BandWhiteParameters, Convention, Domain};
 /// let (seat, _, _) = example_7_2();
 /// let g = BandWhiteParameters {
 ///     convention: Convention::OneSidedCyclic,

@@ -17,7 +17,7 @@ use crate::error::{require_non_negative, Error, Result};
 ///
 /// # Examples
 /// ```
-/// use stochvib::spectrum::{BandWhite, Convention, Domain, Spectrum};
+/// use stochvib::spectrum::{BandWhiteParameters, Convention, Domain, Spectrum};
 /// // A one-sided 1e-3 m²/Hz level from 1 Hz to 10 Hz: variance 9e-3 m².
 /// let w = BandWhiteParameters {
 ///     convention: Convention::OneSidedCyclic,

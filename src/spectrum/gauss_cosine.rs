@@ -19,7 +19,7 @@ use std::f64::consts::PI;
 ///
 /// # Examples
 /// ```
-/// use stochvib::spectrum::{GaussCosine, Domain, Spectrum};
+/// use stochvib::spectrum::{Domain, GaussCosineParameters, Spectrum};
 /// let s = GaussCosineParameters { variance: 1.0, alpha: 0.5, beta: 3.0, domain: Domain::Temporal }.build().unwrap();
 /// assert!((s.correlation(1.0).unwrap() - (-0.5f64).exp() * 3.0f64.cos()).abs() < 1e-15);
 /// ```

@@ -56,7 +56,7 @@ const MAX_ZERO_BREAKPOINTS: usize = 256;
 ///
 /// # Examples
 /// ```
-/// use stochvib::spectrum::{Domain, MovingAverage, PowerLaw, Spectrum};
+/// use stochvib::spectrum::{Domain, MovingAverage, PowerLawParameters, Spectrum};
 /// use std::sync::Arc;
 /// let band = Some((0.011, 30.0));
 /// let road = PowerLawParameters { g0: 64e-6, n0: 0.1, waviness: 2.0, band, domain: Domain::Spatial };
