@@ -13,7 +13,6 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use std::f64::consts::PI;
 use std::sync::Arc;
-use stochvib::models::half_car::HalfCar;
 use stochvib::quad::QuadResult;
 use stochvib::quad_oscillatory::{integrate_oscillatory, wynn_epsilon, OscillatoryOptions};
 use stochvib::response::{
@@ -270,18 +269,7 @@ fn first_order_two_inputs_gaussian_closed_form() {
 /// `spectral_moment_quadrature`: no splitting, no half-period sums), which converges on a finite range.
 #[test]
 fn iso_band_limited_road_matches_plain_adaptive_quadrature() {
-    let car = HalfCar {
-        mass: 1490.0,
-        radius_of_gyration: 1.23,
-        front_distance: 1.42,
-        rear_distance: 1.28,
-        front_stiffness: 3.2e4,
-        rear_stiffness: 4.3e4,
-        front_damping: 2.2e3,
-        rear_damping: 2.6e3,
-    }
-    .build()
-    .unwrap();
+    let car = common::damped_book_half_car();
     let sys = car.mdof(0.9).unwrap();
     let l = car.wheelbase();
     let opts = OscillatoryOptions::default();
@@ -620,18 +608,7 @@ fn three_equally_spaced_axles_share_a_lag() {
 /// Lyapunov equation of the system with both shaping filters).
 #[test]
 fn independent_inputs_match_variance_lyapunov() {
-    let car = HalfCar {
-        mass: 1490.0,
-        radius_of_gyration: 1.23,
-        front_distance: 1.42,
-        rear_distance: 1.28,
-        front_stiffness: 3.2e4,
-        rear_stiffness: 4.3e4,
-        front_damping: 2.2e3,
-        rear_damping: 2.6e3,
-    }
-    .build()
-    .unwrap();
+    let car = common::damped_book_half_car();
     let sys = car.mdof(0.9).unwrap();
     let front: Arc<dyn Spectrum> =
         Arc::new(AtSpeed::new(Arc::new(Exponential::new(1e-4, 0.1, Domain::Spatial).unwrap()), 11.0).unwrap());
@@ -728,18 +705,7 @@ fn acceleration_under_delayed_type1_road_is_divergent() {
 /// which must reproduce the one-copy answer: (Σ𝒞_g) P (Σ𝒞_g)ᵀ = Σ_gh 𝒞_g P₂ 𝒞_hᵀ.
 #[test]
 fn equal_delays_reduce_to_variance_lyapunov() {
-    let car = HalfCar {
-        mass: 1490.0,
-        radius_of_gyration: 1.23,
-        front_distance: 1.42,
-        rear_distance: 1.28,
-        front_stiffness: 3.2e4,
-        rear_stiffness: 4.3e4,
-        front_damping: 2.2e3,
-        rear_damping: 2.6e3,
-    }
-    .build()
-    .unwrap();
+    let car = common::damped_book_half_car();
     let sys = car.mdof(0.9).unwrap();
     let spatial = Arc::new(
         ExpCosine {

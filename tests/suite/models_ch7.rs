@@ -351,18 +351,7 @@ fn half_car_decoupled_cases_have_pure_modes() {
 fn half_car_track_instance_matches_book_7_31_in_axle_coordinates() {
     // Independent route: a direct 2×2 complex solve of (7.31) with dampers in the axle coordinates (z₁, z₂)
     // with the book's masses M₁, M₂, M₃; then z = (a z₂ + b z₁)/L and φ = (z₁ − z₂)/L (7.28).
-    let car = HalfCar {
-        mass: 1490.0,
-        radius_of_gyration: 1.23,
-        front_distance: 1.42,
-        rear_distance: 1.28,
-        front_stiffness: 3.2e4,
-        rear_stiffness: 4.3e4,
-        front_damping: 2.2e3,
-        rear_damping: 2.6e3,
-    }
-    .build()
-    .unwrap();
+    let car = common::damped_book_half_car();
     let xp = 0.9;
     let inst = car.instance(xp).unwrap();
     let l = car.wheelbase();

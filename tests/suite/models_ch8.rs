@@ -402,6 +402,23 @@ fn idler_ratio_formula_and_limits() {
 // ------------------------------------------------------------------------------------------------
 // Scraper (8.7)
 
+/// The sprung-cab scraper (8.7) that three tests below share: m₁ = 30 t, c₁ = 10 MN/m, b₁ = 110 kN s/m,
+/// m₂ = 2 t, c₂ = 180 kN/m, b₂ = 11 kN s/m.
+fn sprung_cab() -> stochvib::models::ModelInstance {
+    ScraperSprungCab {
+        m1: 3.0e4,
+        c1: 1.0e7,
+        b1: 1.1e5,
+        m2: 2.0e3,
+        c2: 1.8e5,
+        b2: 1.1e4,
+    }
+    .build()
+    .unwrap()
+    .instance()
+    .unwrap()
+}
+
 fn rigid(w0: f64, zeta: f64) -> ScraperRigidCab {
     let m1 = 3.0e4;
     let c1 = m1 * w0 * w0;
@@ -435,18 +452,7 @@ fn scraper_rigid_acceleration_divergence() {
     assert!(printed[1].sigma.is_none());
     // the sprung cab's acceleration stays finite under (8.69) (|H_ẍ2|² → const, road ∝ ω⁻²) while x1_acc
     // diverges as for the rigid cab
-    let s = ScraperSprungCab {
-        m1: 3.0e4,
-        c1: 1.0e7,
-        b1: 1.1e5,
-        m2: 2.0e3,
-        c2: 1.8e5,
-        b2: 1.1e4,
-    }
-    .build()
-    .unwrap()
-    .instance()
-    .unwrap();
+    let s = sprung_cab();
     let st = respond(&s, book_road_8_69(), 10.0).unwrap();
     assert!(st[2].sigma.is_none() && st[3].sigma.is_some());
 }
@@ -478,18 +484,7 @@ fn scraper_consistent_road_methods_agree() {
     let road = AtSpeed::new(book_road_8_66(Form::Consistent).unwrap(), 10.0).unwrap();
     let exc = Excitation::single(Arc::new(road), 0.0).unwrap();
     let r = rigid(18.5, 0.1).instance().unwrap();
-    let s = ScraperSprungCab {
-        m1: 3.0e4,
-        c1: 1.0e7,
-        b1: 1.1e5,
-        m2: 2.0e3,
-        c2: 1.8e5,
-        b2: 1.1e4,
-    }
-    .build()
-    .unwrap()
-    .instance()
-    .unwrap();
+    let s = sprung_cab();
     for inst in [&r, &s] {
         let sys = inst.system.as_ref();
         for i in 0..sys.outputs().len() {
@@ -534,18 +529,7 @@ fn scraper_sprung_response_explicit() {
 /// = 3.5 cm and σ_ẍ → 0 like v^{3/2}; at v = 0.01 m/s the temporal corner β v = 0.12 rad/s gives errors O((βv/ω₀)²).
 #[test]
 fn scraper_quasi_static_limit() {
-    let s = ScraperSprungCab {
-        m1: 3.0e4,
-        c1: 1.0e7,
-        b1: 1.1e5,
-        m2: 2.0e3,
-        c2: 1.8e5,
-        b2: 1.1e4,
-    }
-    .build()
-    .unwrap()
-    .instance()
-    .unwrap();
+    let s = sprung_cab();
     let stats = respond(&s, book_road_8_66(Form::Consistent).unwrap(), 0.01).unwrap();
     assert!(rel(stats[0].sigma.unwrap(), 0.035) < QUASI_STATIC);
     assert!(rel(stats[1].sigma.unwrap(), 0.035) < QUASI_STATIC);
