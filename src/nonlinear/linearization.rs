@@ -487,7 +487,7 @@ impl Route1 {
         (0..self.n_outputs)
             .map(|r| {
                 let mut st = analyze_output_with(&self.equivalent, exc, r, effort)?;
-                st.mean = Some(self.output_means[r]);
+                st.values.mean = Some(self.output_means[r]);
                 Ok(st)
             })
             .collect()

@@ -46,7 +46,7 @@
 //! a white part and λ₂ = ∞). H_i(0) is tested with the tolerance of the low-frequency asymptote
 //! ([`FrequencyResponse::low_frequency`] of a state space: 10⁻¹²(‖D‖ + ‖C‖‖A⁻¹b‖)).
 
-use super::statistics::VarianceMethod;
+use super::statistics::{PointStatistics, VarianceMethod};
 use super::variance::{
     lyapunov_outputs, moments_of, spectral_moment_quadrature, variance_quadrature, AugmentedSystem, LyapunovMoments,
     INTEGRAL_TABLE_MAX_ERROR,
@@ -60,42 +60,6 @@ use std::f64::consts::PI;
 
 /// Largest state count of the stack-based integral-table route (the table's order n + filter order ≤ 7).
 pub(crate) const MAX_STATES: usize = 7;
-
-/// The exact statistics of one output of one system (see [`ExactEvaluator`]): the one-route summary of a
-/// point of a parameter study, from which every table column (σ, 3σ bounds, ν₀⁺) is derived.
-///
-/// Not the same type as [`ResponseStatistics`](super::ResponseStatistics), the report of one analysis:
-/// that one holds every method's outcome with their agreement, λ₄ and the bandwidth, and why a value is
-/// missing; this one holds the values of one exact route only (four words, for 10⁶ points). The derived
-/// quantities (the bounds M ± kσ, ν₀⁺) are computed by the same functions in both.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct PointStatistics {
-    /// M_y = H(0)·M_u (None when the static gain is infinite).
-    pub mean: Option<f64>,
-    /// D_y (None when it is infinite: see [`ExactEvaluator::evaluate`]'s notes).
-    pub variance: Option<f64>,
-    /// λ₂ = ∫ω² S_y dω = Var(ẏ) (None when infinite or not computed).
-    pub lambda2: Option<f64>,
-    /// The route that computed the variance.
-    pub method: VarianceMethod,
-}
-
-impl PointStatistics {
-    /// σ_y = √D_y.
-    pub fn sigma(&self) -> Option<f64> {
-        self.variance.map(f64::sqrt)
-    }
-
-    /// The bounds M_y ± kσ_y (as [`ResponseStatistics::bounds`](super::ResponseStatistics::bounds)).
-    pub fn bounds(&self, k: f64) -> Option<(f64, f64)> {
-        super::statistics::bounds(self.mean, self.sigma(), k)
-    }
-
-    /// Zero up-crossing rate ν₀⁺ = (1/2π)√(λ₂/λ₀), 1/s (per metre for a spatial system).
-    pub fn zero_upcrossing_rate(&self) -> Option<f64> {
-        super::statistics::zero_upcrossing_rate(self.variance, self.lambda2)
-    }
-}
 
 /// The route an [`ExactEvaluator`] takes, decided from the excitation.
 #[derive(Debug, Clone)]

@@ -26,13 +26,14 @@ pub use delayed_quadrature::{
     moments_oscillatory, spectral_moment_oscillatory, variance_oscillatory, OscillatoryMoments,
 };
 pub use density::OutputDensity;
+pub use exact_evaluator::ExactEvaluator;
 pub(crate) use exact_evaluator::{lyapunov_point, Leverrier, TransferBuilder, TransferPolynomials};
-pub use exact_evaluator::{ExactEvaluator, PointStatistics};
 pub use excitation::Excitation;
 pub use outcome::Outcome;
 pub use sources::{InputMap, Source};
 pub use statistics::{
-    analyze_output, analyze_output_with, ResponseStatistics, VarianceMethod, VarianceValue, TABLE_AGREEMENT,
+    analyze_output, analyze_output_with, PointStatistics, ResponseStatistics, VarianceMethod, VarianceValue,
+    TABLE_AGREEMENT,
 };
 pub use variance::{augmented_system, AugmentedSystem};
 pub use variance::{

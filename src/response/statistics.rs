@@ -65,46 +65,72 @@ impl VarianceValue {
     }
 }
 
-/// The bounds M_y ± kσ_y, when both are finite numbers.
-pub(crate) fn bounds(mean: Option<f64>, sigma: Option<f64>, k: f64) -> Option<(f64, f64)> {
-    let (m, s) = (mean?, sigma?);
-    Some((m - k * s, m + k * s))
+/// The statistics of one output of one system under one excitation: M_y, D_y, λ₂ and the method that
+/// gave D_y. The one statistics type from `response` to the parameter-study table and its files:
+/// [`ExactEvaluator`](super::ExactEvaluator) computes it by one exact route per point (four words, no heap,
+/// for 10⁶ points), [`analyze_output`] as the reference values of a full analysis
+/// ([`ResponseStatistics::values`]), the sweep table's rows hold it and write its columns (σ, 3σ bounds,
+/// ν₀⁺ are derived from it here).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PointStatistics {
+    /// M_y = H(0)·M_u (None when the static gain is infinite).
+    pub mean: Option<f64>,
+    /// D_y (None when it is infinite: see [`ExactEvaluator::evaluate`](super::ExactEvaluator::evaluate)'s
+    /// notes, or has no value).
+    pub variance: Option<f64>,
+    /// λ₂ = ∫ω² S_y dω = Var(ẏ) (None when infinite or not computed).
+    pub lambda2: Option<f64>,
+    /// The route that computed the variance (for an analysis without a variance value: the method whose
+    /// outcome says why).
+    pub method: VarianceMethod,
 }
 
-/// Rice's zero (mean-level) up-crossing rate ν₀⁺ = (1/2π)√(λ₂/λ₀) from the variance λ₀ and λ₂; none
-/// without both or for λ₀ = 0.
-pub(crate) fn zero_upcrossing_rate(variance: Option<f64>, lambda2: Option<f64>) -> Option<f64> {
-    match (variance, lambda2) {
-        (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * PI)),
-        _ => None,
+impl PointStatistics {
+    /// σ_y = √D_y.
+    pub fn sigma(&self) -> Option<f64> {
+        self.variance.map(f64::sqrt)
+    }
+
+    /// The bounds M_y ± kσ_y (k = 3: two-sided probability 0.9973 for a Gaussian output).
+    pub fn bounds(&self, k: f64) -> Option<(f64, f64)> {
+        let (m, s) = (self.mean?, self.sigma()?);
+        Some((m - k * s, m + k * s))
+    }
+
+    /// Rice's zero (mean-level) up-crossing rate ν₀⁺ = (1/2π)√(λ₂/λ₀), 1/s (per metre for a spatial
+    /// system); none without both moments or for λ₀ = 0.
+    pub fn zero_upcrossing_rate(&self) -> Option<f64> {
+        match (self.variance, self.lambda2) {
+            (Some(l0), Some(l2)) if l0 > 0.0 => Some((l2 / l0).sqrt() / (2.0 * PI)),
+            _ => None,
+        }
     }
 }
 
-/// Statistics of one output: the report of one analysis, every variance method with its outcome and
-/// their agreement.
+/// The report of one analysis of one output: its statistics ([`PointStatistics`], which a
+/// `ResponseStatistics` dereferences to: `st.mean`, `st.variance`, `st.lambda2`, `st.method`,
+/// `st.bounds(3.0)`) with the evidence behind them — every variance method's outcome and their agreement,
+/// why a value is missing, λ₄ and the bandwidth ε, the output's name and unit.
 ///
-/// The fast path of parameter studies and optimisation computes one exact route per point instead:
-/// [`PointStatistics`](super::PointStatistics), a separate type because it holds four words where this
-/// one holds every method's outcome and why a value is missing. Their shared derived quantities (the
-/// bounds M ± kσ, ν₀⁺) are computed by the same functions.
-#[derive(Debug, Clone, Serialize)]
+/// Its JSON (`stochvib analyze --json`) is flat, in the order of the fields below with `mean` first after
+/// the unit and `variance`, `lambda2` at their places (the statistics' `method` is not written: `methods`
+/// holds every method's outcome).
+#[derive(Debug, Clone)]
 pub struct ResponseStatistics {
     /// Output name.
     pub name: String,
     /// SI unit.
     pub unit: String,
-    /// Mean M_y = H(0) M_u (None when the static gain is infinite).
-    pub mean: Option<f64>,
+    /// The statistics: mean M_y = H(0) M_u (None when the static gain is infinite), the reference variance
+    /// (the first exact route with a value, else quadrature), λ₂ (the exact route where it applies, else
+    /// quadrature) and the method of the reference variance.
+    pub values: PointStatistics,
     /// Every method's variance.
     pub methods: Vec<VarianceValue>,
-    /// Reference variance (the first exact route with a value, else quadrature).
-    pub variance: Option<f64>,
     /// Why the variance is what it is (a value, infinite, not converged, not available).
     pub variance_outcome: Outcome,
     /// σ_y.
     pub sigma: Option<f64>,
-    /// λ₂ = ∫ω² S_y dω (variance of the derivative).
-    pub lambda2: Option<f64>,
     /// How λ₂ came out.
     pub lambda2_outcome: Outcome,
     /// λ₄ = ∫ω⁴ S_y dω.
@@ -115,6 +141,53 @@ pub struct ResponseStatistics {
     pub zero_upcrossing_rate: Option<f64>,
     /// Bandwidth parameter ε = √(1 − λ₂²/(λ₀λ₄)) (0 narrow-band, 1 broad-band).
     pub bandwidth: Option<f64>,
+}
+
+impl std::ops::Deref for ResponseStatistics {
+    type Target = PointStatistics;
+    fn deref(&self) -> &PointStatistics {
+        &self.values
+    }
+}
+
+/// The JSON layout of [`ResponseStatistics`]: its fields with the statistics' `mean`, `variance` and
+/// `lambda2` at their places.
+#[derive(Serialize)]
+struct ResponseStatisticsJson<'a> {
+    name: &'a str,
+    unit: &'a str,
+    mean: Option<f64>,
+    methods: &'a [VarianceValue],
+    variance: Option<f64>,
+    variance_outcome: &'a Outcome,
+    sigma: Option<f64>,
+    lambda2: Option<f64>,
+    lambda2_outcome: &'a Outcome,
+    lambda4: Option<f64>,
+    lambda4_outcome: &'a Outcome,
+    zero_upcrossing_rate: Option<f64>,
+    bandwidth: Option<f64>,
+}
+
+impl Serialize for ResponseStatistics {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        ResponseStatisticsJson {
+            name: &self.name,
+            unit: &self.unit,
+            mean: self.values.mean,
+            methods: &self.methods,
+            variance: self.values.variance,
+            variance_outcome: &self.variance_outcome,
+            sigma: self.sigma,
+            lambda2: self.values.lambda2,
+            lambda2_outcome: &self.lambda2_outcome,
+            lambda4: self.lambda4,
+            lambda4_outcome: &self.lambda4_outcome,
+            zero_upcrossing_rate: self.zero_upcrossing_rate,
+            bandwidth: self.bandwidth,
+        }
+        .serialize(s)
+    }
 }
 
 /// Analyses output `i` of `sys` under `exc` by every applicable method, with the default quadrature effort.
@@ -246,22 +319,7 @@ pub fn analyze_output_with(
             m.rel_diff = Some(crate::numbers::rel_diff(v, r));
         }
     }
-    // A divergence found by any method is the answer: never report a finite number for it.
-    let variance_outcome = match methods.iter().find(|m| m.outcome.is_divergent()) {
-        Some(m) => m.outcome.clone(),
-        None => match reference {
-            Some(v) => Outcome::Value {
-                value: v,
-                error_estimate: None,
-            },
-            // no value: the quadrature says best why (not converged, not applicable); else the exact route
-            None => [&methods[methods.len() - 1].outcome, &exact_outcome]
-                .into_iter()
-                .find(|o| matches!(o, Outcome::NotConverged { .. }))
-                .unwrap_or(&methods[methods.len() - 1].outcome)
-                .clone(),
-        },
-    };
+    let (variance_outcome, method) = variance_answer(&methods, exact_method);
     let variance = variance_outcome.value();
     let mean = sys.static_gain().map(|g| {
         let mu = exc.means();
@@ -291,7 +349,12 @@ pub fn analyze_output_with(
     let lambda2_outcome = not_without("λ₂", l2o, &variance_outcome);
     let lambda4_outcome = not_without("λ₄", l4o, &lambda2_outcome);
     let (lambda2, lambda4) = (lambda2_outcome.value(), lambda4_outcome.value());
-    let zero_upcrossing_rate = zero_upcrossing_rate(variance, lambda2);
+    let values = PointStatistics {
+        mean,
+        variance,
+        lambda2,
+        method,
+    };
     let bandwidth = match (variance, lambda2, lambda4) {
         (Some(l0), Some(l2), Some(l4)) if l0 > 0.0 && l4 > 0.0 => Some((1.0 - l2 * l2 / (l0 * l4)).max(0.0).sqrt()),
         _ => None,
@@ -299,26 +362,42 @@ pub fn analyze_output_with(
     Ok(ResponseStatistics {
         name: info.name,
         unit: info.unit,
-        mean,
+        values,
         methods,
-        variance,
         variance_outcome,
-        sigma: variance.map(f64::sqrt),
-        lambda2,
+        sigma: values.sigma(),
         lambda2_outcome,
         lambda4,
         lambda4_outcome,
-        zero_upcrossing_rate,
+        zero_upcrossing_rate: values.zero_upcrossing_rate(),
         bandwidth,
     })
 }
 
-impl ResponseStatistics {
-    /// The bounds M_y ± kσ_y (k = 3: two-sided probability 0.9973 for a Gaussian output).
-    pub fn bounds(&self, k: f64) -> Option<(f64, f64)> {
-        bounds(self.mean, self.sigma, k)
+/// The reference variance's outcome and method. A divergence found by any method is the answer (never a
+/// finite number for it); else the first method with a value; with none, the quadrature (the last method)
+/// says best why (not converged, not applicable), unless only the exact route did not converge.
+fn variance_answer(methods: &[VarianceValue], exact_method: VarianceMethod) -> (Outcome, VarianceMethod) {
+    if let Some(m) = methods.iter().find(|m| m.outcome.is_divergent()) {
+        return (m.outcome.clone(), m.method);
     }
+    if let Some((value, m)) = methods.iter().find_map(|m| Some((m.value()?, m.method))) {
+        let outcome = Outcome::Value {
+            value,
+            error_estimate: None,
+        };
+        return (outcome, m);
+    }
+    let quadrature = &methods[methods.len() - 1];
+    let exact = methods.iter().find(|m| m.method == exact_method).unwrap_or(quadrature);
+    let why = [quadrature, exact]
+        .into_iter()
+        .find(|m| matches!(m.outcome, Outcome::NotConverged { .. }))
+        .unwrap_or(quadrature);
+    (why.outcome.clone(), why.method)
+}
 
+impl ResponseStatistics {
     /// Rice's rate of up-crossings of level `a`: ν_a⁺ = ν₀⁺ exp(−(a − M_y)²/(2σ_y²)).
     pub fn upcrossing_rate(&self, a: f64) -> Option<f64> {
         let (m, s, n0) = (self.mean?, self.sigma?, self.zero_upcrossing_rate?);

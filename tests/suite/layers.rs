@@ -162,25 +162,52 @@ const EVALUATION: &[&str] = &["response", "system", "quad", "quad_oscillatory", 
 /// `plot/` only draws: no file of it uses an evaluation module ([`EVALUATION`]), by `use` or inline path.
 #[test]
 fn plot_uses_no_evaluation_module() {
-    let mut files = Vec::new();
-    rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src/plot"), &mut files);
-    files.sort();
-    assert!(files.len() > 5, "found only {} files in src/plot", files.len());
-    let mut found = Vec::new();
-    for f in &files {
-        let text = std::fs::read_to_string(f).unwrap();
-        let joined: String = text.lines().map(code).collect::<Vec<_>>().join(" ");
-        let mut used: Vec<String> = text.lines().flat_map(|l| crate_paths(code(l))).collect();
-        used.extend(grouped(&joined));
-        for t in used.iter().filter(|t| EVALUATION.contains(&t.as_str())) {
-            found.push(format!("{}: uses `crate::{t}`", f.display()));
-        }
-    }
+    let found: Vec<String> = paths_used_under("plot")
+        .iter()
+        .filter(|(_, t)| EVALUATION.contains(&t.as_str()))
+        .map(|(f, t)| format!("{}: uses `crate::{t}`", f.display()))
+        .collect();
     assert!(
         found.is_empty(),
         "plot/ evaluates instead of drawing:\n{}",
         found.join("\n")
     );
+}
+
+/// What `store/` may use: the base layer's errors, numbers, units, file fields and file rules, and the
+/// estimators' [`Interval`](stochvib::estimate::Interval) it stores. Not the numerics (`quad`, `linalg`),
+/// not spectra, systems or response statistics: it stores and reads back what the layers above computed.
+const STORE_USES: &[&str] = &["error", "numbers", "units", "fields", "io_rules", "estimate", "store"];
+
+/// The crate paths the files under `src/<dir>` use (by `use` or inline path), with the file.
+fn paths_used_under(dir: &str) -> Vec<(PathBuf, String)> {
+    let mut files = Vec::new();
+    rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src").join(dir), &mut files);
+    files.sort();
+    assert!(files.len() > 5, "found only {} files in src/{dir}", files.len());
+    let mut out = Vec::new();
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let joined: String = text.lines().map(code).collect::<Vec<_>>().join(" ");
+        let mut used: Vec<String> = text.lines().flat_map(|l| crate_paths(code(l))).collect();
+        used.extend(grouped(&joined));
+        out.extend(used.into_iter().map(|t| (f.clone(), t)));
+    }
+    out
+}
+
+/// `store/` only stores: every crate module it uses is one of [`STORE_USES`] (crate-root items such as
+/// `crate::Result` aside).
+#[test]
+fn store_uses_only_files_and_intervals() {
+    let used = paths_used_under("store");
+    assert!(used.len() > 10, "found only {} crate paths in src/store", used.len());
+    let found: Vec<String> = used
+        .iter()
+        .filter(|(_, t)| layer_of(t).is_some() && !STORE_USES.contains(&t.as_str()))
+        .map(|(f, t)| format!("{}: uses `crate::{t}`", f.display()))
+        .collect();
+    assert!(found.is_empty(), "store/ does more than store:\n{}", found.join("\n"));
 }
 
 /// The scanner itself: a known upward import is found, comments are ignored.

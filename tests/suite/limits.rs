@@ -128,8 +128,28 @@ fn a_json_table_larger_than_memory_is_refused() {
         &d,
     );
     assert!(e.contains("of memory") && e.contains(".csv or .h5"), "{e}");
+    // the limit it met: the memory needed and the memory available, and the flag that sets the points
+    assert!(
+        e.contains("needs about") && e.contains("are available") && e.contains("--param"),
+        "{e}"
+    );
     assert!(listing(&d).is_empty());
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The memory a JSON study is sized by holds per row (point × output) its `OutputValues` and the evaluated
+/// `PointStatistics` by value, no heap: `PointStatistics` is three `Option<f64>` (16 bytes each: tag and
+/// value at 8-byte alignment) and a one-byte method enum, 56 bytes after padding; the Monte Carlo values
+/// are three `f64` and a `bool` (32 bytes, the `bool` leaving a niche for the `Option`); 56 + 32 = 88 bytes
+/// a row, 144 with the evaluated statistics (docs/library.md, "Statistics types").
+#[test]
+fn a_json_table_row_holds_the_point_statistics_by_value() {
+    use std::mem::size_of;
+    use stochvib::response::PointStatistics;
+    use stochvib::study::sweep_table::{McValues, OutputValues};
+    assert_eq!(size_of::<PointStatistics>(), 56);
+    assert_eq!(size_of::<Option<McValues>>(), 32);
+    assert_eq!(size_of::<OutputValues>() + size_of::<PointStatistics>(), 144);
 }
 
 /// `simulate` prints its estimate before the work, and refuses a run whose computing time (a lower bound:

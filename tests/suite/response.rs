@@ -9,7 +9,8 @@ use proptest::prelude::*;
 use std::f64::consts::PI;
 use std::sync::Arc;
 use stochvib::response::{
-    analyze_output, band_variance, variance_integral_table, variance_lyapunov, variance_quadrature, Excitation,
+    analyze_output, band_variance, variance_integral_table, variance_lyapunov, variance_quadrature, ExactEvaluator,
+    Excitation, PointStatistics, VarianceMethod,
 };
 use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosineParameters, RationalSpectrum, Spectrum};
 use stochvib::system::{
@@ -55,6 +56,92 @@ fn sdof_white_noise_closed_form() {
         // λ₄ (acceleration variance) diverges for white noise through an SDOF displacement
         assert!(matches!(l.lambda4, Err(Error::Divergent { .. })));
     }
+}
+
+/// The keys of the top-level object of compact JSON `text`, in their order (as written, escapes kept).
+fn top_level_keys(text: &str) -> Vec<String> {
+    let (mut keys, mut key) = (Vec::new(), String::new());
+    let (mut depth, mut in_string, mut escaped, mut at_key) = (0, false, false, false);
+    for c in text.chars() {
+        if in_string {
+            if !escaped && c == '"' {
+                in_string = false;
+                if at_key {
+                    keys.push(std::mem::take(&mut key));
+                    at_key = false;
+                }
+            } else {
+                escaped = !escaped && c == '\\';
+                if at_key {
+                    key.push(c);
+                }
+            }
+            continue;
+        }
+        match c {
+            '"' => in_string = true,
+            '{' | '[' => {
+                depth += 1;
+                at_key = c == '{' && depth == 1;
+            }
+            '}' | ']' => depth -= 1,
+            ',' => at_key = depth == 1,
+            _ => {}
+        }
+    }
+    keys
+}
+
+/// An analysis and a parameter study carry one statistics type, [`PointStatistics`]: under ideal white
+/// noise an SDOF oscillator has σ² = πS₀/(2ζω_n³) and λ₂ = πS₀/(2ζω_n) (closed forms of
+/// `sdof_white_noise_closed_form`); the analysis's statistics (`st.values`, read through `st.mean`,
+/// `st.variance`, `st.bounds(3.0)`) and the sweep evaluator's give them both, each naming its route (the
+/// analysis's reference is the first exact route, Lyapunov; the evaluator takes the integral table). The
+/// analysis's JSON (`analyze --json`) stays flat in its order, without the statistics' own `method`.
+#[test]
+fn analysis_and_sweep_share_one_statistics_type() {
+    let (wn, zeta, s0): (f64, f64, f64) = (10.0, 0.05, 2.0);
+    let (variance, lambda2) = (PI * s0 / (2.0 * zeta * wn.powi(3)), PI * s0 / (2.0 * zeta * wn));
+    let sys = sdof(wn, zeta);
+    let exc = Excitation::single(white(s0), 0.0).unwrap();
+    let st = analyze_output(&sys, &exc, 0).unwrap();
+    let fast = ExactEvaluator::new(&exc).evaluate(&sys, &exc, &[0]).unwrap()[0];
+    let point: PointStatistics = st.values;
+    assert_eq!(
+        (point.method, fast.method),
+        (VarianceMethod::Lyapunov, VarianceMethod::IntegralTable)
+    );
+    for p in [point, fast] {
+        assert_eq!(p.mean, Some(0.0));
+        assert!(rel(p.variance.unwrap(), variance) < FACTORISATION, "{p:?}");
+        assert!(rel(p.lambda2.unwrap(), lambda2) < FACTORISATION, "{p:?}");
+    }
+    assert_eq!(
+        (st.variance, st.sigma, st.bounds(3.0)),
+        (point.variance, point.sigma(), point.bounds(3.0))
+    );
+    assert_eq!(st.zero_upcrossing_rate, point.zero_upcrossing_rate());
+    let json = serde_json::to_string(&st).unwrap();
+    let order = [
+        "name",
+        "unit",
+        "mean",
+        "methods",
+        "variance",
+        "variance_outcome",
+        "sigma",
+        "lambda2",
+        "lambda2_outcome",
+        "lambda4",
+        "lambda4_outcome",
+        "zero_upcrossing_rate",
+        "bandwidth",
+    ];
+    assert_eq!(top_level_keys(&json), order, "{json}");
+    assert_eq!(
+        top_level_keys(r#"{"a":{"b":[1,{"c":2}]},"d\"e":"f,\"g","h":3}"#),
+        ["a", "d\\\"e", "h"]
+    );
 }
 
 /// Conveyor idler of textbook Example 8.1 (m = 100 kg, c = 70 kN/m, ζ = 0.2, σ_F = 2 kN, α = 0.5 1/s):
