@@ -14,8 +14,8 @@ use stochvib::scenario::{load_scenario, parse_scenario};
 use stochvib::spectrum::{Domain, Exponential, Spectrum};
 use stochvib::system::FrequencyResponse;
 use stochvib::transient::{
-    input_model, road_wheels_monte_carlo, solve, ExactOptions, FixedSystem, RoadGridOptions, SpeedProfile, Start,
-    TimeVaryingSystem, TransientInput, Wheel, WheelRoad,
+    input_model, road_wheels_monte_carlo, solve, ConstantAcceleration, ExactOptions, FixedSystem, RoadGridOptions,
+    SpeedProfile, Start, TimeVaryingSystem, TransientInput, Wheel, WheelRoad,
 };
 
 /// The two-sided χ² bounds of s²/σ² for R realizations at the level 1 − α/2 each side.
@@ -168,7 +168,14 @@ fn two_tracks_of_constant_coherence_accelerating_against_the_exact_route() {
     let sc = parse_scenario(&text, Path::new("t.toml"), &root().join("spectra")).unwrap();
     let ss = sc.model.system.state_space().unwrap().clone();
     let spectrum: Arc<dyn Spectrum> = Arc::new(Exponential::new(1e-4, 0.2, Domain::Spatial).unwrap());
-    let speed = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
+    let speed = ConstantAcceleration {
+        from_m_s: 5.0,
+        to_m_s: 15.0,
+        acceleration_m_s2: 1.0,
+        start_s: 0.0,
+    }
+    .build()
+    .unwrap();
     let times: Vec<f64> = (0..17).map(|k| 0.5 * k as f64).collect();
     let (a, b) = (((1.0 + rho) / 2.0).sqrt(), ((1.0 - rho) / 2.0).sqrt());
     let model = || input_model(spectrum.as_ref(), Some(&speed)).unwrap();
