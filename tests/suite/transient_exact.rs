@@ -3,6 +3,7 @@
 //! rest, first-order systems under ramped white noise, a quarter car accelerating on a w = 2 road (its
 //! stationary ends in closed form), and a stationary input through the non-stationary path.
 
+use crate::common;
 use crate::common::rel;
 use crate::common::tolerance::{
     ADAPTIVE_ROUTE, ERROR_ESTIMATE_FROM_REST, EXACT_TRANSITIONS, PRINTED_8_DIGITS, QUADRATURE,
@@ -298,14 +299,7 @@ fn quarter_car_accelerating_on_a_w2_road() {
     let mdof = car.system().unwrap();
     let ss = mdof.state_space().unwrap().clone();
     let road = PowerLaw::iso8608(IsoClass::D, IsoBound::GeometricMean, None).unwrap();
-    let v = ConstantAcceleration {
-        from_m_s: 5.0,
-        to_m_s: 15.0,
-        acceleration_m_s2: 1.0,
-        start_s: 0.0,
-    }
-    .build()
-    .unwrap();
+    let v = common::accelerating_5_to_15();
     let model = input_model(&road, Some(&v)).unwrap();
     assert!(matches!(model, InputModel::WhiteSlope { .. }));
     let sys = system(ss, model, Envelope::unit());

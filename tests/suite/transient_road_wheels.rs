@@ -3,6 +3,7 @@
 //! tracks synthesised with their coherence, against the stationary quadrature at constant speed and
 //! against the exact route of the bounce and roll combinations while accelerating.
 
+use crate::common;
 use crate::common::root;
 use std::path::Path;
 use std::sync::Arc;
@@ -14,8 +15,8 @@ use stochvib::scenario::{load_scenario, parse_scenario};
 use stochvib::spectrum::{Domain, Exponential, Spectrum};
 use stochvib::system::FrequencyResponse;
 use stochvib::transient::{
-    input_model, road_wheels_monte_carlo, solve, ConstantAcceleration, ExactOptions, FixedSystem, RoadGridOptions,
-    SpeedProfile, Start, TimeVaryingSystem, TransientInput, Wheel, WheelRoad,
+    input_model, road_wheels_monte_carlo, solve, ExactOptions, FixedSystem, RoadGridOptions, SpeedProfile, Start,
+    TimeVaryingSystem, TransientInput, Wheel, WheelRoad,
 };
 
 /// The two-sided χ² bounds of s²/σ² for R realizations at the level 1 − α/2 each side.
@@ -168,14 +169,7 @@ fn two_tracks_of_constant_coherence_accelerating_against_the_exact_route() {
     let sc = parse_scenario(&text, Path::new("t.toml"), &root().join("spectra")).unwrap();
     let ss = sc.model.system.state_space().unwrap().clone();
     let spectrum: Arc<dyn Spectrum> = Arc::new(Exponential::new(1e-4, 0.2, Domain::Spatial).unwrap());
-    let speed = ConstantAcceleration {
-        from_m_s: 5.0,
-        to_m_s: 15.0,
-        acceleration_m_s2: 1.0,
-        start_s: 0.0,
-    }
-    .build()
-    .unwrap();
+    let speed = common::accelerating_5_to_15();
     let times: Vec<f64> = (0..17).map(|k| 0.5 * k as f64).collect();
     let (a, b) = (((1.0 + rho) / 2.0).sqrt(), ((1.0 - rho) / 2.0).sqrt());
     let model = || input_model(spectrum.as_ref(), Some(&speed)).unwrap();

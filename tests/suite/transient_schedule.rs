@@ -3,6 +3,7 @@
 //! unstable schedule named by its time, speed profiles that are not functions of time or negative,
 //! envelopes that are not finite, and inputs without an exact route.
 
+use crate::common;
 use crate::common::rel;
 use crate::common::tolerance::PRINTED_6_DIGITS;
 use nalgebra::{DMatrix, DVector};
@@ -161,14 +162,7 @@ fn bad_profiles_and_envelopes_are_refused_by_name() {
 /// refused by name.
 #[test]
 fn inputs_without_an_exact_route_say_so() {
-    let v = ConstantAcceleration {
-        from_m_s: 5.0,
-        to_m_s: 15.0,
-        acceleration_m_s2: 1.0,
-        start_s: 0.0,
-    }
-    .build()
-    .unwrap();
+    let v = common::accelerating_5_to_15();
     let banded = PowerLaw::iso8608(IsoClass::C, IsoBound::GeometricMean, Some((0.011, 2.83))).unwrap();
     match input_model(&banded, Some(&v)) {
         Err(Error::NotApplicable { reason, .. }) => assert!(reason.contains("use Monte Carlo"), "{reason}"),
