@@ -201,10 +201,13 @@ impl SpectralMoments {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::fatigue::SpectralMoments;
+    /// use stochvib::fatigue::OneSidedHzMoments;
     /// // A pure tone of variance 1 at 10 Hz: m_j = 10^j, every α = 1.
-    /// let m = OneSidedHzMoments { m0: 1.0, m1: 10.0, m2: 100.0, m4: 1e4 }.build().unwrap()
-    ///     .with_fractional(10f64.powf(0.75), 10f64.powf(1.5)).unwrap();
+    /// let m = OneSidedHzMoments { m0: 1.0, m1: 10.0, m2: 100.0, m4: 1e4 }
+    ///     .build()
+    ///     .unwrap()
+    ///     .with_fractional(10f64.powf(0.75), 10f64.powf(1.5))
+    ///     .unwrap();
     /// assert!((m.alpha_0_75().unwrap() - 1.0).abs() < 1e-12);
     /// ```
     pub fn with_fractional(mut self, m0_75: f64, m1_5: f64) -> Result<Self> {
