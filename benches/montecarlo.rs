@@ -23,7 +23,9 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
 use std::time::Duration;
 use stochvib::models::scraper::book_road_8_69;
-use stochvib::simulate::{shaping_simulator, stream, Amplitudes, RoadTrack, SampledSystem, SpectralGenerator};
+use stochvib::simulate::{
+    shaping_simulator, stream, Amplitudes, RoadTrack, RoadTrackGrid, SampledSystem, SpectralGenerator,
+};
 
 const N: usize = 1 << 16;
 
@@ -66,14 +68,20 @@ fn generators(c: &mut Criterion) {
     // the road (8.69) at 10 m/s, two wheels 2.5 m apart
     let spatial = book_road_8_69();
     let dt = 0.005;
+    let grid = RoadTrackGrid {
+        speed: SPEED,
+        dt,
+        n: N,
+        offsets: &[0.0, 2.5],
+    };
     let tracks = [
         (
             "road_spectral_2_wheels",
-            RoadTrack::spectral(spatial.as_ref(), SPEED, dt, N, &[0.0, 2.5], Amplitudes::Rayleigh).unwrap(),
+            RoadTrack::spectral(spatial.as_ref(), grid, Amplitudes::Rayleigh).unwrap(),
         ),
         (
             "road_shaping_2_wheels",
-            RoadTrack::shaping(spatial.as_ref(), SPEED, dt, N, &[0.0, 2.5]).unwrap(),
+            RoadTrack::shaping(spatial.as_ref(), grid).unwrap(),
         ),
     ];
     g.throughput(Throughput::Elements(2 * N as u64));

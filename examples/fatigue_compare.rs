@@ -14,7 +14,9 @@ use fatigue_signal::*;
 use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
-use stochvib::fatigue::{rainflow, Dirlik, RainflowCounter, SnCurve, SpectralMethod, SpectralMoments};
+use stochvib::fatigue::{
+    rainflow, Dirlik, OneSidedHzMoments, RainflowCounter, SnCurve, SpectralMethod, SpectralMoments,
+};
 
 fn arg<T: std::str::FromStr>(args: &[String], name: &str, default: T) -> T {
     args.iter()
@@ -79,7 +81,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     .build()?;
     let mut best_density = f64::INFINITY;
     let mut life = 0.0;
-    let mut m = SpectralMoments::new(1.0, 1.0, 1.0, 1.0)?;
+    let mut m = OneSidedHzMoments {
+        m0: 1.0,
+        m1: 1.0,
+        m2: 1.0,
+        m4: 1.0,
+    }
+    .build()?;
     for _ in 0..200 {
         let t = Instant::now();
         m = SpectralMoments::from_one_sided_hz(sdof_density, 0.0, SDOF_F_MAX, &[SDOF_FN])?;

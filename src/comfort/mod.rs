@@ -41,8 +41,8 @@ pub use exposure::{
     daily_exposure_a8, daily_exposure_a8_periods, msdv, vdv_gaussian, vdv_total, ExposurePeriod, REFERENCE_DURATION_S,
 };
 pub use sampled::{
-    running_rms, BasicMethodCheck, Governing, SignalMetrics, SignalMetricsStream, CREST_FACTOR_LIMIT,
-    MTVV_INTEGRATION_TIME_S, MTVV_RATIO_LIMIT, VDV_RATIO_LIMIT,
+    running_rms, BasicMethodCheck, BasicMethodInputs, Governing, SignalMetrics, SignalMetricsStream,
+    CREST_FACTOR_LIMIT, MTVV_INTEGRATION_TIME_S, MTVV_RATIO_LIMIT, VDV_RATIO_LIMIT,
 };
 pub use verdict::{
     comfort_reactions, ComfortReaction, DirectiveLimits, ExposureVerdict, HealthGuidanceZone, LimitCheck, ZoneCheck,

@@ -132,13 +132,15 @@ pub fn running_rms(samples: &[f64], dt_s: f64, tau_s: f64) -> Result<Vec<f64>> {
 /// Gaussian signal has VDV/(a_w T^(1/4)) → 3^(1/4) = 1.32.
 ///
 /// # Errors
-/// [`BasicMethodCheck::new`] rejects non-finite or negative values and a non-positive duration.
+/// [`BasicMethodInputs::check`] rejects non-finite or negative values and a non-positive duration.
 ///
 /// # Examples
 /// ```
-/// use stochvib::comfort::BasicMethodCheck;
+/// use stochvib::comfort::BasicMethodInputs;
 /// // a_w = 1, peak 10, MTVV 1.2, VDV 1.5·T^(1/4), T = 16 s
-/// let c = BasicMethodCheck::new(1.0, 10.0, Some(1.2), 1.5 * 2.0, 16.0).unwrap();
+/// let c = BasicMethodInputs { a_w: 1.0, peak: 10.0, mtvv: Some(1.2), vdv: 1.5 * 2.0, duration_s: 16.0 }
+///     .check()
+///     .unwrap();
 /// assert!(c.crest_factor_exceeded && !c.mtvv_ratio_exceeded && !c.vdv_ratio_exceeded);
 /// assert!(!c.basic_method_sufficient);
 /// ```
@@ -173,10 +175,11 @@ pub struct BasicMethodCheck {
 ///
 /// # Examples
 /// ```
-/// use stochvib::comfort::{BasicMethodCheck, Governing};
+/// use stochvib::comfort::{BasicMethodInputs, Governing};
 /// // a 1 s burst of a sinusoid in a 64 s record: CF = 8√2, MTVV/a_w = 8, VDV ratio = √2·(3/8)^(1/4)·64^(1/4)
-/// let (a, t) = (1.0 / 8.0 / 2f64.sqrt(), 64.0);
-/// let c = BasicMethodCheck::new(a, 1.0, Some(1.0 / 2f64.sqrt()), (3.0f64 / 8.0).powf(0.25), t).unwrap();
+/// let (a_w, duration_s) = (1.0 / 8.0 / 2f64.sqrt(), 64.0);
+/// let (mtvv, vdv) = (Some(1.0 / 2f64.sqrt()), (3.0f64 / 8.0).powf(0.25));
+/// let c = BasicMethodInputs { a_w, peak: 1.0, mtvv, vdv, duration_s }.check().unwrap();
 /// assert_eq!(c.governing, Governing::Mtvv);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -201,12 +204,26 @@ impl Governing {
     }
 }
 
-impl BasicMethodCheck {
-    /// Evaluates the three criteria from a_w (m/s²), the peak max|a_w(t)|, the MTVV (if available), the
-    /// VDV (m/s^1.75) and the duration T (s).
+/// What [`BasicMethodCheck`] is evaluated from: the measures of one frequency-weighted signal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BasicMethodInputs {
+    /// The weighted r.m.s. a_w, m/s².
+    pub a_w: f64,
+    /// The peak max|a_w(t)|, m/s².
+    pub peak: f64,
+    /// The maximum transient vibration value, m/s² (`None` when the record is shorter than its window).
+    pub mtvv: Option<f64>,
+    /// The vibration dose value, m/s^1.75.
+    pub vdv: f64,
+    /// The duration T of the record, s.
+    pub duration_s: f64,
+}
+
+impl BasicMethodInputs {
+    /// Evaluates the three criteria of [`BasicMethodCheck`].
     ///
     /// # Formula
-    /// See the type's `# Formula`; a ratio whose denominator is 0 is `None` and not exceeded.
+    /// See [`BasicMethodCheck`]'s `# Formula`; a ratio whose denominator is 0 is `None` and not exceeded.
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] naming `a_w`, `peak`, `mtvv` or `vdv` (finite, ≥ 0) or `duration_s`
@@ -214,11 +231,20 @@ impl BasicMethodCheck {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::comfort::BasicMethodCheck;
-    /// let c = BasicMethodCheck::new(1.0, 2f64.sqrt(), Some(1.0), 1.107, 1.0).unwrap();
+    /// use stochvib::comfort::BasicMethodInputs;
+    /// let c = BasicMethodInputs { a_w: 1.0, peak: 2f64.sqrt(), mtvv: Some(1.0), vdv: 1.107, duration_s: 1.0 }
+    ///     .check()
+    ///     .unwrap();
     /// assert!(c.basic_method_sufficient);
     /// ```
-    pub fn new(a_w: f64, peak: f64, mtvv: Option<f64>, vdv: f64, duration_s: f64) -> Result<Self> {
+    pub fn check(self) -> Result<BasicMethodCheck> {
+        let BasicMethodInputs {
+            a_w,
+            peak,
+            mtvv,
+            vdv,
+            duration_s,
+        } = self;
         for (name, v) in [
             ("a_w", a_w),
             ("peak", peak),
@@ -383,7 +409,14 @@ impl SignalMetrics {
         } else {
             None
         };
-        let check = BasicMethodCheck::new(a_w, peak, mtvv, vdv, duration_s)?;
+        let check = BasicMethodInputs {
+            a_w,
+            peak,
+            mtvv,
+            vdv,
+            duration_s,
+        }
+        .check()?;
         Ok(SignalMetrics {
             samples: n,
             dt_s,
@@ -561,7 +594,14 @@ impl SignalMetricsStream {
         let vdv = (sum4 * self.dt_s).powf(0.25);
         let msdv = (sum2 * self.dt_s).sqrt();
         let mtvv = (n_win <= n).then(|| (self.max_window_sum / n_win as f64).sqrt());
-        let check = BasicMethodCheck::new(a_w, self.peak, mtvv, vdv, duration_s)?;
+        let check = BasicMethodInputs {
+            a_w,
+            peak: self.peak,
+            mtvv,
+            vdv,
+            duration_s,
+        }
+        .check()?;
         Ok(SignalMetrics {
             samples: n,
             dt_s: self.dt_s,

@@ -10,7 +10,7 @@
 //! - **Spectral methods** ([`spectral`]) take the moments m_j = ∫₀^∞ f^j G(f) df of the **one-sided
 //!   density in Hz**, G(f) = 4π S(2πf) where S(ω) is the crate's canonical two-sided density in rad/s
 //!   (see [`crate::spectrum`]). With λ_j = ∫_{−∞}^{∞} |ω|^j S(ω) dω (the crate's spectral moments),
-//!   m_j = (2π)^{−j} λ_j ([`SpectralMoments::from_two_sided_angular`]). Many papers use ω and/or a
+//!   m_j = (2π)^{−j} λ_j ([`TwoSidedAngularMoments`]). Many papers use ω and/or a
 //!   two-sided density: the conversion is exact and explicit, never a silent factor.
 //! - **Damage** is a rate per second (1/s) for the spectral methods (the expected Miner damage per unit
 //!   time); the life is 1/rate in seconds. Rainflow damage is the Miner sum of the counted cycles (no unit).
@@ -24,7 +24,7 @@ pub mod spectral;
 pub use rainflow::{rainflow, Cycle, RainflowCounter, RangeHistogram, TurningPoint};
 pub use sn_curve::{SnCurve, SnRangeCurve, SnReferencePoint};
 pub use spectral::{
-    compare_methods, Dirlik, DirlikCoefficients, MethodComparison, MethodEstimate, NarrowBand, SpectralMethod,
-    SpectralMethodKind, SpectralMoments, TovoBenasciutti, TovoBenasciuttiVariant, WirschingLight, ZhaoBaker,
-    ZhaoBakerCoefficients, ZhaoBakerVariant,
+    compare_methods, Dirlik, DirlikCoefficients, MethodComparison, MethodEstimate, NarrowBand, OneSidedHzMoments,
+    SpectralMethod, SpectralMethodKind, SpectralMoments, TovoBenasciutti, TovoBenasciuttiVariant,
+    TwoSidedAngularMoments, WirschingLight, ZhaoBaker, ZhaoBakerCoefficients, ZhaoBakerVariant,
 };

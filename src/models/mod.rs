@@ -44,7 +44,6 @@ pub mod full_vehicle;
 pub mod half_car;
 pub mod isolation;
 pub mod machine_assembly;
-pub mod machine_keys;
 pub mod mine_hoist;
 pub mod operator_seat;
 pub mod quarter_car;

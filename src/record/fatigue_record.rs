@@ -456,28 +456,7 @@ impl Tally {
 /// finite and > 0; a cycle beyond the correction's validity (S_m ≥ S_u, naming it); the reader's errors.
 pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions) -> Result<FatigueEvaluation> {
     let info = reader.info().clone();
-    let index = match &options.channel {
-        Some(c) => info.channel(c)?,
-        None if info.channels.len() == 1 => 0,
-        None => {
-            return Err(Error::in_file(
-                &info.source,
-                "channels",
-                info.channels
-                    .iter()
-                    .map(|c| c.name.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                "the record has several channels: name the stress with --channel",
-            ))
-        }
-    };
-    info.require_dim(index, options.sn_dim, "the unit of the S–N curve's amplitudes")?;
-    if let Some(g) = options.gate
-        && !(g.is_finite() && g > 0.0)
-    {
-        return Err(Error::invalid("--gate", g, "a hysteresis gate must be finite and > 0"));
-    }
+    let index = stress_channel(&info, options)?;
     let dt = 1.0 / info.sample_rate_hz;
     let m = options
         .segment_len
@@ -498,52 +477,24 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
         matrix: None,
         refused: None,
     };
-    let mut block = vec![Vec::with_capacity(BLOCK_SAMPLES); info.channels.len()];
-    let mut gated = Vec::new();
-    let (mut n, mut sum, mut lo, mut hi) = (0usize, 0.0f64, f64::INFINITY, f64::NEG_INFINITY);
-    loop {
-        let got = reader.read_block(&mut block, BLOCK_SAMPLES)?;
-        if got == 0 {
-            break;
-        }
-        let x = &block[index];
-        if tally.matrix.is_none() {
-            tally.matrix = Some(first_matrix(x));
-        }
-        n += got;
-        sum += x.iter().sum::<f64>();
-        (lo, hi) = x.iter().fold((lo, hi), |(a, b), &v| (a.min(v), b.max(v)));
-        spectral.push(&welch, x)?;
-        let samples: &[f64] = match &mut gate {
-            Some(g) => {
-                gated.clear();
-                g.push(x, &mut gated);
-                &gated
-            }
-            None => x,
-        };
-        counter.push(samples, |c| tally.add(c))?;
-    }
+    let passes = Passes {
+        welch: &welch,
+        spectral: &mut spectral,
+        gate: &mut gate,
+        counter: &mut counter,
+        tally: &mut tally,
+    };
+    let Extent { n, sum, lo, hi } = read_stress(reader, index, passes)?;
     if n == 0 {
         return Err(Error::in_file(&info.source, "samples", 0, "the record is empty"));
     }
     if let Some(g) = &gate {
-        gated.clear();
+        let mut gated = Vec::new();
         g.finish(&mut gated);
         counter.push(&gated, |c| tally.add(c))?;
     }
     counter.finish(|c| tally.add(c));
-    if let Some(c) = tally.refused {
-        return Err(Error::invalid(
-            "--mean-stress",
-            options.mean_stress.label(),
-            format!(
-                "a cycle of mean {} and amplitude {} (SI) has a mean at or above the ultimate strength: the correction \
-                 has no finite value",
-                c.mean, c.amplitude
-            ),
-        ));
-    }
+    refuse_mean_stress(&tally, options)?;
     let duration_s = n as f64 / info.sample_rate_hz;
     let channel = format!("{} [{}]", info.channels[index].name, info.channels[index].unit);
     let (moments, segments) = spectral.moments(&welch)?;
@@ -599,6 +550,109 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
         spread,
         record: info,
     })
+}
+
+/// The stress channel of the record: the one `--channel` names, or the only one; its unit must have the
+/// dimension of the S–N curve's amplitudes, and a `--gate` must be finite and > 0.
+///
+/// # Errors
+/// A missing channel, several channels and none named, a unit of another dimension, a bad gate.
+fn stress_channel(info: &RecordInfo, options: &FatigueOptions) -> Result<usize> {
+    let index = match &options.channel {
+        Some(c) => info.channel(c)?,
+        None if info.channels.len() == 1 => 0,
+        None => {
+            return Err(Error::in_file(
+                &info.source,
+                "channels",
+                info.channels
+                    .iter()
+                    .map(|c| c.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                "the record has several channels: name the stress with --channel",
+            ))
+        }
+    };
+    info.require_dim(index, options.sn_dim, "the unit of the S–N curve's amplitudes")?;
+    if let Some(g) = options.gate
+        && !(g.is_finite() && g > 0.0)
+    {
+        return Err(Error::invalid("--gate", g, "a hysteresis gate must be finite and > 0"));
+    }
+    Ok(index)
+}
+
+/// What one reading of the record feeds: the Welch sums, and the rainflow counter (behind the gate, if any)
+/// whose cycles the tally adds up.
+struct Passes<'a> {
+    welch: &'a Welch,
+    spectral: &'a mut SpectralSums,
+    gate: &'a mut Option<Gate>,
+    counter: &'a mut RainflowCounter,
+    tally: &'a mut Tally,
+}
+
+/// The samples of the stress channel: how many, their sum, their least and greatest.
+struct Extent {
+    n: usize,
+    sum: f64,
+    lo: f64,
+    hi: f64,
+}
+
+/// Reads the record to its end in blocks of [`BLOCK_SAMPLES`]; each block of channel `index` goes into
+/// `passes` (the first block also sizes the range–mean matrix).
+///
+/// # Errors
+/// The reader's errors; a cycle the counter refuses.
+fn read_stress(reader: &mut dyn RecordReader, index: usize, p: Passes) -> Result<Extent> {
+    let mut block = vec![Vec::with_capacity(BLOCK_SAMPLES); reader.info().channels.len()];
+    let mut gated = Vec::new();
+    let (mut n, mut sum, mut lo, mut hi) = (0usize, 0.0f64, f64::INFINITY, f64::NEG_INFINITY);
+    loop {
+        let got = reader.read_block(&mut block, BLOCK_SAMPLES)?;
+        if got == 0 {
+            break;
+        }
+        let x = &block[index];
+        if p.tally.matrix.is_none() {
+            p.tally.matrix = Some(first_matrix(x));
+        }
+        n += got;
+        sum += x.iter().sum::<f64>();
+        (lo, hi) = x.iter().fold((lo, hi), |(a, b), &v| (a.min(v), b.max(v)));
+        p.spectral.push(p.welch, x)?;
+        let samples: &[f64] = match p.gate.as_mut() {
+            Some(g) => {
+                gated.clear();
+                g.push(x, &mut gated);
+                &gated
+            }
+            None => x,
+        };
+        p.counter.push(samples, |c| p.tally.add(c))?;
+    }
+    Ok(Extent { n, sum, lo, hi })
+}
+
+/// Refuses a record in which the mean-stress correction met a cycle it has no finite value for.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `--mean-stress` and the cycle.
+fn refuse_mean_stress(tally: &Tally, options: &FatigueOptions) -> Result<()> {
+    match tally.refused {
+        Some(c) => Err(Error::invalid(
+            "--mean-stress",
+            options.mean_stress.label(),
+            format!(
+                "a cycle of mean {} and amplitude {} (SI) has a mean at or above the ultimate strength: the correction \
+                 has no finite value",
+                c.mean, c.amplitude
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Refuses a damage (or damage rate) of `method` that is 0 — no cycle does damage within the range of f64

@@ -214,6 +214,89 @@ fn parse_header_cell(cell: &str) -> Option<(&str, &str)> {
     let rest = cell[open + 1..].strip_suffix(']')?;
     Some((cell[..open].trim(), rest.trim()))
 }
+/// The first row that is neither empty nor a comment: its line number and its text, without a UTF-8
+/// byte-order mark (spreadsheet exports), which is not part of the first column's name.
+///
+/// # Errors
+/// No such row; the reader's errors.
+fn header_row<R: std::io::BufRead>(
+    lines: &mut crate::io_rules::BoundedLines<R>,
+    file: &Path,
+) -> Result<(usize, String)> {
+    loop {
+        match lines.next_line()? {
+            None => {
+                return Err(Error::in_file(
+                    file,
+                    "header",
+                    "<missing>",
+                    "no header row: the file has only comments or empty lines; expected e.g. \
+                     `distance [m], left [mm], right [mm]`",
+                ))
+            }
+            Some((i, l)) if !skipped(l) => return Ok((i, l.strip_prefix('\u{feff}').unwrap_or(l).to_string())),
+            Some(_) => {}
+        }
+    }
+}
+
+/// The columns of a profile as its rows are read: the distance in m, each track's elevation in m, and the
+/// line of each row.
+struct Columns {
+    distance_m: Vec<f64>,
+    values: Vec<Vec<f64>>,
+    row_lines: Vec<usize>,
+}
+
+impl Columns {
+    /// Adds the row `row` of line `line`, its cells in the header's units (`header`: the cells and units).
+    ///
+    /// # Errors
+    /// A row of another number of values than the header, a value that is not a number, a distance that does
+    /// not increase.
+    fn push_row(&mut self, line: usize, row: &str, header: (&[&str], &[LengthUnit]), file: &Path) -> Result<()> {
+        let (cells, units) = header;
+        let ncol = cells.len();
+        let fields: Vec<&str> = row.split(',').collect();
+        if fields.len() != ncol {
+            return Err(Error::in_file(
+                file,
+                format!("line {line}"),
+                row.trim(),
+                format!(
+                    "{} values; the header has {ncol} columns (is the file comma-separated, with no \
+                 missing value?)",
+                    fields.len()
+                ),
+            ));
+        }
+        for (c, field) in fields.iter().enumerate() {
+            let key = || format!("line {line}, column {} `{}`", c + 1, cells[c].trim());
+            let vm = units[c].to_m(parse_value(field, file, &key)?);
+            if c == 0 {
+                if let Some(&prev) = self.distance_m.last()
+                    && vm <= prev
+                {
+                    return Err(Error::in_file(
+                        file,
+                        key(),
+                        field.trim(),
+                        format!(
+                            "distance must increase strictly; the previous row (line {}) has {} m",
+                            self.row_lines.last().copied().unwrap_or(0),
+                            prev
+                        ),
+                    ));
+                }
+                self.distance_m.push(vm);
+            } else {
+                self.values[c - 1].push(vm);
+            }
+        }
+        self.row_lines.push(line);
+        Ok(())
+    }
+}
 
 /// Whether a line is blank or a `#` comment.
 fn skipped(line: &str) -> bool {
@@ -329,38 +412,25 @@ impl RawProfile {
     /// take more than a quarter of the available memory.
     pub fn parse_reader(reader: impl std::io::BufRead, file: &Path, options: &CsvReadOptions) -> Result<Self> {
         let mut lines = crate::io_rules::BoundedLines::new(reader, file);
-        let (header_line, header) = loop {
-            match lines.next_line()? {
-                None => {
-                    return Err(Error::in_file(
-                        file,
-                        "header",
-                        "<missing>",
-                        "no header row: the file has only comments or empty lines; expected e.g. \
-                         `distance [m], left [mm], right [mm]`",
-                    ))
-                }
-                // a UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name
-                Some((i, l)) if !skipped(l) => break (i, l.strip_prefix('\u{feff}').unwrap_or(l).to_string()),
-                Some(_) => {}
-            }
-        };
+        let (header_line, header) = header_row(&mut lines, file)?;
         let (cells, units) = parse_header(&header, header_line, file)?;
         let ncol = cells.len();
         let budget = crate::io_rules::available_memory().map_or(u128::MAX, |m| m / 4);
         let row_bytes = (8 * ncol + 8) as u128;
-        let mut distance_m = Vec::new();
-        let mut values: Vec<Vec<f64>> = vec![Vec::new(); ncol - 1];
-        let mut row_lines = Vec::new();
+        let mut columns = Columns {
+            distance_m: Vec::new(),
+            values: vec![Vec::new(); ncol - 1],
+            row_lines: Vec::new(),
+        };
         while let Some((line, row)) = lines.next_line()? {
             if skipped(row) {
                 continue;
             }
-            if (row_lines.len() as u128 + 1) * row_bytes > budget {
+            if (columns.row_lines.len() as u128 + 1) * row_bytes > budget {
                 return Err(Error::in_file(
                     file,
                     format!("line {line}"),
-                    format!("{} rows", row_lines.len()),
+                    format!("{} rows", columns.row_lines.len()),
                     format!(
                         "the profile's numbers would take more than {} (a quarter of the available memory): split \
                          the record into sections, or resample it to a coarser step",
@@ -368,44 +438,13 @@ impl RawProfile {
                     ),
                 ));
             }
-            let fields: Vec<&str> = row.split(',').collect();
-            if fields.len() != ncol {
-                return Err(Error::in_file(
-                    file,
-                    format!("line {line}"),
-                    row.trim(),
-                    format!(
-                        "{} values; the header has {ncol} columns (is the file comma-separated, with no \
-                         missing value?)",
-                        fields.len()
-                    ),
-                ));
-            }
-            for (c, field) in fields.iter().enumerate() {
-                let key = || format!("line {line}, column {} `{}`", c + 1, cells[c].trim());
-                let vm = units[c].to_m(parse_value(field, file, &key)?);
-                if c == 0 {
-                    if let Some(&prev) = distance_m.last()
-                        && vm <= prev
-                    {
-                        return Err(Error::in_file(
-                            file,
-                            key(),
-                            field.trim(),
-                            format!(
-                                "distance must increase strictly; the previous row (line {}) has {} m",
-                                row_lines.last().copied().unwrap_or(0),
-                                prev
-                            ),
-                        ));
-                    }
-                    distance_m.push(vm);
-                } else {
-                    values[c - 1].push(vm);
-                }
-            }
-            row_lines.push(line);
+            columns.push_row(line, row, (&cells, &units), file)?;
         }
+        let Columns {
+            distance_m,
+            values,
+            row_lines,
+        } = columns;
         let min_rows = options.min_rows.max(2);
         if distance_m.len() < min_rows {
             return Err(Error::in_file(

@@ -8,11 +8,13 @@
 pub mod analysis_keys;
 mod butterworth_keys;
 mod catalogue;
+pub mod full_vehicle_keys;
 pub mod generic;
 mod input_filters;
 pub mod input_keys;
 pub mod inputs;
 pub mod key_table;
+mod machine_keys;
 pub mod model_keys;
 pub mod nonlinear_keys;
 mod profile_identity;

@@ -7,9 +7,9 @@ use crate::error::{Error, Result};
 use crate::fields::{Fields, KeyReading};
 use crate::models::results::DeterministicModel;
 use crate::models::{
-    balancer_bogie, conveyor_idler, dynamic_stiffness_chain::DynamicStiffnessChain, full_vehicle::FullVehicle,
-    half_car, isolation, mine_hoist::MineHoist, operator_seat, quarter_car::QuarterCar, scraper,
-    three_mass_hoist::ThreeMassHoist, ModelInstance,
+    balancer_bogie, conveyor_idler, dynamic_stiffness_chain::DynamicStiffnessChain, half_car, isolation,
+    mine_hoist::MineHoist, operator_seat, quarter_car::QuarterCar, scraper, three_mass_hoist::ThreeMassHoist,
+    ModelInstance,
 };
 use crate::response::TransferBuilder;
 use crate::system::StateSpace;
@@ -185,7 +185,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         stochastic: true,
         summary: "full vehicle, 7 DOF (bounce, pitch, roll, four unsprung masses) on two road tracks",
         example: "data/full-vehicle-two-tracks.toml",
-        build: |f, _| stochastic(FullVehicle::from_fields(f).and_then(|c| c.instance())),
+        build: |f, _| stochastic(super::full_vehicle_keys::from_fields(f).and_then(|c| c.instance())),
         numeric: None,
     },
     ModelKind {
@@ -194,7 +194,7 @@ pub const MODEL_KINDS: &[ModelKind] = &[
         stochastic: true,
         summary: "machine assembly: body on axles (oscillating or suspended as options), cab on mounts, seat; two road tracks",
         example: "data/wheel-loader-cab-seat.toml",
-        build: |f, _| stochastic(crate::models::machine_keys::from_fields(f)),
+        build: |f, _| stochastic(super::machine_keys::from_fields(f)),
         numeric: None,
     },
     ModelKind {

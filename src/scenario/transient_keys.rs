@@ -30,7 +30,7 @@
 
 use crate::error::Result;
 use crate::fields::Fields;
-use crate::transient::{Envelope, PiecewiseLinear, RopeFormula, SpeedProfile, Start};
+use crate::transient::{ConstantAcceleration, Envelope, PiecewiseLinear, RopeFormula, SpeedProfile, Start};
 use crate::units::Dim;
 
 /// The non-stationary part of a scenario (present when any of its keys is).
@@ -158,7 +158,14 @@ pub fn speed_profile(f: &Fields) -> Result<SpeedProfile> {
     } else {
         "acceleration"
     };
-    let v = SpeedProfile::constant_acceleration(v0, v1, a, t0).map_err(|e| f.wrap_param(e, blamed))?;
+    let v = ConstantAcceleration {
+        from_m_s: v0,
+        to_m_s: v1,
+        acceleration_m_s2: a,
+        start_s: t0,
+    }
+    .build()
+    .map_err(|e| f.wrap_param(e, blamed))?;
     super::input_keys::SPEED_PROFILE.finish(f, &[])?;
     Ok(v)
 }

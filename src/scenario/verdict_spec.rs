@@ -387,11 +387,36 @@ fn comfort_axis(af: &Fields, model: &ModelInstance, purpose: Purpose) -> Result<
 fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Result<FatigueSpec> {
     let (output, output_name) = output_index(f, "output", model)?;
     let unit = model.system.outputs()[output].unit.clone();
-    let stress_dim = Dim::new(-1, 1, -2);
-    // stress per unit of the output: a plain number (SI) or a quantity of dimension Pa/(output unit)
+    let stress_factor = stress_factor(f, &unit, &output_name)?;
+    let sn = sn_curve(f)?;
+    let methods = fatigue_methods(f)?;
+    let (design_life_s, design_life_text) = design_life(f, speed)?;
+    let bins = histogram_bins(f)?;
+    Ok(FatigueSpec {
+        output,
+        output_name,
+        stress_factor,
+        sn,
+        methods,
+        design_life_s,
+        design_life_text,
+        bins,
+    })
+}
+
+/// The dimension of a stress, Pa.
+const STRESS_DIM: Dim = Dim::new(-1, 1, -2);
+
+/// `stress_factor`: stress per unit of the output (`unit`, of the output `output_name`), a plain number (SI)
+/// or a quantity of dimension Pa/(output unit); finite and non-zero.
+///
+/// # Errors
+/// A value of the wrong dimension, or zero or non-finite.
+fn stress_factor(f: &Fields, unit: &str, output_name: &str) -> Result<f64> {
+    let stress_dim = STRESS_DIM;
     let stress_factor = match f.require("stress_factor")? {
         v @ toml::Value::String(_) => {
-            let out_dim = crate::units::unit_dim(&unit).ok_or_else(|| {
+            let out_dim = crate::units::unit_dim(unit).ok_or_else(|| {
                 f.error(
                     "stress_factor",
                     v,
@@ -418,9 +443,19 @@ fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Resul
     if !(stress_factor.is_finite() && stress_factor != 0.0) {
         return Err(f.error("stress_factor", stress_factor, "must be finite and non-zero"));
     }
+    Ok(stress_factor)
+}
+
+/// The S–N curve of `[analysis.fatigue]`: `k` with `c`, or `k` with `reference_amplitude` and
+/// `reference_cycles`; `endurance_limit` optional. An error of the curve names the key it came from.
+///
+/// # Errors
+/// Neither or both forms, or values the curve refuses.
+fn sn_curve(f: &Fields) -> Result<SnCurve> {
+    let stress_dim = STRESS_DIM;
     let k = f.number("k")?;
     let endurance = f.opt_quantity("endurance_limit", stress_dim)?;
-    let sn = match (f.get("c"), f.get("reference_amplitude")) {
+    match (f.get("c"), f.get("reference_amplitude")) {
         (Some(_), None) => {
             let c = f.number("c")?;
             SnCurve {
@@ -460,8 +495,15 @@ fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Resul
             _ => "k".to_string(),
         };
         f.wrap(&key, e)
-    })?;
-    let methods = match f.get("methods") {
+    })
+}
+
+/// `methods`: the spectral methods to compare (all five by default).
+///
+/// # Errors
+/// Not a non-empty array of method names.
+fn fatigue_methods(f: &Fields) -> Result<Vec<SpectralMethodKind>> {
+    Ok(match f.get("methods") {
         None => SpectralMethodKind::ALL.to_vec(),
         Some(v) => {
             let arr = v
@@ -483,25 +525,21 @@ fn parse_fatigue(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> Resul
                 })
                 .collect::<Result<Vec<_>>>()?
         }
-    };
-    let (design_life_s, design_life_text) = design_life(f, speed)?;
-    let bins = match f.get("bins") {
+    })
+}
+
+/// `bins`: the rainflow histogram's bin count (48 by default, 1 to 100000).
+///
+/// # Errors
+/// Not a count in that range.
+fn histogram_bins(f: &Fields) -> Result<usize> {
+    Ok(match f.get("bins") {
         None => 48,
         Some(v) => v
             .as_integer()
             .filter(|b| (1..=100_000).contains(b))
             .map(|b| b as usize)
             .ok_or_else(|| f.error("bins", v, "expected a count from 1 to 100000"))?,
-    };
-    Ok(FatigueSpec {
-        output,
-        output_name,
-        stress_factor,
-        sn,
-        methods,
-        design_life_s,
-        design_life_text,
-        bins,
     })
 }
 

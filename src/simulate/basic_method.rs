@@ -8,12 +8,12 @@
 //! a_w  = MC σ of the weighted output (`sigma` estimate),        CF = mean over realizations of max|a_k|/a_w,i
 //! MTVV/a_w = mean MTVV_i / a_w,                                  VDV/(a_w T^(1/4)) = VDV / (a_w T^(1/4))
 //! ```
-//! with VDV the run's estimate ((mean of VDV_i⁴)^(1/4)). The check is [`BasicMethodCheck::new`] with
+//! with VDV the run's estimate ((mean of VDV_i⁴)^(1/4)). The check is [`BasicMethodInputs::check`] with
 //! peak = CF·a_w. The crest factor and the MTVV ratio grow with the record length (a longer record reaches
 //! higher maxima), so they hold for records of the simulated duration T, not for the daily exposure; the
 //! VDV ratio of a stationary Gaussian output is 3^(1/4) ≈ 1.32 for any T.
 
-use crate::comfort::{BasicMethodCheck, Governing};
+use crate::comfort::{BasicMethodCheck, BasicMethodInputs, Governing};
 use crate::store::OutputStatistics;
 use serde::Serialize;
 
@@ -71,7 +71,15 @@ pub fn basic_method_rows(outputs: &[OutputStatistics], duration_s: f64) -> Vec<R
             let vdv = o.get("vdv")?.interval.estimate;
             let cf = o.get("crest_factor")?.interval.estimate;
             let mtvv = o.get("mtvv").map(|m| m.interval.estimate);
-            let check = BasicMethodCheck::new(a_w, cf * a_w, mtvv, vdv, duration_s).ok()?;
+            let check = BasicMethodInputs {
+                a_w,
+                peak: cf * a_w,
+                mtvv,
+                vdv,
+                duration_s,
+            }
+            .check()
+            .ok()?;
             Some(RunBasicMethod {
                 output: o.output.clone(),
                 duration_s,

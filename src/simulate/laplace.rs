@@ -72,17 +72,17 @@ pub const LAPLACE_DRAWS: &str = "Laplace increments ε_k = √Γ_k·Z_k, k = 0..
 ///
 /// # Examples
 /// ```
-/// use stochvib::simulate::{LaplaceMovingAverage, stream};
+/// use stochvib::simulate::{LaplaceGrid, LaplaceMovingAverage, stream};
 /// use stochvib::spectrum::{Domain, Exponential};
 /// // a type-1 road, D = 2.25e-4 m², α = 3.5 1/m, sampled every 5 cm, kurtosis 6
 /// let q = Exponential::new(2.25e-4, 3.5, Domain::Spatial).unwrap();
-/// let lma = LaplaceMovingAverage::new(&q, 0.05, 4096, 6.0).unwrap();
+/// let lma = LaplaceMovingAverage::new(&q, LaplaceGrid { dt: 0.05, n: 4096, kurtosis: 6.0 }).unwrap();
 /// // the kurtosis of the generated process, from its kernel and ν
 /// assert!((3.0 + 3.0 * lma.nu_steps() * lma.kernel_ratio() - 6.0).abs() < 1e-12);
 /// let mut scratch = lma.scratch();
 /// let mut x = vec![0.0; 4096];
 /// lma.generate(&mut stream(7, 0), &mut scratch, &mut x).unwrap();
-/// assert!(LaplaceMovingAverage::new(&q, 0.05, 4096, 2.5).is_err());
+/// assert!(LaplaceMovingAverage::new(&q, LaplaceGrid { dt: 0.05, n: 4096, kurtosis: 2.5 }).is_err());
 /// ```
 #[derive(Clone)]
 pub struct LaplaceMovingAverage {
@@ -193,13 +193,24 @@ fn check_representable(kurtosis: f64, kernel_ratio: f64, spectral: &SpectralGene
     ))
 }
 
+/// The grid and the kurtosis of a [`LaplaceMovingAverage`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LaplaceGrid {
+    /// The step Δt of the samples (s, or m for a spatial spectrum).
+    pub dt: f64,
+    /// The number N of samples of a realization.
+    pub n: usize,
+    /// The marginal kurtosis κ = E x⁴/(E x²)² (3 for a Gaussian; the excess kurtosis is κ − 3).
+    pub kurtosis: f64,
+}
+
 impl LaplaceMovingAverage {
-    /// The LMA of two-sided density `spectrum` on N = `n` samples at step `dt` (s, or m for a spatial
-    /// spectrum) with marginal kurtosis `kurtosis` (3 for Gaussian; excess kurtosis κ − 3).
+    /// The LMA of two-sided density `spectrum` on the grid and with the kurtosis of `grid`.
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn new(spectrum: &dyn Spectrum, dt: f64, n: usize, kurtosis: f64) -> Result<Self> {
+    pub fn new(spectrum: &dyn Spectrum, grid: LaplaceGrid) -> Result<Self> {
+        let LaplaceGrid { dt, n, kurtosis } = grid;
         Self::check_kurtosis(kurtosis)?;
         let g = SpectralGenerator::new(spectrum, dt, n, Amplitudes::Rayleigh)?;
         Self::from_generator(g, kurtosis)
@@ -313,11 +324,11 @@ impl LaplaceMovingAverage {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::simulate::LaplaceMovingAverage;
+    /// use stochvib::simulate::{LaplaceGrid, LaplaceMovingAverage};
     /// use stochvib::spectrum::{Domain, Exponential};
     /// use realfft::num_complex::Complex;
     /// let s = Exponential::new(1.0, 2.0, Domain::Temporal).unwrap();
-    /// let lma = LaplaceMovingAverage::new(&s, 0.05, 256, 5.0).unwrap();
+    /// let lma = LaplaceMovingAverage::new(&s, LaplaceGrid { dt: 0.05, n: 256, kurtosis: 5.0 }).unwrap();
     /// // the identity filter gives the process itself
     /// let (k4, var) = lma.filtered_cumulants(&vec![Complex::new(1.0, 0.0); 129]).unwrap();
     /// assert!((3.0 + k4 / (var * var) - 5.0).abs() < 1e-12);
@@ -448,7 +459,15 @@ mod tests {
         // from the same increments (same stream, same draw order).
         let s = Exponential::new(1.0, 2.0, Domain::Temporal).unwrap();
         let n = 32;
-        let lma = LaplaceMovingAverage::new(&s, 0.1, n, 7.0).unwrap();
+        let lma = LaplaceMovingAverage::new(
+            &s,
+            LaplaceGrid {
+                dt: 0.1,
+                n,
+                kurtosis: 7.0,
+            },
+        )
+        .unwrap();
         let mut sc = lma.scratch();
         let mut x = vec![0.0; n];
         lma.generate(&mut stream(3, 1), &mut sc, &mut x).unwrap();
@@ -480,7 +499,15 @@ mod tests {
     fn kurtosis_three_draws_no_gamma_and_rejects_below_three() {
         // ν = 0: the increments are the stream's standard normals themselves
         let s = Exponential::new(1.0, 2.0, Domain::Temporal).unwrap();
-        let lma = LaplaceMovingAverage::new(&s, 0.1, 16, 3.0).unwrap();
+        let lma = LaplaceMovingAverage::new(
+            &s,
+            LaplaceGrid {
+                dt: 0.1,
+                n: 16,
+                kurtosis: 3.0,
+            },
+        )
+        .unwrap();
         assert_eq!(lma.nu_steps(), 0.0);
         let mut sc = lma.scratch();
         lma.draw_increments(&mut stream(5, 0), &mut sc);
@@ -489,7 +516,18 @@ mod tests {
             assert_eq!(*e, standard_normal(&mut rng));
         }
         for bad in [2.999, f64::NAN, f64::INFINITY, -1.0] {
-            assert!(LaplaceMovingAverage::new(&s, 0.1, 16, bad).is_err(), "{bad}");
+            assert!(
+                LaplaceMovingAverage::new(
+                    &s,
+                    LaplaceGrid {
+                        dt: 0.1,
+                        n: 16,
+                        kurtosis: bad
+                    }
+                )
+                .is_err(),
+                "{bad}"
+            );
         }
     }
 }

@@ -55,11 +55,11 @@ pub use discretize::{
 };
 pub use fir_stream::{FirScratch, FirSynthesis, KernelDesign};
 pub use input::{source_signals, RunInput};
-pub use laplace::{LaplaceMovingAverage, LaplaceScratch, LAPLACE_DRAWS};
+pub use laplace::{LaplaceGrid, LaplaceMovingAverage, LaplaceScratch, LAPLACE_DRAWS};
 pub use options::{readable_duration, readable_step, suggest_step, Route, RunOptions, StepSuggestion};
 pub use plan::{planned_memory, planned_variances, PlannedMemory, PlannedVariance, SkippedOutput};
 pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_key, uniform01, GENERATOR};
-pub use road_track::{RoadScratch, RoadTrack};
+pub use road_track::{RoadScratch, RoadTrack, RoadTrackGrid};
 pub use run::{run, run_temporary, run_temporary_with, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};

@@ -40,11 +40,12 @@ pub struct RoadScratch {
 ///
 /// # Examples
 /// ```
-/// use stochvib::simulate::{RoadTrack, Amplitudes, stream};
+/// use stochvib::simulate::{RoadTrack, RoadTrackGrid, stream};
 /// use stochvib::spectrum::{Exponential, Domain};
 /// // textbook road (8.45): D = 2.25e-4 m², α = 3.5 1/m; axles 2.5 m apart at 10 m/s, Δt = 0.005 s (Δx = 5 cm)
 /// let q = Exponential::new(2.25e-4, 3.5, Domain::Spatial).unwrap();
-/// let road = RoadTrack::shaping(&q, 10.0, 0.005, 1000, &[0.0, 2.5]).unwrap();
+/// let grid = RoadTrackGrid { speed: 10.0, dt: 0.005, n: 1000, offsets: &[0.0, 2.5] };
+/// let road = RoadTrack::shaping(&q, grid).unwrap();
 /// let mut scratch = road.scratch();
 /// let mut u = vec![0.0; 2 * 1000];
 /// road.generate(&mut stream(1, 0), &mut scratch, &mut u).unwrap();
@@ -60,19 +61,26 @@ pub struct RoadTrack {
     shifts: Vec<usize>,
 }
 
+/// The sampling of a [`RoadTrack`]: the speed, the time step, the samples per wheel and the wheel offsets.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoadTrackGrid<'a> {
+    /// The speed v, m/s.
+    pub speed: f64,
+    /// The time step Δt, s (the distance step is Δx = vΔt).
+    pub dt: f64,
+    /// Samples N per wheel.
+    pub n: usize,
+    /// The distance ℓ_j of each wheel behind the first reference point, m (integer multiples of Δx).
+    pub offsets: &'a [f64],
+}
+
 impl RoadTrack {
-    /// Spectral-representation profile (any spatial spectrum), N samples per wheel, periodic.
+    /// Spectral-representation profile (any spatial spectrum) on `grid`, periodic.
     ///
     /// # Errors
     /// See the type's `# Errors`.
-    pub fn spectral(
-        spatial: &dyn Spectrum,
-        speed: f64,
-        dt: f64,
-        n: usize,
-        offsets: &[f64],
-        amplitudes: Amplitudes,
-    ) -> Result<Self> {
+    pub fn spectral(spatial: &dyn Spectrum, grid: RoadTrackGrid, amplitudes: Amplitudes) -> Result<Self> {
+        let RoadTrackGrid { speed, dt, n, offsets } = grid;
         let (dx, shifts) = Self::grid(spatial, speed, dt, offsets)?;
         let g = SpectralGenerator::new(spatial, dx, n, amplitudes)?;
         Ok(RoadTrack {
@@ -84,11 +92,12 @@ impl RoadTrack {
         })
     }
 
-    /// Exact shaping-filter profile (rational spatial spectrum), N samples per wheel.
+    /// Exact shaping-filter profile (rational spatial spectrum) on `grid`.
     ///
     /// # Errors
     /// See the type's `# Errors` and [`shaping_simulator`](super::shaping_simulator).
-    pub fn shaping(spatial: &dyn Spectrum, speed: f64, dt: f64, n: usize, offsets: &[f64]) -> Result<Self> {
+    pub fn shaping(spatial: &dyn Spectrum, grid: RoadTrackGrid) -> Result<Self> {
+        let RoadTrackGrid { speed, dt, n, offsets } = grid;
         let (dx, shifts) = Self::grid(spatial, speed, dt, offsets)?;
         if n == 0 {
             return Err(Error::invalid("n", n, "need at least one sample"));

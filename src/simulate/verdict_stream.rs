@@ -37,7 +37,8 @@ struct FatigueState {
 ///
 /// # Errors
 /// [`VerdictStream::new`]: a channel whose output is not simulated. [`VerdictStream::push`]: non-finite
-/// samples. [`VerdictStream::finish`]: [`BasicMethodCheck::new`]'s errors.
+/// samples. [`VerdictStream::finish`]: the errors of
+/// [`BasicMethodInputs::check`](crate::comfort::BasicMethodInputs::check).
 ///
 /// # Examples
 /// ```

@@ -291,108 +291,144 @@ impl VerdictChannels {
         duration_s: f64,
         confidence: f64,
     ) -> Result<(Vec<(String, Vec<Statistic>)>, Vec<(String, Statistic, RainflowSummary)>)> {
-        let damaged = |name: &str| Error::Numerical {
-            what: format!("reading the {name} accumulator"),
-            reason: "stored length differs from the layout: the run file is damaged".into(),
+        let shards = Shards {
+            read,
+            rows,
+            size: shard_size,
         };
-        let mut comfort = Vec::new();
-        for c in &self.comfort {
-            let name = comfort_name(&c.output);
-            let mut cols: [Vec<f64>; 4] = Default::default();
-            for (s, &r) in rows.iter().enumerate() {
-                let a = read(&name, s)?;
-                if a.len() != 4 * shard_size {
-                    return Err(damaged(&name));
-                }
-                for (q, col) in cols.iter_mut().enumerate() {
-                    col.extend_from_slice(&a[q * shard_size..q * shard_size + r]);
-                }
-            }
-            let v4 = interval(&cols[1], confidence)?;
-            let root = |x: f64| x.max(0.0).powf(0.25);
-            let vdv = Interval {
-                estimate: root(v4.estimate),
-                lower: root(v4.lower),
-                upper: root(v4.upper),
-                confidence,
-            };
-            let mut stats = vec![stat(
-                "vdv",
-                vdv,
-                "m/s^1.75",
-                "VDV_i = (Σ a_w⁴ Δt)^(1/4) per realization; Student-t interval of the mean of VDV_i⁴, raised to \
-                 1/4; analytic = (3T)^(1/4)·σ_w of the stationary Gaussian weighted output (E a⁴ = 3σ⁴)",
-                None,
-            )];
-            // the analytic VDV needs the analytic σ_w: the caller sets it ([`set_analytic`])
-            let mtvv: Vec<f64> = cols[2].iter().copied().filter(|v| v.is_finite()).collect();
-            if !mtvv.is_empty() {
-                stats.push(stat(
-                    "mtvv",
-                    interval(&mtvv, confidence)?,
-                    "m/s^2",
-                    "maximum 1 s running r.m.s. per realization (ISO 2631-1 6.3.1); Student-t across realizations",
-                    None,
-                ));
-            }
-            let cf: Vec<f64> = cols[3].iter().copied().filter(|v| v.is_finite()).collect();
-            if !cf.is_empty() {
-                stats.push(stat(
-                    "crest_factor",
-                    interval(&cf, confidence)?,
-                    "1",
-                    "max|a_w(t)|/a_w per realization (ISO 2631-1 6.2.1); Student-t across realizations",
-                    None,
-                ));
-            }
-            comfort.push((c.output.clone(), stats));
-        }
-        let mut fatigue = Vec::new();
-        for c in &self.fatigue {
-            let name = fatigue_name(&c.output);
-            let mut d = Vec::new();
-            let mut hist = vec![0.0; c.bins + 1];
-            for (s, &r) in rows.iter().enumerate() {
-                let a = read(&name, s)?;
-                if a.len() != shard_size + c.bins + 1 {
-                    return Err(damaged(&name));
-                }
-                d.extend_from_slice(&a[..r]);
-                for (h, v) in hist.iter_mut().zip(&a[shard_size..]) {
-                    *h += v;
-                }
-            }
-            let n = d.len() as f64;
-            let iv = interval(&d, confidence)?;
-            let st = stat(
-                "damage_rate",
-                iv,
-                "1/s",
-                "rainflow (ASTM E1049-85, residue as half cycles) and Palmgren–Miner per realization, divided by \
-                 its duration; Student-t across realizations; analytic = Dirlik (1985) from the analytic moments",
-                match &c.moments {
-                    Some(m) => Some(Dirlik.damage_rate(m, &c.sn)?),
-                    None => None,
-                },
-            );
-            let edges = RangeHistogram::new(c.max_range, c.bins)?.bin_edges();
-            let overflow = hist[c.bins] / n;
-            let counts = hist[..c.bins].iter().map(|v| v / n).collect();
-            fatigue.push((
-                c.output.clone(),
-                st,
-                RainflowSummary {
-                    output: c.output.clone(),
-                    unit: String::new(),
-                    edges,
-                    counts,
-                    overflow,
-                    dirlik: c.moments.as_ref().map(|m| dirlik_counts(m, &edges_of(c), duration_s)),
-                },
-            ));
-        }
+        let comfort = (self.comfort.iter())
+            .map(|c| Ok((c.output.clone(), comfort_statistics(c, &shards, confidence)?)))
+            .collect::<Result<_>>()?;
+        let fatigue = (self.fatigue.iter())
+            .map(|c| fatigue_statistics(c, &shards, duration_s, confidence))
+            .collect::<Result<_>>()?;
         Ok((comfort, fatigue))
     }
+}
+
+/// The stored accumulators of every shard: `read(name, k)` the vector `name` of the k-th shard, `rows[k]` its
+/// number of realizations, `size` the realizations a shard has room for.
+struct Shards<'a> {
+    read: &'a dyn Fn(&str, usize) -> Result<Vec<f64>>,
+    rows: &'a [usize],
+    size: usize,
+}
+
+/// The error of an accumulator whose stored length differs from the layout.
+fn damaged(name: &str) -> Error {
+    Error::Numerical {
+        what: format!("reading the {name} accumulator"),
+        reason: "stored length differs from the layout: the run file is damaged".into(),
+    }
+}
+
+/// The statistics (`vdv`, `mtvv`, `crest_factor`) of the comfort channel `c` from every shard's accumulator.
+///
+/// # Errors
+/// A damaged accumulator; no realization; a confidence outside (0, 1).
+fn comfort_statistics(c: &ComfortChannel, shards: &Shards, confidence: f64) -> Result<Vec<Statistic>> {
+    let name = comfort_name(&c.output);
+    let mut cols: [Vec<f64>; 4] = Default::default();
+    for (s, &r) in shards.rows.iter().enumerate() {
+        let a = (shards.read)(&name, s)?;
+        if a.len() != 4 * shards.size {
+            return Err(damaged(&name));
+        }
+        for (q, col) in cols.iter_mut().enumerate() {
+            col.extend_from_slice(&a[q * shards.size..q * shards.size + r]);
+        }
+    }
+    let v4 = interval(&cols[1], confidence)?;
+    let root = |x: f64| x.max(0.0).powf(0.25);
+    let vdv = Interval {
+        estimate: root(v4.estimate),
+        lower: root(v4.lower),
+        upper: root(v4.upper),
+        confidence,
+    };
+    let mut stats = vec![stat(
+        "vdv",
+        vdv,
+        "m/s^1.75",
+        "VDV_i = (Σ a_w⁴ Δt)^(1/4) per realization; Student-t interval of the mean of VDV_i⁴, raised to \
+         1/4; analytic = (3T)^(1/4)·σ_w of the stationary Gaussian weighted output (E a⁴ = 3σ⁴)",
+        None,
+    )];
+    // the analytic VDV needs the analytic σ_w: the caller sets it ([`set_analytic`])
+    let mtvv: Vec<f64> = cols[2].iter().copied().filter(|v| v.is_finite()).collect();
+    if !mtvv.is_empty() {
+        stats.push(stat(
+            "mtvv",
+            interval(&mtvv, confidence)?,
+            "m/s^2",
+            "maximum 1 s running r.m.s. per realization (ISO 2631-1 6.3.1); Student-t across realizations",
+            None,
+        ));
+    }
+    let cf: Vec<f64> = cols[3].iter().copied().filter(|v| v.is_finite()).collect();
+    if !cf.is_empty() {
+        stats.push(stat(
+            "crest_factor",
+            interval(&cf, confidence)?,
+            "1",
+            "max|a_w(t)|/a_w per realization (ISO 2631-1 6.2.1); Student-t across realizations",
+            None,
+        ));
+    }
+    Ok(stats)
+}
+
+/// The `damage_rate` statistic and the histogram of the fatigue channel `c` from every shard's accumulator.
+///
+/// # Errors
+/// A damaged accumulator; no realization; a confidence outside (0, 1).
+fn fatigue_statistics(
+    c: &FatigueChannel,
+    shards: &Shards,
+    duration_s: f64,
+    confidence: f64,
+) -> Result<(String, Statistic, RainflowSummary)> {
+    let name = fatigue_name(&c.output);
+    let mut d = Vec::new();
+    let mut hist = vec![0.0; c.bins + 1];
+    for (s, &r) in shards.rows.iter().enumerate() {
+        let a = (shards.read)(&name, s)?;
+        if a.len() != shards.size + c.bins + 1 {
+            return Err(damaged(&name));
+        }
+        d.extend_from_slice(&a[..r]);
+        for (h, v) in hist.iter_mut().zip(&a[shards.size..]) {
+            *h += v;
+        }
+    }
+    let n = d.len() as f64;
+    let iv = interval(&d, confidence)?;
+    let st = stat(
+        "damage_rate",
+        iv,
+        "1/s",
+        "rainflow (ASTM E1049-85, residue as half cycles) and Palmgren–Miner per realization, divided by \
+         its duration; Student-t across realizations; analytic = Dirlik (1985) from the analytic moments",
+        match &c.moments {
+            Some(m) => Some(Dirlik.damage_rate(m, &c.sn)?),
+            None => None,
+        },
+    );
+    let edges = RangeHistogram::new(c.max_range, c.bins)?.bin_edges();
+    let overflow = hist[c.bins] / n;
+    let counts = hist[..c.bins].iter().map(|v| v / n).collect();
+    Ok((
+        c.output.clone(),
+        st,
+        RainflowSummary {
+            output: c.output.clone(),
+            unit: String::new(),
+            edges,
+            counts,
+            overflow,
+            dirlik: c.moments.as_ref().map(|m| dirlik_counts(m, &edges_of(c), duration_s)),
+        },
+    ))
 }
 
 fn edges_of(c: &FatigueChannel) -> Vec<f64> {

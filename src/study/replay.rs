@@ -119,76 +119,17 @@ fn measured_text(
     let mut root: toml::Table = crate::fields::parse_toml(&scenario.text, file)?;
     // a `[road]` section is the one `[[input]]` table it stands for
     crate::scenario::inputs::road_section_as_input(&mut root, file)?;
-    let speed_text = toml::Value::String(format!("{speed:?} m/s"));
-    let not_a_road = |key: &str, reference: &str| {
-        Error::in_file(
-            file,
-            key,
-            reference,
-            "this input is not a road (its spectrum is temporal): a road profile cannot replay it",
-        )
+    let replacement = Replacement {
+        scenario,
+        profile,
+        columns,
+        track,
+        opts,
+        speed_text: toml::Value::String(format!("{speed:?} m/s")),
     };
-    // a column the replay needs and the profile lacks, named with the profile file
-    let need = |name: &str, what: &str| {
-        columns.track(name).map(|_| ()).map_err(|e| {
-            let reason = match e {
-                Error::InvalidParameter { reason, .. } => reason,
-                other => other.to_string(),
-            };
-            Error::in_file(profile, "track", name, format!("{what}: {reason}"))
-        })
-    };
-    let mut analytic_track = track.to_string();
-    match root.get_mut("input") {
-        Some(toml::Value::Table(t)) => {
-            if scenario.input.spectrum.domain() != Domain::Spatial {
-                return Err(not_a_road("input.spectrum", &scenario.input.reference));
-            }
-            need(track, "the road of the scenario's [input] runs on this track (--track)")?;
-            t.insert("spectrum".into(), measured_table(profile, track, opts.detrend));
-            t.insert("speed".into(), speed_text);
-        }
-        Some(toml::Value::Array(tables)) => {
-            let mut roads = 0;
-            for (i, v) in tables.iter_mut().enumerate() {
-                let Some(t) = v.as_table_mut() else { continue };
-                let inp = &scenario.inputs[i];
-                if inp.spectrum.domain() != Domain::Spatial {
-                    return Err(not_a_road(&format!("input[{i}].spectrum"), &inp.reference));
-                }
-                roads += 1;
-                if roads > 1 {
-                    return Err(Error::in_file(
-                        file,
-                        format!("input[{i}]"),
-                        &inp.name,
-                        "a second road input: one profile replays one road (the scenario's roads are \
-                         independent sources, a replay would make them identical)",
-                    ));
-                }
-                if let Some(toml::Value::Table(road)) = t.get_mut("road") {
-                    if let Some(given) = &opts.track {
-                        return Err(Error::invalid(
-                            "--track",
-                            given,
-                            format!(
-                                "input[{i}] is a road of two tracks, replayed on the profile's columns `left` and \
-                                 `right`; --track chooses the column under a road of one track: leave it out"
-                            ),
-                        ));
-                    }
-                    for side in ["left", "right"] {
-                        need(side, &format!("input[{i}] is a road of two tracks, `left` and `right`"))?;
-                    }
-                    analytic_track = "left".into();
-                    road.insert("spectrum".into(), measured_table(profile, "left", opts.detrend));
-                } else {
-                    need(track, &format!("input[{i}] is a road of one track (--track)"))?;
-                    t.insert("spectrum".into(), measured_table(profile, track, opts.detrend));
-                }
-                t.insert("speed".into(), speed_text.clone());
-            }
-        }
+    let analytic_track = match root.get_mut("input") {
+        Some(toml::Value::Table(t)) => replacement.one_input(t)?,
+        Some(toml::Value::Array(tables)) => replacement.several_inputs(tables)?,
         _ => {
             return Err(Error::in_file(
                 file,
@@ -197,7 +138,7 @@ fn measured_text(
                 "the scenario has no input to replay",
             ));
         }
-    }
+    };
     let text = toml::to_string(&root).map_err(|e| {
         Error::in_file(
             file,
@@ -207,6 +148,108 @@ fn measured_text(
         )
     })?;
     Ok((text, analytic_track))
+}
+
+/// What a replay puts in place of the scenario's road inputs: the measured density of the profile's
+/// column(s) and the replay's speed.
+struct Replacement<'a> {
+    scenario: &'a Scenario,
+    /// The profile file, and its columns.
+    profile: &'a Path,
+    columns: &'a Profile,
+    /// The column under a road of one track.
+    track: &'a str,
+    opts: &'a ScenarioReplayOptions,
+    speed_text: toml::Value,
+}
+
+impl Replacement<'_> {
+    /// The error of an input that is not a road (its spectrum is temporal).
+    fn not_a_road(&self, key: &str, reference: &str) -> Error {
+        Error::in_file(
+            &self.scenario.path,
+            key,
+            reference,
+            "this input is not a road (its spectrum is temporal): a road profile cannot replay it",
+        )
+    }
+
+    /// A column the replay needs (`what`: why) and the profile lacks, named with the profile file.
+    fn need(&self, name: &str, what: &str) -> Result<()> {
+        self.columns.track(name).map(|_| ()).map_err(|e| {
+            let reason = match e {
+                Error::InvalidParameter { reason, .. } => reason,
+                other => other.to_string(),
+            };
+            Error::in_file(self.profile, "track", name, format!("{what}: {reason}"))
+        })
+    }
+
+    /// The one `[input]` table `t` replaced; the column of the analytic route.
+    fn one_input(&self, t: &mut toml::Table) -> Result<String> {
+        let scenario = self.scenario;
+        if scenario.input.spectrum.domain() != Domain::Spatial {
+            return Err(self.not_a_road("input.spectrum", &scenario.input.reference));
+        }
+        self.need(
+            self.track,
+            "the road of the scenario's [input] runs on this track (--track)",
+        )?;
+        t.insert(
+            "spectrum".into(),
+            measured_table(self.profile, self.track, self.opts.detrend),
+        );
+        t.insert("speed".into(), self.speed_text.clone());
+        Ok(self.track.to_string())
+    }
+
+    /// The `[[input]]` tables replaced (one road at most, of one track or two); the column of the analytic
+    /// route.
+    fn several_inputs(&self, tables: &mut [toml::Value]) -> Result<String> {
+        let (scenario, profile, track, opts) = (self.scenario, self.profile, self.track, self.opts);
+        let file = &scenario.path;
+        let mut analytic_track = track.to_string();
+        let mut roads = 0;
+        for (i, v) in tables.iter_mut().enumerate() {
+            let Some(t) = v.as_table_mut() else { continue };
+            let inp = &scenario.inputs[i];
+            if inp.spectrum.domain() != Domain::Spatial {
+                return Err(self.not_a_road(&format!("input[{i}].spectrum"), &inp.reference));
+            }
+            roads += 1;
+            if roads > 1 {
+                return Err(Error::in_file(
+                    file,
+                    format!("input[{i}]"),
+                    &inp.name,
+                    "a second road input: one profile replays one road (the scenario's roads are \
+                     independent sources, a replay would make them identical)",
+                ));
+            }
+            if let Some(toml::Value::Table(road)) = t.get_mut("road") {
+                if let Some(given) = &opts.track {
+                    return Err(Error::invalid(
+                        "--track",
+                        given,
+                        format!(
+                            "input[{i}] is a road of two tracks, replayed on the profile's columns `left` and \
+                             `right`; --track chooses the column under a road of one track: leave it out"
+                        ),
+                    ));
+                }
+                for side in ["left", "right"] {
+                    self.need(side, &format!("input[{i}] is a road of two tracks, `left` and `right`"))?;
+                }
+                analytic_track = "left".into();
+                road.insert("spectrum".into(), measured_table(profile, "left", opts.detrend));
+            } else {
+                self.need(track, &format!("input[{i}] is a road of one track (--track)"))?;
+                t.insert("spectrum".into(), measured_table(profile, track, opts.detrend));
+            }
+            t.insert("speed".into(), self.speed_text.clone());
+        }
+        Ok(analytic_track)
+    }
 }
 
 /// The wheel of every model input of the measured scenario `s` at speed `speed`.

@@ -14,7 +14,7 @@ use crate::store::{Compression, Part};
 use crate::transient::mc_finish::AnalyticSide;
 use crate::transient::mission::analytic_side;
 use crate::transient::{
-    run_road_grid, run_transient, McGrid, RoadGridRunInput, TransientRunInput, TransientRunOptions,
+    run_road_grid, run_transient, McGrid, McGridSpec, RoadGridRunInput, TransientRunInput, TransientRunOptions,
     TransientRunSummary, TransientSolution,
 };
 use std::path::Path;
@@ -93,7 +93,12 @@ pub fn simulate_transient(
     let intervals = setup.times.len() - 1;
     check_substeps(opts.substeps, intervals)?;
     let dt = duration / (intervals * opts.substeps) as f64;
-    let grid = McGrid::new(duration, dt, opts.substeps)?;
+    let grid = McGridSpec {
+        duration_s: duration,
+        dt_s: dt,
+        store_every: opts.substeps,
+    }
+    .build()?;
     let input = TransientRunInput {
         sys: &setup.sys,
         outputs,
@@ -462,7 +467,12 @@ pub fn simulate_road_grid(
     notes.push(format!(
         "road-grid Monte Carlo: Δx = {dx:.4e} m, {substeps} integration steps per reported interval"
     ));
-    let grid = McGrid::new(duration, duration / (intervals * substeps) as f64, substeps)?;
+    let grid = McGridSpec {
+        duration_s: duration,
+        dt_s: duration / (intervals * substeps) as f64,
+        store_every: substeps,
+    }
+    .build()?;
     let input = RoadGridRunInput {
         ss: &setup.ss,
         wheels: setup.wheels.as_ref(),

@@ -10,7 +10,7 @@ use crate::comfort::{
     ComfortReaction, ExposureVerdict, HealthGuidanceZone, Location, Purpose, VectorSumTerm, Weighting,
 };
 use crate::error::{Error, Result};
-use crate::fatigue::{compare_methods, SpectralMoments};
+use crate::fatigue::{compare_methods, SpectralMoments, TwoSidedAngularMoments};
 use crate::response::{
     analyze_output_with, spectral_moment_quadrature, Excitation, OutputDensity, ResponseStatistics, VarianceMethod,
 };
@@ -189,7 +189,7 @@ pub struct VerdictAnalysis {
 /// 6.3.2 note) with the purpose's factors k; a_v = √(Σ kᵢ² a_wᵢ²) (ISO 2631-1 (9)); the Directive's A(8) and
 /// VDV and the Annex B zones are those of the dominant axis with the *health* factors whatever the purpose
 /// (Directive 2002/44/EC Annex B 1: the highest of 1.4a_wx, 1.4a_wy, a_wz; [`directive_factor`]).
-/// Fatigue: stress = s·y, m_j = s² (2π)^{−j} λ_j ([`SpectralMoments::from_two_sided_angular`]), each
+/// Fatigue: stress = s·y, m_j = s² (2π)^{−j} λ_j ([`TwoSidedAngularMoments`]), each
 /// method's damage rate ([`compare_methods`]), life = 1/rate.
 ///
 /// # Errors
@@ -491,7 +491,13 @@ pub fn stress_moments(
     let l4 = st.lambda4.ok_or_else(|| divergent("λ₄", &st.lambda4_outcome))?;
     let l1 = spectral_moment_quadrature(sys, exc, i, 1)?.value;
     let s2 = stress_factor * stress_factor;
-    let m = SpectralMoments::from_two_sided_angular(s2 * l0, s2 * l1, s2 * l2, s2 * l4)?;
+    let m = TwoSidedAngularMoments {
+        lambda0: s2 * l0,
+        lambda1: s2 * l1,
+        lambda2: s2 * l2,
+        lambda4: s2 * l4,
+    }
+    .build()?;
     let exact = st
         .methods
         .iter()

@@ -32,13 +32,37 @@ pub struct McGrid {
     pub store_every: usize,
 }
 
-impl McGrid {
-    /// The grid of `duration` in steps of `dt`, storing every `store_every`-th point.
+/// What a [`McGrid`] is built from: a duration in steps of Δt, every `store_every`-th point stored.
+///
+/// # Examples
+/// ```
+/// use stochvib::transient::McGridSpec;
+/// let grid = McGridSpec { duration_s: 2.5, dt_s: 0.01, store_every: 5 }.build().unwrap();
+/// assert_eq!((grid.n_steps, grid.n_stored()), (250, 51));
+/// assert!(McGridSpec { duration_s: 2.5, dt_s: 0.01, store_every: 3 }.build().is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct McGridSpec {
+    /// Duration of the run, s.
+    pub duration_s: f64,
+    /// Integration step Δt, s.
+    pub dt_s: f64,
+    /// Every `store_every`-th grid point is a stored time (t = 0 is the first).
+    pub store_every: usize,
+}
+
+impl McGridSpec {
+    /// The grid of `duration_s` in steps of `dt_s`, storing every `store_every`-th point.
     ///
     /// # Errors
-    /// Non-positive or non-finite values; a duration that is not a whole number of stored intervals
-    /// (within 10⁻⁹ relative).
-    pub fn new(duration: f64, dt: f64, store_every: usize) -> Result<Self> {
+    /// Non-positive or non-finite values (named `duration`, `dt`, `store_every`); a duration that is not a
+    /// whole number of stored intervals (within 10⁻⁹ relative).
+    pub fn build(self) -> Result<McGrid> {
+        let McGridSpec {
+            duration_s: duration,
+            dt_s: dt,
+            store_every,
+        } = self;
         for (name, v) in [("duration", duration), ("dt", dt)] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(Error::invalid(name, v, "must be finite and > 0"));
@@ -62,7 +86,9 @@ impl McGrid {
             store_every,
         })
     }
+}
 
+impl McGrid {
     /// Number of stored times (t = 0 included).
     pub fn n_stored(&self) -> usize {
         self.n_steps / self.store_every + 1
@@ -416,7 +442,7 @@ mod tests {
     use crate::spectrum::{IsoBound, IsoClass, PowerLaw};
     use crate::system::{Attach, Element, FrequencyResponse, Mdof, Quantity};
     use crate::transient::schedule::FixedSystem;
-    use crate::transient::{input_model, Envelope, SpeedProfile, TransientInput};
+    use crate::transient::{input_model, ConstantAcceleration, Envelope, TransientInput};
 
     /// The quarter car accelerating from 5 to 15 m/s on a w = 2 road (every step's table differs).
     fn accelerating_car() -> TimeVaryingSystem {
@@ -439,7 +465,14 @@ mod tests {
             .with_output("travel", Quantity::Deflection(0))
             .unwrap();
         let road = PowerLaw::iso8608(IsoClass::D, IsoBound::GeometricMean, None).unwrap();
-        let v = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
+        let v = ConstantAcceleration {
+            from_m_s: 5.0,
+            to_m_s: 15.0,
+            acceleration_m_s2: 1.0,
+            start_s: 0.0,
+        }
+        .build()
+        .unwrap();
         let ss = mdof.state_space().unwrap().clone();
         let gains = vec![1.0; ss.b.ncols()];
         let input = TransientInput {
@@ -492,7 +525,13 @@ mod tests {
         let sys = accelerating_car();
         let index = |name: &str| sys.outputs().iter().position(|o| o.name == name).unwrap();
         let outputs = vec![index("body_acc"), index("travel")];
-        let grid = McGrid::new(2.25, 1e-3, 5).unwrap(); // 2250 steps: blocks of 1024, 1024 and 202
+        let grid = McGridSpec {
+            duration_s: 2.25,
+            dt_s: 1e-3,
+            store_every: 5,
+        }
+        .build()
+        .unwrap(); // 2250 steps: blocks of 1024, 1024 and 202
         let plan = McPlan::new(&sys, outputs, &Start::Stationary, grid).unwrap();
         let (seed, r) = (7, 11);
         let mut states: Vec<RealizationState> = (0..r).map(|i| plan.initial(seed, i)).collect();

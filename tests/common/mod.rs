@@ -436,6 +436,19 @@ direction = "z"
 outputs = ["bounce", "pitch", "roll", "seat_acc", "travel_front_left", "tyre_force_rear_right"]
 "#;
 
+/// The speed profile of the accelerating-car tests: from 5 to 15 m/s at 1 m/s², starting at t = 0 (so at
+/// 15 m/s from t = 10 s on).
+pub fn accelerating_5_to_15() -> stochvib::transient::SpeedProfile {
+    stochvib::transient::ConstantAcceleration {
+        from_m_s: 5.0,
+        to_m_s: 15.0,
+        acceleration_m_s2: 1.0,
+        start_s: 0.0,
+    }
+    .build()
+    .unwrap()
+}
+
 /// The passenger-car corner of `data/quarter-car.toml` (300 kg, 40 kg, 20 kN/m, 1.5 kN s/m, tyre 200 kN/m, no
 /// tyre damping), the model the transient tests drive.
 pub fn passenger_quarter_car() -> stochvib::models::quarter_car::QuarterCar {

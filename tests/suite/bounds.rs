@@ -9,7 +9,7 @@ use crate::common::{self, root};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 use std::time::Duration;
-use stochvib::simulate::LaplaceMovingAverage;
+use stochvib::simulate::{LaplaceGrid, LaplaceMovingAverage};
 use stochvib::spectrum::{Domain, Exponential};
 
 fn scratch(tag: &str) -> PathBuf {
@@ -78,15 +78,30 @@ fn the_kurtosis_bound_is_three_plus_r_times_n_minus_three() {
     let s2: f64 = f.iter().map(|v| v * v).sum();
     let r = f.iter().map(|v| v.powi(4)).sum::<f64>() / (s2 * s2);
     let bound = 3.0 + r * (n as f64 - 3.0);
-    let lma = LaplaceMovingAverage::new(&s, dt, n, bound * (1.0 - 1e-9)).unwrap();
+    let lma = LaplaceMovingAverage::new(
+        &s,
+        LaplaceGrid {
+            dt,
+            n,
+            kurtosis: bound * (1.0 - 1e-9),
+        },
+    )
+    .unwrap();
     assert!(
         (lma.kernel_ratio() / r - 1.0).abs() < 1e-9,
         "{} vs {r}",
         lma.kernel_ratio()
     );
-    let e = LaplaceMovingAverage::new(&s, dt, n, bound * (1.0 + 1e-9))
-        .unwrap_err()
-        .to_string();
+    let e = LaplaceMovingAverage::new(
+        &s,
+        LaplaceGrid {
+            dt,
+            n,
+            kurtosis: bound * (1.0 + 1e-9),
+        },
+    )
+    .unwrap_err()
+    .to_string();
     for part in ["kurtosis", "at most", &format!("{bound:.4}"), "longer realizations"] {
         assert!(e.contains(part), "{part}: {e}");
     }

@@ -12,8 +12,8 @@ use std::sync::Arc;
 use stochvib::comfort::{
     axis_factor, band_mean_square, band_rms, bands_covering, comfort_reactions, daily_exposure_a8,
     daily_exposure_a8_periods, msdv, running_rms, vdv_gaussian, vdv_total, vector_sum, weighted_output, Axis,
-    AxisValue, Band, BandFraction, BasicMethodCheck, ComfortReaction, DirectiveLimits, ExposurePeriod, ExposureVerdict,
-    HealthGuidanceZone, Location, Motion, Purpose, SignalMetrics, Weighting, ZonePosition,
+    AxisValue, Band, BandFraction, BasicMethodInputs, ComfortReaction, DirectiveLimits, ExposurePeriod,
+    ExposureVerdict, HealthGuidanceZone, Location, Motion, Purpose, SignalMetrics, Weighting, ZonePosition,
 };
 use stochvib::response::{variance_lyapunov, variance_quadrature, Excitation};
 use stochvib::simulate::{fill_standard_normal, stream};
@@ -804,23 +804,27 @@ fn crest_factor_limit_both_sides() {
 /// just above each; T = 16 s so that T^(1/4) = 2 exactly.
 #[test]
 fn ratio_limits_both_sides() {
-    let at = BasicMethodCheck::new(1.0, 9.0, Some(1.5), 3.5, 16.0).unwrap();
+    // the check of a_w = 1 and T = 16 s from the peak, the MTVV and the VDV
+    let check = |peak: f64, mtvv: Option<f64>, vdv: f64| {
+        BasicMethodInputs {
+            a_w: 1.0,
+            peak,
+            mtvv,
+            vdv,
+            duration_s: 16.0,
+        }
+        .check()
+        .unwrap()
+    };
+    let at = check(9.0, Some(1.5), 3.5);
     assert_eq!(at.vdv_ratio, Some(1.75));
     assert!(!at.crest_factor_exceeded && !at.mtvv_ratio_exceeded && !at.vdv_ratio_exceeded);
     assert!(at.basic_method_sufficient);
-    let over = BasicMethodCheck::new(1.0, up(9.0), Some(up(1.5)), up(3.5), 16.0).unwrap();
+    let over = check(up(9.0), Some(up(1.5)), up(3.5));
     assert!(over.crest_factor_exceeded && over.mtvv_ratio_exceeded && over.vdv_ratio_exceeded);
     // each criterion alone suffices
-    assert!(
-        !BasicMethodCheck::new(1.0, 1.0, Some(up(1.5)), 1.0, 16.0)
-            .unwrap()
-            .basic_method_sufficient
-    );
-    assert!(
-        !BasicMethodCheck::new(1.0, 1.0, None, up(3.5), 16.0)
-            .unwrap()
-            .basic_method_sufficient
-    );
+    assert!(!check(1.0, Some(up(1.5)), 1.0).basic_method_sufficient);
+    assert!(!check(1.0, None, up(3.5)).basic_method_sufficient);
     // a zero signal has no ratios
     let zero = SignalMetrics::from_samples(&[0.0; 300], 0.01).unwrap();
     assert_eq!((zero.check.crest_factor, zero.check.vdv_ratio), (None, None));

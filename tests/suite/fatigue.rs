@@ -27,9 +27,9 @@ use statrs::function::gamma::gamma;
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 use stochvib::fatigue::{
-    compare_methods, rainflow, Cycle, Dirlik, NarrowBand, RainflowCounter, RangeHistogram, SnCurve, SnRangeCurve,
-    SpectralMethod, SpectralMethodKind, SpectralMoments, TovoBenasciutti, TovoBenasciuttiVariant, WirschingLight,
-    ZhaoBaker, ZhaoBakerVariant,
+    compare_methods, rainflow, Cycle, Dirlik, NarrowBand, OneSidedHzMoments, RainflowCounter, RangeHistogram, SnCurve,
+    SnRangeCurve, SpectralMethod, SpectralMethodKind, SpectralMoments, TovoBenasciutti, TovoBenasciuttiVariant,
+    TwoSidedAngularMoments, WirschingLight, ZhaoBaker, ZhaoBakerVariant,
 };
 use stochvib::quad::{integrate, QuadOptions};
 use stochvib::simulate::{stream, uniform01, Amplitudes, SpectralGenerator};
@@ -508,7 +508,14 @@ fn moments_from_spectrum_match_closed_form() {
     // The two-sided angular route: λ_j = (2π)^j m_j.
     let w = 2.0 * PI;
     let l = |j: f64| gaussian_moment(d, alpha, j) * w.powf(j);
-    let m2 = SpectralMoments::from_two_sided_angular(l(0.0), l(1.0), l(2.0), l(4.0)).unwrap();
+    let m2 = TwoSidedAngularMoments {
+        lambda0: l(0.0),
+        lambda1: l(1.0),
+        lambda2: l(2.0),
+        lambda4: l(4.0),
+    }
+    .build()
+    .unwrap();
     assert!(rel(m2.m4(), m.m4()) < QUADRATURE);
     // ν₀⁺ = √(m₂/m₀) = (1/2π)√(λ₂/λ₀) = (1/2π)√(2α) for this spectrum (λ₂/λ₀ = 4α·Γ(3/2)/Γ(1/2) = 2α).
     assert!(rel(m.nu0_plus(), (2.0 * alpha).sqrt() / (2.0 * PI)) < QUADRATURE);
@@ -661,11 +668,25 @@ fn moments_bad_input() {
         ((ok.0, ok.1, ok.2, 1.0e4), "`m2`"),
     ];
     for ((a, b, c, d), name) in cases {
-        let e = SpectralMoments::new(a, b, c, d).unwrap_err();
+        let e = OneSidedHzMoments {
+            m0: a,
+            m1: b,
+            m2: c,
+            m4: d,
+        }
+        .build()
+        .unwrap_err();
         assert!(matches!(e, Error::InvalidParameter { .. }));
         assert!(e.to_string().contains(name), "{e} should name {name}");
     }
-    let m = SpectralMoments::new(ok.0, ok.1, ok.2, ok.3).unwrap();
+    let m = OneSidedHzMoments {
+        m0: ok.0,
+        m1: ok.1,
+        m2: ok.2,
+        m4: ok.3,
+    }
+    .build()
+    .unwrap();
     assert!(m
         .with_fractional(-1.0, 1.0)
         .unwrap_err()
@@ -719,7 +740,14 @@ fn test_moments() -> Vec<(&'static str, SpectralMoments, Vec<f64>)> {
 fn narrow_band_closed_forms() {
     // k = 2: ∫_{S_e}^∞ s²·(s/m₀)e^{−s²/2m₀} ds = 2m₀ Γ(2, x) = 2m₀(1 + x)e^{−x}, x = S_e²/(2m₀).
     // k = 4: 4m₀² Γ(3, x) = 4m₀²(x² + 2x + 2)e^{−x}.
-    let m = SpectralMoments::new(2.5, 30.0, 500.0, 1.2e5).unwrap();
+    let m = OneSidedHzMoments {
+        m0: 2.5,
+        m1: 30.0,
+        m2: 500.0,
+        m4: 1.2e5,
+    }
+    .build()
+    .unwrap();
     let nu = (500.0f64 / 2.5).sqrt();
     let m0 = 2.5;
     for se in [0.0, 1.0, 3.0] {
@@ -859,7 +887,14 @@ fn every_method_tends_to_rayleigh_for_a_narrow_band() {
     for (f0, r) in [(40.0f64, 1e-2f64), (40.0, 2e-3)] {
         let (f1, f2) = (f0 * (1.0 - r), f0 * (1.0 + r));
         let mj = |j: i32| (f2.powi(j + 1) - f1.powi(j + 1)) / (j as f64 + 1.0);
-        let m = SpectralMoments::new(mj(0), mj(1), mj(2), mj(4)).unwrap();
+        let m = OneSidedHzMoments {
+            m0: mj(0),
+            m1: mj(1),
+            m2: mj(2),
+            m4: mj(4),
+        }
+        .build()
+        .unwrap();
         let eta = 1.0 - m.alpha2();
         assert!(rel(eta, 2.0 * r * r / 3.0) < 0.05, "η = {eta}");
         for k in [3.0, 5.0, 8.0] {
@@ -897,10 +932,16 @@ fn every_method_tends_to_rayleigh_for_a_narrow_band() {
         }
     }
     // A pure tone (every α = 1): every method gives exactly the Rayleigh damage.
-    let tone = SpectralMoments::new(4.0, 4.0 * 25.0, 4.0 * 625.0, 4.0 * 390_625.0)
-        .unwrap()
-        .with_fractional(4.0 * 25f64.powf(0.75), 4.0 * 25f64.powf(1.5))
-        .unwrap();
+    let tone = OneSidedHzMoments {
+        m0: 4.0,
+        m1: 4.0 * 25.0,
+        m2: 4.0 * 625.0,
+        m4: 4.0 * 390_625.0,
+    }
+    .build()
+    .unwrap()
+    .with_fractional(4.0 * 25f64.powf(0.75), 4.0 * 25f64.powf(1.5))
+    .unwrap();
     let sn = SnCurve {
         k: 4.0,
         c: 1e12,
@@ -1040,7 +1081,14 @@ fn compare_methods_reports_every_method() {
     // as a cycle with the largest possible amplitude distribution).
     assert_eq!(lo, cmp.get(SpectralMethodKind::NarrowBand).unwrap().life);
     // ZB k = 3 variant without fractional moments: a clear error.
-    let plain = SpectralMoments::new(m.m0(), m.m1(), m.m2(), m.m4()).unwrap();
+    let plain = OneSidedHzMoments {
+        m0: m.m0(),
+        m1: m.m1(),
+        m2: m.m2(),
+        m4: m.m4(),
+    }
+    .build()
+    .unwrap();
     let e = ZhaoBaker::new(ZhaoBakerVariant::K3)
         .damage_rate(&plain, &sn)
         .unwrap_err();
@@ -1078,7 +1126,14 @@ fn monte_carlo_rainflow_damage_matches_dirlik() {
             *mp += f.powi(p as i32) * var;
         }
     }
-    let m = SpectralMoments::new(mom[0], mom[1], mom[2], mom[4]).unwrap();
+    let m = OneSidedHzMoments {
+        m0: mom[0],
+        m1: mom[1],
+        m2: mom[2],
+        m4: mom[4],
+    }
+    .build()
+    .unwrap();
     let sn = SnCurve {
         k,
         c: 1.0,

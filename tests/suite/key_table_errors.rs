@@ -543,3 +543,93 @@ fn every_section_unknown_key_is_the_same() {
         assert_eq!((k.as_str(), r.as_str()), (*key, reason.as_str()), "\n{text}");
     }
 }
+
+/// An unknown key `extra` in each sub-table of the `full-vehicle` and `machine` kinds, whose readers take
+/// their unknown-key check from the key tables `FULL_VEHICLE_*` and `MACHINE_*`: the key named with its
+/// dotted path, and the keys of the sub-table listed alphabetically (the keys of its row in
+/// `docs/scenario-reference.md`).
+#[test]
+fn full_vehicle_and_machine_sub_tables_unknown_key() {
+    let unknown = |known: &str| format!("unknown key (known keys here: {known})");
+    let data = |file: &str| std::fs::read_to_string(common::root().join("data").join(file)).unwrap();
+    let (car, loader) = (data("full-vehicle-two-tracks.toml"), data("wheel-loader-cab-seat.toml"));
+    let suspended = common::CAR_AS_MACHINE.to_string()
+        + "[[input]]\nname = \"road\"\nroad = { spectrum = \"iso8608-c\", track_width = \"1.5 m\", coherence = { \
+           kind = \"dodds-robson\", waviness = 2 } }\nspeed = \"20 m/s\"\n";
+    // `text` with `extra = 1` written after the first `after`
+    let with = |text: &str, after: &str| {
+        assert!(text.contains(after), "{after}");
+        text.replacen(after, &format!("{after}\nextra = 1"), 1)
+    };
+    // `text` with `, extra = 1` in the inline table that ends in the first `end`
+    let inline = |text: &str, end: &str| {
+        assert!(text.contains(end), "{end}");
+        text.replacen(end, &end.replace(" }", ", extra = 1 }"), 1)
+    };
+    let cases: Vec<(String, &str, String)> = vec![
+        (
+            inline(&car, r#"rear = "22 kN/m" }"#),
+            "model.suspension_stiffness.extra",
+            unknown("front, rear"),
+        ),
+        (
+            inline(&car, r#"rear = "1800 N*s/m" }"#),
+            "model.suspension_damping.extra",
+            unknown("front, rear"),
+        ),
+        (
+            inline(&car, r#"rear = "35 kg" }"#),
+            "model.unsprung_mass.extra",
+            unknown("front, rear"),
+        ),
+        (
+            inline(&car, r#"left = "0.35 m" }"#),
+            "model.seat.extra",
+            unknown("ahead, left"),
+        ),
+        (
+            with(&loader, r#"height = "1.2 m""#),
+            "model.body.extra",
+            unknown("height, mass, pitch_inertia, roll_inertia"),
+        ),
+        (
+            with(&loader, r#"tyre_damping = "4 kN*s/m""#),
+            "model.axle[0].extra",
+            unknown("name, oscillating, position, suspension, track_width, tyre_damping, tyre_stiffness"),
+        ),
+        (
+            inline(&loader, r#"roll_damping = "2 kN*m*s/rad" }"#),
+            "model.axle[1].oscillating.extra",
+            unknown("roll_damping, roll_inertia, roll_stiffness"),
+        ),
+        (
+            inline(&suspended, r#"unsprung_mass = "40 kg" }"#),
+            "model.axle[0].suspension.extra",
+            unknown("damping, stiffness, unsprung_mass"),
+        ),
+        (
+            with(&loader, r#"mount_height = "1.7 m""#),
+            "model.cab.extra",
+            unknown("mass, mount, mount_height, pitch_inertia, position, roll_inertia"),
+        ),
+        (
+            with(&loader, "stiffness = \"250 kN/m\"\ndamping = \"3 kN*s/m\""),
+            "model.cab.mount[0].extra",
+            unknown("damping, position, stiffness"),
+        ),
+        (
+            with(&loader, r#"damping = "470 N*s/m""#),
+            "model.seat.extra",
+            unknown("damping, operator_mass, position, seat_mass, stiffness"),
+        ),
+        (
+            with(&loader, r#"quantity = "displacement""#),
+            "model.output[2].extra",
+            unknown("direction, name, part, point, quantity"),
+        ),
+    ];
+    for (text, key, reason) in &cases {
+        let (k, r) = error_of(text);
+        assert_eq!((k.as_str(), r.as_str()), (*key, reason.as_str()), "\n{text}");
+    }
+}

@@ -10,13 +10,26 @@ use crate::common;
 use std::path::Path;
 use stochvib::estimate::{mean_interval, Welch};
 use stochvib::scenario::parse_scenario;
-use stochvib::simulate::{run_batch, LaplaceMovingAverage, Route, RunOptions};
+use stochvib::simulate::{run_batch, LaplaceGrid, LaplaceMovingAverage, Route, RunOptions};
 use stochvib::spectrum::{Domain, Exponential, Spectrum};
 use stochvib::store::{RunFile, SignalGroup};
 
 /// The textbook road (8.45) in SI: type 1 in space, D = 2.25e-4 m², α = 3.5 1/m, sampled every 5 cm.
 fn road() -> Exponential {
     Exponential::new(2.25e-4, 3.5, Domain::Spatial).unwrap()
+}
+
+/// The Laplace moving average of kurtosis 6 of the road `q` on `n` samples of [`DX`].
+fn road_of_kurtosis_6(q: &dyn Spectrum, n: usize) -> LaplaceMovingAverage {
+    LaplaceMovingAverage::new(
+        q,
+        LaplaceGrid {
+            dt: DX,
+            n,
+            kurtosis: 6.0,
+        },
+    )
+    .unwrap()
 }
 const DX: f64 = 0.05;
 
@@ -87,7 +100,7 @@ fn laplace_road_has_the_prescribed_welch_density() {
     // 5e-8; the χ² law is the two-moment approximation, the factor 20 below 1e-6 is the margin for its tail.
     let q = road();
     let n = 1 << 20;
-    let lma = LaplaceMovingAverage::new(&q, DX, n, 6.0).unwrap();
+    let lma = road_of_kurtosis_6(&q, n);
     let mut sc = lma.scratch();
     let mut x = vec![0.0; n];
     lma.generate(&mut stochvib::simulate::stream(31, 0), &mut sc, &mut x)
@@ -150,7 +163,15 @@ fn laplace_road_reaches_the_prescribed_kurtosis() {
     let q = road();
     let n = 1 << 14;
     for (kappa, seed) in [(3.0, 41), (6.0, 42), (10.0, 43)] {
-        let lma = LaplaceMovingAverage::new(&q, DX, n, kappa).unwrap();
+        let lma = LaplaceMovingAverage::new(
+            &q,
+            LaplaceGrid {
+                dt: DX,
+                n,
+                kurtosis: kappa,
+            },
+        )
+        .unwrap();
         let d = lma.grid_variance();
         let (m2, m4) = moments(&lma, seed, 400);
         let v = mean_interval(&m2, 1.0 - 2.5e-7).unwrap();
@@ -357,7 +378,7 @@ fn kurtosis_of_a_filtered_laplace_moving_average_follows_its_kernel_ratio() {
     use realfft::num_complex::Complex;
     let q = road();
     let n = 256;
-    let lma = LaplaceMovingAverage::new(&q, DX, n, 6.0).unwrap();
+    let lma = road_of_kurtosis_6(&q, n);
     let f = kernel(&lma, n / 2);
     let ratio = |k: &[f64]| k.iter().map(|v| v.powi(4)).sum::<f64>() / k.iter().map(|v| v * v).sum::<f64>().powi(2);
     // periodic kernel over one period (lags −N/2..N/2 − 1), then g_l = (f_l + f_{l−1})/2 circularly

@@ -344,6 +344,17 @@ fn idler_example_8_1() {
     assert!(w.contains("invalid") && w.contains("α"), "{w}");
 }
 
+/// The lump load of mean 0 and variance 1 whose correlation decays at the rate `alpha` (1/s).
+fn unit_load(alpha: f64) -> LumpLoad {
+    LumpLoad {
+        mean: 0.0,
+        variance: 1.0,
+        alpha,
+    }
+    .build()
+    .unwrap()
+}
+
 /// Ratio formula (exact closed form above divided by the white-noise πS_x(ω₀)/(2ζω₀³), S_x(ω₀) =
 /// αD_x/(π(α² + ω₀²))): exact/white = (α + 2ζω₀)(α² + ω₀²)/(α(ω₀² + α² + 2αζω₀)); it equals the
 /// quotient of the two variances (8.62 with two-sided S_x(ω₀)) and tends to 1 as α → ∞ (flat input) and
@@ -354,15 +365,7 @@ fn idler_ratio_formula_and_limits() {
     let w0 = (c / m).sqrt();
     let idler = ConveyorIdler { m, c, b: 0.0 }.with_damping_ratio(zeta).unwrap();
     for a in [0.01, 0.5, 10.0, 1e3, 1e6] {
-        let r = idler.analyse(
-            &LumpLoad {
-                mean: 0.0,
-                variance: 1.0,
-                alpha: a,
-            }
-            .build()
-            .unwrap(),
-        );
+        let r = idler.analyse(&unit_load(a));
         let ratio = (a + 2.0 * zeta * w0) * (a * a + w0 * w0) / (a * (w0 * w0 + a * a + 2.0 * a * zeta * w0));
         assert!(rel(r.variance_ratio, ratio) < EXACT);
         assert!(rel(r.sigma_exact.powi(2) / r.sigma_white_noise.powi(2), ratio) < EXACT);
@@ -374,27 +377,11 @@ fn idler_ratio_formula_and_limits() {
     // α → ∞: with x = 2ζω₀/α, y = ω₀²/α² the ratio is (1 + x)(1 + y)/(1 + x + y) = 1 + xy/(1 + x + y), so
     // 0 < ratio − 1 < xy = 2ζω₀³/α³ (≈ 7e-15 at α = 1e6), plus the rounding of the two variances
     let a = 1e6;
-    let r = idler.analyse(
-        &LumpLoad {
-            mean: 0.0,
-            variance: 1.0,
-            alpha: a,
-        }
-        .build()
-        .unwrap(),
-    );
+    let r = idler.analyse(&unit_load(a));
     assert!((r.variance_ratio - 1.0).abs() < 2.0 * zeta * w0.powi(3) / a.powi(3) + EXACT && !r.approximation_poor);
     // α → 0: σ_y² → D_x/ω₀⁴ with relative error O(α/(ζω₀))
     let a = 1e-6;
-    let r = idler.analyse(
-        &LumpLoad {
-            mean: 0.0,
-            variance: 1.0,
-            alpha: a,
-        }
-        .build()
-        .unwrap(),
-    );
+    let r = idler.analyse(&unit_load(a));
     let qs = 1.0 / (m * m) / w0.powi(4);
     assert!(rel(r.sigma_exact.powi(2), qs) < 10.0 * a / (zeta * w0));
 }

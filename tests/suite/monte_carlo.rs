@@ -13,7 +13,7 @@ use stochvib::estimate::{ensemble_correlation, time_correlation, variance_interv
 use stochvib::response::{variance_lyapunov, Excitation};
 use stochvib::simulate::{
     augmented_response, run_batch, shaping_simulator, standard_normal, stream, Amplitudes, GaussMarkov, RoadTrack,
-    Shard, SpectralGenerator,
+    RoadTrackGrid, Shard, SpectralGenerator,
 };
 use stochvib::spectrum::{Domain, ExpCosine, Exponential, Spectrum};
 use stochvib::system::{OutputInfo, StateSpace};
@@ -355,7 +355,13 @@ fn road_track_wheels_see_delayed_copies() {
     // Spectral profile of the textbook road (8.45) at 10 m/s, Δt = 0.005 s (Δx = 5 cm), axle base 2.5 m =
     // 50 samples: the rear wheel's input is the front wheel's input 50 samples earlier (circularly), exactly.
     let q = Exponential::new(2.25e-4, 3.5, Domain::Spatial).unwrap();
-    let road = RoadTrack::spectral(&q, 10.0, 0.005, 1024, &[0.0, 2.5], Amplitudes::Rayleigh).unwrap();
+    let grid = |offsets: &'static [f64]| RoadTrackGrid {
+        speed: 10.0,
+        dt: 0.005,
+        n: 1024,
+        offsets,
+    };
+    let road = RoadTrack::spectral(&q, grid(&[0.0, 2.5]), Amplitudes::Rayleigh).unwrap();
     let mut sc = road.scratch();
     let mut u = vec![0.0; 2 * 1024];
     road.generate(&mut stream(5, 0), &mut sc, &mut u).unwrap();
@@ -363,11 +369,11 @@ fn road_track_wheels_see_delayed_copies() {
         assert_eq!(u[2 * k + 1], u[2 * ((k + 1024 - 50) % 1024)]);
     }
     // offsets off the grid are refused with the reason
-    let e = RoadTrack::spectral(&q, 10.0, 0.005, 1024, &[0.0, 2.51], Amplitudes::Rayleigh).unwrap_err();
+    let e = RoadTrack::spectral(&q, grid(&[0.0, 2.51]), Amplitudes::Rayleigh).unwrap_err();
     assert!(e.to_string().contains("integer multiple"), "{e}");
     // a temporal spectrum is refused
     let t = Exponential::new(1.0, 1.0, Domain::Temporal).unwrap();
-    assert!(RoadTrack::shaping(&t, 10.0, 0.005, 10, &[0.0]).is_err());
+    assert!(RoadTrack::shaping(&t, RoadTrackGrid { n: 10, ..grid(&[0.0]) }).is_err());
 }
 
 #[test]

@@ -417,25 +417,11 @@ fn zero_nonlinearity_is_the_linear_model_bit_for_bit() {
     use stochvib::models::quarter_car::QuarterCar;
     let road = Arc::new(stochvib::spectrum::PowerLaw::iso_class(stochvib::spectrum::IsoClass::C).unwrap());
     let exc = Excitation::road(road, 20.0, &[0.0]).unwrap();
-    let linear = QuarterCar {
-        sprung_mass: 300.0,
-        unsprung_mass: 40.0,
-        suspension_stiffness: 20e3,
-        suspension_damping: 1.5e3,
-        tyre_stiffness: 200e3,
-        tyre_damping: 0.0,
-    }
-    .build()
-    .unwrap()
-    .system()
-    .unwrap();
+    let car = common::passenger_quarter_car();
+    let linear = car.system().unwrap();
     let base = QuarterCar {
-        sprung_mass: 300.0,
-        unsprung_mass: 40.0,
-        suspension_stiffness: 20e3,
         suspension_damping: 0.0,
-        tyre_stiffness: 200e3,
-        tyre_damping: 0.0,
+        ..car
     }
     .build()
     .unwrap()

@@ -3,6 +3,7 @@
 //! rest, first-order systems under ramped white noise, a quarter car accelerating on a w = 2 road (its
 //! stationary ends in closed form), and a stationary input through the non-stationary path.
 
+use crate::common;
 use crate::common::rel;
 use crate::common::tolerance::{
     ADAPTIVE_ROUTE, ERROR_ESTIMATE_FROM_REST, EXACT_TRANSITIONS, PRINTED_8_DIGITS, QUADRATURE,
@@ -15,8 +16,8 @@ use stochvib::response::{analyze_output, Excitation};
 use stochvib::spectrum::{Domain, Exponential, IsoBound, IsoClass, PowerLaw, Spectrum};
 use stochvib::system::{FrequencyResponse, OutputInfo, StateSpace};
 use stochvib::transient::{
-    input_model, solve, Envelope, ExactOptions, FixedSystem, InputModel, SpeedProfile, Start, TimeVaryingSystem,
-    TransientInput,
+    input_model, solve, ConstantAcceleration, Envelope, ExactOptions, FixedSystem, InputModel, SpeedProfile, Start,
+    TimeVaryingSystem, TransientInput,
 };
 
 /// The passenger quarter car (`common::passenger_quarter_car`) accelerating at `acceleration` from 5 to
@@ -36,7 +37,14 @@ pub(crate) fn dirt_road_car(acceleration: f64, times: &[f64]) -> DirtRoadCar {
     let mdof = crate::common::passenger_quarter_car().system().unwrap();
     let ss = mdof.state_space().unwrap().clone();
     let road: Arc<dyn Spectrum> = Arc::new(Exponential::new(32e-4, 0.16, Domain::Spatial).unwrap());
-    let speed = SpeedProfile::constant_acceleration(5.0, 15.0, acceleration, 2.0).unwrap();
+    let speed = ConstantAcceleration {
+        from_m_s: 5.0,
+        to_m_s: 15.0,
+        acceleration_m_s2: acceleration,
+        start_s: 2.0,
+    }
+    .build()
+    .unwrap();
     let model = input_model(road.as_ref(), Some(&speed)).unwrap();
     let exact = solve(
         &system(ss.clone(), model, Envelope::unit()),
@@ -291,7 +299,7 @@ fn quarter_car_accelerating_on_a_w2_road() {
     let mdof = car.system().unwrap();
     let ss = mdof.state_space().unwrap().clone();
     let road = PowerLaw::iso8608(IsoClass::D, IsoBound::GeometricMean, None).unwrap();
-    let v = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
+    let v = common::accelerating_5_to_15();
     let model = input_model(&road, Some(&v)).unwrap();
     assert!(matches!(model, InputModel::WhiteSlope { .. }));
     let sys = system(ss, model, Envelope::unit());

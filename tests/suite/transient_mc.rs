@@ -13,8 +13,8 @@ use stochvib::store::{Compression, Part};
 use stochvib::system::FrequencyResponse;
 use stochvib::transient::monte_carlo::read_transient_run;
 use stochvib::transient::{
-    input_model, merge_transient, run_transient, solve, Envelope, ExactOptions, InputModel, McGrid, SpeedProfile,
-    Start, TimeVaryingSystem, TransientRunInput, TransientRunOptions,
+    input_model, merge_transient, run_transient, solve, Envelope, ExactOptions, InputModel, McGrid, McGridSpec, Start,
+    TimeVaryingSystem, TransientRunInput, TransientRunOptions,
 };
 
 const W0: f64 = 2.0 * PI;
@@ -95,6 +95,17 @@ fn run_from(
     run_transient(&input, &options(realizations, grid, part), out, &|_, _| {}).unwrap()
 }
 
+/// The grid of the oscillator runs: 2.5 s in steps of 0.01 s, every 5th step stored (51 times).
+fn two_and_a_half_seconds() -> McGrid {
+    McGridSpec {
+        duration_s: 2.5,
+        dt_s: 0.01,
+        store_every: 5,
+    }
+    .build()
+    .unwrap()
+}
+
 /// The ensemble variance at every stored time against σ_x²(t) of Caughey & Stumpf. The steps are the exact
 /// transitions of the oscillator (Van Loan), so each state is exactly Gaussian and (R − 1)s²/σ² ~ χ²_{R−1}.
 /// With N = R − 1 and x = ln(2K/p) for K = 50 stored times after t = 0, the Laurent–Massart bounds
@@ -105,7 +116,7 @@ fn run_from(
 #[test]
 fn ensemble_variance_from_rest_against_caughey_stumpf() {
     let _serial = common::hdf5_serial();
-    let grid = McGrid::new(2.5, 0.01, 5).unwrap();
+    let grid = two_and_a_half_seconds();
     let r = 20_000usize;
     let s = run(&oscillator_system(), grid, r, None, &scratch("cs.h5"));
     assert_eq!(s.n_realizations, r);
@@ -158,19 +169,16 @@ fn assert_sigma_chi2(sigma: &[f64], exact: &[f64], r: usize, p: f64, what: &str)
 #[test]
 fn quarter_car_accelerating_by_monte_carlo() {
     let _serial = common::hdf5_serial();
+    // the passenger-car corner with a 400 kg body
     let car = QuarterCar {
         sprung_mass: 400.0,
-        unsprung_mass: 40.0,
-        suspension_stiffness: 20e3,
-        suspension_damping: 1.5e3,
-        tyre_stiffness: 200e3,
-        tyre_damping: 0.0,
+        ..common::passenger_quarter_car()
     }
     .build()
     .unwrap();
     let mdof = car.system().unwrap();
     let road = PowerLaw::iso8608(IsoClass::D, IsoBound::GeometricMean, None).unwrap();
-    let v = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
+    let v = common::accelerating_5_to_15();
     let sys = system(
         mdof.state_space().unwrap().clone(),
         input_model(&road, Some(&v)).unwrap(),
@@ -180,7 +188,13 @@ fn quarter_car_accelerating_by_monte_carlo() {
         mdof.output_index("body_acc").unwrap(),
         mdof.output_index("travel").unwrap(),
     ];
-    let grid = McGrid::new(12.0, 0.005, 40).unwrap();
+    let grid = McGridSpec {
+        duration_s: 12.0,
+        dt_s: 0.005,
+        store_every: 40,
+    }
+    .build()
+    .unwrap();
     let r = 20_000usize;
     let s = run_from(&sys, (Start::Stationary, outputs), grid, r, None, &scratch("qc.h5"));
     let (_, series) = read_transient_run(&s.path).unwrap();
@@ -198,7 +212,7 @@ fn quarter_car_accelerating_by_monte_carlo() {
 #[test]
 fn maxima_below_the_integrated_rice_rate() {
     let _serial = common::hdf5_serial();
-    let grid = McGrid::new(2.5, 0.01, 5).unwrap();
+    let grid = two_and_a_half_seconds();
     let r = 20_000usize;
     let sys = oscillator_system();
     let s = run(&sys, grid, r, None, &scratch("max.h5"));
@@ -226,7 +240,13 @@ fn maxima_below_the_integrated_rice_rate() {
 #[test]
 fn parts_merge_bit_identically() {
     let _serial = common::hdf5_serial();
-    let grid = McGrid::new(1.0, 0.01, 10).unwrap();
+    let grid = McGridSpec {
+        duration_s: 1.0,
+        dt_s: 0.01,
+        store_every: 10,
+    }
+    .build()
+    .unwrap();
     let sys = oscillator_system();
     let whole = run(&sys, grid, 5000, None, &scratch("whole.h5"));
     let parts: Vec<_> = (0..2)

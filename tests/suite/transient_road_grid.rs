@@ -7,8 +7,8 @@ use stochvib::estimate::chi_squared_quantile;
 use stochvib::spectrum::{IsoBound, IsoClass, PowerLaw, Spectrum};
 use stochvib::system::FrequencyResponse;
 use stochvib::transient::{
-    input_model, road_grid_monte_carlo, solve_evolutionary, Envelope, EvolutionaryInput, FixedSystem, RoadGridOptions,
-    SpeedProfile, Start,
+    input_model, road_grid_monte_carlo, solve_evolutionary, ConstantAcceleration, Envelope, EvolutionaryInput,
+    FixedSystem, RoadGridOptions, SpeedProfile, Start,
 };
 
 /// A quarter car (m_s = 300, m_u = 40 kg, k_s = 20 kN/m, c_s = 1.5 kN s/m, k_t = 200 kN/m) accelerating at
@@ -100,7 +100,14 @@ fn evolutionary_route_on_a_band_limited_road_against_grid_monte_carlo() {
     let road: Arc<dyn Spectrum> =
         Arc::new(PowerLaw::iso8608(IsoClass::C, IsoBound::GeometricMean, Some((0.011, 2.83))).unwrap());
     assert!(input_model(road.as_ref(), Some(&SpeedProfile::constant(10.0).unwrap())).is_err());
-    let v = SpeedProfile::constant_acceleration(10.0, 15.0, 0.25, 2.0).unwrap();
+    let v = ConstantAcceleration {
+        from_m_s: 10.0,
+        to_m_s: 15.0,
+        acceleration_m_s2: 0.25,
+        start_s: 2.0,
+    }
+    .build()
+    .unwrap();
     let times: Vec<f64> = (0..=60).map(|k| k as f64 * 0.5).collect();
     let fam = FixedSystem::new(ss.clone(), None, "quarter car").unwrap();
     let input = EvolutionaryInput {

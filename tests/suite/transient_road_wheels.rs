@@ -3,6 +3,7 @@
 //! tracks synthesised with their coherence, against the stationary quadrature at constant speed and
 //! against the exact route of the bounce and roll combinations while accelerating.
 
+use crate::common;
 use crate::common::root;
 use std::path::Path;
 use std::sync::Arc;
@@ -168,7 +169,7 @@ fn two_tracks_of_constant_coherence_accelerating_against_the_exact_route() {
     let sc = parse_scenario(&text, Path::new("t.toml"), &root().join("spectra")).unwrap();
     let ss = sc.model.system.state_space().unwrap().clone();
     let spectrum: Arc<dyn Spectrum> = Arc::new(Exponential::new(1e-4, 0.2, Domain::Spatial).unwrap());
-    let speed = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
+    let speed = common::accelerating_5_to_15();
     let times: Vec<f64> = (0..17).map(|k| 0.5 * k as f64).collect();
     let (a, b) = (((1.0 + rho) / 2.0).sqrt(), ((1.0 - rho) / 2.0).sqrt());
     let model = || input_model(spectrum.as_ref(), Some(&speed)).unwrap();

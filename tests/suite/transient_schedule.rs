@@ -3,6 +3,7 @@
 //! unstable schedule named by its time, speed profiles that are not functions of time or negative,
 //! envelopes that are not finite, and inputs without an exact route.
 
+use crate::common;
 use crate::common::rel;
 use crate::common::tolerance::PRINTED_6_DIGITS;
 use nalgebra::{DMatrix, DVector};
@@ -11,8 +12,8 @@ use stochvib::models::mine_hoist::MineHoist;
 use stochvib::spectrum::{IsoBound, IsoClass, PowerLaw};
 use stochvib::system::{OutputInfo, StateSpace};
 use stochvib::transient::{
-    check_stability, input_model, Envelope, FamilyBuilder, PiecewiseLinear, Schedule, ScheduledSystem, SpeedProfile,
-    SystemFamily,
+    check_stability, input_model, ConstantAcceleration, Envelope, FamilyBuilder, PiecewiseLinear, Schedule,
+    ScheduledSystem, SpeedProfile, SystemFamily,
 };
 use stochvib::Error;
 
@@ -134,7 +135,15 @@ fn bad_profiles_and_envelopes_are_refused_by_name() {
         "speed[1]"
     );
     assert_eq!(
-        refused_name(SpeedProfile::constant_acceleration(10.0, 0.0, 2.0, 0.0)),
+        refused_name(
+            ConstantAcceleration {
+                from_m_s: 10.0,
+                to_m_s: 0.0,
+                acceleration_m_s2: 2.0,
+                start_s: 0.0
+            }
+            .build()
+        ),
         "acceleration"
     );
     assert_eq!(
@@ -153,7 +162,7 @@ fn bad_profiles_and_envelopes_are_refused_by_name() {
 /// refused by name.
 #[test]
 fn inputs_without_an_exact_route_say_so() {
-    let v = SpeedProfile::constant_acceleration(5.0, 15.0, 1.0, 0.0).unwrap();
+    let v = common::accelerating_5_to_15();
     let banded = PowerLaw::iso8608(IsoClass::C, IsoBound::GeometricMean, Some((0.011, 2.83))).unwrap();
     match input_model(&banded, Some(&v)) {
         Err(Error::NotApplicable { reason, .. }) => assert!(reason.contains("use Monte Carlo"), "{reason}"),

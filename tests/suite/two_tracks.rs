@@ -8,7 +8,7 @@ use nalgebra::{Complex, DMatrix};
 use std::f64::consts::PI;
 use std::sync::Arc;
 use stochvib::coherence::{Coherence, ConstantCoherence, IsotropicCoherence, TwoTracks};
-use stochvib::response::{analyze_output, variance_lyapunov, Excitation, InputMap, Source};
+use stochvib::response::{analyze_output, variance_lyapunov, Excitation, InputMap, ResponseStatistics, Source};
 use stochvib::spectrum::{Domain, Exponential, Spectrum};
 use stochvib::system::{Attach, Element, FrequencyResponse, Mdof, Quantity};
 
@@ -293,15 +293,19 @@ fn a_road_and_an_independent_force_add() {
             "output {i}: {v:e} vs {:e}",
             alone0 + alone1
         );
-        let q = st
-            .methods
-            .iter()
-            .find(|m| m.method.name() == "quadrature")
-            .unwrap()
-            .value()
-            .unwrap();
+        let q = method_value(&st, "quadrature");
         assert!((q - v).abs() <= QUADRATURE * v);
     }
+}
+
+/// The value of the variance method `name` (`quadrature`, `lyapunov (delays)`, …) in `st`.
+fn method_value(st: &ResponseStatistics, name: &str) -> f64 {
+    st.methods
+        .iter()
+        .find(|m| m.method.name() == name)
+        .unwrap()
+        .value()
+        .unwrap()
 }
 
 #[test]
@@ -368,22 +372,8 @@ fn seven_dof_vehicle_does_not_roll_on_identical_tracks_and_adds_independent_ones
     .unwrap();
     for name in ["seat_acc", "roll", "pitch", "travel_rl", "tyre_force_fr"] {
         let i = output(&sys, name);
-        let q = analyze_output(&sys, &indep, i)
-            .unwrap()
-            .methods
-            .iter()
-            .find(|m| m.method.name() == "quadrature")
-            .unwrap()
-            .value()
-            .unwrap();
-        let st = analyze_output(&sys, &two_sources, i).unwrap();
-        let exact = st
-            .methods
-            .iter()
-            .find(|m| m.method.name() == "lyapunov (delays)")
-            .unwrap()
-            .value()
-            .unwrap();
+        let q = method_value(&analyze_output(&sys, &indep, i).unwrap(), "quadrature");
+        let exact = method_value(&analyze_output(&sys, &two_sources, i).unwrap(), "lyapunov (delays)");
         assert!(
             (q - exact).abs() <= QUADRATURE * exact,
             "{name}: quadrature {q:e} vs exact {exact:e}"

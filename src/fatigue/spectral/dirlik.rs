@@ -82,8 +82,8 @@ impl Dirlik {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::fatigue::{Dirlik, SpectralMoments};
-    /// let tone = SpectralMoments::new(1.0, 10.0, 100.0, 1e4).unwrap();
+    /// use stochvib::fatigue::{Dirlik, OneSidedHzMoments};
+    /// let tone = OneSidedHzMoments { m0: 1.0, m1: 10.0, m2: 100.0, m4: 1e4 }.build().unwrap();
     /// assert!(Dirlik::coefficients(&tone).is_none());
     /// ```
     pub fn coefficients(moments: &SpectralMoments) -> Option<DirlikCoefficients> {

@@ -32,7 +32,7 @@ mod zhao_baker;
 
 pub use comparison::{compare_methods, MethodComparison, MethodEstimate, SpectralMethodKind};
 pub use dirlik::{Dirlik, DirlikCoefficients};
-pub use moments::SpectralMoments;
+pub use moments::{OneSidedHzMoments, SpectralMoments, TwoSidedAngularMoments};
 pub use narrow_band::NarrowBand;
 pub use tovo_benasciutti::{TovoBenasciutti, TovoBenasciuttiVariant};
 pub use wirsching_light::WirschingLight;
@@ -51,8 +51,8 @@ pub use zhao_baker::{ZhaoBaker, ZhaoBakerCoefficients, ZhaoBakerVariant};
 ///
 /// # Examples
 /// ```
-/// use stochvib::fatigue::{Dirlik, NarrowBand, SnCurve, SpectralMethod, SpectralMoments};
-/// let m = SpectralMoments::new(100.0, 4.0e3, 1.7e5, 3.5e8).unwrap();
+/// use stochvib::fatigue::{Dirlik, NarrowBand, SnCurve, SpectralMethod, OneSidedHzMoments};
+/// let m = OneSidedHzMoments { m0: 100.0, m1: 4.0e3, m2: 1.7e5, m4: 3.5e8 }.build().unwrap();
 /// let sn = SnCurve { k: 4.0, c: 1e12, endurance_limit: None }.build().unwrap();
 /// let methods: [&dyn SpectralMethod; 2] = [&NarrowBand, &Dirlik];
 /// for method in methods {

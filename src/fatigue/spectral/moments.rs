@@ -37,7 +37,7 @@ const CONSISTENCY_SLACK: f64 = 1e-9;
 ///
 /// # Examples
 /// ```
-/// use stochvib::fatigue::SpectralMoments;
+/// use stochvib::fatigue::{SpectralMoments, TwoSidedAngularMoments};
 /// // Ideal band-limited white noise G = 2 unit²/Hz on [10, 20] Hz: m_j = 2 (20^{j+1} − 10^{j+1})/(j+1).
 /// let m = SpectralMoments::from_one_sided_hz_with_fractional(|_f| 2.0, 10.0, 20.0, &[]).unwrap();
 /// assert!((m.m0() - 20.0).abs() < 1e-9);
@@ -45,7 +45,8 @@ const CONSISTENCY_SLACK: f64 = 1e-9;
 /// assert!((m.m0_75().unwrap() - 2.0 * (20f64.powf(1.75) - 10f64.powf(1.75)) / 1.75).abs() < 1e-8);
 /// // The same moments from the crate's two-sided angular moments λ_j = (2π)^j m_j.
 /// let w = 2.0 * std::f64::consts::PI;
-/// let m2 = SpectralMoments::from_two_sided_angular(m.m0(), w * m.m1(), w.powi(2) * m.m2(), w.powi(4) * m.m4()).unwrap();
+/// let (lambda0, lambda1, lambda2, lambda4) = (m.m0(), w * m.m1(), w.powi(2) * m.m2(), w.powi(4) * m.m4());
+/// let m2 = TwoSidedAngularMoments { lambda0, lambda1, lambda2, lambda4 }.build().unwrap();
 /// assert!((m2.nu0_plus() - m.nu0_plus()).abs() < 1e-12);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -92,25 +93,39 @@ fn schwarz(name: &str, a: f64, b: f64, c: f64, what: &str) -> Result<()> {
     Ok(())
 }
 
-impl SpectralMoments {
-    /// Moments m₀, m₁, m₂, m₄ of the one-sided density in Hz (unit², unit²·Hz, unit²·Hz², unit²·Hz⁴).
-    ///
-    /// # Formula
-    /// m_j = ∫₀^∞ f^j G(f) df; consistency m₁² ≤ m₀m₂ and m₂² ≤ m₀m₄.
+/// The moments m₀, m₁, m₂, m₄ of a one-sided density in Hz, from which [`SpectralMoments`] is built.
+///
+/// # Formula
+/// m_j = ∫₀^∞ f^j G(f) df; consistency m₁² ≤ m₀m₂ and m₂² ≤ m₀m₄.
+///
+/// # Examples
+/// ```
+/// use stochvib::fatigue::OneSidedHzMoments;
+/// let m = OneSidedHzMoments { m0: 1.0, m1: 50.0, m2: 2600.0, m4: 7.0e6 }.build().unwrap();
+/// assert!((m.nu0_plus() - 2600f64.sqrt()).abs() < 1e-12);
+/// let e = OneSidedHzMoments { m0: 0.0, m1: 50.0, m2: 2600.0, m4: 7.0e6 }.build().unwrap_err().to_string();
+/// assert!(e.contains("`m0`"));
+/// assert!(OneSidedHzMoments { m0: 1.0, m1: f64::NAN, m2: 2600.0, m4: 7.0e6 }.build().is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OneSidedHzMoments {
+    /// m₀, unit².
+    pub m0: f64,
+    /// m₁, unit²·Hz.
+    pub m1: f64,
+    /// m₂, unit²·Hz².
+    pub m2: f64,
+    /// m₄, unit²·Hz⁴.
+    pub m4: f64,
+}
+
+impl OneSidedHzMoments {
+    /// The moments, validated.
     ///
     /// # Errors
-    /// See the type.
-    ///
-    /// # Examples
-    /// ```
-    /// use stochvib::fatigue::SpectralMoments;
-    /// let m = SpectralMoments::new(1.0, 50.0, 2600.0, 7.0e6).unwrap();
-    /// assert!((m.nu0_plus() - 2600f64.sqrt()).abs() < 1e-12);
-    /// let e = SpectralMoments::new(0.0, 50.0, 2600.0, 7.0e6).unwrap_err().to_string();
-    /// assert!(e.contains("`m0`"));
-    /// assert!(SpectralMoments::new(1.0, f64::NAN, 2600.0, 7.0e6).is_err());
-    /// ```
-    pub fn new(m0: f64, m1: f64, m2: f64, m4: f64) -> Result<Self> {
+    /// See [`SpectralMoments`].
+    pub fn build(self) -> Result<SpectralMoments> {
+        let OneSidedHzMoments { m0, m1, m2, m4 } = self;
         let m0 = positive("m0", m0)?;
         let m1 = positive("m1", m1)?;
         let m2 = positive("m2", m2)?;
@@ -126,7 +141,55 @@ impl SpectralMoments {
             m1_5: None,
         })
     }
+}
 
+/// The crate's two-sided angular moments λ_j = ∫_{−∞}^{∞} |ω|^j S(ω) dω (ω in rad/s), from which
+/// [`SpectralMoments`] is built.
+///
+/// # Formula
+/// m_j = (2π)^{−j} λ_j (see [`SpectralMoments`] for the derivation).
+///
+/// # Examples
+/// ```
+/// use stochvib::fatigue::TwoSidedAngularMoments;
+/// use std::f64::consts::PI;
+/// // Variance 1, all power at ω = 20π rad/s (10 Hz): λ_j = (20π)^j.
+/// let w0: f64 = 20.0 * PI;
+/// let m = TwoSidedAngularMoments { lambda0: 1.0, lambda1: w0, lambda2: w0 * w0, lambda4: w0.powi(4) }
+///     .build()
+///     .unwrap();
+/// assert!((m.nu0_plus() - 10.0).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwoSidedAngularMoments {
+    /// λ₀, unit².
+    pub lambda0: f64,
+    /// λ₁, unit²·rad/s.
+    pub lambda1: f64,
+    /// λ₂, unit²·(rad/s)².
+    pub lambda2: f64,
+    /// λ₄, unit²·(rad/s)⁴.
+    pub lambda4: f64,
+}
+
+impl TwoSidedAngularMoments {
+    /// The one-sided moments in Hz m_j = (2π)^{−j} λ_j, validated.
+    ///
+    /// # Errors
+    /// As [`OneSidedHzMoments::build`] (the names are those of the converted moments `m0`…`m4`).
+    pub fn build(self) -> Result<SpectralMoments> {
+        let w = 2.0 * PI;
+        OneSidedHzMoments {
+            m0: self.lambda0,
+            m1: self.lambda1 / w,
+            m2: self.lambda2 / (w * w),
+            m4: self.lambda4 / (w * w * w * w),
+        }
+        .build()
+    }
+}
+
+impl SpectralMoments {
     /// Adds given fractional moments m₀.₇₅ and m₁.₅ (one-sided, Hz), needed by
     /// [`ZhaoBakerVariant::K3`](crate::fatigue::ZhaoBakerVariant::K3).
     ///
@@ -134,14 +197,17 @@ impl SpectralMoments {
     /// m_j = ∫₀^∞ f^j G(f) df = (2π)^{−j} λ_j for j = 0.75, 1.5; consistency m₀.₇₅² ≤ m₀m₁.₅.
     ///
     /// # Errors
-    /// As [`SpectralMoments::new`], naming `m0_75` or `m1_5`.
+    /// As [`OneSidedHzMoments::build`], naming `m0_75` or `m1_5`.
     ///
     /// # Examples
     /// ```
-    /// use stochvib::fatigue::SpectralMoments;
+    /// use stochvib::fatigue::OneSidedHzMoments;
     /// // A pure tone of variance 1 at 10 Hz: m_j = 10^j, every α = 1.
-    /// let m = SpectralMoments::new(1.0, 10.0, 100.0, 1e4).unwrap()
-    ///     .with_fractional(10f64.powf(0.75), 10f64.powf(1.5)).unwrap();
+    /// let m = OneSidedHzMoments { m0: 1.0, m1: 10.0, m2: 100.0, m4: 1e4 }
+    ///     .build()
+    ///     .unwrap()
+    ///     .with_fractional(10f64.powf(0.75), 10f64.powf(1.5))
+    ///     .unwrap();
     /// assert!((m.alpha_0_75().unwrap() - 1.0).abs() < 1e-12);
     /// ```
     pub fn with_fractional(mut self, m0_75: f64, m1_5: f64) -> Result<Self> {
@@ -151,28 +217,6 @@ impl SpectralMoments {
         self.m0_75 = Some(a);
         self.m1_5 = Some(b);
         Ok(self)
-    }
-
-    /// Moments from the crate's two-sided angular moments λ_j = ∫_{−∞}^{∞} |ω|^j S(ω) dω (ω in rad/s).
-    ///
-    /// # Formula
-    /// m_j = (2π)^{−j} λ_j (see the type for the derivation).
-    ///
-    /// # Errors
-    /// As [`SpectralMoments::new`] (the names are those of the converted moments `m0`…`m4`).
-    ///
-    /// # Examples
-    /// ```
-    /// use stochvib::fatigue::SpectralMoments;
-    /// use std::f64::consts::PI;
-    /// // Variance 1, all power at ω = 20π rad/s (10 Hz): λ_j = (20π)^j.
-    /// let w0: f64 = 20.0 * PI;
-    /// let m = SpectralMoments::from_two_sided_angular(1.0, w0, w0 * w0, w0.powi(4)).unwrap();
-    /// assert!((m.nu0_plus() - 10.0).abs() < 1e-12);
-    /// ```
-    pub fn from_two_sided_angular(lambda0: f64, lambda1: f64, lambda2: f64, lambda4: f64) -> Result<Self> {
-        let w = 2.0 * PI;
-        SpectralMoments::new(lambda0, lambda1 / w, lambda2 / (w * w), lambda4 / (w * w * w * w))
     }
 
     /// Moments m₀, m₁, m₂, m₄ of a one-sided density in Hz given as a closure `density(f)` (unit²/Hz,
@@ -187,7 +231,7 @@ impl SpectralMoments {
     /// [`Error::InvalidParameter`] naming `band` unless 0 ≤ f_lo < f_hi, or `density` when it returns a
     /// negative or non-finite value at some frequency (which is named); [`Error::Quadrature`] when a
     /// moment does not converge (e.g. m₄ of a density decaying no faster than f⁻⁵ on an infinite band);
-    /// then as [`SpectralMoments::new`].
+    /// then as [`OneSidedHzMoments::build`].
     ///
     /// # Examples
     /// ```
@@ -248,7 +292,7 @@ impl SpectralMoments {
     /// # Errors
     /// [`Error::InvalidParameter`] naming `f` (fewer than 2 points, a length different from `g`'s, a
     /// negative, non-finite or non-increasing frequency, with its index) or `g` (a negative or non-finite
-    /// value, with its index); then as [`SpectralMoments::new`].
+    /// value, with its index); then as [`OneSidedHzMoments::build`].
     ///
     /// # Examples
     /// ```
@@ -286,7 +330,13 @@ impl SpectralMoments {
                 ));
             }
         }
-        let m = SpectralMoments::new(acc[0], acc[1], acc[2], acc[3])?;
+        let m = OneSidedHzMoments {
+            m0: acc[0],
+            m1: acc[1],
+            m2: acc[2],
+            m4: acc[3],
+        }
+        .build()?;
         if fractional {
             let frac = gauss3_fractional_moments(f, g);
             m.with_fractional(frac[0], frac[1])
@@ -509,7 +559,7 @@ fn quadrature_moments(
     let m1 = check(integrate(|f: f64| f * g(f), f_lo, f_hi, &opts))?;
     let m2 = check(integrate(|f: f64| f * f * g(f), f_lo, f_hi, &opts))?;
     let m4 = check(integrate(|f: f64| (f * f) * (f * f) * g(f), f_lo, f_hi, &opts))?;
-    let m = SpectralMoments::new(m0, m1, m2, m4)?;
+    let m = OneSidedHzMoments { m0, m1, m2, m4 }.build()?;
     if !fractional {
         return Ok(m);
     }

@@ -22,9 +22,9 @@ use crate::fatigue::SnCurve;
 ///
 /// # Examples
 /// ```
-/// use stochvib::fatigue::{NarrowBand, SnCurve, SpectralMethod, SpectralMoments};
+/// use stochvib::fatigue::{NarrowBand, SnCurve, SpectralMethod, OneSidedHzMoments};
 /// // m0 = 1, ν₀⁺ = 10 Hz, k = 2: D/T = 10 · 2 · Γ(2) / C.
-/// let m = SpectralMoments::new(1.0, 10.0, 100.0, 1e4).unwrap();
+/// let m = OneSidedHzMoments { m0: 1.0, m1: 10.0, m2: 100.0, m4: 1e4 }.build().unwrap();
 /// let sn = SnCurve { k: 2.0, c: 1e6, endurance_limit: None }.build().unwrap();
 /// assert!((NarrowBand.damage_rate(&m, &sn).unwrap() - 20.0 / 1e6).abs() < 1e-18);
 /// ```
@@ -42,8 +42,8 @@ impl NarrowBand {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::fatigue::{NarrowBand, SpectralMoments};
-    /// let m = SpectralMoments::new(1.0, 10.0, 100.0, 1e4).unwrap();
+    /// use stochvib::fatigue::{NarrowBand, OneSidedHzMoments};
+    /// let m = OneSidedHzMoments { m0: 1.0, m1: 10.0, m2: 100.0, m4: 1e4 }.build().unwrap();
     /// assert!((NarrowBand.amplitude_pdf(&m, 1.0) - (-0.5f64).exp()).abs() < 1e-15);
     /// ```
     pub fn amplitude_pdf(&self, moments: &SpectralMoments, amplitude: f64) -> f64 {

@@ -23,9 +23,9 @@ use crate::fatigue::SnCurve;
 ///
 /// # Examples
 /// ```
-/// use stochvib::fatigue::{NarrowBand, SnCurve, SpectralMethod, SpectralMoments, WirschingLight};
+/// use stochvib::fatigue::{NarrowBand, SnCurve, SpectralMethod, OneSidedHzMoments, WirschingLight};
 /// // A pure tone (ε = 0): λ = 1, the narrow-band damage.
-/// let m = SpectralMoments::new(1.0, 10.0, 100.0, 1e4).unwrap();
+/// let m = OneSidedHzMoments { m0: 1.0, m1: 10.0, m2: 100.0, m4: 1e4 }.build().unwrap();
 /// let sn = SnCurve { k: 3.0, c: 1e6, endurance_limit: None }.build().unwrap();
 /// let wl = WirschingLight.damage_rate(&m, &sn).unwrap();
 /// assert!((wl / NarrowBand.damage_rate(&m, &sn).unwrap() - 1.0).abs() < 1e-12);

@@ -1,10 +1,15 @@
-//! The keys of a `kind = "machine"` `[model]` table ([`MachineAssembly`]); the reference is
-//! `docs/scenario-reference.md`.
+//! The reader of a `kind = "machine"` `[model]` table ([`MachineAssembly`]): each sub-table's unknown-key check
+//! is its key table in [`super::model_keys`] (`MACHINE_BODY`, `MACHINE_AXLE`, …), which the reference
+//! `docs/scenario-reference.md` shows.
 
-use super::machine_assembly::{Axle, AxleKind, Cab, Direction, MachineAssembly, Mount, Part, RigidBody, Seat};
-use super::ModelInstance;
+use super::model_keys::{
+    MACHINE_AXLE, MACHINE_BODY, MACHINE_CAB, MACHINE_MOUNT, MACHINE_OSCILLATING, MACHINE_OUTPUT, MACHINE_SEAT,
+    MACHINE_SUSPENSION,
+};
 use crate::error::Result;
 use crate::fields::Fields;
+use crate::models::machine_assembly::{Axle, AxleKind, Cab, Direction, MachineAssembly, Mount, Part, RigidBody, Seat};
+use crate::models::ModelInstance;
 use crate::system::Quantity;
 use crate::units::Dim;
 
@@ -21,7 +26,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
         roll_inertia: bf.quantity("roll_inertia", Dim::INERTIA)?,
         position: [0.0, 0.0, bf.quantity("height", Dim::LENGTH)?],
     };
-    bf.finish()?;
+    MACHINE_BODY.finish(&bf, &[])?;
     let axles = tables(f, "axle")?.iter().map(axle).collect::<Result<Vec<_>>>()?;
     let cab = match f.get("cab") {
         None => None,
@@ -38,7 +43,7 @@ pub fn from_fields(f: &Fields) -> Result<ModelInstance> {
                 stiffness: sf.quantity("stiffness", Dim::STIFFNESS)?,
                 damping: sf.quantity("damping", Dim::DAMPING)?,
             };
-            sf.finish()?;
+            MACHINE_SEAT.finish(&sf, &[])?;
             Some(s)
         }
     };
@@ -96,7 +101,7 @@ fn axle(af: &Fields) -> Result<Axle> {
                 roll_stiffness: o.opt_quantity("roll_stiffness", Dim::TORQUE)?.unwrap_or(0.0),
                 roll_damping: o.opt_quantity("roll_damping", Dim::new(2, 1, -1))?.unwrap_or(0.0),
             };
-            o.finish()?;
+            MACHINE_OSCILLATING.finish(&o, &[])?;
             k
         }
         (None, Some(_)) => {
@@ -106,7 +111,7 @@ fn axle(af: &Fields) -> Result<Axle> {
                 damping: s.quantity("damping", Dim::DAMPING)?,
                 unsprung_mass: s.quantity("unsprung_mass", Dim::MASS)?,
             };
-            s.finish()?;
+            MACHINE_SUSPENSION.finish(&s, &[])?;
             k
         }
         (None, None) => AxleKind::Rigid,
@@ -119,7 +124,7 @@ fn axle(af: &Fields) -> Result<Axle> {
         tyre_damping: af.opt_quantity("tyre_damping", Dim::DAMPING)?.unwrap_or(0.0),
         kind,
     };
-    af.finish()?;
+    MACHINE_AXLE.finish(af, &[])?;
     Ok(a)
 }
 
@@ -139,11 +144,11 @@ fn cab(cf: &Fields) -> Result<Cab> {
                 stiffness: mf.quantity("stiffness", Dim::STIFFNESS)?,
                 damping: mf.opt_quantity("damping", Dim::DAMPING)?.unwrap_or(0.0),
             };
-            mf.finish()?;
+            MACHINE_MOUNT.finish(mf, &[])?;
             Ok(m)
         })
         .collect::<Result<Vec<_>>>()?;
-    cf.finish()?;
+    MACHINE_CAB.finish(cf, &[])?;
     Ok(Cab {
         body,
         mount_height,
@@ -187,6 +192,6 @@ fn output(of: &Fields, m: &MachineAssembly) -> Result<(String, Quantity, Directi
         "acceleration" => Quantity::Acceleration(g),
         q => return Err(of.error("quantity", q, "expected displacement, velocity or acceleration")),
     };
-    of.finish()?;
+    MACHINE_OUTPUT.finish(of, &[])?;
     Ok((name, quantity, direction))
 }
