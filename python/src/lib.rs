@@ -21,6 +21,7 @@ mod quantity;
 mod reports;
 mod scenario;
 mod spectrum;
+mod spectrum_units;
 mod system;
 mod toolkit;
 mod transient;

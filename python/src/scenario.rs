@@ -12,7 +12,7 @@ use crate::spectrum::PySpectrum;
 use crate::system::PySystem;
 use crate::two_tracks::{self, TwoTrackArgs};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyString};
 use pyo3::IntoPyObjectExt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -572,15 +572,7 @@ impl PyScenario {
         let band_rad_s = band(py, band_rad_s)?;
         let spectra = input_spectra(py, input)?;
         let arcs: Vec<Arc<dyn Spectrum>> = spectra.iter().map(|s| s.get().spectrum.clone()).collect();
-        let means: Vec<f64> = match mean {
-            None => vec![0.0],
-            Some(m) => match m.extract::<f64>() {
-                Ok(v) => vec![v],
-                Err(_) => m
-                    .extract::<Vec<f64>>()
-                    .map_err(|_| invalid_input(py, "`mean`: expected a number or one number per input"))?,
-            },
-        };
+        let means = process_means(py, mean, &spectra)?;
         if let Some(v) = speed {
             if !(v.is_finite() && v > 0.0) {
                 return lib(py, Err(Error::invalid("speed", v, "must be finite and > 0")));
@@ -634,16 +626,7 @@ impl PyScenario {
                 );
             }
         }
-        let mut level_list = Vec::new();
-        if let Some(d) = levels {
-            for (k, v) in d.iter() {
-                let name: String = k.extract()?;
-                let vals: Vec<f64> = v
-                    .extract()
-                    .map_err(|_| invalid_input(py, format!("levels[{name:?}]: expected a list of numbers")))?;
-                level_list.push((index(&name)?, vals));
-            }
-        }
+        let level_list = output_levels(py, levels, sys.system.as_ref())?;
         let first = spectra[0].get();
         let reference = if first.name.is_empty() {
             "inline".to_string()
@@ -1019,6 +1002,72 @@ impl PyScenario {
             .call1((data, text))
     }
 
+    /// The Pareto front of two quantities, both minimised (``stochvib optimize SCENARIO --param …
+    /// --minimize FIRST --pareto SECOND --points N [--plots DIR] --json``): the ε-constraint method, FIRST
+    /// minimised with SECOND held below a ladder of limits between its values at the two single-objective
+    /// optima (Haimes, Lasdon & Wismer 1971).
+    ///
+    /// Parameters
+    /// ----------
+    /// params : dict
+    ///     As :meth:`optimize`.
+    /// minimize, pareto : str, keyword-only
+    ///     The two quantities (as :meth:`optimize`'s), both minimised.
+    /// constraints : sequence of str, keyword-only
+    ///     Constraints every point meets, as :meth:`optimize`'s.
+    /// points : int, keyword-only
+    ///     Points of the front, its two ends included (≥ 2).
+    /// plots : str or path, keyword-only, optional
+    ///     A directory to draw the front into (``pareto-front.svg`` and ``.png``, as ``--plots``).
+    /// starts, max_evaluations : int, keyword-only
+    ///     Per search, as :meth:`optimize`.
+    ///
+    /// Returns
+    /// -------
+    /// ParetoFront
+    ///     ``points`` (each ``params``, ``values``, ``limit``, ``feasible``) in order of increasing first
+    ///     quantity, ``values`` an (N, 2) array, ``to_csv()`` the command's CSV, ``plots`` the pictures.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     As :meth:`optimize`; fewer than 2 points; an end of the front that meets not every constraint.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> fr = sc.pareto({"model.c": ("50 kN/m", "200 kN/m")}, minimize="sigma(y)", pareto="sigma(y_vel)", points=3, starts=1)
+    /// >>> fr.values.shape, fr.quantities, fr.units
+    /// ((3, 2), ['sigma(y)', 'sigma(y_vel)'], ['m', 'm/s'])
+    #[pyo3(signature = (params, *, minimize, pareto, constraints=vec![], points=7, plots=None, starts=4, max_evaluations=2000))]
+    #[allow(clippy::too_many_arguments)]
+    fn pareto<'py>(
+        &self,
+        py: Python<'py>,
+        params: &Bound<'py, PyDict>,
+        minimize: String,
+        pareto: String,
+        constraints: Vec<String>,
+        points: usize,
+        plots: Option<PathBuf>,
+        starts: usize,
+        max_evaluations: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let sc = self.stochastic(py)?;
+        let task = crate::optimize::Task {
+            minimize: Some(minimize),
+            maximize: None,
+            constraints,
+            starts,
+            max_evaluations,
+        };
+        let (data, csv, files) = crate::optimize::front(py, sc, params, task, (pareto, points, plots))?;
+        py.import("stochvib.results")?
+            .getattr("ParetoFront")?
+            .call1((data, csv, files))
+    }
+
     /// The non-stationary response of a scenario with a ``[transient]`` section (``stochvib transient
     /// SCENARIO --json``): σ(t), the mean and the crossing rates at the reported times by the exact route,
     /// the mission extremes; with ``monte_carlo=N`` a seeded batch of the same transient whose σ(t) is
@@ -1386,4 +1435,62 @@ impl PyScenario {
             self.path().display()
         )
     }
+}
+
+/// `mean=` of `from_system`: nothing (0), one quantity, or one per process, each a number in its spectrum's unit
+/// or a string with a unit of that dimension ("5 cm").
+///
+/// # Errors
+/// `UnitError` naming `mean` (`mean[i]`); `InvalidInputError` for anything else.
+fn process_means(py: Python<'_>, mean: Option<&Bound<'_, PyAny>>, spectra: &[Py<PySpectrum>]) -> PyResult<Vec<f64>> {
+    let one = |m: &Bound<'_, PyAny>, name: &str, s: &Py<PySpectrum>| {
+        let unit = &s.get().unit;
+        match stochvib::units::unit_dim(unit) {
+            Some(d) => quantity::of_dim(py, m, name, d),
+            None => quantity::quantity(py, m, name, unit),
+        }
+    };
+    match mean {
+        None => Ok(vec![0.0]),
+        Some(m) if m.is_instance_of::<PyString>() || m.extract::<f64>().is_ok() => {
+            Ok(vec![one(m, "mean", &spectra[0])?])
+        }
+        Some(m) => {
+            let items: Vec<Bound<'_, PyAny>> = m
+                .try_iter()
+                .map_err(|_| invalid_input(py, "`mean`: expected a number or one number per input"))?
+                .collect::<PyResult<_>>()?;
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, x)| one(x, &format!("mean[{i}]"), &spectra[i.min(spectra.len() - 1)]))
+                .collect()
+        }
+    }
+}
+
+/// `levels=` of `from_system`: output name → levels, each a number in the output's SI unit or a string with a
+/// unit of its dimension ("3 cm").
+///
+/// # Errors
+/// `UnitError` naming `levels[name][i]`; an unknown output; `InvalidInputError` for anything else.
+fn output_levels(
+    py: Python<'_>,
+    levels: Option<&Bound<'_, PyDict>>,
+    sys: &dyn stochvib::system::FrequencyResponse,
+) -> PyResult<Vec<(usize, Vec<f64>)>> {
+    let Some(d) = levels else { return Ok(Vec::new()) };
+    d.iter()
+        .map(|(k, v)| {
+            let name: String = k.extract()?;
+            let i = call(py, || sys.output_index(&name))?;
+            let unit = &sys.outputs()[i].unit;
+            let what = format!("levels[{name:?}]");
+            let vals = match stochvib::units::unit_dim(unit) {
+                Some(dim) => quantity::sequence_of_dim(py, &v, &what, dim)?,
+                None => quantity::sequence(py, &v, &what, unit)?,
+            };
+            Ok((i, vals))
+        })
+        .collect()
 }

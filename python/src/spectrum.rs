@@ -3,6 +3,7 @@
 use crate::arrays::{check_out, real_array};
 use crate::errors::{call, detached, detached_if, invalid_input, not_applicable, Failure};
 use crate::names::{catalogue, domain_name};
+use crate::spectrum_units::{BandArg, Dims};
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
@@ -178,67 +179,180 @@ impl PySpectrum {
     ///
     /// ``variance`` D in unit², ``alpha`` α in 1/s (temporal) or 1/m (spatial). Rational: exact
     /// shaping filter √(2αD)/(s + α).
+    ///
+    /// Parameters
+    /// ----------
+    /// variance : float or str
+    ///     D in unit² ("2.25 cm^2" for unit "m").
+    /// alpha : float or str
+    ///     α in 1/s (1/m spatial); a string names no angle ("1 Hz" would carry 2π: write "6.3 1/s").
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process (strings of the other arguments are checked against it).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    /// InvalidInputError
+    ///     D < 0, α ≤ 0 or β < 0, or a non-finite value.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> a = stochvib.Spectrum.exponential("2.25 cm^2", "0.5 1/cm", domain="spatial")
+    /// >>> b = stochvib.Spectrum.exponential(2.25e-4, 50.0, domain="spatial")
+    /// >>> a.density(1.0) == b.density(1.0)
+    /// True
     #[staticmethod]
     #[pyo3(signature = (variance, alpha, *, domain="temporal", unit="m"))]
-    fn exponential(py: Python<'_>, variance: f64, alpha: f64, domain: &str, unit: &str) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
-        Self::make(py, || Exponential::new(variance, alpha, d), unit)
+    fn exponential(
+        py: Python<'_>,
+        variance: &Bound<'_, PyAny>,
+        alpha: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let q = Dims::new(py, domain, unit)?;
+        let (v, a) = (q.variance(py, variance)?, q.decay_rate(py, alpha, "alpha", 1)?);
+        Self::make(py, || Exponential::new(v, a, q.domain), unit)
     }
 
     /// Type 2 (Gaussian correlation): K(τ) = D e^{−ατ²}, S(ω) = D/(2√(πα)) e^{−ω²/(4α)}.
     ///
     /// ``variance`` D in unit², ``alpha`` α in 1/s² (temporal) or 1/m² (spatial). Not rational.
+    ///
+    /// Parameters
+    /// ----------
+    /// variance : float or str
+    ///     D in unit² ("2.25 cm^2" for unit "m").
+    /// alpha : float or str
+    ///     α in 1/s² (1/m² spatial); a string names no angle ("1 Hz" would carry 2π: write "6.3 1/s").
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process (strings of the other arguments are checked against it).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    /// InvalidInputError
+    ///     D < 0, α ≤ 0 or β < 0, or a non-finite value.
     #[staticmethod]
     #[pyo3(signature = (variance, alpha, *, domain="temporal", unit="m"))]
-    fn gaussian(py: Python<'_>, variance: f64, alpha: f64, domain: &str, unit: &str) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
-        Self::make(py, || Gaussian::new(variance, alpha, d), unit)
+    fn gaussian(
+        py: Python<'_>,
+        variance: &Bound<'_, PyAny>,
+        alpha: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let q = Dims::new(py, domain, unit)?;
+        let (v, a) = (q.variance(py, variance)?, q.decay_rate(py, alpha, "alpha", 2)?);
+        Self::make(py, || Gaussian::new(v, a, q.domain), unit)
     }
 
     /// Type 3: K(τ) = D e^{−α|τ|} cos βτ,
     /// S(ω) = αD(ω² + α² + β²) / (π[(ω² − α² − β²)² + 4α²ω²]).
     ///
-    /// ``alpha`` α in 1/s (1/m), ``beta`` β in rad/s (rad/m). Rational.
+    /// ``alpha`` α in 1/s (1/m), ``beta`` β in rad/s (rad/m; a string "1 Hz" is 2π rad/s). Rational.
+    ///
+    /// Parameters
+    /// ----------
+    /// variance : float or str
+    ///     D in unit² ("2.25 cm^2" for unit "m").
+    /// alpha : float or str
+    ///     α in 1/s (1/m spatial); a string names no angle ("1 Hz" would carry 2π: write "6.3 1/s").
+    /// beta : float or str
+    ///     β in rad/s (rad/m spatial); a string "1 Hz" is 2π rad/s.
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process (strings of the other arguments are checked against it).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    /// InvalidInputError
+    ///     D < 0, α ≤ 0 or β < 0, or a non-finite value.
     #[staticmethod]
     #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
-    fn exp_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
-        Self::make(
-            py,
-            || {
-                ExpCosine {
-                    variance,
-                    alpha,
-                    beta,
-                    domain: d,
-                }
-                .build()
-            },
-            unit,
-        )
+    fn exp_cosine(
+        py: Python<'_>,
+        variance: &Bound<'_, PyAny>,
+        alpha: &Bound<'_, PyAny>,
+        beta: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let q = Dims::new(py, domain, unit)?;
+        let p = ExpCosine {
+            variance: q.variance(py, variance)?,
+            alpha: q.decay_rate(py, alpha, "alpha", 1)?,
+            beta: q.angular(py, beta, "beta")?,
+            domain: q.domain,
+        };
+        Self::make(py, || p.build(), unit)
     }
 
     /// Type 4: K(τ) = D e^{−ατ²} cos βτ,
     /// S(ω) = D/(4√(πα)) [e^{−(ω−β)²/(4α)} + e^{−(ω+β)²/(4α)}].
     ///
-    /// ``alpha`` α in 1/s² (1/m²), ``beta`` β in rad/s (rad/m). Not rational.
+    /// ``alpha`` α in 1/s² (1/m²), ``beta`` β in rad/s (rad/m; a string "1 Hz" is 2π rad/s). Not
+    /// rational.
+    ///
+    /// Parameters
+    /// ----------
+    /// variance : float or str
+    ///     D in unit² ("2.25 cm^2" for unit "m").
+    /// alpha : float or str
+    ///     α in 1/s² (1/m² spatial); a string names no angle ("1 Hz" would carry 2π: write "6.3 1/s").
+    /// beta : float or str
+    ///     β in rad/s (rad/m spatial); a string "1 Hz" is 2π rad/s.
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process (strings of the other arguments are checked against it).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    /// InvalidInputError
+    ///     D < 0, α ≤ 0 or β < 0, or a non-finite value.
     #[staticmethod]
     #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
-    fn gauss_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
-        Self::make(
-            py,
-            || {
-                GaussCosineParameters {
-                    variance,
-                    alpha,
-                    beta,
-                    domain: d,
-                }
-                .build()
-            },
-            unit,
-        )
+    fn gauss_cosine(
+        py: Python<'_>,
+        variance: &Bound<'_, PyAny>,
+        alpha: &Bound<'_, PyAny>,
+        beta: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let q = Dims::new(py, domain, unit)?;
+        let p = GaussCosineParameters {
+            variance: q.variance(py, variance)?,
+            alpha: q.decay_rate(py, alpha, "alpha", 2)?,
+            beta: q.angular(py, beta, "beta")?,
+            domain: q.domain,
+        };
+        Self::make(py, || p.build(), unit)
     }
 
     /// A rational density S(ω) = N(ω²)/D(ω²) (two-sided angular).
@@ -283,43 +397,79 @@ impl PySpectrum {
     ///
     /// ``road_class``: "A" … "H"; ``bound``: "lower", "geometric-mean" or "upper"; ``band``: (n₁, n₂) in
     /// cycles/m, default the ISO band (0.011, 2.83); ``None`` leaves it unbounded (then the variance is
-    /// infinite and :meth:`variance` raises :class:`DivergentError`).
+    /// infinite and :meth:`variance` raises :class:`DivergentError`). The edges may be strings with a unit
+    /// ("0.011 cycles/m"; "1 rad/m" is 1/(2π) cycles/m).
     #[staticmethod]
-    #[pyo3(signature = (road_class, *, bound="geometric-mean", band=Some(ISO_BAND)))]
-    fn iso8608(py: Python<'_>, road_class: &str, bound: &str, band: Option<(f64, f64)>) -> PyResult<Self> {
+    #[pyo3(signature = (road_class, *, bound="geometric-mean", band=BandArg::Iso))]
+    fn iso8608(py: Python<'_>, road_class: &str, bound: &str, band: BandArg<'_>) -> PyResult<Self> {
         let c: IsoClass = call(py, || road_class.parse())?;
         let b: IsoBound = call(py, || bound.parse())?;
+        let band = match band {
+            BandArg::Iso => Some(ISO_BAND),
+            BandArg::Unbounded => None,
+            BandArg::Edges(edges) => Some(Dims::new(py, "spatial", "m")?.band(py, &edges, "band", true)?),
+        };
         Self::make(py, || PowerLaw::iso8608(c, b, band), "m")
     }
 
     /// A power-law density G(n) = g0 (n/n0)^{−w}, one-sided cyclic (n in cycles/m for a spatial process,
     /// Hz for a temporal one), optionally restricted to ``band`` = (n₁, n₂) in the same unit.
+    ///
+    /// Parameters
+    /// ----------
+    /// g0 : float or str
+    ///     G(n0) in unit²·m (unit²·s temporal): a number or a string without an angle ("256e-6 m^3"; per
+    ///     cycle is said by the one-sided cyclic convention, never by a unit).
+    /// n0 : float or str
+    ///     The reference frequency in cycles/m (Hz), or a frequency string ("0.1 cycles/m"; "1 rad/m" and
+    ///     "1 1/m" are 1/(2π) cycles/m).
+    /// waviness : float
+    ///     w, a pure number.
+    /// band : (float or str, float or str), keyword-only, optional
+    ///     (n₁, n₂) in cycles/m (Hz) or frequency strings; None: unbounded.
+    /// domain : {"spatial", "temporal"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> a = stochvib.Spectrum.power_law("256e-6 m^3", "0.1 cycles/m", 2, band=("0.011 cycles/m", "2.83 cycles/m"))
+    /// >>> b = stochvib.Spectrum.power_law(256e-6, 0.1, 2, band=(0.011, 2.83))
+    /// >>> round(a.variance() / b.variance(), 12)
+    /// 1.0
     #[staticmethod]
     #[pyo3(signature = (g0, n0, waviness, *, band=None, domain="spatial", unit="m"))]
     fn power_law(
         py: Python<'_>,
-        g0: f64,
-        n0: f64,
-        waviness: f64,
-        band: Option<(f64, f64)>,
+        g0: &Bound<'_, PyAny>,
+        n0: &Bound<'_, PyAny>,
+        waviness: &Bound<'_, PyAny>,
+        band: Option<&Bound<'_, PyAny>>,
         domain: &str,
         unit: &str,
     ) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
-        Self::make(
-            py,
-            || {
-                PowerLawParameters {
-                    g0,
-                    n0,
-                    waviness,
-                    band,
-                    domain: d,
-                }
-                .build()
-            },
-            unit,
-        )
+        let q = Dims::new(py, domain, unit)?;
+        let p = PowerLawParameters {
+            g0: q.density(py, g0, "g0")?,
+            n0: crate::quantity::frequency(py, n0, "n0", q.inv_lag(), true)?,
+            waviness: crate::quantity::of_dim(py, waviness, "waviness", stochvib::units::Dim::DIMENSIONLESS)?,
+            band: band
+                .filter(|b| !b.is_none())
+                .map(|b| q.band(py, b, "band", true))
+                .transpose()?,
+            domain: q.domain,
+        };
+        Self::make(py, || p.build(), unit)
     }
 
     /// A measured density given at points, interpolated linearly in log–log coordinates, zero outside.
@@ -346,34 +496,61 @@ impl PySpectrum {
 
     /// Band-limited white noise: a constant ``level`` (in ``convention``) between the band edges ``low``
     /// and ``high`` (Hz or cycles/m for "one-sided-cyclic", rad/s or rad/m otherwise), zero outside.
+    ///
+    /// Parameters
+    /// ----------
+    /// level : float or str
+    ///     The density in ``convention``: a number, or a string in unit² per 1/s (1/m) without an angle
+    ///     ("1e-4 m^2 s"; per Hz or per rad/s is said by the convention).
+    /// low, high : float or str
+    ///     The band edges in the convention's abscissa (Hz or cycles/m for "one-sided-cyclic", rad/s or
+    ///     rad/m otherwise), or frequency strings ("1 Hz" is 1 Hz there and 2π rad/s in the angular ones).
+    /// convention : str, keyword-only
+    ///     "two-sided-angular", "one-sided-angular", "one-sided-cyclic" or "engineering".
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    ///
+    /// Examples
+    /// --------
+    /// σ² = G·(f₂ − f₁) for a one-sided cyclic level G:
+    ///
+    /// >>> import stochvib
+    /// >>> s = stochvib.Spectrum.band_white("1e-4 m^2 s", "1 Hz", "11 Hz", convention="one-sided-cyclic")
+    /// >>> round(s.variance() / 1e-3, 12)
+    /// 1.0
     #[staticmethod]
     #[pyo3(signature = (level, low, high, *, convention, domain="temporal", unit="m"))]
-    #[allow(clippy::too_many_arguments)]
     fn band_white(
         py: Python<'_>,
-        level: f64,
-        low: f64,
-        high: f64,
+        level: &Bound<'_, PyAny>,
+        low: &Bound<'_, PyAny>,
+        high: &Bound<'_, PyAny>,
         convention: &str,
         domain: &str,
         unit: &str,
     ) -> PyResult<Self> {
         let c = crate::names::convention(py, convention)?;
-        let d = crate::names::domain(py, domain)?;
-        Self::make(
-            py,
-            || {
-                BandWhiteParameters {
-                    convention: c,
-                    level,
-                    lo: low,
-                    hi: high,
-                    domain: d,
-                }
-                .build()
-            },
-            unit,
-        )
+        let q = Dims::new(py, domain, unit)?;
+        let edge =
+            |x: &Bound<'_, PyAny>, name: &str| crate::quantity::frequency(py, x, name, q.inv_lag(), c.is_cyclic());
+        let p = BandWhiteParameters {
+            convention: c,
+            level: q.density(py, level, "level")?,
+            lo: edge(low, "low")?,
+            hi: edge(high, "high")?,
+            domain: q.domain,
+        };
+        Self::make(py, || p.build(), unit)
     }
 
     /// A spectrum file or catalogue entry: a catalogue name (e.g. "iso8608-c", "type3") is looked up in the

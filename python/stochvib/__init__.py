@@ -55,6 +55,9 @@ from .results import (
     NonlinearResult,
     NonlinearRunResult,
     OptimizeResult,
+    KktCheck,
+    ParetoFront,
+    ParetoPoint,
     RunResult,
     SweepResult,
     TablesResult,
@@ -98,6 +101,9 @@ __all__ = [
     "NonlinearOutput",
     "NonlinearRunResult",
     "OptimizeResult",
+    "KktCheck",
+    "ParetoFront",
+    "ParetoPoint",
     "TransientResult",
     "TransientRunResult",
     "VerdictTable",
@@ -157,11 +163,11 @@ def analyze(
     *,
     speed: Optional[Quantity] = None,
     positions: Optional[Sequence[Quantity]] = None,
-    mean: Optional[Union[float, Sequence[float]]] = None,
+    mean: Optional[Union[Quantity, Sequence[Quantity]]] = None,
     outputs: Optional[Sequence[str]] = None,
     band_rad_s: Optional[Tuple[Quantity, Quantity]] = None,
     duration_s: Optional[Quantity] = None,
-    levels: Optional[Dict[str, Sequence[float]]] = None,
+    levels: Optional[Dict[str, Sequence[Quantity]]] = None,
     monte_carlo: Optional[int] = None,
     seed: int = 1,
     dt: Optional[Quantity] = None,
@@ -185,12 +191,13 @@ def analyze(
     :class:`Spectrum` or a catalogue name such as "iso8608-c" (one process; a spatial road spectrum needs
     ``speed`` in m/s; several inputs fed by
     one track need ``positions`` in m unless the system comes from the catalogue or a scenario file) or a list
-    with one spectrum per input (independent processes). ``mean``: the process mean (its unit).
+    with one spectrum per input (independent processes). ``mean``: the process mean (its unit; a number or a
+    string such as "5 cm"), or one per process.
 
     Per output (``outputs``: names, default all): mean, σ, 3σ bounds, every variance method (Lyapunov,
     integral table, quadrature) with its value, error estimate and relative difference, spectral moments,
     Rice zero up-crossing rate ν₀⁺ (1/s), bandwidth, expected largest peak in ``duration_s`` (default 3600 s),
-    crossing rates of ``levels`` ({output: [levels in the output's SI unit]}), σ in ``band_rad_s``
+    crossing rates of ``levels`` ({output: [levels in the output's SI unit, or strings "3 cm"]}), σ in ``band_rad_s``
     (ω₁, ω₂ in rad/s, or unit strings: "1 Hz" is 2π rad/s). An infinite variance is reported, not raised: ``sigma`` is None,
     ``variance_outcome["status"]`` is "divergent" and ``variance_note`` holds the diagnosis.
 
@@ -319,7 +326,7 @@ def simulate(
     input: Optional[Input] = None,
     speed: Optional[Quantity] = None,
     positions: Optional[Sequence[Quantity]] = None,
-    mean: Optional[Union[float, Sequence[float]]] = None,
+    mean: Optional[Union[Quantity, Sequence[Quantity]]] = None,
     outputs: Optional[Sequence[str]] = None,
     dt: Optional[Quantity] = None,
     duration: Optional[Quantity] = None,
