@@ -298,13 +298,21 @@ impl PySpectrum {
         unit: &str,
     ) -> PyResult<Self> {
         let q = Dims::new(py, domain, unit)?;
-        let p = ExpCosine {
-            variance: q.variance(py, variance)?,
-            alpha: q.decay_rate(py, alpha, "alpha", 1)?,
-            beta: q.angular(py, beta, "beta")?,
-            domain: q.domain,
-        };
-        Self::make(py, || p.build(), unit)
+        let (variance, alpha, beta) = q.decaying_cosine(py, [variance, alpha, beta], 1)?;
+        let domain = q.domain;
+        Self::make(
+            py,
+            || {
+                ExpCosine {
+                    variance,
+                    alpha,
+                    beta,
+                    domain,
+                }
+                .build()
+            },
+            unit,
+        )
     }
 
     /// Type 4: K(τ) = D e^{−ατ²} cos βτ,
@@ -346,13 +354,21 @@ impl PySpectrum {
         unit: &str,
     ) -> PyResult<Self> {
         let q = Dims::new(py, domain, unit)?;
-        let p = GaussCosineParameters {
-            variance: q.variance(py, variance)?,
-            alpha: q.decay_rate(py, alpha, "alpha", 2)?,
-            beta: q.angular(py, beta, "beta")?,
-            domain: q.domain,
-        };
-        Self::make(py, || p.build(), unit)
+        let (variance, alpha, beta) = q.decaying_cosine(py, [variance, alpha, beta], 2)?;
+        let domain = q.domain;
+        Self::make(
+            py,
+            || {
+                GaussCosineParameters {
+                    variance,
+                    alpha,
+                    beta,
+                    domain,
+                }
+                .build()
+            },
+            unit,
+        )
     }
 
     /// A rational density S(ω) = N(ω²)/D(ω²) (two-sided angular).

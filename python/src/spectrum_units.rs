@@ -62,6 +62,20 @@ impl Dims {
         of_dim(py, obj, "variance", pow(unit, 2))
     }
 
+    /// (variance, α, β) of a decaying cosine (types 3 and 4), α of dimension (1/lag)^`power`.
+    pub fn decaying_cosine(
+        &self,
+        py: Python<'_>,
+        [variance, alpha, beta]: [&Bound<'_, PyAny>; 3],
+        power: i8,
+    ) -> PyResult<(f64, f64, f64)> {
+        Ok((
+            self.variance(py, variance)?,
+            self.decay_rate(py, alpha, "alpha", power)?,
+            self.angular(py, beta, "beta")?,
+        ))
+    }
+
     /// A decay rate `name` of dimension (1/lag)^`power`.
     pub fn decay_rate(&self, py: Python<'_>, obj: &Bound<'_, PyAny>, name: &str, power: i8) -> PyResult<f64> {
         without_angle(py, obj, name, pow(self.lag, -power), DECAY_RATE)

@@ -193,3 +193,15 @@ def test_kkt_check_at_an_active_constraint_against_the_closed_form(cli, quarter_
     want = cli.json("optimize", str(quarter_car), "--param", "model.suspension_damping=0.2:6 kN*s/m", "--minimize", "sigma(body_acc)", "--constraint", "3sigma(travel) <= 40 mm")
     assert k.to_dict() == want["kkt"] == r.to_dict()["kkt"]
     assert "KKT: stationarity residual" in repr(r) and "KKT: stationarity residual" in str(r)
+
+
+def test_pareto_front_and_kkt_as_tables(quarter_car):
+    pd = pytest.importorskip("pandas")
+    sc = stochvib.Scenario.load(quarter_car)
+    fr = sc.pareto(PARAM, minimize="sigma(body_acc)", pareto="3sigma(travel)", points=3, starts=1)
+    df = fr.to_dataframe()
+    assert isinstance(df, pd.DataFrame) and len(df) == 3
+    assert list(df.columns) == ["model.suspension_damping", "sigma(body_acc) [m/s^2]", "3sigma(travel) [m]", "limit", "feasible"]
+    assert df["sigma(body_acc) [m/s^2]"].tolist() == fr.values[:, 0].tolist()
+    r = sc.optimize(PARAM, minimize="sigma(body_acc)", constraints=["3sigma(travel) <= 40 mm"])
+    assert r.to_dataframe()["key"].tolist() == ["model.suspension_damping"]
