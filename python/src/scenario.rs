@@ -514,6 +514,29 @@ fn simulate_run<'py>(
 impl PyScenario {
     /// Reads a file of ``data/`` (a scenario, a deterministic model or a reference table). Spectrum names in
     /// ``[input] spectrum`` are looked up in the catalogue directory (see :meth:`Spectrum.load`).
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     The file (TOML).
+    /// spectra_dir : str or os.PathLike, keyword-only, optional
+    ///     The spectrum catalogue directory.
+    ///
+    /// Returns
+    /// -------
+    /// Scenario
+    ///     :attr:`what` says "stochastic", "deterministic" or "reference".
+    ///
+    /// Raises
+    /// ------
+    /// FileError
+    ///     A file that cannot be read or is invalid, naming the file, key, value and reason.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> stochvib.Scenario.load("data/conveyor-idler.toml").what
+    /// 'stochastic'
     #[staticmethod]
     #[pyo3(signature = (path, *, spectra_dir=None))]
     fn load(py: Python<'_>, path: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
@@ -542,6 +565,53 @@ impl PyScenario {
     /// ("left"/"right"; default the model's layout) and ``positions`` (m behind the first contact: the
     /// wheelbase delays ℓ/v; default the model's). A catalogue model on two tracks (``full-vehicle``) needs
     /// only ``coherence`` and ``speed``.
+    ///
+    /// Parameters
+    /// ----------
+    /// system : System
+    ///     A stable system.
+    /// input : Spectrum, str, os.PathLike or list of Spectrum
+    ///     As above.
+    /// speed : float or str, keyword-only, optional
+    ///     m/s or a speed string ("72 km/h").
+    /// positions : list of float or str, keyword-only, optional
+    ///     m behind the first contact, one per system input.
+    /// mean : float or str or list of them, keyword-only, optional
+    ///     The process mean(s), in the process's unit; default 0.
+    /// outputs : list of str, keyword-only, optional
+    /// band_rad_s : (float or str, float or str), keyword-only, optional
+    /// duration_s : float or str, keyword-only, default 3600 s
+    /// levels : dict of str to list of float or str, keyword-only, optional
+    /// title : str, keyword-only, optional
+    /// coherence : dict, keyword-only, optional
+    /// track_width : float or str, keyword-only, optional
+    ///     m.
+    /// tracks : list of str or int, keyword-only, optional
+    ///
+    /// Returns
+    /// -------
+    /// Scenario
+    ///     A stochastic scenario, as a scenario file gives.
+    ///
+    /// Raises
+    /// ------
+    /// DivergentError
+    ///     An unstable system (no stationary response).
+    /// InvalidInputError
+    ///     A spatial input without ``speed``, several inputs without ``positions`` or layout, a speed that is
+    ///     not > 0, an unknown output, a bad coherence table.
+    /// UnitError
+    ///     A quantity string of the wrong dimension, naming the argument.
+    ///
+    /// Examples
+    /// --------
+    /// ẋ = −2x + u with u of correlation e^{−2|τ|}: σ_x² = (2/π)·∫ dω/(ω² + 4)² = 1/8.
+    ///
+    /// >>> import stochvib
+    /// >>> sys = stochvib.System.state_space([[-2.0]], [[1.0]], [[1.0]], outputs=[("x", "m")])
+    /// >>> sc = stochvib.Scenario.from_system(sys, stochvib.Spectrum.exponential(1.0, 2.0))
+    /// >>> round(sc.analyze(progress=False)["x"].sigma ** 2, 9)
+    /// 0.125
     #[staticmethod]
     #[pyo3(signature = (system, input, *, speed=None, positions=None, mean=None, outputs=None, band_rad_s=None, duration_s=None, levels=None, title=None, coherence=None, track_width=None, tracks=None))]
     #[allow(clippy::too_many_arguments)]
@@ -714,6 +784,39 @@ impl PyScenario {
     /// ``rel_tol``, ``max_subintervals`` and ``max_half_periods`` override the effort of the quadratures
     /// (the scenario's ``[analysis.quadrature]``; the CLI's ``--rel-tol``, ``--max-subintervals``,
     /// ``--max-half-periods``; defaults 1e-10, 2000, 10 000).
+    ///
+    /// Parameters
+    /// ----------
+    /// monte_carlo : int, keyword-only, optional
+    ///     N realizations for the Monte Carlo column (none by default).
+    /// seed : int, keyword-only, default 1
+    /// dt, duration : float or str, keyword-only, optional
+    ///     s, or time strings.
+    /// progress : bool or callable, keyword-only, optional
+    ///     True: a bar; a callable(done, total); None or False (the default): nothing.
+    /// rel_tol : float, keyword-only, default 1e-10
+    /// max_subintervals : int, keyword-only, default 2000
+    /// max_half_periods : int, keyword-only, default 10 000
+    ///
+    /// Returns
+    /// -------
+    /// AnalysisResult
+    ///     One :class:`OutputResult` per output. An infinite variance or a quadrature that does not converge
+    ///     is reported in it, not raised.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A model with nonlinear elements; a bad option.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> r = stochvib.Scenario.load("data/conveyor-idler.toml").analyze(progress=False)
+    /// >>> r["y"].unit, r["y"].sigma > 0
+    /// ('m', True)
     #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None))]
     #[allow(clippy::too_many_arguments)]
     fn analyze<'py>(
@@ -743,6 +846,33 @@ impl PyScenario {
     /// route 2 when not given, ``burn_in`` in s, default from the slowest decay rate of the Gaussian
     /// equivalent; ``progress`` as for :meth:`analyze`). ``rel_tol``, ``max_subintervals``,
     /// ``max_half_periods`` as for :meth:`analyze`.
+    ///
+    /// Parameters
+    /// ----------
+    /// monte_carlo : int, keyword-only, optional
+    ///     N realizations of route 2 (none by default).
+    /// seed, dt, duration, progress, rel_tol, max_subintervals, max_half_periods
+    ///     As for :meth:`analyze` (s for ``dt`` and ``duration``).
+    /// burn_in : float or str, keyword-only, optional
+    ///     s, or a time string.
+    ///
+    /// Returns
+    /// -------
+    /// NonlinearResult
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A linear model; a bad option.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> r = stochvib.Scenario.load("data/duffing-white-noise.toml").analyze_nonlinear(progress=False)
+    /// >>> r["x"].route1() < r["x"].exact() < 0.01  # a hardening spring: below the linear σ₀ = 1 cm
+    /// True
     #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None, burn_in=None))]
     #[allow(clippy::too_many_arguments)]
     fn analyze_nonlinear<'py>(
@@ -1181,6 +1311,15 @@ impl PyScenario {
     /// The result tables of a deterministic model (a hoist, a chain) or of a reference table of the sources
     /// — the ``stochvib analyze`` report of such a file — as a :class:`TablesResult`. A stochastic scenario
     /// raises :class:`NotApplicableError` (use :meth:`analyze`).
+    ///
+    /// Returns
+    /// -------
+    /// TablesResult
+    ///
+    /// Raises
+    /// ------
+    /// NotApplicableError
+    ///     A stochastic scenario.
     fn tables<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         if let Document::Stochastic(sc) = &self.doc {
             return Err(crate::errors::not_applicable(
@@ -1213,6 +1352,58 @@ impl PyScenario {
     /// receives ``shard-<I>-of-<N>.h5``; :func:`stochvib.merge` joins the parts.
     ///
     /// A model with nonlinear elements raises :class:`InvalidInputError` naming :meth:`simulate_nonlinear`.
+    ///
+    /// Parameters
+    /// ----------
+    /// realizations : int
+    ///     N ≥ 2.
+    /// path : str or os.PathLike
+    ///     The run file (HDF5) to write; with ``shard``, the run directory.
+    /// dt, duration : float or str, keyword-only, optional
+    ///     Δt and the duration of one realization, in s or time strings ("10 ms"); suggested when not given.
+    /// seed : int, keyword-only, default 1
+    ///     The master seed.
+    /// shard_size : int, keyword-only, default 50
+    ///     Realizations between checkpoints (and Ctrl-C checks).
+    /// store_raw : bool, keyword-only, default False
+    /// compression : str, keyword-only, default "none"
+    ///     "none", "fast", "best" or "deflate:N" (with ``store_raw``).
+    /// route : {"auto", "exact", "spectral"}, keyword-only, default "auto"
+    /// confidence : float, keyword-only, default 0.95
+    ///     Of the intervals, in (0, 1).
+    /// overwrite : bool, keyword-only, default False
+    /// progress : bool or callable, keyword-only, optional
+    ///     True: a bar; a callable(done, total); None or False (the default): nothing.
+    /// shard : (int, int), keyword-only, optional
+    ///     (I, N): part I of N.
+    ///
+    /// Returns
+    /// -------
+    /// RunResult
+    ///     The run file's path and the statistics with their intervals.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A bad argument (fewer than 2 realizations, an unknown route or compression, a bad shard);
+    ///     the model is of the other kind (the message names the other method).
+    /// UnitError
+    ///     ``dt``, ``duration`` or ``burn_in`` strings that are not times.
+    /// FileError
+    ///     ``path`` exists (without ``overwrite``) or cannot be written.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
+    /// KeyboardInterrupt
+    ///     Ctrl-C: the ``.tmp`` file is kept for resuming.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import pathlib, tempfile, stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> with tempfile.TemporaryDirectory() as d:
+    /// ...     r = sc.simulate(2, pathlib.Path(d) / "run.h5", dt=0.01, duration=5.0, progress=False)
+    /// ...     r.n_realizations, r.path.is_file()
+    /// (2, True)
     #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
@@ -1259,6 +1450,59 @@ impl PyScenario {
     /// duration suggested for route 2 when not given; ``burn_in`` in s, default from the slowest decay rate
     /// of the Gaussian equivalent). The other arguments as for :meth:`simulate`. A linear model raises
     /// :class:`InvalidInputError` naming :meth:`simulate`.
+    ///
+    /// Parameters
+    /// ----------
+    /// realizations : int
+    ///     N ≥ 2.
+    /// path : str or os.PathLike
+    ///     The run file (HDF5) to write; with ``shard``, the run directory.
+    /// dt, duration : float or str, keyword-only, optional
+    ///     Δt and the duration of one realization, in s or time strings ("10 ms"); suggested when not given.
+    /// seed : int, keyword-only, default 1
+    ///     The master seed.
+    /// shard_size : int, keyword-only, default 50
+    ///     Realizations between checkpoints (and Ctrl-C checks).
+    /// store_raw : bool, keyword-only, default False
+    /// compression : str, keyword-only, default "none"
+    ///     "none", "fast", "best" or "deflate:N" (with ``store_raw``).
+    /// route : {"auto", "exact", "spectral"}, keyword-only, default "auto"
+    /// confidence : float, keyword-only, default 0.95
+    ///     Of the intervals, in (0, 1).
+    /// overwrite : bool, keyword-only, default False
+    /// progress : bool or callable, keyword-only, optional
+    ///     True: a bar; a callable(done, total); None or False (the default): nothing.
+    /// shard : (int, int), keyword-only, optional
+    ///     (I, N): part I of N.
+    /// burn_in : float or str, keyword-only, optional
+    ///     s, or a time string.
+    ///
+    /// Returns
+    /// -------
+    /// NonlinearRunResult
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A bad argument (fewer than 2 realizations, an unknown route or compression, a bad shard);
+    ///     the model is of the other kind (the message names the other method).
+    /// UnitError
+    ///     ``dt``, ``duration`` or ``burn_in`` strings that are not times.
+    /// FileError
+    ///     ``path`` exists (without ``overwrite``) or cannot be written.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
+    /// KeyboardInterrupt
+    ///     Ctrl-C: the ``.tmp`` file is kept for resuming.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import pathlib, tempfile, stochvib
+    /// >>> sc = stochvib.Scenario.load("data/duffing-white-noise.toml")
+    /// >>> with tempfile.TemporaryDirectory() as d:
+    /// ...     r = sc.simulate_nonlinear(2, pathlib.Path(d) / "run.h5", dt=0.01, duration=5.0, progress=False)
+    /// ...     r.n_realizations, r.burn_in_s > 0
+    /// (2, True)
     #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None, burn_in=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate_nonlinear<'py>(
@@ -1306,6 +1550,29 @@ impl PyScenario {
     /// speed), or the one-sided G_y(f) = 4π S_y(2πf) at ``f`` (Hz, scipy.signal.welch's). ``convention``
     /// as for :meth:`Spectrum.density`. Delays, several inputs and catalogue layouts are included; for the
     /// weighted density use a system from :meth:`System.weighted`.
+    ///
+    /// Parameters
+    /// ----------
+    /// output : str
+    ///     An output name.
+    /// omega : array_like, optional
+    ///     ω in rad/s, any shape.
+    /// f : array_like, keyword-only, optional
+    ///     f in Hz instead. Exactly one of ``omega`` and ``f``.
+    /// convention : str, keyword-only, optional
+    ///     As for :meth:`Spectrum.density`.
+    ///
+    /// Returns
+    /// -------
+    /// float or numpy.ndarray of float64
+    ///     In (output unit)² per rad/s (per Hz with ``f``), shaped as the argument.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown output; both or neither of ``omega`` and ``f``; a convention that does not belong.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
     ///
     /// Examples
     /// --------

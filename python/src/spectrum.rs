@@ -384,6 +384,10 @@ impl PySpectrum {
     /// unit : str, keyword-only
     ///     SI unit of the process.
     ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
     /// Examples
     /// --------
     /// Type 1 with D = 1, α = 1: S(ω) = 1/(π(ω² + 1)):
@@ -415,6 +419,34 @@ impl PySpectrum {
     /// cycles/m, default the ISO band (0.011, 2.83); ``None`` leaves it unbounded (then the variance is
     /// infinite and :meth:`variance` raises :class:`DivergentError`). The edges may be strings with a unit
     /// ("0.011 cycles/m"; "1 rad/m" is 1/(2π) cycles/m).
+    ///
+    /// Parameters
+    /// ----------
+    /// road_class : str
+    ///     "A" … "H".
+    /// bound : {"lower", "geometric-mean", "upper"}, keyword-only, default "geometric-mean"
+    ///     Which G_d(n₀) of the class ("mean" is taken for "geometric-mean").
+    /// band : (float or str, float or str) or None, keyword-only, default (0.011, 2.83)
+    ///     (n₁, n₂) in cycles/m or frequency strings; None: unbounded.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///     Spatial, unit "m".
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown class or bound, a band that is not 0 < n₁ < n₂.
+    /// UnitError
+    ///     A band edge that is not a spatial frequency.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> road = stochvib.Spectrum.iso8608("C", band=("0.011 cycles/m", "2.83 cycles/m"))
+    /// >>> road.domain, road.unit
+    /// ('spatial', 'm')
     #[staticmethod]
     #[pyo3(signature = (road_class, *, bound="geometric-mean", band=BandArg::Iso))]
     fn iso8608(py: Python<'_>, road_class: &str, bound: &str, band: BandArg<'_>) -> PyResult<Self> {
@@ -493,6 +525,37 @@ impl PySpectrum {
     /// ``x``: abscissae in the convention's unit (Hz or cycles/m for "one-sided-cyclic", rad/s or rad/m
     /// otherwise), strictly increasing and > 0; ``values``: the density in that convention, > 0.
     /// ``convention`` is required: a wrong guess would scale the variance by 2, 2π or 4π.
+    ///
+    /// Parameters
+    /// ----------
+    /// x : array_like
+    ///     Abscissae: Hz (cycles/m) for "one-sided-cyclic", rad/s (rad/m) otherwise; strictly increasing, > 0.
+    /// values : array_like
+    ///     The density at ``x`` in ``convention`` (unit² per the abscissa's unit), > 0, as many as ``x``.
+    /// convention : str, keyword-only
+    ///     "two-sided-angular", "one-sided-angular", "one-sided-cyclic" or "engineering".
+    /// domain : {"temporal", "spatial"}, keyword-only, default "temporal"
+    /// unit : str, keyword-only, default "m"
+    ///     The SI unit of the process.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown convention or domain; abscissae not increasing or not > 0; values not > 0; lengths
+    ///     that differ; non-numeric input.
+    ///
+    /// Examples
+    /// --------
+    /// A flat one-sided cyclic level G = 1e-4 m²/Hz from 1 Hz to 11 Hz: σ² = G·10 Hz.
+    ///
+    /// >>> import stochvib
+    /// >>> s = stochvib.Spectrum.tabulated([1.0, 11.0], [1e-4, 1e-4], convention="one-sided-cyclic")
+    /// >>> round(s.variance() / 1e-3, 6)
+    /// 1.0
     #[staticmethod]
     #[pyo3(signature = (x, values, *, convention, domain="temporal", unit="m"))]
     fn tabulated(
@@ -575,6 +638,30 @@ impl PySpectrum {
     /// The catalogue directory is ``spectra_dir`` if given, else ``$STOCHVIB_SPECTRA``, else ``./spectra``
     /// if it exists, else the ``spectra/`` directory of the source tree the package was built from (as the
     /// command-line tool).
+    ///
+    /// Parameters
+    /// ----------
+    /// path_or_name : str or os.PathLike
+    ///     A catalogue name, or the path of a spectrum file.
+    /// spectra_dir : str or os.PathLike, keyword-only, optional
+    ///     The catalogue directory (default as above).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///     With ``name``, ``description``, ``source`` and the file's text.
+    ///
+    /// Raises
+    /// ------
+    /// FileError
+    ///     A file that cannot be read or parsed, naming the file, key, value and reason; an unknown
+    ///     catalogue name (the message lists the catalogue).
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> stochvib.Spectrum.load("iso8608-c").domain
+    /// 'spatial'
     #[staticmethod]
     #[pyo3(signature = (path_or_name, *, spectra_dir=None))]
     fn load(py: Python<'_>, path_or_name: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
@@ -585,6 +672,26 @@ impl PySpectrum {
 
     /// Every spectrum of the catalogue directory (see :meth:`load`), as a dict name → Spectrum, sorted by
     /// name. Invalid files are left out with a ``StochvibWarning`` naming the file and the reason.
+    ///
+    /// Parameters
+    /// ----------
+    /// spectra_dir : str or os.PathLike, keyword-only, optional
+    ///     The catalogue directory (default as for :meth:`load`).
+    ///
+    /// Returns
+    /// -------
+    /// dict of str to Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// FileError
+    ///     A catalogue directory that cannot be listed.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> "iso8608-c" in stochvib.Spectrum.catalogue()
+    /// True
     #[staticmethod]
     #[pyo3(signature = (*, spectra_dir=None))]
     fn catalogue<'py>(py: Python<'py>, spectra_dir: Option<PathBuf>) -> PyResult<Bound<'py, PyDict>> {
@@ -685,6 +792,34 @@ impl PySpectrum {
     /// shape; a scalar gives a float). Closed form where one exists, adaptive quadrature otherwise (raises
     /// :class:`NumericalError` if it does not converge, :class:`DivergentError` for an infinite variance).
     /// The GIL is released.
+    ///
+    /// Parameters
+    /// ----------
+    /// tau : array_like
+    ///     The lag τ in s (m for a spatial process), any shape.
+    ///
+    /// Returns
+    /// -------
+    /// float or numpy.ndarray of float64
+    ///     K(τ) in unit², shaped as ``tau``.
+    ///
+    /// Raises
+    /// ------
+    /// DivergentError
+    ///     An infinite variance (e.g. an unbounded ISO 8608 road).
+    /// NumericalError
+    ///     A quadrature that does not converge.
+    /// InvalidInputError
+    ///     Complex or non-numeric ``tau``.
+    ///
+    /// Examples
+    /// --------
+    /// K(τ) = D e^{−α|τ|} for the exponential correlation with D = 1, α = 2:
+    ///
+    /// >>> import math, stochvib
+    /// >>> k = stochvib.Spectrum.exponential(1.0, 2.0).correlation([0.0, 0.5])
+    /// >>> round(float(k[0]), 12), round(float(k[1]) * math.e, 12)
+    /// (1.0, 1.0)
     fn correlation<'py>(&self, py: Python<'py>, tau: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let x = real_array(py, tau, "tau")?;
         let shape = x.shape().to_vec();
@@ -709,6 +844,24 @@ impl PySpectrum {
     /// The variance D = K(0) = ∫ S(ω) dω, in unit². Closed form where one exists, quadrature otherwise.
     /// Raises :class:`DivergentError` (with the reason and what finite question to ask instead) when it
     /// is infinite, e.g. an ISO 8608 road without a band.
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     D in unit².
+    ///
+    /// Raises
+    /// ------
+    /// DivergentError
+    ///     An infinite variance.
+    /// NumericalError
+    ///     A quadrature that does not converge.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> stochvib.Spectrum.exponential(2.25, 1.0).variance()
+    /// 2.25
     fn variance(&self, py: Python<'_>) -> PyResult<f64> {
         let s = &*self.spectrum;
         detached(py, || s.variance().map_err(Failure::Lib))
@@ -717,6 +870,31 @@ impl PySpectrum {
     /// The temporal process a vehicle at ``speed`` (m/s) feels from this spatial (road) spectrum:
     /// S_t(ω) = S_Ω(ω/v)/v, ω in rad/s. Raises :class:`InvalidInputError` for a temporal spectrum.
     /// ``speed`` may carry a unit ("36 km/h").
+    ///
+    /// Parameters
+    /// ----------
+    /// speed : float or str
+    ///     v in m/s, > 0, or a speed string ("36 km/h").
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///     Temporal, same unit; the variance is unchanged.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A temporal spectrum; a speed that is not finite and > 0.
+    /// UnitError
+    ///     A speed string of another dimension.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> road = stochvib.Spectrum.iso8608("C")
+    /// >>> t = road.at_speed("36 km/h")
+    /// >>> t.domain, round(t.variance() / road.variance(), 6)
+    /// ('temporal', 1.0)
     fn at_speed(&self, py: Python<'_>, speed: &Bound<'_, PyAny>) -> PyResult<Self> {
         let speed = crate::quantity::quantity(py, speed, "speed", "m/s")?;
         let a = call(py, || AtSpeed::new(self.spectrum.clone(), speed))?;
@@ -737,6 +915,31 @@ impl PySpectrum {
 
     /// The rational form S = N(ω²)/D(ω²) (two-sided angular) as (N, D) coefficient arrays in powers of ω²,
     /// DESCENDING unless ``order="ascending"``; None when the density is not rational.
+    ///
+    /// Parameters
+    /// ----------
+    /// order : {"descending", "ascending"}, keyword-only, default "descending"
+    ///
+    /// Returns
+    /// -------
+    /// (numpy.ndarray, numpy.ndarray) or None
+    ///     N and D; S(ω) in unit²·s/rad (unit²·m/rad spatial).
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown ``order``.
+    ///
+    /// Examples
+    /// --------
+    /// S(ω) = (Dα/π)/(ω² + α²) for the exponential correlation, D = 1, α = 2:
+    ///
+    /// >>> import math, stochvib
+    /// >>> n, d = stochvib.Spectrum.exponential(1.0, 2.0).rational_coefficients()
+    /// >>> [round(float(x / d[0]), 12) for x in d], round(float(n[0] / d[0]) * math.pi / 2, 12)
+    /// ([1.0, 4.0], 1.0)
+    /// >>> stochvib.Spectrum.iso8608("C").rational_coefficients() is None
+    /// True
     #[pyo3(signature = (*, order="descending"))]
     fn rational_coefficients<'py>(&self, py: Python<'py>, order: &str) -> PyResult<Option<Coefficients<'py>>> {
         let desc = crate::arrays::descending(py, order)?;
@@ -753,6 +956,22 @@ impl PySpectrum {
     ///
     /// Coefficients in powers of s, DESCENDING unless ``order="ascending"`` (``scipy.signal.freqs(b, a)``
     /// takes them as returned). Raises :class:`NotApplicableError` for a non-rational density.
+    ///
+    /// Parameters
+    /// ----------
+    /// order : {"descending", "ascending"}, keyword-only, default "descending"
+    ///
+    /// Returns
+    /// -------
+    /// (numpy.ndarray, numpy.ndarray)
+    ///     b and a: the filter maps a white noise of unit intensity (1/s) onto the process (its unit).
+    ///
+    /// Raises
+    /// ------
+    /// NotApplicableError
+    ///     A density that is not rational (e.g. an ISO 8608 road).
+    /// InvalidInputError
+    ///     An unknown ``order``.
     ///
     /// Examples
     /// --------

@@ -95,6 +95,11 @@ def a8(a_w: Union[float, str], duration: Union[float, str]) -> float:
     duration : float or str
         The daily exposure T in s, or with a unit ("4 h").
 
+    Returns
+    -------
+    float
+        A(8) in m/s².
+
     Raises
     ------
     UnitError
