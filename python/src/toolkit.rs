@@ -82,6 +82,18 @@ pub fn rainflow<'py>(py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'
     Ok(d)
 }
 
+/// The S–N curve N·S_a^k = C as the numbers (k, C) in the stress unit ``unit``, validated (k > 0, C > 0,
+/// finite): ``k`` a number or dimensionless string, ``c`` a number (in unit^k) or a string with a unit when
+/// k is an integer ("1e12 MPa^3"), converted as by :func:`spectral_fatigue`.
+#[pyfunction]
+#[pyo3(signature = (*, k, c, unit="Pa"))]
+pub fn sn_curve(py: Python<'_>, k: &Bound<'_, PyAny>, c: &Bound<'_, PyAny>, unit: &str) -> PyResult<(f64, f64)> {
+    let k = crate::quantity::of_dim(py, k, "k", stochvib::units::Dim::DIMENSIONLESS)?;
+    let c = crate::quantity::in_unit_power(py, c, "c", unit, k)?;
+    let sn = call(py, || SnCurve { k, c, endurance_limit: None }.build())?;
+    Ok((sn.k, sn.c))
+}
+
 /// Expected fatigue damage rate and life by every spectral method (narrow band, Wirsching–Light, Dirlik,
 /// Zhao–Baker, Tovo–Benasciutti, ...) of a stress process given by its one-sided density ``G`` (unit²/Hz)
 /// at ``f`` (Hz, increasing, trapezoidal moments), with the S–N curve N·S_a^k = C (amplitudes) and an

@@ -45,9 +45,42 @@ class Cycles:
     start: npt.NDArray[np.int64]
     end: npt.NDArray[np.int64]
 
-    def damage(self, *, k: float, c: float) -> float:
+    def damage(self, *, k: Union[float, str], c: Union[float, str], unit: str = "Pa") -> float:
         """Palmgren–Miner damage Σ nᵢ S_aᵢ^k / C of the S–N curve N·S_a^k = C (amplitudes, no endurance
-        limit)."""
+        limit).
+
+        Parameters
+        ----------
+        k : float, keyword-only
+            The slope of the S–N curve, > 0 (a number; a dimensionless string "3" also).
+        c : float or str, keyword-only
+            C in unit^k, > 0: a number, or a string with a unit when k is an integer ("1e12 MPa^3" with
+            ``unit="MPa"`` is 1e12), as for :func:`spectral`.
+        unit : str, keyword-only
+            The stress unit of the counted signal (of the amplitudes): "Pa" (default), "MPa", "N", ...
+
+        Returns
+        -------
+        float
+            The damage D (no unit; failure at D = 1).
+
+        Raises
+        ------
+        InvalidInputError
+            k or C not finite and > 0.
+        UnitError
+            A ``c`` string of another dimension than unit^k.
+
+        Examples
+        --------
+        The amplitudes in MPa: C as the string "8 MPa^3" is the number 8.
+
+        >>> from stochvib import fatigue
+        >>> cycles = fatigue.rainflow([0.0, 2.0, -2.0, 2.0, 0.0])
+        >>> cycles.damage(k=3, c="8 MPa^3", unit="MPa") == cycles.damage(k=3, c=8.0)
+        True
+        """
+        k, c = _stochvib.sn_curve(k=k, c=c, unit=unit)
         return float(np.sum(self.count * self.amplitude**k) / c)
 
     def to_dict(self) -> Dict[str, List[Any]]:
