@@ -792,8 +792,8 @@ impl PyScenario {
     /// seed : int, keyword-only, default 1
     /// dt, duration : float or str, keyword-only, optional
     ///     s, or time strings.
-    /// progress : bool or callable, keyword-only, optional
-    ///     True: a bar; a callable(done, total); None or False (the default): nothing.
+    /// progress : bool or callable, keyword-only, default True
+    ///     True (or None): a bar; False: nothing; a callable(done, total).
     /// rel_tol : float, keyword-only, default 1e-10
     /// max_subintervals : int, keyword-only, default 2000
     /// max_half_periods : int, keyword-only, default 10 000
@@ -1372,8 +1372,8 @@ impl PyScenario {
     /// confidence : float, keyword-only, default 0.95
     ///     Of the intervals, in (0, 1).
     /// overwrite : bool, keyword-only, default False
-    /// progress : bool or callable, keyword-only, optional
-    ///     True: a bar; a callable(done, total); None or False (the default): nothing.
+    /// progress : bool or callable, keyword-only, default True
+    ///     True (or None): a bar; False: nothing; a callable(done, total).
     /// shard : (int, int), keyword-only, optional
     ///     (I, N): part I of N.
     ///
@@ -1470,8 +1470,8 @@ impl PyScenario {
     /// confidence : float, keyword-only, default 0.95
     ///     Of the intervals, in (0, 1).
     /// overwrite : bool, keyword-only, default False
-    /// progress : bool or callable, keyword-only, optional
-    ///     True: a bar; a callable(done, total); None or False (the default): nothing.
+    /// progress : bool or callable, keyword-only, default True
+    ///     True (or None): a bar; False: nothing; a callable(done, total).
     /// shard : (int, int), keyword-only, optional
     ///     (I, N): part I of N.
     /// burn_in : float or str, keyword-only, optional

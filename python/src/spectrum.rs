@@ -654,8 +654,9 @@ impl PySpectrum {
     /// Raises
     /// ------
     /// FileError
-    ///     A file that cannot be read or parsed, naming the file, key, value and reason; an unknown
-    ///     catalogue name (the message lists the catalogue).
+    ///     A file that cannot be read or parsed, naming the file, key, value and reason.
+    /// InvalidInputError
+    ///     A name that is neither a file nor in the catalogue (the message names the catalogue directory).
     ///
     /// Examples
     /// --------

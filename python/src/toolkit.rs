@@ -90,7 +90,14 @@ pub fn rainflow<'py>(py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'
 pub fn sn_curve(py: Python<'_>, k: &Bound<'_, PyAny>, c: &Bound<'_, PyAny>, unit: &str) -> PyResult<(f64, f64)> {
     let k = crate::quantity::of_dim(py, k, "k", stochvib::units::Dim::DIMENSIONLESS)?;
     let c = crate::quantity::in_unit_power(py, c, "c", unit, k)?;
-    let sn = call(py, || SnCurve { k, c, endurance_limit: None }.build())?;
+    let sn = call(py, || {
+        SnCurve {
+            k,
+            c,
+            endurance_limit: None,
+        }
+        .build()
+    })?;
     Ok((sn.k, sn.c))
 }
 
