@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The Python package's build and tests: installs maturin, numpy, scipy, pytest and h5py with pip when they
+# The Python package's build and tests: installs maturin, numpy, scipy, pytest, h5py and pandas (the
+# to_dataframe() tests) with pip when they
 # are missing, builds the package from this checkout (maturin, abi3 wheel) and installs it,
 # then runs the pytest suite. Called by scripts/test.sh after the Rust suite (whose debug `stochvib` binary the
 # tests compare against; they build it when it is missing).
@@ -21,7 +22,7 @@ pip_install() {
     || { cat "$log" >&2; return 1; }
 }
 missing=()
-for m in maturin numpy scipy pytest h5py; do
+for m in maturin numpy scipy pytest h5py pandas; do
   "$PY" -c "import $m" >/dev/null 2>&1 || missing+=("$m")
 done
 if [ "${#missing[@]}" -gt 0 ]; then

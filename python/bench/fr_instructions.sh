@@ -7,7 +7,7 @@ cd "$(dirname "$0")/../.."
 PY="${PYTHON:-python3}"
 PY="$("$PY" -c 'import sys; print(sys.executable)')" # the interpreter itself, not a shim script
 cargo bench -q -p stochvib-python --bench fr_instructions --no-run 2>/dev/null
-exe="$(ls -t target/release/deps/fr_instructions-* | grep -v '\.d$' | head -1)"
+exe="$(ls -t "${CARGO_TARGET_DIR:-target}"/release/deps/fr_instructions-* | grep -v '\.d$' | head -1)"
 count() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null | sed -n 's/.*Collected : //p'; }
 r1=$(count "$exe" 1); r3=$(count "$exe" 3)
 p1=$(count "$PY" python/bench/fr_instructions.py 1); p3=$(count "$PY" python/bench/fr_instructions.py 3)

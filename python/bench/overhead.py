@@ -41,7 +41,8 @@ import stochvib  # noqa: E402
 import sweep_problem as sp  # noqa: E402
 
 N = 100_000
-CRITERION = ROOT / "target" / "criterion"
+# cargo's target directory (CARGO_TARGET_DIR when set, as cargo itself reads it)
+CRITERION = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "criterion"
 
 
 def criterion(group: str, name: str) -> dict:
@@ -140,10 +141,15 @@ def main() -> None:
     c2, b2 = sp.grid()
     road = sp.road()
     sweep_py = python_time(lambda: sp.sigma_h2(c2, b2, road), budget_s=3.0)
+    cpu0 = time.process_time()
+    for _ in range(5):
+        sp.sigma_h2(c2, b2, road)
+    sweep_cpu = (time.process_time() - cpu0) / 5
     k = max(1, int(round(c2.size * a.scipy_fraction)))
-    t0 = time.perf_counter()
+    t0, cpu0 = time.perf_counter(), time.process_time()
     ref = sp.sigma_scipy_lyapunov(c2[:k], b2[:k], road)
     scipy_s = (time.perf_counter() - t0) * c2.size / k
+    scipy_cpu = (time.process_time() - cpu0) * c2.size / k
     fast = sp.sigma_h2(c2[:k], b2[:k], road)
     max_rel = float(np.max(np.abs(fast / ref - 1)))
     try:
@@ -155,6 +161,9 @@ def main() -> None:
         "python_driven_median_s": sweep_py["median"],
         "python_driven_min_s": sweep_py["min"],
         "scipy_lyapunov_s": scipy_s,
+        "python_driven_cpu_s": sweep_cpu,
+        "scipy_lyapunov_cpu_s": scipy_cpu,
+        "ratio_scipy_over_python_cpu": scipy_cpu / sweep_cpu,
         "scipy_points_timed": k,
         "ratio_scipy_over_python_median": scipy_s / sweep_py["median"],
         "rust_table_median_s": rust_sweep["median"] if rust_sweep else None,
@@ -188,6 +197,10 @@ def main() -> None:
         f"{'' if k == c2.size else f' (timed on {k} points, scaled)'}; ratio {sweep['ratio_scipy_over_python_median']:.0f}x "
         f"(target >= 50x: {'yes' if sweep['ratio_scipy_over_python_median'] >= 50 else 'no'}); "
         f"max rel. diff {max_rel:.1e}"
+    )
+    print(
+        f"  CPU time (user+sys of this process, all threads): Python-driven {fmt(sweep_cpu)} per sweep (mean of 5), "
+        f"scipy loop {fmt(scipy_cpu)}; ratio {sweep['ratio_scipy_over_python_cpu']:.0f}x"
     )
     if rust_sweep:
         print(

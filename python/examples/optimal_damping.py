@@ -52,3 +52,24 @@ c_min = 9 * math.pi * S0 * M / 0.04**2
 print(f"sigma_acc = {limited.value:.6f} m/s^2 at c = {limited.x['model.suspension_damping']:.3f} N s/m "
       f"(closed form {c_min:.3f})")
 assert limited.constraints[0].active and abs(limited.x["model.suspension_damping"] / c_min - 1) < 1e-8
+
+# %% [markdown]
+# The optimum on the constraint is a KKT point: the analytic gradients (Lyapunov sensitivities) balance with
+# a positive multiplier, and dσ_acc/dc has the closed form πS₀(k_t − k_s²M/c²)/(2σ_acc m_s²):
+
+# %%
+c = limited.x["model.suspension_damping"]
+kkt = limited.kkt
+print(repr(kkt))
+d_sigma = math.pi * S0 * (k_t - k_s**2 * M / c**2) / (2 * limited.value * m_s**2)
+assert kkt.satisfied and kkt.multipliers[0] > 0 and abs(kkt.gradient[0] / d_sigma - 1) < 1e-8
+
+# %% [markdown]
+# Comfort against travel: the Pareto front (ε-constraint: σ_acc least with 3σ_travel ≤ ε). Every inner point
+# sits on its limit, at c = 9πS₀M/ε²; `plots=` would also draw it (`pareto-front.svg`, `.png`).
+
+# %%
+front = sc.pareto(bounds, minimize="sigma(body_acc)", pareto="3sigma(travel)", points=5, starts=2)
+print(repr(front))
+for p in front.points[1:-1]:
+    assert abs(p.params["model.suspension_damping"] / (9 * math.pi * S0 * M / p.limit**2) - 1) < 1e-8

@@ -21,6 +21,7 @@ mod quantity;
 mod reports;
 mod scenario;
 mod spectrum;
+mod spectrum_units;
 mod system;
 mod toolkit;
 mod transient;
@@ -37,6 +38,7 @@ fn _stochvib(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(toolkit::weighting_filter, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::rainflow, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::spectral_fatigue, m)?)?;
+    m.add_function(wrap_pyfunction!(toolkit::sn_curve, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::exposure, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::welch, m)?)?;
     m.add_function(wrap_pyfunction!(toolkit::iri, m)?)?;

@@ -17,9 +17,27 @@ use stochvib::linalg::h2_integral as lib_h2_integral;
 /// (:meth:`Spectrum.shaping_filter`, S = |B/A|²/(2π)) the variance of the response H·input is
 /// h2_integral(N·B, D·A) / (2π).
 ///
-/// ``numerator``, ``denominator``: 1-D (one integral, a float) or 2-D with one row per integral (an array;
-/// zero padding on the high-power side — leading zeros in descending order — is trimmed). Raises :class:`DivergentError` when deg N ≥ deg D and
-/// :class:`InvalidInputError` for an unstable denominator, naming the row. The GIL is released.
+/// Parameters
+/// ----------
+/// numerator, denominator : array_like
+///     1-D (one integral) or 2-D with one row per integral; SI coefficients of s (s in rad/s); zero padding
+///     on the high-power side (leading zeros in descending order) is trimmed.
+/// order : {"descending", "ascending"}, keyword-only
+///     The order of the coefficients.
+///
+/// Returns
+/// -------
+/// float or numpy.ndarray
+///     The integral (a float for 1-D arguments, one per row for 2-D), in the units of |N/D|² times rad/s.
+///
+/// Raises
+/// ------
+/// DivergentError
+///     deg N ≥ deg D.
+/// InvalidInputError
+///     An unstable denominator, naming the row.
+///
+/// The GIL is released.
 ///
 /// Examples
 /// --------

@@ -12,7 +12,7 @@ use crate::spectrum::PySpectrum;
 use crate::system::PySystem;
 use crate::two_tracks::{self, TwoTrackArgs};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyString};
 use pyo3::IntoPyObjectExt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -514,6 +514,29 @@ fn simulate_run<'py>(
 impl PyScenario {
     /// Reads a file of ``data/`` (a scenario, a deterministic model or a reference table). Spectrum names in
     /// ``[input] spectrum`` are looked up in the catalogue directory (see :meth:`Spectrum.load`).
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     The file (TOML).
+    /// spectra_dir : str or os.PathLike, keyword-only, optional
+    ///     The spectrum catalogue directory.
+    ///
+    /// Returns
+    /// -------
+    /// Scenario
+    ///     :attr:`what` says "stochastic", "deterministic" or "reference".
+    ///
+    /// Raises
+    /// ------
+    /// FileError
+    ///     A file that cannot be read or is invalid, naming the file, key, value and reason.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> stochvib.Scenario.load("data/conveyor-idler.toml").what
+    /// 'stochastic'
     #[staticmethod]
     #[pyo3(signature = (path, *, spectra_dir=None))]
     fn load(py: Python<'_>, path: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
@@ -542,6 +565,53 @@ impl PyScenario {
     /// ("left"/"right"; default the model's layout) and ``positions`` (m behind the first contact: the
     /// wheelbase delays ℓ/v; default the model's). A catalogue model on two tracks (``full-vehicle``) needs
     /// only ``coherence`` and ``speed``.
+    ///
+    /// Parameters
+    /// ----------
+    /// system : System
+    ///     A stable system.
+    /// input : Spectrum, str, os.PathLike or list of Spectrum
+    ///     As above.
+    /// speed : float or str, keyword-only, optional
+    ///     m/s or a speed string ("72 km/h").
+    /// positions : list of float or str, keyword-only, optional
+    ///     m behind the first contact, one per system input.
+    /// mean : float or str or list of them, keyword-only, optional
+    ///     The process mean(s), in the process's unit; default 0.
+    /// outputs : list of str, keyword-only, optional
+    /// band_rad_s : (float or str, float or str), keyword-only, optional
+    /// duration_s : float or str, keyword-only, default 3600 s
+    /// levels : dict of str to list of float or str, keyword-only, optional
+    /// title : str, keyword-only, optional
+    /// coherence : dict, keyword-only, optional
+    /// track_width : float or str, keyword-only, optional
+    ///     m.
+    /// tracks : list of str or int, keyword-only, optional
+    ///
+    /// Returns
+    /// -------
+    /// Scenario
+    ///     A stochastic scenario, as a scenario file gives.
+    ///
+    /// Raises
+    /// ------
+    /// DivergentError
+    ///     An unstable system (no stationary response).
+    /// InvalidInputError
+    ///     A spatial input without ``speed``, several inputs without ``positions`` or layout, a speed that is
+    ///     not > 0, an unknown output, a bad coherence table.
+    /// UnitError
+    ///     A quantity string of the wrong dimension, naming the argument.
+    ///
+    /// Examples
+    /// --------
+    /// ẋ = −2x + u with u of correlation e^{−2|τ|}: σ_x² = (2/π)·∫ dω/(ω² + 4)² = 1/8.
+    ///
+    /// >>> import stochvib
+    /// >>> sys = stochvib.System.state_space([[-2.0]], [[1.0]], [[1.0]], outputs=[("x", "m")])
+    /// >>> sc = stochvib.Scenario.from_system(sys, stochvib.Spectrum.exponential(1.0, 2.0))
+    /// >>> round(sc.analyze(progress=False)["x"].sigma ** 2, 9)
+    /// 0.125
     #[staticmethod]
     #[pyo3(signature = (system, input, *, speed=None, positions=None, mean=None, outputs=None, band_rad_s=None, duration_s=None, levels=None, title=None, coherence=None, track_width=None, tracks=None))]
     #[allow(clippy::too_many_arguments)]
@@ -572,15 +642,7 @@ impl PyScenario {
         let band_rad_s = band(py, band_rad_s)?;
         let spectra = input_spectra(py, input)?;
         let arcs: Vec<Arc<dyn Spectrum>> = spectra.iter().map(|s| s.get().spectrum.clone()).collect();
-        let means: Vec<f64> = match mean {
-            None => vec![0.0],
-            Some(m) => match m.extract::<f64>() {
-                Ok(v) => vec![v],
-                Err(_) => m
-                    .extract::<Vec<f64>>()
-                    .map_err(|_| invalid_input(py, "`mean`: expected a number or one number per input"))?,
-            },
-        };
+        let means = process_means(py, mean, &spectra)?;
         if let Some(v) = speed {
             if !(v.is_finite() && v > 0.0) {
                 return lib(py, Err(Error::invalid("speed", v, "must be finite and > 0")));
@@ -634,16 +696,7 @@ impl PyScenario {
                 );
             }
         }
-        let mut level_list = Vec::new();
-        if let Some(d) = levels {
-            for (k, v) in d.iter() {
-                let name: String = k.extract()?;
-                let vals: Vec<f64> = v
-                    .extract()
-                    .map_err(|_| invalid_input(py, format!("levels[{name:?}]: expected a list of numbers")))?;
-                level_list.push((index(&name)?, vals));
-            }
-        }
+        let level_list = output_levels(py, levels, sys.system.as_ref())?;
         let first = spectra[0].get();
         let reference = if first.name.is_empty() {
             "inline".to_string()
@@ -731,6 +784,39 @@ impl PyScenario {
     /// ``rel_tol``, ``max_subintervals`` and ``max_half_periods`` override the effort of the quadratures
     /// (the scenario's ``[analysis.quadrature]``; the CLI's ``--rel-tol``, ``--max-subintervals``,
     /// ``--max-half-periods``; defaults 1e-10, 2000, 10 000).
+    ///
+    /// Parameters
+    /// ----------
+    /// monte_carlo : int, keyword-only, optional
+    ///     N realizations for the Monte Carlo column (none by default).
+    /// seed : int, keyword-only, default 1
+    /// dt, duration : float or str, keyword-only, optional
+    ///     s, or time strings.
+    /// progress : bool or callable, keyword-only, default True
+    ///     True (or None): a bar; False: nothing; a callable(done, total).
+    /// rel_tol : float, keyword-only, default 1e-10
+    /// max_subintervals : int, keyword-only, default 2000
+    /// max_half_periods : int, keyword-only, default 10 000
+    ///
+    /// Returns
+    /// -------
+    /// AnalysisResult
+    ///     One :class:`OutputResult` per output. An infinite variance or a quadrature that does not converge
+    ///     is reported in it, not raised.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A model with nonlinear elements; a bad option.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> r = stochvib.Scenario.load("data/conveyor-idler.toml").analyze(progress=False)
+    /// >>> r["y"].unit, r["y"].sigma > 0
+    /// ('m', True)
     #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None))]
     #[allow(clippy::too_many_arguments)]
     fn analyze<'py>(
@@ -760,6 +846,33 @@ impl PyScenario {
     /// route 2 when not given, ``burn_in`` in s, default from the slowest decay rate of the Gaussian
     /// equivalent; ``progress`` as for :meth:`analyze`). ``rel_tol``, ``max_subintervals``,
     /// ``max_half_periods`` as for :meth:`analyze`.
+    ///
+    /// Parameters
+    /// ----------
+    /// monte_carlo : int, keyword-only, optional
+    ///     N realizations of route 2 (none by default).
+    /// seed, dt, duration, progress, rel_tol, max_subintervals, max_half_periods
+    ///     As for :meth:`analyze` (s for ``dt`` and ``duration``).
+    /// burn_in : float or str, keyword-only, optional
+    ///     s, or a time string.
+    ///
+    /// Returns
+    /// -------
+    /// NonlinearResult
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A linear model; a bad option.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> r = stochvib.Scenario.load("data/duffing-white-noise.toml").analyze_nonlinear(progress=False)
+    /// >>> r["x"].route1() < r["x"].exact() < 0.01  # a hardening spring: below the linear σ₀ = 1 cm
+    /// True
     #[pyo3(signature = (*, monte_carlo=None, seed=1, dt=None, duration=None, progress=None, rel_tol=None, max_subintervals=None, max_half_periods=None, burn_in=None))]
     #[allow(clippy::too_many_arguments)]
     fn analyze_nonlinear<'py>(
@@ -1019,6 +1132,72 @@ impl PyScenario {
             .call1((data, text))
     }
 
+    /// The Pareto front of two quantities, both minimised (``stochvib optimize SCENARIO --param …
+    /// --minimize FIRST --pareto SECOND --points N [--plots DIR] --json``): the ε-constraint method, FIRST
+    /// minimised with SECOND held below a ladder of limits between its values at the two single-objective
+    /// optima (Haimes, Lasdon & Wismer 1971).
+    ///
+    /// Parameters
+    /// ----------
+    /// params : dict
+    ///     As :meth:`optimize`.
+    /// minimize, pareto : str, keyword-only
+    ///     The two quantities (as :meth:`optimize`'s), both minimised.
+    /// constraints : sequence of str, keyword-only
+    ///     Constraints every point meets, as :meth:`optimize`'s.
+    /// points : int, keyword-only
+    ///     Points of the front, its two ends included (≥ 2).
+    /// plots : str or path, keyword-only, optional
+    ///     A directory to draw the front into (``pareto-front.svg`` and ``.png``, as ``--plots``).
+    /// starts, max_evaluations : int, keyword-only
+    ///     Per search, as :meth:`optimize`.
+    ///
+    /// Returns
+    /// -------
+    /// ParetoFront
+    ///     ``points`` (each ``params``, ``values``, ``limit``, ``feasible``) in order of increasing first
+    ///     quantity, ``values`` an (N, 2) array, ``to_csv()`` the command's CSV, ``plots`` the pictures.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     As :meth:`optimize`; fewer than 2 points; an end of the front that meets not every constraint.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> fr = sc.pareto({"model.c": ("50 kN/m", "200 kN/m")}, minimize="sigma(y)", pareto="sigma(y_vel)", points=3, starts=1)
+    /// >>> fr.values.shape, fr.quantities, fr.units
+    /// ((3, 2), ['sigma(y)', 'sigma(y_vel)'], ['m', 'm/s'])
+    #[pyo3(signature = (params, *, minimize, pareto, constraints=vec![], points=7, plots=None, starts=4, max_evaluations=2000))]
+    #[allow(clippy::too_many_arguments)]
+    fn pareto<'py>(
+        &self,
+        py: Python<'py>,
+        params: &Bound<'py, PyDict>,
+        minimize: String,
+        pareto: String,
+        constraints: Vec<String>,
+        points: usize,
+        plots: Option<PathBuf>,
+        starts: usize,
+        max_evaluations: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let sc = self.stochastic(py)?;
+        let task = crate::optimize::Task {
+            minimize: Some(minimize),
+            maximize: None,
+            constraints,
+            starts,
+            max_evaluations,
+        };
+        let (data, csv, files) = crate::optimize::front(py, sc, params, task, (pareto, points, plots))?;
+        py.import("stochvib.results")?
+            .getattr("ParetoFront")?
+            .call1((data, csv, files))
+    }
+
     /// The non-stationary response of a scenario with a ``[transient]`` section (``stochvib transient
     /// SCENARIO --json``): σ(t), the mean and the crossing rates at the reported times by the exact route,
     /// the mission extremes; with ``monte_carlo=N`` a seeded batch of the same transient whose σ(t) is
@@ -1132,6 +1311,15 @@ impl PyScenario {
     /// The result tables of a deterministic model (a hoist, a chain) or of a reference table of the sources
     /// — the ``stochvib analyze`` report of such a file — as a :class:`TablesResult`. A stochastic scenario
     /// raises :class:`NotApplicableError` (use :meth:`analyze`).
+    ///
+    /// Returns
+    /// -------
+    /// TablesResult
+    ///
+    /// Raises
+    /// ------
+    /// NotApplicableError
+    ///     A stochastic scenario.
     fn tables<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         if let Document::Stochastic(sc) = &self.doc {
             return Err(crate::errors::not_applicable(
@@ -1164,6 +1352,58 @@ impl PyScenario {
     /// receives ``shard-<I>-of-<N>.h5``; :func:`stochvib.merge` joins the parts.
     ///
     /// A model with nonlinear elements raises :class:`InvalidInputError` naming :meth:`simulate_nonlinear`.
+    ///
+    /// Parameters
+    /// ----------
+    /// realizations : int
+    ///     N ≥ 2.
+    /// path : str or os.PathLike
+    ///     The run file (HDF5) to write; with ``shard``, the run directory.
+    /// dt, duration : float or str, keyword-only, optional
+    ///     Δt and the duration of one realization, in s or time strings ("10 ms"); suggested when not given.
+    /// seed : int, keyword-only, default 1
+    ///     The master seed.
+    /// shard_size : int, keyword-only, default 50
+    ///     Realizations between checkpoints (and Ctrl-C checks).
+    /// store_raw : bool, keyword-only, default False
+    /// compression : str, keyword-only, default "none"
+    ///     "none", "fast", "best" or "deflate:N" (with ``store_raw``).
+    /// route : {"auto", "exact", "spectral"}, keyword-only, default "auto"
+    /// confidence : float, keyword-only, default 0.95
+    ///     Of the intervals, in (0, 1).
+    /// overwrite : bool, keyword-only, default False
+    /// progress : bool or callable, keyword-only, default True
+    ///     True (or None): a bar; False: nothing; a callable(done, total).
+    /// shard : (int, int), keyword-only, optional
+    ///     (I, N): part I of N.
+    ///
+    /// Returns
+    /// -------
+    /// RunResult
+    ///     The run file's path and the statistics with their intervals.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A bad argument (fewer than 2 realizations, an unknown route or compression, a bad shard);
+    ///     the model is of the other kind (the message names the other method).
+    /// UnitError
+    ///     ``dt``, ``duration`` or ``burn_in`` strings that are not times.
+    /// FileError
+    ///     ``path`` exists (without ``overwrite``) or cannot be written.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
+    /// KeyboardInterrupt
+    ///     Ctrl-C: the ``.tmp`` file is kept for resuming.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import pathlib, tempfile, stochvib
+    /// >>> sc = stochvib.Scenario.load("data/conveyor-idler.toml")
+    /// >>> with tempfile.TemporaryDirectory() as d:
+    /// ...     r = sc.simulate(2, pathlib.Path(d) / "run.h5", dt=0.01, duration=5.0, progress=False)
+    /// ...     r.n_realizations, r.path.is_file()
+    /// (2, True)
     #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
@@ -1210,6 +1450,59 @@ impl PyScenario {
     /// duration suggested for route 2 when not given; ``burn_in`` in s, default from the slowest decay rate
     /// of the Gaussian equivalent). The other arguments as for :meth:`simulate`. A linear model raises
     /// :class:`InvalidInputError` naming :meth:`simulate`.
+    ///
+    /// Parameters
+    /// ----------
+    /// realizations : int
+    ///     N ≥ 2.
+    /// path : str or os.PathLike
+    ///     The run file (HDF5) to write; with ``shard``, the run directory.
+    /// dt, duration : float or str, keyword-only, optional
+    ///     Δt and the duration of one realization, in s or time strings ("10 ms"); suggested when not given.
+    /// seed : int, keyword-only, default 1
+    ///     The master seed.
+    /// shard_size : int, keyword-only, default 50
+    ///     Realizations between checkpoints (and Ctrl-C checks).
+    /// store_raw : bool, keyword-only, default False
+    /// compression : str, keyword-only, default "none"
+    ///     "none", "fast", "best" or "deflate:N" (with ``store_raw``).
+    /// route : {"auto", "exact", "spectral"}, keyword-only, default "auto"
+    /// confidence : float, keyword-only, default 0.95
+    ///     Of the intervals, in (0, 1).
+    /// overwrite : bool, keyword-only, default False
+    /// progress : bool or callable, keyword-only, default True
+    ///     True (or None): a bar; False: nothing; a callable(done, total).
+    /// shard : (int, int), keyword-only, optional
+    ///     (I, N): part I of N.
+    /// burn_in : float or str, keyword-only, optional
+    ///     s, or a time string.
+    ///
+    /// Returns
+    /// -------
+    /// NonlinearRunResult
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A bad argument (fewer than 2 realizations, an unknown route or compression, a bad shard);
+    ///     the model is of the other kind (the message names the other method).
+    /// UnitError
+    ///     ``dt``, ``duration`` or ``burn_in`` strings that are not times.
+    /// FileError
+    ///     ``path`` exists (without ``overwrite``) or cannot be written.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
+    /// KeyboardInterrupt
+    ///     Ctrl-C: the ``.tmp`` file is kept for resuming.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import pathlib, tempfile, stochvib
+    /// >>> sc = stochvib.Scenario.load("data/duffing-white-noise.toml")
+    /// >>> with tempfile.TemporaryDirectory() as d:
+    /// ...     r = sc.simulate_nonlinear(2, pathlib.Path(d) / "run.h5", dt=0.01, duration=5.0, progress=False)
+    /// ...     r.n_realizations, r.burn_in_s > 0
+    /// (2, True)
     #[pyo3(signature = (realizations, path, *, dt=None, duration=None, seed=1, shard_size=50, store_raw=false, compression="none", route="auto", confidence=0.95, overwrite=false, progress=None, shard=None, burn_in=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate_nonlinear<'py>(
@@ -1257,6 +1550,29 @@ impl PyScenario {
     /// speed), or the one-sided G_y(f) = 4π S_y(2πf) at ``f`` (Hz, scipy.signal.welch's). ``convention``
     /// as for :meth:`Spectrum.density`. Delays, several inputs and catalogue layouts are included; for the
     /// weighted density use a system from :meth:`System.weighted`.
+    ///
+    /// Parameters
+    /// ----------
+    /// output : str
+    ///     An output name.
+    /// omega : array_like, optional
+    ///     ω in rad/s, any shape.
+    /// f : array_like, keyword-only, optional
+    ///     f in Hz instead. Exactly one of ``omega`` and ``f``.
+    /// convention : str, keyword-only, optional
+    ///     As for :meth:`Spectrum.density`.
+    ///
+    /// Returns
+    /// -------
+    /// float or numpy.ndarray of float64
+    ///     In (output unit)² per rad/s (per Hz with ``f``), shaped as the argument.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown output; both or neither of ``omega`` and ``f``; a convention that does not belong.
+    /// NotApplicableError
+    ///     A deterministic model or a reference table.
     ///
     /// Examples
     /// --------
@@ -1386,4 +1702,62 @@ impl PyScenario {
             self.path().display()
         )
     }
+}
+
+/// `mean=` of `from_system`: nothing (0), one quantity, or one per process, each a number in its spectrum's unit
+/// or a string with a unit of that dimension ("5 cm").
+///
+/// # Errors
+/// `UnitError` naming `mean` (`mean[i]`); `InvalidInputError` for anything else.
+fn process_means(py: Python<'_>, mean: Option<&Bound<'_, PyAny>>, spectra: &[Py<PySpectrum>]) -> PyResult<Vec<f64>> {
+    let one = |m: &Bound<'_, PyAny>, name: &str, s: &Py<PySpectrum>| {
+        let unit = &s.get().unit;
+        match stochvib::units::unit_dim(unit) {
+            Some(d) => quantity::of_dim(py, m, name, d),
+            None => quantity::quantity(py, m, name, unit),
+        }
+    };
+    match mean {
+        None => Ok(vec![0.0]),
+        Some(m) if m.is_instance_of::<PyString>() || m.extract::<f64>().is_ok() => {
+            Ok(vec![one(m, "mean", &spectra[0])?])
+        }
+        Some(m) => {
+            let items: Vec<Bound<'_, PyAny>> = m
+                .try_iter()
+                .map_err(|_| invalid_input(py, "`mean`: expected a number or one number per input"))?
+                .collect::<PyResult<_>>()?;
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, x)| one(x, &format!("mean[{i}]"), &spectra[i.min(spectra.len() - 1)]))
+                .collect()
+        }
+    }
+}
+
+/// `levels=` of `from_system`: output name → levels, each a number in the output's SI unit or a string with a
+/// unit of its dimension ("3 cm").
+///
+/// # Errors
+/// `UnitError` naming `levels[name][i]`; an unknown output; `InvalidInputError` for anything else.
+fn output_levels(
+    py: Python<'_>,
+    levels: Option<&Bound<'_, PyDict>>,
+    sys: &dyn stochvib::system::FrequencyResponse,
+) -> PyResult<Vec<(usize, Vec<f64>)>> {
+    let Some(d) = levels else { return Ok(Vec::new()) };
+    d.iter()
+        .map(|(k, v)| {
+            let name: String = k.extract()?;
+            let i = call(py, || sys.output_index(&name))?;
+            let unit = &sys.outputs()[i].unit;
+            let what = format!("levels[{name:?}]");
+            let vals = match stochvib::units::unit_dim(unit) {
+                Some(dim) => quantity::sequence_of_dim(py, &v, &what, dim)?,
+                None => quantity::sequence(py, &v, &what, unit)?,
+            };
+            Ok((i, vals))
+        })
+        .collect()
 }

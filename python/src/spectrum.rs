@@ -3,6 +3,7 @@
 use crate::arrays::{check_out, real_array};
 use crate::errors::{call, detached, detached_if, invalid_input, not_applicable, Failure};
 use crate::names::{catalogue, domain_name};
+use crate::spectrum_units::{BandArg, Dims};
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
@@ -178,31 +179,127 @@ impl PySpectrum {
     ///
     /// ``variance`` D in unit², ``alpha`` α in 1/s (temporal) or 1/m (spatial). Rational: exact
     /// shaping filter √(2αD)/(s + α).
+    ///
+    /// Parameters
+    /// ----------
+    /// variance : float or str
+    ///     D in unit² ("2.25 cm^2" for unit "m").
+    /// alpha : float or str
+    ///     α in 1/s (1/m spatial); a string names no angle ("1 Hz" would carry 2π: write "6.3 1/s").
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process (strings of the other arguments are checked against it).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    /// InvalidInputError
+    ///     D < 0, α ≤ 0 or β < 0, or a non-finite value.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> a = stochvib.Spectrum.exponential("2.25 cm^2", "0.5 1/cm", domain="spatial")
+    /// >>> b = stochvib.Spectrum.exponential(2.25e-4, 50.0, domain="spatial")
+    /// >>> a.density(1.0) == b.density(1.0)
+    /// True
     #[staticmethod]
     #[pyo3(signature = (variance, alpha, *, domain="temporal", unit="m"))]
-    fn exponential(py: Python<'_>, variance: f64, alpha: f64, domain: &str, unit: &str) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
-        Self::make(py, || Exponential::new(variance, alpha, d), unit)
+    fn exponential(
+        py: Python<'_>,
+        variance: &Bound<'_, PyAny>,
+        alpha: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let q = Dims::new(py, domain, unit)?;
+        let (v, a) = (q.variance(py, variance)?, q.decay_rate(py, alpha, "alpha", 1)?);
+        Self::make(py, || Exponential::new(v, a, q.domain), unit)
     }
 
     /// Type 2 (Gaussian correlation): K(τ) = D e^{−ατ²}, S(ω) = D/(2√(πα)) e^{−ω²/(4α)}.
     ///
     /// ``variance`` D in unit², ``alpha`` α in 1/s² (temporal) or 1/m² (spatial). Not rational.
+    ///
+    /// Parameters
+    /// ----------
+    /// variance : float or str
+    ///     D in unit² ("2.25 cm^2" for unit "m").
+    /// alpha : float or str
+    ///     α in 1/s² (1/m² spatial); a string names no angle ("1 Hz" would carry 2π: write "6.3 1/s").
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process (strings of the other arguments are checked against it).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    /// InvalidInputError
+    ///     D < 0, α ≤ 0 or β < 0, or a non-finite value.
     #[staticmethod]
     #[pyo3(signature = (variance, alpha, *, domain="temporal", unit="m"))]
-    fn gaussian(py: Python<'_>, variance: f64, alpha: f64, domain: &str, unit: &str) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
-        Self::make(py, || Gaussian::new(variance, alpha, d), unit)
+    fn gaussian(
+        py: Python<'_>,
+        variance: &Bound<'_, PyAny>,
+        alpha: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let q = Dims::new(py, domain, unit)?;
+        let (v, a) = (q.variance(py, variance)?, q.decay_rate(py, alpha, "alpha", 2)?);
+        Self::make(py, || Gaussian::new(v, a, q.domain), unit)
     }
 
     /// Type 3: K(τ) = D e^{−α|τ|} cos βτ,
     /// S(ω) = αD(ω² + α² + β²) / (π[(ω² − α² − β²)² + 4α²ω²]).
     ///
-    /// ``alpha`` α in 1/s (1/m), ``beta`` β in rad/s (rad/m). Rational.
+    /// ``alpha`` α in 1/s (1/m), ``beta`` β in rad/s (rad/m; a string "1 Hz" is 2π rad/s). Rational.
+    ///
+    /// Parameters
+    /// ----------
+    /// variance : float or str
+    ///     D in unit² ("2.25 cm^2" for unit "m").
+    /// alpha : float or str
+    ///     α in 1/s (1/m spatial); a string names no angle ("1 Hz" would carry 2π: write "6.3 1/s").
+    /// beta : float or str
+    ///     β in rad/s (rad/m spatial); a string "1 Hz" is 2π rad/s.
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process (strings of the other arguments are checked against it).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    /// InvalidInputError
+    ///     D < 0, α ≤ 0 or β < 0, or a non-finite value.
     #[staticmethod]
     #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
-    fn exp_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
+    fn exp_cosine(
+        py: Python<'_>,
+        variance: &Bound<'_, PyAny>,
+        alpha: &Bound<'_, PyAny>,
+        beta: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let q = Dims::new(py, domain, unit)?;
+        let (variance, alpha, beta) = q.decaying_cosine(py, [variance, alpha, beta], 1)?;
+        let domain = q.domain;
         Self::make(
             py,
             || {
@@ -210,7 +307,7 @@ impl PySpectrum {
                     variance,
                     alpha,
                     beta,
-                    domain: d,
+                    domain,
                 }
                 .build()
             },
@@ -221,11 +318,44 @@ impl PySpectrum {
     /// Type 4: K(τ) = D e^{−ατ²} cos βτ,
     /// S(ω) = D/(4√(πα)) [e^{−(ω−β)²/(4α)} + e^{−(ω+β)²/(4α)}].
     ///
-    /// ``alpha`` α in 1/s² (1/m²), ``beta`` β in rad/s (rad/m). Not rational.
+    /// ``alpha`` α in 1/s² (1/m²), ``beta`` β in rad/s (rad/m; a string "1 Hz" is 2π rad/s). Not
+    /// rational.
+    ///
+    /// Parameters
+    /// ----------
+    /// variance : float or str
+    ///     D in unit² ("2.25 cm^2" for unit "m").
+    /// alpha : float or str
+    ///     α in 1/s² (1/m² spatial); a string names no angle ("1 Hz" would carry 2π: write "6.3 1/s").
+    /// beta : float or str
+    ///     β in rad/s (rad/m spatial); a string "1 Hz" is 2π rad/s.
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process (strings of the other arguments are checked against it).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    /// InvalidInputError
+    ///     D < 0, α ≤ 0 or β < 0, or a non-finite value.
     #[staticmethod]
     #[pyo3(signature = (variance, alpha, beta, *, domain="temporal", unit="m"))]
-    fn gauss_cosine(py: Python<'_>, variance: f64, alpha: f64, beta: f64, domain: &str, unit: &str) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
+    fn gauss_cosine(
+        py: Python<'_>,
+        variance: &Bound<'_, PyAny>,
+        alpha: &Bound<'_, PyAny>,
+        beta: &Bound<'_, PyAny>,
+        domain: &str,
+        unit: &str,
+    ) -> PyResult<Self> {
+        let q = Dims::new(py, domain, unit)?;
+        let (variance, alpha, beta) = q.decaying_cosine(py, [variance, alpha, beta], 2)?;
+        let domain = q.domain;
         Self::make(
             py,
             || {
@@ -233,7 +363,7 @@ impl PySpectrum {
                     variance,
                     alpha,
                     beta,
-                    domain: d,
+                    domain,
                 }
                 .build()
             },
@@ -253,6 +383,10 @@ impl PySpectrum {
     /// domain : {"temporal", "spatial"}, keyword-only
     /// unit : str, keyword-only
     ///     SI unit of the process.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
     ///
     /// Examples
     /// --------
@@ -283,43 +417,107 @@ impl PySpectrum {
     ///
     /// ``road_class``: "A" … "H"; ``bound``: "lower", "geometric-mean" or "upper"; ``band``: (n₁, n₂) in
     /// cycles/m, default the ISO band (0.011, 2.83); ``None`` leaves it unbounded (then the variance is
-    /// infinite and :meth:`variance` raises :class:`DivergentError`).
+    /// infinite and :meth:`variance` raises :class:`DivergentError`). The edges may be strings with a unit
+    /// ("0.011 cycles/m"; "1 rad/m" is 1/(2π) cycles/m).
+    ///
+    /// Parameters
+    /// ----------
+    /// road_class : str
+    ///     "A" … "H".
+    /// bound : {"lower", "geometric-mean", "upper"}, keyword-only, default "geometric-mean"
+    ///     Which G_d(n₀) of the class ("mean" is taken for "geometric-mean").
+    /// band : (float or str, float or str) or None, keyword-only, default (0.011, 2.83)
+    ///     (n₁, n₂) in cycles/m or frequency strings; None: unbounded.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///     Spatial, unit "m".
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown class or bound, a band that is not 0 < n₁ < n₂.
+    /// UnitError
+    ///     A band edge that is not a spatial frequency.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> road = stochvib.Spectrum.iso8608("C", band=("0.011 cycles/m", "2.83 cycles/m"))
+    /// >>> road.domain, road.unit
+    /// ('spatial', 'm')
     #[staticmethod]
-    #[pyo3(signature = (road_class, *, bound="geometric-mean", band=Some(ISO_BAND)))]
-    fn iso8608(py: Python<'_>, road_class: &str, bound: &str, band: Option<(f64, f64)>) -> PyResult<Self> {
+    #[pyo3(signature = (road_class, *, bound="geometric-mean", band=BandArg::Iso))]
+    fn iso8608(py: Python<'_>, road_class: &str, bound: &str, band: BandArg<'_>) -> PyResult<Self> {
         let c: IsoClass = call(py, || road_class.parse())?;
         let b: IsoBound = call(py, || bound.parse())?;
+        let band = match band {
+            BandArg::Iso => Some(ISO_BAND),
+            BandArg::Unbounded => None,
+            BandArg::Edges(edges) => Some(Dims::new(py, "spatial", "m")?.band(py, &edges, "band", true)?),
+        };
         Self::make(py, || PowerLaw::iso8608(c, b, band), "m")
     }
 
     /// A power-law density G(n) = g0 (n/n0)^{−w}, one-sided cyclic (n in cycles/m for a spatial process,
     /// Hz for a temporal one), optionally restricted to ``band`` = (n₁, n₂) in the same unit.
+    ///
+    /// Parameters
+    /// ----------
+    /// g0 : float or str
+    ///     G(n0) in unit²·m (unit²·s temporal): a number or a string without an angle ("256e-6 m^3"; per
+    ///     cycle is said by the one-sided cyclic convention, never by a unit).
+    /// n0 : float or str
+    ///     The reference frequency in cycles/m (Hz), or a frequency string ("0.1 cycles/m"; "1 rad/m" and
+    ///     "1 1/m" are 1/(2π) cycles/m).
+    /// waviness : float
+    ///     w, a pure number.
+    /// band : (float or str, float or str), keyword-only, optional
+    ///     (n₁, n₂) in cycles/m (Hz) or frequency strings; None: unbounded.
+    /// domain : {"spatial", "temporal"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> a = stochvib.Spectrum.power_law("256e-6 m^3", "0.1 cycles/m", 2, band=("0.011 cycles/m", "2.83 cycles/m"))
+    /// >>> b = stochvib.Spectrum.power_law(256e-6, 0.1, 2, band=(0.011, 2.83))
+    /// >>> round(a.variance() / b.variance(), 12)
+    /// 1.0
     #[staticmethod]
     #[pyo3(signature = (g0, n0, waviness, *, band=None, domain="spatial", unit="m"))]
     fn power_law(
         py: Python<'_>,
-        g0: f64,
-        n0: f64,
-        waviness: f64,
-        band: Option<(f64, f64)>,
+        g0: &Bound<'_, PyAny>,
+        n0: &Bound<'_, PyAny>,
+        waviness: &Bound<'_, PyAny>,
+        band: Option<&Bound<'_, PyAny>>,
         domain: &str,
         unit: &str,
     ) -> PyResult<Self> {
-        let d = crate::names::domain(py, domain)?;
-        Self::make(
-            py,
-            || {
-                PowerLawParameters {
-                    g0,
-                    n0,
-                    waviness,
-                    band,
-                    domain: d,
-                }
-                .build()
-            },
-            unit,
-        )
+        let q = Dims::new(py, domain, unit)?;
+        let p = PowerLawParameters {
+            g0: q.density(py, g0, "g0")?,
+            n0: crate::quantity::frequency(py, n0, "n0", q.inv_lag(), true)?,
+            waviness: crate::quantity::of_dim(py, waviness, "waviness", stochvib::units::Dim::DIMENSIONLESS)?,
+            band: band
+                .filter(|b| !b.is_none())
+                .map(|b| q.band(py, b, "band", true))
+                .transpose()?,
+            domain: q.domain,
+        };
+        Self::make(py, || p.build(), unit)
     }
 
     /// A measured density given at points, interpolated linearly in log–log coordinates, zero outside.
@@ -327,6 +525,37 @@ impl PySpectrum {
     /// ``x``: abscissae in the convention's unit (Hz or cycles/m for "one-sided-cyclic", rad/s or rad/m
     /// otherwise), strictly increasing and > 0; ``values``: the density in that convention, > 0.
     /// ``convention`` is required: a wrong guess would scale the variance by 2, 2π or 4π.
+    ///
+    /// Parameters
+    /// ----------
+    /// x : array_like
+    ///     Abscissae: Hz (cycles/m) for "one-sided-cyclic", rad/s (rad/m) otherwise; strictly increasing, > 0.
+    /// values : array_like
+    ///     The density at ``x`` in ``convention`` (unit² per the abscissa's unit), > 0, as many as ``x``.
+    /// convention : str, keyword-only
+    ///     "two-sided-angular", "one-sided-angular", "one-sided-cyclic" or "engineering".
+    /// domain : {"temporal", "spatial"}, keyword-only, default "temporal"
+    /// unit : str, keyword-only, default "m"
+    ///     The SI unit of the process.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown convention or domain; abscissae not increasing or not > 0; values not > 0; lengths
+    ///     that differ; non-numeric input.
+    ///
+    /// Examples
+    /// --------
+    /// A flat one-sided cyclic level G = 1e-4 m²/Hz from 1 Hz to 11 Hz: σ² = G·10 Hz.
+    ///
+    /// >>> import stochvib
+    /// >>> s = stochvib.Spectrum.tabulated([1.0, 11.0], [1e-4, 1e-4], convention="one-sided-cyclic")
+    /// >>> round(s.variance() / 1e-3, 6)
+    /// 1.0
     #[staticmethod]
     #[pyo3(signature = (x, values, *, convention, domain="temporal", unit="m"))]
     fn tabulated(
@@ -346,34 +575,61 @@ impl PySpectrum {
 
     /// Band-limited white noise: a constant ``level`` (in ``convention``) between the band edges ``low``
     /// and ``high`` (Hz or cycles/m for "one-sided-cyclic", rad/s or rad/m otherwise), zero outside.
+    ///
+    /// Parameters
+    /// ----------
+    /// level : float or str
+    ///     The density in ``convention``: a number, or a string in unit² per 1/s (1/m) without an angle
+    ///     ("1e-4 m^2 s"; per Hz or per rad/s is said by the convention).
+    /// low, high : float or str
+    ///     The band edges in the convention's abscissa (Hz or cycles/m for "one-sided-cyclic", rad/s or
+    ///     rad/m otherwise), or frequency strings ("1 Hz" is 1 Hz there and 2π rad/s in the angular ones).
+    /// convention : str, keyword-only
+    ///     "two-sided-angular", "one-sided-angular", "one-sided-cyclic" or "engineering".
+    /// domain : {"temporal", "spatial"}, keyword-only
+    /// unit : str, keyword-only
+    ///     The SI unit of the process.
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// UnitError
+    ///     A string of another dimension, naming the argument.
+    ///
+    /// Examples
+    /// --------
+    /// σ² = G·(f₂ − f₁) for a one-sided cyclic level G:
+    ///
+    /// >>> import stochvib
+    /// >>> s = stochvib.Spectrum.band_white("1e-4 m^2 s", "1 Hz", "11 Hz", convention="one-sided-cyclic")
+    /// >>> round(s.variance() / 1e-3, 12)
+    /// 1.0
     #[staticmethod]
     #[pyo3(signature = (level, low, high, *, convention, domain="temporal", unit="m"))]
-    #[allow(clippy::too_many_arguments)]
     fn band_white(
         py: Python<'_>,
-        level: f64,
-        low: f64,
-        high: f64,
+        level: &Bound<'_, PyAny>,
+        low: &Bound<'_, PyAny>,
+        high: &Bound<'_, PyAny>,
         convention: &str,
         domain: &str,
         unit: &str,
     ) -> PyResult<Self> {
         let c = crate::names::convention(py, convention)?;
-        let d = crate::names::domain(py, domain)?;
-        Self::make(
-            py,
-            || {
-                BandWhiteParameters {
-                    convention: c,
-                    level,
-                    lo: low,
-                    hi: high,
-                    domain: d,
-                }
-                .build()
-            },
-            unit,
-        )
+        let q = Dims::new(py, domain, unit)?;
+        let edge =
+            |x: &Bound<'_, PyAny>, name: &str| crate::quantity::frequency(py, x, name, q.inv_lag(), c.is_cyclic());
+        let p = BandWhiteParameters {
+            convention: c,
+            level: q.density(py, level, "level")?,
+            lo: edge(low, "low")?,
+            hi: edge(high, "high")?,
+            domain: q.domain,
+        };
+        Self::make(py, || p.build(), unit)
     }
 
     /// A spectrum file or catalogue entry: a catalogue name (e.g. "iso8608-c", "type3") is looked up in the
@@ -382,6 +638,31 @@ impl PySpectrum {
     /// The catalogue directory is ``spectra_dir`` if given, else ``$STOCHVIB_SPECTRA``, else ``./spectra``
     /// if it exists, else the ``spectra/`` directory of the source tree the package was built from (as the
     /// command-line tool).
+    ///
+    /// Parameters
+    /// ----------
+    /// path_or_name : str or os.PathLike
+    ///     A catalogue name, or the path of a spectrum file.
+    /// spectra_dir : str or os.PathLike, keyword-only, optional
+    ///     The catalogue directory (default as above).
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///     With ``name``, ``description``, ``source`` and the file's text.
+    ///
+    /// Raises
+    /// ------
+    /// FileError
+    ///     A file that cannot be read or parsed, naming the file, key, value and reason.
+    /// InvalidInputError
+    ///     A name that is neither a file nor in the catalogue (the message names the catalogue directory).
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> stochvib.Spectrum.load("iso8608-c").domain
+    /// 'spatial'
     #[staticmethod]
     #[pyo3(signature = (path_or_name, *, spectra_dir=None))]
     fn load(py: Python<'_>, path_or_name: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
@@ -392,6 +673,26 @@ impl PySpectrum {
 
     /// Every spectrum of the catalogue directory (see :meth:`load`), as a dict name → Spectrum, sorted by
     /// name. Invalid files are left out with a ``StochvibWarning`` naming the file and the reason.
+    ///
+    /// Parameters
+    /// ----------
+    /// spectra_dir : str or os.PathLike, keyword-only, optional
+    ///     The catalogue directory (default as for :meth:`load`).
+    ///
+    /// Returns
+    /// -------
+    /// dict of str to Spectrum
+    ///
+    /// Raises
+    /// ------
+    /// FileError
+    ///     A catalogue directory that cannot be listed.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> "iso8608-c" in stochvib.Spectrum.catalogue()
+    /// True
     #[staticmethod]
     #[pyo3(signature = (*, spectra_dir=None))]
     fn catalogue<'py>(py: Python<'py>, spectra_dir: Option<PathBuf>) -> PyResult<Bound<'py, PyDict>> {
@@ -492,6 +793,34 @@ impl PySpectrum {
     /// shape; a scalar gives a float). Closed form where one exists, adaptive quadrature otherwise (raises
     /// :class:`NumericalError` if it does not converge, :class:`DivergentError` for an infinite variance).
     /// The GIL is released.
+    ///
+    /// Parameters
+    /// ----------
+    /// tau : array_like
+    ///     The lag τ in s (m for a spatial process), any shape.
+    ///
+    /// Returns
+    /// -------
+    /// float or numpy.ndarray of float64
+    ///     K(τ) in unit², shaped as ``tau``.
+    ///
+    /// Raises
+    /// ------
+    /// DivergentError
+    ///     An infinite variance (e.g. an unbounded ISO 8608 road).
+    /// NumericalError
+    ///     A quadrature that does not converge.
+    /// InvalidInputError
+    ///     Complex or non-numeric ``tau``.
+    ///
+    /// Examples
+    /// --------
+    /// K(τ) = D e^{−α|τ|} for the exponential correlation with D = 1, α = 2:
+    ///
+    /// >>> import math, stochvib
+    /// >>> k = stochvib.Spectrum.exponential(1.0, 2.0).correlation([0.0, 0.5])
+    /// >>> round(float(k[0]), 12), round(float(k[1]) * math.e, 12)
+    /// (1.0, 1.0)
     fn correlation<'py>(&self, py: Python<'py>, tau: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let x = real_array(py, tau, "tau")?;
         let shape = x.shape().to_vec();
@@ -516,6 +845,24 @@ impl PySpectrum {
     /// The variance D = K(0) = ∫ S(ω) dω, in unit². Closed form where one exists, quadrature otherwise.
     /// Raises :class:`DivergentError` (with the reason and what finite question to ask instead) when it
     /// is infinite, e.g. an ISO 8608 road without a band.
+    ///
+    /// Returns
+    /// -------
+    /// float
+    ///     D in unit².
+    ///
+    /// Raises
+    /// ------
+    /// DivergentError
+    ///     An infinite variance.
+    /// NumericalError
+    ///     A quadrature that does not converge.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> stochvib.Spectrum.exponential(2.25, 1.0).variance()
+    /// 2.25
     fn variance(&self, py: Python<'_>) -> PyResult<f64> {
         let s = &*self.spectrum;
         detached(py, || s.variance().map_err(Failure::Lib))
@@ -524,6 +871,31 @@ impl PySpectrum {
     /// The temporal process a vehicle at ``speed`` (m/s) feels from this spatial (road) spectrum:
     /// S_t(ω) = S_Ω(ω/v)/v, ω in rad/s. Raises :class:`InvalidInputError` for a temporal spectrum.
     /// ``speed`` may carry a unit ("36 km/h").
+    ///
+    /// Parameters
+    /// ----------
+    /// speed : float or str
+    ///     v in m/s, > 0, or a speed string ("36 km/h").
+    ///
+    /// Returns
+    /// -------
+    /// Spectrum
+    ///     Temporal, same unit; the variance is unchanged.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     A temporal spectrum; a speed that is not finite and > 0.
+    /// UnitError
+    ///     A speed string of another dimension.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> road = stochvib.Spectrum.iso8608("C")
+    /// >>> t = road.at_speed("36 km/h")
+    /// >>> t.domain, round(t.variance() / road.variance(), 6)
+    /// ('temporal', 1.0)
     fn at_speed(&self, py: Python<'_>, speed: &Bound<'_, PyAny>) -> PyResult<Self> {
         let speed = crate::quantity::quantity(py, speed, "speed", "m/s")?;
         let a = call(py, || AtSpeed::new(self.spectrum.clone(), speed))?;
@@ -544,6 +916,31 @@ impl PySpectrum {
 
     /// The rational form S = N(ω²)/D(ω²) (two-sided angular) as (N, D) coefficient arrays in powers of ω²,
     /// DESCENDING unless ``order="ascending"``; None when the density is not rational.
+    ///
+    /// Parameters
+    /// ----------
+    /// order : {"descending", "ascending"}, keyword-only, default "descending"
+    ///
+    /// Returns
+    /// -------
+    /// (numpy.ndarray, numpy.ndarray) or None
+    ///     N and D; S(ω) in unit²·s/rad (unit²·m/rad spatial).
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown ``order``.
+    ///
+    /// Examples
+    /// --------
+    /// S(ω) = (Dα/π)/(ω² + α²) for the exponential correlation, D = 1, α = 2:
+    ///
+    /// >>> import math, stochvib
+    /// >>> n, d = stochvib.Spectrum.exponential(1.0, 2.0).rational_coefficients()
+    /// >>> [round(float(x / d[0]), 12) for x in d], round(float(n[0] / d[0]) * math.pi / 2, 12)
+    /// ([1.0, 4.0], 1.0)
+    /// >>> stochvib.Spectrum.iso8608("C").rational_coefficients() is None
+    /// True
     #[pyo3(signature = (*, order="descending"))]
     fn rational_coefficients<'py>(&self, py: Python<'py>, order: &str) -> PyResult<Option<Coefficients<'py>>> {
         let desc = crate::arrays::descending(py, order)?;
@@ -560,6 +957,22 @@ impl PySpectrum {
     ///
     /// Coefficients in powers of s, DESCENDING unless ``order="ascending"`` (``scipy.signal.freqs(b, a)``
     /// takes them as returned). Raises :class:`NotApplicableError` for a non-rational density.
+    ///
+    /// Parameters
+    /// ----------
+    /// order : {"descending", "ascending"}, keyword-only, default "descending"
+    ///
+    /// Returns
+    /// -------
+    /// (numpy.ndarray, numpy.ndarray)
+    ///     b and a: the filter maps a white noise of unit intensity (1/s) onto the process (its unit).
+    ///
+    /// Raises
+    /// ------
+    /// NotApplicableError
+    ///     A density that is not rational (e.g. an ISO 8608 road).
+    /// InvalidInputError
+    ///     An unknown ``order``.
     ///
     /// Examples
     /// --------

@@ -220,6 +220,33 @@ impl PySystem {
     ///
     /// ``A`` n × n, ``B`` n × m, ``C`` p × n, ``D`` and ``E`` p × m (default zero). ``outputs``: p names or
     /// (name, unit) pairs (default y1…yp, unit "1").
+    ///
+    /// Parameters
+    /// ----------
+    /// A, B, C : array_like
+    ///     n × n, n × m and p × n real matrices (SI units of the states, inputs and outputs; t in s).
+    /// D, E : array_like, optional
+    ///     p × m; default zero. E multiplies u̇ (its unit per 1/s).
+    /// outputs : list of str or of (str, str), keyword-only, optional
+    ///     One name or (name, SI unit) per row of C; default "y1" … "yp", unit "1".
+    ///
+    /// Returns
+    /// -------
+    /// System
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     Shapes that do not fit, non-finite or non-numeric entries, a wrong number of outputs.
+    ///
+    /// Examples
+    /// --------
+    /// ẋ = −2x + u, y = x: H(s) = 1/(s + 2), so H(0) = 1/2.
+    ///
+    /// >>> import stochvib
+    /// >>> sys = stochvib.System.state_space([[-2.0]], [[1.0]], [[1.0]], outputs=[("x", "m")])
+    /// >>> complex(sys.frequency_response(0.0)[0, 0])
+    /// (0.5+0j)
     #[staticmethod]
     #[pyo3(signature = (A, B, C, D=None, E=None, *, outputs=None))]
     #[allow(non_snake_case)]
@@ -316,6 +343,29 @@ impl PySystem {
     ///
     /// A bad value raises :class:`InvalidInputError` (a bad unit :class:`UnitError`) naming the parameter.
     ///
+    /// Parameters
+    /// ----------
+    /// kind : str
+    ///     A model kind of :meth:`models` (e.g. "quarter-car").
+    /// speed : float or str, keyword-only, optional
+    ///     m/s or a speed string ("72 km/h"), for the kinds that need it.
+    /// **params : float or str
+    ///     The kind's parameters as named in its ``[model]`` table: SI numbers or strings with units.
+    ///
+    /// Returns
+    /// -------
+    /// System
+    ///     With the kind's outputs and input layout.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown kind, a missing, unknown or invalid parameter (named).
+    /// UnitError
+    ///     A parameter string of the wrong dimension.
+    /// NotApplicableError
+    ///     A deterministic kind.
+    ///
     /// Examples
     /// --------
     /// >>> import stochvib
@@ -369,12 +419,44 @@ impl PySystem {
 
     /// Every model kind a scenario file (and :meth:`model`) may name: a list of dicts with ``name``,
     /// ``family`` ("generic" or "catalogue"), ``stochastic``, ``summary`` and ``example`` (a scenario file).
+    ///
+    /// Returns
+    /// -------
+    /// list of dict
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> "quarter-car" in [m["name"] for m in stochvib.System.models()]
+    /// True
     #[staticmethod]
     fn models(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
         to_python(py, &MODEL_KINDS)
     }
 
     /// The system of a scenario file (with the layout of its random input).
+    ///
+    /// Parameters
+    /// ----------
+    /// path : str or os.PathLike
+    ///     A scenario file (TOML).
+    /// spectra_dir : str or os.PathLike, keyword-only, optional
+    ///     The spectrum catalogue directory (see :meth:`Spectrum.load`).
+    ///
+    /// Returns
+    /// -------
+    /// System
+    ///
+    /// Raises
+    /// ------
+    /// FileError
+    ///     A file that cannot be read or is invalid, naming the file, key, value and reason.
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> "y" in [name for name, unit in stochvib.System.load("data/conveyor-idler.toml").outputs]
+    /// True
     #[staticmethod]
     #[pyo3(signature = (path, *, spectra_dir=None))]
     fn load(py: Python<'_>, path: PathBuf, spectra_dir: Option<PathBuf>) -> PyResult<Self> {
@@ -452,9 +534,24 @@ impl PySystem {
     /// the same inputs (and input layout), whose output ``<output>_<W>`` has the weighted r.m.s. a_w as its
     /// σ under a stationary input — ``stochvib.analyze(system.weighted("seat_acc", "Wk"), road, speed=…)``.
     ///
-    /// Raises :class:`InvalidInputError` for an unknown output or weighting, an output that is not the
-    /// acceleration the weighting applies to, and :class:`NotApplicableError` for a system without a
-    /// finite state-space form.
+    /// Parameters
+    /// ----------
+    /// output : str
+    ///     The name of an acceleration output (m/s²).
+    /// weighting : str
+    ///     "Wk", "Wd", "Wc", "We", "Wj", "Wb" or "Wf" (case and an underscore ignored).
+    ///
+    /// Returns
+    /// -------
+    /// System
+    ///     One output, ``<output>_<weighting>``, in m/s².
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown output or weighting, an output that is not an acceleration.
+    /// NotApplicableError
+    ///     A system without a finite state-space form.
     ///
     /// Examples
     /// --------
@@ -492,6 +589,16 @@ impl PySystem {
     /// Undamped natural frequencies (rad/s, ascending) and mass-normalised mode shapes (columns) of
     /// C φ = ω² M φ, for systems built with :meth:`mdof`. Rigid-body modes have ω = 0. Other systems raise
     /// :class:`NotApplicableError` (use :meth:`natural_frequencies`).
+    ///
+    /// Returns
+    /// -------
+    /// (numpy.ndarray, numpy.ndarray)
+    ///     ω in rad/s (n,) and the mode shapes (n × n).
+    ///
+    /// Raises
+    /// ------
+    /// NotApplicableError
+    ///     A system not built with :meth:`mdof`.
     fn modes<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyAny>)> {
         let Some((m, c)) = &self.mass_stiffness else {
             return Err(not_applicable(
@@ -509,17 +616,31 @@ impl PySystem {
 
     /// |λ| of the poles (rad/s, ascending, repeated values once): the natural frequencies of the damped
     /// system, for any system with a state-space form.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray of float64
+    ///     rad/s, ascending.
     fn natural_frequencies<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.system.natural_frequencies())
     }
 
     /// H(0) (outputs × inputs, real), or None when it is infinite (a rigid-body mode, an integrator).
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray of float64 or None
+    ///     In output unit per input unit.
     fn static_gain<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
         self.system.static_gain().map(|g| matrix_to_py(py, &g)).transpose()
     }
 
     /// The exact state-space form as a dict of arrays "A", "B", "C", "D", "E" (y = Cx + Du + Eu̇), or None
     /// when the system is not finite-dimensional.
+    ///
+    /// Returns
+    /// -------
+    /// dict of str to numpy.ndarray, or None
     fn state_space_matrices<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Some(ss) = self.system.state_space() else {
             return Ok(None);
@@ -560,6 +681,27 @@ impl PySystem {
 
     /// Index (row of H) of the output called ``name``; raises :class:`InvalidInputError` listing the
     /// outputs there are.
+    ///
+    /// Parameters
+    /// ----------
+    /// name : str
+    ///     An output name (see :attr:`outputs`).
+    ///
+    /// Returns
+    /// -------
+    /// int
+    ///     The row of :meth:`frequency_response` and of ``C``, from 0.
+    ///
+    /// Raises
+    /// ------
+    /// InvalidInputError
+    ///     An unknown name (the message lists the outputs).
+    ///
+    /// Examples
+    /// --------
+    /// >>> import stochvib
+    /// >>> stochvib.System.state_space([[-2.0]], [[1.0]], [[1.0], [2.0]], outputs=["a", "b"]).output_index("b")
+    /// 1
     fn output_index(&self, py: Python<'_>, name: &str) -> PyResult<usize> {
         call(py, || self.system.output_index(name))
     }

@@ -82,23 +82,50 @@ pub fn rainflow<'py>(py: Python<'py>, x: &Bound<'py, PyAny>) -> PyResult<Bound<'
     Ok(d)
 }
 
+/// The S–N curve N·S_a^k = C as the numbers (k, C) in the stress unit ``unit``, validated (k > 0, C > 0,
+/// finite): ``k`` a number or dimensionless string, ``c`` a number (in unit^k) or a string with a unit when
+/// k is an integer ("1e12 MPa^3"), converted as by :func:`spectral_fatigue`.
+#[pyfunction]
+#[pyo3(signature = (*, k, c, unit="Pa"))]
+pub fn sn_curve(py: Python<'_>, k: &Bound<'_, PyAny>, c: &Bound<'_, PyAny>, unit: &str) -> PyResult<(f64, f64)> {
+    let k = crate::quantity::of_dim(py, k, "k", stochvib::units::Dim::DIMENSIONLESS)?;
+    let c = crate::quantity::in_unit_power(py, c, "c", unit, k)?;
+    let sn = call(py, || {
+        SnCurve {
+            k,
+            c,
+            endurance_limit: None,
+        }
+        .build()
+    })?;
+    Ok((sn.k, sn.c))
+}
+
 /// Expected fatigue damage rate and life by every spectral method (narrow band, Wirsching–Light, Dirlik,
 /// Zhao–Baker, Tovo–Benasciutti, ...) of a stress process given by its one-sided density ``G`` (unit²/Hz)
 /// at ``f`` (Hz, increasing, trapezoidal moments), with the S–N curve N·S_a^k = C (amplitudes) and an
-/// optional endurance limit (amplitude). A list of dicts ``method``, ``name``, ``damage_rate`` (1/s),
-/// ``life`` (s).
+/// optional endurance limit (amplitude). ``unit`` is the stress unit of the arrays ("Pa", "MPa"): ``c`` (in
+/// unit^k) and ``endurance_limit`` (in unit) given as strings with a unit are converted into it. A list of
+/// dicts ``method``, ``name``, ``damage_rate`` (1/s), ``life`` (s).
 #[pyfunction]
-#[pyo3(signature = (f, G, *, k, c, endurance_limit=None))]
+#[pyo3(signature = (f, G, *, k, c, endurance_limit=None, unit="Pa"))]
 #[allow(non_snake_case)]
 pub fn spectral_fatigue<'py>(
     py: Python<'py>,
     f: &Bound<'py, PyAny>,
     G: &Bound<'py, PyAny>,
-    k: f64,
-    c: f64,
-    endurance_limit: Option<f64>,
+    k: &Bound<'py, PyAny>,
+    c: &Bound<'py, PyAny>,
+    endurance_limit: Option<&Bound<'py, PyAny>>,
+    unit: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (fs, gs) = (vector(py, f, "f")?, vector(py, G, "G")?);
+    let k = crate::quantity::of_dim(py, k, "k", stochvib::units::Dim::DIMENSIONLESS)?;
+    let c = crate::quantity::in_unit_power(py, c, "c", unit, k)?;
+    let endurance_limit = endurance_limit
+        .filter(|e| !e.is_none())
+        .map(|e| crate::quantity::in_unit_power(py, e, "endurance_limit", unit, 1.0))
+        .transpose()?;
     let sn = call(py, || SnCurve { k, c, endurance_limit }.build())?;
     let cmp = call(py, || {
         let m = SpectralMoments::from_tabulated_one_sided_hz(&fs, &gs, true)?;

@@ -55,6 +55,9 @@ from .results import (
     NonlinearResult,
     NonlinearRunResult,
     OptimizeResult,
+    KktCheck,
+    ParetoFront,
+    ParetoPoint,
     RunResult,
     SweepResult,
     TablesResult,
@@ -98,6 +101,9 @@ __all__ = [
     "NonlinearOutput",
     "NonlinearRunResult",
     "OptimizeResult",
+    "KktCheck",
+    "ParetoFront",
+    "ParetoPoint",
     "TransientResult",
     "TransientRunResult",
     "VerdictTable",
@@ -157,11 +163,11 @@ def analyze(
     *,
     speed: Optional[Quantity] = None,
     positions: Optional[Sequence[Quantity]] = None,
-    mean: Optional[Union[float, Sequence[float]]] = None,
+    mean: Optional[Union[Quantity, Sequence[Quantity]]] = None,
     outputs: Optional[Sequence[str]] = None,
     band_rad_s: Optional[Tuple[Quantity, Quantity]] = None,
     duration_s: Optional[Quantity] = None,
-    levels: Optional[Dict[str, Sequence[float]]] = None,
+    levels: Optional[Dict[str, Sequence[Quantity]]] = None,
     monte_carlo: Optional[int] = None,
     seed: int = 1,
     dt: Optional[Quantity] = None,
@@ -185,12 +191,13 @@ def analyze(
     :class:`Spectrum` or a catalogue name such as "iso8608-c" (one process; a spatial road spectrum needs
     ``speed`` in m/s; several inputs fed by
     one track need ``positions`` in m unless the system comes from the catalogue or a scenario file) or a list
-    with one spectrum per input (independent processes). ``mean``: the process mean (its unit).
+    with one spectrum per input (independent processes). ``mean``: the process mean (its unit; a number or a
+    string such as "5 cm"), or one per process.
 
     Per output (``outputs``: names, default all): mean, σ, 3σ bounds, every variance method (Lyapunov,
     integral table, quadrature) with its value, error estimate and relative difference, spectral moments,
     Rice zero up-crossing rate ν₀⁺ (1/s), bandwidth, expected largest peak in ``duration_s`` (default 3600 s),
-    crossing rates of ``levels`` ({output: [levels in the output's SI unit]}), σ in ``band_rad_s``
+    crossing rates of ``levels`` ({output: [levels in the output's SI unit, or strings "3 cm"]}), σ in ``band_rad_s``
     (ω₁, ω₂ in rad/s, or unit strings: "1 Hz" is 2π rad/s). An infinite variance is reported, not raised: ``sigma`` is None,
     ``variance_outcome["status"]`` is "divergent" and ``variance_note`` holds the diagnosis.
 
@@ -207,6 +214,42 @@ def analyze(
     effort of the quadratures, over the scenario's ``[analysis.quadrature]`` (the CLI's ``--rel-tol``,
     ``--max-subintervals``, ``--max-half-periods``). A quadrature that does not converge is reported, not
     raised: its method entry has ``status`` "not-converged", the estimate and which option to raise.
+
+    Parameters
+    ----------
+    subject : Scenario, System or path
+        As above.
+    input : Spectrum, str, os.PathLike or list of Spectrum, optional
+        With a System only: the input process(es).
+    speed : float or str, keyword-only, optional
+        m/s or a speed string ("72 km/h"); needed by a spatial input.
+    positions : list of float or str, keyword-only, optional
+        m behind the first contact, one per system input.
+    mean : float or str or list of them, keyword-only, optional
+        The process mean(s) in the process's unit; default 0.
+    outputs : list of str, keyword-only, optional
+        Output names; default all.
+    band_rad_s : (float or str, float or str), keyword-only, optional
+        (ω₁, ω₂) in rad/s or frequency strings.
+    duration_s : float or str, keyword-only, default 3600 s
+    levels : dict of str to list of float or str, keyword-only, optional
+        Levels in the output's SI unit.
+    monte_carlo : int, keyword-only, optional
+        N realizations (none by default).
+    seed : int, keyword-only, default 1
+    dt, duration : float or str, keyword-only, optional
+        s or time strings; suggested when not given.
+    progress : bool or callable, keyword-only, default True
+        True: a bar; False: nothing; a callable(done, total).
+    spectra_dir : str or os.PathLike, keyword-only, optional
+        The spectrum catalogue directory.
+    rel_tol : float, keyword-only, default 1e-10
+    max_subintervals : int, keyword-only, default 2000
+    max_half_periods : int, keyword-only, default 10 000
+    coherence : dict, keyword-only, optional
+    track_width : float or str, keyword-only, optional
+        m.
+    tracks : list of str or int, keyword-only, optional
 
     Returns
     -------
@@ -319,7 +362,7 @@ def simulate(
     input: Optional[Input] = None,
     speed: Optional[Quantity] = None,
     positions: Optional[Sequence[Quantity]] = None,
-    mean: Optional[Union[float, Sequence[float]]] = None,
+    mean: Optional[Union[Quantity, Sequence[Quantity]]] = None,
     outputs: Optional[Sequence[str]] = None,
     dt: Optional[Quantity] = None,
     duration: Optional[Quantity] = None,
@@ -353,6 +396,55 @@ def simulate(
     statistics of the unsharded run. ``coherence``/``track_width``/``tracks``: a road of two coherent tracks
     as in :func:`analyze`. A model with nonlinear elements raises :class:`InvalidInputError` naming
     :func:`simulate_nonlinear`.
+
+    Parameters
+    ----------
+    subject : Scenario, System or path
+        As for :func:`analyze`.
+    realizations : int
+        N ≥ 2.
+    path : str or os.PathLike
+        The run file (HDF5); with ``shard``, the run directory.
+    input, speed, positions, mean, outputs, spectra_dir, coherence, track_width, tracks
+        As for :func:`analyze` (keyword-only).
+    dt, duration : float or str, keyword-only, optional
+        Δt and the duration of one realization in s, or time strings; suggested when not given.
+    seed : int, keyword-only, default 1
+    shard_size : int, keyword-only, default 50
+    store_raw : bool, keyword-only, default False
+    compression : str, keyword-only, default "none"
+    route : {"auto", "exact", "spectral"}, keyword-only, default "auto"
+    confidence : float, keyword-only, default 0.95
+    overwrite : bool, keyword-only, default False
+    progress : bool or callable, keyword-only, default True
+    shard : (int, int), keyword-only, optional
+
+    Returns
+    -------
+    RunResult
+
+    Raises
+    ------
+    InvalidInputError
+        A bad argument (fewer than 2 realizations, an unknown route, a spatial input without ``speed``); a
+        model with nonlinear elements.
+    UnitError
+        A quantity string of the wrong dimension, naming the argument.
+    FileError
+        ``path`` exists (without ``overwrite``) or cannot be written.
+    DivergentError
+        An unstable system.
+    KeyboardInterrupt
+        Ctrl-C: the ``.tmp`` file is kept for resuming.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, stochvib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     r = stochvib.simulate("data/conveyor-idler.toml", 2, pathlib.Path(d) / "run.h5", dt=0.01,
+    ...                           duration=5.0, progress=False)
+    ...     r.n_realizations, r.path.name
+    (2, 'run.h5')
     """
     kw = _given(speed=speed, positions=positions, mean=mean, outputs=outputs)
     kw.update(_given(coherence=coherence, track_width=track_width, tracks=tracks))
@@ -401,6 +493,35 @@ def simulate_nonlinear(
     slowest decay rate of the Gaussian equivalent; the other arguments as for :func:`simulate`. Returns a
     :class:`NonlinearRunResult` (the statistics against route 1's Gaussian σ, ``burn_in_s``,
     ``halving_checks``). A linear model raises :class:`InvalidInputError` naming :func:`simulate`.
+
+    Parameters
+    ----------
+    subject : Scenario or path
+        A scenario with nonlinear elements, or its file.
+    realizations, path, dt, duration, seed, shard_size, store_raw, compression, route, confidence, overwrite, progress, spectra_dir, shard
+        As for :func:`simulate`.
+    burn_in : float or str, keyword-only, optional
+        s, or a time string.
+
+    Returns
+    -------
+    NonlinearRunResult
+
+    Raises
+    ------
+    InvalidInputError
+        A linear model; a bad argument.
+    UnitError, FileError, KeyboardInterrupt
+        As for :func:`simulate`.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile, stochvib
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     r = stochvib.simulate_nonlinear("data/duffing-white-noise.toml", 2, pathlib.Path(d) / "run.h5",
+    ...                                     dt=0.01, duration=5.0, progress=False)
+    ...     r.n_realizations, r.burn_in_s > 0
+    (2, True)
     """
     if not isinstance(subject, Scenario):
         subject = _scenario(subject, None, {}, spectra_dir)

@@ -19,6 +19,7 @@ from .results import (
     NonlinearResult,
     NonlinearRunResult,
     OptimizeResult,
+    ParetoFront,
     RunResult,
     SweepResult,
     TablesResult,
@@ -45,19 +46,19 @@ class Spectrum:
     """A stationary random process described by its spectral density S(ω) (two-sided, angular)."""
 
     @staticmethod
-    def exponential(variance: float, alpha: float, *, domain: Domain = "temporal", unit: str = "m") -> Spectrum:
+    def exponential(variance: Quantity, alpha: Quantity, *, domain: Domain = "temporal", unit: str = "m") -> Spectrum:
         """Type 1: K = D e^{−α|τ|}; D in unit², α in 1/s (1/m)."""
     @staticmethod
-    def gaussian(variance: float, alpha: float, *, domain: Domain = "temporal", unit: str = "m") -> Spectrum:
+    def gaussian(variance: Quantity, alpha: Quantity, *, domain: Domain = "temporal", unit: str = "m") -> Spectrum:
         """Type 2: K = D e^{−ατ²}; α in 1/s² (1/m²)."""
     @staticmethod
     def exp_cosine(
-        variance: float, alpha: float, beta: float, *, domain: Domain = "temporal", unit: str = "m"
+        variance: Quantity, alpha: Quantity, beta: Quantity, *, domain: Domain = "temporal", unit: str = "m"
     ) -> Spectrum:
         """Type 3: K = D e^{−α|τ|} cos βτ; α in 1/s, β in rad/s."""
     @staticmethod
     def gauss_cosine(
-        variance: float, alpha: float, beta: float, *, domain: Domain = "temporal", unit: str = "m"
+        variance: Quantity, alpha: Quantity, beta: Quantity, *, domain: Domain = "temporal", unit: str = "m"
     ) -> Spectrum:
         """Type 4: K = D e^{−ατ²} cos βτ; α in 1/s², β in rad/s."""
     @staticmethod
@@ -75,16 +76,16 @@ class Spectrum:
         road_class: str,
         *,
         bound: Literal["lower", "geometric-mean", "mean", "upper"] = "geometric-mean",
-        band: Optional[Tuple[float, float]] = ...,
+        band: Optional[Tuple[Quantity, Quantity]] = ...,
     ) -> Spectrum:
         """ISO 8608 class A–H (spatial, G_d(n) in m³, n in cycles/m); band default (0.011, 2.83), None = unbounded."""
     @staticmethod
     def power_law(
-        g0: float,
-        n0: float,
-        waviness: float,
+        g0: Quantity,
+        n0: Quantity,
+        waviness: Quantity,
         *,
-        band: Optional[Tuple[float, float]] = None,
+        band: Optional[Tuple[Quantity, Quantity]] = None,
         domain: Domain = "spatial",
         unit: str = "m",
     ) -> Spectrum:
@@ -96,7 +97,7 @@ class Spectrum:
         """Measured density at points ``x`` (the convention's abscissa), log–log interpolation, zero outside."""
     @staticmethod
     def band_white(
-        level: float, low: float, high: float, *, convention: Convention, domain: Domain = "temporal", unit: str = "m"
+        level: Quantity, low: Quantity, high: Quantity, *, convention: Convention, domain: Domain = "temporal", unit: str = "m"
     ) -> Spectrum:
         """Constant ``level`` (in ``convention``) between ``low`` and ``high`` (the convention's abscissa)."""
     @staticmethod
@@ -231,11 +232,11 @@ class Scenario:
         *,
         speed: Optional[Quantity] = None,
         positions: Optional[Sequence[Quantity]] = None,
-        mean: Optional[Union[float, Sequence[float]]] = None,
+        mean: Optional[Union[Quantity, Sequence[Quantity]]] = None,
         outputs: Optional[Sequence[str]] = None,
         band_rad_s: Optional[Tuple[Quantity, Quantity]] = None,
         duration_s: Optional[Quantity] = None,
-        levels: Optional[Dict[str, Sequence[float]]] = None,
+        levels: Optional[Dict[str, Sequence[Quantity]]] = None,
         title: Optional[str] = None,
         coherence: Optional[Mapping[str, Any]] = None,
         track_width: Optional[Quantity] = None,
@@ -321,6 +322,19 @@ class Scenario:
         max_evaluations: int = 2000,
     ) -> OptimizeResult:
         """The parameters (key → (low, high)) minimising or maximising a quantity under constraints."""
+    def pareto(
+        self,
+        params: Mapping[str, Union[str, Sequence[Quantity]]],
+        *,
+        minimize: str,
+        pareto: str,
+        constraints: Sequence[str] = ...,
+        points: int = 7,
+        plots: Optional[PathLike] = None,
+        starts: int = 4,
+        max_evaluations: int = 2000,
+    ) -> ParetoFront:
+        """The Pareto front of two minimised quantities (ε-constraint), optionally drawn into ``plots``."""
     def transient(
         self,
         *,
@@ -407,8 +421,15 @@ def weighting_response(
 ) -> npt.NDArray[np.complex128]: ...
 def weighting_filter(name: str, *, order: Order = "descending") -> Tuple[FloatArray, FloatArray]: ...
 def rainflow(x: ArrayLike) -> Dict[str, npt.NDArray[Any]]: ...
+def sn_curve(*, k: Quantity, c: Quantity, unit: str = "Pa") -> Tuple[float, float]: ...
 def spectral_fatigue(
-    f: ArrayLike, G: ArrayLike, *, k: float, c: float, endurance_limit: Optional[float] = None
+    f: ArrayLike,
+    G: ArrayLike,
+    *,
+    k: Quantity,
+    c: Quantity,
+    endurance_limit: Optional[Quantity] = None,
+    unit: str = "Pa",
 ) -> List[Dict[str, Any]]: ...
 def exposure(
     channels: Dict[str, ArrayLike],

@@ -95,6 +95,11 @@ def a8(a_w: Union[float, str], duration: Union[float, str]) -> float:
     duration : float or str
         The daily exposure T in s, or with a unit ("4 h").
 
+    Returns
+    -------
+    float
+        A(8) in m/s².
+
     Raises
     ------
     UnitError
@@ -111,8 +116,26 @@ def a8(a_w: Union[float, str], duration: Union[float, str]) -> float:
 
 def vdv_gaussian(a_w: Union[float, str], duration: Union[float, str]) -> float:
     """The vibration dose value of a stationary Gaussian weighted acceleration, VDV = (3T)^¼ a_w, m/s^1.75
-    (the fourth moment of a Gaussian is 3σ⁴; compare the standard's estimate 1.4 a_w T^¼); ``a_w`` in m/s²
-    and ``duration`` in s, or unit strings as for :func:`a8`.
+    (the fourth moment of a Gaussian is 3σ⁴; compare the standard's estimate 1.4 a_w T^¼).
+
+    Parameters
+    ----------
+    a_w : float or str
+        The weighted r.m.s. acceleration, m/s² ("0.5 m/s^2").
+    duration : float or str
+        T in s ("8 h").
+
+    Returns
+    -------
+    float
+        VDV in m/s^1.75.
+
+    Raises
+    ------
+    UnitError
+        A string of another dimension, naming the argument.
+    InvalidInputError
+        A negative or non-finite value.
 
     Examples
     --------

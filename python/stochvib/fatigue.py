@@ -13,7 +13,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -45,9 +45,42 @@ class Cycles:
     start: npt.NDArray[np.int64]
     end: npt.NDArray[np.int64]
 
-    def damage(self, *, k: float, c: float) -> float:
+    def damage(self, *, k: Union[float, str], c: Union[float, str], unit: str = "Pa") -> float:
         """Palmgren–Miner damage Σ nᵢ S_aᵢ^k / C of the S–N curve N·S_a^k = C (amplitudes, no endurance
-        limit)."""
+        limit).
+
+        Parameters
+        ----------
+        k : float, keyword-only
+            The slope of the S–N curve, > 0 (a number; a dimensionless string "3" also).
+        c : float or str, keyword-only
+            C in unit^k, > 0: a number, or a string with a unit when k is an integer ("1e12 MPa^3" with
+            ``unit="MPa"`` is 1e12), as for :func:`spectral`.
+        unit : str, keyword-only
+            The stress unit of the counted signal (of the amplitudes): "Pa" (default), "MPa", "N", ...
+
+        Returns
+        -------
+        float
+            The damage D (no unit; failure at D = 1).
+
+        Raises
+        ------
+        InvalidInputError
+            k or C not finite and > 0.
+        UnitError
+            A ``c`` string of another dimension than unit^k.
+
+        Examples
+        --------
+        The amplitudes in MPa: C as the string "8 MPa^3" is the number 8.
+
+        >>> from stochvib import fatigue
+        >>> cycles = fatigue.rainflow([0.0, 2.0, -2.0, 2.0, 0.0])
+        >>> cycles.damage(k=3, c="8 MPa^3", unit="MPa") == cycles.damage(k=3, c=8.0)
+        True
+        """
+        k, c = _stochvib.sn_curve(k=k, c=c, unit=unit)
         return float(np.sum(self.count * self.amplitude**k) / c)
 
     def to_dict(self) -> Dict[str, List[Any]]:
@@ -130,7 +163,13 @@ class SpectralFatigue:
 
 
 def spectral(
-    f: npt.ArrayLike, G: npt.ArrayLike, *, k: float, c: float, endurance_limit: Optional[float] = None
+    f: npt.ArrayLike,
+    G: npt.ArrayLike,
+    *,
+    k: Union[float, str],
+    c: Union[float, str],
+    endurance_limit: Union[float, str, None] = None,
+    unit: str = "Pa",
 ) -> SpectralFatigue:
     """Expected fatigue damage rate and life of a stationary Gaussian stress by every spectral method.
 
@@ -141,10 +180,17 @@ def spectral(
     G : array_like, 1-D
         The ONE-SIDED density G(f) of the stress, unit²/Hz (``scipy.signal.welch``'s; from a
         :class:`Spectrum`, ``spectrum.density(f=f)``).
-    k, c : float, keyword-only
-        The S–N curve N·S_a^k = C, S_a the amplitude.
-    endurance_limit : float, keyword-only, optional
-        Amplitudes below it do no damage.
+    k : float, keyword-only
+        The slope of the S–N curve N·S_a^k = C, S_a the amplitude (a number; a dimensionless string "3"
+        also).
+    c : float or str, keyword-only
+        C in unit^k: a number, or a string with a unit when k is an integer ("1e30 MPa^3" with ``unit="Pa"``
+        is 1e48).
+    endurance_limit : float or str, keyword-only, optional
+        Amplitudes below it do no damage: a number in ``unit`` or a string ("30 MPa").
+    unit : str, keyword-only
+        The stress unit of ``G`` (unit²/Hz) and of the numbers: "Pa" (default), "MPa", "N", ... Strings are
+        converted into it; one of another dimension raises :class:`UnitError` naming the argument.
 
     Returns
     -------
@@ -162,5 +208,12 @@ def spectral(
     >>> nb = r["NarrowBand"].damage_rate
     >>> round(nb / (100.0 * 2**1.5 * math.gamma(2.5) / 1e12), 3)
     1.0
+
+    The same curve with units, the stress in MPa:
+
+    >>> r2 = fatigue.spectral(f, np.full_like(f, 0.5), k=3, c="1e12 MPa^3", unit="MPa")
+    >>> round(r2["NarrowBand"].damage_rate / nb, 12)
+    1.0
     """
-    return SpectralFatigue([MethodEstimate(**e) for e in _stochvib.spectral_fatigue(f, G, k=k, c=c, endurance_limit=endurance_limit)])
+    rows = _stochvib.spectral_fatigue(f, G, k=k, c=c, endurance_limit=endurance_limit, unit=unit)
+    return SpectralFatigue([MethodEstimate(**e) for e in rows])

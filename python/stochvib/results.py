@@ -924,6 +924,9 @@ class OptimizeResult(_Text):
     constraints : list of ConstraintState
     evaluations : int
         Analyses in all starts.
+    kkt : KktCheck or None
+        The first-order optimality check at the answer with the analytic gradients (the ``KKT`` lines of the
+        command-line tool); None where the problem has no analytic gradients.
     """
 
     def __init__(self, data: Dict[str, Any], text: str) -> None:
@@ -942,6 +945,8 @@ class OptimizeResult(_Text):
             ConstraintState(**{k: c[k] for k in ("text", "value", "limit", "unit", "margin", "active", "met")})
             for c in data["constraints"]
         ]
+        kkt = data.get("kkt")
+        self.kkt: Optional[KktCheck] = None if kkt is None else KktCheck.from_dict(kkt, [p.key for p in self.params])
 
     @property
     def x(self) -> Dict[str, float]:
@@ -960,7 +965,150 @@ class OptimizeResult(_Text):
     def __repr__(self) -> str:
         state = "" if self.feasible else " (INFEASIBLE: the least violating point)"
         head = f"OptimizeResult: {self.goal} of {self.objective}{state}: {_e(self.value)} {self.unit}"
-        return "\n".join([head, *(f"  {p!r}" for p in self.params), *(f"  {c!r}" for c in self.constraints)])
+        kkt = [] if self.kkt is None else [f"  {self.kkt!r}"]
+        return "\n".join([head, *(f"  {p!r}" for p in self.params), *(f"  {c!r}" for c in self.constraints), *kkt])
+
+
+@dataclass(frozen=True, repr=False)
+class KktCheck:
+    """The first-order optimality (KKT) check of an optimum with the analytic gradients (Lyapunov
+    sensitivities), ``OptimizeResult.kkt``.
+
+    Attributes
+    ----------
+    keys : list of str
+        The parameters, in the order of the gradients.
+    gradient : numpy.ndarray
+        ∂(objective)/∂x_k, SI per SI unit of each parameter.
+    constraint_gradients : numpy.ndarray
+        One row per constraint: ∂(its quantity)/∂x_k.
+    multipliers : numpy.ndarray
+        Per constraint, its Lagrange multiplier in unit coordinates (0 for an inactive one).
+    bound_multipliers : numpy.ndarray
+        Per parameter, the multiplier of the bound it sits at (0 inside).
+    residual : float
+        The stationarity residual in unit coordinates: 0 at a KKT point.
+    satisfied : bool
+        The residual is at most the tolerance (1e-5) and no multiplier is negative beyond it.
+    """
+
+    keys: List[str]
+    gradient: Any
+    constraint_gradients: Any
+    multipliers: Any
+    bound_multipliers: Any
+    residual: float
+    satisfied: bool
+
+    @classmethod
+    def from_dict(cls, d: Dict[str, Any], keys: List[str]) -> "KktCheck":
+        import numpy as np
+
+        g = d["gradients"]
+        rows = np.asarray(g["constrained"], dtype=float).reshape(len(g["constrained"]), len(keys))
+        return cls(
+            keys,
+            np.asarray(g["objective"], dtype=float),
+            rows,
+            np.asarray(d["multipliers"], dtype=float),
+            np.asarray(d["bound_multipliers"], dtype=float),
+            float(d["residual"]),
+            bool(d["satisfied"]),
+        )
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The ``kkt`` object of ``stochvib optimize --json``."""
+        return {
+            "gradients": {"objective": self.gradient.tolist(), "constrained": self.constraint_gradients.tolist()},
+            "multipliers": self.multipliers.tolist(),
+            "bound_multipliers": self.bound_multipliers.tolist(),
+            "residual": self.residual,
+            "satisfied": self.satisfied,
+        }
+
+    def __repr__(self) -> str:
+        grads = ", ".join(f"d/d {k} = {_e(v)}" for k, v in zip(self.keys, self.gradient))
+        ok = "satisfied" if self.satisfied else "NOT satisfied"
+        return f"KKT: stationarity residual {_e(self.residual, 3)} in unit coordinates, {ok}; gradient {grads}"
+
+
+@dataclass(frozen=True, repr=False)
+class ParetoPoint(_Mapping):
+    """A point of a Pareto front: ``params`` (key → SI value), ``values`` (the two quantities, SI), ``limit``
+    (the limit ε on the second quantity; None at the two ends), ``feasible`` (every constraint met)."""
+
+    params: Dict[str, float]
+    values: Tuple[float, float]
+    limit: Optional[float]
+    feasible: bool
+
+    def __repr__(self) -> str:
+        ps = ", ".join(f"{k} = {_e(v)}" for k, v in self.params.items())
+        lim = "end" if self.limit is None else f"limit {_e(self.limit)}"
+        return f"{ps}: {_e(self.values[0])}, {_e(self.values[1])} ({lim}{'' if self.feasible else ', INFEASIBLE'})"
+
+
+class ParetoFront(_Text):
+    """The Pareto front of two quantities (:meth:`Scenario.pareto`; ``to_dict()`` is the ``--json`` of
+    ``stochvib optimize --pareto``, ``to_csv()`` and ``str()`` its CSV).
+
+    Attributes
+    ----------
+    keys : list of str
+        The parameters.
+    quantities, units : list of str
+        The two quantities as given and their SI units.
+    points : list of ParetoPoint
+        In order of increasing first quantity; the first and last are the single-objective optima.
+    values : numpy.ndarray
+        (N, 2): the two quantities at each point, SI.
+    params : numpy.ndarray
+        (N, len(keys)): the parameters at each point, SI.
+    evaluations : int
+        Analyses in all searches.
+    plots : list of pathlib.Path
+        The pictures drawn (``plots=``): ``pareto-front.svg`` and ``.png``.
+    """
+
+    def __init__(self, data: Dict[str, Any], csv: str, plots: Sequence[Any] = ()) -> None:
+        import numpy as np
+
+        self._data = data
+        self._text = csv
+        self.keys: List[str] = list(data["keys"])
+        self.quantities: List[str] = list(data["quantities"])
+        self.units: List[str] = list(data["units"])
+        self.evaluations: int = data["evaluations"]
+        self.points: List[ParetoPoint] = [
+            ParetoPoint(dict(zip(self.keys, p["params"])), tuple(p["values"]), p["limit"], p["feasible"])
+            for p in data["points"]
+        ]
+        self.values = np.array([p["values"] for p in data["points"]], dtype=float).reshape(-1, 2)
+        self.params = np.array([p["params"] for p in data["points"]], dtype=float).reshape(-1, len(self.keys))
+        self.plots: List[Path] = [Path(p) for p in plots]
+
+    def to_csv(self) -> str:
+        """The command's CSV (``stochvib optimize --pareto`` without ``--json``), byte for byte."""
+        return self._text
+
+    def to_dataframe(self) -> Any:
+        """One row per point: the parameters (SI), the two quantities, the limit, feasibility."""
+        rows = []
+        for p in self.points:
+            row: Dict[str, Any] = dict(p.params)
+            row.update({f"{q} [{u}]": v for q, u, v in zip(self.quantities, self.units, p.values)})
+            row.update({"limit": p.limit, "feasible": p.feasible})
+            rows.append(row)
+        return _dataframe(rows)
+
+    def __repr__(self) -> str:
+        head = f"ParetoFront of {self.quantities[0]} [{self.units[0]}] and {self.quantities[1]} [{self.units[1]}]"
+        cols = [*self.keys, *(f"{q} [{u}]" for q, u in zip(self.quantities, self.units)), "limit", "feasible"]
+        rows = [" | ".join(cols)]
+        for p in self.points:
+            cells = [*(_e(v) for v in p.params.values()), *(_e(v) for v in p.values), _e(p.limit)]
+            rows.append(" | ".join([*cells, "yes" if p.feasible else "no"]))
+        return "\n".join([f"{head}: {len(self.points)} points, {self.evaluations} evaluations", *rows])
 
 
 class TransientOutput:

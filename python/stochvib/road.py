@@ -89,15 +89,63 @@ def iri(z: npt.ArrayLike, step: Union[float, str]) -> Iri:
 
 
 def expected_iri(spectrum: Spectrum) -> ExpectedIri:
-    """The expected IRI of a spatial road spectrum (``stochvib iri SPECTRUM``)."""
+    """The expected IRI of a spatial road spectrum (``stochvib iri SPECTRUM``).
+
+    Parameters
+    ----------
+    spectrum : Spectrum
+        A spatial (road) spectrum, elevation in m.
+
+    Returns
+    -------
+    ExpectedIri
+        ``m_per_km`` (the IRI, m/km), ``without_moving_average_m_per_km``, ``sigma_relative_velocity_m_s``,
+        ``band_cycles_per_m``.
+
+    Raises
+    ------
+    NotApplicableError
+        A temporal spectrum.
+
+    Examples
+    --------
+    >>> import stochvib
+    >>> from stochvib import road
+    >>> road.expected_iri(stochvib.Spectrum.iso8608("C")).m_per_km > road.expected_iri(stochvib.Spectrum.iso8608("B")).m_per_km
+    True
+    """
     d = _stochvib.expected_iri(spectrum)
     d["band_cycles_per_m"] = tuple(d["band_cycles_per_m"])
     return ExpectedIri(**d)
 
 
 def iso8608_class(g0: Union[float, str]) -> str:
-    """The ISO 8608 class "A" … "H" of a road whose G_d(n₀ = 0.1 cycles/m) is ``g0`` (m³, or with a unit);
-    a level on a class limit belongs to the rougher class."""
+    """The ISO 8608 class "A" … "H" of a road whose G_d(n₀ = 0.1 cycles/m) is ``g0``; a level on a class
+    limit belongs to the rougher class.
+
+    Parameters
+    ----------
+    g0 : float or str
+        G_d(n₀) in m³ ("256e-6 m^3").
+
+    Returns
+    -------
+    str
+        "A" … "H".
+
+    Raises
+    ------
+    UnitError
+        A string of another dimension.
+    InvalidInputError
+        g0 ≤ 0 or not finite.
+
+    Examples
+    --------
+    >>> from stochvib import road
+    >>> road.iso8608_class(256e-6), road.iso8608_class("256e-6 m^3")  # the geometric mean of class C
+    ('C', 'C')
+    """
     return _stochvib.iso8608_class(g0)
 
 

@@ -134,3 +134,74 @@ def test_bad_input(quarter_car):
         sc.optimize({"model.suspension_damping": ("1 kN*s/m",)}, minimize="sigma(travel)")
     with pytest.raises(InvalidInputError):
         sc.optimize(PARAM, minimize="sigma(nothing)")
+
+
+FRONT_ARGS = ["--param", "model.suspension_damping=0.2:6 kN*s/m", "--minimize", "sigma(body_acc)", "--pareto", "3sigma(travel)", "--points", "5", "--starts", "2"]
+
+
+def test_pareto_front_against_the_closed_form_and_the_cli(cli, quarter_car, tmp_path):
+    """Comfort against travel: σ_acc is least at c_opt, 3σ_travel = 3√(πS₀M/c) at the upper bound 6 kN s/m; an
+    inner point minimises σ_acc with 3σ_travel ≤ ε, active (σ_acc grows beyond c_opt), so c = 9πS₀M/ε²."""
+    fr = stochvib.Scenario.load(quarter_car).pareto(
+        {"model.suspension_damping": "0.2:6 kN*s/m"}, minimize="sigma(body_acc)", pareto="3sigma(travel)", points=5, starts=2, plots=tmp_path / "py"
+    )
+    assert isinstance(fr, stochvib.ParetoFront) and fr.keys == ["model.suspension_damping"]
+    assert fr.units == ["m/s^2", "m"] and fr.values.shape == (5, 2) and fr.params.shape == (5, 1)
+    first, last = fr.points[0], fr.points[-1]
+    assert first.limit is None and last.limit is None
+    assert first.params["model.suspension_damping"] == pytest.approx(C_OPT, rel=REL_ARGMIN)
+    assert last.params["model.suspension_damping"] == pytest.approx(6000.0, rel=REL_ON_CONSTRAINT)
+    assert last.values[1] == pytest.approx(3 * math.sqrt(math.pi * S0 * M / 6000.0), rel=REL_ON_CONSTRAINT)
+    for p in fr.points[1:-1]:
+        c = 9 * math.pi * S0 * M / p.limit**2
+        assert p.feasible and p.values[1] == pytest.approx(p.limit, rel=REL_ON_CONSTRAINT)
+        assert p.params["model.suspension_damping"] == pytest.approx(c, rel=REL_ON_CONSTRAINT)
+        assert p.values[0] == pytest.approx(sigma_acc(c), rel=REL_ON_CONSTRAINT)
+    assert list(fr.values[:, 0]) == sorted(fr.values[:, 0]) and list(fr.values[:, 1]) == sorted(fr.values[:, 1], reverse=True)
+    # the command-line tool: the same JSON, the same CSV, the same picture
+    assert fr.to_dict() == cli.json("optimize", str(quarter_car), *FRONT_ARGS)
+    assert fr.to_csv() == str(fr) == cli.run("optimize", str(quarter_car), *FRONT_ARGS, "--plots", str(tmp_path / "cli")).stdout
+    assert sorted(p.name for p in fr.plots) == ["pareto-front.png", "pareto-front.svg"]
+    assert (tmp_path / "py" / "pareto-front.svg").read_text() == (tmp_path / "cli" / "pareto-front.svg").read_text()
+    assert repr(fr).startswith("ParetoFront of sigma(body_acc) [m/s^2] and 3sigma(travel) [m]: 5 points")
+    assert repr(fr.points[0]).startswith("model.suspension_damping = ")
+
+
+def test_pareto_front_bad_input(quarter_car):
+    sc = stochvib.Scenario.load(quarter_car)
+    with pytest.raises(InvalidInputError, match="at least its two ends"):
+        sc.pareto(PARAM, minimize="sigma(body_acc)", pareto="sigma(travel)", points=1)
+    with pytest.raises(InvalidInputError, match="no point meets every constraint"):
+        sc.pareto(PARAM, minimize="sigma(body_acc)", pareto="sigma(travel)", constraints=["3sigma(travel) <= 5 mm"], points=3)
+    with pytest.raises(TypeError):
+        sc.pareto(PARAM, minimize="sigma(body_acc)")  # the second quantity is required
+
+
+def test_kkt_check_at_an_active_constraint_against_the_closed_form(cli, quarter_car):
+    """At c* = c_min (the travel constraint active) the analytic gradients are those of the closed forms:
+    dσ_acc/dc = πS₀(k_t − k_s²M/c²)/(2σ_acc m_s²) and d(3σ_travel)/dc = −(3/2)√(πS₀M) c^{−3/2}; the KKT check holds
+    with a positive multiplier."""
+    sc = stochvib.Scenario.load(quarter_car)
+    r = sc.optimize(PARAM, minimize="sigma(body_acc)", constraints=["3sigma(travel) <= 40 mm"])
+    c = r.x["model.suspension_damping"]
+    k = r.kkt
+    assert isinstance(k, stochvib.KktCheck) and k.satisfied and k.residual <= 1e-5
+    dacc = math.pi * S0 * (K_T - K_S**2 * M / c**2) / (2 * sigma_acc(c) * M_S**2)
+    assert k.gradient[0] == pytest.approx(dacc, rel=REL_ON_CONSTRAINT)
+    assert k.constraint_gradients[0, 0] == pytest.approx(-1.5 * math.sqrt(math.pi * S0 * M) * c**-1.5, rel=REL_ON_CONSTRAINT)
+    assert k.multipliers[0] > 0 and k.bound_multipliers[0] == 0
+    want = cli.json("optimize", str(quarter_car), "--param", "model.suspension_damping=0.2:6 kN*s/m", "--minimize", "sigma(body_acc)", "--constraint", "3sigma(travel) <= 40 mm")
+    assert k.to_dict() == want["kkt"] == r.to_dict()["kkt"]
+    assert "KKT: stationarity residual" in repr(r) and "KKT: stationarity residual" in str(r)
+
+
+def test_pareto_front_and_kkt_as_tables(quarter_car):
+    pd = pytest.importorskip("pandas")
+    sc = stochvib.Scenario.load(quarter_car)
+    fr = sc.pareto(PARAM, minimize="sigma(body_acc)", pareto="3sigma(travel)", points=3, starts=1)
+    df = fr.to_dataframe()
+    assert isinstance(df, pd.DataFrame) and len(df) == 3
+    assert list(df.columns) == ["model.suspension_damping", "sigma(body_acc) [m/s^2]", "3sigma(travel) [m]", "limit", "feasible"]
+    assert df["sigma(body_acc) [m/s^2]"].tolist() == fr.values[:, 0].tolist()
+    r = sc.optimize(PARAM, minimize="sigma(body_acc)", constraints=["3sigma(travel) <= 40 mm"])
+    assert r.to_dataframe()["key"].tolist() == ["model.suspension_damping"]

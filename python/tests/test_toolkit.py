@@ -114,6 +114,20 @@ def test_rainflow_against_an_independent_astm_transcription():
         fatigue.rainflow(np.ones((2, 2)))
 
 
+def test_miner_damage_takes_c_with_a_unit_as_spectral_fatigue_does():
+    """Cycles.damage(k=, c=, unit=): C in unit^k, a string converted into it (1 MPa³ = 1e18 Pa³), validated."""
+    c = fatigue.rainflow(np.cumsum(np.random.default_rng(7).normal(size=500)))
+    by_sum = float(np.sum(c.count * c.amplitude**3))  # Σ nᵢ S_aᵢ^k, k = 3
+    assert c.damage(k=3, c="2e12 MPa^3", unit="MPa") == pytest.approx(by_sum / 2e12, rel=REL_FORMULA)
+    assert c.damage(k="3", c="2e12 MPa^3") == pytest.approx(by_sum / 2e30, rel=REL_FORMULA)  # the default unit Pa
+    assert c.damage(k=3, c=2e12, unit="MPa") == c.damage(k=3, c=2e12)  # a number is in unit^k as given
+    with pytest.raises(stochvib.UnitError, match="c"):
+        c.damage(k=3, c="2e12 m^3", unit="MPa")
+    for k, cc in ((3, 0.0), (-1, 1e9), (3, float("nan"))):
+        with pytest.raises(InvalidInputError):
+            c.damage(k=k, c=cc)
+
+
 def test_spectral_fatigue_narrow_band_closed_form():
     # A flat one-sided density G = 0.5 /Hz on [99, 101] Hz: σ² = m₀ = 1, ν₀⁺ = √(m₂/m₀) with
     # m₂ = ∫ f² G df = 0.5 (101³ − 99³)/3; narrow band (Bendat 1964): D/T = ν₀⁺ (√2 σ)^k Γ(1 + k/2)/C.
