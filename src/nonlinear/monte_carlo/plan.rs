@@ -260,7 +260,8 @@ pub(crate) fn is_5_smooth(n: usize) -> bool {
 /// The steps of burn-in plus record (the synthesis length of the spectral route's inputs): the smallest
 /// even 2^a·3^b·5^c ≥ `n` (since version 2 of the route, [`super::GENERATOR_VERSION`]).
 pub(crate) fn synthesis_length(n: usize) -> usize {
-    let mut m = n.max(2) + n % 2;
+    let mut m = n.max(2);
+    m += m % 2;
     while !is_5_smooth(m) {
         m += 2;
     }
