@@ -130,6 +130,20 @@ def integrate(u, h, burn):
     return hist, ut[burn:]
 
 
+def welch_segment(n):
+    """Route 2's Welch segment (its generator version 2): the largest even 2^a 3^b 5^c <= min(1024, n // 8),
+    at least 4 (an FFT of small factors only)."""
+    m = min(max((n // 8) & ~1, 4), 1024)
+    while True:
+        r = m
+        for p in (2, 3, 5):
+            while r % p == 0:
+                r //= p
+        if r == 1:
+            return m
+        m -= 2
+
+
 def welch(y, h, nper):
     """The Welch density of every column of y (n x c): Hann segments of nper with half overlap, the segment
     mean removed, one-sided (as scipy.signal.welch with its defaults, which it equals to rounding), averaged
@@ -177,8 +191,7 @@ def statistics(hist, u, h):
         rates = [crossings(y, a, t) for a in levels]
         lo, hi = m.mean() - 6 * math.sqrt(var.mean()), m.mean() + 6 * math.sqrt(var.mean())
         hcount = np.histogram(y, bins=BINS, range=(lo, hi))[0]
-        nper = min(max((n // 8) & ~1, 4), 1024)
-        psd = welch(y, h, nper)
+        psd = welch(y, h, welch_segment(n))
         out[name] = (m, var, kurt, mx, rates, hcount, psd.mean(axis=0))
     out["stop"] = regime((travel > UPPER) | (travel < -LOWER), t)
     out["lift_off"] = regime(defl > DELTA, t)

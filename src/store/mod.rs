@@ -22,7 +22,7 @@ pub use reader::{abbreviated_list, RunFile, RunInfo, Verification, LISTED_FILES}
 pub use response_histogram::ResponseHistogram;
 pub(crate) use writer::metadata_differences;
 pub use writer::RunWriter;
-pub use writer::{process_alive, CreateOptions};
+pub use writer::{process_alive, CreateOptions, GENERATOR_VERSION};
 
 use crate::error::{Error, Result};
 use crate::estimate::Interval;

@@ -1284,19 +1284,42 @@ pub(crate) fn metadata_differences(a: &RunMetadata, b: &RunMetadata) -> Vec<Stri
             .collect()
     };
     let (pa, pb) = (ident(a), ident(b));
-    for (name, text) in &pb {
+    let text_of = |p: &[(String, String)], name: &str| p.iter().find(|(n, _)| n == name).map(|(_, t)| t.clone());
+    let (va, vb) = (text_of(&pa, GENERATOR_VERSION), text_of(&pb, GENERATOR_VERSION));
+    if va != vb {
+        d.push(generator_version_difference(va, vb));
+    }
+    for (name, text) in pb.iter().filter(|(n, _)| n != GENERATOR_VERSION) {
         match pa.iter().find(|(n, _)| n == name) {
             Some((_, old)) if old == text => {}
             Some(_) => d.push(format!("{name} (changed since the interrupted run)")),
             None => d.push(format!("{name} (not recorded by the interrupted run)")),
         }
     }
-    for (name, _) in &pa {
+    for (name, _) in pa.iter().filter(|(n, _)| n != GENERATOR_VERSION) {
         if !pb.iter().any(|(n, _)| n == name) {
             d.push(format!("{name} (recorded by the interrupted run, absent now)"));
         }
     }
     d
+}
+
+/// The name of the identifying provenance part that holds a route's generator version (the way a seed's
+/// random numbers become realizations; a route that changes it deliberately records a new version).
+pub const GENERATOR_VERSION: &str = "generator_version";
+
+/// What [`metadata_differences`] says when two runs' generator versions differ (`None`: not recorded, i.e.
+/// written before the route recorded its version).
+fn generator_version_difference(a: Option<String>, b: Option<String>) -> String {
+    let show =
+        |v: Option<String>| v.unwrap_or_else(|| "1 (not recorded: written before versions were recorded)".into());
+    format!(
+        "generator version ({} against {}: the two versions turn a seed into different realizations, so their \
+         shards are never mixed; start the run again into a new file, or resume or merge it with the stochvib \
+         build that wrote it)",
+        show(a),
+        show(b)
+    )
 }
 
 /// Names of the datasets whose shard rows `/shards/checksums` covers, in column order.

@@ -137,6 +137,7 @@ pub fn merge_runs(
     // pass 1: every file's header and the fingerprint of its shared values; the files are closed again
     let set = PartSet::open(inputs, &[out, &tmp])?;
     let meta = set.meta.clone();
+    crate::nonlinear::monte_carlo::refuse_other_version(&meta, &set.parts[0].path)?;
     let raw = opts.raw_storage(meta.store_raw);
     check_shared_values(&set)?;
     let first = &set.parts[0];

@@ -364,3 +364,11 @@ pub const GRADIENT_CLOSED_FORM: f64 = 1e-8;
 /// difference's truncation |σ'''|h²/(6|σ'|) ≈ (h/x)² = 1e-8 for these smooth, rational-in-x variances, its
 /// rounding ε·σ/(h·σ') ≈ 1e-12; 1e-6.
 pub const GRADIENT_FINITE_DIFFERENCE: f64 = 1e-6;
+
+/// The mean of Welch estimates at route 2's segment length against the exact mean of the estimate
+/// (`Welch::expected_all` of the known autocovariance), summed over the interior bins, relative: the sum is a
+/// windowed energy whose relative standard deviation per segment is √(2·Σρ²·Σw⁴M/(Σw²)²/M) ≈ 0.085 for an
+/// AR(1) of coefficient ½ (Σρ² = 5/3, Hann's 35/18, M = 900), over ≈ 256 × 14 effective segments 1.4e-3;
+/// 1e-2 is 7 standard deviations (false failure < 10⁻¹¹) and is exceeded by a normalisation off by the
+/// ratio of version 1's to version 2's segment, 922/900 = 1.024.
+pub const WELCH_SEGMENT_NORMALISATION: f64 = 1e-2;

@@ -191,8 +191,8 @@ fn interrupted_nonlinear_run_resumes_bit_identically() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Route 2 steps the spectral route's realizations four at a time in lockstep, each lane doing the
-/// arithmetic of a lone realization: a run whose one shard holds 6 realizations (4 in lockstep, 2 alone)
+/// Route 2 steps the spectral route's realizations eight at a time in lockstep, each lane doing the
+/// arithmetic of a lone realization: a run whose one shard holds 10 realizations (8 in lockstep, 2 alone)
 /// and the same run in shards of 1 (every realization alone) give the same statistics, Welch densities and
 /// histograms bit for bit, the Δt-halving checks of realizations 0..4 included.
 #[test]
@@ -204,7 +204,7 @@ fn lockstep_realizations_give_the_bits_of_lone_ones() {
     let opts = |shard_size| NonlinearRunOptions {
         run: RunOptions {
             shard_size,
-            realizations: 6,
+            realizations: 10,
             duration_s: 5.0,
             dt_s: dt,
             seed: 33,
@@ -215,9 +215,9 @@ fn lockstep_realizations_give_the_bits_of_lone_ones() {
     };
     let _serial = common::hdf5_serial();
     let (lanes, alone) = (dir.join("lanes.h5"), dir.join("alone.h5"));
-    let a = sc.simulate_nonlinear(&answers, &opts(6), &lanes, &|_, _| {}).unwrap();
+    let a = sc.simulate_nonlinear(&answers, &opts(10), &lanes, &|_, _| {}).unwrap();
     let b = sc.simulate_nonlinear(&answers, &opts(1), &alone, &|_, _| {}).unwrap();
-    assert_eq!((a.run.n_shards, b.run.n_shards, a.halving_checks), (1, 6, 4));
+    assert_eq!((a.run.n_shards, b.run.n_shards, a.halving_checks), (1, 10, 4));
     assert_eq!(
         common::stored_statistic_bits(&a.run.outputs),
         common::stored_statistic_bits(&b.run.outputs)
@@ -372,5 +372,120 @@ fn friction_seat_default_step_is_derived_from_the_system() {
     assert!(o.status.success(), "{err}");
     assert!(err.contains("suggested for route 2"), "{err}");
     assert!(out.contains("sigma_response"), "{out}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Route 2's Welch segment (version 2 of its generator: the largest even 2^a·3^b·5^c ≤ n/8, 900 = 2²3²5² for
+/// a record of 7380 samples, where version 1 took 922 = 2·461) estimates a known density with the exact
+/// normalisation: 256 records of a stationary AR(1) process x_k = ½x_{k−1} + e_k (e_k standard normal, x_0
+/// drawn from the stationary law N(0, 4/3)), whose autocovariance is (4/3)·2^{−|τ|}, give Welch estimates
+/// whose sum over the interior bins equals that of the exact mean of the estimate (`Welch::expected_all`)
+/// within WELCH_SEGMENT_NORMALISATION (7 standard deviations: false failure < 10⁻¹¹), and the frequency grid
+/// is ω_j = 2πj/(MΔt) with M = 900.
+#[test]
+fn route2_welch_segment_estimates_a_known_density_exactly_normalised() {
+    use common::tolerance::WELCH_SEGMENT_NORMALISATION;
+    use rand::{RngExt, SeedableRng};
+    let (n, dt, a): (usize, f64, f64) = (7380, 0.004, 0.5);
+    let m = stochvib::nonlinear::monte_carlo::welch_segment(n);
+    assert_eq!(m, 900);
+    let welch = stochvib::estimate::Welch::new(m, dt).unwrap();
+    let mut rng = rand::rngs::Xoshiro256PlusPlus::seed_from_u64(90);
+    let mut sums = welch.sums();
+    let mut scratch = welch.scratch();
+    let var = 1.0 / (1.0 - a * a);
+    for _ in 0..256 {
+        let mut x = Vec::with_capacity(n);
+        let mut prev = var.sqrt() * rng.sample::<f64, _>(rand_distr::StandardNormal);
+        for _ in 0..n {
+            x.push(prev);
+            prev = a * prev + rng.sample::<f64, _>(rand_distr::StandardNormal);
+        }
+        welch.accumulate(&x, &mut sums, &mut scratch).unwrap();
+    }
+    let est = welch.finish(&sums).unwrap();
+    let autocov: Vec<f64> = (0..m).map(|lag| var * a.powi(lag as i32)).collect();
+    let expected = welch.expected_all(&autocov);
+    let interior = 1..m / 2;
+    let (got, want): (f64, f64) = (
+        est.density[interior.clone()].iter().sum(),
+        expected[interior].iter().sum(),
+    );
+    assert!(
+        ((got - want) / want).abs() < WELCH_SEGMENT_NORMALISATION,
+        "Σ Ŝ = {got}, exact mean {want}"
+    );
+    let step = 2.0 * std::f64::consts::PI / (m as f64 * dt);
+    assert!(est
+        .omega
+        .iter()
+        .enumerate()
+        .all(|(j, w)| (w - j as f64 * step).abs() <= 1e-12 * step * j as f64));
+}
+
+/// Shard files of version 1 of route 2's generator (before its 2^a·3^b·5^c lengths), written by the build
+/// before the change with `stochvib simulate data/quarter-car-bump-stops.toml --realizations 2 --shard-size 1
+/// --duration 0.2 --seed 7 --shard I --of 2 -o DIR/` (I = 0, 1; `tests/data/nonlinear-generator-v1/`), are
+/// never mixed with this build's realizations: their merge is refused naming the file and both versions
+/// (and leaves no file); the same command now refuses an interrupted version-1 shard under its `.tmp` name,
+/// naming the generator version as the difference.
+#[test]
+fn run_files_of_generator_version_1_are_neither_resumed_nor_merged() {
+    use stochvib::study::{merge_runs, MergeOptions};
+    let dir = common::scratch_dir("nl-runs", "version-1");
+    let fixture = common::root().join("tests/data/nonlinear-generator-v1");
+    let (parts, cut) = (dir.join("parts"), dir.join("cut"));
+    std::fs::create_dir_all(&parts).unwrap();
+    std::fs::create_dir_all(&cut).unwrap();
+    let name = |i: usize| format!("shard-{i}-of-2.h5");
+    for i in 0..2 {
+        std::fs::copy(fixture.join(name(i)), parts.join(name(i))).unwrap();
+    }
+    let _serial = common::hdf5_serial();
+    let files: Vec<_> = (0..2).map(|i| parts.join(name(i))).collect();
+    let merged = dir.join("merged.h5");
+    let e = merge_runs(&merged, &files, &MergeOptions::default(), &|_, _| {})
+        .unwrap_err()
+        .to_string();
+    for part in [
+        "shard-0-of-2.h5",
+        "generator version 1 (not recorded)",
+        "this build writes version 2",
+        "new file",
+    ] {
+        assert!(e.contains(part), "`{part}` not in: {e}");
+    }
+    assert!(!merged.exists() && !stochvib::store::tmp_path(&merged).exists());
+    let scenario = common::root().join("data/quarter-car-bump-stops.toml");
+    let simulate = |out: &Path| {
+        let args = [
+            "simulate",
+            scenario.to_str().unwrap(),
+            "--realizations",
+            "2",
+            "--shard-size",
+            "1",
+            "--duration",
+            "0.2",
+            "--seed",
+            "7",
+            "--shard",
+            "0",
+            "--of",
+            "2",
+            "-o",
+            out.to_str().unwrap(),
+        ]
+        .map(String::from);
+        common::cli_fails(1, &args.iter().map(String::as_str).collect::<Vec<_>>(), &dir)
+    };
+    let version = "generator version (1 (not recorded: written before versions were recorded) against 2 (";
+    std::fs::copy(fixture.join(name(0)), stochvib::store::tmp_path(&cut.join(name(0)))).unwrap();
+    let e = simulate(&cut);
+    assert!(
+        e.contains("an interrupted run with 1 completed shards") && e.contains(version),
+        "{e}"
+    );
+    assert!(!cut.join(name(0)).exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

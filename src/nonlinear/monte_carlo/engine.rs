@@ -34,7 +34,7 @@ pub(crate) struct NlRealization {
 }
 
 /// Realizations the spectral route steps in lockstep (see [`realize_range`]).
-pub(crate) const LANES: usize = 4;
+pub(crate) const LANES: usize = 8;
 
 /// A path of the linear flow for L realizations in lockstep: how to read the inputs and outputs from its
 /// state and advance it (every quantity one [`Lanes`] value per state variable, input or output).

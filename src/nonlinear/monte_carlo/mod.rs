@@ -32,7 +32,7 @@ mod references;
 pub mod stats;
 mod step;
 
-pub use plan::BURN_IN_DECAY;
+pub use plan::{welch_segment, BURN_IN_DECAY};
 pub use step::{suggest_nonlinear_step, RECORD_BURN_INS};
 
 use crate::error::{Error, Result};
@@ -43,6 +43,45 @@ use crate::store::{CreateOptions, OutputStatistics, Provenance, RunMetadata, Run
 use engine::{realize_range, NlRealization};
 use plan::NlPlan;
 use std::path::{Path, PathBuf};
+
+/// Version of route 2's generator: how a seed becomes realizations and statistics. Version 2 takes burn-in
+/// plus record and the Welch segment of 2^a·3^b·5^c steps ([`welch_segment`]); version 1 (files that record
+/// no version) took them as computed, often with a large prime factor. A seed's statistics are
+/// bit-identical across threads, shards, resume and merge within a version and differ between versions, so
+/// a run file of another version is never resumed or merged ([`refuse_other_version`]).
+pub const GENERATOR_VERSION: u32 = 2;
+
+/// The text of the run file's identifying provenance part [`crate::store::GENERATOR_VERSION`].
+fn version_text() -> String {
+    format!("{GENERATOR_VERSION} (nonlinear route 2: burn-in plus record and Welch segments of 2^a·3^b·5^c steps)")
+}
+
+/// Refuses a nonlinear run file `path` (metadata `meta`) written by another version of route 2's generator
+/// (a linear run passes): its realizations cannot be continued or merged bit-identically by this build.
+///
+/// # Errors
+/// [`Error::Hdf5`] naming the file, both versions and what to do.
+pub fn refuse_other_version(meta: &RunMetadata, path: &Path) -> Result<()> {
+    let text = |name: &str| meta.provenance.iter().find(|p| p.name == name).map(|p| p.text.clone());
+    if text("nonlinear").is_none() {
+        return Ok(());
+    }
+    let found = text(crate::store::GENERATOR_VERSION);
+    if found.as_deref() == Some(version_text().as_str()) {
+        return Ok(());
+    }
+    Err(Error::Hdf5 {
+        path: path.to_path_buf(),
+        reason: format!(
+            "is a nonlinear run of generator version {}, this build writes version {}: the versions turn a seed \
+             into different realizations (version 2 changed the burn-in and Welch lengths to 2^a·3^b·5^c \
+             steps), so its shards are never resumed or merged with this build; run it again into a new file, \
+             or merge it with the stochvib build that wrote it",
+            found.unwrap_or_else(|| "1 (not recorded)".into()),
+            version_text()
+        ),
+    })
+}
 
 /// The subject of a route-2 run.
 #[derive(Debug, Clone)]
@@ -202,6 +241,7 @@ fn metadata(
         acc.push((stats::histogram_name(&o.signal.name), plan::HISTOGRAM_BINS + 2));
     }
     let mut provenance = input.provenance.clone();
+    provenance.push(Provenance::identity(crate::store::GENERATOR_VERSION, version_text()));
     provenance.push(Provenance::identity(
         "nonlinear",
         format!(

@@ -180,15 +180,14 @@ pub(crate) fn plan(input: &NonlinearRunInput, opts: &NonlinearRunOptions) -> Res
     if !(burn.is_finite() && burn >= 0.0) {
         return Err(Error::invalid("burn-in", burn, "must be finite and >= 0"));
     }
-    let mut n_burn = (burn / h).ceil() as usize;
-    n_burn += (n_burn + n) % 2;
+    let n_burn = synthesis_length((burn / h).ceil() as usize + n) - n;
     notes.push(format!(
-        "burn-in {:.4} s ({n_burn} steps){}",
+        "burn-in {:.4} s ({n_burn} steps){}, rounded up so that burn-in and record are 2^a·3^b·5^c steps",
         n_burn as f64 * h,
         if opts.burn_in_s.is_some() {
-            " as given".to_string()
+            " at least as given".to_string()
         } else {
-            format!(" = {BURN_IN_DECAY:.2}/σ_min, σ_min the slowest decay rate of the Gaussian equivalent")
+            format!(" ≥ {BURN_IN_DECAY:.2}/σ_min, σ_min the slowest decay rate of the Gaussian equivalent")
         }
     ));
     let lin = model.linear();
@@ -219,7 +218,7 @@ pub(crate) fn plan(input: &NonlinearRunInput, opts: &NonlinearRunOptions) -> Res
             "no output can be simulated",
         ));
     }
-    let m_welch = ((n / 8) & !1).clamp(4, 1024);
+    let m_welch = welch_segment(n);
     let r = opts.run.realizations;
     Ok(NlPlan {
         route,
@@ -244,6 +243,40 @@ pub(crate) fn plan(input: &NonlinearRunInput, opts: &NonlinearRunOptions) -> Res
         n_coords: lin.n_coords(),
         n_base: lin.n_base(),
     })
+}
+
+/// Whether n = 2^a·3^b·5^c (n ≥ 1): a length rustfft transforms by its radix-2/3/5 butterflies, not by
+/// Rader's or Bluestein's algorithm for a large prime factor.
+pub(crate) fn is_5_smooth(n: usize) -> bool {
+    let mut n = n;
+    for p in [2, 3, 5] {
+        while n > 0 && n.is_multiple_of(p) {
+            n /= p;
+        }
+    }
+    n == 1
+}
+
+/// The steps of burn-in plus record (the synthesis length of the spectral route's inputs): the smallest
+/// even 2^a·3^b·5^c ≥ `n` (since version 2 of the route, [`super::GENERATOR_VERSION`]).
+pub(crate) fn synthesis_length(n: usize) -> usize {
+    let mut m = n.max(2);
+    m += m % 2;
+    while !is_5_smooth(m) {
+        m += 2;
+    }
+    m
+}
+
+/// The Welch segment of a route-2 record of `n` samples: the largest even 2^a·3^b·5^c ≤ min(1024, n/8)
+/// (at least 4), so that a record holds at least about 15 half-overlapping segments and the segment's FFT
+/// has only the factors 2, 3, 5 (since version 2 of the route, [`super::GENERATOR_VERSION`]).
+pub fn welch_segment(n: usize) -> usize {
+    let mut m = ((n / 8) & !1).clamp(4, 1024);
+    while !is_5_smooth(m) {
+        m -= 2;
+    }
+    m
 }
 
 /// The linear part's static equilibrium C q = K_u μ_u + F μ_f under the input means, and the means.
@@ -532,4 +565,46 @@ fn finish_hold(
         },
         generator,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Brute force: the factors of n below 7 only (an independent enumeration of 2^a 3^b 5^c ≤ 10⁵).
+    fn smooth_numbers() -> Vec<usize> {
+        let mut v = Vec::new();
+        let mut p2 = 1;
+        while p2 <= 100_000 {
+            let mut p3 = p2;
+            while p3 <= 100_000 {
+                let mut p5 = p3;
+                while p5 <= 100_000 {
+                    v.push(p5);
+                    p5 *= 5;
+                }
+                p3 *= 3;
+            }
+            p2 *= 2;
+        }
+        v.sort_unstable();
+        v
+    }
+
+    /// The lengths are the nearest even 2^a·3^b·5^c above (synthesis) and below (Welch segment) at every n up
+    /// to 10⁵, and the benchmark's lengths of version 1 (9914 = 2·4957, 922 = 2·461, both through Rader's
+    /// algorithm) become 10000 = 2⁴5⁴ and 900 = 2²3²5².
+    #[test]
+    fn lengths_are_the_nearest_even_2_3_5_smooth_numbers() {
+        let even: Vec<usize> = smooth_numbers().into_iter().filter(|m| m % 2 == 0).collect();
+        for n in 1..90_000 {
+            let up = *even.iter().find(|&&m| m >= n).unwrap();
+            assert_eq!(synthesis_length(n), up, "n = {n}");
+            let cap = ((n / 8) & !1).clamp(4, 1024);
+            let down = *even.iter().rev().find(|&&m| m <= cap).unwrap();
+            assert_eq!(welch_segment(n), down, "n = {n}");
+        }
+        assert_eq!((synthesis_length(9914), welch_segment(7380)), (10_000, 900));
+        assert!(!is_5_smooth(0) && is_5_smooth(1) && !is_5_smooth(922) && !is_5_smooth(9914));
+    }
 }
