@@ -10,6 +10,8 @@
 #   SAMPLES=262144 bash benches/compare/scaling.sh   # samples per realization of the mc-* routes (2^16)
 #   BIN=target/debug/stochvib bash benches/compare/scaling.sh   # another build (default: release, built)
 #   ROUTES="sweep transient" bash benches/compare/scaling.sh    # some routes only
+#   PIN=1 bash benches/compare/scaling.sh            # "1 thread" = the whole process on one core (taskset):
+#                                                    # a writer thread beside the one worker no longer has a core
 #
 # Routes (sizes at SCALE = 1): sweep (stochvib sweep of 10^6 points to HDF5), mc-spectral, mc-exact,
 # mc-stream (stochvib simulate data/scraper-sprung-cab.toml, 200 realizations x 2^16 samples, the three routes),
@@ -71,8 +73,11 @@ cmd_of() {
 timed() {
     local threads="$1" route="$2" log="$out/$2-$1t"
     rm -f "$out/$route.h5" "$out/$route.h5.tmp"
+    # PIN=1: the 1-thread run is the whole process on one core (its writer threads too), not one rayon worker
+    local pin=()
+    if [ "${PIN:-0}" = 1 ] && [ "$threads" = 1 ]; then pin=(taskset -c 0); fi
     # shellcheck disable=SC2046
-    RAYON_NUM_THREADS="$threads" /usr/bin/time -f "%e %U %S %M" -o "$log.time" \
+    RAYON_NUM_THREADS="$threads" "${pin[@]}" /usr/bin/time -f "%e %U %S %M" -o "$log.time" \
         $(cmd_of "$route") >"$log.out" 2>"$log.err" || { echo "scaling.sh: $route failed:" >&2; cat "$log.err" >&2; exit 1; }
     awk '{ printf "%s %.2f %s\n", $1, $2 + $3, $4 }' "$log.time"
 }
@@ -86,7 +91,7 @@ calibrate() {
 }
 
 cpu="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
-echo "scaling.sh: $(nproc) cores, $cpu; load $(cut -d' ' -f1-3 /proc/loadavg); SCALE=$scale SAMPLES=$samples; \
+echo "scaling.sh: $(nproc) cores, $cpu; load $(cut -d' ' -f1-3 /proc/loadavg); SCALE=$scale SAMPLES=$samples PIN=${PIN:-0}; \
 files in $out" >&2
 read -r seq par < <(calibrate)
 echo "| route | size | wall 1 thread | wall 2 threads | 2 threads vs 1 | CPU 1 / 2 threads | peak RSS 1 / 2 threads | load |"

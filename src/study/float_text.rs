@@ -5,12 +5,13 @@
 //! # Formula
 //! For a finite x ≠ 0 with decimal exponent E (10^E ≤ |x| < 10^(E+1)) the digits are the integer
 //! d = round(|x|·10^(9−E)) ∈ [10⁹, 10¹⁰] (10¹⁰ carries into E + 1), rounded to nearest. The product
-//! q = |x|·10^(9−E) is formed with one or two correctly rounded operations by powers of ten that f64 holds
-//! exactly (10⁰…10²²), so q is within 2⁻⁵²·q < 2.3·10⁻⁶ of the exact product for q < 10¹⁰; where the
-//! fraction of q is within 2⁻¹⁶ of ½, or |x| is outside 10⁻³⁵…10⁵³, the digits are left to `core::fmt`'s
-//! exact formatting (Grisu with the Dragon4 fallback), which also breaks exact ties: the text is the same
-//! in every case (`float_text::tests::the_text_of_fixed_digits`), the fast path taken by all but about 1 in
-//! 30 000 numbers of a table's magnitudes.
+//! q = |x|·10^(9−E) is one multiplication by 10^(9−E) rounded to f64 (exact for 0 ≤ 9 − E ≤ 22): two
+//! correctly rounded steps, so q is within (2⁻⁵² + 2⁻¹⁰⁶)·q < 2.3·10⁻⁶ of the exact product for
+//! q < 10¹⁰; where the fraction of q is within 2⁻¹⁶ of ½, or |x| is outside 10⁻³⁵…10⁵³, the digits are
+//! left to `core::fmt`'s exact formatting (Grisu with the Dragon4 fallback), which also breaks exact ties:
+//! the text is the same in every case (`float_text::tests::the_text_of_fixed_digits`), the fast path taken
+//! by all but about 1 in 30 000 numbers of a table's magnitudes. The digits are cut into pairs by integer
+//! arithmetic and written from a table of the 100 pairs, straight into the string.
 
 use std::fmt::Write as _;
 
@@ -19,10 +20,16 @@ use std::fmt::Write as _;
 /// resolve (the JSON and HDF5 tables keep every f64 exactly), while a shortest round-trip text needs up to 17.
 pub(crate) const TABLE_DIGITS: usize = 10;
 
-/// Exact powers of ten in f64.
-const POW10: [f64; 23] = [
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20,
-    1e21, 1e22,
+/// The most a scaling exponent k = 9 − E may be in size (|x| within 10⁻³⁵…10⁵³).
+const K_MAX: i32 = 44;
+
+/// 10^k rounded to f64 (Rust's literals are correctly rounded), k = −44…44 at index k + 44.
+const POW10: [f64; 89] = [
+    1e-44, 1e-43, 1e-42, 1e-41, 1e-40, 1e-39, 1e-38, 1e-37, 1e-36, 1e-35, 1e-34, 1e-33, 1e-32, 1e-31, 1e-30, 1e-29,
+    1e-28, 1e-27, 1e-26, 1e-25, 1e-24, 1e-23, 1e-22, 1e-21, 1e-20, 1e-19, 1e-18, 1e-17, 1e-16, 1e-15, 1e-14, 1e-13,
+    1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7,
+    1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22, 1e23, 1e24, 1e25, 1e26,
+    1e27, 1e28, 1e29, 1e30, 1e31, 1e32, 1e33, 1e34, 1e35, 1e36, 1e37, 1e38, 1e39, 1e40, 1e41, 1e42, 1e43, 1e44,
 ];
 
 /// Appends `x` as `format!("{x:.9e}")` writes it ([`TABLE_DIGITS`] significant digits; see the module docs).
@@ -34,64 +41,48 @@ const POW10: [f64; 23] = [
 /// assert_eq!(s, "1.500000000e-3");
 /// ```
 pub(crate) fn push_fixed(s: &mut String, x: f64) {
-    let mut out = [0u8; 32];
-    let Some(len) = fixed_text(x, &mut out) else {
-        let _ = write!(s, "{x:.*e}", TABLE_DIGITS - 1);
-        return;
-    };
-    // SAFETY: the whole buffer (a fixed-size copy the compiler inlines, where a copy of `len` bytes
-    // would call memcpy) goes into the reserved capacity, and only its first `len` bytes, ASCII ('-', digits,
-    // '.', 'e') and so valid UTF-8, are made part of the string.
-    unsafe {
-        let v = s.as_mut_vec();
-        v.reserve(out.len());
-        let at = v.len();
-        std::ptr::copy_nonoverlapping(out.as_ptr(), v.as_mut_ptr().add(at), out.len());
-        v.set_len(at + len);
+    // SAFETY: the string grows by 32 zero bytes, the text is written over them and the string cut back to
+    // it; that text is ASCII ('-', digits, '.', 'e'), so the string stays valid UTF-8. The text goes
+    // straight into the string: a copy from a buffer on the stack stalls on reading back narrow stores.
+    let v = unsafe { s.as_mut_vec() };
+    let at = v.len();
+    v.extend_from_slice(&[0u8; 32]);
+    let out: &mut [u8; 32] = (&mut v[at..at + 32]).try_into().unwrap_or_else(|_| unreachable!());
+    match fixed_text(x, out) {
+        Some(len) => v.truncate(at + len),
+        None => {
+            v.truncate(at);
+            let _ = write!(s, "{x:.*e}", TABLE_DIGITS - 1);
+        }
     }
 }
 
-/// |x|·10^k with at most two correctly rounded operations by exact powers of ten (|k| ≤ 44).
+/// The decimal exponent E of a ≥ 2⁻¹⁰²² from its binary exponent (floor(e₂·log₁₀2) is E or E − 1,
+/// 78913/2¹⁸ ≈ log₁₀2) and one comparison with 10^(E+1) rounded, which can still be one too low or high next
+/// to a power of ten that f64 does not hold (the digits' range check in [`fixed_text`] mends that).
 #[inline]
-fn scale(a: f64, k: i32) -> f64 {
-    let (head, tail) = (k.signum() * k.abs().min(22), k.signum() * (k.abs() - 22).max(0));
-    let once = |v: f64, j: i32| {
-        if j >= 0 {
-            v * POW10[j as usize]
-        } else {
-            v / POW10[(-j) as usize]
-        }
-    };
-    once(once(a, head), tail)
+fn decimal_exponent(a: f64) -> i32 {
+    let e2 = ((a.to_bits() >> 52) as i32) - 1023;
+    let e10 = (e2 * 78_913) >> 18;
+    let above = POW10.get((e10 + 1 + K_MAX) as usize).is_some_and(|&p| a >= p);
+    e10 + i32::from(above)
 }
 
-/// The text of `{:.9e}` for x into `out` with its length, or None where `core::fmt` must decide (see the
-/// module docs): a rounding too close to a tie, |x| outside 10⁻³⁵…10⁵³, NaN and infinities.
-fn fixed_text(x: f64, out: &mut [u8; 32]) -> Option<usize> {
+/// The 10 significant digits of a > 0 as an integer in [10⁹, 10¹⁰) with the decimal exponent, or None where
+/// `core::fmt` must decide (see the module docs): a rounding too close to a tie, a outside 10⁻³⁵…10⁵³.
+#[inline]
+fn digits_of(a: f64) -> Option<(u64, i32)> {
     const LOW: f64 = 1e9;
     const HIGH: f64 = 1e10;
-    if !x.is_finite() {
-        return None;
-    }
-    let neg = usize::from(x.is_sign_negative());
-    out[0] = b'-';
-    if x == 0.0 {
-        out[neg..neg + 13].copy_from_slice(b"0.000000000e0");
-        return Some(neg + 13);
-    }
-    let a = x.abs();
-    // E from the binary exponent: floor(e₂·log₁₀2) is E or E − 1 (78913/2¹⁸ ≈ log₁₀2)
-    let e2 = ((a.to_bits() >> 52) as i32) - 1023;
-    let mut e10 = (e2 * 78_913) >> 18;
-    let mut digits = 0u64;
+    let mut e10 = decimal_exponent(a);
     for _ in 0..3 {
         let k = 9 - e10;
-        if !(-44..=44).contains(&k) {
+        if !(-K_MAX..=K_MAX).contains(&k) {
             return None;
         }
-        let q = scale(a, k);
+        let q = a * POW10[(k + K_MAX) as usize];
         // floor(q) for 0 < q < 2⁶³ by truncation (`f64::floor` is a libm call on baseline x86-64)
-        let whole = q as u64 as f64;
+        let whole = q as i64 as f64;
         let frac = q - whole;
         if (frac - 0.5).abs() <= 1.0 / 65_536.0 {
             return None;
@@ -101,27 +92,41 @@ fn fixed_text(x: f64, out: &mut [u8; 32]) -> Option<usize> {
             e10 -= 1;
         } else if d > HIGH {
             e10 += 1;
+        } else if d == HIGH {
+            return Some((1_000_000_000, e10 + 1));
         } else {
-            digits = d as u64;
-            break;
+            return Some((d as u64, e10));
         }
     }
-    if digits == 0 {
+    None
+}
+
+/// The text of `{:.9e}` for x into `out` with its length, or None where `core::fmt` must decide (see the
+/// module docs): a rounding too close to a tie, |x| outside 10⁻³⁵…10⁵³, NaN and infinities.
+#[inline]
+fn fixed_text(x: f64, out: &mut [u8; 32]) -> Option<usize> {
+    if !x.is_finite() {
         return None;
     }
-    if digits == HIGH as u64 {
-        digits /= 10;
-        e10 += 1;
+    let neg = usize::from(x.is_sign_negative());
+    out[0] = b'-';
+    if x == 0.0 {
+        out[neg..neg + 13].copy_from_slice(b"0.000000000e0");
+        return Some(neg + 13);
     }
-    // d.ddddddddd: the first digit, then four pairs and a last digit of the other nine
-    let rest = digits % 1_000_000_000;
-    out[neg] = b'0' + (digits / 1_000_000_000) as u8;
+    let (digits, e10) = digits_of(x.abs())?;
+    // d.ddddddddd: the first digit, then the other nine as four pairs and a last digit
+    let first = digits / 1_000_000_000;
+    let rest = (digits - first * 1_000_000_000) as u32;
+    let (eight, last) = (rest / 10, rest % 10);
+    let (high, low) = (eight / 10_000, eight % 10_000);
+    out[neg] = b'0' + first as u8;
     out[neg + 1] = b'.';
-    for (i, div) in [10_000_000, 100_000, 1000, 10].into_iter().enumerate() {
-        let pair = 2 * ((rest / div) % 100) as usize;
-        out[neg + 2 + 2 * i..neg + 4 + 2 * i].copy_from_slice(&PAIRS[pair..pair + 2]);
+    for (i, pair) in [high / 100, high % 100, low / 100, low % 100].into_iter().enumerate() {
+        let p = 2 * pair as usize;
+        out[neg + 2 + 2 * i..neg + 4 + 2 * i].copy_from_slice(&PAIRS[p..p + 2]);
     }
-    out[neg + 10] = b'0' + (rest % 10) as u8;
+    out[neg + 10] = b'0' + last as u8;
     out[neg + 11] = b'e';
     // the exponent: −35 ≤ E ≤ 53 here, at most two digits
     let mut len = neg + 12;

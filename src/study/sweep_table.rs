@@ -682,11 +682,12 @@ impl SweepResults {
             .iter()
             .map(|(_, vals)| vals.iter().map(|v| csv_field(v)).collect())
             .collect();
-        let outputs: Vec<(String, String)> = self
+        // `,output,unit,` of every output, and each point's `point,key values` once for all its lines
+        let outputs: Vec<String> = self
             .identity
             .outputs
             .iter()
-            .map(|(name, unit)| (csv_field(name), csv_field(unit)))
+            .map(|(name, unit)| format!(",{},{},", csv_field(name), csv_field(unit)))
             .collect();
         // rows formatted in blocks on all cores, joined in order (the same text as one pass)
         use rayon::prelude::*;
@@ -697,22 +698,21 @@ impl SweepResults {
             .map(|blk| {
                 let rows = blk * BLOCK..((blk + 1) * BLOCK).min(n_rows);
                 let mut s = String::with_capacity(rows.len() * n_out * 200);
+                let mut point = String::new();
                 for row in rows {
                     let p = self.points.start + row;
                     let err = self.error_of(p);
-                    for (j, (name, unit)) in outputs.iter().enumerate() {
+                    point.clear();
+                    super::float_text::push_int(&mut point, p);
+                    for (k, vals) in params.iter().enumerate() {
+                        point.push(',');
+                        point.push_str(&vals[self.value_index[row * nk + k]]);
+                    }
+                    for (j, output) in outputs.iter().enumerate() {
                         let v = &self.values[row * n_out + j];
-                        super::float_text::push_int(&mut s, p);
-                        for (k, vals) in params.iter().enumerate() {
-                            s.push(',');
-                            s.push_str(&vals[self.value_index[row * nk + k]]);
-                        }
                         let (lo, hi) = v.bounds(3.0).unzip();
-                        s.push(',');
-                        s.push_str(name);
-                        s.push(',');
-                        s.push_str(unit);
-                        s.push(',');
+                        s.push_str(&point);
+                        s.push_str(output);
                         s.push_str(if err.is_some() { "" } else { method_name(v.method) });
                         for x in [
                             v.mean,
