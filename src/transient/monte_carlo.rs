@@ -12,6 +12,7 @@ use crate::store::{
     RunWriter, Signal, SignalGroup,
 };
 use ndarray::Array2;
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// Options of a transient Monte Carlo run.
@@ -340,17 +341,21 @@ fn run_shard(
     };
     let maxima = source.realizations(range, opts.seed, &mut |block| {
         let per = block.stored.first().map_or(0, |v| v.len() / p.max(1));
-        for s in 0..per {
-            let at = block.first_stored + s;
-            for o in 0..p {
-                let values: Vec<f64> = block.stored.iter().map(|v| v[s * p + o]).collect();
-                let mean = values.iter().sum::<f64>() / rows as f64;
-                series[o][at] = mean;
-                series[o][k + at] = values.iter().map(|v| (v - mean) * (v - mean)).sum();
-                if opts.store_raw {
-                    for (r, v) in values.iter().enumerate() {
-                        raw[o][(r, at)] = *v;
-                    }
+        // the stored times of the block in parallel (each time's sums in realization order, as one thread)
+        let moments: Vec<(f64, f64)> = (0..per * p)
+            .into_par_iter()
+            .map(|c| {
+                let values = block.stored.iter().map(|v| v[c]);
+                let mean = values.clone().sum::<f64>() / rows as f64;
+                (mean, values.map(|v| (v - mean) * (v - mean)).sum())
+            })
+            .collect();
+        for (c, (mean, m2)) in moments.into_iter().enumerate() {
+            let (at, o) = (block.first_stored + c / p, c % p);
+            (series[o][at], series[o][k + at]) = (mean, m2);
+            if opts.store_raw {
+                for (r, v) in block.stored.iter().enumerate() {
+                    raw[o][(r, at)] = v[c];
                 }
             }
         }

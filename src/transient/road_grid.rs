@@ -42,6 +42,8 @@ pub struct RoadGridStatistics {
 pub(crate) struct Path {
     /// Road coordinate (from the grid's start) at every integration step.
     pub(crate) positions: Vec<f64>,
+    /// The speed v at every integration step, m/s (v(0) over the run-in).
+    pub(crate) speeds: Vec<f64>,
     /// The integration step index of every reported time.
     pub(crate) reported: Vec<usize>,
     /// Δt of the integration steps.
@@ -70,10 +72,13 @@ pub(crate) fn path(speed: &SpeedProfile, ss: &StateSpace, times: &[f64], substep
     let mut positions: Vec<f64> = (0..=run_steps).map(|k| k as f64 * v0 * dt).collect();
     let steps = (times.len() - 1) * substeps;
     positions.extend((1..=steps).map(|k| run_in + speed.distance(k as f64 * dt)));
+    let mut speeds = vec![v0; run_steps + 1];
+    speeds.extend((1..=steps).map(|k| speed.speed(k as f64 * dt)));
     let reported = (0..times.len()).map(|j| run_steps + j * substeps).collect();
     Ok((
         Path {
             positions,
+            speeds,
             reported,
             dt,
         },

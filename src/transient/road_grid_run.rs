@@ -20,7 +20,8 @@ use rayon::prelude::*;
 
 /// What a road-grid run is made of besides its options.
 pub struct RoadGridRunInput<'a> {
-    /// The vehicle: one input (the road elevation under the wheel), or one per wheel of `wheels`; no u̇ term.
+    /// The vehicle: one input (the road elevation under the wheel) without a u̇ term, or one per wheel of
+    /// `wheels` (a u̇ term reads the tracks' slopes).
     pub ss: &'a StateSpace,
     /// The wheels at positions or on two tracks ([`WheelRoad`]; its spectrum is `spectrum`'s), or `None`
     /// for one input.
@@ -85,7 +86,7 @@ impl ShardSource for GridPlan<'_> {
             GridRoad::Wheels(grid, road) => range
                 .into_par_iter()
                 .map_init(
-                    || (grid.scratch(), vec![vec![0.0; grid.len()]; grid.tracks()]),
+                    || (grid.scratch(), vec![vec![0.0; grid.len()]; grid.series()]),
                     |(scratch, h), i| {
                         grid.generate(&mut stream(seed, i as u64), scratch, h)?;
                         let (stored, max_y, max_abs) =
@@ -140,7 +141,7 @@ fn generator(plan: &GridPlan<'_>, run_in: f64) -> String {
 /// of [`super::run_transient`], so runs, shards and merges are handled alike.
 ///
 /// # Errors
-/// A temporal spectrum, several inputs (without `wheels`) or a u̇ term, v(0) = 0; wheels that do not match
+/// A temporal spectrum; several inputs or a u̇ term without `wheels`; v(0) = 0; wheels that do not match
 /// the inputs; Δx ≤ 0; a density not finite on the grid; an output index out of range; the errors of [`super::run_transient`] (options, resources, store).
 pub fn run_road_grid(
     input: &RoadGridRunInput<'_>,
@@ -167,7 +168,7 @@ pub fn run_road_grid(
     }
     let (path, run_in) = path(input.speed, input.ss, &times, opts.grid.store_every)?;
     let road = match input.wheels {
-        Some(w) => GridRoad::Wheels(wheels_grid(w, &path, input.dx)?, w.clone()),
+        Some(w) => GridRoad::Wheels(wheels_grid(input.ss, w, &path, input.dx)?, w.clone()),
         None => GridRoad::One(grid_generator(input.spectrum, &path, input.dx)?),
     };
     let plan = GridPlan {

@@ -38,21 +38,26 @@ pub struct WheelRoad {
 }
 
 /// The grid synthesis of a [`WheelRoad`]: the spectral generator of S_Ω and, for two tracks, the mixing
-/// (ρ_j, √(1 − ρ_j²)) of the right track at every bin j.
+/// (ρ_j, √(1 − ρ_j²)) of the right track at every bin j; with `slope`, each track's slope dh/dx as well.
 pub(crate) struct TrackGrid {
     generator: SpectralGenerator,
     mixing: Option<Vec<(Complex<f64>, Complex<f64>)>>,
+    slope: bool,
 }
 
+/// The working memory of [`TrackGrid::generate`]: the generator's, and two coefficient vectors.
+pub(crate) type TrackScratch = (SpectralScratch, Vec<Complex<f64>>, Vec<Complex<f64>>);
+
 impl TrackGrid {
-    /// The grid of step `dx` and `n` points (a power of two) of `road`.
+    /// The grid of step `dx` and `n` points (a power of two) of `road`, with the tracks' slopes when
+    /// `slope` (for a model whose outputs contain u̇).
     ///
     /// # Formula
     /// The two tracks' spatial cross-spectral matrix is S_Ω(Ω)[[1, ρ], [ρ, 1]] (`TwoTracks` at 1 m/s: its
     /// time is the road coordinate). With C = LLᴴ the coherence matrix, the left track's grid coefficients
     /// are c_L,j, the right track's ρ_j c_L,j + √(1 − ρ_j²) c_R,j (L's second row), c_L and c_R independent
     /// draws of the one-track generator: each track has the density S_Ω and their cross-density is ρS_Ω.
-    pub(crate) fn new(road: &WheelRoad, dx: f64, n: usize) -> Result<Self> {
+    pub(crate) fn new(road: &WheelRoad, dx: f64, n: usize, slope: bool) -> Result<Self> {
         let generator = SpectralGenerator::new(road.spectrum.as_ref(), dx, n, Amplitudes::Rayleigh)?;
         let mixing = match &road.coherence {
             None => None,
@@ -69,7 +74,11 @@ impl TrackGrid {
                 )
             }
         };
-        Ok(TrackGrid { generator, mixing })
+        Ok(TrackGrid {
+            generator,
+            mixing,
+            slope,
+        })
     }
 
     /// Number of tracks.
@@ -81,32 +90,44 @@ impl TrackGrid {
         }
     }
 
+    /// Series [`generate`](Self::generate) writes: the tracks, then (with slopes) their slopes.
+    pub(crate) fn series(&self) -> usize {
+        self.tracks() * (1 + usize::from(self.slope))
+    }
+
     /// Grid points per track.
     pub(crate) fn len(&self) -> usize {
         self.generator.len()
     }
 
     /// Fresh working memory.
-    pub(crate) fn scratch(&self) -> (SpectralScratch, Vec<Complex<f64>>) {
-        (
-            self.generator.scratch(),
-            vec![Complex::new(0.0, 0.0); self.len() / 2 + 1],
-        )
+    pub(crate) fn scratch(&self) -> TrackScratch {
+        let bins = vec![Complex::new(0.0, 0.0); self.len() / 2 + 1];
+        (self.generator.scratch(), bins.clone(), bins)
     }
 
-    /// One realization of the tracks into `h` (one vector of `len()` points per track), drawing from `rng`:
-    /// the left track's coefficients, then (two tracks) the right track's innovations.
+    /// One realization of the tracks into `h` (one vector of `len()` points per series of
+    /// [`series`](Self::series)), drawing from `rng`: the left track's coefficients, then (two tracks) the
+    /// right track's innovations. The slopes use the same coefficients.
+    ///
+    /// # Formula
+    /// The grid road is h(x) = Σ_j c_j e^{iΩ_j x} (the generator's inverse FFT, Ω_j = jΔΩ), so its slope
+    /// is exactly dh/dx = Σ_j iΩ_j c_j e^{iΩ_j x}: every bin multiplied by iΩ_j, one more inverse FFT per
+    /// track (the Nyquist bin, whose sine vanishes on the grid, gives 0).
     pub(crate) fn generate(
         &self,
         rng: &mut Xoshiro256PlusPlus,
-        scratch: &mut (SpectralScratch, Vec<Complex<f64>>),
+        scratch: &mut TrackScratch,
         h: &mut [Vec<f64>],
     ) -> Result<()> {
-        let Some(mix) = &self.mixing else {
-            return self.generator.generate(rng, &mut scratch.0, &mut h[0]);
-        };
-        let (sc, left) = scratch;
+        let (sc, left, keep) = scratch;
         self.generator.draw(rng, sc);
+        let Some(mix) = &self.mixing else {
+            let Some((h0, slope)) = h.split_first_mut() else {
+                return Err(Error::invalid("tracks", 0, "one series per track and slope"));
+            };
+            return self.synthesize(sc, keep, h0, slope.first_mut());
+        };
         left.copy_from_slice(sc.coefficients());
         self.generator.draw(rng, sc);
         for ((c, l), (m0, m1)) in sc.coefficients_mut().iter_mut().zip(left.iter()).zip(mix) {
@@ -115,14 +136,44 @@ impl TrackGrid {
         let n = self.len();
         sc.coefficients_mut()[0].im = 0.0;
         sc.coefficients_mut()[n / 2].im = 0.0;
-        self.generator.synthesize(sc, &mut h[1])?;
+        let (h0, h1, s0, s1) = match h {
+            [h0, h1] => (h0, h1, None, None),
+            [h0, h1, s0, s1] => (h0, h1, Some(s0), Some(s1)),
+            _ => return Err(Error::invalid("tracks", h.len(), "one series per track and slope")),
+        };
+        self.synthesize(sc, keep, h1, s1)?;
         sc.coefficients_mut().copy_from_slice(left);
-        self.generator.synthesize(sc, &mut h[0])
+        self.synthesize(sc, keep, h0, s0)
+    }
+
+    /// The track of the coefficients in `sc` into `h`, and its slope into `slope` when asked (`keep` holds
+    /// the coefficients meanwhile; every inverse FFT overwrites its input).
+    fn synthesize(
+        &self,
+        sc: &mut SpectralScratch,
+        keep: &mut [Complex<f64>],
+        h: &mut [f64],
+        slope: Option<&mut Vec<f64>>,
+    ) -> Result<()> {
+        if let (true, Some(slope)) = (self.slope, slope) {
+            keep.copy_from_slice(sc.coefficients());
+            let dw = self.generator.d_omega();
+            for (j, c) in sc.coefficients_mut().iter_mut().enumerate() {
+                *c *= Complex::new(0.0, j as f64 * dw);
+            }
+            let n = self.len();
+            sc.coefficients_mut()[n / 2] = Complex::new(0.0, 0.0);
+            self.generator.synthesize(sc, slope)?;
+            sc.coefficients_mut().copy_from_slice(keep);
+        }
+        self.generator.synthesize(sc, h)
     }
 }
 
 /// One realization of the vehicle on the tracks `h`: wheel j reads h_{c_j} at the path position plus
-/// ℓ_max − ℓ_j (the rearmost wheel starts at the grid's origin); outputs as [`super::road_grid`]'s.
+/// ℓ_max − ℓ_j (the rearmost wheel starts at the grid's origin); outputs as [`super::road_grid`]'s, plus
+/// E·u̇ with u̇_j = g_j·v(t)·h′_{c_j} when `ss` has a u̇ term (`h` then holds the tracks' slopes after the
+/// tracks, [`TrackGrid::series`]).
 pub(crate) fn wheels_realization(
     ss: &StateSpace,
     d: &FirstOrderHold,
@@ -142,6 +193,16 @@ pub(crate) fn wheels_realization(
                 .map(|w| w.gain * sample(&h[w.track], dx, p + back - w.position)),
         )
     };
+    let slopes = ss.e.iter().any(|v| *v != 0.0);
+    let tracks = h.len() / (1 + usize::from(slopes));
+    let rates = |p: f64, v: f64| {
+        DVector::from_iterator(
+            wheels.len(),
+            wheels
+                .iter()
+                .map(|w| w.gain * v * sample(&h[tracks + w.track], dx, p + back - w.position)),
+        )
+    };
     let mut x = DVector::zeros(n);
     let mut u0 = inputs(path.positions[0]);
     let mut next = path.reported.iter().peekable();
@@ -149,13 +210,17 @@ pub(crate) fn wheels_realization(
     let (mut max_y, mut max_abs) = (vec![f64::NEG_INFINITY; rows.len()], vec![0.0_f64; rows.len()]);
     for (k, &p) in path.positions.iter().enumerate() {
         let u = inputs(p);
+        let du = slopes.then(|| rates(p, path.speeds[k]));
         if k > 0 {
             x = &d.phi * &x + &d.gamma0 * &u0 + &d.gamma1 * &u;
         }
         if k >= path.reported[0] {
             let is_reported = next.peek() == Some(&&k);
             for (o, &i) in rows.iter().enumerate() {
-                let y = (ss.c.row(i) * &x)[0] + (ss.d.row(i) * &u)[0];
+                let mut y = (ss.c.row(i) * &x)[0] + (ss.d.row(i) * &u)[0];
+                if let Some(du) = &du {
+                    y += (ss.e.row(i) * du)[0];
+                }
                 max_y[o] = max_y[o].max(y);
                 max_abs[o] = max_abs[o].max(y.abs());
                 if is_reported {
@@ -171,7 +236,7 @@ pub(crate) fn wheels_realization(
     (stored, max_y, max_abs)
 }
 
-/// Refuses what the wheels' grid cannot take: a temporal spectrum, a u̇ term, a wheel per input missing,
+/// Refuses what the wheels' grid cannot take: a temporal spectrum, a wheel per input missing,
 /// a track other than 0 (one track) or 0/1 (two), a negative or non-finite position, v(0) = 0.
 pub(crate) fn check_wheels(ss: &StateSpace, road: &WheelRoad, speed: &SpeedProfile) -> Result<()> {
     let refuse = |reason: String| Error::NotApplicable {
@@ -180,9 +245,6 @@ pub(crate) fn check_wheels(ss: &StateSpace, road: &WheelRoad, speed: &SpeedProfi
     };
     if road.spectrum.domain() != Domain::Spatial {
         return Err(refuse("it takes a road (spatial) spectrum".into()));
-    }
-    if ss.e.iter().any(|v| *v != 0.0) {
-        return Err(refuse("a model with a u̇ term: the road slope is not generated".into()));
     }
     if road.wheels.len() != ss.b.ncols() {
         return Err(refuse(format!(
@@ -212,12 +274,13 @@ pub(crate) fn check_wheels(ss: &StateSpace, road: &WheelRoad, speed: &SpeedProfi
     Ok(())
 }
 
-/// The track grid of a path: a power of two of points of step Δx, longer than the path and the wheelbase.
-pub(crate) fn wheels_grid(road: &WheelRoad, path: &Path, dx: f64) -> Result<TrackGrid> {
+/// The track grid of a path: a power of two of points of step Δx, longer than the path and the wheelbase;
+/// with the tracks' slopes when `ss` has a u̇ term.
+pub(crate) fn wheels_grid(ss: &StateSpace, road: &WheelRoad, path: &Path, dx: f64) -> Result<TrackGrid> {
     let back = road.wheels.iter().map(|w| w.position).fold(0.0, f64::max);
     let length = path.positions.iter().copied().fold(0.0, f64::max) + back + 2.0 * dx;
     let n = ((length / dx).ceil() as usize).next_power_of_two().max(2);
-    TrackGrid::new(road, dx, n)
+    TrackGrid::new(road, dx, n, ss.e.iter().any(|v| *v != 0.0))
 }
 
 /// Ensemble mean and variance of every output of `ss` (its inputs fed by the wheels of `road`) at `times`
@@ -229,7 +292,7 @@ pub(crate) fn wheels_grid(road: &WheelRoad, path: &Path, dx: f64) -> Result<Trac
 /// wheelbase delay is the distance ℓ_j on the road, whatever v(t) does.
 ///
 /// # Errors
-/// The refusals of `check_wheels` (a temporal spectrum, a u̇ term, wheels that do not match the inputs, a
+/// The refusals of `check_wheels` (a temporal spectrum, wheels that do not match the inputs, a
 /// bad track or position, v(0) = 0); a density not finite on the grid; non-uniform times; Δx ≤ 0; R < 2.
 pub fn road_wheels_monte_carlo(
     ss: &StateSpace,
@@ -247,11 +310,11 @@ pub fn road_wheels_monte_carlo(
         ));
     }
     let (path, run_in) = path(speed, ss, times, opts.substeps)?;
-    let grid = wheels_grid(road, &path, opts.dx)?;
+    let grid = wheels_grid(ss, road, &path, opts.dx)?;
     let d = foh(&ss.a, &ss.b, path.dt)?;
     let rows: Vec<usize> = (0..ss.c.nrows()).collect();
     let mut scratch = grid.scratch();
-    let mut h = vec![vec![0.0; grid.len()]; grid.tracks()];
+    let mut h = vec![vec![0.0; grid.len()]; grid.series()];
     accumulate(times, rows.len(), opts.realizations, run_in, |i| {
         grid.generate(&mut stream(opts.seed, i as u64), &mut scratch, &mut h)?;
         Ok(wheels_realization(ss, &d, &h, opts.dx, &path, &road.wheels, &rows).0)

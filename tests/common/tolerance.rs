@@ -303,6 +303,12 @@ pub const ADAPTIVE_ROUTE: f64 = 1e-7;
 /// variance reports O(0.1) there.
 pub const ERROR_ESTIMATE_FROM_REST: f64 = 1e-4;
 
+/// A variance that is zero by a cancellation (the roll of a symmetric body on one track) as the exact route
+/// computes it, as a σ relative to the σ the same state has without the cancellation: the variance is a sum
+/// of terms of that size that cancel, with a rounding error of a few ε of them, so σ/σ_scale ≈ √(few ε)
+/// ≈ 10⁻⁷ at most; 10⁻⁶ leaves a factor of ten (a real coupling of the state would give O(1)).
+pub const ZERO_BY_CANCELLATION: f64 = 1e-6;
+
 /// Coulomb friction with a weak spring against the exact Laplace law of its spring-free limit (σ_v and the
 /// kurtosis 6, `route2_coulomb_friction_matches_the_spring_free_laplace_law`): the spring's slow force
 /// ω²x biases the velocity's law by α = ω²x/F_c, which raises σ_v by 2.5E[α²] and the kurtosis by

@@ -6,7 +6,7 @@
 use crate::common;
 use crate::common::rel;
 use crate::common::tolerance::{
-    ADAPTIVE_ROUTE, ERROR_ESTIMATE_FROM_REST, EXACT_TRANSITIONS, PRINTED_8_DIGITS, QUADRATURE,
+    ADAPTIVE_ROUTE, ERROR_ESTIMATE_FROM_REST, EXACT_TRANSITIONS, PRINTED_8_DIGITS, QUADRATURE, ZERO_BY_CANCELLATION,
 };
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
@@ -374,5 +374,78 @@ fn stationary_input_through_the_transient_path() {
                 "{name}"
             ),
         }
+    }
+}
+
+/// A state of zero variance (the roll of a symmetric body whose two wheels read one track with gains
+/// (1, 1), `common::two_wheels`: the two wheels' terms of the roll cancel, so its computed variance is
+/// rounding noise) under a time-varying input: the car accelerates on a rational road (spatial exponential,
+/// D = 1 cm², α = 0.2 1/m) from 5 to 15 m/s at 2 m/s², then holds 15 m/s to t = 20 s. The relative error
+/// control cannot step on it (refused after 2·10⁶ steps at t ≈ 10⁻¹⁰ s). What the test asks once it can,
+/// started from rest and stationary: the route completes in few steps,
+/// the roll σ stays at rounding level (below 10⁻⁶ of the roll σ the same run gives with gains (1, −1)), and
+/// after 15 s at constant speed (the slowest mode, the bounce, decays as e^{−ζωt} with ζω = 2.5 1/s) the
+/// bounce σ is the stationary σ at 15 m/s of `analyze_output` (Lyapunov and quadrature of the output
+/// density, an independent method). Open: the route still stalls here (refused after 2·10⁶ steps at
+/// t ≈ 3·10⁻¹¹ s); a rounding floor from Σ_j |Φ_ij|√s_j did not help (for the short steps Φ ≈ I, and the
+/// roll's couplings to the driven states are themselves zero), so the test is ignored until the error
+/// control is fixed.
+#[test]
+#[ignore = "open: the exact route's relative error control stalls on a state of zero variance"]
+fn a_state_of_zero_variance_does_not_stall_the_error_control() {
+    use std::path::Path;
+    let road = r#"{ kind = "exponential", domain = "spatial", variance = "1 cm^2", alpha = "0.2 1/m" }"#;
+    let input = format!("[input]\nspectrum = {road}\nspeed = \"15 m/s\"\n");
+    let sc = stochvib::scenario::parse_scenario(
+        &crate::common::two_wheels("", "[1, 1]", &input),
+        Path::new("t.toml"),
+        &crate::common::root().join("spectra"),
+    )
+    .unwrap();
+    let model = sc.model.system.as_ref();
+    let (bounce, roll) = (
+        model.output_index("bounce").unwrap(),
+        model.output_index("roll").unwrap(),
+    );
+    let ss = model.state_space().unwrap().clone();
+    let speed = SpeedProfile::constant_acceleration(5.0, 15.0, 2.0, 0.0).unwrap();
+    let spectrum = Exponential::new(1e-4, 0.2, Domain::Spatial).unwrap();
+    let sys = |gains: Vec<f64>| {
+        let input = TransientInput {
+            model: input_model(&spectrum, Some(&speed)).unwrap(),
+            envelope: Envelope::unit(),
+            mean: 0.0,
+            gains,
+        };
+        TimeVaryingSystem::new(
+            Arc::new(FixedSystem::new(ss.clone(), None, "two wheels").unwrap()),
+            input,
+        )
+        .unwrap()
+    };
+    let (same, opposite) = (sys(vec![1.0, 1.0]), sys(vec![1.0, -1.0]));
+    let times: Vec<f64> = (0..=40).map(|k| 0.5 * k as f64).collect();
+    let sigma = analyze_output(model, &sc.excitation, bounce).unwrap().sigma.unwrap();
+    for start in [Start::Rest, Start::Stationary] {
+        let sol = solve(&same, &start, &times, &ExactOptions::default()).unwrap();
+        let scale = solve(&opposite, &start, &times, &ExactOptions::default()).unwrap();
+        assert!(sol.report.steps < 10_000, "{start:?}: {:?}", sol.report);
+        assert!(
+            sol.report.max_error_estimate < ERROR_ESTIMATE_FROM_REST,
+            "{start:?}: {:?}",
+            sol.report
+        );
+        for (k, t) in times.iter().enumerate().skip(1) {
+            let (r, s) = (sol.outputs[roll].sigma[k], scale.outputs[roll].sigma[k]);
+            assert!(
+                r <= ZERO_BY_CANCELLATION * s,
+                "{start:?}: roll σ {r} at {t} s against {s}"
+            );
+        }
+        let end = sol.outputs[bounce].sigma[40];
+        assert!(
+            rel(end, sigma) < QUADRATURE,
+            "{start:?}: bounce σ {end} against {sigma}"
+        );
     }
 }
