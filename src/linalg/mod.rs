@@ -7,7 +7,6 @@
 //! * [`expm`](mod@expm) — the matrix exponential with overflow and shape checks.
 //! * [`transfer`] — numerator and denominator of a state-space transfer function in a frequency-scaled
 //!   variable (stiff systems keep their digits).
-//! * [`lanes`] — arithmetic on lane arrays (one realization per lane) as explicit SIMD vectors.
 //! * [`vmath`] — vectorised `exp` and `ln` with run-time CPU dispatch (AVX-512, AVX2, SSE2), for grids.
 //! * [`poly`] — real polynomials with ascending coefficients: evaluation, products, roots, the Hurwitz
 //!   test and spectral factorisation of non-negative polynomials in ω².
@@ -17,7 +16,6 @@
 
 pub mod expm;
 pub mod integral_table;
-pub mod lanes;
 pub mod lyapunov;
 pub mod poly;
 pub mod transfer;

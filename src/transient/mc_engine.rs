@@ -4,7 +4,7 @@
 
 use super::system::{Frozen, Start, TimeVaryingSystem};
 use crate::error::{Error, Result};
-use crate::linalg::lanes::{run_lanes, Avx2, Avx512, LaneMath, LaneTask};
+use crate::linalg::vmath;
 use crate::simulate::lane_normals::{LaneNormals, StreamRng};
 use crate::simulate::{covariance_factor, van_loan};
 use nalgebra::{DMatrix, DVector};
@@ -320,24 +320,19 @@ struct Block<'b, 'a> {
 
 impl Block<'_, '_> {
     /// The L realizations `lanes` advanced over the block in lockstep; their stored outputs, in order.
-    fn lockstep<const L: usize>(&self, lanes: &mut [RealizationState; L]) -> Vec<Vec<f64>>
-    where
-        Avx512: LaneMath<L>,
-        Avx2: LaneMath<L>,
-    {
+    fn lockstep<const L: usize>(&self, lanes: &mut [RealizationState; L]) -> Vec<Vec<f64>> {
         let mut task = Lockstep {
             block: self,
             lanes,
             out: vec![Vec::new(); L],
         };
-        run_lanes(&mut task);
+        vmath::run(&mut task);
         task.out
     }
 }
 
 /// L realizations advanced over a block: each state variable, noise value and output one `[f64; L]` (one
-/// lane per realization), its multiply-adds explicit SIMD vectors of the widest instruction set
-/// ([`run_lanes`]: the same operations in the same order, so the same bits). Every lane draws its
+/// lane per realization), compiled for the widest instruction set by [`vmath::run`]. Every lane draws its
 /// normals from its own stream in the order of a lone realization (n per step), all lanes at once
 /// ([`LaneNormals`]: the bits of `rand_distr`'s `StandardNormal`).
 struct Lockstep<'t, 'b, 'a, const L: usize> {
@@ -346,9 +341,9 @@ struct Lockstep<'t, 'b, 'a, const L: usize> {
     out: Vec<Vec<f64>>,
 }
 
-impl<const L: usize> LaneTask<L> for Lockstep<'_, '_, '_, L> {
+impl<const L: usize> vmath::Task for Lockstep<'_, '_, '_, L> {
     #[inline(always)]
-    fn run<M: LaneMath<L>>(&mut self) {
+    fn run(&mut self) {
         let b = self.block;
         let (n, p, k) = (b.plan.n, b.plan.outputs.len(), b.plan.grid.store_every);
         let mut z: Vec<[f64; L]> = (0..n).map(|c| std::array::from_fn(|l| self.lanes[l].z[c])).collect();
@@ -363,16 +358,16 @@ impl<const L: usize> LaneTask<L> for Lockstep<'_, '_, '_, L> {
         let mut eps = vec![[0.0; L]; n];
         let mut normals = LaneNormals::new(std::array::from_fn(|l| self.lanes[l].rng));
         if b.j0 == 0 {
-            observe::<M, L>(&b.maps[0], &z, &mut y, &mut max_y, &mut max_abs);
+            observe(&b.maps[0], &z, &mut y, &mut max_y, &mut max_abs);
             self.keep(&y);
         }
         for j in b.j0..b.j1 {
             for e in &mut eps {
                 *e = normals.draw();
             }
-            step::<M, L>(&b.steps[j - b.j0], &z, &eps, &mut tmp);
+            step(&b.steps[j - b.j0], &z, &eps, &mut tmp);
             std::mem::swap(&mut z, &mut tmp);
-            observe::<M, L>(&b.maps[j + 1 - b.j0], &z, &mut y, &mut max_y, &mut max_abs);
+            observe(&b.maps[j + 1 - b.j0], &z, &mut y, &mut max_y, &mut max_abs);
             if (j + 1) % k == 0 {
                 self.keep(&y);
             }
@@ -399,18 +394,18 @@ impl<const L: usize> Lockstep<'_, '_, '_, L> {
 /// One step of every lane: z' = Φz + Γ + Lε (per lane: Γ_r, then the Φ terms, then the L terms, in column
 /// order).
 #[inline(always)]
-fn step<M: LaneMath<L>, const L: usize>(d: &StepDisc, z: &[[f64; L]], eps: &[[f64; L]], out: &mut [[f64; L]]) {
+fn step<const L: usize>(d: &StepDisc, z: &[[f64; L]], eps: &[[f64; L]], out: &mut [[f64; L]]) {
     let n = z.len();
     for (r, o) in out.iter_mut().enumerate() {
-        // a local accumulator (a register), stored once
-        let mut acc = M::splat(d.gamma[r]);
+        // a local accumulator (registers, one vector), stored once
+        let mut acc = [d.gamma[r]; L];
         for (a, zc) in d.phi[r * n..][..n].iter().zip(z) {
-            acc = M::madd(acc, *a, zc);
+            (0..L).for_each(|l| acc[l] += a * zc[l]);
         }
         for (a, ec) in d.l[r * n..][..n].iter().zip(eps) {
-            acc = M::madd(acc, *a, ec);
+            (0..L).for_each(|l| acc[l] += a * ec[l]);
         }
-        *o = M::store(acc);
+        *o = acc;
     }
 }
 
@@ -418,7 +413,7 @@ fn step<M: LaneMath<L>, const L: usize>(d: &StepDisc, z: &[[f64; L]], eps: &[[f6
 /// the running max y and max |y| updated.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // lanes: several arrays indexed by the lane
-fn observe<M: LaneMath<L>, const L: usize>(
+fn observe<const L: usize>(
     m: &OutputMap,
     z: &[[f64; L]],
     y: &mut [[f64; L]],
@@ -427,11 +422,10 @@ fn observe<M: LaneMath<L>, const L: usize>(
 ) {
     let n = z.len();
     for (o, yo) in y.iter_mut().enumerate() {
-        let mut acc = M::splat(-0.0);
+        let mut sum = [-0.0; L];
         for (h, zc) in m.h[o * n..][..n].iter().zip(z) {
-            acc = M::madd(acc, *h, zc);
+            (0..L).for_each(|l| sum[l] += h * zc[l]);
         }
-        let sum = M::store(acc);
         let (mut v, mut hi, mut hi_abs) = (*yo, max_y[o], max_abs[o]);
         for l in 0..L {
             v[l] = m.y0[o] + sum[l];
