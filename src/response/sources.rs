@@ -316,7 +316,7 @@ pub(crate) fn variance_exact(
             total.lambda4 = add(total.lambda4, part.lambda4.map(|v| v.max(0.0)));
         }
     }
-    negative.within_rounding_of(&scale)?;
+    negative.within_rounding_of(&scale, &total)?;
     total.checked("exact variance of the sources")
 }
 
@@ -341,19 +341,21 @@ impl PartSums {
     }
 
     /// Errors when a negative part exceeds [`PART_ROUNDING`] of `scale` (then the solve lost its accuracy,
-    /// as [`LyapunovMoments::checked`] says of a negative total).
-    fn within_rounding_of(&self, scale: &PartSums) -> Result<()> {
-        for k in 0..3 {
-            if self.0[k] > PART_ROUNDING * scale.0[k] {
+    /// as [`LyapunovMoments::checked`] says of a negative total), for each moment that `total` has (one that
+    /// another part makes divergent is an error of its own, whatever the rounding of the other parts).
+    fn within_rounding_of(&self, scale: &PartSums, total: &LyapunovMoments) -> Result<()> {
+        let finite = [true, total.lambda2.is_ok(), total.lambda4.is_ok()];
+        let moments = self.0.iter().zip(&scale.0).zip(finite).enumerate();
+        for (k, ((&negative, &scale), finite)) in moments {
+            if finite && negative > PART_ROUNDING * scale {
                 return Err(Error::Inaccurate {
                     method: "Lyapunov variance with delays".into(),
-                    value: -self.0[k],
+                    value: -negative,
                     reason: format!(
-                        "a part of moment λ{} came out negative ({:e}) beyond the rounding of the parts ({:e}): the \
-                         solve lost its accuracy on this system",
+                        "a part of moment λ{} came out negative ({:e}) beyond the rounding of the parts ({scale:e}): \
+                         the solve lost its accuracy on this system",
                         2 * k,
-                        -self.0[k],
-                        scale.0[k]
+                        -negative,
                     ),
                 });
             }
