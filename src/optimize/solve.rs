@@ -423,10 +423,15 @@ fn run_start(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {
         cobyla::RhoBeg::All(0.25),
         Some(tols),
     );
-    let (status, u) = match out {
+    let end = match out {
         Ok((st, u, _)) => (format!("{st:?}"), u),
         Err((st, u, _)) => (format!("{st:?}"), u),
     };
+    start_result(s, u0, before, end)
+}
+
+/// The result of a start from `u0` that ended at `u` with `status`, `before` the evaluations before it.
+fn start_result(s: &Scaled, u0: &[f64], before: usize, (status, u): (String, Vec<f64>)) -> StartResult {
     StartResult {
         start: s.x_of(u0),
         end: s.values(&u),
@@ -449,16 +454,11 @@ fn run_slsqp(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {
     };
     let bounds = vec![(0.0, 1.0); u0.len()];
     let out = slsqp::minimize(f, u0, &bounds, &cons, (), opts.max_evaluations, Some(tols));
-    let (status, u) = match out {
+    let end = match out {
         Ok((st, u, _)) => (format!("{st:?}"), u),
         Err((st, u, _)) => (format!("{st:?}"), u),
     };
-    StartResult {
-        start: s.x_of(u0),
-        end: s.values(&u),
-        evaluations: *s.evaluations.borrow() - before,
-        status,
-    }
+    start_result(s, u0, before, end)
 }
 
 /// SLSQP stops when the scaled objective changes by less than this fraction between iterations (a few
