@@ -267,36 +267,102 @@ fn stability_margin(a: &DMatrix<f64>) -> f64 {
 /// ```
 pub fn solve_continuous_lyapunov(a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
     check_pair(a, q)?;
+    BalancedLyapunov::new(a)?.solve(a, q)
+}
+
+/// [`solve_continuous_lyapunov`] for several right-hand sides with one A: A Xₖ + Xₖ Aᵀ + Qₖ = 0, the
+/// balancing and the Schur form of A computed once (the sensitivities of a Lyapunov solution solve with
+/// the same A as the solution itself, and their right-hand sides need the solution). Each Xₖ is the one
+/// [`solve_continuous_lyapunov`] gives.
+///
+/// # Examples
+/// ```
+/// use nalgebra::DMatrix;
+/// use stochvib::linalg::{solve_continuous_lyapunov, LyapunovSolver};
+/// let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, -0.2]);
+/// let q1 = DMatrix::from_row_slice(2, 2, &[0.0, 0.0, 0.0, 3.0]);
+/// let q2 = DMatrix::from_row_slice(2, 2, &[1.0, 0.5, 0.5, 2.0]);
+/// let solver = LyapunovSolver::new(&a).unwrap();
+/// assert_eq!(solver.solve(&q1).unwrap(), solve_continuous_lyapunov(&a, &q1).unwrap());
+/// assert_eq!(solver.solve(&q2).unwrap(), solve_continuous_lyapunov(&a, &q2).unwrap());
+/// ```
+#[derive(Debug)]
+pub struct LyapunovSolver {
+    a: DMatrix<f64>,
+    inner: BalancedLyapunov,
+}
+
+impl LyapunovSolver {
+    /// Balances `a` and computes its Schur form.
+    ///
+    /// # Errors
+    /// As [`solve_continuous_lyapunov`] for A (not square, not finite, not asymptotically stable).
+    pub fn new(a: &DMatrix<f64>) -> Result<Self> {
+        check_square("a", a)?;
+        Ok(LyapunovSolver {
+            a: a.clone(),
+            inner: BalancedLyapunov::new(a)?,
+        })
+    }
+
+    /// X of A X + X Aᵀ + Q = 0.
+    ///
+    /// # Errors
+    /// As [`solve_continuous_lyapunov`] for Q (shape, symmetry, finiteness).
+    pub fn solve(&self, q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+        check_pair(&self.a, q)?;
+        self.inner.solve(&self.a, q)
+    }
+}
+
+/// The balancing and Schur form of one A for [`solve_continuous_lyapunov`].
+#[derive(Debug)]
+struct BalancedLyapunov {
+    d: Vec<f64>,
+    schur: LyapunovSchur,
+}
+
+impl BalancedLyapunov {
     // Badly scaled models (positions in m next to momenta in kg m/s, filter poles at 1e3 rad/s) make the
     // backward-stable Bartels–Stewart solution inaccurate in its small entries. Balance A by a diagonal
     // similarity of powers of two (exact in floating point), solve, scale back, then refine once with the
     // residual: A E + E Aᵀ + R = 0, X ← X + E.
-    let d = balance_diagonal(a);
-    let n = a.nrows();
-    let ab = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
-    let scale_q = |m: &DMatrix<f64>| DMatrix::from_fn(n, n, |i, j| m[(i, j)] / (d[i] * d[j]));
-    let unscale = |m: &DMatrix<f64>| DMatrix::from_fn(n, n, |i, j| m[(i, j)] * d[i] * d[j]);
-    // The Schur form of the balanced A is computed once and reused by the refinement steps.
-    let schur = LyapunovSchur::new(&ab)?;
-    let mut x = unscale(&schur.solve(&scale_q(q))?);
-    let abs_a = a.abs();
-    let abs_q = q.abs();
-    for _ in 0..2 {
-        let r = a * &x + &x * a.transpose() + q;
-        let r = (&r + r.transpose()) * 0.5;
-        // Skip the refinement when every residual entry is at the rounding level of its own computation
-        // (|R| ≤ γ (|A||X| + |X||Aᵀ| + |Q|) entrywise, γ = (n + 2)·ε): a correction would be noise.
-        let ax = &abs_a * x.abs();
-        let gamma = (n + 2) as f64 * f64::EPSILON;
-        let at_rounding =
-            (0..n).all(|i| (0..n).all(|j| r[(i, j)].abs() <= gamma * (ax[(i, j)] + ax[(j, i)] + abs_q[(i, j)])));
-        if at_rounding {
-            break;
-        }
-        let e = unscale(&schur.solve(&scale_q(&r))?);
-        x += e;
+    fn new(a: &DMatrix<f64>) -> Result<Self> {
+        let d = balance_diagonal(a);
+        let n = a.nrows();
+        let ab = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
+        // The Schur form of the balanced A is computed once and reused by the refinement steps.
+        Ok(BalancedLyapunov {
+            schur: LyapunovSchur::new(&ab)?,
+            d,
+        })
     }
-    Ok((&x + x.transpose()) * 0.5)
+
+    /// X of A X + X Aᵀ + Q = 0 (`a` the matrix this was made of, `q` checked against it).
+    fn solve(&self, a: &DMatrix<f64>, q: &DMatrix<f64>) -> Result<DMatrix<f64>> {
+        let (d, schur, n) = (&self.d, &self.schur, a.nrows());
+        let scale_q = |m: &DMatrix<f64>| DMatrix::from_fn(n, n, |i, j| m[(i, j)] / (d[i] * d[j]));
+        let unscale = |m: &DMatrix<f64>| DMatrix::from_fn(n, n, |i, j| m[(i, j)] * d[i] * d[j]);
+        let mut x = unscale(&schur.solve(&scale_q(q))?);
+        let abs_a = a.abs();
+        let abs_q = q.abs();
+        for _ in 0..2 {
+            let r = a * &x + &x * a.transpose() + q;
+            let r = (&r + r.transpose()) * 0.5;
+            // Skip the refinement when every residual entry is at the rounding level of its own computation
+            // (|R| ≤ γ (|A||X| + |X||Aᵀ| + |Q|) entrywise, γ = (n + 2)·ε): a correction would be noise.
+            let ax = &abs_a * x.abs();
+            let gamma = (n + 2) as f64 * f64::EPSILON;
+            let at_rounding =
+                (0..n).all(|i| (0..n).all(|j| r[(i, j)].abs() <= gamma * (ax[(i, j)] + ax[(j, i)] + abs_q[(i, j)])));
+            if at_rounding {
+                break;
+            }
+            let e = unscale(&schur.solve(&scale_q(&r))?);
+            x += e;
+        }
+        Ok((&x + x.transpose()) * 0.5)
+    }
 }
 
 /// Osborne/Parlett–Reinsch balancing: diagonal D (powers of two) such that D⁻¹AD has rows and columns of
@@ -342,6 +408,7 @@ pub(crate) fn balance_diagonal(a: &DMatrix<f64>) -> Vec<f64> {
 }
 
 /// The real Schur form of a stable A, factored once for [`LyapunovSchur::solve`].
+#[derive(Debug)]
 struct LyapunovSchur {
     u: DMatrix<f64>,
     t: DMatrix<f64>,

@@ -25,6 +25,6 @@ pub use expm::expm;
 pub use integral_table::{h2_integral, integral_closed_form, integral_i_n};
 pub use lyapunov::{
     is_stable, solve_continuous_lyapunov, solve_continuous_lyapunov_dense, solve_discrete_lyapunov,
-    solve_discrete_lyapunov_dense, spectral_abscissa, spectral_radius,
+    solve_discrete_lyapunov_dense, spectral_abscissa, spectral_radius, LyapunovSolver,
 };
 pub use poly::{is_hurwitz, spectral_factor};

@@ -1,7 +1,9 @@
 //! `stochvib optimize`: the argument struct and its handler, which parse, call the library and print.
 
 use std::path::PathBuf;
-use stochvib::optimize::{pareto, solve, Constraint, Goal, Param, ParetoProblem, Problem, Quantity, SolveOptions};
+use stochvib::optimize::{
+    pareto, solve, Constraint, Goal, Method, Param, ParetoProblem, Problem, Quantity, SolveOptions,
+};
 use stochvib::scenario::load_scenario;
 
 /// `stochvib optimize SCENARIO --param KEY=LOW:HIGH … --minimize QUANTITY [--constraint …]`.
@@ -28,6 +30,10 @@ pub struct OptimizeArgs {
     /// "QUANTITY <= VALUE UNIT" or "QUANTITY >= VALUE UNIT", e.g. "3sigma(travel) <= 40 mm" (repeatable).
     #[arg(long = "constraint", value_name = "CONSTRAINT")]
     constraints: Vec<String>,
+    /// The search: auto (SLSQP with the analytic gradients where the problem has them, else COBYLA), slsqp
+    /// or cobyla.
+    #[arg(long, value_name = "METHOD", default_value = "auto")]
+    method: String,
     /// Number of starts (the centre of the box, then Halton points).
     #[arg(long, default_value_t = 4)]
     starts: usize,
@@ -81,6 +87,7 @@ pub fn optimize(a: OptimizeArgs) -> anyhow::Result<()> {
         .map(|c| Constraint::parse(c, &sc))
         .collect::<Result<Vec<_>, _>>()?;
     let opts = SolveOptions {
+        method: Method::parse(&a.method)?,
         starts: a.starts,
         max_evaluations: a.max_evaluations,
         max_hours: a.max_hours,

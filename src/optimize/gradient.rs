@@ -3,7 +3,7 @@
 
 use super::problem::{Goal, PointValues, Problem, Relation};
 use crate::error::Result;
-use crate::linalg::solve_continuous_lyapunov;
+use crate::linalg::LyapunovSolver;
 use crate::response::AugmentedSystem;
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
@@ -16,7 +16,8 @@ use serde::Serialize;
 /// F P + P Fᵀ + G Gᵀ = 0
 /// F dP + dP Fᵀ + (dF P + P dFᵀ + dG Gᵀ + G dGᵀ) = 0,    dD_r = 2 dh_r P h_rᵀ + h_r dP h_rᵀ
 /// ```
-/// (the derivative of the Lyapunov equation; one more Lyapunov solve per direction with the same F).
+/// (the derivative of the Lyapunov equation; one more Lyapunov solve per direction with the same F, whose
+/// Schur form is computed once, [`LyapunovSolver`]).
 ///
 /// # Errors
 /// The Lyapunov solver's (an unstable F).
@@ -38,7 +39,9 @@ pub fn variance_sensitivities(
     base: &AugmentedSystem,
     directions: &[AugmentedSystem],
 ) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
-    let p = solve_continuous_lyapunov(&base.a, &(&base.g * base.g.transpose()))?;
+    // one balancing and Schur form of F for P and every dP
+    let solver = LyapunovSolver::new(&base.a)?;
+    let p = solver.solve(&(&base.g * base.g.transpose()))?;
     let rows = base.h.nrows();
     let quad = |u: &DMatrix<f64>, m: &DMatrix<f64>, v: &DMatrix<f64>| (u * m * v.transpose())[(0, 0)];
     let variances = (0..rows)
@@ -52,7 +55,7 @@ pub fn variance_sensitivities(
         let fp = &d.a * &p;
         let gg = &d.g * base.g.transpose();
         let q = &fp + fp.transpose() + &gg + gg.transpose();
-        let dp = solve_continuous_lyapunov(&base.a, &q)?;
+        let dp = solver.solve(&q)?;
         derivatives.push(
             (0..rows)
                 .map(|r| {

@@ -1,6 +1,7 @@
 //! The optimisation problem: named scenario parameters with bounds, an objective and constraints, read
 //! from command-line text and checked against the scenario.
 
+use super::affine::AffineModel;
 use super::gradient::{variance_sensitivities, PointGradients};
 use super::quantity::{Quantity, QuantityKind};
 use crate::error::{Error, Result};
@@ -8,8 +9,10 @@ use crate::fields::Fields;
 use crate::models::ModelInstance;
 use crate::response::ExactEvaluator;
 use crate::scenario::{build_model, parse_scenario, BuiltModel, ModelContext, Scenario};
+use crate::system::{FrequencyResponse, StateSpace};
 use crate::units::parse_quantity;
 use serde::Serialize;
+use std::sync::Arc;
 
 /// A scenario key varied between bounds, e.g. `model.suspension_damping=200:5000 N*s/m`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -256,7 +259,7 @@ impl<'a> Problem<'a> {
             }
         }
         let fast = Fast::new(base, &params, &objective, &constraints);
-        let problem = Problem {
+        let mut problem = Problem {
             base,
             root,
             fast,
@@ -267,7 +270,48 @@ impl<'a> Problem<'a> {
         };
         let centre: Vec<f64> = problem.params.iter().map(|p| 0.5 * (p.low + p.high)).collect();
         problem.evaluate(&centre)?;
+        let affine = problem.fast.as_ref().and_then(|f| f.fit_affine(&problem, &centre));
+        if let Some(f) = problem.fast.as_mut() {
+            f.affine = affine;
+        }
         Ok(problem)
+    }
+
+    /// How a point is computed: `"affine model"` (the state space written from a base and slopes, see
+    /// `Fast::fit_affine`), `"model table"` (the model rebuilt from its substituted `[model]` table) or
+    /// `"scenario"` (the whole substituted scenario read).
+    pub fn path(&self) -> &'static str {
+        match &self.fast {
+            Some(f) if f.affine.is_some() => "affine model",
+            Some(_) => "model table",
+            None => "scenario",
+        }
+    }
+
+    /// Whether [`gradients`](Self::gradients) applies: only `model.*` keys vary, every quantity is a σ or
+    /// 3σ, and the input has an exact (Lyapunov or integral-table) route for the model.
+    pub fn has_gradients(&self) -> bool {
+        let sigma_like = |q: &Quantity| matches!(q.kind, QuantityKind::Sigma(_) | QuantityKind::ThreeSigma(_));
+        let exact = self.fast.as_ref().is_some_and(|f| {
+            let n = self.base.model.system.state_space().map(|s| s.n_states());
+            n.is_some() && f.evaluator.method(n) != crate::response::VarianceMethod::Quadrature
+        });
+        exact && sigma_like(&self.objective) && self.constraints.iter().all(|c| sigma_like(&c.quantity))
+    }
+
+    /// Every quantity of the problem at `x` from the model the scenario reader builds there (never the
+    /// affine model): what `stochvib analyze` of the substituted scenario reports. The answer of a search is
+    /// reported with these values.
+    ///
+    /// # Errors
+    /// As [`evaluate`](Self::evaluate).
+    pub fn evaluate_by_reader(&self, x: &[f64]) -> Result<PointValues> {
+        if let Some(fast) = &self.fast
+            && let Some(v) = fast.evaluate_by_reader(self, x)
+        {
+            return v.map_err(|e| self.name_error(x, e));
+        }
+        self.evaluate_scenario(x)
     }
 
     /// The scenario with the parameters set to `x` (SI).
@@ -297,6 +341,11 @@ impl<'a> Problem<'a> {
         {
             return v.map_err(|e| self.name_error(x, e));
         }
+        self.evaluate_scenario(x)
+    }
+
+    /// Every quantity at `x` from the whole substituted scenario.
+    fn evaluate_scenario(&self, x: &[f64]) -> Result<PointValues> {
         let sc = self.scenario_at(x)?;
         let all: Vec<&Quantity> = std::iter::once(&self.objective)
             .chain(self.constraints.iter().map(|c| &c.quantity))
@@ -335,6 +384,9 @@ impl<'a> Problem<'a> {
     }
 }
 
+/// A model's system, shared.
+type SystemRef = Arc<dyn FrequencyResponse>;
+
 /// The model-table path: the outputs of every quantity and the base excitation's evaluator.
 struct Fast {
     evaluator: ExactEvaluator,
@@ -342,6 +394,8 @@ struct Fast {
     slots: Vec<usize>,
     /// The output names evaluated.
     outputs: Vec<String>,
+    /// The model's state space as an affine function of the parameters, where it is one.
+    affine: Option<AffineModel>,
 }
 
 impl std::fmt::Debug for Fast {
@@ -367,13 +421,63 @@ impl Fast {
             evaluator: ExactEvaluator::new(&base.excitation).variances_only(),
             slots,
             outputs,
+            affine: None,
         })
+    }
+
+    /// The affine model of the problem (module `affine`) when the reader's models are affine in the
+    /// parameters over the box and the evaluator has an exact route: slopes from the models at the centre
+    /// and at each parameter's upper bound, checked at each lower bound and at the two corners of the box.
+    /// The reader accepts every one of these points, so every value of the box is one it accepts (each
+    /// key's valid values are an interval).
+    fn fit_affine(&self, pb: &Problem, centre: &[f64]) -> Option<AffineModel> {
+        let n = pb.base.model.system.state_space().map(|s| s.n_states());
+        if n.is_none() || self.evaluator.method(n) == crate::response::VarianceMethod::Quadrature {
+            return None;
+        }
+        let ss_at = |x: &[f64]| -> Option<StateSpace> { self.model_at(pb, x)?.ok()?.system.state_space().cloned() };
+        let base = ss_at(centre)?;
+        let mut up = Vec::with_capacity(centre.len());
+        let mut checks = Vec::with_capacity(centre.len() + 2);
+        for (k, p) in pb.params.iter().enumerate() {
+            let mut x = centre.to_vec();
+            x[k] = p.high;
+            up.push((p.high - centre[k], ss_at(&x)?));
+            x[k] = p.low;
+            checks.push((x.clone(), ss_at(&x)?));
+        }
+        for corner in [
+            pb.params.iter().map(|p| p.low).collect::<Vec<_>>(),
+            pb.params.iter().map(|p| p.high).collect(),
+        ] {
+            let ss = ss_at(&corner)?;
+            checks.push((corner, ss));
+        }
+        AffineModel::fit(centre, &base, &up, &checks)
+    }
+
+    /// The state space of the affine model at `x`, or `None` without one (or with a non-finite entry).
+    fn affine_at(&self, x: &[f64]) -> Option<StateSpace> {
+        let af = self.affine.as_ref()?;
+        let mut ss = af.base().clone();
+        af.write(x, &mut ss).then_some(ss)
     }
 
     /// The values at `x` by the rebuilt model, or `None` when the model's input layout changed (then the
     /// whole scenario is read).
     fn evaluate(&self, pb: &Problem, x: &[f64]) -> Option<Result<PointValues>> {
-        Some(self.model_at(pb, x)?.and_then(|model| self.values(&model, pb, x)))
+        if let Some(ss) = self.affine_at(x) {
+            return Some(self.values(&ss, pb, x));
+        }
+        self.evaluate_by_reader(pb, x)
+    }
+
+    /// As [`evaluate`](Self::evaluate) with the reader's model.
+    fn evaluate_by_reader(&self, pb: &Problem, x: &[f64]) -> Option<Result<PointValues>> {
+        Some(
+            self.model_at(pb, x)?
+                .and_then(|model| self.values(model.system.as_ref(), pb, x)),
+        )
     }
 
     /// The model rebuilt at `x`, or `None` when its input layout changed.
@@ -409,11 +513,30 @@ impl Fast {
         if !quantities.iter().all(|q| sigma_like(q)) {
             return None;
         }
+        if let Some(ss) = self.affine_at(x) {
+            let at = |y: &[f64]| self.affine_at(y).map(|s| Ok(Arc::new(s) as SystemRef));
+            return self.gradients_of(pb, x, &ss, &quantities, at);
+        }
         let model = match self.model_at(pb, x)? {
             Ok(m) => m,
             Err(e) => return Some(Err(e)),
         };
-        let sys = model.system.as_ref();
+        let at = |y: &[f64]| self.model_at(pb, y).map(|r| r.map(|m| m.system));
+        self.gradients_of(pb, x, model.system.as_ref(), &quantities, at)
+    }
+
+    /// The gradients at `x` of the system `sys` there, the systems at other points given by `at`.
+    fn gradients_of<F>(
+        &self,
+        pb: &Problem,
+        x: &[f64],
+        sys: &dyn FrequencyResponse,
+        quantities: &[&Quantity],
+        at: F,
+    ) -> Option<Result<PointGradients>>
+    where
+        F: Fn(&[f64]) -> Option<Result<SystemRef>>,
+    {
         let idx = match self
             .outputs
             .iter()
@@ -429,23 +552,18 @@ impl Fast {
         for (k, (p, &xk)) in pb.params.iter().zip(x).enumerate() {
             // a step small against x_k (and against the range where x_k is 0): the matrices' central difference
             let delta = 1e-5 * xk.abs().max(1e-3 * (p.high - p.low));
-            let at = |s: f64| {
+            let step = |s: f64| {
                 let mut y = x.to_vec();
                 y[k] += s * delta;
-                self.model_at(pb, &y)
+                at(&y)
             };
-            let (plus, minus) = match (at(1.0)?, at(-1.0)?) {
+            let (plus, minus) = match (step(1.0)?, step(-1.0)?) {
                 (Ok(p), Ok(m)) => (p, m),
                 (Err(e), _) | (_, Err(e)) => return Some(Err(e)),
             };
-            let d = self.evaluator.realization_derivative(
-                sys,
-                plus.system.as_ref(),
-                minus.system.as_ref(),
-                delta,
-                exc,
-                &idx,
-            )?;
+            let d = self
+                .evaluator
+                .realization_derivative(sys, plus.as_ref(), minus.as_ref(), delta, exc, &idx)?;
             directions.push(d);
         }
         let result = (|| -> Result<PointGradients> {
@@ -472,8 +590,7 @@ impl Fast {
         Some(result)
     }
 
-    fn values(&self, model: &ModelInstance, pb: &Problem, x: &[f64]) -> Result<PointValues> {
-        let sys = model.system.as_ref();
+    fn values(&self, sys: &dyn FrequencyResponse, pb: &Problem, x: &[f64]) -> Result<PointValues> {
         let idx = self
             .outputs
             .iter()

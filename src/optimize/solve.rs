@@ -1,20 +1,79 @@
-//! Several COBYLA runs from spread starts; the best feasible end point with its active constraints, or the
-//! least infeasible one with what it misses by.
+//! Several searches (SLSQP with the analytic gradients, or COBYLA) from spread starts; the best feasible end
+//! point with its active constraints, or the least infeasible one with what it misses by.
 
-use super::gradient::KktCheck;
+use super::gradient::{KktCheck, PointGradients};
 use super::problem::{Goal, PointValues, Problem, Relation};
 use crate::error::{Error, Result};
 use serde::Serialize;
 use std::cell::RefCell;
 
+/// The search method of each start.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// SLSQP where the problem has analytic gradients ([`Problem::has_gradients`]), else COBYLA.
+    #[default]
+    Auto,
+    /// SLSQP (Kraft 1988; the `slsqp` crate's translation of NLopt's): sequential quadratic programming with
+    /// the analytic gradients of the Lyapunov solution; quasi-Newton (BFGS) curvature, so it converges
+    /// superlinearly in a few evaluations per start.
+    Slsqp,
+    /// COBYLA (Powell 1994): derivative-free, linear models from n + 1 points; for every quantity,
+    /// including those without analytic gradients (a_w, A(8), VDV, damage, life, quadrature routes).
+    Cobyla,
+}
+
+impl Method {
+    /// `auto`, `slsqp` or `cobyla`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `--method` for another word.
+    pub fn parse(text: &str) -> Result<Method> {
+        match text.trim().to_ascii_lowercase().as_str() {
+            "auto" => Ok(Method::Auto),
+            "slsqp" => Ok(Method::Slsqp),
+            "cobyla" => Ok(Method::Cobyla),
+            _ => Err(Error::invalid("--method", text, "expected auto, slsqp or cobyla")),
+        }
+    }
+
+    /// The method used on `problem`: `Auto` resolved.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `--method` for SLSQP on a problem without analytic gradients.
+    pub fn for_problem(self, problem: &Problem) -> Result<Method> {
+        match (self, problem.has_gradients()) {
+            (Method::Auto, true) | (Method::Slsqp, true) => Ok(Method::Slsqp),
+            (Method::Auto, false) | (Method::Cobyla, _) => Ok(Method::Cobyla),
+            (Method::Slsqp, false) => Err(Error::invalid(
+                "--method",
+                "slsqp",
+                "SLSQP needs the analytic gradients, which this problem has not (they exist when only `model.*` \
+                 keys vary, every quantity is sigma or 3sigma and the input has an exact route); use --method cobyla",
+            )),
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Method::Auto => "auto",
+            Method::Slsqp => "SLSQP",
+            Method::Cobyla => "COBYLA",
+        }
+    }
+}
+
 /// How hard to search.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolveOptions {
+    /// The search method ([`Method::Auto`]: SLSQP where the problem has analytic gradients, else COBYLA).
+    pub method: Method,
     /// Number of starts (the centre of the box, then the Halton points 2, 3, … of the box).
     pub starts: usize,
     /// Most evaluations per start.
     pub max_evaluations: usize,
-    /// Final trust-region radius of COBYLA as a fraction of each parameter's range (ρ_end).
+    /// Final trust-region radius of COBYLA, and the smallest step of SLSQP, as a fraction of each
+    /// parameter's range.
     pub x_tolerance: f64,
     /// A constraint is active when its margin is within this fraction of its limit; a parameter is at a
     /// bound when within this fraction of its range.
@@ -26,6 +85,7 @@ pub struct SolveOptions {
 impl Default for SolveOptions {
     fn default() -> Self {
         SolveOptions {
+            method: Method::Auto,
             starts: 4,
             max_evaluations: 2000,
             x_tolerance: 1e-9,
@@ -44,7 +104,7 @@ pub struct StartResult {
     pub end: Option<PointValues>,
     /// Evaluations used.
     pub evaluations: usize,
-    /// COBYLA's status.
+    /// The method's status.
     pub status: String,
 }
 
@@ -99,8 +159,12 @@ pub struct Solution {
     pub constraints: Vec<ConstraintState>,
     /// Every start.
     pub starts: Vec<StartResult>,
-    /// Evaluations in all.
+    /// Evaluations in all (of the quantities; a gradient at a point counts apart, in `gradient_evaluations`).
     pub evaluations: usize,
+    /// Gradient evaluations in all (SLSQP; 0 for COBYLA).
+    pub gradient_evaluations: usize,
+    /// The method used (`Auto` resolved).
+    pub method: Method,
     /// The first-order optimality check at the answer with the analytic gradients ([`KktCheck`]); `None`
     /// where the problem has none ([`Problem::gradients`]) or they failed there. COBYLA itself uses no
     /// gradient.
@@ -146,13 +210,15 @@ fn halton(k: usize, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The problem in unit coordinates u ∈ [0, 1]ⁿ, with the last evaluation kept (COBYLA asks for the
-/// objective and then each constraint at one point).
+/// The problem in unit coordinates u ∈ [0, 1]ⁿ, with the last evaluation and the last gradients kept (the
+/// methods ask for the objective and then each constraint at one point).
 struct Scaled<'p, 'a> {
     problem: &'p Problem<'a>,
     f_scale: f64,
     last: RefCell<Option<(Vec<f64>, Option<PointValues>)>>,
+    last_gradients: RefCell<Option<(Vec<f64>, Option<PointGradients>)>>,
     evaluations: RefCell<usize>,
+    gradient_evaluations: RefCell<usize>,
 }
 
 /// What an evaluation that fails returns: far worse than any value of a scaled problem.
@@ -184,6 +250,49 @@ impl Scaled<'_, '_> {
         self.values(u).map_or(FAILED, |v| sign * v.objective / self.f_scale)
     }
 
+    /// The gradients at `u` (SI per SI unit), `None` where they fail.
+    fn gradients(&self, u: &[f64]) -> Option<PointGradients> {
+        if let Some((lu, g)) = &*self.last_gradients.borrow()
+            && lu == u
+        {
+            return g.clone();
+        }
+        *self.gradient_evaluations.borrow_mut() += 1;
+        let g = self.problem.gradients(&self.x_of(u)).and_then(|r| r.ok());
+        *self.last_gradients.borrow_mut() = Some((u.to_vec(), g.clone()));
+        g
+    }
+
+    /// Writes `factor`·∂q/∂x_k·range_k into `out` (the gradient in unit coordinates), 0 where it fails.
+    fn write_gradient(&self, out: &mut [f64], dq: Option<&[f64]>, factor: f64) {
+        for (k, (o, p)) in out.iter_mut().zip(&self.problem.params).enumerate() {
+            *o = dq.map_or(0.0, |g| factor * g[k] * (p.high - p.low));
+        }
+    }
+
+    /// The scaled objective (SLSQP) with its gradient in unit coordinates when asked.
+    fn objective_with_gradient(&self, u: &[f64], grad: Option<&mut [f64]>) -> f64 {
+        let sign = if self.problem.goal == Goal::Maximize { -1.0 } else { 1.0 };
+        if let Some(out) = grad {
+            let g = self.gradients(u);
+            self.write_gradient(out, g.as_ref().map(|g| g.objective.as_slice()), sign / self.f_scale);
+        }
+        self.objective(u)
+    }
+
+    /// Constraint j scaled by its limit, ≤ 0 when met (SLSQP's convention), with its gradient when asked.
+    fn constraint_with_gradient(&self, j: usize, u: &[f64], grad: Option<&mut [f64]>) -> f64 {
+        let c = &self.problem.constraints[j];
+        if let Some(out) = grad {
+            // −margin: +q for `<=`, −q for `>=`
+            let s = if c.relation == Relation::AtMost { 1.0 } else { -1.0 };
+            let g = self.gradients(u);
+            let dq = g.as_ref().map(|g| g.constrained[j].as_slice());
+            self.write_gradient(out, dq, s / c.limit.abs());
+        }
+        -self.constraint(j, u)
+    }
+
     /// Constraint j scaled by its limit, ≥ 0 when met (COBYLA's convention).
     fn constraint(&self, j: usize, u: &[f64]) -> f64 {
         let c = &self.problem.constraints[j];
@@ -192,18 +301,23 @@ impl Scaled<'_, '_> {
     }
 }
 
-/// Minimises (or maximises) the problem's objective subject to its constraints and bounds by COBYLA
-/// (Powell 1994) from `opts.starts` starts, and returns the best end point: the feasible one with the best
-/// objective, or, when no start ends feasible, the one with the smallest largest relative violation.
+/// Minimises (or maximises) the problem's objective subject to its constraints and bounds from
+/// `opts.starts` starts by SLSQP with the analytic gradients or by COBYLA (`opts.method`; [`Method::Auto`]
+/// takes SLSQP where the problem has the gradients), and returns the best end point: the feasible one with
+/// the best objective, or, when no start ends feasible, the one with the smallest largest relative
+/// violation. The answer's values are those of the scenario reader's model there.
 ///
 /// # Formula
 /// In unit coordinates u = (x − low)/(high − low) ∈ [0, 1]ⁿ, minimise s·f(x)/|f(x_c)| (s = −1 to
 /// maximise, x_c the centre) subject to g_j(x) = m_j(x)/|L_j| ≥ 0, m_j the margin of constraint j
 /// (L_j − q_j for `<=`, q_j − L_j for `>=`). COBYLA builds linear models of f and every g_j from n + 1
-/// points and takes trust-region steps; ρ shrinks from 0.25 to `x_tolerance`. No derivatives are used.
+/// points and takes trust-region steps; ρ shrinks from 0.25 to `x_tolerance`. SLSQP solves a quadratic
+/// model of the Lagrangian (BFGS curvature from the gradients) with the constraints linearised by their
+/// gradients ∂q/∂x_k·(high_k − low_k)/|L_j| (from [`Problem::gradients`]), then searches along the step.
 ///
 /// # Errors
-/// When no start's end point can be evaluated (the scenario's error at the centre).
+/// When no start's end point can be evaluated (the scenario's error at the centre); `--method slsqp` on a
+/// problem without analytic gradients ([`Method::for_problem`]).
 pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
     let n = problem.params.len();
     let clock = std::time::Instant::now();
@@ -223,24 +337,29 @@ pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
             1.0
         },
         last: RefCell::new(None),
+        last_gradients: RefCell::new(None),
         evaluations: RefCell::new(0),
+        gradient_evaluations: RefCell::new(0),
     };
+    let method = opts.method.for_problem(problem)?;
     let mut starts = Vec::new();
     for k in 0..opts.starts.max(1) {
         let u0 = if k == 0 { vec![0.5; n] } else { halton(k + 1, n) }; // halton(1) is the centre
-        starts.push(run_start(&scaled, &u0, opts));
+        starts.push(match method {
+            Method::Slsqp => run_slsqp(&scaled, &u0, opts),
+            _ => run_start(&scaled, &u0, opts),
+        });
     }
     let best = pick(problem, &starts, opts.active_tolerance).ok_or_else(|| Error::Numerical {
         what: "optimisation".into(),
         reason: "no start ended at a point the scenario accepts".into(),
     })?;
-    Ok(describe(
-        problem,
-        best,
-        starts.clone(),
-        *scaled.evaluations.borrow(),
-        opts,
-    ))
+    // the answer as the scenario reader's model gives it (the search may have used the affine model)
+    let best = problem.evaluate_by_reader(&best.x)?;
+    let mut answer = describe(problem, &best, starts, *scaled.evaluations.borrow(), opts);
+    answer.method = method;
+    answer.gradient_evaluations = *scaled.gradient_evaluations.borrow();
+    Ok(answer)
 }
 
 /// Refuses, before the search, a number of starts whose results do not fit in memory or whose computing time's
@@ -304,10 +423,15 @@ fn run_start(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {
         cobyla::RhoBeg::All(0.25),
         Some(tols),
     );
-    let (status, u) = match out {
+    let end = match out {
         Ok((st, u, _)) => (format!("{st:?}"), u),
         Err((st, u, _)) => (format!("{st:?}"), u),
     };
+    start_result(s, u0, before, end)
+}
+
+/// The result of a start from `u0` that ended at `u` with `status`, `before` the evaluations before it.
+fn start_result(s: &Scaled, u0: &[f64], before: usize, (status, u): (String, Vec<f64>)) -> StartResult {
     StartResult {
         start: s.x_of(u0),
         end: s.values(&u),
@@ -315,6 +439,32 @@ fn run_start(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {
         status,
     }
 }
+
+/// One SLSQP run from `u0` in unit coordinates, the gradients analytic.
+fn run_slsqp(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {
+    let before = *s.evaluations.borrow();
+    let f = |u: &[f64], g: Option<&mut [f64]>, _: &mut ()| s.objective_with_gradient(u, g);
+    let cons: Vec<_> = (0..s.problem.constraints.len())
+        .map(|j| move |u: &[f64], g: Option<&mut [f64]>, _: &mut ()| s.constraint_with_gradient(j, u, g))
+        .collect();
+    let tols = slsqp::StopTols {
+        xtol_abs: vec![opts.x_tolerance; u0.len()],
+        ftol_rel: SLSQP_FTOL_REL,
+        ..Default::default()
+    };
+    let bounds = vec![(0.0, 1.0); u0.len()];
+    let out = slsqp::minimize(f, u0, &bounds, &cons, (), opts.max_evaluations, Some(tols));
+    let end = match out {
+        Ok((st, u, _)) => (format!("{st:?}"), u),
+        Err((st, u, _)) => (format!("{st:?}"), u),
+    };
+    start_result(s, u0, before, end)
+}
+
+/// SLSQP stops when the scaled objective changes by less than this fraction between iterations (a few
+/// roundings: the objective is a square root of a Lyapunov solution, known to ≈ 10⁻¹⁵ relative), or when
+/// its step is below `x_tolerance` of every range.
+const SLSQP_FTOL_REL: f64 = 1e-14;
 
 /// The largest relative violation of a point (0 when feasible).
 fn violation(problem: &Problem, v: &PointValues) -> f64 {
@@ -395,6 +545,8 @@ fn describe(
         .collect();
     let kkt = KktCheck::of(problem, best, &active, &at_bound).and_then(|r| r.ok());
     Solution {
+        method: o.method,
+        gradient_evaluations: 0,
         kkt,
         goal: problem.goal,
         objective: problem.objective.text.clone(),
@@ -454,9 +606,11 @@ impl std::fmt::Display for Solution {
         let ends = self.starts.iter().filter(|s| s.end.is_some()).count();
         writeln!(
             f,
-            "  {} starts ({ends} ended at an evaluable point), {} evaluations, COBYLA",
+            "  {} starts ({ends} ended at an evaluable point), {} evaluations and {} gradients, {}",
             self.starts.len(),
-            self.evaluations
+            self.evaluations,
+            self.gradient_evaluations,
+            self.method.name()
         )
     }
 }

@@ -2,7 +2,7 @@
 //! [`Excitation`] (a road of two correlated tracks, a force, ... each felt by inputs with delays and
 //! gains), and the exact variance per source.
 
-use super::delayed::variance_lyapunov_delayed;
+use super::delayed::DelayedCovariance;
 use super::variance::{variance_lyapunov, LyapunovMoments};
 use super::Excitation;
 use crate::coherence::SpectralMatrix;
@@ -240,8 +240,7 @@ fn source_track(
 ///
 /// # Errors
 /// [`Error::NotApplicable`] when the matrix has no such factorisation (a coherence that depends on the
-/// frequency), an input of the source is delayed (the delayed exact route of the parts lost its accuracy on
-/// a machine with tyre damping, a negative variance, so it is not used) or the density is not rational.
+/// frequency) or the density is not rational.
 fn matrix_parts(m: &dyn SpectralMatrix, inputs: &[InputMap], s: usize) -> Result<Vec<Excitation>> {
     let refuse = |why: String| Error::NotApplicable {
         method: "exact (Lyapunov) variance".into(),
@@ -254,13 +253,6 @@ fn matrix_parts(m: &dyn SpectralMatrix, inputs: &[InputMap], s: usize) -> Result
                 .into(),
         ));
     };
-    if inputs.iter().any(|i| i.source == s && i.delay != 0.0) {
-        return Err(refuse(
-            "has delayed inputs (a wheelbase): its factorisation into sum and difference processes is used \
-             only without delays"
-                .into(),
-        ));
-    }
     let density = m.component(0);
     let Some(rational) = density.rational() else {
         return Err(refuse(format!(
@@ -281,14 +273,18 @@ fn matrix_parts(m: &dyn SpectralMatrix, inputs: &[InputMap], s: usize) -> Result
 ///
 /// # Formula
 /// Sources are independent, so S_y = Σ_s S_y^{(s)} and λ_k = Σ_s λ_k^{(s)}; each single-process source is
-/// a track felt with delays and gains ([`variance_lyapunov`] or [`variance_lyapunov_delayed`]), and a
+/// a track felt with delays and gains ([`variance_lyapunov`] or [`variance_lyapunov_delayed`](super::variance_lyapunov_delayed)), and a
 /// multi-component source whose matrix factors into independent parts (two tracks of constant coherence:
-/// sum and difference processes) is the sum of its parts, each such a track.
+/// sum and difference processes) is the sum of its parts, each such a track. A part that the output does
+/// not feel (a symmetric machine's bounce under the difference process) is 0 and comes out of the delayed
+/// route at the rounding of its cancelling pair terms, of either sign: a negative part within
+/// [`PART_ROUNDING`] of the sum of the parts' magnitudes is taken as 0.
 ///
 /// # Errors
 /// [`Error::NotApplicable`] when a source is a multi-component process without a constant factorisation
 /// (two tracks with a coherence function of n: quadrature only) or a source's spectrum is not rational;
-/// the errors of the per-source methods otherwise.
+/// [`Error::Inaccurate`] for a negative part beyond that rounding or a negative total; the errors of the
+/// per-source methods otherwise.
 pub(crate) fn variance_exact(
     sys: &dyn FrequencyResponse,
     sources: &[Source],
@@ -300,23 +296,84 @@ pub(crate) fn variance_exact(
         lambda2: Ok(0.0),
         lambda4: Ok(0.0),
     };
+    let (mut scale, mut negative) = (PartSums::default(), PartSums::default());
     for (s, src) in sources.iter().enumerate() {
         let parts = match src {
             Source::Process(_) => single_source(sources, inputs, s)?.into_iter().collect(),
             Source::Matrix(m) => matrix_parts(m.as_ref(), inputs, s)?,
         };
         for exc in parts {
+            // a delayed part unchecked: its sign is judged against the sum of all parts below
             let part = if exc.delay_free() {
                 variance_lyapunov(sys, &exc, i)?
             } else {
-                variance_lyapunov_delayed(sys, &exc, i)?
+                DelayedCovariance::new(sys, &exc, i)?.moments()?
             };
-            total.variance += part.variance;
-            total.lambda2 = add(total.lambda2, part.lambda2);
-            total.lambda4 = add(total.lambda4, part.lambda4);
+            scale = scale.add(&part);
+            negative = negative.add(&part.negative_parts());
+            total.variance += part.variance.max(0.0);
+            total.lambda2 = add(total.lambda2, part.lambda2.map(|v| v.max(0.0)));
+            total.lambda4 = add(total.lambda4, part.lambda4.map(|v| v.max(0.0)));
         }
     }
-    Ok(total)
+    negative.within_rounding_of(&scale, &total)?;
+    total.checked("exact variance of the sources")
+}
+
+/// Largest negative part of a moment, relative to the sum of the parts' magnitudes, that is taken for the
+/// rounding of a part whose true value is 0: a part that a symmetric machine does not feel at all (the
+/// difference process under a bounce output, the sum process under roll), whose delayed covariance sums
+/// pair terms 𝒞_g e^{𝒜Δ} P 𝒞_hᵀ that cancel exactly; they come out at ±10⁻¹⁶ of the terms.
+const PART_ROUNDING: f64 = 1e-9;
+
+/// Per moment, a sum over parts (of magnitudes, or of negative values).
+#[derive(Debug, Clone, Copy, Default)]
+struct PartSums([f64; 3]);
+
+impl PartSums {
+    fn add(self, m: &LyapunovMoments) -> PartSums {
+        let v = [
+            Some(m.variance),
+            m.lambda2.as_ref().ok().copied(),
+            m.lambda4.as_ref().ok().copied(),
+        ];
+        PartSums(std::array::from_fn(|k| self.0[k] + v[k].map_or(0.0, f64::abs)))
+    }
+
+    /// Errors when a negative part exceeds [`PART_ROUNDING`] of `scale` (then the solve lost its accuracy,
+    /// as [`LyapunovMoments::checked`] says of a negative total), for each moment that `total` has (one that
+    /// another part makes divergent is an error of its own, whatever the rounding of the other parts).
+    fn within_rounding_of(&self, scale: &PartSums, total: &LyapunovMoments) -> Result<()> {
+        let finite = [true, total.lambda2.is_ok(), total.lambda4.is_ok()];
+        let moments = self.0.iter().zip(&scale.0).zip(finite).enumerate();
+        for (k, ((&negative, &scale), finite)) in moments {
+            if finite && negative > PART_ROUNDING * scale {
+                return Err(Error::Inaccurate {
+                    method: "Lyapunov variance with delays".into(),
+                    value: -negative,
+                    reason: format!(
+                        "a part of moment λ{} came out negative ({:e}) beyond the rounding of the parts ({scale:e}): \
+                         the solve lost its accuracy on this system",
+                        2 * k,
+                        -negative,
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+impl LyapunovMoments {
+    /// The magnitudes of the negative moments (0 for the others and for an error).
+    fn negative_parts(&self) -> LyapunovMoments {
+        let neg = |v: f64| (-v).max(0.0);
+        LyapunovMoments {
+            variance: neg(self.variance),
+            lambda2: Ok(self.lambda2.as_ref().map_or(0.0, |v| neg(*v))),
+            lambda4: Ok(self.lambda4.as_ref().map_or(0.0, |v| neg(*v))),
+        }
+    }
 }
 
 fn add(a: Result<f64>, b: Result<f64>) -> Result<f64> {

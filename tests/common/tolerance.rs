@@ -343,6 +343,13 @@ pub const OPTIMUM_INTERIOR: f64 = 1e-6;
 /// 1e-8.
 pub const OPTIMUM_ON_CONSTRAINT: f64 = 1e-8;
 
+/// A σ from the optimiser's affine model of the state space against the same σ from the scenario reader's
+/// model: the matrices agree to the rounding of their entries (the model is called affine only when they do
+/// within 1e-12 of each matrix's largest entry), and σ² = h P hᵀ of a 4-state Lyapunov solution amplifies a
+/// relative perturbation of the matrices by its condition (≈ 10² for the quarter car's spread of
+/// stiffnesses and masses); 1e-10.
+pub const AFFINE_MODEL: f64 = 1e-10;
+
 /// `stochvib sweep --verdicts` against `stochvib analyze --json` of the same scenario written by hand: the
 /// verdicts run the same code on the same matrices (equal bit for bit); σ is the exact route of the sweep
 /// evaluator against the exact column of `analyze` (integral table or Lyapunov on the same model, a few

@@ -687,3 +687,99 @@ fn pareto_front_picture_holds_the_table_points() {
     assert!(svg.trim_start().starts_with("<svg") && svg.contains("Pareto front"));
     assert!(out.join("pareto-front.png").exists());
 }
+
+/// Both searches on the white-velocity quarter car: SLSQP with the analytic gradients and COBYLA find the
+/// interior optimum c_opt = k_s√(M/k_t) (`quarter_car_comfort_optimum_is_ks_sqrt_m_over_kt`) and the optimum
+/// c* = 9πS₀M/d² on the active travel constraint d = 40 mm
+/// (`quarter_car_travel_constraint_active_where_the_closed_form_says`), each within the same named
+/// tolerance as there; the default (`auto`) takes SLSQP on these σ problems, and SLSQP needs fewer
+/// evaluations than COBYLA.
+#[test]
+fn slsqp_and_cobyla_find_the_quarter_car_optima() {
+    use stochvib::optimize::Method;
+    let sc = scenario("qc-methods", QUARTER_CAR);
+    let m = M_S + M_U;
+    let (c_opt, c_min) = (K_S * (m / K_T).sqrt(), 9.0 * PI * s0() * m / 0.04f64.powi(2));
+    let solve_with = |method: Method, constraints: &[&str]| {
+        let params = vec![Param::parse("model.suspension_damping=0.2:6 kN*s/m").unwrap()];
+        let objective = Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap();
+        let constraints = constraints.iter().map(|c| Constraint::parse(c, &sc).unwrap()).collect();
+        let problem = Problem::new(&sc, params, objective, Goal::Minimize, constraints).unwrap();
+        assert_eq!(problem.path(), "affine model");
+        let opts = SolveOptions {
+            method,
+            ..SolveOptions::default()
+        };
+        solve(&problem, &opts).unwrap()
+    };
+    let mut evaluations = Vec::new();
+    for method in [Method::Slsqp, Method::Cobyla] {
+        let free = solve_with(method, &[]);
+        assert_eq!(free.method, method, "{free}");
+        assert!(common::rel(free.params[0].value, c_opt) < OPTIMUM_INTERIOR, "{free}");
+        let on = solve_with(method, &["3sigma(travel) <= 40 mm"]);
+        assert!(common::rel(on.params[0].value, c_min) < OPTIMUM_ON_CONSTRAINT, "{on}");
+        assert!(on.feasible && on.constraints[0].active, "{on}");
+        assert!(on
+            .to_string()
+            .contains(if method == Method::Slsqp { "SLSQP" } else { "COBYLA" }));
+        evaluations.push(free.evaluations + on.evaluations);
+    }
+    assert!(evaluations[0] < evaluations[1], "SLSQP {evaluations:?} COBYLA");
+    assert_eq!(solve_with(Method::Auto, &[]).method, Method::Slsqp);
+}
+
+/// A problem without analytic gradients (the catalogue quarter car's ISO 8608 road is band-limited, so its σ
+/// has no exact route and is computed by quadrature of the output density): `auto` takes COBYLA, and
+/// `--method slsqp` is refused naming the flag and what to use instead.
+#[test]
+fn slsqp_is_refused_without_gradients_and_auto_takes_cobyla() {
+    use stochvib::optimize::Method;
+    let sc = catalogue_quarter_car();
+    let problem = |sc| {
+        let params = vec![Param::parse("model.suspension_damping=0.5:4 kN*s/m").unwrap()];
+        let objective = Quantity::parse("--minimize", "sigma(body_acc)", sc).unwrap();
+        Problem::new(sc, params, objective, Goal::Minimize, vec![]).unwrap()
+    };
+    let pb = problem(&sc);
+    assert!(!pb.has_gradients());
+    let e = Method::Slsqp.for_problem(&pb).unwrap_err().to_string();
+    assert!(e.contains("--method") && e.contains("cobyla"), "{e}");
+    assert_eq!(Method::Auto.for_problem(&pb).unwrap(), Method::Cobyla);
+    assert!(Method::parse("newton").unwrap_err().to_string().contains("--method"));
+}
+
+/// The affine model of the search (stiffness and damping enter the matrices affinely) gives the values of
+/// the scenario reader's model at points across the box, within `AFFINE_MODEL` (the matrices agree to
+/// rounding); a mass enters through M⁻¹, so a problem over the sprung mass rebuilds the model per point.
+#[test]
+fn affine_model_gives_the_values_of_the_readers_model() {
+    use crate::common::tolerance::AFFINE_MODEL;
+    let sc = scenario("qc-affine", QUARTER_CAR);
+    let problem = |params: &[&str]| {
+        let params = params.iter().map(|p| Param::parse(p).unwrap()).collect();
+        let objective = Quantity::parse("--minimize", "sigma(body_acc)", &sc).unwrap();
+        let travel = Constraint::parse("3sigma(travel) <= 40 mm", &sc).unwrap();
+        Problem::new(&sc, params, objective, Goal::Minimize, vec![travel]).unwrap()
+    };
+    let pb = problem(&[
+        "model.suspension_damping=0.2:6 kN*s/m",
+        "model.suspension_stiffness=10:40 kN/m",
+        "model.tyre_stiffness=100:400 kN/m",
+    ]);
+    assert_eq!(pb.path(), "affine model");
+    for x in [
+        [200.0, 10e3, 100e3],
+        [6000.0, 40e3, 400e3],
+        [777.0, 13e3, 350e3],
+        [4321.0, 39e3, 123e3],
+    ] {
+        let (a, r) = (pb.evaluate(&x).unwrap(), pb.evaluate_by_reader(&x).unwrap());
+        assert!(common::rel(a.objective, r.objective) < AFFINE_MODEL, "{a:?} {r:?}");
+        assert!(
+            common::rel(a.constrained[0], r.constrained[0]) < AFFINE_MODEL,
+            "{a:?} {r:?}"
+        );
+    }
+    assert_eq!(problem(&["model.sprung_mass=300:500 kg"]).path(), "model table");
+}
