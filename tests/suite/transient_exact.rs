@@ -408,7 +408,14 @@ fn a_state_of_zero_variance_does_not_stall_the_error_control() {
         model.output_index("roll").unwrap(),
     );
     let ss = model.state_space().unwrap().clone();
-    let speed = SpeedProfile::constant_acceleration(5.0, 15.0, 2.0, 0.0).unwrap();
+    let speed = ConstantAcceleration {
+        from_m_s: 5.0,
+        to_m_s: 15.0,
+        acceleration_m_s2: 2.0,
+        start_s: 0.0,
+    }
+    .build()
+    .unwrap();
     let spectrum = Exponential::new(1e-4, 0.2, Domain::Spatial).unwrap();
     let sys = |gains: Vec<f64>| {
         let input = TransientInput {
