@@ -12,9 +12,15 @@ use stochvib::response::{variance_integral_table, variance_lyapunov, variance_qu
 
 fn main() -> Result<()> {
     // 500 kg on 2e5 N/m with 3e3 N s/m (ω₀ = 20 rad/s, ζ = 0.067), driven through its base
-    let sys = Mdof::oscillator(500.0, 2.0e5, 3.0e3, Drive::Base)?
-        .with_output("x", Quantity::Displacement(vec![1.0]))?
-        .with_output("travel", Quantity::Deflection(0))?;
+    let sys = MassSpringDamper {
+        mass: 500.0,
+        stiffness: 2.0e5,
+        damping: 3.0e3,
+        drive: Drive::Base,
+    }
+    .build()?
+    .with_output("x", Quantity::Displacement(vec![1.0]))?
+    .with_output("travel", Quantity::Deflection(0))?;
     // (the force through the damper, b(ẋ − u̇), has an infinite variance here: the type-3 density decays like
     // ω⁻², so u̇ is white at high frequency; `analyze_output` reports that divergence instead of a number)
     // base motion: type 3, D = 1 cm², α = 2 1/s, β = 15 rad/s (two-sided angular density, see `spectrum`)

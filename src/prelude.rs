@@ -15,5 +15,6 @@ pub use crate::spectrum::{
 };
 pub use crate::store::{RunFile, Signal};
 pub use crate::system::{
-    Attach, Drive, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace, TransferFunction,
+    Attach, Drive, Element, FrequencyResponse, MassSpringDamper, Mdof, OutputInfo, Quantity, StateSpace,
+    TransferFunction,
 };

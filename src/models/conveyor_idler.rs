@@ -7,7 +7,7 @@ use super::{InputLayout, ModelInstance};
 use crate::error::{require_non_negative, require_positive, Result};
 use crate::fields::Fields;
 use crate::models::worked_example::BookRow;
-use crate::system::{Drive, Mdof, Quantity};
+use crate::system::{Drive, MassSpringDamper, Quantity};
 use crate::units::Dim;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -230,11 +230,17 @@ impl ConveyorIdler {
     /// assert!((m.system.static_gain().unwrap()[(0, 0)] - 1.0 / 7.0e4).abs() < 1e-18);
     /// ```
     pub fn instance(&self) -> Result<ModelInstance> {
-        let sys = Mdof::oscillator(self.m, self.c, self.b, Drive::Force)?
-            .with_output("y", Quantity::Displacement(vec![1.0]))?
-            .with_output("y_vel", Quantity::Velocity(vec![1.0]))?
-            .with_output("y_acc", Quantity::Acceleration(vec![1.0]))?
-            .with_output("support_force", Quantity::ElementForce(0))?;
+        let sys = MassSpringDamper {
+            mass: self.m,
+            stiffness: self.c,
+            damping: self.b,
+            drive: Drive::Force,
+        }
+        .build()?
+        .with_output("y", Quantity::Displacement(vec![1.0]))?
+        .with_output("y_vel", Quantity::Velocity(vec![1.0]))?
+        .with_output("y_acc", Quantity::Acceleration(vec![1.0]))?
+        .with_output("support_force", Quantity::ElementForce(0))?;
         Ok(ModelInstance {
             system: Arc::new(sys),
             layout: InputLayout::Single,

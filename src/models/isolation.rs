@@ -42,7 +42,7 @@ use crate::error::{require_non_negative, require_positive, Result};
 use crate::fields::Fields;
 use crate::models::worked_example::BookRow;
 use crate::models::{InputLayout, ModelInstance};
-use crate::system::{Attach, Drive, Element, Mdof, Quantity};
+use crate::system::{Attach, Drive, Element, MassSpringDamper, Mdof, Quantity};
 use crate::units::Dim;
 use nalgebra::Complex;
 use std::sync::Arc;
@@ -128,11 +128,17 @@ impl SingleIsolator {
     /// # Errors
     /// None for a validated isolator (the `Result` is the [`Mdof`] constructor's).
     pub fn mdof_base(&self) -> Result<Mdof> {
-        Mdof::oscillator(self.mass, self.stiffness, self.damping, Drive::Base)?
-            .with_output("x", Quantity::Displacement(vec![1.0]))?
-            .with_output("x_acc", Quantity::Acceleration(vec![1.0]))?
-            .with_output("travel", Quantity::Deflection(0))?
-            .with_output("force", Quantity::ElementForce(0))
+        MassSpringDamper {
+            mass: self.mass,
+            stiffness: self.stiffness,
+            damping: self.damping,
+            drive: Drive::Base,
+        }
+        .build()?
+        .with_output("x", Quantity::Displacement(vec![1.0]))?
+        .with_output("x_acc", Quantity::Acceleration(vec![1.0]))?
+        .with_output("travel", Quantity::Deflection(0))?
+        .with_output("force", Quantity::ElementForce(0))
     }
 
     /// Force-excited model (input 0: force F on the mass, N, foundation fixed) with output `force`
@@ -141,8 +147,14 @@ impl SingleIsolator {
     /// # Errors
     /// As [`SingleIsolator::mdof_base`].
     pub fn mdof_force(&self) -> Result<Mdof> {
-        Mdof::oscillator(self.mass, self.stiffness, self.damping, Drive::Force)?
-            .with_output("force", Quantity::ElementForce(0))
+        MassSpringDamper {
+            mass: self.mass,
+            stiffness: self.stiffness,
+            damping: self.damping,
+            drive: Drive::Force,
+        }
+        .build()?
+        .with_output("force", Quantity::ElementForce(0))
     }
 
     /// The base-excited model with a single random base displacement ([`InputLayout::Single`]).

@@ -48,7 +48,7 @@ use crate::models::worked_example::BookRow;
 use crate::models::{InputLayout, ModelInstance};
 use crate::response::{band_variance, Excitation};
 use crate::spectrum::Spectrum;
-use crate::system::{Drive, FrequencyResponse, Mdof, Quantity};
+use crate::system::{Drive, FrequencyResponse, MassSpringDamper, Mdof, Quantity};
 use crate::units::Dim;
 use std::f64::consts::{PI, SQRT_2};
 use std::path::Path;
@@ -516,11 +516,17 @@ impl OperatorSeat {
     /// # Errors
     /// None for a validated model (the `Result` is the [`Mdof`] constructor's).
     pub fn mdof(&self) -> Result<Mdof> {
-        Mdof::oscillator(self.reduced_mass(), self.stiffness, self.damping, Drive::Base)?
-            .with_output("seat", Quantity::Displacement(vec![1.0]))?
-            .with_output("seat_vel", Quantity::Velocity(vec![1.0]))?
-            .with_output("seat_acc", Quantity::Acceleration(vec![1.0]))?
-            .with_output("travel", Quantity::Deflection(0))
+        MassSpringDamper {
+            mass: self.reduced_mass(),
+            stiffness: self.stiffness,
+            damping: self.damping,
+            drive: Drive::Base,
+        }
+        .build()?
+        .with_output("seat", Quantity::Displacement(vec![1.0]))?
+        .with_output("seat_vel", Quantity::Velocity(vec![1.0]))?
+        .with_output("seat_acc", Quantity::Acceleration(vec![1.0]))?
+        .with_output("travel", Quantity::Deflection(0))
     }
 
     /// The transfer function of the seat acceleration `seat_acc` (m/s²) from the base displacement u (m),

@@ -281,10 +281,10 @@ impl Prepared<'_> {
 /// # Examples
 /// ```
 /// use stochvib::nonlinear::{integrator::free_response, BumpStop, NonlinearElement, NonlinearModel};
-/// use stochvib::system::{Attach, Drive, Mdof};
+/// use stochvib::system::{Attach, Drive, MassSpringDamper, Mdof};
 /// use std::sync::Arc;
 /// // x″ + x = 0 with a stop that is never reached: the exact linear flow, to rounding
-/// let lin = Mdof::oscillator(1.0, 1.0, 0.0, Drive::Force).unwrap();
+/// let lin = MassSpringDamper { mass: 1.0, stiffness: 1.0, damping: 0.0, drive: Drive::Force }.build().unwrap();
 /// let stop = NonlinearElement { name: "stop".into(), law: Arc::new(BumpStop::new(Some((5.0, 100.0)), None).unwrap()),
 ///     point: vec![1.0], to: Attach::Ground };
 /// let m = NonlinearModel::new(&lin, vec![stop]).unwrap();

@@ -165,10 +165,10 @@ pub fn output_variance(
 /// use stochvib::nonlinear::{linearize, CubicSpring, NonlinearElement, NonlinearModel, Route1Options};
 /// use stochvib::response::Excitation;
 /// use stochvib::spectrum::{Domain, RationalSpectrum};
-/// use stochvib::system::{Attach, Drive, Mdof, Quantity};
+/// use stochvib::system::{Attach, Drive, MassSpringDamper, Mdof, Quantity};
 /// use std::sync::Arc;
 /// // Duffing, m = k = 1, c = 0.2, white force S₀ = 0.2/π: σ₀² = πS₀/(ck) = 1; ε = k₃/k = 1
-/// let lin = Mdof::oscillator(1.0, 1.0, 0.2, Drive::Force).unwrap().with_output("x", Quantity::Displacement(vec![1.0])).unwrap();
+/// let lin = MassSpringDamper { mass: 1.0, stiffness: 1.0, damping: 0.2, drive: Drive::Force }.build().unwrap().with_output("x", Quantity::Displacement(vec![1.0])).unwrap();
 /// let e = NonlinearElement { name: "cubic".into(), law: Arc::new(CubicSpring::new(0.0, 1.0).unwrap()),
 ///     point: vec![1.0], to: Attach::Ground };
 /// let model = NonlinearModel::new(&lin, vec![e]).unwrap();

@@ -73,10 +73,10 @@ impl NonlinearElement {
 /// # Examples
 /// ```
 /// use stochvib::nonlinear::{CubicSpring, NonlinearElement, NonlinearModel};
-/// use stochvib::system::{Attach, Drive, Mdof, Quantity};
+/// use stochvib::system::{Attach, Drive, MassSpringDamper, Mdof, Quantity};
 /// use std::sync::Arc;
 /// // Duffing: m = 1 kg, k = 1 N/m, c = 0.2 N s/m, k₃ = 1 N/m³, force input
-/// let lin = Mdof::oscillator(1.0, 1.0, 0.2, Drive::Force).unwrap().with_output("x", Quantity::Displacement(vec![1.0])).unwrap();
+/// let lin = MassSpringDamper { mass: 1.0, stiffness: 1.0, damping: 0.2, drive: Drive::Force }.build().unwrap().with_output("x", Quantity::Displacement(vec![1.0])).unwrap();
 /// let e = NonlinearElement { name: "cubic".into(), law: Arc::new(CubicSpring::new(0.0, 1.0).unwrap()),
 ///     point: vec![1.0], to: Attach::Ground };
 /// let m = NonlinearModel::new(&lin, vec![e]).unwrap();

@@ -763,8 +763,8 @@ impl Mdof {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::system::{Drive, Mdof, mdof::GRAVITY};
-    /// let m = Mdof::oscillator(80.0, 8000.0, 400.0, Drive::Base).unwrap();
+    /// use stochvib::system::{Drive, MassSpringDamper, Mdof, mdof::GRAVITY};
+    /// let m = MassSpringDamper { mass: 80.0, stiffness: 8000.0, damping: 400.0, drive: Drive::Base }.build().unwrap();
     /// let d = m.static_deflections().unwrap();
     /// assert!((d[0].1 - 80.0 * GRAVITY / 8000.0).abs() < 1e-15);
     /// ```

@@ -5,7 +5,7 @@ use super::{Attach, Element, Mdof, OutputInfo, StateSpace};
 use crate::error::{require_non_negative, require_positive, Result};
 use nalgebra::DMatrix;
 
-/// How the mass of [`Mdof::oscillator`] is driven.
+/// How the mass of a [`MassSpringDamper`] is driven.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Drive {
     /// Input 0 is the base displacement u (m): the spring and the damper connect the mass to the base.
@@ -47,10 +47,24 @@ impl StateSpace {
     }
 }
 
-impl Mdof {
-    /// A mass on a spring and a damper: coordinate `x` (m), element `spring` (its deflection and forces are
-    /// element 0 of [`Quantity`](super::Quantity)), driven through the base or by a force ([`Drive`]). The
-    /// model has no outputs yet: add them with [`Mdof::with_output`].
+/// A mass on a spring and a damper, each parameter named: coordinate `x` (m), element `spring` (its
+/// deflection and forces are element 0 of [`Quantity`](super::Quantity)), driven through the base or by a
+/// force ([`Drive`]). [`build`](Self::build) gives the [`Mdof`] model, with no outputs yet: add them with
+/// [`Mdof::with_output`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassSpringDamper {
+    /// Mass m, kg (> 0).
+    pub mass: f64,
+    /// Spring stiffness k, N/m (≥ 0).
+    pub stiffness: f64,
+    /// Viscous damping b, N s/m (≥ 0).
+    pub damping: f64,
+    /// What drives the mass: its base (input u, m) or a force on it (input F, N).
+    pub drive: Drive,
+}
+
+impl MassSpringDamper {
+    /// The model of these parameters.
     ///
     /// # Formula
     /// ```text
@@ -63,15 +77,22 @@ impl Mdof {
     ///
     /// # Examples
     /// ```
-    /// use stochvib::system::{Drive, FrequencyResponse, Mdof, Quantity};
-    /// let m = Mdof::oscillator(100.0, 1.0e4, 200.0, Drive::Base)
+    /// use stochvib::system::{Drive, FrequencyResponse, MassSpringDamper, Quantity};
+    /// let m = MassSpringDamper { mass: 100.0, stiffness: 1.0e4, damping: 200.0, drive: Drive::Base }
+    ///     .build()
     ///     .unwrap()
     ///     .with_output("x", Quantity::Displacement(vec![1.0]))
     ///     .unwrap();
     /// // a base-driven mass follows the base at zero frequency
     /// assert!((m.static_gain().unwrap()[(0, 0)] - 1.0).abs() < 1e-12);
     /// ```
-    pub fn oscillator(mass: f64, stiffness: f64, damping: f64, drive: Drive) -> Result<Mdof> {
+    pub fn build(&self) -> Result<Mdof> {
+        let Self {
+            mass,
+            stiffness,
+            damping,
+            drive,
+        } = *self;
         require_positive("mass", mass)?;
         require_non_negative("stiffness", stiffness)?;
         require_non_negative("damping", damping)?;

@@ -20,7 +20,7 @@ use stochvib::nonlinear::integrator::free_response;
 use stochvib::nonlinear::*;
 use stochvib::response::{analyze_output, Excitation};
 use stochvib::spectrum::{Domain, RationalSpectrum};
-use stochvib::system::{Attach, Drive, Mdof, Quantity};
+use stochvib::system::{Attach, Drive, MassSpringDamper, Quantity};
 
 fn phi(x: f64) -> f64 {
     (-0.5 * x * x).exp() / (2.0 * PI).sqrt()
@@ -170,12 +170,18 @@ fn gaussian_equivalents_match_quadrature_and_printed_values() {
 
 /// A white-noise oscillator m = k = 1, c = 2ζ = 0.2 with σ₀² = 1 (S_f = 0.2/π) and the nonlinear elements.
 fn oscillator(elements: Vec<(&str, Arc<dyn ForceLaw>)>, damping: f64, s_f: f64) -> (NonlinearModel, Excitation) {
-    let lin = Mdof::oscillator(1.0, 1.0, damping, Drive::Force)
-        .unwrap()
-        .with_output("x", Quantity::Displacement(vec![1.0]))
-        .unwrap()
-        .with_output("v", Quantity::Velocity(vec![1.0]))
-        .unwrap();
+    let lin = MassSpringDamper {
+        mass: 1.0,
+        stiffness: 1.0,
+        damping,
+        drive: Drive::Force,
+    }
+    .build()
+    .unwrap()
+    .with_output("x", Quantity::Displacement(vec![1.0]))
+    .unwrap()
+    .with_output("v", Quantity::Velocity(vec![1.0]))
+    .unwrap();
     let els = elements
         .into_iter()
         .map(|(name, law)| NonlinearElement {
@@ -506,7 +512,14 @@ fn splitting_integrator_is_second_order_through_contact() {
     let theta = (wc * (d - xc) / vd).atan();
     let period = PI + 2.0 * (d / v).asin() + (PI - 2.0 * theta) / wc;
     assert!(rel(period, 4.489970231227194) < 1e-14);
-    let lin = Mdof::oscillator(1.0, 1.0, 0.0, Drive::Force).unwrap();
+    let lin = MassSpringDamper {
+        mass: 1.0,
+        stiffness: 1.0,
+        damping: 0.0,
+        drive: Drive::Force,
+    }
+    .build()
+    .unwrap();
     let stop = NonlinearElement {
         name: "stop".into(),
         law: Arc::new(BumpStop::new(Some((d, kappa)), None).unwrap()),

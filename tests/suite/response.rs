@@ -14,7 +14,8 @@ use stochvib::response::{
 };
 use stochvib::spectrum::{Domain, ExpCosine, Exponential, GaussCosineParameters, RationalSpectrum, Spectrum};
 use stochvib::system::{
-    Attach, Drive, Element, FrequencyResponse, Mdof, OutputInfo, Quantity, StateSpace, TransferFunction,
+    Attach, Drive, Element, FrequencyResponse, MassSpringDamper, Mdof, OutputInfo, Quantity, StateSpace,
+    TransferFunction,
 };
 use stochvib::Error;
 
@@ -210,14 +211,20 @@ fn two_wheel_delayed_input_closed_form() {
 }
 
 fn base_excited(m: f64, k: f64, b: f64) -> Mdof {
-    Mdof::oscillator(m, k, b, Drive::Base)
-        .unwrap()
-        .with_output("x", Quantity::Displacement(vec![1.0]))
-        .unwrap()
-        .with_output("x_acc", Quantity::Acceleration(vec![1.0]))
-        .unwrap()
-        .with_output("travel", Quantity::Deflection(0))
-        .unwrap()
+    MassSpringDamper {
+        mass: m,
+        stiffness: k,
+        damping: b,
+        drive: Drive::Base,
+    }
+    .build()
+    .unwrap()
+    .with_output("x", Quantity::Displacement(vec![1.0]))
+    .unwrap()
+    .with_output("x_acc", Quantity::Acceleration(vec![1.0]))
+    .unwrap()
+    .with_output("travel", Quantity::Deflection(0))
+    .unwrap()
 }
 
 /// A damped base-excited mass under a type-1 road: S_u ~ ω⁻² and |H_acc|² ~ (bω/m)², so S_acc tends to a
