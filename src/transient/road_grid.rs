@@ -23,6 +23,23 @@ pub struct RoadGridOptions {
     pub seed: u64,
 }
 
+impl RoadGridOptions {
+    /// At least two realizations and a positive grid step.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for R < 2, Δx ≤ 0 or NaN.
+    pub fn check(&self) -> Result<()> {
+        if self.realizations < 2 || self.dx.is_nan() || self.dx <= 0.0 {
+            return Err(Error::invalid(
+                "realizations/dx",
+                self.realizations,
+                "R >= 2 and dx > 0",
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The ensemble statistics at the reported times.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoadGridStatistics {
@@ -195,13 +212,7 @@ pub fn road_grid_monte_carlo(
     opts: &RoadGridOptions,
 ) -> Result<RoadGridStatistics> {
     check_road(ss, spectrum, speed)?;
-    if opts.realizations < 2 || opts.dx.is_nan() || opts.dx <= 0.0 {
-        return Err(Error::invalid(
-            "realizations/dx",
-            opts.realizations,
-            "R >= 2 and dx > 0",
-        ));
-    }
+    opts.check()?;
     let (path, run_in) = path(speed, ss, times, opts.substeps)?;
     let generator = grid_generator(spectrum, &path, opts.dx)?;
     let d = foh(&ss.a, &ss.b, path.dt)?;

@@ -302,13 +302,7 @@ pub fn road_wheels_monte_carlo(
     opts: &RoadGridOptions,
 ) -> Result<RoadGridStatistics> {
     check_wheels(ss, road, speed)?;
-    if opts.realizations < 2 || opts.dx.is_nan() || opts.dx <= 0.0 {
-        return Err(Error::invalid(
-            "realizations/dx",
-            opts.realizations,
-            "R >= 2 and dx > 0",
-        ));
-    }
+    opts.check()?;
     let (path, run_in) = path(speed, ss, times, opts.substeps)?;
     let grid = wheels_grid(ss, road, &path, opts.dx)?;
     let d = foh(&ss.a, &ss.b, path.dt)?;
