@@ -52,6 +52,31 @@ struct Transition {
     gamma: DVector<f64>,
 }
 
+/// Multiple of ε·max|Q_d| (and ε·max|Γ|) below which a step's error estimate is rounding, not truncation
+/// (see [`Transition::rounding_floor`]).
+const ROUNDING_ULPS: f64 = 64.0;
+
+impl Transition {
+    /// The absolute rounding level of a step's variances and means: (`ROUNDING_ULPS`·ε·max_jk |Q_d,jk|,
+    /// `ROUNDING_ULPS`·ε·max_j |Γ_j|).
+    ///
+    /// # Formula
+    /// Q_d comes out of one matrix exponential of the 2n×2n Van Loan matrix, whose rounding error is
+    /// normwise: every entry of the computed Q_d carries an absolute error of a few ε·max|Q_d|, whatever
+    /// the entry's own size (Higham, *Functions of Matrices*, 2008, §10.3, the backward error of scaling and
+    /// squaring). A state whose variance is zero by a cancellation (the roll of a symmetric body whose two
+    /// wheels read one track) is therefore computed as rounding of that size, and so is the difference of
+    /// its step-doubling estimates: an error estimate below this floor is not a truncation error a smaller
+    /// step could reduce, and the error control ignores it (without the floor such a state refuses every
+    /// step down to 10⁻¹¹ s).
+    fn rounding_floor(&self) -> (f64, f64) {
+        (
+            ROUNDING_ULPS * f64::EPSILON * self.qd.amax(),
+            ROUNDING_ULPS * f64::EPSILON * self.gamma.amax(),
+        )
+    }
+}
+
 /// The transition of the frozen form `fr` over h, exact for coefficients constant on the step.
 ///
 /// # Formula
@@ -149,16 +174,26 @@ impl Integrator<'_> {
             return Ok(exact(&self.cached(mid, h)?));
         }
         let c = &mut self.report.exponentials;
-        let (pa, ma) = apply(&transition(&mid, h, c)?, p, m);
-        let (ph, mh) = apply(&transition(&q1, 0.5 * h, c)?, p, m);
-        let (pb, mb) = apply(&transition(&q3, 0.5 * h, c)?, &ph, &mh);
+        let (whole, first, second) = (
+            transition(&mid, h, c)?,
+            transition(&q1, 0.5 * h, c)?,
+            transition(&q3, 0.5 * h, c)?,
+        );
+        let (pa, ma) = apply(&whole, p, m);
+        let (ph, mh) = apply(&first, p, m);
+        let (pb, mb) = apply(&second, &ph, &mh);
         let dp = (&pb - &pa) / 3.0;
         let dm = (&mb - &ma) / 3.0;
+        // the rounding of the three transitions, each entering the difference once
+        let (floor_p, floor_m) = [whole, first, second]
+            .iter()
+            .map(Transition::rounding_floor)
+            .fold((0.0, 0.0), |(a, b), (fp, fm)| (a + fp, b + fm));
         Ok(Trial {
             p: pb + &dp,
             m: mb + &dm,
-            dp: dp.diagonal().abs(),
-            dm: dm.abs(),
+            dp: dp.diagonal().map(|e| (e.abs() - floor_p).max(0.0)),
+            dm: dm.map(|e| (e.abs() - floor_m).max(0.0)),
             exact: false,
         })
     }
@@ -190,7 +225,8 @@ impl Integrator<'_> {
 }
 
 /// One trial step: the new covariance and mean, the absolute local error estimates of each state's
-/// variance and mean (zero for an exact step), and whether it was exact.
+/// variance and mean above the step's rounding level ([`Transition::rounding_floor`]; zero for an exact
+/// step), and whether it was exact.
 struct Trial {
     p: DMatrix<f64>,
     m: DVector<f64>,
@@ -263,7 +299,9 @@ pub type Visit<'a> = dyn FnMut(usize, f64, &DMatrix<f64>, &DVector<f64>, f64) ->
 /// finds more. The estimate reported at t_k is max_i of the accumulated absolute local estimates so far over
 /// those scales: an upper estimate for a stable system, whose errors decay. (An error relative to each
 /// step's own variance would be meaningless where the variance is near 0, at a start from rest, and would
-/// force the steps there down to nothing.)
+/// force the steps there down to nothing.) Local estimates are counted above the step's rounding level only
+/// ([`Transition::rounding_floor`]): a state whose variance is zero by a cancellation is rounding noise, and
+/// so is its estimate.
 ///
 /// # Errors
 /// Times that are negative, not finite or not increasing; more than `max_steps` steps; the model's errors;

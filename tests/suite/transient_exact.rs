@@ -386,12 +386,10 @@ fn stationary_input_through_the_transient_path() {
 /// the roll σ stays at rounding level (below 10⁻⁶ of the roll σ the same run gives with gains (1, −1)), and
 /// after 15 s at constant speed (the slowest mode, the bounce, decays as e^{−ζωt} with ζω = 2.5 1/s) the
 /// bounce σ is the stationary σ at 15 m/s of `analyze_output` (Lyapunov and quadrature of the output
-/// density, an independent method). Open: the route still stalls here (refused after 2·10⁶ steps at
-/// t ≈ 3·10⁻¹¹ s); a rounding floor from Σ_j |Φ_ij|√s_j did not help (for the short steps Φ ≈ I, and the
-/// roll's couplings to the driven states are themselves zero), so the test is ignored until the error
-/// control is fixed.
+/// density, an independent method). Without a rounding floor the route stalled here (refused after 2·10⁶
+/// steps at t ≈ 3·10⁻¹¹ s): the roll's variance, and the difference of its step-doubling estimates, are
+/// the normwise rounding of the Van Loan exponential, a few ε·max|Q_d| whatever the step.
 #[test]
-#[ignore = "open: the exact route's relative error control stalls on a state of zero variance"]
 fn a_state_of_zero_variance_does_not_stall_the_error_control() {
     use std::path::Path;
     let road = r#"{ kind = "exponential", domain = "spatial", variance = "1 cm^2", alpha = "0.2 1/m" }"#;
