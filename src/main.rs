@@ -4,6 +4,8 @@
 mod optimize_cli;
 #[path = "main/record_cli.rs"]
 mod record_cli;
+#[path = "main/tailor_cli.rs"]
+mod tailor_cli;
 #[path = "main/transient_cli.rs"]
 mod transient_cli;
 
@@ -562,6 +564,10 @@ enum Command {
     /// ν⁺(b, t) and a_w(t) by the exact route, the expected up-crossings and P(max |y| > b) of the mission;
     /// with --monte-carlo N -o FILE the same by simulation into a run file, σ(t) beside the exact curve.
     Transient(transient_cli::TransientArgs),
+    /// Test tailoring (docs/transients.md): the extreme response spectrum and the fatigue damage spectrum
+    /// (Lalanne) of a base acceleration, a spectrum file or a scenario output, over a family of
+    /// base-excited oscillators of quality factor Q, for a duration T.
+    Tailor(tailor_cli::TailorArgs),
     /// Report one spectrum: variance (model and quadrature), sigma, correlation, density.
     Spectrum {
         /// Catalogue name (e.g. `iso8608-c`) or path to a spectrum file.
@@ -634,6 +640,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             &progress_printer(),
             &shard_output,
         )?,
+        Command::Tailor(a) => print_as(&tailor_cli::tailor(&a)?, a.output.format())?,
         cmd @ Command::Spectrum { .. } => spectrum_command(cmd)?,
     }
     Ok(())

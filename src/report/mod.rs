@@ -21,6 +21,7 @@ pub mod run_summary;
 pub mod spectrum_text;
 pub mod table;
 pub mod tables;
+pub mod tailoring_text;
 pub mod transient_report;
 pub mod verdict_report;
 pub mod workday_handover;

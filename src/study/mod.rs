@@ -21,7 +21,8 @@
 //!   coherence, |H|², output densities with the cumulative variance, weighted densities, the model
 //!   correlation of a stored output), which [`crate::plot`] draws.
 //! * What `stochvib analyze` and `stochvib spectrum` report ([`analysis`] with its band tables,
-//!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]).
+//!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]), and what
+//!   `stochvib tailor` reports ([`tailoring`]: ERS and FDS of a spectrum file or a scenario output).
 //!
 //! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
 
@@ -46,6 +47,7 @@ mod sweep_h5;
 pub mod sweep_stream;
 pub mod sweep_table;
 pub mod sweep_verdicts;
+pub mod tailoring;
 pub mod transient_answers;
 pub mod transient_mc;
 pub mod transient_run;

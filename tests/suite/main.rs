@@ -76,6 +76,7 @@ mod stream_verdicts;
 mod streaming;
 mod sweep_stream;
 mod sweep_verdicts;
+mod tailoring;
 mod transient_evolutionary;
 mod transient_exact;
 mod transient_mc;
