@@ -798,12 +798,12 @@ fn road_command(cmd: Command) -> anyhow::Result<()> {
     if !(confidence > 0.0 && confidence < 1.0) {
         anyhow::bail!("--confidence {confidence}: expected a number in (0, 1)");
     }
-    let opts = report::road_report::RoadReportOptions {
+    let opts = study::road_profile::RoadReportOptions {
         segment_len: segment,
         detrend,
         confidence,
     };
-    let r = report::road_report::road_report(&profile, &opts)?;
+    let r = study::road_profile::road_report(&profile, &opts)?;
     print_as(&r, output.format())?;
     if let Some(out) = plots {
         let files = stochvib::plot::road_plots(&r, &out)?;

@@ -9,7 +9,9 @@
 //!   or the scheduler, and the file it writes), shared by runs and parameter studies, and the bit-identical
 //!   merge of a run's shard files ([`merge_runs`]).
 //! * A scenario's Monte Carlo run ([`Scenario::simulate`](crate::scenario::Scenario::simulate)).
-//! * A measured road profile replayed through a scenario's model ([`replay`]).
+//! * A measured road profile replayed through a scenario's model ([`replay`]); a measured profile's density,
+//!   ISO 8608 fits, IRI and coherence ([`road_profile`]); the coherence of a model beside a profile's and the
+//!   expected IRI of a road spectrum beside a profile's ([`road_numbers`]).
 //! * The verdicts of a scenario: analytic ([`verdict_analysis`], with the input's coverage of the
 //!   frequencies they need, [`input_coverage`]) and by Monte Carlo with the weighted outputs appended
 //!   ([`verdict_run`]), the time step of a scenario's run ([`run_step`]) and a working day of tasks
@@ -34,6 +36,8 @@ mod merge;
 pub mod merge_kind;
 mod nonlinear_run;
 pub mod replay;
+pub mod road_numbers;
+pub mod road_profile;
 pub mod run_step;
 pub mod scenario_curves;
 mod scenario_run;
