@@ -1392,7 +1392,7 @@ fn analyze_nonlinear(
         }
         None => None,
     };
-    print_as(&report::nonlinear_report(sc, answers, mc.as_ref())?, output.format())
+    print_as(&study::nonlinear_report(sc, answers, mc.as_ref())?, output.format())
 }
 
 /// Refuses Monte Carlo and pictures for a file without a random input.

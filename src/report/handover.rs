@@ -252,7 +252,7 @@ fn nonlinear_sections(
     dir: &Path,
     link: &Path,
 ) -> Result<String> {
-    let md = super::nonlinear_report(sc, answers, None)?.markdown();
+    let md = crate::study::nonlinear_report(sc, answers, None)?.markdown();
     let body: Vec<&str> = md.lines().skip_while(|l| l.starts_with("## ")).collect();
     let mut s = format!("## Nonlinear response: three routes\n{}\n", body.join("\n"));
     let opts = crate::plot::ScenarioPlotOptions::default();

@@ -17,7 +17,8 @@
 //!   ([`verdict_run`]), the time step of a scenario's run ([`run_step`]) and a working day of tasks
 //!   ([`workday`]).
 //! * Non-stationary runs ([`transient_run`], [`transient_answers`], [`transient_mc`]) and the three routes
-//!   of a scenario with nonlinear elements ([`nonlinear_run`]).
+//!   of a scenario with nonlinear elements ([`nonlinear_run`]) with what `stochvib analyze` reports of them
+//!   ([`nonlinear_report`]).
 //!
 //! * The curves of a scenario's pictures as plain data ([`scenario_curves`]: input densities, cross-spectra,
 //!   coherence, |H|², output densities with the cumulative variance, weighted densities, the model
@@ -34,6 +35,7 @@ pub mod input_coverage;
 pub mod mc_verdicts;
 mod merge;
 pub mod merge_kind;
+pub mod nonlinear_report;
 mod nonlinear_run;
 pub mod replay;
 pub mod road_numbers;
@@ -60,6 +62,7 @@ pub mod workday;
 pub use crate::store::MergeOptions;
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use merge::{merge_runs, MergeSummary};
+pub use nonlinear_report::{nonlinear_report, NonlinearReport};
 pub use nonlinear_run::NonlinearAnswers;
 pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};
