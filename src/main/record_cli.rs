@@ -8,7 +8,8 @@ use stochvib::record::{
     evaluate_exposure, evaluate_fatigue, open_record, AxisAssignment, ExposureOptions, FatigueOptions,
     MeanStressCorrection, RecordOptions, RunningRms, SnPoint,
 };
-use stochvib::report::record_report::{ExposureReport, FatigueReport, WeightingReport};
+use stochvib::report::record_report::{ExposureReport, FatigueReport};
+use stochvib::study::weighting_table::WeightingReport;
 use stochvib::units::Dim;
 
 /// What a record file does not say: its rate, units, format details.

@@ -25,6 +25,7 @@
 //!   correlation of a stored output), which [`crate::plot`] draws.
 //! * What `stochvib analyze` and `stochvib spectrum` report ([`analysis`] with its band tables,
 //!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]).
+//! * A frequency weighting at given frequencies, analytic and digital ([`weighting_table`]).
 //!
 //! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
 
@@ -57,6 +58,7 @@ pub mod transient_mc;
 pub mod transient_run;
 pub mod verdict_analysis;
 mod verdict_run;
+pub mod weighting_table;
 pub mod workday;
 
 pub use crate::store::MergeOptions;

@@ -479,7 +479,7 @@ fn eval_iri(path: &Path, args: &[String], spectra: &Path) -> Step<Outcome> {
 
 fn eval_weighting(args: &[String]) -> Step<Outcome> {
     let w = lib(stochvib::comfort::Weighting::parse(&args[1]), "start")?;
-    let r = stochvib::report::record_report::WeightingReport::new(
+    let r = stochvib::study::weighting_table::WeightingReport::new(
         w,
         &numbers(args, "--frequency")?,
         number(args, "--sample-rate")?,

@@ -243,7 +243,7 @@ fn the_sn_curve_of_the_fatigue_flags_names_the_flag() {
 #[test]
 fn a_weighting_beyond_f64_range_is_refused_naming_the_flag() {
     use stochvib::comfort::Weighting;
-    use stochvib::report::record_report::WeightingReport;
+    use stochvib::study::weighting_table::WeightingReport;
     let e = WeightingReport::new(Weighting::Wc, &[1e308], None).unwrap_err();
     assert_eq!(parameter(&e), "--frequency", "{e}");
     let e = WeightingReport::new(Weighting::We, &[], Some(1e308)).unwrap_err();
