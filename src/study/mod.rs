@@ -25,6 +25,7 @@
 //!   correlation of a stored output), which [`crate::plot`] draws.
 //! * What `stochvib analyze` and `stochvib spectrum` report ([`analysis`] with its band tables,
 //!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]).
+//! * The poles of a scenario's model ([`poles`]).
 //! * A frequency weighting at given frequencies, analytic and digital ([`weighting_table`]).
 //!
 //! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
@@ -38,6 +39,7 @@ mod merge;
 pub mod merge_kind;
 pub mod nonlinear_report;
 mod nonlinear_run;
+pub mod poles;
 pub mod replay;
 pub mod road_numbers;
 pub mod road_profile;
