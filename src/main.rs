@@ -1130,7 +1130,7 @@ fn merge_command(cmd: Command) -> anyhow::Result<()> {
         confidence,
     };
     if kind == study::merge_kind::MergeKind::Transient {
-        let s = stochvib::transient::merge_transient(&output, &inputs, &opts, &|_, _| {})?;
+        let s = stochvib::study::merge_transient(&output, &inputs, &opts, &|_, _| {})?;
         eprintln!(
             "merged {} realizations of a transient run into {}",
             s.n_realizations,

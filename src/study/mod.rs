@@ -7,7 +7,7 @@
 //!   ([`sweep_verdicts`]).
 //! * The shard contract of a cluster run ([`shard`]: which part a process computes, from `--shard I --of N`
 //!   or the scheduler, and the file it writes), shared by runs and parameter studies, and the bit-identical
-//!   merge of a run's shard files ([`merge_runs`]).
+//!   merge of a run's shard files ([`merge_runs`], and of a transient run's, [`merge_transient`]).
 //! * A scenario's Monte Carlo run ([`Scenario::simulate`](crate::scenario::Scenario::simulate)).
 //! * A measured road profile replayed through a scenario's model ([`replay`]); a measured profile's density,
 //!   ISO 8608 fits, IRI and coherence ([`road_profile`]); the coherence of a model beside a profile's and the
@@ -37,6 +37,7 @@ pub mod input_coverage;
 pub mod mc_verdicts;
 mod merge;
 pub mod merge_kind;
+mod merge_transient;
 pub mod nonlinear_report;
 mod nonlinear_run;
 pub mod poles;
@@ -66,6 +67,7 @@ pub mod workday;
 pub use crate::store::MergeOptions;
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use merge::{merge_runs, MergeSummary};
+pub use merge_transient::merge_transient;
 pub use nonlinear_report::{nonlinear_report, NonlinearReport};
 pub use nonlinear_run::NonlinearAnswers;
 pub use shard::{part_path, resolve_part, ShardChoice};
