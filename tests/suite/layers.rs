@@ -174,6 +174,37 @@ fn plot_uses_no_evaluation_module() {
     );
 }
 
+/// Modules whose code computes what `report/` must not: models and numerics (the [`EVALUATION`] modules but
+/// `response`, whose result types — `Outcome`, `VarianceValue` — the analysis text prints), nonlinear routes,
+/// non-stationary responses, road profile estimates and coherence models. `report/` formats what `study/`
+/// (and the layers below) computed; the plain results of these reach it through `study/`.
+const COMPUTATION: &[&str] = &[
+    "system",
+    "quad",
+    "quad_oscillatory",
+    "linalg",
+    "nonlinear",
+    "transient",
+    "road",
+    "coherence",
+];
+
+/// `report/` only formats: no file of it uses a computation module ([`COMPUTATION`]), by `use` or inline
+/// path.
+#[test]
+fn report_uses_no_computation_module() {
+    let found: Vec<String> = paths_used_under("report")
+        .iter()
+        .filter(|(_, t)| COMPUTATION.contains(&t.as_str()))
+        .map(|(f, t)| format!("{}: uses `crate::{t}`", f.display()))
+        .collect();
+    assert!(
+        found.is_empty(),
+        "report/ computes instead of formatting:\n{}",
+        found.join("\n")
+    );
+}
+
 /// What `store/` may use: the base layer's errors, numbers, units, file fields and file rules, and the
 /// estimators' [`Interval`](stochvib::estimate::Interval) it stores. Not the numerics (`quad`, `linalg`),
 /// not spectra, systems or response statistics: it stores and reads back what the layers above computed.
