@@ -805,12 +805,12 @@ fn road_command(cmd: Command) -> anyhow::Result<()> {
     if !(confidence > 0.0 && confidence < 1.0) {
         anyhow::bail!("--confidence {confidence}: expected a number in (0, 1)");
     }
-    let opts = report::road_report::RoadReportOptions {
+    let opts = study::road_profile::RoadReportOptions {
         segment_len: segment,
         detrend,
         confidence,
     };
-    let r = report::road_report::road_report(&profile, &opts)?;
+    let r = study::road_profile::road_report(&profile, &opts)?;
     print_as(&r, output.format())?;
     if let Some(out) = plots {
         let files = stochvib::plot::road_plots(&r, &out)?;
@@ -1137,7 +1137,7 @@ fn merge_command(cmd: Command) -> anyhow::Result<()> {
         confidence,
     };
     if kind == study::merge_kind::MergeKind::Transient {
-        let s = stochvib::transient::merge_transient(&output, &inputs, &opts, &|_, _| {})?;
+        let s = stochvib::study::merge_transient(&output, &inputs, &opts, &|_, _| {})?;
         eprintln!(
             "merged {} realizations of a transient run into {}",
             s.n_realizations,
@@ -1399,7 +1399,7 @@ fn analyze_nonlinear(
         }
         None => None,
     };
-    print_as(&report::nonlinear_report(sc, answers, mc.as_ref())?, output.format())
+    print_as(&study::nonlinear_report(sc, answers, mc.as_ref())?, output.format())
 }
 
 /// Refuses Monte Carlo and pictures for a file without a random input.

@@ -113,7 +113,7 @@ pub fn nonlinear<'py>(
             })
         })?),
     };
-    let r = call(py, || stochvib::report::nonlinear_report(sc, &answers, mc.as_ref()))?;
+    let r = call(py, || stochvib::study::nonlinear_report(sc, &answers, mc.as_ref()))?;
     py.import("stochvib.results")?
         .getattr("NonlinearResult")?
         .call1((to_python(py, &r)?, r.to_string()))

@@ -73,7 +73,7 @@ pub fn merge<'py>(
     };
     if transient {
         let s = detached(py, || {
-            Ok(stochvib::transient::merge_transient(&path, &inputs, &opts, &|_, _| {})?)
+            Ok(stochvib::study::merge_transient(&path, &inputs, &opts, &|_, _| {})?)
         })?;
         let text = format!(
             "merged {} realizations of a transient run into {}",

@@ -364,8 +364,8 @@ pub fn road_profile<'py>(
     detrend: &str,
     confidence: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use stochvib::report::road_report::{profile_report, RoadReportOptions};
     use stochvib::road::{Profile, Track};
+    use stochvib::study::road_profile::{profile_report, RoadReportOptions};
     let step = crate::quantity::quantity(py, step, "step", "m")?;
     let detrend = crate::names::detrend(py, detrend)?;
     if !(confidence > 0.0 && confidence < 1.0) {

@@ -92,6 +92,18 @@ pub fn exceedance_vanmarcke(r: f64, nu0_t: f64, delta: f64, barrier: Barrier) ->
     Ok(1.0 - a * (-hazard).exp())
 }
 
+/// The first three spectral moments λ_k = ∫|ω|ᵏS dω of a stationary process, the input of
+/// [`bandwidth_vanmarcke`] (named fields: three numbers of different powers of ω cannot be swapped silently).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BandwidthMoments {
+    /// λ₀ = σ², unit².
+    pub lambda0: f64,
+    /// λ₁, unit²·rad/s.
+    pub lambda1: f64,
+    /// λ₂ = σ_ẋ², unit²·(rad/s)².
+    pub lambda2: f64,
+}
+
 /// Vanmarcke's bandwidth δ = √(1 − λ₁²/(λ₀λ₂)) from the spectral moments λ_k = ∫|ω|ᵏS dω.
 ///
 /// # Formula
@@ -101,7 +113,12 @@ pub fn exceedance_vanmarcke(r: f64, nu0_t: f64, delta: f64, barrier: Barrier) ->
 ///
 /// # Errors
 /// Non-positive or non-finite moments; λ₁² > λ₀λ₂ beyond rounding (impossible for a density: Cauchy–Schwarz).
-pub fn bandwidth_vanmarcke(l0: f64, l1: f64, l2: f64) -> Result<f64> {
+pub fn bandwidth_vanmarcke(m: BandwidthMoments) -> Result<f64> {
+    let BandwidthMoments {
+        lambda0: l0,
+        lambda1: l1,
+        lambda2: l2,
+    } = m;
     for (name, v) in [("lambda0", l0), ("lambda1", l1), ("lambda2", l2)] {
         if !(v.is_finite() && v > 0.0) {
             return Err(Error::invalid(name, v, "spectral moments must be finite and > 0"));

@@ -8,7 +8,8 @@ use stochvib::record::{
     evaluate_exposure, evaluate_fatigue, open_record, AxisAssignment, ExposureOptions, FatigueOptions,
     MeanStressCorrection, RecordOptions, RunningRms, SnPoint,
 };
-use stochvib::report::record_report::{ExposureReport, FatigueReport, WeightingReport};
+use stochvib::report::record_report::{ExposureReport, FatigueReport};
+use stochvib::study::weighting_table::WeightingReport;
 use stochvib::units::Dim;
 
 /// What a record file does not say: its rate, units, format details.
@@ -298,7 +299,7 @@ pub fn coherence(a: CoherenceArgs) -> anyhow::Result<()> {
         .as_deref()
         .map(|t| stochvib::scenario::coherence_from_toml(t, width))
         .transpose()?;
-    let r = stochvib::report::road_numbers::coherence_report(
+    let r = stochvib::study::road_numbers::coherence_report(
         model,
         a.profile.as_deref(),
         &a.frequency,
@@ -325,6 +326,6 @@ pub struct IriArgs {
 /// `stochvib iri`.
 pub fn iri(a: IriArgs) -> anyhow::Result<()> {
     let spectrum = a.spectra.catalogue().resolve(&a.spectrum, None)?;
-    let r = stochvib::report::road_numbers::iri_report(&spectrum, a.profile.as_deref())?;
+    let r = stochvib::study::road_numbers::iri_report(&spectrum, a.profile.as_deref())?;
     super::print_as(&r, a.output.format())
 }

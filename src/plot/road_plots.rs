@@ -8,8 +8,8 @@
 use super::chart::{file_stem, Band, Legend, LineChart, Series};
 use crate::error::{Error, Result};
 use crate::numbers::num;
-use crate::report::road_report::{FitRow, RoadReport};
 use crate::spectrum::{IsoBound, IsoClass};
+use crate::study::road_profile::{FitRow, RoadReport};
 use std::path::{Path, PathBuf};
 
 /// n₀ of ISO 8608, cycles/m.
@@ -68,7 +68,7 @@ fn fit_name(fit: &FitRow) -> String {
 ///
 /// # Examples
 /// ```
-/// use stochvib::report::road_report::{road_report, RoadReportOptions};
+/// use stochvib::study::road_profile::{road_report, RoadReportOptions};
 /// let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/measured-profile.csv");
 /// let r = road_report(&p, &RoadReportOptions::default()).unwrap();
 /// let c = stochvib::plot::road_plots::road_density_chart(&r, 0).unwrap();

@@ -11,6 +11,7 @@
 use super::table::{facts, Table, ToMarkdown};
 use crate::error::{Error, Result};
 use crate::scenario::{Document, Scenario};
+use crate::study::poles::Pole;
 use std::path::{Path, PathBuf};
 
 /// The form of the report.
@@ -252,7 +253,7 @@ fn nonlinear_sections(
     dir: &Path,
     link: &Path,
 ) -> Result<String> {
-    let md = super::nonlinear_report(sc, answers, None)?.markdown();
+    let md = crate::study::nonlinear_report(sc, answers, None)?.markdown();
     let body: Vec<&str> = md.lines().skip_while(|l| l.starts_with("## ")).collect();
     let mut s = format!("## Nonlinear response: three routes\n{}\n", body.join("\n"));
     let opts = crate::plot::ScenarioPlotOptions::default();
@@ -274,25 +275,21 @@ pub(super) fn pictures_markdown(files: &[PathBuf], link: &Path) -> String {
     s
 }
 
-/// The poles of the model's state space: natural frequency ω_n = |λ| and damping ratio ζ = −Re λ / |λ| of
-/// each pole with Im λ ≥ 0 (one of each complex pair), by increasing ω_n.
+/// The pole table of the model ([`crate::study::poles::model_poles`]): natural frequency ω_n and damping
+/// ratio ζ of each pole with Im λ ≥ 0 (one of each complex pair), by increasing ω_n.
 fn poles_markdown(sc: &Scenario) -> String {
-    let Some(ss) = sc.model.system.state_space() else {
+    let Some(poles) = crate::study::poles::model_poles(sc) else {
         return "The model has no finite state space: no pole table.\n".into();
     };
-    let mut poles: Vec<(f64, f64)> =
-        ss.a.complex_eigenvalues()
-            .iter()
-            .filter(|l| l.im >= 0.0 && l.norm() > 0.0)
-            .map(|l| (l.norm(), -l.re / l.norm()))
-            .collect();
-    poles.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let col = |f: &dyn Fn(&(f64, f64)) -> f64| poles.iter().map(|p| Some(f(p))).collect::<Vec<_>>();
+    let col = |f: &dyn Fn(&Pole) -> f64| poles.iter().map(|p| Some(f(p))).collect::<Vec<_>>();
     let t = Table::default()
         .raw("pole", 1..=poles.len())
-        .num("ω_n [rad/s]", &col(&|p| p.0))
-        .num("f_n [Hz]", &col(&|p| p.0 / (2.0 * std::f64::consts::PI)))
-        .num("damping ratio ζ", &col(&|p| p.1));
+        .num("ω_n [rad/s]", &col(&|p| p.natural_frequency_rad_s))
+        .num(
+            "f_n [Hz]",
+            &col(&|p| p.natural_frequency_rad_s / (2.0 * std::f64::consts::PI)),
+        )
+        .num("damping ratio ζ", &col(&|p| p.damping_ratio));
     format!(
         "\nPoles of the state space (one of each complex pair; ζ ≥ 1 for a real pole; poles at 0 left out):\n\n{}",
         t.markdown()

@@ -2,7 +2,6 @@
 //! paste into a report, an issue or a wiki. The numbers follow the table rule of [`super::table`]: four
 //! significant figures, one notation per column; JSON keeps every digit.
 
-use super::road_report::{RoadReport, TrackReport};
 use super::table::{facts, Table, ToMarkdown};
 use super::tables::TablesReport;
 use super::verdict_report as vr;
@@ -13,6 +12,7 @@ use crate::numbers::{num, sig4};
 use crate::response::{Outcome, ResponseStatistics};
 use crate::study::analysis::{AnalysisReport, OutputReport};
 use crate::study::band_section::BandSection;
+use crate::study::road_profile::{CoherenceRow, DensityRow, FitRow, RoadReport, TrackReport};
 use crate::study::{ComfortVerdict, FatigueVerdict, VerdictAnalysis};
 use std::fmt::Write as _;
 use std::path::Path;
@@ -311,9 +311,8 @@ impl ToMarkdown for RoadReport {
             s += &track_markdown(t);
         }
         if let Some((l, r)) = &self.coherence_tracks {
-            let rows: Vec<&super::road_report::CoherenceRow> = self.coherence.iter().collect();
-            let col =
-                |f: fn(&super::road_report::CoherenceRow) -> f64| rows.iter().map(|r| Some(f(r))).collect::<Vec<_>>();
+            let rows: Vec<&CoherenceRow> = self.coherence.iter().collect();
+            let col = |f: fn(&CoherenceRow) -> f64| rows.iter().map(|r| Some(f(r))).collect::<Vec<_>>();
             let t = Table::default()
                 .num("n [cycles/m]", &col(|r| r.n))
                 .num("γ²", &col(|r| r.squared_coherence))
@@ -330,7 +329,7 @@ impl ToMarkdown for RoadReport {
 
 fn track_markdown(t: &TrackReport) -> String {
     let fits = &t.fits;
-    let col = |f: fn(&super::road_report::FitRow) -> f64| fits.iter().map(|r| Some(f(r))).collect::<Vec<_>>();
+    let col = |f: fn(&FitRow) -> f64| fits.iter().map(|r| Some(f(r))).collect::<Vec<_>>();
     let fit_table = Table::default()
         .text("ISO 8608 fit", fits.iter().map(|f| f.waviness_mode.clone()))
         .num("G_d(n0) [m³]", &col(|f| f.g0_m3))
@@ -342,7 +341,7 @@ fn track_markdown(t: &TrackReport) -> String {
         .text("class", fits.iter().map(|f| f.class.clone()))
         .num("reduced χ²", &col(|f| f.reduced_chi2));
     let d = &t.density;
-    let dcol = |f: fn(&super::road_report::DensityRow) -> f64| d.iter().map(|r| Some(f(r))).collect::<Vec<_>>();
+    let dcol = |f: fn(&DensityRow) -> f64| d.iter().map(|r| Some(f(r))).collect::<Vec<_>>();
     let density = Table::default()
         .num("n [cycles/m]", &dcol(|r| r.n))
         .num("G_d [m³]", &dcol(|r| r.g_d))

@@ -30,7 +30,6 @@ pub mod workday_report;
 pub use book::{book_report, BookReport};
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
 pub use markdown::inspect_markdown;
-pub use nonlinear_report::{nonlinear_report, NonlinearReport};
 pub use run_summary::summarize;
 pub use tables::{deterministic_report, reference_report, TablesReport};
 pub use workday_report::WorkdayReport;

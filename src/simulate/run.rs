@@ -349,7 +349,14 @@ fn finish_verdicts(
                     let vdv = (3.0 * duration).powf(0.25) * o.discrete_variance.sqrt();
                     super::verdicts::set_analytic(&mut extra, "vdv", vdv);
                 }
-                Some(kappa) => super::verdicts::set_non_gaussian_vdv(&mut extra, kappa, o.discrete_variance, duration),
+                Some(kappa) => super::verdicts::set_non_gaussian_vdv(
+                    &mut extra,
+                    &super::verdicts::WeightedProcess {
+                        kurtosis: kappa,
+                        variance: o.discrete_variance,
+                        duration_s: duration,
+                    },
+                ),
             }
         }
         if let Some(st) = stats.iter_mut().find(|s| s.output == output) {

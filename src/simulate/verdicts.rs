@@ -80,6 +80,18 @@ pub fn set_analytic(stats: &mut [Statistic], name: &str, analytic: f64) {
     }
 }
 
+/// The weighted acceleration a_w(t) of a run as [`set_non_gaussian_vdv`] needs it (named fields: three
+/// numbers of different meaning cannot be swapped silently).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WeightedProcess {
+    /// Kurtosis κ_w = E a⁴/σ_w⁴ (3 for a Gaussian process).
+    pub kurtosis: f64,
+    /// Variance σ_w², (m/s²)².
+    pub variance: f64,
+    /// Duration T of a realization, s.
+    pub duration_s: f64,
+}
+
 /// Sets the analytic VDV of a weighted output of kurtosis `kurtosis` (a non-Gaussian input: a Laplace moving
 /// average) and says so in the statistic's method: the Gaussian (3T)^{1/4}σ_w does not hold.
 ///
@@ -89,7 +101,12 @@ pub fn set_analytic(stats: &mut [Statistic], name: &str, analytic: f64) {
 /// E[VDV⁴] = E[Σ_k a_k⁴ Δt] = T·E a⁴ = κ_w σ_w⁴ T,     analytic VDV = (κ_w T)^{1/4} σ_w
 /// ```
 /// (exact for the stationary simulated process, whatever its law; κ_w = 3 is the Gaussian value).
-pub fn set_non_gaussian_vdv(stats: &mut [Statistic], kurtosis: f64, variance: f64, duration_s: f64) {
+pub fn set_non_gaussian_vdv(stats: &mut [Statistic], w: &WeightedProcess) {
+    let WeightedProcess {
+        kurtosis,
+        variance,
+        duration_s,
+    } = *w;
     set_analytic(stats, "vdv", (kurtosis * duration_s).powf(0.25) * variance.sqrt());
     if let Some(s) = stats.iter_mut().find(|s| s.name == "vdv") {
         s.method = non_gaussian_vdv_method(kurtosis);

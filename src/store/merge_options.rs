@@ -1,11 +1,11 @@
 //! How the shard files of a cluster run are merged into one run file: options shared by the merge of a
-//! stationary run ([`crate::study::merge_runs`]) and of a transient run ([`crate::transient::merge_transient`]).
+//! stationary run ([`crate::study::merge_runs`]) and of a transient run ([`crate::study::merge_transient`]).
 //! They say how the merged file is stored (where its raw realizations are, whether an existing file is
 //! replaced, the confidence of its intervals), so they live with the store both merges write to.
 
 use super::{CreateOptions, RawStorage};
 
-/// Options of a merge of shard files ([`crate::study::merge_runs`], [`crate::transient::merge_transient`]).
+/// Options of a merge of shard files ([`crate::study::merge_runs`], [`crate::study::merge_transient`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MergeOptions {
     /// Copy the raw realizations into the merged file instead of referencing the shard files.

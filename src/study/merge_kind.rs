@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 pub enum MergeKind {
     /// Sweep shard files (`sweep-shard-<I>-of-<N>.json`), joined by [`super::merge_sweep`].
     Sweep,
-    /// Part files of a transient run, joined by [`crate::transient::merge_transient`].
+    /// Part files of a transient run, joined by [`crate::study::merge_transient`].
     Transient,
     /// Part files of a stationary Monte Carlo run, joined by [`crate::study::merge_runs`].
     Run,

@@ -7,15 +7,18 @@
 //!   ([`sweep_verdicts`]).
 //! * The shard contract of a cluster run ([`shard`]: which part a process computes, from `--shard I --of N`
 //!   or the scheduler, and the file it writes), shared by runs and parameter studies, and the bit-identical
-//!   merge of a run's shard files ([`merge_runs`]).
+//!   merge of a run's shard files ([`merge_runs`], and of a transient run's, [`merge_transient`]).
 //! * A scenario's Monte Carlo run ([`Scenario::simulate`](crate::scenario::Scenario::simulate)).
-//! * A measured road profile replayed through a scenario's model ([`replay`]).
+//! * A measured road profile replayed through a scenario's model ([`replay`]); a measured profile's density,
+//!   ISO 8608 fits, IRI and coherence ([`road_profile`]); the coherence of a model beside a profile's and the
+//!   expected IRI of a road spectrum beside a profile's ([`road_numbers`]).
 //! * The verdicts of a scenario: analytic ([`verdict_analysis`], with the input's coverage of the
 //!   frequencies they need, [`input_coverage`]) and by Monte Carlo with the weighted outputs appended
 //!   ([`verdict_run`]), the time step of a scenario's run ([`run_step`]) and a working day of tasks
 //!   ([`workday`]).
 //! * Non-stationary runs ([`transient_run`], [`transient_answers`], [`transient_mc`]) and the three routes
-//!   of a scenario with nonlinear elements ([`nonlinear_run`]).
+//!   of a scenario with nonlinear elements ([`nonlinear_run`]) with what `stochvib analyze` reports of them
+//!   ([`nonlinear_report`]).
 //!
 //! * The curves of a scenario's pictures as plain data ([`scenario_curves`]: input densities, cross-spectra,
 //!   coherence, |H|², output densities with the cumulative variance, weighted densities, the model
@@ -23,6 +26,8 @@
 //! * What `stochvib analyze` and `stochvib spectrum` report ([`analysis`] with its band tables,
 //!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]), and what
 //!   `stochvib tailor` reports ([`tailoring`]: ERS and FDS of a spectrum file or a scenario output).
+//! * The poles of a scenario's model ([`poles`]).
+//! * A frequency weighting at given frequencies, analytic and digital ([`weighting_table`]).
 //!
 //! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
 
@@ -33,8 +38,13 @@ pub mod input_coverage;
 pub mod mc_verdicts;
 mod merge;
 pub mod merge_kind;
+mod merge_transient;
+pub mod nonlinear_report;
 mod nonlinear_run;
+pub mod poles;
 pub mod replay;
+pub mod road_numbers;
+pub mod road_profile;
 pub mod run_step;
 pub mod scenario_curves;
 mod scenario_run;
@@ -53,11 +63,14 @@ pub mod transient_mc;
 pub mod transient_run;
 pub mod verdict_analysis;
 mod verdict_run;
+pub mod weighting_table;
 pub mod workday;
 
 pub use crate::store::MergeOptions;
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use merge::{merge_runs, MergeSummary};
+pub use merge_transient::merge_transient;
+pub use nonlinear_report::{nonlinear_report, NonlinearReport};
 pub use nonlinear_run::NonlinearAnswers;
 pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};

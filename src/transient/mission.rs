@@ -64,7 +64,11 @@ pub fn stationary_moments(fr: &Frozen, i: usize, rel_tol: f64) -> Result<Station
         lambda1: l1,
         lambda2: l2,
         nu0_plus: (l2 / l0).sqrt() / (2.0 * std::f64::consts::PI),
-        delta: crate::extremes::bandwidth_vanmarcke(l0, l1, l2)?,
+        delta: crate::extremes::bandwidth_vanmarcke(crate::extremes::BandwidthMoments {
+            lambda0: l0,
+            lambda1: l1,
+            lambda2: l2,
+        })?,
     })
 }
 

@@ -55,7 +55,7 @@ pub use inputs::{input_model, white_slope_coefficient};
 pub use lyapunov_ode::{propagate, ExactOptions, StepReport};
 pub use mc_engine::{McGrid, McGridSpec};
 pub use mission::{stationary_moments, StationaryMoments};
-pub use monte_carlo::{merge_transient, run_transient, TransientRunInput, TransientRunOptions, TransientRunSummary};
+pub use monte_carlo::{run_transient, TransientRunInput, TransientRunOptions, TransientRunSummary};
 pub use profile::PiecewiseLinear;
 pub use road_grid::{road_grid_monte_carlo, RoadGridOptions, RoadGridStatistics};
 pub use road_grid_run::{run_road_grid, RoadGridRunInput};

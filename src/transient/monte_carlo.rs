@@ -8,8 +8,7 @@ use super::series::TransientSolution;
 use super::system::{Start, TimeVaryingSystem};
 use crate::error::{Error, Result};
 use crate::store::{
-    Compression, CreateOptions, OutputStatistics, Part, PartSet, Provenance, RawStorage, RunFile, RunMetadata,
-    RunWriter, Signal, SignalGroup,
+    Compression, CreateOptions, OutputStatistics, Part, Provenance, RunFile, RunMetadata, RunWriter, Signal,
 };
 use ndarray::Array2;
 use rayon::prelude::*;
@@ -415,103 +414,35 @@ pub fn is_transient_run(meta: &RunMetadata) -> bool {
     is_transient_layout(&meta.accumulators)
 }
 
-/// Merges the shard files of a transient run (the counterpart of [`crate::study::merge_runs`], which
-/// does not handle transient runs): the accumulators of every internal shard in order, finished by the code of a
-/// single-process run, so the statistics are bit-identical; the analytic side is taken from the first
-/// shard file (every shard file stores the same, which the shared fingerprint checks).
+/// Finishes the merged file of a transient run whose parts' shards `writer` has adopted: the statistics by
+/// the code of a single-process run (so they are bit-identical) from the accumulators in shard order, the
+/// analytic side from `stored` (the `/transient` group of the first part file, which every part stores alike),
+/// the intervals at `confidence`; `notes` are the merge's remarks. The merge of the part files itself is
+/// [`crate::study::merge_transient`].
 ///
 /// # Errors
-/// As [`crate::study::merge_runs`]; a shard file without its `/transient` group.
-pub fn merge_transient(
-    out: &Path,
-    inputs: &[PathBuf],
-    opts: &crate::store::MergeOptions,
-    progress: &dyn Fn(usize, usize),
+/// The store's errors reading the accumulators and writing the statistics.
+pub fn finish_merged(
+    mut writer: RunWriter,
+    meta: &RunMetadata,
+    stored: &crate::store::transient_series::TransientSeries,
+    confidence: f64,
+    notes: Vec<String>,
 ) -> Result<TransientRunSummary> {
-    let tmp = crate::store::tmp_path(out);
-    let set = PartSet::open(inputs, &[out, &tmp])?;
-    let meta = set.meta.clone();
-    let first = &set.parts[0];
-    if let Some(p) = set.parts[1..].iter().find(|p| p.shared != first.shared) {
-        return Err(Error::Hdf5 {
-            path: p.path.clone(),
-            reason: format!(
-                "its exact values differ from those of {}: one of them is damaged",
-                first.path.display()
-            ),
-        });
-    }
-    let stored = first.open()?.transient()?.ok_or_else(|| Error::Hdf5 {
-        path: first.path.clone(),
-        reason: "a transient shard file without its /transient group: the file is damaged".into(),
-    })?;
-    let confidence = opts.confidence.unwrap_or(stored.confidence);
-    let raw = opts.raw_storage(meta.store_raw);
-    let from = set.merged_from(out, raw);
-    let mut writer = RunWriter::create_merged(out, &meta, opts.create_options(), &from)?;
-    adopt_parts(&mut writer, &set, raw, progress)?;
     let analytic = AnalyticSide {
         method: stored.exact_method.clone(),
         outputs: stored.outputs.iter().map(AnalyticOutput::from_stored).collect(),
     };
     let fin = finish(
         &|name, b| writer.read_accumulator(name, b),
-        &meta,
+        meta,
         &stored.times,
         &analytic,
         confidence,
     )?;
     write_finished(&mut writer, &fin)?;
     let path = writer.finish()?;
-    let notes = set
-        .ignored
-        .iter()
-        .map(|(p, why)| format!("{}: {why}", p.display()))
-        .collect();
-    Ok(summary(path, &meta, 0, fin, notes))
-}
-
-/// Copies (or references) every part's shards into the merged writer, in shard order.
-fn adopt_parts(writer: &mut RunWriter, set: &PartSet, raw: RawStorage, progress: &dyn Fn(usize, usize)) -> Result<()> {
-    let meta = &set.meta;
-    let names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
-    progress(0, meta.n_shards());
-    for p in &set.parts {
-        let run = p.open()?;
-        let local = p.meta.local_shards();
-        let (accs, sums) = p.shard_rows(&run, &names)?;
-        if raw == RawStorage::Copied {
-            copy_rows(writer, &run, meta, local.clone(), &accs)?;
-        } else {
-            let views: Vec<_> = accs.iter().map(|a| a.view()).collect();
-            writer.adopt_shards(local.start, &views, sums.view())?;
-        }
-        progress(local.end, meta.n_shards());
-    }
-    Ok(())
-}
-
-/// The raw rows and accumulators of the shards `local` of `run`, written into the merged file.
-fn copy_rows(
-    writer: &mut RunWriter,
-    run: &RunFile,
-    meta: &RunMetadata,
-    local: std::ops::Range<usize>,
-    accs: &[Array2<f64>],
-) -> Result<()> {
-    for (r, b) in local.enumerate() {
-        let range = meta.shard_range(b);
-        let outs = meta
-            .outputs
-            .iter()
-            .map(|s| run.read_signals(SignalGroup::Outputs, &s.name, range.clone()))
-            .collect::<Result<Vec<_>>>()?;
-        let ov: Vec<_> = outs.iter().map(|a| a.view()).collect();
-        let rows: Vec<Vec<f64>> = accs.iter().map(|a| a.row(r).to_vec()).collect();
-        let refs: Vec<&[f64]> = rows.iter().map(|a| a.as_slice()).collect();
-        writer.write_shard(b, &[], &ov, &refs)?;
-    }
-    Ok(())
+    Ok(summary(path, meta, 0, fin, notes))
 }
 
 /// Reads the finished transient series and statistics of a run file (for `inspect` and `plot`).

@@ -828,7 +828,7 @@ pub(super) fn clap_refusal(what: String) -> Outcome {
 }
 
 fn eval_road(path: &Path, args: &[String]) -> Outcome {
-    use stochvib::report::road_report::{road_report, RoadReportOptions};
+    use stochvib::study::road_profile::{road_report, RoadReportOptions};
     let (segment, confidence) = match (parsed::<usize>(args, "--segment"), parsed::<f64>(args, "--confidence")) {
         (Ok(s), Ok(c)) => (s, c.unwrap_or(0.95)),
         (Err(w), _) | (_, Err(w)) => return clap_refusal(w),

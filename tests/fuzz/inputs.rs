@@ -719,7 +719,7 @@ pub fn evaluate(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention
                     match sc.nonlinear_answers() {
                         Err(e) => return err(&e, 2),
                         Ok(Some(answers)) => {
-                            let r = match report::nonlinear_report(&sc, &answers, None) {
+                            let r = match study::nonlinear_report(&sc, &answers, None) {
                                 Ok(r) => r,
                                 Err(e) => return err(&e, 2),
                             };

@@ -456,7 +456,7 @@ fn eval_coherence(path: &Path, args: &[String]) -> Step<Outcome> {
     };
     let profile = one(args, "--profile").map(|_| path);
     let confidence: f64 = number(args, "--confidence")?.unwrap_or(0.95);
-    let r = stochvib::report::road_numbers::coherence_report(
+    let r = stochvib::study::road_numbers::coherence_report(
         model,
         profile,
         &numbers(args, "--frequency")?,
@@ -472,14 +472,14 @@ fn eval_iri(path: &Path, args: &[String], spectra: &Path) -> Step<Outcome> {
     let catalogue = stochvib::scenario::Catalogue::new(spectra);
     let spectrum = lib(catalogue.resolve(&args[1], None), "load")?;
     let profile = one(args, "--profile").map(|_| path);
-    let r = lib(stochvib::report::road_numbers::iri_report(&spectrum, profile), "report")?;
+    let r = lib(stochvib::study::road_numbers::iri_report(&spectrum, profile), "report")?;
     let _ = format!("{r}");
     Ok(ok("iri", &r))
 }
 
 fn eval_weighting(args: &[String]) -> Step<Outcome> {
     let w = lib(stochvib::comfort::Weighting::parse(&args[1]), "start")?;
-    let r = stochvib::report::record_report::WeightingReport::new(
+    let r = stochvib::study::weighting_table::WeightingReport::new(
         w,
         &numbers(args, "--frequency")?,
         number(args, "--sample-rate")?,

@@ -243,7 +243,7 @@ fn the_sn_curve_of_the_fatigue_flags_names_the_flag() {
 #[test]
 fn a_weighting_beyond_f64_range_is_refused_naming_the_flag() {
     use stochvib::comfort::Weighting;
-    use stochvib::report::record_report::WeightingReport;
+    use stochvib::study::weighting_table::WeightingReport;
     let e = WeightingReport::new(Weighting::Wc, &[1e308], None).unwrap_err();
     assert_eq!(parameter(&e), "--frequency", "{e}");
     let e = WeightingReport::new(Weighting::We, &[], Some(1e308)).unwrap_err();
@@ -259,11 +259,11 @@ fn a_weighting_beyond_f64_range_is_refused_naming_the_flag() {
 fn iri_names_a_temporal_spectrum_and_writes_an_unbounded_band_as_null() {
     let catalogue = stochvib::scenario::Catalogue::new(spectra());
     let temporal = catalogue.resolve("type1", None).unwrap();
-    let e = stochvib::report::road_numbers::iri_report(&temporal, None).unwrap_err();
+    let e = stochvib::study::road_numbers::iri_report(&temporal, None).unwrap_err();
     assert_eq!(parameter(&e), "spectrum", "{e}");
     assert!(e.to_string().contains("type1"), "{e}");
     let road = catalogue.resolve("book-8-66", None).unwrap();
-    let r = stochvib::report::road_numbers::iri_report(&road, None).unwrap();
+    let r = stochvib::study::road_numbers::iri_report(&road, None).unwrap();
     let json = serde_json::to_value(&r).unwrap();
     assert!(json["expected"]["band_cycles_per_m"][1].is_null(), "{json}");
     assert!(!format!("{r}").contains("inf"), "{r}");
@@ -273,7 +273,7 @@ fn iri_names_a_temporal_spectrum_and_writes_an_unbounded_band_as_null() {
 #[test]
 fn the_coherence_segment_is_named_as_the_flag() {
     let profile = root().join("data/measured-profile.csv");
-    let e = stochvib::report::road_numbers::coherence_report(None, Some(&profile), &[], Some(2), 0.95).unwrap_err();
+    let e = stochvib::study::road_numbers::coherence_report(None, Some(&profile), &[], Some(2), 0.95).unwrap_err();
     assert_eq!(parameter(&e), "--segment", "{e}");
 }
 
@@ -340,7 +340,7 @@ fn short_profile(dir: &Path, name: &str, rows: usize, edit: impl Fn(Vec<String>)
 /// Δx = 50 m) names the profile file and the column.
 #[test]
 fn coherence_and_iri_name_the_flag_or_the_profile() {
-    use stochvib::report::road_numbers::{coherence_report, iri_report};
+    use stochvib::study::road_numbers::{coherence_report, iri_report};
     let d = scratch("road-numbers");
     let whole = root().join("data/measured-profile.csv");
     for c in [f64::NAN, 0.0, 1.0, 1.5] {
@@ -390,7 +390,7 @@ fn an_iri_or_a_flag_beyond_f64_is_refused_by_name() {
     });
     let catalogue = stochvib::scenario::Catalogue::new(spectra());
     let road = catalogue.resolve("iso8608-h", None).unwrap();
-    let e = stochvib::report::road_numbers::iri_report(&road, Some(&huge)).unwrap_err();
+    let e = stochvib::study::road_numbers::iri_report(&road, Some(&huge)).unwrap_err();
     let (file, key, _) = file_key(&e);
     assert_eq!((file, key.as_str()), (huge, "column left"), "{e}");
     assert!(e.to_string().contains("not a finite number"), "{e}");

@@ -162,14 +162,46 @@ const EVALUATION: &[&str] = &["response", "system", "quad", "quad_oscillatory", 
 /// `plot/` only draws: no file of it uses an evaluation module ([`EVALUATION`]), by `use` or inline path.
 #[test]
 fn plot_uses_no_evaluation_module() {
-    let found: Vec<String> = paths_used_under("plot")
-        .iter()
-        .filter(|(_, t)| EVALUATION.contains(&t.as_str()))
-        .map(|(f, t)| format!("{}: uses `crate::{t}`", f.display()))
-        .collect();
+    let found = uses_of_under("plot", EVALUATION);
     assert!(
         found.is_empty(),
         "plot/ evaluates instead of drawing:\n{}",
+        found.join("\n")
+    );
+}
+
+/// Every use of a module of `modules` by a file under `src/<dir>`, as `file: uses crate::<module>`.
+fn uses_of_under(dir: &str, modules: &[&str]) -> Vec<String> {
+    paths_used_under(dir)
+        .iter()
+        .filter(|(_, t)| modules.contains(&t.as_str()))
+        .map(|(f, t)| format!("{}: uses `crate::{t}`", f.display()))
+        .collect()
+}
+
+/// Modules whose code computes what `report/` must not: models and numerics (the [`EVALUATION`] modules but
+/// `response`, whose result types — `Outcome`, `VarianceValue` — the analysis text prints), nonlinear routes,
+/// non-stationary responses, road profile estimates and coherence models. `report/` formats what `study/`
+/// (and the layers below) computed; the plain results of these reach it through `study/`.
+const COMPUTATION: &[&str] = &[
+    "system",
+    "quad",
+    "quad_oscillatory",
+    "linalg",
+    "nonlinear",
+    "transient",
+    "road",
+    "coherence",
+];
+
+/// `report/` only formats: no file of it uses a computation module ([`COMPUTATION`]), by `use` or inline
+/// path.
+#[test]
+fn report_uses_no_computation_module() {
+    let found = uses_of_under("report", COMPUTATION);
+    assert!(
+        found.is_empty(),
+        "report/ computes instead of formatting:\n{}",
         found.join("\n")
     );
 }

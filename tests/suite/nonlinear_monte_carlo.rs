@@ -210,7 +210,7 @@ fn route2_bump_stop_matches_the_exact_variance_and_contact_rate() {
     );
     // the report labels route 1 an approximation, says route 3 applies and is loud about the contact rate
     let answers = sc.nonlinear_answers().unwrap().unwrap();
-    let report = stochvib::report::nonlinear_report(&sc, &answers, Some(&s))
+    let report = stochvib::study::nonlinear_report(&sc, &answers, Some(&s))
         .unwrap()
         .to_string();
     for needle in [

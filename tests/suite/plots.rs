@@ -907,7 +907,7 @@ fn analyze_and_book_plots_options_write_their_pictures() {
 #[test]
 fn road_pictures_show_the_density_band_fits_class_limits_and_coherence() {
     use stochvib::plot::road_plots::{road_coherence_chart, road_density_chart, road_plots};
-    use stochvib::report::road_report::{road_report, RoadReportOptions};
+    use stochvib::study::road_profile::{road_report, RoadReportOptions};
     let r = road_report(&root().join("data/measured-profile.csv"), &RoadReportOptions::default()).unwrap();
     let dir = out_dir("road");
     let files = road_plots(&r, &dir).unwrap();

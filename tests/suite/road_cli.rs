@@ -8,9 +8,9 @@ use common::tolerance::ROUNDING;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use stochvib::report::road_report::{road_report, RoadReportOptions};
 use stochvib::road::{spatial_psd, Detrend, Profile};
 use stochvib::scenario::parse_scenario;
+use stochvib::study::road_profile::{road_report, RoadReportOptions};
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()

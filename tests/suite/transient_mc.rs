@@ -10,10 +10,11 @@ use stochvib::extremes::Barrier;
 use stochvib::models::quarter_car::QuarterCar;
 use stochvib::spectrum::{IsoBound, IsoClass, PowerLaw};
 use stochvib::store::{Compression, Part};
+use stochvib::study::merge_transient;
 use stochvib::system::FrequencyResponse;
 use stochvib::transient::monte_carlo::read_transient_run;
 use stochvib::transient::{
-    input_model, merge_transient, run_transient, solve, Envelope, ExactOptions, InputModel, McGrid, McGridSpec, Start,
+    input_model, run_transient, solve, Envelope, ExactOptions, InputModel, McGrid, McGridSpec, Start,
     TimeVaryingSystem, TransientRunInput, TransientRunOptions,
 };
 
