@@ -4,6 +4,8 @@
 //!   driven by white noise), by the Bartels–Stewart real-Schur method, with dense Kronecker oracles.
 //! * [`integral_table`] — the closed-form integral table Iₙ = ∫|Hₙ(ω)|² dω of James, Nichols &
 //!   Phillips / Newland (Appendix 1) for rational transfer functions, exact for any order.
+//! * [`small_lyapunov`] — the continuous Lyapunov equation of a system of at most 8 states by one LU of
+//!   its vectorised symmetric form, reused for many right-hand sides (value and sensitivities).
 //! * [`expm`](mod@expm) — the matrix exponential with overflow and shape checks.
 //! * [`transfer`] — numerator and denominator of a state-space transfer function in a frequency-scaled
 //!   variable (stiff systems keep their digits).
@@ -18,6 +20,7 @@ pub mod expm;
 pub mod integral_table;
 pub mod lyapunov;
 pub mod poly;
+pub mod small_lyapunov;
 pub mod transfer;
 pub mod vmath;
 
@@ -28,3 +31,4 @@ pub use lyapunov::{
     solve_discrete_lyapunov_dense, spectral_abscissa, spectral_radius, LyapunovSolver,
 };
 pub use poly::{is_hurwitz, spectral_factor};
+pub use small_lyapunov::{SmallLyapunov, SMALL_LYAPUNOV_MAX_CONDITION, SMALL_LYAPUNOV_MAX_STATES};

@@ -41,7 +41,17 @@ pub fn variance_sensitivities(
 ) -> Result<(Vec<f64>, Vec<Vec<f64>>)> {
     // one balancing and Schur form of F for P and every dP
     let solver = LyapunovSolver::new(&base.a)?;
-    let p = solver.solve(&(&base.g * base.g.transpose()))?;
+    sensitivities_by(base, directions, |q| solver.solve(q))
+}
+
+/// [`variance_sensitivities`] with the Lyapunov equations F X + X Fᵀ + Q = 0 (F = `base.a`) solved by
+/// `solve(Q)`: P first, then each dP.
+pub(crate) fn sensitivities_by<E>(
+    base: &AugmentedSystem,
+    directions: &[AugmentedSystem],
+    mut solve: impl FnMut(&DMatrix<f64>) -> std::result::Result<DMatrix<f64>, E>,
+) -> std::result::Result<(Vec<f64>, Vec<Vec<f64>>), E> {
+    let p = solve(&(&base.g * base.g.transpose()))?;
     let rows = base.h.nrows();
     let quad = |u: &DMatrix<f64>, m: &DMatrix<f64>, v: &DMatrix<f64>| (u * m * v.transpose())[(0, 0)];
     let variances = (0..rows)
@@ -55,7 +65,7 @@ pub fn variance_sensitivities(
         let fp = &d.a * &p;
         let gg = &d.g * base.g.transpose();
         let q = &fp + fp.transpose() + &gg + gg.transpose();
-        let dp = solver.solve(&q)?;
+        let dp = solve(&q)?;
         derivatives.push(
             (0..rows)
                 .map(|r| {

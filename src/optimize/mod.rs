@@ -38,6 +38,7 @@ pub mod gradient;
 pub mod pareto;
 pub mod problem;
 pub mod quantity;
+mod small_point;
 pub mod solve;
 
 pub use gradient::{KktCheck, PointGradients, KKT_TOLERANCE};

@@ -4,10 +4,11 @@
 use super::affine::AffineModel;
 use super::gradient::{variance_sensitivities, PointGradients};
 use super::quantity::{Quantity, QuantityKind};
+use super::small_point::{difference_step, small_point, PointScratch, SmallModel};
 use crate::error::{Error, Result};
 use crate::fields::Fields;
 use crate::models::ModelInstance;
-use crate::response::ExactEvaluator;
+use crate::response::{ExactEvaluator, PointStatistics, VarianceMethod};
 use crate::scenario::{build_model, parse_scenario, BuiltModel, ModelContext, Scenario};
 use crate::system::{FrequencyResponse, StateSpace};
 use crate::units::parse_quantity;
@@ -372,6 +373,20 @@ impl<'a> Problem<'a> {
         self.fast.as_ref()?.gradients(self, x)
     }
 
+    /// The values at `x` and, when `gradients`, the gradients there, by the small Lyapunov path with
+    /// storage `scratch` kept across the evaluations of one search ([`small_point`]): the numbers of
+    /// [`evaluate`](Self::evaluate) and [`gradients`](Self::gradients) to rounding (the Lyapunov equations
+    /// solved by one LU of their vectorised form instead of a Schur form). `None` where the small path does
+    /// not apply; the general path then gives the values or the error.
+    pub(crate) fn small_point(
+        &self,
+        x: &[f64],
+        scratch: &mut PointScratch,
+        gradients: bool,
+    ) -> Option<(PointValues, Option<PointGradients>)> {
+        self.fast.as_ref()?.small_point(self, x, scratch, gradients)
+    }
+
     /// A scenario error at `x` named by the parameters' values.
     fn name_error(&self, x: &[f64], e: Error) -> Error {
         let at: Vec<String> = self
@@ -506,13 +521,7 @@ impl Fast {
 
     /// The analytic gradients at `x` (see [`Problem::gradients`]).
     fn gradients(&self, pb: &Problem, x: &[f64]) -> Option<Result<PointGradients>> {
-        let quantities: Vec<&Quantity> = std::iter::once(&pb.objective)
-            .chain(pb.constraints.iter().map(|c| &c.quantity))
-            .collect();
-        let sigma_like = |q: &Quantity| matches!(q.kind, QuantityKind::Sigma(_) | QuantityKind::ThreeSigma(_));
-        if !quantities.iter().all(|q| sigma_like(q)) {
-            return None;
-        }
+        let quantities = sigma_quantities(pb)?;
         if let Some(ss) = self.affine_at(x) {
             let at = |y: &[f64]| self.affine_at(y).map(|s| Ok(Arc::new(s) as SystemRef));
             return self.gradients_of(pb, x, &ss, &quantities, at);
@@ -551,7 +560,7 @@ impl Fast {
         let mut directions = Vec::with_capacity(x.len());
         for (k, (p, &xk)) in pb.params.iter().zip(x).enumerate() {
             // a step small against x_k (and against the range where x_k is 0): the matrices' central difference
-            let delta = 1e-5 * xk.abs().max(1e-3 * (p.high - p.low));
+            let delta = difference_step(p, xk);
             let step = |s: f64| {
                 let mut y = x.to_vec();
                 y[k] += s * delta;
@@ -570,24 +579,67 @@ impl Fast {
             let base = base?;
             let directions = directions.into_iter().collect::<Result<Vec<_>>>()?;
             let (var, dvar) = variance_sensitivities(&base, &directions)?;
-            // dσ/dx = dD/dx / (2σ); 3σ: three times that
-            let grad = |q: &Quantity, slot: usize| -> Vec<f64> {
-                let factor = if matches!(q.kind, QuantityKind::ThreeSigma(_)) {
-                    3.0
-                } else {
-                    1.0
-                };
-                dvar.iter()
-                    .map(|d| factor * d[slot] / (2.0 * var[slot].sqrt()))
-                    .collect()
-            };
-            let mut all = quantities.iter().zip(&self.slots).map(|(q, &s)| grad(q, s));
-            Ok(PointGradients {
-                objective: all.next().unwrap_or_default(),
-                constrained: all.collect(),
-            })
+            Ok(self.sigma_gradients(quantities, &var, &dvar))
         })();
         Some(result)
+    }
+
+    /// The gradients of σ and 3σ `quantities` from the variances `var` of the outputs and their derivatives
+    /// `dvar` (per parameter, per output): dσ/dx = dD/dx / (2σ); 3σ: three times that.
+    fn sigma_gradients(&self, quantities: &[&Quantity], var: &[f64], dvar: &[Vec<f64>]) -> PointGradients {
+        let grad = |q: &Quantity, slot: usize| -> Vec<f64> {
+            let factor = if matches!(q.kind, QuantityKind::ThreeSigma(_)) {
+                3.0
+            } else {
+                1.0
+            };
+            dvar.iter()
+                .map(|d| factor * d[slot] / (2.0 * var[slot].sqrt()))
+                .collect()
+        };
+        let mut all = quantities.iter().zip(&self.slots).map(|(q, &s)| grad(q, s));
+        PointGradients {
+            objective: all.next().unwrap_or_default(),
+            constrained: all.collect(),
+        }
+    }
+
+    /// The values at `x` and, when `gradients`, the gradients there by the small path
+    /// ([`small_point`]); `None` where it does not apply (no affine model, a quantity other than σ or 3σ,
+    /// see also [`small_point`]).
+    fn small_point(
+        &self,
+        pb: &Problem,
+        x: &[f64],
+        scratch: &mut PointScratch,
+        gradients: bool,
+    ) -> Option<(PointValues, Option<PointGradients>)> {
+        let quantities = sigma_quantities(pb)?;
+        let model = SmallModel {
+            evaluator: &self.evaluator,
+            excitation: &pb.base.excitation,
+            affine: self.affine.as_ref()?,
+            outputs: &self.outputs,
+        };
+        let (var, dvar) = small_point(&model, &pb.params, x, gradients, scratch)?;
+        let value = |q: &Quantity, slot: usize| {
+            let st = PointStatistics {
+                mean: None,
+                variance: Some(var[slot]),
+                lambda2: None,
+                method: VarianceMethod::Lyapunov,
+            };
+            q.of_statistics(&st).ok()
+        };
+        let mut values = quantities.iter().zip(&self.slots).map(|(q, &s)| value(q, s));
+        let objective = values.next()??;
+        let values = PointValues {
+            x: x.to_vec(),
+            objective,
+            constrained: values.collect::<Option<Vec<f64>>>()?,
+        };
+        let grads = gradients.then(|| self.sigma_gradients(&quantities, &var, &dvar));
+        Some((values, grads))
     }
 
     fn values(&self, sys: &dyn FrequencyResponse, pb: &Problem, x: &[f64]) -> Result<PointValues> {
@@ -607,6 +659,15 @@ impl Fast {
             constrained: q.collect::<Result<Vec<_>>>()?,
         })
     }
+}
+
+/// The objective's and the constraints' quantities when every one is a σ or 3σ.
+fn sigma_quantities<'p>(pb: &'p Problem) -> Option<Vec<&'p Quantity>> {
+    let quantities: Vec<&Quantity> = std::iter::once(&pb.objective)
+        .chain(pb.constraints.iter().map(|c| &c.quantity))
+        .collect();
+    let sigma_like = |q: &Quantity| matches!(q.kind, QuantityKind::Sigma(_) | QuantityKind::ThreeSigma(_));
+    quantities.iter().all(|q| sigma_like(q)).then_some(quantities)
 }
 
 /// The value at dotted `key` of `root` (an array element by its index).

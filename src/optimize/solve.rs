@@ -3,6 +3,7 @@
 
 use super::gradient::{KktCheck, PointGradients};
 use super::problem::{Goal, PointValues, Problem, Relation};
+use super::small_point::PointScratch;
 use crate::error::{Error, Result};
 use serde::Serialize;
 use std::cell::RefCell;
@@ -211,12 +212,16 @@ fn halton(k: usize, n: usize) -> Vec<f64> {
 }
 
 /// The problem in unit coordinates u ∈ [0, 1]ⁿ, with the last evaluation and the last gradients kept (the
-/// methods ask for the objective and then each constraint at one point).
+/// methods ask for the objective and then each constraint at one point). Points go by the small Lyapunov
+/// path where it applies ([`Problem::small_point`], its storage kept for the whole search); the values it
+/// computes with a gradient are kept for the evaluation that follows at the same point.
 struct Scaled<'p, 'a> {
     problem: &'p Problem<'a>,
     f_scale: f64,
     last: RefCell<Option<(Vec<f64>, Option<PointValues>)>>,
     last_gradients: RefCell<Option<(Vec<f64>, Option<PointGradients>)>>,
+    scratch: RefCell<PointScratch>,
+    prefetched: RefCell<Option<PointValues>>,
     evaluations: RefCell<usize>,
     gradient_evaluations: RefCell<usize>,
 }
@@ -240,7 +245,14 @@ impl Scaled<'_, '_> {
             return v.clone();
         }
         *self.evaluations.borrow_mut() += 1;
-        let v = self.problem.evaluate(&self.x_of(u)).ok();
+        let x = self.x_of(u);
+        let prefetched = self.prefetched.borrow_mut().take().filter(|v| v.x == x);
+        let v = prefetched
+            .or_else(|| {
+                let small = self.problem.small_point(&x, &mut self.scratch.borrow_mut(), false);
+                small.map(|(v, _)| v)
+            })
+            .or_else(|| self.problem.evaluate(&x).ok());
         *self.last.borrow_mut() = Some((u.to_vec(), v.clone()));
         v
     }
@@ -258,7 +270,15 @@ impl Scaled<'_, '_> {
             return g.clone();
         }
         *self.gradient_evaluations.borrow_mut() += 1;
-        let g = self.problem.gradients(&self.x_of(u)).and_then(|r| r.ok());
+        let x = self.x_of(u);
+        let small = self.problem.small_point(&x, &mut self.scratch.borrow_mut(), true);
+        let g = match small {
+            Some((v, g @ Some(_))) => {
+                *self.prefetched.borrow_mut() = Some(v);
+                g
+            }
+            _ => self.problem.gradients(&x).and_then(|r| r.ok()),
+        };
         *self.last_gradients.borrow_mut() = Some((u.to_vec(), g.clone()));
         g
     }
@@ -338,6 +358,8 @@ pub fn solve(problem: &Problem, opts: &SolveOptions) -> Result<Solution> {
         },
         last: RefCell::new(None),
         last_gradients: RefCell::new(None),
+        scratch: RefCell::new(PointScratch::default()),
+        prefetched: RefCell::new(None),
         evaluations: RefCell::new(0),
         gradient_evaluations: RefCell::new(0),
     };

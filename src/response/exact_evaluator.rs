@@ -373,14 +373,34 @@ impl ExactEvaluator {
         exc: &Excitation,
         outputs: &[usize],
     ) -> Option<Result<AugmentedSystem>> {
+        self.realization_with_finite(sys, exc, outputs)
+            .map(|r| r.map(|(aug, _)| aug))
+    }
+
+    /// [`realization`](Self::realization) and, per output, whether its variance is finite: no white-noise
+    /// feedthrough (its row of `f` is zero) and, for an integrated white input, H(0) = 0 (module docs).
+    pub(crate) fn realization_with_finite(
+        &self,
+        sys: &dyn FrequencyResponse,
+        exc: &Excitation,
+        outputs: &[usize],
+    ) -> Option<Result<(AugmentedSystem, Vec<bool>)>> {
         let ss = sys.state_space()?;
-        match &self.route {
-            Route::Table { .. } | Route::Lyapunov => Some(super::variance::augmented_rows(ss, exc, outputs)),
-            Route::IntegratedWhite { level, gains } => {
-                Some(integrated_white_realization(ss, *level, gains, outputs).map(|(aug, _)| aug))
+        let made = match &self.route {
+            Route::Table { .. } | Route::Lyapunov => {
+                super::variance::augmented_rows(ss, exc, outputs).map(|aug| (aug, vec![true; outputs.len()]))
             }
-            Route::Quadrature => None,
-        }
+            Route::IntegratedWhite { level, gains } => integrated_white_realization(ss, *level, gains, outputs),
+            Route::Quadrature => return None,
+        };
+        Some(made.map(|(aug, finite)| {
+            let finite = finite
+                .iter()
+                .enumerate()
+                .map(|(r, &f)| f && aug.f.row(r).amax() == 0.0)
+                .collect();
+            (aug, finite)
+        }))
     }
 
     /// The derivative (dF, dG, dH) of [`realization`](Self::realization) along a parameter θ, from the systems
