@@ -6,9 +6,7 @@
 
 use super::sweep_table::{OutputValues, SweepIdentity, SweepResults};
 use crate::error::{Error, Result};
-use crate::response::PointStatistics;
 use crate::store::{h5err as h5, open_sec2, OpenMode};
-use crate::study::Sweep;
 use hdf5::types::VarLenUnicode;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -240,37 +238,6 @@ impl H5TableWriter {
         write().map_err(h5(&self.path, "writing the table"))
     }
 
-    /// Writes the evaluated rows `stats` of the points `points` of `sweep` ([`Sweep::evaluate_into`], failed
-    /// points `errors`), which follow the last block's: the rows [`append`](Self::append) writes for their
-    /// [`tabulate`](super::sweep_table::tabulate)d table, without building it.
-    ///
-    /// # Errors
-    /// As [`append`](Self::append).
-    pub(crate) fn append_evaluated(
-        &mut self,
-        sweep: &Sweep,
-        points: Range<usize>,
-        stats: &[PointStatistics],
-        errors: &[(usize, String)],
-    ) -> Result<()> {
-        // (a study with verdict columns is written whole, by `append`)
-        if stats.len() != points.len() * self.outputs.len()
-            || sweep.spec().params.len() != self.n_keys
-            || !self.verdicts.is_empty()
-        {
-            return Err(self.out_of_order(&points));
-        }
-        let (spec, first) = (sweep.spec(), points.start);
-        let mut keys = vec![0; self.n_keys];
-        let idx = |r: usize, out: &mut [u64]| {
-            spec.indices_into(first + r, &mut keys);
-            for (o, &k) in out.iter_mut().zip(&keys) {
-                *o = k as u64;
-            }
-        };
-        self.append_rows(points, idx, |i| OutputValues::from_point(&stats[i]), errors)
-    }
-
     fn out_of_order(&self, points: &Range<usize>) -> Error {
         Error::Numerical {
             what: format!("writing the table {}", self.path.display()),
@@ -286,58 +253,71 @@ impl H5TableWriter {
     fn append_rows(
         &mut self,
         points: Range<usize>,
-        mut index: impl FnMut(usize, &mut [u64]),
+        index: impl FnMut(usize, &mut [u64]),
         value: impl Fn(usize) -> OutputValues,
         errors: &[(usize, String)],
     ) -> Result<()> {
-        let first = self.rows.start + self.written;
-        if points.start != first || points.end > self.rows.end {
+        let mut rows = H5Rows::default();
+        let piece = rows.pieces(self.layout(), points.clone(), points.len().max(1)).pop();
+        if let Some(piece) = piece {
+            piece.fill(points.start, index, value, errors);
+        }
+        self.append_filled(points, &rows, errors)
+    }
+
+    /// The shape of a block's columns for this table.
+    pub(crate) fn layout(&self) -> H5Layout {
+        H5Layout {
+            n_keys: self.n_keys,
+            n_outputs: self.outputs.len(),
+            monte_carlo: self.monte_carlo,
+        }
+    }
+
+    /// Writes the columns `rows` of `points` ([`H5Rows::pieces`] filled), which follow the last block's;
+    /// `errors` (ascending) are the failed points.
+    ///
+    /// # Errors
+    /// As [`append`](Self::append).
+    pub(crate) fn append_columns(
+        &mut self,
+        points: Range<usize>,
+        rows: &H5Rows,
+        errors: &[(usize, String)],
+    ) -> Result<()> {
+        if !self.verdicts.is_empty() {
             return Err(self.out_of_order(&points));
         }
-        let n = points.len();
+        self.append_filled(points, rows, errors)
+    }
+
+    fn append_filled(&mut self, points: Range<usize>, block: &H5Rows, errors: &[(usize, String)]) -> Result<()> {
         let n_out = self.outputs.len();
+        let first = self.rows.start + self.written;
+        let n = points.len();
+        let width = self.n_keys.max(1);
+        let n_cols = self.layout().n_columns();
+        if points.start != first
+            || points.end > self.rows.end
+            || block.index.len() != n * width
+            || block.numbers.len() != n * n_cols * n_out
+        {
+            return Err(self.out_of_order(&points));
+        }
         let rows = self.written..self.written + n;
-        let failed = |r: usize| errors.binary_search_by_key(&(first + r), |e| e.0).is_ok();
-        let mut write = || -> hdf5::Result<()> {
-            let width = self.n_keys.max(1);
-            let mut idx = vec![0u64; n * width];
-            if self.n_keys > 0 {
-                for (r, row) in idx.chunks_mut(width).enumerate() {
-                    index(r, row);
-                }
-            }
-            let idx =
-                ndarray::Array2::from_shape_vec((n, width), idx).map_err(|err| hdf5::Error::from(err.to_string()))?;
-            self.value_index.write_slice(&idx, (rows.clone(), ..))?;
-            // the columns of one output filled in one pass over its rows
-            let mut exact = vec![vec![0.0; n]; EXACT_COLUMNS.len()];
-            let mut mc = vec![vec![0.0; n]; if self.monte_carlo { MC_COLUMNS.len() } else { 0 }];
-            let mut code = vec![0u8; n];
-            let mut covers = vec![0u8; if self.monte_carlo { n } else { 0 }];
+        let write = || -> hdf5::Result<()> {
+            let idx = ndarray::ArrayView2::from_shape((n, width), &block.index[..])
+                .map_err(|err| hdf5::Error::from(err.to_string()))?;
+            self.value_index.write_slice(idx, (rows.clone(), ..))?;
             for (j, sets) in self.outputs.iter().enumerate() {
-                for r in 0..n {
-                    let v = value(r * n_out + j);
-                    for (col, x) in exact.iter_mut().zip(exact_row(&v)) {
-                        col[r] = x;
-                    }
-                    if self.monte_carlo {
-                        for (col, x) in mc.iter_mut().zip(mc_row(&v)) {
-                            col[r] = x;
-                        }
-                        covers[r] = v.mc.map_or(0, |m| u8::from(m.covers));
-                    }
-                    code[r] = if failed(r) {
-                        FAILED
-                    } else {
-                        super::sweep_table::method_code(v.method)
-                    };
-                }
-                for (col, ds) in exact.iter().chain(&mc).zip(&sets.numbers) {
+                let cols = block.numbers[j * n_cols * n..(j + 1) * n_cols * n].chunks(n.max(1));
+                for (col, ds) in cols.zip(&sets.numbers) {
                     ds.write_slice(col, rows.clone())?;
                 }
-                sets.method.write_slice(&code, rows.clone())?;
+                sets.method
+                    .write_slice(&block.method[j * n..(j + 1) * n], rows.clone())?;
                 if let Some(ds) = &sets.covers {
-                    ds.write_slice(&covers, rows.clone())?;
+                    ds.write_slice(&block.covers[j * n..(j + 1) * n], rows.clone())?;
                 }
             }
             Ok(())
@@ -377,5 +357,136 @@ impl H5TableWriter {
         let path = self.path;
         drop((self.value_index, self.outputs, self.verdicts));
         self.file.close().map_err(h5(&path, "closing the table"))
+    }
+}
+
+/// The shape of a block of a table's columns: the number of keys and outputs, with Monte Carlo columns or
+/// without.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct H5Layout {
+    n_keys: usize,
+    n_outputs: usize,
+    monte_carlo: bool,
+}
+
+impl H5Layout {
+    /// The number columns of one output.
+    fn n_columns(&self) -> usize {
+        EXACT_COLUMNS.len() + if self.monte_carlo { MC_COLUMNS.len() } else { 0 }
+    }
+}
+
+/// A block's columns as the file holds them, for rows 0..n: the value indices (row-major, at least one
+/// column), then per output its number columns one after the other, its method codes and Monte Carlo
+/// cover flags. Filled piece by piece ([`pieces`](Self::pieces)) by the evaluating workers and written by
+/// [`H5TableWriter::append_columns`]; the buffers are kept from block to block.
+#[derive(Debug, Default)]
+pub(crate) struct H5Rows {
+    index: Vec<u64>,
+    numbers: Vec<f64>,
+    method: Vec<u8>,
+    covers: Vec<u8>,
+}
+
+/// The rows `points` of an [`H5Rows`] block, to be filled by one worker.
+pub(crate) struct H5Piece<'a> {
+    n_keys: usize,
+    index: &'a mut [u64],
+    /// Every number column of every output (output-major), this piece's rows.
+    numbers: Vec<&'a mut [f64]>,
+    method: Vec<&'a mut [u8]>,
+    covers: Vec<&'a mut [u8]>,
+    monte_carlo: bool,
+}
+
+/// The chunks of `chunk` rows of a column `col`, dealt to the pieces in turn.
+fn deal<'a, T>(col: &'a mut [T], chunk: usize, to: &mut [Vec<&'a mut [T]>]) {
+    for (piece, part) in to.iter_mut().zip(col.chunks_mut(chunk)) {
+        piece.push(part);
+    }
+}
+
+impl H5Rows {
+    /// Sizes the buffers for the `points` of a block of `layout` and cuts them into pieces of `chunk`
+    /// rows (the last shorter), in order.
+    pub(crate) fn pieces(&mut self, layout: H5Layout, points: Range<usize>, chunk: usize) -> Vec<H5Piece<'_>> {
+        let n = points.len();
+        let (width, n_cols, n_out) = (layout.n_keys.max(1), layout.n_columns(), layout.n_outputs);
+        let covers = if layout.monte_carlo { n * n_out } else { 0 };
+        self.index.resize(n * width, 0);
+        self.numbers.resize(n * n_cols * n_out, 0.0);
+        self.method.resize(n * n_out, 0);
+        self.covers.resize(covers, 0);
+        let n_pieces = n.div_ceil(chunk);
+        let mut numbers: Vec<Vec<&mut [f64]>> = (0..n_pieces).map(|_| Vec::new()).collect();
+        let mut method: Vec<Vec<&mut [u8]>> = (0..n_pieces).map(|_| Vec::new()).collect();
+        let mut cover: Vec<Vec<&mut [u8]>> = (0..n_pieces).map(|_| Vec::new()).collect();
+        for col in self.numbers.chunks_mut(n.max(1)) {
+            deal(col, chunk, &mut numbers);
+        }
+        for col in self.method.chunks_mut(n.max(1)) {
+            deal(col, chunk, &mut method);
+        }
+        for col in self.covers.chunks_mut(n.max(1)) {
+            deal(col, chunk, &mut cover);
+        }
+        let index = self.index.chunks_mut(chunk * width);
+        index
+            .zip(numbers)
+            .zip(method.into_iter().zip(cover))
+            .map(|((index, numbers), (method, covers))| H5Piece {
+                n_keys: layout.n_keys,
+                index,
+                numbers,
+                method,
+                covers,
+                monte_carlo: layout.monte_carlo,
+            })
+            .collect()
+    }
+}
+
+impl H5Piece<'_> {
+    /// Fills the rows of this piece, whose first row is point `first`: `index(r, out)` writes row r's
+    /// value indices, `value(r·outputs + j)` is output j of row r, `errors` (ascending) the failed points
+    /// (of any range that holds this piece's).
+    pub(crate) fn fill(
+        self,
+        first: usize,
+        mut index: impl FnMut(usize, &mut [u64]),
+        value: impl Fn(usize) -> OutputValues,
+        errors: &[(usize, String)],
+    ) {
+        let width = self.n_keys.max(1);
+        if self.n_keys > 0 {
+            for (r, row) in self.index.chunks_mut(width).enumerate() {
+                index(r, row);
+            }
+        }
+        let n_out = self.method.len();
+        let n_cols = if n_out == 0 { 0 } else { self.numbers.len() / n_out };
+        let (mut numbers, mut method, mut covers) = (self.numbers, self.method, self.covers);
+        let n_rows = method.first().map_or(0, |m| m.len());
+        for r in 0..n_rows {
+            let failed = errors.binary_search_by_key(&(first + r), |e| e.0).is_ok();
+            for j in 0..n_out {
+                let v = value(r * n_out + j);
+                let cols = &mut numbers[j * n_cols..(j + 1) * n_cols];
+                for (col, x) in cols.iter_mut().zip(exact_row(&v)) {
+                    col[r] = x;
+                }
+                if self.monte_carlo {
+                    for (col, x) in cols[EXACT_COLUMNS.len()..].iter_mut().zip(mc_row(&v)) {
+                        col[r] = x;
+                    }
+                    covers[j][r] = v.mc.map_or(0, |m| u8::from(m.covers));
+                }
+                method[j][r] = if failed {
+                    FAILED
+                } else {
+                    super::sweep_table::method_code(v.method)
+                };
+            }
+        }
     }
 }

@@ -1,6 +1,8 @@
 //! A parameter study's table written while it is computed (`stochvib sweep`): the points are evaluated in
-//! blocks of [`StreamOptions::block_points`] on every core, and each finished block goes to a writer thread
-//! that puts it into the file (HDF5 rows, CSV lines) while the next block is evaluated. Memory holds at most
+//! blocks of [`StreamOptions::block_points`] on every core, each worker turning the pieces of 256 points it
+//! evaluated into the file's form at once (CSV text, HDF5 columns), and each finished block goes to a writer
+//! thread that only writes it (one write per piece of CSV, one per HDF5 dataset) while the next block is
+//! evaluated. Memory holds at most
 //! three blocks (one being evaluated, one waiting, one being written), whatever the number of points, and
 //! the file is the same, byte for byte (CSV) or value for value (HDF5), as [`SweepResults::write`] of the
 //! whole table: every point is evaluated alone, so the blocking cannot change a number. With a Monte Carlo
@@ -10,9 +12,10 @@
 //! JSON tables are one document and are written from the whole table ([`compute_sweep`], then
 //! [`SweepResults::write_json`]).
 
-use super::sweep_h5::H5TableWriter;
+use super::sweep_h5::{H5Rows, H5TableWriter};
 use super::sweep_table::{
-    compute_sweep, csv_header, prepare_table, sweep_identity, tabulate, SweepMonteCarlo, SweepResults, TableFormat,
+    compute_sweep, csv_header, prepare_table, sweep_identity, CsvRows, OutputValues, SweepMonteCarlo, SweepResults,
+    TableFormat,
 };
 use crate::error::{Error, Result};
 use crate::response::PointStatistics;
@@ -118,8 +121,9 @@ pub fn write_sweep_table(
         stream_sweep_csv(sweep, created(std::fs::File::create(&tmp))?, path, mc, opts, progress)?
     } else {
         let w = H5TableWriter::create(&tmp, &sweep_identity(sweep, mc), n, 0..n)?;
-        let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, |w, b| match b {
-            Block::Rows { points, stats, errors } => w.append_evaluated(sweep, points.clone(), stats, errors),
+        let fill = h5_columns(sweep, w.layout(), opts.parallel);
+        let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, fill, |w, b| match b {
+            Block::Rows { points, buf, errors } => w.append_columns(points.clone(), buf, errors),
             Block::Table(t) => w.append(t),
         })?;
         w.finish()?;
@@ -150,7 +154,8 @@ pub fn stream_sweep_csv(
         source,
     };
     let n = sweep.spec().n_points();
-    let mut out = std::io::BufWriter::with_capacity(1 << 20, out);
+    // a piece of text larger than the buffer goes to `out` in one write, without a copy
+    let mut out = std::io::BufWriter::with_capacity(1 << 16, out);
     if !sweep.verdicts().is_empty() {
         // one row per point: the table is evaluated whole
         let t = compute_sweep(sweep, 0..n, opts.parallel, mc, progress)?;
@@ -162,16 +167,20 @@ pub fn stream_sweep_csv(
             errors: t.errors,
         });
     }
-    out.write_all(csv_header(&sweep_identity(sweep, mc)).as_bytes())
-        .map_err(io)?;
-    let (mut out, errors) = pipeline(sweep, 0..n, mc, opts, progress, out, |w, b| {
-        let blocks = match b {
-            Block::Rows { points, stats, errors } => {
-                tabulate(sweep, points.clone(), stats, errors.clone(), mc).csv_row_blocks()
+    let identity = sweep_identity(sweep, mc);
+    out.write_all(csv_header(&identity).as_bytes()).map_err(io)?;
+    let lines = CsvRows::new(&identity);
+    let fill = csv_text(sweep, &lines, opts.parallel);
+    let (mut out, errors) = pipeline(sweep, 0..n, mc, opts, progress, out, fill, |w, b| {
+        let table;
+        let pieces = match b {
+            Block::Rows { buf, .. } => buf,
+            Block::Table(t) => {
+                table = t.csv_row_blocks();
+                &table
             }
-            Block::Table(t) => t.csv_row_blocks(),
         };
-        blocks
+        pieces
             .iter()
             .try_for_each(|text| w.write_all(text.as_bytes()).map_err(io))
     })?;
@@ -179,42 +188,144 @@ pub fn stream_sweep_csv(
     Ok(StreamedTable { n_points: n, errors })
 }
 
+/// Points per piece of a block: what one worker evaluates and puts into the file's form.
+const PIECE_POINTS: usize = 256;
+
 /// A block on its way from the evaluation to the writer thread.
-pub(crate) enum Block {
-    /// Rows of exact statistics ([`Sweep::evaluate_into`]), tabulated by the writer thread.
+pub(crate) enum Block<B> {
+    /// Rows of exact statistics ([`Sweep::evaluate_into`]), already in the file's form `buf`.
     Rows {
         points: Range<usize>,
-        stats: Vec<PointStatistics>,
+        buf: B,
         errors: Vec<(usize, String)>,
     },
     /// A block with its Monte Carlo values ([`compute_sweep`]).
     Table(Box<SweepResults>),
 }
 
-/// Evaluates `points` in blocks on the calling thread (each block on every core with `opts.parallel`) and
-/// hands each block, in order, to `put` with `sink` on a writer thread (which tabulates the rows as its format needs);
-/// returns the sink and the failed points. The calling thread only evaluates, so that the cores are never
-/// idle while a block is converted or written. A failing `put` stops the evaluation at the next block (the
-/// next point with Monte Carlo, whose blocks are single points) and is the error returned.
-fn pipeline<S: Send>(
+/// Evaluates `points` of `sweep` piece by piece ([`PIECE_POINTS`] points; on every core with `parallel`)
+/// into `stats`, and hands each piece's points, rows, failed points and its part of the output `pieces`
+/// (one per piece, in order) to `format` on the worker that evaluated it. Returns the failed points
+/// (ascending).
+fn evaluate_pieces<P: Send>(
+    sweep: &Sweep,
+    points: Range<usize>,
+    parallel: bool,
+    stats: &mut Vec<PointStatistics>,
+    pieces: Vec<P>,
+    format: impl Fn(Range<usize>, &[PointStatistics], &[(usize, String)], P) + Sync,
+) -> Vec<(usize, String)> {
+    use rayon::prelude::*;
+    let n_out = sweep.outputs().len();
+    // every row is overwritten by the evaluation
+    stats.resize(points.len() * n_out, FAILED_POINT);
+    let mut rest = &mut stats[..];
+    let mut jobs = Vec::with_capacity(pieces.len());
+    for (c, piece) in pieces.into_iter().enumerate() {
+        let start = points.start + c * PIECE_POINTS;
+        let pts = start..(start + PIECE_POINTS).min(points.end);
+        let (rows, tail) = std::mem::take(&mut rest).split_at_mut(pts.len() * n_out);
+        rest = tail;
+        jobs.push((pts, rows, piece));
+    }
+    let work = |(pts, rows, piece): (Range<usize>, &mut [PointStatistics], P)| {
+        let errors = sweep.evaluate_into(pts.clone(), false, rows);
+        format(pts, rows, &errors, piece);
+        errors
+    };
+    let errors: Vec<Vec<(usize, String)>> = if parallel {
+        jobs.into_par_iter().map(work).collect()
+    } else {
+        jobs.into_iter().map(work).collect()
+    };
+    errors.concat()
+}
+
+/// The CSV lines of a block, one string per piece, formatted by the workers.
+fn csv_text<'a>(
+    sweep: &'a Sweep,
+    lines: &'a CsvRows,
+    parallel: bool,
+) -> impl Fn(Range<usize>, &mut Vec<PointStatistics>, &mut Vec<String>) -> Vec<(usize, String)> + 'a {
+    move |points, stats, bufs| {
+        bufs.resize_with(points.len().div_ceil(PIECE_POINTS), String::new);
+        let n_out = sweep.outputs().len();
+        let spec = sweep.spec();
+        // about 170 bytes a line: the buffers grow once, in the first block, and are reused after it
+        let pieces = bufs.iter_mut().map(|s| {
+            s.clear();
+            s.reserve(PIECE_POINTS * n_out * 200);
+            s
+        });
+        evaluate_pieces(
+            sweep,
+            points,
+            parallel,
+            stats,
+            pieces.collect(),
+            |pts, rows, errors, s| {
+                let mut keys = vec![0; spec.params.len()];
+                for (r, p) in pts.enumerate() {
+                    spec.indices_into(p, &mut keys);
+                    let err = errors
+                        .binary_search_by_key(&p, |e| e.0)
+                        .ok()
+                        .map(|i| errors[i].1.as_str());
+                    lines.push_point(s, p, &keys, |j| OutputValues::from_point(&rows[r * n_out + j]), err);
+                }
+            },
+        )
+    }
+}
+
+/// The HDF5 columns of a block of a table of `layout`, filled by the workers.
+fn h5_columns<'a>(
+    sweep: &'a Sweep,
+    layout: super::sweep_h5::H5Layout,
+    parallel: bool,
+) -> impl Fn(Range<usize>, &mut Vec<PointStatistics>, &mut H5Rows) -> Vec<(usize, String)> + 'a {
+    move |points, stats, rows| {
+        let spec = sweep.spec();
+        let pieces = rows.pieces(layout, points.clone(), PIECE_POINTS);
+        evaluate_pieces(sweep, points, parallel, stats, pieces, |pts, rows, errors, piece| {
+            let mut keys = vec![0; spec.params.len()];
+            let index = |r: usize, out: &mut [u64]| {
+                spec.indices_into(pts.start + r, &mut keys);
+                for (o, &k) in out.iter_mut().zip(&keys) {
+                    *o = k as u64;
+                }
+            };
+            piece.fill(pts.start, index, |i| OutputValues::from_point(&rows[i]), errors);
+        })
+    }
+}
+
+/// Evaluates `points` in blocks on the calling thread (each block on every core with `opts.parallel`:
+/// `fill(block, rows, buf)` evaluates it into the file's form `buf` and returns its failed points) and
+/// hands each block, in order, to `put` with `sink` on a writer thread, which only writes; returns the sink
+/// and the failed points. The calling thread only evaluates, so that the cores are never idle while a
+/// block is written. A failing `put` stops the evaluation at the next block (the next point with Monte
+/// Carlo, whose blocks are single points) and is the error returned.
+#[allow(clippy::too_many_arguments)]
+fn pipeline<S: Send, B: Send + Default>(
     sweep: &Sweep,
     points: Range<usize>,
     mc: Option<SweepMonteCarlo>,
     opts: StreamOptions,
     progress: &dyn Fn(usize, usize),
     sink: S,
-    mut put: impl FnMut(&mut S, &Block) -> Result<()> + Send,
+    fill: impl Fn(Range<usize>, &mut Vec<PointStatistics>, &mut B) -> Vec<(usize, String)>,
+    mut put: impl FnMut(&mut S, &Block<B>) -> Result<()> + Send,
 ) -> Result<(S, Vec<(usize, String)>)> {
     if opts.block_points == 0 {
         return Err(Error::invalid("block_points", 0, "a block holds at least one point"));
     }
     let total = points.len();
-    let n_out = sweep.outputs().len();
     // a Monte Carlo batch takes seconds: one point per block
     let block_points = if mc.is_some() { 1 } else { opts.block_points };
-    // one block evaluated while one is written and one waits; spent row buffers come back for reuse
-    let (tx, rx) = std::sync::mpsc::sync_channel::<Block>(1);
-    let (back_tx, back_rx) = std::sync::mpsc::channel::<Vec<PointStatistics>>();
+    // one block evaluated while one is written and one waits; spent buffers come back for reuse
+    let (tx, rx) = std::sync::mpsc::sync_channel::<Block<B>>(1);
+    let (back_tx, back_rx) = std::sync::mpsc::channel::<B>();
     std::thread::scope(|scope| {
         let writer = scope.spawn(move || -> Result<(S, Vec<(usize, String)>)> {
             let mut sink = sink;
@@ -222,9 +333,9 @@ fn pipeline<S: Send>(
             for block in rx {
                 put(&mut sink, &block)?;
                 match block {
-                    Block::Rows { stats, errors, .. } => {
+                    Block::Rows { buf, errors, .. } => {
                         failed.extend(errors);
-                        let _ = back_tx.send(stats);
+                        let _ = back_tx.send(buf);
                     }
                     Block::Table(t) => failed.extend(t.errors),
                 }
@@ -232,21 +343,16 @@ fn pipeline<S: Send>(
             Ok((sink, failed))
         });
         let mut evaluated = Ok(());
+        let mut stats = Vec::new();
         for start in points.clone().step_by(block_points) {
             let block = start..(start + block_points).min(points.end);
             let b = match mc {
                 None => {
-                    // every row is overwritten by the evaluation: a recycled buffer of the right length is
-                    // used as it is
-                    let mut stats = back_rx.try_recv().unwrap_or_default();
-                    if stats.len() != block.len() * n_out {
-                        stats.clear();
-                        stats.resize(block.len() * n_out, FAILED_POINT);
-                    }
-                    let errors = sweep.evaluate_into(block.clone(), opts.parallel, &mut stats);
+                    let mut buf = back_rx.try_recv().unwrap_or_default();
+                    let errors = fill(block.clone(), &mut stats, &mut buf);
                     Block::Rows {
                         points: block,
-                        stats,
+                        buf,
                         errors,
                     }
                 }

@@ -312,7 +312,7 @@ pub fn compute_sweep(
 
 /// The table of the points `points` from their rows `stats` and failed points `errors`
 /// ([`Sweep::evaluate_into`]), for a study with Monte Carlo options `mc` (whose values are not set here).
-pub(crate) fn tabulate(
+fn tabulate(
     sweep: &Sweep,
     points: std::ops::Range<usize>,
     stats: &[PointStatistics],
@@ -634,6 +634,89 @@ pub(crate) fn csv_field(s: &str) -> String {
     }
 }
 
+/// The CSV lines of a table's points ([`csv_header`]'s columns), with the fields that repeat from row to
+/// row quoted once: the one place where a CSV row is written, for a whole table and for a streamed one.
+pub(crate) struct CsvRows {
+    /// The quoted text of every value of every key.
+    params: Vec<Vec<String>>,
+    /// `,output,unit,` of every output.
+    outputs: Vec<String>,
+    monte_carlo: bool,
+}
+
+impl CsvRows {
+    pub(crate) fn new(identity: &SweepIdentity) -> CsvRows {
+        CsvRows {
+            params: identity
+                .params
+                .iter()
+                .map(|(_, vals)| vals.iter().map(|v| csv_field(v)).collect())
+                .collect(),
+            outputs: identity
+                .outputs
+                .iter()
+                .map(|(name, unit)| format!(",{},{},", csv_field(name), csv_field(unit)))
+                .collect(),
+            monte_carlo: identity.monte_carlo.is_some(),
+        }
+    }
+
+    /// Appends the lines of point `p` (one per output) to `s`: `keys` are its value indices, `value(j)`
+    /// output j's values, `err` the point's failure.
+    pub(crate) fn push_point(
+        &self,
+        s: &mut String,
+        p: usize,
+        keys: &[usize],
+        value: impl Fn(usize) -> OutputValues,
+        err: Option<&str>,
+    ) {
+        let at = s.len();
+        super::float_text::push_int(s, p);
+        for (vals, &k) in self.params.iter().zip(keys) {
+            s.push(',');
+            s.push_str(&vals[k]);
+        }
+        let point = at..s.len();
+        for (j, output) in self.outputs.iter().enumerate() {
+            if j > 0 {
+                s.extend_from_within(point.clone());
+            }
+            let v = value(j);
+            let (lo, hi) = v.bounds(3.0).unzip();
+            s.push_str(output);
+            s.push_str(if err.is_some() { "" } else { method_name(v.method) });
+            for x in [
+                v.mean,
+                v.sigma(),
+                v.variance,
+                lo,
+                hi,
+                v.lambda2,
+                v.zero_upcrossing_rate(),
+            ] {
+                push_num(s, x);
+            }
+            if self.monte_carlo {
+                let m = v.mc;
+                for x in [m.map(|m| m.sigma), m.map(|m| m.lower), m.map(|m| m.upper)] {
+                    push_num(s, x);
+                }
+                s.push(',');
+                s.push_str(m.map_or("", |m| if m.covers { "yes" } else { "no" }));
+            }
+            s.push(',');
+            if let Some(e) = err {
+                s.push_str(&csv_field(e));
+            }
+            s.push('\n');
+        }
+        if self.outputs.is_empty() {
+            s.truncate(at);
+        }
+    }
+}
+
 impl SweepResults {
     fn n_keys(&self) -> usize {
         self.identity.params.len()
@@ -672,23 +755,9 @@ impl SweepResults {
     /// they are [`push_csv_rows`](Self::push_csv_rows)'s text (a stream writes them one by one, without
     /// the copy of joining them).
     pub(crate) fn csv_row_blocks(&self) -> Vec<String> {
-        let mc = self.identity.monte_carlo.is_some();
         let n_out = self.identity.outputs.len();
         let nk = self.n_keys();
-        // the fields that repeat from row to row, quoted once
-        let params: Vec<Vec<String>> = self
-            .identity
-            .params
-            .iter()
-            .map(|(_, vals)| vals.iter().map(|v| csv_field(v)).collect())
-            .collect();
-        // `,output,unit,` of every output, and each point's `point,key values` once for all its lines
-        let outputs: Vec<String> = self
-            .identity
-            .outputs
-            .iter()
-            .map(|(name, unit)| format!(",{},{},", csv_field(name), csv_field(unit)))
-            .collect();
+        let lines = CsvRows::new(&self.identity);
         // rows formatted in blocks on all cores, joined in order (the same text as one pass)
         use rayon::prelude::*;
         const BLOCK: usize = 4096;
@@ -698,47 +767,10 @@ impl SweepResults {
             .map(|blk| {
                 let rows = blk * BLOCK..((blk + 1) * BLOCK).min(n_rows);
                 let mut s = String::with_capacity(rows.len() * n_out * 200);
-                let mut point = String::new();
                 for row in rows {
                     let p = self.points.start + row;
-                    let err = self.error_of(p);
-                    point.clear();
-                    super::float_text::push_int(&mut point, p);
-                    for (k, vals) in params.iter().enumerate() {
-                        point.push(',');
-                        point.push_str(&vals[self.value_index[row * nk + k]]);
-                    }
-                    for (j, output) in outputs.iter().enumerate() {
-                        let v = &self.values[row * n_out + j];
-                        let (lo, hi) = v.bounds(3.0).unzip();
-                        s.push_str(&point);
-                        s.push_str(output);
-                        s.push_str(if err.is_some() { "" } else { method_name(v.method) });
-                        for x in [
-                            v.mean,
-                            v.sigma(),
-                            v.variance,
-                            lo,
-                            hi,
-                            v.lambda2,
-                            v.zero_upcrossing_rate(),
-                        ] {
-                            push_num(&mut s, x);
-                        }
-                        if mc {
-                            let m = v.mc;
-                            for x in [m.map(|m| m.sigma), m.map(|m| m.lower), m.map(|m| m.upper)] {
-                                push_num(&mut s, x);
-                            }
-                            s.push(',');
-                            s.push_str(m.map_or("", |m| if m.covers { "yes" } else { "no" }));
-                        }
-                        s.push(',');
-                        if let Some(e) = err {
-                            s.push_str(&csv_field(e));
-                        }
-                        s.push('\n');
-                    }
+                    let keys = &self.value_index[row * nk..(row + 1) * nk];
+                    lines.push_point(&mut s, p, keys, |j| self.values[row * n_out + j], self.error_of(p));
                 }
                 s
             })
