@@ -213,7 +213,7 @@ impl<const L: usize> RegimeRecords<L> {
 
 #[cfg(test)]
 mod tests {
-    use super::bin;
+    use super::{bin, OutputRecords, RegimeRecords};
 
     /// The slot by the floor, as the histogram counted before [`bin`] (the reference).
     fn by_floor(t: f64, bins: usize) -> usize {
@@ -253,6 +253,56 @@ mod tests {
         }
         for t in ts {
             assert_eq!(bin(t, bins), by_floor(t, bins), "t = {t:e}");
+        }
+    }
+
+    /// Deterministic samples in [−3, 3) (a linear congruential generator).
+    fn samples(seed: u64, n: usize) -> Vec<f64> {
+        let mut u = seed;
+        (0..n)
+            .map(|_| {
+                u = u
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (u >> 11) as f64 / (1u64 << 53) as f64 * 6.0 - 3.0
+            })
+            .collect()
+    }
+
+    /// Every lane of the records of 4 realizations in lockstep against the definitions evaluated for one
+    /// realization alone (sums in time order from −0, up-crossings p < a ≤ y, the slot by the floor,
+    /// entries into y > 1): equal to the bit.
+    #[test]
+    fn lanes_give_the_bits_of_lone_realizations() {
+        let (levels, lo, w, bins, c) = ([-0.5, 0.0, 0.7], -2.0, 0.05, 80, 0.1);
+        let ys: Vec<Vec<f64>> = (0..4).map(|l| samples(11 + l, 2000)).collect();
+        let mut rec = OutputRecords::<4>::new(c, &levels, lo, w, bins);
+        let mut reg = RegimeRecords::<4>::default();
+        for k in 0..2000 {
+            let y: [f64; 4] = std::array::from_fn(|l| ys[l][k]);
+            rec.push(&y);
+            reg.push(&y.map(|v| v > 1.0));
+        }
+        for (l, y) in ys.iter().enumerate() {
+            let mut s = [-0.0f64; 4];
+            let mut hist = vec![0.0; bins + 2];
+            for v in y {
+                let d = v - c;
+                (s[0], s[1], s[2], s[3]) = (s[0] + d, s[1] + d * d, s[2] + d * d * d, s[3] + d * d * (d * d));
+                hist[by_floor((v - lo) / w, bins)] += 1.0;
+            }
+            let got = rec.lane(l);
+            assert_eq!(got.s.map(f64::to_bits), s.map(f64::to_bits), "lane {l}");
+            assert_eq!(got.hist, hist, "lane {l}");
+            let up = |a: f64| y.windows(2).filter(|p| p[0] < a && p[1] >= a).count() as f64;
+            let max = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let v = got.values(1.0);
+            assert_eq!(v[3].to_bits(), max.to_bits());
+            assert_eq!(&v[4..], &levels.map(up)[..]);
+            let on: Vec<bool> = y.iter().map(|v| *v > 1.0).collect();
+            let entries = on.windows(2).filter(|p| p[1] && !p[0]).count() as f64;
+            let frac = on.iter().filter(|b| **b).count() as f64 / 2000.0;
+            assert_eq!(reg.lane(l).values(1.0), (frac, entries));
         }
     }
 }
