@@ -114,22 +114,21 @@ impl Kicks {
         self.items.len()
     }
 
-    /// q̇ = M⁻¹(p + B_u u) into `qdot` (u: the base inputs first), lane by lane.
+    /// q̇ = M⁻¹(p + B_u u) into `qdot` (u: the base inputs first), lane by lane (the rows as slices zipped
+    /// with the vectors: no bounds check per term).
     #[inline(always)]
-    #[allow(clippy::needless_range_loop)] // row-major matrix products read clearest with indices
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
     pub(crate) fn velocities<const L: usize>(&self, p: &[Lanes<L>], u: &[Lanes<L>], qdot: &mut [Lanes<L>]) {
         let (n, nb) = (self.n, self.n_base);
-        for (r, out) in qdot.iter_mut().enumerate() {
+        for (out, minv) in qdot.iter_mut().zip(self.minv.chunks_exact(n)) {
             let mut s = [0.0; L];
-            for c in 0..n {
-                let mut pc = p[c];
-                for j in 0..nb {
-                    let b = self.bu[c * nb + j];
+            for (c, (m, p)) in minv.iter().zip(p).enumerate() {
+                let mut pc = *p;
+                for (b, u) in self.bu[c * nb..(c + 1) * nb].iter().zip(u) {
                     for l in 0..L {
-                        pc[l] += b * u[j][l];
+                        pc[l] += b * u[l];
                     }
                 }
-                let m = self.minv[r * n + c];
                 for l in 0..L {
                     s[l] += m * pc[l];
                 }
@@ -247,11 +246,7 @@ impl Prepared<'_> {
             let (x, v) = self.kicks.kinematics(e, q, qdot, u, ud);
             *xo = x;
             match &self.kernels[e] {
-                Some(kernel) => {
-                    for l in 0..L {
-                        f[l] = kernel.force(x[l], v[l]);
-                    }
-                }
+                Some(kernel) => kernel.forces(&x, &v, f),
                 None => {
                     for l in 0..L {
                         f[l] = self.kicks.items[e].law.force(x[l], v[l]);
@@ -261,12 +256,12 @@ impl Prepared<'_> {
         }
     }
 
-    /// Whether element e is in its regime at deflection x.
+    /// Whether element e is in its regime at deflection x, lane by lane.
     #[inline(always)]
-    pub(crate) fn engaged(&self, e: usize, x: f64) -> bool {
+    pub(crate) fn engaged<const L: usize>(&self, e: usize, x: &Lanes<L>) -> [bool; L] {
         match &self.kernels[e] {
-            Some(kernel) => kernel.engaged(x),
-            None => self.kicks.items[e].law.engaged(x),
+            Some(kernel) => kernel.engaged_lanes(x),
+            None => x.map(|x| self.kicks.items[e].law.engaged(x)),
         }
     }
 }

@@ -104,29 +104,48 @@ impl Kernel {
         }
     }
 
-    /// [`Kernel::impulse`] of every lane (realizations in lockstep): the same expressions lane by lane, with
-    /// the branches as selects so that the lanes vectorise. A stop side that is absent acts as clearance ∞
-    /// and stiffness 0, whose term k (x − d)₊ is +0 as the absent side's 0 is.
+    /// [`Kernel::force`] of every lane (realizations in lockstep): the same expressions lane by lane, the
+    /// variant chosen once outside the lane loop so that the lanes vectorise. A stop side that is absent
+    /// acts as clearance ∞ and stiffness 0, whose term k (x − d)₊ is +0 as the absent side's 0 is.
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
-    pub fn impulses<const L: usize>(&self, x: &[f64; L], v: &[f64; L], j: &mut [f64; L]) {
+    pub fn forces<const L: usize>(&self, x: &[f64; L], v: &[f64; L], f: &mut [f64; L]) {
         match *self {
-            Kernel::Stop { upper, lower, tau } => {
+            Kernel::Stop { upper, lower, .. } => {
                 let (du, ku) = upper.unwrap_or((f64::INFINITY, 0.0));
                 let (dl, kl) = lower.unwrap_or((f64::INFINITY, 0.0));
                 for l in 0..L {
                     let up = ku * (x[l] - du).max(0.0);
                     let lo = kl * (-dl - x[l]).max(0.0);
-                    j[l] = tau * (up - lo);
+                    f[l] = up - lo;
                 }
             }
             Kernel::Lift {
-                stiffness,
-                deflection,
-                tau,
+                stiffness, deflection, ..
             } => {
                 for l in 0..L {
-                    j[l] = tau * (-stiffness * (x[l] - deflection).max(0.0));
+                    f[l] = -stiffness * (x[l] - deflection).max(0.0);
+                }
+            }
+            Kernel::Bilinear { half_difference, .. } => {
+                for l in 0..L {
+                    f[l] = half_difference * v[l].abs();
+                }
+            }
+        }
+    }
+
+    /// [`Kernel::impulse`] of every lane (realizations in lockstep): the same expressions lane by lane, with
+    /// the branches as selects so that the lanes vectorise (a stop's and a tyre's τF through
+    /// [`Kernel::forces`]).
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    pub fn impulses<const L: usize>(&self, x: &[f64; L], v: &[f64; L], j: &mut [f64; L]) {
+        match *self {
+            Kernel::Stop { tau, .. } | Kernel::Lift { tau, .. } => {
+                self.forces(x, v, j);
+                for l in 0..L {
+                    j[l] *= tau;
                 }
             }
             Kernel::Bilinear {
@@ -143,6 +162,20 @@ impl Kernel {
                     j[l] = if rate == 0.0 || v[l] == 0.0 { 0.0 } else { flow };
                 }
             }
+        }
+    }
+
+    /// [`Kernel::engaged`] of every lane, the variant chosen once outside the lane loop.
+    #[inline(always)]
+    pub fn engaged_lanes<const L: usize>(&self, x: &[f64; L]) -> [bool; L] {
+        match *self {
+            Kernel::Stop { upper, lower, .. } => {
+                let du = upper.map_or(f64::INFINITY, |(d, _)| d);
+                let dl = lower.map_or(f64::INFINITY, |(d, _)| d);
+                x.map(|x| x > du || x < -dl)
+            }
+            Kernel::Lift { deflection, .. } => x.map(|x| x > deflection),
+            Kernel::Bilinear { .. } => [false; L],
         }
     }
 

@@ -7,7 +7,8 @@
 use super::flow::{ExactFlow, FohFlow, HoldStep, NoisyStep};
 use super::inputs::{refine, InputSamples};
 use super::plan::{Flow, NlPlan};
-use super::record::{OutputRecord, RegimeRecord};
+use super::record::OutputRecords;
+use super::sink::{records, LoneRecords, Sink};
 use crate::error::Result;
 use crate::estimate::{WelchScratch, WelchSums};
 use crate::linalg::vmath;
@@ -16,9 +17,6 @@ use crate::simulate::{splitmix64, standard_normal, stream, Scratch};
 use rand::rngs::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use std::ops::Range;
-
-/// Samples per block fed to the Welch estimate.
-const BLOCK: usize = 4096;
 
 /// One realization's results.
 pub(crate) struct NlRealization {
@@ -194,26 +192,111 @@ impl<const L: usize, F: FnMut(&[Lanes<L>], &[Lanes<L>])> Records<L> for F {
     }
 }
 
-/// The records of L realizations stepped in lockstep: lane l feeds `sinks[l]`.
-struct LaneSinks<'s, 'p, 'w> {
-    sinks: &'s mut [Sink<'p>],
+/// The records of L realizations stepped in lockstep with the Welch scratch of the thread.
+struct Recorder<'s, 'p, 'w, const L: usize> {
+    sink: &'s mut Sink<'p, L>,
     welch: &'w mut WelchScratch,
 }
 
-impl<const L: usize> Records<L> for LaneSinks<'_, '_, '_> {
+impl<const L: usize> Records<L> for Recorder<'_, '_, '_, L> {
     #[inline(always)]
     fn record(&mut self, y: &[Lanes<L>], x: &[Lanes<L>]) {
-        for (l, sink) in self.sinks.iter_mut().enumerate() {
-            sink.push(y, x, l, self.welch);
+        self.sink.push(y, x, self.welch);
+    }
+}
+
+/// The per-step quantities of [`drive`], one [`Lanes`] value each, allocated once per run.
+struct StepState<const L: usize> {
+    /// Input fluctuations ũ, base input rates u̇, absolute base inputs u = ū + ũ.
+    ut: Vec<Lanes<L>>,
+    ud: Vec<Lanes<L>>,
+    ua: Vec<Lanes<L>>,
+    /// Absolute coordinates q = q_eq + q̃ and their velocities.
+    q: Vec<Lanes<L>>,
+    qdot: Vec<Lanes<L>>,
+    /// Outputs, element deflections and element forces.
+    y: Vec<Lanes<L>>,
+    xe: Vec<Lanes<L>>,
+    fe: Vec<Lanes<L>>,
+}
+
+impl<const L: usize> StepState<L> {
+    fn new(plan: &NlPlan) -> Self {
+        let (n, nb, ne) = (plan.n_coords, plan.n_base, plan.kicks.len());
+        StepState {
+            ut: vec![[0.0; L]; plan.u_mean.len()],
+            ud: vec![[0.0; L]; nb.max(1)],
+            ua: vec![[0.0; L]; nb.max(1)],
+            q: vec![[0.0; L]; n],
+            qdot: vec![[0.0; L]; n],
+            y: vec![[0.0; L]; plan.outputs.len()],
+            xe: vec![[0.0; L]; ne],
+            fe: vec![[0.0; L]; ne],
         }
+    }
+
+    /// The inputs of sample k and the absolute coordinates and velocities of the path's state.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    fn refresh<P: Path<L>>(&mut self, plan: &NlPlan, path: &mut P, k: usize) {
+        let (n, nb, mech) = (plan.n_coords, plan.n_base, path.mech());
+        path.inputs(k, &mut self.ut, &mut self.ud);
+        for j in 0..nb {
+            for l in 0..L {
+                self.ua[j][l] = plan.u_mean[j] + self.ut[j][l];
+            }
+        }
+        let st = path.state();
+        for i in 0..n {
+            for l in 0..L {
+                self.q[i][l] = plan.q_eq[i] + st[mech + i][l];
+            }
+        }
+        plan.kicks
+            .velocities(&st[mech + n..mech + 2 * n], &self.ut, &mut self.qdot);
+    }
+
+    /// The outputs of sample k (the linear part's, the offsets, minus the element forces' accelerations)
+    /// into `y`, the element deflections into `xe`.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    fn outputs<P: Path<L>>(&mut self, plan: &NlPlan, half: &Prepared, path: &P, k: usize) {
+        path.outputs(k, &self.ut, &self.ud, &mut self.y);
+        half.forces(&self.q, &self.qdot, &self.ua, &self.ud, &mut self.fe, &mut self.xe);
+        for (o, po) in self.y.iter_mut().zip(&plan.outputs) {
+            for l in 0..L {
+                o[l] += po.offset;
+            }
+            for (w, f) in po.acc.iter().zip(&self.fe) {
+                for l in 0..L {
+                    o[l] -= w * f[l];
+                }
+            }
+        }
+    }
+
+    /// The half kick of every element on the path's momenta (in reverse order after the linear flow).
+    #[inline(always)]
+    fn kick<P: Path<L>>(&mut self, plan: &NlPlan, half: &Prepared, path: &mut P, reverse: bool) {
+        let (n, mech) = (plan.n_coords, path.mech());
+        let (_, rest) = path.state().split_at_mut(mech + n);
+        half.kick(&self.q, &mut rest[..n], &mut self.qdot, &self.ua, &self.ud, reverse);
     }
 }
 
 /// Drives a path through `burn` + `rec` samples of step h; `sink` gets every recorded sample's outputs
 /// and element deflections (one [`Lanes`] value each). Always inlined, with the per-step work it calls, so
-/// that [`Drive`] compiles all of it for the instruction set it runs on.
+/// that [`Drive`] compiles all of it for the instruction set it runs on (a closure or a function that is
+/// not inlined would be compiled for the baseline instruction set).
+///
+/// # The hot loop
+/// Per step, for the L lanes at once: the outputs and element forces at the state (recorded after the
+/// burn-in: the records update every lane's sums, maximum, crossings, regimes and histogram slot as
+/// arrays over the lanes), the forward half kicks, the linear flow over h, the new inputs, absolute
+/// coordinates and velocities, the reverse half kicks. Every quantity is a [`Lanes`] array, so each
+/// operation is one vector operation over the lanes, in a lone realization's order (no fused
+/// multiply-add): the bits of a lane are those of the realization run alone.
 #[inline(always)]
-#[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
 fn drive<const L: usize, P: Path<L>>(
     plan: &NlPlan,
     path: &mut P,
@@ -222,67 +305,21 @@ fn drive<const L: usize, P: Path<L>>(
     rec: usize,
     sink: &mut impl Records<L>,
 ) {
-    let (n, nb, ne) = (plan.n_coords, plan.n_base, plan.kicks.len());
     let half = plan.kicks.prepared(0.5 * h);
-    let m = plan.u_mean.len();
-    let mut ut = vec![[0.0; L]; m];
-    let mut ud = vec![[0.0; L]; nb.max(1)];
-    let mut ua = vec![[0.0; L]; nb.max(1)];
-    let mut q = vec![[0.0; L]; n];
-    let mut qdot = vec![[0.0; L]; n];
-    let mut y = vec![[0.0; L]; plan.outputs.len()];
-    let mut xe = vec![[0.0; L]; ne];
-    let mut fe = vec![[0.0; L]; ne];
-    let mech = path.mech();
-    let refresh = |path: &mut P,
-                   k: usize,
-                   ut: &mut [Lanes<L>],
-                   ud: &mut [Lanes<L>],
-                   ua: &mut [Lanes<L>],
-                   q: &mut [Lanes<L>],
-                   qdot: &mut [Lanes<L>]| {
-        path.inputs(k, ut, ud);
-        for j in 0..nb {
-            for l in 0..L {
-                ua[j][l] = plan.u_mean[j] + ut[j][l];
-            }
-        }
-        let st = path.state();
-        for i in 0..n {
-            for l in 0..L {
-                q[i][l] = plan.q_eq[i] + st[mech + i][l];
-            }
-        }
-        plan.kicks.velocities(&st[mech + n..mech + 2 * n], ut, qdot);
-    };
-    refresh(path, 0, &mut ut, &mut ud, &mut ua, &mut q, &mut qdot);
+    let mut st = StepState::<L>::new(plan);
+    st.refresh(plan, path, 0);
     for k in 0..burn + rec {
         if k >= burn {
-            path.outputs(k, &ut, &ud, &mut y);
-            half.forces(&q, &qdot, &ua, &ud, &mut fe, &mut xe);
-            for (o, po) in y.iter_mut().zip(&plan.outputs) {
-                for l in 0..L {
-                    o[l] += po.offset;
-                }
-                for (w, f) in po.acc.iter().zip(&fe) {
-                    for l in 0..L {
-                        o[l] -= w * f[l];
-                    }
-                }
-            }
-            sink.record(&y, &xe);
+            st.outputs(plan, &half, path, k);
+            sink.record(&st.y, &st.xe);
         }
         if k + 1 == burn + rec {
             break;
         }
-        let st = path.state();
-        let (_, rest) = st.split_at_mut(mech + n);
-        half.kick(&q, &mut rest[..n], &mut qdot, &ua, &ud, false);
+        st.kick(plan, &half, path, false);
         path.step(k);
-        refresh(path, k + 1, &mut ut, &mut ud, &mut ua, &mut q, &mut qdot);
-        let st = path.state();
-        let (_, rest) = st.split_at_mut(mech + n);
-        half.kick(&q, &mut rest[..n], &mut qdot, &ua, &ud, true);
+        st.refresh(plan, path, k + 1);
+        st.kick(plan, &half, path, true);
     }
 }
 
@@ -318,87 +355,6 @@ impl NlScratch {
             },
             welch: plan.welch.scratch(),
         }
-    }
-}
-
-/// The records of one realization.
-struct Sink<'a> {
-    plan: &'a NlPlan,
-    /// The element laws (for their regimes).
-    regime: Prepared<'a>,
-    records: Vec<OutputRecord>,
-    regimes: Vec<RegimeRecord>,
-    block: Vec<Vec<f64>>,
-    filled: usize,
-    streams: Vec<crate::estimate::WelchStream>,
-    welch: Vec<WelchSums>,
-    raw: Option<Vec<Vec<f64>>>,
-    err: Option<crate::Error>,
-}
-
-fn records(plan: &NlPlan) -> Vec<OutputRecord> {
-    plan.outputs
-        .iter()
-        .map(|o| {
-            OutputRecord::new(
-                o.centre,
-                &o.levels,
-                o.hist_lo,
-                o.hist_width,
-                super::plan::HISTOGRAM_BINS,
-            )
-        })
-        .collect()
-}
-
-impl<'a> Sink<'a> {
-    fn new(plan: &'a NlPlan, keep_raw: bool) -> Self {
-        let p = plan.outputs.len();
-        Sink {
-            plan,
-            regime: plan.kicks.prepared(0.5 * plan.h),
-            records: records(plan),
-            regimes: vec![RegimeRecord::default(); plan.kicks.len()],
-            block: vec![vec![0.0; BLOCK]; p],
-            filled: 0,
-            streams: (0..p).map(|_| plan.welch.stream()).collect(),
-            welch: (0..p).map(|_| plan.welch.sums()).collect(),
-            raw: keep_raw.then(|| vec![Vec::with_capacity(plan.n); p]),
-            err: None,
-        }
-    }
-
-    /// Lane `l` of the outputs y and the element deflections x.
-    #[inline(always)]
-    fn push<const L: usize>(&mut self, y: &[Lanes<L>], x: &[Lanes<L>], l: usize, scratch: &mut WelchScratch) {
-        for (r, v) in y.iter().enumerate() {
-            self.block[r][self.filled] = self.records[r].push(v[l]);
-            if let Some(raw) = &mut self.raw {
-                raw[r].push(v[l]);
-            }
-        }
-        for (e, rg) in self.regimes.iter_mut().enumerate() {
-            rg.push(self.regime.engaged(e, x[e][l]));
-        }
-        self.filled += 1;
-        if self.filled == BLOCK {
-            self.flush(scratch);
-        }
-    }
-
-    fn flush(&mut self, scratch: &mut WelchScratch) {
-        for r in 0..self.records.len() {
-            let res = self.plan.welch.push(
-                &mut self.streams[r],
-                &self.block[r][..self.filled],
-                &mut self.welch[r],
-                scratch,
-            );
-            if let Err(e) = res {
-                self.err.get_or_insert(e);
-            }
-        }
-        self.filled = 0;
     }
 }
 
@@ -446,18 +402,15 @@ fn realize_exact(plan: &NlPlan, s: &mut NlScratch, seed: u64, i: u64, keep_raw: 
         unreachable!("an exact-route plan")
     };
     let mut rng = stream(seed, i);
-    let mut sink = Sink::new(plan, keep_raw);
+    let mut sink = Sink::<1>::new(plan, keep_raw);
     let mut path = exact_path(plan, f, &f.coarse, Noise::Stream(&mut rng));
-    let ws = &mut s.welch;
-    drive::<1, _>(
-        plan,
-        &mut path,
-        plan.h,
-        plan.n_burn,
-        plan.n,
-        &mut |y: &[Lanes<1>], x: &[Lanes<1>]| sink.push(y, x, 0, ws),
-    );
-    conclude(plan, s, sink, seed, i, None, Vec::new())
+    let mut rec = Recorder {
+        sink: &mut sink,
+        welch: &mut s.welch,
+    };
+    drive::<1, _>(plan, &mut path, plan.h, plan.n_burn, plan.n, &mut rec);
+    let lone = sink.close(&mut s.welch).remove(0)?;
+    conclude(plan, lone, seed, i, None, Vec::new())
 }
 
 /// Realizations first..first + L on the spectral route: every lane's inputs synthesised from its stream,
@@ -476,7 +429,7 @@ fn realize_hold<const L: usize>(
     let smp = (0..L as u64)
         .map(|l| inputs.draw(sc, &mut stream(seed, first + l), keep_raw))
         .collect::<Result<Vec<_>>>()?;
-    let mut sinks: Vec<Sink> = (0..L).map(|_| Sink::new(plan, keep_raw)).collect();
+    let mut sink = Sink::<L>::new(plan, keep_raw);
     let mut path = hold_path::<L>(
         flow,
         &flow.coarse,
@@ -487,41 +440,33 @@ fn realize_hold<const L: usize>(
     vmath::run(&mut Drive {
         plan,
         path: &mut path,
-        sink: LaneSinks {
-            sinks: &mut sinks,
+        sink: Recorder {
+            sink: &mut sink,
             welch: &mut s.welch,
         },
     });
     let mut out = Vec::with_capacity(L);
-    for ((l, sink), smp) in sinks.into_iter().enumerate().zip(&smp) {
+    for ((l, lone), smp) in sink.close(&mut s.welch).into_iter().enumerate().zip(&smp) {
         let raw_inputs = if keep_raw {
             smp.processes.iter().map(|p| p[plan.n_burn..].to_vec()).collect()
         } else {
             Vec::new()
         };
-        out.push(conclude(plan, s, sink, seed, first + l as u64, Some(smp), raw_inputs)?);
+        out.push(conclude(plan, lone?, seed, first + l as u64, Some(smp), raw_inputs)?);
     }
     Ok(out)
 }
 
-/// A realization's records closed (the last Welch block), its Δt-halving check if i is below the plan's
-/// number of checks, and its results.
+/// A realization's closed records, its Δt-halving check if i is below the plan's number of checks, and
+/// its results.
 fn conclude(
     plan: &NlPlan,
-    s: &mut NlScratch,
-    mut sink: Sink,
+    sink: LoneRecords,
     seed: u64,
     i: u64,
     samples: Option<&InputSamples>,
     raw_inputs: Vec<Vec<f64>>,
 ) -> Result<NlRealization> {
-    sink.flush(&mut s.welch);
-    for (st, ws) in sink.streams.iter_mut().zip(sink.welch.iter_mut()) {
-        plan.welch.end_record(st, ws)?;
-    }
-    if let Some(e) = sink.err.take() {
-        return Err(e);
-    }
     let halving = if (i as usize) < plan.checks {
         Some(halving_check(plan, &mut check_stream(seed, i), samples)?)
     } else {
@@ -576,8 +521,8 @@ fn halving_check(
     rng: &mut Xoshiro256PlusPlus,
     samples: Option<&InputSamples>,
 ) -> Result<Vec<(f64, f64)>> {
-    let mut coarse = records(plan);
-    let mut fine = records(plan);
+    let mut coarse = records::<1>(plan);
+    let mut fine = records::<1>(plan);
     let total = plan.n_burn + plan.n;
     match (&plan.flow, samples) {
         (Flow::Exact(f), _) => {
@@ -633,21 +578,21 @@ fn halving_check(
         .iter()
         .zip(&fine)
         .map(|(c, f)| {
-            let ((mc, sc), (mf, sf)) = (c.mean_sigma(), f.mean_sigma());
+            let ((mc, sc), (mf, sf)) = (c.lane(0).mean_sigma(), f.lane(0).mean_sigma());
             (mc - mf, sc - sf)
         })
         .collect())
 }
 
-fn push_all(r: &mut [OutputRecord], y: &[Lanes<1>]) {
+fn push_all(r: &mut [OutputRecords<1>], y: &[Lanes<1>]) {
     for (rec, v) in r.iter_mut().zip(y) {
-        rec.push(v[0]);
+        rec.push(v);
     }
 }
 
 fn finish(
     plan: &NlPlan,
-    sink: Sink,
+    sink: LoneRecords,
     halving: Option<Vec<(f64, f64)>>,
     raw_inputs: Vec<Vec<f64>>,
 ) -> Result<NlRealization> {

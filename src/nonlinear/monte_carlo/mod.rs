@@ -29,6 +29,7 @@ pub mod inputs;
 mod plan;
 pub mod record;
 mod references;
+mod sink;
 pub mod stats;
 mod step;
 

@@ -11,62 +11,19 @@
 //! * for an element with a regime (a stop in contact, a tyre off the road): the fraction of samples in the
 //!   regime and the entries into it per second.
 
-/// The running statistics of one output.
+/// The statistics of one output over one realization, as the records leave them (see [`OutputRecords`]).
 #[derive(Debug, Clone)]
 pub(crate) struct OutputRecord {
     centre: f64,
     pub(crate) s: [f64; 4],
     max_abs: f64,
-    levels: Vec<f64>,
     counts: Vec<u64>,
-    prev: Option<f64>,
-    hist_lo: f64,
-    hist_width: f64,
     /// bins + 2: underflow, the bins, overflow.
     pub(crate) hist: Vec<f64>,
     n: usize,
 }
 
 impl OutputRecord {
-    pub(crate) fn new(centre: f64, levels: &[f64], hist_lo: f64, hist_width: f64, bins: usize) -> Self {
-        OutputRecord {
-            centre,
-            s: [-0.0; 4],
-            max_abs: 0.0,
-            levels: levels.to_vec(),
-            counts: vec![0; levels.len()],
-            prev: None,
-            hist_lo,
-            hist_width,
-            hist: vec![0.0; bins + 2],
-            n: 0,
-        }
-    }
-
-    /// Adds sample y; returns y − c (the value for the Welch estimate and the standard moments).
-    #[inline(always)]
-    pub(crate) fn push(&mut self, y: f64) -> f64 {
-        let d = y - self.centre;
-        let d2 = d * d;
-        self.s[0] += d;
-        self.s[1] += d2;
-        self.s[2] += d2 * d;
-        self.s[3] += d2 * d2;
-        self.max_abs = self.max_abs.max(y.abs());
-        if let Some(p) = self.prev {
-            for (a, c) in self.levels.iter().zip(self.counts.iter_mut()) {
-                if p < *a && y >= *a {
-                    *c += 1;
-                }
-            }
-        }
-        self.prev = Some(y);
-        let i = bin((y - self.hist_lo) / self.hist_width, self.hist.len() - 2);
-        self.hist[i] += 1.0;
-        self.n += 1;
-        d
-    }
-
     /// The realization's values: [mean, variance, central fourth moment, max |y|, rate of each level...]
     /// (T = recorded duration, s).
     pub(crate) fn values(&self, duration: f64) -> Vec<f64> {
@@ -90,6 +47,94 @@ impl OutputRecord {
     }
 }
 
+/// The running statistics of one output of L realizations stepped in lockstep, every accumulator an
+/// array over the lanes (structure of arrays): the sums, the maximum and the level crossings of all lanes
+/// update in vector operations without branches, and so does the histogram's t = (y − lo)/w (a division
+/// per lane, as a lone realization divides: a precomputed reciprocal would move samples at the bin
+/// edges); only the histogram's increment is a store per lane. Lane l does exactly the arithmetic of a
+/// lone realization, in the same order.
+#[derive(Debug, Clone)]
+pub(crate) struct OutputRecords<const L: usize> {
+    centre: f64,
+    s: [[f64; L]; 4],
+    max_abs: [f64; L],
+    levels: Vec<f64>,
+    counts: Vec<[u64; L]>,
+    /// The previous sample of every lane (from the second sample on).
+    prev: [f64; L],
+    started: bool,
+    hist_lo: f64,
+    hist_width: f64,
+    /// Per lane: bins + 2 slots (underflow, the bins, overflow).
+    hist: Vec<Vec<f64>>,
+    n: usize,
+}
+
+impl<const L: usize> OutputRecords<L> {
+    pub(crate) fn new(centre: f64, levels: &[f64], hist_lo: f64, hist_width: f64, bins: usize) -> Self {
+        OutputRecords {
+            centre,
+            s: [[-0.0; L]; 4],
+            max_abs: [0.0; L],
+            levels: levels.to_vec(),
+            counts: vec![[0; L]; levels.len()],
+            prev: [0.0; L],
+            started: false,
+            hist_lo,
+            hist_width,
+            hist: vec![vec![0.0; bins + 2]; L],
+            n: 0,
+        }
+    }
+
+    /// Adds sample y of every lane; returns y − c (the values for the Welch estimate and the moments).
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    pub(crate) fn push(&mut self, y: &[f64; L]) -> [f64; L] {
+        let mut d = [0.0; L];
+        for l in 0..L {
+            d[l] = y[l] - self.centre;
+            let d2 = d[l] * d[l];
+            self.s[0][l] += d[l];
+            self.s[1][l] += d2;
+            self.s[2][l] += d2 * d[l];
+            self.s[3][l] += d2 * d2;
+            self.max_abs[l] = self.max_abs[l].max(y[l].abs());
+        }
+        if self.started {
+            for (a, c) in self.levels.iter().zip(self.counts.iter_mut()) {
+                for l in 0..L {
+                    c[l] += u64::from(self.prev[l] < *a && y[l] >= *a);
+                }
+            }
+        }
+        self.prev = *y;
+        self.started = true;
+        let mut t = [0.0; L];
+        for l in 0..L {
+            t[l] = (y[l] - self.hist_lo) / self.hist_width;
+        }
+        for (h, t) in self.hist.iter_mut().zip(t) {
+            let i = bin(t, h.len() - 2);
+            h[i] += 1.0;
+        }
+        self.n += 1;
+        d
+    }
+
+    /// The statistics of lane l.
+    pub(crate) fn lane(&self, l: usize) -> OutputRecord {
+        OutputRecord {
+            centre: self.centre,
+            s: self.s.map(|s| s[l]),
+            max_abs: self.max_abs[l],
+            counts: self.counts.iter().map(|c| c[l]).collect(),
+            hist: self.hist[l].clone(),
+            n: self.n,
+        }
+    }
+}
+
 /// The slot of t = (y − lo)/w in a histogram of `bins` bins with an underflow (slot 0) and an overflow
 /// (slot bins + 1): ⌊t⌋ + 1, clamped. Without a floor (a libm call on baseline x86-64): ⌊t⌋ < 0 ⇔ t < 0,
 /// ⌊t⌋ ≥ B ⇔ t ≥ B for the integer B = bins, and for 0 ≤ t < B the truncation `t as usize` is ⌊t⌋; NaN
@@ -110,32 +155,65 @@ fn bin(t: f64, bins: usize) -> usize {
 pub(crate) struct RegimeRecord {
     engaged: u64,
     entries: u64,
-    prev: Option<bool>,
     n: u64,
 }
 
 impl RegimeRecord {
-    #[inline]
-    pub(crate) fn push(&mut self, engaged: bool) {
-        if engaged {
-            self.engaged += 1;
-            if self.prev == Some(false) {
-                self.entries += 1;
-            }
-        }
-        self.prev = Some(engaged);
-        self.n += 1;
-    }
-
     /// (fraction of samples engaged, entries per second).
     pub(crate) fn values(&self, duration: f64) -> (f64, f64) {
         (self.engaged as f64 / self.n as f64, self.entries as f64 / duration)
     }
 }
 
+/// The regime of one element over L realizations in lockstep: counts per lane, updated without branches.
+#[derive(Debug, Clone)]
+pub(crate) struct RegimeRecords<const L: usize> {
+    engaged: [u64; L],
+    entries: [u64; L],
+    prev: [bool; L],
+    started: bool,
+    n: u64,
+}
+
+impl<const L: usize> Default for RegimeRecords<L> {
+    fn default() -> Self {
+        RegimeRecords {
+            engaged: [0; L],
+            entries: [0; L],
+            prev: [false; L],
+            started: false,
+            n: 0,
+        }
+    }
+}
+
+impl<const L: usize> RegimeRecords<L> {
+    /// Adds whether every lane is in the regime (an entry: engaged after a sample that was not).
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    pub(crate) fn push(&mut self, engaged: &[bool; L]) {
+        for l in 0..L {
+            self.engaged[l] += u64::from(engaged[l]);
+            self.entries[l] += u64::from(engaged[l] && self.started && !self.prev[l]);
+        }
+        self.prev = *engaged;
+        self.started = true;
+        self.n += 1;
+    }
+
+    /// The regime of lane l.
+    pub(crate) fn lane(&self, l: usize) -> RegimeRecord {
+        RegimeRecord {
+            engaged: self.engaged[l],
+            entries: self.entries[l],
+            n: self.n,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::bin;
+    use super::{bin, OutputRecords, RegimeRecords};
 
     /// The slot by the floor, as the histogram counted before [`bin`] (the reference).
     fn by_floor(t: f64, bins: usize) -> usize {
@@ -175,6 +253,56 @@ mod tests {
         }
         for t in ts {
             assert_eq!(bin(t, bins), by_floor(t, bins), "t = {t:e}");
+        }
+    }
+
+    /// Deterministic samples in [−3, 3) (a linear congruential generator).
+    fn samples(seed: u64, n: usize) -> Vec<f64> {
+        let mut u = seed;
+        (0..n)
+            .map(|_| {
+                u = u
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (u >> 11) as f64 / (1u64 << 53) as f64 * 6.0 - 3.0
+            })
+            .collect()
+    }
+
+    /// Every lane of the records of 4 realizations in lockstep against the definitions evaluated for one
+    /// realization alone (sums in time order from −0, up-crossings p < a ≤ y, the slot by the floor,
+    /// entries into y > 1): equal to the bit.
+    #[test]
+    fn lanes_give_the_bits_of_lone_realizations() {
+        let (levels, lo, w, bins, c) = ([-0.5, 0.0, 0.7], -2.0, 0.05, 80, 0.1);
+        let ys: Vec<Vec<f64>> = (0..4).map(|l| samples(11 + l, 2000)).collect();
+        let mut rec = OutputRecords::<4>::new(c, &levels, lo, w, bins);
+        let mut reg = RegimeRecords::<4>::default();
+        for k in 0..2000 {
+            let y: [f64; 4] = std::array::from_fn(|l| ys[l][k]);
+            rec.push(&y);
+            reg.push(&y.map(|v| v > 1.0));
+        }
+        for (l, y) in ys.iter().enumerate() {
+            let mut s = [-0.0f64; 4];
+            let mut hist = vec![0.0; bins + 2];
+            for v in y {
+                let d = v - c;
+                (s[0], s[1], s[2], s[3]) = (s[0] + d, s[1] + d * d, s[2] + d * d * d, s[3] + d * d * (d * d));
+                hist[by_floor((v - lo) / w, bins)] += 1.0;
+            }
+            let got = rec.lane(l);
+            assert_eq!(got.s.map(f64::to_bits), s.map(f64::to_bits), "lane {l}");
+            assert_eq!(got.hist, hist, "lane {l}");
+            let up = |a: f64| y.windows(2).filter(|p| p[0] < a && p[1] >= a).count() as f64;
+            let max = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let v = got.values(1.0);
+            assert_eq!(v[3].to_bits(), max.to_bits());
+            assert_eq!(&v[4..], &levels.map(up)[..]);
+            let on: Vec<bool> = y.iter().map(|v| *v > 1.0).collect();
+            let entries = on.windows(2).filter(|p| p[1] && !p[0]).count() as f64;
+            let frac = on.iter().filter(|b| **b).count() as f64 / 2000.0;
+            assert_eq!(reg.lane(l).values(1.0), (frac, entries));
         }
     }
 }
