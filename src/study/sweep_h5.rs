@@ -464,7 +464,7 @@ impl H5Piece<'_> {
             }
         }
         let n_out = self.method.len();
-        let n_cols = if n_out == 0 { 0 } else { self.numbers.len() / n_out };
+        let n_cols = self.numbers.len().checked_div(n_out).unwrap_or(0);
         let (mut numbers, mut method, mut covers) = (self.numbers, self.method, self.covers);
         let n_rows = method.first().map_or(0, |m| m.len());
         for r in 0..n_rows {

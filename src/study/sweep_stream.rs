@@ -241,22 +241,25 @@ fn evaluate_pieces<P: Send>(
     errors.concat()
 }
 
+/// The failed points of a block: (point index, reason).
+type FailedPoints = Vec<(usize, String)>;
+
 /// The CSV lines of a block, one string per piece, formatted by the workers.
 fn csv_text<'a>(
     sweep: &'a Sweep,
     lines: &'a CsvRows,
     parallel: bool,
-) -> impl Fn(Range<usize>, &mut Vec<PointStatistics>, &mut Vec<String>) -> Vec<(usize, String)> + 'a {
+) -> impl Fn(Range<usize>, &mut Vec<PointStatistics>, &mut Vec<String>) -> FailedPoints + 'a {
     move |points, stats, bufs| {
         bufs.resize_with(points.len().div_ceil(PIECE_POINTS), String::new);
         let n_out = sweep.outputs().len();
         let spec = sweep.spec();
         // about 170 bytes a line: the buffers grow once, in the first block, and are reused after it
-        let pieces = bufs.iter_mut().map(|s| {
+        for s in bufs.iter_mut() {
             s.clear();
             s.reserve(PIECE_POINTS * n_out * 200);
-            s
-        });
+        }
+        let pieces = bufs.iter_mut();
         evaluate_pieces(
             sweep,
             points,
@@ -283,7 +286,7 @@ fn h5_columns<'a>(
     sweep: &'a Sweep,
     layout: super::sweep_h5::H5Layout,
     parallel: bool,
-) -> impl Fn(Range<usize>, &mut Vec<PointStatistics>, &mut H5Rows) -> Vec<(usize, String)> + 'a {
+) -> impl Fn(Range<usize>, &mut Vec<PointStatistics>, &mut H5Rows) -> FailedPoints + 'a {
     move |points, stats, rows| {
         let spec = sweep.spec();
         let pieces = rows.pieces(layout, points.clone(), PIECE_POINTS);

@@ -273,6 +273,7 @@ mod tests {
     /// realization alone (sums in time order from −0, up-crossings p < a ≤ y, the slot by the floor,
     /// entries into y > 1): equal to the bit.
     #[test]
+    #[allow(clippy::needless_range_loop)] // sample k of every lane at once
     fn lanes_give_the_bits_of_lone_realizations() {
         let (levels, lo, w, bins, c) = ([-0.5, 0.0, 0.7], -2.0, 0.05, 80, 0.1);
         let ys: Vec<Vec<f64>> = (0..4).map(|l| samples(11 + l, 2000)).collect();
