@@ -145,6 +145,44 @@ fn route2_zero_nonlinearity_on_a_laplace_road_gives_the_linear_sigma() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A force on the body beside the road: `data/quarter-car-road-and-load.toml` at a constant 15 m/s, its
+/// load a band-limited white force (no shaping filter, so route 2 takes the spectral route), with a far
+/// stop. The body acceleration's output row holds the force input itself (D ≠ 0 for a force on the body),
+/// which route 2's spectral path must read beside the road's rate; route 2 covers the linear σ of body_acc
+/// and travel. 20 realizations × 100 s; each interval at confidence 1 − `MC_FALSE_FAILURE`, two of them:
+/// false-failure probability ≤ 4·10⁻⁷.
+#[test]
+fn route2_zero_nonlinearity_with_a_force_input_on_the_spectral_route_gives_the_linear_sigma() {
+    let dir = common::scratch_dir("nl-runs", "force");
+    let path = common::root().join("data/quarter-car-road-and-load.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut text = text[..text.find("[transient]").unwrap()].to_string();
+    for (from, to) in [
+        (
+            r#"speed_profile = { from = "5 m/s", to = "15 m/s", acceleration = "1 m/s^2", start = "1 s" }"#,
+            r#"speed = "15 m/s""#,
+        ),
+        (
+            r#"spectrum = { kind = "exponential", unit = "N", variance = "1e4 N^2", alpha = "3 1/s" }"#,
+            r#"spectrum = { kind = "band-white", domain = "temporal", unit = "N", convention = "one-sided-cyclic", level = 100.0, band = ["0.5 Hz", "20 Hz"] }"#,
+        ),
+    ] {
+        assert!(text.contains(from), "the scenario has no `{from}`");
+        text = text.replace(from, to);
+    }
+    let at = text.find("\n[[input]]").unwrap();
+    let text = format!("{}{}{}", &text[..at], far_stop("suspension"), &text[at..]);
+    let sc = parse_scenario(&text, &path, &common::root().join("spectra")).unwrap();
+    let s = run(&sc, &dir, 20, 100.0, 14);
+    assert!(
+        s.run.notes.iter().any(|n| n.contains("spectral route")),
+        "{:?}",
+        s.run.notes
+    );
+    assert_linear_sigma(&sc, &s, &["body_acc", "travel"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A nonlinear run interrupted after two of its four shards (the progress callback panics; the dropped
 /// writer leaves `run.h5.tmp`) resumes them and ends with every statistic, the Welch densities and the
 /// response histograms bit-identical to an uninterrupted run.

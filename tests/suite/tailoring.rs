@@ -6,7 +6,7 @@ use crate::common::{cli_fails, cli_within, rel, root, simpson_log};
 use std::f64::consts::PI;
 use stochvib::extremes::{ErsFdsOptions, FdsMaterial};
 use stochvib::scenario::{load_scenario, Catalogue};
-use stochvib::study::tailoring::{tailoring_spectra, TailoringSource};
+use stochvib::study::tailoring::{tailoring_spectra, TailoringSource, TailoringTable};
 
 /// |H|² of the relative displacement of a base-excited oscillator, f₀ Hz, quality factor Q, at ω rad/s.
 fn h2(f0: f64, q: f64, w: f64) -> f64 {
@@ -41,6 +41,24 @@ fn expected(f0: f64, m0: f64, m2: f64, o: &ErsFdsOptions) -> [f64; 4] {
     [z, n0, ers, fds]
 }
 
+/// Every point of `table` against [`expected`] from the moments (∫S|H|², ∫ω²S|H|²) that `moments` gives
+/// at f₀; the FDS ∝ z⁸n₀ carries about eight times z's relative error.
+fn check_points(table: &TailoringTable, o: &ErsFdsOptions, moments: impl Fn(f64) -> (f64, f64)) {
+    for p in &table.points {
+        let f0 = p.f0_hz;
+        let (m0, m2) = moments(f0);
+        let [z, n0, ers, fds] = expected(f0, m0, m2, o);
+        let got = [p.z_rms, p.n0_plus, p.ers, p.fds];
+        for (k, (name, want)) in [("z_rms", z), ("n0+", n0), ("ERS", ers), ("FDS", fds)]
+            .into_iter()
+            .enumerate()
+        {
+            let tol = if name == "FDS" { 10.0 * QUADRATURE } else { QUADRATURE };
+            assert!(rel(got[k], want) < tol, "{f0} Hz: {name} {} against {want}", got[k]);
+        }
+    }
+}
+
 /// The catalogue's band-limited white acceleration (one-sided G₀ = 0.01 (m/s²)²/Hz on 1–80 Hz, so the
 /// two-sided S = G₀/(4π) on 2π·1 ≤ |ω| ≤ 2π·80 rad/s), Q = 10, T = 1 h: the moments over the band by
 /// Simpson's rule in ln ω (200 000 intervals: h = 2.2·10⁻⁵, against the resonance's relative half-width
@@ -54,25 +72,10 @@ fn ers_and_fds_of_a_band_limited_white_spectrum_file() {
     let table = tailoring_spectra(&TailoringSource::Spectrum(&file), &o).unwrap();
     let s = 0.01 / (4.0 * PI);
     let (lo, hi) = (2.0 * PI, 2.0 * PI * 80.0);
-    for p in &table.points {
-        let f0 = p.f0_hz;
+    check_points(&table, &o, |f0| {
         let m0 = simpson_log(|w| s * h2(f0, 10.0, w), lo, hi, 200_000);
-        let m2 = simpson_log(|w| w * w * s * h2(f0, 10.0, w), lo, hi, 200_000);
-        let [z, n0, ers, fds] = expected(f0, m0, m2, &o);
-        assert!(rel(p.z_rms, z) < QUADRATURE, "{f0} Hz: z_rms {} against {z}", p.z_rms);
-        assert!(
-            rel(p.n0_plus, n0) < QUADRATURE,
-            "{f0} Hz: n0+ {} against {n0}",
-            p.n0_plus
-        );
-        assert!(rel(p.ers, ers) < QUADRATURE, "{f0} Hz: ERS {} against {ers}", p.ers);
-        // FDS ∝ z^8 n0: eight times z's relative error
-        assert!(
-            rel(p.fds, fds) < 10.0 * QUADRATURE,
-            "{f0} Hz: FDS {} against {fds}",
-            p.fds
-        );
-    }
+        (m0, simpson_log(|w| w * w * s * h2(f0, 10.0, w), lo, hi, 200_000))
+    });
     assert!(table.source.contains("white-1-80hz"), "{}", table.source);
 }
 
@@ -101,24 +104,10 @@ fn ers_and_fds_of_a_scenario_output() {
         "the road of this scenario is band-limited: {lo} {hi}"
     );
     let sy = |w: f64| stochvib::response::output_density(sys, &sc.excitation, acc, w);
-    for p in &table.points {
-        let f0 = p.f0_hz;
+    check_points(&table, &o, |f0| {
         let m0 = simpson_log(|w| sy(w) * h2(f0, 10.0, w), lo, hi, 400_000);
-        let m2 = simpson_log(|w| w * w * sy(w) * h2(f0, 10.0, w), lo, hi, 400_000);
-        let [z, n0, ers, fds] = expected(f0, m0, m2, &o);
-        assert!(rel(p.z_rms, z) < QUADRATURE, "{f0} Hz: z_rms {} against {z}", p.z_rms);
-        assert!(
-            rel(p.n0_plus, n0) < QUADRATURE,
-            "{f0} Hz: n0+ {} against {n0}",
-            p.n0_plus
-        );
-        assert!(rel(p.ers, ers) < QUADRATURE, "{f0} Hz: ERS {} against {ers}", p.ers);
-        assert!(
-            rel(p.fds, fds) < 10.0 * QUADRATURE,
-            "{f0} Hz: FDS {} against {fds}",
-            p.fds
-        );
-    }
+        (m0, simpson_log(|w| w * w * sy(w) * h2(f0, 10.0, w), lo, hi, 400_000))
+    });
 }
 
 /// The command prints the library's table (JSON at full precision), with units on the command line; the

@@ -207,7 +207,7 @@ impl<const L: usize> Records<L> for Recorder<'_, '_, '_, L> {
 
 /// The per-step quantities of [`drive`], one [`Lanes`] value each, allocated once per run.
 struct StepState<const L: usize> {
-    /// Input fluctuations ũ, base input rates u̇, absolute base inputs u = ū + ũ.
+    /// Input fluctuations ũ and rates u̇ of every model input, absolute base inputs u = ū + ũ.
     ut: Vec<Lanes<L>>,
     ud: Vec<Lanes<L>>,
     ua: Vec<Lanes<L>>,
@@ -225,7 +225,8 @@ impl<const L: usize> StepState<L> {
         let (n, nb, ne) = (plan.n_coords, plan.n_base, plan.kicks.len());
         StepState {
             ut: vec![[0.0; L]; plan.u_mean.len()],
-            ud: vec![[0.0; L]; nb.max(1)],
+            // every model input's rate: an output row may use a force input's too (D and E of all inputs)
+            ud: vec![[0.0; L]; plan.u_mean.len().max(1)],
             ua: vec![[0.0; L]; nb.max(1)],
             q: vec![[0.0; L]; n],
             qdot: vec![[0.0; L]; n],
