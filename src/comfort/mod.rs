@@ -48,6 +48,6 @@ pub use verdict::{
     comfort_reactions, ComfortReaction, DirectiveLimits, ExposureVerdict, HealthGuidanceZone, LimitCheck, ZoneCheck,
     ZonePosition,
 };
-pub use weighted::weighted_output;
+pub use weighted::{check_weightable, weighted_output};
 pub use weighted_sweep::{WeightedEvaluator, WeightedRoute, WeightedValue};
 pub use weighting::{Motion, Weighting, WeightingParameters, WeightingUse, Q_BAND_LIMITING};

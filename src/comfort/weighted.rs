@@ -5,6 +5,51 @@ use crate::error::{Error, Result};
 use crate::system::{FrequencyResponse, OutputInfo, StateSpace};
 use nalgebra::DMatrix;
 
+/// Whether output `output` of `ss` can be weighted by `w` ([`weighted_output`]): the index is in range and
+/// the output is an acceleration of the weighting's unit. Builds nothing: a file reader checks its keys
+/// with it, the study that evaluates builds the cascade.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] when `output` is out of range, or when the output's unit is not the
+/// acceleration unit the weighting applies to (`m/s^2` for translational weightings, `rad/s^2` for We).
+///
+/// # Examples
+/// ```
+/// use stochvib::comfort::{check_weightable, Weighting};
+/// use stochvib::system::{Attach, Element, FrequencyResponse, Mdof, Quantity};
+/// let el = Element { name: "cushion".into(), point: vec![1.0], to: Attach::Base(0), stiffness: 5e4, damping: 1e3 };
+/// let m = Mdof::from_elements(&[("z", "m")], &[80.0], vec![el], 1, &[]).unwrap()
+///     .with_output("seat_acc", Quantity::Acceleration(vec![1.0])).unwrap()
+///     .with_output("seat_z", Quantity::Displacement(vec![1.0])).unwrap();
+/// let ss = m.state_space().unwrap();
+/// assert!(check_weightable(ss, 0, &Weighting::Wk).is_ok());
+/// assert!(check_weightable(ss, 1, &Weighting::Wk).is_err()); // a displacement
+/// assert!(check_weightable(ss, 2, &Weighting::Wk).is_err()); // no such output
+/// ```
+pub fn check_weightable(ss: &StateSpace, output: usize, w: &Weighting) -> Result<()> {
+    let p = ss.c.nrows();
+    if output >= p {
+        return Err(Error::invalid(
+            "output",
+            output,
+            format!("the system has {p} output(s), indices 0..{}", p.saturating_sub(1)),
+        ));
+    }
+    let info = &ss.outputs()[output];
+    let expected_unit = w.quantity().unit;
+    if !same_unit(&info.unit, expected_unit) {
+        return Err(Error::invalid(
+            &format!("unit of output `{}`", info.name),
+            format!("\"{}\"", info.unit),
+            format!(
+                "the {} weighting applies to acceleration in {expected_unit}; weight an acceleration output",
+                w.name()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// The state-space system whose single output is output `output` of `ss` passed through the weighting
 /// `w` (series connection), so that its frequency response is W(iω)·H_output(iω).
 ///
@@ -61,26 +106,8 @@ use nalgebra::DMatrix;
 /// assert!(w.e.iter().all(|v| *v == 0.0) && w.d.iter().all(|v| *v == 0.0));
 /// ```
 pub fn weighted_output(ss: &StateSpace, output: usize, w: &Weighting) -> Result<StateSpace> {
-    let p = ss.c.nrows();
-    if output >= p {
-        return Err(Error::invalid(
-            "output",
-            output,
-            format!("the system has {p} output(s), indices 0..{}", p.saturating_sub(1)),
-        ));
-    }
+    check_weightable(ss, output, w)?;
     let info = &ss.outputs()[output];
-    let expected_unit = w.quantity().unit;
-    if !same_unit(&info.unit, expected_unit) {
-        return Err(Error::invalid(
-            &format!("unit of output `{}`", info.name),
-            format!("\"{}\"", info.unit),
-            format!(
-                "the {} weighting applies to acceleration in {expected_unit}; weight an acceleration output",
-                w.name()
-            ),
-        ));
-    }
     let (aw, bw, cw, dw) = w.cascade();
     let (n, m, nw) = (ss.n_states(), ss.b.ncols(), aw.nrows());
     let ci = ss.c.rows(output, 1).into_owned();

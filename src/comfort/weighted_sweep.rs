@@ -161,12 +161,7 @@ impl WeightedEvaluator {
                 format!("the system has {} input(s)", ss.b.ncols()),
             ));
         }
-        if output >= ss.c.nrows()
-            || !super::weighted::same_unit(&ss.outputs()[output].unit, self.weighting.quantity().unit)
-        {
-            // weighted_output names the error
-            weighted_output(ss, output, &self.weighting)?;
-        }
+        super::weighted::check_weightable(ss, output, &self.weighting)?;
         if ss.n_states() <= MAX_SYSTEM_STATES
             && let Some(v) = self.residues(ss, output)
         {

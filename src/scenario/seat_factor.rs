@@ -90,7 +90,7 @@ pub fn parse_seat_factor(f: &Fields, model: &ModelInstance) -> Result<SeatFactor
         check.push(("floor", *i, name.as_str()));
     }
     for (key, i, name) in check {
-        crate::comfort::weighted_output(ss, i, &weighting).map_err(|e| f.error(key, name, e.to_string()))?;
+        crate::comfort::check_weightable(ss, i, &weighting).map_err(|e| f.error(key, name, e.to_string()))?;
     }
     Ok(SeatFactorSpec { seat, floor, weighting })
 }
