@@ -100,7 +100,7 @@ pub const FATIGUE: KeyTable = KeyTable {
             "output",
             "string",
             "required",
-            r#"the output whose stress is judged; its λ₄ must be finite ("the spectral fatigue methods need a finite λ₄")"#,
+            r#"the output whose stress is judged; its moments up to λ₄ must be finite (refused when evaluated: "the spectral fatigue methods need finite moments up to λ₄")"#,
         ),
         key(
             "stress_factor",

@@ -416,7 +416,7 @@ fn parse_root(root: toml::Table, text: &str, path: &Path, spectra_dir: &Path) ->
         }
         _ => one_process(&f, &model, speed, &catalogue)?,
     };
-    let mut analysis = analysis_section(&f, &model, speed, nonlinear.is_some(), &excitation)?;
+    let mut analysis = analysis_section(&f, &model, speed, nonlinear.is_some())?;
     let transient = super::transient_keys::assemble(&f, speed_profile.map(|p| p.0), envelope)?;
     super::top_keys::TOP.finish(&f, &[])?;
     // every regime (contact, lift-off) is counted on an output: the outputs added for them are simulated
@@ -566,14 +566,9 @@ fn one_process(
 /// `[analysis]` with its verdicts (every output over 1 h when absent).
 ///
 /// # Errors
-/// The errors of each key; verdicts on a model with nonlinear elements; a fatigue output of infinite λ₄.
-fn analysis_section(
-    f: &Fields,
-    model: &ModelInstance,
-    speed: Option<f64>,
-    nonlinear: bool,
-    excitation: &Excitation,
-) -> Result<AnalysisOptions> {
+/// The errors of each key; verdicts on a model with nonlinear elements. (A fatigue output of infinite λ₄ is
+/// refused where it is evaluated, `study::fatigue_moments`: reading evaluates nothing.)
+fn analysis_section(f: &Fields, model: &ModelInstance, speed: Option<f64>, nonlinear: bool) -> Result<AnalysisOptions> {
     if f.get("analysis").is_none() {
         return Ok(AnalysisOptions {
             outputs: (0..model.system.outputs().len()).collect(),
@@ -591,7 +586,6 @@ fn analysis_section(
             "verdicts are evaluated on linear models only: a model with [[model.nonlinear]] elements takes none",
         ));
     }
-    super::verdict_spec::check_fatigue_moments(f, &opts.verdicts, model, excitation)?;
     super::analysis_keys::ANALYSIS.finish(&af, &[])?;
     Ok(opts)
 }

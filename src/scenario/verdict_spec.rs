@@ -44,7 +44,6 @@ use crate::error::{Error, Result};
 use crate::fatigue::{SnCurve, SnReferencePoint, SpectralMethodKind};
 use crate::fields::{EverydayUnit, Fields};
 use crate::models::ModelInstance;
-use crate::response::Excitation;
 use crate::units::Dim;
 
 /// Shortest daily exposure accepted, s: 1 min. A shorter "daily exposure" is almost surely a unit slip
@@ -167,25 +166,6 @@ pub fn parse_verdicts(f: &Fields, model: &ModelInstance, speed: Option<f64>) -> 
         fatigue,
         seat_factor,
     })
-}
-
-/// Refuses a fatigue output whose spectral moment λ₄ (needed by every method but the narrow-band one)
-/// diverges, naming `analysis.fatigue.output`.
-///
-/// # Errors
-/// [`Error::File`] with the divergence's reason.
-pub fn check_fatigue_moments(f: &Fields, spec: &VerdictSpec, model: &ModelInstance, exc: &Excitation) -> Result<()> {
-    let Some(fs) = &spec.fatigue else { return Ok(()) };
-    let sys = model.system.as_ref();
-    let r = crate::response::spectral_moment_quadrature(sys, exc, fs.output, 4);
-    match r {
-        Err(e @ Error::Divergent { .. }) => Err(f.error(
-            "analysis.fatigue.output",
-            &fs.output_name,
-            format!("{e}: the spectral fatigue methods need a finite λ₄ (the rate of peaks)"),
-        )),
-        _ => Ok(()),
-    }
 }
 
 fn output_index(f: &Fields, key: &str, model: &ModelInstance) -> Result<(usize, String)> {
@@ -363,7 +343,7 @@ fn comfort_axis(af: &Fields, model: &ModelInstance, purpose: Purpose) -> Result<
     };
     // the weighting applies to an acceleration: refuse any other output here, naming the key
     if let Some(ss) = model.system.state_space() {
-        crate::comfort::weighted_output(ss, output, &weighting).map_err(|e| {
+        crate::comfort::check_weightable(ss, output, &weighting).map_err(|e| {
             let reason = match e {
                 Error::InvalidParameter { reason, value, .. } => format!("its unit is {value}: {reason}"),
                 other => other.to_string(),

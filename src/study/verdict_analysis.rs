@@ -536,17 +536,46 @@ fn damage_out_of_range(method: &str, rate: f64, m: &SpectralMoments) -> Error {
     }
 }
 
-fn fatigue_verdict(sc: &Scenario, spec: &FatigueSpec) -> Result<FatigueVerdict> {
-    let key = "analysis.fatigue.output";
-    let sys = sc.model.system.as_ref();
-    let (m, how, quad) = stress_moments(
-        sys,
+/// The scenario key that names the fatigue output.
+const FATIGUE_OUTPUT_KEY: &str = "analysis.fatigue.output";
+
+/// [`stress_moments`] of the `[analysis.fatigue]` output of `sc`, an error naming the file, the key
+/// `analysis.fatigue.output` and the output; a divergent moment says that the spectral methods need finite
+/// moments up to λ₄ (the rate of peaks).
+///
+/// # Errors
+/// [`Error::File`] with the reason of [`stress_moments`].
+pub(crate) fn fatigue_moments(
+    sc: &Scenario,
+    spec: &FatigueSpec,
+) -> Result<(SpectralMoments, String, Option<[f64; 4]>)> {
+    stress_moments(
+        sc.model.system.as_ref(),
         &sc.excitation,
         spec.output,
         spec.stress_factor,
         &sc.analysis.effort,
     )
-    .map_err(|e| file_error(sc, key, &spec.output_name, e))?;
+    .map_err(|e| {
+        let reason = match e {
+            e @ Error::Divergent { .. } => {
+                format!("{e}: the spectral fatigue methods need finite moments up to λ₄ (the rate of peaks)")
+            }
+            e => e.to_string(),
+        };
+        Error::File {
+            file: sc.path.clone(),
+            key: FATIGUE_OUTPUT_KEY.into(),
+            value: spec.output_name.clone(),
+            reason,
+        }
+    })
+}
+
+fn fatigue_verdict(sc: &Scenario, spec: &FatigueSpec) -> Result<FatigueVerdict> {
+    let key = FATIGUE_OUTPUT_KEY;
+    let sys = sc.model.system.as_ref();
+    let (m, how, quad) = fatigue_moments(sc, spec)?;
     let input_coverage = super::input_coverage::moment_coverage(
         sys,
         &sc.excitation,

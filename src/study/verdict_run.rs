@@ -4,7 +4,7 @@
 //! output and the rainflow damage of the `[analysis.fatigue]` stress on every realization
 //! ([`crate::simulate::verdicts`]).
 
-use super::verdict_analysis::stress_moments;
+use super::verdict_analysis::fatigue_moments;
 use crate::comfort::weighted_output;
 use crate::error::{Error, Result};
 use crate::scenario::Scenario;
@@ -126,13 +126,7 @@ pub fn with_verdict_input<T>(sc: &Scenario, f: impl FnOnce(&RunInput) -> Result<
         if !outputs.contains(&f.output) {
             outputs.push(f.output);
         }
-        let (m, _, _) = stress_moments(
-            sc.model.system.as_ref(),
-            &sc.excitation,
-            f.output,
-            f.stress_factor,
-            &sc.analysis.effort,
-        )?;
+        let (m, _, _) = fatigue_moments(sc, f)?;
         channels.fatigue.push(FatigueChannel {
             output: f.output_name.clone(),
             stress_factor: f.stress_factor,

@@ -247,3 +247,27 @@ fn axes_outside_the_directive_give_no_directive_verdict() {
     let h = c.health.unwrap();
     assert!(h.notes.iter().any(|n| n.contains("standing worker")), "{:?}", h.notes);
 }
+
+/// Reading evaluates nothing: a fatigue output whose spectral moments diverge (the seat's travel under the
+/// cab floor `cab-floor-3hz`, whose displacement density decays like ω⁻², so that λ₂ = ∫ω²S dω and λ₄
+/// diverge) is read, and refused where the verdict is evaluated (the analysis and the Monte Carlo run's
+/// set-up), naming the file, the key, the output and why.
+#[test]
+fn a_fatigue_output_of_divergent_moments_is_refused_where_it_is_evaluated() {
+    let spectrum = seat_text()
+        .lines()
+        .find(|l| l.starts_with("spectrum = "))
+        .unwrap()
+        .to_string();
+    let sc = parse(&seat_text().replacen(&spectrum, "spectrum = \"cab-floor-3hz\"", 1)).unwrap();
+    let parts = [
+        "operator-seat-verdicts.toml",
+        "analysis.fatigue.output",
+        "travel",
+        "is infinite",
+        "the spectral fatigue methods need finite moments up to λ₄",
+    ];
+    has_all(&verdict_analysis(&sc).unwrap_err().to_string(), &parts);
+    let e = stochvib::study::with_verdict_input(&sc, |_| Ok(())).unwrap_err();
+    has_all(&e.to_string(), &parts);
+}
