@@ -605,7 +605,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         cmd @ Command::Road { .. } => road_command(cmd)?,
         cmd @ Command::Replay { .. } => replay_command(cmd)?,
         Command::Book { json, plots, spectra } => {
-            print(&report::book_report(), json)?;
+            print(
+                &report::BookReport {
+                    rows: stochvib::models::worked_example::book_rows(),
+                },
+                json,
+            )?;
             if let Some(out) = plots {
                 for f in stochvib::plot::book_plots(&out, spectra.catalogue().dir())? {
                     eprintln!("wrote {}", f.display());
@@ -892,7 +897,10 @@ fn analyze_command(cmd: Command) -> anyhow::Result<()> {
         Document::Stochastic(sc) => sc,
         Document::Deterministic(d) => {
             no_simulation(&scenario, monte_carlo, &plots)?;
-            return print_as(&report::deterministic_report(&d)?, output.format());
+            return print_as(
+                &report::deterministic_report(&d, stochvib::study::deterministic_tables(&d)?),
+                output.format(),
+            );
         }
         Document::Reference(t) => {
             no_simulation(&scenario, monte_carlo, &plots)?;

@@ -24,7 +24,7 @@ use stochvib::scenario::{load_document, AnalysisOptions, Document, Scenario, Sce
 use stochvib::simulate::{suggest_step, RunOptions};
 use stochvib::spectrum::{AtSpeed, Domain, Spectrum};
 use stochvib::store::Compression;
-use stochvib::study::{analysis_report, AnalysisReport};
+use stochvib::study::{analysis_report, deterministic_tables, AnalysisReport};
 use stochvib::Error;
 
 /// A scenario: a model, its random input and what to report — read from a scenario file
@@ -228,7 +228,7 @@ fn document_report<'py>(py: Python<'py>, doc: &Document) -> PyResult<(String, Bo
     let r = detached(py, || {
         Ok(match doc {
             Document::Stochastic(sc) => AnyReport::Analysis(Box::new(analysis_report(sc)?)),
-            Document::Deterministic(d) => AnyReport::Tables(deterministic_report(d)?),
+            Document::Deterministic(d) => AnyReport::Tables(deterministic_report(d, deterministic_tables(d)?)),
             Document::Reference(t) => AnyReport::Tables(reference_report(t)),
         })
     })?;

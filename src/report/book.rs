@@ -3,18 +3,12 @@
 use crate::models::worked_example::{BookRow, EXPLAIN_ABOVE};
 use serde::Serialize;
 
-/// The whole `book` report.
+/// The whole `book` report: the rows of every catalogue model's worked examples
+/// ([`book_rows`](crate::models::worked_example::book_rows), which computes them).
 #[derive(Debug, Clone, Serialize)]
 pub struct BookReport {
     /// Every row, grouped by example in source order.
     pub rows: Vec<BookRow>,
-}
-
-/// Builds the report from every catalogue model's worked examples.
-pub fn book_report() -> BookReport {
-    BookReport {
-        rows: crate::models::worked_example::book_rows(),
-    }
 }
 
 impl BookReport {

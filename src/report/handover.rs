@@ -140,7 +140,10 @@ pub fn handover_markdown(doc: &Document, file: &Path, sources: &[PathBuf], dir: 
     );
     match doc {
         Document::Stochastic(sc) => s += &stochastic_sections(sc, dir, link)?,
-        Document::Deterministic(d) => s += &results_section(&super::deterministic_report(d)?.markdown()),
+        Document::Deterministic(d) => {
+            let tables = crate::study::deterministic_tables(d)?;
+            s += &results_section(&super::deterministic_report(d, tables).markdown());
+        }
         Document::Reference(t) => s += &results_section(&super::reference_report(t).markdown()),
     }
     Ok(s)

@@ -27,7 +27,7 @@ pub mod verdict_report;
 pub mod workday_handover;
 pub mod workday_report;
 
-pub use book::{book_report, BookReport};
+pub use book::BookReport;
 pub use catalogue::{catalogue_report, models_report, CatalogueReport, ModelsReport};
 pub use markdown::inspect_markdown;
 pub use run_summary::summarize;

@@ -1,7 +1,6 @@
 //! The `stochvib analyze` report of a deterministic model or a reference table: titled tables of results
 //! with named, unit-carrying columns.
 
-use crate::error::{Error, Result};
 use crate::models::results::{Cell, ResultTable};
 use crate::numbers::num;
 use crate::scenario::{DeterministicScenario, ReferenceTable};
@@ -27,37 +26,10 @@ pub struct TablesReport {
     pub tables: Vec<ResultTable>,
 }
 
-/// The report of a deterministic scenario: every result table of its model.
-///
-/// # Errors
-/// A numerical failure of the model ([`DeterministicModel::results`](crate::models::results::DeterministicModel::results)).
-pub fn deterministic_report(d: &DeterministicScenario) -> Result<TablesReport> {
-    let fail = |reason: String| Error::File {
-        file: d.path.clone(),
-        key: "model".into(),
-        value: d.kind.clone(),
-        reason,
-    };
-    let tables = d.model.results().map_err(|e| {
-        fail(format!(
-            "the model's results cannot be computed for these parameters: {e}"
-        ))
-    })?;
-    for t in &tables {
-        for row in &t.rows {
-            for (j, c) in row.iter().enumerate() {
-                if matches!(c, Cell::Number(v) if !v.is_finite()) {
-                    return Err(fail(format!(
-                        "table \"{}\", column \"{}\": not a finite number for these parameters (values beyond \
-                         double precision; check the units)",
-                        t.title,
-                        t.columns.get(j).map_or("?", |c| c.name.as_str())
-                    )));
-                }
-            }
-        }
-    }
-    Ok(TablesReport {
+/// The report of a deterministic scenario: its model's result tables `tables`
+/// ([`crate::study::deterministic_tables`]).
+pub fn deterministic_report(d: &DeterministicScenario, tables: Vec<ResultTable>) -> TablesReport {
+    TablesReport {
         what: "deterministic model".into(),
         title: d.title.clone(),
         file: d.path.display().to_string(),
@@ -65,7 +37,7 @@ pub fn deterministic_report(d: &DeterministicScenario) -> Result<TablesReport> {
         description: d.model.description(),
         note: Some("no random input: the model's deterministic results (nothing to simulate)".into()),
         tables,
-    })
+    }
 }
 
 /// The report of a reference table: the table as printed, in SI units.

@@ -26,13 +26,15 @@
 //! * What `stochvib analyze` and `stochvib spectrum` report ([`analysis`] with its band tables,
 //!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]), and what
 //!   `stochvib tailor` reports ([`tailoring`]: ERS and FDS of a spectrum file or a scenario output).
-//! * The poles of a scenario's model ([`poles`]).
+//! * The poles of a scenario's model ([`poles`]); the result tables of a deterministic scenario
+//!   ([`deterministic`]).
 //! * A frequency weighting at given frequencies, analytic and digital ([`weighting_table`]).
 //!
 //! The [`crate::report`] layer formats what these return; [`crate::store`] holds the run files.
 
 pub mod analysis;
 pub mod band_section;
+pub mod deterministic;
 mod float_text;
 pub mod input_coverage;
 pub mod mc_verdicts;
@@ -68,6 +70,7 @@ pub mod workday;
 
 pub use crate::store::MergeOptions;
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
+pub use deterministic::deterministic_tables;
 pub use merge::{merge_runs, MergeSummary};
 pub use merge_transient::merge_transient;
 pub use nonlinear_report::{nonlinear_report, NonlinearReport};

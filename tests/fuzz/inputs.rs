@@ -751,8 +751,8 @@ pub fn evaluate(kind: DocKind, path: &Path, spectra_dir: &Path, conv: Convention
                     }
                 }
                 Document::Deterministic(d) => {
-                    let r = match report::deterministic_report(&d) {
-                        Ok(r) => r,
+                    let r = match stochvib::study::deterministic_tables(&d) {
+                        Ok(t) => report::deterministic_report(&d, t),
                         Err(e) => return err(&e, 2),
                     };
                     set(3);

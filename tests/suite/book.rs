@@ -2,7 +2,13 @@
 //! computed values are the independent derivations (checked in the models' own test files).
 
 use stochvib::models::worked_example::EXPLAIN_ABOVE;
-use stochvib::report::book::book_report;
+use stochvib::report::book::BookReport;
+
+fn book_report() -> BookReport {
+    BookReport {
+        rows: stochvib::models::worked_example::book_rows(),
+    }
+}
 
 #[test]
 fn every_large_difference_is_explained() {

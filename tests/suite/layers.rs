@@ -206,6 +206,60 @@ fn report_uses_no_computation_module() {
     );
 }
 
+/// The items a `crate::models::…` path names on a code line: the braced list after the last `::`, or the
+/// one identifier.
+fn model_items(line: &str) -> Vec<String> {
+    let Some(i) = line.find("crate::models::") else {
+        return vec![];
+    };
+    let rest = &line[i..];
+    let tail = match rest.find('{') {
+        Some(b) => rest[b + 1..].split('}').next().unwrap_or(""),
+        None => rest.rsplit("::").next().unwrap_or(""),
+    };
+    tail.split(',')
+        .map(|t| {
+            t.trim()
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect::<String>()
+        })
+        .filter(|t| !t.is_empty())
+        .collect()
+}
+
+/// `report/` formats the models' results but never computes them: every item it names under
+/// `crate::models` is a type or a constant (capitalised), never a function such as `book_rows` or a model
+/// constructor. (The deterministic tables are computed by `study::deterministic_tables`, the book rows by
+/// the caller.)
+#[test]
+fn report_names_only_types_of_the_models() {
+    let mut files = Vec::new();
+    rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src/report"), &mut files);
+    let mut named = 0;
+    let mut found = Vec::new();
+    for f in &files {
+        for line in std::fs::read_to_string(f).unwrap().lines().map(code) {
+            for item in model_items(line) {
+                named += 1;
+                if !item.starts_with(|c: char| c.is_uppercase()) {
+                    found.push(format!("{}: `crate::models::…::{item}`", f.display()));
+                }
+            }
+        }
+    }
+    assert!(named >= 3, "found only {named} model items in src/report");
+    assert!(found.is_empty(), "report/ calls the models:\n{}", found.join("\n"));
+    assert_eq!(
+        model_items("use crate::models::results::{Cell, ResultTable};"),
+        ["Cell", "ResultTable"]
+    );
+    assert_eq!(
+        model_items("rows: crate::models::worked_example::book_rows(),"),
+        ["book_rows"]
+    );
+}
+
 /// What `store/` may use: the base layer's errors, numbers, units, file fields and file rules, and the
 /// estimators' [`Interval`](stochvib::estimate::Interval) it stores. Not the numerics (`quad`, `linalg`),
 /// not spectra, systems or response statistics: it stores and reads back what the layers above computed.

@@ -727,7 +727,7 @@ fn fuzz_campaign_findings_are_fixed() {
     let p2 = p.clone();
     std::thread::spawn(move || {
         let r = match load_document(&p2, &root().join("spectra")) {
-            Ok(Document::Deterministic(dd)) => stochvib::report::deterministic_report(&dd).map(|_| ()),
+            Ok(Document::Deterministic(dd)) => stochvib::study::deterministic_tables(&dd).map(|_| ()),
             Ok(_) => Ok(()),
             Err(e) => Err(e),
         };
