@@ -175,7 +175,11 @@ pub fn variance_interval(samples: &[f64], confidence: f64) -> Result<Interval> {
     check_confidence(confidence)?;
     check_samples(samples, 2)?;
     let (_, v) = mean_var(samples);
-    chi2_interval(v, samples.len() as f64 - 1.0, confidence)
+    VarianceEstimate {
+        variance: v,
+        dof: samples.len() as f64 - 1.0,
+    }
+    .interval(confidence)
 }
 
 /// Variance across N independent realizations about a known mean μ (e.g. 0 for a zero-mean fluctuation),
@@ -201,25 +205,47 @@ pub fn variance_interval_known_mean(samples: &[f64], mean: f64, confidence: f64)
     crate::error::require_finite("mean", mean)?;
     let n = samples.len() as f64;
     let v = samples.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n;
-    chi2_interval(v, n, confidence)
+    VarianceEstimate { variance: v, dof: n }.interval(confidence)
 }
 
-/// The χ² interval for a variance estimate `v` with ν degrees of freedom: [ν v/χ²_{ν,1−p/2}, ν v/χ²_{ν,p/2}].
-///
-/// # Errors
-/// ν ≤ 0, confidence ∉ (0, 1), `v` negative or non-finite.
-pub fn chi2_interval(v: f64, nu: f64, confidence: f64) -> Result<Interval> {
-    check_confidence(confidence)?;
-    crate::error::require_non_negative("variance estimate", v)?;
-    let a = 1.0 - confidence;
-    let hi = chi_squared_quantile(nu, 1.0 - a / 2.0)?;
-    let lo = chi_squared_quantile(nu, a / 2.0)?;
-    Ok(Interval {
-        estimate: v,
-        lower: nu * v / hi,
-        upper: nu * v / lo,
-        confidence,
-    })
+/// A variance estimate v with ν degrees of freedom (ν v/σ² ~ χ²_ν for Gaussian samples). Named fields: the
+/// estimate and ν are both positive numbers and cannot be swapped silently.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VarianceEstimate {
+    /// v, the estimate of σ² (unit²).
+    pub variance: f64,
+    /// ν, its degrees of freedom (> 0; need not be an integer, e.g. Welch's equivalent ν).
+    pub dof: f64,
+}
+
+impl VarianceEstimate {
+    /// The χ² interval [ν v/χ²_{ν,1−p/2}, ν v/χ²_{ν,p/2}] at confidence 1 − p.
+    ///
+    /// # Errors
+    /// ν ≤ 0, confidence ∉ (0, 1), v negative or non-finite.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::estimate::VarianceEstimate;
+    /// // ν = 2: χ²₂ is exponential with mean 2, χ²_{2,q} = −2 ln(1 − q)
+    /// let i = VarianceEstimate { variance: 1.0, dof: 2.0 }.interval(0.9).unwrap();
+    /// assert!((i.lower - 2.0 / (-2.0 * 0.05f64.ln())).abs() < 1e-12);
+    /// assert!((i.upper - 2.0 / (-2.0 * 0.95f64.ln())).abs() < 1e-9);
+    /// ```
+    pub fn interval(&self, confidence: f64) -> Result<Interval> {
+        let (v, nu) = (self.variance, self.dof);
+        check_confidence(confidence)?;
+        crate::error::require_non_negative("variance estimate", v)?;
+        let a = 1.0 - confidence;
+        let hi = chi_squared_quantile(nu, 1.0 - a / 2.0)?;
+        let lo = chi_squared_quantile(nu, a / 2.0)?;
+        Ok(Interval {
+            estimate: v,
+            lower: nu * v / hi,
+            upper: nu * v / lo,
+            confidence,
+        })
+    }
 }
 
 /// Standard deviation σ across realizations: the square root of [`variance_interval`] (the χ² interval is

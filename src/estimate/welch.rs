@@ -1,7 +1,7 @@
 //! Welch's averaged-periodogram density estimate (Hann window, 50 % overlap) with χ² intervals.
 
 use super::interval::Interval;
-use super::moments::chi2_interval;
+use super::moments::VarianceEstimate;
 use crate::error::{require_positive, Error, Result};
 use realfft::num_complex::Complex;
 use realfft::{RealFftPlanner, RealToComplex};
@@ -143,7 +143,11 @@ impl WelchEstimate {
         } else {
             self.dof
         };
-        chi2_interval(self.density[j], nu, confidence)
+        VarianceEstimate {
+            variance: self.density[j],
+            dof: nu,
+        }
+        .interval(confidence)
     }
 
     /// The χ² intervals of every bin, as [`WelchEstimate::interval`] gives them bin by bin (the same
@@ -176,8 +180,12 @@ impl WelchEstimate {
         if n == 0 {
             return Ok((lower, upper));
         }
-        // the confidence checked (and refused) as chi2_interval does; its quantiles, once per ν
-        chi2_interval(0.0, self.dof, confidence)?;
+        // the confidence checked (and refused) as the bin's interval does; its quantiles, once per ν
+        VarianceEstimate {
+            variance: 0.0,
+            dof: self.dof,
+        }
+        .interval(confidence)?;
         let a = 1.0 - confidence;
         let q = |nu: f64| -> Result<(f64, f64)> {
             Ok((

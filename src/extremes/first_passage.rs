@@ -24,72 +24,89 @@ impl ExceedanceMethod {
     }
 }
 
-/// P(max > b within T) with Poisson crossings, for a zero-mean process and r = b/σ.
-///
-/// # Formula
-/// Rice's rate of up-crossings of b is ν₀⁺e^{−r²/2}; crossings assumed independent (a Poisson stream):
-/// ```text
-/// P(max y > b)   = 1 − exp(−ν₀⁺T e^{−r²/2})          (one-sided)
-/// P(max |y| > b) = 1 − exp(−2ν₀⁺T e^{−r²/2})         (two-sided)
-/// ```
-///
-/// # Examples
-/// ```
-/// use stochvib::extremes::{exceedance_poisson, Barrier};
-/// let p = exceedance_poisson(3.0, 100.0, Barrier::OneSided);
-/// assert!((p - (1.0 - (-100.0 * (-4.5f64).exp()).exp())).abs() < 1e-15);
-/// ```
-pub fn exceedance_poisson(r: f64, nu0_t: f64, barrier: Barrier) -> f64 {
-    -(-barrier.crossings_per_cycle() * nu0_t * (-0.5 * r * r).exp()).exp_m1()
+/// A first-passage question about a zero-mean stationary Gaussian process started in its stationary
+/// state: P(max > b within T) for a level b = rσ, with ν₀⁺T zero up-crossings expected within T, of the
+/// maximum of y or of |y|. Named fields: r and ν₀⁺T are both plain numbers and cannot be swapped silently.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FirstPassage {
+    /// r = b/σ, the level in standard deviations.
+    pub level_over_sigma: f64,
+    /// ν₀⁺T, the expected number of zero up-crossings within the duration T.
+    pub zero_upcrossings: f64,
+    /// The maximum of y (one-sided) or of |y| (two-sided).
+    pub barrier: Barrier,
 }
 
-/// P(max > b within T) by Vanmarcke's (1975) bandwidth-corrected first-passage form, zero-mean process,
-/// r = b/σ ≥ 0, bandwidth δ (Vanmarcke's q), the process starting in its stationary state.
-///
-/// # Formula
-/// Vanmarcke, E.H. (1975), "On the distribution of the first-passage time for normal stationary random
-/// processes", J. Appl. Mech. 42(1), 215–220: crossings of the envelope, of which only a fraction are
-/// followed by crossings of y (clumping), with the empirical effective bandwidth δ_e = δ^1.2:
-/// ```text
-/// P(max ≤ b) = A · exp(−c ν₀⁺T e^{−r²/2} (1 − e^{−k δ_e r}) / (1 − e^{−r²/2})),   A = 1 − e^{−r²/2}
-/// two-sided (|y|): c = 2, k = √(π/2);     one-sided (y): c = 1, k = √(2π)
-/// ```
-/// A is the probability that the envelope starts below the level. For δ → 1 the bracket tends to
-/// Poisson's rate over A (the envelope correction vanishes only in that limit).
-///
-/// # Errors
-/// r < 0 or δ outside \[0, 1\].
-///
-/// # Examples
-/// ```
-/// use stochvib::extremes::{exceedance_vanmarcke, exceedance_poisson, Barrier};
-/// // narrow band: fewer exceedances than Poisson (crossings come in clumps)
-/// let v = exceedance_vanmarcke(3.0, 100.0, 0.1, Barrier::TwoSided).unwrap();
-/// assert!(v < exceedance_poisson(3.0, 100.0, Barrier::TwoSided));
-/// ```
-pub fn exceedance_vanmarcke(r: f64, nu0_t: f64, delta: f64, barrier: Barrier) -> Result<f64> {
-    if !(r >= 0.0 && r.is_finite()) {
-        return Err(Error::invalid(
-            "level/sigma",
-            r,
-            "Vanmarcke's form needs a level at or above the mean",
-        ));
+impl FirstPassage {
+    /// P(max > b within T) with Poisson crossings.
+    ///
+    /// # Formula
+    /// Rice's rate of up-crossings of b is ν₀⁺e^{−r²/2}; crossings assumed independent (a Poisson stream):
+    /// ```text
+    /// P(max y > b)   = 1 − exp(−ν₀⁺T e^{−r²/2})          (one-sided)
+    /// P(max |y| > b) = 1 − exp(−2ν₀⁺T e^{−r²/2})         (two-sided)
+    /// ```
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::extremes::{Barrier, FirstPassage};
+    /// let q = FirstPassage { level_over_sigma: 3.0, zero_upcrossings: 100.0, barrier: Barrier::OneSided };
+    /// assert!((q.poisson() - (1.0 - (-100.0 * (-4.5f64).exp()).exp())).abs() < 1e-15);
+    /// ```
+    pub fn poisson(&self) -> f64 {
+        let r = self.level_over_sigma;
+        -(-self.barrier.crossings_per_cycle() * self.zero_upcrossings * (-0.5 * r * r).exp()).exp_m1()
     }
-    if !(0.0..=1.0).contains(&delta) {
-        return Err(Error::invalid("bandwidth", delta, "Vanmarcke's δ lies in [0, 1]"));
+
+    /// P(max > b within T) by Vanmarcke's (1975) bandwidth-corrected first-passage form, r ≥ 0, bandwidth δ
+    /// (Vanmarcke's q).
+    ///
+    /// # Formula
+    /// Vanmarcke, E.H. (1975), "On the distribution of the first-passage time for normal stationary random
+    /// processes", J. Appl. Mech. 42(1), 215–220: crossings of the envelope, of which only a fraction are
+    /// followed by crossings of y (clumping), with the empirical effective bandwidth δ_e = δ^1.2:
+    /// ```text
+    /// P(max ≤ b) = A · exp(−c ν₀⁺T e^{−r²/2} (1 − e^{−k δ_e r}) / (1 − e^{−r²/2})),   A = 1 − e^{−r²/2}
+    /// two-sided (|y|): c = 2, k = √(π/2);     one-sided (y): c = 1, k = √(2π)
+    /// ```
+    /// A is the probability that the envelope starts below the level. For δ → 1 the bracket tends to
+    /// Poisson's rate over A (the envelope correction vanishes only in that limit).
+    ///
+    /// # Errors
+    /// r < 0 or δ outside \[0, 1\].
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::extremes::{Barrier, FirstPassage};
+    /// // narrow band: fewer exceedances than Poisson (crossings come in clumps)
+    /// let q = FirstPassage { level_over_sigma: 3.0, zero_upcrossings: 100.0, barrier: Barrier::TwoSided };
+    /// assert!(q.vanmarcke(0.1).unwrap() < q.poisson());
+    /// ```
+    pub fn vanmarcke(&self, bandwidth: f64) -> Result<f64> {
+        let (r, delta) = (self.level_over_sigma, bandwidth);
+        if !(r >= 0.0 && r.is_finite()) {
+            return Err(Error::invalid(
+                "level/sigma",
+                r,
+                "Vanmarcke's form needs a level at or above the mean",
+            ));
+        }
+        if !(0.0..=1.0).contains(&delta) {
+            return Err(Error::invalid("bandwidth", delta, "Vanmarcke's δ lies in [0, 1]"));
+        }
+        if r == 0.0 {
+            return Ok(1.0);
+        }
+        let de = delta.powf(1.2);
+        let e = (-0.5 * r * r).exp();
+        let a = -(-0.5 * r * r).exp_m1();
+        let k = match self.barrier {
+            Barrier::OneSided => (2.0 * std::f64::consts::PI).sqrt(),
+            Barrier::TwoSided => (std::f64::consts::PI / 2.0).sqrt(),
+        };
+        let hazard = self.barrier.crossings_per_cycle() * self.zero_upcrossings * e * (-(-k * de * r).exp_m1()) / a;
+        Ok(1.0 - a * (-hazard).exp())
     }
-    if r == 0.0 {
-        return Ok(1.0);
-    }
-    let de = delta.powf(1.2);
-    let e = (-0.5 * r * r).exp();
-    let a = -(-0.5 * r * r).exp_m1();
-    let k = match barrier {
-        Barrier::OneSided => (2.0 * std::f64::consts::PI).sqrt(),
-        Barrier::TwoSided => (std::f64::consts::PI / 2.0).sqrt(),
-    };
-    let hazard = barrier.crossings_per_cycle() * nu0_t * e * (-(-k * de * r).exp_m1()) / a;
-    Ok(1.0 - a * (-hazard).exp())
 }
 
 /// The first three spectral moments λ_k = ∫|ω|ᵏS dω of a stationary process, the input of
@@ -154,7 +171,7 @@ impl CrossingMoments {
     ///
     /// # Formula
     /// Poisson with a mean: the crossing count is ν₀⁺T(e^{−(b−M)²/2σ²} + [two-sided] e^{−(b+M)²/2σ²}).
-    /// Vanmarcke: [`exceedance_vanmarcke`] with r = (b − M)/σ; the two-sided form needs M = 0 (barriers
+    /// Vanmarcke: [`FirstPassage::vanmarcke`] with r = (b − M)/σ; the two-sided form needs M = 0 (barriers
     /// symmetric about the mean).
     ///
     /// # Errors
@@ -182,7 +199,12 @@ impl CrossingMoments {
                         reason: format!("the barriers ±b are not symmetric about the mean {}", self.mean),
                     });
                 }
-                exceedance_vanmarcke(r, nt, delta, barrier)
+                FirstPassage {
+                    level_over_sigma: r,
+                    zero_upcrossings: nt,
+                    barrier,
+                }
+                .vanmarcke(delta)
             }
         }
     }

@@ -32,8 +32,8 @@ pub mod peak_factor;
 pub use dkw::{dkw_epsilon, BandVerdict, EmpiricalDistribution};
 pub use ers_fds::{ers_fds, ErsFdsOptions, ErsFdsPoint, FdsMaterial};
 pub use first_passage::{
-    bandwidth_vanmarcke, exceedance_poisson, exceedance_vanmarcke, rice_rate, rice_rate_two_sided, BandwidthMoments,
-    CrossingMoments, ExceedanceMethod, RiceState,
+    bandwidth_vanmarcke, rice_rate, rice_rate_two_sided, BandwidthMoments, CrossingMoments, ExceedanceMethod,
+    FirstPassage, RiceState,
 };
 pub use peak_factor::{davenport, der_kiureghian, PeakFactor, EULER_GAMMA};
 

@@ -93,30 +93,32 @@ fn dz_ratio(alpha: f64, r: f64) -> f64 {
     1.0 / (1.0 + 4.0 * alpha * r)
 }
 
-/// R_Z(ℓ)/D_x of (8.48) in a form without cancellation near 4αr = 1.
-///
-/// # Formula
-/// With b = 1/(4r), δ = b − α:
-/// ```text
-/// R_Z/D_x = b/(b + α) · [e^{−αℓ} − α (e^{−bℓ} − e^{−αℓ})/δ]
-/// e^{−bℓ} − e^{−αℓ} = e^{−αℓ} expm1(−δℓ)  (δ ≥ 0)   = −e^{−bℓ} expm1(δℓ)  (δ < 0)
-/// ```
-/// and (e^{−bℓ} − e^{−αℓ})/δ → −ℓ e^{−αℓ} as δ → 0 (no 0/0 is ever formed: expm1 keeps full relative accuracy).
-pub fn rz_ratio(alpha: f64, r: f64, ell: f64) -> f64 {
-    let b = 1.0 / (4.0 * r);
-    let delta = b - alpha;
-    let ea = (-alpha * ell).exp();
-    let diff_over_delta = if delta == 0.0 {
-        -ell * ea
-    } else if delta > 0.0 {
-        ea * (-delta * ell).exp_m1() / delta
-    } else {
-        -(-b * ell).exp() * (delta * ell).exp_m1() / delta
-    };
-    b / (b + alpha) * (ea - alpha * diff_over_delta)
-}
-
 impl BalancerBogie {
+    /// R_Z(ℓ)/D_x of (8.48) for the type-1 road K_x = D_x e^{−α|S|} (α in 1/m), in a form without
+    /// cancellation near 4αr = 1.
+    ///
+    /// # Formula
+    /// With b = 1/(4r), δ = b − α:
+    /// ```text
+    /// R_Z/D_x = b/(b + α) · [e^{−αℓ} − α (e^{−bℓ} − e^{−αℓ})/δ]
+    /// e^{−bℓ} − e^{−αℓ} = e^{−αℓ} expm1(−δℓ)  (δ ≥ 0)   = −e^{−bℓ} expm1(δℓ)  (δ < 0)
+    /// ```
+    /// and (e^{−bℓ} − e^{−αℓ})/δ → −ℓ e^{−αℓ} as δ → 0 (no 0/0 is ever formed: expm1 keeps full relative accuracy).
+    pub fn rz_ratio(&self, alpha: f64) -> f64 {
+        let (r, ell) = (self.r, self.ell);
+        let b = 1.0 / (4.0 * r);
+        let delta = b - alpha;
+        let ea = (-alpha * ell).exp();
+        let diff_over_delta = if delta == 0.0 {
+            -ell * ea
+        } else if delta > 0.0 {
+            ea * (-delta * ell).exp_m1() / delta
+        } else {
+            -(-b * ell).exp() * (delta * ell).exp_m1() / delta
+        };
+        b / (b + alpha) * (ea - alpha * diff_over_delta)
+    }
+
     /// The bogie of these fields, checked: wheel radius `r` (m), wheel base `ell` (m), pivot `ell1` (m) behind
     /// the front wheel.
     ///
@@ -168,7 +170,7 @@ impl BalancerBogie {
         require_positive("alpha", alpha)?;
         let (l, l1) = (self.ell, self.ell1);
         let dz = dx * dz_ratio(alpha, self.r);
-        let rz = dx * rz_ratio(alpha, self.r, l);
+        let rz = dx * self.rz_ratio(alpha);
         let dy = (((l - l1).powi(2) + l1 * l1) * dz + 2.0 * l1 * (l - l1) * rz) / (l * l);
         let sigma_ratio = if dx > 0.0 { (dy / dx).sqrt() } else { 0.0 };
         Ok(BogieClosedForm {
@@ -289,7 +291,7 @@ impl BalancerBogie {
 ///
 /// # Formula
 /// D_y/D_x = [((ℓ − ℓ₁)² + ℓ₁²)/(1 + 4αr) + 2ℓ₁(ℓ − ℓ₁) R_Z(ℓ)/D_x]/ℓ², R_Z in the stable form of
-/// [`rz_ratio`].
+/// [`BalancerBogie::rz_ratio`].
 ///
 /// # Errors
 /// Any invalid r, ℓ, fraction or α.

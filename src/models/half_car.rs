@@ -319,22 +319,39 @@ pub fn resonance_speed(natural_frequency: f64, wavelength: f64) -> Result<f64> {
     Ok(natural_frequency * wavelength / (2.0 * PI))
 }
 
-/// Natural frequency (rad/s) of an axle load Q (N) on a spring c (N/m): ω = √(c/m) = √(c g/Q) (book 7.5,
-/// the excavator example, Fig. 7.7).
-///
-/// # Errors
-/// Non-positive or non-finite arguments.
-///
-/// # Examples
-/// ```
-/// use stochvib::models::half_car::axle_natural_frequency;
-/// assert!((axle_natural_frequency(9.0e4, 2.86e4, 9.8).unwrap() - 5.5533).abs() < 1e-4);
-/// ```
-pub fn axle_natural_frequency(stiffness: f64, axle_load: f64, gravity: f64) -> Result<f64> {
-    require_positive("stiffness", stiffness)?;
-    require_positive("axle_load", axle_load)?;
-    require_positive("gravity", gravity)?;
-    Ok((stiffness * gravity / axle_load).sqrt())
+/// An axle load Q on a spring c under gravity g (book 7.5, the excavator example, Fig. 7.7). Named fields:
+/// three positive numbers of different units cannot be swapped silently.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxleOnSpring {
+    /// c, N/m.
+    pub stiffness: f64,
+    /// Q, the axle load (a force), N.
+    pub axle_load: f64,
+    /// g, m/s².
+    pub gravity: f64,
+}
+
+impl AxleOnSpring {
+    /// Natural frequency of the axle load on its spring, rad/s.
+    ///
+    /// # Formula
+    /// m = Q/g, so ω = √(c/m) = √(c g/Q).
+    ///
+    /// # Errors
+    /// Non-positive or non-finite fields, each named.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::models::half_car::AxleOnSpring;
+    /// let a = AxleOnSpring { stiffness: 9.0e4, axle_load: 2.86e4, gravity: 9.8 };
+    /// assert!((a.natural_frequency().unwrap() - 5.5533).abs() < 1e-4);
+    /// ```
+    pub fn natural_frequency(&self) -> Result<f64> {
+        require_positive("stiffness", self.stiffness)?;
+        require_positive("axle_load", self.axle_load)?;
+        require_positive("gravity", self.gravity)?;
+        Ok((self.stiffness * self.gravity / self.axle_load).sqrt())
+    }
 }
 
 /// Reads a `kind = "half-car"` `[model]` table: `mass`, `radius_of_gyration`, `front_distance` (a),
@@ -445,7 +462,13 @@ pub fn book_rows() -> Vec<BookRow> {
     // Excavator example (Sukharev (2012) 7.5, the first of the two examples numbered 7.2; Fig. 7.7):
     // ℓ = 7 m, Q = 28.6 kN, c = 90 kN/m, g = 9.8 m/s².
     let ex2 = "Sukharev (2012) 7.5, excavator resonance-speed example (Fig. 7.7)";
-    let w = axle_natural_frequency(9.0e4, 2.86e4, 9.8).ok();
+    let w = AxleOnSpring {
+        stiffness: 9.0e4,
+        axle_load: 2.86e4,
+        gravity: 9.8,
+    }
+    .natural_frequency()
+    .ok();
     let v = w.and_then(|w| resonance_speed(w, 7.0).ok());
     for (q, unit, printed, computed, why) in [
         (

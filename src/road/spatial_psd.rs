@@ -2,7 +2,7 @@
 //! (Welch, via [`crate::estimate::Welch`]), and the cross-spectrum and squared coherence of two tracks.
 
 use crate::error::{require_positive, Error, Result};
-use crate::estimate::{chi2_interval, Interval, Welch};
+use crate::estimate::{Interval, VarianceEstimate, Welch};
 use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use statrs::distribution::{ContinuousCDF, Normal};
@@ -73,7 +73,11 @@ impl SpatialPsd {
             .g_d
             .get(i)
             .ok_or_else(|| Error::invalid("bin", i, format!("have {} bins", self.g_d.len())))?;
-        chi2_interval(g, self.dof, confidence)
+        VarianceEstimate {
+            variance: g,
+            dof: self.dof,
+        }
+        .interval(confidence)
     }
 
     /// Correlation between the estimates at two bins `d` apart, for a locally flat density (Gaussian data,

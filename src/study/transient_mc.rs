@@ -7,7 +7,7 @@ use super::transient_run::{
     TransientSetup,
 };
 use crate::error::{Error, Result};
-use crate::estimate::chi2_interval;
+use crate::estimate::VarianceEstimate;
 use crate::scenario::Scenario;
 use crate::store::transient_series::TransientSeries;
 use crate::store::{Compression, Part};
@@ -189,7 +189,11 @@ pub fn compare_sigma(series: &TransientSeries, alpha: f64) -> Result<Vec<SigmaCo
                     rows.push((t, ex, est, o.sigma_lower[j], o.sigma_upper[j]));
                     continue;
                 }
-                let iv = chi2_interval(est * est, r as f64 - 1.0, level)?;
+                let iv = VarianceEstimate {
+                    variance: est * est,
+                    dof: r as f64 - 1.0,
+                }
+                .interval(level)?;
                 let tiny = (ex - est).abs() <= 1e-12 * scale;
                 if !(tiny || (iv.lower.sqrt() <= ex && ex <= iv.upper.sqrt())) {
                     outside.push(t);

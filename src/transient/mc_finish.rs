@@ -240,7 +240,7 @@ fn output_series(
 ) -> Result<TransientOutput> {
     let n = fold.n;
     let t = student_t_quantile(n - 1.0, 0.5 + 0.5 * confidence)?;
-    // the χ² interval of `chi2_interval` with its two quantiles found once for every time
+    // the χ² interval of `VarianceEstimate::interval` with its two quantiles found once for every time
     let (nu, a) = (n - 1.0, 1.0 - confidence);
     let (hi, lo) = (
         chi_squared_quantile(nu, 1.0 - a / 2.0)?,

@@ -5,7 +5,7 @@ use super::mc_finish::{AnalyticOutput, AnalyticSide};
 use super::series::TransientSolution;
 use super::system::Frozen;
 use crate::error::{Error, Result};
-use crate::extremes::{exceedance_vanmarcke, Barrier};
+use crate::extremes::{Barrier, FirstPassage};
 use crate::quad::{integrate, QuadOptions};
 use nalgebra::{Complex, DMatrix};
 
@@ -123,7 +123,12 @@ pub fn analytic_side(
                         if r <= 0.0 || (barrier == Barrier::TwoSided && mean != 0.0) {
                             return Ok(if r <= 0.0 { 0.0 } else { f64::NAN });
                         }
-                        Ok(1.0 - exceedance_vanmarcke(r, m.nu0_plus * duration, m.delta, barrier)?)
+                        let q = FirstPassage {
+                            level_over_sigma: r,
+                            zero_upcrossings: m.nu0_plus * duration,
+                            barrier,
+                        };
+                        Ok(1.0 - q.vanmarcke(m.delta)?)
                     })
                     .collect()
             };

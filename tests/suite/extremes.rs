@@ -13,8 +13,8 @@ use crate::common::tolerance::{
 use crate::transient_exact::{oscillator, system};
 use std::f64::consts::PI;
 use stochvib::extremes::{
-    davenport, der_kiureghian, dkw_epsilon, ers_fds, exceedance_poisson, exceedance_vanmarcke, rice_rate,
-    rice_rate_two_sided, Barrier, EmpiricalDistribution, ErsFdsOptions, FdsMaterial, RiceState,
+    davenport, der_kiureghian, dkw_epsilon, ers_fds, rice_rate, rice_rate_two_sided, Barrier, EmpiricalDistribution,
+    ErsFdsOptions, FdsMaterial, FirstPassage, RiceState,
 };
 use stochvib::transient::{solve, stationary_moments, Envelope, ExactOptions, InputModel, Start, TimeVaryingSystem};
 
@@ -71,15 +71,25 @@ fn first_passage_poisson_and_vanmarcke_at_stated_bandwidth() {
         (3.0, 0.670737, 0.891586, 0.578654, 0.685240),
         (3.5, 0.196477, 0.354350, 0.164585, 0.220942),
     ] {
-        assert!(rel(exceedance_poisson(r, 100.0, Barrier::OneSided), p1) < PRINTED_6_DIGITS);
-        assert!(rel(exceedance_poisson(r, 100.0, Barrier::TwoSided), p2) < PRINTED_6_DIGITS);
-        let got1 = exceedance_vanmarcke(r, 100.0, 0.25, Barrier::OneSided).unwrap();
-        let got2 = exceedance_vanmarcke(r, 100.0, 0.25, Barrier::TwoSided).unwrap();
+        let (one, two) = (question(r, Barrier::OneSided), question(r, Barrier::TwoSided));
+        assert!(rel(one.poisson(), p1) < PRINTED_6_DIGITS);
+        assert!(rel(two.poisson(), p2) < PRINTED_6_DIGITS);
+        let got1 = one.vanmarcke(0.25).unwrap();
+        let got2 = two.vanmarcke(0.25).unwrap();
         assert!(rel(got1, v1) < PRINTED_6_DIGITS, "r = {r}: {got1}");
         assert!(rel(got2, v2) < PRINTED_6_DIGITS, "r = {r}: {got2}");
     }
-    assert!(exceedance_vanmarcke(-1.0, 100.0, 0.25, Barrier::OneSided).is_err());
-    assert!(exceedance_vanmarcke(3.0, 100.0, 1.2, Barrier::OneSided).is_err());
+    assert!(question(-1.0, Barrier::OneSided).vanmarcke(0.25).is_err());
+    assert!(question(3.0, Barrier::OneSided).vanmarcke(1.2).is_err());
+}
+
+/// P(max > rσ) at ν₀⁺T = 100.
+fn question(r: f64, barrier: Barrier) -> FirstPassage {
+    FirstPassage {
+        level_over_sigma: r,
+        zero_upcrossings: 100.0,
+        barrier,
+    }
 }
 
 /// Rice's rate ν⁺(b) = ∫₀^∞ ẏ p(b, ẏ) dẏ of a non-stationary Gaussian process with m = 0.2, ṁ = −0.3,
@@ -155,7 +165,7 @@ fn integrated_crossings_of_a_stationary_mission() {
         let two = sol.expected_crossings(0, b, Barrier::TwoSided).expected;
         assert!(rel(two, 2.0 * expected) < EXACT_TRANSITIONS);
         let p = sol.exceedance_probability(0, b, Barrier::OneSided);
-        assert!(rel(p, exceedance_poisson(r, 100.0, Barrier::OneSided)) < EXACT_TRANSITIONS);
+        assert!(rel(p, question(r, Barrier::OneSided).poisson()) < EXACT_TRANSITIONS);
     }
 }
 

@@ -16,7 +16,7 @@ use std::f64::consts::{PI, SQRT_2};
 use std::path::Path;
 use std::sync::Arc;
 use stochvib::fields::Fields;
-use stochvib::models::half_car::{self, axle_natural_frequency, resonance_speed, HalfCar};
+use stochvib::models::half_car::{self, resonance_speed, AxleOnSpring, HalfCar};
 use stochvib::models::isolation::{self, transmissibility, SingleIsolator, TwoStageIsolator};
 use stochvib::models::operator_seat::{
     self, band_index, harmonic_band_rms, octave_bands, random_band_rms, SanitaryLimits,
@@ -402,13 +402,18 @@ fn resonance_speed_and_excavator_example() {
     // excavator (Sukharev (2012) 7.5, the example of Fig. 7.7):
     // ω = √(90e3·9.8/28.6e3) = √30.8392 = 5.55330 rad/s (hand computation);
     // v = 5.55330·7/(2π) = 6.18685 m/s (hand computation); printed 5.56 s⁻¹ and 6.2 m/s (22.3 km/h).
-    let w = axle_natural_frequency(9.0e4, 2.86e4, 9.8).unwrap();
+    let axle = |stiffness: f64, axle_load: f64| AxleOnSpring {
+        stiffness,
+        axle_load,
+        gravity: 9.8,
+    };
+    let w = axle(9.0e4, 2.86e4).natural_frequency().unwrap();
     assert!(rel(w, (9.0e4 * 9.8 / 2.86e4f64).sqrt()) < EXACT);
     assert!(rel(w, 5.55330) < PRINTED_6_DIGITS);
     let v = resonance_speed(w, 7.0).unwrap();
     assert!(rel(v, 6.18685) < PRINTED_6_DIGITS);
     assert!(resonance_speed(0.0, 7.0).is_err() && resonance_speed(1.0, -1.0).is_err());
-    assert!(axle_natural_frequency(1.0, 0.0, 9.8).is_err());
+    assert!(axle(1.0, 0.0).natural_frequency().is_err());
 }
 
 // ---------------------------------------------------------------- operator seat 7.6
