@@ -65,6 +65,7 @@
 //! of an uninterrupted run.
 
 use super::accumulators::{self, Moments, WelchAccumulator};
+use super::bands::OutputBands;
 use super::engine::{realize, Realization, Scratch};
 use super::finish::{density_estimate, output_statistics, read_output, Analytic};
 use super::plan::{plan, Plan};
@@ -109,8 +110,6 @@ pub const WARMUP_DECAY: f64 = 36.0;
 pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(usize, usize)) -> Result<RunSummary> {
     let plan = plan(input, opts)?;
     refuse_inputs_as_output(input, out)?;
-    let shard_size = opts.shard_size.min(opts.realizations);
-    let bins = plan.welch.segment_len() / 2 + 1;
     let names: Vec<&str> = plan.outputs.iter().map(|o| o.signal.name.as_str()).collect();
     // the exact mean of every output's Welch estimate (stored with its density; band integrals of it are
     // the expected band mean squares)
@@ -126,36 +125,7 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         }
         None => (Vec::new(), Vec::new()),
     };
-    let meta = RunMetadata {
-        scenario_text: input.scenario_text.clone(),
-        seed: opts.seed,
-        generator: plan.generator.clone(),
-        dt: opts.dt_s,
-        n_samples: plan.n,
-        n_realizations: opts.realizations,
-        shard_size,
-        inputs: if opts.store_raw {
-            plan.input_signals.clone()
-        } else {
-            vec![]
-        },
-        outputs: plan.outputs.iter().map(|o| o.signal.clone()).collect(),
-        accumulators: {
-            let mut a = accumulators::layout(&names, shard_size, bins);
-            a.extend(input.verdicts.layout(shard_size));
-            a.extend(bands.iter().map(|b| {
-                (
-                    super::bands::accumulator_name(names[b.output]),
-                    b.bands.len() * shard_size,
-                )
-            }));
-            a
-        },
-        store_raw: opts.store_raw,
-        compression: opts.compression,
-        provenance: input.provenance.clone(),
-        part: opts.part,
-    };
+    let meta = run_metadata(input, opts, &plan, &names, &bands);
     input.verdicts.check(&names)?;
     meta.validate()?;
     // cluster shard: a complete shard file of this run is the result (a rerun does nothing)
@@ -177,69 +147,10 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
     notes.extend(writer.notes().iter().cloned());
     let n_shards = meta.local_shards().len();
     let resumed_shards = writer.completed_shards().len();
-    progress(resumed_shards, n_shards);
-    let mut done = resumed_shards;
-    for shard in writer.pending_shards() {
-        let range = meta.shard_range(shard);
-        let batch = run_batch(
-            opts.seed,
-            range.start as u64..range.end as u64,
-            || Scratch::new(&plan),
-            |s, _i, rng| realize_with_verdicts(&plan, s, rng, opts, &input.verdicts),
-        );
-        let (results, verdicts): (Vec<Realization>, Vec<Vec<Vec<f64>>>) = batch
-            .into_results()
-            .into_iter()
-            .collect::<Result<Vec<_>>>()?
-            .into_iter()
-            .unzip();
-        let mut extra = input.verdicts.encode(&verdicts, shard_size);
-        extra.extend(super::bands::encode_shard(
-            &bands,
-            results.len(),
-            &|i, r| &results[i].welch[r],
-            shard_size,
-        )?);
-        write_shard(&mut writer, shard, &results, &plan, shard_size, opts.store_raw, &extra)?;
-        done += 1;
-        progress(done, n_shards);
-    }
-    // statistics from the accumulators of every shard, in shard order
-    let mut stats = Vec::new();
-    let mut psds = Vec::new();
-    let acc = |name: &str, shard: usize| writer.read_accumulator(name, shard);
-    for (o, exp) in plan.outputs.iter().zip(expected) {
-        let (m, v, ws) = read_output(&acc, &meta, &o.signal.name, &plan.welch)?;
-        super::agreement::check_mean_square(o, &v)?;
-        let analytic = Analytic::from_variances(o.analytic_variance, o.discrete_variance);
-        stats.push(output_statistics(&o.signal, &analytic, &m, &v, opts.confidence)?);
-        let mut psd = density_estimate(&o.signal, &plan.welch, &ws, opts.confidence, |omega| {
-            Ok(Some(
-                omega
-                    .iter()
-                    .map(|&w| output_density(input.system, input.excitation, o.index, w))
-                    .collect(),
-            ))
-        })?;
-        psd.expected = Some(exp);
-        psds.push(psd);
-    }
+    simulate_pending_shards(&mut writer, &meta, &plan, input, opts, &bands, progress)?;
+    let (mut stats, psds) = output_results(input, &writer, &meta, &plan, opts, expected)?;
     let rainflow = finish_verdicts(input, &writer, &meta, &plan, opts, &mut stats)?;
-    let local: Vec<(usize, usize)> = meta.local_shards().map(|s| (s, meta.shard_range(s).len())).collect();
-    for ob in &bands {
-        let o = &plan.outputs[ob.output];
-        let per_band = super::bands::read_bands(&acc, &o.signal.name, &local, meta.shard_size)?;
-        let labels: Vec<String> = ob.bands.iter().map(|b| b.label()).collect();
-        let rms = |v: &[f64]| v.iter().map(|x| Some(x.max(0.0).sqrt())).collect::<Vec<_>>();
-        stats[ob.output].statistics.extend(super::bands::band_statistics(
-            &o.signal.unit,
-            &labels,
-            &per_band,
-            &rms(&ob.analytic),
-            &rms(&ob.expected),
-            opts.confidence,
-        )?);
-    }
+    add_band_statistics(&writer, &meta, &plan, &bands, opts, &mut stats)?;
     let path = writer.finish_with(&stats, &rainflow, &psds)?;
     Ok(RunSummary {
         path,
@@ -258,6 +169,149 @@ pub fn run(input: &RunInput, opts: &RunOptions, out: &Path, progress: &dyn Fn(us
         notes,
         rainflow,
     })
+}
+
+/// The metadata of the run file of `plan`: its outputs `names`, the accumulators of the outputs, verdict
+/// channels and band tables `bands`, and the options.
+fn run_metadata(
+    input: &RunInput,
+    opts: &RunOptions,
+    plan: &Plan,
+    names: &[&str],
+    bands: &[OutputBands],
+) -> RunMetadata {
+    let shard_size = opts.shard_size.min(opts.realizations);
+    let bins = plan.welch.segment_len() / 2 + 1;
+    let mut accumulators = accumulators::layout(names, shard_size, bins);
+    accumulators.extend(input.verdicts.layout(shard_size));
+    accumulators.extend(bands.iter().map(|b| {
+        (
+            super::bands::accumulator_name(names[b.output]),
+            b.bands.len() * shard_size,
+        )
+    }));
+    RunMetadata {
+        scenario_text: input.scenario_text.clone(),
+        seed: opts.seed,
+        generator: plan.generator.clone(),
+        dt: opts.dt_s,
+        n_samples: plan.n,
+        n_realizations: opts.realizations,
+        shard_size,
+        inputs: if opts.store_raw {
+            plan.input_signals.clone()
+        } else {
+            vec![]
+        },
+        outputs: plan.outputs.iter().map(|o| o.signal.clone()).collect(),
+        accumulators,
+        store_raw: opts.store_raw,
+        compression: opts.compression,
+        provenance: input.provenance.clone(),
+        part: opts.part,
+    }
+}
+
+/// Simulates and writes every shard of the run that the file does not hold yet, in shard order, calling
+/// `progress(done, total)` before the first and after each.
+fn simulate_pending_shards(
+    writer: &mut RunWriter,
+    meta: &RunMetadata,
+    plan: &Plan,
+    input: &RunInput,
+    opts: &RunOptions,
+    bands: &[OutputBands],
+    progress: &dyn Fn(usize, usize),
+) -> Result<()> {
+    let n_shards = meta.local_shards().len();
+    let mut done = writer.completed_shards().len();
+    progress(done, n_shards);
+    for shard in writer.pending_shards() {
+        let range = meta.shard_range(shard);
+        let batch = run_batch(
+            opts.seed,
+            range.start as u64..range.end as u64,
+            || Scratch::new(plan),
+            |s, _i, rng| realize_with_verdicts(plan, s, rng, opts, &input.verdicts),
+        );
+        let (results, verdicts): (Vec<Realization>, Vec<Vec<Vec<f64>>>) = batch
+            .into_results()
+            .into_iter()
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .unzip();
+        let mut extra = input.verdicts.encode(&verdicts, meta.shard_size);
+        extra.extend(super::bands::encode_shard(
+            bands,
+            results.len(),
+            &|i, r| &results[i].welch[r],
+            meta.shard_size,
+        )?);
+        write_shard(writer, shard, &results, plan, meta.shard_size, opts.store_raw, &extra)?;
+        done += 1;
+        progress(done, n_shards);
+    }
+    Ok(())
+}
+
+/// The statistics and the density estimate of every output, from the accumulators of every shard in shard
+/// order; `expected` is the exact mean of each output's Welch estimate.
+fn output_results(
+    input: &RunInput,
+    writer: &RunWriter,
+    meta: &RunMetadata,
+    plan: &Plan,
+    opts: &RunOptions,
+    expected: Vec<Vec<f64>>,
+) -> Result<(Vec<OutputStatistics>, Vec<crate::store::PsdEstimate>)> {
+    let mut stats = Vec::new();
+    let mut psds = Vec::new();
+    let acc = |name: &str, shard: usize| writer.read_accumulator(name, shard);
+    for (o, exp) in plan.outputs.iter().zip(expected) {
+        let (m, v, ws) = read_output(&acc, meta, &o.signal.name, &plan.welch)?;
+        super::agreement::check_mean_square(o, &v)?;
+        let analytic = Analytic::from_variances(o.analytic_variance, o.discrete_variance);
+        stats.push(output_statistics(&o.signal, &analytic, &m, &v, opts.confidence)?);
+        let mut psd = density_estimate(&o.signal, &plan.welch, &ws, opts.confidence, |omega| {
+            Ok(Some(
+                omega
+                    .iter()
+                    .map(|&w| output_density(input.system, input.excitation, o.index, w))
+                    .collect(),
+            ))
+        })?;
+        psd.expected = Some(exp);
+        psds.push(psd);
+    }
+    Ok((stats, psds))
+}
+
+/// Appends the band r.m.s. statistics of every output with a band table to its statistics.
+fn add_band_statistics(
+    writer: &RunWriter,
+    meta: &RunMetadata,
+    plan: &Plan,
+    bands: &[OutputBands],
+    opts: &RunOptions,
+    stats: &mut [OutputStatistics],
+) -> Result<()> {
+    let acc = |name: &str, shard: usize| writer.read_accumulator(name, shard);
+    let local: Vec<(usize, usize)> = meta.local_shards().map(|s| (s, meta.shard_range(s).len())).collect();
+    for ob in bands {
+        let o = &plan.outputs[ob.output];
+        let per_band = super::bands::read_bands(&acc, &o.signal.name, &local, meta.shard_size)?;
+        let labels: Vec<String> = ob.bands.iter().map(|b| b.label()).collect();
+        let rms = |v: &[f64]| v.iter().map(|x| Some(x.max(0.0).sqrt())).collect::<Vec<_>>();
+        stats[ob.output].statistics.extend(super::bands::band_statistics(
+            &o.signal.unit,
+            &labels,
+            &per_band,
+            &rms(&ob.analytic),
+            &rms(&ob.expected),
+            opts.confidence,
+        )?);
+    }
+    Ok(())
 }
 
 /// The summary of a finished run file of this plan (a shard that is already complete).
