@@ -1,4 +1,5 @@
 //! The `stochvib` command-line tool: parses arguments, calls the library, prints.
+#![warn(clippy::too_many_lines)] // no function of more than 100 lines of code (see the library's root)
 
 #[path = "main/optimize_cli.rs"]
 mod optimize_cli;
@@ -1033,51 +1034,65 @@ fn simulate_command(cmd: Command) -> anyhow::Result<()> {
         stochvib::plot::chart::check_picture_dir(dir)?; // before the run file is written
     }
     let sc = load_scenario(&scenario, catalogue.dir())?;
-    if let Some(answers) = sc.nonlinear_answers()? {
-        let base = RunOptions {
-            shard_size,
-            store_raw,
-            compression,
-            route,
-            confidence,
-            overwrite,
-            part: choice.as_ref().map(|c| c.part),
-            max_hours: step.max_hours(),
-            realizations,
-            duration_s: 1.0,
-            dt_s: 1.0,
-            seed,
-            ..RunOptions::default()
-        };
-        let opts = step.nonlinear(&sc, &answers, base)?;
-        let output = shard_output(output, &choice)?;
-        let s = sc.simulate_nonlinear(&answers, &opts, &output, &progress_printer())?;
-        print(&s, json)?;
-        if let Some(pdir) = plots {
-            for f in run_plots(&s.run.path, &pdir, catalogue.dir())? {
-                if !json {
-                    emit_line(&f.display().to_string());
-                }
-            }
-        }
-        return Ok(());
-    }
-    let (dt, duration) = step.resolve(&sc, realizations)?;
-    let opts = RunOptions {
+    let base = RunOptions {
         shard_size,
         store_raw,
         compression,
         route,
         confidence,
-        stream_tail: stream_tail.unwrap_or(stochvib::simulate::fir_stream::TAIL_FRACTION),
         overwrite,
         part: choice.as_ref().map(|c| c.part),
         max_hours: step.max_hours(),
         realizations,
-        duration_s: duration,
-        dt_s: dt,
         seed,
         ..RunOptions::default()
+    };
+    let path = match sc.nonlinear_answers()? {
+        Some(answers) => {
+            let base = RunOptions {
+                duration_s: 1.0,
+                dt_s: 1.0,
+                ..base
+            };
+            let opts = step.nonlinear(&sc, &answers, base)?;
+            let output = shard_output(output, &choice)?;
+            let s = sc.simulate_nonlinear(&answers, &opts, &output, &progress_printer())?;
+            print(&s, json)?;
+            s.run.path
+        }
+        None => {
+            let base = RunOptions {
+                stream_tail: stream_tail.unwrap_or(stochvib::simulate::fir_stream::TAIL_FRACTION),
+                ..base
+            };
+            simulate_linear(&sc, &step, base, output, &choice, json)?
+        }
+    };
+    if let Some(pdir) = plots {
+        for f in run_plots(&path, &pdir, catalogue.dir())? {
+            if !json {
+                emit_line(&f.display().to_string());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `stochvib simulate` of a linear scenario: Δt and the duration from `step`, the other options `base`; the
+/// estimate of the run's size printed first; returns the run file's path.
+fn simulate_linear(
+    sc: &Scenario,
+    step: &Step,
+    base: RunOptions,
+    output: PathBuf,
+    choice: &Option<study::ShardChoice>,
+    json: bool,
+) -> anyhow::Result<PathBuf> {
+    let (dt, duration) = step.resolve(sc, base.realizations)?;
+    let opts = RunOptions {
+        duration_s: duration,
+        dt_s: dt,
+        ..base
     };
     let flag = |e| named_by_flag(e, "--realizations");
     let estimate = stochvib::simulate::resources::estimate_text(
@@ -1089,17 +1104,10 @@ fn simulate_command(cmd: Command) -> anyhow::Result<()> {
     .map_err(flag)?;
     eprintln!("{estimate}");
     // the run directory of a shard only once the options hold (a refused run creates nothing)
-    let output = shard_output(output, &choice)?;
+    let output = shard_output(output, choice)?;
     let s = sc.simulate(&opts, &output, &progress_printer()).map_err(flag)?;
     print(&s, json)?;
-    if let Some(pdir) = plots {
-        for f in run_plots(&s.path, &pdir, catalogue.dir())? {
-            if !json {
-                emit_line(&f.display().to_string());
-            }
-        }
-    }
-    Ok(())
+    Ok(s.path)
 }
 
 /// `stochvib merge`.
@@ -1214,57 +1222,78 @@ fn sweep_command(cmd: Command) -> anyhow::Result<()> {
     };
     let progress = progress_printer();
     match choice {
-        Some(c) => {
-            let dir =
-                output.ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
-            output_dir(&dir, "with --shard, -o names the directory of the shard files")?;
-            eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
-            for n in &c.notes {
-                eprintln!("warning: {n}");
-            }
-            let (path, sh, fresh) = study::run_sweep_shard(&sweep, c.part, &dir, true, mc, overwrite, &progress)?;
+        Some(c) => sweep_shard(&sweep, c, output, mc, overwrite, &progress),
+        None => sweep_table(&sweep, output, json, mc, overwrite, &progress),
+    }
+}
+
+/// `stochvib sweep --shard`: the shard file of part `c` in the directory `output`.
+fn sweep_shard(
+    sweep: &Sweep,
+    c: study::ShardChoice,
+    output: Option<PathBuf>,
+    mc: Option<study::SweepMonteCarlo>,
+    overwrite: bool,
+    progress: &dyn Fn(usize, usize),
+) -> anyhow::Result<()> {
+    let dir = output.ok_or_else(|| anyhow::anyhow!("--shard needs -o DIR/ (the directory of the shard files)"))?;
+    output_dir(&dir, "with --shard, -o names the directory of the shard files")?;
+    eprintln!("sweep shard {} of {} ({})", c.part.index, c.part.count, c.source);
+    for n in &c.notes {
+        eprintln!("warning: {n}");
+    }
+    let (path, sh, fresh) = study::run_sweep_shard(sweep, c.part, &dir, true, mc, overwrite, progress)?;
+    eprintln!(
+        "{} {}: points {}..{} of {} ({} failed)",
+        if fresh {
+            "wrote"
+        } else {
+            "already complete (nothing to do):"
+        },
+        path.display(),
+        sh.results.points.start,
+        sh.results.points.end,
+        sh.results.n_points,
+        sh.results.errors.len()
+    );
+    Ok(())
+}
+
+/// `stochvib sweep` without `--shard`: the table to the file `output` (its format by its extension), as
+/// JSON or CSV to standard output.
+fn sweep_table(
+    sweep: &Sweep,
+    output: Option<PathBuf>,
+    json: bool,
+    mc: Option<study::SweepMonteCarlo>,
+    overwrite: bool,
+    progress: &dyn Fn(usize, usize),
+) -> anyhow::Result<()> {
+    let opts = study::StreamOptions::default();
+    match output {
+        Some(path) => {
+            let t = study::write_sweep_table(sweep, &path, overwrite, mc, opts, progress)?;
             eprintln!(
-                "{} {}: points {}..{} of {} ({} failed)",
-                if fresh {
-                    "wrote"
-                } else {
-                    "already complete (nothing to do):"
-                },
-                path.display(),
-                sh.results.points.start,
-                sh.results.points.end,
-                sh.results.n_points,
-                sh.results.errors.len()
+                "wrote {} points ({} failed) to {}",
+                t.n_points,
+                t.errors.len(),
+                path.display()
             );
         }
+        None if json => {
+            let n = sweep.spec().n_points();
+            emit_line(&study::compute_sweep(sweep, 0..n, true, mc, progress)?.to_json()?)
+        }
         None => {
-            let opts = study::StreamOptions::default();
-            match output {
-                Some(path) => {
-                    let t = study::write_sweep_table(&sweep, &path, overwrite, mc, opts, &progress)?;
-                    eprintln!(
-                        "wrote {} points ({} failed) to {}",
-                        t.n_points,
-                        t.errors.len(),
-                        path.display()
-                    );
+            let out = std::io::stdout();
+            match study::stream_sweep_csv(sweep, out, Path::new("<stdout>"), mc, opts, progress) {
+                // a closed pipe (`stochvib sweep ... | head`): the evaluation has stopped and
+                // the writer thread has ended; end quietly, as `emit` does
+                Err(stochvib::Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => {
+                    std::process::exit(0)
                 }
-                None if json => {
-                    let n = sweep.spec().n_points();
-                    emit_line(&study::compute_sweep(&sweep, 0..n, true, mc, &progress)?.to_json()?)
-                }
-                None => {
-                    let out = std::io::stdout();
-                    match study::stream_sweep_csv(&sweep, out, Path::new("<stdout>"), mc, opts, &progress) {
-                        // a closed pipe (`stochvib sweep ... | head`): the evaluation has stopped and
-                        // the writer thread has ended; end quietly, as `emit` does
-                        Err(stochvib::Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => {
-                            std::process::exit(0)
-                        }
-                        r => {
-                            r?;
-                        }
-                    }
+                r => {
+                    r?;
                 }
             }
         }
