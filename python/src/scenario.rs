@@ -653,49 +653,14 @@ impl PyScenario {
             track_width: quantity::optional(py, track_width, "track_width", "m")?,
             tracks: tracks.map(|t| two_tracks::track_indices(py, t)).transpose()?,
         };
-        let on_two_tracks = two.given() || matches!(sys.layout, Some(InputLayout::TwoTracks { .. }));
-        let (exc, coherence) = if on_two_tracks {
-            if arcs.len() != 1 || means.len() != 1 {
-                return Err(invalid_input(
-                    py,
-                    "a road of two tracks is one spectrum (that of each track) with one mean",
-                ));
-            }
-            let (e, d) = two_tracks::excitation(
-                py,
-                (&sys.layout, sys.system.n_inputs()),
-                &arcs[0],
-                (speed, positions, means[0]),
-                two,
-            )?;
-            (e, Some(d))
-        } else {
-            (excitation(py, sys, &arcs, speed, positions, means.clone())?, None)
-        };
+        let (exc, coherence) = system_excitation(py, sys, &arcs, (speed, positions, &means), two)?;
         let names: Vec<String> = sys.system.outputs().iter().map(|o| o.name.clone()).collect();
         let index = |n: &str| call(py, || sys.system.output_index(n));
         let outputs = match outputs {
             None => (0..names.len()).collect(),
             Some(v) => v.iter().map(|n| index(n)).collect::<PyResult<Vec<_>>>()?,
         };
-        if !(duration_s.is_finite() && duration_s > 0.0) {
-            return lib(
-                py,
-                Err(Error::invalid("duration_s", duration_s, "must be finite and > 0")),
-            );
-        }
-        if let Some((a, b)) = band_rad_s {
-            if !(a >= 0.0 && b > a && b.is_finite()) {
-                return lib(
-                    py,
-                    Err(Error::invalid(
-                        "band_rad_s",
-                        format!("({a}, {b})"),
-                        "need 0 <= low < high < inf",
-                    )),
-                );
-            }
-        }
+        lib(py, check_analysis_args(duration_s, band_rad_s))?;
         let level_list = output_levels(py, levels, sys.system.as_ref())?;
         let first = spectra[0].get();
         let reference = if first.name.is_empty() {
@@ -704,32 +669,7 @@ impl PyScenario {
             first.name.clone()
         };
         let title = title.unwrap_or_else(|| format!("{} driven by {}", sys.description, first.spectrum.describe()));
-        // Provenance stored with Monte Carlo runs: a TOML description (there is no scenario file).
-        let mut prov = toml::Table::new();
-        prov.insert(
-            "generated_by".into(),
-            "the stochvib Python package (Scenario.from_system)".into(),
-        );
-        prov.insert("title".into(), title.clone().into());
-        let mut model = toml::Table::new();
-        model.insert("kind".into(), sys.kind.clone().into());
-        model.insert("description".into(), sys.description.clone().into());
-        prov.insert("model".into(), model.into());
-        let mut inp = toml::Table::new();
-        inp.insert(
-            "spectra".into(),
-            toml::Value::Array(arcs.iter().map(|s| s.describe().into()).collect()),
-        );
-        if let Some(v) = speed {
-            inp.insert("speed".into(), v.into());
-        }
-        inp.insert(
-            "mean".into(),
-            toml::Value::Array(means.iter().map(|&m| m.into()).collect()),
-        );
-        inp.insert("excitation".into(), format!("{exc:?}").into());
-        prov.insert("input".into(), inp.into());
-        let text = toml::to_string(&prov).unwrap_or_default();
+        let text = provenance_text(&title, sys, &arcs, speed, &means, &exc);
         let input = ScenarioInput {
             reference,
             spectrum: first.spectrum.clone(),
@@ -1760,4 +1700,86 @@ fn output_levels(
             Ok((i, vals))
         })
         .collect()
+}
+
+/// The excitation of `sys`'s inputs by the spectra `arcs` (speed, wheel positions, means): on a road of two
+/// tracks when `two` names one or the system stands on two tracks (with the coherence's description), else
+/// one track or independent inputs.
+fn system_excitation(
+    py: Python<'_>,
+    sys: &PySystem,
+    arcs: &[Arc<dyn Spectrum>],
+    (speed, positions, means): (Option<f64>, Option<Vec<f64>>, &[f64]),
+    two: TwoTrackArgs<'_, '_>,
+) -> PyResult<(Excitation, Option<String>)> {
+    let on_two_tracks = two.given() || matches!(sys.layout, Some(InputLayout::TwoTracks { .. }));
+    if !on_two_tracks {
+        return Ok((excitation(py, sys, arcs, speed, positions, means.to_vec())?, None));
+    }
+    if arcs.len() != 1 || means.len() != 1 {
+        return Err(invalid_input(
+            py,
+            "a road of two tracks is one spectrum (that of each track) with one mean",
+        ));
+    }
+    let (e, d) = two_tracks::excitation(
+        py,
+        (&sys.layout, sys.system.n_inputs()),
+        &arcs[0],
+        (speed, positions, means[0]),
+        two,
+    )?;
+    Ok((e, Some(d)))
+}
+
+/// `duration_s` finite and > 0; `band_rad_s`, when given, 0 ≤ low < high < ∞.
+fn check_analysis_args(duration_s: f64, band_rad_s: Option<(f64, f64)>) -> stochvib::Result<()> {
+    if !(duration_s.is_finite() && duration_s > 0.0) {
+        return Err(Error::invalid("duration_s", duration_s, "must be finite and > 0"));
+    }
+    match band_rad_s {
+        Some((a, b)) if !(a >= 0.0 && b > a && b.is_finite()) => Err(Error::invalid(
+            "band_rad_s",
+            format!("({a}, {b})"),
+            "need 0 <= low < high < inf",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The provenance stored with Monte Carlo runs of a scenario built in Python (there is no scenario file): a
+/// TOML description of the model and the input.
+fn provenance_text(
+    title: &str,
+    sys: &PySystem,
+    arcs: &[Arc<dyn Spectrum>],
+    speed: Option<f64>,
+    means: &[f64],
+    exc: &Excitation,
+) -> String {
+    let mut prov = toml::Table::new();
+    prov.insert(
+        "generated_by".into(),
+        "the stochvib Python package (Scenario.from_system)".into(),
+    );
+    prov.insert("title".into(), title.into());
+    let mut model = toml::Table::new();
+    model.insert("kind".into(), sys.kind.clone().into());
+    model.insert("description".into(), sys.description.clone().into());
+    prov.insert("model".into(), model.into());
+    let mut inp = toml::Table::new();
+    inp.insert(
+        "spectra".into(),
+        toml::Value::Array(arcs.iter().map(|s| s.describe().into()).collect()),
+    );
+    if let Some(v) = speed {
+        inp.insert("speed".into(), v.into());
+    }
+    inp.insert(
+        "mean".into(),
+        toml::Value::Array(means.iter().map(|&m| m.into()).collect()),
+    );
+    inp.insert("excitation".into(), format!("{exc:?}").into());
+    prov.insert("input".into(), inp.into());
+    toml::to_string(&prov).unwrap_or_default()
 }
