@@ -2,7 +2,7 @@
 //! engine of that route, and the exact variance of the simulated discrete process.
 
 use super::engine::{Engine, Gains, RawMix};
-use super::fir_stream::{KernelSpectra, GRID_TOLERANCE};
+use super::fir_stream::{KernelDesign, KernelSpectra, GRID_TOLERANCE};
 use super::{
     augmented_response, foh, Amplitudes, FirSynthesis, GaussMarkov, Route, RunInput, RunOptions, SpectralGenerator,
 };
@@ -297,83 +297,123 @@ fn plan_with(input: &RunInput, opts: &RunOptions, schur_grid: bool) -> Result<Pl
         }
     };
     let m_welch = ((n / 8) & !1).clamp(4, 1024);
-    let welch = Welch::new(m_welch, opts.dt_s)?;
-    let mut notes = vec![choice.reason];
+    let start = PlanStart {
+        n,
+        finite,
+        skipped,
+        notes: vec![choice.reason],
+        welch: Welch::new(m_welch, opts.dt_s)?,
+    };
     if streamed {
-        return streamed_plan(input, opts, n, finite, skipped, notes, welch);
+        return streamed_plan(input, opts, start);
     }
-    let threads = rayon::current_num_threads();
-    let mut memory_bytes = super::resources::memory_bytes(n, p_all, g_all, opts, threads);
     // exact route: append the input processes (shaping-filter outputs) as extra rows of the simulated system
     let exact = choice
         .exact
         .map(|gm| with_input_rows(input.system, input.excitation, &idx, opts.dt_s).unwrap_or(gm));
-    if let Some(gm) = exact {
-        let block_steps = if records { 0 } else { opts.block_steps.min(n) };
-        if block_steps > 0 {
-            memory_bytes = super::resources::exact_block_memory_bytes(
-                gm.n_states(),
-                gm.n_outputs(),
-                idx.len(),
-                block_steps,
-                n,
-                opts,
-                threads,
-            );
-            super::resources::check_block_memory(memory_bytes, n, opts)?;
-        }
-        let cov = gm.output_covariance();
-        let autocov = gm
-            .output_autocovariances(welch.segment_len())
-            .into_iter()
-            .take(idx.len())
-            .collect();
-        let outputs = finite
-            .into_iter()
-            .enumerate()
-            .map(|(r, f)| PlannedOutput {
-                index: f.index,
-                signal: Signal::new(&f.info.name, &f.info.unit),
-                analytic_variance: f.variance,
-                discrete_variance: cov[(r, r)],
-                kurtosis: None,
-                mean_square_sd: None,
-            })
-            .collect();
-        notes.push(
-            "exact route: Van Loan discretisation of the system with its shaping filters, stationary start (no \
-             time-step bias, no transient)"
-                .into(),
-        );
-        let stride = gm.n_outputs();
-        let input_signals = if stride == idx.len() + input.input_signals.len() {
-            input.input_signals.clone()
-        } else {
-            vec![]
-        };
-        return Ok(Plan {
-            route: Route::Exact,
-            engine: Engine::Exact(gm),
-            n,
-            stride,
-            input_signals,
-            outputs,
-            skipped,
-            notes,
-            generator: format!(
-                "{}, stream (seed, i) per realization; exact Van Loan discretisation of the system augmented \
-                 with its shaping filters, stationary start",
-                super::GENERATOR
-            ),
-            welch,
-            block_steps,
-            autocov,
-            memory_bytes,
-        });
+    match exact {
+        Some(gm) => exact_plan(input, opts, start, gm),
+        None => spectral_plan(input, opts, start, schur_grid),
     }
+}
+
+/// What the plan of every route starts from: N samples per realization, the outputs with a finite variance
+/// (`finite`) and those skipped, the notes so far (the route's reason) and the Welch estimator.
+struct PlanStart {
+    n: usize,
+    finite: Vec<Simulable>,
+    skipped: Vec<SkippedOutput>,
+    notes: Vec<String>,
+    welch: Welch,
+}
+
+/// The plan of the exact route with the discretised system `gm` (the simulated outputs, then the input
+/// processes where [`with_input_rows`] appended them).
+fn exact_plan(input: &RunInput, opts: &RunOptions, mut start: PlanStart, gm: GaussMarkov) -> Result<Plan> {
+    let (p_all, g_all) = (input.outputs.len(), input.excitation.spectra().len());
+    let threads = rayon::current_num_threads();
+    let p = start.finite.len();
+    let block_steps = if opts.store_raw {
+        0
+    } else {
+        opts.block_steps.min(start.n)
+    };
+    let memory_bytes = if block_steps > 0 {
+        let bytes = super::resources::exact_block_memory_bytes(
+            gm.n_states(),
+            gm.n_outputs(),
+            p,
+            block_steps,
+            start.n,
+            opts,
+            threads,
+        );
+        super::resources::check_block_memory(bytes, start.n, opts)?;
+        bytes
+    } else {
+        super::resources::memory_bytes(start.n, p_all, g_all, opts, threads)
+    };
+    let cov = gm.output_covariance();
+    let autocov = gm
+        .output_autocovariances(start.welch.segment_len())
+        .into_iter()
+        .take(p)
+        .collect();
+    let outputs = start
+        .finite
+        .into_iter()
+        .enumerate()
+        .map(|(r, f)| PlannedOutput {
+            index: f.index,
+            signal: Signal::new(&f.info.name, &f.info.unit),
+            analytic_variance: f.variance,
+            discrete_variance: cov[(r, r)],
+            kurtosis: None,
+            mean_square_sd: None,
+        })
+        .collect();
+    start.notes.push(
+        "exact route: Van Loan discretisation of the system with its shaping filters, stationary start (no \
+         time-step bias, no transient)"
+            .into(),
+    );
+    let stride = gm.n_outputs();
+    let input_signals = if stride == p + input.input_signals.len() {
+        input.input_signals.clone()
+    } else {
+        vec![]
+    };
+    Ok(Plan {
+        route: Route::Exact,
+        engine: Engine::Exact(gm),
+        n: start.n,
+        stride,
+        input_signals,
+        outputs,
+        skipped: start.skipped,
+        notes: start.notes,
+        generator: format!(
+            "{}, stream (seed, i) per realization; exact Van Loan discretisation of the system augmented \
+             with its shaping filters, stationary start",
+            super::GENERATOR
+        ),
+        welch: start.welch,
+        block_steps,
+        autocov,
+        memory_bytes,
+    })
+}
+
+/// The plan of the whole-record spectral route (`schur_grid`: see [`plan_with`]).
+fn spectral_plan(input: &RunInput, opts: &RunOptions, mut start: PlanStart, schur_grid: bool) -> Result<Plan> {
+    let n = start.n;
+    let (p_all, g_all) = (input.outputs.len(), input.excitation.spectra().len());
+    let memory_bytes = super::resources::memory_bytes(n, p_all, g_all, opts, rayon::current_num_threads());
+    let idx: Vec<usize> = start.finite.iter().map(|f| f.index).collect();
     let (engine, discrete, autocov, moments) =
-        spectral_engine(input, opts, n, &idx, &mut notes, welch.segment_len(), schur_grid)?;
-    let outputs = finite
+        spectral_engine(input, opts, n, &idx, &mut start.notes, start.welch.segment_len(), schur_grid)?;
+    let outputs = start
+        .finite
         .into_iter()
         .zip(discrete)
         .zip(moments)
@@ -393,8 +433,8 @@ fn plan_with(input: &RunInput, opts: &RunOptions, schur_grid: bool) -> Result<Pl
         stride: idx.len(),
         input_signals: input.input_signals.clone(),
         outputs,
-        skipped,
-        notes,
+        skipped: start.skipped,
+        notes: start.notes,
         generator: match input.is_non_gaussian().then(|| input.kurtosis_text()) {
             None => format!(
                 "{}, stream (seed, i) per realization; spectral representation (Rayleigh amplitudes) on an FFT grid \
@@ -408,7 +448,7 @@ fn plan_with(input: &RunInput, opts: &RunOptions, schur_grid: bool) -> Result<Pl
                 super::LAPLACE_DRAWS
             ),
         },
-        welch,
+        welch: start.welch,
         block_steps: 0,
         autocov,
         memory_bytes,
@@ -418,15 +458,14 @@ fn plan_with(input: &RunInput, opts: &RunOptions, schur_grid: bool) -> Result<Pl
 /// The plan of the streamed spectral route: FIR kernels designed from the discrete transfer gains of
 /// the first-order-hold system and the input spectra on doubling grids ([`FirSynthesis::design`]), the exact
 /// variance and autocovariance of the FIR process, and the memory check with the streamed estimate.
-fn streamed_plan(
-    input: &RunInput,
-    opts: &RunOptions,
-    n: usize,
-    finite: Vec<Simulable>,
-    skipped: Vec<SkippedOutput>,
-    mut notes: Vec<String>,
-    welch: Welch,
-) -> Result<Plan> {
+fn streamed_plan(input: &RunInput, opts: &RunOptions, start: PlanStart) -> Result<Plan> {
+    let PlanStart {
+        n,
+        finite,
+        skipped,
+        mut notes,
+        welch,
+    } = start;
     if opts.store_raw {
         return Err(Error::invalid(
             "store raw",
@@ -444,27 +483,7 @@ fn streamed_plan(
     let sub = ss.select_outputs(&idx)?;
     stability_margin(ss)?;
     // the largest delay in whole steps: the first grid holds it 16 times
-    let max_shift = match exc {
-        Excitation::Track { delays, .. } => {
-            let t0 = delays.iter().copied().fold(f64::INFINITY, f64::min);
-            delays
-                .iter()
-                .map(|t| ((t - t0) / dt).round() as usize)
-                .max()
-                .unwrap_or(0)
-        }
-        Excitation::Independent { .. } => 0,
-        // several independent sources: one white noise per component of every source, each through its own
-        // kernels (a multi-component source's mixing is part of its kernels), summed per output
-        Excitation::Sources { inputs, .. } => {
-            let t0 = inputs.iter().map(|m| m.delay).fold(f64::INFINITY, f64::min);
-            inputs
-                .iter()
-                .map(|m| ((m.delay - t0) / dt).round() as usize)
-                .max()
-                .unwrap_or(0)
-        }
-    };
+    let max_shift = max_delay_steps(exc, dt);
     let spectra = exc.spectra();
     let schur = super::transfer_grid::SchurTransfer::new(&sub, dt)?;
     let kernel_spectra = |l: usize| -> Result<KernelSpectra> {
@@ -496,48 +515,10 @@ fn streamed_plan(
             },
             e => e,
         })?;
-    let (p, g) = (idx.len(), fir.n_generators());
-    let threads = rayon::current_num_threads();
-    let memory_bytes = super::resources::streamed_memory_bytes(
-        &super::resources::StreamSizes {
-            taps: fir.taps(),
-            fft_len: fir.fft_len(),
-            grid_len: design.grid_len,
-            block_steps: opts.block_steps.min(n),
-            outputs: p,
-            generators: g,
-        },
-        opts,
-        threads,
-    );
-    super::resources::check_streamed_memory(memory_bytes, n, opts)?;
-    notes.push(format!(
-        "spectral-stream route: white noise through FIR kernels of {} taps (lags {}..{}), designed on a grid of {} \
-         points (Δω = {:.4e} rad/s) from the first-order-hold response and the input spectra; overlap-save with an \
-         FFT of {} ({} new samples per segment), memory independent of the duration",
-        fir.taps(),
-        design.first_lag,
-        design.first_lag + fir.taps() as i64 - 1,
-        design.grid_len,
-        2.0 * std::f64::consts::PI / (design.grid_len as f64 * dt),
-        fir.fft_len(),
-        fir.hop()
-    ));
+    let p = idx.len();
+    let memory_bytes = streamed_memory(&fir, &design, n, p, opts)?;
     let discrete: Vec<f64> = (0..p).map(|r| fir.variance(r)).collect();
-    for (r, f) in finite.iter().enumerate() {
-        notes.push(format!(
-            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {:e}), grid \
-             variance change over the last doubling {:.3e} (bound {GRID_TOLERANCE:e}); simulated σ {:.6e} vs \
-             analytic σ {:.6e} (relative {:+.3e}); `discrete σ` is the exact σ of the simulated FIR process",
-            f.info.name,
-            design.tail_fraction[r],
-            opts.stream_tail,
-            design.grid_change[r],
-            discrete[r].sqrt(),
-            f.variance.sqrt(),
-            discrete[r].sqrt() / f.variance.sqrt() - 1.0
-        ));
-    }
+    notes.extend(streamed_notes(&fir, &design, &finite, &discrete, opts));
     let autocov = (0..p).map(|r| fir.autocovariance(r, welch.segment_len())).collect();
     let outputs = finite
         .into_iter()
@@ -575,6 +556,81 @@ fn streamed_plan(
         autocov,
         memory_bytes,
     })
+}
+
+/// The memory of the streamed route with kernels `fir` for `p` outputs, checked against the limit.
+///
+/// # Errors
+/// As [`super::resources::check_streamed_memory`].
+fn streamed_memory(fir: &FirSynthesis, design: &KernelDesign, n: usize, p: usize, opts: &RunOptions) -> Result<u128> {
+    let bytes = super::resources::streamed_memory_bytes(
+        &super::resources::StreamSizes {
+            taps: fir.taps(),
+            fft_len: fir.fft_len(),
+            grid_len: design.grid_len,
+            block_steps: opts.block_steps.min(n),
+            outputs: p,
+            generators: fir.n_generators(),
+        },
+        opts,
+        rayon::current_num_threads(),
+    );
+    super::resources::check_streamed_memory(bytes, n, opts)?;
+    Ok(bytes)
+}
+
+/// The largest delay of the excitation's inputs relative to the earliest, in whole steps of `dt`.
+fn max_delay_steps(exc: &Excitation, dt: f64) -> usize {
+    let steps = |delays: &mut dyn Iterator<Item = f64>| {
+        let d: Vec<f64> = delays.collect();
+        let t0 = d.iter().copied().fold(f64::INFINITY, f64::min);
+        d.iter().map(|t| ((t - t0) / dt).round() as usize).max().unwrap_or(0)
+    };
+    match exc {
+        Excitation::Track { delays, .. } => steps(&mut delays.iter().copied()),
+        Excitation::Independent { .. } => 0,
+        // several independent sources: one white noise per component of every source, each through its own
+        // kernels (a multi-component source's mixing is part of its kernels), summed per output
+        Excitation::Sources { inputs, .. } => steps(&mut inputs.iter().map(|m| m.delay)),
+    }
+}
+
+/// The notes of the streamed spectral route: its kernels, and per output the bias of the design (`discrete`:
+/// the FIR process's exact variances).
+fn streamed_notes(
+    fir: &FirSynthesis,
+    design: &KernelDesign,
+    finite: &[Simulable],
+    discrete: &[f64],
+    opts: &RunOptions,
+) -> Vec<String> {
+    let mut notes = vec![format!(
+        "spectral-stream route: white noise through FIR kernels of {} taps (lags {}..{}), designed on a grid of {} \
+         points (Δω = {:.4e} rad/s) from the first-order-hold response and the input spectra; overlap-save with an \
+         FFT of {} ({} new samples per segment), memory independent of the duration",
+        fir.taps(),
+        design.first_lag,
+        design.first_lag + fir.taps() as i64 - 1,
+        design.grid_len,
+        2.0 * std::f64::consts::PI / (design.grid_len as f64 * opts.dt_s),
+        fir.fft_len(),
+        fir.hop()
+    )];
+    for (r, f) in finite.iter().enumerate() {
+        notes.push(format!(
+            "spectral-stream bias of {}: window tail {:.3e} of the grid variance (bound {:e}), grid \
+             variance change over the last doubling {:.3e} (bound {GRID_TOLERANCE:e}); simulated σ {:.6e} vs \
+             analytic σ {:.6e} (relative {:+.3e}); `discrete σ` is the exact σ of the simulated FIR process",
+            f.info.name,
+            design.tail_fraction[r],
+            opts.stream_tail,
+            design.grid_change[r],
+            discrete[r].sqrt(),
+            f.variance.sqrt(),
+            discrete[r].sqrt() / f.variance.sqrt() - 1.0
+        ));
+    }
+    notes
 }
 
 /// The slowest decay rate min(−Re λ) of `ss`, > 0 for an asymptotically stable system.
