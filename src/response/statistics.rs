@@ -238,27 +238,10 @@ pub fn analyze_output_with(
     }
     let info = sys.outputs()[i].clone();
     let delayed = !exc.delay_free();
-    // the exact route: Lyapunov (delay-free) or its delayed form
-    let general = match exc {
-        Excitation::Sources { sources, inputs } => Some((sources, inputs)),
-        _ => None,
-    };
-    let (exact_method, exact): (VarianceMethod, Result<LyapunovMoments>) = if let Some((s, inp)) = general {
-        // independent sources: the exact values of each source alone, summed
-        let m = if delayed {
-            VarianceMethod::LyapunovDelays
-        } else {
-            VarianceMethod::Lyapunov
-        };
-        (m, super::sources::variance_exact(sys, s, inp, i))
-    } else if delayed {
-        (VarianceMethod::LyapunovDelays, variance_lyapunov_delayed(sys, exc, i))
-    } else {
-        (VarianceMethod::Lyapunov, variance_lyapunov(sys, exc, i))
-    };
+    let (exact_method, exact) = exact_moments(sys, exc, i);
     let table = variance_integral_table(sys, exc, i, 0);
-    // quadrature of the three moments (the plain rule, or Fourier-weighted tails for delays)
-    let (q0, q2, q4) = if delayed || general.is_some() {
+    // quadrature of the three moments (the plain rule, or Fourier-weighted tails for delays and sources)
+    let (q0, q2, q4) = if delayed || matches!(exc, Excitation::Sources { .. }) {
         let m = moments_oscillatory(sys, exc, i, effort);
         (m.variance, m.lambda2, m.lambda4)
     } else {
@@ -275,79 +258,14 @@ pub fn analyze_output_with(
         },
         Err(e) => Outcome::from_error(e, effort),
     };
-    let mut methods = Vec::new();
-    if delayed {
-        methods.push(VarianceValue {
-            method: VarianceMethod::Lyapunov,
-            outcome: Outcome::NotApplicable {
-                reason: format!("{}; see lyapunov (delays)", exc.inputs_described()),
-            },
-            rel_diff: None,
-        });
-    }
-    methods.push(VarianceValue {
-        method: exact_method,
-        outcome: exact_outcome.clone(),
-        rel_diff: None,
-    });
-    let mut table_outcome = moment_outcome(&table, effort);
-    if let (Some(t), Some(x)) = (table_outcome.value(), exact_outcome.value()) {
-        let d = crate::numbers::rel_diff(t, x);
-        if d > TABLE_AGREEMENT {
-            table_outcome = Outcome::Unreliable {
-                value: t,
-                reason: format!(
-                    "differs from the Lyapunov value by {d:.1e} relative (both are exact in exact arithmetic; the \
-                     table's Hurwitz elimination lost accuracy)"
-                ),
-            };
-        }
-    }
-    methods.push(VarianceValue {
-        method: VarianceMethod::IntegralTable,
-        outcome: table_outcome,
-        rel_diff: None,
-    });
-    methods.push(VarianceValue {
-        method: VarianceMethod::Quadrature,
-        outcome: quad_outcome(&q0, effort),
-        rel_diff: None,
-    });
-    let reference = methods.iter().find_map(|m| m.value());
-    for m in &mut methods {
-        if let (Some(v), Some(r)) = (m.value(), reference) {
-            m.rel_diff = Some(crate::numbers::rel_diff(v, r));
-        }
-    }
+    let methods = variance_methods(exc, (exact_method, exact_outcome), &table, &q0, effort);
     let (variance_outcome, method) = variance_answer(&methods, exact_method);
     let variance = variance_outcome.value();
     let mean = sys.static_gain().map(|g| {
         let mu = exc.means();
         (0..g.ncols()).map(|j| g[(i, j)] * mu[j]).sum::<f64>()
     });
-    // moments: the exact route where it applies, else quadrature
-    let moment = |from_exact: Option<&Result<f64>>, quad: &Result<QuadResult>| -> Outcome {
-        match from_exact {
-            Some(r) => moment_outcome(r, effort),
-            None => quad_outcome(quad, effort),
-        }
-    };
-    let (l2o, l4o) = match &exact {
-        Ok(m) => (moment(Some(&m.lambda2), &q2), moment(Some(&m.lambda4), &q4)),
-        Err(_) => (moment(None, &q2), moment(None, &q4)),
-    };
-    // a moment is meaningful only with a finite variance; λ₄ only with λ₂
-    let not_without = |what: &str, o: Outcome, base: &Outcome| -> Outcome {
-        if base.value().is_some() {
-            o
-        } else {
-            Outcome::NotApplicable {
-                reason: format!("{what} needs a finite {}", if what == "λ₄" { "λ₂" } else { "variance" }),
-            }
-        }
-    };
-    let lambda2_outcome = not_without("λ₂", l2o, &variance_outcome);
-    let lambda4_outcome = not_without("λ₄", l4o, &lambda2_outcome);
+    let (lambda2_outcome, lambda4_outcome) = higher_moments(&exact, (&q2, &q4), &variance_outcome, effort);
     let (lambda2, lambda4) = (lambda2_outcome.value(), lambda4_outcome.value());
     let values = PointStatistics {
         mean,
@@ -372,6 +290,112 @@ pub fn analyze_output_with(
         zero_upcrossing_rate: values.zero_upcrossing_rate(),
         bandwidth,
     })
+}
+
+/// The exact route of output `i` and its method: Lyapunov (delay-free), its delayed form, or for independent
+/// sources the exact values of each source alone, summed.
+fn exact_moments(sys: &dyn FrequencyResponse, exc: &Excitation, i: usize) -> (VarianceMethod, Result<LyapunovMoments>) {
+    let delayed = !exc.delay_free();
+    let method = if delayed {
+        VarianceMethod::LyapunovDelays
+    } else {
+        VarianceMethod::Lyapunov
+    };
+    match exc {
+        Excitation::Sources { sources, inputs } => (method, super::sources::variance_exact(sys, sources, inputs, i)),
+        _ if delayed => (method, variance_lyapunov_delayed(sys, exc, i)),
+        _ => (method, variance_lyapunov(sys, exc, i)),
+    }
+}
+
+/// The variance of every method in report order — the plain Lyapunov route marked not applicable for
+/// delayed inputs, the exact route (`exact`: method and outcome), the integral table (unreliable where it
+/// disagrees with the exact value by more than [`TABLE_AGREEMENT`]), the quadrature — each with its
+/// relative difference from the first value.
+fn variance_methods(
+    exc: &Excitation,
+    (exact_method, exact_outcome): (VarianceMethod, Outcome),
+    table: &Result<f64>,
+    q0: &Result<QuadResult>,
+    effort: &OscillatoryOptions,
+) -> Vec<VarianceValue> {
+    let mut methods = Vec::new();
+    if !exc.delay_free() {
+        methods.push(VarianceValue {
+            method: VarianceMethod::Lyapunov,
+            outcome: Outcome::NotApplicable {
+                reason: format!("{}; see lyapunov (delays)", exc.inputs_described()),
+            },
+            rel_diff: None,
+        });
+    }
+    let mut table_outcome = moment_outcome(table, effort);
+    if let (Some(t), Some(x)) = (table_outcome.value(), exact_outcome.value()) {
+        let d = crate::numbers::rel_diff(t, x);
+        if d > TABLE_AGREEMENT {
+            table_outcome = Outcome::Unreliable {
+                value: t,
+                reason: format!(
+                    "differs from the Lyapunov value by {d:.1e} relative (both are exact in exact arithmetic; the \
+                     table's Hurwitz elimination lost accuracy)"
+                ),
+            };
+        }
+    }
+    methods.push(VarianceValue {
+        method: exact_method,
+        outcome: exact_outcome,
+        rel_diff: None,
+    });
+    methods.push(VarianceValue {
+        method: VarianceMethod::IntegralTable,
+        outcome: table_outcome,
+        rel_diff: None,
+    });
+    methods.push(VarianceValue {
+        method: VarianceMethod::Quadrature,
+        outcome: quad_outcome(q0, effort),
+        rel_diff: None,
+    });
+    let reference = methods.iter().find_map(|m| m.value());
+    for m in &mut methods {
+        if let (Some(v), Some(r)) = (m.value(), reference) {
+            m.rel_diff = Some(crate::numbers::rel_diff(v, r));
+        }
+    }
+    methods
+}
+
+/// The outcomes of λ₂ and λ₄: the exact route's where it applies, else the quadratures `(q2, q4)`; a moment is
+/// meaningful only with a finite variance, λ₄ only with λ₂.
+fn higher_moments(
+    exact: &Result<LyapunovMoments>,
+    (q2, q4): (&Result<QuadResult>, &Result<QuadResult>),
+    variance: &Outcome,
+    effort: &OscillatoryOptions,
+) -> (Outcome, Outcome) {
+    let moment = |from_exact: Option<&Result<f64>>, quad: &Result<QuadResult>| -> Outcome {
+        match from_exact {
+            Some(r) => moment_outcome(r, effort),
+            None => quad_outcome(quad, effort),
+        }
+    };
+    let (l2o, l4o) = match exact {
+        Ok(m) => (moment(Some(&m.lambda2), q2), moment(Some(&m.lambda4), q4)),
+        Err(_) => (moment(None, q2), moment(None, q4)),
+    };
+    let not_without = |what: &str, o: Outcome, base: &Outcome| -> Outcome {
+        if base.value().is_some() {
+            o
+        } else {
+            Outcome::NotApplicable {
+                reason: format!("{what} needs a finite {}", if what == "λ₄" { "λ₂" } else { "variance" }),
+            }
+        }
+    };
+    let lambda2 = not_without("λ₂", l2o, variance);
+    let lambda4 = not_without("λ₄", l4o, &lambda2);
+    (lambda2, lambda4)
 }
 
 /// The reference variance's outcome and method. A divergence found by any method is the answer (never a
