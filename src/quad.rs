@@ -287,6 +287,12 @@ fn gk21<F: Fn(f64) -> f64>(f: &F, map: Map, lo: f64, hi: f64) -> std::result::Re
 }
 
 /// Splits `[a, b]` (`a < b`, either may be infinite) into pieces `(map, u_lo, u_hi)` at the breakpoints.
+///
+/// # Formula
+/// Finite ends: the pieces between consecutive points of a, the breakpoints, b. An infinite end beyond the
+/// outermost breakpoint p gets a finite piece to p ± d first (d the largest of |p| and the breakpoints'
+/// span, else 1) and then a tail map from p ± d with length scale max(|p ± d|, d); without breakpoints the
+/// tail starts at the finite end (scale max(|end|, 1)), or both tails at 0 (scale 1).
 fn pieces(a: f64, b: f64, breakpoints: &[f64]) -> Vec<(Map, f64, f64)> {
     let mut bps: Vec<f64> = breakpoints
         .iter()
@@ -295,110 +301,51 @@ fn pieces(a: f64, b: f64, breakpoints: &[f64]) -> Vec<(Map, f64, f64)> {
         .collect();
     bps.sort_by(f64::total_cmp);
     bps.dedup();
-
+    let head = |c: f64, l: f64| (Map::Head { c, l }, 0.0, 1.0);
+    let tail = |c: f64, l: f64| (Map::Tail { c, l }, 0.0, 1.0);
     let mut out = Vec::with_capacity(bps.len() + 3);
-    let push_finite = |out: &mut Vec<(Map, f64, f64)>, pts: &[f64]| {
-        for w in pts.windows(2) {
-            if w[0] < w[1] {
-                out.push((Map::Identity, w[0], w[1]));
-            }
+    match (a.is_finite(), b.is_finite(), bps.first(), bps.last()) {
+        (true, true, _, _) => finite_pieces(a, &bps, b, &mut out),
+        (true, false, _, None) => out.push(tail(a, a.abs().max(1.0))),
+        (true, false, _, Some(&pn)) => {
+            let d = scale(&[pn.abs(), pn - a]);
+            let hi = pn + d;
+            finite_pieces(a, &bps, hi, &mut out);
+            out.push(tail(hi, hi.abs().max(d)));
         }
-    };
-    match (a.is_finite(), b.is_finite()) {
-        (true, true) => {
-            let mut pts = Vec::with_capacity(bps.len() + 2);
-            pts.push(a);
-            pts.extend_from_slice(&bps);
-            pts.push(b);
-            push_finite(&mut out, &pts);
+        (false, true, None, _) => out.push(head(b, b.abs().max(1.0))),
+        (false, true, Some(&p1), _) => {
+            let d = scale(&[p1.abs(), b - p1]);
+            let lo = p1 - d;
+            out.push(head(lo, lo.abs().max(d)));
+            finite_pieces(lo, &bps, b, &mut out);
         }
-        (true, false) => match bps.last() {
-            None => out.push((
-                Map::Tail {
-                    c: a,
-                    l: a.abs().max(1.0),
-                },
-                0.0,
-                1.0,
-            )),
-            Some(&pn) => {
-                let d = scale(&[pn.abs(), pn - a]);
-                let hi = pn + d;
-                let mut pts = Vec::with_capacity(bps.len() + 2);
-                pts.push(a);
-                pts.extend_from_slice(&bps);
-                pts.push(hi);
-                push_finite(&mut out, &pts);
-                out.push((
-                    Map::Tail {
-                        c: hi,
-                        l: hi.abs().max(d),
-                    },
-                    0.0,
-                    1.0,
-                ));
-            }
-        },
-        (false, true) => match bps.first() {
-            None => out.push((
-                Map::Head {
-                    c: b,
-                    l: b.abs().max(1.0),
-                },
-                0.0,
-                1.0,
-            )),
-            Some(&p1) => {
-                let d = scale(&[p1.abs(), b - p1]);
-                let lo = p1 - d;
-                out.push((
-                    Map::Head {
-                        c: lo,
-                        l: lo.abs().max(d),
-                    },
-                    0.0,
-                    1.0,
-                ));
-                let mut pts = Vec::with_capacity(bps.len() + 2);
-                pts.push(lo);
-                pts.extend_from_slice(&bps);
-                pts.push(b);
-                push_finite(&mut out, &pts);
-            }
-        },
-        (false, false) => match (bps.first(), bps.last()) {
-            (Some(&p1), Some(&pn)) => {
-                let d = scale(&[p1.abs(), pn.abs(), pn - p1]);
-                let (lo, hi) = (p1 - d, pn + d);
-                out.push((
-                    Map::Head {
-                        c: lo,
-                        l: lo.abs().max(d),
-                    },
-                    0.0,
-                    1.0,
-                ));
-                let mut pts = Vec::with_capacity(bps.len() + 2);
-                pts.push(lo);
-                pts.extend_from_slice(&bps);
-                pts.push(hi);
-                push_finite(&mut out, &pts);
-                out.push((
-                    Map::Tail {
-                        c: hi,
-                        l: hi.abs().max(d),
-                    },
-                    0.0,
-                    1.0,
-                ));
-            }
-            _ => {
-                out.push((Map::Head { c: 0.0, l: 1.0 }, 0.0, 1.0));
-                out.push((Map::Tail { c: 0.0, l: 1.0 }, 0.0, 1.0));
-            }
-        },
+        (false, false, Some(&p1), Some(&pn)) => {
+            let d = scale(&[p1.abs(), pn.abs(), pn - p1]);
+            let (lo, hi) = (p1 - d, pn + d);
+            out.push(head(lo, lo.abs().max(d)));
+            finite_pieces(lo, &bps, hi, &mut out);
+            out.push(tail(hi, hi.abs().max(d)));
+        }
+        (false, false, _, _) => {
+            out.push(head(0.0, 1.0));
+            out.push(tail(0.0, 1.0));
+        }
     }
     out
+}
+
+/// Appends the identity-mapped pieces between consecutive points of `lo`, `bps`, `hi` (empty ones left out).
+fn finite_pieces(lo: f64, bps: &[f64], hi: f64, out: &mut Vec<(Map, f64, f64)>) {
+    let mut pts = Vec::with_capacity(bps.len() + 2);
+    pts.push(lo);
+    pts.extend_from_slice(bps);
+    pts.push(hi);
+    for w in pts.windows(2) {
+        if w[0] < w[1] {
+            out.push((Map::Identity, w[0], w[1]));
+        }
+    }
 }
 
 /// The largest of `candidates`, or 1 if that is not a positive finite number.
@@ -517,25 +464,7 @@ impl Partition {
 /// # Ok::<(), stochvib::Error>(())
 /// ```
 pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> Result<QuadResult> {
-    if a.is_nan() {
-        return Err(Error::invalid("a", a, "lower integration limit must not be NaN"));
-    }
-    if b.is_nan() {
-        return Err(Error::invalid("b", b, "upper integration limit must not be NaN"));
-    }
-    if a > b {
-        return Err(Error::invalid(
-            "a",
-            a,
-            format!("lower integration limit must be <= upper limit b = {b}"),
-        ));
-    }
-    if opts.rel_tol.is_nan() || opts.rel_tol < 0.0 {
-        return Err(Error::invalid("rel_tol", opts.rel_tol, "must be >= 0"));
-    }
-    if opts.abs_tol.is_nan() || opts.abs_tol < 0.0 {
-        return Err(Error::invalid("abs_tol", opts.abs_tol, "must be >= 0"));
-    }
+    check_arguments(a, b, opts)?;
     if a == b {
         return Ok(QuadResult {
             value: 0.0,
@@ -552,33 +481,8 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
     let mut evaluations = 0usize;
     let tolerance = |value: f64| opts.abs_tol.max(opts.rel_tol * value.abs());
 
-    // The error for a failed rule application on [lo, hi] (in the parameter of `map`).
     let failure = |fail: RuleFailure, map: Map, lo: f64, hi: f64, part: &Partition, evaluations: usize| {
-        let (estimate, abs_error) = part.totals();
-        let reason = match fail {
-            RuleFailure::NotFinite { u } => {
-                let x = map.x(u);
-                let fx = f(x);
-                if fx.is_finite() {
-                    format!(
-                        "integrand not finite at x = {x:e} once multiplied by the Jacobian of the infinite-range \
-                         map (f = {fx:e}): the integrand does not decay fast enough"
-                    )
-                } else {
-                    format!("integrand not finite at x = {x:e} (f = {fx})")
-                }
-            }
-            RuleFailure::Overflow => {
-                format!("integral overflows on [{:e}, {:e}]", map.x(lo), map.x(hi))
-            }
-        };
-        Error::Quadrature {
-            what: "integral".into(),
-            estimate,
-            abs_error,
-            evaluations,
-            reason,
-        }
+        rule_failure(&f, (fail, map, lo, hi), part, evaluations)
     };
 
     // Running sums, updated incrementally; recomputed exactly before any decision to stop.
@@ -617,44 +521,20 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
         };
         let (x_lo, x_hi) = (worst.map.x(worst.lo), worst.map.x(worst.hi));
         if part.len() + 1 >= opts.max_subintervals.max(1) {
+            let reason = format!(
+                "maximum of {} subintervals reached; the largest error estimate {:e} is on [{x_lo:e}, {x_hi:e}] \
+                 (add a breakpoint there, or raise max_subintervals or the tolerance)",
+                opts.max_subintervals, worst.error
+            );
             part.active.push(worst);
-            let (estimate, abs_error) = part.totals();
-            return Err(Error::Quadrature {
-                what: "integral".into(),
-                estimate,
-                abs_error,
-                evaluations,
-                reason: format!(
-                    "maximum of {} subintervals reached; the largest error estimate {:e} is on [{x_lo:e}, {x_hi:e}] \
-                     (add a breakpoint there, or raise max_subintervals or the tolerance)",
-                    opts.max_subintervals, worst.error
-                ),
-            });
+            return Err(stopped(&part, evaluations, reason));
         }
         let mid = 0.5 * (worst.lo + worst.hi);
         let width = worst.hi - worst.lo;
         if !(worst.lo < mid && mid < worst.hi) || width <= 100.0 * f64::EPSILON * worst.lo.abs().max(worst.hi.abs()) {
+            let reason = too_small_to_bisect(x_lo, x_hi, worst.error);
             part.active.push(worst);
-            let (estimate, abs_error) = part.totals();
-            return Err(Error::Quadrature {
-                what: "integral".into(),
-                estimate,
-                abs_error,
-                evaluations,
-                reason: if x_lo.is_infinite() || x_hi.is_infinite() {
-                    format!(
-                        "subinterval [{x_lo:e}, {x_hi:e}] of the infinite range too small to bisect further with error \
-                         estimate {:e} (the integrand does not decay fast enough: divergent integral?)",
-                        worst.error
-                    )
-                } else {
-                    format!(
-                        "subinterval [{x_lo:e}, {x_hi:e}] too small to bisect further with error estimate {:e} \
-                         (non-integrable singularity or discontinuity there?)",
-                        worst.error
-                    )
-                },
-            });
+            return Err(stopped(&part, evaluations, reason));
         }
         evaluations += 2 * NODES;
         let left = gk21(&f, worst.map, worst.lo, mid);
@@ -676,6 +556,84 @@ pub fn integrate(f: impl Fn(f64) -> f64, a: f64, b: f64, opts: &QuadOptions) -> 
             }
         }
     }
+}
+
+/// The limits are not NaN and a ≤ b; the tolerances are ≥ 0.
+fn check_arguments(a: f64, b: f64, opts: &QuadOptions) -> Result<()> {
+    if a.is_nan() {
+        return Err(Error::invalid("a", a, "lower integration limit must not be NaN"));
+    }
+    if b.is_nan() {
+        return Err(Error::invalid("b", b, "upper integration limit must not be NaN"));
+    }
+    if a > b {
+        return Err(Error::invalid(
+            "a",
+            a,
+            format!("lower integration limit must be <= upper limit b = {b}"),
+        ));
+    }
+    if opts.rel_tol.is_nan() || opts.rel_tol < 0.0 {
+        return Err(Error::invalid("rel_tol", opts.rel_tol, "must be >= 0"));
+    }
+    if opts.abs_tol.is_nan() || opts.abs_tol < 0.0 {
+        return Err(Error::invalid("abs_tol", opts.abs_tol, "must be >= 0"));
+    }
+    Ok(())
+}
+
+/// The error of an integration stopped for `reason`, with the estimate and error of the partition so far.
+fn stopped(part: &Partition, evaluations: usize, reason: String) -> Error {
+    let (estimate, abs_error) = part.totals();
+    Error::Quadrature {
+        what: "integral".into(),
+        estimate,
+        abs_error,
+        evaluations,
+        reason,
+    }
+}
+
+/// Why a subinterval [x_lo, x_hi] whose error estimate is `error` cannot be bisected further.
+fn too_small_to_bisect(x_lo: f64, x_hi: f64, error: f64) -> String {
+    if x_lo.is_infinite() || x_hi.is_infinite() {
+        format!(
+            "subinterval [{x_lo:e}, {x_hi:e}] of the infinite range too small to bisect further with error \
+             estimate {error:e} (the integrand does not decay fast enough: divergent integral?)"
+        )
+    } else {
+        format!(
+            "subinterval [{x_lo:e}, {x_hi:e}] too small to bisect further with error estimate {error:e} \
+             (non-integrable singularity or discontinuity there?)"
+        )
+    }
+}
+
+/// The error of a failed rule application on [lo, hi] (in the parameter of `map`).
+fn rule_failure(
+    f: &impl Fn(f64) -> f64,
+    (fail, map, lo, hi): (RuleFailure, Map, f64, f64),
+    part: &Partition,
+    evaluations: usize,
+) -> Error {
+    let reason = match fail {
+        RuleFailure::NotFinite { u } => {
+            let x = map.x(u);
+            let fx = f(x);
+            if fx.is_finite() {
+                format!(
+                    "integrand not finite at x = {x:e} once multiplied by the Jacobian of the infinite-range \
+                     map (f = {fx:e}): the integrand does not decay fast enough"
+                )
+            } else {
+                format!("integrand not finite at x = {x:e} (f = {fx})")
+            }
+        }
+        RuleFailure::Overflow => {
+            format!("integral overflows on [{:e}, {:e}]", map.x(lo), map.x(hi))
+        }
+    };
+    stopped(part, evaluations, reason)
 }
 
 #[cfg(test)]

@@ -243,34 +243,14 @@ pub fn integrate_oscillatory(
         } else {
             (a + (n + 1) as f64 * half_period).min(b)
         };
-        let mut o = piece_opts.clone();
-        if x0 > 0.0 && x1 > 8.0 * x0 {
-            let mut p = 4.0 * x0;
-            while p < x1 {
-                o.breakpoints.push(p);
-                p *= 4.0;
-            }
-            o.max_subintervals += o.breakpoints.len();
-        }
-        let r = integrate(&f, x0, x1, &o).map_err(|e| match e {
-            Error::Quadrature {
-                estimate,
-                abs_error,
-                evaluations: ev,
-                reason,
-                ..
-            } => Error::Quadrature {
-                what: "oscillatory integral".into(),
-                estimate: sum + comp + estimate,
-                abs_error: piece_err + abs_error,
-                evaluations: evaluations + ev,
-                reason: format!(
-                    "half-period {n} [{x0:e}, {x1:e}]: {reason} (raise max_subintervals, now {}, or \
-                     max_half_periods, now {}, if this piece holds many oscillations)",
-                    opts.max_subintervals, opts.max_half_periods
-                ),
-            },
-            e => e,
+        let o = piece_options(&piece_opts, x0, x1);
+        let r = integrate(&f, x0, x1, &o).map_err(|e| {
+            let so_far = QuadResult {
+                value: sum + comp,
+                abs_error: piece_err,
+                evaluations,
+            };
+            piece_failure(e, (n, x0, x1), &so_far, opts)
         })?;
         evaluations += r.evaluations;
         piece_err += r.abs_error;
@@ -293,24 +273,12 @@ pub fn integrate_oscillatory(
             continue;
         }
         let s = sum + comp;
-        // the plain partial sum, with the last three terms as its error (terms that have died out)
-        let mut cand = (s, last_terms.iter().sum::<f64>() + piece_err);
         if x1 >= REGULAR_START * half_period {
             sums.push(s);
-            let e = wynn_epsilon(&sums);
-            estimates.push(e);
+            estimates.push(wynn_epsilon(&sums));
         }
         let m = estimates.len();
-        if m >= AGREEING_ESTIMATES {
-            let e = estimates[m - 1];
-            let ext_err = (e - estimates[m - 2]).abs()
-                + (e - estimates[m - 3]).abs()
-                + (e - estimates[m - 4]).abs()
-                + 5.0 * f64::EPSILON * e.abs();
-            if ext_err + piece_err < cand.1 {
-                cand = (e, ext_err + piece_err);
-            }
-        }
+        let cand = candidate(s, &last_terms, &estimates, piece_err);
         if best.0.is_nan() || cand.1 < best.1 {
             best = cand;
         }
@@ -333,4 +301,66 @@ pub fn integrate_oscillatory(
             opts.max_half_periods
         ),
     })
+}
+
+/// The options of the piece [x0, x1]: `base` with breakpoints at 4x0, 16x0, … when the piece reaches far
+/// beyond x0 > 0 (the last piece of a finite range), and as many more subintervals allowed.
+fn piece_options(base: &QuadOptions, x0: f64, x1: f64) -> QuadOptions {
+    let mut o = base.clone();
+    if x0 > 0.0 && x1 > 8.0 * x0 {
+        let mut p = 4.0 * x0;
+        while p < x1 {
+            o.breakpoints.push(p);
+            p *= 4.0;
+        }
+        o.max_subintervals += o.breakpoints.len();
+    }
+    o
+}
+
+/// The error of the oscillatory integral when the quadrature of half-period `n` = [x0, x1] failed with `e`:
+/// its estimate and error added to the sum `so_far` of the pieces before, the piece named.
+fn piece_failure(e: Error, (n, x0, x1): (usize, f64, f64), so_far: &QuadResult, opts: &OscillatoryOptions) -> Error {
+    match e {
+        Error::Quadrature {
+            estimate,
+            abs_error,
+            evaluations,
+            reason,
+            ..
+        } => Error::Quadrature {
+            what: "oscillatory integral".into(),
+            estimate: so_far.value + estimate,
+            abs_error: so_far.abs_error + abs_error,
+            evaluations: so_far.evaluations + evaluations,
+            reason: format!(
+                "half-period {n} [{x0:e}, {x1:e}]: {reason} (raise max_subintervals, now {}, or \
+                 max_half_periods, now {}, if this piece holds many oscillations)",
+                opts.max_subintervals, opts.max_half_periods
+            ),
+        },
+        e => e,
+    }
+}
+
+/// The best estimate of the infinite sum after the partial sum `s` and its error: the plain partial sum, with
+/// the last three terms as its error (terms that have died out), or the last of the Wynn `estimates` once
+/// [`AGREEING_ESTIMATES`] exist, its error the spread of the last four (plus rounding), where smaller;
+/// `piece_err` (the pieces' quadrature errors) is added to either.
+fn candidate(s: f64, last_terms: &[f64; 3], estimates: &[f64], piece_err: f64) -> (f64, f64) {
+    let plain = (s, last_terms.iter().sum::<f64>() + piece_err);
+    let m = estimates.len();
+    if m < AGREEING_ESTIMATES {
+        return plain;
+    }
+    let e = estimates[m - 1];
+    let ext_err = (e - estimates[m - 2]).abs()
+        + (e - estimates[m - 3]).abs()
+        + (e - estimates[m - 4]).abs()
+        + 5.0 * f64::EPSILON * e.abs();
+    if ext_err + piece_err < plain.1 {
+        (e, ext_err + piece_err)
+    } else {
+        plain
+    }
 }
