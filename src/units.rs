@@ -525,104 +525,107 @@ fn tokenize(s: &str) -> std::result::Result<Vec<Tok>, String> {
             continue;
         }
         let was_spaced = std::mem::replace(&mut spaced, false);
-        if c == '^' || (c == '*' && chars.get(i + 1) == Some(&'*')) {
-            let op_len = if c == '^' { 1 } else { 2 };
-            let op: String = chars[i..i + op_len].iter().collect();
-            let mut j = i + op_len;
-            let negative = match chars.get(j) {
-                Some('-') => {
-                    j += 1;
-                    true
-                }
-                Some('+') => {
-                    j += 1;
-                    false
-                }
-                _ => false,
-            };
-            let start = j;
-            while j < chars.len() && chars[j].is_ascii_digit() {
-                j += 1;
-            }
-            let text: String = chars[i..j].iter().collect();
-            if j == start {
-                return Err(format!(
-                    "dangling `{op}`: expected an integer power after it, e.g. `m{op}2`"
-                ));
-            }
-            let digits: String = chars[start..j].iter().collect();
-            let p = parse_power_int(&digits, negative, &text)?;
-            toks.push(Tok::Pow {
-                p,
-                text,
-                spaced: was_spaced,
-            });
-            i = j;
+        let (tok, next) = if c == '^' || (c == '*' && chars.get(i + 1) == Some(&'*')) {
+            ascii_power(&chars, i, was_spaced)?
         } else if c == '⁻' || c == '⁺' || superscript_digit(c).is_some() {
-            let mut j = i;
-            let negative = c == '⁻';
-            if c == '⁻' || c == '⁺' {
-                j += 1;
-            }
-            let start = j;
-            let mut digits = String::new();
-            while let Some(d) = chars.get(j).and_then(|&c| superscript_digit(c)) {
-                digits.push(char::from_digit(d, 10).unwrap_or('0'));
-                j += 1;
-            }
-            let text: String = chars[i..j].iter().collect();
-            if j == start {
-                return Err(format!("dangling superscript `{text}`: expected digits after it"));
-            }
-            let p = parse_power_int(&digits, negative, &text)?;
-            toks.push(Tok::Pow {
-                p,
-                text,
-                spaced: was_spaced,
-            });
-            i = j;
-        } else if c == '*' || c == '·' || c == '⋅' {
-            toks.push(Tok::Star);
-            i += 1;
-        } else if c == '/' {
-            toks.push(Tok::Slash);
-            i += 1;
-        } else if c == '(' {
-            toks.push(Tok::LParen);
-            i += 1;
-        } else if c == ')' {
-            toks.push(Tok::RParen);
-            i += 1;
-        } else if c == '.' {
-            return Err("`.` is not a multiplication sign (it is the decimal point); write `*`, `·` or a space".into());
-        } else if c == '%' {
-            return Err("`%` is not supported: write the fraction as a plain number (20 % → 0.2)".into());
+            superscript_power(&chars, i, was_spaced)?
         } else if c.is_ascii_digit() {
-            let mut j = i;
-            while j < chars.len() && (chars[j].is_ascii_digit() || chars[j] == '.') {
-                j += 1;
-            }
-            let num: String = chars[i..j].iter().collect();
-            if num != "1" {
-                return Err(format!(
-                    "unexpected number `{num}` inside the unit (the number goes first; only `1/...` \
-                     may start a unit)"
-                ));
-            }
-            toks.push(Tok::One);
-            i = j;
+            leading_one(&chars, i)?
         } else if c.is_alphabetic() {
             let mut j = i;
             while j < chars.len() && chars[j].is_alphabetic() {
                 j += 1;
             }
-            toks.push(Tok::Word(chars[i..j].iter().collect()));
-            i = j;
+            (Tok::Word(chars[i..j].iter().collect()), j)
         } else {
-            return Err(format!("unexpected character `{c}`"));
-        }
+            (single_char_token(c)?, i + 1)
+        };
+        toks.push(tok);
+        i = next;
     }
     Ok(toks)
+}
+
+/// The token of a one-character operator or parenthesis, or why `c` is refused.
+fn single_char_token(c: char) -> std::result::Result<Tok, String> {
+    match c {
+        '*' | '·' | '⋅' => Ok(Tok::Star),
+        '/' => Ok(Tok::Slash),
+        '(' => Ok(Tok::LParen),
+        ')' => Ok(Tok::RParen),
+        '.' => Err("`.` is not a multiplication sign (it is the decimal point); write `*`, `·` or a space".into()),
+        '%' => Err("`%` is not supported: write the fraction as a plain number (20 % → 0.2)".into()),
+        _ => Err(format!("unexpected character `{c}`")),
+    }
+}
+
+/// The power `^p` or `**p` (an optional sign, then digits) at `chars[i]`, and the index after it.
+fn ascii_power(chars: &[char], i: usize, spaced: bool) -> std::result::Result<(Tok, usize), String> {
+    let op_len = if chars[i] == '^' { 1 } else { 2 };
+    let op: String = chars[i..i + op_len].iter().collect();
+    let mut j = i + op_len;
+    let negative = match chars.get(j) {
+        Some('-') => {
+            j += 1;
+            true
+        }
+        Some('+') => {
+            j += 1;
+            false
+        }
+        _ => false,
+    };
+    let start = j;
+    while j < chars.len() && chars[j].is_ascii_digit() {
+        j += 1;
+    }
+    let text: String = chars[i..j].iter().collect();
+    if j == start {
+        return Err(format!(
+            "dangling `{op}`: expected an integer power after it, e.g. `m{op}2`"
+        ));
+    }
+    let digits: String = chars[start..j].iter().collect();
+    let p = parse_power_int(&digits, negative, &text)?;
+    Ok((Tok::Pow { p, text, spaced }, j))
+}
+
+/// The superscript power (`⁻²`, `³`) at `chars[i]`, and the index after it.
+fn superscript_power(chars: &[char], i: usize, spaced: bool) -> std::result::Result<(Tok, usize), String> {
+    let c = chars[i];
+    let mut j = i;
+    let negative = c == '⁻';
+    if c == '⁻' || c == '⁺' {
+        j += 1;
+    }
+    let start = j;
+    let mut digits = String::new();
+    while let Some(d) = chars.get(j).and_then(|&c| superscript_digit(c)) {
+        digits.push(char::from_digit(d, 10).unwrap_or('0'));
+        j += 1;
+    }
+    let text: String = chars[i..j].iter().collect();
+    if j == start {
+        return Err(format!("dangling superscript `{text}`: expected digits after it"));
+    }
+    let p = parse_power_int(&digits, negative, &text)?;
+    Ok((Tok::Pow { p, text, spaced }, j))
+}
+
+/// The number at `chars[i]`: only `1` (of `1/...`) may stand in a unit.
+fn leading_one(chars: &[char], i: usize) -> std::result::Result<(Tok, usize), String> {
+    let mut j = i;
+    while j < chars.len() && (chars[j].is_ascii_digit() || chars[j] == '.') {
+        j += 1;
+    }
+    let num: String = chars[i..j].iter().collect();
+    if num != "1" {
+        return Err(format!(
+            "unexpected number `{num}` inside the unit (the number goes first; only `1/...` \
+             may start a unit)"
+        ));
+    }
+    Ok((Tok::One, j))
 }
 
 /// A unit: value = number × `num` / `den` × 10^`pow10`, with dimension `dim`.
