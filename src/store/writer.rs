@@ -347,78 +347,10 @@ impl RunWriter {
         }
 
         let n_shards = meta.local_shards().len();
-        let rows = meta.local_realizations().len();
-        let chunk = raw_chunk(meta);
-        let mut signal_sets = Vec::new();
-        for (gname, signals) in [(L::GROUP_INPUTS, &meta.inputs), (L::GROUP_OUTPUTS, &meta.outputs)] {
-            let group = file.create_group(gname).map_err(e("creating a signal group"))?;
-            let names: Vec<&str> = signals.iter().map(|s| s.name.as_str()).collect();
-            let units: Vec<&str> = signals.iter().map(|s| s.unit.as_str()).collect();
-            write_str_list_attr(&group, L::ATTR_NAMES, &names).map_err(e("writing signal names"))?;
-            write_str_list_attr(&group, L::ATTR_UNITS_LIST, &units).map_err(e("writing signal units"))?;
-            let mut sets = Vec::new();
-            if let Some(m) = virtual_raw {
-                for s in signals.iter() {
-                    let ds =
-                        create_virtual(&group, gname, &s.name, meta, m).map_err(e("creating a virtual dataset"))?;
-                    write_str_attr(&ds, L::ATTR_UNIT, &s.unit).map_err(e("writing a unit"))?;
-                    sets.push(ds);
-                }
-            } else if meta.store_raw {
-                for s in signals.iter() {
-                    let b = group.new_dataset::<f64>().shape((rows, meta.n_samples)).chunk(chunk);
-                    let b = match meta.compression {
-                        // Allocated in full now and never filled: a shard write changes raw data only.
-                        Compression::None => b
-                            .alloc_time(Some(hdf5::dataset::AllocTime::Early))
-                            .fill_time(hdf5::dataset::FillTime::Never),
-                        Compression::Deflate { level } => b.shuffle().deflate(level),
-                    };
-                    let ds = b.create(s.name.as_str()).map_err(e("creating a signal dataset"))?;
-                    write_str_attr(&ds, L::ATTR_UNIT, &s.unit).map_err(e("writing a unit"))?;
-                    sets.push(ds);
-                }
-            }
-            signal_sets.push(sets);
-        }
-        let outputs = signal_sets.pop().unwrap_or_default();
-        let inputs = signal_sets.pop().unwrap_or_default();
-
+        let inputs = create_signals(&file, &path, L::GROUP_INPUTS, &meta.inputs, meta, virtual_raw)?;
+        let outputs = create_signals(&file, &path, L::GROUP_OUTPUTS, &meta.outputs, meta, virtual_raw)?;
         let shards = file.create_group(L::GROUP_SHARDS).map_err(e("creating /shards"))?;
-        let acc_names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
-        write_str_list_attr(&shards, L::ATTR_ACCUMULATORS, &acc_names).map_err(e("writing accumulator names"))?;
-        let shards_complete = shards
-            .new_dataset::<u8>()
-            .shape(n_shards)
-            .alloc_time(Some(hdf5::dataset::AllocTime::Early))
-            .fill_value(0u8)
-            .fill_time(hdf5::dataset::FillTime::Alloc)
-            .create(L::DS_SHARDS_COMPLETE)
-            .map_err(e("creating /shards/complete"))?;
-        let checked = checked_datasets(meta);
-        // Allocated in full now and never filled (as the raw data): the file system gives the space as the
-        // shards are written (a sparse file), so a run of 10⁹ realizations does not write gigabytes of fill
-        // before computing; a row is read only once `complete` (filled with 0 above) says it was written.
-        let checksums = shards
-            .new_dataset::<u32>()
-            .shape((n_shards, checked.len().max(1)))
-            .alloc_time(Some(hdf5::dataset::AllocTime::Early))
-            .fill_time(hdf5::dataset::FillTime::Never)
-            .create(L::DS_SHARDS_CHECKSUMS)
-            .map_err(e("creating /shards/checksums"))?;
-        let refs: Vec<&str> = checked.iter().map(|s| s.as_str()).collect();
-        write_str_list_attr(&checksums, L::ATTR_CHECKED, &refs).map_err(e("writing checksum names"))?;
-        let mut accumulators = Vec::new();
-        for (name, len) in &meta.accumulators {
-            let ds = shards
-                .new_dataset::<f64>()
-                .shape((n_shards, *len))
-                .alloc_time(Some(hdf5::dataset::AllocTime::Early))
-                .fill_time(hdf5::dataset::FillTime::Never)
-                .create(name.as_str())
-                .map_err(e("creating an accumulator dataset"))?;
-            accumulators.push(ds);
-        }
+        let (shards_complete, checksums, accumulators) = create_shard_sets(&shards, &path, meta)?;
         file.create_group(L::GROUP_STATISTICS)
             .map_err(e("creating /statistics"))?;
         file.create_group(L::GROUP_PSD).map_err(e("creating /psd"))?;
@@ -1539,6 +1471,97 @@ fn write_str_list_attr(loc: &Location, name: &str, values: &[&str]) -> hdf5::Res
         attr.write(&v[..])?;
     }
     Ok(())
+}
+
+/// The group `gname` of `signals` (their names and units as attributes) and, when the run stores raw data,
+/// one dataset per signal (virtual over the part files of a merge `virtual_raw`), in signal order.
+fn create_signals(
+    file: &File,
+    path: &Path,
+    gname: &str,
+    signals: &[super::Signal],
+    meta: &RunMetadata,
+    virtual_raw: Option<&MergedFrom>,
+) -> Result<Vec<Dataset>> {
+    let e = |what: &str| h5err(path, what);
+    let group = file.create_group(gname).map_err(e("creating a signal group"))?;
+    let names: Vec<&str> = signals.iter().map(|s| s.name.as_str()).collect();
+    let units: Vec<&str> = signals.iter().map(|s| s.unit.as_str()).collect();
+    write_str_list_attr(&group, L::ATTR_NAMES, &names).map_err(e("writing signal names"))?;
+    write_str_list_attr(&group, L::ATTR_UNITS_LIST, &units).map_err(e("writing signal units"))?;
+    let mut sets = Vec::new();
+    if let Some(m) = virtual_raw {
+        for s in signals {
+            let ds = create_virtual(&group, gname, &s.name, meta, m).map_err(e("creating a virtual dataset"))?;
+            write_str_attr(&ds, L::ATTR_UNIT, &s.unit).map_err(e("writing a unit"))?;
+            sets.push(ds);
+        }
+    } else if meta.store_raw {
+        let rows = meta.local_realizations().len();
+        for s in signals {
+            let b = group
+                .new_dataset::<f64>()
+                .shape((rows, meta.n_samples))
+                .chunk(raw_chunk(meta));
+            let b = match meta.compression {
+                // Allocated in full now and never filled: a shard write changes raw data only.
+                Compression::None => b
+                    .alloc_time(Some(hdf5::dataset::AllocTime::Early))
+                    .fill_time(hdf5::dataset::FillTime::Never),
+                Compression::Deflate { level } => b.shuffle().deflate(level),
+            };
+            let ds = b.create(s.name.as_str()).map_err(e("creating a signal dataset"))?;
+            write_str_attr(&ds, L::ATTR_UNIT, &s.unit).map_err(e("writing a unit"))?;
+            sets.push(ds);
+        }
+    }
+    Ok(sets)
+}
+
+/// The datasets of `/shards`: `complete` (filled with 0), the checksums with the names of the datasets they
+/// check, and one accumulator dataset per accumulator of `meta`.
+fn create_shard_sets(
+    shards: &hdf5::Group,
+    path: &Path,
+    meta: &RunMetadata,
+) -> Result<(Dataset, Dataset, Vec<Dataset>)> {
+    let e = |what: &str| h5err(path, what);
+    let n_shards = meta.local_shards().len();
+    let acc_names: Vec<&str> = meta.accumulators.iter().map(|a| a.0.as_str()).collect();
+    write_str_list_attr(shards, L::ATTR_ACCUMULATORS, &acc_names).map_err(e("writing accumulator names"))?;
+    let shards_complete = shards
+        .new_dataset::<u8>()
+        .shape(n_shards)
+        .alloc_time(Some(hdf5::dataset::AllocTime::Early))
+        .fill_value(0u8)
+        .fill_time(hdf5::dataset::FillTime::Alloc)
+        .create(L::DS_SHARDS_COMPLETE)
+        .map_err(e("creating /shards/complete"))?;
+    let checked = checked_datasets(meta);
+    // Allocated in full now and never filled (as the raw data): the file system gives the space as the
+    // shards are written (a sparse file), so a run of 10⁹ realizations does not write gigabytes of fill
+    // before computing; a row is read only once `complete` (filled with 0 above) says it was written.
+    let checksums = shards
+        .new_dataset::<u32>()
+        .shape((n_shards, checked.len().max(1)))
+        .alloc_time(Some(hdf5::dataset::AllocTime::Early))
+        .fill_time(hdf5::dataset::FillTime::Never)
+        .create(L::DS_SHARDS_CHECKSUMS)
+        .map_err(e("creating /shards/checksums"))?;
+    let refs: Vec<&str> = checked.iter().map(|s| s.as_str()).collect();
+    write_str_list_attr(&checksums, L::ATTR_CHECKED, &refs).map_err(e("writing checksum names"))?;
+    let mut accumulators = Vec::new();
+    for (name, len) in &meta.accumulators {
+        let ds = shards
+            .new_dataset::<f64>()
+            .shape((n_shards, *len))
+            .alloc_time(Some(hdf5::dataset::AllocTime::Early))
+            .fill_time(hdf5::dataset::FillTime::Never)
+            .create(name.as_str())
+            .map_err(e("creating an accumulator dataset"))?;
+        accumulators.push(ds);
+    }
+    Ok((shards_complete, checksums, accumulators))
 }
 
 #[cfg(test)]
