@@ -459,6 +459,13 @@ pub fn book_rows() -> Vec<BookRow> {
             "misprint: printed (7.33) swaps M1 and M2; the printed omegas come from the correct form (row omega_2)",
         ),
     ];
+    rows.extend(excavator_rows());
+    rows
+}
+
+/// Book rows of the excavator resonance-speed example (ω, v in m/s and km/h).
+fn excavator_rows() -> Vec<BookRow> {
+    let mut rows = Vec::new();
     // Excavator example (Sukharev (2012) 7.5, the first of the two examples numbered 7.2; Fig. 7.7):
     // ℓ = 7 m, Q = 28.6 kN, c = 90 kN/m, g = 9.8 m/s².
     let ex2 = "Sukharev (2012) 7.5, excavator resonance-speed example (Fig. 7.7)";

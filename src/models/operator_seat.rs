@@ -661,30 +661,34 @@ pub fn example_7_2() -> (OperatorSeat, f64, f64) {
     )
 }
 
-/// Book rows of Example 7.2 (seat): every printed number, and the verdict in the conclusion of the example.
-pub fn book_rows() -> Vec<BookRow> {
-    let ex = "Sukharev (2012) 7.6, Example 7.2 (operator seat)";
-    let (seat, au, lambda) = example_7_2();
-    let r = seat.harmonic(au, lambda).ok();
-    let limits = SanitaryLimits::table_7_1().ok();
-    let band = band_index(lambda / (2.0 * PI));
-    let lim = |f: fn(&LimitBand) -> f64| -> Option<f64> {
-        let l = limits.as_ref()?;
-        Some(f(&l.bands[band?]))
-    };
-    let g = |f: fn(&HarmonicResponse) -> f64| r.as_ref().map(f);
-    let row = |q: &str, unit: &str, printed: Option<f64>, computed: Option<f64>, why: &str| BookRow {
-        example: ex.into(),
+/// The example of the book rows of this model.
+const EXAMPLE_7_2: &str = "Sukharev (2012) 7.6, Example 7.2 (operator seat)";
+
+/// One book row of Example 7.2.
+fn seat_row(q: &str, unit: &str, printed: Option<f64>, computed: Option<f64>, why: &str) -> BookRow {
+    BookRow {
+        example: EXAMPLE_7_2.into(),
         quantity: q.into(),
         unit: unit.into(),
         printed,
         computed,
         explanation: why.into(),
-    };
-    let vel_ratio = g(|r| r.velocity_rms).zip(lim(|b| b.velocity)).map(|(a, b)| a / b);
-    let acc_ratio = g(|r| r.acceleration_rms)
-        .zip(lim(|b| b.acceleration))
-        .map(|(a, b)| a / b);
+    }
+}
+
+/// Book rows of Example 7.2 (seat): every printed number, and the verdict in the conclusion of the example.
+pub fn book_rows() -> Vec<BookRow> {
+    let (seat, au, lambda) = example_7_2();
+    let r = seat.harmonic(au, lambda).ok();
+    let mut rows = response_rows(&seat, r.as_ref());
+    rows.extend(limit_rows(r.as_ref(), lambda));
+    rows
+}
+
+/// The rows of the seat's reduced mass, natural frequency, damping and harmonic response `r`.
+fn response_rows(seat: &OperatorSeat, r: Option<&HarmonicResponse>) -> Vec<BookRow> {
+    let row = seat_row;
+    let g = |f: fn(&HarmonicResponse) -> f64| r.map(f);
     vec![
         row(
             "m_pr",
@@ -746,6 +750,25 @@ pub fn book_rows() -> Vec<BookRow> {
             g(|r| r.frequency_hz),
             "in the 4 Hz octave band",
         ),
+    ]
+}
+
+/// The rows of the sanitary limits of the 4 Hz octave band (Table 7.1) and the example's verdict against
+/// them, for the harmonic response `r` at the forcing frequency λ (rad/s).
+fn limit_rows(r: Option<&HarmonicResponse>, lambda: f64) -> Vec<BookRow> {
+    let row = seat_row;
+    let g = |f: fn(&HarmonicResponse) -> f64| r.map(f);
+    let limits = SanitaryLimits::table_7_1().ok();
+    let band = band_index(lambda / (2.0 * PI));
+    let lim = |f: fn(&LimitBand) -> f64| -> Option<f64> {
+        let l = limits.as_ref()?;
+        Some(f(&l.bands[band?]))
+    };
+    let vel_ratio = g(|r| r.velocity_rms).zip(lim(|b| b.velocity)).map(|(a, b)| a / b);
+    let acc_ratio = g(|r| r.acceleration_rms)
+        .zip(lim(|b| b.acceleration))
+        .map(|(a, b)| a / b);
+    vec![
         row(
             "velocity limit, 4 Hz band",
             "m/s",
