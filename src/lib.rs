@@ -65,6 +65,9 @@
 //! | 10 | [`prelude`] | the common imports |
 
 #![warn(missing_docs)]
+// No function a reader has to scroll: `cargo clippy` (with `-D warnings`) refuses a function of more than
+// 100 lines of code (the default threshold of the lint).
+#![warn(clippy::too_many_lines)]
 
 /// The README's Rust example, compiled and run as a doctest.
 #[cfg(doctest)]
