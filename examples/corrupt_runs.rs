@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo build --release                      # the CLI binary the harness runs
-//! cargo run --release --example corrupt_runs -- --cases 1000 [--seed S] [--jobs J] [--timeout-ms T]
+//! cargo run --release --features campaigns --example corrupt_runs -- --cases 1000 [--seed S] [--jobs J] [--timeout-ms T]
 //!     [--findings DIR] [--bin PATH]
 //! ```
 //!

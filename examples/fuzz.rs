@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo build --release                      # the CLI binary the harness also runs
-//! cargo run --release --example fuzz -- --cases 20000 [--seed S] [--cli-every K] [--jobs J]
+//! cargo run --release --features campaigns --example fuzz -- --cases 20000 [--seed S] [--cli-every K] [--jobs J]
 //!     [--timeout-ms T] [--findings DIR] [--no-minimize] [--no-special] [--bin PATH] [--budget-s S]
 //!     [--totals FILE.json]
 //! ```

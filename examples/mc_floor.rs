@@ -5,7 +5,7 @@
 //! forward and inverse real FFT per segment. One thread; process CPU time (user + sys) and wall time of
 //! every job, the smallest of `--rounds` rounds; a markdown table on stdout.
 //!
-//! Run: `cargo run --release --example mc_floor [-- --realizations R --samples N --rounds K]`
+//! Run: `cargo run --release --features campaigns --example mc_floor [-- --realizations R --samples N --rounds K]`
 //! (defaults 200, 2¹⁶, 5; the model is the SDOF of `benches/common`, as `compare_rust`'s Monte Carlo jobs).
 
 #[path = "../benches/common/mod.rs"]

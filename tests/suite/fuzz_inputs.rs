@@ -11,7 +11,7 @@
 //! `error:` line naming the file, and agrees with the library. No expected value comes from the code
 //! under test: the expectations are properties every correct reader has.
 //!
-//! The long campaign is `cargo run --release --example fuzz -- --cases 20000`.
+//! The long campaign is `cargo run --release --features campaigns --example fuzz -- --cases 20000`.
 
 use crate::fuzz;
 

@@ -9,7 +9,7 @@
 //! uninterrupted run, bit for bit). The reference outputs are the same commands on the intact files,
 //! whose resumed statistics are first checked against the library's own uninterrupted run.
 //!
-//! The long campaign is `cargo run --release --example corrupt_runs -- --cases 1000`.
+//! The long campaign is `cargo run --release --features campaigns --example corrupt_runs -- --cases 1000`.
 
 use crate::fuzz;
 
