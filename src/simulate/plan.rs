@@ -410,8 +410,15 @@ fn spectral_plan(input: &RunInput, opts: &RunOptions, mut start: PlanStart, schu
     let (p_all, g_all) = (input.outputs.len(), input.excitation.spectra().len());
     let memory_bytes = super::resources::memory_bytes(n, p_all, g_all, opts, rayon::current_num_threads());
     let idx: Vec<usize> = start.finite.iter().map(|f| f.index).collect();
-    let (engine, discrete, autocov, moments) =
-        spectral_engine(input, opts, n, &idx, &mut start.notes, start.welch.segment_len(), schur_grid)?;
+    let (engine, discrete, autocov, moments) = spectral_engine(
+        input,
+        opts,
+        n,
+        &idx,
+        &mut start.notes,
+        start.welch.segment_len(),
+        schur_grid,
+    )?;
     let outputs = start
         .finite
         .into_iter()
