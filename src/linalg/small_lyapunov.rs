@@ -46,6 +46,8 @@ pub struct SmallLyapunov {
     n: usize,
     /// The balancing D (its diagonal).
     d: Vec<f64>,
+    /// The balanced A (storage kept between factorisations).
+    ab: DMatrix<f64>,
     /// The vectorised operator, kept for the refinement's residual.
     m: DMatrix<f64>,
     lu: Option<LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
@@ -61,6 +63,7 @@ impl Default for SmallLyapunov {
         SmallLyapunov {
             n: 0,
             d: Vec::new(),
+            ab: DMatrix::zeros(0, 0),
             m: DMatrix::zeros(0, 0),
             lu: None,
             b: DVector::zeros(0),
@@ -100,15 +103,23 @@ impl SmallLyapunov {
         self.n = n;
         self.d = super::lyapunov::balance_diagonal(a);
         let d = &self.d;
-        let ab = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
+        self.ab.resize_mut(n, n, 0.0);
+        for j in 0..n {
+            for i in 0..n {
+                self.ab[(i, j)] = a[(i, j)] * d[j] / d[i];
+            }
+        }
+        let ab = &self.ab;
         self.m.resize_mut(k, k, 0.0);
         self.m.fill(0.0);
+        // column-major storage: entry (row, col) of the k × k operator at row + k·col
+        let m = self.m.as_mut_slice();
         for j in 0..n {
             for i in 0..=j {
                 let row = at(i, j);
                 for l in 0..n {
-                    self.m[(row, at(l, j))] += ab[(i, l)];
-                    self.m[(row, at(i, l))] += ab[(j, l)];
+                    m[row + k * at(l, j)] += ab[(i, l)];
+                    m[row + k * at(i, l)] += ab[(j, l)];
                 }
             }
         }
@@ -123,7 +134,7 @@ impl SmallLyapunov {
             return false;
         }
         let trace = xi.trace();
-        self.condition = 2.0 * ab.norm() * trace;
+        self.condition = 2.0 * self.ab.norm() * trace;
         if Cholesky::new(xi).is_none() || self.condition.is_nan() || self.condition > SMALL_LYAPUNOV_MAX_CONDITION {
             self.lu = None;
             return false;

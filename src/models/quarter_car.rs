@@ -154,10 +154,12 @@ impl QuarterCar {
             1,
             &[],
         )?
-        .with_output("body", Quantity::Displacement(vec![1.0, 0.0]))?
-        .with_output("body_acc", Quantity::Acceleration(vec![1.0, 0.0]))?
-        .with_output("travel", Quantity::Deflection(0))?
-        .with_output("tyre_force", Quantity::SpringForce(1))
+        .with_outputs(vec![
+            ("body", Quantity::Displacement(vec![1.0, 0.0])),
+            ("body_acc", Quantity::Acceleration(vec![1.0, 0.0])),
+            ("travel", Quantity::Deflection(0)),
+            ("tyre_force", Quantity::SpringForce(1)),
+        ])
     }
 
     /// The model driven by one road track ([`InputLayout::Single`]).

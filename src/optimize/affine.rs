@@ -18,7 +18,9 @@ pub(crate) const AFFINE_TOLERANCE: f64 = 1e-12;
 pub(crate) struct AffineModel {
     x0: Vec<f64>,
     base: StateSpace,
-    slopes: Vec<[DMatrix<f64>; 5]>,
+    /// Per parameter, the non-zero entries of its slopes: (matrix 0..5 of A, B, C, D, E, index in the
+    /// matrix's column-major storage, slope). A stiffness or a damping moves a few entries of each matrix.
+    slopes: Vec<Vec<(usize, usize, f64)>>,
 }
 
 fn mats(ss: &StateSpace) -> [&DMatrix<f64>; 5] {
@@ -37,13 +39,25 @@ impl AffineModel {
         checks: &[(Vec<f64>, StateSpace)],
     ) -> Option<AffineModel> {
         let shape = |s: &StateSpace| mats(s).map(|m| m.shape());
+        if !mats(base).iter().all(|m| m.iter().all(|v| v.is_finite())) {
+            return None;
+        }
         let mut slopes = Vec::with_capacity(up.len());
         for (h, m) in up {
             if shape(m) != shape(base) || *h == 0.0 {
                 return None;
             }
             let (mb, mm) = (mats(base), mats(m));
-            slopes.push(std::array::from_fn(|i| (mm[i] - mb[i]) / *h));
+            let mut terms = Vec::new();
+            for i in 0..5 {
+                let entries = mm[i].iter().zip(mb[i].iter()).enumerate();
+                terms.extend(
+                    entries
+                        .filter(|(_, (u, b))| u != b)
+                        .map(|(e, (u, b))| (i, e, (u - b) / *h)),
+                );
+            }
+            slopes.push(terms);
         }
         let model = AffineModel {
             x0: x0.to_vec(),
@@ -74,16 +88,19 @@ impl AffineModel {
 
     /// Writes M(x) into `ss` (a state space of the base's shape); false when an entry is not finite.
     pub(crate) fn write(&self, x: &[f64], ss: &mut StateSpace) -> bool {
-        let base = mats(&self.base);
-        let targets = [&mut ss.a, &mut ss.b, &mut ss.c, &mut ss.d, &mut ss.e];
-        for (i, t) in targets.into_iter().enumerate() {
-            t.copy_from(base[i]);
-            for ((s, &xk), &x0k) in self.slopes.iter().zip(x).zip(&self.x0) {
-                let f = xk - x0k;
-                t.iter_mut().zip(s[i].iter()).for_each(|(t, s)| *t += f * s);
-            }
-            if !t.iter().all(|v| v.is_finite()) {
-                return false;
+        let mut targets = [&mut ss.a, &mut ss.b, &mut ss.c, &mut ss.d, &mut ss.e];
+        for (t, b) in targets.iter_mut().zip(mats(&self.base)) {
+            t.copy_from(b);
+        }
+        // the base is finite (`fit`), so only the entries a slope moves can become infinite
+        for ((terms, &xk), &x0k) in self.slopes.iter().zip(x).zip(&self.x0) {
+            let f = xk - x0k;
+            for &(i, e, s) in terms {
+                let t = &mut targets[i].as_mut_slice()[e];
+                *t += f * s;
+                if !t.is_finite() {
+                    return false;
+                }
             }
         }
         true

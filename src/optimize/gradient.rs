@@ -51,32 +51,40 @@ pub(crate) fn sensitivities_by<E>(
     directions: &[AugmentedSystem],
     mut solve: impl FnMut(&DMatrix<f64>) -> std::result::Result<DMatrix<f64>, E>,
 ) -> std::result::Result<(Vec<f64>, Vec<Vec<f64>>), E> {
-    let p = solve(&(&base.g * base.g.transpose()))?;
-    let rows = base.h.nrows();
-    let quad = |u: &DMatrix<f64>, m: &DMatrix<f64>, v: &DMatrix<f64>| (u * m * v.transpose())[(0, 0)];
-    let variances = (0..rows)
-        .map(|r| {
-            let h = base.h.rows(r, 1).into_owned();
-            quad(&h, &p, &h)
-        })
-        .collect();
+    let (n, rows) = (base.a.nrows(), base.h.nrows());
+    // Q = G Gᵀ, then per direction Q = dF P + P dFᵀ + dG Gᵀ + G dGᵀ; one buffer each for Q and dF P
+    let mut q = DMatrix::from_fn(n, n, |i, j| cross(&base.g, &base.g, i, j));
+    let p = solve(&q)?;
+    let variances = (0..rows).map(|r| quad(&base.h, r, &p, &base.h, r)).collect();
     let mut derivatives = Vec::with_capacity(directions.len());
+    let mut fp = DMatrix::zeros(n, n);
     for d in directions {
-        let fp = &d.a * &p;
-        let gg = &d.g * base.g.transpose();
-        let q = &fp + fp.transpose() + &gg + gg.transpose();
+        d.a.mul_to(&p, &mut fp);
+        for j in 0..n {
+            for i in 0..n {
+                q[(i, j)] = fp[(i, j)] + fp[(j, i)] + cross(&d.g, &base.g, i, j) + cross(&d.g, &base.g, j, i);
+            }
+        }
         let dp = solve(&q)?;
         derivatives.push(
             (0..rows)
-                .map(|r| {
-                    let h = base.h.rows(r, 1).into_owned();
-                    let dh = d.h.rows(r, 1).into_owned();
-                    2.0 * quad(&dh, &p, &h) + quad(&h, &dp, &h)
-                })
+                .map(|r| 2.0 * quad(&d.h, r, &p, &base.h, r) + quad(&base.h, r, &dp, &base.h, r))
                 .collect(),
         );
     }
     Ok((variances, derivatives))
+}
+
+/// (U Vᵀ)_ij = Σ_c u_ic v_jc.
+fn cross(u: &DMatrix<f64>, v: &DMatrix<f64>, i: usize, j: usize) -> f64 {
+    (0..u.ncols()).map(|c| u[(i, c)] * v[(j, c)]).sum()
+}
+
+/// u_r M v_sᵀ for row r of `u` and row s of `v`: Σ_j (Σ_i u_ri m_ij) v_sj.
+fn quad(u: &DMatrix<f64>, r: usize, m: &DMatrix<f64>, v: &DMatrix<f64>, s: usize) -> f64 {
+    (0..m.ncols())
+        .map(|j| (0..m.nrows()).map(|i| u[(r, i)] * m[(i, j)]).sum::<f64>() * v[(s, j)])
+        .sum()
 }
 
 /// The gradients of a problem's quantities at a point, SI per SI unit of each parameter.

@@ -270,8 +270,23 @@ impl<'a> Problem<'a> {
             constraints,
         };
         let centre: Vec<f64> = problem.params.iter().map(|p| 0.5 * (p.low + p.high)).collect();
-        problem.evaluate(&centre)?;
-        let affine = problem.fast.as_ref().and_then(|f| f.fit_affine(&problem, &centre));
+        // the reader's model at the centre, built once: its values, and the base of the affine model
+        let built = problem
+            .fast
+            .as_ref()
+            .and_then(|f| Some((f, f.model_at(&problem, &centre)?)));
+        let affine = match built {
+            Some((f, model)) => {
+                let model = model.map_err(|e| problem.name_error(&centre, e))?;
+                f.values(model.system.as_ref(), &problem, &centre)
+                    .map_err(|e| problem.name_error(&centre, e))?;
+                f.fit_affine(&problem, &centre, &model)
+            }
+            None => {
+                problem.evaluate(&centre)?;
+                None
+            }
+        };
         if let Some(f) = problem.fast.as_mut() {
             f.affine = affine;
         }
@@ -441,33 +456,37 @@ impl Fast {
     }
 
     /// The affine model of the problem (module `affine`) when the reader's models are affine in the
-    /// parameters over the box and the evaluator has an exact route: slopes from the models at the centre
-    /// and at each parameter's upper bound, checked at each lower bound and at the two corners of the box.
-    /// The reader accepts every one of these points, so every value of the box is one it accepts (each
-    /// key's valid values are an interval).
-    fn fit_affine(&self, pb: &Problem, centre: &[f64]) -> Option<AffineModel> {
+    /// parameters over the box and the evaluator has an exact route: slopes from the reader's model
+    /// `at_centre` and those at each parameter's upper bound, checked at each lower bound and at the two
+    /// corners of the box (a point met twice, as the corners of a one-parameter box, is built once). The
+    /// reader accepts every one of these points, so every value of the box is one it accepts (each key's
+    /// valid values are an interval).
+    fn fit_affine(&self, pb: &Problem, centre: &[f64], at_centre: &ModelInstance) -> Option<AffineModel> {
         let n = pb.base.model.system.state_space().map(|s| s.n_states());
         if n.is_none() || self.evaluator.method(n) == crate::response::VarianceMethod::Quadrature {
             return None;
         }
-        let ss_at = |x: &[f64]| -> Option<StateSpace> { self.model_at(pb, x)?.ok()?.system.state_space().cloned() };
-        let base = ss_at(centre)?;
+        let base = at_centre.system.state_space()?.clone();
+        let mut built: Vec<(Vec<f64>, StateSpace)> = Vec::new();
+        let mut ss_at = |x: Vec<f64>| -> Option<(Vec<f64>, StateSpace)> {
+            if let Some(known) = built.iter().find(|(y, _)| *y == x) {
+                return Some(known.clone());
+            }
+            let ss = self.model_at(pb, &x)?.ok()?.system.state_space().cloned()?;
+            built.push((x.clone(), ss.clone()));
+            Some((x, ss))
+        };
         let mut up = Vec::with_capacity(centre.len());
         let mut checks = Vec::with_capacity(centre.len() + 2);
         for (k, p) in pb.params.iter().enumerate() {
             let mut x = centre.to_vec();
             x[k] = p.high;
-            up.push((p.high - centre[k], ss_at(&x)?));
+            up.push((p.high - centre[k], ss_at(x.clone())?.1));
             x[k] = p.low;
-            checks.push((x.clone(), ss_at(&x)?));
+            checks.push(ss_at(x)?);
         }
-        for corner in [
-            pb.params.iter().map(|p| p.low).collect::<Vec<_>>(),
-            pb.params.iter().map(|p| p.high).collect(),
-        ] {
-            let ss = ss_at(&corner)?;
-            checks.push((corner, ss));
-        }
+        checks.push(ss_at(pb.params.iter().map(|p| p.low).collect())?);
+        checks.push(ss_at(pb.params.iter().map(|p| p.high).collect())?);
         AffineModel::fit(centre, &base, &up, &checks)
     }
 

@@ -310,7 +310,12 @@ impl Scaled<'_, '_> {
             let dq = g.as_ref().map(|g| g.constrained[j].as_slice());
             self.write_gradient(out, dq, s / c.limit.abs());
         }
-        -self.constraint(j, u)
+        let violation = -self.constraint(j, u);
+        if violation > 0.0 && violation <= SLSQP_FEASIBILITY {
+            0.0
+        } else {
+            violation
+        }
     }
 
     /// Constraint j scaled by its limit, ≥ 0 when met (COBYLA's convention).
@@ -487,6 +492,15 @@ fn run_slsqp(s: &Scaled, u0: &[f64], opts: &SolveOptions) -> StartResult {
 /// roundings: the objective is a square root of a Lyapunov solution, known to ≈ 10⁻¹⁵ relative), or when
 /// its step is below `x_tolerance` of every range.
 const SLSQP_FTOL_REL: f64 = 1e-14;
+
+/// A constraint violated by at most this fraction of its limit is met for SLSQP. At an active constraint
+/// the search's last steps are a few units in the last place of u, and the constrained quantity there (a
+/// square root of a Lyapunov solution) is known to a few roundings, so its sign against the limit is
+/// rounding noise. The `slsqp` crate judges feasibility with no tolerance and tests its stopping criteria
+/// (`ftol_rel`, `x_tolerance`) only at feasible points, so without this tolerance a start that reached the
+/// optimum can alternate between points a rounding above and below the limit until it ends
+/// `RoundoffLimited`.
+const SLSQP_FEASIBILITY: f64 = 1e-14;
 
 /// The largest relative violation of a point (0 when feasible).
 fn violation(problem: &Problem, v: &PointValues) -> f64 {

@@ -363,15 +363,25 @@ impl Mdof {
     ///
     /// # Errors
     /// A point of the wrong length or an element index out of range.
-    pub fn with_output(mut self, name: &str, quantity: Quantity) -> Result<Self> {
-        let (combo, unit) = self.combination(name, &quantity)?;
-        let info = OutputInfo::new(name, unit);
-        self.outputs.push(Output {
-            info: info.clone(),
-            quantity,
-        });
-        self.infos.push(info);
-        self.combos.push(combo);
+    pub fn with_output(self, name: &str, quantity: Quantity) -> Result<Self> {
+        self.with_outputs(vec![(name, quantity)])
+    }
+
+    /// [`with_output`](Self::with_output) of each of `outputs` in order, the state space written once.
+    ///
+    /// # Errors
+    /// As [`with_output`](Self::with_output), for the first output in error.
+    pub fn with_outputs(mut self, outputs: Vec<(&str, Quantity)>) -> Result<Self> {
+        for (name, quantity) in outputs {
+            let (combo, unit) = self.combination(name, &quantity)?;
+            let info = OutputInfo::new(name, unit);
+            self.outputs.push(Output {
+                info: info.clone(),
+                quantity,
+            });
+            self.infos.push(info);
+            self.combos.push(combo);
+        }
         self.rebuild_state_space()?;
         Ok(self)
     }
