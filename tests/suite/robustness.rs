@@ -653,8 +653,8 @@ fn smaller_holes_are_closed() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// Findings of the 20,000-case fuzz campaign (seed 2026; `cargo run --release --features campaigns --example fuzz`), each of
-/// which failed before its fix: extreme magnitudes (1e300, 1e-320) overflowed into NaN/inf results or
+/// Findings of the 20,000-case fuzz campaign (seed 2026;
+/// `cargo run --release --features campaigns --example fuzz`), each of which failed before its fix: extreme magnitudes (1e300, 1e-320) overflowed into NaN/inf results or
 /// errors at derived keys; a catalogue model's own error (a badly scaled mass matrix) named no file; a
 /// Lyapunov solve on a stiff two-stage isolator (m₂ = 8.25e-9 kg) printed a negative variance and σ = NaN;
 /// the mine hoist's node bisection never ended for a 2^60 m rope and its closed form divided by a
