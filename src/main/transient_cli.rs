@@ -6,7 +6,9 @@ use stochvib::report::transient_report::SigmaComparisons;
 use stochvib::scenario::{load_scenario, Catalogue};
 use stochvib::store::Compression;
 use stochvib::study::transient_answers::{answers, evolutionary_analysis};
-use stochvib::study::transient_mc::{compare_sigma, simulate_road_grid, simulate_transient, TransientMcOptions};
+use stochvib::study::transient_mc::{
+    check_run_size, compare_sigma, simulate_road_grid, simulate_transient, TransientMcOptions,
+};
 use stochvib::study::transient_run::{exact_solution, has_exact_route, transient_setup};
 use stochvib::transient::monte_carlo::read_transient_run;
 use stochvib::transient::TransientRunSummary;
@@ -92,6 +94,12 @@ pub fn transient(
     }
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;
     let exact = has_exact_route(&sc)?;
+    let opts = mc_options(&a, &choice);
+    if a.monte_carlo.is_some() && a.output.is_some() {
+        // the run's size before the exact route and the analytic curves (the run checks it again)
+        check_run_size(&sc, &opts, a.road_grid || !exact, a.road_step)
+            .map_err(|e| super::named_by_flag(e, "--monte-carlo"))?;
+    }
     let answers = if exact {
         let setup = transient_setup(&sc)?;
         let sol = exact_solution(&sc, &setup)?;
@@ -112,20 +120,8 @@ pub fn transient(
         (None, None) => Some(evolutionary_analysis(&sc)?),
     };
     let mc = match (a.monte_carlo, &a.output) {
-        (Some(n), Some(out)) => {
+        (Some(_), Some(out)) => {
             let out = shard_output(out.clone(), &choice)?;
-            let opts = TransientMcOptions {
-                realizations: n,
-                substeps: a.substeps,
-                seed: a.seed,
-                shard_size: a.shard_size,
-                confidence: a.confidence,
-                store_raw: a.store_raw,
-                compression: Compression::default(),
-                part: choice.as_ref().map(|c| c.part),
-                overwrite: a.overwrite,
-                max_hours: a.max_hours,
-            };
             let ran = match &answers {
                 Some((setup, sol, _)) if !a.road_grid => simulate_transient(&sc, setup, sol, &opts, &out, progress),
                 _ => simulate_road_grid(&sc, &opts, a.road_step, &out, progress),
@@ -160,6 +156,22 @@ pub fn transient(
         print_summary(s);
     }
     Ok(())
+}
+
+/// The Monte Carlo options of the arguments (`realizations` 0 without `--monte-carlo`).
+fn mc_options(a: &TransientArgs, choice: &Option<stochvib::study::ShardChoice>) -> TransientMcOptions {
+    TransientMcOptions {
+        realizations: a.monte_carlo.unwrap_or(0),
+        substeps: a.substeps,
+        seed: a.seed,
+        shard_size: a.shard_size,
+        confidence: a.confidence,
+        store_raw: a.store_raw,
+        compression: Compression::default(),
+        part: choice.as_ref().map(|c| c.part),
+        overwrite: a.overwrite,
+        max_hours: a.max_hours,
+    }
 }
 
 /// The run file and the verdicts of the maxima against their DKW band.

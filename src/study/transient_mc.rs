@@ -408,43 +408,22 @@ fn check_substeps(substeps: usize, intervals: usize) -> Result<()> {
     Ok(())
 }
 
-/// Runs the road-grid Monte Carlo of the scenario's transient into `out` (resuming an interrupted run): a
-/// road synthesised on a spatial grid of step `road_step` (default [`default_road_step`]) and sampled along
-/// x(t), for any road spectrum under a speed profile; the analytic curves of [`road_grid_analytic`].
-///
-/// # Formula
-/// The integration step is Δt = step/s with s = max(`substeps`, ⌈step·v_max/Δx⌉), so that the vehicle moves
-/// at most one grid step per integration step (the first-order hold then interpolates the road as finely as
-/// the grid does).
-///
-/// # Errors
-/// The refusals of [`road_grid_setup`]; no output to simulate; the errors of
-/// [`crate::transient::run_road_grid`].
-pub fn simulate_road_grid(
-    sc: &Scenario,
-    opts: &TransientMcOptions,
-    road_step: Option<f64>,
-    out: &Path,
-    progress: &dyn Fn(usize, usize),
-) -> Result<(TransientRunSummary, Vec<String>)> {
-    let setup = road_grid_setup(sc)?;
-    let dx = road_step.unwrap_or_else(|| default_road_step(&setup));
+/// The grid step Δx (m) and the integration steps per reported interval of a road-grid run.
+struct GridSteps {
+    dx: f64,
+    substeps: usize,
+}
+
+/// The grid step of `road_step` (default [`default_road_step`]) and the integration steps per reported interval
+/// (see [`simulate_road_grid`]), refused when either asks more than [`MAX_STEPS_PER_REALIZATION`].
+fn grid_steps(setup: &RoadGridSetup, opts: &TransientMcOptions, road_step: Option<f64>) -> Result<GridSteps> {
+    let dx = road_step.unwrap_or_else(|| default_road_step(setup));
     if !(dx.is_finite() && dx > 0.0) {
         return Err(Error::invalid(
             "road step",
             dx,
             "the grid step Δx must be finite and > 0 m",
         ));
-    }
-    let (analytic, outputs, mut notes) = match &setup.wheels {
-        Some(_) => wheels_analytic(sc, &setup)?,
-        None => road_grid_analytic(sc, &setup.outputs)?,
-    };
-    if outputs.is_empty() {
-        return Err(Error::NotApplicable {
-            method: "road-grid Monte Carlo".into(),
-            reason: format!("no reported output to simulate: {}", notes.join("; ")),
-        });
     }
     let duration = *setup.times.last().unwrap_or(&0.0);
     let intervals = setup.times.len() - 1;
@@ -467,7 +446,60 @@ pub fn simulate_road_grid(
         ));
     }
     check_substeps(opts.substeps, intervals)?;
-    let substeps = opts.substeps.max(per_interval as usize);
+    Ok(GridSteps {
+        dx,
+        substeps: opts.substeps.max(per_interval as usize),
+    })
+}
+
+/// Refuses, before any analysis, a transient Monte Carlo whose `substeps` (or, on a road grid, `road_step`)
+/// asks more than [`MAX_STEPS_PER_REALIZATION`] steps per realization: the checks [`simulate_transient`] and
+/// [`simulate_road_grid`] make, without the exact route or the analytic curves they need first.
+///
+/// # Errors
+/// The refusals of those checks (key `substeps` or `road step`); the errors of reading the scenario's
+/// transient set-up.
+pub fn check_run_size(sc: &Scenario, opts: &TransientMcOptions, road_grid: bool, road_step: Option<f64>) -> Result<()> {
+    if road_grid {
+        return grid_steps(&road_grid_setup(sc)?, opts, road_step).map(|_| ());
+    }
+    let times = transient_setup(sc)?.times;
+    check_substeps(opts.substeps, times.len() - 1)
+}
+
+/// Runs the road-grid Monte Carlo of the scenario's transient into `out` (resuming an interrupted run): a
+/// road synthesised on a spatial grid of step `road_step` (default [`default_road_step`]) and sampled along
+/// x(t), for any road spectrum under a speed profile; the analytic curves of [`road_grid_analytic`].
+///
+/// # Formula
+/// The integration step is Δt = step/s with s = max(`substeps`, ⌈step·v_max/Δx⌉), so that the vehicle moves
+/// at most one grid step per integration step (the first-order hold then interpolates the road as finely as
+/// the grid does).
+///
+/// # Errors
+/// The refusals of [`road_grid_setup`]; no output to simulate; the errors of
+/// [`crate::transient::run_road_grid`].
+pub fn simulate_road_grid(
+    sc: &Scenario,
+    opts: &TransientMcOptions,
+    road_step: Option<f64>,
+    out: &Path,
+    progress: &dyn Fn(usize, usize),
+) -> Result<(TransientRunSummary, Vec<String>)> {
+    let setup = road_grid_setup(sc)?;
+    let GridSteps { dx, substeps } = grid_steps(&setup, opts, road_step)?;
+    let (analytic, outputs, mut notes) = match &setup.wheels {
+        Some(_) => wheels_analytic(sc, &setup)?,
+        None => road_grid_analytic(sc, &setup.outputs)?,
+    };
+    if outputs.is_empty() {
+        return Err(Error::NotApplicable {
+            method: "road-grid Monte Carlo".into(),
+            reason: format!("no reported output to simulate: {}", notes.join("; ")),
+        });
+    }
+    let duration = *setup.times.last().unwrap_or(&0.0);
+    let intervals = setup.times.len() - 1;
     notes.push(format!(
         "road-grid Monte Carlo: Δx = {dx:.4e} m, {substeps} integration steps per reported interval"
     ));

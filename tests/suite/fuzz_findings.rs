@@ -667,27 +667,41 @@ fn a_transient_run_checks_its_target_before_the_exact_route() {
 /// Found in the final review: `transient --road-grid --road-step 1e-30` panicked ("attempt to multiply with
 /// overflow": ⌈step·v/Δx⌉ cast to an integer count), and `--substeps` of 2⁶⁴ − 1 overflowed the product of
 /// intervals and substeps. Both counts are now formed in f64 and bounded (`MAX_STEPS_PER_REALIZATION`)
-/// before any work, and the error names the flag; nothing is written.
+/// before any work, and the error names the flag; nothing is written. "Before any work" includes the
+/// exact route and the analytic curves (seconds for this scenario): the size is checked right after the
+/// scenario is read, on the road grid and on the exact route's own Monte Carlo alike, so each refusal here
+/// takes milliseconds. The exact route's case also asks for its pictures (`--plots`), which the exact route
+/// draws before a Monte Carlo starts: none may exist after the refusal.
 #[test]
 fn a_tiny_road_step_or_huge_substeps_is_refused_by_its_flag() {
     let dir = scratch("road-step-bound");
     std::fs::create_dir_all(&dir).unwrap();
     let run = dir.join("run.h5");
+    let pictures = dir.join("pictures");
     let p = |x: &Path| x.to_str().unwrap().to_string();
+    let plots = p(&pictures);
     let base = [
         "transient",
         "data/quarter-car-accelerating.toml",
         "--monte-carlo",
         "4",
-        "--road-grid",
         "-o",
         &p(&run),
     ];
-    for (flag, value) in [("--road-step", "1e-30"), ("--substeps", "18446744073709551615")] {
+    let huge = "18446744073709551615";
+    let cases: [(&str, &[&str]); 3] = [
+        ("--road-step", &["--road-grid", "--road-step", "1e-30"]),
+        ("--substeps", &["--road-grid", "--substeps", huge]),
+        ("--substeps", &["--substeps", huge, "--plots", &plots]),
+    ];
+    for (flag, extra) in cases {
         let mut args = base.to_vec();
-        args.extend([flag, value]);
+        args.extend(extra);
         let err = common::cli_fails(1, &args, &root());
-        assert!(err.contains(flag) && err.contains("per realization"), "{flag}: {err}");
+        assert!(
+            err.contains(flag) && err.contains("per realization"),
+            "{extra:?}: {err}"
+        );
     }
     assert!(common::listing(&dir).is_empty(), "nothing written");
     let _ = std::fs::remove_dir_all(&dir);
