@@ -120,6 +120,9 @@ struct HoldPath<'a, const L: usize> {
     next: Vec<Lanes<L>>,
     u0: Vec<Lanes<L>>,
     u1: Vec<Lanes<L>>,
+    /// The sample whose inputs `u1` holds (gathered by the last step): the next step's u₀ and the inputs
+    /// of that sample are copied from it instead of gathered again from every lane's samples.
+    held: Option<usize>,
 }
 
 impl<const L: usize> HoldPath<'_, L> {
@@ -142,7 +145,12 @@ impl<const L: usize> Path<L> for HoldPath<'_, L> {
     }
     #[inline(always)]
     fn inputs(&self, k: usize, u: &mut [Lanes<L>], ud: &mut [Lanes<L>]) {
-        self.gather(k, u);
+        let m = self.u[0].len().min(u.len());
+        if self.held == Some(k) && m <= self.u1.len() {
+            u[..m].copy_from_slice(&self.u1[..m]);
+        } else {
+            self.gather(k, u);
+        }
         ud.iter_mut().for_each(|v| *v = [0.0; L]);
         for (r, &j) in self.rate_inputs.iter().enumerate() {
             ud[j] = std::array::from_fn(|l| self.rates[l][r][k]);
@@ -170,11 +178,19 @@ impl<const L: usize> Path<L> for HoldPath<'_, L> {
     }
     #[inline(always)]
     fn step(&mut self, k: usize) {
-        let (mut u0, mut u1) = (std::mem::take(&mut self.u0), std::mem::take(&mut self.u1));
-        self.gather(k, &mut u0);
+        if self.held == Some(k) {
+            std::mem::swap(&mut self.u0, &mut self.u1);
+        } else {
+            let mut u0 = std::mem::take(&mut self.u0);
+            self.gather(k, &mut u0);
+            self.u0 = u0;
+        }
+        let mut u1 = std::mem::take(&mut self.u1);
         self.gather(k + 1, &mut u1);
-        self.flow.step(self.step, &mut self.x, &u0, &u1, &mut self.next);
-        (self.u0, self.u1) = (u0, u1);
+        self.u1 = u1;
+        self.held = Some(k + 1);
+        self.flow
+            .step(self.step, &mut self.x, &self.u0, &self.u1, &mut self.next);
     }
 }
 
@@ -511,6 +527,7 @@ fn hold_path<'a, const L: usize>(
         next: vec![[0.0; L]; f.nx],
         u0: vec![[0.0; L]; f.m],
         u1: vec![[0.0; L]; f.m],
+        held: None,
     }
 }
 

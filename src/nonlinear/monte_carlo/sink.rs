@@ -20,12 +20,15 @@ pub(super) struct Sink<'a, const L: usize> {
     records: Vec<OutputRecords<L>>,
     regimes: Vec<RegimeRecords<L>>,
     lanes: Vec<LaneBlock>,
+    /// The block of centred samples of every output, lane-major (one [`Lanes`] value per sample: a
+    /// recorded sample is one store per output); a lane's column is copied out at a flush.
+    block: Vec<Vec<Lanes<L>>>,
+    column: Vec<f64>,
     filled: usize,
 }
 
 /// One lane's Welch blocks and raw samples.
 struct LaneBlock {
-    block: Vec<Vec<f64>>,
     streams: Vec<WelchStream>,
     welch: Vec<WelchSums>,
     raw: Option<Vec<Vec<f64>>>,
@@ -58,13 +61,14 @@ impl<'a, const L: usize> Sink<'a, L> {
             regimes: vec![RegimeRecords::default(); plan.kicks.len()],
             lanes: (0..L)
                 .map(|_| LaneBlock {
-                    block: vec![vec![0.0; BLOCK]; p],
                     streams: (0..p).map(|_| plan.welch.stream()).collect(),
                     welch: (0..p).map(|_| plan.welch.sums()).collect(),
                     raw: keep_raw.then(|| vec![Vec::with_capacity(plan.n); p]),
                     err: None,
                 })
                 .collect(),
+            block: vec![vec![[0.0; L]; BLOCK]; p],
+            column: vec![0.0; BLOCK],
             filled: 0,
         }
     }
@@ -73,9 +77,8 @@ impl<'a, const L: usize> Sink<'a, L> {
     #[inline(always)]
     pub(super) fn push(&mut self, y: &[Lanes<L>], x: &[Lanes<L>], scratch: &mut WelchScratch) {
         for ((r, v), rec) in y.iter().enumerate().zip(self.records.iter_mut()) {
-            let d = rec.push(v);
-            for ((lane, d), v) in self.lanes.iter_mut().zip(d).zip(v) {
-                lane.block[r][self.filled] = d;
+            self.block[r][self.filled] = rec.push(v);
+            for (lane, v) in self.lanes.iter_mut().zip(v) {
                 if let Some(raw) = &mut lane.raw {
                     raw[r].push(*v);
                 }
@@ -92,9 +95,13 @@ impl<'a, const L: usize> Sink<'a, L> {
 
     fn flush(&mut self, scratch: &mut WelchScratch) {
         let welch = &self.plan.welch;
-        for lane in &mut self.lanes {
-            for ((st, block), ws) in lane.streams.iter_mut().zip(&lane.block).zip(lane.welch.iter_mut()) {
-                if let Err(e) = welch.push(st, &block[..self.filled], ws, scratch) {
+        let column = &mut self.column[..self.filled];
+        for (l, lane) in self.lanes.iter_mut().enumerate() {
+            for ((st, block), ws) in lane.streams.iter_mut().zip(&self.block).zip(lane.welch.iter_mut()) {
+                for (c, b) in column.iter_mut().zip(block) {
+                    *c = b[l];
+                }
+                if let Err(e) = welch.push(st, column, ws, scratch) {
                     lane.err.get_or_insert(e);
                 }
             }
