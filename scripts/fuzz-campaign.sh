@@ -32,7 +32,7 @@ json="$json}"
 # a snapshot of the two binaries, so that a rebuild while the campaign runs changes nothing of it
 snap=$(realpath -m "target/tmp/fuzz-campaign-bin-$seed-$$")
 mkdir -p "$snap"
-exe=$(nice -n 19 cargo test --locked --test suite --no-run --message-format=json \
+exe=$(nice -n 19 cargo test --locked --workspace --tests --no-run --message-format=json \
     | sed -n 's/.*"executable":"\([^"]*\/suite-[^"]*\)".*/\1/p' | tail -n 1)
 [ -x "$exe" ] || { echo "fuzz campaign: no test binary built" >&2; exit 2; }
 cp "$exe" "$snap/suite"

@@ -2,11 +2,13 @@
 //! tolerances and the relative difference used in assertions.
 #![allow(dead_code)] // each test binary uses a different subset
 
+pub mod cli_bin;
 pub mod response_only;
 pub mod scenario_text;
 pub mod tolerance;
 pub mod two_wheel_body;
 
+pub use cli_bin::{cli_bin, root};
 pub use scenario_text::{quarter_car_scenario, two_wheels};
 
 use std::path::PathBuf;
@@ -15,11 +17,6 @@ use std::path::PathBuf;
 /// [`stochvib::numbers::rel_diff`]).
 pub fn rel(a: f64, b: f64) -> f64 {
     stochvib::numbers::rel_diff(a, b)
-}
-
-/// The source tree (for `data/` and `spectra/`).
-pub fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
 /// The scenario text of a random stiff three-mass chain on a base (the family of the stiff-chain
@@ -204,7 +201,7 @@ pub fn cli_limited<S: AsRef<std::ffi::OsStr>>(
     limits: Option<ChildLimits>,
 ) -> std::process::Output {
     use std::io::Read;
-    let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"));
+    let mut cmd = std::process::Command::new(cli_bin());
     cmd.current_dir(cwd)
         .env("STOCHVIB_SPECTRA", root().join("spectra"))
         .args(args)

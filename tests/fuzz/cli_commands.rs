@@ -693,11 +693,15 @@ fn materialize(dir: &Path, case_file: &Path, args: &[String], ctx: &super::comma
     out
 }
 
-/// The CLI binary: `STOCHVIB_FUZZ_BIN`, else the one Cargo built beside the test binary.
+/// The CLI binary: `STOCHVIB_FUZZ_BIN`, else the one Cargo built beside the executable that runs the cases
+/// (`<target>/<profile>/stochvib` for `<target>/<profile>/deps/<test or example>`).
 fn bin() -> PathBuf {
     std::env::var_os("STOCHVIB_FUZZ_BIN")
         .map(PathBuf::from)
-        .or_else(|| option_env!("CARGO_BIN_EXE_stochvib").map(PathBuf::from))
+        .or_else(|| {
+            let exe = std::env::current_exe().ok()?;
+            Some(exe.parent()?.parent()?.join("stochvib"))
+        })
         .expect("no CLI binary: set STOCHVIB_FUZZ_BIN")
 }
 

@@ -291,7 +291,7 @@ fn simulate_prints_and_inspect_shows_the_band_table() {
     let scenario = dir.join("qc.toml");
     std::fs::write(&scenario, text).unwrap();
     let out = dir.join("qc.h5");
-    let exe = env!("CARGO_BIN_EXE_stochvib");
+    let exe = crate::common::cli_bin();
     let spectra = root().join("spectra");
     let run = |args: &[&str]| {
         let o = std::process::Command::new(exe).args(args).output_serial().unwrap();

@@ -115,7 +115,7 @@ spectrum = {{ kind = "exponential", domain = "temporal", unit = "m", variance = 
 }
 
 fn spectra() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("spectra")
+    crate::common::root().join("spectra")
 }
 
 #[test]

@@ -403,7 +403,7 @@ fn a_one_based_slurm_array_is_warned_about() {
     assert!(c.notes.is_empty(), "{:?}", c.notes);
     // the CLI prints the warning
     let d = scratch("slurm");
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let o = std::process::Command::new(crate::common::cli_bin())
         .current_dir(&d)
         .args(["simulate", root().join("data/conveyor-idler.toml").to_str().unwrap()])
         .args([
@@ -449,7 +449,7 @@ fn a_one_based_slurm_array_is_warned_about() {
 fn a_large_run_does_not_write_its_accumulators_before_computing() {
     let d = scratch("sparse");
     let sc = root().join("data/conveyor-idler.toml");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let mut child = std::process::Command::new(crate::common::cli_bin())
         .current_dir(&d)
         .args([
             "simulate",

@@ -7,11 +7,11 @@
 //! its stored `@crc32`).
 
 use crate::common;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stochvib::store::{RunFile, SignalGroup};
 
 fn fixture() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/run-written-with-table-crc.h5")
+    crate::common::root().join("tests/data/run-written-with-table-crc.h5")
 }
 
 /// Every checksum of the old file matches the values computed now (raw rows of 2 shards × 3 signals,

@@ -12,7 +12,7 @@ use stochvib::scenario::{kind_names, load_document, Document, Family, MODEL_KIND
 use stochvib::system::FrequencyResponse;
 
 fn bin() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_stochvib"));
+    let mut c = Command::new(crate::common::cli_bin());
     c.current_dir(root());
     c
 }

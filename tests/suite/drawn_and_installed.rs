@@ -24,7 +24,7 @@ fn run(exe: &Path, args: &[&str], cwd: &Path) -> Output {
 }
 
 fn stochvib(args: &[&str], cwd: &Path) -> Output {
-    let o = run(Path::new(env!("CARGO_BIN_EXE_stochvib")), args, cwd);
+    let o = run(Path::new(crate::common::cli_bin()), args, cwd);
     assert!(
         o.status.success(),
         "`{}`: {}",
@@ -201,14 +201,15 @@ fn an_installed_binary_works_from_an_empty_directory() {
     std::fs::create_dir_all(&bin).unwrap();
     std::fs::create_dir_all(&work).unwrap();
     let exe = bin.join("stochvib");
-    std::fs::copy(env!("CARGO_BIN_EXE_stochvib"), &exe).unwrap();
+    std::fs::copy(crate::common::cli_bin(), &exe).unwrap();
     let text = std::fs::read_to_string(root().join("data/quarter-car.toml"))
         .unwrap()
         .replace("spectrum = \"iso8608-c\"", "spectrum = \"iso8608-d\"");
     assert!(text.contains("iso8608-d"));
     std::fs::write(work.join("car.toml"), &text).unwrap();
     std::fs::write(work.join("missing.toml"), text.replace("iso8608-d", "iso8608-z")).unwrap();
-    let build_dir = env!("CARGO_MANIFEST_DIR");
+    let build_dir = crate::common::root().display().to_string();
+    let build_dir = build_dir.as_str();
     let analyze = run(&exe, &["analyze", "car.toml", "--json"], &work);
     let out = String::from_utf8_lossy(&analyze.stdout);
     assert!(analyze.status.success(), "{}", String::from_utf8_lossy(&analyze.stderr));

@@ -33,7 +33,11 @@ fn rel(a: f64, b: f64) -> f64 {
 /// CONDITION_CHECKED; the method column names the route that computed it.
 #[test]
 fn sweep_points_equal_lyapunov_over_a_grid_with_a_stiff_corner() {
-    let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+    let sc = load_scenario(
+        &crate::common::root().join("data/scraper-sprung-cab.toml"),
+        &crate::common::root().join("spectra"),
+    )
+    .unwrap();
     let spec = SweepSpec::new(
         vec![
             SweepParam::parse("model.omega2=0.05 Hz..40 Hz:12:log").unwrap(),
@@ -86,7 +90,12 @@ fn an_unreliable_table_point_falls_back_to_lyapunov_and_says_so() {
     let (mut table, mut fallback) = (0, 0);
     for case in 0..60 {
         let text = common::stiff_chain_text(&mut rng);
-        let sc = parse_scenario(&text, Path::new("stiff-chain.toml"), Path::new("spectra")).unwrap();
+        let sc = parse_scenario(
+            &text,
+            Path::new("stiff-chain.toml"),
+            &crate::common::root().join("spectra"),
+        )
+        .unwrap();
         let sys = sc.model.system.as_ref();
         let ev = ExactEvaluator::new(&sc.excitation);
         let fast = ev.evaluate(sys, &sc.excitation, &[0, 1]).unwrap();
@@ -312,7 +321,11 @@ fn numeric_against_general(sweep: &Sweep) -> (usize, usize, usize) {
 /// declined and fail on the general path.
 #[test]
 fn numeric_builder_equals_general_path_sprung_cab() {
-    let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+    let sc = load_scenario(
+        &crate::common::root().join("data/scraper-sprung-cab.toml"),
+        &crate::common::root().join("spectra"),
+    )
+    .unwrap();
     let spec = SweepSpec::new(
         vec![
             SweepParam::parse("model.omega2=0.05 Hz..40 Hz:6:log").unwrap(),
@@ -349,7 +362,11 @@ fn numeric_builder_equals_general_path_sprung_cab() {
 /// reader refuses it ("not both"), so the study cannot even start, and says why.
 #[test]
 fn numeric_builder_equals_general_path_rigid_cab() {
-    let sc = load_scenario(Path::new("data/scraper-rigid-cab.toml"), Path::new("spectra")).unwrap();
+    let sc = load_scenario(
+        &crate::common::root().join("data/scraper-rigid-cab.toml"),
+        &crate::common::root().join("spectra"),
+    )
+    .unwrap();
     let spec = SweepSpec::new(
         vec![
             SweepParam::parse("model.omega1=5 rad/s..40 rad/s:5").unwrap(),
@@ -378,7 +395,11 @@ fn numeric_builder_equals_general_path_rigid_cab() {
 /// general path's numbers; the numeric path declines every point there.
 #[test]
 fn fallback_is_taken_and_said_outside_the_schema() {
-    let sc = load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap();
+    let sc = load_scenario(
+        &crate::common::root().join("data/scraper-sprung-cab.toml"),
+        &crate::common::root().join("spectra"),
+    )
+    .unwrap();
     let spec = SweepSpec::new(
         vec![
             SweepParam::parse("model.kind=scraper-sprung-cab").unwrap(),
@@ -397,7 +418,11 @@ fn fallback_is_taken_and_said_outside_the_schema() {
         assert!(sweep.evaluate_numeric(p).is_none());
         assert_eq!(sweep.evaluate(p).unwrap(), sweep.evaluate_general(p).unwrap());
     }
-    let qc = load_scenario(Path::new("data/quarter-car-model.toml"), Path::new("spectra")).unwrap();
+    let qc = load_scenario(
+        &crate::common::root().join("data/quarter-car-model.toml"),
+        &crate::common::root().join("spectra"),
+    )
+    .unwrap();
     let spec = SweepSpec::new(
         vec![SweepParam::parse("model.suspension_damping=1 kN*s/m,2 kN*s/m").unwrap()],
         SweepMode::Grid,

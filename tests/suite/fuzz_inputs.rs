@@ -60,7 +60,7 @@ fn fuzz_campaign() {
     let cfg: serde_json::Value = serde_json::from_str(&json).expect("campaign configuration");
     let num = |k: &str, d: u64| cfg.get(k).and_then(|v| v.as_u64()).unwrap_or(d);
     let text = |k: &str| cfg.get(k).and_then(|v| v.as_str()).map(PathBuf::from);
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let seed = num("seed", 1);
     let mut c = campaign(seed, num("cases", 1000), num("cli_every", 1000));
@@ -83,7 +83,7 @@ fn fuzz_campaign() {
 
 /// The campaign of this file's tests: `cases` cases of `seed`, every `cli_every`-th through the CLI.
 fn campaign(seed: u64, cases: u64, cli_every: u64) -> Campaign {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let exe = std::env::current_exe().expect("own path");
     Campaign {
@@ -99,7 +99,7 @@ fn campaign(seed: u64, cases: u64, cli_every: u64) -> Campaign {
         findings_dir: Some(tmp.join("fuzz-findings")),
         minimize: false,
         special: true,
-        bin: PathBuf::from(env!("CARGO_BIN_EXE_stochvib")),
+        bin: PathBuf::from(crate::common::cli_bin()),
         worker: Arc::new(move |cfg: &WorkerConfig| {
             let mut cmd = Command::new(&exe);
             cmd.args([
@@ -138,7 +138,7 @@ fn inputs_keep_the_invariants() {
 #[test]
 fn the_record_commands_and_nonlinear_sections_are_case_families() {
     use fuzz::inputs::{generate, Corpus, DocKind};
-    let corpus = Corpus::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+    let corpus = Corpus::load(&crate::common::root());
     let cases: Vec<_> = (0..1000).map(|i| generate(&corpus, SEED, i)).collect();
     let in_suite = |k: DocKind| cases[..CASES as usize].iter().filter(|c| c.kind == k).count();
     assert!(
@@ -171,7 +171,7 @@ fn the_record_commands_and_nonlinear_sections_are_case_families() {
 #[test]
 fn transient_and_optimize_are_case_families() {
     use fuzz::inputs::{generate, Corpus, DocKind};
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let corpus = Corpus::load(&root);
     let cases: Vec<_> = (0..3000).map(|i| generate(&corpus, SEED, i)).collect();
     let of = |k: DocKind| cases.iter().filter(move |c| c.kind == k);
@@ -245,7 +245,7 @@ fn transient_and_optimize_are_case_families() {
 #[test]
 fn the_cli_only_commands_are_case_families() {
     use fuzz::inputs::{generate, Corpus};
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let corpus = Corpus::load(&root);
     let cases: Vec<_> = (0..10_000).map(|i| generate(&corpus, SEED, i)).collect();
     let of = |cmd: &'static str| {
@@ -317,7 +317,7 @@ fn the_cli_only_commands_are_case_families() {
 #[test]
 fn free_text_of_the_reference_file_is_not_classified_as_quantities() {
     use fuzz::mutate::{all_paths, free_text, path_str};
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let read = |p: &str| -> toml::Table { std::fs::read_to_string(root.join(p)).unwrap().parse().unwrap() };
     let table = read("data/reference/table-8-1.toml");
     let paths: Vec<String> = all_paths(&table)
@@ -361,7 +361,7 @@ fn fuzz_scan() {
     let num = |i: usize| words.get(i).and_then(|w| w.parse::<u64>().ok()).expect("SEED FROM TO");
     let (seed, from, to) = (num(0), num(1), num(2));
     let classes = &words[3..];
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("fuzz-scan-{seed}"));
     let corpus = fuzz::inputs::Corpus::load(&root);
     let ctx = input_campaign::context(&root, &dir);

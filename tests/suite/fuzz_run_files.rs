@@ -37,7 +37,7 @@ fn fuzz_run_files_child() {
     let mut it = spec.splitn(3, '\n');
     let (v, k, p) = (it.next().unwrap(), it.next().unwrap(), it.next().unwrap());
     runs::child_abort(
-        Path::new(env!("CARGO_MANIFEST_DIR")),
+        &crate::common::root(),
         v.parse().unwrap(),
         Path::new(p),
         k.parse().unwrap(),
@@ -46,12 +46,12 @@ fn fuzz_run_files_child() {
 
 #[test]
 fn run_files_survive_corruption() {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::root();
     let tmp = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
     let exe = std::env::current_exe().expect("own path");
     let cfg = Config {
         root,
-        bin: PathBuf::from(env!("CARGO_BIN_EXE_stochvib")),
+        bin: PathBuf::from(crate::common::cli_bin()),
         work: crate::common::scratch_path("fuzz-run-files", "work"),
         findings_dir: Some(tmp.join("fuzz-findings")),
         cases: CASES,

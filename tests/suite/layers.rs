@@ -35,7 +35,7 @@ fn layer_of(module: &str) -> Option<usize> {
     LAYERS.iter().position(|row| row.contains(&module))
 }
 
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+pub(crate) fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for e in std::fs::read_dir(dir).unwrap() {
         let p = e.unwrap().path();
         if p.is_dir() {
@@ -104,7 +104,7 @@ fn grouped(text: &str) -> Vec<String> {
 
 #[test]
 fn no_module_imports_from_a_higher_layer() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let src = crate::common::root().join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
     files.sort();
@@ -235,7 +235,7 @@ fn model_items(line: &str) -> Vec<String> {
 #[test]
 fn report_names_only_types_of_the_models() {
     let mut files = Vec::new();
-    rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src/report"), &mut files);
+    rust_files(&crate::common::root().join("src/report"), &mut files);
     let mut named = 0;
     let mut found = Vec::new();
     for f in &files {
@@ -268,7 +268,7 @@ const STORE_USES: &[&str] = &["error", "numbers", "units", "fields", "io_rules",
 /// The crate paths the files under `src/<dir>` use (by `use` or inline path), with the file.
 fn paths_used_under(dir: &str) -> Vec<(PathBuf, String)> {
     let mut files = Vec::new();
-    rust_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src").join(dir), &mut files);
+    rust_files(&crate::common::root().join("src").join(dir), &mut files);
     files.sort();
     assert!(files.len() > 5, "found only {} files in src/{dir}", files.len());
     let mut out = Vec::new();
@@ -317,7 +317,7 @@ fn scanner_finds_paths_and_skips_comments() {
 /// through the binary), so a unit test in `src/main.rs` or `src/main/` would never run: there must be none.
 #[test]
 fn the_cli_holds_no_unit_tests() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let root = crate::common::root().join("src");
     let mut files = vec![root.join("main.rs")];
     rust_files(&root.join("main"), &mut files);
     for f in files {

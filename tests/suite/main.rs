@@ -1,5 +1,6 @@
 //! The integration tests, one binary: every file of this directory is a module (one test binary links
-//! HDF5 and nalgebra once instead of once per file). `cargo test --test suite MODULE::` runs one file.
+//! HDF5 and nalgebra once instead of once per file). `cargo test --workspace --tests MODULE::` runs one file
+//! (tests/README.md).
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -10,6 +11,7 @@ mod band_mc;
 mod band_table;
 mod book;
 mod bounds;
+mod build_inputs;
 mod checksum_stability;
 mod coherence;
 mod comfort;

@@ -293,7 +293,7 @@ fn basic_method_check_of_a_run_and_analyze_monte_carlo() {
     );
     assert!(run.to_string().contains("basic     seat_acc_Wk: crest factor"));
     // the command line: Monte Carlo a_w, VDV and damage rate beside the analytic values
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let out = std::process::Command::new(crate::common::cli_bin())
         .args(["analyze", path.to_str().unwrap(), "--monte-carlo", "10", "--json"])
         .output_serial()
         .unwrap();

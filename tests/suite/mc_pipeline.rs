@@ -388,7 +388,7 @@ fn simulate_and_inspect_cli() {
     let dir = scratch_dir("cli");
     let path = dir.join("cli.h5");
     fresh(&path);
-    let bin = env!("CARGO_BIN_EXE_stochvib");
+    let bin = crate::common::cli_bin();
     let out = std::process::Command::new(bin)
         .current_dir(root())
         .args([

@@ -172,7 +172,7 @@ fn h5_root_attr_set_u32(path: &Path, name: &str, value: u32) {
 }
 
 fn stochvib(args: &[&str]) -> String {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_stochvib"));
+    let mut c = Command::new(crate::common::cli_bin());
     c.args(args)
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped());

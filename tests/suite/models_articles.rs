@@ -10,7 +10,6 @@ use common::tolerance::{
     PRINTED_8_DIGITS, RESIDUAL,
 };
 use nalgebra::{Complex, DMatrix, DVector};
-use std::path::PathBuf;
 use stochvib::fields::Fields;
 use stochvib::models::dynamic_stiffness_chain::{self as dsc, DynamicStiffnessChain, TorsionalChain};
 use stochvib::models::mine_hoist::{self as mh, MineHoist, MineHoistParams};
@@ -20,7 +19,7 @@ use stochvib::Error;
 
 /// Reads `data/<name>`, checks `[model] kind`, builds the model with `build`, then `finish()`.
 fn load<T>(name: &str, kind: &str, build: impl Fn(&Fields) -> stochvib::Result<T>) -> stochvib::Result<T> {
-    let path = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/data")).join(name);
+    let path = crate::common::root().join("data").join(name);
     let text = std::fs::read_to_string(&path).expect("data file exists");
     let table: toml::Table = toml::from_str(&text).expect("valid TOML");
     assert!(table.get("title").and_then(|v| v.as_str()).is_some(), "{name}: title");

@@ -622,7 +622,7 @@ fn table_7_1_transcription_and_db_consistency() {
 // ---------------------------------------------------------------- scenario reading side
 
 fn model_table(file: &str) -> toml::Table {
-    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(file)).unwrap();
+    let text = std::fs::read_to_string(crate::common::root().join(file)).unwrap();
     let t: toml::Table = toml::from_str(&text).unwrap();
     t["model"].as_table().unwrap().clone()
 }
@@ -764,7 +764,7 @@ fn random_seat_assessment_bands_sum_below_total_variance() {
     // 3 Hz) is small but positive: between 0 and 10 % of the total here.
     use stochvib::response::variance_lyapunov;
     use stochvib::scenario::load_spectrum;
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("spectra");
+    let dir = crate::common::root().join("spectra");
     let floor = load_spectrum(&dir.join("cab-floor-3hz.toml")).unwrap().spectrum;
     let (seat, _, _) = operator_seat::example_7_2();
     let limits = SanitaryLimits::table_7_1().unwrap();

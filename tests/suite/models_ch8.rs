@@ -589,7 +589,7 @@ fn book_rows_explained() {
 }
 
 fn model_table(path: &str) -> toml::Table {
-    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(path)).unwrap();
+    let text = std::fs::read_to_string(crate::common::root().join(path)).unwrap();
     let t: toml::Table = toml::from_str(&text).unwrap();
     t["model"].as_table().unwrap().clone()
 }
@@ -634,7 +634,7 @@ fn scenario_model_tables() {
 /// (Sukharev (2012) 8.6, Example 8.1, problem data).
 #[test]
 fn conveyor_lump_load_spectrum_file() {
-    let s = load_spectrum(&Path::new(env!("CARGO_MANIFEST_DIR")).join("spectra/conveyor-lump-load.toml")).unwrap();
+    let s = load_spectrum(&crate::common::root().join("spectra/conveyor-lump-load.toml")).unwrap();
     assert_eq!(s.unit, "N");
     assert_eq!(s.spectrum.domain(), Domain::Temporal);
     assert!(rel(s.spectrum.variance().unwrap(), 4.0e6) < EXACT);

@@ -5,7 +5,7 @@
 use crate::common;
 use common::tolerance::{EXACT, QUADRATURE, ROUNDING};
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use stochvib::coherence::{IsotropicCoherence, TwoTracks};
 use stochvib::models::full_vehicle::FullVehicle;
@@ -14,7 +14,7 @@ use stochvib::scenario::{load_scenario, parse_scenario, Scenario};
 use stochvib::spectrum::{IsoClass, PowerLaw};
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
+    crate::common::root()
 }
 
 /// `data/full-vehicle-two-tracks.toml` with the repository's spectrum catalogue.

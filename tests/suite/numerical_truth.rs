@@ -241,7 +241,7 @@ spectrum = "type1"
     let json = serde_json::to_value(&st).unwrap();
     assert_eq!(json["variance_outcome"]["status"], "not-converged");
     // the CLI flag exists and is honoured
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let o = std::process::Command::new(crate::common::cli_bin())
         .current_dir(root())
         .args(["analyze", "data/quarter-car.toml", "--max-subintervals", "3"])
         .output_serial()
@@ -285,7 +285,7 @@ fn iso_class_bounds_exist_only_where_the_standard_defines_them() {
 #[test]
 fn spectrum_density_at_chosen_points() {
     let run = |args: &[&str]| -> serde_json::Value {
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        let o = std::process::Command::new(crate::common::cli_bin())
             .current_dir(root())
             .args(args)
             .output_serial()

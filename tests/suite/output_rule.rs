@@ -496,7 +496,7 @@ fn a_killed_sweep_leaves_a_temporary_the_next_run_removes() {
     ]);
     let mut a = args.clone();
     a.extend(s(&["-o", &p(&table)]));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let mut child = Command::new(crate::common::cli_bin())
         .current_dir(&d)
         .env("STOCHVIB_SPECTRA", root().join("spectra"))
         .args(&a)

@@ -17,8 +17,8 @@ fn out_dir(name: &str) -> PathBuf {
     d
 }
 
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+fn root() -> std::path::PathBuf {
+    crate::common::root()
 }
 
 /// Well-formed enough: one `<svg …>` root closed at the end, drawn elements, and every expected text.
@@ -795,7 +795,7 @@ fn run_file_pictures() {
 #[test]
 fn plot_cli_accepts_run_files() {
     let (path, dir) = conveyor_run("runcli", false);
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let out = std::process::Command::new(crate::common::cli_bin())
         .args(["plot", path.to_str().unwrap(), "-o", dir.to_str().unwrap()])
         .output_serial()
         .unwrap();
@@ -811,7 +811,7 @@ fn simulate_plots_option_writes_the_run_pictures() {
     std::fs::create_dir_all(&dir).unwrap();
     let run = dir.join("run.h5");
     let pics = dir.join("pictures");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let out = std::process::Command::new(crate::common::cli_bin())
         .args([
             "simulate",
             "data/conveyor-idler.toml",
@@ -852,7 +852,7 @@ fn simulate_plots_option_writes_the_run_pictures() {
 fn analyze_and_book_plots_options_write_their_pictures() {
     let dir = out_dir("cliplots");
     let a = dir.join("analyze");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let out = std::process::Command::new(crate::common::cli_bin())
         .args([
             "analyze",
             "data/conveyor-idler.toml",
@@ -880,7 +880,7 @@ fn analyze_and_book_plots_options_write_their_pictures() {
         );
     }
     let b = dir.join("book");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let out = std::process::Command::new(crate::common::cli_bin())
         .args(["book", "--plots", b.to_str().unwrap()])
         .current_dir(root())
         .output_serial()
@@ -1016,7 +1016,7 @@ fn road_pictures_show_the_density_band_fits_class_limits_and_coherence() {
 #[test]
 fn road_cli_plots_option_writes_the_road_pictures() {
     let dir = out_dir("roadcli");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let out = std::process::Command::new(crate::common::cli_bin())
         .args(["road", "data/measured-profile.csv", "--plots", dir.to_str().unwrap()])
         .current_dir(root())
         .output_serial()

@@ -16,7 +16,7 @@ use std::process::Command;
 use stochvib::numbers::{column_notation, sig, sig_column, Notation, REPORT_SIGNIFICANT};
 
 fn run(args: &[&str]) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let o = Command::new(crate::common::cli_bin())
         .args(args)
         .current_dir(root())
         .output_serial()
@@ -194,7 +194,7 @@ fn json_flag_is_format_json_and_conflicts_with_another_format() {
     let b: serde_json::Value = serde_json::from_str(&run(&["analyze", f, "--format", "json"])).unwrap();
     assert_eq!(a, b);
     assert_eq!(run(&["analyze", f]), run(&["analyze", f, "--format", "text"]));
-    let o = Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let o = Command::new(crate::common::cli_bin())
         .args(["analyze", f, "--json", "--format", "markdown"])
         .current_dir(root())
         .output_serial()

@@ -798,7 +798,7 @@ const FILE_BAND: (f64, f64) = (0.011, 10.0);
 const FILE_SEGMENT: usize = 2048;
 
 fn file_path() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("data/measured-profile.csv")
+    crate::common::root().join("data/measured-profile.csv")
 }
 
 #[test]

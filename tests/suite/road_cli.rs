@@ -6,18 +6,18 @@ use crate::common;
 use crate::common::SpawnSerial;
 use common::tolerance::ROUNDING;
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 use stochvib::road::{spatial_psd, Detrend, Profile};
 use stochvib::scenario::parse_scenario;
 use stochvib::study::road_profile::{road_report, RoadReportOptions};
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
+    crate::common::root()
 }
 
 fn run(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    Command::new(crate::common::cli_bin())
         .args(args)
         .current_dir(root())
         .output_serial()

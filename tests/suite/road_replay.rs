@@ -66,7 +66,7 @@ const C: f64 = 1.5e3;
 const K_T: f64 = 200e3;
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
+    crate::common::root()
 }
 
 fn tmp(name: &str) -> PathBuf {
@@ -594,7 +594,7 @@ fn the_replay_command_prints_the_report_and_writes_the_history() {
     let out = tmp("cli-history.csv");
     let _ = std::fs::remove_file(&out);
     let run = |args: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        std::process::Command::new(crate::common::cli_bin())
             .current_dir(root())
             .env("STOCHVIB_SPECTRA", root().join("spectra"))
             .args(args)

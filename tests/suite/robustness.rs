@@ -17,7 +17,7 @@ fn dir(tag: &str) -> PathBuf {
 }
 
 fn cli(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    Command::new(crate::common::cli_bin())
         .current_dir(cwd)
         .env("STOCHVIB_SPECTRA", root().join("spectra"))
         .args(args)
@@ -142,7 +142,7 @@ fn a_second_process_on_the_same_output_is_refused_and_harmless() {
         .map(|s| s.to_string())
         .collect()
     };
-    let mut first = Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let mut first = Command::new(crate::common::cli_bin())
         .args(args(&out))
         .stderr(std::process::Stdio::piped())
         .spawn_serial()
@@ -155,7 +155,7 @@ fn a_second_process_on_the_same_output_is_refused_and_harmless() {
         );
         std::thread::sleep(std::time::Duration::from_millis(5));
     }
-    let second = Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let second = Command::new(crate::common::cli_bin())
         .args(args(&out))
         .output_serial()
         .unwrap();
@@ -628,7 +628,7 @@ fn smaller_holes_are_closed() {
     std::fs::create_dir_all(&tmpdir).unwrap();
     let left = tmpdir.join("stochvib-run-4194305.h5.tmp");
     std::fs::write(&left, vec![0u8; 4096]).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let o = Command::new(crate::common::cli_bin())
         .current_dir(root())
         .env("TMPDIR", &tmpdir)
         .args([

@@ -9,11 +9,11 @@ use stochvib::study::analysis_report;
 use stochvib::Error;
 
 fn spectra() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("spectra")
+    crate::common::root().join("spectra")
 }
 
 fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
+    crate::common::root().join("data").join(name)
 }
 
 /// The quarter car with the (8.66) consistent two-pole road (rational): Lyapunov, integral table and

@@ -290,7 +290,7 @@ fn merge_refuses_incomplete_or_mixed_shard_sets() {
 }
 
 fn stochvib(args: &[&str], env: &[(&str, &str)]) -> (bool, String, String) {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_stochvib"));
+    let mut c = Command::new(crate::common::cli_bin());
     c.current_dir(root()).args(args);
     for k in [
         "SLURM_ARRAY_TASK_ID",

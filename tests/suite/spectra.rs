@@ -603,7 +603,7 @@ fn bad_spectrum_files_name_key_and_reason() {
 /// The shipped catalogue: every file parses, and the book values come out in SI as derived by hand.
 #[test]
 fn catalogue_files_parse_with_book_values() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("spectra");
+    let dir = crate::common::root().join("spectra");
     let entries = spectrum_catalogue(&dir).unwrap();
     assert!(entries.len() >= 17);
     for e in &entries {

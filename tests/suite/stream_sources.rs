@@ -5,12 +5,12 @@
 
 use crate::common;
 use common::{run_bits as bits, streamed};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use stochvib::scenario::{parse_scenario, Scenario};
 use stochvib::simulate::Route;
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
+    crate::common::root()
 }
 
 fn dir(tag: &str) -> PathBuf {

@@ -24,7 +24,11 @@ use stochvib::study::{compute_sweep, stream_sweep_csv, write_sweep_table, Stream
 use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec, FAILED_POINT};
 
 fn scraper() -> Scenario {
-    load_scenario(Path::new("data/scraper-sprung-cab.toml"), Path::new("spectra")).unwrap()
+    load_scenario(
+        &crate::common::root().join("data/scraper-sprung-cab.toml"),
+        &crate::common::root().join("spectra"),
+    )
+    .unwrap()
 }
 
 /// The grid study of `sc` over `params` (`KEY=VALUES` as on the command line).
@@ -432,12 +436,17 @@ fn cli_stdout_and_file_tables_are_the_same() {
         "--param",
         "model.zeta2=0.1..0.5:130",
     ];
-    let bin = env!("CARGO_BIN_EXE_stochvib");
-    let out = std::process::Command::new(bin).args(args).output_serial().unwrap();
+    let bin = crate::common::cli_bin();
+    let out = std::process::Command::new(bin)
+        .current_dir(crate::common::root())
+        .args(args)
+        .output_serial()
+        .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let mut with_file: Vec<&str> = args.to_vec();
     with_file.extend(["-o", file.to_str().unwrap()]);
     let o = std::process::Command::new(bin)
+        .current_dir(crate::common::root())
         .args(&with_file)
         .output_serial()
         .unwrap();
@@ -455,6 +464,7 @@ fn cli_stdout_and_file_tables_are_the_same() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), whole);
     // a reader that stops after the first bytes
     let mut child = std::process::Command::new(bin)
+        .current_dir(crate::common::root())
         .args(args)
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())

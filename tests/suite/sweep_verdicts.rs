@@ -130,12 +130,15 @@ fn verdict_csv_has_units_in_the_header() {
 ///   parts cannot change it); the merged CSV is the whole study's verdict CSV byte for byte.
 #[test]
 fn verdict_columns_in_hdf5_and_in_merged_shards() {
-    use std::path::Path;
     use stochvib::scenario::load_scenario;
     use stochvib::store::Part;
     use stochvib::study::{merge_sweep, run_sweep_shard, write_sweep_table, StreamOptions};
     use stochvib::study::{Sweep, SweepMode, SweepParam, SweepSpec};
-    let sc = load_scenario(Path::new("data/operator-seat-verdicts.toml"), Path::new("spectra")).unwrap();
+    let sc = load_scenario(
+        &crate::common::root().join("data/operator-seat-verdicts.toml"),
+        &crate::common::root().join("spectra"),
+    )
+    .unwrap();
     let spec = || {
         let p = SweepParam::parse("model.stiffness=5 kN/m,6.5 kN/m,8 kN/m").unwrap();
         SweepSpec::new(vec![p], SweepMode::Grid).unwrap()

@@ -145,7 +145,7 @@ fn the_cli_refuses_a_bare_exposure_and_prints_nothing() {
     let f = dir.join("seat.toml");
     // the copy sits in another directory: its inline spectrum needs no catalogue file
     std::fs::write(&f, seat_text().replace("exposure = \"6 h\"", "exposure = 7")).unwrap();
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let o = std::process::Command::new(crate::common::cli_bin())
         .args(["analyze", f.to_str().unwrap()])
         .current_dir(root())
         .output_serial()

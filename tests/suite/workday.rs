@@ -131,7 +131,7 @@ fn refused(text: &str, parts: &[&str]) {
         assert!(e.contains(part), "`{part}` not in: {e}");
     }
     // the command prints nothing to stdout and fails
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+    let o = std::process::Command::new(crate::common::cli_bin())
         .args(["workday", p.to_str().unwrap()])
         .current_dir(root())
         .output_serial()
@@ -198,7 +198,7 @@ fn bad_workday_files_are_refused_with_file_key_value_and_reason() {
 #[test]
 fn the_workday_command_prints_text_markdown_and_json() {
     let run = |args: &[&str]| {
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_stochvib"))
+        let o = std::process::Command::new(crate::common::cli_bin())
             .args(args)
             .current_dir(root())
             .output_serial()
