@@ -50,13 +50,14 @@ fn cumulant_inflation(f: &[f64], nu_steps: f64, m: usize, omega: f64) -> (f64, f
         .map(|idx| {
             let mm = idx as i64 - l as i64;
             let (mut re, mut im) = (0.0, 0.0);
-            for (k, wk) in w.iter().enumerate() {
+            // the k with |k − mm| ≤ L only (f vanishes beyond), in increasing order
+            let first = (mm - l as i64).max(0) as usize;
+            let last = ((mm + l as i64).min(m as i64 - 1)).max(-1);
+            for k in first..(last + 1) as usize {
                 let lag = k as i64 - mm;
-                if lag.unsigned_abs() as usize <= l {
-                    let v = wk * f[(lag + l as i64) as usize];
-                    re += v * (omega * k as f64).cos();
-                    im -= v * (omega * k as f64).sin();
-                }
+                let v = w[k] * f[(lag + l as i64) as usize];
+                re += v * (omega * k as f64).cos();
+                im -= v * (omega * k as f64).sin();
             }
             re * re + im * im
         })
@@ -76,7 +77,8 @@ fn cumulant_inflation(f: &[f64], nu_steps: f64, m: usize, omega: f64) -> (f64, f
 fn kernel(lma: &LaplaceMovingAverage, l: usize) -> Vec<f64> {
     let s = lma.spectral().scales();
     let n = lma.len();
-    (-(l as i64)..=l as i64)
+    // lags 0..=L; f(−lag) = f(lag) (cos is even)
+    let half: Vec<f64> = (0..=l as i64)
         .map(|lag| {
             let mut v = s[0] + s[n / 2] * if lag % 2 == 0 { 1.0 } else { -1.0 };
             for (j, sj) in s.iter().enumerate().take(n / 2).skip(1) {
@@ -84,7 +86,8 @@ fn kernel(lma: &LaplaceMovingAverage, l: usize) -> Vec<f64> {
             }
             v / (n as f64).sqrt()
         })
-        .collect()
+        .collect();
+    half.iter().rev().chain(&half[1..]).copied().collect()
 }
 
 #[test]
