@@ -29,7 +29,7 @@ fn config() -> Criterion {
 }
 
 fn nonlinear(c: &mut Criterion) {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let root = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     let spectra = root.join("spectra");
     let path = root.join("data/quarter-car-bump-stops.toml");
     let sc = load_scenario(&path, &spectra).unwrap();

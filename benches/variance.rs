@@ -24,7 +24,7 @@ use tolerance::QUADRATURE;
 fn rational_road(c: &mut Criterion) {
     let exc = Excitation::single(road(), 0.0).unwrap();
     let scr = scraper(c2_nominal(), b2_nominal());
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     let qc = load_scenario(&root.join("data/quarter-car.toml"), &root.join("spectra")).expect("quarter car");
     let qsys = qc.model.system.clone();
     let body_acc = qsys.outputs().iter().position(|o| o.name == "body_acc").unwrap();

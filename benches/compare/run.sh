@@ -175,7 +175,7 @@ if [ "$tunables" = 1 ]; then
 fi
 if [ "$smoke" = 0 ]; then
     # ISO 2631-1 weighted r.m.s. over a 100 x 100 seat sweep: the scipy side (the Rust side is the criterion
-    # bench `cargo bench --bench weighting`; see benches/HISTORY.md)
+    # bench `cargo bench --workspace --bench weighting`; see benches/HISTORY.md)
     env -u GLIBC_TUNABLES python3 "$here/weighting.py" --reps "$(( reps < 3 ? reps : 3 ))" | tee "$out/weighting-python.txt"
 fi
 if [ "$write" = 1 ]; then

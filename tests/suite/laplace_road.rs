@@ -52,10 +52,10 @@ fn cumulant_inflation(f: &[f64], nu_steps: f64, m: usize, omega: f64) -> (f64, f
             let (mut re, mut im) = (0.0, 0.0);
             // the k with |k − mm| ≤ L only (f vanishes beyond), in increasing order
             let first = (mm - l as i64).max(0) as usize;
-            let last = ((mm + l as i64).min(m as i64 - 1)).max(-1);
-            for k in first..(last + 1) as usize {
+            let end = (mm + l as i64 + 1).clamp(0, m as i64) as usize;
+            for (k, wk) in w.iter().enumerate().take(end).skip(first) {
                 let lag = k as i64 - mm;
-                let v = w[k] * f[(lag + l as i64) as usize];
+                let v = wk * f[(lag + l as i64) as usize];
                 re += v * (omega * k as f64).cos();
                 im -= v * (omega * k as f64).sin();
             }
