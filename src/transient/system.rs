@@ -609,3 +609,52 @@ fn unavailable_outputs(ss: &StateSpace, model: &InputModel, fp: Option<&FilterPa
         })
         .collect())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::transient::FixedSystem;
+
+    /// Relative agreement of the frozen form with its closed form: a few roundings of √ and one product.
+    const CLOSED_FORM: f64 = 1e-15;
+
+    /// x″ + c x′ + k x = u on a w = 2 road, S_Ω = c_r/Ω², under v(t) = 5 + t m/s up to 15 m/s at t = 10 s.
+    ///
+    /// # Formula
+    /// A = [[0, 1], [−k, −c]], B = [0; 1]: A⁻¹B = [−1/k; 0], so the frozen form at t is F = A,
+    /// G = [−1/k; 0]·√(2π c_r v(t)) (the type's formula), whichever times were frozen before.
+    #[test]
+    fn a_w2_road_frozen_form_is_the_closed_form_at_every_time() {
+        let (k, c, cr) = (4.0, 0.3, 2.5e-6);
+        let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -k, -c]);
+        let ss = StateSpace::new(
+            a.clone(),
+            DMatrix::from_row_slice(2, 1, &[0.0, 1.0]),
+            DMatrix::from_row_slice(1, 2, &[1.0, 0.0]),
+            None,
+            None,
+            vec![OutputInfo::new("x", "m")],
+        )
+        .unwrap();
+        let speed = SpeedProfile::table(vec![0.0, 10.0], vec![5.0, 15.0]).unwrap();
+        let input = TransientInput {
+            model: InputModel::WhiteSlope { coefficient: cr, speed },
+            envelope: Envelope::unit(),
+            mean: 0.0,
+            gains: vec![1.0],
+        };
+        let sys = TimeVaryingSystem::new(Arc::new(FixedSystem::new(ss, None, "oscillator").unwrap()), input).unwrap();
+        for t in [2.0, 0.0, 7.5, 2.0, 20.0] {
+            let fr = sys.frozen(t).unwrap();
+            let v = (5.0 + t).min(15.0);
+            let g = -(2.0 * PI * cr * v).sqrt() / k;
+            assert_eq!(fr.f, a, "F = A at t = {t}");
+            assert!(
+                (fr.g[(0, 0)] - g).abs() <= CLOSED_FORM * g.abs(),
+                "G₀ at t = {t}: {}",
+                fr.g[(0, 0)]
+            );
+            assert_eq!(fr.g[(1, 0)], 0.0, "G₁ at t = {t}");
+        }
+    }
+}
