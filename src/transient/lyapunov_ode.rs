@@ -5,6 +5,7 @@ use super::system::{Frozen, TimeVaryingSystem};
 use crate::error::{Error, Result};
 use crate::simulate::van_loan;
 use nalgebra::{DMatrix, DVector};
+use std::rc::Rc;
 
 /// Error control of [`propagate`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -48,6 +49,8 @@ pub struct StepReport {
 #[derive(Debug, Clone)]
 struct Transition {
     phi: DMatrix<f64>,
+    /// Φᵀ, formed once for every step that applies the transition.
+    phi_t: DMatrix<f64>,
     qd: DMatrix<f64>,
     gamma: DVector<f64>,
 }
@@ -87,6 +90,7 @@ fn transition(fr: &Frozen, h: f64, count: &mut usize) -> Result<Transition> {
     let d = van_loan(&fr.f, &fr.g, h)?;
     *count += 1 + usize::from(fr.b.iter().any(|v| *v != 0.0));
     Ok(Transition {
+        phi_t: d.phi.transpose(),
         phi: d.phi,
         qd: d.qd,
         gamma: mean_step(fr, h)?,
@@ -109,7 +113,7 @@ pub(crate) fn mean_step(fr: &Frozen, h: f64) -> Result<DVector<f64>> {
 }
 
 fn apply(tr: &Transition, p: &DMatrix<f64>, m: &DVector<f64>) -> (DMatrix<f64>, DVector<f64>) {
-    let q = &tr.phi * p * tr.phi.transpose() + &tr.qd;
+    let q = &tr.phi * p * &tr.phi_t + &tr.qd;
     ((&q + q.transpose()) * 0.5, &tr.phi * m + &tr.gamma)
 }
 
@@ -127,22 +131,22 @@ struct Integrator<'a> {
     error_m: Vec<f64>,
     report: StepReport,
     /// The last constant-coefficient transition and its step.
-    cache: Option<(Frozen, f64, Transition)>,
+    cache: Option<(Frozen, f64, Rc<Transition>)>,
 }
 
 impl Integrator<'_> {
     /// Transition for constant coefficients `fr` over h, reused when the last one had the same coefficients
     /// and a step within 10⁻¹² relative (stored times k·Δt differ from their differences in the last bits;
     /// the reuse shifts the time grid by at most that fraction of a step).
-    fn cached(&mut self, fr: Frozen, h: f64) -> Result<Transition> {
+    fn cached(&mut self, fr: Frozen, h: f64) -> Result<Rc<Transition>> {
         if let Some((f, hh, tr)) = &self.cache
             && (hh - h).abs() <= 1e-12 * h
             && *f == fr
         {
-            return Ok(tr.clone());
+            return Ok(Rc::clone(tr));
         }
-        let tr = transition(&fr, h, &mut self.report.exponentials)?;
-        self.cache = Some((fr, h, tr.clone()));
+        let tr = Rc::new(transition(&fr, h, &mut self.report.exponentials)?);
+        self.cache = Some((fr, h, Rc::clone(&tr)));
         Ok(tr)
     }
 
@@ -167,11 +171,11 @@ impl Integrator<'_> {
             }
         };
         if self.sys.is_invariant() {
-            return Ok(exact(&self.cached(mid, h)?));
+            return Ok(exact(&*self.cached(mid, h)?));
         }
         let (q1, q3) = (self.sys.frozen(t + 0.25 * h)?, self.sys.frozen(t + 0.75 * h)?);
         if q1 == mid && q3 == mid {
-            return Ok(exact(&self.cached(mid, h)?));
+            return Ok(exact(&*self.cached(mid, h)?));
         }
         let c = &mut self.report.exponentials;
         let (whole, first, second) = (

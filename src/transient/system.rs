@@ -1,13 +1,14 @@
 //! The white-noise-driven, time-varying state-space form of a (possibly scheduled) system and its random
 //! input: what the exact route propagates and the Monte Carlo route steps.
 
-use super::schedule::{at_time, SystemFamily};
+use super::schedule::{at_time, ModelAt, SystemFamily};
 use super::sources::{check_model, frozen_blocks, Block, ExtraSource};
 use super::{Envelope, SpeedProfile};
 use crate::error::{Error, Result};
 use crate::spectrum::ShapingFilter;
 use crate::system::{FrequencyResponse, OutputInfo, StateSpace, TransferFunction};
 use nalgebra::{DMatrix, DVector};
+use std::borrow::Cow;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -119,6 +120,18 @@ pub struct TimeVaryingSystem {
     unavailable: Vec<Option<String>>,
     knots: Vec<f64>,
     invariant: bool,
+    /// A⁻¹B of a w = 2 road (its system is time-invariant): solved once, not at every frozen time.
+    slope_gain: Option<DMatrix<f64>>,
+    /// The model of a constant family and its inputs combined with the gains: built once, not at every
+    /// frozen time.
+    constant: Option<Combined>,
+}
+
+/// A model at one time and its state space with the inputs combined with the input's gains.
+#[derive(Debug, Clone)]
+struct Combined {
+    model: ModelAt,
+    ss: StateSpace,
 }
 
 impl std::fmt::Debug for TimeVaryingSystem {
@@ -169,7 +182,8 @@ impl TimeVaryingSystem {
     /// Those of [`TimeVaryingSystem::new`]; a w = 2 road (white road velocity) among several sources (it is
     /// exact only as the one input); gains of an extra source that do not match the system's inputs.
     pub fn with_sources(family: Arc<dyn SystemFamily>, input: TransientInput, extra: Vec<ExtraSource>) -> Result<Self> {
-        let ss0 = family.at(0.0).map_err(|e| at_time(e, 0.0))?.ss;
+        let model0 = family.at(0.0).map_err(|e| at_time(e, 0.0))?;
+        let ss0 = model0.ss.clone();
         if !extra.is_empty() {
             check_model(&input.model)?;
         }
@@ -229,6 +243,14 @@ impl TimeVaryingSystem {
         let invariant =
             family.is_constant() && input.envelope.is_unit() && speeds.iter().all(|v| v.table_points().is_constant());
         let combined = ss0.combine_inputs(&input.gains)?;
+        let slope_gain = match input.model {
+            InputModel::WhiteSlope { .. } => Some(slope_gain(&combined, 0.0)?),
+            _ => None,
+        };
+        let constant = family.is_constant().then(|| Combined {
+            model: model0,
+            ss: combined.clone(),
+        });
         let mut unavailable = unavailable_outputs(&combined, &input.model, filter.as_ref())?;
         for (x, fp) in &extra {
             let more = unavailable_outputs(&ss0.combine_inputs(&x.gains)?, &x.model, fp.as_ref())?;
@@ -246,6 +268,8 @@ impl TimeVaryingSystem {
             unavailable,
             knots,
             invariant,
+            slope_gain,
+            constant,
         })
     }
 
@@ -324,17 +348,17 @@ impl TimeVaryingSystem {
     /// # Errors
     /// The model's error at t (with the time).
     pub fn frozen(&self, t: f64) -> Result<Frozen> {
-        let m = self.family.at(t).map_err(|e| at_time(e, t))?;
+        let at = self.combined_at(t)?;
+        let (m, ss) = (&at.model, &at.ss);
         if !self.extra.is_empty() {
-            return self.frozen_several(&m.ss, m.forcing, t);
+            return self.frozen_several(&m.ss, m.forcing.clone(), t);
         }
-        let ss = m.ss.combine_inputs(&self.input.gains)?;
         let (a, ad, mu) = (
             self.input.envelope.value(t),
             self.input.envelope.slope(t),
             self.input.mean,
         );
-        let forcing = m.forcing.unwrap_or_else(|| DVector::zeros(self.n_system));
+        let forcing = m.forcing.clone().unwrap_or_else(|| DVector::zeros(self.n_system));
         let y0 = (&ss.d * a + &ss.e * ad).column(0) * mu;
         let bx = ss.b.column(0) * (a * mu) + forcing;
         match (&self.input.model, &self.filter) {
@@ -346,8 +370,10 @@ impl TimeVaryingSystem {
                 y0,
             }),
             (InputModel::WhiteSlope { coefficient, speed }, _) => {
-                let lu = ss.a.clone().lu();
-                let aib = lu.solve(&ss.b).ok_or_else(|| singular(t))?;
+                let aib = match &self.slope_gain {
+                    Some(g) => g.clone(),
+                    None => slope_gain(ss, t)?,
+                };
                 let q = 2.0 * PI * coefficient * speed.speed(t);
                 Ok(Frozen {
                     f: ss.a.clone(),
@@ -362,13 +388,26 @@ impl TimeVaryingSystem {
                     InputModel::SpatialRational { speed, .. } => speed.speed(t),
                     _ => 1.0,
                 };
-                Ok(self.filtered(&ss, fp, v, a, ad, bx, y0))
+                Ok(self.filtered(ss, fp, v, a, ad, bx, y0))
             }
             (_, None) => Err(Error::Numerical {
                 what: "transient system".into(),
                 reason: "a filtered input without its filter".into(),
             }),
         }
+    }
+
+    /// The model at t and its inputs combined with the gains (a constant family's, built once, borrowed).
+    ///
+    /// # Errors
+    /// The model's error at t (with the time).
+    fn combined_at(&self, t: f64) -> Result<Cow<'_, Combined>> {
+        if let Some(c) = &self.constant {
+            return Ok(Cow::Borrowed(c));
+        }
+        let model = self.family.at(t).map_err(|e| at_time(e, t))?;
+        let ss = model.ss.combine_inputs(&self.input.gains)?;
+        Ok(Cow::Owned(Combined { model, ss }))
     }
 
     /// The frozen form with several independent sources ([`frozen_blocks`]).
@@ -492,6 +531,14 @@ fn extra_parts(x: ExtraSource, m: usize) -> Result<(ExtraSource, Option<FilterPa
     Ok((x, fp))
 }
 
+/// A⁻¹B of the frozen system at t (the gain of the relative coordinates x + A⁻¹Bu of a w = 2 road).
+///
+/// # Errors
+/// A singular A (a free rigid-body mode), naming t.
+fn slope_gain(ss: &StateSpace, t: f64) -> Result<DMatrix<f64>> {
+    ss.a.clone().lu().solve(&ss.b).ok_or_else(|| singular(t))
+}
+
 fn singular(t: f64) -> Error {
     Error::NotApplicable {
         method: "exact route for a w = 2 road".into(),
@@ -526,7 +573,7 @@ fn unavailable_outputs(ss: &StateSpace, model: &InputModel, fp: Option<&FilterPa
     let p = ss.c.nrows();
     let scale = |i: usize| ss.c.row(i).amax().max(ss.d.row(i).amax()).max(1e-300);
     let gain0 = match model {
-        InputModel::WhiteSlope { .. } => Some(ss.a.clone().lu().solve(&ss.b).ok_or_else(|| singular(0.0))?),
+        InputModel::WhiteSlope { .. } => Some(slope_gain(ss, 0.0)?),
         _ => None,
     };
     Ok((0..p)
@@ -561,4 +608,53 @@ fn unavailable_outputs(ss: &StateSpace, model: &InputModel, fp: Option<&FilterPa
             }
         })
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::transient::FixedSystem;
+
+    /// Relative agreement of the frozen form with its closed form: a few roundings of √ and one product.
+    const CLOSED_FORM: f64 = 1e-15;
+
+    /// x″ + c x′ + k x = u on a w = 2 road, S_Ω = c_r/Ω², under v(t) = 5 + t m/s up to 15 m/s at t = 10 s.
+    ///
+    /// # Formula
+    /// A = [[0, 1], [−k, −c]], B = [0; 1]: A⁻¹B = [−1/k; 0], so the frozen form at t is F = A,
+    /// G = [−1/k; 0]·√(2π c_r v(t)) (the type's formula), whichever times were frozen before.
+    #[test]
+    fn a_w2_road_frozen_form_is_the_closed_form_at_every_time() {
+        let (k, c, cr) = (4.0, 0.3, 2.5e-6);
+        let a = DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -k, -c]);
+        let ss = StateSpace::new(
+            a.clone(),
+            DMatrix::from_row_slice(2, 1, &[0.0, 1.0]),
+            DMatrix::from_row_slice(1, 2, &[1.0, 0.0]),
+            None,
+            None,
+            vec![OutputInfo::new("x", "m")],
+        )
+        .unwrap();
+        let speed = SpeedProfile::table(vec![0.0, 10.0], vec![5.0, 15.0]).unwrap();
+        let input = TransientInput {
+            model: InputModel::WhiteSlope { coefficient: cr, speed },
+            envelope: Envelope::unit(),
+            mean: 0.0,
+            gains: vec![1.0],
+        };
+        let sys = TimeVaryingSystem::new(Arc::new(FixedSystem::new(ss, None, "oscillator").unwrap()), input).unwrap();
+        for t in [2.0, 0.0, 7.5, 2.0, 20.0] {
+            let fr = sys.frozen(t).unwrap();
+            let v = (5.0 + t).min(15.0);
+            let g = -(2.0 * PI * cr * v).sqrt() / k;
+            assert_eq!(fr.f, a, "F = A at t = {t}");
+            assert!(
+                (fr.g[(0, 0)] - g).abs() <= CLOSED_FORM * g.abs(),
+                "G₀ at t = {t}: {}",
+                fr.g[(0, 0)]
+            );
+            assert_eq!(fr.g[(1, 0)], 0.0, "G₁ at t = {t}");
+        }
+    }
 }
