@@ -8,12 +8,15 @@
 //! * [`resources`](mod@resources) — **one resource rule**: memory, disk and time are estimated before the
 //!   work and compared with what the machine has or a stated cap ([`check_memory`], [`check_disk`],
 //!   [`check_time`]); counts are multiplied with overflow checks ([`checked_product`]).
+//! * [`streaming`](mod@streaming) — the pages of outputs of hundreds of megabytes go to disk while the next
+//!   ones are computed ([`WriteBehind`], [`start_write_out`]).
 //! * [`excerpt`](mod@excerpt) — a bad value is quoted in a message as a bounded excerpt ([`excerpt()`]).
 
 pub mod excerpt;
 pub mod input;
 pub mod output;
 pub mod resources;
+pub mod streaming;
 
 pub use excerpt::{excerpt, excerpt_of, MAX_EXCERPT_CHARS, MAX_REASON_CHARS};
 pub use input::{
@@ -28,3 +31,4 @@ pub use resources::{
     available_disk, available_memory, bytes_text, check_disk, check_memory, check_time, checked_product, duration_text,
     parent_dir,
 };
+pub use streaming::{start_write_out, WriteBehind, WRITE_BEHIND_BYTES};

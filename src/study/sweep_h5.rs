@@ -11,7 +11,7 @@ use hdf5::types::VarLenUnicode;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-/// The exact statistics' columns of every output, in the file's order ([`exact_row`]'s order).
+/// The exact statistics' columns of every output, in the file's order ([`exact_columns`]' order).
 const EXACT_COLUMNS: [&str; 7] = [
     "mean",
     "variance",
@@ -25,20 +25,53 @@ const EXACT_COLUMNS: [&str; 7] = [
 /// The Monte Carlo columns (with a batch per point; [`mc_row`]'s order).
 const MC_COLUMNS: [&str; 3] = ["mc_sigma", "mc_lower", "mc_upper"];
 
-/// One row of [`EXACT_COLUMNS`] (NaN where a value does not exist).
-#[inline]
-fn exact_row(v: &OutputValues) -> [f64; 7] {
-    let (lo, hi) = v.bounds(3.0).unzip();
-    [
-        v.mean,
-        v.variance,
-        v.sigma(),
-        lo,
-        hi,
-        v.lambda2,
-        v.zero_upcrossing_rate(),
-    ]
-    .map(|x| x.unwrap_or(f64::NAN))
+/// The exact statistics' columns of `rows` rows of one output, from its values: `get(r)` is row r's. The
+/// stored values (mean, variance, λ₂; NaN where a value does not exist) are copied row by row, the derived
+/// ones computed column by column ([`derived_columns`]).
+fn exact_columns(cols: &mut [&mut [f64]], rows: usize, get: impl Fn(usize) -> OutputValues) {
+    let [mean, variance, sigma, lower, upper, lambda2, rate] = cols else {
+        unreachable!("an output has {} exact columns", EXACT_COLUMNS.len())
+    };
+    for r in 0..rows {
+        let v = get(r);
+        mean[r] = v.mean.unwrap_or(f64::NAN);
+        variance[r] = v.variance.unwrap_or(f64::NAN);
+        lambda2[r] = v.lambda2.unwrap_or(f64::NAN);
+    }
+    derived_columns(
+        (&mean[..rows], &variance[..rows], &lambda2[..rows]),
+        [
+            &mut sigma[..rows],
+            &mut lower[..rows],
+            &mut upper[..rows],
+            &mut rate[..rows],
+        ],
+    );
+}
+
+/// σ, M ∓ 3σ and ν₀⁺ of each row from its (mean, variance, λ₂) (NaN for a missing value), column by column
+/// so that the square roots and divisions run on vectors. Each value is the same operations in the same
+/// order as [`PointStatistics::sigma`](crate::response::PointStatistics::sigma),
+/// [`bounds(3.0)`](crate::response::PointStatistics::bounds) and
+/// [`zero_upcrossing_rate`](crate::response::PointStatistics::zero_upcrossing_rate), so the same bits: a
+/// missing mean, variance or λ₂ is a NaN operand, which gives a NaN result, and ν₀⁺ is NaN where the
+/// variance is not positive.
+fn derived_columns((mean, variance, lambda2): (&[f64], &[f64], &[f64]), out: [&mut [f64]; 4]) {
+    let [sigma, lower, upper, rate] = out;
+    for (s, v) in sigma.iter_mut().zip(variance) {
+        *s = v.sqrt();
+    }
+    for ((lo, hi), (m, s)) in lower
+        .iter_mut()
+        .zip(upper.iter_mut())
+        .zip(mean.iter().zip(sigma.iter()))
+    {
+        (*lo, *hi) = (m - 3.0 * s, m + 3.0 * s);
+    }
+    for (nu, (l0, l2)) in rate.iter_mut().zip(variance.iter().zip(lambda2)) {
+        let x = (l2 / l0).sqrt() / (2.0 * std::f64::consts::PI);
+        *nu = if *l0 > 0.0 { x } else { f64::NAN };
+    }
 }
 
 /// One row of [`MC_COLUMNS`].
@@ -467,25 +500,87 @@ impl H5Piece<'_> {
         let n_cols = self.numbers.len().checked_div(n_out).unwrap_or(0);
         let (mut numbers, mut method, mut covers) = (self.numbers, self.method, self.covers);
         let n_rows = method.first().map_or(0, |m| m.len());
-        for r in 0..n_rows {
-            let failed = errors.binary_search_by_key(&(first + r), |e| e.0).is_ok();
-            for j in 0..n_out {
+        for j in 0..n_out {
+            let cols = &mut numbers[j * n_cols..(j + 1) * n_cols];
+            let (exact, mc) = cols.split_at_mut(EXACT_COLUMNS.len());
+            exact_columns(exact, n_rows, |r| value(r * n_out + j));
+            for r in 0..n_rows {
                 let v = value(r * n_out + j);
-                let cols = &mut numbers[j * n_cols..(j + 1) * n_cols];
-                for (col, x) in cols.iter_mut().zip(exact_row(&v)) {
-                    col[r] = x;
-                }
                 if self.monte_carlo {
-                    for (col, x) in cols[EXACT_COLUMNS.len()..].iter_mut().zip(mc_row(&v)) {
+                    for (col, x) in mc.iter_mut().zip(mc_row(&v)) {
                         col[r] = x;
                     }
                     covers[j][r] = v.mc.map_or(0, |m| u8::from(m.covers));
                 }
+                let failed = errors.binary_search_by_key(&(first + r), |e| e.0).is_ok();
                 method[j][r] = if failed {
                     FAILED
                 } else {
                     super::sweep_table::method_code(v.method)
                 };
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::response::{PointStatistics, VarianceMethod};
+
+    /// The columns computed column by column equal, bit for bit, what the statistics' own methods give
+    /// row by row (`sigma`, `bounds(3.0)`, `zero_upcrossing_rate`, the independent path the table used
+    /// before), for values that exist and do not, a zero and a negative variance, zero and huge λ₂; a
+    /// missing value is NaN in both.
+    #[test]
+    fn derived_columns_equal_the_statistics_methods() {
+        let some = [
+            Some(0.0),
+            Some(-0.0),
+            Some(1.5e-300),
+            Some(4.464_195_602e-3),
+            Some(7.3),
+            Some(2.0e280),
+            Some(-2.5),
+            None,
+        ];
+        let mut points = Vec::new();
+        for &mean in &some {
+            for &variance in &some {
+                for &lambda2 in &some {
+                    points.push(PointStatistics {
+                        mean,
+                        variance,
+                        lambda2,
+                        method: VarianceMethod::IntegralTable,
+                    });
+                }
+            }
+        }
+        let n = points.len();
+        let mut cols = vec![vec![f64::INFINITY; n]; EXACT_COLUMNS.len()];
+        let mut refs: Vec<&mut [f64]> = cols.iter_mut().map(|c| &mut c[..]).collect();
+        exact_columns(&mut refs, n, |r| OutputValues::from_point(&points[r]));
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
+        for (r, p) in points.iter().enumerate() {
+            let (lo, hi) = p.bounds(3.0).unzip();
+            let want = [
+                p.mean,
+                p.variance,
+                p.sigma(),
+                lo,
+                hi,
+                p.lambda2,
+                p.zero_upcrossing_rate(),
+            ];
+            for (c, w) in want.into_iter().enumerate() {
+                let w = w.unwrap_or(f64::NAN);
+                assert!(
+                    same(cols[c][r], w),
+                    "{p:?}, column {}: {} against {w}",
+                    EXACT_COLUMNS[c],
+                    cols[c][r]
+                );
             }
         }
     }

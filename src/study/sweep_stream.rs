@@ -9,6 +9,10 @@
 //! batch per point the blocks are single points (each batch takes seconds): a point's row reaches the file
 //! when its batch is done, and a failed write stops the study at the next point.
 //!
+//! A table file's pages are sent to disk while the next blocks are evaluated
+//! ([`WriteBehind`](crate::io_rules::WriteBehind), [`start_write_out`](crate::io_rules::start_write_out)),
+//! so that the sync before the final rename waits for the last block only.
+//!
 //! JSON tables are one document and are written from the whole table ([`compute_sweep`], then
 //! [`SweepResults::write_json`]).
 
@@ -18,6 +22,7 @@ use super::sweep_table::{
     TableFormat,
 };
 use crate::error::{Error, Result};
+use crate::io_rules::{start_write_out, WriteBehind};
 use crate::response::PointStatistics;
 use crate::study::{Sweep, FAILED_POINT};
 use std::io::Write;
@@ -118,13 +123,20 @@ pub fn write_sweep_table(
             errors: t.errors,
         }
     } else if format == TableFormat::Csv {
-        stream_sweep_csv(sweep, created(std::fs::File::create(&tmp))?, path, mc, opts, progress)?
+        let file = WriteBehind::new(created(std::fs::File::create(&tmp))?);
+        stream_sweep_csv(sweep, file, path, mc, opts, progress)?
     } else {
         let w = H5TableWriter::create(&tmp, &sweep_identity(sweep, mc), n, 0..n)?;
+        // HDF5 writes the file; a handle of our own asks for the write-out of each block's pages
+        let behind = std::fs::File::open(&tmp).ok();
         let fill = h5_columns(sweep, w.layout(), opts.parallel);
-        let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, fill, |w, b| match b {
-            Block::Rows { points, buf, errors } => w.append_columns(points.clone(), buf, errors),
-            Block::Table(t) => w.append(t),
+        let (w, errors) = pipeline(sweep, 0..n, mc, opts, progress, w, fill, |w, b| {
+            match b {
+                Block::Rows { points, buf, errors } => w.append_columns(points.clone(), buf, errors)?,
+                Block::Table(t) => w.append(t)?,
+            }
+            behind.iter().for_each(start_write_out);
+            Ok(())
         })?;
         w.finish()?;
         StreamedTable { n_points: n, errors }
