@@ -396,11 +396,9 @@ mod tests {
         }
     }
 
-    /// [`sub_where_moved`] gives the bits of the scalar select in every lane, 8 lanes and 1, over states,
-    /// factors and impulses that include ±0 (lanes that do not move, and x = −0 that must stay −0), the
-    /// smallest subnormal, ±1, magnitudes from 10⁻³⁰⁰ to 10³⁰⁰ and the largest finite values (no NaN).
-    #[test]
-    fn lanes_give_the_bits_of_the_scalar_select() {
+    /// States, factors and impulses: ±0, the smallest subnormal, ±1, the largest finite values, 0.1, −3.7
+    /// and 200 magnitudes from 10⁻³⁰⁰ to 10³⁰⁰ of either sign (no NaN; a·j may overflow to ±∞).
+    fn values() -> Vec<f64> {
         let mut v = vec![0.0, -0.0, 5e-324, -5e-324, 1.0, -1.0, f64::MAX, f64::MIN, 0.1, -3.7];
         let mut u = 0x2545_f491_4f6c_dd1du64;
         for _ in 0..200 {
@@ -410,33 +408,76 @@ mod tests {
             let m = (u >> 11) as f64 / (1u64 << 53) as f64;
             v.push((if u & 1 == 0 { 1.0 } else { -1.0 }) * 10f64.powf(600.0 * m - 300.0));
         }
+        v
+    }
+
+    /// Case (ia, k) of the test: every window of 8 consecutive values as x, and as j with a quarter of the
+    /// lanes +0 and a quarter −0 (lanes that do not move).
+    fn case(v: &[f64], ia: usize, k: usize) -> ([f64; 8], [f64; 8]) {
         let n = v.len();
+        let x = std::array::from_fn(|l| v[(k + l) % n]);
+        let j = std::array::from_fn(|l| match (k + l + ia) % 4 {
+            0 => 0.0,
+            1 => -0.0,
+            _ => v[(3 * k + l) % n],
+        });
+        (x, j)
+    }
+
+    /// [`sub_where_moved`] of 8 lanes and of 1 over every case, as compiled by `vmath::run` for the widest
+    /// instruction set of the CPU (the code of the drive loop).
+    struct Updates<'a> {
+        v: &'a [f64],
+        eight: Vec<[f64; 8]>,
+        one: Vec<f64>,
+    }
+
+    impl crate::linalg::vmath::Task for Updates<'_> {
+        #[inline(always)]
+        fn run(&mut self) {
+            for (ia, &a) in self.v.iter().enumerate() {
+                for k in 0..self.v.len() {
+                    let (mut x, j) = case(self.v, ia, k);
+                    let mut one = [x[0]];
+                    sub_where_moved(&mut x, a, &j);
+                    sub_where_moved(&mut one, a, &[j[0]]);
+                    self.eight.push(x);
+                    self.one.push(one[0]);
+                }
+            }
+        }
+    }
+
+    /// [`sub_where_moved`] gives the bits of the scalar select in every lane, 8 lanes and 1, compiled for
+    /// the baseline and (through `vmath::run`) for the widest instruction set of the CPU, over states,
+    /// factors and impulses that include ±0 (lanes that do not move, and x = −0 that must stay −0).
+    #[test]
+    fn lanes_give_the_bits_of_the_scalar_select() {
+        let v = values();
+        let mut wide = Updates {
+            v: &v,
+            eight: Vec::new(),
+            one: Vec::new(),
+        };
+        crate::linalg::vmath::run(&mut wide);
+        let mut c = 0;
         for (ia, &a) in v.iter().enumerate() {
-            for k in 0..n {
-                // every window of 8 consecutive values as x, and as j with some lanes set to ±0
-                let x: [f64; 8] = std::array::from_fn(|l| v[(k + l) % n]);
-                let j: [f64; 8] = std::array::from_fn(|l| match (k + l + ia) % 4 {
-                    0 => 0.0,
-                    1 => -0.0,
-                    _ => v[(3 * k + l) % n],
-                });
+            for k in 0..v.len() {
+                let (x, j) = case(&v, ia, k);
+                let want: [f64; 8] = std::array::from_fn(|l| scalar(x[l], a, j[l]));
                 let mut got = x;
                 sub_where_moved(&mut got, a, &j);
-                let want: [f64; 8] = std::array::from_fn(|l| scalar(x[l], a, j[l]));
+                let bits = |y: [f64; 8]| y.map(f64::to_bits);
+                assert_eq!(bits(got), bits(want), "a = {a:e}, x = {x:?}, j = {j:?}");
+                assert_eq!(bits(wide.eight[c]), bits(want), "a = {a:e}, x = {x:?}, j = {j:?}");
                 assert_eq!(
-                    got.map(f64::to_bits),
-                    want.map(f64::to_bits),
-                    "a = {a:e}, x = {x:?}, j = {j:?}"
-                );
-                let mut one = [x[0]];
-                sub_where_moved(&mut one, a, &[j[0]]);
-                assert_eq!(
-                    one[0].to_bits(),
+                    wide.one[c].to_bits(),
                     want[0].to_bits(),
                     "a = {a:e}, x = {}, j = {}",
                     x[0],
                     j[0]
                 );
+                c += 1;
             }
         }
     }

@@ -261,17 +261,17 @@ impl<const L: usize> StepState<L> {
         // local lane arrays: the compiler cannot tell the heap arrays apart, and computed in place these
         // sums were scalar, lane by lane
         for j in 0..nb {
-            let (mean, mut a) = (plan.u_mean[j], self.ut[j]);
+            let (mean, ut, mut a) = (plan.u_mean[j], self.ut[j], [0.0; L]);
             for l in 0..L {
-                a[l] = mean + a[l];
+                a[l] = mean + ut[l];
             }
             self.ua[j] = a;
         }
         let st = path.state();
         for i in 0..n {
-            let (eq, mut a) = (plan.q_eq[i], st[mech + i]);
+            let (eq, qt, mut a) = (plan.q_eq[i], st[mech + i], [0.0; L]);
             for l in 0..L {
-                a[l] = eq + a[l];
+                a[l] = eq + qt[l];
             }
             self.q[i] = a;
         }

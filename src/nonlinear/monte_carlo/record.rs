@@ -311,19 +311,51 @@ mod tests {
         }
     }
 
+    /// Every window of 8 consecutive arguments of `ts` (cyclically): each argument in every lane.
+    fn windows8(ts: &[f64]) -> impl Iterator<Item = [f64; 8]> + '_ {
+        (0..ts.len()).map(|k| std::array::from_fn(|l| ts[(k + l) % ts.len()]))
+    }
+
+    /// [`slots`] of 8 lanes and of 1 over every window of [`slot_arguments`], as compiled by `vmath::run`
+    /// for the widest instruction set of the CPU (the code of the drive loop).
+    struct Slots<'a> {
+        ts: &'a [f64],
+        eight: Vec<[usize; 8]>,
+        one: Vec<usize>,
+    }
+
+    impl crate::linalg::vmath::Task for Slots<'_> {
+        #[inline(always)]
+        fn run(&mut self) {
+            for t in windows8(self.ts) {
+                let (mut s8, mut s1) = ([0; 8], [0; 1]);
+                slots(&t, 120.0, &mut s8);
+                slots(&[t[0]], 120.0, &mut s1);
+                self.eight.push(s8);
+                self.one.push(s1[0]);
+            }
+        }
+    }
+
     /// The lane arrays of [`slots`] are the slots of [`bin`] lane by lane, at every argument of
-    /// [`slot_arguments`] in every lane (every window of 8 consecutive arguments, cyclically), for 8 lanes and for 1.
+    /// [`slot_arguments`] in every lane, for 8 lanes and for 1, compiled for the baseline and (through
+    /// `vmath::run`) for the widest instruction set of the CPU.
     #[test]
     fn slots_of_the_lanes_are_the_bins() {
         let bins = 120;
         let ts = slot_arguments(bins);
-        let (mut s8, mut s1) = ([0; 8], [0; 1]);
-        for k in 0..ts.len() {
-            let t: [f64; 8] = std::array::from_fn(|l| ts[(k + l) % ts.len()]);
+        let mut wide = Slots {
+            ts: &ts,
+            eight: Vec::new(),
+            one: Vec::new(),
+        };
+        crate::linalg::vmath::run(&mut wide);
+        for (k, t) in windows8(&ts).enumerate() {
+            let want = t.map(|t| bin(t, bins));
+            let mut s8 = [0; 8];
             slots(&t, bins as f64, &mut s8);
-            assert_eq!(s8, t.map(|t| bin(t, bins)), "{t:?}");
-            slots(&[t[0]], bins as f64, &mut s1);
-            assert_eq!(s1, [bin(t[0], bins)], "t = {:e}", t[0]);
+            assert_eq!((s8, wide.eight[k]), (want, want), "{t:?}");
+            assert_eq!(wide.one[k], want[0], "t = {:e}", t[0]);
         }
     }
 
