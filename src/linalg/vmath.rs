@@ -195,7 +195,7 @@ fn map_loop<K: Kernel>(x: &[f64], out: &mut [f64], k: &K) {
 }
 
 /// 1.5·2⁵²: adding it rounds a number of magnitude < 2⁵¹ to an integer held in the low mantissa bits.
-const SHIFT: f64 = 6_755_399_441_055_744.0;
+pub(crate) const SHIFT: f64 = 6_755_399_441_055_744.0;
 /// ln 2 with its last 21 bits zero (fdlibm's `ln2_hi`, 0x3fe62e42fee00000): k·LN2_HI is exact for |k| < 2²¹.
 #[allow(clippy::excessive_precision)] // fdlibm's digits, verbatim
 const LN2_HI: f64 = 6.931_471_803_691_238_164_90e-1;

@@ -220,11 +220,8 @@ impl Prepared<'_> {
                 }
             }
             for ((pi, qi), (d, md)) in p.iter_mut().zip(qdot.iter_mut()).zip(k.d.iter().zip(&k.minv_d)) {
-                for l in 0..L {
-                    let moved = j[l] != 0.0;
-                    pi[l] = if moved { pi[l] - d * j[l] } else { pi[l] };
-                    qi[l] = if moved { qi[l] - md * j[l] } else { qi[l] };
-                }
+                sub_where_moved(pi, *d, &j);
+                sub_where_moved(qi, *md, &j);
             }
         }
     }
@@ -264,6 +261,31 @@ impl Prepared<'_> {
             None => x.map(|x| self.kicks.items[e].law.engaged(x)),
         }
     }
+}
+
+/// x ← x − a·j in every lane whose impulse j is not 0, x unchanged where j = ±0: the kick's update of a
+/// momentum or velocity, in a form that compiles to vector operations across the lanes (a select on
+/// `j ≠ 0` compiled to a branch per lane).
+///
+/// # Formula
+/// x − s with s = a·j where j ≠ 0 and s = +0 where j = ±0 ([`where_else_zero`], a bit mask): where the lane
+/// moves, s is a·j itself; where it does not, x − (+0) = x for every non-NaN x (−0 − (+0) = −0 in
+/// round-to-nearest; a·j = ±0 subtracted instead would turn x = −0 into +0 when a·j = −0). Each lane's
+/// bits are those of `if j ≠ 0 { x − a·j } else { x }`.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+fn sub_where_moved<const L: usize>(x: &mut Lanes<L>, a: f64, j: &Lanes<L>) {
+    for l in 0..L {
+        x[l] -= where_else_zero(a * j[l], j[l] != 0.0);
+    }
+}
+
+/// `x` where `keep`, +0 otherwise: the bits of `if keep { x } else { 0.0 }` for every x (NaN included), as
+/// a bit mask (x's bits ANDed with all ones, or with zero), which compiles to one vector `and` across lanes where
+/// the select compiled to a branch per lane.
+#[inline(always)]
+fn where_else_zero(x: f64, keep: bool) -> f64 {
+    f64::from_bits(x.to_bits() & u64::from(keep).wrapping_neg())
 }
 
 /// The deterministic free response of `model` (no input) from q(0) = `q0`, q̇(0) = `v0` after `steps` steps
@@ -330,4 +352,133 @@ pub fn free_response(
     kicks.velocities(p, &zeros, &mut qdot);
     let q = q.iter().map(|v| v[0]).collect();
     Ok((q, qdot.iter().map(|v| v[0]).collect()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{sub_where_moved, where_else_zero};
+
+    /// [`where_else_zero`] has the bits of the select `if keep { x } else { 0.0 }` for every kind of x: ±0,
+    /// the smallest subnormal, ±1, the largest finite values, ±∞ and a NaN with a payload.
+    #[test]
+    fn the_mask_gives_the_bits_of_the_select() {
+        let nan = f64::from_bits(0x7ff8_0000_0000_1234);
+        for x in [
+            0.0,
+            -0.0,
+            5e-324,
+            -5e-324,
+            1.0,
+            -1.0,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            nan,
+        ] {
+            for keep in [false, true] {
+                let want = if keep { x } else { 0.0 };
+                assert_eq!(
+                    where_else_zero(x, keep).to_bits(),
+                    want.to_bits(),
+                    "x = {x:e}, keep = {keep}"
+                );
+            }
+        }
+    }
+
+    /// The kick's update in its scalar form (the oracle of [`sub_where_moved`]).
+    fn scalar(x: f64, a: f64, j: f64) -> f64 {
+        if j != 0.0 {
+            x - a * j
+        } else {
+            x
+        }
+    }
+
+    /// States, factors and impulses: ±0, the smallest subnormal, ±1, the largest finite values, 0.1, −3.7
+    /// and 200 magnitudes from 10⁻³⁰⁰ to 10³⁰⁰ of either sign (no NaN; a·j may overflow to ±∞).
+    fn values() -> Vec<f64> {
+        let mut v = vec![0.0, -0.0, 5e-324, -5e-324, 1.0, -1.0, f64::MAX, f64::MIN, 0.1, -3.7];
+        let mut u = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..200 {
+            u = u
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            let m = (u >> 11) as f64 / (1u64 << 53) as f64;
+            v.push((if u & 1 == 0 { 1.0 } else { -1.0 }) * 10f64.powf(600.0 * m - 300.0));
+        }
+        v
+    }
+
+    /// Case (ia, k) of the test: every window of 8 consecutive values as x, and as j with a quarter of the
+    /// lanes +0 and a quarter −0 (lanes that do not move).
+    fn case(v: &[f64], ia: usize, k: usize) -> ([f64; 8], [f64; 8]) {
+        let n = v.len();
+        let x = std::array::from_fn(|l| v[(k + l) % n]);
+        let j = std::array::from_fn(|l| match (k + l + ia) % 4 {
+            0 => 0.0,
+            1 => -0.0,
+            _ => v[(3 * k + l) % n],
+        });
+        (x, j)
+    }
+
+    /// [`sub_where_moved`] of 8 lanes and of 1 over every case, as compiled by `vmath::run` for the widest
+    /// instruction set of the CPU (the code of the drive loop).
+    struct Updates<'a> {
+        v: &'a [f64],
+        eight: Vec<[f64; 8]>,
+        one: Vec<f64>,
+    }
+
+    impl crate::linalg::vmath::Task for Updates<'_> {
+        #[inline(always)]
+        fn run(&mut self) {
+            for (ia, &a) in self.v.iter().enumerate() {
+                for k in 0..self.v.len() {
+                    let (mut x, j) = case(self.v, ia, k);
+                    let mut one = [x[0]];
+                    sub_where_moved(&mut x, a, &j);
+                    sub_where_moved(&mut one, a, &[j[0]]);
+                    self.eight.push(x);
+                    self.one.push(one[0]);
+                }
+            }
+        }
+    }
+
+    /// [`sub_where_moved`] gives the bits of the scalar select in every lane, 8 lanes and 1, compiled for
+    /// the baseline and (through `vmath::run`) for the widest instruction set of the CPU, over states,
+    /// factors and impulses that include ±0 (lanes that do not move, and x = −0 that must stay −0).
+    #[test]
+    fn lanes_give_the_bits_of_the_scalar_select() {
+        let v = values();
+        let mut wide = Updates {
+            v: &v,
+            eight: Vec::new(),
+            one: Vec::new(),
+        };
+        crate::linalg::vmath::run(&mut wide);
+        let mut c = 0;
+        for (ia, &a) in v.iter().enumerate() {
+            for k in 0..v.len() {
+                let (x, j) = case(&v, ia, k);
+                let want: [f64; 8] = std::array::from_fn(|l| scalar(x[l], a, j[l]));
+                let mut got = x;
+                sub_where_moved(&mut got, a, &j);
+                let bits = |y: [f64; 8]| y.map(f64::to_bits);
+                assert_eq!(bits(got), bits(want), "a = {a:e}, x = {x:?}, j = {j:?}");
+                assert_eq!(bits(wide.eight[c]), bits(want), "a = {a:e}, x = {x:?}, j = {j:?}");
+                assert_eq!(
+                    wide.one[c].to_bits(),
+                    want[0].to_bits(),
+                    "a = {a:e}, x = {}, j = {}",
+                    x[0],
+                    j[0]
+                );
+                c += 1;
+            }
+        }
+    }
 }

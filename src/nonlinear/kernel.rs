@@ -155,11 +155,16 @@ impl Kernel {
                 compression,
                 ..
             } => {
+                // rate = 0 tested once, not in every lane
+                if rate == 0.0 {
+                    *j = [0.0; L];
+                    return;
+                }
                 for l in 0..L {
                     // v NaN: −v·f/κ is v's NaN, as through the law's e^{…} − 1 of NaN
                     let f = if v[l] > 0.0 { rebound } else { compression };
                     let flow = -v[l] * f / kappa;
-                    j[l] = if rate == 0.0 || v[l] == 0.0 { 0.0 } else { flow };
+                    j[l] = if v[l] == 0.0 { 0.0 } else { flow };
                 }
             }
         }

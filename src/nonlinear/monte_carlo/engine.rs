@@ -258,16 +258,22 @@ impl<const L: usize> StepState<L> {
     fn refresh<P: Path<L>>(&mut self, plan: &NlPlan, path: &mut P, k: usize) {
         let (n, nb, mech) = (plan.n_coords, plan.n_base, path.mech());
         path.inputs(k, &mut self.ut, &mut self.ud);
+        // local lane arrays: the compiler cannot tell the heap arrays apart, and computed in place these
+        // sums were scalar, lane by lane
         for j in 0..nb {
+            let (mean, ut, mut a) = (plan.u_mean[j], self.ut[j], [0.0; L]);
             for l in 0..L {
-                self.ua[j][l] = plan.u_mean[j] + self.ut[j][l];
+                a[l] = mean + ut[l];
             }
+            self.ua[j] = a;
         }
         let st = path.state();
         for i in 0..n {
+            let (eq, qt, mut a) = (plan.q_eq[i], st[mech + i], [0.0; L]);
             for l in 0..L {
-                self.q[i][l] = plan.q_eq[i] + st[mech + i][l];
+                a[l] = eq + qt[l];
             }
+            self.q[i] = a;
         }
         plan.kicks
             .velocities(&st[mech + n..mech + 2 * n], &self.ut, &mut self.qdot);
@@ -280,15 +286,19 @@ impl<const L: usize> StepState<L> {
     fn outputs<P: Path<L>>(&mut self, plan: &NlPlan, half: &Prepared, path: &P, k: usize) {
         path.outputs(k, &self.ut, &self.ud, &mut self.y);
         half.forces(&self.q, &self.qdot, &self.ua, &self.ud, &mut self.fe, &mut self.xe);
+        // a local lane array per output: `y` and `fe` are separate heap arrays the compiler cannot tell
+        // apart, and updating `y` in place kept it from vectorising across the lanes
         for (o, po) in self.y.iter_mut().zip(&plan.outputs) {
+            let mut s = *o;
             for l in 0..L {
-                o[l] += po.offset;
+                s[l] += po.offset;
             }
             for (w, f) in po.acc.iter().zip(&self.fe) {
                 for l in 0..L {
-                    o[l] -= w * f[l];
+                    s[l] -= w * f[l];
                 }
             }
+            *o = s;
         }
     }
 

@@ -11,6 +11,8 @@
 //! * for an element with a regime (a stop in contact, a tyre off the road): the fraction of samples in the
 //!   regime and the entries into it per second.
 
+use crate::linalg::vmath::SHIFT;
+
 /// The statistics of one output over one realization, as the records leave them (see [`OutputRecords`]).
 #[derive(Debug, Clone)]
 pub(crate) struct OutputRecord {
@@ -49,10 +51,10 @@ impl OutputRecord {
 
 /// The running statistics of one output of L realizations stepped in lockstep, every accumulator an
 /// array over the lanes (structure of arrays): the sums, the maximum and the level crossings of all lanes
-/// update in vector operations without branches, and so does the histogram's t = (y − lo)/w (a division
+/// update in vector operations without branches, and so do the histogram's t = (y − lo)/w (a division
 /// per lane, as a lone realization divides: a precomputed reciprocal would move samples at the bin
-/// edges); only the histogram's increment is a store per lane. Lane l does exactly the arithmetic of a
-/// lone realization, in the same order.
+/// edges) and its slot ([`slots`]); only the histogram's increment is a store per lane. Lane l does
+/// exactly the arithmetic of a lone realization, in the same order.
 #[derive(Debug, Clone)]
 pub(crate) struct OutputRecords<const L: usize> {
     centre: f64,
@@ -65,8 +67,13 @@ pub(crate) struct OutputRecords<const L: usize> {
     started: bool,
     hist_lo: f64,
     hist_width: f64,
-    /// Per lane: bins + 2 slots (underflow, the bins, overflow).
-    hist: Vec<Vec<f64>>,
+    /// The number of bins B, as f64 (exact).
+    bins: f64,
+    /// The counts of every lane, lane after lane, B + 2 slots each (underflow, the bins, overflow).
+    hist: Vec<u64>,
+    /// The slot of every lane's last sample: [`slots`] stores them as one lane array, which the compiler
+    /// then computes in vector operations (it does not vectorise values that only feed addresses).
+    slot: [usize; L],
     n: usize,
 }
 
@@ -82,15 +89,20 @@ impl<const L: usize> OutputRecords<L> {
             started: false,
             hist_lo,
             hist_width,
-            hist: vec![vec![0.0; bins + 2]; L],
+            bins: bins as f64,
+            hist: vec![0; L * (bins + 2)],
+            slot: [0; L],
             n: 0,
         }
     }
 
     /// Adds sample y of every lane; returns y − c (the values for the Welch estimate and the moments).
+    /// Every update works on local lane arrays (the record's own heap arrays could alias each other as
+    /// far as the compiler knows, which kept it from vectorising across the lanes).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
     pub(crate) fn push(&mut self, y: &[f64; L]) -> [f64; L] {
+        let y = *y;
         let mut d = [0.0; L];
         for l in 0..L {
             d[l] = y[l] - self.centre;
@@ -102,21 +114,25 @@ impl<const L: usize> OutputRecords<L> {
             self.max_abs[l] = self.max_abs[l].max(y[l].abs());
         }
         if self.started {
-            for (a, c) in self.levels.iter().zip(self.counts.iter_mut()) {
+            let prev = self.prev;
+            for (&a, c) in self.levels.iter().zip(self.counts.iter_mut()) {
+                let mut up = *c;
                 for l in 0..L {
-                    c[l] += u64::from(self.prev[l] < *a && y[l] >= *a);
+                    up[l] += u64::from((prev[l] < a) & (y[l] >= a));
                 }
+                *c = up;
             }
         }
-        self.prev = *y;
+        self.prev = y;
         self.started = true;
         let mut t = [0.0; L];
         for l in 0..L {
             t[l] = (y[l] - self.hist_lo) / self.hist_width;
         }
-        for (h, t) in self.hist.iter_mut().zip(t) {
-            let i = bin(t, h.len() - 2);
-            h[i] += 1.0;
+        slots(&t, self.bins, &mut self.slot);
+        let stride = self.hist.len() / L;
+        for (l, s) in self.slot.iter().enumerate() {
+            self.hist[l * stride + s] += 1;
         }
         self.n += 1;
         d
@@ -124,12 +140,17 @@ impl<const L: usize> OutputRecords<L> {
 
     /// The statistics of lane l.
     pub(crate) fn lane(&self, l: usize) -> OutputRecord {
+        let stride = self.hist.len() / L;
         OutputRecord {
             centre: self.centre,
             s: self.s.map(|s| s[l]),
             max_abs: self.max_abs[l],
             counts: self.counts.iter().map(|c| c[l]).collect(),
-            hist: self.hist[l].clone(),
+            // counts below 2⁵³: exactly the sums of 1.0 that a lone realization's histogram holds
+            hist: self.hist[l * stride..(l + 1) * stride]
+                .iter()
+                .map(|&c| c as f64)
+                .collect(),
             n: self.n,
         }
     }
@@ -138,8 +159,8 @@ impl<const L: usize> OutputRecords<L> {
 /// The slot of t = (y − lo)/w in a histogram of `bins` bins with an underflow (slot 0) and an overflow
 /// (slot bins + 1): ⌊t⌋ + 1, clamped. Without a floor (a libm call on baseline x86-64): ⌊t⌋ < 0 ⇔ t < 0,
 /// ⌊t⌋ ≥ B ⇔ t ≥ B for the integer B = bins, and for 0 ≤ t < B the truncation `t as usize` is ⌊t⌋; NaN
-/// goes to the underflow.
-#[inline(always)]
+/// goes to the underflow. The scalar form of [`slots`], and the tests' oracle for it.
+#[cfg(test)]
 fn bin(t: f64, bins: usize) -> usize {
     if t.is_nan() || t < 0.0 {
         0
@@ -147,6 +168,27 @@ fn bin(t: f64, bins: usize) -> usize {
         bins + 1
     } else {
         t as usize + 1
+    }
+}
+
+/// [`bin`] of every lane into `s`, as lane arrays (no branch and no float-to-integer conversion, neither of
+/// which vectorises across the lanes on AVX2): with B = `bins` (an integer, as f64), c = max(t, −1) then
+/// min(c, B) (NaN → −1, as `f64::max` ignores NaN) has ⌊c⌋ = −1 for t < 0 (−0 included: ⌊−0⌋ = 0 as for
+/// +0), ⌊c⌋ = ⌊t⌋ for 0 ≤ t < B and ⌊c⌋ = B for t ≥ B, so ⌊c⌋ + 1 = `bin(t, B)`; the sum c + S with
+/// S = 1.5·2⁵² ([`SHIFT`]) holds the integer n nearest to c in its low mantissa bits (exact for
+/// |c| < 2⁵¹), and ⌊c⌋ = n − 1 where n > c, n otherwise.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+fn slots<const L: usize>(t: &[f64; L], bins: f64, s: &mut [usize; L]) {
+    for l in 0..L {
+        let c = t[l].max(-1.0).min(bins);
+        let k = c + SHIFT;
+        let up = u64::from(k - SHIFT > c);
+        s[l] = k
+            .to_bits()
+            .wrapping_sub(SHIFT.to_bits())
+            .wrapping_add(1)
+            .wrapping_sub(up) as usize;
     }
 }
 
@@ -170,7 +212,8 @@ impl RegimeRecord {
 pub(crate) struct RegimeRecords<const L: usize> {
     engaged: [u64; L],
     entries: [u64; L],
-    prev: [bool; L],
+    /// 1 where the lane was engaged at the previous sample, else 0.
+    prev: [u64; L],
     started: bool,
     n: u64,
 }
@@ -180,7 +223,7 @@ impl<const L: usize> Default for RegimeRecords<L> {
         RegimeRecords {
             engaged: [0; L],
             entries: [0; L],
-            prev: [false; L],
+            prev: [0; L],
             started: false,
             n: 0,
         }
@@ -188,15 +231,21 @@ impl<const L: usize> Default for RegimeRecords<L> {
 }
 
 impl<const L: usize> RegimeRecords<L> {
-    /// Adds whether every lane is in the regime (an entry: engaged after a sample that was not).
+    /// Adds whether every lane is in the regime (an entry: engaged after a sample that was not), as
+    /// integer lane arrays (0 or 1 per lane).
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
     pub(crate) fn push(&mut self, engaged: &[bool; L]) {
+        let on = engaged.map(u64::from);
         for l in 0..L {
-            self.engaged[l] += u64::from(engaged[l]);
-            self.entries[l] += u64::from(engaged[l] && self.started && !self.prev[l]);
+            self.engaged[l] += on[l];
         }
-        self.prev = *engaged;
+        if self.started {
+            for l in 0..L {
+                self.entries[l] += on[l] & !self.prev[l];
+            }
+        }
+        self.prev = on;
         self.started = true;
         self.n += 1;
     }
@@ -213,7 +262,7 @@ impl<const L: usize> RegimeRecords<L> {
 
 #[cfg(test)]
 mod tests {
-    use super::{bin, OutputRecords, RegimeRecords};
+    use super::{bin, slots, OutputRecords, RegimeRecords};
 
     /// The slot by the floor, as the histogram counted before [`bin`] (the reference).
     fn by_floor(t: f64, bins: usize) -> usize {
@@ -227,9 +276,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn bin_is_the_floor_slot_at_every_edge() {
-        let bins = 120;
+    /// Arguments t of a histogram of `bins` bins: NaN, ±∞, ±0, the smallest normal, ±10³⁰⁰, every integer
+    /// from −3 to bins + 3 with its neighbours and midpoint, and 10⁵ values in [−10, 130).
+    fn slot_arguments(bins: usize) -> Vec<f64> {
         let mut ts = vec![
             f64::NAN,
             f64::INFINITY,
@@ -251,8 +300,62 @@ mod tests {
                 .wrapping_add(1_442_695_040_888_963_407);
             ts.push((u >> 11) as f64 / (1u64 << 53) as f64 * 140.0 - 10.0);
         }
-        for t in ts {
+        ts
+    }
+
+    #[test]
+    fn bin_is_the_floor_slot_at_every_edge() {
+        let bins = 120;
+        for t in slot_arguments(bins) {
             assert_eq!(bin(t, bins), by_floor(t, bins), "t = {t:e}");
+        }
+    }
+
+    /// Every window of 8 consecutive arguments of `ts` (cyclically): each argument in every lane.
+    fn windows8(ts: &[f64]) -> impl Iterator<Item = [f64; 8]> + '_ {
+        (0..ts.len()).map(|k| std::array::from_fn(|l| ts[(k + l) % ts.len()]))
+    }
+
+    /// [`slots`] of 8 lanes and of 1 over every window of [`slot_arguments`], as compiled by `vmath::run`
+    /// for the widest instruction set of the CPU (the code of the drive loop).
+    struct Slots<'a> {
+        ts: &'a [f64],
+        eight: Vec<[usize; 8]>,
+        one: Vec<usize>,
+    }
+
+    impl crate::linalg::vmath::Task for Slots<'_> {
+        #[inline(always)]
+        fn run(&mut self) {
+            for t in windows8(self.ts) {
+                let (mut s8, mut s1) = ([0; 8], [0; 1]);
+                slots(&t, 120.0, &mut s8);
+                slots(&[t[0]], 120.0, &mut s1);
+                self.eight.push(s8);
+                self.one.push(s1[0]);
+            }
+        }
+    }
+
+    /// The lane arrays of [`slots`] are the slots of [`bin`] lane by lane, at every argument of
+    /// [`slot_arguments`] in every lane, for 8 lanes and for 1, compiled for the baseline and (through
+    /// `vmath::run`) for the widest instruction set of the CPU.
+    #[test]
+    fn slots_of_the_lanes_are_the_bins() {
+        let bins = 120;
+        let ts = slot_arguments(bins);
+        let mut wide = Slots {
+            ts: &ts,
+            eight: Vec::new(),
+            one: Vec::new(),
+        };
+        crate::linalg::vmath::run(&mut wide);
+        for (k, t) in windows8(&ts).enumerate() {
+            let want = t.map(|t| bin(t, bins));
+            let mut s8 = [0; 8];
+            slots(&t, bins as f64, &mut s8);
+            assert_eq!((s8, wide.eight[k]), (want, want), "{t:?}");
+            assert_eq!(wide.one[k], want[0], "t = {:e}", t[0]);
         }
     }
 

@@ -25,6 +25,8 @@ pub(super) struct Sink<'a, const L: usize> {
     block: Vec<Vec<Lanes<L>>>,
     column: Vec<f64>,
     filled: usize,
+    /// Whether the lanes keep their raw samples (tested once per output and sample, not once per lane).
+    keep_raw: bool,
 }
 
 /// One lane's Welch blocks and raw samples.
@@ -70,6 +72,7 @@ impl<'a, const L: usize> Sink<'a, L> {
             block: vec![vec![[0.0; L]; BLOCK]; p],
             column: vec![0.0; BLOCK],
             filled: 0,
+            keep_raw,
         }
     }
 
@@ -78,9 +81,11 @@ impl<'a, const L: usize> Sink<'a, L> {
     pub(super) fn push(&mut self, y: &[Lanes<L>], x: &[Lanes<L>], scratch: &mut WelchScratch) {
         for ((r, v), rec) in y.iter().enumerate().zip(self.records.iter_mut()) {
             self.block[r][self.filled] = rec.push(v);
-            for (lane, v) in self.lanes.iter_mut().zip(v) {
-                if let Some(raw) = &mut lane.raw {
-                    raw[r].push(*v);
+            if self.keep_raw {
+                for (lane, v) in self.lanes.iter_mut().zip(v) {
+                    if let Some(raw) = &mut lane.raw {
+                        raw[r].push(*v);
+                    }
                 }
             }
         }
