@@ -30,6 +30,7 @@
 //! * [`monte_carlo`]: the same by simulation ([`mc_engine`], [`mc_finish`]), stored as time series of
 //!   statistics in a run file; [`mission`]: the analytic distributions of the maxima of a mission.
 
+pub mod affine_step;
 mod envelope;
 pub mod evolutionary;
 pub mod inputs;
