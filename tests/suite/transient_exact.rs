@@ -17,7 +17,7 @@ use stochvib::spectrum::{Domain, Exponential, IsoBound, IsoClass, PowerLaw, Spec
 use stochvib::system::{FrequencyResponse, OutputInfo, StateSpace};
 use stochvib::transient::{
     input_model, propagate, solve, ConstantAcceleration, Envelope, ExactOptions, FixedSystem, InputModel, ModelAt,
-    SpeedProfile, Start, SystemFamily, TimeVaryingSystem, TransientInput,
+    OutputSeries, SpeedProfile, Start, SystemFamily, TimeVaryingSystem, TransientInput,
 };
 
 /// The passenger quarter car (`common::passenger_quarter_car`) accelerating at `acceleration` from 5 to
@@ -134,9 +134,18 @@ fn caughey_stumpf_oscillator_from_rest() {
     let sys = system(oscillator(w0, z), InputModel::White { density: s0 }, Envelope::unit());
     let times: Vec<f64> = (1..=400).map(|k| k as f64 * 0.05).collect();
     let sol = solve(&sys, &Start::Rest, &times, &ExactOptions::default()).unwrap();
-    let o = &sol.outputs[0];
+    assert_oscillator_moments(&sol.outputs[0], &times, closed);
+    assert_eq!(
+        sol.report.exact_steps, sol.report.steps,
+        "a time-invariant system takes exact steps only"
+    );
+}
+
+/// σ_x², σ_v² and cov(x, v) of an oscillator's output x (its rate v) at `times` against `expected(t)` =
+/// (σ_x², σ_v², cov), each to [`EXACT_TRANSITIONS`] (the covariance relative to σ_xσ_v).
+fn assert_oscillator_moments(o: &OutputSeries, times: &[f64], expected: impl Fn(f64) -> (f64, f64, f64)) {
     for (k, &t) in times.iter().enumerate() {
-        let (sx2, sv2, cxv) = closed(t);
+        let (sx2, sv2, cxv) = expected(t);
         assert!(
             rel(o.sigma[k].powi(2), sx2) < EXACT_TRANSITIONS,
             "σ_x² at {t}: {} vs {sx2}",
@@ -149,10 +158,6 @@ fn caughey_stumpf_oscillator_from_rest() {
             "cov at {t}: {cov} vs {cxv}"
         );
     }
-    assert_eq!(
-        sol.report.exact_steps, sol.report.steps,
-        "a time-invariant system takes exact steps only"
-    );
 }
 
 /// y′ = −αy + w with E[w(t)w(s)] = 2πS₀(t)δ(t − s), S₀(t) = S₁t/T for t ≤ T (an intensity envelope that
@@ -200,8 +205,10 @@ fn first_order_under_linearly_ramped_intensity() {
 /// An oscillator ẍ + 2ζω₀ẋ + ω₀²x = w (ω₀ = 2π rad/s, ζ = 0.05) from rest under white noise whose intensity
 /// e(t) ramps linearly from 0.2 at t = 0 to 1 at T = 3 s and stays (S₀(t) = e(t)S₀): the exact affine steps
 /// against P(t) = ∫₀ᵗ e(s)·e^{A(t−s)}QQᵀe^{Aᵀ(t−s)} ds (Q = √(2πS₀)·[0; 1]), evaluated in the test by
-/// composite Simpson quadrature (4000 panels per second, error ≈ h⁴·max|f⁗|/180, below 1e-12 relative here;
-/// the kink of e at T is a panel edge) with the closed-form transition of the underdamped oscillator
+/// composite Simpson quadrature (`common::simpson`, 4000 intervals per second, split at the kink T of e: the
+/// integrand is smooth on each part, its fourth derivative about ω₀⁴ ≈ 1.6·10³ times its size, so the
+/// error h⁴·max|f⁗|/180 ≈ 3.5·10⁻¹⁴ relative, h = 2.5·10⁻⁴ s) with the closed-form transition of the
+/// underdamped oscillator
 /// (σ = ζω₀, ω_d = ω₀√(1 − ζ²)):
 /// ```text
 /// e^{Aτ} = e^{−στ}[[cos ω_dτ + (σ/ω_d) sin ω_dτ, sin ω_dτ/ω_d], [−ω₀² sin ω_dτ/ω_d, cos ω_dτ − (σ/ω_d) sin ω_dτ]]
@@ -219,48 +226,32 @@ fn oscillator_under_affine_intensity_against_quadrature() {
         let (c, sn) = ((wd * tau).cos(), (wd * tau).sin());
         (d * sn / wd, d * (c - sg / wd * sn))
     };
-    let reference = |t: f64| {
-        let panels = (4000.0 * t).round() as usize * 2;
-        let h = t / panels as f64;
-        let f = |s: f64| {
-            let (x, v) = col(t - s);
-            [e(s) * x * x, e(s) * x * v, e(s) * v * v]
+    // ∫₀ᵗ of one entry of e(s)·e^{A(t−s)}[0; 1][0; 1]ᵀe^{Aᵀ(t−s)}, split at the kink T of e
+    let entry = |t: f64, pick: fn((f64, f64)) -> f64| {
+        let f = |s: f64| e(s) * pick(col(t - s));
+        let part = |a: f64, b: f64| {
+            let panels = 2 * (2000.0 * (b - a)).ceil() as usize;
+            common::simpson(f, a, b, panels)
         };
-        let mut acc = [0.0; 3];
-        for j in 0..=panels {
-            let wgt = if j == 0 || j == panels {
-                1.0
-            } else if j % 2 == 1 {
-                4.0
-            } else {
-                2.0
-            };
-            let v = f(j as f64 * h);
-            for i in 0..3 {
-                acc[i] += wgt * v[i];
-            }
-        }
-        acc.map(|a| a * h / 3.0 * 2.0 * PI * s0)
+        let whole = if t <= tr {
+            part(0.0, t)
+        } else {
+            part(0.0, tr) + part(tr, t)
+        };
+        2.0 * PI * s0 * whole
+    };
+    let reference = |t: f64| {
+        (
+            entry(t, |(x, _)| x * x),
+            entry(t, |(x, v)| x * v),
+            entry(t, |(_, v)| v * v),
+        )
     };
     let sys = system(oscillator(w0, z), InputModel::White { density: s0 }, env);
     assert!(sys.affine_noise().is_some());
     let times: Vec<f64> = (1..=10).map(|k| k as f64 * 0.5).collect();
     let sol = solve(&sys, &Start::Rest, &times, &ExactOptions::default()).unwrap();
-    let o = &sol.outputs[0];
-    for (k, &t) in times.iter().enumerate() {
-        let [pxx, pxv, pvv] = reference(t);
-        assert!(
-            rel(o.sigma[k].powi(2), pxx) < EXACT_TRANSITIONS,
-            "σ_x² at {t}: {} vs {pxx}",
-            o.sigma[k].powi(2)
-        );
-        assert!(rel(o.sigma_rate[k].powi(2), pvv) < EXACT_TRANSITIONS, "σ_v² at {t}");
-        let cov = o.rho[k] * o.sigma[k] * o.sigma_rate[k];
-        assert!(
-            (cov - pxv).abs() < EXACT_TRANSITIONS * (pxx * pvv).sqrt(),
-            "cov at {t}: {cov} vs {pxv}"
-        );
-    }
+    assert_oscillator_moments(&sol.outputs[0], &times, reference);
     assert_eq!(sol.report.exact_steps, sol.report.steps, "{:?}", sol.report);
 }
 
