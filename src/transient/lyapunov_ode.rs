@@ -1,6 +1,7 @@
 //! The exact route: the mean and covariance of the states by the differential Lyapunov equation, integrated
 //! by matrix exponentials on an adaptive grid with an error estimate.
 
+use super::affine_step::{affine_transition, AffineNoise, AffineTransition};
 use super::system::{Frozen, TimeVaryingSystem};
 use crate::error::{Error, Result};
 use crate::simulate::van_loan;
@@ -117,6 +118,9 @@ fn apply(tr: &Transition, p: &DMatrix<f64>, m: &DVector<f64>) -> (DMatrix<f64>, 
     ((&q + q.transpose()) * 0.5, &tr.phi * m + &tr.gamma)
 }
 
+/// Step lengths whose affine-intensity transitions are kept.
+const AFFINE_CACHE: usize = 4;
+
 /// The integrator's state between steps.
 struct Integrator<'a> {
     sys: &'a TimeVaryingSystem,
@@ -132,6 +136,8 @@ struct Integrator<'a> {
     report: StepReport,
     /// The last constant-coefficient transition and its step.
     cache: Option<(Frozen, f64, Rc<Transition>)>,
+    /// The last affine-intensity transitions and their steps (at most [`AFFINE_CACHE`]).
+    affine_cache: Vec<(f64, Rc<AffineTransition>)>,
 }
 
 impl Integrator<'_> {
@@ -150,25 +156,42 @@ impl Integrator<'_> {
         Ok(tr)
     }
 
+    /// Affine-intensity transition of `aff` over h, reused for any step within 10⁻¹² relative of one of the
+    /// last [`AFFINE_CACHE`] step lengths (as [`Integrator::cached`]; F and ḠḠᵀ do not change, κ enters only
+    /// when the transition is applied). Several lengths alternate where the stored times are not multiples
+    /// of the step cap or a knot cuts an interval.
+    fn affine_cached(&mut self, aff: &AffineNoise, h: f64) -> Result<Rc<AffineTransition>> {
+        if let Some((_, tr)) = self.affine_cache.iter().find(|(hh, _)| (hh - h).abs() <= 1e-12 * h) {
+            return Ok(Rc::clone(tr));
+        }
+        let tr = Rc::new(affine_transition(aff, h, &mut self.report.exponentials)?);
+        if self.affine_cache.len() == AFFINE_CACHE {
+            self.affine_cache.remove(0);
+        }
+        self.affine_cache.push((h, Rc::clone(&tr)));
+        Ok(tr)
+    }
+
     /// One trial step from t over h: the new mean and covariance and the relative error estimate.
     ///
     /// # Formula
-    /// The frozen coefficients at the midpoint make a second-order, time-symmetric scheme. When the
+    /// A system of affine intensity ([`AffineNoise`]: F, b, H constant, GGᵀ = κ(t)ḠḠᵀ with κ linear on the
+    /// step, which never crosses a knot) takes the exact step of [`affine_transition`]. Otherwise the frozen
+    /// coefficients at the midpoint make a second-order, time-symmetric scheme. When the
     /// coefficients are equal at t + h/4, t + h/2 and t + 3h/4 (piecewise-linear data with no knot inside
     /// the step: constant), the step is exact. Otherwise the step is taken once over h (P_h) and as two
     /// half steps (P_{h/2}); the local error of P_{h/2} is estimated by (P_{h/2} − P_h)/3 (Richardson, order
     /// 2) and the extrapolated P_{h/2} + (P_{h/2} − P_h)/3 is kept.
     fn trial(&mut self, t: f64, h: f64, p: &DMatrix<f64>, m: &DVector<f64>) -> Result<Trial> {
+        if let Some(aff) = self.sys.affine_noise() {
+            let tr = self.affine_cached(aff, h)?;
+            let (p, m) = tr.apply(aff.factor(t), aff.factor(t + h), p, m);
+            return Ok(Trial::exact(p, m));
+        }
         let mid = self.sys.frozen(t + 0.5 * h)?;
         let exact = |tr: &Transition| {
             let (p, m) = apply(tr, p, m);
-            Trial {
-                dp: DVector::zeros(p.nrows()),
-                dm: DVector::zeros(m.len()),
-                p,
-                m,
-                exact: true,
-            }
+            Trial::exact(p, m)
         };
         if self.sys.is_invariant() {
             return Ok(exact(&*self.cached(mid, h)?));
@@ -239,6 +262,19 @@ struct Trial {
     exact: bool,
 }
 
+impl Trial {
+    /// An exact step to (P, m): no error estimate.
+    fn exact(p: DMatrix<f64>, m: DVector<f64>) -> Self {
+        Trial {
+            dp: DVector::zeros(p.nrows()),
+            dm: DVector::zeros(m.len()),
+            p,
+            m,
+            exact: true,
+        }
+    }
+}
+
 /// Number of pilot steps over the window at least (the pilot's scale is sampled at their ends).
 const PILOT_STEPS: usize = 256;
 
@@ -293,13 +329,15 @@ pub type Visit<'a> = dyn FnMut(usize, f64, &DMatrix<f64>, &DVector<f64>, f64) ->
 /// Ṗ = F(t)P + PF(t)ᵀ + G(t)G(t)ᵀ,     ṁ = F(t)m + b(t)
 /// ```
 /// integrated step by step with the exact transition of the frozen coefficients ([`Integrator::trial`]:
-/// exact where the coefficients are constant, else midpoint coefficients with step doubling). The step
+/// exact where the coefficients are constant or only the noise intensity varies, linearly between knots
+/// ([`super::affine_step`]), else midpoint coefficients with step doubling). The step
 /// adapts to keep the local error estimate below `rel_tol` (new step h·min(4, max(0.2, 0.9(tol/err)^{1/3}))),
 /// and ends at every stored time and every knot of the coefficients.
 ///
 /// Errors are measured against the scale of each state over the whole window: a variance error against
 /// the state's largest variance s_i, a mean error against √s_i plus its largest |mean|. Time-varying
-/// systems take these scales from a pilot pass ([`pilot_scales`]); the accurate pass raises them where it
+/// systems with inexact steps take these scales from a pilot pass ([`pilot_scales`]); the accurate pass
+/// raises them where it
 /// finds more. The estimate reported at t_k is max_i of the accumulated absolute local estimates so far over
 /// those scales: an upper estimate for a stable system, whose errors decay. (An error relative to each
 /// step's own variance would be meaningless where the variance is near 0, at a start from rest, and would
@@ -323,7 +361,7 @@ pub fn propagate(
         return Err(Error::invalid("rel_tol", opts.rel_tol, "must be in (0, 1)"));
     }
     let n = p0.nrows();
-    let (scale, mean_scale) = if sys.is_invariant() {
+    let (scale, mean_scale) = if sys.is_invariant() || sys.affine_noise().is_some() {
         (
             p0.diagonal().iter().copied().collect(),
             m0.iter().map(|x| x.abs()).collect(),
@@ -340,6 +378,7 @@ pub fn propagate(
         error_m: vec![0.0; n],
         report: StepReport::default(),
         cache: None,
+        affine_cache: Vec::new(),
     };
     let (mut p, mut m, mut t) = (p0, m0, 0.0);
     let span = times.last().copied().unwrap_or(0.0);

@@ -19,7 +19,8 @@
 //!   spatial shaping filter under v(t) becomes a time-varying filter) and w = 2 roads (white road velocity).
 //! * [`propagate`] / [`solve`]: the differential Lyapunov equation Ṗ = FP + PFᵀ + GGᵀ, ṁ = Fm + b by matrix
 //!   exponentials on an adaptive grid with an error estimate, and the output statistics over time
-//!   ([`TransientSolution`]).
+//!   ([`TransientSolution`]); [`affine_step`]: its exact step where only the noise intensity varies, linearly
+//!   between knots.
 //! * [`sources`]: several independent inputs ([`ExtraSource`]), their filters block-diagonal ahead of the
 //!   system ([`TimeVaryingSystem::with_sources`]).
 //! * [`evolutionary`]: inputs without a finite shaping filter (tabulated, measured, band-limited) by the
@@ -30,6 +31,7 @@
 //! * [`monte_carlo`]: the same by simulation ([`mc_engine`], [`mc_finish`]), stored as time series of
 //!   statistics in a run file; [`mission`]: the analytic distributions of the maxima of a mission.
 
+pub mod affine_step;
 mod envelope;
 pub mod evolutionary;
 pub mod inputs;

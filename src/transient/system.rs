@@ -1,6 +1,7 @@
 //! The white-noise-driven, time-varying state-space form of a (possibly scheduled) system and its random
 //! input: what the exact route propagates and the Monte Carlo route steps.
 
+use super::affine_step::AffineNoise;
 use super::schedule::{at_time, ModelAt, SystemFamily};
 use super::sources::{check_model, frozen_blocks, Block, ExtraSource};
 use super::{Envelope, SpeedProfile};
@@ -125,6 +126,9 @@ pub struct TimeVaryingSystem {
     /// The model of a constant family and its inputs combined with the gains: built once, not at every
     /// frozen time.
     constant: Option<Combined>,
+    /// F, b, H constant and GGᵀ = κ(t)·ḠḠᵀ with κ linear between knots (None: not of that structure, or
+    /// invariant).
+    affine: Option<AffineNoise>,
 }
 
 /// A model at one time and its state space with the inputs combined with the input's gains.
@@ -258,7 +262,7 @@ impl TimeVaryingSystem {
                 *u = u.take().or(m);
             }
         }
-        Ok(TimeVaryingSystem {
+        let mut sys = TimeVaryingSystem {
             n_system: ss0.n_states(),
             outputs: ss0.outputs().to_vec(),
             family,
@@ -270,7 +274,40 @@ impl TimeVaryingSystem {
             invariant,
             slope_gain,
             constant,
-        })
+            affine: None,
+        };
+        sys.affine = sys.affine_structure()?;
+        Ok(sys)
+    }
+
+    /// The affine-intensity structure of the system, read from the kind of input: a constant family with
+    /// one source, either a w = 2 road (κ = v(t)) or white noise with zero mean under an intensity envelope
+    /// (κ = e(t)); see [`AffineNoise`]. None for an invariant system and for every other structure (an
+    /// amplitude envelope makes a² quadratic between knots; a mean under an intensity envelope makes b ∝ √e;
+    /// a filtered input puts a(t) or v(t) into F).
+    ///
+    /// # Errors
+    /// The model's error at t = 0.
+    fn affine_structure(&self) -> Result<Option<AffineNoise>> {
+        if self.invariant || !self.extra.is_empty() || self.constant.is_none() {
+            return Ok(None);
+        }
+        let (g, factor) = match (&self.input.model, &self.slope_gain) {
+            (InputModel::WhiteSlope { coefficient, speed }, Some(aib)) => {
+                (aib * (2.0 * PI * coefficient).sqrt(), speed.table_points().clone())
+            }
+            (InputModel::White { density }, _) if self.input.envelope.is_intensity() && self.input.mean == 0.0 => {
+                let ss = &self.constant.as_ref().expect("checked above").ss;
+                (
+                    &ss.b * (2.0 * PI * density).sqrt(),
+                    self.input.envelope.points().clone(),
+                )
+            }
+            _ => return Ok(None),
+        };
+        let mut unit = self.frozen(0.0)?;
+        unit.g = g;
+        Ok(Some(AffineNoise { unit, factor }))
     }
 
     /// Number of states n (filter states first).
@@ -311,6 +348,12 @@ impl TimeVaryingSystem {
     /// Whether no coefficient depends on time.
     pub fn is_invariant(&self) -> bool {
         self.invariant
+    }
+
+    /// The affine-intensity structure ([`AffineNoise`]: F, b, H constant, GGᵀ = κ(t)·ḠḠᵀ with κ linear
+    /// between knots), if the system has it and is not invariant.
+    pub fn affine_noise(&self) -> Option<&AffineNoise> {
+        self.affine.as_ref()
     }
 
     /// The input.

@@ -371,18 +371,23 @@ pub fn proptest_config(cases: u32) -> proptest::test_runner::Config {
     }
 }
 
+/// ∫_a^b f(x) dx by the composite Simpson rule on `n` (even) intervals, a < b. For a smooth integrand the
+/// error is O(h⁴), h = (b − a)/n (the tests say why their n suffices).
+pub fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+    assert!(n.is_multiple_of(2) && b > a);
+    let h = (b - a) / n as f64;
+    let mut sum = f(a) + f(b);
+    for k in 1..n {
+        sum += if k % 2 == 1 { 4.0 } else { 2.0 } * f(a + k as f64 * h);
+    }
+    sum * h / 3.0
+}
+
 /// ∫_a^b f(x) dx for 0 < a < b by Simpson's rule in u = ln x on `n` (even) intervals: ∫ f(eᵘ) eᵘ du. For
 /// a smooth integrand the error is O(h⁴), h = ln(b/a)/n (the tests say why their n suffices).
 pub fn simpson_log(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
-    assert!(n.is_multiple_of(2) && a > 0.0 && b > a);
-    let (ua, ub) = (a.ln(), b.ln());
-    let h = (ub - ua) / n as f64;
-    let g = |u: f64| f(u.exp()) * u.exp();
-    let mut sum = g(ua) + g(ub);
-    for k in 1..n {
-        sum += if k % 2 == 1 { 4.0 } else { 2.0 } * g(ua + k as f64 * h);
-    }
-    sum * h / 3.0
+    assert!(a > 0.0);
+    simpson(|u: f64| f(u.exp()) * u.exp(), a.ln(), b.ln(), n)
 }
 
 /// Options of a streamed spectral run (route `SpectralStream`) of `realizations` realizations of
