@@ -1,14 +1,14 @@
 //! The standard normals of L random streams drawn side by side: lane l gives, bit for bit, the variates
 //! `rand_distr::StandardNormal` draws from stream l ([`super::stream`]), in the same order, with the stream
-//! left in the same state; only the common case of the ziggurat runs in the lanes.
+//! left in the same state; only the common case of the ziggurat is done here, many draws of a lane at a time.
 //!
 //! # Formula
 //! xoshiro256++ (Blackman & Vigna, "Scrambled linear pseudorandom number generators", 2021), the state
 //! seeded as `Xoshiro256PlusPlus::seed_from_u64` does (four SplitMix64 outputs). The ziggurat of
 //! `rand_distr` 0.6 (Marsaglia & Tsang 2000, with its 256 boxes): a draw `b` gives the box i = b mod 256
 //! and u = (2 + (b ≫ 12)·2⁻⁵¹) − 3 ∈ [−1, 1); x = u·X_i is accepted at once when |x| < X_{i+1}.
-//! That case is done here in every lane; every other draw (≈ 1.2 %, and every draw of the two top boxes) is
-//! redone from the stream's state before it by `rand_distr` itself on that lane alone, so the rare paths
+//! That case is done here; every other draw (≈ 1.2 %, and every draw of the two top boxes) is redone from
+//! the stream's state before it by `rand_distr` itself, so the rare paths
 //! (the tail, the wedges) are the crate's own code. The box edges X_i are read from `rand_distr` once
 //! ([`edges`]): a draw of box i with u = 2⁻⁵¹ is accepted and returns 2⁻⁵¹·X_i exactly.
 
@@ -139,56 +139,55 @@ impl<const L: usize> LaneNormals<L> {
     }
 
     /// The next standard normal of every lane.
-    #[inline(always)]
-    #[allow(clippy::needless_range_loop)] // lanes: several arrays indexed by the lane
+    #[cfg(test)]
     pub(crate) fn draw(&mut self) -> [f64; L] {
-        let before = self.s;
-        // the state in locals (registers), stored once
-        let [mut s0, mut s1, mut s2, mut s3] = self.s;
-        let mut bits = [0u64; L];
-        for l in 0..L {
-            bits[l] = s0[l].wrapping_add(s3[l]).rotate_left(23).wrapping_add(s0[l]);
-            let t = s1[l] << 17;
-            s2[l] ^= s0[l];
-            s3[l] ^= s1[l];
-            s1[l] ^= s2[l];
-            s0[l] ^= s3[l];
-            s2[l] ^= t;
-            s3[l] = s3[l].rotate_left(45);
-        }
-        self.s = [s0, s1, s2, s3];
+        let mut x = [[0.0; L]];
+        self.fill(&mut x);
+        x[0]
+    }
+
+    /// The next `out.len()` standard normals of every lane: `out[k][l]` is lane l's k-th (as `out.len()`
+    /// calls of [`Self::draw`] would give them).
+    ///
+    /// Lane by lane, each draw in scalar code: a tight loop over one stream, its state in registers and the
+    /// box edges in cache (the lanes side by side in vectors made the compiler extract and reinsert every
+    /// lane's word for the box look-ups).
+    pub(crate) fn fill(&mut self, out: &mut [[f64; L]]) {
         let e = self.edges;
-        let mut x = [0.0; L];
-        let mut ok = true;
         for l in 0..L {
-            let i = (bits[l] & 0xff) as usize;
-            let u = f64::from_bits((bits[l] >> 12) | 0x4000_0000_0000_0000) - 3.0;
-            x[l] = u * e.x[i];
-            ok &= x[l].abs() < e.accept[i];
+            let mut r = self.stream(l);
+            for row in out.iter_mut() {
+                row[l] = r.fast_normal(e);
+            }
+            (0..4).for_each(|k| self.s[k][l] = r.s[k]);
         }
-        if !ok {
-            self.redo(&before, &bits, &mut x);
+    }
+}
+
+impl StreamRng {
+    /// The next standard normal: the ziggurat's common case here, every other draw redone by `rand_distr`
+    /// from the state before it (see the module's formula).
+    #[inline(always)]
+    fn fast_normal(&mut self, e: &Edges) -> f64 {
+        let before = *self;
+        let bits = rand::Rng::next_u64(self);
+        let i = (bits & 0xff) as usize;
+        let u = f64::from_bits((bits >> 12) | 0x4000_0000_0000_0000) - 3.0;
+        let x = u * e.x[i];
+        if x.abs() < e.accept[i] {
+            return x;
         }
+        let x;
+        (x, *self) = before.redo();
         x
     }
 
-    /// The lanes whose draw was not accepted at once, redone by `rand_distr` from their state `before`.
+    /// A draw not accepted at once, redone by `rand_distr` from this state: the variate and the state after
+    /// it (by value, so that the draw loop keeps its state in registers; ≈ 1.2 % of draws).
     #[cold]
     #[inline(never)]
-    #[allow(clippy::needless_range_loop)] // lanes: several arrays indexed by the lane
-    fn redo(&mut self, before: &[[u64; L]; 4], bits: &[u64; L], x: &mut [f64; L]) {
-        let e = self.edges;
-        for l in 0..L {
-            let i = (bits[l] & 0xff) as usize;
-            if x[l].abs() < e.accept[i] {
-                continue;
-            }
-            let mut r = StreamRng {
-                s: std::array::from_fn(|k| before[k][l]),
-            };
-            x[l] = r.normal();
-            (0..4).for_each(|k| self.s[k][l] = r.s[k]);
-        }
+    fn redo(mut self) -> (f64, StreamRng) {
+        (self.normal(), self)
     }
 }
 

@@ -21,6 +21,9 @@ const CACHED_STEPS: usize = 1 << 16;
 /// Realizations stepped in lockstep (one AVX-512 register of f64).
 const LANES: usize = 8;
 
+/// Steps whose normals are drawn at once, before they are stepped (n·L·64 values: 16 KiB for 4 states).
+const DRAW_STEPS: usize = 64;
+
 /// The time grid of a Monte Carlo run: N steps of Δt, every k-th point stored.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct McGrid {
@@ -142,8 +145,11 @@ pub struct McPlan<'a> {
 
 /// The per-realization results of a block of a shard.
 pub(crate) struct ShardBlock {
-    /// stored\[r\]\[s·p + o\]: realization r, stored time s of the block, output o.
-    pub stored: Vec<Vec<f64>>,
+    /// The stored outputs, one row of `width` values per realization (row-major): row r holds
+    /// realization r's value at stored time s of the block and output o at s·p + o.
+    pub stored: Vec<f64>,
+    /// Values per realization: the block's stored times × the outputs.
+    pub width: usize,
     /// The global index of the block's first stored time.
     pub first_stored: usize,
 }
@@ -280,24 +286,36 @@ impl<'a> McPlan<'a> {
         };
         let k = self.grid.store_every;
         let first_stored = if j0 == 0 { 0 } else { j0 / k + 1 };
+        let width = (j1 / k + 1 - first_stored) * self.outputs.len();
         let block = Block {
             plan: self,
             steps,
             maps,
             j0,
             j1,
+            width,
         };
-        let stored: Vec<Vec<f64>> = states
+        // rows of at least one value, so that every realization gets one (a block may store no time)
+        let w = width.max(1);
+        let mut stored = vec![0.0; states.len() * w];
+        states
             .par_chunks_mut(LANES)
-            .flat_map_iter(|chunk| match <&mut [RealizationState; LANES]>::try_from(&mut *chunk) {
-                Ok(lanes) => block.lockstep(lanes),
-                Err(_) => chunk
-                    .iter_mut()
-                    .flat_map(|s| block.lockstep(std::array::from_mut(s)))
-                    .collect(),
-            })
-            .collect();
-        Ok(ShardBlock { stored, first_stored })
+            .zip(stored.par_chunks_mut(LANES * w))
+            .for_each(
+                |(chunk, out)| match <&mut [RealizationState; LANES]>::try_from(&mut *chunk) {
+                    Ok(lanes) => block.lockstep(lanes, out),
+                    Err(_) => chunk
+                        .iter_mut()
+                        .zip(out.chunks_exact_mut(w))
+                        .for_each(|(s, row)| block.lockstep(std::array::from_mut(s), row)),
+                },
+            );
+        stored.truncate(states.len() * width);
+        Ok(ShardBlock {
+            stored,
+            width,
+            first_stored,
+        })
     }
 
     /// The blocks of the grid: (j0, j1) pairs covering 0..N.
@@ -316,18 +334,21 @@ struct Block<'b, 'a> {
     maps: &'b [Arc<OutputMap>],
     j0: usize,
     j1: usize,
+    /// Stored values per realization in the block.
+    width: usize,
 }
 
 impl Block<'_, '_> {
-    /// The L realizations `lanes` advanced over the block in lockstep; their stored outputs, in order.
-    fn lockstep<const L: usize>(&self, lanes: &mut [RealizationState; L]) -> Vec<Vec<f64>> {
+    /// The L realizations `lanes` advanced over the block in lockstep, their stored outputs written to
+    /// `out` (L rows of the block's width).
+    fn lockstep<const L: usize>(&self, lanes: &mut [RealizationState; L], out: &mut [f64]) {
         let mut task = Lockstep {
             block: self,
             lanes,
-            out: vec![Vec::new(); L],
+            out,
+            kept: 0,
         };
         vmath::run(&mut task);
-        task.out
     }
 }
 
@@ -338,7 +359,10 @@ impl Block<'_, '_> {
 struct Lockstep<'t, 'b, 'a, const L: usize> {
     block: &'t Block<'b, 'a>,
     lanes: &'t mut [RealizationState; L],
-    out: Vec<Vec<f64>>,
+    /// L rows of the block's width.
+    out: &'t mut [f64],
+    /// Values kept so far in each row.
+    kept: usize,
 }
 
 impl<const L: usize> vmath::Task for Lockstep<'_, '_, '_, L> {
@@ -355,21 +379,22 @@ impl<const L: usize> vmath::Task for Lockstep<'_, '_, '_, L> {
         let mut max_abs: Vec<[f64; L]> = (0..p)
             .map(|o| std::array::from_fn(|l| self.lanes[l].max_abs[o]))
             .collect();
-        let mut eps = vec![[0.0; L]; n];
+        let mut eps = vec![[0.0; L]; DRAW_STEPS * n];
         let mut normals = LaneNormals::new(std::array::from_fn(|l| self.lanes[l].rng));
         if b.j0 == 0 {
             observe(&b.maps[0], &z, &mut y, &mut max_y, &mut max_abs);
             self.keep(&y);
         }
-        for j in b.j0..b.j1 {
-            for e in &mut eps {
-                *e = normals.draw();
-            }
-            step(&b.steps[j - b.j0], &z, &eps, &mut tmp);
-            std::mem::swap(&mut z, &mut tmp);
-            observe(&b.maps[j + 1 - b.j0], &z, &mut y, &mut max_y, &mut max_abs);
-            if (j + 1) % k == 0 {
-                self.keep(&y);
+        for j0 in (b.j0..b.j1).step_by(DRAW_STEPS) {
+            let eps = &mut eps[..(b.j1 - j0).min(DRAW_STEPS) * n];
+            normals.fill(eps);
+            for (j, eps) in (j0..).zip(eps.chunks_exact(n)) {
+                step(&b.steps[j - b.j0], &z, eps, &mut tmp);
+                std::mem::swap(&mut z, &mut tmp);
+                observe(&b.maps[j + 1 - b.j0], &z, &mut y, &mut max_y, &mut max_abs);
+                if (j + 1) % k == 0 {
+                    self.keep(&y);
+                }
             }
         }
         for (l, s) in self.lanes.iter_mut().enumerate() {
@@ -382,12 +407,14 @@ impl<const L: usize> vmath::Task for Lockstep<'_, '_, '_, L> {
 }
 
 impl<const L: usize> Lockstep<'_, '_, '_, L> {
-    /// Appends every lane's outputs `y` to its stored values.
+    /// Writes every lane's outputs `y` after its stored values so far.
     #[inline(always)]
     fn keep(&mut self, y: &[[f64; L]]) {
-        for (l, out) in self.out.iter_mut().enumerate() {
-            out.extend(y.iter().map(|v| v[l]));
+        let (w, at) = (self.block.width, self.kept);
+        for (l, row) in self.out.chunks_exact_mut(w).enumerate() {
+            row[at..at + y.len()].iter_mut().zip(y).for_each(|(v, yo)| *v = yo[l]);
         }
+        self.kept += y.len();
     }
 }
 
@@ -538,7 +565,8 @@ mod tests {
         let mut stored = vec![Vec::new(); r as usize];
         for (j0, j1) in plan.blocks() {
             let b = plan.advance(&mut states, j0, j1).unwrap();
-            stored.iter_mut().zip(b.stored).for_each(|(s, v)| s.extend(v));
+            let rows = b.stored.chunks_exact(b.width);
+            stored.iter_mut().zip(rows).for_each(|(s, v)| s.extend_from_slice(v));
         }
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         let tables = plan.block_tables(0, grid.n_steps).unwrap();

@@ -96,9 +96,10 @@ impl ShardSource for GridPlan<'_> {
                 )
                 .collect::<Result<_>>()?,
         };
-        let (stored, maxima) = runs.into_iter().unzip();
+        let (stored, maxima): (Vec<Vec<f64>>, _) = runs.into_iter().unzip();
         sink(ShardBlock {
-            stored,
+            width: stored.first().map_or(0, Vec::len),
+            stored: stored.concat(),
             first_stored: 0,
         });
         Ok(maxima)
