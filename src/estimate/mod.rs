@@ -20,6 +20,6 @@ pub use cross_spectrum::{cross_spectrum, CrossSpectrum};
 pub use interval::{Comparison, Interval};
 pub use moments::{
     chi_squared_quantile, mean_interval, std_interval, student_t_quantile, variance_interval,
-    variance_interval_known_mean, RunningMoments, VarianceEstimate,
+    variance_interval_known_mean, ChiSquaredInterval, RunningMoments, VarianceEstimate,
 };
 pub use welch::{Welch, WelchEstimate, WelchScratch, WelchStream, WelchSums};

@@ -233,17 +233,66 @@ impl VarianceEstimate {
     /// assert!((i.upper - 2.0 / (-2.0 * 0.95f64.ln())).abs() < 1e-9);
     /// ```
     pub fn interval(&self, confidence: f64) -> Result<Interval> {
-        let (v, nu) = (self.variance, self.dof);
         check_confidence(confidence)?;
-        crate::error::require_non_negative("variance estimate", v)?;
+        crate::error::require_non_negative("variance estimate", self.variance)?;
+        ChiSquaredInterval::new(self.dof, confidence)?.interval(self.variance)
+    }
+}
+
+/// The χ² interval of [`VarianceEstimate::interval`] for any number of estimates with the same ν and
+/// confidence, its two quantiles found once (they cost far more than the interval itself).
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::{ChiSquaredInterval, VarianceEstimate};
+/// let chi = ChiSquaredInterval::new(9.0, 0.95).unwrap();
+/// for v in [0.5, 2.0] {
+///     let a = chi.interval(v).unwrap();
+///     let b = VarianceEstimate { variance: v, dof: 9.0 }.interval(0.95).unwrap();
+///     assert_eq!((a.lower.to_bits(), a.upper.to_bits()), (b.lower.to_bits(), b.upper.to_bits()));
+/// }
+/// assert!(chi.interval(-1.0).is_err());
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChiSquaredInterval {
+    dof: f64,
+    confidence: f64,
+    /// χ²_{ν,1−p/2}.
+    hi: f64,
+    /// χ²_{ν,p/2}.
+    lo: f64,
+}
+
+impl ChiSquaredInterval {
+    /// The quantiles of χ²_ν at (1 ± confidence)/2.
+    ///
+    /// # Errors
+    /// ν ≤ 0, confidence ∉ (0, 1).
+    pub fn new(dof: f64, confidence: f64) -> Result<Self> {
+        check_confidence(confidence)?;
         let a = 1.0 - confidence;
-        let hi = chi_squared_quantile(nu, 1.0 - a / 2.0)?;
-        let lo = chi_squared_quantile(nu, a / 2.0)?;
+        Ok(ChiSquaredInterval {
+            dof,
+            confidence,
+            hi: chi_squared_quantile(dof, 1.0 - a / 2.0)?,
+            lo: chi_squared_quantile(dof, a / 2.0)?,
+        })
+    }
+
+    /// The interval [ν v/χ²_{ν,1−p/2}, ν v/χ²_{ν,p/2}] of the variance estimate v.
+    ///
+    /// # Errors
+    /// v negative or non-finite.
+    pub fn interval(&self, variance: f64) -> Result<Interval> {
+        let (v, nu) = (
+            crate::error::require_non_negative("variance estimate", variance)?,
+            self.dof,
+        );
         Ok(Interval {
             estimate: v,
-            lower: nu * v / hi,
-            upper: nu * v / lo,
-            confidence,
+            lower: nu * v / self.hi,
+            upper: nu * v / self.lo,
+            confidence: self.confidence,
         })
     }
 }

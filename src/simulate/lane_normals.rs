@@ -169,7 +169,7 @@ impl StreamRng {
     /// from the state before it (see the module's formula).
     #[inline(always)]
     fn fast_normal(&mut self, e: &Edges) -> f64 {
-        let before = *self;
+        let [s0, s1, s2, s3] = self.s;
         let bits = rand::Rng::next_u64(self);
         let i = (bits & 0xff) as usize;
         let u = f64::from_bits((bits >> 12) | 0x4000_0000_0000_0000) - 3.0;
@@ -178,17 +178,19 @@ impl StreamRng {
             return x;
         }
         let x;
-        (x, *self) = before.redo();
+        (x, self.s) = redo(s0, s1, s2, s3);
         x
     }
+}
 
-    /// A draw not accepted at once, redone by `rand_distr` from this state: the variate and the state after
-    /// it (by value, so that the draw loop keeps its state in registers; ≈ 1.2 % of draws).
-    #[cold]
-    #[inline(never)]
-    fn redo(mut self) -> (f64, StreamRng) {
-        (self.normal(), self)
-    }
+/// A draw not accepted at once, redone by `rand_distr` from the stream's state (s0, s1, s2, s3): the variate
+/// and the state after it (the words by value, in registers, so that the draw loop keeps its state there;
+/// ≈ 1.2 % of draws).
+#[cold]
+#[inline(never)]
+fn redo(s0: u64, s1: u64, s2: u64, s3: u64) -> (f64, [u64; 4]) {
+    let mut r = StreamRng { s: [s0, s1, s2, s3] };
+    (r.normal(), r.s)
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@ use super::transient_run::{
     TransientSetup,
 };
 use crate::error::{Error, Result};
-use crate::estimate::VarianceEstimate;
+use crate::estimate::ChiSquaredInterval;
 use crate::scenario::Scenario;
 use crate::store::transient_series::TransientSeries;
 use crate::store::{Compression, Part};
@@ -183,17 +183,19 @@ pub fn compare_sigma(series: &TransientSeries, alpha: f64) -> Result<Vec<SigmaCo
             let mut rows = Vec::with_capacity(k);
             let mut outside = Vec::new();
             let mut covered = 0usize;
+            // the quantiles once per output, at its first compared time
+            let mut chi: Option<ChiSquaredInterval> = None;
             for (j, &t) in series.times.iter().enumerate() {
                 let (ex, est) = (o.exact_sigma[j], o.sigma[j]);
                 if ex.is_nan() {
                     rows.push((t, ex, est, o.sigma_lower[j], o.sigma_upper[j]));
                     continue;
                 }
-                let iv = VarianceEstimate {
-                    variance: est * est,
-                    dof: r as f64 - 1.0,
+                let iv = match chi {
+                    Some(c) => c,
+                    None => *chi.insert(ChiSquaredInterval::new(r as f64 - 1.0, level)?),
                 }
-                .interval(level)?;
+                .interval(est * est)?;
                 let tiny = (ex - est).abs() <= 1e-12 * scale;
                 if !(tiny || (iv.lower.sqrt() <= ex && ex <= iv.upper.sqrt())) {
                     outside.push(t);

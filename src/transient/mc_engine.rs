@@ -368,10 +368,31 @@ struct Lockstep<'t, 'b, 'a, const L: usize> {
 impl<const L: usize> vmath::Task for Lockstep<'_, '_, '_, L> {
     #[inline(always)]
     fn run(&mut self) {
+        // the state in a fixed-size array for the common sizes (the loops over it unrolled, its values in
+        // registers), else in a vector; the same arithmetic in the same order either way
+        let zero = [0.0; L];
+        match self.block.plan.n {
+            2 => self.run_with([zero; 2], [zero; 2]),
+            3 => self.run_with([zero; 3], [zero; 3]),
+            4 => self.run_with([zero; 4], [zero; 4]),
+            5 => self.run_with([zero; 5], [zero; 5]),
+            6 => self.run_with([zero; 6], [zero; 6]),
+            7 => self.run_with([zero; 7], [zero; 7]),
+            8 => self.run_with([zero; 8], [zero; 8]),
+            n => self.run_with(vec![zero; n], vec![zero; n]),
+        }
+    }
+}
+
+impl<const L: usize> Lockstep<'_, '_, '_, L> {
+    /// The block stepped with the state held in `z` and `tmp` (n states each, zeros).
+    #[inline(always)]
+    fn run_with<S: AsRef<[[f64; L]]> + AsMut<[[f64; L]]>>(&mut self, mut z: S, mut tmp: S) {
         let b = self.block;
         let (n, p, k) = (b.plan.n, b.plan.outputs.len(), b.plan.grid.store_every);
-        let mut z: Vec<[f64; L]> = (0..n).map(|c| std::array::from_fn(|l| self.lanes[l].z[c])).collect();
-        let mut tmp = vec![[0.0; L]; n];
+        for (c, zc) in z.as_mut().iter_mut().enumerate() {
+            *zc = std::array::from_fn(|l| self.lanes[l].z[c]);
+        }
         let mut y = vec![[0.0; L]; p];
         let mut max_y: Vec<[f64; L]> = (0..p)
             .map(|o| std::array::from_fn(|l| self.lanes[l].max_y[o]))
@@ -382,16 +403,16 @@ impl<const L: usize> vmath::Task for Lockstep<'_, '_, '_, L> {
         let mut eps = vec![[0.0; L]; DRAW_STEPS * n];
         let mut normals = LaneNormals::new(std::array::from_fn(|l| self.lanes[l].rng));
         if b.j0 == 0 {
-            observe(&b.maps[0], &z, &mut y, &mut max_y, &mut max_abs);
+            observe(&b.maps[0], z.as_ref(), &mut y, &mut max_y, &mut max_abs);
             self.keep(&y);
         }
         for j0 in (b.j0..b.j1).step_by(DRAW_STEPS) {
             let eps = &mut eps[..(b.j1 - j0).min(DRAW_STEPS) * n];
             normals.fill(eps);
             for (j, eps) in (j0..).zip(eps.chunks_exact(n)) {
-                step(&b.steps[j - b.j0], &z, eps, &mut tmp);
+                step(&b.steps[j - b.j0], z.as_ref(), eps, tmp.as_mut());
                 std::mem::swap(&mut z, &mut tmp);
-                observe(&b.maps[j + 1 - b.j0], &z, &mut y, &mut max_y, &mut max_abs);
+                observe(&b.maps[j + 1 - b.j0], z.as_ref(), &mut y, &mut max_y, &mut max_abs);
                 if (j + 1) % k == 0 {
                     self.keep(&y);
                 }
@@ -399,14 +420,12 @@ impl<const L: usize> vmath::Task for Lockstep<'_, '_, '_, L> {
         }
         for (l, s) in self.lanes.iter_mut().enumerate() {
             s.rng = normals.stream(l);
-            s.z.iter_mut().zip(&z).for_each(|(v, zc)| *v = zc[l]);
+            s.z.iter_mut().zip(z.as_ref()).for_each(|(v, zc)| *v = zc[l]);
             s.max_y.iter_mut().zip(&max_y).for_each(|(v, m)| *v = m[l]);
             s.max_abs.iter_mut().zip(&max_abs).for_each(|(v, m)| *v = m[l]);
         }
     }
-}
 
-impl<const L: usize> Lockstep<'_, '_, '_, L> {
     /// Writes every lane's outputs `y` after its stored values so far.
     #[inline(always)]
     fn keep(&mut self, y: &[[f64; L]]) {

@@ -106,11 +106,15 @@ pub fn analytic_side(
                 });
             }
             let lv = levels(sol, i);
-            let rice = |barrier: Barrier| -> Vec<f64> {
-                lv.iter()
-                    .map(|&b| (-sol.expected_crossings(i, b, barrier).expected).exp())
-                    .collect()
-            };
+            // P(max ≤ b) of y and of |y| from one pass over the levels (both barriers' rates at once)
+            let (cdf_y_rice, cdf_abs_rice): (Vec<f64>, Vec<f64>) = lv
+                .iter()
+                .map(|&b| {
+                    let (up, both) = sol.crossing_rates_both(i, b);
+                    let cdf = |rates: &[f64]| (-sol.crossings(rates).expected).exp();
+                    (cdf(&up), cdf(&both))
+                })
+                .unzip();
             let van = |barrier: Barrier| -> Result<Vec<f64>> {
                 let Some(fr0) = stationary else {
                     return Ok(vec![f64::NAN; lv.len()]);
@@ -135,8 +139,8 @@ pub fn analytic_side(
             Ok(AnalyticOutput {
                 mean: o.mean.clone(),
                 sigma: o.sigma.clone(),
-                cdf_y_rice: rice(Barrier::OneSided),
-                cdf_abs_rice: rice(Barrier::TwoSided),
+                cdf_y_rice,
+                cdf_abs_rice,
                 cdf_y_vanmarcke: van(Barrier::OneSided)?,
                 cdf_abs_vanmarcke: van(Barrier::TwoSided)?,
                 levels: lv,

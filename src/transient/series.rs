@@ -89,11 +89,34 @@ impl TransientSolution {
             .collect()
     }
 
+    /// [`Self::crossing_rates`] of both barriers at once, the two-sided rate from the one-sided one: ν⁺(b, t)
+    /// of y plus that of −y (whose mean and mean rate change sign), as `rice_rate_two_sided` adds them (the
+    /// same values; one Rice rate fewer per time).
+    pub fn crossing_rates_both(&self, i: usize, level: f64) -> (Vec<f64>, Vec<f64>) {
+        let o = &self.outputs[i];
+        (0..o.sigma.len())
+            .map(|k| {
+                let s = o.state(k);
+                let mirrored = RiceState {
+                    mean: -s.mean,
+                    mean_rate: -s.mean_rate,
+                    ..s
+                };
+                let up = rice_rate(level, &s);
+                (up, up + rice_rate(level, &mirrored))
+            })
+            .unzip()
+    }
+
     /// The expected number of crossings ∫ν dt over the stored times.
     pub fn expected_crossings(&self, i: usize, level: f64, barrier: Barrier) -> Crossings {
-        let rates = self.crossing_rates(i, level, barrier);
-        let fine = trapezoid(&self.times, &rates, 1);
-        let coarse = trapezoid(&self.times, &rates, 2);
+        self.crossings(&self.crossing_rates(i, level, barrier))
+    }
+
+    /// The expected number of crossings ∫ν dt over the stored times from the rates ν at the stored times.
+    pub fn crossings(&self, rates: &[f64]) -> Crossings {
+        let fine = trapezoid(&self.times, rates, 1);
+        let coarse = trapezoid(&self.times, rates, 2);
         Crossings {
             expected: fine.unwrap_or(f64::NAN),
             error_estimate: match (fine, coarse) {
