@@ -127,6 +127,18 @@ fn flat(m: &DMatrix<f64>) -> Vec<f64> {
         .collect()
 }
 
+/// The exact transition of a step of `dt` with the coefficients `fr` (Van Loan; the mean step; a factor of
+/// the noise covariance).
+fn step_disc(fr: &Frozen, dt: f64) -> Result<StepDisc> {
+    let tr = van_loan(&fr.f, &fr.g, dt)?;
+    let gamma = super::lyapunov_ode::mean_step(fr, dt)?;
+    Ok(StepDisc {
+        phi: flat(&tr.phi),
+        l: flat(&covariance_factor(&tr.qd)?),
+        gamma: gamma.iter().copied().collect(),
+    })
+}
+
 /// The step transitions and output maps of a block (equal neighbours shared).
 type BlockTables = (Vec<Arc<StepDisc>>, Vec<Arc<OutputMap>>);
 
@@ -219,32 +231,30 @@ impl<'a> McPlan<'a> {
         }
     }
 
-    /// The transitions of steps `j0..j1` and the output maps of points `j0..=j1`, equal neighbours shared.
+    /// The transitions of steps `j0..j1` and the output maps of points `j0..=j1`, equal neighbours shared
+    /// (the frozen coefficients and each distinct transition computed in parallel).
     fn block_tables(&self, j0: usize, j1: usize) -> Result<BlockTables> {
         let dt = self.grid.dt;
-        let mut steps: Vec<Arc<StepDisc>> = Vec::with_capacity(j1 - j0);
-        let mut last: Option<(Frozen, Arc<StepDisc>)> = None;
-        for j in j0..j1 {
-            let fr = self.sys.frozen((j as f64 + 0.5) * dt)?;
-            let d = match &last {
-                Some((f, d)) if *f == fr => d.clone(),
-                _ => {
-                    let tr = van_loan(&fr.f, &fr.g, dt)?;
-                    let gamma = super::lyapunov_ode::mean_step(&fr, dt)?;
-                    let d = Arc::new(StepDisc {
-                        phi: flat(&tr.phi),
-                        l: flat(&covariance_factor(&tr.qd)?),
-                        gamma: gamma.iter().copied().collect(),
-                    });
-                    last = Some((fr, d.clone()));
-                    d
-                }
-            };
-            steps.push(d);
+        // the coefficients at (j + offset)Δt (j + 0 is j exactly)
+        let frozen = |offset: f64, js: std::ops::Range<usize>| -> Result<Vec<Frozen>> {
+            js.into_par_iter()
+                .map(|j| self.sys.frozen((j as f64 + offset) * dt))
+                .collect()
+        };
+        let mid = frozen(0.5, j0..j1)?;
+        // a step starts a run of equal coefficients, whose steps share its transition
+        let starts = |m: usize| m == 0 || mid[m] != mid[m - 1];
+        let distinct: Vec<&Frozen> = (0..mid.len()).filter(|&m| starts(m)).map(|m| &mid[m]).collect();
+        let discs: Vec<StepDisc> = distinct.par_iter().map(|fr| step_disc(fr, dt)).collect::<Result<_>>()?;
+        let mut discs = discs.into_iter().map(Arc::new);
+        let mut steps: Vec<Arc<StepDisc>> = Vec::with_capacity(mid.len());
+        for m in 0..mid.len() {
+            let d = if starts(m) { discs.next() } else { steps.last().cloned() };
+            steps.extend(d);
         }
         let mut maps: Vec<Arc<OutputMap>> = Vec::with_capacity(j1 - j0 + 1);
-        for j in j0..=j1 {
-            let m = self.output_map(&self.sys.frozen(j as f64 * dt)?);
+        for fr in frozen(0.0, j0..j1 + 1)? {
+            let m = self.output_map(&fr);
             match maps.last() {
                 Some(prev) if **prev == m => maps.push(prev.clone()),
                 _ => maps.push(Arc::new(m)),

@@ -8,6 +8,7 @@ use crate::error::{Error, Result};
 use crate::extremes::{Barrier, FirstPassage};
 use crate::quad::{integrate, QuadOptions};
 use nalgebra::{Complex, DMatrix};
+use rayon::prelude::*;
 
 /// Levels of the analytic distributions of the maxima.
 pub const LEVELS: usize = 400;
@@ -106,9 +107,9 @@ pub fn analytic_side(
                 });
             }
             let lv = levels(sol, i);
-            // P(max ≤ b) of y and of |y| from one pass over the levels (both barriers' rates at once)
+            // P(max ≤ b) of y and of |y| from one pass over the levels (both barriers' rates at once), in parallel
             let (cdf_y_rice, cdf_abs_rice): (Vec<f64>, Vec<f64>) = lv
-                .iter()
+                .par_iter()
                 .map(|&b| {
                     let (up, both) = sol.crossing_rates_both(i, b);
                     let cdf = |rates: &[f64]| (-sol.crossings(rates).expected).exp();
