@@ -244,14 +244,16 @@ impl VarianceEstimate {
 ///
 /// # Examples
 /// ```
-/// use stochvib::estimate::{ChiSquaredInterval, VarianceEstimate};
-/// let chi = ChiSquaredInterval::new(9.0, 0.95).unwrap();
-/// for v in [0.5, 2.0] {
-///     let a = chi.interval(v).unwrap();
-///     let b = VarianceEstimate { variance: v, dof: 9.0 }.interval(0.95).unwrap();
-///     assert_eq!((a.lower.to_bits(), a.upper.to_bits()), (b.lower.to_bits(), b.upper.to_bits()));
+/// use stochvib::estimate::ChiSquaredInterval;
+/// // ν = 2: χ²₂ is exponential with mean 2, χ²_{2,q} = −2 ln(1 − q)
+/// let chi = ChiSquaredInterval::new(2.0, 0.9).unwrap();
+/// for v in [0.5, 1.0, 3.0] {
+///     let i = chi.interval(v).unwrap();
+///     assert!((i.lower - 2.0 * v / (-2.0 * 0.05f64.ln())).abs() < 1e-12 * v);
+///     assert!((i.upper - 2.0 * v / (-2.0 * 0.95f64.ln())).abs() < 1e-9 * v);
 /// }
 /// assert!(chi.interval(-1.0).is_err());
+/// assert!(ChiSquaredInterval::new(0.0, 0.9).is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ChiSquaredInterval {

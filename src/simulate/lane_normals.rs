@@ -237,4 +237,35 @@ mod tests {
             "the tail box was drawn"
         );
     }
+
+    /// Draws filled many steps at a time, in fills of uneven lengths (one row, part of a chunk, a chunk of
+    /// 64, a long one), have the bits of `fill_standard_normal` on each lane's stream and leave each stream
+    /// where it leaves it.
+    #[test]
+    fn fills_give_the_bits_of_rand_distr() {
+        const L: usize = 4;
+        let lengths = [1, 37, 64, 5000, 3];
+        let n: usize = lengths.iter().sum();
+        let mut lanes = LaneNormals::<L>::new(std::array::from_fn(|l| StreamRng::new(11, 100 + l as u64)));
+        let mut got = vec![[0.0; L]; n];
+        let mut at = 0;
+        for m in lengths {
+            lanes.fill(&mut got[at..at + m]);
+            at += m;
+        }
+        for l in 0..L {
+            let mut want = vec![0.0; n];
+            let mut rng = stream(11, 100 + l as u64);
+            fill_standard_normal(&mut rng, &mut want);
+            assert!(
+                got.iter().zip(&want).all(|(g, w)| g[l].to_bits() == w.to_bits()),
+                "lane {l}"
+            );
+            assert_eq!(
+                lanes.stream(l).next_u64(),
+                rng.next_u64(),
+                "lane {l}: the stream's state"
+            );
+        }
+    }
 }

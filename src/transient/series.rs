@@ -263,3 +263,55 @@ pub fn solve(sys: &TimeVaryingSystem, start: &Start, times: &[f64], opts: &Exact
         start: start.clone(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An output with a mean, a mean rate and a correlation of y and ẏ at every time (the mirrored process
+    /// differs from y), and one time at rest (σ = 0).
+    fn solution() -> TransientSolution {
+        let k = 5;
+        let output = OutputSeries {
+            name: "y".into(),
+            unit: "m".into(),
+            mean: vec![0.0, 0.3, -0.2, 1.1, 0.05],
+            sigma: vec![0.0, 0.5, 0.8, 1.2, 0.9],
+            mean_rate: vec![0.0, 2.0, -1.5, 0.4, -0.1],
+            sigma_rate: vec![0.0, 3.0, 5.0, 7.5, 6.0],
+            rho: vec![0.0, 0.2, -0.35, 0.6, 0.0],
+            unavailable: None,
+            rate_note: None,
+        };
+        TransientSolution {
+            times: (0..k).map(|j| j as f64 * 0.25).collect(),
+            outputs: vec![output],
+            error_estimate: vec![0.0; k],
+            report: StepReport {
+                steps: k,
+                exact_steps: k,
+                rejected: 0,
+                exponentials: 1,
+                max_error_estimate: 0.0,
+            },
+            start: Start::Rest,
+        }
+    }
+
+    /// Both barriers' rates from one pass have the bits of each barrier's own rates, at levels below,
+    /// at and above the means.
+    #[test]
+    fn both_barriers_at_once_give_the_bits_of_each() {
+        let sol = solution();
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for b in [-1.0, 0.0, 0.3, 1.5, 4.0] {
+            let (up, both) = sol.crossing_rates_both(0, b);
+            assert_eq!(bits(&up), bits(&sol.crossing_rates(0, b, Barrier::OneSided)), "b = {b}");
+            assert_eq!(
+                bits(&both),
+                bits(&sol.crossing_rates(0, b, Barrier::TwoSided)),
+                "b = {b}"
+            );
+        }
+    }
+}
