@@ -253,19 +253,17 @@ mod tests {
             lanes.fill(&mut got[at..at + m]);
             at += m;
         }
+        let bits = |v: &mut dyn Iterator<Item = f64>| v.map(f64::to_bits).collect::<Vec<_>>();
         for l in 0..L {
-            let mut want = vec![0.0; n];
             let mut rng = stream(11, 100 + l as u64);
+            let mut want = vec![0.0; n];
             fill_standard_normal(&mut rng, &mut want);
-            assert!(
-                got.iter().zip(&want).all(|(g, w)| g[l].to_bits() == w.to_bits()),
+            assert_eq!(
+                bits(&mut got.iter().map(|g| g[l])),
+                bits(&mut want.into_iter()),
                 "lane {l}"
             );
-            assert_eq!(
-                lanes.stream(l).next_u64(),
-                rng.next_u64(),
-                "lane {l}: the stream's state"
-            );
+            assert_eq!(lanes.stream(l).next_u64(), rng.next_u64(), "lane {l}: its state");
         }
     }
 }
