@@ -44,6 +44,26 @@ use std::f64::consts::PI;
 /// fully pivoted `nalgebra` LU.
 const STACK_MAX: usize = 8;
 
+/// `$f::<N>($args)` for the degree `$n` = N ≤ [`STACK_MAX`] (the caller has checked the range): each
+/// degree gets its own copy of the loops with constant lengths, which the compiler unrolls and keeps in
+/// registers. The operations and their order are those of the loops with a run-time length, so the
+/// results are the same, bit for bit.
+macro_rules! by_degree {
+    ($n:expr, $f:ident, ($($arg:expr),*)) => {
+        match $n {
+            0 => $f::<0>($($arg),*),
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
+            4 => $f::<4>($($arg),*),
+            5 => $f::<5>($($arg),*),
+            6 => $f::<6>($($arg),*),
+            7 => $f::<7>($($arg),*),
+            _ => $f::<STACK_MAX>($($arg),*),
+        }
+    };
+}
+
 fn check_finite(name: &str, c: &[f64]) -> Result<()> {
     if let Some(v) = c.iter().find(|v| !v.is_finite()) {
         return Err(Error::invalid(name, v, "all coefficients must be finite"));
@@ -64,6 +84,13 @@ fn hurwitz(p: &[f64]) -> bool {
     if n > STACK_MAX {
         return is_hurwitz(p);
     }
+    by_degree!(n, hurwitz_of, (p))
+}
+
+/// [`hurwitz`] of a polynomial of degree N ≤ [`STACK_MAX`] (`p.len()` = N + 1).
+#[inline]
+fn hurwitz_of<const N: usize>(p: &[f64]) -> bool {
+    let (p, n) = (&p[..=N], N);
     let sg = p[n].signum();
     if !p.iter().all(|&c| c * sg > 0.0) {
         return false;
@@ -462,14 +489,25 @@ pub(crate) struct H2Denominator<'d> {
 /// The recorded elimination of the Hurwitz matrix of a denominator of degree n ≤ [`STACK_MAX`].
 struct Elimination {
     n: usize,
-    /// The upper triangle after elimination.
-    u: [[f64; STACK_MAX]; STACK_MAX],
+    /// The last diagonal entry of the upper triangle after elimination (the only one the table's
+    /// C_{n−1} needs; 0 for n = 0).
+    u_last: f64,
     /// Pivot row chosen at each column.
-    swap: [usize; STACK_MAX],
+    swap: [u8; STACK_MAX],
     /// Multiplier of row r at column c (0: the row was skipped).
-    f: [[f64; STACK_MAX]; STACK_MAX],
+    /// (the strictly lower triangle, row by row: entry (r, c), c < r, at [`lower`]`(r, c)`).
+    f: [f64; LOWER],
     /// The pivot ratio, or the error of a numerically singular system.
     ratio: std::result::Result<f64, f64>,
+}
+
+/// Entries of the strictly lower triangle of a STACK_MAX × STACK_MAX matrix.
+const LOWER: usize = STACK_MAX * (STACK_MAX - 1) / 2;
+
+/// The index of entry (r, c), c < r, of a strictly lower triangle stored row by row.
+#[inline(always)]
+fn lower(r: usize, c: usize) -> usize {
+    r * (r - 1) / 2 + c
 }
 
 impl<'d> H2Denominator<'d> {
@@ -501,16 +539,16 @@ impl<'d> H2Denominator<'d> {
             *v = rhs(b, k);
         }
         for col in 0..n {
-            r.swap(col, el.swap[col]);
+            r.swap(col, usize::from(el.swap[col]));
             for row in col + 1..n {
-                let f = el.f[row][col];
+                let f = el.f[lower(row, col)];
                 if f != 0.0 {
                     r[row] -= f * r[col];
                 }
             }
         }
         // back substitution yields C_{n−1} first, from the last row alone; the other Cⱼ do not enter Iₙ
-        let c_last = r[n - 1] / el.u[n - 1][n - 1];
+        let c_last = r[n - 1] / el.u_last;
         let value = 2.0 * PI * c_last / self.d[n];
         if !value.is_finite() {
             return Err(Error::Numerical {
@@ -543,19 +581,27 @@ impl H2Denominator<'_> {
     pub(crate) fn weights(&self) -> Option<H2Weights> {
         let el = self.elim.as_ref()?;
         let ratio = el.ratio.ok()?;
-        let n = el.n;
+        Some(by_degree!(el.n, weights_of, (el, self.d, ratio)))
+    }
+}
+
+/// [`H2Denominator::weights`] of the elimination `el` of degree N of the denominator `d`.
+#[inline]
+fn weights_of<const N: usize>(el: &Elimination, d: &[f64], ratio: f64) -> H2Weights {
+    let n = N;
+    {
         let mut w = [0.0; STACK_MAX];
-        w[n - 1] = 2.0 * PI / (el.u[n - 1][n - 1] * self.d[n]);
+        w[n - 1] = 2.0 * PI / (el.u_last * d[n]);
         for col in (0..n).rev() {
             for row in (col + 1..n).rev() {
-                let f = el.f[row][col];
+                let f = el.f[lower(row, col)];
                 if f != 0.0 {
                     w[col] -= f * w[row];
                 }
             }
-            w.swap(col, el.swap[col]);
+            w.swap(col, usize::from(el.swap[col]));
         }
-        Some(H2Weights { n, w, ratio })
+        H2Weights { n, w, ratio }
     }
 }
 
@@ -588,14 +634,7 @@ impl H2Weights {
         if b.is_empty() || b.len() > n || !b.iter().all(|v| v.is_finite()) {
             return None;
         }
-        let (mut c0, mut c2) = (0.0, 0.0);
-        for k in 0..n {
-            let d = rhs(b, k);
-            c0 += self.w[k] * d;
-            if k + 1 < n {
-                c2 -= self.w[k + 1] * d;
-            }
-        }
+        let (c0, c2) = by_degree!(n, sums_with_moment, (&self.w, b));
         if !c0.is_finite() {
             return None;
         }
@@ -604,17 +643,58 @@ impl H2Weights {
     }
 }
 
+/// (wᵀd(b), −Σₖ w_{k+1}dₖ(b)) for degree N: the two sums of [`H2Weights::h2_with_moment`], in its order.
+#[inline]
+fn sums_with_moment<const N: usize>(w: &[f64; STACK_MAX], b: &[f64]) -> (f64, f64) {
+    // the numerator's length 1 ≤ B ≤ N (checked by the caller) as a constant too: rhs's loops unrolled
+    match b.len() {
+        1 => sums_of::<N, 1>(w, b),
+        2 => sums_of::<N, 2>(w, b),
+        3 => sums_of::<N, 3>(w, b),
+        4 => sums_of::<N, 4>(w, b),
+        5 => sums_of::<N, 5>(w, b),
+        6 => sums_of::<N, 6>(w, b),
+        7 => sums_of::<N, 7>(w, b),
+        _ => sums_of::<N, STACK_MAX>(w, b),
+    }
+}
+
+/// [`sums_with_moment`] for a numerator of B coefficients.
+#[inline(always)]
+fn sums_of<const N: usize, const B: usize>(w: &[f64; STACK_MAX], b: &[f64]) -> (f64, f64) {
+    let b = &b[..B];
+    let (mut c0, mut c2) = (0.0, 0.0);
+    for k in 0..N {
+        let d = rhs(b, k);
+        c0 += w[k] * d;
+        if k + 1 < N {
+            c2 -= w[k + 1] * d;
+        }
+    }
+    (c0, c2)
+}
+
 impl Elimination {
     /// The elimination of `solve_last`'s stack route on the Hurwitz matrix of `a` (degree n), recorded.
     fn new(a: &[f64], n: usize) -> Elimination {
-        let mut m = [[0.0; STACK_MAX]; STACK_MAX];
+        debug_assert!(n <= STACK_MAX, "the stack route");
+        by_degree!(n, elimination_of, (a))
+    }
+}
+
+/// [`Elimination::new`] of degree N ≤ [`STACK_MAX`].
+#[inline]
+fn elimination_of<const N: usize>(a: &[f64]) -> Elimination {
+    let n = N;
+    {
+        let mut m = [[0.0; N]; N];
         for (k, row) in m.iter_mut().enumerate().take(n) {
             for (j, v) in row.iter_mut().enumerate().take(n) {
                 *v = entry(a, n, k, j);
             }
         }
         let mut swap = [0; STACK_MAX];
-        let mut f = [[0.0; STACK_MAX]; STACK_MAX];
+        let mut f = [0.0; LOWER];
         let (mut umax, mut umin) = (0.0_f64, f64::INFINITY);
         let mut ratio = Ok(0.0);
         for col in 0..n {
@@ -625,7 +705,7 @@ impl Elimination {
                 }
             }
             m.swap(col, p);
-            swap[col] = p;
+            swap[col] = p as u8; // p < N ≤ STACK_MAX
             let piv = m[col][col];
             umax = umax.max(piv.abs());
             umin = umin.min(piv.abs());
@@ -635,7 +715,7 @@ impl Elimination {
             }
             for r in col + 1..n {
                 let fr = m[r][col] / piv;
-                f[r][col] = fr;
+                f[lower(r, col)] = fr;
                 if fr != 0.0 {
                     let (pivot_rows, rest) = m.split_at_mut(r);
                     for (x, y) in rest[0][col..n].iter_mut().zip(&pivot_rows[col][col..n]) {
@@ -653,7 +733,7 @@ impl Elimination {
         }
         Elimination {
             n,
-            u: m,
+            u_last: m.last().and_then(|row| row.last()).copied().unwrap_or(0.0),
             swap,
             f,
             ratio,
@@ -823,6 +903,80 @@ mod tests {
     /// solve the same factored Hurwitz system, forwards or transposed, so they agree within the rounding of
     /// that solve, κ·p(n)·ε with κ the pivot ratio: CONDITION_SCALED · ratio (plus a floor of ROUNDING).
     /// Where `weights` or `h2` declines, `h2_conditioned` is the answer by construction.
+    /// The Routh test of every degree 0…8 (one copy per degree, [`by_degree!`]) against
+    /// [`is_hurwitz`], an independent implementation (heap arrays, its own loop): random Hurwitz
+    /// polynomials, the same with one coefficient's sign flipped or set to zero, and random coefficients.
+    #[test]
+    fn routh_test_of_every_degree_equals_is_hurwitz() {
+        let mut rng = Rng::new(7);
+        let (mut yes, mut no) = (0, 0);
+        for trial in 0..2700 {
+            let n = trial % (STACK_MAX + 1);
+            let mut a = match trial % 3 {
+                0 => hurwitz(&mut rng, n),
+                _ => (0..=n).map(|_| rng.range(-1.0, 3.0)).collect(),
+            };
+            if trial % 3 == 1 && n > 0 {
+                let k = (rng.next_u64() as usize) % n;
+                a[k] = if trial % 2 == 0 { -a[k] } else { 0.0 };
+            }
+            let want = is_hurwitz(&a);
+            assert_eq!(super::hurwitz(&a), want, "{a:?}");
+            if want {
+                yes += 1;
+            } else {
+                no += 1;
+            }
+        }
+        assert!(yes > 900 && no > 900, "{yes} Hurwitz, {no} not");
+    }
+
+    /// The loops of one copy per degree N and numerator length B ([`sums_with_moment`], [`weights_of`])
+    /// give the bits of the same loops with run-time lengths (written out here as the oracle), for every
+    /// N ≤ 8 and B ≤ N.
+    #[test]
+    fn constant_length_loops_give_the_bits_of_run_time_ones() {
+        let mut rng = Rng::new(11);
+        for trial in 0..800 {
+            let n = 1 + trial % STACK_MAX;
+            let a = hurwitz(&mut rng, n);
+            let table = H2Denominator::new(&a);
+            let (Some(el), Some(w)) = (table.elim.as_ref(), table.weights()) else {
+                continue;
+            };
+            // weights: the recorded elimination run backwards, lengths at run time
+            let mut w0 = [0.0; STACK_MAX];
+            w0[n - 1] = 2.0 * PI / (el.u_last * a[n]);
+            for col in (0..n).rev() {
+                for row in (col + 1..n).rev() {
+                    let f = el.f[lower(row, col)];
+                    if f != 0.0 {
+                        w0[col] -= f * w0[row];
+                    }
+                }
+                w0.swap(col, usize::from(el.swap[col]));
+            }
+            assert_eq!(w.w.map(f64::to_bits), w0.map(f64::to_bits), "{a:?}");
+            for nb in 1..=n {
+                let b: Vec<f64> = (0..nb).map(|_| rng.range(-2.0, 2.0)).collect();
+                let (mut c0, mut c2) = (0.0, 0.0);
+                for k in 0..n {
+                    let d = rhs(&b, k);
+                    c0 += w.w[k] * d;
+                    if k + 1 < n {
+                        c2 -= w.w[k + 1] * d;
+                    }
+                }
+                let got = by_degree!(n, sums_with_moment, (&w.w, &b));
+                assert_eq!(
+                    (got.0.to_bits(), got.1.to_bits()),
+                    (c0.to_bits(), c2.to_bits()),
+                    "{b:?} / {a:?}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn weights_equal_the_replayed_elimination() {
         let mut rng = Rng::new(2025);

@@ -790,20 +790,62 @@ fn unstable_or(e: Error, delta: &[f64]) -> Error {
 /// p·q (ascending) into `out`; returns the length used. Each coefficient Σᵢ pᵢq_{k−i} is summed in a
 /// register in ascending i (the order, and so the rounding, of accumulating pᵢ·q row by row into a zeroed
 /// `out`), so no sum waits on a store of the previous product.
+#[inline]
 pub(crate) fn mul_into(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
     debug_assert!(
         !p.is_empty() && !q.is_empty(),
         "polynomials have at least one coefficient"
     );
+    // a shaping filter's polynomials have a few coefficients: a copy of the loop per length, whose inner
+    // loop the compiler unrolls (the same operations in the same order)
+    match q.len() {
+        1 => mul_into_q::<1>(p, q, out),
+        2 => mul_into_q::<2>(p, q, out),
+        3 => mul_into_q::<3>(p, q, out),
+        4 => mul_into_q::<4>(p, q, out),
+        _ => mul_into_any(p, q, out),
+    }
+}
+
+/// [`mul_into`] for `q.len()` = Q: the coefficients with all Q terms (Q − 1 ≤ k < p.len()) as one
+/// unrolled sum each, the others by [`mul_into_any`]'s loop (every sum from 0 in ascending i, as there).
+#[inline(always)]
+fn mul_into_q<const Q: usize>(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
+    let q: &[f64; Q] = q.try_into().unwrap_or_else(|_| unreachable!("q has Q coefficients"));
+    let len = p.len() + Q - 1;
+    for (k, o) in out[..len].iter_mut().enumerate() {
+        if k + 1 >= Q && k < p.len() {
+            let window = &p[k + 1 - Q..=k];
+            let mut acc = 0.0;
+            for t in 0..Q {
+                acc += window[t] * q[Q - 1 - t];
+            }
+            *o = acc;
+        } else {
+            *o = coefficient(p, q, k);
+        }
+    }
+    len
+}
+
+/// Σᵢ pᵢq_{k−i} over the valid i, ascending, from 0.
+#[inline(always)]
+fn coefficient(p: &[f64], q: &[f64], k: usize) -> f64 {
+    let lo = (k + 1).saturating_sub(q.len());
+    let hi = k.min(p.len() - 1);
+    let mut acc = 0.0;
+    for i in lo..=hi {
+        acc += p[i] * q[k - i];
+    }
+    acc
+}
+
+/// [`mul_into`] for any lengths.
+#[inline(always)]
+fn mul_into_any(p: &[f64], q: &[f64], out: &mut [f64]) -> usize {
     let len = p.len() + q.len() - 1;
     for (k, o) in out[..len].iter_mut().enumerate() {
-        let lo = (k + 1).saturating_sub(q.len());
-        let hi = k.min(p.len() - 1);
-        let mut acc = 0.0;
-        for i in lo..=hi {
-            acc += p[i] * q[k - i];
-        }
-        *o = acc;
+        *o = coefficient(p, q, k);
     }
     len
 }

@@ -10,8 +10,9 @@
 //! q < 10¹⁰; where the fraction of q is within 2⁻¹⁶ of ½, or |x| is outside 10⁻³⁵…10⁵³, the digits are
 //! left to `core::fmt`'s exact formatting (Grisu with the Dragon4 fallback), which also breaks exact ties:
 //! the text is the same in every case (`float_text::tests::the_text_of_fixed_digits`), the fast path taken
-//! by all but about 1 in 30 000 numbers of a table's magnitudes. The digits are cut into pairs by integer
-//! arithmetic and written from a table of the 100 pairs, straight into the string.
+//! by all but about 1 in 30 000 numbers of a table's magnitudes. The rounding to an integer is the exact
+//! (q + 2⁵²) − 2⁵²; eight of the digits are cut from it at once in the lanes of one 64-bit word
+//! ([`eight_digits`]) and the exponent's text comes from a table, straight into the string.
 
 use std::fmt::Write as _;
 
@@ -74,6 +75,8 @@ fn decimal_exponent(a: f64) -> i32 {
 fn digits_of(a: f64) -> Option<(u64, i32)> {
     const LOW: f64 = 1e9;
     const HIGH: f64 = 1e10;
+    /// 2⁵²: for 0 ≤ q < 2⁵², (q + 2⁵²) − 2⁵² is q rounded to the nearest integer (exact sums).
+    const ROUND: f64 = 4_503_599_627_370_496.0;
     let mut e10 = decimal_exponent(a);
     for _ in 0..3 {
         let k = 9 - e10;
@@ -81,24 +84,39 @@ fn digits_of(a: f64) -> Option<(u64, i32)> {
             return None;
         }
         let q = a * POW10[(k + K_MAX) as usize];
-        // floor(q) for 0 < q < 2⁶³ by truncation (`f64::floor` is a libm call on baseline x86-64)
-        let whole = q as i64 as f64;
-        let frac = q - whole;
-        if (frac - 0.5).abs() <= 1.0 / 65_536.0 {
+        if q >= HIGH {
+            // 10¹⁰ ≤ q: one decade too low (q < 2⁵² below, where the rounding by ROUND holds)
+            e10 += 1;
+            continue;
+        }
+        let d = (q + ROUND) - ROUND;
+        // |q − d| ≤ ½ exactly; within 2⁻¹⁶ of ½: a tie or nearly, left to core::fmt
+        if (q - d).abs() >= 0.5 - 1.0 / 65_536.0 {
             return None;
         }
-        let d = whole + if frac > 0.5 { 1.0 } else { 0.0 };
         if d < LOW {
             e10 -= 1;
-        } else if d > HIGH {
-            e10 += 1;
         } else if d == HIGH {
             return Some((1_000_000_000, e10 + 1));
         } else {
-            return Some((d as u64, e10));
+            return Some((d as i64 as u64, e10)); // 10⁹ ≤ d < 10¹⁰: the signed conversion is exact
         }
     }
     None
+}
+
+/// The eight decimal digits of v < 10⁸ as ASCII, the first digit in the lowest byte (so in memory order
+/// when stored little-endian): v split into 4-digit halves, each into pairs by a multiplication with
+/// ⌈2²⁰/100⌉ = 10486 (exact quotient below 43,699), each pair into digits by ⌈2¹⁰/10⌉ = 103 (exact below
+/// 179), every lane of the word at once.
+#[inline]
+fn eight_digits(v: u32) -> u64 {
+    let x = u64::from(v / 10_000) | (u64::from(v % 10_000) << 32);
+    let hundreds = ((x * 10_486) >> 20) & 0x0000_007f_0000_007f;
+    let x = hundreds | ((x - hundreds * 100) << 16);
+    let tens = ((x * 103) >> 10) & 0x000f_000f_000f_000f;
+    let x = tens | ((x - tens * 10) << 8);
+    x | 0x3030_3030_3030_3030
 }
 
 /// The text of `{:.9e}` for x into `out` with its length, or None where `core::fmt` must decide (see the
@@ -115,42 +133,40 @@ fn fixed_text(x: f64, out: &mut [u8; 32]) -> Option<usize> {
         return Some(neg + 13);
     }
     let (digits, e10) = digits_of(x.abs())?;
-    // d.ddddddddd: the first digit, then the other nine as four pairs and a last digit
+    // d.ddddddddd: the first digit and the point, eight digits at once, the last digit
     let first = digits / 1_000_000_000;
     let rest = (digits - first * 1_000_000_000) as u32;
-    let (eight, last) = (rest / 10, rest % 10);
-    let (high, low) = (eight / 10_000, eight % 10_000);
     out[neg] = b'0' + first as u8;
     out[neg + 1] = b'.';
-    for (i, pair) in [high / 100, high % 100, low / 100, low % 100].into_iter().enumerate() {
-        let p = 2 * pair as usize;
-        out[neg + 2 + 2 * i..neg + 4 + 2 * i].copy_from_slice(&PAIRS[p..p + 2]);
-    }
-    out[neg + 10] = b'0' + last as u8;
-    out[neg + 11] = b'e';
-    // the exponent: −35 ≤ E ≤ 53 here, at most two digits
-    let mut len = neg + 12;
-    if e10 < 0 {
-        out[len] = b'-';
-        len += 1;
-    }
-    let e = e10.unsigned_abs() as usize;
-    if e >= 10 {
-        out[len..len + 2].copy_from_slice(&PAIRS[2 * e..2 * e + 2]);
-        Some(len + 2)
-    } else {
-        out[len] = b'0' + e as u8;
-        Some(len + 1)
-    }
+    out[neg + 2..neg + 10].copy_from_slice(&eight_digits(rest / 10).to_le_bytes());
+    out[neg + 10] = b'0' + (rest % 10) as u8;
+    // the exponent: −35 ≤ E ≤ 54 here (53 and a carry); its text (up to four bytes, "e-35") from the table
+    let (text, len) = EXPONENTS[(e10 + EXP_MIN) as usize];
+    out[neg + 11..neg + 15].copy_from_slice(&text);
+    Some(neg + 11 + len)
 }
 
-/// "00" "01" … "99".
-const PAIRS: [u8; 200] = {
-    let mut t = [0u8; 200];
+/// The smallest exponent of the fast path, negated: E ≥ −35 (|x| ≥ 10⁻³⁵ > 10^(9 − K_MAX)).
+const EXP_MIN: i32 = 35;
+
+/// "e-35" … "e54": the exponent's text (padded to four bytes) and its length, E at index E + 35.
+const EXPONENTS: [([u8; 4], usize); 90] = {
+    let mut t = [([0u8; 4], 0usize); 90];
     let mut i = 0;
-    while i < 100 {
-        t[2 * i] = b'0' + (i / 10) as u8;
-        t[2 * i + 1] = b'0' + (i % 10) as u8;
+    while i < 90 {
+        let e = i as i32 - EXP_MIN;
+        let (mut text, mut len) = ([b'e', 0, 0, 0], 1);
+        if e < 0 {
+            text[1] = b'-';
+            len = 2;
+        }
+        let m = e.unsigned_abs() as u8;
+        if m >= 10 {
+            text[len] = b'0' + m / 10;
+            len += 1;
+        }
+        text[len] = b'0' + m % 10;
+        t[i] = (text, len + 1);
         i += 1;
     }
     t
@@ -238,6 +254,21 @@ mod tests {
             (n + 1, slow + usize::from(fixed_text(*v, &mut out).is_none()))
         });
         assert!(slow * 10_000 < n, "{slow} of {n} values left to core::fmt");
+    }
+
+    /// The eight digits of the lanes against `format!("{v:08}")` (core::fmt's integer text): 10⁵ values
+    /// spread over 0…10⁸ − 1, and every value next to a multiple of 10, 100 and 10⁴.
+    #[test]
+    fn eight_digits_are_the_integer_text() {
+        let mut bits = xorshift(0xD1B5_4A32_D192_ED03);
+        let mut values: Vec<u32> = (0..100_000).map(|_| (bits() % 100_000_000) as u32).collect();
+        for m in [10u32, 100, 10_000, 1_000_000] {
+            values.extend((1..100).flat_map(|k| [k * m - 1, k * m, k * m + 1]));
+        }
+        values.extend([0, 1, 9, 99_999_999, 99_990_000, 10_000_000]);
+        for v in values {
+            assert_eq!(eight_digits(v).to_le_bytes(), *format!("{v:08}").as_bytes(), "{v}");
+        }
     }
 
     /// The integers' text is `itoa`'s, that of `Display`.
