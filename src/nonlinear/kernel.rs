@@ -196,3 +196,73 @@ impl Kernel {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Kernel;
+    use crate::linalg::vmath::{self, Task};
+
+    /// Velocities at the damper's edges: ±0, the smallest subnormal (whose impulse underflows to ±0), the
+    /// smallest normal, ordinary values, the largest finite values, ±∞ and NaN.
+    const V: [f64; 16] = [
+        0.0,
+        -0.0,
+        f64::from_bits(1),
+        -f64::from_bits(1),
+        f64::MIN_POSITIVE,
+        -f64::MIN_POSITIVE,
+        1e-300,
+        -1e-300,
+        0.3,
+        -0.3,
+        f64::MAX,
+        f64::MIN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        -f64::NAN,
+    ];
+
+    struct Lanes<'a>(&'a Kernel, [f64; 16]);
+
+    impl Task for Lanes<'_> {
+        #[inline(always)]
+        fn run(&mut self) {
+            self.0.impulses(&[0.0; 16], &V, &mut self.1);
+        }
+    }
+
+    /// The lane form of the bilinear damper's impulse ([`Kernel::impulses`]: selects, the rate tested once)
+    /// gives the bits of the scalar [`Kernel::impulse`] (branches) for every velocity above, compiled for this
+    /// CPU's widest instruction set through [`vmath::run`] and in the baseline build, for both signs of Δ (a
+    /// rebound factor below 0 and above 0), a Δ whose impulses underflow, and a rate of 0; a NaN velocity
+    /// gives NaN.
+    #[test]
+    fn bilinear_lanes_give_the_bits_of_the_scalar_impulse() {
+        let (kappa, tau) = (1.0 / 300.0 + 1.0 / 40.0, 0.5 * 0.0027);
+        for delta in [700.0, -700.0, 0.0, 1e-300, -1e-300] {
+            let k = Kernel::bilinear(delta, kappa, tau);
+            let mut widest = Lanes(&k, [1.0; 16]);
+            vmath::run(&mut widest);
+            let mut baseline = Lanes(&k, [1.0; 16]);
+            baseline.run();
+            for (l, &v) in V.iter().enumerate() {
+                let scalar = k.impulse(0.0, v);
+                for (lanes, build) in [(widest.1[l], "widest"), (baseline.1[l], "baseline")] {
+                    if v.is_nan() && delta != 0.0 {
+                        assert!(
+                            lanes.is_nan() && scalar.is_nan(),
+                            "{build} Δ = {delta} J({v}) = {lanes}"
+                        );
+                    } else {
+                        assert_eq!(
+                            lanes.to_bits(),
+                            scalar.to_bits(),
+                            "{build} Δ = {delta} J({v}): {lanes} ≠ {scalar}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
