@@ -160,6 +160,11 @@ impl Kernel {
                     *j = [0.0; L];
                     return;
                 }
+                #[cfg(target_arch = "x86_64")]
+                if L.is_multiple_of(2) {
+                    bilinear_pairs(v, rebound, compression, kappa, j);
+                    return;
+                }
                 for l in 0..L {
                     // v NaN: −v·f/κ is v's NaN, as through the law's e^{…} − 1 of NaN
                     let f = if v[l] > 0.0 { rebound } else { compression };
@@ -193,6 +198,114 @@ impl Kernel {
             }
             Kernel::Lift { deflection, .. } => x > deflection,
             Kernel::Bilinear { .. } => false,
+        }
+    }
+}
+
+/// The bilinear damper's lane impulses of [`Kernel::impulses`] two lanes at a time in SSE2 vector operations
+/// (in the x86-64 baseline, and VEX-encoded where the caller is compiled for AVX2 or AVX-512): written as
+/// scalar selects, the compiler kept a scalar division per lane.
+///
+/// # Formula
+/// f = `rebound` where v > 0, `compression` otherwise (a bit mask from the comparison); J = (−v)·f/κ with
+/// −v the sign bit flipped (as Rust's negation), then J's bits ANDed with the mask of v ≠ 0 (+0 where
+/// v = ±0). The same IEEE operations in the same order as the scalar lane loop: the same bits, NaN
+/// included.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn bilinear_pairs<const L: usize>(v: &[f64; L], rebound: f64, compression: f64, kappa: f64, j: &mut [f64; L]) {
+    use std::arch::x86_64::{
+        _mm_and_pd, _mm_andnot_pd, _mm_cmpgt_pd, _mm_cmpneq_pd, _mm_cvtsd_f64, _mm_div_pd, _mm_mul_pd, _mm_or_pd,
+        _mm_set1_pd, _mm_set_pd, _mm_setzero_pd, _mm_unpackhi_pd, _mm_xor_pd,
+    };
+    // SAFETY: SSE2 is part of the x86-64 baseline, so every x86-64 CPU has these instructions; none of
+    // them touches memory.
+    unsafe {
+        let (rb, cb, k) = (_mm_set1_pd(rebound), _mm_set1_pd(compression), _mm_set1_pd(kappa));
+        let (zero, sign) = (_mm_setzero_pd(), _mm_set1_pd(-0.0));
+        for (vc, jc) in v.chunks_exact(2).zip(j.chunks_exact_mut(2)) {
+            let x = _mm_set_pd(vc[1], vc[0]);
+            let positive = _mm_cmpgt_pd(x, zero);
+            let f = _mm_or_pd(_mm_and_pd(positive, rb), _mm_andnot_pd(positive, cb));
+            let q = _mm_div_pd(_mm_mul_pd(_mm_xor_pd(x, sign), f), k);
+            let q = _mm_and_pd(q, _mm_cmpneq_pd(x, zero));
+            jc[0] = _mm_cvtsd_f64(q);
+            jc[1] = _mm_cvtsd_f64(_mm_unpackhi_pd(q, q));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Kernel;
+    use crate::linalg::vmath::{self, Task};
+
+    /// Velocities at the damper's edges: ±0, the smallest subnormal (whose impulse underflows to ±0), the
+    /// smallest normal, ordinary values, the largest finite values, ±∞ and NaN.
+    const V: [f64; 16] = [
+        0.0,
+        -0.0,
+        f64::from_bits(1),
+        -f64::from_bits(1),
+        f64::MIN_POSITIVE,
+        -f64::MIN_POSITIVE,
+        1e-300,
+        -1e-300,
+        0.3,
+        -0.3,
+        f64::MAX,
+        f64::MIN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        -f64::NAN,
+    ];
+
+    struct Lanes<'a>(&'a Kernel, [f64; 16]);
+
+    impl Task for Lanes<'_> {
+        #[inline(always)]
+        fn run(&mut self) {
+            self.0.impulses(&[0.0; 16], &V, &mut self.1);
+        }
+    }
+
+    /// The lane forms of the bilinear damper's impulse ([`Kernel::impulses`]: SSE2 pairs on x86-64, the
+    /// lane loop of selects for an odd number of lanes) give the bits of the scalar [`Kernel::impulse`]
+    /// (branches) for every velocity above, compiled for this CPU's widest instruction set through
+    /// [`vmath::run`] and in the baseline build, for both signs of Δ (a rebound factor below 0 and above 0),
+    /// a Δ whose impulses underflow, and a rate of 0; a NaN velocity gives NaN.
+    #[test]
+    fn bilinear_lanes_give_the_bits_of_the_scalar_impulse() {
+        let (kappa, tau) = (1.0 / 300.0 + 1.0 / 40.0, 0.5 * 0.0027);
+        for delta in [700.0, -700.0, 0.0, 1e-300, -1e-300] {
+            let k = Kernel::bilinear(delta, kappa, tau);
+            let mut widest = Lanes(&k, [1.0; 16]);
+            vmath::run(&mut widest);
+            let mut baseline = Lanes(&k, [1.0; 16]);
+            baseline.run();
+            // an odd number of lanes takes the lane loop instead of the pairs
+            let mut odd = [1.0; 15];
+            let v15: &[f64; 15] = V[..15].try_into().expect("15 velocities");
+            k.impulses(&[0.0; 15], v15, &mut odd);
+            for (l, &v) in V.iter().enumerate() {
+                let scalar = k.impulse(0.0, v);
+                let odd = odd.get(l).copied().unwrap_or(scalar);
+                for (lanes, build) in [(widest.1[l], "widest"), (baseline.1[l], "baseline"), (odd, "odd lanes")] {
+                    if v.is_nan() && delta != 0.0 {
+                        assert!(
+                            lanes.is_nan() && scalar.is_nan(),
+                            "{build} Δ = {delta} J({v}) = {lanes}"
+                        );
+                    } else {
+                        assert_eq!(
+                            lanes.to_bits(),
+                            scalar.to_bits(),
+                            "{build} Δ = {delta} J({v}): {lanes} ≠ {scalar}"
+                        );
+                    }
+                }
+            }
         }
     }
 }
