@@ -91,7 +91,15 @@ fn main() {
         put(&format!("density_{name}"), N_DENSITY, r);
     }
     if only_density {
-        let doc = json!({"side": "rust", "jobs": Value::Object(jobs)});
+        // the instruction set the kernels ran (`STOCHVIB_ISA` caps it; a misspelt cap is refused)
+        let isa = match stochvib::linalg::vmath::Isa::cap_from_env() {
+            Ok(_) => format!("{:?}", stochvib::linalg::vmath::Isa::detected()),
+            Err(e) => {
+                eprintln!("compare_rust: {e}");
+                std::process::exit(2);
+            }
+        };
+        let doc = json!({"side": "rust", "isa": isa, "jobs": Value::Object(jobs)});
         println!("{}", serde_json::to_string_pretty(&doc).unwrap());
         return;
     }

@@ -600,6 +600,8 @@ fn main() {
 }
 
 fn run(cli: Cli) -> anyhow::Result<()> {
+    // a misspelt instruction-set cap is refused before any work (the library would ignore it)
+    stochvib::linalg::vmath::Isa::cap_from_env()?;
     match cli.command {
         cmd @ Command::Spectra { .. } => spectra_command(cmd)?,
         Command::Models { json } => print(&report::models_report(), json)?,

@@ -361,7 +361,26 @@ def run_densities(reps):
     for name, fn in densities().items():
         t, check = best(reps, lambda: fn(w).sum(), inner=20)
         jobs[f"density_{name}"] = {"seconds": t, "n": N_DENSITY, "check": check}
-    return {"side": "python", "numpy": np.__version__, "jobs": jobs}
+    return {"side": "python", "numpy": np.__version__, "simd": numpy_simd()[0], "jobs": jobs}
+
+
+def numpy_simd():
+    """(the run-time-dispatched SIMD targets numpy uses in this process, all it could use on this CPU)."""
+    try:
+        from numpy._core import _multiarray_umath as m
+    except ImportError:  # numpy 1.x
+        from numpy.core import _multiarray_umath as m
+    have = [k for k in m.__cpu_dispatch__ if m.__cpu_features__.get(k)]
+    return have, [k for k in m.__cpu_dispatch__]
+
+
+def npy_cap(level):
+    """The NPY_DISABLE_CPU_FEATURES value that stops numpy's dispatch at `level` (avx2: nothing with
+    AVX-512; baseline: none of the dispatched targets, numpy's compiled-in baseline only)."""
+    _, dispatch = numpy_simd()
+    if level == "baseline":
+        return " ".join(dispatch)
+    return " ".join(k for k in dispatch if "512" in k or k in ("X86_V4", "AVX512F", "AVX512CD"))
 
 
 def run_analytic(reps):
@@ -843,6 +862,13 @@ def summary_rows(rust, py, sweeps):
                          "density", CMD_DENS))
             continue
         vs(f"density, {k}", f"{rj['density_' + k]['n']} pts", "density_" + k, "numpy (vectorised)", "density_" + k)
+    for cap, rounds in rust.get("isa_rounds", {}).items():  # the rounds capped to a narrower instruction set
+        cmd = (f"`STOCHVIB_ISA={cap} compare_rust --only density` / `NPY_DISABLE_CPU_FEATURES=... compare.py run "
+               f"--only density` (`compare.py npy-cap {cap}`), alternated, median of the rounds")
+        for k in sorted(rounds):
+            t, tp = rounds[k], py["isa_rounds"][cap][k]
+            rows.append((f"density, {k}, capped to {cap}", f"{rj['density_' + k]['n']} pts", t, "numpy (vectorised)",
+                         tp, tp / t, f"isa-{cap}", cmd))
     vs("variance, 1 model, integral table", "1 model", "variance_table", "scipy solve_continuous_lyapunov", "variance_lyapunov")
     n = rj["sweep_table"]["n"]
     vs("variance sweep, table I_n, 1 thread", f"{n} pts", "sweep_table", "scipy lyap per point", "sweep_lyapunov")
@@ -892,7 +918,23 @@ def summary(d):
         for side, doc, prefix in (("rust", rust, "density-rust-"), ("python", py, "density-python-")):
             runs = [json.load(open(os.path.join(d, f.replace("density-rust-", prefix))))["jobs"] for f in rounds]
             doc["density_rounds"] = {k[8:]: statistics.median(r[k]["seconds"] for r in runs) for k in runs[0]}
-    sweeps, states = {}, {}
+    states = {}
+    for cap in ("avx2", "baseline"):  # the capped density rounds, if run.sh ran them
+        caps = sorted(f for f in os.listdir(d) if f.startswith(f"isa-{cap}-rust-"))
+        if not caps:
+            continue
+        import statistics
+
+        used = {}
+        for side, doc in (("rust", rust), ("python", py)):
+            runs = [json.load(open(os.path.join(d, f.replace("-rust-", f"-{side}-")))) for f in caps]
+            doc.setdefault("isa_rounds", {})[cap] = {
+                k[8:]: statistics.median(r["jobs"][k]["seconds"] for r in runs) for k in runs[0]["jobs"]}
+            used[side] = runs[0].get("isa") if side == "rust" else " ".join(runs[0].get("simd", [])) or "its baseline"
+        f = os.path.join(d, f"state-isa-{cap}.txt")
+        load = open(f).read().strip() if os.path.exists(f) else "?"
+        states[f"isa-{cap}"] = f"{load}; ours {used['rust']}, numpy {used['python']}"
+    sweeps = {}
     for name in ("quiet", "busy"):
         f = os.path.join(d, f"sweep-{name}.json")
         if os.path.exists(f):
@@ -945,11 +987,16 @@ def main():
     c.add_argument("--out-dir", default=None, help="where the tables go (default: a temporary directory)")
     c.add_argument("--side", type=int, default=1000, help="values per key (points = side^2)")
     c.add_argument("--smoke", action="store_true", help="tiny scipy loop (10 x 10 points)")
+    cap = sub.add_parser("npy-cap", help="print the NPY_DISABLE_CPU_FEATURES value of an instruction-set cap")
+    cap.add_argument("level", choices=["avx2", "baseline"])
     m = sub.add_parser("summary", help="the one table of benches/RESULTS.md from the JSON of one run.sh run")
     m.add_argument("dir", help="run.sh's output directory (rust.json, python.json, sweep-*.json, state-*.txt)")
     a = ap.parse_args()
     if a.cmd == "summary":
         summary(a.dir)
+        return
+    if a.cmd == "npy-cap":
+        print(npy_cap(a.level))
         return
     if a.cmd == "sweep-cli":
         import tempfile

@@ -94,6 +94,24 @@ for i in $(seq 1 "$rounds"); do
     env -u GLIBC_TUNABLES python3 "$here/compare.py" run --only density "${py_args[@]}" >"$out/density-python-$i.json"
 done
 
+# the same rounds with both sides capped to the narrower instruction sets this CPU also runs: our kernels by
+# STOCHVIB_ISA, numpy's dispatch by NPY_DISABLE_CPU_FEATURES (what an AVX2-only or an SSE2/x86-64-v2 machine
+# runs, measured on this one)
+caps=()
+grep -q -w avx512f /proc/cpuinfo && caps+=(avx2)
+grep -q -w avx2 /proc/cpuinfo && caps+=(baseline)
+for cap in "${caps[@]}"; do
+    echo "run.sh: densities capped to $cap, $rounds alternating rounds" >&2
+    state "as found" "isa-$cap"
+    npy="$(python3 "$here/compare.py" npy-cap "$cap")"
+    for i in $(seq 1 "$rounds"); do
+        env -u GLIBC_TUNABLES STOCHVIB_ISA="$cap" "$bin" --only density "${rust_args[@]}" \
+            >"$out/isa-$cap-rust-$i.json" 2>/dev/null
+        env -u GLIBC_TUNABLES NPY_DISABLE_CPU_FEATURES="$npy" python3 "$here/compare.py" run --only density \
+            "${py_args[@]}" >"$out/isa-$cap-python-$i.json"
+    done
+done
+
 echo "run.sh: stochvib sweep beside the scipy loop, quiet machine" >&2
 state "as found" quiet
 python3 "$here/compare.py" sweep-cli --binary "$cli" "${cli_args[@]}" >"$out/sweep-quiet.json"

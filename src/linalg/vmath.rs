@@ -39,6 +39,13 @@
 //! assert!(e[2] > 0.0 && e[2] < f64::MIN_POSITIVE); // subnormal
 //! assert!((ln(e[3]) - 700.0).abs() < 1e-12);
 //! ```
+//!
+//! # Instruction-set cap
+//! The environment variable `STOCHVIB_ISA` ([`ISA_ENV`]) = `avx2` or `baseline` makes [`Isa::detected`]
+//! stop at that width, so that one AVX-512 machine measures what AVX2-only and SSE2-only machines run
+//! (`benches/compare/run.sh` does, with numpy capped the same way by `NPY_DISABLE_CPU_FEATURES`).
+
+use crate::error::{Error, Result};
 
 /// Largest difference, in units in the last place of the result, between [`exp`] and the platform's
 /// `f64::exp` on normal results (the tests measure it over 10⁶ arguments; subnormal results differ by at most
@@ -78,12 +85,57 @@ impl Isa {
         }
     }
 
-    /// The widest variant this CPU runs (detected once).
+    /// The widest variant this CPU runs, no wider than the cap of [`ISA_ENV`] if that names one (detected
+    /// once). An unreadable value of [`ISA_ENV`] is ignored here (the widest variant is used); the command
+    /// line refuses it first through [`Isa::cap_from_env`].
     pub fn detected() -> Isa {
         static BEST: std::sync::OnceLock<Isa> = std::sync::OnceLock::new();
-        *BEST.get_or_init(|| Isa::ALL.into_iter().find(|i| i.available()).unwrap_or(Isa::Baseline))
+        *BEST.get_or_init(|| Isa::widest_up_to(Isa::cap_from_env().ok().flatten().unwrap_or(Isa::Avx512)))
+    }
+
+    /// The widest variant this CPU runs that is no wider than `cap`.
+    pub fn widest_up_to(cap: Isa) -> Isa {
+        Isa::ALL
+            .into_iter()
+            .skip_while(|&i| i != cap)
+            .find(|i| i.available())
+            .unwrap_or(Isa::Baseline)
+    }
+
+    /// The variant named `name`: `avx512`, `avx2` or `baseline`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for any other name.
+    pub fn parse(name: &str) -> Result<Isa> {
+        match name {
+            "avx512" => Ok(Isa::Avx512),
+            "avx2" => Ok(Isa::Avx2),
+            "baseline" => Ok(Isa::Baseline),
+            _ => Err(Error::InvalidParameter {
+                name: format!("environment variable {ISA_ENV}"),
+                value: name.to_string(),
+                reason: "not an instruction set: use avx512, avx2 or baseline (the widest the kernels may use)".into(),
+            }),
+        }
+    }
+
+    /// The cap set by the environment variable [`ISA_ENV`], if it is set.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] when it is set to anything but `avx512`, `avx2` or `baseline` (or is not
+    /// Unicode).
+    pub fn cap_from_env() -> Result<Option<Isa>> {
+        match std::env::var_os(ISA_ENV) {
+            None => Ok(None),
+            Some(v) => Isa::parse(&v.to_string_lossy()).map(Some),
+        }
     }
 }
+
+/// The environment variable that caps the instruction set of every dispatched kernel: `avx512`, `avx2` or
+/// `baseline` (SSE2 on x86-64). A cap never changes a number (every variant gives the same bits); it makes
+/// an AVX-512 machine run the code an AVX2-only or SSE2-only machine runs, for measurements.
+pub const ISA_ENV: &str = "STOCHVIB_ISA";
 
 /// A function of one f64 evaluated by [`map`]: implement it with `#[inline(always)]` on `at` for a body of
 /// any size (a closure is inlined into the SIMD loop only while it is small; `at` always is).
@@ -213,8 +265,15 @@ fn pow2i(k: i64) -> f64 {
 #[inline(always)]
 pub fn exp(x: f64) -> f64 {
     const INV_LN2: f64 = std::f64::consts::LOG2_E;
-    // round(x / ln 2) by the shift; clamp first so that the shift stays exact far outside the range
-    let xc = x.clamp(-746.0, 710.0);
+    // round(x / ln 2) by the shift; clamp first so that the shift stays exact far outside the range. Where
+    // the result is 0 (x below the underflow threshold) the formula runs on x = 0 instead: on x ≈ −746 its
+    // last product would underflow into a subnormal, which costs a microcode assist of ~100 cycles per
+    // lane on x86 (the result is replaced by 0 below either way)
+    let xc = if x < -745.133_219_101_941_2 {
+        0.0
+    } else {
+        x.clamp(-746.0, 710.0)
+    };
     let kd = xc * INV_LN2 + SHIFT;
     let k = kd.to_bits() as i64 - SHIFT.to_bits() as i64;
     let kd = kd - SHIFT;
@@ -249,7 +308,9 @@ pub fn exp(x: f64) -> f64 {
     let p811 = p89 + r2 * p1011;
     let p = p03 + r4 * p47 + r8 * p811;
     let er = 1.0 + (r + r2 * p);
-    let k1 = k >> 1;
+    // ⌊k/2⌋ by a logical shift of k + 2048 > 0 (k ≥ −1077 after the clamp): SSE2 and AVX2 have no 64-bit
+    // arithmetic shift, and `k >> 1` on i64 made the compiler leave the vector loop for scalar code there
+    let k1 = ((k + 2048) as u64 >> 1) as i64 - 1024;
     let y = er * pow2i(k1) * pow2i(k - k1);
     if x > 709.782_712_893_384 {
         f64::INFINITY
@@ -278,10 +339,14 @@ pub fn ln(x: f64) -> f64 {
     let sub = x < f64::MIN_POSITIVE;
     let xs = if sub { x * TWO54 } else { x };
     let bits = xs.to_bits() as i64;
-    let mut k = ((bits >> 52) & 0x7ff) - 1023 - if sub { 54 } else { 0 };
+    // the exponent field by a logical shift (no 64-bit arithmetic shift on SSE2 and AVX2; the mask makes the
+    // two shifts equal)
+    let mut k = ((xs.to_bits() >> 52) & 0x7ff) as i64 - 1023 - if sub { 54 } else { 0 };
     let mant = bits & 0x000f_ffff_ffff_ffff;
     // m ∈ [√½, √2): the mantissa with exponent 0, or −1 above √2 (0x6a09e: the top bits of √2)
-    let big = mant >= 0x6_a09e_667f_3bcd;
+    // compared as the doubles 1.mant (monotonic in mant): SSE2 has no 64-bit integer comparison, and an
+    // integer one made the compiler leave the vector loop there
+    let big = f64::from_bits(mant as u64 | 0x3ff0_0000_0000_0000) >= f64::from_bits(0x3ff6_a09e_667f_3bcd);
     let m = f64::from_bits(
         (mant
             | if big {
@@ -443,5 +508,32 @@ mod tests {
         }
         // the detected variant is one the CPU has
         assert!(Isa::detected().available());
+    }
+
+    /// A cap names a variant no wider than itself, one the CPU has; the baseline is always there; the three
+    /// names parse and anything else is refused with the variable's name and the value.
+    #[test]
+    fn a_cap_gives_a_variant_no_wider_than_itself() {
+        let width = |i: Isa| 3 - Isa::ALL.iter().position(|&j| j == i).unwrap();
+        for cap in Isa::ALL {
+            let got = Isa::widest_up_to(cap);
+            assert!(got.available() && width(got) <= width(cap), "{cap:?} gave {got:?}");
+            if cap.available() {
+                assert_eq!(got, cap);
+            }
+        }
+        assert_eq!(Isa::widest_up_to(Isa::Baseline), Isa::Baseline);
+        for (name, isa) in [
+            ("avx512", Isa::Avx512),
+            ("avx2", Isa::Avx2),
+            ("baseline", Isa::Baseline),
+        ] {
+            assert_eq!(Isa::parse(name).unwrap(), isa);
+        }
+        let e = Isa::parse("AVX2 ").unwrap_err().to_string();
+        assert!(
+            e.contains(ISA_ENV) && e.contains("AVX2 ") && e.contains("baseline"),
+            "{e}"
+        );
     }
 }

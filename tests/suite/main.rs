@@ -33,6 +33,7 @@ mod html_report;
 mod input_band;
 mod input_coverage;
 mod input_keys;
+mod isa_cap;
 mod key_reference;
 mod key_table_errors;
 mod laplace_road;
