@@ -124,15 +124,16 @@ impl std::fmt::Debug for FirSynthesis {
 /// Per-realization working memory of a [`FirSynthesis`]: O(F) per generator and output.
 #[derive(Debug, Clone)]
 pub struct FirScratch {
-    /// history\[g\]: the last T − 1 noise samples, then the H new ones
+    /// history\[g\]: the last T − 1 noise samples, then the H new ones (the forward FFT's input, destroyed
+    /// by it: the T − 1 samples the next segment keeps are saved in `kept` first)
     history: Vec<Vec<f64>>,
+    /// the last T − 1 samples of a generator's segment, across its forward FFT
+    kept: Vec<f64>,
     /// forward spectra of the current segment per generator
     x: Vec<Vec<Complex<f64>>>,
     y: Vec<Complex<f64>>,
-    fft_in: Vec<f64>,
-    fft_out: Vec<f64>,
     fft_scratch: Vec<Complex<f64>>,
-    /// out\[r\]: the H outputs of the last segment
+    /// out\[r\]: the inverse FFT of output r's segment; its last H values are the segment's outputs
     out: Vec<Vec<f64>>,
 }
 
@@ -575,15 +576,14 @@ impl FirSynthesis {
         let g = self.n_generators();
         FirScratch {
             history: vec![vec![0.0; f]; g],
+            kept: vec![0.0; self.taps - 1],
             x: vec![vec![Complex::new(0.0, 0.0); f / 2 + 1]; g],
             y: vec![Complex::new(0.0, 0.0); f / 2 + 1],
-            fft_in: vec![0.0; f],
-            fft_out: vec![0.0; f],
             fft_scratch: vec![
                 Complex::new(0.0, 0.0);
                 self.forward.get_scratch_len().max(self.inverse.get_scratch_len())
             ],
-            out: vec![vec![0.0; self.hop()]; self.n_outputs()],
+            out: vec![vec![0.0; f]; self.n_outputs()],
         }
     }
     /// Starts a realization: draws the T − 1 noise samples before the first output, per generator in
@@ -600,17 +600,19 @@ impl FirSynthesis {
     /// A scratch of another synthesis; an FFT failure (never for a valid scratch).
     pub fn next_segment(&self, rng: &mut Xoshiro256PlusPlus, s: &mut FirScratch) -> Result<()> {
         let (f, t) = (self.fft_len, self.taps);
-        if s.history.len() != self.n_generators() || s.fft_in.len() != f || s.out.len() != self.n_outputs() {
-            return Err(Error::invalid("scratch", s.fft_in.len(), "made by another synthesis"));
+        let fits = s.history.iter().chain(&s.out).all(|v| v.len() == f) && s.kept.len() == t - 1;
+        if s.history.len() != self.n_generators() || s.out.len() != self.n_outputs() || !fits {
+            return Err(Error::invalid("scratch", s.kept.len(), "made by another synthesis"));
         }
         for (h, x) in s.history.iter_mut().zip(&mut s.x) {
             fill_standard_normal(rng, &mut h[t - 1..]);
-            s.fft_in.copy_from_slice(h);
+            // the last T − 1 samples are the next segment's first ones: saved across the FFT, which uses its
+            // input as scratch (the FFT reads the same values as from a copy: the same bits)
+            s.kept.copy_from_slice(&h[f - (t - 1)..]);
             self.forward
-                .process_with_scratch(&mut s.fft_in, x, &mut s.fft_scratch)
+                .process_with_scratch(h, x, &mut s.fft_scratch)
                 .map_err(fft_error)?;
-            // keep the last T − 1 samples for the next segment
-            h.copy_within(f - (t - 1).., 0);
+            h[..t - 1].copy_from_slice(&s.kept);
         }
         for (r, out) in s.out.iter_mut().enumerate() {
             for (j, y) in s.y.iter_mut().enumerate() {
@@ -623,9 +625,8 @@ impl FirSynthesis {
             s.y[0].im = 0.0;
             s.y[f / 2].im = 0.0;
             self.inverse
-                .process_with_scratch(&mut s.y, &mut s.fft_out, &mut s.fft_scratch)
+                .process_with_scratch(&mut s.y, out, &mut s.fft_scratch)
                 .map_err(fft_error)?;
-            out.copy_from_slice(&s.fft_out[t - 1..]);
         }
         Ok(())
     }
@@ -634,6 +635,6 @@ impl FirSynthesis {
     /// # Panics
     /// r out of range.
     pub fn output<'a>(&self, s: &'a FirScratch, r: usize) -> &'a [f64] {
-        &s.out[r]
+        &s.out[r][self.taps - 1..]
     }
 }

@@ -118,8 +118,8 @@ pub struct StreamSizes {
 /// With T taps, F the FFT size, H = F − T + 1 new samples per segment, b = ⌈block/H⌉·H samples per
 /// block, B ≤ 513 Welch bins, s = shard size, P threads, L the kernel grid:
 /// ```text
-/// per thread  g·F·8 (noise history) + (g + 1)·(F/2+1)·16 (segment spectra) + 2F·8 + F·16 (FFT buffers)
-///             + p·H·8 (segment outputs) + p·b·8 (block) + 4·1024·8 (Welch)
+/// per thread  g·F·8 (noise history) + (g + 1)·(F/2+1)·16 (segment spectra) + (T − 1)·8 (kept samples)
+///             + F·16 (FFT scratch) + p·F·8 (segment outputs) + p·b·8 (block) + 4·1024·8 (Welch)
 /// shared      g·p·(T·8 + (F/2+1)·16) (taps, kernel spectra) + s·p·(B + 2)·8 (the shard's results)
 /// design      g·p·((L/2+1)·16 + L·8) + p·L·8 (transient, before the realizations)
 /// bytes       max(P·per thread + shared, design)
@@ -144,9 +144,9 @@ pub fn streamed_memory_bytes(z: &StreamSizes, opts: &RunOptions, threads: usize)
     let s = opts.shard_size.min(opts.realizations) as u128;
     let per_thread = g * f * F64
         + (g + 1) * (f / 2 + 1) * C64
-        + 2 * f * F64
+        + t.saturating_sub(1) * F64
         + f * C64
-        + p * hop * F64
+        + p * f * F64
         + p * block * F64
         + 4 * 1024 * F64;
     let shared = g * p * (t * F64 + (f / 2 + 1) * C64) + s * p * (bins + 2) * F64;
