@@ -635,7 +635,8 @@ impl OneFftFloor {
 /// The exact route's floor: its normals alone (`draws` per realization of [`MC_SEED`]: one per state and
 /// step, as `GaussMarkov::advance` draws them), drawn the way the route draws them: realizations 0..r in
 /// groups of [`LANES`](stochvib::simulate::LANES) consecutive ones, side by side
-/// (`fill_standard_normal_lanes`, `normals.len()` per lane at a time), a short last group one at a time
+/// (`fill_standard_normal_lanes`, `normals.len()` per lane at a time: the callers pass `LANE_DRAW_STEPS`
+/// steps' worth, as the route draws them), a short last group one at a time
 /// (`fill_standard_normal`); one thread; a check value.
 pub fn exact_floor(normals: &mut [[f64; stochvib::simulate::LANES]], draws: usize, r: usize) -> f64 {
     use stochvib::simulate::{fill_standard_normal, fill_standard_normal_lanes, stream, NormalLanes, LANES};

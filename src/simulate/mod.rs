@@ -67,7 +67,7 @@ pub use rng::{fill_standard_normal, splitmix64, standard_normal, stream, stream_
 pub use road_track::{RoadScratch, RoadTrack, RoadTrackGrid};
 pub use run::{run, run_temporary, run_temporary_with, WARMUP_DECAY};
 pub use shaping::{shaping_simulator, GaussMarkov, GaussMarkovStream};
-pub use shaping_lanes::GaussMarkovLanes;
+pub use shaping_lanes::{GaussMarkovLanes, LANE_DRAW_STEPS};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
 pub(crate) use summary::write_band_tables;
 pub use summary::{coverage_cause, covers_word, RunSummary};

@@ -5,8 +5,8 @@ use super::normal_lanes::{NormalLanes, LANES};
 use super::GaussMarkov;
 use crate::linalg::vmath;
 
-/// Steps whose normals are drawn at a time (one fill of every lane).
-const DRAW_STEPS: usize = 64;
+/// Steps whose normals [`GaussMarkovLanes::fill`] draws at a time (one fill of every lane, then those steps).
+pub const LANE_DRAW_STEPS: usize = 16;
 
 /// Realizations `first .. first + LANES` of a seed of a [`GaussMarkov`] process, each state variable and
 /// output one `[f64; LANES]` (one lane per realization).
@@ -64,7 +64,7 @@ impl GaussMarkov {
             model: self,
             z,
             normals,
-            eps: vec![[0.0; LANES]; DRAW_STEPS * n],
+            eps: vec![[0.0; LANES]; LANE_DRAW_STEPS * n],
         }
     }
 }
@@ -79,24 +79,33 @@ impl GaussMarkovLanes<'_> {
     /// output r of lane l at step k) and advances the lanes, as [`GaussMarkov::advance`] does for one
     /// realization; consecutive calls continue the same realizations. A trailing partial sample is left
     /// untouched.
+    ///
+    /// The normals of every lane are drawn [`LANE_DRAW_STEPS`] steps at a time, then those steps are stepped
+    /// (compiled for the widest instruction set).
     pub fn fill(&mut self, out: &mut [[f64; LANES]]) {
-        let mut task = Advance {
-            model: self.model,
-            z: &mut self.z,
-            normals: &mut self.normals,
-            eps: &mut self.eps,
-            out,
-        };
-        vmath::run(&mut task);
+        let (n, p) = (self.z.len(), self.model.n_outputs());
+        let steps = out.len() / p;
+        for chunk in out[..steps * p].chunks_mut(LANE_DRAW_STEPS * p) {
+            let eps = &mut self.eps[..chunk.len() / p * n];
+            self.normals.inner.fill(eps);
+            let mut task = Advance {
+                model: self.model,
+                z: &mut self.z,
+                eps,
+                out: chunk,
+            };
+            vmath::run(&mut task);
+        }
     }
 }
 
-/// One [`GaussMarkovLanes::fill`], compiled for the widest instruction set by [`vmath::run`].
+/// The steps of one draw of normals, compiled for the widest instruction set by [`vmath::run`].
 struct Advance<'t> {
     model: &'t GaussMarkov,
     z: &'t mut [[f64; LANES]],
-    normals: &'t mut NormalLanes,
-    eps: &'t mut [[f64; LANES]],
+    /// n normals of every lane per step
+    eps: &'t [[f64; LANES]],
+    /// p outputs of every lane per step
     out: &'t mut [[f64; LANES]],
 }
 
@@ -118,19 +127,18 @@ impl vmath::Task for Advance<'_> {
     }
 }
 
+/// One step of every lane from its normals `w` (n rows), its outputs written to `y` (p rows).
+trait Step {
+    fn step(&mut self, w: &[[f64; LANES]], y: &mut [[f64; LANES]]);
+}
+
 impl Advance<'_> {
-    /// Every step of `out`: its n normals per lane drawn [`DRAW_STEPS`] steps at a time, then
-    /// `step(normals of the step, outputs of the step)`.
+    /// Every step of `out`: `stepper.step(normals of the step, outputs of the step)`.
     #[inline(always)]
-    fn steps(&mut self, mut step: impl FnMut(&[[f64; LANES]], &mut [[f64; LANES]])) {
+    fn steps(&mut self, stepper: &mut impl Step) {
         let (n, p) = (self.z.len(), self.model.n_outputs());
-        let steps = self.out.len() / p;
-        for chunk in self.out[..steps * p].chunks_mut(DRAW_STEPS * p) {
-            let eps = &mut self.eps[..chunk.len() / p * n];
-            self.normals.inner.fill(eps);
-            for (yk, w) in chunk.chunks_exact_mut(p).zip(eps.chunks_exact(n)) {
-                step(w, yk);
-            }
+        for (yk, w) in self.out.chunks_exact_mut(p).zip(self.eps.chunks_exact(n)) {
+            stepper.step(w, yk);
         }
     }
 
@@ -139,57 +147,106 @@ impl Advance<'_> {
     fn fixed<const N: usize>(&mut self) {
         let model = self.model;
         let [phi, lm, _, h] = model.flat_matrices();
-        let ph: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| phi[i * N + j]));
-        let lf: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| lm[i * N + j]));
-        let mut z: [[f64; LANES]; N] = std::array::from_fn(|i| self.z[i]);
-        self.steps(|w, yk| {
-            for (r, y) in yk.iter_mut().enumerate() {
-                let mut s = [0.0; LANES];
-                for j in 0..N {
-                    (0..LANES).for_each(|l| s[l] += h[r * N + j] * z[j][l]);
-                }
-                *y = s;
-            }
-            let nz: [[f64; LANES]; N] = std::array::from_fn(|i| {
-                // the noise terms first, then the Φz terms (the step-to-step chain)
-                let mut s: [f64; LANES] = std::array::from_fn(|l| lf[i][0] * w[0][l]);
-                for j in 1..N {
-                    (0..LANES).for_each(|l| s[l] += lf[i][j] * w[j][l]);
-                }
-                for j in 0..N {
-                    (0..LANES).for_each(|l| s[l] += ph[i][j] * z[j][l]);
-                }
-                s
-            });
-            z = nz;
-        });
-        self.z.copy_from_slice(&z);
+        let mut st = Fixed::<N> {
+            ph: std::array::from_fn(|i| std::array::from_fn(|j| phi[i * N + j])),
+            lf: std::array::from_fn(|i| std::array::from_fn(|j| lm[i * N + j])),
+            h,
+            z: std::array::from_fn(|i| self.z[i]),
+        };
+        self.steps(&mut st);
+        self.z.copy_from_slice(&st.z);
     }
 
     /// The steps with more than 8 states (the arithmetic of the scalar `kernel_dyn`).
+    #[inline(always)]
     fn dynamic(&mut self) {
-        let n = self.z.len();
         let model = self.model;
-        let [phi, lm, _, h] = model.flat_matrices();
-        let mut z = self.z.to_vec();
-        let mut nz = z.clone();
-        self.steps(|w, yk| {
-            for (r, y) in yk.iter_mut().enumerate() {
-                *y = std::array::from_fn(|l| (0..n).map(|j| h[r * n + j] * z[j][l]).sum());
-            }
-            for (i, zi) in nz.iter_mut().enumerate() {
-                let mut s = [0.0; LANES];
-                for j in 0..n {
-                    (0..LANES).for_each(|l| s[l] += phi[i * n + j] * z[j][l]);
+        let [phi, l, _, h] = model.flat_matrices();
+        let mut st = Dynamic {
+            phi,
+            l,
+            h,
+            z: self.z.to_vec(),
+            nz: self.z.to_vec(),
+        };
+        self.steps(&mut st);
+        self.z.copy_from_slice(&st.z);
+    }
+}
+
+/// The step of N states: the state in registers, the loops unrolled.
+struct Fixed<'m, const N: usize> {
+    ph: [[f64; N]; N],
+    lf: [[f64; N]; N],
+    h: &'m [f64],
+    z: [[f64; LANES]; N],
+}
+
+impl<const N: usize> Step for Fixed<'_, N> {
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lanes: several arrays indexed by the lane
+    fn step(&mut self, w: &[[f64; LANES]], y: &mut [[f64; LANES]]) {
+        let z = &self.z;
+        for (r, yr) in y.iter_mut().enumerate() {
+            let mut s = [0.0; LANES];
+            for j in 0..N {
+                let a = self.h[r * N + j];
+                for l in 0..LANES {
+                    s[l] += a * z[j][l];
                 }
-                for j in 0..n {
-                    (0..LANES).for_each(|l| s[l] += lm[i * n + j] * w[j][l]);
-                }
-                *zi = s;
             }
-            z.copy_from_slice(&nz);
-        });
-        self.z.copy_from_slice(&z);
+            *yr = s;
+        }
+        let mut nz = [[0.0; LANES]; N];
+        for i in 0..N {
+            // the noise terms first, then the Φz terms (the step-to-step chain)
+            let mut s = [0.0; LANES];
+            for l in 0..LANES {
+                s[l] = self.lf[i][0] * w[0][l];
+            }
+            for j in 1..N {
+                for l in 0..LANES {
+                    s[l] += self.lf[i][j] * w[j][l];
+                }
+            }
+            for j in 0..N {
+                for l in 0..LANES {
+                    s[l] += self.ph[i][j] * z[j][l];
+                }
+            }
+            nz[i] = s;
+        }
+        self.z = nz;
+    }
+}
+
+/// The step of any number of states.
+struct Dynamic<'m> {
+    phi: &'m [f64],
+    l: &'m [f64],
+    h: &'m [f64],
+    z: Vec<[f64; LANES]>,
+    nz: Vec<[f64; LANES]>,
+}
+
+impl Step for Dynamic<'_> {
+    #[inline(always)]
+    fn step(&mut self, w: &[[f64; LANES]], y: &mut [[f64; LANES]]) {
+        let (n, z) = (self.z.len(), &self.z);
+        for (r, yr) in y.iter_mut().enumerate() {
+            *yr = std::array::from_fn(|l| (0..n).map(|j| self.h[r * n + j] * z[j][l]).sum());
+        }
+        for (i, zi) in self.nz.iter_mut().enumerate() {
+            let mut s = [0.0; LANES];
+            for j in 0..n {
+                (0..LANES).for_each(|l| s[l] += self.phi[i * n + j] * z[j][l]);
+            }
+            for j in 0..n {
+                (0..LANES).for_each(|l| s[l] += self.l[i * n + j] * w[j][l]);
+            }
+            *zi = s;
+        }
+        std::mem::swap(&mut self.z, &mut self.nz);
     }
 }
 
