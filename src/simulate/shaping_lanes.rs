@@ -238,11 +238,11 @@ impl Step for Dynamic<'_> {
         }
         for (i, zi) in self.nz.iter_mut().enumerate() {
             let mut s = [0.0; LANES];
-            for j in 0..n {
-                (0..LANES).for_each(|l| s[l] += self.phi[i * n + j] * z[j][l]);
+            for (a, zj) in self.phi[i * n..][..n].iter().zip(z) {
+                (0..LANES).for_each(|l| s[l] += a * zj[l]);
             }
-            for j in 0..n {
-                (0..LANES).for_each(|l| s[l] += self.l[i * n + j] * w[j][l]);
+            for (a, wj) in self.l[i * n..][..n].iter().zip(w) {
+                (0..LANES).for_each(|l| s[l] += a * wj[l]);
             }
             *zi = s;
         }
