@@ -331,9 +331,10 @@ fn main() {
         let r = best(mc_reps, 1, || floor.run(mc_real));
         put_floor("mc_floor_1t", r);
         // the exact route's floor: its normals alone (one per state and step, as GaussMarkov::advance draws
-        // them), per realization, 1 thread
-        let mut normals = vec![0.0; exact.gm.n_states() * mc_n];
-        let r = best(mc_reps, 1, || exact_floor(&mut normals, mc_real));
+        // them), 8 streams side by side as the route draws them (LANE_DRAW_STEPS steps at a time), 1 thread
+        let nz = exact.gm.n_states();
+        let mut normals = vec![[0.0; stochvib::simulate::LANES]; stochvib::simulate::LANE_DRAW_STEPS * nz];
+        let r = best(mc_reps, 1, || exact_floor(&mut normals, nz * mc_n, mc_real));
         put_floor("mc_exact_floor_1t", r);
         mc_info.insert("analytic_variance".into(), json!(analytic));
         mc_info.insert("input_grid_variance".into(), json!(pipe.generator.grid_variance()));

@@ -1,9 +1,10 @@
 //! Monte Carlo routes against their floors, in one process, in alternating rounds (a change of load hits
 //! both sides of a ratio alike): the one-FFT route, whose floor is, per realization, its N + 2 normals and one
-//! inverse real FFT of length N; the exact route, whose floor is its normals (one per state and step); the
-//! streamed spectral route (FIR overlap-save, `simulate::FirSynthesis`), whose floor is its normals and its
-//! forward and inverse real FFT per segment. One thread; process CPU time (user + sys) and wall time of
-//! every job, the smallest of `--rounds` rounds; a markdown table on stdout.
+//! inverse real FFT of length N; the exact route (8 realizations in lockstep), whose floor is its normals
+//! (one per state and step, 8 streams drawn side by side as the route draws them); the streamed spectral
+//! route (FIR overlap-save, `simulate::FirSynthesis`), whose floor is its normals and its forward and inverse
+//! real FFT per segment. One thread; process CPU time (user + sys) and wall time of every job, the smallest
+//! of `--rounds` rounds; a markdown table on stdout.
 //!
 //! Run: `cargo run --release --features campaigns --example mc_floor [-- --realizations R --samples N --rounds K]`
 //! (defaults 200, 2¹⁶, 5; the model is the SDOF of `benches/common`, as `compare_rust`'s Monte Carlo jobs).
@@ -16,7 +17,7 @@ use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use std::hint::black_box;
 use std::time::Instant;
-use stochvib::simulate::{fill_standard_normal, stream, FirSynthesis};
+use stochvib::simulate::{fill_standard_normal, stream, FirSynthesis, LANES, LANE_DRAW_STEPS};
 
 /// CPU time of this process (user + sys), s.
 fn cpu_seconds() -> f64 {
@@ -64,7 +65,9 @@ fn main() {
     let (f, hop, taps) = (fir.fft_len(), fir.hop(), fir.taps());
 
     let mut floor = OneFftFloor::new(n);
-    let mut exact_normals = vec![0.0; exact.gm.n_states() * n];
+    // the exact route's floor draws as the route does: LANE_DRAW_STEPS steps' normals of every lane at a time
+    let nz = exact.gm.n_states();
+    let mut exact_normals = vec![[0.0; LANES]; LANE_DRAW_STEPS * nz];
     let mut planner = RealFftPlanner::<f64>::new();
     let (fwd, inv) = (planner.plan_fft_forward(f), planner.plan_fft_inverse(f));
     let (mut buf, mut spec, mut back) = (fwd.make_input_vec(), fwd.make_output_vec(), inv.make_output_vec());
@@ -83,8 +86,8 @@ fn main() {
         ),
         ("exact route", Box::new(|| pool.install(|| exact.batch(r)).var.estimate)),
         (
-            "exact floor: its normals",
-            Box::new(|| exact_floor(&mut exact_normals, r)),
+            "exact floor: its normals (8 streams side by side)",
+            Box::new(|| exact_floor(&mut exact_normals, nz * n, r)),
         ),
         (
             "streamed spectral route (FIR overlap-save + Σy, Σy²)",

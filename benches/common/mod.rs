@@ -540,22 +540,54 @@ impl McExact {
             n,
         }
     }
-    /// `r` realizations of [`MC_SEED`] on the current rayon pool, then the statistics.
+    /// `r` realizations of [`MC_SEED`] on the current rayon pool, then the statistics: as the exact route
+    /// of `simulate::run`, [`LANES`](stochvib::simulate::LANES) consecutive realizations at a time in
+    /// lockstep (`GaussMarkov::lanes`, blocks of [`EXACT_BLOCK`] steps; each lane has the bits of its
+    /// realization alone), a short last group one at a time.
     pub fn batch(&self, r: usize) -> McStats {
+        use stochvib::simulate::LANES;
         let nz = self.gm.n_states();
-        let shard = stochvib::simulate::run_batch(
+        let shard = stochvib::simulate::run_batch_groups(
             MC_SEED,
             0..r as u64,
-            || (vec![0.0; nz], vec![0.0; self.n]),
-            |(x, y), _, rng| {
-                self.gm.initial_state(rng, x);
-                self.gm.advance(x, rng, y);
-                time_moments(y)
+            || (vec![0.0; nz], vec![0.0; self.n], vec![[0.0; LANES]; EXACT_BLOCK]),
+            |(x, y, ys), group| {
+                if group.end - group.start < LANES as u64 {
+                    return Ok::<_, std::convert::Infallible>(
+                        group
+                            .map(|i| {
+                                let mut rng = stochvib::simulate::stream(MC_SEED, i);
+                                self.gm.initial_state(&mut rng, x);
+                                self.gm.advance(x, &mut rng, y);
+                                time_moments(y)
+                            })
+                            .collect(),
+                    );
+                }
+                let mut lanes = self.gm.lanes(MC_SEED, group.start);
+                let (mut s1, mut s2) = ([0.0; LANES], [0.0; LANES]);
+                let mut done = 0;
+                while done < self.n {
+                    let b = EXACT_BLOCK.min(self.n - done);
+                    lanes.fill(&mut ys[..b]);
+                    for v in &ys[..b] {
+                        (0..LANES).for_each(|l| s1[l] += v[l]);
+                        (0..LANES).for_each(|l| s2[l] += v[l] * v[l]);
+                    }
+                    done += b;
+                }
+                let n = self.n as f64;
+                Ok((0..LANES).map(|l| (s1[l] / n, s2[l] / n)).collect())
             },
         );
+        let Ok(shard) = shard;
         mc_stats(shard.results())
     }
 }
+
+/// Steps per block of [`McExact::batch`]'s lockstep realizations (the exact route of `simulate::run` steps
+/// in blocks as well).
+pub const EXACT_BLOCK: usize = 4096;
 
 /// The one-FFT route's floor: per realization of [`MC_SEED`], the N + 2 normals of its stream and one inverse
 /// real FFT of length N (the route without its gains, response and sums); one thread.
@@ -600,13 +632,37 @@ impl OneFftFloor {
     }
 }
 
-/// The exact route's floor: its normals alone (`normals.len()` per realization of [`MC_SEED`]: one per
-/// state and step, as `GaussMarkov::advance` draws them), realizations 0..r, one thread; a check value.
-pub fn exact_floor(normals: &mut [f64], r: usize) -> f64 {
+/// The exact route's floor: its normals alone (`draws` per realization of [`MC_SEED`]: one per state and
+/// step, as `GaussMarkov::advance` draws them), drawn the way the route draws them: realizations 0..r in
+/// groups of [`LANES`](stochvib::simulate::LANES) consecutive ones, side by side
+/// (`fill_standard_normal_lanes`, `normals.len()` per lane at a time: the callers pass `LANE_DRAW_STEPS`
+/// steps' worth, as the route draws them), a short last group one at a time
+/// (`fill_standard_normal`); one thread; a check value.
+pub fn exact_floor(normals: &mut [[f64; stochvib::simulate::LANES]], draws: usize, r: usize) -> f64 {
+    use stochvib::simulate::{fill_standard_normal, fill_standard_normal_lanes, stream, NormalLanes, LANES};
     let mut acc = 0.0;
-    for i in 0..r as u64 {
-        stochvib::simulate::fill_standard_normal(&mut stochvib::simulate::stream(MC_SEED, i), normals);
-        acc += normals[1];
+    let chunk = normals.len();
+    let groups = r / LANES;
+    for g in 0..groups {
+        let mut lanes = NormalLanes::new(MC_SEED, (g * LANES) as u64);
+        let mut done = 0;
+        while done < draws {
+            let b = chunk.min(draws - done);
+            fill_standard_normal_lanes(&mut lanes, &mut normals[..b]);
+            done += b;
+        }
+        acc += normals[0].iter().sum::<f64>();
+    }
+    let flat = normals.as_flattened_mut();
+    for i in groups * LANES..r {
+        let mut rng = stream(MC_SEED, i as u64);
+        let mut done = 0;
+        while done < draws {
+            let b = flat.len().min(draws - done);
+            fill_standard_normal(&mut rng, &mut flat[..b]);
+            done += b;
+        }
+        acc += flat[0];
     }
     acc
 }

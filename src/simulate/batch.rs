@@ -1,5 +1,6 @@
 //! Batches of realizations in parallel, each from its own random stream, mergeable shard by shard.
 
+use super::normal_lanes::LANES;
 use super::rng::stream;
 use crate::error::{Error, Result};
 use rand::rngs::Xoshiro256PlusPlus;
@@ -126,4 +127,53 @@ where
         })
         .collect();
     Shard::new(seed, start, results)
+}
+
+/// Runs realizations `range` of `seed` in groups of [`LANES`] consecutive realizations, the groups in
+/// parallel on the current rayon pool (for lockstep realizations, e.g. [`GaussMarkovLanes`]).
+///
+/// # Formula
+/// The groups are `start + g·LANES .. min(start + (g + 1)·LANES, end)` (only the last one may be short);
+/// `f(state, group)` returns the results of the group's realizations in realization order, each from its
+/// own stream (seed, i) alone, so that, as for [`run_batch`], a result does not depend on the grouping, the
+/// threads or the shards. `init` as for [`run_batch`].
+///
+/// # Errors
+/// The first error of `f`, in group order.
+///
+/// # Panics
+/// When `f` returns a number of results other than the size of its group (a programming error).
+///
+/// # Examples
+/// ```
+/// use stochvib::simulate::{run_batch, run_batch_groups, standard_normal, stream};
+/// let g = run_batch_groups(5, 3..20, || (), |_, group| {
+///     Ok::<_, ()>(group.map(|i| standard_normal(&mut stream(5, i))).collect())
+/// })
+/// .unwrap();
+/// assert_eq!(g, run_batch(5, 3..20, || (), |_, _, rng| standard_normal(rng)));
+/// ```
+///
+/// [`GaussMarkovLanes`]: super::GaussMarkovLanes
+pub fn run_batch_groups<T, E, S, I, F>(seed: u64, range: Range<u64>, init: I, f: F) -> std::result::Result<Shard<T>, E>
+where
+    T: Send,
+    E: Send,
+    I: Fn() -> S + Sync + Send,
+    F: Fn(&mut S, Range<u64>) -> std::result::Result<Vec<T>, E> + Sync + Send,
+{
+    let (start, end) = (range.start, range.end.max(range.start));
+    let lanes = LANES as u64;
+    let groups: Vec<Vec<T>> = (0..(end - start).div_ceil(lanes))
+        .into_par_iter()
+        .map_init(init, |state, g| {
+            let first = start + g * lanes;
+            let group = first..(first + lanes).min(end);
+            let len = group.end - group.start;
+            let results = f(state, group)?;
+            assert_eq!(results.len() as u64, len, "one result per realization of the group");
+            Ok(results)
+        })
+        .collect::<std::result::Result<_, E>>()?;
+    Ok(Shard::new(seed, start, groups.into_iter().flatten().collect()))
 }

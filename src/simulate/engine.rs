@@ -3,7 +3,7 @@
 
 use super::plan::Plan;
 use super::verdict_stream::VerdictStream;
-use super::{FirSynthesis, GaussMarkov, SpectralGenerator};
+use super::{FirSynthesis, GaussMarkov, SpectralGenerator, LANES};
 use crate::error::{Error, Result};
 use crate::estimate::WelchSums;
 use realfft::num_complex::Complex;
@@ -66,6 +66,8 @@ pub(crate) struct Scratch {
     laplace: Vec<super::LaplaceScratch>,
     /// One output's samples of a whole record (reused from realization to realization).
     sig: Vec<f64>,
+    /// A block of the lockstep realizations of the exact route (`lanes[k·stride + r][l]`).
+    lanes: Vec<[f64; LANES]>,
 }
 
 impl Scratch {
@@ -101,6 +103,10 @@ impl Scratch {
                 _ => vec![],
             },
             sig: Vec::new(),
+            lanes: match &plan.engine {
+                Engine::Exact(_) if plan.block_steps > 0 => vec![[0.0; LANES]; plan.block_steps * plan.stride],
+                _ => vec![],
+            },
         }
     }
 }
@@ -144,12 +150,80 @@ fn realize_in_blocks(
         }
         done += b;
     }
+    finish_blocks(plan, &sum, &sq, &mut streams, welch)
+}
+
+/// Realizations `first .. first + LANES` of `seed` on the exact route in lockstep ([`GaussMarkov::lanes`]),
+/// in blocks of `plan.block_steps` steps: each lane's running sums, Welch segments and `verdicts[l]` are
+/// fed with that lane's block in time order, as [`realize_in_blocks`] feeds them for the realization
+/// alone, so every result is bit-identical to it.
+pub(crate) fn realize_lanes(
+    plan: &Plan,
+    gm: &GaussMarkov,
+    s: &mut Scratch,
+    (seed, first): (u64, u64),
+    mut verdicts: Option<&mut [VerdictStream]>,
+) -> Result<Vec<Realization>> {
+    let (n, p, stride, block) = (plan.n, plan.outputs.len(), plan.stride, plan.block_steps);
+    let mut lanes = gm.lanes(seed, first);
+    let mut sum = vec![[-0.0f64; LANES]; p];
+    let mut sq = vec![[-0.0f64; LANES]; p];
+    let mut streams: Vec<Vec<_>> = (0..LANES)
+        .map(|_| (0..p).map(|_| plan.welch.stream()).collect())
+        .collect();
+    let mut welch: Vec<Vec<WelchSums>> = (0..LANES)
+        .map(|_| (0..p).map(|_| plan.welch.sums()).collect())
+        .collect();
+    let mut sig = vec![0.0; block];
+    let mut done = 0;
+    while done < n {
+        let b = block.min(n - done);
+        let buf = &mut s.lanes[..b * stride];
+        lanes.fill(buf);
+        for r in 0..p {
+            let (mut s1, mut s2) = (sum[r], sq[r]);
+            for y in buf.iter().skip(r).step_by(stride) {
+                (0..LANES).for_each(|l| s1[l] += y[l]);
+                (0..LANES).for_each(|l| s2[l] += y[l] * y[l]);
+            }
+            (sum[r], sq[r]) = (s1, s2);
+            for l in 0..LANES {
+                for (v, y) in sig[..b].iter_mut().zip(buf.iter().skip(r).step_by(stride)) {
+                    *v = y[l];
+                }
+                plan.welch
+                    .push(&mut streams[l][r], &sig[..b], &mut welch[l][r], &mut s.welch)?;
+                if let Some(v) = verdicts.as_deref_mut() {
+                    v[l].push(r, &sig[..b])?;
+                }
+            }
+        }
+        done += b;
+    }
+    (0..LANES)
+        .map(|l| {
+            let (sum, sq): (Vec<f64>, Vec<f64>) = sum.iter().zip(&sq).map(|(a, b)| (a[l], b[l])).unzip();
+            finish_blocks(plan, &sum, &sq, &mut streams[l], std::mem::take(&mut welch[l]))
+        })
+        .collect()
+}
+
+/// The realization of running sums `sum`, `sq` (per output) and Welch streams and sums after the last
+/// block: the records' ends fed to Welch, the time averages.
+fn finish_blocks(
+    plan: &Plan,
+    sum: &[f64],
+    sq: &[f64],
+    streams: &mut [crate::estimate::WelchStream],
+    mut welch: Vec<WelchSums>,
+) -> Result<Realization> {
     for (st, ws) in streams.iter_mut().zip(welch.iter_mut()) {
         plan.welch.end_record(st, ws)?;
     }
+    let n = plan.n as f64;
     Ok(Realization {
-        m: sum.iter().map(|v| v / n as f64).collect(),
-        v: sq.iter().map(|v| v / n as f64).collect(),
+        m: sum.iter().map(|v| v / n).collect(),
+        v: sq.iter().map(|v| v / n).collect(),
         welch,
         raw: Vec::new(),
         raw_inputs: Vec::new(),
@@ -206,16 +280,7 @@ fn realize_streamed(
         }
         done += filled;
     }
-    for (st, ws) in streams.iter_mut().zip(welch.iter_mut()) {
-        plan.welch.end_record(st, ws)?;
-    }
-    Ok(Realization {
-        m: sum.iter().map(|v| v / n as f64).collect(),
-        v: sq.iter().map(|v| v / n as f64).collect(),
-        welch,
-        raw: Vec::new(),
-        raw_inputs: Vec::new(),
-    })
+    finish_blocks(plan, &sum, &sq, &mut streams, welch)
 }
 
 /// One realization from `rng` (the stream (seed, i) of realization i); the block-wise routes also feed

@@ -35,10 +35,12 @@ pub fn memory_bytes(n: usize, p: usize, g: usize, opts: &RunOptions, threads: us
 ///
 /// # Formula
 /// With n states, q simulated rows (outputs and recorded inputs), p outputs, b = min(block, N) steps per
-/// block, B ≤ 513 Welch bins (segments of M ≤ 1024), s = shard size, P threads:
+/// block, B ≤ 513 Welch bins (segments of M ≤ 1024), s = shard size, P threads, and the L = 8 realizations
+/// of a lockstep group ([`GaussMarkovLanes`](super::GaussMarkovLanes)) in a thread at a time:
 /// ```text
-/// per thread  n·8 (state) + b·q·8 (block) + b·8 (one row) + p·(2M + B)·8 (Welch streams and sums)
-///             + 4M·8 (Welch scratch) + 6·8 (running sums)
+/// per thread  17·n·8·L (states and 16 steps of normals) + b·q·8·(1 + L) (block, alone and in lanes)
+///             + b·8 (one row) + L·p·(2M + B)·8 (Welch streams and sums) + 4M·8 (Welch scratch)
+///             + 6·8·L (running sums)
 /// shared      (2n² + q·n)·8 (transition, noise factor, output matrix) + s·p·(B + 2)·8 (the shard's results)
 /// bytes       P·per thread + shared
 /// ```
@@ -65,7 +67,13 @@ pub fn exact_block_memory_bytes(
     let m = ((n as u128 / 8) & !1).clamp(4, 1024);
     let bins = m / 2 + 1;
     let s = opts.shard_size.min(opts.realizations) as u128;
-    let per_thread = nx * F64 + b * q * F64 + b * F64 + p * (2 * m + bins) * F64 + 4 * m * F64 + 6 * F64;
+    let l = super::LANES as u128;
+    let per_thread = (1 + super::LANE_DRAW_STEPS as u128) * nx * F64 * l
+        + b * q * F64 * (1 + l)
+        + b * F64
+        + l * p * (2 * m + bins) * F64
+        + 4 * m * F64
+        + 6 * F64 * l;
     let shared = (2 * nx * nx + q * nx) * F64 + s * p * (bins + 2) * F64;
     per_thread * threads as u128 + shared
 }

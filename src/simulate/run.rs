@@ -66,10 +66,11 @@
 
 use super::accumulators::{self, Moments, WelchAccumulator};
 use super::bands::OutputBands;
-use super::engine::{realize, Realization, Scratch};
+use super::engine::{realize, realize_lanes, Engine, Realization, Scratch};
 use super::finish::{density_estimate, output_statistics, read_output, Analytic};
 use super::plan::{plan, Plan};
-use super::{run_batch, RunInput, RunOptions, RunSummary};
+use super::verdict_stream::VerdictStream;
+use super::{run_batch_groups, stream, RunInput, RunOptions, RunSummary, LANES};
 use crate::error::Result;
 use crate::response::output_density;
 use crate::store::{CreateOptions, OutputStatistics, RunFile, RunMetadata, RunWriter};
@@ -228,18 +229,13 @@ fn simulate_pending_shards(
     progress(done, n_shards);
     for shard in writer.pending_shards() {
         let range = meta.shard_range(shard);
-        let batch = run_batch(
+        let batch = run_batch_groups(
             opts.seed,
             range.start as u64..range.end as u64,
             || Scratch::new(plan),
-            |s, _i, rng| realize_with_verdicts(plan, s, rng, opts, &input.verdicts),
-        );
-        let (results, verdicts): (Vec<Realization>, Vec<Vec<Vec<f64>>>) = batch
-            .into_results()
-            .into_iter()
-            .collect::<Result<Vec<_>>>()?
-            .into_iter()
-            .unzip();
+            |s, group| realize_group(plan, s, opts, &input.verdicts, group),
+        )?;
+        let (results, verdicts): (Vec<Realization>, Vec<Vec<Vec<f64>>>) = batch.into_results().into_iter().unzip();
         let mut extra = input.verdicts.encode(&verdicts, meta.shard_size);
         extra.extend(super::bands::encode_shard(
             bands,
@@ -336,6 +332,38 @@ pub(crate) fn summary_of_file(run: &RunFile, plan: &Plan, notes: Vec<String>) ->
     })
 }
 
+/// The realizations of `group` (consecutive, of the run's seed) with their verdict values: a whole group
+/// of the exact route in blocks in lockstep ([`realize_lanes`], bit-identical to one at a time), any other
+/// one at a time.
+fn realize_group(
+    plan: &Plan,
+    s: &mut Scratch,
+    opts: &RunOptions,
+    verdicts: &super::VerdictChannels,
+    group: std::ops::Range<u64>,
+) -> Result<Vec<(Realization, Vec<Vec<f64>>)>> {
+    match &plan.engine {
+        Engine::Exact(gm) if plan.block_steps > 0 && !opts.store_raw && group.end - group.start == LANES as u64 => {
+            let names: Vec<&str> = plan.outputs.iter().map(|o| o.signal.name.as_str()).collect();
+            let mut vs = match verdicts.is_empty() {
+                true => Vec::new(),
+                false => (0..LANES)
+                    .map(|_| VerdictStream::new(verdicts, opts.dt_s, &names))
+                    .collect::<Result<Vec<_>>>()?,
+            };
+            let channels = (!vs.is_empty()).then_some(vs.as_mut_slice());
+            let results = realize_lanes(plan, gm, s, (opts.seed, group.start), channels)?;
+            if vs.is_empty() {
+                return Ok(results.into_iter().map(|r| (r, Vec::new())).collect());
+            }
+            results.into_iter().zip(vs).map(|(r, v)| Ok((r, v.finish()?))).collect()
+        }
+        _ => group
+            .map(|i| realize_with_verdicts(plan, s, &mut stream(opts.seed, i), opts, verdicts))
+            .collect(),
+    }
+}
+
 /// One realization and, when the run has verdict channels, their per-realization values (the raw samples
 /// are kept only as long as the channels need them, unless the run stores them).
 fn realize_with_verdicts(
@@ -352,7 +380,7 @@ fn realize_with_verdicts(
     // whole record
     if plan.block_steps > 0 && !opts.store_raw {
         let names: Vec<&str> = plan.outputs.iter().map(|o| o.signal.name.as_str()).collect();
-        let mut vs = super::verdict_stream::VerdictStream::new(verdicts, opts.dt_s, &names)?;
+        let mut vs = VerdictStream::new(verdicts, opts.dt_s, &names)?;
         let re = realize(plan, s, rng, false, Some(&mut vs))?;
         return Ok((re, vs.finish()?));
     }

@@ -206,6 +206,12 @@ impl GaussMarkov {
         dispatch!(1 2 3 4 5 6 7 8);
     }
 
+    /// Φ, L, the initial-state factor (L₀L₀ᵀ = P) and H, each row-major (for the lockstep realizations of
+    /// [`GaussMarkovLanes`](super::GaussMarkovLanes)).
+    pub(crate) fn flat_matrices(&self) -> [&[f64]; 4] {
+        [&self.phi_flat, &self.l_flat, &self.p0_flat, &self.h_flat]
+    }
+
     /// A stream owning its generator, started from a stationary state drawn from `rng`.
     pub fn stream(&self, mut rng: Xoshiro256PlusPlus) -> GaussMarkovStream<'_> {
         let mut x = vec![0.0; self.n];

@@ -40,6 +40,7 @@ mod laplace_road;
 mod layers;
 mod limits;
 mod linalg;
+mod lockstep;
 mod machine_assembly;
 mod mc_defaults;
 mod mc_pipeline;
