@@ -3,7 +3,7 @@
 benches/compare/transient_mc.py (the same generator and integrator in numpy, vectorised over the
 realizations, one BLAS thread), both as whole processes, wall and CPU time (user + sys of the child).
 
-    python3 benches/compare/transient.py --binary target/release/stochvib [--realizations 10000] [--rows FILE]
+    python3 benches/compare/transient.py --binary target/release/stochvib [--realizations 10000] [--reps 5] [--rows FILE]
 
 The scenario is data/quarter-car-accelerating.toml without [analysis.comfort] (its weighting filter adds
 states that the numpy version does not have); --rows writes the rows of benches/RESULTS.md's table."""
@@ -46,20 +46,29 @@ def main():
     ap.add_argument("--binary", default="target/release/stochvib")
     ap.add_argument("--realizations", type=int, default=10000)
     ap.add_argument("--rows", default=None)
+    ap.add_argument("--reps", type=int, default=5, help="runs of each side, alternated; the medians are reported")
     a = ap.parse_args()
     r = a.realizations
+    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    runs, peers = [], []
     with tempfile.TemporaryDirectory() as d:
         qc = scenario(d)
-        ours = timed([a.binary, "transient", qc, "--monte-carlo", str(r), "--shard-size", str(min(r, 1000)),
-                      "-o", os.path.join(d, "qc.h5")])
         exact = timed([a.binary, "transient", qc])
-    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1")
-    peer = timed([sys.executable, os.path.join(HERE, "transient_mc.py"), str(r)], env)
-    print(f"ours: {ours[0]:.3f} s wall, {ours[1]:.3f} s CPU (exact route alone {exact[1]:.3f} s CPU); "
-          f"numpy: {peer[0]:.3f} s wall, {peer[1]:.3f} s CPU; {peer[2].strip()}")
+        # alternated (ours, numpy, ours, ...) so that a change of load hits both sides; a fresh run file each time
+        for k in range(max(a.reps, 1)):
+            runs.append(timed([a.binary, "transient", qc, "--monte-carlo", str(r), "--shard-size",
+                               str(min(r, 1000)), "-o", os.path.join(d, f"qc{k}.h5")]))
+            peers.append(timed([sys.executable, os.path.join(HERE, "transient_mc.py"), str(r)], env))
+    median = lambda xs: sorted(xs)[len(xs) // 2]
+    ours = (median([x[0] for x in runs]), median([x[1] for x in runs]))
+    peer = (median([x[0] for x in peers]), median([x[1] for x in peers]), peers[-1][2])
+    print(f"ours (median of {len(runs)}): {ours[0]:.3f} s wall, {ours[1]:.3f} s CPU (runs: "
+          f"{', '.join(f'{x[0]:.3f}' for x in runs)} s; exact route alone {exact[1]:.3f} s CPU); numpy (median of "
+          f"{len(peers)}): {peer[0]:.3f} s wall, {peer[1]:.3f} s CPU (runs: {', '.join(f'{x[0]:.3f}' for x in peers)} "
+          f"s); {peer[2].strip()}")
     if a.rows:
         size = f"{r} x 1200 steps"
-        cmd = "`transient.py`"
+        cmd = f"`transient.py --reps {a.reps}` (medians, alternated)"
         rows = [
             dict(job="transient MC, accelerating quarter car (wall)", size=size, ours_s=ours[0],
                  peer="numpy (vectorised over realizations, 1 BLAS thread)", peer_s=peer[0], cmd=cmd),
