@@ -7,6 +7,7 @@ use crate::estimate::{chi_squared_quantile, student_t_quantile, Interval};
 use crate::extremes::{BandVerdict, EmpiricalDistribution};
 use crate::store::transient_series::{TransientOutput, TransientSeries};
 use crate::store::{OutputStatistics, RunMetadata, Statistic};
+use rayon::prelude::*;
 
 /// Name of an output's per-shard series accumulator: per stored time the shard's mean, then its sum of
 /// squared deviations M₂.
@@ -161,15 +162,28 @@ pub fn finish(
         ));
     }
     let epsilon = crate::extremes::dkw_epsilon(r, 1.0 - confidence)?;
+    // the file read output by output, then the outputs' series, verdicts and statistics in parallel
+    let mut read = Vec::new();
+    for sig in &meta.outputs {
+        let fold = fold_series(acc, &sig.name, &shards, times.len())?;
+        read.push((fold, read_maxima(acc, &sig.name, &shards, meta.shard_size)?));
+    }
+    let done: Vec<_> = read
+        .into_par_iter()
+        .zip(meta.outputs.par_iter().zip(&analytic.outputs))
+        .map(|((fold, (max_y, max_abs_y)), (sig, an))| {
+            let o = output_series(&sig.name, &sig.unit, &fold, an, max_y, max_abs_y, confidence)?;
+            let v = maxima_verdicts(&o, confidence)?;
+            let st = end_statistics(&o, r, confidence);
+            Ok((o, v, st))
+        })
+        .collect::<Result<_>>()?;
     let mut outputs = Vec::new();
     let mut statistics = Vec::new();
     let mut verdicts = Vec::new();
-    for (sig, an) in meta.outputs.iter().zip(&analytic.outputs) {
-        let fold = fold_series(acc, &sig.name, &shards, times.len())?;
-        let (max_y, max_abs_y) = read_maxima(acc, &sig.name, &shards, meta.shard_size)?;
-        let o = output_series(&sig.name, &sig.unit, &fold, an, max_y, max_abs_y, confidence)?;
-        verdicts.push(maxima_verdicts(&o, confidence)?);
-        statistics.push(end_statistics(&o, r, confidence));
+    for (o, v, st) in done {
+        verdicts.push(v);
+        statistics.push(st);
         outputs.push(o);
     }
     Ok(Finished {
