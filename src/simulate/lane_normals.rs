@@ -377,8 +377,11 @@ mod tests {
             assert_eq!(first_bad, None, "lane {l}");
             assert_eq!(fast.stream(l), slow.stream(l), "lane {l}: its state");
         }
-        let redone = b.iter().flatten().filter(|v| v.abs() >= 3.4).count();
-        assert!(redone > 0, "draws of the outer boxes were made");
+        // beyond X_0 = 3.91 only the tail sampling of `rand_distr` draws: the redone path ran in every lane
+        // (P(|x| > 3.91) ≈ 9·10⁻⁵, about 100 such draws per lane; the streams are fixed, so this is exact)
+        for l in 0..L {
+            assert!(a.iter().any(|r| r[l].abs() > 3.92), "lane {l}: a tail draw was redone");
+        }
     }
 
     /// Draws filled many steps at a time, in fills of uneven lengths (one row, part of a chunk, a chunk of
