@@ -49,6 +49,7 @@ mod summary;
 pub mod transfer_grid;
 pub mod verdict_stream;
 pub mod verdicts;
+mod ziggurat_f;
 
 pub use bands::RunBands;
 pub use basic_method::{basic_method_rows, RunBasicMethod};
