@@ -91,18 +91,24 @@ impl TransientSolution {
 
     /// [`Self::crossing_rates`] of both barriers at once, the two-sided rate from the one-sided one: ν⁺(b, t)
     /// of y plus that of −y (whose mean and mean rate change sign), as `rice_rate_two_sided` adds them (the
-    /// same values; one Rice rate fewer per time).
+    /// same values; one Rice rate fewer per time). Where the mean and its rate are both zero, −y has the law
+    /// of y and its rate is the same number, computed once (a zero mean and mean rate enter the rate only
+    /// through b − m and ṁ + ρσ̇β, which ±0 leave unchanged unless they are zero themselves; then the rate
+    /// may differ only in the sign of a zero).
     pub fn crossing_rates_both(&self, i: usize, level: f64) -> (Vec<f64>, Vec<f64>) {
         let o = &self.outputs[i];
         (0..o.sigma.len())
             .map(|k| {
                 let s = o.state(k);
+                let up = rice_rate(level, &s);
+                if s.mean == 0.0 && s.mean_rate == 0.0 {
+                    return (up, up + up);
+                }
                 let mirrored = RiceState {
                     mean: -s.mean,
                     mean_rate: -s.mean_rate,
                     ..s
                 };
-                let up = rice_rate(level, &s);
                 (up, up + rice_rate(level, &mirrored))
             })
             .unzip()
@@ -295,6 +301,26 @@ mod tests {
                 max_error_estimate: 0.0,
             },
             start: Start::Rest,
+        }
+    }
+
+    /// A zero-mean output (every mean and mean rate +0 or −0, σ > 0 after the start): the two-sided rates,
+    /// whose mirrored half is then not computed again, have the bits of `rice_rate_two_sided`'s sum of both
+    /// halves, at levels 0, ±0.3, 1.5 and 4.
+    #[test]
+    fn a_zero_mean_output_gives_the_two_sided_bits() {
+        let mut sol = solution();
+        sol.outputs[0].mean = vec![0.0, -0.0, 0.0, -0.0, 0.0];
+        sol.outputs[0].mean_rate = vec![0.0, 0.0, -0.0, -0.0, 0.0];
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for b in [0.0, 0.3, -0.3, 1.5, 4.0] {
+            let (_, both) = sol.crossing_rates_both(0, b);
+            let want = sol.crossing_rates(0, b, Barrier::TwoSided);
+            assert!(
+                want.iter().skip(1).all(|&v| v > 0.0),
+                "b = {b}: every rate after the start is positive"
+            );
+            assert_eq!(bits(&both), bits(&want), "b = {b}");
         }
     }
 
