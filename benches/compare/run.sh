@@ -133,9 +133,9 @@ trap - EXIT
 
 # the harnesses with tables of their own, each writing rows-NAME.json for the one table (compare.py summary)
 if [ "$smoke" = 1 ]; then
-    fatigue_args=(--n 200000 --check 20000 --reps 1) nl=(R=8 T=2 REPS=1) transient_r=40 transient_reps=1 opt_reps=1 hours=0.005
+    fatigue_args=(--n 200000 --check 20000 --reps 1) nl=(R=8 T=2 REPS=1) transient_r=40 transient_reps=1 transient_ours=1 opt_reps=1 hours=0.005
 else
-    fatigue_args=(--n 100000000 --check 1000000 --reps 3) nl=(R=512 T=30 REPS=3) transient_r=10000 transient_reps=5
+    fatigue_args=(--n 100000000 --check 1000000 --reps 3) nl=(R=512 T=30 REPS=3) transient_r=10000 transient_reps=5 transient_ours=5
     opt_reps=7 hours=1
 fi
 echo "run.sh: fatigue.py (rainflow, Dirlik)" >&2
@@ -150,7 +150,7 @@ python3 "$here/rows.py" nonlinear "$out/nonlinear" >"$out/rows-nonlinear.json"
 echo "run.sh: transient.py (transient Monte Carlo against numpy)" >&2
 state "as found" transient
 python3 "$here/transient.py" --binary "$cli" --realizations "$transient_r" --reps "$transient_reps" \
-    --rows "$out/rows-transient.json" \
+    --ours-per-rep "$transient_ours" --rows "$out/rows-transient.json" \
     >"$out/transient.txt"
 echo "run.sh: optimize.py (stochvib optimize against scipy.optimize)" >&2
 state "as found" optimize
