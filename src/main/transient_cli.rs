@@ -7,7 +7,7 @@ use stochvib::scenario::{load_scenario, Catalogue};
 use stochvib::store::Compression;
 use stochvib::study::transient_answers::{answers, evolutionary_analysis};
 use stochvib::study::transient_mc::{
-    check_run_size, compare_sigma, simulate_road_grid, simulate_transient, TransientMcOptions,
+    check_run_size, check_run_size_of, compare_sigma, simulate_road_grid, simulate_transient, TransientMcOptions,
 };
 use stochvib::study::transient_run::{exact_solution, has_exact_route, transient_setup};
 use stochvib::transient::monte_carlo::read_transient_run;
@@ -95,13 +95,25 @@ pub fn transient(
     let sc = load_scenario(&a.scenario, catalogue(&a.spectra_dir).dir())?;
     let exact = has_exact_route(&sc)?;
     let opts = mc_options(&a, &choice);
+    // the set-up of the exact route's run, read once for the size check and the route
+    let setup = if exact && !a.road_grid {
+        Some(transient_setup(&sc)?)
+    } else {
+        None
+    };
     if a.monte_carlo.is_some() && a.output.is_some() {
         // the run's size before the exact route and the analytic curves (the run checks it again)
-        check_run_size(&sc, &opts, a.road_grid || !exact, a.road_step)
-            .map_err(|e| super::named_by_flag(e, "--monte-carlo"))?;
+        match &setup {
+            Some(s) => check_run_size_of(s, &opts),
+            None => check_run_size(&sc, &opts, a.road_grid || !exact, a.road_step),
+        }
+        .map_err(|e| super::named_by_flag(e, "--monte-carlo"))?;
     }
     let answers = if exact {
-        let setup = transient_setup(&sc)?;
+        let setup = match setup {
+            Some(s) => s,
+            None => transient_setup(&sc)?,
+        };
         let sol = exact_solution(&sc, &setup)?;
         let r = answers(&sc, &setup, &sol);
         if let Some(dir) = &a.plots {

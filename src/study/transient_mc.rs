@@ -465,8 +465,15 @@ pub fn check_run_size(sc: &Scenario, opts: &TransientMcOptions, road_grid: bool,
     if road_grid {
         return grid_steps(&road_grid_setup(sc)?, opts, road_step).map(|_| ());
     }
-    let times = transient_setup(sc)?.times;
-    check_substeps(opts.substeps, times.len() - 1)
+    check_run_size_of(&transient_setup(sc)?, opts)
+}
+
+/// [`check_run_size`] of the exact route's run from its set-up, already read.
+///
+/// # Errors
+/// The refusal of `substeps`.
+pub fn check_run_size_of(setup: &TransientSetup, opts: &TransientMcOptions) -> Result<()> {
+    check_substeps(opts.substeps, setup.times.len() - 1)
 }
 
 /// Runs the road-grid Monte Carlo of the scenario's transient into `out` (resuming an interrupted run): a
