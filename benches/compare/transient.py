@@ -56,6 +56,8 @@ def main():
     ap.add_argument("--reps", type=int, default=5, help="alternations of the two sides; the medians are reported")
     ap.add_argument("--ours-per-rep", type=int, default=5, help="runs of ours in each alternation")
     a = ap.parse_args()
+    if a.reps < 1 or a.ours_per_rep < 1:
+        ap.error(f"--reps {a.reps}, --ours-per-rep {a.ours_per_rep}: each must be at least 1")
     r = a.realizations
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1")
     runs, peers = [], []
@@ -63,8 +65,8 @@ def main():
         qc = scenario(d)
         exact = timed([a.binary, "transient", qc])
         # alternated (ours, numpy, ours, ...) so that a change of load hits both sides; a fresh run file each time
-        for k in range(max(a.reps, 1)):
-            for j in range(max(a.ours_per_rep, 1)):
+        for k in range(a.reps):
+            for j in range(a.ours_per_rep):
                 runs.append(timed([a.binary, "transient", qc, "--monte-carlo", str(r), "--shard-size",
                                    str(min(r, 1000)), "-o", os.path.join(d, f"qc{k}-{j}.h5")]))
             peers.append(timed([sys.executable, os.path.join(HERE, "transient_mc.py"), str(r)], env))

@@ -511,9 +511,9 @@ mod tests {
         }
     }
 
-    /// 8 lanes × 2·10⁵ draws (≈ 19,000 of them redone by `rand_distr`, ≈ 140 beyond X_0 = 3.91 from the tail
-    /// box among them) have the
-    /// bits of `fill_standard_normal` on each lane's stream, and leave each stream where it leaves it.
+    /// 8 lanes × 2·10⁵ draws (≈ 19,000 of them finished off the common case, ≈ 140 beyond X_0 = 3.91 from
+    /// the tail box among them) have the bits of `fill_standard_normal` on each lane's stream, and leave
+    /// each stream where it leaves it.
     #[test]
     fn lanes_give_the_bits_of_rand_distr() {
         const L: usize = 8;
@@ -586,6 +586,19 @@ mod tests {
         assert!(switches > 700, "{switches} switches found, {ends} wedges without one");
     }
 
+    /// `n` rows of 8 exponents t spread evenly over the wedges' range [−X_1²/2, 0] (the AVX-512 tests' grid),
+    /// or none on a CPU without AVX-512 (those tests then pass without checking).
+    #[cfg(target_arch = "x86_64")]
+    fn wedge_exponents(n: usize) -> Vec<[f64; 8]> {
+        if crate::linalg::vmath::Isa::detected() != crate::linalg::vmath::Isa::Avx512 {
+            return Vec::new();
+        }
+        let lo = -edges().x[1].powi(2) / 2.0;
+        (0..n)
+            .map(|k| std::array::from_fn(|l| lo * ((8 * k + l) as f64 / (8 * n) as f64)))
+            .collect()
+    }
+
     /// The short exponential of the vector wedge test is within its bound: over 10⁶ exponents t on the
     /// wedges' range [−X_1²/2, 0], |e_near(t)/exp(t) − 1| ≤ half of `EXP_NEAR_BOUND` (the formula gives
     /// 7.6·10⁻⁹ = 0.51 of it). Skipped (passes) on a CPU without AVX-512.
@@ -593,13 +606,12 @@ mod tests {
     #[test]
     fn the_short_exponential_is_within_its_bound() {
         use std::arch::x86_64::*;
-        if crate::linalg::vmath::Isa::detected() != crate::linalg::vmath::Isa::Avx512 {
+        let rows = wedge_exponents(125_000);
+        if rows.is_empty() {
             return;
         }
-        let lo = -edges().x[1].powi(2) / 2.0;
         let mut worst: f64 = 0.0;
-        for k in 0..125_000 {
-            let t: [f64; 8] = std::array::from_fn(|l| lo * ((8 * k + l) as f64 / 1e6));
+        for t in rows {
             let mut p = [0.0; 8];
             // SAFETY: the CPU has AVX-512 F (checked above); 8 readable and writable f64.
             unsafe { _mm512_storeu_pd(p.as_mut_ptr(), x86::exp_near(_mm512_loadu_pd(t.as_ptr()))) };
@@ -620,15 +632,14 @@ mod tests {
     #[test]
     fn the_vector_wedge_test_decides_as_libm() {
         use std::arch::x86_64::*;
-        if crate::linalg::vmath::Isa::detected() != crate::linalg::vmath::Isa::Avx512 {
+        let rows = wedge_exponents(200_000);
+        if rows.is_empty() {
             return;
         }
-        let lo = -edges().x[1].powi(2) / 2.0;
         let ulps = [0i64, 1, -1, 2, -2, 1000, -1000, 1_000_000, -1_000_000];
         let bounds = [1.1, -1.1, 1.5, -1.5, 4.0, -4.0];
         let mut checked = 0;
-        for k in 0..200_000 {
-            let t: [f64; 8] = std::array::from_fn(|l| lo * ((8 * k + l) as f64 / 1.6e6));
+        for t in rows {
             let e: [f64; 8] = std::array::from_fn(|l| t[l].exp());
             let heights = ulps
                 .iter()
@@ -653,7 +664,7 @@ mod tests {
 
     /// The dispatched fill of 8 lanes (the AVX-512 path where the CPU has it) against the scalar oracle,
     /// bit for bit: 1.1·10⁶ draws per lane in fills of uneven lengths (1, 37, 64, 5000, ...; about 1.2 % of
-    /// the draws, ≈ 10⁵ over the lanes, are redone by `rand_distr`, the tail and the wedges among them), and
+    /// the draws, ≈ 10⁵ over the lanes, are finished off the common case, the tail and the wedges among them), and
     /// every lane's stream left in the same state.
     #[test]
     fn the_vector_fill_gives_the_bits_of_the_scalar_fill() {
