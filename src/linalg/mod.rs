@@ -23,6 +23,7 @@ pub mod poly;
 pub mod small_lyapunov;
 pub mod transfer;
 pub mod vmath;
+pub mod vpow;
 
 pub use expm::expm;
 pub use integral_table::{h2_integral, integral_closed_form, integral_i_n};

@@ -2,6 +2,8 @@
 
 use super::{Asymptote, Convention, Domain, Spectrum};
 use crate::error::{Error, Result};
+use crate::linalg::vmath::{self, Kernel};
+use crate::linalg::vpow::{pow_positive, PowerFrom};
 
 /// A measured density given at points, interpolated linearly in log–log coordinates between them and
 /// zero outside the tabulated range.
@@ -32,6 +34,8 @@ pub struct Tabulated {
     domain: Domain,
     /// Log-log slope of each segment, precomputed for `density`.
     slopes: Vec<f64>,
+    /// Each segment's law prepared for `density_into` (None for an absurd one: see [`PowerFrom::up_to`]).
+    laws: Vec<Option<PowerFrom>>,
 }
 
 impl Tabulated {
@@ -89,8 +93,12 @@ impl Tabulated {
             convention,
             domain,
             slopes: Vec::new(),
+            laws: Vec::new(),
         };
         t.slopes = (0..t.omega.len() - 1).map(|k| t.slope(k)).collect();
+        t.laws = (0..t.slopes.len())
+            .map(|k| PowerFrom::up_to(t.omega[k], t.slopes[k], t.omega[k + 1]))
+            .collect();
         Ok(t)
     }
 
@@ -129,35 +137,55 @@ impl Tabulated {
     }
 }
 
-/// One segment's law `level·exp(slope·ln(|ω|/node))` by [`vmath`](crate::linalg::vmath)'s functions, as a
-/// [`Kernel`](crate::linalg::vmath::Kernel) compiled for the CPU's widest SIMD unit.
+/// One segment's law `level·(|ω|/node)^slope` by [`vpow`](crate::linalg::vpow)'s prepared power, as a
+/// [`Kernel`] compiled for the CPU's widest SIMD unit.
 struct Segment {
     level: f64,
-    slope: f64,
-    node: f64,
+    law: PowerFrom,
 }
 
-impl crate::linalg::vmath::Kernel for Segment {
+impl Kernel for Segment {
     #[inline(always)]
     fn at(&self, w: f64) -> f64 {
-        use crate::linalg::vmath::{exp, ln};
-        self.level * exp(self.slope * ln(w.abs() / self.node))
+        // ω_k ≤ |ω| ≤ ω_{k+1}: `walk` puts no other ω (and never NaN) in a segment
+        self.level * self.law.at(w.abs())
+    }
+}
+
+/// The same law for a segment that [`PowerFrom::up_to`] declines (an absurd table): the ratio by a
+/// division and the power with its exponent clamped.
+struct Divided {
+    level: f64,
+    node: f64,
+    slope: f64,
+}
+
+impl Kernel for Divided {
+    #[inline(always)]
+    fn at(&self, w: f64) -> f64 {
+        self.level * pow_positive(w.abs() / self.node, self.slope)
+    }
+}
+
+/// `out = law(omega)`: point by point for a run shorter than eight, vectorised otherwise (the same formula,
+/// so the bits do not depend on the length of the run).
+fn fill<K: Kernel>(law: K, omega: &[f64], out: &mut [f64]) {
+    const SHORT: usize = 8;
+    if omega.len() < SHORT {
+        omega.iter().zip(out).for_each(|(&w, o)| *o = law.at(w));
+    } else {
+        vmath::map(omega, out, law);
     }
 }
 
 impl Tabulated {
-    /// How many of `omega` (from its start) lie in segment `k` as [`walk`](Self::walk) assigns them:
-    /// ω_k ≤ |ω| < ω_{k+1}, the table's last point included in the last segment. Eight points at a time
-    /// by a branch-free test (the compiler vectorises it), the last block point by point.
+    /// How many of `omega` (from its start) lie in segment `k` as [`walk`](Self::walk) assigns them,
+    /// ω_k ≤ |ω| < ω_{k+1} (the table's last point, which `walk` puts in the last segment, ends the run: its
+    /// value is the table's). Eight points at a time by a branch-free test (the compiler vectorises it), the
+    /// last block point by point.
     fn run_in_segment(&self, k: usize, omega: &[f64]) -> usize {
         const BLOCK: usize = 8;
-        let low = self.omega[k];
-        // |ω| < next_up(ω_n) is |ω| ≤ ω_n: the last point belongs to the last segment
-        let top = if k + 2 == self.omega.len() {
-            self.omega[k + 1].next_up()
-        } else {
-            self.omega[k + 1]
-        };
+        let (low, top) = (self.omega[k], self.omega[k + 1]);
         let inside = |w: &f64| (w.abs() >= low) & (w.abs() < top);
         let mut run = 0;
         for block in omega.chunks_exact(BLOCK) {
@@ -190,42 +218,56 @@ impl Spectrum for Tabulated {
         if w < self.omega[0] || w > self.omega[n - 1] {
             return 0.0;
         }
+        if w == self.omega[n - 1] {
+            // the last node is the end of the last segment: its value, not the law's rounding of it
+            return self.density[n - 1];
+        }
         let k = self.omega.partition_point(|&x| x <= w).saturating_sub(1).min(n - 2);
         self.segment(k, w)
     }
-    /// The formula of `density` with the vectorised [`vmath::exp`](crate::linalg::vmath::exp) and
-    /// [`vmath::ln`](crate::linalg::vmath::ln) (within 4 ulp of `density` where |p_k ln(ω/ω_k)| ≤ 1, and
-    /// exact at the nodes). The segment of a point is found by walking from the previous point's segment
-    /// (a binary search when it lies below), and the run of following points inside the same segment by a
-    /// branch-free test of eight points at a time; each run of at least eight points goes through the law
-    /// vectorised for the CPU's widest SIMD unit.
+    /// The law of `density`, S_k·(ω/ω_k)^{p_k}, by the table-driven
+    /// [`vpow::pow_positive`](crate::linalg::vpow::pow_positive): within
+    /// [`POW_ERROR`](crate::linalg::vpow::POW_ERROR) of the exact power, so within a few ulp of `density`
+    /// where |p_k ln(ω/ω_k)| ≤ 1, and the table's values at its nodes. The segment of a point is found by
+    /// walking from the previous point's segment (a binary search when it lies below), and the run of
+    /// following points inside the same segment by a branch-free test of eight points at a time; each run
+    /// of at least eight points goes through the law vectorised for the CPU's widest SIMD unit.
     fn density_into(&self, omega: &[f64], out: &mut [f64]) {
-        use crate::linalg::vmath::{self, Kernel};
         // runs of points in one segment (an ascending or descending grid: a run per segment) go through the
-        // vectorised law of the segment; a short run (points in no order) point by point with the same
-        // formula, so the bits do not depend on the order of the points
-        const SHORT: usize = 8;
+        // law of the segment together
         let m = omega.len().min(out.len());
         let (mut i, mut k) = (0, 0);
+        let last = self.omega.len() - 1;
         while i < m {
+            if omega[i].abs() == self.omega[last] || omega[i].is_nan() {
+                // as `density`: the end of the last segment is the table's last value, NaN is NaN
+                out[i] = if omega[i].is_nan() {
+                    omega[i]
+                } else {
+                    self.density[last]
+                };
+                i += 1;
+                continue;
+            }
             let Some(seg) = self.walk(&mut k, omega[i].abs()) else {
                 out[i] = 0.0;
                 i += 1;
                 continue;
             };
             let run = 1 + self.run_in_segment(seg, &omega[i + 1..m]);
-            let law = Segment {
-                level: self.density[seg],
-                slope: self.slopes[seg],
-                node: self.omega[seg],
-            };
-            if run < SHORT {
-                omega[i..i + run]
-                    .iter()
-                    .zip(&mut out[i..i + run])
-                    .for_each(|(&w, o)| *o = law.at(w));
-            } else {
-                vmath::map(&omega[i..i + run], &mut out[i..i + run], law);
+            let (w, o) = (&omega[i..i + run], &mut out[i..i + run]);
+            let level = self.density[seg];
+            match self.laws[seg] {
+                Some(law) => fill(Segment { level, law }, w, o),
+                None => fill(
+                    Divided {
+                        level,
+                        node: self.omega[seg],
+                        slope: self.slopes[seg],
+                    },
+                    w,
+                    o,
+                ),
             }
             i += run;
         }

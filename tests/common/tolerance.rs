@@ -13,9 +13,19 @@ pub const ULPS: f64 = 4.0 * f64::EPSILON;
 
 /// A density evaluated on a grid by `density_into` (the vectorised `exp`/`ln` of `linalg::vmath`, each within
 /// 2 ulp of libm, or a power by multiplications instead of `powf`) against its scalar oracle `density`: 2 ulp
-/// from `exp`, 2 from `ln` amplified by |p ln(ω/ω_k)| ≤ 1 in a tabulated segment, and up to 4 roundings
-/// placed differently by the two formulas (ε/2 each): 8ε relative.
+/// from `exp`, 2 from `ln`, and up to 4 roundings placed differently by the two formulas (ε/2 each): 8ε
+/// relative.
 pub const SIMD_DENSITY: f64 = 8.0 * f64::EPSILON;
+
+/// A tabulated density's law S_k (ω/ω_k)^p on a grid by `density_into` (`linalg::vpow::PowerFrom`, a
+/// table-driven log₂/exp₂ of ω·fl(1/ω_k)) against its scalar oracle `density` (S_k·exp(p·ln(ω/ω_k)) by
+/// libm), relative, for tables whose segments have |p| ≤ 8 and t = p ln(ω/ω_k) within |t| ≤ 1.5 (the tests
+/// that use it check this of their tables). Ours: the power of the rounded ratio within
+/// (1.5 + 0.5|p| + 2|t|/ln 2)ε (`vpow::POW_ERROR`), the ratio's rounding |p|ε/2, the product with S_k ε/2:
+/// ≤ (2 + |p| + 2.9|t|)ε. The oracle: its ratio's rounding |p|ε/2, libm's ln and the product p·ln ε/2 each
+/// amplified by |t|, its exp at most ε, the product with S_k ε/2: ≤ (1.5 + 0.5|p| + |t|)ε. In all
+/// ≤ (3.5 + 1.5|p| + 3.9|t|)ε ≤ 21.4ε: 24ε.
+pub const TABULATED_DENSITY: f64 = 24.0 * f64::EPSILON;
 
 /// A short computation without cancellation (a closed form of a handful of operations, a quadrature rule
 /// or polynomial sum of up to ~40 terms of one sign, a 16-point FFT, the factorisation of a quadratic,

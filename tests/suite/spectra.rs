@@ -6,7 +6,7 @@
 
 use crate::common;
 use common::rel;
-use common::tolerance::{EXACT, FACTORISATION, FOURIER, QUADRATURE, SIMD_DENSITY, ULPS};
+use common::tolerance::{EXACT, FACTORISATION, FOURIER, QUADRATURE, TABULATED_DENSITY, ULPS};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 use std::path::Path;
@@ -327,10 +327,12 @@ fn tabulated_log_log_interpolation() {
     assert_eq!(t.density(2.0 * PI * 30.0), 0.0);
 }
 
-/// `Tabulated::density_into` (segment found by walking an ascending grid, vectorised `exp`/`ln`) against
-/// its oracle, `density` point by point (binary search, libm): within [`SIMD_DENSITY`] on ascending,
+/// `Tabulated::density_into` (segment found by walking an ascending grid, a table-driven power) against
+/// its oracle, `density` point by point (binary search, libm): within [`TABULATED_DENSITY`] on ascending,
 /// descending and shuffled grids with negative frequencies and points outside the table (0 exactly), and
-/// exact at the nodes themselves (ln 1 = 0); the nodes reproduce the table exactly.
+/// exact at the nodes themselves (x^p = 1 at x = 1, and the last node's value); the nodes reproduce the
+/// table exactly. The table's slopes p and the exponents t = p ln(ω/ω_k) of the grid are checked to lie
+/// where the tolerance holds (|p| ≤ 8, |t| ≤ 1.5).
 #[test]
 fn tabulated_density_into_matches_density() {
     let f: Vec<f64> = (0..40).map(|i| 0.05 * 1.2f64.powi(i)).collect();
@@ -344,6 +346,14 @@ fn tabulated_density_into_matches_density() {
         assert_eq!(t.density(w), s, "node ω = {w}");
     }
     let (lo, hi) = (nodes[0].0, nodes[nodes.len() - 1].0);
+    for w in nodes.windows(2) {
+        let p = (w[1].1 / w[0].1).ln() / (w[1].0 / w[0].0).ln();
+        assert!(
+            p.abs() <= 8.0 && (p * (w[1].0 / w[0].0).ln()).abs() <= 1.5,
+            "segment at {}: p = {p}",
+            w[0].0
+        );
+    }
     let mut asc: Vec<f64> = (0..5000).map(|i| 0.5 * lo + (1.1 * hi) * i as f64 / 4999.0).collect();
     asc.extend(nodes.iter().map(|p| p.0));
     asc.sort_by(f64::total_cmp);
@@ -366,7 +376,7 @@ fn tabulated_density_into_matches_density() {
             let ok = if node || d == 0.0 {
                 *o == d
             } else {
-                (o - d).abs() <= SIMD_DENSITY * d
+                (o - d).abs() <= TABULATED_DENSITY * d
             };
             assert!(ok, "ω = {w}: {o:e} vs {d:e}");
         }
