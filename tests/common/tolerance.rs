@@ -20,7 +20,7 @@ pub const SIMD_DENSITY: f64 = 8.0 * f64::EPSILON;
 /// A tabulated density's law S_k (ω/ω_k)^p on a grid by `density_into` (`linalg::vpow::PowerFrom`, a
 /// table-driven log₂/exp₂ of ω·fl(1/ω_k)) against its scalar oracle `density` (S_k·exp(p·ln(ω/ω_k)) by
 /// libm), relative, for tables whose segments have |p| ≤ 8 and t = p ln(ω/ω_k) within |t| ≤ 1.5 (the tests
-/// that use it check this of their tables). Ours: the power of the rounded ratio within
+/// that use it check this of their tables, or show it in their docs). Ours: the power of the rounded ratio within
 /// (1.5 + 0.5|p| + 2|t|/ln 2)ε (`vpow::POW_ERROR`), the ratio's rounding |p|ε/2, the product with S_k ε/2:
 /// ≤ (2 + |p| + 2.9|t|)ε. The oracle: its ratio's rounding |p|ε/2, libm's ln and the product p·ln ε/2 each
 /// amplified by |t|, its exp at most ε, the product with S_k ε/2: ≤ (1.5 + 0.5|p| + |t|)ε. In all

@@ -383,6 +383,57 @@ fn tabulated_density_into_matches_density() {
     }
 }
 
+/// `Tabulated::density_into` on an absurd table whose first segment rises by 2¹⁹⁹³ over one octave
+/// (10⁻³⁰⁰ → 10³⁰⁰; the ratio of the values itself overflows): `PowerFrom::up_to` declines that segment,
+/// which then takes `density`'s own formula, bit for bit; and that formula keeps the density finite where
+/// the power alone overflows: S(ω) = 10⁻³⁰⁰·ω^p with p = log₂(10⁶⁰⁰), against 2^(p log₂ω − 300 log₂10)
+/// (the rounding of exponents near 2000 allows about 1600ε relative). The second segment (2⁻⁹⁹⁷ over an octave)
+/// takes the prepared law, within [`TABULATED_DENSITY`]'s derivation for its p and t. A NaN frequency gives
+/// NaN, as `density`.
+#[test]
+fn tabulated_density_into_absurd_segments_and_nan() {
+    use stochvib::linalg::vpow::PowerFrom;
+    let t = Tabulated::new(
+        Convention::TwoSidedAngular,
+        vec![1.0, 2.0, 4.0],
+        vec![1e-300, 1e300, 1.0],
+        Domain::Temporal,
+    )
+    .unwrap();
+    let p0 = 1e300f64.log2() - 1e-300f64.log2(); // the ratio itself overflows
+    let p1 = (1.0f64 / 1e300).log2();
+    assert!(
+        PowerFrom::up_to(1.0, p0, 2.0).is_none(),
+        "the first segment is declined"
+    );
+    assert!(PowerFrom::up_to(2.0, p1, 4.0).is_some());
+    let grid: Vec<f64> = (0..=300).map(|i| 1.0 + 3.0 * i as f64 / 300.0).collect();
+    let mut out = vec![0.0; grid.len()];
+    t.density_into(&grid, &mut out);
+    for (&w, &o) in grid.iter().zip(&out) {
+        let d = t.density(w);
+        if w < 2.0 {
+            assert_eq!(o.to_bits(), d.to_bits(), "ω = {w}: {o:e} vs {d:e}");
+            // 10⁻³⁰⁰·ω^p = 2^(p log₂ω − 300 log₂10): the exponent to within its rounding (≤ 2300·ε/2 absolute),
+            // so the value to within 2300·ln 2·ε relative
+            let reference = (p0 * w.log2() - 300.0 * 10f64.log2()).exp2();
+            let allowed = 2300.0 * std::f64::consts::LN_2 * f64::EPSILON;
+            assert!(
+                d.is_finite() && (d - reference).abs() <= allowed * reference,
+                "ω = {w}: {d:e} vs {reference:e}"
+            );
+        } else {
+            let t2 = (p1 * (w / 2.0).log2()).abs();
+            let allowed = (3.5 + 1.5 * p1.abs() + 3.9 * t2 * std::f64::consts::LN_2) * f64::EPSILON;
+            assert!((o - d).abs() <= allowed * d, "ω = {w}: {o:e} vs {d:e}");
+        }
+    }
+    let mut nan = [0.0; 3];
+    t.density_into(&[f64::NAN, 1.5, -f64::NAN], &mut nan);
+    assert!(nan[0].is_nan() && nan[2].is_nan() && nan[1] > 0.0);
+    assert!(t.density(f64::NAN).is_nan());
+}
+
 /// `Tabulated::density_into` evaluates the runs of points inside one segment together (SIMD) and points in no
 /// order one by one: the order of the points cannot change a value, so the same 3000 frequencies (either
 /// sign, both table ends, every node, points outside) give the same bits ascending, descending, shuffled
