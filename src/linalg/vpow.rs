@@ -4,7 +4,7 @@
 //!
 //! Like [`vmath`](super::vmath)'s functions, [`pow_positive`] is a branch-free scalar formula (`+ − ×`,
 //! comparisons, bit operations and loads from constant tables; no call, no fused multiply-add; a
-//! [`PowerFrom`] is prepared once with one): inside
+//! `PowerFrom` is prepared once with one): inside
 //! [`vmath::map`](super::vmath::map) it is compiled for AVX-512, AVX2 and SSE2 (the tables read by gathers
 //! or lane by lane), and every instruction set gives the same bits.
 //!
@@ -19,7 +19,7 @@
 //! log₂ c_j and 2^(i/128) are tables of the correctly rounded values (`scripts/pow_tables.py`, mpmath at 60
 //! digits); 1/c_j is one correctly rounded division, done when compiling. 2^e is applied as two exact
 //! powers of two, so that a subnormal result is rounded once; in [`pow_positive`] t is clamped to
-//! [−1080, 1025] first (a [`PowerFrom`] keeps |t| ≤ 2000 by construction and needs no clamp), which
+//! [−1080, 1025] first (a `PowerFrom` keeps |t| ≤ 2000 by construction and needs no clamp), which
 //! makes a result beyond the range 0 or +∞ by the same arithmetic. At x = 1 (a node of a table), u = 0 and
 //! x^p = 1 exactly, for every p.
 //!
@@ -257,9 +257,9 @@ fn pow2i(k: i64) -> f64 {
     f64::from_bits(((k + 1023) as u64) << 52)
 }
 
-/// x^p for a positive normal x and a finite p (see the module docs for the formula and the accuracy); NaN
-/// where x or p is NaN, and ∞^p as `powf` gives it. Zero, subnormal or negative x are outside its domain
-/// (the result is then meaningless).
+/// x^p for a positive normal x and a finite p (see the module docs for the formula and the accuracy), and
+/// ∞^p as `powf` gives it; NaN where x or p is NaN and for x outside its domain (zero, subnormal, negative),
+/// never a wrong finite number.
 ///
 /// # Examples
 /// ```
@@ -274,8 +274,8 @@ fn pow2i(k: i64) -> f64 {
 pub fn pow_positive(x: f64, p: f64) -> f64 {
     // p·(128u): the bits of (128p)·u, without 128p overflowing for |p| > 10³⁰⁶
     let y = exp2_128::<true>(p * (128.0 * log2(x, 0.0)));
-    if x.is_nan() || p.is_nan() {
-        x + p
+    if x.is_nan() || p.is_nan() || x < f64::MIN_POSITIVE {
+        f64::NAN
     } else if x == f64::INFINITY {
         // ∞^p: ∞ for p > 0, 0 for p < 0, 1 for p = 0
         if p > 0.0 {
@@ -301,7 +301,7 @@ pub fn pow_positive(x: f64, p: f64) -> f64 {
 /// [`POW_ERROR`] of the exact power of the rounded ratio, and ρ adds |p|ε/2: relative to the exact
 /// (x/x₀)^p, (c₀ + (c_p + ½)|p| + c_t|t|)·ε.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PowerFrom {
+pub(crate) struct PowerFrom {
     base: f64,
     inv: f64,
     lead: f64,
@@ -316,7 +316,7 @@ impl PowerFrom {
     /// for absurd laws: a ratio (top/x₀)^|p| beyond 2¹⁰⁰⁰ (a density changing by 10³⁰¹ between two nodes),
     /// or a base or 1/base outside the normal range (a base below 2⁻¹⁰²² ≈ 2.2·10⁻³⁰⁸ or above
     /// 2¹⁰²² ≈ 4.5·10³⁰⁷).
-    pub fn up_to(base: f64, p: f64, top: f64) -> Option<PowerFrom> {
+    pub(crate) fn up_to(base: f64, p: f64, top: f64) -> Option<PowerFrom> {
         let inv = 1.0 / base;
         let ratio = top * inv;
         let fits = base.is_normal()
@@ -338,7 +338,7 @@ impl PowerFrom {
 
     /// (x/x₀)^p for x ∈ [x₀, top] of [`up_to`](Self::up_to) (other x: meaningless).
     #[inline(always)]
-    pub fn at(&self, x: f64) -> f64 {
+    pub(crate) fn at(&self, x: f64) -> f64 {
         let y = exp2_128::<false>(self.p128 * log2(x * self.inv, self.lead));
         if x == self.base {
             1.0
@@ -570,6 +570,10 @@ mod tests {
         assert_eq!(pow_positive(f64::INFINITY, 0.0), 1.0);
         assert_eq!(pow_positive(1.0, 1e307), 1.0);
         assert_eq!(pow_positive(1.0, -1e307), 1.0);
+        // outside the domain: NaN, not a number from the bits of a zero, subnormal or negative x
+        for x in [0.0, -0.0, 5e-324, 1e-310, -2.0, f64::NEG_INFINITY] {
+            assert!(pow_positive(x, 1.5).is_nan(), "x = {x:e}");
+        }
     }
 
     /// Every instruction set the CPU has (AVX-512, AVX2 and the baseline forced in turn) gives the bits of

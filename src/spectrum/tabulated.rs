@@ -244,13 +244,13 @@ impl Spectrum for Tabulated {
         self.segment(k, w)
     }
     /// The law of `density`, S_k·(ω/ω_k)^{p_k}, by the table-driven
-    /// [`PowerFrom`](crate::linalg::vpow::PowerFrom) of each segment: within
+    /// power law of each segment (`vpow`'s `PowerFrom`): within
     /// [`POW_ERROR`](crate::linalg::vpow::POW_ERROR) and ½|p_k|ε (the ratio's rounding) of the exact power,
     /// so within (3.5 + 1.5|p_k| + 3.9|t|)ε of `density` for t = p_k ln(ω/ω_k), and the table's values at its
-    /// nodes. A segment that `PowerFrom::up_to` declines (an absurd table) takes `density`'s formula. The segment of a point is found by
-    /// walking from the previous point's segment (a binary search when it lies below), and the run of
-    /// following points inside the same segment by a branch-free test of eight points at a time; each run
-    /// of at least eight points goes through the law vectorised for the CPU's widest SIMD unit.
+    /// nodes. A segment that `PowerFrom::up_to` declines (an absurd table) takes `density`'s formula. The segment
+    /// of a point is found by walking from the previous point's segment (a binary search when it lies below), and
+    /// the run of following points inside the same segment by a branch-free test of eight points at a time; each
+    /// run of at least eight points goes through the law vectorised for the CPU's widest SIMD unit.
     fn density_into(&self, omega: &[f64], out: &mut [f64]) {
         // runs of points in one segment (an ascending or descending grid: a run per segment) go through the
         // law of the segment together
@@ -316,5 +316,25 @@ impl Spectrum for Tabulated {
             total += seg;
         }
         Ok(2.0 * total)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Which segments take the prepared law: a segment rising by 2¹⁹⁹³ over an octave (10⁻³⁰⁰ → 10³⁰⁰) is
+    /// declined (the power would leave 2^±1000) and takes `density`'s formula, one falling by 2⁹⁹⁷ is
+    /// prepared (the suite's `tabulated_density_into_absurd_segments_and_nan` checks their values).
+    #[test]
+    fn an_absurd_segment_is_declined() {
+        let t = Tabulated::new(
+            Convention::TwoSidedAngular,
+            vec![1.0, 2.0, 4.0],
+            vec![1e-300, 1e300, 1.0],
+            Domain::Temporal,
+        )
+        .unwrap();
+        assert!(t.laws[0].is_none() && t.laws[1].is_some());
     }
 }
