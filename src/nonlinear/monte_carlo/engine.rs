@@ -391,27 +391,27 @@ fn check_stream(seed: u64, i: u64) -> Xoshiro256PlusPlus {
 }
 
 /// Realizations `range` of the run of `seed`, in order, spread over the thread pool: on the spectral route
-/// [`LANES`] at a time in lockstep (a lane's arithmetic is that of a lone realization, so every sample has
-/// the same bits whatever the grouping), the rest one at a time.
+/// in groups stepped in lockstep ([`lockstep_groups`]: [`LANES`] at a time, the rest in groups of 4, 2 and
+/// 1; a lane's arithmetic is that of a lone realization, so every sample has the same bits whatever the
+/// grouping), on the exact route one at a time.
 ///
 /// # Errors
 /// An FFT or Welch failure.
 pub(crate) fn realize_range(plan: &NlPlan, seed: u64, range: Range<u64>, keep_raw: bool) -> Result<Vec<NlRealization>> {
-    let width = match plan.flow {
-        Flow::Hold { .. } => LANES as u64,
-        Flow::Exact(_) => 1,
+    let groups: Vec<(u64, usize)> = match plan.flow {
+        Flow::Hold { .. } => lockstep_groups(range.clone()),
+        Flow::Exact(_) => range.clone().map(|i| (i, 1)).collect(),
     };
-    let starts: Vec<u64> = range.clone().step_by(width as usize).collect();
-    let groups = starts
+    let groups = groups
         .into_par_iter()
         .map_init(
             || NlScratch::new(plan),
-            |s, a| match plan.flow {
-                Flow::Hold { .. } if a + width <= range.end => realize_hold::<LANES>(plan, s, seed, a, keep_raw),
-                Flow::Hold { .. } => (a..range.end)
-                    .map(|i| Ok(realize_hold::<1>(plan, s, seed, i, keep_raw)?.remove(0)))
-                    .collect(),
-                Flow::Exact(_) => Ok(vec![realize_exact(plan, s, seed, a, keep_raw)?]),
+            |s, (a, width)| match (&plan.flow, width) {
+                (Flow::Exact(_), _) => Ok(vec![realize_exact(plan, s, seed, a, keep_raw)?]),
+                (_, LANES) => realize_hold::<LANES>(plan, s, seed, a, keep_raw),
+                (_, 4) => realize_hold::<4>(plan, s, seed, a, keep_raw),
+                (_, 2) => realize_hold::<2>(plan, s, seed, a, keep_raw),
+                _ => realize_hold::<1>(plan, s, seed, a, keep_raw),
             },
         )
         .collect::<Vec<_>>();
@@ -420,6 +420,22 @@ pub(crate) fn realize_range(plan: &NlPlan, seed: u64, range: Range<u64>, keep_ra
         out.extend(g?);
     }
     Ok(out)
+}
+
+/// The lockstep groups (first realization, width) of `range`, in order: [`LANES`] realizations each, then
+/// the remainder (fewer than [`LANES`]) in groups of 4, 2 and 1, largest first. A run's shards rarely hold a
+/// multiple of [`LANES`] realizations (50 by default: 6 × 8 + 2), and a lone realization costs several
+/// times a lane of a group (its steps are scalar, its per-step overhead is not shared).
+fn lockstep_groups(range: Range<u64>) -> Vec<(u64, usize)> {
+    let mut groups = Vec::with_capacity(range.clone().count().div_ceil(LANES) + 2);
+    let mut a = range.start;
+    for width in [LANES, 4, 2, 1] {
+        while a + width as u64 <= range.end {
+            groups.push((a, width));
+            a += width as u64;
+        }
+    }
+    groups
 }
 
 /// Realization i on the exact route: its noise from its stream, and the Δt-halving check for i below the
@@ -651,4 +667,30 @@ fn finish(
         out.hist.push(rec.hist.clone());
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{lockstep_groups, LANES};
+
+    /// The groups cover the range once, in order, [`LANES`] wide while [`LANES`] realizations remain, then
+    /// the remainder as its binary digits (4, 2, 1), largest first.
+    #[test]
+    fn lockstep_groups_cover_the_range_in_order() {
+        for (start, len) in [(0u64, 0u64), (0, 1), (3, 7), (50, 50), (100, 64), (7, 15), (0, 23)] {
+            let groups = lockstep_groups(start..start + len);
+            let mut next = start;
+            for &(a, w) in &groups {
+                assert_eq!(a, next, "{start}+{len}: {groups:?}");
+                next += w as u64;
+            }
+            assert_eq!(next, start + len, "{start}+{len}: {groups:?}");
+            let full = (len / LANES as u64) as usize;
+            let rest = (len % LANES as u64) as usize;
+            assert!(groups[..full].iter().all(|g| g.1 == LANES), "{groups:?}");
+            let tail: Vec<usize> = groups[full..].iter().map(|g| g.1).collect();
+            let want: Vec<usize> = [4, 2, 1].into_iter().filter(|w| rest & w != 0).collect();
+            assert_eq!(tail, want, "{start}+{len}");
+        }
+    }
 }
