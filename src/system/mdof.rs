@@ -882,3 +882,66 @@ impl Mdof {
         Ok(out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Mdof, Quantity};
+    use crate::system::FrequencyResponse;
+    use nalgebra::DMatrix;
+
+    /// A two-coordinate model with a base input (stiffness and damping to it) and a force input.
+    fn two_masses() -> Mdof {
+        let m = DMatrix::from_row_slice(2, 2, &[300.0, 0.0, 0.0, 40.0]);
+        let b = DMatrix::from_row_slice(2, 2, &[1500.0, -1500.0, -1500.0, 1500.0]);
+        let c = DMatrix::from_row_slice(2, 2, &[2.0e4, -2.0e4, -2.0e4, 2.0e4 + 2.0e5]);
+        let ku = DMatrix::from_row_slice(2, 1, &[0.0, 2.0e5]);
+        let bu = DMatrix::from_row_slice(2, 1, &[0.0, 50.0]);
+        let f = DMatrix::from_row_slice(2, 1, &[1.0, 0.0]);
+        Mdof::new(&[("body", "m"), ("wheel", "m")], m, b, c, ku, bu, f).expect("a valid model")
+    }
+
+    fn outputs() -> Vec<(&'static str, Quantity)> {
+        vec![
+            ("body", Quantity::Displacement(vec![1.0, 0.0])),
+            ("body_vel", Quantity::Velocity(vec![1.0, 0.0])),
+            ("body_acc", Quantity::Acceleration(vec![1.0, 0.0])),
+            ("travel", Quantity::Displacement(vec![1.0, -1.0])),
+            (
+                "tyre",
+                Quantity::RelativeDisplacement {
+                    point: vec![0.0, 1.0],
+                    base: 0,
+                },
+            ),
+            (
+                "tyre_rate",
+                Quantity::RelativeVelocity {
+                    point: vec![0.0, 1.0],
+                    base: 0,
+                },
+            ),
+        ]
+    }
+
+    /// All outputs at once (the state space written once) give the model that adding them one at a time
+    /// gives (the state space written after each): the same outputs and the same bits in A, B, C, D and E.
+    #[test]
+    fn outputs_at_once_give_the_model_of_outputs_one_at_a_time() {
+        let at_once = two_masses().with_outputs(outputs()).expect("valid outputs");
+        let mut one_by_one = two_masses();
+        for (name, q) in outputs() {
+            one_by_one = one_by_one.with_output(name, q).expect("a valid output");
+        }
+        assert_eq!(at_once.outputs(), one_by_one.outputs());
+        let (a, b) = (
+            at_once.state_space().expect("a state space"),
+            one_by_one.state_space().expect("a state space"),
+        );
+        let bits = |m: &DMatrix<f64>| m.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        for (x, y) in [(&a.a, &b.a), (&a.b, &b.b), (&a.c, &b.c), (&a.d, &b.d), (&a.e, &b.e)] {
+            assert_eq!(x.shape(), y.shape());
+            assert_eq!(bits(x), bits(y));
+        }
+        assert_eq!(a.c.nrows(), 6);
+    }
+}

@@ -89,6 +89,7 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
     let oarr = ov
         .as_array()
         .ok_or_else(|| f.error("output", ov, "expected [[model.output]] tables"))?;
+    let (mut out_names, mut quantities) = (Vec::with_capacity(oarr.len()), Vec::with_capacity(oarr.len()));
     for (i, o) in oarr.iter().enumerate() {
         let key = format!("output[{i}]");
         let t = o.as_table().ok_or_else(|| f.error(&key, o, "expected a table"))?;
@@ -96,8 +97,13 @@ pub fn from_fields_in(f: &Fields, several_inputs: bool) -> Result<ModelInstance>
         let name = of.string("name")?.to_string();
         let quantity = output_quantity(&of, n, n_base, &names)?;
         super::mdof_keys::OUTPUT.finish(&of, &[])?;
-        model = model.with_output(&name, quantity).map_err(|e| f.wrap("output", e))?;
+        out_names.push(name);
+        quantities.push(quantity);
     }
+    // all outputs at once: the state space is written once, not once per output (a scheduled model is
+    // rebuilt at every time of a transient's exact route)
+    let outputs = out_names.iter().map(String::as_str).zip(quantities).collect();
+    model = model.with_outputs(outputs).map_err(|e| f.wrap("output", e))?;
     if n_base + forces.len() == 0 {
         // the count as written, or `<missing>` when the file has no `base_inputs` (its default is 0)
         let written = f.get("base_inputs").map_or("<missing>".to_string(), |v| v.to_string());
