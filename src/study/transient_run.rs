@@ -187,12 +187,16 @@ fn axes(sc: &Scenario) -> Vec<crate::scenario::ComfortAxisSpec> {
 }
 
 /// What rebuilds the model at the scheduled values: the file, the kind, the speed, the `[model]` table.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 struct Rebuild {
     path: std::path::PathBuf,
     kind: String,
     speed: Option<f64>,
     table: toml::Table,
+    /// A copy of `table` whose scheduled keys are overwritten at every call (every call sets all of them,
+    /// so it holds what a fresh copy with the keys set would): the copy of the whole table per frozen time
+    /// was a tenth of a scheduled transient's run. A call that finds it in use copies `table` instead.
+    working: std::sync::Mutex<Option<toml::Table>>,
     keys: Vec<ScheduledKey>,
     axes: Vec<crate::scenario::ComfortAxisSpec>,
 }
@@ -219,6 +223,7 @@ fn family(sc: &Scenario, spec: &TransientSpec) -> Result<(Arc<dyn SystemFamily>,
             .and_then(|m| m.as_table())
             .cloned()
             .unwrap_or_default(),
+        working: std::sync::Mutex::new(None),
         keys: spec.schedules.clone(),
         axes: axes(sc),
     };
@@ -242,7 +247,15 @@ fn family(sc: &Scenario, spec: &TransientSpec) -> Result<(Arc<dyn SystemFamily>,
 impl Rebuild {
     /// The model's state space with the scheduled keys set to `values` (SI).
     fn model_at(&self, values: &[f64]) -> Result<StateSpace> {
-        let mut t = self.table.clone();
+        let mut guard = self.working.try_lock().ok();
+        let mut copy;
+        let t: &mut toml::Table = match guard.as_deref_mut() {
+            Some(slot) => slot.get_or_insert_with(|| self.table.clone()),
+            None => {
+                copy = self.table.clone();
+                &mut copy
+            }
+        };
         for (k, v) in self.keys.iter().zip(values) {
             let v = &match &k.rope {
                 Some(r) => r
@@ -250,10 +263,10 @@ impl Rebuild {
                     .map_err(|e| file_error(&self.path, &format!("model.{}", k.key), v, &e.to_string()))?,
                 None => *v,
             };
-            super::sweep::set_key(&mut t, &k.key, toml::Value::Float(*v))
+            super::sweep::set_key(t, &k.key, toml::Value::Float(*v))
                 .map_err(|why| file_error(&self.path, &format!("model.{}", k.key), v, &why))?;
         }
-        let f = Fields::new(&self.path, "model", &t);
+        let f = Fields::new(&self.path, "model", t);
         let ctx = crate::scenario::ModelContext {
             speed: self.speed,
             several_inputs: false,
