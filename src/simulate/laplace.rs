@@ -1,7 +1,7 @@
 //! The Laplace moving average: a stationary non-Gaussian process with a prescribed spectrum and a
 //! prescribed kurtosis (a road rougher in its extremes than a Gaussian one of the same spectrum).
 
-use super::rng::standard_normal;
+use super::rng::{fill_standard_normal, standard_normal};
 use super::spectral::{SpectralGenerator, SpectralScratch};
 use super::Amplitudes;
 use crate::error::{Error, Result};
@@ -371,9 +371,7 @@ impl LaplaceMovingAverage {
                 }
             }
             None => {
-                for e in eps.iter_mut() {
-                    *e = standard_normal(rng);
-                }
+                fill_standard_normal(rng, eps);
             }
         }
     }

@@ -73,12 +73,12 @@ pub fn standard_normal(rng: &mut Xoshiro256PlusPlus) -> f64 {
     rng.sample(StandardNormal)
 }
 
-/// Fills `out` with independent standard normal variates, in order.
+/// Fills `out` with independent standard normal variates, in order: the variates of `out.len()` calls of
+/// [`standard_normal`], bit for bit, with `rng` left in the same state (the ziggurat's common case is done
+/// inline in the loop, the rest by `rand_distr`; see `lane_normals`).
 #[inline]
 pub fn fill_standard_normal(rng: &mut Xoshiro256PlusPlus, out: &mut [f64]) {
-    for v in out.iter_mut() {
-        *v = rng.sample(StandardNormal);
-    }
+    super::lane_normals::fill_stream(rng, out);
 }
 
 /// A uniform variate on [0, 1) (53 random bits).

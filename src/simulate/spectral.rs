@@ -1,7 +1,7 @@
 //! Spectral representation: stationary Gaussian realizations of any spectrum as a sum of cosines on an FFT
 //! grid, synthesised by one inverse real FFT per realization.
 
-use super::rng::{standard_normal, uniform01};
+use super::rng::{fill_standard_normal, uniform01};
 use crate::error::{require_positive, Error, Result};
 use crate::spectrum::Spectrum;
 use rand::rngs::Xoshiro256PlusPlus;
@@ -313,16 +313,24 @@ impl SpectralGenerator {
         let half = n / 2;
         match self.amplitudes {
             Amplitudes::Rayleigh => {
+                // the 2·(N/2) draws in bin order in one run (z for c₀, Re and Im of c₁ … c_{N/2−1}, z for
+                // c_{N/2}) into the coefficients viewed as numbers, from the second on; then z₀ moved to
+                // Re c₀, the imaginary parts of c₀ and c_{N/2} cleared, every bin scaled as it was drawn
+                // (s·z at the ends, (s·r)·z inside: the bits of drawing and scaling bin by bin)
                 let r = std::f64::consts::FRAC_1_SQRT_2;
-                for (j, (c, s)) in scratch.coef.iter_mut().zip(&self.scale).enumerate() {
-                    if j == 0 || j == half {
-                        *c = Complex::new(s * standard_normal(rng), 0.0);
-                    } else {
-                        let re = standard_normal(rng);
-                        let im = standard_normal(rng);
-                        *c = Complex::new(s * r * re, s * r * im);
-                    }
+                let draws = 2 * half;
+                let flat: &mut [f64] = bytemuck::cast_slice_mut(&mut scratch.coef);
+                fill_standard_normal(rng, &mut flat[1..=draws]);
+                flat[0] = flat[1];
+                flat[1] = 0.0;
+                flat[draws + 1] = 0.0;
+                let (first, last) = (self.scale[0], self.scale[half]);
+                for (c, s) in scratch.coef[1..half].iter_mut().zip(&self.scale[1..half]) {
+                    let sr = s * r;
+                    *c = Complex::new(sr * c.re, sr * c.im);
                 }
+                scratch.coef[0].re *= first;
+                scratch.coef[half].re *= last;
             }
             Amplitudes::PhaseOnly => {
                 for (j, (c, s)) in scratch.coef.iter_mut().zip(&self.scale).enumerate() {
@@ -342,7 +350,7 @@ impl SpectralGenerator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::simulate::stream;
+    use crate::simulate::{standard_normal, stream};
     use crate::spectrum::{Domain, Exponential};
     use crate::tolerance::{EXACT, ROUNDING};
 
