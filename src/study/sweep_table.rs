@@ -419,6 +419,22 @@ impl TableFormat {
     }
 }
 
+/// `,lo,hi` as [`push_num`] writes each; where lo < 0 and hi = −lo (a zero mean: M ± 3σ = ±3σ) the text of hi is
+/// cut from lo's (the same text without its sign, as `{:e}` writes −x) instead of formatted again.
+fn push_bounds(s: &mut String, lo: Option<f64>, hi: Option<f64>) {
+    let at = s.len();
+    push_num(s, lo);
+    match (lo, hi) {
+        (Some(l), Some(h)) if l < 0.0 && h.to_bits() == (-l).to_bits() => {
+            // s[at] is the comma, s[at + 1] the sign
+            let end = s.len();
+            s.push(',');
+            s.extend_from_within(at + 2..end);
+        }
+        _ => push_num(s, hi),
+    }
+}
+
 /// `,` and the value as `{:.9e}` writes it ([`TABLE_DIGITS`](super::float_text::TABLE_DIGITS) = 10
 /// significant digits), appended to `s` without an intermediate string
 /// ([`push_fixed`](super::float_text::push_fixed)).
@@ -686,15 +702,11 @@ impl CsvRows {
             let (lo, hi) = v.bounds(3.0).unzip();
             s.push_str(output);
             s.push_str(if err.is_some() { "" } else { method_name(v.method) });
-            for x in [
-                v.mean,
-                v.sigma(),
-                v.variance,
-                lo,
-                hi,
-                v.lambda2,
-                v.zero_upcrossing_rate(),
-            ] {
+            for x in [v.mean, v.sigma(), v.variance] {
+                push_num(s, x);
+            }
+            push_bounds(s, lo, hi);
+            for x in [v.lambda2, v.zero_upcrossing_rate()] {
                 push_num(s, x);
             }
             if self.monte_carlo {

@@ -155,6 +155,58 @@ fn streamed_csv_is_the_whole_table_byte_for_byte() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Every number of the CSV table is the text `format!("{:.9e}")` (core::fmt) gives its definition from the
+/// one-point evaluation: M, σ = √D, D, M ∓ 3σ, λ₂, ν₀⁺ = √(λ₂/D)/(2π), empty where there is none. The
+/// scraper's outputs have M = 0, so M + 3σ = −(M − 3σ) on every row (the writer cuts its text from the
+/// lower bound's), and the failed rows have no numbers.
+#[test]
+fn csv_numbers_are_the_text_of_their_definitions() {
+    let sc = scraper();
+    let sweep = study(&sc);
+    let mut buf = Vec::new();
+    stream_sweep_csv(
+        &sweep,
+        &mut buf,
+        Path::new("<buffer>"),
+        None,
+        opts(10, true),
+        &|_, _| {},
+    )
+    .unwrap();
+    let text = String::from_utf8(buf).unwrap();
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let fmt = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:.9e}"));
+    let mut rows = 0;
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let (p, name) = (f[0].parse::<usize>().unwrap(), f[3]);
+        let Ok(stats) = sweep.evaluate(p) else {
+            assert!(f[6..13].iter().all(|v| v.is_empty()), "{line}");
+            continue;
+        };
+        let j = sweep.outputs().iter().position(|o| o.as_str() == name).unwrap();
+        let s = &stats[j];
+        let (m, d) = (s.mean.unwrap(), s.variance.unwrap());
+        assert_eq!(m, 0.0, "{line}");
+        let sigma = d.sqrt();
+        let nu = s.lambda2.map(|l| (l / d).sqrt() / two_pi);
+        let want = [
+            Some(m),
+            Some(sigma),
+            Some(d),
+            Some(m - 3.0 * sigma),
+            Some(m + 3.0 * sigma),
+            s.lambda2,
+            nu,
+        ];
+        for (k, w) in want.into_iter().enumerate() {
+            assert_eq!(f[6 + k], fmt(w), "column {} of {line}", 6 + k);
+        }
+        rows += 1;
+    }
+    assert_eq!(rows, 74 * sweep.outputs().len());
+}
+
 /// HDF5 streamed in blocks of 10 and 7 (neither divides 111) equals the whole table written at once in
 /// every attribute and in the bits of every dataset; each column equals its definition from the
 /// one-point evaluation, and the values are anchored on the state-space route.
