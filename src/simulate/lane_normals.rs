@@ -224,32 +224,69 @@ impl StreamRng {
 }
 
 /// The next `out.len()` standard normals of the one stream `r`, in order, with the bits of
-/// `rand_distr::StandardNormal` and `r` left in the same state: the ziggurat's common case here, inline in
-/// the loop, every other draw redone from the state before it (see the module's formula). The crate's own
-/// draw is a call the compiler may or may not inline where it is used; here the common case always is.
+/// `rand_distr::StandardNormal` and `r` left in the same state ([`StreamNormals`] for one run).
 pub(crate) fn fill_stream<R: Rng + Clone>(r: &mut R, out: &mut [f64]) {
-    let e = edges();
-    // the stream by value in the loop (and into the redone draw and back), so that its words stay in
-    // registers
-    let mut g = r.clone();
-    for v in out.iter_mut() {
-        let before = g.clone();
-        let bits = g.next_u64();
+    let mut s = StreamNormals::new(r);
+    s.fill(out);
+    *r = s.into_rng();
+}
+
+/// The standard normals of one stream, drawn over many calls (a loop's steps) with the generator held here
+/// by value: the variates of `rand_distr::StandardNormal`, bit for bit, in order. The ziggurat's common
+/// case is inline at the call, every other draw redone from the state before it (see the module's formula).
+/// The crate's own draw is a call the compiler may or may not inline where it is used; here the common case
+/// always is, and the generator's words can stay in registers through the loop.
+pub(crate) struct StreamNormals<R> {
+    g: R,
+    e: &'static Edges,
+}
+
+impl<R: Rng + Clone> StreamNormals<R> {
+    /// Draws that continue the stream `r` (a copy of it; [`Self::into_rng`] gives its state back).
+    pub(crate) fn new(r: &R) -> Self {
+        StreamNormals {
+            g: r.clone(),
+            e: edges(),
+        }
+    }
+
+    /// The generator in its state after the draws so far.
+    pub(crate) fn into_rng(self) -> R {
+        self.g
+    }
+
+    /// The generator itself, to draw from it in between (the draws here continue after those).
+    pub(crate) fn rng_mut(&mut self) -> &mut R {
+        &mut self.g
+    }
+
+    /// The next standard normal.
+    #[inline(always)]
+    pub(crate) fn next(&mut self) -> f64 {
+        let e = self.e;
+        let before = self.g.clone();
+        let bits = self.g.next_u64();
         let i = (bits & 0xff) as usize;
         let u = f64::from_bits((bits >> 12) | 0x4000_0000_0000_0000) - 3.0;
         let x = u * e.x[i];
-        *v = if x.abs() < e.accept[i] {
-            x
-        } else {
-            let y;
-            (y, g) = redraw_cold(before, e);
-            y
-        };
+        if x.abs() < e.accept[i] {
+            return x;
+        }
+        let y;
+        (y, self.g) = redraw_cold(before, e);
+        y
     }
-    *r = g;
+
+    /// The next `out.len()` standard normals, in order.
+    #[inline(always)]
+    pub(crate) fn fill(&mut self, out: &mut [f64]) {
+        for v in out.iter_mut() {
+            *v = self.next();
+        }
+    }
 }
 
-/// [`redraw`] from the stream's state `g` before the draw, out of the draw loop of [`fill_stream`] (≈ 1.2 %
+/// [`redraw`] from the stream's state `g` before the draw, out of the draw loop of [`StreamNormals`] (≈ 1.2 %
 /// of draws): the variate and the state after it.
 #[cold]
 #[inline(never)]

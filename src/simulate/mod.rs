@@ -80,4 +80,5 @@ pub(crate) use finish::{
     density_estimate, interval as finish_interval, output_statistics, read_output as read_output_accumulators,
     Analytic, OutputFold,
 };
+pub(crate) use lane_normals::StreamNormals;
 pub(crate) use plan::{plan, Plan};

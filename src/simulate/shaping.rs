@@ -3,6 +3,7 @@
 //! memory O(states), for any record length.
 
 use super::discretize::{covariance_factor, van_loan, WhiteNoiseDiscretization};
+use super::lane_normals::StreamNormals;
 use super::rng::standard_normal;
 use crate::error::{Error, Result};
 use crate::linalg::solve_continuous_lyapunov;
@@ -261,6 +262,7 @@ fn kernel<const N: usize>(
     }
     let mut z = [0.0; N];
     z.copy_from_slice(x);
+    let mut normals = StreamNormals::new(rng);
     for yk in out.chunks_exact_mut(p) {
         for (r, y) in yk.iter_mut().enumerate() {
             let hr = &h[r * N..(r + 1) * N];
@@ -271,9 +273,7 @@ fn kernel<const N: usize>(
             *y = s;
         }
         let mut w = [0.0; N];
-        for v in w.iter_mut() {
-            *v = standard_normal(rng);
-        }
+        normals.fill(&mut w);
         let mut nz = [0.0; N];
         for i in 0..N {
             // the noise part first: it does not depend on z, so only the Φz terms lie on the step-to-step
@@ -289,6 +289,7 @@ fn kernel<const N: usize>(
         }
         z = nz;
     }
+    *rng = normals.into_rng();
     x.copy_from_slice(&z);
 }
 
@@ -305,13 +306,12 @@ fn kernel_dyn(
 ) {
     let mut w = vec![0.0; n];
     let mut nz = vec![0.0; n];
+    let mut normals = StreamNormals::new(rng);
     for yk in out.chunks_exact_mut(p) {
         for (r, y) in yk.iter_mut().enumerate() {
             *y = (0..n).map(|j| h[r * n + j] * x[j]).sum();
         }
-        for v in w.iter_mut() {
-            *v = standard_normal(rng);
-        }
+        normals.fill(&mut w);
         for i in 0..n {
             let mut s = 0.0;
             for j in 0..n {
@@ -324,6 +324,7 @@ fn kernel_dyn(
         }
         x.copy_from_slice(&nz);
     }
+    *rng = normals.into_rng();
 }
 
 /// The exact sampled simulation of a process with a rational spectrum, through its shaping filter.
@@ -376,4 +377,83 @@ pub fn shaping_simulator(spectrum: &dyn Spectrum, dt: f64) -> Result<GaussMarkov
         ));
     }
     GaussMarkov::new(ss.a.clone(), ss.b.clone(), ss.c.clone(), dt)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::simulate::stream;
+    use rand::Rng;
+
+    /// The recursion written out with `rand_distr`'s draws one at a time, in the kernels' order of
+    /// operations (up to 8 states: the noise terms, then Φz; beyond: Φz, then the noise terms).
+    fn oracle(gm: &GaussMarkov, z: &mut [f64], rng: &mut Xoshiro256PlusPlus, steps: usize) -> Vec<f64> {
+        let (n, p) = (gm.n, gm.p);
+        let (phi, l, h) = (&gm.phi_flat, &gm.l_flat, &gm.h_flat);
+        let mut out = Vec::new();
+        for _ in 0..steps {
+            for r in 0..p {
+                let mut s = 0.0;
+                for j in 0..n {
+                    s += h[r * n + j] * z[j];
+                }
+                out.push(s);
+            }
+            let w: Vec<f64> = (0..n).map(|_| standard_normal(rng)).collect();
+            let next: Vec<f64> = (0..n)
+                .map(|i| {
+                    let (li, pi) = (&l[i * n..(i + 1) * n], &phi[i * n..(i + 1) * n]);
+                    let noise = |s: f64| (1..n).fold(s, |s, j| s + li[j] * w[j]);
+                    let drift = |s: f64| (0..n).fold(s, |s, j| s + pi[j] * z[j]);
+                    if n <= 8 {
+                        drift(noise(li[0] * w[0]))
+                    } else {
+                        noise(drift(0.0) + li[0] * w[0])
+                    }
+                })
+                .collect();
+            z.copy_from_slice(&next);
+        }
+        out
+    }
+
+    /// A stable chain of n states (poles −1 … −n, a coupling above the diagonal) driven by one white noise,
+    /// with two outputs.
+    fn chain(n: usize) -> GaussMarkov {
+        let a = DMatrix::from_fn(n, n, |i, j| match j as i64 - i as i64 {
+            0 => -(i as f64 + 1.0),
+            1 => 0.3,
+            _ => 0.0,
+        });
+        let h = DMatrix::from_fn(2, n, |r, j| if r == 0 { f64::from(j == 0) } else { 1.0 });
+        GaussMarkov::new(a, DMatrix::from_element(n, 1, 1.0), h, 0.05).unwrap()
+    }
+
+    /// `advance` in pieces of uneven lengths gives the bits of the recursion with `rand_distr`'s draws one
+    /// at a time and leaves the generator where those draws leave it (3 states: the fixed-size kernel; 10:
+    /// the general one).
+    #[test]
+    fn advance_gives_the_bits_of_the_draws_one_at_a_time() {
+        for n in [3, 10] {
+            let gm = chain(n);
+            let (mut rng, mut want_rng) = (stream(5, n as u64), stream(5, n as u64));
+            let (mut x, mut z) = (vec![0.0; n], vec![0.0; n]);
+            gm.initial_state(&mut rng, &mut x);
+            gm.initial_state(&mut want_rng, &mut z);
+            let mut got = Vec::new();
+            for steps in [1, 7, 1000, 24] {
+                let mut buf = vec![0.0; steps * gm.p];
+                gm.advance(&mut x, &mut rng, &mut buf);
+                got.extend(buf);
+            }
+            let want = oracle(&gm, &mut z, &mut want_rng, 1032);
+            assert!(
+                got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits()),
+                "{n} states"
+            );
+            assert_eq!(got.len(), want.len());
+            assert_eq!(x, z, "{n} states: the state");
+            assert_eq!(rng.next_u64(), want_rng.next_u64(), "{n} states: the generator");
+        }
+    }
 }

@@ -13,7 +13,7 @@ use crate::error::Result;
 use crate::estimate::{WelchScratch, WelchSums};
 use crate::linalg::vmath;
 use crate::nonlinear::integrator::{Lanes, Prepared};
-use crate::simulate::{splitmix64, standard_normal, stream, Scratch};
+use crate::simulate::{splitmix64, standard_normal, stream, Scratch, StreamNormals};
 use rand::rngs::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -50,7 +50,7 @@ trait Path<const L: usize> {
 /// Where the exact flow's noise comes from.
 enum Noise<'a> {
     /// Fresh normals from the realization's stream (the draws of a linear run).
-    Stream(&'a mut Xoshiro256PlusPlus),
+    Stream(StreamNormals<Xoshiro256PlusPlus>),
     /// Stored normals, one vector of nz per fine step.
     Fine(&'a [f64]),
     /// The coarse steps of stored fine normals (η = Φ_f L_f w₁ + L_f w₂).
@@ -95,7 +95,7 @@ impl Path<1> for ExactPath<'_> {
         let n = self.flow.nz;
         let z = self.z.as_flattened_mut();
         match &mut self.noise {
-            Noise::Stream(rng) => self.flow.step(self.step, z, &mut self.w, &mut self.next, rng),
+            Noise::Stream(normals) => self.flow.step(self.step, z, &mut self.w, &mut self.next, normals),
             Noise::Fine(w) => self
                 .flow
                 .step_with(self.step, z, &w[k * n..(k + 1) * n], &mut self.next),
@@ -444,9 +444,9 @@ fn realize_exact(plan: &NlPlan, s: &mut NlScratch, seed: u64, i: u64, keep_raw: 
     let Flow::Exact(f) = &plan.flow else {
         unreachable!("an exact-route plan")
     };
-    let mut rng = stream(seed, i);
     let mut sink = Sink::<1>::new(plan, keep_raw);
-    let mut path = exact_path(plan, f, &f.coarse, Noise::Stream(&mut rng));
+    let normals = StreamNormals::new(&stream(seed, i));
+    let mut path = exact_path(plan, f, &f.coarse, Noise::Stream(normals));
     let mut rec = Recorder {
         sink: &mut sink,
         welch: &mut s.welch,
@@ -520,8 +520,8 @@ fn conclude(
 
 fn exact_path<'a>(plan: &NlPlan, f: &'a ExactFlow, step: &'a NoisyStep, mut noise: Noise<'a>) -> ExactPath<'a> {
     let mut z = vec![0.0; f.nz];
-    if let Noise::Stream(rng) = &mut noise {
-        f.start.initial_state(rng, &mut z);
+    if let Noise::Stream(normals) = &mut noise {
+        f.start.initial_state(normals.rng_mut(), &mut z);
     }
     for (i, d) in plan.start_shift.iter().enumerate() {
         z[f.mech + i] += d;

@@ -179,11 +179,9 @@ impl ExactFlow {
         z: &mut [f64],
         w: &mut [f64],
         next: &mut [f64],
-        rng: &mut rand::rngs::Xoshiro256PlusPlus,
+        normals: &mut crate::simulate::StreamNormals<rand::rngs::Xoshiro256PlusPlus>,
     ) {
-        for v in w.iter_mut() {
-            *v = crate::simulate::standard_normal(rng);
-        }
+        normals.fill(w);
         self.step_with(s, z, w, next);
     }
 
