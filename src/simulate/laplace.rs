@@ -1,7 +1,8 @@
 //! The Laplace moving average: a stationary non-Gaussian process with a prescribed spectrum and a
 //! prescribed kurtosis (a road rougher in its extremes than a Gaussian one of the same spectrum).
 
-use super::rng::{fill_standard_normal, standard_normal};
+use super::lane_normals::StreamNormals;
+use super::rng::fill_standard_normal;
 use super::spectral::{SpectralGenerator, SpectralScratch};
 use super::Amplitudes;
 use crate::error::{Error, Result};
@@ -365,10 +366,13 @@ impl LaplaceMovingAverage {
     fn fill_increments(&self, rng: &mut Xoshiro256PlusPlus, eps: &mut [f64]) {
         match &self.gamma {
             Some(gamma) => {
+                // the generator held for the loop (the same draws in the same order: Γ_k, then Z_k)
+                let mut normals = StreamNormals::new(rng);
                 for e in eps.iter_mut() {
-                    let g: f64 = rng.sample(gamma);
-                    *e = g.sqrt() * standard_normal(rng);
+                    let g: f64 = normals.rng_mut().sample(gamma);
+                    *e = g.sqrt() * normals.next();
                 }
+                *rng = normals.into_rng();
             }
             None => {
                 fill_standard_normal(rng, eps);
@@ -446,7 +450,7 @@ impl LaplaceMovingAverage {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::simulate::stream;
+    use crate::simulate::{standard_normal, stream};
     use crate::spectrum::{Domain, Exponential};
     use crate::tolerance::{EXACT, ROUNDING};
 
@@ -491,6 +495,35 @@ mod tests {
         let s4: f64 = f.iter().map(|v| v.powi(4)).sum();
         assert!((s2 - lma.grid_variance()).abs() < ROUNDING * s2);
         assert!((s4 / (s2 * s2) - lma.kernel_ratio()).abs() < EXACT);
+    }
+
+    /// Above kurtosis 3 every increment is Γ_k by `rand_distr`'s Gamma, then Z_k by its standard normal,
+    /// k in order ([`LAPLACE_DRAWS`]): 4096 increments have the bits of those draws one call at a time and
+    /// leave the stream where they leave it.
+    #[test]
+    fn increments_draw_gamma_then_normal_in_order() {
+        use rand::Rng;
+        let s = Exponential::new(1.0, 2.0, Domain::Temporal).unwrap();
+        let grid = LaplaceGrid {
+            dt: 0.05,
+            n: 4096,
+            kurtosis: 6.0,
+        };
+        let lma = LaplaceMovingAverage::new(&s, grid).unwrap();
+        let gamma = lma.gamma.expect("a Gamma law above kurtosis 3");
+        let mut sc = lma.scratch();
+        let mut got_rng = stream(9, 2);
+        lma.draw_increments(&mut got_rng, &mut sc);
+        let mut rng = stream(9, 2);
+        for (k, e) in sc.increments().iter().enumerate() {
+            let g: f64 = rng.sample(gamma);
+            assert_eq!(
+                e.to_bits(),
+                (g.sqrt() * standard_normal(&mut rng)).to_bits(),
+                "increment {k}"
+            );
+        }
+        assert_eq!(got_rng.next_u64(), rng.next_u64(), "the stream after the draws");
     }
 
     #[test]

@@ -13,7 +13,7 @@ use crate::error::Result;
 use crate::estimate::{WelchScratch, WelchSums};
 use crate::linalg::vmath;
 use crate::nonlinear::integrator::{Lanes, Prepared};
-use crate::simulate::{splitmix64, standard_normal, stream, Scratch, StreamNormals};
+use crate::simulate::{fill_standard_normal, splitmix64, stream, Scratch, StreamNormals};
 use rand::rngs::Xoshiro256PlusPlus;
 use rayon::prelude::*;
 use std::ops::Range;
@@ -572,7 +572,8 @@ fn halving_check(
         (Flow::Exact(f), _) => {
             let mut z0 = vec![0.0; f.nz];
             f.start.initial_state(rng, &mut z0);
-            let w: Vec<f64> = (0..2 * total * f.nz).map(|_| standard_normal(rng)).collect();
+            let mut w = vec![0.0; 2 * total * f.nz];
+            fill_standard_normal(rng, &mut w);
             let mut pc = exact_path(plan, f, &f.coarse, Noise::Coarse(&w));
             pc.z.iter_mut().zip(&z0).for_each(|(a, b)| a[0] += b);
             drive::<1, _>(
