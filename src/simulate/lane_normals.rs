@@ -210,17 +210,23 @@ impl StreamRng {
     #[inline(always)]
     fn fast_normal(&mut self, e: &Edges) -> f64 {
         let [s0, s1, s2, s3] = self.s;
-        let bits = rand::Rng::next_u64(self);
-        let i = (bits & 0xff) as usize;
-        let u = f64::from_bits((bits >> 12) | 0x4000_0000_0000_0000) - 3.0;
-        let x = u * e.x[i];
-        if x.abs() < e.accept[i] {
+        if let Some(x) = common_case(rand::Rng::next_u64(self), e) {
             return x;
         }
         let x;
         (x, self.s) = redo(s0, s1, s2, s3, e);
         x
     }
+}
+
+/// The ziggurat's common case for the draw `bits`: box i = bits mod 256, u from the upper 52 bits, x = u·X_i
+/// when |x| < X_{i+1}, else None (the draw is to be redone; see the module's formula).
+#[inline(always)]
+fn common_case(bits: u64, e: &Edges) -> Option<f64> {
+    let i = (bits & 0xff) as usize;
+    let u = f64::from_bits((bits >> 12) | 0x4000_0000_0000_0000) - 3.0;
+    let x = u * e.x[i];
+    (x.abs() < e.accept[i]).then_some(x)
 }
 
 /// The next `out.len()` standard normals of the one stream `r`, in order, with the bits of
@@ -263,17 +269,12 @@ impl<R: Rng + Clone> StreamNormals<R> {
     /// The next standard normal.
     #[inline(always)]
     pub(crate) fn next(&mut self) -> f64 {
-        let e = self.e;
         let before = self.g.clone();
-        let bits = self.g.next_u64();
-        let i = (bits & 0xff) as usize;
-        let u = f64::from_bits((bits >> 12) | 0x4000_0000_0000_0000) - 3.0;
-        let x = u * e.x[i];
-        if x.abs() < e.accept[i] {
+        if let Some(x) = common_case(self.g.next_u64(), self.e) {
             return x;
         }
         let y;
-        (y, self.g) = redraw_cold(before, e);
+        (y, self.g) = redraw_cold(before, self.e);
         y
     }
 
