@@ -31,7 +31,7 @@ pub(crate) struct NlRealization {
     pub raw_inputs: Vec<Vec<f64>>,
 }
 
-/// Realizations the spectral route steps in lockstep (see [`realize_range`]).
+/// Realizations the spectral route steps in lockstep (see [`realize_ranges`]).
 pub(crate) const LANES: usize = 8;
 
 /// A path of the linear flow for L realizations in lockstep: how to read the inputs and outputs from its
@@ -390,18 +390,28 @@ fn check_stream(seed: u64, i: u64) -> Xoshiro256PlusPlus {
     stream(splitmix64(seed ^ 0x5851_f42d_4c95_7f2d), i)
 }
 
-/// Realizations `range` of the run of `seed`, in order, spread over the thread pool: on the spectral route
-/// in groups stepped in lockstep ([`lockstep_groups`]: [`LANES`] at a time, the rest in groups of 4, 2 and
-/// 1; a lane's arithmetic is that of a lone realization, so every sample has the same bits whatever the
-/// grouping), on the exact route one at a time.
+/// Realizations `ranges` of the run of `seed` (ranges in increasing order, disjoint), one result vector per
+/// range, in order, spread over the thread pool together: on the spectral route in groups stepped in
+/// lockstep ([`lockstep_groups`] of each run of consecutive realizations, adjacent ranges joined: [`LANES`]
+/// at a time, the rest in groups of 4, 2 and 1; a lane's arithmetic is that of a lone realization, so every
+/// sample has the same bits whatever the grouping), on the exact route one at a time. Several ranges at once
+/// keep every thread busy to the end: one shard of 50 realizations is 7 groups, which 2 threads share 4 : 3.
 ///
 /// # Errors
 /// An FFT or Welch failure.
-pub(crate) fn realize_range(plan: &NlPlan, seed: u64, range: Range<u64>, keep_raw: bool) -> Result<Vec<NlRealization>> {
-    let groups: Vec<(u64, usize)> = match plan.flow {
-        Flow::Hold { .. } => lockstep_groups(range.clone()),
-        Flow::Exact(_) => range.clone().map(|i| (i, 1)).collect(),
-    };
+pub(crate) fn realize_ranges(
+    plan: &NlPlan,
+    seed: u64,
+    ranges: &[Range<u64>],
+    keep_raw: bool,
+) -> Result<Vec<Vec<NlRealization>>> {
+    let mut groups: Vec<(u64, usize)> = Vec::new();
+    for run in contiguous_runs(ranges) {
+        match plan.flow {
+            Flow::Hold { .. } => groups.extend(lockstep_groups(run)),
+            Flow::Exact(_) => groups.extend(run.map(|i| (i, 1))),
+        }
+    }
     let groups = groups
         .into_par_iter()
         .map_init(
@@ -415,11 +425,28 @@ pub(crate) fn realize_range(plan: &NlPlan, seed: u64, range: Range<u64>, keep_ra
             },
         )
         .collect::<Vec<_>>();
-    let mut out = Vec::with_capacity((range.end - range.start) as usize);
+    let mut all = Vec::with_capacity(ranges.iter().map(|r| (r.end - r.start) as usize).sum());
     for g in groups {
-        out.extend(g?);
+        all.extend(g?);
     }
-    Ok(out)
+    let mut all = all.into_iter();
+    Ok(ranges
+        .iter()
+        .map(|r| all.by_ref().take((r.end - r.start) as usize).collect())
+        .collect())
+}
+
+/// The maximal runs of consecutive realizations of `ranges` (increasing, disjoint), in order: adjacent
+/// ranges joined.
+fn contiguous_runs(ranges: &[Range<u64>]) -> Vec<Range<u64>> {
+    let mut runs: Vec<Range<u64>> = Vec::with_capacity(ranges.len());
+    for r in ranges.iter().filter(|r| r.start < r.end) {
+        match runs.last_mut() {
+            Some(last) if last.end == r.start => last.end = r.end,
+            _ => runs.push(r.clone()),
+        }
+    }
+    runs
 }
 
 /// The lockstep groups (first realization, width) of `range`, in order: [`LANES`] realizations each, then
@@ -672,7 +699,17 @@ fn finish(
 
 #[cfg(test)]
 mod tests {
-    use super::{lockstep_groups, LANES};
+    use super::{contiguous_runs, lockstep_groups, LANES};
+
+    /// Adjacent ranges join into one run (their realizations may share a lockstep group), a gap or an empty
+    /// range does not.
+    #[test]
+    fn contiguous_runs_join_adjacent_ranges_only() {
+        assert_eq!(contiguous_runs(&[]), vec![]);
+        assert_eq!(contiguous_runs(&[0..50, 50..100, 100..112]), vec![0..112]);
+        assert_eq!(contiguous_runs(&[0..50, 100..150, 150..160]), vec![0..50, 100..160]);
+        assert_eq!(contiguous_runs(&[3..3, 3..7, 7..7, 9..10]), vec![3..7, 9..10]);
+    }
 
     /// The groups cover the range once, in order, [`LANES`] wide while [`LANES`] realizations remain, then
     /// the remainder as its binary digits (4, 2, 1), largest first.
