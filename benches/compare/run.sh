@@ -133,7 +133,7 @@ trap - EXIT
 
 # the harnesses with tables of their own, each writing rows-NAME.json for the one table (compare.py summary)
 if [ "$smoke" = 1 ]; then
-    fatigue_args=(--n 200000 --check 20000 --reps 1) nl=(R=8 T=2 REPS=1) transient_r=40 transient_reps=1 transient_ours=1 opt_reps=1 hours=0.005
+    fatigue_args=(--n 200000 --check 20000 --reps 1) nl=(R=8 T=2 REPS=1 PY_PROCS=1) transient_r=40 transient_reps=1 transient_ours=1 opt_reps=1 hours=0.005
 else
     fatigue_args=(--n 100000000 --check 1000000 --reps 3) nl=(R=512 T=30 REPS=3) transient_r=10000 transient_reps=5 transient_ours=5
     opt_reps=7 hours=1

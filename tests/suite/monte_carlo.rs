@@ -250,6 +250,71 @@ fn threads_and_shards_are_bit_identical() {
     assert!(pipeline(99, 0..2).merge(pipeline(99, 3..4)).is_err());
 }
 
+/// On two threads `simulate` realizes several pending shards at once (their realizations shared out over
+/// the threads together, the exact route's lockstep groups of 8 running across shard boundaries) and then
+/// writes them one by one: the operator seat with its comfort and fatigue verdict channels, 22 realizations
+/// in shards of 3 (seven of 3 and one of 1), on the exact and on the spectral route, on two threads gives
+/// the statistics, Welch densities and every shard's stored checksums of the same run on one thread, which
+/// realizes and writes one shard at a time, bit for bit; every shard is reported once, in order.
+#[test]
+fn shards_realized_together_on_two_threads_give_the_bits_of_one_at_a_time() {
+    use stochvib::simulate::{Route, RunOptions};
+    use stochvib::store::RunFile;
+    let _serial = common::hdf5_serial();
+    let root = common::root();
+    let sc = stochvib::scenario::load_scenario(&root.join("data/operator-seat-verdicts.toml"), &root.join("spectra"))
+        .unwrap();
+    let dir = common::scratch_dir("mc-window", "seat");
+    let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+    for route in [Route::Exact, Route::Spectral] {
+        let opts = RunOptions {
+            shard_size: 3,
+            realizations: 22,
+            duration_s: 10.0,
+            dt_s: 0.005,
+            seed: 41,
+            route,
+            ..RunOptions::default()
+        };
+        let (together, apart) = (dir.join(format!("{route:?}-2.h5")), dir.join(format!("{route:?}-1.h5")));
+        let reports = std::sync::Mutex::new(Vec::new());
+        let a = pool(2)
+            .install(|| {
+                sc.simulate(&opts, &together, &|done, total| {
+                    reports.lock().unwrap().push((done, total))
+                })
+            })
+            .unwrap();
+        let b = pool(1).install(|| sc.simulate(&opts, &apart, &|_, _| {})).unwrap();
+        assert_eq!(
+            *reports.lock().unwrap(),
+            (0..=8).map(|d| (d, 8)).collect::<Vec<_>>(),
+            "{route:?}"
+        );
+        let file = |p: &std::path::Path| RunFile::open(p).unwrap();
+        assert!(
+            file(&apart)
+                .metadata()
+                .accumulators
+                .iter()
+                .any(|(n, _)| n.starts_with("verdict:")),
+            "{route:?}: the run carries verdict channels"
+        );
+        assert_eq!(
+            common::stored_statistic_bits(&a.outputs),
+            common::stored_statistic_bits(&b.outputs),
+            "{route:?}"
+        );
+        assert_eq!(common::psd_bits(&together), common::psd_bits(&apart), "{route:?}");
+        for shard in 0..8 {
+            let sums = |p: &std::path::Path| file(p).shard_checksums(shard).unwrap();
+            assert!(!sums(&apart).is_empty(), "{route:?} shard {shard} has stored checksums");
+            assert_eq!(sums(&together), sums(&apart), "{route:?} shard {shard}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn welch_covers_the_analytic_density() {
     // One long exact type-1 record (AR(1) samples, D = 1, α = 1, Δt = 0.01 s, 2²⁰ samples), M = 4096

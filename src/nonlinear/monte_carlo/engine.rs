@@ -13,6 +13,7 @@ use crate::error::Result;
 use crate::estimate::{WelchScratch, WelchSums};
 use crate::linalg::vmath;
 use crate::nonlinear::integrator::{Lanes, Prepared};
+use crate::simulate::shard_window::{contiguous_runs, split_by_range};
 use crate::simulate::{fill_standard_normal, splitmix64, stream, Scratch, StreamNormals};
 use rand::rngs::Xoshiro256PlusPlus;
 use rayon::prelude::*;
@@ -429,24 +430,7 @@ pub(crate) fn realize_ranges(
     for g in groups {
         all.extend(g?);
     }
-    let mut all = all.into_iter();
-    Ok(ranges
-        .iter()
-        .map(|r| all.by_ref().take((r.end - r.start) as usize).collect())
-        .collect())
-}
-
-/// The maximal runs of consecutive realizations of `ranges` (increasing, disjoint), in order: adjacent
-/// ranges joined.
-fn contiguous_runs(ranges: &[Range<u64>]) -> Vec<Range<u64>> {
-    let mut runs: Vec<Range<u64>> = Vec::with_capacity(ranges.len());
-    for r in ranges.iter().filter(|r| r.start < r.end) {
-        match runs.last_mut() {
-            Some(last) if last.end == r.start => last.end = r.end,
-            _ => runs.push(r.clone()),
-        }
-    }
-    runs
+    Ok(split_by_range(all, ranges))
 }
 
 /// The lockstep groups (first realization, width) of `range`, in order: [`LANES`] realizations each, then
@@ -699,17 +683,7 @@ fn finish(
 
 #[cfg(test)]
 mod tests {
-    use super::{contiguous_runs, lockstep_groups, LANES};
-
-    /// Adjacent ranges join into one run (their realizations may share a lockstep group), a gap or an empty
-    /// range does not.
-    #[test]
-    fn contiguous_runs_join_adjacent_ranges_only() {
-        assert_eq!(contiguous_runs(&[]), vec![]);
-        assert_eq!(contiguous_runs(&[0..50, 50..100, 100..112]), vec![0..112]);
-        assert_eq!(contiguous_runs(&[0..50, 100..150, 150..160]), vec![0..50, 100..160]);
-        assert_eq!(contiguous_runs(&[3..3, 3..7, 7..7, 9..10]), vec![3..7, 9..10]);
-    }
+    use super::{lockstep_groups, LANES};
 
     /// The groups cover the range once, in order, [`LANES`] wide while [`LANES`] realizations remain, then
     /// the remainder as its binary digits (4, 2, 1), largest first.

@@ -229,40 +229,16 @@ pub fn run_nonlinear(
     })
 }
 
-/// Lockstep groups each thread should get from one window of shards ([`shard_window`]).
-const GROUPS_PER_THREAD: usize = 16;
-
-/// The most bytes of realized results one window of shards holds before it is written.
-const WINDOW_BYTES: usize = 64 << 20;
-
-/// Shards realized at once, their realizations shared out over the threads together and then written one
-/// by one in shard order: with one shard at a time the threads idle at every shard's end (a shard of 50
-/// realizations is 7 lockstep groups, which 2 threads share 4 : 3, and the writer runs alone), which held
-/// route 2 to 1.54× on 2 threads at 512 realizations. A killed run loses the window being computed (every
-/// shard is still written whole or not at all), so one thread keeps one shard at a time.
-///
-/// # Formula
-/// W = max(1, min(⌈P·[`LANES`]·G / S⌉, ⌊B / (S·b)⌋)) for P ≥ 2 threads, shard size S, G =
-/// [`GROUPS_PER_THREAD`], B = [`WINDOW_BYTES`] and b the bytes of one realization's results: p outputs ×
-/// (Welch bins + histogram slots + 16 values) × 8, plus (p + inputs) × N × 8 with raw samples of N steps.
-/// W = 1 for P = 1.
+/// The shards route 2 realizes at once ([`crate::simulate::shard_window`]): b = p outputs × (Welch bins +
+/// histogram slots + 16 values) × 8 bytes a realization, plus (p + inputs) × N × 8 with raw samples of N
+/// steps; groups of [`LANES`].
 fn shard_window(plan: &NlPlan, shard_size: usize, keep_raw: bool, threads: usize) -> usize {
     let p = plan.outputs.len();
     let mut bytes = p * (plan.welch.segment_len() / 2 + 1 + plan::HISTOGRAM_BINS + 2 + 16) * 8;
     if keep_raw {
         bytes += (p + plan.input_signals.len()) * plan.n * 8;
     }
-    window_of(threads, shard_size, bytes)
-}
-
-/// W of [`shard_window`] for `threads`, `shard_size` and `bytes` per realization.
-fn window_of(threads: usize, shard_size: usize, bytes: usize) -> usize {
-    if threads < 2 || shard_size == 0 {
-        return 1;
-    }
-    let balanced = (threads * LANES * GROUPS_PER_THREAD).div_ceil(shard_size);
-    let affordable = WINDOW_BYTES / shard_size.saturating_mul(bytes.max(1));
-    balanced.min(affordable).max(1)
+    crate::simulate::shard_window::shard_window(threads, shard_size, LANES, bytes)
 }
 
 fn raw_input_count(plan: &NlPlan) -> usize {
@@ -772,29 +748,5 @@ impl std::fmt::Display for NonlinearRunSummary {
             }
         }
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{window_of, GROUPS_PER_THREAD, LANES, WINDOW_BYTES};
-
-    /// W = max(1, min(⌈P·LANES·G/S⌉, ⌊B/(S·b)⌋)), worked by hand for LANES = 8, G = 16, B = 64 MiB: one
-    /// thread keeps one shard at a time; 2 threads and shards of 50 realizations of 15 KiB take
-    /// ⌈256/50⌉ = 6 shards; shards of 1 take 256; raw samples of 3 outputs and 1 input × 11 064 steps
-    /// (354 048 + 15 360 bytes a realization) cap shards of 50 at ⌊67 108 864/18 470 400⌋ = 3, and
-    /// 10⁶-step records (32 MB a realization) at 1.
-    #[test]
-    fn the_window_of_shards_balances_the_threads_within_its_memory() {
-        assert_eq!((LANES, GROUPS_PER_THREAD, WINDOW_BYTES), (8, 16, 64 << 20));
-        let summary = 15 << 10;
-        assert_eq!(window_of(1, 50, summary), 1);
-        assert_eq!(window_of(2, 0, summary), 1);
-        assert_eq!(window_of(2, 50, summary), 6);
-        assert_eq!(window_of(2, 1, summary), 256);
-        assert_eq!(window_of(4, 50, summary), 11);
-        assert_eq!(window_of(2, 50, summary + 4 * 11_064 * 8), 3);
-        assert_eq!(window_of(2, 50, summary + 4 * 1_000_000 * 8), 1);
-        assert_eq!(window_of(2, usize::MAX, 1), 1);
     }
 }
