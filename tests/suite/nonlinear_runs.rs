@@ -229,46 +229,56 @@ fn interrupted_nonlinear_run_resumes_bit_identically() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Route 2 steps the spectral route's realizations eight at a time in lockstep and the rest of a shard in
-/// groups of 4, 2 and 1, each lane doing the arithmetic of a lone realization: a run whose one shard holds
-/// 15 realizations (groups of 8, 4, 2 and 1) and the same run in shards of 1 on one thread (one shard at a
-/// time, every realization alone) give the same statistics, Welch densities and histograms bit for bit, the
-/// Δt-halving checks of realizations 0..4 included.
+/// Route 2 steps its realizations eight at a time in lockstep and the rest of a shard in groups of 4, 2 and
+/// 1, each lane doing the arithmetic of a lone realization: a run whose one shard holds 15 realizations
+/// (groups of 8, 4, 2 and 1) and the same run in shards of 1 on one thread (one shard at a time, every
+/// realization alone) give the same statistics, Welch densities and histograms bit for bit, the Δt-halving
+/// checks of realizations 0..4 included — on the spectral route (the ISO road, synthesised inputs) and on
+/// the exact route (the same quarter car on the exponential road `book-8-45`, whose shaping filter gives
+/// each lane its own normals from its own stream, nz a step, as a lone realization draws them).
 #[test]
 fn lockstep_realizations_give_the_bits_of_lone_ones() {
-    let dir = common::scratch_dir("nl-runs", "lockstep");
-    let sc = variant("quarter-car-bump-stops.toml", "", None);
-    let answers = sc.nonlinear_answers().unwrap().unwrap();
-    let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
-    let opts = |shard_size| NonlinearRunOptions {
-        run: RunOptions {
-            shard_size,
-            realizations: 15,
-            duration_s: 5.0,
-            dt_s: dt,
-            seed: 33,
-            ..RunOptions::default()
-        },
-        burn_in_s: None,
-        halving_checks: None,
-    };
-    let _serial = common::hdf5_serial();
-    let (lanes, alone) = (dir.join("lanes.h5"), dir.join("alone.h5"));
-    let a = sc.simulate_nonlinear(&answers, &opts(15), &lanes, &|_, _| {}).unwrap();
-    // on more threads the shards of 1 would be realized several at once, in lockstep groups again
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let b = one
-        .install(|| sc.simulate_nonlinear(&answers, &opts(1), &alone, &|_, _| {}))
-        .unwrap();
-    assert_eq!((a.run.n_shards, b.run.n_shards, a.halving_checks), (1, 15, 4));
-    assert_eq!(
-        common::stored_statistic_bits(&a.run.outputs),
-        common::stored_statistic_bits(&b.run.outputs)
-    );
-    assert_eq!(common::psd_bits(&lanes), common::psd_bits(&alone));
-    let hist = |p: &Path| RunFile::open(p).unwrap().response_histograms().unwrap();
-    assert_eq!(hist(&lanes), hist(&alone));
-    std::fs::remove_dir_all(&dir).unwrap();
+    for (road, route) in [(None, "spectral"), (Some(("\"iso8608-d\"", "\"book-8-45\"")), "exact")] {
+        let dir = common::scratch_dir("nl-runs", &format!("lockstep-{route}"));
+        let sc = variant("quarter-car-bump-stops.toml", "", road);
+        let answers = sc.nonlinear_answers().unwrap().unwrap();
+        let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
+        let opts = |shard_size| NonlinearRunOptions {
+            run: RunOptions {
+                shard_size,
+                realizations: 15,
+                duration_s: 5.0,
+                dt_s: dt,
+                seed: 33,
+                ..RunOptions::default()
+            },
+            burn_in_s: None,
+            halving_checks: None,
+        };
+        let _serial = common::hdf5_serial();
+        let (lanes, alone) = (dir.join("lanes.h5"), dir.join("alone.h5"));
+        let a = sc.simulate_nonlinear(&answers, &opts(15), &lanes, &|_, _| {}).unwrap();
+        // on more threads the shards of 1 would be realized several at once, in lockstep groups again
+        let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        let b = one
+            .install(|| sc.simulate_nonlinear(&answers, &opts(1), &alone, &|_, _| {}))
+            .unwrap();
+        assert_eq!(
+            (a.run.n_shards, b.run.n_shards, a.halving_checks),
+            (1, 15, 4),
+            "{route}"
+        );
+        assert_eq!(format!("{:?}", a.run.route).to_lowercase(), route);
+        assert_eq!(
+            common::stored_statistic_bits(&a.run.outputs),
+            common::stored_statistic_bits(&b.run.outputs),
+            "{route}"
+        );
+        assert_eq!(common::psd_bits(&lanes), common::psd_bits(&alone), "{route}");
+        let hist = |p: &Path| RunFile::open(p).unwrap().response_histograms().unwrap();
+        assert_eq!(hist(&lanes), hist(&alone), "{route}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }
 
 /// On two threads route 2 realizes several shards at once (their realizations shared out over the threads

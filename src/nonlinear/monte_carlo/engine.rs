@@ -109,6 +109,113 @@ impl Path<1> for ExactPath<'_> {
     }
 }
 
+/// The exact route's path for L realizations in lockstep: lane l draws from its own stream in the order of
+/// [`ExactPath`] alone (the initial state's normals, then nz a step, [`StreamNormals`] held for the run) and
+/// does the additions of [`ExactPath`] and [`ExactFlow::step_with`] in the same order, so every lane has the
+/// bits of its realization alone.
+struct ExactLanes<'a, const L: usize> {
+    flow: &'a ExactFlow,
+    step: &'a NoisyStep,
+    normals: Vec<StreamNormals<Xoshiro256PlusPlus>>,
+    z: Vec<Lanes<L>>,
+    /// One step's normals of every lane, and one lane's draws.
+    w: Vec<Lanes<L>>,
+    draw: Vec<f64>,
+    next: Vec<Lanes<L>>,
+}
+
+impl<const L: usize> ExactLanes<'_, L> {
+    /// Σ row·z per lane, from −0 as `Iterator::sum` folds (the bits of [`ExactPath::inputs`]).
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    fn dot(&self, row: &[f64]) -> Lanes<L> {
+        let mut s = [-0.0; L];
+        for (a, b) in row.iter().zip(&self.z) {
+            for l in 0..L {
+                s[l] += a * b[l];
+            }
+        }
+        s
+    }
+}
+
+impl<const L: usize> Path<L> for ExactLanes<'_, L> {
+    #[inline(always)]
+    fn state(&mut self) -> &mut [Lanes<L>] {
+        &mut self.z
+    }
+    fn mech(&self) -> usize {
+        self.flow.mech
+    }
+    #[inline(always)]
+    fn inputs(&self, _k: usize, u: &mut [Lanes<L>], ud: &mut [Lanes<L>]) {
+        for (j, row) in self.flow.u_rows.iter().enumerate() {
+            u[j] = self.dot(row);
+            ud[j] = self.flow.ud_rows[j].as_deref().map_or([0.0; L], |r| self.dot(r));
+        }
+    }
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    fn outputs(&self, _k: usize, _u: &[Lanes<L>], _ud: &[Lanes<L>], y: &mut [Lanes<L>]) {
+        for (o, row) in y.iter_mut().zip(&self.flow.out_rows) {
+            let mut s = [0.0; L];
+            for (a, b) in row.iter().zip(&self.z) {
+                for l in 0..L {
+                    s[l] += a * b[l];
+                }
+            }
+            *o = s;
+        }
+    }
+    /// z ← Φz + Lw with each lane's nz fresh normals: for nz ≤ 8 the sum starts at L₀w₀ and adds the
+    /// noise terms, then the state terms; above 8 it starts at 0 and adds the state terms first (the orders
+    /// of [`ExactFlow::step_with`]).
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    fn step(&mut self, _k: usize) {
+        let n = self.flow.nz;
+        for (l, normals) in self.normals.iter_mut().enumerate() {
+            normals.fill(&mut self.draw);
+            for (w, d) in self.w.iter_mut().zip(&self.draw) {
+                w[l] = *d;
+            }
+        }
+        let s = self.step;
+        for (i, o) in self.next.iter_mut().enumerate() {
+            let (lr, ph) = (&s.l[i * n..(i + 1) * n], &s.phi[i * n..(i + 1) * n]);
+            let mut acc = [0.0; L];
+            if n <= 8 {
+                for l in 0..L {
+                    acc[l] = lr[0] * self.w[0][l];
+                }
+                for (a, w) in lr.iter().zip(&self.w).skip(1) {
+                    for l in 0..L {
+                        acc[l] += a * w[l];
+                    }
+                }
+                for (a, z) in ph.iter().zip(&self.z) {
+                    for l in 0..L {
+                        acc[l] += a * z[l];
+                    }
+                }
+            } else {
+                for (a, z) in ph.iter().zip(&self.z) {
+                    for l in 0..L {
+                        acc[l] += a * z[l];
+                    }
+                }
+                for (a, w) in lr.iter().zip(&self.w) {
+                    for l in 0..L {
+                        acc[l] += a * w[l];
+                    }
+                }
+            }
+            *o = acc;
+        }
+        self.z.copy_from_slice(&self.next);
+    }
+}
+
 /// The spectral route's path: L realizations, each with its own synthesised inputs.
 struct HoldPath<'a, const L: usize> {
     flow: &'a FohFlow,
@@ -408,16 +515,16 @@ pub(crate) fn realize_ranges(
 ) -> Result<Vec<Vec<NlRealization>>> {
     let mut groups: Vec<(u64, usize)> = Vec::new();
     for run in contiguous_runs(ranges) {
-        match plan.flow {
-            Flow::Hold { .. } => groups.extend(lockstep_groups(run)),
-            Flow::Exact(_) => groups.extend(run.map(|i| (i, 1))),
-        }
+        groups.extend(lockstep_groups(run));
     }
     let groups = groups
         .into_par_iter()
         .map_init(
             || NlScratch::new(plan),
             |s, (a, width)| match (&plan.flow, width) {
+                (Flow::Exact(_), LANES) => realize_exact_lanes::<LANES>(plan, s, seed, a, keep_raw),
+                (Flow::Exact(_), 4) => realize_exact_lanes::<4>(plan, s, seed, a, keep_raw),
+                (Flow::Exact(_), 2) => realize_exact_lanes::<2>(plan, s, seed, a, keep_raw),
                 (Flow::Exact(_), _) => Ok(vec![realize_exact(plan, s, seed, a, keep_raw)?]),
                 (_, LANES) => realize_hold::<LANES>(plan, s, seed, a, keep_raw),
                 (_, 4) => realize_hold::<4>(plan, s, seed, a, keep_raw),
@@ -465,6 +572,35 @@ fn realize_exact(plan: &NlPlan, s: &mut NlScratch, seed: u64, i: u64, keep_raw: 
     drive::<1, _>(plan, &mut path, plan.h, plan.n_burn, plan.n, &mut rec);
     let lone = sink.close(&mut s.welch).remove(0)?;
     conclude(plan, lone, seed, i, None, Vec::new())
+}
+
+/// Realizations first..first + L on the exact route stepped in lockstep ([`ExactLanes`]), each then
+/// concluded as a lone realization (its Δt-halving check included).
+fn realize_exact_lanes<const L: usize>(
+    plan: &NlPlan,
+    s: &mut NlScratch,
+    seed: u64,
+    first: u64,
+    keep_raw: bool,
+) -> Result<Vec<NlRealization>> {
+    let Flow::Exact(f) = &plan.flow else {
+        unreachable!("an exact-route plan")
+    };
+    let mut sink = Sink::<L>::new(plan, keep_raw);
+    let mut path = exact_lanes::<L>(plan, f, &f.coarse, seed, first);
+    vmath::run(&mut Drive {
+        plan,
+        path: &mut path,
+        sink: Recorder {
+            sink: &mut sink,
+            welch: &mut s.welch,
+        },
+    });
+    let mut out = Vec::with_capacity(L);
+    for (l, lone) in sink.close(&mut s.welch).into_iter().enumerate() {
+        out.push(conclude(plan, lone?, seed, first + l as u64, None, Vec::new())?);
+    }
+    Ok(out)
 }
 
 /// Realizations first..first + L on the spectral route: every lane's inputs synthesised from its stream,
@@ -544,6 +680,41 @@ fn exact_path<'a>(plan: &NlPlan, f: &'a ExactFlow, step: &'a NoisyStep, mut nois
         w: vec![0.0; f.nz],
         next: vec![0.0; f.nz],
         z: z.into_iter().map(|v| [v]).collect(),
+    }
+}
+
+/// The lockstep path of realizations first..first + L: lane l's initial state drawn from its stream and
+/// shifted as [`exact_path`] does it.
+fn exact_lanes<'a, const L: usize>(
+    plan: &NlPlan,
+    f: &'a ExactFlow,
+    step: &'a NoisyStep,
+    seed: u64,
+    first: u64,
+) -> ExactLanes<'a, L> {
+    let mut z = vec![[0.0; L]; f.nz];
+    let mut zl = vec![0.0; f.nz];
+    let normals = (0..L)
+        .map(|l| {
+            let mut normals = StreamNormals::new(&stream(seed, first + l as u64));
+            f.start.initial_state(normals.rng_mut(), &mut zl);
+            for (i, d) in plan.start_shift.iter().enumerate() {
+                zl[f.mech + i] += d;
+            }
+            for (zj, v) in z.iter_mut().zip(&zl) {
+                zj[l] = *v;
+            }
+            normals
+        })
+        .collect();
+    ExactLanes {
+        flow: f,
+        step,
+        normals,
+        z,
+        w: vec![[0.0; L]; f.nz],
+        draw: vec![0.0; f.nz],
+        next: vec![[0.0; L]; f.nz],
     }
 }
 
