@@ -44,7 +44,6 @@ pub mod road_track;
 pub mod run;
 pub mod shaping;
 mod shaping_lanes;
-pub(crate) mod shard_window;
 pub mod spectral;
 mod summary;
 pub mod transfer_grid;

@@ -214,8 +214,7 @@ fn run_metadata(
 }
 
 /// Simulates and writes every shard of the run that the file does not hold yet, in shard order, calling
-/// `progress(done, total)` before the first and after each. On two threads or more a window of pending
-/// shards is realized at once and then written shard by shard ([`super::shard_window`]).
+/// `progress(done, total)` before the first and after each.
 fn simulate_pending_shards(
     writer: &mut RunWriter,
     meta: &RunMetadata,
@@ -225,61 +224,30 @@ fn simulate_pending_shards(
     bands: &[OutputBands],
     progress: &dyn Fn(usize, usize),
 ) -> Result<()> {
-    use super::shard_window::{contiguous_runs, shard_window, split_by_range};
     let n_shards = meta.local_shards().len();
     let mut done = writer.completed_shards().len();
     progress(done, n_shards);
-    let window = shard_window(
-        rayon::current_num_threads(),
-        meta.shard_size,
-        LANES,
-        realization_bytes(plan, input, opts.store_raw),
-    );
-    for shards in writer.pending_shards().chunks(window) {
-        let ranges: Vec<_> = shards
-            .iter()
-            .map(|&shard| {
-                let r = meta.shard_range(shard);
-                r.start as u64..r.end as u64
-            })
-            .collect();
-        let mut realized = Vec::new();
-        for run in contiguous_runs(&ranges) {
-            let batch = run_batch_groups(
-                opts.seed,
-                run,
-                || Scratch::new(plan),
-                |s, group| realize_group(plan, s, opts, &input.verdicts, group),
-            )?;
-            realized.extend(batch.into_results());
-        }
-        for (&shard, results) in shards.iter().zip(split_by_range(realized, &ranges)) {
-            let (results, verdicts): (Vec<Realization>, Vec<Vec<Vec<f64>>>) = results.into_iter().unzip();
-            let mut extra = input.verdicts.encode(&verdicts, meta.shard_size);
-            extra.extend(super::bands::encode_shard(
-                bands,
-                results.len(),
-                &|i, r| &results[i].welch[r],
-                meta.shard_size,
-            )?);
-            write_shard(writer, shard, &results, plan, meta.shard_size, opts.store_raw, &extra)?;
-            done += 1;
-            progress(done, n_shards);
-        }
+    for shard in writer.pending_shards() {
+        let range = meta.shard_range(shard);
+        let batch = run_batch_groups(
+            opts.seed,
+            range.start as u64..range.end as u64,
+            || Scratch::new(plan),
+            |s, group| realize_group(plan, s, opts, &input.verdicts, group),
+        )?;
+        let (results, verdicts): (Vec<Realization>, Vec<Vec<Vec<f64>>>) = batch.into_results().into_iter().unzip();
+        let mut extra = input.verdicts.encode(&verdicts, meta.shard_size);
+        extra.extend(super::bands::encode_shard(
+            bands,
+            results.len(),
+            &|i, r| &results[i].welch[r],
+            meta.shard_size,
+        )?);
+        write_shard(writer, shard, &results, plan, meta.shard_size, opts.store_raw, &extra)?;
+        done += 1;
+        progress(done, n_shards);
     }
     Ok(())
-}
-
-/// The bytes one realization's results hold until its shard is written (for [`super::shard_window`]): p
-/// outputs × (Welch bins + 16) × 8, its verdict values, and with raw samples (p + inputs) × N × 8.
-fn realization_bytes(plan: &Plan, input: &RunInput, store_raw: bool) -> usize {
-    let p = plan.outputs.len();
-    let verdicts: usize = input.verdicts.layout(1).iter().map(|(_, len)| len).sum();
-    let mut values = p * (plan.welch.segment_len() / 2 + 1 + 16) + verdicts;
-    if store_raw {
-        values += (p + plan.input_signals.len()) * plan.n;
-    }
-    values * 8
 }
 
 /// The statistics and the density estimate of every output, from the accumulators of every shard in shard

@@ -231,9 +231,9 @@ fn interrupted_nonlinear_run_resumes_bit_identically() {
 
 /// Route 2 steps its realizations eight at a time in lockstep and the rest of a shard in groups of 4, 2 and
 /// 1, each lane doing the arithmetic of a lone realization: a run whose one shard holds 15 realizations
-/// (groups of 8, 4, 2 and 1) and the same run in shards of 1 on one thread (one shard at a time, every
-/// realization alone) give the same statistics, Welch densities and histograms bit for bit, the Δt-halving
-/// checks of realizations 0..4 included — on the spectral route (the ISO road, synthesised inputs) and on
+/// (groups of 8, 4, 2 and 1) and the same run in shards of 1 (every realization alone) give the same
+/// statistics, Welch densities and histograms bit for bit, the Δt-halving checks of realizations 0..4
+/// included — on the spectral route (the ISO road, synthesised inputs) and on
 /// the exact route (the same quarter car on the exponential road `book-8-45`, whose shaping filter gives
 /// each lane its own normals from its own stream, nz a step, as a lone realization draws them).
 #[test]
@@ -258,11 +258,7 @@ fn lockstep_realizations_give_the_bits_of_lone_ones() {
         let _serial = common::hdf5_serial();
         let (lanes, alone) = (dir.join("lanes.h5"), dir.join("alone.h5"));
         let a = sc.simulate_nonlinear(&answers, &opts(15), &lanes, &|_, _| {}).unwrap();
-        // on more threads the shards of 1 would be realized several at once, in lockstep groups again
-        let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-        let b = one
-            .install(|| sc.simulate_nonlinear(&answers, &opts(1), &alone, &|_, _| {}))
-            .unwrap();
+        let b = sc.simulate_nonlinear(&answers, &opts(1), &alone, &|_, _| {}).unwrap();
         assert_eq!(
             (a.run.n_shards, b.run.n_shards, a.halving_checks),
             (1, 15, 4),
@@ -279,64 +275,6 @@ fn lockstep_realizations_give_the_bits_of_lone_ones() {
         assert_eq!(hist(&lanes), hist(&alone), "{route}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
-}
-
-/// On two threads route 2 realizes several shards at once (their realizations shared out over the threads
-/// together, lockstep groups running across shard boundaries) and then writes them one by one: a run of 21
-/// realizations in shards of 4 (five shards of 4 and one of 1, boundaries inside groups of 8) on two threads
-/// gives the statistics, Welch densities, histograms and every shard's stored checksums of the same run on
-/// one thread, which realizes and writes one shard at a time, bit for bit.
-#[test]
-fn shards_realized_together_on_two_threads_give_the_bits_of_one_at_a_time() {
-    let dir = common::scratch_dir("nl-runs", "window");
-    let sc = variant("quarter-car-bump-stops.toml", "", None);
-    let answers = sc.nonlinear_answers().unwrap().unwrap();
-    let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
-    let opts = NonlinearRunOptions {
-        run: RunOptions {
-            shard_size: 4,
-            realizations: 21,
-            duration_s: 3.0,
-            dt_s: dt,
-            seed: 35,
-            ..RunOptions::default()
-        },
-        burn_in_s: None,
-        halving_checks: Some(2),
-    };
-    let _serial = common::hdf5_serial();
-    let (together, apart) = (dir.join("together.h5"), dir.join("apart.h5"));
-    let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
-    let writes = std::sync::Mutex::new(Vec::new());
-    let a = pool(2)
-        .install(|| {
-            sc.simulate_nonlinear(&answers, &opts, &together, &|done, total| {
-                writes.lock().unwrap().push((done, total))
-            })
-        })
-        .unwrap();
-    let b = pool(1)
-        .install(|| sc.simulate_nonlinear(&answers, &opts, &apart, &|_, _| {}))
-        .unwrap();
-    // every shard reported once, in order, though the six were realized in one window
-    assert_eq!(*writes.lock().unwrap(), (0..=6).map(|d| (d, 6)).collect::<Vec<_>>());
-    assert_eq!((a.run.n_shards, b.run.n_shards), (6, 6));
-    assert_eq!(
-        common::stored_statistic_bits(&a.run.outputs),
-        common::stored_statistic_bits(&b.run.outputs)
-    );
-    assert_eq!(common::psd_bits(&together), common::psd_bits(&apart));
-    let file = |p: &Path| RunFile::open(p).unwrap();
-    assert_eq!(
-        file(&together).response_histograms().unwrap(),
-        file(&apart).response_histograms().unwrap()
-    );
-    for shard in 0..6 {
-        let sums = |p: &Path| file(p).shard_checksums(shard).unwrap();
-        assert!(!sums(&apart).is_empty(), "shard {shard} has stored checksums");
-        assert_eq!(sums(&together), sums(&apart), "shard {shard}");
-    }
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// `stochvib simulate` of the Duffing catalogue scenario writes a nonlinear run; `inspect` lists its

@@ -13,7 +13,6 @@ use crate::error::Result;
 use crate::estimate::{WelchScratch, WelchSums};
 use crate::linalg::vmath;
 use crate::nonlinear::integrator::{Lanes, Prepared};
-use crate::simulate::shard_window::{contiguous_runs, split_by_range};
 use crate::simulate::{fill_standard_normal, splitmix64, stream, Scratch, StreamNormals};
 use rand::rngs::Xoshiro256PlusPlus;
 use rayon::prelude::*;
@@ -32,7 +31,7 @@ pub(crate) struct NlRealization {
     pub raw_inputs: Vec<Vec<f64>>,
 }
 
-/// Realizations the spectral route steps in lockstep (see [`realize_ranges`]).
+/// Realizations route 2 steps in lockstep (see [`realize_range`]).
 pub(crate) const LANES: usize = 8;
 
 /// A path of the linear flow for L realizations in lockstep: how to read the inputs and outputs from its
@@ -498,26 +497,16 @@ fn check_stream(seed: u64, i: u64) -> Xoshiro256PlusPlus {
     stream(splitmix64(seed ^ 0x5851_f42d_4c95_7f2d), i)
 }
 
-/// Realizations `ranges` of the run of `seed` (ranges in increasing order, disjoint), one result vector per
-/// range, in order, spread over the thread pool together: on the spectral route in groups stepped in
-/// lockstep ([`lockstep_groups`] of each run of consecutive realizations, adjacent ranges joined: [`LANES`]
-/// at a time, the rest in groups of 4, 2 and 1; a lane's arithmetic is that of a lone realization, so every
-/// sample has the same bits whatever the grouping), on the exact route one at a time. Several ranges at once
-/// keep every thread busy to the end: one shard of 50 realizations is 7 groups, which 2 threads share 4 : 3.
+/// Realizations `range` of the run of `seed`, in order, spread over the thread pool in groups stepped in
+/// lockstep ([`lockstep_groups`]: [`LANES`] at a time, the rest in groups of 4, 2 and 1; a lane's arithmetic
+/// is that of a lone realization, so every sample has the same bits whatever the grouping), on the spectral
+/// route ([`realize_hold`]) and on the exact route ([`realize_exact_lanes`]; a group of 1 through
+/// [`realize_exact`], the lone path).
 ///
 /// # Errors
 /// An FFT or Welch failure.
-pub(crate) fn realize_ranges(
-    plan: &NlPlan,
-    seed: u64,
-    ranges: &[Range<u64>],
-    keep_raw: bool,
-) -> Result<Vec<Vec<NlRealization>>> {
-    let mut groups: Vec<(u64, usize)> = Vec::new();
-    for run in contiguous_runs(ranges) {
-        groups.extend(lockstep_groups(run));
-    }
-    let groups = groups
+pub(crate) fn realize_range(plan: &NlPlan, seed: u64, range: Range<u64>, keep_raw: bool) -> Result<Vec<NlRealization>> {
+    let groups = lockstep_groups(range.clone())
         .into_par_iter()
         .map_init(
             || NlScratch::new(plan),
@@ -533,11 +522,11 @@ pub(crate) fn realize_ranges(
             },
         )
         .collect::<Vec<_>>();
-    let mut all = Vec::with_capacity(ranges.iter().map(|r| (r.end - r.start) as usize).sum());
+    let mut out = Vec::with_capacity((range.end - range.start) as usize);
     for g in groups {
-        all.extend(g?);
+        out.extend(g?);
     }
-    Ok(split_by_range(all, ranges))
+    Ok(out)
 }
 
 /// The lockstep groups (first realization, width) of `range`, in order: [`LANES`] realizations each, then
@@ -586,21 +575,35 @@ fn realize_exact_lanes<const L: usize>(
     let Flow::Exact(f) = &plan.flow else {
         unreachable!("an exact-route plan")
     };
-    let mut sink = Sink::<L>::new(plan, keep_raw);
     let mut path = exact_lanes::<L>(plan, f, &f.coarse, seed, first);
-    vmath::run(&mut Drive {
-        plan,
-        path: &mut path,
-        sink: Recorder {
-            sink: &mut sink,
-            welch: &mut s.welch,
-        },
-    });
     let mut out = Vec::with_capacity(L);
-    for (l, lone) in sink.close(&mut s.welch).into_iter().enumerate() {
+    for (l, lone) in drive_lanes(plan, &mut path, &mut s.welch, keep_raw)
+        .into_iter()
+        .enumerate()
+    {
         out.push(conclude(plan, lone?, seed, first + l as u64, None, Vec::new())?);
     }
     Ok(out)
+}
+
+/// The L realizations of `path` driven in lockstep through the burn-in and the record ([`Drive`], compiled
+/// for the widest instruction set), their records closed lane by lane.
+fn drive_lanes<const L: usize, P: Path<L>>(
+    plan: &NlPlan,
+    path: &mut P,
+    welch: &mut WelchScratch,
+    keep_raw: bool,
+) -> Vec<Result<LoneRecords>> {
+    let mut sink = Sink::<L>::new(plan, keep_raw);
+    vmath::run(&mut Drive {
+        plan,
+        path,
+        sink: Recorder {
+            sink: &mut sink,
+            welch: &mut *welch,
+        },
+    });
+    sink.close(welch)
 }
 
 /// Realizations first..first + L on the spectral route: every lane's inputs synthesised from its stream,
@@ -619,7 +622,6 @@ fn realize_hold<const L: usize>(
     let smp = (0..L as u64)
         .map(|l| inputs.draw(sc, &mut stream(seed, first + l), keep_raw))
         .collect::<Result<Vec<_>>>()?;
-    let mut sink = Sink::<L>::new(plan, keep_raw);
     let mut path = hold_path::<L>(
         flow,
         &flow.coarse,
@@ -627,16 +629,9 @@ fn realize_hold<const L: usize>(
         std::array::from_fn(|l| &smp[l].rates[..]),
         rates,
     );
-    vmath::run(&mut Drive {
-        plan,
-        path: &mut path,
-        sink: Recorder {
-            sink: &mut sink,
-            welch: &mut s.welch,
-        },
-    });
     let mut out = Vec::with_capacity(L);
-    for ((l, lone), smp) in sink.close(&mut s.welch).into_iter().enumerate().zip(&smp) {
+    let closed = drive_lanes(plan, &mut path, &mut s.welch, keep_raw);
+    for ((l, lone), smp) in closed.into_iter().enumerate().zip(&smp) {
         let raw_inputs = if keep_raw {
             smp.processes.iter().map(|p| p[plan.n_burn..].to_vec()).collect()
         } else {

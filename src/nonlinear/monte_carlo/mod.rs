@@ -41,7 +41,7 @@ use crate::nonlinear::{NonlinearModel, Route1, Stationary};
 use crate::response::{Excitation, ResponseStatistics};
 use crate::simulate::{accumulators, Analytic, RunOptions, RunSummary};
 use crate::store::{CreateOptions, OutputStatistics, Provenance, RunMetadata, RunWriter, Signal, Statistic};
-use engine::{realize_ranges, NlRealization, LANES};
+use engine::{realize_range, NlRealization};
 use plan::NlPlan;
 use std::path::{Path, PathBuf};
 
@@ -172,29 +172,20 @@ pub fn run_nonlinear(
     let resumed = writer.completed_shards().len();
     progress(resumed, n_shards);
     let mut done = resumed;
-    let window = shard_window(&plan, shard_size, ro.store_raw, rayon::current_num_threads());
-    for shards in writer.pending_shards().chunks(window) {
-        let ranges: Vec<_> = shards
-            .iter()
-            .map(|&shard| {
-                let r = meta.shard_range(shard);
-                r.start as u64..r.end as u64
-            })
-            .collect();
-        let realized = realize_ranges(&plan, ro.seed, &ranges, ro.store_raw)?;
-        for (&shard, results) in shards.iter().zip(&realized) {
-            write_shard(
-                &mut writer,
-                shard,
-                results,
-                &plan,
-                shard_size,
-                ro.store_raw,
-                record_inputs,
-            )?;
-            done += 1;
-            progress(done, n_shards);
-        }
+    for shard in writer.pending_shards() {
+        let range = meta.shard_range(shard);
+        let results = realize_range(&plan, ro.seed, range.start as u64..range.end as u64, ro.store_raw)?;
+        write_shard(
+            &mut writer,
+            shard,
+            &results,
+            &plan,
+            shard_size,
+            ro.store_raw,
+            record_inputs,
+        )?;
+        done += 1;
+        progress(done, n_shards);
     }
     let (stats, psds, hists) = finish(&writer, &meta, &plan, input, ro.confidence)?;
     writer.write_statistics(&stats)?;
@@ -227,18 +218,6 @@ pub fn run_nonlinear(
         burn_in_s: plan.n_burn as f64 * plan.h,
         halving_checks: plan.checks,
     })
-}
-
-/// The shards route 2 realizes at once ([`crate::simulate::shard_window`]): b = p outputs × (Welch bins +
-/// histogram slots + 16 values) × 8 bytes a realization, plus (p + inputs) × N × 8 with raw samples of N
-/// steps; groups of [`LANES`].
-fn shard_window(plan: &NlPlan, shard_size: usize, keep_raw: bool, threads: usize) -> usize {
-    let p = plan.outputs.len();
-    let mut bytes = p * (plan.welch.segment_len() / 2 + 1 + plan::HISTOGRAM_BINS + 2 + 16) * 8;
-    if keep_raw {
-        bytes += (p + plan.input_signals.len()) * plan.n * 8;
-    }
-    crate::simulate::shard_window::shard_window(threads, shard_size, LANES, bytes)
 }
 
 fn raw_input_count(plan: &NlPlan) -> usize {
