@@ -44,6 +44,7 @@ pub mod road_track;
 pub mod run;
 pub mod shaping;
 mod shaping_lanes;
+pub(crate) mod shard_pipeline;
 pub mod spectral;
 mod summary;
 pub mod transfer_grid;

@@ -277,6 +277,72 @@ fn lockstep_realizations_give_the_bits_of_lone_ones() {
     }
 }
 
+/// Route 2's threads take the lockstep groups of every pending shard in order, up to two shards ahead of the
+/// next one to write, and the calling thread writes each shard when its groups are done
+/// (`simulate::shard_pipeline`): a run of 21 realizations in shards of 4 (five of 4 and one of 1) on two
+/// threads gives the statistics, Welch densities, histograms and every shard's stored checksums of the same
+/// run on one thread, bit for bit, on the spectral and on the exact route, with one progress report per
+/// shard, in order.
+#[test]
+fn shards_written_as_the_threads_finish_them_give_the_bits_of_one_thread() {
+    for (road, route) in [(None, "spectral"), (Some(("\"iso8608-d\"", "\"book-8-45\"")), "exact")] {
+        let dir = common::scratch_dir("nl-runs", &format!("pipeline-{route}"));
+        let sc = variant("quarter-car-bump-stops.toml", "", road);
+        let answers = sc.nonlinear_answers().unwrap().unwrap();
+        let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
+        let opts = NonlinearRunOptions {
+            run: RunOptions {
+                shard_size: 4,
+                realizations: 21,
+                duration_s: 3.0,
+                dt_s: dt,
+                seed: 35,
+                ..RunOptions::default()
+            },
+            burn_in_s: None,
+            halving_checks: Some(2),
+        };
+        let _serial = common::hdf5_serial();
+        let (two, one) = (dir.join("two.h5"), dir.join("one.h5"));
+        let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
+        let reports = std::sync::Mutex::new(Vec::new());
+        let a = pool(2)
+            .install(|| {
+                sc.simulate_nonlinear(&answers, &opts, &two, &|done, total| {
+                    reports.lock().unwrap().push((done, total))
+                })
+            })
+            .unwrap();
+        let b = pool(1)
+            .install(|| sc.simulate_nonlinear(&answers, &opts, &one, &|_, _| {}))
+            .unwrap();
+        assert_eq!(
+            *reports.lock().unwrap(),
+            (0..=6).map(|d| (d, 6)).collect::<Vec<_>>(),
+            "{route}"
+        );
+        assert_eq!((a.run.n_shards, b.run.n_shards), (6, 6), "{route}");
+        assert_eq!(
+            common::stored_statistic_bits(&a.run.outputs),
+            common::stored_statistic_bits(&b.run.outputs),
+            "{route}"
+        );
+        assert_eq!(common::psd_bits(&two), common::psd_bits(&one), "{route}");
+        let file = |p: &Path| RunFile::open(p).unwrap();
+        assert_eq!(
+            file(&two).response_histograms().unwrap(),
+            file(&one).response_histograms().unwrap(),
+            "{route}"
+        );
+        for shard in 0..6 {
+            let sums = |p: &Path| file(p).shard_checksums(shard).unwrap();
+            assert!(!sums(&one).is_empty(), "{route} shard {shard} has stored checksums");
+            assert_eq!(sums(&two), sums(&one), "{route} shard {shard}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
 /// `stochvib simulate` of the Duffing catalogue scenario writes a nonlinear run; `inspect` lists its
 /// nonlinear statistics (text and JSON) and `plot` draws every output's response histogram against route 1's
 /// Gaussian, and the displacement's also against route 3's exact density, on a linear and a logarithmic

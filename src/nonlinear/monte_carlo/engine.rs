@@ -15,7 +15,6 @@ use crate::linalg::vmath;
 use crate::nonlinear::integrator::{Lanes, Prepared};
 use crate::simulate::{fill_standard_normal, splitmix64, stream, Scratch, StreamNormals};
 use rand::rngs::Xoshiro256PlusPlus;
-use rayon::prelude::*;
 use std::ops::Range;
 
 /// One realization's results.
@@ -31,7 +30,7 @@ pub(crate) struct NlRealization {
     pub raw_inputs: Vec<Vec<f64>>,
 }
 
-/// Realizations route 2 steps in lockstep (see [`realize_range`]).
+/// Realizations route 2 steps in lockstep (see [`realize_group`]).
 pub(crate) const LANES: usize = 8;
 
 /// A path of the linear flow for L realizations in lockstep: how to read the inputs and outputs from its
@@ -497,43 +496,38 @@ fn check_stream(seed: u64, i: u64) -> Xoshiro256PlusPlus {
     stream(splitmix64(seed ^ 0x5851_f42d_4c95_7f2d), i)
 }
 
-/// Realizations `range` of the run of `seed`, in order, spread over the thread pool in groups stepped in
-/// lockstep ([`lockstep_groups`]: [`LANES`] at a time, the rest in groups of 4, 2 and 1; a lane's arithmetic
-/// is that of a lone realization, so every sample has the same bits whatever the grouping), on the spectral
-/// route ([`realize_hold`]) and on the exact route ([`realize_exact_lanes`]; a group of 1 through
-/// [`realize_exact`], the lone path).
+/// Realizations `first .. first + width` of the run of `seed`, one group of [`lockstep_groups`], stepped in
+/// lockstep (a lane's arithmetic is that of a lone realization, so every sample has the same bits whatever
+/// the grouping): on the spectral route by [`realize_hold`], on the exact route by [`realize_exact_lanes`]
+/// (a group of 1 through [`realize_exact`], the lone path). `s` is the working memory of the thread.
 ///
 /// # Errors
 /// An FFT or Welch failure.
-pub(crate) fn realize_range(plan: &NlPlan, seed: u64, range: Range<u64>, keep_raw: bool) -> Result<Vec<NlRealization>> {
-    let groups = lockstep_groups(range.clone())
-        .into_par_iter()
-        .map_init(
-            || NlScratch::new(plan),
-            |s, (a, width)| match (&plan.flow, width) {
-                (Flow::Exact(_), LANES) => realize_exact_lanes::<LANES>(plan, s, seed, a, keep_raw),
-                (Flow::Exact(_), 4) => realize_exact_lanes::<4>(plan, s, seed, a, keep_raw),
-                (Flow::Exact(_), 2) => realize_exact_lanes::<2>(plan, s, seed, a, keep_raw),
-                (Flow::Exact(_), _) => Ok(vec![realize_exact(plan, s, seed, a, keep_raw)?]),
-                (_, LANES) => realize_hold::<LANES>(plan, s, seed, a, keep_raw),
-                (_, 4) => realize_hold::<4>(plan, s, seed, a, keep_raw),
-                (_, 2) => realize_hold::<2>(plan, s, seed, a, keep_raw),
-                _ => realize_hold::<1>(plan, s, seed, a, keep_raw),
-            },
-        )
-        .collect::<Vec<_>>();
-    let mut out = Vec::with_capacity((range.end - range.start) as usize);
-    for g in groups {
-        out.extend(g?);
+pub(crate) fn realize_group(
+    plan: &NlPlan,
+    s: &mut NlScratch,
+    seed: u64,
+    first: u64,
+    width: usize,
+    keep_raw: bool,
+) -> Result<Vec<NlRealization>> {
+    match (&plan.flow, width) {
+        (Flow::Exact(_), LANES) => realize_exact_lanes::<LANES>(plan, s, seed, first, keep_raw),
+        (Flow::Exact(_), 4) => realize_exact_lanes::<4>(plan, s, seed, first, keep_raw),
+        (Flow::Exact(_), 2) => realize_exact_lanes::<2>(plan, s, seed, first, keep_raw),
+        (Flow::Exact(_), _) => Ok(vec![realize_exact(plan, s, seed, first, keep_raw)?]),
+        (_, LANES) => realize_hold::<LANES>(plan, s, seed, first, keep_raw),
+        (_, 4) => realize_hold::<4>(plan, s, seed, first, keep_raw),
+        (_, 2) => realize_hold::<2>(plan, s, seed, first, keep_raw),
+        _ => realize_hold::<1>(plan, s, seed, first, keep_raw),
     }
-    Ok(out)
 }
 
 /// The lockstep groups (first realization, width) of `range`, in order: [`LANES`] realizations each, then
 /// the remainder (fewer than [`LANES`]) in groups of 4, 2 and 1, largest first. A run's shards rarely hold a
 /// multiple of [`LANES`] realizations (50 by default: 6 × 8 + 2), and a lone realization costs several
 /// times a lane of a group (its steps are scalar, its per-step overhead is not shared).
-fn lockstep_groups(range: Range<u64>) -> Vec<(u64, usize)> {
+pub(crate) fn lockstep_groups(range: Range<u64>) -> Vec<(u64, usize)> {
     let mut groups = Vec::with_capacity(range.clone().count().div_ceil(LANES) + 2);
     let mut a = range.start;
     for width in [LANES, 4, 2, 1] {

@@ -41,7 +41,7 @@ use crate::nonlinear::{NonlinearModel, Route1, Stationary};
 use crate::response::{Excitation, ResponseStatistics};
 use crate::simulate::{accumulators, Analytic, RunOptions, RunSummary};
 use crate::store::{CreateOptions, OutputStatistics, Provenance, RunMetadata, RunWriter, Signal, Statistic};
-use engine::{realize_range, NlRealization};
+use engine::{lockstep_groups, realize_group, NlRealization, NlScratch};
 use plan::NlPlan;
 use std::path::{Path, PathBuf};
 
@@ -172,21 +172,30 @@ pub fn run_nonlinear(
     let resumed = writer.completed_shards().len();
     progress(resumed, n_shards);
     let mut done = resumed;
-    for shard in writer.pending_shards() {
-        let range = meta.shard_range(shard);
-        let results = realize_range(&plan, ro.seed, range.start as u64..range.end as u64, ro.store_raw)?;
-        write_shard(
-            &mut writer,
-            shard,
-            &results,
-            &plan,
-            shard_size,
-            ro.store_raw,
-            record_inputs,
-        )?;
-        done += 1;
-        progress(done, n_shards);
-    }
+    // the shards' lockstep groups taken in order by every thread, each shard written when its groups are done
+    crate::simulate::shard_pipeline::realize_and_write(
+        &writer.pending_shards(),
+        |shard| {
+            let range = meta.shard_range(shard);
+            lockstep_groups(range.start as u64..range.end as u64)
+        },
+        || NlScratch::new(&plan),
+        |s, first, width| realize_group(&plan, s, ro.seed, first, width, ro.store_raw),
+        |shard, results| {
+            write_shard(
+                &mut writer,
+                shard,
+                &results,
+                &plan,
+                shard_size,
+                ro.store_raw,
+                record_inputs,
+            )?;
+            done += 1;
+            progress(done, n_shards);
+            Ok(())
+        },
+    )?;
     let (stats, psds, hists) = finish(&writer, &meta, &plan, input, ro.confidence)?;
     writer.write_statistics(&stats)?;
     for psd in &psds {
