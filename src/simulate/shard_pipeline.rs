@@ -250,8 +250,13 @@ mod tests {
     /// error at once, and a panic of the write callback unwinds out of the call after the threads stop.
     #[test]
     fn errors_and_a_stop_end_the_run_after_the_shards_before_them() {
-        let groups = |s: usize| vec![(s as u64 * 2, 2)];
+        type Realize<'a> = &'a (dyn Fn(&mut (), u64, usize) -> Result<Vec<u64>> + Sync);
+        type Write<'a> = &'a mut (dyn FnMut(usize, Vec<u64>) -> Result<()> + Send);
         let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+        // four shards of 2 realizations, one group each
+        let four = |realize: Realize, write: Write| {
+            pool.install(|| realize_and_write(&[0, 1, 2, 3], |s| vec![(s as u64 * 2, 2)], || (), realize, write))
+        };
         let failing = |_: &mut (), a: u64, _: usize| -> Result<Vec<u64>> {
             if a == 4 {
                 Err(Error::invalid("realization", a, "test"))
@@ -259,50 +264,23 @@ mod tests {
                 Ok(vec![a, a + 1])
             }
         };
-        let written = Mutex::new(Vec::new());
-        let r = pool.install(|| {
-            realize_and_write(
-                &[0, 1, 2, 3],
-                groups,
-                || (),
-                failing,
-                |s, _| {
-                    written.lock().unwrap().push(s);
-                    Ok(())
-                },
-            )
+        let mut written = Vec::new();
+        let r = four(&failing, &mut |s, _| {
+            written.push(s);
+            Ok(())
         });
         assert!(r.unwrap_err().to_string().contains("test"));
-        assert_eq!(*written.lock().unwrap(), vec![0, 1]);
+        assert_eq!(written, vec![0, 1]);
         let ok = |_: &mut (), a: u64, _: usize| -> Result<Vec<u64>> { Ok(vec![a, a + 1]) };
-        let r = pool.install(|| {
-            realize_and_write(
-                &[0, 1, 2, 3],
-                groups,
-                || (),
-                ok,
-                |s, _| {
-                    if s == 1 {
-                        Err(Error::invalid("shard", s, "write failed"))
-                    } else {
-                        Ok(())
-                    }
-                },
-            )
+        let r = four(&ok, &mut |s, _| match s {
+            1 => Err(Error::invalid("shard", s, "write failed")),
+            _ => Ok(()),
         });
         assert!(r.unwrap_err().to_string().contains("write failed"));
         let stopped = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            pool.install(|| {
-                realize_and_write(
-                    &[0, 1, 2, 3],
-                    groups,
-                    || (),
-                    ok,
-                    |s, _| {
-                        assert!(s < 2, "stop requested");
-                        Ok(())
-                    },
-                )
+            four(&ok, &mut |s, _| {
+                assert!(s < 2, "stop requested");
+                Ok(())
             })
         }));
         assert!(stopped.is_err());

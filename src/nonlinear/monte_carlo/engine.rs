@@ -13,7 +13,8 @@ use crate::error::Result;
 use crate::estimate::{WelchScratch, WelchSums};
 use crate::linalg::vmath;
 use crate::nonlinear::integrator::{Lanes, Prepared};
-use crate::simulate::{fill_standard_normal, splitmix64, stream, Scratch, StreamNormals};
+use crate::simulate::lane_normals::{LaneNormals, StreamRng};
+use crate::simulate::{fill_standard_normal, splitmix64, stream, Scratch, StreamNormals, LANE_DRAW_STEPS};
 use rand::rngs::Xoshiro256PlusPlus;
 use std::ops::Range;
 
@@ -108,17 +109,18 @@ impl Path<1> for ExactPath<'_> {
 }
 
 /// The exact route's path for L realizations in lockstep: lane l draws from its own stream in the order of
-/// [`ExactPath`] alone (the initial state's normals, then nz a step, [`StreamNormals`] held for the run) and
-/// does the additions of [`ExactPath`] and [`ExactFlow::step_with`] in the same order, so every lane has the
-/// bits of its realization alone.
+/// [`ExactPath`] alone (the initial state's normals, then nz a step; the L streams drawn side by side,
+/// [`LANE_DRAW_STEPS`] steps ahead, each lane's k-th draw that of its stream alone) and does the additions
+/// of [`ExactPath`], [`GaussMarkov::initial_state`](crate::simulate::GaussMarkov::initial_state) and
+/// [`ExactFlow::step_with`] in the same order, so every lane has the bits of its realization alone.
 struct ExactLanes<'a, const L: usize> {
     flow: &'a ExactFlow,
     step: &'a NoisyStep,
-    normals: Vec<StreamNormals<Xoshiro256PlusPlus>>,
+    normals: LaneNormals<L>,
     z: Vec<Lanes<L>>,
-    /// One step's normals of every lane, and one lane's draws.
+    /// The normals of the next [`LANE_DRAW_STEPS`] steps (nz a step) and how many of them are used.
     w: Vec<Lanes<L>>,
-    draw: Vec<f64>,
+    used: usize,
     next: Vec<Lanes<L>>,
 }
 
@@ -172,21 +174,21 @@ impl<const L: usize> Path<L> for ExactLanes<'_, L> {
     #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
     fn step(&mut self, _k: usize) {
         let n = self.flow.nz;
-        for (l, normals) in self.normals.iter_mut().enumerate() {
-            normals.fill(&mut self.draw);
-            for (w, d) in self.w.iter_mut().zip(&self.draw) {
-                w[l] = *d;
-            }
+        if self.used == self.w.len() {
+            self.normals.fill(&mut self.w);
+            self.used = 0;
         }
+        let w = &self.w[self.used..self.used + n];
+        self.used += n;
         let s = self.step;
         for (i, o) in self.next.iter_mut().enumerate() {
             let (lr, ph) = (&s.l[i * n..(i + 1) * n], &s.phi[i * n..(i + 1) * n]);
             let mut acc = [0.0; L];
             if n <= 8 {
                 for l in 0..L {
-                    acc[l] = lr[0] * self.w[0][l];
+                    acc[l] = lr[0] * w[0][l];
                 }
-                for (a, w) in lr.iter().zip(&self.w).skip(1) {
+                for (a, w) in lr.iter().zip(w).skip(1) {
                     for l in 0..L {
                         acc[l] += a * w[l];
                     }
@@ -202,7 +204,7 @@ impl<const L: usize> Path<L> for ExactLanes<'_, L> {
                         acc[l] += a * z[l];
                     }
                 }
-                for (a, w) in lr.iter().zip(&self.w) {
+                for (a, w) in lr.iter().zip(w) {
                     for l in 0..L {
                         acc[l] += a * w[l];
                     }
@@ -672,8 +674,9 @@ fn exact_path<'a>(plan: &NlPlan, f: &'a ExactFlow, step: &'a NoisyStep, mut nois
     }
 }
 
-/// The lockstep path of realizations first..first + L: lane l's initial state drawn from its stream and
-/// shifted as [`exact_path`] does it.
+/// The lockstep path of realizations first..first + L: lane l's initial state from the first nz draws of
+/// its stream, z = P₀e summed as [`GaussMarkov::initial_state`](crate::simulate::GaussMarkov::initial_state)
+/// sums it, and shifted as [`exact_path`] does it.
 fn exact_lanes<'a, const L: usize>(
     plan: &NlPlan,
     f: &'a ExactFlow,
@@ -681,29 +684,27 @@ fn exact_lanes<'a, const L: usize>(
     seed: u64,
     first: u64,
 ) -> ExactLanes<'a, L> {
-    let mut z = vec![[0.0; L]; f.nz];
-    let mut zl = vec![0.0; f.nz];
-    let normals = (0..L)
-        .map(|l| {
-            let mut normals = StreamNormals::new(&stream(seed, first + l as u64));
-            f.start.initial_state(normals.rng_mut(), &mut zl);
-            for (i, d) in plan.start_shift.iter().enumerate() {
-                zl[f.mech + i] += d;
-            }
-            for (zj, v) in z.iter_mut().zip(&zl) {
-                zj[l] = *v;
-            }
-            normals
-        })
+    let n = f.nz;
+    let mut normals = LaneNormals::new(std::array::from_fn(|l| StreamRng::new(seed, first + l as u64)));
+    let mut e = vec![[0.0; L]; n];
+    normals.fill(&mut e);
+    let p0 = f.start.flat_matrices()[2];
+    let mut z: Vec<Lanes<L>> = (0..n)
+        .map(|i| std::array::from_fn(|l| (0..n).map(|j| p0[i * n + j] * e[j][l]).sum()))
         .collect();
+    for (i, d) in plan.start_shift.iter().enumerate() {
+        for v in z[f.mech + i].iter_mut() {
+            *v += d;
+        }
+    }
     ExactLanes {
         flow: f,
         step,
         normals,
         z,
-        w: vec![[0.0; L]; f.nz],
-        draw: vec![0.0; f.nz],
-        next: vec![[0.0; L]; f.nz],
+        w: vec![[0.0; L]; LANE_DRAW_STEPS * n],
+        used: LANE_DRAW_STEPS * n,
+        next: vec![[0.0; L]; n],
     }
 }
 
