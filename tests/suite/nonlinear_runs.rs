@@ -19,6 +19,7 @@ use stochvib::nonlinear::monte_carlo::{NonlinearRunOptions, NonlinearRunSummary}
 use stochvib::scenario::{parse_scenario, Scenario};
 use stochvib::simulate::RunOptions;
 use stochvib::store::{OutputStatistics, RunFile};
+use stochvib::study::NonlinearAnswers;
 
 /// A stop too far away to be reached, `across` the named element (soft, so that it does not shorten the
 /// step route 2 takes for its contact frequency).
@@ -71,6 +72,20 @@ fn run(sc: &Scenario, dir: &Path, r: usize, t: f64, seed: u64) -> NonlinearRunSu
 fn stat<'a>(o: &'a OutputStatistics, name: &str) -> &'a stochvib::store::Statistic {
     o.get(name)
         .unwrap_or_else(|| panic!("no statistic `{name}` for {}", o.output))
+}
+
+/// The quarter car with bump stops on its ISO road (route 2's spectral route) and on the exponential road
+/// `book-8-45` (its exact route), each with its route name, route 1's answers and the suggested step.
+fn quarter_cars_on_both_routes() -> Vec<(&'static str, Scenario, NonlinearAnswers, f64)> {
+    [(None, "spectral"), (Some(("\"iso8608-d\"", "\"book-8-45\"")), "exact")]
+        .into_iter()
+        .map(|(road, route)| {
+            let sc = variant("quarter-car-bump-stops.toml", "", road);
+            let answers = sc.nonlinear_answers().unwrap().unwrap();
+            let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
+            (route, sc, answers, dt)
+        })
+        .collect()
 }
 
 /// The linear part's analytic σ of every output named, inside route 2's interval of σ.
@@ -238,22 +253,12 @@ fn interrupted_nonlinear_run_resumes_bit_identically() {
 /// each lane its own normals from its own stream, nz a step, as a lone realization draws them).
 #[test]
 fn lockstep_realizations_give_the_bits_of_lone_ones() {
-    for (road, route) in [(None, "spectral"), (Some(("\"iso8608-d\"", "\"book-8-45\"")), "exact")] {
+    for (route, sc, answers, dt) in quarter_cars_on_both_routes() {
         let dir = common::scratch_dir("nl-runs", &format!("lockstep-{route}"));
-        let sc = variant("quarter-car-bump-stops.toml", "", road);
-        let answers = sc.nonlinear_answers().unwrap().unwrap();
-        let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
-        let opts = |shard_size| NonlinearRunOptions {
-            run: RunOptions {
-                shard_size,
-                realizations: 15,
-                duration_s: 5.0,
-                dt_s: dt,
-                seed: 33,
-                ..RunOptions::default()
-            },
-            burn_in_s: None,
-            halving_checks: None,
+        let opts = |shard_size| {
+            let mut o = options(15, 5.0, dt, 33);
+            o.run.shard_size = shard_size;
+            o
         };
         let _serial = common::hdf5_serial();
         let (lanes, alone) = (dir.join("lanes.h5"), dir.join("alone.h5"));
@@ -285,23 +290,11 @@ fn lockstep_realizations_give_the_bits_of_lone_ones() {
 /// shard, in order.
 #[test]
 fn shards_written_as_the_threads_finish_them_give_the_bits_of_one_thread() {
-    for (road, route) in [(None, "spectral"), (Some(("\"iso8608-d\"", "\"book-8-45\"")), "exact")] {
+    for (route, sc, answers, dt) in quarter_cars_on_both_routes() {
         let dir = common::scratch_dir("nl-runs", &format!("pipeline-{route}"));
-        let sc = variant("quarter-car-bump-stops.toml", "", road);
-        let answers = sc.nonlinear_answers().unwrap().unwrap();
-        let dt = sc.suggest_nonlinear_step(&answers).unwrap().dt_s;
-        let opts = NonlinearRunOptions {
-            run: RunOptions {
-                shard_size: 4,
-                realizations: 21,
-                duration_s: 3.0,
-                dt_s: dt,
-                seed: 35,
-                ..RunOptions::default()
-            },
-            burn_in_s: None,
-            halving_checks: Some(2),
-        };
+        let mut opts = options(21, 3.0, dt, 35);
+        opts.run.shard_size = 4;
+        opts.halving_checks = Some(2);
         let _serial = common::hdf5_serial();
         let (two, one) = (dir.join("two.h5"), dir.join("one.h5"));
         let pool = |n| rayon::ThreadPoolBuilder::new().num_threads(n).build().unwrap();
