@@ -17,7 +17,7 @@ use realfft::num_complex::Complex;
 use realfft::RealFftPlanner;
 use std::hint::black_box;
 use std::time::Instant;
-use stochvib::simulate::{fill_standard_normal, stream, FirSynthesis, LANES, LANE_DRAW_STEPS};
+use stochvib::simulate::{fill_standard_normal, stream, FirSynthesis, TimeSums, LANES, LANE_DRAW_STEPS};
 
 /// CPU time of this process (user + sys), s.
 fn cpu_seconds() -> f64 {
@@ -96,14 +96,12 @@ fn main() {
                 for i in 0..r as u64 {
                     let mut rng = stream(MC_SEED, i);
                     fir.start(&mut rng, &mut fs);
-                    let (mut s1, mut s2) = (0.0, 0.0);
+                    let mut sums = TimeSums::new();
                     for _ in 0..segments {
                         fir.next_segment(&mut rng, &mut fs).unwrap();
-                        for &y in fir.output(&fs, 0) {
-                            s1 += y;
-                            s2 += y * y;
-                        }
+                        sums.push(fir.output(&fs, 0));
                     }
+                    let (s1, s2) = sums.totals();
                     acc += s2 - s1 * s1 / (segments * hop) as f64;
                 }
                 acc

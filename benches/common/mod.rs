@@ -416,15 +416,13 @@ pub fn mc_stats(mv: &[(f64, f64)]) -> McStats {
     }
 }
 
-/// Time averages (m, v) of a record.
+/// Time averages (m, v) of a record, as a run computes them (`simulate::TimeSums`: eight partial sums,
+/// the same bits for any cut of the record into blocks).
 #[inline]
 pub fn time_moments(y: &[f64]) -> (f64, f64) {
-    let (mut s1, mut s2) = (0.0, 0.0);
-    for &v in y {
-        s1 += v;
-        s2 += v * v;
-    }
-    (s1 / y.len() as f64, s2 / y.len() as f64)
+    let mut sums = stochvib::simulate::TimeSums::new();
+    sums.push(y);
+    sums.averages()
 }
 
 /// The spectral route of `simulate::run` for [`mc_sdof`], with the library's parts: the input by
@@ -565,19 +563,15 @@ impl McExact {
                     );
                 }
                 let mut lanes = self.gm.lanes(MC_SEED, group.start);
-                let (mut s1, mut s2) = ([0.0; LANES], [0.0; LANES]);
+                let mut sums = stochvib::simulate::TimeSumLanes::new();
                 let mut done = 0;
                 while done < self.n {
                     let b = EXACT_BLOCK.min(self.n - done);
                     lanes.fill(&mut ys[..b]);
-                    for v in &ys[..b] {
-                        (0..LANES).for_each(|l| s1[l] += v[l]);
-                        (0..LANES).for_each(|l| s2[l] += v[l] * v[l]);
-                    }
+                    sums.push(ys[..b].iter().copied());
                     done += b;
                 }
-                let n = self.n as f64;
-                Ok((0..LANES).map(|l| (s1[l] / n, s2[l] / n)).collect())
+                Ok((0..LANES).map(|l| sums.lane(l).averages()).collect())
             },
         );
         let Ok(shard) = shard;

@@ -3,7 +3,7 @@
 
 use super::plan::Plan;
 use super::verdict_stream::VerdictStream;
-use super::{FirSynthesis, GaussMarkov, SpectralGenerator, LANES};
+use super::{FirSynthesis, GaussMarkov, SpectralGenerator, TimeSumLanes, TimeSums, LANES};
 use crate::error::{Error, Result};
 use crate::estimate::WelchSums;
 use realfft::num_complex::Complex;
@@ -112,7 +112,7 @@ impl Scratch {
 }
 
 /// One realization of the exact route in blocks of `plan.block_steps` steps, with memory O(block): the
-/// state is carried from block to block, the time averages are running sums in time order and the Welch
+/// state is carried from block to block, the time sums are fed in time order ([`TimeSums`]: the same bits for any blocks) and the Welch
 /// segments are fed as they fill, so the results are bit-identical to a whole-record realization (same
 /// draws from `rng`, same additions in the same order).
 fn realize_in_blocks(
@@ -124,9 +124,7 @@ fn realize_in_blocks(
 ) -> Result<Realization> {
     let (n, p, stride, block) = (plan.n, plan.outputs.len(), plan.stride, plan.block_steps);
     gm.initial_state(rng, &mut s.x);
-    // `Iterator::sum` of f64 folds from −0.0: start the running sums there for bit-identical totals
-    let mut sum = vec![-0.0f64; p];
-    let mut sq = vec![-0.0f64; p];
+    let mut sums = vec![TimeSums::new(); p];
     let mut streams: Vec<_> = (0..p).map(|_| plan.welch.stream()).collect();
     let mut welch: Vec<WelchSums> = (0..p).map(|_| plan.welch.sums()).collect();
     let mut sig = vec![0.0; block];
@@ -138,10 +136,7 @@ fn realize_in_blocks(
             for (k, v) in sig[..b].iter_mut().enumerate() {
                 *v = s.buf[k * stride + r];
             }
-            for &v in &sig[..b] {
-                sum[r] += v;
-                sq[r] += v * v;
-            }
+            sums[r].push(&sig[..b]);
             plan.welch
                 .push(&mut streams[r], &sig[..b], &mut welch[r], &mut s.welch)?;
             if let Some(v) = verdicts.as_deref_mut() {
@@ -150,7 +145,7 @@ fn realize_in_blocks(
         }
         done += b;
     }
-    finish_blocks(plan, &sum, &sq, &mut streams, welch)
+    finish_blocks(plan, &sums, &mut streams, welch)
 }
 
 /// Realizations `first .. first + LANES` of `seed` on the exact route in lockstep ([`GaussMarkov::lanes`]),
@@ -166,8 +161,7 @@ pub(crate) fn realize_lanes(
 ) -> Result<Vec<Realization>> {
     let (n, p, stride, block) = (plan.n, plan.outputs.len(), plan.stride, plan.block_steps);
     let mut lanes = gm.lanes(seed, first);
-    let mut sum = vec![[-0.0f64; LANES]; p];
-    let mut sq = vec![[-0.0f64; LANES]; p];
+    let mut sums = vec![TimeSumLanes::new(); p];
     let mut streams: Vec<Vec<_>> = (0..LANES)
         .map(|_| (0..p).map(|_| plan.welch.stream()).collect())
         .collect();
@@ -181,12 +175,7 @@ pub(crate) fn realize_lanes(
         let buf = &mut s.lanes[..b * stride];
         lanes.fill(buf);
         for r in 0..p {
-            let (mut s1, mut s2) = (sum[r], sq[r]);
-            for y in buf.iter().skip(r).step_by(stride) {
-                (0..LANES).for_each(|l| s1[l] += y[l]);
-                (0..LANES).for_each(|l| s2[l] += y[l] * y[l]);
-            }
-            (sum[r], sq[r]) = (s1, s2);
+            sums[r].push(buf.iter().skip(r).step_by(stride).copied());
             for l in 0..LANES {
                 for (v, y) in sig[..b].iter_mut().zip(buf.iter().skip(r).step_by(stride)) {
                     *v = y[l];
@@ -202,28 +191,26 @@ pub(crate) fn realize_lanes(
     }
     (0..LANES)
         .map(|l| {
-            let (sum, sq): (Vec<f64>, Vec<f64>) = sum.iter().zip(&sq).map(|(a, b)| (a[l], b[l])).unzip();
-            finish_blocks(plan, &sum, &sq, &mut streams[l], std::mem::take(&mut welch[l]))
+            let sums: Vec<TimeSums> = sums.iter().map(|s| s.lane(l)).collect();
+            finish_blocks(plan, &sums, &mut streams[l], std::mem::take(&mut welch[l]))
         })
         .collect()
 }
 
-/// The realization of running sums `sum`, `sq` (per output) and Welch streams and sums after the last
-/// block: the records' ends fed to Welch, the time averages.
+/// The realization of the time sums (per output) and Welch streams and sums after the last block: the
+/// records' ends fed to Welch, the time averages.
 fn finish_blocks(
     plan: &Plan,
-    sum: &[f64],
-    sq: &[f64],
+    sums: &[TimeSums],
     streams: &mut [crate::estimate::WelchStream],
     mut welch: Vec<WelchSums>,
 ) -> Result<Realization> {
     for (st, ws) in streams.iter_mut().zip(welch.iter_mut()) {
         plan.welch.end_record(st, ws)?;
     }
-    let n = plan.n as f64;
     Ok(Realization {
-        m: sum.iter().map(|v| v / n).collect(),
-        v: sq.iter().map(|v| v / n).collect(),
+        m: sums.iter().map(|s| s.averages().0).collect(),
+        v: sums.iter().map(|s| s.averages().1).collect(),
         welch,
         raw: Vec::new(),
         raw_inputs: Vec::new(),
@@ -248,8 +235,7 @@ fn realize_streamed(
     })?;
     let segments = plan.block_steps.max(1).div_ceil(hop);
     fir.start(rng, fs);
-    let mut sum = vec![-0.0f64; p];
-    let mut sq = vec![-0.0f64; p];
+    let mut sums = vec![TimeSums::new(); p];
     let mut streams: Vec<_> = (0..p).map(|_| plan.welch.stream()).collect();
     let mut welch: Vec<WelchSums> = (0..p).map(|_| plan.welch.sums()).collect();
     let mut block = vec![vec![0.0; segments * hop]; p];
@@ -268,10 +254,7 @@ fn realize_streamed(
             filled += take;
         }
         for r in 0..p {
-            for &v in &block[r][..filled] {
-                sum[r] += v;
-                sq[r] += v * v;
-            }
+            sums[r].push(&block[r][..filled]);
             plan.welch
                 .push(&mut streams[r], &block[r][..filled], &mut welch[r], &mut s.welch)?;
             if let Some(v) = verdicts.as_deref_mut() {
@@ -280,7 +263,7 @@ fn realize_streamed(
         }
         done += filled;
     }
-    finish_blocks(plan, &sum, &sq, &mut streams, welch)
+    finish_blocks(plan, &sums, &mut streams, welch)
 }
 
 /// One realization from `rng` (the stream (seed, i) of realization i); the block-wise routes also feed
@@ -316,17 +299,14 @@ pub(crate) fn realize(
     let mut sig = std::mem::take(&mut s.sig);
     sig.resize(n, 0.0);
     for r in 0..p {
-        // one pass: the copy and both running sums, each in time order from −0.0 as `Iterator::sum` of f64
-        // folds (bit-identical to two sums over the copy; the two chains of additions overlap)
-        let (mut sum, mut sq) = (-0.0f64, -0.0f64);
         for (k, v) in sig.iter_mut().enumerate() {
-            let x = s.buf[k * stride + r];
-            *v = x;
-            sum += x;
-            sq += x * x;
+            *v = s.buf[k * stride + r];
         }
-        out.m.push(sum / n as f64);
-        out.v.push(sq / n as f64);
+        let mut sums = TimeSums::new();
+        sums.push(&sig);
+        let (m, v) = sums.averages();
+        out.m.push(m);
+        out.v.push(v);
         let mut ws = plan.welch.sums();
         plan.welch.accumulate(&sig, &mut ws, &mut s.welch)?;
         out.welch.push(ws);

@@ -47,6 +47,7 @@ mod shaping_lanes;
 pub(crate) mod shard_pipeline;
 pub mod spectral;
 mod summary;
+pub mod time_sums;
 pub mod transfer_grid;
 pub mod verdict_stream;
 pub mod verdicts;
@@ -73,6 +74,7 @@ pub use shaping_lanes::{GaussMarkovLanes, LANE_DRAW_STEPS};
 pub use spectral::{Amplitudes, SpectralGenerator, SpectralScratch};
 pub(crate) use summary::write_band_tables;
 pub use summary::{coverage_cause, covers_word, RunSummary};
+pub use time_sums::{TimeSumLanes, TimeSums, TIME_SUM_WAYS};
 pub use verdicts::{ComfortChannel, FatigueChannel, RainflowSummary, VerdictChannels};
 // the engine and plan of linear runs, for the input synthesis of nonlinear runs (crate::nonlinear), and the
 // finishing of a run's statistics, for the merge of shard files (crate::study)

@@ -73,7 +73,7 @@ use super::verdict_stream::VerdictStream;
 use super::{run_batch_groups, stream, RunInput, RunOptions, RunSummary, LANES};
 use crate::error::Result;
 use crate::response::output_density;
-use crate::store::{CreateOptions, OutputStatistics, RunFile, RunMetadata, RunWriter};
+use crate::store::{CreateOptions, OutputStatistics, Provenance, RunFile, RunMetadata, RunWriter};
 use ndarray::Array2;
 use std::path::Path;
 
@@ -81,6 +81,18 @@ use std::path::Path;
 /// σ_min · (warm-up time) ≥ this (e^{−36} ≈ 2.3·10⁻¹⁶). The spectral route of [`run`] computes the
 /// steady state in the frequency domain and does not need it; time-stepping callers (the benches) do.
 pub const WARMUP_DECAY: f64 = 36.0;
+
+/// Version of the linear routes' generator: how a seed becomes realizations and statistics. Version 2 takes
+/// every realization's time sums in eight partial sums ([`TimeSums`](super::TimeSums)); version 1 (files
+/// that record no version) summed left to right, which differs in the last bits. A seed's statistics are
+/// bit-identical across threads, shards, resume and merge within a version, so a run file of another
+/// version is never resumed or merged with this build (`store::metadata_differences` names the versions).
+pub const GENERATOR_VERSION: u32 = 2;
+
+/// The text of the run file's identifying provenance part [`crate::store::GENERATOR_VERSION`].
+fn version_text() -> String {
+    format!("{GENERATOR_VERSION} (linear routes: every realization's time sums in eight partial sums)")
+}
 
 /// Runs the Monte Carlo batch of `input` and writes the HDF5 file `out` (see the module docs); resumes an
 /// interrupted run of the same subject and options from `<out>.tmp`. `progress(done, total)` is called after
@@ -208,7 +220,12 @@ fn run_metadata(
         accumulators,
         store_raw: opts.store_raw,
         compression: opts.compression,
-        provenance: input.provenance.clone(),
+        provenance: input
+            .provenance
+            .iter()
+            .cloned()
+            .chain([Provenance::identity(crate::store::GENERATOR_VERSION, version_text())])
+            .collect(),
         part: opts.part,
     }
 }
