@@ -615,12 +615,13 @@ impl FirSynthesis {
             h[..t - 1].copy_from_slice(&s.kept);
         }
         for (r, out) in s.out.iter_mut().enumerate() {
-            for (j, y) in s.y.iter_mut().enumerate() {
-                let mut acc = Complex::new(0.0, 0.0);
-                for (x, k) in s.x.iter().zip(&self.spectra) {
-                    acc += x[j] * k[r][j];
+            // y_j = 0 + Σ_g x_g,j·K_g,r,j in generator order, every bin at once per generator (the additions
+            // of a sum per bin, in the same order: the same bits)
+            s.y.fill(Complex::new(0.0, 0.0));
+            for (x, k) in s.x.iter().zip(&self.spectra) {
+                for ((y, a), b) in s.y.iter_mut().zip(x).zip(&k[r]) {
+                    *y += a * b;
                 }
-                *y = acc;
             }
             s.y[0].im = 0.0;
             s.y[f / 2].im = 0.0;
