@@ -392,13 +392,13 @@ fn fill(plan: &Plan, s: &mut Scratch, rng: &mut rand::rngs::Xoshiro256PlusPlus, 
             }
             let half = n / 2;
             for r in 0..p {
-                // output r's coefficients: Σ_g G_{g,r}(ω_j) c_{g,j}, then one inverse FFT
-                for (j, o) in s.fft_out.iter_mut().enumerate() {
-                    let mut acc = Complex::new(0.0, 0.0);
-                    for (gain, sc) in gains.iter().zip(&s.spec) {
-                        acc += gain[r][j] * sc.coefficients()[j];
+                // output r's coefficients: 0 + Σ_g G_{g,r}(ω_j) c_{g,j} in generator order, one generator at a
+                // time over every bin (zipped slices: no indexing per bin), then one inverse FFT
+                s.fft_out.fill(Complex::new(0.0, 0.0));
+                for (gain, sc) in gains.iter().zip(&s.spec) {
+                    for ((o, g), c) in s.fft_out.iter_mut().zip(&gain[r]).zip(sc.coefficients()) {
+                        *o += g * c;
                     }
-                    *o = acc;
                 }
                 s.fft_out[0].im = 0.0;
                 s.fft_out[half].im = 0.0;
