@@ -207,14 +207,18 @@ pub(crate) fn run_batch(
     let resumed = writer.completed_shards().len();
     progress(resumed, n_shards);
     let mut done = resumed;
-    for shard in writer.pending_shards() {
-        let (accs, raw) = run_shard(source, meta, shard, opts)?;
-        let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
-        let raw_views: Vec<_> = raw.iter().map(|a| a.view()).collect();
-        writer.write_shard(shard, &[], &raw_views, &acc_refs)?;
-        done += 1;
-        progress(done, n_shards);
-    }
+    write_while_computing(
+        &writer.pending_shards(),
+        |shard| run_shard(source, meta, meta.shard_range(shard), opts),
+        |shard, (accs, raw)| {
+            let acc_refs: Vec<&[f64]> = accs.iter().map(|a| a.as_slice()).collect();
+            let raw_views: Vec<_> = raw.iter().map(|a| a.view()).collect();
+            writer.write_shard(shard, &[], &raw_views, &acc_refs)?;
+            done += 1;
+            progress(done, n_shards);
+            Ok(())
+        },
+    )?;
     let times = opts.grid.stored_times();
     let fin = finish(
         &|name, b| writer.read_accumulator(name, b),
@@ -226,6 +230,36 @@ pub(crate) fn run_batch(
     write_finished(&mut writer, &fin)?;
     let path = writer.finish()?;
     Ok(summary(path, meta, resumed, fin, notes))
+}
+
+/// Computes `shards` in order with `compute` (which may run in parallel on the current rayon pool) and hands
+/// each to `write` on the calling thread, in order, writing shard k while shard k + 1 is computed by the
+/// pool: the write (HDF5, checksums) and the progress report no longer leave the other threads idle, and the
+/// shards, computed by the same code, have the same bits. The next shard is a job spawned in an
+/// [`rayon::in_place_scope`], so the write and the progress callback run on the calling thread, and the
+/// scope's end waits for that job as rayon waits (a pool thread that calls this helps compute it; a stop
+/// that unwinds from `write` waits for it too): nothing blocks a pool thread outside rayon, which would
+/// deadlock the shard's own parallel loops.
+///
+/// # Errors
+/// The first error of `compute` or `write`, in shard order (a shard computed ahead is then dropped).
+fn write_while_computing<T: Send>(
+    shards: &[usize],
+    compute: impl Fn(usize) -> Result<T> + Sync,
+    mut write: impl FnMut(usize, T) -> Result<()>,
+) -> Result<()> {
+    let mut ready: Option<(usize, T)> = None;
+    for &shard in shards {
+        let mut next = None;
+        let written = rayon::in_place_scope(|scope| {
+            scope.spawn(|_| next = Some(compute(shard)));
+            ready.take().map_or(Ok(()), |(s, data)| write(s, data))
+        });
+        written?;
+        let data = next.unwrap_or_else(|| unreachable!("the scope ran the spawned job"))?;
+        ready = Some((shard, data));
+    }
+    ready.map_or(Ok(()), |(s, data)| write(s, data))
 }
 
 /// Refuses, before anything is allocated or written, a batch whose computing time's lower bound exceeds
@@ -322,14 +356,14 @@ impl ShardSource for McPlan<'_> {
     }
 }
 
-/// One shard: its accumulators (in the layout's order) and, with raw storage, its rows per output.
+/// One shard, the realizations `range`: its accumulators (in the layout's order) and, with raw storage, its
+/// rows per output.
 fn run_shard(
     source: &dyn ShardSource,
     meta: &RunMetadata,
-    shard: usize,
+    range: std::ops::Range<usize>,
     opts: &TransientRunOptions,
 ) -> Result<ShardData> {
-    let range = meta.shard_range(shard);
     let (p, k, ss) = (source.n_outputs(), meta.n_samples, meta.shard_size);
     let rows = range.len();
     let mut series = vec![vec![0.0; 2 * k]; p];
@@ -475,4 +509,79 @@ pub fn read_transient_run(path: &Path) -> Result<(RunFile, crate::store::transie
         reason: "not a transient run (no /transient group)".into(),
     })?;
     Ok((run, series))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::write_while_computing;
+    use crate::error::{Error, Result};
+    use rayon::prelude::*;
+
+    /// A shard's value computed by a parallel loop inside the job (as a transient shard's lanes are): the sum
+    /// of i·shard over 2000 items, worked by hand as shard·(0 + … + 1999) = shard·1 999 000.
+    fn compute(shard: usize) -> Result<u64> {
+        Ok((0..2000u64).into_par_iter().map(|i| i * shard as u64).sum())
+    }
+
+    /// Every shard written once, in order, with its own value: called from a thread outside any pool (the
+    /// global pool computes) and from a thread of pools of 1, 2 and 3 threads (`install`: that thread helps
+    /// compute); the parallel loop inside each shard's job does not deadlock (a pool thread blocked outside
+    /// rayon would hang this test).
+    #[test]
+    fn every_shard_written_in_order_with_its_value() {
+        let shards = [3usize, 0, 7, 1, 9];
+        let want: Vec<(usize, u64)> = shards.iter().map(|&s| (s, s as u64 * 1_999_000)).collect();
+        let run = || {
+            let mut got = Vec::new();
+            write_while_computing(&shards, compute, |s, v| {
+                got.push((s, v));
+                Ok(())
+            })
+            .unwrap();
+            got
+        };
+        assert_eq!(run(), want, "outside any pool");
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            assert_eq!(pool.install(run), want, "inside a pool of {threads} threads");
+        }
+    }
+
+    /// A shard's error comes back after the shards before it are written and stops the run; so does a
+    /// write's error; a panic in the write (a stop requested from a progress callback) unwinds out.
+    #[test]
+    fn errors_in_shard_order_and_a_panic_unwinds() {
+        let failing = |s: usize| {
+            if s == 2 {
+                Err(Error::invalid("shard", s, "fails"))
+            } else {
+                compute(s)
+            }
+        };
+        let mut written = Vec::new();
+        let e = write_while_computing(&[0, 1, 2, 3], failing, |s, _| {
+            written.push(s);
+            Ok(())
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains("fails") && written == [0, 1], "{e}, {written:?}");
+        let mut written = Vec::new();
+        let e = write_while_computing(&[0, 1, 2, 3], compute, |s, _| {
+            written.push(s);
+            if s == 1 {
+                Err(Error::invalid("write", s, "disk full"))
+            } else {
+                Ok(())
+            }
+        })
+        .unwrap_err();
+        assert!(
+            e.to_string().contains("disk full") && written == [0, 1],
+            "{e}, {written:?}"
+        );
+        let unwound = std::panic::catch_unwind(|| {
+            let _ = write_while_computing(&[0, 1, 2], compute, |s, _| if s == 1 { panic!("stop") } else { Ok(()) });
+        });
+        assert!(unwound.is_err());
+    }
 }
