@@ -25,19 +25,13 @@ const EXACT_COLUMNS: [&str; 7] = [
 /// The Monte Carlo columns (with a batch per point; [`mc_row`]'s order).
 const MC_COLUMNS: [&str; 3] = ["mc_sigma", "mc_lower", "mc_upper"];
 
-/// The exact statistics' columns of `rows` rows of one output, from its values: `get(r)` is row r's. The
-/// stored values (mean, variance, λ₂; NaN where a value does not exist) are copied row by row, the derived
-/// ones computed column by column ([`derived_columns`]).
-fn exact_columns(cols: &mut [&mut [f64]], rows: usize, get: impl Fn(usize) -> OutputValues) {
+/// The exact statistics' columns of `rows` rows of one output whose stored values (mean, variance, λ₂; NaN
+/// where a value does not exist) the caller has copied into theirs: the derived ones computed column by
+/// column ([`derived_columns`]).
+fn exact_columns(cols: &mut [&mut [f64]], rows: usize) {
     let [mean, variance, sigma, lower, upper, lambda2, rate] = cols else {
         unreachable!("an output has {} exact columns", EXACT_COLUMNS.len())
     };
-    for r in 0..rows {
-        let v = get(r);
-        mean[r] = v.mean.unwrap_or(f64::NAN);
-        variance[r] = v.variance.unwrap_or(f64::NAN);
-        lambda2[r] = v.lambda2.unwrap_or(f64::NAN);
-    }
     derived_columns(
         (&mean[..rows], &variance[..rows], &lambda2[..rows]),
         [
@@ -47,6 +41,18 @@ fn exact_columns(cols: &mut [&mut [f64]], rows: usize, get: impl Fn(usize) -> Ou
             &mut rate[..rows],
         ],
     );
+}
+
+/// Row r's stored exact values (mean, variance, λ₂; NaN where a value does not exist) into an output's
+/// exact columns ([`EXACT_COLUMNS`] first in `cols`).
+#[inline]
+fn stored_values(cols: &mut [&mut [f64]], r: usize, v: &OutputValues) {
+    let [mean, variance, _, _, _, lambda2, _] = &mut cols[..EXACT_COLUMNS.len()] else {
+        unreachable!("an output has {} exact columns", EXACT_COLUMNS.len())
+    };
+    mean[r] = v.mean.unwrap_or(f64::NAN);
+    variance[r] = v.variance.unwrap_or(f64::NAN);
+    lambda2[r] = v.lambda2.unwrap_or(f64::NAN);
 }
 
 /// σ, M ∓ 3σ and ν₀⁺ of each row from its (mean, variance, λ₂) (NaN for a missing value), column by column
@@ -500,25 +506,31 @@ impl H5Piece<'_> {
         let n_cols = self.numbers.len().checked_div(n_out).unwrap_or(0);
         let (mut numbers, mut method, mut covers) = (self.numbers, self.method, self.covers);
         let n_rows = method.first().map_or(0, |m| m.len());
+        // the failed rows of this piece, from the ascending list, once for every output
+        let mut failed = vec![false; n_rows];
+        let from = errors.partition_point(|e| e.0 < first);
+        for e in errors[from..].iter().take_while(|e| e.0 < first + n_rows) {
+            failed[e.0 - first] = true;
+        }
         for j in 0..n_out {
             let cols = &mut numbers[j * n_cols..(j + 1) * n_cols];
-            let (exact, mc) = cols.split_at_mut(EXACT_COLUMNS.len());
-            exact_columns(exact, n_rows, |r| value(r * n_out + j));
+            // one pass over the rows: each row's values read once, its stored values and codes copied
             for r in 0..n_rows {
                 let v = value(r * n_out + j);
+                stored_values(cols, r, &v);
                 if self.monte_carlo {
-                    for (col, x) in mc.iter_mut().zip(mc_row(&v)) {
+                    for (col, x) in cols[EXACT_COLUMNS.len()..].iter_mut().zip(mc_row(&v)) {
                         col[r] = x;
                     }
                     covers[j][r] = v.mc.map_or(0, |m| u8::from(m.covers));
                 }
-                let failed = errors.binary_search_by_key(&(first + r), |e| e.0).is_ok();
-                method[j][r] = if failed {
+                method[j][r] = if failed[r] {
                     FAILED
                 } else {
                     super::sweep_table::method_code(v.method)
                 };
             }
+            exact_columns(&mut cols[..EXACT_COLUMNS.len()], n_rows);
         }
     }
 }
@@ -560,7 +572,10 @@ mod tests {
         let n = points.len();
         let mut cols = vec![vec![f64::INFINITY; n]; EXACT_COLUMNS.len()];
         let mut refs: Vec<&mut [f64]> = cols.iter_mut().map(|c| &mut c[..]).collect();
-        exact_columns(&mut refs, n, |r| OutputValues::from_point(&points[r]));
+        for (r, p) in points.iter().enumerate() {
+            stored_values(&mut refs, r, &OutputValues::from_point(p));
+        }
+        exact_columns(&mut refs, n);
         let same = |a: f64, b: f64| a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan());
         for (r, p) in points.iter().enumerate() {
             let (lo, hi) = p.bounds(3.0).unzip();
