@@ -112,9 +112,9 @@ impl Scratch {
 }
 
 /// One realization of the exact route in blocks of `plan.block_steps` steps, with memory O(block): the
-/// state is carried from block to block, the time sums are fed in time order ([`TimeSums`]: the same bits for any blocks) and the Welch
-/// segments are fed as they fill, so the results are bit-identical to a whole-record realization (same
-/// draws from `rng`, same additions in the same order).
+/// state is carried from block to block, the time sums are fed in time order ([`TimeSums`]: the same bits
+/// for any blocks) and the Welch segments are fed as they fill, so the results are bit-identical to a
+/// whole-record realization (same draws from `rng`, same additions in the same order).
 fn realize_in_blocks(
     plan: &Plan,
     gm: &GaussMarkov,

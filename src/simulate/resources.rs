@@ -40,7 +40,7 @@ pub fn memory_bytes(n: usize, p: usize, g: usize, opts: &RunOptions, threads: us
 /// ```text
 /// per thread  17·n·8·L (states and 16 steps of normals) + b·q·8·(1 + L) (block, alone and in lanes)
 ///             + b·8 (one row) + L·p·(2M + B)·8 (Welch streams and sums) + 4M·8 (Welch scratch)
-///             + 6·8·L (running sums)
+///             + 2·8·8·L·p (the time sums of the lanes' outputs, eight partial sums each)
 /// shared      (2n² + q·n)·8 (transition, noise factor, output matrix) + s·p·(B + 2)·8 (the shard's results)
 /// bytes       P·per thread + shared
 /// ```
@@ -73,7 +73,7 @@ pub fn exact_block_memory_bytes(
         + b * F64
         + l * p * (2 * m + bins) * F64
         + 4 * m * F64
-        + 6 * F64 * l;
+        + 2 * super::TIME_SUM_WAYS as u128 * F64 * l * p;
     let shared = (2 * nx * nx + q * nx) * F64 + s * p * (bins + 2) * F64;
     per_thread * threads as u128 + shared
 }

@@ -13,8 +13,9 @@
 //! [`LANES`](super::LANES) realizations stepped side by side.
 //!
 //! Eight chains instead of one: a single running sum is a chain of N dependent additions (3–4 cycles each
-//! on current x86 processors), which made the time sums of a 2¹⁶-sample realization cost more than its
-//! inverse FFT's share of arithmetic; eight independent chains take one vector addition per eight samples.
+//! on current x86 processors), ≈ 15 % of a 2¹⁶-sample realization of the one-FFT route; eight independent
+//! chains are added a vector at a time (one 512-bit addition per eight samples and sum, four 128-bit ones
+//! on baseline x86-64), without waiting for each other.
 //! The rounding error is also smaller: at most about (N/8 + 3)·ε·Σ|y| instead of N·ε·Σ|y|
 //! (Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed., 2002, §4.2, eq. 4.4 for a recursive
 //! sum; the tree adds log₂ 8 = 3 levels).
@@ -229,7 +230,8 @@ mod tests {
         for (l, y) in records.iter().enumerate() {
             let mut alone = TimeSums::new();
             alone.push(y);
-            assert_eq!(lanes.lane(l), alone, "lane {l}");
+            let bits = |s: TimeSums| (s.s1.map(f64::to_bits), s.s2.map(f64::to_bits), s.count);
+            assert_eq!(bits(lanes.lane(l)), bits(alone), "lane {l}");
         }
     }
 

@@ -245,8 +245,8 @@ fn run_file_read_back_by_crate_and_h5py() {
     assert_eq!(stats, s.outputs);
     for o in &s.outputs {
         let var = stat(o, "variance");
-        // the time-average variance of the stored raw rows is the MC variance estimate (same sums; the
-        // order of summation is the same, so only the final division may differ in the last bit)
+        // the time-average variance of the stored raw rows is the MC variance estimate (the same samples;
+        // summed here left to right, by the run in eight partial sums: equal to rounding)
         if o.output == "y" {
             let v: f64 = raw
                 .rows()
