@@ -393,12 +393,11 @@ fn fill(plan: &Plan, s: &mut Scratch, rng: &mut rand::rngs::Xoshiro256PlusPlus, 
             let half = n / 2;
             for r in 0..p {
                 // output r's coefficients: 0 + Σ_g G_{g,r}(ω_j) c_{g,j} in generator order, one generator at a
-                // time over every bin (zipped slices: no indexing per bin), then one inverse FFT
+                // time over every bin (compiled for the widest instruction set, the same bits), then one
+                // inverse FFT
                 s.fft_out.fill(Complex::new(0.0, 0.0));
                 for (gain, sc) in gains.iter().zip(&s.spec) {
-                    for ((o, g), c) in s.fft_out.iter_mut().zip(&gain[r]).zip(sc.coefficients()) {
-                        *o += g * c;
-                    }
+                    crate::linalg::vmath::complex_mul_add(&mut s.fft_out, &gain[r], sc.coefficients());
                 }
                 s.fft_out[0].im = 0.0;
                 s.fft_out[half].im = 0.0;

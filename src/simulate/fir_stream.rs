@@ -615,13 +615,11 @@ impl FirSynthesis {
             h[..t - 1].copy_from_slice(&s.kept);
         }
         for (r, out) in s.out.iter_mut().enumerate() {
-            // y_j = 0 + Σ_g x_g,j·K_g,r,j in generator order, every bin at once per generator (the additions
-            // of a sum per bin, in the same order: the same bits)
+            // y_j = 0 + Σ_g x_g,j·K_g,r,j in generator order, every bin at once per generator, compiled for the
+            // widest instruction set (the additions of a sum per bin, in the same order: the same bits)
             s.y.fill(Complex::new(0.0, 0.0));
             for (x, k) in s.x.iter().zip(&self.spectra) {
-                for ((y, a), b) in s.y.iter_mut().zip(x).zip(&k[r]) {
-                    *y += a * b;
-                }
+                crate::linalg::vmath::complex_mul_add(&mut s.y, x, &k[r]);
             }
             s.y[0].im = 0.0;
             s.y[f / 2].im = 0.0;

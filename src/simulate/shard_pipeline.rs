@@ -11,6 +11,11 @@
 //! callback (a panic that unwinds, as Ctrl-C in the Python package) waits only for the groups being
 //! computed, and at most [`LOOKAHEAD`] shards of results are held. A realization's result depends only on
 //! its own random stream, so the file is the same bit for bit.
+//!
+//! A job must not run rayon parallel loops inside: the threads wait on a condition variable when the
+//! lookahead is full, and a thread that has stolen part of another job's parallel loop would then block
+//! inside that loop's join (a deadlock seen with whole transient shards as jobs; those use
+//! `transient::monte_carlo::write_while_computing`, which blocks no pool thread).
 
 use crate::error::{Error, Result};
 use std::sync::{Condvar, Mutex, MutexGuard};
