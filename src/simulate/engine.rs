@@ -395,8 +395,14 @@ fn fill(plan: &Plan, s: &mut Scratch, rng: &mut rand::rngs::Xoshiro256PlusPlus, 
                 // output r's coefficients: 0 + Σ_g G_{g,r}(ω_j) c_{g,j} in generator order, one generator at a
                 // time over every bin (compiled for the widest instruction set, the same bits), then one
                 // inverse FFT
-                s.fft_out.fill(Complex::new(0.0, 0.0));
-                for (gain, sc) in gains.iter().zip(&s.spec) {
+                let mut terms = gains.iter().zip(&s.spec);
+                match terms.next() {
+                    Some((gain, sc)) => {
+                        crate::linalg::vmath::complex_mul_from_zero(&mut s.fft_out, &gain[r], sc.coefficients())
+                    }
+                    None => s.fft_out.fill(Complex::new(0.0, 0.0)),
+                }
+                for (gain, sc) in terms {
                     crate::linalg::vmath::complex_mul_add(&mut s.fft_out, &gain[r], sc.coefficients());
                 }
                 s.fft_out[0].im = 0.0;

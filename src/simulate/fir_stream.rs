@@ -617,8 +617,12 @@ impl FirSynthesis {
         for (r, out) in s.out.iter_mut().enumerate() {
             // y_j = 0 + Σ_g x_g,j·K_g,r,j in generator order, every bin at once per generator, compiled for the
             // widest instruction set (the additions of a sum per bin, in the same order: the same bits)
-            s.y.fill(Complex::new(0.0, 0.0));
-            for (x, k) in s.x.iter().zip(&self.spectra) {
+            let mut terms = s.x.iter().zip(&self.spectra);
+            match terms.next() {
+                Some((x, k)) => crate::linalg::vmath::complex_mul_from_zero(&mut s.y, x, &k[r]),
+                None => s.y.fill(Complex::new(0.0, 0.0)),
+            }
+            for (x, k) in terms {
                 crate::linalg::vmath::complex_mul_add(&mut s.y, x, &k[r]);
             }
             s.y[0].im = 0.0;
