@@ -336,6 +336,14 @@ fn main() {
         let mut normals = vec![[0.0; stochvib::simulate::LANES]; stochvib::simulate::LANE_DRAW_STEPS * nz];
         let r = best(mc_reps, 1, || exact_floor(&mut normals, nz * mc_n, mc_real));
         put_floor("mc_exact_floor_1t", r);
+        // the streamed spectral route (FIR overlap-save of the SDOF's impulse response + the time sums) and
+        // its floor: its normals and one forward and one inverse real FFT per segment, 1 thread
+        let mut streamed = McStreamed::new(mc_n);
+        let mut streamed_floor = StreamedFloor::new(&streamed);
+        let r = best(mc_reps, 1, || streamed.run(mc_real));
+        put_floor("mc_streamed_1t", r);
+        let r = best(mc_reps, 1, || streamed_floor.run(mc_real));
+        put_floor("mc_streamed_floor_1t", r);
         mc_info.insert("analytic_variance".into(), json!(analytic));
         mc_info.insert("input_grid_variance".into(), json!(pipe.generator.grid_variance()));
         mc_info.insert("warmup_periods".into(), json!(pipe.warmup));

@@ -12,12 +12,10 @@
 #[path = "../benches/common/mod.rs"]
 mod common;
 
-use common::{exact_floor, McExact, McSpectral, OneFftFloor, MC_SEED};
-use realfft::num_complex::Complex;
-use realfft::RealFftPlanner;
+use common::{exact_floor, McExact, McSpectral, McStreamed, OneFftFloor, StreamedFloor};
 use std::hint::black_box;
 use std::time::Instant;
-use stochvib::simulate::{fill_standard_normal, stream, FirSynthesis, TimeSums, LANES, LANE_DRAW_STEPS};
+use stochvib::simulate::{LANES, LANE_DRAW_STEPS};
 
 /// CPU time of this process (user + sys), s.
 fn cpu_seconds() -> f64 {
@@ -29,20 +27,6 @@ fn cpu_seconds() -> f64 {
 
 /// One job: its name and a closure doing it once (returning a check value).
 type Job<'a> = (&'static str, Box<dyn FnMut() -> f64 + 'a>);
-
-/// The SDOF's impulse response h(kΔt) = e^{−ζωt} sin(ω_d t)/ω_d (ω = 10 rad/s, ζ = 0.05, Δt = 0.01 s) up
-/// to where its envelope falls below 10⁻⁴ of its start: the streamed route's kernel.
-fn sdof_kernel() -> Vec<f64> {
-    let (w, z, dt) = (10.0f64, 0.05f64, 0.01f64);
-    let wd = w * (1.0 - z * z).sqrt();
-    let taps = ((1e4f64).ln() / (z * w) / dt).ceil() as usize;
-    (0..taps)
-        .map(|k| {
-            let t = k as f64 * dt;
-            (-z * w * t).exp() * (wd * t).sin() / wd * dt.sqrt()
-        })
-        .collect()
-}
 
 fn arg(args: &[String], name: &str, default: usize) -> usize {
     args.windows(2)
@@ -61,19 +45,14 @@ fn main() {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
     let pipe = McSpectral::new(n);
     let exact = McExact::new(n);
-    let fir = FirSynthesis::from_taps(vec![vec![sdof_kernel()]]).unwrap();
-    let (f, hop, taps) = (fir.fft_len(), fir.hop(), fir.taps());
+    let mut streamed = McStreamed::new(n);
+    let mut streamed_floor = StreamedFloor::new(&streamed);
+    let (f, hop, taps) = (streamed.fir.fft_len(), streamed.fir.hop(), streamed.fir.taps());
 
     let mut floor = OneFftFloor::new(n);
     // the exact route's floor draws as the route does: LANE_DRAW_STEPS steps' normals of every lane at a time
     let nz = exact.gm.n_states();
     let mut exact_normals = vec![[0.0; LANES]; LANE_DRAW_STEPS * nz];
-    let mut planner = RealFftPlanner::<f64>::new();
-    let (fwd, inv) = (planner.plan_fft_forward(f), planner.plan_fft_inverse(f));
-    let (mut buf, mut spec, mut back) = (fwd.make_input_vec(), fwd.make_output_vec(), inv.make_output_vec());
-    let mut fscr = vec![Complex::new(0.0, 0.0); fwd.get_scratch_len().max(inv.get_scratch_len())];
-    let mut fs = fir.scratch();
-    let segments = n.div_ceil(hop);
 
     let mut jobs: Vec<Job> = vec![
         (
@@ -91,40 +70,11 @@ fn main() {
         ),
         (
             "streamed spectral route (FIR overlap-save + Σy, Σy²)",
-            Box::new(|| {
-                let mut acc = 0.0;
-                for i in 0..r as u64 {
-                    let mut rng = stream(MC_SEED, i);
-                    fir.start(&mut rng, &mut fs);
-                    let mut sums = TimeSums::new();
-                    for _ in 0..segments {
-                        fir.next_segment(&mut rng, &mut fs).unwrap();
-                        sums.push(fir.output(&fs, 0));
-                    }
-                    let (s1, s2) = sums.totals();
-                    acc += s2 - s1 * s1 / (segments * hop) as f64;
-                }
-                acc
-            }),
+            Box::new(|| streamed.run(r)),
         ),
         (
             "streamed floor: its normals + forward and inverse real FFT per segment",
-            Box::new(|| {
-                let mut acc = 0.0;
-                for i in 0..r as u64 {
-                    let mut rng = stream(MC_SEED, i);
-                    fill_standard_normal(&mut rng, &mut buf[..taps - 1]);
-                    for _ in 0..segments {
-                        fill_standard_normal(&mut rng, &mut buf[taps - 1..]);
-                        fwd.process_with_scratch(&mut buf, &mut spec, &mut fscr).unwrap();
-                        spec[0].im = 0.0;
-                        spec[f / 2].im = 0.0;
-                        inv.process_with_scratch(&mut spec, &mut back, &mut fscr).unwrap();
-                        acc += back[taps];
-                    }
-                }
-                acc
-            }),
+            Box::new(|| streamed_floor.run(r)),
         ),
     ];
     let mut best = vec![(f64::INFINITY, f64::INFINITY, 0.0); jobs.len()];

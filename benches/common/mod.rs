@@ -660,3 +660,117 @@ pub fn exact_floor(normals: &mut [[f64; stochvib::simulate::LANES]], draws: usiz
     }
     acc
 }
+
+/// The SDOF's impulse response h(kΔt)·√Δt, h(t) = e^{−ζωt} sin(ω_d t)/ω_d (ω = 10 rad/s, ζ = 0.05, Δt =
+/// [`MC_DT`]) up to where its envelope falls below 10⁻⁴ of its start: the streamed route's kernel.
+pub fn sdof_kernel() -> Vec<f64> {
+    let (w, z, dt) = (10.0f64, 0.05f64, MC_DT);
+    let wd = w * (1.0 - z * z).sqrt();
+    let taps = ((1e4f64).ln() / (z * w) / dt).ceil() as usize;
+    (0..taps)
+        .map(|k| {
+            let t = k as f64 * dt;
+            (-z * w * t).exp() * (wd * t).sin() / wd * dt.sqrt()
+        })
+        .collect()
+}
+
+/// The streamed spectral route's job: per realization of [`MC_SEED`], [`sdof_kernel`] driven by white noise
+/// through `simulate::FirSynthesis` (overlap-save, one forward and one inverse real FFT per segment), whole
+/// segments covering `n` samples, and the time sums Σy, Σy² of every segment's output (`TimeSums`); one
+/// thread.
+pub struct McStreamed {
+    /// The synthesis of the one kernel.
+    pub fir: stochvib::simulate::FirSynthesis,
+    scratch: stochvib::simulate::FirScratch,
+    segments: usize,
+}
+
+impl McStreamed {
+    /// The job for realizations of (at least) `n` samples.
+    pub fn new(n: usize) -> McStreamed {
+        let fir = stochvib::simulate::FirSynthesis::from_taps(vec![vec![sdof_kernel()]]).expect("a valid kernel");
+        McStreamed {
+            scratch: fir.scratch(),
+            segments: n.div_ceil(fir.hop()),
+            fir,
+        }
+    }
+
+    /// Realizations 0..r; returns a check value (the sum of their Σy² − (Σy)²/N).
+    pub fn run(&mut self, r: usize) -> f64 {
+        use stochvib::simulate::{stream, TimeSums};
+        let mut acc = 0.0;
+        for i in 0..r as u64 {
+            let mut rng = stream(MC_SEED, i);
+            self.fir.start(&mut rng, &mut self.scratch);
+            let mut sums = TimeSums::new();
+            for _ in 0..self.segments {
+                self.fir
+                    .next_segment(&mut rng, &mut self.scratch)
+                    .expect("its own scratch");
+                sums.push(self.fir.output(&self.scratch, 0));
+            }
+            let (s1, s2) = sums.totals();
+            acc += s2 - s1 * s1 / (self.segments * self.fir.hop()) as f64;
+        }
+        acc
+    }
+}
+
+/// The streamed route's floor: per realization of [`MC_SEED`], the normals [`McStreamed`] draws (taps − 1
+/// to start, then one hop per segment) and one forward and one inverse real FFT of the segment length per
+/// segment; one thread.
+pub struct StreamedFloor {
+    fwd: Arc<dyn realfft::RealToComplex<f64>>,
+    inv: Arc<dyn realfft::ComplexToReal<f64>>,
+    buf: Vec<f64>,
+    spec: Vec<realfft::num_complex::Complex<f64>>,
+    back: Vec<f64>,
+    scratch: Vec<realfft::num_complex::Complex<f64>>,
+    taps: usize,
+    segments: usize,
+}
+
+impl StreamedFloor {
+    /// The floor of `job`.
+    pub fn new(job: &McStreamed) -> StreamedFloor {
+        let f = job.fir.fft_len();
+        let mut planner = realfft::RealFftPlanner::<f64>::new();
+        let (fwd, inv) = (planner.plan_fft_forward(f), planner.plan_fft_inverse(f));
+        StreamedFloor {
+            buf: fwd.make_input_vec(),
+            spec: fwd.make_output_vec(),
+            back: inv.make_output_vec(),
+            scratch: vec![Default::default(); fwd.get_scratch_len().max(inv.get_scratch_len())],
+            taps: job.fir.taps(),
+            segments: job.segments,
+            fwd,
+            inv,
+        }
+    }
+
+    /// Realizations 0..r; returns a check value.
+    pub fn run(&mut self, r: usize) -> f64 {
+        use stochvib::simulate::{fill_standard_normal, stream};
+        let (t, f) = (self.taps, self.buf.len());
+        let mut acc = 0.0;
+        for i in 0..r as u64 {
+            let mut rng = stream(MC_SEED, i);
+            fill_standard_normal(&mut rng, &mut self.buf[..t - 1]);
+            for _ in 0..self.segments {
+                fill_standard_normal(&mut rng, &mut self.buf[t - 1..]);
+                self.fwd
+                    .process_with_scratch(&mut self.buf, &mut self.spec, &mut self.scratch)
+                    .unwrap();
+                self.spec[0].im = 0.0;
+                self.spec[f / 2].im = 0.0;
+                self.inv
+                    .process_with_scratch(&mut self.spec, &mut self.back, &mut self.scratch)
+                    .unwrap();
+                acc += self.back[t];
+            }
+        }
+        acc
+    }
+}
