@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The Monte Carlo routes against their floors (`examples/mc_floor`), over several processes. One process
 # times every job in alternating rounds and keeps each job's best round; but on this kind of machine a job's
-# best differs between processes by up to 25 % (the same binary, one mode per process: where its buffers land
-# in the physically indexed caches), which moves a route / floor ratio by more than what is being measured.
+# best differs between processes by up to 30 % (the same binary, one mode per process: most likely where its
+# buffers land in the physically indexed caches), which moves a route / floor ratio by more than what is being measured.
 # So: P processes one after the other, and per job the best and the median of the processes' bests; the
 # ratios from the bests (each side at its best placement) and from the medians.
 #
@@ -16,6 +16,7 @@ root="$(cd "$here/../.." && pwd)"
 cd "$root"
 procs="${P:-7}"
 rounds="${ROUNDS:-5}"
+case "$procs$rounds" in *[!0-9]*) echo "mc_floor.sh: P and ROUNDS are positive integers (P=$procs ROUNDS=$rounds)" >&2; exit 2 ;; esac
 bin="${BIN:-}"
 if [ -z "$bin" ]; then
     cargo build --locked --release --quiet --features campaigns --example mc_floor

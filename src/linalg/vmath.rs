@@ -222,7 +222,8 @@ pub fn complex_mul_add(y: &mut [Complex<f64>], a: &[Complex<f64>], b: &[Complex<
 /// `y[i] = 0 + a[i]·b[i]` (complex) for i < the shortest length: the first term of a sum begun at zero,
 /// with the bits [`complex_mul_add`] gives on a zeroed `y` (each part of the product added to +0.0, which
 /// turns a −0.0 into +0.0), in one pass instead of two; compiled for the widest instruction set of this
-/// CPU.
+/// CPU. Where `a` or `b` is shorter than `y`, the rest of `y` is left as it was (not zeroed): callers pass
+/// operands as long as `y`.
 pub fn complex_mul_from_zero(y: &mut [Complex<f64>], a: &[Complex<f64>], b: &[Complex<f64>]) {
     struct MulFromZero<'a>(&'a mut [Complex<f64>], &'a [Complex<f64>], &'a [Complex<f64>]);
     impl Task for MulFromZero<'_> {
@@ -421,7 +422,8 @@ mod tests {
     /// written with `Complex` arithmetic (compiled for the baseline here), over 4099 elements of magnitudes
     /// 10⁻³⁰⁸…10³⁰⁰ and signs mixed, with zeros of both signs, subnormals, infinities and NaN among them, in
     /// three rounds (the accumulator reused); a shorter operand bounds the elements touched. NaN results
-    /// count as equal whatever their payloads.
+    /// count as equal whatever their payloads. `complex_mul_from_zero` over the same operands (one product
+    /// of −0.0 among them) gives the bits of `complex_mul_add` on a zeroed accumulator.
     #[test]
     fn complex_mul_add_gives_the_bits_of_the_complex_loop() {
         use rand::{RngExt, SeedableRng};
