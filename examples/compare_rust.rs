@@ -72,6 +72,25 @@ fn main() {
         jobs.insert(key.to_string(), json!({"seconds": t, "n": n, "check": check}));
     };
 
+    // `--only floors`: the three Monte Carlo routes and their floors alone, in alternating rounds (run.sh runs
+    // several such processes: a job's best differs between processes more than between rounds)
+    if args.windows(2).any(|w| w[0] == "--only" && w[1] == "floors") {
+        let (r, n) = if smoke { (4, 1 << 12) } else { (200, MC_N) };
+        let rounds = if smoke { 1 } else { 5 };
+        let timings = floor_rounds(r, n, rounds);
+        let jobs: Map<String, Value> = timings
+            .iter()
+            .map(|t| {
+                let v = json!({"name": t.name, "cpu_seconds": t.cpu_s, "wall_seconds": t.wall_s, "check": t.check});
+                (t.key.to_string(), v)
+            })
+            .collect();
+        let doc =
+            json!({"side": "rust", "realizations": r, "samples": n, "rounds": rounds, "jobs": Value::Object(jobs)});
+        println!("{}", serde_json::to_string_pretty(&doc).unwrap());
+        return;
+    }
+
     // `--only h5`: the HDF5 write and chain jobs alone (to time them, and the process's CPU, by themselves)
     if args.windows(2).any(|w| w[0] == "--only" && w[1] == "h5") {
         let jobs: Map<String, Value> = hdf5_and_chain_jobs(reps, smoke).into_iter().collect();
@@ -336,14 +355,6 @@ fn main() {
         let mut normals = vec![[0.0; stochvib::simulate::LANES]; stochvib::simulate::LANE_DRAW_STEPS * nz];
         let r = best(mc_reps, 1, || exact_floor(&mut normals, nz * mc_n, mc_real));
         put_floor("mc_exact_floor_1t", r);
-        // the streamed spectral route (FIR overlap-save of the SDOF's impulse response + the time sums) and
-        // its floor: its normals and one forward and one inverse real FFT per segment, 1 thread
-        let mut streamed = McStreamed::new(mc_n);
-        let mut streamed_floor = StreamedFloor::new(&streamed);
-        let r = best(mc_reps, 1, || streamed.run(mc_real));
-        put_floor("mc_streamed_1t", r);
-        let r = best(mc_reps, 1, || streamed_floor.run(mc_real));
-        put_floor("mc_streamed_floor_1t", r);
         mc_info.insert("analytic_variance".into(), json!(analytic));
         mc_info.insert("input_grid_variance".into(), json!(pipe.generator.grid_variance()));
         mc_info.insert("warmup_periods".into(), json!(pipe.warmup));

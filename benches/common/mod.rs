@@ -774,3 +774,100 @@ impl StreamedFloor {
         acc
     }
 }
+
+/// CPU time of this process (user + sys), s.
+pub fn cpu_seconds() -> f64 {
+    let mut ts = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: a valid pointer to a timespec; CLOCK_PROCESS_CPUTIME_ID exists on Linux.
+    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// One job of [`floor_rounds`]: its key and name, its best CPU and wall time over the rounds (s), its last
+/// check value.
+pub struct FloorTiming {
+    /// A short key (`mc_pipeline_fft`, `mc_floor`, `mc_exact`, `mc_exact_floor`, `mc_streamed`,
+    /// `mc_streamed_floor`).
+    pub key: &'static str,
+    /// What the job does.
+    pub name: &'static str,
+    /// The least CPU time of this process over the rounds, s.
+    pub cpu_s: f64,
+    /// The least wall time over the rounds, s.
+    pub wall_s: f64,
+    /// The job's check value.
+    pub check: f64,
+}
+
+/// One job: key, name and a closure doing it once (returning a check value).
+type FloorJob<'a> = (&'static str, &'static str, Box<dyn FnMut() -> f64 + 'a>);
+
+/// The three Monte Carlo routes, each followed by its floor — the one-FFT route ([`McSpectral::batch`]) and
+/// [`OneFftFloor`], the exact route ([`McExact::batch`]) and [`exact_floor`] (drawn as the route draws), the
+/// streamed route ([`McStreamed`]) and [`StreamedFloor`] — on `r` realizations of `n` samples, one thread,
+/// in `rounds` alternating rounds (a change of load hits both sides of a ratio alike); each job's best round.
+pub fn floor_rounds(r: usize, n: usize, rounds: usize) -> Vec<FloorTiming> {
+    use stochvib::simulate::{LANES, LANE_DRAW_STEPS};
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a pool of one thread");
+    let pipe = McSpectral::new(n);
+    let exact = McExact::new(n);
+    let mut streamed = McStreamed::new(n);
+    let mut streamed_floor = StreamedFloor::new(&streamed);
+    let mut floor = OneFftFloor::new(n);
+    let nz = exact.gm.n_states();
+    let mut exact_normals = vec![[0.0; LANES]; LANE_DRAW_STEPS * nz];
+    let mut jobs: Vec<FloorJob> = vec![
+        (
+            "mc_pipeline_fft",
+            "one FFT route",
+            Box::new(|| pool.install(|| pipe.batch(r, true)).var.estimate),
+        ),
+        (
+            "mc_floor",
+            "one FFT floor: N + 2 normals + 1 inverse real FFT",
+            Box::new(|| floor.run(r)),
+        ),
+        (
+            "mc_exact",
+            "exact route",
+            Box::new(|| pool.install(|| exact.batch(r)).var.estimate),
+        ),
+        (
+            "mc_exact_floor",
+            "exact floor: its normals (8 streams side by side)",
+            Box::new(|| exact_floor(&mut exact_normals, nz * n, r)),
+        ),
+        (
+            "mc_streamed",
+            "streamed spectral route (FIR overlap-save + Σy, Σy²)",
+            Box::new(|| streamed.run(r)),
+        ),
+        (
+            "mc_streamed_floor",
+            "streamed floor: its normals + forward and inverse real FFT per segment",
+            Box::new(|| streamed_floor.run(r)),
+        ),
+    ];
+    let mut best = vec![(f64::INFINITY, f64::INFINITY, 0.0); jobs.len()];
+    for _ in 0..rounds {
+        for (b, (_, _, job)) in best.iter_mut().zip(&mut jobs) {
+            let (c0, w0) = (cpu_seconds(), std::time::Instant::now());
+            let check = std::hint::black_box(job());
+            let (c, w) = (cpu_seconds() - c0, w0.elapsed().as_secs_f64());
+            *b = (b.0.min(c), b.1.min(w), check);
+        }
+    }
+    jobs.iter()
+        .zip(best)
+        .map(|((key, name, _), (cpu_s, wall_s, check))| FloorTiming {
+            key,
+            name,
+            cpu_s,
+            wall_s,
+            check,
+        })
+        .collect()
+}

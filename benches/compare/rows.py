@@ -3,6 +3,7 @@
 
     python3 benches/compare/rows.py nonlinear DIR  > rows-nonlinear.json   # nonlinear.sh's OUT directory
     python3 benches/compare/rows.py records FILE   > rows-records.json     # records.py run's stdout
+    python3 benches/compare/rows.py floors DIR     > rows-floors.json      # DIR/floors-*.json: one per process
 
 Each row: job, size, ours_s, peer, peer_s, cmd (compare.py summary adds the machine state and the ratio)."""
 import json
@@ -23,6 +24,31 @@ def nonlinear(d):
     ]
 
 
+def floors(d):
+    """The Monte Carlo routes against their floors over P processes of `compare_rust --only floors` (each the
+    best of its alternating rounds; a job's best differs between processes by up to 30 %, so one process is
+    not a measurement): per route the best over the processes against the floor's best, and the medians."""
+    import glob
+    import statistics
+    runs = [json.load(open(f)) for f in sorted(glob.glob(f"{d}/floors-*.json"))]
+    if not runs:
+        return []
+    size = f"{runs[0]['realizations']} x {runs[0]['samples']}, {len(runs)} processes"
+    cmd = "`compare_rust --only floors` in P processes (run.sh; `mc_floor.sh` per job)"
+    rows = []
+    for route, floor, job in [("mc_pipeline_fft", "mc_floor", "MC one FFT / its floor (normals + 1 irfft)"),
+                              ("mc_exact", "mc_exact_floor", "MC exact route / its floor (its normals)"),
+                              ("mc_streamed", "mc_streamed_floor",
+                               "MC streamed route / its floor (normals + FFT pair per segment)")]:
+        t = [r["jobs"][route]["cpu_seconds"] for r in runs]
+        f = [r["jobs"][floor]["cpu_seconds"] for r in runs]
+        rows.append(dict(job=f"{job}, best of the processes", size=size, ours_s=min(t),
+                         peer="Rust floor, best of the same processes", peer_s=min(f), cmd=cmd))
+        rows.append(dict(job=f"{job}, median of the processes", size=size, ours_s=statistics.median(t),
+                         peer="Rust floor, median of the same processes", peer_s=statistics.median(f), cmd=cmd))
+    return rows
+
+
 def records(path):
     rows = []
     for r in json.load(open(path)):
@@ -40,4 +66,4 @@ def records(path):
 
 if __name__ == "__main__":
     kind, arg = sys.argv[1], sys.argv[2]
-    print(json.dumps({"nonlinear": nonlinear, "records": records}[kind](arg), indent=1))
+    print(json.dumps({"nonlinear": nonlinear, "records": records, "floors": floors}[kind](arg), indent=1))

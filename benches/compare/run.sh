@@ -84,6 +84,16 @@ env -u GLIBC_TUNABLES "$bin" "${rust_args[@]}" >"$out/rust.json"
 env -u GLIBC_TUNABLES python3 "$here/compare.py" run "${py_args[@]}" >"$out/python.json"
 python3 "$here/compare.py" table "$out/rust.json" "$out/python.json" >"$out/details.md"
 
+# the Monte Carlo routes against their floors in several processes: a job's best time differs between
+# processes (by up to 30 % on the 2-core AMD EPYC VM) more than between the rounds of one process
+floor_procs=$([ "$smoke" = 1 ] && echo 2 || echo 7)
+echo "run.sh: Monte Carlo routes against their floors, $floor_procs processes" >&2
+state "as found" floors
+for i in $(seq 1 "$floor_procs"); do
+    env -u GLIBC_TUNABLES "$bin" --only floors "${rust_args[@]}" >"$out/floors-$i.json" 2>/dev/null
+done
+python3 "$here/rows.py" floors "$out" >"$out/rows-floors.json"
+
 # the densities take microseconds: a load that changes between the Rust and the Python phase above would
 # decide their ratio, so they are also run in alternating rounds (Rust, numpy, Rust, ...), median per side
 rounds=$([ "$smoke" = 1 ] && echo 1 || echo 5)
@@ -174,7 +184,7 @@ cat "$out/results.md"
 if [ "$smoke" = 1 ]; then
     # every row of the table present, every time a number
     rows=$(grep -c '^| ' "$out/table.md")
-    for h in fatigue nonlinear transient optimize records; do
+    for h in floors fatigue nonlinear transient optimize records; do
         if ! grep -q '"job"' "$out/rows-$h.json"; then
             echo "run.sh --smoke: the $h harness gave no row (see $out/$h.txt)" >&2
             exit 1
