@@ -349,12 +349,7 @@ fn main() {
         let mut floor = OneFftFloor::new(mc_n);
         let r = best(mc_reps, 1, || floor.run(mc_real));
         put_floor("mc_floor_1t", r);
-        // the exact route's floor: its normals alone (one per state and step, as GaussMarkov::advance draws
-        // them), 8 streams side by side as the route draws them (LANE_DRAW_STEPS steps at a time), 1 thread
-        let nz = exact.gm.n_states();
-        let mut normals = vec![[0.0; stochvib::simulate::LANES]; stochvib::simulate::LANE_DRAW_STEPS * nz];
-        let r = best(mc_reps, 1, || exact_floor(&mut normals, nz * mc_n, mc_real));
-        put_floor("mc_exact_floor_1t", r);
+        // (the routes against their floors: `--only floors`, in several processes)
         mc_info.insert("analytic_variance".into(), json!(analytic));
         mc_info.insert("input_grid_variance".into(), json!(pipe.generator.grid_variance()));
         mc_info.insert("warmup_periods".into(), json!(pipe.warmup));
