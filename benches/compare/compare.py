@@ -262,9 +262,7 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
             child = subprocess.Popen(wrap + args + extra, env=env, stderr=subprocess.PIPE,
                                      stdout=subprocess.PIPE if pipe else subprocess.DEVNULL)
             if pipe:  # the table read from a pipe as a consumer would, 1 MiB at a time
-                fd = child.stdout.fileno()
-                while os.read(fd, 1 << 20):
-                    pass
+                piped = drain(child.stdout.fileno())
                 child.stdout.close()
             _, status, ru = os.wait4(child.pid, 0)
             wall = time.perf_counter() - t0
@@ -285,6 +283,10 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
             "best_sys_s": best_run[2],
             "peak_rss_mb": max(r[3] for r in runs),
         }
+        if name in ("h5", "csv", "csv-pipe"):  # the I/O floor of the table's bytes, the runs' sizes
+            size = piped if pipe else os.path.getsize(os.path.join(out_dir, f"table.{name}"))
+            floor = [io_floor(out_dir, size, pipe) for _ in range(reps)]
+            rows[name].update(table_bytes=size, floor_best_s=min(floor), floor_median_s=statistics.median(floor))
     scipy = sweep_jobs(1 if SMOKE else 2)["sweep_lyapunov_4_outputs"]["us_per_point"]
     for name, r in rows.items():
         t_scipy = scipy * 1e-6 * n
@@ -294,10 +296,55 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
         print(
             f"stochvib sweep {n} points -> {name:10} best {r['best_wall_s']:.3f} s (user {r['best_user_s']:.2f}, "
             f"sys {r['best_sys_s']:.2f}), median {r['median_wall_s']:.3f} s, peak RSS {r['peak_rss_mb']:.0f} MB; "
-            f"scipy {scipy:.2f} us/pt -> {r['ratio_best']:.0f}x best, {r['ratio_median']:.0f}x median",
+            f"scipy {scipy:.2f} us/pt -> {r['ratio_best']:.0f}x best, {r['ratio_median']:.0f}x median"
+            + (f"; its {r['table_bytes'] / 1e6:.0f} MB alone {r['floor_median_s']:.3f} s (median)" if "table_bytes" in r
+               else ""),
             file=sys.stderr,
         )
     return rows
+
+
+def drain(fd):
+    """Reads `fd` to its end into one reused 1 MiB buffer and returns the bytes read: the cheapest consumer
+    Python has (os.read would allocate and shrink a 1 MiB object a read, which costs the 2-core machine
+    0.1-0.15 s of a 677 MB table's wall time, measured)."""
+    buf, n = bytearray(1 << 20), 0
+    while got := os.readv(fd, [buf]):
+        n += got
+    return n
+
+
+def io_floor(out_dir, size, pipe):
+    """The wall time of moving `size` bytes (zeros, 1 MiB a write) where a table of that size goes, with
+    nothing computed or formatted: to a file, with the durability steps of `stochvib sweep`'s tables (a
+    temporary file beside the output fsynced, renamed over its name, the directory fsynced); or, with `pipe`,
+    from a child process (`head -c`) through a pipe to this process, read as sweep_cli reads the table
+    (drain). Below this time no writer of the same bytes gets on this machine in this state."""
+    import subprocess
+
+    if pipe:
+        t0 = time.perf_counter()
+        child = subprocess.Popen(["head", "-c", str(size), "/dev/zero"], stdout=subprocess.PIPE)
+        drain(child.stdout.fileno())
+        child.stdout.close()
+        child.wait()
+        return time.perf_counter() - t0
+    block = bytes(1 << 20)
+    tmp, final = os.path.join(out_dir, "floor.tmp"), os.path.join(out_dir, "floor.bin")
+    t0 = time.perf_counter()
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    left = size
+    while left > 0:
+        left -= os.write(fd, block[: min(left, len(block))])
+    os.fsync(fd)
+    os.close(fd)
+    os.rename(tmp, final)
+    dfd = os.open(out_dir, os.O_RDONLY)
+    os.fsync(dfd)
+    os.close(dfd)
+    t = time.perf_counter() - t0
+    os.remove(final)
+    return t
 
 
 def sweep_numpy_table():
@@ -897,6 +944,12 @@ def summary_rows(rust, py, sweeps):
             t_scipy = r["scipy_us_per_point"] * 1e-6 * r["points"]
             rows.append((f"`stochvib sweep` -> {fmt}", f"{r['points']} pts", r["median_wall_s"],
                          "scipy lyap per point (4 outputs)", t_scipy, t_scipy / r["median_wall_s"], state, CMD_CLI))
+        for fmt, r in sw.items():  # ours against the I/O floor of the same bytes (ratio = floor / ours)
+            if isinstance(r, dict) and "floor_median_s" in r:
+                where = "through a pipe to the same reader" if fmt == "csv-pipe" else "to a file, fsync, rename"
+                rows.append((f"`stochvib sweep` -> {fmt} vs moving its bytes alone", f"{r['table_bytes'] / 1e6:.3g} MB",
+                             r["median_wall_s"], f"the same bytes {where}, nothing computed (I/O floor)",
+                             r["floor_median_s"], r["floor_median_s"] / r["median_wall_s"], state, CMD_CLI))
         if "h5" in sw and "h5-1thread" in sw:
             t1, t2 = sw["h5-1thread"]["median_wall_s"], sw["h5"]["median_wall_s"]
             rows.append(("`stochvib sweep` -> h5, 2 threads vs 1", f"{sw['h5']['points']} pts", t2, "ours, 1 thread", t1,

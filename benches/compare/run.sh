@@ -190,6 +190,10 @@ if [ "$smoke" = 1 ]; then
             exit 1
         fi
     done
+    if [ "$(grep -c 'moving its bytes alone' "$out/table.md")" -ne 6 ]; then
+        echo "run.sh --smoke: the sweep's I/O-floor rows (3 formats x 2 machine states) are missing (see $out)" >&2
+        exit 1
+    fi
     if [ "$rows" -lt 40 ] || grep -q -E '\| (nan|inf|-) ' "$out/table.md"; then
         echo "run.sh --smoke: the table is incomplete ($((rows - 2)) rows): a harness is broken (see $out)" >&2
         exit 1
