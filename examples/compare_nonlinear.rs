@@ -201,6 +201,15 @@ fn single_thread_jobs(
         p1.install(|| linearize(model, &exc, &Route1Options::default()).unwrap())
     });
     rows.insert("route1_point".into(), json!({"seconds": w1, "cpu_seconds": c1}));
+    // the same on two threads (the distinct element rows' variances side by side)
+    let p2 = pool(2);
+    let (w2, c2, _) = best(reps.max(5), || {
+        p2.install(|| linearize(model, &exc, &Route1Options::default()).unwrap())
+    });
+    rows.insert(
+        "route1_point_2_threads".into(),
+        json!({"seconds": w2, "cpu_seconds": c2}),
+    );
     // the same model on a rational road (an exponential spatial spectrum, which has a shaping filter): the
     // linear run takes its exact route, route 2 its exact flow (one realization at a time, no lockstep)
     let text = std::fs::read_to_string(path)

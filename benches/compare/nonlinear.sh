@@ -128,6 +128,10 @@ rows.insert(-1, ("route 2 per sample vs the linear exact route, 1 thread", f"{si
                  f"{e2['route']}, linear {le['route']} route", pair(e2), "linear run of the linear part", pair(le),
                  f"{le['seconds'] / e2['seconds']:.3g}x (route 2 costs {e2['seconds'] / le['seconds']:.3g}x, CPU "
                  f"{e2['cpu_seconds'] / le['cpu_seconds']:.3g}x)", f"load {lr}"))
+if "route1_point_2_threads" in j:  # an example built before this row existed has no such job
+    r1, r2 = j["route1_point"], j["route1_point_2_threads"]
+    rows.append(("route 1 per parameter point, 2 threads vs 1", "1 point, 3 outputs", pair(r2), "ours, 1 thread",
+                 pair(r1), f"{r1['seconds'] / r2['seconds']:.3g}x", f"load {lr}"))
 before = None
 if os.path.exists(f"{out}/before.json"):
     before = json.load(open(f"{out}/before.json"))

@@ -35,6 +35,7 @@ use crate::response::{
 };
 use crate::system::{FrequencyResponse, Mdof};
 use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// Friction whose Gaussian equivalent damping exceeds this multiple of the critical damping along its
@@ -275,10 +276,21 @@ struct Iteration<'a> {
     p: usize,
     opts: &'a Route1Options,
     method: &'static str,
+    /// Per element, the first element with the same direction and base (itself if none): elements between
+    /// the same two points (a damper and a bump stop across one suspension) have the same deflection and
+    /// rate, i.e. the same output rows of the probe, so their variances are computed once.
+    placement: Vec<usize>,
 }
 
 impl<'a> Iteration<'a> {
     fn new(model: &'a NonlinearModel, exc: &'a Excitation, probe: &'a Mdof, p: usize, opts: &'a Route1Options) -> Self {
+        let els = model.elements();
+        let placement = (0..els.len())
+            .map(|i| {
+                let same = |j: usize| els[j].direction() == els[i].direction() && els[j].base() == els[i].base();
+                (0..i).find(|&j| same(j)).unwrap_or(i)
+            })
+            .collect();
         Iteration {
             model,
             exc,
@@ -286,7 +298,23 @@ impl<'a> Iteration<'a> {
             p,
             opts,
             method: "lyapunov",
+            placement,
         }
+    }
+
+    /// The probe's output rows whose variances an iteration needs: σ_x of every element's placement and σ_v
+    /// of those whose law needs it, each row once, in the order the elements first read them.
+    fn needed_rows(&self) -> Vec<usize> {
+        let mut rows = Vec::new();
+        for (i, e) in self.model.elements().iter().enumerate() {
+            let x = self.p + 2 * self.placement[i];
+            let mut want = vec![x];
+            if e.law.velocity_dependent() || e.law.regime().is_some() {
+                want.push(x + 1);
+            }
+            rows.extend(want.into_iter().filter(|r| !rows.contains(r)).collect::<Vec<_>>());
+        }
+        rows
     }
 
     /// The starting equivalents: zero, with provisional damping when the linear part is not asymptotically
@@ -328,23 +356,39 @@ impl<'a> Iteration<'a> {
                 k,
             ));
         }
+        // the variances of the distinct rows side by side (each one deterministic: the same bits on any
+        // number of threads), then read in element order, so the first failure reported is the same
+        let rows = self.needed_rows();
+        let variances: Vec<Result<(f64, &'static str)>> = rows
+            .par_iter()
+            .map(|&r| output_variance(&sys, self.exc, r, &self.opts.effort))
+            .collect();
         let mut out = Vec::with_capacity(eq.len());
         for (i, e) in self.model.elements().iter().enumerate() {
             let mut m = ElementMoments {
                 mean_x: self.mean_x(i, mean_q),
                 ..Default::default()
             };
-            m.sigma_x = self.sigma(&sys, self.p + 2 * i, k)?;
+            let (x, own) = (self.p + 2 * self.placement[i], self.p + 2 * i);
+            let of = |r: usize| &variances[rows.iter().position(|&q| q == r).expect("a needed row")];
+            m.sigma_x = self.sigma(&sys, of(x), own, k)?;
             if e.law.velocity_dependent() || e.law.regime().is_some() {
-                m.sigma_v = self.sigma(&sys, self.p + 2 * i + 1, k)?;
+                m.sigma_v = self.sigma(&sys, of(x + 1), own + 1, k)?;
             }
             out.push(m);
         }
         Ok((sys, out))
     }
 
-    fn sigma(&mut self, sys: &Mdof, i: usize, k: usize) -> std::result::Result<f64, Route1Outcome> {
-        match output_variance(sys, self.exc, i, &self.opts.effort) {
+    /// σ from the variance of output `i` of `sys` (`variance`), or the outcome that reports its failure.
+    fn sigma(
+        &mut self,
+        sys: &Mdof,
+        variance: &Result<(f64, &'static str)>,
+        i: usize,
+        k: usize,
+    ) -> std::result::Result<f64, Route1Outcome> {
+        match variance {
             Ok((v, method)) => {
                 self.method = method;
                 Ok(v.max(0.0).sqrt())
@@ -479,18 +523,21 @@ impl<'a> Iteration<'a> {
 
 impl Route1 {
     /// The statistics of the model's outputs under route 1: those of the equivalent linear system by
-    /// every applicable method ([`analyze_output_with`]), with the mean replaced by route 1's mean.
+    /// every applicable method ([`analyze_output_with`]), with the mean replaced by route 1's mean. The
+    /// outputs are computed side by side (each the same on any number of threads).
     ///
     /// # Errors
-    /// As [`analyze_output_with`].
+    /// As [`analyze_output_with`]: the first failing output's.
     pub fn output_statistics(&self, exc: &Excitation, effort: &OscillatoryOptions) -> Result<Vec<ResponseStatistics>> {
-        (0..self.n_outputs)
+        let each: Vec<Result<ResponseStatistics>> = (0..self.n_outputs)
+            .into_par_iter()
             .map(|r| {
                 let mut st = analyze_output_with(&self.equivalent, exc, r, effort)?;
                 st.values.mean = Some(self.output_means[r]);
                 Ok(st)
             })
-            .collect()
+            .collect();
+        each.into_iter().collect()
     }
 
     /// Route 1's fraction of time in element e's regime and its rate of entries (per second): the Gaussian

@@ -589,3 +589,59 @@ fn kernels_give_the_bits_of_their_laws() {
         }
     }
 }
+
+/// Route 1 computes the variance of each element's deflection and rate once per placement (the damper and
+/// the bump stop across one suspension share theirs) and the distinct ones side by side. Neither may change
+/// a number: every element's σ_x and σ_v are, bit for bit, the square roots of its own output rows'
+/// variances on the final equivalent system (`output_variance`, one at a time on this thread), and route 1
+/// and its output statistics are the same bits in a pool of one thread and of two.
+#[test]
+fn route1_shares_a_placement_and_gives_the_bits_on_any_threads() {
+    use stochvib::system::FrequencyResponse as _;
+    let root = common::root();
+    let sc = stochvib::scenario::load_scenario(&root.join("data/quarter-car-bump-stops.toml"), &root.join("spectra"))
+        .unwrap();
+    let model = sc.nonlinear_model().expect("a nonlinear scenario");
+    let names: Vec<&str> = model.elements().iter().map(|e| e.name.as_str()).collect();
+    assert_eq!(names, ["damper", "stops", "tyre_contact"], "the scenario's elements");
+    let exc = &sc.excitation;
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let r = route1(model, exc);
+            let st = r.output_statistics(exc, &Default::default()).unwrap();
+            (r, st)
+        })
+    };
+    let ((one, st1), (two, st2)) = (run(1), run(2));
+    let bits = |r: &Route1| -> Vec<u64> {
+        let m = r.moments.iter().flat_map(|m| [m.mean_x, m.sigma_x, m.sigma_v]);
+        let c = r
+            .coefficients
+            .iter()
+            .flat_map(|q| [q.mean_force, q.stiffness, q.damping]);
+        m.chain(c)
+            .chain(r.output_means.iter().copied())
+            .map(f64::to_bits)
+            .collect()
+    };
+    assert_eq!(bits(&one), bits(&two), "route 1 on 1 and 2 threads");
+    assert_eq!(one.iterations, two.iterations);
+    assert_eq!(
+        format!("{st1:?}"),
+        format!("{st2:?}"),
+        "output statistics on 1 and 2 threads"
+    );
+    // each element against its own rows (the stop's rows are the damper's: the same points)
+    let p = model.linear().outputs().len();
+    let sigma = |row: usize| {
+        let (v, _) = output_variance(&one.equivalent, exc, row, &Default::default()).unwrap();
+        v.max(0.0).sqrt()
+    };
+    for (i, (e, m)) in model.elements().iter().zip(&one.moments).enumerate() {
+        assert_eq!(m.sigma_x.to_bits(), sigma(p + 2 * i).to_bits(), "{}: σ_x", e.name);
+        assert_eq!(m.sigma_v.to_bits(), sigma(p + 2 * i + 1).to_bits(), "{}: σ_v", e.name);
+    }
+    assert_eq!(one.moments[0].sigma_x.to_bits(), one.moments[1].sigma_x.to_bits());
+    assert_ne!(one.moments[0].sigma_x.to_bits(), one.moments[2].sigma_x.to_bits());
+}
