@@ -20,6 +20,7 @@ pub mod expm;
 pub mod integral_table;
 pub mod lyapunov;
 pub mod poly;
+pub mod shifted_lu;
 pub mod small_lyapunov;
 pub mod transfer;
 pub mod vmath;

@@ -5,6 +5,7 @@
 use super::variance::check_moment;
 use super::Excitation;
 use crate::error::{Error, Result};
+use crate::linalg::shifted_lu::{solve_shifted_transpose, solve_shifted_transpose_heap, SHIFTED_MAX};
 use crate::quad::{integrate, QuadOptions, QuadResult};
 use crate::quad_oscillatory::{integrate_oscillatory, OscillatoryOptions};
 use crate::spectrum::Spectrum;
@@ -76,20 +77,21 @@ impl<'a> GroupedRow<'a> {
         match self {
             GroupedRow::StateSpace { a, c, cols } => {
                 let n = a.nrows();
-                let s = C64::new(0.0, omega);
-                let m = DMatrix::from_fn(n, n, |r, k| {
-                    let v = C64::new(-a[(k, r)], 0.0);
-                    if r == k {
-                        v + s
-                    } else {
-                        v
-                    }
-                });
-                let rhs = DMatrix::from_fn(n, 1, |r, _| C64::new(c[r], 0.0));
-                let x = if n == 0 { Some(rhs) } else { m.lu().solve(&rhs) };
+                // x = c(iωI − A)⁻¹ as the transposed system's solution: on the stack for the usual orders
+                // (the same bits as nalgebra's LU: `linalg::shifted_lu`), else by nalgebra's LU
+                let mut stack = [C64::new(0.0, 0.0); SHIFTED_MAX];
+                let heap;
+                let x: Option<&[C64]> = if n == 0 {
+                    Some(&[])
+                } else if n <= SHIFTED_MAX {
+                    solve_shifted_transpose(a, c, omega, &mut stack).then_some(&stack[..n])
+                } else {
+                    heap = solve_shifted_transpose_heap(a, c, omega);
+                    heap.as_ref().map(|x| x.as_slice())
+                };
                 for (b, d, e) in cols {
                     let mut acc = C64::new(*d, omega * e);
-                    match &x {
+                    match x {
                         Some(x) => {
                             for (xk, bk) in x.iter().zip(b) {
                                 acc += xk * *bk;
