@@ -1,18 +1,20 @@
 //! One row of the resolvent of a real state matrix at one frequency, c (iωI − A)⁻¹: the transposed system
 //! (iωI − Aᵀ) x = cᵀ solved in one buffer (on the stack up to order 16, stored by columns as nalgebra stores
-//! it) by LU with partial pivoting in the steps of
-//! nalgebra's `LU::new` and `LU::solve` (the same pivot choice by |re| + |im|, the same multiplier by the
-//! pivot's reciprocal, the same updates in the same order, the same divisions by L's unit diagonal), so that
-//! the values are those of `DMatrix::lu().solve()` on the same matrix, bit for bit
-//! (`tests::the_bits_of_nalgebras_lu`): route 1's variances, and through them route 2's histograms, keep the
-//! numbers of a seed. One difference in form: nalgebra's `axpy` computes y ← (a·x)·1 + 1·y, and the two unit
-//! factors, exact for every finite non-zero part, are left out (y ← a·x + y); they could only turn the sign
-//! of a zero part or an infinity into a NaN, which no variance reads (|H|² and sums of products with
-//! non-zero weights) and only a singular system reaches. A quadrature evaluates this row at every node;
-//! the heap matrices, the permutation, the solve's copy of the right-hand side and the unit factors were
-//! most of its cost for the small orders of a machine model. It stays an O(n³) solve per node: a
-//! reduction of A once per system (Hessenberg or modal form) would make it O(n²) or O(n), with other
-//! roundings, i.e. other numbers of a seed for route 2.
+//! it) by LU with partial pivoting in the steps of nalgebra's `LU::new` and `LU::solve` (the same pivot
+//! choice by |re| + |im|, the same multiplier by the pivot's reciprocal, the same updates in the same order,
+//! the same divisions by L's unit diagonal), so that the values are those of `DMatrix::lu().solve()` on the
+//! same matrix (`tests::the_values_of_nalgebras_lu`): route 1's variances, and through them route 2's
+//! histograms, keep the numbers of a seed. One difference in form: nalgebra's `axpy` computes
+//! y ← (a·x)·1 + 1·y, and the two unit factors are left out (y ← a·x + y). They are exact for every finite
+//! non-zero part, so what can differ is the sign of a zero part (0 against −0; it reaches x where cᵀ or A
+//! has signed zeros) and, past overflow (entries near 10³⁰⁸, or a pivot below 10⁻¹⁵⁴ whose |·|² underflows),
+//! which non-finite value a part holds (nalgebra's ·1 turns an infinity beside a finite part into NaN, and
+//! spreads a NaN to both parts). No variance reads either: |H|², and sums of products with finite weights,
+//! are the same for 0 and −0, and a non-finite node fails the quadrature either way. A quadrature
+//! evaluates this row at every node; the heap matrices, the permutation, the solve's copy of the
+//! right-hand side and the unit factors were most of its cost for the small orders of a machine model. It
+//! stays an O(n³) solve per node: a reduction of A once per system (Hessenberg or modal form) would make it
+//! O(n²) or O(n), with other roundings, i.e. other numbers of a seed for route 2.
 //!
 //! # Formula
 //! For k = 0 … n−1: the pivot row p ≥ k maximises |Re m_pk| + |Im m_pk| (the first such row); rows k and p
@@ -209,16 +211,19 @@ mod tests {
         solve_shifted_transpose_heap(a, c, omega).map(|x| x.iter().copied().collect())
     }
 
+    /// The bits of each part, a zero of either sign as +0 (module docs: only a zero's sign can differ).
     fn bits(v: &[C64]) -> Vec<(u64, u64)> {
-        v.iter().map(|z| (z.re.to_bits(), z.im.to_bits())).collect()
+        let b = |x: f64| if x == 0.0 { 0 } else { x.to_bits() };
+        v.iter().map(|z| (b(z.re), b(z.im))).collect()
     }
 
-    /// Every order 1 … SHIFTED_MAX (60 matrices each up to 16, 4 above), random matrices of mixed scales (entries spanning 10⁻⁶ … 10⁶, with
-    /// exact zeros and repeated values, so that pivots tie and rows swap), frequencies from 0 up (at ω = 0
-    /// every imaginary part is zero), and singular cases (a zero matrix at ω = 0, a zero row): the same
-    /// bits as nalgebra's LU, the signs of zeros included, or both singular.
+    /// Every order 1 … SHIFTED_MAX (60 matrices each up to 16, 4 above), random matrices of mixed scales
+    /// (entries spanning 10⁻⁶ … 10⁶, with zeros of both signs and repeated values, so that pivots tie and
+    /// rows swap; cᵀ with zeros of both signs), frequencies from 0 up (at ω = 0 every imaginary part is
+    /// zero), and singular cases (a zero matrix at ω = 0, a zero row): the same bits as nalgebra's LU but
+    /// for the sign of a zero part, or both singular.
     #[test]
-    fn the_bits_of_nalgebras_lu() {
+    fn the_values_of_nalgebras_lu() {
         let mut u = xorshift(0x9E37_79B9_7F4A_7C15);
         let mut cases = 0;
         for n in 1..=SHIFTED_MAX {
@@ -229,7 +234,7 @@ mod tests {
                     match trial % 4 {
                         0 => v,
                         1 => v * 10f64.powf(12.0 * u()),
-                        2 if v.abs() < 0.2 => 0.0,
+                        2 if v.abs() < 0.2 => 0.0f64.copysign(v),
                         3 if v.abs() < 0.25 => 1.0,
                         _ => -2.0 * v,
                     }
@@ -237,7 +242,16 @@ mod tests {
                 if trial == trials - 1 {
                     a.row_mut(n - 1).fill(0.0);
                 }
-                let c: Vec<f64> = (0..n).map(|_| u()).collect();
+                let c: Vec<f64> = (0..n)
+                    .map(|_| {
+                        let v = u();
+                        if trial % 3 == 0 && v.abs() < 0.15 {
+                            0.0f64.copysign(v)
+                        } else {
+                            v
+                        }
+                    })
+                    .collect();
                 for omega in [0.0, 1e-3 * u().abs(), u().abs(), 50.0 * u(), 1e4] {
                     let want = nalgebra_row(&a, &c, omega);
                     let mut x = vec![C64::new(f64::NAN, f64::NAN); n];
@@ -253,6 +267,16 @@ mod tests {
                 }
             }
         }
+        // a non-singular system whose solution has a zero part of the other sign than nalgebra's (found
+        // by review): equal values, a zero's sign apart
+        let a = DMatrix::from_row_slice(3, 3, &[0.783, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.974, 0.0]);
+        let c = [0.0, -0.0, -0.498];
+        let want = nalgebra_row(&a, &c, -3.0).expect("non-singular");
+        let mut x = [C64::new(0.0, 0.0); 3];
+        assert!(solve_shifted_transpose(&a, &c, -3.0, &mut x));
+        assert_eq!(x.to_vec(), want, "the values");
+        assert_eq!(bits(&x), bits(&want));
+        assert!(x[1].im == 0.0 && x[1].im.is_sign_negative() && !want[1].im.is_sign_negative());
         let zero = DMatrix::zeros(3, 3);
         assert_eq!(nalgebra_row(&zero, &[1.0, 2.0, 3.0], 0.0), None);
         assert!(!solve_shifted_transpose(

@@ -380,7 +380,8 @@ impl<'a> Iteration<'a> {
         Ok((sys, out))
     }
 
-    /// σ from the variance of output `i` of `sys` (`variance`), or the outcome that reports its failure.
+    /// σ from the variance of output `i` of `sys` (`variance`, computed for `i` or for an identical row of an
+    /// earlier element), or the outcome that reports its failure.
     fn sigma(
         &mut self,
         sys: &Mdof,
@@ -388,7 +389,13 @@ impl<'a> Iteration<'a> {
         i: usize,
         k: usize,
     ) -> std::result::Result<f64, Route1Outcome> {
-        match variance {
+        let computed = match variance {
+            Ok(v) => Ok(*v),
+            // a failure names the row it was computed for: computed again for row i, it names this element's
+            // own output, as when every element computed its own rows
+            Err(_) => output_variance(sys, self.exc, i, &self.opts.effort),
+        };
+        match computed {
             Ok((v, method)) => {
                 self.method = method;
                 Ok(v.max(0.0).sqrt())

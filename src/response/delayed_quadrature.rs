@@ -77,14 +77,22 @@ impl<'a> GroupedRow<'a> {
         match self {
             GroupedRow::StateSpace { a, c, cols } => {
                 let n = a.nrows();
-                // x = c(iωI − A)⁻¹ as the transposed system's solution: on the stack for the usual orders
-                // (the same bits as nalgebra's LU: `linalg::shifted_lu`), else by nalgebra's LU
-                let mut stack = [C64::new(0.0, 0.0); SHIFTED_MAX];
+                // x = c(iωI − A)⁻¹ as the transposed system's solution: by `linalg::shifted_lu` up to its
+                // largest order (nalgebra's values, a zero's sign apart; x on the stack for the usual
+                // orders), above by nalgebra's LU
+                let mut stack = [C64::new(0.0, 0.0); 16];
+                let mut buffer = Vec::new();
                 let heap;
                 let x: Option<&[C64]> = if n == 0 {
                     Some(&[])
                 } else if n <= SHIFTED_MAX {
-                    solve_shifted_transpose(a, c, omega, &mut stack).then_some(&stack[..n])
+                    let x = if n <= stack.len() {
+                        &mut stack[..n]
+                    } else {
+                        buffer.resize(n, C64::new(0.0, 0.0));
+                        &mut buffer[..]
+                    };
+                    solve_shifted_transpose(a, c, omega, x).then_some(&*x)
                 } else {
                     heap = solve_shifted_transpose_heap(a, c, omega);
                     heap.as_ref().map(|x| x.as_slice())

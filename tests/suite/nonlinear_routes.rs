@@ -645,3 +645,45 @@ fn route1_shares_a_placement_and_gives_the_bits_on_any_threads() {
     assert_eq!(one.moments[0].sigma_x.to_bits(), one.moments[1].sigma_x.to_bits());
     assert_ne!(one.moments[0].sigma_x.to_bits(), one.moments[2].sigma_x.to_bits());
 }
+
+/// A failure of a shared row names the element that reads it. A base-driven oscillator under white base
+/// displacement has an absolute displacement of finite variance (|H|² ~ ω⁻²) and an absolute velocity of
+/// infinite variance (ω²|H|² → const): a cubic spring to the ground reads only σ_x, a quadratic damper at
+/// the same place reads σ_v too, computed for the spring's rate row. The reason must name the damper's own
+/// output (`damper:v`), as when each element computed its own rows, and not the spring's.
+#[test]
+fn route1_failure_on_a_shared_row_names_the_element_that_reads_it() {
+    let lin = MassSpringDamper {
+        mass: 1.0,
+        stiffness: 1.0,
+        damping: 0.2,
+        drive: Drive::Base,
+    }
+    .build()
+    .unwrap()
+    .with_output("x", Quantity::Displacement(vec![1.0]))
+    .unwrap();
+    let element = |name: &str, law: Arc<dyn ForceLaw>| NonlinearElement {
+        name: name.into(),
+        law,
+        point: vec![1.0],
+        to: Attach::Ground,
+    };
+    let model = NonlinearModel::new(
+        &lin,
+        vec![
+            element("spring", Arc::new(CubicSpring::new(0.0, 0.1).unwrap())),
+            element("damper", Arc::new(QuadraticDamper::new(0.05, 0.05).unwrap())),
+        ],
+    )
+    .unwrap();
+    let white = Arc::new(RationalSpectrum::new(vec![0.01], vec![1.0], Domain::Temporal).unwrap());
+    let exc = Excitation::single(white, 0.0).unwrap();
+    match linearize(&model, &exc, &Route1Options::default()).unwrap() {
+        Route1Outcome::NotConverged { reason, .. } => {
+            assert!(reason.starts_with("`damper:v`"), "{reason}");
+            assert!(!reason.contains("spring:v"), "{reason}");
+        }
+        Route1Outcome::Converged(r) => panic!("an infinite velocity variance converged: {:?}", r.moments),
+    }
+}
