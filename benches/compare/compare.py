@@ -264,17 +264,20 @@ def sweep_cli(reps, binary, out_dir, n_side=1000):
             # Python parent's pages the child holds between fork and exec)
             rss_file = os.path.join(out_dir, "rss")
             wrap = ["/usr/bin/time", "-f", "%M", "-o", rss_file] if os.path.exists("/usr/bin/time") else []
-            t0 = time.perf_counter()
             pin = core if name == "h5-1core" else []
-            child = subprocess.Popen(wrap + pin + args + extra, env=env, stderr=subprocess.PIPE,
-                                     stdout=subprocess.PIPE if pipe else subprocess.DEVNULL)
-            if pipe:  # the table read from a pipe as a consumer would, 1 MiB at a time
-                piped = drain(child.stdout.fileno())
-                child.stdout.close()
-            _, status, ru = os.wait4(child.pid, 0)
-            wall = time.perf_counter() - t0
-            err = child.stderr.read().decode()
-            child.stderr.close()
+            # stderr to a file, read after the child ends (a pipe read only then would block a child that
+            # writes more than the pipe holds)
+            with open(os.path.join(out_dir, "stderr"), "w+b") as err_file:
+                t0 = time.perf_counter()
+                child = subprocess.Popen(wrap + pin + args + extra, env=env, stderr=err_file,
+                                         stdout=subprocess.PIPE if pipe else subprocess.DEVNULL)
+                if pipe:  # the table read from a pipe as a consumer would, 1 MiB at a time
+                    piped = drain(child.stdout.fileno())
+                    child.stdout.close()
+                _, status, ru = os.wait4(child.pid, 0)
+                wall = time.perf_counter() - t0
+                err_file.seek(0)
+                err = err_file.read().decode()
             if os.waitstatus_to_exitcode(status) != 0:
                 raise SystemExit(f"stochvib sweep failed: {err}")
             rss = float(open(rss_file).read().split()[-1]) / 1024.0 if wrap else float("nan")
