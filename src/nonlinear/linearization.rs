@@ -26,7 +26,7 @@
 //! c_eq → ∞), a velocity-dependent element on an input of infinite velocity variance, or no convergence in
 //! the iteration limit.
 
-use super::{ElementMoments, Equivalent, NonlinearModel};
+use super::{ElementMoments, Equivalent, NonlinearElement, NonlinearModel};
 use crate::error::{Error, Result};
 use crate::quad_oscillatory::OscillatoryOptions;
 use crate::response::{
@@ -308,11 +308,11 @@ impl<'a> Iteration<'a> {
         let mut rows = Vec::new();
         for (i, e) in self.model.elements().iter().enumerate() {
             let x = self.p + 2 * self.placement[i];
-            let mut want = vec![x];
-            if e.law.velocity_dependent() || e.law.regime().is_some() {
-                want.push(x + 1);
+            for r in [Some(x), reads_rate(e).then_some(x + 1)].into_iter().flatten() {
+                if !rows.contains(&r) {
+                    rows.push(r);
+                }
             }
-            rows.extend(want.into_iter().filter(|r| !rows.contains(r)).collect::<Vec<_>>());
         }
         rows
     }
@@ -372,7 +372,7 @@ impl<'a> Iteration<'a> {
             let (x, own) = (self.p + 2 * self.placement[i], self.p + 2 * i);
             let of = |r: usize| &variances[rows.iter().position(|&q| q == r).expect("a needed row")];
             m.sigma_x = self.sigma(&sys, of(x), own, k)?;
-            if e.law.velocity_dependent() || e.law.regime().is_some() {
+            if reads_rate(e) {
                 m.sigma_v = self.sigma(&sys, of(x + 1), own + 1, k)?;
             }
             out.push(m);
@@ -565,6 +565,12 @@ impl Route1 {
         }
         Some((fraction, rate))
     }
+}
+
+/// Whether route 1 needs the σ of element e's rate: its law depends on the velocity, or it has a regime
+/// (whose entry rate is Rice's, from σ_v).
+fn reads_rate(e: &NonlinearElement) -> bool {
+    e.law.velocity_dependent() || e.law.regime().is_some()
 }
 
 fn stable(m: &Mdof) -> bool {
