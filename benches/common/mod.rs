@@ -584,7 +584,9 @@ impl McExact {
 pub const EXACT_BLOCK: usize = 4096;
 
 /// The one-FFT route's floor: per realization of [`MC_SEED`], the N + 2 normals of its stream and one inverse
-/// real FFT of length N (the route without its gains, response and sums); one thread.
+/// real FFT of length N (the route without its gains, response and sums); one thread. The plan is the
+/// library's ([`stochvib::simulate::fft_plans`]): the machine code the route runs, not a second copy of
+/// rustfft compiled into this crate.
 pub struct OneFftFloor {
     fft: Arc<dyn realfft::ComplexToReal<f64>>,
     coef: Vec<realfft::num_complex::Complex<f64>>,
@@ -596,7 +598,7 @@ pub struct OneFftFloor {
 impl OneFftFloor {
     /// The floor of realizations of `n` samples.
     pub fn new(n: usize) -> OneFftFloor {
-        let fft = realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(n);
+        let fft = stochvib::simulate::fft_plans::inverse_real_fft(n);
         OneFftFloor {
             coef: fft.make_input_vec(),
             out: fft.make_output_vec(),
@@ -720,7 +722,7 @@ impl McStreamed {
 
 /// The streamed route's floor: per realization of [`MC_SEED`], the normals [`McStreamed`] draws (taps − 1
 /// to start, then one hop per segment) and one forward and one inverse real FFT of the segment length per
-/// segment; one thread.
+/// segment (the library's plans, [`stochvib::simulate::fft_plans`], as the route's); one thread.
 pub struct StreamedFloor {
     fwd: Arc<dyn realfft::RealToComplex<f64>>,
     inv: Arc<dyn realfft::ComplexToReal<f64>>,
@@ -736,8 +738,7 @@ impl StreamedFloor {
     /// The floor of `job`.
     pub fn new(job: &McStreamed) -> StreamedFloor {
         let f = job.fir.fft_len();
-        let mut planner = realfft::RealFftPlanner::<f64>::new();
-        let (fwd, inv) = (planner.plan_fft_forward(f), planner.plan_fft_inverse(f));
+        let (fwd, inv) = stochvib::simulate::fft_plans::real_fft_pair(f);
         StreamedFloor {
             buf: fwd.make_input_vec(),
             spec: fwd.make_output_vec(),

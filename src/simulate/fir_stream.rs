@@ -399,9 +399,7 @@ impl FirSynthesis {
             return Err(Error::invalid("kernels", "non-finite tap", "taps must be finite"));
         }
         let fft_len = (4 * taps).next_power_of_two().max(1024);
-        let mut planner = RealFftPlanner::<f64>::new();
-        let forward = planner.plan_fft_forward(fft_len);
-        let inverse = planner.plan_fft_inverse(fft_len);
+        let (forward, inverse) = super::fft_plans::real_fft_pair(fft_len);
         let mut buf = vec![0.0; fft_len];
         let mut spectra = Vec::with_capacity(g);
         for kg in &kernels {

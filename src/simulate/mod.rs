@@ -29,6 +29,7 @@ pub mod basic_method;
 pub mod batch;
 pub mod discretize;
 mod engine;
+pub mod fft_plans;
 mod finish;
 mod finished_part;
 pub mod fir_stream;

@@ -809,7 +809,7 @@ fn spectral_engine(
             },
             generators,
             gains,
-            inverse: realfft::RealFftPlanner::<f64>::new().plan_fft_inverse(n),
+            inverse: super::fft_plans::inverse_real_fft(n),
         },
         discrete,
         autocov,
@@ -934,8 +934,7 @@ fn periodic_autocovariance(power: &[f64], n: usize, lags: usize) -> Result<Vec<f
         })
         .collect();
     let mut k = vec![0.0; n];
-    realfft::RealFftPlanner::<f64>::new()
-        .plan_fft_inverse(n)
+    super::fft_plans::inverse_real_fft(n)
         .process(&mut spec, &mut k)
         .map_err(|e| Error::Numerical {
             what: "periodic autocovariance".into(),

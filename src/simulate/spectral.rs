@@ -6,7 +6,7 @@ use crate::error::{require_positive, Error, Result};
 use crate::spectrum::Spectrum;
 use rand::rngs::Xoshiro256PlusPlus;
 use realfft::num_complex::Complex;
-use realfft::{ComplexToReal, RealFftPlanner};
+use realfft::ComplexToReal;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -131,7 +131,7 @@ impl SpectralGenerator {
             var += if j == 0 || j == n / 2 { s * dw } else { 2.0 * s * dw };
             scale.push((s * dw).sqrt());
         }
-        let plan = RealFftPlanner::<f64>::new().plan_fft_inverse(n);
+        let plan = super::fft_plans::inverse_real_fft(n);
         Ok(SpectralGenerator {
             n,
             dt,
