@@ -30,6 +30,7 @@ import argparse
 import json
 import os
 import re
+import resource
 import subprocess
 import sys
 import time
@@ -158,14 +159,18 @@ def scipy_exposure(path, sos_by_weighting):
 
 # --- timing -------------------------------------------------------------------------------------------------
 def timed(cmd):
-    """Runs cmd under /usr/bin/time -v: (wall s, peak RSS MiB, stdout)."""
+    """Runs cmd under /usr/bin/time -v: (wall s, peak RSS MiB, CPU s, stdout). The CPU time (user + system)
+    is the waited child's rusage, to the microsecond (GNU time prints hundredths of a second, which a
+    smoke-sized record undercuts); it includes GNU time's own, about a millisecond."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t = time.perf_counter()
     p = subprocess.run(["/usr/bin/time", "-v"] + cmd, capture_output=True, text=True)
     wall = time.perf_counter() - t
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if p.returncode != 0:
         sys.exit(f"records.py: {' '.join(cmd)} failed:\n{p.stderr[-3000:]}")
     rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", p.stderr).group(1)) / 1024
-    cpu = sum(float(re.search(rf"{k} time \(seconds\): ([\d.]+)", p.stderr).group(1)) for k in ("User", "System"))
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     return wall, rss, cpu, p.stdout
 
 
