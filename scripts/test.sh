@@ -18,6 +18,9 @@ bash scripts/ensure-deps.sh --with-h5py --with-browser
 # --workspace: the dependencies get the features of the whole workspace, the Python package's included (its
 # crate has no Rust tests, nothing of it is compiled here), so that python/test.sh reuses this build
 cargo test --locked --workspace "$@"
+# the API documentation builds without a warning (a link to a missing or private item, an unescaped E[x]
+# read as a link)
+RUSTDOCFLAGS="-D warnings" cargo doc --locked --no-deps --workspace --quiet
 # the comparison harnesses (Rust and numpy/scipy/h5py sides) once at tiny sizes, ~1 min: a change that breaks
 # one of them, or a row of benches/RESULTS.md's table, fails here (STOCHVIB_SKIP_COMPARE=1 skips it)
 if [ "${STOCHVIB_SKIP_COMPARE:-0}" != 1 ]; then

@@ -102,7 +102,7 @@ impl WeightedEvaluator {
     /// the input's shaping filter and the weighting, and finds the poles of both.
     ///
     /// # Formula
-    /// [F_num N_W](s), the product of ascending coefficient lists; the roots of F_den and of every quadratic
+    /// \[F_num N_W\](s), the product of ascending coefficient lists; the roots of F_den and of every quadratic
     /// section's denominator of W (module docs).
     ///
     /// # Errors

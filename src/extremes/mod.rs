@@ -19,7 +19,7 @@
 //! * [`first_passage`]: P(max ≤ b within T) by Poisson (Rice) crossings and by Vanmarcke's (1975)
 //!   bandwidth-corrected form; the non-stationary Rice rate ν⁺(b, t) of a Gaussian process with a mean,
 //!   a variance and a y–ẏ correlation that vary in time.
-//! * [`ers_fds`]: the extreme response spectrum and the fatigue damage spectrum (Lalanne) of any
+//! * [`ers_fds()`]: the extreme response spectrum and the fatigue damage spectrum (Lalanne) of any
 //!   base-acceleration density.
 //! * [`dkw`]: the Dvoretzky–Kiefer–Wolfowitz band of an empirical distribution and the verdict of an
 //!   analytic distribution against it.

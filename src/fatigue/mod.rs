@@ -5,7 +5,7 @@
 //! - **S–N curve in stress amplitude**: N·S_a^k = C, with S_a the cycle amplitude (half the range
 //!   ΔS = 2S_a) in the unit of the signal (e.g. Pa or MPa) and C in (that unit)^k. A curve given in ranges,
 //!   N·ΔS^k = C_Δ, is the same curve with C = C_Δ·2^{−k} ([`SnRangeCurve`]).
-//! - **Rainflow** ([`rainflow`]) reports every cycle's range *and* amplitude by name, its mean, and its
+//! - **Rainflow** ([`rainflow()`]) reports every cycle's range *and* amplitude by name, its mean, and its
 //!   count: 1 for a full cycle, 0.5 for a half cycle (the residue, counted as ASTM E1049-85 §5.4.4 does).
 //! - **Spectral methods** ([`spectral`]) take the moments m_j = ∫₀^∞ f^j G(f) df of the **one-sided
 //!   density in Hz**, G(f) = 4π S(2πf) where S(ω) is the crate's canonical two-sided density in rad/s

@@ -217,7 +217,7 @@ impl ConveyorIdler {
     /// (m), `y_vel` (m/s), `y_acc` (m/s²), `support_force` (c y + b ẏ, N).
     ///
     /// # Formula
-    /// m ÿ + b ẏ + c y = F (an [`Mdof`] with one coordinate, one element to ground, one force input).
+    /// m ÿ + b ẏ + c y = F (an [`Mdof`](crate::system::Mdof) with one coordinate, one element to ground, one force input).
     ///
     /// # Errors
     /// None for a validated idler (kept as `Result` for the system constructor).

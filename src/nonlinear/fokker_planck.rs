@@ -15,7 +15,7 @@
 //! so v is Gaussian with σ_v² = πS_f/(c m), independent of q, and p(q) ∝ exp(−c V(q)/(π S_f)). The linear
 //! spring alone gives σ_q² = πS_f/(c k) = πS₀/(2ζω₀³) with S₀ = S_f/m² the density of f/m (our convention's
 //! linear oscillator). Rice's formula with q and q̇ independent gives the exact rate of up-crossings of a
-//! level a, ν⁺(a) = p(a) E[v⁺] = p(a) σ_v/√(2π). Texts that write the noise as E[ww] = 2Dδ have
+//! level a, ν⁺(a) = p(a) E\[v⁺\] = p(a) σ_v/√(2π). Texts that write the noise as E\[ww\] = 2Dδ have
 //! p ∝ exp(−(2ζω₀/D)H): D = πS₀ here ([`intensity_to_density`]). Caughey (1963), "Derivation and
 //! application of the Fokker–Planck equation to discrete nonlinear dynamic systems subjected to white random
 //! excitation", J. Acoust. Soc. Am. 35(11), 1683–1692; Lin (1967), *Probabilistic Theory of Structural
@@ -67,7 +67,7 @@ pub struct Stationary {
     pub oscillator: WhiteNoiseOscillator,
     /// ∫ e^{−βV} dq.
     pub normalizer: f64,
-    /// E[q].
+    /// E\[q\].
     pub mean: f64,
     /// Var q.
     pub variance: f64,

@@ -8,7 +8,7 @@ use std::fmt::Debug;
 /// Means and standard deviations of an element's relative displacement x (point minus far end, positive
 /// when the element is stretched) and relative velocity v = ẋ, for a Gaussian response.
 ///
-/// In a stationary response x and v are uncorrelated (E[x ẋ] = ½ d/dt E[x²] = 0) and E[v] = 0; the
+/// In a stationary response x and v are uncorrelated (E\[x ẋ\] = ½ d/dt E\[x²\] = 0) and E\[v\] = 0; the
 /// expectations below use the marginals of x and v only.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct ElementMoments {
@@ -25,13 +25,13 @@ pub struct ElementMoments {
 /// The Gaussian equivalent of an element's nonlinear force: F ≈ F₀ + k_eq (x − μ_x) + c_eq (v − μ_v).
 ///
 /// # Formula
-/// F₀ = E[F], k_eq = E[∂F/∂x], c_eq = E[∂F/∂v] over the Gaussian law of (x, v). By Stein's lemma
+/// F₀ = E\[F\], k_eq = E\[∂F/∂x\], c_eq = E\[∂F/∂v\] over the Gaussian law of (x, v). By Stein's lemma
 /// (E[F(z)(z − μ)] = σ² E[F′(z)]) these are also the coefficients that minimise E[(F − F₀ − k x − c v)²]
 /// (Atalik & Utku 1976, "Stochastic linearization of multi-degree-of-freedom non-linear systems",
 /// Earthquake Eng. Struct. Dyn. 4, 411–420).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Equivalent {
-    /// F₀ = E[F], N (N m).
+    /// F₀ = E\[F\], N (N m).
     pub mean_force: f64,
     /// k_eq = E[∂F/∂x], N/m.
     pub stiffness: f64,

@@ -6,9 +6,9 @@
 //! * the fluctuation is the response of the linear model with the springs k_eq and dampers c_eq added,
 //!   whose variances come from the linear machinery — Lyapunov for rational delay-free inputs, its delayed
 //!   form for delayed rational inputs, adaptive quadrature otherwise (two tracks, non-rational spectra);
-//! * the means solve the static equilibrium C μ_q + Σ_e d_e E[F_e] = K_u μ_u + F μ_f (exact in the mean;
+//! * the means solve the static equilibrium C μ_q + Σ_e d_e E\[F_e\] = K_u μ_u + F μ_f (exact in the mean;
 //!   q̇ and q̈ have mean 0 in a stationary response), by one Newton step per iteration with the Jacobian
-//!   C + Σ k_eq d dᵀ (∂E[F]/∂μ = E[∂F/∂x] for a Gaussian law).
+//!   C + Σ k_eq d dᵀ (∂E\[F\]/∂μ = E\[∂F/∂x\] for a Gaussian law).
 //!
 //! The iteration starts from the linear part (an element that adds no damping and leaves the linear part
 //! without a stationary response gets a provisional 10 % of critical damping along its direction), and

@@ -7,9 +7,9 @@
 //! * [`Constraint`]: `QUANTITY <= LIMIT` or `>=`;
 //! * [`Problem`]: the scenario with the values substituted at each point (the substituted text is read by
 //!   the scenario reader, so each point is the scenario `stochvib analyze` would read);
-//! * [`solve`]: SLSQP (Kraft 1988, the `slsqp` crate's translation of NLopt's) with the analytic gradients
+//! * [`solve()`]: SLSQP (Kraft 1988, the `slsqp` crate's translation of NLopt's) with the analytic gradients
 //!   where the problem has them, else COBYLA (Powell 1994, the `cobyla` crate's), from several starts;
-//! * [`pareto`]: the Pareto front of two quantities by the ε-constraint method.
+//! * [`pareto()`]: the Pareto front of two quantities by the ε-constraint method.
 //!
 //! SLSQP takes the gradients of the σ quantities from the analytic sensitivity of the Lyapunov solution
 //! ([`gradient`]), so it converges in a few evaluations per start; COBYLA is derivative-free (linear

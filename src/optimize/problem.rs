@@ -377,7 +377,7 @@ impl<'a> Problem<'a> {
 
     /// The gradients of the objective and of every constraint's quantity at `x` (SI per SI unit of each
     /// parameter) from the analytic sensitivity of the Lyapunov solution
-    /// ([`variance_sensitivities`](super::gradient::variance_sensitivities)), the model's matrices differenced
+    /// ([`variance_sensitivities`]), the model's matrices differenced
     /// centrally ([`ExactEvaluator::realization_derivative`]). `None` where that does not apply: a parameter
     /// outside `[model]`, a quantity other than σ or 3σ, an input with no exact route (quadrature), a model
     /// without a state space.

@@ -1,5 +1,5 @@
 //! The text and markdown of the `stochvib analyze` report of a scenario with nonlinear elements
-//! ([`crate::study::nonlinear_report`] computes it): route 1, route 3 and, with `--monte-carlo N`, route 2
+//! ([`crate::study::nonlinear_report()`] computes it): route 1, route 3 and, with `--monte-carlo N`, route 2
 //! beside them with the verdicts.
 
 use super::table::{facts, Table, ToMarkdown};

@@ -1,4 +1,4 @@
-//! The text of the `stochvib spectrum` report ([`crate::study::spectrum_report`] computes it): variance two
+//! The text of the `stochvib spectrum` report ([`crate::study::spectrum_report()`] computes it): variance two
 //! ways, correlation at a few lags, density at a few frequencies in a chosen convention.
 
 use crate::study::spectrum_report::{Outcome, SpectrumReport};

@@ -192,7 +192,7 @@ pub fn delayed_augmented_system(ss: &StateSpace, exc: &Excitation, i: usize) -> 
 /// ```
 /// The n-th derivative is ȳ_g⁽ⁿ⁾ = 𝒞_g 𝒜ⁿ z when 𝒞_g 𝒜^m 𝒢 = 0 for m < n (otherwise it contains white
 /// noise and has infinite variance), so λ₂ = Var(ẏ) and λ₄ = Var(ÿ) are the same sums with the rows
-/// 𝒞_g 𝒜 and 𝒞_g 𝒜². The matrix exponential is [`expm`] (scaling and squaring with a Padé approximant,
+/// 𝒞_g 𝒜 and 𝒞_g 𝒜². The matrix exponential is [`expm()`] (scaling and squaring with a Padé approximant,
 /// Higham, "The scaling and squaring method for the matrix exponential revisited", SIAM J. Matrix Anal.
 /// Appl. 26, 2005), once per distinct lag. With all delays equal there is one group and P, D_y and the
 /// moments are those of [`variance_lyapunov`](super::variance_lyapunov) (the same augmented system, up to

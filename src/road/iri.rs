@@ -191,9 +191,9 @@ pub fn golden_relative_velocity(n_cycles_per_m: f64) -> nalgebra::Complex<f64> {
 /// The expected IRI of a stationary Gaussian road profile, from its spectrum.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct ExpectedIri {
-    /// E[IRI] with the 250 mm moving average of ASTM E1926, m/km.
+    /// E\[IRI\] with the 250 mm moving average of ASTM E1926, m/km.
     pub m_per_km: f64,
-    /// E[IRI] without the moving average, m/km.
+    /// E\[IRI\] without the moving average, m/km.
     pub without_moving_average_m_per_km: f64,
     /// σ of the golden car's relative velocity with the moving average, m/s.
     pub sigma_relative_velocity_m_s: f64,
@@ -223,7 +223,7 @@ fn finite_or_null<S: serde::Serializer>(band: &(f64, f64), s: S) -> std::result:
 /// average's transfer function and H_rv from [`golden_relative_velocity`]; by adaptive quadrature over the
 /// spectrum's support, split at the golden car's resonances (≈ 1 and 10 Hz at 80 km/h) and at the zeros of
 /// the sinc (n = 4, 8, … cycles/m). For ISO 8608 roads of waviness w = 2 the IRI is proportional to
-/// √G_d(n₀) (the slope of such a road is white): E[IRI] = K·√(G_d(n₀)/10⁻⁶ m³) with one constant K.
+/// √G_d(n₀) (the slope of such a road is white): E\[IRI\] = K·√(G_d(n₀)/10⁻⁶ m³) with one constant K.
 ///
 /// # Errors
 /// [`Error::NotApplicable`] for a temporal spectrum; the quadrature's errors.

@@ -78,7 +78,7 @@ impl Catalogue {
     }
 
     /// The built-in catalogue: the `spectra/*.toml` files of the source tree, embedded when the crate was
-    /// built. Its [`dir`](Self::dir) is [`BUILT_IN`], a name, not a directory on disk.
+    /// built. Its [`dir`](Self::dir) is `BUILT_IN`, a name, not a directory on disk.
     pub fn bundled() -> Self {
         Catalogue::new(BUILT_IN)
     }

@@ -25,7 +25,7 @@
 //! ```
 //! * A road of two tracks alone may also be written as its own `[road]` section (`spectrum`, `coherence`,
 //!   `track_width`, `speed`, and the table keys below): the same as one `[[input]]` table with
-//!   `road = { spectrum, coherence, track_width }` ([`road_section_as_input`]); errors name `road.<key>`.
+//!   `road = { spectrum, coherence, track_width }` (`road_section_as_input`); errors name `road.<key>`.
 //! * `drives` may be left out only when there is one `[[input]]` table: it then drives every model input.
 //! * `tracks`, `positions`, `gains` default to the model's own layout for the driven inputs (a catalogue
 //!   vehicle knows its wheels; the generic `mdof` reads `tracks`, `positions`, `gains` in `[model]`), else

@@ -67,7 +67,7 @@ pub struct ModelKind {
 }
 
 /// The numeric builder of a stochastic model kind: what a parameter study uses instead of rebuilding the
-/// model from its substituted `[model]` table at every point (see [`Sweep`](super::Sweep)).
+/// model from its substituted `[model]` table at every point (see [`Sweep`](crate::study::Sweep)).
 ///
 /// `keys` lists every key the kind's table reader accepts, with how it reads each; `fill` takes one value
 /// per key (None: the key is absent from the table) and writes the state-space matrices that the table

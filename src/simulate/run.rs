@@ -29,7 +29,7 @@
 //!   the notes. [`Route::Auto`](super::Route::Auto) takes it where the spectral route applies but its whole
 //!   record does not fit in the available memory. Several sources get one white noise per source
 //!   component; verdict channels are evaluated block by block
-//!   ([`VerdictStream`](super::verdict_stream::VerdictStream)), as on the exact route's blocks.
+//!   ([`VerdictStream`]), as on the exact route's blocks.
 //!
 //! # Bias of the spectral route
 //! The synthesised process is the spectrum sampled on the grid ω_j = 2πj/(NΔt), j ≤ N/2 (truncated at the

@@ -10,7 +10,7 @@
 //!
 //! and the same for Σy² with the squares y_k·y_k (rounded, no fused multiply-add). A record cut into blocks
 //! of any lengths gives the same bits, and so does [`TimeSumLanes`], which keeps the sums of
-//! [`LANES`](super::LANES) realizations stepped side by side.
+//! [`LANES`] realizations stepped side by side.
 //!
 //! Eight chains instead of one: a single running sum is a chain of N dependent additions (3–4 cycles each
 //! on current x86 processors), ≈ 15 % of a 2¹⁶-sample realization of the one-FFT route; eight independent

@@ -19,7 +19,7 @@
 //! ```
 //! A fatigue channel is a run output y(t) times a stress factor s (stress = s·y, in the S–N curve's unit).
 //! Realization i is rainflow-counted (ASTM E1049-85 four-point method, residue as half cycles,
-//! [`rainflow`]) and its Miner damage D_i = Σ n_j S_a,j^k / C ([`SnCurve::damage`]) gives the damage rate
+//! [`rainflow()`]) and its Miner damage D_i = Σ n_j S_a,j^k / C ([`SnCurve::damage`]) gives the damage rate
 //! d_i = D_i/T (1/s); the Student-t interval of the mean of d_i is compared with the spectral methods. The
 //! ranges are also binned ([`RangeHistogram`]) on [0, `max_range`] and summed over the realizations.
 //!
@@ -233,7 +233,7 @@ impl VerdictChannels {
     /// per fatigue channel \[d, histogram counts…, overflow\].
     ///
     /// # Errors
-    /// Non-finite samples; the errors of [`SignalMetrics::from_samples`], [`rainflow`] and
+    /// Non-finite samples; the errors of [`SignalMetrics::from_samples`], [`rainflow()`] and
     /// [`SnCurve::damage`].
     pub fn evaluate<'s>(&self, dt_s: f64, signal: &dyn Fn(&str) -> Option<&'s [f64]>) -> Result<Vec<Vec<f64>>> {
         let mut out = Vec::with_capacity(self.comfort.len() + self.fatigue.len());

@@ -12,19 +12,19 @@
 //! * A measured road profile replayed through a scenario's model ([`replay`]); a measured profile's density,
 //!   ISO 8608 fits, IRI and coherence ([`road_profile`]); the coherence of a model beside a profile's and the
 //!   expected IRI of a road spectrum beside a profile's ([`road_numbers`]).
-//! * The verdicts of a scenario: analytic ([`verdict_analysis`], with the input's coverage of the
+//! * The verdicts of a scenario: analytic ([`verdict_analysis()`], with the input's coverage of the
 //!   frequencies they need, [`input_coverage`]) and by Monte Carlo with the weighted outputs appended
-//!   ([`verdict_run`]), the time step of a scenario's run ([`run_step`]) and a working day of tasks
+//!   (`verdict_run`), the time step of a scenario's run ([`run_step`]) and a working day of tasks
 //!   ([`workday`]).
 //! * Non-stationary runs ([`transient_run`], [`transient_answers`], [`transient_mc`]) and the three routes
-//!   of a scenario with nonlinear elements ([`nonlinear_run`]) with what `stochvib analyze` reports of them
-//!   ([`nonlinear_report`]).
+//!   of a scenario with nonlinear elements (`nonlinear_run`) with what `stochvib analyze` reports of them
+//!   ([`nonlinear_report()`]).
 //!
 //! * The curves of a scenario's pictures as plain data ([`scenario_curves`]: input densities, cross-spectra,
 //!   coherence, |H|², output densities with the cumulative variance, weighted densities, the model
 //!   correlation of a stored output), which [`crate::plot`] draws.
 //! * What `stochvib analyze` and `stochvib spectrum` report ([`analysis`] with its band tables,
-//!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report`]), and what
+//!   [`band_section`], and Monte Carlo verdict values, [`mc_verdicts`]; [`spectrum_report()`]), and what
 //!   `stochvib tailor` reports ([`tailoring`]: ERS and FDS of a spectrum file or a scenario output).
 //! * The poles of a scenario's model ([`poles`]); the result tables of a deterministic scenario
 //!   ([`deterministic`]).

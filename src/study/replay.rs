@@ -1,5 +1,5 @@
 //! A scenario replayed on a measured road profile: the scenario's wheels (its input map, tracks and
-//! positions) follow the profile's tracks at a speed ([`crate::road::replay()`]), and beside each replayed σ
+//! positions) follow the profile's tracks at a speed ([`crate::road::replay::replay()`]), and beside each replayed σ
 //! the analytic σ of the same scenario whose road spectrum is the profile's own measured density
 //! (`measured-profile`, [`crate::scenario::spectrum_file`]).
 
@@ -310,7 +310,7 @@ fn wheels_of(s: &Scenario, track: &str, speed: f64) -> Result<Vec<Wheel>> {
 /// # Formula
 /// The wheels are the scenario's input map at speed v: model input j on track c_j (a road of two tracks:
 /// `left`, `right`; one track: [`ScenarioReplayOptions::track`]) at position p_j = τ_j v behind the first
-/// contact, u_j = g_j z_{c_j}(x − p_j) + g_j μ ([`crate::road::replay()`]). The analytic σ is that of the
+/// contact, u_j = g_j z_{c_j}(x − p_j) + g_j μ ([`crate::road::replay::replay()`]). The analytic σ is that of the
 /// same scenario with the road's spectrum replaced by `{ kind = "measured-profile", file, track, detrend }`
 /// and its speed by v ([`crate::response::analyze_output`]): the Welch estimate Ĝ_d(n) of the (detrended)
 /// track, zero outside its bins; for two tracks the density of `left` with the scenario's coherence model.
@@ -318,7 +318,7 @@ fn wheels_of(s: &Scenario, track: &str, speed: f64) -> Result<Vec<Wheel>> {
 /// # Errors
 /// [`Error::File`] naming the scenario (an input that is not a road, two roads, independent processes,
 /// no speed) or the profile (a missing track, too short for the wheelbase and the skipped length), and the
-/// errors of [`crate::road::replay()`].
+/// errors of [`crate::road::replay::replay()`].
 pub fn replay_scenario(
     scenario: &Scenario,
     profile_path: &Path,

@@ -188,10 +188,10 @@ pub struct IriReport {
     pub measured: Vec<TrackIri>,
 }
 
-/// The expected IRI of `spectrum` ([`expected_iri`]) beside the IRI of each track of `profile` ([`iri`]).
+/// The expected IRI of `spectrum` ([`expected_iri`]) beside the IRI of each track of `profile` ([`iri()`]).
 ///
 /// # Errors
-/// The errors of [`expected_iri`], [`Profile::read_csv`] and [`iri`].
+/// The errors of [`expected_iri`], [`Profile::read_csv`] and [`iri()`].
 pub fn iri_report(spectrum: &SpectrumFile, profile: Option<&Path>) -> Result<IriReport> {
     // a spectrum the IRI does not apply to is named as the user wrote it (the command's SPECTRUM)
     let expected = expected_iri(spectrum.spectrum.as_ref()).map_err(|e| match e {

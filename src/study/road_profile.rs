@@ -125,7 +125,7 @@ pub struct RoadReport {
 /// Reads `path` ([`Profile::read_csv`]) and computes the report (see the module docs).
 ///
 /// # Formula
-/// Ĝ_d by [`spatial_psd`] on the detrended track, its interval ν Ĝ/χ²_ν; the fits by [`fit_iso8608`]
+/// Ĝ_d by [`spatial_psd()`] on the detrended track, its interval ν Ĝ/χ²_ν; the fits by [`fit_iso8608`]
 /// (normal-theory intervals); IRI by [`iri`](fn@iri); γ̂² by [`spatial_cross_spectrum`] with the Fisher-z
 /// interval.
 ///

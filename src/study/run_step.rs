@@ -184,7 +184,7 @@ fn bias_excess(input: &RunInput, dt: f64, duration: f64, realizations: usize) ->
     Ok((excess, over))
 }
 
-/// Least decrease of the excess ([`bias_excess`]) that a doubling of the run's cost must buy: 0.5. Halving
+/// Least decrease of the excess (`bias_excess`) that a doubling of the run's cost must buy: 0.5. Halving
 /// Δt cuts a first-order-hold bias (∝ Δt²) by ln 4 = 1.39 per output; doubling the record cuts a band edge's
 /// grid bias (∝ 1/T) by ln 2 while the narrower interval tightens its target by ln √2 — a net 0.35 that
 /// oscillates with where the edge falls on the grid, which is not worth chasing.

@@ -10,7 +10,7 @@
 //! when its batch is done, and a failed write stops the study at the next point.
 //!
 //! A table file's pages are sent to disk while the next blocks are evaluated
-//! ([`WriteBehind`](crate::io_rules::WriteBehind), [`start_write_out`](crate::io_rules::start_write_out)),
+//! ([`WriteBehind`], [`start_write_out`]),
 //! so that the sync before the final rename waits for the last block only.
 //!
 //! JSON tables are one document and are written from the whole table ([`compute_sweep`], then

@@ -558,7 +558,7 @@ pub(crate) fn point_bytes(identity: &SweepIdentity, format: TableFormat) -> u128
 
 /// The resource rule for a study's table at `path`: a JSON table, whose rows are built whole in memory
 /// before its text is written, must fit the available memory (the rows' values and statistics, and the
-/// value indices); every table's size on disk (points × [`point_bytes`]) the free space of its disk.
+/// value indices); every table's size on disk (points × `point_bytes`) the free space of its disk.
 ///
 /// # Errors
 /// [`Error::InvalidParameter`] naming `param` with the number of points and the sizes.

@@ -1,5 +1,5 @@
 //! Test tailoring (`stochvib tailor`): the extreme response spectrum and the fatigue damage spectrum
-//! ([`crate::extremes::ers_fds`], Lalanne) of a base acceleration given as a spectrum file (a measured or
+//! ([`crate::extremes::ers_fds()`], Lalanne) of a base acceleration given as a spectrum file (a measured or
 //! standard cab-floor or seat-base density) or as an output of a scenario (the computed cab floor), on a
 //! logarithmic grid of natural frequencies; [`crate::report::tailoring_text`] prints it.
 
@@ -95,11 +95,11 @@ pub struct TailoringTable {
 ///
 /// # Formula
 /// The base acceleration's two-sided angular density S(ω) is the spectrum's density, or the scenario
-/// output's S_y(ω) = H_y S_u H_yᴴ; the spectra are those of [`ers_fds`] (Lalanne 2009, Vol. 5).
+/// output's S_y(ω) = H_y S_u H_yᴴ; the spectra are those of [`ers_fds()`] (Lalanne 2009, Vol. 5).
 ///
 /// # Errors
 /// A spectrum that is spatial or not of an acceleration, an output whose unit is not m/s², and the errors
-/// of [`ers_fds`] (the options) and of [`OutputDensity::new`].
+/// of [`ers_fds()`] (the options) and of [`OutputDensity::new`].
 pub fn tailoring_spectra(source: &TailoringSource, opts: &ErsFdsOptions) -> Result<TailoringTable> {
     match source {
         TailoringSource::Spectrum(file) => {

@@ -478,7 +478,7 @@ pub fn check_run_size_of(setup: &TransientSetup, opts: &TransientMcOptions) -> R
 
 /// Runs the road-grid Monte Carlo of the scenario's transient into `out` (resuming an interrupted run): a
 /// road synthesised on a spatial grid of step `road_step` (default [`default_road_step`]) and sampled along
-/// x(t), for any road spectrum under a speed profile; the analytic curves of [`road_grid_analytic`].
+/// x(t), for any road spectrum under a speed profile; the analytic curves of `road_grid_analytic`.
 ///
 /// # Formula
 /// The integration step is Δt = step/s with s = max(`substeps`, ⌈step·v_max/Δx⌉), so that the vehicle moves

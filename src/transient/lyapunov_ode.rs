@@ -328,7 +328,7 @@ pub type Visit<'a> = dyn FnMut(usize, f64, &DMatrix<f64>, &DVector<f64>, f64) ->
 /// ```text
 /// Ṗ = F(t)P + PF(t)ᵀ + G(t)G(t)ᵀ,     ṁ = F(t)m + b(t)
 /// ```
-/// integrated step by step with the exact transition of the frozen coefficients ([`Integrator::trial`]:
+/// integrated step by step with the exact transition of the frozen coefficients (`Integrator::trial`:
 /// exact where the coefficients are constant or only the noise intensity varies, linearly between knots
 /// ([`super::affine_step`]), else midpoint coefficients with step doubling). The step
 /// adapts to keep the local error estimate below `rel_tol` (new step h·min(4, max(0.2, 0.9(tol/err)^{1/3}))),
@@ -336,13 +336,13 @@ pub type Visit<'a> = dyn FnMut(usize, f64, &DMatrix<f64>, &DVector<f64>, f64) ->
 ///
 /// Errors are measured against the scale of each state over the whole window: a variance error against
 /// the state's largest variance s_i, a mean error against √s_i plus its largest |mean|. Time-varying
-/// systems with inexact steps take these scales from a pilot pass ([`pilot_scales`]); the accurate pass
+/// systems with inexact steps take these scales from a pilot pass (`pilot_scales`); the accurate pass
 /// raises them where it
 /// finds more. The estimate reported at t_k is max_i of the accumulated absolute local estimates so far over
 /// those scales: an upper estimate for a stable system, whose errors decay. (An error relative to each
 /// step's own variance would be meaningless where the variance is near 0, at a start from rest, and would
 /// force the steps there down to nothing.) Local estimates are counted above the step's rounding level only
-/// ([`Transition::rounding_floor`]): a state whose variance is zero by a cancellation is rounding noise, and
+/// (`Transition::rounding_floor`): a state whose variance is zero by a cancellation is rounding noise, and
 /// so is its estimate.
 ///
 /// # Errors

@@ -27,7 +27,7 @@ impl RoadGridOptions {
     /// At least two realizations and a positive grid step.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`](crate::Error::InvalidParameter) for R < 2, Δx ≤ 0 or NaN.
+    /// [`Error::InvalidParameter`] for R < 2, Δx ≤ 0 or NaN.
     pub fn check(&self) -> Result<()> {
         if self.realizations < 2 || self.dx.is_nan() || self.dx <= 0.0 {
             return Err(Error::invalid(

@@ -42,7 +42,7 @@ pub use zhao_baker::{ZhaoBaker, ZhaoBakerCoefficients, ZhaoBakerVariant};
 /// with one-sided Hz moments `moments`, for the amplitude S–N curve `sn`.
 ///
 /// # Formula
-/// damage_rate = E[D]/T (1/s); life = 1/damage_rate (s; +∞ when the rate is 0, e.g. every cycle below
+/// damage_rate = E\[D\]/T (1/s); life = 1/damage_rate (s; +∞ when the rate is 0, e.g. every cycle below
 /// the endurance limit in the model).
 ///
 /// # Errors
