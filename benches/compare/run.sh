@@ -143,10 +143,10 @@ trap - EXIT
 
 # the harnesses with tables of their own, each writing rows-NAME.json for the one table (compare.py summary)
 if [ "$smoke" = 1 ]; then
-    fatigue_args=(--n 200000 --check 20000 --reps 1) nl=(R=8 T=2 REPS=1 PY_PROCS=1) transient_r=40 transient_reps=1 transient_ours=1 opt_reps=1 hours=0.005
+    fatigue_args=(--n 200000 --check 20000 --reps 1) nl=(R=8 T=2 REPS=1 PY_PROCS=1) transient_r=40 transient_reps=1 transient_ours=1 opt_reps=1 hours=0.005 rec_reps=1
 else
     fatigue_args=(--n 100000000 --check 1000000 --reps 3) nl=(R=512 T=30 REPS=3) transient_r=10000 transient_reps=5 transient_ours=5
-    opt_reps=7 hours=1
+    opt_reps=7 hours=1 rec_reps=3
 fi
 echo "run.sh: fatigue.py (rainflow, Dirlik)" >&2
 state "as found" fatigue
@@ -167,7 +167,7 @@ state "as found" optimize
 python3 "$here/optimize.py" --binary "$cli" --reps "$opt_reps" --rows "$out/rows-optimize.json" >"$out/optimize.txt"
 echo "run.sh: records.py (stochvib exposure against scipy.signal)" >&2
 state "as found" records
-python3 "$here/records.py" run --binary "$cli" --hours "$hours" --dir "$out/records" >"$out/records.json" \
+python3 "$here/records.py" run --binary "$cli" --hours "$hours" --reps "$rec_reps" --dir "$out/records" >"$out/records.json" \
     2>"$out/records.log"
 rm -f "$out"/records/*.h5
 python3 "$here/rows.py" records "$out/records.json" >"$out/rows-records.json"
