@@ -26,18 +26,7 @@ pub enum MergeKind {
 pub fn merge_kind(output: &Path, inputs: &[PathBuf]) -> Result<MergeKind> {
     let sweeps = super::find_sweep_shards(inputs)?;
     if let Some(sweep) = sweeps.first() {
-        let (mut runs, _) = find_run_files(inputs, &[output])?;
-        runs.retain(|r| r.extension().is_none_or(|e| e != "json"));
-        if let Some(run) = runs.first() {
-            return Err(Error::Hdf5 {
-                path: output.to_path_buf(),
-                reason: format!(
-                    "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
-                    sweep.display(),
-                    run.display()
-                ),
-            });
-        }
+        refuse_mixed(output, sweep, inputs)?;
         return Ok(MergeKind::Sweep);
     }
     refuse_part_as_output(output, inputs)?;
@@ -50,6 +39,28 @@ pub fn merge_kind(output: &Path, inputs: &[PathBuf]) -> Result<MergeKind> {
             Ok(MergeKind::Transient)
         }
         _ => Ok(MergeKind::Run),
+    }
+}
+
+/// Refuses `inputs` that hold run files beside the sweep shard file `sweep` (one of theirs): a merge joins
+/// one kind of file. [`super::merge_sweep`] asks this too, so that a library caller is refused as the
+/// command line is (the table would otherwise be built without a word about the run files).
+///
+/// # Errors
+/// [`Error::Hdf5`] naming `output`, a sweep shard file and a run file; a directory that cannot be read.
+pub fn refuse_mixed(output: &Path, sweep: &Path, inputs: &[PathBuf]) -> Result<()> {
+    let (mut runs, _) = find_run_files(inputs, &[output])?;
+    runs.retain(|r| r.extension().is_none_or(|e| e != "json"));
+    match runs.first() {
+        Some(run) => Err(Error::Hdf5 {
+            path: output.to_path_buf(),
+            reason: format!(
+                "the inputs hold both sweep shard files ({}) and run files ({}): merge one kind at a time",
+                sweep.display(),
+                run.display()
+            ),
+        }),
+        None => Ok(()),
     }
 }
 

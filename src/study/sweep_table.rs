@@ -1073,7 +1073,8 @@ pub fn find_sweep_shards(inputs: &[PathBuf]) -> Result<Vec<PathBuf>> {
 ///
 /// # Errors
 /// [`Error::Hdf5`] listing every problem, naming the files: unreadable files, files of another study,
-/// points held twice (duplicates or overlaps), points missing (the indices to resubmit); the table
+/// points held twice (duplicates or overlaps), points missing (the indices to resubmit); inputs that hold
+/// run files beside the shard files ([`refuse_mixed`](super::merge_kind::refuse_mixed)); the table
 /// writer's errors.
 pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<SweepResults> {
     let files = find_sweep_shards(inputs)?;
@@ -1084,6 +1085,7 @@ pub fn merge_sweep(out: &Path, inputs: &[PathBuf], overwrite: bool) -> Result<Sw
     if files.is_empty() {
         return Err(fail("no sweep shard files (sweep-shard-*.json)".into()));
     }
+    super::merge_kind::refuse_mixed(out, &files[0], inputs)?;
     // the resource rule: every shard is read whole, and the table is built in memory
     let bytes: u128 = files
         .iter()

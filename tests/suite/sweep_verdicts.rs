@@ -161,6 +161,18 @@ fn verdict_columns_in_hdf5_and_in_merged_shards() {
             "a shard file without its verdicts: {text}"
         );
     }
+    // a run file beside the shards is refused by the library as by `stochvib merge`, naming both kinds
+    // (it was left out without a word)
+    let run = dir.join("A0.h5");
+    std::fs::write(&run, b"a run file\n").unwrap();
+    let mixed = merge_sweep(&dir.join("mixed.h5"), &[shards.clone(), run.clone()], false)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        mixed.contains("both sweep shard files") && mixed.contains("A0.h5") && mixed.contains("sweep-shard-"),
+        "{mixed}"
+    );
+    assert!(!dir.join("mixed.h5").exists());
     let merged = dir.join("merged.h5");
     merge_sweep(&merged, std::slice::from_ref(&shards), false).unwrap();
     merge_sweep(&dir.join("merged.csv"), std::slice::from_ref(&shards), false).unwrap();
