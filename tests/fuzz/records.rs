@@ -518,16 +518,20 @@ pub fn names_a_positional(case: &Case, name: &str, message: &str) -> bool {
 }
 
 /// Whether the CLI's stderr names a positional argument of the case's command with the value typed: quoted
-/// (`"Wz"`), or as the parameter of its role (`` `spectrum` = type1``).
+/// (`"Wz"`), or as the parameter of its role (`` `spectrum` = type1``; an empty one `` `weighting` = ""``).
 pub fn cli_names_a_positional(case: &Case, stderr: &str) -> bool {
-    let Some(v) = case.args.get(1).filter(|v| !v.is_empty() && !v.starts_with("--")) else {
+    let Some(v) = case.args.get(1).filter(|v| !v.starts_with("--")) else {
         return false;
     };
     let role = match case.args[0].as_str() {
         "iri" => "spectrum",
         "weighting" => "weighting",
-        _ => return stderr.contains(&format!("\"{v}\"")),
+        _ => return !v.is_empty() && stderr.contains(&format!("\"{v}\"")),
     };
+    // an empty positional is named by its role, its value quoted: `weighting` = ""
+    if v.is_empty() {
+        return stderr.contains(&format!("`{role}` = \"\""));
+    }
     stderr.contains(&format!("\"{v}\"")) || stderr.contains(&format!("`{role}` = {v}"))
 }
 
