@@ -779,15 +779,9 @@ fn spectrum_command(cmd: Command) -> anyhow::Result<()> {
         (None, Some(f)) => study::DensityPoints::Cyclic(f),
         (None, None) => study::DensityPoints::Characteristic,
     };
-    if let study::DensityPoints::Angular(v) | study::DensityPoints::Cyclic(v) = &points
-        && let Some(x) = v.iter().find(|x| !x.is_finite() || **x < 0.0)
-    {
-        let flag = match points {
-            study::DensityPoints::Angular(_) => "--omega",
-            _ => "--frequency",
-        };
-        anyhow::bail!("{flag} {x}: frequencies must be finite and >= 0");
-    }
+    points
+        .check()
+        .map_err(|e| e.renamed("omega", "--omega").renamed("frequency", "--frequency"))?;
     print(&study::spectrum_report_at(&file, convention, &points), json)?;
     Ok(())
 }

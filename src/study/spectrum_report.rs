@@ -1,7 +1,7 @@
 //! The `stochvib spectrum` report: variance two ways, correlation at a few lags, density at a few
 //! frequencies in a chosen convention, as computed; [`crate::report::spectrum_text`] prints it.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::numbers::rel_diff;
 use crate::scenario::SpectrumFile;
 use crate::spectrum::{numeric, Convention, Spectrum};
@@ -74,6 +74,44 @@ pub enum DensityPoints {
     Angular(Vec<f64>),
     /// Cyclic frequencies: Hz for a temporal spectrum, cycles/m for a spatial one.
     Cyclic(Vec<f64>),
+}
+
+impl DensityPoints {
+    /// Checks the points before a report is built at them.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] named `omega` or `frequency` for a point that is negative or not finite,
+    /// or a cyclic frequency whose angular frequency 2πf is not finite (f above about 2.9·10³⁰⁷), which the
+    /// report would print as `inf`.
+    ///
+    /// # Examples
+    /// ```
+    /// use stochvib::study::DensityPoints;
+    /// assert!(DensityPoints::Cyclic(vec![0.5, 2.0]).check().is_ok());
+    /// let e = DensityPoints::Cyclic(vec![1e308]).check().unwrap_err().to_string();
+    /// assert!(e.contains("`frequency`") && e.contains("2πf"), "{e}");
+    /// assert!(DensityPoints::Angular(vec![-1.0]).check().is_err());
+    /// ```
+    pub fn check(&self) -> Result<()> {
+        let (name, points, scale) = match self {
+            DensityPoints::Characteristic => return Ok(()),
+            DensityPoints::Angular(w) => ("omega", w, 1.0),
+            DensityPoints::Cyclic(f) => ("frequency", f, std::f64::consts::TAU),
+        };
+        for &x in points {
+            if !(x.is_finite() && x >= 0.0) {
+                return Err(Error::invalid(name, x, "frequencies must be finite and >= 0"));
+            }
+            if !(scale * x).is_finite() {
+                return Err(Error::invalid(
+                    name,
+                    x,
+                    "too large: its angular frequency 2πf is not a finite number",
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Builds the report for `file`, with the density written in `convention` at five characteristic points.
