@@ -121,7 +121,9 @@ pub fn spectrum_report(file: &SpectrumFile, convention: Convention) -> SpectrumR
 
 /// Builds the report for `file`, with the density written in `convention` at `points`. The abscissa is
 /// printed in the convention's own unit (Hz or cycles/m for the cyclic convention, rad/s or rad/m
-/// otherwise), whichever unit the points were given in.
+/// otherwise), whichever unit the points were given in. Points from a user are checked first with
+/// [`DensityPoints::check`] (as `stochvib spectrum` does): a negative, non-finite or overflowing point
+/// would be reported as it is, a density at ω = inf or NaN.
 pub fn spectrum_report_at(file: &SpectrumFile, convention: Convention, points: &DensityPoints) -> SpectrumReport {
     let s = file.spectrum.as_ref();
     let variance: Outcome = s.variance().into();
