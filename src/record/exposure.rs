@@ -25,6 +25,12 @@ pub const BLOCK_SAMPLES: usize = 1 << 16;
 /// running r.m.s. stay in the processor's first-level cache between the passes.
 const CHUNK_SAMPLES: usize = 2048;
 
+/// The largest |value| (SI: m/s², rad/s²) of an evaluated channel. Above it the weighted signal's fourth
+/// powers, summed for the VDV over up to 2⁶³ samples, could leave the range of f64 (1.8·10³⁰⁸): (1.2·10⁶⁰)⁴ ·
+/// 9.2·10¹⁸ ≈ 2·10²⁵⁹, with 20 % for the weighting's gain and its filter's overshoot. No acceleration a
+/// machine meets comes near it; such a value is a unit or scaling error, or a corrupt file.
+pub const MAX_ABS_VALUE: f64 = 1e60;
+
 /// Bins kept by the envelope of each weighted signal (for the time-history picture): between this and twice
 /// this.
 pub const ENVELOPE_BINS: usize = 300;
@@ -439,6 +445,9 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
         if n == 0 {
             break;
         }
+        for (e, _) in &evaluators {
+            check_magnitudes(&info, e.index, &block[e.index][..n], samples)?;
+        }
         samples += n;
         evaluators
             .par_iter_mut()
@@ -460,6 +469,28 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
         }
     }
     summarise(info, samples, duration_s, exposure_s, options, axes, sickness)
+}
+
+/// Refuses a value of channel `index` whose magnitude exceeds [`MAX_ABS_VALUE`], naming the channel, the
+/// sample (counted from 0 over the record; `first` is the index of `x[0]`), its time and its value.
+fn check_magnitudes(info: &RecordInfo, index: usize, x: &[f64], first: usize) -> Result<()> {
+    let Some(i) = x.iter().position(|v| v.abs() > MAX_ABS_VALUE) else {
+        return Ok(());
+    };
+    let at = first + i;
+    Err(Error::in_file(
+        &info.source,
+        format!(
+            "channel `{}`, sample {at} (t = {} s)",
+            info.channels[index].name,
+            crate::numbers::num(at as f64 / info.sample_rate_hz)
+        ),
+        format!("{:e} (SI)", x[i]),
+        format!(
+            "larger in magnitude than {MAX_ABS_VALUE:e}: the fourth powers of the VDV would leave the range of \
+             f64; check the channel's unit and scaling"
+        ),
+    ))
 }
 
 /// The vector sums and the verdict over the evaluated axes.

@@ -79,7 +79,7 @@ impl Hdf5Record {
             }
             let short = name.trim_start_matches('/').to_string();
             let unit = match (
-                string_attr(&ds, "unit"),
+                string_attr(&ds, "unit", path, &format!("{key}, attribute unit"))?,
                 options.units.iter().find(|(n, _)| *n == short),
             ) {
                 (Some(u), None) => u,
@@ -197,15 +197,59 @@ fn rate_attr(file: &hdf5::File, ds: &hdf5::Dataset, name: &str, path: &Path) -> 
     Ok(Some(r))
 }
 
-/// A string attribute (variable-length UTF-8, as h5py writes `str`), if present and readable.
-fn string_attr(ds: &hdf5::Dataset, name: &str) -> Option<String> {
-    let a = ds.attr(name).ok()?;
-    if let Ok(v) = a.read_scalar::<VarLenUnicode>() {
-        return Some(v.as_str().to_string());
+/// The longest fixed-length text attribute read, bytes (a unit is a few characters).
+const FIXED_TEXT_MAX: usize = 256;
+
+/// A text attribute of `ds`: `Ok(None)` when there is none; its text (trimmed) when it is a string of one
+/// value, variable- or fixed-length, ASCII or UTF-8 (h5py writes `str` as variable-length UTF-8, `bytes` and
+/// MATLAB's `h5writeatt` fixed-length ASCII; a list of one string is a one-element array).
+///
+/// # Errors
+/// [`Error::File`] naming `key` when the attribute holds something else: a number, several values, a
+/// fixed-length string longer than [`FIXED_TEXT_MAX`] bytes, text that is not UTF-8.
+fn string_attr(ds: &hdf5::Dataset, name: &str, path: &Path, key: &str) -> Result<Option<String>> {
+    use hdf5::types::{FixedAscii, FixedUnicode, TypeDescriptor as TD, VarLenAscii};
+    let Ok(a) = ds.attr(name) else {
+        return Ok(None);
+    };
+    let refuse = |value: String, why: String| Error::in_file(path, key, value, why);
+    let unreadable = |e: hdf5::Error| refuse("<unreadable>".into(), format!("not readable as text: {e}"));
+    let td = a.dtype().and_then(|t| t.to_descriptor()).map_err(unreadable)?;
+    if a.size() != 1 {
+        return Err(refuse(
+            format!("{} values", a.size()),
+            "one text is needed (e.g. `m/s^2`)".into(),
+        ));
     }
-    a.read_scalar::<hdf5::types::VarLenAscii>()
-        .ok()
-        .map(|v| v.as_str().to_string())
+    let first = |v: Vec<String>| v.into_iter().next().unwrap_or_default();
+    let text = match td {
+        TD::VarLenUnicode => a
+            .read_raw::<VarLenUnicode>()
+            .map(|v| first(v.iter().map(|s| s.to_string()).collect())),
+        TD::VarLenAscii => a
+            .read_raw::<VarLenAscii>()
+            .map(|v| first(v.iter().map(|s| s.to_string()).collect())),
+        TD::FixedAscii(n) if n <= FIXED_TEXT_MAX => a
+            .read_raw::<FixedAscii<FIXED_TEXT_MAX>>()
+            .map(|v| first(v.iter().map(|s| s.to_string()).collect())),
+        TD::FixedUnicode(n) if n <= FIXED_TEXT_MAX => a
+            .read_raw::<FixedUnicode<FIXED_TEXT_MAX>>()
+            .map(|v| first(v.iter().map(|s| s.to_string()).collect())),
+        TD::FixedAscii(n) | TD::FixedUnicode(n) => {
+            return Err(refuse(
+                format!("a text of {n} bytes"),
+                format!("longer than the {FIXED_TEXT_MAX} bytes read: a unit is a few characters"),
+            ))
+        }
+        other => {
+            return Err(refuse(
+                "<not text>".into(),
+                format!("the attribute holds {other}, not text (a unit is written as a string, e.g. `m/s^2`)"),
+            ))
+        }
+    }
+    .map_err(unreadable)?;
+    Ok(Some(text.trim().to_string()))
 }
 
 /// Every one-dimensional numeric dataset of the root group, in name order.

@@ -37,6 +37,17 @@ pub enum TimeBase {
     WavHeader,
 }
 
+impl std::fmt::Display for TimeBase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            TimeBase::TimeColumn(name) => write!(f, "from the time column `{name}`"),
+            TimeBase::Stated => write!(f, "stated by --sample-rate"),
+            TimeBase::Attribute(dataset) => write!(f, "from the `sample_rate` attribute of {dataset} or its group"),
+            TimeBase::WavHeader => write!(f, "from the WAV header"),
+        }
+    }
+}
+
 /// The description of a record: its file, channels and sample rate.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RecordInfo {

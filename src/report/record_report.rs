@@ -33,10 +33,7 @@ pub fn axis_table(axes: &[AxisEvaluation]) -> Table {
         .num("MTVV [m/s²]", &col(&|a| a.mtvv))
         .num("VDV [m/s^1.75]", &col(&|a| Some(a.metrics.vdv)))
         .num("crest factor", &col(&|a| opt(a.metrics.check.crest_factor)))
-        .num(
-            "MTVV/a_w",
-            &col(&|a| opt(a.mtvv).zip(Some(a.metrics.a_w)).map(|(m, w)| m / w)),
-        )
+        .num("MTVV/a_w", &col(&|a| opt(a.mtvv.map(|m| m / a.metrics.a_w))))
         .num("VDV/(a_w T^¼)", &col(&|a| opt(a.metrics.check.vdv_ratio)))
         .text(
             "basic method",
@@ -148,7 +145,7 @@ fn exposure_facts(e: &ExposureEvaluation) -> Vec<(&'static str, String)> {
         (
             "sampling",
             format!(
-                "{} samples at {} Hz ({:?})",
+                "{} samples at {} Hz ({})",
                 e.samples,
                 num(e.record.sample_rate_hz),
                 e.record.time_base

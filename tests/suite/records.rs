@@ -549,6 +549,68 @@ fn write_h5_acceleration(path: &Path, data: &[f64], rate_hz: f64) {
         .unwrap();
 }
 
+/// A dataset `z` at 1000 Hz whose `unit` attribute is written by `unit` (fixed-length ASCII, a one-element
+/// array of variable-length strings, a number: as h5py's `bytes`, MATLAB's `h5writeatt` or a list writes it).
+fn write_h5_with_unit(path: &Path, unit: impl FnOnce(&hdf5::Dataset)) {
+    let _serial = crate::common::hdf5_serial();
+    let f = hdf5::File::create(path).unwrap();
+    let data: Vec<f64> = (0..4000).map(|i| (0.03 * i as f64).sin()).collect();
+    let ds = f.new_dataset_builder().with_data(&data).create("z").unwrap();
+    ds.new_attr::<f64>()
+        .create("sample_rate")
+        .unwrap()
+        .write_scalar(&1000.0)
+        .unwrap();
+    unit(&ds);
+}
+
+/// A record's unit written as fixed-length ASCII (null-padded, 8 bytes for `m/s^2`) or as a one-element array
+/// of variable-length UTF-8 is the unit (it read "no `unit` attribute"); a number is refused naming the
+/// dataset's attribute. Expected: the written text, m/s² (dimension of an acceleration).
+#[test]
+fn hdf5_units_written_as_fixed_length_or_one_element_text_are_read() {
+    use hdf5::types::{FixedAscii, VarLenUnicode};
+    let dir = scratch("h5-units");
+    let fixed = dir.join("fixed.h5");
+    write_h5_with_unit(&fixed, |ds| {
+        let u = FixedAscii::<8>::from_ascii(b"m/s^2").unwrap();
+        ds.new_attr::<FixedAscii<8>>()
+            .create("unit")
+            .unwrap()
+            .write_scalar(&u)
+            .unwrap();
+    });
+    let one = dir.join("one.h5");
+    write_h5_with_unit(&one, |ds| {
+        let u: VarLenUnicode = "m/s^2".parse().unwrap();
+        ds.new_attr::<VarLenUnicode>()
+            .shape(1)
+            .create("unit")
+            .unwrap()
+            .write(&[u])
+            .unwrap();
+    });
+    for file in [&fixed, &one] {
+        let (info, all) = read_all(file, &RecordOptions::default());
+        assert_eq!(info.channels[0].dim, Dim::ACCELERATION, "{}", file.display());
+        assert_eq!(all[0].len(), 4000);
+        assert!(matches!(info.time_base, TimeBase::Attribute(_)));
+    }
+    let number = dir.join("number.h5");
+    write_h5_with_unit(&number, |ds| {
+        ds.new_attr::<i64>().create("unit").unwrap().write_scalar(&5).unwrap();
+    });
+    let e = open_record(&number, &RecordOptions::default())
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("number.h5") && e.contains("attribute unit") && e.contains("not text"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Every sample of every channel, read in blocks of 64.
 fn read_all(path: &Path, options: &RecordOptions) -> (RecordInfo, Vec<Vec<f64>>) {
     let mut r = open_record(path, options).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -578,8 +640,8 @@ fn refusal(dir: &Path, name: &str, text: &str, options: &RecordOptions) -> Strin
 
 /// Bad records are refused with the file, the line (or key) and the value: NaN, a blank field (missing
 /// sample), non-monotone time, a skipped sample, a column without a unit, an ambiguous `g`, no time base,
-/// an empty file, a header only, a rate too low for the weighting's 80 Hz band; an unknown weighting and
-/// axis by name.
+/// an empty file, a header only, a value too large for the VDV's fourth powers, a rate too low for the
+/// weighting's 80 Hz band; an unknown weighting and axis by name.
 #[test]
 fn bad_records_are_refused_with_file_line_and_value() {
     let dir = scratch("bad");
@@ -637,6 +699,17 @@ fn bad_records_are_refused_with_file_line_and_value() {
     let e = refusal(&dir, "headonly.csv", head, &none);
     assert!(
         e.contains("no sample") || e.contains("empty") || e.contains("no row"),
+        "{e}"
+    );
+    // 1e200 m/s²: its fourth power (1e800) is beyond f64, so the VDV could not be formed (it read
+    // "invalid parameter `a_w` = NaN", no file); now the file, channel, sample, time and value
+    let huge = format!(
+        "{head}{}",
+        rows(&|i| if i == 25 { "0.025,0.1,0.2,1e200".into() } else { good(i) })
+    );
+    let e = refusal(&dir, "huge.csv", &huge, &none);
+    assert!(
+        e.contains("`z`") && e.contains("sample 25") && e.contains("0.025 s") && e.contains("1e200"),
         "{e}"
     );
     let low = format!("{head}{}", rows(&|i| format!("{:?},0.1,0.2,0.3", i as f64 / 100.0)));
@@ -930,6 +1003,8 @@ fn cli_exposure_weighting_and_refusal() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(text.contains("A(8)") && text.contains("VDV"), "{text}");
+    // the y channel is zero: a_w = MTVV = 0, and MTVV/a_w is no number ("—", as the crest factor), not NaN
+    assert!(!text.contains("NaN"), "{text}");
     let out = crate::common::cli_within(&["weighting", "Wk", "--frequency", "4"], &dir, limit);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success() && text.contains("0.967"), "{text}");
