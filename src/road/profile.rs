@@ -382,6 +382,11 @@ fn parse_value(field: &str, file: &Path, key: &dyn Fn() -> String) -> Result<f64
     Ok(v)
 }
 
+/// The largest |elevation| of a profile read from a file, m: above it the sums of squares of a Welch density
+/// (up to N² x² for N ≤ 10⁹ samples) or of a replayed response could leave the range of f64 (1.8·10³⁰⁸).
+/// No road comes near it; such a value is a unit error or a corrupt file.
+pub const MAX_ELEVATION_M: f64 = 1e100;
+
 impl RawProfile {
     /// Reads a CSV file (see the type's formula) under the input rule: a regular file of at most
     /// [`crate::io_rules::CSV_INPUT`]'s size (FIFOs, devices and directories refused before anything is
@@ -476,7 +481,8 @@ impl RawProfile {
     ///
     /// # Errors
     /// [`Error::File`] at the first row off the grid, naming its line, its distance, the step found there
-    /// and the uniform step; an invalid tolerance.
+    /// and the uniform step; an elevation beyond [`MAX_ELEVATION_M`] (its line and column); an invalid
+    /// tolerance.
     pub fn to_uniform(&self, step_tolerance: f64) -> Result<Profile> {
         if !(step_tolerance.is_finite() && step_tolerance > 0.0) {
             return Err(Error::invalid(
@@ -510,7 +516,26 @@ impl RawProfile {
                 ));
             }
         }
+        self.check_magnitudes()?;
         Profile::new(h, d0, self.tracks.clone())
+    }
+
+    /// Refuses an elevation larger in magnitude than [`MAX_ELEVATION_M`], naming its line and column.
+    fn check_magnitudes(&self) -> Result<()> {
+        for (t, tr) in self.tracks.iter().enumerate() {
+            if let Some(k) = tr.elevation_m.iter().position(|v| v.abs() > MAX_ELEVATION_M) {
+                return Err(Error::in_file(
+                    &self.source,
+                    format!("line {}, column {} `{}`", self.lines[k], t + 2, tr.name),
+                    format!("{:e} m", tr.elevation_m[k]),
+                    format!(
+                        "larger in magnitude than {MAX_ELEVATION_M:e} m: the squared sums of a density or a \
+                         response would leave the range of f64; check the column's unit"
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Linear interpolation of every track onto the uniform grid d₀ + k·`step_m`, k = 0.. while
@@ -525,9 +550,11 @@ impl RawProfile {
     /// old Nyquist frequency (gain sinc² of the triangle kernel).
     ///
     /// # Errors
-    /// `step_m` not finite and > 0; a grid of fewer than 2 points.
+    /// `step_m` not finite and > 0; a grid of fewer than 2 points; an elevation beyond [`MAX_ELEVATION_M`]
+    /// (its line and column).
     pub fn resample_to(&self, step_m: f64) -> Result<Profile> {
         crate::error::require_positive("step", step_m)?;
+        self.check_magnitudes()?;
         let d = &self.distance_m;
         let n_in = d.len();
         let d0 = d[0];

@@ -336,8 +336,13 @@ pub const MIN_DENSITY_SAMPLES: usize = 16;
 /// the detrending adds a few roundings), four decades below this, not a roughness.
 pub const FLAT_FRACTION: f64 = 1e-12;
 
+/// A track whose largest |elevation| (m) is below this, and not 0, is refused: the squares in its density
+/// (10⁻²⁰⁰ and below) approach the smallest normal f64 (2.2·10⁻³⁰⁸) once a window and a segment's sums
+/// scale them. No road comes near it; such a track is a unit error.
+pub const MIN_PEAK_ELEVATION_M: f64 = 1e-100;
+
 /// Refuses a track of a profile file `file` whose density cannot be estimated or fitted: fewer than
-/// [`MIN_DENSITY_SAMPLES`] samples, or flat (`detrended` — the track after its trend is removed — has
+/// [`MIN_DENSITY_SAMPLES`] samples, all its elevations below [`MIN_PEAK_ELEVATION_M`] in magnitude, or flat (`detrended` — the track after its trend is removed — has
 /// σ ≤ [`FLAT_FRACTION`]·max|`raw`|: a constant or a straight line, whose "density" would be rounding
 /// noise fitted as a road of class A).
 ///
@@ -370,6 +375,17 @@ pub fn check_density_input(file: &std::path::Path, track: &str, raw: &[f64], det
         ));
     }
     let peak = raw.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    if peak > 0.0 && peak < MIN_PEAK_ELEVATION_M {
+        return Err(Error::in_file(
+            file,
+            key,
+            format!("largest |elevation| {peak:e} m"),
+            format!(
+                "every elevation is below {MIN_PEAK_ELEVATION_M:e} m in magnitude: their squares approach the \
+                 smallest numbers of f64, so the density would be rounding; check the column's unit"
+            ),
+        ));
+    }
     let sigma = (detrended.iter().map(|v| v * v).sum::<f64>() / detrended.len() as f64).sqrt();
     if sigma <= FLAT_FRACTION * peak || peak == 0.0 {
         return Err(Error::in_file(

@@ -190,6 +190,44 @@ fn flat_constant_and_short_profiles_are_refused_not_classified() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
+/// Elevations whose squares leave the range of f64 are refused, naming the file and the column: one of
+/// 10²⁰⁰ mm in row 10 (line 12: the header is line 1), for `road`, `iri --profile` and `replay` (it read "variance
+/// estimate: must be finite … the profile is too short or too coarse"); a track of at most 10⁻³⁰⁰ mm, for
+/// `road` (it read "the track is flat").
+#[test]
+fn profiles_whose_squares_leave_f64_are_refused_naming_the_column() {
+    let d = scratch("magnitudes");
+    let write = |name: &str, z: &dyn Fn(usize) -> f64| {
+        let mut t = String::from("distance [m], left [mm], right [mm]\n");
+        for k in 0..2000 {
+            t.push_str(&format!("{:.2},{:e},{:e}\n", k as f64 * 0.05, z(k), 0.5 * z(k)));
+        }
+        std::fs::write(d.join(name), t).unwrap();
+    };
+    let rough = |k: usize| (0.7 * k as f64).sin() + (0.13 * k as f64).cos();
+    write("huge.csv", &|k| if k == 10 { 1e200 } else { rough(k) });
+    write("tiny.csv", &|k| 1e-300 * rough(k));
+    let sc = root().join("data/quarter-car.toml");
+    let sc = sc.to_str().unwrap();
+    for args in [
+        vec!["road", "huge.csv"],
+        vec!["iri", "iso8608-c", "--profile", "huge.csv"],
+        vec!["replay", sc, "huge.csv"],
+    ] {
+        let e = fails(1, &args, &d);
+        assert!(
+            e.contains("huge.csv") && e.contains("line 12, column 2 `left`") && e.contains("1e197 m"),
+            "{args:?}: {e}"
+        );
+    }
+    let e = fails(1, &["road", "tiny.csv"], &d);
+    assert!(
+        e.contains("tiny.csv") && e.contains("column left") && e.contains("below") && !e.contains("flat"),
+        "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
+
 /// Counts below what a batch needs are refused naming the flag: `sweep --monte-carlo 0` (which failed every
 /// point and exited 0), `--monte-carlo 1`, `analyze --monte-carlo 1`, `simulate --realizations 0`,
 /// `--shard-size 0`, `--max-hours 0`, `--of 0`.
