@@ -3,6 +3,7 @@
 //! and the fatigue damage spectrum.
 
 use super::table::{Table, ToMarkdown};
+use crate::numbers::num;
 use crate::study::tailoring::TailoringTable;
 use std::fmt;
 
@@ -28,7 +29,12 @@ impl TailoringTable {
         format!(
             "ERS and FDS of {}: Q = {}, T = {} s, Basquin b = {}, K = {} Pa/m, C = {} Pa^b \
              (Lalanne; n0+ counts up-crossings; ERS is — where n0+ T <= 1)",
-            self.source, o.q, o.duration_s, m.b, m.k, m.c
+            self.source,
+            num(o.q),
+            num(o.duration_s),
+            num(m.b),
+            num(m.k),
+            num(m.c)
         )
     }
 }

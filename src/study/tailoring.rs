@@ -24,6 +24,10 @@ pub enum TailoringSource<'a> {
     },
 }
 
+/// The most natural frequencies of a grid: a table of 10⁶ rows (about 10 s of quadratures on one core) is
+/// finer than any test specification reads; 10⁸ took 20 minutes and gigabytes of text before it printed.
+pub const MAX_GRID_POINTS: usize = 1_000_000;
+
 /// The logarithmic grid of natural frequencies of the oscillator family.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FrequencyGrid {
@@ -31,7 +35,7 @@ pub struct FrequencyGrid {
     pub min_hz: f64,
     /// Highest natural frequency, Hz.
     pub max_hz: f64,
-    /// Number of frequencies (≥ 2), evenly spaced in log f.
+    /// Number of frequencies (2 to [`MAX_GRID_POINTS`]), evenly spaced in log f.
     pub points: usize,
 }
 
@@ -39,7 +43,8 @@ impl FrequencyGrid {
     /// The frequencies min·(max/min)^{k/(points−1)}, k = 0 … points−1, Hz (the ends exact).
     ///
     /// # Errors
-    /// A bound that is not finite and > 0, min ≥ max, fewer than 2 points.
+    /// A bound that is not finite and > 0, min ≥ max, fewer than 2 points or more than
+    /// [`MAX_GRID_POINTS`].
     ///
     /// # Examples
     /// ```
@@ -66,6 +71,13 @@ impl FrequencyGrid {
                 "points",
                 self.points,
                 "a grid needs at least 2 frequencies",
+            ));
+        }
+        if self.points > MAX_GRID_POINTS {
+            return Err(Error::invalid(
+                "points",
+                self.points,
+                format!("at most {MAX_GRID_POINTS} frequencies (a table finer than any specification reads)"),
             ));
         }
         let ratio = (self.max_hz / self.min_hz).ln();

@@ -205,4 +205,37 @@ fn the_command_refuses_what_is_not_a_base_acceleration() {
     assert!(order.contains("f-min") && order.contains("below f-max"), "{order}");
     let q = cli_fails(1, &["tailor", "white-1-80hz", "--duration", "1 h", "--q", "0.4"], &root);
     assert!(q.contains("quality factor"), "{q}");
+    // 10⁸ frequencies ran for 20 minutes before printing; the grid holds at most 10⁶
+    let many = cli_fails(
+        1,
+        &["tailor", "white-1-80hz", "--duration", "1 h", "--points", "100000000"],
+        &root,
+    );
+    assert!(
+        many.contains("points") && many.contains("100000000") && many.contains("at most 1000000"),
+        "{many}"
+    );
+}
+
+/// The heading writes the options as numbers, not every digit of a large one: Basquin b = 1e300 (it printed
+/// 301 digits) reads `b = 1e300`.
+#[test]
+fn the_heading_writes_large_options_briefly() {
+    let out = cli_within(
+        &[
+            "tailor",
+            "white-1-80hz",
+            "--duration",
+            "1 h",
+            "--b",
+            "1e300",
+            "--points",
+            "2",
+        ],
+        &root(),
+        std::time::Duration::from_secs(120),
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("Basquin b = 1e300,"), "{text}");
 }
