@@ -132,7 +132,8 @@ pub struct WeightingErrorRow {
 ///
 /// # Errors
 /// [`DigitalWeighting::new`] refuses a sample rate that is not finite and > 0, or at which a pole frequency
-/// of the weighting lies at or above the Nyquist frequency (it cannot be realised: tan(ω_p/2f_s) ≤ 0).
+/// of the weighting lies at or above the Nyquist frequency (it cannot be realised: tan(ω_p/2f_s) ≤ 0), or so
+/// high that the rounded coefficients give no finite response in the evaluation range (10⁹ Hz for Wk).
 ///
 /// # Examples
 /// ```
@@ -193,12 +194,37 @@ impl DigitalWeighting {
             }
             sections.push(Biquad::bilinear(num, den, wp, sample_rate_hz));
         }
-        Ok(DigitalWeighting {
+        let digital = DigitalWeighting {
             weighting,
             sample_rate_hz,
             sections,
             gain: weighting.parameters().gain,
-        })
+        };
+        digital.require_finite_response()?;
+        Ok(digital)
+    }
+
+    /// Refuses a realisation whose response at a one-third-octave centre of the evaluation range is not a
+    /// finite number: at a sample rate so high (10⁹ Hz for Wk) that the sections' poles lie within about
+    /// (2π·0.5 Hz/f_s)² of z = 1, the coefficients rounded to f64 no longer hold the weighting.
+    fn require_finite_response(&self) -> Result<()> {
+        let (lo, hi) = self.weighting.evaluation_range_hz();
+        let bands = bands_covering(BandFraction::ThirdOctave, lo, hi)?;
+        let Some(b) = bands.iter().find(|b| !self.error_at(b.centre_hz).error_db.is_finite()) else {
+            return Ok(());
+        };
+        Err(Error::invalid(
+            "sample rate",
+            format!("{} Hz", crate::numbers::num(self.sample_rate_hz)),
+            format!(
+                "too high for {}: its sections' poles lie so close to z = 1 that their coefficients, rounded to \
+                 f64, no longer give the weighting (not a finite number at the {} band); resample the record to \
+                 a lower rate (the weighting ends at {} Hz: a few kHz are plenty)",
+                self.weighting,
+                b.label(),
+                crate::numbers::num(hi)
+            ),
+        ))
     }
 
     /// H(e^{i2πf/f_s}), the digital filter's frequency response at f (Hz).
@@ -255,7 +281,7 @@ impl DigitalWeighting {
                 lost.push(format!("{} (above the Nyquist frequency)", b.label()));
             } else {
                 let e = self.error_at(b.centre_hz).error_db;
-                if e.abs() > MAX_BAND_ERROR_DB {
+                if e.is_nan() || e.abs() > MAX_BAND_ERROR_DB {
                     lost.push(format!("{} ({e:+.2} dB)", b.label()));
                 }
             }

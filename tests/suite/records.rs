@@ -641,7 +641,8 @@ fn refusal(dir: &Path, name: &str, text: &str, options: &RecordOptions) -> Strin
 /// Bad records are refused with the file, the line (or key) and the value: NaN, a blank field (missing
 /// sample), non-monotone time, a skipped sample, a column without a unit, an ambiguous `g`, no time base,
 /// an empty file, a header only, a value too large for the VDV's fourth powers, a rate too low for the
-/// weighting's 80 Hz band; an unknown weighting and axis by name.
+/// weighting's 80 Hz band, or so high (10⁹ Hz) that the rounded filter is no weighting; an unknown weighting
+/// and axis by name.
 #[test]
 fn bad_records_are_refused_with_file_line_and_value() {
     let dir = scratch("bad");
@@ -715,6 +716,11 @@ fn bad_records_are_refused_with_file_line_and_value() {
     let low = format!("{head}{}", rows(&|i| format!("{:?},0.1,0.2,0.3", i as f64 / 100.0)));
     let e = refusal(&dir, "low.csv", &low, &none);
     assert!(e.contains("80") && e.contains("lost"), "{e}");
+    // 10⁹ Hz: Wk's rounded sections give no finite response at 0.5 Hz (its NaN error passed the 1 dB check
+    // and the weighting table named the frequency as the sample rate); 10⁴ Hz is realised
+    let e = DigitalWeighting::new(Weighting::Wk, 1e9).unwrap_err().to_string();
+    assert!(e.contains("too high") && e.contains("1e9 Hz"), "{e}");
+    assert!(DigitalWeighting::new(Weighting::Wk, 1e4).is_ok());
     assert!(Weighting::parse("Wq").unwrap_err().to_string().contains("Wq"));
     let e = AxisAssignment::parse("seat_z=seat-surface:up").unwrap_err().to_string();
     assert!(e.contains("--axis") && e.contains("up"), "{e}");
