@@ -15,6 +15,8 @@ use crate::comfort::{
     Purpose, SignalMetrics, SignalMetricsStream, VectorSum, Weighting, MTVV_INTEGRATION_TIME_S,
 };
 use crate::error::{Error, Result};
+use crate::scenario::verdict_spec::MIN_EXPOSURE_S;
+use crate::scenario::workday_file::MAX_DAY_S;
 use crate::units::Dim;
 use rayon::prelude::*;
 
@@ -355,6 +357,24 @@ fn health_axis(k: f64, m: &SignalMetrics, exposure_s: f64) -> Result<HealthAxis>
 /// The axes to evaluate: the options', or the channels named x, y, z as seat-surface axes.
 fn resolve_axes(info: &RecordInfo, options: &ExposureOptions) -> Result<Vec<AxisAssignment>> {
     if !options.axes.is_empty() || !options.motion_sickness.is_empty() {
+        let written = |a: &AxisAssignment| format!("{}={}:{}", a.channel, a.location.label(), a.axis.label());
+        for (i, a) in options.axes.iter().enumerate() {
+            if let Some(b) = options.axes[..i]
+                .iter()
+                .find(|b| (b.location, b.axis) == (a.location, a.axis))
+            {
+                return Err(Error::invalid(
+                    "--axis",
+                    written(a),
+                    format!(
+                        "{}:{} is already given by --axis {}: each location and axis is one channel",
+                        a.location.label(),
+                        a.axis.label(),
+                        written(b)
+                    ),
+                ));
+            }
+        }
         return Ok(options.axes.clone());
     }
     let by_name: Vec<AxisAssignment> = info
@@ -407,7 +427,7 @@ fn resolve_axes(info: &RecordInfo, options: &ExposureOptions) -> Result<Vec<Axis
 /// # Errors
 /// Channels that are missing or not accelerations; a sample rate that loses a band
 /// ([`DigitalWeighting::check_bands`]); the reader's errors (naming the line, dataset or frame); an axis the
-/// standard does not define; an exposure duration that is not finite and > 0.
+/// standard does not define, or given twice; an exposure duration outside 1 min … 24 h.
 pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOptions) -> Result<ExposureEvaluation> {
     let info = reader.info().clone();
     let axes = resolve_axes(&info, options)?;
@@ -429,14 +449,8 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
         };
         evaluators.push((Evaluator::new(&info, a, Weighting::Wf, options.tau_s)?, true));
     }
-    if let Some(t) = options.exposure_s
-        && !(t.is_finite() && t > 0.0)
-    {
-        return Err(Error::invalid(
-            "--exposure",
-            t,
-            "an exposure duration must be finite and > 0 s",
-        ));
+    if let Some(t) = options.exposure_s {
+        check_exposure(t)?;
     }
     let mut block: Vec<Vec<f64>> = vec![Vec::with_capacity(BLOCK_SAMPLES); info.channels.len()];
     let mut samples = 0usize;
@@ -469,6 +483,39 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
         }
     }
     summarise(info, samples, duration_s, exposure_s, options, axes, sickness)
+}
+
+/// Refuses a daily exposure (s) outside 1 min … 24 h, the range a scenario's `[analysis.comfort] exposure`
+/// accepts ([`MIN_EXPOSURE_S`], [`MAX_DAY_S`]): shorter is almost surely a unit slip (`7 s` for 7 h), longer
+/// is more than a day.
+fn check_exposure(t: f64) -> Result<()> {
+    let shown = || match t < 3600.0 {
+        true => format!("{} s", crate::numbers::num(t)),
+        false => format!("{} h", crate::numbers::num(t / 3600.0)),
+    };
+    if !(t.is_finite() && t > 0.0) {
+        return Err(Error::invalid(
+            "--exposure",
+            shown(),
+            "an exposure duration must be finite and > 0 s",
+        ));
+    }
+    if t < MIN_EXPOSURE_S {
+        return Err(Error::invalid(
+            "--exposure",
+            shown(),
+            "implausible: less than 1 min; a daily exposure is minutes to hours (ISO 2631-1 Annex B guides 10 min \
+             to 24 h): write e.g. --exposure \"7 h\"",
+        ));
+    }
+    if t > MAX_DAY_S {
+        return Err(Error::invalid(
+            "--exposure",
+            shown(),
+            "a daily exposure is at most 24 h",
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses a value of channel `index` whose magnitude exceeds [`MAX_ABS_VALUE`], naming the channel, the

@@ -564,6 +564,56 @@ fn write_h5_with_unit(path: &Path, unit: impl FnOnce(&hdf5::Dataset)) {
     unit(&ds);
 }
 
+/// The options of `exposure` follow the scenario's rules: a daily exposure from 1 min to 24 h (30 s and 10⁹⁰ h
+/// were evaluated, the latter to A(8) = 2.4·10⁴⁴ m/s²), one channel per location and axis (two on the seat's
+/// z read "invalid parameter `values` = SeatSurface Z"); each refused naming the flag.
+#[test]
+fn exposure_options_outside_a_day_or_repeating_an_axis_are_refused_by_flag() {
+    let dir = scratch("options");
+    let file = dir.join("seat.csv");
+    write_csv(&file, "time [s],x [m/s^2],z [m/s^2]", 1000.0, 4000, |t| {
+        vec![0.3 * (TAU * 2.0 * t).sin(), (TAU * 4.0 * t).sin()]
+    });
+    let run = |options: ExposureOptions| {
+        let mut reader = open_record(&file, &RecordOptions::default()).unwrap();
+        evaluate_exposure(reader.as_mut(), &options).map(|_| ())
+    };
+    for (t, why) in [(30.0, "less than 1 min"), (1e90 * 3600.0, "at most 24 h")] {
+        let options = ExposureOptions {
+            exposure_s: Some(t),
+            ..ExposureOptions::default()
+        };
+        let e = run(options).unwrap_err();
+        assert!(
+            matches!(&e, stochvib::Error::InvalidParameter { name, .. } if name == "--exposure"),
+            "{e}"
+        );
+        assert!(e.to_string().contains(why), "{e}");
+    }
+    for t in [60.0, 24.0 * 3600.0] {
+        let options = ExposureOptions {
+            exposure_s: Some(t),
+            ..ExposureOptions::default()
+        };
+        run(options).unwrap();
+    }
+    let options = ExposureOptions {
+        axes: vec![
+            AxisAssignment::parse("z=seat-surface:z").unwrap(),
+            AxisAssignment::parse("x=seat-surface:z").unwrap(),
+        ],
+        ..ExposureOptions::default()
+    };
+    let e = run(options).unwrap_err().to_string();
+    assert!(
+        e.contains("--axis")
+            && e.contains("x=seat-surface:z")
+            && e.contains("already given by --axis z=seat-surface:z"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A record's unit written as fixed-length ASCII (null-padded, 8 bytes for `m/s^2`) or as a one-element array
 /// of variable-length UTF-8 is the unit (it read "no `unit` attribute"); a number is refused naming the
 /// dataset's attribute. Expected: the written text, m/s² (dimension of an acceleration).
