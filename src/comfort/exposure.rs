@@ -5,6 +5,13 @@ use crate::error::{Error, Result};
 /// Reference duration T₀ = 8 h = 28 800 s of the daily exposure A(8).
 pub const REFERENCE_DURATION_S: f64 = 8.0 * 3600.0;
 
+/// Shortest daily exposure accepted, s: 1 min. A shorter "daily exposure" is almost surely a unit slip
+/// (`"7 s"` for 7 h); ISO 2631-1:1997 Annex B (Figure B.1) guides exposures from 10 min to 24 h.
+pub const MIN_DAILY_EXPOSURE_S: f64 = 60.0;
+
+/// Longest daily exposure, s: the 24 h of a day (a workday's tasks add up to at most this).
+pub const MAX_DAILY_EXPOSURE_S: f64 = 24.0 * 3600.0;
+
 fn require_non_negative(name: &str, v: f64) -> Result<f64> {
     if v.is_finite() && v >= 0.0 {
         Ok(v)

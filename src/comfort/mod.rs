@@ -38,7 +38,8 @@ pub use axes::{
 pub use band_table::{output_band_row, output_band_table, BandRow, BandTable, BAND_COVERAGE, MAX_TABLE_THIRD_OCTAVES};
 pub use bands::{band_mean_square, band_rms, bands_covering, Band, BandFraction};
 pub use exposure::{
-    daily_exposure_a8, daily_exposure_a8_periods, msdv, vdv_gaussian, vdv_total, ExposurePeriod, REFERENCE_DURATION_S,
+    daily_exposure_a8, daily_exposure_a8_periods, msdv, vdv_gaussian, vdv_total, ExposurePeriod, MAX_DAILY_EXPOSURE_S,
+    MIN_DAILY_EXPOSURE_S, REFERENCE_DURATION_S,
 };
 pub use sampled::{
     running_rms, BasicMethodCheck, BasicMethodInputs, Governing, SignalMetrics, SignalMetricsStream,

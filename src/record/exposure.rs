@@ -12,11 +12,10 @@ use super::running::{Envelope, EnvelopeBin, ExponentialRms, RunningRms};
 use super::source::{RecordInfo, RecordReader};
 use crate::comfort::{
     axis_factor, daily_exposure_a8, directive_factor, vector_sum, Axis, AxisValue, ExposureVerdict, Location, Motion,
-    Purpose, SignalMetrics, SignalMetricsStream, VectorSum, Weighting, MTVV_INTEGRATION_TIME_S,
+    Purpose, SignalMetrics, SignalMetricsStream, VectorSum, Weighting, MAX_DAILY_EXPOSURE_S, MIN_DAILY_EXPOSURE_S,
+    MTVV_INTEGRATION_TIME_S,
 };
 use crate::error::{Error, Result};
-use crate::scenario::verdict_spec::MIN_EXPOSURE_S;
-use crate::scenario::workday_file::MAX_DAY_S;
 use crate::units::Dim;
 use rayon::prelude::*;
 
@@ -486,7 +485,7 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
 }
 
 /// Refuses a daily exposure (s) outside 1 min … 24 h, the range a scenario's `[analysis.comfort] exposure`
-/// accepts ([`MIN_EXPOSURE_S`], [`MAX_DAY_S`]): shorter is almost surely a unit slip (`7 s` for 7 h), longer
+/// accepts ([`MIN_DAILY_EXPOSURE_S`], [`MAX_DAILY_EXPOSURE_S`]): shorter is almost surely a unit slip (`7 s` for 7 h), longer
 /// is more than a day.
 fn check_exposure(t: f64) -> Result<()> {
     let shown = || match t < 3600.0 {
@@ -500,7 +499,7 @@ fn check_exposure(t: f64) -> Result<()> {
             "an exposure duration must be finite and > 0 s",
         ));
     }
-    if t < MIN_EXPOSURE_S {
+    if t < MIN_DAILY_EXPOSURE_S {
         return Err(Error::invalid(
             "--exposure",
             shown(),
@@ -508,7 +507,7 @@ fn check_exposure(t: f64) -> Result<()> {
              to 24 h): write e.g. --exposure \"7 h\"",
         ));
     }
-    if t > MAX_DAY_S {
+    if t > MAX_DAILY_EXPOSURE_S {
         return Err(Error::invalid(
             "--exposure",
             shown(),

@@ -46,9 +46,8 @@ use crate::fields::{EverydayUnit, Fields};
 use crate::models::ModelInstance;
 use crate::units::Dim;
 
-/// Shortest daily exposure accepted, s: 1 min. A shorter "daily exposure" is almost surely a unit slip
-/// (`"7 s"` for 7 h); ISO 2631-1:1997 Annex B (Figure B.1) guides exposures from 10 min to 24 h.
-pub const MIN_EXPOSURE_S: f64 = 60.0;
+/// Shortest daily exposure accepted, s: 1 min ([`crate::comfort::MIN_DAILY_EXPOSURE_S`]).
+pub const MIN_EXPOSURE_S: f64 = crate::comfort::MIN_DAILY_EXPOSURE_S;
 /// Shortest design life accepted, s: 1 h (a fatigue design life is hours to tens of thousands of hours).
 pub const MIN_DESIGN_LIFE_S: f64 = 3600.0;
 /// Shortest design distance accepted, m: 1 km (a vehicle's design distance is thousands of kilometres).
@@ -192,7 +191,7 @@ fn parse_comfort(f: &Fields, model: &ModelInstance) -> Result<ComfortSpec> {
     };
     let exposure_s = f.everyday_quantity("exposure", EverydayUnit::HOUR)?;
     f.at_least("exposure", exposure_s, MIN_EXPOSURE_S, EverydayUnit::HOUR, WHY_EXPOSURE)?;
-    if exposure_s > 24.0 * 3600.0 {
+    if exposure_s > crate::comfort::MAX_DAILY_EXPOSURE_S {
         return Err(f.error(
             "exposure",
             EverydayUnit::HOUR.show(exposure_s),

@@ -29,7 +29,7 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 
 /// Longest working day, s: the tasks of one day add up to at most 24 h.
-pub const MAX_DAY_S: f64 = 24.0 * 3600.0;
+pub const MAX_DAY_S: f64 = crate::comfort::MAX_DAILY_EXPOSURE_S;
 
 /// One task of a working day, as written.
 #[derive(Debug, Clone, PartialEq, Serialize)]
