@@ -427,7 +427,7 @@ pub fn parse_value(v: &toml::Value, expected: Dim) -> std::result::Result<f64, S
 // ---------------------------------------------------------------------------------------------------
 
 /// Splits the leading number off `s` (already trimmed). Returns `None` if `s` does not start with one.
-fn split_number(s: &str) -> Option<(&str, &str)> {
+pub(crate) fn split_number(s: &str) -> Option<(&str, &str)> {
     let b = s.as_bytes();
     let mut i = 0;
     if i < b.len() && (b[i] == b'+' || b[i] == b'-') {

@@ -453,7 +453,8 @@ impl Tally {
 ///
 /// # Errors
 /// A missing channel; a channel whose unit's dimension differs from the S–N curve's; a gate that is not
-/// finite and > 0; a cycle beyond the correction's validity (S_m ≥ S_u, naming it); the reader's errors.
+/// finite and > 0; a cycle beyond the correction's validity (S_m ≥ S_u, naming it); a `--segment` longer
+/// than the record; the reader's errors.
 pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions) -> Result<FatigueEvaluation> {
     let info = reader.info().clone();
     let index = stress_channel(&info, options)?;
@@ -498,6 +499,7 @@ pub fn evaluate_fatigue(reader: &mut dyn RecordReader, options: &FatigueOptions)
     let duration_s = n as f64 / info.sample_rate_hz;
     let channel = format!("{} [{}]", info.channels[index].name, info.channels[index].unit);
     let (moments, segments) = spectral.moments(&welch)?;
+    refuse_long_segment(options, segments, n)?;
     let damage = tally.damage / options.sn.c();
     let damage_plain = tally.damage_plain / options.sn.c();
     // a corrected damage of exactly 0 is an answer (SWT: a cycle whose peak stays in compression does no
@@ -636,6 +638,26 @@ fn read_stress(reader: &mut dyn RecordReader, index: usize, p: Passes) -> Result
     Ok(Extent { n, sum, lo, hi })
 }
 
+/// Refuses a `--segment` the user gave that left no Welch segment in the record's `n` samples (`segments`
+/// = 0): the spectral methods would vanish from the table without a word. The default segment of a short
+/// record is not refused; the report says why it has no spectral methods.
+///
+/// # Errors
+/// [`Error::InvalidParameter`] naming `--segment`.
+fn refuse_long_segment(options: &FatigueOptions, segments: u64, n: usize) -> Result<()> {
+    match options.segment_len {
+        Some(asked) if segments == 0 => Err(Error::invalid(
+            "--segment",
+            asked,
+            format!(
+                "longer than the record's {n} samples: the spectral methods need at least one Welch segment (give \
+                 an even length of at most {n}, or none for the default)"
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Refuses a record in which the mean-stress correction met a cycle it has no finite value for.
 ///
 /// # Errors
@@ -646,9 +668,10 @@ fn refuse_mean_stress(tally: &Tally, options: &FatigueOptions) -> Result<()> {
             "--mean-stress",
             options.mean_stress.label(),
             format!(
-                "a cycle of mean {} and amplitude {} (SI) has a mean at or above the ultimate strength: the correction \
-                 has no finite value",
-                c.mean, c.amplitude
+                "a cycle of mean {} and amplitude {} (SI) has a mean at or above the ultimate strength (--ultimate): \
+                 the correction has no finite value",
+                crate::numbers::sig4(c.mean),
+                crate::numbers::sig4(c.amplitude)
             ),
         )),
         None => Ok(()),

@@ -248,15 +248,13 @@ pub fn check_rate(rate_hz: f64) -> Result<f64> {
 /// use stochvib::record::parse_quantity;
 /// use stochvib::units::Dim;
 /// assert_eq!(parse_quantity("100 MPa", "--sn-amplitude").unwrap(), (1e8, Dim::new(-1, 1, -2)));
+/// assert_eq!(parse_quantity("100MPa", "--sn-amplitude").unwrap().0, 1e8);
 /// assert!(parse_quantity("100", "--sn-amplitude").is_err());
 /// ```
 pub fn parse_quantity(text: &str, what: &str) -> Result<(f64, Dim)> {
     let t = text.trim();
-    let split = t.find(|c: char| c.is_whitespace());
-    let (number, unit) = match split {
-        Some(i) => (&t[..i], t[i..].trim()),
-        None => (t, ""),
-    };
+    // the number, then the unit with or without a space (`100 MPa`, `100MPa`), as the scenario's quantities
+    let (number, unit) = crate::units::split_number(t).map_or((t, ""), |(n, u)| (n, u.trim()));
     let v: f64 = number
         .parse()
         .map_err(|_| Error::invalid(what, text, "expected a number and a unit, e.g. `100 MPa`"))?;

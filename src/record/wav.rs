@@ -105,12 +105,11 @@ impl WavRecord {
     }
 }
 
-/// `"50 m/s^2"` → (50, "m/s^2").
+/// `"50 m/s^2"` (or `"50m/s^2"`) → (50, "m/s^2").
 fn split_value_unit(text: &str) -> Option<(f64, &str)> {
-    let t = text.trim();
-    let i = t.find(|c: char| c.is_whitespace())?;
-    let v: f64 = t[..i].parse().ok()?;
-    (v.is_finite() && v > 0.0).then_some((v, t[i..].trim()))
+    let (number, unit) = crate::units::split_number(text.trim())?;
+    let v: f64 = number.parse().ok()?;
+    (v.is_finite() && v > 0.0 && !unit.trim().is_empty()).then_some((v, unit.trim()))
 }
 
 impl RecordReader for WavRecord {

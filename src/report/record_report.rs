@@ -305,6 +305,13 @@ fn fatigue_lines(e: &FatigueEvaluation) -> Vec<String> {
             sig4(m.alpha1),
             sig4(m.alpha2)
         ));
+    } else if e.segments == 0 {
+        out.push(format!(
+            "no spectral methods: the record's {} samples are fewer than one Welch segment of {} (--segment)",
+            e.samples, e.segment_len
+        ));
+    } else {
+        out.push("no spectral methods: the record does not fluctuate (its Welch density is zero)".into());
     }
     if let Some(s) = e.spread {
         out.push(format!("spread of the spectral lives (longest/shortest): {}", sig4(s)));

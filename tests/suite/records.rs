@@ -823,6 +823,56 @@ fn fatigue_with(
     evaluate_fatigue(r.as_mut(), &options).unwrap()
 }
 
+/// A record shorter than the Welch segment: a `--segment` the user gave is refused naming it (with 10⁶ on a
+/// 20 000-sample record the five spectral methods vanished from the table without a word); with the default
+/// segment (256 samples at least) a 9-sample record is counted by rainflow and the report says why there
+/// are no spectral methods.
+#[test]
+fn a_segment_longer_than_the_record_is_refused_or_explained() {
+    let dir = scratch("fatigue-segment");
+    let file = dir.join("short.csv");
+    let history = [-2.0, 1.0, -3.0, 5.0, -1.0, 3.0, -4.0, 4.0, -2.0];
+    let text: String = history.iter().map(|v| format!("{}\n", 10.0 * v)).collect();
+    std::fs::write(&file, format!("stress [MPa]\n{text}")).unwrap();
+    let evaluate = |segment_len: Option<usize>| {
+        let opts = RecordOptions {
+            sample_rate_hz: Some(100.0),
+            ..RecordOptions::default()
+        };
+        let mut r = open_record(&file, &opts).unwrap();
+        let sn = SnReferencePoint {
+            k: 5.0,
+            amplitude: 1e8,
+            cycles: 2e6,
+            endurance_limit: None,
+        }
+        .build()
+        .unwrap();
+        let options = FatigueOptions {
+            channel: None,
+            sn,
+            sn_dim: Dim::new(-1, 1, -2),
+            mean_stress: MeanStressCorrection::None,
+            gate: None,
+            segment_len,
+        };
+        evaluate_fatigue(r.as_mut(), &options)
+    };
+    let e = evaluate(Some(64)).unwrap_err().to_string();
+    assert!(
+        e.contains("--segment") && e.contains("64") && e.contains("9 samples"),
+        "{e}"
+    );
+    let ev = evaluate(None).unwrap();
+    assert!(ev.methods.is_empty() && ev.segments == 0);
+    let text = stochvib::report::record_report::FatigueReport(ev).to_string();
+    assert!(
+        text.contains("no spectral methods: the record's 9 samples are fewer than one Welch segment"),
+        "{text}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// ASTM E1049-85 Fig. 6 (the history −2, 1, −3, 5, −1, 3, −4, 4, −2 in units of 10 MPa): ranges 3, 4, 6, 8, 9
 /// with 0.5, 1.5, 0.5, 1.0, 0.5 cycles (one full cycle, six half cycles). With k = 3 and C = 1 (MPa
 /// amplitudes) the Miner damage is Σ n·(10·r/2)³ = 125·(0.5·27 + 1.5·64 + 0.5·216 + 512 + 0.5·729).
