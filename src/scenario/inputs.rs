@@ -284,14 +284,25 @@ pub(crate) fn track_index(f: &Fields, key: &str, v: &toml::Value) -> Result<usiz
 /// `coherence` table of a scenario's road, same kinds and keys), for tracks `width_m` apart.
 ///
 /// # Errors
-/// [`crate::Error::File`] naming `--model` and the key, value and reason; text that is not a TOML inline table.
+/// [`crate::Error::File`] naming `--model` and the key, value and reason; text that is not a TOML inline table;
+/// [`crate::Error::InvalidParameter`] naming `--track-width` for a width that is not finite and > 0 (it read
+/// "key `coherence.waviness` = 2: invalid parameter `track_width`").
 ///
 /// # Examples
 /// ```
 /// let c = stochvib::scenario::coherence_from_toml(r#"{ kind = "constant", coherence_amplitude = 0.5 }"#, 1.5).unwrap();
 /// assert_eq!(c.squared_coherence(0.3), 0.25);
+/// let e = stochvib::scenario::coherence_from_toml(r#"{ kind = "dodds-robson", waviness = 2 }"#, 0.0).unwrap_err();
+/// assert!(e.to_string().contains("--track-width"), "{e}");
 /// ```
 pub fn coherence_from_toml(text: &str, width_m: f64) -> Result<Arc<dyn Coherence>> {
+    if !(width_m.is_finite() && width_m > 0.0) {
+        return Err(crate::Error::invalid(
+            "--track-width",
+            format!("{} m", crate::numbers::num(width_m)),
+            "a track width must be finite and > 0 m",
+        ));
+    }
     let file = Path::new("--model");
     let doc: toml::Table = toml::from_str(&format!("coherence = {text}")).map_err(|e| {
         crate::Error::in_file(
