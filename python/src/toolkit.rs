@@ -242,7 +242,9 @@ pub fn exposure<'py>(
     let work = samples.unwrap_or(0) * names.len();
     let e = detached_if(py, work, 0, || {
         stochvib::error::require_positive("fs", fs)?;
-        Ok(evaluate_exposure(&mut rec, &opts)?)
+        // the library names the command line's flags; here they are the keyword arguments
+        let named = |e: stochvib::Error| e.renamed("--exposure", "exposure").renamed("--axis", "axes");
+        Ok(evaluate_exposure(&mut rec, &opts).map_err(named)?)
     })?;
     let report = ExposureReport(e);
     Ok((to_python(py, &report)?, report.to_string()))

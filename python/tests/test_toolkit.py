@@ -168,6 +168,15 @@ def test_exposure_of_a_sine_closed_forms():
         stochvib.exposure(np.ones((10, 2)), fs)
     with pytest.raises(InvalidInputError, match="same length"):
         stochvib.exposure({"x": np.zeros(10), "z": np.zeros(11)}, fs)
+    # a daily exposure is 1 min to 24 h, as a scenario's; one channel per location and axis; each named by
+    # its keyword
+    with pytest.raises(InvalidInputError, match="`exposure`.*less than 1 min"):
+        stochvib.exposure(2.0 * np.sin(2 * np.pi * 4.0 * t), fs, exposure="30 s")
+    with pytest.raises(InvalidInputError, match="`exposure`.*at most 24 h"):
+        stochvib.exposure(2.0 * np.sin(2 * np.pi * 4.0 * t), fs, exposure="25 h")
+    two = {"a": np.zeros(t.size), "b": np.zeros(t.size)}
+    with pytest.raises(InvalidInputError, match="`axes`.*already given"):
+        stochvib.exposure(two, fs, axes=["a=seat-surface:z", "b=seat-surface:z"])
 
 
 def test_welch_against_scipy_and_its_intervals():

@@ -56,6 +56,13 @@ pub struct AxisAssignment {
     pub axis: Axis,
 }
 
+/// As written on the command line: `CHANNEL=LOCATION:AXIS` (what [`AxisAssignment::parse`] reads).
+impl std::fmt::Display for AxisAssignment {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}={}:{}", self.channel, self.location.label(), self.axis.label())
+    }
+}
+
 impl AxisAssignment {
     /// Parses `CHANNEL=LOCATION:AXIS`, LOCATION one of `seat-surface`, `seat-back`, `feet`,
     /// `standing-floor`, AXIS one of `x`, `y`, `z`, `rx`, `ry`, `rz`.
@@ -356,7 +363,6 @@ fn health_axis(k: f64, m: &SignalMetrics, exposure_s: f64) -> Result<HealthAxis>
 /// The axes to evaluate: the options', or the channels named x, y, z as seat-surface axes.
 fn resolve_axes(info: &RecordInfo, options: &ExposureOptions) -> Result<Vec<AxisAssignment>> {
     if !options.axes.is_empty() || !options.motion_sickness.is_empty() {
-        let written = |a: &AxisAssignment| format!("{}={}:{}", a.channel, a.location.label(), a.axis.label());
         for (i, a) in options.axes.iter().enumerate() {
             if let Some(b) = options.axes[..i]
                 .iter()
@@ -364,12 +370,12 @@ fn resolve_axes(info: &RecordInfo, options: &ExposureOptions) -> Result<Vec<Axis
             {
                 return Err(Error::invalid(
                     "--axis",
-                    written(a),
+                    a,
                     format!(
-                        "{}:{} is already given by --axis {}: each location and axis is one channel",
+                        "{}:{} is already given to channel `{}`: each location and axis is one channel",
                         a.location.label(),
                         a.axis.label(),
-                        written(b)
+                        b.channel
                     ),
                 ));
             }
@@ -433,10 +439,7 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
     let mut evaluators = Vec::new();
     for a in axes {
         let w = axis_factor(Purpose::Comfort, a.location, a.axis)
-            .map_err(|e| {
-                let written = format!("{}={}:{}", a.channel, a.location.label(), a.axis.label());
-                Error::invalid("--axis", written, e.to_string())
-            })?
+            .map_err(|e| Error::invalid("--axis", &a, e.to_string()))?
             .weighting;
         evaluators.push((Evaluator::new(&info, a, w, options.tau_s)?, false));
     }

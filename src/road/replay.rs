@@ -268,16 +268,18 @@ fn skip_samples(ss: &StateSpace, opts: &ReplayOptions, dx: f64) -> Result<usize>
 
 /// The refusal of a profile that leaves fewer than two samples after the wheelbase and the skipped length.
 fn too_short(file: &Path, profile: &Profile, wheelbase: f64, skip_samples: usize, k_total: usize) -> Error {
+    use crate::numbers::num;
     let dx = profile.step_m;
     Error::in_file(
         file,
         "length",
-        format!("{} m", profile.length_m()),
+        format!("{} m", num(profile.length_m())),
         format!(
-            "the profile is too short: the wheelbase {wheelbase} m plus the skipped length {:.6} m ({skip_samples} \
-             steps of {dx} m) leave {} samples to replay; need at least 2 (a longer profile, or a smaller \
-             --skip)",
-            skip_samples as f64 * dx,
+            "the profile is too short: the wheelbase {} m plus the skipped length {} m ({skip_samples} steps of \
+             {} m) leave {} samples to replay; need at least 2 (a longer profile, or a smaller --skip)",
+            num(wheelbase),
+            num(skip_samples as f64 * dx),
+            num(dx),
             k_total.saturating_sub(skip_samples)
         ),
     )

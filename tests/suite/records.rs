@@ -606,9 +606,7 @@ fn exposure_options_outside_a_day_or_repeating_an_axis_are_refused_by_flag() {
     };
     let e = run(options).unwrap_err().to_string();
     assert!(
-        e.contains("--axis")
-            && e.contains("x=seat-surface:z")
-            && e.contains("already given by --axis z=seat-surface:z"),
+        e.contains("--axis") && e.contains("x=seat-surface:z") && e.contains("already given to channel `z`"),
         "{e}"
     );
     std::fs::remove_dir_all(&dir).unwrap();

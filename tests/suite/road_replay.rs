@@ -444,7 +444,9 @@ fn bad_replays_name_the_file_the_key_the_value_and_the_reason() {
         ),
         &["left-only.csv", "middle", "`left`"],
     );
-    // 400 samples (19.95 m) cannot hold a 30 m skip; nor the vehicle's 2.7 m wheelbase plus 18 m
+    // 400 samples (399 × 0.05 = 19.95 m) cannot hold a 30 m skip (600 steps); nor the vehicle's 2.7 m
+    // wheelbase plus 18 m; the lengths in a few digits (it wrote 19.950000000000003 m, steps of
+    // 0.049999999999999996 m)
     check(
         err(
             &quarter,
@@ -454,7 +456,12 @@ fn bad_replays_name_the_file_the_key_the_value_and_the_reason() {
                 ..Default::default()
             },
         ),
-        &["left-only.csv", "length", "19.95", "too short"],
+        &[
+            "left-only.csv",
+            "length` = 19.95 m",
+            "skipped length 30 m (600 steps of 0.05 m)",
+            "too short",
+        ],
     );
     let two = write_profile("short.csv", 0.05, vec![("left", z.clone()), ("right", z.clone())]);
     check(
