@@ -81,7 +81,8 @@ pub fn time_history_chart(e: &ExposureEvaluation, a: &AxisEvaluation) -> LineCha
 }
 
 /// The one-third-octave band r.m.s. of every axis (staircases over the bands) against the lower bounds of
-/// the ISO 2631-1 Annex C comfort reactions; `None` without band values.
+/// the ISO 2631-1 Annex C comfort reactions; `None` without band values above 0 (a zero record: the
+/// logarithmic axis has no place for them).
 pub fn band_chart(e: &ExposureEvaluation) -> Option<LineChart> {
     let mut c = LineChart::new(
         format!(
@@ -101,10 +102,14 @@ pub fn band_chart(e: &ExposureEvaluation) -> Option<LineChart> {
     for (i, a) in e.axes.iter().chain(&e.motion_sickness).enumerate() {
         let Some(bands) = &a.bands else { continue };
         let mut stairs = Vec::with_capacity(2 * bands.len());
-        for b in bands {
+        // a band of r.m.s. 0 has no place on the logarithmic axis (a channel that is zero has none at all)
+        for b in bands.iter().filter(|b| b.rms > 0.0) {
             stairs.push((b.band.lower_hz, b.rms));
             stairs.push((b.band.upper_hz, b.rms));
             top = top.max(b.rms);
+        }
+        if stairs.is_empty() {
+            continue;
         }
         c.series
             .push(Series::line(format!("{} ({})", a.channel, a.weighting), stairs).with_color(i));

@@ -1402,6 +1402,16 @@ fn cli_pictures_are_written() {
             assert!(bytes.starts_with(b"\x89PNG"), "{n}");
         }
     }
+    // a zero record: every band r.m.s. is 0, which a logarithmic axis cannot hold; the band picture is left
+    // out and the time history drawn (it failed with "nothing to plot" after printing the report, exit 1,
+    // the time history already written)
+    write_csv(&dir.join("still.csv"), "time [s],z [m/s^2]", 1000.0, 4000, |_| {
+        vec![0.0]
+    });
+    let out = crate::common::cli_within(&["exposure", "still.csv", "--plots", "s"], &dir, limit);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let names = crate::common::listing(&dir.join("s"));
+    assert_eq!(names, ["exposure-time-z.png", "exposure-time-z.svg"], "{names:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
