@@ -154,7 +154,9 @@ class IsoFit:
     """An ISO 8608 fit G_d(n) = G_d(n₀)(n/n₀)^−w, n₀ = 0.1 cycles/m, by least squares on log Ĝ_d: ``mode``
     ("fixed w = 2" or "free w"), ``g0_m3`` with its ``g0_interval``, ``waviness`` with its
     ``waviness_interval`` (the fixed value twice when fixed), the ISO ``road_class``, the fitted ``band``
-    (cycles/m) and the ``reduced_chi2`` (≈ 1 for a power-law road)."""
+    (cycles/m), the ``reduced_chi2`` (≈ 1 for a power-law road) and ``fit_p_value``, the probability of a
+    fit this poor or worse for a road that follows the power law (below 1e-6 the class is the level of
+    G_d at n₀ only)."""
 
     mode: str
     g0_m3: float
@@ -164,6 +166,7 @@ class IsoFit:
     road_class: str
     band: Tuple[float, float]
     reduced_chi2: float
+    fit_p_value: float
 
 
 @dataclass(frozen=True, repr=False)
@@ -275,6 +278,7 @@ def _fit(d: Dict[str, Any]) -> IsoFit:
         d["class"],
         tuple(d["band"]),
         d["reduced_chi2"],
+        d["fit_p_value"],
     )
 
 

@@ -47,6 +47,8 @@ def test_profile_analysis_against_the_cli(cli, root):
             assert (f.mode, f.road_class) == (e["waviness_mode"], e["class"])
             assert f.g0_m3 == pytest.approx(e["g0_m3"], rel=REL_SAME)
             assert f.waviness == pytest.approx(e["waviness"], rel=REL_SAME)
+            # the goodness of fit: the same as the command's; the synthetic class C road follows the law
+            assert f.fit_p_value == pytest.approx(e["fit_p_value"], rel=REL_SAME) and f.fit_p_value > 1e-6
     # the synthetic profile was drawn from class C's geometric mean, G_d(n0) = 256e-6 m^3, w = 2
     assert r["left"].road_class == "C" and r.tracks[0].fits[1].waviness_interval[0] < 2.0
     np.testing.assert_allclose(

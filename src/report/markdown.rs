@@ -339,7 +339,13 @@ fn track_markdown(t: &TrackReport) -> String {
         .num("w lower", &col(|f| f.waviness_interval.0))
         .num("w upper", &col(|f| f.waviness_interval.1))
         .text("class", fits.iter().map(|f| f.class.clone()))
-        .num("reduced χ²", &col(|f| f.reduced_chi2));
+        .num("reduced χ²", &col(|f| f.reduced_chi2))
+        .num("p (fit)", &col(|f| f.fit_p_value))
+        .text(
+            "power law",
+            fits.iter()
+                .map(|f| if f.describes_the_road { "fits" } else { "does NOT fit" }),
+        );
     let d = &t.density;
     let dcol = |f: fn(&DensityRow) -> f64| d.iter().map(|r| Some(f(r))).collect::<Vec<_>>();
     let density = Table::default()

@@ -55,6 +55,19 @@ impl fmt::Display for RoadReport {
                     fit.band.1,
                     fit.reduced_chi2
                 )?;
+                if !fit.describes_the_road {
+                    writeln!(
+                        f,
+                        "    not a power-law road: a fit this poor has probability {} (< {:.0e}) for a road that \
+                         follows it; class {} is the level of G_d at n0 = 0.1 cycles/m only",
+                        match fit.fit_p_value {
+                            0.0 => "below 1e-300".to_string(),
+                            p => format!("{p:.1e}"),
+                        },
+                        crate::road::POWER_LAW_REJECT_P,
+                        fit.class
+                    )?;
+                }
             }
             writeln!(
                 f,

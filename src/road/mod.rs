@@ -26,7 +26,7 @@ pub mod synthesis;
 
 pub use detrend::Detrend;
 pub use iri::{expected_iri, golden_car, iri, ExpectedIri, Iri};
-pub use iso_fit::{fit_iso8608, iso8608_class, IsoFit, Waviness};
+pub use iso_fit::{fit_iso8608, iso8608_class, IsoFit, Waviness, POWER_LAW_REJECT_P};
 pub use profile::{CsvReadOptions, CsvWriteOptions, LengthUnit, Profile, RawProfile, Track};
 pub use replay::{OutputStatistics, Replay, ReplayOptions, Start, Wheel};
 pub use spatial_psd::{default_segment, spatial_cross_spectrum, spatial_psd, SpatialCrossSpectrum, SpatialPsd};

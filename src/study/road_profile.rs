@@ -63,6 +63,12 @@ pub struct FitRow {
     pub band: (f64, f64),
     /// Reduced χ² of the fit (≈ 1 for a power-law road).
     pub reduced_chi2: f64,
+    /// The probability of a fit this poor or worse for a road that follows the power law
+    /// ([`crate::road::IsoFit::fit_p_value`]).
+    pub fit_p_value: f64,
+    /// Whether the power law describes the track over the band (p ≥ [`crate::road::POWER_LAW_REJECT_P`]);
+    /// when not, the class is the level of G_d at n₀ only, not a road of that class.
+    pub describes_the_road: bool,
 }
 
 /// One track's results.
@@ -248,6 +254,8 @@ fn track_report(
             class: format!("{:?}", fit.class),
             band: fit.band,
             reduced_chi2: fit.reduced_chi2,
+            fit_p_value: fit.fit_p_value,
+            describes_the_road: fit.describes_the_road(),
         });
     }
     let sigma = (d.elevation_m.iter().map(|y| y * y).sum::<f64>() / d.elevation_m.len() as f64).sqrt();

@@ -627,6 +627,78 @@ fn fit_replicates(reps: u64, seed: u64) -> (EstimatesWithSe, EstimatesWithSe) {
     (free, fixed)
 }
 
+/// The goodness of fit of the ISO 8608 power law (`IsoFit::fit_p_value`, the probability of a fit this poor
+/// or worse for a road that follows it).
+///
+/// (a) Calibration: for 100 independent class-C tracks (the law holds) the p-values of the free-w fits are
+/// about uniform: the count below 0.05 is Binomial(100, 0.05), P(count > 19) = 1.1e-7; the mean of 100
+/// uniforms has σ = 1/√1200, and |mean − 0.5| ≥ 0.147 (5.09σ) has probability 3.5e-7 (normal, Irwin–Hall).
+/// False failure 4.6e-7 < FALSE_FAILURE for a fresh seed.
+/// (b) A white elevation (w = 0, seeded) fitted with w fixed at 2: the slope misfit alone gives a reduced χ²
+/// of about 1 + 4 Σ(x_j − x̄)²/(σ²(N − 1)) (x_j = ln(n_j/n₀) over the fitted bins, σ² = ψ'(ν/2) the variance
+/// of a log-χ² bin), 20–30 here; the fit is flagged (p < 10⁻⁶) and its reduced χ² is at least half that
+/// closed form. Deterministic given the seed (the flag's p is below 10⁻⁵⁰).
+/// (c) The shipped class-C profile (a fixed file, generated as ISO 8608 class C) is not flagged.
+#[test]
+fn the_power_law_fit_is_flagged_where_it_does_not_describe_the_road() {
+    use rand_distr::{Distribution, StandardNormal};
+    let s = iso_c((0.011, 10.0));
+    let g = SpectralGenerator::new(&s, 0.05, 10_000, Amplitudes::Rayleigh).unwrap();
+    let mut sc = g.scratch();
+    let mut x = vec![0.0; 10_000];
+    let mut p_values = Vec::new();
+    for i in 0..100 {
+        g.generate(&mut stream(4711, i), &mut sc, &mut x).unwrap();
+        let p = spatial_psd(&x, 0.05, 2048).unwrap();
+        p_values.push(fit_iso8608(&p, Waviness::Free, None).unwrap().fit_p_value);
+    }
+    let below = p_values.iter().filter(|&&p| p < 0.05).count();
+    assert!(below <= 19, "{below} of 100 p-values below 0.05: {p_values:?}");
+    let mean = p_values.iter().sum::<f64>() / 100.0;
+    assert!((mean - 0.5).abs() < 0.147, "mean p-value {mean}");
+    // (b)
+    let mut rng = stream(4712, 0);
+    let white: Vec<f64> = (0..10_000)
+        .map(|_| 1e-3 * Distribution::<f64>::sample(&StandardNormal, &mut rng))
+        .collect();
+    let psd = spatial_psd(&white, 0.05, 2048).unwrap();
+    let fit = fit_iso8608(&psd, Waviness::Fixed(2.0), None).unwrap();
+    assert!(!fit.describes_the_road() && fit.fit_p_value < 1e-6, "{fit:?}");
+    let xs: Vec<f64> = psd
+        .n
+        .iter()
+        .filter(|&&n| n >= fit.band.0 && n <= fit.band.1)
+        .map(|n| (n / 0.1).ln())
+        .collect();
+    let xbar = xs.iter().sum::<f64>() / xs.len() as f64;
+    let sxx: f64 = xs.iter().map(|x| (x - xbar).powi(2)).sum();
+    // ψ'(z) = 1/z + 1/(2z²) + 1/(6z³) − 1/(30z⁵) + 1/(42z⁷) − …, z = ν/2 ≈ 13: error below 1e-9
+    let z = psd.dof / 2.0;
+    let sigma2 =
+        1.0 / z + 1.0 / (2.0 * z * z) + 1.0 / (6.0 * z.powi(3)) - 1.0 / (30.0 * z.powi(5)) + 1.0 / (42.0 * z.powi(7));
+    let expected = 1.0 + 4.0 * sxx / (sigma2 * (xs.len() - 1) as f64);
+    assert!(
+        fit.reduced_chi2 > 0.5 * expected,
+        "reduced χ² {} against the slope misfit's {expected}",
+        fit.reduced_chi2
+    );
+    // (c)
+    let shipped = stochvib::study::road_profile::road_report(
+        &crate::common::root().join("data/measured-profile.csv"),
+        &stochvib::study::road_profile::RoadReportOptions::default(),
+    )
+    .unwrap();
+    for t in &shipped.tracks {
+        for f in &t.fits {
+            assert!(
+                f.describes_the_road,
+                "{} {}: p = {}",
+                t.name, f.waviness_mode, f.fit_p_value
+            );
+        }
+    }
+}
+
 #[test]
 fn iso_fit_standard_errors_match_the_scatter_of_replicates() {
     // The reported standard errors (χ² variance ψ'(ν/2) of ln Ĝ and the Hann bin correlation, sandwich
