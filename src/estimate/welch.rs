@@ -195,7 +195,14 @@ impl WelchEstimate {
         };
         let (qi, qe) = (q(self.dof)?, q(self.dof / 2.0)?);
         for (j, &v) in self.density.iter().enumerate() {
-            crate::error::require_non_negative("variance estimate", v)?;
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(crate::Error::invalid(
+                    &format!("density at bin {j}"),
+                    v,
+                    "not a finite number >= 0: the record holds NaN, or its squares leave the range of f64 \
+                     (values beyond about 1e150 in magnitude)",
+                ));
+            }
             let (nu, (hi, lo)) = if j == 0 || j + 1 == n {
                 (self.dof / 2.0, qe)
             } else {

@@ -41,7 +41,7 @@ impl std::fmt::Display for TimeBase {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             TimeBase::TimeColumn(name) => write!(f, "from the time column `{name}`"),
-            TimeBase::Stated => write!(f, "stated by --sample-rate"),
+            TimeBase::Stated => write!(f, "as stated: --sample-rate, or fs from Python"),
             TimeBase::Attribute(dataset) => write!(f, "from the `sample_rate` attribute of {dataset} or its group"),
             TimeBase::WavHeader => write!(f, "from the WAV header"),
         }

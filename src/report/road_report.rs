@@ -64,7 +64,7 @@ impl fmt::Display for RoadReport {
                             0.0 => "below 1e-300".to_string(),
                             p => format!("{p:.1e}"),
                         },
-                        crate::road::POWER_LAW_REJECT_P,
+                        crate::study::road_profile::POWER_LAW_REJECT_P,
                         fit.class
                     )?;
                 }

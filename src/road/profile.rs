@@ -604,8 +604,8 @@ impl RawProfile {
 ///
 /// # Errors
 /// [`Profile::new`] rejects a step that is not finite and > 0, a non-finite d₀, no track, tracks of
-/// different lengths or fewer than 2 samples, non-finite elevations (naming track and index), and empty
-/// or repeated track names.
+/// different lengths or fewer than 2 samples, non-finite elevations or elevations beyond
+/// [`MAX_ELEVATION_M`] (naming track and index), and empty or repeated track names.
 ///
 /// # Examples
 /// ```
@@ -664,6 +664,16 @@ impl Profile {
                     &format!("track `{}` sample {k}", tr.name),
                     tr.elevation_m[k],
                     "elevation must be finite",
+                ));
+            }
+            if let Some(k) = tr.elevation_m.iter().position(|v| v.abs() > MAX_ELEVATION_M) {
+                return Err(Error::invalid(
+                    &format!("track `{}` sample {k}", tr.name),
+                    format!("{:e} m", tr.elevation_m[k]),
+                    format!(
+                        "larger in magnitude than {MAX_ELEVATION_M:e} m: the squared sums of a density or a \
+                         response would leave the range of f64; check the unit"
+                    ),
                 ));
             }
         }

@@ -10,6 +10,9 @@ use crate::road::{
 use serde::Serialize;
 use std::path::Path;
 
+/// The goodness-of-fit threshold of the reports ([`crate::road::POWER_LAW_REJECT_P`]).
+pub use crate::road::POWER_LAW_REJECT_P;
+
 /// Options of [`road_report`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RoadReportOptions {

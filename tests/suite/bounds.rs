@@ -193,7 +193,8 @@ fn flat_constant_and_short_profiles_are_refused_not_classified() {
 /// Elevations whose squares leave the range of f64 are refused, naming the file and the column: one of
 /// 10²⁰⁰ mm in row 10 (line 12: the header is line 1), for `road`, `iri --profile` and `replay` (it read "variance
 /// estimate: must be finite … the profile is too short or too coarse"); a track of at most 10⁻³⁰⁰ mm, for
-/// `road` (it read "the track is flat").
+/// `road` (it read "the track is flat"); a profile built from arrays, by track and sample; a Welch density
+/// whose squares overflow, by bin.
 #[test]
 fn profiles_whose_squares_leave_f64_are_refused_naming_the_column() {
     let d = scratch("magnitudes");
@@ -225,6 +226,23 @@ fn profiles_whose_squares_leave_f64_are_refused_naming_the_column() {
         e.contains("tiny.csv") && e.contains("column left") && e.contains("below") && !e.contains("flat"),
         "{e}"
     );
+    // profiles made from arrays (the Python package) get the same bound, naming the track and the sample
+    let track = stochvib::road::Track {
+        name: "left".into(),
+        elevation_m: vec![0.0, 1e197, 0.0],
+    };
+    let e = stochvib::road::Profile::new(0.05, 0.0, vec![track])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("track `left` sample 1") && e.contains("larger in magnitude"),
+        "{e}"
+    );
+    // a Welch estimate whose squares overflow names the bin and the cause ("variance estimate = inf" before)
+    let x: Vec<f64> = (0..1024).map(|k| 1e197 * (0.3 * k as f64).sin()).collect();
+    let est = stochvib::estimate::Welch::new(256, 0.01).unwrap().estimate(&x).unwrap();
+    let e = est.intervals(0.95).unwrap_err().to_string();
+    assert!(e.contains("density at bin") && e.contains("1e150"), "{e}");
     let _ = std::fs::remove_dir_all(&d);
 }
 
