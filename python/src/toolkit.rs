@@ -131,6 +131,17 @@ pub fn spectral_fatigue<'py>(
         let m = SpectralMoments::from_tabulated_one_sided_hz(&fs, &gs, true)?;
         compare_methods(&m, &sn)
     })?;
+    // a damage of 0 is an unlimited life (an answer); one that is not a number is not (S^k overflowed)
+    if let Some(e) = cmp.estimates.iter().find(|e| !e.damage_rate.is_finite()) {
+        return Err(invalid_input(
+            py,
+            format!(
+                "the {} damage rate is not a finite number ({}): S_a^k with k = {k} leaves the range of f64 for \
+                 this density; check k, c and the unit of G",
+                e.name, e.damage_rate
+            ),
+        ));
+    }
     let rows: Vec<serde_json::Value> = cmp
         .estimates
         .iter()

@@ -12,6 +12,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, Dict, List, Optional, Union
 
@@ -128,7 +129,8 @@ def rainflow(x: npt.ArrayLike) -> Cycles:
 @dataclass(frozen=True)
 class MethodEstimate:
     """One spectral method's estimate: ``method`` (its identifier), ``name`` (with its reference),
-    ``damage_rate`` (1/s) and ``life`` (s)."""
+    ``damage_rate`` (1/s) and ``life`` (s; ``inf`` when the damage rate is 0: every amplitude below the
+    endurance limit)."""
 
     method: str
     name: str
@@ -216,4 +218,5 @@ def spectral(
     1.0
     """
     rows = _stochvib.spectral_fatigue(f, G, k=k, c=c, endurance_limit=endurance_limit, unit=unit)
-    return SpectralFatigue([MethodEstimate(**e) for e in rows])
+    # an unlimited life travels as JSON null
+    return SpectralFatigue([MethodEstimate(**{**e, "life": math.inf if e["life"] is None else e["life"]}) for e in rows])

@@ -147,6 +147,13 @@ def test_spectral_fatigue_narrow_band_closed_form():
     assert {e.method for e in r3.estimates} >= {"NarrowBand", "Dirlik"}
     with pytest.raises(InvalidInputError):
         fatigue.spectral(f, np.full_like(f, 0.5), k=-1.0, c=c)
+    # S^k beyond f64 (k = 10⁶): refused by name, not a damage rate of None whose repr raised TypeError
+    with pytest.raises(InvalidInputError, match="not a finite number"):
+        fatigue.spectral(f, np.full_like(f, 0.5), k=1e6, c=c)
+    # every amplitude far below an endurance limit of 10¹⁰ σ: no damage, an unlimited life (inf, not None)
+    r0 = fatigue.spectral(f, np.full_like(f, 0.5), k=k, c=c, endurance_limit=1e10)
+    assert r0["NarrowBand"].damage_rate == 0.0 and math.isinf(r0["NarrowBand"].life)
+    assert "inf" in repr(r0)
 
 
 def test_exposure_of_a_sine_closed_forms():

@@ -21,7 +21,7 @@ pub mod rainflow;
 mod sn_curve;
 pub mod spectral;
 
-pub use rainflow::{rainflow, Cycle, RainflowCounter, RangeHistogram, TurningPoint};
+pub use rainflow::{rainflow, Cycle, RainflowCounter, RangeHistogram, TurningPoint, MAX_ABS_SAMPLE};
 pub use sn_curve::{SnCurve, SnRangeCurve, SnReferencePoint};
 pub use spectral::{
     compare_methods, Dirlik, DirlikCoefficients, MethodComparison, MethodEstimate, NarrowBand, OneSidedHzMoments,

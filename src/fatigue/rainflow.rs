@@ -175,7 +175,7 @@ impl RainflowCounter {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] naming `samples`, with the stream index and value of the first
-    /// non-finite sample; the chunk is then not consumed.
+    /// non-finite sample or one beyond [`MAX_ABS_SAMPLE`]; the chunk is then not consumed.
     ///
     /// # Examples
     /// ```
@@ -326,18 +326,27 @@ impl RainflowCounter {
     }
 }
 
-/// Checks every sample is finite; the error names the first offending stream index.
+/// The largest |sample| counted: half of f64's largest number, so that the range of any two samples,
+/// |a − b| ≤ 2·(f64::MAX/2), is a finite number (1e308 and −1e308 gave a range of `inf`).
+pub const MAX_ABS_SAMPLE: f64 = f64::MAX / 2.0;
+
+/// Checks every sample is finite and at most [`MAX_ABS_SAMPLE`] in magnitude; the error names the first
+/// offending stream index.
 fn check_finite(samples: &[f64], base: usize) -> Result<()> {
     // Branch-free scan in blocks (vectorises), then locate the culprit only on failure.
     const BLOCK: usize = 256;
+    let countable = |x: &f64| x.abs() <= MAX_ABS_SAMPLE;
     for (b, block) in samples.chunks(BLOCK).enumerate() {
-        if !block.iter().fold(true, |ok, x| ok & x.is_finite()) {
-            let p = block.iter().position(|x| !x.is_finite()).unwrap_or(0);
+        if !block.iter().fold(true, |ok, x| ok & countable(x)) {
+            let p = block.iter().position(|x| !countable(x)).unwrap_or(0);
             let i = base + b * BLOCK + p;
             return Err(Error::invalid(
                 "samples",
                 block[p],
-                format!("sample at index {i} is not finite; rainflow counting needs finite values"),
+                format!(
+                    "sample at index {i} is not finite, or beyond {MAX_ABS_SAMPLE:e} in magnitude (half the largest \
+                     f64, so that every range is a number); rainflow counting needs finite values"
+                ),
             ));
         }
     }
@@ -351,7 +360,8 @@ fn check_finite(samples: &[f64], base: usize) -> Result<()> {
 /// As [`RainflowCounter`] (ASTM E1049-85 (2017) §5.4.4).
 ///
 /// # Errors
-/// [`Error::InvalidParameter`] naming `samples` for a non-finite sample (with its index).
+/// [`Error::InvalidParameter`] naming `samples` for a non-finite sample or one beyond [`MAX_ABS_SAMPLE`]
+/// (with its index).
 ///
 /// # Examples
 /// ```

@@ -465,10 +465,12 @@ fn residue_stays_small_and_time_is_linear() {
 
 #[test]
 fn non_finite_samples_are_rejected_without_consuming_the_chunk() {
+    use stochvib::fatigue::MAX_ABS_SAMPLE;
     let mut rc = RainflowCounter::new();
     let mut got = Vec::new();
     rc.push(&[0.0, 2.0, -1.0], |c| got.push(c)).unwrap();
-    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+    // beyond f64::MAX/2 the range of two samples could overflow (1e308 against −1e308: a range of inf)
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e308, -1e308] {
         let e = rc.push(&[1.0, bad, 3.0], |c| got.push(c)).unwrap_err();
         let s = e.to_string();
         assert!(s.contains("`samples`") && s.contains("index 4"), "{s}");
@@ -478,6 +480,12 @@ fn non_finite_samples_are_rejected_without_consuming_the_chunk() {
     rc.finish(|c| got.push(c));
     assert_eq!(got, rainflow(&[0.0, 2.0, -1.0, 3.0, -2.0]).unwrap());
     assert!(rainflow(&[0.0, f64::NAN]).is_err());
+    // at the bound every range is finite: 2·(f64::MAX/2) = f64::MAX
+    let edge = rainflow(&[MAX_ABS_SAMPLE, -MAX_ABS_SAMPLE, MAX_ABS_SAMPLE]).unwrap();
+    assert!(
+        edge.iter().all(|c| c.range.is_finite() && c.mean.is_finite()),
+        "{edge:?}"
+    );
     assert!(RangeHistogram::new(f64::NAN, 3).is_err());
     assert!(RangeHistogram::new(1.0, 0)
         .unwrap_err()
