@@ -51,4 +51,4 @@ pub use verdict::{
 };
 pub use weighted::{check_weightable, weighted_output};
 pub use weighted_sweep::{WeightedEvaluator, WeightedRoute, WeightedValue};
-pub use weighting::{Motion, Weighting, WeightingParameters, WeightingUse, Q_BAND_LIMITING};
+pub use weighting::{Motion, Weighting, WeightingParameters, WeightingUse, LARGE_OMEGA, Q_BAND_LIMITING};

@@ -16,6 +16,12 @@ use std::str::FromStr;
 /// states that the exact value is 1/√2, which is used here for every weighting.
 pub const Q_BAND_LIMITING: f64 = FRAC_1_SQRT_2;
 
+/// Above this |ω| (rad/s) [`Weighting::response`] evaluates its factors in u = 1/s: a complex division
+/// forms the squared modulus of its denominator, ~ω⁴ for the second-order factors, which overflows f64 from
+/// about 1.3·10⁷⁷ rad/s (the literal form gave NaN there); 10⁵⁰ keeps ω⁴ far from it. Below it the literal
+/// form of the standard is used, unchanged.
+pub const LARGE_OMEGA: f64 = 1e50;
+
 /// A whole-body frequency weighting.
 ///
 /// # Formula
@@ -407,7 +413,10 @@ impl Weighting {
     ///
     /// # Formula
     /// The four factors of the type's `# Formula` with s = iω (ω in rad/s; negative ω gives the complex
-    /// conjugate). H(0) = 0 (the high pass). A non-finite ω gives a non-finite result.
+    /// conjugate). H(0) = 0 (the high pass). A non-finite ω gives a non-finite result. Above
+    /// [`LARGE_OMEGA`] rad/s, where the complex divisions would overflow (it gave NaN), every factor is divided through by its
+    /// highest power of s and evaluated in u = 1/s (`response_at_large_omega`): the same
+    /// function, no overflow; below it the literal form, bit for bit as before.
     ///
     /// # Errors
     /// None.
@@ -418,8 +427,13 @@ impl Weighting {
     /// let h = Weighting::Wd.response(2.0 * std::f64::consts::PI * 1.0);
     /// // ISO 2631-1:1997 Table 3: Wd at 1 Hz is 1011/1000
     /// assert!((h.norm() - 1.011).abs() < 0.001);
+    /// // far above the band the low pass has taken it to (nearly) nothing, not NaN
+    /// assert!(Weighting::Wk.response(1e300).norm() < 1e-290);
     /// ```
     pub fn response(self, omega_rad_s: f64) -> Complex<f64> {
+        if omega_rad_s.abs() > LARGE_OMEGA && omega_rad_s.is_finite() {
+            return self.response_at_large_omega(omega_rad_s);
+        }
         let p = self.parameters();
         let s = Complex::new(0.0, omega_rad_s);
         let one = Complex::new(1.0, 0.0);
@@ -445,6 +459,42 @@ impl Weighting {
             one
         };
         h_h * h_l * (t_num / t_den) * h_s * p.gain
+    }
+
+    /// H(iω) for |ω| > [`LARGE_OMEGA`]: the factors of [`Weighting::response`] with numerator and
+    /// denominator divided by their highest power of s, in u = 1/s, and the powers of u gathered into one
+    /// factor u^m taken last (so that a small factor does not underflow before a large one multiplies it):
+    /// ```text
+    /// H_h = 1/(1 + u ω₁/Q₁ + u² ω₁²),   H_l = u² · ω₂²/(1 + u ω₂/Q₂ + u² ω₂²),
+    /// H_t = u^(d−n) · (u + 1/ω₃)ⁿ/(u² + u/(Q₄ω₄) + 1/ω₄²)^(d/2)   (n = 1 with ω₃, d = 2 with ω₄, else 0),
+    /// H_s = (ω₅/ω₆)² (u² + u/(Q₅ω₅) + 1/ω₅²)/(u² + u/(Q₆ω₆) + 1/ω₆²),   m = 2 + d − n
+    /// ```
+    fn response_at_large_omega(self, omega_rad_s: f64) -> Complex<f64> {
+        let p = self.parameters();
+        let u = Complex::new(0.0, -1.0 / omega_rad_s); // 1/(iω)
+        let one = Complex::new(1.0, 0.0);
+        let (w1, w2) = (TAU * p.f1_hz, TAU * p.f2_hz);
+        let h_h = one / (one + u * (w1 / p.q1) + u * u * (w1 * w1));
+        let h_l = (w2 * w2) / (one + u * (w2 / p.q2) + u * u * (w2 * w2));
+        let (t_num, n) = if p.f3_hz.is_finite() {
+            (u + one / (TAU * p.f3_hz), 1)
+        } else {
+            (one, 0)
+        };
+        let (t_den, d) = if p.f4_hz.is_finite() {
+            let w4 = TAU * p.f4_hz;
+            (u * u + u / (p.q4 * w4) + one / (w4 * w4), 2)
+        } else {
+            (one, 0)
+        };
+        let h_s = if p.f5_hz.is_finite() && p.f6_hz.is_finite() {
+            let (w5, w6) = (TAU * p.f5_hz, TAU * p.f6_hz);
+            (u * u + u / (p.q5 * w5) + one / (w5 * w5)) / (u * u + u / (p.q6 * w6) + one / (w6 * w6))
+                * ((w5 / w6) * (w5 / w6))
+        } else {
+            one
+        };
+        h_h * h_l * (t_num / t_den) * h_s * p.gain * u.powi(2 + d - n)
     }
 
     /// |H(i2πf)|, the weighting factor at frequency f (Hz).

@@ -317,6 +317,49 @@ fn polynomial_degrees_give_relative_degrees() {
     }
 }
 
+/// Far above the band (|ω| > `LARGE_OMEGA`, where the literal form's complex divisions overflow and gave NaN) the
+/// response is evaluated in u = 1/s: it joins the literal form at the threshold (the function changes by
+/// about (nd − nq)·10⁻¹⁵ between ω and ω(1 + 10⁻¹⁵), within FORMS_REL), falls as ω^(nq − nd) beyond it
+/// (the relative degrees of `polynomial_degrees_give_relative_degrees`, exact there: the next terms are
+/// O(ω_c/ω) ~ 1e-47), and is a number (≤ 1e-290 in magnitude) at 10³⁰⁰ rad/s.
+#[test]
+fn the_response_far_above_the_band_is_the_asymptote_not_nan() {
+    use stochvib::comfort::LARGE_OMEGA;
+    let decay = [
+        (Weighting::Wk, 3),
+        (Weighting::Wd, 3),
+        (Weighting::Wc, 3),
+        (Weighting::We, 3),
+        (Weighting::Wj, 2),
+        (Weighting::Wb, 3),
+        (Weighting::Wf, 4),
+    ];
+    for (w, m) in decay {
+        let literal = w.response(LARGE_OMEGA);
+        let inverse = w.response(LARGE_OMEGA * (1.0 + 2.0 * f64::EPSILON));
+        assert!(
+            rel(literal.norm(), inverse.norm()) < FORMS_REL,
+            "{w}: {literal} vs {inverse}"
+        );
+        let (a, b) = (w.response(1e51).norm(), w.response(1e52).norm());
+        // a slope is measurable where both values are normal numbers well above the subnormal range
+        if b > 1e-290 {
+            assert!(rel(a / b, 10f64.powi(m)) < CLOSED_REL, "{w}: {a} / {b}");
+        } else {
+            panic!("{w}: {b} at 1e52 rad/s is too small for a slope");
+        }
+        for omega in [1e300, -1e300, 1.7e308] {
+            let h = w.response(omega);
+            assert!(
+                h.re.is_finite() && h.im.is_finite() && h.norm() < 1e-290,
+                "{w} at {omega}: {h}"
+            );
+        }
+        // a non-finite ω still gives a non-finite result (the documented contract)
+        assert!(!w.response(f64::INFINITY).norm().is_finite(), "{w}");
+    }
+}
+
 /// |H|² of each factor in real arithmetic (independent of the complex product):
 /// |H_h|² = f⁴/(f⁴ + f₁⁴) and |H_l|² = f₂⁴/(f⁴ + f₂⁴) (Butterworth, Q = 1/√2: |ω₁² − ω² + i√2ω₁ω|² = ω⁴ + ω₁⁴),
 /// |H_t|² = (1 + (f/f₃)²)/((1 − (f/f₄)²)² + (f/(Q₄f₄))²), |H_s|² = ((1 − (f/f₅)²)² + (f/(Q₅f₅))²)/
