@@ -281,11 +281,13 @@ pub fn welch<'py>(
     let n = xs.len();
     let (est, lo, hi) = detached_if(py, n, crate::spectrum::DETACH_MIN_POINTS, || {
         stochvib::error::require_positive("fs", fs)?;
-        let mut w = stochvib::estimate::Welch::new(nperseg, 1.0 / fs)?;
+        // the library names its parameters; here they are the keyword arguments
+        let named = |e: stochvib::Error| e.renamed("segment length", "nperseg").renamed("record length", "x");
+        let mut w = stochvib::estimate::Welch::new(nperseg, 1.0 / fs).map_err(named)?;
         if detrend {
             w = w.with_segment_mean_removed();
         }
-        let est = w.estimate(&xs)?;
+        let est = w.estimate(&xs).map_err(named)?;
         let (lo, hi) = est.intervals(confidence)?;
         Ok((est, lo, hi))
     })?;

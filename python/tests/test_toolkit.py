@@ -207,8 +207,11 @@ def test_welch_against_scipy_and_its_intervals():
     nu = est.dof
     np.testing.assert_allclose(est.lower[5], nu * pxx[5] / chi2.ppf(0.975, nu), rtol=REL_CHI2)
     np.testing.assert_allclose(est.upper[5], nu * pxx[5] / chi2.ppf(0.025, nu), rtol=REL_CHI2)
-    with pytest.raises(InvalidInputError):
+    with pytest.raises(InvalidInputError, match="`nperseg` = 511"):
         stochvib.welch(x, fs, nperseg=511)
+    # a record shorter than one segment is named by its keyword, x (it read `record length`)
+    with pytest.raises(InvalidInputError, match="`x` = 3"):
+        stochvib.welch(x[:3], fs)
 
 
 def read_profile(root):
