@@ -488,12 +488,15 @@ pub fn evaluate_exposure(reader: &mut dyn RecordReader, options: &ExposureOption
 }
 
 /// Refuses a daily exposure (s) outside 1 min … 24 h, the range a scenario's `[analysis.comfort] exposure`
-/// accepts ([`MIN_DAILY_EXPOSURE_S`], [`MAX_DAILY_EXPOSURE_S`]): shorter is almost surely a unit slip (`7 s` for 7 h), longer
-/// is more than a day.
+/// accepts ([`MIN_DAILY_EXPOSURE_S`], [`MAX_DAILY_EXPOSURE_S`]): shorter is almost surely a unit slip
+/// (`7 s` for 7 h), longer is more than a day.
 fn check_exposure(t: f64) -> Result<()> {
-    let shown = || match t < 3600.0 {
-        true => format!("{} s", crate::numbers::num(t)),
-        false => format!("{} h", crate::numbers::num(t / 3600.0)),
+    let shown = || {
+        if t < 3600.0 {
+            format!("{} s", crate::numbers::num(t))
+        } else {
+            format!("{} h", crate::numbers::num(t / 3600.0))
+        }
     };
     if !(t.is_finite() && t > 0.0) {
         return Err(Error::invalid(

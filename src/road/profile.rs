@@ -387,6 +387,19 @@ fn parse_value(field: &str, file: &Path, key: &dyn Fn() -> String) -> Result<f64
 /// No road comes near it; such a value is a unit error or a corrupt file.
 pub const MAX_ELEVATION_M: f64 = 1e100;
 
+impl Track {
+    /// The first sample larger in magnitude than [`MAX_ELEVATION_M`], with the reason to give (the caller
+    /// names where it is: a file's line and column, or the track and the index).
+    fn beyond_max_elevation(&self) -> Option<(usize, String)> {
+        let k = self.elevation_m.iter().position(|v| v.abs() > MAX_ELEVATION_M)?;
+        let why = format!(
+            "larger in magnitude than {MAX_ELEVATION_M:e} m: the squared sums of a density or a response would \
+             leave the range of f64; check the unit"
+        );
+        Some((k, why))
+    }
+}
+
 impl RawProfile {
     /// Reads a CSV file (see the type's formula) under the input rule: a regular file of at most
     /// [`crate::io_rules::CSV_INPUT`]'s size (FIFOs, devices and directories refused before anything is
@@ -523,15 +536,12 @@ impl RawProfile {
     /// Refuses an elevation larger in magnitude than [`MAX_ELEVATION_M`], naming its line and column.
     fn check_magnitudes(&self) -> Result<()> {
         for (t, tr) in self.tracks.iter().enumerate() {
-            if let Some(k) = tr.elevation_m.iter().position(|v| v.abs() > MAX_ELEVATION_M) {
+            if let Some((k, why)) = tr.beyond_max_elevation() {
                 return Err(Error::in_file(
                     &self.source,
                     format!("line {}, column {} `{}`", self.lines[k], t + 2, tr.name),
                     format!("{:e} m", tr.elevation_m[k]),
-                    format!(
-                        "larger in magnitude than {MAX_ELEVATION_M:e} m: the squared sums of a density or a \
-                         response would leave the range of f64; check the column's unit"
-                    ),
+                    why,
                 ));
             }
         }
@@ -666,14 +676,11 @@ impl Profile {
                     "elevation must be finite",
                 ));
             }
-            if let Some(k) = tr.elevation_m.iter().position(|v| v.abs() > MAX_ELEVATION_M) {
+            if let Some((k, why)) = tr.beyond_max_elevation() {
                 return Err(Error::invalid(
                     &format!("track `{}` sample {k}", tr.name),
                     format!("{:e} m", tr.elevation_m[k]),
-                    format!(
-                        "larger in magnitude than {MAX_ELEVATION_M:e} m: the squared sums of a density or a \
-                         response would leave the range of f64; check the unit"
-                    ),
+                    why,
                 ));
             }
         }
