@@ -1421,10 +1421,19 @@ fn analyze_nonlinear(
                     ..RunOptions::default()
                 },
             )?;
-            let (s, pictures) =
+            let run =
                 sc.simulate_nonlinear_temporary(answers, &opts, &std::env::temp_dir(), &progress_printer(), |path| {
                     plots.as_ref().map(|out| run_plots(path, out, catalogue.dir()))
-                })?;
+                });
+            let (s, pictures) = match run {
+                Ok(r) => r,
+                Err(e) => match study::escaped(&e) {
+                    Some(reason) => {
+                        return print_as(&study::nonlinear_report_escaped(sc, answers, &reason)?, output.format())
+                    }
+                    None => return Err(e.into()),
+                },
+            };
             if let (Some(files), Some(out)) = (pictures, plots) {
                 eprintln!("wrote {} Monte Carlo pictures to {}", files?.len(), out.display());
             }

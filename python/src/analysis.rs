@@ -109,11 +109,19 @@ pub fn nonlinear<'py>(
                     ..RunOptions::default()
                 };
                 let (opts, _) = nonlinear_run::options(sc, &answers, run, (dt, duration, burn_in))?;
-                nonlinear_run::temporary(sc, &answers, &opts, cb)
+                // an escaped response is route 2's outcome, reported beside routes 1 and 3 (as the CLI does)
+                match nonlinear_run::temporary(sc, &answers, &opts, cb) {
+                    Ok(s) => Ok(Ok(s)),
+                    Err(e) => stochvib::study::escaped(&e).map(Err).ok_or(e),
+                }
             })
         })?),
     };
-    let r = call(py, || stochvib::study::nonlinear_report(sc, &answers, mc.as_ref()))?;
+    let r = call(py, || match &mc {
+        Some(Err(reason)) => stochvib::study::nonlinear_report_escaped(sc, &answers, reason),
+        Some(Ok(s)) => stochvib::study::nonlinear_report(sc, &answers, Some(s)),
+        None => stochvib::study::nonlinear_report(sc, &answers, None),
+    })?;
     py.import("stochvib.results")?
         .getattr("NonlinearResult")?
         .call1((to_python(py, &r)?, r.to_string()))

@@ -90,3 +90,21 @@ def test_route2_simulate_writes_the_run_of_the_cli(cli, root, tmp_path):
     assert got["burn_in_s"] == want["burn_in_s"] > 0 and got["halving_checks"] == want["halving_checks"]
     assert [o["statistics"] for o in got["run"]["outputs"]] == [o["statistics"] for o in want["run"]["outputs"]]
     assert set(r.sigma) == {o["output"] for o in want["run"]["outputs"]}
+
+
+def test_an_escaping_response_is_route_2s_outcome(tmp_path, root):
+    # the Duffing oscillator with its cubic term reversed (εσ₀² = −1): the potential's barrier lies at
+    # x = σ₀ = 1 cm with βV = 0.25, so the realizations escape within a few periods; route 2 reports "no
+    # stationary response" beside routes 1 and 3 (as `stochvib analyze --monte-carlo` does); the run alone
+    # (simulate_nonlinear) raises DivergentError naming the realization, the output and the element
+    text = (root / "data" / "duffing-white-noise.toml").read_text()
+    soft = tmp_path / "softening.toml"
+    soft.write_text(text.replace('"394784.1760435743 N/m^3"', '"-394784.1760435743 N/m^3"'))
+    r = stochvib.Scenario.load(soft).analyze_nonlinear(monte_carlo=2, progress=False)
+    d = r.to_dict()
+    assert d["monte_carlo"].startswith("NO STATIONARY RESPONSE") and not d["route1_converged"]
+    assert any("escaped" in v for v in d["verdicts"])
+    assert r["x"].route2() is None
+    with pytest.raises(stochvib.DivergentError, match=r"realization \d+ .*output `x`.*`hardening`"):
+        stochvib.simulate_nonlinear(soft, 2, tmp_path / "run.h5", dt=0.01, duration=50.0, progress=False)
+    assert not (tmp_path / "run.h5").exists()

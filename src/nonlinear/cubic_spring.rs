@@ -69,6 +69,9 @@ impl ForceLaw for CubicSpring {
     fn is_zero(&self) -> bool {
         self.cubic == 0.0
     }
+    fn softening(&self) -> bool {
+        self.cubic < 0.0
+    }
     fn gaussian(&self, m: &ElementMoments) -> Equivalent {
         let (mu, s2) = (m.mean_x, m.sigma_x * m.sigma_x);
         Equivalent {

@@ -140,7 +140,8 @@ impl WhiteNoiseOscillator {
         })
     }
 
-    /// The displacement scale s with βV(±s) ≈ 1 on each side, found by bisection.
+    /// The displacement scale s with βV(±s) ≈ 1 on each side, found by bisection, after checking that the
+    /// density can be normalised on that side ([`Self::check_confined`]).
     fn scales(&self) -> Result<(f64, f64)> {
         let beta = self.beta();
         let side = |sign: f64| -> Result<f64> {
@@ -148,14 +149,14 @@ impl WhiteNoiseOscillator {
             while beta * self.potential(sign * hi) < 1.0 {
                 hi *= 2.0;
                 if hi > 1e12 || self.potential(sign * hi).is_nan() {
-                    return Err(Error::NotApplicable {
-                        method: "exact Fokker–Planck density".into(),
-                        reason: "the potential does not grow on both sides (a softening spring: the density cannot \
-                                 be normalised, the response escapes)"
+                    return Err(not_confined(
+                        "the potential does not grow on both sides (a softening spring: the density cannot be \
+                         normalised, the response escapes)"
                             .into(),
-                    });
+                    ));
                 }
             }
+            self.check_confined(sign, hi)?;
             let mut lo = 0.5 * hi;
             for _ in 0..60 {
                 let mid = 0.5 * (lo + hi);
@@ -168,6 +169,54 @@ impl WhiteNoiseOscillator {
             Ok(hi)
         };
         Ok((side(-1.0)?, side(1.0)?))
+    }
+
+    /// Checks that e^{−βV} falls for good on the side `sign` beyond the scale `s` (βV(s) ≥ 1): along
+    /// x = s·2^{k/8} up to 10¹² s, βV must reach [`CONFINED_BETA_V`] (a density below e^{−1000} of its peak,
+    /// nothing left to integrate beyond). A softening spring's potential rises to a barrier and falls
+    /// without bound beyond it, so βV never gets there: the density cannot be normalised and the response
+    /// escapes over the barrier sooner or later; the error names the barrier (its place to 9 %, its βV).
+    fn check_confined(&self, sign: f64, s: f64) -> Result<()> {
+        let beta = self.beta();
+        let (mut peak, mut at) = (f64::NEG_INFINITY, s);
+        for k in 0..=8 * 40 {
+            let x = s * 2f64.powf(f64::from(k) / 8.0);
+            let bv = beta * self.potential(sign * x);
+            if bv >= CONFINED_BETA_V {
+                return Ok(());
+            }
+            if bv.is_nan() {
+                break;
+            }
+            if bv > peak {
+                (peak, at) = (bv, x);
+            }
+        }
+        let at = self.barrier(sign, at / 2f64.powf(0.125), at * 2f64.powf(0.125));
+        Err(not_confined(format!(
+            "the potential rises to a barrier of βV = {} at x = {} m and falls beyond it (a softening \
+             spring): exp(−βV) cannot be normalised, and the response escapes over the barrier sooner or \
+             later (the rarer the higher βV); statistics of the motion inside the well (route 1, route 2 \
+             over a finite time) hold only while it stays there",
+            crate::numbers::num(beta * self.potential(sign * at)),
+            crate::numbers::num(sign * at)
+        )))
+    }
+
+    /// The top of the potential on the side `sign` between |x| = `lo` and `hi` (golden-section search;
+    /// the potential has one maximum there).
+    fn barrier(&self, sign: f64, mut lo: f64, mut hi: f64) -> f64 {
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        let v = |x: f64| self.potential(sign * x);
+        for _ in 0..100 {
+            let (a, b) = (hi - g * (hi - lo), lo + g * (hi - lo));
+            if v(a) < v(b) {
+                lo = a;
+            } else {
+                hi = b;
+            }
+        }
+        0.5 * (lo + hi)
     }
 
     /// The exact stationary law: normaliser, mean, variance and kurtosis by adaptive quadrature.
@@ -215,6 +264,19 @@ impl WhiteNoiseOscillator {
         st.variance = st.integral(|q| (q - mu).powi(2))?;
         st.kurtosis = st.integral(|q| (q - mu).powi(4))? / (st.variance * st.variance);
         Ok(st)
+    }
+}
+
+/// βV beyond which route 3 counts the density as fallen for good: e^{−1000} is below the smallest f64.
+/// [`WhiteNoiseOscillator::stationary`] refuses a potential that never reaches it beyond its scale (a
+/// softening spring's barrier).
+pub const CONFINED_BETA_V: f64 = 1000.0;
+
+/// Route 3 does not apply because the density cannot be normalised.
+fn not_confined(reason: String) -> Error {
+    Error::NotApplicable {
+        method: "exact Fokker–Planck density".into(),
+        reason,
     }
 }
 

@@ -80,6 +80,12 @@ pub trait ForceLaw: Debug + Send + Sync {
     /// Whether the remainder vanishes identically (zero nonlinearity: the element is its linear part).
     fn is_zero(&self) -> bool;
 
+    /// Whether the element softens without bound (its force turns back towards zero and beyond at large
+    /// deflections, so the motion can escape over a barrier): named when route 2's response escapes.
+    fn softening(&self) -> bool {
+        false
+    }
+
     /// F₀, k_eq, c_eq of the remainder over the Gaussian law `m` (see [`Equivalent`]).
     fn gaussian(&self, m: &ElementMoments) -> Equivalent;
 

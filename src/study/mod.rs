@@ -68,12 +68,13 @@ mod verdict_run;
 pub mod weighting_table;
 pub mod workday;
 
+pub use crate::nonlinear::monte_carlo::escaped;
 pub use crate::store::MergeOptions;
 pub use analysis::{analysis_report, attach_monte_carlo, AnalysisReport};
 pub use deterministic::deterministic_tables;
 pub use merge::{merge_runs, MergeSummary};
 pub use merge_transient::merge_transient;
-pub use nonlinear_report::{nonlinear_report, NonlinearReport};
+pub use nonlinear_report::{nonlinear_report, nonlinear_report_escaped, NonlinearReport};
 pub use nonlinear_run::NonlinearAnswers;
 pub use shard::{part_path, resolve_part, ShardChoice};
 pub use spectrum_report::{spectrum_report, spectrum_report_at, DensityPoints, SpectrumReport};

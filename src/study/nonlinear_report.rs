@@ -109,6 +109,29 @@ pub fn nonlinear_report(
     report_of(sc, answers, mc).map_err(|e| sc.name_model_error(e))
 }
 
+/// The report of a nonlinear scenario whose route 2 found no stationary response (its realizations escaped:
+/// `reason`, from [`crate::nonlinear::monte_carlo::escaped`]): routes 1 and 3 as [`nonlinear_report()`]
+/// gives them, route 2 as the outcome "no stationary response" with its reason, and a verdict that says
+/// what it means for route 1's statistics, said loudly (a converged Gaussian equivalent describes a
+/// stationary response the nonlinear system does not have).
+///
+/// # Errors
+/// As [`nonlinear_report()`].
+pub fn nonlinear_report_escaped(sc: &Scenario, answers: &NonlinearAnswers, reason: &str) -> Result<NonlinearReport> {
+    let mut r = nonlinear_report(sc, answers, None)?;
+    r.monte_carlo = Some(format!("NO STATIONARY RESPONSE: {reason}"));
+    r.verdicts.push(if r.route1_converged {
+        "route 2's response escaped: route 1's Gaussian statistics describe a stationary response that the \
+         nonlinear system does not have here; do not use them as its statistics"
+            .into()
+    } else {
+        "route 2's response escaped, and route 1 found no Gaussian equivalent: no stationary statistics exist at \
+         this excitation level"
+            .into()
+    });
+    Ok(r)
+}
+
 fn report_of(sc: &Scenario, answers: &NonlinearAnswers, mc: Option<&NonlinearRunSummary>) -> Result<NonlinearReport> {
     let model = sc.nonlinear_model().expect("a nonlinear scenario");
     let input = sc.nonlinear_run_input(answers);

@@ -494,6 +494,24 @@ fn route1_non_convergence_is_an_outcome_with_a_reason() {
         .is_err());
 }
 
+/// A weakly softening spring (k₃ = −0.01 with k = 1, σ₀ = 1) has a converged Gaussian equivalent but no
+/// stationary density: V(x) = x²/2 − 0.01x⁴/4 rises to a barrier at x_b = √(k/|k₃|) = 10 of height
+/// V_b = k²/(4|k₃|) = 25 and falls without bound beyond it. β = c/(πS_f) = 1 here, so route 3 must say it
+/// does not apply, naming the barrier: βV = 25 at |x| = 10 m (6 significant digits as printed).
+#[test]
+fn route3_softening_spring_names_its_barrier() {
+    let (model, exc) = duffing(-0.01);
+    let r = route1(&model, &exc);
+    assert!(r.moments[0].sigma_x.is_finite());
+    let e = WhiteNoiseOscillator::from_model(&model, &exc)
+        .unwrap()
+        .stationary()
+        .expect_err("a softening potential has no normalisable density");
+    let text = e.to_string();
+    assert!(text.contains("barrier of βV = 25 at x = "), "{text}");
+    assert!(text.contains("x = -10 m") || text.contains("x = 10 m"), "{text}");
+}
+
 /// The splitting integrator is second order on a problem with a known answer: the free oscillation
 /// x″ + x + κ(x − d)₊ = 0 from x = 0, ẋ = V > d. Outside contact x = V sin t, which reaches d at
 /// t₁ = arcsin(d/V) and spends π + 2t₁ of each period below d; in contact x″ + (1+κ)x = κd, an oscillation

@@ -386,6 +386,59 @@ fn inspect_and_plot_of_a_nonlinear_run() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The Duffing scenario with its cubic term reversed (εσ₀² = −1: a softening spring whose potential has its
+/// barrier at x_b = 1/√|ε| = σ₀ = 1 cm, height βV_b = 1/(4|ε|σ₀²) = 0.25): route 1 finds no Gaussian
+/// equivalent, and route 2's realizations cross the barrier within a few periods (Kramers' rate at βV_b =
+/// 0.25 is of the order of the natural frequency, 1 Hz: a realization that stays in the well for the 100 s
+/// of the library run has a probability below e⁻⁵⁰; the run is seeded). The escape is route 2's outcome, not
+/// a number: the library names it (realization, output, the softening element) and writes no run file; the
+/// report and `analyze --monte-carlo` print routes 1 and 3 with route 2's "no stationary response" and a
+/// verdict, exit 0.
+#[test]
+fn an_escaping_response_is_route_2s_outcome_not_a_number() {
+    let reversed = (
+        "cubic_stiffness = \"394784.1760435743 N/m^3\"",
+        "cubic_stiffness = \"-394784.1760435743 N/m^3\"",
+    );
+    let sc = variant("duffing-white-noise.toml", "", Some(reversed));
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    assert!(answers.route1.converged().is_none());
+    let dir = common::scratch_dir("nl-runs", "escape");
+    let out = dir.join("run.h5");
+    let e = {
+        let _serial = common::hdf5_serial();
+        sc.simulate_nonlinear(&answers, &options(4, 100.0, 0.01, 1), &out, &|_, _| {})
+            .expect_err("a softening spring past its barrier escapes")
+    };
+    let reason = stochvib::study::escaped(&e).unwrap_or_else(|| panic!("not an escape: {e}"));
+    for needle in ["realization ", "output `x`", "`hardening`", "no stationary response"] {
+        assert!(reason.contains(needle), "`{needle}` not in: {reason}");
+    }
+    assert!(!out.exists(), "a run file was written");
+    let report = stochvib::study::nonlinear_report_escaped(&sc, &answers, &reason)
+        .unwrap()
+        .to_string();
+    for needle in [
+        "route 2   nonlinear Monte Carlo: NO STATIONARY RESPONSE",
+        "verdict   route 2's response escaped",
+    ] {
+        assert!(report.contains(needle), "`{needle}` not in the report:\n{report}");
+    }
+    // the command line: the same report, exit 0
+    let file = dir.join("softening.toml");
+    let text = std::fs::read_to_string(common::root().join("data/duffing-white-noise.toml")).unwrap();
+    std::fs::write(&file, text.replace(reversed.0, reversed.1)).unwrap();
+    let o = common::cli_within(
+        &["analyze", file.to_str().unwrap(), "--monte-carlo", "2"],
+        &dir,
+        std::time::Duration::from_secs(600),
+    );
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("NO STATIONARY RESPONSE"), "{stdout}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Φ(x) by the complementary error function of statrs (an independent implementation).
 fn normal_cdf(x: f64) -> f64 {
     0.5 * statrs::function::erf::erfc(-x / std::f64::consts::SQRT_2)

@@ -182,6 +182,7 @@ pub fn run_nonlinear(
         || NlScratch::new(&plan),
         |s, first, width| realize_group(&plan, s, ro.seed, first, width, ro.store_raw),
         |shard, results| {
+            refuse_escaped(input.model, &plan, meta.shard_range(shard).start, ro.seed, &results)?;
             write_shard(
                 &mut writer,
                 shard,
@@ -288,6 +289,63 @@ fn metadata(
         provenance,
         part: ro.part,
     }
+}
+
+/// What [`Error::Divergent`] names when a realization of route 2 escapes ([`escaped`] recognises it).
+pub const ESCAPED_RESPONSE: &str = "route 2's response";
+
+/// The reason of an error of [`run_nonlinear`] that says the response escaped (left every finite value),
+/// `None` for any other error: the outcome "no stationary response", to report beside routes 1 and 3.
+pub fn escaped(e: &Error) -> Option<String> {
+    match e {
+        Error::Divergent { quantity, reason } if quantity == ESCAPED_RESPONSE => Some(reason.clone()),
+        _ => None,
+    }
+}
+
+/// Refuses a shard with a realization whose response escaped: once a softening element has lost its
+/// stiffness (or nothing restrains a coordinate) the state grows without bound, its records' sums are no
+/// longer numbers, and no statistic of the run would be (the first such realization and output are named;
+/// nothing of the shard is written).
+fn refuse_escaped(
+    model: &NonlinearModel,
+    plan: &NlPlan,
+    first: usize,
+    seed: u64,
+    results: &[NlRealization],
+) -> Result<()> {
+    for (i, re) in results.iter().enumerate() {
+        let bad = (0..plan.outputs.len()).find(|&r| !(re.m[r].is_finite() && re.v[r].is_finite()));
+        let Some(r) = bad else { continue };
+        let softening: Vec<String> = model
+            .elements()
+            .iter()
+            .filter(|e| e.law.softening())
+            .map(|e| format!("`{}`", e.name))
+            .collect();
+        let cause = if softening.is_empty() {
+            "nothing restrains a coordinate at this excitation level".to_string()
+        } else {
+            format!(
+                "a softening element ({}) lost its stiffness: the potential has a barrier, and the state that \
+                 crosses it runs away",
+                softening.join(", ")
+            )
+        };
+        return Err(Error::Divergent {
+            quantity: ESCAPED_RESPONSE.into(),
+            reason: format!(
+                "realization {} of seed {seed}: output `{}` left every finite value within the run ({} s of \
+                 burn-in and {} s recorded): {cause}; the nonlinear system has no stationary response here, so \
+                 route 2 has no statistics (lower the excitation, or make the element harden)",
+                first + i,
+                plan.outputs[r].signal.name,
+                crate::numbers::num(plan.n_burn as f64 * plan.h),
+                crate::numbers::num(plan.duration()),
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// Values per realization of an output: mean, variance, kurtosis, max |y|, a rate per level, two per
