@@ -33,7 +33,7 @@ use crate::response::{
     analyze_output_with, variance_lyapunov, variance_lyapunov_delayed, variance_oscillatory, Excitation,
     ResponseStatistics,
 };
-use crate::system::{FrequencyResponse, Mdof};
+use crate::system::{FrequencyResponse, Mdof, STABILITY_RESOLUTION};
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -350,8 +350,7 @@ impl<'a> Iteration<'a> {
             .map_err(|e| Route1Outcome::fail(e.to_string(), "check the element parameters", k))?;
         if !stable(&sys) {
             return Err(Route1Outcome::fail(
-                "the equivalent linear system has no stationary response (an eigenvalue with Re λ ≥ 0): a softening \
-                 element has lost its stiffness at this excitation level, or nothing damps a coordinate",
+                instability_reason(&sys),
                 "the Gaussian equivalent does not exist; route 2 (--monte-carlo) shows whether the response escapes",
                 k,
             ));
@@ -400,12 +399,20 @@ impl<'a> Iteration<'a> {
                 self.method = method;
                 Ok(v.max(0.0).sqrt())
             }
-            Err(e) => Err(Route1Outcome::fail(
-                format!("`{}`: {e}", sys.outputs()[i].name),
-                "a velocity-dependent element needs a relative velocity of finite variance: attach it between \
-                 masses, or give the input a spectrum that decays faster than ω⁻²",
-                k,
-            )),
+            Err(e) => {
+                let advice = match e {
+                    Error::Divergent { .. } => "a velocity-dependent element needs a relative velocity of finite \
+                                                variance: attach it between masses, or give the input a spectrum \
+                                                that decays faster than ω⁻²"
+                        .to_string(),
+                    _ => quadrature_advice(sys),
+                };
+                Err(Route1Outcome::fail(
+                    format!("`{}`: {e}", sys.outputs()[i].name),
+                    advice,
+                    k,
+                ))
+            }
         }
     }
 
@@ -571,6 +578,59 @@ impl Route1 {
 /// (whose entry rate is Rice's, from σ_v).
 fn reads_rate(e: &NonlinearElement) -> bool {
     e.law.velocity_dependent() || e.law.regime().is_some()
+}
+
+/// Damping ratios below which a mode of the equivalent system counts as almost undamped: its resonance
+/// peak, of relative width 2ζ, is then narrower than the variance quadrature's tolerance lets it resolve.
+pub const UNDAMPED_MODE_ZETA: f64 = 1e-4;
+
+/// What to change when the equivalent system's variance quadrature fails: its least damped mode if that is
+/// almost undamped ([`UNDAMPED_MODE_ZETA`]; a stiff element can lock the coordinates the dampers act on,
+/// leaving a mode nothing damps), else the quadrature's effort.
+fn quadrature_advice(sys: &Mdof) -> String {
+    let least = sys.state_space().map(|ss| {
+        ss.a.complex_eigenvalues()
+            .iter()
+            .filter(|l| l.im > 0.0)
+            .map(|l| (-l.re / l.norm(), l.norm()))
+            .fold((f64::INFINITY, 0.0), |a, b| if b.0 < a.0 { b } else { a })
+    });
+    match least {
+        Some((zeta, w)) if zeta < UNDAMPED_MODE_ZETA => format!(
+            "the equivalent system's mode at {} rad/s is almost undamped (ζ = {}): its resonance is a peak \
+             narrower than the quadrature resolves. A very stiff element (a stop's contact, a cubic spring far \
+             beyond its clearance) can lock the coordinates the dampers act on; route 2 (--monte-carlo) needs no \
+             Gaussian equivalent, or give the element a contact stiffness nearer the suspension's",
+            crate::numbers::num(w),
+            crate::numbers::num(zeta)
+        ),
+        _ => "raise the quadrature effort (its subintervals), or use route 2 (--monte-carlo)".to_string(),
+    }
+}
+
+/// Why the equivalent system `sys` has no stationary response: an eigenvalue with Re λ ≥ 0, or a decay
+/// rate so small beside the stiffest term of its state matrix that its eigenvalues cannot tell it from
+/// zero (the stability test's resolution; a very stiff element that locks the damped coordinates).
+fn instability_reason(sys: &Mdof) -> String {
+    let worst = sys.state_space().map(|ss| {
+        let l = ss.a.complex_eigenvalues();
+        let top = l.iter().copied().fold(l[0], |a, b| if b.re > a.re { b } else { a });
+        (top, ss.a.amax())
+    });
+    match worst {
+        Some((l, scale)) if l.re.abs() <= STABILITY_RESOLUTION * scale => format!(
+            "the equivalent linear system's mode at {} rad/s has Re λ = {} 1/s, which its eigenvalues cannot \
+             tell from zero beside its stiffest term ({}): nothing damps that mode within rounding. A very stiff \
+             element (a stop's contact, a cubic spring far beyond its clearance) can lock the coordinates the \
+             dampers act on; give it a contact stiffness nearer the suspension's",
+            crate::numbers::num(l.im.abs()),
+            crate::numbers::num(l.re),
+            crate::numbers::num(scale)
+        ),
+        _ => "the equivalent linear system has no stationary response (an eigenvalue with Re λ ≥ 0): a softening \
+              element has lost its stiffness at this excitation level, or nothing damps a coordinate"
+            .to_string(),
+    }
 }
 
 fn stable(m: &Mdof) -> bool {

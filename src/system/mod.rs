@@ -22,7 +22,7 @@ mod transfer_row;
 
 pub use mdof::{modal_analysis, Attach, Element, Mdof, Output, OutputWeights, Quantity};
 pub use oscillator::{Drive, MassSpringDamper};
-pub use state_space::StateSpace;
+pub use state_space::{StateSpace, STABILITY_RESOLUTION};
 pub use transfer_function::TransferFunction;
 pub use transfer_row::TransferRow;
 

@@ -47,6 +47,11 @@ pub struct StateSpace {
     outputs: Vec<OutputInfo>,
 }
 
+/// The relative resolution of [`StateSpace::require_stable`]: the largest real part of A's eigenvalues must
+/// lie below −10⁻¹² max|Aᵢⱼ| (eigenvalues are computed to about ε‖A‖; a decay rate below this cannot be
+/// told from zero).
+pub const STABILITY_RESOLUTION: f64 = 1e-12;
+
 impl StateSpace {
     /// Builds a state-space system; `d` and `e` default to zero.
     ///
@@ -116,7 +121,7 @@ impl StateSpace {
     pub fn require_stable(&self) -> Result<()> {
         let s = self.spectral_abscissa();
         let scale = self.a.amax().max(1e-300);
-        if s >= -1e-12 * scale {
+        if s >= -STABILITY_RESOLUTION * scale {
             return Err(Error::invalid(
                 "A",
                 format!("max Re(eigenvalue) = {s:e}"),

@@ -226,6 +226,11 @@ pub const RIGID_STOP: f64 = 1e-3;
 /// puts the exact mean 0.3 % (SDOF, c_r/c_c = 3) to 1 % (quarter car) from the closed form; 2 %.
 pub const JACKING_CLOSURE: f64 = 2e-2;
 
+/// A locked suspension's mode against √(k_t/(m_s + m_u)): the tyre contact's equivalent stiffness (about
+/// 1 % of k_t at the catalogue quarter car's lift-off probability) and the stop's finite equivalent stiffness
+/// move it by under 0.6 %; 1 %.
+pub const LOCKED_MODE: f64 = 1e-2;
+
 /// Observed order of the splitting integrator from the error envelope (the worst case over ten neighbouring
 /// step counts, so that where the contact falls within a step averages out) at n and 8n steps per period:
 /// second order gives log₂-ratios near 2 per halving; a kink in the force can make single steps erratic, so

@@ -13,7 +13,7 @@
 //! the same numbers every time.
 
 use crate::common;
-use common::tolerance::MC_FALSE_FAILURE;
+use common::tolerance::{LOCKED_MODE, MC_FALSE_FAILURE};
 use std::path::Path;
 use stochvib::nonlinear::monte_carlo::{NonlinearRunOptions, NonlinearRunSummary};
 use stochvib::scenario::{parse_scenario, Scenario};
@@ -384,6 +384,45 @@ fn inspect_and_plot_of_a_nonlinear_run() {
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A bump stop so stiff (10¹⁰ and 10¹² N/m against a 20 kN/m suspension) that route 1's Gaussian
+/// equivalent locks the suspension: the car is then one mass m_s + m_u = 340 kg on the undamped tyre
+/// (c_t = 0), a mode at √(k_t/(m_s + m_u)) = √(200 000/340) = 24.25 rad/s that nothing damps (the tyre
+/// contact's equivalent stiffness, about 1 % of k_t, moves it by under 1 %: LOCKED_MODE). Route 1 must say so — at
+/// 10¹⁰ N/m its variance quadrature cannot resolve the peak (the mode almost undamped), at 10¹² N/m the
+/// eigenvalues cannot tell its decay from zero — and name that mode, not blame a softening element or a
+/// velocity of infinite variance (as it did).
+#[test]
+fn a_stop_stiff_enough_to_lock_the_suspension_names_the_undamped_mode() {
+    let locked = (200_000.0f64 / 340.0).sqrt();
+    for (k, says) in [("1e10", "is almost undamped"), ("1e12", "cannot tell from zero")] {
+        let sc = variant(
+            "quarter-car-bump-stops.toml",
+            "",
+            Some(("stiffness = \"300 kN/m\"", &format!("stiffness = \"{k} N/m\""))),
+        );
+        let answers = sc.nonlinear_answers().unwrap().unwrap();
+        let stochvib::nonlinear::Route1Outcome::NotConverged { reason, advice, .. } = &answers.route1 else {
+            panic!("{k} N/m: route 1 converged")
+        };
+        let text = format!("{reason}; {advice}");
+        assert!(text.contains(says), "{k} N/m: {text}");
+        assert!(
+            !text.contains("softening element has lost") && !text.contains("finite variance"),
+            "{text}"
+        );
+        let at = text
+            .split("mode at ")
+            .nth(1)
+            .and_then(|t| t.split(" rad/s").next())
+            .unwrap();
+        let w: f64 = at.parse().unwrap();
+        assert!(
+            (w / locked - 1.0).abs() < LOCKED_MODE,
+            "{k} N/m: mode at {w} rad/s, locked suspension {locked}"
+        );
+    }
 }
 
 /// The Duffing scenario with its cubic term reversed (εσ₀² = −1: a softening spring whose potential has its
