@@ -231,6 +231,13 @@ pub const JACKING_CLOSURE: f64 = 2e-2;
 /// move it by under 0.6 %; 1 %.
 pub const LOCKED_MODE: f64 = 1e-2;
 
+/// The quarter car with stops at 0.01 m/s against its quasi-static limit (the car follows the road: body
+/// acceleration = road acceleration, tyre force = (m_s + m_u)·road acceleration): the neglected terms are of
+/// relative order c·(ω₂/ω_b)² with the band's top ω₂ = 2π·0.01·2.83 = 0.178 rad/s and the body mode ω_b ≈
+/// 7.7 rad/s, 5.3·10⁻⁴ times a constant of a few (4 for the scraper of [`QUASI_STATIC`]); measured 6.3·10⁻⁴
+/// and 5.7·10⁻⁴; 3·10⁻³.
+pub const CRAWL_QUASI_STATIC: f64 = 3e-3;
+
 /// Observed order of the splitting integrator from the error envelope (the worst case over ten neighbouring
 /// step counts, so that where the contact falls within a step averages out) at n and 8n steps per period:
 /// second order gives log₂-ratios near 2 per halving; a kink in the force can make single steps erratic, so
