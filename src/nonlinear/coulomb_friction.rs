@@ -96,6 +96,9 @@ impl ForceLaw for CoulombFriction {
     fn velocity_dependent(&self) -> bool {
         true
     }
+    fn set_valued(&self) -> bool {
+        self.force > 0.0
+    }
     fn is_zero(&self) -> bool {
         self.force == 0.0
     }

@@ -56,6 +56,8 @@ pub(crate) struct Kicks {
     /// B_u (n × base inputs, row-major).
     bu: Vec<f64>,
     n_base: usize,
+    /// The set-valued elements (dry friction), whose force is read from their impulses.
+    set_valued: Vec<usize>,
 }
 
 #[derive(Debug, Clone)]
@@ -83,7 +85,7 @@ impl Kicks {
         let lin = model.linear();
         let n = lin.n_coords();
         let minv = lin.mass_inverse();
-        let items = model
+        let items: Vec<Kick> = model
             .elements()
             .iter()
             .enumerate()
@@ -102,11 +104,17 @@ impl Kicks {
             .collect();
         Kicks {
             n,
+            set_valued: (0..items.len()).filter(|&e| items[e].law.set_valued()).collect(),
             items,
             minv: row_major(minv),
             bu: row_major(lin.base_damping()),
             n_base: lin.n_base(),
         }
+    }
+
+    /// Whether an element's force is set-valued (dry friction: see [`Prepared::set_valued_forces`]).
+    pub(crate) fn has_set_valued(&self) -> bool {
+        !self.set_valued.is_empty()
     }
 
     /// Number of elements.
@@ -193,7 +201,8 @@ pub(crate) struct Prepared<'a> {
 
 impl Prepared<'_> {
     /// The exact flow of every element over τ, in order (or in reverse order): p −= d J, q̇ −= M⁻¹d J, lane
-    /// by lane (a lane whose impulse is 0 keeps its bits).
+    /// by lane (a lane whose impulse is 0 keeps its bits); every element's impulse J into `impulses` when
+    /// given. `(u, ud)`: the base inputs and their rates.
     #[inline(always)]
     #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
     pub(crate) fn kick<const L: usize>(
@@ -201,27 +210,65 @@ impl Prepared<'_> {
         q: &[Lanes<L>],
         p: &mut [Lanes<L>],
         qdot: &mut [Lanes<L>],
-        u: &[Lanes<L>],
-        ud: &[Lanes<L>],
+        (u, ud): (&[Lanes<L>], &[Lanes<L>]),
         reverse: bool,
+        mut impulses: Option<&mut [Lanes<L>]>,
     ) {
         let items = &self.kicks.items;
         for step in 0..items.len() {
             let e = if reverse { items.len() - 1 - step } else { step };
             let (x, v) = self.kicks.kinematics(e, q, qdot, u, ud);
             let k = &items[e];
-            let mut j = [0.0; L];
-            match &self.kernels[e] {
-                Some(kernel) => kernel.impulses(&x, &v, &mut j),
-                None => {
-                    for l in 0..L {
-                        j[l] = k.law.impulse(x[l], v[l], k.kappa, self.tau);
-                    }
-                }
-            }
+            let j = self.impulses(e, &x, &v);
             for ((pi, qi), (d, md)) in p.iter_mut().zip(qdot.iter_mut()).zip(k.d.iter().zip(&k.minv_d)) {
                 sub_where_moved(pi, *d, &j);
                 sub_where_moved(qi, *md, &j);
+            }
+            if let Some(out) = impulses.as_deref_mut() {
+                out[e] = j;
+            }
+        }
+    }
+
+    /// Element e's impulse over τ at deflection x and rate v, lane by lane (its [`Kernel`] where it has one).
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    fn impulses<const L: usize>(&self, e: usize, x: &Lanes<L>, v: &Lanes<L>) -> Lanes<L> {
+        let mut j = [0.0; L];
+        match &self.kernels[e] {
+            Some(kernel) => kernel.impulses(x, v, &mut j),
+            None => {
+                let k = &self.kicks.items[e];
+                for l in 0..L {
+                    j[l] = k.law.impulse(x[l], v[l], k.kappa, self.tau);
+                }
+            }
+        }
+        j
+    }
+
+    /// The forces of the set-valued elements (dry friction, [`super::ForceLaw::set_valued`]) over the step
+    /// around the state, into `out`: F = (J_b + J_f)/(2τ), J_b the impulse of the reverse half kick that
+    /// ended the step before (`last`, from [`Prepared::kick`]) and J_f that of the forward half kick the
+    /// state is about to get (the element's own flow at the state). While the element slides this is
+    /// ±F_c, as F(x, v) is; while it sticks, v = 0 at the state and F(x, 0) = 0 says nothing, but the
+    /// impulses that held v at zero over the step are the constraint force, |F| ≤ F_c: the force the
+    /// element actually exerted, which an acceleration output must include.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)] // lane loops index several arrays at once
+    pub(crate) fn set_valued_forces<const L: usize>(
+        &self,
+        (q, qdot): (&[Lanes<L>], &[Lanes<L>]),
+        (u, ud): (&[Lanes<L>], &[Lanes<L>]),
+        last: &[Lanes<L>],
+        out: &mut [Lanes<L>],
+    ) {
+        let h = 2.0 * self.tau;
+        for &e in &self.kicks.set_valued {
+            let (x, v) = self.kicks.kinematics(e, q, qdot, u, ud);
+            let j = self.impulses(e, &x, &v);
+            for l in 0..L {
+                out[e][l] = (last[e][l] + j[l]) / h;
             }
         }
     }
@@ -339,14 +386,14 @@ pub fn free_response(
     let half = kicks.prepared(0.5 * h);
     for _ in 0..steps {
         let (q, p) = x.split_at_mut(n);
-        half.kick(q, p, &mut qdot, &zeros, &zeros, false);
+        half.kick(q, p, &mut qdot, (&zeros, &zeros), false, None);
         for (i, o) in next.iter_mut().enumerate() {
             *o = (0..2 * n).map(|j| phi[i * 2 * n + j] * x[j][0]).sum();
         }
         x.iter_mut().zip(&next).for_each(|(a, b)| *a = [*b]);
         let (q, p) = x.split_at_mut(n);
         kicks.velocities(p, &zeros, &mut qdot);
-        half.kick(q, p, &mut qdot, &zeros, &zeros, true);
+        half.kick(q, p, &mut qdot, (&zeros, &zeros), true, None);
     }
     let (q, p) = x.split_at(n);
     kicks.velocities(p, &zeros, &mut qdot);

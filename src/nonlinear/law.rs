@@ -86,6 +86,13 @@ pub trait ForceLaw: Debug + Send + Sync {
         false
     }
 
+    /// Whether the force is set-valued at rest (dry friction: any value in [−F_c, F_c] at v = 0, the one
+    /// that holds the element stuck). Route 2 then reads the force the element exerts over a step from its
+    /// kicks' impulses, not from [`ForceLaw::force`] at the sampled state (which gives 0 while it sticks).
+    fn set_valued(&self) -> bool {
+        false
+    }
+
     /// F₀, k_eq, c_eq of the remainder over the Gaussian law `m` (see [`Equivalent`]).
     fn gaussian(&self, m: &ElementMoments) -> Equivalent;
 

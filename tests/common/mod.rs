@@ -72,6 +72,16 @@ spectrum = "type1"
     )
 }
 
+/// Asserts that `x` lies inside the interval `iv` (bounds included), naming `what` and both bounds.
+pub fn assert_inside(iv: &stochvib::estimate::Interval, x: f64, what: &str) {
+    assert!(
+        iv.lower <= x && x <= iv.upper,
+        "{what} {x} outside [{}, {}]",
+        iv.lower,
+        iv.upper
+    );
+}
+
 /// Serialises, within one test binary, the tests that spawn child processes with the tests that hold HDF5
 /// files open (take it at the top of every test of such a binary; the guard is held to the test's end).
 ///

@@ -120,12 +120,7 @@ fn trapezoid(f: &dyn Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
 /// of σ is below the interval's half-width (the step error is negligible against the sampling error).
 fn assert_sigma(o: &OutputStatistics, exact_sigma: f64) {
     let s = &stat(o, "sigma_response").interval;
-    assert!(
-        s.lower <= exact_sigma && exact_sigma <= s.upper,
-        "exact σ {exact_sigma} outside [{}, {}]",
-        s.lower,
-        s.upper
-    );
+    common::assert_inside(s, exact_sigma, "exact σ");
     let half = 0.5 * (s.upper - s.lower);
     let dh = stat(o, "dt_halving_sigma").interval.estimate;
     assert!(

@@ -386,6 +386,37 @@ fn inspect_and_plot_of_a_nonlinear_run() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The friction seat with F_c = 5 kN on its guide: the spring (6.5 kN/m) and damper never pull that hard
+/// on the floor's 2.5 mm, so the seat sticks to the floor all the time and its acceleration is the floor's:
+/// for the gauss-cosine floor K(τ) = D e^{−ατ²} cos βτ, Var ü = K⁗(0) = D(β⁴ + 12αβ² + 12α²) (the τ⁴ term of
+/// the product of the two series, times 4!), D = 6.25 mm², α = 9 s⁻², β = 2π·3 rad/s: σ = 1.0173 m/s². Route
+/// 2's seat acceleration must hold it (Student-t interval at 1 − MC_FALSE_FAILURE; at Δt = 2 ms the step's
+/// averaging of the constraint force lowers σ by sinc(βΔt/2), 6·10⁻⁵), and its largest value must be a floor
+/// acceleration's, not the F_c/m = 60 m/s² that generator version 2 read while the friction stuck (F_c·sgn v
+/// at v = 0 is 0, so the output lost the constraint force: σ = 29.6 m/s²).
+#[test]
+fn route2_acceleration_of_a_stuck_friction_seat_is_the_floors() {
+    let sc = variant(
+        "operator-seat-friction.toml",
+        "",
+        Some(("force = \"15 N\"", "force = \"5000 N\"")),
+    );
+    let (d, alpha, beta) = (6.25e-6f64, 9.0f64, 2.0 * std::f64::consts::PI * 3.0);
+    let exact = (d * (beta.powi(4) + 12.0 * alpha * beta * beta + 12.0 * alpha * alpha)).sqrt();
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let dir = common::scratch_dir("nl-runs", "stuck-seat");
+    let s = {
+        let _serial = common::hdf5_serial();
+        sc.simulate_nonlinear(&answers, &options(8, 60.0, 0.002, 5), &dir.join("run.h5"), &|_, _| {})
+            .unwrap()
+    };
+    let o = s.run.outputs.iter().find(|o| o.output == "seat_acc").unwrap();
+    common::assert_inside(&stat(o, "sigma_response").interval, exact, "the floor's acceleration σ");
+    let max = stat(o, "max_abs").interval.estimate;
+    assert!(max < 8.0 * exact, "max |a| = {max} m/s² (the floor's σ is {exact})");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A bump stop so stiff (10¹⁰ and 10¹² N/m against a 20 kN/m suspension) that route 1's Gaussian
 /// equivalent locks the suspension: the car is then one mass m_s + m_u = 340 kg on the undamped tyre
 /// (c_t = 0), a mode at √(k_t/(m_s + m_u)) = √(200 000/340) = 24.25 rad/s that nothing damps (the tyre
@@ -685,7 +716,7 @@ fn run_files_of_generator_version_1_are_neither_resumed_nor_merged() {
     for part in [
         "shard-0-of-2.h5",
         "generator version 1 (not recorded)",
-        "this build writes version 2",
+        "this build writes version 3",
         "new file",
     ] {
         assert!(e.contains(part), "`{part}` not in: {e}");
@@ -714,7 +745,7 @@ fn run_files_of_generator_version_1_are_neither_resumed_nor_merged() {
         .map(String::from);
         common::cli_fails(1, &args.iter().map(String::as_str).collect::<Vec<_>>(), &dir)
     };
-    let version = "generator version (1 (not recorded: written before versions were recorded) against 2 (";
+    let version = "generator version (1 (not recorded: written before versions were recorded) against 3 (";
     std::fs::copy(fixture.join(name(0)), stochvib::store::tmp_path(&cut.join(name(0)))).unwrap();
     let e = simulate(&cut);
     assert!(

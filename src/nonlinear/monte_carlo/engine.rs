@@ -342,6 +342,8 @@ struct StepState<const L: usize> {
     y: Vec<Lanes<L>>,
     xe: Vec<Lanes<L>>,
     fe: Vec<Lanes<L>>,
+    /// The impulses of the last reverse half kick (read for the set-valued elements' forces).
+    jb: Vec<Lanes<L>>,
 }
 
 impl<const L: usize> StepState<L> {
@@ -357,6 +359,7 @@ impl<const L: usize> StepState<L> {
             y: vec![[0.0; L]; plan.outputs.len()],
             xe: vec![[0.0; L]; ne],
             fe: vec![[0.0; L]; ne],
+            jb: vec![[0.0; L]; ne],
         }
     }
 
@@ -394,6 +397,9 @@ impl<const L: usize> StepState<L> {
     fn outputs<P: Path<L>>(&mut self, plan: &NlPlan, half: &Prepared, path: &P, k: usize) {
         path.outputs(k, &self.ut, &self.ud, &mut self.y);
         half.forces(&self.q, &self.qdot, &self.ua, &self.ud, &mut self.fe, &mut self.xe);
+        if plan.kicks.has_set_valued() {
+            half.set_valued_forces((&self.q, &self.qdot), (&self.ua, &self.ud), &self.jb, &mut self.fe);
+        }
         // a local lane array per output: `y` and `fe` are separate heap arrays the compiler cannot tell
         // apart, and updating `y` in place kept it from vectorising across the lanes
         for (o, po) in self.y.iter_mut().zip(&plan.outputs) {
@@ -415,7 +421,15 @@ impl<const L: usize> StepState<L> {
     fn kick<P: Path<L>>(&mut self, plan: &NlPlan, half: &Prepared, path: &mut P, reverse: bool) {
         let (n, mech) = (plan.n_coords, path.mech());
         let (_, rest) = path.state().split_at_mut(mech + n);
-        half.kick(&self.q, &mut rest[..n], &mut self.qdot, &self.ua, &self.ud, reverse);
+        let record = (reverse && plan.kicks.has_set_valued()).then_some(&mut self.jb[..]);
+        half.kick(
+            &self.q,
+            &mut rest[..n],
+            &mut self.qdot,
+            (&self.ua, &self.ud),
+            reverse,
+            record,
+        );
     }
 }
 

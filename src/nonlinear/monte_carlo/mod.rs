@@ -45,16 +45,22 @@ use engine::{lockstep_groups, realize_group, NlRealization, NlScratch};
 use plan::NlPlan;
 use std::path::{Path, PathBuf};
 
-/// Version of route 2's generator: how a seed becomes realizations and statistics. Version 2 takes burn-in
-/// plus record and the Welch segment of 2^a·3^b·5^c steps ([`welch_segment`]); version 1 (files that record
-/// no version) took them as computed, often with a large prime factor. A seed's statistics are
+/// Version of route 2's generator: how a seed becomes realizations and statistics. Version 3 reads the force
+/// of dry friction in acceleration outputs from its kicks' impulses (the force it exerted over the step,
+/// the constraint force while it sticks) instead of F_c·sgn v at the sampled state (0 while it sticks); the
+/// realizations of models without dry friction are those of version 2. Version 2 takes burn-in plus record
+/// and the Welch segment of 2^a·3^b·5^c steps ([`welch_segment`]); version 1 (files that record no version)
+/// took them as computed, often with a large prime factor. A seed's statistics are
 /// bit-identical across threads, shards, resume and merge within a version and differ between versions, so
 /// a run file of another version is never resumed or merged ([`refuse_other_version`]).
-pub const GENERATOR_VERSION: u32 = 2;
+pub const GENERATOR_VERSION: u32 = 3;
 
 /// The text of the run file's identifying provenance part [`crate::store::GENERATOR_VERSION`].
 fn version_text() -> String {
-    format!("{GENERATOR_VERSION} (nonlinear route 2: burn-in plus record and Welch segments of 2^a·3^b·5^c steps)")
+    format!(
+        "{GENERATOR_VERSION} (nonlinear route 2: burn-in plus record and Welch segments of 2^a·3^b·5^c steps; dry \
+         friction's force in acceleration outputs from its impulses)"
+    )
 }
 
 /// Refuses a nonlinear run file `path` (metadata `meta`) written by another version of route 2's generator
@@ -76,7 +82,8 @@ pub fn refuse_other_version(meta: &RunMetadata, path: &Path) -> Result<()> {
         reason: format!(
             "is a nonlinear run of generator version {}, this build writes version {}: the versions turn a seed \
              into different realizations (version 2 changed the burn-in and Welch lengths to 2^a·3^b·5^c \
-             steps), so its shards are never resumed or merged with this build; run it again into a new file, \
+             steps, version 3 the acceleration outputs of models with dry friction), so its shards are never \
+             resumed or merged with this build; run it again into a new file, \
              or merge it with the stochvib build that wrote it",
             found.unwrap_or_else(|| "1 (not recorded)".into()),
             version_text()
