@@ -280,7 +280,10 @@ pub fn check_run_time(opts: &RunOptions, n: usize, processes: usize) -> Result<(
             "{} of {n} samples ({} s at Δt = {} s)",
             opts.realizations, opts.duration_s, opts.dt_s
         ),
-        &format!("computing {local:e} realizations × {n} samples × {processes} input processes on {threads} threads"),
+        &format!(
+            "computing {} realizations × {n} samples × {processes} input processes on {threads} threads",
+            crate::numbers::num(local)
+        ),
         "fewer --realizations, a shorter --duration, a longer --dt, or a cluster run (--shard I --of N)",
     )
 }

@@ -491,6 +491,29 @@ fn route1_at_a_crawl_is_the_quasi_static_answer() {
     );
 }
 
+/// A mistyped duration (10¹² s at the Duffing oscillator's 5.8 ms step: 1.7·10¹⁴ samples, each needing at
+/// least one normal draw, at most MAX_DRAWS_PER_S a thread) is refused at once with the lower bound of its
+/// time against --max-hours, and no file; on the exact route nothing is allocated per sample, so before the
+/// check the run started and would have taken years (and the search for its FFT-friendly length alone ran
+/// for hours).
+#[test]
+fn a_route2_run_beyond_max_hours_is_refused_at_once() {
+    let path = common::root().join("data/duffing-white-noise.toml");
+    let sc = stochvib::scenario::load_scenario(&path, &common::root().join("spectra")).unwrap();
+    let answers = sc.nonlinear_answers().unwrap().unwrap();
+    let dir = common::scratch_dir("nl-runs", "max-hours");
+    let out = dir.join("run.h5");
+    let e = {
+        let _serial = common::hdf5_serial();
+        sc.simulate_nonlinear(&answers, &options(2, 1e12, 0.0058, 1), &out, &|_, _| {})
+            .expect_err("years of computing")
+            .to_string()
+    };
+    assert!(e.contains("would take at least") && e.contains("--max-hours 24"), "{e}");
+    assert!(!out.exists() && !stochvib::store::tmp_path(&out).exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// The Duffing scenario with its cubic term reversed (εσ₀² = −1: a softening spring whose potential has its
 /// barrier at x_b = 1/√|ε| = σ₀ = 1 cm, height βV_b = 1/(4|ε|σ₀²) = 0.25): route 1 finds no Gaussian
 /// equivalent, and route 2's realizations cross the barrier within a few periods (Kramers' rate at βV_b =

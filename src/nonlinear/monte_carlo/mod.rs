@@ -160,6 +160,9 @@ pub fn run_nonlinear(
     let plan = plan::plan(input, opts)?;
     refuse_inputs_as_output(input, out)?;
     let ro = &opts.run;
+    // every step of burn-in and record draws at least one normal: refused before anything is written when
+    // that alone exceeds --max-hours (the exact route allocates nothing per sample, so nothing else stops it)
+    crate::simulate::resources::check_run_time(ro, plan.n_burn + plan.n, 1)?;
     let shard_size = ro.shard_size.min(ro.realizations);
     let bins = plan.welch.segment_len() / 2 + 1;
     let record_inputs = ro.store_raw && plan.input_signals.len() == raw_input_count(&plan);

@@ -259,13 +259,27 @@ pub(crate) fn is_5_smooth(n: usize) -> bool {
 
 /// The steps of burn-in plus record (the synthesis length of the spectral route's inputs): the smallest
 /// even 2^a·3^b·5^c ≥ `n` (since version 2 of the route, [`super::GENERATOR_VERSION`]).
+///
+/// The candidates 2^a·3^b·5^c (a ≥ 1) are enumerated, O(log³ n): a search upwards in steps of 2 took
+/// hours for the lengths of a mistyped duration (the gaps between such numbers grow with n), before the run
+/// time could be checked.
 pub(crate) fn synthesis_length(n: usize) -> usize {
-    let mut m = n.max(2);
-    m += m % 2;
-    while !is_5_smooth(m) {
-        m += 2;
+    let target = n.max(2);
+    let mut best = usize::MAX;
+    let mut p2: usize = 2;
+    while p2 < best {
+        let mut p23 = p2;
+        while p23 < best {
+            let mut p = p23;
+            while p < target {
+                p = p.saturating_mul(5);
+            }
+            best = best.min(p);
+            p23 = p23.saturating_mul(3);
+        }
+        p2 = p2.saturating_mul(2);
     }
-    m
+    best
 }
 
 /// The Welch segment of a route-2 record of `n` samples: the largest even 2^a·3^b·5^c ≤ min(1024, n/8)
@@ -571,15 +585,15 @@ fn finish_hold(
 mod tests {
     use super::*;
 
-    /// Brute force: the factors of n below 7 only (an independent enumeration of 2^a 3^b 5^c ≤ 10⁵).
-    fn smooth_numbers() -> Vec<usize> {
+    /// Brute force: every 2^a 3^b 5^c ≤ `limit`, sorted (an independent enumeration).
+    fn smooth_numbers(limit: usize) -> Vec<usize> {
         let mut v = Vec::new();
         let mut p2 = 1;
-        while p2 <= 100_000 {
+        while p2 <= limit {
             let mut p3 = p2;
-            while p3 <= 100_000 {
+            while p3 <= limit {
                 let mut p5 = p3;
-                while p5 <= 100_000 {
+                while p5 <= limit {
                     v.push(p5);
                     p5 *= 5;
                 }
@@ -596,7 +610,7 @@ mod tests {
     /// algorithm) become 10000 = 2⁴5⁴ and 900 = 2²3²5².
     #[test]
     fn lengths_are_the_nearest_even_2_3_5_smooth_numbers() {
-        let even: Vec<usize> = smooth_numbers().into_iter().filter(|m| m % 2 == 0).collect();
+        let even: Vec<usize> = smooth_numbers(100_000).into_iter().filter(|m| m % 2 == 0).collect();
         for n in 1..90_000 {
             let up = *even.iter().find(|&&m| m >= n).unwrap();
             assert_eq!(synthesis_length(n), up, "n = {n}");
@@ -605,6 +619,11 @@ mod tests {
             assert_eq!(welch_segment(n), down, "n = {n}");
         }
         assert_eq!((synthesis_length(9914), welch_segment(7380)), (10_000, 900));
+        // lengths of a mistyped duration (10¹² s at a few ms a step) come at once, and right
+        let big: Vec<usize> = smooth_numbers(1 << 52).into_iter().filter(|m| m % 2 == 0).collect();
+        for n in [172_117_866_053_627usize, 1 << 40, (1 << 40) + 1, 999_999_999_999_989] {
+            assert_eq!(synthesis_length(n), *big.iter().find(|&&m| m >= n).unwrap(), "n = {n}");
+        }
         assert!(!is_5_smooth(0) && is_5_smooth(1) && !is_5_smooth(922) && !is_5_smooth(9914));
     }
 }
