@@ -450,7 +450,10 @@ fn templates(o: &plan::PlannedOutput, input: &NonlinearRunInput) -> Vec<Statisti
         names.push((
             format!("upcrossing_rate[{} {unit}]", crate::numbers::short(*a)),
             per_s.clone(),
-            format!("up-crossings of the level counted on the samples, per second; analytic = Rice's rate of {route1}"),
+            format!(
+                "up-crossings of the level counted on the samples, per second; Student-t widened to the exact \
+                 Poisson interval of the total count; analytic = Rice's rate of {route1}"
+            ),
         ));
     }
     for &e in &o.regimes {
@@ -459,12 +462,18 @@ fn templates(o: &plan::PlannedOutput, input: &NonlinearRunInput) -> Vec<Statisti
         names.push((
             format!("{}[{}]", reg.fraction, el.name),
             "-".into(),
-            format!("fraction of samples in the regime; analytic = Gaussian probability of {route1}"),
+            format!(
+                "fraction of samples in the regime; Student-t within [0, 1] ([0, 1] when never in it); analytic \
+                 = Gaussian probability of {route1}"
+            ),
         ));
         names.push((
             format!("{}[{}]", reg.rate, el.name),
             per_s.clone(),
-            format!("entries into the regime per second; analytic = Rice's rate of {route1}"),
+            format!(
+                "entries into the regime per second; Student-t widened to the exact Poisson interval of the \
+                 total count; analytic = Rice's rate of {route1}"
+            ),
         ));
     }
     names.push((
@@ -552,6 +561,11 @@ type Finished = (
     Vec<crate::store::ResponseHistogram>,
 );
 
+/// Each realization's record time, s (what its rates are counts per).
+fn record_seconds(meta: &RunMetadata) -> f64 {
+    meta.n_samples as f64 * meta.dt
+}
+
 fn finish(
     writer: &RunWriter,
     meta: &RunMetadata,
@@ -576,8 +590,12 @@ fn finish(
         let mut st = crate::simulate::output_statistics(&o.signal, &analytic, &m, &v, confidence)?;
         relabel_standard(&mut st);
         let (per_q, counts) = fold_nonlinear(&acc, meta, &o.signal.name)?;
-        st.statistics
-            .extend(stats::statistics(&templates(o, input), &per_q, confidence)?);
+        st.statistics.extend(stats::statistics(
+            &templates(o, input),
+            &per_q,
+            confidence,
+            record_seconds(meta),
+        )?);
         stats.push(st);
         let density = route1_density(input, o.index);
         psds.push(crate::simulate::density_estimate(
@@ -678,7 +696,8 @@ pub(crate) fn finish_merged(
                 reason: format!("no statistics of `{}` in the first shard file", st.output),
             })?;
         let templates: Vec<Statistic> = stored.statistics.iter().skip(4).cloned().collect();
-        st.statistics.extend(stats::statistics(&templates, &per_q, confidence)?);
+        st.statistics
+            .extend(stats::statistics(&templates, &per_q, confidence, record_seconds(meta))?);
         let h0 = hist0
             .iter()
             .find(|h| h.output == st.output)

@@ -88,8 +88,72 @@ fn interval(values: &[f64], confidence: f64) -> Result<Interval> {
     finish_interval(&v, confidence)
 }
 
+/// Whether a statistic is a rate of events counted on each realization's record (level up-crossings,
+/// entries into a regime): `<kind>_rate[…]` in 1/s.
+fn is_count_rate(t: &Statistic) -> bool {
+    t.unit == "1/s" && t.name.contains("_rate[")
+}
+
+/// Whether a statistic is a fraction of time (in a regime): `<kind>_fraction[…]`.
+fn is_fraction(t: &Statistic) -> bool {
+    t.name.contains("_fraction[")
+}
+
+/// The exact (Garwood) interval of a Poisson rate from `k` events in `time` seconds at `confidence`.
+///
+/// # Formula
+/// [χ²_{2k}(α/2)/2, χ²_{2k+2}(1 − α/2)/2]/time with α = 1 − confidence, the lower bound 0 for k = 0
+/// (Garwood 1936, "Fiducial limits for the Poisson distribution", Biometrika 28, 437–442): for k = 0 the
+/// upper bound is −ln(α/2)/time.
+fn garwood(k: f64, time: f64, confidence: f64) -> Result<(f64, f64)> {
+    use statrs::distribution::{ChiSquared, ContinuousCDF};
+    let alpha = 1.0 - confidence;
+    let chi = |dof: f64, p: f64| -> Result<f64> {
+        let d = ChiSquared::new(dof).map_err(|e| Error::Numerical {
+            what: "Poisson interval".into(),
+            reason: e.to_string(),
+        })?;
+        Ok(d.inverse_cdf(p))
+    };
+    let lower = if k > 0.0 { chi(2.0 * k, alpha / 2.0)? / 2.0 } else { 0.0 };
+    let upper = chi(2.0 * k + 2.0, 1.0 - alpha / 2.0)? / 2.0;
+    Ok((lower / time, upper / time))
+}
+
+/// The interval of an event rate: the Student-t interval across realizations (which sees the clustering
+/// of the events, e.g. crossings in bursts), widened to hold the exact Poisson interval of the total count
+/// over the total record time (which holds when the events are rare: a level never crossed in R·T seconds
+/// has the rate interval [0, −ln(α/2)/(R·T)], not the zero-width [0, 0] of R zero rates), and never below 0.
+/// The counts are the rates times the record time `record_s`, rounded.
+fn rate_interval(iv: Interval, values: &[f64], record_s: f64, confidence: f64) -> Result<Interval> {
+    let v: Vec<f64> = values.iter().copied().filter(|x| x.is_finite()).collect();
+    if v.is_empty() || record_s.is_nan() || record_s <= 0.0 {
+        return Ok(iv);
+    }
+    let k: f64 = v.iter().map(|r| (r * record_s).round()).sum();
+    let (lo, hi) = garwood(k, v.len() as f64 * record_s, confidence)?;
+    Ok(Interval {
+        lower: iv.lower.min(lo).max(0.0),
+        upper: iv.upper.max(hi),
+        ..iv
+    })
+}
+
+/// The interval of a time fraction: within [0, 1]; when no realization spent any time in the regime the
+/// samples bound nothing but the fraction itself (an episode's length is unknown), so [0, 1] rather than
+/// the zero-width [0, 0] that R zero fractions give.
+fn fraction_interval(iv: Interval, values: &[f64]) -> Interval {
+    let none = values.iter().filter(|x| x.is_finite()).all(|x| *x == 0.0);
+    Interval {
+        lower: iv.lower.clamp(0.0, 1.0),
+        upper: if none { 1.0 } else { iv.upper.clamp(0.0, 1.0) },
+        ..iv
+    }
+}
+
 /// The statistics from the per-quantity values and the templates (name, unit, method, analytic of each
-/// quantity in order, then the `exact:` repetitions).
+/// quantity in order, then the `exact:` repetitions); `record_s` is each realization's record time (s),
+/// which turns the rates back into counts ([`rate_interval`]).
 ///
 /// # Errors
 /// Fewer templates than quantities; a confidence outside (0, 1).
@@ -97,6 +161,7 @@ pub(crate) fn statistics(
     templates: &[Statistic],
     per_quantity: &[Vec<f64>],
     confidence: f64,
+    record_s: f64,
 ) -> Result<Vec<Statistic>> {
     if templates.len() < per_quantity.len() {
         return Err(Error::Numerical {
@@ -115,6 +180,11 @@ pub(crate) fn statistics(
         } else {
             interval(values, confidence)?
         };
+        if is_count_rate(t) {
+            iv = rate_interval(iv, values, record_s, confidence)?;
+        } else if is_fraction(t) {
+            iv = fraction_interval(iv, values);
+        }
         if t.name == "sigma_response" {
             iv = Interval {
                 estimate: iv.estimate.max(0.0).sqrt(),
@@ -191,5 +261,51 @@ pub(crate) fn histogram(
         samples: total,
         gaussian,
         exact,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn template(name: &str, unit: &str) -> Statistic {
+        Statistic {
+            name: name.into(),
+            unit: unit.into(),
+            method: String::new(),
+            analytic: Some(1e-5),
+            interval: Interval {
+                estimate: f64::NAN,
+                lower: f64::NAN,
+                upper: f64::NAN,
+                confidence: 0.95,
+            },
+            covers: None,
+        }
+    }
+
+    /// Eight realizations of 150 s without a crossing: the rate's interval is Garwood's for 0 events in
+    /// 1200 s, [0, −ln(0.025)/1200] = [0, 3.0741e-3] at 95 % (its closed form for k = 0), so a route-1 rate
+    /// of 10⁻⁵ lies inside (the zero-width [0, 0] of eight zero rates said it did not); the fraction of
+    /// time in a regime never entered is [0, 1]. With 2 and 1 crossings in two 100-s records the interval
+    /// holds Garwood's [χ²₆(0.025)/2, χ²₈(0.975)/2]/200 (χ²₆(0.025) = 1.2373, χ²₈(0.975) = 17.5345, tables)
+    /// and never goes below 0.
+    #[test]
+    fn rare_event_rates_and_fractions_have_honest_intervals() {
+        let t = [
+            template("upcrossing_rate[0.04 m]", "1/s"),
+            template("contact_fraction[stop]", "-"),
+        ];
+        let zeros = vec![vec![0.0; 8], vec![0.0; 8]];
+        let st = statistics(&t, &zeros, 0.95, 150.0).unwrap();
+        let r = st[0].interval;
+        assert_eq!((r.estimate, r.lower), (0.0, 0.0));
+        assert!((r.upper - (-(0.025f64).ln() / 1200.0)).abs() < 1e-12, "{r:?}");
+        assert_eq!(st[0].covers, Some(true));
+        assert_eq!((st[1].interval.lower, st[1].interval.upper), (0.0, 1.0));
+        let st = statistics(&t[..1], &[vec![0.02, 0.01]], 0.95, 100.0).unwrap();
+        let r = st[0].interval;
+        assert!(r.lower >= 0.0 && r.lower <= 1.2373 / 2.0 / 200.0 + 1e-6, "{r:?}");
+        assert!(r.upper >= 17.5345 / 2.0 / 200.0 - 1e-6, "{r:?}");
     }
 }
