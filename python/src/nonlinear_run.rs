@@ -15,6 +15,10 @@ pub fn options(
     run: RunOptions,
     (dt, duration, burn_in): (Option<f64>, Option<f64>, Option<f64>),
 ) -> stochvib::Result<(NonlinearRunOptions, String)> {
+    // named as the keyword is (the library names the command line's --burn-in)
+    if let Some(b) = burn_in.filter(|b| !(b.is_finite() && *b >= 0.0)) {
+        return Err(stochvib::Error::invalid("burn_in", b, "must be finite and >= 0 (s)"));
+    }
     let (dt, duration, how) = match (dt, duration) {
         (Some(dt), Some(d)) => (dt, d, "given".to_string()),
         _ => {

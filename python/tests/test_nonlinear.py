@@ -108,3 +108,10 @@ def test_an_escaping_response_is_route_2s_outcome(tmp_path, root):
     with pytest.raises(stochvib.DivergentError, match=r"realization \d+ .*output `x`.*`hardening`"):
         stochvib.simulate_nonlinear(soft, 2, tmp_path / "run.h5", dt=0.01, duration=50.0, progress=False)
     assert not (tmp_path / "run.h5").exists()
+
+
+def test_a_bad_burn_in_names_the_keyword(root):
+    sc = stochvib.Scenario.load(root / "data" / "duffing-white-noise.toml")
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(stochvib.InvalidInputError, match=r"`burn_in`"):
+            sc.analyze_nonlinear(monte_carlo=2, burn_in=bad, progress=False)
