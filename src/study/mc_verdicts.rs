@@ -45,6 +45,29 @@ pub struct McVerdicts {
     pub basic_method: Vec<RunBasicMethod>,
 }
 
+/// Why a damage rate is not compared: no realization counted a damaging cycle (all below the endurance
+/// limit), so the run bounds the rate of damaging cycles — by Garwood's −ln(α/2)/(R·T) for none in R·T
+/// seconds — but not the damage rate, since a cycle's damage has no upper bound.
+fn no_damaging_cycle(s: &crate::store::Statistic, run: &RunSummary) -> Option<String> {
+    let a = s.analytic?;
+    if s.covers.is_some() || s.interval.estimate != 0.0 || a <= 0.0 {
+        return None;
+    }
+    let total = run.n_realizations as f64 * run.n_samples as f64 * run.dt_s;
+    let bound = -(0.5 * (1.0 - s.interval.confidence)).ln() / total;
+    Some(format!(
+        "not compared: no realization counted a damaging cycle (every amplitude below the endurance limit) in \
+         the run's {} s, so the run bounds the rate of damaging cycles (≤ {} /s at {} %) but not the damage \
+         rate; the analytic rate {} /s predicts a Miner damage of {} over the whole run (more realizations or \
+         a longer --duration resolve it)",
+        crate::numbers::num(total),
+        crate::numbers::num(bound),
+        crate::numbers::num(100.0 * s.interval.confidence),
+        crate::numbers::num(a),
+        crate::numbers::num(a * total)
+    ))
+}
+
 /// The verdict statistics of a run (empty values when it has no verdict channels).
 pub fn mc_verdicts(run: &RunSummary) -> Option<McVerdicts> {
     let mut values = Vec::new();
@@ -67,7 +90,11 @@ pub fn mc_verdicts(run: &RunSummary) -> Option<McVerdicts> {
                     .flatten(),
                 interval: s.interval,
                 covers: s.covers,
-                cause: if *name == "sigma" { coverage_cause(o) } else { None },
+                cause: if *name == "sigma" {
+                    coverage_cause(o)
+                } else {
+                    no_damaging_cycle(s, run)
+                },
             });
         }
     }

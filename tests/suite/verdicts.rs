@@ -202,6 +202,44 @@ fn monte_carlo_agrees_with_analytic_a_w_vdv_and_spectral_fatigue() {
     std::fs::remove_file(&out).unwrap();
 }
 
+/// An endurance limit of 400 MPa on the seat spring (stress σ_S ≈ 1.29·10¹⁰ Pa/m × σ_travel, a few tens
+/// of MPa: an amplitude above 400 MPa is a ten-σ event) leaves every simulated cycle harmless: each
+/// realization's Miner damage is 0, while Dirlik's rate (which integrates the whole amplitude density) is
+/// positive. Twenty zero damages bound the rate of damaging cycles (Garwood: ≤ −ln(0.025)/(R·T) at 95 %)
+/// but not the damage rate, so the comparison must not read "NO" (it did: the interval [0, 0] missed
+/// Dirlik's 4·10⁻²² /s); the report says why it does not compare.
+#[test]
+fn a_damage_rate_without_a_damaging_cycle_is_not_compared() {
+    let p = root().join("data/operator-seat-verdicts.toml");
+    let text = std::fs::read_to_string(&p).unwrap().replace(
+        "design_life = \"10000 h\"",
+        "design_life = \"10000 h\"\nendurance_limit = \"400 MPa\"",
+    );
+    assert!(text.contains("endurance_limit"));
+    let sc = parse_scenario(&text, &p, &root().join("spectra")).unwrap();
+    let opts = RunOptions {
+        realizations: 20,
+        duration_s: 20.0,
+        dt_s: 0.005,
+        seed: 3,
+        ..RunOptions::default()
+    };
+    let out = crate::common::scratch_kept("verdicts", "endurance").join("run.h5");
+    let _ = std::fs::remove_file(&out);
+    let s = sc.simulate(&opts, &out, &|_, _| {}).unwrap();
+    let d = s.statistic("travel", "damage_rate").unwrap();
+    assert_eq!((d.interval.estimate, d.interval.upper), (0.0, 0.0));
+    assert!(d.analytic.unwrap() > 0.0 && d.covers.is_none(), "{d:?}");
+    let v = stochvib::study::mc_verdicts::mc_verdicts(&s).unwrap();
+    let row = v.values.iter().find(|x| x.quantity == "damage rate").unwrap();
+    let cause = row.cause.as_deref().unwrap_or_default();
+    assert!(
+        cause.starts_with("not compared: no realization counted a damaging cycle"),
+        "{cause}"
+    );
+    std::fs::remove_file(&out).unwrap();
+}
+
 fn refused(edit: impl Fn(&str) -> String, key: &str, why: &str) {
     let p = root().join("data/operator-seat-verdicts.toml");
     let text = edit(&std::fs::read_to_string(&p).unwrap());
