@@ -19,7 +19,7 @@ pub use correlation::{ensemble_correlation, time_correlation};
 pub use cross_spectrum::{cross_spectrum, CrossSpectrum};
 pub use interval::{Comparison, Interval};
 pub use moments::{
-    chi_squared_quantile, mean_interval, std_interval, student_t_quantile, variance_interval,
+    chi_squared_quantile, mean_interval, poisson_rate_interval, std_interval, student_t_quantile, variance_interval,
     variance_interval_known_mean, ChiSquaredInterval, RunningMoments, VarianceEstimate,
 };
 pub use welch::{Welch, WelchEstimate, WelchScratch, WelchStream, WelchSums};

@@ -91,6 +91,43 @@ pub fn chi_squared_quantile(nu: f64, p: f64) -> Result<f64> {
     Ok(quantile(|x| d.cdf(x), |x| d.sf(x), p, 0.0, nu.max(1.0)))
 }
 
+/// The exact (Garwood) confidence interval of a Poisson rate from `k` events observed in `time` seconds:
+/// (lower, upper) in 1/s.
+///
+/// # Formula
+/// [χ²_{2k}(α/2)/2, χ²_{2k+2}(1 − α/2)/2]/time with α = 1 − confidence, the lower bound 0 for k = 0
+/// (Garwood 1936, "Fiducial limits for the Poisson distribution", Biometrika 28, 437–442): for k = 0 the
+/// upper bound is −ln(α/2)/time (χ²₂ is exponential with mean 2).
+///
+/// # Errors
+/// k < 0 or not finite, time not finite and > 0, confidence ∉ (0, 1).
+///
+/// # Examples
+/// ```
+/// use stochvib::estimate::poisson_rate_interval;
+/// // no event in 1200 s at 95 %: [0, −ln(0.025)/1200]
+/// let (lo, hi) = poisson_rate_interval(0.0, 1200.0, 0.95).unwrap();
+/// assert_eq!(lo, 0.0);
+/// assert!((hi - (-(0.025f64).ln() / 1200.0)).abs() < 1e-12);
+/// ```
+pub fn poisson_rate_interval(k: f64, time: f64, confidence: f64) -> Result<(f64, f64)> {
+    check_confidence(confidence)?;
+    if !(k.is_finite() && k >= 0.0) {
+        return Err(Error::invalid("events", k, "must be finite and >= 0"));
+    }
+    if !(time.is_finite() && time > 0.0) {
+        return Err(Error::invalid("time", time, "must be finite and > 0 (s)"));
+    }
+    let alpha = 1.0 - confidence;
+    let lower = if k > 0.0 {
+        chi_squared_quantile(2.0 * k, alpha / 2.0)? / 2.0
+    } else {
+        0.0
+    };
+    let upper = chi_squared_quantile(2.0 * k + 2.0, 1.0 - alpha / 2.0)? / 2.0;
+    Ok((lower / time, upper / time))
+}
+
 /// Quantile of Student's t distribution with ν degrees of freedom.
 ///
 /// # Errors

@@ -186,7 +186,10 @@ impl WhiteNoiseOscillator {
                 return Ok(());
             }
             if bv.is_nan() {
-                break;
+                return Err(not_confined(format!(
+                    "the potential is not a number at x = {} m, so the density's tail cannot be checked",
+                    crate::numbers::num(sign * x)
+                )));
             }
             if bv > peak {
                 (peak, at) = (bv, x);

@@ -612,10 +612,13 @@ fn quadrature_advice(sys: &Mdof) -> String {
 /// rate so small beside the stiffest term of its state matrix that its eigenvalues cannot tell it from
 /// zero (the stability test's resolution; a very stiff element that locks the damped coordinates).
 fn instability_reason(sys: &Mdof) -> String {
-    let worst = sys.state_space().map(|ss| {
-        let l = ss.a.complex_eigenvalues();
-        let top = l.iter().copied().fold(l[0], |a, b| if b.re > a.re { b } else { a });
-        (top, ss.a.amax())
+    let worst = sys.state_space().and_then(|ss| {
+        let top =
+            ss.a.complex_eigenvalues()
+                .iter()
+                .copied()
+                .reduce(|a, b| if b.re > a.re { b } else { a })?;
+        Some((top, ss.a.amax()))
     });
     match worst {
         Some((l, scale)) if l.re.abs() <= STABILITY_RESOLUTION * scale => format!(

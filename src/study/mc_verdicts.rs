@@ -54,7 +54,7 @@ fn no_damaging_cycle(s: &crate::store::Statistic, run: &RunSummary) -> Option<St
         return None;
     }
     let total = run.n_realizations as f64 * run.n_samples as f64 * run.dt_s;
-    let bound = -(0.5 * (1.0 - s.interval.confidence)).ln() / total;
+    let (_, bound) = crate::estimate::poisson_rate_interval(0.0, total, s.interval.confidence).ok()?;
     Some(format!(
         "not compared: no realization counted a damaging cycle (every amplitude below the endurance limit) in \
          the run's {} s, so the run bounds the rate of damaging cycles (≤ {} /s at {} %) but not the damage \

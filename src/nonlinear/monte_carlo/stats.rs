@@ -99,27 +99,6 @@ fn is_fraction(t: &Statistic) -> bool {
     t.name.contains("_fraction[")
 }
 
-/// The exact (Garwood) interval of a Poisson rate from `k` events in `time` seconds at `confidence`.
-///
-/// # Formula
-/// [χ²_{2k}(α/2)/2, χ²_{2k+2}(1 − α/2)/2]/time with α = 1 − confidence, the lower bound 0 for k = 0
-/// (Garwood 1936, "Fiducial limits for the Poisson distribution", Biometrika 28, 437–442): for k = 0 the
-/// upper bound is −ln(α/2)/time.
-fn garwood(k: f64, time: f64, confidence: f64) -> Result<(f64, f64)> {
-    use statrs::distribution::{ChiSquared, ContinuousCDF};
-    let alpha = 1.0 - confidence;
-    let chi = |dof: f64, p: f64| -> Result<f64> {
-        let d = ChiSquared::new(dof).map_err(|e| Error::Numerical {
-            what: "Poisson interval".into(),
-            reason: e.to_string(),
-        })?;
-        Ok(d.inverse_cdf(p))
-    };
-    let lower = if k > 0.0 { chi(2.0 * k, alpha / 2.0)? / 2.0 } else { 0.0 };
-    let upper = chi(2.0 * k + 2.0, 1.0 - alpha / 2.0)? / 2.0;
-    Ok((lower / time, upper / time))
-}
-
 /// The interval of an event rate: the Student-t interval across realizations (which sees the clustering
 /// of the events, e.g. crossings in bursts), widened to hold the exact Poisson interval of the total count
 /// over the total record time (which holds when the events are rare: a level never crossed in R·T seconds
@@ -131,7 +110,7 @@ fn rate_interval(iv: Interval, values: &[f64], record_s: f64, confidence: f64) -
         return Ok(iv);
     }
     let k: f64 = v.iter().map(|r| (r * record_s).round()).sum();
-    let (lo, hi) = garwood(k, v.len() as f64 * record_s, confidence)?;
+    let (lo, hi) = crate::estimate::poisson_rate_interval(k, v.len() as f64 * record_s, confidence)?;
     Ok(Interval {
         lower: iv.lower.min(lo).max(0.0),
         upper: iv.upper.max(hi),
